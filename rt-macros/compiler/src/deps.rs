@@ -1,0 +1,184 @@
+//! Which user items an item mentions: the paths of `#[rt_struct]`s,
+//! `#[rt_function]`s and `#[rt_const]`s the macro must collect before it can
+//! lower the item (see `expand` for how they are collected).
+
+use crate::kinds;
+use crate::types;
+use std::collections::BTreeSet;
+use syn::visit::Visit;
+
+/// Dependency paths of an item, deduplicated, in first-seen order.
+#[derive(Default)]
+pub struct Deps {
+    pub paths: Vec<syn::Path>,
+    seen: BTreeSet<String>,
+    locals: BTreeSet<String>,
+    self_name: String,
+}
+
+impl Deps {
+    fn add(&mut self, path: &syn::Path) {
+        let mut p = path.clone();
+        for seg in p.segments.iter_mut() {
+            seg.arguments = syn::PathArguments::None;
+        }
+        let first = p.segments.first().map(|s| s.ident.to_string()).unwrap_or_default();
+        if matches!(first.as_str(), "rt_std" | "std" | "core" | "glam") {
+            return;
+        }
+        let last = p.segments.last().map(|s| s.ident.to_string()).unwrap_or_default();
+        if last == self.self_name {
+            return;
+        }
+        let key = quote::quote!(#p).to_string();
+        if self.seen.insert(key) {
+            self.paths.push(p);
+        }
+    }
+}
+
+fn is_builtin_type_name(name: &str) -> bool {
+    types::builtin_type(name).is_some()
+        || types::buffer_kind(name).is_some()
+        || types::unsupported_type_advice(name).is_some()
+        || name == "Self"
+}
+
+fn is_builtin_fn(name: &str) -> bool {
+    kinds::intrinsic(name).is_some()
+        || matches!(
+            name,
+            "vec2"
+                | "vec3"
+                | "vec4"
+                | "ivec2"
+                | "ivec3"
+                | "ivec4"
+                | "uvec2"
+                | "uvec3"
+                | "uvec4"
+                | "reflect"
+                | "refract"
+                | "faceforward"
+                | "smoothstep"
+                | "mix"
+                | "step"
+                | "saturate"
+        )
+}
+
+fn is_const_like(name: &str) -> bool {
+    name.chars().next().is_some_and(|c| c.is_ascii_uppercase())
+        && name.chars().all(|c| c.is_ascii_uppercase() || c.is_ascii_digit() || c == '_')
+}
+
+fn is_builtin_const(name: &str) -> bool {
+    kinds::CONSTANTS.iter().any(|(n, _, _)| *n == name) || kinds::F32_CONSTS.iter().any(|(n, _)| *n == name)
+}
+
+impl<'ast> Visit<'ast> for Deps {
+    fn visit_type_path(&mut self, t: &'ast syn::TypePath) {
+        if let Some(seg) = t.path.segments.last()
+            && t.qself.is_none()
+            && !is_builtin_type_name(&seg.ident.to_string())
+        {
+            self.add(&t.path);
+        }
+        syn::visit::visit_type_path(self, t);
+    }
+
+    fn visit_expr_struct(&mut self, s: &'ast syn::ExprStruct) {
+        if let Some(seg) = s.path.segments.last()
+            && !is_builtin_type_name(&seg.ident.to_string())
+        {
+            self.add(&s.path);
+        }
+        syn::visit::visit_expr_struct(self, s);
+    }
+
+    fn visit_expr_call(&mut self, c: &'ast syn::ExprCall) {
+        if let syn::Expr::Path(p) = &*c.func
+            && p.qself.is_none()
+        {
+            let segs: Vec<String> = p.path.segments.iter().map(|s| s.ident.to_string()).collect();
+            if segs.len() >= 2 {
+                // `Type::function()`: a user struct's `default()`.
+                let owner = &segs[segs.len() - 2];
+                if !is_builtin_type_name(owner) && owner.chars().next().is_some_and(|c| c.is_uppercase()) {
+                    let mut owner_path = p.path.clone();
+                    owner_path.segments.pop();
+                    let owner_path = syn::Path { leading_colon: owner_path.leading_colon, segments: owner_path.segments.into_pairs().map(|p| p.into_value()).collect() };
+                    self.add(&owner_path);
+                } else if !is_builtin_type_name(owner) {
+                    self.add(&p.path);
+                }
+            } else if !is_builtin_fn(&segs[0]) {
+                self.add(&p.path);
+            }
+        }
+        for a in &c.args {
+            self.visit_expr(a);
+        }
+    }
+
+    fn visit_expr_path(&mut self, p: &'ast syn::ExprPath) {
+        let segs: Vec<String> = p.path.segments.iter().map(|s| s.ident.to_string()).collect();
+        let last = segs.last().cloned().unwrap_or_default();
+        if segs.len() == 1 {
+            if is_const_like(&last) && !self.locals.contains(&last) && !is_builtin_const(&last) {
+                self.add(&p.path);
+            }
+        } else {
+            let owner = &segs[segs.len() - 2];
+            if is_const_like(&last) && !is_builtin_type_name(owner) && owner != "consts" && owner != "TransformKind" {
+                self.add(&p.path);
+            }
+        }
+    }
+
+    fn visit_local(&mut self, l: &'ast syn::Local) {
+        syn::visit::visit_local(self, l);
+    }
+
+    fn visit_item_const(&mut self, c: &'ast syn::ItemConst) {
+        // A function-local `const` is not a dependency.
+        self.locals.insert(c.ident.to_string());
+        syn::visit::visit_item_const(self, c);
+    }
+
+    fn visit_macro(&mut self, m: &'ast syn::Macro) {
+        // `rt_printf!(fmt, args...)`: look into the arguments.
+        if let Ok(args) = m.parse_body_with(syn::punctuated::Punctuated::<syn::Expr, syn::Token![,]>::parse_terminated) {
+            for a in &args {
+                self.visit_expr(a);
+            }
+        }
+    }
+}
+
+/// Dependencies of a function (signature and body).
+pub fn of_fn(f: &syn::ItemFn) -> Vec<syn::Path> {
+    let mut d = Deps { self_name: f.sig.ident.to_string(), ..Deps::default() };
+    // Collect fn-local consts first so their uses are not dependencies.
+    d.visit_block(&f.block);
+    let locals = std::mem::take(&mut d.locals);
+    let mut d = Deps { self_name: f.sig.ident.to_string(), locals, ..Deps::default() };
+    d.visit_signature(&f.sig);
+    d.visit_block(&f.block);
+    d.paths
+}
+
+/// Dependencies of a struct (its field types).
+pub fn of_struct(s: &syn::ItemStruct) -> Vec<syn::Path> {
+    let mut d = Deps { self_name: s.ident.to_string(), ..Deps::default() };
+    d.visit_fields(&s.fields);
+    d.paths
+}
+
+/// Dependencies of a constant (its type and value).
+pub fn of_const(c: &syn::ItemConst) -> Vec<syn::Path> {
+    let mut d = Deps { self_name: c.ident.to_string(), ..Deps::default() };
+    d.visit_type(&c.ty);
+    d.visit_expr(&c.expr);
+    d.paths
+}

@@ -1,0 +1,583 @@
+//! Token emission for the attribute macros, and the dependency chain.
+//!
+//! ## The chain
+//! `#[rt_struct] struct S` (likewise `#[rt_function]`, `#[rt_const]`) emits,
+//! beside the item, `macro_rules! __rt_item_S` and `pub(crate) use
+//! __rt_item_S as S;` — a macro named like the item, found wherever the item
+//! is (macros and types live in different namespaces). Invoked as
+//! `S!{ @rt_collect REST }` it expands to `::rt_std::__rt_collect!{ def {
+//! <S and everything S depends on> } REST }`.
+//!
+//! A macro with dependencies `A, B` emits `A!{ @rt_collect todo { B } done {}
+//! entry { ... } }`; `__rt_collect!` ([`collect`]) moves the definition into
+//! `done` and invokes the next path in `todo`. With `todo` empty, it lowers
+//! the entry. Because each item collects its own dependencies where it is
+//! declared, paths always resolve in the module that wrote them.
+//!
+//! Programs expand inside `mod <program name> { use super::*; ... }` (a
+//! module and a function may share a name), which holds the CPU thunk and
+//! `pub static PROGRAM: ProgramDescriptor`.
+
+use crate::error::{Error, Errors};
+use crate::kinds::Kind;
+use crate::lower::{self, Entry, Lowered};
+use crate::signature::{self, Role};
+use crate::types::Ty;
+use crate::{Item, StructRole, deps};
+use proc_macro2::{Span, TokenStream, TokenTree};
+use quote::{format_ident, quote, quote_spanned};
+use syn::spanned::Spanned;
+
+pub fn parse_kind(ident: &syn::Ident) -> Result<Kind, Error> {
+    Kind::from_name(&ident.to_string()).ok_or_else(|| {
+        let all: Vec<&str> = crate::kinds::ALL_KINDS.iter().map(|k| k.name()).collect();
+        Error::new(ident.span(), format!("unknown program kind `{ident}`: expected one of {}", all.join(", ")))
+    })
+}
+
+/// The original function with `#[var]` parameter attributes removed.
+fn strip_var_attrs(f: &syn::ItemFn) -> syn::ItemFn {
+    let mut f = f.clone();
+    for input in f.sig.inputs.iter_mut() {
+        if let syn::FnArg::Typed(pt) = input {
+            pt.attrs.retain(|a| !signature::is_var_attr(a));
+        }
+    }
+    f
+}
+
+/// `#[rt_program(kind)]`.
+pub fn rt_program(attr: TokenStream, item: TokenStream) -> TokenStream {
+    let f: syn::ItemFn = match syn::parse2(item.clone()) {
+        Ok(f) => f,
+        Err(e) => {
+            let err = e.to_compile_error();
+            return quote!(#err #item);
+        }
+    };
+    let stripped = strip_var_attrs(&f);
+    let kind = match syn::parse2::<syn::Ident>(attr.clone()) {
+        Ok(i) => match parse_kind(&i) {
+            Ok(k) => k,
+            Err(e) => return with_errors(e.into(), quote!(#stripped)),
+        },
+        Err(_) => {
+            let all: Vec<&str> = crate::kinds::ALL_KINDS.iter().map(|k| k.name()).collect();
+            let span = if attr.is_empty() { Span::call_site() } else { attr.span() };
+            let e = Error::new(span, format!("`#[rt_program]` needs a program kind: one of {}", all.join(", ")));
+            return with_errors(e.into(), quote!(#stripped));
+        }
+    };
+    let params = match signature::program_params(kind, &f) {
+        Ok(p) => p,
+        Err(e) => return with_errors(e, quote!(#stripped)),
+    };
+    let name = &f.sig.ident;
+    let vis = &f.vis;
+    let thunk = cpu_thunk(kind, &f, &params);
+    let kind_ident = format_ident!("{}", kind.name());
+    let entry = quote!(program #kind_ident { #item });
+    let deps: Vec<syn::Path> = deps::of_fn(&f).into_iter().map(|p| reroot(&p)).collect();
+    let body = start_chain(entry, deps);
+    quote! {
+        #stripped
+        #[doc(hidden)]
+        #[allow(non_snake_case, unused_imports, clippy::all)]
+        #vis mod #name {
+            use super::*;
+            #thunk
+            #body
+        }
+    }
+}
+
+/// `#[rt_function]`.
+pub fn rt_function(attr: TokenStream, item: TokenStream) -> TokenStream {
+    let f: syn::ItemFn = match syn::parse2(item.clone()) {
+        Ok(f) => f,
+        Err(e) => {
+            let err = e.to_compile_error();
+            return quote!(#err #item);
+        }
+    };
+    if !attr.is_empty() {
+        return with_errors(Error::new(attr.span(), "`#[rt_function]` takes no arguments").into(), item);
+    }
+    let body = start_chain(quote!(function { #item }), deps::of_fn(&f));
+    quote!(#item #body)
+}
+
+/// `#[rt_struct]`, `#[rt_payload]`, `#[rt_attributes]`.
+pub fn rt_struct(attr: TokenStream, item: TokenStream, role: StructRole) -> TokenStream {
+    let s: syn::ItemStruct = match syn::parse2(item.clone()) {
+        Ok(s) => s,
+        Err(e) => {
+            let err = e.to_compile_error();
+            return quote!(#err #item);
+        }
+    };
+    if !attr.is_empty() {
+        return with_errors(Error::new(attr.span(), "this attribute takes no arguments").into(), item);
+    }
+    let decorated = decorate_struct(&s);
+    let data_impl = rt_data_impl(&s, role);
+    let role_kw = format_ident!("{}", role.keyword());
+    let body = start_chain(quote!(struct #role_kw { #item }), deps::of_struct(&s));
+    quote!(#decorated #data_impl #body)
+}
+
+/// `#[rt_const]`.
+pub fn rt_const(attr: TokenStream, item: TokenStream) -> TokenStream {
+    let c: syn::ItemConst = match syn::parse2(item.clone()) {
+        Ok(c) => c,
+        Err(e) => {
+            let err = e.to_compile_error();
+            return quote!(#err #item);
+        }
+    };
+    if !attr.is_empty() {
+        return with_errors(Error::new(attr.span(), "`#[rt_const]` takes no arguments").into(), item);
+    }
+    let body = start_chain(quote!(constant { #item }), deps::of_const(&c));
+    quote!(#item #body)
+}
+
+fn with_errors(e: Errors, item: TokenStream) -> TokenStream {
+    let errs = e.to_compile_errors();
+    quote!(#errs #item)
+}
+
+/// Inside the program's module, paths relative to the parent need one more
+/// `super`.
+fn reroot(p: &syn::Path) -> syn::Path {
+    let mut p = p.clone();
+    if p.leading_colon.is_none()
+        && let Some(first) = p.segments.first()
+    {
+        let f = first.ident.to_string();
+        if f == "super" {
+            p.segments.insert(0, syn::PathSegment::from(syn::Ident::new("super", first.ident.span())));
+        } else if f == "self" {
+            p.segments[0].ident = syn::Ident::new("super", first.ident.span());
+        }
+    }
+    p
+}
+
+/// Starts the chain for `entry` with dependency paths `deps`; with none, lowers
+/// at once.
+fn start_chain(entry: TokenStream, deps: Vec<syn::Path>) -> TokenStream {
+    match deps.split_first() {
+        None => finish(&entry, TokenStream::new()),
+        Some((first, rest)) => chain_call(first, rest, TokenStream::new(), &entry),
+    }
+}
+
+fn chain_call(next: &syn::Path, rest: &[syn::Path], done: TokenStream, entry: &TokenStream) -> TokenStream {
+    // The invocation carries the span of the path, so "cannot find macro"
+    // (an item not declared with an rt attribute) points at the use.
+    let span = next.span();
+    quote_spanned! {span=> #next!{ @rt_collect todo { #(#rest),* } done { #done } entry { #entry } } }
+}
+
+/// `__rt_collect!`: one step of the chain.
+pub fn collect(input: TokenStream) -> TokenStream {
+    let groups = match keyed_groups(input) {
+        Ok(g) => g,
+        Err(e) => return e.to_compile_error(),
+    };
+    let get = |k: &str| groups.iter().find(|(n, _)| n == k).map(|(_, g)| g.clone()).unwrap_or_default();
+    let def = get("def");
+    let mut done = get("done");
+    done.extend(def);
+    let entry = get("entry");
+    let todo: Vec<syn::Path> =
+        match syn::parse::Parser::parse2(syn::punctuated::Punctuated::<syn::Path, syn::Token![,]>::parse_terminated, get("todo")) {
+            Ok(p) => p.into_iter().collect(),
+            Err(e) => return e.to_compile_error(),
+        };
+    match todo.split_first() {
+        Some((first, rest)) => chain_call(first, rest, done, &entry),
+        None => finish(&entry, done),
+    }
+}
+
+/// Splits `name { ... } name { ... }` into pairs.
+fn keyed_groups(input: TokenStream) -> syn::Result<Vec<(String, TokenStream)>> {
+    let mut out = Vec::new();
+    let mut it = input.into_iter();
+    while let Some(t) = it.next() {
+        let TokenTree::Ident(name) = t else {
+            return Err(syn::Error::new(t.span(), "malformed __rt_collect! input"));
+        };
+        match it.next() {
+            Some(TokenTree::Group(g)) => out.push((name.to_string(), g.stream())),
+            _ => return Err(syn::Error::new(name.span(), "malformed __rt_collect! input")),
+        }
+    }
+    Ok(out)
+}
+
+/// Parses `role { item } role { item } ...` definitions.
+pub fn parse_defs(tokens: TokenStream) -> syn::Result<Vec<Item>> {
+    let mut items = Vec::new();
+    let mut it = tokens.into_iter().peekable();
+    while let Some(t) = it.next() {
+        let TokenTree::Ident(kw) = t else { return Err(syn::Error::new(t.span(), "malformed definition")) };
+        let kw = kw.to_string();
+        let role = if kw == "struct" {
+            match it.next() {
+                Some(TokenTree::Ident(r)) => StructRole::from_keyword(&r.to_string()),
+                _ => None,
+            }
+        } else {
+            None
+        };
+        let Some(TokenTree::Group(g)) = it.next() else {
+            return Err(syn::Error::new(Span::call_site(), "malformed definition"));
+        };
+        let item = match (kw.as_str(), role) {
+            ("struct", Some(r)) => Item::Struct(syn::parse2(g.stream())?, r),
+            ("function", _) => Item::Function(syn::parse2(g.stream())?),
+            ("constant", _) => Item::Const(syn::parse2(g.stream())?),
+            _ => return Err(syn::Error::new(g.span(), "malformed definition")),
+        };
+        if !items.iter().any(|i: &Item| i.name() == item.name()) {
+            items.push(item);
+        }
+    }
+    Ok(items)
+}
+
+/// The end of the chain: lower the entry with every collected definition.
+fn finish(entry: &TokenStream, done: TokenStream) -> TokenStream {
+    let deps = match parse_defs(done.clone()) {
+        Ok(d) => d,
+        Err(e) => return e.to_compile_error(),
+    };
+    let mut it = entry.clone().into_iter();
+    let kw = match it.next() {
+        Some(TokenTree::Ident(i)) => i.to_string(),
+        _ => return quote!(compile_error!("malformed rt entry");),
+    };
+    match kw.as_str() {
+        "program" => {
+            let (Some(TokenTree::Ident(kind)), Some(TokenTree::Group(g))) = (it.next(), it.next()) else {
+                return quote!(compile_error!("malformed rt entry");)
+            };
+            let f: syn::ItemFn = match syn::parse2(g.stream()) {
+                Ok(f) => f,
+                Err(e) => return e.to_compile_error(),
+            };
+            let kind = match parse_kind(&kind) {
+                Ok(k) => k,
+                Err(e) => return Errors::from(e).to_compile_errors(),
+            };
+            let lowered = lower::lower(Entry::Program(kind, &f), &deps);
+            program_output(kind, &f, lowered)
+        }
+        "function" | "constant" | "struct" => {
+            let role = if kw == "struct" {
+                match it.next() {
+                    Some(TokenTree::Ident(r)) => StructRole::from_keyword(&r.to_string()),
+                    _ => None,
+                }
+            } else {
+                None
+            };
+            let Some(TokenTree::Group(g)) = it.next() else { return quote!(compile_error!("malformed rt entry");) };
+            let item_tokens = g.stream();
+            let (name, check) = match (kw.as_str(), role) {
+                ("function", _) => match syn::parse2::<syn::ItemFn>(item_tokens.clone()) {
+                    Ok(f) => (f.sig.ident.clone(), lower::lower(Entry::Helper(&f), &deps).map(|_| ())),
+                    Err(e) => return e.to_compile_error(),
+                },
+                ("constant", _) => match syn::parse2::<syn::ItemConst>(item_tokens.clone()) {
+                    Ok(c) => (c.ident.clone(), lower::lower(Entry::Const(&c), &deps).map(|_| ())),
+                    Err(e) => return e.to_compile_error(),
+                },
+                (_, Some(r)) => match syn::parse2::<syn::ItemStruct>(item_tokens.clone()) {
+                    Ok(s) => {
+                        let mut deps = deps.clone();
+                        deps.retain(|d| d.name() != s.ident.to_string());
+                        deps.push(Item::Struct(s.clone(), r));
+                        (s.ident.clone(), lower::lower(Entry::Struct(&s), &deps).map(|_| ()))
+                    }
+                    Err(e) => return e.to_compile_error(),
+                },
+                _ => return quote!(compile_error!("malformed rt entry");),
+            };
+            let errors = match check {
+                Ok(()) => TokenStream::new(),
+                Err(e) => e.to_compile_errors(),
+            };
+            let role_kw = role.map(|r| format_ident!("{}", r.keyword()));
+            let kw_ident = format_ident!("{}", kw);
+            let export = export_macro(&name, quote!(#kw_ident #role_kw { #item_tokens } #done));
+            quote!(#errors #export)
+        }
+        _ => quote!(compile_error!("malformed rt entry");),
+    }
+}
+
+/// `macro_rules! __rt_item_NAME` handing out `defs`, re-exported as `NAME`.
+fn export_macro(name: &syn::Ident, defs: TokenStream) -> TokenStream {
+    let mac = format_ident!("__rt_item_{}", name);
+    quote! {
+        #[doc(hidden)]
+        #[allow(unused_macros)]
+        macro_rules! #mac {
+            (@rt_collect $($rest:tt)*) => { ::rt_std::__rt_collect!{ def { #defs } $($rest)* } };
+        }
+        #[doc(hidden)]
+        #[allow(unused_imports)]
+        pub(crate) use #mac as #name;
+    }
+}
+
+fn str_slice(items: &[String]) -> TokenStream {
+    quote!(&[#(#items),*])
+}
+
+/// `TypeLayout` tokens for a type.
+fn layout(ty: &Ty) -> TokenStream {
+    let rust = ty.rust();
+    let wgsl = ty.wgsl();
+    let words = ty.words();
+    let mut offset = 0u32;
+    let fields: Vec<TokenStream> = ty
+        .fields()
+        .into_iter()
+        .map(|(n, t)| {
+            let tr = t.rust();
+            let o = offset;
+            offset += t.words();
+            quote!(::rt_std::program::FieldLayout { name: #n, ty: #tr, offset_words: #o })
+        })
+        .collect();
+    quote!(::rt_std::program::TypeLayout { rust: #rust, wgsl: #wgsl, words: #words, fields: &[#(#fields),*] })
+}
+
+fn option_layout(ty: &Option<Ty>) -> TokenStream {
+    match ty {
+        Some(t) => {
+            let l = layout(t);
+            quote!(Some(#l))
+        }
+        None => quote!(None),
+    }
+}
+
+fn wgsl_items(items: &[(String, String)]) -> TokenStream {
+    let items = items.iter().map(|(n, t)| quote!(::rt_std::program::WgslItem { name: #n, text: #t }));
+    quote!(&[#(#items),*])
+}
+
+fn program_output(kind: Kind, f: &syn::ItemFn, lowered: Result<Lowered, Errors>) -> TokenStream {
+    let (errors, l) = match lowered {
+        Ok(l) => (TokenStream::new(), l),
+        Err(e) => (e.to_compile_errors(), Lowered { name: f.sig.ident.to_string(), ..Lowered::default() }),
+    };
+    let variant = format_ident!("{}", kind.variant());
+    let name = f.sig.ident.to_string();
+    let wgsl_entry = format!("rtp_{name}");
+    let wgsl = &l.wgsl;
+    let prelude = &l.prelude;
+    let types = wgsl_items(&l.types);
+    let functions = wgsl_items(&l.functions);
+    let program = &l.program;
+    let payload = option_layout(&l.payload);
+    let attributes = option_layout(&l.attributes);
+    let variables = l.variables.iter().map(|(n, t)| {
+        let lay = layout(t);
+        let vkind = match t {
+            Ty::Buffer(k, e) => {
+                let el = layout(e);
+                let dims = k.dims as u32;
+                let w = k.writable;
+                quote!(::rt_std::program::VariableKind::Buffer { element: #el, dimensions: #dims, writable: #w })
+            }
+            Ty::Sampler => quote!(::rt_std::program::VariableKind::Sampler),
+            Ty::Object => quote!(::rt_std::program::VariableKind::Object),
+            _ => quote!(::rt_std::program::VariableKind::Value),
+        };
+        quote!(::rt_std::program::VariableDescriptor { name: #n, ty: #lay, kind: #vkind })
+    });
+    let intrinsics = str_slice(&l.intrinsics);
+    let traced = l.traced.iter().map(layout);
+    let printf = l.printf.iter().map(|(id, fmt, args)| {
+        let args = str_slice(args);
+        quote!(::rt_std::program::PrintfFormat { id: #id, format: #fmt, args: #args })
+    });
+    let span = f.sig.ident.span();
+    let file = quote_spanned!(span=> file!());
+    let line = quote_spanned!(span=> line!());
+    quote! {
+        #errors
+        /// The program's descriptor: WGSL, layouts, variables and the CPU entry.
+        pub static PROGRAM: ::rt_std::program::ProgramDescriptor = ::rt_std::program::ProgramDescriptor {
+            kind: ::rt_std::program::ProgramKind::#variant,
+            name: #name,
+            wgsl_entry: #wgsl_entry,
+            wgsl: #wgsl,
+            wgsl_prelude: #prelude,
+            wgsl_types: #types,
+            wgsl_functions: #functions,
+            wgsl_program: #program,
+            payload: #payload,
+            attributes: #attributes,
+            variables: &[#(#variables),*],
+            intrinsics: #intrinsics,
+            traced_payloads: &[#(#traced),*],
+            printf: &[#(#printf),*],
+            file: #file,
+            line: #line,
+            cpu: cpu,
+        };
+    }
+}
+
+/// Rewrites `super::` paths in a type for use one module deeper.
+fn reroot_type(ty: &syn::Type) -> syn::Type {
+    struct R;
+    impl syn::visit_mut::VisitMut for R {
+        fn visit_path_mut(&mut self, p: &mut syn::Path) {
+            *p = reroot(p);
+            syn::visit_mut::visit_path_mut(self, p);
+        }
+    }
+    let mut t = ty.clone();
+    syn::visit_mut::VisitMut::visit_type_mut(&mut R, &mut t);
+    t
+}
+
+/// The CPU entry: unpacks `CpuArgs` and calls the original function.
+fn cpu_thunk(kind: Kind, f: &syn::ItemFn, params: &[signature::Param]) -> TokenStream {
+    let name = &f.sig.ident;
+    let name_str = name.to_string();
+    let mut var_index = 0usize;
+    let args = params.iter().map(|p| {
+        let ty = reroot_type(&p.ty);
+        match p.role {
+            Role::Payload { mutable } => {
+                let a = quote!(::rt_std::cpu::__arg::<#ty>(payload.as_deref_mut(), #name_str, "the payload"));
+                if mutable { a } else { quote!(&*#a) }
+            }
+            Role::Attributes { mutable } => {
+                let a = quote!(::rt_std::cpu::__arg::<#ty>(attributes.as_deref_mut(), #name_str, "the attributes"));
+                if mutable { a } else { quote!(&*#a) }
+            }
+            Role::Primitive => quote!(*primitive),
+            Role::Variable => {
+                let i = var_index;
+                var_index += 1;
+                let vname = p.name.to_string();
+                quote!(::rt_std::cpu::__var::<#ty>(variables, #i, #name_str, #vname))
+            }
+        }
+    });
+    let _ = kind;
+    quote! {
+        /// Runs the program natively (the CPU backend's entry).
+        pub fn cpu(args: &mut ::rt_std::cpu::CpuArgs<'_>) -> ::rt_std::cpu::CpuResult {
+            let ::rt_std::cpu::CpuArgs { payload, attributes, primitive, variables } = args;
+            let _ = (&payload, &attributes, &primitive, &variables);
+            ::rt_std::cpu::CpuResult::from(super::#name(#(#args),*))
+        }
+    }
+}
+
+/// The struct with `#[repr(C)]` and the derives programs rely on.
+fn decorate_struct(s: &syn::ItemStruct) -> TokenStream {
+    let mut derived: Vec<String> = Vec::new();
+    for a in &s.attrs {
+        if a.path().is_ident("derive") {
+            let _ = a.parse_nested_meta(|m| {
+                if let Some(i) = m.path.get_ident() {
+                    derived.push(i.to_string());
+                } else if let Some(seg) = m.path.segments.last() {
+                    derived.push(seg.ident.to_string());
+                }
+                Ok(())
+            });
+        }
+    }
+    let wanted = ["Clone", "Copy", "Debug", "Default", "PartialEq"];
+    let missing: Vec<syn::Ident> =
+        wanted.iter().filter(|w| !derived.iter().any(|d| d == *w)).map(|w| format_ident!("{}", w)).collect();
+    let has_repr = s.attrs.iter().any(|a| a.path().is_ident("repr"));
+    let repr = if has_repr { quote!() } else { quote!(#[repr(C)]) };
+    let derive = if missing.is_empty() { quote!() } else { quote!(#[derive(#(#missing),*)]) };
+    quote!(#derive #repr #s)
+}
+
+/// `impl RtData` (and the role's marker trait) for a user struct.
+fn rt_data_impl(s: &syn::ItemStruct, role: StructRole) -> TokenStream {
+    let name = &s.ident;
+    let name_str = name.to_string();
+    let wgsl = lower::wgsl_ident(&name_str);
+    let syn::Fields::Named(fields) = &s.fields else {
+        return TokenStream::new();
+    };
+    let mut offset = quote!(0u32);
+    let mut field_layouts = Vec::new();
+    let mut writes = Vec::new();
+    let mut reads = Vec::new();
+    for f in &fields.named {
+        let ident = f.ident.as_ref().unwrap();
+        let fname = ident.to_string();
+        let (words, write, read, tyname) = match &f.ty {
+            syn::Type::Array(a) => {
+                let elem = &a.elem;
+                let len = &a.len;
+                let words = quote!(((#len) as u32 * <#elem as ::rt_std::RtData>::LAYOUT.words));
+                let write = quote! {
+                    for (i, e) in self.#ident.iter().enumerate() {
+                        let w = <#elem as ::rt_std::RtData>::LAYOUT.words as usize;
+                        ::rt_std::RtData::write_words(e, &mut out[(#offset) as usize + i * w..]);
+                    }
+                };
+                let read = quote! {
+                    #ident: core::array::from_fn(|i| {
+                        let w = <#elem as ::rt_std::RtData>::LAYOUT.words as usize;
+                        <#elem as ::rt_std::RtData>::read_words(&words[(#offset) as usize + i * w..])
+                    })
+                };
+                let tyname = signature::type_text(&f.ty);
+                (words, write, read, tyname)
+            }
+            ty => {
+                let words = quote!(<#ty as ::rt_std::RtData>::LAYOUT.words);
+                let write = quote!(::rt_std::RtData::write_words(&self.#ident, &mut out[(#offset) as usize..]););
+                let read = quote!(#ident: <#ty as ::rt_std::RtData>::read_words(&words[(#offset) as usize..]));
+                (words, write, read, signature::type_text(ty))
+            }
+        };
+        field_layouts.push(quote!(::rt_std::program::FieldLayout { name: #fname, ty: #tyname, offset_words: #offset }));
+        writes.push(write);
+        reads.push(read);
+        offset = quote!(#offset + #words);
+    }
+    let marker = match role {
+        StructRole::Data => quote!(),
+        StructRole::Payload => quote!(impl ::rt_std::Payload for #name {}),
+        StructRole::Attributes => quote!(impl ::rt_std::Attributes for #name {}),
+    };
+    quote! {
+        impl ::rt_std::RtData for #name {
+            const LAYOUT: ::rt_std::program::TypeLayout = ::rt_std::program::TypeLayout {
+                rust: #name_str,
+                wgsl: #wgsl,
+                words: #offset,
+                fields: &[#(#field_layouts),*],
+            };
+            fn write_words(&self, out: &mut [u32]) {
+                #(#writes)*
+            }
+            fn read_words(words: &[u32]) -> Self {
+                Self { #(#reads),* }
+            }
+        }
+        #marker
+    }
+}

@@ -1,0 +1,305 @@
+//! Methods and associated constants of the builtin types (scalars, glam
+//! vectors and matrices) that have WGSL equivalents, with their lowering.
+//! Semantics follow Rust/glam; where WGSL differs (Rust's `round` rounds
+//! half away from zero, `fract` is `x - trunc(x)`, `signum(0.0)` is 1) the
+//! lowering spells Rust's definition out.
+
+use super::func::{Val, f32_literal};
+use crate::types::{F32, Scalar, Ty, U32};
+
+/// A method's parameter types, result type and lowering (`args[0]` is the
+/// receiver).
+pub struct MethodSig {
+    pub params: Vec<Ty>,
+    pub ret: Ty,
+    pub lower: Box<dyn Fn(&[String]) -> String>,
+}
+
+fn sig(params: Vec<Ty>, ret: Ty, lower: impl Fn(&[String]) -> String + 'static) -> Option<MethodSig> {
+    Some(MethodSig { params, ret, lower: Box::new(lower) })
+}
+
+/// `f(recv, args...)`.
+fn wgsl_fn(name: &'static str) -> impl Fn(&[String]) -> String {
+    move |a| format!("{name}({})", a.join(", "))
+}
+
+pub fn method_sig(recv: &Ty, name: &str) -> Option<MethodSig> {
+    let t = recv.clone();
+    let is_float = recv.scalar() == Some(Scalar::F32) && !matches!(recv, Ty::Mat(_));
+    let is_int = matches!(recv, Ty::Scalar(s) | Ty::Vec(_, s) if s.is_int());
+    let is_vec = matches!(recv, Ty::Vec(..));
+    let is_scalar = matches!(recv, Ty::Scalar(_));
+    let n = match recv {
+        Ty::Vec(n, _) => *n,
+        _ => 1,
+    };
+    // Methods shared by every copyable value.
+    if name == "clone" && recv.is_value() {
+        return sig(vec![], t, |a| a[0].clone());
+    }
+    if let Ty::Mat(m) = recv {
+        return mat_method(*m, name);
+    }
+    if is_float {
+        let unary = match name {
+            "abs" => Some("abs"),
+            "sqrt" => Some("sqrt"),
+            "exp" => Some("exp"),
+            "exp2" => Some("exp2"),
+            "ln" => Some("log"),
+            "log2" => Some("log2"),
+            "sin" => Some("sin"),
+            "cos" => Some("cos"),
+            "tan" => Some("tan"),
+            "asin" => Some("asin"),
+            "acos" => Some("acos"),
+            "atan" => Some("atan"),
+            "sinh" => Some("sinh"),
+            "cosh" => Some("cosh"),
+            "tanh" => Some("tanh"),
+            "asinh" => Some("asinh"),
+            "acosh" => Some("acosh"),
+            "atanh" => Some("atanh"),
+            "floor" => Some("floor"),
+            "ceil" => Some("ceil"),
+            "trunc" => Some("trunc"),
+            "fract_gl" => Some("fract"),
+            "to_radians" => Some("radians"),
+            "to_degrees" => Some("degrees"),
+            "round_ties_even" => Some("round"),
+            _ => None,
+        };
+        if let Some(f) = unary {
+            return sig(vec![], t, wgsl_fn(f));
+        }
+        let w = t.wgsl();
+        let one = if is_vec { format!("{w}(1.0)") } else { "1.0f".to_string() };
+        match name {
+            "recip" => return sig(vec![], t, move |a| format!("({one} / {})", a[0])),
+            "fract" => return sig(vec![], t, |a| format!("({0} - trunc({0}))", a[0])),
+            "round" => return sig(vec![], t, |a| format!("(sign({0}) * floor(abs({0}) + 0.5))", a[0])),
+            "signum" => {
+                let (pos, neg) = if is_vec { (format!("{w}(1.0)"), format!("{w}(-1.0)")) } else { ("1.0f".into(), "-1.0f".into()) };
+                let sign_bit = if is_vec {
+                    format!("(bitcast<vec{n}<u32>>({{}}) & vec{n}<u32>(0x80000000u)) != vec{n}<u32>(0u)")
+                } else {
+                    "(bitcast<u32>({}) & 0x80000000u) != 0u".to_string()
+                };
+                return sig(vec![], t, move |a| format!("select({pos}, {neg}, {})", sign_bit.replace("{}", &a[0])));
+            }
+            "powf" => {
+                return sig(vec![F32], t, move |a| {
+                    if is_vec { format!("pow({}, {w}({}))", a[0], a[1]) } else { format!("pow({}, {})", a[0], a[1]) }
+                });
+            }
+            "powi" if is_scalar => return sig(vec![Ty::Scalar(Scalar::I32)], t, |a| format!("pow({}, f32({}))", a[0], a[1])),
+            "atan2" if is_scalar => return sig(vec![F32], t, |a| format!("atan2({}, {})", a[0], a[1])),
+            "mul_add" => return sig(vec![t.clone(), t.clone()], t, wgsl_fn("fma")),
+            "is_nan" if is_scalar => return sig(vec![], Ty::Scalar(Scalar::Bool), |a| format!("({0} != {0})", a[0])),
+            "is_finite" if is_scalar => {
+                return sig(vec![], Ty::Scalar(Scalar::Bool), |a| format!("(abs({}) <= {})", a[0], f32_literal(f32::MAX)));
+            }
+            "is_infinite" if is_scalar => {
+                return sig(vec![], Ty::Scalar(Scalar::Bool), |a| format!("(abs({}) > {})", a[0], f32_literal(f32::MAX)));
+            }
+            "hypot" if is_scalar => return sig(vec![F32], t, |a| format!("length(vec2<f32>({}, {}))", a[0], a[1])),
+            _ => {}
+        }
+        if is_vec {
+            let v3 = Ty::vec(3);
+            match name {
+                "length" => return sig(vec![], F32, wgsl_fn("length")),
+                "length_squared" => return sig(vec![], F32, |a| format!("dot({0}, {0})", a[0])),
+                "length_recip" => return sig(vec![], F32, |a| format!("inverseSqrt(dot({0}, {0}))", a[0])),
+                "normalize" => return sig(vec![], t, wgsl_fn("normalize")),
+                "normalize_or_zero" => {
+                    return sig(vec![], t, move |a| {
+                        format!("select({w}(), {0} * inverseSqrt(dot({0}, {0})), dot({0}, {0}) > 0.0)", a[0])
+                    });
+                }
+                "distance" => return sig(vec![t.clone()], F32, wgsl_fn("distance")),
+                "distance_squared" => return sig(vec![t.clone()], F32, |a| format!("dot({0} - {1}, {0} - {1})", a[0], a[1])),
+                "lerp" => return sig(vec![t.clone(), F32], t, wgsl_fn("mix")),
+                "reflect" if n == 3 => return sig(vec![v3.clone()], v3, wgsl_fn("reflect")),
+                "refract" if n == 3 => return sig(vec![v3.clone(), F32], v3, wgsl_fn("refract")),
+                "cross" if n == 3 => return sig(vec![v3.clone()], v3, wgsl_fn("cross")),
+                _ => {}
+            }
+        }
+    }
+    if is_int {
+        let u = U32;
+        let cnt = |f: &'static str| {
+            let scalar_is_u = recv.scalar() == Some(Scalar::U32);
+            move |a: &[String]| if scalar_is_u { format!("{f}({})", a[0]) } else { format!("u32({f}({}))", a[0]) }
+        };
+        match name {
+            "abs" if recv.scalar() == Some(Scalar::I32) => return sig(vec![], t, wgsl_fn("abs")),
+            "signum" if recv.scalar() == Some(Scalar::I32) => return sig(vec![], t, wgsl_fn("sign")),
+            "count_ones" if is_scalar => return sig(vec![], u, cnt("countOneBits")),
+            "leading_zeros" if is_scalar => return sig(vec![], u, cnt("countLeadingZeros")),
+            "trailing_zeros" if is_scalar => return sig(vec![], u, cnt("countTrailingZeros")),
+            "reverse_bits" if is_scalar => return sig(vec![], t, wgsl_fn("reverseBits")),
+            "wrapping_add" => return sig(vec![t.clone()], t, |a| format!("({} + {})", a[0], a[1])),
+            "wrapping_sub" => return sig(vec![t.clone()], t, |a| format!("({} - {})", a[0], a[1])),
+            "wrapping_mul" => return sig(vec![t.clone()], t, |a| format!("({} * {})", a[0], a[1])),
+            _ => {}
+        }
+    }
+    if is_float || is_int {
+        match name {
+            "min" => return sig(vec![t.clone()], t, wgsl_fn("min")),
+            "max" => return sig(vec![t.clone()], t, wgsl_fn("max")),
+            "clamp" => return sig(vec![t.clone(), t.clone()], t, wgsl_fn("clamp")),
+            _ => {}
+        }
+    }
+    if is_vec && recv.scalar() != Some(Scalar::Bool) {
+        let s = recv.scalar().unwrap();
+        let comps = |f: &'static str| {
+            move |a: &[String]| {
+                let parts: Vec<String> = (0..n).map(|i| format!("{}.{}", a[0], &"xyzw"[i as usize..i as usize + 1])).collect();
+                match f {
+                    "+" | "*" => format!("({})", parts.join(&format!(" {f} "))),
+                    _ => parts[1..].iter().fold(parts[0].clone(), |acc, p| format!("{f}({acc}, {p})")),
+                }
+            }
+        };
+        match name {
+            "dot" => return sig(vec![t.clone()], Ty::Scalar(s), wgsl_fn("dot")),
+            "element_sum" => return sig(vec![], Ty::Scalar(s), comps("+")),
+            "element_product" => return sig(vec![], Ty::Scalar(s), comps("*")),
+            "min_element" => return sig(vec![], Ty::Scalar(s), comps("min")),
+            "max_element" => return sig(vec![], Ty::Scalar(s), comps("max")),
+            "extend" if n < 4 => {
+                let out = Ty::Vec(n + 1, s);
+                let w = out.wgsl();
+                return sig(vec![Ty::Scalar(s)], out, move |a| format!("{w}({}, {})", a[0], a[1]));
+            }
+            "truncate" if n > 2 => {
+                let sw = &"xyzw"[..(n - 1) as usize];
+                let sw = sw.to_string();
+                return sig(vec![], Ty::Vec(n - 1, s), move |a| format!("{}.{sw}", a[0]));
+            }
+            _ => {}
+        }
+        for (prefix, target) in [("as_vec", Scalar::F32), ("as_ivec", Scalar::I32), ("as_uvec", Scalar::U32)] {
+            if name == format!("{prefix}{n}") {
+                let out = Ty::Vec(n, target);
+                let w = out.wgsl();
+                return sig(vec![], out, move |a| format!("{w}({})", a[0]));
+            }
+        }
+        // Swizzles: `v.xy()`, `v.zyx()`, `v.xxxx()`.
+        if (2..=4).contains(&name.len()) && name.chars().all(|c| "xyzw"[..n as usize].contains(c)) {
+            let sw = name.to_string();
+            return sig(vec![], Ty::Vec(name.len() as u8, s), move |a| format!("{}.{sw}", a[0]));
+        }
+    }
+    None
+}
+
+fn mat_method(n: u8, name: &str) -> Option<MethodSig> {
+    let t = Ty::Mat(n);
+    let v = Ty::vec(n);
+    match name {
+        "transpose" => sig(vec![], t, wgsl_fn("transpose")),
+        "determinant" => sig(vec![], F32, wgsl_fn("determinant")),
+        "col" => sig(vec![Ty::Scalar(Scalar::Usize)], v, |a| format!("{}[{}]", a[0], a[1])),
+        "mul_vec3" if n == 3 => sig(vec![v.clone()], v, |a| format!("({} * {})", a[0], a[1])),
+        "mul_vec4" if n == 4 => sig(vec![v.clone()], v, |a| format!("({} * {})", a[0], a[1])),
+        "mul_mat3" if n == 3 => sig(vec![t.clone()], t, |a| format!("({} * {})", a[0], a[1])),
+        "mul_mat4" if n == 4 => sig(vec![t.clone()], t, |a| format!("({} * {})", a[0], a[1])),
+        "transform_point3" if n == 4 => {
+            sig(vec![Ty::vec(3)], Ty::vec(3), |a| format!("({} * vec4<f32>({}, 1.0)).xyz", a[0], a[1]))
+        }
+        "transform_vector3" if n == 4 => {
+            sig(vec![Ty::vec(3)], Ty::vec(3), |a| format!("({} * vec4<f32>({}, 0.0)).xyz", a[0], a[1]))
+        }
+        _ => None,
+    }
+}
+
+/// Extra advice for methods users reach for that have no WGSL equivalent.
+pub fn method_hint(recv: &Ty, name: &str) -> String {
+    match (recv, name) {
+        (Ty::Mat(_), "inverse") => ": WGSL has no matrix inverse; pass the inverse as a variable".into(),
+        (_, "iter" | "into_iter" | "map" | "for_each") => ": iterators are not supported; loop over an index range".into(),
+        (_, "to_string") => ": strings are not supported".into(),
+        (_, "unwrap" | "expect") => ": Option and Result are not supported".into(),
+        (_, "sin_cos") => ": call sin() and cos() separately".into(),
+        _ => String::new(),
+    }
+}
+
+/// Associated constants: `Vec3::ZERO`, `f32::MAX`, `Mat4::IDENTITY`, ...
+pub fn assoc_const(owner: &str, name: &str) -> Option<Val> {
+    let ty = crate::types::builtin_type(owner)?;
+    let w = ty.wgsl();
+    match &ty {
+        Ty::Scalar(Scalar::F32) => {
+            let v = match name {
+                "MAX" => f32::MAX,
+                "MIN" => f32::MIN,
+                "MIN_POSITIVE" => f32::MIN_POSITIVE,
+                "EPSILON" => f32::EPSILON,
+                "INFINITY" => f32::INFINITY,
+                "NEG_INFINITY" => f32::NEG_INFINITY,
+                "NAN" => f32::NAN,
+                _ => return None,
+            };
+            Some(Val { code: f32_literal(v), ty })
+        }
+        Ty::Scalar(Scalar::I32) => match name {
+            "MAX" => Some(Val { code: "2147483647i".into(), ty }),
+            "MIN" => Some(Val { code: "i32(-2147483648)".into(), ty }),
+            _ => None,
+        },
+        Ty::Scalar(Scalar::U32) => match name {
+            "MAX" => Some(Val { code: "4294967295u".into(), ty }),
+            "MIN" => Some(Val { code: "0u".into(), ty }),
+            _ => None,
+        },
+        Ty::Vec(n, s) => {
+            let (one, zero, neg) = match s {
+                Scalar::F32 => ("1.0", "0.0", Some("-1.0")),
+                Scalar::I32 => ("1i", "0i", Some("-1i")),
+                _ => ("1u", "0u", None),
+            };
+            let axis = |i: usize, v: &str| {
+                let parts: Vec<&str> = (0..*n as usize).map(|j| if j == i { v } else { zero }).collect();
+                format!("{w}({})", parts.join(", "))
+            };
+            let code = match name {
+                "ZERO" => format!("{w}()"),
+                "ONE" => format!("{w}({one})"),
+                "NEG_ONE" => format!("{w}({})", neg?),
+                "X" => axis(0, one),
+                "Y" => axis(1, one),
+                "Z" if *n >= 3 => axis(2, one),
+                "W" if *n >= 4 => axis(3, one),
+                "NEG_X" => axis(0, neg?),
+                "NEG_Y" => axis(1, neg?),
+                "NEG_Z" if *n >= 3 => axis(2, neg?),
+                "NEG_W" if *n >= 4 => axis(3, neg?),
+                _ => return None,
+            };
+            Some(Val { code, ty })
+        }
+        Ty::Mat(n) => match name {
+            "ZERO" => Some(Val { code: format!("{w}()"), ty }),
+            "IDENTITY" => {
+                let cols: Vec<String> = (0..*n)
+                    .map(|i| {
+                        let c: Vec<&str> = (0..*n).map(|j| if i == j { "1.0" } else { "0.0" }).collect();
+                        format!("vec{n}<f32>({})", c.join(", "))
+                    })
+                    .collect();
+                Some(Val { code: format!("{w}({})", cols.join(", ")), ty })
+            }
+            _ => None,
+        },
+        _ => None,
+    }
+}

@@ -1,0 +1,99 @@
+//! WGSL text with inline markers.
+//!
+//! Expressions are lowered to strings that are combined freely; to know which
+//! WGSL bytes came from which Rust expression, each lowered piece is wrapped
+//! in invisible markers (`\u{1}id\u{2}` ... `\u{3}`). Integer literals and
+//! types whose integer type is not yet inferred are written as placeholders
+//! (`\u{4}L var value\u{5}`, `\u{4}T var\u{5}`). [`finish`] resolves the
+//! placeholders, strips the markers and returns the byte range of every
+//! marked piece: the source map from WGSL spans to Rust spans.
+
+use crate::types::Scalar;
+
+const OPEN: char = '\u{1}';
+const MID: char = '\u{2}';
+const CLOSE: char = '\u{3}';
+const PH_OPEN: char = '\u{4}';
+const PH_CLOSE: char = '\u{5}';
+
+/// Wraps `text` in markers for source-map entry `id`.
+pub fn mark(id: usize, text: &str) -> String {
+    format!("{OPEN}{id}{MID}{text}{CLOSE}")
+}
+
+pub fn int_literal_placeholder(var: u32, value: &str) -> String {
+    format!("{PH_OPEN}L{var} {value}{PH_CLOSE}")
+}
+
+pub fn int_type_placeholder(var: u32) -> String {
+    format!("{PH_OPEN}T{var}{PH_CLOSE}")
+}
+
+/// Resolves placeholders with `resolve(var)` and strips markers; returns the
+/// clean text and `(id, byte range)` for every marked piece.
+pub fn finish(text: &str, resolve: &dyn Fn(u32) -> Scalar) -> (String, Vec<(usize, std::ops::Range<usize>)>) {
+    let mut out = String::with_capacity(text.len());
+    let mut ranges = Vec::new();
+    let mut stack: Vec<(usize, usize)> = Vec::new();
+    let mut chars = text.char_indices().peekable();
+    while let Some((_, c)) = chars.next() {
+        match c {
+            OPEN => {
+                let mut id = String::new();
+                for (_, d) in chars.by_ref() {
+                    if d == MID {
+                        break;
+                    }
+                    id.push(d);
+                }
+                stack.push((id.parse().unwrap_or(usize::MAX), out.len()));
+            }
+            CLOSE => {
+                if let Some((id, start)) = stack.pop() {
+                    ranges.push((id, start..out.len()));
+                }
+            }
+            PH_OPEN => {
+                let mut body = String::new();
+                for (_, d) in chars.by_ref() {
+                    if d == PH_CLOSE {
+                        break;
+                    }
+                    body.push(d);
+                }
+                let (tag, rest) = body.split_at(1);
+                match tag {
+                    "L" => {
+                        let (var, value) = rest.split_once(' ').unwrap_or((rest, "0"));
+                        let s = resolve(var.parse().unwrap_or(0));
+                        out.push_str(value);
+                        out.push_str(if s == Scalar::I32 { "i" } else { "u" });
+                    }
+                    _ => out.push_str(resolve(rest.parse().unwrap_or(0)).wgsl()),
+                }
+            }
+            _ => out.push(c),
+        }
+    }
+    (out, ranges)
+}
+
+/// Strips markers only (for text that has no placeholders left).
+pub fn strip(text: &str) -> String {
+    finish(text, &|_| Scalar::I32).0
+}
+
+/// Indents every line of `body` by one level.
+pub fn indent(body: &str) -> String {
+    let mut out = String::new();
+    for line in body.lines() {
+        if line.is_empty() {
+            out.push('\n');
+        } else {
+            out.push_str("    ");
+            out.push_str(line);
+            out.push('\n');
+        }
+    }
+    out
+}

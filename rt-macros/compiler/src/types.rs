@@ -1,0 +1,326 @@
+//! The type model of the subset: what a value can be, how it is spelled in
+//! Rust and WGSL, and its packed layout in the runtime's heap (one 32-bit
+//! word per scalar, fields in declaration order, no padding). This file is
+//! the one place that knows a type's WGSL spelling and layout.
+
+use std::fmt;
+use std::rc::Rc;
+
+/// A scalar type. `usize` exists only because Rust indexes arrays with it;
+/// it is a `u32` in WGSL.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Scalar {
+    F32,
+    I32,
+    U32,
+    Usize,
+    Bool,
+}
+
+impl Scalar {
+    pub fn rust(self) -> &'static str {
+        match self {
+            Scalar::F32 => "f32",
+            Scalar::I32 => "i32",
+            Scalar::U32 => "u32",
+            Scalar::Usize => "usize",
+            Scalar::Bool => "bool",
+        }
+    }
+
+    pub fn wgsl(self) -> &'static str {
+        match self {
+            Scalar::F32 => "f32",
+            Scalar::I32 => "i32",
+            Scalar::U32 | Scalar::Usize => "u32",
+            Scalar::Bool => "bool",
+        }
+    }
+
+    pub fn is_int(self) -> bool {
+        matches!(self, Scalar::I32 | Scalar::U32 | Scalar::Usize)
+    }
+
+    pub fn is_numeric(self) -> bool {
+        self != Scalar::Bool
+    }
+
+    /// glam's prefix for vectors of this scalar (`Vec3`, `IVec3`, `UVec3`).
+    fn glam_prefix(self) -> &'static str {
+        match self {
+            Scalar::F32 => "",
+            Scalar::I32 => "I",
+            Scalar::U32 | Scalar::Usize => "U",
+            Scalar::Bool => "B",
+        }
+    }
+}
+
+/// Which buffer handle type.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct BufferKind {
+    pub dims: u8,
+    pub writable: bool,
+}
+
+impl BufferKind {
+    pub fn rust_name(self) -> &'static str {
+        match (self.dims, self.writable) {
+            (1, false) => "Buffer",
+            (1, true) => "RwBuffer",
+            (_, false) => "Buffer2d",
+            (_, true) => "RwBuffer2d",
+        }
+    }
+}
+
+/// A user struct declared with `#[rt_struct]`, `#[rt_payload]` or
+/// `#[rt_attributes]`.
+#[derive(Debug)]
+pub struct StructDef {
+    pub name: String,
+    pub wgsl_name: String,
+    pub role: crate::StructRole,
+    pub fields: Vec<(String, Ty)>,
+    pub span: proc_macro2::Span,
+}
+
+impl StructDef {
+    pub fn field(&self, name: &str) -> Option<&Ty> {
+        self.fields.iter().find(|(n, _)| n == name).map(|(_, t)| t)
+    }
+}
+
+/// A type in the subset.
+#[derive(Clone, Debug)]
+pub enum Ty {
+    Unit,
+    Scalar(Scalar),
+    /// An integer whose type is not yet known (an unsuffixed literal);
+    /// resolved by unification, i32 by default as in Rust.
+    IntVar(u32),
+    Vec(u8, Scalar),
+    /// Square f32 matrix (`Mat2`, `Mat3`, `Mat4`).
+    Mat(u8),
+    Struct(Rc<StructDef>),
+    Array(Box<Ty>, u32),
+    Ray,
+    Aabb,
+    Object,
+    TransformKind,
+    Buffer(BufferKind, Box<Ty>),
+    Sampler,
+    /// `&T` / `&mut T`: only parameters and arguments.
+    Ref(bool, Box<Ty>),
+    /// The type of `return`, `break`, `continue`.
+    Never,
+}
+
+impl PartialEq for Ty {
+    fn eq(&self, other: &Ty) -> bool {
+        use Ty::*;
+        match (self, other) {
+            (Unit, Unit) | (Ray, Ray) | (Aabb, Aabb) | (Object, Object) | (Sampler, Sampler) => true,
+            (TransformKind, TransformKind) | (Never, Never) => true,
+            (Scalar(a), Scalar(b)) => a == b,
+            (IntVar(a), IntVar(b)) => a == b,
+            (Vec(n, a), Vec(m, b)) => n == m && a == b,
+            (Mat(n), Mat(m)) => n == m,
+            (Struct(a), Struct(b)) => a.name == b.name,
+            (Array(a, n), Array(b, m)) => n == m && a == b,
+            (Buffer(k, a), Buffer(l, b)) => k == l && a == b,
+            (Ref(m, a), Ref(n, b)) => m == n && a == b,
+            _ => false,
+        }
+    }
+}
+
+pub const F32: Ty = Ty::Scalar(Scalar::F32);
+pub const I32: Ty = Ty::Scalar(Scalar::I32);
+pub const U32: Ty = Ty::Scalar(Scalar::U32);
+pub const BOOL: Ty = Ty::Scalar(Scalar::Bool);
+
+impl Ty {
+    pub fn vec(n: u8) -> Ty {
+        Ty::Vec(n, Scalar::F32)
+    }
+
+    /// The scalar of a scalar or vector type.
+    pub fn scalar(&self) -> Option<Scalar> {
+        match self {
+            Ty::Scalar(s) | Ty::Vec(_, s) => Some(*s),
+            Ty::Mat(_) => Some(Scalar::F32),
+            _ => None,
+        }
+    }
+
+    pub fn is_value(&self) -> bool {
+        !matches!(self, Ty::Unit | Ty::Never | Ty::Ref(..))
+    }
+
+    /// Whether values of this type may be stored in buffers, variables and
+    /// structs (handles may be variables, but not buffer elements).
+    pub fn is_plain_data(&self) -> bool {
+        match self {
+            Ty::Scalar(s) => *s != Scalar::Usize,
+            Ty::Vec(_, s) => *s != Scalar::Bool,
+            Ty::Mat(_) | Ty::Struct(_) | Ty::Ray | Ty::Aabb => true,
+            Ty::Array(t, _) => t.is_plain_data(),
+            _ => false,
+        }
+    }
+
+    /// Rust spelling, for messages and descriptors.
+    pub fn rust(&self) -> String {
+        self.to_string()
+    }
+
+    /// WGSL spelling. Unresolved integer variables are spelled as a
+    /// placeholder the final pass of `lower` resolves.
+    pub fn wgsl(&self) -> String {
+        match self {
+            Ty::Unit | Ty::Never => "void".into(),
+            Ty::Scalar(s) => s.wgsl().into(),
+            Ty::IntVar(v) => crate::lower::text::int_type_placeholder(*v),
+            Ty::Vec(n, s) => format!("vec{n}<{}>", s.wgsl()),
+            Ty::Mat(n) => format!("mat{n}x{n}<f32>"),
+            Ty::Struct(s) => s.wgsl_name.clone(),
+            Ty::Array(t, n) => format!("array<{}, {n}>", t.wgsl()),
+            Ty::Ray => "RtRay".into(),
+            Ty::Aabb => "RtAabb".into(),
+            Ty::Object | Ty::TransformKind => "u32".into(),
+            Ty::Buffer(..) => "RtBuffer".into(),
+            Ty::Sampler => "RtSampler".into(),
+            Ty::Ref(true, t) => format!("ptr<function, {}>", t.wgsl()),
+            Ty::Ref(false, t) => t.wgsl(),
+        }
+    }
+
+    /// A WGSL-identifier-safe name for the type, for generated accessors
+    /// (`rt_load_vec3f`, `rt_load_Radiance`).
+    pub fn mangle(&self) -> String {
+        match self {
+            Ty::Scalar(s) => s.wgsl().into(),
+            Ty::Vec(n, s) => format!("vec{n}{}", &s.wgsl()[..1]),
+            Ty::Mat(n) => format!("mat{n}"),
+            Ty::Struct(s) => s.wgsl_name.clone(),
+            Ty::Array(t, n) => format!("arr{n}_{}", t.mangle()),
+            Ty::Ray => "RtRay".into(),
+            Ty::Aabb => "RtAabb".into(),
+            other => other.wgsl(),
+        }
+    }
+
+    /// Size in 32-bit words when stored in the heap.
+    pub fn words(&self) -> u32 {
+        match self {
+            Ty::Scalar(_) | Ty::IntVar(_) | Ty::Object | Ty::TransformKind => 1,
+            Ty::Vec(n, _) => *n as u32,
+            Ty::Mat(n) => (*n as u32) * (*n as u32),
+            Ty::Struct(s) => s.fields.iter().map(|(_, t)| t.words()).sum(),
+            Ty::Array(t, n) => t.words() * n,
+            Ty::Ray => 9,
+            Ty::Aabb => 6,
+            Ty::Buffer(..) | Ty::Sampler => 4,
+            Ty::Unit | Ty::Never | Ty::Ref(..) => 0,
+        }
+    }
+
+    /// Fields of a struct-like type, with types.
+    pub fn fields(&self) -> Vec<(String, Ty)> {
+        match self {
+            Ty::Struct(s) => s.fields.clone(),
+            Ty::Ray => vec![
+                ("origin".into(), Ty::vec(3)),
+                ("direction".into(), Ty::vec(3)),
+                ("ray_type".into(), U32),
+                ("tmin".into(), F32),
+                ("tmax".into(), F32),
+            ],
+            Ty::Aabb => vec![("min".into(), Ty::vec(3)), ("max".into(), Ty::vec(3))],
+            _ => Vec::new(),
+        }
+    }
+}
+
+impl fmt::Display for Ty {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Ty::Unit => write!(f, "()"),
+            Ty::Never => write!(f, "!"),
+            Ty::Scalar(s) => write!(f, "{}", s.rust()),
+            Ty::IntVar(_) => write!(f, "{{integer}}"),
+            Ty::Vec(n, s) => write!(f, "{}Vec{n}", s.glam_prefix()),
+            Ty::Mat(n) => write!(f, "Mat{n}"),
+            Ty::Struct(s) => write!(f, "{}", s.name),
+            Ty::Array(t, n) => write!(f, "[{t}; {n}]"),
+            Ty::Ray => write!(f, "Ray"),
+            Ty::Aabb => write!(f, "Aabb"),
+            Ty::Object => write!(f, "Object"),
+            Ty::TransformKind => write!(f, "TransformKind"),
+            Ty::Buffer(k, t) => write!(f, "{}<{t}>", k.rust_name()),
+            Ty::Sampler => write!(f, "Sampler2d"),
+            Ty::Ref(true, t) => write!(f, "&mut {t}"),
+            Ty::Ref(false, t) => write!(f, "&{t}"),
+        }
+    }
+}
+
+/// Parses a glam/scalar type name (last path segment) into a type.
+pub fn builtin_type(name: &str) -> Option<Ty> {
+    Some(match name {
+        "f32" => F32,
+        "i32" => I32,
+        "u32" => U32,
+        "usize" => Ty::Scalar(Scalar::Usize),
+        "bool" => BOOL,
+        "Vec2" => Ty::Vec(2, Scalar::F32),
+        "Vec3" => Ty::Vec(3, Scalar::F32),
+        "Vec4" => Ty::Vec(4, Scalar::F32),
+        "IVec2" => Ty::Vec(2, Scalar::I32),
+        "IVec3" => Ty::Vec(3, Scalar::I32),
+        "IVec4" => Ty::Vec(4, Scalar::I32),
+        "UVec2" => Ty::Vec(2, Scalar::U32),
+        "UVec3" => Ty::Vec(3, Scalar::U32),
+        "UVec4" => Ty::Vec(4, Scalar::U32),
+        "Mat2" => Ty::Mat(2),
+        "Mat3" => Ty::Mat(3),
+        "Mat4" => Ty::Mat(4),
+        "Ray" => Ty::Ray,
+        "Aabb" => Ty::Aabb,
+        "Object" => Ty::Object,
+        "TransformKind" => Ty::TransformKind,
+        "Sampler2d" => Ty::Sampler,
+        _ => return None,
+    })
+}
+
+/// Buffer handle type names.
+pub fn buffer_kind(name: &str) -> Option<BufferKind> {
+    Some(match name {
+        "Buffer" => BufferKind { dims: 1, writable: false },
+        "RwBuffer" => BufferKind { dims: 1, writable: true },
+        "Buffer2d" => BufferKind { dims: 2, writable: false },
+        "RwBuffer2d" => BufferKind { dims: 2, writable: true },
+        _ => return None,
+    })
+}
+
+/// Type names that Rust users reach for but the subset rejects, with advice.
+pub fn unsupported_type_advice(name: &str) -> Option<&'static str> {
+    Some(match name {
+        "f64" => "f64 is not supported on the GPU: use f32",
+        "i64" | "u64" | "i128" | "u128" | "isize" => "64-bit integers are not supported: use i32 or u32",
+        "i8" | "u8" | "i16" | "u16" => "8- and 16-bit integers are not supported: use i32 or u32 (and mask bits)",
+        "String" | "str" => "strings are not supported in ray programs",
+        "Vec" | "VecDeque" | "HashMap" | "BTreeMap" | "Box" | "Rc" | "Arc" => {
+            "heap types are not supported in ray programs: use fixed-size arrays or a buffer variable"
+        }
+        "Option" | "Result" => "Option and Result are not supported: return a flag or a sentinel value",
+        "DVec2" | "DVec3" | "DVec4" | "DMat3" | "DMat4" => "f64 vectors are not supported: use Vec2/Vec3/Vec4",
+        "Vec3A" => "Vec3A is not supported: use Vec3",
+        "Quat" => "quaternions are not supported: use Mat3/Mat4",
+        "BVec2" | "BVec3" | "BVec4" => "bool vectors are not supported: compare components",
+        _ => return None,
+    })
+}

@@ -1,0 +1,51 @@
+//! Proc macros for ray programs. Each macro is a one-line shell over
+//! [`rt_compiler`], which holds the compiler so that tests, benchmarks and
+//! fuzzers can call it without rustc.
+//!
+//! Use these through `rt_std::prelude`, not directly.
+
+use proc_macro::TokenStream;
+
+/// Declares a ray program: `#[rt_program(closest_hit)]`, and so on for the
+/// eight kinds. See `rt_std` for the subset of Rust programs may use.
+#[proc_macro_attribute]
+pub fn rt_program(attr: TokenStream, item: TokenStream) -> TokenStream {
+    rt_compiler::expand::rt_program(attr.into(), item.into()).into()
+}
+
+/// Declares a helper function callable from programs and other helpers.
+#[proc_macro_attribute]
+pub fn rt_function(attr: TokenStream, item: TokenStream) -> TokenStream {
+    rt_compiler::expand::rt_function(attr.into(), item.into()).into()
+}
+
+/// Declares a struct programs may use (buffer elements, variables, locals).
+#[proc_macro_attribute]
+pub fn rt_struct(attr: TokenStream, item: TokenStream) -> TokenStream {
+    rt_compiler::expand::rt_struct(attr.into(), item.into(), rt_compiler::StructRole::Data).into()
+}
+
+/// Declares per-ray data passed to `rt_trace` and reaching hit/miss programs.
+#[proc_macro_attribute]
+pub fn rt_payload(attr: TokenStream, item: TokenStream) -> TokenStream {
+    rt_compiler::expand::rt_struct(attr.into(), item.into(), rt_compiler::StructRole::Payload).into()
+}
+
+/// Declares attributes an intersection program passes to hit programs.
+#[proc_macro_attribute]
+pub fn rt_attributes(attr: TokenStream, item: TokenStream) -> TokenStream {
+    rt_compiler::expand::rt_struct(attr.into(), item.into(), rt_compiler::StructRole::Attributes).into()
+}
+
+/// Declares a constant programs may use.
+#[proc_macro_attribute]
+pub fn rt_const(attr: TokenStream, item: TokenStream) -> TokenStream {
+    rt_compiler::expand::rt_const(attr.into(), item.into()).into()
+}
+
+/// Internal step of the dependency chain (see `rt_compiler::expand`).
+#[doc(hidden)]
+#[proc_macro]
+pub fn __rt_collect(input: TokenStream) -> TokenStream {
+    rt_compiler::expand::collect(input.into()).into()
+}

@@ -1,0 +1,1 @@
+//! rt-runtime: the host side (issue #3).

@@ -1,0 +1,284 @@
+//! The CPU side of programs: how the CPU backend calls a program's Rust
+//! function, and the per-thread execution context intrinsics read.
+
+use core::any::Any;
+
+use crate::Aabb;
+
+/// Arguments for one call of a program on the CPU. The runtime checks at link
+/// time that payload, attribute and variable types match the program's
+/// declaration, so the downcasts in generated thunks cannot fail.
+pub struct CpuArgs<'a> {
+    /// The payload (`&mut P`), for programs that take one.
+    pub payload: Option<&'a mut dyn Any>,
+    /// The attributes (`&A` / `&mut A`), for programs that take them.
+    pub attributes: Option<&'a mut dyn Any>,
+    /// Primitive index, for intersection and bounding-box programs.
+    pub primitive: u32,
+    /// Variable values in the program's parameter order.
+    pub variables: &'a [&'a dyn Any],
+}
+
+/// What a program returned.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum CpuResult {
+    /// Most programs return nothing.
+    Unit,
+    /// A bounding-box program's bounds.
+    Aabb(Aabb),
+    /// A visit program's chosen child.
+    Child(u32),
+}
+
+impl From<()> for CpuResult {
+    fn from(_: ()) -> Self {
+        CpuResult::Unit
+    }
+}
+
+impl From<Aabb> for CpuResult {
+    fn from(b: Aabb) -> Self {
+        CpuResult::Aabb(b)
+    }
+}
+
+impl From<u32> for CpuResult {
+    fn from(c: u32) -> Self {
+        CpuResult::Child(c)
+    }
+}
+
+/// Downcasts a program argument; used by generated thunks.
+#[doc(hidden)]
+pub fn __arg<'a, T: 'static>(value: Option<&'a mut dyn Any>, program: &str, what: &str) -> &'a mut T {
+    match value.and_then(|v| v.downcast_mut::<T>()) {
+        Some(v) => v,
+        None => panic!(
+            "program `{program}`: {what} is missing or not a `{}` (the runtime's link check should have caught this)",
+            core::any::type_name::<T>()
+        ),
+    }
+}
+
+/// Reads a variable value; used by generated thunks.
+#[doc(hidden)]
+pub fn __var<T: Copy + 'static>(variables: &[&dyn Any], index: usize, program: &str, name: &str) -> T {
+    match variables.get(index).and_then(|v| v.downcast_ref::<T>()) {
+        Some(v) => *v,
+        None => panic!(
+            "program `{program}`: variable `{name}` is missing or not a `{}` (the runtime's link check should have caught this)",
+            core::any::type_name::<T>()
+        ),
+    }
+}
+
+// ---------------------------------------------------------------------------
+// The execution context.
+//
+// Everything above this line is the contract with the compiler's generated
+// thunks; what follows is the per-thread state that intrinsics read and write
+// when programs run as Rust.
+
+use core::cell::Cell;
+
+use glam::{Mat4, UVec2};
+
+use crate::ray::Ray;
+use crate::scene::Object;
+
+/// The state of the program invocation running on this thread: what the
+/// semantic values return and where the hit protocol's flags land.
+///
+/// The CPU backend builds one per program call and runs the program inside
+/// [`with_context`] or [`with_tracer`]; [`launch_index`](crate::launch_index),
+/// [`current_ray`](crate::current_ray) and the other intrinsics read it. Code
+/// that calls a program directly (a unit test) gets [`Default`] values, or
+/// installs its own.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ExecutionContext {
+    /// The launch index being computed ([`launch_index`](crate::launch_index)).
+    pub launch_index: UVec2,
+    /// The launch size ([`launch_dim`](crate::launch_dim)).
+    pub launch_dim: UVec2,
+    /// The ray being traced, in the space of the current object: world space
+    /// in miss programs, object space in intersection programs
+    /// ([`current_ray`](crate::current_ray)).
+    pub current_ray: Ray,
+    /// Distance of the candidate (any hit) or committed (closest hit)
+    /// intersection ([`t_hit`](crate::t_hit)).
+    pub t_hit: f32,
+    /// Primitive being intersected or hit
+    /// ([`primitive_index`](crate::primitive_index)).
+    pub primitive_index: u32,
+    /// The exception being handled, in exception programs
+    /// ([`exception_code`](crate::exception_code)).
+    pub exception_code: u32,
+    /// Object-to-world transform of the current geometry instance.
+    pub object_to_world: Mat4,
+    /// World-to-object transform of the current geometry instance (the
+    /// inverse of `object_to_world`; the backend supplies both so that no
+    /// intrinsic inverts a matrix).
+    pub world_to_object: Mat4,
+    /// Set by [`rt_ignore_intersection`](crate::rt_ignore_intersection): the
+    /// any-hit program rejected its candidate.
+    pub ignored: bool,
+    /// Set by [`rt_terminate_ray`](crate::rt_terminate_ray): the any-hit
+    /// program accepted its candidate and ended the search.
+    pub terminated: bool,
+    /// The first exception raised during this invocation ([`raise`]): by
+    /// [`rt_throw`](crate::rt_throw), a buffer access out of bounds, or an
+    /// invalid ray passed to [`rt_trace`](crate::rt_trace). Later ones are
+    /// dropped.
+    pub pending_exception: Option<u32>,
+}
+
+impl ExecutionContext {
+    /// The context outside any program invocation: launch index 0 of a 1x1
+    /// launch, identity transforms, and a current ray from the origin along
+    /// +z over `(0, inf)`, so that
+    /// [`rt_potential_intersection`](crate::rt_potential_intersection)
+    /// accepts every positive distance.
+    pub const DEFAULT: ExecutionContext = ExecutionContext {
+        launch_index: UVec2::ZERO,
+        launch_dim: UVec2::ONE,
+        current_ray: Ray {
+            origin: glam::Vec3::ZERO,
+            direction: glam::Vec3::Z,
+            ray_type: 0,
+            tmin: 0.0,
+            tmax: f32::INFINITY,
+        },
+        t_hit: 0.0,
+        primitive_index: 0,
+        exception_code: 0,
+        object_to_world: Mat4::IDENTITY,
+        world_to_object: Mat4::IDENTITY,
+        ignored: false,
+        terminated: false,
+        pending_exception: None,
+    };
+
+    /// Records `code` as the pending exception unless one is pending already:
+    /// the first exception of an invocation is the one the exception program
+    /// sees, as on the GPU.
+    pub fn raise(&mut self, code: u32) {
+        if self.pending_exception.is_none() {
+            self.pending_exception = Some(code);
+        }
+    }
+}
+
+impl Default for ExecutionContext {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
+/// What the intrinsics that leave the current program need from the backend:
+/// tracing a ray, the intersection protocol and debug output.
+///
+/// The CPU backend implements it and installs it with [`with_tracer`] around
+/// each program call. Without one (a program called directly) the intrinsics
+/// fall back to the behaviour documented on each.
+pub trait Tracer {
+    /// Traces `ray` against `object`, running intersection, any-hit,
+    /// closest-hit and miss programs, which update `payload` (a `&mut P` for
+    /// the [`Payload`](crate::Payload) type `P` passed to
+    /// [`rt_trace`](crate::rt_trace)). `flags` are `RAY_FLAG_*` bits, `mask`
+    /// the visibility mask. The ray has passed [`Ray::is_valid`].
+    fn trace(&self, object: Object, ray: Ray, payload: &mut dyn core::any::Any, flags: u32, mask: u32);
+    /// [`rt_potential_intersection`](crate::rt_potential_intersection): whether
+    /// `t` lies inside the current ray's interval; if so it becomes the
+    /// candidate's [`t_hit`](crate::t_hit).
+    fn potential_intersection(&self, t: f32) -> bool;
+    /// [`rt_report_intersection`](crate::rt_report_intersection): runs any-hit
+    /// for the candidate with `material`; returns whether it was accepted.
+    fn report_intersection(&self, material: u32) -> bool;
+    /// [`rt_printf!`](crate::rt_printf) output.
+    fn print(&self, text: &str);
+}
+
+thread_local! {
+    static CONTEXT: Cell<ExecutionContext> = const { Cell::new(ExecutionContext::DEFAULT) };
+    // The tracer installed by `with_tracer`, lifetime erased. Only
+    // `with_tracer` stores a pointer here, and its guard removes it before the
+    // borrow it came from ends, so every pointer read from this cell is live.
+    static TRACER: Cell<Option<*const (dyn Tracer + 'static)>> = const { Cell::new(None) };
+}
+
+/// A copy of this thread's current execution context.
+pub fn context() -> ExecutionContext {
+    CONTEXT.with(Cell::get)
+}
+
+/// Changes this thread's current execution context through `f`.
+///
+/// `f` works on a copy that is stored back when it returns, so changes made
+/// meanwhile by intrinsics that `f` calls are overwritten: keep `f` to field
+/// updates.
+pub fn context_mut<R>(f: impl FnOnce(&mut ExecutionContext) -> R) -> R {
+    CONTEXT.with(|cell| {
+        let mut ctx = cell.get();
+        let result = f(&mut ctx);
+        cell.set(ctx);
+        result
+    })
+}
+
+/// Records `code` as the current invocation's pending exception unless one is
+/// pending ([`ExecutionContext::raise`]).
+pub fn raise(code: u32) {
+    context_mut(|ctx| ctx.raise(code));
+}
+
+/// Runs `f` with `ctx` as this thread's execution context and no tracer, and
+/// returns its result with the context as `f` left it (pending exception,
+/// hit flags, ...). The previous context and tracer are restored afterwards,
+/// also when `f` panics, so calls nest: a tracer runs the programs of an
+/// inner ray inside the outer program's call.
+pub fn with_context<R>(ctx: ExecutionContext, f: impl FnOnce() -> R) -> (R, ExecutionContext) {
+    install(ctx, None, f)
+}
+
+/// Like [`with_context`], with `tracer` serving [`rt_trace`](crate::rt_trace),
+/// the intersection protocol and [`rt_printf!`](crate::rt_printf) for the
+/// duration of `f`.
+pub fn with_tracer<R>(ctx: ExecutionContext, tracer: &dyn Tracer, f: impl FnOnce() -> R) -> (R, ExecutionContext) {
+    let tracer: *const (dyn Tracer + '_) = tracer;
+    // SAFETY: only the trait object's lifetime bound changes (same fat-pointer
+    // layout). The pointer is dereferenced only while it is installed, which
+    // `install`'s guard limits to this call, inside the borrow of `tracer`.
+    let tracer = unsafe { core::mem::transmute::<*const (dyn Tracer + '_), *const (dyn Tracer + 'static)>(tracer) };
+    install(ctx, Some(tracer), f)
+}
+
+fn install<R>(
+    ctx: ExecutionContext,
+    tracer: Option<*const (dyn Tracer + 'static)>,
+    f: impl FnOnce() -> R,
+) -> (R, ExecutionContext) {
+    struct Restore {
+        ctx: ExecutionContext,
+        tracer: Option<*const (dyn Tracer + 'static)>,
+    }
+    impl Drop for Restore {
+        fn drop(&mut self) {
+            CONTEXT.with(|c| c.set(self.ctx));
+            TRACER.with(|t| t.set(self.tracer));
+        }
+    }
+    let _restore = Restore { ctx: CONTEXT.with(|c| c.replace(ctx)), tracer: TRACER.with(|t| t.replace(tracer)) };
+    let result = f();
+    (result, context())
+}
+
+/// Calls `f` with the installed tracer, or `fallback` when there is none.
+pub(crate) fn with_installed_tracer<R>(f: impl FnOnce(&dyn Tracer) -> R, fallback: impl FnOnce() -> R) -> R {
+    match TRACER.with(Cell::get) {
+        // SAFETY: see `TRACER`: an installed pointer is live until the
+        // `with_tracer` call that installed it returns, and that call is
+        // still on this thread's stack. The tracer is only borrowed shared.
+        Some(tracer) => f(unsafe { &*tracer }),
+        None => fallback(),
+    }
+}

@@ -1,0 +1,102 @@
+//! [`RtData`]: values that live in the runtime's buffer heap and variable
+//! records, with one layout for CPU and GPU (packed 32-bit words).
+
+use crate::program::TypeLayout;
+use glam::{IVec2, IVec3, IVec4, Mat2, Mat3, Mat4, UVec2, UVec3, UVec4, Vec2, Vec3, Vec4};
+
+/// A type that programs can read from variables and buffers.
+///
+/// Layout: fields packed in declaration order, each scalar one 32-bit word,
+/// no padding. `#[rt_struct]`, `#[rt_payload]` and `#[rt_attributes]`
+/// implement it for user structs.
+pub trait RtData: Copy + 'static {
+    /// Spelling and size of the type.
+    const LAYOUT: TypeLayout;
+    /// Writes `LAYOUT.words` words to the start of `out`.
+    fn write_words(&self, out: &mut [u32]);
+    /// Reads a value from the first `LAYOUT.words` words of `words`.
+    fn read_words(words: &[u32]) -> Self;
+}
+
+macro_rules! scalar {
+    ($t:ty, $rust:literal, $wgsl:literal, |$v:ident| $to:expr, |$w:ident| $from:expr) => {
+        impl RtData for $t {
+            const LAYOUT: TypeLayout = TypeLayout { rust: $rust, wgsl: $wgsl, words: 1, fields: &[] };
+            fn write_words(&self, out: &mut [u32]) {
+                let $v = *self;
+                out[0] = $to;
+            }
+            fn read_words(words: &[u32]) -> Self {
+                let $w = words[0];
+                $from
+            }
+        }
+    };
+}
+
+scalar!(f32, "f32", "f32", |v| v.to_bits(), |w| f32::from_bits(w));
+scalar!(i32, "i32", "i32", |v| v as u32, |w| w as i32);
+scalar!(u32, "u32", "u32", |v| v, |w| w);
+scalar!(bool, "bool", "bool", |v| v as u32, |w| w != 0);
+
+macro_rules! vector {
+    ($t:ty, $s:ty, $n:literal, $rust:literal, $wgsl:literal) => {
+        impl RtData for $t {
+            const LAYOUT: TypeLayout = TypeLayout { rust: $rust, wgsl: $wgsl, words: $n, fields: &[] };
+            fn write_words(&self, out: &mut [u32]) {
+                let a: [$s; $n] = (*self).into();
+                for (o, v) in out.iter_mut().zip(a) {
+                    v.write_words(core::slice::from_mut(o));
+                }
+            }
+            fn read_words(words: &[u32]) -> Self {
+                let mut a = [<$s>::default(); $n];
+                for (v, w) in a.iter_mut().zip(words) {
+                    *v = <$s>::read_words(core::slice::from_ref(w));
+                }
+                a.into()
+            }
+        }
+    };
+}
+
+vector!(Vec2, f32, 2, "Vec2", "vec2<f32>");
+vector!(Vec3, f32, 3, "Vec3", "vec3<f32>");
+vector!(Vec4, f32, 4, "Vec4", "vec4<f32>");
+vector!(IVec2, i32, 2, "IVec2", "vec2<i32>");
+vector!(IVec3, i32, 3, "IVec3", "vec3<i32>");
+vector!(IVec4, i32, 4, "IVec4", "vec4<i32>");
+vector!(UVec2, u32, 2, "UVec2", "vec2<u32>");
+vector!(UVec3, u32, 3, "UVec3", "vec3<u32>");
+vector!(UVec4, u32, 4, "UVec4", "vec4<u32>");
+
+macro_rules! matrix {
+    ($t:ty, $n:literal, $rust:literal, $wgsl:literal) => {
+        impl RtData for $t {
+            const LAYOUT: TypeLayout = TypeLayout { rust: $rust, wgsl: $wgsl, words: $n * $n, fields: &[] };
+            fn write_words(&self, out: &mut [u32]) {
+                for (o, v) in out.iter_mut().zip(self.to_cols_array()) {
+                    *o = v.to_bits();
+                }
+            }
+            fn read_words(words: &[u32]) -> Self {
+                let mut a = [0.0f32; $n * $n];
+                for (v, w) in a.iter_mut().zip(words) {
+                    *v = f32::from_bits(*w);
+                }
+                <$t>::from_cols_array(&a)
+            }
+        }
+    };
+}
+
+matrix!(Mat2, 2, "Mat2", "mat2x2<f32>");
+matrix!(Mat3, 3, "Mat3", "mat3x3<f32>");
+matrix!(Mat4, 4, "Mat4", "mat4x4<f32>");
+
+/// Marker for types declared with `#[rt_payload]`: per-ray data.
+pub trait Payload: RtData + Default {}
+
+/// Marker for types declared with `#[rt_attributes]`: data an intersection
+/// program hands to hit programs.
+pub trait Attributes: RtData + Default {}

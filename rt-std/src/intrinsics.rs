@@ -1,0 +1,436 @@
+//! Intrinsics: the semantic values a program reads, the calls that leave the
+//! program (tracing, the intersection protocol, exceptions, debug output)
+//! and the instance transforms.
+//!
+//! On the GPU each is a call into the linked megakernel. On the CPU each
+//! reads or writes this thread's [`ExecutionContext`](crate::cpu::ExecutionContext)
+//! and, for the calls that need the rest of the scene, the
+//! [`Tracer`](crate::cpu::Tracer) the backend installed. Without a tracer (a
+//! program called directly, say from a unit test) each documents what it
+//! does instead.
+//!
+//! Unlike their OptiX namesakes, [`rt_ignore_intersection`],
+//! [`rt_terminate_ray`] and [`rt_throw`] return: they set a flag that takes
+//! effect when the program returns, and the code after them still runs, on
+//! the GPU too. Write `return` after them to stop there.
+
+use glam::{Mat4, UVec2, Vec3};
+
+use crate::cpu::{self, context, context_mut, with_installed_tracer};
+use crate::data::Payload;
+use crate::ray::{RAY_FLAG_NONE, RAY_MASK_ALL, Ray};
+use crate::scene::{Object, TransformKind};
+
+/// Exception code: `rt_trace` was called at the context's maximum trace
+/// depth; the ray was not traced.
+#[doc(alias = "RT_EXCEPTION_STACK_OVERFLOW")]
+#[doc(alias = "RT_EXCEPTION_TRACE_DEPTH_EXCEEDED")]
+pub const EXCEPTION_TRACE_DEPTH_EXCEEDED: u32 = 0x3FC;
+/// Exception code: a buffer was accessed outside its bounds; loads read
+/// zero, stores were dropped.
+#[doc(alias = "RT_EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS")]
+pub const EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS: u32 = 0x3FB;
+/// Exception code: `rt_trace` was given a ray with NaN or infinite origin or
+/// direction, or NaN `tmin`/`tmax` (see [`Ray::is_valid`]); it was not
+/// traced.
+#[doc(alias = "RT_EXCEPTION_INVALID_RAY")]
+pub const EXCEPTION_INVALID_RAY: u32 = 0x3F6;
+/// The first exception code free for programs' own [`rt_throw`] codes; the
+/// codes below are reserved for the runtime's exceptions.
+#[doc(alias = "RT_EXCEPTION_USER")]
+pub const EXCEPTION_USER: u32 = 0x400;
+
+/// The launch index being computed: in `[0, launch_dim())`.
+///
+/// Program kinds: ray_generation, exception, closest_hit, any_hit, miss, intersection, visit.
+#[doc(alias = "rtLaunchIndex")]
+pub fn launch_index() -> UVec2 {
+    context().launch_index
+}
+
+/// The size of the launch.
+///
+/// Program kinds: ray_generation, exception, closest_hit, any_hit, miss, intersection, visit.
+#[doc(alias = "rtLaunchDim")]
+pub fn launch_dim() -> UVec2 {
+    context().launch_dim
+}
+
+/// The ray being traced, as passed to `rt_trace` but with `tmax` the
+/// distance of the closest hit committed so far. In intersection programs
+/// (and their any-hit and closest-hit programs) it is in the object space of
+/// the current instance; in miss and visit programs, in the space of the
+/// node being traversed.
+///
+/// Program kinds: closest_hit, any_hit, miss, intersection, visit.
+#[doc(alias = "rtCurrentRay")]
+pub fn current_ray() -> Ray {
+    context().current_ray
+}
+
+/// The distance along the current ray of the intersection being considered
+/// (any hit) or committed (closest hit).
+///
+/// Program kinds: closest_hit, any_hit.
+#[doc(alias = "rtIntersectionDistance")]
+pub fn t_hit() -> f32 {
+    context().t_hit
+}
+
+/// The index, within its geometry, of the primitive being intersected or
+/// hit.
+///
+/// Program kinds: closest_hit, any_hit, intersection.
+#[doc(alias = "rtPrimitiveIndex")]
+pub fn primitive_index() -> u32 {
+    context().primitive_index
+}
+
+/// The code of the exception being handled: one of the `EXCEPTION_*`
+/// constants, or a program's own code from [`rt_throw`].
+///
+/// Program kinds: exception.
+#[doc(alias = "rtGetExceptionCode")]
+pub fn exception_code() -> u32 {
+    context().exception_code
+}
+
+/// Traces `ray` against `object` with payload `prd`: runs the intersection,
+/// any-hit and closest-hit programs of what it hits, or the miss program of
+/// its ray type, which update `prd`. Same as [`rt_trace_with`] with
+/// [`RAY_FLAG_NONE`] and [`RAY_MASK_ALL`].
+///
+/// Program kinds: ray_generation, closest_hit, miss.
+#[doc(alias = "rtTrace")]
+pub fn rt_trace<P: Payload>(object: Object, ray: Ray, prd: &mut P) {
+    rt_trace_with(object, ray, prd, RAY_FLAG_NONE, RAY_MASK_ALL)
+}
+
+/// [`rt_trace`] with `RAY_FLAG_*` bits `flags` and visibility mask `mask`
+/// (an instance is traversed when its mask shares a bit with it).
+///
+/// An invalid ray ([`Ray::is_valid`]) raises [`EXCEPTION_INVALID_RAY`] and is
+/// not traced; `prd` is left as it is. Without a tracer, `prd` is also left
+/// as it is.
+///
+/// Program kinds: ray_generation, closest_hit, miss.
+#[doc(alias = "rtTrace")]
+pub fn rt_trace_with<P: Payload>(object: Object, ray: Ray, prd: &mut P, flags: u32, mask: u32) {
+    if !ray.is_valid() {
+        cpu::raise(EXCEPTION_INVALID_RAY);
+        return;
+    }
+    with_installed_tracer(|tracer| tracer.trace(object, ray, prd, flags, mask), || ())
+}
+
+/// Whether distance `t` lies inside the current ray's open interval
+/// `(tmin, tmax)`, with `tmax` the closest hit so far: call it before
+/// writing attributes, and report the intersection only if it returns true.
+/// An accepted `t` becomes the candidate's [`t_hit`].
+///
+/// Without a tracer: `t > tmin && t < tmax` of the context's current ray,
+/// also setting the context's `t_hit` when true.
+///
+/// Program kinds: intersection.
+#[doc(alias = "rtPotentialIntersection")]
+pub fn rt_potential_intersection(t: f32) -> bool {
+    with_installed_tracer(
+        |tracer| tracer.potential_intersection(t),
+        || {
+            context_mut(|ctx| {
+                let accepted = t > ctx.current_ray.tmin && t < ctx.current_ray.tmax;
+                if accepted {
+                    ctx.t_hit = t;
+                }
+                accepted
+            })
+        },
+    )
+}
+
+/// Reports the intersection accepted by the last
+/// [`rt_potential_intersection`], with material index `material` (of the
+/// geometry instance), and the attributes written since: runs the
+/// material's any-hit program. Returns whether the intersection was
+/// accepted (not ignored); if so it becomes the closest hit so far.
+///
+/// Without a tracer: returns true and records nothing.
+///
+/// Program kinds: intersection.
+#[doc(alias = "rtReportIntersection")]
+pub fn rt_report_intersection(material: u32) -> bool {
+    with_installed_tracer(|tracer| tracer.report_intersection(material), || true)
+}
+
+/// Rejects the current candidate intersection: when the any-hit program
+/// returns, the search goes on as if it had not been reported. Returns (see
+/// the [module docs](self)).
+///
+/// Program kinds: any_hit.
+#[doc(alias = "rtIgnoreIntersection")]
+pub fn rt_ignore_intersection() {
+    context_mut(|ctx| ctx.ignored = true);
+}
+
+/// Accepts the current candidate intersection and ends the search: when the
+/// any-hit program returns, it becomes the committed hit and closest hit
+/// runs. Returns (see the [module docs](self)).
+///
+/// Program kinds: any_hit.
+#[doc(alias = "rtTerminateRay")]
+pub fn rt_terminate_ray() {
+    context_mut(|ctx| ctx.terminated = true);
+}
+
+/// Raises exception `code`: when the program returns, the launch index's
+/// work stops and the exception program runs with
+/// [`exception_code`]` == code`. Only the first exception of a program
+/// invocation counts. Use codes from [`EXCEPTION_USER`] up: smaller codes
+/// are reserved for the runtime's exceptions (a smaller code is still
+/// recorded as given, and the exception program cannot tell it from the
+/// runtime's). Returns (see the [module docs](self)).
+///
+/// Program kinds: ray_generation, closest_hit, any_hit, miss, intersection, visit.
+#[doc(alias = "rtThrow")]
+pub fn rt_throw(code: u32) {
+    cpu::raise(code);
+}
+
+fn transform(kind: TransformKind) -> Mat4 {
+    let ctx = context();
+    match kind {
+        TransformKind::ObjectToWorld => ctx.object_to_world,
+        TransformKind::WorldToObject => ctx.world_to_object,
+    }
+}
+
+/// Transforms point `p` between the current instance's object space and
+/// world space: `(M * vec4(p, 1)).xyz` with `M` the transform `kind` names
+/// (affine: no division by `w`).
+///
+/// Program kinds: closest_hit, any_hit, intersection.
+#[doc(alias = "rtTransformPoint")]
+pub fn rt_transform_point(kind: TransformKind, p: Vec3) -> Vec3 {
+    (transform(kind) * p.extend(1.0)).truncate()
+}
+
+/// Transforms direction `v` between the current instance's object space
+/// and world space: `(M * vec4(v, 0)).xyz` with `M` the transform `kind`
+/// names. The result is not normalised.
+///
+/// Program kinds: closest_hit, any_hit, intersection.
+#[doc(alias = "rtTransformVector")]
+pub fn rt_transform_vector(kind: TransformKind, v: Vec3) -> Vec3 {
+    (transform(kind) * v.extend(0.0)).truncate()
+}
+
+/// Transforms normal `n` between the current instance's object space and
+/// world space, by the inverse transpose so that it stays perpendicular to
+/// the surface: `(transpose(W) * vec4(n, 0)).xyz` where `W` is the *other*
+/// transform (world-to-object for [`ObjectToWorld`](TransformKind::ObjectToWorld)).
+/// The result is not normalised.
+///
+/// Program kinds: closest_hit, any_hit, intersection.
+#[doc(alias = "rtTransformNormal")]
+pub fn rt_transform_normal(kind: TransformKind, n: Vec3) -> Vec3 {
+    let inverse = match kind {
+        TransformKind::ObjectToWorld => TransformKind::WorldToObject,
+        TransformKind::WorldToObject => TransformKind::ObjectToWorld,
+    };
+    (transform(inverse).transpose() * n.extend(0.0)).truncate()
+}
+
+/// Prints formatted text for debugging, like `print!`: `{}` placeholders
+/// formatted with `Display` (glam vectors print as `[x, y, z]`). No newline
+/// is added. The text goes to the backend's tracer, or to stdout when there
+/// is none.
+///
+/// ```
+/// use rt_std::prelude::*;
+///
+/// rt_printf!("launch index {} sees {}\n", launch_index(), vec3(0.0, 1.0, 0.5));
+/// ```
+///
+/// Program kinds: all.
+#[doc(alias = "rtPrintf")]
+#[macro_export]
+macro_rules! rt_printf {
+    ($($arg:tt)*) => {
+        $crate::intrinsics::__print(&::std::format!($($arg)*))
+    };
+}
+
+/// Sends `rt_printf!` text to the tracer or stdout.
+#[doc(hidden)]
+pub fn __print(text: &str) {
+    with_installed_tracer(|tracer| tracer.print(text), || print!("{text}"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::cpu::{ExecutionContext, Tracer, with_context, with_tracer};
+    use core::any::Any;
+    use core::cell::RefCell;
+    use glam::Vec4;
+
+    #[derive(Clone, Copy, Debug, Default, PartialEq)]
+    struct Prd {
+        value: f32,
+    }
+    impl crate::RtData for Prd {
+        const LAYOUT: crate::program::TypeLayout = f32::LAYOUT;
+        fn write_words(&self, out: &mut [u32]) {
+            self.value.write_words(out)
+        }
+        fn read_words(words: &[u32]) -> Self {
+            Prd { value: f32::read_words(words) }
+        }
+    }
+    impl Payload for Prd {}
+
+    #[test]
+    fn semantic_values_read_the_context() {
+        let ctx = ExecutionContext {
+            launch_index: UVec2::new(3, 4),
+            launch_dim: UVec2::new(640, 480),
+            t_hit: 2.5,
+            primitive_index: 17,
+            exception_code: EXCEPTION_USER + 1,
+            ..ExecutionContext::default()
+        };
+        let (seen, _) = with_context(ctx, || {
+            (launch_index(), launch_dim(), current_ray(), t_hit(), primitive_index(), exception_code())
+        });
+        assert_eq!(seen, (ctx.launch_index, ctx.launch_dim, ctx.current_ray, 2.5, 17, EXCEPTION_USER + 1));
+        // Restored afterwards.
+        assert_eq!(launch_index(), UVec2::ZERO);
+    }
+
+    #[test]
+    fn potential_intersection_without_tracer_uses_the_current_ray() {
+        // Outside any context: the default ray accepts (0, inf).
+        assert!(rt_potential_intersection(1e20));
+        assert!(!rt_potential_intersection(0.0));
+        assert!(!rt_potential_intersection(-1.0));
+        assert!(!rt_potential_intersection(f32::NAN));
+
+        let ray = Ray::new(Vec3::ZERO, Vec3::X, 0, 0.5, 2.0);
+        let ctx = ExecutionContext { current_ray: ray, ..ExecutionContext::default() };
+        let (results, after) =
+            with_context(ctx, || [0.5, 0.50001, 1.0, 1.99999, 2.0, 3.0].map(rt_potential_intersection));
+        assert_eq!(results, [false, true, true, true, false, false]);
+        assert_eq!(after.t_hit, 1.99999, "the last accepted t");
+        assert!(with_context(ctx, || rt_report_intersection(3)).0);
+    }
+
+    #[test]
+    fn hit_flags_and_exceptions() {
+        let ((), ctx) = with_context(ExecutionContext::default(), || {
+            rt_ignore_intersection();
+            rt_terminate_ray();
+            rt_throw(EXCEPTION_USER + 5);
+            rt_throw(EXCEPTION_USER + 6);
+        });
+        assert!(ctx.ignored && ctx.terminated);
+        assert_eq!(ctx.pending_exception, Some(EXCEPTION_USER + 5));
+        // A reserved code is recorded as given.
+        let ((), ctx) = with_context(ExecutionContext::default(), || rt_throw(1));
+        assert_eq!(ctx.pending_exception, Some(1));
+    }
+
+    #[test]
+    fn transform_normal_uses_the_inverse_transpose() {
+        // Non-uniform scale: x stretched by 4. The plane x + y = 1 has object
+        // normal (1, 1, 0); after scaling, its points satisfy x/4 + y = 1,
+        // whose normal is (1/4, 1, 0).
+        let o2w = Mat4::from_scale(Vec3::new(4.0, 1.0, 1.0)) * Mat4::from_translation(Vec3::new(0.0, 0.0, 2.0));
+        let ctx = ExecutionContext { object_to_world: o2w, world_to_object: o2w.inverse(), ..Default::default() };
+        let (r, _) = with_context(ctx, || {
+            (
+                rt_transform_normal(TransformKind::ObjectToWorld, Vec3::new(1.0, 1.0, 0.0)),
+                rt_transform_normal(TransformKind::WorldToObject, Vec3::new(0.25, 1.0, 0.0)),
+                rt_transform_vector(TransformKind::ObjectToWorld, Vec3::new(1.0, 1.0, 0.0)),
+                rt_transform_point(TransformKind::ObjectToWorld, Vec3::new(1.0, 0.0, 0.0)),
+                rt_transform_point(TransformKind::WorldToObject, Vec3::new(4.0, 0.0, 2.0)),
+            )
+        });
+        assert_eq!(r.0, Vec3::new(0.25, 1.0, 0.0));
+        assert_eq!(r.1, Vec3::new(1.0, 1.0, 0.0));
+        // The transformed normal stays perpendicular to transformed tangents.
+        let tangent = rt_transform_vector_with(o2w, Vec3::new(1.0, -1.0, 0.0));
+        assert_eq!(r.0.dot(tangent), 0.0);
+        assert_eq!(r.2, Vec3::new(4.0, 1.0, 0.0), "vectors ignore translation");
+        assert_eq!(r.3, Vec3::new(4.0, 0.0, 2.0));
+        assert_eq!(r.4, Vec3::new(1.0, 0.0, 0.0));
+    }
+
+    fn rt_transform_vector_with(m: Mat4, v: Vec3) -> Vec3 {
+        let ctx = ExecutionContext { object_to_world: m, ..Default::default() };
+        with_context(ctx, || rt_transform_vector(TransformKind::ObjectToWorld, v)).0
+    }
+
+    #[test]
+    fn trace_without_tracer_leaves_the_payload() {
+        let mut prd = Prd { value: 3.0 };
+        let ((), ctx) = with_context(ExecutionContext::default(), || {
+            rt_trace(Object::new(0), Ray::new(Vec3::ZERO, Vec3::Z, 0, 0.0, f32::INFINITY), &mut prd)
+        });
+        assert_eq!(prd.value, 3.0);
+        assert_eq!(ctx.pending_exception, None);
+    }
+
+    /// Records what reaches it and answers like a scene with one hit at 1.
+    #[derive(Default)]
+    struct Recorder {
+        log: RefCell<Vec<String>>,
+    }
+
+    impl Tracer for Recorder {
+        fn trace(&self, object: Object, ray: Ray, payload: &mut dyn Any, flags: u32, mask: u32) {
+            self.log.borrow_mut().push(format!("trace {} {} {flags} {mask:#x}", object.id, ray.ray_type));
+            // Run a "closest hit" in a nested context, as a backend would.
+            let inner = ExecutionContext { t_hit: 1.0, ..context() };
+            let (t, _) = with_tracer(inner, self, t_hit);
+            payload.downcast_mut::<Prd>().unwrap().value = t;
+        }
+        fn potential_intersection(&self, t: f32) -> bool {
+            t < 1.0
+        }
+        fn report_intersection(&self, material: u32) -> bool {
+            self.log.borrow_mut().push(format!("report {material}"));
+            false
+        }
+        fn print(&self, text: &str) {
+            self.log.borrow_mut().push(text.to_owned());
+        }
+    }
+
+    #[test]
+    fn installed_tracer_serves_the_intrinsics() {
+        let tracer = Recorder::default();
+        let ctx = ExecutionContext { t_hit: 9.0, ..Default::default() };
+        let mut prd = Prd::default();
+        let (r, after) = with_tracer(ctx, &tracer, || {
+            let ray = Ray::new(Vec3::ZERO, Vec3::Z, 1, 0.0, 10.0);
+            rt_trace_with(Object::new(7), ray, &mut prd, RAY_FLAG_NONE | crate::RAY_FLAG_DISABLE_ANYHIT, 0x3);
+            rt_trace(Object::new(7), Ray { origin: Vec3::splat(f32::NAN), ..ray }, &mut prd);
+            rt_printf!("v = {} {}\n", prd.value, Vec4::ONE);
+            (rt_potential_intersection(0.5), rt_potential_intersection(2.0), rt_report_intersection(4), t_hit())
+        });
+        assert_eq!(r, (true, false, false, 9.0), "the nested context is gone");
+        assert_eq!(prd.value, 1.0);
+        assert_eq!(after.pending_exception, Some(EXCEPTION_INVALID_RAY));
+        assert_eq!(*tracer.log.borrow(), ["trace 7 1 2 0x3", "v = 1 [1, 1, 1, 1]\n", "report 4"]);
+        // Uninstalled afterwards.
+        assert!(rt_report_intersection(0));
+    }
+
+    #[test]
+    fn context_is_restored_after_a_panic() {
+        let ctx = ExecutionContext { launch_index: UVec2::new(5, 5), ..Default::default() };
+        let caught = std::panic::catch_unwind(|| with_context(ctx, || panic!("program failed")));
+        assert!(caught.is_err());
+        assert_eq!(launch_index(), UVec2::ZERO);
+    }
+}

@@ -1,0 +1,37 @@
+//! Everything a ray program uses: `use rt_std::prelude::*;`.
+//!
+//! The glam types and constructors programs may use, glam's swizzles, the
+//! `f32` constants, the macros, the data traits, and every item of rt-std's
+//! vocabulary: [`Ray`], [`Aabb`], the handles, the math helpers, the
+//! intrinsics and their constants. [`TransformKind`]'s variants are imported
+//! too, so programs write `rt_transform_normal(ObjectToWorld, n)`.
+
+pub use core::f32::consts::{E, FRAC_1_PI, FRAC_PI_2, FRAC_PI_4, LN_2, PI, SQRT_2, TAU};
+
+pub use glam::swizzles::*;
+pub use glam::{
+    IVec2, IVec3, IVec4, Mat2, Mat3, Mat4, UVec2, UVec3, UVec4, Vec2, Vec3, Vec4, ivec2, ivec3, ivec4, uvec2, uvec3,
+    uvec4, vec2, vec3, vec4,
+};
+
+pub use rt_macros::{rt_attributes, rt_const, rt_function, rt_payload, rt_program, rt_struct};
+
+pub use crate::rt_printf;
+
+pub use crate::buffer::{Buffer, Buffer2d, RwBuffer, RwBuffer2d};
+pub use crate::data::{Attributes, Payload, RtData};
+pub use crate::geometry::Aabb;
+pub use crate::intrinsics::{
+    EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS, EXCEPTION_INVALID_RAY, EXCEPTION_TRACE_DEPTH_EXCEEDED, EXCEPTION_USER,
+    current_ray, exception_code, launch_dim, launch_index, primitive_index, rt_ignore_intersection,
+    rt_potential_intersection, rt_report_intersection, rt_terminate_ray, rt_throw, rt_trace, rt_trace_with,
+    rt_transform_normal, rt_transform_point, rt_transform_vector, t_hit,
+};
+pub use crate::math::{GenType, MixFactor, faceforward, mix, reflect, refract, saturate, smoothstep, step};
+pub use crate::ray::{
+    RAY_FLAG_CULL_BACK_FACING, RAY_FLAG_CULL_FRONT_FACING, RAY_FLAG_DISABLE_ANYHIT, RAY_FLAG_DISABLE_CLOSESTHIT,
+    RAY_FLAG_NONE, RAY_FLAG_TERMINATE_ON_FIRST_HIT, RAY_MASK_ALL, Ray,
+};
+pub use crate::scene::Object;
+pub use crate::scene::TransformKind::{self, *};
+pub use crate::texture::{FilterMode, Sampler2d, WrapMode};

@@ -1,0 +1,182 @@
+//! Descriptors the `#[rt_program]` macro emits beside each program.
+//!
+//! This module is the contract between the compiler (`rt-compiler`, run at
+//! `cargo build` time) and the runtime: everything the linker needs to know
+//! about a program is here, as `'static` data.
+
+use crate::cpu::{CpuArgs, CpuResult};
+
+/// The eight kinds of ray program, as in OptiX.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ProgramKind {
+    /// Entry point, run once per launch index.
+    RayGeneration,
+    /// Called when an exception is raised.
+    Exception,
+    /// Called for the closest committed intersection.
+    ClosestHit,
+    /// Called for every potential closest intersection.
+    AnyHit,
+    /// Called when a ray hits nothing.
+    Miss,
+    /// Intersects a ray with one custom primitive.
+    Intersection,
+    /// Computes the bounds of one custom primitive.
+    BoundingBox,
+    /// Chooses which child of a selector a ray enters.
+    Visit,
+}
+
+impl ProgramKind {
+    /// The spelling used in `#[rt_program(...)]`.
+    pub const fn attribute_name(self) -> &'static str {
+        match self {
+            ProgramKind::RayGeneration => "ray_generation",
+            ProgramKind::Exception => "exception",
+            ProgramKind::ClosestHit => "closest_hit",
+            ProgramKind::AnyHit => "any_hit",
+            ProgramKind::Miss => "miss",
+            ProgramKind::Intersection => "intersection",
+            ProgramKind::BoundingBox => "bounding_box",
+            ProgramKind::Visit => "visit",
+        }
+    }
+}
+
+/// One field of a struct type, in packed 32-bit words.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FieldLayout {
+    /// Field name.
+    pub name: &'static str,
+    /// Rust spelling of the field's type.
+    pub ty: &'static str,
+    /// Offset in 32-bit words from the start of the struct.
+    pub offset_words: u32,
+}
+
+/// How a type is spelled in Rust and WGSL, and how it is laid out in the
+/// runtime's buffer heap: fields packed in declaration order, four bytes per
+/// scalar, no padding (so the same bytes serve CPU and GPU).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TypeLayout {
+    /// The Rust spelling (`Vec3`, `Radiance`, `Buffer<BasicLight>`).
+    pub rust: &'static str,
+    /// The WGSL spelling (`vec3<f32>`, `Radiance`, `RtBuffer`).
+    pub wgsl: &'static str,
+    /// Size in 32-bit words when stored in a buffer.
+    pub words: u32,
+    /// Fields, for struct types; empty otherwise.
+    pub fields: &'static [FieldLayout],
+}
+
+/// What a `#[var]` parameter holds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum VariableKind {
+    /// A plain value (scalar, vector, matrix, `#[rt_struct]`).
+    Value,
+    /// A buffer handle.
+    Buffer {
+        /// Element type.
+        element: TypeLayout,
+        /// 1 or 2.
+        dimensions: u32,
+        /// Whether programs may write it.
+        writable: bool,
+    },
+    /// A 2D texture sampler handle.
+    Sampler,
+    /// A node of the scene graph to trace against.
+    Object,
+}
+
+/// A variable a program reads (a `#[var]` parameter).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct VariableDescriptor {
+    /// The variable's name (the parameter name).
+    pub name: &'static str,
+    /// Its type as declared.
+    pub ty: TypeLayout,
+    /// What kind of thing it is.
+    pub kind: VariableKind,
+}
+
+/// A named WGSL item (struct or function) that programs may share; the
+/// linker deduplicates them by name and rejects two different texts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct WgslItem {
+    /// The WGSL name.
+    pub name: &'static str,
+    /// Its full WGSL text.
+    pub text: &'static str,
+}
+
+/// A format string of an `rt_printf!` call, with the types of its arguments.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PrintfFormat {
+    /// The id the WGSL passes to `rt_printf_begin` (a hash of the format and
+    /// argument types, so shared helpers print the same id everywhere).
+    pub id: u32,
+    /// The format string as written (`{}` placeholders).
+    pub format: &'static str,
+    /// WGSL types of the arguments in order (`f32`, `vec3<f32>`, ...).
+    pub args: &'static [&'static str],
+}
+
+/// Everything known about one program after `cargo build`.
+#[derive(Clone, Copy, Debug)]
+pub struct ProgramDescriptor {
+    /// Program kind.
+    pub kind: ProgramKind,
+    /// Rust function name.
+    pub name: &'static str,
+    /// Name of the program's function in WGSL (`rtp_<name>`).
+    pub wgsl_entry: &'static str,
+    /// The whole standalone WGSL module that naga validated at build time:
+    /// a prelude of runtime stubs, the types, helpers and the program.
+    pub wgsl: &'static str,
+    /// The prelude of runtime stubs alone (the linker replaces it).
+    pub wgsl_prelude: &'static str,
+    /// Struct types the program uses, in dependency order.
+    pub wgsl_types: &'static [WgslItem],
+    /// Helper functions (`#[rt_function]`s and generated accessors), in
+    /// dependency order.
+    pub wgsl_functions: &'static [WgslItem],
+    /// The program function itself.
+    pub wgsl_program: &'static str,
+    /// Payload type, for programs that take one.
+    pub payload: Option<TypeLayout>,
+    /// Attribute type, for programs that take one.
+    pub attributes: Option<TypeLayout>,
+    /// Variables in parameter order (the WGSL function takes them in this
+    /// order after payload/attributes/primitive index).
+    pub variables: &'static [VariableDescriptor],
+    /// Intrinsics the program calls, directly or through helpers.
+    pub intrinsics: &'static [&'static str],
+    /// Payload types passed to `rt_trace`.
+    pub traced_payloads: &'static [TypeLayout],
+    /// `rt_printf!` formats the program (and its helpers) use.
+    pub printf: &'static [PrintfFormat],
+    /// Rust source file of the program.
+    pub file: &'static str,
+    /// Line of the program's `fn` in that file.
+    pub line: u32,
+    /// The program compiled as Rust, for the CPU backend.
+    pub cpu: fn(&mut CpuArgs<'_>) -> CpuResult,
+}
+
+impl ProgramDescriptor {
+    /// `file:line` of the program, for error messages.
+    pub fn location(&self) -> String {
+        format!("{}:{}", self.file, self.line)
+    }
+}
+
+impl PartialEq for ProgramDescriptor {
+    fn eq(&self, other: &Self) -> bool {
+        self.name == other.name
+            && self.kind == other.kind
+            && self.file == other.file
+            && self.line == other.line
+            && self.wgsl == other.wgsl
+    }
+}

@@ -1,0 +1,60 @@
+// closest_hit program `diffuse`
+
+struct BasicLight {
+    pos: vec3<f32>,
+    color: vec3<f32>,
+    casts_shadow: i32,
+}
+
+struct Normals {
+    geometric_normal: vec3<f32>,
+    shading_normal: vec3<f32>,
+}
+
+struct Radiance {
+    result: vec3<f32>,
+    importance: f32,
+    depth: i32,
+}
+
+fn rt_bufload_BasicLight(b: RtBuffer, i: u32) -> BasicLight {
+    if rt_buf_check(b, i) {
+        return rt_load_BasicLight(b.offset + i * 7u);
+    }
+    return BasicLight();
+}
+
+fn rt_load_BasicLight(w: u32) -> BasicLight {
+    return BasicLight(rt_load_vec3f(w + 0u), rt_load_vec3f(w + 3u), rt_load_i32(w + 6u));
+}
+
+fn rt_load_f32(w: u32) -> f32 {
+    return bitcast<f32>(rt_heap[w]);
+}
+
+fn rt_load_i32(w: u32) -> i32 {
+    return bitcast<i32>(rt_heap[w]);
+}
+
+fn rt_load_vec3f(w: u32) -> vec3<f32> {
+    return vec3<f32>(rt_load_f32(w + 0u), rt_load_f32(w + 1u), rt_load_f32(w + 2u));
+}
+
+fn rtp_diffuse(prd: ptr<function, Radiance>, attr: Normals, ka: vec3<f32>, kd: vec3<f32>, ambient_light_color: vec3<f32>, lights: RtBuffer) {
+    let ray: RtRay = rt_current_ray();
+    let world_shading_normal: vec3<f32> = normalize(rt_transform_normal(0u, attr.shading_normal));
+    let world_geometric_normal: vec3<f32> = normalize(rt_transform_normal(0u, attr.geometric_normal));
+    let ffnormal: vec3<f32> = faceForward(world_shading_normal, -ray.direction, world_geometric_normal);
+    var color: vec3<f32> = (ka * ambient_light_color);
+    let hit_point: vec3<f32> = (ray.origin + (rt_t_hit() * ray.direction));
+    let end = lights.len;
+    for (var i: u32 = 0u; i < end; i++) {
+        let light: BasicLight = rt_bufload_BasicLight(lights, i);
+        let l: vec3<f32> = normalize((light.pos - hit_point));
+        let n_dot_l: f32 = dot(ffnormal, l);
+        if (n_dot_l > 0.0f) {
+            color += ((kd * n_dot_l) * light.color);
+        }
+    }
+    (*prd).result = color;
+}

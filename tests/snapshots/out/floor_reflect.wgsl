@@ -1,0 +1,34 @@
+// closest_hit program `floor_reflect`
+fn rt_trace_Radiance(object: u32, ray: RtRay, prd: ptr<function, Radiance>, flags: u32, mask: u32) {}
+
+struct Normals {
+    geometric_normal: vec3<f32>,
+    shading_normal: vec3<f32>,
+}
+
+struct Radiance {
+    result: vec3<f32>,
+    importance: f32,
+    depth: i32,
+}
+
+const RADIANCE_RAY: u32 = 0u;
+
+fn rtf_luminance(c: vec3<f32>) -> f32 {
+    return dot(c, vec3<f32>(0.3f, 0.59f, 0.11f));
+}
+
+fn rtp_floor_reflect(prd: ptr<function, Radiance>, attr: Normals, floor_color: vec3<f32>, reflectivity: vec3<f32>, max_depth: i32, importance_cutoff: f32, scene_epsilon: f32, top_object: u32) {
+    let ray: RtRay = rt_current_ray();
+    let n: vec3<f32> = normalize(rt_transform_normal(0u, attr.shading_normal));
+    let hit_point: vec3<f32> = (ray.origin + (rt_t_hit() * ray.direction));
+    var result: vec3<f32> = floor_color;
+    let importance: f32 = ((*prd).importance * rtf_luminance(reflectivity));
+    if ((importance > importance_cutoff) && ((*prd).depth < max_depth)) {
+        var refl: Radiance = Radiance(vec3<f32>(), importance, ((*prd).depth + 1i));
+        let r: vec3<f32> = reflect(ray.direction, n);
+        rt_trace_Radiance(top_object, RtRay(hit_point, r, RADIANCE_RAY, scene_epsilon, bitcast<f32>(0x7f800000u)), &refl, 0u, 255u);
+        result += (reflectivity * refl.result);
+    }
+    (*prd).result = result;
+}

@@ -1,0 +1,105 @@
+//! The descriptors the real macros emit (compiled in this crate's library
+//! from the snapshot corpus) agree with the library lowering and describe
+//! the programs fully; the CPU entry runs the Rust function.
+
+use glam::Vec3;
+use rt_std::cpu::{CpuArgs, CpuResult};
+use rt_std::program::{ProgramKind, VariableKind};
+use rt_tests::seed_common::{Normals, Radiance};
+use rt_tests::*;
+
+#[test]
+fn macro_wgsl_equals_the_checked_in_snapshot() {
+    let programs = [
+        &seed_camera::pinhole_camera::PROGRAM,
+        &seed_camera::miss::PROGRAM,
+        &seed_camera::exception::PROGRAM,
+        &seed_normal::closest_hit_radiance::PROGRAM,
+        &seed_diffuse::diffuse::PROGRAM,
+        &seed_phong::phong::PROGRAM,
+        &seed_phong::any_hit_shadow::PROGRAM,
+        &seed_reflections::floor_reflect::PROGRAM,
+        &seed_envmap::envmap_miss::PROGRAM,
+        &seed_convex_hull::chull_intersect::PROGRAM,
+        &seed_convex_hull::chull_bounds::PROGRAM,
+        &seed_convex_hull::glass::PROGRAM,
+    ];
+    for p in programs {
+        let path = format!("{}/snapshots/out/{}.wgsl", env!("CARGO_MANIFEST_DIR"), p.name);
+        let snapshot = std::fs::read_to_string(&path).unwrap();
+        let body = p.wgsl.strip_prefix(p.wgsl_prelude).map(str::to_owned);
+        let expected = snapshot.split_once('\n').unwrap().1;
+        // The snapshot holds the per-type stubs of the prelude too.
+        let stubs = p.wgsl_prelude.strip_prefix(rt_compiler::lower::PRELUDE).unwrap();
+        assert_eq!(format!("{stubs}{}", body.unwrap()), expected, "{}", p.name);
+        assert!(p.file.ends_with(".rs") && p.line > 0, "{}: {}:{}", p.name, p.file, p.line);
+    }
+}
+
+#[test]
+fn descriptor_describes_the_program() {
+    let p = &seed_phong::phong::PROGRAM;
+    assert_eq!(p.kind, ProgramKind::ClosestHit);
+    assert_eq!(p.wgsl_entry, "rtp_phong");
+    assert_eq!(p.payload.unwrap().rust, "Radiance");
+    assert_eq!(p.payload.unwrap().words, 5);
+    assert_eq!(p.attributes.unwrap().wgsl, "Normals");
+    let names: Vec<&str> = p.variables.iter().map(|v| v.name).collect();
+    assert_eq!(
+        names,
+        ["ka", "kd", "ks", "phong_exp", "ambient_light_color", "lights", "scene_epsilon", "top_shadower"]
+    );
+    let lights = p.variables.iter().find(|v| v.name == "lights").unwrap();
+    match lights.kind {
+        VariableKind::Buffer { element, dimensions, writable } => {
+            assert_eq!((element.rust, element.words, dimensions, writable), ("BasicLight", 7, 1, false));
+            assert_eq!(element.fields[2].offset_words, 6);
+        }
+        other => panic!("lights is {other:?}"),
+    }
+    assert_eq!(p.variables.iter().find(|v| v.name == "top_shadower").unwrap().kind, VariableKind::Object);
+    assert_eq!(p.traced_payloads.iter().map(|t| t.rust).collect::<Vec<_>>(), ["Shadow"]);
+    for i in ["current_ray", "rt_trace", "rt_transform_normal", "t_hit"] {
+        assert!(p.intrinsics.contains(&i), "{i} missing from {:?}", p.intrinsics);
+    }
+    assert!(p.file.ends_with("seed_phong.rs"), "{}", p.file);
+    assert_eq!(p.line, 6);
+    let e = &seed_camera::exception::PROGRAM;
+    assert_eq!(e.printf.len(), 1);
+    assert_eq!(e.printf[0].format, "exception {} at {}");
+    assert_eq!(e.printf[0].args, ["u32", "vec2<u32>"]);
+}
+
+#[test]
+fn cpu_entry_runs_the_rust_function() {
+    let mut prd = Radiance { result: Vec3::ZERO, importance: 1.0, depth: 0 };
+    let bg = Vec3::new(0.1, 0.2, 0.3);
+    let vars: [&dyn std::any::Any; 1] = [&bg];
+    let mut args = CpuArgs { payload: Some(&mut prd), attributes: None, primitive: 0, variables: &vars };
+    assert_eq!((seed_camera::miss::PROGRAM.cpu)(&mut args), CpuResult::Unit);
+    assert_eq!(prd.result, bg);
+
+    // The normal shader with identity transforms: n * 0.5 + 0.5.
+    let mut prd = Radiance::default();
+    let mut attr = Normals { geometric_normal: Vec3::Z, shading_normal: Vec3::new(0.0, 3.0, 0.0) };
+    let mut args = CpuArgs { payload: Some(&mut prd), attributes: Some(&mut attr), primitive: 0, variables: &[] };
+    (seed_normal::closest_hit_radiance::PROGRAM.cpu)(&mut args);
+    assert_eq!(prd.result, Vec3::new(0.5, 1.0, 0.5));
+
+    let lo = Vec3::splat(-1.0);
+    let hi = Vec3::new(1.0, 2.0, 3.0);
+    let vars: [&dyn std::any::Any; 2] = [&lo, &hi];
+    let mut args = CpuArgs { payload: None, attributes: None, primitive: 3, variables: &vars };
+    assert_eq!((seed_convex_hull::chull_bounds::PROGRAM.cpu)(&mut args), CpuResult::Aabb(rt_std::Aabb::new(lo, hi)));
+}
+
+#[test]
+fn user_structs_round_trip_through_heap_words() {
+    use rt_std::RtData;
+    let l = seed_common::BasicLight { pos: Vec3::new(1.0, 2.0, 3.0), color: Vec3::ONE, casts_shadow: -7 };
+    let mut words = [0u32; 7];
+    l.write_words(&mut words);
+    assert_eq!(words[6], (-7i32) as u32);
+    assert_eq!(seed_common::BasicLight::read_words(&words), l);
+    assert_eq!(<seed_common::BasicLight as RtData>::LAYOUT.words, 7);
+}

@@ -1,0 +1,100 @@
+//! WGSL snapshot tests: every program in `snapshots/in/*.rs` is lowered (with
+//! every `rt_*` item of the corpus as a possible dependency) and compared
+//! with `snapshots/out/<program>.wgsl`; every snapshot is then validated by
+//! naga on its own. Run with `RT_BLESS=1` to rewrite the snapshots.
+
+use rt_compiler::{Declared, Item};
+use std::path::{Path, PathBuf};
+
+fn corpus_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("snapshots")
+}
+
+/// `(file, program kind, program)` for every program, and every item.
+fn corpus() -> (Vec<(String, rt_compiler::Kind, syn::ItemFn)>, Vec<Item>) {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(corpus_dir().join("in"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "rs"))
+        .collect();
+    files.sort();
+    let mut programs = Vec::new();
+    let mut items = Vec::new();
+    for f in files {
+        let text = std::fs::read_to_string(&f).unwrap();
+        let file: syn::File = syn::parse_str(&text).unwrap_or_else(|e| panic!("{}: {e}", f.display()));
+        for it in &file.items {
+            match rt_compiler::declared(it) {
+                Some(Ok(Declared::Program(k, func))) => {
+                    programs.push((f.file_name().unwrap().to_string_lossy().into_owned(), k, func))
+                }
+                Some(Ok(Declared::Item(i))) => items.push(i),
+                Some(Err(e)) => panic!("{}: {}", f.display(), e.message),
+                None => {}
+            }
+        }
+    }
+    (programs, items)
+}
+
+/// The snapshot text: the module without the fixed runtime prelude.
+fn snapshot_text(l: &rt_compiler::Lowered) -> String {
+    let body = l.wgsl.strip_prefix(rt_compiler::lower::PRELUDE).expect("module starts with the prelude");
+    format!("// {} program `{}`\n{}", l.kind.unwrap().name(), l.name, body)
+}
+
+#[test]
+fn snapshots_match_and_validate() {
+    let (programs, items) = corpus();
+    let bless = std::env::var_os("RT_BLESS").is_some();
+    let out_dir = corpus_dir().join("out");
+    let mut failures = Vec::new();
+    let mut names = std::collections::HashSet::new();
+    for (file, kind, f) in &programs {
+        let name = f.sig.ident.to_string();
+        assert!(names.insert(name.clone()), "program name `{name}` appears twice in the corpus");
+        let lowered = match rt_compiler::lower::lower(rt_compiler::lower::Entry::Program(*kind, f), &items) {
+            Ok(l) => l,
+            Err(e) => {
+                failures.push(format!("{file}: `{name}` does not lower:\n{e}"));
+                continue;
+            }
+        };
+        let text = snapshot_text(&lowered);
+        let path = out_dir.join(format!("{name}.wgsl"));
+        if bless {
+            std::fs::write(&path, &text).unwrap();
+        } else {
+            match std::fs::read_to_string(&path) {
+                Ok(expected) if expected == text => {}
+                Ok(expected) => failures.push(format!(
+                    "{file}: `{name}` differs from {} (RT_BLESS=1 to accept)\n--- expected\n{expected}\n--- got\n{text}",
+                    path.display()
+                )),
+                Err(_) => failures.push(format!("{file}: missing snapshot {} (RT_BLESS=1 to create)", path.display())),
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n\n"));
+    assert!(programs.len() >= 25, "the corpus has {} programs, fewer than 25", programs.len());
+}
+
+#[test]
+fn every_checked_in_snapshot_validates_with_naga() {
+    let mut n = 0;
+    for e in std::fs::read_dir(corpus_dir().join("out")).unwrap() {
+        let path = e.unwrap().path();
+        if path.extension().is_none_or(|e| e != "wgsl") {
+            continue;
+        }
+        let text = std::fs::read_to_string(&path).unwrap();
+        let module = format!("{}{}", rt_compiler::lower::PRELUDE, text);
+        let parsed = naga::front::wgsl::parse_str(&module)
+            .unwrap_or_else(|e| panic!("{}: {}", path.display(), e.emit_to_string(&module)));
+        naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::default())
+            .validate(&parsed)
+            .unwrap_or_else(|e| panic!("{}: {}", path.display(), e.emit_to_string(&module)));
+        n += 1;
+    }
+    assert!(n >= 25, "only {n} snapshots");
+}
