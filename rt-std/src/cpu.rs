@@ -193,7 +193,9 @@ pub trait Tracer {
     fn potential_intersection(&self, t: f32) -> bool;
     /// [`rt_report_intersection`](crate::rt_report_intersection): runs any-hit
     /// for the candidate with `material`; returns whether it was accepted.
-    fn report_intersection(&self, material: u32) -> bool;
+    /// `attributes` are the intersection program's attributes as they were
+    /// at the report (`None` for an intersection program without any).
+    fn report_intersection(&self, material: u32, attributes: Option<&dyn AnyAttributes>) -> bool;
     /// [`rt_printf!`](crate::rt_printf) output.
     fn print(&self, text: &str);
 }
@@ -280,5 +282,50 @@ pub(crate) fn with_installed_tracer<R>(f: impl FnOnce(&dyn Tracer) -> R, fallbac
         // still on this thread's stack. The tracer is only borrowed shared.
         Some(tracer) => f(unsafe { &*tracer }),
         None => fallback(),
+    }
+}
+
+/// Attributes of any `#[rt_attributes]` type, as the CPU backend moves them
+/// from intersection programs to hit programs.
+pub trait AnyAttributes: core::any::Any + Send {
+    /// The value, for downcasting.
+    fn as_any(&self) -> &dyn core::any::Any;
+    /// The value, for downcasting.
+    fn as_any_mut(&mut self) -> &mut dyn core::any::Any;
+    /// A boxed copy.
+    fn clone_box(&self) -> Box<dyn AnyAttributes>;
+    /// Copies `other` into `self` if both are the same type; false otherwise.
+    fn copy_from(&mut self, other: &dyn AnyAttributes) -> bool;
+}
+
+impl<T: crate::Attributes + Send> AnyAttributes for T {
+    fn as_any(&self) -> &dyn core::any::Any {
+        self
+    }
+    fn as_any_mut(&mut self) -> &mut dyn core::any::Any {
+        self
+    }
+    fn clone_box(&self) -> Box<dyn AnyAttributes> {
+        Box::new(*self)
+    }
+    fn copy_from(&mut self, other: &dyn AnyAttributes) -> bool {
+        match other.as_any().downcast_ref::<T>() {
+            Some(o) => {
+                *self = *o;
+                true
+            }
+            None => false,
+        }
+    }
+}
+
+/// What `rt_report_intersection(m)` becomes in the CPU copy of an
+/// intersection program: the macro passes the program's attributes along.
+#[doc(hidden)]
+pub fn __report_intersection<A: crate::Attributes + Send>(material: u32, attributes: &A) -> bool {
+    match TRACER.with(Cell::get) {
+        // SAFETY: see `with_tracer`: an installed pointer is live.
+        Some(t) => unsafe { (*t).report_intersection(material, Some(attributes)) },
+        None => true,
     }
 }

@@ -159,7 +159,7 @@ pub fn rt_potential_intersection(t: f32) -> bool {
 /// Program kinds: intersection.
 #[doc(alias = "rtReportIntersection")]
 pub fn rt_report_intersection(material: u32) -> bool {
-    with_installed_tracer(|tracer| tracer.report_intersection(material), || true)
+    with_installed_tracer(|tracer| tracer.report_intersection(material, None), || true)
 }
 
 /// Rejects the current candidate intersection: when the any-hit program
@@ -397,7 +397,7 @@ mod tests {
         fn potential_intersection(&self, t: f32) -> bool {
             t < 1.0
         }
-        fn report_intersection(&self, material: u32) -> bool {
+        fn report_intersection(&self, material: u32, _attributes: Option<&dyn crate::cpu::AnyAttributes>) -> bool {
             self.log.borrow_mut().push(format!("report {material}"));
             false
         }

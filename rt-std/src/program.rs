@@ -162,6 +162,10 @@ pub struct ProgramDescriptor {
     pub line: u32,
     /// The program compiled as Rust, for the CPU backend.
     pub cpu: fn(&mut CpuArgs<'_>) -> CpuResult,
+    /// For programs taking attributes: makes a value of the attribute type
+    /// from heap words (the CPU backend fills built-in triangle attributes
+    /// this way).
+    pub cpu_attributes: Option<fn(&[u32]) -> Box<dyn crate::cpu::AnyAttributes>>,
 }
 
 impl ProgramDescriptor {

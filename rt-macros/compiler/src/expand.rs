@@ -55,7 +55,7 @@ pub fn rt_program(attr: TokenStream, item: TokenStream) -> TokenStream {
             return quote!(#err #item);
         }
     };
-    let stripped = strip_var_attrs(&f);
+    let mut stripped = strip_var_attrs(&f);
     let kind = match syn::parse2::<syn::Ident>(attr.clone()) {
         Ok(i) => match parse_kind(&i) {
             Ok(k) => k,
@@ -72,6 +72,9 @@ pub fn rt_program(attr: TokenStream, item: TokenStream) -> TokenStream {
         Ok(p) => p,
         Err(e) => return with_errors(e, quote!(#stripped)),
     };
+    if kind == Kind::Intersection {
+        pass_attributes_to_reports(&mut stripped, &params);
+    }
     let name = &f.sig.ident;
     let vis = &f.vis;
     let thunk = cpu_thunk(kind, &f, &params);
@@ -409,6 +412,12 @@ fn program_output(kind: Kind, f: &syn::ItemFn, lowered: Result<Lowered, Errors>)
         let args = str_slice(args);
         quote!(::rt_std::program::PrintfFormat { id: #id, format: #fmt, args: #args })
     });
+    let has_attributes = f.sig.inputs.iter().any(|i| {
+        matches!(i, syn::FnArg::Typed(pt) if matches!(&*pt.ty, syn::Type::Reference(_))
+            && matches!(kind, Kind::ClosestHit | Kind::AnyHit | Kind::Intersection)
+            && (kind == Kind::Intersection || matches!(&*pt.ty, syn::Type::Reference(r) if r.mutability.is_none())))
+    });
+    let cpu_attributes = if has_attributes { quote!(Some(attributes_from_words)) } else { quote!(None) };
     let span = f.sig.ident.span();
     let file = quote_spanned!(span=> file!());
     let line = quote_spanned!(span=> line!());
@@ -433,6 +442,7 @@ fn program_output(kind: Kind, f: &syn::ItemFn, lowered: Result<Lowered, Errors>)
             file: #file,
             line: #line,
             cpu: cpu,
+            cpu_attributes: #cpu_attributes,
         };
     }
 }
@@ -449,6 +459,33 @@ fn reroot_type(ty: &syn::Type) -> syn::Type {
     let mut t = ty.clone();
     syn::visit_mut::VisitMut::visit_type_mut(&mut R, &mut t);
     t
+}
+
+/// In the CPU copy of an intersection program, `rt_report_intersection(m)`
+/// becomes `__report_intersection(m, &*attr)`: the backend needs the
+/// attributes as they are at the report, and reading them behind the
+/// program's `&mut` would be unsound.
+fn pass_attributes_to_reports(f: &mut syn::ItemFn, params: &[signature::Param]) {
+    let Some(attr) = params.iter().find(|p| matches!(p.role, Role::Attributes { .. })).map(|p| p.name.clone()) else {
+        return;
+    };
+    struct R(syn::Ident);
+    impl syn::visit_mut::VisitMut for R {
+        fn visit_expr_mut(&mut self, e: &mut syn::Expr) {
+            syn::visit_mut::visit_expr_mut(self, e);
+            if let syn::Expr::Call(c) = e
+                && let syn::Expr::Path(p) = &*c.func
+                && p.path.segments.last().is_some_and(|s| s.ident == "rt_report_intersection")
+                && c.args.len() == 1
+            {
+                let m = &c.args[0];
+                let a = &self.0;
+                let span = c.span();
+                *e = syn::parse_quote_spanned!(span=> ::rt_std::cpu::__report_intersection(#m, &*#a));
+            }
+        }
+    }
+    syn::visit_mut::VisitMut::visit_block_mut(&mut R(attr), &mut f.block);
 }
 
 /// The CPU entry: unpacks `CpuArgs` and calls the original function.
@@ -477,7 +514,17 @@ fn cpu_thunk(kind: Kind, f: &syn::ItemFn, params: &[signature::Param]) -> TokenS
         }
     });
     let _ = kind;
+    let attributes_from_words = params.iter().find(|p| matches!(p.role, Role::Attributes { .. })).map(|p| {
+        let ty = reroot_type(&p.ty);
+        quote! {
+            /// Makes the program's attribute type from heap words.
+            pub fn attributes_from_words(words: &[u32]) -> Box<dyn ::rt_std::cpu::AnyAttributes> {
+                Box::new(<#ty as ::rt_std::RtData>::read_words(words))
+            }
+        }
+    });
     quote! {
+        #attributes_from_words
         /// Runs the program natively (the CPU backend's entry).
         pub fn cpu(args: &mut ::rt_std::cpu::CpuArgs<'_>) -> ::rt_std::cpu::CpuResult {
             let ::rt_std::cpu::CpuArgs { payload, attributes, primitive, variables } = args;

@@ -1,0 +1,15 @@
+// A closure inside a program: WGSL has no closures.
+use rt_std::prelude::*;
+
+#[rt_payload]
+pub struct Radiance {
+    pub result: Vec3,
+}
+
+#[rt_program(miss)]
+pub fn miss(prd: &mut Radiance, #[var] bg_color: Vec3) {
+    let scale = |c: Vec3| c * 0.5;
+    prd.result = scale(bg_color);
+}
+
+fn main() {}

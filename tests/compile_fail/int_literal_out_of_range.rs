@@ -1,0 +1,11 @@
+// An integer literal that does not fit its type (rustc's overflowing_literals
+// lint reports it on the CPU copy too).
+use rt_std::prelude::*;
+
+#[rt_function]
+pub fn big() -> i32 {
+    let x: i32 = 3000000000;
+    x
+}
+
+fn main() {}

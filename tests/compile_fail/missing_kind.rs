@@ -1,0 +1,14 @@
+// `#[rt_program]` without a kind.
+use rt_std::prelude::*;
+
+#[rt_payload]
+pub struct Radiance {
+    pub result: Vec3,
+}
+
+#[rt_program]
+pub fn shade(prd: &mut Radiance) {
+    prd.result = Vec3::ONE;
+}
+
+fn main() {}

@@ -1,0 +1,10 @@
+// `store` on a read-only Buffer.
+use rt_std::prelude::*;
+
+#[rt_program(ray_generation)]
+pub fn camera(#[var] output: Buffer<Vec4>) {
+    let idx = launch_index();
+    output.store(idx.x, Vec4::ONE);
+}
+
+fn main() {}

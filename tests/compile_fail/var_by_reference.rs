@@ -1,0 +1,14 @@
+// A #[var] taken by reference: variables are passed by value.
+use rt_std::prelude::*;
+
+#[rt_payload]
+pub struct Radiance {
+    pub result: Vec3,
+}
+
+#[rt_program(miss)]
+pub fn miss(prd: &mut Radiance, #[var] bg_color: &Vec3) {
+    prd.result = *bg_color;
+}
+
+fn main() {}

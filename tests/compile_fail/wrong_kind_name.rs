@@ -1,0 +1,14 @@
+// A program kind that does not exist.
+use rt_std::prelude::*;
+
+#[rt_payload]
+pub struct Radiance {
+    pub result: Vec3,
+}
+
+#[rt_program(closest)]
+pub fn shade(prd: &mut Radiance) {
+    prd.result = Vec3::ONE;
+}
+
+fn main() {}
