@@ -1,1 +1,40 @@
-//! rt-runtime: the host side (issue #3).
+//! # rt-runtime: contexts, scenes and launches
+//!
+//! The host side of the framework, shaped like OptiX's API: a [`Context`]
+//! holds programs (from the descriptors `#[rt_program]` emits), the scene
+//! graph (geometry, materials, geometry instances, geometry groups, groups,
+//! transforms, selectors), acceleration structures ([`accel`]: OptiX's builder
+//! names over obvhs), variables set by name on scopes ([`vars`]), buffers and
+//! texture samplers, and launches them over a 1D or 2D index space.
+//!
+//! ```text
+//! let mut ctx = Context::new();
+//! let camera = ctx.create_program(&pinhole_camera::PROGRAM);
+//! ctx.set_ray_generation_program(0, camera)?;
+//! ctx.set_var(Scope::Context, "eye", Vec3::new(0.0, 0.0, 5.0))?;
+//! ctx.launch(0, 640, 480)?;
+//! ```
+//!
+//! Launches link first ([`backend::link`]): every variable is resolved in
+//! OptiX's scope order for its program kind, and payload and attribute types
+//! are checked to agree; errors name the program with its Rust file and line.
+//! Backends: the CPU backend ([`backend::cpu`]) runs programs natively.
+
+pub mod accel;
+pub mod backend;
+pub mod buffer;
+pub mod context;
+pub mod error;
+pub mod image_out;
+pub mod scene;
+pub mod vars;
+
+pub use accel::{Acceleration, Builder};
+pub use backend::{Backend, ExceptionRecord, LaunchReport};
+pub use buffer::BufferType;
+pub use context::{Context, Scope};
+pub use error::{Result, RtError};
+pub use scene::{
+    BufferId, GeometryId, GeometryInstanceId, GeometryKind, MaterialId, NodeId, ProgramId, SamplerId, TriangleMesh,
+};
+pub use vars::{IntoVariable, VarValue};

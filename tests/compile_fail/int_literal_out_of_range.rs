@@ -1,5 +1,4 @@
-// An integer literal that does not fit its type (rustc's overflowing_literals
-// lint reports it on the CPU copy too).
+// An integer literal that does not fit its type.
 use rt_std::prelude::*;
 
 #[rt_function]

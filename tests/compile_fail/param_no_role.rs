@@ -18,4 +18,7 @@ pub fn shadow(prd: &mut Shadow, attr: &Normals, ray_type: u32) {
     }
 }
 
+// Code that uses the program still compiles: only the mistake is reported.
+pub static REGISTERED: &rt_std::program::ProgramDescriptor = &shadow::PROGRAM;
+
 fn main() {}

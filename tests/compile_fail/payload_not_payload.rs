@@ -11,4 +11,7 @@ pub fn miss(prd: &mut Normals, #[var] bg_color: Vec3) {
     prd.normal = bg_color;
 }
 
+// Code that uses the program still compiles: only the mistake is reported.
+pub static REGISTERED: &rt_std::program::ProgramDescriptor = &miss::PROGRAM;
+
 fn main() {}

@@ -17,4 +17,7 @@ pub fn shade(prd: &mut Radiance, attr: &Normals) {
     rt_terminate_ray();
 }
 
+// Code that uses the program still compiles: only the mistake is reported.
+pub static REGISTERED: &rt_std::program::ProgramDescriptor = &shade::PROGRAM;
+
 fn main() {}

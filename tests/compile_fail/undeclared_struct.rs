@@ -18,4 +18,7 @@ pub fn miss(prd: &mut Radiance, #[var] bg_color: Vec3) {
     prd.result = light.color;
 }
 
+// Code that uses the program still compiles: only the mistake is reported.
+pub static REGISTERED: &rt_std::program::ProgramDescriptor = &miss::PROGRAM;
+
 fn main() {}

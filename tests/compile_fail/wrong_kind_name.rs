@@ -11,4 +11,7 @@ pub fn shade(prd: &mut Radiance) {
     prd.result = Vec3::ONE;
 }
 
+// Code that uses the program still compiles: only the mistake is reported.
+pub static REGISTERED: &rt_std::program::ProgramDescriptor = &shade::PROGRAM;
+
 fn main() {}

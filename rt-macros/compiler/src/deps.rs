@@ -81,6 +81,7 @@ impl<'ast> Visit<'ast> for Deps {
         if let Some(seg) = t.path.segments.last()
             && t.qself.is_none()
             && !is_builtin_type_name(&seg.ident.to_string())
+            && !(t.path.segments.len() == 1 && self.locals.contains(&seg.ident.to_string()))
         {
             self.add(&t.path);
         }
@@ -112,7 +113,7 @@ impl<'ast> Visit<'ast> for Deps {
                 } else if !is_builtin_type_name(owner) {
                     self.add(&p.path);
                 }
-            } else if !is_builtin_fn(&segs[0]) {
+            } else if !is_builtin_fn(&segs[0]) && !self.locals.contains(&segs[0]) {
                 self.add(&p.path);
             }
         }
@@ -137,6 +138,14 @@ impl<'ast> Visit<'ast> for Deps {
     }
 
     fn visit_local(&mut self, l: &'ast syn::Local) {
+        // `let f = |x| ...;`: calls of `f` are not dependencies (the
+        // lowering rejects the closure itself).
+        if let Some(init) = &l.init
+            && matches!(&*init.expr, syn::Expr::Closure(_))
+            && let syn::Pat::Ident(pi) = &l.pat
+        {
+            self.locals.insert(pi.ident.to_string());
+        }
         syn::visit::visit_local(self, l);
     }
 
@@ -161,7 +170,10 @@ pub fn of_fn(f: &syn::ItemFn) -> Vec<syn::Path> {
     let mut d = Deps { self_name: f.sig.ident.to_string(), ..Deps::default() };
     // Collect fn-local consts first so their uses are not dependencies.
     d.visit_block(&f.block);
-    let locals = std::mem::take(&mut d.locals);
+    let mut locals = std::mem::take(&mut d.locals);
+    // Generic parameters are not types to collect (the lowering rejects
+    // generic functions).
+    locals.extend(f.sig.generics.type_params().map(|t| t.ident.to_string()));
     let mut d = Deps { self_name: f.sig.ident.to_string(), locals, ..Deps::default() };
     d.visit_signature(&f.sig);
     d.visit_block(&f.block);

@@ -19,6 +19,17 @@ impl Error {
     pub fn unsupported(span: Span, construct: &str, instead: &str) -> Error {
         Error::new(span, format!("{construct} is not supported in ray programs: {instead}"))
     }
+
+    /// An error that follows from one already reported (a use of a local
+    /// whose `let` failed, a call to a helper whose own macro reports its
+    /// mistake): it stops the lowering but is not shown.
+    pub fn silent(span: Span) -> Error {
+        Error { span, message: String::new() }
+    }
+
+    pub fn is_silent(&self) -> bool {
+        self.message.is_empty()
+    }
 }
 
 impl From<syn::Error> for Error {
@@ -40,13 +51,14 @@ impl Errors {
         self.0.is_empty()
     }
 
-    /// The messages alone, for tests.
+    /// The messages alone, for tests (silent errors left out).
     pub fn messages(&self) -> Vec<String> {
-        self.0.iter().map(|e| e.message.clone()).collect()
+        self.0.iter().filter(|e| !e.is_silent()).map(|e| e.message.clone()).collect()
     }
 
+    /// `compile_error!`s for the errors to show (silent ones left out).
     pub fn to_compile_errors(&self) -> proc_macro2::TokenStream {
-        self.0.iter().map(|e| syn::Error::new(e.span, &e.message).to_compile_error()).collect()
+        self.0.iter().filter(|e| !e.is_silent()).map(|e| syn::Error::new(e.span, &e.message).to_compile_error()).collect()
     }
 }
 
@@ -58,7 +70,7 @@ impl From<Error> for Errors {
 
 impl std::fmt::Display for Errors {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        for e in &self.0 {
+        for e in self.0.iter().filter(|e| !e.is_silent()) {
             writeln!(f, "error: {}", e.message)?;
         }
         Ok(())

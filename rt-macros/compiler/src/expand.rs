@@ -16,7 +16,12 @@
 //!
 //! Programs expand inside `mod <program name> { use super::*; ... }` (a
 //! module and a function may share a name), which holds the CPU thunk and
-//! `pub static PROGRAM: ProgramDescriptor`.
+//! `pub static PROGRAM: ProgramDescriptor = <chain>;`: a program's chain runs
+//! in expression position and ends in the descriptor (or the errors). So
+//! `PROGRAM` exists even when the chain breaks (a dependency not declared
+//! with an rt attribute is rustc's "cannot find macro" at its use, and
+//! nothing more), and each error is reported once: errors inside a
+//! dependency are its own macro's to report ([`lower::lower_own`]).
 
 use crate::error::{Error, Errors};
 use crate::kinds::Kind;
@@ -31,7 +36,14 @@ use syn::spanned::Spanned;
 pub fn parse_kind(ident: &syn::Ident) -> Result<Kind, Error> {
     Kind::from_name(&ident.to_string()).ok_or_else(|| {
         let all: Vec<&str> = crate::kinds::ALL_KINDS.iter().map(|k| k.name()).collect();
-        Error::new(ident.span(), format!("unknown program kind `{ident}`: expected one of {}", all.join(", ")))
+        // `closest`, `anyhit`, `raygen`: a prefix or a spelling without `_`.
+        let given = ident.to_string().to_lowercase().replace('_', "");
+        let guess = all.iter().find(|k| {
+            let k = k.replace('_', "");
+            k == given || (given.len() >= 3 && k.starts_with(&given))
+        });
+        let hint = guess.map(|g| format!(" (did you mean `{g}`?)")).unwrap_or_default();
+        Error::new(ident.span(), format!("unknown program kind `{ident}`{hint}: expected one of {}", all.join(", ")))
     })
 }
 
@@ -59,18 +71,18 @@ pub fn rt_program(attr: TokenStream, item: TokenStream) -> TokenStream {
     let kind = match syn::parse2::<syn::Ident>(attr.clone()) {
         Ok(i) => match parse_kind(&i) {
             Ok(k) => k,
-            Err(e) => return with_errors(e.into(), quote!(#stripped)),
+            Err(e) => return failed_program(&f, &stripped, e.into()),
         },
         Err(_) => {
             let all: Vec<&str> = crate::kinds::ALL_KINDS.iter().map(|k| k.name()).collect();
             let span = if attr.is_empty() { Span::call_site() } else { attr.span() };
             let e = Error::new(span, format!("`#[rt_program]` needs a program kind: one of {}", all.join(", ")));
-            return with_errors(e.into(), quote!(#stripped));
+            return failed_program(&f, &stripped, e.into());
         }
     };
     let params = match signature::program_params(kind, &f) {
         Ok(p) => p,
-        Err(e) => return with_errors(e, quote!(#stripped)),
+        Err(e) => return failed_program(&f, &stripped, e),
     };
     if kind == Kind::Intersection {
         pass_attributes_to_reports(&mut stripped, &params);
@@ -89,7 +101,25 @@ pub fn rt_program(attr: TokenStream, item: TokenStream) -> TokenStream {
         #vis mod #name {
             use super::*;
             #thunk
-            #body
+            /// The program's descriptor: WGSL, layouts, variables and the CPU entry.
+            pub static PROGRAM: ::rt_std::program::ProgramDescriptor = #body;
+        }
+    }
+}
+
+/// A program whose attribute or signature is wrong: the function as written
+/// and a module whose `PROGRAM` is the errors (an expression of any type), so
+/// code that names `name::PROGRAM` reports nothing more.
+fn failed_program(f: &syn::ItemFn, stripped: &syn::ItemFn, e: Errors) -> TokenStream {
+    let name = &f.sig.ident;
+    let vis = &f.vis;
+    let errs = error_expr(&e);
+    quote! {
+        #stripped
+        #[doc(hidden)]
+        #[allow(non_snake_case, unused_imports, clippy::all)]
+        #vis mod #name {
+            pub static PROGRAM: ::rt_std::program::ProgramDescriptor = #errs;
         }
     }
 }
@@ -148,6 +178,24 @@ pub fn rt_const(attr: TokenStream, item: TokenStream) -> TokenStream {
 fn with_errors(e: Errors, item: TokenStream) -> TokenStream {
     let errs = e.to_compile_errors();
     quote!(#errs #item)
+}
+
+/// The errors as one expression, of whatever type the context wants:
+/// `{ compile_error!(a); compile_error!(b) }`.
+fn error_expr(e: &Errors) -> TokenStream {
+    let errs: Vec<TokenStream> = e
+        .0
+        .iter()
+        .filter(|e| !e.is_silent())
+        .map(|e| {
+            let msg = &e.message;
+            quote_spanned!(e.span=> ::core::compile_error!(#msg))
+        })
+        .collect();
+    match errs.split_last() {
+        Some((last, rest)) => quote!({ #(#rest;)* #last }),
+        None => quote!(::core::compile_error!("rt_program failed")),
+    }
 }
 
 /// Inside the program's module, paths relative to the parent need one more
@@ -276,7 +324,7 @@ fn finish(entry: &TokenStream, done: TokenStream) -> TokenStream {
                 Ok(k) => k,
                 Err(e) => return Errors::from(e).to_compile_errors(),
             };
-            let lowered = lower::lower(Entry::Program(kind, &f), &deps);
+            let lowered = lower::lower_own(Entry::Program(kind, &f), &deps);
             program_output(kind, &f, lowered)
         }
         "function" | "constant" | "struct" => {
@@ -292,11 +340,11 @@ fn finish(entry: &TokenStream, done: TokenStream) -> TokenStream {
             let item_tokens = g.stream();
             let (name, check) = match (kw.as_str(), role) {
                 ("function", _) => match syn::parse2::<syn::ItemFn>(item_tokens.clone()) {
-                    Ok(f) => (f.sig.ident.clone(), lower::lower(Entry::Helper(&f), &deps).map(|_| ())),
+                    Ok(f) => (f.sig.ident.clone(), lower::lower_own(Entry::Helper(&f), &deps).map(|_| ())),
                     Err(e) => return e.to_compile_error(),
                 },
                 ("constant", _) => match syn::parse2::<syn::ItemConst>(item_tokens.clone()) {
-                    Ok(c) => (c.ident.clone(), lower::lower(Entry::Const(&c), &deps).map(|_| ())),
+                    Ok(c) => (c.ident.clone(), lower::lower_own(Entry::Const(&c), &deps).map(|_| ())),
                     Err(e) => return e.to_compile_error(),
                 },
                 (_, Some(r)) => match syn::parse2::<syn::ItemStruct>(item_tokens.clone()) {
@@ -304,7 +352,7 @@ fn finish(entry: &TokenStream, done: TokenStream) -> TokenStream {
                         let mut deps = deps.clone();
                         deps.retain(|d| d.name() != s.ident.to_string());
                         deps.push(Item::Struct(s.clone(), r));
-                        (s.ident.clone(), lower::lower(Entry::Struct(&s), &deps).map(|_| ()))
+                        (s.ident.clone(), lower::lower_own(Entry::Struct(&s), &deps).map(|_| ()))
                     }
                     Err(e) => return e.to_compile_error(),
                 },
@@ -422,9 +470,9 @@ fn program_output(kind: Kind, f: &syn::ItemFn, lowered: Result<Lowered, Errors>)
     let file = quote_spanned!(span=> file!());
     let line = quote_spanned!(span=> line!());
     quote! {
+        {
         #errors
-        /// The program's descriptor: WGSL, layouts, variables and the CPU entry.
-        pub static PROGRAM: ::rt_std::program::ProgramDescriptor = ::rt_std::program::ProgramDescriptor {
+        ::rt_std::program::ProgramDescriptor {
             kind: ::rt_std::program::ProgramKind::#variant,
             name: #name,
             wgsl_entry: #wgsl_entry,
@@ -443,7 +491,8 @@ fn program_output(kind: Kind, f: &syn::ItemFn, lowered: Result<Lowered, Errors>)
             line: #line,
             cpu: cpu,
             cpu_attributes: #cpu_attributes,
-        };
+        }
+        }
     }
 }
 

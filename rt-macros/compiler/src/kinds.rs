@@ -49,6 +49,12 @@ impl Kind {
         }
     }
 
+    /// "a miss program", "an any_hit program": for messages.
+    pub fn a_program(self) -> String {
+        let article = if matches!(self, Exception | AnyHit | Intersection) { "an" } else { "a" };
+        format!("{article} {} program", self.name())
+    }
+
     pub fn from_name(name: &str) -> Option<Kind> {
         ALL_KINDS.into_iter().find(|k| k.name() == name)
     }

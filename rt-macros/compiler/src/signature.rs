@@ -73,7 +73,7 @@ pub fn program_params(kind: Kind, f: &syn::ItemFn) -> Result<Vec<Param>, Errors>
                     Role::Attributes { mutable: false }
                 };
                 if taken(role) {
-                    Err(format!("a {} program takes {}", kind.name(), kind.signature_help()))
+                    Err(format!("{} takes {}", kind.a_program(), kind.signature_help()))
                 } else {
                     Ok((role, (*r.elem).clone()))
                 }
@@ -91,8 +91,8 @@ pub fn program_params(kind: Kind, f: &syn::ItemFn) -> Result<Vec<Param>, Errors>
             }
             (ty, Kind::Intersection | Kind::BoundingBox) if is_u32(ty) && !taken(Role::Primitive) => Ok((Role::Primitive, ty.clone())),
             _ => Err(format!(
-                "parameter `{name}` does not fit a {} program, which takes {} (mark variables with `#[var]`)",
-                kind.name(),
+                "parameter `{name}` does not fit {}, which takes {} (mark variables with `#[var]`)",
+                kind.a_program(),
                 kind.signature_help()
             )),
         };
@@ -104,7 +104,7 @@ pub fn program_params(kind: Kind, f: &syn::ItemFn) -> Result<Vec<Param>, Errors>
     if matches!(kind, Kind::Intersection | Kind::BoundingBox) && !params.iter().any(|p| p.role == Role::Primitive) {
         errors.push(Error::new(
             f.sig.ident.span(),
-            format!("a {} program takes the primitive index as its first parameter: `prim: u32`", kind.name()),
+            format!("{} takes the primitive index as its first parameter: `prim: u32`", kind.a_program()),
         ));
     }
     if errors.is_empty() { Ok(params) } else { Err(errors) }

@@ -306,21 +306,23 @@ pub fn buffer_kind(name: &str) -> Option<BufferKind> {
     })
 }
 
-/// Type names that Rust users reach for but the subset rejects, with advice.
+/// Type names that Rust users reach for but the subset rejects, with what to
+/// use instead (the message reads "the type `T` is not supported in ray
+/// programs: <advice>").
 pub fn unsupported_type_advice(name: &str) -> Option<&'static str> {
     Some(match name {
-        "f64" => "f64 is not supported on the GPU: use f32",
-        "i64" | "u64" | "i128" | "u128" | "isize" => "64-bit integers are not supported: use i32 or u32",
-        "i8" | "u8" | "i16" | "u16" => "8- and 16-bit integers are not supported: use i32 or u32 (and mask bits)",
-        "String" | "str" => "strings are not supported in ray programs",
+        "f64" => "the GPU computes in f32; use f32",
+        "i64" | "u64" | "i128" | "u128" | "isize" => "integers are 32-bit; use i32 or u32",
+        "i8" | "u8" | "i16" | "u16" => "integers are 32-bit; use i32 or u32 (and mask bits)",
+        "String" | "str" => "programs have no strings; use numbers (ids, codes), and `rt_printf!` to print",
         "Vec" | "VecDeque" | "HashMap" | "BTreeMap" | "Box" | "Rc" | "Arc" => {
-            "heap types are not supported in ray programs: use fixed-size arrays or a buffer variable"
+            "programs have no heap; use a fixed-size array or a buffer variable"
         }
-        "Option" | "Result" => "Option and Result are not supported: return a flag or a sentinel value",
-        "DVec2" | "DVec3" | "DVec4" | "DMat3" | "DMat4" => "f64 vectors are not supported: use Vec2/Vec3/Vec4",
-        "Vec3A" => "Vec3A is not supported: use Vec3",
-        "Quat" => "quaternions are not supported: use Mat3/Mat4",
-        "BVec2" | "BVec3" | "BVec4" => "bool vectors are not supported: compare components",
+        "Option" | "Result" => "return a flag or a sentinel value",
+        "DVec2" | "DVec3" | "DVec4" | "DMat3" | "DMat4" => "the GPU computes in f32; use Vec2/Vec3/Vec4 and Mat3/Mat4",
+        "Vec3A" => "use Vec3",
+        "Quat" => "use Mat3/Mat4",
+        "BVec2" | "BVec3" | "BVec4" => "compare the components as bools",
         _ => return None,
     })
 }

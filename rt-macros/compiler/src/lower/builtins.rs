@@ -13,11 +13,36 @@ pub struct MethodSig {
     pub params: Vec<Ty>,
     pub ret: Ty,
     pub lower: Box<dyn Fn(&[String]) -> String>,
+    /// A WGSL function the lowering calls, `(name, text)`, for the module's
+    /// function section.
+    pub support: Option<(&'static str, &'static str)>,
 }
 
 fn sig(params: Vec<Ty>, ret: Ty, lower: impl Fn(&[String]) -> String + 'static) -> Option<MethodSig> {
-    Some(MethodSig { params, ret, lower: Box::new(lower) })
+    Some(MethodSig { params, ret, lower: Box::new(lower), support: None })
 }
+
+/// `f32::powi` as Rust computes it (LLVM's `powi`, compiler-rt's
+/// `__powisf2`): repeated squaring. WGSL's `pow` is undefined for negative
+/// bases, which `powi` must handle (`(-0.5f32).powi(2)` is 0.25).
+const POWI: &str = "\
+fn rt_powi(x: f32, n: i32) -> f32 {
+    var base = x;
+    var e = n;
+    var r = 1.0f;
+    loop {
+        if (e & 1i) != 0i {
+            r *= base;
+        }
+        e /= 2i;
+        if e == 0i {
+            break;
+        }
+        base *= base;
+    }
+    return select(r, 1.0f / r, n < 0i);
+}
+";
 
 /// `f(recv, args...)`.
 fn wgsl_fn(name: &'static str) -> impl Fn(&[String]) -> String {
@@ -78,7 +103,12 @@ pub fn method_sig(recv: &Ty, name: &str) -> Option<MethodSig> {
         match name {
             "recip" => return sig(vec![], t, move |a| format!("({one} / {})", a[0])),
             "fract" => return sig(vec![], t, |a| format!("({0} - trunc({0}))", a[0])),
-            "round" => return sig(vec![], t, |a| format!("(sign({0}) * floor(abs({0}) + 0.5))", a[0])),
+            // Half away from zero. (`floor(abs(x) + 0.5)` is wrong where the
+            // addition rounds: 0.49999997, and odd values from 2^23 on.)
+            "round" => {
+                let half = if is_vec { format!("{w}(0.5)") } else { "0.5f".to_string() };
+                return sig(vec![], t, move |a| format!("(trunc({0}) + sign({0}) * step({half}, abs({0} - trunc({0}))))", a[0]));
+            }
             "signum" => {
                 let (pos, neg) = if is_vec { (format!("{w}(1.0)"), format!("{w}(-1.0)")) } else { ("1.0f".into(), "-1.0f".into()) };
                 let sign_bit = if is_vec {
@@ -93,7 +123,11 @@ pub fn method_sig(recv: &Ty, name: &str) -> Option<MethodSig> {
                     if is_vec { format!("pow({}, {w}({}))", a[0], a[1]) } else { format!("pow({}, {})", a[0], a[1]) }
                 });
             }
-            "powi" if is_scalar => return sig(vec![Ty::Scalar(Scalar::I32)], t, |a| format!("pow({}, f32({}))", a[0], a[1])),
+            "powi" if is_scalar => {
+                let mut s = sig(vec![Ty::Scalar(Scalar::I32)], t, |a| format!("rt_powi({}, {})", a[0], a[1]))?;
+                s.support = Some(("rt_powi", POWI));
+                return Some(s);
+            }
             "atan2" if is_scalar => return sig(vec![F32], t, |a| format!("atan2({}, {})", a[0], a[1])),
             "mul_add" => return sig(vec![t.clone(), t.clone()], t, wgsl_fn("fma")),
             "is_nan" if is_scalar => return sig(vec![], Ty::Scalar(Scalar::Bool), |a| format!("({0} != {0})", a[0])),
@@ -229,7 +263,7 @@ pub fn method_hint(recv: &Ty, name: &str) -> String {
         (_, "to_string") => ": strings are not supported".into(),
         (_, "unwrap" | "expect") => ": Option and Result are not supported".into(),
         (_, "sin_cos") => ": call sin() and cos() separately".into(),
-        _ => String::new(),
+        _ => ": write it with the methods rt_std documents as supported (a #[rt_function] helper can hold it)".into(),
     }
 }
 

@@ -34,6 +34,9 @@ struct Local {
     var: bool,
 }
 
+/// The WGSL name of a local whose `let` failed (see `poison_pattern`).
+const POISONED: &str = "<poisoned>";
+
 /// Something that can be assigned to.
 enum Place {
     Wgsl(String, Ty),
@@ -57,6 +60,8 @@ pub struct FnLowerer<'m> {
     blocks: Vec<Vec<String>>,
     ret: Ty,
     loop_depth: u32,
+    /// WGSL names of function-local `const` items (patterns name them).
+    local_consts: HashSet<String>,
     /// Intrinsics called (directly, or through helpers) with the call span.
     pub intrinsics: Vec<(&'static str, Span)>,
     /// Helpers called.
@@ -88,6 +93,7 @@ impl<'m> FnLowerer<'m> {
             blocks: vec![Vec::new()],
             ret,
             loop_depth: 0,
+            local_consts: HashSet::new(),
             intrinsics: Vec::new(),
             calls: Vec::new(),
             traced: Vec::new(),
@@ -177,6 +183,23 @@ impl<'m> FnLowerer<'m> {
         self.scopes.last_mut().unwrap().push((rust.to_string(), local));
     }
 
+    /// Binds the names of a pattern whose `let` failed: their uses are
+    /// silent errors.
+    fn poison_pattern(&mut self, pat: &syn::Pat) {
+        struct Names(Vec<String>);
+        impl<'ast> syn::visit::Visit<'ast> for Names {
+            fn visit_pat_ident(&mut self, p: &'ast syn::PatIdent) {
+                self.0.push(p.ident.to_string());
+                syn::visit::visit_pat_ident(self, p);
+            }
+        }
+        let mut names = Names(Vec::new());
+        syn::visit::Visit::visit_pat(&mut names, pat);
+        for n in names.0 {
+            self.bind(&n, Local { wgsl: POISONED.to_string(), ty: Ty::Never, var: false });
+        }
+    }
+
     fn lookup(&self, rust: &str) -> Option<&Local> {
         self.scopes.iter().rev().flat_map(|s| s.iter().rev()).find(|(n, _)| n == rust).map(|(_, l)| l)
     }
@@ -213,11 +236,19 @@ impl<'m> FnLowerer<'m> {
             match s {
                 Stmt::Expr(e, None) if last => match self.expr(e, want) {
                     Ok(v) => tail = Some(v),
-                    Err(err) => self.errors.push(err),
+                    Err(err) => {
+                        self.errors.push(err);
+                        // Already reported: not also "must return a value".
+                        tail = Some(Val::new("", Ty::Never));
+                    }
                 },
                 _ => {
                     if let Err(err) = self.stmt(s) {
                         self.errors.push(err);
+                    }
+                    // `{ ...; return; }` has type `!` in Rust, like `{ return }`.
+                    if last && matches!(s, Stmt::Expr(Expr::Return(_) | Expr::Break(_) | Expr::Continue(_), Some(_))) {
+                        tail = Some(Val::new("", Ty::Never));
                     }
                 }
             }
@@ -311,7 +342,18 @@ impl<'m> FnLowerer<'m> {
 
     fn stmt(&mut self, s: &Stmt) -> Result<()> {
         match s {
-            Stmt::Local(l) => self.local(l),
+            Stmt::Local(l) => {
+                let before = self.errors.0.len();
+                let r = self.local(l);
+                if let Err(e) = r {
+                    // Later uses of the names are silent errors, not "cannot
+                    // find value"; and a `let` whose initialiser already
+                    // reported an error reports nothing more.
+                    self.poison_pattern(&l.pat);
+                    return Err(if self.errors.0.len() > before { Error::silent(e.span) } else { e });
+                }
+                Ok(())
+            }
             Stmt::Item(syn::Item::Const(c)) => {
                 let ty = self.resolve_type(&c.ty)?;
                 let v = self.expr(&c.expr, Some(&ty))?;
@@ -320,6 +362,7 @@ impl<'m> FnLowerer<'m> {
                 let line = format!("const {name}: {} = {};", ty.wgsl(), v.code);
                 let line = self.mark(c.span(), &line);
                 self.emit(line);
+                self.local_consts.insert(name.clone());
                 self.bind(&c.ident.to_string(), Local { wgsl: name, ty, var: false });
                 Ok(())
             }
@@ -376,6 +419,13 @@ impl<'m> FnLowerer<'m> {
                 if let Some((_, d)) = &init.diverge {
                     return Err(Error::unsupported(d.span(), "`let ... else`", "use if/else"));
                 }
+                if let Expr::Reference(r) = &*init.expr {
+                    return Err(Error::unsupported(
+                        r.and_token.span,
+                        "a reference in a local",
+                        "bind the value itself (`let r = x;`) and pass `&mut x` directly to the call that needs it",
+                    ));
+                }
                 let v = self.expr(&init.expr, annot.as_ref())?;
                 let v = match &annot {
                     Some(a) => self.coerce(v, a, init.expr.span())?,
@@ -407,7 +457,7 @@ impl<'m> FnLowerer<'m> {
             (None, None) => {
                 return Err(Error::new(
                     l.pat.span(),
-                    format!("`{name}` needs a type annotation or an initial value (write `let {name}: f32;`)"),
+                    format!("`{name}` needs a type annotation or an initial value (e.g. `let {name}: f32;` or `let {name} = 0.0;`)"),
                 ));
             }
         };
@@ -502,8 +552,8 @@ impl<'m> FnLowerer<'m> {
             return Err(Error::new(
                 span,
                 format!(
-                    "`{name}` cannot be called from a {} program ({})",
-                    kind.name(),
+                    "`{name}` cannot be called from {} ({})",
+                    kind.a_program(),
                     i.callers.doc_line().trim_end_matches('.').replace("Program kinds:", "allowed in:")
                 ),
             ));
@@ -709,6 +759,9 @@ impl<'m> FnLowerer<'m> {
         if segs.len() == 1 {
             let name = &segs[0];
             if let Some(l) = self.lookup(name) {
+                if l.wgsl == POISONED {
+                    return Err(Error::silent(p.span()));
+                }
                 return Ok(Val::new(l.wgsl.clone(), l.ty.clone()));
             }
         }
@@ -739,6 +792,9 @@ impl<'m> FnLowerer<'m> {
         }
         if self.m.helpers.contains_key(last) {
             return Err(Error::unsupported(p.span(), "a function used as a value", "call it"));
+        }
+        if self.m.failed.contains(last) {
+            return Err(Error::silent(p.span()));
         }
         Err(Error::new(
             p.span(),
@@ -815,14 +871,23 @@ impl<'m> FnLowerer<'m> {
         };
         let r = self.expr(&b.right, rw.as_ref())?;
         let r = self.deref(r);
-        self.binary_op(&b.op, l, r, b.span())
+        // Errors point at the operator, as rustc's do.
+        self.binary_op(&b.op, l, r, b.op.span())
     }
 
     /// Types and lowers `l op r` (both already lowered).
     fn binary_op(&mut self, op: &BinOp, l: Val, r: Val, span: Span) -> Result<Val> {
         let (lt, rt) = (self.resolved(&l.ty), self.resolved(&r.ty));
         let sym = op_symbol(op);
-        let mismatch = |lt: &Ty, rt: &Ty| Error::new(span, format!("cannot apply `{sym}` to `{lt}` and `{rt}`"));
+        let mismatch = |lt: &Ty, rt: &Ty| {
+            let numeric = |t: &Ty| matches!(t, Ty::Scalar(s) if *s != Scalar::Bool);
+            let hint = if numeric(lt) && numeric(rt) {
+                format!(": there are no implicit conversions; convert one side with `as {lt}` or `as {rt}`")
+            } else {
+                String::new()
+            };
+            Error::new(span, format!("cannot apply `{sym}` to `{lt}` and `{rt}`{hint}"))
+        };
         let ty = match op {
             BinOp::Add(_) | BinOp::Sub(_) | BinOp::Mul(_) | BinOp::Div(_) | BinOp::Rem(_) => {
                 let mul = matches!(op, BinOp::Mul(_));
@@ -856,9 +921,28 @@ impl<'m> FnLowerer<'m> {
                     self.resolved(&lt)
                 } else if matches!(lt, Ty::Vec(_, s) if s.is_int()) && lt == rt {
                     lt.clone()
+                } else if let Ty::Vec(n, s) = lt
+                    && s.is_int()
+                    && self.unify(&rt, &Ty::Scalar(s))
+                {
+                    // glam's `v & 1`: WGSL wants both sides the same type.
+                    return Ok(Val::new(format!("({} {sym} vec{n}<{}>({}))", l.code, s.wgsl(), r.code), lt));
                 } else {
                     return Err(mismatch(&lt, &rt));
                 }
+            }
+            BinOp::Shl(_) | BinOp::Shr(_) if matches!(lt, Ty::Vec(_, s) if s.is_int()) => {
+                // glam shifts a vector by a scalar or by a vector of either
+                // signedness; WGSL wants a `vecN<u32>` amount.
+                let Ty::Vec(n, _) = lt else { unreachable!() };
+                let amount = match rt {
+                    Ty::Vec(m, Scalar::U32) if m == n => r.code.clone(),
+                    Ty::Vec(m, t) if m == n && t.is_int() => format!("vec{n}<u32>({})", r.code),
+                    Ty::IntVar(_) if self.unify(&rt, &U32) => format!("vec{n}<u32>({})", r.code),
+                    Ty::Scalar(t) if t.is_int() => format!("vec{n}<u32>({})", r.code),
+                    _ => return Err(mismatch(&lt, &rt)),
+                };
+                return Ok(Val::new(format!("({} {sym} {amount})", l.code), lt));
             }
             BinOp::Shl(_) | BinOp::Shr(_) => {
                 if !self.is_int(&lt) || !self.is_int(&rt) {
@@ -1052,6 +1136,7 @@ impl<'m> FnLowerer<'m> {
             Expr::Path(p) if p.path.segments.len() == 1 => {
                 let name = p.path.segments[0].ident.to_string();
                 match self.lookup(&name).cloned() {
+                    Some(Local { wgsl, .. }) if wgsl == POISONED => Err(Error::silent(p.span())),
                     Some(Local { wgsl, ty, var: true }) => Ok(Place::Wgsl(self.mark(p.span(), &wgsl), ty)),
                     Some(Local { ty: Ty::Ref(..), .. }) => Err(Error::new(
                         p.span(),
@@ -1147,9 +1232,16 @@ impl<'m> FnLowerer<'m> {
                         format!("cannot apply `{}` to `{pty}` and `{}`", op_symbol(op), self.resolved(&value.ty)),
                     ));
                 }
-                // `x <<= n` needs a u32 amount.
-                match base_op {
-                    BinOp::Shl(_) | BinOp::Shr(_) if !matches!(self.resolved(&value.ty), Ty::Scalar(Scalar::U32 | Scalar::Usize)) => {
+                let vty = self.resolved(&value.ty);
+                // `x <<= n` needs a u32 amount; `v <<= n` and `v &= n` a vector.
+                match (base_op, self.resolved(&pty)) {
+                    (BinOp::Shl(_) | BinOp::Shr(_), Ty::Vec(n, _)) if vty != Ty::Vec(n, Scalar::U32) => {
+                        Val::new(format!("vec{n}<u32>({})", value.code), Ty::Vec(n, Scalar::U32))
+                    }
+                    (BinOp::BitAnd(_) | BinOp::BitOr(_) | BinOp::BitXor(_), Ty::Vec(n, s)) if !matches!(vty, Ty::Vec(..)) => {
+                        Val::new(format!("vec{n}<{}>({})", s.wgsl(), value.code), Ty::Vec(n, s))
+                    }
+                    (BinOp::Shl(_) | BinOp::Shr(_), _) if !matches!(vty, Ty::Scalar(Scalar::U32 | Scalar::Usize)) => {
                         Val::new(format!("u32({})", value.code), U32)
                     }
                     _ => value,
@@ -1188,6 +1280,13 @@ impl<'m> FnLowerer<'m> {
     }
 
     fn if_expr(&mut self, i: &syn::ExprIf, want: Option<&Ty>) -> Result<Val> {
+        if let Expr::Let(l) = &*i.cond {
+            return Err(Error::unsupported(
+                l.let_token.span,
+                "`if let`",
+                "compare the value in a plain `if` (`if x == 0`), or `match` on an integer",
+            ));
+        }
         let cond = self.cond(&i.cond)?;
         let (then_lines, then_val) = self.sub_block(&i.then_branch.stmts, want)?;
         let then_ty = then_val.as_ref().map(|v| self.resolved(&v.ty)).unwrap_or(Ty::Unit);
@@ -1212,6 +1311,9 @@ impl<'m> FnLowerer<'m> {
             },
             None => None,
         };
+        // `if c { return; } else { v }` is a value too.
+        let valued = valued
+            || (matches!(then_ty, Ty::Never) && else_part.as_ref().is_some_and(|(_, v, _)| self.resolved(&v.ty).is_value()));
         if !valued || else_part.as_ref().is_some_and(|(_, v, _)| matches!(v.ty, Ty::Unit) && !matches!(then_ty, Ty::Never)) {
             // A statement `if`.
             let mut then_lines = then_lines;
@@ -1297,6 +1399,13 @@ impl<'m> FnLowerer<'m> {
     fn while_loop(&mut self, w: &syn::ExprWhile) -> Result<Val> {
         if let Some(l) = &w.label {
             return Err(Error::unsupported(l.span(), "a labeled loop", "WGSL has no labels; use a flag variable"));
+        }
+        if let Expr::Let(l) = &*w.cond {
+            return Err(Error::unsupported(
+                l.let_token.span,
+                "`while let`",
+                "loop with a plain condition (`while n > 0`), or `loop` with `if ... { break; }`",
+            ));
         }
         self.blocks.push(Vec::new());
         let cond = self.cond(&w.cond);
@@ -1392,8 +1501,23 @@ impl<'m> FnLowerer<'m> {
 
     fn match_expr(&mut self, m: &syn::ExprMatch, want: Option<&Ty>) -> Result<Val> {
         let scrut = self.expr(&m.expr, None)?;
-        let scrut = self.deref(scrut);
+        let mut scrut = self.deref(scrut);
         let sty = self.resolved(&scrut.ty);
+        // A binding arm (`n => ...`) reads the scrutinee again: evaluate one
+        // with side effects once.
+        fn binds(p: &syn::Pat) -> bool {
+            match p {
+                syn::Pat::Ident(_) => true,
+                syn::Pat::Or(o) => o.cases.iter().any(binds),
+                syn::Pat::Paren(pp) => binds(&pp.pat),
+                _ => false,
+            }
+        }
+        if may_have_effects(&scrut.code) && m.arms.iter().any(|a| binds(&a.pat)) {
+            let t = self.fresh("scrutinee");
+            self.emit(format!("let {t} = {};", scrut.code));
+            scrut.code = t;
+        }
         if !self.is_int(&sty) {
             return Err(Error::unsupported(
                 m.expr.span(),
@@ -1407,8 +1531,8 @@ impl<'m> FnLowerer<'m> {
         let t = self.tmp();
         let mut values = Vec::new();
         for arm in &m.arms {
-            if let Some((_, g)) = &arm.guard {
-                return Err(Error::unsupported(g.span(), "a match guard", "use if/else inside the arm"));
+            if let Some((if_token, _)) = &arm.guard {
+                return Err(Error::unsupported(if_token.span, "a match guard", "use if/else inside the arm"));
             }
             let mut labels = Vec::new();
             let mut binding = None;
@@ -1467,12 +1591,34 @@ impl<'m> FnLowerer<'m> {
     fn match_pattern(&mut self, p: &syn::Pat, sty: &Ty, labels: &mut Vec<String>, binding: &mut Option<String>) -> Result<()> {
         match p {
             syn::Pat::Wild(_) => Ok(()),
+            // A name that resolves to a constant is a constant pattern, as
+            // in Rust (`EXCEPTION_USER => ...`), not a binding.
+            syn::Pat::Ident(pi) if pi.subpat.is_none() && pi.by_ref.is_none() && self.is_const_name(&pi.ident.to_string()) => {
+                let v = self.path_expr(&syn::parse_quote!(#pi))?;
+                let v = self.coerce(v, sty, pi.span())?;
+                labels.push(v.code);
+                Ok(())
+            }
+            syn::Pat::Path(pp) => {
+                let v = self.path_expr(pp)?;
+                let v = self.coerce(v, sty, pp.span())?;
+                labels.push(v.code);
+                Ok(())
+            }
             syn::Pat::Ident(pi) if pi.subpat.is_none() && pi.by_ref.is_none() && pi.mutability.is_none() => {
                 *binding = Some(pi.ident.to_string());
                 Ok(())
             }
             syn::Pat::Lit(l) => {
-                let v = self.expr(&Expr::Lit(l.clone()), Some(sty))?;
+                // syn folds the minus of a `-1 =>` pattern into the literal.
+                let e = match &l.lit {
+                    syn::Lit::Int(i) if i.base10_digits().starts_with('-') => {
+                        let pos = syn::LitInt::new(&format!("{}{}", &i.base10_digits()[1..], i.suffix()), i.span());
+                        syn::parse_quote_spanned!(i.span()=> -#pos)
+                    }
+                    _ => Expr::Lit(l.clone()),
+                };
+                let v = self.expr(&e, Some(sty))?;
                 let v = self.coerce(v, sty, l.span())?;
                 labels.push(v.code);
                 Ok(())
@@ -1489,6 +1635,15 @@ impl<'m> FnLowerer<'m> {
         }
     }
 
+    /// Whether `name` names a constant: a function-local `const`, an
+    /// `#[rt_const]` or one of rt-std's.
+    fn is_const_name(&self, name: &str) -> bool {
+        match self.lookup(name) {
+            Some(l) => self.local_consts.contains(&l.wgsl),
+            None => self.m.consts.contains_key(name) || kinds::CONSTANTS.iter().any(|(n, _, _)| *n == name),
+        }
+    }
+
     // ---- literals of compound types ----
 
     fn struct_lit(&mut self, s: &syn::ExprStruct) -> Result<Val> {
@@ -1501,6 +1656,7 @@ impl<'m> FnLowerer<'m> {
             "Aabb" => Ty::Aabb,
             _ => match self.m.structs.get(&name) {
                 Some(d) => Ty::Struct(d.clone()),
+                None if self.m.failed.contains(&name) => return Err(Error::silent(s.path.span())),
                 None => return Err(Error::new(s.path.span(), format!("cannot find struct `{name}`: declare it with #[rt_struct]"))),
             },
         };
@@ -1610,17 +1766,45 @@ impl<'m> FnLowerer<'m> {
             Error::new(name_span, format!("no method `{name}` on `{rt}` in ray programs{hint}"))
         })?;
         if args.len() != sig.params.len() {
-            return Err(Error::new(
-                span,
-                format!("`{rt}::{name}` takes {} argument(s), found {}", sig.params.len(), args.len()),
-            ));
+            let n = sig.params.len();
+            let want = match n {
+                0 => "no arguments".to_string(),
+                _ => {
+                    let tys: Vec<String> = sig.params.iter().map(|t| format!("`{t}`")).collect();
+                    format!("{n} argument{} ({})", if n == 1 { "" } else { "s" }, tys.join(", "))
+                }
+            };
+            return Err(Error::new(name_span, format!("`{rt}::{name}` takes {want}, found {}", args.len())));
         }
         let mut codes = vec![recv.code.clone()];
         for (a, p) in args.iter().zip(&sig.params) {
+            // glam takes some operands by reference: `m.mul_mat3(&n)`.
+            let a = match a {
+                Expr::Reference(r) if r.mutability.is_none() => &*r.expr,
+                a => *a,
+            };
             let v = self.expr(a, Some(p))?;
             let v = self.deref(v);
             let v = self.coerce(v, p, a.span())?;
             codes.push(v.code);
+        }
+        // A lowering that repeats an operand (`(x - trunc(x))`) must not
+        // repeat its side effects: evaluate such operands (and, to keep
+        // Rust's left-to-right order, effectful ones before them) once, first.
+        let probe: Vec<String> = (0..codes.len()).map(|i| format!("\u{6}{i}\u{6}")).collect();
+        let shape = (sig.lower)(&probe);
+        let last_repeated = (0..codes.len()).rev().find(|&i| shape.matches(&probe[i]).count() > 1 && may_have_effects(&codes[i]));
+        if let Some(last) = last_repeated {
+            for c in codes.iter_mut().take(last + 1) {
+                if may_have_effects(c) {
+                    let t = self.tmp();
+                    self.emit(format!("let {t} = {c};"));
+                    *c = t;
+                }
+            }
+        }
+        if let Some((name, text)) = sig.support {
+            self.m.accessors.borrow_mut().functions.entry(name.to_string()).or_insert_with(|| text.to_string());
         }
         Ok(Val::new((sig.lower)(&codes), sig.ret))
     }
@@ -1638,7 +1822,7 @@ impl<'m> FnLowerer<'m> {
     ) -> Result<Val> {
         let want_args = |n: usize| -> Result<()> {
             if args.len() != n {
-                Err(Error::new(span, format!("`{}::{name}` takes {n} argument(s), found {}", kind.rust_name(), args.len())))
+                Err(Error::new(name_span, format!("`{}::{name}` takes {n} argument(s), found {}", kind.rust_name(), args.len())))
             } else {
                 Ok(())
             }
@@ -1686,20 +1870,20 @@ impl<'m> FnLowerer<'m> {
         }
     }
 
-    fn sampler_method(&mut self, recv: Val, name: &str, args: &[&Expr], name_span: Span, span: Span) -> Result<Val> {
+    fn sampler_method(&mut self, recv: Val, name: &str, args: &[&Expr], name_span: Span, _span: Span) -> Result<Val> {
         let (f, arg_ty, ret) = match name {
             "sample" => ("rt_tex_sample", Ty::vec(2), Ty::vec(4)),
             "fetch" => ("rt_tex_fetch", Ty::Vec(2, Scalar::U32), Ty::vec(4)),
             "size" => {
                 if !args.is_empty() {
-                    return Err(Error::new(span, "`Sampler2d::size` takes no arguments"));
+                    return Err(Error::new(name_span, "`Sampler2d::size` takes no arguments"));
                 }
                 return Ok(Val::new(format!("vec2<u32>({0}.width, {0}.height)", recv.code), Ty::Vec(2, Scalar::U32)));
             }
             _ => return Err(Error::new(name_span, format!("no method `{name}` on `Sampler2d` (it has sample, fetch, size)"))),
         };
         if args.len() != 1 {
-            return Err(Error::new(span, format!("`Sampler2d::{name}` takes 1 argument, found {}", args.len())));
+            return Err(Error::new(name_span, format!("`Sampler2d::{name}` takes 1 argument, found {}", args.len())));
         }
         let v = self.expr(args[0], Some(&arg_ty))?;
         let v = self.deref(v);
@@ -1721,9 +1905,21 @@ impl<'m> FnLowerer<'m> {
         let span = c.span();
         let name_span = path.segments.last().unwrap().ident.span();
 
+        if segs.len() == 1
+            && let Some(l) = self.lookup(&name)
+        {
+            if l.wgsl == POISONED {
+                return Err(Error::silent(path.span()));
+            }
+            return Err(Error::unsupported(path.span(), &format!("calling the local `{name}`"), "call a #[rt_function] helper by name"));
+        }
         // `Type::function(...)`: constructors and UFCS methods of builtin types.
         if segs.len() >= 2 {
             let owner = segs[segs.len() - 2].as_str();
+            if let Some(advice) = crate::types::unsupported_type_advice(owner) {
+                let owner_span = path.segments[segs.len() - 2].ident.span();
+                return Err(Error::unsupported(owner_span, &format!("the type `{owner}`"), advice));
+            }
             if let Some(ty) = crate::types::builtin_type(owner) {
                 if let Some(v) = self.constructor(&ty, &name, &args, span)? {
                     return Ok(v);
@@ -1754,7 +1950,15 @@ impl<'m> FnLowerer<'m> {
             return self.helper_call(sig, &args, span);
         }
         if name == self.fn_name {
-            return Err(Error::unsupported(span, "recursion", "WGSL has no recursion; use a loop"));
+            return Err(Error::unsupported(
+                span,
+                &format!("recursion (`{name}` calls itself)"),
+                "WGSL has no recursion; rewrite it as a loop",
+            ));
+        }
+        if self.m.failed.contains(&name) {
+            // A helper whose own macro reports its mistake.
+            return Err(Error::silent(path.span()));
         }
         Err(Error::new(
             path.span(),
@@ -2035,9 +2239,9 @@ impl<'m> FnLowerer<'m> {
                     return Err(Error::new(
                         span,
                         format!(
-                            "`{}` calls `{intr}`, which cannot be called from a {} program ({})",
+                            "`{}` calls `{intr}`, which cannot be called from {} ({})",
                             sig.name,
-                            kind.name(),
+                            kind.a_program(),
                             i.callers.doc_line().trim_end_matches('.').replace("Program kinds:", "allowed in:")
                         ),
                     ));
@@ -2086,6 +2290,13 @@ impl<'m> FnLowerer<'m> {
             Ok(Val::new(code, sig.ret.clone()))
         }
     }
+}
+
+/// Whether evaluating lowered code may have side effects: only calls of
+/// helpers (which may write through `&mut` parameters or to buffers) and
+/// of the intersection-reporting intrinsics do.
+fn may_have_effects(code: &str) -> bool {
+    code.contains("rtf_") || code.contains("rt_report_intersection") || code.contains("rt_potential_intersection")
 }
 
 fn paren(code: &str) -> String {
@@ -2150,7 +2361,8 @@ pub fn count_placeholders(fmt: &str) -> std::result::Result<usize, String> {
 fn check_int_range(value: u64, s: Scalar, span: Span) -> Result<()> {
     let max = if s == Scalar::I32 { i32::MAX as u64 } else { u32::MAX as u64 };
     if value > max {
-        return Err(Error::new(span, format!("literal out of range for `{}`", s.rust())));
+        let hint = if s == Scalar::I32 { "; use `u32` for values up to 4294967295" } else { "" };
+        return Err(Error::new(span, format!("literal out of range for `{}`: the largest is {max}{hint}", s.rust())));
     }
     Ok(())
 }

@@ -53,6 +53,8 @@ pub struct ModuleCtx {
     pub accessors: RefCell<Accessors>,
     pub trace_types: RefCell<BTreeMap<String, Ty>>,
     pub report_types: RefCell<BTreeMap<String, Ty>>,
+    /// Dependencies that failed to lower: using them is a silent error.
+    pub failed: HashSet<String>,
     printf: RefCell<BTreeMap<u32, (String, Vec<String>)>>,
 }
 
@@ -76,7 +78,17 @@ impl ModuleCtx {
     }
 
     pub fn resolve_type(&self, ty: &syn::Type) -> Result<Ty> {
-        resolve_type(ty, &|name| self.structs.get(name).map(|d| Ty::Struct(d.clone())))
+        resolve_type(ty, &|name| self.structs.get(name).map(|d| Ty::Struct(d.clone()))).map_err(|e| {
+            // A struct whose own declaration failed: that error is enough.
+            fn mentions(ts: proc_macro2::TokenStream, names: &HashSet<String>) -> bool {
+                ts.into_iter().any(|t| match t {
+                    proc_macro2::TokenTree::Ident(i) => names.contains(&i.to_string()),
+                    proc_macro2::TokenTree::Group(g) => mentions(g.stream(), names),
+                    _ => false,
+                })
+            }
+            if mentions(quote::quote!(#ty), &self.failed) { Error::silent(e.span) } else { e }
+        })
     }
 }
 
@@ -103,6 +115,10 @@ pub fn resolve_type(ty: &syn::Type, user: &dyn Fn(&str) -> Option<Ty>) -> Result
                 }
                 return Ok(Ty::Buffer(kind, Box::new(elem)));
             }
+            // Before the generic arguments: `Vec<f32>` is a heap type.
+            if let Some(advice) = types::unsupported_type_advice(&name) {
+                return Err(Error::unsupported(seg.ident.span(), &format!("the type `{name}`"), advice));
+            }
             if !seg.arguments.is_none() {
                 return Err(Error::unsupported(seg.arguments.span(), "generic type arguments", "use concrete types"));
             }
@@ -111,9 +127,6 @@ pub fn resolve_type(ty: &syn::Type, user: &dyn Fn(&str) -> Option<Ty>) -> Result
             }
             if let Some(t) = user(&name) {
                 return Ok(t);
-            }
-            if let Some(advice) = types::unsupported_type_advice(&name) {
-                return Err(Error::new(p.span(), format!("type `{name}` is not supported: {advice}")));
             }
             if name == "Self" {
                 return Err(Error::unsupported(p.span(), "`Self`", "name the type"));
@@ -139,7 +152,7 @@ pub fn resolve_type(ty: &syn::Type, user: &dyn Fn(&str) -> Option<Ty>) -> Result
         syn::Type::Paren(p) => resolve_type(&p.elem, user),
         syn::Type::Slice(s) => Err(Error::unsupported(s.span(), "a slice", "use a fixed-size array or a buffer variable")),
         syn::Type::Ptr(p) => Err(Error::unsupported(p.span(), "a raw pointer", "use `&mut` parameters")),
-        syn::Type::TraitObject(t) => Err(Error::unsupported(t.span(), "a trait object", "WGSL has no dynamic dispatch")),
+        syn::Type::TraitObject(t) => Err(Error::unsupported(t.span(), "a trait object", "WGSL has no dynamic dispatch; take a concrete type")),
         syn::Type::ImplTrait(t) => Err(Error::unsupported(t.span(), "`impl Trait`", "use concrete types")),
         syn::Type::BareFn(f) => Err(Error::unsupported(f.span(), "a function pointer", "WGSL has no function pointers")),
         syn::Type::Never(n) => Err(Error::unsupported(n.span(), "the never type", "return a value")),
@@ -201,8 +214,29 @@ pub enum Entry<'a> {
 }
 
 /// Lowers `entry` with its dependencies `deps` into a validated module.
+/// Errors in the dependencies are reported too (see [`lower_own`]).
 pub fn lower(entry: Entry<'_>, deps: &[Item]) -> std::result::Result<Lowered, Errors> {
+    lower_impl(entry, deps, true)
+}
+
+/// Like [`lower`], but errors inside dependencies are silent: in the macro
+/// chain each dependency's own macro reports them, so a helper's mistake is
+/// shown once, not again at every program that calls it.
+pub fn lower_own(entry: Entry<'_>, deps: &[Item]) -> std::result::Result<Lowered, Errors> {
+    lower_impl(entry, deps, false)
+}
+
+fn lower_impl(entry: Entry<'_>, deps: &[Item], report_deps: bool) -> std::result::Result<Lowered, Errors> {
     let mut errors = Errors::default();
+    // Whether an item is the entry itself, and which item each error came
+    // from: `(index of its first error, is the entry)`, in order.
+    let owns = |name: &str| match &entry {
+        Entry::Helper(f) => f.sig.ident == name,
+        Entry::Struct(s) => s.ident == name,
+        Entry::Const(c) => c.ident == name,
+        Entry::Program(..) => false,
+    };
+    let mut owners: Vec<(usize, bool)> = Vec::new();
     let deps = reachable(&entry, deps);
     let mut structs_raw: Vec<(&syn::ItemStruct, StructRole)> = Vec::new();
     let mut helpers_raw: Vec<&syn::ItemFn> = Vec::new();
@@ -296,11 +330,14 @@ pub fn lower(entry: Entry<'_>, deps: &[Item]) -> std::result::Result<Lowered, Er
         Ok(Some(def))
     }
     for (s, _) in &structs_raw {
+        owners.push((errors.0.len(), owns(&s.ident.to_string())));
         if let Err(e) = build_struct(&s.ident.to_string(), &structs_raw, &mut structs, &mut struct_order, &mut Vec::new()) {
             errors.push(e);
         }
     }
 
+    let failed_structs: HashSet<String> =
+        structs_raw.iter().map(|(s, _)| s.ident.to_string()).filter(|n| !structs.contains_key(n)).collect();
     let mut m = ModuleCtx {
         structs,
         consts: HashMap::new(),
@@ -309,6 +346,7 @@ pub fn lower(entry: Entry<'_>, deps: &[Item]) -> std::result::Result<Lowered, Er
         spans: RefCell::new(Vec::new()),
         accessors: RefCell::new(Accessors::default()),
         trace_types: RefCell::new(BTreeMap::new()),
+        failed: failed_structs,
         report_types: RefCell::new(BTreeMap::new()),
         printf: RefCell::new(BTreeMap::new()),
     };
@@ -323,6 +361,7 @@ pub fn lower(entry: Entry<'_>, deps: &[Item]) -> std::result::Result<Lowered, Er
     // Constants.
     for c in &consts_raw {
         let name = c.ident.to_string();
+        owners.push((errors.0.len(), owns(&name)));
         let wname = wgsl_ident(&name);
         m.global_names.insert(wname.clone());
         let ty = match m.resolve_type(&c.ty) {
@@ -357,10 +396,17 @@ pub fn lower(entry: Entry<'_>, deps: &[Item]) -> std::result::Result<Lowered, Er
         }
     }
 
+    for c in &consts_raw {
+        if !m.consts.contains_key(&c.ident.to_string()) {
+            m.failed.insert(c.ident.to_string());
+        }
+    }
+
     // Helper signatures.
     let mut helper_items: HashMap<String, &syn::ItemFn> = HashMap::new();
     for f in &helpers_raw {
         let name = f.sig.ident.to_string();
+        owners.push((errors.0.len(), owns(&name)));
         if let Err(e) = check_fn_shape(f) {
             errors.0.extend(e.0);
             continue;
@@ -411,15 +457,23 @@ pub fn lower(entry: Entry<'_>, deps: &[Item]) -> std::result::Result<Lowered, Er
         helper_items.insert(name, f);
     }
 
+    for f in &helpers_raw {
+        if !m.helpers.contains_key(&f.sig.ident.to_string()) {
+            m.failed.insert(f.sig.ident.to_string());
+        }
+    }
+
     // Helper bodies, callees first.
     let order = match helper_order(&helper_items) {
         Ok(o) => o,
-        Err(e) => {
+        Err((name, e)) => {
+            owners.push((errors.0.len(), owns(&name)));
             errors.push(e);
             Vec::new()
         }
     };
     for name in order {
+        owners.push((errors.0.len(), owns(&name)));
         let f = helper_items[&name];
         let sig = m.helpers[&name].clone();
         let params = lparams(f, &sig.params);
@@ -447,6 +501,7 @@ pub fn lower(entry: Entry<'_>, deps: &[Item]) -> std::result::Result<Lowered, Er
         out.kind = Some(*kind);
         out.name = f.sig.ident.to_string();
         out.wgsl_entry = format!("rtp_{}", f.sig.ident);
+        owners.push((errors.0.len(), true));
         match program_unit(&m, *kind, f, &mut out) {
             Ok((text, ranges)) => {
                 for (id, r) in ranges {
@@ -468,6 +523,14 @@ pub fn lower(entry: Entry<'_>, deps: &[Item]) -> std::result::Result<Lowered, Er
         {
             out.intrinsics = h.intrinsics.iter().map(|s| s.to_string()).collect();
             out.traced = h.traced.clone();
+        }
+    }
+    if !report_deps {
+        for (i, e) in errors.0.iter_mut().enumerate() {
+            let own = owners.iter().rev().find(|(start, _)| *start <= i).is_none_or(|(_, own)| *own);
+            if !own {
+                *e = Error::silent(e.span);
+            }
         }
     }
     if !errors.is_empty() {
@@ -596,8 +659,9 @@ fn lparams(f: &syn::ItemFn, tys: &[Ty]) -> Vec<LParam> {
         .collect()
 }
 
-/// Orders helpers callees-first; a cycle is recursion, which WGSL lacks.
-fn helper_order(items: &HashMap<String, &syn::ItemFn>) -> Result<Vec<String>> {
+/// Orders helpers callees-first; a cycle is recursion, which WGSL lacks (the
+/// error comes with the helper whose call closes the cycle).
+fn helper_order(items: &HashMap<String, &syn::ItemFn>) -> std::result::Result<Vec<String>, (String, Error)> {
     let mut calls: HashMap<String, Vec<(String, Span)>> = HashMap::new();
     for (name, f) in items {
         let mut found = Vec::new();
@@ -611,16 +675,17 @@ fn helper_order(items: &HashMap<String, &syn::ItemFn>) -> Result<Vec<String>> {
         calls: &HashMap<String, Vec<(String, Span)>>,
         state: &mut HashMap<String, u8>,
         order: &mut Vec<String>,
-    ) -> Result<()> {
+    ) -> std::result::Result<(), (String, Error)> {
         state.insert(n.to_string(), 1);
         for (c, span) in &calls[n] {
             match state.get(c) {
                 Some(1) => {
-                    return Err(Error::unsupported(
-                        *span,
-                        &format!("recursion (`{n}` calls `{c}`, which leads back to `{n}`)"),
-                        "WGSL has no recursion; rewrite it as a loop",
-                    ));
+                    let what = if n == c {
+                        format!("recursion (`{n}` calls itself)")
+                    } else {
+                        format!("recursion (`{n}` calls `{c}`, which leads back to `{n}`)")
+                    };
+                    return Err((n.to_string(), Error::unsupported(*span, &what, "WGSL has no recursion; rewrite it as a loop")));
                 }
                 Some(2) => {}
                 _ => visit(c, calls, state, order)?,
@@ -677,7 +742,7 @@ fn program_unit(m: &ModuleCtx, kind: Kind, f: &syn::ItemFn, out: &mut Lowered) -
                     Ty::Struct(s) if s.role == StructRole::Payload => {}
                     other => errors.push(Error::new(
                         p.ty.span(),
-                        format!("the payload of a {} program must be a #[rt_payload] struct, found `{other}`", kind.name()),
+                        format!("the payload of {} must be a #[rt_payload] struct, found `{other}`", kind.a_program()),
                     )),
                 }
                 out.payload = Some(ty.clone());
@@ -688,7 +753,7 @@ fn program_unit(m: &ModuleCtx, kind: Kind, f: &syn::ItemFn, out: &mut Lowered) -
                     Ty::Struct(s) if s.role == StructRole::Attributes => {}
                     other => errors.push(Error::new(
                         p.ty.span(),
-                        format!("the attributes of a {} program must be a #[rt_attributes] struct, found `{other}`", kind.name()),
+                        format!("the attributes of {} must be a #[rt_attributes] struct, found `{other}`", kind.a_program()),
                     )),
                 }
                 out.attributes = Some(ty.clone());
@@ -712,11 +777,11 @@ fn program_unit(m: &ModuleCtx, kind: Kind, f: &syn::ItemFn, out: &mut Lowered) -
     }
     let ret = match (&f.sig.output, kind) {
         (syn::ReturnType::Default, Kind::BoundingBox) => {
-            errors.push(Error::new(f.sig.ident.span(), "a bounding_box program returns the primitive's bounds: `-> Aabb`"));
+            errors.push(Error::new(f.sig.ident.span(), "a bounding_box program must return the primitive's bounds: add `-> Aabb` to its signature"));
             Ty::Unit
         }
         (syn::ReturnType::Default, Kind::Visit) => {
-            errors.push(Error::new(f.sig.ident.span(), "a visit program returns the child to enter: `-> u32`"));
+            errors.push(Error::new(f.sig.ident.span(), "a visit program must return the child to enter: add `-> u32` to its signature"));
             Ty::Unit
         }
         (syn::ReturnType::Default, _) => Ty::Unit,
@@ -730,9 +795,9 @@ fn program_unit(m: &ModuleCtx, kind: Kind, f: &syn::ItemFn, out: &mut Lowered) -
                 Ok(got) if got == want => got,
                 Ok(got) => {
                     let msg = if want == Ty::Unit {
-                        format!("a {} program returns nothing; write results into the payload or a buffer", k.name())
+                        format!("{} returns nothing; write results into the payload or a buffer", k.a_program())
                     } else {
-                        format!("a {} program returns `{want}`, not `{got}`", k.name())
+                        format!("{} returns `{want}`, not `{got}`", k.a_program())
                     };
                     errors.push(Error::new(t.span(), msg));
                     want

@@ -1,0 +1,235 @@
+//! Linking: checks that the programs of a context fit together and resolves
+//! every variable of every program use to a value, once per launch.
+//!
+//! Checks: each ray type has a miss program; the programs of a ray type agree
+//! on the payload type, and every traced payload type is some ray type's;
+//! intersection programs report the attribute type their hit programs take;
+//! each variable is set in some scope of the program's lookup order
+//! ([`crate::vars::lookup_order`]) with the declared type.
+
+use crate::context::{Context, Scope};
+use crate::error::{Result, RtError};
+use crate::scene::{GeometryKind, NodeId, NodeKind, ProgramId};
+use crate::vars::{ScopeKind, VarValue, lookup_order};
+use rt_std::program::{ProgramDescriptor, TypeLayout, VariableKind};
+use std::any::Any;
+use std::sync::Arc;
+
+/// Programs take at most this many variables (the CPU backend passes them
+/// in a fixed-size array: no allocation per call).
+pub const MAX_VARIABLES: usize = 32;
+
+/// A program with its variables resolved for one scope record.
+pub struct Call {
+    pub desc: &'static ProgramDescriptor,
+    pub vars: Vec<Arc<dyn Any + Send + Sync>>,
+}
+
+/// The ids a program use is resolved against.
+#[derive(Clone, Copy, Default)]
+pub struct Record {
+    pub instance: Option<crate::GeometryInstanceId>,
+    pub material: Option<crate::MaterialId>,
+    pub geometry: Option<crate::GeometryId>,
+    pub node: Option<NodeId>,
+}
+
+fn scope_name(s: Scope) -> String {
+    match s {
+        Scope::Context => "context".into(),
+        Scope::Program(p) => format!("program {}", p.index()),
+        Scope::Geometry(g) => format!("geometry {}", g.index()),
+        Scope::GeometryInstance(g) => format!("geometry instance {}", g.index()),
+        Scope::Material(m) => format!("material {}", m.index()),
+        Scope::Node(n) => format!("node {}", n.index()),
+    }
+}
+
+/// Resolves the variables of program `p` used at `record`.
+pub fn resolve(ctx: &Context, p: ProgramId, record: Record) -> Result<Call> {
+    let desc = ctx.program(p)?.desc;
+    if desc.variables.len() > MAX_VARIABLES {
+        return Err(RtError::TooManyVariables {
+            program: desc.name,
+            location: desc.location(),
+            count: desc.variables.len(),
+            max: MAX_VARIABLES,
+        });
+    }
+    let scopes: Vec<Scope> = lookup_order(desc.kind)
+        .iter()
+        .filter_map(|k| match k {
+            ScopeKind::Program => Some(Scope::Program(p)),
+            ScopeKind::Context => Some(Scope::Context),
+            ScopeKind::GeometryInstance => record.instance.map(Scope::GeometryInstance),
+            ScopeKind::Material => record.material.map(Scope::Material),
+            ScopeKind::Geometry => record.geometry.map(Scope::Geometry),
+            ScopeKind::Node => record.node.map(Scope::Node),
+        })
+        .collect();
+    let mut vars = Vec::with_capacity(desc.variables.len());
+    for v in desc.variables {
+        let mut found = None;
+        for s in &scopes {
+            if let Some(value) = ctx.scope(*s)?.get(v.name) {
+                found = Some((*s, value));
+                break;
+            }
+        }
+        let Some((scope, value)) = found else {
+            return Err(RtError::VariableNotFound {
+                program: desc.name,
+                location: desc.location(),
+                kind: desc.kind,
+                variable: v.name.to_string(),
+                searched: scopes.iter().map(|s| scope_name(*s)).collect::<Vec<_>>().join(", "),
+            });
+        };
+        let mismatch = |found: String| RtError::VariableType {
+            program: desc.name,
+            location: desc.location(),
+            variable: v.name.to_string(),
+            declared: v.ty.rust.to_string(),
+            scope: scope_name(scope),
+            found,
+        };
+        let resolved: Arc<dyn Any + Send + Sync> = match (value, v.kind) {
+            (VarValue::Data { layout, value, .. }, VariableKind::Value) if layout.rust == v.ty.rust => value.clone(),
+            (VarValue::Buffer(b), VariableKind::Buffer { element, dimensions, writable }) => {
+                let rec = ctx.buffers.get(b.index() as usize).ok_or_else(|| RtError::InvalidHandle(format!("{b:?}")))?;
+                let ok = rec.storage.layout().rust == element.rust
+                    && rec.dims == dimensions
+                    && (!writable || rec.ty.writable_by_programs());
+                if !ok {
+                    return Err(mismatch(rec.type_name()));
+                }
+                Arc::from(rec.storage.handle(dimensions, writable, rec.width, rec.height))
+            }
+            (VarValue::Sampler(s), VariableKind::Sampler) => {
+                let rec = ctx.samplers.get(s.index() as usize).ok_or_else(|| RtError::InvalidHandle(format!("{s:?}")))?;
+                Arc::new(rec.handle())
+            }
+            (VarValue::Object(n), VariableKind::Object) => {
+                if n.index() as usize >= ctx.nodes.len() {
+                    return Err(RtError::InvalidHandle(format!("{n:?}")));
+                }
+                Arc::new(n.object())
+            }
+            (other, _) => {
+                let name = other.type_name(&|b| {
+                    ctx.buffers.get(b.index() as usize).map(|r| r.type_name()).unwrap_or_else(|| format!("{b:?}"))
+                });
+                return Err(mismatch(name));
+            }
+        };
+        vars.push(resolved);
+    }
+    Ok(Call { desc, vars })
+}
+
+/// Payload and attribute agreement across the whole context.
+pub fn check_types(ctx: &Context) -> Result<()> {
+    let mut payload_of_ray_type: Vec<Option<(&'static ProgramDescriptor, TypeLayout)>> =
+        vec![None; ctx.ray_type_count() as usize];
+    let mut note = |ray_type: u32, desc: &'static ProgramDescriptor| -> Result<()> {
+        let Some(payload) = desc.payload else { return Ok(()) };
+        let slot = &mut payload_of_ray_type[ray_type as usize];
+        match slot {
+            Some((other, layout)) if layout.rust != payload.rust => Err(RtError::PayloadMismatch {
+                ray_type,
+                a: other.name,
+                a_location: other.location(),
+                a_type: layout.rust,
+                b: desc.name,
+                b_location: desc.location(),
+                b_type: payload.rust,
+            }),
+            Some(_) => Ok(()),
+            None => {
+                *slot = Some((desc, payload));
+                Ok(())
+            }
+        }
+    };
+    for (r, m) in ctx.miss.iter().enumerate() {
+        match m {
+            Some(p) => note(r as u32, ctx.program(*p)?.desc)?,
+            None => return Err(RtError::NoMissProgram { ray_type: r as u32 }),
+        }
+    }
+    for mat in &ctx.materials {
+        for (r, (ch, ah)) in mat.closest_hit.iter().zip(&mat.any_hit).enumerate() {
+            for p in [ch, ah].into_iter().flatten() {
+                note(r as u32, ctx.program(*p)?.desc)?;
+            }
+        }
+    }
+    for prog in &ctx.programs {
+        for traced in prog.desc.traced_payloads {
+            let known = payload_of_ray_type.iter().flatten().any(|(_, l)| l.rust == traced.rust);
+            if !known {
+                return Err(RtError::TracedPayloadUnused {
+                    program: prog.desc.name,
+                    location: prog.desc.location(),
+                    payload: traced.rust,
+                });
+            }
+        }
+    }
+    // Attributes: what an intersection program reports is what the hit
+    // programs of its instances' materials take.
+    for gi in &ctx.instances {
+        let geometry = &ctx.geometries[gi.geometry.index() as usize];
+        let GeometryKind::Custom { intersection, .. } = geometry.kind else { continue };
+        let isect = ctx.program(intersection)?.desc;
+        for m in &gi.materials {
+            let mat = &ctx.materials[m.index() as usize];
+            for p in mat.closest_hit.iter().chain(&mat.any_hit).flatten() {
+                let hit = ctx.program(*p)?.desc;
+                if let (Some(taken), reported) = (hit.attributes, isect.attributes)
+                    && reported.is_none_or(|r| r.rust != taken.rust)
+                {
+                    return Err(RtError::AttributeMismatch {
+                        intersection: isect.name,
+                        intersection_location: isect.location(),
+                        reported: reported.map(|r| r.rust).unwrap_or("no attributes"),
+                        hit: hit.name,
+                        hit_location: hit.location(),
+                        taken: taken.rust,
+                    });
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The nodes reachable from `roots`, children before parents; a cycle is an
+/// error.
+pub fn nodes_post_order(ctx: &Context) -> Result<Vec<NodeId>> {
+    let mut state = vec![0u8; ctx.nodes.len()];
+    let mut order = Vec::new();
+    fn visit(ctx: &Context, n: usize, state: &mut [u8], order: &mut Vec<NodeId>) -> Result<()> {
+        match state[n] {
+            1 => return Err(RtError::GraphCycle { node: n as u32 }),
+            2 => return Ok(()),
+            _ => {}
+        }
+        state[n] = 1;
+        let children: Vec<NodeId> = match &ctx.nodes[n].kind {
+            NodeKind::Group { children, .. } | NodeKind::Selector { children, .. } => children.clone(),
+            NodeKind::Transform { child, .. } => vec![*child],
+            NodeKind::GeometryGroup { .. } => Vec::new(),
+        };
+        for c in children {
+            visit(ctx, c.index() as usize, state, order)?;
+        }
+        state[n] = 2;
+        order.push(NodeId(n as u32));
+        Ok(())
+    }
+    for n in 0..ctx.nodes.len() {
+        visit(ctx, n, &mut state, &mut order)?;
+    }
+    Ok(order)
+}

@@ -1,0 +1,168 @@
+//! Buffers and texture samplers: host storage that programs read through
+//! rt-std's handles (`Buffer<T>`, `RwBuffer2d<T>`, `Sampler2d`, ...).
+//!
+//! A buffer stores `len + 1` elements of its Rust type: the extra one is the
+//! sink rt-std's handles use for out-of-bounds indexing. Elements live in
+//! `UnsafeCell`s because programs on many threads write output buffers
+//! through handles while the context is shared.
+
+use glam::Vec4;
+use rt_std::program::TypeLayout;
+use rt_std::{Buffer, Buffer2d, FilterMode, RtData, RwBuffer, RwBuffer2d, Sampler2d, WrapMode};
+use std::any::Any;
+use std::cell::UnsafeCell;
+
+/// How programs may use a buffer, as in OptiX.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BufferType {
+    /// Written by the host, read by programs.
+    Input,
+    /// Written by programs, read back by the host.
+    Output,
+    /// Both.
+    InputOutput,
+}
+
+impl BufferType {
+    pub fn writable_by_programs(self) -> bool {
+        self != BufferType::Input
+    }
+}
+
+/// Type-erased typed storage.
+pub(crate) trait Storage: Send + Sync {
+    fn layout(&self) -> TypeLayout;
+    /// A handle of the element type for a program variable (`Buffer<T>`,
+    /// `RwBuffer<T>`, `Buffer2d<T>` or `RwBuffer2d<T>`).
+    fn handle(&self, dims: u32, writable: bool, width: u32, height: u32) -> Box<dyn Any + Send + Sync>;
+    fn as_any(&self) -> &dyn Any;
+    fn as_any_mut(&mut self) -> &mut dyn Any;
+    /// Heap words of all elements (for the GPU backend, being written).
+    #[allow(dead_code)]
+    fn to_words(&self, out: &mut Vec<u32>);
+    /// Replaces the elements from heap words (read back from the GPU).
+    #[allow(dead_code)]
+    fn from_words(&mut self, words: &[u32]);
+}
+
+pub(crate) struct Typed<T: RtData> {
+    /// `len + 1` elements; the last is the out-of-bounds sink.
+    cells: Box<[UnsafeCell<T>]>,
+}
+
+// SAFETY: elements are plain `Copy` data; concurrent writes to one element
+// from two launch indices are a documented race, as on a GPU.
+unsafe impl<T: RtData> Sync for Typed<T> {}
+unsafe impl<T: RtData> Send for Typed<T> {}
+
+impl<T: RtData> Typed<T> {
+    pub fn new(data: Vec<T>) -> Self {
+        let zero = T::read_words(&vec![0u32; T::LAYOUT.words as usize]);
+        let cells = data.into_iter().chain(std::iter::once(zero)).map(UnsafeCell::new).collect();
+        Typed { cells }
+    }
+
+    pub fn len(&self) -> usize {
+        self.cells.len() - 1
+    }
+
+    fn ptr(&self) -> *mut T {
+        // UnsafeCell<T> has T's layout.
+        self.cells.as_ptr() as *mut T
+    }
+
+    pub fn to_vec(&self) -> Vec<T> {
+        // SAFETY: no launch is running while the host holds `&self` here.
+        self.cells[..self.len()].iter().map(|c| unsafe { *c.get() }).collect()
+    }
+
+    pub fn write(&mut self, data: &[T]) {
+        for (c, v) in self.cells.iter_mut().zip(data) {
+            *c.get_mut() = *v;
+        }
+    }
+}
+
+impl<T: RtData + Send + Sync> Storage for Typed<T> {
+    fn layout(&self) -> TypeLayout {
+        T::LAYOUT
+    }
+
+    fn handle(&self, dims: u32, writable: bool, width: u32, height: u32) -> Box<dyn Any + Send + Sync> {
+        let len = self.len() as u32;
+        // SAFETY: the storage holds `len + 1` elements (the sink) and outlives
+        // the launch that uses the handle (the context is borrowed for it).
+        unsafe {
+            match (dims, writable) {
+                (2, true) => Box::new(RwBuffer2d::from_raw_parts(self.ptr(), width, height)),
+                (2, false) => Box::new(Buffer2d::from_raw_parts(self.ptr(), width, height)),
+                (_, true) => Box::new(RwBuffer::from_raw_parts(self.ptr(), len)),
+                (_, false) => Box::new(Buffer::from_raw_parts(self.ptr(), len)),
+            }
+        }
+    }
+
+    fn as_any(&self) -> &dyn Any {
+        self
+    }
+
+    fn as_any_mut(&mut self) -> &mut dyn Any {
+        self
+    }
+
+    fn to_words(&self, out: &mut Vec<u32>) {
+        let w = T::LAYOUT.words as usize;
+        let start = out.len();
+        out.resize(start + self.len() * w, 0);
+        for (i, v) in self.to_vec().iter().enumerate() {
+            v.write_words(&mut out[start + i * w..start + (i + 1) * w]);
+        }
+    }
+
+    fn from_words(&mut self, words: &[u32]) {
+        let w = T::LAYOUT.words as usize;
+        let n = self.len();
+        for (i, c) in self.cells[..n].iter_mut().enumerate() {
+            if let Some(src) = words.get(i * w..(i + 1) * w) {
+                *c.get_mut() = T::read_words(src);
+            }
+        }
+    }
+}
+
+/// A buffer of the context.
+pub(crate) struct BufferRec {
+    pub storage: Box<dyn Storage>,
+    pub ty: BufferType,
+    pub width: u32,
+    pub height: u32,
+    pub dims: u32,
+}
+
+impl BufferRec {
+    pub fn type_name(&self) -> String {
+        let base = match (self.dims, self.ty.writable_by_programs()) {
+            (2, true) => "RwBuffer2d",
+            (2, false) => "Buffer2d",
+            (_, true) => "RwBuffer",
+            (_, false) => "Buffer",
+        };
+        format!("{base}<{}> ({:?})", self.storage.layout().rust, self.ty)
+    }
+}
+
+/// A texture sampler of the context: RGBA f32 texels with wrap and filter.
+pub(crate) struct SamplerRec {
+    pub texels: Box<[Vec4]>,
+    pub width: u32,
+    pub height: u32,
+    pub wrap: WrapMode,
+    pub filter: FilterMode,
+}
+
+impl SamplerRec {
+    pub fn handle(&self) -> Sampler2d {
+        // SAFETY: `texels` holds width * height texels and outlives the launch.
+        unsafe { Sampler2d::from_raw_parts(self.texels.as_ptr(), self.width, self.height, self.wrap, self.filter) }
+    }
+}

@@ -1,0 +1,485 @@
+//! The context: programs, the scene graph, variables, buffers and launches.
+
+use crate::accel::Acceleration;
+use crate::backend::{self, Backend, LaunchReport};
+use crate::buffer::{BufferRec, BufferType, SamplerRec, Typed};
+use crate::error::{Result, RtError};
+use crate::scene::*;
+use crate::vars::{IntoVariable, VarScope};
+use glam::{Mat4, Vec4};
+use rt_std::program::{ProgramDescriptor, ProgramKind};
+use rt_std::{FilterMode, RtData, WrapMode};
+
+pub(crate) struct ProgramRec {
+    pub desc: &'static ProgramDescriptor,
+    pub vars: VarScope,
+}
+
+#[derive(Clone, Copy, Default)]
+pub(crate) struct EntryPoint {
+    pub ray_generation: Option<ProgramId>,
+    pub exception: Option<ProgramId>,
+}
+
+/// Where a variable is set.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Scope {
+    Context,
+    Program(ProgramId),
+    Geometry(GeometryId),
+    GeometryInstance(GeometryInstanceId),
+    Material(MaterialId),
+    Node(NodeId),
+}
+
+impl From<ProgramId> for Scope {
+    fn from(p: ProgramId) -> Scope {
+        Scope::Program(p)
+    }
+}
+impl From<GeometryId> for Scope {
+    fn from(g: GeometryId) -> Scope {
+        Scope::Geometry(g)
+    }
+}
+impl From<GeometryInstanceId> for Scope {
+    fn from(g: GeometryInstanceId) -> Scope {
+        Scope::GeometryInstance(g)
+    }
+}
+impl From<MaterialId> for Scope {
+    fn from(m: MaterialId) -> Scope {
+        Scope::Material(m)
+    }
+}
+impl From<NodeId> for Scope {
+    fn from(n: NodeId) -> Scope {
+        Scope::Node(n)
+    }
+}
+
+/// A ray-tracing context: the root of everything, as in OptiX.
+pub struct Context {
+    pub(crate) programs: Vec<ProgramRec>,
+    pub(crate) geometries: Vec<GeometryRec>,
+    pub(crate) materials: Vec<MaterialRec>,
+    pub(crate) instances: Vec<GeometryInstanceRec>,
+    pub(crate) nodes: Vec<NodeRec>,
+    pub(crate) buffers: Vec<BufferRec>,
+    pub(crate) samplers: Vec<SamplerRec>,
+    pub(crate) vars: VarScope,
+    pub(crate) entry_points: Vec<EntryPoint>,
+    pub(crate) miss: Vec<Option<ProgramId>>,
+    pub(crate) max_trace_depth: u32,
+    pub(crate) print_enabled: bool,
+    pub(crate) print_launch_index: Option<glam::UVec2>,
+    pub(crate) backend: Backend,
+    pub(crate) accels: crate::backend::cpu::AccelCache,
+}
+
+impl Default for Context {
+    fn default() -> Self {
+        Context::new()
+    }
+}
+
+impl Context {
+    /// An empty context with one entry point and one ray type, a maximum
+    /// trace depth of 5, on the CPU backend.
+    pub fn new() -> Self {
+        Context {
+            programs: Vec::new(),
+            geometries: Vec::new(),
+            materials: Vec::new(),
+            instances: Vec::new(),
+            nodes: Vec::new(),
+            buffers: Vec::new(),
+            samplers: Vec::new(),
+            vars: VarScope::default(),
+            entry_points: vec![EntryPoint::default()],
+            miss: vec![None],
+            max_trace_depth: 5,
+            print_enabled: true,
+            print_launch_index: None,
+            backend: Backend::Cpu,
+            accels: Default::default(),
+        }
+    }
+
+    /// The backend launches run on.
+    pub fn backend(&self) -> Backend {
+        self.backend
+    }
+
+    /// Chooses the backend launches run on.
+    pub fn set_backend(&mut self, backend: Backend) {
+        self.backend = backend;
+    }
+
+    pub fn set_entry_point_count(&mut self, n: u32) {
+        self.entry_points.resize(n as usize, EntryPoint::default());
+    }
+
+    pub fn entry_point_count(&self) -> u32 {
+        self.entry_points.len() as u32
+    }
+
+    pub fn set_ray_type_count(&mut self, n: u32) {
+        self.miss.resize(n as usize, None);
+        for m in &mut self.materials {
+            m.closest_hit.resize(n as usize, None);
+            m.any_hit.resize(n as usize, None);
+        }
+    }
+
+    pub fn ray_type_count(&self) -> u32 {
+        self.miss.len() as u32
+    }
+
+    /// Rays may nest this deep (primary rays are depth 1); a trace beyond it
+    /// raises the trace-depth-exceeded exception instead.
+    pub fn set_max_trace_depth(&mut self, depth: u32) {
+        self.max_trace_depth = depth.max(1);
+    }
+
+    /// Turns `rt_printf!` output on or off, and optionally limits it to one
+    /// launch index (as OptiX's `rtContextSetPrintLaunchIndex`).
+    pub fn set_print(&mut self, enabled: bool, launch_index: Option<glam::UVec2>) {
+        self.print_enabled = enabled;
+        self.print_launch_index = launch_index;
+    }
+
+    // ---- programs ----
+
+    /// Creates a program from a descriptor (`my_program::PROGRAM`).
+    pub fn create_program(&mut self, desc: &'static ProgramDescriptor) -> ProgramId {
+        self.programs.push(ProgramRec { desc, vars: VarScope::default() });
+        ProgramId(self.programs.len() as u32 - 1)
+    }
+
+    pub(crate) fn program(&self, p: ProgramId) -> Result<&ProgramRec> {
+        self.programs.get(p.0 as usize).ok_or_else(|| RtError::InvalidHandle(format!("{p:?}")))
+    }
+
+    fn expect_kind(&self, p: ProgramId, expected: ProgramKind, slot: String) -> Result<()> {
+        let desc = self.program(p)?.desc;
+        if desc.kind != expected {
+            return Err(RtError::WrongProgramKind {
+                program: desc.name,
+                location: desc.location(),
+                found: desc.kind,
+                expected,
+                slot,
+            });
+        }
+        Ok(())
+    }
+
+    fn entry_mut(&mut self, entry: u32) -> Result<&mut EntryPoint> {
+        let count = self.entry_points.len() as u32;
+        self.entry_points.get_mut(entry as usize).ok_or(RtError::NoSuchEntryPoint { entry, count })
+    }
+
+    fn check_ray_type(&self, ray_type: u32) -> Result<()> {
+        if ray_type >= self.ray_type_count() {
+            return Err(RtError::NoSuchRayType { ray_type, count: self.ray_type_count() });
+        }
+        Ok(())
+    }
+
+    pub fn set_ray_generation_program(&mut self, entry: u32, p: ProgramId) -> Result<()> {
+        self.expect_kind(p, ProgramKind::RayGeneration, format!("entry point {entry}'s ray generation"))?;
+        self.entry_mut(entry)?.ray_generation = Some(p);
+        Ok(())
+    }
+
+    pub fn set_exception_program(&mut self, entry: u32, p: ProgramId) -> Result<()> {
+        self.expect_kind(p, ProgramKind::Exception, format!("entry point {entry}'s exception"))?;
+        self.entry_mut(entry)?.exception = Some(p);
+        Ok(())
+    }
+
+    pub fn set_miss_program(&mut self, ray_type: u32, p: ProgramId) -> Result<()> {
+        self.check_ray_type(ray_type)?;
+        self.expect_kind(p, ProgramKind::Miss, format!("ray type {ray_type}'s miss"))?;
+        self.miss[ray_type as usize] = Some(p);
+        Ok(())
+    }
+
+    // ---- geometry ----
+
+    /// Creates a triangle geometry; the mesh is checked first.
+    pub fn create_triangles(&mut self, mesh: TriangleMesh) -> Result<GeometryId> {
+        let id = self.geometries.len() as u32;
+        mesh.validate().map_err(|problem| RtError::BadGeometry { geometry: id, problem })?;
+        self.geometries.push(GeometryRec { kind: GeometryKind::Triangles(mesh), vars: VarScope::default() });
+        Ok(GeometryId(id))
+    }
+
+    /// Creates custom geometry of `primitive_count` primitives, each
+    /// intersected by `intersection` and bounded by `bounding_box`.
+    pub fn create_custom_geometry(
+        &mut self,
+        primitive_count: u32,
+        intersection: ProgramId,
+        bounding_box: ProgramId,
+    ) -> Result<GeometryId> {
+        self.expect_kind(intersection, ProgramKind::Intersection, "a custom geometry's intersection".into())?;
+        self.expect_kind(bounding_box, ProgramKind::BoundingBox, "a custom geometry's bounding box".into())?;
+        self.geometries.push(GeometryRec {
+            kind: GeometryKind::Custom { primitive_count, intersection, bounding_box },
+            vars: VarScope::default(),
+        });
+        Ok(GeometryId(self.geometries.len() as u32 - 1))
+    }
+
+    /// Moves a triangle geometry's vertices (same count): accelerations over
+    /// it are refit, not rebuilt, at the next launch.
+    pub fn set_triangle_positions(&mut self, g: GeometryId, positions: Vec<glam::Vec3>) -> Result<()> {
+        let rec = self.geometries.get_mut(g.0 as usize).ok_or_else(|| RtError::InvalidHandle(format!("{g:?}")))?;
+        let GeometryKind::Triangles(mesh) = &mut rec.kind else {
+            return Err(RtError::BadGeometry { geometry: g.0, problem: "not a triangle geometry".into() });
+        };
+        if positions.len() != mesh.positions.len() {
+            return Err(RtError::BadGeometry {
+                geometry: g.0,
+                problem: format!("{} positions given for {} vertices; create a new geometry to change topology", positions.len(), mesh.positions.len()),
+            });
+        }
+        let mut moved = mesh.clone();
+        moved.positions = positions;
+        moved.validate().map_err(|problem| RtError::BadGeometry { geometry: g.0, problem })?;
+        *mesh = moved;
+        self.accels.geometry_moved();
+        Ok(())
+    }
+
+    pub fn create_material(&mut self) -> MaterialId {
+        let n = self.ray_type_count() as usize;
+        self.materials.push(MaterialRec { closest_hit: vec![None; n], any_hit: vec![None; n], vars: VarScope::default() });
+        MaterialId(self.materials.len() as u32 - 1)
+    }
+
+    fn material_mut(&mut self, m: MaterialId) -> Result<&mut MaterialRec> {
+        self.materials.get_mut(m.0 as usize).ok_or_else(|| RtError::InvalidHandle(format!("{m:?}")))
+    }
+
+    pub fn set_closest_hit_program(&mut self, m: MaterialId, ray_type: u32, p: ProgramId) -> Result<()> {
+        self.check_ray_type(ray_type)?;
+        self.expect_kind(p, ProgramKind::ClosestHit, format!("ray type {ray_type}'s closest hit"))?;
+        self.material_mut(m)?.closest_hit[ray_type as usize] = Some(p);
+        Ok(())
+    }
+
+    pub fn set_any_hit_program(&mut self, m: MaterialId, ray_type: u32, p: ProgramId) -> Result<()> {
+        self.check_ray_type(ray_type)?;
+        self.expect_kind(p, ProgramKind::AnyHit, format!("ray type {ray_type}'s any hit"))?;
+        self.material_mut(m)?.any_hit[ray_type as usize] = Some(p);
+        Ok(())
+    }
+
+    pub fn create_geometry_instance(&mut self, g: GeometryId, materials: &[MaterialId]) -> Result<GeometryInstanceId> {
+        if g.0 as usize >= self.geometries.len() {
+            return Err(RtError::InvalidHandle(format!("{g:?}")));
+        }
+        if let Some(m) = materials.iter().find(|m| m.0 as usize >= self.materials.len()) {
+            return Err(RtError::InvalidHandle(format!("{m:?}")));
+        }
+        if materials.is_empty() {
+            return Err(RtError::BadGeometry { geometry: g.0, problem: "a geometry instance needs at least one material".into() });
+        }
+        self.instances.push(GeometryInstanceRec { geometry: g, materials: materials.to_vec(), vars: VarScope::default() });
+        self.accels.shape_changed();
+        Ok(GeometryInstanceId(self.instances.len() as u32 - 1))
+    }
+
+    fn push_node(&mut self, kind: NodeKind) -> NodeId {
+        self.nodes.push(NodeRec { kind, visibility_mask: 0xff, vars: VarScope::default() });
+        self.accels.shape_changed();
+        NodeId(self.nodes.len() as u32 - 1)
+    }
+
+    fn check_nodes(&self, nodes: &[NodeId]) -> Result<()> {
+        match nodes.iter().find(|n| n.0 as usize >= self.nodes.len()) {
+            Some(n) => Err(RtError::InvalidHandle(format!("{n:?}"))),
+            None => Ok(()),
+        }
+    }
+
+    pub fn create_geometry_group(&mut self, children: &[GeometryInstanceId], accel: Acceleration) -> Result<NodeId> {
+        if let Some(c) = children.iter().find(|c| c.0 as usize >= self.instances.len()) {
+            return Err(RtError::InvalidHandle(format!("{c:?}")));
+        }
+        Ok(self.push_node(NodeKind::GeometryGroup { children: children.to_vec(), accel }))
+    }
+
+    pub fn create_group(&mut self, children: &[NodeId], accel: Acceleration) -> Result<NodeId> {
+        self.check_nodes(children)?;
+        Ok(self.push_node(NodeKind::Group { children: children.to_vec(), accel }))
+    }
+
+    /// A transform node; its inverse is computed here.
+    pub fn create_transform(&mut self, matrix: Mat4, child: NodeId) -> Result<NodeId> {
+        self.check_nodes(&[child])?;
+        let inverse = checked_inverse(matrix)?;
+        Ok(self.push_node(NodeKind::Transform { matrix, inverse, child }))
+    }
+
+    /// Changes a transform's matrix (a refit of the groups above it).
+    pub fn set_transform(&mut self, node: NodeId, matrix: Mat4) -> Result<()> {
+        let inv = checked_inverse(matrix)?;
+        match self.nodes.get_mut(node.0 as usize).map(|n| &mut n.kind) {
+            Some(NodeKind::Transform { matrix: m, inverse, .. }) => {
+                *m = matrix;
+                *inverse = inv;
+                self.accels.geometry_moved();
+                Ok(())
+            }
+            _ => Err(RtError::InvalidHandle(format!("{node:?} (not a transform)"))),
+        }
+    }
+
+    pub fn create_selector(&mut self, visit: ProgramId, children: &[NodeId]) -> Result<NodeId> {
+        self.expect_kind(visit, ProgramKind::Visit, "a selector's visit".into())?;
+        self.check_nodes(children)?;
+        Ok(self.push_node(NodeKind::Selector { visit, children: children.to_vec() }))
+    }
+
+    /// Rays trace into `node` only if their mask shares a bit with this.
+    pub fn set_visibility_mask(&mut self, node: NodeId, mask: u8) -> Result<()> {
+        let n = self.nodes.get_mut(node.0 as usize).ok_or_else(|| RtError::InvalidHandle(format!("{node:?}")))?;
+        n.visibility_mask = mask;
+        Ok(())
+    }
+
+    // ---- variables ----
+
+    /// Sets variable `name` on `scope`. Values are plain data (`f32`,
+    /// `Vec3`, `#[rt_struct]`s), buffers, samplers or nodes. Changing a value
+    /// never relinks.
+    pub fn set_var(&mut self, scope: impl Into<Scope>, name: &str, value: impl IntoVariable) -> Result<()> {
+        let value = value.into_variable();
+        self.scope_mut(scope.into())?.set(name, value);
+        Ok(())
+    }
+
+    /// Removes variable `name` from `scope`; returns whether it was set.
+    pub fn remove_var(&mut self, scope: impl Into<Scope>, name: &str) -> Result<bool> {
+        Ok(self.scope_mut(scope.into())?.remove(name).is_some())
+    }
+
+    pub(crate) fn scope(&self, scope: Scope) -> Result<&VarScope> {
+        let missing = || RtError::InvalidHandle(format!("{scope:?}"));
+        Ok(match scope {
+            Scope::Context => &self.vars,
+            Scope::Program(p) => &self.programs.get(p.0 as usize).ok_or_else(missing)?.vars,
+            Scope::Geometry(g) => &self.geometries.get(g.0 as usize).ok_or_else(missing)?.vars,
+            Scope::GeometryInstance(g) => &self.instances.get(g.0 as usize).ok_or_else(missing)?.vars,
+            Scope::Material(m) => &self.materials.get(m.0 as usize).ok_or_else(missing)?.vars,
+            Scope::Node(n) => &self.nodes.get(n.0 as usize).ok_or_else(missing)?.vars,
+        })
+    }
+
+    fn scope_mut(&mut self, scope: Scope) -> Result<&mut VarScope> {
+        let missing = || RtError::InvalidHandle(format!("{scope:?}"));
+        Ok(match scope {
+            Scope::Context => &mut self.vars,
+            Scope::Program(p) => &mut self.programs.get_mut(p.0 as usize).ok_or_else(missing)?.vars,
+            Scope::Geometry(g) => &mut self.geometries.get_mut(g.0 as usize).ok_or_else(missing)?.vars,
+            Scope::GeometryInstance(g) => &mut self.instances.get_mut(g.0 as usize).ok_or_else(missing)?.vars,
+            Scope::Material(m) => &mut self.materials.get_mut(m.0 as usize).ok_or_else(missing)?.vars,
+            Scope::Node(n) => &mut self.nodes.get_mut(n.0 as usize).ok_or_else(missing)?.vars,
+        })
+    }
+
+    // ---- buffers and samplers ----
+
+    /// A 1D buffer holding `data`.
+    pub fn create_buffer<T: RtData + Send + Sync>(&mut self, ty: BufferType, data: Vec<T>) -> BufferId {
+        let len = data.len() as u32;
+        self.buffers.push(BufferRec { storage: Box::new(Typed::new(data)), ty, width: len, height: 1, dims: 1 });
+        BufferId(self.buffers.len() as u32 - 1)
+    }
+
+    /// A 2D buffer of `width` x `height` zeroed elements.
+    pub fn create_buffer_2d<T: RtData + Send + Sync>(&mut self, ty: BufferType, width: u32, height: u32) -> Result<BufferId> {
+        let n = (width as u64) * (height as u64);
+        if n > (u32::MAX as u64) {
+            return Err(RtError::BadBuffer { buffer: self.buffers.len() as u32, problem: format!("{width}x{height} elements do not fit in 32-bit indices") });
+        }
+        let zero = T::read_words(&vec![0u32; T::LAYOUT.words as usize]);
+        self.buffers.push(BufferRec { storage: Box::new(Typed::new(vec![zero; n as usize])), ty, width, height, dims: 2 });
+        Ok(BufferId(self.buffers.len() as u32 - 1))
+    }
+
+    fn typed<T: RtData + Send + Sync>(&self, b: BufferId) -> Result<&Typed<T>> {
+        let rec = self.buffers.get(b.0 as usize).ok_or_else(|| RtError::InvalidHandle(format!("{b:?}")))?;
+        rec.storage.as_any().downcast_ref::<Typed<T>>().ok_or_else(|| RtError::BadBuffer {
+            buffer: b.0,
+            problem: format!("holds `{}`, not `{}`", rec.storage.layout().rust, T::LAYOUT.rust),
+        })
+    }
+
+    /// Reads a buffer's elements back (row-major for 2D buffers).
+    pub fn read_buffer<T: RtData + Send + Sync>(&self, b: BufferId) -> Result<Vec<T>> {
+        Ok(self.typed::<T>(b)?.to_vec())
+    }
+
+    /// Overwrites a buffer's elements (same count). Never relinks.
+    pub fn write_buffer<T: RtData + Send + Sync>(&mut self, b: BufferId, data: &[T]) -> Result<()> {
+        let len = self.typed::<T>(b)?.len();
+        if data.len() != len {
+            return Err(RtError::BadBuffer { buffer: b.0, problem: format!("{} elements written to a buffer of {len}", data.len()) });
+        }
+        let rec = &mut self.buffers[b.0 as usize];
+        rec.storage.as_any_mut().downcast_mut::<Typed<T>>().expect("checked above").write(data);
+        Ok(())
+    }
+
+    /// `(width, height)` of a buffer (height 1 for 1D buffers).
+    pub fn buffer_size(&self, b: BufferId) -> Result<(u32, u32)> {
+        let rec = self.buffers.get(b.0 as usize).ok_or_else(|| RtError::InvalidHandle(format!("{b:?}")))?;
+        Ok((rec.width, rec.height))
+    }
+
+    /// A sampler over RGBA texels (row-major, `width * height` of them).
+    pub fn create_sampler(&mut self, texels: Vec<Vec4>, width: u32, height: u32, wrap: WrapMode, filter: FilterMode) -> Result<SamplerId> {
+        if texels.len() != width as usize * height as usize || texels.is_empty() {
+            return Err(RtError::BadBuffer {
+                buffer: self.samplers.len() as u32,
+                problem: format!("{} texels for a {width}x{height} texture", texels.len()),
+            });
+        }
+        self.samplers.push(SamplerRec { texels: texels.into_boxed_slice(), width, height, wrap, filter });
+        Ok(SamplerId(self.samplers.len() as u32 - 1))
+    }
+
+    /// A sampler from an image (8-bit channels map to `[0, 1]`, float
+    /// channels are kept as they are).
+    pub fn create_sampler_from_image(&mut self, image: &image::DynamicImage, wrap: WrapMode, filter: FilterMode) -> Result<SamplerId> {
+        let rgba = image.to_rgba32f();
+        let (w, h) = rgba.dimensions();
+        let texels = rgba.pixels().map(|p| Vec4::from_array(p.0)).collect();
+        self.create_sampler(texels, w, h, wrap, filter)
+    }
+
+    // ---- launching ----
+
+    /// Runs entry point `entry` over `width` x `height` launch indices.
+    pub fn launch(&mut self, entry: u32, width: u32, height: u32) -> Result<LaunchReport> {
+        backend::launch(self, entry, width, height)
+    }
+
+    /// A 1D launch of `width` indices.
+    pub fn launch_1d(&mut self, entry: u32, width: u32) -> Result<LaunchReport> {
+        self.launch(entry, width, 1)
+    }
+}
+
+fn checked_inverse(m: Mat4) -> Result<Mat4> {
+    let det = m.determinant();
+    if !det.is_finite() || det.abs() < 1e-12 || !m.is_finite() {
+        return Err(RtError::BadTransform { problem: format!("the matrix is singular or not finite: {m:?}") });
+    }
+    Ok(m.inverse())
+}

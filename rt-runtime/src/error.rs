@@ -1,0 +1,81 @@
+//! Every way a host call, a link or a launch can fail, each naming what is
+//! at fault (the program with its Rust file and line, the variable, the
+//! scope, the handle).
+
+use rt_std::program::ProgramKind;
+
+/// A runtime error.
+#[derive(Debug, thiserror::Error)]
+pub enum RtError {
+    #[error("`{program}` ({location}) is a {found:?} program, but {slot} takes a {expected:?} program")]
+    WrongProgramKind { program: &'static str, location: String, found: ProgramKind, expected: ProgramKind, slot: String },
+    #[error(
+        "variable `{variable}` of {kind:?} program `{program}` ({location}) is set in no scope (searched, innermost first: {searched})"
+    )]
+    VariableNotFound { program: &'static str, location: String, kind: ProgramKind, variable: String, searched: String },
+    #[error(
+        "variable `{variable}` of program `{program}` ({location}) is declared `{declared}`, but the {scope} scope sets it to `{found}`"
+    )]
+    VariableType {
+        program: &'static str,
+        location: String,
+        variable: String,
+        declared: String,
+        scope: String,
+        found: String,
+    },
+    #[error("ray type {ray_type} has no miss program (set one with `set_miss_program`)")]
+    NoMissProgram { ray_type: u32 },
+    #[error("entry point {entry} has no ray generation program")]
+    NoRayGeneration { entry: u32 },
+    #[error("entry point {entry} does not exist: the context has {count} (see `set_entry_point_count`)")]
+    NoSuchEntryPoint { entry: u32, count: u32 },
+    #[error("ray type {ray_type} does not exist: the context has {count} (see `set_ray_type_count`)")]
+    NoSuchRayType { ray_type: u32, count: u32 },
+    #[error(
+        "payload types disagree on ray type {ray_type}: `{a}` ({a_location}) takes `{a_type}` but `{b}` ({b_location}) takes `{b_type}`"
+    )]
+    PayloadMismatch {
+        ray_type: u32,
+        a: &'static str,
+        a_location: String,
+        a_type: &'static str,
+        b: &'static str,
+        b_location: String,
+        b_type: &'static str,
+    },
+    #[error("program `{program}` ({location}) traces a `{payload}` payload, but no ray type's programs take one")]
+    TracedPayloadUnused { program: &'static str, location: String, payload: &'static str },
+    #[error(
+        "attribute types disagree: intersection program `{intersection}` ({intersection_location}) reports `{reported}`, but `{hit}` ({hit_location}) takes `{taken}`"
+    )]
+    AttributeMismatch {
+        intersection: &'static str,
+        intersection_location: String,
+        reported: &'static str,
+        hit: &'static str,
+        hit_location: String,
+        taken: &'static str,
+    },
+    #[error("{0} is not a valid handle of this context")]
+    InvalidHandle(String),
+    #[error("acceleration builder `{builder}` cannot be honoured: {reason}")]
+    UnsupportedBuilder { builder: &'static str, reason: &'static str },
+    #[error("geometry {geometry}: {problem}")]
+    BadGeometry { geometry: u32, problem: String },
+    #[error("transform: {problem}")]
+    BadTransform { problem: String },
+    #[error("buffer {buffer}: {problem}")]
+    BadBuffer { buffer: u32, problem: String },
+    #[error("launch of {width}x{height}: {problem}")]
+    BadLaunch { width: u32, height: u32, problem: String },
+    #[error("program `{program}` ({location}) declares {count} variables; at most {max} are supported")]
+    TooManyVariables { program: &'static str, location: String, count: usize, max: usize },
+    #[error("the scene graph has a cycle through node {node}")]
+    GraphCycle { node: u32 },
+    #[error("writing {path}: {problem}")]
+    Image { path: String, problem: String },
+}
+
+/// Results of the runtime.
+pub type Result<T, E = RtError> = std::result::Result<T, E>;
