@@ -9,7 +9,7 @@
 //! | `TriangleKdTree` | — | obvhs builds no kd-trees: an error, not a silent remap |
 //! | `NoAccel` | a single leaf holding every primitive | linear scan |
 
-use glam::Vec3;
+use glam::{Mat4, Vec3};
 use obvhs::BvhBuildParams;
 use obvhs::aabb::Aabb as OAabb;
 use obvhs::bvh2::Bvh2;
@@ -131,7 +131,14 @@ impl Bvh {
     /// Visits the primitives whose leaves the ray segment `(tmin, tmax())`
     /// enters, nearest leaves first; `visit` returns false to stop.
     /// `tmax` is re-read after every leaf so closer hits prune the search.
-    pub fn traverse(&self, origin: Vec3, inv_dir: Vec3, tmin: f32, tmax: &dyn Fn() -> f32, visit: &mut dyn FnMut(u32) -> bool) {
+    pub fn traverse(
+        &self,
+        origin: Vec3,
+        inv_dir: Vec3,
+        tmin: f32,
+        tmax: &dyn Fn() -> f32,
+        visit: &mut dyn FnMut(u32) -> bool,
+    ) {
         let nodes = &self.bvh.nodes;
         if nodes.is_empty() {
             return;
@@ -181,4 +188,194 @@ impl Bvh {
             }
         }
     }
+}
+
+// ---- per-node structures of a context, shared by the backends ----
+
+use crate::backend::link::{self, Record};
+use crate::context::Context;
+use crate::error::Result;
+use crate::scene::{GeometryKind, NodeKind, TriangleMesh};
+use rt_std::cpu::{CpuArgs, CpuResult, ExecutionContext};
+
+/// Built acceleration structures, kept across launches and rebuilt only
+/// when the graph's shape changes (refit when geometry moves).
+#[derive(Default)]
+pub(crate) struct AccelCache {
+    pub(crate) nodes: Vec<Option<NodeAccel>>,
+    shape_version: u64,
+    built_version: Option<u64>,
+    moved: bool,
+    /// How many full builds and refits happened (for tests).
+    pub builds: u64,
+    pub refits: u64,
+}
+
+impl AccelCache {
+    pub fn shape_changed(&mut self) {
+        self.shape_version += 1;
+    }
+
+    pub fn geometry_moved(&mut self) {
+        self.moved = true;
+    }
+}
+
+pub(crate) enum NodeAccel {
+    /// A geometry group: a BVH over `(instance, primitive)` pairs.
+    Prims { bvh: Bvh, prims: Vec<(u32, u32)>, bounds: OAabb },
+    /// A group: a BVH over its children's bounds.
+    Children { bvh: Bvh, bounds: OAabb },
+    /// Transforms and selectors: just bounds.
+    Bounds(OAabb),
+}
+
+impl NodeAccel {
+    pub(crate) fn bounds(&self) -> OAabb {
+        match self {
+            NodeAccel::Prims { bounds, .. } | NodeAccel::Children { bounds, .. } | NodeAccel::Bounds(bounds) => *bounds,
+        }
+    }
+}
+
+fn triangle_bounds(mesh: &TriangleMesh, t: usize) -> OAabb {
+    let [a, b, c] = mesh.indices[t].map(|i| mesh.positions[i as usize]);
+    to_oaabb(a.min(b).min(c), a.max(b).max(c))
+}
+
+fn transform_bounds(m: Mat4, b: &OAabb) -> OAabb {
+    if b.min.x > b.max.x {
+        return *b;
+    }
+    let mut out = OAabb::empty();
+    for i in 0..8 {
+        let p = Vec3::new(
+            if i & 1 == 0 { b.min.x } else { b.max.x },
+            if i & 2 == 0 { b.min.y } else { b.max.y },
+            if i & 4 == 0 { b.min.z } else { b.max.z },
+        );
+        out.extend(m.transform_point3(p).into());
+    }
+    out
+}
+
+/// Primitive bounds of a geometry group, in the order of `prims`.
+fn prim_bounds(ctx: &Context, children: &[crate::GeometryInstanceId]) -> Result<(Vec<(u32, u32)>, Vec<OAabb>, bool)> {
+    let mut prims = Vec::new();
+    let mut bounds = Vec::new();
+    let mut all_triangles = true;
+    for gi in children {
+        let rec = &ctx.instances[gi.index() as usize];
+        let geometry = &ctx.geometries[rec.geometry.index() as usize];
+        match &geometry.kind {
+            GeometryKind::Triangles(mesh) => {
+                for t in 0..mesh.indices.len() {
+                    prims.push((gi.index(), t as u32));
+                    bounds.push(triangle_bounds(mesh, t));
+                }
+            }
+            GeometryKind::Custom { primitive_count, bounding_box, .. } => {
+                all_triangles = false;
+                let call = link::resolve(
+                    ctx,
+                    *bounding_box,
+                    Record { instance: Some(*gi), geometry: Some(rec.geometry), ..Record::default() },
+                )?;
+                for p in 0..*primitive_count {
+                    let refs = link::var_refs(&call);
+                    let mut args =
+                        CpuArgs { payload: None, attributes: None, primitive: p, variables: &refs[..call.vars.len()] };
+                    let (r, _) = rt_std::cpu::with_context(ExecutionContext::DEFAULT, || (call.desc.cpu)(&mut args));
+                    let b = match r {
+                        CpuResult::Aabb(b) if b.min.is_finite() && b.max.is_finite() => to_oaabb(b.min, b.max),
+                        // A primitive without finite bounds can never be hit.
+                        _ => OAabb::empty(),
+                    };
+                    prims.push((gi.index(), p));
+                    bounds.push(b);
+                }
+            }
+        }
+    }
+    Ok((prims, bounds, all_triangles))
+}
+
+pub(crate) fn build_accels(ctx: &Context, cache: &mut AccelCache) -> Result<()> {
+    let order = link::nodes_post_order(ctx)?;
+    let refit = cache.built_version == Some(cache.shape_version) && cache.nodes.len() == ctx.nodes.len();
+    if refit && !cache.moved {
+        return Ok(());
+    }
+    let mut built: Vec<Option<NodeAccel>> = std::mem::take(&mut cache.nodes);
+    built.resize_with(ctx.nodes.len(), || None);
+    for n in order {
+        let i = n.index() as usize;
+        let node = &ctx.nodes[i];
+        let new = match &node.kind {
+            NodeKind::GeometryGroup { children, accel: a } => {
+                let (prims, bounds, all_tris) = prim_bounds(ctx, children)?;
+                let total = bounds.iter().fold(OAabb::empty(), |acc, b| acc.union(b));
+                match built[i].take() {
+                    Some(NodeAccel::Prims { mut bvh, prims: old, .. }) if refit && old == prims => {
+                        bvh.refit(&bounds);
+                        NodeAccel::Prims { bvh, prims, bounds: total }
+                    }
+                    _ => {
+                        let tris: Option<Vec<obvhs::triangle::Triangle>> = all_tris.then(|| {
+                            prims
+                                .iter()
+                                .map(|(gi, t)| {
+                                    let rec = &ctx.instances[*gi as usize];
+                                    let GeometryKind::Triangles(mesh) =
+                                        &ctx.geometries[rec.geometry.index() as usize].kind
+                                    else {
+                                        unreachable!("all primitives are triangles")
+                                    };
+                                    let [a, b, c] =
+                                        mesh.indices[*t as usize].map(|v| mesh.positions[v as usize].into());
+                                    obvhs::triangle::Triangle { v0: a, v1: b, v2: c }
+                                })
+                                .collect()
+                        });
+                        let bvh = build(a.builder, &bounds, tris.as_deref())?;
+                        NodeAccel::Prims { bvh, prims, bounds: total }
+                    }
+                }
+            }
+            NodeKind::Group { children, accel: a } => {
+                let bounds: Vec<OAabb> = children
+                    .iter()
+                    .map(|c| built[c.index() as usize].as_ref().map(|b| b.bounds()).unwrap_or(OAabb::empty()))
+                    .collect();
+                let total = bounds.iter().fold(OAabb::empty(), |acc, b| acc.union(b));
+                match built[i].take() {
+                    Some(NodeAccel::Children { mut bvh, .. }) if refit => {
+                        bvh.refit(&bounds);
+                        NodeAccel::Children { bvh, bounds: total }
+                    }
+                    _ => NodeAccel::Children { bvh: build(a.builder, &bounds, None)?, bounds: total },
+                }
+            }
+            NodeKind::Transform { matrix, child, .. } => {
+                let b = built[child.index() as usize].as_ref().map(|b| b.bounds()).unwrap_or(OAabb::empty());
+                NodeAccel::Bounds(transform_bounds(*matrix, &b))
+            }
+            NodeKind::Selector { children, .. } => NodeAccel::Bounds(
+                children
+                    .iter()
+                    .filter_map(|c| built[c.index() as usize].as_ref().map(|b| b.bounds()))
+                    .fold(OAabb::empty(), |acc, b| acc.union(&b)),
+            ),
+        };
+        built[i] = Some(new);
+    }
+    if refit {
+        cache.refits += 1;
+    } else {
+        cache.builds += 1;
+    }
+    cache.nodes = built;
+    cache.built_version = Some(cache.shape_version);
+    cache.moved = false;
+    Ok(())
 }

@@ -74,7 +74,7 @@ pub struct Context {
     pub(crate) print_enabled: bool,
     pub(crate) print_launch_index: Option<glam::UVec2>,
     pub(crate) backend: Backend,
-    pub(crate) accels: crate::backend::cpu::AccelCache,
+    pub(crate) accels: crate::accel::AccelCache,
 }
 
 impl Default for Context {
@@ -243,7 +243,11 @@ impl Context {
         if positions.len() != mesh.positions.len() {
             return Err(RtError::BadGeometry {
                 geometry: g.0,
-                problem: format!("{} positions given for {} vertices; create a new geometry to change topology", positions.len(), mesh.positions.len()),
+                problem: format!(
+                    "{} positions given for {} vertices; create a new geometry to change topology",
+                    positions.len(),
+                    mesh.positions.len()
+                ),
             });
         }
         let mut moved = mesh.clone();
@@ -256,7 +260,11 @@ impl Context {
 
     pub fn create_material(&mut self) -> MaterialId {
         let n = self.ray_type_count() as usize;
-        self.materials.push(MaterialRec { closest_hit: vec![None; n], any_hit: vec![None; n], vars: VarScope::default() });
+        self.materials.push(MaterialRec {
+            closest_hit: vec![None; n],
+            any_hit: vec![None; n],
+            vars: VarScope::default(),
+        });
         MaterialId(self.materials.len() as u32 - 1)
     }
 
@@ -286,9 +294,16 @@ impl Context {
             return Err(RtError::InvalidHandle(format!("{m:?}")));
         }
         if materials.is_empty() {
-            return Err(RtError::BadGeometry { geometry: g.0, problem: "a geometry instance needs at least one material".into() });
+            return Err(RtError::BadGeometry {
+                geometry: g.0,
+                problem: "a geometry instance needs at least one material".into(),
+            });
         }
-        self.instances.push(GeometryInstanceRec { geometry: g, materials: materials.to_vec(), vars: VarScope::default() });
+        self.instances.push(GeometryInstanceRec {
+            geometry: g,
+            materials: materials.to_vec(),
+            vars: VarScope::default(),
+        });
         self.accels.shape_changed();
         Ok(GeometryInstanceId(self.instances.len() as u32 - 1))
     }
@@ -402,13 +417,27 @@ impl Context {
     }
 
     /// A 2D buffer of `width` x `height` zeroed elements.
-    pub fn create_buffer_2d<T: RtData + Send + Sync>(&mut self, ty: BufferType, width: u32, height: u32) -> Result<BufferId> {
+    pub fn create_buffer_2d<T: RtData + Send + Sync>(
+        &mut self,
+        ty: BufferType,
+        width: u32,
+        height: u32,
+    ) -> Result<BufferId> {
         let n = (width as u64) * (height as u64);
         if n > (u32::MAX as u64) {
-            return Err(RtError::BadBuffer { buffer: self.buffers.len() as u32, problem: format!("{width}x{height} elements do not fit in 32-bit indices") });
+            return Err(RtError::BadBuffer {
+                buffer: self.buffers.len() as u32,
+                problem: format!("{width}x{height} elements do not fit in 32-bit indices"),
+            });
         }
         let zero = T::read_words(&vec![0u32; T::LAYOUT.words as usize]);
-        self.buffers.push(BufferRec { storage: Box::new(Typed::new(vec![zero; n as usize])), ty, width, height, dims: 2 });
+        self.buffers.push(BufferRec {
+            storage: Box::new(Typed::new(vec![zero; n as usize])),
+            ty,
+            width,
+            height,
+            dims: 2,
+        });
         Ok(BufferId(self.buffers.len() as u32 - 1))
     }
 
@@ -429,7 +458,10 @@ impl Context {
     pub fn write_buffer<T: RtData + Send + Sync>(&mut self, b: BufferId, data: &[T]) -> Result<()> {
         let len = self.typed::<T>(b)?.len();
         if data.len() != len {
-            return Err(RtError::BadBuffer { buffer: b.0, problem: format!("{} elements written to a buffer of {len}", data.len()) });
+            return Err(RtError::BadBuffer {
+                buffer: b.0,
+                problem: format!("{} elements written to a buffer of {len}", data.len()),
+            });
         }
         let rec = &mut self.buffers[b.0 as usize];
         rec.storage.as_any_mut().downcast_mut::<Typed<T>>().expect("checked above").write(data);
@@ -443,7 +475,14 @@ impl Context {
     }
 
     /// A sampler over RGBA texels (row-major, `width * height` of them).
-    pub fn create_sampler(&mut self, texels: Vec<Vec4>, width: u32, height: u32, wrap: WrapMode, filter: FilterMode) -> Result<SamplerId> {
+    pub fn create_sampler(
+        &mut self,
+        texels: Vec<Vec4>,
+        width: u32,
+        height: u32,
+        wrap: WrapMode,
+        filter: FilterMode,
+    ) -> Result<SamplerId> {
         if texels.len() != width as usize * height as usize || texels.is_empty() {
             return Err(RtError::BadBuffer {
                 buffer: self.samplers.len() as u32,
@@ -456,7 +495,12 @@ impl Context {
 
     /// A sampler from an image (8-bit channels map to `[0, 1]`, float
     /// channels are kept as they are).
-    pub fn create_sampler_from_image(&mut self, image: &image::DynamicImage, wrap: WrapMode, filter: FilterMode) -> Result<SamplerId> {
+    pub fn create_sampler_from_image(
+        &mut self,
+        image: &image::DynamicImage,
+        wrap: WrapMode,
+        filter: FilterMode,
+    ) -> Result<SamplerId> {
         let rgba = image.to_rgba32f();
         let (w, h) = rgba.dimensions();
         let texels = rgba.pixels().map(|p| Vec4::from_array(p.0)).collect();

@@ -8,7 +8,13 @@ use rt_std::program::ProgramKind;
 #[derive(Debug, thiserror::Error)]
 pub enum RtError {
     #[error("`{program}` ({location}) is a {found:?} program, but {slot} takes a {expected:?} program")]
-    WrongProgramKind { program: &'static str, location: String, found: ProgramKind, expected: ProgramKind, slot: String },
+    WrongProgramKind {
+        program: &'static str,
+        location: String,
+        found: ProgramKind,
+        expected: ProgramKind,
+        slot: String,
+    },
     #[error(
         "variable `{variable}` of {kind:?} program `{program}` ({location}) is set in no scope (searched, innermost first: {searched})"
     )]

@@ -87,10 +87,9 @@ impl TriangleMesh {
                 return Err(format!("triangle {t} uses vertex {bad}, but there are {n} vertices"));
             }
         }
-        for (what, len) in [
-            ("normals", self.normals.as_ref().map(Vec::len)),
-            ("texcoords", self.texcoords.as_ref().map(Vec::len)),
-        ] {
+        for (what, len) in
+            [("normals", self.normals.as_ref().map(Vec::len)), ("texcoords", self.texcoords.as_ref().map(Vec::len))]
+        {
             if let Some(len) = len
                 && len != self.positions.len()
             {

@@ -40,7 +40,11 @@ pub fn lookup_order(kind: ProgramKind) -> &'static [ScopeKind] {
 #[derive(Clone)]
 pub enum VarValue {
     /// Plain data: its layout, its heap words (GPU) and the Rust value (CPU).
-    Data { layout: TypeLayout, words: Vec<u32>, value: Arc<dyn Any + Send + Sync> },
+    Data {
+        layout: TypeLayout,
+        words: Vec<u32>,
+        value: Arc<dyn Any + Send + Sync>,
+    },
     Buffer(BufferId),
     Sampler(SamplerId),
     Object(NodeId),

@@ -98,6 +98,10 @@ pub struct VariableDescriptor {
     pub ty: TypeLayout,
     /// What kind of thing it is.
     pub kind: VariableKind,
+    /// The WGSL function that reads the variable from heap words
+    /// (`rt_load_vec3f(w: u32) -> vec3<f32>`); the linker calls it to pass
+    /// variables from a scope record to the program.
+    pub wgsl_load: &'static str,
 }
 
 /// A named WGSL item (struct or function) that programs may share; the

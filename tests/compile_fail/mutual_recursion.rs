@@ -1,5 +1,7 @@
-// Mutual recursion between helpers: reported once, at the call that closes
-// the cycle.
+// Mutual recursion between helpers. Each helper's macro waits for the other's
+// (see rt_compiler::expand), so neither is ever defined and rustc reports
+// "cannot find macro" at both calls: a known weak message, pinned here.
+// Direct recursion gets a proper message (recursion.rs).
 use rt_std::prelude::*;
 
 #[rt_function]

@@ -13,7 +13,9 @@ fn doc_of(name: &str) -> Option<String> {
         let lines: Vec<&str> = text.lines().collect();
         let pos = lines.iter().position(|l| {
             let l = l.trim_start();
-            l.starts_with(&format!("pub fn {name}(")) || l.starts_with(&format!("pub fn {name}<")) || *l == format!("macro_rules! {name} {{")
+            l.starts_with(&format!("pub fn {name}("))
+                || l.starts_with(&format!("pub fn {name}<"))
+                || *l == format!("macro_rules! {name} {{")
         });
         if let Some(pos) = pos {
             let mut doc = Vec::new();
@@ -37,7 +39,12 @@ fn rt_std_docs_match_the_compiler_table() {
     for i in INTRINSICS {
         let doc = doc_of(i.name).unwrap_or_else(|| panic!("rt-std has no `{}`", i.name));
         let line = format!("/// {}", i.callers.doc_line());
-        assert!(doc.lines().any(|l| l == line), "`{}` should document `{}`, its docs are:\n{doc}", i.name, i.callers.doc_line());
+        assert!(
+            doc.lines().any(|l| l == line),
+            "`{}` should document `{}`, its docs are:\n{doc}",
+            i.name,
+            i.callers.doc_line()
+        );
         let alias = format!("#[doc(alias = \"{}\")]", i.optix);
         assert!(doc.contains(&alias), "`{}` should carry {alias}", i.name);
     }

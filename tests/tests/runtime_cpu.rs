@@ -155,7 +155,12 @@ fn camera(extent: f32) -> (Context, BufferId) {
     (ctx, out)
 }
 
-fn sphere_scene(ctx: &mut Context, closest_hit: &'static rt_std::program::ProgramDescriptor, center: Vec3, radius: f32) -> (NodeId, MaterialId, GeometryInstanceId) {
+fn sphere_scene(
+    ctx: &mut Context,
+    closest_hit: &'static rt_std::program::ProgramDescriptor,
+    center: Vec3,
+    radius: f32,
+) -> (NodeId, MaterialId, GeometryInstanceId) {
     let isect = ctx.create_program(&sphere_intersect::PROGRAM);
     let bounds = ctx.create_program(&sphere_bounds::PROGRAM);
     let geom = ctx.create_custom_geometry(1, isect, bounds).unwrap();
@@ -331,7 +336,8 @@ fn user_exception_reaches_the_exception_program_and_other_pixels_are_untouched()
     ctx.set_exception_program(0, ex).unwrap();
     let report = ctx.launch(0, W, W).unwrap();
     let img = ctx.read_buffer::<Vec4>(out).unwrap();
-    let center = report.exceptions.iter().find(|e| e.launch_index == UVec2::new(W / 2, W / 2)).expect("center pixel threw");
+    let center =
+        report.exceptions.iter().find(|e| e.launch_index == UVec2::new(W / 2, W / 2)).expect("center pixel threw");
     assert_eq!(center.code, EXCEPTION_USER + 7);
     assert_eq!(pixel(&img, W / 2, W / 2), Vec4::new(1.0, 0.0, 1.0, (EXCEPTION_USER + 7) as f32));
     assert_eq!(pixel(&img, 0, 0).truncate(), BG);

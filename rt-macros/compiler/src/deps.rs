@@ -108,7 +108,10 @@ impl<'ast> Visit<'ast> for Deps {
                 if !is_builtin_type_name(owner) && owner.chars().next().is_some_and(|c| c.is_uppercase()) {
                     let mut owner_path = p.path.clone();
                     owner_path.segments.pop();
-                    let owner_path = syn::Path { leading_colon: owner_path.leading_colon, segments: owner_path.segments.into_pairs().map(|p| p.into_value()).collect() };
+                    let owner_path = syn::Path {
+                        leading_colon: owner_path.leading_colon,
+                        segments: owner_path.segments.into_pairs().map(|p| p.into_value()).collect(),
+                    };
                     self.add(&owner_path);
                 } else if !is_builtin_type_name(owner) {
                     self.add(&p.path);
@@ -157,7 +160,8 @@ impl<'ast> Visit<'ast> for Deps {
 
     fn visit_macro(&mut self, m: &'ast syn::Macro) {
         // `rt_printf!(fmt, args...)`: look into the arguments.
-        if let Ok(args) = m.parse_body_with(syn::punctuated::Punctuated::<syn::Expr, syn::Token![,]>::parse_terminated) {
+        if let Ok(args) = m.parse_body_with(syn::punctuated::Punctuated::<syn::Expr, syn::Token![,]>::parse_terminated)
+        {
             for a in &args {
                 self.visit_expr(a);
             }

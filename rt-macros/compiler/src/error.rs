@@ -58,7 +58,11 @@ impl Errors {
 
     /// `compile_error!`s for the errors to show (silent ones left out).
     pub fn to_compile_errors(&self) -> proc_macro2::TokenStream {
-        self.0.iter().filter(|e| !e.is_silent()).map(|e| syn::Error::new(e.span, &e.message).to_compile_error()).collect()
+        self.0
+            .iter()
+            .filter(|e| !e.is_silent())
+            .map(|e| syn::Error::new(e.span, &e.message).to_compile_error())
+            .collect()
     }
 }
 

@@ -183,15 +183,14 @@ fn with_errors(e: Errors, item: TokenStream) -> TokenStream {
 /// The errors as one expression, of whatever type the context wants:
 /// `{ compile_error!(a); compile_error!(b) }`.
 fn error_expr(e: &Errors) -> TokenStream {
-    let errs: Vec<TokenStream> = e
-        .0
-        .iter()
-        .filter(|e| !e.is_silent())
-        .map(|e| {
-            let msg = &e.message;
-            quote_spanned!(e.span=> ::core::compile_error!(#msg))
-        })
-        .collect();
+    let errs: Vec<TokenStream> =
+        e.0.iter()
+            .filter(|e| !e.is_silent())
+            .map(|e| {
+                let msg = &e.message;
+                quote_spanned!(e.span=> ::core::compile_error!(#msg))
+            })
+            .collect();
     match errs.split_last() {
         Some((last, rest)) => quote!({ #(#rest;)* #last }),
         None => quote!(::core::compile_error!("rt_program failed")),
@@ -242,11 +241,13 @@ pub fn collect(input: TokenStream) -> TokenStream {
     let mut done = get("done");
     done.extend(def);
     let entry = get("entry");
-    let todo: Vec<syn::Path> =
-        match syn::parse::Parser::parse2(syn::punctuated::Punctuated::<syn::Path, syn::Token![,]>::parse_terminated, get("todo")) {
-            Ok(p) => p.into_iter().collect(),
-            Err(e) => return e.to_compile_error(),
-        };
+    let todo: Vec<syn::Path> = match syn::parse::Parser::parse2(
+        syn::punctuated::Punctuated::<syn::Path, syn::Token![,]>::parse_terminated,
+        get("todo"),
+    ) {
+        Ok(p) => p.into_iter().collect(),
+        Err(e) => return e.to_compile_error(),
+    };
     match todo.split_first() {
         Some((first, rest)) => chain_call(first, rest, done, &entry),
         None => finish(&entry, done),
@@ -314,7 +315,7 @@ fn finish(entry: &TokenStream, done: TokenStream) -> TokenStream {
     match kw.as_str() {
         "program" => {
             let (Some(TokenTree::Ident(kind)), Some(TokenTree::Group(g))) = (it.next(), it.next()) else {
-                return quote!(compile_error!("malformed rt entry");)
+                return quote!(compile_error!("malformed rt entry"););
             };
             let f: syn::ItemFn = match syn::parse2(g.stream()) {
                 Ok(f) => f,
@@ -350,7 +351,7 @@ fn finish(entry: &TokenStream, done: TokenStream) -> TokenStream {
                 (_, Some(r)) => match syn::parse2::<syn::ItemStruct>(item_tokens.clone()) {
                     Ok(s) => {
                         let mut deps = deps.clone();
-                        deps.retain(|d| d.name() != s.ident.to_string());
+                        deps.retain(|d| s.ident != d.name());
                         deps.push(Item::Struct(s.clone(), r));
                         (s.ident.clone(), lower::lower_own(Entry::Struct(&s), &deps).map(|_| ()))
                     }
@@ -452,7 +453,13 @@ fn program_output(kind: Kind, f: &syn::ItemFn, lowered: Result<Lowered, Errors>)
             Ty::Object => quote!(::rt_std::program::VariableKind::Object),
             _ => quote!(::rt_std::program::VariableKind::Value),
         };
-        quote!(::rt_std::program::VariableDescriptor { name: #n, ty: #lay, kind: #vkind })
+        let loader = match t {
+            Ty::Buffer(..) => "rt_load_RtBuffer".to_string(),
+            Ty::Sampler => "rt_load_RtSampler".to_string(),
+            Ty::Object => "rt_load_u32".to_string(),
+            other => format!("rt_load_{}", other.mangle()),
+        };
+        quote!(::rt_std::program::VariableDescriptor { name: #n, ty: #lay, kind: #vkind, wgsl_load: #loader })
     });
     let intrinsics = str_slice(&l.intrinsics);
     let traced = l.traced.iter().map(layout);
@@ -642,6 +649,16 @@ fn rt_data_impl(s: &syn::ItemStruct, role: StructRole) -> TokenStream {
                 let tyname = signature::type_text(&f.ty);
                 (words, write, read, tyname)
             }
+            syn::Type::Path(p)
+                if p.path
+                    .segments
+                    .last()
+                    .is_some_and(|s| crate::types::unsupported_type_advice(&s.ident.to_string()).is_some()) =>
+            {
+                // The lowering rejects this field and says why: leave it out of
+                // the layout rather than add rustc's `RtData` errors to it.
+                (quote!(0u32), quote!(), quote!(#ident: ::core::unreachable!()), signature::type_text(&f.ty))
+            }
             ty => {
                 let words = quote!(<#ty as ::rt_std::RtData>::LAYOUT.words);
                 let write = quote!(::rt_std::RtData::write_words(&self.#ident, &mut out[(#offset) as usize..]););
@@ -670,6 +687,7 @@ fn rt_data_impl(s: &syn::ItemStruct, role: StructRole) -> TokenStream {
             fn write_words(&self, out: &mut [u32]) {
                 #(#writes)*
             }
+            #[allow(unreachable_code)]
             fn read_words(words: &[u32]) -> Self {
                 Self { #(#reads),* }
             }

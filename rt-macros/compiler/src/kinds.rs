@@ -91,7 +91,9 @@ impl Callers {
     pub fn doc_line(self) -> String {
         match self {
             Callers::All => "Program kinds: all.".into(),
-            Callers::Only(k) => format!("Program kinds: {}.", k.iter().map(|k| k.name()).collect::<Vec<_>>().join(", ")),
+            Callers::Only(k) => {
+                format!("Program kinds: {}.", k.iter().map(|k| k.name()).collect::<Vec<_>>().join(", "))
+            }
         }
     }
 }

@@ -134,7 +134,12 @@ pub fn declared(item: &syn::Item) -> Option<Result<Declared, Error>> {
             ("rt_payload", syn::Item::Struct(s)) => Declared::Item(Item::Struct(s.clone(), StructRole::Payload)),
             ("rt_attributes", syn::Item::Struct(s)) => Declared::Item(Item::Struct(s.clone(), StructRole::Attributes)),
             ("rt_const", syn::Item::Const(c)) => Declared::Item(Item::Const(c.clone())),
-            (n, _) => return Err(Error::new(syn::spanned::Spanned::span(attr), format!("`#[{n}]` cannot be applied to this item"))),
+            (n, _) => {
+                return Err(Error::new(
+                    syn::spanned::Spanned::span(attr),
+                    format!("`#[{n}]` cannot be applied to this item"),
+                ));
+            }
         })
     })())
 }

@@ -64,7 +64,8 @@ pub fn program_params(kind: Kind, f: &syn::ItemFn) -> Result<Vec<Param>, Errors>
             params.push(Param { name, role: Role::Variable, ty: (*pt.ty).clone(), span });
             continue;
         }
-        let taken = |r: Role| params.iter().any(|p: &Param| std::mem::discriminant(&p.role) == std::mem::discriminant(&r));
+        let taken =
+            |r: Role| params.iter().any(|p: &Param| std::mem::discriminant(&p.role) == std::mem::discriminant(&r));
         let role = match (&*pt.ty, kind) {
             (syn::Type::Reference(r), Kind::ClosestHit | Kind::AnyHit) => {
                 let role = if r.mutability.is_some() {
@@ -78,10 +79,14 @@ pub fn program_params(kind: Kind, f: &syn::ItemFn) -> Result<Vec<Param>, Errors>
                     Ok((role, (*r.elem).clone()))
                 }
             }
-            (syn::Type::Reference(r), Kind::Miss) if r.mutability.is_some() && !taken(Role::Payload { mutable: true }) => {
+            (syn::Type::Reference(r), Kind::Miss)
+                if r.mutability.is_some() && !taken(Role::Payload { mutable: true }) =>
+            {
                 Ok((Role::Payload { mutable: true }, (*r.elem).clone()))
             }
-            (syn::Type::Reference(r), Kind::Visit) if r.mutability.is_none() && !taken(Role::Payload { mutable: false }) => {
+            (syn::Type::Reference(r), Kind::Visit)
+                if r.mutability.is_none() && !taken(Role::Payload { mutable: false }) =>
+            {
                 Ok((Role::Payload { mutable: false }, (*r.elem).clone()))
             }
             (syn::Type::Reference(r), Kind::Intersection)
@@ -89,7 +94,9 @@ pub fn program_params(kind: Kind, f: &syn::ItemFn) -> Result<Vec<Param>, Errors>
             {
                 Ok((Role::Attributes { mutable: true }, (*r.elem).clone()))
             }
-            (ty, Kind::Intersection | Kind::BoundingBox) if is_u32(ty) && !taken(Role::Primitive) => Ok((Role::Primitive, ty.clone())),
+            (ty, Kind::Intersection | Kind::BoundingBox) if is_u32(ty) && !taken(Role::Primitive) => {
+                Ok((Role::Primitive, ty.clone()))
+            }
             _ => Err(format!(
                 "parameter `{name}` does not fit {}, which takes {} (mark variables with `#[var]`)",
                 kind.a_program(),

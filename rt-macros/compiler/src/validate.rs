@@ -26,7 +26,8 @@ pub fn validate(wgsl: &str, map: &[(Range<usize>, Span)], fallback: Span) -> Res
             return Err(Error::new(span, format!("generated WGSL does not parse: {}{detail}", e.message())).into());
         }
     };
-    let mut validator = naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::default());
+    let mut validator =
+        naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::default());
     if let Err(e) = validator.validate(&module) {
         let range = e.spans().filter_map(|(s, _)| s.to_range()).min_by_key(|r| r.len());
         let span = locate(range);

@@ -10,196 +10,21 @@
 //! and exceptions. Intrinsics reach this backend through rt-std's
 //! thread-local execution context and the [`Tracer`] it installs.
 
-use super::link::{self, Call, MAX_VARIABLES, Record};
+use super::link::{self, Call, Record, var_refs};
 use super::{ExceptionRecord, LaunchReport};
-use crate::accel::{self, Bvh};
+use crate::accel::{NodeAccel, build_accels};
+
 use crate::context::Context;
 use crate::error::{Result, RtError};
 use crate::scene::{GeometryKind, NodeId, NodeKind, TriangleMesh};
 use glam::{Mat4, UVec2, Vec2, Vec3};
-use obvhs::aabb::Aabb as OAabb;
+
 use rayon::prelude::*;
 use rt_std::cpu::{AnyAttributes, CpuArgs, CpuResult, ExecutionContext, Tracer};
 use rt_std::program::TypeLayout;
 use rt_std::*;
 use std::any::Any;
 use std::cell::{Cell, RefCell};
-
-/// Built acceleration structures, kept across launches and rebuilt only
-/// when the graph's shape changes (refit when geometry moves).
-#[derive(Default)]
-pub(crate) struct AccelCache {
-    nodes: Vec<Option<NodeAccel>>,
-    shape_version: u64,
-    built_version: Option<u64>,
-    moved: bool,
-    /// How many full builds and refits happened (for tests).
-    pub builds: u64,
-    pub refits: u64,
-}
-
-impl AccelCache {
-    pub fn shape_changed(&mut self) {
-        self.shape_version += 1;
-    }
-
-    pub fn geometry_moved(&mut self) {
-        self.moved = true;
-    }
-}
-
-enum NodeAccel {
-    /// A geometry group: a BVH over `(instance, primitive)` pairs.
-    Prims { bvh: Bvh, prims: Vec<(u32, u32)>, bounds: OAabb },
-    /// A group: a BVH over its children's bounds.
-    Children { bvh: Bvh, bounds: OAabb },
-    /// Transforms and selectors: just bounds.
-    Bounds(OAabb),
-}
-
-impl NodeAccel {
-    fn bounds(&self) -> OAabb {
-        match self {
-            NodeAccel::Prims { bounds, .. } | NodeAccel::Children { bounds, .. } | NodeAccel::Bounds(bounds) => *bounds,
-        }
-    }
-}
-
-fn triangle_bounds(mesh: &TriangleMesh, t: usize) -> OAabb {
-    let [a, b, c] = mesh.indices[t].map(|i| mesh.positions[i as usize]);
-    accel::to_oaabb(a.min(b).min(c), a.max(b).max(c))
-}
-
-fn transform_bounds(m: Mat4, b: &OAabb) -> OAabb {
-    if b.min.x > b.max.x {
-        return *b;
-    }
-    let mut out = OAabb::empty();
-    for i in 0..8 {
-        let p = Vec3::new(
-            if i & 1 == 0 { b.min.x } else { b.max.x },
-            if i & 2 == 0 { b.min.y } else { b.max.y },
-            if i & 4 == 0 { b.min.z } else { b.max.z },
-        );
-        out.extend(m.transform_point3(p).into());
-    }
-    out
-}
-
-/// Primitive bounds of a geometry group, in the order of `prims`.
-fn prim_bounds(ctx: &Context, children: &[crate::GeometryInstanceId]) -> Result<(Vec<(u32, u32)>, Vec<OAabb>, bool)> {
-    let mut prims = Vec::new();
-    let mut bounds = Vec::new();
-    let mut all_triangles = true;
-    for gi in children {
-        let rec = &ctx.instances[gi.index() as usize];
-        let geometry = &ctx.geometries[rec.geometry.index() as usize];
-        match &geometry.kind {
-            GeometryKind::Triangles(mesh) => {
-                for t in 0..mesh.indices.len() {
-                    prims.push((gi.index(), t as u32));
-                    bounds.push(triangle_bounds(mesh, t));
-                }
-            }
-            GeometryKind::Custom { primitive_count, bounding_box, .. } => {
-                all_triangles = false;
-                let call = link::resolve(
-                    ctx,
-                    *bounding_box,
-                    Record { instance: Some(*gi), geometry: Some(rec.geometry), ..Record::default() },
-                )?;
-                for p in 0..*primitive_count {
-                    let refs = var_refs(&call);
-                    let mut args = CpuArgs { payload: None, attributes: None, primitive: p, variables: &refs[..call.vars.len()] };
-                    let (r, _) = rt_std::cpu::with_context(ExecutionContext::DEFAULT, || (call.desc.cpu)(&mut args));
-                    let b = match r {
-                        CpuResult::Aabb(b) if b.min.is_finite() && b.max.is_finite() => accel::to_oaabb(b.min, b.max),
-                        // A primitive without finite bounds can never be hit.
-                        _ => OAabb::empty(),
-                    };
-                    prims.push((gi.index(), p));
-                    bounds.push(b);
-                }
-            }
-        }
-    }
-    Ok((prims, bounds, all_triangles))
-}
-
-fn build_accels(ctx: &Context, cache: &mut AccelCache) -> Result<()> {
-    let order = link::nodes_post_order(ctx)?;
-    let refit = cache.built_version == Some(cache.shape_version) && cache.nodes.len() == ctx.nodes.len();
-    if refit && !cache.moved {
-        return Ok(());
-    }
-    let mut built: Vec<Option<NodeAccel>> = std::mem::take(&mut cache.nodes);
-    built.resize_with(ctx.nodes.len(), || None);
-    for n in order {
-        let i = n.index() as usize;
-        let node = &ctx.nodes[i];
-        let new = match &node.kind {
-            NodeKind::GeometryGroup { children, accel: a } => {
-                let (prims, bounds, all_tris) = prim_bounds(ctx, children)?;
-                let total = bounds.iter().fold(OAabb::empty(), |acc, b| acc.union(b));
-                match built[i].take() {
-                    Some(NodeAccel::Prims { mut bvh, prims: old, .. }) if refit && old == prims => {
-                        bvh.refit(&bounds);
-                        NodeAccel::Prims { bvh, prims, bounds: total }
-                    }
-                    _ => {
-                        let tris: Option<Vec<obvhs::triangle::Triangle>> = all_tris.then(|| {
-                            prims
-                                .iter()
-                                .map(|(gi, t)| {
-                                    let rec = &ctx.instances[*gi as usize];
-                                    let GeometryKind::Triangles(mesh) = &ctx.geometries[rec.geometry.index() as usize].kind else {
-                                        unreachable!("all primitives are triangles")
-                                    };
-                                    let [a, b, c] = mesh.indices[*t as usize].map(|v| mesh.positions[v as usize].into());
-                                    obvhs::triangle::Triangle { v0: a, v1: b, v2: c }
-                                })
-                                .collect()
-                        });
-                        let bvh = accel::build(a.builder, &bounds, tris.as_deref())?;
-                        NodeAccel::Prims { bvh, prims, bounds: total }
-                    }
-                }
-            }
-            NodeKind::Group { children, accel: a } => {
-                let bounds: Vec<OAabb> =
-                    children.iter().map(|c| built[c.index() as usize].as_ref().map(|b| b.bounds()).unwrap_or(OAabb::empty())).collect();
-                let total = bounds.iter().fold(OAabb::empty(), |acc, b| acc.union(b));
-                match built[i].take() {
-                    Some(NodeAccel::Children { mut bvh, .. }) if refit => {
-                        bvh.refit(&bounds);
-                        NodeAccel::Children { bvh, bounds: total }
-                    }
-                    _ => NodeAccel::Children { bvh: accel::build(a.builder, &bounds, None)?, bounds: total },
-                }
-            }
-            NodeKind::Transform { matrix, child, .. } => {
-                let b = built[child.index() as usize].as_ref().map(|b| b.bounds()).unwrap_or(OAabb::empty());
-                NodeAccel::Bounds(transform_bounds(*matrix, &b))
-            }
-            NodeKind::Selector { children, .. } => NodeAccel::Bounds(
-                children
-                    .iter()
-                    .filter_map(|c| built[c.index() as usize].as_ref().map(|b| b.bounds()))
-                    .fold(OAabb::empty(), |acc, b| acc.union(&b)),
-            ),
-        };
-        built[i] = Some(new);
-    }
-    if refit {
-        cache.refits += 1;
-    } else {
-        cache.builds += 1;
-    }
-    cache.nodes = built;
-    cache.built_version = Some(cache.shape_version);
-    cache.moved = false;
-    Ok(())
-}
 
 /// Every program use of a launch, resolved.
 struct Linked<'a> {
@@ -277,7 +102,11 @@ fn link_all<'a>(ctx: &'a Context, accels: &'a [Option<NodeAccel>], entry: u32, d
 /// Runs entry point `entry` over `width` x `height` launch indices.
 pub(crate) fn launch(ctx: &mut Context, entry: u32, width: u32, height: u32) -> Result<LaunchReport> {
     if width == 0 || height == 0 {
-        return Err(RtError::BadLaunch { width, height, problem: "a launch needs at least one index in each dimension".into() });
+        return Err(RtError::BadLaunch {
+            width,
+            height,
+            problem: "a launch needs at least one index in each dimension".into(),
+        });
     }
     let mut cache = std::mem::take(&mut ctx.accels);
     let built = build_accels(ctx, &mut cache);
@@ -317,15 +146,6 @@ fn run_index(l: &Linked<'_>, index: UVec2, report: &mut LaunchReport) {
     }
     report.rays += lane.rays.get();
     report.prints.extend(lane.prints.take().into_iter().map(|t| (index, t)));
-}
-
-/// The variable references of a call, without allocating.
-fn var_refs(call: &Call) -> [&dyn Any; MAX_VARIABLES] {
-    let mut refs: [&dyn Any; MAX_VARIABLES] = [&(); MAX_VARIABLES];
-    for (r, v) in refs.iter_mut().zip(&call.vars) {
-        *r = &**v;
-    }
-    refs
 }
 
 /// The attributes of a hit: built-in triangle values (materialised in the
@@ -469,9 +289,13 @@ impl<'a> Lane<'a> {
         let direction = w2o.transform_vector3(world_ray.direction);
         let inv_dir = direction.recip();
         match &rec.kind {
-            NodeKind::Transform { matrix, inverse, child } => self.traverse(*child, o2w * *matrix, *inverse * w2o, mask),
+            NodeKind::Transform { matrix, inverse, child } => {
+                self.traverse(*child, o2w * *matrix, *inverse * w2o, mask)
+            }
             NodeKind::Group { children, .. } => {
-                let Some(Some(NodeAccel::Children { bvh, .. })) = self.l.accels.get(node.index() as usize) else { return };
+                let Some(Some(NodeAccel::Children { bvh, .. })) = self.l.accels.get(node.index() as usize) else {
+                    return;
+                };
                 bvh.traverse(origin, inv_dir, world_ray.tmin, &|| self.tmax(), &mut |c| {
                     self.traverse(children[c as usize], o2w, w2o, mask);
                     !self.done()
@@ -480,10 +304,8 @@ impl<'a> Lane<'a> {
             NodeKind::Selector { children, .. } => {
                 let Some(call) = &self.l.visit[node.index() as usize] else { return };
                 let payload = self.search.borrow().as_ref().map(|s| s.payload);
-                let ctx = ExecutionContext {
-                    current_ray: Ray { origin, direction, ..world_ray },
-                    ..self.base_context()
-                };
+                let ctx =
+                    ExecutionContext { current_ray: Ray { origin, direction, ..world_ray }, ..self.base_context() };
                 // SAFETY: the payload pointer comes from the `&mut` the trace
                 // call holds for the whole search; nothing else uses it now.
                 let payload = payload.map(|p| unsafe { &mut *p });
@@ -495,7 +317,9 @@ impl<'a> Lane<'a> {
                 }
             }
             NodeKind::GeometryGroup { .. } => {
-                let Some(Some(NodeAccel::Prims { bvh, prims, .. })) = self.l.accels.get(node.index() as usize) else { return };
+                let Some(Some(NodeAccel::Prims { bvh, prims, .. })) = self.l.accels.get(node.index() as usize) else {
+                    return;
+                };
                 let object_ray = Ray { origin, direction, ..world_ray };
                 bvh.traverse(origin, inv_dir, world_ray.tmin, &|| self.tmax(), &mut |p| {
                     let (gi, prim) = prims[p as usize];
@@ -513,7 +337,9 @@ impl<'a> Lane<'a> {
             GeometryKind::Triangles(mesh) => {
                 let tmax = self.tmax();
                 let Some((t, u, v, front)) = intersect_triangle(mesh, prim as usize, &object_ray, tmax) else { return };
-                if (front && flags & RAY_FLAG_CULL_FRONT_FACING != 0) || (!front && flags & RAY_FLAG_CULL_BACK_FACING != 0) {
+                if (front && flags & RAY_FLAG_CULL_FRONT_FACING != 0)
+                    || (!front && flags & RAY_FLAG_CULL_BACK_FACING != 0)
+                {
                     return;
                 }
                 let [i0, i1, i2] = mesh.indices[prim as usize].map(|i| i as usize);
@@ -557,7 +383,10 @@ impl<'a> Lane<'a> {
                     world_to_object: w2o,
                     ..self.base_context()
                 };
-                let mut attrs = call.desc.cpu_attributes.map(|make| make(&vec![0u32; call.desc.attributes.map_or(0, |a| a.words) as usize]));
+                let mut attrs = call
+                    .desc
+                    .cpu_attributes
+                    .map(|make| make(&vec![0u32; call.desc.attributes.map_or(0, |a| a.words) as usize]));
                 let attr_ref = attrs.as_mut().map(|a| a.as_any_mut());
                 self.invoke(call, ctx, None, attr_ref, prim);
                 if let Some(s) = self.search.borrow_mut().as_mut() {
@@ -570,7 +399,17 @@ impl<'a> Lane<'a> {
     /// A candidate intersection at `t` (already inside `(tmin, closest)`):
     /// runs any hit and commits it unless ignored.
     #[allow(clippy::too_many_arguments)]
-    fn candidate_hit(&self, gi: u32, prim: u32, material: u32, t: f32, attributes: HitAttributes, object_ray: Ray, o2w: Mat4, w2o: Mat4) -> bool {
+    fn candidate_hit(
+        &self,
+        gi: u32,
+        prim: u32,
+        material: u32,
+        t: f32,
+        attributes: HitAttributes,
+        object_ray: Ray,
+        o2w: Mat4,
+        w2o: Mat4,
+    ) -> bool {
         let (ray_type, flags, payload, world_ray) = {
             let s = self.search.borrow();
             let s = s.as_ref().expect("inside a search");
@@ -692,7 +531,11 @@ impl Tracer for Lane<'_> {
     fn report_intersection(&self, material: u32, attributes: Option<&dyn AnyAttributes>) -> bool {
         let cand = {
             let s = self.search.borrow();
-            s.as_ref().and_then(|s| s.candidate.as_ref().map(|c| (c.instance, c.primitive, c.t, c.object_ray, c.object_to_world, c.world_to_object)))
+            s.as_ref().and_then(|s| {
+                s.candidate
+                    .as_ref()
+                    .map(|c| (c.instance, c.primitive, c.t, c.object_ray, c.object_to_world, c.world_to_object))
+            })
         };
         let Some((gi, prim, Some(t), object_ray, o2w, w2o)) = cand else { return false };
         if t >= self.tmax() {
@@ -734,7 +577,13 @@ fn intersect_triangle(mesh: &TriangleMesh, t: usize, ray: &Ray, tmax: f32) -> Op
     let [a, b, c] = mesh.indices[t].map(|i| mesh.positions[i as usize]);
     let d = ray.direction;
     let abs = d.abs();
-    let kz = if abs.x > abs.y { if abs.x > abs.z { 0 } else { 2 } } else if abs.y > abs.z { 1 } else { 2 };
+    let kz = if abs.x > abs.y {
+        if abs.x > abs.z { 0 } else { 2 }
+    } else if abs.y > abs.z {
+        1
+    } else {
+        2
+    };
     let mut kx = (kz + 1) % 3;
     let mut ky = (kx + 1) % 3;
     if d[kz] < 0.0 {

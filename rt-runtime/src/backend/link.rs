@@ -96,7 +96,8 @@ pub fn resolve(ctx: &Context, p: ProgramId, record: Record) -> Result<Call> {
         let resolved: Arc<dyn Any + Send + Sync> = match (value, v.kind) {
             (VarValue::Data { layout, value, .. }, VariableKind::Value) if layout.rust == v.ty.rust => value.clone(),
             (VarValue::Buffer(b), VariableKind::Buffer { element, dimensions, writable }) => {
-                let rec = ctx.buffers.get(b.index() as usize).ok_or_else(|| RtError::InvalidHandle(format!("{b:?}")))?;
+                let rec =
+                    ctx.buffers.get(b.index() as usize).ok_or_else(|| RtError::InvalidHandle(format!("{b:?}")))?;
                 let ok = rec.storage.layout().rust == element.rust
                     && rec.dims == dimensions
                     && (!writable || rec.ty.writable_by_programs());
@@ -106,7 +107,8 @@ pub fn resolve(ctx: &Context, p: ProgramId, record: Record) -> Result<Call> {
                 Arc::from(rec.storage.handle(dimensions, writable, rec.width, rec.height))
             }
             (VarValue::Sampler(s), VariableKind::Sampler) => {
-                let rec = ctx.samplers.get(s.index() as usize).ok_or_else(|| RtError::InvalidHandle(format!("{s:?}")))?;
+                let rec =
+                    ctx.samplers.get(s.index() as usize).ok_or_else(|| RtError::InvalidHandle(format!("{s:?}")))?;
                 Arc::new(rec.handle())
             }
             (VarValue::Object(n), VariableKind::Object) => {
@@ -232,4 +234,13 @@ pub fn nodes_post_order(ctx: &Context) -> Result<Vec<NodeId>> {
         visit(ctx, n, &mut state, &mut order)?;
     }
     Ok(order)
+}
+
+/// The variable references of a call, without allocating.
+pub fn var_refs(call: &Call) -> [&dyn Any; MAX_VARIABLES] {
+    let mut refs: [&dyn Any; MAX_VARIABLES] = [&(); MAX_VARIABLES];
+    for (r, v) in refs.iter_mut().zip(&call.vars) {
+        *r = &**v;
+    }
+    refs
 }

@@ -1,8 +1,8 @@
 //! Constants: `#[rt_const]` items of scalar, vector, array and struct type,
 //! constants computed from other constants, and `const` items inside a
 //! function body.
-use rt_std::prelude::*;
 use super::seed_common::*;
+use rt_std::prelude::*;
 
 /// Number of stratification cells per side.
 #[rt_const]

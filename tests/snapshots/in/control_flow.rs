@@ -1,8 +1,8 @@
 //! Branching: `if`/`else` as a statement and as an expression (also with a
 //! diverging branch), `else if` chains, early `return` from a program and
 //! from a helper, blocks as expressions and as scopes, and `let` shadowing.
-use rt_std::prelude::*;
 use super::seed_common::*;
+use rt_std::prelude::*;
 
 /// Buckets a value: an early return and an `else if` chain as the tail.
 #[rt_function]

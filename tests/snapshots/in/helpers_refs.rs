@@ -1,7 +1,9 @@
 //! Helpers that take references: an RNG whose state is a `&mut u32`,
 //! helpers that take and return structs, a helper that updates a `&mut`
 //! struct field by field and passes its reference on to another helper,
-//! `&T` parameters, and `mut` value parameters.
+//! `&T` parameters, and `mut` value parameters; RNG calls inside a method
+//! receiver, an out-of-order struct literal and a `match` scrutinee each
+//! run once, in Rust's order.
 use rt_std::prelude::*;
 
 /// A xorshift step: advances `state` and returns a float in [0, 1).
@@ -56,6 +58,12 @@ pub fn helpers_refs(#[var] frame: u32, #[var] samples: u32, #[var] mut out: RwBu
     }
     accumulate_noise(&mut acc, &mut seed, 4);
     let half = scaled(&acc, 0.5);
+    // Calls with side effects are evaluated once each, in source order.
     let jitter = (rand(&mut seed) * 8.0).fract();
-    out[idx] = (half.mean + jitter * 0.01).extend(half.count as f32);
+    let swapped = Accum { count: (rand(&mut seed) * 4.0) as u32, mean: Vec3::splat(rand(&mut seed)) };
+    let lobe = match (rand(&mut seed) * 3.0) as u32 {
+        0 => 0.25,
+        k => k as f32,
+    };
+    out[idx] = (half.mean + jitter * 0.01 + swapped.mean * lobe).extend((half.count + swapped.count) as f32);
 }

@@ -2,8 +2,8 @@
 //! hit point, the ray direction and normals between object and world space
 //! with `rt_transform_point`, `rt_transform_vector` and
 //! `rt_transform_normal`, for a procedural checker in object space.
-use rt_std::prelude::*;
 use super::seed_common::*;
+use rt_std::prelude::*;
 
 #[rt_program(closest_hit)]
 pub fn instanced_checker(prd: &mut Radiance, attr: &Normals, #[var] check_size: f32, #[var] colors: Buffer<Vec3>) {

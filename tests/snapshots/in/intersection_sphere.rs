@@ -1,8 +1,8 @@
 //! Custom geometry: an intersection program for a buffer of spheres that
 //! reports the nearer root the ray accepts (else the farther), and the
 //! matching bounding-box program; one of each program kind.
-use rt_std::prelude::*;
 use super::seed_common::*;
+use rt_std::prelude::*;
 
 #[rt_program(intersection)]
 pub fn sphere_intersect(prim: u32, attr: &mut Normals, #[var] spheres: Buffer<Vec4>) {

@@ -35,7 +35,7 @@ pub fn loops(#[var] n: u32, #[var] mask: u32, #[var] out: RwBuffer<f32>) {
     let mut k = slot + 1;
     let mut steps = 0;
     while k > 1 {
-        if k % 2 == 0 {
+        if k.is_multiple_of(2) {
             k /= 2;
         } else {
             k = 3 * k + 1;

@@ -1,8 +1,8 @@
 //! `match` on integers: literal arms joined with `|`, negative literals,
 //! `_` and binding catch-alls, as a statement (with an early return in an
 //! arm) and as an expression (also inside arithmetic).
-use rt_std::prelude::*;
 use super::seed_common::*;
+use rt_std::prelude::*;
 
 /// A material table written as a `match` expression.
 #[rt_function]
@@ -10,7 +10,7 @@ pub fn material_albedo(id: u32) -> Vec3 {
     match id {
         0 => vec3(0.8, 0.8, 0.8),
         1 | 2 => vec3(0.9, 0.1, 0.1),
-        3 | 4 | 5 => vec3(0.1, 0.9, 0.1),
+        4 | 7 | 9 => vec3(0.1, 0.9, 0.1),
         _ => Vec3::new(0.1, 0.1, 0.9),
     }
 }

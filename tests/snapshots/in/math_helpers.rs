@@ -2,8 +2,8 @@
 //! `refract`, `faceforward`, `smoothstep`, `step`, `saturate` and `mix`
 //! (with a scalar and with a per-component factor), as a rim-lit, banded
 //! toon shader uses them.
-use rt_std::prelude::*;
 use super::seed_common::*;
+use rt_std::prelude::*;
 
 #[rt_program(closest_hit)]
 pub fn math_helpers(

@@ -2,8 +2,8 @@
 //! products with vectors, matrices and scalars, `transpose`, `determinant`,
 //! columns by field and by `col`, and `transform_point3` and
 //! `transform_vector3`: an object-space shading frame built by hand.
-use rt_std::prelude::*;
 use super::seed_common::*;
+use rt_std::prelude::*;
 
 #[rt_program(closest_hit)]
 pub fn matrices(prd: &mut Radiance, attr: &Normals, #[var] model: Mat4, #[var] tint: Mat3) {

@@ -37,7 +37,8 @@ pub fn ops_arith(
     k *= -2;
     k /= 3;
     k %= 5;
-    out_i.store(slot, -k + (n - 1) * (n + 1) - -n);
+    let magnitude = 1.max(if n > 0 { n } else { -n });
+    out_i.store(slot, -k + (n - 1) * (n + 1) - -n + magnitude);
 
     // u32, with literals inferred as u32.
     let mut w = m + 1;

@@ -41,7 +41,12 @@ pub fn cosine_sample_hemisphere(n: Vec3, u1: f32, u2: f32) -> Vec3 {
 }
 
 #[rt_program(closest_hit)]
-pub fn path_diffuse(prd: &mut PathState, attr: &super::seed_common::Normals, #[var] albedo: Vec3, #[var] emission: Vec3) {
+pub fn path_diffuse(
+    prd: &mut PathState,
+    attr: &super::seed_common::Normals,
+    #[var] albedo: Vec3,
+    #[var] emission: Vec3,
+) {
     let ray = current_ray();
     let n = rt_transform_normal(ObjectToWorld, attr.shading_normal).normalize();
     let n = if n.dot(ray.direction) > 0.0 { -n } else { n };

@@ -1,7 +1,7 @@
 //! `rt_printf!` with no arguments, with scalars of every type (`bool`
 //! included), with vectors, with `{{`/`}}` escapes, and from a helper.
-use rt_std::prelude::*;
 use super::seed_common::*;
+use rt_std::prelude::*;
 
 /// Prints where a ray went; callable from any program kind.
 #[rt_function]

@@ -2,8 +2,8 @@
 //! with `|` and a visibility mask, next to a plain `rt_trace`; and an
 //! any-hit program that filters hits by primitive with
 //! `rt_ignore_intersection`.
-use rt_std::prelude::*;
 use super::seed_common::*;
+use rt_std::prelude::*;
 
 /// Visibility mask bit of shadow casters.
 #[rt_const]
@@ -36,7 +36,13 @@ pub fn ray_flags(
     let mut bounce = Radiance { result: Vec3::ZERO, importance: prd.importance * 0.5, depth: prd.depth + 1 };
     if prd.depth < 2 {
         let r = Ray::new(p, reflect(ray.direction, n), RADIANCE_RAY, scene_epsilon, f32::INFINITY);
-        rt_trace_with(top_object, r, &mut bounce, RAY_FLAG_CULL_FRONT_FACING | RAY_FLAG_DISABLE_ANYHIT, RAY_MASK_ALL & !MASK_CASTERS);
+        rt_trace_with(
+            top_object,
+            r,
+            &mut bounce,
+            RAY_FLAG_CULL_FRONT_FACING | RAY_FLAG_DISABLE_ANYHIT,
+            RAY_MASK_ALL & !MASK_CASTERS,
+        );
         rt_trace(top_object, r, &mut bounce);
     }
     prd.result = shadow.attenuation * n.dot(l).max(0.0) + bounce.result * 0.5;

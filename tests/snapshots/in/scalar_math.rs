@@ -10,8 +10,8 @@ pub fn scalar_math(#[var] x: f32, #[var] y: f32, #[var] out: RwBuffer<f32>) {
     let slot = launch_index().x;
     let roots = x.abs().sqrt() + x.recip() + x.powf(1.5) + (x - 2.0).powi(3) + x.powi(-2);
     let exps = x.exp() + x.exp2() + y.abs().ln() + y.abs().log2() + x.to_radians() + y.to_degrees();
-    let trig = x.sin() * y.cos() + x.tan() + x.clamp(-1.0, 1.0).asin() + y.clamp(-1.0, 1.0).acos() + x.atan()
-        + y.atan2(x);
+    let trig =
+        x.sin() * y.cos() + x.tan() + x.clamp(-1.0, 1.0).asin() + y.clamp(-1.0, 1.0).acos() + x.atan() + y.atan2(x);
     let hyper = x.sinh() + x.cosh() + x.tanh() + x.asinh() + (y.abs() + 1.0).acosh() + (x * 0.5).tanh().atanh();
     let rounding = x.floor() + x.ceil() + x.round() + x.trunc() + x.fract() + x.signum() + x.round_ties_even();
     let misc = x.mul_add(y, 1.0) + x.hypot(y) + x.min(y) + x.max(y) + f32::max(x, 0.0) + f32::min(y, PI);

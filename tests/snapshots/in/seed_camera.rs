@@ -1,6 +1,6 @@
 //! Example 1: the pinhole camera, the background and the exception program.
-use rt_std::prelude::*;
 use super::seed_common::*;
+use rt_std::prelude::*;
 
 #[rt_program(ray_generation)]
 pub fn pinhole_camera(

@@ -1,6 +1,6 @@
 //! Example 7: a convex hull of planes as custom geometry, rendered as glass.
-use rt_std::prelude::*;
 use super::seed_common::*;
+use rt_std::prelude::*;
 
 #[rt_program(intersection)]
 pub fn chull_intersect(prim: u32, attr: &mut Normals, #[var] planes: Buffer<Vec4>) {
@@ -85,8 +85,13 @@ pub fn glass(
         rt_trace(top_object, Ray::new(hit_point, reflect_dir, RADIANCE_RAY, scene_epsilon, f32::INFINITY), &mut refl);
         result += fresnel * refl.result;
         if fresnel < 1.0 {
-            let mut refr = Radiance { result: Vec3::ZERO, importance: prd.importance * (1.0 - fresnel), depth: prd.depth + 1 };
-            rt_trace(top_object, Ray::new(hit_point, refract_dir, RADIANCE_RAY, scene_epsilon, f32::INFINITY), &mut refr);
+            let mut refr =
+                Radiance { result: Vec3::ZERO, importance: prd.importance * (1.0 - fresnel), depth: prd.depth + 1 };
+            rt_trace(
+                top_object,
+                Ray::new(hit_point, refract_dir, RADIANCE_RAY, scene_epsilon, f32::INFINITY),
+                &mut refr,
+            );
             result += (1.0 - fresnel) * glass_color * refr.result;
         }
     }

@@ -1,6 +1,6 @@
 //! Example 2: ambient plus Lambert over a buffer of lights.
-use rt_std::prelude::*;
 use super::seed_common::*;
+use rt_std::prelude::*;
 
 #[rt_program(closest_hit)]
 pub fn diffuse(

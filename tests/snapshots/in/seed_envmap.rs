@@ -1,6 +1,6 @@
 //! Example 6: the miss program samples a latitude/longitude environment map.
-use rt_std::prelude::*;
 use super::seed_common::*;
+use rt_std::prelude::*;
 
 #[rt_program(miss)]
 pub fn envmap_miss(prd: &mut Radiance, #[var] envmap: Sampler2d) {

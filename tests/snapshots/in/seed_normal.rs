@@ -1,6 +1,6 @@
 //! Example 1: the normal shader.
-use rt_std::prelude::*;
 use super::seed_common::*;
+use rt_std::prelude::*;
 
 #[rt_program(closest_hit)]
 pub fn closest_hit_radiance(prd: &mut Radiance, attr: &Normals) {

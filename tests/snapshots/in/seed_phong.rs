@@ -1,6 +1,6 @@
 //! Examples 3 and 4: Blinn-Phong with shadow rays.
-use rt_std::prelude::*;
 use super::seed_common::*;
+use rt_std::prelude::*;
 
 #[rt_program(closest_hit)]
 pub fn phong(

@@ -1,6 +1,6 @@
 //! Example 5: a reflective floor, stopped by depth and by importance.
-use rt_std::prelude::*;
 use super::seed_common::*;
+use rt_std::prelude::*;
 
 #[rt_function]
 pub fn luminance(c: Vec3) -> f32 {

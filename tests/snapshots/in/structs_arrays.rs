@@ -49,16 +49,14 @@ pub fn structs_arrays(prd: &mut RampSample, #[var] ramp: Ramp) {
     prd.hits[bucket] += 1;
     prd.color = color * total;
     let first = RampStop { at: 0.0, color: Vec3::ZERO };
-    prd.ramp = Ramp {
-        stops: [first, RampStop { color, at: t }, ramp.stops[2]],
-        weights,
-        count: ramp.count + 1,
-    };
+    prd.ramp = Ramp { stops: [first, RampStop { color, at: t }, ramp.stops[2]], weights, count: ramp.count + 1 };
     prd.ramp.stops[1].color.y = t;
     prd.ramp.weights[bucket] *= 2.0;
     let mut copy = prd.ramp.stops[2];
     copy.at += 1.0;
     let mut blank = RampStop::default();
-    blank.at = copy.at;
+    if copy.at > 1.0 {
+        blank.at = copy.at;
+    }
     prd.ramp.stops[0] = blank;
 }

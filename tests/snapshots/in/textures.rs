@@ -1,8 +1,8 @@
 //! Textures: `Sampler2d::sample` with filtered normalised coordinates,
 //! `fetch` of single texels, and `size`, in a closest-hit program that
 //! shades a triangle mesh from its barycentrics and a normal map.
-use rt_std::prelude::*;
 use super::seed_common::*;
+use rt_std::prelude::*;
 
 /// What the mesh intersection reports.
 #[rt_attributes]

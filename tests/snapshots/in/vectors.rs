@@ -2,8 +2,8 @@
 //! products, lengths and distances, per-component math, interpolation,
 //! rounding, extension and truncation, swizzles, reductions, indexing and
 //! component assignment, and vector/scalar arithmetic both ways round.
-use rt_std::prelude::*;
 use super::seed_common::*;
+use rt_std::prelude::*;
 
 #[rt_program(miss)]
 pub fn vectors(prd: &mut Radiance, #[var] a: Vec3, #[var] b: Vec3, #[var] t: f32) {

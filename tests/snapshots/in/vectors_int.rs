@@ -1,5 +1,6 @@
-//! Integer vectors: `IVec`/`UVec` constructors and constants, arithmetic
-//! and bit operators, `abs`/`signum`/`min`/`max`/`clamp`/`dot`, reductions,
+//! Integer vectors: `IVec`/`UVec` constructors and constants, arithmetic,
+//! bit operators and shifts by scalars and by vectors (also as compound
+//! assignments), `abs`/`signum`/`min`/`max`/`clamp`/`dot`, reductions,
 //! conversions with `as_vec*`/`as_ivec*`/`as_uvec*`, and pixel-grid math on
 //! `launch_index()`.
 use rt_std::prelude::*;
@@ -16,11 +17,20 @@ pub fn vectors_int(#[var] tile: UVec2, #[var] offset: IVec2, #[var] mut out: RwB
     let sgn = centered.signum() * IVec2::NEG_ONE + IVec2::X - IVec2::Y;
     let mixed = (idx << 1u32) ^ (dim >> UVec2::splat(2)) | uvec2(1, 2) & !UVec2::ZERO;
     let manhattan = dist.element_sum() + dist.dot(ivec2(1, -1)) + sgn.min_element() + sgn.max_element();
-    let bits = mixed.element_product() + mixed.max_element() + UVec3::new(1, 2, 3).element_sum() + UVec2::X.x + UVec2::Y.y;
+    let bits =
+        mixed.element_product() + mixed.max_element() + UVec3::new(1, 2, 3).element_sum() + UVec2::X.x + UVec2::Y.y;
     let volume = ivec3(1, 2, 3) * 2 + 1 - IVec3::Z;
-    let corner = uvec4(in_tile.x, in_tile.y, checker, 0) + UVec4::W;
     let uv = (idx.as_vec2() + 0.5) / dim.as_vec2();
-    let back = uv.as_uvec2() + (-uv).as_ivec2().as_uvec2() + volume.as_vec3().as_uvec3().xy();
+    let mut back = uv.as_uvec2() + (-uv).as_ivec2().as_uvec2() + volume.as_vec3().as_uvec3().xy();
+    back <<= 2;
+    back = back >> ivec2(1, 0);
+    back &= 0xffff;
+    back |= UVec2::X;
+    back ^= in_tile;
+    let mut signed = volume >> 1u32;
+    signed = signed << uvec3(0, 1, 2);
+    signed ^= -1;
+    let corner = uvec4(in_tile.x, in_tile.y, checker, signed.y as u32) + UVec4::W;
     let color = vec4(uv.x, uv.y, checker as f32, 1.0) * (manhattan as f32 / 512.0) + corner.as_vec4() * 0.01;
     out[idx] = color + Vec4::splat((bits + back.x) as f32 * 1e-6);
 }

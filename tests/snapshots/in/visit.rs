@@ -1,8 +1,8 @@
 //! A visit program: a level-of-detail selector that picks which child a
 //! ray enters from the distance to the object's centre and the ray's
 //! importance, returning the child index.
-use rt_std::prelude::*;
 use super::seed_common::*;
+use rt_std::prelude::*;
 
 #[rt_program(visit)]
 pub fn lod_visit(prd: &Radiance, #[var] center: Vec3, #[var] lod_distances: Vec3, #[var] children: u32) -> u32 {

@@ -17,6 +17,10 @@ fn rt_load_f32(w: u32) -> f32 {
     return bitcast<f32>(rt_heap[w]);
 }
 
+fn rt_load_vec3f(w: u32) -> vec3<f32> {
+    return vec3<f32>(rt_load_f32(w + 0u), rt_load_f32(w + 1u), rt_load_f32(w + 2u));
+}
+
 fn rt_load_vec4f(w: u32) -> vec4<f32> {
     return vec4<f32>(rt_load_f32(w + 0u), rt_load_f32(w + 1u), rt_load_f32(w + 2u), rt_load_f32(w + 3u));
 }

@@ -12,6 +12,18 @@ struct Radiance {
     depth: i32,
 }
 
+fn rt_load_f32(w: u32) -> f32 {
+    return bitcast<f32>(rt_heap[w]);
+}
+
+fn rt_load_i32(w: u32) -> i32 {
+    return bitcast<i32>(rt_heap[w]);
+}
+
+fn rt_load_vec3f(w: u32) -> vec3<f32> {
+    return vec3<f32>(rt_load_f32(w + 0u), rt_load_f32(w + 1u), rt_load_f32(w + 2u));
+}
+
 const RADIANCE_RAY: u32 = 0u;
 
 fn rtf_luminance(c: vec3<f32>) -> f32 {

@@ -12,6 +12,35 @@ struct Radiance {
     depth: i32,
 }
 
+fn rt_load_f32(w: u32) -> f32 {
+    return bitcast<f32>(rt_heap[w]);
+}
+
+fn rt_load_i32(w: u32) -> i32 {
+    return bitcast<i32>(rt_heap[w]);
+}
+
+fn rt_load_vec3f(w: u32) -> vec3<f32> {
+    return vec3<f32>(rt_load_f32(w + 0u), rt_load_f32(w + 1u), rt_load_f32(w + 2u));
+}
+
+fn rt_powi(x: f32, n: i32) -> f32 {
+    var base = x;
+    var e = n;
+    var r = 1.0f;
+    loop {
+        if (e & 1i) != 0i {
+            r *= base;
+        }
+        e /= 2i;
+        if e == 0i {
+            break;
+        }
+        base *= base;
+    }
+    return select(r, 1.0f / r, n < 0i);
+}
+
 const RADIANCE_RAY: u32 = 0u;
 
 fn rtf_fresnel_schlick(cos_theta: f32, f0: f32) -> f32 {
@@ -40,7 +69,7 @@ fn rtp_glass(prd: ptr<function, Radiance>, attr: Normals, refraction_index: f32,
     let cos_i: f32 = -dot(ray.direction, ffn);
     let reflect_dir: vec3<f32> = reflect(ray.direction, ffn);
     let refract_dir: vec3<f32> = refract(ray.direction, ffn, eta);
-    let f0: f32 = pow(((1.0f - refraction_index) / (1.0f + refraction_index)), f32(2i));
+    let f0: f32 = rt_powi(((1.0f - refraction_index) / (1.0f + refraction_index)), 2i);
     var fresnel: f32 = rtf_fresnel_schlick(cos_i, f0);
     if (dot(refract_dir, refract_dir) == 0.0f) {
         fresnel = 1.0f;

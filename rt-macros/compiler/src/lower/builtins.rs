@@ -7,12 +7,15 @@
 use super::func::{Val, f32_literal};
 use crate::types::{F32, Scalar, Ty, U32};
 
+/// Builds a method call's WGSL from the lowered receiver and arguments.
+pub type LowerFn = Box<dyn Fn(&[String]) -> String>;
+
 /// A method's parameter types, result type and lowering (`args[0]` is the
 /// receiver).
 pub struct MethodSig {
     pub params: Vec<Ty>,
     pub ret: Ty,
-    pub lower: Box<dyn Fn(&[String]) -> String>,
+    pub lower: LowerFn,
     /// A WGSL function the lowering calls, `(name, text)`, for the module's
     /// function section.
     pub support: Option<(&'static str, &'static str)>,
@@ -107,10 +110,13 @@ pub fn method_sig(recv: &Ty, name: &str) -> Option<MethodSig> {
             // addition rounds: 0.49999997, and odd values from 2^23 on.)
             "round" => {
                 let half = if is_vec { format!("{w}(0.5)") } else { "0.5f".to_string() };
-                return sig(vec![], t, move |a| format!("(trunc({0}) + sign({0}) * step({half}, abs({0} - trunc({0}))))", a[0]));
+                return sig(vec![], t, move |a| {
+                    format!("(trunc({0}) + sign({0}) * step({half}, abs({0} - trunc({0}))))", a[0])
+                });
             }
             "signum" => {
-                let (pos, neg) = if is_vec { (format!("{w}(1.0)"), format!("{w}(-1.0)")) } else { ("1.0f".into(), "-1.0f".into()) };
+                let (pos, neg) =
+                    if is_vec { (format!("{w}(1.0)"), format!("{w}(-1.0)")) } else { ("1.0f".into(), "-1.0f".into()) };
                 let sign_bit = if is_vec {
                     format!("(bitcast<vec{n}<u32>>({{}}) & vec{n}<u32>(0x80000000u)) != vec{n}<u32>(0u)")
                 } else {
@@ -132,10 +138,14 @@ pub fn method_sig(recv: &Ty, name: &str) -> Option<MethodSig> {
             "mul_add" => return sig(vec![t.clone(), t.clone()], t, wgsl_fn("fma")),
             "is_nan" if is_scalar => return sig(vec![], Ty::Scalar(Scalar::Bool), |a| format!("({0} != {0})", a[0])),
             "is_finite" if is_scalar => {
-                return sig(vec![], Ty::Scalar(Scalar::Bool), |a| format!("(abs({}) <= {})", a[0], f32_literal(f32::MAX)));
+                return sig(vec![], Ty::Scalar(Scalar::Bool), |a| {
+                    format!("(abs({}) <= {})", a[0], f32_literal(f32::MAX))
+                });
             }
             "is_infinite" if is_scalar => {
-                return sig(vec![], Ty::Scalar(Scalar::Bool), |a| format!("(abs({}) > {})", a[0], f32_literal(f32::MAX)));
+                return sig(vec![], Ty::Scalar(Scalar::Bool), |a| {
+                    format!("(abs({}) > {})", a[0], f32_literal(f32::MAX))
+                });
             }
             "hypot" if is_scalar => return sig(vec![F32], t, |a| format!("length(vec2<f32>({}, {}))", a[0], a[1])),
             _ => {}
@@ -153,7 +163,9 @@ pub fn method_sig(recv: &Ty, name: &str) -> Option<MethodSig> {
                     });
                 }
                 "distance" => return sig(vec![t.clone()], F32, wgsl_fn("distance")),
-                "distance_squared" => return sig(vec![t.clone()], F32, |a| format!("dot({0} - {1}, {0} - {1})", a[0], a[1])),
+                "distance_squared" => {
+                    return sig(vec![t.clone()], F32, |a| format!("dot({0} - {1}, {0} - {1})", a[0], a[1]));
+                }
                 "lerp" => return sig(vec![t.clone(), F32], t, wgsl_fn("mix")),
                 "reflect" if n == 3 => return sig(vec![v3.clone()], v3, wgsl_fn("reflect")),
                 "refract" if n == 3 => return sig(vec![v3.clone(), F32], v3, wgsl_fn("refract")),
@@ -175,6 +187,12 @@ pub fn method_sig(recv: &Ty, name: &str) -> Option<MethodSig> {
             "leading_zeros" if is_scalar => return sig(vec![], u, cnt("countLeadingZeros")),
             "trailing_zeros" if is_scalar => return sig(vec![], u, cnt("countTrailingZeros")),
             "reverse_bits" if is_scalar => return sig(vec![], t, wgsl_fn("reverseBits")),
+            // `n.is_multiple_of(0)` is `n == 0`.
+            "is_multiple_of" if matches!(recv, Ty::Scalar(Scalar::U32 | Scalar::Usize)) => {
+                return sig(vec![t.clone()], Ty::Scalar(Scalar::Bool), |a| {
+                    format!("select(({0} % {1}) == 0u, {0} == 0u, {1} == 0u)", a[0], a[1])
+                });
+            }
             "wrapping_add" => return sig(vec![t.clone()], t, |a| format!("({} + {})", a[0], a[1])),
             "wrapping_sub" => return sig(vec![t.clone()], t, |a| format!("({} - {})", a[0], a[1])),
             "wrapping_mul" => return sig(vec![t.clone()], t, |a| format!("({} * {})", a[0], a[1])),
@@ -193,7 +211,8 @@ pub fn method_sig(recv: &Ty, name: &str) -> Option<MethodSig> {
         let s = recv.scalar().unwrap();
         let comps = |f: &'static str| {
             move |a: &[String]| {
-                let parts: Vec<String> = (0..n).map(|i| format!("{}.{}", a[0], &"xyzw"[i as usize..i as usize + 1])).collect();
+                let parts: Vec<String> =
+                    (0..n).map(|i| format!("{}.{}", a[0], &"xyzw"[i as usize..i as usize + 1])).collect();
                 match f {
                     "+" | "*" => format!("({})", parts.join(&format!(" {f} "))),
                     _ => parts[1..].iter().fold(parts[0].clone(), |acc, p| format!("{f}({acc}, {p})")),
@@ -259,7 +278,9 @@ fn mat_method(n: u8, name: &str) -> Option<MethodSig> {
 pub fn method_hint(recv: &Ty, name: &str) -> String {
     match (recv, name) {
         (Ty::Mat(_), "inverse") => ": WGSL has no matrix inverse; pass the inverse as a variable".into(),
-        (_, "iter" | "into_iter" | "map" | "for_each") => ": iterators are not supported; loop over an index range".into(),
+        (_, "iter" | "into_iter" | "map" | "for_each") => {
+            ": iterators are not supported; loop over an index range".into()
+        }
         (_, "to_string") => ": strings are not supported".into(),
         (_, "unwrap" | "expect") => ": Option and Result are not supported".into(),
         (_, "sin_cos") => ": call sin() and cos() separately".into(),

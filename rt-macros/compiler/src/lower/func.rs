@@ -41,7 +41,14 @@ const POISONED: &str = "<poisoned>";
 enum Place {
     Wgsl(String, Ty),
     /// An element of a buffer, with an optional member path into it.
-    Buffer { buf: Val, kind: BufferKind, elem: Ty, index: String, path: String, ty: Ty },
+    Buffer {
+        buf: Val,
+        kind: BufferKind,
+        elem: Ty,
+        index: String,
+        path: String,
+        ty: Ty,
+    },
 }
 
 /// What the function being lowered is.
@@ -371,7 +378,9 @@ impl<'m> FnLowerer<'m> {
                 "a nested function",
                 "declare it at module level with `#[rt_function]`",
             )),
-            Stmt::Item(other) => Err(Error::unsupported(other.span(), "this item inside a function", "move it out of the function")),
+            Stmt::Item(other) => {
+                Err(Error::unsupported(other.span(), "this item inside a function", "move it out of the function"))
+            }
             Stmt::Macro(m) => self.macro_stmt(&m.mac),
             Stmt::Expr(e, _) => {
                 let v = self.expr(e, None)?;
@@ -401,7 +410,11 @@ impl<'m> FnLowerer<'m> {
             }
             syn::Pat::Wild(_) => ("_".to_string(), false),
             syn::Pat::Tuple(t) => {
-                return Err(Error::unsupported(t.span(), "a tuple pattern", "use a struct and bind its fields one by one"));
+                return Err(Error::unsupported(
+                    t.span(),
+                    "a tuple pattern",
+                    "use a struct and bind its fields one by one",
+                ));
             }
             other => return Err(Error::unsupported(other.span(), "this pattern", "bind a plain name")),
         };
@@ -457,7 +470,9 @@ impl<'m> FnLowerer<'m> {
             (None, None) => {
                 return Err(Error::new(
                     l.pat.span(),
-                    format!("`{name}` needs a type annotation or an initial value (e.g. `let {name}: f32;` or `let {name} = 0.0;`)"),
+                    format!(
+                        "`{name}` needs a type annotation or an initial value (e.g. `let {name}: f32;` or `let {name} = 0.0;`)"
+                    ),
                 ));
             }
         };
@@ -486,7 +501,9 @@ impl<'m> FnLowerer<'m> {
         let mut it = args.iter();
         let fmt = match it.next() {
             Some(Expr::Lit(syn::ExprLit { lit: syn::Lit::Str(s), .. })) => s.value(),
-            Some(other) => return Err(Error::new(other.span(), "rt_printf! takes a string literal as its first argument")),
+            Some(other) => {
+                return Err(Error::new(other.span(), "rt_printf! takes a string literal as its first argument"));
+            }
             None => return Err(Error::new(mac.span(), "rt_printf! needs a format string")),
         };
         let holes = count_placeholders(&fmt).map_err(|m| Error::new(mac.span(), m))?;
@@ -610,10 +627,18 @@ impl<'m> FnLowerer<'m> {
             Expr::ForLoop(f) => self.for_loop(f),
             Expr::Break(b) => {
                 if let Some(l) = &b.label {
-                    return Err(Error::unsupported(l.span(), "a labeled `break`", "WGSL has no labels; use a flag variable"));
+                    return Err(Error::unsupported(
+                        l.span(),
+                        "a labeled `break`",
+                        "WGSL has no labels; use a flag variable",
+                    ));
                 }
                 if let Some(v) = &b.expr {
-                    return Err(Error::unsupported(v.span(), "`break` with a value", "assign to a variable before `break`"));
+                    return Err(Error::unsupported(
+                        v.span(),
+                        "`break` with a value",
+                        "assign to a variable before `break`",
+                    ));
                 }
                 if self.loop_depth == 0 {
                     return Err(Error::new(b.span(), "`break` outside of a loop"));
@@ -624,7 +649,11 @@ impl<'m> FnLowerer<'m> {
             }
             Expr::Continue(c) => {
                 if let Some(l) = &c.label {
-                    return Err(Error::unsupported(l.span(), "a labeled `continue`", "WGSL has no labels; use a flag variable"));
+                    return Err(Error::unsupported(
+                        l.span(),
+                        "a labeled `continue`",
+                        "WGSL has no labels; use a flag variable",
+                    ));
                 }
                 if self.loop_depth == 0 {
                     return Err(Error::new(c.span(), "`continue` outside of a loop"));
@@ -664,24 +693,30 @@ impl<'m> FnLowerer<'m> {
             }
             Expr::Tuple(t) if t.elems.is_empty() => Ok(Val::new("", Ty::Unit)),
             Expr::Tuple(t) => Err(Error::unsupported(t.span(), "a tuple", "use a struct declared with #[rt_struct]")),
-            Expr::Closure(c) => Err(Error::unsupported(
-                c.or1_token.span,
-                "a closure",
-                "write a #[rt_function] helper and call it",
-            )),
+            Expr::Closure(c) => {
+                Err(Error::unsupported(c.or1_token.span, "a closure", "write a #[rt_function] helper and call it"))
+            }
             Expr::Reference(r) => Err(Error::unsupported(
                 r.and_token.span,
                 "a reference here",
                 "references may only be passed directly as `&mut` call arguments (rt_trace, helpers)",
             )),
-            Expr::Try(t) => Err(Error::unsupported(t.question_token.span, "the `?` operator", "check the condition with if/else")),
+            Expr::Try(t) => {
+                Err(Error::unsupported(t.question_token.span, "the `?` operator", "check the condition with if/else"))
+            }
             Expr::Range(r) => Err(Error::unsupported(r.span(), "a range outside a `for` loop", "use `for i in a..b`")),
-            Expr::Let(l) => Err(Error::unsupported(l.let_token.span, "`if let` / `while let`", "compare values with if/else")),
+            Expr::Let(l) => {
+                Err(Error::unsupported(l.let_token.span, "`if let` / `while let`", "compare values with if/else"))
+            }
             Expr::Async(a) => Err(Error::unsupported(a.async_token.span, "`async`", "ray programs are synchronous")),
             Expr::Await(a) => Err(Error::unsupported(a.await_token.span, "`.await`", "ray programs are synchronous")),
-            Expr::Yield(y) => Err(Error::unsupported(y.yield_token.span, "`yield`", "ray programs are plain functions")),
+            Expr::Yield(y) => {
+                Err(Error::unsupported(y.yield_token.span, "`yield`", "ray programs are plain functions"))
+            }
             Expr::TryBlock(t) => Err(Error::unsupported(t.try_token.span, "a `try` block", "use if/else")),
-            other => Err(Error::unsupported(other.span(), "this expression", "see rt_std's docs for the supported subset")),
+            other => {
+                Err(Error::unsupported(other.span(), "this expression", "see rt_std's docs for the supported subset"))
+            }
         }
     }
 
@@ -698,7 +733,10 @@ impl<'m> FnLowerer<'m> {
                 if let Some(w) = want
                     && self.is_int(w)
                 {
-                    return Err(Error::new(f.span(), format!("mismatched types: expected `{}`, found `f32`", self.resolved(w))));
+                    return Err(Error::new(
+                        f.span(),
+                        format!("mismatched types: expected `{}`, found `f32`", self.resolved(w)),
+                    ));
                 }
                 Ok(Val::new(f32_literal(v), F32))
             }
@@ -713,11 +751,7 @@ impl<'m> FnLowerer<'m> {
                     }
                     "" => None,
                     s @ ("i8" | "i16" | "i64" | "i128" | "u8" | "u16" | "u64" | "u128" | "isize" | "f64") => {
-                        return Err(Error::unsupported(
-                            i.span(),
-                            &format!("a `{s}` literal"),
-                            "use i32, u32 or f32",
-                        ));
+                        return Err(Error::unsupported(i.span(), &format!("a `{s}` literal"), "use i32, u32 or f32"));
                     }
                     s => return Err(Error::new(i.span(), format!("unknown literal suffix `{s}`"))),
                 };
@@ -796,10 +830,7 @@ impl<'m> FnLowerer<'m> {
         if self.m.failed.contains(last) {
             return Err(Error::silent(p.span()));
         }
-        Err(Error::new(
-            p.span(),
-            format!("cannot find value `{}` in this ray program", segs.join("::")),
-        ))
+        Err(Error::new(p.span(), format!("cannot find value `{}` in this ray program", segs.join("::"))))
     }
 
     fn unary(&mut self, u: &syn::ExprUnary, want: Option<&Ty>) -> Result<Val> {
@@ -894,12 +925,16 @@ impl<'m> FnLowerer<'m> {
                 match (&lt, &rt) {
                     (a, b) if (self.is_int(a) || *a == F32) && self.unify(a, b) => self.resolved(a),
                     (Ty::Vec(n, s), Ty::Vec(m, t)) if n == m && s == t && *s != Scalar::Bool => lt.clone(),
-                    (Ty::Vec(_, s), b) if Some(*s) == b.scalar() && !matches!(b, Ty::Vec(..) | Ty::Mat(_)) => lt.clone(),
+                    (Ty::Vec(_, s), b) if Some(*s) == b.scalar() && !matches!(b, Ty::Vec(..) | Ty::Mat(_)) => {
+                        lt.clone()
+                    }
                     (Ty::Vec(_, s), Ty::IntVar(_)) if s.is_int() => {
                         self.unify(&rt, &Ty::Scalar(*s));
                         lt.clone()
                     }
-                    (a, Ty::Vec(_, s)) if Some(*s) == a.scalar() && !matches!(a, Ty::Vec(..) | Ty::Mat(_)) => rt.clone(),
+                    (a, Ty::Vec(_, s)) if Some(*s) == a.scalar() && !matches!(a, Ty::Vec(..) | Ty::Mat(_)) => {
+                        rt.clone()
+                    }
                     (Ty::IntVar(_), Ty::Vec(_, s)) if s.is_int() => {
                         self.unify(&lt, &Ty::Scalar(*s));
                         rt.clone()
@@ -1043,7 +1078,10 @@ impl<'m> FnLowerer<'m> {
             other => return Err(Error::new(c.expr.span(), format!("cannot cast `{other}` with `as`: only scalars"))),
         };
         if ts == Scalar::Bool && fs != Scalar::Bool {
-            return Err(Error::new(c.span(), format!("cannot cast `{}` as `bool`: compare with zero instead", fs.rust())));
+            return Err(Error::new(
+                c.span(),
+                format!("cannot cast `{}` as `bool`: compare with zero instead", fs.rust()),
+            ));
         }
         if fs == Scalar::Bool && ts == Scalar::F32 {
             return Err(Error::new(c.span(), "cannot cast `bool` as `f32`: cast to u32 first or use `select`"));
@@ -1161,7 +1199,8 @@ impl<'m> FnLowerer<'m> {
                     }
                 };
                 // Fields of reference parameters are places through the pointer.
-                let base = if let Some(r) = self.ref_base(&f.base) { Place::Wgsl(r.0, r.1) } else { self.place(&f.base)? };
+                let base =
+                    if let Some(r) = self.ref_base(&f.base) { Place::Wgsl(r.0, r.1) } else { self.place(&f.base)? };
                 match base {
                     Place::Wgsl(code, ty) => {
                         let v = self.field_of(Val::new(code, ty), &name, f.member.span())?;
@@ -1180,14 +1219,24 @@ impl<'m> FnLowerer<'m> {
                     if !kind.writable {
                         return Err(Error::new(
                             i.expr.span(),
-                            format!("cannot write to a read-only `{}`: declare the variable as `RwBuffer`/`RwBuffer2d`", kind.rust_name()),
+                            format!(
+                                "cannot write to a read-only `{}`: declare the variable as `RwBuffer`/`RwBuffer2d`",
+                                kind.rust_name()
+                            ),
                         ));
                     }
                     let index = self.buffer_index(kind, &i.index)?;
                     let t = self.tmp();
                     self.emit(format!("let {t} = {index};"));
                     let buf = self.deref(base_val);
-                    return Ok(Place::Buffer { buf, kind, elem: (*elem).clone(), index: t, path: String::new(), ty: *elem });
+                    return Ok(Place::Buffer {
+                        buf,
+                        kind,
+                        elem: (*elem).clone(),
+                        index: t,
+                        path: String::new(),
+                        ty: *elem,
+                    });
                 }
                 let base = self.place(&i.expr)?;
                 let idx = self.int_index(&i.index)?;
@@ -1238,10 +1287,14 @@ impl<'m> FnLowerer<'m> {
                     (BinOp::Shl(_) | BinOp::Shr(_), Ty::Vec(n, _)) if vty != Ty::Vec(n, Scalar::U32) => {
                         Val::new(format!("vec{n}<u32>({})", value.code), Ty::Vec(n, Scalar::U32))
                     }
-                    (BinOp::BitAnd(_) | BinOp::BitOr(_) | BinOp::BitXor(_), Ty::Vec(n, s)) if !matches!(vty, Ty::Vec(..)) => {
+                    (BinOp::BitAnd(_) | BinOp::BitOr(_) | BinOp::BitXor(_), Ty::Vec(n, s))
+                        if !matches!(vty, Ty::Vec(..)) =>
+                    {
                         Val::new(format!("vec{n}<{}>({})", s.wgsl(), value.code), Ty::Vec(n, s))
                     }
-                    (BinOp::Shl(_) | BinOp::Shr(_), _) if !matches!(vty, Ty::Scalar(Scalar::U32 | Scalar::Usize)) => {
+                    (BinOp::Shl(_) | BinOp::Shr(_), Ty::Scalar(_) | Ty::IntVar(_))
+                        if !matches!(vty, Ty::Scalar(Scalar::U32 | Scalar::Usize)) =>
+                    {
                         Val::new(format!("u32({})", value.code), U32)
                     }
                     _ => value,
@@ -1290,7 +1343,8 @@ impl<'m> FnLowerer<'m> {
         let cond = self.cond(&i.cond)?;
         let (then_lines, then_val) = self.sub_block(&i.then_branch.stmts, want)?;
         let then_ty = then_val.as_ref().map(|v| self.resolved(&v.ty)).unwrap_or(Ty::Unit);
-        let valued = !matches!(then_ty, Ty::Unit | Ty::Never) || (i.else_branch.is_some() && want.is_some_and(|w| w.is_value()));
+        let valued =
+            !matches!(then_ty, Ty::Unit | Ty::Never) || (i.else_branch.is_some() && want.is_some_and(|w| w.is_value()));
         let else_want = if matches!(then_ty, Ty::Never) { want.cloned() } else { Some(then_ty.clone()) };
         let else_part = match &i.else_branch {
             Some((_, e)) => match &**e {
@@ -1313,8 +1367,11 @@ impl<'m> FnLowerer<'m> {
         };
         // `if c { return; } else { v }` is a value too.
         let valued = valued
-            || (matches!(then_ty, Ty::Never) && else_part.as_ref().is_some_and(|(_, v, _)| self.resolved(&v.ty).is_value()));
-        if !valued || else_part.as_ref().is_some_and(|(_, v, _)| matches!(v.ty, Ty::Unit) && !matches!(then_ty, Ty::Never)) {
+            || (matches!(then_ty, Ty::Never)
+                && else_part.as_ref().is_some_and(|(_, v, _)| self.resolved(&v.ty).is_value()));
+        if !valued
+            || else_part.as_ref().is_some_and(|(_, v, _)| matches!(v.ty, Ty::Unit) && !matches!(then_ty, Ty::Never))
+        {
             // A statement `if`.
             let mut then_lines = then_lines;
             if let Some(v) = then_val
@@ -1469,7 +1526,11 @@ impl<'m> FnLowerer<'m> {
         if !self.is_int(&s.ty) || !self.unify(&s.ty, &e.ty) {
             return Err(Error::new(
                 range.span(),
-                format!("a `for` range needs integer bounds of one type, found `{}` and `{}`", self.resolved(&s.ty), self.resolved(&e.ty)),
+                format!(
+                    "a `for` range needs integer bounds of one type, found `{}` and `{}`",
+                    self.resolved(&s.ty),
+                    self.resolved(&e.ty)
+                ),
             ));
         }
         let ty = self.resolved(&s.ty);
@@ -1588,12 +1649,20 @@ impl<'m> FnLowerer<'m> {
         })
     }
 
-    fn match_pattern(&mut self, p: &syn::Pat, sty: &Ty, labels: &mut Vec<String>, binding: &mut Option<String>) -> Result<()> {
+    fn match_pattern(
+        &mut self,
+        p: &syn::Pat,
+        sty: &Ty,
+        labels: &mut Vec<String>,
+        binding: &mut Option<String>,
+    ) -> Result<()> {
         match p {
             syn::Pat::Wild(_) => Ok(()),
             // A name that resolves to a constant is a constant pattern, as
             // in Rust (`EXCEPTION_USER => ...`), not a binding.
-            syn::Pat::Ident(pi) if pi.subpat.is_none() && pi.by_ref.is_none() && self.is_const_name(&pi.ident.to_string()) => {
+            syn::Pat::Ident(pi)
+                if pi.subpat.is_none() && pi.by_ref.is_none() && self.is_const_name(&pi.ident.to_string()) =>
+            {
                 let v = self.path_expr(&syn::parse_quote!(#pi))?;
                 let v = self.coerce(v, sty, pi.span())?;
                 labels.push(v.code);
@@ -1630,7 +1699,9 @@ impl<'m> FnLowerer<'m> {
                 Ok(())
             }
             syn::Pat::Paren(pp) => self.match_pattern(&pp.pat, sty, labels, binding),
-            syn::Pat::Range(r) => Err(Error::unsupported(r.span(), "a range pattern", "list the values or use if/else")),
+            syn::Pat::Range(r) => {
+                Err(Error::unsupported(r.span(), "a range pattern", "list the values or use if/else"))
+            }
             other => Err(Error::unsupported(other.span(), "this pattern", "match integer literals and `_`")),
         }
     }
@@ -1657,15 +1728,33 @@ impl<'m> FnLowerer<'m> {
             _ => match self.m.structs.get(&name) {
                 Some(d) => Ty::Struct(d.clone()),
                 None if self.m.failed.contains(&name) => return Err(Error::silent(s.path.span())),
-                None => return Err(Error::new(s.path.span(), format!("cannot find struct `{name}`: declare it with #[rt_struct]"))),
+                None => {
+                    return Err(Error::new(
+                        s.path.span(),
+                        format!("cannot find struct `{name}`: declare it with #[rt_struct]"),
+                    ));
+                }
             },
         };
         let fields = ty.fields();
         let mut given: Vec<Option<String>> = vec![None; fields.len()];
+        // WGSL evaluates constructor arguments in declaration order, Rust the
+        // fields in source order: when they differ, effects run first.
+        let source_order: Vec<Option<usize>> = s
+            .fields
+            .iter()
+            .map(|fv| match &fv.member {
+                syn::Member::Named(n) => fields.iter().position(|(f, _)| n == f),
+                syn::Member::Unnamed(_) => None,
+            })
+            .collect();
+        let in_order = source_order.windows(2).all(|w| w[0] < w[1]);
         for fv in &s.fields {
             let fname = match &fv.member {
                 syn::Member::Named(n) => n.to_string(),
-                syn::Member::Unnamed(i) => return Err(Error::unsupported(i.span(), "a tuple field", "use named fields")),
+                syn::Member::Unnamed(i) => {
+                    return Err(Error::unsupported(i.span(), "a tuple field", "use named fields"));
+                }
             };
             let Some(idx) = fields.iter().position(|(n, _)| *n == fname) else {
                 return Err(Error::new(fv.member.span(), format!("struct `{name}` has no field named `{fname}`")));
@@ -1673,12 +1762,21 @@ impl<'m> FnLowerer<'m> {
             let fty = fields[idx].1.clone();
             let v = self.expr(&fv.expr, Some(&fty))?;
             let v = self.deref(v);
-            let v = self.coerce(v, &fty, fv.expr.span())?;
+            let mut v = self.coerce(v, &fty, fv.expr.span())?;
+            if !in_order && may_have_effects(&v.code) {
+                let t = self.tmp();
+                self.emit(format!("let {t} = {};", v.code));
+                v.code = t;
+            }
             given[idx] = Some(v.code);
         }
-        let missing: Vec<&str> = fields.iter().zip(&given).filter(|(_, g)| g.is_none()).map(|((n, _), _)| n.as_str()).collect();
+        let missing: Vec<&str> =
+            fields.iter().zip(&given).filter(|(_, g)| g.is_none()).map(|((n, _), _)| n.as_str()).collect();
         if !missing.is_empty() {
-            return Err(Error::new(s.span(), format!("missing fields {} in initializer of `{name}`", missing.join(", "))));
+            return Err(Error::new(
+                s.span(),
+                format!("missing fields {} in initializer of `{name}`", missing.join(", ")),
+            ));
         }
         let args: Vec<String> = given.into_iter().map(|g| g.unwrap()).collect();
         Ok(Val::new(format!("{}({})", ty.wgsl(), args.join(", ")), ty))
@@ -1750,9 +1848,11 @@ impl<'m> FnLowerer<'m> {
         let rt = self.resolved(&recv.ty);
         if let Ty::IntVar(_) = rt {
             // `3.max(x)`: the literal's type comes from the argument.
-            if let Some(a) = args.first() {
-                let v = self.expr(a, None)?;
-                self.unify(&rt, &v.ty);
+            // (Probed, not lowered: lowering twice would emit its statements twice.)
+            if let Some(a) = args.first()
+                && let Some(t @ Ty::Scalar(_)) = self.peek_type(a)?
+            {
+                self.unify(&rt, &t);
             }
         }
         let rt = self.resolved(&recv.ty);
@@ -1793,7 +1893,8 @@ impl<'m> FnLowerer<'m> {
         // Rust's left-to-right order, effectful ones before them) once, first.
         let probe: Vec<String> = (0..codes.len()).map(|i| format!("\u{6}{i}\u{6}")).collect();
         let shape = (sig.lower)(&probe);
-        let last_repeated = (0..codes.len()).rev().find(|&i| shape.matches(&probe[i]).count() > 1 && may_have_effects(&codes[i]));
+        let last_repeated =
+            (0..codes.len()).rev().find(|&i| shape.matches(&probe[i]).count() > 1 && may_have_effects(&codes[i]));
         if let Some(last) = last_repeated {
             for c in codes.iter_mut().take(last + 1) {
                 if may_have_effects(c) {
@@ -1822,7 +1923,10 @@ impl<'m> FnLowerer<'m> {
     ) -> Result<Val> {
         let want_args = |n: usize| -> Result<()> {
             if args.len() != n {
-                Err(Error::new(name_span, format!("`{}::{name}` takes {n} argument(s), found {}", kind.rust_name(), args.len())))
+                Err(Error::new(
+                    name_span,
+                    format!("`{}::{name}` takes {n} argument(s), found {}", kind.rust_name(), args.len()),
+                ))
             } else {
                 Ok(())
             }
@@ -1851,7 +1955,10 @@ impl<'m> FnLowerer<'m> {
                 if !kind.writable {
                     return Err(Error::new(
                         name_span,
-                        format!("cannot store into a read-only `{}`: declare the variable as `RwBuffer`/`RwBuffer2d`", kind.rust_name()),
+                        format!(
+                            "cannot store into a read-only `{}`: declare the variable as `RwBuffer`/`RwBuffer2d`",
+                            kind.rust_name()
+                        ),
                     ));
                 }
                 let idx = self.buffer_index(kind, args[0])?;
@@ -1865,7 +1972,11 @@ impl<'m> FnLowerer<'m> {
             }
             _ => Err(Error::new(
                 name_span,
-                format!("no method `{name}` on `{}<{elem}>` (it has load, store, {})", kind.rust_name(), if kind.dims == 2 { "size" } else { "len, is_empty" }),
+                format!(
+                    "no method `{name}` on `{}<{elem}>` (it has load, store, {})",
+                    kind.rust_name(),
+                    if kind.dims == 2 { "size" } else { "len, is_empty" }
+                ),
             )),
         }
     }
@@ -1880,7 +1991,12 @@ impl<'m> FnLowerer<'m> {
                 }
                 return Ok(Val::new(format!("vec2<u32>({0}.width, {0}.height)", recv.code), Ty::Vec(2, Scalar::U32)));
             }
-            _ => return Err(Error::new(name_span, format!("no method `{name}` on `Sampler2d` (it has sample, fetch, size)"))),
+            _ => {
+                return Err(Error::new(
+                    name_span,
+                    format!("no method `{name}` on `Sampler2d` (it has sample, fetch, size)"),
+                ));
+            }
         };
         if args.len() != 1 {
             return Err(Error::new(name_span, format!("`Sampler2d::{name}` takes 1 argument, found {}", args.len())));
@@ -1894,7 +2010,9 @@ impl<'m> FnLowerer<'m> {
     fn call(&mut self, c: &syn::ExprCall, want: Option<&Ty>) -> Result<Val> {
         let path = match &*c.func {
             Expr::Path(p) if p.qself.is_none() => &p.path,
-            other => return Err(Error::unsupported(other.span(), "calling this expression", "call a function by name")),
+            other => {
+                return Err(Error::unsupported(other.span(), "calling this expression", "call a function by name"));
+            }
         };
         if let Some(seg) = path.segments.iter().find(|s| !s.arguments.is_none()) {
             return Err(Error::unsupported(seg.arguments.span(), "generic arguments", "ray programs are not generic"));
@@ -1911,7 +2029,11 @@ impl<'m> FnLowerer<'m> {
             if l.wgsl == POISONED {
                 return Err(Error::silent(path.span()));
             }
-            return Err(Error::unsupported(path.span(), &format!("calling the local `{name}`"), "call a #[rt_function] helper by name"));
+            return Err(Error::unsupported(
+                path.span(),
+                &format!("calling the local `{name}`"),
+                "call a #[rt_function] helper by name",
+            ));
         }
         // `Type::function(...)`: constructors and UFCS methods of builtin types.
         if segs.len() >= 2 {
@@ -1962,7 +2084,10 @@ impl<'m> FnLowerer<'m> {
         }
         Err(Error::new(
             path.span(),
-            format!("cannot find function `{}`: ray programs may call #[rt_function] helpers and rt-std items", segs.join("::")),
+            format!(
+                "cannot find function `{}`: ray programs may call #[rt_function] helpers and rt-std items",
+                segs.join("::")
+            ),
         ))
     }
 
@@ -2002,7 +2127,8 @@ impl<'m> FnLowerer<'m> {
                 self.emit(format!("let {t} = {};", a[0]));
                 let cols: Vec<String> = (0..*n)
                     .map(|i| {
-                        let comps: Vec<String> = (0..*n).map(|j| if i == j { format!("{t}[{i}]") } else { "0.0".into() }).collect();
+                        let comps: Vec<String> =
+                            (0..*n).map(|j| if i == j { format!("{t}[{i}]") } else { "0.0".into() }).collect();
                         format!("vec{n}<f32>({})", comps.join(", "))
                     })
                     .collect();
@@ -2254,7 +2380,10 @@ impl<'m> FnLowerer<'m> {
                 Ty::Ref(true, inner) => {
                     let (code, ty) = self.mut_ref_arg(a)?;
                     if !self.unify(&ty, inner) {
-                        return Err(Error::new(a.span(), format!("mismatched types: expected `&mut {inner}`, found `&mut {ty}`")));
+                        return Err(Error::new(
+                            a.span(),
+                            format!("mismatched types: expected `&mut {inner}`, found `&mut {ty}`"),
+                        ));
                     }
                     codes.push(code);
                 }

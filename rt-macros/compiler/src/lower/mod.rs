@@ -133,7 +133,9 @@ pub fn resolve_type(ty: &syn::Type, user: &dyn Fn(&str) -> Option<Ty>) -> Result
             }
             Err(Error::new(
                 p.span(),
-                format!("cannot find type `{name}` in ray programs: declare it with #[rt_struct], #[rt_payload] or #[rt_attributes]"),
+                format!(
+                    "cannot find type `{name}` in ray programs: declare it with #[rt_struct], #[rt_payload] or #[rt_attributes]"
+                ),
             ))
         }
         syn::Type::Array(a) => {
@@ -148,15 +150,25 @@ pub fn resolve_type(ty: &syn::Type, user: &dyn Fn(&str) -> Option<Ty>) -> Result
             Ok(Ty::Ref(r.mutability.is_some(), Box::new(resolve_type(&r.elem, user)?)))
         }
         syn::Type::Tuple(t) if t.elems.is_empty() => Ok(Ty::Unit),
-        syn::Type::Tuple(t) => Err(Error::unsupported(t.span(), "a tuple type", "use a struct declared with #[rt_struct]")),
+        syn::Type::Tuple(t) => {
+            Err(Error::unsupported(t.span(), "a tuple type", "use a struct declared with #[rt_struct]"))
+        }
         syn::Type::Paren(p) => resolve_type(&p.elem, user),
-        syn::Type::Slice(s) => Err(Error::unsupported(s.span(), "a slice", "use a fixed-size array or a buffer variable")),
+        syn::Type::Slice(s) => {
+            Err(Error::unsupported(s.span(), "a slice", "use a fixed-size array or a buffer variable"))
+        }
         syn::Type::Ptr(p) => Err(Error::unsupported(p.span(), "a raw pointer", "use `&mut` parameters")),
-        syn::Type::TraitObject(t) => Err(Error::unsupported(t.span(), "a trait object", "WGSL has no dynamic dispatch; take a concrete type")),
+        syn::Type::TraitObject(t) => {
+            Err(Error::unsupported(t.span(), "a trait object", "WGSL has no dynamic dispatch; take a concrete type"))
+        }
         syn::Type::ImplTrait(t) => Err(Error::unsupported(t.span(), "`impl Trait`", "use concrete types")),
-        syn::Type::BareFn(f) => Err(Error::unsupported(f.span(), "a function pointer", "WGSL has no function pointers")),
+        syn::Type::BareFn(f) => {
+            Err(Error::unsupported(f.span(), "a function pointer", "WGSL has no function pointers"))
+        }
         syn::Type::Never(n) => Err(Error::unsupported(n.span(), "the never type", "return a value")),
-        other => Err(Error::unsupported(other.span(), "this type", "use scalars, glam types, arrays and #[rt_struct]s")),
+        other => {
+            Err(Error::unsupported(other.span(), "this type", "use scalars, glam types, arrays and #[rt_struct]s"))
+        }
     }
 }
 
@@ -164,12 +176,75 @@ pub fn resolve_type(ty: &syn::Type, user: &dyn Fn(&str) -> Option<Ty>) -> Result
 /// from Rust that collide get a trailing `_`.
 pub fn is_reserved(name: &str) -> bool {
     const EXTRA: &[&str] = &[
-        "vec2", "vec3", "vec4", "mat2x2", "mat3x3", "mat4x4", "array", "bool", "f32", "i32", "u32", "ptr", "atomic",
-        "sampler", "texture_2d", "abs", "acos", "acosh", "all", "any", "asin", "asinh", "atan", "atan2", "atanh",
-        "bitcast", "ceil", "clamp", "cos", "cosh", "countLeadingZeros", "countOneBits", "countTrailingZeros", "cross",
-        "degrees", "determinant", "distance", "dot", "exp", "exp2", "faceForward", "floor", "fma", "fract", "inverseSqrt",
-        "length", "log", "log2", "max", "min", "mix", "normalize", "pow", "radians", "reflect", "refract", "reverseBits",
-        "round", "saturate", "select", "sign", "sin", "sinh", "smoothstep", "sqrt", "step", "tan", "tanh", "transpose",
+        "vec2",
+        "vec3",
+        "vec4",
+        "mat2x2",
+        "mat3x3",
+        "mat4x4",
+        "array",
+        "bool",
+        "f32",
+        "i32",
+        "u32",
+        "ptr",
+        "atomic",
+        "sampler",
+        "texture_2d",
+        "abs",
+        "acos",
+        "acosh",
+        "all",
+        "any",
+        "asin",
+        "asinh",
+        "atan",
+        "atan2",
+        "atanh",
+        "bitcast",
+        "ceil",
+        "clamp",
+        "cos",
+        "cosh",
+        "countLeadingZeros",
+        "countOneBits",
+        "countTrailingZeros",
+        "cross",
+        "degrees",
+        "determinant",
+        "distance",
+        "dot",
+        "exp",
+        "exp2",
+        "faceForward",
+        "floor",
+        "fma",
+        "fract",
+        "inverseSqrt",
+        "length",
+        "log",
+        "log2",
+        "max",
+        "min",
+        "mix",
+        "normalize",
+        "pow",
+        "radians",
+        "reflect",
+        "refract",
+        "reverseBits",
+        "round",
+        "saturate",
+        "select",
+        "sign",
+        "sin",
+        "sinh",
+        "smoothstep",
+        "sqrt",
+        "step",
+        "tan",
+        "tanh",
+        "transpose",
         "trunc",
     ];
     naga::keywords::wgsl::RESERVED.contains(&name) || EXTRA.contains(&name)
@@ -293,7 +368,9 @@ fn lower_impl(entry: Entry<'_>, deps: &[Item], report_deps: bool) -> std::result
             syn::Fields::Unnamed(f) => {
                 return Err(Error::unsupported(f.span(), "a tuple struct", "use named fields"));
             }
-            syn::Fields::Unit => return Err(Error::unsupported(s.ident.span(), "a unit struct", "give it at least one field")),
+            syn::Fields::Unit => {
+                return Err(Error::unsupported(s.ident.span(), "a unit struct", "give it at least one field"));
+            }
         };
         let mut fields = Vec::new();
         for f in &fields_named.named {
@@ -313,7 +390,10 @@ fn lower_impl(entry: Entry<'_>, deps: &[Item], report_deps: bool) -> std::result
             }
             let ty = resolve_type(&f.ty, &|n| done.get(n).map(|d| Ty::Struct(d.clone())))?;
             if !ty.is_plain_data() {
-                return Err(Error::new(f.ty.span(), format!("a struct field cannot be a `{ty}`: fields are plain data")));
+                return Err(Error::new(
+                    f.ty.span(),
+                    format!("a struct field cannot be a `{ty}`: fields are plain data"),
+                ));
             }
             fields.push((fname, ty));
         }
@@ -331,7 +411,9 @@ fn lower_impl(entry: Entry<'_>, deps: &[Item], report_deps: bool) -> std::result
     }
     for (s, _) in &structs_raw {
         owners.push((errors.0.len(), owns(&s.ident.to_string())));
-        if let Err(e) = build_struct(&s.ident.to_string(), &structs_raw, &mut structs, &mut struct_order, &mut Vec::new()) {
+        if let Err(e) =
+            build_struct(&s.ident.to_string(), &structs_raw, &mut structs, &mut struct_order, &mut Vec::new())
+        {
             errors.push(e);
         }
     }
@@ -376,7 +458,10 @@ fn lower_impl(entry: Entry<'_>, deps: &[Item], report_deps: bool) -> std::result
         match r {
             Ok(v) => {
                 if v.ty != ty && !matches!(v.ty, Ty::IntVar(_)) {
-                    errors.push(Error::new(c.expr.span(), format!("mismatched types: expected `{ty}`, found `{}`", v.ty)));
+                    errors.push(Error::new(
+                        c.expr.span(),
+                        format!("mismatched types: expected `{ty}`, found `{}`", v.ty),
+                    ));
                     continue;
                 }
                 let text = text::mark(m.span_id(c.span()), &format!("const {wname}: {} = {};\n", ty.wgsl(), v.code));
@@ -685,7 +770,10 @@ fn helper_order(items: &HashMap<String, &syn::ItemFn>) -> std::result::Result<Ve
                     } else {
                         format!("recursion (`{n}` calls `{c}`, which leads back to `{n}`)")
                     };
-                    return Err((n.to_string(), Error::unsupported(*span, &what, "WGSL has no recursion; rewrite it as a loop")));
+                    return Err((
+                        n.to_string(),
+                        Error::unsupported(*span, &what, "WGSL has no recursion; rewrite it as a loop"),
+                    ));
                 }
                 Some(2) => {}
                 _ => visit(c, calls, state, order)?,
@@ -723,7 +811,12 @@ pub fn collect_calls(block: &syn::Block, out: &mut Vec<(String, Span)>) {
 
 type ProgramText = (String, Vec<(usize, std::ops::Range<usize>)>);
 
-fn program_unit(m: &ModuleCtx, kind: Kind, f: &syn::ItemFn, out: &mut Lowered) -> std::result::Result<ProgramText, Errors> {
+fn program_unit(
+    m: &ModuleCtx,
+    kind: Kind,
+    f: &syn::ItemFn,
+    out: &mut Lowered,
+) -> std::result::Result<ProgramText, Errors> {
     check_fn_shape(f)?;
     let params = signature::program_params(kind, f)?;
     let mut errors = Errors::default();
@@ -753,7 +846,10 @@ fn program_unit(m: &ModuleCtx, kind: Kind, f: &syn::ItemFn, out: &mut Lowered) -
                     Ty::Struct(s) if s.role == StructRole::Attributes => {}
                     other => errors.push(Error::new(
                         p.ty.span(),
-                        format!("the attributes of {} must be a #[rt_attributes] struct, found `{other}`", kind.a_program()),
+                        format!(
+                            "the attributes of {} must be a #[rt_attributes] struct, found `{other}`",
+                            kind.a_program()
+                        ),
                     )),
                 }
                 out.attributes = Some(ty.clone());
@@ -765,23 +861,36 @@ fn program_unit(m: &ModuleCtx, kind: Kind, f: &syn::ItemFn, out: &mut Lowered) -
                 if !ok {
                     errors.push(Error::new(p.ty.span(), format!("a variable cannot have type `{ty}`")));
                 }
+                // The linker loads variable records from the heap: make sure
+                // the loader of every plain-data variable type is in the module.
+                if ty.is_plain_data() {
+                    m.accessors.borrow_mut().load(&ty);
+                }
                 out.variables.push((p.name.to_string(), ty.clone()));
                 ty
             }
         };
         let mutable_binding = f.sig.inputs.iter().any(|i| match i {
-            syn::FnArg::Typed(pt) => matches!(&*pt.pat, syn::Pat::Ident(pi) if pi.ident == p.name && pi.mutability.is_some()),
+            syn::FnArg::Typed(pt) => {
+                matches!(&*pt.pat, syn::Pat::Ident(pi) if pi.ident == p.name && pi.mutability.is_some())
+            }
             _ => false,
         });
         lps.push(LParam { rust: p.name.to_string(), ty: lty, mutable_binding, span: p.span });
     }
     let ret = match (&f.sig.output, kind) {
         (syn::ReturnType::Default, Kind::BoundingBox) => {
-            errors.push(Error::new(f.sig.ident.span(), "a bounding_box program must return the primitive's bounds: add `-> Aabb` to its signature"));
+            errors.push(Error::new(
+                f.sig.ident.span(),
+                "a bounding_box program must return the primitive's bounds: add `-> Aabb` to its signature",
+            ));
             Ty::Unit
         }
         (syn::ReturnType::Default, Kind::Visit) => {
-            errors.push(Error::new(f.sig.ident.span(), "a visit program must return the child to enter: add `-> u32` to its signature"));
+            errors.push(Error::new(
+                f.sig.ident.span(),
+                "a visit program must return the child to enter: add `-> u32` to its signature",
+            ));
             Ty::Unit
         }
         (syn::ReturnType::Default, _) => Ty::Unit,

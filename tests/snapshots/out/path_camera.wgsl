@@ -1,0 +1,89 @@
+// ray_generation program `path_camera`
+fn rt_trace_PathState(object: u32, ray: RtRay, prd: ptr<function, PathState>, flags: u32, mask: u32) {}
+
+struct PathState {
+    radiance: vec3<f32>,
+    throughput: vec3<f32>,
+    origin: vec3<f32>,
+    direction: vec3<f32>,
+    seed: u32,
+    done: bool,
+}
+
+fn rt_bufload2_vec4f(b: RtBuffer, i: vec2<u32>) -> vec4<f32> {
+    if rt_buf_check2(b, i) {
+        return rt_load_vec4f(b.offset + (i.y * b.width + i.x) * 4u);
+    }
+    return vec4<f32>();
+}
+
+fn rt_bufstore2_vec4f(b: RtBuffer, i: vec2<u32>, v: vec4<f32>) {
+    if rt_buf_check2(b, i) {
+        rt_store_vec4f(b.offset + (i.y * b.width + i.x) * 4u, v);
+    }
+}
+
+fn rt_load_f32(w: u32) -> f32 {
+    return bitcast<f32>(rt_heap[w]);
+}
+
+fn rt_load_mat3(w: u32) -> mat3x3<f32> {
+    return mat3x3<f32>(rt_load_vec3f(w + 0u), rt_load_vec3f(w + 3u), rt_load_vec3f(w + 6u));
+}
+
+fn rt_load_u32(w: u32) -> u32 {
+    return rt_heap[w];
+}
+
+fn rt_load_vec3f(w: u32) -> vec3<f32> {
+    return vec3<f32>(rt_load_f32(w + 0u), rt_load_f32(w + 1u), rt_load_f32(w + 2u));
+}
+
+fn rt_load_vec4f(w: u32) -> vec4<f32> {
+    return vec4<f32>(rt_load_f32(w + 0u), rt_load_f32(w + 1u), rt_load_f32(w + 2u), rt_load_f32(w + 3u));
+}
+
+fn rt_store_f32(w: u32, v: f32) {
+    rt_heap[w] = bitcast<u32>(v);
+}
+
+fn rt_store_vec4f(w: u32, v: vec4<f32>) {
+    rt_store_f32(w + 0u, v[0]);
+    rt_store_f32(w + 1u, v[1]);
+    rt_store_f32(w + 2u, v[2]);
+    rt_store_f32(w + 3u, v[3]);
+}
+
+const PATH_RAY: u32 = 0u;
+
+fn rtf_lcg_next(seed: ptr<function, u32>) -> f32 {
+    (*seed) = (((*seed) * 1664525u) + 1013904223u);
+    return (f32(((*seed) >> 8u)) * (1.0f / 16777216.0f));
+}
+
+fn rtp_path_camera(eye: vec3<f32>, camera: mat3x3<f32>, frame: u32, spp: u32, max_bounces: u32, scene_epsilon: f32, top_object: u32, accum: RtBuffer) {
+    var accum_1 = accum;
+    let idx: vec2<u32> = rt_launch_index();
+    let dim: vec2<f32> = vec2<f32>(rt_launch_dim());
+    var seed: u32 = (((idx.y * rt_launch_dim().x) + idx.x) ^ (frame * 2654435769u));
+    var color: vec3<f32> = vec3<f32>();
+    let end = spp;
+    for (var i: u32 = 0u; i < end; i++) {
+        let jitter: vec2<f32> = vec2<f32>(rtf_lcg_next(&seed), rtf_lcg_next(&seed));
+        let d: vec2<f32> = ((((vec2<f32>(idx) + jitter) / dim) * 2.0f) - 1.0f);
+        var prd: PathState = PathState(vec3<f32>(), vec3<f32>(1.0), eye, normalize((camera * vec3<f32>(d.x, -d.y, 1.0f))), seed, false);
+        var bounce: u32 = 0u;
+        while ((bounce < max_bounces) && !prd.done) {
+            let ray: RtRay = RtRay(prd.origin, prd.direction, PATH_RAY, scene_epsilon, bitcast<f32>(0x7f800000u));
+            rt_trace_PathState(top_object, ray, &prd, 0u, 255u);
+            bounce += 1u;
+        }
+        seed = prd.seed;
+        color += prd.radiance;
+    }
+    let sample: vec3<f32> = (color / f32(max(spp, 1u)));
+    let prev: vec4<f32> = rt_bufload2_vec4f(accum_1, idx);
+    let blended: vec3<f32> = mix(prev.xyz, sample, (1.0f / f32((frame + 1u))));
+    let tmp = idx;
+    rt_bufstore2_vec4f(accum_1, tmp, vec4<f32>(blended, 1.0f));
+}
