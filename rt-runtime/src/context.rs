@@ -75,6 +75,8 @@ pub struct Context {
     pub(crate) print_launch_index: Option<glam::UVec2>,
     pub(crate) backend: Backend,
     pub(crate) accels: crate::accel::AccelCache,
+    pub(crate) gpu: Option<crate::backend::wgpu::Gpu>,
+    pub(crate) last_wgsl: Option<String>,
 }
 
 impl Default for Context {
@@ -103,6 +105,8 @@ impl Context {
             print_launch_index: None,
             backend: Backend::Cpu,
             accels: Default::default(),
+            gpu: None,
+            last_wgsl: None,
         }
     }
 
@@ -114,6 +118,32 @@ impl Context {
     /// Chooses the backend launches run on.
     pub fn set_backend(&mut self, backend: Backend) {
         self.backend = backend;
+    }
+
+    /// Runs launches on a wgpu device the application already has.
+    pub fn use_wgpu_device(&mut self, device: wgpu::Device, queue: wgpu::Queue, info: wgpu::AdapterInfo) {
+        self.gpu = Some(crate::backend::wgpu::Gpu::from_device(device, queue, info));
+        self.backend = Backend::Wgpu;
+    }
+
+    /// Opens the wgpu device now (launches do it on first use), returning the
+    /// adapter's description.
+    pub fn open_wgpu(&mut self) -> Result<String> {
+        if self.gpu.is_none() {
+            self.gpu = Some(crate::backend::wgpu::Gpu::new()?);
+        }
+        Ok(self.gpu.as_ref().map(|g| g.describe()).unwrap_or_default())
+    }
+
+    /// How many wgpu pipelines (megakernel links) this context created.
+    pub fn pipelines_created(&self) -> u64 {
+        self.gpu.as_ref().map_or(0, |g| g.pipelines_created)
+    }
+
+    /// The megakernel WGSL of the last wgpu launch (`RT_DUMP_WGSL=1` also
+    /// writes it to the temporary directory).
+    pub fn linked_wgsl(&self) -> Option<&str> {
+        self.last_wgsl.as_deref()
     }
 
     pub fn set_entry_point_count(&mut self, n: u32) {

@@ -63,6 +63,12 @@ pub enum RtError {
         hit_location: String,
         taken: &'static str,
     },
+    #[error(
+        "programs disagree on WGSL item `{item}`: `{a}` ({a_location}) and `{b}` ({b_location}) define it differently (two types or helpers with one name?)"
+    )]
+    LinkConflict { item: String, a: &'static str, a_location: String, b: &'static str, b_location: String },
+    #[error("the wgpu backend: {0}")]
+    Gpu(String),
     #[error("{0} is not a valid handle of this context")]
     InvalidHandle(String),
     #[error("acceleration builder `{builder}` cannot be honoured: {reason}")]

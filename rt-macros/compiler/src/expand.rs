@@ -456,7 +456,7 @@ fn program_output(kind: Kind, f: &syn::ItemFn, lowered: Result<Lowered, Errors>)
         let loader = match t {
             Ty::Buffer(..) => "rt_load_RtBuffer".to_string(),
             Ty::Sampler => "rt_load_RtSampler".to_string(),
-            Ty::Object => "rt_load_u32".to_string(),
+            Ty::Object => "rt_load_object".to_string(),
             other => format!("rt_load_{}", other.mangle()),
         };
         quote!(::rt_std::program::VariableDescriptor { name: #n, ty: #lay, kind: #vkind, wgsl_load: #loader })

@@ -45,8 +45,9 @@ fn scope_name(s: Scope) -> String {
     }
 }
 
-/// Resolves the variables of program `p` used at `record`.
-pub fn resolve(ctx: &Context, p: ProgramId, record: Record) -> Result<Call> {
+/// Finds and type-checks the values of program `p`'s variables used at
+/// `record`, in declaration order.
+pub fn resolve_values<'c>(ctx: &'c Context, p: ProgramId, record: Record) -> Result<Vec<&'c VarValue>> {
     let desc = ctx.program(p)?.desc;
     if desc.variables.len() > MAX_VARIABLES {
         return Err(RtError::TooManyVariables {
@@ -67,7 +68,7 @@ pub fn resolve(ctx: &Context, p: ProgramId, record: Record) -> Result<Call> {
             ScopeKind::Node => record.node.map(Scope::Node),
         })
         .collect();
-    let mut vars = Vec::with_capacity(desc.variables.len());
+    let mut values = Vec::with_capacity(desc.variables.len());
     for v in desc.variables {
         let mut found = None;
         for s in &scopes {
@@ -93,39 +94,55 @@ pub fn resolve(ctx: &Context, p: ProgramId, record: Record) -> Result<Call> {
             scope: scope_name(scope),
             found,
         };
-        let resolved: Arc<dyn Any + Send + Sync> = match (value, v.kind) {
-            (VarValue::Data { layout, value, .. }, VariableKind::Value) if layout.rust == v.ty.rust => value.clone(),
+        let ok = match (value, v.kind) {
+            (VarValue::Data { layout, .. }, VariableKind::Value) => layout.rust == v.ty.rust,
             (VarValue::Buffer(b), VariableKind::Buffer { element, dimensions, writable }) => {
-                let rec =
-                    ctx.buffers.get(b.index() as usize).ok_or_else(|| RtError::InvalidHandle(format!("{b:?}")))?;
-                let ok = rec.storage.layout().rust == element.rust
-                    && rec.dims == dimensions
-                    && (!writable || rec.ty.writable_by_programs());
-                if !ok {
-                    return Err(mismatch(rec.type_name()));
-                }
-                Arc::from(rec.storage.handle(dimensions, writable, rec.width, rec.height))
+                let rec = ctx.buffers.get(b.index() as usize).ok_or_else(|| RtError::InvalidHandle(format!("{b:?}")))?;
+                rec.storage.layout().rust == element.rust && rec.dims == dimensions && (!writable || rec.ty.writable_by_programs())
             }
             (VarValue::Sampler(s), VariableKind::Sampler) => {
-                let rec =
-                    ctx.samplers.get(s.index() as usize).ok_or_else(|| RtError::InvalidHandle(format!("{s:?}")))?;
-                Arc::new(rec.handle())
+                ctx.samplers.get(s.index() as usize).ok_or_else(|| RtError::InvalidHandle(format!("{s:?}")))?;
+                true
             }
             (VarValue::Object(n), VariableKind::Object) => {
                 if n.index() as usize >= ctx.nodes.len() {
                     return Err(RtError::InvalidHandle(format!("{n:?}")));
                 }
-                Arc::new(n.object())
+                true
             }
-            (other, _) => {
-                let name = other.type_name(&|b| {
-                    ctx.buffers.get(b.index() as usize).map(|r| r.type_name()).unwrap_or_else(|| format!("{b:?}"))
-                });
-                return Err(mismatch(name));
-            }
+            _ => false,
         };
-        vars.push(resolved);
+        if !ok {
+            return Err(mismatch(value.type_name(&|b| {
+                ctx.buffers.get(b.index() as usize).map(|r| r.type_name()).unwrap_or_else(|| format!("{b:?}"))
+            })));
+        }
+        values.push(value);
     }
+    Ok(values)
+}
+
+/// Resolves the variables of program `p` used at `record` to the values the
+/// CPU entry receives (handles for buffers, samplers and nodes).
+pub fn resolve(ctx: &Context, p: ProgramId, record: Record) -> Result<Call> {
+    let desc = ctx.program(p)?.desc;
+    let values = resolve_values(ctx, p, record)?;
+    let vars = values
+        .into_iter()
+        .zip(desc.variables)
+        .map(|(value, v)| -> Arc<dyn Any + Send + Sync> {
+            match (value, v.kind) {
+                (VarValue::Data { value, .. }, _) => value.clone(),
+                (VarValue::Buffer(b), VariableKind::Buffer { dimensions, writable, .. }) => {
+                    let rec = &ctx.buffers[b.index() as usize];
+                    Arc::from(rec.storage.handle(dimensions, writable, rec.width, rec.height))
+                }
+                (VarValue::Sampler(s), _) => Arc::new(ctx.samplers[s.index() as usize].handle()),
+                (VarValue::Object(n), _) => Arc::new(n.object()),
+                (VarValue::Buffer(_), _) => unreachable!("checked by resolve_values"),
+            }
+        })
+        .collect();
     Ok(Call { desc, vars })
 }
 

@@ -3,6 +3,7 @@
 
 pub mod cpu;
 pub mod link;
+pub mod wgpu;
 
 use crate::Context;
 use crate::error::Result;
@@ -14,12 +15,16 @@ use glam::UVec2;
 pub enum Backend {
     /// Programs run natively as Rust over obvhs BVHs, on all cores (rayon).
     Cpu,
+    /// Programs linked into one WGSL megakernel on a wgpu adapter (a GPU,
+    /// or Mesa's lavapipe on machines without one).
+    Wgpu,
 }
 
 impl Backend {
     pub fn name(self) -> &'static str {
         match self {
             Backend::Cpu => "cpu",
+            Backend::Wgpu => "wgpu",
         }
     }
 }
@@ -46,5 +51,6 @@ pub struct LaunchReport {
 pub(crate) fn launch(ctx: &mut Context, entry: u32, width: u32, height: u32) -> Result<LaunchReport> {
     match ctx.backend {
         Backend::Cpu => cpu::launch(ctx, entry, width, height),
+        Backend::Wgpu => wgpu::launch(ctx, entry, width, height),
     }
 }

@@ -21,7 +21,7 @@ fn rt_load_vec4f(w: u32) -> vec4<f32> {
     return vec4<f32>(rt_load_f32(w + 0u), rt_load_f32(w + 1u), rt_load_f32(w + 2u), rt_load_f32(w + 3u));
 }
 
-fn rtp_chull_intersect(prim: u32, attr: ptr<function, Normals>, planes: RtBuffer) {
+fn rtp_chull_intersect(attr: ptr<function, Normals>, prim: u32, planes: RtBuffer) {
     _ = prim;
     let ray: RtRay = rt_current_ray();
     var t0: f32 = -3.4028235e38f;

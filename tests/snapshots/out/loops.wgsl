@@ -38,8 +38,18 @@ fn rtp_loops(n: u32, mask: u32, out: RtBuffer) {
     }
     for (var row: u32 = 0u; row < 3u; row++) {
         let end_1 = (n + 1u);
-        for (var col: u32 = row; col <= end_1; col++) {
-            sum += f32((row * col));
+        {
+            var col: u32 = row;
+            if col <= end_1 {
+                loop {
+                    sum += f32((row * col));
+                    continuing {
+                        let last = col == end_1;
+                        col++;
+                        break if last;
+                    }
+                }
+            }
         }
     }
     var k: u32 = (slot + 1u);

@@ -21,7 +21,7 @@ fn rt_load_vec4f(w: u32) -> vec4<f32> {
     return vec4<f32>(rt_load_f32(w + 0u), rt_load_f32(w + 1u), rt_load_f32(w + 2u), rt_load_f32(w + 3u));
 }
 
-fn rtp_sphere_intersect(prim: u32, attr: ptr<function, Normals>, spheres: RtBuffer) {
+fn rtp_sphere_intersect(attr: ptr<function, Normals>, prim: u32, spheres: RtBuffer) {
     let s: vec4<f32> = rt_bufload_vec4f(spheres, prim);
     let center: vec3<f32> = s.xyz;
     let radius: f32 = s.w;

@@ -846,10 +846,10 @@ impl<'m> FnLowerer<'m> {
                 let v = self.deref(v);
                 let t = self.resolved(&v.ty);
                 match t.scalar() {
-                    Some(Scalar::F32) | Some(Scalar::I32) => Ok(Val::new(format!("-{}", v.code), v.ty)),
+                    Some(Scalar::F32) | Some(Scalar::I32) => Ok(Val::new(negate(&v.code), v.ty)),
                     _ if matches!(t, Ty::IntVar(_)) => {
                         self.unify(&t, &I32);
-                        Ok(Val::new(format!("-{}", v.code), I32))
+                        Ok(Val::new(negate(&v.code), I32))
                     }
                     _ => Err(Error::new(u.span(), format!("cannot negate a value of type `{t}`"))),
                 }
@@ -1548,13 +1548,37 @@ impl<'m> FnLowerer<'m> {
         let body = self.loop_body(&f.body.stmts);
         self.scopes.pop();
         let body = body?;
-        let cmp = if matches!(range.limits, syn::RangeLimits::Closed(_)) { "<=" } else { "<" };
-        let text = format!(
-            "for (var {var}: {} = {}; {var} {cmp} {end_code}; {var}++) {{\n{}}}",
-            ty.wgsl(),
-            s.code,
-            indent(&body.join("\n"))
-        );
+        // `a..=b` stops after `b` without computing `b + 1`, which for
+        // `b == u32::MAX` would wrap and never stop: unless `b` is a literal
+        // below the maximum, the loop tests for the last value itself.
+        let end_below_max = match &**end {
+            Expr::Lit(syn::ExprLit { lit: syn::Lit::Int(i), .. }) => {
+                let max = if matches!(ty, Ty::Scalar(Scalar::U32 | Scalar::Usize)) {
+                    u32::MAX as u64
+                } else {
+                    i32::MAX as u64
+                };
+                i.base10_parse::<u64>().is_ok_and(|v| v < max)
+            }
+            _ => false,
+        };
+        let text = if matches!(range.limits, syn::RangeLimits::Closed(_)) && !end_below_max {
+            let last = self.fresh("last");
+            let looped = format!(
+                "loop {{\n{}    continuing {{\n        let {last} = {var} == {end_code};\n        {var}++;\n        break if {last};\n    }}\n}}",
+                indent(&body.join("\n"))
+            );
+            let guarded = format!("if {var} <= {end_code} {{\n{}}}", indent(&looped));
+            format!("{{\n    var {var}: {} = {};\n{}}}", ty.wgsl(), s.code, indent(&guarded))
+        } else {
+            let cmp = if matches!(range.limits, syn::RangeLimits::Closed(_)) { "<=" } else { "<" };
+            format!(
+                "for (var {var}: {} = {}; {var} {cmp} {end_code}; {var}++) {{\n{}}}",
+                ty.wgsl(),
+                s.code,
+                indent(&body.join("\n"))
+            )
+        };
         let text = self.mark(f.span(), &text);
         self.emit(text);
         Ok(Val::new("", Ty::Unit))
@@ -2419,6 +2443,24 @@ impl<'m> FnLowerer<'m> {
             Ok(Val::new(code, sig.ret.clone()))
         }
     }
+}
+
+/// `-code`; `- -x` must not become WGSL's `--` token.
+fn negate(code: &str) -> String {
+    let mut chars = code.chars();
+    let mut first = None;
+    while let Some(c) = chars.next() {
+        match c {
+            // A source-map marker: `\u{1}id\u{2}` opens, `\u{3}` closes.
+            '\u{1}' => chars.by_ref().take_while(|&d| d != '\u{2}').for_each(drop),
+            '\u{3}' => {}
+            c => {
+                first = Some(c);
+                break;
+            }
+        }
+    }
+    if first == Some('-') { format!("-({code})") } else { format!("-{code}") }
 }
 
 /// Whether evaluating lowered code may have side effects: only calls of

@@ -921,6 +921,19 @@ fn program_unit(
     if !errors.is_empty() {
         return Err(errors);
     }
+    // The WGSL function takes its parameters in one canonical order whatever
+    // the Rust order: payload, attributes, primitive index, then variables
+    // (in declaration order), so the linker can call every program alike.
+    let rank = |p: &signature::Param| match p.role {
+        Role::Payload { .. } => 0,
+        Role::Attributes { .. } => 1,
+        Role::Primitive => 2,
+        Role::Variable => 3,
+    };
+    let mut order: Vec<usize> = (0..lps.len()).collect();
+    order.sort_by_key(|i| rank(&params[*i]));
+    let mut slots: Vec<Option<LParam>> = lps.into_iter().map(Some).collect();
+    let lps: Vec<LParam> = order.into_iter().filter_map(|i| slots[i].take()).collect();
     let name = f.sig.ident.to_string();
     let mut l = FnLowerer::new(m, FnRole::Program(kind), &name, ret);
     let text = l.function(&out.wgsl_entry, &lps, &f.block);

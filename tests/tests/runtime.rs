@@ -1,4 +1,5 @@
-//! Runtime behaviour on the CPU backend, with pixel values known
+//! Runtime behaviour on every backend (each test runs on the CPU backend and
+//! on wgpu — lavapipe on machines without a GPU), with pixel values known
 //! analytically: a sphere's silhouette and normals, a triangle's shadow
 //! edge, any-hit termination, the trace-depth limit, variable shadowing by
 //! scope, exceptions, and link errors that name what is wrong.
@@ -139,8 +140,9 @@ const W: u32 = 32;
 const BG: Vec3 = Vec3::new(0.1, 0.2, 0.3);
 
 /// A context with the ortho camera, a background miss and an output buffer.
-fn camera(extent: f32) -> (Context, BufferId) {
+fn camera(extent: f32, backend: Backend) -> (Context, BufferId) {
     let mut ctx = Context::new();
+    ctx.set_backend(backend);
     ctx.set_ray_type_count(2);
     let rg = ctx.create_program(&ortho::PROGRAM);
     ctx.set_ray_generation_program(0, rg).unwrap();
@@ -184,10 +186,9 @@ fn world(x: u32, y: u32, extent: f32) -> (f32, f32) {
     (p(x), p(y))
 }
 
-#[test]
-fn sphere_silhouette_and_normals() {
+fn sphere_silhouette_and_normals(backend: Backend) {
     let extent = 2.0;
-    let (mut ctx, out) = camera(extent);
+    let (mut ctx, out) = camera(extent, backend);
     sphere_scene(&mut ctx, &normal_shader::PROGRAM, Vec3::ZERO, 1.0);
     let report = ctx.launch(0, W, W).unwrap();
     assert!(report.exceptions.is_empty(), "{:?}", report.exceptions);
@@ -202,7 +203,7 @@ fn sphere_silhouette_and_normals() {
                 hits += 1;
                 let n = Vec3::new(wx, wy, (1.0 - r2).sqrt());
                 let expected = n * 0.5 + 0.5;
-                assert!((c.truncate() - expected).abs().max_element() < 1e-4, "pixel {x},{y}: {c} vs {expected}");
+                assert!((c.truncate() - expected).abs().max_element() < 1e-3, "pixel {x},{y}: {c} vs {expected}");
             } else if r2 > 1.02 {
                 assert_eq!(c.truncate(), BG, "pixel {x},{y} should miss");
             }
@@ -225,9 +226,8 @@ fn quad(z: f32, half: f32) -> TriangleMesh {
     }
 }
 
-#[test]
-fn triangle_attributes_reach_closest_hit_through_a_transform() {
-    let (mut ctx, out) = camera(2.0);
+fn triangle_attributes_reach_closest_hit_through_a_transform(backend: Backend) {
+    let (mut ctx, out) = camera(2.0, backend);
     let geom = ctx.create_triangles(quad(0.0, 1.0)).unwrap();
     let mat = ctx.create_material();
     let ch = ctx.create_program(&normal_shader::PROGRAM);
@@ -243,15 +243,14 @@ fn triangle_attributes_reach_closest_hit_through_a_transform() {
     let img = ctx.read_buffer::<Vec4>(out).unwrap();
     // Inside the quad: world normal (0, 0, -1) → (0.5, 0.5, 0).
     let c = pixel(&img, W / 2, W / 2);
-    assert!((c.truncate() - Vec3::new(0.5, 0.5, 0.0)).abs().max_element() < 1e-5, "{c}");
+    assert!((c.truncate() - Vec3::new(0.5, 0.5, 0.0)).abs().max_element() < 1e-4, "{c}");
     // Outside the quad's [-1, 1] square (extent 2): background.
     assert_eq!(pixel(&img, 0, 0).truncate(), BG);
 }
 
-#[test]
-fn any_hit_terminate_casts_a_shadow_with_a_sharp_edge() {
+fn any_hit_terminate_casts_a_shadow_with_a_sharp_edge(backend: Backend) {
     let extent = 2.0;
-    let (mut ctx, out) = camera(extent);
+    let (mut ctx, out) = camera(extent, backend);
     // A floor quad at z = 0 and a blocker over x in [-3, 0] at z = 1, the
     // light straight above at z = 100: floor points with x < 0 are in
     // shadow. Camera rays ignore the blocker (its any hit for ray type 0
@@ -304,9 +303,8 @@ fn any_hit_terminate_casts_a_shadow_with_a_sharp_edge() {
     assert!(img.iter().all(|c| c.x == 1.0));
 }
 
-#[test]
-fn trace_depth_limit_raises_the_exception_and_the_exception_program_runs() {
-    let (mut ctx, out) = camera(2.0);
+fn trace_depth_limit_raises_the_exception_and_the_exception_program_runs(backend: Backend) {
+    let (mut ctx, out) = camera(2.0, backend);
     ctx.set_max_trace_depth(3);
     // Two facing quads: every ray bounces between them forever.
     let g = ctx.create_triangles(quad(0.0, 3.0)).unwrap();
@@ -327,10 +325,9 @@ fn trace_depth_limit_raises_the_exception_and_the_exception_program_runs() {
     assert_eq!(pixel(&img, 3, 5), Vec4::new(1.0, 0.0, 1.0, EXCEPTION_TRACE_DEPTH_EXCEEDED as f32));
 }
 
-#[test]
-fn user_exception_reaches_the_exception_program_and_other_pixels_are_untouched() {
+fn user_exception_reaches_the_exception_program_and_other_pixels_are_untouched(backend: Backend) {
     let extent = 2.0;
-    let (mut ctx, out) = camera(extent);
+    let (mut ctx, out) = camera(extent, backend);
     sphere_scene(&mut ctx, &throws::PROGRAM, Vec3::ZERO, 1.0);
     let ex = ctx.create_program(&paint_exception::PROGRAM);
     ctx.set_exception_program(0, ex).unwrap();
@@ -347,9 +344,8 @@ fn user_exception_reaches_the_exception_program_and_other_pixels_are_untouched()
     }));
 }
 
-#[test]
-fn variables_resolve_innermost_scope_first() {
-    let (mut ctx, out) = camera(2.0);
+fn variables_resolve_innermost_scope_first(backend: Backend) {
+    let (mut ctx, out) = camera(2.0, backend);
     let (_, mat, gi) = sphere_scene(&mut ctx, &flat_color::PROGRAM, Vec3::ZERO, 1.0);
     ctx.set_var(Scope::Context, "color", Vec3::new(1.0, 0.0, 0.0)).unwrap();
     ctx.launch(0, W, W).unwrap();
@@ -363,26 +359,25 @@ fn variables_resolve_innermost_scope_first() {
     assert_eq!(pixel(&ctx.read_buffer::<Vec4>(out).unwrap(), W / 2, W / 2).truncate(), Vec3::Z);
 }
 
-#[test]
-fn link_errors_name_the_program_the_variable_and_the_scopes() {
-    let (mut ctx, _) = camera(2.0);
+fn link_errors_name_the_program_the_variable_and_the_scopes(backend: Backend) {
+    let (mut ctx, _) = camera(2.0, backend);
     sphere_scene(&mut ctx, &flat_color::PROGRAM, Vec3::ZERO, 1.0);
     let err = ctx.launch(0, W, W).unwrap_err().to_string();
     assert!(err.contains("variable `color`"), "{err}");
-    assert!(err.contains("`flat_color`") && err.contains("runtime_cpu.rs:"), "{err}");
+    assert!(err.contains("`flat_color`") && err.contains("runtime.rs:"), "{err}");
     assert!(err.contains("searched, innermost first: program 5, geometry instance 0, material 0, context"), "{err}");
 
     ctx.set_var(Scope::Context, "color", 1.0f32).unwrap();
     let err = ctx.launch(0, W, W).unwrap_err().to_string();
     assert!(err.contains("declared `Vec3`") && err.contains("context scope sets it to `f32`"), "{err}");
 
-    let (mut ctx, _) = camera(2.0);
+    let (mut ctx, _) = camera(2.0, backend);
     ctx.set_ray_type_count(3);
     sphere_scene(&mut ctx, &normal_shader::PROGRAM, Vec3::ZERO, 1.0);
     let err = ctx.launch(0, W, W).unwrap_err();
     assert!(matches!(err, RtError::NoMissProgram { ray_type: 2 }), "{err}");
 
-    let (mut ctx, _) = camera(2.0);
+    let (mut ctx, _) = camera(2.0, backend);
     sphere_scene(&mut ctx, &normal_shader::PROGRAM, Vec3::ZERO, 1.0);
     let wrong = ctx.create_program(&normal_shader::PROGRAM);
     let err = ctx.set_miss_program(0, wrong).unwrap_err().to_string();
@@ -390,9 +385,8 @@ fn link_errors_name_the_program_the_variable_and_the_scopes() {
     assert!(matches!(ctx.launch(0, 0, 4), Err(RtError::BadLaunch { .. })));
 }
 
-#[test]
-fn moving_geometry_refits_instead_of_rebuilding() {
-    let (mut ctx, out) = camera(2.0);
+fn moving_geometry_refits_instead_of_rebuilding(backend: Backend) {
+    let (mut ctx, out) = camera(2.0, backend);
     let geom = ctx.create_triangles(quad(0.0, 0.5)).unwrap();
     let mat = ctx.create_material();
     let ch = ctx.create_program(&flat_color::PROGRAM);
@@ -407,4 +401,73 @@ fn moving_geometry_refits_instead_of_rebuilding() {
     ctx.set_triangle_positions(geom, quad(0.0, 2.0).positions).unwrap();
     ctx.launch(0, W, W).unwrap();
     assert_eq!(pixel(&ctx.read_buffer::<Vec4>(out).unwrap(), 0, 0).truncate(), Vec3::ONE);
+}
+
+
+/// Instantiates every test above once per backend.
+macro_rules! on_backends {
+    ($($name:ident),* $(,)?) => {
+        mod cpu {
+            use super::*;
+            $( #[test] fn $name() { super::$name(Backend::Cpu) } )*
+        }
+        mod wgpu {
+            use super::*;
+            $( #[test] fn $name() { super::$name(Backend::Wgpu) } )*
+        }
+    };
+}
+
+on_backends!(
+    sphere_silhouette_and_normals,
+    triangle_attributes_reach_closest_hit_through_a_transform,
+    any_hit_terminate_casts_a_shadow_with_a_sharp_edge,
+    trace_depth_limit_raises_the_exception_and_the_exception_program_runs,
+    user_exception_reaches_the_exception_program_and_other_pixels_are_untouched,
+    variables_resolve_innermost_scope_first,
+    link_errors_name_the_program_the_variable_and_the_scopes,
+    moving_geometry_refits_instead_of_rebuilding,
+);
+
+#[test]
+fn wgpu_and_cpu_render_the_same_sphere() {
+    let render = |backend| {
+        let (mut ctx, out) = camera(2.0, backend);
+        sphere_scene(&mut ctx, &normal_shader::PROGRAM, Vec3::new(0.2, -0.1, 0.0), 1.1);
+        ctx.launch(0, W, W).unwrap();
+        ctx.read_buffer::<Vec4>(out).unwrap()
+    };
+    let (a, b) = (render(Backend::Cpu), render(Backend::Wgpu));
+    let worst = a.iter().zip(&b).map(|(x, y)| (*x - *y).abs().max_element()).fold(0.0f32, f32::max);
+    assert!(worst < 2.0 / 255.0, "largest difference {worst}");
+}
+
+#[test]
+fn changing_values_never_relinks_but_changing_programs_does() {
+    let (mut ctx, out) = camera(2.0, Backend::Wgpu);
+    let (_, mat, _) = sphere_scene(&mut ctx, &flat_color::PROGRAM, Vec3::ZERO, 1.0);
+    ctx.set_var(Scope::Context, "color", Vec3::X).unwrap();
+    ctx.launch(0, W, W).unwrap();
+    assert_eq!(ctx.pipelines_created(), 1);
+    assert_eq!(pixel(&ctx.read_buffer::<Vec4>(out).unwrap(), W / 2, W / 2).truncate(), Vec3::X);
+    // New values and buffer contents: same pipeline.
+    ctx.set_var(Scope::Context, "color", Vec3::Y).unwrap();
+    ctx.set_var(Scope::Context, "bg_color", Vec3::ONE).unwrap();
+    ctx.write_buffer(out, &vec![Vec4::ONE; (W * W) as usize]).unwrap();
+    ctx.launch(0, W, W).unwrap();
+    assert_eq!(ctx.pipelines_created(), 1);
+    let img = ctx.read_buffer::<Vec4>(out).unwrap();
+    assert_eq!(pixel(&img, W / 2, W / 2).truncate(), Vec3::Y);
+    assert_eq!(pixel(&img, 0, 0).truncate(), Vec3::ONE);
+    // Shadowing on another scope is a value change too.
+    ctx.set_var(mat, "color", Vec3::Z).unwrap();
+    ctx.launch(0, W, W).unwrap();
+    assert_eq!(ctx.pipelines_created(), 1);
+    assert_eq!(pixel(&ctx.read_buffer::<Vec4>(out).unwrap(), W / 2, W / 2).truncate(), Vec3::Z);
+    // A different closest-hit program: a new link.
+    let ch = ctx.create_program(&normal_shader::PROGRAM);
+    ctx.set_closest_hit_program(mat, 0, ch).unwrap();
+    ctx.launch(0, W, W).unwrap();
+    assert_eq!(ctx.pipelines_created(), 2);
+    assert!(ctx.linked_wgsl().unwrap().contains("fn rtp_normal_shader_d1("));
 }

@@ -1,0 +1,354 @@
+//! OBJ meshes, loaded with `tobj` into one [`TriangleMesh`] with a
+//! material per `.mtl` material, and checked first so that a bad file is
+//! one clear message naming the file, the line and the problem.
+//!
+//! `tobj` reports what is wrong but not where, and accepts some things a
+//! renderer cannot use (NaN coordinates), so [`check_obj`] reads the text
+//! once before it: numbers that do not parse, non-finite coordinates, face
+//! indices that are zero or out of range, faces of fewer than three
+//! vertices, each with its line. What it passes, `tobj` loads (triangulating
+//! polygons); a mesh with no triangles is refused after loading.
+
+use glam::Vec3;
+use rt_runtime::TriangleMesh;
+use std::fmt;
+use std::path::Path;
+
+/// Why a mesh could not be loaded: the file, the line when known, and the
+/// problem.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct MeshError {
+    pub file: String,
+    pub line: Option<usize>,
+    pub problem: String,
+}
+
+impl fmt::Display for MeshError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.line {
+            Some(line) => write!(f, "{}:{line}: {}", self.file, self.problem),
+            None => write!(f, "{}: {}", self.file, self.problem),
+        }
+    }
+}
+
+impl std::error::Error for MeshError {}
+
+/// A material of a loaded mesh.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MeshMaterial {
+    pub name: String,
+    /// `Kd`, or [`DEFAULT_GREY`] when the material has none.
+    pub diffuse: Vec3,
+    /// `Ke`; else `Ka` when it exceeds 1 in some channel (the Cornell box's
+    /// `.mtl` writes its light's emission as `Ka 20 20 20`); else zero.
+    pub emission: Vec3,
+}
+
+/// The diffuse colour of meshes without materials.
+pub const DEFAULT_GREY: Vec3 = Vec3::splat(0.7);
+
+/// A loaded OBJ: one triangle mesh over all its objects, with per-triangle
+/// material indices into `materials`.
+#[derive(Clone, Debug)]
+pub struct LoadedMesh {
+    /// Positions, triangles, per-vertex shading normals (the file's, or
+    /// smoothed across edges sharper than [`CREASE_DEGREES`] only) and
+    /// `material_indices`.
+    pub mesh: TriangleMesh,
+    /// At least one; the last is [`DEFAULT_GREY`] when some object has no
+    /// material.
+    pub materials: Vec<MeshMaterial>,
+    pub min: Vec3,
+    pub max: Vec3,
+    /// What was odd but not fatal (a missing `.mtl`), one line each.
+    pub warnings: Vec<String>,
+}
+
+/// Edges sharper than this keep their facets when normals are computed.
+pub const CREASE_DEGREES: f32 = 50.0;
+
+/// Loads the OBJ at `path` (and its `.mtl` files, relative to it).
+pub fn load_obj(path: &Path) -> Result<LoadedMesh, MeshError> {
+    let file = path.display().to_string();
+    let text = std::fs::read_to_string(path).map_err(|e| MeshError {
+        file: file.clone(),
+        line: None,
+        problem: format!("cannot read the file: {}", io_reason(&e)),
+    })?;
+    parse_obj(&text, &file, path.parent())
+}
+
+fn io_reason(e: &std::io::Error) -> String {
+    match e.kind() {
+        std::io::ErrorKind::NotFound => "no such file".into(),
+        std::io::ErrorKind::InvalidData => "it is not UTF-8 text".into(),
+        _ => e.to_string(),
+    }
+}
+
+/// Loads OBJ text; `file` names it in messages, `.mtl` files are looked up
+/// in `dir`.
+pub fn parse_obj(text: &str, file: &str, dir: Option<&Path>) -> Result<LoadedMesh, MeshError> {
+    let err = |line: Option<usize>, problem: String| MeshError { file: file.to_string(), line, problem };
+    check_obj(text).map_err(|(line, problem)| err(Some(line), problem))?;
+
+    let options = tobj::LoadOptions { triangulate: true, single_index: true, ignore_points: true, ignore_lines: true, ..Default::default() };
+    let mut warnings = Vec::new();
+    let mtl_problems = std::cell::RefCell::new(Vec::new());
+    let (models, materials) = tobj::load_obj_buf(&mut text.as_bytes(), &options, |mtl| {
+        let p = dir.map_or_else(|| mtl.to_path_buf(), |d| d.join(mtl));
+        let result = tobj::load_mtl(&p);
+        if let Err(e) = &result {
+            mtl_problems.borrow_mut().push(format!("{}: {e}; using default grey", p.display()));
+        }
+        result
+    })
+    .map_err(|e| err(None, format!("not a valid OBJ file ({e})")))?;
+    warnings.extend(mtl_problems.into_inner());
+    let materials = materials.unwrap_or_default();
+
+    let mut out_materials: Vec<MeshMaterial> = materials
+        .iter()
+        .map(|m| {
+            let v = |a: Option<[f32; 3]>| a.map(Vec3::from_array);
+            let ambient = v(m.ambient).unwrap_or(Vec3::ZERO);
+            let emission = v(m.emissive).unwrap_or(if ambient.max_element() > 1.0 { ambient } else { Vec3::ZERO });
+            MeshMaterial { name: m.name.clone(), diffuse: v(m.diffuse).unwrap_or(DEFAULT_GREY), emission }
+        })
+        .collect();
+    let default_index = out_materials.len() as u32;
+    let mut needs_default = out_materials.is_empty();
+
+    let mut mesh = TriangleMesh::default();
+    let mut material_indices = Vec::new();
+    let mut file_normals = Vec::new();
+    let mut all_have_normals = true;
+    for model in &models {
+        let m = &model.mesh;
+        let base = mesh.positions.len() as u32;
+        let count = m.positions.len() / 3;
+        mesh.positions.extend(m.positions.chunks_exact(3).map(|p| Vec3::new(p[0], p[1], p[2])));
+        if m.normals.len() == m.positions.len() {
+            file_normals.extend(m.normals.chunks_exact(3).map(|n| Vec3::new(n[0], n[1], n[2])));
+        } else {
+            all_have_normals = false;
+        }
+        let material = match m.material_id {
+            Some(id) if id < out_materials.len() => id as u32,
+            _ => {
+                needs_default = true;
+                default_index
+            }
+        };
+        for t in m.indices.chunks_exact(3) {
+            if t.iter().any(|&i| i as usize >= count) {
+                return Err(err(None, format!("object `{}` has a face index out of range", model.name)));
+            }
+            mesh.indices.push([base + t[0], base + t[1], base + t[2]]);
+            material_indices.push(material);
+        }
+    }
+    if mesh.indices.is_empty() {
+        return Err(err(None, "the mesh is empty: it has no faces".into()));
+    }
+    if needs_default {
+        out_materials.push(MeshMaterial { name: "default".into(), diffuse: DEFAULT_GREY, emission: Vec3::ZERO });
+    }
+    mesh.material_indices = Some(material_indices);
+
+    let (mut min, mut max) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+    for tri in &mesh.indices {
+        for &i in tri {
+            min = min.min(mesh.positions[i as usize]);
+            max = max.max(mesh.positions[i as usize]);
+        }
+    }
+    if all_have_normals && file_normals.len() == mesh.positions.len() {
+        mesh.normals = Some(file_normals.into_iter().map(|n| n.normalize_or(Vec3::Y)).collect());
+    } else {
+        mesh = with_crease_normals(mesh, CREASE_DEGREES);
+    }
+    mesh.validate().map_err(|problem| err(None, problem))?;
+    Ok(LoadedMesh { mesh, materials: out_materials, min, max, warnings })
+}
+
+/// Checks OBJ text line by line for what would make a bad mesh; returns the
+/// first problem with its (1-based) line.
+pub fn check_obj(text: &str) -> Result<(), (usize, String)> {
+    // Face indices may refer forward (tobj resolves them at the end), so
+    // count every element first.
+    let (mut total_v, mut total_vt, mut total_vn) = (0usize, 0usize, 0usize);
+    for line in text.lines() {
+        match line.split_whitespace().next() {
+            Some("v") => total_v += 1,
+            Some("vt") => total_vt += 1,
+            Some("vn") => total_vn += 1,
+            _ => {}
+        }
+    }
+    let (mut seen_v, mut seen_vt, mut seen_vn) = (0usize, 0usize, 0usize);
+    for (i, line) in text.lines().enumerate() {
+        let n = i + 1;
+        let mut words = line.split_whitespace();
+        let Some(keyword) = words.next() else { continue };
+        let rest: Vec<&str> = words.collect();
+        match keyword {
+            "v" => {
+                seen_v += 1;
+                let xyz = numbers(&rest, 3, "a vertex").map_err(|p| (n, p))?;
+                if let Some(bad) = xyz.iter().find(|x| !x.is_finite()) {
+                    return Err((n, format!("vertex {seen_v} has a non-finite coordinate ({bad})")));
+                }
+                match rest.len() {
+                    3 | 6 => {}
+                    4 => {
+                        let w = numbers(&rest[3..], 1, "a vertex's w").map_err(|p| (n, p))?[0];
+                        if w == 0.0 || !w.is_finite() {
+                            return Err((n, format!("vertex {seen_v} has weight w = {w}")));
+                        }
+                    }
+                    k => return Err((n, format!("a vertex has {k} numbers; expected 3 (x y z), 4 (with w) or 6 (with r g b)"))),
+                }
+            }
+            "vt" => {
+                seen_vt += 1;
+                numbers(&rest, 2, "a texture coordinate").map_err(|p| (n, p))?;
+            }
+            "vn" => {
+                seen_vn += 1;
+                numbers(&rest, 3, "a normal").map_err(|p| (n, p))?;
+            }
+            "f" => {
+                if rest.len() < 3 {
+                    return Err((n, format!("a face needs at least 3 vertices, this one has {}", rest.len())));
+                }
+                for corner in &rest {
+                    let mut parts = corner.split('/');
+                    for (what, seen, total) in [("vertex", seen_v, total_v), ("texture coordinate", seen_vt, total_vt), ("normal", seen_vn, total_vn)] {
+                        let part = parts.next().unwrap_or("");
+                        // `v//vn` and `v` leave the optional indices empty.
+                        if part.is_empty() && what != "vertex" {
+                            continue;
+                        }
+                        check_index(part, what, seen, total).map_err(|p| (n, p))?;
+                    }
+                    if parts.next().is_some() {
+                        return Err((n, format!("face corner `{corner}` has more than 3 indices")));
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
+/// The first `count` words as finite-or-not floats.
+fn numbers(words: &[&str], count: usize, what: &str) -> Result<Vec<f32>, String> {
+    if words.len() < count {
+        return Err(format!("{what} needs {count} numbers, found {}", words.len()));
+    }
+    words[..count]
+        .iter()
+        .map(|w| w.parse::<f32>().map_err(|_| format!("{what} has `{w}`, which is not a number")))
+        .collect()
+}
+
+/// A face index: 1-based into the whole file's elements, or negative,
+/// relative to the `seen` so far.
+fn check_index(s: &str, what: &str, seen: usize, total: usize) -> Result<(), String> {
+    let i: i64 = s.parse().map_err(|_| format!("face {what} index `{s}` is not an integer"))?;
+    let ok = match i {
+        0 => return Err(format!("face {what} index 0 is invalid (OBJ indices start at 1)")),
+        i if i > 0 => (i as u64) <= total as u64,
+        i => i.unsigned_abs() <= seen as u64,
+    };
+    if !ok {
+        let count = if i > 0 { total } else { seen };
+        return Err(format!("face {what} index {i} is out of range: there are {count} {what}s"));
+    }
+    Ok(())
+}
+
+/// One vertex per triangle corner, with normals averaged (weighted by
+/// area) over the triangles around the vertex that meet the corner's own
+/// at less than `crease_degrees`; positions are copied bit for bit, so the
+/// surface stays watertight.
+pub fn with_crease_normals(mesh: TriangleMesh, crease_degrees: f32) -> TriangleMesh {
+    let cos_crease = crease_degrees.to_radians().cos();
+    let face: Vec<Vec3> = mesh
+        .indices
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|i| mesh.positions[i as usize]);
+            (b - a).cross(c - a)
+        })
+        .collect();
+    let unit: Vec<Vec3> = face.iter().map(|n| n.normalize_or_zero()).collect();
+    // Triangles around each vertex (CSR).
+    let mut start = vec![0u32; mesh.positions.len() + 1];
+    for t in &mesh.indices {
+        for &i in t {
+            start[i as usize + 1] += 1;
+        }
+    }
+    for i in 0..mesh.positions.len() {
+        start[i + 1] += start[i];
+    }
+    let mut fill = start.clone();
+    let mut around = vec![0u32; start[mesh.positions.len()] as usize];
+    for (t, tri) in mesh.indices.iter().enumerate() {
+        for &i in tri {
+            around[fill[i as usize] as usize] = t as u32;
+            fill[i as usize] += 1;
+        }
+    }
+    let mut out = TriangleMesh {
+        positions: Vec::with_capacity(mesh.indices.len() * 3),
+        indices: Vec::with_capacity(mesh.indices.len()),
+        normals: Some(Vec::with_capacity(mesh.indices.len() * 3)),
+        texcoords: mesh.texcoords.as_ref().map(|_| Vec::with_capacity(mesh.indices.len() * 3)),
+        material_indices: mesh.material_indices.clone(),
+    };
+    let normals = out.normals.as_mut().expect("set above");
+    for (t, tri) in mesh.indices.iter().enumerate() {
+        let base = out.positions.len() as u32;
+        for &i in tri {
+            let mut n = Vec3::ZERO;
+            for &other in &around[start[i as usize] as usize..start[i as usize + 1] as usize] {
+                if unit[other as usize].dot(unit[t]) >= cos_crease {
+                    n += face[other as usize];
+                }
+            }
+            out.positions.push(mesh.positions[i as usize]);
+            normals.push(n.try_normalize().unwrap_or(unit[t]));
+            if let (Some(src), Some(dst)) = (&mesh.texcoords, out.texcoords.as_mut()) {
+                dst.push(src[i as usize]);
+            }
+        }
+        out.indices.push([base, base + 1, base + 2]);
+    }
+    out
+}
+
+/// The positions of the `v` lines after `o NAME` (up to the next `o`): a
+/// way to find geometry whose faces a file leaves commented out.
+pub fn object_vertices(text: &str, name: &str) -> Vec<Vec3> {
+    let mut inside = false;
+    let mut out = Vec::new();
+    for line in text.lines() {
+        let mut words = line.split_whitespace();
+        match words.next() {
+            Some("o") => inside = words.next() == Some(name),
+            Some("v") if inside => {
+                let xyz: Vec<f32> = words.take(3).filter_map(|w| w.parse().ok()).collect();
+                if let [x, y, z] = xyz[..] {
+                    out.push(Vec3::new(x, y, z));
+                }
+            }
+            _ => {}
+        }
+    }
+    out
+}

@@ -1,0 +1,312 @@
+//! The host side every example shares: render settings, the camera, a built
+//! [`Scene`] and how it renders into an in-memory [`Image`], the errors, and
+//! small meshes made in code.
+
+use glam::{Mat3, Vec3, Vec4};
+use rt_runtime::{Backend, BufferId, BufferType, Context, ExceptionRecord, RtError, Scope, TriangleMesh};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Which backend renders, as the binaries' `--backend` names it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum BackendChoice {
+    /// Programs run natively as Rust on every core.
+    Cpu,
+    /// Programs linked into one WGSL megakernel (not available yet).
+    Wgpu,
+}
+
+impl BackendChoice {
+    /// The runtime's backend for this choice, or why there is none.
+    pub fn backend(self) -> Result<Backend, Error> {
+        match self {
+            BackendChoice::Cpu => Ok(Backend::Cpu),
+            BackendChoice::Wgpu => Err(Error::BackendUnavailable {
+                name: "wgpu",
+                why: "rt-runtime has only the cpu backend today; run with `--backend cpu`",
+            }),
+        }
+    }
+}
+
+/// How big and how carefully to render.
+#[derive(Clone, Copy, Debug)]
+pub struct Settings {
+    pub width: u32,
+    pub height: u32,
+    /// Samples per pixel of the stochastic examples (the path-traced Cornell
+    /// box, ambient occlusion); the Whitted examples trace one camera ray per
+    /// pixel whatever this says.
+    pub spp: u32,
+    pub backend: Backend,
+}
+
+impl Settings {
+    /// Default image size of the binaries.
+    pub const DEFAULT_WIDTH: u32 = 512;
+    pub const DEFAULT_HEIGHT: u32 = 384;
+    /// Default samples per pixel: keeps the whole tour near 35 s in release
+    /// on a 2-core machine (see BENCHMARKS.md).
+    pub const DEFAULT_SPP: u32 = 16;
+
+    pub fn new(width: u32, height: u32) -> Self {
+        Settings { width, height, spp: Self::DEFAULT_SPP, backend: Backend::Cpu }
+    }
+
+    pub fn with_spp(self, spp: u32) -> Self {
+        Settings { spp, ..self }
+    }
+
+    /// Width over height.
+    pub fn aspect(&self) -> f32 {
+        self.width as f32 / self.height.max(1) as f32
+    }
+
+    fn check(&self) -> Result<(), Error> {
+        if self.width == 0 || self.height == 0 || self.width > 16384 || self.height > 16384 {
+            return Err(Error::Settings(format!("image size {}x{} is outside 1..=16384", self.width, self.height)));
+        }
+        if self.spp == 0 {
+            return Err(Error::Settings("--spp must be at least 1".into()));
+        }
+        Ok(())
+    }
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings::new(Self::DEFAULT_WIDTH, Self::DEFAULT_HEIGHT)
+    }
+}
+
+/// Everything that can go wrong building or rendering an example.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    #[error(transparent)]
+    Runtime(#[from] RtError),
+    #[error(transparent)]
+    Mesh(#[from] crate::mesh::MeshError),
+    #[error("the {name} backend is not available yet: {why}")]
+    BackendUnavailable { name: &'static str, why: &'static str },
+    #[error("{0}")]
+    Settings(String),
+    #[error("{path}: {problem}")]
+    Io { path: String, problem: String },
+}
+
+/// A pinhole camera: where it is, what it looks at, which way is up, and
+/// its vertical field of view.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Camera {
+    pub eye: Vec3,
+    pub look_at: Vec3,
+    pub up: Vec3,
+    pub vfov_degrees: f32,
+}
+
+impl Camera {
+    /// The `u`, `v`, `w` vectors of the seed's camera: a ray through `d` in
+    /// `[-1, 1]^2` has direction `d.x * u + d.y * v + w`; `w` is the unit
+    /// view direction, `v` points up and `u` right.
+    pub fn uvw(&self, aspect: f32) -> (Vec3, Vec3, Vec3) {
+        let w = (self.look_at - self.eye).normalize();
+        let right = w.cross(self.up).normalize();
+        let up = right.cross(w);
+        let half = (self.vfov_degrees.to_radians() * 0.5).tan();
+        (right * half * aspect, up * half, w)
+    }
+
+    /// The same basis as columns of a matrix (`u`, `v`, `w`).
+    pub fn basis(&self, aspect: f32) -> Mat3 {
+        let (u, v, w) = self.uvw(aspect);
+        Mat3::from_cols(u, v, w)
+    }
+
+    /// Sets `eye`, `u`, `v` and `w` on the context.
+    pub fn set_vars(&self, ctx: &mut Context, aspect: f32) -> Result<(), RtError> {
+        let (u, v, w) = self.uvw(aspect);
+        ctx.set_var(Scope::Context, "eye", self.eye)?;
+        ctx.set_var(Scope::Context, "u", u)?;
+        ctx.set_var(Scope::Context, "v", v)?;
+        ctx.set_var(Scope::Context, "w", w)
+    }
+
+    /// A camera looking along `direction` at the bounding box `[min, max]`,
+    /// backed off until the box's bounding sphere fits the narrower field of
+    /// view, with a little margin.
+    pub fn framing(min: Vec3, max: Vec3, direction: Vec3, vfov_degrees: f32, aspect: f32) -> Camera {
+        let center = (min + max) * 0.5;
+        let radius = ((max - min).length() * 0.5).max(1e-6);
+        let half_v = (vfov_degrees.to_radians() * 0.5).tan();
+        let half = half_v.min(half_v * aspect).atan();
+        let distance = radius / half.sin() * 1.05;
+        let up = if direction.normalize().y.abs() > 0.99 { Vec3::Z } else { Vec3::Y };
+        Camera { eye: center - direction.normalize() * distance, look_at: center, up, vfov_degrees }
+    }
+}
+
+/// A scene ready to launch: the context, the buffer that holds the picture,
+/// and how many launches make one picture.
+pub struct Scene {
+    pub ctx: Context,
+    /// A `width` x `height` `Vec4` buffer, launch index (0, 0) bottom-left.
+    pub output: BufferId,
+    pub width: u32,
+    pub height: u32,
+    /// Launches per picture: progressive scenes accumulate one launch per
+    /// frame; before each, the context variable `frame` is set to its number
+    /// (from 0).
+    pub frames: u32,
+}
+
+/// One rendered picture and what it cost.
+pub struct Rendered {
+    pub image: Image,
+    /// Rays traced, over every launch.
+    pub rays: u64,
+    /// Wall time of the launches (the scene build is not counted).
+    pub seconds: f64,
+    pub launches: u32,
+    /// Exceptions raised (each painted in the exception program's colour).
+    pub exceptions: Vec<ExceptionRecord>,
+}
+
+impl Rendered {
+    /// Millions of rays per second.
+    pub fn mrays_per_second(&self) -> f64 {
+        self.rays as f64 / self.seconds.max(1e-9) / 1e6
+    }
+}
+
+impl Scene {
+    /// The usual start of a scene: a context on `settings.backend` with two
+    /// ray types (radiance, shadow), entry point 0's exception program, an
+    /// output buffer and `scene_epsilon`.
+    pub fn start(settings: &Settings, scene_epsilon: f32) -> Result<(Context, BufferId), Error> {
+        settings.check()?;
+        let mut ctx = Context::new();
+        ctx.set_backend(settings.backend);
+        ctx.set_ray_type_count(2);
+        let ex = ctx.create_program(&crate::common::exception::PROGRAM);
+        ctx.set_exception_program(0, ex)?;
+        let output = ctx.create_buffer_2d::<Vec4>(BufferType::Output, settings.width, settings.height)?;
+        ctx.set_var(Scope::Context, "output_buffer", output)?;
+        ctx.set_var(Scope::Context, "bad_color", Vec3::new(1.0, 0.0, 1.0))?;
+        ctx.set_var(Scope::Context, "scene_epsilon", scene_epsilon)?;
+        Ok((ctx, output))
+    }
+
+    /// A one-launch scene.
+    pub fn new(ctx: Context, output: BufferId, settings: &Settings) -> Scene {
+        Scene { ctx, output, width: settings.width, height: settings.height, frames: 1 }
+    }
+
+    /// Launches entry point 0 `frames` times, calling `progress(done,
+    /// total)` after each, and reads the output back.
+    pub fn render(&mut self, progress: &mut dyn FnMut(u32, u32)) -> Result<Rendered, Error> {
+        let mut rays = 0;
+        let mut exceptions = Vec::new();
+        let start = Instant::now();
+        for frame in 0..self.frames {
+            self.ctx.set_var(Scope::Context, "frame", frame)?;
+            let report = self.ctx.launch(0, self.width, self.height)?;
+            rays += report.rays;
+            exceptions.extend(report.exceptions);
+            progress(frame + 1, self.frames);
+        }
+        let seconds = start.elapsed().as_secs_f64();
+        let pixels = self.ctx.read_buffer::<Vec4>(self.output)?;
+        let image = Image { width: self.width, height: self.height, pixels };
+        Ok(Rendered { image, rays, seconds, launches: self.frames, exceptions })
+    }
+}
+
+/// An RGBA float image in launch-index order: row 0 is the bottom row.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Image {
+    pub width: u32,
+    pub height: u32,
+    pub pixels: Vec<Vec4>,
+}
+
+impl Image {
+    /// The pixel at launch index `(x, y)` (y up from the bottom).
+    pub fn at(&self, x: u32, y: u32) -> Vec4 {
+        self.pixels[(y * self.width + x) as usize]
+    }
+
+    /// The picture as PNG bytes (8 bits, clamped, top row first).
+    pub fn encode_png(&self) -> Result<Vec<u8>, Error> {
+        let rgba = rt_runtime::image_out::to_rgba8(self.width, self.height, &self.pixels);
+        let mut bytes = std::io::Cursor::new(Vec::new());
+        rgba.write_to(&mut bytes, image::ImageFormat::Png)
+            .map_err(|e| Error::Io { path: "<memory>".into(), problem: e.to_string() })?;
+        Ok(bytes.into_inner())
+    }
+
+    /// Writes the PNG whole or not at all: encoded in memory, written beside
+    /// `path` and renamed over it.
+    pub fn save_png(&self, path: &Path) -> Result<(), Error> {
+        let bytes = self.encode_png()?;
+        let io = |e: std::io::Error| Error::Io { path: path.display().to_string(), problem: e.to_string() };
+        let mut tmp = PathBuf::from(path);
+        tmp.set_file_name(format!(
+            ".{}.partial",
+            path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default()
+        ));
+        std::fs::write(&tmp, bytes).map_err(io)?;
+        std::fs::rename(&tmp, path).map_err(|e| {
+            let _ = std::fs::remove_file(&tmp);
+            io(e)
+        })
+    }
+}
+
+/// A quad `corner, corner + a, corner + a + b, corner + b` as two triangles;
+/// its geometric normal is `a x b`.
+pub fn quad(corner: Vec3, a: Vec3, b: Vec3) -> TriangleMesh {
+    TriangleMesh {
+        positions: vec![corner, corner + a, corner + a + b, corner + b],
+        indices: vec![[0, 1, 2], [0, 2, 3]],
+        ..TriangleMesh::default()
+    }
+}
+
+/// An axis-aligned box with outward normals, turned `yaw` radians about the
+/// vertical through its centre: 12 triangles, 4 vertices per face (flat).
+pub fn oriented_box(min: Vec3, max: Vec3, yaw: f32) -> TriangleMesh {
+    let center = (min + max) * 0.5;
+    let half = (max - min) * 0.5;
+    let rot = glam::Quat::from_rotation_y(yaw);
+    let mut mesh = TriangleMesh::default();
+    // Each face: its normal axis, and two tangents with t1 x t2 = normal.
+    let faces = [
+        (Vec3::X, Vec3::Y, Vec3::Z),
+        (-Vec3::X, Vec3::Z, Vec3::Y),
+        (Vec3::Y, Vec3::Z, Vec3::X),
+        (-Vec3::Y, Vec3::X, Vec3::Z),
+        (Vec3::Z, Vec3::X, Vec3::Y),
+        (-Vec3::Z, Vec3::Y, Vec3::X),
+    ];
+    for (n, t1, t2) in faces {
+        let base = mesh.positions.len() as u32;
+        for (s1, s2) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
+            let local = (n + t1 * s1 + t2 * s2) * half;
+            mesh.positions.push(center + rot * local);
+        }
+        mesh.indices.push([base, base + 1, base + 2]);
+        mesh.indices.push([base, base + 2, base + 3]);
+    }
+    mesh
+}
+
+/// Where the repository's shared test scenes are (`../shared/scenes` from
+/// the project root).
+pub fn scenes_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/scenes")
+}
+
+/// One of the shared scenes by file name.
+pub fn shared_scene(name: &str) -> PathBuf {
+    scenes_dir().join(name)
+}

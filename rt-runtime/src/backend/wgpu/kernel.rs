@@ -1,0 +1,425 @@
+//! The megakernel linker: one WGSL compute shader per (entry point, program
+//! set, graph shape), assembled from the runtime prelude, every program's
+//! types, helpers and body (deduplicated by name), dispatch `switch`es and
+//! per-depth clones of everything that traces.
+//!
+//! WGSL has no recursion, so `rt_trace_<P>` is cloned per depth:
+//! `rt_trace_<P>_d<k>` runs the closest-hit and miss programs' depth-`k`
+//! clones, whose own traces call depth `k + 1`; past the context's maximum
+//! depth the trace raises `EXCEPTION_TRACE_DEPTH_EXCEEDED` instead.
+//!
+//! Variable values are never in the text: each program use reads them from
+//! its scope record in the heap (offset passed at dispatch), so changing a
+//! value never relinks.
+
+use crate::error::{Result, RtError};
+use rt_std::program::{ProgramDescriptor, ProgramKind, TypeLayout, VariableKind};
+use std::collections::{BTreeMap, BTreeSet};
+
+/// The runtime's half of every module.
+pub const PRELUDE: &str = include_str!("prelude.wgsl");
+const TRAVERSE: &str = include_str!("traverse.wgsl");
+
+/// A program the kernel may dispatch to, with its case id (> 0).
+#[derive(Clone, Copy)]
+pub struct KernelProgram {
+    pub case: u32,
+    pub desc: &'static ProgramDescriptor,
+}
+
+/// What the kernel is linked for.
+pub struct KernelSpec {
+    pub ray_generation: KernelProgram,
+    pub exception: Option<KernelProgram>,
+    /// Every closest-hit, any-hit, miss and intersection program in use.
+    pub programs: Vec<KernelProgram>,
+    pub max_depth: u32,
+}
+
+/// Size in heap words of a variable's value in a scope record.
+pub fn variable_words(kind: &VariableKind, ty: &TypeLayout) -> u32 {
+    match kind {
+        VariableKind::Value => ty.words,
+        VariableKind::Buffer { .. } | VariableKind::Sampler => 4,
+        VariableKind::Object => 1,
+    }
+}
+
+fn mangle(layout: &TypeLayout) -> &'static str {
+    // Payload and attribute types are user structs: their WGSL name is the
+    // mangled name the compiler uses for them.
+    layout.wgsl
+}
+
+/// The variable arguments of a call: loads from the record at `vars`.
+fn var_args(desc: &ProgramDescriptor, vars: &str) -> Vec<String> {
+    let mut offset = 0;
+    desc.variables
+        .iter()
+        .map(|v| {
+            let a = format!("{}({vars} + {offset}u)", v.wgsl_load);
+            offset += variable_words(&v.kind, &v.ty);
+            a
+        })
+        .collect()
+}
+
+fn traces(desc: &ProgramDescriptor) -> bool {
+    !desc.traced_payloads.is_empty()
+}
+
+/// Renames a function's tracing calls for depth `k`.
+fn at_depth(text: &str, depth: u32, tracing_helpers: &BTreeSet<String>, rename_self: Option<&str>) -> String {
+    let mut out = text.to_string();
+    if let Some(name) = rename_self {
+        out = out.replacen(&format!("fn {name}("), &format!("fn {name}_d{depth}("), 1);
+    }
+    // rt_trace_<P>( → rt_trace_<P>_d<k+1>(
+    let mut result = String::with_capacity(out.len());
+    let mut rest = out.as_str();
+    while let Some(i) = rest.find("rt_trace_") {
+        result.push_str(&rest[..i]);
+        let tail = &rest[i..];
+        let end = tail.find('(').unwrap_or(tail.len());
+        let ident = &tail[..end];
+        if ident.chars().all(|c| c.is_alphanumeric() || c == '_') && end < tail.len() {
+            result.push_str(&format!("{ident}_d{}", depth + 1));
+        } else {
+            result.push_str(ident);
+        }
+        rest = &tail[end..];
+    }
+    result.push_str(rest);
+    for h in tracing_helpers {
+        result = result.replace(&format!("{h}("), &format!("{h}_d{depth}("));
+        // Undo the rename of the helper's own definition line when cloning
+        // the helper itself (handled by `rename_self`).
+        result = result.replace(&format!("fn {h}_d{depth}_d{depth}("), &format!("fn {h}_d{depth}("));
+    }
+    result
+}
+
+/// Generates the megakernel's WGSL.
+pub fn generate(spec: &KernelSpec) -> Result<String> {
+    let mut all: Vec<KernelProgram> = vec![spec.ray_generation];
+    all.extend(spec.exception);
+    all.extend(spec.programs.iter().copied());
+
+    // Types and shared functions, deduplicated by name.
+    let mut types: BTreeMap<&str, (&str, &ProgramDescriptor)> = BTreeMap::new();
+    let mut functions: BTreeMap<&str, (&str, &ProgramDescriptor)> = BTreeMap::new();
+    for p in &all {
+        for (table, items) in [(&mut types, p.desc.wgsl_types), (&mut functions, p.desc.wgsl_functions)] {
+            for item in items {
+                match table.get(item.name) {
+                    Some((text, other)) if *text != item.text => {
+                        return Err(RtError::LinkConflict {
+                            item: item.name.to_string(),
+                            a: other.name,
+                            a_location: other.location(),
+                            b: p.desc.name,
+                            b_location: p.desc.location(),
+                        });
+                    }
+                    Some(_) => {}
+                    None => {
+                        table.insert(item.name, (item.text, p.desc));
+                    }
+                }
+            }
+        }
+    }
+    let tracing_helpers: BTreeSet<String> =
+        functions.iter().filter(|(_, (t, _))| t.contains("rt_trace_")).map(|(n, _)| n.to_string()).collect();
+
+    let mut payloads: BTreeMap<&str, TypeLayout> = BTreeMap::new();
+    let mut attributes: BTreeMap<&str, TypeLayout> = BTreeMap::new();
+    for p in &all {
+        if let Some(pl) = p.desc.payload {
+            payloads.insert(pl.wgsl, pl);
+        }
+        for pl in p.desc.traced_payloads {
+            payloads.insert(pl.wgsl, *pl);
+        }
+        if let Some(a) = p.desc.attributes {
+            attributes.insert(a.wgsl, a);
+        }
+    }
+
+    let mut out = String::from(PRELUDE);
+    out.push_str(TRAVERSE);
+    out.push_str("\n// ---- types ----\n");
+    for (_, (text, _)) in &types {
+        out.push_str(text);
+    }
+    out.push_str("\n// ---- shared functions ----\n");
+    for (name, (text, _)) in &functions {
+        if tracing_helpers.contains(*name) {
+            for d in 0..=spec.max_depth {
+                out.push_str(&at_depth(text, d, &tracing_helpers, Some(name)));
+            }
+        } else {
+            out.push_str(text);
+        }
+    }
+
+    // Per-payload and per-attribute state.
+    out.push_str("\n// ---- payload and attribute state ----\n");
+    for (w, _) in &payloads {
+        out.push_str(&format!("var<private> rt_prd_{w}: {w};\n"));
+    }
+    for (w, layout) in &attributes {
+        out.push_str(&format!("var<private> rt_c_attr_{w}: {w};\nvar<private> rt_h_attr_{w}: {w};\n"));
+        out.push_str(&triangle_attributes(w, layout));
+        out.push_str(&format!(
+            "fn rt_report_intersection_{w}(material: u32, attr: ptr<function, {w}>) -> bool {{\n    if !rt_c_ok {{ return false; }}\n    rt_c_attr_{w} = *attr;\n    rt_c_custom = true;\n    return rt_report(material);\n}}\n"
+        ));
+        out.push_str(&format!(
+            "fn rt_cand_attr_{w}() -> {w} {{\n    if rt_c_custom {{ return rt_c_attr_{w}; }}\n    return rt_tri_attr_{w}(rt_s_gi, rt_c_prim, rt_c_bary);\n}}\nfn rt_hit_attr_{w}() -> {w} {{\n    if rt_h_custom {{ return rt_h_attr_{w}; }}\n    return rt_tri_attr_{w}(rt_h_gi, rt_h_prim, rt_h_bary);\n}}\n"
+        ));
+    }
+    out.push_str("fn rt_commit_attributes() {\n");
+    for (w, _) in &attributes {
+        out.push_str(&format!("    rt_h_attr_{w} = rt_c_attr_{w};\n"));
+    }
+    out.push_str("}\n");
+    out.push_str("fn rt_report_intersection(material: u32) -> bool {\n    if !rt_c_ok { return false; }\n    rt_c_custom = true;\n    return rt_report(material);\n}\n");
+
+    // Programs: tracing kinds cloned per depth.
+    out.push_str("\n// ---- programs ----\n");
+    let mut emitted: BTreeSet<&str> = BTreeSet::new();
+    for p in &all {
+        if !emitted.insert(p.desc.wgsl_entry) {
+            continue;
+        }
+        let text = p.desc.wgsl_program;
+        match p.desc.kind {
+            ProgramKind::RayGeneration => out.push_str(&at_depth(text, 0, &tracing_helpers, Some(p.desc.wgsl_entry))),
+            ProgramKind::ClosestHit | ProgramKind::Miss if traces(p.desc) || text.contains("rtf_") => {
+                for d in 1..=spec.max_depth {
+                    out.push_str(&at_depth(text, d, &tracing_helpers, Some(p.desc.wgsl_entry)));
+                }
+            }
+            ProgramKind::ClosestHit | ProgramKind::Miss => {
+                for d in 1..=spec.max_depth {
+                    out.push_str(&text.replacen(
+                        &format!("fn {}(", p.desc.wgsl_entry),
+                        &format!("fn {}_d{d}(", p.desc.wgsl_entry),
+                        1,
+                    ));
+                }
+            }
+            _ => out.push_str(text),
+        }
+    }
+
+    // Dispatchers.
+    out.push_str("\n// ---- dispatch ----\n");
+    out.push_str(&dispatch_intersection(&spec.programs));
+    out.push_str(&dispatch_any_hit(&spec.programs));
+    for (w, _) in &payloads {
+        for d in 1..=spec.max_depth {
+            out.push_str(&dispatch_payload(&spec.programs, w, d));
+            out.push_str(&trace_function(w, d));
+        }
+        out.push_str(&format!(
+            "fn rt_trace_{w}_d{}(object: u32, ray: RtRay, prd: ptr<function, {w}>, flags: u32, mask: u32) {{\n    rt_raise(RT_EXC_TRACE_DEPTH);\n}}\n",
+            spec.max_depth + 1
+        ));
+    }
+
+    // The entry point.
+    let rg = spec.ray_generation.desc;
+    let rg_args = var_args(rg, "rt_launch.ray_generation.y").join(", ");
+    let ex_call = match spec.exception {
+        Some(ex) => format!("        {}({});\n", ex.desc.wgsl_entry, var_args(ex.desc, "rt_launch.exception.y").join(", ")),
+        None => String::new(),
+    };
+    out.push_str(&format!(
+        "
+@compute @workgroup_size(8, 8, 1)
+fn rt_main(@builtin(global_invocation_id) gid: vec3<u32>) {{
+    let idx = gid.xy + rt_launch.origin;
+    if idx.x >= rt_launch.dim.x || idx.y >= rt_launch.dim.y {{
+        return;
+    }}
+    rt_idx = idx;
+    rt_exc = 0u;
+    rt_rays = 0u;
+    rt_o2w = mat4x4<f32>(vec4<f32>(1.0, 0.0, 0.0, 0.0), vec4<f32>(0.0, 1.0, 0.0, 0.0), vec4<f32>(0.0, 0.0, 1.0, 0.0), vec4<f32>(0.0, 0.0, 0.0, 1.0));
+    rt_w2o = rt_o2w;
+    {rg}_d0({rg_args});
+    if rt_exc != 0u {{
+        rt_log_exception();
+{ex_call}    }}
+    if rt_rays != 0u {{
+        atomicAdd(&rt_log[2], rt_rays);
+    }}
+}}
+",
+        rg = rg.wgsl_entry,
+    ));
+    Ok(out)
+}
+
+/// Built-in triangle attributes, filled by field name.
+fn triangle_attributes(w: &str, layout: &TypeLayout) -> String {
+    let mut body = String::new();
+    for f in layout.fields {
+        let field = wgsl_field(f.name);
+        match (f.name, f.ty) {
+            ("geometric_normal", "Vec3") => body.push_str(&format!("    a.{field} = gn;\n")),
+            ("shading_normal", "Vec3") => body.push_str(&format!(
+                "    a.{field} = gn;\n    if rt_scene[g + 3u] != RT_NONE {{\n        let nb = rt_scene[g + 3u];\n        a.{field} = rt_v3(nb + i0 * 3u) * w + rt_v3(nb + i1 * 3u) * bary.x + rt_v3(nb + i2 * 3u) * bary.y;\n    }}\n"
+            )),
+            ("texcoord", "Vec2") => body.push_str(&format!(
+                "    a.{field} = bary;\n    if rt_scene[g + 4u] != RT_NONE {{\n        let tb = rt_scene[g + 4u];\n        a.{field} = vec2<f32>(rt_f(tb + i0 * 2u), rt_f(tb + i0 * 2u + 1u)) * w + vec2<f32>(rt_f(tb + i1 * 2u), rt_f(tb + i1 * 2u + 1u)) * bary.x + vec2<f32>(rt_f(tb + i2 * 2u), rt_f(tb + i2 * 2u + 1u)) * bary.y;\n    }}\n"
+            )),
+            ("barycentrics", "Vec2") => body.push_str(&format!("    a.{field} = bary;\n")),
+            _ => {}
+        }
+    }
+    format!(
+        "fn rt_tri_attr_{w}(gi: u32, prim: u32, bary: vec2<f32>) -> {w} {{
+    var a: {w};
+    let g = rt_scene[2] + gi * 8u;
+    if rt_scene[g] != 0u {{
+        return a;
+    }}
+    let ib = rt_scene[g + 2u] + prim * 3u;
+    let pb = rt_scene[g + 1u];
+    let i0 = rt_scene[ib];
+    let i1 = rt_scene[ib + 1u];
+    let i2 = rt_scene[ib + 2u];
+    let p0 = rt_v3(pb + i0 * 3u);
+    let gn = cross(rt_v3(pb + i1 * 3u) - p0, rt_v3(pb + i2 * 3u) - p0);
+    let w = 1.0 - bary.x - bary.y;
+{body}    return a;
+}}
+"
+    )
+}
+
+/// The WGSL name of a struct field (the compiler suffixes reserved words).
+fn wgsl_field(name: &str) -> String {
+    if naga_reserved(name) { format!("{name}_") } else { name.to_string() }
+}
+
+fn naga_reserved(name: &str) -> bool {
+    // Attribute field names the runtime fills are never reserved words; the
+    // check guards the general case cheaply.
+    matches!(name, "type" | "struct" | "fn" | "let" | "var" | "const" | "loop" | "if" | "else" | "return")
+}
+
+fn dispatch_intersection(programs: &[KernelProgram]) -> String {
+    let mut cases = String::new();
+    for p in programs.iter().filter(|p| p.desc.kind == ProgramKind::Intersection) {
+        let mut args = Vec::new();
+        let mut decl = String::new();
+        if let Some(a) = p.desc.attributes {
+            decl = format!("var a: {};\n            ", mangle(&a));
+            args.push("&a".to_string());
+        }
+        args.push("prim".to_string());
+        args.extend(var_args(p.desc, "vars"));
+        cases.push_str(&format!("        case {}u: {{\n            {decl}{}({});\n        }}\n", p.case, p.desc.wgsl_entry, args.join(", ")));
+    }
+    format!("fn rt_isect_dispatch(case_id: u32, vars: u32, prim: u32) {{\n    switch case_id {{\n{cases}        default: {{}}\n    }}\n}}\n")
+}
+
+fn dispatch_any_hit(programs: &[KernelProgram]) -> String {
+    let mut cases = String::new();
+    for p in programs.iter().filter(|p| p.desc.kind == ProgramKind::AnyHit) {
+        let mut args = Vec::new();
+        let mut pre = String::new();
+        let mut post = String::new();
+        if let Some(pl) = p.desc.payload {
+            pre = format!("var p = rt_prd_{};\n            ", pl.wgsl);
+            post = format!("\n            rt_prd_{} = p;", pl.wgsl);
+            args.push("&p".to_string());
+        }
+        if let Some(a) = p.desc.attributes {
+            args.push(format!("rt_cand_attr_{}()", a.wgsl));
+        }
+        args.extend(var_args(p.desc, "vars"));
+        cases.push_str(&format!(
+            "        case {}u: {{\n            {pre}{}({});{post}\n        }}\n",
+            p.case,
+            p.desc.wgsl_entry,
+            args.join(", ")
+        ));
+    }
+    format!("fn rt_anyhit_dispatch(case_id: u32, vars: u32) {{\n    switch case_id {{\n{cases}        default: {{}}\n    }}\n}}\n")
+}
+
+/// Closest-hit and miss dispatch for payload `w` at depth `d`.
+fn dispatch_payload(programs: &[KernelProgram], w: &str, d: u32) -> String {
+    let mut ch = String::new();
+    let mut miss = String::new();
+    for p in programs {
+        if p.desc.payload.map(|l| l.wgsl) != Some(w) {
+            continue;
+        }
+        let mut args = vec!["prd".to_string()];
+        if let Some(a) = p.desc.attributes {
+            args.push(format!("rt_hit_attr_{}()", a.wgsl));
+        }
+        args.extend(var_args(p.desc, "vars"));
+        let case = format!("        case {}u: {{\n            {}_d{d}({});\n        }}\n", p.case, p.desc.wgsl_entry, args.join(", "));
+        match p.desc.kind {
+            ProgramKind::ClosestHit => ch.push_str(&case),
+            ProgramKind::Miss => miss.push_str(&case),
+            _ => {}
+        }
+    }
+    format!(
+        "fn rt_ch_{w}_d{d}(case_id: u32, vars: u32, prd: ptr<function, {w}>) {{\n    switch case_id {{\n{ch}        default: {{}}\n    }}\n}}\nfn rt_miss_{w}_d{d}(case_id: u32, vars: u32, prd: ptr<function, {w}>) {{\n    switch case_id {{\n{miss}        default: {{}}\n    }}\n}}\n"
+    )
+}
+
+fn trace_function(w: &str, d: u32) -> String {
+    format!(
+        "fn rt_trace_{w}_d{d}(object: u32, ray: RtRay, prd: ptr<function, {w}>, flags: u32, mask: u32) {{
+    if rt_exc != 0u {{
+        return;
+    }}
+    if !rt_valid_ray(ray) || object >= rt_scene[7] || ray.ray_type >= rt_scene[4] {{
+        rt_raise(RT_EXC_INVALID_RAY);
+        return;
+    }}
+    let saved_ray = rt_ray;
+    let saved_t = rt_t;
+    let saved_prim = rt_prim;
+    let saved_o2w = rt_o2w;
+    let saved_w2o = rt_w2o;
+    rt_rays = rt_rays + 1u;
+    rt_prd_{w} = *prd;
+    rt_search(object, ray, flags, mask);
+    *prd = rt_prd_{w};
+    if rt_h_found {{
+        let g = rt_scene[2] + rt_h_gi * 8u;
+        let rec = rt_scene[g + 7u] + (rt_h_mat * rt_scene[4] + ray.ray_type) * 4u;
+        if rt_scene[rec] != 0u && (flags & 4u) == 0u {{
+            rt_ray = ray;
+            rt_ray.tmax = rt_h_t;
+            rt_t = rt_h_t;
+            rt_prim = rt_h_prim;
+            let ib = rt_scene[1] + rt_h_inst * 36u;
+            rt_o2w = rt_m4(ib);
+            rt_w2o = rt_m4(ib + 16u);
+            rt_ch_{w}_d{d}(rt_scene[rec], rt_scene[rec + 1u], prd);
+        }}
+    }} else {{
+        let mr = rt_scene[5] + ray.ray_type * 2u;
+        rt_ray = ray;
+        rt_miss_{w}_d{d}(rt_scene[mr], rt_scene[mr + 1u], prd);
+    }}
+    rt_ray = saved_ray;
+    rt_t = saved_t;
+    rt_prim = saved_prim;
+    rt_o2w = saved_o2w;
+    rt_w2o = saved_w2o;
+}}
+"
+    )
+}

@@ -1,0 +1,633 @@
+//! The wgpu backend: every program linked into one compute shader (see
+//! [`kernel`]), the scene and all user data in three storage buffers.
+//!
+//! Bindings: `rt_heap` (read-write: scope records of variables, then user
+//! buffers, then sampler texels — addressed by word offset, so a scene uses
+//! four bindings however many buffers it has), `rt_scene` (read-only: BVHs,
+//! geometry, instance and record tables), `rt_log` (exceptions and
+//! `rt_printf!` output) and the launch uniform.
+//!
+//! Caching: the pipeline is keyed by the generated WGSL, which depends on the
+//! program set and the graph's shape but never on variable values or buffer
+//! contents; those only change the uploaded words.
+
+pub mod kernel;
+
+use super::link::{self, Record};
+use super::{ExceptionRecord, LaunchReport};
+use crate::accel::{NodeAccel, build_accels};
+use crate::context::Context;
+use crate::error::{Result, RtError};
+use crate::scene::{GeometryKind, NodeId, NodeKind, ProgramId};
+use crate::vars::VarValue;
+use glam::{Mat4, UVec2};
+use kernel::{KernelProgram, KernelSpec};
+use rt_std::program::VariableKind;
+use std::collections::HashMap;
+use wgpu::util::DeviceExt;
+
+/// Capacity of the exception log (records past it are counted, not kept).
+const LOG_EXCEPTIONS: u32 = 4096;
+/// Words for `rt_printf!` records.
+const LOG_PRINT_WORDS: u32 = 1 << 16;
+
+/// A wgpu device and what the backend keeps on it between launches.
+pub struct Gpu {
+    device: wgpu::Device,
+    queue: wgpu::Queue,
+    info: wgpu::AdapterInfo,
+    limits: wgpu::Limits,
+    pipelines: HashMap<String, (wgpu::ComputePipeline, wgpu::BindGroupLayout)>,
+    /// How many pipelines were created (links); for tests of the cache.
+    pub pipelines_created: u64,
+}
+
+impl Gpu {
+    /// Opens the first adapter wgpu finds (a GPU, else lavapipe).
+    pub fn new() -> Result<Gpu> {
+        let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+        let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
+            power_preference: wgpu::PowerPreference::HighPerformance,
+            ..Default::default()
+        }))
+        .map_err(|e| {
+            RtError::Gpu(format!(
+                "no wgpu adapter ({e}); on a machine without a GPU install Mesa's lavapipe (`apt-get install mesa-vulkan-drivers`)"
+            ))
+        })?;
+        let limits = wgpu::Limits { max_storage_buffers_per_shader_stage: 4, ..wgpu::Limits::downlevel_defaults() }
+            .using_resolution(adapter.limits());
+        let limits = wgpu::Limits {
+            max_storage_buffer_binding_size: adapter.limits().max_storage_buffer_binding_size,
+            max_buffer_size: adapter.limits().max_buffer_size,
+            ..limits
+        };
+        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+            label: Some("rt-runtime"),
+            required_limits: limits.clone(),
+            ..Default::default()
+        }))
+        .map_err(|e| RtError::Gpu(format!("cannot open a device on {}: {e}", adapter.get_info().name)))?;
+        Ok(Gpu { device, queue, info: adapter.get_info(), limits, pipelines: HashMap::new(), pipelines_created: 0 })
+    }
+
+    /// Uses a device the application already has.
+    pub fn from_device(device: wgpu::Device, queue: wgpu::Queue, info: wgpu::AdapterInfo) -> Gpu {
+        let limits = device.limits();
+        Gpu { device, queue, info, limits, pipelines: HashMap::new(), pipelines_created: 0 }
+    }
+
+    /// The adapter's name and type, for messages ("llvmpipe (Cpu)").
+    pub fn describe(&self) -> String {
+        format!("{} ({:?}, {:?})", self.info.name, self.info.device_type, self.info.backend)
+    }
+
+    /// Whether the adapter is a software rasteriser (lavapipe).
+    pub fn is_cpu(&self) -> bool {
+        self.info.device_type == wgpu::DeviceType::Cpu
+    }
+}
+
+/// Everything a launch uploads.
+struct Encoded {
+    scene: Vec<u32>,
+    heap: Vec<u32>,
+    /// `(buffer index, heap offset, words)` of buffers programs may write.
+    outputs: Vec<(usize, usize, usize)>,
+    spec: KernelSpec,
+    rg_vars: u32,
+    ex_vars: u32,
+}
+
+fn f(x: f32) -> u32 {
+    x.to_bits()
+}
+
+fn push_mat(out: &mut Vec<u32>, m: Mat4) {
+    out.extend(m.to_cols_array().map(f));
+}
+
+fn push_bvh(out: &mut Vec<u32>, bvh: &crate::accel::Bvh) -> u32 {
+    let at = out.len() as u32;
+    for n in &bvh.bvh.nodes {
+        let b = n.aabb();
+        out.extend([f(b.min.x), f(b.min.y), f(b.min.z), f(b.max.x), f(b.max.y), f(b.max.z), n.prim_count, n.first_index]);
+    }
+    if bvh.bvh.nodes.is_empty() {
+        // An empty group: a root that no ray enters.
+        out.extend([f(1.0), f(1.0), f(1.0), f(-1.0), f(-1.0), f(-1.0), 0, 0]);
+    }
+    at
+}
+
+/// Follows transforms down to a geometry group: (group, object-to-world, mask).
+fn instance_of(ctx: &Context, node: NodeId) -> Result<Option<(NodeId, Mat4, u32)>> {
+    let mut m = Mat4::IDENTITY;
+    let mut mask = 0xffu32;
+    let mut n = node;
+    for _ in 0..=ctx.nodes.len() {
+        let rec = &ctx.nodes[n.index() as usize];
+        mask &= rec.visibility_mask as u32;
+        match &rec.kind {
+            NodeKind::GeometryGroup { .. } => return Ok(Some((n, m, mask))),
+            NodeKind::Transform { matrix, child, .. } => {
+                m *= *matrix;
+                n = *child;
+            }
+            NodeKind::Group { .. } | NodeKind::Selector { .. } => return Ok(None),
+        }
+    }
+    Err(RtError::GraphCycle { node: node.index() })
+}
+
+fn encode(ctx: &Context, entry: u32) -> Result<Encoded> {
+    let count = ctx.entry_points.len() as u32;
+    let ep = ctx.entry_points.get(entry as usize).ok_or(RtError::NoSuchEntryPoint { entry, count })?;
+    let rg = ep.ray_generation.ok_or(RtError::NoRayGeneration { entry })?;
+    link::check_types(ctx)?;
+    let ray_types = ctx.ray_type_count();
+
+    // Heap: records first, then buffers, then sampler texels.
+    let mut heap: Vec<u32> = Vec::new();
+    let mut buffer_offsets = Vec::with_capacity(ctx.buffers.len());
+    let mut outputs = Vec::new();
+    // Records need buffer offsets: lay buffers out in a separate vector and
+    // place it after the records.
+    let mut data: Vec<u32> = Vec::new();
+    for (i, b) in ctx.buffers.iter().enumerate() {
+        let start = data.len();
+        b.storage.to_words(&mut data);
+        buffer_offsets.push(start);
+        if b.ty.writable_by_programs() {
+            outputs.push((i, start, data.len() - start));
+        }
+    }
+    let mut sampler_offsets = Vec::with_capacity(ctx.samplers.len());
+    for s in &ctx.samplers {
+        sampler_offsets.push(data.len());
+        for t in s.texels.iter() {
+            data.extend(t.to_array().map(f));
+        }
+    }
+    let mut records: Vec<u32> = Vec::new();
+    // Record offsets are relative to the heap start; data follows records,
+    // so data offsets are patched once the record size is known.
+    let mut patches: Vec<(usize, usize)> = Vec::new();
+    let mut record = |p: ProgramId, r: Record, records: &mut Vec<u32>| -> Result<u32> {
+        let at = records.len() as u32;
+        let desc = ctx.program(p)?.desc;
+        let values = link::resolve_values(ctx, p, r)?;
+        for (value, v) in values.into_iter().zip(desc.variables) {
+            match (value, v.kind) {
+                (VarValue::Data { words, .. }, _) => records.extend(words),
+                (VarValue::Buffer(b), VariableKind::Buffer { .. }) => {
+                    let rec = &ctx.buffers[b.index() as usize];
+                    patches.push((records.len(), buffer_offsets[b.index() as usize]));
+                    records.extend([0, rec.width * rec.height, rec.width, rec.height]);
+                }
+                (VarValue::Sampler(s), _) => {
+                    let rec = &ctx.samplers[s.index() as usize];
+                    patches.push((records.len(), sampler_offsets[s.index() as usize]));
+                    let wrap = match rec.wrap {
+                        rt_std::WrapMode::Repeat => 0,
+                        rt_std::WrapMode::Clamp => 1,
+                        rt_std::WrapMode::Mirror => 2,
+                    };
+                    let filter = match rec.filter {
+                        rt_std::FilterMode::Nearest => 0,
+                        rt_std::FilterMode::Linear => 1,
+                    };
+                    records.extend([0, rec.width, rec.height, wrap | (filter << 8)]);
+                }
+                (VarValue::Object(n), _) => records.push(n.index()),
+                (VarValue::Buffer(_), _) => unreachable!("checked by resolve_values"),
+            }
+        }
+        Ok(at)
+    };
+    let case = |p: ProgramId| p.index() + 1;
+    let mut programs: Vec<KernelProgram> = Vec::new();
+    let use_program = |p: ProgramId, programs: &mut Vec<KernelProgram>| -> Result<KernelProgram> {
+        let kp = KernelProgram { case: case(p), desc: ctx.program(p)?.desc };
+        if !programs.iter().any(|q| q.case == kp.case) {
+            programs.push(kp);
+        }
+        Ok(kp)
+    };
+    let rg_vars = record(rg, Record::default(), &mut records)?;
+    let rg_prog = KernelProgram { case: case(rg), desc: ctx.program(rg)?.desc };
+    let (ex_prog, ex_vars) = match ep.exception {
+        Some(e) => (Some(KernelProgram { case: case(e), desc: ctx.program(e)?.desc }), record(e, Record::default(), &mut records)?),
+        None => (None, 0),
+    };
+
+    // Scene.
+    let mut scene: Vec<u32> = vec![0; 8];
+    let accels: &[Option<NodeAccel>] = &ctx.accels.nodes;
+    // Instances: one per geometry group and per transform chain.
+    let mut instance_of_node: Vec<Option<u32>> = vec![None; ctx.nodes.len()];
+    let mut instances: Vec<(NodeId, Mat4, u32)> = Vec::new();
+    for n in 0..ctx.nodes.len() {
+        if let Some(inst) = instance_of(ctx, NodeId(n as u32))? {
+            instance_of_node[n] = Some(instances.len() as u32);
+            instances.push(inst);
+        }
+    }
+    // BVHs of geometry groups (and their primitive tables), of groups.
+    let mut gg_bvh: HashMap<u32, (u32, u32)> = HashMap::new();
+    let mut group_bvh: HashMap<u32, (u32, u32)> = HashMap::new();
+    for (n, rec) in ctx.nodes.iter().enumerate() {
+        match (&rec.kind, accels.get(n).and_then(|a| a.as_ref())) {
+            (NodeKind::GeometryGroup { .. }, Some(NodeAccel::Prims { bvh, prims, .. })) => {
+                let at = push_bvh(&mut scene, bvh);
+                let table = scene.len() as u32;
+                for slot in &bvh.bvh.primitive_indices {
+                    let (gi, p) = prims[*slot as usize];
+                    scene.extend([gi, p]);
+                }
+                gg_bvh.insert(n as u32, (at, table));
+            }
+            (NodeKind::Group { children, .. }, Some(NodeAccel::Children { bvh, .. })) => {
+                let at = push_bvh(&mut scene, bvh);
+                let table = scene.len() as u32;
+                for slot in &bvh.bvh.primitive_indices {
+                    let child = children[*slot as usize];
+                    let inst = instance_of_node[child.index() as usize].ok_or_else(|| {
+                        RtError::Gpu(format!(
+                            "group {n} has child node {} that is a group or selector: the wgpu backend traces two levels (groups of transformed geometry groups)",
+                            child.index()
+                        ))
+                    })?;
+                    scene.push(inst);
+                }
+                group_bvh.insert(n as u32, (at, table));
+            }
+            (NodeKind::Selector { .. }, _) => {
+                return Err(RtError::Gpu(format!("node {n} is a selector: selectors run on the CPU backend only for now")));
+            }
+            _ => {}
+        }
+    }
+    scene[1] = scene.len() as u32;
+    for (gg, o2w, mask) in &instances {
+        push_mat(&mut scene, *o2w);
+        push_mat(&mut scene, o2w.inverse());
+        let (bvh, table) = gg_bvh.get(&gg.index()).copied().unwrap_or((0, 0));
+        scene.extend([bvh, table, *mask, gg.index()]);
+    }
+    scene[0] = scene.len() as u32;
+    for (n, rec) in ctx.nodes.iter().enumerate() {
+        match &rec.kind {
+            NodeKind::Group { .. } => {
+                let (bvh, table) = group_bvh[&(n as u32)];
+                scene.extend([1, bvh, table, rec.visibility_mask as u32]);
+            }
+            _ => scene.extend([0, instance_of_node[n].unwrap_or(0), 0, if instance_of_node[n].is_some() { 0xff } else { 0 }]),
+        }
+    }
+    // Geometry instances, their hit records and intersection records.
+    let mut geometry_words: Vec<(u32, u32, u32, u32, u32, u32)> = Vec::new();
+    for g in &ctx.geometries {
+        match &g.kind {
+            GeometryKind::Triangles(mesh) => {
+                let pos = scene.len() as u32;
+                for p in &mesh.positions {
+                    scene.extend([f(p.x), f(p.y), f(p.z)]);
+                }
+                let idx = scene.len() as u32;
+                for t in &mesh.indices {
+                    scene.extend(t);
+                }
+                let nrm = match &mesh.normals {
+                    Some(ns) => {
+                        let at = scene.len() as u32;
+                        for n in ns {
+                            scene.extend([f(n.x), f(n.y), f(n.z)]);
+                        }
+                        at
+                    }
+                    None => u32::MAX,
+                };
+                let uv = match &mesh.texcoords {
+                    Some(ts) => {
+                        let at = scene.len() as u32;
+                        for t in ts {
+                            scene.extend([f(t.x), f(t.y)]);
+                        }
+                        at
+                    }
+                    None => u32::MAX,
+                };
+                let mi = match &mesh.material_indices {
+                    Some(m) => {
+                        let at = scene.len() as u32;
+                        scene.extend(m);
+                        at
+                    }
+                    None => u32::MAX,
+                };
+                geometry_words.push((0, pos, idx, nrm, uv, mi));
+            }
+            GeometryKind::Custom { .. } => geometry_words.push((1, 0, 0, u32::MAX, u32::MAX, u32::MAX)),
+        }
+    }
+    let gi_table = scene.len();
+    scene[2] = gi_table as u32;
+    scene.resize(gi_table + ctx.instances.len() * 8, 0);
+    let mut isect = Vec::with_capacity(ctx.instances.len() * 2);
+    for (i, gi) in ctx.instances.iter().enumerate() {
+        let instance = Some(crate::GeometryInstanceId(i as u32));
+        let hit_base = scene.len() as u32;
+        for m in &gi.materials {
+            let mat = &ctx.materials[m.index() as usize];
+            let r = Record { instance, material: Some(*m), ..Record::default() };
+            for (ch, ah) in mat.closest_hit.iter().zip(&mat.any_hit) {
+                let mut words = [0u32; 4];
+                if let Some(p) = ch {
+                    let kp = use_program(*p, &mut programs)?;
+                    words[0] = kp.case;
+                    words[1] = record(*p, r, &mut records)?;
+                }
+                if let Some(p) = ah {
+                    let kp = use_program(*p, &mut programs)?;
+                    words[2] = kp.case;
+                    words[3] = record(*p, r, &mut records)?;
+                }
+                scene.extend(words);
+            }
+        }
+        let (kind, pos, idx, nrm, uv, mi) = geometry_words[gi.geometry.index() as usize];
+        scene[gi_table + i * 8..gi_table + i * 8 + 8]
+            .copy_from_slice(&[kind, pos, idx, nrm, uv, mi, gi.materials.len() as u32, hit_base]);
+        match ctx.geometries[gi.geometry.index() as usize].kind {
+            GeometryKind::Custom { intersection, .. } => {
+                let kp = use_program(intersection, &mut programs)?;
+                let vars = record(intersection, Record { instance, geometry: Some(gi.geometry), ..Record::default() }, &mut records)?;
+                isect.extend([kp.case, vars]);
+            }
+            GeometryKind::Triangles(_) => isect.extend([0, 0]),
+        }
+    }
+    scene[3] = 0;
+    scene[4] = ray_types;
+    scene[5] = scene.len() as u32;
+    for (r, m) in ctx.miss.iter().enumerate() {
+        let p = m.ok_or(RtError::NoMissProgram { ray_type: r as u32 })?;
+        let kp = use_program(p, &mut programs)?;
+        let vars = record(p, Record::default(), &mut records)?;
+        scene.extend([kp.case, vars]);
+    }
+    scene[6] = scene.len() as u32;
+    scene.extend(isect);
+    scene[7] = ctx.nodes.len() as u32;
+
+    // The heap: records, then data (patch data offsets in the records).
+    let base = records.len();
+    for (at, offset) in patches {
+        records[at] = (base + offset) as u32;
+    }
+    heap.extend(records);
+    heap.extend(data);
+    let outputs = outputs.into_iter().map(|(i, o, n)| (i, base + o, n)).collect();
+    if heap.is_empty() {
+        heap.push(0);
+    }
+    let spec = KernelSpec { ray_generation: rg_prog, exception: ex_prog, programs, max_depth: ctx.max_trace_depth };
+    Ok(Encoded { scene, heap, outputs, spec, rg_vars, ex_vars })
+}
+
+fn words_to_bytes(w: &[u32]) -> &[u8] {
+    // SAFETY: u32 has no padding and any byte pattern is a valid u8.
+    unsafe { std::slice::from_raw_parts(w.as_ptr() as *const u8, std::mem::size_of_val(w)) }
+}
+
+/// Runs entry point `entry` on the GPU.
+pub(crate) fn launch(ctx: &mut Context, entry: u32, width: u32, height: u32) -> Result<LaunchReport> {
+    if width == 0 || height == 0 {
+        return Err(RtError::BadLaunch { width, height, problem: "a launch needs at least one index in each dimension".into() });
+    }
+    if ctx.gpu.is_none() {
+        ctx.gpu = Some(Gpu::new()?);
+    }
+    let mut cache = std::mem::take(&mut ctx.accels);
+    let built = build_accels(ctx, &mut cache);
+    ctx.accels = cache;
+    built?;
+    let enc = encode(ctx, entry)?;
+    let wgsl = kernel::generate(&enc.spec)?;
+    if std::env::var_os("RT_DUMP_WGSL").is_some() {
+        let path = std::env::temp_dir().join(format!("rt_megakernel_entry{entry}.wgsl"));
+        let _ = std::fs::write(&path, &wgsl);
+        eprintln!("rt-runtime: linked WGSL written to {}", path.display());
+    }
+    ctx.last_wgsl = Some(wgsl.clone());
+    let print_filter = ctx.print_launch_index.unwrap_or(UVec2::splat(u32::MAX));
+    let print_enabled = ctx.print_enabled as u32;
+    let gpu = ctx.gpu.as_mut().expect("created above");
+
+    let max_binding = gpu.limits.max_storage_buffer_binding_size as usize;
+    for (what, len) in [("the heap (variables, buffers, textures)", enc.heap.len()), ("the scene", enc.scene.len())] {
+        if len * 4 > max_binding {
+            return Err(RtError::Gpu(format!(
+                "{what} needs {} MiB but {} binds at most {} MiB per storage buffer",
+                len * 4 >> 20,
+                gpu.describe(),
+                max_binding >> 20
+            )));
+        }
+    }
+    if !gpu.pipelines.contains_key(&wgsl) {
+        let scope = gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let module = gpu.device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("rt megakernel"),
+            source: wgpu::ShaderSource::Wgsl(wgsl.clone().into()),
+        });
+        let pipeline = gpu.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("rt megakernel"),
+            layout: None,
+            module: &module,
+            entry_point: Some("rt_main"),
+            compilation_options: Default::default(),
+            cache: None,
+        });
+        if let Some(e) = pollster::block_on(scope.pop()) {
+            return Err(RtError::Gpu(format!("the linked megakernel does not compile (set RT_DUMP_WGSL=1 to see it): {e}")));
+        }
+        let layout = pipeline.get_bind_group_layout(0);
+        gpu.pipelines.insert(wgsl.clone(), (pipeline, layout));
+        gpu.pipelines_created += 1;
+    }
+    let (pipeline, layout) = &gpu.pipelines[&wgsl];
+    let device = &gpu.device;
+    let storage = |label: &str, words: &[u32], extra: wgpu::BufferUsages| {
+        device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some(label),
+            contents: words_to_bytes(words),
+            usage: wgpu::BufferUsages::STORAGE | extra,
+        })
+    };
+    let heap = storage("rt_heap", &enc.heap, wgpu::BufferUsages::COPY_SRC);
+    let scene = storage("rt_scene", &enc.scene, wgpu::BufferUsages::empty());
+    let log_words = 4 + LOG_EXCEPTIONS * 3 + LOG_PRINT_WORDS;
+    let log = storage("rt_log", &vec![0u32; log_words as usize], wgpu::BufferUsages::COPY_SRC);
+    let mut results = Vec::new();
+    let tiles_x = width.div_ceil(8);
+    let tiles_y = height.div_ceil(8);
+    let max_groups = gpu.limits.max_compute_workgroups_per_dimension.max(1);
+    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("rt launch") });
+    // Launches over the dispatch limit run as tiles.
+    let mut y0 = 0;
+    while y0 < tiles_y {
+        let gy = (tiles_y - y0).min(max_groups);
+        let mut x0 = 0;
+        while x0 < tiles_x {
+            let gx = (tiles_x - x0).min(max_groups);
+            let uniform: [u32; 12] = [
+                width,
+                height,
+                x0 * 8,
+                y0 * 8,
+                enc.spec.ray_generation.case,
+                enc.rg_vars,
+                enc.spec.exception.map_or(0, |e| e.case),
+                enc.ex_vars,
+                LOG_EXCEPTIONS,
+                print_enabled,
+                print_filter.x,
+                print_filter.y,
+            ];
+            let ub = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("rt_launch"),
+                contents: words_to_bytes(&uniform),
+                usage: wgpu::BufferUsages::UNIFORM,
+            });
+            let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("rt bindings"),
+                layout,
+                entries: &[
+                    wgpu::BindGroupEntry { binding: 0, resource: heap.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 1, resource: scene.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 2, resource: log.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 3, resource: ub.as_entire_binding() },
+                ],
+            });
+            {
+                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("rt launch"), timestamp_writes: None });
+                pass.set_pipeline(pipeline);
+                pass.set_bind_group(0, &bind, &[]);
+                pass.dispatch_workgroups(gx, gy, 1);
+            }
+            results.push(ub);
+            x0 += gx;
+        }
+        y0 += gy;
+    }
+    let read = |encoder: &mut wgpu::CommandEncoder, src: &wgpu::Buffer, words: usize| {
+        let dst = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("rt readback"),
+            size: (words * 4) as u64,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        encoder.copy_buffer_to_buffer(src, 0, &dst, 0, (words * 4) as u64);
+        dst
+    };
+    let heap_read = read(&mut encoder, &heap, enc.heap.len());
+    let log_read = read(&mut encoder, &log, log_words as usize);
+    gpu.queue.submit([encoder.finish()]);
+    let map = |b: &wgpu::Buffer| -> Result<Vec<u32>> {
+        let slice = b.slice(..);
+        slice.map_async(wgpu::MapMode::Read, |_| {});
+        device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| RtError::Gpu(format!("device lost during the launch: {e}")))?;
+        let bytes = slice.get_mapped_range().map_err(|e| RtError::Gpu(format!("reading results back: {e}")))?;
+        let words = bytes.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
+        drop(bytes);
+        b.unmap();
+        Ok(words)
+    };
+    let heap_words = map(&heap_read)?;
+    let log_words = map(&log_read)?;
+    drop(results);
+
+    // Output buffers back into the context.
+    for (i, offset, n) in &enc.outputs {
+        ctx.buffers[*i].storage.from_words(&heap_words[*offset..offset + n]);
+    }
+    let mut report = LaunchReport::default();
+    let count = log_words[0].min(LOG_EXCEPTIONS) as usize;
+    for e in 0..count {
+        let w = &log_words[4 + e * 3..4 + e * 3 + 3];
+        report.exceptions.push(ExceptionRecord { launch_index: UVec2::new(w[0], w[1]), code: w[2] });
+    }
+    report.exceptions.sort_by_key(|e| (e.launch_index.y, e.launch_index.x));
+    report.prints = decode_prints(ctx, &log_words[(4 + LOG_EXCEPTIONS * 3) as usize..], log_words[1] as usize);
+    report.rays = log_words[2] as u64;
+    Ok(report)
+}
+
+/// Formats `rt_printf!` records with the formats of every program.
+fn decode_prints(ctx: &Context, words: &[u32], used: usize) -> Vec<(UVec2, String)> {
+    let formats: HashMap<u32, &rt_std::program::PrintfFormat> =
+        ctx.programs.iter().flat_map(|p| p.desc.printf.iter().map(|f| (f.id, f))).collect();
+    let mut out = Vec::new();
+    let mut at = 0;
+    let used = used.min(words.len());
+    while at + 4 <= used {
+        let (id, x, y, n) = (words[at], words[at + 1], words[at + 2], words[at + 3] as usize);
+        let args = &words[(at + 4).min(used)..(at + 4 + n).min(used)];
+        at += 4 + n;
+        let Some(fmt) = formats.get(&id) else { continue };
+        out.push((UVec2::new(x, y), format_print(fmt, args)));
+    }
+    out.sort_by_key(|(i, _)| (i.y, i.x));
+    out
+}
+
+/// Formats like the CPU's `format!`: scalars with `{}`, vectors as glam
+/// prints them.
+fn format_print(fmt: &rt_std::program::PrintfFormat, words: &[u32]) -> String {
+    let mut values = Vec::new();
+    let mut w = words.iter().copied();
+    for ty in fmt.args {
+        let (n, scalar) = match *ty {
+            "f32" | "i32" | "u32" | "bool" => (1, *ty),
+            t => {
+                let n = t[3..4].parse::<usize>().unwrap_or(1);
+                (n, &t[5..t.len() - 1])
+            }
+        };
+        let comps: Vec<String> = (0..n)
+            .map(|_| {
+                let v = w.next().unwrap_or(0);
+                match scalar {
+                    "f32" => format!("{}", f32::from_bits(v)),
+                    "i32" => format!("{}", v as i32),
+                    "bool" => format!("{}", v != 0),
+                    _ => format!("{v}"),
+                }
+            })
+            .collect();
+        values.push(if n == 1 && !ty.starts_with("vec") { comps[0].clone() } else { format!("[{}]", comps.join(", ")) });
+    }
+    let mut out = String::new();
+    let mut vals = values.into_iter();
+    let mut chars = fmt.format.chars().peekable();
+    while let Some(c) = chars.next() {
+        match c {
+            '{' if chars.peek() == Some(&'{') => {
+                chars.next();
+                out.push('{');
+            }
+            '{' if chars.peek() == Some(&'}') => {
+                chars.next();
+                out.push_str(&vals.next().unwrap_or_default());
+            }
+            '}' if chars.peek() == Some(&'}') => {
+                chars.next();
+                out.push('}');
+            }
+            c => out.push(c),
+        }
+    }
+    out
+}

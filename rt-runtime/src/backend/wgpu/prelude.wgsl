@@ -1,0 +1,295 @@
+// ---- rt-runtime megakernel prelude ----
+// The real implementations of the stubs every program was validated
+// against (same names and signatures), plus the state and scene access the
+// generated traversal and dispatch code use.
+
+struct RtRay {
+    origin: vec3<f32>,
+    direction: vec3<f32>,
+    ray_type: u32,
+    tmin: f32,
+    tmax: f32,
+}
+struct RtAabb {
+    min: vec3<f32>,
+    max: vec3<f32>,
+}
+struct RtBuffer {
+    offset: u32,
+    len: u32,
+    width: u32,
+    height: u32,
+}
+struct RtSampler {
+    offset: u32,
+    width: u32,
+    height: u32,
+    mode: u32,
+}
+struct RtLaunch {
+    dim: vec2<u32>,
+    origin: vec2<u32>,
+    ray_generation: vec2<u32>,
+    exception: vec2<u32>,
+    log_capacity: u32,
+    print_enabled: u32,
+    print_filter: vec2<u32>,
+}
+
+@group(0) @binding(0) var<storage, read_write> rt_heap: array<u32>;
+@group(0) @binding(1) var<storage, read> rt_scene: array<u32>;
+@group(0) @binding(2) var<storage, read_write> rt_log: array<atomic<u32>>;
+@group(0) @binding(3) var<uniform> rt_launch: RtLaunch;
+
+const RT_EXC_TRACE_DEPTH: u32 = 1020u;
+const RT_EXC_BUFFER_INDEX: u32 = 1019u;
+const RT_EXC_INVALID_RAY: u32 = 1014u;
+const RT_NONE: u32 = 0xffffffffu;
+
+// Per-invocation state behind the intrinsics.
+var<private> rt_idx: vec2<u32>;
+var<private> rt_exc: u32;
+var<private> rt_ray: RtRay;
+var<private> rt_t: f32;
+var<private> rt_prim: u32;
+var<private> rt_o2w: mat4x4<f32>;
+var<private> rt_w2o: mat4x4<f32>;
+var<private> rt_ignored: bool;
+var<private> rt_terminated: bool;
+// The search in progress (any hit and intersection programs cannot trace,
+// so searches never nest).
+var<private> rt_s_flags: u32;
+var<private> rt_s_ray_type: u32;
+var<private> rt_s_done: bool;
+var<private> rt_s_tmax: f32;
+var<private> rt_s_gi: u32;
+var<private> rt_s_inst: u32;
+var<private> rt_s_oray: RtRay;
+var<private> rt_c_t: f32;
+var<private> rt_c_ok: bool;
+var<private> rt_c_prim: u32;
+var<private> rt_h_found: bool;
+var<private> rt_h_t: f32;
+var<private> rt_h_gi: u32;
+var<private> rt_h_prim: u32;
+var<private> rt_h_mat: u32;
+var<private> rt_h_inst: u32;
+var<private> rt_h_custom: bool;
+var<private> rt_h_bary: vec2<f32>;
+var<private> rt_c_bary: vec2<f32>;
+var<private> rt_c_custom: bool;
+var<private> rt_print_on: bool;
+// Rays this invocation traced (added to rt_log[2] at the end).
+var<private> rt_rays: u32;
+
+fn rt_raise(code: u32) {
+    if rt_exc == 0u {
+        rt_exc = code;
+    }
+}
+
+fn rt_f(w: u32) -> f32 { return bitcast<f32>(rt_scene[w]); }
+fn rt_v3(w: u32) -> vec3<f32> { return vec3<f32>(rt_f(w), rt_f(w + 1u), rt_f(w + 2u)); }
+fn rt_m4(w: u32) -> mat4x4<f32> {
+    return mat4x4<f32>(
+        vec4<f32>(rt_f(w), rt_f(w + 1u), rt_f(w + 2u), rt_f(w + 3u)),
+        vec4<f32>(rt_f(w + 4u), rt_f(w + 5u), rt_f(w + 6u), rt_f(w + 7u)),
+        vec4<f32>(rt_f(w + 8u), rt_f(w + 9u), rt_f(w + 10u), rt_f(w + 11u)),
+        vec4<f32>(rt_f(w + 12u), rt_f(w + 13u), rt_f(w + 14u), rt_f(w + 15u)));
+}
+
+fn rt_load_RtBuffer(w: u32) -> RtBuffer { return RtBuffer(rt_heap[w], rt_heap[w + 1u], rt_heap[w + 2u], rt_heap[w + 3u]); }
+fn rt_load_RtSampler(w: u32) -> RtSampler { return RtSampler(rt_heap[w], rt_heap[w + 1u], rt_heap[w + 2u], rt_heap[w + 3u]); }
+
+fn rt_buf_check(b: RtBuffer, i: u32) -> bool {
+    if i < b.len { return true; }
+    rt_raise(RT_EXC_BUFFER_INDEX);
+    return false;
+}
+fn rt_buf_check2(b: RtBuffer, i: vec2<u32>) -> bool {
+    if i.x < b.width && i.y < b.height { return true; }
+    rt_raise(RT_EXC_BUFFER_INDEX);
+    return false;
+}
+
+fn rt_launch_index() -> vec2<u32> { return rt_idx; }
+fn rt_launch_dim() -> vec2<u32> { return rt_launch.dim; }
+fn rt_current_ray() -> RtRay { return rt_ray; }
+fn rt_t_hit() -> f32 { return rt_t; }
+fn rt_primitive_index() -> u32 { return rt_prim; }
+fn rt_exception_code() -> u32 { return rt_exc; }
+fn rt_ignore_intersection() { rt_ignored = true; }
+fn rt_terminate_ray() { rt_terminated = true; }
+fn rt_throw(code: u32) { rt_raise(code); }
+
+fn rt_transform_point(kind: u32, p: vec3<f32>) -> vec3<f32> {
+    if kind == 0u { return (rt_o2w * vec4<f32>(p, 1.0)).xyz; }
+    return (rt_w2o * vec4<f32>(p, 1.0)).xyz;
+}
+fn rt_transform_vector(kind: u32, v: vec3<f32>) -> vec3<f32> {
+    if kind == 0u { return (rt_o2w * vec4<f32>(v, 0.0)).xyz; }
+    return (rt_w2o * vec4<f32>(v, 0.0)).xyz;
+}
+fn rt_transform_normal(kind: u32, n: vec3<f32>) -> vec3<f32> {
+    if kind == 0u { return (transpose(rt_w2o) * vec4<f32>(n, 0.0)).xyz; }
+    return (transpose(rt_o2w) * vec4<f32>(n, 0.0)).xyz;
+}
+
+fn rt_potential_intersection(t: f32) -> bool {
+    rt_c_ok = t > rt_s_oray.tmin && t < rt_s_tmax;
+    if rt_c_ok {
+        rt_c_t = t;
+    }
+    return rt_c_ok;
+}
+
+// ---- textures: RGBA f32 texels in the heap, sampled as rt-std's CPU
+// sampler does (texel centres at (i + 0.5) / size, wrap on texel indices).
+fn rt_tex_wrap(i: i32, n: i32, mode: u32) -> u32 {
+    if mode == 1u { return u32(clamp(i, 0, n - 1)); }
+    if mode == 2u {
+        let p = 2 * n;
+        var m = i % p;
+        if m < 0 { m = m + p; }
+        if m >= n { m = p - 1 - m; }
+        return u32(m);
+    }
+    var m = i % n;
+    if m < 0 { m = m + n; }
+    return u32(m);
+}
+fn rt_texel(s: RtSampler, x: u32, y: u32) -> vec4<f32> {
+    let w = s.offset + (y * s.width + x) * 4u;
+    return vec4<f32>(bitcast<f32>(rt_heap[w]), bitcast<f32>(rt_heap[w + 1u]), bitcast<f32>(rt_heap[w + 2u]), bitcast<f32>(rt_heap[w + 3u]));
+}
+fn rt_tex_fetch(s: RtSampler, texel: vec2<u32>) -> vec4<f32> {
+    if s.width == 0u || s.height == 0u { return vec4<f32>(); }
+    return rt_texel(s, min(texel.x, s.width - 1u), min(texel.y, s.height - 1u));
+}
+fn rt_tex_sample(s: RtSampler, uv_in: vec2<f32>) -> vec4<f32> {
+    if s.width == 0u || s.height == 0u { return vec4<f32>(); }
+    let finite = abs(uv_in) <= vec2<f32>(3.40282347e38);
+    let uv = select(vec2<f32>(0.0), uv_in, finite);
+    let wrap = s.mode & 0xffu;
+    let linear = (s.mode >> 8u) != 0u;
+    let size = vec2<f32>(f32(s.width), f32(s.height));
+    let n = vec2<i32>(i32(s.width), i32(s.height));
+    if !linear {
+        let i = vec2<i32>(floor(uv * size));
+        return rt_texel(s, rt_tex_wrap(i.x, n.x, wrap), rt_tex_wrap(i.y, n.y, wrap));
+    }
+    let p = uv * size - 0.5;
+    let f = floor(p);
+    let a = p - f;
+    let i = vec2<i32>(f);
+    let x0 = rt_tex_wrap(i.x, n.x, wrap);
+    let x1 = rt_tex_wrap(i.x + 1, n.x, wrap);
+    let y0 = rt_tex_wrap(i.y, n.y, wrap);
+    let y1 = rt_tex_wrap(i.y + 1, n.y, wrap);
+    let top = rt_texel(s, x0, y0) * (1.0 - a.x) + rt_texel(s, x1, y0) * a.x;
+    let bottom = rt_texel(s, x0, y1) * (1.0 - a.x) + rt_texel(s, x1, y1) * a.x;
+    return top * (1.0 - a.y) + bottom * a.y;
+}
+
+// ---- rt_printf!: records of (format id, launch index, word count, words)
+// after the exception records in rt_log. rt_log: [0] exceptions, [1] print
+// words used, [2] rays traced, [3] unused, then exceptions, then prints.
+fn rt_printf_begin(format: u32, words: u32) -> bool {
+    rt_print_on = false;
+    if rt_launch.print_enabled == 0u { return false; }
+    if rt_launch.print_filter.x != RT_NONE && any(rt_launch.print_filter != rt_idx) { return false; }
+    let at = atomicAdd(&rt_log[1], words + 4u);
+    let base = 4u + rt_launch.log_capacity * 3u;
+    if at + words + 4u > arrayLength(&rt_log) - base { return false; }
+    atomicStore(&rt_log[base + at], format);
+    atomicStore(&rt_log[base + at + 1u], rt_idx.x);
+    atomicStore(&rt_log[base + at + 2u], rt_idx.y);
+    atomicStore(&rt_log[base + at + 3u], words);
+    rt_print_pos = base + at + 4u;
+    rt_print_on = true;
+    return true;
+}
+var<private> rt_print_pos: u32;
+fn rt_printf_word(word: u32) {
+    if rt_print_on {
+        atomicStore(&rt_log[rt_print_pos], word);
+        rt_print_pos = rt_print_pos + 1u;
+    }
+}
+
+fn rt_log_exception() {
+    let i = atomicAdd(&rt_log[0], 1u);
+    if i < rt_launch.log_capacity {
+        atomicStore(&rt_log[4u + i * 3u], rt_idx.x);
+        atomicStore(&rt_log[4u + i * 3u + 1u], rt_idx.y);
+        atomicStore(&rt_log[4u + i * 3u + 2u], rt_exc);
+    }
+}
+
+// ---- scene access ----
+// rt_scene header: [0] node table, [1] instance table, [2] geometry
+// instance table, [3] hit record table, [4] ray type count, [5] miss
+// records, [6] intersection records.
+fn rt_valid_ray(r: RtRay) -> bool {
+    let big = vec3<f32>(3.40282347e38);
+    return all(abs(r.origin) <= big) && all(abs(r.direction) <= big) && r.tmin == r.tmin && r.tmax == r.tmax;
+}
+
+fn rt_aabb_hit(w: u32, o: vec3<f32>, inv: vec3<f32>, tmin: f32, tmax: f32) -> f32 {
+    let t0 = (rt_v3(w) - o) * inv;
+    let t1 = (rt_v3(w + 3u) - o) * inv;
+    let lo = min(t0, t1);
+    let hi = max(t0, t1);
+    let near = max(max(max(lo.x, lo.y), lo.z), tmin);
+    let far = min(min(min(hi.x, hi.y), hi.z), tmax);
+    if near <= far { return near; }
+    return 3.40282347e38;
+}
+
+// Watertight ray/triangle test (Woop, Benthin, Wald 2013). Returns t (or a
+// negative value on a miss) and sets rt_c_bary to the weights of vertices
+// 1 and 2; `front` tells whether the ray hits the counter-clockwise side.
+var<private> rt_tri_front: bool;
+fn rt_triangle(a: vec3<f32>, b: vec3<f32>, c: vec3<f32>, r: RtRay, tmax: f32) -> f32 {
+    let d = r.direction;
+    let ad = abs(d);
+    var kz = 2u;
+    if ad.x > ad.y {
+        if ad.x > ad.z { kz = 0u; }
+    } else if ad.y > ad.z {
+        kz = 1u;
+    }
+    var kx = (kz + 1u) % 3u;
+    var ky = (kx + 1u) % 3u;
+    if d[kz] < 0.0 {
+        let tmp = kx;
+        kx = ky;
+        ky = tmp;
+    }
+    if d[kz] == 0.0 { return -1.0; }
+    let sx = d[kx] / d[kz];
+    let sy = d[ky] / d[kz];
+    let sz = 1.0 / d[kz];
+    let pa = a - r.origin;
+    let pb = b - r.origin;
+    let pc = c - r.origin;
+    let ax = pa[kx] - sx * pa[kz];
+    let ay = pa[ky] - sy * pa[kz];
+    let bx = pb[kx] - sx * pb[kz];
+    let by = pb[ky] - sy * pb[kz];
+    let cx = pc[kx] - sx * pc[kz];
+    let cy = pc[ky] - sy * pc[kz];
+    let u = cx * by - cy * bx;
+    let v = ax * cy - ay * cx;
+    let w = bx * ay - by * ax;
+    if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) { return -1.0; }
+    let det = u + v + w;
+    if det == 0.0 { return -1.0; }
+    let t = (u * sz * pa[kz] + v * sz * pb[kz] + w * sz * pc[kz]) / det;
+    if !(t > r.tmin && t < tmax) { return -1.0; }
+    rt_c_bary = vec2<f32>(v / det, w / det);
+    rt_tri_front = dot(d, cross(b - a, c - a)) < 0.0;
+    return t;
+}
+
+fn rt_load_object(w: u32) -> u32 { return rt_heap[w]; }
