@@ -4,7 +4,7 @@
 //! edge, any-hit termination, the trace-depth limit, variable shadowing by
 //! scope, exceptions, and link errors that name what is wrong.
 
-use glam::{UVec2, Vec3, Vec4};
+use glam::{UVec2, Vec2, Vec3, Vec4};
 use rt_runtime::*;
 use rt_std::prelude::*;
 
@@ -134,6 +134,61 @@ pub fn sphere_intersect(prim: u32, attr: &mut Hit, #[var] sphere: Vec4) {
 pub fn sphere_bounds(prim: u32, #[var] sphere: Vec4) -> Aabb {
     let _ = prim;
     Aabb::new(sphere.xyz() - Vec3::splat(sphere.w), sphere.xyz() + Vec3::splat(sphere.w))
+}
+
+
+/// Reads a buffer past its end at the centre pixel, prints at one pixel.
+#[rt_program(closest_hit)]
+pub fn reads_past_the_end(prd: &mut Radiance, #[var] table: Buffer<f32>) {
+    let i = launch_index();
+    let mut idx = 0u32;
+    if i.x == launch_dim().x / 2 && i.y == launch_dim().y / 2 {
+        idx = table.len() + 3;
+    }
+    let v = table[idx];
+    rt_printf!("pixel {} read {} of {}", i, v, table.len());
+    prd.result = Vec3::splat(v);
+}
+
+/// Traces a ray with a NaN direction from the centre pixel.
+#[rt_program(ray_generation)]
+pub fn nan_camera(#[var] top: Object, #[var] mut out: RwBuffer2d<Vec4>) {
+    let idx = launch_index();
+    let mut d = vec3(0.0, 0.0, -1.0);
+    if idx.x == 1 && idx.y == 2 {
+        d = vec3(f32::NAN, 0.0, -1.0);
+    }
+    let mut prd = Radiance { result: Vec3::ZERO, depth: 0 };
+    rt_trace(top, Ray::new(vec3(0.0, 0.0, 10.0), d, 0, 0.0, f32::INFINITY), &mut prd);
+    out[idx] = prd.result.extend(1.0);
+}
+
+/// Ray flags under test, from variables.
+#[rt_program(ray_generation)]
+pub fn flagged_camera(#[var] top: Object, #[var] mut out: RwBuffer2d<Vec4>, #[var] flags: u32, #[var] mask: u32, #[var] z: f32) {
+    let idx = launch_index();
+    let p = (idx.as_vec2() + 0.5) / launch_dim().as_vec2() * 4.0 - 2.0;
+    let mut prd = Radiance { result: Vec3::ZERO, depth: 0 };
+    let ray = Ray::new(vec3(p.x, p.y, z), vec3(0.0, 0.0, -z.signum()), 0, 0.0, f32::INFINITY);
+    rt_trace_with(top, ray, &mut prd, flags, mask);
+    out[idx] = prd.result.extend(1.0);
+}
+
+/// Any hit that adds to the payload and lets the search go on.
+#[rt_program(any_hit)]
+pub fn count_hits(prd: &mut Radiance) {
+    prd.result += vec3(0.0, 0.0, 1.0);
+}
+
+/// Closest hit that samples a texture at the hit's texture coordinate.
+#[rt_attributes]
+pub struct Uv {
+    pub texcoord: Vec2,
+}
+
+#[rt_program(closest_hit)]
+pub fn textured(prd: &mut Radiance, attr: &Uv, #[var] tex: Sampler2d) {
+    prd.result = tex.sample(attr.texcoord).xyz();
 }
 
 const W: u32 = 32;
@@ -404,6 +459,114 @@ fn moving_geometry_refits_instead_of_rebuilding(backend: Backend) {
 }
 
 
+fn buffer_overrun_raises_the_exception_and_printf_reaches_the_host(backend: Backend) {
+    let (mut ctx, _) = camera(2.0, backend);
+    sphere_scene(&mut ctx, &reads_past_the_end::PROGRAM, Vec3::ZERO, 1.0);
+    let table = ctx.create_buffer(BufferType::Input, vec![0.25f32, 0.5, 0.75]);
+    ctx.set_var(Scope::Context, "table", table).unwrap();
+    ctx.set_print(true, Some(UVec2::new(W / 2, W / 2)));
+    let report = ctx.launch(0, W, W).unwrap();
+    assert_eq!(report.exceptions, vec![ExceptionRecord { launch_index: UVec2::new(W / 2, W / 2), code: EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS }]);
+    // The out-of-bounds read yields zero; the print is filtered to one index.
+    assert_eq!(report.prints, vec![(UVec2::new(W / 2, W / 2), format!("pixel [{}, {}] read 0 of 3", W / 2, W / 2))]);
+    ctx.set_print(true, Some(UVec2::new(W / 2 + 1, W / 2)));
+    let report = ctx.launch(0, W, W).unwrap();
+    assert_eq!(report.prints, vec![(UVec2::new(W / 2 + 1, W / 2), format!("pixel [{}, {}] read 0.25 of 3", W / 2 + 1, W / 2))]);
+}
+
+fn nan_rays_raise_invalid_ray(backend: Backend) {
+    let (mut ctx, out) = camera(2.0, backend);
+    sphere_scene(&mut ctx, &normal_shader::PROGRAM, Vec3::ZERO, 1.0);
+    let rg = ctx.create_program(&nan_camera::PROGRAM);
+    ctx.set_ray_generation_program(0, rg).unwrap();
+    let report = ctx.launch(0, 4, 4).unwrap();
+    assert_eq!(report.exceptions, vec![ExceptionRecord { launch_index: UVec2::new(1, 2), code: EXCEPTION_INVALID_RAY }]);
+    let img = ctx.read_buffer::<Vec4>(out).unwrap();
+    // Other launch indices completed: they hit the sphere head on.
+    assert!((img[0].truncate() - Vec3::new(0.5, 0.5, 1.0)).abs().max_element() < 1e-3, "{}", img[0]);
+}
+
+fn ray_flags_and_masks(backend: Backend) {
+    let (mut ctx, out) = camera(2.0, backend);
+    let rg = ctx.create_program(&flagged_camera::PROGRAM);
+    ctx.set_ray_generation_program(0, rg).unwrap();
+    // Two stacked quads at z = 0 and z = 1, both with an any hit that counts
+    // (blue += 1) and a closest hit painting `color`.
+    let g = ctx.create_triangles(quad(0.0, 3.0)).unwrap();
+    let mat = ctx.create_material();
+    let ch = ctx.create_program(&flat_color::PROGRAM);
+    let ah = ctx.create_program(&count_hits::PROGRAM);
+    ctx.set_closest_hit_program(mat, 0, ch).unwrap();
+    ctx.set_any_hit_program(mat, 0, ah).unwrap();
+    ctx.set_var(mat, "color", Vec3::new(1.0, 0.0, 0.0)).unwrap();
+    let gi = ctx.create_geometry_instance(g, &[mat]).unwrap();
+    let gg = ctx.create_geometry_group(&[gi], Acceleration::default()).unwrap();
+    let up = ctx.create_transform(glam::Mat4::from_translation(Vec3::Z), gg).unwrap();
+    let top = ctx.create_group(&[gg, up], Acceleration::default()).unwrap();
+    ctx.set_var(Scope::Context, "top", top).unwrap();
+    let center = |ctx: &mut Context, flags: u32, mask: u32, z: f32| {
+        ctx.set_var(Scope::Context, "flags", flags).unwrap();
+        ctx.set_var(Scope::Context, "mask", mask).unwrap();
+        ctx.set_var(Scope::Context, "z", z).unwrap();
+        ctx.launch(0, 8, 8).unwrap();
+        pixel8(&ctx.read_buffer::<Vec4>(out).unwrap(), 4, 4).truncate()
+    };
+    // Closest hit overwrites the payload: red.
+    assert_eq!(center(&mut ctx, RAY_FLAG_NONE, 0xff, 10.0), Vec3::X);
+    // No closest hit: the any hits' counts stay (one or two, order-free).
+    let c = center(&mut ctx, RAY_FLAG_DISABLE_CLOSESTHIT, 0xff, 10.0);
+    assert!(c.z >= 1.0 && c.x == 0.0, "{c}");
+    // Terminate on first hit with no any hit and no closest hit: black.
+    assert_eq!(center(&mut ctx, RAY_FLAG_TERMINATE_ON_FIRST_HIT | RAY_FLAG_DISABLE_ANYHIT | RAY_FLAG_DISABLE_CLOSESTHIT, 0xff, 10.0), Vec3::ZERO);
+    // Quads wind counter-clockwise seen from +z: culling front faces from
+    // above misses both (background), culling back faces keeps them.
+    assert_eq!(center(&mut ctx, RAY_FLAG_CULL_FRONT_FACING, 0xff, 10.0), BG);
+    assert_eq!(center(&mut ctx, RAY_FLAG_CULL_BACK_FACING, 0xff, 10.0), Vec3::X);
+    // From below, the back faces are what the ray sees.
+    assert_eq!(center(&mut ctx, RAY_FLAG_CULL_BACK_FACING, 0xff, -10.0), BG);
+    // Masks: the group's children keep mask 0xff; a ray with mask 0 sees nothing.
+    assert_eq!(center(&mut ctx, RAY_FLAG_NONE, 0, 10.0), BG);
+    ctx.set_visibility_mask(gg, 0b10).unwrap();
+    assert_eq!(center(&mut ctx, RAY_FLAG_NONE, 0b01, 10.0), BG);
+    assert_eq!(center(&mut ctx, RAY_FLAG_NONE, 0b10, 10.0), Vec3::X);
+}
+
+fn pixel8(img: &[Vec4], x: u32, y: u32) -> Vec4 {
+    img[(y * 8 + x) as usize]
+}
+
+fn textures_sample_with_wrap_and_filter(backend: Backend) {
+    let (mut ctx, out) = camera(1.0, backend);
+    let mut mesh = quad(0.0, 1.0);
+    // Texture coordinates from -1 to 2: wrapping shows.
+    mesh.texcoords = Some(vec![Vec2::new(-1.0, -1.0), Vec2::new(2.0, -1.0), Vec2::new(2.0, 2.0), Vec2::new(-1.0, 2.0)]);
+    let g = ctx.create_triangles(mesh).unwrap();
+    let mat = ctx.create_material();
+    let ch = ctx.create_program(&textured::PROGRAM);
+    ctx.set_closest_hit_program(mat, 0, ch).unwrap();
+    let gi = ctx.create_geometry_instance(g, &[mat]).unwrap();
+    let gg = ctx.create_geometry_group(&[gi], Acceleration::default()).unwrap();
+    ctx.set_var(Scope::Context, "top", gg).unwrap();
+    let texels = vec![Vec4::new(1.0, 0.0, 0.0, 1.0), Vec4::new(0.0, 1.0, 0.0, 1.0), Vec4::new(0.0, 0.0, 1.0, 1.0), Vec4::ONE];
+    for (wrap, filter) in [(WrapMode::Repeat, FilterMode::Nearest), (WrapMode::Clamp, FilterMode::Linear), (WrapMode::Mirror, FilterMode::Linear)] {
+        let tex = ctx.create_sampler(texels.clone(), 2, 2, wrap, filter).unwrap();
+        ctx.set_var(Scope::Context, "tex", tex).unwrap();
+        ctx.launch(0, W, W).unwrap();
+        let img = ctx.read_buffer::<Vec4>(out).unwrap();
+        // Compare every pixel with rt-std's CPU sampler at the same uv.
+        let reference = unsafe { Sampler2d::from_raw_parts(texels.as_ptr(), 2, 2, wrap, filter) };
+        for y in 0..W {
+            for x in 0..W {
+                let (wx, wy) = world(x, y, 1.0);
+                let uv = Vec2::new(-1.0 + 3.0 * (wx + 1.0) / 2.0, -1.0 + 3.0 * (wy + 1.0) / 2.0);
+                let expected = reference.sample(uv).truncate();
+                let got = pixel(&img, x, y).truncate();
+                assert!((got - expected).abs().max_element() < 2e-3, "{wrap:?} {filter:?} at {x},{y}: {got} vs {expected}");
+            }
+        }
+    }
+}
+
 /// Instantiates every test above once per backend.
 macro_rules! on_backends {
     ($($name:ident),* $(,)?) => {
@@ -419,6 +582,10 @@ macro_rules! on_backends {
 }
 
 on_backends!(
+    buffer_overrun_raises_the_exception_and_printf_reaches_the_host,
+    nan_rays_raise_invalid_ray,
+    ray_flags_and_masks,
+    textures_sample_with_wrap_and_filter,
     sphere_silhouette_and_normals,
     triangle_attributes_reach_closest_hit_through_a_transform,
     any_hit_terminate_casts_a_shadow_with_a_sharp_edge,
