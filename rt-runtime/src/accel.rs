@@ -260,7 +260,10 @@ fn transform_bounds(m: Mat4, b: &OAabb) -> OAabb {
 }
 
 /// Primitive bounds of a geometry group, in the order of `prims`.
-fn prim_bounds(ctx: &Context, children: &[crate::GeometryInstanceId]) -> Result<(Vec<(u32, u32)>, Vec<OAabb>, bool)> {
+/// `(instance, primitive)` pairs, their bounds, and whether all are triangles.
+type PrimBounds = (Vec<(u32, u32)>, Vec<OAabb>, bool);
+
+fn prim_bounds(ctx: &Context, children: &[crate::GeometryInstanceId]) -> Result<PrimBounds> {
     let mut prims = Vec::new();
     let mut bounds = Vec::new();
     let mut all_triangles = true;

@@ -37,12 +37,10 @@ pub(crate) trait Storage: Send + Sync {
     fn handle(&self, dims: u32, writable: bool, width: u32, height: u32) -> Box<dyn Any + Send + Sync>;
     fn as_any(&self) -> &dyn Any;
     fn as_any_mut(&mut self) -> &mut dyn Any;
-    /// Heap words of all elements (for the GPU backend, being written).
-    #[allow(dead_code)]
+    /// Heap words of all elements (uploaded by the wgpu backend).
     fn to_words(&self, out: &mut Vec<u32>);
     /// Replaces the elements from heap words (read back from the GPU).
-    #[allow(dead_code)]
-    fn from_words(&mut self, words: &[u32]);
+    fn read_words(&mut self, words: &[u32]);
 }
 
 pub(crate) struct Typed<T: RtData> {
@@ -119,7 +117,7 @@ impl<T: RtData + Send + Sync> Storage for Typed<T> {
         }
     }
 
-    fn from_words(&mut self, words: &[u32]) {
+    fn read_words(&mut self, words: &[u32]) {
         let w = T::LAYOUT.words as usize;
         let n = self.len();
         for (i, c) in self.cells[..n].iter_mut().enumerate() {

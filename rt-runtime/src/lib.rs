@@ -20,6 +20,10 @@
 //! are checked to agree; errors name the program with its Rust file and line.
 //! Backends: the CPU backend ([`backend::cpu`]) runs programs natively.
 
+// Errors carry the names, locations and scopes at fault; they are returned
+// on cold paths only, so their size does not matter.
+#![allow(clippy::result_large_err)]
+
 pub mod accel;
 pub mod backend;
 pub mod buffer;

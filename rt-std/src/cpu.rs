@@ -48,16 +48,14 @@ impl From<u32> for CpuResult {
     }
 }
 
-/// Downcasts a program argument; used by generated thunks.
+/// Downcasts a program argument; used by generated thunks. `None` when the
+/// argument is missing or of another type: a ray traced with a payload type
+/// its ray type's programs do not take. The thunk then raises
+/// [`EXCEPTION_INVALID_RAY`](crate::EXCEPTION_INVALID_RAY) instead of running
+/// the program, as the megakernel does.
 #[doc(hidden)]
-pub fn __arg<'a, T: 'static>(value: Option<&'a mut dyn Any>, program: &str, what: &str) -> &'a mut T {
-    match value.and_then(|v| v.downcast_mut::<T>()) {
-        Some(v) => v,
-        None => panic!(
-            "program `{program}`: {what} is missing or not a `{}` (the runtime's link check should have caught this)",
-            core::any::type_name::<T>()
-        ),
-    }
+pub fn __arg<T: 'static>(value: Option<&mut dyn Any>) -> Option<&mut T> {
+    value.and_then(|v| v.downcast_mut::<T>())
 }
 
 /// Reads a variable value; used by generated thunks.

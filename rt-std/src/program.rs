@@ -126,6 +126,9 @@ pub struct PrintfFormat {
     pub args: &'static [&'static str],
 }
 
+/// Makes a program's attribute value from heap words (CPU backend).
+pub type AttributesFromWords = fn(&[u32]) -> Box<dyn crate::cpu::AnyAttributes>;
+
 /// Everything known about one program after `cargo build`.
 #[derive(Clone, Copy, Debug)]
 pub struct ProgramDescriptor {
@@ -169,7 +172,7 @@ pub struct ProgramDescriptor {
     /// For programs taking attributes: makes a value of the attribute type
     /// from heap words (the CPU backend fills built-in triangle attributes
     /// this way).
-    pub cpu_attributes: Option<fn(&[u32]) -> Box<dyn crate::cpu::AnyAttributes>>,
+    pub cpu_attributes: Option<AttributesFromWords>,
 }
 
 impl ProgramDescriptor {

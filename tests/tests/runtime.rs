@@ -174,6 +174,14 @@ pub fn flagged_camera(#[var] top: Object, #[var] mut out: RwBuffer2d<Vec4>, #[va
     out[idx] = prd.result.extend(1.0);
 }
 
+/// Traces a shadow payload on the radiance ray type: a mistake the linker
+/// cannot see (the ray type is a run-time value).
+#[rt_program(ray_generation)]
+pub fn wrong_payload_camera(#[var] top: Object) {
+    let mut s = ShadowPrd { attenuation: 0.5 };
+    rt_trace(top, Ray::new(Vec3::ZERO, Vec3::Z, 0, 0.0, 1.0), &mut s);
+}
+
 /// Any hit that adds to the payload and lets the search go on.
 #[rt_program(any_hit)]
 pub fn count_hits(prd: &mut Radiance) {
@@ -567,6 +575,16 @@ fn textures_sample_with_wrap_and_filter(backend: Backend) {
     }
 }
 
+fn payload_of_the_wrong_ray_type_raises_invalid_ray(backend: Backend) {
+    let (mut ctx, _) = camera(2.0, backend);
+    sphere_scene(&mut ctx, &normal_shader::PROGRAM, Vec3::new(0.0, 0.0, 5.0), 1.0);
+    let rg = ctx.create_program(&wrong_payload_camera::PROGRAM);
+    ctx.set_ray_generation_program(0, rg).unwrap();
+    let report = ctx.launch(0, 2, 1).unwrap();
+    assert_eq!(report.exceptions.len(), 2);
+    assert!(report.exceptions.iter().all(|e| e.code == EXCEPTION_INVALID_RAY), "{:?}", report.exceptions);
+}
+
 /// Instantiates every test above once per backend.
 macro_rules! on_backends {
     ($($name:ident),* $(,)?) => {
@@ -582,6 +600,7 @@ macro_rules! on_backends {
 }
 
 on_backends!(
+    payload_of_the_wrong_ray_type_raises_invalid_ray,
     buffer_overrun_raises_the_exception_and_printf_reaches_the_host,
     nan_rays_raise_invalid_ray,
     ray_flags_and_masks,

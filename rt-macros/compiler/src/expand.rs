@@ -549,26 +549,36 @@ fn cpu_thunk(kind: Kind, f: &syn::ItemFn, params: &[signature::Param]) -> TokenS
     let name = &f.sig.ident;
     let name_str = name.to_string();
     let mut var_index = 0usize;
-    let args = params.iter().map(|p| {
-        let ty = reroot_type(&p.ty);
-        match p.role {
-            Role::Payload { mutable } => {
-                let a = quote!(::rt_std::cpu::__arg::<#ty>(payload.as_deref_mut(), #name_str, "the payload"));
-                if mutable { a } else { quote!(&*#a) }
+    let mut bindings = Vec::new();
+    let args: Vec<TokenStream> = params
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let ty = reroot_type(&p.ty);
+            let local = format_ident!("__rt_arg{}", i);
+            let source = match p.role {
+                Role::Payload { .. } => quote!(payload),
+                Role::Attributes { .. } => quote!(attributes),
+                Role::Primitive => return quote!(*primitive),
+                Role::Variable => {
+                    let i = var_index;
+                    var_index += 1;
+                    let vname = p.name.to_string();
+                    return quote!(::rt_std::cpu::__var::<#ty>(variables, #i, #name_str, #vname));
+                }
+            };
+            bindings.push(quote! {
+                let Some(#local) = ::rt_std::cpu::__arg::<#ty>(#source.as_deref_mut()) else {
+                    ::rt_std::cpu::raise(::rt_std::EXCEPTION_INVALID_RAY);
+                    return ::rt_std::cpu::CpuResult::Unit;
+                };
+            });
+            match p.role {
+                Role::Payload { mutable: true } | Role::Attributes { mutable: true } => quote!(#local),
+                _ => quote!(&*#local),
             }
-            Role::Attributes { mutable } => {
-                let a = quote!(::rt_std::cpu::__arg::<#ty>(attributes.as_deref_mut(), #name_str, "the attributes"));
-                if mutable { a } else { quote!(&*#a) }
-            }
-            Role::Primitive => quote!(*primitive),
-            Role::Variable => {
-                let i = var_index;
-                var_index += 1;
-                let vname = p.name.to_string();
-                quote!(::rt_std::cpu::__var::<#ty>(variables, #i, #name_str, #vname))
-            }
-        }
-    });
+        })
+        .collect();
     let _ = kind;
     let attributes_from_words = params.iter().find(|p| matches!(p.role, Role::Attributes { .. })).map(|p| {
         let ty = reroot_type(&p.ty);
@@ -585,6 +595,7 @@ fn cpu_thunk(kind: Kind, f: &syn::ItemFn, params: &[signature::Param]) -> TokenS
         pub fn cpu(args: &mut ::rt_std::cpu::CpuArgs<'_>) -> ::rt_std::cpu::CpuResult {
             let ::rt_std::cpu::CpuArgs { payload, attributes, primitive, variables } = args;
             let _ = (&payload, &attributes, &primitive, &variables);
+            #(#bindings)*
             ::rt_std::cpu::CpuResult::from(super::#name(#(#args),*))
         }
     }

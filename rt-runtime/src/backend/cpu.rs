@@ -26,6 +26,9 @@ use rt_std::*;
 use std::any::Any;
 use std::cell::{Cell, RefCell};
 
+/// Closest hit and any hit of one (instance, material, ray type).
+type HitPrograms = (Option<Call>, Option<Call>);
+
 /// Every program use of a launch, resolved.
 struct Linked<'a> {
     ctx: &'a Context,
@@ -34,7 +37,7 @@ struct Linked<'a> {
     exception: Option<Call>,
     miss: Vec<Call>,
     /// `[instance][material slot][ray type]` → (closest hit, any hit).
-    hits: Vec<Vec<Vec<(Option<Call>, Option<Call>)>>>,
+    hits: Vec<Vec<Vec<HitPrograms>>>,
     /// Intersection program per instance (custom geometry only).
     intersection: Vec<Option<Call>>,
     /// Visit program per node (selectors only).
@@ -624,7 +627,7 @@ fn intersect_triangle(mesh: &TriangleMesh, t: usize, ray: &Ray, tmax: f32) -> Op
     let cz = sz * pc[kz];
     let t_scaled = u * az + v * bz + w * cz;
     let t = t_scaled / det;
-    if !(t > ray.tmin && t < tmax) || !t.is_finite() {
+    if !(t > ray.tmin && t < tmax && t.is_finite()) {
         return None;
     }
     // u weights vertex a here; report weights of b and c.

@@ -47,7 +47,7 @@ fn scope_name(s: Scope) -> String {
 
 /// Finds and type-checks the values of program `p`'s variables used at
 /// `record`, in declaration order.
-pub fn resolve_values<'c>(ctx: &'c Context, p: ProgramId, record: Record) -> Result<Vec<&'c VarValue>> {
+pub fn resolve_values(ctx: &Context, p: ProgramId, record: Record) -> Result<Vec<&VarValue>> {
     let desc = ctx.program(p)?.desc;
     if desc.variables.len() > MAX_VARIABLES {
         return Err(RtError::TooManyVariables {

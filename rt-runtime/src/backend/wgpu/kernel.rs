@@ -149,7 +149,7 @@ pub fn generate(spec: &KernelSpec) -> Result<String> {
     let mut out = String::from(PRELUDE);
     out.push_str(TRAVERSE);
     out.push_str("\n// ---- types ----\n");
-    for (_, (text, _)) in &types {
+    for (text, _) in types.values() {
         out.push_str(text);
     }
     out.push_str("\n// ---- shared functions ----\n");
@@ -165,7 +165,7 @@ pub fn generate(spec: &KernelSpec) -> Result<String> {
 
     // Per-payload and per-attribute state.
     out.push_str("\n// ---- payload and attribute state ----\n");
-    for (w, _) in &payloads {
+    for w in payloads.keys() {
         out.push_str(&format!("var<private> rt_prd_{w}: {w};\n"));
     }
     for (w, layout) in &attributes {
@@ -179,7 +179,7 @@ pub fn generate(spec: &KernelSpec) -> Result<String> {
         ));
     }
     out.push_str("fn rt_commit_attributes() {\n");
-    for (w, _) in &attributes {
+    for w in attributes.keys() {
         out.push_str(&format!("    rt_h_attr_{w} = rt_c_attr_{w};\n"));
     }
     out.push_str("}\n");
@@ -217,7 +217,7 @@ pub fn generate(spec: &KernelSpec) -> Result<String> {
     out.push_str("\n// ---- dispatch ----\n");
     out.push_str(&dispatch_intersection(&spec.programs));
     out.push_str(&dispatch_any_hit(&spec.programs));
-    for (w, _) in &payloads {
+    for w in payloads.keys() {
         for d in 1..=spec.max_depth {
             out.push_str(&dispatch_payload(&spec.programs, w, d));
             out.push_str(&trace_function(w, d));
@@ -373,7 +373,7 @@ fn dispatch_payload(programs: &[KernelProgram], w: &str, d: u32) -> String {
         }
     }
     format!(
-        "fn rt_ch_{w}_d{d}(case_id: u32, vars: u32, prd: ptr<function, {w}>) {{\n    switch case_id {{\n{ch}        default: {{}}\n    }}\n}}\nfn rt_miss_{w}_d{d}(case_id: u32, vars: u32, prd: ptr<function, {w}>) {{\n    switch case_id {{\n{miss}        default: {{}}\n    }}\n}}\n"
+        "fn rt_ch_{w}_d{d}(case_id: u32, vars: u32, prd: ptr<function, {w}>) {{\n    switch case_id {{\n{ch}        default: {{\n            rt_raise(RT_EXC_INVALID_RAY);\n        }}\n    }}\n}}\nfn rt_miss_{w}_d{d}(case_id: u32, vars: u32, prd: ptr<function, {w}>) {{\n    switch case_id {{\n{miss}        default: {{\n            rt_raise(RT_EXC_INVALID_RAY);\n        }}\n    }}\n}}\n"
     )
 }
 

@@ -227,9 +227,9 @@ fn encode(ctx: &Context, entry: u32) -> Result<Encoded> {
     // Instances: one per geometry group and per transform chain.
     let mut instance_of_node: Vec<Option<u32>> = vec![None; ctx.nodes.len()];
     let mut instances: Vec<(NodeId, Mat4, u32)> = Vec::new();
-    for n in 0..ctx.nodes.len() {
+    for (n, slot) in instance_of_node.iter_mut().enumerate() {
         if let Some(inst) = instance_of(ctx, NodeId(n as u32))? {
-            instance_of_node[n] = Some(instances.len() as u32);
+            *slot = Some(instances.len() as u32);
             instances.push(inst);
         }
     }
@@ -430,7 +430,7 @@ pub(crate) fn launch(ctx: &mut Context, entry: u32, width: u32, height: u32) -> 
         if len * 4 > max_binding {
             return Err(RtError::Gpu(format!(
                 "{what} needs {} MiB but {} binds at most {} MiB per storage buffer",
-                len * 4 >> 20,
+                (len * 4) >> 20,
                 gpu.describe(),
                 max_binding >> 20
             )));
@@ -551,7 +551,7 @@ pub(crate) fn launch(ctx: &mut Context, entry: u32, width: u32, height: u32) -> 
 
     // Output buffers back into the context.
     for (i, offset, n) in &enc.outputs {
-        ctx.buffers[*i].storage.from_words(&heap_words[*offset..offset + n]);
+        ctx.buffers[*i].storage.read_words(&heap_words[*offset..offset + n]);
     }
     let mut report = LaunchReport::default();
     let count = log_words[0].min(LOG_EXCEPTIONS) as usize;

@@ -1,0 +1,123 @@
+//! Renders every example to `DIR/<name>.png`, one line per image with its
+//! time and ray rate.
+//!
+//!     cargo run --release -p examples --bin tour -- --out out
+
+use clap::Parser;
+use examples::{BackendChoice, EXAMPLES, Settings};
+use indicatif::{ProgressBar, ProgressStyle};
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::Instant;
+
+/// Render the worked examples.
+#[derive(Parser, Debug)]
+#[command(version, about)]
+struct Args {
+    /// Directory the PNGs are written to (created if missing).
+    #[arg(long)]
+    out: PathBuf,
+    #[arg(long, default_value_t = Settings::DEFAULT_WIDTH)]
+    width: u32,
+    #[arg(long, default_value_t = Settings::DEFAULT_HEIGHT)]
+    height: u32,
+    /// Which backend renders.
+    #[arg(long, value_enum, default_value_t = BackendChoice::Cpu)]
+    backend: BackendChoice,
+    /// Samples per pixel of the progressive examples (cornell, bunny).
+    #[arg(long, default_value_t = Settings::DEFAULT_SPP)]
+    spp: u32,
+    /// Render only these examples (by name; repeatable).
+    #[arg(long = "only")]
+    only: Vec<String>,
+}
+
+fn main() -> ExitCode {
+    let args = Args::parse();
+    match run(&args) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(message) => {
+            eprintln!("tour: {message}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn run(args: &Args) -> Result<(), String> {
+    let backend = args.backend.backend().map_err(|e| e.to_string())?;
+    if let Some(unknown) = args.only.iter().find(|n| examples::example(n).is_none()) {
+        let names: Vec<&str> = EXAMPLES.iter().map(|e| e.name).collect();
+        return Err(format!("no example is called `{unknown}`; the examples are {}", names.join(", ")));
+    }
+    let settings = Settings { width: args.width, height: args.height, spp: args.spp, backend };
+    std::fs::create_dir_all(&args.out).map_err(|e| format!("{}: {e}", args.out.display()))?;
+    eprintln!(
+        "tour: rendering {}x{} on the {} backend ({} threads), {} spp for progressive examples",
+        settings.width,
+        settings.height,
+        backend.name(),
+        std::thread::available_parallelism().map_or(1, |n| n.get()),
+        settings.spp
+    );
+    let start = Instant::now();
+    let (mut total_rays, mut total_seconds) = (0u64, 0.0f64);
+    for example in EXAMPLES.iter().filter(|e| args.only.is_empty() || args.only.iter().any(|n| n == e.name)) {
+        let built = Instant::now();
+        let mut scene = (example.build)(&settings).map_err(|e| format!("{}: {e}", example.name))?;
+        let build_seconds = built.elapsed().as_secs_f64();
+        let bar = if example.progressive && scene.frames > 1 {
+            let bar = ProgressBar::new(scene.frames as u64);
+            bar.set_style(
+                ProgressStyle::with_template("{prefix:>12} [{bar:30}] {pos}/{len} spp, {elapsed} (eta {eta})")
+                    .expect("a valid template")
+                    .progress_chars("=> "),
+            );
+            bar.set_prefix(example.name);
+            Some(bar)
+        } else {
+            None
+        };
+        let rendered = scene
+            .render(&mut |done, _| {
+                if let Some(bar) = &bar {
+                    bar.set_position(done as u64);
+                }
+            })
+            .map_err(|e| format!("{}: {e}", example.name))?;
+        if let Some(bar) = bar {
+            bar.finish_and_clear();
+        }
+        let path = args.out.join(format!("{}.png", example.name));
+        rendered.image.save_png(&path).map_err(|e| e.to_string())?;
+        total_rays += rendered.rays;
+        total_seconds += rendered.seconds;
+        println!(
+            "{:<12} {:>7.2} s {:>7.2} Mrays/s {:>11} rays  (scene {:.2} s)  {}",
+            example.name,
+            rendered.seconds,
+            rendered.mrays_per_second(),
+            rendered.rays,
+            build_seconds,
+            path.display()
+        );
+        if !rendered.exceptions.is_empty() {
+            let first = rendered.exceptions[0];
+            eprintln!(
+                "tour: {}: {} launch indices raised exceptions (first at {}: code {:#x}); they are painted magenta",
+                example.name,
+                rendered.exceptions.len(),
+                first.launch_index,
+                first.code
+            );
+        }
+    }
+    println!(
+        "{:<12} {:>7.2} s {:>7.2} Mrays/s {:>11} rays  (wall {:.2} s)",
+        "total",
+        total_seconds,
+        total_rays as f64 / total_seconds.max(1e-9) / 1e6,
+        total_rays,
+        start.elapsed().as_secs_f64()
+    );
+    Ok(())
+}

@@ -1,0 +1,180 @@
+//! The Stanford bunny (`shared/scenes/stanford-bunny.obj`, 69,451
+//! triangles) on a floor, under a key light with shadows and a sky
+//! ambient term darkened by ambient occlusion.
+//!
+//! Any mesh renders this way ([`mesh_scene`]; the `render` binary uses it):
+//! the camera and light are placed from the mesh's bounds, a floor is laid
+//! under it, each `.mtl` material gets its own `kd`. Pictures are
+//! progressive like the Cornell box's: each launch traces one jittered
+//! camera ray per pixel and `ao_samples` occlusion rays from what it hits,
+//! and the output is the running mean.
+
+use crate::common::*;
+use crate::diffuse::facing_normal;
+use crate::mesh::{self, LoadedMesh};
+use crate::scene::{Camera, Error, Scene, Settings, quad, shared_scene};
+use crate::shadows::direct_light;
+use glam::Vec3;
+use rt_runtime::{Acceleration, BufferType, Builder, Scope};
+use rt_std::prelude::*;
+
+/// A jittered pinhole camera that accumulates one sample per launch and
+/// writes the mean, gamma-corrected.
+#[rt_program(ray_generation)]
+pub fn accumulating_camera(
+    #[var] eye: Vec3,
+    #[var] u: Vec3,
+    #[var] v: Vec3,
+    #[var] w: Vec3,
+    #[var] frame: u32,
+    #[var] scene_epsilon: f32,
+    #[var] top_object: Object,
+    #[var] mut accum_buffer: RwBuffer2d<Vec4>,
+    #[var] mut output_buffer: RwBuffer2d<Vec4>,
+) {
+    let idx = launch_index();
+    let dim = launch_dim();
+    let mut seed = tea4(idx.y * dim.x + idx.x, frame + 0x5bd1_e995);
+    let mut jitter = Vec2::splat(0.5);
+    if frame > 0 {
+        jitter = vec2(rnd(&mut seed), rnd(&mut seed));
+    }
+    let d = (idx.as_vec2() + jitter) / dim.as_vec2() * 2.0 - Vec2::ONE;
+    let ray = Ray::new(eye, (d.x * u + d.y * v + w).normalize(), RADIANCE_RAY, scene_epsilon, f32::INFINITY);
+    let mut prd = Radiance { result: Vec3::ZERO, importance: 1.0, depth: 0 };
+    rt_trace(top_object, ray, &mut prd);
+    let mut acc = Vec4::ZERO;
+    if frame > 0 {
+        acc = accum_buffer[idx];
+    }
+    acc += prd.result.extend(1.0);
+    accum_buffer[idx] = acc;
+    output_buffer[idx] = (acc.xyz() / acc.w).max(Vec3::ZERO).powf(1.0 / 2.2).extend(1.0);
+}
+
+/// Diffuse and a little specular light from the lights (with shadows), plus
+/// `ambient_light_color` times the fraction of `ao_samples`
+/// cosine-distributed rays that travel `ao_radius` unblocked.
+#[rt_program(closest_hit)]
+pub fn occluded_shade(
+    prd: &mut Radiance,
+    attr: &Normals,
+    #[var] kd: Vec3,
+    #[var] ks: Vec3,
+    #[var] phong_exp: f32,
+    #[var] ambient_light_color: Vec3,
+    #[var] lights: Buffer<BasicLight>,
+    #[var] ao_samples: u32,
+    #[var] ao_radius: f32,
+    #[var] frame: u32,
+    #[var] scene_epsilon: f32,
+    #[var] top_shadower: Object,
+) {
+    let ray = current_ray();
+    let n = facing_normal(attr.shading_normal, attr.geometric_normal, ray.direction);
+    let hit_point = ray.origin + t_hit() * ray.direction;
+    let idx = launch_index();
+    let mut seed = tea4(idx.y * launch_dim().x + idx.x, frame);
+    let mut open = 0.0;
+    for _ in 0..ao_samples {
+        let u1 = rnd(&mut seed);
+        let u2 = rnd(&mut seed);
+        let dir = cosine_sample_hemisphere(n, u1, u2);
+        let mut shadow = Shadow { attenuation: Vec3::ONE };
+        rt_trace(top_shadower, Ray::new(hit_point, dir, SHADOW_RAY, scene_epsilon, ao_radius), &mut shadow);
+        open += shadow.attenuation.x;
+    }
+    let ao = open / ao_samples.max(1) as f32;
+    prd.result = kd * ambient_light_color * ao
+        + direct_light(hit_point, n, ray.direction, kd, ks, phong_exp, lights, scene_epsilon, top_shadower);
+}
+
+/// How a mesh is shown.
+#[derive(Clone, Copy, Debug)]
+pub struct MeshView {
+    /// The direction the camera looks along.
+    pub view_direction: Vec3,
+    pub vfov_degrees: f32,
+    /// Where the key light is, from the mesh's centre (scaled by its size).
+    pub key_direction: Vec3,
+}
+
+impl Default for MeshView {
+    fn default() -> Self {
+        MeshView {
+            view_direction: Vec3::new(0.45, -0.38, -1.0),
+            vfov_degrees: 30.0,
+            key_direction: Vec3::new(-0.7, 1.0, 0.55),
+        }
+    }
+}
+
+/// Occlusion rays per pixel per launch.
+pub const AO_SAMPLES: u32 = 4;
+/// The sky's light, reaching what occlusion leaves open.
+pub const SKY: Vec3 = Vec3::new(0.42, 0.46, 0.55);
+/// The floor's colour.
+pub const FLOOR_KD: Vec3 = Vec3::new(0.72, 0.71, 0.68);
+/// The background.
+pub const BACKGROUND: Vec3 = Vec3::new(0.62, 0.68, 0.78);
+
+/// A scene of `loaded` on a floor, framed from its bounds, `settings.spp`
+/// launches.
+pub fn mesh_scene(loaded: &LoadedMesh, settings: &Settings, view: MeshView) -> Result<Scene, Error> {
+    let (min, max) = (loaded.min, loaded.max);
+    let center = (min + max) * 0.5;
+    let radius = ((max - min).length() * 0.5).max(1e-6);
+    let (mut ctx, output) = Scene::start(settings, radius * 1e-4)?;
+    let camera = ctx.create_program(&accumulating_camera::PROGRAM);
+    ctx.set_ray_generation_program(0, camera)?;
+    let miss = ctx.create_program(&background::PROGRAM);
+    ctx.set_miss_program(RADIANCE_RAY, miss)?;
+    let shadow_miss = ctx.create_program(&shadow_miss::PROGRAM);
+    ctx.set_miss_program(SHADOW_RAY, shadow_miss)?;
+    ctx.set_var(Scope::Context, "bg_color", BACKGROUND)?;
+    let cam = Camera::framing(min, max, view.view_direction, view.vfov_degrees, settings.aspect());
+    cam.set_vars(&mut ctx, settings.aspect())?;
+    let accum = ctx.create_buffer_2d::<Vec4>(BufferType::InputOutput, settings.width, settings.height)?;
+    ctx.set_var(Scope::Context, "accum_buffer", accum)?;
+    let key = BasicLight { pos: center + view.key_direction.normalize() * radius * 8.0, color: Vec3::new(0.95, 0.9, 0.82), casts_shadow: 1 };
+    let lights = ctx.create_buffer(BufferType::Input, vec![key]);
+    ctx.set_var(Scope::Context, "lights", lights)?;
+    ctx.set_var(Scope::Context, "ambient_light_color", SKY)?;
+    ctx.set_var(Scope::Context, "ao_samples", AO_SAMPLES)?;
+    ctx.set_var(Scope::Context, "ao_radius", radius * 0.6)?;
+    ctx.set_var(Scope::Context, "ks", Vec3::splat(0.12))?;
+    ctx.set_var(Scope::Context, "phong_exp", 40.0f32)?;
+
+    let shade = ctx.create_program(&occluded_shade::PROGRAM);
+    let block = ctx.create_program(&any_hit_shadow::PROGRAM);
+    let mut material = |kd: Vec3| -> Result<_, Error> {
+        let m = ctx.create_material();
+        ctx.set_closest_hit_program(m, RADIANCE_RAY, shade)?;
+        ctx.set_any_hit_program(m, SHADOW_RAY, block)?;
+        ctx.set_var(m, "kd", kd)?;
+        Ok(m)
+    };
+    let materials = loaded.materials.iter().map(|m| material(m.diffuse)).collect::<Result<Vec<_>, _>>()?;
+    let floor_material = material(FLOOR_KD)?;
+    let model = ctx.create_triangles(loaded.mesh.clone())?;
+    let model = ctx.create_geometry_instance(model, &materials)?;
+    let half = radius * 40.0;
+    let floor = ctx.create_triangles(quad(
+        Vec3::new(center.x - half, min.y, center.z - half),
+        Vec3::new(0.0, 0.0, 2.0 * half),
+        Vec3::new(2.0 * half, 0.0, 0.0),
+    ))?;
+    let floor = ctx.create_geometry_instance(floor, &[floor_material])?;
+    let top = ctx.create_geometry_group(&[model, floor], Acceleration::new(Builder::Bvh))?;
+    ctx.set_var(Scope::Context, "top_object", top)?;
+    ctx.set_var(Scope::Context, "top_shadower", top)?;
+    let mut scene = Scene::new(ctx, output, settings);
+    scene.frames = settings.spp;
+    Ok(scene)
+}
+
+/// The bunny.
+pub fn scene(settings: &Settings) -> Result<Scene, Error> {
+    let loaded = mesh::load_obj(&shared_scene("stanford-bunny.obj"))?;
+    mesh_scene(&loaded, settings, MeshView::default())
+}
