@@ -104,15 +104,15 @@ impl Default for MeshView {
         MeshView {
             view_direction: Vec3::new(0.45, -0.38, -1.0),
             vfov_degrees: 30.0,
-            key_direction: Vec3::new(-0.7, 1.0, 0.55),
+            key_direction: Vec3::new(0.6, 1.3, 0.85),
         }
     }
 }
 
 /// Occlusion rays per pixel per launch.
-pub const AO_SAMPLES: u32 = 4;
+pub const AO_SAMPLES: u32 = 2;
 /// The sky's light, reaching what occlusion leaves open.
-pub const SKY: Vec3 = Vec3::new(0.42, 0.46, 0.55);
+pub const SKY: Vec3 = Vec3::new(0.16, 0.18, 0.23);
 /// The floor's colour.
 pub const FLOOR_KD: Vec3 = Vec3::new(0.72, 0.71, 0.68);
 /// The background.
@@ -136,7 +136,7 @@ pub fn mesh_scene(loaded: &LoadedMesh, settings: &Settings, view: MeshView) -> R
     cam.set_vars(&mut ctx, settings.aspect())?;
     let accum = ctx.create_buffer_2d::<Vec4>(BufferType::InputOutput, settings.width, settings.height)?;
     ctx.set_var(Scope::Context, "accum_buffer", accum)?;
-    let key = BasicLight { pos: center + view.key_direction.normalize() * radius * 8.0, color: Vec3::new(0.95, 0.9, 0.82), casts_shadow: 1 };
+    let key = BasicLight { pos: center + view.key_direction.normalize() * radius * 8.0, color: Vec3::new(0.75, 0.7, 0.62), casts_shadow: 1 };
     let lights = ctx.create_buffer(BufferType::Input, vec![key]);
     ctx.set_var(Scope::Context, "lights", lights)?;
     ctx.set_var(Scope::Context, "ambient_light_color", SKY)?;

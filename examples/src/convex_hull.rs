@@ -125,40 +125,39 @@ pub fn glass_shadow(prd: &mut Shadow, #[var] shadow_attenuation: Vec3) {
     rt_ignore_intersection();
 }
 
-/// A gem: a hexagonal prism of circumradius `radius` from y = `y0` to `y1`,
-/// its top cut by six bevels sloping down to `bevel_height` below it, about
-/// the vertical line through `center`. Returns the planes and the box.
+/// A gem: a hexagonal prism of circumradius `radius` from y = `y0` to `y1`
+/// about the vertical line through `center`, its top edges cut by six
+/// bevels that drop `bevel_height` from 60% of the way out on the top face
+/// to the sides. Returns the planes and the box.
 pub fn gem_planes(center: Vec3, radius: f32, y0: f32, y1: f32, bevel_height: f32) -> (Vec<Vec4>, Vec3, Vec3) {
     let apothem = radius * (std::f32::consts::PI / 6.0).cos();
-    let mut planes = vec![Vec4::new(0.0, -1.0, 0.0, y0), Vec4::new(0.0, 1.0, 0.0, -y1)];
     let plane = |n: Vec3, p: Vec3| n.normalize().extend(-n.normalize().dot(p));
+    let mut planes = vec![plane(Vec3::NEG_Y, Vec3::new(0.0, y0, 0.0)), plane(Vec3::Y, Vec3::new(0.0, y1, 0.0))];
+    let top = Vec3::new(center.x, y1, center.z);
     for k in 0..6 {
-        let a = k as f32 * std::f32::consts::PI / 3.0 + 0.3;
+        let a = k as f32 * std::f32::consts::PI / 3.0 + 0.25;
         let out = Vec3::new(a.cos(), 0.0, a.sin());
-        // Side: through the edge midpoint, facing out.
         planes.push(plane(out, center + out * apothem));
-        // Bevel, turned half a side so its edges meet the sides' corners:
-        // through the point `bevel_height` below the top on the side face,
-        // rising to the top face at 60% of the apothem.
-        let b = a + std::f32::consts::PI / 6.0;
-        let bout = Vec3::new(b.cos(), 0.0, b.sin());
-        let rise = Vec3::new(0.0, bevel_height, 0.0);
-        let run = bout * (radius - apothem * 0.6);
-        let n = Vec3::new(bout.x * rise.y, run.length(), bout.z * rise.y);
-        planes.push(plane(n, Vec3::new(center.x, y1, center.z) + bout * apothem * 0.6));
+        // Through `top + out * 0.6 apothem`, sloping down to the side face
+        // `bevel_height` lower.
+        let run = apothem * 0.4;
+        planes.push(plane(out * bevel_height + Vec3::Y * run, top + out * apothem * 0.6));
     }
     let min = Vec3::new(center.x - radius, y0, center.z - radius);
     let max = Vec3::new(center.x + radius, y1, center.z + radius);
     (planes, min, max)
 }
 
+/// The gem stands this far above the floor: a bottom face in the floor's
+/// plane would leave rays inside the glass to pick either surface at random.
+pub const GEM_LIFT: f32 = 0.01;
 /// The gem's place in the scene.
-pub const GEM_CENTER: Vec3 = Vec3::new(-0.1, 0.0, 2.6);
+pub const GEM_CENTER: Vec3 = Vec3::new(-0.35, 0.0, 2.9);
 
 /// Adds the glass gem to the scene's top group (beside `objects`), and
 /// returns the new top group.
 pub fn add_gem(ctx: &mut Context, objects: NodeId) -> Result<NodeId, Error> {
-    let (planes, min, max) = gem_planes(GEM_CENTER, 1.05, 0.0, 1.5, 0.45);
+    let (planes, min, max) = gem_planes(GEM_CENTER, 0.8, GEM_LIFT, 2.1, 0.55);
     let isect = ctx.create_program(&chull_intersect::PROGRAM);
     let bounds = ctx.create_program(&chull_bounds::PROGRAM);
     let geometry = ctx.create_custom_geometry(1, isect, bounds)?;

@@ -16,7 +16,9 @@ use rt_std::prelude::*;
 pub fn facing_normal(shading_normal: Vec3, geometric_normal: Vec3, ray_direction: Vec3) -> Vec3 {
     let n = rt_transform_normal(ObjectToWorld, shading_normal).normalize();
     let g = rt_transform_normal(ObjectToWorld, geometric_normal).normalize();
-    faceforward(n, -ray_direction, g)
+    // rt-std's `faceforward` is GLSL's (`i` is the incident direction), not
+    // OptiX's (`i` toward the viewer): pass the ray direction itself.
+    faceforward(n, ray_direction, g)
 }
 
 #[rt_program(closest_hit)]

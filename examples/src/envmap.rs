@@ -16,9 +16,10 @@ pub fn envmap_miss(prd: &mut Radiance, #[var] envmap: Sampler2d) {
     prd.result = envmap.sample(latlong_uv(current_ray().direction)).xyz();
 }
 
-/// Where the sun is (unit vector).
+/// Where the sun is (unit vector): where the key light is, so the chrome
+/// sphere shows the sun beside its highlight.
 pub fn sun_direction() -> Vec3 {
-    Vec3::new(-0.55, 0.42, -0.72).normalize()
+    tutorial::lights()[0].pos.normalize()
 }
 
 /// The environment's colour in direction `d` (unit): what the texture

@@ -22,15 +22,19 @@ pub fn luminance(c: Vec3) -> f32 {
 }
 
 /// `a` and `b` in squares of side `tile_size` on the xz plane (just `a`
-/// when `tile_size` is not positive).
+/// when `tile_size` is not positive), seen from `distance` away: far
+/// squares, smaller than a pixel, fade to the mean of the two colours
+/// instead of flickering.
 #[rt_function]
-pub fn checker(p: Vec3, tile_size: f32, a: Vec3, b: Vec3) -> Vec3 {
+pub fn checker(p: Vec3, tile_size: f32, a: Vec3, b: Vec3, distance: f32) -> Vec3 {
     let mut color = a;
     if tile_size > 0.0 {
         let cell = (vec2(p.x, p.z) / tile_size).floor().as_ivec2();
         if ((cell.x + cell.y) & 1) != 0 {
             color = b;
         }
+        let fade = smoothstep(12.0 * tile_size, 45.0 * tile_size, distance);
+        color = mix(color, (a + b) * 0.5, fade);
     }
     color
 }
@@ -57,7 +61,7 @@ pub fn reflective(
     let ray = current_ray();
     let ffnormal = facing_normal(attr.shading_normal, attr.geometric_normal, ray.direction);
     let hit_point = ray.origin + t_hit() * ray.direction;
-    let base = checker(hit_point, tile_size, kd, kd2);
+    let base = checker(hit_point, tile_size, kd, kd2, t_hit());
     let mut result = ka * base * ambient_light_color
         + direct_light(hit_point, ffnormal, ray.direction, base, ks, phong_exp, lights, scene_epsilon, top_shadower);
     let importance = prd.importance * luminance(reflectivity);
@@ -92,7 +96,7 @@ pub fn set_colors(ctx: &mut Context, materials: &Materials) -> Result<(), Error>
         ctx.set_var(m, "tile_size", 0.0f32)?;
         ctx.set_var(m, "kd2", Vec3::ZERO)?;
     }
-    ctx.set_var(materials.block, "reflectivity", Vec3::splat(0.08))?;
+    ctx.set_var(materials.block, "reflectivity", Vec3::ZERO)?;
     ctx.set_var(Scope::Context, "max_depth", MAX_DEPTH)?;
     ctx.set_var(Scope::Context, "importance_cutoff", 0.01f32)?;
     // Primary rays are depth 1, and a shadow ray leaves the deepest bounce.

@@ -56,13 +56,13 @@ pub const BOX_MIN: Vec3 = Vec3::new(-2.9, 0.0, -1.1);
 pub const BOX_MAX: Vec3 = Vec3::new(-0.9, 1.7, 0.9);
 pub const BOX_YAW: f32 = 0.45;
 /// Half the side of the square floor at y = 0.
-pub const FLOOR_HALF: f32 = 40.0;
+pub const FLOOR_HALF: f32 = 400.0;
 /// The seed's background blue.
 pub const BG_COLOR: Vec3 = Vec3::new(0.34, 0.55, 0.85);
 
 /// The camera of examples 1 to 7.
 pub fn camera() -> Camera {
-    Camera { eye: Vec3::new(0.0, 3.1, 9.0), look_at: Vec3::new(0.0, 0.8, 0.0), up: Vec3::Y, vfov_degrees: 34.0 }
+    Camera { eye: Vec3::new(0.0, 2.5, 9.0), look_at: Vec3::new(0.0, 1.0, 0.0), up: Vec3::Y, vfov_degrees: 34.0 }
 }
 
 /// A warm key light up and to the left, a dim cool fill to the right.

@@ -34,7 +34,7 @@ pub mod scene;
 pub mod vars;
 
 pub use accel::{Acceleration, Builder};
-pub use backend::{Backend, ExceptionRecord, LaunchReport};
+pub use backend::{Backend, ExceptionRecord, LaunchReport, Timings};
 pub use buffer::BufferType;
 pub use context::{Context, Scope};
 pub use error::{Result, RtError};

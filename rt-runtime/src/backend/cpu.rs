@@ -111,12 +111,15 @@ pub(crate) fn launch(ctx: &mut Context, entry: u32, width: u32, height: u32) -> 
             problem: "a launch needs at least one index in each dimension".into(),
         });
     }
+    let t0 = std::time::Instant::now();
     let mut cache = std::mem::take(&mut ctx.accels);
     let built = build_accels(ctx, &mut cache);
     ctx.accels = cache;
     built?;
+    let t1 = std::time::Instant::now();
     let ctx: &Context = ctx;
     let linked = link_all(ctx, &ctx.accels.nodes, entry, UVec2::new(width, height))?;
+    let t2 = std::time::Instant::now();
     let rows: Vec<LaunchReport> = (0..height)
         .into_par_iter()
         .map(|y| {
@@ -133,6 +136,7 @@ pub(crate) fn launch(ctx: &mut Context, entry: u32, width: u32, height: u32) -> 
         report.prints.extend(r.prints);
         report.rays += r.rays;
     }
+    report.timings = super::Timings { build: t1 - t0, encode: t2 - t1, link: Default::default(), run: t2.elapsed() };
     Ok(report)
 }
 

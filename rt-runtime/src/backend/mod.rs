@@ -21,6 +21,40 @@ pub enum Backend {
 }
 
 impl Backend {
+    /// The backend to use by default, and why: `RT_BACKEND=cpu|wgpu` when
+    /// set; otherwise a discrete or integrated GPU when wgpu finds one;
+    /// otherwise the CPU backend, which outruns Mesa's lavapipe on CPU-only
+    /// machines (3.7 vs 0.9 Mrays/s for the bunny's primary rays on a 2-core
+    /// VM, BENCHMARKS.md).
+    pub fn choose() -> Result<(Backend, String), crate::RtError> {
+        if let Ok(v) = std::env::var("RT_BACKEND") {
+            return match v.as_str() {
+                "cpu" => Ok((Backend::Cpu, "RT_BACKEND=cpu".into())),
+                "wgpu" => Ok((Backend::Wgpu, "RT_BACKEND=wgpu".into())),
+                other => Err(crate::RtError::Gpu(format!("RT_BACKEND is `{other}`; expected `cpu` or `wgpu`"))),
+            };
+        }
+        match wgpu::probe() {
+            Some(info) if matches!(info.device_type, ::wgpu::DeviceType::DiscreteGpu | ::wgpu::DeviceType::IntegratedGpu) => {
+                Ok((Backend::Wgpu, format!("GPU adapter {} ({:?})", info.name, info.device_type)))
+            }
+            Some(info) => Ok((
+                Backend::Cpu,
+                format!("no GPU adapter (only {}, {:?}); the CPU backend is faster than it", info.name, info.device_type),
+            )),
+            None => Ok((Backend::Cpu, "no wgpu adapter".into())),
+        }
+    }
+
+    /// Parses `cpu` or `wgpu`.
+    pub fn from_name(name: &str) -> Option<Backend> {
+        match name {
+            "cpu" => Some(Backend::Cpu),
+            "wgpu" => Some(Backend::Wgpu),
+            _ => None,
+        }
+    }
+
     pub fn name(self) -> &'static str {
         match self {
             Backend::Cpu => "cpu",
@@ -46,6 +80,22 @@ pub struct LaunchReport {
     pub prints: Vec<(UVec2, String)>,
     /// Rays traced (calls of `rt_trace` that reached traversal).
     pub rays: u64,
+    /// Where the launch's time went.
+    pub timings: Timings,
+}
+
+/// Wall-clock time of the phases of a launch.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Timings {
+    /// Building or refitting acceleration structures.
+    pub build: std::time::Duration,
+    /// Resolving variables and encoding records and the scene.
+    pub encode: std::time::Duration,
+    /// Generating the megakernel and creating its pipeline (zero when the
+    /// cached pipeline was reused, and on the CPU backend).
+    pub link: std::time::Duration,
+    /// Running the launch and reading results back.
+    pub run: std::time::Duration,
 }
 
 pub(crate) fn launch(ctx: &mut Context, entry: u32, width: u32, height: u32) -> Result<LaunchReport> {

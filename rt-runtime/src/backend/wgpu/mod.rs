@@ -88,6 +88,17 @@ impl Gpu {
     }
 }
 
+/// The adapter wgpu would pick, without opening a device.
+pub fn probe() -> Option<wgpu::AdapterInfo> {
+    let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+    let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
+        power_preference: wgpu::PowerPreference::HighPerformance,
+        ..Default::default()
+    }))
+    .ok()?;
+    Some(adapter.get_info())
+}
+
 /// Everything a launch uploads.
 struct Encoded {
     scene: Vec<u32>,
@@ -409,11 +420,14 @@ pub(crate) fn launch(ctx: &mut Context, entry: u32, width: u32, height: u32) -> 
     if ctx.gpu.is_none() {
         ctx.gpu = Some(Gpu::new()?);
     }
+    let t0 = std::time::Instant::now();
     let mut cache = std::mem::take(&mut ctx.accels);
     let built = build_accels(ctx, &mut cache);
     ctx.accels = cache;
     built?;
+    let t1 = std::time::Instant::now();
     let enc = encode(ctx, entry)?;
+    let t2 = std::time::Instant::now();
     let wgsl = kernel::generate(&enc.spec)?;
     if std::env::var_os("RT_DUMP_WGSL").is_some() {
         let path = std::env::temp_dir().join(format!("rt_megakernel_entry{entry}.wgsl"));
@@ -457,6 +471,7 @@ pub(crate) fn launch(ctx: &mut Context, entry: u32, width: u32, height: u32) -> 
         gpu.pipelines.insert(wgsl.clone(), (pipeline, layout));
         gpu.pipelines_created += 1;
     }
+    let t3 = std::time::Instant::now();
     let (pipeline, layout) = &gpu.pipelines[&wgsl];
     let device = &gpu.device;
     let storage = |label: &str, words: &[u32], extra: wgpu::BufferUsages| {
@@ -562,6 +577,7 @@ pub(crate) fn launch(ctx: &mut Context, entry: u32, width: u32, height: u32) -> 
     report.exceptions.sort_by_key(|e| (e.launch_index.y, e.launch_index.x));
     report.prints = decode_prints(ctx, &log_words[(4 + LOG_EXCEPTIONS * 3) as usize..], log_words[1] as usize);
     report.rays = log_words[2] as u64;
+    report.timings = super::Timings { build: t1 - t0, encode: t2 - t1, link: t3 - t2, run: t3.elapsed() };
     Ok(report)
 }
 
