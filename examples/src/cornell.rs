@@ -164,12 +164,13 @@ pub const ALBEDO_SCALE: f32 = 0.75;
 /// Exposure of the tone map.
 pub const EXPOSURE: f32 = 1.6;
 
-/// The camera of the classic view through the open front, covering the
-/// frame (the opening is cropped, never bordered).
+/// The camera of the classic view through the open front, which it fits
+/// into the frame whole (floor and ceiling in view; a wide frame shows the
+/// dark outside of the box at its sides).
 pub fn camera(aspect: f32) -> Camera {
     let eye = Vec3::new(278.0, 273.0, -800.0);
     let (half_w, half_h) = (278.0 / 800.0, 274.4 / 800.0f32);
-    let tan_v = half_h.min(half_w / aspect);
+    let tan_v = half_h.max(half_w / aspect);
     Camera { eye, look_at: Vec3::new(278.0, 273.0, 0.0), up: Vec3::Y, vfov_degrees: 2.0 * tan_v.atan().to_degrees() }
 }
 

@@ -164,6 +164,9 @@ pub fn parse_obj(text: &str, file: &str, dir: Option<&Path>) -> Result<LoadedMes
             max = max.max(mesh.positions[i as usize]);
         }
     }
+    if !(max - min).length().is_finite() {
+        return Err(err(None, format!("the mesh spans {min} to {max}: too large to render in f32")));
+    }
     if all_have_normals && file_normals.len() == mesh.positions.len() {
         mesh.normals = Some(file_normals.into_iter().map(|n| n.normalize_or(Vec3::Y)).collect());
     } else {
