@@ -228,7 +228,11 @@ pub fn check_obj(text: &str) -> Result<(), (usize, String)> {
                 }
                 for corner in &rest {
                     let mut parts = corner.split('/');
-                    for (what, seen, total) in [("vertex", seen_v, total_v), ("texture coordinate", seen_vt, total_vt), ("normal", seen_vn, total_vn)] {
+                    for (what, seen, total) in [
+                        ("vertex", seen_v, total_v),
+                        ("texture coordinate", seen_vt, total_vt),
+                        ("normal", seen_vn, total_vn),
+                    ] {
                         let part = parts.next().unwrap_or("");
                         // `v//vn` and `v` leave the optional indices empty.
                         if part.is_empty() && what != "vertex" {
@@ -269,7 +273,9 @@ fn check_index(s: &str, what: &str, seen: usize, total: usize) -> Result<(), Str
     };
     if !ok {
         let count = if i > 0 { total } else { seen };
-        return Err(format!("face {what} index {i} is out of range: there are {count} {what}s"));
+        let plural = if what == "vertex" { "vertices".to_string() } else { format!("{what}s") };
+        let so_far = if i > 0 { "" } else { " so far" };
+        return Err(format!("face {what} index {i} is out of range: there are {count} {plural}{so_far}"));
     }
     Ok(())
 }

@@ -47,7 +47,7 @@ impl Settings {
     pub const DEFAULT_HEIGHT: u32 = 384;
     /// Default samples per pixel: keeps the whole tour near 35 s in release
     /// on a 2-core machine (see BENCHMARKS.md).
-    pub const DEFAULT_SPP: u32 = 16;
+    pub const DEFAULT_SPP: u32 = 32;
 
     pub fn new(width: u32, height: u32) -> Self {
         Settings { width, height, spp: Self::DEFAULT_SPP, backend: Backend::Cpu }
@@ -132,16 +132,29 @@ impl Camera {
     }
 
     /// A camera looking along `direction` at the bounding box `[min, max]`,
-    /// backed off until the box's bounding sphere fits the narrower field of
-    /// view, with a little margin.
+    /// backed off until all eight corners are in view, with a small margin.
     pub fn framing(min: Vec3, max: Vec3, direction: Vec3, vfov_degrees: f32, aspect: f32) -> Camera {
         let center = (min + max) * 0.5;
-        let radius = ((max - min).length() * 0.5).max(1e-6);
-        let half_v = (vfov_degrees.to_radians() * 0.5).tan();
-        let half = half_v.min(half_v * aspect).atan();
-        let distance = radius / half.sin() * 1.05;
-        let up = if direction.normalize().y.abs() > 0.99 { Vec3::Z } else { Vec3::Y };
-        Camera { eye: center - direction.normalize() * distance, look_at: center, up, vfov_degrees }
+        let w = direction.normalize();
+        let up = if w.y.abs() > 0.99 { Vec3::Z } else { Vec3::Y };
+        let right = w.cross(up).normalize();
+        let true_up = right.cross(w);
+        let tan_v = (vfov_degrees.to_radians() * 0.5).tan();
+        let tan_h = tan_v * aspect;
+        let mut distance = 1e-6f32;
+        for i in 0..8 {
+            let corner = Vec3::new(
+                if i & 1 == 0 { min.x } else { max.x },
+                if i & 2 == 0 { min.y } else { max.y },
+                if i & 4 == 0 { min.z } else { max.z },
+            );
+            let p = corner - center;
+            // The corner is in view from `distance` back when |x| <= tan_h
+            // * depth and |y| <= tan_v * depth, depth = distance + p.w.
+            let depth_needed = (p.dot(right).abs() / tan_h).max(p.dot(true_up).abs() / tan_v);
+            distance = distance.max(depth_needed - p.dot(w));
+        }
+        Camera { eye: center - w * distance * 1.1, look_at: center, up, vfov_degrees }
     }
 }
 
