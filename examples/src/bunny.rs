@@ -118,6 +118,18 @@ pub const FLOOR_KD: Vec3 = Vec3::new(0.72, 0.71, 0.68);
 /// The background.
 pub const BACKGROUND: Vec3 = Vec3::new(0.62, 0.68, 0.78);
 
+/// The camera [`mesh_scene`] uses.
+pub fn camera(loaded: &LoadedMesh, view: MeshView, aspect: f32) -> Camera {
+    Camera::framing(loaded.min, loaded.max, view.view_direction, view.vfov_degrees, aspect)
+}
+
+/// Where [`mesh_scene`] puts the key light: eight mesh radii from its
+/// centre along `view.key_direction`.
+pub fn key_light_position(loaded: &LoadedMesh, view: MeshView) -> Vec3 {
+    let radius = ((loaded.max - loaded.min).length() * 0.5).max(1e-6);
+    (loaded.min + loaded.max) * 0.5 + view.key_direction.normalize() * radius * 8.0
+}
+
 /// A scene of `loaded` on a floor, framed from its bounds, `settings.spp`
 /// launches.
 pub fn mesh_scene(loaded: &LoadedMesh, settings: &Settings, view: MeshView) -> Result<Scene, Error> {
@@ -125,18 +137,17 @@ pub fn mesh_scene(loaded: &LoadedMesh, settings: &Settings, view: MeshView) -> R
     let center = (min + max) * 0.5;
     let radius = ((max - min).length() * 0.5).max(1e-6);
     let (mut ctx, output) = Scene::start(settings, radius * 1e-4)?;
-    let camera = ctx.create_program(&accumulating_camera::PROGRAM);
-    ctx.set_ray_generation_program(0, camera)?;
+    let ray_generation = ctx.create_program(&accumulating_camera::PROGRAM);
+    ctx.set_ray_generation_program(0, ray_generation)?;
     let miss = ctx.create_program(&background::PROGRAM);
     ctx.set_miss_program(RADIANCE_RAY, miss)?;
     let shadow_miss = ctx.create_program(&shadow_miss::PROGRAM);
     ctx.set_miss_program(SHADOW_RAY, shadow_miss)?;
     ctx.set_var(Scope::Context, "bg_color", BACKGROUND)?;
-    let cam = Camera::framing(min, max, view.view_direction, view.vfov_degrees, settings.aspect());
-    cam.set_vars(&mut ctx, settings.aspect())?;
+    camera(loaded, view, settings.aspect()).set_vars(&mut ctx, settings.aspect())?;
     let accum = ctx.create_buffer_2d::<Vec4>(BufferType::InputOutput, settings.width, settings.height)?;
     ctx.set_var(Scope::Context, "accum_buffer", accum)?;
-    let key = BasicLight { pos: center + view.key_direction.normalize() * radius * 8.0, color: Vec3::new(0.75, 0.7, 0.62), casts_shadow: 1 };
+    let key = BasicLight { pos: key_light_position(loaded, view), color: Vec3::new(0.75, 0.7, 0.62), casts_shadow: 1 };
     let lights = ctx.create_buffer(BufferType::Input, vec![key]);
     ctx.set_var(Scope::Context, "lights", lights)?;
     ctx.set_var(Scope::Context, "ambient_light_color", SKY)?;

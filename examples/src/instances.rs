@@ -67,19 +67,23 @@ pub fn transforms() -> Vec<Mat4> {
     out
 }
 
+/// High above one corner of the grid, looking across it.
+pub fn camera() -> Camera {
+    Camera { eye: Vec3::new(-30.0, 38.0, 62.0), look_at: Vec3::new(2.0, 0.0, 2.0), up: Vec3::Y, vfov_degrees: 42.0 }
+}
+
 /// A hundred teapots on a checkerboard.
 pub fn scene(settings: &Settings) -> Result<Scene, Error> {
     let loaded = mesh::load_obj(&shared_scene("teapot.obj"))?;
     let (mut ctx, output) = Scene::start(settings, 1e-3)?;
-    let camera = ctx.create_program(&pinhole_camera::PROGRAM);
-    ctx.set_ray_generation_program(0, camera)?;
+    let ray_generation = ctx.create_program(&pinhole_camera::PROGRAM);
+    ctx.set_ray_generation_program(0, ray_generation)?;
     let miss = ctx.create_program(&background::PROGRAM);
     ctx.set_miss_program(RADIANCE_RAY, miss)?;
     let shadow_miss = ctx.create_program(&shadow_miss::PROGRAM);
     ctx.set_miss_program(SHADOW_RAY, shadow_miss)?;
     ctx.set_var(Scope::Context, "bg_color", Vec3::new(0.55, 0.66, 0.82))?;
-    let cam = Camera { eye: Vec3::new(-30.0, 38.0, 62.0), look_at: Vec3::new(2.0, 0.0, 2.0), up: Vec3::Y, vfov_degrees: 42.0 };
-    cam.set_vars(&mut ctx, settings.aspect())?;
+    camera().set_vars(&mut ctx, settings.aspect())?;
     let lights = vec![
         BasicLight { pos: Vec3::new(-60.0, 90.0, 40.0), color: Vec3::new(0.9, 0.86, 0.8), casts_shadow: 1 },
         BasicLight { pos: Vec3::new(70.0, 40.0, 60.0), color: Vec3::new(0.2, 0.22, 0.28), casts_shadow: 0 },

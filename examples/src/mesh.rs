@@ -273,9 +273,13 @@ fn check_index(s: &str, what: &str, seen: usize, total: usize) -> Result<(), Str
     };
     if !ok {
         let count = if i > 0 { total } else { seen };
-        let plural = if what == "vertex" { "vertices".to_string() } else { format!("{what}s") };
         let so_far = if i > 0 { "" } else { " so far" };
-        return Err(format!("face {what} index {i} is out of range: there are {count} {plural}{so_far}"));
+        let there = match (count, what) {
+            (1, _) => format!("there is 1 {what}"),
+            (_, "vertex") => format!("there are {count} vertices"),
+            _ => format!("there are {count} {what}s"),
+        };
+        return Err(format!("face {what} index {i} is out of range: {there}{so_far}"));
     }
     Ok(())
 }

@@ -122,6 +122,32 @@ impl Camera {
         Mat3::from_cols(u, v, w)
     }
 
+    /// Where point `p` appears: `d` in `[-1, 1]^2` as the camera programs
+    /// use it (`(-1, -1)` the bottom-left corner), or `None` behind the
+    /// camera.
+    pub fn to_screen(&self, p: Vec3, aspect: f32) -> Option<glam::Vec2> {
+        let (u, v, w) = self.uvw(aspect);
+        let d = p - self.eye;
+        let depth = d.dot(w);
+        (depth > 0.0).then(|| glam::Vec2::new(d.dot(u) / u.length_squared(), d.dot(v) / v.length_squared()) / depth)
+    }
+
+    /// The launch index (pixel) where point `p` appears in a `width` x
+    /// `height` picture, if it is in the frame.
+    pub fn pixel_of(&self, p: Vec3, width: u32, height: u32) -> Option<(u32, u32)> {
+        let d = self.to_screen(p, width as f32 / height as f32)?;
+        let px = (d + 1.0) * 0.5 * glam::Vec2::new(width as f32, height as f32);
+        let inside = px.x >= 0.0 && px.y >= 0.0 && px.x < width as f32 && px.y < height as f32;
+        inside.then(|| (px.x as u32, px.y as u32))
+    }
+
+    /// The direction of the ray through the centre of pixel `(x, y)`.
+    pub fn ray_direction(&self, x: u32, y: u32, width: u32, height: u32) -> Vec3 {
+        let (u, v, w) = self.uvw(width as f32 / height as f32);
+        let d = (glam::Vec2::new(x as f32, y as f32) + 0.5) / glam::Vec2::new(width as f32, height as f32) * 2.0 - 1.0;
+        (d.x * u + d.y * v + w).normalize()
+    }
+
     /// Sets `eye`, `u`, `v` and `w` on the context.
     pub fn set_vars(&self, ctx: &mut Context, aspect: f32) -> Result<(), RtError> {
         let (u, v, w) = self.uvw(aspect);

@@ -223,6 +223,16 @@ impl Context {
         Ok(())
     }
 
+    /// Sets entry point `entry`'s exception program: it runs at a launch
+    /// index after the index's first exception, with the code in
+    /// `exception_code()`. Every exception is also recorded in
+    /// [`LaunchReport::exceptions`], with or without an exception program.
+    ///
+    /// Without one, the default exception program runs (both backends): if
+    /// the ray-generation program declares a `RwBuffer2d<Vec4>` variable
+    /// (the first one, when it declares several), magenta `(1, 0, 1, 1)` is
+    /// written into it at the launch index (skipped if the index is outside
+    /// the buffer), so failing pixels stand out in the image.
     pub fn set_exception_program(&mut self, entry: u32, p: ProgramId) -> Result<()> {
         self.expect_kind(p, ProgramKind::Exception, format!("entry point {entry}'s exception"))?;
         self.entry_mut(entry)?.exception = Some(p);

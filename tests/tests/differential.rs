@@ -7,13 +7,22 @@ pub fn twice(v: f32) -> f32 {
     v * 2.0
 }
 
+#[rt_payload]
+pub struct Nothing { pub v: f32 }
+#[rt_program(miss)]
+pub fn dummy_miss(prd: &mut Nothing) { prd.v = 1.0; }
+
 macro_rules! diff {
     ($name:ident ($a:ident : $ta:ident) -> [$r:ident; $n:tt] $body:block) => {
         mod $name {
             use super::*;
             #[rt_program(ray_generation)]
-            pub fn $name(#[var] in0: Buffer<$ta>, #[var] out: RwBuffer<$r>) {
+            pub fn $name(#[var] in0: Buffer<$ta>, #[var] out: RwBuffer<$r>, #[var] top: Object) {
                 let idx = launch_index().x;
+                if idx > 1000000 {
+                    let mut prd = Nothing { v: 0.0 };
+                    rt_trace(top, Ray::new(Vec3::ZERO, Vec3::Z, 0, 0.0, 1.0), &mut prd);
+                }
                 let $a = in0[idx];
                 let res: [$r; $n] = $body;
                 for k in 0..$n {
@@ -34,7 +43,10 @@ fn run(backend: Backend, descs: &[&'static ProgramDescriptor]) {
     let t = std::time::Instant::now();
     let mut ctx = Context::new();
     ctx.set_backend(backend);
-    ctx.set_ray_type_count(0);
+    let m = ctx.create_program(&dummy_miss::PROGRAM);
+    ctx.set_miss_program(0, m).unwrap();
+    let gg = ctx.create_geometry_group(&[], Acceleration::default()).unwrap();
+    ctx.set_var(Scope::Context, "top", gg).unwrap();
     let xs: Vec<f32> = (0..256).map(|i| i as f32 * 0.37 - 40.0).collect();
     for d in descs {
         let p = ctx.create_program(d);
@@ -44,7 +56,7 @@ fn run(backend: Backend, descs: &[&'static ProgramDescriptor]) {
         ctx.set_var(p, "out", o).unwrap();
         ctx.set_ray_generation_program(0, p).unwrap();
         let t1 = std::time::Instant::now();
-        ctx.launch(0, 256, 1).unwrap();
+        let rep = ctx.launch(0, 256, 1).unwrap(); eprintln!("{:?}", rep.timings);
         let r = ctx.read_buffer::<f32>(o).unwrap();
         eprintln!("{backend:?} {} {:?} {:?}", d.name, t1.elapsed(), &r[..6]);
     }

@@ -120,18 +120,23 @@ pub(crate) fn launch(ctx: &mut Context, entry: u32, width: u32, height: u32) -> 
     let ctx: &Context = ctx;
     let linked = link_all(ctx, &ctx.accels.nodes, entry, UVec2::new(width, height))?;
     let t2 = std::time::Instant::now();
-    let rows: Vec<LaunchReport> = (0..height)
+    // Chunks of launch indices in row-major order (not rows: a 1D launch
+    // spreads over all cores too); reports are merged in index order.
+    let total = width as u64 * height as u64;
+    let chunk = (total / (rayon::current_num_threads() as u64 * 8)).clamp(64, 16384);
+    let chunks: Vec<LaunchReport> = (0..total.div_ceil(chunk))
         .into_par_iter()
-        .map(|y| {
+        .map(|c| {
             let mut report = LaunchReport::default();
-            for x in 0..width {
-                run_index(&linked, UVec2::new(x, y), &mut report);
+            for i in c * chunk..((c + 1) * chunk).min(total) {
+                let index = UVec2::new((i % width as u64) as u32, (i / width as u64) as u32);
+                run_index(&linked, index, &mut report);
             }
             report
         })
         .collect();
     let mut report = LaunchReport::default();
-    for r in rows {
+    for r in chunks {
         report.exceptions.extend(r.exceptions);
         report.prints.extend(r.prints);
         report.rays += r.rays;
@@ -149,6 +154,14 @@ fn run_index(l: &Linked<'_>, index: UVec2, report: &mut LaunchReport) {
         if let Some(ex) = &l.exception {
             let ctx = ExecutionContext { exception_code: code, ..base };
             lane.invoke(ex, ctx, None, None, 0);
+        } else if let Some(v) = link::default_exception_output(l.ray_generation.desc)
+            && let Some(out) = l.ray_generation.vars[v].downcast_ref::<RwBuffer2d<glam::Vec4>>()
+        {
+            // The default exception program: magenta at the launch index.
+            let size = out.size();
+            if index.x < size.x && index.y < size.y {
+                out.store(index, link::EXCEPTION_COLOR);
+            }
         }
     }
     report.rays += lane.rays.get();
@@ -311,8 +324,11 @@ impl<'a> Lane<'a> {
             NodeKind::Selector { children, .. } => {
                 let Some(call) = &self.l.visit[node.index() as usize] else { return };
                 let payload = self.search.borrow().as_ref().map(|s| s.payload);
-                let ctx =
-                    ExecutionContext { current_ray: Ray { origin, direction, ..world_ray }, ..self.base_context() };
+                // The ray in the selector's space, `tmax` the closest hit so far.
+                let ctx = ExecutionContext {
+                    current_ray: Ray { origin, direction, tmax: self.tmax(), ..world_ray },
+                    ..self.base_context()
+                };
                 // SAFETY: the payload pointer comes from the `&mut` the trace
                 // call holds for the whole search; nothing else uses it now.
                 let payload = payload.map(|p| unsafe { &mut *p });

@@ -25,6 +25,18 @@ pub struct Call {
     pub vars: Vec<Arc<dyn Any + Send + Sync>>,
 }
 
+/// What the default exception program writes (OptiX's error colour).
+pub const EXCEPTION_COLOR: glam::Vec4 = glam::Vec4::new(1.0, 0.0, 1.0, 1.0);
+
+/// The variable the default exception program paints (an entry point
+/// without an exception program): the ray-generation program's first
+/// `RwBuffer2d<Vec4>` variable, by index in its declaration order.
+pub fn default_exception_output(ray_generation: &ProgramDescriptor) -> Option<usize> {
+    ray_generation.variables.iter().position(|v| {
+        matches!(v.kind, VariableKind::Buffer { element, dimensions: 2, writable: true } if element.rust == "Vec4")
+    })
+}
+
 /// The ids a program use is resolved against.
 #[derive(Clone, Copy, Default)]
 pub struct Record {

@@ -19,6 +19,19 @@ use std::collections::{BTreeMap, BTreeSet};
 /// The runtime's half of every module.
 pub const PRELUDE: &str = include_str!("prelude.wgsl");
 const TRAVERSE: &str = include_str!("traverse.wgsl");
+const GRAPH: &str = include_str!("graph.wgsl");
+
+/// What a kernel without graph traversal links in its place: hits take
+/// their transforms from the instance table.
+const TWO_LEVEL: &str = "
+fn rt_commit_xform() {}
+fn rt_hit_xform() {
+    let ib = rt_scene[1] + rt_h_inst * 36u;
+    rt_o2w = rt_m4(ib);
+    rt_w2o = rt_m4(ib + 16u);
+}
+fn rt_search_graph(object: u32, mask: u32) {}
+";
 
 /// A program the kernel may dispatch to, with its case id (> 0).
 #[derive(Clone, Copy)]
@@ -31,9 +44,19 @@ pub struct KernelProgram {
 pub struct KernelSpec {
     pub ray_generation: KernelProgram,
     pub exception: Option<KernelProgram>,
-    /// Every closest-hit, any-hit, miss and intersection program in use.
+    /// Every closest-hit, any-hit, miss, intersection and visit program in
+    /// use.
     pub programs: Vec<KernelProgram>,
     pub max_depth: u32,
+    /// 0 when every node is an instance or a group of instances (the
+    /// two-level fast path alone); otherwise the graph traversal is linked
+    /// with this many transform levels (1 + the deepest nesting of
+    /// transforms above groups or selectors).
+    pub graph_levels: u32,
+    /// Without an exception program: the word offset, in the ray-generation
+    /// record, of the `RwBuffer2d<Vec4>` the default exception program
+    /// paints.
+    pub default_exception: Option<u32>,
 }
 
 /// Size in heap words of a variable's value in a scope record.
@@ -148,6 +171,12 @@ pub fn generate(spec: &KernelSpec) -> Result<String> {
 
     let mut out = String::from(PRELUDE);
     out.push_str(TRAVERSE);
+    if spec.graph_levels > 0 {
+        out.push_str(&format!("\nconst RT_LEVELS: u32 = {}u;\nvar<private> rt_s_payload: u32;\n", spec.graph_levels));
+        out.push_str(GRAPH);
+    } else {
+        out.push_str(TWO_LEVEL);
+    }
     out.push_str("\n// ---- types ----\n");
     for (text, _) in types.values() {
         out.push_str(text);
@@ -217,10 +246,17 @@ pub fn generate(spec: &KernelSpec) -> Result<String> {
     out.push_str("\n// ---- dispatch ----\n");
     out.push_str(&dispatch_intersection(&spec.programs));
     out.push_str(&dispatch_any_hit(&spec.programs));
+    let payload_ids: BTreeMap<&str, u32> = payloads.keys().enumerate().map(|(i, w)| (*w, i as u32)).collect();
+    if spec.graph_levels > 0 {
+        out.push_str(&dispatch_visit(&spec.programs, &payload_ids));
+    }
     for w in payloads.keys() {
+        // Visit programs check the traced payload type against theirs.
+        let note_payload =
+            if spec.graph_levels > 0 { format!("\n    rt_s_payload = {}u;", payload_ids[w]) } else { String::new() };
         for d in 1..=spec.max_depth {
             out.push_str(&dispatch_payload(&spec.programs, w, d));
-            out.push_str(&trace_function(w, d));
+            out.push_str(&trace_function(w, d, &note_payload));
         }
         out.push_str(&format!(
             "fn rt_trace_{w}_d{}(object: u32, ray: RtRay, prd: ptr<function, {w}>, flags: u32, mask: u32) {{\n    rt_raise(RT_EXC_TRACE_DEPTH);\n}}\n",
@@ -231,9 +267,12 @@ pub fn generate(spec: &KernelSpec) -> Result<String> {
     // The entry point.
     let rg = spec.ray_generation.desc;
     let rg_args = var_args(rg, "rt_launch.ray_generation.y").join(", ");
-    let ex_call = match spec.exception {
-        Some(ex) => format!("        {}({});\n", ex.desc.wgsl_entry, var_args(ex.desc, "rt_launch.exception.y").join(", ")),
-        None => String::new(),
+    let ex_call = match (spec.exception, spec.default_exception) {
+        (Some(ex), _) => format!("        {}({});\n", ex.desc.wgsl_entry, var_args(ex.desc, "rt_launch.exception.y").join(", ")),
+        (None, Some(offset)) => {
+            format!("        rt_default_exception(rt_load_RtBuffer(rt_launch.ray_generation.y + {offset}u));\n")
+        }
+        (None, None) => String::new(),
     };
     out.push_str(&format!(
         "
@@ -352,6 +391,34 @@ fn dispatch_any_hit(programs: &[KernelProgram]) -> String {
     format!("fn rt_anyhit_dispatch(case_id: u32, vars: u32) {{\n    switch case_id {{\n{cases}        default: {{}}\n    }}\n}}\n")
 }
 
+/// Visit programs: the chosen child, or `RT_NONE`. A visit program whose
+/// payload type is not the traced ray's raises the invalid-ray exception
+/// (as the CPU backend's argument check does) and chooses nothing.
+fn dispatch_visit(programs: &[KernelProgram], payload_ids: &BTreeMap<&str, u32>) -> String {
+    let mut cases = String::new();
+    for p in programs.iter().filter(|p| p.desc.kind == ProgramKind::Visit) {
+        let mut args = Vec::new();
+        let mut check = String::new();
+        if let Some(pl) = p.desc.payload {
+            check = format!(
+                "if rt_s_payload != {}u {{\n                rt_raise(RT_EXC_INVALID_RAY);\n                return RT_NONE;\n            }}\n            ",
+                payload_ids[pl.wgsl]
+            );
+            args.push(format!("rt_prd_{}", pl.wgsl));
+        }
+        args.extend(var_args(p.desc, "vars"));
+        cases.push_str(&format!(
+            "        case {}u: {{\n            {check}return {}({});\n        }}\n",
+            p.case,
+            p.desc.wgsl_entry,
+            args.join(", ")
+        ));
+    }
+    format!(
+        "fn rt_visit_dispatch(case_id: u32, vars: u32) -> u32 {{\n    switch case_id {{\n{cases}        default: {{}}\n    }}\n    return RT_NONE;\n}}\n"
+    )
+}
+
 /// Closest-hit and miss dispatch for payload `w` at depth `d`.
 fn dispatch_payload(programs: &[KernelProgram], w: &str, d: u32) -> String {
     let mut ch = String::new();
@@ -377,7 +444,7 @@ fn dispatch_payload(programs: &[KernelProgram], w: &str, d: u32) -> String {
     )
 }
 
-fn trace_function(w: &str, d: u32) -> String {
+fn trace_function(w: &str, d: u32, note_payload: &str) -> String {
     format!(
         "fn rt_trace_{w}_d{d}(object: u32, ray: RtRay, prd: ptr<function, {w}>, flags: u32, mask: u32) {{
     if rt_exc != 0u {{
@@ -392,7 +459,7 @@ fn trace_function(w: &str, d: u32) -> String {
     let saved_prim = rt_prim;
     let saved_o2w = rt_o2w;
     let saved_w2o = rt_w2o;
-    rt_rays = rt_rays + 1u;
+    rt_rays = rt_rays + 1u;{note_payload}
     rt_prd_{w} = *prd;
     rt_search(object, ray, flags, mask);
     *prd = rt_prd_{w};
@@ -404,9 +471,7 @@ fn trace_function(w: &str, d: u32) -> String {
             rt_ray.tmax = rt_h_t;
             rt_t = rt_h_t;
             rt_prim = rt_h_prim;
-            let ib = rt_scene[1] + rt_h_inst * 36u;
-            rt_o2w = rt_m4(ib);
-            rt_w2o = rt_m4(ib + 16u);
+            rt_hit_xform();
             rt_ch_{w}_d{d}(rt_scene[rec], rt_scene[rec + 1u], prd);
         }}
     }} else {{

@@ -226,6 +226,18 @@ fn rt_log_exception() {
     }
 }
 
+// The default exception program (an entry point without one): magenta at
+// the launch index of the ray-generation program's output image.
+fn rt_default_exception(b: RtBuffer) {
+    if rt_idx.x < b.width && rt_idx.y < b.height {
+        let w = b.offset + (rt_idx.y * b.width + rt_idx.x) * 4u;
+        rt_heap[w] = bitcast<u32>(1.0);
+        rt_heap[w + 1u] = 0u;
+        rt_heap[w + 2u] = bitcast<u32>(1.0);
+        rt_heap[w + 3u] = bitcast<u32>(1.0);
+    }
+}
+
 // ---- scene access ----
 // rt_scene header: [0] node table, [1] instance table, [2] geometry
 // instance table, [3] hit record table, [4] ray type count, [5] miss

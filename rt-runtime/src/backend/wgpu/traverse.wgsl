@@ -1,13 +1,23 @@
 
-// ---- traversal: two levels (a group's BVH over instances, each a
-// transform over a geometry group's BVH of primitives) ----
-// Scene words (see encode.rs): node table entries [kind, a, b, mask]
-// (kind 0: geometry group or transform chain, a = instance; kind 1: group,
-// a = BVH offset, b = leaf table); instances of 36 words [object-to-world,
-// world-to-object, BVH offset, primitive table, mask, node]; BVH nodes of 8
-// words [min xyz, max xyz, count, first]; geometry instances of 8 words
-// [kind, positions, indices, normals, texcoords, material indices,
-// material count, hit records].
+// ---- traversal ----
+// The fast path is two levels (a group's BVH over instances, each a
+// transform over a geometry group's BVH of primitives); deeper graphs
+// (groups of groups, transforms above groups, selectors) go through
+// rt_search_graph (graph.wgsl, linked only when the scene has them).
+// Scene words (see mod.rs `encode`): node table entries [kind, a, b, mask]:
+// kind 0: geometry group or transform chain down to one, a = instance;
+// kind 1: group of instances only, a = BVH offset, b = leaf table of
+// instance indices; kind 2: group with other children, leaves are instance
+// indices or node indices | RT_NODE_BIT; kind 3: transform chain above a
+// group or selector, a = offset of [object-to-world, world-to-object],
+// b = the node below; kind 4: selector, a = offset of [visit case, visit
+// record, child count, child nodes...]. mask is the AND of the visibility
+// masks of the nodes the entry stands for. Instances of 36 words
+// [object-to-world, world-to-object, BVH offset, primitive table, mask,
+// node]; BVH nodes of 8 words [min xyz, max xyz, count, first]; geometry
+// instances of 8 words [kind, positions, indices, normals, texcoords,
+// material indices, material count, hit records].
+const RT_NODE_BIT: u32 = 0x80000000u;
 
 var<private> rt_s_wray: RtRay;
 
@@ -50,6 +60,7 @@ fn rt_report(m: u32) -> bool {
     rt_h_inst = rt_s_inst;
     rt_h_custom = rt_c_custom;
     rt_h_bary = rt_c_bary;
+    rt_commit_xform();
     if rt_c_custom {
         rt_commit_attributes();
     }
@@ -105,6 +116,13 @@ fn rt_blas(inst: u32) {
     let ib = rt_scene[1] + inst * 36u;
     rt_o2w = rt_m4(ib);
     rt_w2o = rt_m4(ib + 16u);
+    rt_blas_in(inst);
+}
+
+// The primitives of instance `inst` with rt_o2w and rt_w2o already set to
+// its full transform.
+fn rt_blas_in(inst: u32) {
+    let ib = rt_scene[1] + inst * 36u;
     rt_s_inst = inst;
     var oray = rt_s_wray;
     oray.origin = (rt_w2o * vec4<f32>(rt_s_wray.origin, 1.0)).xyz;
@@ -169,8 +187,13 @@ fn rt_search(object: u32, ray: RtRay, flags: u32, mask: u32) {
     if (rt_scene[node + 3u] & mask) == 0u {
         return;
     }
-    if rt_scene[node] == 0u {
+    let kind = rt_scene[node];
+    if kind == 0u {
         rt_blas(rt_scene[node + 1u]);
+        return;
+    }
+    if kind != 1u {
+        rt_search_graph(object, mask);
         return;
     }
     let bvh = rt_scene[node + 1u];

@@ -1,0 +1,196 @@
+//! Every example renders small without exceptions, and pixels whose value
+//! is known from the scene are checked: background pixels are `bg_color`,
+//! the environment map shows the sky in the right direction, shadows darken
+//! what they fall on, the Cornell box's walls have their `.mtl` colours, the
+//! bunny's shadow side is darker than its lit side.
+
+use examples::bunny::{self, MeshView};
+use examples::{EXAMPLES, Image, Rendered, Settings, cornell, envmap, instances, mesh, tutorial};
+use glam::{Vec3, Vec4};
+
+const W: u32 = 64;
+const H: u32 = 48;
+
+fn settings() -> Settings {
+    Settings::new(W, H).with_spp(2)
+}
+
+fn render(name: &str) -> Rendered {
+    let example = examples::example(name).unwrap_or_else(|| panic!("no example {name}"));
+    let mut scene = (example.build)(&settings()).unwrap_or_else(|e| panic!("{name}: {e}"));
+    let rendered = scene.render(&mut |_, _| {}).unwrap_or_else(|e| panic!("{name}: {e}"));
+    assert!(rendered.exceptions.is_empty(), "{name} raised {:?}", &rendered.exceptions[..rendered.exceptions.len().min(5)]);
+    rendered
+}
+
+fn luminance(c: Vec4) -> f32 {
+    c.truncate().dot(Vec3::new(0.3, 0.59, 0.11))
+}
+
+/// The pixel of world point `p` in the tutorial camera's view.
+fn tutorial_pixel(image: &Image, p: Vec3) -> Vec4 {
+    let (x, y) = tutorial::camera().pixel_of(p, W, H).unwrap_or_else(|| panic!("{p} is out of the frame"));
+    image.at(x, y)
+}
+
+#[test]
+fn every_example_renders_a_picture_without_exceptions() {
+    for example in &EXAMPLES {
+        let rendered = render(example.name);
+        let image = &rendered.image;
+        assert_eq!((image.width, image.height, image.pixels.len()), (W, H, (W * H) as usize));
+        let first = image.pixels[0];
+        assert!(image.pixels.iter().any(|&p| (p - first).abs().max_element() > 0.05), "{} is one colour", example.name);
+        assert!(image.pixels.iter().all(|p| p.is_finite()), "{} has non-finite pixels", example.name);
+        assert!(rendered.rays >= (W * H) as u64, "{} traced {} rays", example.name, rendered.rays);
+        assert!(!image.encode_png().unwrap().is_empty());
+    }
+}
+
+#[test]
+fn background_pixels_are_bg_color() {
+    for name in ["normal", "diffuse", "phong", "shadows", "reflections"] {
+        let image = render(name).image;
+        // The top row looks above the horizon.
+        for x in [0, W / 2, W - 1] {
+            assert_eq!(image.at(x, H - 1).truncate(), tutorial::BG_COLOR, "{name} pixel ({x}, top)");
+        }
+    }
+}
+
+#[test]
+fn the_normal_shader_shows_the_sphere_facing_the_camera() {
+    let image = render("normal").image;
+    let center = tutorial::SPHERE.truncate();
+    let toward_eye = (tutorial::camera().eye - center).normalize();
+    let c = tutorial_pixel(&image, center);
+    assert!((c.truncate() - (toward_eye * 0.5 + 0.5)).abs().max_element() < 0.1, "{c} vs normal {toward_eye}");
+    // The floor's normal is +y everywhere.
+    let floor = tutorial_pixel(&image, Vec3::new(0.0, 0.0, 5.0));
+    assert!((floor.truncate() - Vec3::new(0.5, 1.0, 0.5)).abs().max_element() < 1e-4, "{floor}");
+}
+
+#[test]
+fn diffuse_light_falls_on_the_side_facing_the_key_light() {
+    let image = render("diffuse").image;
+    let center = tutorial::SPHERE.truncate();
+    let key = tutorial::lights()[0].pos;
+    let lit = tutorial_pixel(&image, center + (key - center).normalize());
+    let dark = tutorial_pixel(&image, center + Vec3::new(0.5, -0.6, 0.62).normalize());
+    assert!(luminance(lit) > 2.0 * luminance(dark), "lit {lit} vs dark {dark}");
+    // Lambert only: the red sphere stays red.
+    assert!(lit.x > lit.y && lit.x > lit.z, "{lit}");
+}
+
+#[test]
+fn the_sphere_shadows_the_floor_only_when_shadow_rays_are_traced() {
+    let phong = render("phong").image;
+    let shadows = render("shadows").image;
+    // A point inside the sphere casts its shadow where the key light's ray
+    // through it meets the floor.
+    let key = tutorial::lights()[0].pos;
+    let inside = tutorial::SPHERE.truncate() + Vec3::new(0.0, 0.5, 0.0);
+    let on_floor = key + (inside - key) * (key.y / (key.y - inside.y));
+    let (lit, shadowed) = (tutorial_pixel(&phong, on_floor), tutorial_pixel(&shadows, on_floor));
+    assert!(luminance(shadowed) < 0.6 * luminance(lit), "shadowed {shadowed} vs unshadowed {lit}");
+    // Away from every shadow the two agree.
+    let open = Vec3::new(-1.5, 0.0, 5.0);
+    let (a, b) = (tutorial_pixel(&phong, open), tutorial_pixel(&shadows, open));
+    assert!((a - b).abs().max_element() < 1e-3, "{a} vs {b}");
+}
+
+#[test]
+fn the_chrome_sphere_reflects_instead_of_showing_its_own_colour() {
+    let image = render("reflections").image;
+    let c = tutorial_pixel(&image, tutorial::SPHERE.truncate());
+    assert!(c.z > c.x, "the sphere's centre reflects the blue-grey world, not red: {c}");
+}
+
+#[test]
+fn the_environment_map_is_seen_in_the_direction_it_was_made_for() {
+    let image = render("envmap").image;
+    let camera = tutorial::camera();
+    for x in [0, W / 3, W - 1] {
+        let d = camera.ray_direction(x, H - 1, W, H);
+        let expected = envmap::sky(d);
+        let got = image.at(x, H - 1).truncate();
+        assert!((got - expected).abs().max_element() < 0.04, "pixel ({x}, top) looks along {d}: {got} vs sky {expected}");
+    }
+}
+
+#[test]
+fn the_glass_gem_changes_what_is_seen_through_it() {
+    let envmap = render("envmap").image;
+    let glass = render("convex_hull").image;
+    let p = examples::convex_hull::GEM_CENTER + Vec3::new(0.0, 1.0, 0.0);
+    let (behind, through) = (tutorial_pixel(&envmap, p), tutorial_pixel(&glass, p));
+    assert!((behind - through).abs().max_element() > 0.05, "{behind} vs {through}");
+    // Refraction found something: not black, not the exception colour.
+    assert!(luminance(through) > 0.05 && through != Vec4::new(1.0, 0.0, 1.0, 1.0), "{through}");
+}
+
+#[test]
+fn cornell_walls_have_their_mtl_colours_and_the_light_is_bright() {
+    let image = render("cornell").image;
+    let camera = cornell::camera(W as f32 / H as f32);
+    let at = |p: Vec3| {
+        let (x, y) = camera.pixel_of(p, W, H).unwrap_or_else(|| panic!("{p} is out of the frame"));
+        image.at(x, y)
+    };
+    let red = at(Vec3::new(552.0, 300.0, 400.0));
+    assert!(red.x > 3.0 * red.y.max(red.z) && red.x > 0.2, "red wall {red}");
+    let green = at(Vec3::new(1.0, 300.0, 400.0));
+    assert!(green.y > 3.0 * green.x.max(green.z) && green.y > 0.2, "green wall {green}");
+    let light = at(Vec3::new(278.0, 547.0, 280.0));
+    assert!(light.truncate().min_element() > 0.95, "the light {light}");
+    // Beside the box's opening there is nothing: black.
+    assert_eq!(image.at(0, H / 2).truncate(), Vec3::ZERO);
+}
+
+#[test]
+fn the_bunnys_shadow_side_is_darker_than_its_lit_side() {
+    let image = render("bunny").image;
+    let loaded = mesh::load_obj(&examples::scene::shared_scene("stanford-bunny.obj")).unwrap();
+    let view = MeshView::default();
+    let camera = bunny::camera(&loaded, view, W as f32 / H as f32);
+    let light = bunny::key_light_position(&loaded, view);
+    let (mut lit, mut dark) = (Vec::new(), Vec::new());
+    let m = &loaded.mesh;
+    for t in &m.indices {
+        let [a, b, c] = t.map(|i| m.positions[i as usize]);
+        let n = (b - a).cross(c - a).normalize_or_zero();
+        let p = (a + b + c) / 3.0;
+        if n.dot((camera.eye - p).normalize()) < 0.6 {
+            continue;
+        }
+        let Some((x, y)) = camera.pixel_of(p, W, H) else { continue };
+        let n_dot_l = n.dot((light - p).normalize());
+        if n_dot_l > 0.7 {
+            lit.push(luminance(image.at(x, y)));
+        } else if n_dot_l < -0.3 {
+            dark.push(luminance(image.at(x, y)));
+        }
+    }
+    assert!(lit.len() > 20 && dark.len() > 20, "{} lit and {} dark samples", lit.len(), dark.len());
+    let mean = |v: &[f32]| v.iter().sum::<f32>() / v.len() as f32;
+    assert!(mean(&lit) > 1.3 * mean(&dark), "lit {} vs shadow side {}", mean(&lit), mean(&dark));
+}
+
+#[test]
+fn instances_share_one_mesh_but_not_one_colour() {
+    let image = render("instances").image;
+    let camera = instances::camera();
+    let mut hues = Vec::new();
+    for m in instances::transforms() {
+        // The middle of the teapot's body.
+        let p = m.transform_point3(Vec3::new(0.0, 1.2, 0.0));
+        let Some((x, y)) = camera.pixel_of(p, W, H) else { continue };
+        let c = image.at(x, y).truncate();
+        let chroma = (c / c.element_sum().max(1e-6) * 5.0).round();
+        if !hues.contains(&chroma) {
+            hues.push(chroma);
+        }
+    }
+    assert_eq!(instances::transforms().len(), 100);
+    assert!(hues.len() >= 4, "only {} colours among the instances: {hues:?}", hues.len());
+}

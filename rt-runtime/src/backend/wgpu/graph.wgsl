@@ -1,0 +1,164 @@
+
+// ---- general graph traversal: groups of groups, transforms above groups
+// and selectors (linked only when the scene has them; the generator
+// defines RT_LEVELS, 1 + the deepest nesting of transform entries) ----
+//
+// One explicit stack of entries vec4(node, BVH node or RT_NONE, entry t,
+// level) walks the graph depth first without recursion: RT_NONE entries
+// enter a graph node (never pruned by distance: like the CPU backend,
+// every child in a leaf the ray reaches is entered), others are BVH nodes
+// of group `node`. `level` names
+// the transform space the entry lives in: level 0 is world space, a
+// transform entry at level l puts its child at level l + 1. Levels on the
+// stack never decrease from bottom to top, so entering a transform can
+// overwrite level l + 1: every entry of the previous occupant is gone.
+
+const RT_GRAPH_STACK: u32 = 96u;
+
+var<private> rt_g_o2w: array<mat4x4<f32>, RT_LEVELS>;
+var<private> rt_g_w2o: array<mat4x4<f32>, RT_LEVELS>;
+var<private> rt_g_org: array<vec3<f32>, RT_LEVELS>;
+var<private> rt_g_dir: array<vec3<f32>, RT_LEVELS>;
+var<private> rt_g_inv: array<vec3<f32>, RT_LEVELS>;
+// The committed hit's transforms (instances under transform entries have
+// no single matrix in the instance table).
+var<private> rt_h_o2w: mat4x4<f32>;
+var<private> rt_h_w2o: mat4x4<f32>;
+
+fn rt_commit_xform() {
+    rt_h_o2w = rt_o2w;
+    rt_h_w2o = rt_w2o;
+}
+
+fn rt_hit_xform() {
+    rt_o2w = rt_h_o2w;
+    rt_w2o = rt_h_w2o;
+}
+
+fn rt_enter_level(level: u32, o2w: mat4x4<f32>, w2o: mat4x4<f32>) {
+    rt_g_o2w[level] = o2w;
+    rt_g_w2o[level] = w2o;
+    rt_g_org[level] = (w2o * vec4<f32>(rt_s_wray.origin, 1.0)).xyz;
+    let d = (w2o * vec4<f32>(rt_s_wray.direction, 0.0)).xyz;
+    rt_g_dir[level] = d;
+    rt_g_inv[level] = 1.0 / d;
+}
+
+// Instance `inst` seen from transform level `level`.
+fn rt_graph_instance(inst: u32, level: u32, mask: u32) {
+    let ib = rt_scene[1] + inst * 36u;
+    if (rt_scene[ib + 34u] & mask) == 0u {
+        return;
+    }
+    rt_o2w = rt_g_o2w[level] * rt_m4(ib);
+    rt_w2o = rt_m4(ib + 16u) * rt_g_w2o[level];
+    rt_blas_in(inst);
+}
+
+// Runs selector `sel`'s visit program with the ray in the selector's space
+// (tmax the closest hit so far): the chosen child, or RT_NONE.
+fn rt_visit(sel: u32, level: u32) -> u32 {
+    let saved_ray = rt_ray;
+    rt_ray = rt_s_wray;
+    rt_ray.origin = rt_g_org[level];
+    rt_ray.direction = rt_g_dir[level];
+    rt_ray.tmax = rt_s_tmax;
+    let child = rt_visit_dispatch(rt_scene[sel], rt_scene[sel + 1u]);
+    rt_ray = saved_ray;
+    return child;
+}
+
+fn rt_search_graph(object: u32, mask: u32) {
+    let identity = mat4x4<f32>(vec4<f32>(1.0, 0.0, 0.0, 0.0), vec4<f32>(0.0, 1.0, 0.0, 0.0), vec4<f32>(0.0, 0.0, 1.0, 0.0), vec4<f32>(0.0, 0.0, 0.0, 1.0));
+    rt_enter_level(0u, identity, identity);
+    var stack: array<vec4<u32>, RT_GRAPH_STACK>;
+    stack[0] = vec4<u32>(object, RT_NONE, 0u, 0u);
+    var sp = 1u;
+    while sp > 0u && !rt_s_done {
+        sp = sp - 1u;
+        let e = stack[sp];
+        if e.y != RT_NONE && bitcast<f32>(e.z) > rt_s_tmax {
+            continue;
+        }
+        let level = e.w;
+        let node = rt_scene[0] + e.x * 4u;
+        let kind = rt_scene[node];
+        let org = rt_g_org[level];
+        let inv = rt_g_inv[level];
+        if e.y == RT_NONE {
+            // Enter graph node e.x.
+            if (rt_scene[node + 3u] & mask) == 0u {
+                continue;
+            }
+            switch kind {
+                case 0u: {
+                    rt_graph_instance(rt_scene[node + 1u], level, mask);
+                }
+                case 1u, 2u: {
+                    let t = rt_aabb_hit(rt_scene[node + 1u], org, inv, rt_s_wray.tmin, rt_s_tmax);
+                    if t != RT_FAR && sp < RT_GRAPH_STACK {
+                        stack[sp] = vec4<u32>(e.x, 0u, bitcast<u32>(t), level);
+                        sp = sp + 1u;
+                    }
+                }
+                case 3u: {
+                    if level + 1u < RT_LEVELS && sp < RT_GRAPH_STACK {
+                        let m = rt_scene[node + 1u];
+                        rt_enter_level(level + 1u, rt_g_o2w[level] * rt_m4(m), rt_m4(m + 16u) * rt_g_w2o[level]);
+                        stack[sp] = vec4<u32>(rt_scene[node + 2u], RT_NONE, 0u, level + 1u);
+                        sp = sp + 1u;
+                    }
+                }
+                case 4u: {
+                    let sel = rt_scene[node + 1u];
+                    let child = rt_visit(sel, level);
+                    if child < rt_scene[sel + 2u] && sp < RT_GRAPH_STACK {
+                        stack[sp] = vec4<u32>(rt_scene[sel + 3u + child], RT_NONE, 0u, level);
+                        sp = sp + 1u;
+                    }
+                }
+                default: {}
+            }
+            continue;
+        }
+        // BVH node e.y of group e.x.
+        let bvh = rt_scene[node + 1u];
+        let leaves = rt_scene[node + 2u];
+        let n = bvh + e.y * 8u;
+        let count = rt_scene[n + 6u];
+        let first = rt_scene[n + 7u];
+        if count > 0u {
+            // Instances now; other children pushed, visited in leaf order.
+            for (var i = first + count; i > first; i--) {
+                let leaf = rt_scene[leaves + i - 1u];
+                if (leaf & RT_NODE_BIT) == 0u {
+                    rt_graph_instance(leaf, level, mask);
+                    if rt_s_done {
+                        break;
+                    }
+                } else if sp < RT_GRAPH_STACK {
+                    stack[sp] = vec4<u32>(leaf & ~RT_NODE_BIT, RT_NONE, 0u, level);
+                    sp = sp + 1u;
+                }
+            }
+            continue;
+        }
+        let ta = rt_aabb_hit(bvh + first * 8u, org, inv, rt_s_wray.tmin, rt_s_tmax);
+        let tb = rt_aabb_hit(bvh + (first + 1u) * 8u, org, inv, rt_s_wray.tmin, rt_s_tmax);
+        var near = vec4<u32>(e.x, first, bitcast<u32>(ta), level);
+        var far = vec4<u32>(e.x, first + 1u, bitcast<u32>(tb), level);
+        if tb < ta {
+            let tmp = near;
+            near = far;
+            far = tmp;
+        }
+        if bitcast<f32>(far.z) != RT_FAR && sp < RT_GRAPH_STACK {
+            stack[sp] = far;
+            sp = sp + 1u;
+        }
+        if bitcast<f32>(near.z) != RT_FAR && sp < RT_GRAPH_STACK {
+            stack[sp] = near;
+            sp = sp + 1u;
+        }
+    }
+}
