@@ -18,7 +18,11 @@
 //! Launches link first ([`backend::link`]): every variable is resolved in
 //! OptiX's scope order for its program kind, and payload and attribute types
 //! are checked to agree; errors name the program with its Rust file and line.
-//! Backends: the CPU backend ([`backend::cpu`]) runs programs natively.
+//! Backends: the CPU backend ([`backend::cpu`]) runs programs natively; the
+//! wgpu backend ([`backend::wgpu`]) links them into one WGSL megakernel.
+//! Both trace the same graphs (nested groups, transforms, selectors) with
+//! the same semantics, exceptions included: an entry point without an
+//! exception program gets the default one ([`Context::set_exception_program`]).
 
 // Errors carry the names, locations and scopes at fault; they are returned
 // on cold paths only, so their size does not matter.

@@ -52,7 +52,8 @@ const BG: Vec3 = Vec3::new(0.2, 0.2, 0.3);
 fn bunny() -> TriangleMesh {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../shared/scenes/stanford-bunny.obj");
     let (models, _) =
-        tobj::load_obj(path, &tobj::LoadOptions { triangulate: true, single_index: true, ..Default::default() }).unwrap();
+        tobj::load_obj(path, &tobj::LoadOptions { triangulate: true, single_index: true, ..Default::default() })
+            .unwrap();
     let m = &models[0].mesh;
     TriangleMesh {
         positions: m.positions.chunks_exact(3).map(|p| Vec3::new(p[0], p[1], p[2])).collect(),
@@ -75,7 +76,8 @@ fn render(backend: Backend, mesh: &TriangleMesh, w: u32, h: u32) -> (Context, Bu
     let gi = ctx.create_geometry_instance(g, &[mat]).unwrap();
     let gg = ctx.create_geometry_group(&[gi], Acceleration::new(Builder::Sbvh)).unwrap();
     let out = ctx.create_buffer_2d::<Vec4>(BufferType::Output, w, h).unwrap();
-    let (lo, hi) = mesh.positions.iter().fold((Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)), |(a, b), p| (a.min(*p), b.max(*p)));
+    let (lo, hi) =
+        mesh.positions.iter().fold((Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)), |(a, b), p| (a.min(*p), b.max(*p)));
     let center = (lo + hi) * 0.5;
     let eye = center + Vec3::new(0.0, 0.0, 1.6) * (hi - lo).length();
     let wv = center - eye;

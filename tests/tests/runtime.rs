@@ -136,7 +136,6 @@ pub fn sphere_bounds(prim: u32, #[var] sphere: Vec4) -> Aabb {
     Aabb::new(sphere.xyz() - Vec3::splat(sphere.w), sphere.xyz() + Vec3::splat(sphere.w))
 }
 
-
 /// Reads a buffer past its end at the centre pixel, prints at one pixel.
 #[rt_program(closest_hit)]
 pub fn reads_past_the_end(prd: &mut Radiance, #[var] table: Buffer<f32>) {
@@ -165,7 +164,13 @@ pub fn nan_camera(#[var] top: Object, #[var] mut out: RwBuffer2d<Vec4>) {
 
 /// Ray flags under test, from variables.
 #[rt_program(ray_generation)]
-pub fn flagged_camera(#[var] top: Object, #[var] mut out: RwBuffer2d<Vec4>, #[var] flags: u32, #[var] mask: u32, #[var] z: f32) {
+pub fn flagged_camera(
+    #[var] top: Object,
+    #[var] mut out: RwBuffer2d<Vec4>,
+    #[var] flags: u32,
+    #[var] mask: u32,
+    #[var] z: f32,
+) {
     let idx = launch_index();
     let p = (idx.as_vec2() + 0.5) / launch_dim().as_vec2() * 4.0 - 2.0;
     let mut prd = Radiance { result: Vec3::ZERO, depth: 0 };
@@ -197,6 +202,58 @@ pub struct Uv {
 #[rt_program(closest_hit)]
 pub fn textured(prd: &mut Radiance, attr: &Uv, #[var] tex: Sampler2d) {
     prd.result = tex.sample(attr.texcoord).xyz();
+}
+
+/// Chooses a selector's child from the payload (which `parity_camera` fills
+/// with the launch index's parity) plus a node-scope offset: a child index
+/// past the last one enters nothing.
+#[rt_program(visit)]
+pub fn parity_visit(prd: &Radiance, #[var] offset: u32) -> u32 {
+    prd.depth as u32 + offset
+}
+
+/// Chooses a selector's child by the side of the selector's space the ray
+/// starts on.
+#[rt_program(visit)]
+pub fn side_visit(prd: &Radiance) -> u32 {
+    let _ = prd.depth;
+    if current_ray().origin.x < 0.0 { 0 } else { 1 }
+}
+
+/// A visit program for shadow rays, met by a radiance ray.
+#[rt_program(visit)]
+pub fn shadow_visit(prd: &ShadowPrd) -> u32 {
+    let _ = prd.attenuation;
+    0
+}
+
+/// The ortho camera with the launch index's x parity in the payload.
+#[rt_program(ray_generation)]
+pub fn parity_camera(#[var] top: Object, #[var] mut out: RwBuffer2d<Vec4>, #[var] extent: f32) {
+    let idx = launch_index();
+    let p = (idx.as_vec2() + 0.5) / launch_dim().as_vec2() * 2.0 - 1.0;
+    let ray = Ray::new(vec3(p.x * extent, p.y * extent, 10.0), vec3(0.0, 0.0, -1.0), 0, 0.0, f32::INFINITY);
+    let mut prd = Radiance { result: Vec3::ZERO, depth: (idx.x % 2) as i32 };
+    rt_trace(top, ray, &mut prd);
+    out[idx] = prd.result.extend(1.0);
+}
+
+/// A mirror: traces the reflected ray and keeps `reflectance` of its colour.
+#[rt_program(closest_hit)]
+pub fn mirror(prd: &mut Radiance, attr: &Hit, #[var] top: Object, #[var] reflectance: f32) {
+    let ray = current_ray();
+    let p = ray.origin + t_hit() * ray.direction;
+    let n = rt_transform_normal(ObjectToWorld, attr.geometric_normal).normalize();
+    let mut reflected = Radiance { result: Vec3::ZERO, depth: prd.depth + 1 };
+    rt_trace(top, Ray::new(p, reflect(ray.direction, n), 0, 0.001, f32::INFINITY), &mut reflected);
+    prd.result = reflected.result * reflectance;
+}
+
+/// Writes `index + 1` at every 1D launch index.
+#[rt_program(ray_generation)]
+pub fn write_index(#[var] mut ids: RwBuffer<u32>) {
+    let i = launch_index().x;
+    ids[i] = i + 1;
 }
 
 const W: u32 = 32;
@@ -466,7 +523,6 @@ fn moving_geometry_refits_instead_of_rebuilding(backend: Backend) {
     assert_eq!(pixel(&ctx.read_buffer::<Vec4>(out).unwrap(), 0, 0).truncate(), Vec3::ONE);
 }
 
-
 fn buffer_overrun_raises_the_exception_and_printf_reaches_the_host(backend: Backend) {
     let (mut ctx, _) = camera(2.0, backend);
     sphere_scene(&mut ctx, &reads_past_the_end::PROGRAM, Vec3::ZERO, 1.0);
@@ -474,12 +530,18 @@ fn buffer_overrun_raises_the_exception_and_printf_reaches_the_host(backend: Back
     ctx.set_var(Scope::Context, "table", table).unwrap();
     ctx.set_print(true, Some(UVec2::new(W / 2, W / 2)));
     let report = ctx.launch(0, W, W).unwrap();
-    assert_eq!(report.exceptions, vec![ExceptionRecord { launch_index: UVec2::new(W / 2, W / 2), code: EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS }]);
+    assert_eq!(
+        report.exceptions,
+        vec![ExceptionRecord { launch_index: UVec2::new(W / 2, W / 2), code: EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS }]
+    );
     // The out-of-bounds read yields zero; the print is filtered to one index.
     assert_eq!(report.prints, vec![(UVec2::new(W / 2, W / 2), format!("pixel [{}, {}] read 0 of 3", W / 2, W / 2))]);
     ctx.set_print(true, Some(UVec2::new(W / 2 + 1, W / 2)));
     let report = ctx.launch(0, W, W).unwrap();
-    assert_eq!(report.prints, vec![(UVec2::new(W / 2 + 1, W / 2), format!("pixel [{}, {}] read 0.25 of 3", W / 2 + 1, W / 2))]);
+    assert_eq!(
+        report.prints,
+        vec![(UVec2::new(W / 2 + 1, W / 2), format!("pixel [{}, {}] read 0.25 of 3", W / 2 + 1, W / 2))]
+    );
 }
 
 fn nan_rays_raise_invalid_ray(backend: Backend) {
@@ -488,7 +550,10 @@ fn nan_rays_raise_invalid_ray(backend: Backend) {
     let rg = ctx.create_program(&nan_camera::PROGRAM);
     ctx.set_ray_generation_program(0, rg).unwrap();
     let report = ctx.launch(0, 4, 4).unwrap();
-    assert_eq!(report.exceptions, vec![ExceptionRecord { launch_index: UVec2::new(1, 2), code: EXCEPTION_INVALID_RAY }]);
+    assert_eq!(
+        report.exceptions,
+        vec![ExceptionRecord { launch_index: UVec2::new(1, 2), code: EXCEPTION_INVALID_RAY }]
+    );
     let img = ctx.read_buffer::<Vec4>(out).unwrap();
     // Other launch indices completed: they hit the sphere head on.
     assert!((img[0].truncate() - Vec3::new(0.5, 0.5, 1.0)).abs().max_element() < 1e-3, "{}", img[0]);
@@ -525,7 +590,15 @@ fn ray_flags_and_masks(backend: Backend) {
     let c = center(&mut ctx, RAY_FLAG_DISABLE_CLOSESTHIT, 0xff, 10.0);
     assert!(c.z >= 1.0 && c.x == 0.0, "{c}");
     // Terminate on first hit with no any hit and no closest hit: black.
-    assert_eq!(center(&mut ctx, RAY_FLAG_TERMINATE_ON_FIRST_HIT | RAY_FLAG_DISABLE_ANYHIT | RAY_FLAG_DISABLE_CLOSESTHIT, 0xff, 10.0), Vec3::ZERO);
+    assert_eq!(
+        center(
+            &mut ctx,
+            RAY_FLAG_TERMINATE_ON_FIRST_HIT | RAY_FLAG_DISABLE_ANYHIT | RAY_FLAG_DISABLE_CLOSESTHIT,
+            0xff,
+            10.0
+        ),
+        Vec3::ZERO
+    );
     // Quads wind counter-clockwise seen from +z: culling front faces from
     // above misses both (background), culling back faces keeps them.
     assert_eq!(center(&mut ctx, RAY_FLAG_CULL_FRONT_FACING, 0xff, 10.0), BG);
@@ -535,6 +608,10 @@ fn ray_flags_and_masks(backend: Backend) {
     // Masks: the group's children keep mask 0xff; a ray with mask 0 sees nothing.
     assert_eq!(center(&mut ctx, RAY_FLAG_NONE, 0, 10.0), BG);
     ctx.set_visibility_mask(gg, 0b10).unwrap();
+    assert_eq!(center(&mut ctx, RAY_FLAG_NONE, 0b01, 10.0), BG);
+    assert_eq!(center(&mut ctx, RAY_FLAG_NONE, 0b10, 10.0), Vec3::X);
+    // Tracing into the geometry group itself checks its mask too.
+    ctx.set_var(Scope::Context, "top", gg).unwrap();
     assert_eq!(center(&mut ctx, RAY_FLAG_NONE, 0b01, 10.0), BG);
     assert_eq!(center(&mut ctx, RAY_FLAG_NONE, 0b10, 10.0), Vec3::X);
 }
@@ -555,8 +632,13 @@ fn textures_sample_with_wrap_and_filter(backend: Backend) {
     let gi = ctx.create_geometry_instance(g, &[mat]).unwrap();
     let gg = ctx.create_geometry_group(&[gi], Acceleration::default()).unwrap();
     ctx.set_var(Scope::Context, "top", gg).unwrap();
-    let texels = vec![Vec4::new(1.0, 0.0, 0.0, 1.0), Vec4::new(0.0, 1.0, 0.0, 1.0), Vec4::new(0.0, 0.0, 1.0, 1.0), Vec4::ONE];
-    for (wrap, filter) in [(WrapMode::Repeat, FilterMode::Nearest), (WrapMode::Clamp, FilterMode::Linear), (WrapMode::Mirror, FilterMode::Linear)] {
+    let texels =
+        vec![Vec4::new(1.0, 0.0, 0.0, 1.0), Vec4::new(0.0, 1.0, 0.0, 1.0), Vec4::new(0.0, 0.0, 1.0, 1.0), Vec4::ONE];
+    for (wrap, filter) in [
+        (WrapMode::Repeat, FilterMode::Nearest),
+        (WrapMode::Clamp, FilterMode::Linear),
+        (WrapMode::Mirror, FilterMode::Linear),
+    ] {
         let tex = ctx.create_sampler(texels.clone(), 2, 2, wrap, filter).unwrap();
         ctx.set_var(Scope::Context, "tex", tex).unwrap();
         ctx.launch(0, W, W).unwrap();
@@ -569,7 +651,10 @@ fn textures_sample_with_wrap_and_filter(backend: Backend) {
                 let uv = Vec2::new(-1.0 + 3.0 * (wx + 1.0) / 2.0, -1.0 + 3.0 * (wy + 1.0) / 2.0);
                 let expected = reference.sample(uv).truncate();
                 let got = pixel(&img, x, y).truncate();
-                assert!((got - expected).abs().max_element() < 2e-3, "{wrap:?} {filter:?} at {x},{y}: {got} vs {expected}");
+                assert!(
+                    (got - expected).abs().max_element() < 2e-3,
+                    "{wrap:?} {filter:?} at {x},{y}: {got} vs {expected}"
+                );
             }
         }
     }
@@ -583,6 +668,281 @@ fn payload_of_the_wrong_ray_type_raises_invalid_ray(backend: Backend) {
     let report = ctx.launch(0, 2, 1).unwrap();
     assert_eq!(report.exceptions.len(), 2);
     assert!(report.exceptions.iter().all(|e| e.code == EXCEPTION_INVALID_RAY), "{:?}", report.exceptions);
+}
+
+/// A flat-coloured sphere geometry group (custom primitives).
+fn colored_sphere(ctx: &mut Context, center: Vec3, radius: f32, color: Vec3) -> NodeId {
+    let isect = ctx.create_program(&sphere_intersect::PROGRAM);
+    let bounds = ctx.create_program(&sphere_bounds::PROGRAM);
+    let geom = ctx.create_custom_geometry(1, isect, bounds).unwrap();
+    ctx.set_var(geom, "sphere", center.extend(radius)).unwrap();
+    let mat = ctx.create_material();
+    let ch = ctx.create_program(&flat_color::PROGRAM);
+    ctx.set_closest_hit_program(mat, 0, ch).unwrap();
+    ctx.set_var(mat, "color", color).unwrap();
+    let gi = ctx.create_geometry_instance(geom, &[mat]).unwrap();
+    ctx.create_geometry_group(&[gi], Acceleration::default()).unwrap()
+}
+
+fn selector_chooses_a_child_from_the_payload_and_launch_index_parity(backend: Backend) {
+    let extent = 2.0;
+    let (mut ctx, out) = camera(extent, backend);
+    let rg = ctx.create_program(&parity_camera::PROGRAM);
+    ctx.set_ray_generation_program(0, rg).unwrap();
+    // Two spheres in the same place, red and blue, modelled at x = -0.5
+    // and moved to the origin by a transform above the selector.
+    let red = colored_sphere(&mut ctx, Vec3::new(-0.5, 0.0, 0.0), 1.0, Vec3::X);
+    let blue = colored_sphere(&mut ctx, Vec3::new(-0.5, 0.0, 0.0), 1.0, Vec3::Z);
+    let visit = ctx.create_program(&parity_visit::PROGRAM);
+    let sel = ctx.create_selector(visit, &[red, blue]).unwrap();
+    ctx.set_var(sel, "offset", 0u32).unwrap();
+    let moved = ctx.create_transform(glam::Mat4::from_translation(Vec3::new(0.5, 0.0, 0.0)), sel).unwrap();
+    let top = ctx.create_group(&[moved], Acceleration::default()).unwrap();
+    let check = |ctx: &mut Context, offset: u32, origin: Vec3| {
+        ctx.set_var(sel, "offset", offset).unwrap();
+        let report = ctx.launch(0, W, W).unwrap();
+        assert!(report.exceptions.is_empty(), "{:?}", report.exceptions);
+        let img = ctx.read_buffer::<Vec4>(out).unwrap();
+        let mut seen = [0; 3];
+        for y in 0..W {
+            for x in 0..W {
+                let (wx, wy) = world(x, y, extent);
+                let r2 = (wx - origin.x).powi(2) + (wy - origin.y).powi(2);
+                let c = pixel(&img, x, y).truncate();
+                if r2 < 0.98 {
+                    // Child (x parity + offset): red, blue, or none.
+                    let expected = [Vec3::X, Vec3::Z, BG][(x % 2 + offset) as usize];
+                    assert_eq!(c, expected, "pixel {x},{y} with offset {offset}");
+                    seen[(x % 2 + offset) as usize] += 1;
+                } else if r2 > 1.02 {
+                    assert_eq!(c, BG, "pixel {x},{y} should miss");
+                }
+            }
+        }
+        seen
+    };
+    // The selector traced directly (in its own space: the spheres at x = -0.5).
+    ctx.set_var(Scope::Context, "top", sel).unwrap();
+    let seen = check(&mut ctx, 0, Vec3::new(-0.5, 0.0, 0.0));
+    assert!(seen[0] > 50 && seen[1] > 50, "{seen:?}");
+    // Under a group and a transform.
+    ctx.set_var(Scope::Context, "top", top).unwrap();
+    let seen = check(&mut ctx, 0, Vec3::ZERO);
+    assert!(seen[0] > 50 && seen[1] > 50, "{seen:?}");
+    // A node-scope value change: even indices blue, odd ones enter nothing.
+    let seen = check(&mut ctx, 1, Vec3::ZERO);
+    assert!(seen[1] > 50 && seen[2] > 50, "{seen:?}");
+}
+
+fn visit_programs_see_the_ray_in_the_selectors_space_and_check_the_payload_type(backend: Backend) {
+    let extent = 2.0;
+    let (mut ctx, out) = camera(extent, backend);
+    let red = colored_sphere(&mut ctx, Vec3::ZERO, 1.5, Vec3::X);
+    let blue = colored_sphere(&mut ctx, Vec3::ZERO, 1.5, Vec3::Z);
+    let visit = ctx.create_program(&side_visit::PROGRAM);
+    let sel = ctx.create_selector(visit, &[red, blue]).unwrap();
+    // Moved by +0.5 in x: the selector's x = 0 is world x = 0.5.
+    let moved = ctx.create_transform(glam::Mat4::from_translation(Vec3::new(0.5, 0.0, 0.0)), sel).unwrap();
+    ctx.set_var(Scope::Context, "top", moved).unwrap();
+    let report = ctx.launch(0, W, W).unwrap();
+    assert!(report.exceptions.is_empty(), "{:?}", report.exceptions);
+    let img = ctx.read_buffer::<Vec4>(out).unwrap();
+    for y in 0..W {
+        for x in 0..W {
+            let (wx, wy) = world(x, y, extent);
+            let r2 = (wx - 0.5).powi(2) + wy * wy;
+            if r2 < 1.5 * 1.5 * 0.98 {
+                let expected = if wx < 0.5 { Vec3::X } else { Vec3::Z };
+                assert_eq!(pixel(&img, x, y).truncate(), expected, "pixel {x},{y}");
+            }
+        }
+    }
+    // A visit program taking another payload type: invalid ray, no child
+    // (the default exception program paints the image magenta).
+    let visit = ctx.create_program(&shadow_visit::PROGRAM);
+    let sel = ctx.create_selector(visit, &[red]).unwrap();
+    ctx.set_var(Scope::Context, "top", sel).unwrap();
+    let report = ctx.launch(0, 4, 4).unwrap();
+    assert_eq!(report.exceptions.len(), 16);
+    assert!(report.exceptions.iter().all(|e| e.code == EXCEPTION_INVALID_RAY), "{:?}", report.exceptions);
+    let img = ctx.read_buffer::<Vec4>(out).unwrap();
+    assert_eq!(img[0], Vec4::new(1.0, 0.0, 1.0, 1.0));
+}
+
+fn three_level_graph_group_of_groups_of_transforms(backend: Backend) {
+    let extent = 2.0;
+    let (mut ctx, out) = camera(extent, backend);
+    // One unit sphere's geometry group, instanced twice:
+    // top = group[group[T1 -> spheres], Tz -> group[T2 -> spheres]].
+    let isect = ctx.create_program(&sphere_intersect::PROGRAM);
+    let bounds = ctx.create_program(&sphere_bounds::PROGRAM);
+    let geom = ctx.create_custom_geometry(1, isect, bounds).unwrap();
+    ctx.set_var(geom, "sphere", Vec3::ZERO.extend(1.0)).unwrap();
+    let mat = ctx.create_material();
+    let ch = ctx.create_program(&normal_shader::PROGRAM);
+    ctx.set_closest_hit_program(mat, 0, ch).unwrap();
+    let gi = ctx.create_geometry_instance(geom, &[mat]).unwrap();
+    let spheres = ctx.create_geometry_group(&[gi], Acceleration::default()).unwrap();
+    use glam::Mat4;
+    let t1 = ctx
+        .create_transform(
+            Mat4::from_translation(Vec3::new(-1.0, 0.5, 0.0)) * Mat4::from_scale(Vec3::splat(0.5)),
+            spheres,
+        )
+        .unwrap();
+    let g1 = ctx.create_group(&[t1], Acceleration::default()).unwrap();
+    let t2 = ctx
+        .create_transform(
+            Mat4::from_translation(Vec3::new(0.8, 0.0, 0.0)) * Mat4::from_scale(Vec3::splat(0.5)),
+            spheres,
+        )
+        .unwrap();
+    let g2 = ctx.create_group(&[t2], Acceleration::new(Builder::NoAccel)).unwrap();
+    let tz = ctx
+        .create_transform(Mat4::from_translation(Vec3::new(0.2, -0.6, 0.0)) * Mat4::from_scale(Vec3::splat(1.2)), g2)
+        .unwrap();
+    let top = ctx.create_group(&[g1, tz], Acceleration::new(Builder::Lbvh)).unwrap();
+    ctx.set_var(Scope::Context, "top", top).unwrap();
+    let report = ctx.launch(0, W, W).unwrap();
+    assert!(report.exceptions.is_empty(), "{:?}", report.exceptions);
+    if backend == Backend::Wgpu {
+        // The graph traversal is linked, with one transform level below world space.
+        assert!(ctx.linked_wgsl().unwrap().contains("const RT_LEVELS: u32 = 2u;"));
+    }
+    let img = ctx.read_buffer::<Vec4>(out).unwrap();
+    // World spheres: (-1, 0.5) radius 0.5; Tz * (0.8, 0) = (1.16, -0.6), radius 0.6.
+    let spheres = [(Vec2::new(-1.0, 0.5), 0.5), (Vec2::new(1.16, -0.6), 0.6)];
+    let mut hits = [0; 2];
+    for y in 0..W {
+        for x in 0..W {
+            let (wx, wy) = world(x, y, extent);
+            let c = pixel(&img, x, y).truncate();
+            let mut outside = true;
+            for (i, (center, r)) in spheres.iter().enumerate() {
+                let d = (Vec2::new(wx, wy) - *center) / *r;
+                if d.length_squared() < 0.98 {
+                    let n = d.extend((1.0 - d.length_squared()).sqrt());
+                    let expected = n * 0.5 + 0.5;
+                    assert!((c - expected).abs().max_element() < 1e-3, "pixel {x},{y}: {c} vs {expected}");
+                    hits[i] += 1;
+                }
+                outside &= d.length_squared() > 1.02;
+            }
+            if outside {
+                assert_eq!(c, BG, "pixel {x},{y} should miss");
+            }
+        }
+    }
+    assert!(hits[0] > 20 && hits[1] > 30, "{hits:?}");
+    // A visibility mask on the inner group hides its sphere.
+    ctx.set_visibility_mask(g2, 0).unwrap();
+    ctx.launch(0, W, W).unwrap();
+    let img = ctx.read_buffer::<Vec4>(out).unwrap();
+    let (x, y) = (((1.16 / extent + 1.0) / 2.0 * W as f32) as u32, ((-0.6 / extent + 1.0) / 2.0 * W as f32) as u32);
+    assert_eq!(pixel(&img, x, y).truncate(), BG);
+}
+
+fn default_exception_paints_magenta_and_records_the_exception(backend: Backend) {
+    let extent = 2.0;
+    let (mut ctx, out) = camera(extent, backend);
+    sphere_scene(&mut ctx, &throws::PROGRAM, Vec3::ZERO, 1.0);
+    let report = ctx.launch(0, W, W).unwrap();
+    let img = ctx.read_buffer::<Vec4>(out).unwrap();
+    let mut painted = 0;
+    for y in 0..W {
+        for x in 0..W {
+            let (wx, wy) = world(x, y, extent);
+            let r2 = wx * wx + wy * wy;
+            let thrown = report.exceptions.iter().any(|e| e.launch_index == UVec2::new(x, y));
+            if r2 < 0.98 {
+                assert!(thrown, "pixel {x},{y} hit the sphere");
+                assert_eq!(pixel(&img, x, y), Vec4::new(1.0, 0.0, 1.0, 1.0), "pixel {x},{y}");
+                painted += 1;
+            } else if r2 > 1.02 {
+                assert!(!thrown);
+                assert_eq!(pixel(&img, x, y), BG.extend(1.0), "pixel {x},{y}");
+            }
+        }
+    }
+    assert!(painted > 100);
+    assert!(report.exceptions.iter().all(|e| e.code == EXCEPTION_USER + 7));
+}
+
+fn mirror_shows_the_reflected_object_and_the_reflected_background(backend: Backend) {
+    let extent = 2.0;
+    let (mut ctx, out) = camera(extent, backend);
+    // A mirror quad through the origin with normal (1, 0, 1) / sqrt(2): the
+    // camera's -z rays reflect to +x. A green wall at x = 5 over y in [0, 3]
+    // (parallel to the camera rays, so they never see it directly).
+    let mirror_geom = ctx.create_triangles(quad(0.0, 1.0)).unwrap();
+    let mirror_mat = ctx.create_material();
+    let ch = ctx.create_program(&mirror::PROGRAM);
+    ctx.set_closest_hit_program(mirror_mat, 0, ch).unwrap();
+    ctx.set_var(mirror_mat, "reflectance", 0.8f32).unwrap();
+    let mirror_gi = ctx.create_geometry_instance(mirror_geom, &[mirror_mat]).unwrap();
+    let mirror_gg = ctx.create_geometry_group(&[mirror_gi], Acceleration::default()).unwrap();
+    let tilt = ctx.create_transform(glam::Mat4::from_rotation_y(std::f32::consts::FRAC_PI_4), mirror_gg).unwrap();
+    let wall = ctx
+        .create_triangles(TriangleMesh {
+            positions: vec![
+                Vec3::new(5.0, 0.0, -3.0),
+                Vec3::new(5.0, 3.0, -3.0),
+                Vec3::new(5.0, 3.0, 3.0),
+                Vec3::new(5.0, 0.0, 3.0),
+            ],
+            indices: vec![[0, 1, 2], [0, 2, 3]],
+            ..TriangleMesh::default()
+        })
+        .unwrap();
+    let wall_mat = ctx.create_material();
+    let flat = ctx.create_program(&flat_color::PROGRAM);
+    ctx.set_closest_hit_program(wall_mat, 0, flat).unwrap();
+    ctx.set_var(wall_mat, "color", Vec3::new(0.0, 1.0, 0.0)).unwrap();
+    let wall_gi = ctx.create_geometry_instance(wall, &[wall_mat]).unwrap();
+    let wall_gg = ctx.create_geometry_group(&[wall_gi], Acceleration::default()).unwrap();
+    let top = ctx.create_group(&[tilt, wall_gg], Acceleration::default()).unwrap();
+    ctx.set_var(Scope::Context, "top", top).unwrap();
+    let report = ctx.launch(0, W, W).unwrap();
+    assert!(report.exceptions.is_empty(), "{:?}", report.exceptions);
+    let img = ctx.read_buffer::<Vec4>(out).unwrap();
+    // The mirror covers |x| < cos(45°) = 0.707 and |y| < 1 seen from above.
+    let half = std::f32::consts::FRAC_1_SQRT_2;
+    let (mut green, mut sky) = (0, 0);
+    for y in 0..W {
+        for x in 0..W {
+            let (wx, wy) = world(x, y, extent);
+            let c = pixel(&img, x, y).truncate();
+            if wx.abs() < half - 0.05 && wy.abs() < 0.95 && wy.abs() > 0.05 {
+                // The reflected ray leaves (wx, wy, -wx) along +x: the wall
+                // above y = 0, the background below.
+                let expected = if wy > 0.0 { Vec3::new(0.0, 0.8, 0.0) } else { BG * 0.8 };
+                assert!((c - expected).abs().max_element() < 1e-5, "pixel {x},{y}: {c} vs {expected}");
+                if wy > 0.0 { green += 1 } else { sky += 1 }
+            } else if wx.abs() > half + 0.05 || wy.abs() > 1.05 {
+                assert_eq!(c, BG, "pixel {x},{y} misses the mirror");
+            }
+        }
+    }
+    assert!(green > 50 && sky > 50, "{green} {sky}");
+    // A primary ray and a reflected one for each pixel on the mirror.
+    assert!(report.rays > (W * W) as u64 + 100);
+}
+
+fn launches_wider_than_the_dispatch_limit_write_every_index(backend: Backend) {
+    // 600,000 indices in 8x8 workgroups are 75,000 groups across: more than
+    // wgpu's 65,535 per dimension, so the wgpu backend tiles the launch in x.
+    const N: u32 = 600_000;
+    let (mut ctx, _) = camera(1.0, backend);
+    let rg = ctx.create_program(&write_index::PROGRAM);
+    ctx.set_ray_generation_program(0, rg).unwrap();
+    let ids = ctx.create_buffer(BufferType::Output, vec![0u32; N as usize]);
+    ctx.set_var(Scope::Context, "ids", ids).unwrap();
+    let report = ctx.launch_1d(0, N).unwrap();
+    assert!(report.exceptions.is_empty(), "{:?}", &report.exceptions[..report.exceptions.len().min(4)]);
+    let got = ctx.read_buffer::<u32>(ids).unwrap();
+    if let Some(i) = (0..N).find(|&i| got[i as usize] != i + 1) {
+        panic!("index {i} holds {}", got[i as usize]);
+    }
 }
 
 /// Instantiates every test above once per backend.
@@ -613,6 +973,12 @@ on_backends!(
     variables_resolve_innermost_scope_first,
     link_errors_name_the_program_the_variable_and_the_scopes,
     moving_geometry_refits_instead_of_rebuilding,
+    selector_chooses_a_child_from_the_payload_and_launch_index_parity,
+    visit_programs_see_the_ray_in_the_selectors_space_and_check_the_payload_type,
+    three_level_graph_group_of_groups_of_transforms,
+    default_exception_paints_magenta_and_records_the_exception,
+    mirror_shows_the_reflected_object_and_the_reflected_background,
+    launches_wider_than_the_dispatch_limit_write_every_index,
 );
 
 #[test]
@@ -629,6 +995,58 @@ fn wgpu_and_cpu_render_the_same_sphere() {
 }
 
 #[test]
+fn wgpu_and_cpu_render_the_same_deep_graph() {
+    use glam::Mat4;
+    let render = |backend| {
+        let (mut ctx, out) = camera(2.0, backend);
+        let isect = ctx.create_program(&sphere_intersect::PROGRAM);
+        let bounds = ctx.create_program(&sphere_bounds::PROGRAM);
+        let geom = ctx.create_custom_geometry(1, isect, bounds).unwrap();
+        ctx.set_var(geom, "sphere", Vec3::ZERO.extend(0.4)).unwrap();
+        let mat = ctx.create_material();
+        let ch = ctx.create_program(&normal_shader::PROGRAM);
+        ctx.set_closest_hit_program(mat, 0, ch).unwrap();
+        let gi = ctx.create_geometry_instance(geom, &[mat]).unwrap();
+        let sphere = ctx.create_geometry_group(&[gi], Acceleration::default()).unwrap();
+        let q = ctx.create_triangles(quad(0.0, 0.3)).unwrap();
+        let qi = ctx.create_geometry_instance(q, &[mat]).unwrap();
+        let quad_gg = ctx.create_geometry_group(&[qi], Acceleration::default()).unwrap();
+        let xf = |ctx: &mut Context, m: Mat4, child: NodeId| ctx.create_transform(m, child).unwrap();
+        // inner: a group of instances; mid: a group with a transform chain
+        // above a group; sel: a selector over mid and a moved mid; top: a
+        // transform above a group holding the selector.
+        let a = xf(&mut ctx, Mat4::from_translation(Vec3::new(-0.6, 0.0, 0.0)), sphere);
+        let b = xf(&mut ctx, Mat4::from_translation(Vec3::new(0.6, 0.0, 0.0)) * Mat4::from_rotation_x(0.4), quad_gg);
+        let inner = ctx.create_group(&[a, b], Acceleration::default()).unwrap();
+        let rot = xf(&mut ctx, Mat4::from_rotation_z(0.5), inner);
+        let scaled = xf(&mut ctx, Mat4::from_scale(Vec3::splat(0.7)), rot);
+        let mid = ctx.create_group(&[scaled, sphere], Acceleration::new(Builder::MedianBvh)).unwrap();
+        let up = xf(&mut ctx, Mat4::from_translation(Vec3::new(0.0, 1.0, 0.0)), mid);
+        let visit = ctx.create_program(&side_visit::PROGRAM);
+        let sel = ctx.create_selector(visit, &[mid, up]).unwrap();
+        let corner = xf(&mut ctx, Mat4::from_translation(Vec3::new(-1.0, 1.0, 0.0)), quad_gg);
+        let group = ctx.create_group(&[sel, corner], Acceleration::default()).unwrap();
+        let top = xf(
+            &mut ctx,
+            Mat4::from_translation(Vec3::new(0.2, -0.3, -1.0)) * Mat4::from_scale(Vec3::splat(1.3)),
+            group,
+        );
+        ctx.set_var(Scope::Context, "top", top).unwrap();
+        let report = ctx.launch(0, W, W).unwrap();
+        assert!(report.exceptions.is_empty(), "{:?}", report.exceptions);
+        if backend == Backend::Wgpu {
+            assert!(ctx.linked_wgsl().unwrap().contains("const RT_LEVELS: u32 = 4u;"));
+        }
+        ctx.read_buffer::<Vec4>(out).unwrap()
+    };
+    let (a, b) = (render(Backend::Cpu), render(Backend::Wgpu));
+    let hits = a.iter().filter(|c| c.truncate() != BG).count();
+    assert!(hits > 100, "{hits} pixels hit");
+    let worst = a.iter().zip(&b).map(|(x, y)| (*x - *y).abs().max_element()).fold(0.0f32, f32::max);
+    assert!(worst < 2.0 / 255.0, "largest difference {worst}");
+}
+
+#[test]
 fn changing_values_never_relinks_but_changing_programs_does() {
     let (mut ctx, out) = camera(2.0, Backend::Wgpu);
     let (_, mat, _) = sphere_scene(&mut ctx, &flat_color::PROGRAM, Vec3::ZERO, 1.0);
@@ -636,6 +1054,8 @@ fn changing_values_never_relinks_but_changing_programs_does() {
     ctx.launch(0, W, W).unwrap();
     assert_eq!(ctx.pipelines_created(), 1);
     assert_eq!(pixel(&ctx.read_buffer::<Vec4>(out).unwrap(), W / 2, W / 2).truncate(), Vec3::X);
+    // A two-level scene links no graph traversal.
+    assert!(!ctx.linked_wgsl().unwrap().contains("RT_LEVELS"));
     // New values and buffer contents: same pipeline.
     ctx.set_var(Scope::Context, "color", Vec3::Y).unwrap();
     ctx.set_var(Scope::Context, "bg_color", Vec3::ONE).unwrap();

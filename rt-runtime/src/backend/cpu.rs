@@ -1,7 +1,8 @@
 //! The CPU backend: programs run natively as Rust (each descriptor's `cpu`
-//! entry), rays traverse obvhs BVH2s over two levels (groups of transformed
-//! instances over per-geometry-group BVHs), rayon spreads launch rows over
-//! all cores.
+//! entry), rays traverse the node graph as built (groups' obvhs BVH2s over
+//! their children, transforms composed on the way down, selectors' visit
+//! programs choosing one child, geometry groups' BVH2s over primitives),
+//! rayon spreads chunks of launch indices over all cores.
 //!
 //! Semantics are OptiX's and the megakernel's: the intersection protocol
 //! (`rt_potential_intersection` accepts `t` in `(tmin, closest)`,

@@ -32,9 +32,9 @@ pub const EXCEPTION_COLOR: glam::Vec4 = glam::Vec4::new(1.0, 0.0, 1.0, 1.0);
 /// without an exception program): the ray-generation program's first
 /// `RwBuffer2d<Vec4>` variable, by index in its declaration order.
 pub fn default_exception_output(ray_generation: &ProgramDescriptor) -> Option<usize> {
-    ray_generation.variables.iter().position(|v| {
-        matches!(v.kind, VariableKind::Buffer { element, dimensions: 2, writable: true } if element.rust == "Vec4")
-    })
+    ray_generation.variables.iter().position(
+        |v| matches!(v.kind, VariableKind::Buffer { element, dimensions: 2, writable: true } if element.rust == "Vec4"),
+    )
 }
 
 /// The ids a program use is resolved against.
@@ -109,8 +109,11 @@ pub fn resolve_values(ctx: &Context, p: ProgramId, record: Record) -> Result<Vec
         let ok = match (value, v.kind) {
             (VarValue::Data { layout, .. }, VariableKind::Value) => layout.rust == v.ty.rust,
             (VarValue::Buffer(b), VariableKind::Buffer { element, dimensions, writable }) => {
-                let rec = ctx.buffers.get(b.index() as usize).ok_or_else(|| RtError::InvalidHandle(format!("{b:?}")))?;
-                rec.storage.layout().rust == element.rust && rec.dims == dimensions && (!writable || rec.ty.writable_by_programs())
+                let rec =
+                    ctx.buffers.get(b.index() as usize).ok_or_else(|| RtError::InvalidHandle(format!("{b:?}")))?;
+                rec.storage.layout().rust == element.rust
+                    && rec.dims == dimensions
+                    && (!writable || rec.ty.writable_by_programs())
             }
             (VarValue::Sampler(s), VariableKind::Sampler) => {
                 ctx.samplers.get(s.index() as usize).ok_or_else(|| RtError::InvalidHandle(format!("{s:?}")))?;

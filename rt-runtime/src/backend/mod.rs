@@ -35,12 +35,17 @@ impl Backend {
             };
         }
         match wgpu::probe() {
-            Some(info) if matches!(info.device_type, ::wgpu::DeviceType::DiscreteGpu | ::wgpu::DeviceType::IntegratedGpu) => {
+            Some(info)
+                if matches!(info.device_type, ::wgpu::DeviceType::DiscreteGpu | ::wgpu::DeviceType::IntegratedGpu) =>
+            {
                 Ok((Backend::Wgpu, format!("GPU adapter {} ({:?})", info.name, info.device_type)))
             }
             Some(info) => Ok((
                 Backend::Cpu,
-                format!("no GPU adapter (only {}, {:?}); the CPU backend is faster than it", info.name, info.device_type),
+                format!(
+                    "no GPU adapter (only {}, {:?}); the CPU backend is faster than it",
+                    info.name, info.device_type
+                ),
             )),
             None => Ok((Backend::Cpu, "no wgpu adapter".into())),
         }

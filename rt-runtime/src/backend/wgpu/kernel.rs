@@ -8,6 +8,11 @@
 //! clones, whose own traces call depth `k + 1`; past the context's maximum
 //! depth the trace raises `EXCEPTION_TRACE_DEPTH_EXCEEDED` instead.
 //!
+//! Visit programs (selectors) run through `rt_visit_dispatch(case, vars)`,
+//! which passes the traced payload by value and returns the chosen child;
+//! a visit program taking another payload type than the traced ray's raises
+//! `EXCEPTION_INVALID_RAY` and chooses nothing, as on the CPU backend.
+//!
 //! Variable values are never in the text: each program use reads them from
 //! its scope record in the heap (offset passed at dispatch), so changing a
 //! value never relinks.
@@ -268,7 +273,9 @@ pub fn generate(spec: &KernelSpec) -> Result<String> {
     let rg = spec.ray_generation.desc;
     let rg_args = var_args(rg, "rt_launch.ray_generation.y").join(", ");
     let ex_call = match (spec.exception, spec.default_exception) {
-        (Some(ex), _) => format!("        {}({});\n", ex.desc.wgsl_entry, var_args(ex.desc, "rt_launch.exception.y").join(", ")),
+        (Some(ex), _) => {
+            format!("        {}({});\n", ex.desc.wgsl_entry, var_args(ex.desc, "rt_launch.exception.y").join(", "))
+        }
         (None, Some(offset)) => {
             format!("        rt_default_exception(rt_load_RtBuffer(rt_launch.ray_generation.y + {offset}u));\n")
         }
@@ -361,9 +368,16 @@ fn dispatch_intersection(programs: &[KernelProgram]) -> String {
         }
         args.push("prim".to_string());
         args.extend(var_args(p.desc, "vars"));
-        cases.push_str(&format!("        case {}u: {{\n            {decl}{}({});\n        }}\n", p.case, p.desc.wgsl_entry, args.join(", ")));
+        cases.push_str(&format!(
+            "        case {}u: {{\n            {decl}{}({});\n        }}\n",
+            p.case,
+            p.desc.wgsl_entry,
+            args.join(", ")
+        ));
     }
-    format!("fn rt_isect_dispatch(case_id: u32, vars: u32, prim: u32) {{\n    switch case_id {{\n{cases}        default: {{}}\n    }}\n}}\n")
+    format!(
+        "fn rt_isect_dispatch(case_id: u32, vars: u32, prim: u32) {{\n    switch case_id {{\n{cases}        default: {{}}\n    }}\n}}\n"
+    )
 }
 
 fn dispatch_any_hit(programs: &[KernelProgram]) -> String {
@@ -388,7 +402,9 @@ fn dispatch_any_hit(programs: &[KernelProgram]) -> String {
             args.join(", ")
         ));
     }
-    format!("fn rt_anyhit_dispatch(case_id: u32, vars: u32) {{\n    switch case_id {{\n{cases}        default: {{}}\n    }}\n}}\n")
+    format!(
+        "fn rt_anyhit_dispatch(case_id: u32, vars: u32) {{\n    switch case_id {{\n{cases}        default: {{}}\n    }}\n}}\n"
+    )
 }
 
 /// Visit programs: the chosen child, or `RT_NONE`. A visit program whose
@@ -432,7 +448,12 @@ fn dispatch_payload(programs: &[KernelProgram], w: &str, d: u32) -> String {
             args.push(format!("rt_hit_attr_{}()", a.wgsl));
         }
         args.extend(var_args(p.desc, "vars"));
-        let case = format!("        case {}u: {{\n            {}_d{d}({});\n        }}\n", p.case, p.desc.wgsl_entry, args.join(", "));
+        let case = format!(
+            "        case {}u: {{\n            {}_d{d}({});\n        }}\n",
+            p.case,
+            p.desc.wgsl_entry,
+            args.join(", ")
+        );
         match p.desc.kind {
             ProgramKind::ClosestHit => ch.push_str(&case),
             ProgramKind::Miss => miss.push_str(&case),

@@ -7,6 +7,17 @@
 //! geometry, instance and record tables), `rt_log` (exceptions and
 //! `rt_printf!` output) and the launch uniform.
 //!
+//! Traversal: every transform chain down to a geometry group is flattened
+//! into an instance (one matrix, its inverse, the AND of the chain's
+//! visibility masks). A group of instances is the two-level fast path
+//! (`rt_search` in traverse.wgsl). Anything deeper — groups of groups,
+//! transforms above groups or selectors, selectors — gets a node-table entry
+//! that the graph traversal (graph.wgsl) walks with one explicit stack of
+//! graph nodes and BVH nodes, keeping a small array of transform levels
+//! instead of recursing; selectors call the generated `rt_visit_dispatch`.
+//! The graph traversal is linked only into kernels whose scene needs it, so
+//! two-level scenes keep the lean kernel. Semantics are the CPU backend's.
+//!
 //! Caching: the pipeline is keyed by the generated WGSL, which depends on the
 //! program set and the graph's shape but never on variable values or buffer
 //! contents; those only change the uploaded words.
@@ -30,6 +41,9 @@ use wgpu::util::DeviceExt;
 const LOG_EXCEPTIONS: u32 = 4096;
 /// Words for `rt_printf!` records.
 const LOG_PRINT_WORDS: u32 = 1 << 16;
+/// Marks a group's leaf that is a node (group, selector, transform above
+/// one), not an instance (`RT_NODE_BIT` in traverse.wgsl).
+const NODE_BIT: u32 = 0x8000_0000;
 
 /// A wgpu device and what the backend keeps on it between launches.
 pub struct Gpu {
@@ -122,7 +136,16 @@ fn push_bvh(out: &mut Vec<u32>, bvh: &crate::accel::Bvh) -> u32 {
     let at = out.len() as u32;
     for n in &bvh.bvh.nodes {
         let b = n.aabb();
-        out.extend([f(b.min.x), f(b.min.y), f(b.min.z), f(b.max.x), f(b.max.y), f(b.max.z), n.prim_count, n.first_index]);
+        out.extend([
+            f(b.min.x),
+            f(b.min.y),
+            f(b.min.z),
+            f(b.max.x),
+            f(b.max.y),
+            f(b.max.z),
+            n.prim_count,
+            n.first_index,
+        ]);
     }
     if bvh.bvh.nodes.is_empty() {
         // An empty group: a root that no ray enters.
@@ -228,7 +251,10 @@ fn encode(ctx: &Context, entry: u32) -> Result<Encoded> {
     let rg_vars = record(rg, Record::default(), &mut records)?;
     let rg_prog = KernelProgram { case: case(rg), desc: ctx.program(rg)?.desc };
     let (ex_prog, ex_vars) = match ep.exception {
-        Some(e) => (Some(KernelProgram { case: case(e), desc: ctx.program(e)?.desc }), record(e, Record::default(), &mut records)?),
+        Some(e) => (
+            Some(KernelProgram { case: case(e), desc: ctx.program(e)?.desc }),
+            record(e, Record::default(), &mut records)?,
+        ),
         None => (None, 0),
     };
 
@@ -244,9 +270,10 @@ fn encode(ctx: &Context, entry: u32) -> Result<Encoded> {
             instances.push(inst);
         }
     }
-    // BVHs of geometry groups (and their primitive tables), of groups.
+    // BVHs of geometry groups (and their primitive tables), of groups (and
+    // their leaf tables: instances, or other nodes with NODE_BIT).
     let mut gg_bvh: HashMap<u32, (u32, u32)> = HashMap::new();
-    let mut group_bvh: HashMap<u32, (u32, u32)> = HashMap::new();
+    let mut group_bvh: HashMap<u32, (u32, u32, bool)> = HashMap::new();
     for (n, rec) in ctx.nodes.iter().enumerate() {
         match (&rec.kind, accels.get(n).and_then(|a| a.as_ref())) {
             (NodeKind::GeometryGroup { .. }, Some(NodeAccel::Prims { bvh, prims, .. })) => {
@@ -261,20 +288,18 @@ fn encode(ctx: &Context, entry: u32) -> Result<Encoded> {
             (NodeKind::Group { children, .. }, Some(NodeAccel::Children { bvh, .. })) => {
                 let at = push_bvh(&mut scene, bvh);
                 let table = scene.len() as u32;
+                let mut instances_only = true;
                 for slot in &bvh.bvh.primitive_indices {
                     let child = children[*slot as usize];
-                    let inst = instance_of_node[child.index() as usize].ok_or_else(|| {
-                        RtError::Gpu(format!(
-                            "group {n} has child node {} that is a group or selector: the wgpu backend traces two levels (groups of transformed geometry groups)",
-                            child.index()
-                        ))
-                    })?;
-                    scene.push(inst);
+                    match instance_of_node[child.index() as usize] {
+                        Some(inst) => scene.push(inst),
+                        None => {
+                            instances_only = false;
+                            scene.push(child.index() | NODE_BIT);
+                        }
+                    }
                 }
-                group_bvh.insert(n as u32, (at, table));
-            }
-            (NodeKind::Selector { .. }, _) => {
-                return Err(RtError::Gpu(format!("node {n} is a selector: selectors run on the CPU backend only for now")));
+                group_bvh.insert(n as u32, (at, table, instances_only));
             }
             _ => {}
         }
@@ -286,16 +311,58 @@ fn encode(ctx: &Context, entry: u32) -> Result<Encoded> {
         let (bvh, table) = gg_bvh.get(&gg.index()).copied().unwrap_or((0, 0));
         scene.extend([bvh, table, *mask, gg.index()]);
     }
-    scene[0] = scene.len() as u32;
-    for (n, rec) in ctx.nodes.iter().enumerate() {
+    // The node table (after the side data of transforms and selectors), and
+    // how deep transforms above groups and selectors nest (in post order:
+    // children before parents).
+    let mut node_entries: Vec<[u32; 4]> = vec![[0; 4]; ctx.nodes.len()];
+    let mut levels: Vec<u32> = vec![0; ctx.nodes.len()];
+    let mut graph = false;
+    for n in link::nodes_post_order(ctx)? {
+        let i = n.index() as usize;
+        let rec = &ctx.nodes[i];
+        if let Some(inst) = instance_of_node[i] {
+            node_entries[i] = [0, inst, 0, instances[inst as usize].2];
+            continue;
+        }
+        let mask = rec.visibility_mask as u32;
         match &rec.kind {
-            NodeKind::Group { .. } => {
-                let (bvh, table) = group_bvh[&(n as u32)];
-                scene.extend([1, bvh, table, rec.visibility_mask as u32]);
+            NodeKind::Group { children, .. } => {
+                let (bvh, table, instances_only) = group_bvh[&n.index()];
+                node_entries[i] = [if instances_only { 1 } else { 2 }, bvh, table, mask];
+                levels[i] = children.iter().map(|c| levels[c.index() as usize]).max().unwrap_or(0);
+                graph |= !instances_only;
             }
-            _ => scene.extend([0, instance_of_node[n].unwrap_or(0), 0, if instance_of_node[n].is_some() { 0xff } else { 0 }]),
+            NodeKind::Transform { .. } => {
+                // A chain of transforms down to a group or selector.
+                let (mut m, mut mask, mut below) = (Mat4::IDENTITY, 0xffu32, n);
+                while let NodeKind::Transform { matrix, child, .. } = &ctx.nodes[below.index() as usize].kind {
+                    m *= *matrix;
+                    mask &= ctx.nodes[below.index() as usize].visibility_mask as u32;
+                    below = *child;
+                }
+                let at = scene.len() as u32;
+                push_mat(&mut scene, m);
+                push_mat(&mut scene, m.inverse());
+                node_entries[i] = [3, at, below.index(), mask];
+                levels[i] = 1 + levels[below.index() as usize];
+                graph = true;
+            }
+            NodeKind::Selector { visit, children } => {
+                let kp = use_program(*visit, &mut programs)?;
+                let vars = record(*visit, Record { node: Some(n), ..Record::default() }, &mut records)?;
+                let at = scene.len() as u32;
+                scene.extend([kp.case, vars, children.len() as u32]);
+                scene.extend(children.iter().map(|c| c.index()));
+                node_entries[i] = [4, at, 0, mask];
+                levels[i] = children.iter().map(|c| levels[c.index() as usize]).max().unwrap_or(0);
+                graph = true;
+            }
+            NodeKind::GeometryGroup { .. } => unreachable!("a geometry group is an instance"),
         }
     }
+    let graph_levels = if graph { 1 + levels.iter().copied().max().unwrap_or(0) } else { 0 };
+    scene[0] = scene.len() as u32;
+    scene.extend(node_entries.into_iter().flatten());
     // Geometry instances, their hit records and intersection records.
     let mut geometry_words: Vec<(u32, u32, u32, u32, u32, u32)> = Vec::new();
     for g in &ctx.geometries {
@@ -368,12 +435,24 @@ fn encode(ctx: &Context, entry: u32) -> Result<Encoded> {
             }
         }
         let (kind, pos, idx, nrm, uv, mi) = geometry_words[gi.geometry.index() as usize];
-        scene[gi_table + i * 8..gi_table + i * 8 + 8]
-            .copy_from_slice(&[kind, pos, idx, nrm, uv, mi, gi.materials.len() as u32, hit_base]);
+        scene[gi_table + i * 8..gi_table + i * 8 + 8].copy_from_slice(&[
+            kind,
+            pos,
+            idx,
+            nrm,
+            uv,
+            mi,
+            gi.materials.len() as u32,
+            hit_base,
+        ]);
         match ctx.geometries[gi.geometry.index() as usize].kind {
             GeometryKind::Custom { intersection, .. } => {
                 let kp = use_program(intersection, &mut programs)?;
-                let vars = record(intersection, Record { instance, geometry: Some(gi.geometry), ..Record::default() }, &mut records)?;
+                let vars = record(
+                    intersection,
+                    Record { instance, geometry: Some(gi.geometry), ..Record::default() },
+                    &mut records,
+                )?;
                 isect.extend([kp.case, vars]);
             }
             GeometryKind::Triangles(_) => isect.extend([0, 0]),
@@ -403,7 +482,21 @@ fn encode(ctx: &Context, entry: u32) -> Result<Encoded> {
     if heap.is_empty() {
         heap.push(0);
     }
-    let spec = KernelSpec { ray_generation: rg_prog, exception: ex_prog, programs, max_depth: ctx.max_trace_depth };
+    // The default exception program's image: its offset in the record.
+    let default_exception = match ex_prog {
+        Some(_) => None,
+        None => link::default_exception_output(rg_prog.desc).map(|v| {
+            rg_prog.desc.variables[..v].iter().map(|var| kernel::variable_words(&var.kind, &var.ty)).sum::<u32>()
+        }),
+    };
+    let spec = KernelSpec {
+        ray_generation: rg_prog,
+        exception: ex_prog,
+        programs,
+        max_depth: ctx.max_trace_depth,
+        graph_levels,
+        default_exception,
+    };
     Ok(Encoded { scene, heap, outputs, spec, rg_vars, ex_vars })
 }
 
@@ -415,7 +508,11 @@ fn words_to_bytes(w: &[u32]) -> &[u8] {
 /// Runs entry point `entry` on the GPU.
 pub(crate) fn launch(ctx: &mut Context, entry: u32, width: u32, height: u32) -> Result<LaunchReport> {
     if width == 0 || height == 0 {
-        return Err(RtError::BadLaunch { width, height, problem: "a launch needs at least one index in each dimension".into() });
+        return Err(RtError::BadLaunch {
+            width,
+            height,
+            problem: "a launch needs at least one index in each dimension".into(),
+        });
     }
     if ctx.gpu.is_none() {
         ctx.gpu = Some(Gpu::new()?);
@@ -456,18 +553,54 @@ pub(crate) fn launch(ctx: &mut Context, entry: u32, width: u32, height: u32) -> 
             label: Some("rt megakernel"),
             source: wgpu::ShaderSource::Wgsl(wgsl.clone().into()),
         });
+        // An explicit layout: a kernel that never reads a binding (no
+        // traces: no `rt_scene`) still takes all four.
+        let storage = |binding: u32, read_only: bool| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::COMPUTE,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Storage { read_only },
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+            count: None,
+        };
+        let layout = gpu.device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("rt bindings"),
+            entries: &[
+                storage(0, false),
+                storage(1, true),
+                storage(2, false),
+                wgpu::BindGroupLayoutEntry {
+                    binding: 3,
+                    visibility: wgpu::ShaderStages::COMPUTE,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Uniform,
+                        has_dynamic_offset: false,
+                        min_binding_size: None,
+                    },
+                    count: None,
+                },
+            ],
+        });
+        let pipeline_layout = gpu.device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("rt megakernel"),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
         let pipeline = gpu.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
             label: Some("rt megakernel"),
-            layout: None,
+            layout: Some(&pipeline_layout),
             module: &module,
             entry_point: Some("rt_main"),
             compilation_options: Default::default(),
             cache: None,
         });
         if let Some(e) = pollster::block_on(scope.pop()) {
-            return Err(RtError::Gpu(format!("the linked megakernel does not compile (set RT_DUMP_WGSL=1 to see it): {e}")));
+            return Err(RtError::Gpu(format!(
+                "the linked megakernel does not compile (set RT_DUMP_WGSL=1 to see it): {e}"
+            )));
         }
-        let layout = pipeline.get_bind_group_layout(0);
         gpu.pipelines.insert(wgsl.clone(), (pipeline, layout));
         gpu.pipelines_created += 1;
     }
@@ -527,7 +660,10 @@ pub(crate) fn launch(ctx: &mut Context, entry: u32, width: u32, height: u32) -> 
                 ],
             });
             {
-                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("rt launch"), timestamp_writes: None });
+                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                    label: Some("rt launch"),
+                    timestamp_writes: None,
+                });
                 pass.set_pipeline(pipeline);
                 pass.set_bind_group(0, &bind, &[]);
                 pass.dispatch_workgroups(gx, gy, 1);
@@ -553,7 +689,9 @@ pub(crate) fn launch(ctx: &mut Context, entry: u32, width: u32, height: u32) -> 
     let map = |b: &wgpu::Buffer| -> Result<Vec<u32>> {
         let slice = b.slice(..);
         slice.map_async(wgpu::MapMode::Read, |_| {});
-        device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| RtError::Gpu(format!("device lost during the launch: {e}")))?;
+        device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map_err(|e| RtError::Gpu(format!("device lost during the launch: {e}")))?;
         let bytes = slice.get_mapped_range().map_err(|e| RtError::Gpu(format!("reading results back: {e}")))?;
         let words = bytes.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
         drop(bytes);
@@ -623,7 +761,11 @@ fn format_print(fmt: &rt_std::program::PrintfFormat, words: &[u32]) -> String {
                 }
             })
             .collect();
-        values.push(if n == 1 && !ty.starts_with("vec") { comps[0].clone() } else { format!("[{}]", comps.join(", ")) });
+        values.push(if n == 1 && !ty.starts_with("vec") {
+            comps[0].clone()
+        } else {
+            format!("[{}]", comps.join(", "))
+        });
     }
     let mut out = String::new();
     let mut vals = values.into_iter();
