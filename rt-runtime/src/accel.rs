@@ -72,6 +72,12 @@ pub(crate) fn to_oaabb(min: Vec3, max: Vec3) -> OAabb {
     OAabb::new(min.into(), max.into())
 }
 
+/// One primitive per BVH2 leaf: the CPU backend converts the tree to
+/// obvhs's CWBVH, which needs that, and the GPU walks BVH2 leaves anyway.
+fn single(p: BvhBuildParams) -> BvhBuildParams {
+    BvhBuildParams { max_prims_per_leaf: 1, ..p }
+}
+
 /// Builds a BVH over `bounds`; `triangles`, when every primitive is a
 /// triangle, enables spatial splits for `Sbvh`.
 pub(crate) fn build(
@@ -98,7 +104,7 @@ pub(crate) fn build(
             bvh
         }
         Builder::Sbvh => match triangles {
-            Some(tris) => obvhs::bvh2::builder::build_bvh2_from_tris(tris, BvhBuildParams::slow_build(), &mut t),
+            Some(tris) => obvhs::bvh2::builder::build_bvh2_from_tris(tris, single(BvhBuildParams::slow_build()), &mut t),
             None => {
                 return Err(crate::RtError::UnsupportedBuilder {
                     builder: "Sbvh",
@@ -106,9 +112,9 @@ pub(crate) fn build(
                 });
             }
         },
-        Builder::Bvh => obvhs::bvh2::builder::build_bvh2(bounds, BvhBuildParams::medium_build(), &mut t),
-        Builder::MedianBvh => obvhs::bvh2::builder::build_bvh2(bounds, BvhBuildParams::fast_build(), &mut t),
-        Builder::Lbvh => obvhs::bvh2::builder::build_bvh2(bounds, BvhBuildParams::fastest_build(), &mut t),
+        Builder::Bvh => obvhs::bvh2::builder::build_bvh2(bounds, single(BvhBuildParams::medium_build()), &mut t),
+        Builder::MedianBvh => obvhs::bvh2::builder::build_bvh2(bounds, single(BvhBuildParams::fast_build()), &mut t),
+        Builder::Lbvh => obvhs::bvh2::builder::build_bvh2(bounds, single(BvhBuildParams::fastest_build()), &mut t),
     };
     Ok(Bvh { bvh })
 }
@@ -223,7 +229,14 @@ impl AccelCache {
 
 pub(crate) enum NodeAccel {
     /// A geometry group: a BVH over `(instance, primitive)` pairs.
-    Prims { bvh: Bvh, prims: Vec<(u32, u32)>, bounds: OAabb },
+    Prims {
+        bvh: Bvh,
+        /// The same tree converted to obvhs's 8-wide compressed BVH, which
+        /// the CPU backend traverses (None for `NoAccel`'s single leaf).
+        wide: Option<obvhs::cwbvh::CwBvh>,
+        prims: Vec<(u32, u32)>,
+        bounds: OAabb,
+    },
     /// A group: a BVH over its children's bounds.
     Children { bvh: Bvh, bounds: OAabb },
     /// Transforms and selectors: just bounds.
@@ -319,9 +332,10 @@ pub(crate) fn build_accels(ctx: &Context, cache: &mut AccelCache) -> Result<()> 
                 let (prims, bounds, all_tris) = prim_bounds(ctx, children)?;
                 let total = bounds.iter().fold(OAabb::empty(), |acc, b| acc.union(b));
                 match built[i].take() {
-                    Some(NodeAccel::Prims { mut bvh, prims: old, .. }) if refit && old == prims => {
+                    Some(NodeAccel::Prims { mut bvh, prims: old, wide, .. }) if refit && old == prims => {
                         bvh.refit(&bounds);
-                        NodeAccel::Prims { bvh, prims, bounds: total }
+                        let wide = wide.map(|_| widen(&bvh));
+                        NodeAccel::Prims { bvh, wide, prims, bounds: total }
                     }
                     _ => {
                         let tris: Option<Vec<obvhs::triangle::Triangle>> = all_tris.then(|| {
@@ -341,7 +355,8 @@ pub(crate) fn build_accels(ctx: &Context, cache: &mut AccelCache) -> Result<()> 
                                 .collect()
                         });
                         let bvh = build(a.builder, &bounds, tris.as_deref())?;
-                        NodeAccel::Prims { bvh, prims, bounds: total }
+                        let wide = (a.builder != Builder::NoAccel && !prims.is_empty()).then(|| widen(&bvh));
+                        NodeAccel::Prims { bvh, wide, prims, bounds: total }
                     }
                 }
             }
@@ -381,4 +396,10 @@ pub(crate) fn build_accels(ctx: &Context, cache: &mut AccelCache) -> Result<()> 
     cache.built_version = Some(cache.shape_version);
     cache.moved = false;
     Ok(())
+}
+
+/// obvhs's CWBVH of a built BVH2 (at most 3 primitives per leaf, children
+/// ordered for traversal).
+fn widen(bvh: &Bvh) -> obvhs::cwbvh::CwBvh {
+    obvhs::cwbvh::bvh2_to_cwbvh::bvh2_to_cwbvh(&bvh.bvh, 3, true, false)
 }

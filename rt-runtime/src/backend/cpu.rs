@@ -341,15 +341,29 @@ impl<'a> Lane<'a> {
                 }
             }
             NodeKind::GeometryGroup { .. } => {
-                let Some(Some(NodeAccel::Prims { bvh, prims, .. })) = self.l.accels.get(node.index() as usize) else {
+                let Some(Some(NodeAccel::Prims { bvh, wide, prims, .. })) = self.l.accels.get(node.index() as usize) else {
                     return;
                 };
                 let object_ray = Ray { origin, direction, ..world_ray };
-                bvh.traverse(origin, inv_dir, world_ray.tmin, &|| self.tmax(), &mut |p| {
-                    let (gi, prim) = prims[p as usize];
-                    self.intersect(gi, prim, object_ray, o2w, w2o, flags);
-                    !self.done()
-                });
+                match wide {
+                    // obvhs's 8-wide traversal; the callback runs the whole
+                    // hit protocol and returns the closest committed distance
+                    // (unchanged if nothing committed), or -inf to stop.
+                    Some(cw) => {
+                        let mut hit = obvhs::ray::RayHit::none();
+                        let ray = obvhs::ray::Ray::new(origin.into(), direction.into(), world_ray.tmin, self.tmax());
+                        cw.ray_traverse(ray, &mut hit, |_, slot| {
+                            let (gi, prim) = prims[cw.primitive_indices[slot] as usize];
+                            self.intersect(gi, prim, object_ray, o2w, w2o, flags);
+                            if self.done() { f32::NEG_INFINITY } else { self.tmax() }
+                        });
+                    }
+                    None => bvh.traverse(origin, inv_dir, world_ray.tmin, &|| self.tmax(), &mut |p| {
+                        let (gi, prim) = prims[p as usize];
+                        self.intersect(gi, prim, object_ray, o2w, w2o, flags);
+                        !self.done()
+                    }),
+                }
             }
         }
     }
