@@ -104,7 +104,7 @@ impl Default for MeshView {
         MeshView {
             view_direction: Vec3::new(0.45, -0.38, -1.0),
             vfov_degrees: 30.0,
-            key_direction: Vec3::new(0.6, 1.3, 0.85),
+            key_direction: Vec3::new(0.87, 1.2, 0.45),
         }
     }
 }

@@ -184,7 +184,12 @@ pub fn scene(settings: &Settings) -> Result<Scene, Error> {
     let quad = mesh::object_vertices(&text, "light");
     let file = path.display().to_string();
     let [p0, p1, _, p3] = quad[..] else {
-        return Err(MeshError { file, line: None, problem: format!("object `light` has {} vertices, not 4", quad.len()) }.into());
+        return Err(MeshError {
+            file,
+            line: None,
+            problem: format!("object `light` has {} vertices, not 4", quad.len()),
+        }
+        .into());
     };
     let emission = loaded.materials.iter().find(|m| m.emission.max_element() > 0.0).map(|m| m.emission);
     let Some(emission) = emission else {

@@ -119,7 +119,7 @@ pub fn scene(settings: &Settings) -> Result<Scene, Error> {
     // ... under many transforms.
     let mut children = transforms()
         .into_iter()
-        .map(|m| ctx.create_transform(m, teapot))
+        .map(|m| ctx.create_transform(m, teapot).map_err(Error::from))
         .collect::<Result<Vec<_>, _>>()?;
 
     let floor_material = ctx.create_material();
@@ -140,7 +140,11 @@ pub fn scene(settings: &Settings) -> Result<Scene, Error> {
     ctx.set_var(Scope::Context, "max_depth", reflections::MAX_DEPTH)?;
     ctx.set_var(Scope::Context, "importance_cutoff", 0.01f32)?;
     let half = 200.0;
-    let floor = ctx.create_triangles(quad(Vec3::new(-half, 0.0, -half), Vec3::new(0.0, 0.0, 2.0 * half), Vec3::new(2.0 * half, 0.0, 0.0)))?;
+    let floor = ctx.create_triangles(quad(
+        Vec3::new(-half, 0.0, -half),
+        Vec3::new(0.0, 0.0, 2.0 * half),
+        Vec3::new(2.0 * half, 0.0, 0.0),
+    ))?;
     let floor = ctx.create_geometry_instance(floor, &[floor_material])?;
     children.push(ctx.create_geometry_group(&[floor], Acceleration::new(Builder::Bvh))?);
 

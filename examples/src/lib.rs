@@ -36,10 +36,10 @@
 // Ray programs take their variables as parameters.
 #![allow(clippy::too_many_arguments)]
 
+pub mod bunny;
 pub mod common;
 pub mod convex_hull;
 pub mod cornell;
-pub mod bunny;
 pub mod diffuse;
 pub mod envmap;
 pub mod instances;
@@ -69,7 +69,12 @@ pub const EXAMPLES: [Example; 10] = [
     Example { name: "diffuse", summary: "ambient + Lambert", build: diffuse::scene, progressive: false },
     Example { name: "phong", summary: "Blinn-Phong", build: phong::scene, progressive: false },
     Example { name: "shadows", summary: "shadow rays, any-hit terminate", build: shadows::scene, progressive: false },
-    Example { name: "reflections", summary: "reflections by depth and importance", build: reflections::scene, progressive: false },
+    Example {
+        name: "reflections",
+        summary: "reflections by depth and importance",
+        build: reflections::scene,
+        progressive: false,
+    },
     Example { name: "envmap", summary: "lat/long environment map", build: envmap::scene, progressive: false },
     Example { name: "convex_hull", summary: "convex hull as glass", build: convex_hull::scene, progressive: false },
     Example { name: "cornell", summary: "path-traced Cornell box", build: cornell::scene, progressive: true },

@@ -93,7 +93,16 @@ pub fn parse_obj(text: &str, file: &str, dir: Option<&Path>) -> Result<LoadedMes
     let err = |line: Option<usize>, problem: String| MeshError { file: file.to_string(), line, problem };
     check_obj(text).map_err(|(line, problem)| err(Some(line), problem))?;
 
-    let options = tobj::LoadOptions { triangulate: true, single_index: true, ignore_points: true, ignore_lines: true, ..Default::default() };
+    // tobj's `merging` and `reordering` features add fields: keep the
+    // update, which is needless only while no crate turns them on.
+    #[allow(clippy::needless_update)]
+    let options = tobj::LoadOptions {
+        triangulate: true,
+        single_index: true,
+        ignore_points: true,
+        ignore_lines: true,
+        ..Default::default()
+    };
     let mut warnings = Vec::new();
     let mtl_problems = std::cell::RefCell::new(Vec::new());
     let (models, materials) = tobj::load_obj_buf(&mut text.as_bytes(), &options, |mtl| {
@@ -211,7 +220,12 @@ pub fn check_obj(text: &str) -> Result<(), (usize, String)> {
                             return Err((n, format!("vertex {seen_v} has weight w = {w}")));
                         }
                     }
-                    k => return Err((n, format!("a vertex has {k} numbers; expected 3 (x y z), 4 (with w) or 6 (with r g b)"))),
+                    k => {
+                        return Err((
+                            n,
+                            format!("a vertex has {k} numbers; expected 3 (x y z), 4 (with w) or 6 (with r g b)"),
+                        ));
+                    }
                 }
             }
             "vt" => {
@@ -364,4 +378,101 @@ pub fn object_vertices(text: &str, name: &str) -> Vec<Vec3> {
         }
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn load(text: &str) -> Result<LoadedMesh, MeshError> {
+        parse_obj(text, "test.obj", None)
+    }
+
+    #[test]
+    fn accepts_the_usual_index_forms_and_triangulates_polygons() {
+        let text = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 1.5 0 1\nvt 0 0\nvt 1 0\nvt 1 1\nvn 0 0 1\n\
+                    f 1/1/1 2/2/1 3/3/1\nf 1//1 3//1 4//1\nf -5 -4 -3 -2 -1\n";
+        let m = load(text).unwrap();
+        assert_eq!(m.mesh.indices.len(), 1 + 1 + 3);
+        assert_eq!((m.min, m.max), (Vec3::ZERO, Vec3::new(1.0, 1.5, 0.0)));
+        // No materials: every triangle is the default grey.
+        assert_eq!(m.materials.len(), 1);
+        assert_eq!(m.materials[0].diffuse, DEFAULT_GREY);
+        assert!(m.mesh.material_indices.as_ref().unwrap().iter().all(|&i| i == 0));
+        assert!(m.mesh.validate().is_ok());
+    }
+
+    #[test]
+    fn problems_name_their_line() {
+        let cases = [
+            ("v 0 0 0\nv 1 0\n", 2, "a vertex needs 3 numbers, found 2"),
+            ("v 0 0 0 0\n", 1, "vertex 1 has weight w = 0"),
+            ("v 0 0 0 1 1\n", 1, "a vertex has 5 numbers; expected 3 (x y z), 4 (with w) or 6 (with r g b)"),
+            ("vt 0 x\n", 1, "a texture coordinate has `x`, which is not a number"),
+            (
+                "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/2 2 3\n",
+                4,
+                "face texture coordinate index 2 is out of range: there are 0 texture coordinates",
+            ),
+            (
+                "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\nf 1/1/1/1 2 3\n",
+                6,
+                "face corner `1/1/1/1` has more than 3 indices",
+            ),
+        ];
+        for (text, line, problem) in cases {
+            let e = load(text).unwrap_err();
+            assert_eq!((e.line, e.problem.as_str()), (Some(line), problem), "{text:?}");
+            assert_eq!(e.to_string(), format!("test.obj:{line}: {problem}"));
+        }
+    }
+
+    #[test]
+    fn the_cornell_box_has_its_materials_and_a_commented_out_light() {
+        let path = crate::scene::shared_scene("cornell_box.obj");
+        let m = load_obj(&path).unwrap();
+        assert_eq!(m.mesh.indices.len(), 34, "17 quads");
+        let names: Vec<&str> = m.materials.iter().map(|m| m.name.as_str()).collect();
+        for name in ["white", "red", "green", "light"] {
+            assert!(names.contains(&name), "{names:?}");
+        }
+        let red = m.materials.iter().find(|m| m.name == "red").unwrap();
+        assert_eq!((red.diffuse, red.emission), (Vec3::X, Vec3::ZERO));
+        let light = m.materials.iter().find(|m| m.name == "light").unwrap();
+        assert_eq!(light.emission, Vec3::splat(20.0));
+        // The red wall's two triangles use the red material.
+        let red_index = m.materials.iter().position(|m| m.name == "red").unwrap() as u32;
+        assert_eq!(m.mesh.material_indices.as_ref().unwrap().iter().filter(|&&i| i == red_index).count(), 2);
+        let text = std::fs::read_to_string(&path).unwrap();
+        let quad = object_vertices(&text, "light");
+        assert_eq!(quad.len(), 4);
+        assert!(quad.iter().all(|p| p.y == 548.0));
+    }
+
+    #[test]
+    fn crease_normals_keep_a_cube_flat_and_smooth_a_gentle_fold() {
+        let cube = crate::scene::oriented_box(Vec3::ZERO, Vec3::ONE, 0.0);
+        let flat = with_crease_normals(cube.clone(), CREASE_DEGREES);
+        for (t, tri) in flat.indices.iter().enumerate() {
+            let [a, b, c] = tri.map(|i| flat.positions[i as usize]);
+            let face = (b - a).cross(c - a).normalize();
+            for &i in tri {
+                assert!((flat.normals.as_ref().unwrap()[i as usize] - face).length() < 1e-5, "triangle {t}");
+            }
+        }
+        // Two triangles folded by 20 degrees share the averaged normal at
+        // their common edge.
+        let s = 20f32.to_radians();
+        let fold = TriangleMesh {
+            positions: vec![Vec3::ZERO, Vec3::Z, Vec3::new(1.0, 0.0, 0.0), Vec3::new(-s.cos(), s.sin(), 0.0)],
+            indices: vec![[0, 1, 2], [0, 3, 1]],
+            ..TriangleMesh::default()
+        };
+        let smooth = with_crease_normals(fold, CREASE_DEGREES);
+        let n = smooth.normals.unwrap();
+        assert!((n[0] - n[3]).length() < 1e-5, "{} vs {}", n[0], n[3]);
+        let half = 10f32.to_radians();
+        assert!((n[0] - Vec3::new(half.sin(), half.cos(), 0.0)).length() < 1e-5, "{}", n[0]);
+        assert_eq!(smooth.positions.len(), 6);
+    }
 }

@@ -2,7 +2,7 @@
 //! [`Scene`] and how it renders into an in-memory [`Image`], the errors, and
 //! small meshes made in code.
 
-use glam::{Mat3, Vec3, Vec4};
+use glam::{Vec3, Vec4};
 use rt_runtime::{Backend, BufferId, BufferType, Context, ExceptionRecord, RtError, Scope, TriangleMesh};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -12,20 +12,38 @@ use std::time::Instant;
 pub enum BackendChoice {
     /// Programs run natively as Rust on every core.
     Cpu,
-    /// Programs linked into one WGSL megakernel (not available yet).
+    /// Programs linked into one WGSL megakernel on a wgpu adapter.
     Wgpu,
 }
 
 impl BackendChoice {
-    /// The runtime's backend for this choice, or why there is none.
-    pub fn backend(self) -> Result<Backend, Error> {
+    /// The runtime's backend for this choice.
+    pub fn backend(self) -> Backend {
         match self {
-            BackendChoice::Cpu => Ok(Backend::Cpu),
-            BackendChoice::Wgpu => Err(Error::BackendUnavailable {
-                name: "wgpu",
-                why: "rt-runtime has only the cpu backend today; run with `--backend cpu`",
-            }),
+            BackendChoice::Cpu => Backend::Cpu,
+            BackendChoice::Wgpu => Backend::Wgpu,
         }
+    }
+
+    /// The backend and a line saying what will run the launches (threads,
+    /// or the adapter), or why it cannot: the wgpu backend needs an adapter.
+    pub fn open(self) -> Result<(Backend, String), Error> {
+        let backend = self.backend();
+        let what = match backend {
+            Backend::Wgpu => {
+                let info = rt_runtime::backend::wgpu::probe().ok_or(Error::BackendUnavailable {
+                    name: "wgpu",
+                    why: "wgpu finds no adapter (no GPU, and no Vulkan driver such as Mesa's lavapipe); run with `--backend cpu`".into(),
+                })?;
+                format!("the wgpu backend on {} ({:?})", info.name, info.device_type)
+            }
+            _ => format!(
+                "the {} backend ({} threads)",
+                backend.name(),
+                std::thread::available_parallelism().map_or(1, |n| n.get())
+            ),
+        };
+        Ok((backend, what))
     }
 }
 
@@ -45,9 +63,9 @@ impl Settings {
     /// Default image size of the binaries.
     pub const DEFAULT_WIDTH: u32 = 512;
     pub const DEFAULT_HEIGHT: u32 = 384;
-    /// Default samples per pixel: keeps the whole tour near 35 s in release
-    /// on a 2-core machine (see BENCHMARKS.md).
-    pub const DEFAULT_SPP: u32 = 32;
+    /// Default samples per pixel: the whole tour takes about 29 s in
+    /// release on the 2-core CI VM (BENCHMARKS.md).
+    pub const DEFAULT_SPP: u32 = 64;
 
     pub fn new(width: u32, height: u32) -> Self {
         Settings { width, height, spp: Self::DEFAULT_SPP, backend: Backend::Cpu }
@@ -82,16 +100,23 @@ impl Default for Settings {
 /// Everything that can go wrong building or rendering an example.
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
+    /// Boxed: the runtime's errors are large, and every builder returns this.
     #[error(transparent)]
-    Runtime(#[from] RtError),
+    Runtime(Box<RtError>),
     #[error(transparent)]
     Mesh(#[from] crate::mesh::MeshError),
-    #[error("the {name} backend is not available yet: {why}")]
-    BackendUnavailable { name: &'static str, why: &'static str },
+    #[error("the {name} backend is not available: {why}")]
+    BackendUnavailable { name: &'static str, why: String },
     #[error("{0}")]
     Settings(String),
     #[error("{path}: {problem}")]
     Io { path: String, problem: String },
+}
+
+impl From<RtError> for Error {
+    fn from(e: RtError) -> Error {
+        Error::Runtime(Box::new(e))
+    }
 }
 
 /// A pinhole camera: where it is, what it looks at, which way is up, and
@@ -116,12 +141,6 @@ impl Camera {
         (right * half * aspect, up * half, w)
     }
 
-    /// The same basis as columns of a matrix (`u`, `v`, `w`).
-    pub fn basis(&self, aspect: f32) -> Mat3 {
-        let (u, v, w) = self.uvw(aspect);
-        Mat3::from_cols(u, v, w)
-    }
-
     /// Where point `p` appears: `d` in `[-1, 1]^2` as the camera programs
     /// use it (`(-1, -1)` the bottom-left corner), or `None` behind the
     /// camera.
@@ -138,7 +157,7 @@ impl Camera {
         let d = self.to_screen(p, width as f32 / height as f32)?;
         let px = (d + 1.0) * 0.5 * glam::Vec2::new(width as f32, height as f32);
         let inside = px.x >= 0.0 && px.y >= 0.0 && px.x < width as f32 && px.y < height as f32;
-        inside.then(|| (px.x as u32, px.y as u32))
+        inside.then_some((px.x as u32, px.y as u32))
     }
 
     /// The direction of the ray through the centre of pixel `(x, y)`.
@@ -149,12 +168,13 @@ impl Camera {
     }
 
     /// Sets `eye`, `u`, `v` and `w` on the context.
-    pub fn set_vars(&self, ctx: &mut Context, aspect: f32) -> Result<(), RtError> {
+    pub fn set_vars(&self, ctx: &mut Context, aspect: f32) -> Result<(), Error> {
         let (u, v, w) = self.uvw(aspect);
         ctx.set_var(Scope::Context, "eye", self.eye)?;
         ctx.set_var(Scope::Context, "u", u)?;
         ctx.set_var(Scope::Context, "v", v)?;
-        ctx.set_var(Scope::Context, "w", w)
+        ctx.set_var(Scope::Context, "w", w)?;
+        Ok(())
     }
 
     /// A camera looking along `direction` at the bounding box `[min, max]`,

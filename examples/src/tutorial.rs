@@ -6,9 +6,7 @@
 use crate::common::*;
 use crate::scene::{Camera, Error, Scene, Settings, oriented_box, quad};
 use glam::Vec3;
-use rt_runtime::{
-    Acceleration, BufferId, BufferType, Builder, Context, GeometryInstanceId, MaterialId, NodeId, Scope,
-};
+use rt_runtime::{Acceleration, BufferId, BufferType, Builder, Context, GeometryInstanceId, MaterialId, NodeId, Scope};
 use rt_std::prelude::*;
 
 /// An exact sphere `sphere.xyz`, radius `sphere.w`: reports the nearer root
@@ -83,7 +81,10 @@ pub struct Materials {
 
 impl Materials {
     /// Three new materials with closest hit `closest_hit` for radiance rays.
-    pub fn with_closest_hit(ctx: &mut Context, closest_hit: &'static rt_std::program::ProgramDescriptor) -> Result<Materials, Error> {
+    pub fn with_closest_hit(
+        ctx: &mut Context,
+        closest_hit: &'static rt_std::program::ProgramDescriptor,
+    ) -> Result<Materials, Error> {
         let program = ctx.create_program(closest_hit);
         let mut one = || -> Result<MaterialId, Error> {
             let m = ctx.create_material();

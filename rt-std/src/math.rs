@@ -30,6 +30,11 @@ pub fn refract(i: Vec3, n: Vec3, eta: f32) -> Vec3 {
 
 /// `n` turned to face against `i`: `n` if `dot(nref, i) < 0`, else `-n`.
 ///
+/// This is GLSL's and WGSL's `faceForward`. OptiX's CUDA helper of the same
+/// name has the opposite sign convention (its samples pass `-ray.direction`);
+/// here pass the incident direction itself:
+/// `faceforward(n, ray.direction, geometric_normal)`.
+///
 /// Program kinds: all.
 pub fn faceforward(n: Vec3, i: Vec3, nref: Vec3) -> Vec3 {
     if nref.dot(i) < 0.0 { n } else { -n }

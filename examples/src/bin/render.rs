@@ -4,9 +4,10 @@
 //!
 //!     cargo run --release -p examples --bin render -- MESH.obj --out OUT.png
 //!
-//! Exit status: 0 with the PNG written; 2 for bad input (the mesh, or an
-//! unavailable backend), with one line naming the file, the line when known
-//! and the problem, and no PNG; 1 if rendering or writing failed.
+//! Exit status: 0 with the PNG written; 2 for bad input (the mesh: one line
+//! naming the file, the line when known and the problem; or arguments, such
+//! as a backend with no adapter), and no PNG; 1 if rendering or writing
+//! failed.
 
 use clap::Parser;
 use examples::bunny::{self, MeshView};
@@ -51,7 +52,7 @@ fn main() -> ExitCode {
 }
 
 fn run(args: &Args) -> Result<(), Error> {
-    let backend = args.backend.backend()?;
+    let (backend, what) = args.backend.open()?;
     let settings = Settings { width: args.width, height: args.height, spp: args.spp, backend };
     let loaded = mesh::load_obj(&args.mesh)?;
     for warning in &loaded.warnings {
@@ -68,13 +69,12 @@ fn run(args: &Args) -> Result<(), Error> {
     bar.finish_and_clear();
     rendered.image.save_png(&args.out)?;
     println!(
-        "{}: {} triangles, {}x{}, {} spp on the {} backend: {:.2} s, {:.2} Mrays/s",
+        "{}: {} triangles, {}x{}, {} spp with {what}: {:.2} s, {:.2} Mrays/s",
         args.out.display(),
         loaded.mesh.indices.len(),
         settings.width,
         settings.height,
         settings.spp,
-        backend.name(),
         rendered.seconds,
         rendered.mrays_per_second()
     );

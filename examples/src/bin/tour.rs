@@ -21,7 +21,8 @@ struct Args {
     width: u32,
     #[arg(long, default_value_t = Settings::DEFAULT_HEIGHT)]
     height: u32,
-    /// Which backend renders.
+    /// Which backend renders: `wgpu` needs an adapter (a GPU, or Mesa's
+    /// lavapipe, where the first build of each megakernel takes minutes).
     #[arg(long, value_enum, default_value_t = BackendChoice::Cpu)]
     backend: BackendChoice,
     /// Samples per pixel of the progressive examples (cornell, bunny).
@@ -44,7 +45,7 @@ fn main() -> ExitCode {
 }
 
 fn run(args: &Args) -> Result<(), String> {
-    let backend = args.backend.backend().map_err(|e| e.to_string())?;
+    let (backend, what) = args.backend.open().map_err(|e| e.to_string())?;
     if let Some(unknown) = args.only.iter().find(|n| examples::example(n).is_none()) {
         let names: Vec<&str> = EXAMPLES.iter().map(|e| e.name).collect();
         return Err(format!("no example is called `{unknown}`; the examples are {}", names.join(", ")));
@@ -52,12 +53,8 @@ fn run(args: &Args) -> Result<(), String> {
     let settings = Settings { width: args.width, height: args.height, spp: args.spp, backend };
     std::fs::create_dir_all(&args.out).map_err(|e| format!("{}: {e}", args.out.display()))?;
     eprintln!(
-        "tour: rendering {}x{} on the {} backend ({} threads), {} spp for progressive examples",
-        settings.width,
-        settings.height,
-        backend.name(),
-        std::thread::available_parallelism().map_or(1, |n| n.get()),
-        settings.spp
+        "tour: rendering {}x{} with {what}, {} spp for progressive examples",
+        settings.width, settings.height, settings.spp
     );
     let start = Instant::now();
     let (mut total_rays, mut total_seconds) = (0u64, 0.0f64);

@@ -14,7 +14,7 @@ pub fn diffuse(
     let ray = current_ray();
     let world_shading_normal = rt_transform_normal(ObjectToWorld, attr.shading_normal).normalize();
     let world_geometric_normal = rt_transform_normal(ObjectToWorld, attr.geometric_normal).normalize();
-    let ffnormal = faceforward(world_shading_normal, -ray.direction, world_geometric_normal);
+    let ffnormal = faceforward(world_shading_normal, ray.direction, world_geometric_normal);
     let mut color = ka * ambient_light_color;
     let hit_point = ray.origin + t_hit() * ray.direction;
     for i in 0..lights.len() {

@@ -18,7 +18,7 @@ pub fn phong(
     let ray = current_ray();
     let n = rt_transform_normal(ObjectToWorld, attr.shading_normal).normalize();
     let g = rt_transform_normal(ObjectToWorld, attr.geometric_normal).normalize();
-    let ffnormal = faceforward(n, -ray.direction, g);
+    let ffnormal = faceforward(n, ray.direction, g);
     let hit_point = ray.origin + t_hit() * ray.direction;
     let mut color = ka * ambient_light_color;
     for i in 0..lights.len() {

@@ -44,7 +44,7 @@ fn rtp_diffuse(prd: ptr<function, Radiance>, attr: Normals, ka: vec3<f32>, kd: v
     let ray: RtRay = rt_current_ray();
     let world_shading_normal: vec3<f32> = normalize(rt_transform_normal(0u, attr.shading_normal));
     let world_geometric_normal: vec3<f32> = normalize(rt_transform_normal(0u, attr.geometric_normal));
-    let ffnormal: vec3<f32> = faceForward(world_shading_normal, -ray.direction, world_geometric_normal);
+    let ffnormal: vec3<f32> = faceForward(world_shading_normal, ray.direction, world_geometric_normal);
     var color: vec3<f32> = (ka * ambient_light_color);
     let hit_point: vec3<f32> = (ray.origin + (rt_t_hit() * ray.direction));
     let end = lights.len;

@@ -51,7 +51,7 @@ fn rtp_phong(prd: ptr<function, Radiance>, attr: Normals, ka: vec3<f32>, kd: vec
     let ray: RtRay = rt_current_ray();
     let n: vec3<f32> = normalize(rt_transform_normal(0u, attr.shading_normal));
     let g: vec3<f32> = normalize(rt_transform_normal(0u, attr.geometric_normal));
-    let ffnormal: vec3<f32> = faceForward(n, -ray.direction, g);
+    let ffnormal: vec3<f32> = faceForward(n, ray.direction, g);
     let hit_point: vec3<f32> = (ray.origin + (rt_t_hit() * ray.direction));
     var color: vec3<f32> = (ka * ambient_light_color);
     let end = lights.len;
