@@ -25,6 +25,22 @@ impl BackendChoice {
         }
     }
 
+    /// `choice`, or when there is none the runtime's default
+    /// ([`Backend::choose`]: a GPU if wgpu finds one, else the CPU backend),
+    /// with a line saying what runs the launches and why.
+    pub fn open_or_choose(choice: Option<BackendChoice>) -> Result<(Backend, String), Error> {
+        if let Some(c) = choice {
+            return c.open();
+        }
+        let (backend, why) = Backend::choose()?;
+        let c = match backend {
+            Backend::Wgpu => BackendChoice::Wgpu,
+            _ => BackendChoice::Cpu,
+        };
+        let (backend, what) = c.open()?;
+        Ok((backend, format!("{what}, chosen because: {why}")))
+    }
+
     /// The backend and a line saying what will run the launches (threads,
     /// or the adapter), or why it cannot: the wgpu backend needs an adapter.
     pub fn open(self) -> Result<(Backend, String), Error> {

@@ -29,9 +29,9 @@ struct Args {
     width: u32,
     #[arg(long, default_value_t = Settings::DEFAULT_HEIGHT)]
     height: u32,
-    /// Which backend renders.
-    #[arg(long, value_enum, default_value_t = BackendChoice::Cpu)]
-    backend: BackendChoice,
+    /// Which backend renders (default: a GPU if there is one, else the CPU).
+    #[arg(long, value_enum)]
+    backend: Option<BackendChoice>,
     /// Samples per pixel (one launch each).
     #[arg(long, default_value_t = Settings::DEFAULT_SPP)]
     spp: u32,
@@ -52,7 +52,7 @@ fn main() -> ExitCode {
 }
 
 fn run(args: &Args) -> Result<(), Error> {
-    let (backend, what) = args.backend.open()?;
+    let (backend, what) = BackendChoice::open_or_choose(args.backend)?;
     let settings = Settings { width: args.width, height: args.height, spp: args.spp, backend };
     let loaded = mesh::load_obj(&args.mesh)?;
     for warning in &loaded.warnings {

@@ -21,10 +21,11 @@ struct Args {
     width: u32,
     #[arg(long, default_value_t = Settings::DEFAULT_HEIGHT)]
     height: u32,
-    /// Which backend renders: `wgpu` needs an adapter (a GPU, or Mesa's
-    /// lavapipe, where the first build of each megakernel takes minutes).
-    #[arg(long, value_enum, default_value_t = BackendChoice::Cpu)]
-    backend: BackendChoice,
+    /// Which backend renders. Without it: a GPU through wgpu when there is
+    /// one, else the CPU backend (faster than Mesa's lavapipe; see
+    /// BENCHMARKS.md); `RT_BACKEND=cpu|wgpu` also chooses.
+    #[arg(long, value_enum)]
+    backend: Option<BackendChoice>,
     /// Samples per pixel of the progressive examples (cornell, bunny).
     #[arg(long, default_value_t = Settings::DEFAULT_SPP)]
     spp: u32,
@@ -45,7 +46,7 @@ fn main() -> ExitCode {
 }
 
 fn run(args: &Args) -> Result<(), String> {
-    let (backend, what) = args.backend.open().map_err(|e| e.to_string())?;
+    let (backend, what) = BackendChoice::open_or_choose(args.backend).map_err(|e| e.to_string())?;
     if let Some(unknown) = args.only.iter().find(|n| examples::example(n).is_none()) {
         let names: Vec<&str> = EXAMPLES.iter().map(|e| e.name).collect();
         return Err(format!("no example is called `{unknown}`; the examples are {}", names.join(", ")));
