@@ -135,6 +135,11 @@ impl Context {
         Ok(self.gpu.as_ref().map(|g| g.describe()).unwrap_or_default())
     }
 
+    /// How many full acceleration builds and refits launches have done.
+    pub fn acceleration_builds(&self) -> (u64, u64) {
+        (self.accels.builds, self.accels.refits)
+    }
+
     /// How many wgpu pipelines (megakernel links) this context created.
     pub fn pipelines_created(&self) -> u64 {
         self.gpu.as_ref().map_or(0, |g| g.pipelines_created)

@@ -518,8 +518,10 @@ fn moving_geometry_refits_instead_of_rebuilding(backend: Backend) {
     ctx.launch(0, W, W).unwrap();
     assert_eq!(pixel(&ctx.read_buffer::<Vec4>(out).unwrap(), 0, 0).truncate(), BG);
     // Grow the quad to cover the corner pixel: a refit must see it.
+    assert_eq!(ctx.acceleration_builds(), (1, 0));
     ctx.set_triangle_positions(geom, quad(0.0, 2.0).positions).unwrap();
     ctx.launch(0, W, W).unwrap();
+    assert_eq!(ctx.acceleration_builds(), (1, 1), "moved geometry is refit, not rebuilt");
     assert_eq!(pixel(&ctx.read_buffer::<Vec4>(out).unwrap(), 0, 0).truncate(), Vec3::ONE);
 }
 
@@ -1076,4 +1078,24 @@ fn changing_values_never_relinks_but_changing_programs_does() {
     ctx.launch(0, W, W).unwrap();
     assert_eq!(ctx.pipelines_created(), 2);
     assert!(ctx.linked_wgsl().unwrap().contains("fn rtp_normal_shader_d1("));
+}
+
+#[test]
+fn a_scene_over_the_adapters_binding_limit_is_a_clear_error() {
+    // A device whose storage bindings hold at most 1 MiB.
+    let instance = ::wgpu::Instance::new(::wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+    let adapter = pollster::block_on(instance.request_adapter(&Default::default())).expect("an adapter (lavapipe)");
+    let limits = ::wgpu::Limits { max_storage_buffer_binding_size: 1 << 20, ..::wgpu::Limits::downlevel_defaults() };
+    let (device, queue) = pollster::block_on(adapter.request_device(&::wgpu::DeviceDescriptor {
+        required_limits: limits,
+        ..Default::default()
+    }))
+    .unwrap();
+    let (mut ctx, _) = camera(2.0, Backend::Wgpu);
+    ctx.use_wgpu_device(device, queue, adapter.get_info());
+    sphere_scene(&mut ctx, &reads_past_the_end::PROGRAM, Vec3::ZERO, 1.0);
+    let table = ctx.create_buffer(BufferType::Input, vec![0.5f32; 1 << 19]);
+    ctx.set_var(Scope::Context, "table", table).unwrap();
+    let err = ctx.launch(0, W, W).unwrap_err().to_string();
+    assert!(err.contains("the heap (variables, buffers, textures) needs 2 MiB") && err.contains("binds at most 1 MiB"), "{err}");
 }
