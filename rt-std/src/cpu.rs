@@ -225,6 +225,18 @@ pub fn context_mut<R>(f: impl FnOnce(&mut ExecutionContext) -> R) -> R {
     })
 }
 
+/// Reads this thread's execution context without copying it (the
+/// intrinsics' fast path).
+pub(crate) fn read<R>(f: impl FnOnce(&ExecutionContext) -> R) -> R {
+    // SAFETY: as in `context_mut`; `f` only reads fields.
+    CONTEXT.with(|cell| f(unsafe { &*cell.as_ptr() }))
+}
+
+/// The exception raised in the current program call, if any.
+pub fn pending_exception() -> Option<u32> {
+    read(|c| c.pending_exception)
+}
+
 /// Records `code` as the current invocation's pending exception unless one is
 /// pending ([`ExecutionContext::raise`]).
 pub fn raise(code: u32) {

@@ -45,7 +45,7 @@ pub const EXCEPTION_USER: u32 = 0x400;
 /// Program kinds: ray_generation, exception, closest_hit, any_hit, miss, intersection, visit.
 #[doc(alias = "rtLaunchIndex")]
 pub fn launch_index() -> UVec2 {
-    context().launch_index
+    crate::cpu::read(|c| c.launch_index)
 }
 
 /// The size of the launch.
@@ -53,7 +53,7 @@ pub fn launch_index() -> UVec2 {
 /// Program kinds: ray_generation, exception, closest_hit, any_hit, miss, intersection, visit.
 #[doc(alias = "rtLaunchDim")]
 pub fn launch_dim() -> UVec2 {
-    context().launch_dim
+    crate::cpu::read(|c| c.launch_dim)
 }
 
 /// The ray being traced, as passed to `rt_trace` but with `tmax` the
@@ -65,7 +65,7 @@ pub fn launch_dim() -> UVec2 {
 /// Program kinds: closest_hit, any_hit, miss, intersection, visit.
 #[doc(alias = "rtCurrentRay")]
 pub fn current_ray() -> Ray {
-    context().current_ray
+    crate::cpu::read(|c| c.current_ray)
 }
 
 /// The distance along the current ray of the intersection being considered
@@ -74,7 +74,7 @@ pub fn current_ray() -> Ray {
 /// Program kinds: closest_hit, any_hit.
 #[doc(alias = "rtIntersectionDistance")]
 pub fn t_hit() -> f32 {
-    context().t_hit
+    crate::cpu::read(|c| c.t_hit)
 }
 
 /// The index, within its geometry, of the primitive being intersected or
@@ -83,7 +83,7 @@ pub fn t_hit() -> f32 {
 /// Program kinds: closest_hit, any_hit, intersection.
 #[doc(alias = "rtPrimitiveIndex")]
 pub fn primitive_index() -> u32 {
-    context().primitive_index
+    crate::cpu::read(|c| c.primitive_index)
 }
 
 /// The code of the exception being handled: one of the `EXCEPTION_*`
@@ -92,7 +92,7 @@ pub fn primitive_index() -> u32 {
 /// Program kinds: exception.
 #[doc(alias = "rtGetExceptionCode")]
 pub fn exception_code() -> u32 {
-    context().exception_code
+    crate::cpu::read(|c| c.exception_code)
 }
 
 /// Traces `ray` against `object` with payload `prd`: runs the intersection,

@@ -499,7 +499,7 @@ impl<'a> Lane<'a> {
 
 impl Tracer for Lane<'_> {
     fn trace(&self, object: Object, ray: Ray, payload: &mut dyn Any, flags: u32, mask: u32) {
-        if self.exception.get().is_some() || rt_std::cpu::context().pending_exception.is_some() {
+        if self.exception.get().is_some() || rt_std::cpu::pending_exception().is_some() {
             return;
         }
         let depth = self.depth.get();
