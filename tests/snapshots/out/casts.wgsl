@@ -25,6 +25,14 @@ fn rt_bufstore_u32(b: RtBuffer, i: u32, v: u32) {
     }
 }
 
+fn rt_f2i(x: f32) -> i32 {
+    return select(i32(x), i32(2147483647i), x >= f32(2147483648.0));
+}
+
+fn rt_f2u(x: f32) -> u32 {
+    return select(u32(x), u32(4294967295u), x >= f32(4294967296.0));
+}
+
 fn rt_load_bool(w: u32) -> bool {
     return rt_heap[w] != 0u;
 }
@@ -55,9 +63,9 @@ fn rt_store_u32(w: u32, v: u32) {
 
 fn rtp_casts(f: f32, i: i32, u: u32, flag: bool, table: RtBuffer, out_f: RtBuffer, out_i: RtBuffer, out_u: RtBuffer) {
     let slot: u32 = rt_launch_index().x;
-    let from_f_i: i32 = i32(f);
-    let from_f_u: u32 = u32(f);
-    let from_f_z: u32 = u32(f);
+    let from_f_i: i32 = rt_f2i(f);
+    let from_f_u: u32 = rt_f2u(f);
+    let from_f_z: u32 = rt_f2u(f);
     let from_i_f: f32 = f32(i);
     let from_i_u: u32 = u32(i);
     let from_i_z: u32 = u32(i);
@@ -74,6 +82,6 @@ fn rtp_casts(f: f32, i: i32, u: u32, flag: bool, table: RtBuffer, out_f: RtBuffe
     let picked: f32 = ((weights[(u % 4u)] + weights[from_b_z]) + weights[(from_u_z % 4u)]);
     let sum: f32 = (((((from_i_f + from_u_f) + from_z_f) + picked) + rt_bufload_f32(table, from_z_u)) + f32((slot / 2u)));
     rt_bufstore_f32(out_f, slot, sum);
-    rt_bufstore_i32(out_i, slot, (((((from_f_i + from_u_i) + from_z_i) + from_b_i) + i32((sum * 0.5f))) + i32((u >> 1u))));
-    rt_bufstore_u32(out_u, slot, ((((from_f_u + from_i_u) + from_b_u) + (from_i_z + from_f_z)) + u32((-f))));
+    rt_bufstore_i32(out_i, slot, (((((from_f_i + from_u_i) + from_z_i) + from_b_i) + rt_f2i((sum * 0.5f))) + i32((u >> 1u))));
+    rt_bufstore_u32(out_u, slot, ((((from_f_u + from_i_u) + from_b_u) + (from_i_z + from_f_z)) + rt_f2u((-f))));
 }

@@ -18,6 +18,10 @@ fn rt_bufstore2_vec4f(b: RtBuffer, i: vec2<u32>, v: vec4<f32>) {
     }
 }
 
+fn rt_f2u(x: f32) -> u32 {
+    return select(u32(x), u32(4294967295u), x >= f32(4294967296.0));
+}
+
 fn rt_load_f32(w: u32) -> f32 {
     return bitcast<f32>(rt_heap[w]);
 }
@@ -82,10 +86,10 @@ fn rtp_helpers_refs(frame: u32, samples: u32, out: RtBuffer) {
     let half: Accum = rtf_scaled(acc, 0.5f);
     let tmp = (rtf_rand(&seed) * 8.0f);
     let jitter: f32 = (tmp - trunc(tmp));
-    let tmp_1 = u32((rtf_rand(&seed) * 4.0f));
+    let tmp_1 = rt_f2u((rtf_rand(&seed) * 4.0f));
     let tmp_2 = vec3<f32>(rtf_rand(&seed));
     let swapped: Accum = Accum(tmp_2, tmp_1);
-    let scrutinee = u32((rtf_rand(&seed) * 3.0f));
+    let scrutinee = rt_f2u((rtf_rand(&seed) * 3.0f));
     var tmp_3: f32;
     switch scrutinee {
         case 0u: {

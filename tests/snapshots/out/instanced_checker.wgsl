@@ -18,6 +18,10 @@ fn rt_bufload_vec3f(b: RtBuffer, i: u32) -> vec3<f32> {
     return vec3<f32>();
 }
 
+fn rt_f2i3(x: vec3<f32>) -> vec3<i32> {
+    return select(vec3<i32>(x), vec3<i32>(2147483647i), x >= vec3<f32>(2147483648.0));
+}
+
 fn rt_load_f32(w: u32) -> f32 {
     return bitcast<f32>(rt_heap[w]);
 }
@@ -32,7 +36,7 @@ fn rtp_instanced_checker(prd: ptr<function, Radiance>, attr: Normals, check_size
     let object_hit: vec3<f32> = rt_transform_point(1u, world_hit);
     let object_dir: vec3<f32> = rt_transform_vector(1u, ray.direction);
     let back_to_world: vec3<f32> = rt_transform_point(0u, object_hit);
-    let cell: vec3<i32> = vec3<i32>(floor((object_hit / check_size)));
+    let cell: vec3<i32> = rt_f2i3(floor((object_hit / check_size)));
     let parity: u32 = u32((((cell.x + cell.y) + cell.z) & 1i));
     let n: vec3<f32> = normalize(rt_transform_normal(0u, attr.shading_normal));
     let facing: f32 = -dot(normalize(object_dir), normalize(attr.shading_normal));

@@ -17,6 +17,10 @@ struct RampStop {
     color: vec3<f32>,
 }
 
+fn rt_f2u(x: f32) -> u32 {
+    return select(u32(x), u32(4294967295u), x >= f32(4294967296.0));
+}
+
 fn rt_load_Ramp(w: u32) -> Ramp {
     return Ramp(rt_load_arr3_RampStop(w + 0u), rt_load_arr4_f32(w + 12u), rt_load_u32(w + 16u));
 }
@@ -70,7 +74,7 @@ fn rtp_structs_arrays(prd: ptr<function, RampSample>, ramp: Ramp) {
         weights[i_1] = (ramp.weights[i_1] * f32(squares[i_1]));
         total += weights[i_1];
     }
-    let bucket: u32 = min(u32((t * 4.0f)), 3u);
+    let bucket: u32 = min(rt_f2u((t * 4.0f)), 3u);
     (*prd).hits[bucket] += 1u;
     (*prd).color = (color * total);
     let first: RampStop = RampStop(0.0f, vec3<f32>());

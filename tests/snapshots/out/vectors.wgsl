@@ -6,6 +6,69 @@ struct Radiance {
     depth: i32,
 }
 
+fn rt_fmod(x: f32, y: f32) -> f32 {
+    let ux = bitcast<u32>(x);
+    let uy = bitcast<u32>(y);
+    var ex = i32((ux >> 23u) & 0xffu);
+    var ey = i32((uy >> 23u) & 0xffu);
+    let sx = ux & 0x80000000u;
+    if (uy << 1u) == 0u || ex == 0xff || (uy & 0x7fffffffu) > 0x7f800000u {
+        return x % y;
+    }
+    if (ux << 1u) <= (uy << 1u) {
+        if (ux << 1u) == (uy << 1u) {
+            return bitcast<f32>(sx);
+        }
+        return x;
+    }
+    var mx = (ux & 0x007fffffu) | 0x00800000u;
+    if ex == 0 {
+        var i = ux << 9u;
+        while (i >> 31u) == 0u {
+            ex -= 1;
+            i <<= 1u;
+        }
+        mx = ux << u32(1 - ex);
+    }
+    var my = (uy & 0x007fffffu) | 0x00800000u;
+    if ey == 0 {
+        var i = uy << 9u;
+        while (i >> 31u) == 0u {
+            ey -= 1;
+            i <<= 1u;
+        }
+        my = uy << u32(1 - ey);
+    }
+    loop {
+        let i = mx - my;
+        if (i >> 31u) == 0u {
+            if i == 0u {
+                return bitcast<f32>(sx);
+            }
+            mx = i;
+        }
+        if ex <= ey {
+            break;
+        }
+        mx <<= 1u;
+        ex -= 1;
+    }
+    while (mx >> 23u) == 0u {
+        mx <<= 1u;
+        ex -= 1;
+    }
+    if ex > 0 {
+        mx = (mx - 0x00800000u) | (u32(ex) << 23u);
+    } else {
+        mx >>= u32(1 - ex);
+    }
+    return bitcast<f32>(mx | sx);
+}
+
+fn rt_fmod3(x: vec3<f32>, y: vec3<f32>) -> vec3<f32> {
+    return vec3<f32>(rt_fmod(x.x, y.x), rt_fmod(x.y, y.y), rt_fmod(x.z, y.z));
+}
+
 fn rt_load_f32(w: u32) -> f32 {
     return bitcast<f32>(rt_heap[w]);
 }
@@ -32,7 +95,7 @@ fn rtp_vectors(prd: ptr<function, Radiance>, a: vec3<f32>, b: vec3<f32>, t: f32)
     let uv: vec2<f32> = ((d.xy + d.zx) + vec2<f32>(t, t).yx);
     let wide: vec4<f32> = ((d.xyzx + d.zzzz) + vec4<f32>(0.0f, 1.0f, 2.0f, 3.0f).wzyx);
     let reduced: f32 = (((((a.x + a.y + a.z) + (a.x * a.y * a.z)) + min(min(a.x, a.y), a.z)) + max(max(b.x, b.y), b.z)) + max(max(max(wide.x, wide.y), wide.z), wide.w));
-    var c: vec3<f32> = (((((2.0f * per) + (blend / 3.0f)) - (curve * 0.5f)) + (waves % 4.0f)) - -rounded);
+    var c: vec3<f32> = (((((2.0f * per) + (blend / 3.0f)) - (curve * 0.5f)) + rt_fmod3(waves, vec3<f32>(4.0f))) - -rounded);
     c.x = (c[1u] + c.y);
     c[2u] = (uv.x + uv[1u]);
     c += mirrored;

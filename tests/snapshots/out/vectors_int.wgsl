@@ -13,6 +13,18 @@ fn rt_bufstore2_vec4f(b: RtBuffer, i: vec2<u32>, v: vec4<f32>) {
     }
 }
 
+fn rt_f2i2(x: vec2<f32>) -> vec2<i32> {
+    return select(vec2<i32>(x), vec2<i32>(2147483647i), x >= vec2<f32>(2147483648.0));
+}
+
+fn rt_f2u2(x: vec2<f32>) -> vec2<u32> {
+    return select(vec2<u32>(x), vec2<u32>(4294967295u), x >= vec2<f32>(4294967296.0));
+}
+
+fn rt_f2u3(x: vec3<f32>) -> vec3<u32> {
+    return select(vec3<u32>(x), vec3<u32>(4294967295u), x >= vec3<f32>(4294967296.0));
+}
+
 fn rt_load_f32(w: u32) -> f32 {
     return bitcast<f32>(rt_heap[w]);
 }
@@ -63,7 +75,7 @@ fn rtp_vectors_int(tile: vec2<u32>, offset: vec2<i32>, out: RtBuffer) {
     let bits: u32 = (((((mixed.x * mixed.y) + max(mixed.x, mixed.y)) + (vec3<u32>(1u, 2u, 3u).x + vec3<u32>(1u, 2u, 3u).y + vec3<u32>(1u, 2u, 3u).z)) + vec2<u32>(1u, 0u).x) + vec2<u32>(0u, 1u).y);
     let volume: vec3<i32> = (((vec3<i32>(1i, 2i, 3i) * 2i) + 1i) - vec3<i32>(0i, 0i, 1i));
     let uv: vec2<f32> = ((vec2<f32>(idx) + 0.5f) / vec2<f32>(dim));
-    var back: vec2<u32> = ((vec2<u32>(uv) + vec2<u32>(vec2<i32>((-uv)))) + vec3<u32>(vec3<f32>(volume)).xy);
+    var back: vec2<u32> = ((rt_f2u2(uv) + vec2<u32>(rt_f2i2((-uv)))) + rt_f2u3(vec3<f32>(volume)).xy);
     back <<= vec2<u32>(2u);
     back = (back >> vec2<u32>(vec2<i32>(1i, 0i)));
     back &= vec2<u32>(65535u);

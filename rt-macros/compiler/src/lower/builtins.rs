@@ -47,6 +47,137 @@ fn rt_powi(x: f32, n: i32) -> f32 {
 }
 ";
 
+/// Rust's float `%` (`fmod`: the exact remainder, with the dividend's
+/// sign). WGSL's `%` is `x - y * trunc(x / y)`, which is off by a whole `y`
+/// where `x / y` rounds up to an integer (`1.0 % 0.1` is 0.1 in Rust and 0
+/// that way). This is musl's `fmodf`, on the bits: exact, no float
+/// arithmetic to reassociate. (NaN and infinite operands, which WGSL may
+/// assume away, fall back to WGSL's `%`.)
+pub const FMOD: &str = "\
+fn rt_fmod(x: f32, y: f32) -> f32 {
+    let ux = bitcast<u32>(x);
+    let uy = bitcast<u32>(y);
+    var ex = i32((ux >> 23u) & 0xffu);
+    var ey = i32((uy >> 23u) & 0xffu);
+    let sx = ux & 0x80000000u;
+    if (uy << 1u) == 0u || ex == 0xff || (uy & 0x7fffffffu) > 0x7f800000u {
+        return x % y;
+    }
+    if (ux << 1u) <= (uy << 1u) {
+        if (ux << 1u) == (uy << 1u) {
+            return bitcast<f32>(sx);
+        }
+        return x;
+    }
+    var mx = (ux & 0x007fffffu) | 0x00800000u;
+    if ex == 0 {
+        var i = ux << 9u;
+        while (i >> 31u) == 0u {
+            ex -= 1;
+            i <<= 1u;
+        }
+        mx = ux << u32(1 - ex);
+    }
+    var my = (uy & 0x007fffffu) | 0x00800000u;
+    if ey == 0 {
+        var i = uy << 9u;
+        while (i >> 31u) == 0u {
+            ey -= 1;
+            i <<= 1u;
+        }
+        my = uy << u32(1 - ey);
+    }
+    loop {
+        let i = mx - my;
+        if (i >> 31u) == 0u {
+            if i == 0u {
+                return bitcast<f32>(sx);
+            }
+            mx = i;
+        }
+        if ex <= ey {
+            break;
+        }
+        mx <<= 1u;
+        ex -= 1;
+    }
+    while (mx >> 23u) == 0u {
+        mx <<= 1u;
+        ex -= 1;
+    }
+    if ex > 0 {
+        mx = (mx - 0x00800000u) | (u32(ex) << 23u);
+    } else {
+        mx >>= u32(1 - ex);
+    }
+    return bitcast<f32>(mx | sx);
+}
+";
+
+/// [`FMOD`] per component, for `VecN % VecN` (glam's `%` is `f32`'s per
+/// component): `(name, text)`.
+pub fn fmod_vec(n: u8) -> (&'static str, &'static str) {
+    match n {
+        2 => (
+            "rt_fmod2",
+            "fn rt_fmod2(x: vec2<f32>, y: vec2<f32>) -> vec2<f32> {\n    return vec2<f32>(rt_fmod(x.x, y.x), rt_fmod(x.y, y.y));\n}\n",
+        ),
+        3 => (
+            "rt_fmod3",
+            "fn rt_fmod3(x: vec3<f32>, y: vec3<f32>) -> vec3<f32> {\n    return vec3<f32>(rt_fmod(x.x, y.x), rt_fmod(x.y, y.y), rt_fmod(x.z, y.z));\n}\n",
+        ),
+        _ => (
+            "rt_fmod4",
+            "fn rt_fmod4(x: vec4<f32>, y: vec4<f32>) -> vec4<f32> {\n    return vec4<f32>(rt_fmod(x.x, y.x), rt_fmod(x.y, y.y), rt_fmod(x.z, y.z), rt_fmod(x.w, y.w));\n}\n",
+        ),
+    }
+}
+
+/// Float to integer conversion as Rust's `as` (and glam's `as_ivecN`,
+/// `as_uvecN`): truncate, saturate at the type's limits. WGSL clamps to the
+/// largest *float* below the limit first (`i32(1e20)` is 2147483520,
+/// `u32(1e20)` 4294967040, where Rust gives `i32::MAX` and `u32::MAX`), so
+/// values from 2^31 (2^32) up select the maximum. `(name, text)` for an
+/// `n`-vector (`n == 1`: scalar) to `i32` (`signed`) or `u32`.
+pub fn float_to_int(n: u8, signed: bool) -> (&'static str, &'static str) {
+    macro_rules! f2i {
+        ($name:literal, $from:literal, $to:literal, $max:literal, $limit:literal) => {
+            (
+                $name,
+                concat!(
+                    "fn ",
+                    $name,
+                    "(x: ",
+                    $from,
+                    ") -> ",
+                    $to,
+                    " {\n    return select(",
+                    $to,
+                    "(x), ",
+                    $to,
+                    "(",
+                    $max,
+                    "), x >= ",
+                    $from,
+                    "(",
+                    $limit,
+                    "));\n}\n"
+                ),
+            )
+        };
+    }
+    match (n, signed) {
+        (1, true) => f2i!("rt_f2i", "f32", "i32", "2147483647i", "2147483648.0"),
+        (2, true) => f2i!("rt_f2i2", "vec2<f32>", "vec2<i32>", "2147483647i", "2147483648.0"),
+        (3, true) => f2i!("rt_f2i3", "vec3<f32>", "vec3<i32>", "2147483647i", "2147483648.0"),
+        (_, true) => f2i!("rt_f2i4", "vec4<f32>", "vec4<i32>", "2147483647i", "2147483648.0"),
+        (1, false) => f2i!("rt_f2u", "f32", "u32", "4294967295u", "4294967296.0"),
+        (2, false) => f2i!("rt_f2u2", "vec2<f32>", "vec2<u32>", "4294967295u", "4294967296.0"),
+        (3, false) => f2i!("rt_f2u3", "vec3<f32>", "vec3<u32>", "4294967295u", "4294967296.0"),
+        (_, false) => f2i!("rt_f2u4", "vec4<f32>", "vec4<u32>", "4294967295u", "4294967296.0"),
+    }
+}
+
 /// `f(recv, args...)`.
 fn wgsl_fn(name: &'static str) -> impl Fn(&[String]) -> String {
     move |a| format!("{name}({})", a.join(", "))
@@ -240,6 +371,13 @@ pub fn method_sig(recv: &Ty, name: &str) -> Option<MethodSig> {
         for (prefix, target) in [("as_vec", Scalar::F32), ("as_ivec", Scalar::I32), ("as_uvec", Scalar::U32)] {
             if name == format!("{prefix}{n}") {
                 let out = Ty::Vec(n, target);
+                if s == Scalar::F32 && target != Scalar::F32 {
+                    // Saturating, as `as i32` / `as u32` per component.
+                    let (f, text) = float_to_int(n, target == Scalar::I32);
+                    let mut m = sig(vec![], out, move |a| format!("{f}({})", a[0]))?;
+                    m.support = Some((f, text));
+                    return Some(m);
+                }
                 let w = out.wgsl();
                 return sig(vec![], out, move |a| format!("{w}({})", a[0]));
             }

@@ -1022,6 +1022,24 @@ impl<'m> FnLowerer<'m> {
             }
             _ => return Err(Error::unsupported(span, &format!("the `{sym}` operator"), "see the supported operators")),
         };
+        if matches!(op, BinOp::Rem(_)) && ty.scalar() == Some(Scalar::F32) {
+            // Rust's `fmod`, not WGSL's `x - y * trunc(x / y)`.
+            let mut fns = self.m.accessors.borrow_mut();
+            fns.functions.entry("rt_fmod".to_string()).or_insert_with(|| super::builtins::FMOD.to_string());
+            let code = match ty {
+                Ty::Vec(n, _) => {
+                    let (f, text) = super::builtins::fmod_vec(n);
+                    fns.functions.entry(f.to_string()).or_insert_with(|| text.to_string());
+                    let splat = |v: &Val, t: &Ty| match t {
+                        Ty::Vec(..) => v.code.clone(),
+                        _ => format!("vec{n}<f32>({})", v.code),
+                    };
+                    format!("{f}({}, {})", splat(&l, &lt), splat(&r, &rt))
+                }
+                _ => format!("rt_fmod({}, {})", l.code, r.code),
+            };
+            return Ok(Val::new(code, ty));
+        }
         Ok(Val::new(format!("({} {sym} {})", l.code, r.code), ty))
     }
 
@@ -1086,7 +1104,16 @@ impl<'m> FnLowerer<'m> {
         if fs == Scalar::Bool && ts == Scalar::F32 {
             return Err(Error::new(c.span(), "cannot cast `bool` as `f32`: cast to u32 first or use `select`"));
         }
-        let code = if fs.wgsl() == ts.wgsl() { v.code } else { format!("{}({})", ts.wgsl(), v.code) };
+        let code = if fs == Scalar::F32 && ts.is_int() {
+            // Saturating at the integer limits, as Rust's `as`.
+            let (f, text) = super::builtins::float_to_int(1, ts == Scalar::I32);
+            self.m.accessors.borrow_mut().functions.entry(f.to_string()).or_insert_with(|| text.to_string());
+            format!("{f}({})", v.code)
+        } else if fs.wgsl() == ts.wgsl() {
+            v.code
+        } else {
+            format!("{}({})", ts.wgsl(), v.code)
+        };
         Ok(Val::new(code, Ty::Scalar(ts)))
     }
 
@@ -1301,7 +1328,27 @@ impl<'m> FnLowerer<'m> {
                 }
             }
         };
-        let sym = op.map(op_symbol).unwrap_or("=");
+        // Float `%=` has no WGSL compound form with Rust's meaning: assign
+        // `rt_fmod(place, value)` (see `binary_op`).
+        let float_rem = matches!(op, Some(BinOp::RemAssign(_))) && self.resolved(&pty).scalar() == Some(Scalar::F32);
+        let mut sym = op.map(op_symbol).unwrap_or("=");
+        let mut value = value;
+        if float_rem {
+            sym = "=";
+            let place_code = match &place {
+                Place::Wgsl(code, _) => code.clone(),
+                Place::Buffer { path, .. } => format!("\u{7}{path}"),
+            };
+            if may_have_effects(&place_code) {
+                return Err(Error::unsupported(
+                    left.span(),
+                    "`%=` on a float place whose index calls a helper",
+                    "compute the index into a `let` first",
+                ));
+            }
+            let cur = Val::new(place_code, pty.clone());
+            value = self.binary_op(&BinOp::Rem(syn::token::Percent(vspan)), cur, value, vspan)?;
+        }
         let line = match place {
             Place::Wgsl(code, _) => format!("{code} {sym} {};", value.code),
             Place::Buffer { buf, kind, elem, index, path, .. } => {
@@ -1313,7 +1360,7 @@ impl<'m> FnLowerer<'m> {
                     let t = self.tmp();
                     format!(
                         "var {t} = {load}({b}, {index});\n{t}{path} {sym} {};\n{store}({b}, {index}, {t});",
-                        value.code,
+                        value.code.replace('\u{7}', &t),
                         b = buf.code
                     )
                 }

@@ -341,6 +341,36 @@ fn lower_impl(entry: Entry<'_>, deps: &[Item], report_deps: bool) -> std::result
         }
         Entry::Program(..) => {}
     }
+    // Constants in dependency order: a constant's value may name others, and
+    // the macro chain collects them in the order uses were first seen.
+    let consts_raw = {
+        fn visit<'a>(
+            c: &'a syn::ItemConst,
+            all: &[&'a syn::ItemConst],
+            out: &mut Vec<&'a syn::ItemConst>,
+            visiting: &mut Vec<String>,
+        ) {
+            let name = c.ident.to_string();
+            if out.iter().any(|o| o.ident == c.ident) || visiting.contains(&name) {
+                return;
+            }
+            visiting.push(name);
+            for p in crate::deps::of_const(c) {
+                if let Some(last) = p.segments.last()
+                    && let Some(d) = all.iter().find(|d| d.ident == last.ident)
+                {
+                    visit(d, all, out, visiting);
+                }
+            }
+            visiting.pop();
+            out.push(c);
+        }
+        let mut ordered = Vec::with_capacity(consts_raw.len());
+        for c in &consts_raw {
+            visit(c, &consts_raw, &mut ordered, &mut Vec::new());
+        }
+        ordered
+    };
 
     // Structs, in dependency order.
     let mut structs: HashMap<String, Rc<StructDef>> = HashMap::new();
