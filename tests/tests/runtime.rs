@@ -187,6 +187,21 @@ pub fn wrong_payload_camera(#[var] top: Object) {
     rt_trace(top, Ray::new(Vec3::ZERO, Vec3::Z, 0, 0.0, 1.0), &mut s);
 }
 
+/// Increments through a `&mut` to a payload field (WGSL passes pointers to
+/// whole variables only: the compiler copies in and out).
+#[rt_function]
+pub fn bump(x: &mut i32) -> i32 {
+    *x += 2;
+    *x * 10
+}
+
+#[rt_program(closest_hit)]
+pub fn bumps_a_payload_field(prd: &mut Radiance) {
+    prd.depth = 1;
+    let v = bump(&mut prd.depth);
+    prd.result = vec3(v as f32, prd.depth as f32, 0.0);
+}
+
 /// Any hit that adds to the payload and lets the search go on.
 #[rt_program(any_hit)]
 pub fn count_hits(prd: &mut Radiance) {
@@ -947,6 +962,13 @@ fn launches_wider_than_the_dispatch_limit_write_every_index(backend: Backend) {
     }
 }
 
+fn mut_references_to_payload_fields_reach_helpers(backend: Backend) {
+    let (mut ctx, out) = camera(2.0, backend);
+    sphere_scene(&mut ctx, &bumps_a_payload_field::PROGRAM, Vec3::ZERO, 1.0);
+    ctx.launch(0, W, W).unwrap();
+    assert_eq!(pixel(&ctx.read_buffer::<Vec4>(out).unwrap(), W / 2, W / 2).truncate(), Vec3::new(30.0, 3.0, 0.0));
+}
+
 /// Instantiates every test above once per backend.
 macro_rules! on_backends {
     ($($name:ident),* $(,)?) => {
@@ -962,6 +984,7 @@ macro_rules! on_backends {
 }
 
 on_backends!(
+    mut_references_to_payload_fields_reach_helpers,
     payload_of_the_wrong_ray_type_raises_invalid_ray,
     buffer_overrun_raises_the_exception_and_printf_reaches_the_host,
     nan_rays_raise_invalid_ray,

@@ -58,13 +58,22 @@ fn rtp_path_diffuse(prd: ptr<function, PathState>, attr: Normals, albedo: vec3<f
     (*prd).radiance += ((*prd).throughput * emission);
     (*prd).throughput *= albedo;
     let p: f32 = max(max((*prd).throughput.x, (*prd).throughput.y), (*prd).throughput.z);
-    if (rtf_lcg_next(&((*prd).seed)) > p) {
+    var tmp_1: u32 = (*prd).seed;
+    let tmp_2 = rtf_lcg_next(&tmp_1);
+    (*prd).seed = tmp_1;
+    if (tmp_2 > p) {
         (*prd).done = true;
         return;
     }
     (*prd).throughput /= p;
-    let u1: f32 = rtf_lcg_next(&((*prd).seed));
-    let u2: f32 = rtf_lcg_next(&((*prd).seed));
+    var tmp_3: u32 = (*prd).seed;
+    let tmp_4 = rtf_lcg_next(&tmp_3);
+    (*prd).seed = tmp_3;
+    let u1: f32 = tmp_4;
+    var tmp_5: u32 = (*prd).seed;
+    let tmp_6 = rtf_lcg_next(&tmp_5);
+    (*prd).seed = tmp_5;
+    let u2: f32 = tmp_6;
     (*prd).origin = (ray.origin + (rt_t_hit() * ray.direction));
     (*prd).direction = rtf_cosine_sample_hemisphere(n_1, u1, u2);
 }

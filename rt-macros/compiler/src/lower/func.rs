@@ -76,6 +76,9 @@ pub struct FnLowerer<'m> {
     /// Payload types passed to `rt_trace`.
     pub traced: Vec<Ty>,
     pub errors: Errors,
+    /// Assignments that copy temporaries passed as `&mut` back to the field
+    /// or element they stand for, emitted right after the call.
+    writebacks: Vec<String>,
 }
 
 /// A parameter as the lowering sees it.
@@ -105,6 +108,7 @@ impl<'m> FnLowerer<'m> {
             calls: Vec::new(),
             traced: Vec::new(),
             errors: Errors::default(),
+            writebacks: Vec::new(),
         }
     }
 
@@ -2378,6 +2382,9 @@ impl<'m> FnLowerer<'m> {
                 let line = format!("rt_trace_{}({}, {}, {prd}, {flags}, {mask});", pty.mangle(), obj[0], ray[0]);
                 let line = self.mark(span, &line);
                 self.emit(line);
+                for w in std::mem::take(&mut self.writebacks) {
+                    self.emit(w);
+                }
                 Ok(Some(Val::new("", Ty::Unit)))
             }
             _ => Ok(None),
@@ -2403,7 +2410,20 @@ impl<'m> FnLowerer<'m> {
                     _ => &r.expr,
                 };
                 match self.place(inner)? {
-                    Place::Wgsl(code, ty) => Ok((format!("&{}", paren(&code)), ty)),
+                    Place::Wgsl(code, ty) => {
+                        // WGSL passes pointers to whole variables only: a
+                        // field or element goes through a temporary that is
+                        // written back after the call.
+                        let clean = super::text::strip(&code);
+                        if clean.chars().all(|c| c.is_alphanumeric() || c == '_') {
+                            Ok((format!("&{}", paren(&code)), ty))
+                        } else {
+                            let t = self.tmp();
+                            self.emit(format!("var {t}: {} = {code};", ty.wgsl()));
+                            self.writebacks.push(format!("{code} = {t};"));
+                            Ok((format!("&{t}"), ty))
+                        }
+                    }
                     Place::Buffer { .. } => Err(Error::unsupported(
                         r.span(),
                         "a reference into a buffer",
@@ -2482,12 +2502,21 @@ impl<'m> FnLowerer<'m> {
         self.traced.extend(sig.traced.iter().cloned());
         self.calls.push(sig.name.clone());
         let code = format!("{}({})", sig.wgsl_name, codes.join(", "));
+        let writebacks = std::mem::take(&mut self.writebacks);
         if matches!(sig.ret, Ty::Unit) {
             let line = self.mark(span, &format!("{code};"));
             self.emit(line);
+            writebacks.into_iter().for_each(|w| self.emit(w));
             Ok(Val::new("", Ty::Unit))
-        } else {
+        } else if writebacks.is_empty() {
             Ok(Val::new(code, sig.ret.clone()))
+        } else {
+            // The result must be taken before the temporaries are copied back.
+            let t = self.tmp();
+            let line = self.mark(span, &format!("let {t} = {code};"));
+            self.emit(line);
+            writebacks.into_iter().for_each(|w| self.emit(w));
+            Ok(Val::new(t, sig.ret.clone()))
         }
     }
 }
