@@ -123,8 +123,9 @@ struct Args {
 
 fn load_bunny() -> TriangleMesh {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../shared/scenes/stanford-bunny.obj");
-    let (models, _) = tobj::load_obj(path, &tobj::LoadOptions { triangulate: true, single_index: true, ..Default::default() })
-        .unwrap_or_else(|e| panic!("{path}: {e}"));
+    let (models, _) =
+        tobj::load_obj(path, &tobj::LoadOptions { triangulate: true, single_index: true, ..Default::default() })
+            .unwrap_or_else(|e| panic!("{path}: {e}"));
     let m = &models[0].mesh;
     TriangleMesh {
         positions: m.positions.chunks_exact(3).map(|p| Vec3::new(p[0], p[1], p[2])).collect(),
@@ -146,7 +147,8 @@ fn scene(mesh: &TriangleMesh, backend: Backend, width: u32, height: u32) -> Resu
 
 /// The camera of every workload: (eye, u, v, w).
 fn camera(mesh: &TriangleMesh, width: u32, height: u32) -> (Vec3, Vec3, Vec3, Vec3) {
-    let (lo, hi) = mesh.positions.iter().fold((Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)), |(a, b), p| (a.min(*p), b.max(*p)));
+    let (lo, hi) =
+        mesh.positions.iter().fold((Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)), |(a, b), p| (a.min(*p), b.max(*p)));
     let center = (lo + hi) * 0.5;
     let radius = (hi - lo).length() * 0.5;
     let eye = center + Vec3::new(0.0, 0.1, 2.2) * radius;
@@ -156,7 +158,13 @@ fn camera(mesh: &TriangleMesh, width: u32, height: u32) -> (Vec3, Vec3, Vec3, Ve
     (eye, u, v, w)
 }
 
-fn scene_with(mesh: &TriangleMesh, backend: Backend, width: u32, height: u32, workload: Workload) -> Result<(Context, BufferId)> {
+fn scene_with(
+    mesh: &TriangleMesh,
+    backend: Backend,
+    width: u32,
+    height: u32,
+    workload: Workload,
+) -> Result<(Context, BufferId)> {
     let mut ctx = Context::new();
     ctx.set_backend(backend);
     ctx.set_ray_type_count(2);
@@ -215,7 +223,9 @@ fn obvhs_ao(mesh: &TriangleMesh, width: u32, height: u32) -> (u64, Duration) {
         .map(|y| {
             let mut rays = 0u64;
             for x in 0..width {
-                let d = (glam::Vec2::new(x as f32, y as f32) + 0.5) / glam::Vec2::new(width as f32, height as f32) * 2.0 - 1.0;
+                let d = (glam::Vec2::new(x as f32, y as f32) + 0.5) / glam::Vec2::new(width as f32, height as f32)
+                    * 2.0
+                    - 1.0;
                 let dir = (d.x * u + d.y * v + w).normalize();
                 rays += 1;
                 if let Some((t, prim)) = closest(eye, dir, 1e-4) {
@@ -270,7 +280,11 @@ fn main() {
                 let mut core = Duration::ZERO;
                 // What the runtime builds: a BVH2 (for the GPU) and its CWBVH
                 // (for the CPU); obvhs's own CWBVH build is the baseline.
-                std::hint::black_box(obvhs::cwbvh::builder::build_cwbvh(&aabbs, obvhs::BvhBuildParams::medium_build(), &mut core));
+                std::hint::black_box(obvhs::cwbvh::builder::build_cwbvh(
+                    &aabbs,
+                    obvhs::BvhBuildParams::medium_build(),
+                    &mut core,
+                ));
                 t.elapsed()
             })
             .collect(),
@@ -366,7 +380,10 @@ fn main() {
         "primary + AO: cpu backend {ours_mrays:.2} Mrays/s ({our_rays} rays), obvhs CWBVH {theirs_mrays:.2} Mrays/s ({their_rays} rays), cpu_vs_obvhs {:.2}",
         ours_mrays / theirs_mrays
     );
-    json.push(format!("\"cpu_vs_obvhs\": {:.3}, \"ao_cpu_mrays_per_s\": {ours_mrays:.3}, \"ao_obvhs_mrays_per_s\": {theirs_mrays:.3}", ours_mrays / theirs_mrays));
+    json.push(format!(
+        "\"cpu_vs_obvhs\": {:.3}, \"ao_cpu_mrays_per_s\": {ours_mrays:.3}, \"ao_obvhs_mrays_per_s\": {theirs_mrays:.3}",
+        ours_mrays / theirs_mrays
+    ));
 
     if args.json {
         println!("{{{}}}", json.join(", "));

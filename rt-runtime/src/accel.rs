@@ -104,7 +104,9 @@ pub(crate) fn build(
             bvh
         }
         Builder::Sbvh => match triangles {
-            Some(tris) => obvhs::bvh2::builder::build_bvh2_from_tris(tris, single(BvhBuildParams::slow_build()), &mut t),
+            Some(tris) => {
+                obvhs::bvh2::builder::build_bvh2_from_tris(tris, single(BvhBuildParams::slow_build()), &mut t)
+            }
             None => {
                 return Err(crate::RtError::UnsupportedBuilder {
                     builder: "Sbvh",

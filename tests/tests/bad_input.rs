@@ -38,7 +38,12 @@ fn mesh_error(text: &str) -> String {
 
 fn quad() -> TriangleMesh {
     TriangleMesh {
-        positions: vec![Vec3::new(-1.0, -1.0, 0.0), Vec3::new(1.0, -1.0, 0.0), Vec3::new(1.0, 1.0, 0.0), Vec3::new(-1.0, 1.0, 0.0)],
+        positions: vec![
+            Vec3::new(-1.0, -1.0, 0.0),
+            Vec3::new(1.0, -1.0, 0.0),
+            Vec3::new(1.0, 1.0, 0.0),
+            Vec3::new(-1.0, 1.0, 0.0),
+        ],
         indices: vec![[0, 1, 2], [0, 2, 3]],
         ..TriangleMesh::default()
     }
@@ -68,7 +73,10 @@ fn scene(backend: Backend, mesh: TriangleMesh) -> (Context, BufferId) {
 
 #[test]
 fn obj_malformed_number() {
-    assert_eq!(mesh_error("v 1 x 2\nv 0 0 0\nv 1 1 1\nf 1 2 3\n"), "bad.obj:1: a vertex has `x`, which is not a number");
+    assert_eq!(
+        mesh_error("v 1 x 2\nv 0 0 0\nv 1 1 1\nf 1 2 3\n"),
+        "bad.obj:1: a vertex has `x`, which is not a number"
+    );
 }
 
 #[test]
@@ -213,7 +221,10 @@ fn singular_transform() {
 fn geometry_instance_without_materials() {
     let mut ctx = Context::new();
     let g = ctx.create_triangles(quad()).unwrap();
-    assert_eq!(ctx.create_geometry_instance(g, &[]).unwrap_err().to_string(), "geometry 0: a geometry instance needs at least one material");
+    assert_eq!(
+        ctx.create_geometry_instance(g, &[]).unwrap_err().to_string(),
+        "geometry 0: a geometry instance needs at least one material"
+    );
 }
 
 #[test]
@@ -243,7 +254,10 @@ fn zero_size_launch() {
 fn launching_before_programs_are_set() {
     let mut ctx = Context::new();
     assert_eq!(ctx.launch(0, 4, 4).unwrap_err().to_string(), "entry point 0 has no ray generation program");
-    assert_eq!(ctx.launch(3, 4, 4).unwrap_err().to_string(), "entry point 3 does not exist: the context has 1 (see `set_entry_point_count`)");
+    assert_eq!(
+        ctx.launch(3, 4, 4).unwrap_err().to_string(),
+        "entry point 3 does not exist: the context has 1 (see `set_entry_point_count`)"
+    );
 }
 
 #[test]
@@ -251,7 +265,11 @@ fn variable_set_with_the_wrong_type() {
     let (mut ctx, _) = scene(Backend::Cpu, quad());
     ctx.set_var(Scope::Context, "gain", Vec3::ONE).unwrap();
     let e = ctx.launch(0, 8, 8).unwrap_err().to_string();
-    assert!(e.contains("variable `gain` of program `camera`") && e.contains("declared `f32`, but the context scope sets it to `Vec3`"), "{e}");
+    assert!(
+        e.contains("variable `gain` of program `camera`")
+            && e.contains("declared `f32`, but the context scope sets it to `Vec3`"),
+        "{e}"
+    );
 }
 
 #[test]
@@ -260,7 +278,12 @@ fn buffer_of_the_wrong_element_type_for_a_variable() {
     let wrong = ctx.create_buffer_2d::<f32>(BufferType::Output, 8, 8).unwrap();
     ctx.set_var(Scope::Context, "out", wrong).unwrap();
     let e = ctx.launch(0, 8, 8).unwrap_err().to_string();
-    assert!(e.contains("variable `out`") && e.contains("declared `RwBuffer2d<Vec4>`") && e.contains("RwBuffer2d<f32> (Output)"), "{e}");
+    assert!(
+        e.contains("variable `out`")
+            && e.contains("declared `RwBuffer2d<Vec4>`")
+            && e.contains("RwBuffer2d<f32> (Output)"),
+        "{e}"
+    );
 }
 
 #[test]
@@ -277,14 +300,21 @@ fn program_in_the_wrong_slot() {
     let mut ctx = Context::new();
     let ch = ctx.create_program(&white::PROGRAM);
     let e = ctx.set_ray_generation_program(0, ch).unwrap_err().to_string();
-    assert!(e.starts_with("`white` (") && e.ends_with("is a ClosestHit program, but entry point 0's ray generation takes a RayGeneration program"), "{e}");
+    assert!(
+        e.starts_with("`white` (")
+            && e.ends_with("is a ClosestHit program, but entry point 0's ray generation takes a RayGeneration program"),
+        "{e}"
+    );
 }
 
 #[test]
 fn ray_type_out_of_range() {
     let mut ctx = Context::new();
     let miss = ctx.create_program(&black::PROGRAM);
-    assert_eq!(ctx.set_miss_program(4, miss).unwrap_err().to_string(), "ray type 4 does not exist: the context has 1 (see `set_ray_type_count`)");
+    assert_eq!(
+        ctx.set_miss_program(4, miss).unwrap_err().to_string(),
+        "ray type 4 does not exist: the context has 1 (see `set_ray_type_count`)"
+    );
 }
 
 #[test]
@@ -296,7 +326,10 @@ fn handle_from_another_context() {
     let foreign = other.create_material();
     let mut ctx = Context::new();
     let g = ctx.create_triangles(quad()).unwrap();
-    assert_eq!(ctx.create_geometry_instance(g, &[foreign]).unwrap_err().to_string(), "MaterialId(5) is not a valid handle of this context");
+    assert_eq!(
+        ctx.create_geometry_instance(g, &[foreign]).unwrap_err().to_string(),
+        "MaterialId(5) is not a valid handle of this context"
+    );
 }
 
 #[test]
@@ -304,7 +337,10 @@ fn buffer_reads_and_writes_check_type_and_length() {
     let mut ctx = Context::new();
     let b = ctx.create_buffer(BufferType::Input, vec![1.0f32, 2.0]);
     assert_eq!(ctx.read_buffer::<u32>(b).unwrap_err().to_string(), "buffer 0: holds `f32`, not `u32`");
-    assert_eq!(ctx.write_buffer(b, &[1.0f32]).unwrap_err().to_string(), "buffer 0: 1 elements written to a buffer of 2");
+    assert_eq!(
+        ctx.write_buffer(b, &[1.0f32]).unwrap_err().to_string(),
+        "buffer 0: 1 elements written to a buffer of 2"
+    );
     let e = ctx.create_buffer_2d::<f32>(BufferType::Output, 1 << 20, 1 << 20).unwrap_err().to_string();
     assert!(e.contains("do not fit in 32-bit indices"), "{e}");
 }
@@ -334,8 +370,11 @@ impl Rng {
 
 #[test]
 fn mutated_obj_files_never_panic() {
-    let seed_text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../shared/scenes/cornell_box.obj")).unwrap();
-    let tokens = ["v", "f", "vn", "vt", "nan", "inf", "-1", "0", "99999", "1e39", "/", "//", " ", "\n", "#", "o", "g", "usemtl x"];
+    let seed_text =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../shared/scenes/cornell_box.obj")).unwrap();
+    let tokens = [
+        "v", "f", "vn", "vt", "nan", "inf", "-1", "0", "99999", "1e39", "/", "//", " ", "\n", "#", "o", "g", "usemtl x",
+    ];
     let iterations: usize = std::env::var("RT_FUZZ_MESH").ok().and_then(|v| v.parse().ok()).unwrap_or(400);
     let mut rng = Rng(0x9e3779b97f4a7c15);
     let mut built = 0;

@@ -1109,10 +1109,9 @@ fn a_scene_over_the_adapters_binding_limit_is_a_clear_error() {
     let instance = ::wgpu::Instance::new(::wgpu::InstanceDescriptor::new_without_display_handle_from_env());
     let adapter = pollster::block_on(instance.request_adapter(&Default::default())).expect("an adapter (lavapipe)");
     let limits = ::wgpu::Limits { max_storage_buffer_binding_size: 1 << 20, ..::wgpu::Limits::downlevel_defaults() };
-    let (device, queue) = pollster::block_on(adapter.request_device(&::wgpu::DeviceDescriptor {
-        required_limits: limits,
-        ..Default::default()
-    }))
+    let (device, queue) = pollster::block_on(
+        adapter.request_device(&::wgpu::DeviceDescriptor { required_limits: limits, ..Default::default() }),
+    )
     .unwrap();
     let (mut ctx, _) = camera(2.0, Backend::Wgpu);
     ctx.use_wgpu_device(device, queue, adapter.get_info());
@@ -1120,5 +1119,8 @@ fn a_scene_over_the_adapters_binding_limit_is_a_clear_error() {
     let table = ctx.create_buffer(BufferType::Input, vec![0.5f32; 1 << 19]);
     ctx.set_var(Scope::Context, "table", table).unwrap();
     let err = ctx.launch(0, W, W).unwrap_err().to_string();
-    assert!(err.contains("the heap (variables, buffers, textures) needs 2 MiB") && err.contains("binds at most 1 MiB"), "{err}");
+    assert!(
+        err.contains("the heap (variables, buffers, textures) needs 2 MiB") && err.contains("binds at most 1 MiB"),
+        "{err}"
+    );
 }

@@ -341,7 +341,8 @@ impl<'a> Lane<'a> {
                 }
             }
             NodeKind::GeometryGroup { .. } => {
-                let Some(Some(NodeAccel::Prims { bvh, wide, prims, .. })) = self.l.accels.get(node.index() as usize) else {
+                let Some(Some(NodeAccel::Prims { bvh, wide, prims, .. })) = self.l.accels.get(node.index() as usize)
+                else {
                     return;
                 };
                 let object_ray = Ray { origin, direction, ..world_ray };
