@@ -6,6 +6,8 @@
 //!
 //! Every ratio compares figures measured in this run, on this machine.
 
+mod handwritten;
+
 use clap::Parser;
 use glam::{Vec3, Vec4};
 use rt_runtime::*;
@@ -384,6 +386,39 @@ fn main() {
         "\"cpu_vs_obvhs\": {:.3}, \"ao_cpu_mrays_per_s\": {ours_mrays:.3}, \"ao_obvhs_mrays_per_s\": {theirs_mrays:.3}",
         ours_mrays / theirs_mrays
     ));
+
+    // The megakernel against a hand-written kernel, same adapter, same rays.
+    if args.backends.iter().any(|b| b == "wgpu") {
+        match scene_with(&mesh, Backend::Wgpu, width, height, Workload::Ao) {
+            Ok((mut ctx, _)) => match ctx.launch(0, width, height) {
+                Ok(_) => {
+                    let mut runs = Vec::new();
+                    let mut rays = 0;
+                    for _ in 0..reps {
+                        let r = ctx.launch(0, width, height).expect("launch");
+                        rays = r.rays;
+                        runs.push(r.timings.run);
+                    }
+                    let ours = rays as f64 / median(runs).as_secs_f64() / 1e6;
+                    if let Some((hrays, htime, adapter)) =
+                        handwritten::run(&mesh, camera(&mesh, width, height), width, height, reps)
+                    {
+                        let theirs = hrays as f64 / htime.as_secs_f64() / 1e6;
+                        eprintln!(
+                            "primary + AO on {adapter}: megakernel {ours:.2} Mrays/s ({rays} rays), hand-written WGSL {theirs:.2} Mrays/s ({hrays} rays), megakernel_vs_handwritten {:.2}",
+                            ours / theirs
+                        );
+                        json.push(format!(
+                            "\"megakernel_vs_handwritten\": {:.3}, \"ao_megakernel_mrays_per_s\": {ours:.3}, \"ao_handwritten_mrays_per_s\": {theirs:.3}",
+                            ours / theirs
+                        ));
+                    }
+                }
+                Err(e) => eprintln!("wgpu AO: {e}"),
+            },
+            Err(e) => eprintln!("wgpu AO: {e}"),
+        }
+    }
 
     if args.json {
         println!("{{{}}}", json.join(", "));

@@ -1,0 +1,138 @@
+//! The hand-written baseline for `megakernel_vs_handwritten`: a minimal WGSL
+//! kernel (traversal + triangle test + one AO ray, no programs, no
+//! dispatch) over the same BVH2 and the same rays, on the same adapter.
+
+use glam::Vec3;
+use rt_runtime::TriangleMesh;
+use std::time::{Duration, Instant};
+use wgpu::util::DeviceExt;
+
+fn bytes(w: &[u32]) -> &[u8] {
+    // SAFETY: u32 has no padding; any bytes are valid u8.
+    unsafe { std::slice::from_raw_parts(w.as_ptr() as *const u8, std::mem::size_of_val(w)) }
+}
+
+/// Runs the AO workload `reps` times; returns (rays traced, median time of
+/// dispatch + read-back, adapter name).
+pub fn run(
+    mesh: &TriangleMesh,
+    cam: (Vec3, Vec3, Vec3, Vec3),
+    width: u32,
+    height: u32,
+    reps: usize,
+) -> Option<(u64, Duration, String)> {
+    let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+    let adapter = pollster::block_on(instance.request_adapter(&Default::default())).ok()?;
+    let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+        required_limits: wgpu::Limits {
+            max_storage_buffer_binding_size: adapter.limits().max_storage_buffer_binding_size,
+            ..wgpu::Limits::downlevel_defaults()
+        },
+        ..Default::default()
+    }))
+    .ok()?;
+    // The BVH the runtime builds: obvhs medium_build, one primitive a leaf.
+    let bounds: Vec<obvhs::aabb::Aabb> = mesh
+        .indices
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|i| mesh.positions[i as usize]);
+            obvhs::aabb::Aabb::new(a.min(b).min(c).into(), a.max(b).max(c).into())
+        })
+        .collect();
+    let mut core = Duration::ZERO;
+    let params = obvhs::BvhBuildParams { max_prims_per_leaf: 1, ..obvhs::BvhBuildParams::medium_build() };
+    let bvh = obvhs::bvh2::builder::build_bvh2(&bounds, params, &mut core);
+    let mut nodes: Vec<u32> = Vec::with_capacity(bvh.nodes.len() * 10);
+    for n in &bvh.nodes {
+        let b = n.aabb();
+        let prim = if n.prim_count > 0 { bvh.primitive_indices[n.first_index as usize] } else { 0 };
+        nodes.extend([b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z].map(f32::to_bits));
+        nodes.extend([n.prim_count, n.first_index, prim, 0]);
+    }
+    let mut tris: Vec<u32> = Vec::with_capacity(mesh.indices.len() * 9);
+    for t in &mesh.indices {
+        for i in t {
+            let p = mesh.positions[*i as usize];
+            tris.extend([p.x, p.y, p.z].map(f32::to_bits));
+        }
+    }
+    let (eye, u, v, w) = cam;
+    let mut camera: Vec<u32> = Vec::new();
+    for c in [eye, u, v, w] {
+        camera.extend([c.x, c.y, c.z, 0.0].map(f32::to_bits));
+    }
+    camera.extend([width, height, 0, 0]);
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some("handwritten"),
+        source: wgpu::ShaderSource::Wgsl(include_str!("handwritten.wgsl").into()),
+    });
+    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some("handwritten"),
+        layout: None,
+        module: &module,
+        entry_point: Some("main"),
+        compilation_options: Default::default(),
+        cache: None,
+    });
+    let storage = |w: &[u32], extra| {
+        device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: None,
+            contents: bytes(w),
+            usage: wgpu::BufferUsages::STORAGE | extra,
+        })
+    };
+    let nodes_b = storage(&nodes, wgpu::BufferUsages::empty());
+    let tris_b = storage(&tris, wgpu::BufferUsages::empty());
+    let pixels = (width * height) as usize;
+    let out_b = storage(&vec![0u32; pixels * 2], wgpu::BufferUsages::COPY_SRC);
+    let cam_b = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: None,
+        contents: bytes(&camera),
+        usage: wgpu::BufferUsages::UNIFORM,
+    });
+    let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: None,
+        layout: &pipeline.get_bind_group_layout(0),
+        entries: &[
+            wgpu::BindGroupEntry { binding: 0, resource: nodes_b.as_entire_binding() },
+            wgpu::BindGroupEntry { binding: 1, resource: tris_b.as_entire_binding() },
+            wgpu::BindGroupEntry { binding: 2, resource: out_b.as_entire_binding() },
+            wgpu::BindGroupEntry { binding: 3, resource: cam_b.as_entire_binding() },
+        ],
+    });
+    let mut times = Vec::new();
+    let mut rays = 0u64;
+    for _ in 0..reps + 1 {
+        let t = Instant::now();
+        let read = device.create_buffer(&wgpu::BufferDescriptor {
+            label: None,
+            size: (pixels * 8) as u64,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let mut enc = device.create_command_encoder(&Default::default());
+        {
+            let mut pass = enc.begin_compute_pass(&Default::default());
+            pass.set_pipeline(&pipeline);
+            pass.set_bind_group(0, &bind, &[]);
+            pass.dispatch_workgroups(width.div_ceil(8), height.div_ceil(8), 1);
+        }
+        enc.copy_buffer_to_buffer(&out_b, 0, &read, 0, (pixels * 8) as u64);
+        queue.submit([enc.finish()]);
+        let slice = read.slice(..);
+        slice.map_async(wgpu::MapMode::Read, |_| {});
+        device.poll(wgpu::PollType::wait_indefinitely()).ok()?;
+        let data = slice.get_mapped_range().ok()?;
+        let hits =
+            data[pixels * 4..].chunks_exact(4).filter(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]) == 1.0).count();
+        rays = (pixels + hits) as u64;
+        drop(data);
+        read.unmap();
+        times.push(t.elapsed());
+    }
+    // The first run includes the pipeline's compilation on some drivers.
+    times.remove(0);
+    times.sort();
+    Some((rays, times[times.len() / 2], adapter.get_info().name))
+}
