@@ -19,4 +19,5 @@ export XDG_RUNTIME_DIR="${XDG_RUNTIME_DIR:-/tmp}"
 export CARGO_BUILD_JOBS="${CARGO_BUILD_JOBS:-2}"
 start=$(date +%s)
 cargo test --workspace --all-targets -j"$CARGO_BUILD_JOBS"
+cargo test --workspace --doc -j"$CARGO_BUILD_JOBS"
 echo "scripts/test.sh: tests took $(( $(date +%s) - start )) s"
