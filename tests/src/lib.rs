@@ -4,6 +4,8 @@
 //! `tests/` compare its WGSL with the checked-in snapshots.
 #![allow(dead_code, clippy::too_many_arguments)]
 
+pub mod fuzz;
+
 #[path = "../snapshots/in/buffers.rs"]
 pub mod buffers;
 #[path = "../snapshots/in/buffers_2d.rs"]

@@ -5,6 +5,6 @@ struct Shadow {
 }
 
 fn rtp_any_hit_shadow(prd: ptr<function, Shadow>) {
-    (*prd).attenuation = vec3<f32>();
+    (*prd).attenuation = vec3<f32>(0.0);
     rt_terminate_ray();
 }

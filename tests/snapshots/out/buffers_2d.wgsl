@@ -61,10 +61,10 @@ fn rtp_buffers_2d(input: RtBuffer, accum: RtBuffer, samples: RtBuffer, frame: u3
     if ((idx.x >= size.x) || (idx.y >= size.y)) {
         return;
     }
-    var sum: vec4<f32> = vec4<f32>();
+    var sum: vec4<f32> = vec4<f32>(0.0);
     for (var dy: i32 = -1i; dy <= 1i; dy++) {
         for (var dx: i32 = -1i; dx <= 1i; dx++) {
-            let p: vec2<i32> = clamp((vec2<i32>(idx) + vec2<i32>(dx, dy)), vec2<i32>(), (vec2<i32>(size) - 1i));
+            let p: vec2<i32> = clamp((vec2<i32>(idx) + vec2<i32>(dx, dy)), vec2<i32>(0i), (vec2<i32>(size) - 1i));
             sum += rt_bufload2_vec4f(input, vec2<u32>(p));
         }
     }
@@ -84,5 +84,5 @@ fn rtp_buffers_2d(input: RtBuffer, accum: RtBuffer, samples: RtBuffer, frame: u3
     }
     let corner: vec2<u32> = (vec2<u32>(accum_1.width, accum_1.height) - vec2<u32>(1u));
     let tmp_4 = corner;
-    rt_bufstore2_vec4f(accum_1, tmp_4, rt_bufload2_vec4f(input, vec2<u32>()));
+    rt_bufstore2_vec4f(accum_1, tmp_4, rt_bufload2_vec4f(input, vec2<u32>(0u)));
 }

@@ -26,8 +26,8 @@ fn rtp_chull_intersect(attr: ptr<function, Normals>, prim: u32, planes: RtBuffer
     let ray: RtRay = rt_current_ray();
     var t0: f32 = -3.4028235e38f;
     var t1: f32 = 3.4028235e38f;
-    var t0_normal: vec3<f32> = vec3<f32>();
-    var t1_normal: vec3<f32> = vec3<f32>();
+    var t0_normal: vec3<f32> = vec3<f32>(0.0);
+    var t1_normal: vec3<f32> = vec3<f32>(0.0);
     let n: u32 = planes.len;
     var i: u32 = 0u;
     while ((i < n) && (t0 < t1)) {

@@ -25,7 +25,7 @@ fn rtp_consts(prd: ptr<function, Radiance>) {
     const STEPS: i32 = 3i;
     let d: vec3<f32> = rt_current_ray().direction;
     let t: f32 = max(d.y, 0.0f);
-    let sky: vec3<f32> = mix(HORIZON, ZENITH, pow(t, GAMMA));
+    let sky: vec3<f32> = (HORIZON * (1.0 - pow(t, GAMMA)) + ZENITH * pow(t, GAMMA));
     let cell: u32 = (u32((((*prd).depth + BIAS) + STEPS)) % CELLS);
     var stops: array<f32, 3> = STOPS;
     let exposure: f32 = (stops[((cell % STRATA) % 3u)] + STOPS[(cell % 3u)]);

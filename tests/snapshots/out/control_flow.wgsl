@@ -42,7 +42,7 @@ fn rtf_bucket(v: f32) -> i32 {
 
 fn rtp_control_flow(prd: ptr<function, Radiance>, attr: Normals, threshold: f32) {
     if ((*prd).depth > 4i) {
-        (*prd).result = vec3<f32>();
+        (*prd).result = vec3<f32>(0.0);
         return;
     }
     let facing: f32 = dot(attr.shading_normal, -rt_current_ray().direction);
@@ -56,7 +56,7 @@ fn rtp_control_flow(prd: ptr<function, Radiance>, attr: Normals, threshold: f32)
         if (facing_2 > (0.5f * threshold)) {
             tmp = vec3<f32>(0.5f);
         } else {
-            tmp = vec3<f32>();
+            tmp = vec3<f32>(0.0);
         }
         tmp_1 = tmp;
     }

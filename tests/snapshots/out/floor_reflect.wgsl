@@ -37,7 +37,7 @@ fn rtp_floor_reflect(prd: ptr<function, Radiance>, attr: Normals, floor_color: v
     var result: vec3<f32> = floor_color;
     let importance: f32 = ((*prd).importance * rtf_luminance(reflectivity));
     if ((importance > importance_cutoff) && ((*prd).depth < max_depth)) {
-        var refl: Radiance = Radiance(vec3<f32>(), importance, ((*prd).depth + 1i));
+        var refl: Radiance = Radiance(vec3<f32>(0.0), importance, ((*prd).depth + 1i));
         let r: vec3<f32> = reflect(ray.direction, n);
         rt_trace_Radiance(top_object, RtRay(hit_point, r, RADIANCE_RAY, scene_epsilon, bitcast<f32>(0x7f800000u)), &refl, 0u, 255u);
         result += (reflectivity * refl.result);

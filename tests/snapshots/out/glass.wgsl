@@ -74,13 +74,13 @@ fn rtp_glass(prd: ptr<function, Radiance>, attr: Normals, refraction_index: f32,
     if (dot(refract_dir, refract_dir) == 0.0f) {
         fresnel = 1.0f;
     }
-    var result: vec3<f32> = vec3<f32>();
+    var result: vec3<f32> = vec3<f32>(0.0);
     if ((*prd).depth < max_depth) {
-        var refl: Radiance = Radiance(vec3<f32>(), ((*prd).importance * fresnel), ((*prd).depth + 1i));
+        var refl: Radiance = Radiance(vec3<f32>(0.0), ((*prd).importance * fresnel), ((*prd).depth + 1i));
         rt_trace_Radiance(top_object, RtRay(hit_point, reflect_dir, RADIANCE_RAY, scene_epsilon, bitcast<f32>(0x7f800000u)), &refl, 0u, 255u);
         result += (fresnel * refl.result);
         if (fresnel < 1.0f) {
-            var refr: Radiance = Radiance(vec3<f32>(), ((*prd).importance * (1.0f - fresnel)), ((*prd).depth + 1i));
+            var refr: Radiance = Radiance(vec3<f32>(0.0), ((*prd).importance * (1.0f - fresnel)), ((*prd).depth + 1i));
             rt_trace_Radiance(top_object, RtRay(hit_point, refract_dir, RADIANCE_RAY, scene_epsilon, bitcast<f32>(0x7f800000u)), &refr, 0u, 255u);
             result += (((1.0f - fresnel) * glass_color) * refr.result);
         }

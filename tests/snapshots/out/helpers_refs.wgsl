@@ -76,7 +76,7 @@ fn rtp_helpers_refs(frame: u32, samples: u32, out: RtBuffer) {
     var out_1 = out;
     let idx: vec2<u32> = rt_launch_index();
     var seed: u32 = ((((idx.x * 1973u) + (idx.y * 9277u)) + (frame * 26699u)) | 1u);
-    var acc: Accum = Accum(vec3<f32>(), 0u);
+    var acc: Accum = Accum(vec3<f32>(0.0), 0u);
     let end = samples;
     for (var i: u32 = 0u; i < end; i++) {
         let c: vec3<f32> = vec3<f32>(rtf_rand(&seed), rtf_rand(&seed), rtf_rand(&seed));

@@ -55,7 +55,7 @@ fn rtp_loops(n: u32, mask: u32, out: RtBuffer) {
     var k: u32 = (slot + 1u);
     var steps: i32 = 0i;
     while (k > 1u) {
-        if select((k % 2u) == 0u, k == 0u, 2u == 0u) {
+        if select((k % select(2u, 1u, 2u == 0u)) == 0u, k == 0u, 2u == 0u) {
             k /= 2u;
         } else {
             k = ((3u * k) + 1u);

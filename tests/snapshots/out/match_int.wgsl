@@ -46,7 +46,7 @@ fn rtp_match_int(prd: ptr<function, Radiance>, attr: Normals, material: u32) {
         }
         case -1i: {
             {
-                (*prd).result = vec3<f32>();
+                (*prd).result = vec3<f32>(0.0);
                 return;
             }
         }

@@ -29,7 +29,7 @@ fn rtp_math_helpers(prd: ptr<function, Radiance>, attr: Normals, base_color: vec
     let rim: f32 = smoothstep(0.6f, 1.0f, (1.0f - saturate(dot(n, -ray.direction))));
     let spec: vec3<f32> = smoothstep(vec3<f32>(0.9f), vec3<f32>(1.0), (r * light_dir));
     let edges: vec3<f32> = (step(vec3<f32>(0.25f), abs(tr)) + saturate((tr * 4.0f)));
-    let lit: vec3<f32> = mix((base_color * 0.2f), base_color, band);
-    let toned: vec3<f32> = (mix(lit, rim_color, vec3<f32>(rim)) + (mix(0.0f, 0.1f, rim) * spec));
-    (*prd).result = mix(toned, edges, vec3<f32>(0.0f, 0.05f, 0.1f));
+    let lit: vec3<f32> = ((base_color * 0.2f) * (1.0 - band) + base_color * band);
+    let toned: vec3<f32> = ((lit * (1.0 - vec3<f32>(rim)) + rim_color * vec3<f32>(rim)) + ((0.0f * (1.0 - rim) + 0.1f * rim) * spec));
+    (*prd).result = (toned * (1.0 - vec3<f32>(0.0f, 0.05f, 0.1f)) + edges * vec3<f32>(0.0f, 0.05f, 0.1f));
 }

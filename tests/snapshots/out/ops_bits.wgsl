@@ -39,7 +39,8 @@ fn rtp_ops_bits(seed: u32, signed_seed: i32, shift: i32, out_u: RtBuffer, out_i:
     let pixel: u32 = ((idx.y * rt_launch_dim().x) + idx.x);
     let h: u32 = rtf_pcg_hash((pixel ^ seed));
     var bits: u32 = (h & 65535u);
-    bits |= (1u << 31u);
+    let tmp = 1u;
+    bits |= (tmp << 31u);
     bits ^= seed;
     bits &= ~240u;
     bits <<= 3u;

@@ -66,12 +66,12 @@ fn rtp_path_camera(eye: vec3<f32>, camera: mat3x3<f32>, frame: u32, spp: u32, ma
     let idx: vec2<u32> = rt_launch_index();
     let dim: vec2<f32> = vec2<f32>(rt_launch_dim());
     var seed: u32 = (((idx.y * rt_launch_dim().x) + idx.x) ^ (frame * 2654435769u));
-    var color: vec3<f32> = vec3<f32>();
+    var color: vec3<f32> = vec3<f32>(0.0);
     let end = spp;
     for (var i: u32 = 0u; i < end; i++) {
         let jitter: vec2<f32> = vec2<f32>(rtf_lcg_next(&seed), rtf_lcg_next(&seed));
         let d: vec2<f32> = ((((vec2<f32>(idx) + jitter) / dim) * 2.0f) - 1.0f);
-        var prd: PathState = PathState(vec3<f32>(), vec3<f32>(1.0), eye, normalize((camera * vec3<f32>(d.x, -d.y, 1.0f))), seed, false);
+        var prd: PathState = PathState(vec3<f32>(0.0), vec3<f32>(1.0), eye, normalize((camera * vec3<f32>(d.x, -d.y, 1.0f))), seed, false);
         var bounce: u32 = 0u;
         while ((bounce < max_bounces) && !prd.done) {
             let ray: RtRay = RtRay(prd.origin, prd.direction, PATH_RAY, scene_epsilon, bitcast<f32>(0x7f800000u));
@@ -83,7 +83,7 @@ fn rtp_path_camera(eye: vec3<f32>, camera: mat3x3<f32>, frame: u32, spp: u32, ma
     }
     let sample: vec3<f32> = (color / f32(max(spp, 1u)));
     let prev: vec4<f32> = rt_bufload2_vec4f(accum_1, idx);
-    let blended: vec3<f32> = mix(prev.xyz, sample, (1.0f / f32((frame + 1u))));
+    let blended: vec3<f32> = (prev.xyz * (1.0 - (1.0f / f32((frame + 1u)))) + sample * (1.0f / f32((frame + 1u))));
     let tmp = idx;
     rt_bufstore2_vec4f(accum_1, tmp, vec4<f32>(blended, 1.0f));
 }

@@ -51,5 +51,5 @@ fn rtp_printf(prd: ptr<function, Radiance>, verbose: bool) {
             rt_printf_word(select(0u, 1u, tmp_5));
         }
     }
-    (*prd).result = vec3<f32>();
+    (*prd).result = vec3<f32>(0.0);
 }

@@ -51,7 +51,7 @@ fn rtp_ray_flags(prd: ptr<function, Radiance>, attr: Normals, light_pos: vec3<f3
     }
     let shadow_ray: RtRay = RtRay(p, l, SHADOW_RAY, scene_epsilon, dist);
     rt_trace_Shadow(top_object, shadow_ray, &shadow, flags, MASK_CASTERS);
-    var bounce: Radiance = Radiance(vec3<f32>(), ((*prd).importance * 0.5f), ((*prd).depth + 1i));
+    var bounce: Radiance = Radiance(vec3<f32>(0.0), ((*prd).importance * 0.5f), ((*prd).depth + 1i));
     if ((*prd).depth < 2i) {
         let r: RtRay = RtRay(p, reflect(ray.direction, n), RADIANCE_RAY, scene_epsilon, bitcast<f32>(0x7f800000u));
         rt_trace_Radiance(top_object, r, &bounce, (16u | 2u), (255u & ~MASK_CASTERS));

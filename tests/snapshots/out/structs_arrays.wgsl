@@ -64,7 +64,7 @@ fn rtp_structs_arrays(prd: ptr<function, RampSample>, ramp: Ramp) {
         let lo: RampStop = ramp.stops[(i - 1u)];
         let hi: RampStop = ramp.stops[i];
         if ((t >= lo.at) && (t < hi.at)) {
-            color = mix(lo.color, hi.color, ((t - lo.at) / (hi.at - lo.at)));
+            color = (lo.color * (1.0 - ((t - lo.at) / (hi.at - lo.at))) + hi.color * ((t - lo.at) / (hi.at - lo.at)));
         }
     }
     var weights: array<f32, 4> = array<f32, 4>(0.0f, 0.0f, 0.0f, 0.0f);
@@ -77,7 +77,7 @@ fn rtp_structs_arrays(prd: ptr<function, RampSample>, ramp: Ramp) {
     let bucket: u32 = min(rt_f2u((t * 4.0f)), 3u);
     (*prd).hits[bucket] += 1u;
     (*prd).color = (color * total);
-    let first: RampStop = RampStop(0.0f, vec3<f32>());
+    let first: RampStop = RampStop(0.0f, vec3<f32>(0.0));
     (*prd).ramp = Ramp(array<RampStop, 3>(first, RampStop(t, color), ramp.stops[2u]), weights, (ramp.count + 1u));
     (*prd).ramp.stops[1u].color.y = t;
     (*prd).ramp.weights[bucket] *= 2.0f;

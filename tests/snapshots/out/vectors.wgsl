@@ -83,9 +83,9 @@ fn rtp_vectors(prd: ptr<function, Radiance>, a: vec3<f32>, b: vec3<f32>, t: f32)
     let cos_: f32 = dot(d, n);
     let len: f32 = ((length(a) + dot(b, b)) + inverseSqrt(dot(a, a)));
     let dist: f32 = (distance(a, b) + dot(a - b, a - b));
-    let safe: vec3<f32> = select(vec3<f32>(), (a - b) * inverseSqrt(dot((a - b), (a - b))), dot((a - b), (a - b)) > 0.0);
-    let per: vec3<f32> = clamp(max(min(abs(a), b), vec3<f32>(0.1f)), vec3<f32>(), vec3<f32>(1.0));
-    let blend: vec3<f32> = mix(a, b, t);
+    let safe: vec3<f32> = select(vec3<f32>(), (a - b) * inverseSqrt(select(1.0, dot((a - b), (a - b)), dot((a - b), (a - b)) > 0.0)), dot((a - b), (a - b)) > 0.0);
+    let per: vec3<f32> = clamp(max(min(abs(a), b), vec3<f32>(0.1f)), vec3<f32>(0.0), vec3<f32>(1.0));
+    let blend: vec3<f32> = (a * (1.0 - t) + b * t);
     let curve: vec3<f32> = (((((pow(abs(a), vec3<f32>(2.2f)) + sqrt(abs(b))) + exp(a)) + log(abs(b))) + exp2(a)) + log2(abs(b)));
     let waves: vec3<f32> = (((sin(a) * cos(b)) + (vec3<f32>(1.0) / a)) + fma(a, b, vec3<f32>(1.0)));
     let rounded: vec3<f32> = ((((((floor(a) + ceil(a)) + (trunc(a) + sign(a) * step(vec3<f32>(0.5), abs(a - trunc(a))))) + trunc(a)) + (a - trunc(a))) + fract(a)) + select(vec3<f32>(1.0), vec3<f32>(-1.0), (bitcast<vec3<u32>>(a) & vec3<u32>(0x80000000u)) != vec3<u32>(0u)));

@@ -68,12 +68,14 @@ fn rtp_vectors_int(tile: vec2<u32>, offset: vec2<i32>, out: RtBuffer) {
     let in_tile: vec2<u32> = (idx % tile);
     let checker: u32 = ((tile_id.x + tile_id.y) & 1u);
     let centered: vec2<i32> = ((vec2<i32>(idx) - vec2<i32>((dim / 2u))) + offset);
-    let dist: vec2<i32> = clamp(min(max(abs(centered), vec2<i32>(1i)), vec2<i32>(1000i, 1000i)), vec2<i32>(), vec2<i32>(512i));
+    let dist: vec2<i32> = clamp(min(max(abs(centered), vec2<i32>(1i)), vec2<i32>(1000i, 1000i)), vec2<i32>(0i), vec2<i32>(512i));
     let sgn: vec2<i32> = (((sign(centered) * vec2<i32>(-1i)) + vec2<i32>(1i, 0i)) - vec2<i32>(0i, 1i));
-    let mixed: vec2<u32> = (((idx << vec2<u32>(1u)) ^ (dim >> vec2<u32>(2u))) | (vec2<u32>(1u, 2u) & ~vec2<u32>()));
+    let mixed: vec2<u32> = (((idx << vec2<u32>(1u)) ^ (dim >> vec2<u32>(2u))) | (vec2<u32>(1u, 2u) & ~vec2<u32>(0u)));
     let manhattan: i32 = ((((dist.x + dist.y) + dot(dist, vec2<i32>(1i, -1i))) + min(sgn.x, sgn.y)) + max(sgn.x, sgn.y));
-    let bits: u32 = (((((mixed.x * mixed.y) + max(mixed.x, mixed.y)) + (vec3<u32>(1u, 2u, 3u).x + vec3<u32>(1u, 2u, 3u).y + vec3<u32>(1u, 2u, 3u).z)) + vec2<u32>(1u, 0u).x) + vec2<u32>(0u, 1u).y);
-    let volume: vec3<i32> = (((vec3<i32>(1i, 2i, 3i) * 2i) + 1i) - vec3<i32>(0i, 0i, 1i));
+    let tmp = vec3<u32>(1u, 2u, 3u);
+    let bits: u32 = (((((mixed.x * mixed.y) + max(mixed.x, mixed.y)) + (tmp.x + tmp.y + tmp.z)) + vec2<u32>(1u, 0u).x) + vec2<u32>(0u, 1u).y);
+    let tmp_1 = vec3<i32>(1i, 2i, 3i);
+    let volume: vec3<i32> = (((tmp_1 * 2i) + 1i) - vec3<i32>(0i, 0i, 1i));
     let uv: vec2<f32> = ((vec2<f32>(idx) + 0.5f) / vec2<f32>(dim));
     var back: vec2<u32> = ((rt_f2u2(uv) + vec2<u32>(rt_f2i2((-uv)))) + rt_f2u3(vec3<f32>(volume)).xy);
     back <<= vec2<u32>(2u);
@@ -86,6 +88,6 @@ fn rtp_vectors_int(tile: vec2<u32>, offset: vec2<i32>, out: RtBuffer) {
     signed ^= vec3<i32>(-1i);
     let corner: vec4<u32> = (vec4<u32>(in_tile.x, in_tile.y, checker, u32(signed.y)) + vec4<u32>(0u, 0u, 0u, 1u));
     let color: vec4<f32> = ((vec4<f32>(uv.x, uv.y, f32(checker), 1.0f) * (f32(manhattan) / 512.0f)) + (vec4<f32>(corner) * 0.01f));
-    let tmp = idx;
-    rt_bufstore2_vec4f(out_1, tmp, (color + vec4<f32>((f32((bits + back.x)) * 1e-6f))));
+    let tmp_2 = idx;
+    rt_bufstore2_vec4f(out_1, tmp_2, (color + vec4<f32>((f32((bits + back.x)) * 1e-6f))));
 }

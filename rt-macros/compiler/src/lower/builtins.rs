@@ -133,6 +133,14 @@ pub fn fmod_vec(n: u8) -> (&'static str, &'static str) {
     }
 }
 
+/// glam's `Vec4 % Vec4` (and `% f32`) on targets where `Vec4` is SIMD
+/// (SSE2, NEON, wasm32: `x - floor(x / y) * y`, a floored remainder), as
+/// opposed to `Vec2` and `Vec3` (`f32`'s `%`, [`fmod_vec`]): `(name, text)`.
+pub const VEC4_REM: (&str, &str) = (
+    "rt_rem_vec4",
+    "fn rt_rem_vec4(x: vec4<f32>, y: vec4<f32>) -> vec4<f32> {\n    return x - floor(x / y) * y;\n}\n",
+);
+
 /// Float to integer conversion as Rust's `as` (and glam's `as_ivecN`,
 /// `as_uvecN`): truncate, saturate at the type's limits. WGSL clamps to the
 /// largest *float* below the limit first (`i32(1e20)` is 2147483520,
@@ -175,6 +183,30 @@ pub fn float_to_int(n: u8, signed: bool) -> (&'static str, &'static str) {
         (2, false) => f2i!("rt_f2u2", "vec2<f32>", "vec2<u32>", "4294967295u", "4294967296.0"),
         (3, false) => f2i!("rt_f2u3", "vec3<f32>", "vec3<u32>", "4294967295u", "4294967296.0"),
         (_, false) => f2i!("rt_f2u4", "vec4<f32>", "vec4<u32>", "4294967295u", "4294967296.0"),
+    }
+}
+
+/// `a * (1 - t) + b * t` (glam's `lerp`, rt-std's `mix`), exact at both
+/// ends. (Callers evaluate an operand with effects once: `t` appears twice.)
+pub fn lerp_formula(a: &str, b: &str, t: &str) -> String {
+    format!("({a} * (1.0 - {t}) + {b} * {t})")
+}
+
+/// The zero value of a builtin type. A vector's zeros are spelled out:
+/// naga turns `vec3(vec2<T>(), x)` into SPIR-V that lavapipe's compiler
+/// rejects (it loses the device), `vec3(vec2<T>(0), x)` is fine.
+pub fn zero_value(ty: &Ty) -> String {
+    match ty {
+        Ty::Vec(n, s) => {
+            let zero = match s {
+                Scalar::F32 => "0.0",
+                Scalar::I32 => "0i",
+                Scalar::Bool => "false",
+                _ => "0u",
+            };
+            format!("vec{n}<{}>({zero})", s.wgsl())
+        }
+        _ => format!("{}()", ty.wgsl()),
     }
 }
 
@@ -288,16 +320,24 @@ pub fn method_sig(recv: &Ty, name: &str) -> Option<MethodSig> {
                 "length_squared" => return sig(vec![], F32, |a| format!("dot({0}, {0})", a[0])),
                 "length_recip" => return sig(vec![], F32, |a| format!("inverseSqrt(dot({0}, {0}))", a[0])),
                 "normalize" => return sig(vec![], t, wgsl_fn("normalize")),
+                // (`inverseSqrt` of a positive length only: WGSL rejects a
+                // constant zero vector's `inverseSqrt(0.0)` even unselected.)
                 "normalize_or_zero" => {
                     return sig(vec![], t, move |a| {
-                        format!("select({w}(), {0} * inverseSqrt(dot({0}, {0})), dot({0}, {0}) > 0.0)", a[0])
+                        format!(
+                            "select({w}(), {0} * inverseSqrt(select(1.0, dot({0}, {0}), dot({0}, {0}) > 0.0)), dot({0}, {0}) > 0.0)",
+                            a[0]
+                        )
                     });
                 }
                 "distance" => return sig(vec![t.clone()], F32, wgsl_fn("distance")),
                 "distance_squared" => {
                     return sig(vec![t.clone()], F32, |a| format!("dot({0} - {1}, {0} - {1})", a[0], a[1]));
                 }
-                "lerp" => return sig(vec![t.clone(), F32], t, wgsl_fn("mix")),
+                // glam's formula, not WGSL's `mix`: GPUs compute that as
+                // `a + t * (b - a)`, which misses `b` at `t == 1` (glam
+                // promises both ends exactly).
+                "lerp" => return sig(vec![t.clone(), F32], t, |a| lerp_formula(&a[0], &a[1], &a[2])),
                 "reflect" if n == 3 => return sig(vec![v3.clone()], v3, wgsl_fn("reflect")),
                 "refract" if n == 3 => return sig(vec![v3.clone(), F32], v3, wgsl_fn("refract")),
                 "cross" if n == 3 => return sig(vec![v3.clone()], v3, wgsl_fn("cross")),
@@ -318,10 +358,11 @@ pub fn method_sig(recv: &Ty, name: &str) -> Option<MethodSig> {
             "leading_zeros" if is_scalar => return sig(vec![], u, cnt("countLeadingZeros")),
             "trailing_zeros" if is_scalar => return sig(vec![], u, cnt("countTrailingZeros")),
             "reverse_bits" if is_scalar => return sig(vec![], t, wgsl_fn("reverseBits")),
-            // `n.is_multiple_of(0)` is `n == 0`.
+            // `n.is_multiple_of(0)` is `n == 0`. (The divisor is never a
+            // zero: WGSL rejects `n % 0u` when it can see the zero.)
             "is_multiple_of" if matches!(recv, Ty::Scalar(Scalar::U32 | Scalar::Usize)) => {
                 return sig(vec![t.clone()], Ty::Scalar(Scalar::Bool), |a| {
-                    format!("select(({0} % {1}) == 0u, {0} == 0u, {1} == 0u)", a[0], a[1])
+                    format!("select(({0} % select({1}, 1u, {1} == 0u)) == 0u, {0} == 0u, {1} == 0u)", a[0], a[1])
                 });
             }
             "wrapping_add" => return sig(vec![t.clone()], t, |a| format!("({} + {})", a[0], a[1])),
@@ -465,7 +506,7 @@ pub fn assoc_const(owner: &str, name: &str) -> Option<Val> {
                 format!("{w}({})", parts.join(", "))
             };
             let code = match name {
-                "ZERO" => format!("{w}()"),
+                "ZERO" => zero_value(&ty),
                 "ONE" => format!("{w}({one})"),
                 "NEG_ONE" => format!("{w}({})", neg?),
                 "X" => axis(0, one),

@@ -3,7 +3,7 @@
 //! is lowered; unsuffixed integer literals get an inference variable that
 //! later uses resolve, `i32` by default as in Rust).
 
-use super::text::{indent, int_literal_placeholder, mark};
+use super::text::{self, indent, int_literal_placeholder, mark};
 use super::{HelperSig, ModuleCtx};
 use crate::error::{Error, Errors, Result};
 use crate::kinds::{self, Kind};
@@ -67,6 +67,14 @@ pub struct FnLowerer<'m> {
     blocks: Vec<Vec<String>>,
     ret: Ty,
     loop_depth: u32,
+    /// Lowering a function body (not a constant's initialiser, which has no
+    /// statements to emit into).
+    in_function: bool,
+    /// What a `break` leaves, innermost last: a loop (`None`), or a `match`
+    /// arm, a WGSL `switch` case, where `break` would leave the `switch`
+    /// only: `Some((flag, used))`, set the flag, leave the `switch`, and
+    /// test the flag after it.
+    breaks: Vec<Option<(String, bool)>>,
     /// WGSL names of function-local `const` items (patterns name them).
     local_consts: HashSet<String>,
     /// Intrinsics called (directly, or through helpers) with the call span.
@@ -103,6 +111,8 @@ impl<'m> FnLowerer<'m> {
             blocks: vec![Vec::new()],
             ret,
             loop_depth: 0,
+            in_function: false,
+            breaks: Vec::new(),
             local_consts: HashSet::new(),
             intrinsics: Vec::new(),
             calls: Vec::new(),
@@ -122,6 +132,7 @@ impl<'m> FnLowerer<'m> {
     /// Lowers a whole function: returns the WGSL text (with markers and
     /// placeholders still in; `ModuleCtx::finish_function` resolves them).
     pub fn function(&mut self, wgsl_name: &str, params: &[LParam], body: &syn::Block) -> String {
+        self.in_function = true;
         let mut sig = Vec::new();
         let mut prologue = Vec::new();
         for p in params {
@@ -647,7 +658,8 @@ impl<'m> FnLowerer<'m> {
                 if self.loop_depth == 0 {
                     return Err(Error::new(b.span(), "`break` outside of a loop"));
                 }
-                let line = self.mark(b.span(), "break;");
+                let text = self.break_text();
+                let line = self.mark(b.span(), &text);
                 self.emit(line);
                 Ok(Val::new("", Ty::Never))
             }
@@ -849,6 +861,16 @@ impl<'m> FnLowerer<'m> {
                 let v = self.expr(&u.expr, want)?;
                 let v = self.deref(v);
                 let t = self.resolved(&v.ty);
+                // `-(i32::MIN)` of a constant expression fails when WGSL
+                // evaluates it at shader creation; it wraps at run time.
+                let v = if t.scalar() == Some(Scalar::I32)
+                    && self.is_const_code(&v.code)
+                    && int_literal_value(&v.code).is_none_or(|x| x == i32::MIN as i64)
+                {
+                    self.at_run_time(v)
+                } else {
+                    v
+                };
                 match t.scalar() {
                     Some(Scalar::F32) | Some(Scalar::I32) => Ok(Val::new(negate(&v.code), v.ty)),
                     _ if matches!(t, Ty::IntVar(_)) => {
@@ -898,20 +920,142 @@ impl<'m> FnLowerer<'m> {
         let arith = matches!(b.op, BinOp::Add(_) | BinOp::Sub(_) | BinOp::Mul(_) | BinOp::Div(_) | BinOp::Rem(_));
         let lw = if arith { want_scalar.clone() } else { None };
         let l = self.expr(&b.left, lw.as_ref())?;
-        let l = self.deref(l);
+        let mut l = self.deref(l);
         let rw = match (&b.op, self.resolved(&l.ty)) {
             (BinOp::Shl(_) | BinOp::Shr(_), _) => None,
             (_, t @ (Ty::Scalar(_) | Ty::IntVar(_))) => Some(t),
             _ => None,
         };
+        let at = self.here();
         let r = self.expr(&b.right, rw.as_ref())?;
         let r = self.deref(r);
+        self.spill(at, &mut [&mut l]);
         // Errors point at the operator, as rustc's do.
         self.binary_op(&b.op, l, r, b.op.span())
     }
 
+    // ---- evaluation order and constant expressions ----
+
+    /// The current position in the statements being emitted (see [`spill`]).
+    ///
+    /// [`spill`]: FnLowerer::spill
+    fn here(&self) -> usize {
+        self.blocks.last().map_or(0, |b| b.len())
+    }
+
+    /// Rust evaluates operands left to right; a later operand that needs
+    /// statements (an `if` or `match` value, a block) has them emitted
+    /// before the whole expression, where they could change what an earlier
+    /// operand reads (`x + { x += 1; 1 }`, a helper call through `&mut`).
+    /// If statements were emitted since `at`, the `earlier` operands that
+    /// read mutable state are evaluated into temporaries at `at`, first.
+    fn spill(&mut self, at: usize, earlier: &mut [&mut Val]) {
+        // `let`s of effect-free values change nothing.
+        let writes = self.blocks.last().unwrap()[at..]
+            .iter()
+            .any(|line| !text::strip(line).trim_start().starts_with("let ") || may_have_effects(line));
+        if !writes {
+            return;
+        }
+        let mut lets = Vec::new();
+        for v in earlier.iter_mut() {
+            if v.code.is_empty() || matches!(v.ty, Ty::Ref(..)) || !self.reads_state(&v.code) {
+                continue;
+            }
+            let t = self.tmp();
+            let kw = if matches!(self.resolved(&v.ty), Ty::Array(..) | Ty::Mat(_)) { "var" } else { "let" };
+            lets.push(format!("{kw} {t} = {};", v.code));
+            v.code = t;
+        }
+        let block = self.blocks.last_mut().unwrap();
+        for (i, l) in lets.into_iter().enumerate() {
+            block.insert(at + i, l);
+        }
+    }
+
+    /// Whether lowered code reads something that statements can change:
+    /// a `var` local, a pointer parameter, a buffer, or a call with effects.
+    fn reads_state(&self, code: &str) -> bool {
+        let mutable: HashSet<&str> = self
+            .scopes
+            .iter()
+            .flatten()
+            .filter(|(_, l)| l.var || matches!(l.ty, Ty::Ref(true, _)))
+            .map(|(_, l)| l.wgsl.as_str())
+            .collect();
+        wgsl_idents(code).iter().any(|id| {
+            mutable.contains(id.as_str()) || id.starts_with("rt_bufload") || id.starts_with("rt_load") || may_have_effects(id)
+        })
+    }
+
+    /// Whether lowered code is a WGSL const-expression (literals,
+    /// operators, constructors, builtins, constants). WGSL evaluates those
+    /// when the shader is created, with stricter rules than Rust's run-time
+    /// semantics: integer overflow in `+ - * <<` and shift amounts of 32 or
+    /// more are errors there, where they wrap or are masked at run time.
+    fn is_const_code(&self, code: &str) -> bool {
+        wgsl_idents(code).iter().all(|id| {
+            super::is_reserved(id)
+                || id == "true"
+                || id == "false"
+                || self.local_consts.contains(id)
+                || self.m.consts.values().any(|c| c.wgsl_name == *id)
+        })
+    }
+
+    /// `v` through a `let`, which WGSL evaluates at run time.
+    fn at_run_time(&mut self, v: Val) -> Val {
+        if !self.in_function {
+            return v;
+        }
+        let t = self.tmp();
+        self.emit(format!("let {t} = {};", v.code));
+        Val::new(t, v.ty)
+    }
+
+    /// Integer `l op r` with both operands constant: run time, unless WGSL
+    /// evaluates it at shader creation exactly as Rust does at run time
+    /// (two literals, no overflow).
+    fn const_int_op(&mut self, op: &BinOp, l: Val, r: &Val) -> Val {
+        let ty = self.resolved(&l.ty);
+        if !(self.is_int(&ty) || matches!(ty, Ty::Vec(_, s) if s.is_int()))
+            || !self.is_const_code(&l.code)
+            || !self.is_const_code(&r.code)
+        {
+            return l;
+        }
+        let scalar = match ty {
+            Ty::Scalar(s) => Some(s),
+            _ => None,
+        };
+        match (int_literal_value(&l.code), int_literal_value(&r.code)) {
+            (Some(a), Some(b)) if matches!(ty, Ty::Scalar(_) | Ty::IntVar(_)) && !const_overflows(op, a, b, scalar) => l,
+            _ => self.at_run_time(l),
+        }
+    }
+
+    /// A shift amount that is a const-expression other than a literal below
+    /// 32, masked as WGSL masks run-time amounts (a constant 32 or more is
+    /// an error in WGSL; Rust masks it in release builds, glam's vector
+    /// shifts included).
+    fn mask_amount(&self, amount: String, vector: Option<u8>) -> String {
+        if !self.is_const_code(&amount) || literals_below_32(&amount) {
+            return amount;
+        }
+        match vector {
+            Some(n) => format!("({amount} & vec{n}<u32>(31u))"),
+            None => format!("({amount} & 31u)"),
+        }
+    }
+
     /// Types and lowers `l op r` (both already lowered).
     fn binary_op(&mut self, op: &BinOp, l: Val, r: Val, span: Span) -> Result<Val> {
+        let l = match op {
+            BinOp::Add(_) | BinOp::Sub(_) | BinOp::Mul(_) | BinOp::Shl(_) | BinOp::Shr(_) => {
+                self.const_int_op(op, l, &r)
+            }
+            _ => l,
+        };
         let (lt, rt) = (self.resolved(&l.ty), self.resolved(&r.ty));
         let sym = op_symbol(op);
         let mismatch = |lt: &Ty, rt: &Ty| {
@@ -978,9 +1122,11 @@ impl<'m> FnLowerer<'m> {
                     Ty::Vec(m, Scalar::U32) if m == n => r.code.clone(),
                     Ty::Vec(m, t) if m == n && t.is_int() => format!("vec{n}<u32>({})", r.code),
                     Ty::IntVar(_) if self.unify(&rt, &U32) => format!("vec{n}<u32>({})", r.code),
+                    Ty::Scalar(Scalar::I32) => format!("vec{n}<u32>(u32({}))", r.code),
                     Ty::Scalar(t) if t.is_int() => format!("vec{n}<u32>({})", r.code),
                     _ => return Err(mismatch(&lt, &rt)),
                 };
+                let amount = self.mask_amount(amount, Some(n));
                 return Ok(Val::new(format!("({} {sym} {amount})", l.code), lt));
             }
             BinOp::Shl(_) | BinOp::Shr(_) => {
@@ -995,6 +1141,7 @@ impl<'m> FnLowerer<'m> {
                     Ty::Scalar(Scalar::U32) | Ty::Scalar(Scalar::Usize) => r.code.clone(),
                     _ => format!("u32({})", r.code),
                 };
+                let amount = self.mask_amount(amount, None);
                 return Ok(Val::new(format!("({} {sym} {amount})", l.code), lt));
             }
             BinOp::Eq(_) | BinOp::Ne(_) => {
@@ -1029,10 +1176,17 @@ impl<'m> FnLowerer<'m> {
         if matches!(op, BinOp::Rem(_)) && ty.scalar() == Some(Scalar::F32) {
             // Rust's `fmod`, not WGSL's `x - y * trunc(x / y)`.
             let mut fns = self.m.accessors.borrow_mut();
-            fns.functions.entry("rt_fmod".to_string()).or_insert_with(|| super::builtins::FMOD.to_string());
+            if !matches!(ty, Ty::Vec(4, _)) {
+                fns.functions.entry("rt_fmod".to_string()).or_insert_with(|| super::builtins::FMOD.to_string());
+            }
             let code = match ty {
                 Ty::Vec(n, _) => {
-                    let (f, text) = super::builtins::fmod_vec(n);
+                    // glam's `Vec4` is SIMD on every target with SIMD (SSE2,
+                    // NEON, wasm), and its `%` is `x - floor(x / y) * y`
+                    // there, not `f32`'s `%` per component as for `Vec2` and
+                    // `Vec3`.
+                    let (f, text) =
+                        if n == 4 { super::builtins::VEC4_REM } else { super::builtins::fmod_vec(n) };
                     fns.functions.entry(f.to_string()).or_insert_with(|| text.to_string());
                     let splat = |v: &Val, t: &Ty| match t {
                         Ty::Vec(..) => v.code.clone(),
@@ -1160,7 +1314,8 @@ impl<'m> FnLowerer<'m> {
 
     fn index(&mut self, i: &syn::ExprIndex) -> Result<Val> {
         let base = self.expr(&i.expr, None)?;
-        let base = self.deref(base);
+        let mut base = self.deref(base);
+        let at = self.here();
         match self.resolved(&base.ty) {
             Ty::Buffer(kind, elem) => {
                 let idx = self.buffer_index(kind, &i.index)?;
@@ -1169,10 +1324,12 @@ impl<'m> FnLowerer<'m> {
             }
             Ty::Array(elem, _) => {
                 let idx = self.int_index(&i.index)?;
+                self.spill(at, &mut [&mut base]);
                 Ok(Val::new(format!("{}[{idx}]", base.code), *elem))
             }
             Ty::Vec(_, s) => {
                 let idx = self.int_index(&i.index)?;
+                self.spill(at, &mut [&mut base]);
                 Ok(Val::new(format!("{}[{idx}]", base.code), Ty::Scalar(s)))
             }
             t => Err(Error::new(i.expr.span(), format!("cannot index into a value of type `{t}`"))),
@@ -1296,7 +1453,12 @@ impl<'m> FnLowerer<'m> {
     }
 
     fn assign(&mut self, left: &Expr, op: Option<&BinOp>, value: Val, vspan: Span) -> Result<()> {
+        // Rust evaluates the value first, then the place's indices: if those
+        // need statements, the value is read before them.
+        let mut value = value;
+        let at = self.here();
         let place = self.place(left)?;
+        self.spill(at, &mut [&mut value]);
         let pty = match &place {
             Place::Wgsl(_, t) | Place::Buffer { ty: t, .. } => t.clone(),
         };
@@ -1315,29 +1477,39 @@ impl<'m> FnLowerer<'m> {
                 let vty = self.resolved(&value.ty);
                 // `x <<= n` needs a u32 amount; `v <<= n` and `v &= n` a vector.
                 match (base_op, self.resolved(&pty)) {
-                    (BinOp::Shl(_) | BinOp::Shr(_), Ty::Vec(n, _)) if vty != Ty::Vec(n, Scalar::U32) => {
-                        Val::new(format!("vec{n}<u32>({})", value.code), Ty::Vec(n, Scalar::U32))
+                    (BinOp::Shl(_) | BinOp::Shr(_), Ty::Vec(n, _)) => {
+                        let amount = match vty {
+                            Ty::Vec(_, Scalar::U32) => value.code,
+                            Ty::Scalar(Scalar::I32) => format!("vec{n}<u32>(u32({}))", value.code),
+                            _ => format!("vec{n}<u32>({})", value.code),
+                        };
+                        Val::new(self.mask_amount(amount, Some(n)), Ty::Vec(n, Scalar::U32))
                     }
                     (BinOp::BitAnd(_) | BinOp::BitOr(_) | BinOp::BitXor(_), Ty::Vec(n, s))
                         if !matches!(vty, Ty::Vec(..)) =>
                     {
                         Val::new(format!("vec{n}<{}>({})", s.wgsl(), value.code), Ty::Vec(n, s))
                     }
-                    (BinOp::Shl(_) | BinOp::Shr(_), Ty::Scalar(_) | Ty::IntVar(_))
-                        if !matches!(vty, Ty::Scalar(Scalar::U32 | Scalar::Usize)) =>
-                    {
-                        Val::new(format!("u32({})", value.code), U32)
+                    (BinOp::Shl(_) | BinOp::Shr(_), Ty::Scalar(_) | Ty::IntVar(_)) => {
+                        let amount = if matches!(vty, Ty::Scalar(Scalar::U32 | Scalar::Usize)) {
+                            value.code
+                        } else {
+                            format!("u32({})", value.code)
+                        };
+                        Val::new(self.mask_amount(amount, None), U32)
                     }
                     _ => value,
                 }
             }
         };
         // Float `%=` has no WGSL compound form with Rust's meaning: assign
-        // `rt_fmod(place, value)` (see `binary_op`).
+        // `rt_fmod(place, value)` (see `binary_op`). Nor has `bool ^=`
+        // (WGSL has no `^` on bool): assign `place != value`.
         let float_rem = matches!(op, Some(BinOp::RemAssign(_))) && self.resolved(&pty).scalar() == Some(Scalar::F32);
+        let bool_xor = matches!(op, Some(BinOp::BitXorAssign(_))) && self.resolved(&pty) == BOOL;
         let mut sym = op.map(op_symbol).unwrap_or("=");
         let mut value = value;
-        if float_rem {
+        if float_rem || bool_xor {
             sym = "=";
             let place_code = match &place {
                 Place::Wgsl(code, _) => code.clone(),
@@ -1346,12 +1518,12 @@ impl<'m> FnLowerer<'m> {
             if may_have_effects(&place_code) {
                 return Err(Error::unsupported(
                     left.span(),
-                    "`%=` on a float place whose index calls a helper",
+                    &format!("`{}` on a place whose index calls a helper", op_symbol(op.unwrap())),
                     "compute the index into a `let` first",
                 ));
             }
             let cur = Val::new(place_code, pty.clone());
-            value = self.binary_op(&BinOp::Rem(syn::token::Percent(vspan)), cur, value, vspan)?;
+            value = self.binary_op(&compound_base(op.unwrap()), cur, value, vspan)?;
         }
         let line = match place {
             Place::Wgsl(code, _) => format!("{code} {sym} {};", value.code),
@@ -1490,9 +1662,22 @@ impl<'m> FnLowerer<'m> {
         }
     }
 
+    /// `break;` out of the innermost loop (see `breaks`).
+    fn break_text(&mut self) -> String {
+        match self.breaks.last_mut() {
+            Some(Some((flag, used))) => {
+                *used = true;
+                format!("{flag} = true;\nbreak;")
+            }
+            _ => "break;".to_string(),
+        }
+    }
+
     fn loop_body(&mut self, stmts: &[Stmt]) -> Result<Vec<String>> {
         self.loop_depth += 1;
+        self.breaks.push(None);
         let r = self.sub_block(stmts, Some(&Ty::Unit));
+        self.breaks.pop();
         self.loop_depth -= 1;
         let (mut lines, v) = r?;
         if let Some(v) = v
@@ -1666,13 +1851,67 @@ impl<'m> FnLowerer<'m> {
         let mut has_default = false;
         let t = self.tmp();
         let mut values = Vec::new();
+        // A `break` in an arm leaves the enclosing loop in Rust, the `switch`
+        // in WGSL: it sets this flag, tested after the `switch`.
+        let in_loop = self.loop_depth > 0;
+        if in_loop {
+            let flag = self.fresh("brk");
+            self.breaks.push(Some((flag, false)));
+        }
+        let arms = self.match_arms(m, want, &sty, &scrut, &t, &mut cases, &mut result_ty, &mut has_default, &mut values);
+        let flag = if in_loop {
+            match self.breaks.pop() {
+                Some(Some((flag, true))) => Some(flag),
+                _ => None,
+            }
+        } else {
+            None
+        };
+        arms?;
+        if !has_default {
+            // WGSL needs a default; Rust's exhaustiveness check guarantees
+            // it is unreachable.
+            cases.push("default: {}".to_string());
+        }
+        if let Some(rt) = &result_ty {
+            self.emit(format!("var {t}: {};", rt.wgsl()));
+        }
+        if let Some(f) = &flag {
+            self.emit(format!("var {f} = false;"));
+        }
+        let text = format!("switch {} {{\n{}}}", scrut.code, indent(&cases.join("\n")));
+        let text = self.mark(m.span(), &text);
+        self.emit(text);
+        if let Some(f) = &flag {
+            let brk = self.break_text();
+            self.emit(format!("if {f} {{\n{}}}", indent(&brk)));
+        }
+        Ok(match result_ty {
+            Some(rt) => Val::new(t, rt),
+            None => Val::new("", Ty::Unit),
+        })
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn match_arms(
+        &mut self,
+        m: &syn::ExprMatch,
+        want: Option<&Ty>,
+        sty: &Ty,
+        scrut: &Val,
+        t: &str,
+        cases: &mut Vec<String>,
+        result_ty: &mut Option<Ty>,
+        has_default: &mut bool,
+        values: &mut Vec<Span>,
+    ) -> Result<()> {
         for arm in &m.arms {
             if let Some((if_token, _)) = &arm.guard {
                 return Err(Error::unsupported(if_token.span, "a match guard", "use if/else inside the arm"));
             }
             let mut labels = Vec::new();
             let mut binding = None;
-            self.match_pattern(&arm.pat, &sty, &mut labels, &mut binding)?;
+            self.match_pattern(&arm.pat, sty, &mut labels, &mut binding)?;
             self.scopes.push(Vec::new());
             self.blocks.push(Vec::new());
             if let Some(b) = &binding {
@@ -1687,41 +1926,27 @@ impl<'m> FnLowerer<'m> {
             let v = r?;
             let vty = self.resolved(&v.ty);
             if !matches!(vty, Ty::Unit | Ty::Never) {
-                match &result_ty {
+                match result_ty {
                     Some(rt) => {
                         let v = self.coerce(v.clone(), rt, arm.body.span())?;
                         lines.push(format!("{t} = {};", v.code));
                     }
                     None => {
-                        result_ty = Some(vty.clone());
+                        *result_ty = Some(vty.clone());
                         lines.push(format!("{t} = {};", v.code));
                     }
                 }
                 values.push(arm.body.span());
             }
             let head = if labels.is_empty() {
-                has_default = true;
+                *has_default = true;
                 "default".to_string()
             } else {
                 format!("case {}", labels.join(", "))
             };
             cases.push(format!("{head}: {{\n{}}}", indent(&lines.join("\n"))));
         }
-        if !has_default {
-            // WGSL needs a default; Rust's exhaustiveness check guarantees
-            // it is unreachable.
-            cases.push("default: {}".to_string());
-        }
-        if let Some(rt) = &result_ty {
-            self.emit(format!("var {t}: {};", rt.wgsl()));
-        }
-        let text = format!("switch {} {{\n{}}}", scrut.code, indent(&cases.join("\n")));
-        let text = self.mark(m.span(), &text);
-        self.emit(text);
-        Ok(match result_ty {
-            Some(rt) => Val::new(t, rt),
-            None => Val::new("", Ty::Unit),
-        })
+        Ok(())
     }
 
     fn match_pattern(
@@ -1824,6 +2049,7 @@ impl<'m> FnLowerer<'m> {
             })
             .collect();
         let in_order = source_order.windows(2).all(|w| w[0] < w[1]);
+        let mut done: Vec<(usize, Val)> = Vec::new();
         for fv in &s.fields {
             let fname = match &fv.member {
                 syn::Member::Named(n) => n.to_string(),
@@ -1835,14 +2061,19 @@ impl<'m> FnLowerer<'m> {
                 return Err(Error::new(fv.member.span(), format!("struct `{name}` has no field named `{fname}`")));
             };
             let fty = fields[idx].1.clone();
+            let at = self.here();
             let v = self.expr(&fv.expr, Some(&fty))?;
             let v = self.deref(v);
             let mut v = self.coerce(v, &fty, fv.expr.span())?;
+            self.spill(at, &mut done.iter_mut().map(|(_, v)| v).collect::<Vec<_>>());
             if !in_order && may_have_effects(&v.code) {
                 let t = self.tmp();
                 self.emit(format!("let {t} = {};", v.code));
                 v.code = t;
             }
+            done.push((idx, v));
+        }
+        for (idx, v) in done {
             given[idx] = Some(v.code);
         }
         let missing: Vec<&str> =
@@ -1865,17 +2096,20 @@ impl<'m> FnLowerer<'m> {
             Some(Ty::Array(e, _)) => Some(*e),
             _ => None,
         };
-        let mut codes = Vec::new();
+        let mut vals: Vec<Val> = Vec::new();
         for e in &a.elems {
+            let at = self.here();
             let v = self.expr(e, elem_want.as_ref())?;
             let v = self.deref(v);
             let v = match &elem_want {
                 Some(w) => self.coerce(v, w, e.span())?,
                 None => v,
             };
+            self.spill(at, &mut vals.iter_mut().collect::<Vec<_>>());
             elem_want = Some(v.ty.clone());
-            codes.push(v.code);
+            vals.push(v);
         }
+        let codes: Vec<String> = vals.into_iter().map(|v| v.code).collect();
         let ty = Ty::Array(Box::new(elem_want.unwrap()), codes.len() as u32);
         Ok(Val::new(format!("{}({})", ty.wgsl(), codes.join(", ")), ty))
     }
@@ -1951,18 +2185,30 @@ impl<'m> FnLowerer<'m> {
             };
             return Err(Error::new(name_span, format!("`{rt}::{name}` takes {want}, found {}", args.len())));
         }
-        let mut codes = vec![recv.code.clone()];
+        let mut vals = vec![recv.clone()];
         for (a, p) in args.iter().zip(&sig.params) {
             // glam takes some operands by reference: `m.mul_mat3(&n)`.
             let a = match a {
                 Expr::Reference(r) if r.mutability.is_none() => &*r.expr,
                 a => *a,
             };
+            let at = self.here();
             let v = self.expr(a, Some(p))?;
             let v = self.deref(v);
             let v = self.coerce(v, p, a.span())?;
-            codes.push(v.code);
+            self.spill(at, &mut vals.iter_mut().collect::<Vec<_>>());
+            vals.push(v);
         }
+        // Integer arithmetic on constants only: at run time (see
+        // `const_int_op`).
+        let wraps = matches!(name, "wrapping_add" | "wrapping_sub" | "wrapping_mul" | "dot" | "element_sum" | "element_product");
+        if wraps
+            && (self.is_int(&rt) || matches!(rt, Ty::Vec(_, s) if s.is_int()))
+            && vals.iter().all(|v| self.is_const_code(&v.code))
+        {
+            vals[0] = self.at_run_time(vals[0].clone());
+        }
+        let mut codes: Vec<String> = vals.into_iter().map(|v| v.code).collect();
         // A lowering that repeats an operand (`(x - trunc(x))`) must not
         // repeat its side effects: evaluate such operands (and, to keep
         // Rust's left-to-right order, effectful ones before them) once, first.
@@ -2037,11 +2283,14 @@ impl<'m> FnLowerer<'m> {
                     ));
                 }
                 let idx = self.buffer_index(kind, args[0])?;
+                let mut idx = Val::new(idx, U32);
+                let at = self.here();
                 let v = self.expr(args[1], Some(elem))?;
                 let v = self.deref(v);
                 let v = self.coerce(v, elem, args[1].span())?;
+                self.spill(at, &mut [&mut idx]);
                 let f = self.m.accessors.borrow_mut().buffer_store(kind.dims, elem);
-                let line = self.mark(span, &format!("{f}({}, {idx}, {});", recv.code, v.code));
+                let line = self.mark(span, &format!("{f}({}, {}, {});", recv.code, idx.code, v.code));
                 self.emit(line);
                 Ok(Val::new("", Ty::Unit))
             }
@@ -2122,7 +2371,7 @@ impl<'m> FnLowerer<'m> {
                     return Ok(v);
                 }
                 if name == "default" && args.is_empty() {
-                    return Ok(Val::new(format!("{}()", ty.wgsl()), ty));
+                    return Ok(Val::new(super::builtins::zero_value(&ty), ty));
                 }
                 // UFCS: `f32::max(a, b)` is `a.max(b)`.
                 if let Some((first, rest)) = args.split_first() {
@@ -2170,13 +2419,16 @@ impl<'m> FnLowerer<'m> {
         if args.len() != params.len() {
             return Err(Error::new(span, format!("`{what}` takes {} argument(s), found {}", params.len(), args.len())));
         }
-        let mut out = Vec::new();
+        let mut out: Vec<Val> = Vec::new();
         for (a, p) in args.iter().zip(params) {
+            let at = self.here();
             let v = self.expr(a, Some(p))?;
             let v = self.deref(v);
-            out.push(self.coerce(v, p, a.span())?.code);
+            let v = self.coerce(v, p, a.span())?;
+            self.spill(at, &mut out.iter_mut().collect::<Vec<_>>());
+            out.push(v);
         }
-        Ok(out)
+        Ok(out.into_iter().map(|v| v.code).collect())
     }
 
     fn constructor(&mut self, ty: &Ty, name: &str, args: &[&Expr], span: Span) -> Result<Option<Val>> {
@@ -2280,7 +2532,21 @@ impl<'m> FnLowerer<'m> {
             _ => None,
         };
         if let Some((f, params, ret)) = call {
-            let a = self.args_typed(args, &params, span, name)?;
+            let mut a = self.args_typed(args, &params, span, name)?;
+            if f == "mix" {
+                // rt-std's formula (see `builtins::lerp_formula`); `t` is
+                // used twice: once evaluated.
+                if may_have_effects(&a[2]) {
+                    for c in a.iter_mut() {
+                        if may_have_effects(c) {
+                            let t = self.tmp();
+                            self.emit(format!("let {t} = {c};"));
+                            *c = t;
+                        }
+                    }
+                }
+                return Ok(Some(Val::new(super::builtins::lerp_formula(&a[0], &a[1], &a[2]), ret)));
+            }
             return Ok(Some(Val::new(format!("{f}({})", a.join(", ")), ret)));
         }
         self.intrinsic_call(name, args, span)
@@ -2465,9 +2731,12 @@ impl<'m> FnLowerer<'m> {
                 }
             }
         }
-        let mut codes = Vec::new();
+        // Arguments in order; a pointer argument is a place, never spilled
+        // (its type stays `Ref`).
+        let mut vals: Vec<Val> = Vec::new();
         for (a, p) in args.iter().zip(&sig.params) {
-            match p {
+            let at = self.here();
+            let v = match p {
                 Ty::Ref(true, inner) => {
                     let (code, ty) = self.mut_ref_arg(a)?;
                     if !self.unify(&ty, inner) {
@@ -2476,7 +2745,7 @@ impl<'m> FnLowerer<'m> {
                             format!("mismatched types: expected `&mut {inner}`, found `&mut {ty}`"),
                         ));
                     }
-                    codes.push(code);
+                    Val::new(code, p.clone())
                 }
                 Ty::Ref(false, inner) => {
                     let target = match a {
@@ -2485,15 +2754,18 @@ impl<'m> FnLowerer<'m> {
                     };
                     let v = self.expr(target, Some(inner))?;
                     let v = self.deref(v);
-                    codes.push(self.coerce(v, inner, a.span())?.code);
+                    self.coerce(v, inner, a.span())?
                 }
                 p => {
                     let v = self.expr(a, Some(p))?;
                     let v = self.deref(v);
-                    codes.push(self.coerce(v, p, a.span())?.code);
+                    self.coerce(v, p, a.span())?
                 }
-            }
+            };
+            self.spill(at, &mut vals.iter_mut().collect::<Vec<_>>());
+            vals.push(v);
         }
+        let codes: Vec<String> = vals.into_iter().map(|v| v.code).collect();
         for intr in &sig.intrinsics {
             if let Some(i) = kinds::intrinsic(intr) {
                 self.intrinsics.push((i.name, span));
@@ -2537,6 +2809,121 @@ fn negate(code: &str) -> String {
         }
     }
     if first == Some('-') { format!("-({code})") } else { format!("-{code}") }
+}
+
+/// The identifiers lowered code names (not members after `.`, not literal
+/// suffixes), markers and placeholders skipped.
+fn wgsl_idents(code: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    let mut chars = code.chars().peekable();
+    let mut prev = ' ';
+    while let Some(c) = chars.next() {
+        match c {
+            '\u{1}' => {
+                chars.by_ref().take_while(|&d| d != '\u{2}').for_each(drop);
+                continue;
+            }
+            '\u{4}' => {
+                chars.by_ref().take_while(|&d| d != '\u{5}').for_each(drop);
+                prev = '0';
+                continue;
+            }
+            '\u{3}' => continue,
+            c if c.is_ascii_digit() => {
+                while chars.peek().is_some_and(|d| d.is_ascii_alphanumeric() || *d == '_' || *d == '.') {
+                    chars.next();
+                }
+            }
+            c if c.is_ascii_alphabetic() || c == '_' => {
+                let mut id = String::from(c);
+                while let Some(&d) = chars.peek() {
+                    if d.is_ascii_alphanumeric() || d == '_' {
+                        id.push(d);
+                        chars.next();
+                    } else {
+                        break;
+                    }
+                }
+                if prev != '.' {
+                    out.push(id);
+                }
+            }
+            _ => {}
+        }
+        prev = c;
+    }
+    out
+}
+
+/// The value of lowered code that is one integer literal (`5u`, `-3i`, a
+/// literal placeholder), markers aside.
+fn int_literal_value(code: &str) -> Option<i64> {
+    let mut text = String::new();
+    let mut chars = code.chars();
+    while let Some(c) = chars.next() {
+        match c {
+            '\u{1}' => chars.by_ref().take_while(|&d| d != '\u{2}').for_each(drop),
+            '\u{3}' => {}
+            '\u{4}' => {
+                let body: String = chars.by_ref().take_while(|&d| d != '\u{5}').collect();
+                text.push_str(body.strip_prefix('L')?.split_once(' ')?.1);
+            }
+            c => text.push(c),
+        }
+    }
+    let text = text.trim_end_matches(['i', 'u']);
+    let (neg, digits) = match text.strip_prefix('-') {
+        Some(d) => (true, d),
+        None => (false, text),
+    };
+    if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
+        return None;
+    }
+    let v: i64 = digits.parse().ok()?;
+    Some(if neg { -v } else { v })
+}
+
+/// Whether const code is only integer literals below 32, possibly in
+/// vector constructors and conversions (`5u`, `vec2<u32>(1u, 2u)`).
+fn literals_below_32(code: &str) -> bool {
+    let text = text::strip(code).replace("<u32>", "").replace("<i32>", "");
+    if text.contains(['+', '-', '*', '/', '%', '&', '|', '^', '~', '<', '>', '!', '.']) {
+        return false;
+    }
+    // Constructors and conversions only, no functions (`reverseBits(5u)`).
+    if wgsl_idents(&text).iter().any(|id| !matches!(id.as_str(), "vec2" | "vec3" | "vec4" | "u32" | "i32")) {
+        return false;
+    }
+    text.split(|c: char| !c.is_ascii_alphanumeric())
+        .filter(|t| t.starts_with(|c: char| c.is_ascii_digit()))
+        .all(|t| t.trim_end_matches(['i', 'u']).parse::<u32>().is_ok_and(|v| v < 32))
+}
+
+/// Whether WGSL's shader-creation evaluation of `a op b` fails (an
+/// overflow, a shift of 32 or more) for the scalar type (`None`: not yet
+/// inferred, either).
+fn const_overflows(op: &BinOp, a: i64, b: i64, scalar: Option<Scalar>) -> bool {
+    let fails = |signed: bool| -> bool {
+        let (lo, hi) = if signed { (i32::MIN as i64, i32::MAX as i64) } else { (0, u32::MAX as i64) };
+        let out = |v: i64| v < lo || v > hi;
+        if out(a) || (!matches!(op, BinOp::Shl(_) | BinOp::Shr(_)) && out(b)) {
+            return true;
+        }
+        match op {
+            BinOp::Add(_) => out(a + b),
+            BinOp::Sub(_) => out(a - b),
+            BinOp::Mul(_) => out(a.saturating_mul(b)),
+            BinOp::Shl(_) | BinOp::Shr(_) if !(0..32).contains(&b) => true,
+            // The bits shifted out (and, signed, the sign) must not change.
+            BinOp::Shl(_) => out(a << b),
+            _ => false,
+        }
+    };
+    match scalar {
+        Some(Scalar::I32) => fails(true),
+        Some(Scalar::U32 | Scalar::Usize) => fails(false),
+        _ => fails(true) || fails(false),
+    }
 }
 
 /// Whether evaluating lowered code may have side effects: only calls of
