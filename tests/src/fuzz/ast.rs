@@ -251,19 +251,37 @@ pub enum StoreForm {
 
 #[derive(Clone, Debug)]
 pub enum Stmt {
-    Let { name: String, mutable: bool, ty: Ty, annotate: bool, init: Expr },
+    Let {
+        name: String,
+        mutable: bool,
+        ty: Ty,
+        annotate: bool,
+        init: Expr,
+    },
     /// `place = value` or `place op= value`.
     Assign(Place, Option<BinOp>, Expr),
     If(Expr, Block, Option<Block>),
     /// `for var in start..end` (`..=` when inclusive); `start` is a suffixed
     /// literal, `end` any expression of the same type.
-    For { var: String, ty: Scalar, start: i64, end: Expr, inclusive: bool, body: Block },
+    For {
+        var: String,
+        ty: Scalar,
+        start: i64,
+        end: Expr,
+        inclusive: bool,
+        body: Block,
+    },
     While(Expr, Block),
     Loop(Block),
     Break,
     Continue,
     Match(Expr, Vec<Arm>),
-    Store { buf: usize, index: Expr, value: Expr, form: StoreForm },
+    Store {
+        buf: usize,
+        index: Expr,
+        value: Expr,
+        form: StoreForm,
+    },
     /// An expression statement (a helper call whose value is dropped).
     Expr(Expr),
     Return(Option<Expr>),
@@ -342,9 +360,11 @@ impl Program {
             self.block(&mut s, &h.body, 0);
             s.push('\n');
         }
-        let mut params: Vec<String> = self.inputs.iter().map(|(n, t)| format!("#[var] {n}: {}", t.rust(self))).collect();
+        let mut params: Vec<String> =
+            self.inputs.iter().map(|(n, t)| format!("#[var] {n}: {}", t.rust(self))).collect();
         params.extend(self.outputs.iter().map(|(n, t)| format!("#[var] mut {n}: RwBuffer<{}>", t.rust(self))));
-        let _ = write!(s, "\n#[rt_program(ray_generation)]\npub fn {}(\n    {},\n) ", self.name, params.join(",\n    "));
+        let _ =
+            write!(s, "\n#[rt_program(ray_generation)]\npub fn {}(\n    {},\n) ", self.name, params.join(",\n    "));
         self.block(&mut s, &self.body, 0);
         s.push('\n');
         s
@@ -501,7 +521,8 @@ impl Program {
             }
             Expr::StructLit(i, fields) => {
                 let d = &self.structs[*i];
-                let f: Vec<String> = fields.iter().map(|(k, v)| format!("{}: {}", d.fields[*k].0, self.expr(v))).collect();
+                let f: Vec<String> =
+                    fields.iter().map(|(k, v)| format!("{}: {}", d.fields[*k].0, self.expr(v))).collect();
                 format!("{} {{ {} }}", d.name, f.join(", "))
             }
             Expr::ArrayLit(xs) => format!("[{}]", self.args(xs)),

@@ -290,7 +290,8 @@ fn swizzle_name(idx: &[usize]) -> &'static str {
     use std::sync::{Mutex, OnceLock};
     static NAMES: OnceLock<Mutex<HashMap<Vec<usize>, &'static str>>> = OnceLock::new();
     let mut m = NAMES.get_or_init(Default::default).lock().unwrap();
-    m.entry(idx.to_vec()).or_insert_with(|| Box::leak(idx.iter().map(|i| COMP[*i]).collect::<String>().into_boxed_str()))
+    m.entry(idx.to_vec())
+        .or_insert_with(|| Box::leak(idx.iter().map(|i| COMP[*i]).collect::<String>().into_boxed_str()))
 }
 
 impl Gen {
@@ -369,10 +370,8 @@ impl Gen {
     fn generate(&mut self, id: usize) {
         let _ = id;
         // The program's vector types.
-        let all: Vec<Ty> = [Scalar::F32, Scalar::I32, Scalar::U32]
-            .iter()
-            .flat_map(|s| (2..=4).map(move |n| Ty::V(n, *s)))
-            .collect();
+        let all: Vec<Ty> =
+            [Scalar::F32, Scalar::I32, Scalar::U32].iter().flat_map(|s| (2..=4).map(move |n| Ty::V(n, *s))).collect();
         for _ in 0..self.r.range(2, 4) {
             let t = self.r.pick(&all);
             if !self.vecs.contains(&t) {
@@ -390,11 +389,14 @@ impl Gen {
                 };
                 fields.push((format!("f{k}"), t));
             }
-            self.p.structs.push(StructDef { name: format!("Fz{}S{i}", self.p.name.trim_start_matches("fuzz")), fields });
+            self.p
+                .structs
+                .push(StructDef { name: format!("Fz{}S{i}", self.p.name.trim_start_matches("fuzz")), fields });
         }
         // Helpers, each may call the earlier ones.
         let n_helpers = self.r.range(0, 3) as usize;
-        let mut_helper = if n_helpers > 0 && self.r.chance(70) { Some(self.r.below(n_helpers as u64) as usize) } else { None };
+        let mut_helper =
+            if n_helpers > 0 && self.r.chance(70) { Some(self.r.below(n_helpers as u64) as usize) } else { None };
         for i in 0..n_helpers {
             self.callable = i;
             let h = self.helper(i, mut_helper == Some(i));
@@ -541,14 +543,14 @@ impl Gen {
         let in_loop = self.loop_depth > 0 && self.value_depth == 0;
         let has_mut_helper = self.mut_helper().is_some();
         let w = [
-            30,                                                           // let
-            22,                                                           // assign
-            if can_nest { 12 } else { 0 },                                // if
-            if can_nest && self.loop_depth < 2 { 9 } else { 0 },         // loops
-            if can_nest { 5 } else { 0 },                                 // match
+            30,                                                              // let
+            22,                                                              // assign
+            if can_nest { 12 } else { 0 },                                   // if
+            if can_nest && self.loop_depth < 2 { 9 } else { 0 },             // loops
+            if can_nest { 5 } else { 0 },                                    // match
             if self.ret.is_none() && self.value_depth == 0 { 8 } else { 0 }, // store
-            if has_mut_helper { 4 } else { 0 },                           // call statement
-            if in_loop { 6 } else { 0 },                                  // break / continue
+            if has_mut_helper { 4 } else { 0 },                              // call statement
+            if in_loop { 6 } else { 0 },                                     // break / continue
             if self.ret.is_some() && self.value_depth == 0 { 3 } else { 0 }, // early return
         ];
         match self.r.weighted(&w) {
@@ -590,7 +592,11 @@ impl Gen {
         let (ty, init) = if self.r.chance(10) {
             // A local array.
             let n = self.r.pick(&[2u32, 3, 4]);
-            let et = if self.r.chance(70) { Ty::S(self.r.pick(&[Scalar::F32, Scalar::U32, Scalar::I32])) } else { self.r.pick(&self.vecs) };
+            let et = if self.r.chance(70) {
+                Ty::S(self.r.pick(&[Scalar::F32, Scalar::U32, Scalar::I32]))
+            } else {
+                self.r.pick(&self.vecs)
+            };
             let init = if self.r.chance(30) {
                 Expr::ArrayRepeat(b(self.expr(&et, 1, annotate)), n)
             } else {
@@ -635,7 +641,8 @@ impl Gen {
     }
 
     fn place_path(&mut self, v: &Var) -> (Place, Ty) {
-        let mut place = if v.kind == Kind::RefParam { Place::Deref(v.name.clone()) } else { Place::Var(v.name.clone()) };
+        let mut place =
+            if v.kind == Kind::RefParam { Place::Deref(v.name.clone()) } else { Place::Var(v.name.clone()) };
         let mut ty = v.ty.clone();
         while self.r.chance(60) {
             match ty.clone() {
@@ -677,13 +684,9 @@ impl Gen {
         let plain_var = matches!(place, Place::Var(_) | Place::Deref(_));
         // Compound operators the type has, with the right operand's type.
         let ops: Vec<(BinOp, Ty)> = match &ty {
-            Ty::S(Scalar::F32) => vec![
-                (BinOp::Add, F32),
-                (BinOp::Sub, F32),
-                (BinOp::Mul, F32),
-                (BinOp::Div, F32),
-                (BinOp::Rem, F32),
-            ],
+            Ty::S(Scalar::F32) => {
+                vec![(BinOp::Add, F32), (BinOp::Sub, F32), (BinOp::Mul, F32), (BinOp::Div, F32), (BinOp::Rem, F32)]
+            }
             Ty::S(s @ (Scalar::I32 | Scalar::U32)) => [BinOp::Add, BinOp::Sub, BinOp::Mul, BinOp::Div, BinOp::Rem]
                 .into_iter()
                 .chain([BinOp::BitAnd, BinOp::BitOr, BinOp::BitXor, BinOp::Shl, BinOp::Shr])
@@ -732,7 +735,11 @@ impl Gen {
         // value` to the compiler, which rejects them where the place's
         // index has effects.
         let ops: Vec<(BinOp, Ty)> = if place_has_effects(&place, &self.p) {
-            ops.into_iter().filter(|(o, _)| !matches!((o, &ty), (BinOp::Rem, Ty::S(Scalar::F32)) | (BinOp::BitXor, Ty::S(Scalar::Bool)))).collect()
+            ops.into_iter()
+                .filter(|(o, _)| {
+                    !matches!((o, &ty), (BinOp::Rem, Ty::S(Scalar::F32)) | (BinOp::BitXor, Ty::S(Scalar::Bool)))
+                })
+                .collect()
         } else {
             ops
         };
@@ -814,7 +821,13 @@ impl Gen {
             k => {
                 // A counter, incremented first, bounds `while` and `loop`.
                 let c = self.name("c");
-                out.push(Stmt::Let { name: c.clone(), mutable: true, ty: U32, annotate: false, init: lit(LitV::U32(0), true) });
+                out.push(Stmt::Let {
+                    name: c.clone(),
+                    mutable: true,
+                    ty: U32,
+                    annotate: false,
+                    init: lit(LitV::U32(0), true),
+                });
                 self.bind(&c, U32, true, Kind::Counter);
                 let n = lit(LitV::U32(self.r.range(1, 5) as u32), false);
                 let inc = Stmt::Assign(Place::Var(c.clone()), Some(BinOp::Add), lit(LitV::U32(1), false));
@@ -1323,7 +1336,8 @@ impl Gen {
         let d1 = d - 1;
         match self.r.below(100) {
             0..=29 => {
-                let op = [BinOp::Add, BinOp::Sub, BinOp::Mul, BinOp::Div, BinOp::Rem][self.r.weighted(&[4, 4, 4, 2, 1])];
+                let op =
+                    [BinOp::Add, BinOp::Sub, BinOp::Mul, BinOp::Div, BinOp::Rem][self.r.weighted(&[4, 4, 4, 2, 1])];
                 if matches!(op, BinOp::Div | BinOp::Rem) {
                     let a = self.expr(&F32, d1, typed);
                     let c = self.divisor(&F32, d);
@@ -1336,7 +1350,18 @@ impl Gen {
             30..=33 => Expr::Unary(UnOp::Neg, b(self.expr(&F32, d1, typed))),
             34..=49 => {
                 let x = self.expr(&F32, d1, false);
-                let m = self.r.pick(&["abs", "floor", "ceil", "trunc", "round", "fract", "signum", "atan", "to_radians", "to_degrees"]);
+                let m = self.r.pick(&[
+                    "abs",
+                    "floor",
+                    "ceil",
+                    "trunc",
+                    "round",
+                    "fract",
+                    "signum",
+                    "atan",
+                    "to_radians",
+                    "to_degrees",
+                ]);
                 method(x, m, vec![])
             }
             50..=57 => {
@@ -1345,7 +1370,11 @@ impl Gen {
                     0 => method(method(x, "abs", vec![]), "sqrt", vec![]),
                     1 => {
                         let m = self.r.pick(&["exp", "exp2"]);
-                        method(method(x, "clamp", vec![lit(LitV::F32(-8.0), false), lit(LitV::F32(8.0), false)]), m, vec![])
+                        method(
+                            method(x, "clamp", vec![lit(LitV::F32(-8.0), false), lit(LitV::F32(8.0), false)]),
+                            m,
+                            vec![],
+                        )
                     }
                     2 => {
                         let m = self.r.pick(&["ln", "log2"]);
@@ -1373,13 +1402,21 @@ impl Gen {
                     }
                     2 => {
                         let n = self.r.range(-3, 4) as i32;
-                        let base = if n < 0 { bin(BinOp::Add, method(x, "abs", vec![]), lit(LitV::F32(0.5), false)) } else { x };
+                        let base = if n < 0 {
+                            bin(BinOp::Add, method(x, "abs", vec![]), lit(LitV::F32(0.5), false))
+                        } else {
+                            x
+                        };
                         method(base, "powi", vec![lit(LitV::I32(n), self.r.chance(30))])
                     }
                     3 => {
                         let base = bin(BinOp::Add, method(x, "abs", vec![]), lit(LitV::F32(0.5), false));
                         let y = self.expr(&F32, d1, false);
-                        method(base, "powf", vec![method(y, "clamp", vec![lit(LitV::F32(-3.0), false), lit(LitV::F32(3.0), false)])])
+                        method(
+                            base,
+                            "powf",
+                            vec![method(y, "clamp", vec![lit(LitV::F32(-3.0), false), lit(LitV::F32(3.0), false)])],
+                        )
                     }
                     4 => method(x, "mul_add", vec![self.expr(&F32, d1, true), self.expr(&F32, d1, true)]),
                     _ => Expr::Path("f32", self.r.pick(&["min", "max"]), vec![x, self.expr(&F32, d1, true)]),
@@ -1398,7 +1435,11 @@ impl Gen {
                     1 => method(v, "length", vec![]),
                     2 => method(v, "length_squared", vec![]),
                     3 => method(v, "distance", vec![self.expr(&vt, d1, true)]),
-                    4 => method(v, self.r.pick(&["element_sum", "element_product", "min_element", "max_element"]), vec![]),
+                    4 => method(
+                        v,
+                        self.r.pick(&["element_sum", "element_product", "min_element", "max_element"]),
+                        vec![],
+                    ),
                     5 => method(v, "distance_squared", vec![self.expr(&vt, d1, true)]),
                     6 => {
                         let idx = self.index_expr(n as u32);
@@ -1422,7 +1463,10 @@ impl Gen {
                         let x = self.expr(&F32, d1, false);
                         Expr::Free("smoothstep", vec![lit(LitV::F32(lo), true), lit(LitV::F32(hi), true), x])
                     }
-                    _ => Expr::Free("mix", vec![self.expr(&F32, d1, false), self.expr(&F32, d1, false), self.expr(&F32, d1, false)]),
+                    _ => Expr::Free(
+                        "mix",
+                        vec![self.expr(&F32, d1, false), self.expr(&F32, d1, false), self.expr(&F32, d1, false)],
+                    ),
                 }
             }
             93..=96 if self.ret.is_none() && !self.no_buf => {
@@ -1439,7 +1483,8 @@ impl Gen {
         let other = if s == Scalar::I32 { Scalar::U32 } else { Scalar::I32 };
         match self.r.below(100) {
             0..=24 => {
-                let op = [BinOp::Add, BinOp::Sub, BinOp::Mul, BinOp::Div, BinOp::Rem][self.r.weighted(&[4, 4, 3, 2, 2])];
+                let op =
+                    [BinOp::Add, BinOp::Sub, BinOp::Mul, BinOp::Div, BinOp::Rem][self.r.weighted(&[4, 4, 3, 2, 2])];
                 if matches!(op, BinOp::Div | BinOp::Rem) {
                     let a = self.expr(&t, d1, typed);
                     let c = self.divisor(&t, d);
@@ -1482,7 +1527,9 @@ impl Gen {
                         let lo = self.r.range(-20, 10);
                         let hi = lo + self.r.range(0, 30);
                         let (lo, hi) = if s == Scalar::U32 { (lo.max(0), hi.max(0)) } else { (lo, hi) };
-                        let l = |v: i64| lit(if s == Scalar::I32 { LitV::I32(v as i32) } else { LitV::U32(v as u32) }, true);
+                        let l = |v: i64| {
+                            lit(if s == Scalar::I32 { LitV::I32(v as i32) } else { LitV::U32(v as u32) }, true)
+                        };
                         method(x, "clamp", vec![l(lo), l(hi)])
                     }
                     _ => method(x, self.r.pick(&["min", "max"]), vec![self.expr(&t, d1, true)]),
@@ -1507,7 +1554,11 @@ impl Gen {
                 let v = self.expr(&vt, d1, false);
                 match self.r.below(5) {
                     0 => method(v, "dot", vec![self.expr(&vt, d1, true)]),
-                    1 => method(v, self.r.pick(&["element_sum", "element_product", "min_element", "max_element"]), vec![]),
+                    1 => method(
+                        v,
+                        self.r.pick(&["element_sum", "element_product", "min_element", "max_element"]),
+                        vec![],
+                    ),
                     2 => {
                         let idx = self.index_expr(n as u32);
                         Expr::Index(b(v), b(idx))
@@ -1591,7 +1642,11 @@ impl Gen {
             30..=39 => {
                 let op = self.r.pick(&[BinOp::Add, BinOp::Sub, BinOp::Mul, BinOp::Div, BinOp::Rem]);
                 let a = self.expr(&t, d1, false);
-                let c = if matches!(op, BinOp::Div | BinOp::Rem) { self.divisor(&F32, d) } else { self.expr(&F32, d1, false) };
+                let c = if matches!(op, BinOp::Div | BinOp::Rem) {
+                    self.divisor(&F32, d)
+                } else {
+                    self.expr(&F32, d1, false)
+                };
                 bin(op, a, c)
             }
             40..=43 => {
@@ -1623,7 +1678,11 @@ impl Gen {
                     3 => {
                         let base = bin(BinOp::Add, method(x, "abs", vec![]), lit(LitV::F32(0.5), true));
                         let y = self.expr(&F32, d1, false);
-                        method(base, "powf", vec![method(y, "clamp", vec![lit(LitV::F32(-3.0), false), lit(LitV::F32(3.0), false)])])
+                        method(
+                            base,
+                            "powf",
+                            vec![method(y, "clamp", vec![lit(LitV::F32(-3.0), false), lit(LitV::F32(3.0), false)])],
+                        )
                     }
                     4 => method(x, "mul_add", vec![self.expr(&t, d1, true), self.expr(&t, d1, true)]),
                     _ => method(x, "normalize_or_zero", vec![]),
@@ -1658,7 +1717,10 @@ impl Gen {
                 }
                 _ => {
                     let tt = if self.r.chance(50) { F32 } else { t.clone() };
-                    Expr::Free("mix", vec![self.expr(&t, d1, false), self.expr(&t, d1, false), self.expr(&tt, d1, false)])
+                    Expr::Free(
+                        "mix",
+                        vec![self.expr(&t, d1, false), self.expr(&t, d1, false), self.expr(&tt, d1, false)],
+                    )
                 }
             },
             82..=91 => self.reshape(n, Scalar::F32, d1),
@@ -1736,7 +1798,11 @@ impl Gen {
             }
             58..=62 => {
                 let x = self.expr(&t, d1, false);
-                if s == Scalar::I32 && self.r.chance(50) { Expr::Unary(UnOp::Neg, b(x)) } else { Expr::Unary(UnOp::Not, b(x)) }
+                if s == Scalar::I32 && self.r.chance(50) {
+                    Expr::Unary(UnOp::Neg, b(x))
+                } else {
+                    Expr::Unary(UnOp::Not, b(x))
+                }
             }
             63..=72 => {
                 let x = self.expr(&t, d1, false);
@@ -1745,8 +1811,14 @@ impl Gen {
                     1 => {
                         let lo = if s == Scalar::I32 { self.r.range(-20, 5) } else { self.r.range(0, 5) };
                         let hi = lo + self.r.range(0, 30);
-                        let l = |v: i64| lit(if s == Scalar::I32 { LitV::I32(v as i32) } else { LitV::U32(v as u32) }, true);
-                        method(x, "clamp", vec![Expr::Path(name, "splat", vec![l(lo)]), Expr::Path(name, "splat", vec![l(hi)])])
+                        let l = |v: i64| {
+                            lit(if s == Scalar::I32 { LitV::I32(v as i32) } else { LitV::U32(v as u32) }, true)
+                        };
+                        method(
+                            x,
+                            "clamp",
+                            vec![Expr::Path(name, "splat", vec![l(lo)]), Expr::Path(name, "splat", vec![l(hi)])],
+                        )
                     }
                     _ => method(x, self.r.pick(&["min", "max"]), vec![self.expr(&t, d1, true)]),
                 }

@@ -80,7 +80,6 @@ impl Gpu {
 }
 
 impl Device {
-
     fn run(&self, wgsl: &str, heap: &[u32], groups: (u32, u32, u32)) -> Result<Vec<u32>, String> {
         use wgpu::util::DeviceExt;
         let internal = self.device.push_error_scope(wgpu::ErrorFilter::Internal);

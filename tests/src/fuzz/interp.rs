@@ -554,14 +554,14 @@ fn bin(op: BinOp, a: &V, b: &V) -> R<V> {
         }
         // glam's `Vec4` is SIMD (SSE2 here, NEON, wasm) and its `%` is
         // `x - floor(x / y) * y`, unlike `f32`'s `%` (`Vec2`, `Vec3`).
-        (BinOp::Rem, V::Vec(x), _) if x.len() == 4 && matches!(x[0], V::F(..)) => {
-            zip(a, b, &mut |p, q| {
-                let (x, y) = (p.f(), q.f());
-                let n = fstep(fdiv(x, y)?, f32::floor)?;
-                fv(fsub(x, fmul(n, y, false)?, false))
-            })
+        (BinOp::Rem, V::Vec(x), _) if x.len() == 4 && matches!(x[0], V::F(..)) => zip(a, b, &mut |p, q| {
+            let (x, y) = (p.f(), q.f());
+            let n = fstep(fdiv(x, y)?, f32::floor)?;
+            fv(fsub(x, fmul(n, y, false)?, false))
+        }),
+        (BinOp::Rem, _, V::Vec(y)) if y.len() == 4 && matches!(y[0], V::F(..)) => {
+            bin(op, &V::Vec(vec![a.clone(); 4]), b)
         }
-        (BinOp::Rem, _, V::Vec(y)) if y.len() == 4 && matches!(y[0], V::F(..)) => bin(op, &V::Vec(vec![a.clone(); 4]), b),
         _ => zip(a, b, &mut |p, q| scalar_bin(op, p, q)),
     }
 }
@@ -1152,7 +1152,9 @@ fn method(r: &V, m: &str, a: &[V]) -> R<V> {
             let d = bin(BinOp::Sub, r, &a[0])?;
             return dot(d.comps(), d.comps());
         }
-        (V::Vec(c), "element_sum") => return c[1..].iter().try_fold(c[0].clone(), |acc, x| loose_bin(BinOp::Add, &acc, x)),
+        (V::Vec(c), "element_sum") => {
+            return c[1..].iter().try_fold(c[0].clone(), |acc, x| loose_bin(BinOp::Add, &acc, x));
+        }
         (V::Vec(c), "element_product") => {
             return c[1..].iter().try_fold(c[0].clone(), |acc, x| loose_bin(BinOp::Mul, &acc, x));
         }
@@ -1183,7 +1185,8 @@ fn method(r: &V, m: &str, a: &[V]) -> R<V> {
                 return Ok(V::Vec(c.iter().map(|_| V::F(0.0, if unc { 2.0 } else { 0.0 })).collect()));
             }
             // Relative error of 1/len: half of dot's, plus a few ULP.
-            let rel = if d.0 as f64 <= d.1 { f64::INFINITY } else { 0.5 * d.1 / (d.0 as f64 - d.1) + 4.0 * 2f64.powi(-23) };
+            let rel =
+                if d.0 as f64 <= d.1 { f64::INFINITY } else { 0.5 * d.1 / (d.0 as f64 - d.1) + 4.0 * 2f64.powi(-23) };
             let out: R<Vec<V>> = c
                 .iter()
                 .map(|x| {
@@ -1232,7 +1235,8 @@ fn method(r: &V, m: &str, a: &[V]) -> R<V> {
             let l = (xv as f64).log2();
             let dl = if (0.5..=2.0).contains(&xv) { 2f64.powi(-21) } else { 3.0 * ulp(l) };
             let t = yv as f64 * l;
-            let dt = yv.abs() as f64 * (dl + if xe > 0.0 { xe / ((xv as f64 - xe).max(0.0) * std::f64::consts::LN_2) } else { 0.0 })
+            let dt = yv.abs() as f64
+                * (dl + if xe > 0.0 { xe / ((xv as f64 - xe).max(0.0) * std::f64::consts::LN_2) } else { 0.0 })
                 + l.abs() * ye
                 + ulp(t);
             let rel = (dt * std::f64::consts::LN_2).exp_m1() + (3.0 + 2.0 * t.abs()) * 2f64.powi(-23);
@@ -1254,7 +1258,13 @@ fn method(r: &V, m: &str, a: &[V]) -> R<V> {
 fn min_max(x: &V, y: &V, min: bool) -> R<V> {
     Ok(match (x, y) {
         (V::F(a, ea), V::F(b, eb)) => {
-            let r = if min { if a < b { *a } else { *b } } else if a > b { *a } else { *b };
+            let r = if min {
+                if a < b { *a } else { *b }
+            } else if a > b {
+                *a
+            } else {
+                *b
+            };
             V::F(r, ea.max(*eb))
         }
         (V::I(a, ua), V::I(b, ub)) => V::I(if min { *a.min(b) } else { *a.max(b) }, *ua || *ub),
@@ -1377,10 +1387,15 @@ mod tests2 {
     #[test]
     fn loop_in_a_compound_value_keeps_errors() {
         let f = |x: f32| Expr::Lit(Lit { v: LitV::F32(x), suffix: true });
-        let rem = Expr::Bin(BinOp::Rem, Box::new(var("v1")), Box::new(Expr::Method(Box::new(var("in4")), "atan", vec![])));
+        let rem =
+            Expr::Bin(BinOp::Rem, Box::new(var("v1")), Box::new(Expr::Method(Box::new(var("in4")), "atan", vec![])));
         let body = Block {
             stmts: vec![
-                Stmt::Assign(Place::Var("c".into()), Some(BinOp::Add), Expr::Lit(Lit { v: LitV::U32(1), suffix: true })),
+                Stmt::Assign(
+                    Place::Var("c".into()),
+                    Some(BinOp::Add),
+                    Expr::Lit(Lit { v: LitV::U32(1), suffix: true }),
+                ),
                 Stmt::Assign(Place::Var("v1".into()), Some(BinOp::Div), rem),
             ],
             tail: None,
@@ -1391,7 +1406,13 @@ mod tests2 {
             Box::new(Block { stmts: vec![], tail: Some(f(1.0)) }),
             Box::new(Block {
                 stmts: vec![
-                    Stmt::Let { name: "c".into(), mutable: true, ty: U32, annotate: false, init: Expr::Lit(Lit { v: LitV::U32(0), suffix: true }) },
+                    Stmt::Let {
+                        name: "c".into(),
+                        mutable: true,
+                        ty: U32,
+                        annotate: false,
+                        init: Expr::Lit(Lit { v: LitV::U32(0), suffix: true }),
+                    },
                     Stmt::While(cond, body),
                 ],
                 tail: Some(f(-1.0)),
@@ -1408,7 +1429,12 @@ mod tests2 {
                 stmts: vec![
                     Stmt::Let { name: "v1".into(), mutable: true, ty: F32, annotate: false, init: var("in4") },
                     Stmt::Assign(Place::Var("v1".into()), Some(BinOp::Div), value),
-                    Stmt::Store { buf: 0, index: Expr::Lit(Lit { v: LitV::U32(0), suffix: true }), value: var("v1"), form: StoreForm::Method },
+                    Stmt::Store {
+                        buf: 0,
+                        index: Expr::Lit(Lit { v: LitV::U32(0), suffix: true }),
+                        value: var("v1"),
+                        form: StoreForm::Method,
+                    },
                 ],
                 tail: None,
             },

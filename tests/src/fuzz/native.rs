@@ -58,7 +58,10 @@ pub fn write_project(dir: &Path, rt_std: &Path, programs: &[Prepared]) -> std::i
         }
         main.push_str("    ];\n");
         let n = LANES * prog.slots;
-        let _ = writeln!(main, "    for lane in 0..{LANES}u32 {{\n        let w = INPUTS[lane as usize];\n        let mut at = 0usize;");
+        let _ = writeln!(
+            main,
+            "    for lane in 0..{LANES}u32 {{\n        let w = INPUTS[lane as usize];\n        let mut at = 0usize;"
+        );
         let mut args = Vec::new();
         for (name, t) in &prog.inputs {
             let t = t.rust(prog);

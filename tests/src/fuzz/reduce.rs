@@ -6,9 +6,9 @@
 //! Candidates that no longer type-check are simply rejected by the compiler
 //! and skipped. Candidates are tried in batches, one shader module each.
 
+use super::Failure;
 use super::ast::*;
 use super::gpu::Gpu;
-use super::Failure;
 use std::time::{Duration, Instant};
 
 /// One edit site visitor: counts sites in a fixed order and applies the
@@ -149,7 +149,9 @@ impl Editor {
                 self.expr(r);
                 args.iter_mut().for_each(|a| self.expr(a));
             }
-            Expr::Path(_, _, args) | Expr::Free(_, args) | Expr::ArrayLit(args) => args.iter_mut().for_each(|a| self.expr(a)),
+            Expr::Path(_, _, args) | Expr::Free(_, args) | Expr::ArrayLit(args) => {
+                args.iter_mut().for_each(|a| self.expr(a))
+            }
             Expr::Call(_, args) => {
                 for a in args {
                     if let Arg::Val(x) = a {
@@ -201,7 +203,9 @@ fn renumber(b: &mut Block, removed: usize) {
                 expr(x, r);
                 args.iter_mut().for_each(|a| expr(a, r));
             }
-            Expr::Path(_, _, args) | Expr::Free(_, args) | Expr::ArrayLit(args) => args.iter_mut().for_each(|a| expr(a, r)),
+            Expr::Path(_, _, args) | Expr::Free(_, args) | Expr::ArrayLit(args) => {
+                args.iter_mut().for_each(|a| expr(a, r))
+            }
             Expr::StructLit(_, fs) => fs.iter_mut().for_each(|(_, x)| expr(x, r)),
             Expr::If(c, t, f) => {
                 expr(c, r);

@@ -136,10 +136,8 @@ pub fn fmod_vec(n: u8) -> (&'static str, &'static str) {
 /// glam's `Vec4 % Vec4` (and `% f32`) on targets where `Vec4` is SIMD
 /// (SSE2, NEON, wasm32: `x - floor(x / y) * y`, a floored remainder), as
 /// opposed to `Vec2` and `Vec3` (`f32`'s `%`, [`fmod_vec`]): `(name, text)`.
-pub const VEC4_REM: (&str, &str) = (
-    "rt_rem_vec4",
-    "fn rt_rem_vec4(x: vec4<f32>, y: vec4<f32>) -> vec4<f32> {\n    return x - floor(x / y) * y;\n}\n",
-);
+pub const VEC4_REM: (&str, &str) =
+    ("rt_rem_vec4", "fn rt_rem_vec4(x: vec4<f32>, y: vec4<f32>) -> vec4<f32> {\n    return x - floor(x / y) * y;\n}\n");
 
 /// Float to integer conversion as Rust's `as` (and glam's `as_ivecN`,
 /// `as_uvecN`): truncate, saturate at the type's limits. WGSL clamps to the

@@ -984,7 +984,10 @@ impl<'m> FnLowerer<'m> {
             .map(|(_, l)| l.wgsl.as_str())
             .collect();
         wgsl_idents(code).iter().any(|id| {
-            mutable.contains(id.as_str()) || id.starts_with("rt_bufload") || id.starts_with("rt_load") || may_have_effects(id)
+            mutable.contains(id.as_str())
+                || id.starts_with("rt_bufload")
+                || id.starts_with("rt_load")
+                || may_have_effects(id)
         })
     }
 
@@ -1029,7 +1032,9 @@ impl<'m> FnLowerer<'m> {
             _ => None,
         };
         match (int_literal_value(&l.code), int_literal_value(&r.code)) {
-            (Some(a), Some(b)) if matches!(ty, Ty::Scalar(_) | Ty::IntVar(_)) && !const_overflows(op, a, b, scalar) => l,
+            (Some(a), Some(b)) if matches!(ty, Ty::Scalar(_) | Ty::IntVar(_)) && !const_overflows(op, a, b, scalar) => {
+                l
+            }
             _ => self.at_run_time(l),
         }
     }
@@ -1185,8 +1190,7 @@ impl<'m> FnLowerer<'m> {
                     // NEON, wasm), and its `%` is `x - floor(x / y) * y`
                     // there, not `f32`'s `%` per component as for `Vec2` and
                     // `Vec3`.
-                    let (f, text) =
-                        if n == 4 { super::builtins::VEC4_REM } else { super::builtins::fmod_vec(n) };
+                    let (f, text) = if n == 4 { super::builtins::VEC4_REM } else { super::builtins::fmod_vec(n) };
                     fns.functions.entry(f.to_string()).or_insert_with(|| text.to_string());
                     let splat = |v: &Val, t: &Ty| match t {
                         Ty::Vec(..) => v.code.clone(),
@@ -1858,7 +1862,8 @@ impl<'m> FnLowerer<'m> {
             let flag = self.fresh("brk");
             self.breaks.push(Some((flag, false)));
         }
-        let arms = self.match_arms(m, want, &sty, &scrut, &t, &mut cases, &mut result_ty, &mut has_default, &mut values);
+        let arms =
+            self.match_arms(m, want, &sty, &scrut, &t, &mut cases, &mut result_ty, &mut has_default, &mut values);
         let flag = if in_loop {
             match self.breaks.pop() {
                 Some(Some((flag, true))) => Some(flag),
@@ -2201,7 +2206,10 @@ impl<'m> FnLowerer<'m> {
         }
         // Integer arithmetic on constants only: at run time (see
         // `const_int_op`).
-        let wraps = matches!(name, "wrapping_add" | "wrapping_sub" | "wrapping_mul" | "dot" | "element_sum" | "element_product");
+        let wraps = matches!(
+            name,
+            "wrapping_add" | "wrapping_sub" | "wrapping_mul" | "dot" | "element_sum" | "element_product"
+        );
         if wraps
             && (self.is_int(&rt) || matches!(rt, Ty::Vec(_, s) if s.is_int()))
             && vals.iter().all(|v| self.is_const_code(&v.code))
