@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # The project's test command (README.md; .ci/run calls it). Builds with two
-# jobs, as on the CI machine, and runs every test in the workspace. Tests of
-# the wgpu backend need an adapter: on a machine without a GPU that is Mesa's
-# lavapipe, installed here when missing (as root). A missing adapter fails
-# those tests; it is never skipped.
+# jobs, as on the CI machine, and runs every test in the workspace (all
+# targets, then doc tests). Tests of the wgpu backend need an adapter: on a
+# machine without a GPU that is Mesa's lavapipe, installed here when missing
+# (as root). A missing adapter fails those tests; it is never skipped.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 if [ ! -e /usr/share/vulkan/icd.d/lvp_icd.x86_64.json ] && [ ! -e /usr/share/vulkan/icd.d/lvp_icd.json ]; then
@@ -18,6 +18,11 @@ fi
 export XDG_RUNTIME_DIR="${XDG_RUNTIME_DIR:-/tmp}"
 export CARGO_BUILD_JOBS="${CARGO_BUILD_JOBS:-2}"
 start=$(date +%s)
-cargo test --workspace --all-targets -j"$CARGO_BUILD_JOBS"
-cargo test --workspace --doc -j"$CARGO_BUILD_JOBS"
+log=$(mktemp)
+trap 'rm -f "$log"' EXIT
+cargo test --workspace --all-targets -j"$CARGO_BUILD_JOBS" 2>&1 | tee "$log"
+cargo test --workspace --doc -j"$CARGO_BUILD_JOBS" 2>&1 | tee -a "$log"
+passed=$(grep -Eo '^test result: [a-zA-Z]+\. [0-9]+ passed' "$log" | awk '{s += $4} END {print s + 0}')
+failed=$(grep -Eo '[0-9]+ failed;' "$log" | awk '{s += $1} END {print s + 0}')
 echo "scripts/test.sh: tests took $(( $(date +%s) - start )) s"
+echo "tests: $passed passed, $failed failed"
