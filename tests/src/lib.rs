@@ -20,6 +20,8 @@ pub mod consts;
 pub mod control_flow;
 #[path = "../snapshots/in/exceptions.rs"]
 pub mod exceptions;
+#[path = "../snapshots/in/fuzz_regressions.rs"]
+pub mod fuzz_regressions;
 #[path = "../snapshots/in/helpers_refs.rs"]
 pub mod helpers_refs;
 #[path = "../snapshots/in/instancing.rs"]

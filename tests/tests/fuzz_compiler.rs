@@ -51,3 +51,74 @@ fn interpreter_agrees_with_rustc() {
         eprintln!("{} programs agree with rustc", programs.len());
     });
 }
+
+/// The fuzzer's minimized regressions (`snapshots/in/fuzz_regressions.rs`,
+/// one per compiler bug it found) run natively, as rustc compiled them, and
+/// on the GPU, as the compiler lowered them, with the same inputs: the
+/// outputs must agree (integers exactly, floats within 2 ULP).
+#[test]
+fn regressions_agree_on_cpu_and_gpu() {
+    use rt_std::cpu::{ExecutionContext, with_context};
+    use rt_std::prelude::*;
+    use rt_tests::fuzz::gpu::{Gpu, LANES, Slot, assemble};
+    use rt_tests::fuzz_regressions as r;
+    type Program = fn(u32, i32, f32, RwBuffer<u32>, RwBuffer<f32>);
+    // (`fuzz_shift_amounts` overflows in a debug build: compiled only.)
+    let programs: [(&str, Program); 7] = [
+        ("fuzz_eval_order", r::fuzz_eval_order),
+        ("fuzz_assign_order", r::fuzz_assign_order),
+        ("fuzz_match_break", r::fuzz_match_break),
+        ("fuzz_const_ints", r::fuzz_const_ints),
+        ("fuzz_int_bool_ops", r::fuzz_int_bool_ops),
+        ("fuzz_float_formulas", r::fuzz_float_formulas),
+        ("fuzz_zero_vectors", r::fuzz_zero_vectors),
+    ];
+    let source = include_str!("../snapshots/in/fuzz_regressions.rs");
+    let gpu = Gpu::new().expect("a wgpu adapter (lavapipe without a GPU)");
+    let inputs: Vec<(u32, i32, f32)> =
+        (0..LANES).map(|i| (i * 3 + i % 5, (i % 7) as i32 - 3, i as f32 * 0.75 - 10.0)).collect();
+    let n = (LANES * r::SLOTS) as usize;
+    let mut failures = Vec::new();
+    for (name, program) in programs {
+        let mut cpu_u = vec![0u32; n + 1];
+        let mut cpu_f = vec![0f32; n + 1];
+        for (lane, &(a, b, x)) in inputs.iter().enumerate() {
+            // SAFETY: `n + 1` elements each (the last the out-of-bounds sink),
+            // alive and otherwise untouched during the call.
+            let (out_u, out_f) = unsafe {
+                (
+                    RwBuffer::from_raw_parts(cpu_u.as_mut_ptr(), n as u32),
+                    RwBuffer::from_raw_parts(cpu_f.as_mut_ptr(), n as u32),
+                )
+            };
+            let ctx = ExecutionContext {
+                launch_index: uvec2(lane as u32, 0),
+                launch_dim: uvec2(LANES, 1),
+                ..Default::default()
+            };
+            with_context(ctx, || program(a, b, x, out_u, out_f));
+        }
+        let lowered = rt_compiler::lower_source(source, name).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let mut heap: Vec<u32> = inputs.iter().flat_map(|&(a, b, x)| [a, b as u32, x.to_bits()]).collect();
+        let base = heap.len() as u32;
+        heap.resize(heap.len() + 2 * n, 0);
+        let slot = Slot { input_base: 0, input_words: 3, buffers: vec![(base, n as u32), (base + n as u32, n as u32)] };
+        let wgsl = assemble(&[&lowered], &[slot]);
+        let out = gpu.run(&wgsl, &heap, (1, 1, 1)).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let (gpu_u, gpu_f) = out[base as usize..].split_at(n);
+        for i in 0..n {
+            let lane = i / r::SLOTS as usize;
+            if cpu_u[i] != gpu_u[i] {
+                failures.push(format!("{name}: launch index {lane} out_u[{i}]: Rust {}, GPU {}", cpu_u[i], gpu_u[i]));
+            }
+            if !fuzz::float_matches(cpu_f[i], 0.0, f32::from_bits(gpu_f[i])) {
+                failures.push(format!(
+                    "{name}: launch index {lane} out_f[{i}]: Rust {}, GPU {}",
+                    cpu_f[i],
+                    f32::from_bits(gpu_f[i])
+                ));
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures[..failures.len().min(30)].join("\n"));
+}

@@ -1,12 +1,17 @@
 //! The CPU side: an interpreter of the generator's AST with Rust's
-//! semantics, which tracks how far a conforming WGSL implementation may
-//! stray from each value.
+//! semantics, which tracks how far a conforming GPU may stray from each
+//! value.
 //!
 //! ## Semantics
-//! Values are computed exactly as the Rust program computes them (glam's
-//! formulas for vector methods, rt-std's for `mix`, `step`, `smoothstep`,
-//! `saturate`; `f32` methods are Rust's own). Where Rust itself has more
-//! than one behaviour the interpreter picks the one the compiler lowers to:
+//! Values are computed exactly as the Rust program computes them on the
+//! host (x86-64 or aarch64): glam's formulas for vector methods (`Vec4` is
+//! SIMD there, and its `%` is `x - floor(x / y) * y`, unlike `Vec2`/`Vec3`'s
+//! `f32` `%`), rt-std's for `mix`, `step`, `smoothstep`, `saturate`, Rust's
+//! own `f32` methods; the order of evaluation and of borrows is Rust's
+//! (operands left to right, an assignment's value before its place unless
+//! it is a trait `op=`). `native` checks all this against rustc. Where Rust
+//! itself has more than one behaviour the interpreter picks the one the
+//! compiler lowers to:
 //!
 //! - integer `+ - *`, negation, `abs`, glam's vector `+ - *`, `dot` and
 //!   `element_sum`/`element_product` **wrap** (Rust with overflow checks
@@ -15,30 +20,36 @@
 //!   `wrapping_shl`; WGSL's rule for shifts);
 //! - integer division or remainder by zero and `i32::MIN / -1` panic in
 //!   Rust whatever the build: the generator never produces them (divisors
-//!   are built to be non-zero and not -1, see `generate`) and the interpreter
-//!   panics if one occurs, as a generator bug;
+//!   are built to be non-zero and not -1, see `generate`) and the
+//!   interpreter panics if one occurs, as a generator bug;
 //! - float-to-integer `as` saturates and truncates (Rust; the compiler
 //!   lowers it so). NaN never reaches a cast: see below.
 //!
-//! ## What a WGSL implementation may do differently
+//! ## What a GPU may do differently
 //! Every `f32` carries an absolute error bound `err`: how far the GPU's
 //! value may be from the interpreter's while both conform, following WGSL's
-//! accuracy rules (WGSL §"Floating Point Accuracy", f32): `+ - *`,
-//! comparisons, `abs`/`min`/`max`/`clamp`, rounding functions, `fract`,
-//! casts and `%` (the compiler's exact `fmod`) are exact, so with exact
-//! operands `err` stays 0; `/` is 2.5 ULP; `sqrt` (inherited from
-//! `1 / inverseSqrt`) 5 ULP; `exp`/`exp2` `3 + 2|x|` ULP; `ln`/`log2`
-//! 2^-21 absolute in [0.5, 2], else 3 ULP; `sin`/`cos` 2^-11 absolute in
-//! [-pi, pi] and unbounded (within [-1, 1]) outside; `atan` 4096 ULP;
-//! `powf` inherited from `exp2(y * log2(x))`; functions WGSL defines by a
-//! formula (`fma` as `a * b + c`, `mix`, `smoothstep`, `dot`, `length`,
-//! `distance`, `normalize`, `cross`, `radians`...) are evaluated here with
-//! glam's/Rust's formula and an allowance of one rounding per operation,
-//! since the GPU may order, fuse or split them differently. Errors
-//! propagate through later operations (interval-style, by magnitude).
-//! Integer and bool values carry an `uncertain` flag instead: set when
-//! they derive from a float whose error bound straddles a decision (a
-//! comparison within the error, a cast or `floor` near an integer).
+//! accuracy rules (WGSL §"Floating Point Accuracy", f32): comparisons,
+//! `abs`/`min`/`max`/`clamp`, rounding functions, `fract`, casts and
+//! scalar `%` (the compiler's exact `fmod`) are exact; `+ - *` are
+//! correctly rounded, but shader compilers reassociate chains of them
+//! (Mesa does for every operation SPIR-V does not mark exact), so they get
+//! one ULP of the larger operand (two of the result for `*`) unless every
+//! value is a small multiple of 2^-10, when every order is exact; `/` is
+//! 2.5 ULP; `sqrt` (inherited from `1 / inverseSqrt`) 5 ULP; `exp`/`exp2`
+//! `3 + 2|x|` ULP; `ln`/`log2` 2^-21 absolute in [0.5, 2], else 3 ULP;
+//! `sin`/`cos` 2^-11 absolute in [-pi, pi] and unbounded (within [-1, 1])
+//! outside; `atan` 4096 ULP; `powf` inherited from `exp2(y * log2(x))`;
+//! functions WGSL defines by a formula (`fma` as `a * b + c` — lavapipe's
+//! `fma` is not fused —, `smoothstep`, `dot`, `length`, `distance`,
+//! `normalize`, `cross`, `radians`...) and the compiler's formulas (`mix`
+//! and `lerp` as `a * (1 - t) + b * t`) are evaluated with glam's/Rust's
+//! formula and an allowance of one rounding per operation, since the GPU
+//! may order, fuse or split them differently. Errors propagate through later
+//! operations (interval-style, by magnitude; step functions and `fract`
+//! jump where the interval crosses an integer). Integer and bool values
+//! carry an `uncertain` flag instead: set when they derive from a float
+//! whose error bound straddles a decision (a comparison within the error,
+//! a cast or `floor` near an integer).
 //!
 //! A launch index is left out of the comparison (a *skip*, counted and
 //! reported) only where WGSL leaves the result undefined or the bounds above

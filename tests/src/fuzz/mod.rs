@@ -37,9 +37,21 @@
 //!    reported.
 //!
 //! A failure is reported with the program's source, its WGSL, the inputs
-//! and the differing words; [`Config::artifacts`] keeps them on disk.
+//! and the differing words; [`Config::artifacts`] keeps them on disk, and
+//! with `RT_FUZZ_MINIMIZE=<seconds>` [`reduce`] shrinks each failing
+//! program (deleting statements, flattening blocks, replacing expressions
+//! by operands while it still fails the same way) into `minimized.rs`.
 //! `RT_FUZZ_SEED`, `RT_FUZZ_PROGRAMS`, `RT_FUZZ_BATCH` and `RT_FUZZ_ONLY`
-//! (one program id) choose what a run does (see [`Config::from_env`]).
+//! (one program id) choose what a run does (see [`Config::from_env`]);
+//! `RT_FUZZ_TRACE=<launch index>` prints the interpreter's values,
+//! `RT_FUZZ_LANE` the differences of one launch index, `RT_FUZZ_SOURCE` runs
+//! an edited source on the GPU against the generated program.
+//!
+//! The interpreter itself is checked against rustc by [`native`] (an
+//! ignored test: it builds the generated programs natively and compares).
+//! Every bug the fuzzer found has a minimized program in the snapshot
+//! corpus (`snapshots/in/fuzz_regressions.rs`), run on both sides by a
+//! test of its own.
 
 // `max(0).min(1)` is deliberate where NaN must become 0 (WGSL `saturate`);
 // the other lints are about the generator's and interpreter's shape.
