@@ -209,7 +209,9 @@ pub fn fuzz_int_bool_ops(
 /// `Vec2`/`Vec3` (`f32`'s `%` per component); the compiler used `f32`'s for
 /// all three. `lerp` and rt-std's `mix` are `a * (1 - t) + b * t`, exact at
 /// both ends, where WGSL's `mix` gave `b` plus an error at `t == 1`
-/// (lavapipe computes `a + t * (b - a)`).
+/// (lavapipe computes `a + t * (b - a)`). `step` is rt-std's `x >= edge`
+/// selecting 1 or 0: lavapipe folds a constant added to WGSL's `step` at
+/// reduced precision (`step(e, x) - 0.001` lost the result's low 8 bits).
 #[rt_program(ray_generation)]
 pub fn fuzz_float_formulas(
     #[var] a: u32,
@@ -228,6 +230,8 @@ pub fn fuzz_float_formulas(
     let t = (b & 1) as f32;
     out_f.store(slot + 4, Vec3::splat(-3.5).lerp(Vec3::splat(0.001), t).x);
     out_f.store(slot + 5, mix(-3.5f32, 0.001, t));
+    out_f.store(slot + 6, step(x, -4.0) - 0.001);
+    out_f.store(slot + 7, step(Vec2::splat(x), Vec2::new(-4.0, 4.0)).y + 0.1);
     out_u.store(slot, a);
 }
 

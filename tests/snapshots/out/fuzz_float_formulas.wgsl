@@ -112,5 +112,7 @@ fn rtp_fuzz_float_formulas(a: u32, b: i32, x: f32, out_u: RtBuffer, out_f: RtBuf
     let t: f32 = f32((b & 1i));
     rt_bufstore_f32(out_f, (slot + 4u), (vec3<f32>(-3.5f) * (1.0 - t) + vec3<f32>(0.001f) * t).x);
     rt_bufstore_f32(out_f, (slot + 5u), (-3.5f * (1.0 - t) + 0.001f * t));
+    rt_bufstore_f32(out_f, (slot + 6u), (select(0.0f, 1.0f, -4.0f >= x) - 0.001f));
+    rt_bufstore_f32(out_f, (slot + 7u), (select(vec2<f32>(0.0), vec2<f32>(1.0), vec2<f32>(-4.0f, 4.0f) >= vec2<f32>(x)).y + 0.1f));
     rt_bufstore_u32(out_u, slot, a);
 }

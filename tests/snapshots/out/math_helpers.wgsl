@@ -25,10 +25,10 @@ fn rtp_math_helpers(prd: ptr<function, Radiance>, attr: Normals, base_color: vec
     let r: vec3<f32> = reflect(ray.direction, n);
     let tr: vec3<f32> = refract(ray.direction, n, (1.0f / ior));
     let n_dot_l: f32 = saturate(dot(n, light_dir));
-    let band: f32 = ((step(0.5f, n_dot_l) * 0.5f) + (step(0.9f, n_dot_l) * 0.5f));
+    let band: f32 = ((select(0.0f, 1.0f, n_dot_l >= 0.5f) * 0.5f) + (select(0.0f, 1.0f, n_dot_l >= 0.9f) * 0.5f));
     let rim: f32 = smoothstep(0.6f, 1.0f, (1.0f - saturate(dot(n, -ray.direction))));
     let spec: vec3<f32> = smoothstep(vec3<f32>(0.9f), vec3<f32>(1.0), (r * light_dir));
-    let edges: vec3<f32> = (step(vec3<f32>(0.25f), abs(tr)) + saturate((tr * 4.0f)));
+    let edges: vec3<f32> = (select(vec3<f32>(0.0), vec3<f32>(1.0), abs(tr) >= vec3<f32>(0.25f)) + saturate((tr * 4.0f)));
     let lit: vec3<f32> = ((base_color * 0.2f) * (1.0 - band) + base_color * band);
     let toned: vec3<f32> = ((lit * (1.0 - vec3<f32>(rim)) + rim_color * vec3<f32>(rim)) + ((0.0f * (1.0 - rim) + 0.1f * rim) * spec));
     (*prd).result = (toned * (1.0 - vec3<f32>(0.0f, 0.05f, 0.1f)) + edges * vec3<f32>(0.0f, 0.05f, 0.1f));

@@ -2541,6 +2541,17 @@ impl<'m> FnLowerer<'m> {
         };
         if let Some((f, params, ret)) = call {
             let mut a = self.args_typed(args, &params, span, name)?;
+            if f == "step" {
+                // rt-std's definition, `x >= edge` selecting 1 or 0, rather
+                // than WGSL's `step`: lavapipe folds a constant added to a
+                // `step` at reduced precision (`step(e, x) - 0.001` loses the
+                // low 8 bits of the result).
+                let (zero, one) = match &ret {
+                    Ty::Vec(..) => (format!("{}(0.0)", ret.wgsl()), format!("{}(1.0)", ret.wgsl())),
+                    _ => ("0.0f".to_string(), "1.0f".to_string()),
+                };
+                return Ok(Some(Val::new(format!("select({zero}, {one}, {} >= {})", a[1], a[0]), ret)));
+            }
             if f == "mix" {
                 // rt-std's formula (see `builtins::lerp_formula`); `t` is
                 // used twice: once evaluated.
