@@ -17,34 +17,29 @@
 //! backends: no example needs a denoised statistic, each is compared pixel
 //! by pixel.
 //!
-//! On the wgpu backend only the examples whose megakernel lavapipe links
-//! quickly are checked: the first launch of a process compiles the shader,
-//! and Mesa inlines every call, so the per-depth clones of a program with
-//! several `rt_trace` calls multiply (BENCHMARKS.md). First launch at 64x48
-//! with `MESA_SHADER_CACHE_DISABLE=true` on the 2-core CI-class VM (load
-//! average 2-3), 2026-11-23:
+//! Every example is checked on the wgpu backend too. The first launch of a
+//! process compiles the megakernel; since programs that trace run from one
+//! loop in their resumable form (rt-compiler's `func/resume.rs`), the kernel
+//! holds each program and the traversal once, whatever the trace depth.
+//! Before, per-depth clones of every program that traces were inlined by
+//! Mesa into each other (reflections took 217 s to link, instances 267 s,
+//! convex_hull ran out of 24 GiB of memory). Each test below on the 2-core
+//! CI-class VM with `MESA_SHADER_CACHE_DISABLE=true`, other builds running
+//! (load average 4-5), 2026-11-23, build and render included:
 //!
-//! | example | first wgpu launch | checked on wgpu |
-//! | --- | --- | --- |
-//! | normal, diffuse, phong | 3.7-5.3 s | yes |
-//! | shadows | 9.9-12 s | yes |
-//! | reflections | 217 s (BENCHMARKS.md) | no: link time |
-//! | envmap | not measured: reflections' scene and depth, another miss | no: link time |
-//! | convex_hull | not measured: two `rt_trace` a level, trace depth 10 | no: link time |
-//! | cornell | 15.5 s | no: over the ~15 s budget (it agrees) |
-//! | bunny | 15.0-24.8 s (four runs) | no: over the ~15 s budget (it agrees: max 4/255, 3 of 12288 channels beyond 2/255) |
-//! | instances | 267 s (a reflective floor and shadows) | no: link time (it agrees exactly) |
+//! | example | wgpu test |
+//! | --- | --- |
+//! | normal | 8.6 s |
+//! | shadows | 11.7 s |
+//! | reflections | 35.8 s |
+//! | envmap | 49.1 s |
+//! | convex_hull | 83.0 s |
+//! | cornell | 22.0 s |
+//! | bunny | 20.4 s |
+//! | instances | 20.6 s |
 //!
-//! cornell used to fail on wgpu: `rnd(&mut prd.seed)` lowered to a
-//! pointer to a field of a pointer parameter, which WGSL does not allow (and
-//! naga's SPIR-V writer panicked on). The compiler now passes a temporary and
-//! writes it back; `tests/tests/runtime.rs` has the regression test.
-//!
-//! The whole file (debug build, 2 test threads, same VM): about 4 s with a
-//! warm Mesa shader cache, about 26 s with `MESA_SHADER_CACHE_DISABLE=true`.
-//!
-//! The skipped examples are `#[ignore]`d tests, with the reason: run them
-//! with `cargo test -p examples --test golden -- --ignored` (minutes).
+//! An example that cannot run on wgpu goes in the `skipped` list with its
+//! reason (an `#[ignore]`d test); none does now.
 
 use examples::{EXAMPLES, Image, Settings};
 use image::RgbaImage;
@@ -235,13 +230,6 @@ macro_rules! wgpu_goldens {
 }
 
 wgpu_goldens! {
-    checked: [normal, diffuse, phong, shadows],
-    skipped: [
-        reflections: "lavapipe links its megakernel in about 217 s",
-        envmap: "the reflections scene with an environment map: minutes of lavapipe linking",
-        convex_hull: "glass, two rt_trace calls a level to trace depth 10: minutes of lavapipe linking",
-        cornell: "lavapipe links its megakernel in about 15.5 s, over the ~15 s budget",
-        bunny: "lavapipe links its megakernel in 15-25 s, over the ~15 s budget",
-        instances: "lavapipe links its megakernel in about 267 s",
-    ],
+    checked: [normal, diffuse, phong, shadows, reflections, envmap, convex_hull, cornell, bunny, instances],
+    skipped: [],
 }

@@ -150,6 +150,15 @@ pub struct ProgramDescriptor {
     pub wgsl_functions: &'static [WgslItem],
     /// The program function itself.
     pub wgsl_program: &'static str,
+    /// For programs that trace: the resumable form (per-depth frame arrays
+    /// and the same function, which returns to the kernel at each trace and
+    /// is called again to resume), when the compiler could make one. The
+    /// linker runs such programs from one loop, so no code is cloned per
+    /// trace depth.
+    pub wgsl_resumable: Option<&'static str>,
+    /// The resumable forms (`<helper>_rs`) of the helpers that trace which
+    /// the resumable form calls.
+    pub wgsl_resumable_functions: &'static [WgslItem],
     /// Payload type, for programs that take one.
     pub payload: Option<TypeLayout>,
     /// Attribute type, for programs that take one.

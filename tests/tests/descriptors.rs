@@ -29,9 +29,19 @@ fn macro_wgsl_equals_the_checked_in_snapshot() {
         let snapshot = std::fs::read_to_string(&path).unwrap();
         let body = p.wgsl.strip_prefix(p.wgsl_prelude).map(str::to_owned);
         let expected = snapshot.split_once('\n').unwrap().1;
-        // The snapshot holds the per-type stubs of the prelude too.
+        // The snapshot holds the per-type stubs of the prelude too, and a
+        // tracing program's resumable form after the module.
         let stubs = p.wgsl_prelude.strip_prefix(rt_compiler::lower::PRELUDE).unwrap();
-        assert_eq!(format!("{stubs}{}", body.unwrap()), expected, "{}", p.name);
+        let mut got = format!("{stubs}{}", body.unwrap());
+        if let Some(r) = p.wgsl_resumable {
+            got.push_str("\n// ---- resumable form ----\n");
+            for f in p.wgsl_resumable_functions {
+                got.push_str(f.text);
+            }
+            got.push_str(r);
+        }
+        assert_eq!(got, expected, "{}", p.name);
+        assert_eq!(p.wgsl_resumable.is_some(), !p.traced_payloads.is_empty(), "{}", p.name);
         assert!(p.file.ends_with(".rs") && p.line > 0, "{}: {}:{}", p.name, p.file, p.line);
     }
 }

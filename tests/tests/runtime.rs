@@ -264,6 +264,40 @@ pub fn mirror(prd: &mut Radiance, attr: &Hit, #[var] top: Object, #[var] reflect
     prd.result = reflected.result * reflectance;
 }
 
+/// What a reflected ray sees: a helper that traces, called from a
+/// closest-hit program inside a larger expression (the resumable form takes
+/// the call out of the expression and suspends in the helper).
+#[rt_function]
+pub fn reflected_color(top: Object, p: Vec3, d: Vec3, depth: i32) -> Vec3 {
+    let mut next = Radiance { result: Vec3::ZERO, depth: depth + 1 };
+    rt_trace(top, Ray::new(p, d, 0, 0.001, f32::INFINITY), &mut next);
+    next.result
+}
+
+/// [`mirror`] through the [`reflected_color`] helper.
+#[rt_program(closest_hit)]
+pub fn mirror_through_a_helper(prd: &mut Radiance, attr: &Hit, #[var] top: Object, #[var] reflectance: f32) {
+    let ray = current_ray();
+    let p = ray.origin + t_hit() * ray.direction;
+    let n = rt_transform_normal(ObjectToWorld, attr.geometric_normal).normalize();
+    prd.result = Vec3::ZERO + reflected_color(top, p, reflect(ray.direction, n), prd.depth) * reflectance;
+}
+
+/// [`mirror`] with its trace in a `match` arm, where the compiler makes no
+/// resumable form: kernels using it clone what traces per depth instead.
+#[rt_program(closest_hit)]
+pub fn mirror_in_a_match(prd: &mut Radiance, attr: &Hit, #[var] top: Object, #[var] reflectance: f32) {
+    let ray = current_ray();
+    let p = ray.origin + t_hit() * ray.direction;
+    let n = rt_transform_normal(ObjectToWorld, attr.geometric_normal).normalize();
+    let mut reflected = Radiance { result: Vec3::ZERO, depth: prd.depth + 1 };
+    match prd.depth {
+        100 => {}
+        _ => rt_trace(top, Ray::new(p, reflect(ray.direction, n), 0, 0.001, f32::INFINITY), &mut reflected),
+    }
+    prd.result = reflected.result * reflectance;
+}
+
 /// Writes `index + 1` at every 1D launch index.
 #[rt_program(ray_generation)]
 pub fn write_index(#[var] mut ids: RwBuffer<u32>) {
@@ -886,6 +920,29 @@ fn default_exception_paints_magenta_and_records_the_exception(backend: Backend) 
 }
 
 fn mirror_shows_the_reflected_object_and_the_reflected_background(backend: Backend) {
+    mirror_scene(backend, &mirror::PROGRAM);
+}
+
+fn a_helper_that_traces_works_from_a_closest_hit(backend: Backend) {
+    let ctx = mirror_scene(backend, &mirror_through_a_helper::PROGRAM);
+    if backend == Backend::Wgpu {
+        // One loop runs the resumable forms: no per-depth clones.
+        let wgsl = ctx.linked_wgsl().unwrap();
+        assert!(wgsl.contains("fn rtf_reflected_color_rs(") && !wgsl.contains("_d1("));
+    }
+}
+
+fn a_program_without_a_resumable_form_links_per_depth_clones(backend: Backend) {
+    assert!(mirror_in_a_match::PROGRAM.wgsl_resumable.is_none());
+    let ctx = mirror_scene(backend, &mirror_in_a_match::PROGRAM);
+    if backend == Backend::Wgpu {
+        assert!(ctx.linked_wgsl().unwrap().contains("fn rtp_mirror_in_a_match_d1("));
+    }
+}
+
+/// A tilted mirror (closest hit `program`) reflecting a green wall and the
+/// background, checked pixel by pixel.
+fn mirror_scene(backend: Backend, program: &'static rt_std::program::ProgramDescriptor) -> Context {
     let extent = 2.0;
     let (mut ctx, out) = camera(extent, backend);
     // A mirror quad through the origin with normal (1, 0, 1) / sqrt(2): the
@@ -893,7 +950,7 @@ fn mirror_shows_the_reflected_object_and_the_reflected_background(backend: Backe
     // (parallel to the camera rays, so they never see it directly).
     let mirror_geom = ctx.create_triangles(quad(0.0, 1.0)).unwrap();
     let mirror_mat = ctx.create_material();
-    let ch = ctx.create_program(&mirror::PROGRAM);
+    let ch = ctx.create_program(program);
     ctx.set_closest_hit_program(mirror_mat, 0, ch).unwrap();
     ctx.set_var(mirror_mat, "reflectance", 0.8f32).unwrap();
     let mirror_gi = ctx.create_geometry_instance(mirror_geom, &[mirror_mat]).unwrap();
@@ -943,6 +1000,23 @@ fn mirror_shows_the_reflected_object_and_the_reflected_background(backend: Backe
     assert!(green > 50 && sky > 50, "{green} {sky}");
     // A primary ray and a reflected one for each pixel on the mirror.
     assert!(report.rays > (W * W) as u64 + 100);
+    ctx
+}
+
+/// The resumable kernel's size does not depend on the maximum trace depth
+/// (per-depth clones grew with it, and with every trace call).
+#[test]
+fn wgpu_kernel_size_does_not_grow_with_the_trace_depth() {
+    let size = |depth: u32| {
+        let (mut ctx, _) = camera(1.0, Backend::Wgpu);
+        ctx.set_max_trace_depth(depth);
+        sphere_scene(&mut ctx, &mirror_forever::PROGRAM, Vec3::ZERO, 1.0);
+        ctx.launch(0, W, W).unwrap();
+        let wgsl = ctx.linked_wgsl().unwrap().to_string();
+        assert!(wgsl.contains(&format!("const RT_DEPTHS: u32 = {}u;", depth + 1)));
+        wgsl.replace(&format!("const RT_DEPTHS: u32 = {}u;", depth + 1), "").len()
+    };
+    assert_eq!(size(2), size(31));
 }
 
 fn launches_wider_than_the_dispatch_limit_write_every_index(backend: Backend) {
@@ -1003,6 +1077,8 @@ on_backends!(
     three_level_graph_group_of_groups_of_transforms,
     default_exception_paints_magenta_and_records_the_exception,
     mirror_shows_the_reflected_object_and_the_reflected_background,
+    a_helper_that_traces_works_from_a_closest_hit,
+    a_program_without_a_resumable_form_links_per_depth_clones,
     launches_wider_than_the_dispatch_limit_write_every_index,
 );
 
@@ -1100,7 +1176,7 @@ fn changing_values_never_relinks_but_changing_programs_does() {
     ctx.set_closest_hit_program(mat, 0, ch).unwrap();
     ctx.launch(0, W, W).unwrap();
     assert_eq!(ctx.pipelines_created(), 2);
-    assert!(ctx.linked_wgsl().unwrap().contains("fn rtp_normal_shader_d1("));
+    assert!(ctx.linked_wgsl().unwrap().contains("fn rtp_normal_shader("));
 }
 
 #[test]

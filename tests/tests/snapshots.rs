@@ -37,10 +37,26 @@ fn corpus() -> (Vec<(String, rt_compiler::Kind, syn::ItemFn)>, Vec<Item>) {
     (programs, items)
 }
 
-/// The snapshot text: the module without the fixed runtime prelude.
+/// Where a tracing program's snapshot goes on with its resumable form.
+const RESUMABLE: &str = "\n// ---- resumable form ----\n";
+
+/// The snapshot text: the module without the fixed runtime prelude, then a
+/// tracing program's resumable form (with the resumable forms of the
+/// helpers it calls) or why it has none.
 fn snapshot_text(l: &rt_compiler::Lowered) -> String {
     let body = l.wgsl.strip_prefix(rt_compiler::lower::PRELUDE).expect("module starts with the prelude");
-    format!("// {} program `{}`\n{}", l.kind.unwrap().name(), l.name, body)
+    let mut text = format!("// {} program `{}`\n{}", l.kind.unwrap().name(), l.name, body);
+    if let Some(r) = &l.resumable {
+        text.push_str(RESUMABLE);
+        for (_, f) in &l.resumable_functions {
+            text.push_str(f);
+        }
+        text.push_str(r);
+    }
+    if let Some(why) = &l.not_resumable {
+        text.push_str(&format!("\n// ---- no resumable form: {why}\n"));
+    }
+    text
 }
 
 #[test]
@@ -88,7 +104,26 @@ fn every_checked_in_snapshot_validates_with_naga() {
             continue;
         }
         let text = std::fs::read_to_string(&path).unwrap();
-        let module = format!("{}{}", rt_compiler::lower::PRELUDE, text);
+        let module = match text.split_once(RESUMABLE) {
+            // The resumable form replaces the plain program, with stubs for
+            // what the linker gives it.
+            Some((plain, resumable)) => {
+                let program = plain.rfind("\nfn rtp_").expect("the plain program");
+                let mut stubs =
+                    String::from("var<private> rt_rs: u32;\nvar<private> rt_d: u32;\nconst RT_DEPTHS: u32 = 1u;\n");
+                let mut payloads: Vec<&str> =
+                    resumable.split("rt_request_").skip(1).map(|t| t.split('(').next().unwrap()).collect();
+                payloads.sort_unstable();
+                payloads.dedup();
+                for p in payloads {
+                    stubs.push_str(&format!(
+                        "fn rt_request_{p}(object: u32, ray: RtRay, prd: {p}, flags: u32, mask: u32) {{}}\nfn rt_result_{p}() -> {p} {{\n    var p: {p};\n    return p;\n}}\n"
+                    ));
+                }
+                format!("{}{}{stubs}{resumable}", rt_compiler::lower::PRELUDE, &plain[..program])
+            }
+            None => format!("{}{}", rt_compiler::lower::PRELUDE, text),
+        };
         let parsed = naga::front::wgsl::parse_str(&module)
             .unwrap_or_else(|e| panic!("{}: {}", path.display(), e.emit_to_string(&module)));
         naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::default())

@@ -437,7 +437,12 @@ fn program_output(kind: Kind, f: &syn::ItemFn, lowered: Result<Lowered, Errors>)
     let prelude = &l.prelude;
     let types = wgsl_items(&l.types);
     let functions = wgsl_items(&l.functions);
+    let resumable_functions = wgsl_items(&l.resumable_functions);
     let program = &l.program;
+    let resumable = match &l.resumable {
+        Some(r) => quote!(Some(#r)),
+        None => quote!(None),
+    };
     let payload = option_layout(&l.payload);
     let attributes = option_layout(&l.attributes);
     let variables = l.variables.iter().map(|(n, t)| {
@@ -488,6 +493,8 @@ fn program_output(kind: Kind, f: &syn::ItemFn, lowered: Result<Lowered, Errors>)
             wgsl_types: #types,
             wgsl_functions: #functions,
             wgsl_program: #program,
+            wgsl_resumable: #resumable,
+            wgsl_resumable_functions: #resumable_functions,
             payload: #payload,
             attributes: #attributes,
             variables: &[#(#variables),*],

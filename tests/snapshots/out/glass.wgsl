@@ -87,3 +87,172 @@ fn rtp_glass(prd: ptr<function, Radiance>, attr: Normals, refraction_index: f32,
     }
     (*prd).result = result;
 }
+
+// ---- resumable form ----
+var<private> rt_fr_rtp_glass_rt_site: array<u32, RT_DEPTHS>;
+var<private> rt_fr_rtp_glass_ray: array<RtRay, RT_DEPTHS>;
+var<private> rt_fr_rtp_glass_hit_point: array<vec3<f32>, RT_DEPTHS>;
+var<private> rt_fr_rtp_glass_n: array<vec3<f32>, RT_DEPTHS>;
+var<private> rt_fr_rtp_glass_entering: array<bool, RT_DEPTHS>;
+var<private> rt_fr_rtp_glass_ffn: array<vec3<f32>, RT_DEPTHS>;
+var<private> rt_fr_rtp_glass_eta: array<f32, RT_DEPTHS>;
+var<private> rt_fr_rtp_glass_cos_i: array<f32, RT_DEPTHS>;
+var<private> rt_fr_rtp_glass_reflect_dir: array<vec3<f32>, RT_DEPTHS>;
+var<private> rt_fr_rtp_glass_refract_dir: array<vec3<f32>, RT_DEPTHS>;
+var<private> rt_fr_rtp_glass_f0: array<f32, RT_DEPTHS>;
+var<private> rt_fr_rtp_glass_fresnel: array<f32, RT_DEPTHS>;
+var<private> rt_fr_rtp_glass_result: array<vec3<f32>, RT_DEPTHS>;
+var<private> rt_fr_rtp_glass_cond: array<bool, RT_DEPTHS>;
+var<private> rt_fr_rtp_glass_refl: array<Radiance, RT_DEPTHS>;
+var<private> rt_fr_rtp_glass_cond_1: array<bool, RT_DEPTHS>;
+var<private> rt_fr_rtp_glass_refr: array<Radiance, RT_DEPTHS>;
+fn rtp_glass(prd: ptr<function, Radiance>, attr: Normals, refraction_index: f32, glass_color: vec3<f32>, max_depth: i32, scene_epsilon: f32, top_object: u32) {
+    var rt_site: u32 = 0u;
+    var ray: RtRay;
+    var hit_point: vec3<f32>;
+    var n: vec3<f32>;
+    var entering: bool;
+    var ffn: vec3<f32>;
+    var eta: f32;
+    var cos_i: f32;
+    var reflect_dir: vec3<f32>;
+    var refract_dir: vec3<f32>;
+    var f0: f32;
+    var fresnel: f32;
+    var result: vec3<f32>;
+    var cond: bool;
+    var refl: Radiance;
+    var cond_1: bool;
+    var refr: Radiance;
+    if rt_rs != 0u {
+        ray = rt_fr_rtp_glass_ray[rt_d];
+        hit_point = rt_fr_rtp_glass_hit_point[rt_d];
+        n = rt_fr_rtp_glass_n[rt_d];
+        entering = rt_fr_rtp_glass_entering[rt_d];
+        ffn = rt_fr_rtp_glass_ffn[rt_d];
+        eta = rt_fr_rtp_glass_eta[rt_d];
+        cos_i = rt_fr_rtp_glass_cos_i[rt_d];
+        reflect_dir = rt_fr_rtp_glass_reflect_dir[rt_d];
+        refract_dir = rt_fr_rtp_glass_refract_dir[rt_d];
+        f0 = rt_fr_rtp_glass_f0[rt_d];
+        fresnel = rt_fr_rtp_glass_fresnel[rt_d];
+        result = rt_fr_rtp_glass_result[rt_d];
+        cond = rt_fr_rtp_glass_cond[rt_d];
+        refl = rt_fr_rtp_glass_refl[rt_d];
+        cond_1 = rt_fr_rtp_glass_cond_1[rt_d];
+        refr = rt_fr_rtp_glass_refr[rt_d];
+        rt_site = rt_fr_rtp_glass_rt_site[rt_d];
+    }
+    if rt_site == 0u {
+        ray = rt_current_ray();
+        hit_point = (ray.origin + (rt_t_hit() * ray.direction));
+        n = normalize(rt_transform_normal(0u, attr.shading_normal));
+        entering = (dot(ray.direction, n) < 0.0f);
+        var tmp: vec3<f32>;
+        if entering {
+            tmp = n;
+        } else {
+            tmp = -n;
+        }
+        ffn = tmp;
+        var tmp_1: f32;
+        if entering {
+            tmp_1 = (1.0f / refraction_index);
+        } else {
+            tmp_1 = refraction_index;
+        }
+        eta = tmp_1;
+        cos_i = -dot(ray.direction, ffn);
+        reflect_dir = reflect(ray.direction, ffn);
+        refract_dir = refract(ray.direction, ffn, eta);
+        f0 = rt_powi(((1.0f - refraction_index) / (1.0f + refraction_index)), 2i);
+        fresnel = rtf_fresnel_schlick(cos_i, f0);
+        if (dot(refract_dir, refract_dir) == 0.0f) {
+            fresnel = 1.0f;
+        }
+        result = vec3<f32>(0.0);
+    }
+    if rt_site == 0u {
+        cond = ((*prd).depth < max_depth);
+    }
+    if rt_site == 0u || (rt_site >= 1u && rt_site <= 2u) {
+        if cond {
+            if rt_site == 0u {
+                refl = Radiance(vec3<f32>(0.0), ((*prd).importance * fresnel), ((*prd).depth + 1i));
+            }
+            if rt_site == 0u {
+                rt_request_Radiance(top_object, RtRay(hit_point, reflect_dir, RADIANCE_RAY, scene_epsilon, bitcast<f32>(0x7f800000u)), refl, 0u, 255u);
+                rt_fr_rtp_glass_ray[rt_d] = ray;
+                rt_fr_rtp_glass_hit_point[rt_d] = hit_point;
+                rt_fr_rtp_glass_n[rt_d] = n;
+                rt_fr_rtp_glass_entering[rt_d] = entering;
+                rt_fr_rtp_glass_ffn[rt_d] = ffn;
+                rt_fr_rtp_glass_eta[rt_d] = eta;
+                rt_fr_rtp_glass_cos_i[rt_d] = cos_i;
+                rt_fr_rtp_glass_reflect_dir[rt_d] = reflect_dir;
+                rt_fr_rtp_glass_refract_dir[rt_d] = refract_dir;
+                rt_fr_rtp_glass_f0[rt_d] = f0;
+                rt_fr_rtp_glass_fresnel[rt_d] = fresnel;
+                rt_fr_rtp_glass_result[rt_d] = result;
+                rt_fr_rtp_glass_cond[rt_d] = cond;
+                rt_fr_rtp_glass_refl[rt_d] = refl;
+                rt_fr_rtp_glass_cond_1[rt_d] = cond_1;
+                rt_fr_rtp_glass_refr[rt_d] = refr;
+                rt_fr_rtp_glass_rt_site[rt_d] = 1u;
+                rt_rs = 1u;
+                return;
+            }
+            if rt_site == 1u {
+                refl = rt_result_Radiance();
+                rt_site = 0u;
+                rt_rs = 0u;
+            }
+            if rt_site == 0u {
+                result += (fresnel * refl.result);
+            }
+            if rt_site == 0u {
+                cond_1 = (fresnel < 1.0f);
+            }
+            if rt_site == 0u || rt_site == 2u {
+                if cond_1 {
+                    if rt_site == 0u {
+                        refr = Radiance(vec3<f32>(0.0), ((*prd).importance * (1.0f - fresnel)), ((*prd).depth + 1i));
+                    }
+                    if rt_site == 0u {
+                        rt_request_Radiance(top_object, RtRay(hit_point, refract_dir, RADIANCE_RAY, scene_epsilon, bitcast<f32>(0x7f800000u)), refr, 0u, 255u);
+                        rt_fr_rtp_glass_ray[rt_d] = ray;
+                        rt_fr_rtp_glass_hit_point[rt_d] = hit_point;
+                        rt_fr_rtp_glass_n[rt_d] = n;
+                        rt_fr_rtp_glass_entering[rt_d] = entering;
+                        rt_fr_rtp_glass_ffn[rt_d] = ffn;
+                        rt_fr_rtp_glass_eta[rt_d] = eta;
+                        rt_fr_rtp_glass_cos_i[rt_d] = cos_i;
+                        rt_fr_rtp_glass_reflect_dir[rt_d] = reflect_dir;
+                        rt_fr_rtp_glass_refract_dir[rt_d] = refract_dir;
+                        rt_fr_rtp_glass_f0[rt_d] = f0;
+                        rt_fr_rtp_glass_fresnel[rt_d] = fresnel;
+                        rt_fr_rtp_glass_result[rt_d] = result;
+                        rt_fr_rtp_glass_cond[rt_d] = cond;
+                        rt_fr_rtp_glass_refl[rt_d] = refl;
+                        rt_fr_rtp_glass_cond_1[rt_d] = cond_1;
+                        rt_fr_rtp_glass_refr[rt_d] = refr;
+                        rt_fr_rtp_glass_rt_site[rt_d] = 2u;
+                        rt_rs = 1u;
+                        return;
+                    }
+                    if rt_site == 2u {
+                        refr = rt_result_Radiance();
+                        rt_site = 0u;
+                        rt_rs = 0u;
+                    }
+                    if rt_site == 0u {
+                        result += (((1.0f - fresnel) * glass_color) * refr.result);
+                    }
+                }
+            }
+        }
+    }
+    if rt_site == 0u {
+        (*prd).result = result;
+    }
+}

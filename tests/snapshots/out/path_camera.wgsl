@@ -87,3 +87,140 @@ fn rtp_path_camera(eye: vec3<f32>, camera: mat3x3<f32>, frame: u32, spp: u32, ma
     let tmp = idx;
     rt_bufstore2_vec4f(accum_1, tmp, vec4<f32>(blended, 1.0f));
 }
+
+// ---- resumable form ----
+var<private> rt_fr_rtp_path_camera_rt_site: array<u32, RT_DEPTHS>;
+var<private> rt_fr_rtp_path_camera_accum_1: array<RtBuffer, RT_DEPTHS>;
+var<private> rt_fr_rtp_path_camera_idx: array<vec2<u32>, RT_DEPTHS>;
+var<private> rt_fr_rtp_path_camera_dim: array<vec2<f32>, RT_DEPTHS>;
+var<private> rt_fr_rtp_path_camera_seed: array<u32, RT_DEPTHS>;
+var<private> rt_fr_rtp_path_camera_color: array<vec3<f32>, RT_DEPTHS>;
+var<private> rt_fr_rtp_path_camera_i: array<u32, RT_DEPTHS>;
+var<private> rt_fr_rtp_path_camera_end: array<u32, RT_DEPTHS>;
+var<private> rt_fr_rtp_path_camera_jitter: array<vec2<f32>, RT_DEPTHS>;
+var<private> rt_fr_rtp_path_camera_d: array<vec2<f32>, RT_DEPTHS>;
+var<private> rt_fr_rtp_path_camera_prd: array<PathState, RT_DEPTHS>;
+var<private> rt_fr_rtp_path_camera_bounce: array<u32, RT_DEPTHS>;
+var<private> rt_fr_rtp_path_camera_ray: array<RtRay, RT_DEPTHS>;
+var<private> rt_fr_rtp_path_camera_sample: array<vec3<f32>, RT_DEPTHS>;
+var<private> rt_fr_rtp_path_camera_prev: array<vec4<f32>, RT_DEPTHS>;
+var<private> rt_fr_rtp_path_camera_blended: array<vec3<f32>, RT_DEPTHS>;
+fn rtp_path_camera(eye: vec3<f32>, camera: mat3x3<f32>, frame: u32, spp: u32, max_bounces: u32, scene_epsilon: f32, top_object: u32, accum: RtBuffer) {
+    var rt_site: u32 = 0u;
+    var accum_1: RtBuffer;
+    var idx: vec2<u32>;
+    var dim: vec2<f32>;
+    var seed: u32;
+    var color: vec3<f32>;
+    var i: u32;
+    var end: u32;
+    var jitter: vec2<f32>;
+    var d: vec2<f32>;
+    var prd: PathState;
+    var bounce: u32;
+    var ray: RtRay;
+    var sample: vec3<f32>;
+    var prev: vec4<f32>;
+    var blended: vec3<f32>;
+    if rt_rs != 0u {
+        accum_1 = rt_fr_rtp_path_camera_accum_1[rt_d];
+        idx = rt_fr_rtp_path_camera_idx[rt_d];
+        dim = rt_fr_rtp_path_camera_dim[rt_d];
+        seed = rt_fr_rtp_path_camera_seed[rt_d];
+        color = rt_fr_rtp_path_camera_color[rt_d];
+        i = rt_fr_rtp_path_camera_i[rt_d];
+        end = rt_fr_rtp_path_camera_end[rt_d];
+        jitter = rt_fr_rtp_path_camera_jitter[rt_d];
+        d = rt_fr_rtp_path_camera_d[rt_d];
+        prd = rt_fr_rtp_path_camera_prd[rt_d];
+        bounce = rt_fr_rtp_path_camera_bounce[rt_d];
+        ray = rt_fr_rtp_path_camera_ray[rt_d];
+        sample = rt_fr_rtp_path_camera_sample[rt_d];
+        prev = rt_fr_rtp_path_camera_prev[rt_d];
+        blended = rt_fr_rtp_path_camera_blended[rt_d];
+        rt_site = rt_fr_rtp_path_camera_rt_site[rt_d];
+    }
+    if rt_site == 0u {
+        accum_1 = accum;
+    }
+    if rt_site == 0u {
+        idx = rt_launch_index();
+        dim = vec2<f32>(rt_launch_dim());
+        seed = (((idx.y * rt_launch_dim().x) + idx.x) ^ (frame * 2654435769u));
+        color = vec3<f32>(0.0);
+    }
+    if rt_site == 0u {
+        i = 0u;
+        end = spp;
+    }
+    if rt_site == 0u || rt_site == 1u {
+        loop {
+            if rt_site == 0u {
+                if !(i < end) {
+                    break;
+                }
+            }
+            if rt_site == 0u {
+                jitter = vec2<f32>(rtf_lcg_next(&seed), rtf_lcg_next(&seed));
+                d = ((((vec2<f32>(idx) + jitter) / dim) * 2.0f) - 1.0f);
+                prd = PathState(vec3<f32>(0.0), vec3<f32>(1.0), eye, normalize((camera * vec3<f32>(d.x, -d.y, 1.0f))), seed, false);
+                bounce = 0u;
+            }
+            if rt_site == 0u || rt_site == 1u {
+                loop {
+                    if rt_site == 0u {
+                        if !(((bounce < max_bounces) && !prd.done)) {
+                            break;
+                        }
+                    }
+                    if rt_site == 0u {
+                        ray = RtRay(prd.origin, prd.direction, PATH_RAY, scene_epsilon, bitcast<f32>(0x7f800000u));
+                    }
+                    if rt_site == 0u {
+                        rt_request_PathState(top_object, ray, prd, 0u, 255u);
+                        rt_fr_rtp_path_camera_accum_1[rt_d] = accum_1;
+                        rt_fr_rtp_path_camera_idx[rt_d] = idx;
+                        rt_fr_rtp_path_camera_dim[rt_d] = dim;
+                        rt_fr_rtp_path_camera_seed[rt_d] = seed;
+                        rt_fr_rtp_path_camera_color[rt_d] = color;
+                        rt_fr_rtp_path_camera_i[rt_d] = i;
+                        rt_fr_rtp_path_camera_end[rt_d] = end;
+                        rt_fr_rtp_path_camera_jitter[rt_d] = jitter;
+                        rt_fr_rtp_path_camera_d[rt_d] = d;
+                        rt_fr_rtp_path_camera_prd[rt_d] = prd;
+                        rt_fr_rtp_path_camera_bounce[rt_d] = bounce;
+                        rt_fr_rtp_path_camera_ray[rt_d] = ray;
+                        rt_fr_rtp_path_camera_sample[rt_d] = sample;
+                        rt_fr_rtp_path_camera_prev[rt_d] = prev;
+                        rt_fr_rtp_path_camera_blended[rt_d] = blended;
+                        rt_fr_rtp_path_camera_rt_site[rt_d] = 1u;
+                        rt_rs = 1u;
+                        return;
+                    }
+                    if rt_site == 1u {
+                        prd = rt_result_PathState();
+                        rt_site = 0u;
+                        rt_rs = 0u;
+                    }
+                    if rt_site == 0u {
+                        bounce += 1u;
+                    }
+                }
+            }
+            if rt_site == 0u {
+                seed = prd.seed;
+                color += prd.radiance;
+            }
+            continuing {
+                i++;
+            }
+        }
+    }
+    if rt_site == 0u {
+        sample = (color / f32(max(spp, 1u)));
+        prev = rt_bufload2_vec4f(accum_1, idx);
+        blended = (prev.xyz * (1.0 - (1.0f / f32((frame + 1u)))) + sample * (1.0f / f32((frame + 1u))));
+        let tmp = idx;
+        rt_bufstore2_vec4f(accum_1, tmp, vec4<f32>(blended, 1.0f));
+    }
+}

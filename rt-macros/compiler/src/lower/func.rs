@@ -13,6 +13,8 @@ use std::collections::HashSet;
 use syn::spanned::Spanned;
 use syn::{BinOp, Expr, Stmt, UnOp};
 
+mod resume;
+
 /// A lowered expression: WGSL text and its type.
 #[derive(Clone, Debug)]
 pub struct Val {
@@ -87,6 +89,15 @@ pub struct FnLowerer<'m> {
     /// Assignments that copy temporaries passed as `&mut` back to the field
     /// or element they stand for, emitted right after the call.
     writebacks: Vec<String>,
+    /// Lowering the resumable form of a tracing program (see `resume`).
+    resume: Option<resume::Resume>,
+    /// Statements being lowered are directly in a block with a trace: their
+    /// `let`s and `const`s go to the top of the function.
+    hoist: bool,
+    /// A helper called traces.
+    pub traces_via_helper: bool,
+    /// Calls taken out of expressions by the resumable form so far.
+    hoisted_calls: usize,
 }
 
 /// A parameter as the lowering sees it.
@@ -119,6 +130,10 @@ impl<'m> FnLowerer<'m> {
             traced: Vec::new(),
             errors: Errors::default(),
             writebacks: Vec::new(),
+            resume: None,
+            hoist: false,
+            traces_via_helper: false,
+            hoisted_calls: 0,
         }
     }
 
@@ -243,7 +258,9 @@ impl<'m> FnLowerer<'m> {
     fn sub_block(&mut self, stmts: &[Stmt], want: Option<&Ty>) -> Result<(Vec<String>, Option<Val>)> {
         self.blocks.push(Vec::new());
         self.scopes.push(Vec::new());
+        let hoist = std::mem::replace(&mut self.hoist, false);
         let r = self.block_inner(stmts, want);
+        self.hoist = hoist;
         self.scopes.pop();
         let lines = self.blocks.pop().unwrap();
         r.map(|v| (lines, v))
@@ -383,7 +400,11 @@ impl<'m> FnLowerer<'m> {
                 let name = self.fresh(&c.ident.to_string());
                 let line = format!("const {name}: {} = {};", ty.wgsl(), v.code);
                 let line = self.mark(c.span(), &line);
-                self.emit(line);
+                if self.hoisting() {
+                    self.hoist_const(line);
+                } else {
+                    self.emit(line);
+                }
                 self.local_consts.insert(name.clone());
                 self.bind(&c.ident.to_string(), Local { wgsl: name, ty, var: false });
                 Ok(())
@@ -495,6 +516,11 @@ impl<'m> FnLowerer<'m> {
         // only on `var`s; so are deferred initialisations.
         let var = mutable || init.is_none() || matches!(ty, Ty::Array(..) | Ty::Mat(_));
         let wname = self.fresh(&name);
+        if self.hoisting() {
+            self.hoisted_let(&wname, &ty, init.as_ref());
+            self.bind(&name, Local { wgsl: wname, ty, var });
+            return Ok(());
+        }
         let line = match (&init, var) {
             (Some(v), true) => format!("var {wname}: {} = {};", ty.wgsl(), v.code),
             (Some(v), false) => format!("let {wname}: {} = {};", ty.wgsl(), v.code),
@@ -2664,6 +2690,10 @@ impl<'m> FnLowerer<'m> {
                 };
                 self.traced.push(pty.clone());
                 self.m.trace_types.borrow_mut().insert(pty.wgsl(), pty.clone());
+                if self.resume.is_some() {
+                    self.trace_site(&pty.mangle(), [&obj[0], &ray[0], &flags, &mask], &prd, span)?;
+                    return Ok(Some(Val::new("", Ty::Unit)));
+                }
                 let line = format!("rt_trace_{}({}, {}, {prd}, {flags}, {mask});", pty.mangle(), obj[0], ray[0]);
                 let line = self.mark(span, &line);
                 self.emit(line);
@@ -2752,6 +2782,7 @@ impl<'m> FnLowerer<'m> {
         }
         // Arguments in order; a pointer argument is a place, never spilled
         // (its type stays `Ref`).
+        let start = self.here();
         let mut vals: Vec<Val> = Vec::new();
         for (a, p) in args.iter().zip(&sig.params) {
             let at = self.here();
@@ -2785,12 +2816,18 @@ impl<'m> FnLowerer<'m> {
             vals.push(v);
         }
         let codes: Vec<String> = vals.into_iter().map(|v| v.code).collect();
+        if self.resume.is_some() && !sig.traced.is_empty() {
+            self.calls.push(sig.name.clone());
+            self.traced.extend(sig.traced.iter().cloned());
+            return self.helper_site(sig, codes, start, span);
+        }
         for intr in &sig.intrinsics {
             if let Some(i) = kinds::intrinsic(intr) {
                 self.intrinsics.push((i.name, span));
             }
         }
         self.traced.extend(sig.traced.iter().cloned());
+        self.traces_via_helper |= !sig.traced.is_empty();
         self.calls.push(sig.name.clone());
         let code = format!("{}({})", sig.wgsl_name, codes.join(", "));
         let writebacks = std::mem::take(&mut self.writebacks);

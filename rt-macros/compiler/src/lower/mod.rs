@@ -35,6 +35,8 @@ pub struct HelperSig {
     /// Kind-restricted intrinsics it calls, directly or through helpers.
     pub intrinsics: Vec<&'static str>,
     pub traced: Vec<Ty>,
+    /// A helper that traces has a resumable form (`<wgsl_name>_rs`).
+    pub resumable: bool,
 }
 
 #[derive(Clone, Debug)]
@@ -278,6 +280,14 @@ pub struct Lowered {
     pub traced: Vec<Ty>,
     /// `(id, format, argument WGSL types)`.
     pub printf: Vec<(u32, String, Vec<String>)>,
+    /// A tracing program's resumable form (frame declarations and the
+    /// function; see `func/resume.rs`), validated like the plain form.
+    pub resumable: Option<String>,
+    /// Why a tracing program has no resumable form.
+    pub not_resumable: Option<String>,
+    /// Resumable forms of the helpers that trace (`(name, text)`, callees
+    /// first).
+    pub resumable_functions: Vec<(String, String)>,
 }
 
 /// The entry being lowered.
@@ -567,7 +577,15 @@ fn lower_impl(entry: Entry<'_>, deps: &[Item], report_deps: bool) -> std::result
         m.global_names.insert(wgsl_name.clone());
         m.helpers.insert(
             name.clone(),
-            HelperSig { name: name.clone(), wgsl_name, params, ret, intrinsics: Vec::new(), traced: Vec::new() },
+            HelperSig {
+                name: name.clone(),
+                wgsl_name,
+                params,
+                ret,
+                intrinsics: Vec::new(),
+                traced: Vec::new(),
+                resumable: false,
+            },
         );
         helper_items.insert(name, f);
     }
@@ -578,7 +596,10 @@ fn lower_impl(entry: Entry<'_>, deps: &[Item], report_deps: bool) -> std::result
         }
     }
 
-    // Helper bodies, callees first.
+    // Helper bodies, callees first; helpers that trace also in their
+    // resumable form.
+    let mut out_resumable_functions: Vec<(String, String)> = Vec::new();
+    let mut not_resumable_helpers: Vec<String> = Vec::new();
     let order = match helper_order(&helper_items) {
         Ok(o) => o,
         Err((name, e)) => {
@@ -607,6 +628,18 @@ fn lower_impl(entry: Entry<'_>, deps: &[Item], report_deps: bool) -> std::result
         let h = m.helpers.get_mut(&name).unwrap();
         h.intrinsics = intr;
         h.traced = traced;
+        if !h.traced.is_empty() {
+            let mut r = FnLowerer::new(&m, FnRole::Helper, &name, sig.ret.clone());
+            let rs_name = format!("{}_rs", sig.wgsl_name);
+            match r.function_resumable(&rs_name, &params, &f.block) {
+                Ok(text) => {
+                    let (clean, _) = text::finish(&text, &|v| r.resolve_var(v));
+                    out_resumable_functions.push((rs_name, r.fill_frame_saves(&clean)));
+                    m.helpers.get_mut(&name).unwrap().resumable = true;
+                }
+                Err(e) => not_resumable_helpers.push(format!("`{name}`: {}", e.message)),
+            }
+        }
     }
 
     // The program.
@@ -670,6 +703,13 @@ fn lower_impl(entry: Entry<'_>, deps: &[Item], report_deps: bool) -> std::result
     }
     out.functions.extend(sections);
     out.program = program_text;
+    if out.resumable.is_some() {
+        out.resumable_functions = out_resumable_functions;
+    } else if let Some(why) = &mut out.not_resumable
+        && !not_resumable_helpers.is_empty()
+    {
+        why.push_str(&format!(" ({})", not_resumable_helpers.join("; ")));
+    }
     out.printf = m.printf.borrow().iter().map(|(id, (f, t))| (*id, f.clone(), t.clone())).collect();
 
     let mut wgsl = out.prelude.clone();
@@ -698,6 +738,22 @@ fn lower_impl(entry: Entry<'_>, deps: &[Item], report_deps: bool) -> std::result
         Entry::Const(c) => c.ident.span(),
     };
     crate::validate::validate(&out.wgsl, &map, fallback)?;
+    if let Some(r) = &out.resumable {
+        // The resumable form is generated from a program that validated:
+        // an error here is the compiler's, and the program falls back to
+        // the plain form.
+        let mut wgsl = out.wgsl[..offsets["<program>"]].to_string();
+        wgsl.push_str(&resumable_stubs(&m));
+        for (_, t) in &out.resumable_functions {
+            wgsl.push_str(t);
+        }
+        wgsl.push_str(r);
+        if let Err(e) = crate::validate::validate(&wgsl, &[], fallback) {
+            out.not_resumable = Some(format!("internal error, naga: {}", e.messages().join("; ")));
+            out.resumable = None;
+            out.resumable_functions.clear();
+        }
+    }
     Ok(out)
 }
 
@@ -977,6 +1033,16 @@ fn program_unit(
     if !l.errors.is_empty() {
         return Err(l.errors);
     }
+    if !out.traced.is_empty() {
+        let mut r = FnLowerer::new(m, FnRole::Program(kind), &name, Ty::Unit);
+        match r.function_resumable(&out.wgsl_entry, &lps, &f.block) {
+            Ok(text) => {
+                let (clean, _) = text::finish(&text, &|v| r.resolve_var(v));
+                out.resumable = Some(r.fill_frame_saves(&clean));
+            }
+            Err(e) => out.not_resumable = Some(e.message),
+        }
+    }
     Ok((clean, ranges))
 }
 
@@ -996,6 +1062,18 @@ fn prelude(m: &ModuleCtx) -> String {
             "fn rt_report_intersection_{}(material: u32, attr: ptr<function, {}>) -> bool {{ return false; }}\n",
             ty.mangle(),
             ty.wgsl()
+        ));
+    }
+    s
+}
+
+/// Stubs for what the linker provides to resumable programs.
+pub fn resumable_stubs(m: &ModuleCtx) -> String {
+    let mut s = String::from("var<private> rt_rs: u32;\nvar<private> rt_d: u32;\nconst RT_DEPTHS: u32 = 1u;\n");
+    for ty in m.trace_types.borrow().values() {
+        let (p, w) = (ty.mangle(), ty.wgsl());
+        s.push_str(&format!(
+            "fn rt_request_{p}(object: u32, ray: RtRay, prd: {w}, flags: u32, mask: u32) {{}}\nfn rt_result_{p}() -> {w} {{\n    var p: {w};\n    return p;\n}}\n"
         ));
     }
     s

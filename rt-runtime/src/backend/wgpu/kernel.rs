@@ -186,9 +186,13 @@ pub fn generate(spec: &KernelSpec) -> Result<String> {
     for (text, _) in types.values() {
         out.push_str(text);
     }
+    // Every tracing program resumable: one loop runs them all (no clones).
+    let resumable = all.iter().all(|p| !traces(p.desc) || p.desc.wgsl_resumable.is_some());
     out.push_str("\n// ---- shared functions ----\n");
     for (name, (text, _)) in &functions {
-        if tracing_helpers.contains(*name) {
+        if tracing_helpers.contains(*name) && resumable {
+            // Only their resumable forms are called.
+        } else if tracing_helpers.contains(*name) {
             for d in 0..=spec.max_depth {
                 out.push_str(&at_depth(text, d, &tracing_helpers, Some(name)));
             }
@@ -219,59 +223,37 @@ pub fn generate(spec: &KernelSpec) -> Result<String> {
     out.push_str("}\n");
     out.push_str("fn rt_report_intersection(material: u32) -> bool {\n    if !rt_c_ok { return false; }\n    rt_c_custom = true;\n    return rt_report(material);\n}\n");
 
-    // Programs: tracing kinds cloned per depth.
-    out.push_str("\n// ---- programs ----\n");
-    let mut emitted: BTreeSet<&str> = BTreeSet::new();
-    for p in &all {
-        if !emitted.insert(p.desc.wgsl_entry) {
-            continue;
-        }
-        let text = p.desc.wgsl_program;
-        match p.desc.kind {
-            ProgramKind::RayGeneration => out.push_str(&at_depth(text, 0, &tracing_helpers, Some(p.desc.wgsl_entry))),
-            ProgramKind::ClosestHit | ProgramKind::Miss if traces(p.desc) || text.contains("rtf_") => {
-                for d in 1..=spec.max_depth {
-                    out.push_str(&at_depth(text, d, &tracing_helpers, Some(p.desc.wgsl_entry)));
-                }
-            }
-            ProgramKind::ClosestHit | ProgramKind::Miss => {
-                for d in 1..=spec.max_depth {
-                    out.push_str(&text.replacen(
-                        &format!("fn {}(", p.desc.wgsl_entry),
-                        &format!("fn {}_d{d}(", p.desc.wgsl_entry),
-                        1,
-                    ));
-                }
-            }
-            _ => out.push_str(text),
-        }
-    }
-
-    // Dispatchers.
+    let payload_ids: BTreeMap<&str, u32> = payloads.keys().enumerate().map(|(i, w)| (*w, i as u32)).collect();
     out.push_str("\n// ---- dispatch ----\n");
     out.push_str(&dispatch_intersection(&spec.programs));
     out.push_str(&dispatch_any_hit(&spec.programs));
-    let payload_ids: BTreeMap<&str, u32> = payloads.keys().enumerate().map(|(i, w)| (*w, i as u32)).collect();
     if spec.graph_levels > 0 {
         out.push_str(&dispatch_visit(&spec.programs, &payload_ids));
     }
-    for w in payloads.keys() {
-        // Visit programs check the traced payload type against theirs.
-        let note_payload =
-            if spec.graph_levels > 0 { format!("\n    rt_s_payload = {}u;", payload_ids[w]) } else { String::new() };
-        for d in 1..=spec.max_depth {
-            out.push_str(&dispatch_payload(&spec.programs, w, d));
-            out.push_str(&trace_function(w, d, &note_payload));
+    let run_ray_generation = if !all.iter().any(|p| traces(p.desc)) {
+        // Nothing traces: no trace loop, no traversal in the kernel.
+        let mut emitted: BTreeSet<&str> = BTreeSet::new();
+        out.push_str("\n// ---- programs ----\n");
+        for p in &all {
+            if emitted.insert(p.desc.wgsl_entry) {
+                out.push_str(p.desc.wgsl_program);
+            }
         }
-        out.push_str(&format!(
-            "fn rt_trace_{w}_d{}(object: u32, ray: RtRay, prd: ptr<function, {w}>, flags: u32, mask: u32) {{\n    rt_raise(RT_EXC_TRACE_DEPTH);\n}}\n",
-            spec.max_depth + 1
-        ));
-    }
+        let rg = spec.ray_generation.desc;
+        format!("{}({});", rg.wgsl_entry, var_args(rg, "rt_launch.ray_generation.y").join(", "))
+    } else if resumable {
+        out.push_str(&stack_machine(spec, &all, &payloads, &attributes, &payload_ids));
+        "rt_run();".to_string()
+    } else {
+        out.push_str(&per_depth_clones(spec, &all, &payloads, &payload_ids, &tracing_helpers));
+        format!(
+            "{}_d0({});",
+            spec.ray_generation.desc.wgsl_entry,
+            var_args(spec.ray_generation.desc, "rt_launch.ray_generation.y").join(", ")
+        )
+    };
 
     // The entry point.
-    let rg = spec.ray_generation.desc;
-    let rg_args = var_args(rg, "rt_launch.ray_generation.y").join(", ");
     let ex_call = match (spec.exception, spec.default_exception) {
         (Some(ex), _) => {
             format!("        {}({});\n", ex.desc.wgsl_entry, var_args(ex.desc, "rt_launch.exception.y").join(", "))
@@ -294,7 +276,7 @@ fn rt_main(@builtin(global_invocation_id) gid: vec3<u32>) {{
     rt_rays = 0u;
     rt_o2w = mat4x4<f32>(vec4<f32>(1.0, 0.0, 0.0, 0.0), vec4<f32>(0.0, 1.0, 0.0, 0.0), vec4<f32>(0.0, 0.0, 1.0, 0.0), vec4<f32>(0.0, 0.0, 0.0, 1.0));
     rt_w2o = rt_o2w;
-    {rg}_d0({rg_args});
+    {run_ray_generation}
     if rt_exc != 0u {{
         rt_log_exception();
 {ex_call}    }}
@@ -302,10 +284,329 @@ fn rt_main(@builtin(global_invocation_id) gid: vec3<u32>) {{
         atomicAdd(&rt_log[2], rt_rays);
     }}
 }}
-",
-        rg = rg.wgsl_entry,
+"
     ));
     Ok(out)
+}
+
+/// Programs and the trace loop for kernels whose tracing programs are all
+/// resumable (see rt-compiler's `func/resume.rs`): `rt_run` keeps a stack
+/// of program invocations, one per trace depth (`rt_st_*[d]`), and runs the
+/// top one with `rt_step` until it returns. A program that returns with
+/// `rt_rs != 0` asked for a trace (the request is in `rt_rq_*`, its site in
+/// its frame): the traversal runs at the one call site in
+/// `rt_begin_trace`, and the hit's closest-hit or miss program becomes the
+/// new top; when a program at depth `d > 0` finishes, its payload goes back
+/// in the request slot and the caller is called again with `rt_rs = 1u`
+/// to resume. Every program and the traversal appear once
+/// in the kernel, whatever the maximum depth.
+fn stack_machine(
+    spec: &KernelSpec,
+    all: &[KernelProgram],
+    payloads: &BTreeMap<&str, TypeLayout>,
+    attributes: &BTreeMap<&str, TypeLayout>,
+    payload_ids: &BTreeMap<&str, u32>,
+) -> String {
+    let mut out = String::from("\n// ---- trace stack ----\n");
+    out.push_str(&format!(
+        "const RT_DEPTHS: u32 = {}u;
+var<private> rt_rs: u32;
+var<private> rt_d: u32;
+var<private> rt_rq_obj: u32;
+var<private> rt_rq_ray: RtRay;
+var<private> rt_rq_flags: u32;
+var<private> rt_rq_mask: u32;
+var<private> rt_rq_type: u32;
+var<private> rt_st_case: array<u32, RT_DEPTHS>;
+var<private> rt_st_vars: array<u32, RT_DEPTHS>;
+var<private> rt_st_type: array<u32, RT_DEPTHS>;
+var<private> rt_st_ray: array<RtRay, RT_DEPTHS>;
+var<private> rt_st_t: array<f32, RT_DEPTHS>;
+var<private> rt_st_prim: array<u32, RT_DEPTHS>;
+var<private> rt_st_o2w: array<mat4x4<f32>, RT_DEPTHS>;
+var<private> rt_st_w2o: array<mat4x4<f32>, RT_DEPTHS>;
+",
+        spec.max_depth + 1
+    ));
+    let mut take_request = String::new();
+    let mut after_search = String::new();
+    let mut deliver = String::new();
+    for (w, id) in payload_ids {
+        out.push_str(&format!(
+            "var<private> rt_rq_{w}: {w};
+var<private> rt_pl_{w}: array<{w}, RT_DEPTHS>;
+fn rt_request_{w}(object: u32, ray: RtRay, prd: {w}, flags: u32, mask: u32) {{
+    rt_rq_obj = object;
+    rt_rq_ray = ray;
+    rt_rq_flags = flags;
+    rt_rq_mask = mask;
+    rt_rq_type = {id}u;
+    rt_rq_{w} = prd;
+}}
+fn rt_result_{w}() -> {w} {{
+    return rt_rq_{w};
+}}
+"
+        ));
+        take_request.push_str(&format!("        case {id}u: {{\n            rt_prd_{w} = rt_rq_{w};\n        }}\n"));
+        after_search.push_str(&format!(
+            "        case {id}u: {{\n            rt_rq_{w} = rt_prd_{w};\n            rt_pl_{w}[e] = rt_prd_{w};\n        }}\n"
+        ));
+        deliver.push_str(&format!("        case {id}u: {{\n            rt_rq_{w} = rt_pl_{w}[d];\n        }}\n"));
+    }
+    let _ = payloads;
+    let mut ch_attrs: BTreeSet<&str> = BTreeSet::new();
+    for p in all.iter().filter(|p| p.desc.kind == ProgramKind::ClosestHit) {
+        if let Some(a) = p.desc.attributes {
+            ch_attrs.insert(a.wgsl);
+        }
+    }
+    for a in &ch_attrs {
+        debug_assert!(attributes.contains_key(a));
+        out.push_str(&format!("var<private> rt_at_{a}: array<{a}, RT_DEPTHS>;\n"));
+    }
+
+    // Resumable helpers and programs, once each.
+    out.push_str("\n// ---- resumable helpers ----\n");
+    let mut helpers: BTreeMap<&str, &str> = BTreeMap::new();
+    for p in all.iter().filter(|p| traces(p.desc)) {
+        for f in p.desc.wgsl_resumable_functions {
+            helpers.entry(f.name).or_insert(f.text);
+        }
+    }
+    for text in helpers.values() {
+        out.push_str(text);
+    }
+    out.push_str("\n// ---- programs ----\n");
+    let mut emitted: BTreeSet<&str> = BTreeSet::new();
+    let mut cases = String::new();
+    for p in all {
+        // The same program created twice has two cases and one function.
+        if emitted.insert(p.desc.wgsl_entry) {
+            out.push_str(match p.desc.wgsl_resumable {
+                Some(r) if traces(p.desc) => r,
+                _ => p.desc.wgsl_program,
+            });
+        }
+        let call = |args: Vec<String>| format!("{}({});", p.desc.wgsl_entry, args.join(", "));
+        match p.desc.kind {
+            ProgramKind::RayGeneration => {
+                cases.push_str(&format!(
+                    "        case {}u: {{\n            {}\n        }}\n",
+                    p.case,
+                    call(var_args(p.desc, "vars"))
+                ));
+            }
+            ProgramKind::ClosestHit | ProgramKind::Miss => {
+                let Some(pl) = p.desc.payload else { continue };
+                let w = pl.wgsl;
+                let mut args = vec!["&p".to_string()];
+                let mut attr = String::new();
+                if let Some(a) = p.desc.attributes
+                    && p.desc.kind == ProgramKind::ClosestHit
+                {
+                    attr = format!(
+                        "            if rt_rs == 0u {{\n                rt_at_{0}[d] = rt_hit_attr_{0}();\n            }}\n",
+                        a.wgsl
+                    );
+                    args.push(format!("rt_at_{}[d]", a.wgsl));
+                }
+                args.extend(var_args(p.desc, "vars"));
+                cases.push_str(&format!(
+                    "        case {}u: {{
+            if rt_st_type[d] != {}u {{
+                rt_raise(RT_EXC_INVALID_RAY);
+                return;
+            }}
+{attr}            var p = rt_pl_{w}[d];
+            {}
+            rt_pl_{w}[d] = p;
+        }}
+",
+                    p.case,
+                    payload_ids[w],
+                    call(args)
+                ));
+            }
+            _ => {}
+        }
+    }
+
+    let note_payload = if spec.graph_levels > 0 { "\n    rt_s_payload = ty;" } else { "" };
+    out.push_str(&format!(
+        "
+// ---- the trace loop ----
+// Runs the program on top of the stack, from its start (rt_rs == 0) or from
+// its site rt_rs.
+fn rt_step() {{
+    let d = rt_d;
+    let vars = rt_st_vars[d];
+    switch rt_st_case[d] {{
+{cases}        default: {{
+            rt_raise(RT_EXC_INVALID_RAY);
+        }}
+    }}
+}}
+
+// Starts the trace requested by the program at depth d: true when a
+// closest-hit or miss program is now on top at depth d + 1; false when the
+// caller resumes at once (exception, no program to run).
+fn rt_begin_trace(d: u32) -> bool {{
+    let object = rt_rq_obj;
+    let ray = rt_rq_ray;
+    let flags = rt_rq_flags;
+    let mask = rt_rq_mask;
+    let ty = rt_rq_type;
+    if rt_exc != 0u {{
+        return false;
+    }}
+    if d + 1u >= RT_DEPTHS {{
+        rt_raise(RT_EXC_TRACE_DEPTH);
+        return false;
+    }}
+    if !rt_valid_ray(ray) || object >= rt_scene[7] || ray.ray_type >= rt_scene[4] {{
+        rt_raise(RT_EXC_INVALID_RAY);
+        return false;
+    }}
+    let e = d + 1u;
+    rt_st_ray[e] = rt_ray;
+    rt_st_t[e] = rt_t;
+    rt_st_prim[e] = rt_prim;
+    rt_st_o2w[e] = rt_o2w;
+    rt_st_w2o[e] = rt_w2o;
+    rt_rays = rt_rays + 1u;{note_payload}
+    switch ty {{
+{take_request}        default: {{}}
+    }}
+    rt_search(object, ray, flags, mask);
+    switch ty {{
+{after_search}        default: {{}}
+    }}
+    var run = false;
+    if rt_h_found {{
+        let g = rt_scene[2] + rt_h_gi * 8u;
+        let rec = rt_scene[g + 7u] + (rt_h_mat * rt_scene[4] + ray.ray_type) * 4u;
+        if rt_scene[rec] != 0u && (flags & 4u) == 0u {{
+            rt_ray = ray;
+            rt_ray.tmax = rt_h_t;
+            rt_t = rt_h_t;
+            rt_prim = rt_h_prim;
+            rt_hit_xform();
+            rt_st_case[e] = rt_scene[rec];
+            rt_st_vars[e] = rt_scene[rec + 1u];
+            run = true;
+        }}
+    }} else {{
+        let mr = rt_scene[5] + ray.ray_type * 2u;
+        rt_ray = ray;
+        rt_st_case[e] = rt_scene[mr];
+        rt_st_vars[e] = rt_scene[mr + 1u];
+        run = true;
+    }}
+    if !run {{
+        rt_end_trace(e);
+        return false;
+    }}
+    rt_st_type[e] = ty;
+    rt_d = e;
+    return true;
+}}
+
+// Ends the trace that started depth d: the caller's ray state comes back.
+fn rt_end_trace(d: u32) {{
+    rt_ray = rt_st_ray[d];
+    rt_t = rt_st_t[d];
+    rt_prim = rt_st_prim[d];
+    rt_o2w = rt_st_o2w[d];
+    rt_w2o = rt_st_w2o[d];
+}}
+
+fn rt_run() {{
+    rt_d = 0u;
+    rt_rs = 0u;
+    rt_st_case[0] = {rg_case}u;
+    rt_st_vars[0] = rt_launch.ray_generation.y;
+    loop {{
+        rt_step();
+        let d = rt_d;
+        if rt_rs != 0u {{
+            rt_rs = 0u;
+            if !rt_begin_trace(d) {{
+                rt_rs = 1u;
+            }}
+            continue;
+        }}
+        if d == 0u {{
+            break;
+        }}
+        switch rt_st_type[d] {{
+{deliver}            default: {{}}
+        }}
+        rt_end_trace(d);
+        rt_d = d - 1u;
+        rt_rs = 1u;
+    }}
+}}
+",
+        rg_case = spec.ray_generation.case,
+    ));
+    out
+}
+
+/// Programs and trace functions for kernels whose tracing programs are not
+/// all resumable: everything that traces is cloned per depth (`_d<k>`).
+fn per_depth_clones(
+    spec: &KernelSpec,
+    all: &[KernelProgram],
+    payloads: &BTreeMap<&str, TypeLayout>,
+    payload_ids: &BTreeMap<&str, u32>,
+    tracing_helpers: &BTreeSet<String>,
+) -> String {
+    let mut out = String::new();
+    // Programs: tracing kinds cloned per depth.
+    out.push_str("\n// ---- programs ----\n");
+    let mut emitted: BTreeSet<&str> = BTreeSet::new();
+    for p in all {
+        if !emitted.insert(p.desc.wgsl_entry) {
+            continue;
+        }
+        let text = p.desc.wgsl_program;
+        match p.desc.kind {
+            ProgramKind::RayGeneration => out.push_str(&at_depth(text, 0, tracing_helpers, Some(p.desc.wgsl_entry))),
+            ProgramKind::ClosestHit | ProgramKind::Miss if traces(p.desc) || text.contains("rtf_") => {
+                for d in 1..=spec.max_depth {
+                    out.push_str(&at_depth(text, d, tracing_helpers, Some(p.desc.wgsl_entry)));
+                }
+            }
+            ProgramKind::ClosestHit | ProgramKind::Miss => {
+                for d in 1..=spec.max_depth {
+                    out.push_str(&text.replacen(
+                        &format!("fn {}(", p.desc.wgsl_entry),
+                        &format!("fn {}_d{d}(", p.desc.wgsl_entry),
+                        1,
+                    ));
+                }
+            }
+            _ => out.push_str(text),
+        }
+    }
+
+    out.push_str("\n// ---- trace ----\n");
+    for w in payloads.keys() {
+        // Visit programs check the traced payload type against theirs.
+        let note_payload =
+            if spec.graph_levels > 0 { format!("\n    rt_s_payload = {}u;", payload_ids[w]) } else { String::new() };
+        for d in 1..=spec.max_depth {
+            out.push_str(&dispatch_payload(&spec.programs, w, d));
+            out.push_str(&trace_function(w, d, &note_payload));
+        }
+        out.push_str(&format!(
+            "fn rt_trace_{w}_d{}(object: u32, ray: RtRay, prd: ptr<function, {w}>, flags: u32, mask: u32) {{\n    rt_raise(RT_EXC_TRACE_DEPTH);\n}}\n",
+            spec.max_depth + 1
+        ));
+    }
+
+    out
 }
 
 /// Built-in triangle attributes, filled by field name.
