@@ -299,7 +299,7 @@ impl Context {
         moved.positions = positions;
         moved.validate().map_err(|problem| RtError::BadGeometry { geometry: g.0, problem })?;
         *mesh = moved;
-        self.accels.geometry_moved();
+        self.accels.geometry_moved(g.0);
         Ok(())
     }
 
@@ -349,13 +349,11 @@ impl Context {
             materials: materials.to_vec(),
             vars: VarScope::default(),
         });
-        self.accels.shape_changed();
         Ok(GeometryInstanceId(self.instances.len() as u32 - 1))
     }
 
     fn push_node(&mut self, kind: NodeKind) -> NodeId {
         self.nodes.push(NodeRec { kind, visibility_mask: 0xff, vars: VarScope::default() });
-        self.accels.shape_changed();
         NodeId(self.nodes.len() as u32 - 1)
     }
 
@@ -392,7 +390,7 @@ impl Context {
             Some(NodeKind::Transform { matrix: m, inverse, .. }) => {
                 *m = matrix;
                 *inverse = inv;
-                self.accels.geometry_moved();
+                self.accels.transform_moved();
                 Ok(())
             }
             _ => Err(RtError::InvalidHandle(format!("{node:?} (not a transform)"))),
