@@ -145,6 +145,14 @@ impl Context {
         self.gpu.as_ref().map_or(0, |g| g.pipelines_created)
     }
 
+    /// Bytes the last wgpu launch wrote to the device: the pages of the
+    /// scene and of the heap (records, buffers, textures) that changed since
+    /// the launch before, the log's counters and the launch uniform (0 before
+    /// any wgpu launch).
+    pub fn last_upload_bytes(&self) -> u64 {
+        self.gpu.as_ref().map_or(0, |g| g.last_upload_bytes())
+    }
+
     /// The megakernel WGSL of the last wgpu launch (`RT_DUMP_WGSL=1` also
     /// writes it to the temporary directory).
     pub fn linked_wgsl(&self) -> Option<&str> {
