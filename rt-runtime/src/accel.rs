@@ -72,18 +72,43 @@ pub(crate) fn to_oaabb(min: Vec3, max: Vec3) -> OAabb {
     OAabb::new(min.into(), max.into())
 }
 
-/// One primitive per BVH2 leaf: the CPU backend converts the tree to
-/// obvhs's CWBVH, which needs that, and the GPU walks BVH2 leaves anyway.
-fn single(p: BvhBuildParams) -> BvhBuildParams {
-    BvhBuildParams { max_prims_per_leaf: 1, ..p }
+/// Which tree a backend walks.
+///
+/// The wgpu backend walks BVH2s with one primitive per leaf, built as
+/// obvhs's `build_bvh2` builds them (PLOC, reinsertion, leaf collapse — a
+/// no-op at one primitive a leaf — and a second reinsertion pass). The CPU
+/// backend walks obvhs's CWBVH of every geometry group, converted from a
+/// BVH2 that gets only what obvhs's own `build_cwbvh` gives it (PLOC and one
+/// reinsertion pass): the conversion regroups the tree into 8-wide nodes, so
+/// the second pass would be paid for and mostly undone. Each context builds
+/// only the form its backend walks, when it first launches there.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum TreeForm {
+    /// BVH2s only (the wgpu backend).
+    Binary,
+    /// BVH2s, plus CWBVHs of geometry groups (the CPU backend).
+    Wide,
 }
 
-/// Builds a BVH over `bounds`; `triangles`, when every primitive is a
-/// triangle, enables spatial splits for `Sbvh`.
+/// One primitive per BVH2 leaf: the GPU walks BVH2 leaves, and the CWBVH
+/// conversion regroups leaves itself. `Wide` trees skip the second
+/// reinsertion pass (see [`TreeForm`]).
+fn params(p: BvhBuildParams, form: TreeForm) -> BvhBuildParams {
+    match form {
+        TreeForm::Binary => BvhBuildParams { max_prims_per_leaf: 1, ..p },
+        TreeForm::Wide => {
+            BvhBuildParams { max_prims_per_leaf: 1, post_collapse_reinsertion_batch_ratio_multiplier: 0.0, ..p }
+        }
+    }
+}
+
+/// Builds a BVH over `bounds` in the form `form` needs; `triangles`, when
+/// every primitive is a triangle, enables spatial splits for `Sbvh`.
 pub(crate) fn build(
     builder: Builder,
     bounds: &[OAabb],
     triangles: Option<&[obvhs::triangle::Triangle]>,
+    form: TreeForm,
 ) -> Result<Bvh, crate::RtError> {
     let mut t = std::time::Duration::ZERO;
     let bvh = match builder {
@@ -105,7 +130,7 @@ pub(crate) fn build(
         }
         Builder::Sbvh => match triangles {
             Some(tris) => {
-                obvhs::bvh2::builder::build_bvh2_from_tris(tris, single(BvhBuildParams::slow_build()), &mut t)
+                obvhs::bvh2::builder::build_bvh2_from_tris(tris, params(BvhBuildParams::slow_build(), form), &mut t)
             }
             None => {
                 return Err(crate::RtError::UnsupportedBuilder {
@@ -114,9 +139,13 @@ pub(crate) fn build(
                 });
             }
         },
-        Builder::Bvh => obvhs::bvh2::builder::build_bvh2(bounds, single(BvhBuildParams::medium_build()), &mut t),
-        Builder::MedianBvh => obvhs::bvh2::builder::build_bvh2(bounds, single(BvhBuildParams::fast_build()), &mut t),
-        Builder::Lbvh => obvhs::bvh2::builder::build_bvh2(bounds, single(BvhBuildParams::fastest_build()), &mut t),
+        Builder::Bvh => obvhs::bvh2::builder::build_bvh2(bounds, params(BvhBuildParams::medium_build(), form), &mut t),
+        Builder::MedianBvh => {
+            obvhs::bvh2::builder::build_bvh2(bounds, params(BvhBuildParams::fast_build(), form), &mut t)
+        }
+        Builder::Lbvh => {
+            obvhs::bvh2::builder::build_bvh2(bounds, params(BvhBuildParams::fastest_build(), form), &mut t)
+        }
     };
     Ok(Bvh { bvh })
 }
@@ -206,25 +235,38 @@ use crate::error::Result;
 use crate::scene::{GeometryKind, NodeKind, TriangleMesh};
 use rt_std::cpu::{CpuArgs, CpuResult, ExecutionContext};
 
-/// Built acceleration structures, kept across launches and rebuilt only
-/// when the graph's shape changes (refit when geometry moves).
+/// Built acceleration structures, kept across launches.
+///
+/// Nodes never change their children once created, so an entry stays valid
+/// until something under it moves: a new node is built at the next launch
+/// and the others are kept; moved geometry refits the geometry groups over
+/// it (and the groups above refit to their children's new bounds). The
+/// CWBVH form is added to kept entries the first time the CPU backend
+/// launches ([`TreeForm`]).
 #[derive(Default)]
 pub(crate) struct AccelCache {
     pub(crate) nodes: Vec<Option<NodeAccel>>,
-    shape_version: u64,
-    built_version: Option<u64>,
+    /// Geometries moved since the last launch, and whether any transform
+    /// changed.
+    moved_geometries: Vec<u32>,
     moved: bool,
-    /// How many full builds and refits happened (for tests).
+    /// How many launches built new structures and how many refit moved
+    /// ones (for tests).
     pub builds: u64,
     pub refits: u64,
 }
 
 impl AccelCache {
-    pub fn shape_changed(&mut self) {
-        self.shape_version += 1;
+    /// Geometry `g`'s vertices moved.
+    pub fn geometry_moved(&mut self, g: u32) {
+        self.moved = true;
+        if !self.moved_geometries.contains(&g) {
+            self.moved_geometries.push(g);
+        }
     }
 
-    pub fn geometry_moved(&mut self) {
+    /// A transform changed.
+    pub fn transform_moved(&mut self) {
         self.moved = true;
     }
 }
@@ -318,47 +360,70 @@ fn prim_bounds(ctx: &Context, children: &[crate::GeometryInstanceId]) -> Result<
     Ok((prims, bounds, all_triangles))
 }
 
+/// The triangles of a geometry group's primitives, for `Sbvh`'s spatial
+/// splits (`None` unless every primitive is a triangle).
+fn group_triangles(ctx: &Context, prims: &[(u32, u32)]) -> Vec<obvhs::triangle::Triangle> {
+    prims
+        .iter()
+        .map(|(gi, t)| {
+            let rec = &ctx.instances[*gi as usize];
+            let GeometryKind::Triangles(mesh) = &ctx.geometries[rec.geometry.index() as usize].kind else {
+                unreachable!("all primitives are triangles")
+            };
+            let [a, b, c] = mesh.indices[*t as usize].map(|v| mesh.positions[v as usize].into());
+            obvhs::triangle::Triangle { v0: a, v1: b, v2: c }
+        })
+        .collect()
+}
+
+/// Builds what is missing and refits what moved, in the form the context's
+/// backend walks (see [`AccelCache`]).
 pub(crate) fn build_accels(ctx: &Context, cache: &mut AccelCache) -> Result<()> {
+    let form = match ctx.backend {
+        crate::Backend::Cpu => TreeForm::Wide,
+        _ => TreeForm::Binary,
+    };
     let order = link::nodes_post_order(ctx)?;
-    let refit = cache.built_version == Some(cache.shape_version) && cache.nodes.len() == ctx.nodes.len();
-    if refit && !cache.moved {
-        return Ok(());
-    }
     let mut built: Vec<Option<NodeAccel>> = std::mem::take(&mut cache.nodes);
     built.resize_with(ctx.nodes.len(), || None);
+    let (mut any_built, mut any_refit) = (false, false);
+    let union = |bounds: &[OAabb]| bounds.iter().fold(OAabb::empty(), |acc, b| acc.union(b));
     for n in order {
         let i = n.index() as usize;
         let node = &ctx.nodes[i];
+        let old = built[i].take();
         let new = match &node.kind {
             NodeKind::GeometryGroup { children, accel: a } => {
-                let (prims, bounds, all_tris) = prim_bounds(ctx, children)?;
-                let total = bounds.iter().fold(OAabb::empty(), |acc, b| acc.union(b));
-                match built[i].take() {
-                    Some(NodeAccel::Prims { mut bvh, prims: old, wide, .. }) if refit && old == prims => {
-                        bvh.refit(&bounds);
-                        let wide = wide.map(|_| widen(&bvh));
-                        NodeAccel::Prims { bvh, wide, prims, bounds: total }
+                // The CWBVH of a single leaf (`NoAccel`) or of nothing is
+                // pointless: the CPU backend walks the BVH2 then.
+                let wants_wide =
+                    |prims: &[(u32, u32)]| form == TreeForm::Wide && a.builder != Builder::NoAccel && !prims.is_empty();
+                match old {
+                    Some(NodeAccel::Prims { mut bvh, mut wide, prims, mut bounds }) => {
+                        let moved = cache.moved
+                            && children.iter().any(|gi| {
+                                let g = ctx.instances[gi.index() as usize].geometry.index();
+                                cache.moved_geometries.contains(&g)
+                            });
+                        if moved {
+                            let (_, prim_bounds, _) = prim_bounds(ctx, children)?;
+                            bvh.refit(&prim_bounds);
+                            bounds = union(&prim_bounds);
+                            wide = None;
+                            any_refit = true;
+                        }
+                        if wide.is_none() && wants_wide(&prims) {
+                            wide = Some(widen(&bvh));
+                        }
+                        NodeAccel::Prims { bvh, wide, prims, bounds }
                     }
                     _ => {
-                        let tris: Option<Vec<obvhs::triangle::Triangle>> = all_tris.then(|| {
-                            prims
-                                .iter()
-                                .map(|(gi, t)| {
-                                    let rec = &ctx.instances[*gi as usize];
-                                    let GeometryKind::Triangles(mesh) =
-                                        &ctx.geometries[rec.geometry.index() as usize].kind
-                                    else {
-                                        unreachable!("all primitives are triangles")
-                                    };
-                                    let [a, b, c] =
-                                        mesh.indices[*t as usize].map(|v| mesh.positions[v as usize].into());
-                                    obvhs::triangle::Triangle { v0: a, v1: b, v2: c }
-                                })
-                                .collect()
-                        });
-                        let bvh = build(a.builder, &bounds, tris.as_deref())?;
-                        let wide = (a.builder != Builder::NoAccel && !prims.is_empty()).then(|| widen(&bvh));
-                        NodeAccel::Prims { bvh, wide, prims, bounds: total }
+                        let (prims, bounds, all_tris) = prim_bounds(ctx, children)?;
+                        let tris = (a.builder == Builder::Sbvh && all_tris).then(|| group_triangles(ctx, &prims));
+                        let bvh = build(a.builder, &bounds, tris.as_deref(), form)?;
+                        let wide = wants_wide(&prims).then(|| widen(&bvh));
+                        any_built = true;
+                        NodeAccel::Prims { bvh, wide, prims, bounds: union(&bounds) }
                     }
                 }
             }
@@ -367,13 +432,18 @@ pub(crate) fn build_accels(ctx: &Context, cache: &mut AccelCache) -> Result<()> 
                     .iter()
                     .map(|c| built[c.index() as usize].as_ref().map(|b| b.bounds()).unwrap_or(OAabb::empty()))
                     .collect();
-                let total = bounds.iter().fold(OAabb::empty(), |acc, b| acc.union(b));
-                match built[i].take() {
-                    Some(NodeAccel::Children { mut bvh, .. }) if refit => {
-                        bvh.refit(&bounds);
-                        NodeAccel::Children { bvh, bounds: total }
+                match old {
+                    Some(NodeAccel::Children { mut bvh, .. }) => {
+                        if cache.moved {
+                            bvh.refit(&bounds);
+                            any_refit = true;
+                        }
+                        NodeAccel::Children { bvh, bounds: union(&bounds) }
                     }
-                    _ => NodeAccel::Children { bvh: build(a.builder, &bounds, None)?, bounds: total },
+                    _ => {
+                        any_built = true;
+                        NodeAccel::Children { bvh: build(a.builder, &bounds, None, form)?, bounds: union(&bounds) }
+                    }
                 }
             }
             NodeKind::Transform { matrix, child, .. } => {
@@ -389,14 +459,11 @@ pub(crate) fn build_accels(ctx: &Context, cache: &mut AccelCache) -> Result<()> 
         };
         built[i] = Some(new);
     }
-    if refit {
-        cache.refits += 1;
-    } else {
-        cache.builds += 1;
-    }
+    cache.builds += any_built as u64;
+    cache.refits += any_refit as u64;
     cache.nodes = built;
-    cache.built_version = Some(cache.shape_version);
     cache.moved = false;
+    cache.moved_geometries.clear();
     Ok(())
 }
 

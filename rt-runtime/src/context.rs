@@ -145,6 +145,14 @@ impl Context {
         self.gpu.as_ref().map_or(0, |g| g.pipelines_created)
     }
 
+    /// Bytes the last wgpu launch wrote to the device: the pages of the
+    /// scene and of the heap (records, buffers, textures) that changed since
+    /// the launch before, the log's counters and the launch uniform (0 before
+    /// any wgpu launch).
+    pub fn last_upload_bytes(&self) -> u64 {
+        self.gpu.as_ref().map_or(0, |g| g.last_upload_bytes())
+    }
+
     /// The megakernel WGSL of the last wgpu launch (`RT_DUMP_WGSL=1` also
     /// writes it to the temporary directory).
     pub fn linked_wgsl(&self) -> Option<&str> {
@@ -299,7 +307,7 @@ impl Context {
         moved.positions = positions;
         moved.validate().map_err(|problem| RtError::BadGeometry { geometry: g.0, problem })?;
         *mesh = moved;
-        self.accels.geometry_moved();
+        self.accels.geometry_moved(g.0);
         Ok(())
     }
 
@@ -349,13 +357,11 @@ impl Context {
             materials: materials.to_vec(),
             vars: VarScope::default(),
         });
-        self.accels.shape_changed();
         Ok(GeometryInstanceId(self.instances.len() as u32 - 1))
     }
 
     fn push_node(&mut self, kind: NodeKind) -> NodeId {
         self.nodes.push(NodeRec { kind, visibility_mask: 0xff, vars: VarScope::default() });
-        self.accels.shape_changed();
         NodeId(self.nodes.len() as u32 - 1)
     }
 
@@ -392,7 +398,7 @@ impl Context {
             Some(NodeKind::Transform { matrix: m, inverse, .. }) => {
                 *m = matrix;
                 *inverse = inv;
-                self.accels.geometry_moved();
+                self.accels.transform_moved();
                 Ok(())
             }
             _ => Err(RtError::InvalidHandle(format!("{node:?} (not a transform)"))),

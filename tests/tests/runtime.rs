@@ -1180,6 +1180,34 @@ fn changing_values_never_relinks_but_changing_programs_does() {
 }
 
 #[test]
+fn launches_upload_only_what_changed_and_host_writes_reach_the_device() {
+    let (mut ctx, out) = camera(2.0, Backend::Wgpu);
+    let (_, mat, _) = sphere_scene(&mut ctx, &flat_color::PROGRAM, Vec3::ZERO, 1.0);
+    ctx.set_var(Scope::Context, "color", Vec3::X).unwrap();
+    ctx.launch(0, W, W).unwrap();
+    assert!(ctx.last_upload_bytes() > (W * W * 16) as u64, "the first launch uploads everything");
+    // Nothing changed: the log's counters and the launch uniform only.
+    ctx.launch(0, W, W).unwrap();
+    assert_eq!(ctx.last_upload_bytes(), 16 + 48);
+    // A new value: the page of records holding it.
+    ctx.set_var(mat, "color", Vec3::Z).unwrap();
+    ctx.launch(0, W, W).unwrap();
+    assert!(ctx.last_upload_bytes() <= 16 + 48 + 4096, "{} bytes", ctx.last_upload_bytes());
+    assert_eq!(pixel(&ctx.read_buffer::<Vec4>(out).unwrap(), W / 2, W / 2).truncate(), Vec3::Z);
+    // Host writes reach the device: a launch over a quarter of the image
+    // leaves the rest as the host wrote it.
+    ctx.write_buffer(out, &vec![Vec4::ONE; (W * W) as usize]).unwrap();
+    ctx.launch(0, W / 2, W / 2).unwrap();
+    let img = ctx.read_buffer::<Vec4>(out).unwrap();
+    assert_eq!(pixel(&img, W - 1, W - 1), Vec4::ONE);
+    assert_eq!(pixel(&img, 0, 0).truncate(), BG);
+    // And the launch's writes reach the host after every launch.
+    ctx.set_var(mat, "color", Vec3::Y).unwrap();
+    ctx.launch(0, W, W).unwrap();
+    assert_eq!(pixel(&ctx.read_buffer::<Vec4>(out).unwrap(), W / 2, W / 2).truncate(), Vec3::Y);
+}
+
+#[test]
 fn a_scene_over_the_adapters_binding_limit_is_a_clear_error() {
     // A device whose storage bindings hold at most 1 MiB.
     let instance = ::wgpu::Instance::new(::wgpu::InstanceDescriptor::new_without_display_handle_from_env());

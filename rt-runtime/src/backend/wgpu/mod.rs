@@ -51,9 +51,95 @@ pub struct Gpu {
     queue: wgpu::Queue,
     info: wgpu::AdapterInfo,
     limits: wgpu::Limits,
-    pipelines: HashMap<String, (wgpu::ComputePipeline, wgpu::BindGroupLayout)>,
+    /// The one bind-group layout of every megakernel, so bind groups outlive
+    /// pipelines.
+    layout: wgpu::BindGroupLayout,
+    pipelines: HashMap<String, wgpu::ComputePipeline>,
     /// How many pipelines were created (links); for tests of the cache.
     pub pipelines_created: u64,
+    resident: Resident,
+}
+
+/// The buffers a context keeps on its device between launches.
+///
+/// The heap and the scene are mirrored: the host keeps a copy of the words
+/// the device buffer holds, so a launch writes only the 4 KiB pages whose
+/// words changed (none, when only the camera moved but one page of records)
+/// and allocates a new buffer only when the size changed. After a launch
+/// the output buffers' words are read back into both the context and the
+/// mirror, so the mirror stays what the device holds. The log is reset by
+/// writing its four header words; only the words a launch wrote (output
+/// buffers, the log header, then the exceptions and prints it counted) come
+/// back.
+#[derive(Default)]
+struct Resident {
+    heap: Option<Mirrored>,
+    scene: Option<Mirrored>,
+    log: Option<wgpu::Buffer>,
+    /// One 256-byte-aligned launch uniform per dispatch tile.
+    uniforms: Option<(wgpu::Buffer, u32)>,
+    readback: Option<wgpu::Buffer>,
+    /// Bind groups per tile, over the buffers above (cleared when one of
+    /// them is replaced).
+    bind_groups: Vec<wgpu::BindGroup>,
+    /// Bytes written to the device by the last launch (for tests).
+    uploaded: u64,
+}
+
+/// A device storage buffer and the words it holds.
+struct Mirrored {
+    buffer: wgpu::Buffer,
+    words: Vec<u32>,
+}
+
+/// Diff granularity of mirrored buffers, in words.
+const PAGE_WORDS: usize = 1024;
+
+impl Resident {
+    /// Makes `slot`'s device buffer hold `words`; returns true if it had to
+    /// be replaced (a new size).
+    fn sync(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        slot: &mut Option<Mirrored>,
+        words: Vec<u32>,
+        label: &str,
+        uploaded: &mut u64,
+    ) -> bool {
+        if let Some(m) = slot
+            && m.words.len() == words.len()
+        {
+            let mut page = 0;
+            while page * PAGE_WORDS < words.len() {
+                let at = page * PAGE_WORDS;
+                let end = |p: usize| (p * PAGE_WORDS).min(words.len());
+                if m.words[at..end(page + 1)] == words[at..end(page + 1)] {
+                    page += 1;
+                    continue;
+                }
+                // A run of changed pages: one write.
+                let mut last = page + 1;
+                while last * PAGE_WORDS < words.len()
+                    && m.words[end(last)..end(last + 1)] != words[end(last)..end(last + 1)]
+                {
+                    last += 1;
+                }
+                queue.write_buffer(&m.buffer, (at * 4) as u64, words_to_bytes(&words[at..end(last)]));
+                *uploaded += ((end(last) - at) * 4) as u64;
+                page = last;
+            }
+            m.words = words;
+            return false;
+        }
+        let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some(label),
+            contents: words_to_bytes(&words),
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
+        });
+        *uploaded += (words.len() * 4) as u64;
+        *slot = Some(Mirrored { buffer, words });
+        true
+    }
 }
 
 impl Gpu {
@@ -82,13 +168,50 @@ impl Gpu {
             ..Default::default()
         }))
         .map_err(|e| RtError::Gpu(format!("cannot open a device on {}: {e}", adapter.get_info().name)))?;
-        Ok(Gpu { device, queue, info: adapter.get_info(), limits, pipelines: HashMap::new(), pipelines_created: 0 })
+        Ok(Gpu::from_parts(device, queue, adapter.get_info(), limits))
     }
 
     /// Uses a device the application already has.
     pub fn from_device(device: wgpu::Device, queue: wgpu::Queue, info: wgpu::AdapterInfo) -> Gpu {
         let limits = device.limits();
-        Gpu { device, queue, info, limits, pipelines: HashMap::new(), pipelines_created: 0 }
+        Gpu::from_parts(device, queue, info, limits)
+    }
+
+    fn from_parts(device: wgpu::Device, queue: wgpu::Queue, info: wgpu::AdapterInfo, limits: wgpu::Limits) -> Gpu {
+        // An explicit layout: a kernel that never reads a binding (no
+        // traces: no `rt_scene`) still takes all four.
+        let buffer = |binding: u32, ty: wgpu::BufferBindingType| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::COMPUTE,
+            ty: wgpu::BindingType::Buffer { ty, has_dynamic_offset: false, min_binding_size: None },
+            count: None,
+        };
+        let storage = |read_only| wgpu::BufferBindingType::Storage { read_only };
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("rt bindings"),
+            entries: &[
+                buffer(0, storage(false)),
+                buffer(1, storage(true)),
+                buffer(2, storage(false)),
+                buffer(3, wgpu::BufferBindingType::Uniform),
+            ],
+        });
+        Gpu {
+            device,
+            queue,
+            info,
+            limits,
+            layout,
+            pipelines: HashMap::new(),
+            pipelines_created: 0,
+            resident: Resident::default(),
+        }
+    }
+
+    /// Bytes the last launch wrote to the device (scene, heap pages, log
+    /// header, launch uniforms).
+    pub fn last_upload_bytes(&self) -> u64 {
+        self.resident.uploaded
     }
 
     /// The adapter's name and type, for messages ("llvmpipe (Cpu)").
@@ -553,39 +676,9 @@ pub(crate) fn launch(ctx: &mut Context, entry: u32, width: u32, height: u32) -> 
             label: Some("rt megakernel"),
             source: wgpu::ShaderSource::Wgsl(wgsl.clone().into()),
         });
-        // An explicit layout: a kernel that never reads a binding (no
-        // traces: no `rt_scene`) still takes all four.
-        let storage = |binding: u32, read_only: bool| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: wgpu::ShaderStages::COMPUTE,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Storage { read_only },
-                has_dynamic_offset: false,
-                min_binding_size: None,
-            },
-            count: None,
-        };
-        let layout = gpu.device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("rt bindings"),
-            entries: &[
-                storage(0, false),
-                storage(1, true),
-                storage(2, false),
-                wgpu::BindGroupLayoutEntry {
-                    binding: 3,
-                    visibility: wgpu::ShaderStages::COMPUTE,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Uniform,
-                        has_dynamic_offset: false,
-                        min_binding_size: None,
-                    },
-                    count: None,
-                },
-            ],
-        });
         let pipeline_layout = gpu.device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("rt megakernel"),
-            bind_group_layouts: &[Some(&layout)],
+            bind_group_layouts: &[Some(&gpu.layout)],
             immediate_size: 0,
         });
         let pipeline = gpu.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
@@ -601,29 +694,36 @@ pub(crate) fn launch(ctx: &mut Context, entry: u32, width: u32, height: u32) -> 
                 "the linked megakernel does not compile (set RT_DUMP_WGSL=1 to see it): {e}"
             )));
         }
-        gpu.pipelines.insert(wgsl.clone(), (pipeline, layout));
+        gpu.pipelines.insert(wgsl.clone(), pipeline);
         gpu.pipelines_created += 1;
     }
     let t3 = std::time::Instant::now();
-    let (pipeline, layout) = &gpu.pipelines[&wgsl];
-    let device = &gpu.device;
-    let storage = |label: &str, words: &[u32], extra: wgpu::BufferUsages| {
-        device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some(label),
-            contents: words_to_bytes(words),
-            usage: wgpu::BufferUsages::STORAGE | extra,
-        })
-    };
-    let heap = storage("rt_heap", &enc.heap, wgpu::BufferUsages::COPY_SRC);
-    let scene = storage("rt_scene", &enc.scene, wgpu::BufferUsages::empty());
+    let Gpu { device, queue, limits, layout, pipelines, resident: res, .. } = gpu;
+    let pipeline = &pipelines[&wgsl];
+    res.uploaded = 0;
+    let Encoded { scene, heap, outputs, spec, rg_vars, ex_vars } = enc;
+    let mut replaced = Resident::sync(device, queue, &mut res.heap, heap, "rt_heap", &mut res.uploaded);
+    replaced |= Resident::sync(device, queue, &mut res.scene, scene, "rt_scene", &mut res.uploaded);
     let log_words = 4 + LOG_EXCEPTIONS * 3 + LOG_PRINT_WORDS;
-    let log = storage("rt_log", &vec![0u32; log_words as usize], wgpu::BufferUsages::COPY_SRC);
-    let mut results = Vec::new();
+    if res.log.is_none() {
+        res.log = Some(device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("rt_log"),
+            size: log_words as u64 * 4,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        }));
+        replaced = true;
+    }
+    let log = res.log.as_ref().expect("created above");
+    // Counters: exceptions, print words, rays, (unused).
+    queue.write_buffer(log, 0, words_to_bytes(&[0u32; 4]));
+    res.uploaded += 16;
+
+    // Launches over the dispatch limit run as tiles, each with its uniform.
     let tiles_x = width.div_ceil(8);
     let tiles_y = height.div_ceil(8);
-    let max_groups = gpu.limits.max_compute_workgroups_per_dimension.max(1);
-    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("rt launch") });
-    // Launches over the dispatch limit run as tiles.
+    let max_groups = limits.max_compute_workgroups_per_dimension.max(1);
+    let mut tiles: Vec<([u32; 12], u32, u32)> = Vec::new();
     let mut y0 = 0;
     while y0 < tiles_y {
         let gy = (tiles_y - y0).min(max_groups);
@@ -635,88 +735,156 @@ pub(crate) fn launch(ctx: &mut Context, entry: u32, width: u32, height: u32) -> 
                 height,
                 x0 * 8,
                 y0 * 8,
-                enc.spec.ray_generation.case,
-                enc.rg_vars,
-                enc.spec.exception.map_or(0, |e| e.case),
-                enc.ex_vars,
+                spec.ray_generation.case,
+                rg_vars,
+                spec.exception.map_or(0, |e| e.case),
+                ex_vars,
                 LOG_EXCEPTIONS,
                 print_enabled,
                 print_filter.x,
                 print_filter.y,
             ];
-            let ub = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("rt_launch"),
-                contents: words_to_bytes(&uniform),
-                usage: wgpu::BufferUsages::UNIFORM,
-            });
-            let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("rt bindings"),
-                layout,
-                entries: &[
-                    wgpu::BindGroupEntry { binding: 0, resource: heap.as_entire_binding() },
-                    wgpu::BindGroupEntry { binding: 1, resource: scene.as_entire_binding() },
-                    wgpu::BindGroupEntry { binding: 2, resource: log.as_entire_binding() },
-                    wgpu::BindGroupEntry { binding: 3, resource: ub.as_entire_binding() },
-                ],
-            });
-            {
-                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                    label: Some("rt launch"),
-                    timestamp_writes: None,
-                });
-                pass.set_pipeline(pipeline);
-                pass.set_bind_group(0, &bind, &[]);
-                pass.dispatch_workgroups(gx, gy, 1);
-            }
-            results.push(ub);
+            tiles.push((uniform, gx, gy));
             x0 += gx;
         }
         y0 += gy;
     }
-    let read = |encoder: &mut wgpu::CommandEncoder, src: &wgpu::Buffer, words: usize| {
-        let dst = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("rt readback"),
-            size: (words * 4) as u64,
-            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        encoder.copy_buffer_to_buffer(src, 0, &dst, 0, (words * 4) as u64);
-        dst
-    };
-    let heap_read = read(&mut encoder, &heap, enc.heap.len());
-    let log_read = read(&mut encoder, &log, log_words as usize);
-    gpu.queue.submit([encoder.finish()]);
-    let map = |b: &wgpu::Buffer| -> Result<Vec<u32>> {
-        let slice = b.slice(..);
-        slice.map_async(wgpu::MapMode::Read, |_| {});
-        device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .map_err(|e| RtError::Gpu(format!("device lost during the launch: {e}")))?;
-        let bytes = slice.get_mapped_range().map_err(|e| RtError::Gpu(format!("reading results back: {e}")))?;
-        let words = bytes.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
-        drop(bytes);
-        b.unmap();
-        Ok(words)
-    };
-    let heap_words = map(&heap_read)?;
-    let log_words = map(&log_read)?;
-    drop(results);
-
-    // Output buffers back into the context.
-    for (i, offset, n) in &enc.outputs {
-        ctx.buffers[*i].storage.read_words(&heap_words[*offset..offset + n]);
+    let stride = limits.min_uniform_buffer_offset_alignment.max(48) as u64;
+    if res.uniforms.as_ref().is_none_or(|(_, slots)| (*slots as usize) < tiles.len()) {
+        let slots = tiles.len() as u32;
+        res.uniforms = Some((
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("rt_launch"),
+                size: stride * slots as u64,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            }),
+            slots,
+        ));
+        replaced = true;
     }
+    let (uniforms, _) = res.uniforms.as_ref().expect("created above");
+    for (i, (uniform, _, _)) in tiles.iter().enumerate() {
+        queue.write_buffer(uniforms, i as u64 * stride, words_to_bytes(uniform));
+        res.uploaded += 48;
+    }
+    if replaced {
+        res.bind_groups.clear();
+    }
+    let heap_buffer = &res.heap.as_ref().expect("synced above").buffer;
+    let scene_buffer = &res.scene.as_ref().expect("synced above").buffer;
+    while res.bind_groups.len() < tiles.len() {
+        let slot = res.bind_groups.len() as u64;
+        res.bind_groups.push(device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("rt bindings"),
+            layout,
+            entries: &[
+                wgpu::BindGroupEntry { binding: 0, resource: heap_buffer.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 1, resource: scene_buffer.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 2, resource: log.as_entire_binding() },
+                wgpu::BindGroupEntry {
+                    binding: 3,
+                    resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                        buffer: uniforms,
+                        offset: slot * stride,
+                        size: std::num::NonZeroU64::new(48),
+                    }),
+                },
+            ],
+        }));
+    }
+    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("rt launch") });
+    {
+        let mut pass = encoder
+            .begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("rt launch"), timestamp_writes: None });
+        pass.set_pipeline(pipeline);
+        for ((_, gx, gy), bind) in tiles.iter().zip(&res.bind_groups) {
+            pass.set_bind_group(0, bind, &[]);
+            pass.dispatch_workgroups(*gx, *gy, 1);
+        }
+    }
+    // Read back: the output buffers' words, then the log's header.
+    let mut copies: Vec<(&wgpu::Buffer, u64, u64)> =
+        outputs.iter().map(|&(_, offset, n)| (heap_buffer, offset as u64 * 4, n as u64 * 4)).collect();
+    copies.push((log, 0, 16));
+    let words = read_back(device, queue, &mut res.readback, encoder, &copies)?;
+    let mut at = 0;
+    let heap_mirror = &mut res.heap.as_mut().expect("synced above").words;
+    for (i, offset, n) in &outputs {
+        let w = &words[at..at + n];
+        ctx.buffers[*i].storage.read_words(w);
+        heap_mirror[*offset..offset + n].copy_from_slice(w);
+        at += n;
+    }
+    let header = [words[at], words[at + 1], words[at + 2], words[at + 3]];
+    // Exceptions and prints, when the launch logged any: a second, small
+    // read.
+    let exceptions = header[0].min(LOG_EXCEPTIONS) as u64;
+    let print_used = (header[1] as u64).min(LOG_PRINT_WORDS as u64);
+    let (exception_words, print_words) = if exceptions + print_used > 0 {
+        let encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("rt log") });
+        let print_base = (4 + LOG_EXCEPTIONS * 3) as u64 * 4;
+        let mut copies = vec![(log, 16, exceptions * 12)];
+        copies.push((log, print_base, print_used * 4));
+        let mut words = read_back(device, queue, &mut res.readback, encoder, &copies)?;
+        let prints = words.split_off(exceptions as usize * 3);
+        (words, prints)
+    } else {
+        (Vec::new(), Vec::new())
+    };
+
     let mut report = LaunchReport::default();
-    let count = log_words[0].min(LOG_EXCEPTIONS) as usize;
-    for e in 0..count {
-        let w = &log_words[4 + e * 3..4 + e * 3 + 3];
+    for w in exception_words.chunks_exact(3) {
         report.exceptions.push(ExceptionRecord { launch_index: UVec2::new(w[0], w[1]), code: w[2] });
     }
     report.exceptions.sort_by_key(|e| (e.launch_index.y, e.launch_index.x));
-    report.prints = decode_prints(ctx, &log_words[(4 + LOG_EXCEPTIONS * 3) as usize..], log_words[1] as usize);
-    report.rays = log_words[2] as u64;
+    report.prints = decode_prints(ctx, &print_words, print_words.len());
+    report.rays = header[2] as u64;
     report.timings = super::Timings { build: t1 - t0, encode: t2 - t1, link: t3 - t2, run: t3.elapsed() };
     Ok(report)
+}
+
+/// Submits `encoder` with copies of `(buffer, byte offset, bytes)` ranges
+/// appended, waits, and returns their words, concatenated. The staging
+/// buffer is kept and grown as needed.
+fn read_back(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    staging: &mut Option<wgpu::Buffer>,
+    mut encoder: wgpu::CommandEncoder,
+    copies: &[(&wgpu::Buffer, u64, u64)],
+) -> Result<Vec<u32>> {
+    let total: u64 = copies.iter().map(|c| c.2).sum();
+    if staging.as_ref().is_none_or(|b| b.size() < total) {
+        *staging = Some(device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("rt readback"),
+            size: total.max(16).next_power_of_two(),
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        }));
+    }
+    let dst = staging.as_ref().expect("created above");
+    let mut at = 0;
+    for &(src, offset, bytes) in copies {
+        if bytes > 0 {
+            encoder.copy_buffer_to_buffer(src, offset, dst, at, bytes);
+        }
+        at += bytes;
+    }
+    queue.submit([encoder.finish()]);
+    if total == 0 {
+        return Ok(Vec::new());
+    }
+    let slice = dst.slice(..total);
+    slice.map_async(wgpu::MapMode::Read, |_| {});
+    device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .map_err(|e| RtError::Gpu(format!("device lost during the launch: {e}")))?;
+    let bytes = slice.get_mapped_range().map_err(|e| RtError::Gpu(format!("reading results back: {e}")))?;
+    let words = bytes.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
+    drop(bytes);
+    dst.unmap();
+    Ok(words)
 }
 
 /// Formats `rt_printf!` records with the formats of every program.
