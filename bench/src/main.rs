@@ -26,6 +26,7 @@
 mod embree;
 mod handwritten;
 mod json;
+mod lowering;
 mod peers;
 mod scenes;
 mod tour;
@@ -146,7 +147,8 @@ struct Args {
     /// Backends to measure.
     #[arg(long, value_delimiter = ',', default_value = "cpu,wgpu")]
     backends: Vec<String>,
-    /// Scenes to measure (bunny, teapot, cornell_box, bunny_wall_2m).
+    /// Scenes to measure (bunny, teapot, cornell_box, bunny_wall_2m), or
+    /// `none` (the bunny's primary-ray figures run with the bunny).
     #[arg(long, value_delimiter = ',')]
     scenes: Vec<String>,
     /// Scenes with more triangles than this skip the wgpu backend and the
@@ -577,11 +579,14 @@ fn main() {
         }
     }
 
-    bunny_primary(&args, &all[0], width, height, reps, &mut json);
+    let no_scenes = args.scenes.iter().any(|s| s == "none");
+    if !no_scenes && (args.scenes.is_empty() || args.scenes.iter().any(|s| s == "bunny")) {
+        bunny_primary(&args, &all[0], width, height, reps, &mut json);
+    }
 
     let mut figures = Vec::new();
     for scene in &all {
-        if !args.scenes.is_empty() && !args.scenes.iter().any(|s| s == scene.name) {
+        if no_scenes || (!args.scenes.is_empty() && !args.scenes.iter().any(|s| s == scene.name)) {
             continue;
         }
         let j = json.child("scenes").child(scene.name);
@@ -605,6 +610,8 @@ fn main() {
         "obvhs_vs_embree_geomean",
         geomean(&figures.iter().map(|(_, f)| ratio(f.obvhs, f.embree)).collect::<Vec<_>>()),
     );
+
+    lowering::measure(if args.quick { 5 } else { 20 }, json.child("lowering"));
 
     // The tour's program sets on the wgpu backend.
     if args.backends.iter().any(|b| b == "wgpu") {

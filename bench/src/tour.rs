@@ -18,14 +18,16 @@ use std::time::{Duration, Instant};
 /// Examples whose megakernel links in seconds on lavapipe. The others
 /// (trace depth 7 and more, or many trace call sites) take minutes until
 /// the megakernel's code size comes down; `--tour-links all` runs them.
-pub const FAST: [&str; 4] = ["normal", "diffuse", "phong", "shadows"];
+pub const FAST: [&str; 6] = ["normal", "diffuse", "phong", "shadows", "cornell", "bunny"];
 
 /// Examples not in [`FAST`], with why `--quick` leaves them out.
 pub fn slow_reason(name: &str) -> &'static str {
     match name {
         "reflections" => "max trace depth 7: lavapipe takes minutes to compile the megakernel (217 s measured)",
         "convex_hull" => "max trace depth 10 (glass): lavapipe takes minutes to compile the megakernel",
-        _ => "not in the fast set: its megakernel may take minutes to compile on lavapipe",
+        "envmap" => "reflections' programs at depth 7: over 5 minutes to compile on lavapipe (measured)",
+        "instances" => "reflections' programs at depth 7 over 100 instances: minutes to compile on lavapipe",
+        _ => "not in the fast set: its megakernel may take minutes to compile on lavapipe (pass --tour-links NAME)",
     }
 }
 
