@@ -163,9 +163,10 @@ struct Args {
     /// installs Debian's package, as bench/setup.sh does).
     #[arg(long)]
     no_install: bool,
-    /// Tour examples whose megakernel link to time: `fast` (the default),
-    /// `all`, `none`, or names.
-    #[arg(long, value_delimiter = ',', default_value = "fast")]
+    /// Tour examples whose megakernel link to time: `auto` (the default:
+    /// the four that link in seconds with --quick, plus cornell and bunny
+    /// without), `fast`, `all`, `none`, or names.
+    #[arg(long, value_delimiter = ',', default_value = "auto")]
     tour_links: Vec<String>,
     /// Use Mesa's usual on-disk shader cache (by default the bench gives
     /// Mesa a fresh one, so each kernel's first compile is cold).
@@ -617,6 +618,8 @@ fn main() {
     if args.backends.iter().any(|b| b == "wgpu") {
         let names: Vec<String> = match args.tour_links.iter().map(String::as_str).collect::<Vec<_>>().as_slice() {
             ["none"] => Vec::new(),
+            ["auto"] if args.quick => tour::FAST.iter().map(|s| s.to_string()).collect(),
+            ["auto"] => tour::FAST.iter().chain(&tour::MEDIUM).map(|s| s.to_string()).collect(),
             ["fast"] => tour::FAST.iter().map(|s| s.to_string()).collect(),
             ["all"] => examples::EXAMPLES.iter().map(|e| e.name.to_string()).collect(),
             _ => args.tour_links.clone(),

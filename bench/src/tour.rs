@@ -18,11 +18,17 @@ use std::time::{Duration, Instant};
 /// Examples whose megakernel links in seconds on lavapipe. The others
 /// (trace depth 7 and more, or many trace call sites) take minutes until
 /// the megakernel's code size comes down; `--tour-links all` runs them.
-pub const FAST: [&str; 6] = ["normal", "diffuse", "phong", "shadows", "cornell", "bunny"];
+/// `--quick` measures these.
+pub const FAST: [&str; 4] = ["normal", "diffuse", "phong", "shadows"];
 
-/// Examples not in [`FAST`], with why `--quick` leaves them out.
+/// Examples that link in tens of seconds on lavapipe: measured by the full
+/// run, left out of `--quick` (which must finish in 3 minutes).
+pub const MEDIUM: [&str; 2] = ["cornell", "bunny"];
+
+/// Examples a run leaves out, with why.
 pub fn slow_reason(name: &str) -> &'static str {
     match name {
+        "cornell" | "bunny" => "about 15-30 s to compile on lavapipe: measured by the full run (or --tour-links NAME)",
         "reflections" => "max trace depth 7: lavapipe takes minutes to compile the megakernel (217 s measured)",
         "convex_hull" => "max trace depth 10 (glass): lavapipe takes minutes to compile the megakernel",
         "envmap" => "reflections' programs at depth 7: over 5 minutes to compile on lavapipe (measured)",
