@@ -100,8 +100,6 @@ pub struct Embree {
     device: Handle,
     pub version: String,
     pub library: String,
-    // Last: the entry points above point into it.
-    _lib: Library,
 }
 
 /// A committed scene of one triangle mesh.
@@ -193,6 +191,9 @@ impl Embree {
                 intersect1: sym!(b"rtcIntersect1\0"),
             }
         };
+        // Never unloaded: TBB's worker threads outlive the device, and
+        // unmapping their code under them crashes the process at exit.
+        std::mem::forget(lib);
         // SAFETY: a null configuration string asks for the defaults.
         let device = unsafe { (api.new_device)(std::ptr::null()) };
         if device.is_null() {
@@ -206,7 +207,7 @@ impl Embree {
             unsafe { (api.release_device)(device) };
             return Err(format!("{name} is Embree {version}; the bench declares Embree 3's API"));
         }
-        Ok(Embree { api, device, version, library: name.to_string(), _lib: lib })
+        Ok(Embree { api, device, version, library: name.to_string() })
     }
 
     fn check(&self, what: &str) -> Result<(), String> {
