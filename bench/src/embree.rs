@@ -115,12 +115,18 @@ unsafe impl Send for Scene<'_> {}
 
 const LIBRARIES: [&str; 2] = ["libembree3.so.3", "libembree3.so"];
 
-fn open() -> Result<(Library, &'static str), String> {
+/// Opens `$RT_EMBREE_LIB` when set, else Debian's libembree3.
+fn open() -> Result<(Library, String), String> {
+    let custom = std::env::var("RT_EMBREE_LIB").ok();
+    let names: Vec<String> = match custom {
+        Some(path) => vec![path],
+        None => LIBRARIES.iter().map(|s| s.to_string()).collect(),
+    };
     let mut why = Vec::new();
-    for name in LIBRARIES {
+    for name in names {
         // SAFETY: loading Embree runs its (and TBB's) initialisers, which
         // have no preconditions.
-        match unsafe { Library::new(name) } {
+        match unsafe { Library::new(&name) } {
             Ok(lib) => return Ok((lib, name)),
             Err(e) => why.push(e.to_string()),
         }
@@ -207,7 +213,7 @@ impl Embree {
             unsafe { (api.release_device)(device) };
             return Err(format!("{name} is Embree {version}; the bench declares Embree 3's API"));
         }
-        Ok(Embree { api, device, version, library: name.to_string() })
+        Ok(Embree { api, device, version, library: name })
     }
 
     fn check(&self, what: &str) -> Result<(), String> {
