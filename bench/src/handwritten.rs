@@ -13,16 +13,26 @@ fn bytes(w: &[u32]) -> &[u8] {
 }
 
 /// Runs the AO workload `reps` times; returns (rays traced, median time of
-/// dispatch + read-back, adapter name).
+/// dispatch + read-back, adapter name), or why it could not run.
 pub fn run(
     mesh: &TriangleMesh,
     cam: (Vec3, Vec3, Vec3, Vec3),
     width: u32,
     height: u32,
     reps: usize,
-) -> Option<(u64, Duration, String)> {
+) -> Result<(u64, Duration, String), String> {
     let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
-    let adapter = pollster::block_on(instance.request_adapter(&Default::default())).ok()?;
+    let adapter = pollster::block_on(instance.request_adapter(&Default::default())).map_err(|e| e.to_string())?;
+    let max_binding = adapter.limits().max_storage_buffer_binding_size as u64;
+    // BVH2 nodes of 40 bytes (2n - 1 for n triangles) and 36 bytes a triangle.
+    let biggest = (mesh.indices.len() as u64 * 2 * 40).max(mesh.indices.len() as u64 * 36);
+    if biggest > max_binding {
+        return Err(format!(
+            "the BVH needs a {} MiB storage buffer but the adapter binds at most {} MiB",
+            biggest >> 20,
+            max_binding >> 20
+        ));
+    }
     let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
         required_limits: wgpu::Limits {
             max_storage_buffer_binding_size: adapter.limits().max_storage_buffer_binding_size,
@@ -30,7 +40,7 @@ pub fn run(
         },
         ..Default::default()
     }))
-    .ok()?;
+    .map_err(|e| e.to_string())?;
     // The BVH the runtime builds: obvhs medium_build, one primitive a leaf.
     let bounds: Vec<obvhs::aabb::Aabb> = mesh
         .indices
@@ -122,8 +132,8 @@ pub fn run(
         queue.submit([enc.finish()]);
         let slice = read.slice(..);
         slice.map_async(wgpu::MapMode::Read, |_| {});
-        device.poll(wgpu::PollType::wait_indefinitely()).ok()?;
-        let data = slice.get_mapped_range().ok()?;
+        device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| e.to_string())?;
+        let data = slice.get_mapped_range().map_err(|e| e.to_string())?;
         let hits =
             data[pixels * 4..].chunks_exact(4).filter(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]) == 1.0).count();
         rays = (pixels + hits) as u64;
@@ -134,5 +144,5 @@ pub fn run(
     // The first run includes the pipeline's compilation on some drivers.
     times.remove(0);
     times.sort();
-    Some((rays, times[times.len() / 2], adapter.get_info().name))
+    Ok((rays, times[times.len() / 2], adapter.get_info().name))
 }

@@ -1,15 +1,35 @@
-//! `rt-bench`: primary-ray throughput of the normal-shader scene over the
-//! Stanford bunny on each backend, the acceleration build against obvhs's
-//! own build of the same triangles, and the megakernel link time.
+//! `rt-bench`: issue #6's workload in the style of tray_racing, on every
+//! backend and against peers measured in the same run.
 //!
-//! `cargo run --release -p rt-bench -- [--quick] [--json] [--width W --height H]`
+//! `cargo run --release -p rt-bench -- [--quick] [--json]`
 //!
-//! Every ratio compares figures measured in this run, on this machine.
+//! - Scenes: the bunny, the teapot and the Cornell box from
+//!   `../shared/scenes`, and a generated wall of 30 bunnies (2,083,530
+//!   triangles, one flat mesh), each with a camera framed from its bounds.
+//! - Workload: per pixel one primary ray and, at each hit, one
+//!   cosine-weighted ambient-occlusion ray (closest hit, unbounded);
+//!   Mrays/s counts the rays actually traced.
+//! - Peers: obvhs's own CWBVH traversal (rayon, same threads), Embree 3's
+//!   `rtcIntersect1` (loaded at run time, see `embree.rs`), a hand-written
+//!   WGSL kernel on the same adapter as the megakernel (`handwritten.rs`),
+//!   obvhs's direct build against our end-to-end build.
+//! - Also: primary rays on the bunny per backend, the tour's megakernel
+//!   link and pipeline times (`tour.rs`), lowering time per program
+//!   (`lowering.rs`).
+//!
+//! Every ratio compares figures measured in this run, on this machine;
+//! higher is better for us.
 
 // The runtime's errors name programs and scopes; size does not matter here.
 #![allow(clippy::result_large_err)]
 
+mod embree;
 mod handwritten;
+mod json;
+mod lowering;
+mod peers;
+mod scenes;
+mod tour;
 
 use clap::Parser;
 use glam::{Vec3, Vec4};
@@ -111,32 +131,47 @@ pub fn unoccluded(prd: &mut Occlusion) {
 
 #[derive(Parser)]
 struct Args {
-    /// Fewer repetitions and a smaller image.
+    /// A small image, fewer repetitions, and only what lavapipe does in
+    /// seconds (under 3 minutes on the 2-core CI VM).
     #[arg(long)]
     quick: bool,
     /// Print one JSON object on stdout (the table goes to stderr).
     #[arg(long)]
     json: bool,
+    /// Image width (default 1920, or 320 with --quick).
     #[arg(long)]
     width: Option<u32>,
+    /// Image height (default 1080, or 240 with --quick).
     #[arg(long)]
     height: Option<u32>,
     /// Backends to measure.
     #[arg(long, value_delimiter = ',', default_value = "cpu,wgpu")]
     backends: Vec<String>,
-}
-
-fn load_bunny() -> TriangleMesh {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../shared/scenes/stanford-bunny.obj");
-    let (models, _) =
-        tobj::load_obj(path, &tobj::LoadOptions { triangulate: true, single_index: true, ..Default::default() })
-            .unwrap_or_else(|e| panic!("{path}: {e}"));
-    let m = &models[0].mesh;
-    TriangleMesh {
-        positions: m.positions.chunks_exact(3).map(|p| Vec3::new(p[0], p[1], p[2])).collect(),
-        indices: m.indices.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect(),
-        ..TriangleMesh::default()
-    }
+    /// Scenes to measure (bunny, teapot, cornell_box, bunny_wall_2m), or
+    /// `none` (the bunny's primary-ray figures run with the bunny).
+    #[arg(long, value_delimiter = ',')]
+    scenes: Vec<String>,
+    /// Scenes with more triangles than this skip the wgpu backend and the
+    /// hand-written kernel (default: 1,000,000 with --quick, no limit
+    /// otherwise): lavapipe takes minutes over them.
+    #[arg(long)]
+    wgpu_max_triangles: Option<usize>,
+    /// Leave the Embree peer out.
+    #[arg(long)]
+    no_embree: bool,
+    /// Never install Embree (by default a root run without libembree3
+    /// installs Debian's package, as bench/setup.sh does).
+    #[arg(long)]
+    no_install: bool,
+    /// Tour examples whose megakernel link to time: `auto` (the default:
+    /// the four that link in seconds with --quick, plus cornell and bunny
+    /// without), `fast`, `all`, `none`, or names.
+    #[arg(long, value_delimiter = ',', default_value = "auto")]
+    tour_links: Vec<String>,
+    /// Use Mesa's usual on-disk shader cache (by default the bench gives
+    /// Mesa a fresh one, so each kernel's first compile is cold).
+    #[arg(long)]
+    warm_shader_cache: bool,
 }
 
 /// The workload: primary rays only, or primary plus one AO ray per hit.
@@ -146,25 +181,9 @@ enum Workload {
     Ao,
 }
 
-fn scene(mesh: &TriangleMesh, backend: Backend, width: u32, height: u32) -> Result<(Context, BufferId)> {
-    scene_with(mesh, backend, width, height, Workload::Primary)
-}
-
-/// The camera of every workload: (eye, u, v, w).
-fn camera(mesh: &TriangleMesh, width: u32, height: u32) -> (Vec3, Vec3, Vec3, Vec3) {
-    let (lo, hi) =
-        mesh.positions.iter().fold((Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)), |(a, b), p| (a.min(*p), b.max(*p)));
-    let center = (lo + hi) * 0.5;
-    let radius = (hi - lo).length() * 0.5;
-    let eye = center + Vec3::new(0.0, 0.1, 2.2) * radius;
-    let w = (center - eye).normalize();
-    let u = w.cross(Vec3::Y).normalize() * (width as f32 / height as f32) * 0.45;
-    let v = u.cross(w).normalize() * 0.45;
-    (eye, u, v, w)
-}
-
 fn scene_with(
     mesh: &TriangleMesh,
+    cam: scenes::Camera,
     backend: Backend,
     width: u32,
     height: u32,
@@ -191,7 +210,7 @@ fn scene_with(
     let gi = ctx.create_geometry_instance(g, &[mat])?;
     let gg = ctx.create_geometry_group(&[gi], Acceleration::new(Builder::Bvh))?;
     let out = ctx.create_buffer_2d::<Vec4>(BufferType::Output, width, height)?;
-    let (eye, u, v, w) = camera(mesh, width, height);
+    let (eye, u, v, w) = cam;
     for (name, value) in [("eye", eye), ("u", u), ("v", v), ("w", w), ("bg_color", Vec3::new(0.2, 0.2, 0.25))] {
         ctx.set_var(Scope::Context, name, value)?;
     }
@@ -200,83 +219,37 @@ fn scene_with(
     Ok((ctx, out))
 }
 
-/// The same AO workload traced by obvhs's own CWBVH traversal (rayon over
-/// rows, like the CPU backend): returns (rays, time).
-fn obvhs_ao(mesh: &TriangleMesh, width: u32, height: u32) -> (u64, Duration) {
-    use obvhs::ray::{Ray as ORay, RayHit};
-    use rayon::prelude::*;
-    let tris: Vec<obvhs::triangle::Triangle> = mesh
-        .indices
-        .iter()
-        .map(|t| {
-            let [a, b, c] = t.map(|i| mesh.positions[i as usize].into());
-            obvhs::triangle::Triangle { v0: a, v1: b, v2: c }
-        })
-        .collect();
-    let mut core = Duration::ZERO;
-    let bvh = obvhs::cwbvh::builder::build_cwbvh_from_tris(&tris, obvhs::BvhBuildParams::medium_build(), &mut core);
-    let (eye, u, v, w) = camera(mesh, width, height);
-    let closest = |o: Vec3, d: Vec3, tmin: f32| -> Option<(f32, usize)> {
-        let mut hit = RayHit::none();
-        let ray = ORay::new(o.into(), d.into(), tmin, f32::INFINITY);
-        bvh.ray_traverse(ray, &mut hit, |r, id| tris[bvh.primitive_indices[id] as usize].intersect(r))
-            .then(|| (hit.t, bvh.primitive_indices[hit.primitive_id as usize] as usize))
-    };
-    let start = Instant::now();
-    let rays: u64 = (0..height)
-        .into_par_iter()
-        .map(|y| {
-            let mut rays = 0u64;
-            for x in 0..width {
-                let d = (glam::Vec2::new(x as f32, y as f32) + 0.5) / glam::Vec2::new(width as f32, height as f32)
-                    * 2.0
-                    - 1.0;
-                let dir = (d.x * u + d.y * v + w).normalize();
-                rays += 1;
-                if let Some((t, prim)) = closest(eye, dir, 1e-4) {
-                    let p = eye + t * dir;
-                    let tri = &tris[prim];
-                    let n = Vec3::from(tri.compute_normal()).normalize();
-                    let n = faceforward(n, dir, n);
-                    let h1 = hash(x + y * width);
-                    let h2 = hash(h1);
-                    let ao = cosine_direction(n, (h1 >> 8) as f32 / 16777216.0, (h2 >> 8) as f32 / 16777216.0);
-                    rays += 1;
-                    std::hint::black_box(closest(p + n * 1e-4, ao, 0.0));
-                }
-            }
-            rays
-        })
-        .sum();
-    (rays, start.elapsed())
+use peers::median;
+
+fn ms(d: Duration) -> f64 {
+    d.as_secs_f64() * 1e3
 }
 
-fn median(mut v: Vec<Duration>) -> Duration {
-    v.sort();
-    v[v.len() / 2]
+fn mrays(rays: u64, t: Duration) -> f64 {
+    rays as f64 / t.as_secs_f64() / 1e6
 }
 
-fn main() {
-    let args = Args::parse();
-    let (width, height) = match (args.width, args.height) {
-        (Some(w), Some(h)) => (w, h),
-        _ if args.quick => (512, 384),
-        _ => (1024, 768),
-    };
-    let reps = if args.quick { 3 } else { 7 };
-    let mesh = load_bunny();
-    let mut json = Vec::new();
+/// Launches `ctx` once (building and linking), then `reps` times; returns
+/// (first launch, rays of a launch, median run time).
+fn measure_launches(ctx: &mut Context, width: u32, height: u32, reps: usize) -> Result<(LaunchReport, u64, Duration)> {
+    let first = ctx.launch(0, width, height)?;
+    let mut runs = Vec::new();
+    let mut rays = 0;
+    for _ in 0..reps {
+        let r = ctx.launch(0, width, height)?;
+        rays = r.rays;
+        runs.push(r.timings.run);
+    }
+    Ok((first, rays, median(runs)))
+}
+
+/// Primary rays (normal shader) on the bunny per backend, and the build
+/// against obvhs's: the figures the bench reported before issue #6.
+fn bunny_primary(args: &Args, bunny: &scenes::BenchScene, width: u32, height: u32, reps: usize, json: &mut json::Json) {
+    let mesh = &bunny.mesh;
+    let cam = bunny.camera(width, height);
     eprintln!("bunny: {} triangles, {width}x{height}, primary rays (normal shader)", mesh.indices.len());
-
-    // Acceleration build: obvhs directly against our end-to-end build.
-    let tris: Vec<obvhs::triangle::Triangle> = mesh
-        .indices
-        .iter()
-        .map(|t| {
-            let [a, b, c] = t.map(|i| mesh.positions[i as usize].into());
-            obvhs::triangle::Triangle { v0: a, v1: b, v2: c }
-        })
-        .collect();
+    let tris = bunny.obvhs_triangles();
     let obvhs_build = median(
         (0..reps)
             .map(|_| {
@@ -294,136 +267,372 @@ fn main() {
             })
             .collect(),
     );
-    let our_build = median(
-        (0..reps)
-            .map(|_| {
-                let (mut ctx, _) = scene(&mesh, Backend::Cpu, 1, 1).expect("scene");
-                let r = ctx.launch(0, 1, 1).expect("launch");
-                r.timings.build
-            })
-            .collect(),
-    );
-    let build_ratio = obvhs_build.as_secs_f64() / our_build.as_secs_f64();
-    eprintln!(
-        "build: obvhs build_cwbvh (medium) {:.1} ms, ours (bounds + BVH2 + CWBVH) {:.1} ms, build_vs_obvhs {:.2}",
-        obvhs_build.as_secs_f64() * 1e3,
-        our_build.as_secs_f64() * 1e3,
-        build_ratio
-    );
-    json.push(format!("\"build_vs_obvhs\": {build_ratio:.3}"));
-
+    let our_build: Result<Vec<Duration>> = (0..reps)
+        .map(|_| {
+            let (mut ctx, _) = scene_with(mesh, cam, Backend::Cpu, 1, 1, Workload::Primary)?;
+            Ok(ctx.launch(0, 1, 1)?.timings.build)
+        })
+        .collect();
+    match our_build {
+        Ok(b) => {
+            let our_build = median(b);
+            let ratio = obvhs_build.as_secs_f64() / our_build.as_secs_f64();
+            eprintln!(
+                "build: obvhs build_cwbvh (medium) {:.1} ms, ours (bounds + BVH2 + CWBVH) {:.1} ms, build_vs_obvhs {ratio:.2}",
+                ms(obvhs_build),
+                ms(our_build),
+            );
+            json.set("build_vs_obvhs", ratio);
+            json.set("build_obvhs_ms", ms(obvhs_build));
+            json.set("build_ours_ms", ms(our_build));
+        }
+        Err(e) => {
+            eprintln!("build: {e}");
+            json.set("build_vs_obvhs", json::Json::Null);
+        }
+    }
     for b in &args.backends {
-        let backend = match b.as_str() {
-            "cpu" => Backend::Cpu,
-            "wgpu" => Backend::Wgpu,
-            other => {
-                eprintln!("unknown backend `{other}` (cpu or wgpu)");
-                std::process::exit(2);
-            }
+        let backend = if b == "cpu" { Backend::Cpu } else { Backend::Wgpu };
+        let run = || -> Result<json::Json> {
+            let (mut ctx, out) = scene_with(mesh, cam, backend, width, height, Workload::Primary)?;
+            let device = if backend == Backend::Wgpu {
+                ctx.open_wgpu()?
+            } else {
+                format!("cpu, {} threads", rayon::current_num_threads())
+            };
+            let (first, rays, run) = measure_launches(&mut ctx, width, height, reps)?;
+            let m = mrays(rays, run);
+            let img = ctx.read_buffer::<Vec4>(out)?;
+            let hit = img.iter().filter(|c| c.truncate() != Vec3::new(0.2, 0.2, 0.25)).count();
+            eprintln!(
+                "{b} [{device}]: {m:.2} Mrays/s ({rays} rays in {:.1} ms, {:.0}% of pixels hit); first launch: link {:.1} ms, encode {:.1} ms",
+                ms(run),
+                100.0 * hit as f64 / img.len() as f64,
+                ms(first.timings.link),
+                ms(first.timings.encode)
+            );
+            let mut j = json::Json::obj();
+            j.set("device", device);
+            j.set("mrays_per_s", m);
+            j.set("link_ms", ms(first.timings.link));
+            Ok(j)
         };
-        let (mut ctx, out) = match scene(&mesh, backend, width, height) {
-            Ok(s) => s,
+        match run() {
+            Ok(j) => json.set(b, j),
             Err(e) => {
                 eprintln!("{b}: {e}");
-                continue;
+                json.set(b, json::Json::Null);
             }
-        };
-        let device = if backend == Backend::Wgpu {
-            match ctx.open_wgpu() {
-                Ok(d) => d,
-                Err(e) => {
-                    eprintln!("{b}: {e}");
-                    continue;
-                }
-            }
-        } else {
-            format!("cpu, {} threads", std::thread::available_parallelism().map_or(1, |n| n.get()))
-        };
-        let first = ctx.launch(0, width, height).expect("launch");
-        let mut runs = Vec::new();
-        let mut rays = 0;
-        for _ in 0..reps {
-            let r = ctx.launch(0, width, height).expect("launch");
-            rays = r.rays;
-            runs.push(r.timings.run);
         }
-        let run = median(runs);
-        let mrays = rays as f64 / run.as_secs_f64() / 1e6;
-        let img = ctx.read_buffer::<Vec4>(out).unwrap();
-        let hit = img.iter().filter(|c| c.truncate() != Vec3::new(0.2, 0.2, 0.25)).count();
-        eprintln!(
-            "{b} [{device}]: {mrays:.2} Mrays/s ({rays} rays in {:.1} ms, {:.0}% of pixels hit); first launch: link {:.1} ms, encode {:.1} ms",
-            run.as_secs_f64() * 1e3,
-            100.0 * hit as f64 / img.len() as f64,
-            first.timings.link.as_secs_f64() * 1e3,
-            first.timings.encode.as_secs_f64() * 1e3
-        );
-        json.push(format!(
-            "\"{b}\": {{\"device\": \"{}\", \"mrays_per_s\": {mrays:.3}, \"link_ms\": {:.2}}}",
-            device.replace('"', "'"),
-            first.timings.link.as_secs_f64() * 1e3
-        ));
     }
-    // Primary + ambient occlusion on the CPU backend against obvhs's CWBVH.
-    let (mut ctx, _) = scene_with(&mesh, Backend::Cpu, width, height, Workload::Ao).expect("scene");
-    ctx.launch(0, width, height).expect("launch");
-    let mut ours = Vec::new();
-    let mut our_rays = 0;
-    let mut theirs = Vec::new();
-    let mut their_rays = 0;
+}
+
+/// What one scene measured, for the top-level ratios.
+#[derive(Default)]
+struct SceneFigures {
+    cpu: Option<f64>,
+    obvhs: Option<f64>,
+    embree: Option<f64>,
+    wgpu: Option<f64>,
+    handwritten: Option<f64>,
+}
+
+/// The AO workload on one scene: every backend and peer.
+#[allow(clippy::too_many_arguments)]
+fn measure_scene(
+    args: &Args,
+    scene: &scenes::BenchScene,
+    embree: Option<&embree::Embree>,
+    width: u32,
+    height: u32,
+    reps: usize,
+    wgpu_max_triangles: usize,
+    j: &mut json::Json,
+) -> SceneFigures {
+    use json::Json;
+    let mut fig = SceneFigures::default();
+    let cam = scene.camera(width, height);
+    let tris = scene.obvhs_triangles();
+    j.set("triangles", scene.triangles());
+    j.set("source", scene.source.as_str());
+    eprintln!("\n{}: {} triangles, {width}x{height}, primary + AO", scene.name, scene.triangles());
+
+    // Builds: obvhs's CWBVH, Embree's own BVH, then ours inside the first
+    // CPU launch (one sample each).
+    let (bvh, obvhs_build) = peers::obvhs_cwbvh(&tris);
+    let builds = j.child("build_ms");
+    builds.set("obvhs_cwbvh", ms(obvhs_build));
+    let embree_scene = embree.map(|e| e.build(&scene.mesh.positions, &scene.mesh.indices));
+    let embree_scene = match embree_scene {
+        Some(Ok((s, t))) => {
+            builds.set("embree", ms(t));
+            Some(s)
+        }
+        Some(Err(e)) => {
+            eprintln!("embree build: {e}");
+            None
+        }
+        None => None,
+    };
+    let mut cpu_ctx = if args.backends.iter().any(|b| b == "cpu") {
+        match scene_with(&scene.mesh, cam, Backend::Cpu, width, height, Workload::Ao)
+            .and_then(|(mut c, _)| c.launch(0, width, height).map(|r| (c, r)))
+        {
+            Ok((c, first)) => {
+                j.child("build_ms").set("ours", ms(first.timings.build));
+                Some(c)
+            }
+            Err(e) => {
+                eprintln!("cpu: {e}");
+                None
+            }
+        }
+    } else {
+        None
+    };
+
+    // Traversal, interleaved so load from elsewhere spreads over all sides.
+    let (mut ours, mut theirs, mut emb) = (Vec::new(), Vec::new(), Vec::new());
+    let (mut our_rays, mut obvhs_run, mut embree_run) = (0, None, None);
     for _ in 0..reps {
-        let r = ctx.launch(0, width, height).expect("launch");
-        our_rays = r.rays;
-        ours.push(r.timings.run);
-        let (n, t) = obvhs_ao(&mesh, width, height);
-        their_rays = n;
-        theirs.push(t);
-    }
-    let ours_mrays = our_rays as f64 / median(ours).as_secs_f64() / 1e6;
-    let theirs_mrays = their_rays as f64 / median(theirs).as_secs_f64() / 1e6;
-    eprintln!(
-        "primary + AO: cpu backend {ours_mrays:.2} Mrays/s ({our_rays} rays), obvhs CWBVH {theirs_mrays:.2} Mrays/s ({their_rays} rays), cpu_vs_obvhs {:.2}",
-        ours_mrays / theirs_mrays
-    );
-    json.push(format!(
-        "\"cpu_vs_obvhs\": {:.3}, \"ao_cpu_mrays_per_s\": {ours_mrays:.3}, \"ao_obvhs_mrays_per_s\": {theirs_mrays:.3}",
-        ours_mrays / theirs_mrays
-    ));
-
-    // The megakernel against a hand-written kernel, same adapter, same rays.
-    if args.backends.iter().any(|b| b == "wgpu") {
-        match scene_with(&mesh, Backend::Wgpu, width, height, Workload::Ao) {
-            Ok((mut ctx, _)) => match ctx.launch(0, width, height) {
-                Ok(_) => {
-                    let mut runs = Vec::new();
-                    let mut rays = 0;
-                    for _ in 0..reps {
-                        let r = ctx.launch(0, width, height).expect("launch");
-                        rays = r.rays;
-                        runs.push(r.timings.run);
-                    }
-                    let ours = rays as f64 / median(runs).as_secs_f64() / 1e6;
-                    if let Some((hrays, htime, adapter)) =
-                        handwritten::run(&mesh, camera(&mesh, width, height), width, height, reps)
-                    {
-                        let theirs = hrays as f64 / htime.as_secs_f64() / 1e6;
-                        eprintln!(
-                            "primary + AO on {adapter}: megakernel {ours:.2} Mrays/s ({rays} rays), hand-written WGSL {theirs:.2} Mrays/s ({hrays} rays), megakernel_vs_handwritten {:.2}",
-                            ours / theirs
-                        );
-                        json.push(format!(
-                            "\"megakernel_vs_handwritten\": {:.3}, \"ao_megakernel_mrays_per_s\": {ours:.3}, \"ao_handwritten_mrays_per_s\": {theirs:.3}",
-                            ours / theirs
-                        ));
-                    }
+        if let Some(ctx) = cpu_ctx.as_mut() {
+            match ctx.launch(0, width, height) {
+                Ok(r) => {
+                    our_rays = r.rays;
+                    ours.push(r.timings.run);
                 }
-                Err(e) => eprintln!("wgpu AO: {e}"),
-            },
-            Err(e) => eprintln!("wgpu AO: {e}"),
+                Err(e) => {
+                    eprintln!("cpu: {e}");
+                    cpu_ctx = None;
+                }
+            }
+        }
+        let o = peers::obvhs_ao(&bvh, &tris, cam, width, height);
+        theirs.push(o.time);
+        obvhs_run = Some(o);
+        if let Some(s) = &embree_scene {
+            let e = peers::trace_ao(&tris, cam, width, height, |o, d, tmin| s.intersect(o, d, tmin));
+            emb.push(e.time);
+            embree_run = Some(e);
+        }
+    }
+    let obvhs_run = obvhs_run.expect("reps >= 1");
+    let rays = j.child("rays");
+    rays.set("obvhs", obvhs_run.rays);
+    fig.obvhs = Some(mrays(obvhs_run.rays, median(theirs)));
+    if !ours.is_empty() {
+        fig.cpu = Some(mrays(our_rays, median(ours)));
+        j.child("rays").set("cpu", our_rays);
+    }
+    if let Some(e) = &embree_run {
+        fig.embree = Some(mrays(e.rays, median(emb)));
+        j.child("rays").set("embree", e.rays);
+        let (p, a) = peers::mismatches(e, &obvhs_run);
+        let m = j.child("embree_vs_obvhs_mismatches");
+        m.set("primary", p);
+        m.set("ao", a);
+        m.set("pixels", (width * height) as usize);
+    }
+    eprintln!(
+        "cpu backend {} Mrays/s, obvhs CWBVH {:.2}, embree {}",
+        fig.cpu.map_or("-".into(), |x| format!("{x:.2}")),
+        fig.obvhs.unwrap_or(0.0),
+        fig.embree.map_or("-".into(), |x| format!("{x:.2}")),
+    );
+    drop(cpu_ctx);
+    drop(embree_scene);
+
+    // The megakernel against the hand-written kernel, same adapter.
+    if args.backends.iter().any(|b| b == "wgpu") {
+        if scene.triangles() > wgpu_max_triangles {
+            let why = format!(
+                "{} triangles > --wgpu-max-triangles {wgpu_max_triangles}: lavapipe takes minutes here",
+                scene.triangles()
+            );
+            j.child("skipped").set("wgpu", why.as_str());
+            j.child("skipped").set("handwritten_wgsl", why.as_str());
+        } else {
+            let run = || -> Result<(Json, f64)> {
+                let (mut ctx, _) = scene_with(&scene.mesh, cam, Backend::Wgpu, width, height, Workload::Ao)?;
+                let (first, rays, run) = measure_launches(&mut ctx, width, height, reps)?;
+                let mut w = Json::obj();
+                w.set("rays", rays);
+                w.set("build_ms", ms(first.timings.build));
+                w.set("link_ms", ms(first.timings.link));
+                w.set("first_dispatch_ms", ms(first.timings.run.saturating_sub(run)));
+                Ok((w, mrays(rays, run)))
+            };
+            match run() {
+                Ok((w, m)) => {
+                    j.set("wgpu_first_launch", w);
+                    fig.wgpu = Some(m);
+                }
+                Err(e) => {
+                    eprintln!("wgpu: {e}");
+                    j.child("skipped").set("wgpu", e.to_string());
+                }
+            }
+            match handwritten::run(&scene.mesh, cam, width, height, reps) {
+                Ok((rays, t, _adapter)) => {
+                    fig.handwritten = Some(mrays(rays, t));
+                    j.child("rays").set("handwritten_wgsl", rays);
+                }
+                Err(e) => {
+                    eprintln!("hand-written WGSL: {e}");
+                    j.child("skipped").set("handwritten_wgsl", e);
+                }
+            }
+            eprintln!(
+                "megakernel {} Mrays/s, hand-written WGSL {}",
+                fig.wgpu.map_or("-".into(), |x| format!("{x:.2}")),
+                fig.handwritten.map_or("-".into(), |x| format!("{x:.2}")),
+            );
+        }
+    }
+    for (k, v) in [
+        ("cpu", fig.cpu),
+        ("wgpu", fig.wgpu),
+        ("obvhs", fig.obvhs),
+        ("embree", fig.embree),
+        ("handwritten_wgsl", fig.handwritten),
+    ] {
+        j.child("mrays_per_s").set(k, v);
+    }
+    fig
+}
+
+/// One of the headline ratios, from one scene's figures.
+type RatioOf = fn(&SceneFigures) -> Option<f64>;
+
+/// `a / b` where both were measured.
+fn ratio(a: Option<f64>, b: Option<f64>) -> Option<f64> {
+    Some(a? / b?)
+}
+
+/// Geometric mean of the ratios that exist, with how many there were.
+fn geomean(rs: &[Option<f64>]) -> Option<f64> {
+    let v: Vec<f64> = rs.iter().flatten().copied().collect();
+    (!v.is_empty()).then(|| (v.iter().map(|x| x.ln()).sum::<f64>() / v.len() as f64).exp())
+}
+
+fn main() {
+    use json::Json;
+    let args = Args::parse();
+    if let Some(b) = args.backends.iter().find(|b| *b != "cpu" && *b != "wgpu") {
+        eprintln!("unknown backend `{b}` (cpu or wgpu)");
+        std::process::exit(2);
+    }
+    // A fresh Mesa shader cache for this run: the first compile of each
+    // kernel is cold (what the link figures report), and the same kernel
+    // over the next scene is not compiled again.
+    let shader_cache = std::env::temp_dir().join(format!("rt-bench-mesa-cache-{}", std::process::id()));
+    if std::env::var_os("XDG_RUNTIME_DIR").is_none() {
+        // SAFETY: as below. (Mesa's Vulkan loader complains without it.)
+        unsafe { std::env::set_var("XDG_RUNTIME_DIR", std::env::temp_dir()) };
+    }
+    if !args.warm_shader_cache {
+        // SAFETY: set before any thread exists (rayon and wgpu start later).
+        unsafe { std::env::set_var("MESA_SHADER_CACHE_DIR", &shader_cache) };
+    }
+    let (width, height) = match (args.width, args.height) {
+        (Some(w), Some(h)) => (w, h),
+        _ if args.quick => (320, 240),
+        _ => (1920, 1080),
+    };
+    let reps = if args.quick { 3 } else { 5 };
+    let wgpu_max_triangles = args.wgpu_max_triangles.unwrap_or(if args.quick { 1_000_000 } else { usize::MAX });
+    let dir = scenes::scenes_dir().unwrap_or_else(|e| {
+        eprintln!("rt-bench: {e}");
+        std::process::exit(2);
+    });
+    let all = scenes::load_all(&dir).unwrap_or_else(|e| {
+        eprintln!("rt-bench: {e}");
+        std::process::exit(2);
+    });
+    let start = Instant::now();
+    let mut json = Json::obj();
+    let machine = json.child("machine");
+    machine.set("threads", rayon::current_num_threads());
+    machine.set("resolution", format!("{width}x{height}"));
+    machine.set("reps", reps);
+    machine.set(
+        "mesa_shader_cache",
+        if args.warm_shader_cache {
+            "the user's (link times may be warm)"
+        } else {
+            "fresh for this run (first compile of each kernel cold)"
+        },
+    );
+
+    let embree = if args.no_embree { Err("--no-embree".to_string()) } else { embree::Embree::load(!args.no_install) };
+    match &embree {
+        Ok(e) => {
+            eprintln!("embree {} ({}): rtcIntersect1, its own BVH (medium build quality)", e.version, e.library);
+            let j = json.child("embree");
+            j.set("version", e.version.as_str());
+            j.set("library", e.library.as_str());
+            j.set("api", "rtcIntersect1 (single rays), its own BVH (RTC_BUILD_QUALITY_MEDIUM), rayon threads");
+        }
+        Err(why) => {
+            eprintln!("embree: absent: {why}");
+            json.set("embree", Json::Null);
+            json.set("embree_absent_reason", why.as_str());
         }
     }
 
+    let no_scenes = args.scenes.iter().any(|s| s == "none");
+    if !no_scenes && (args.scenes.is_empty() || args.scenes.iter().any(|s| s == "bunny")) {
+        bunny_primary(&args, &all[0], width, height, reps, &mut json);
+    }
+
+    let mut figures = Vec::new();
+    for scene in &all {
+        if no_scenes || (!args.scenes.is_empty() && !args.scenes.iter().any(|s| s == scene.name)) {
+            continue;
+        }
+        let j = json.child("scenes").child(scene.name);
+        let f = measure_scene(&args, scene, embree.as_ref().ok(), width, height, reps, wgpu_max_triangles, j);
+        figures.push((scene.name, f));
+    }
+    // The headline ratios on the bunny (as before issue #6), and their
+    // geometric means over the scenes where both sides were measured.
+    let pick = |name: &str| figures.iter().find(|(n, _)| *n == name).map(|(_, f)| f);
+    let ratios: [(&str, RatioOf); 3] = [
+        ("cpu_vs_obvhs", |f| ratio(f.cpu, f.obvhs)),
+        ("cpu_vs_embree", |f| ratio(f.cpu, f.embree)),
+        ("megakernel_vs_handwritten", |f| ratio(f.wgpu, f.handwritten)),
+    ];
+    for (key, r) in ratios {
+        json.set(key, pick("bunny").and_then(r));
+        let all: Vec<Option<f64>> = figures.iter().map(|(_, f)| r(f)).collect();
+        json.set(&format!("{key}_geomean"), geomean(&all));
+    }
+    json.set(
+        "obvhs_vs_embree_geomean",
+        geomean(&figures.iter().map(|(_, f)| ratio(f.obvhs, f.embree)).collect::<Vec<_>>()),
+    );
+
+    lowering::measure(if args.quick { 5 } else { 20 }, json.child("lowering"));
+
+    // The tour's program sets on the wgpu backend.
+    if args.backends.iter().any(|b| b == "wgpu") {
+        let names: Vec<String> = match args.tour_links.iter().map(String::as_str).collect::<Vec<_>>().as_slice() {
+            ["none"] => Vec::new(),
+            ["auto"] if args.quick => tour::FAST.iter().map(|s| s.to_string()).collect(),
+            ["auto"] => tour::FAST.iter().chain(&tour::MEDIUM).map(|s| s.to_string()).collect(),
+            ["fast"] => tour::FAST.iter().map(|s| s.to_string()).collect(),
+            ["all"] => examples::EXAMPLES.iter().map(|e| e.name.to_string()).collect(),
+            _ => args.tour_links.clone(),
+        };
+        eprintln!();
+        tour::measure(&names, json.child("tour_links"));
+    }
+    if !args.warm_shader_cache {
+        let _ = std::fs::remove_dir_all(&shader_cache);
+    }
+    json.set("seconds", start.elapsed().as_secs_f64());
+    eprintln!("\ndone in {:.1} s", start.elapsed().as_secs_f64());
     if args.json {
-        println!("{{{}}}", json.join(", "));
+        println!("{json}");
     }
 }

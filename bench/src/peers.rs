@@ -1,0 +1,104 @@
+//! The primary + ambient-occlusion workload as the CPU peers trace it:
+//! per pixel one primary ray and, at a hit, one cosine-weighted AO ray
+//! (closest hit, unbounded), rayon over rows like the CPU backend. The AO
+//! directions come from the same hash as the bench's `ambient_occlusion`
+//! program, so every side traces the same rays.
+
+use crate::scenes::Camera;
+use glam::{Vec2, Vec3};
+use obvhs::triangle::Triangle;
+use rayon::prelude::*;
+use rt_std::prelude::faceforward;
+use std::time::{Duration, Instant};
+
+/// What one run traced.
+pub struct AoRun {
+    /// Rays traced: primary rays plus AO rays.
+    pub rays: u64,
+    pub time: Duration,
+    /// Per pixel, the primary hit distance (infinity on a miss).
+    pub primary_t: Vec<f32>,
+    /// Per pixel, whether the AO ray hit something.
+    pub ao_hit: Vec<bool>,
+}
+
+/// Traces the workload with `closest(origin, direction, tmin)`, which
+/// returns the closest hit's distance and triangle index (into `tris`).
+pub fn trace_ao<F>(tris: &[Triangle], cam: Camera, width: u32, height: u32, closest: F) -> AoRun
+where
+    F: Fn(Vec3, Vec3, f32) -> Option<(f32, u32)> + Sync,
+{
+    let (eye, u, v, w) = cam;
+    let pixels = (width * height) as usize;
+    let mut primary_t = vec![f32::INFINITY; pixels];
+    let mut ao_hit = vec![false; pixels];
+    let start = Instant::now();
+    let rays: u64 = primary_t
+        .par_chunks_mut(width as usize)
+        .zip(ao_hit.par_chunks_mut(width as usize))
+        .enumerate()
+        .map(|(y, (ts, aos))| {
+            let y = y as u32;
+            let mut rays = 0u64;
+            for x in 0..width {
+                let d = (Vec2::new(x as f32, y as f32) + 0.5) / Vec2::new(width as f32, height as f32) * 2.0 - 1.0;
+                let dir = (d.x * u + d.y * v + w).normalize();
+                rays += 1;
+                if let Some((t, prim)) = closest(eye, dir, 1e-4) {
+                    ts[x as usize] = t;
+                    let p = eye + t * dir;
+                    let n = Vec3::from(tris[prim as usize].compute_normal()).normalize();
+                    let n = faceforward(n, dir, n);
+                    let h1 = crate::hash(x + y * width);
+                    let h2 = crate::hash(h1);
+                    let ao = crate::cosine_direction(n, (h1 >> 8) as f32 / 16777216.0, (h2 >> 8) as f32 / 16777216.0);
+                    rays += 1;
+                    aos[x as usize] = closest(p + n * 1e-4, ao, 0.0).is_some();
+                }
+            }
+            rays
+        })
+        .sum();
+    AoRun { rays, time: start.elapsed(), primary_t, ao_hit }
+}
+
+/// obvhs's own CWBVH over `tris` (`medium_build`), and its build time.
+pub fn obvhs_cwbvh(tris: &[Triangle]) -> (obvhs::cwbvh::CwBvh, Duration) {
+    let mut core = Duration::ZERO;
+    let t = Instant::now();
+    let bvh = obvhs::cwbvh::builder::build_cwbvh_from_tris(tris, obvhs::BvhBuildParams::medium_build(), &mut core);
+    (bvh, t.elapsed())
+}
+
+/// The workload through obvhs's CWBVH traversal and its `Triangle::intersect`.
+pub fn obvhs_ao(bvh: &obvhs::cwbvh::CwBvh, tris: &[Triangle], cam: Camera, width: u32, height: u32) -> AoRun {
+    use obvhs::ray::{Ray, RayHit};
+    trace_ao(tris, cam, width, height, |o, d, tmin| {
+        let mut hit = RayHit::none();
+        let ray = Ray::new(o.into(), d.into(), tmin, f32::INFINITY);
+        bvh.ray_traverse(ray, &mut hit, |r, id| tris[bvh.primitive_indices[id] as usize].intersect(r))
+            .then(|| (hit.t, bvh.primitive_indices[hit.primitive_id as usize]))
+    })
+}
+
+/// Pixels where two runs disagree: (primary hit or distance, AO hit).
+/// Distances agree within 1e-4 of the distance (plus 1e-6 absolute).
+pub fn mismatches(a: &AoRun, b: &AoRun) -> (usize, usize) {
+    let primary = a
+        .primary_t
+        .iter()
+        .zip(&b.primary_t)
+        .filter(|(x, y)| match (x.is_finite(), y.is_finite()) {
+            (true, true) => (*x - *y).abs() > 1e-4 * x.abs() + 1e-6,
+            (hx, hy) => hx != hy,
+        })
+        .count();
+    let ao = a.ao_hit.iter().zip(&b.ao_hit).filter(|(x, y)| x != y).count();
+    (primary, ao)
+}
+
+/// The median of some durations.
+pub fn median(mut v: Vec<Duration>) -> Duration {
+    v.sort();
+    v[v.len() / 2]
+}
