@@ -179,18 +179,6 @@ pub fn to_xrgb(image: &Image) -> Vec<u32> {
     rgba.pixels().map(|p| (p[0] as u32) << 16 | (p[1] as u32) << 8 | p[2] as u32).collect()
 }
 
-/// The picture of `0x00RRGGBB` words, top row first (what a window shows,
-/// read back), as an [`Image`]: `to_xrgb(&from_xrgb(w, h, &words)) == words`.
-pub fn from_xrgb(width: u32, height: u32, words: &[u32]) -> Image {
-    let channel = |word: u32, shift: u32| ((word >> shift) & 0xff) as f32 / 255.0;
-    let pixels = (0..height as usize)
-        .rev()
-        .flat_map(|row| &words[row * width as usize..(row + 1) * width as usize])
-        .map(|&w| Vec4::new(channel(w, 16), channel(w, 8), channel(w, 0), 1.0))
-        .collect();
-    Image { width, height, pixels }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -283,9 +271,5 @@ mod tests {
         let image =
             Image { width: 1, height: 2, pixels: vec![Vec4::new(1.0, 0.0, 0.0, 1.0), Vec4::new(0.0, 0.5, 1.0, 1.0)] };
         assert_eq!(to_xrgb(&image), vec![0x0000_80ff, 0x00ff_0000]);
-        let words: Vec<u32> = (0..6u32).map(|i| (i * 0x0029_3b47) & 0x00ff_ffff).collect();
-        let image = from_xrgb(3, 2, &words);
-        assert_eq!(image.at(0, 1), from_xrgb(1, 1, &words[..1]).at(0, 0), "row 0 of the words is the top");
-        assert_eq!(to_xrgb(&image), words);
     }
 }

@@ -201,7 +201,7 @@ fn assert_shows_a_mesh(image: &image::RgbImage, name: &str) {
 const SIZE: (u32, u32) = (96, 72);
 
 /// On the CPU backend, eight still frames are `render --spp 8` to the byte,
-/// read back from the window; turning the camera starts the refinement
+/// and the window reads back the same (else a warning on stderr); turning the camera starts the refinement
 /// again and shows the mesh from elsewhere.
 #[test]
 fn viewer_under_xvfb_shows_what_render_draws() {

@@ -8,9 +8,10 @@
 //! per second, the samples so far and the backend.
 //!
 //! For automation, `--frames N --screenshot OUT.png` closes the window
-//! after N frames and writes the last one shown; `--size WxH` sets the
-//! window's size and `--spin K` turns the camera on each of the first K
-//! frames, as a drag would.
+//! after N frames and writes the last one shown (after reading the window
+//! back from the X server: a warning says when it shows something else);
+//! `--size WxH` sets the window's size and `--spin K` turns the camera on
+//! each of the first K frames, as a drag would.
 //!
 //! Exit status: 0; 2 for bad input (the mesh: one line naming the file, the
 //! line when known and the problem; or arguments, such as a backend with no
@@ -47,8 +48,8 @@ struct Args {
     /// Close after this many frames (for automation).
     #[arg(long)]
     frames: Option<u32>,
-    /// Write the last frame shown to this PNG on closing (after `--frames`:
-    /// the window's contents, read back from the X server).
+    /// Write the last frame shown to this PNG on closing (with `--frames`,
+    /// the window is read back first and checked against it).
     #[arg(long)]
     screenshot: Option<PathBuf>,
     /// Turn the camera 10 degrees on each of the first K frames, as a
@@ -125,7 +126,7 @@ fn run(args: &Args) -> Result<(), Failure> {
     if let Some(e) = app.failure.take() {
         return Err(e);
     }
-    if let (Some(path), Some(image)) = (&args.screenshot, app.read_back.as_ref().or(app.shown.as_ref())) {
+    if let (Some(path), Some(image)) = (&args.screenshot, app.shown.as_ref()) {
         image.save_png(path)?;
     }
     if args.frames.is_some() {
@@ -176,11 +177,10 @@ struct App {
     name: String,
     backend: &'static str,
     shown_window: Option<Shown>,
-    /// The last picture presented.
+    /// The last picture presented, and its `0x00RRGGBB` words (shown again
+    /// when the window needs it but the picture is as refined as it gets).
     shown: Option<Image>,
-    /// The window's contents after the last of `--frames`, read back when
-    /// there is a screenshot to write.
-    read_back: Option<Image>,
+    shown_words: Vec<u32>,
     want_screenshot: bool,
     size: (u32, u32),
     frames_to_run: Option<u32>,
@@ -209,7 +209,7 @@ impl App {
             backend,
             shown_window: None,
             shown: None,
-            read_back: None,
+            shown_words: Vec::new(),
             want_screenshot: args.screenshot.is_some(),
             size: args.size,
             frames_to_run: args.frames,
@@ -241,6 +241,7 @@ impl App {
     /// Whether there is more to draw without new input.
     fn busy(&self) -> bool {
         !self.converged()
+            || self.size != (self.view.width(), self.view.height())
             || self.keys_held.iter().any(|k| walk_direction(*k).is_some())
             || self.camera != self.view.camera()
     }
@@ -267,24 +268,38 @@ impl App {
         };
         self.view.resize(width, height)?;
         self.view.set_camera(self.camera);
+        let window_failure = |e: softbuffer::SoftBufferError| Failure::Other(format!("cannot draw in the window: {e}"));
         if self.converged() && self.shown.is_some() {
+            // Nothing new to draw: show the last picture again (the window
+            // may have been uncovered).
+            let shown = self.shown_window.as_mut().expect("checked above");
+            let mut buffer = shown.surface.buffer_mut().map_err(window_failure)?;
+            if buffer.len() == self.shown_words.len() {
+                buffer.copy_from_slice(&self.shown_words);
+                buffer.present().map_err(window_failure)?;
+            }
             return Ok(());
         }
         let frame = self.view.refine()?;
-        let pixels = viewer::to_xrgb(&frame.image);
-        let window_failure = |e: softbuffer::SoftBufferError| Failure::Other(format!("cannot draw in the window: {e}"));
+        self.shown_words = viewer::to_xrgb(&frame.image);
         let shown = self.shown_window.as_mut().expect("checked above");
         shown.surface.resize(w, h).map_err(window_failure)?;
         let mut buffer = shown.surface.buffer_mut().map_err(window_failure)?;
-        buffer.copy_from_slice(&pixels);
+        buffer.copy_from_slice(&self.shown_words);
         buffer.present().map_err(window_failure)?;
         self.shown = Some(frame.image);
         let last = self.frames_to_run.is_some_and(|n| self.totals.frames + 1 >= n);
         if last && self.want_screenshot {
-            // What the X server shows, not what was sent: the screenshot
-            // checks the whole way to the screen.
+            // The screenshot is the picture sent; reading the window back
+            // checks the whole way to the screen (a covered or off-screen
+            // window reads back wrong, or not at all).
             match shown.surface.fetch() {
-                Ok(words) => self.read_back = Some(viewer::from_xrgb(width, height, &words)),
+                Ok(words)
+                    if words.len() == self.shown_words.len()
+                        && words.iter().zip(&self.shown_words).all(|(a, b)| a & 0x00ff_ffff == *b) => {}
+                Ok(_) => eprintln!(
+                    "viewer: warning: the window reads back different from the picture sent to it (covered?); the screenshot is the picture sent"
+                ),
                 Err(e) => eprintln!(
                     "viewer: warning: cannot read the window back ({e}); the screenshot is the picture sent to it"
                 ),
