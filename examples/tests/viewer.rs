@@ -270,5 +270,6 @@ fn viewer_without_a_display_says_so() {
     assert_eq!(run.status.code(), Some(1), "{}", run.stderr);
     assert!(run.stderr.starts_with("viewer: cannot open a window: "), "{}", run.stderr);
     assert!(run.stderr.contains("DISPLAY"), "{}", run.stderr);
+    assert!(!run.stderr.contains(".rs:"), "no source locations: {}", run.stderr);
     assert!(!run.stderr.contains("panicked"), "{}", run.stderr);
 }

@@ -120,7 +120,8 @@ fn run(args: &Args) -> Result<(), Failure> {
     let (width, height) = args.size;
     let view = Progressive::new(&loaded, &Settings { width, height, spp: 1, backend })?;
     let name = path.file_name().map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned());
-    let event_loop = EventLoop::new().map_err(|e| Failure::Other(format!("cannot open a window: {e}")))?;
+    let event_loop =
+        EventLoop::new().map_err(|e| Failure::Other(format!("cannot open a window: {}", without_location(&e))))?;
     let mut app = App::new(args, view, name, backend.name());
     event_loop.run_app(&mut app).map_err(|e| Failure::Other(format!("the window's event loop failed: {e}")))?;
     if let Some(e) = app.failure.take() {
@@ -143,6 +144,16 @@ fn run(args: &Args) -> Result<(), Failure> {
         );
     }
     Ok(())
+}
+
+/// winit's message without the source location it starts with ("os error
+/// at …/linux/mod.rs:765: neither … nor DISPLAY is set").
+fn without_location(e: &dyn std::fmt::Display) -> String {
+    let message = e.to_string();
+    match message.strip_prefix("os error at ").and_then(|rest| rest.split_once(".rs:")) {
+        Some((_, after)) => after.split_once(": ").map_or(message.clone(), |(_, m)| m.to_string()),
+        None => message,
+    }
 }
 
 /// Frames, rays and times added up over a stretch.
