@@ -3,7 +3,8 @@
 # jobs, as on the CI machine, and runs every test in the workspace (all
 # targets, then doc tests). Tests of the wgpu backend need an adapter: on a
 # machine without a GPU that is Mesa's lavapipe, installed here when missing
-# (as root). A missing adapter fails those tests; it is never skipped.
+# (as root). A missing adapter fails those tests; it is never skipped. The
+# viewer's tests need Xvfb, installed here too.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 if [ ! -e /usr/share/vulkan/icd.d/lvp_icd.x86_64.json ] && [ ! -e /usr/share/vulkan/icd.d/lvp_icd.json ]; then
@@ -12,6 +13,19 @@ if [ ! -e /usr/share/vulkan/icd.d/lvp_icd.x86_64.json ] && [ ! -e /usr/share/vul
         apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq mesa-vulkan-drivers libvulkan1 >/dev/null
     else
         echo "scripts/test.sh: no lavapipe ICD found; wgpu tests need a Vulkan adapter (apt-get install mesa-vulkan-drivers)" >&2
+    fi
+fi
+# The viewer's tests open its window on a virtual X display; the viewer
+# loads the X11 libraries it needs at run time.
+x11_packages="xvfb libx11-6 libx11-xcb1 libxcursor1 libxi6 libxkbcommon0 libxkbcommon-x11-0"
+# shellcheck disable=SC2086
+if ! command -v Xvfb >/dev/null || ! dpkg -s $x11_packages >/dev/null 2>&1; then
+    if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null; then
+        echo "scripts/test.sh: installing xvfb and the X11 libraries for the viewer's tests"
+        # shellcheck disable=SC2086
+        apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $x11_packages >/dev/null
+    else
+        echo "scripts/test.sh: no Xvfb (or X11 libraries) found; the viewer's window tests may be skipped or fail (apt-get install $x11_packages)" >&2
     fi
 fi
 # Mesa's window-system code complains when this is unset; it is not needed.

@@ -20,7 +20,8 @@
 //! (payloads, attributes, lights, the camera), [`tutorial`] the scene of
 //! examples 1 to 7, [`scene`] the host side of every example (settings,
 //! camera, rendering to an [`Image`]), and [`mesh`] OBJ loading with
-//! line-precise errors. Each module builds its scene with the public API of
+//! line-precise errors; [`viewer`] is the live viewer's progressive
+//! rendering. Each module builds its scene with the public API of
 //! `rt-runtime` only.
 //!
 //! ```no_run
@@ -31,7 +32,7 @@
 //! ```
 //!
 //! The `tour` binary renders them all; `render` shows any OBJ file the way
-//! [`bunny`] shows the bunny.
+//! [`bunny`] shows the bunny, and `viewer` shows it in a window.
 
 // Ray programs take their variables as parameters.
 #![allow(clippy::too_many_arguments)]
@@ -50,6 +51,7 @@ pub mod reflections;
 pub mod scene;
 pub mod shadows;
 pub mod tutorial;
+pub mod viewer;
 
 pub use scene::{BackendChoice, Camera, Error, Image, Rendered, Scene, Settings};
 

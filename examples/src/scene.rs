@@ -96,7 +96,7 @@ impl Settings {
         self.width as f32 / self.height.max(1) as f32
     }
 
-    fn check(&self) -> Result<(), Error> {
+    pub(crate) fn check(&self) -> Result<(), Error> {
         if self.width == 0 || self.height == 0 || self.width > 16384 || self.height > 16384 {
             return Err(Error::Settings(format!("image size {}x{} is outside 1..=16384", self.width, self.height)));
         }
@@ -191,6 +191,45 @@ impl Camera {
         ctx.set_var(Scope::Context, "v", v)?;
         ctx.set_var(Scope::Context, "w", w)?;
         Ok(())
+    }
+
+    /// The camera turned about `look_at`: `yaw` radians about `up` (positive
+    /// turns the eye to the camera's right), then `pitch` radians towards
+    /// `up` (positive raises the eye), stopping short of looking straight
+    /// down or up. The distance to `look_at` is kept.
+    pub fn orbited(&self, yaw: f32, pitch: f32) -> Camera {
+        let up = self.up.normalize();
+        let offset = self.eye - self.look_at;
+        let distance = offset.length();
+        let turned = glam::Quat::from_axis_angle(up, yaw) * offset;
+        let elevation = (turned.dot(up) / distance).clamp(-1.0, 1.0).asin();
+        let limit = 89f32.to_radians();
+        let pitch = (elevation + pitch).clamp(-limit, limit) - elevation;
+        let right = up.cross(turned);
+        let turned = match right.try_normalize() {
+            Some(axis) => glam::Quat::from_axis_angle(axis, -pitch) * turned,
+            None => turned,
+        };
+        Camera { eye: self.look_at + turned.normalize() * distance, ..*self }
+    }
+
+    /// The camera moved towards `look_at` by `factor` of its distance
+    /// (negative backs away), never reaching it.
+    pub fn dollied(&self, factor: f32) -> Camera {
+        let offset = self.eye - self.look_at;
+        Camera { eye: self.look_at + offset * (1.0 - factor).max(1e-3), ..*self }
+    }
+
+    /// The camera and what it looks at moved together by `right`, `up` and
+    /// `forward` along its own axes (`forward` level with the ground, `up`
+    /// along `self.up`): walking, as in a game.
+    pub fn moved(&self, right: f32, up: f32, forward: f32) -> Camera {
+        let vertical = self.up.normalize();
+        let view = self.look_at - self.eye;
+        let level = (view - vertical * view.dot(vertical)).try_normalize().unwrap_or(view.normalize());
+        let side = level.cross(vertical);
+        let step = side * right + vertical * up + level * forward;
+        Camera { eye: self.eye + step, look_at: self.look_at + step, ..*self }
     }
 
     /// A camera looking along `direction` at the bounding box `[min, max]`,

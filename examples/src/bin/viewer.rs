@@ -1,0 +1,435 @@
+//! Shows an OBJ mesh (the Stanford bunny by default) in a window, the way
+//! `render` draws it, refined sample by sample while the camera is still.
+//!
+//!     cargo run --release -p examples --bin viewer -- [MESH.obj]
+//!
+//! Left-drag orbits, the wheel zooms, W/A/S/D walk, Q/E go down and up, R
+//! resets the camera, Esc quits. The title says the frame rate, the rays
+//! per second, the samples so far and the backend.
+//!
+//! For automation, `--frames N --screenshot OUT.png` closes the window
+//! after N frames and writes the last one shown (after reading the window
+//! back from the X server: a warning says when it shows something else);
+//! `--size WxH` sets the window's size and `--spin K` turns the camera on
+//! each of the first K frames, as a drag would.
+//!
+//! Exit status: 0; 2 for bad input (the mesh: one line naming the file, the
+//! line when known and the problem; or arguments, such as a backend with no
+//! adapter); 1 if the window could not be opened or rendering failed.
+
+use clap::Parser;
+use examples::viewer::{self, Progressive};
+use examples::{BackendChoice, Camera, Error, Image, Settings, mesh, scene};
+use std::collections::HashSet;
+use std::num::NonZeroU32;
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::rc::Rc;
+use std::time::{Duration, Instant};
+use winit::application::ApplicationHandler;
+use winit::dpi::{PhysicalPosition, PhysicalSize};
+use winit::event::{ElementState, MouseButton, MouseScrollDelta, WindowEvent};
+use winit::event_loop::{ActiveEventLoop, EventLoop};
+use winit::keyboard::{KeyCode, PhysicalKey};
+use winit::window::{Window, WindowId};
+
+/// Show an OBJ mesh in a window, refined progressively.
+#[derive(Parser, Debug)]
+#[command(version, about)]
+struct Args {
+    /// The OBJ file (default: the Stanford bunny of the shared scenes).
+    mesh: Option<PathBuf>,
+    /// The window's inner size in pixels.
+    #[arg(long, value_parser = parse_size, default_value = "512x384")]
+    size: (u32, u32),
+    /// Which backend renders (default: a GPU if there is one, else the CPU).
+    #[arg(long, value_enum)]
+    backend: Option<BackendChoice>,
+    /// Close after this many frames (for automation).
+    #[arg(long)]
+    frames: Option<u32>,
+    /// Write the last frame shown to this PNG on closing (with `--frames`,
+    /// the window is read back first and checked against it).
+    #[arg(long)]
+    screenshot: Option<PathBuf>,
+    /// Turn the camera 10 degrees on each of the first K frames, as a
+    /// left-drag would (for automation: each turn starts the refinement
+    /// again).
+    #[arg(long, default_value_t = 0)]
+    spin: u32,
+    /// Stop refining at this many samples per pixel.
+    #[arg(long, default_value_t = 4096, value_parser = clap::value_parser!(u32).range(1..))]
+    max_spp: u32,
+}
+
+fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = s.split_once(['x', 'X']).ok_or_else(|| format!("`{s}` is not WIDTHxHEIGHT"))?;
+    let dim = |d: &str| d.trim().parse::<u32>().ok().filter(|n| (1..=16384).contains(n));
+    match (dim(w), dim(h)) {
+        (Some(w), Some(h)) => Ok((w, h)),
+        _ => Err(format!("`{s}` is not WIDTHxHEIGHT with each in 1..=16384")),
+    }
+}
+
+/// Radians of orbit per pixel dragged.
+const ORBIT_PER_PIXEL: f32 = 0.006;
+/// Fraction of the distance to the target one wheel notch zooms.
+const ZOOM_PER_NOTCH: f32 = 0.1;
+/// Walking speed, in mesh radii per second.
+const WALK_SPEED: f32 = 1.0;
+/// How often the title's figures are brought up to date.
+const READOUT_PERIOD: Duration = Duration::from_millis(500);
+
+fn main() -> ExitCode {
+    let args = Args::parse();
+    match run(&args) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(Failure::Input(e)) => {
+            eprintln!("viewer: {e}");
+            ExitCode::from(2)
+        }
+        Err(Failure::Other(message)) => {
+            eprintln!("viewer: {message}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// Why the viewer stopped: bad input (exit status 2) or anything else (1).
+enum Failure {
+    Input(Error),
+    Other(String),
+}
+
+impl From<Error> for Failure {
+    fn from(e: Error) -> Failure {
+        match e {
+            Error::Mesh(_) | Error::BackendUnavailable { .. } | Error::Settings(_) => Failure::Input(e),
+            other => Failure::Other(other.to_string()),
+        }
+    }
+}
+
+fn run(args: &Args) -> Result<(), Failure> {
+    let path = args.mesh.clone().unwrap_or_else(|| scene::shared_scene("stanford-bunny.obj"));
+    let loaded = mesh::load_obj(&path).map_err(Error::from)?;
+    for warning in &loaded.warnings {
+        eprintln!("viewer: warning: {warning}");
+    }
+    let (backend, what) = BackendChoice::open_or_choose(args.backend)?;
+    let (width, height) = args.size;
+    let view = Progressive::new(&loaded, &Settings { width, height, spp: 1, backend })?;
+    let name = path.file_name().map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned());
+    let event_loop =
+        EventLoop::new().map_err(|e| Failure::Other(format!("cannot open a window: {}", without_location(&e))))?;
+    let mut app = App::new(args, view, name, backend.name());
+    event_loop.run_app(&mut app).map_err(|e| Failure::Other(format!("the window's event loop failed: {e}")))?;
+    if let Some(e) = app.failure.take() {
+        return Err(e);
+    }
+    if let (Some(path), Some(image)) = (&args.screenshot, app.shown.as_ref()) {
+        image.save_png(path)?;
+    }
+    if args.frames.is_some() {
+        let totals = &app.totals;
+        println!(
+            "viewer: {} frames of {}x{} in {:.2} s with {what}: {:.1} FPS, {:.2} Mrays/s, {} samples accumulated",
+            totals.frames,
+            app.view.width(),
+            app.view.height(),
+            totals.wall.as_secs_f64(),
+            totals.fps(),
+            totals.mrays_per_second(),
+            app.view.samples()
+        );
+    }
+    Ok(())
+}
+
+/// winit's message without the source location it starts with ("os error
+/// at …/linux/mod.rs:765: neither … nor DISPLAY is set").
+fn without_location(e: &dyn std::fmt::Display) -> String {
+    let message = e.to_string();
+    match message.strip_prefix("os error at ").and_then(|rest| rest.split_once(".rs:")) {
+        Some((_, after)) => after.split_once(": ").map_or(message.clone(), |(_, m)| m.to_string()),
+        None => message,
+    }
+}
+
+/// Frames, rays and times added up over a stretch.
+#[derive(Clone, Copy, Default)]
+struct Tally {
+    frames: u32,
+    rays: u64,
+    /// Time spent launching and reading back.
+    launch_seconds: f64,
+    /// Wall time the stretch covers.
+    wall: Duration,
+}
+
+impl Tally {
+    fn fps(&self) -> f64 {
+        self.frames as f64 / self.wall.as_secs_f64().max(1e-9)
+    }
+
+    fn mrays_per_second(&self) -> f64 {
+        self.rays as f64 / self.launch_seconds.max(1e-9) / 1e6
+    }
+}
+
+/// The window and what it shows.
+struct Shown {
+    window: Rc<Window>,
+    surface: softbuffer::Surface<Rc<Window>, Rc<Window>>,
+}
+
+struct App {
+    view: Progressive,
+    name: String,
+    backend: &'static str,
+    shown_window: Option<Shown>,
+    /// The last picture presented, and its `0x00RRGGBB` words (shown again
+    /// when the window needs it but the picture is as refined as it gets).
+    shown: Option<Image>,
+    shown_words: Vec<u32>,
+    want_screenshot: bool,
+    size: (u32, u32),
+    frames_to_run: Option<u32>,
+    spin: u32,
+    max_spp: u32,
+    /// Where the camera goes on the next frame.
+    camera: Camera,
+    dragging: bool,
+    cursor: Option<PhysicalPosition<f64>>,
+    keys_held: HashSet<KeyCode>,
+    last_frame: Option<Instant>,
+    started: Instant,
+    totals: Tally,
+    /// Since the title last changed.
+    readout: Tally,
+    readout_since: Instant,
+    failure: Option<Failure>,
+}
+
+impl App {
+    fn new(args: &Args, view: Progressive, name: String, backend: &'static str) -> App {
+        App {
+            camera: view.camera(),
+            view,
+            name,
+            backend,
+            shown_window: None,
+            shown: None,
+            shown_words: Vec::new(),
+            want_screenshot: args.screenshot.is_some(),
+            size: args.size,
+            frames_to_run: args.frames,
+            spin: args.spin,
+            max_spp: args.max_spp,
+            dragging: false,
+            cursor: None,
+            keys_held: HashSet::new(),
+            last_frame: None,
+            started: Instant::now(),
+            totals: Tally::default(),
+            readout: Tally::default(),
+            readout_since: Instant::now(),
+            failure: None,
+        }
+    }
+
+    fn fail(&mut self, event_loop: &ActiveEventLoop, failure: Failure) {
+        self.failure.get_or_insert(failure);
+        event_loop.exit();
+    }
+
+    /// Whether the picture is as refined as it gets. With `--frames`,
+    /// never: the frames all refine.
+    fn converged(&self) -> bool {
+        self.frames_to_run.is_none() && self.view.samples() >= self.max_spp
+    }
+
+    /// Whether there is more to draw without new input.
+    fn busy(&self) -> bool {
+        !self.converged()
+            || self.size != (self.view.width(), self.view.height())
+            || self.keys_held.iter().any(|k| walk_direction(*k).is_some())
+            || self.camera != self.view.camera()
+    }
+
+    /// Walks for the time since the last frame, refines, presents.
+    fn redraw(&mut self) -> Result<(), Failure> {
+        if self.shown_window.is_none() {
+            return Ok(());
+        }
+        let now = Instant::now();
+        let dt = self.last_frame.map_or(0.0, |t| (now - t).as_secs_f32().min(0.1));
+        self.last_frame = Some(now);
+        let step = self.keys_held.iter().filter_map(|k| walk_direction(*k)).fold(glam::Vec3::ZERO, |a, b| a + b);
+        if step != glam::Vec3::ZERO {
+            let d = step * WALK_SPEED * self.view.radius() * dt;
+            self.camera = self.camera.moved(d.x, d.y, d.z);
+        }
+        if self.totals.frames < self.spin {
+            self.camera = self.camera.orbited(10f32.to_radians(), 0.0);
+        }
+        let (width, height) = self.size;
+        let (Some(w), Some(h)) = (NonZeroU32::new(width), NonZeroU32::new(height)) else {
+            return Ok(()); // minimised
+        };
+        self.view.resize(width, height)?;
+        self.view.set_camera(self.camera);
+        let window_failure = |e: softbuffer::SoftBufferError| Failure::Other(format!("cannot draw in the window: {e}"));
+        if self.converged() && self.shown.is_some() {
+            // Nothing new to draw: show the last picture again (the window
+            // may have been uncovered).
+            let shown = self.shown_window.as_mut().expect("checked above");
+            let mut buffer = shown.surface.buffer_mut().map_err(window_failure)?;
+            if buffer.len() == self.shown_words.len() {
+                buffer.copy_from_slice(&self.shown_words);
+                buffer.present().map_err(window_failure)?;
+            }
+            return Ok(());
+        }
+        let frame = self.view.refine()?;
+        self.shown_words = viewer::to_xrgb(&frame.image);
+        let shown = self.shown_window.as_mut().expect("checked above");
+        shown.surface.resize(w, h).map_err(window_failure)?;
+        let mut buffer = shown.surface.buffer_mut().map_err(window_failure)?;
+        buffer.copy_from_slice(&self.shown_words);
+        buffer.present().map_err(window_failure)?;
+        self.shown = Some(frame.image);
+        let last = self.frames_to_run.is_some_and(|n| self.totals.frames + 1 >= n);
+        if last && self.want_screenshot {
+            // The screenshot is the picture sent; reading the window back
+            // checks the whole way to the screen (a covered or off-screen
+            // window reads back wrong, or not at all).
+            match shown.surface.fetch() {
+                Ok(words)
+                    if words.len() == self.shown_words.len()
+                        && words.iter().zip(&self.shown_words).all(|(a, b)| a & 0x00ff_ffff == *b) => {}
+                Ok(_) => eprintln!(
+                    "viewer: warning: the window reads back different from the picture sent to it (covered?); the screenshot is the picture sent"
+                ),
+                Err(e) => eprintln!(
+                    "viewer: warning: cannot read the window back ({e}); the screenshot is the picture sent to it"
+                ),
+            }
+        }
+
+        for tally in [&mut self.totals, &mut self.readout] {
+            tally.frames += 1;
+            tally.rays += frame.rays;
+            tally.launch_seconds += frame.seconds;
+        }
+        self.totals.wall = self.started.elapsed();
+        self.readout.wall = self.readout_since.elapsed();
+        if self.totals.frames == 1 || self.readout.wall >= READOUT_PERIOD {
+            shown.window.set_title(&format!(
+                "{} - {:.1} FPS, {:.2} Mrays/s, {} spp, {} backend{}",
+                self.name,
+                self.readout.fps(),
+                self.readout.mrays_per_second(),
+                self.view.samples(),
+                self.backend,
+                if frame.exceptions > 0 { format!(", {} exceptions", frame.exceptions) } else { String::new() }
+            ));
+            self.readout = Tally::default();
+            self.readout_since = Instant::now();
+        }
+        Ok(())
+    }
+
+    fn open(&mut self, event_loop: &ActiveEventLoop) -> Result<(), String> {
+        let attributes = Window::default_attributes()
+            .with_title(format!("{} - {} backend", self.name, self.backend))
+            .with_inner_size(PhysicalSize::new(self.size.0, self.size.1));
+        let window = Rc::new(event_loop.create_window(attributes).map_err(|e| e.to_string())?);
+        let context = softbuffer::Context::new(window.clone()).map_err(|e| e.to_string())?;
+        let surface = softbuffer::Surface::new(&context, window.clone()).map_err(|e| e.to_string())?;
+        let size = window.inner_size();
+        self.size = (size.width, size.height);
+        window.request_redraw();
+        self.shown_window = Some(Shown { window, surface });
+        Ok(())
+    }
+}
+
+/// Where a walking key goes: (right, up, forward).
+fn walk_direction(key: KeyCode) -> Option<glam::Vec3> {
+    Some(match key {
+        KeyCode::KeyW => glam::Vec3::Z,
+        KeyCode::KeyS => -glam::Vec3::Z,
+        KeyCode::KeyD => glam::Vec3::X,
+        KeyCode::KeyA => -glam::Vec3::X,
+        KeyCode::KeyE => glam::Vec3::Y,
+        KeyCode::KeyQ => -glam::Vec3::Y,
+        _ => return None,
+    })
+}
+
+impl ApplicationHandler for App {
+    fn resumed(&mut self, event_loop: &ActiveEventLoop) {
+        if self.shown_window.is_none()
+            && let Err(e) = self.open(event_loop)
+        {
+            self.fail(event_loop, Failure::Other(format!("cannot open a window: {e}")));
+        }
+    }
+
+    fn window_event(&mut self, event_loop: &ActiveEventLoop, _: WindowId, event: WindowEvent) {
+        match event {
+            WindowEvent::CloseRequested => event_loop.exit(),
+            WindowEvent::Resized(size) => self.size = (size.width, size.height),
+            WindowEvent::RedrawRequested => {
+                if let Err(e) = self.redraw() {
+                    return self.fail(event_loop, e);
+                }
+                if self.frames_to_run.is_some_and(|n| self.totals.frames >= n) {
+                    event_loop.exit();
+                }
+            }
+            WindowEvent::MouseInput { state, button: MouseButton::Left, .. } => {
+                self.dragging = state == ElementState::Pressed;
+            }
+            WindowEvent::CursorMoved { position, .. } => {
+                if let (true, Some(last)) = (self.dragging, self.cursor) {
+                    let (dx, dy) = ((position.x - last.x) as f32, (position.y - last.y) as f32);
+                    self.camera = self.camera.orbited(-dx * ORBIT_PER_PIXEL, dy * ORBIT_PER_PIXEL);
+                }
+                self.cursor = Some(position);
+            }
+            WindowEvent::CursorLeft { .. } => self.cursor = None,
+            WindowEvent::MouseWheel { delta, .. } => {
+                let notches = match delta {
+                    MouseScrollDelta::LineDelta(_, y) => y,
+                    MouseScrollDelta::PixelDelta(p) => p.y as f32 / 40.0,
+                };
+                self.camera = self.camera.dollied(1.0 - (1.0 - ZOOM_PER_NOTCH).powf(notches));
+            }
+            WindowEvent::KeyboardInput { event, .. } => {
+                let PhysicalKey::Code(key) = event.physical_key else { return };
+                if event.state == ElementState::Released {
+                    self.keys_held.remove(&key);
+                    return;
+                }
+                self.keys_held.insert(key);
+                match key {
+                    KeyCode::KeyR => self.camera = self.view.home_camera(),
+                    KeyCode::Escape => event_loop.exit(),
+                    _ => {}
+                }
+            }
+            WindowEvent::Focused(false) => self.keys_held.clear(),
+            _ => {}
+        }
+    }
+
+    fn about_to_wait(&mut self, _: &ActiveEventLoop) {
+        if let Some(shown) = &self.shown_window
+            && (self.busy() || self.shown.is_none())
+        {
+            shown.window.request_redraw();
+        }
+    }
+}
