@@ -236,6 +236,10 @@ pub(crate) enum NodeAccel {
         /// The same tree converted to obvhs's 8-wide compressed BVH, which
         /// the CPU backend traverses (None for `NoAccel`'s single leaf).
         wide: Option<obvhs::cwbvh::CwBvh>,
+        /// The vertices of each primitive of `wide` in its slot order, when
+        /// all are triangles (else empty): the CPU backend's triangle test
+        /// reads them without the index and position lookups.
+        triangles: Vec<[Vec3; 3]>,
         prims: Vec<(u32, u32)>,
         bounds: OAabb,
     },
@@ -337,7 +341,8 @@ pub(crate) fn build_accels(ctx: &Context, cache: &mut AccelCache) -> Result<()> 
                     Some(NodeAccel::Prims { mut bvh, prims: old, wide, .. }) if refit && old == prims => {
                         bvh.refit(&bounds);
                         let wide = wide.map(|_| widen(&bvh));
-                        NodeAccel::Prims { bvh, wide, prims, bounds: total }
+                        let triangles = slot_triangles(ctx, &prims, wide.as_ref(), all_tris);
+                        NodeAccel::Prims { bvh, wide, triangles, prims, bounds: total }
                     }
                     _ => {
                         let tris: Option<Vec<obvhs::triangle::Triangle>> = all_tris.then(|| {
@@ -358,7 +363,8 @@ pub(crate) fn build_accels(ctx: &Context, cache: &mut AccelCache) -> Result<()> 
                         });
                         let bvh = build(a.builder, &bounds, tris.as_deref())?;
                         let wide = (a.builder != Builder::NoAccel && !prims.is_empty()).then(|| widen(&bvh));
-                        NodeAccel::Prims { bvh, wide, prims, bounds: total }
+                        let triangles = slot_triangles(ctx, &prims, wide.as_ref(), all_tris);
+                        NodeAccel::Prims { bvh, wide, triangles, prims, bounds: total }
                     }
                 }
             }
@@ -398,6 +404,27 @@ pub(crate) fn build_accels(ctx: &Context, cache: &mut AccelCache) -> Result<()> 
     cache.built_version = Some(cache.shape_version);
     cache.moved = false;
     Ok(())
+}
+
+/// The vertices of `prims` in `wide`'s slot order (empty unless all are
+/// triangles).
+fn slot_triangles(
+    ctx: &Context,
+    prims: &[(u32, u32)],
+    wide: Option<&obvhs::cwbvh::CwBvh>,
+    all: bool,
+) -> Vec<[Vec3; 3]> {
+    let Some(cw) = wide.filter(|_| all) else { return Vec::new() };
+    cw.primitive_indices
+        .iter()
+        .map(|&p| {
+            let (gi, t) = prims[p as usize];
+            match &ctx.geometries[ctx.instances[gi as usize].geometry.index() as usize].kind {
+                GeometryKind::Triangles(mesh) => mesh.indices[t as usize].map(|v| mesh.positions[v as usize]),
+                GeometryKind::Custom { .. } => unreachable!("all primitives are triangles"),
+            }
+        })
+        .collect()
 }
 
 /// obvhs's CWBVH of a built BVH2 (at most 3 primitives per leaf, children

@@ -275,11 +275,10 @@ struct TriangleAttributes {
 }
 
 impl TriangleAttributes {
-    /// Triangle `prim` of `mesh` hit at barycentrics `(u, v)` (weights of
-    /// vertices 1 and 2).
-    fn new(mesh: &TriangleMesh, prim: u32, u: f32, v: f32) -> Self {
+    /// Triangle `prim` of `mesh`, with vertices `[a, b, c]`, hit at
+    /// barycentrics `(u, v)` (weights of vertices 1 and 2).
+    fn new(mesh: &TriangleMesh, prim: u32, [a, b, c]: [Vec3; 3], u: f32, v: f32) -> Self {
         let [i0, i1, i2] = mesh.indices[prim as usize].map(|i| i as usize);
-        let [a, b, c] = [i0, i1, i2].map(|i| mesh.positions[i]);
         let gn = (b - a).cross(c - a);
         let w = 1.0 - u - v;
         let sn = match &mesh.normals {
@@ -351,6 +350,8 @@ struct Hit {
     /// Weights of vertices 1 and 2 (triangles; the custom attributes are in
     /// [`Search::attributes`]).
     barycentrics: Vec2,
+    /// The triangle's vertices (triangles).
+    vertices: [Vec3; 3],
     object_to_world: Mat4,
     world_to_object: Mat4,
 }
@@ -394,8 +395,8 @@ struct Lane<'a> {
     rays: Cell<u64>,
     /// The innermost search in progress (null: none).
     search: Cell<*const Search>,
-    /// Attribute values not in use, reused by type.
-    pool: RefCell<Vec<Box<dyn AnyAttributes>>>,
+    /// Attribute values not in use, by type, for reuse.
+    pool: RefCell<Vec<(TypeId, Box<dyn AnyAttributes>)>>,
 }
 
 impl<'a> Lane<'a> {
@@ -476,14 +477,14 @@ impl<'a> Lane<'a> {
     /// An attribute value of type `id` from the pool, or `make`'s.
     fn take_attributes(&self, id: TypeId, make: impl FnOnce() -> Box<dyn AnyAttributes>) -> Box<dyn AnyAttributes> {
         let mut pool = self.pool.borrow_mut();
-        match pool.iter().position(|a| Any::type_id(a.as_any()) == id) {
-            Some(i) => pool.swap_remove(i),
+        match pool.iter().position(|(t, _)| *t == id) {
+            Some(i) => pool.swap_remove(i).1,
             None => make(),
         }
     }
 
     fn return_attributes(&self, a: Box<dyn AnyAttributes>) {
-        self.pool.borrow_mut().push(a);
+        self.pool.borrow_mut().push((Any::type_id(a.as_any()), a));
     }
 
     /// An attribute value of type `ty`, holding `hit`'s triangle attributes
@@ -541,19 +542,49 @@ impl<'a> Lane<'a> {
                 }
             }
             NodeKind::GeometryGroup { .. } => {
-                let Some(Some(NodeAccel::Prims { bvh, wide, prims, .. })) = l.accels.get(node.index() as usize) else {
+                let Some(Some(NodeAccel::Prims { bvh, wide, triangles, prims, .. })) =
+                    l.accels.get(node.index() as usize)
+                else {
                     return;
                 };
                 let object_ray = Ray { origin, direction, ..world_ray };
-                let Some(prepared) = WatertightRay::new(&object_ray) else { return };
+                // Prepared on the first triangle test: most rays that miss
+                // never get there.
+                let prepared = std::cell::OnceCell::new();
+                let prepared = || prepared.get_or_init(|| WatertightRay::new(&object_ray)).as_ref();
                 let visit = |p: u32| {
                     let (gi, prim) = prims[p as usize];
                     match l.meshes[gi as usize] {
-                        Some(mesh) => self.intersect_triangle(s, &prepared, mesh, gi, prim, o2w, w2o),
+                        Some(mesh) => {
+                            let [a, b, c] = mesh.indices[prim as usize].map(|i| mesh.positions[i as usize]);
+                            if let Some(ray) = prepared()
+                                && let Some(hit) = ray.intersect(a, b, c, s.tmax.get())
+                            {
+                                self.triangle_hit(s, ray, mesh, gi, prim, hit, [a, b, c], o2w, w2o);
+                            }
+                        }
                         None => self.intersect_custom(s, gi, prim, &object_ray, o2w, w2o),
                     }
                 };
                 match wide {
+                    // obvhs's 8-wide traversal over triangles in slot order:
+                    // the instance and primitive are looked up on hits only.
+                    Some(cw) if !triangles.is_empty() => {
+                        let mut hit = obvhs::ray::RayHit::none();
+                        let ray = obvhs::ray::Ray::new(origin.into(), direction.into(), world_ray.tmin, s.tmax.get());
+                        cw.ray_traverse(ray, &mut hit, |_, slot| {
+                            let [a, b, c] = triangles[slot];
+                            if let Some(ray) = prepared()
+                                && let Some(hit) = ray.intersect(a, b, c, s.tmax.get())
+                            {
+                                let (gi, prim) = prims[cw.primitive_indices[slot] as usize];
+                                if let Some(mesh) = l.meshes[gi as usize] {
+                                    self.triangle_hit(s, ray, mesh, gi, prim, hit, [a, b, c], o2w, w2o);
+                                }
+                            }
+                            if s.done.get() { f32::NEG_INFINITY } else { s.tmax.get() }
+                        });
+                    }
                     // obvhs's 8-wide traversal; the callback runs the whole
                     // hit protocol and returns the closest committed distance
                     // (unchanged if nothing committed), or -inf to stop.
@@ -574,19 +605,21 @@ impl<'a> Lane<'a> {
         }
     }
 
+    /// A ray/triangle hit `(t, u, v)` with triangle `prim` (vertices
+    /// `[a, b, c]`) of instance `gi`: culling, any hit, and the commit.
     #[allow(clippy::too_many_arguments)]
-    fn intersect_triangle(
+    fn triangle_hit(
         &self,
         s: &Search,
         ray: &WatertightRay,
         mesh: &TriangleMesh,
         gi: u32,
         prim: u32,
+        (t, u, v): (f32, f32, f32),
+        [a, b, c]: [Vec3; 3],
         o2w: &Mat4,
         w2o: &Mat4,
     ) {
-        let [a, b, c] = mesh.indices[prim as usize].map(|i| mesh.positions[i as usize]);
-        let Some((t, u, v)) = ray.intersect(a, b, c, s.tmax.get()) else { return };
         let flags = s.flags;
         if flags & (RAY_FLAG_CULL_FRONT_FACING | RAY_FLAG_CULL_BACK_FACING) != 0 {
             let front = ray.direction.dot((b - a).cross(c - a)) < 0.0;
@@ -606,7 +639,7 @@ impl<'a> Lane<'a> {
             && let (_, Some(ah)) = &per_ray[s.ray_type as usize]
         {
             let attributes = ah.attributes.as_ref().map(|ty| {
-                let hit = TriangleAttributes::new(mesh, prim, u, v);
+                let hit = TriangleAttributes::new(mesh, prim, [a, b, c], u, v);
                 self.attributes_of(ty, Some(&hit))
             });
             match self.any_hit(s, ah, t, prim, o2w, w2o, attributes) {
@@ -621,6 +654,7 @@ impl<'a> Lane<'a> {
             primitive: prim,
             t,
             barycentrics: Vec2::new(u, v),
+            vertices: [a, b, c],
             object_to_world: *o2w,
             world_to_object: *w2o,
         }));
@@ -725,7 +759,7 @@ impl Tracer for Lane<'_> {
                 {
                     if let (Some(mesh), Some(ty)) = (l.meshes[hit.instance as usize], &ch.attributes) {
                         let (u, v) = hit.barycentrics.into();
-                        let values = TriangleAttributes::new(mesh, hit.primitive, u, v);
+                        let values = TriangleAttributes::new(mesh, hit.primitive, hit.vertices, u, v);
                         attributes = Some(self.attributes_of(ty, Some(&values)));
                     }
                     let mut ctx = ExecutionContext {
@@ -804,6 +838,7 @@ impl Tracer for Lane<'_> {
             primitive: c.primitive,
             t,
             barycentrics: Vec2::ZERO,
+            vertices: [Vec3::ZERO; 3],
             object_to_world: c.object_to_world,
             world_to_object: c.world_to_object,
         }));
