@@ -214,12 +214,14 @@ thread_local! {
 }
 
 /// This thread's current execution context, for in-place access.
+#[inline]
 fn current() -> *mut ExecutionContext {
     let p = CURRENT.with(Cell::get);
     if p.is_null() { ROOT.with(Cell::as_ptr) } else { p }
 }
 
 /// A copy of this thread's current execution context.
+#[inline]
 pub fn context() -> ExecutionContext {
     // SAFETY: `current` is live (see `CURRENT`) and only read here.
     unsafe { *current() }
@@ -255,12 +257,14 @@ pub(crate) fn update<R>(f: impl FnOnce(&mut ExecutionContext) -> R) -> R {
 }
 
 /// The exception raised in the current program call, if any.
+#[inline]
 pub fn pending_exception() -> Option<u32> {
     read(|c| c.pending_exception)
 }
 
 /// Records `code` as the current invocation's pending exception unless one is
 /// pending ([`ExecutionContext::raise`]).
+#[inline]
 pub fn raise(code: u32) {
     update(|ctx| ctx.raise(code));
 }

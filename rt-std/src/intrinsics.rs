@@ -44,6 +44,7 @@ pub const EXCEPTION_USER: u32 = 0x400;
 ///
 /// Program kinds: ray_generation, exception, closest_hit, any_hit, miss, intersection, visit.
 #[doc(alias = "rtLaunchIndex")]
+#[inline]
 pub fn launch_index() -> UVec2 {
     crate::cpu::read(|c| c.launch_index)
 }
@@ -52,6 +53,7 @@ pub fn launch_index() -> UVec2 {
 ///
 /// Program kinds: ray_generation, exception, closest_hit, any_hit, miss, intersection, visit.
 #[doc(alias = "rtLaunchDim")]
+#[inline]
 pub fn launch_dim() -> UVec2 {
     crate::cpu::read(|c| c.launch_dim)
 }
@@ -64,6 +66,7 @@ pub fn launch_dim() -> UVec2 {
 ///
 /// Program kinds: closest_hit, any_hit, miss, intersection, visit.
 #[doc(alias = "rtCurrentRay")]
+#[inline]
 pub fn current_ray() -> Ray {
     crate::cpu::read(|c| c.current_ray)
 }
@@ -73,6 +76,7 @@ pub fn current_ray() -> Ray {
 ///
 /// Program kinds: closest_hit, any_hit.
 #[doc(alias = "rtIntersectionDistance")]
+#[inline]
 pub fn t_hit() -> f32 {
     crate::cpu::read(|c| c.t_hit)
 }
@@ -82,6 +86,7 @@ pub fn t_hit() -> f32 {
 ///
 /// Program kinds: closest_hit, any_hit, intersection.
 #[doc(alias = "rtPrimitiveIndex")]
+#[inline]
 pub fn primitive_index() -> u32 {
     crate::cpu::read(|c| c.primitive_index)
 }
@@ -91,6 +96,7 @@ pub fn primitive_index() -> u32 {
 ///
 /// Program kinds: exception.
 #[doc(alias = "rtGetExceptionCode")]
+#[inline]
 pub fn exception_code() -> u32 {
     crate::cpu::read(|c| c.exception_code)
 }
@@ -196,6 +202,7 @@ pub fn rt_throw(code: u32) {
     cpu::raise(code);
 }
 
+#[inline]
 fn transform(kind: TransformKind) -> Mat4 {
     cpu::read(|ctx| match kind {
         TransformKind::ObjectToWorld => ctx.object_to_world,
