@@ -919,7 +919,7 @@ impl WatertightRay {
 
     /// The hit with triangle `(a, b, c)` as `(t, u, v)` for `t` in `(tmin,
     /// tmax)`; `u`, `v` weight vertices `b` and `c`.
-    #[inline]
+    #[inline(always)]
     fn intersect(&self, a: Vec3, b: Vec3, c: Vec3, tmax: f32) -> Option<(f32, f32, f32)> {
         let (kx, ky, kz) = (self.kx, self.ky, self.kz);
         let (sx, sy, sz) = (self.sx, self.sy, self.sz);
