@@ -278,6 +278,10 @@ pub(crate) enum NodeAccel {
         /// The same tree converted to obvhs's 8-wide compressed BVH, which
         /// the CPU backend traverses (None for `NoAccel`'s single leaf).
         wide: Option<obvhs::cwbvh::CwBvh>,
+        /// The vertices of each primitive of `wide` in its slot order, when
+        /// all are triangles (else empty): the CPU backend's triangle test
+        /// reads them without the index and position lookups.
+        triangles: Vec<[Vec3; 3]>,
         prims: Vec<(u32, u32)>,
         bounds: OAabb,
     },
@@ -398,13 +402,22 @@ pub(crate) fn build_accels(ctx: &Context, cache: &mut AccelCache) -> Result<()> 
                 // pointless: the CPU backend walks the BVH2 then.
                 let wants_wide =
                     |prims: &[(u32, u32)]| form == TreeForm::Wide && a.builder != Builder::NoAccel && !prims.is_empty();
+                // Every primitive a triangle: the CPU backend's triangles in
+                // CWBVH slot order.
+                let all_triangles = |prims: &[(u32, u32)]| {
+                    prims.iter().all(|(gi, _)| {
+                        let g = ctx.instances[*gi as usize].geometry.index() as usize;
+                        matches!(ctx.geometries[g].kind, GeometryKind::Triangles(_))
+                    })
+                };
                 match old {
-                    Some(NodeAccel::Prims { mut bvh, mut wide, prims, mut bounds }) => {
+                    Some(NodeAccel::Prims { mut bvh, mut wide, mut triangles, prims, mut bounds }) => {
                         let moved = cache.moved
                             && children.iter().any(|gi| {
                                 let g = ctx.instances[gi.index() as usize].geometry.index();
                                 cache.moved_geometries.contains(&g)
                             });
+                        let had_wide = wide.is_some();
                         if moved {
                             let (_, prim_bounds, _) = prim_bounds(ctx, children)?;
                             bvh.refit(&prim_bounds);
@@ -415,15 +428,19 @@ pub(crate) fn build_accels(ctx: &Context, cache: &mut AccelCache) -> Result<()> 
                         if wide.is_none() && wants_wide(&prims) {
                             wide = Some(widen(&bvh));
                         }
-                        NodeAccel::Prims { bvh, wide, prims, bounds }
+                        if moved || (wide.is_some() && !had_wide) {
+                            triangles = slot_triangles(ctx, &prims, wide.as_ref(), all_triangles(&prims));
+                        }
+                        NodeAccel::Prims { bvh, wide, triangles, prims, bounds }
                     }
                     _ => {
                         let (prims, bounds, all_tris) = prim_bounds(ctx, children)?;
                         let tris = (a.builder == Builder::Sbvh && all_tris).then(|| group_triangles(ctx, &prims));
                         let bvh = build(a.builder, &bounds, tris.as_deref(), form)?;
                         let wide = wants_wide(&prims).then(|| widen(&bvh));
+                        let triangles = slot_triangles(ctx, &prims, wide.as_ref(), all_tris);
                         any_built = true;
-                        NodeAccel::Prims { bvh, wide, prims, bounds: union(&bounds) }
+                        NodeAccel::Prims { bvh, wide, triangles, prims, bounds: union(&bounds) }
                     }
                 }
             }
@@ -465,6 +482,27 @@ pub(crate) fn build_accels(ctx: &Context, cache: &mut AccelCache) -> Result<()> 
     cache.moved = false;
     cache.moved_geometries.clear();
     Ok(())
+}
+
+/// The vertices of `prims` in `wide`'s slot order (empty unless all are
+/// triangles).
+fn slot_triangles(
+    ctx: &Context,
+    prims: &[(u32, u32)],
+    wide: Option<&obvhs::cwbvh::CwBvh>,
+    all: bool,
+) -> Vec<[Vec3; 3]> {
+    let Some(cw) = wide.filter(|_| all) else { return Vec::new() };
+    cw.primitive_indices
+        .iter()
+        .map(|&p| {
+            let (gi, t) = prims[p as usize];
+            match &ctx.geometries[ctx.instances[gi as usize].geometry.index() as usize].kind {
+                GeometryKind::Triangles(mesh) => mesh.indices[t as usize].map(|v| mesh.positions[v as usize]),
+                GeometryKind::Custom { .. } => unreachable!("all primitives are triangles"),
+            }
+        })
+        .collect()
 }
 
 /// obvhs's CWBVH of a built BVH2 (at most 3 primitives per leaf, children

@@ -88,7 +88,7 @@ use crate::scene::Object;
 /// semantic values return and where the hit protocol's flags land.
 ///
 /// The CPU backend builds one per program call and runs the program inside
-/// [`with_context`] or [`with_tracer`]; [`launch_index`](crate::launch_index),
+/// [`in_context`]; [`launch_index`](crate::launch_index),
 /// [`current_ray`](crate::current_ray) and the other intrinsics read it. Code
 /// that calls a program directly (a unit test) gets [`Default`] values, or
 /// installs its own.
@@ -175,8 +175,8 @@ impl Default for ExecutionContext {
 /// What the intrinsics that leave the current program need from the backend:
 /// tracing a ray, the intersection protocol and debug output.
 ///
-/// The CPU backend implements it and installs it with [`with_tracer`] around
-/// each program call. Without one (a program called directly) the intrinsics
+/// The CPU backend implements it and installs it with [`serving`] around
+/// its work (or [`with_tracer`] around one program call). Without one (a program called directly) the intrinsics
 /// fall back to the behaviour documented on each.
 pub trait Tracer {
     /// Traces `ray` against `object`, running intersection, any-hit,
@@ -199,16 +199,32 @@ pub trait Tracer {
 }
 
 thread_local! {
-    static CONTEXT: Cell<ExecutionContext> = const { Cell::new(ExecutionContext::DEFAULT) };
-    // The tracer installed by `with_tracer`, lifetime erased. Only
-    // `with_tracer` stores a pointer here, and its guard removes it before the
+    // The context outside any installed one: what `context_mut` changes when
+    // no program is running (a unit test calling a program directly).
+    static ROOT: Cell<ExecutionContext> = const { Cell::new(ExecutionContext::DEFAULT) };
+    // The context of the invocation running now, installed by `in_context`
+    // (null: `ROOT`). It points at the caller's `ExecutionContext`, which
+    // `in_context` borrows mutably for as long as the pointer is installed,
+    // so intrinsics read and write it in place: no copy per program call.
+    static CURRENT: Cell<*mut ExecutionContext> = const { Cell::new(core::ptr::null_mut()) };
+    // The tracer installed by `with_tracer` or `serving`, lifetime erased.
+    // Only those store a pointer here, and their guards remove it before the
     // borrow it came from ends, so every pointer read from this cell is live.
     static TRACER: Cell<Option<*const (dyn Tracer + 'static)>> = const { Cell::new(None) };
 }
 
+/// This thread's current execution context, for in-place access.
+#[inline]
+fn current() -> *mut ExecutionContext {
+    let p = CURRENT.with(Cell::get);
+    if p.is_null() { ROOT.with(Cell::as_ptr) } else { p }
+}
+
 /// A copy of this thread's current execution context.
+#[inline]
 pub fn context() -> ExecutionContext {
-    CONTEXT.with(Cell::get)
+    // SAFETY: `current` is live (see `CURRENT`) and only read here.
+    unsafe { *current() }
 }
 
 /// Changes this thread's current execution context through `f`.
@@ -217,30 +233,40 @@ pub fn context() -> ExecutionContext {
 /// meanwhile by intrinsics that `f` calls are overwritten: keep `f` to field
 /// updates.
 pub fn context_mut<R>(f: impl FnOnce(&mut ExecutionContext) -> R) -> R {
-    CONTEXT.with(|cell| {
-        let mut ctx = cell.get();
-        let result = f(&mut ctx);
-        cell.set(ctx);
-        result
-    })
+    let mut ctx = context();
+    let result = f(&mut ctx);
+    // SAFETY: as in `context`; no reference into the context is held here.
+    unsafe { *current() = ctx };
+    result
 }
 
 /// Reads this thread's execution context without copying it (the
 /// intrinsics' fast path).
 pub(crate) fn read<R>(f: impl FnOnce(&ExecutionContext) -> R) -> R {
-    // SAFETY: as in `context_mut`; `f` only reads fields.
-    CONTEXT.with(|cell| f(unsafe { &*cell.as_ptr() }))
+    // SAFETY: the context is live (see `CURRENT`); `f` only reads fields and
+    // calls nothing that writes the context.
+    f(unsafe { &*current() })
+}
+
+/// Updates fields of this thread's execution context in place (the
+/// intrinsics' fast path for flags).
+pub(crate) fn update<R>(f: impl FnOnce(&mut ExecutionContext) -> R) -> R {
+    // SAFETY: as in `read`; `f` only writes fields, so this is the only
+    // reference to the context while it runs.
+    f(unsafe { &mut *current() })
 }
 
 /// The exception raised in the current program call, if any.
+#[inline]
 pub fn pending_exception() -> Option<u32> {
     read(|c| c.pending_exception)
 }
 
 /// Records `code` as the current invocation's pending exception unless one is
 /// pending ([`ExecutionContext::raise`]).
+#[inline]
 pub fn raise(code: u32) {
-    context_mut(|ctx| ctx.raise(code));
+    update(|ctx| ctx.raise(code));
 }
 
 /// Runs `f` with `ctx` as this thread's execution context and no tracer, and
@@ -249,39 +275,67 @@ pub fn raise(code: u32) {
 /// also when `f` panics, so calls nest: a tracer runs the programs of an
 /// inner ray inside the outer program's call.
 pub fn with_context<R>(ctx: ExecutionContext, f: impl FnOnce() -> R) -> (R, ExecutionContext) {
-    install(ctx, None, f)
+    let mut ctx = ctx;
+    let restore = TracerGuard(TRACER.with(|t| t.replace(None)));
+    let result = in_context(&mut ctx, f);
+    drop(restore);
+    (result, ctx)
 }
 
 /// Like [`with_context`], with `tracer` serving [`rt_trace`](crate::rt_trace),
 /// the intersection protocol and [`rt_printf!`](crate::rt_printf) for the
 /// duration of `f`.
 pub fn with_tracer<R>(ctx: ExecutionContext, tracer: &dyn Tracer, f: impl FnOnce() -> R) -> (R, ExecutionContext) {
+    let mut ctx = ctx;
+    let result = serving(tracer, || in_context(&mut ctx, f));
+    (result, ctx)
+}
+
+/// Runs `f` with `*ctx` as this thread's execution context, in place:
+/// intrinsics that `f` calls read and write `*ctx` itself, so the caller
+/// sees the flags and pending exception there when this returns. The tracer
+/// stays as it is. The previous context is restored afterwards, also when
+/// `f` panics.
+///
+/// The backend's way to call a program: one context per call, built where
+/// it lives, never copied.
+pub fn in_context<R>(ctx: &mut ExecutionContext, f: impl FnOnce() -> R) -> R {
+    struct Restore(*mut ExecutionContext);
+    impl Drop for Restore {
+        fn drop(&mut self) {
+            CURRENT.with(|c| c.set(self.0));
+        }
+    }
+    // The pointer is installed only while `ctx` is mutably borrowed by this
+    // call, and removed by the guard before the borrow ends.
+    let _restore = Restore(CURRENT.with(|c| c.replace(ctx)));
+    f()
+}
+
+/// Runs `f` with `tracer` serving [`rt_trace`](crate::rt_trace), the
+/// intersection protocol and [`rt_printf!`](crate::rt_printf); the context
+/// stays as it is. The previous tracer is restored afterwards, also when `f`
+/// panics.
+///
+/// The backend installs its tracer once per batch of launch indices with
+/// this, and each program call's context with [`in_context`].
+pub fn serving<R>(tracer: &dyn Tracer, f: impl FnOnce() -> R) -> R {
     let tracer: *const (dyn Tracer + '_) = tracer;
     // SAFETY: only the trait object's lifetime bound changes (same fat-pointer
     // layout). The pointer is dereferenced only while it is installed, which
-    // `install`'s guard limits to this call, inside the borrow of `tracer`.
+    // the guard limits to this call, inside the borrow of `tracer`.
     let tracer = unsafe { core::mem::transmute::<*const (dyn Tracer + '_), *const (dyn Tracer + 'static)>(tracer) };
-    install(ctx, Some(tracer), f)
+    let _restore = TracerGuard(TRACER.with(|t| t.replace(Some(tracer))));
+    f()
 }
 
-fn install<R>(
-    ctx: ExecutionContext,
-    tracer: Option<*const (dyn Tracer + 'static)>,
-    f: impl FnOnce() -> R,
-) -> (R, ExecutionContext) {
-    struct Restore {
-        ctx: ExecutionContext,
-        tracer: Option<*const (dyn Tracer + 'static)>,
+/// Puts the tracer that was installed back when dropped.
+struct TracerGuard(Option<*const (dyn Tracer + 'static)>);
+
+impl Drop for TracerGuard {
+    fn drop(&mut self) {
+        TRACER.with(|t| t.set(self.0));
     }
-    impl Drop for Restore {
-        fn drop(&mut self) {
-            CONTEXT.with(|c| c.set(self.ctx));
-            TRACER.with(|t| t.set(self.tracer));
-        }
-    }
-    let _restore = Restore { ctx: CONTEXT.with(|c| c.replace(ctx)), tracer: TRACER.with(|t| t.replace(tracer)) };
-    let result = f();
-    (result, context())
 }
 
 /// Calls `f` with the installed tracer, or `fallback` when there is none.
@@ -306,6 +360,10 @@ pub trait AnyAttributes: core::any::Any + Send {
     fn clone_box(&self) -> Box<dyn AnyAttributes>;
     /// Copies `other` into `self` if both are the same type; false otherwise.
     fn copy_from(&mut self, other: &dyn AnyAttributes) -> bool;
+    /// Overwrites `self` with the value stored in heap words `words`
+    /// ([`RtData::read_words`](crate::RtData::read_words)): the CPU backend
+    /// refills a reused value with each hit's triangle attributes.
+    fn set_words(&mut self, words: &[u32]);
 }
 
 impl<T: crate::Attributes + Send> AnyAttributes for T {
@@ -326,6 +384,9 @@ impl<T: crate::Attributes + Send> AnyAttributes for T {
             }
             None => false,
         }
+    }
+    fn set_words(&mut self, words: &[u32]) {
+        *self = T::read_words(words);
     }
 }
 

@@ -16,7 +16,7 @@
 
 use glam::{Mat4, UVec2, Vec3};
 
-use crate::cpu::{self, context, context_mut, with_installed_tracer};
+use crate::cpu::{self, update, with_installed_tracer};
 use crate::data::Payload;
 use crate::ray::{RAY_FLAG_NONE, RAY_MASK_ALL, Ray};
 use crate::scene::{Object, TransformKind};
@@ -44,6 +44,7 @@ pub const EXCEPTION_USER: u32 = 0x400;
 ///
 /// Program kinds: ray_generation, exception, closest_hit, any_hit, miss, intersection, visit.
 #[doc(alias = "rtLaunchIndex")]
+#[inline]
 pub fn launch_index() -> UVec2 {
     crate::cpu::read(|c| c.launch_index)
 }
@@ -52,6 +53,7 @@ pub fn launch_index() -> UVec2 {
 ///
 /// Program kinds: ray_generation, exception, closest_hit, any_hit, miss, intersection, visit.
 #[doc(alias = "rtLaunchDim")]
+#[inline]
 pub fn launch_dim() -> UVec2 {
     crate::cpu::read(|c| c.launch_dim)
 }
@@ -64,6 +66,7 @@ pub fn launch_dim() -> UVec2 {
 ///
 /// Program kinds: closest_hit, any_hit, miss, intersection, visit.
 #[doc(alias = "rtCurrentRay")]
+#[inline]
 pub fn current_ray() -> Ray {
     crate::cpu::read(|c| c.current_ray)
 }
@@ -73,6 +76,7 @@ pub fn current_ray() -> Ray {
 ///
 /// Program kinds: closest_hit, any_hit.
 #[doc(alias = "rtIntersectionDistance")]
+#[inline]
 pub fn t_hit() -> f32 {
     crate::cpu::read(|c| c.t_hit)
 }
@@ -82,6 +86,7 @@ pub fn t_hit() -> f32 {
 ///
 /// Program kinds: closest_hit, any_hit, intersection.
 #[doc(alias = "rtPrimitiveIndex")]
+#[inline]
 pub fn primitive_index() -> u32 {
     crate::cpu::read(|c| c.primitive_index)
 }
@@ -91,6 +96,7 @@ pub fn primitive_index() -> u32 {
 ///
 /// Program kinds: exception.
 #[doc(alias = "rtGetExceptionCode")]
+#[inline]
 pub fn exception_code() -> u32 {
     crate::cpu::read(|c| c.exception_code)
 }
@@ -137,7 +143,7 @@ pub fn rt_potential_intersection(t: f32) -> bool {
     with_installed_tracer(
         |tracer| tracer.potential_intersection(t),
         || {
-            context_mut(|ctx| {
+            update(|ctx| {
                 let accepted = t > ctx.current_ray.tmin && t < ctx.current_ray.tmax;
                 if accepted {
                     ctx.t_hit = t;
@@ -169,7 +175,7 @@ pub fn rt_report_intersection(material: u32) -> bool {
 /// Program kinds: any_hit.
 #[doc(alias = "rtIgnoreIntersection")]
 pub fn rt_ignore_intersection() {
-    context_mut(|ctx| ctx.ignored = true);
+    update(|ctx| ctx.ignored = true);
 }
 
 /// Accepts the current candidate intersection and ends the search: when the
@@ -179,7 +185,7 @@ pub fn rt_ignore_intersection() {
 /// Program kinds: any_hit.
 #[doc(alias = "rtTerminateRay")]
 pub fn rt_terminate_ray() {
-    context_mut(|ctx| ctx.terminated = true);
+    update(|ctx| ctx.terminated = true);
 }
 
 /// Raises exception `code`: when the program returns, the launch index's
@@ -196,12 +202,12 @@ pub fn rt_throw(code: u32) {
     cpu::raise(code);
 }
 
+#[inline]
 fn transform(kind: TransformKind) -> Mat4 {
-    let ctx = context();
-    match kind {
+    cpu::read(|ctx| match kind {
         TransformKind::ObjectToWorld => ctx.object_to_world,
         TransformKind::WorldToObject => ctx.world_to_object,
-    }
+    })
 }
 
 /// Transforms point `p` between the current instance's object space and
@@ -269,7 +275,7 @@ pub fn __print(text: &str) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::cpu::{ExecutionContext, Tracer, with_context, with_tracer};
+    use crate::cpu::{ExecutionContext, Tracer, context, with_context, with_tracer};
     use core::any::Any;
     use core::cell::RefCell;
     use glam::Vec4;

@@ -80,15 +80,16 @@
 //! the instance's transforms, and the flags a program sets for whoever
 //! called it (`ignored`, `terminated`, `pending_exception`).
 //!
-//! The CPU backend calls each program inside [`cpu::with_tracer`], giving it
-//! the context for that call and a [`cpu::Tracer`]: the backend's
+//! The CPU backend installs a [`cpu::Tracer`] with [`cpu::serving`] (its
 //! implementation of [`rt_trace`], of the intersection protocol and of
-//! [`rt_printf!`] output. After the call it reads the context back to see
-//! what the program did: an any-hit program's `ignored`/`terminated`, any
-//! program's first `pending_exception`. Calls nest: a closest-hit program
-//! calls `rt_trace`, the tracer runs the inner ray's programs, each inside
-//! its own `with_tracer`, and the outer context and tracer are restored when
-//! each returns (also on panic).
+//! [`rt_printf!`] output) and calls each program inside [`cpu::in_context`],
+//! which makes the backend's context for that call the current one, in
+//! place. After the call it reads that context to see what the program did:
+//! an any-hit program's `ignored`/`terminated`, any program's first
+//! `pending_exception`. Calls nest: a closest-hit program calls `rt_trace`,
+//! the tracer runs the inner ray's programs, each inside its own
+//! `in_context`, and the outer context is restored when each returns (also
+//! on panic). [`cpu::with_tracer`] does both for one call.
 //!
 //! Outside the backend (a program called directly from a unit test) the
 //! context has [default values](cpu::ExecutionContext::DEFAULT), and

@@ -10,8 +10,17 @@
 //! terminate the ray), ray flags and visibility masks, the trace-depth limit
 //! and exceptions. Intrinsics reach this backend through rt-std's
 //! thread-local execution context and the [`Tracer`] it installs.
+//!
+//! Per ray nothing is allocated and nothing is looked up by name: variables
+//! are bound to references once per launch and program use ([`Program`]),
+//! each program call's context is built in place and installed by pointer
+//! ([`rt_std::cpu::in_context`]), the tracer is installed once per chunk of
+//! launch indices, and attribute values are reused from a per-thread pool.
+//! Triangle hits of instances without any-hit programs commit just the
+//! distance and barycentrics; the attributes are computed once, for the
+//! closest hit.
 
-use super::link::{self, Call, Record, var_refs};
+use super::link::{self, Call, Record};
 use super::{ExceptionRecord, LaunchReport};
 use crate::accel::{NodeAccel, build_accels};
 
@@ -22,31 +31,38 @@ use glam::{Mat4, UVec2, Vec2, Vec3};
 
 use rayon::prelude::*;
 use rt_std::cpu::{AnyAttributes, CpuArgs, CpuResult, ExecutionContext, Tracer};
-use rt_std::program::TypeLayout;
+use rt_std::program::{AttributesFromWords, ProgramDescriptor, TypeLayout};
 use rt_std::*;
-use std::any::Any;
+use std::any::{Any, TypeId};
 use std::cell::{Cell, RefCell};
 
 /// Closest hit and any hit of one (instance, material, ray type).
-type HitPrograms = (Option<Call>, Option<Call>);
+type HitPrograms<P> = (Option<P>, Option<P>);
 
-/// Every program use of a launch, resolved.
-struct Linked<'a> {
+/// Every program use of a launch, resolved: `P` is [`Call`] (variables
+/// owned) after linking, [`Program`] (variables bound) while running.
+struct Linked<'a, P> {
     ctx: &'a Context,
     accels: &'a [Option<NodeAccel>],
-    ray_generation: Call,
-    exception: Option<Call>,
-    miss: Vec<Call>,
+    ray_generation: P,
+    exception: Option<P>,
+    miss: Vec<P>,
     /// `[instance][material slot][ray type]` → (closest hit, any hit).
-    hits: Vec<Vec<Vec<HitPrograms>>>,
+    hits: Vec<Vec<Vec<HitPrograms<P>>>>,
+    /// `[instance][ray type]`: whether some material of the instance has an
+    /// any-hit program for the ray type (if not, triangle hits commit
+    /// without building attributes).
+    any_hit: Vec<Vec<bool>>,
+    /// The triangles of each instance (None: custom geometry).
+    meshes: Vec<Option<&'a TriangleMesh>>,
     /// Intersection program per instance (custom geometry only).
-    intersection: Vec<Option<Call>>,
+    intersection: Vec<Option<P>>,
     /// Visit program per node (selectors only).
-    visit: Vec<Option<Call>>,
+    visit: Vec<Option<P>>,
     launch_dim: UVec2,
 }
 
-fn link_all<'a>(ctx: &'a Context, accels: &'a [Option<NodeAccel>], entry: u32, dim: UVec2) -> Result<Linked<'a>> {
+fn link_all<'a>(ctx: &'a Context, accels: &'a [Option<NodeAccel>], entry: u32, dim: UVec2) -> Result<Linked<'a, Call>> {
     let count = ctx.entry_points.len() as u32;
     let ep = ctx.entry_points.get(entry as usize).ok_or(RtError::NoSuchEntryPoint { entry, count })?;
     let rg = ep.ray_generation.ok_or(RtError::NoRayGeneration { entry })?;
@@ -63,15 +79,21 @@ fn link_all<'a>(ctx: &'a Context, accels: &'a [Option<NodeAccel>], entry: u32, d
         })
         .collect::<Result<Vec<_>>>()?;
     let mut hits = Vec::with_capacity(ctx.instances.len());
+    let mut any_hit = Vec::with_capacity(ctx.instances.len());
+    let mut meshes = Vec::with_capacity(ctx.instances.len());
     let mut intersection = Vec::with_capacity(ctx.instances.len());
     for (i, gi) in ctx.instances.iter().enumerate() {
         let instance = Some(crate::GeometryInstanceId(i as u32));
         let mut per_material = Vec::new();
+        let mut with_any_hit = vec![false; ctx.ray_type_count() as usize];
         for m in &gi.materials {
             let mat = &ctx.materials[m.index() as usize];
             let record = Record { instance, material: Some(*m), ..Record::default() };
             let mut per_ray = Vec::new();
-            for (ch, ah) in mat.closest_hit.iter().zip(&mat.any_hit) {
+            for (r, (ch, ah)) in mat.closest_hit.iter().zip(&mat.any_hit).enumerate() {
+                if let Some(flag) = with_any_hit.get_mut(r) {
+                    *flag |= ah.is_some();
+                }
                 per_ray.push((
                     ch.map(|p| link::resolve(ctx, p, record)).transpose()?,
                     ah.map(|p| link::resolve(ctx, p, record)).transpose()?,
@@ -80,14 +102,21 @@ fn link_all<'a>(ctx: &'a Context, accels: &'a [Option<NodeAccel>], entry: u32, d
             per_material.push(per_ray);
         }
         hits.push(per_material);
-        intersection.push(match ctx.geometries[gi.geometry.index() as usize].kind {
-            GeometryKind::Custom { intersection, .. } => Some(link::resolve(
-                ctx,
-                intersection,
-                Record { instance, geometry: Some(gi.geometry), ..Record::default() },
-            )?),
-            GeometryKind::Triangles(_) => None,
-        });
+        any_hit.push(with_any_hit);
+        match &ctx.geometries[gi.geometry.index() as usize].kind {
+            GeometryKind::Custom { intersection: p, .. } => {
+                meshes.push(None);
+                intersection.push(Some(link::resolve(
+                    ctx,
+                    *p,
+                    Record { instance, geometry: Some(gi.geometry), ..Record::default() },
+                )?));
+            }
+            GeometryKind::Triangles(mesh) => {
+                meshes.push(Some(mesh));
+                intersection.push(None);
+            }
+        }
     }
     let visit = ctx
         .nodes
@@ -100,7 +129,168 @@ fn link_all<'a>(ctx: &'a Context, accels: &'a [Option<NodeAccel>], entry: u32, d
             _ => Ok(None),
         })
         .collect::<Result<Vec<_>>>()?;
-    Ok(Linked { ctx, accels, ray_generation, exception, miss, hits, intersection, visit, launch_dim: dim })
+    Ok(Linked {
+        ctx,
+        accels,
+        ray_generation,
+        exception,
+        miss,
+        hits,
+        any_hit,
+        meshes,
+        intersection,
+        visit,
+        launch_dim: dim,
+    })
+}
+
+impl<'a> Linked<'a, Call> {
+    /// The same uses with their variables bound as references, for the run.
+    fn bind(&self) -> Linked<'_, Program<'_>> {
+        fn opt(c: &Option<Call>) -> Option<Program<'_>> {
+            c.as_ref().map(Program::bind)
+        }
+        Linked {
+            ctx: self.ctx,
+            accels: self.accels,
+            ray_generation: Program::bind(&self.ray_generation),
+            exception: opt(&self.exception),
+            miss: self.miss.iter().map(Program::bind).collect(),
+            hits: self
+                .hits
+                .iter()
+                .map(|m| m.iter().map(|r| r.iter().map(|(ch, ah)| (opt(ch), opt(ah))).collect()).collect())
+                .collect(),
+            any_hit: self.any_hit.clone(),
+            meshes: self.meshes.clone(),
+            intersection: self.intersection.iter().map(opt).collect(),
+            visit: self.visit.iter().map(opt).collect(),
+            launch_dim: self.launch_dim,
+        }
+    }
+}
+
+/// A program use ready to call: its variables as references, in the
+/// program's parameter order, and its attribute type.
+struct Program<'a> {
+    desc: &'static ProgramDescriptor,
+    vars: Variables<'a>,
+    attributes: Option<AttributeType>,
+}
+
+/// Variable references as [`CpuArgs`] takes them.
+struct Variables<'a>(Box<[&'a dyn Any]>);
+
+// SAFETY: every reference is made from a `Call`'s `Arc<dyn Any + Send +
+// Sync>` (`Program::bind`); only the auto traits are dropped from the type.
+unsafe impl Sync for Variables<'_> {}
+unsafe impl Send for Variables<'_> {}
+
+impl<'a> Program<'a> {
+    fn bind(call: &'a Call) -> Self {
+        let attributes = match (call.desc.attributes, call.desc.cpu_attributes) {
+            (Some(layout), Some(make)) => Some(AttributeType::new(&layout, make)),
+            _ => None,
+        };
+        let vars = Variables(call.vars.iter().map(|v| &**v as &dyn Any).collect());
+        Program { desc: call.desc, vars, attributes }
+    }
+}
+
+/// A built-in triangle attribute.
+#[derive(Clone, Copy)]
+enum Builtin {
+    GeometricNormal,
+    ShadingNormal,
+    Texcoord,
+    Barycentrics,
+}
+
+/// The attribute type a program takes, resolved once per launch: how to
+/// make a value, how to recognise a reusable one, and where the built-in
+/// triangle attributes go in its heap words.
+struct AttributeType {
+    id: TypeId,
+    words: usize,
+    make: AttributesFromWords,
+    /// Word offsets of the built-in triangle attributes, by field name.
+    builtins: Box<[(usize, Builtin)]>,
+}
+
+/// Attribute structs up to this many words are filled on the stack.
+const STACK_WORDS: usize = 64;
+
+impl AttributeType {
+    fn new(layout: &TypeLayout, make: AttributesFromWords) -> Self {
+        let words = layout.words as usize;
+        let id = Any::type_id(make(&vec![0; words]).as_any());
+        let builtins = layout
+            .fields
+            .iter()
+            .filter_map(|f| {
+                let b = match (f.name, f.ty) {
+                    ("geometric_normal", "Vec3") => Builtin::GeometricNormal,
+                    ("shading_normal", "Vec3") => Builtin::ShadingNormal,
+                    ("texcoord", "Vec2") => Builtin::Texcoord,
+                    ("barycentrics", "Vec2") => Builtin::Barycentrics,
+                    _ => return None,
+                };
+                Some((f.offset_words as usize, b))
+            })
+            .collect();
+        AttributeType { id, words, make, builtins }
+    }
+
+    /// Runs `f` on heap words of this type: zero, or with the triangle
+    /// attributes of `hit` filled in.
+    fn with_words<R>(&self, hit: Option<&TriangleAttributes>, f: impl FnOnce(&[u32]) -> R) -> R {
+        let mut stack = [0u32; STACK_WORDS];
+        let mut heap = Vec::new();
+        let words: &mut [u32] = if self.words <= STACK_WORDS {
+            &mut stack[..self.words]
+        } else {
+            heap.resize(self.words, 0);
+            &mut heap
+        };
+        if let Some(h) = hit {
+            for &(o, b) in &self.builtins {
+                match b {
+                    Builtin::GeometricNormal => h.geometric_normal.write_words(&mut words[o..]),
+                    Builtin::ShadingNormal => h.shading_normal.write_words(&mut words[o..]),
+                    Builtin::Texcoord => h.texcoord.write_words(&mut words[o..]),
+                    Builtin::Barycentrics => h.barycentrics.write_words(&mut words[o..]),
+                }
+            }
+        }
+        f(words)
+    }
+}
+
+/// The built-in attributes of a triangle hit.
+struct TriangleAttributes {
+    geometric_normal: Vec3,
+    shading_normal: Vec3,
+    texcoord: Vec2,
+    barycentrics: Vec2,
+}
+
+impl TriangleAttributes {
+    /// Triangle `prim` of `mesh`, with vertices `[a, b, c]`, hit at
+    /// barycentrics `(u, v)` (weights of vertices 1 and 2).
+    fn new(mesh: &TriangleMesh, prim: u32, [a, b, c]: [Vec3; 3], u: f32, v: f32) -> Self {
+        let [i0, i1, i2] = mesh.indices[prim as usize].map(|i| i as usize);
+        let gn = (b - a).cross(c - a);
+        let w = 1.0 - u - v;
+        let sn = match &mesh.normals {
+            Some(n) => n[i0] * w + n[i1] * u + n[i2] * v,
+            None => gn,
+        };
+        let uv = match &mesh.texcoords {
+            Some(tc) => tc[i0] * w + tc[i1] * u + tc[i2] * v,
+            None => Vec2::new(u, v),
+        };
+        TriangleAttributes { geometric_normal: gn, shading_normal: sn, texcoord: uv, barycentrics: Vec2::new(u, v) }
+    }
 }
 
 /// Runs entry point `entry` over `width` x `height` launch indices.
@@ -119,7 +309,8 @@ pub(crate) fn launch(ctx: &mut Context, entry: u32, width: u32, height: u32) -> 
     built?;
     let t1 = std::time::Instant::now();
     let ctx: &Context = ctx;
-    let linked = link_all(ctx, &ctx.accels.nodes, entry, UVec2::new(width, height))?;
+    let calls = link_all(ctx, &ctx.accels.nodes, entry, UVec2::new(width, height))?;
+    let linked = calls.bind();
     let t2 = std::time::Instant::now();
     // Chunks of launch indices in row-major order (not rows: a 1D launch
     // spreads over all cores too); reports are merged in index order.
@@ -129,10 +320,13 @@ pub(crate) fn launch(ctx: &mut Context, entry: u32, width: u32, height: u32) -> 
         .into_par_iter()
         .map(|c| {
             let mut report = LaunchReport::default();
-            for i in c * chunk..((c + 1) * chunk).min(total) {
-                let index = UVec2::new((i % width as u64) as u32, (i / width as u64) as u32);
-                run_index(&linked, index, &mut report);
-            }
+            let lane = Lane::new(&linked);
+            rt_std::cpu::serving(&lane, || {
+                for i in c * chunk..((c + 1) * chunk).min(total) {
+                    let index = UVec2::new((i % width as u64) as u32, (i / width as u64) as u32);
+                    lane.run_index(index, &mut report);
+                }
+            });
             report
         })
         .collect();
@@ -146,355 +340,380 @@ pub(crate) fn launch(ctx: &mut Context, entry: u32, width: u32, height: u32) -> 
     Ok(report)
 }
 
-fn run_index(l: &Linked<'_>, index: UVec2, report: &mut LaunchReport) {
-    let lane = Lane::new(l, index);
-    let base = ExecutionContext { launch_index: index, launch_dim: l.launch_dim, ..ExecutionContext::DEFAULT };
-    lane.invoke(&l.ray_generation, base, None, None, 0);
-    if let Some(code) = lane.exception.get() {
-        report.exceptions.push(ExceptionRecord { launch_index: index, code });
-        if let Some(ex) = &l.exception {
-            let ctx = ExecutionContext { exception_code: code, ..base };
-            lane.invoke(ex, ctx, None, None, 0);
-        } else if let Some(v) = link::default_exception_output(l.ray_generation.desc)
-            && let Some(out) = l.ray_generation.vars[v].downcast_ref::<RwBuffer2d<glam::Vec4>>()
-        {
-            // The default exception program: magenta at the launch index.
-            let size = out.size();
-            if index.x < size.x && index.y < size.y {
-                out.store(index, link::EXCEPTION_COLOR);
-            }
-        }
-    }
-    report.rays += lane.rays.get();
-    report.prints.extend(lane.prints.take().into_iter().map(|t| (index, t)));
-}
-
-/// The attributes of a hit: built-in triangle values (materialised in the
-/// receiving program's attribute type) or a custom intersection's value.
-enum HitAttributes {
-    Triangle { geometric_normal: Vec3, shading_normal: Vec3, texcoord: Vec2, barycentrics: Vec2 },
-    Custom(Box<dyn AnyAttributes>),
-}
-
-impl HitAttributes {
-    /// The value a program with attribute type `layout` receives.
-    fn materialise(&self, desc: &rt_std::program::ProgramDescriptor) -> Option<Box<dyn AnyAttributes>> {
-        match self {
-            HitAttributes::Custom(a) => Some(a.clone_box()),
-            HitAttributes::Triangle { geometric_normal, shading_normal, texcoord, barycentrics } => {
-                let (layout, make) = (desc.attributes?, desc.cpu_attributes?);
-                Some(make(&triangle_words(&layout, *geometric_normal, *shading_normal, *texcoord, *barycentrics)))
-            }
-        }
-    }
-}
-
-/// Heap words of an attribute struct with the built-in triangle attributes
-/// filled by field name (other fields zero).
-fn triangle_words(layout: &TypeLayout, gn: Vec3, sn: Vec3, uv: Vec2, bary: Vec2) -> Vec<u32> {
-    let mut words = vec![0u32; layout.words as usize];
-    for f in layout.fields {
-        let o = f.offset_words as usize;
-        match (f.name, f.ty) {
-            ("geometric_normal", "Vec3") => gn.write_words(&mut words[o..]),
-            ("shading_normal", "Vec3") => sn.write_words(&mut words[o..]),
-            ("texcoord", "Vec2") => uv.write_words(&mut words[o..]),
-            ("barycentrics", "Vec2") => bary.write_words(&mut words[o..]),
-            _ => {}
-        }
-    }
-    words
-}
-
-struct Committed {
+/// The closest hit so far of a search.
+#[derive(Clone, Copy)]
+struct Hit {
     instance: u32,
     material: u32,
     primitive: u32,
     t: f32,
-    attributes: HitAttributes,
+    /// Weights of vertices 1 and 2 (triangles; the custom attributes are in
+    /// [`Search::attributes`]).
+    barycentrics: Vec2,
+    /// The triangle's vertices (triangles).
+    vertices: [Vec3; 3],
     object_to_world: Mat4,
     world_to_object: Mat4,
 }
 
 /// The intersection program running now, for the protocol callbacks.
+#[derive(Clone, Copy)]
 struct Candidate {
     instance: u32,
     primitive: u32,
     object_ray: Ray,
     object_to_world: Mat4,
     world_to_object: Mat4,
-    t: Option<f32>,
 }
 
-/// One ray's search.
+/// One ray's search. It lives in `trace`'s frame; the lane points at it
+/// while the traversal runs, so the protocol callbacks find it.
 struct Search {
     ray_type: u32,
     flags: u32,
     world_ray: Ray,
-    /// Closest accepted distance so far.
-    tmax: f32,
     payload: *mut dyn Any,
-    committed: Option<Committed>,
-    candidate: Option<Candidate>,
-    done: bool,
+    /// Closest accepted distance so far.
+    tmax: Cell<f32>,
+    done: Cell<bool>,
+    committed: Cell<Option<Hit>>,
+    /// The committed hit's attributes, for custom primitives.
+    attributes: RefCell<Option<Box<dyn AnyAttributes>>>,
+    candidate: Cell<Option<Candidate>>,
+    /// The distance `rt_potential_intersection` accepted for the candidate.
+    candidate_t: Cell<Option<f32>>,
 }
 
-/// Per-launch-index state; also rt-std's [`Tracer`] for its programs.
+/// One worker's state over a chunk of launch indices; also rt-std's
+/// [`Tracer`] for the programs it runs.
 struct Lane<'a> {
-    l: &'a Linked<'a>,
-    index: UVec2,
+    l: &'a Linked<'a, Program<'a>>,
+    index: Cell<UVec2>,
     depth: Cell<u32>,
     exception: Cell<Option<u32>>,
     prints: RefCell<Vec<String>>,
     rays: Cell<u64>,
-    search: RefCell<Option<Search>>,
+    /// The innermost search in progress (null: none).
+    search: Cell<*const Search>,
+    /// Attribute values not in use, by type, for reuse.
+    pool: RefCell<Vec<(TypeId, Box<dyn AnyAttributes>)>>,
 }
 
 impl<'a> Lane<'a> {
-    fn new(l: &'a Linked<'a>, index: UVec2) -> Self {
+    fn new(l: &'a Linked<'a, Program<'a>>) -> Self {
         Lane {
             l,
-            index,
+            index: Cell::new(UVec2::ZERO),
             depth: Cell::new(0),
             exception: Cell::new(None),
             prints: RefCell::new(Vec::new()),
             rays: Cell::new(0),
-            search: RefCell::new(None),
+            search: Cell::new(std::ptr::null()),
+            pool: RefCell::new(Vec::new()),
+        }
+    }
+
+    fn run_index(&self, index: UVec2, report: &mut LaunchReport) {
+        let l = self.l;
+        self.index.set(index);
+        self.depth.set(0);
+        self.exception.set(None);
+        self.rays.set(0);
+        let mut ctx = self.base_context();
+        self.invoke(&l.ray_generation, &mut ctx, None, None, 0);
+        if let Some(code) = self.exception.get() {
+            report.exceptions.push(ExceptionRecord { launch_index: index, code });
+            if let Some(ex) = &l.exception {
+                let mut ctx = ExecutionContext { exception_code: code, ..self.base_context() };
+                self.invoke(ex, &mut ctx, None, None, 0);
+            } else if let Some(v) = link::default_exception_output(l.ray_generation.desc)
+                && let Some(out) = l.ray_generation.vars.0[v].downcast_ref::<RwBuffer2d<glam::Vec4>>()
+            {
+                // The default exception program: magenta at the launch index.
+                let size = out.size();
+                if index.x < size.x && index.y < size.y {
+                    out.store(index, link::EXCEPTION_COLOR);
+                }
+            }
+        }
+        report.rays += self.rays.get();
+        if !self.prints.borrow().is_empty() {
+            report.prints.extend(self.prints.take().into_iter().map(|t| (index, t)));
         }
     }
 
     fn base_context(&self) -> ExecutionContext {
-        ExecutionContext { launch_index: self.index, launch_dim: self.l.launch_dim, ..ExecutionContext::DEFAULT }
+        ExecutionContext { launch_index: self.index.get(), launch_dim: self.l.launch_dim, ..ExecutionContext::DEFAULT }
     }
 
-    /// Calls a program; the first exception it raises is kept for the lane.
+    /// The search in progress. Only called inside one (during `traverse`).
+    fn search(&self) -> &Search {
+        // SAFETY: `trace` points `search` at a `Search` in its own frame for
+        // the duration of its traversal and restores the outer pointer
+        // before that frame ends; the search is only used through `&`.
+        unsafe { &*self.search.get() }
+    }
+
+    /// Calls a program in context `ctx`; the first exception it raises is
+    /// kept for the lane. `ctx` holds the flags the program set.
     fn invoke(
         &self,
-        call: &Call,
-        ctx: ExecutionContext,
+        p: &Program<'_>,
+        ctx: &mut ExecutionContext,
         payload: Option<&mut dyn Any>,
         attributes: Option<&mut dyn Any>,
         primitive: u32,
-    ) -> (CpuResult, ExecutionContext) {
-        let refs = var_refs(call);
-        let mut args = CpuArgs { payload, attributes, primitive, variables: &refs[..call.vars.len()] };
-        let (r, out) = rt_std::cpu::with_tracer(ctx, self, || (call.desc.cpu)(&mut args));
-        if let Some(code) = out.pending_exception
+    ) -> CpuResult {
+        let mut args = CpuArgs { payload, attributes, primitive, variables: &p.vars.0 };
+        let r = rt_std::cpu::in_context(ctx, || (p.desc.cpu)(&mut args));
+        if let Some(code) = ctx.pending_exception
             && self.exception.get().is_none()
         {
             self.exception.set(Some(code));
         }
-        (r, out)
+        r
     }
 
-    fn done(&self) -> bool {
-        self.search.borrow().as_ref().is_none_or(|s| s.done)
+    /// An attribute value of type `id` from the pool, or `make`'s.
+    fn take_attributes(&self, id: TypeId, make: impl FnOnce() -> Box<dyn AnyAttributes>) -> Box<dyn AnyAttributes> {
+        let mut pool = self.pool.borrow_mut();
+        match pool.iter().position(|(t, _)| *t == id) {
+            Some(i) => pool.swap_remove(i).1,
+            None => make(),
+        }
     }
 
-    fn tmax(&self) -> f32 {
-        self.search.borrow().as_ref().map_or(f32::NEG_INFINITY, |s| s.tmax)
+    fn return_attributes(&self, a: Box<dyn AnyAttributes>) {
+        self.pool.borrow_mut().push((Any::type_id(a.as_any()), a));
     }
 
-    fn traverse(&self, node: NodeId, o2w: Mat4, w2o: Mat4, mask: u32) {
-        let ctx = self.l.ctx;
-        let rec = &ctx.nodes[node.index() as usize];
-        if (rec.visibility_mask as u32) & mask == 0 || self.done() {
+    /// An attribute value of type `ty`, holding `hit`'s triangle attributes
+    /// (or zero).
+    fn attributes_of(&self, ty: &AttributeType, hit: Option<&TriangleAttributes>) -> Box<dyn AnyAttributes> {
+        let mut a = self.take_attributes(ty.id, || (ty.make)(&vec![0; ty.words]));
+        ty.with_words(hit, |w| a.set_words(w));
+        a
+    }
+
+    /// An attribute value holding a copy of `value`.
+    fn copy_of(&self, value: &dyn AnyAttributes) -> Box<dyn AnyAttributes> {
+        let mut a = self.take_attributes(Any::type_id(value.as_any()), || value.clone_box());
+        a.copy_from(value);
+        a
+    }
+
+    fn traverse(&self, s: &Search, node: NodeId, o2w: &Mat4, w2o: &Mat4, mask: u32) {
+        let l = self.l;
+        let rec = &l.ctx.nodes[node.index() as usize];
+        if (rec.visibility_mask as u32) & mask == 0 || s.done.get() {
             return;
         }
-        let (world_ray, flags) = {
-            let s = self.search.borrow();
-            let s = s.as_ref().expect("inside a search");
-            (s.world_ray, s.flags)
-        };
+        let world_ray = s.world_ray;
         let origin = w2o.transform_point3(world_ray.origin);
         let direction = w2o.transform_vector3(world_ray.direction);
-        let inv_dir = direction.recip();
         match &rec.kind {
             NodeKind::Transform { matrix, inverse, child } => {
-                self.traverse(*child, o2w * *matrix, *inverse * w2o, mask)
+                self.traverse(s, *child, &(*o2w * *matrix), &(*inverse * *w2o), mask)
             }
             NodeKind::Group { children, .. } => {
-                let Some(Some(NodeAccel::Children { bvh, .. })) = self.l.accels.get(node.index() as usize) else {
+                let Some(Some(NodeAccel::Children { bvh, .. })) = l.accels.get(node.index() as usize) else {
                     return;
                 };
-                bvh.traverse(origin, inv_dir, world_ray.tmin, &|| self.tmax(), &mut |c| {
-                    self.traverse(children[c as usize], o2w, w2o, mask);
-                    !self.done()
+                bvh.traverse(origin, direction.recip(), world_ray.tmin, &|| s.tmax.get(), &mut |c| {
+                    self.traverse(s, children[c as usize], o2w, w2o, mask);
+                    !s.done.get()
                 });
             }
             NodeKind::Selector { children, .. } => {
-                let Some(call) = &self.l.visit[node.index() as usize] else { return };
-                let payload = self.search.borrow().as_ref().map(|s| s.payload);
+                let Some(call) = &l.visit[node.index() as usize] else { return };
                 // The ray in the selector's space, `tmax` the closest hit so far.
-                let ctx = ExecutionContext {
-                    current_ray: Ray { origin, direction, tmax: self.tmax(), ..world_ray },
+                let mut ctx = ExecutionContext {
+                    current_ray: Ray { origin, direction, tmax: s.tmax.get(), ..world_ray },
                     ..self.base_context()
                 };
                 // SAFETY: the payload pointer comes from the `&mut` the trace
                 // call holds for the whole search; nothing else uses it now.
-                let payload = payload.map(|p| unsafe { &mut *p });
-                let (r, _) = self.invoke(call, ctx, payload, None, 0);
+                let payload = unsafe { &mut *s.payload };
+                let r = self.invoke(call, &mut ctx, Some(payload), None, 0);
                 if let CpuResult::Child(c) = r
                     && let Some(child) = children.get(c as usize)
                 {
-                    self.traverse(*child, o2w, w2o, mask);
+                    self.traverse(s, *child, o2w, w2o, mask);
                 }
             }
             NodeKind::GeometryGroup { .. } => {
-                let Some(Some(NodeAccel::Prims { bvh, wide, prims, .. })) = self.l.accels.get(node.index() as usize)
+                let Some(Some(NodeAccel::Prims { bvh, wide, triangles, prims, .. })) =
+                    l.accels.get(node.index() as usize)
                 else {
                     return;
                 };
                 let object_ray = Ray { origin, direction, ..world_ray };
+                // Prepared on the first triangle test: most rays that miss
+                // never get there.
+                let prepared = std::cell::OnceCell::new();
+                let prepared = || prepared.get_or_init(|| WatertightRay::new(&object_ray)).as_ref();
+                let visit = |p: u32| {
+                    let (gi, prim) = prims[p as usize];
+                    match l.meshes[gi as usize] {
+                        Some(mesh) => {
+                            let [a, b, c] = mesh.indices[prim as usize].map(|i| mesh.positions[i as usize]);
+                            if let Some(ray) = prepared()
+                                && let Some(hit) = ray.intersect(a, b, c, s.tmax.get())
+                            {
+                                self.triangle_hit(s, ray, mesh, gi, prim, hit, [a, b, c], o2w, w2o);
+                            }
+                        }
+                        None => self.intersect_custom(s, gi, prim, &object_ray, o2w, w2o),
+                    }
+                };
                 match wide {
+                    // obvhs's 8-wide traversal over triangles in slot order:
+                    // the instance and primitive are looked up on hits only.
+                    Some(cw) if !triangles.is_empty() => {
+                        let mut hit = obvhs::ray::RayHit::none();
+                        let ray = obvhs::ray::Ray::new(origin.into(), direction.into(), world_ray.tmin, s.tmax.get());
+                        cw.ray_traverse(ray, &mut hit, |_, slot| {
+                            let [a, b, c] = triangles[slot];
+                            if let Some(ray) = prepared()
+                                && let Some(hit) = ray.intersect(a, b, c, s.tmax.get())
+                            {
+                                let (gi, prim) = prims[cw.primitive_indices[slot] as usize];
+                                if let Some(mesh) = l.meshes[gi as usize] {
+                                    self.triangle_hit(s, ray, mesh, gi, prim, hit, [a, b, c], o2w, w2o);
+                                }
+                            }
+                            if s.done.get() { f32::NEG_INFINITY } else { s.tmax.get() }
+                        });
+                    }
                     // obvhs's 8-wide traversal; the callback runs the whole
                     // hit protocol and returns the closest committed distance
                     // (unchanged if nothing committed), or -inf to stop.
                     Some(cw) => {
                         let mut hit = obvhs::ray::RayHit::none();
-                        let ray = obvhs::ray::Ray::new(origin.into(), direction.into(), world_ray.tmin, self.tmax());
+                        let ray = obvhs::ray::Ray::new(origin.into(), direction.into(), world_ray.tmin, s.tmax.get());
                         cw.ray_traverse(ray, &mut hit, |_, slot| {
-                            let (gi, prim) = prims[cw.primitive_indices[slot] as usize];
-                            self.intersect(gi, prim, object_ray, o2w, w2o, flags);
-                            if self.done() { f32::NEG_INFINITY } else { self.tmax() }
+                            visit(cw.primitive_indices[slot]);
+                            if s.done.get() { f32::NEG_INFINITY } else { s.tmax.get() }
                         });
                     }
-                    None => bvh.traverse(origin, inv_dir, world_ray.tmin, &|| self.tmax(), &mut |p| {
-                        let (gi, prim) = prims[p as usize];
-                        self.intersect(gi, prim, object_ray, o2w, w2o, flags);
-                        !self.done()
+                    None => bvh.traverse(origin, direction.recip(), world_ray.tmin, &|| s.tmax.get(), &mut |p| {
+                        visit(p);
+                        !s.done.get()
                     }),
                 }
             }
         }
     }
 
-    fn intersect(&self, gi: u32, prim: u32, object_ray: Ray, o2w: Mat4, w2o: Mat4, flags: u32) {
-        let ctx = self.l.ctx;
-        let rec = &ctx.instances[gi as usize];
-        match &ctx.geometries[rec.geometry.index() as usize].kind {
-            GeometryKind::Triangles(mesh) => {
-                let tmax = self.tmax();
-                let Some((t, u, v, front)) = intersect_triangle(mesh, prim as usize, &object_ray, tmax) else { return };
-                if (front && flags & RAY_FLAG_CULL_FRONT_FACING != 0)
-                    || (!front && flags & RAY_FLAG_CULL_BACK_FACING != 0)
-                {
-                    return;
-                }
-                let [i0, i1, i2] = mesh.indices[prim as usize].map(|i| i as usize);
-                let [a, b, c] = [i0, i1, i2].map(|i| mesh.positions[i]);
-                let gn = (b - a).cross(c - a);
-                let w = 1.0 - u - v;
-                let sn = match &mesh.normals {
-                    Some(n) => n[i0] * w + n[i1] * u + n[i2] * v,
-                    None => gn,
-                };
-                let uv = match &mesh.texcoords {
-                    Some(tc) => tc[i0] * w + tc[i1] * u + tc[i2] * v,
-                    None => Vec2::new(u, v),
-                };
-                let material = mesh.material_indices.as_ref().map_or(0, |m| m[prim as usize]);
-                let attributes = HitAttributes::Triangle {
-                    geometric_normal: gn,
-                    shading_normal: sn,
-                    texcoord: uv,
-                    barycentrics: Vec2::new(u, v),
-                };
-                self.candidate_hit(gi, prim, material, t, attributes, object_ray, o2w, w2o);
-            }
-            GeometryKind::Custom { .. } => {
-                let Some(call) = &self.l.intersection[gi as usize] else { return };
-                let tmax = self.tmax();
-                if let Some(s) = self.search.borrow_mut().as_mut() {
-                    s.candidate = Some(Candidate {
-                        instance: gi,
-                        primitive: prim,
-                        object_ray,
-                        object_to_world: o2w,
-                        world_to_object: w2o,
-                        t: None,
-                    });
-                }
-                let ctx = ExecutionContext {
-                    current_ray: Ray { tmax, ..object_ray },
-                    primitive_index: prim,
-                    object_to_world: o2w,
-                    world_to_object: w2o,
-                    ..self.base_context()
-                };
-                let mut attrs = call
-                    .desc
-                    .cpu_attributes
-                    .map(|make| make(&vec![0u32; call.desc.attributes.map_or(0, |a| a.words) as usize]));
-                let attr_ref = attrs.as_mut().map(|a| a.as_any_mut());
-                self.invoke(call, ctx, None, attr_ref, prim);
-                if let Some(s) = self.search.borrow_mut().as_mut() {
-                    s.candidate = None;
-                }
-            }
-        }
-    }
-
-    /// A candidate intersection at `t` (already inside `(tmin, closest)`):
-    /// runs any hit and commits it unless ignored.
+    /// A ray/triangle hit `(t, u, v)` with triangle `prim` (vertices
+    /// `[a, b, c]`) of instance `gi`: culling, any hit, and the commit.
     #[allow(clippy::too_many_arguments)]
-    fn candidate_hit(
+    fn triangle_hit(
         &self,
+        s: &Search,
+        ray: &WatertightRay,
+        mesh: &TriangleMesh,
         gi: u32,
         prim: u32,
-        material: u32,
-        t: f32,
-        attributes: HitAttributes,
-        object_ray: Ray,
-        o2w: Mat4,
-        w2o: Mat4,
-    ) -> bool {
-        let (ray_type, flags, payload, world_ray) = {
-            let s = self.search.borrow();
-            let s = s.as_ref().expect("inside a search");
-            (s.ray_type, s.flags, s.payload, s.world_ray)
-        };
+        (t, u, v): (f32, f32, f32),
+        [a, b, c]: [Vec3; 3],
+        o2w: &Mat4,
+        w2o: &Mat4,
+    ) {
+        let flags = s.flags;
+        if flags & (RAY_FLAG_CULL_FRONT_FACING | RAY_FLAG_CULL_BACK_FACING) != 0 {
+            let front = ray.direction.dot((b - a).cross(c - a)) < 0.0;
+            if (front && flags & RAY_FLAG_CULL_FRONT_FACING != 0) || (!front && flags & RAY_FLAG_CULL_BACK_FACING != 0)
+            {
+                return;
+            }
+        }
+        let material = mesh.material_indices.as_ref().map_or(0, |m| m[prim as usize]);
         let Some(per_ray) = self.l.hits[gi as usize].get(material as usize) else {
             // A material index the instance does not have: nothing to run.
-            return false;
+            return;
         };
-        let (_, any_hit) = &per_ray[ray_type as usize];
         let mut terminate = flags & RAY_FLAG_TERMINATE_ON_FIRST_HIT != 0;
-        if let Some(ah) = any_hit
+        if self.l.any_hit[gi as usize][s.ray_type as usize]
             && flags & RAY_FLAG_DISABLE_ANYHIT == 0
+            && let (_, Some(ah)) = &per_ray[s.ray_type as usize]
         {
-            let mut attrs = attributes.materialise(ah.desc);
-            let ctx = ExecutionContext {
-                current_ray: Ray { tmax: t, ..world_ray },
-                t_hit: t,
-                primitive_index: prim,
-                object_to_world: o2w,
-                world_to_object: w2o,
-                ..self.base_context()
-            };
-            // SAFETY: see `traverse`: the search's payload is only used here.
-            let payload = unsafe { &mut *payload };
-            let (_, out) = self.invoke(ah, ctx, Some(payload), attrs.as_mut().map(|a| a.as_any_mut()), prim);
-            if out.ignored {
-                return false;
-            }
-            terminate |= out.terminated;
-        }
-        let _ = object_ray;
-        if let Some(s) = self.search.borrow_mut().as_mut() {
-            s.tmax = t;
-            s.committed = Some(Committed {
-                instance: gi,
-                material,
-                primitive: prim,
-                t,
-                attributes,
-                object_to_world: o2w,
-                world_to_object: w2o,
+            let attributes = ah.attributes.as_ref().map(|ty| {
+                let hit = TriangleAttributes::new(mesh, prim, [a, b, c], u, v);
+                self.attributes_of(ty, Some(&hit))
             });
-            s.done |= terminate;
+            match self.any_hit(s, ah, t, prim, o2w, w2o, attributes) {
+                None => return,
+                Some(terminated) => terminate |= terminated,
+            }
         }
-        true
+        s.tmax.set(t);
+        s.committed.set(Some(Hit {
+            instance: gi,
+            material,
+            primitive: prim,
+            t,
+            barycentrics: Vec2::new(u, v),
+            vertices: [a, b, c],
+            object_to_world: *o2w,
+            world_to_object: *w2o,
+        }));
+        s.done.set(s.done.get() | terminate);
+    }
+
+    /// Runs any hit `ah` for a candidate at `t`; None if it ignored the
+    /// candidate, else whether it terminated the ray.
+    #[allow(clippy::too_many_arguments)]
+    fn any_hit(
+        &self,
+        s: &Search,
+        ah: &Program<'_>,
+        t: f32,
+        prim: u32,
+        o2w: &Mat4,
+        w2o: &Mat4,
+        mut attributes: Option<Box<dyn AnyAttributes>>,
+    ) -> Option<bool> {
+        let mut ctx = ExecutionContext {
+            current_ray: Ray { tmax: t, ..s.world_ray },
+            t_hit: t,
+            primitive_index: prim,
+            object_to_world: *o2w,
+            world_to_object: *w2o,
+            ..self.base_context()
+        };
+        // SAFETY: see `traverse`: the search's payload is only used here.
+        let payload = unsafe { &mut *s.payload };
+        self.invoke(ah, &mut ctx, Some(payload), attributes.as_mut().map(|a| a.as_any_mut()), prim);
+        if let Some(a) = attributes {
+            self.return_attributes(a);
+        }
+        (!ctx.ignored).then_some(ctx.terminated)
+    }
+
+    fn intersect_custom(&self, s: &Search, gi: u32, prim: u32, object_ray: &Ray, o2w: &Mat4, w2o: &Mat4) {
+        let Some(call) = &self.l.intersection[gi as usize] else { return };
+        s.candidate.set(Some(Candidate {
+            instance: gi,
+            primitive: prim,
+            object_ray: *object_ray,
+            object_to_world: *o2w,
+            world_to_object: *w2o,
+        }));
+        s.candidate_t.set(None);
+        let mut ctx = ExecutionContext {
+            current_ray: Ray { tmax: s.tmax.get(), ..*object_ray },
+            primitive_index: prim,
+            object_to_world: *o2w,
+            world_to_object: *w2o,
+            ..self.base_context()
+        };
+        let mut attributes = call.attributes.as_ref().map(|ty| self.attributes_of(ty, None));
+        self.invoke(call, &mut ctx, None, attributes.as_mut().map(|a| a.as_any_mut()), prim);
+        if let Some(a) = attributes {
+            self.return_attributes(a);
+        }
+        s.candidate.set(None);
     }
 }
 
@@ -504,38 +723,46 @@ impl Tracer for Lane<'_> {
             return;
         }
         let depth = self.depth.get();
-        if depth >= self.l.ctx.max_trace_depth {
+        let l = self.l;
+        if depth >= l.ctx.max_trace_depth {
             rt_std::cpu::raise(EXCEPTION_TRACE_DEPTH_EXCEEDED);
             return;
         }
-        let ctx = self.l.ctx;
         let node = NodeId(object.id);
-        if object.id as usize >= ctx.nodes.len() || ray.ray_type >= ctx.ray_type_count() {
+        if object.id as usize >= l.ctx.nodes.len() || ray.ray_type >= l.ctx.ray_type_count() {
             rt_std::cpu::raise(EXCEPTION_INVALID_RAY);
             return;
         }
         self.depth.set(depth + 1);
         self.rays.set(self.rays.get() + 1);
-        let outer = self.search.replace(Some(Search {
+        let search = Search {
             ray_type: ray.ray_type,
             flags,
             world_ray: ray,
-            tmax: ray.tmax,
             payload: payload as *mut dyn Any,
-            committed: None,
-            candidate: None,
-            done: false,
-        }));
-        self.traverse(node, Mat4::IDENTITY, Mat4::IDENTITY, mask & 0xff);
-        let search = self.search.replace(outer).expect("search in progress");
-        match search.committed {
+            tmax: Cell::new(ray.tmax),
+            done: Cell::new(false),
+            committed: Cell::new(None),
+            attributes: RefCell::new(None),
+            candidate: Cell::new(None),
+            candidate_t: Cell::new(None),
+        };
+        let outer = self.search.replace(&search);
+        self.traverse(&search, node, &Mat4::IDENTITY, &Mat4::IDENTITY, mask & 0xff);
+        self.search.set(outer);
+        let mut attributes = search.attributes.take();
+        match search.committed.get() {
             Some(hit) => {
-                let (closest, _) = &self.l.hits[hit.instance as usize][hit.material as usize][ray.ray_type as usize];
+                let (closest, _) = &l.hits[hit.instance as usize][hit.material as usize][ray.ray_type as usize];
                 if let Some(ch) = closest
                     && flags & RAY_FLAG_DISABLE_CLOSESTHIT == 0
                 {
-                    let mut attrs = hit.attributes.materialise(ch.desc);
-                    let ctx = ExecutionContext {
+                    if let (Some(mesh), Some(ty)) = (l.meshes[hit.instance as usize], &ch.attributes) {
+                        let (u, v) = hit.barycentrics.into();
+                        let values = TriangleAttributes::new(mesh, hit.primitive, hit.vertices, u, v);
+                        attributes = Some(self.attributes_of(ty, Some(&values)));
+                    }
+                    let mut ctx = ExecutionContext {
                         current_ray: Ray { tmax: hit.t, ..ray },
                         t_hit: hit.t,
                         primitive_index: hit.primitive,
@@ -543,24 +770,29 @@ impl Tracer for Lane<'_> {
                         world_to_object: hit.world_to_object,
                         ..self.base_context()
                     };
-                    self.invoke(ch, ctx, Some(payload), attrs.as_mut().map(|a| a.as_any_mut()), hit.primitive);
+                    let a = attributes.as_mut().map(|a| a.as_any_mut());
+                    self.invoke(ch, &mut ctx, Some(payload), a, hit.primitive);
                 }
             }
             None => {
-                let ctx = ExecutionContext { current_ray: ray, ..self.base_context() };
-                self.invoke(&self.l.miss[ray.ray_type as usize], ctx, Some(payload), None, 0);
+                let mut ctx = ExecutionContext { current_ray: ray, ..self.base_context() };
+                self.invoke(&l.miss[ray.ray_type as usize], &mut ctx, Some(payload), None, 0);
             }
+        }
+        if let Some(a) = attributes {
+            self.return_attributes(a);
         }
         self.depth.set(depth);
     }
 
     fn potential_intersection(&self, t: f32) -> bool {
-        let mut s = self.search.borrow_mut();
-        let Some(s) = s.as_mut() else { return false };
-        let tmax = s.tmax;
-        let Some(c) = s.candidate.as_mut() else { return false };
-        let ok = t > c.object_ray.tmin && t < tmax;
-        c.t = if ok { Some(t) } else { None };
+        if self.search.get().is_null() {
+            return false;
+        }
+        let s = self.search();
+        let Some(c) = s.candidate.get() else { return false };
+        let ok = t > c.object_ray.tmin && t < s.tmax.get();
+        s.candidate_t.set(ok.then_some(t));
         if ok {
             rt_std::cpu::context_mut(|ctx| ctx.t_hit = t);
         }
@@ -568,28 +800,55 @@ impl Tracer for Lane<'_> {
     }
 
     fn report_intersection(&self, material: u32, attributes: Option<&dyn AnyAttributes>) -> bool {
-        let cand = {
-            let s = self.search.borrow();
-            s.as_ref().and_then(|s| {
-                s.candidate
-                    .as_ref()
-                    .map(|c| (c.instance, c.primitive, c.t, c.object_ray, c.object_to_world, c.world_to_object))
-            })
-        };
-        let Some((gi, prim, Some(t), object_ray, o2w, w2o)) = cand else { return false };
-        if t >= self.tmax() {
+        if self.search.get().is_null() {
             return false;
         }
-        let attrs = match attributes {
-            Some(a) => HitAttributes::Custom(a.clone_box()),
-            None => HitAttributes::Custom(Box::new(NoAttributes)),
+        let s = self.search();
+        let (Some(c), Some(t)) = (s.candidate.get(), s.candidate_t.get()) else { return false };
+        if t >= s.tmax.get() {
+            return false;
+        }
+        let gi = c.instance;
+        let Some(per_ray) = self.l.hits[gi as usize].get(material as usize) else {
+            // A material index the instance does not have: nothing to run.
+            return false;
         };
-        self.candidate_hit(gi, prim, material, t, attrs, object_ray, o2w, w2o)
+        let attributes = attributes.unwrap_or(&NoAttributes);
+        let mut terminate = s.flags & RAY_FLAG_TERMINATE_ON_FIRST_HIT != 0;
+        if let (_, Some(ah)) = &per_ray[s.ray_type as usize]
+            && s.flags & RAY_FLAG_DISABLE_ANYHIT == 0
+        {
+            let copy = self.copy_of(attributes);
+            match self.any_hit(s, ah, t, c.primitive, &c.object_to_world, &c.world_to_object, Some(copy)) {
+                None => return false,
+                Some(terminated) => terminate |= terminated,
+            }
+        }
+        {
+            let mut committed = s.attributes.borrow_mut();
+            let reused = committed.as_mut().is_some_and(|a| a.copy_from(attributes));
+            if !reused && let Some(old) = committed.replace(self.copy_of(attributes)) {
+                self.return_attributes(old);
+            }
+        }
+        s.tmax.set(t);
+        s.committed.set(Some(Hit {
+            instance: gi,
+            material,
+            primitive: c.primitive,
+            t,
+            barycentrics: Vec2::ZERO,
+            vertices: [Vec3::ZERO; 3],
+            object_to_world: c.object_to_world,
+            world_to_object: c.world_to_object,
+        }));
+        s.done.set(s.done.get() | terminate);
+        true
     }
 
     fn print(&self, text: &str) {
         let ctx = self.l.ctx;
-        if ctx.print_enabled && ctx.print_launch_index.is_none_or(|i| i == self.index) {
+        if ctx.print_enabled && ctx.print_launch_index.is_none_or(|i| i == self.index.get()) {
             self.prints.borrow_mut().push(text.to_string());
         }
     }
@@ -609,66 +868,94 @@ impl RtData for NoAttributes {
 
 impl rt_std::Attributes for NoAttributes {}
 
-/// Watertight ray/triangle intersection (Woop, Benthin and Wald, JCGT 2013):
-/// no cracks between triangles sharing an edge. Returns `(t, u, v,
-/// front_facing)` for `t` in `(tmin, tmax)`; `u`, `v` weight vertices 1 and 2.
-fn intersect_triangle(mesh: &TriangleMesh, t: usize, ray: &Ray, tmax: f32) -> Option<(f32, f32, f32, bool)> {
-    let [a, b, c] = mesh.indices[t].map(|i| mesh.positions[i as usize]);
-    let d = ray.direction;
-    let abs = d.abs();
-    let kz = if abs.x > abs.y {
-        if abs.x > abs.z { 0 } else { 2 }
-    } else if abs.y > abs.z {
-        1
-    } else {
-        2
-    };
-    let mut kx = (kz + 1) % 3;
-    let mut ky = (kx + 1) % 3;
-    if d[kz] < 0.0 {
-        std::mem::swap(&mut kx, &mut ky);
+/// A ray prepared for watertight ray/triangle intersection (Woop, Benthin
+/// and Wald, JCGT 2013: no cracks between triangles sharing an edge): the
+/// axis permutation and shear depend on the direction only, so they are
+/// computed once per ray and geometry group.
+struct WatertightRay {
+    origin: Vec3,
+    direction: Vec3,
+    tmin: f32,
+    kx: usize,
+    ky: usize,
+    kz: usize,
+    sx: f32,
+    sy: f32,
+    sz: f32,
+}
+
+impl WatertightRay {
+    /// None for a direction without a non-zero component.
+    fn new(ray: &Ray) -> Option<Self> {
+        let d = ray.direction;
+        let abs = d.abs();
+        let kz = if abs.x > abs.y {
+            if abs.x > abs.z { 0 } else { 2 }
+        } else if abs.y > abs.z {
+            1
+        } else {
+            2
+        };
+        let mut kx = (kz + 1) % 3;
+        let mut ky = (kx + 1) % 3;
+        if d[kz] < 0.0 {
+            std::mem::swap(&mut kx, &mut ky);
+        }
+        if d[kz] == 0.0 {
+            return None;
+        }
+        Some(WatertightRay {
+            origin: ray.origin,
+            direction: d,
+            tmin: ray.tmin,
+            kx,
+            ky,
+            kz,
+            sx: d[kx] / d[kz],
+            sy: d[ky] / d[kz],
+            sz: 1.0 / d[kz],
+        })
     }
-    if d[kz] == 0.0 {
-        return None;
+
+    /// The hit with triangle `(a, b, c)` as `(t, u, v)` for `t` in `(tmin,
+    /// tmax)`; `u`, `v` weight vertices `b` and `c`.
+    #[inline(always)]
+    fn intersect(&self, a: Vec3, b: Vec3, c: Vec3, tmax: f32) -> Option<(f32, f32, f32)> {
+        let (kx, ky, kz) = (self.kx, self.ky, self.kz);
+        let (sx, sy, sz) = (self.sx, self.sy, self.sz);
+        let (pa, pb, pc) = (a - self.origin, b - self.origin, c - self.origin);
+        let ax = pa[kx] - sx * pa[kz];
+        let ay = pa[ky] - sy * pa[kz];
+        let bx = pb[kx] - sx * pb[kz];
+        let by = pb[ky] - sy * pb[kz];
+        let cx = pc[kx] - sx * pc[kz];
+        let cy = pc[ky] - sy * pc[kz];
+        let mut u = cx * by - cy * bx;
+        let mut v = ax * cy - ay * cx;
+        let mut w = bx * ay - by * ax;
+        if u == 0.0 || v == 0.0 || w == 0.0 {
+            // Fall back to double precision on edges.
+            let (cxd, cyd, bxd, byd, axd, ayd) = (cx as f64, cy as f64, bx as f64, by as f64, ax as f64, ay as f64);
+            u = (cxd * byd - cyd * bxd) as f32;
+            v = (axd * cyd - ayd * cxd) as f32;
+            w = (bxd * ayd - byd * axd) as f32;
+        }
+        if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) {
+            return None;
+        }
+        let det = u + v + w;
+        if det == 0.0 {
+            return None;
+        }
+        let az = sz * pa[kz];
+        let bz = sz * pb[kz];
+        let cz = sz * pc[kz];
+        let t_scaled = u * az + v * bz + w * cz;
+        let t = t_scaled / det;
+        if !(t > self.tmin && t < tmax && t.is_finite()) {
+            return None;
+        }
+        // u weights vertex a here; report the weights of b and c.
+        Some((t, v / det, w / det))
     }
-    let sx = d[kx] / d[kz];
-    let sy = d[ky] / d[kz];
-    let sz = 1.0 / d[kz];
-    let (pa, pb, pc) = (a - ray.origin, b - ray.origin, c - ray.origin);
-    let ax = pa[kx] - sx * pa[kz];
-    let ay = pa[ky] - sy * pa[kz];
-    let bx = pb[kx] - sx * pb[kz];
-    let by = pb[ky] - sy * pb[kz];
-    let cx = pc[kx] - sx * pc[kz];
-    let cy = pc[ky] - sy * pc[kz];
-    let mut u = cx * by - cy * bx;
-    let mut v = ax * cy - ay * cx;
-    let mut w = bx * ay - by * ax;
-    if u == 0.0 || v == 0.0 || w == 0.0 {
-        // Fall back to double precision on edges.
-        let (cxd, cyd, bxd, byd, axd, ayd) = (cx as f64, cy as f64, bx as f64, by as f64, ax as f64, ay as f64);
-        u = (cxd * byd - cyd * bxd) as f32;
-        v = (axd * cyd - ayd * cxd) as f32;
-        w = (bxd * ayd - byd * axd) as f32;
-    }
-    if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) {
-        return None;
-    }
-    let det = u + v + w;
-    if det == 0.0 {
-        return None;
-    }
-    let az = sz * pa[kz];
-    let bz = sz * pb[kz];
-    let cz = sz * pc[kz];
-    let t_scaled = u * az + v * bz + w * cz;
-    let t = t_scaled / det;
-    if !(t > ray.tmin && t < tmax && t.is_finite()) {
-        return None;
-    }
-    // u weights vertex a here; report weights of b and c.
-    let (wa, wb, wc) = (u / det, v / det, w / det);
-    let _ = wa;
-    let front = d.dot((b - a).cross(c - a)) < 0.0;
-    Some((t, wb, wc, front))
 }
