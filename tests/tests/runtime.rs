@@ -298,6 +298,16 @@ pub fn mirror_in_a_match(prd: &mut Radiance, attr: &Hit, #[var] top: Object, #[v
     prd.result = reflected.result * reflectance;
 }
 
+/// One ray per origin (1D launch), straight down -z: the closest hit's
+/// colour's x, or the background's.
+#[rt_program(ray_generation)]
+pub fn probe_rays(#[var] top: Object, #[var] origins: Buffer<Vec3>, #[var] mut hits: RwBuffer<f32>) {
+    let i = launch_index().x;
+    let mut prd = Radiance { result: Vec3::ZERO, depth: 0 };
+    rt_trace(top, Ray::new(origins[i], vec3(0.0, 0.0, -1.0), 0, 0.0, f32::INFINITY), &mut prd);
+    hits[i] = prd.result.x;
+}
+
 /// Writes `index + 1` at every 1D launch index.
 #[rt_program(ray_generation)]
 pub fn write_index(#[var] mut ids: RwBuffer<u32>) {
@@ -1036,6 +1046,59 @@ fn launches_wider_than_the_dispatch_limit_write_every_index(backend: Backend) {
     }
 }
 
+/// Nested triangles of geometrically growing size (each a level deeper)
+/// make a BVH that is a chain about 100 levels deep. The wgpu kernel's
+/// traversal stack used to be a fixed 64 entries, dropping entries when
+/// full; it is now sized from the deepest BVH (a near-first traversal keeps
+/// at most one pending entry per level), checked here, and every ray still
+/// finds its triangle on both backends.
+fn a_bvh_deeper_than_64_levels_loses_no_hit(backend: Backend) {
+    const N: u32 = 100;
+    let (mut ctx, _) = camera(1.0, backend);
+    let rg = ctx.create_program(&probe_rays::PROGRAM);
+    ctx.set_ray_generation_program(0, rg).unwrap();
+    let mut positions = Vec::new();
+    let mut indices = Vec::new();
+    let mut origins = Vec::new();
+    for i in 0..N {
+        // Triangle i covers x, y >= -s, x + y <= 2s at z = -i; the point
+        // (s, 0.9 s) is inside it and outside every smaller one.
+        let s = 1.5f32.powi(i as i32);
+        let z = -(i as f32);
+        let b = positions.len() as u32;
+        positions.extend([Vec3::new(-s, -s, z), Vec3::new(3.0 * s, -s, z), Vec3::new(-s, 3.0 * s, z)]);
+        indices.push([b, b + 1, b + 2]);
+        origins.push(Vec3::new(s, 0.9 * s, 1.0));
+    }
+    let mesh = ctx.create_triangles(TriangleMesh { positions, indices, ..TriangleMesh::default() }).unwrap();
+    let mat = ctx.create_material();
+    let ch = ctx.create_program(&flat_color::PROGRAM);
+    ctx.set_closest_hit_program(mat, 0, ch).unwrap();
+    ctx.set_var(mat, "color", Vec3::X).unwrap();
+    let gi = ctx.create_geometry_instance(mesh, &[mat]).unwrap();
+    let gg = ctx.create_geometry_group(&[gi], Acceleration::new(Builder::Bvh)).unwrap();
+    ctx.set_var(Scope::Context, "top", gg).unwrap();
+    let origins = ctx.create_buffer(BufferType::Input, origins);
+    ctx.set_var(Scope::Context, "origins", origins).unwrap();
+    let hits = ctx.create_buffer(BufferType::Output, vec![0.0f32; N as usize]);
+    ctx.set_var(Scope::Context, "hits", hits).unwrap();
+    let report = ctx.launch_1d(0, N).unwrap();
+    assert!(report.exceptions.is_empty(), "{:?}", report.exceptions);
+    let got = ctx.read_buffer::<f32>(hits).unwrap();
+    let missed: Vec<u32> = (0..N).filter(|&i| got[i as usize] != 1.0).collect();
+    assert!(missed.is_empty(), "rays that missed their triangle: {missed:?}");
+    if backend == Backend::Wgpu {
+        let wgsl = ctx.linked_wgsl().unwrap();
+        let stack: u32 = wgsl
+            .split("const RT_BVH_STACK: u32 = ")
+            .nth(1)
+            .and_then(|t| t.split('u').next())
+            .and_then(|n| n.parse().ok())
+            .expect("the BVH stack size");
+        assert!(stack > 64, "the BVH is not deeper than 64 levels (stack {stack}): the test proves nothing");
+    }
+}
+
 fn mut_references_to_payload_fields_reach_helpers(backend: Backend) {
     let (mut ctx, out) = camera(2.0, backend);
     sphere_scene(&mut ctx, &bumps_a_payload_field::PROGRAM, Vec3::ZERO, 1.0);
@@ -1078,6 +1141,7 @@ on_backends!(
     default_exception_paints_magenta_and_records_the_exception,
     mirror_shows_the_reflected_object_and_the_reflected_background,
     a_helper_that_traces_works_from_a_closest_hit,
+    a_bvh_deeper_than_64_levels_loses_no_hit,
     a_program_without_a_resumable_form_links_per_depth_clones,
     launches_wider_than_the_dispatch_limit_write_every_index,
 );

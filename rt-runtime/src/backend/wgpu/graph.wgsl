@@ -13,7 +13,8 @@
 // stack never decrease from bottom to top, so entering a transform can
 // overwrite level l + 1: every entry of the previous occupant is gone.
 
-const RT_GRAPH_STACK: u32 = 96u;
+// RT_GRAPH_STACK (defined by the linker) is sized from the scene's deepest
+// BVH and RT_LEVELS, so no entry is ever dropped.
 
 var<private> rt_g_o2w: array<mat4x4<f32>, RT_LEVELS>;
 var<private> rt_g_w2o: array<mat4x4<f32>, RT_LEVELS>;

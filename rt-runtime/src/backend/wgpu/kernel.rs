@@ -58,6 +58,11 @@ pub struct KernelSpec {
     /// with this many transform levels (1 + the deepest nesting of
     /// transforms above groups or selectors).
     pub graph_levels: u32,
+    /// Entries of the BVH traversal stack (at least the deepest BVH's
+    /// levels + 1: nothing is ever dropped).
+    pub bvh_stack: u32,
+    /// Entries of the graph traversal stack.
+    pub graph_stack: u32,
     /// Without an exception program: the word offset, in the ray-generation
     /// record, of the `RwBuffer2d<Vec4>` the default exception program
     /// paints.
@@ -175,9 +180,13 @@ pub fn generate(spec: &KernelSpec) -> Result<String> {
     }
 
     let mut out = String::from(PRELUDE);
+    out.push_str(&format!("\nconst RT_BVH_STACK: u32 = {}u;\n", spec.bvh_stack));
     out.push_str(TRAVERSE);
     if spec.graph_levels > 0 {
-        out.push_str(&format!("\nconst RT_LEVELS: u32 = {}u;\nvar<private> rt_s_payload: u32;\n", spec.graph_levels));
+        out.push_str(&format!(
+            "\nconst RT_LEVELS: u32 = {}u;\nconst RT_GRAPH_STACK: u32 = {}u;\nvar<private> rt_s_payload: u32;\n",
+            spec.graph_levels, spec.graph_stack
+        ));
         out.push_str(GRAPH);
     } else {
         out.push_str(TWO_LEVEL);

@@ -255,7 +255,32 @@ fn push_mat(out: &mut Vec<u32>, m: Mat4) {
     out.extend(m.to_cols_array().map(f));
 }
 
-fn push_bvh(out: &mut Vec<u32>, bvh: &crate::accel::Bvh) -> u32 {
+/// Levels of a BVH2 (1 for a lone leaf): a near-first traversal keeps at
+/// most one pending entry per level, so this sizes the kernel's stacks.
+fn bvh_depth(bvh: &crate::accel::Bvh) -> u32 {
+    let nodes = &bvh.bvh.nodes;
+    if nodes.is_empty() {
+        return 1;
+    }
+    let mut deepest = 0;
+    let mut stack = vec![(0usize, 1u32)];
+    while let Some((i, d)) = stack.pop() {
+        deepest = deepest.max(d);
+        let n = &nodes[i];
+        if n.prim_count == 0 {
+            let c = n.first_index as usize;
+            for child in [c, c + 1] {
+                if child < nodes.len() {
+                    stack.push((child, d + 1));
+                }
+            }
+        }
+    }
+    deepest
+}
+
+fn push_bvh(out: &mut Vec<u32>, bvh: &crate::accel::Bvh, deepest: &mut u32) -> u32 {
+    *deepest = (*deepest).max(bvh_depth(bvh));
     let at = out.len() as u32;
     for n in &bvh.bvh.nodes {
         let b = n.aabb();
@@ -303,6 +328,7 @@ fn encode(ctx: &Context, entry: u32) -> Result<Encoded> {
     let rg = ep.ray_generation.ok_or(RtError::NoRayGeneration { entry })?;
     link::check_types(ctx)?;
     let ray_types = ctx.ray_type_count();
+    let mut deepest_bvh = 1;
 
     // Heap: records first, then buffers, then sampler texels.
     let mut heap: Vec<u32> = Vec::new();
@@ -400,7 +426,7 @@ fn encode(ctx: &Context, entry: u32) -> Result<Encoded> {
     for (n, rec) in ctx.nodes.iter().enumerate() {
         match (&rec.kind, accels.get(n).and_then(|a| a.as_ref())) {
             (NodeKind::GeometryGroup { .. }, Some(NodeAccel::Prims { bvh, prims, .. })) => {
-                let at = push_bvh(&mut scene, bvh);
+                let at = push_bvh(&mut scene, bvh, &mut deepest_bvh);
                 let table = scene.len() as u32;
                 for slot in &bvh.bvh.primitive_indices {
                     let (gi, p) = prims[*slot as usize];
@@ -409,7 +435,7 @@ fn encode(ctx: &Context, entry: u32) -> Result<Encoded> {
                 gg_bvh.insert(n as u32, (at, table));
             }
             (NodeKind::Group { children, .. }, Some(NodeAccel::Children { bvh, .. })) => {
-                let at = push_bvh(&mut scene, bvh);
+                let at = push_bvh(&mut scene, bvh, &mut deepest_bvh);
                 let table = scene.len() as u32;
                 let mut instances_only = true;
                 for slot in &bvh.bvh.primitive_indices {
@@ -612,7 +638,14 @@ fn encode(ctx: &Context, entry: u32) -> Result<Encoded> {
             rg_prog.desc.variables[..v].iter().map(|var| kernel::variable_words(&var.kind, &var.ty)).sum::<u32>()
         }),
     };
+    // Stacks sized so that no entry is ever dropped: a BVH traversal keeps
+    // at most one pending entry per level; graph traversal, one BVH's worth
+    // per transform level. Powers of two, so small changes do not relink.
+    let bvh_stack = (deepest_bvh + 2).max(64).next_power_of_two();
+    let graph_stack = ((deepest_bvh + 2) * (graph_levels + 1)).max(96).next_power_of_two();
     let spec = KernelSpec {
+        bvh_stack,
+        graph_stack,
         ray_generation: rg_prog,
         exception: ex_prog,
         programs,

@@ -134,7 +134,7 @@ fn rt_blas_in(inst: u32) {
     if rt_aabb_hit(bvh, oray.origin, inv, oray.tmin, rt_s_tmax) == RT_FAR {
         return;
     }
-    var stack: array<vec2<u32>, 64>;
+    var stack: array<vec2<u32>, RT_BVH_STACK>;
     stack[0] = vec2<u32>(0u, 0u);
     var sp = 1u;
     while sp > 0u && !rt_s_done {
@@ -165,11 +165,11 @@ fn rt_blas_in(inst: u32) {
             near = far;
             far = tmp;
         }
-        if bitcast<f32>(far.y) != RT_FAR && sp < 64u {
+        if bitcast<f32>(far.y) != RT_FAR && sp < RT_BVH_STACK {
             stack[sp] = far;
             sp = sp + 1u;
         }
-        if bitcast<f32>(near.y) != RT_FAR && sp < 64u {
+        if bitcast<f32>(near.y) != RT_FAR && sp < RT_BVH_STACK {
             stack[sp] = near;
             sp = sp + 1u;
         }
@@ -202,7 +202,7 @@ fn rt_search(object: u32, ray: RtRay, flags: u32, mask: u32) {
     if rt_aabb_hit(bvh, ray.origin, inv, ray.tmin, rt_s_tmax) == RT_FAR {
         return;
     }
-    var stack: array<vec2<u32>, 64>;
+    var stack: array<vec2<u32>, RT_BVH_STACK>;
     stack[0] = vec2<u32>(0u, 0u);
     var sp = 1u;
     while sp > 0u && !rt_s_done {
@@ -235,11 +235,11 @@ fn rt_search(object: u32, ray: RtRay, flags: u32, mask: u32) {
             near = far;
             far = tmp;
         }
-        if bitcast<f32>(far.y) != RT_FAR && sp < 64u {
+        if bitcast<f32>(far.y) != RT_FAR && sp < RT_BVH_STACK {
             stack[sp] = far;
             sp = sp + 1u;
         }
-        if bitcast<f32>(near.y) != RT_FAR && sp < 64u {
+        if bitcast<f32>(near.y) != RT_FAR && sp < RT_BVH_STACK {
             stack[sp] = near;
             sp = sp + 1u;
         }
