@@ -148,19 +148,8 @@ impl<'m> FnLowerer<'m> {
     /// placeholders still in; `ModuleCtx::finish_function` resolves them).
     pub fn function(&mut self, wgsl_name: &str, params: &[LParam], body: &syn::Block) -> String {
         self.in_function = true;
-        let mut sig = Vec::new();
-        let mut prologue = Vec::new();
-        for p in params {
-            let pname = self.fresh(&p.rust);
-            sig.push(format!("{pname}: {}", p.ty.wgsl()));
-            if p.mutable_binding && !matches!(p.ty, Ty::Ref(..)) {
-                let local = self.fresh(&p.rust);
-                prologue.push(format!("var {local} = {pname};"));
-                self.bind(&p.rust, Local { wgsl: local, ty: p.ty.clone(), var: true });
-            } else {
-                self.bind(&p.rust, Local { wgsl: pname, ty: p.ty.clone(), var: false });
-            }
-        }
+        let (sig, copies) = self.bind_params(params);
+        let prologue = copies.into_iter().map(|(local, pname, _)| format!("var {local} = {pname};"));
         self.blocks.last_mut().unwrap().extend(prologue);
         let ret = self.ret.clone();
         let tail = self.block_inner(&body.stmts, Some(&ret));
@@ -190,6 +179,26 @@ impl<'m> FnLowerer<'m> {
         let lines = self.blocks.pop().unwrap();
         let ret_text = if matches!(ret, Ty::Unit) { String::new() } else { format!(" -> {}", ret.wgsl()) };
         format!("fn {wgsl_name}({}){ret_text} {{\n{}}}\n", sig.join(", "), indent(&lines.join("\n")))
+    }
+
+    /// Binds the parameters: the signature's entries, and for each
+    /// `mut` value parameter `(local, parameter, type)`, the local the
+    /// body uses instead (WGSL parameters are immutable).
+    fn bind_params(&mut self, params: &[LParam]) -> (Vec<String>, Vec<(String, String, Ty)>) {
+        let mut sig = Vec::new();
+        let mut copies = Vec::new();
+        for p in params {
+            let pname = self.fresh(&p.rust);
+            sig.push(format!("{pname}: {}", p.ty.wgsl()));
+            if p.mutable_binding && !matches!(p.ty, Ty::Ref(..)) {
+                let local = self.fresh(&p.rust);
+                self.bind(&p.rust, Local { wgsl: local.clone(), ty: p.ty.clone(), var: true });
+                copies.push((local, pname, p.ty.clone()));
+            } else {
+                self.bind(&p.rust, Local { wgsl: pname, ty: p.ty.clone(), var: false });
+            }
+        }
+        (sig, copies)
     }
 
     /// Resolves an integer inference variable (default `i32`).

@@ -493,14 +493,8 @@ fn rt_begin_trace(d: u32) -> bool {{
     }}
     var run = false;
     if rt_h_found {{
-        let g = rt_scene[2] + rt_h_gi * 8u;
-        let rec = rt_scene[g + 7u] + (rt_h_mat * rt_scene[4] + ray.ray_type) * 4u;
-        if rt_scene[rec] != 0u && (flags & 4u) == 0u {{
-            rt_ray = ray;
-            rt_ray.tmax = rt_h_t;
-            rt_t = rt_h_t;
-            rt_prim = rt_h_prim;
-            rt_hit_xform();
+        let rec = rt_enter_hit(ray, flags);
+        if rec != RT_NONE {{
             rt_st_case[e] = rt_scene[rec];
             rt_st_vars[e] = rt_scene[rec + 1u];
             run = true;
@@ -795,14 +789,8 @@ fn trace_function(w: &str, d: u32, note_payload: &str) -> String {
     rt_search(object, ray, flags, mask);
     *prd = rt_prd_{w};
     if rt_h_found {{
-        let g = rt_scene[2] + rt_h_gi * 8u;
-        let rec = rt_scene[g + 7u] + (rt_h_mat * rt_scene[4] + ray.ray_type) * 4u;
-        if rt_scene[rec] != 0u && (flags & 4u) == 0u {{
-            rt_ray = ray;
-            rt_ray.tmax = rt_h_t;
-            rt_t = rt_h_t;
-            rt_prim = rt_h_prim;
-            rt_hit_xform();
+        let rec = rt_enter_hit(ray, flags);
+        if rec != RT_NONE {{
             rt_ch_{w}_d{d}(rt_scene[rec], rt_scene[rec + 1u], prd);
         }}
     }} else {{

@@ -176,6 +176,23 @@ fn rt_blas_in(inst: u32) {
     }
 }
 
+// After a search that found a hit: the word offset of the hit's record
+// with the hit made the current ray state, or RT_NONE when no closest-hit
+// program runs (none set, or the ray's flags disable it).
+fn rt_enter_hit(ray: RtRay, flags: u32) -> u32 {
+    let g = rt_scene[2] + rt_h_gi * 8u;
+    let rec = rt_scene[g + 7u] + (rt_h_mat * rt_scene[4] + ray.ray_type) * 4u;
+    if rt_scene[rec] == 0u || (flags & 4u) != 0u {
+        return RT_NONE;
+    }
+    rt_ray = ray;
+    rt_ray.tmax = rt_h_t;
+    rt_t = rt_h_t;
+    rt_prim = rt_h_prim;
+    rt_hit_xform();
+    return rec;
+}
+
 fn rt_search(object: u32, ray: RtRay, flags: u32, mask: u32) {
     rt_s_wray = ray;
     rt_s_flags = flags;

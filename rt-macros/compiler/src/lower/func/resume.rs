@@ -128,19 +128,11 @@ impl FnLowerer<'_> {
         let tracing = self.m.helpers.values().filter(|h| !h.traced.is_empty()).map(|h| h.name.clone()).collect();
         let dummy = if matches!(self.ret, Ty::Unit) { String::new() } else { format!(" {}()", self.ret.wgsl()) };
         self.resume = Some(Resume { prefix: format!("rt_fr_{wgsl_name}_"), dummy, tracing, ..Resume::default() });
-        let mut sig = Vec::new();
+        let (sig, copies) = self.bind_params(params);
         let mut prologue = Vec::new();
-        for p in params {
-            let pname = self.fresh(&p.rust);
-            sig.push(format!("{pname}: {}", p.ty.wgsl()));
-            if p.mutable_binding && !matches!(p.ty, Ty::Ref(..)) {
-                let local = self.fresh(&p.rust);
-                self.hoist_local(&local, &p.ty);
-                prologue.push(format!("{local} = {pname};"));
-                self.bind(&p.rust, Local { wgsl: local, ty: p.ty.clone(), var: true });
-            } else {
-                self.bind(&p.rust, Local { wgsl: pname, ty: p.ty.clone(), var: false });
-            }
+        for (local, pname, ty) in copies {
+            self.hoist_local(&local, &ty);
+            prologue.push(format!("{local} = {pname};"));
         }
         let mut lines = Vec::new();
         if !prologue.is_empty() {
