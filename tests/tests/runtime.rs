@@ -955,6 +955,9 @@ fn a_program_without_a_resumable_form_links_per_depth_clones(backend: Backend) {
 fn mirror_scene(backend: Backend, program: &'static rt_std::program::ProgramDescriptor) -> Context {
     let extent = 2.0;
     let (mut ctx, out) = camera(extent, backend);
+    // Deep enough that per-depth clones would be many: the wgpu kernel runs
+    // resumable programs from its loop.
+    ctx.set_max_trace_depth(20);
     // A mirror quad through the origin with normal (1, 0, 1) / sqrt(2): the
     // camera's -z rays reflect to +x. A green wall at x = 5 over y in [0, 3]
     // (parallel to the camera rays, so they never see it directly).
@@ -1014,19 +1017,27 @@ fn mirror_scene(backend: Backend, program: &'static rt_std::program::ProgramDesc
 }
 
 /// The resumable kernel's size does not depend on the maximum trace depth
-/// (per-depth clones grew with it, and with every trace call).
+/// (per-depth clones grow with it, and with every trace call; they are
+/// used only while they stay few, `kernel::MAX_CLONES`).
 #[test]
 fn wgpu_kernel_size_does_not_grow_with_the_trace_depth() {
-    let size = |depth: u32| {
+    let link = |depth: u32| {
         let (mut ctx, _) = camera(1.0, Backend::Wgpu);
         ctx.set_max_trace_depth(depth);
         sphere_scene(&mut ctx, &mirror_forever::PROGRAM, Vec3::ZERO, 1.0);
         ctx.launch(0, W, W).unwrap();
-        let wgsl = ctx.linked_wgsl().unwrap().to_string();
-        assert!(wgsl.contains(&format!("const RT_DEPTHS: u32 = {}u;", depth + 1)));
+        ctx.linked_wgsl().unwrap().to_string()
+    };
+    let size = |depth: u32| {
+        let wgsl = link(depth);
+        assert!(wgsl.contains("fn rt_run(") && wgsl.contains(&format!("const RT_DEPTHS: u32 = {}u;", depth + 1)));
         wgsl.replace(&format!("const RT_DEPTHS: u32 = {}u;", depth + 1), "").len()
     };
-    assert_eq!(size(2), size(31));
+    assert_eq!(size(20), size(31));
+    // At depth 2 per-depth clones are few (two copies of the traversal):
+    // no trace loop.
+    let shallow = link(2);
+    assert!(!shallow.contains("fn rt_run(") && shallow.contains("fn rtp_mirror_forever_d2("));
 }
 
 fn launches_wider_than_the_dispatch_limit_write_every_index(backend: Backend) {
@@ -1240,7 +1251,7 @@ fn changing_values_never_relinks_but_changing_programs_does() {
     ctx.set_closest_hit_program(mat, 0, ch).unwrap();
     ctx.launch(0, W, W).unwrap();
     assert_eq!(ctx.pipelines_created(), 2);
-    assert!(ctx.linked_wgsl().unwrap().contains("fn rtp_normal_shader("));
+    assert!(ctx.linked_wgsl().unwrap().contains("fn rtp_normal_shader_d1("));
 }
 
 #[test]

@@ -132,6 +132,54 @@ fn at_depth(text: &str, depth: u32, tracing_helpers: &BTreeSet<String>, rename_s
     result
 }
 
+/// The most copies of the traversal that per-depth clones may inline before
+/// a kernel runs its programs from one loop instead.
+pub const MAX_CLONES: u64 = 16;
+
+/// Trace call sites in a function's text, counting those of the tracing
+/// helpers it calls.
+fn trace_sites(text: &str, functions: &BTreeMap<&str, (&str, &ProgramDescriptor)>, tracing: &BTreeSet<String>) -> u64 {
+    let mut n = text.matches("rt_trace_").count() as u64;
+    for h in tracing {
+        let calls = text.matches(&format!("{h}(")).count().saturating_sub(text.matches(&format!("fn {h}(")).count());
+        if calls > 0
+            && let Some((body, _)) = functions.get(h.as_str())
+        {
+            n = n.saturating_add((calls as u64).saturating_mul(trace_sites(body, functions, tracing)));
+        }
+    }
+    n
+}
+
+/// How many copies of the traversal per-depth clones inline: the
+/// ray-generation program's trace sites, times the sites of every
+/// closest-hit and miss program at each further depth.
+fn clone_estimate(
+    spec: &KernelSpec,
+    all: &[KernelProgram],
+    functions: &BTreeMap<&str, (&str, &ProgramDescriptor)>,
+    tracing: &BTreeSet<String>,
+) -> u64 {
+    let rg = trace_sites(spec.ray_generation.desc.wgsl_program, functions, tracing);
+    let mut seen = BTreeSet::new();
+    let per_level: u64 = all
+        .iter()
+        .filter(|p| {
+            matches!(p.desc.kind, ProgramKind::ClosestHit | ProgramKind::Miss) && seen.insert(p.desc.wgsl_entry)
+        })
+        .map(|p| trace_sites(p.desc.wgsl_program, functions, tracing))
+        .fold(0, u64::saturating_add);
+    let (mut total, mut level) = (0u64, rg);
+    for _ in 0..spec.max_depth {
+        total = total.saturating_add(level);
+        level = level.saturating_mul(per_level);
+        if level == 0 {
+            break;
+        }
+    }
+    total
+}
+
 /// Generates the megakernel's WGSL.
 pub fn generate(spec: &KernelSpec) -> Result<String> {
     let mut all: Vec<KernelProgram> = vec![spec.ray_generation];
@@ -195,8 +243,11 @@ pub fn generate(spec: &KernelSpec) -> Result<String> {
     for (text, _) in types.values() {
         out.push_str(text);
     }
-    // Every tracing program resumable: one loop runs them all (no clones).
-    let resumable = all.iter().all(|p| !traces(p.desc) || p.desc.wgsl_resumable.is_some());
+    // Every tracing program resumable and per-depth clones would be many:
+    // one loop runs them all. Few clones (nothing traces from a closest hit
+    // or miss, or shallow recursion) inline into a smaller, faster kernel.
+    let resumable = all.iter().all(|p| !traces(p.desc) || p.desc.wgsl_resumable.is_some())
+        && clone_estimate(spec, &all, &functions, &tracing_helpers) > MAX_CLONES;
     out.push_str("\n// ---- shared functions ----\n");
     for (name, (text, _)) in &functions {
         if tracing_helpers.contains(*name) && resumable {
