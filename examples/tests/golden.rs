@@ -18,9 +18,10 @@
 //! by pixel.
 //!
 //! Every example is checked on the wgpu backend too. The first launch of a
-//! process compiles the megakernel; since programs that trace run from one
-//! loop in their resumable form (rt-compiler's `func/resume.rs`), the kernel
-//! holds each program and the traversal once, whatever the trace depth.
+//! process compiles the megakernel; where per-depth clones would be many,
+//! programs that trace run from one loop in their resumable form
+//! (rt-compiler's `func/resume.rs`), so the kernel holds each program and
+//! the traversal once, whatever the trace depth.
 //! Before, per-depth clones of every program that traces were inlined by
 //! Mesa into each other (reflections took 217 s to link, instances 267 s,
 //! convex_hull ran out of 24 GiB of memory). Each test below on the 2-core
