@@ -94,8 +94,6 @@ pub struct FnLowerer<'m> {
     /// Statements being lowered are directly in a block with a trace: their
     /// `let`s and `const`s go to the top of the function.
     hoist: bool,
-    /// A helper called traces.
-    pub traces_via_helper: bool,
     /// Calls taken out of expressions by the resumable form so far.
     hoisted_calls: usize,
 }
@@ -132,7 +130,6 @@ impl<'m> FnLowerer<'m> {
             writebacks: Vec::new(),
             resume: None,
             hoist: false,
-            traces_via_helper: false,
             hoisted_calls: 0,
         }
     }
@@ -2836,7 +2833,6 @@ impl<'m> FnLowerer<'m> {
             }
         }
         self.traced.extend(sig.traced.iter().cloned());
-        self.traces_via_helper |= !sig.traced.is_empty();
         self.calls.push(sig.name.clone());
         let code = format!("{}({})", sig.wgsl_name, codes.join(", "));
         let writebacks = std::mem::take(&mut self.writebacks);

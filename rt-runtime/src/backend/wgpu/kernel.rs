@@ -302,7 +302,7 @@ pub fn generate(spec: &KernelSpec) -> Result<String> {
         let rg = spec.ray_generation.desc;
         format!("{}({});", rg.wgsl_entry, var_args(rg, "rt_launch.ray_generation.y").join(", "))
     } else if resumable {
-        out.push_str(&stack_machine(spec, &all, &payloads, &attributes, &payload_ids));
+        out.push_str(&stack_machine(spec, &all, &payload_ids));
         "rt_run();".to_string()
     } else {
         out.push_str(&per_depth_clones(spec, &all, &payloads, &payload_ids, &tracing_helpers));
@@ -360,13 +360,7 @@ fn rt_main(@builtin(global_invocation_id) gid: vec3<u32>) {{
 /// in the request slot and the caller is called again with `rt_rs = 1u`
 /// to resume. Every program and the traversal appear once
 /// in the kernel, whatever the maximum depth.
-fn stack_machine(
-    spec: &KernelSpec,
-    all: &[KernelProgram],
-    payloads: &BTreeMap<&str, TypeLayout>,
-    attributes: &BTreeMap<&str, TypeLayout>,
-    payload_ids: &BTreeMap<&str, u32>,
-) -> String {
+fn stack_machine(spec: &KernelSpec, all: &[KernelProgram], payload_ids: &BTreeMap<&str, u32>) -> String {
     let mut out = String::from("\n// ---- trace stack ----\n");
     out.push_str(&format!(
         "const RT_DEPTHS: u32 = {}u;
@@ -414,7 +408,6 @@ fn rt_result_{w}() -> {w} {{
         ));
         deliver.push_str(&format!("        case {id}u: {{\n            rt_rq_{w} = rt_pl_{w}[d];\n        }}\n"));
     }
-    let _ = payloads;
     let mut ch_attrs: BTreeSet<&str> = BTreeSet::new();
     for p in all.iter().filter(|p| p.desc.kind == ProgramKind::ClosestHit) {
         if let Some(a) = p.desc.attributes {
@@ -422,7 +415,6 @@ fn rt_result_{w}() -> {w} {{
         }
     }
     for a in &ch_attrs {
-        debug_assert!(attributes.contains_key(a));
         out.push_str(&format!("var<private> rt_at_{a}: array<{a}, RT_DEPTHS>;\n"));
     }
 

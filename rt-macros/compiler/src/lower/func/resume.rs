@@ -88,6 +88,21 @@ impl<'ast> syn::visit::Visit<'ast> for SiteCounter<'_> {
     }
 }
 
+/// Whether `s` is a statement of its own around one call of a helper that
+/// traces (`let x = helper(..);`, `x = helper(..);`, `x op= helper(..);`,
+/// `helper(..);`): the call is the site.
+fn is_helper_site(s: &Stmt, tracing: &HashSet<String>) -> bool {
+    match s {
+        Stmt::Local(l) => {
+            l.init.as_ref().is_some_and(|i| i.diverge.is_none() && tracing_call(&i.expr, tracing).is_some())
+        }
+        Stmt::Expr(Expr::Assign(a), _) => tracing_call(&a.right, tracing).is_some(),
+        Stmt::Expr(Expr::Binary(b), _) => is_compound(&b.op) && tracing_call(&b.right, tracing).is_some(),
+        Stmt::Expr(e, _) => tracing_call(e, tracing).is_some(),
+        _ => false,
+    }
+}
+
 /// The call of a helper that traces, when `e` is one.
 fn tracing_call<'e>(e: &'e Expr, tracing: &HashSet<String>) -> Option<&'e syn::ExprCall> {
     match e {
@@ -430,19 +445,12 @@ impl FnLowerer<'_> {
                 *e = syn::parse_quote_spanned!(call.span()=> #var);
             }
         }
-        let tracing = self.resume.as_ref().expect("resumable lowering").tracing.clone();
-        let direct = match s {
-            Stmt::Local(l) => l.init.as_ref().is_some_and(|i| tracing_call(&i.expr, &tracing).is_some()),
-            Stmt::Expr(Expr::Assign(a), _) => tracing_call(&a.right, &tracing).is_some(),
-            Stmt::Expr(Expr::Binary(b), _) => is_compound(&b.op) && tracing_call(&b.right, &tracing).is_some(),
-            Stmt::Expr(e, _) => tracing_call(e, &tracing).is_some(),
-            _ => false,
-        };
-        if direct || self.stmt_sites(s) == 0 {
+        let tracing = &self.resume.as_ref().expect("resumable lowering").tracing;
+        if is_helper_site(s, tracing) || self.stmt_sites(s) == 0 {
             out.push(s.clone());
             return;
         }
-        let mut h = Hoist { m: self.m, tracing: &tracing, taken: Vec::new(), next: self.hoisted_calls };
+        let mut h = Hoist { m: self.m, tracing, taken: Vec::new(), next: self.hoisted_calls };
         let mut s = s.clone();
         match &mut s {
             Stmt::Local(l) => {
@@ -454,8 +462,9 @@ impl FnLowerer<'_> {
             Stmt::Expr(e, _) => syn::visit_mut::VisitMut::visit_expr_mut(&mut h, e),
             _ => {}
         }
-        self.hoisted_calls = h.next;
-        out.extend(h.taken);
+        let (taken, next) = (h.taken, h.next);
+        self.hoisted_calls = next;
+        out.extend(taken);
         out.push(s);
     }
 
@@ -471,19 +480,7 @@ impl FnLowerer<'_> {
             };
             vec![format!("if {cond} {{\n{}}}", indent(&lines.join("\n")))]
         };
-        let tracing = self.resume.as_ref().unwrap().tracing.clone();
-        // `let x = helper(..);`, `x = helper(..);`, `x op= helper(..);`,
-        // `helper(..);`: the call is the site.
-        let helper_site = match s {
-            Stmt::Local(l) => {
-                l.init.as_ref().is_some_and(|i| i.diverge.is_none() && tracing_call(&i.expr, &tracing).is_some())
-            }
-            Stmt::Expr(Expr::Assign(a), _) => tracing_call(&a.right, &tracing).is_some(),
-            Stmt::Expr(Expr::Binary(b), _) => is_compound(&b.op) && tracing_call(&b.right, &tracing).is_some(),
-            Stmt::Expr(e, _) => tracing_call(e, &tracing).is_some(),
-            _ => false,
-        };
-        if helper_site {
+        if is_helper_site(s, &self.resume.as_ref().unwrap().tracing) {
             if hi != lo {
                 return Err(not_resumable(s.span(), "several sites in one statement"));
             }
