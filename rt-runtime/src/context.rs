@@ -77,6 +77,7 @@ pub struct Context {
     pub(crate) accels: crate::accel::AccelCache,
     pub(crate) gpu: Option<crate::backend::wgpu::Gpu>,
     pub(crate) last_wgsl: Option<String>,
+    pub(crate) lose_device_in_next_launch: bool,
 }
 
 impl Default for Context {
@@ -107,6 +108,7 @@ impl Context {
             accels: Default::default(),
             gpu: None,
             last_wgsl: None,
+            lose_device_in_next_launch: false,
         }
     }
 
@@ -138,6 +140,14 @@ impl Context {
     /// How many full acceleration builds and refits launches have done.
     pub fn acceleration_builds(&self) -> (u64, u64) {
         (self.accels.builds, self.accels.refits)
+    }
+
+    /// Testing recovery: the next wgpu launch destroys its device once its
+    /// work is submitted, as a driver reset or a removed GPU would. That
+    /// launch fails with [`RtError::DeviceLost`] and writes no outputs; the
+    /// one after opens a new device.
+    pub fn simulate_device_loss_in_next_launch(&mut self) {
+        self.lose_device_in_next_launch = true;
     }
 
     /// How many wgpu pipelines (megakernel links) this context created.
@@ -556,6 +566,34 @@ impl Context {
         let (w, h) = rgba.dimensions();
         let texels = rgba.pixels().map(|p| Vec4::from_array(p.0)).collect();
         self.create_sampler(texels, w, h, wrap, filter)
+    }
+
+    /// A sampler from an image file (PNG or Radiance HDR, by content). A
+    /// file of another format, or one that does not decode, is refused with
+    /// the path and the reason.
+    pub fn create_sampler_from_file(
+        &mut self,
+        path: impl AsRef<std::path::Path>,
+        wrap: WrapMode,
+        filter: FilterMode,
+    ) -> Result<SamplerId> {
+        let path = path.as_ref();
+        let fail = |problem: String| RtError::Texture { path: path.display().to_string(), problem };
+        let reader = image::ImageReader::open(path)
+            .map_err(|e| fail(e.to_string()))?
+            .with_guessed_format()
+            .map_err(|e| fail(e.to_string()))?;
+        let Some(format) = reader.format() else {
+            return Err(fail("not an image format this build reads (PNG, Radiance HDR)".into()));
+        };
+        if !matches!(format, image::ImageFormat::Png | image::ImageFormat::Hdr) {
+            return Err(fail(format!(
+                "{} images are not supported (supported: PNG, Radiance HDR)",
+                format.extensions_str().first().unwrap_or(&"this kind of").to_uppercase()
+            )));
+        }
+        let image = reader.decode().map_err(|e| fail(format!("does not decode as {format:?}: {e}")))?;
+        self.create_sampler_from_image(&image, wrap, filter)
     }
 
     // ---- launching ----

@@ -69,6 +69,12 @@ pub enum RtError {
     LinkConflict { item: String, a: &'static str, a_location: String, b: &'static str, b_location: String },
     #[error("the wgpu backend: {0}")]
     Gpu(String),
+    #[error(
+        "the wgpu device on {adapter} was lost during the launch ({reason}); the launch wrote none of its outputs and the context's data is unchanged: the next launch opens a new device and uploads the scene again"
+    )]
+    DeviceLost { adapter: String, reason: String },
+    #[error("texture {path}: {problem}")]
+    Texture { path: String, problem: String },
     #[error("{0} is not a valid handle of this context")]
     InvalidHandle(String),
     #[error("acceleration builder `{builder}` cannot be honoured: {reason}")]

@@ -352,6 +352,72 @@ fn sampler_with_the_wrong_texel_count() {
     assert_eq!(e, "buffer 0: 3 texels for a 2x2 texture");
 }
 
+#[test]
+fn textures_of_unsupported_formats_and_bad_files() {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("rt-bad-textures");
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut ctx = Context::new();
+    let mut load = |name: &str, bytes: &[u8]| {
+        let path = dir.join(name);
+        std::fs::write(&path, bytes).unwrap();
+        let e = ctx.create_sampler_from_file(&path, WrapMode::Repeat, FilterMode::Linear).unwrap_err();
+        assert!(matches!(e, RtError::Texture { .. }), "{e:?}");
+        e.to_string().replace(&dir.display().to_string(), "DIR")
+    };
+    // A JPEG's signature: a real format, but not one this build reads.
+    assert_eq!(
+        load("photo.jpg", &[0xFF, 0xD8, 0xFF, 0xE0, 0, 0x10, b'J', b'F', b'I', b'F', 0]),
+        "texture DIR/photo.jpg: JPG images are not supported (supported: PNG, Radiance HDR)"
+    );
+    assert_eq!(
+        load("notes.txt", b"just some text"),
+        "texture DIR/notes.txt: not an image format this build reads (PNG, Radiance HDR)"
+    );
+    // A PNG cut off after its signature and part of the header.
+    let e = load("cut.png", &[0x89, b'P', b'N', b'G', 0x0D, 0x0A, 0x1A, 0x0A, 0, 0, 0, 13, b'I', b'H']);
+    assert!(e.starts_with("texture DIR/cut.png: does not decode as Png: "), "{e}");
+    let e = ctx
+        .create_sampler_from_file(dir.join("missing.png"), WrapMode::Repeat, FilterMode::Linear)
+        .unwrap_err()
+        .to_string();
+    assert!(e.starts_with("texture ") && e.contains("missing.png: "), "{e}");
+    // A good one still loads, texels in [0, 1].
+    let path = dir.join("ok.png");
+    image::RgbaImage::from_pixel(2, 1, image::Rgba([255, 0, 0, 255])).save(&path).unwrap();
+    ctx.create_sampler_from_file(&path, WrapMode::Repeat, FilterMode::Linear).unwrap();
+}
+
+#[test]
+fn device_lost_mid_launch_loses_nothing() {
+    let (mut ctx, out) = scene(Backend::Wgpu, quad());
+    ctx.launch(0, 8, 8).unwrap();
+    let before: Vec<Vec4> = ctx.read_buffer(out).unwrap();
+    assert!(before.iter().any(|p| p.x == 1.0), "the quad is hit");
+    // A changed variable: a launch that completed would change the image.
+    ctx.set_var(Scope::Context, "gain", 0.5f32).unwrap();
+    ctx.simulate_device_loss_in_next_launch();
+    let e = ctx.launch(0, 8, 8).unwrap_err();
+    assert!(matches!(e, RtError::DeviceLost { .. }), "{e:?}");
+    let text = e.to_string();
+    assert!(
+        text.starts_with("the wgpu device on ")
+            && text.contains("was lost during the launch (")
+            && text.ends_with(
+                "the launch wrote none of its outputs and the context's data is unchanged: the next launch opens a new device and uploads the scene again"
+            ),
+        "{text}"
+    );
+    assert_eq!(ctx.read_buffer::<Vec4>(out).unwrap(), before, "outputs untouched by the lost launch");
+    // The next launch runs on a new device and matches the CPU backend.
+    ctx.launch(0, 8, 8).unwrap();
+    let after: Vec<Vec4> = ctx.read_buffer(out).unwrap();
+    let (mut cpu, cpu_out) = scene(Backend::Cpu, quad());
+    cpu.set_var(Scope::Context, "gain", 0.5f32).unwrap();
+    cpu.launch(0, 8, 8).unwrap();
+    assert_eq!(after, cpu.read_buffer::<Vec4>(cpu_out).unwrap());
+    assert!(after.iter().any(|p| p.x == 0.5));
+}
+
 // ---- bounded fuzzing of mesh loading and scene building ----
 
 /// A tiny deterministic generator (xorshift).

@@ -35,6 +35,7 @@ use glam::{Mat4, UVec2};
 use kernel::{KernelProgram, KernelSpec};
 use rt_std::program::VariableKind;
 use std::collections::HashMap;
+use std::sync::{Arc, Mutex};
 use wgpu::util::DeviceExt;
 
 /// Capacity of the exception log (records past it are counted, not kept).
@@ -58,6 +59,42 @@ pub struct Gpu {
     /// How many pipelines were created (links); for tests of the cache.
     pub pipelines_created: u64,
     resident: Resident,
+    health: Arc<Health>,
+}
+
+/// What the device's callbacks report.
+#[derive(Default)]
+struct Health {
+    /// Why the device was lost, once it is (its lost callback writes it).
+    lost: Mutex<Option<String>>,
+    /// Errors outside any error scope (wgpu's default handler would panic
+    /// on them); a launch that finds one fails with it.
+    uncaptured: Mutex<Vec<String>>,
+}
+
+impl Health {
+    fn lost_reason(&self) -> Option<String> {
+        self.lost.lock().unwrap_or_else(|e| e.into_inner()).clone()
+    }
+
+    /// The error for a launch that failed on the device `adapter`:
+    /// `DeviceLost` when the device is gone, else `what` with any uncaptured
+    /// wgpu errors.
+    fn failure(&self, adapter: String, what: String) -> RtError {
+        if let Some(reason) = self.lost_reason() {
+            return RtError::DeviceLost { adapter, reason };
+        }
+        match self.take_errors() {
+            Some(errors) => RtError::Gpu(format!("{what}: {errors}")),
+            None => RtError::Gpu(what),
+        }
+    }
+
+    /// The uncaptured errors since the last call, joined.
+    fn take_errors(&self) -> Option<String> {
+        let errors = std::mem::take(&mut *self.uncaptured.lock().unwrap_or_else(|e| e.into_inner()));
+        (!errors.is_empty()).then(|| errors.join("; "))
+    }
 }
 
 /// The buffers a context keeps on its device between launches.
@@ -196,6 +233,16 @@ impl Gpu {
                 buffer(3, wgpu::BufferBindingType::Uniform),
             ],
         });
+        let health = Arc::new(Health::default());
+        let on_lost = Arc::clone(&health);
+        device.set_device_lost_callback(move |reason, message| {
+            let why = if message.is_empty() { format!("{reason:?}") } else { format!("{reason:?}: {message}") };
+            *on_lost.lost.lock().unwrap_or_else(|e| e.into_inner()) = Some(why);
+        });
+        let on_error = Arc::clone(&health);
+        device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| {
+            on_error.uncaptured.lock().unwrap_or_else(|e| e.into_inner()).push(e.to_string());
+        }));
         Gpu {
             device,
             queue,
@@ -205,6 +252,7 @@ impl Gpu {
             pipelines: HashMap::new(),
             pipelines_created: 0,
             resident: Resident::default(),
+            health,
         }
     }
 
@@ -661,8 +709,22 @@ fn words_to_bytes(w: &[u32]) -> &[u8] {
     unsafe { std::slice::from_raw_parts(w.as_ptr() as *const u8, std::mem::size_of_val(w)) }
 }
 
-/// Runs entry point `entry` on the GPU.
+/// Runs entry point `entry` on the GPU. A device that is lost (before or
+/// during the launch) is dropped with everything it held, so the next launch
+/// opens a new one and uploads the scene from the host again; the host's
+/// copies of buffers are only written from a read-back that completed.
 pub(crate) fn launch(ctx: &mut Context, entry: u32, width: u32, height: u32) -> Result<LaunchReport> {
+    if ctx.gpu.as_ref().is_some_and(|g| g.health.lost_reason().is_some()) {
+        ctx.gpu = None;
+    }
+    let result = launch_on_device(ctx, entry, width, height);
+    if matches!(result, Err(RtError::DeviceLost { .. })) {
+        ctx.gpu = None;
+    }
+    result
+}
+
+fn launch_on_device(ctx: &mut Context, entry: u32, width: u32, height: u32) -> Result<LaunchReport> {
     if width == 0 || height == 0 {
         return Err(RtError::BadLaunch {
             width,
@@ -731,7 +793,10 @@ pub(crate) fn launch(ctx: &mut Context, entry: u32, width: u32, height: u32) -> 
         gpu.pipelines_created += 1;
     }
     let t3 = std::time::Instant::now();
-    let Gpu { device, queue, limits, layout, pipelines, resident: res, .. } = gpu;
+    let adapter = gpu.describe();
+    let lose = std::mem::take(&mut ctx.lose_device_in_next_launch);
+    let Gpu { device, queue, limits, layout, pipelines, resident: res, health, .. } = gpu;
+    let health = &**health;
     let pipeline = &pipelines[&wgsl];
     res.uploaded = 0;
     let Encoded { scene, heap, outputs, spec, rg_vars, ex_vars } = enc;
@@ -840,7 +905,12 @@ pub(crate) fn launch(ctx: &mut Context, entry: u32, width: u32, height: u32) -> 
     let mut copies: Vec<(&wgpu::Buffer, u64, u64)> =
         outputs.iter().map(|&(_, offset, n)| (heap_buffer, offset as u64 * 4, n as u64 * 4)).collect();
     copies.push((log, 0, 16));
-    let words = read_back(device, queue, &mut res.readback, encoder, &copies)?;
+    let words = read_back(device, queue, &mut res.readback, encoder, &copies, lose)
+        .map_err(|what| health.failure(adapter.clone(), what))?;
+    if let Some(errors) = health.take_errors() {
+        // wgpu refused part of the launch: its results cannot be trusted.
+        return Err(RtError::Gpu(format!("the launch on {adapter} failed: {errors}")));
+    }
     let mut at = 0;
     let heap_mirror = &mut res.heap.as_mut().expect("synced above").words;
     for (i, offset, n) in &outputs {
@@ -859,7 +929,8 @@ pub(crate) fn launch(ctx: &mut Context, entry: u32, width: u32, height: u32) -> 
         let print_base = (4 + LOG_EXCEPTIONS * 3) as u64 * 4;
         let mut copies = vec![(log, 16, exceptions * 12)];
         copies.push((log, print_base, print_used * 4));
-        let mut words = read_back(device, queue, &mut res.readback, encoder, &copies)?;
+        let mut words = read_back(device, queue, &mut res.readback, encoder, &copies, false)
+            .map_err(|what| health.failure(adapter.clone(), what))?;
         let prints = words.split_off(exceptions as usize * 3);
         (words, prints)
     } else {
@@ -879,14 +950,17 @@ pub(crate) fn launch(ctx: &mut Context, entry: u32, width: u32, height: u32) -> 
 
 /// Submits `encoder` with copies of `(buffer, byte offset, bytes)` ranges
 /// appended, waits, and returns their words, concatenated. The staging
-/// buffer is kept and grown as needed.
+/// buffer is kept and grown as needed. `lose` destroys the device once the
+/// work is submitted (a simulated device loss, for tests). Errors are
+/// described for [`Health::failure`].
 fn read_back(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
     staging: &mut Option<wgpu::Buffer>,
     mut encoder: wgpu::CommandEncoder,
     copies: &[(&wgpu::Buffer, u64, u64)],
-) -> Result<Vec<u32>> {
+    lose: bool,
+) -> std::result::Result<Vec<u32>, String> {
     let total: u64 = copies.iter().map(|c| c.2).sum();
     if staging.as_ref().is_none_or(|b| b.size() < total) {
         *staging = Some(device.create_buffer(&wgpu::BufferDescriptor {
@@ -905,15 +979,23 @@ fn read_back(
         at += bytes;
     }
     queue.submit([encoder.finish()]);
+    if lose {
+        device.destroy();
+    }
     if total == 0 {
         return Ok(Vec::new());
     }
     let slice = dst.slice(..total);
-    slice.map_async(wgpu::MapMode::Read, |_| {});
-    device
-        .poll(wgpu::PollType::wait_indefinitely())
-        .map_err(|e| RtError::Gpu(format!("device lost during the launch: {e}")))?;
-    let bytes = slice.get_mapped_range().map_err(|e| RtError::Gpu(format!("reading results back: {e}")))?;
+    let mapped = Arc::new(Mutex::new(None));
+    let on_mapped = Arc::clone(&mapped);
+    slice.map_async(wgpu::MapMode::Read, move |r| *on_mapped.lock().unwrap_or_else(|e| e.into_inner()) = Some(r));
+    device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| format!("waiting for the launch: {e}"))?;
+    match mapped.lock().unwrap_or_else(|e| e.into_inner()).take() {
+        Some(Ok(())) => {}
+        Some(Err(e)) => return Err(format!("reading results back: {e}")),
+        None => return Err("reading results back: the device never finished the launch".into()),
+    }
+    let bytes = slice.get_mapped_range().map_err(|e| format!("reading results back: {e}"))?;
     let words = bytes.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
     drop(bytes);
     dst.unmap();
