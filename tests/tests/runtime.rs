@@ -283,8 +283,8 @@ pub fn mirror_through_a_helper(prd: &mut Radiance, attr: &Hit, #[var] top: Objec
     prd.result = Vec3::ZERO + reflected_color(top, p, reflect(ray.direction, n), prd.depth) * reflectance;
 }
 
-/// [`mirror`] with its trace in a `match` arm, where the compiler makes no
-/// resumable form: kernels using it clone what traces per depth instead.
+/// [`mirror`] with its trace in a `match` arm (the resumable form switches
+/// over the scrutinee kept in its frame).
 #[rt_program(closest_hit)]
 pub fn mirror_in_a_match(prd: &mut Radiance, attr: &Hit, #[var] top: Object, #[var] reflectance: f32) {
     let ray = current_ray();
@@ -296,6 +296,27 @@ pub fn mirror_in_a_match(prd: &mut Radiance, attr: &Hit, #[var] top: Object, #[v
         _ => rt_trace(top, Ray::new(p, reflect(ray.direction, n), 0, 0.001, f32::INFINITY), &mut reflected),
     }
     prd.result = reflected.result * reflectance;
+}
+
+/// [`reflected_color`] with its trace inside the returned value, where the
+/// compiler makes no resumable form.
+#[rt_function]
+pub fn reflected_in_the_tail(top: Object, p: Vec3, d: Vec3, depth: i32) -> Vec3 {
+    let mut next = Radiance { result: Vec3::ZERO, depth: depth + 1 };
+    {
+        rt_trace(top, Ray::new(p, d, 0, 0.001, f32::INFINITY), &mut next);
+        next.result
+    }
+}
+
+/// [`mirror`] through [`reflected_in_the_tail`]: no resumable form, so
+/// kernels using it clone what traces per depth instead.
+#[rt_program(closest_hit)]
+pub fn mirror_without_a_resumable_form(prd: &mut Radiance, attr: &Hit, #[var] top: Object, #[var] reflectance: f32) {
+    let ray = current_ray();
+    let p = ray.origin + t_hit() * ray.direction;
+    let n = rt_transform_normal(ObjectToWorld, attr.geometric_normal).normalize();
+    prd.result = reflected_in_the_tail(top, p, reflect(ray.direction, n), prd.depth) * reflectance;
 }
 
 /// One ray per origin (1D launch), straight down -z: the closest hit's
@@ -942,11 +963,20 @@ fn a_helper_that_traces_works_from_a_closest_hit(backend: Backend) {
     }
 }
 
-fn a_program_without_a_resumable_form_links_per_depth_clones(backend: Backend) {
-    assert!(mirror_in_a_match::PROGRAM.wgsl_resumable.is_none());
+fn a_trace_in_a_match_arm_resumes_in_that_arm(backend: Backend) {
+    assert!(mirror_in_a_match::PROGRAM.wgsl_resumable.is_some());
     let ctx = mirror_scene(backend, &mirror_in_a_match::PROGRAM);
     if backend == Backend::Wgpu {
-        assert!(ctx.linked_wgsl().unwrap().contains("fn rtp_mirror_in_a_match_d1("));
+        let wgsl = ctx.linked_wgsl().unwrap();
+        assert!(wgsl.contains("fn rtp_mirror_in_a_match(") && !wgsl.contains("_d1("));
+    }
+}
+
+fn a_program_without_a_resumable_form_links_per_depth_clones(backend: Backend) {
+    assert!(mirror_without_a_resumable_form::PROGRAM.wgsl_resumable.is_none());
+    let ctx = mirror_scene(backend, &mirror_without_a_resumable_form::PROGRAM);
+    if backend == Backend::Wgpu {
+        assert!(ctx.linked_wgsl().unwrap().contains("fn rtp_mirror_without_a_resumable_form_d1("));
     }
 }
 
@@ -1153,6 +1183,7 @@ on_backends!(
     mirror_shows_the_reflected_object_and_the_reflected_background,
     a_helper_that_traces_works_from_a_closest_hit,
     a_bvh_deeper_than_64_levels_loses_no_hit,
+    a_trace_in_a_match_arm_resumes_in_that_arm,
     a_program_without_a_resumable_form_links_per_depth_clones,
     launches_wider_than_the_dispatch_limit_write_every_index,
 );

@@ -25,7 +25,8 @@
 //! - statements without a site run only when `rt_site == 0u`; a statement
 //!   containing sites `lo..=hi` is entered when running or resuming at one of
 //!   them: an `if` keeps its condition in a local (so a resumed branch is the
-//!   one that suspended), a loop skips its exit test while resuming;
+//!   one that suspended), so does a `match` its scrutinee (its arms become a
+//!   `switch` over that local), a loop skips its exit test while resuming;
 //! - a trace site stores the request
 //!   (`rt_request_<P>(object, ray, payload, flags, mask)`), saves the frame
 //!   with the site, sets `rt_rs = 1u` and returns; resumed there, it takes
@@ -34,9 +35,10 @@
 //!   calls the helper's resumable form and, if that suspended (`rt_rs !=
 //!   0u`), saves the frame with the site and returns too.
 //!
-//! Functions with a site where the form does not follow (in a `match`, in
-//! a condition, inside a larger expression) have no resumable form: the
-//! linker falls back to per-depth clones for kernels that use them.
+//! Functions with a site where the form does not follow (in a condition or
+//! a `match` scrutinee, in a `let`'s value or the returned value, a payload
+//! that is a field) have no resumable form: the linker falls back to
+//! per-depth clones for kernels that use them.
 //! [`FnLowerer::function_resumable`] says why.
 
 use super::*;
@@ -569,8 +571,88 @@ impl FnLowerer<'_> {
                 Ok(guard(vec![format!("loop {{\n{}}}", indent(&all.join("\n")))]))
             }
             Expr::ForLoop(f) if f.label.is_none() => self.resumable_for(f, guard),
+            Expr::Match(m) => self.resumable_match(m, guard),
             other => Err(not_resumable(other.span(), "a trace in this kind of statement")),
         }
+    }
+
+    /// A `match` statement with traces in its arms: the scrutinee is kept in
+    /// a frame local, so a resumed `switch` enters the arm that suspended.
+    fn resumable_match(
+        &mut self,
+        m: &syn::ExprMatch,
+        guard: impl Fn(Vec<String>) -> Vec<String>,
+    ) -> Result<Vec<String>> {
+        if self.expr_sites(&m.expr) > 0 {
+            return Err(not_resumable(m.expr.span(), "a trace in a `match` scrutinee"));
+        }
+        let (pre, scrut) = self.buffered(|l| {
+            let v = l.expr(&m.expr, None)?;
+            Ok(l.deref(v))
+        })?;
+        let sty = self.resolved(&scrut.ty);
+        if !self.is_int(&sty) {
+            return Err(not_resumable(m.expr.span(), "a `match` on a value that is not an integer"));
+        }
+        let sel = self.fresh("sel");
+        self.hoist_local(&sel, &sty);
+        let mut run = pre;
+        run.push(format!("{sel} = {};", scrut.code));
+        // A `break` in an arm leaves the enclosing loop in Rust, the
+        // `switch` in WGSL: it sets this flag, tested after the `switch`.
+        let in_loop = self.loop_depth > 0;
+        if in_loop {
+            let flag = self.fresh("brk");
+            self.breaks.push(Some((flag, false)));
+        }
+        let arms = self.resumable_arms(m, &sty, &sel);
+        let flag = match in_loop.then(|| self.breaks.pop()) {
+            Some(Some(Some((flag, true)))) => Some(flag),
+            _ => None,
+        };
+        let mut cases = arms?;
+        if !cases.iter().any(|c| c.starts_with("default")) {
+            // WGSL needs a default; Rust's exhaustiveness check makes it
+            // unreachable.
+            cases.push("default: {}".to_string());
+        }
+        let mut body = vec![format!("switch {sel} {{\n{}}}", indent(&cases.join("\n")))];
+        if let Some(f) = &flag {
+            self.hoist_local(f, &BOOL);
+            run.push(format!("{f} = false;"));
+            body.push(format!("if {f} {{\n    break;\n}}"));
+        }
+        let mut out = vec![format!("if rt_site == 0u {{\n{}}}", indent(&run.join("\n")))];
+        out.extend(guard(body));
+        Ok(out)
+    }
+
+    /// The cases of [`Self::resumable_match`]'s `switch`, arms bound to the
+    /// scrutinee's local `sel`.
+    fn resumable_arms(&mut self, m: &syn::ExprMatch, sty: &Ty, sel: &str) -> Result<Vec<String>> {
+        let mut cases = Vec::new();
+        for arm in &m.arms {
+            if let Some((if_token, _)) = &arm.guard {
+                return Err(not_resumable(if_token.span, "a match guard"));
+            }
+            let mut labels = Vec::new();
+            let mut binding = None;
+            self.match_pattern(&arm.pat, sty, &mut labels, &mut binding)?;
+            let stmts = match &*arm.body {
+                Expr::Block(b) if b.label.is_none() => b.block.stmts.clone(),
+                other => vec![Stmt::Expr(other.clone(), None)],
+            };
+            self.scopes.push(Vec::new());
+            if let Some(b) = &binding {
+                self.bind(b, Local { wgsl: sel.to_string(), ty: sty.clone(), var: false });
+            }
+            let r = self.resumable_block(&stmts);
+            self.scopes.pop();
+            let lines = r?;
+            let head = if labels.is_empty() { "default".to_string() } else { format!("case {}", labels.join(", ")) };
+            cases.push(format!("{head}: {{\n{}}}", indent(&lines.join("\n"))));
+        }
+        Ok(cases)
     }
 
     /// A loop body with traces; `bind` binds the loop variable.
