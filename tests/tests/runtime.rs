@@ -951,11 +951,11 @@ fn default_exception_paints_magenta_and_records_the_exception(backend: Backend) 
 }
 
 fn mirror_shows_the_reflected_object_and_the_reflected_background(backend: Backend) {
-    mirror_scene(backend, &mirror::PROGRAM);
+    mirror_scene(backend, &mirror::PROGRAM, 20);
 }
 
 fn a_helper_that_traces_works_from_a_closest_hit(backend: Backend) {
-    let ctx = mirror_scene(backend, &mirror_through_a_helper::PROGRAM);
+    let ctx = mirror_scene(backend, &mirror_through_a_helper::PROGRAM, 20);
     if backend == Backend::Wgpu {
         // One loop runs the resumable forms: no per-depth clones.
         let wgsl = ctx.linked_wgsl().unwrap();
@@ -965,7 +965,7 @@ fn a_helper_that_traces_works_from_a_closest_hit(backend: Backend) {
 
 fn a_trace_in_a_match_arm_resumes_in_that_arm(backend: Backend) {
     assert!(mirror_in_a_match::PROGRAM.wgsl_resumable.is_some());
-    let ctx = mirror_scene(backend, &mirror_in_a_match::PROGRAM);
+    let ctx = mirror_scene(backend, &mirror_in_a_match::PROGRAM, 20);
     if backend == Backend::Wgpu {
         let wgsl = ctx.linked_wgsl().unwrap();
         assert!(wgsl.contains("fn rtp_mirror_in_a_match(") && !wgsl.contains("_d1("));
@@ -974,20 +974,21 @@ fn a_trace_in_a_match_arm_resumes_in_that_arm(backend: Backend) {
 
 fn a_program_without_a_resumable_form_links_per_depth_clones(backend: Backend) {
     assert!(mirror_without_a_resumable_form::PROGRAM.wgsl_resumable.is_none());
-    let ctx = mirror_scene(backend, &mirror_without_a_resumable_form::PROGRAM);
+    // Shallow: clones grow with the depth (20 took minutes to link).
+    let ctx = mirror_scene(backend, &mirror_without_a_resumable_form::PROGRAM, 3);
     if backend == Backend::Wgpu {
         assert!(ctx.linked_wgsl().unwrap().contains("fn rtp_mirror_without_a_resumable_form_d1("));
     }
 }
 
 /// A tilted mirror (closest hit `program`) reflecting a green wall and the
-/// background, checked pixel by pixel.
-fn mirror_scene(backend: Backend, program: &'static rt_std::program::ProgramDescriptor) -> Context {
+/// background, checked pixel by pixel, with a maximum trace depth of
+/// `depth` (20: deep enough that per-depth clones would be many, so the
+/// wgpu kernel runs resumable programs from its loop).
+fn mirror_scene(backend: Backend, program: &'static rt_std::program::ProgramDescriptor, depth: u32) -> Context {
     let extent = 2.0;
     let (mut ctx, out) = camera(extent, backend);
-    // Deep enough that per-depth clones would be many: the wgpu kernel runs
-    // resumable programs from its loop.
-    ctx.set_max_trace_depth(20);
+    ctx.set_max_trace_depth(depth);
     // A mirror quad through the origin with normal (1, 0, 1) / sqrt(2): the
     // camera's -z rays reflect to +x. A green wall at x = 5 over y in [0, 3]
     // (parallel to the camera rays, so they never see it directly).
