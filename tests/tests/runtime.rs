@@ -298,25 +298,26 @@ pub fn mirror_in_a_match(prd: &mut Radiance, attr: &Hit, #[var] top: Object, #[v
     prd.result = reflected.result * reflectance;
 }
 
-/// [`reflected_color`] with its trace inside the returned value, where the
+/// [`reflected_color`] with its trace inside a `let`'s value, where the
 /// compiler makes no resumable form.
 #[rt_function]
-pub fn reflected_in_the_tail(top: Object, p: Vec3, d: Vec3, depth: i32) -> Vec3 {
+pub fn reflected_in_a_let(top: Object, p: Vec3, d: Vec3, depth: i32) -> Vec3 {
     let mut next = Radiance { result: Vec3::ZERO, depth: depth + 1 };
-    {
+    let seen = {
         rt_trace(top, Ray::new(p, d, 0, 0.001, f32::INFINITY), &mut next);
         next.result
-    }
+    };
+    seen
 }
 
-/// [`mirror`] through [`reflected_in_the_tail`]: no resumable form, so
+/// [`mirror`] through [`reflected_in_a_let`]: no resumable form, so
 /// kernels using it clone what traces per depth instead.
 #[rt_program(closest_hit)]
 pub fn mirror_without_a_resumable_form(prd: &mut Radiance, attr: &Hit, #[var] top: Object, #[var] reflectance: f32) {
     let ray = current_ray();
     let p = ray.origin + t_hit() * ray.direction;
     let n = rt_transform_normal(ObjectToWorld, attr.geometric_normal).normalize();
-    prd.result = reflected_in_the_tail(top, p, reflect(ray.direction, n), prd.depth) * reflectance;
+    prd.result = reflected_in_a_let(top, p, reflect(ray.direction, n), prd.depth) * reflectance;
 }
 
 /// One ray per origin (1D launch), straight down -z: the closest hit's

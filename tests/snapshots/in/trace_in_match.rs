@@ -2,13 +2,25 @@
 //! scrutinee kept in the frame: a closest-hit program that picks its
 //! bounce by material kind (one arm traces, one binds the kind, one
 //! returns), and a ray generation program whose loop traces in one arm
-//! and leaves the loop from another.
+//! and leaves the loop from another. And a helper that returns a block
+//! ending in a trace's result (resumable: the block's statements run last).
 use rt_std::prelude::*;
 
 #[rt_payload]
 pub struct Shade {
     pub color: Vec3,
     pub depth: u32,
+}
+
+/// What is straight above `p`.
+#[rt_function]
+pub fn seen_above(top_object: Object, p: Vec3, depth: u32) -> Vec3 {
+    let mut up = Shade { color: Vec3::ZERO, depth: depth + 1 };
+    {
+        let r = Ray::new(p, vec3(0.0, 1.0, 0.0), 0, 0.001, f32::INFINITY);
+        rt_trace(top_object, r, &mut up);
+        up.color * 0.5
+    }
 }
 
 #[rt_program(closest_hit)]
@@ -28,7 +40,7 @@ pub fn by_kind(prd: &mut Shade, #[var] kind: u32, #[var] top_object: Object, #[v
             return;
         }
     }
-    prd.color += next.color * 0.5;
+    prd.color += next.color * 0.5 + seen_above(top_object, p, prd.depth);
 }
 
 #[rt_program(ray_generation)]

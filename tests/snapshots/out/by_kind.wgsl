@@ -18,6 +18,17 @@ fn rt_load_vec3f(w: u32) -> vec3<f32> {
     return vec3<f32>(rt_load_f32(w + 0u), rt_load_f32(w + 1u), rt_load_f32(w + 2u));
 }
 
+fn rtf_seen_above(top_object: u32, p: vec3<f32>, depth: u32) -> vec3<f32> {
+    var up: Shade = Shade(vec3<f32>(0.0), (depth + 1u));
+    var tmp: vec3<f32>;
+    {
+        let r: RtRay = RtRay(p, vec3<f32>(0.0f, 1.0f, 0.0f), 0u, 0.001f, bitcast<f32>(0x7f800000u));
+        rt_trace_Shade(top_object, r, &up, 0u, 255u);
+        tmp = (up.color * 0.5f);
+    }
+    return tmp;
+}
+
 fn rtp_by_kind(prd: ptr<function, Shade>, kind: u32, top_object: u32, tint: vec3<f32>) {
     let ray: RtRay = rt_current_ray();
     let p: vec3<f32> = (ray.origin + (rt_t_hit() * ray.direction));
@@ -41,16 +52,54 @@ fn rtp_by_kind(prd: ptr<function, Shade>, kind: u32, top_object: u32, tint: vec3
             }
         }
     }
-    (*prd).color += (next.color * 0.5f);
+    (*prd).color += ((next.color * 0.5f) + rtf_seen_above(top_object, p, (*prd).depth));
 }
 
 // ---- resumable form ----
+var<private> rt_fr_rtf_seen_above_rs_rt_site: array<u32, RT_DEPTHS>;
+var<private> rt_fr_rtf_seen_above_rs_up: array<Shade, RT_DEPTHS>;
+var<private> rt_fr_rtf_seen_above_rs_r: array<RtRay, RT_DEPTHS>;
+fn rtf_seen_above_rs(top_object: u32, p: vec3<f32>, depth: u32) -> vec3<f32> {
+    var rt_site: u32 = 0u;
+    var up: Shade;
+    var r: RtRay;
+    if rt_rs != 0u {
+        up = rt_fr_rtf_seen_above_rs_up[rt_d];
+        r = rt_fr_rtf_seen_above_rs_r[rt_d];
+        rt_site = rt_fr_rtf_seen_above_rs_rt_site[rt_d];
+    }
+    if rt_site == 0u {
+        up = Shade(vec3<f32>(0.0), (depth + 1u));
+        r = RtRay(p, vec3<f32>(0.0f, 1.0f, 0.0f), 0u, 0.001f, bitcast<f32>(0x7f800000u));
+    }
+    if rt_site == 0u {
+        rt_request_Shade(top_object, r, up, 0u, 255u);
+        rt_fr_rtf_seen_above_rs_up[rt_d] = up;
+        rt_fr_rtf_seen_above_rs_r[rt_d] = r;
+        rt_fr_rtf_seen_above_rs_rt_site[rt_d] = 1u;
+        rt_rs = 1u;
+        return vec3<f32>();
+    }
+    if rt_site == 1u {
+        up = rt_result_Shade();
+        rt_site = 0u;
+        rt_rs = 0u;
+    }
+    if rt_site == 0u {
+        return (up.color * 0.5f);
+    }
+    return vec3<f32>();
+}
 var<private> rt_fr_rtp_by_kind_rt_site: array<u32, RT_DEPTHS>;
 var<private> rt_fr_rtp_by_kind_ray: array<RtRay, RT_DEPTHS>;
 var<private> rt_fr_rtp_by_kind_p: array<vec3<f32>, RT_DEPTHS>;
 var<private> rt_fr_rtp_by_kind_next: array<Shade, RT_DEPTHS>;
 var<private> rt_fr_rtp_by_kind_sel: array<u32, RT_DEPTHS>;
 var<private> rt_fr_rtp_by_kind_d: array<vec3<f32>, RT_DEPTHS>;
+var<private> rt_fr_rtp_by_kind_arg: array<u32, RT_DEPTHS>;
+var<private> rt_fr_rtp_by_kind_arg_1: array<vec3<f32>, RT_DEPTHS>;
+var<private> rt_fr_rtp_by_kind_arg_2: array<u32, RT_DEPTHS>;
+var<private> rt_fr_rtp_by_kind_rt_call_0_: array<vec3<f32>, RT_DEPTHS>;
 fn rtp_by_kind(prd: ptr<function, Shade>, kind: u32, top_object: u32, tint: vec3<f32>) {
     var rt_site: u32 = 0u;
     var ray: RtRay;
@@ -58,12 +107,20 @@ fn rtp_by_kind(prd: ptr<function, Shade>, kind: u32, top_object: u32, tint: vec3
     var next: Shade;
     var sel: u32;
     var d: vec3<f32>;
+    var arg: u32;
+    var arg_1: vec3<f32>;
+    var arg_2: u32;
+    var rt_call_0_: vec3<f32>;
     if rt_rs != 0u {
         ray = rt_fr_rtp_by_kind_ray[rt_d];
         p = rt_fr_rtp_by_kind_p[rt_d];
         next = rt_fr_rtp_by_kind_next[rt_d];
         sel = rt_fr_rtp_by_kind_sel[rt_d];
         d = rt_fr_rtp_by_kind_d[rt_d];
+        arg = rt_fr_rtp_by_kind_arg[rt_d];
+        arg_1 = rt_fr_rtp_by_kind_arg_1[rt_d];
+        arg_2 = rt_fr_rtp_by_kind_arg_2[rt_d];
+        rt_call_0_ = rt_fr_rtp_by_kind_rt_call_0_[rt_d];
         rt_site = rt_fr_rtp_by_kind_rt_site[rt_d];
     }
     if rt_site == 0u {
@@ -87,6 +144,10 @@ fn rtp_by_kind(prd: ptr<function, Shade>, kind: u32, top_object: u32, tint: vec3
                     rt_fr_rtp_by_kind_next[rt_d] = next;
                     rt_fr_rtp_by_kind_sel[rt_d] = sel;
                     rt_fr_rtp_by_kind_d[rt_d] = d;
+                    rt_fr_rtp_by_kind_arg[rt_d] = arg;
+                    rt_fr_rtp_by_kind_arg_1[rt_d] = arg_1;
+                    rt_fr_rtp_by_kind_arg_2[rt_d] = arg_2;
+                    rt_fr_rtp_by_kind_rt_call_0_[rt_d] = rt_call_0_;
                     rt_fr_rtp_by_kind_rt_site[rt_d] = 1u;
                     rt_rs = 1u;
                     return;
@@ -108,6 +169,10 @@ fn rtp_by_kind(prd: ptr<function, Shade>, kind: u32, top_object: u32, tint: vec3
                     rt_fr_rtp_by_kind_next[rt_d] = next;
                     rt_fr_rtp_by_kind_sel[rt_d] = sel;
                     rt_fr_rtp_by_kind_d[rt_d] = d;
+                    rt_fr_rtp_by_kind_arg[rt_d] = arg;
+                    rt_fr_rtp_by_kind_arg_1[rt_d] = arg_1;
+                    rt_fr_rtp_by_kind_arg_2[rt_d] = arg_2;
+                    rt_fr_rtp_by_kind_rt_call_0_[rt_d] = rt_call_0_;
                     rt_fr_rtp_by_kind_rt_site[rt_d] = 2u;
                     rt_rs = 1u;
                     return;
@@ -126,7 +191,31 @@ fn rtp_by_kind(prd: ptr<function, Shade>, kind: u32, top_object: u32, tint: vec3
             }
         }
     }
+    if rt_site == 0u || rt_site == 3u {
+        if rt_site == 0u {
+            arg = top_object;
+            arg_1 = p;
+            arg_2 = (*prd).depth;
+        }
+        let tmp = rtf_seen_above_rs(arg, arg_1, arg_2);
+        if rt_rs != 0u {
+            rt_fr_rtp_by_kind_ray[rt_d] = ray;
+            rt_fr_rtp_by_kind_p[rt_d] = p;
+            rt_fr_rtp_by_kind_next[rt_d] = next;
+            rt_fr_rtp_by_kind_sel[rt_d] = sel;
+            rt_fr_rtp_by_kind_d[rt_d] = d;
+            rt_fr_rtp_by_kind_arg[rt_d] = arg;
+            rt_fr_rtp_by_kind_arg_1[rt_d] = arg_1;
+            rt_fr_rtp_by_kind_arg_2[rt_d] = arg_2;
+            rt_fr_rtp_by_kind_rt_call_0_[rt_d] = rt_call_0_;
+            rt_fr_rtp_by_kind_rt_site[rt_d] = 3u;
+            rt_rs = 1u;
+            return;
+        }
+        rt_site = 0u;
+        rt_call_0_ = tmp;
+    }
     if rt_site == 0u {
-        (*prd).color += (next.color * 0.5f);
+        (*prd).color += ((next.color * 0.5f) + rt_call_0_);
     }
 }

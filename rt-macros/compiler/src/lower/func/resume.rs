@@ -155,16 +155,28 @@ impl FnLowerer<'_> {
         if !prologue.is_empty() {
             lines.push(format!("if rt_site == 0u {{\n{}}}", indent(&prologue.join("\n"))));
         }
-        let mut stmts: &[Stmt] = &body.stmts;
+        let mut stmts: Vec<Stmt> = body.stmts.clone();
         let mut tail = None;
         if !matches!(self.ret, Ty::Unit)
-            && let Some((Stmt::Expr(e, None), rest)) = stmts.split_last()
+            && let Some(Stmt::Expr(_, None)) = stmts.last()
         {
+            let Some(Stmt::Expr(mut e, None)) = stmts.pop() else { unreachable!("matched above") };
+            // A returned block with a trace (`{ rt_trace(..); prd.x }`):
+            // its statements run as the function's last ones (nothing
+            // follows them, so its scope ends where the function's does).
+            while let Expr::Block(b) = &e
+                && b.label.is_none()
+                && self.expr_sites(&e) > 0
+                && let Some((Stmt::Expr(inner, None), rest)) = b.block.stmts.split_last()
+            {
+                stmts.extend(rest.iter().cloned());
+                e = inner.clone();
+            }
             tail = Some(e);
-            stmts = rest;
         }
+        let tail = tail.as_ref();
         self.scopes.push(Vec::new());
-        let r = self.resumable_stmts(stmts);
+        let r = self.resumable_stmts(&stmts);
         let body_lines = match r {
             Ok(mut v) => match tail {
                 Some(e) if self.expr_sites(e) > 0 => Err(not_resumable(e.span(), "a trace in the returned value")),
