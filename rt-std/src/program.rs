@@ -159,6 +159,9 @@ pub struct ProgramDescriptor {
     /// The resumable forms (`<helper>_rs`) of the helpers that trace which
     /// the resumable form calls.
     pub wgsl_resumable_functions: &'static [WgslItem],
+    /// For programs that trace but have no resumable form: why not (the
+    /// construct the compiler could not suspend in).
+    pub not_resumable: Option<&'static str>,
     /// Payload type, for programs that take one.
     pub payload: Option<TypeLayout>,
     /// Attribute type, for programs that take one.

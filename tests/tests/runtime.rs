@@ -975,6 +975,12 @@ fn a_trace_in_a_match_arm_resumes_in_that_arm(backend: Backend) {
 
 fn a_program_without_a_resumable_form_links_per_depth_clones(backend: Backend) {
     assert!(mirror_without_a_resumable_form::PROGRAM.wgsl_resumable.is_none());
+    assert_eq!(
+        mirror_without_a_resumable_form::PROGRAM.not_resumable,
+        Some(
+            "not resumable: `reflected_in_a_let` has no resumable form (`reflected_in_a_let`: a site inside a `let` or a macro)"
+        )
+    );
     // Shallow: clones grow with the depth (20 took minutes to link).
     let ctx = mirror_scene(backend, &mirror_without_a_resumable_form::PROGRAM, 3);
     if backend == Backend::Wgpu {

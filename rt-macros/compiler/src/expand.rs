@@ -443,6 +443,10 @@ fn program_output(kind: Kind, f: &syn::ItemFn, lowered: Result<Lowered, Errors>)
         Some(r) => quote!(Some(#r)),
         None => quote!(None),
     };
+    let not_resumable = match &l.not_resumable {
+        Some(why) => quote!(Some(#why)),
+        None => quote!(None),
+    };
     let payload = option_layout(&l.payload);
     let attributes = option_layout(&l.attributes);
     let variables = l.variables.iter().map(|(n, t)| {
@@ -495,6 +499,7 @@ fn program_output(kind: Kind, f: &syn::ItemFn, lowered: Result<Lowered, Errors>)
             wgsl_program: #program,
             wgsl_resumable: #resumable,
             wgsl_resumable_functions: #resumable_functions,
+            not_resumable: #not_resumable,
             payload: #payload,
             attributes: #attributes,
             variables: &[#(#variables),*],

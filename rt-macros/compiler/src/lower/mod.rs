@@ -637,7 +637,8 @@ fn lower_impl(entry: Entry<'_>, deps: &[Item], report_deps: bool) -> std::result
                     out_resumable_functions.push((rs_name, r.fill_frame_saves(&clean)));
                     m.helpers.get_mut(&name).unwrap().resumable = true;
                 }
-                Err(e) => not_resumable_helpers.push(format!("`{name}`: {}", e.message)),
+                Err(e) => not_resumable_helpers
+                    .push(format!("`{name}`: {}", e.message.strip_prefix("not resumable: ").unwrap_or(&e.message))),
             }
         }
     }

@@ -246,8 +246,22 @@ pub fn generate(spec: &KernelSpec) -> Result<String> {
     // Every tracing program resumable and per-depth clones would be many:
     // one loop runs them all. Few clones (nothing traces from a closest hit
     // or miss, or shallow recursion) inline into a smaller, faster kernel.
-    let resumable = all.iter().all(|p| !traces(p.desc) || p.desc.wgsl_resumable.is_some())
-        && clone_estimate(spec, &all, &functions, &tracing_helpers) > MAX_CLONES;
+    let clones = clone_estimate(spec, &all, &functions, &tracing_helpers);
+    let stuck = all.iter().find(|p| traces(p.desc) && p.desc.wgsl_resumable.is_none());
+    let resumable = stuck.is_none() && clones > MAX_CLONES;
+    if let Some(p) = stuck
+        && clones > MAX_CLONES
+    {
+        // Pipeline creation grows with the copies: minutes on Mesa at a few
+        // hundred, out of memory beyond.
+        eprintln!(
+            "rt-runtime: warning: the megakernel inlines about {clones} copies of the traversal (maximum trace depth {}) because `{}` ({}) has no resumable form ({}); creating its pipeline may take long. Lower the depth with `set_max_trace_depth`, or move that trace into a statement of its own.",
+            spec.max_depth,
+            p.desc.name,
+            p.desc.location(),
+            p.desc.not_resumable.unwrap_or("unknown reason"),
+        );
+    }
     out.push_str("\n// ---- shared functions ----\n");
     for (name, (text, _)) in &functions {
         if tracing_helpers.contains(*name) && resumable {
