@@ -144,8 +144,8 @@ fn rt_blas_in(inst: u32) {
             continue;
         }
         let n = bvh + e.x * 8u;
-        let count = rt_scene[n + 6u];
-        let first = rt_scene[n + 7u];
+        let count = rt_node_word(n + 6u);
+        let first = rt_node_word(n + 7u);
         if count > 0u {
             for (var i = first; i < first + count; i++) {
                 let p = prims + i * 2u;
@@ -229,8 +229,8 @@ fn rt_search(object: u32, ray: RtRay, flags: u32, mask: u32) {
             continue;
         }
         let n = bvh + e.x * 8u;
-        let count = rt_scene[n + 6u];
-        let first = rt_scene[n + 7u];
+        let count = rt_node_word(n + 6u);
+        let first = rt_node_word(n + 7u);
         if count > 0u {
             for (var i = first; i < first + count; i++) {
                 let inst = rt_scene[leaves + i];
