@@ -47,7 +47,7 @@ fn rt_enter_level(level: u32, o2w: mat4x4<f32>, w2o: mat4x4<f32>) {
 
 // Instance `inst` seen from transform level `level`.
 fn rt_graph_instance(inst: u32, level: u32, mask: u32) {
-    let ib = rt_scene[1] + inst * 36u;
+    let ib = rt_scene[1] + inst * 40u;
     if (rt_scene[ib + 34u] & mask) == 0u {
         return;
     }

@@ -31,7 +31,7 @@ const GRAPH: &str = include_str!("graph.wgsl");
 const TWO_LEVEL: &str = "
 fn rt_commit_xform() {}
 fn rt_hit_xform() {
-    let ib = rt_scene[1] + rt_h_inst * 36u;
+    let ib = rt_scene[1] + rt_h_inst * 40u;
     rt_o2w = rt_m4(ib);
     rt_w2o = rt_m4(ib + 16u);
 }
@@ -61,6 +61,11 @@ pub struct KernelSpec {
     /// Entries of the BVH traversal stack (at least the deepest BVH's
     /// levels + 1: nothing is ever dropped).
     pub bvh_stack: u32,
+    /// Entries of the search stack over a group's BVH (`rt_search`: BVH
+    /// nodes and the instances of a leaf, so at least the deepest group
+    /// BVH's levels + the largest leaf); 0 when the scene has no group of
+    /// instances, and `rt_search` no loop over one.
+    pub tlas_stack: u32,
     /// Entries of the graph traversal stack.
     pub graph_stack: u32,
     /// Without an exception program: the word offset, in the ray-generation
@@ -71,6 +76,10 @@ pub struct KernelSpec {
     /// own storage binding (at least 1: the tables); the others live in the
     /// tables' binding after the tables.
     pub scene_bindings: usize,
+    /// No intersection and no any-hit program: every primitive is a
+    /// triangle and every candidate commits, so instances are searched by
+    /// the lean loop (`rt_blas_triangles` in traverse.wgsl).
+    pub triangles_only: bool,
 }
 
 /// The scene's sections, each its own read-only storage binding where the
@@ -81,9 +90,10 @@ pub struct KernelSpec {
 /// `fn <accessor>(w: u32) -> u32`: a plain load from its binding, or, for a
 /// section that shares the tables' binding, a load at the base the tables'
 /// header word `SCENE_HEADER_BASES + s` holds.
-pub const SCENE_SECTIONS: [SceneSection; 2] = [
+pub const SCENE_SECTIONS: [SceneSection; 3] = [
     SceneSection { binding: "rt_scene", accessor: "", what: "the scene's tables (instances, geometry, records)" },
     SceneSection { binding: "rt_bvh", accessor: "rt_node_word", what: "the scene's BVH nodes" },
+    SceneSection { binding: "rt_tris", accessor: "rt_tri_word", what: "the scene's triangles in BVH leaf order" },
 ];
 
 /// Header word of the tables holding section `s`'s base in the merged
@@ -274,7 +284,13 @@ pub fn generate(spec: &KernelSpec) -> Result<String> {
 
     let mut out = String::from(PRELUDE);
     out.push_str(&scene_access(spec.scene_bindings));
-    out.push_str(&format!("\nconst RT_BVH_STACK: u32 = {}u;\n", spec.bvh_stack));
+    out.push_str(&format!(
+        "\nconst RT_BVH_STACK: u32 = {}u;\nconst RT_TLAS_STACK: u32 = {}u;\nconst RT_GROUPS: bool = {};\nconst RT_TRIANGLES_ONLY: bool = {};\n",
+        spec.bvh_stack,
+        spec.tlas_stack.max(1),
+        spec.tlas_stack > 0,
+        spec.triangles_only
+    ));
     out.push_str(TRAVERSE);
     if spec.graph_levels > 0 {
         out.push_str(&format!(

@@ -5,14 +5,15 @@
 //! buffers, then sampler texels — addressed by word offset, so a scene uses
 //! the same bindings however many buffers it has), the scene's sections
 //! (read-only, [`kernel::SCENE_SECTIONS`]: `rt_scene` with the geometry,
-//! instance and record tables, `rt_bvh` with every BVH's nodes), `rt_log`
+//! instance and record tables, `rt_bvh` with every BVH's nodes, `rt_tris`
+//! with every triangle's vertices and material in BVH leaf order), `rt_log`
 //! (exceptions and `rt_printf!` output) and the launch uniform.
 //!
 //! Large scenes: each section is its own binding, so a scene renders when
 //! each section fits the adapter's `max_storage_buffer_binding_size` (128
 //! MiB on lavapipe) rather than the whole; a section that does not fit is
 //! an [`RtError::Gpu`] naming it, its size, the adapter and the limit. The
-//! device asks for one storage buffer per section (4 in all) up to the
+//! device asks for one storage buffer per section (5 in all) up to the
 //! adapter's own limit; on a device with fewer (an application's, through
 //! `Context::use_wgpu_device`), the sections without a binding follow the
 //! tables in `rt_scene`'s and are read at a base from the tables' header.
@@ -30,6 +31,16 @@
 //! The graph traversal is linked only into kernels whose scene needs it, so
 //! two-level scenes keep the lean kernel. Semantics are the CPU backend's.
 //!
+//! Speed on lavapipe: llvmpipe runs a workgroup's invocations as SIMD lanes
+//! and both sides of a divergent branch under a mask, so a search costs
+//! about the code it holds, taken or not. Kernels link the lean forms the
+//! scene allows: without intersection and any-hit programs, instances are
+//! searched by a loop over leaf-ordered triangles with its state in locals
+//! (`RT_TRIANGLES_ONLY`); without groups of instances, `rt_search` has no
+//! loop over one (`RT_GROUPS`). Both are fixed by the program set and the
+//! graph's shape, like the rest of the kernel. (BENCHMARKS.md: the AO
+//! workload from 0.46 to 0.8 of the hand-written kernel.)
+//!
 //! Caching: the pipeline is keyed by the generated WGSL, which depends on the
 //! program set and the graph's shape but never on variable values or buffer
 //! contents; those only change the uploaded words.
@@ -45,7 +56,7 @@ use crate::scene::{GeometryKind, NodeId, NodeKind, ProgramId};
 use crate::vars::VarValue;
 use glam::{Mat4, UVec2};
 use kernel::{KernelProgram, KernelSpec, SCENE_HEADER_BASES, SCENE_SECTIONS};
-use rt_std::program::VariableKind;
+use rt_std::program::{ProgramKind, VariableKind};
 use std::collections::HashMap;
 use wgpu::util::DeviceExt;
 
@@ -331,6 +342,25 @@ fn push_bvh(out: &mut Vec<u32>, bvh: &crate::accel::Bvh, deepest: &mut u32) -> u
     at
 }
 
+/// The triangle slot of primitive `p` of geometry instance `gi` (10 words,
+/// see traverse.wgsl): its vertices, then its material index, or `RT_NONE`
+/// when no hit on it can commit (a custom primitive; a material index
+/// past the instance's materials).
+fn push_triangle_slot(ctx: &Context, out: &mut Vec<u32>, gi: u32, p: u32) {
+    let instance = &ctx.instances[gi as usize];
+    match &ctx.geometries[instance.geometry.index() as usize].kind {
+        GeometryKind::Triangles(mesh) => {
+            for i in mesh.indices[p as usize] {
+                let v = mesh.positions[i as usize];
+                out.extend([f(v.x), f(v.y), f(v.z)]);
+            }
+            let m = mesh.material_indices.as_ref().map_or(0, |m| m.get(p as usize).copied().unwrap_or(0));
+            out.push(if (m as usize) < instance.materials.len() { m } else { u32::MAX });
+        }
+        GeometryKind::Custom { .. } => out.extend([0; 9].into_iter().chain([u32::MAX])),
+    }
+}
+
 /// Follows transforms down to a geometry group: (group, object-to-world, mask).
 fn instance_of(ctx: &Context, node: NodeId) -> Result<Option<(NodeId, Mat4, u32)>> {
     let mut m = Mat4::IDENTITY;
@@ -436,9 +466,11 @@ fn encode(ctx: &Context, entry: u32) -> Result<Encoded> {
         None => (None, 0),
     };
 
-    // Scene: the tables, and BVH nodes in their own section.
+    // Scene: the tables, BVH nodes and the triangles in leaf order in
+    // their own sections.
     let mut scene: Vec<u32> = vec![0; SCENE_HEADER_BASES + SCENE_SECTIONS.len()];
     let mut nodes: Vec<u32> = Vec::new();
+    let mut tris: Vec<u32> = Vec::new();
     let accels: &[Option<NodeAccel>] = &ctx.accels.nodes;
     // Instances: one per geometry group and per transform chain.
     let mut instance_of_node: Vec<Option<u32>> = vec![None; ctx.nodes.len()];
@@ -451,21 +483,29 @@ fn encode(ctx: &Context, entry: u32) -> Result<Encoded> {
     }
     // BVHs of geometry groups (and their primitive tables), of groups (and
     // their leaf tables: instances, or other nodes with NODE_BIT).
-    let mut gg_bvh: HashMap<u32, (u32, u32)> = HashMap::new();
+    let mut gg_bvh: HashMap<u32, (u32, u32, u32)> = HashMap::new();
+    // The most instances and nodes a leaf of a group's BVH holds.
+    let mut widest_group_leaf = 1;
+    // The deepest BVH of a group of instances (`None`: no group).
+    let mut deepest_group: Option<u32> = None;
     let mut group_bvh: HashMap<u32, (u32, u32, bool)> = HashMap::new();
     for (n, rec) in ctx.nodes.iter().enumerate() {
         match (&rec.kind, accels.get(n).and_then(|a| a.as_ref())) {
             (NodeKind::GeometryGroup { .. }, Some(NodeAccel::Prims { bvh, prims, .. })) => {
                 let at = push_bvh(&mut nodes, bvh, &mut deepest_bvh);
                 let table = scene.len() as u32;
+                let tri_slots = tris.len() as u32;
                 for slot in &bvh.bvh.primitive_indices {
                     let (gi, p) = prims[*slot as usize];
                     scene.extend([gi, p]);
+                    push_triangle_slot(ctx, &mut tris, gi, p);
                 }
-                gg_bvh.insert(n as u32, (at, table));
+                gg_bvh.insert(n as u32, (at, table, tri_slots));
             }
             (NodeKind::Group { children, .. }, Some(NodeAccel::Children { bvh, .. })) => {
                 let at = push_bvh(&mut nodes, bvh, &mut deepest_bvh);
+                widest_group_leaf = bvh.bvh.nodes.iter().map(|n| n.prim_count).fold(widest_group_leaf, u32::max);
+                deepest_group = Some(deepest_group.unwrap_or(1).max(bvh_depth(bvh)));
                 let table = scene.len() as u32;
                 let mut instances_only = true;
                 for slot in &bvh.bvh.primitive_indices {
@@ -487,8 +527,8 @@ fn encode(ctx: &Context, entry: u32) -> Result<Encoded> {
     for (gg, o2w, mask) in &instances {
         push_mat(&mut scene, *o2w);
         push_mat(&mut scene, o2w.inverse());
-        let (bvh, table) = gg_bvh.get(&gg.index()).copied().unwrap_or((0, 0));
-        scene.extend([bvh, table, *mask, gg.index()]);
+        let (bvh, table, tri_slots) = gg_bvh.get(&gg.index()).copied().unwrap_or((0, 0, 0));
+        scene.extend([bvh, table, *mask, gg.index(), tri_slots, 0, 0, 0]);
     }
     // The node table (after the side data of transforms and selectors), and
     // how deep transforms above groups and selectors nest (in post order:
@@ -672,9 +712,17 @@ fn encode(ctx: &Context, entry: u32) -> Result<Encoded> {
     // at most one pending entry per level; graph traversal, one BVH's worth
     // per transform level. Powers of two, so small changes do not relink.
     let bvh_stack = (deepest_bvh + 2).max(64).next_power_of_two();
+    let tlas_stack = match deepest_group {
+        Some(depth) => (depth + 2 + widest_group_leaf).max(64).next_power_of_two(),
+        None => 0,
+    };
     let graph_stack = ((deepest_bvh + 2) * (graph_levels + 1)).max(96).next_power_of_two();
+    let triangles_only =
+        !programs.iter().any(|p| matches!(p.desc.kind, ProgramKind::AnyHit | ProgramKind::Intersection));
     let spec = KernelSpec {
+        triangles_only,
         bvh_stack,
+        tlas_stack,
         graph_stack,
         ray_generation: rg_prog,
         exception: ex_prog,
@@ -684,11 +732,13 @@ fn encode(ctx: &Context, entry: u32) -> Result<Encoded> {
         default_exception,
         scene_bindings: SCENE_SECTIONS.len(),
     };
-    if nodes.is_empty() {
-        // No BVH at all: a binding needs a word.
-        nodes.push(0);
+    // A binding needs a word.
+    for section in [&mut nodes, &mut tris] {
+        if section.is_empty() {
+            section.push(0);
+        }
     }
-    Ok(Encoded { scene: [scene, nodes], heap, outputs, spec, rg_vars, ex_vars })
+    Ok(Encoded { scene: [scene, nodes, tris], heap, outputs, spec, rg_vars, ex_vars })
 }
 
 /// A size for messages: MiB (one decimal unless whole) from 1 MiB up,
