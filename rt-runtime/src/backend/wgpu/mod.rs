@@ -802,7 +802,7 @@ pub(crate) fn launch(ctx: &mut Context, entry: u32, width: u32, height: u32) -> 
         sections[0].extend(words);
         shared_names.push(SCENE_SECTIONS[s].what);
     }
-    let max_binding = gpu.limits.max_storage_buffer_binding_size as u64;
+    let max_binding = gpu.limits.max_storage_buffer_binding_size;
     let tables_what = if shared_names.is_empty() {
         SCENE_SECTIONS[0].what.to_string()
     } else {
