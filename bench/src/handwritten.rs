@@ -13,14 +13,15 @@ fn bytes(w: &[u32]) -> &[u8] {
 }
 
 /// Runs the AO workload `reps` times; returns (rays traced, median time of
-/// dispatch + read-back, adapter name), or why it could not run.
+/// dispatch + read-back, process CPU time of the `reps` runs, adapter
+/// name), or why it could not run.
 pub fn run(
     mesh: &TriangleMesh,
     cam: (Vec3, Vec3, Vec3, Vec3),
     width: u32,
     height: u32,
     reps: usize,
-) -> Result<(u64, Duration, String), String> {
+) -> Result<(u64, Duration, Duration, String), String> {
     let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
     let adapter = pollster::block_on(instance.request_adapter(&Default::default())).map_err(|e| e.to_string())?;
     let max_binding = adapter.limits().max_storage_buffer_binding_size as u64;
@@ -113,8 +114,10 @@ pub fn run(
     });
     let mut times = Vec::new();
     let mut rays = 0u64;
+    let mut cpu = Duration::ZERO;
     for _ in 0..reps + 1 {
         let t = Instant::now();
+        let c = crate::peers::process_cpu_time();
         let read = device.create_buffer(&wgpu::BufferDescriptor {
             label: None,
             size: (pixels * 8) as u64,
@@ -140,9 +143,12 @@ pub fn run(
         drop(data);
         read.unmap();
         times.push(t.elapsed());
+        if times.len() > 1 {
+            cpu += crate::peers::process_cpu_time().saturating_sub(c);
+        }
     }
     // The first run includes the pipeline's compilation on some drivers.
     times.remove(0);
     times.sort();
-    Ok((rays, times[times.len() / 2], adapter.get_info().name))
+    Ok((rays, times[times.len() / 2], cpu, adapter.get_info().name))
 }

@@ -102,3 +102,17 @@ pub fn median(mut v: Vec<Duration>) -> Duration {
     v.sort();
     v[v.len() / 2]
 }
+
+/// CPU time this process has used (all threads, user + system), from
+/// `/proc/self/stat` (zero where there is none). Under load from other
+/// processes it measures work rather than waiting, so kernel comparisons
+/// on lavapipe (whose threads do the work in this process) stay stable.
+pub fn process_cpu_time() -> Duration {
+    let Ok(stat) = std::fs::read_to_string("/proc/self/stat") else { return Duration::ZERO };
+    // Fields after the command name (which may hold spaces): utime and
+    // stime are the 14th and 15th fields, in clock ticks (100 a second).
+    let Some(rest) = stat.rsplit_once(')').map(|(_, r)| r) else { return Duration::ZERO };
+    let f: Vec<&str> = rest.split_whitespace().collect();
+    let ticks = |i: usize| f.get(i).and_then(|v| v.parse::<u64>().ok()).unwrap_or(0);
+    Duration::from_millis((ticks(11) + ticks(12)) * 10)
+}

@@ -1338,7 +1338,157 @@ fn a_scene_over_the_adapters_binding_limit_is_a_clear_error() {
     ctx.set_var(Scope::Context, "table", table).unwrap();
     let err = ctx.launch(0, W, W).unwrap_err().to_string();
     assert!(
-        err.contains("the heap (variables, buffers, textures) needs 2 MiB") && err.contains("binds at most 1 MiB"),
+        err.contains("the heap (variables, buffers, textures) needs 2.0 MiB") && err.contains("binds at most 1 MiB"),
         "{err}"
     );
+}
+
+/// A device on the adapter with `limits` over the downlevel defaults (the
+/// knob for the binding tests below: the runtime takes a device's own
+/// limits as they are).
+fn device_with(
+    limits: impl FnOnce(::wgpu::Limits) -> ::wgpu::Limits,
+) -> (::wgpu::Device, ::wgpu::Queue, ::wgpu::AdapterInfo) {
+    let instance = ::wgpu::Instance::new(::wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+    let adapter = pollster::block_on(instance.request_adapter(&Default::default())).expect("an adapter (lavapipe)");
+    // As the runtime asks: a storage buffer per scene section, heap and log.
+    let limits = limits(::wgpu::Limits {
+        max_storage_buffer_binding_size: adapter.limits().max_storage_buffer_binding_size,
+        max_storage_buffers_per_shader_stage: adapter.limits().max_storage_buffers_per_shader_stage.min(5),
+        ..::wgpu::Limits::downlevel_defaults()
+    });
+    let (device, queue) = pollster::block_on(
+        adapter.request_device(&::wgpu::DeviceDescriptor { required_limits: limits, ..Default::default() }),
+    )
+    .unwrap();
+    (device, queue, adapter.get_info())
+}
+
+/// A bumpy `n` x `n` grid of quads over [-1, 1]^2 (2 n^2 triangles).
+fn bumpy_grid(n: u32) -> TriangleMesh {
+    let mut mesh = TriangleMesh::default();
+    for y in 0..=n {
+        for x in 0..=n {
+            let (u, v) = (x as f32 / n as f32 * 2.0 - 1.0, y as f32 / n as f32 * 2.0 - 1.0);
+            mesh.positions.push(Vec3::new(u, v, 0.2 * (5.0 * u).sin() * (4.0 * v).cos()));
+        }
+    }
+    for y in 0..n {
+        for x in 0..n {
+            let i = y * (n + 1) + x;
+            mesh.indices.push([i, i + 1, i + n + 2]);
+            mesh.indices.push([i, i + n + 2, i + n + 1]);
+        }
+    }
+    mesh
+}
+
+/// The bumpy grid (20,000 triangles: about 0.5 MiB of tables, 1.2 MiB of
+/// BVH nodes, 0.8 MiB of leaf-ordered triangles) under the normal shader.
+fn render_grid(ctx: &mut Context, out: BufferId) -> Vec<Vec4> {
+    let g = ctx.create_triangles(bumpy_grid(100)).unwrap();
+    let mat = ctx.create_material();
+    let ch = ctx.create_program(&normal_shader::PROGRAM);
+    ctx.set_closest_hit_program(mat, 0, ch).unwrap();
+    let gi = ctx.create_geometry_instance(g, &[mat]).unwrap();
+    let gg = ctx.create_geometry_group(&[gi], Acceleration::new(Builder::Bvh)).unwrap();
+    let xf = ctx.create_transform(glam::Mat4::from_rotation_x(0.5), gg).unwrap();
+    let top = ctx.create_group(&[xf], Acceleration::new(Builder::Bvh)).unwrap();
+    ctx.set_var(Scope::Context, "top", top).unwrap();
+    let report = ctx.launch(0, W, W).unwrap();
+    assert!(report.exceptions.is_empty(), "{:?}", report.exceptions);
+    ctx.read_buffer::<Vec4>(out).unwrap()
+}
+
+#[test]
+fn a_scene_larger_than_one_binding_renders_from_one_binding_per_section() {
+    // The whole scene (about 2.5 MiB) exceeds a 1.5 MiB binding; its
+    // tables, BVH nodes and leaf-ordered triangles each fit.
+    let (mut ctx, out) = camera(1.2, Backend::Wgpu);
+    let (device, queue, info) = device_with(|l| ::wgpu::Limits { max_storage_buffer_binding_size: 3 << 19, ..l });
+    ctx.use_wgpu_device(device, queue, info);
+    let split = render_grid(&mut ctx, out);
+    assert!(ctx.linked_wgsl().unwrap().contains("var<storage, read> rt_bvh: array<u32>;"));
+    // A device with room for the scene in one binding but too few storage
+    // buffers for one per section: every section in rt_scene's binding.
+    let (mut ctx, out) = camera(1.2, Backend::Wgpu);
+    let (device, queue, info) = device_with(|l| ::wgpu::Limits { max_storage_buffers_per_shader_stage: 3, ..l });
+    ctx.use_wgpu_device(device, queue, info);
+    let merged = render_grid(&mut ctx, out);
+    let wgsl = ctx.linked_wgsl().unwrap();
+    assert!(!wgsl.contains("rt_bvh") && wgsl.contains("rt_scene[rt_scene[9u] + w]"), "merged BVH section");
+    // Triangles, no any-hit program, a group: the lean triangle search
+    // under the group's loop.
+    assert!(wgsl.contains("const RT_TRIANGLES_ONLY: bool = true;") && wgsl.contains("const RT_GROUPS: bool = true;"));
+    // The default device, and the CPU backend.
+    let (mut ctx, out) = camera(1.2, Backend::Wgpu);
+    let default = render_grid(&mut ctx, out);
+    let (mut ctx, out) = camera(1.2, Backend::Cpu);
+    let cpu = render_grid(&mut ctx, out);
+    let hits = cpu.iter().filter(|c| c.truncate() != BG).count();
+    assert!(hits > (W * W / 2) as usize, "{hits} pixels hit");
+    assert_eq!(split, merged, "one binding per section and all in one binding differ");
+    assert_eq!(split, default);
+    let worst = cpu.iter().zip(&split).map(|(x, y)| (*x - *y).abs().max_element()).fold(0.0f32, f32::max);
+    assert!(worst < 2.0 / 255.0, "largest difference from the CPU backend {worst}");
+}
+
+#[test]
+fn triangles_with_a_material_index_past_the_materials_are_never_hit() {
+    // Every third triangle names material 2 of an instance with two: the
+    // lean triangle search (no any-hit program, no group) skips them, as
+    // the CPU backend does.
+    let render = |backend| {
+        let (mut ctx, out) = camera(1.2, backend);
+        let mut mesh = bumpy_grid(6);
+        mesh.material_indices = Some((0..mesh.indices.len() as u32).map(|i| i % 3).collect());
+        let g = ctx.create_triangles(mesh).unwrap();
+        let (a, b) = (ctx.create_material(), ctx.create_material());
+        let ch = ctx.create_program(&normal_shader::PROGRAM);
+        ctx.set_closest_hit_program(a, 0, ch).unwrap();
+        ctx.set_closest_hit_program(b, 0, ch).unwrap();
+        let gi = ctx.create_geometry_instance(g, &[a, b]).unwrap();
+        let gg = ctx.create_geometry_group(&[gi], Acceleration::default()).unwrap();
+        ctx.set_var(Scope::Context, "top", gg).unwrap();
+        let report = ctx.launch(0, W, W).unwrap();
+        assert!(report.exceptions.is_empty(), "{:?}", report.exceptions);
+        if backend == Backend::Wgpu {
+            let wgsl = ctx.linked_wgsl().unwrap();
+            assert!(
+                wgsl.contains("const RT_TRIANGLES_ONLY: bool = true;")
+                    && wgsl.contains("const RT_GROUPS: bool = false;")
+            );
+        }
+        ctx.read_buffer::<Vec4>(out).unwrap()
+    };
+    let (cpu, gpu) = (render(Backend::Cpu), render(Backend::Wgpu));
+    let holes = cpu.iter().filter(|c| c.truncate() == BG).count();
+    assert!(holes > 100 && holes < (W * W - 100) as usize, "{holes} background pixels");
+    let worst = cpu.iter().zip(&gpu).map(|(x, y)| (*x - *y).abs().max_element()).fold(0.0f32, f32::max);
+    assert!(worst < 2.0 / 255.0, "largest difference from the CPU backend {worst}");
+}
+
+#[test]
+fn a_scene_section_over_the_binding_limit_is_a_clear_error() {
+    // The grid's BVH nodes (about 1.2 MiB) cannot fit a 1 MiB binding.
+    let (mut ctx, out) = camera(1.2, Backend::Wgpu);
+    let (device, queue, info) = device_with(|l| ::wgpu::Limits { max_storage_buffer_binding_size: 1 << 20, ..l });
+    ctx.use_wgpu_device(device, queue, info);
+    let g = ctx.create_triangles(bumpy_grid(100)).unwrap();
+    let mat = ctx.create_material();
+    let ch = ctx.create_program(&normal_shader::PROGRAM);
+    ctx.set_closest_hit_program(mat, 0, ch).unwrap();
+    let gi = ctx.create_geometry_instance(g, &[mat]).unwrap();
+    let gg = ctx.create_geometry_group(&[gi], Acceleration::new(Builder::Bvh)).unwrap();
+    ctx.set_var(Scope::Context, "top", gg).unwrap();
+    let err = ctx.launch(0, W, W).unwrap_err();
+    assert!(matches!(err, RtError::Gpu(_)), "{err:?}");
+    let err = err.to_string();
+    assert!(
+        err.contains("the scene's BVH nodes needs 1.2 MiB")
+            && err.contains("llvmpipe")
+            && err.contains("binds at most 1 MiB per storage buffer"),
+        "{err}"
+    );
+    let _ = out;
 }

@@ -47,7 +47,7 @@ fn rt_enter_level(level: u32, o2w: mat4x4<f32>, w2o: mat4x4<f32>) {
 
 // Instance `inst` seen from transform level `level`.
 fn rt_graph_instance(inst: u32, level: u32, mask: u32) {
-    let ib = rt_scene[1] + inst * 36u;
+    let ib = rt_scene[1] + inst * 40u;
     if (rt_scene[ib + 34u] & mask) == 0u {
         return;
     }
@@ -126,8 +126,8 @@ fn rt_search_graph(object: u32, mask: u32) {
         let bvh = rt_scene[node + 1u];
         let leaves = rt_scene[node + 2u];
         let n = bvh + e.y * 8u;
-        let count = rt_scene[n + 6u];
-        let first = rt_scene[n + 7u];
+        let count = rt_node_word(n + 6u);
+        let first = rt_node_word(n + 7u);
         if count > 0u {
             // Instances now; other children pushed, visited in leaf order.
             for (var i = first + count; i > first; i--) {

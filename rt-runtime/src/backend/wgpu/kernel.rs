@@ -31,7 +31,7 @@ const GRAPH: &str = include_str!("graph.wgsl");
 const TWO_LEVEL: &str = "
 fn rt_commit_xform() {}
 fn rt_hit_xform() {
-    let ib = rt_scene[1] + rt_h_inst * 36u;
+    let ib = rt_scene[1] + rt_h_inst * 40u;
     rt_o2w = rt_m4(ib);
     rt_w2o = rt_m4(ib + 16u);
 }
@@ -61,12 +61,67 @@ pub struct KernelSpec {
     /// Entries of the BVH traversal stack (at least the deepest BVH's
     /// levels + 1: nothing is ever dropped).
     pub bvh_stack: u32,
+    /// Entries of the search stack over a group's BVH (`rt_search`: BVH
+    /// nodes and the instances of a leaf, so at least the deepest group
+    /// BVH's levels + the largest leaf); 0 when the scene has no group of
+    /// instances, and `rt_search` no loop over one.
+    pub tlas_stack: u32,
     /// Entries of the graph traversal stack.
     pub graph_stack: u32,
     /// Without an exception program: the word offset, in the ray-generation
     /// record, of the `RwBuffer2d<Vec4>` the default exception program
     /// paints.
     pub default_exception: Option<u32>,
+    /// How many of the scene's sections ([`SCENE_SECTIONS`]) have their
+    /// own storage binding (at least 1: the tables); the others live in the
+    /// tables' binding after the tables.
+    pub scene_bindings: usize,
+    /// No intersection and no any-hit program: every primitive is a
+    /// triangle and every candidate commits, so instances are searched by
+    /// the lean loop (`rt_blas_triangles` in traverse.wgsl).
+    pub triangles_only: bool,
+}
+
+/// The scene's sections, each its own read-only storage binding where the
+/// device allows enough storage buffers per stage (binding 1 for the
+/// first, `3 + s` for section `s > 0`), so a scene binds when each section
+/// fits the adapter's binding limit rather than the whole. The tables are
+/// read as `rt_scene[w]`; every other section through its accessor
+/// `fn <accessor>(w: u32) -> u32`: a plain load from its binding, or, for a
+/// section that shares the tables' binding, a load at the base the tables'
+/// header word `SCENE_HEADER_BASES + s` holds.
+pub const SCENE_SECTIONS: [SceneSection; 3] = [
+    SceneSection { binding: "rt_scene", accessor: "", what: "the scene's tables (instances, geometry, records)" },
+    SceneSection { binding: "rt_bvh", accessor: "rt_node_word", what: "the scene's BVH nodes" },
+    SceneSection { binding: "rt_tris", accessor: "rt_tri_word", what: "the scene's triangles in BVH leaf order" },
+];
+
+/// Header word of the tables holding section `s`'s base in the merged
+/// binding (`SCENE_HEADER_BASES + s`).
+pub const SCENE_HEADER_BASES: usize = 8;
+
+/// One part of the scene data: its WGSL binding name, accessor, and what it
+/// holds (for errors).
+pub struct SceneSection {
+    pub binding: &'static str,
+    pub accessor: &'static str,
+    pub what: &'static str,
+}
+
+/// The WGSL declarations of the scene's sections past the tables (which
+/// the prelude declares as `rt_scene`) and their accessors.
+pub fn scene_access(bindings: usize) -> String {
+    let mut out = String::from("\n// ---- scene sections (see kernel.rs `SCENE_SECTIONS`) ----\n");
+    for (s, sec) in SCENE_SECTIONS.iter().enumerate().skip(1) {
+        let load = if s < bindings {
+            out.push_str(&format!("@group(0) @binding({}) var<storage, read> {}: array<u32>;\n", 3 + s, sec.binding));
+            format!("{}[w]", sec.binding)
+        } else {
+            format!("rt_scene[rt_scene[{}u] + w]", SCENE_HEADER_BASES + s)
+        };
+        out.push_str(&format!("fn {}(w: u32) -> u32 {{ return {load}; }}\n", sec.accessor));
+    }
+    out
 }
 
 /// Size in heap words of a variable's value in a scope record.
@@ -228,7 +283,14 @@ pub fn generate(spec: &KernelSpec) -> Result<String> {
     }
 
     let mut out = String::from(PRELUDE);
-    out.push_str(&format!("\nconst RT_BVH_STACK: u32 = {}u;\n", spec.bvh_stack));
+    out.push_str(&scene_access(spec.scene_bindings));
+    out.push_str(&format!(
+        "\nconst RT_BVH_STACK: u32 = {}u;\nconst RT_TLAS_STACK: u32 = {}u;\nconst RT_GROUPS: bool = {};\nconst RT_TRIANGLES_ONLY: bool = {};\n",
+        spec.bvh_stack,
+        spec.tlas_stack.max(1),
+        spec.tlas_stack > 0,
+        spec.triangles_only
+    ));
     out.push_str(TRAVERSE);
     if spec.graph_levels > 0 {
         out.push_str(&format!(

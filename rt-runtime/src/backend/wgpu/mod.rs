@@ -1,11 +1,24 @@
 //! The wgpu backend: every program linked into one compute shader (see
-//! [`kernel`]), the scene and all user data in three storage buffers.
+//! [`kernel`]), the scene and all user data in a few storage buffers.
 //!
 //! Bindings: `rt_heap` (read-write: scope records of variables, then user
 //! buffers, then sampler texels — addressed by word offset, so a scene uses
-//! four bindings however many buffers it has), `rt_scene` (read-only: BVHs,
-//! geometry, instance and record tables), `rt_log` (exceptions and
-//! `rt_printf!` output) and the launch uniform.
+//! the same bindings however many buffers it has), the scene's sections
+//! (read-only, [`kernel::SCENE_SECTIONS`]: `rt_scene` with the geometry,
+//! instance and record tables, `rt_bvh` with every BVH's nodes, `rt_tris`
+//! with every triangle's vertices and material in BVH leaf order), `rt_log`
+//! (exceptions and `rt_printf!` output) and the launch uniform.
+//!
+//! Large scenes: each section is its own binding, so a scene renders when
+//! each section fits the adapter's `max_storage_buffer_binding_size` (128
+//! MiB on lavapipe) rather than the whole; a section that does not fit is
+//! an [`RtError::Gpu`] naming it, its size, the adapter and the limit. The
+//! device asks for one storage buffer per section (5 in all) up to the
+//! adapter's own limit; on a device with fewer (an application's, through
+//! `Context::use_wgpu_device`), the sections without a binding follow the
+//! tables in `rt_scene`'s and are read at a base from the tables' header.
+//! Tests force both with devices of smaller limits (`device_with` in
+//! tests/tests/runtime.rs). The heap is one binding.
 //!
 //! Traversal: every transform chain down to a geometry group is flattened
 //! into an instance (one matrix, its inverse, the AND of the chain's
@@ -17,6 +30,16 @@
 //! instead of recursing; selectors call the generated `rt_visit_dispatch`.
 //! The graph traversal is linked only into kernels whose scene needs it, so
 //! two-level scenes keep the lean kernel. Semantics are the CPU backend's.
+//!
+//! Speed on lavapipe: llvmpipe runs a workgroup's invocations as SIMD lanes
+//! and both sides of a divergent branch under a mask, so a search costs
+//! about the code it holds, taken or not. Kernels link the lean forms the
+//! scene allows: without intersection and any-hit programs, instances are
+//! searched by a loop over leaf-ordered triangles with its state in locals
+//! (`RT_TRIANGLES_ONLY`); without groups of instances, `rt_search` has no
+//! loop over one (`RT_GROUPS`). Both are fixed by the program set and the
+//! graph's shape, like the rest of the kernel. (BENCHMARKS.md: the AO
+//! workload from 0.46 to 0.8 of the hand-written kernel.)
 //!
 //! Caching: the pipeline is keyed by the generated WGSL, which depends on the
 //! program set and the graph's shape but never on variable values or buffer
@@ -32,8 +55,8 @@ use crate::error::{Result, RtError};
 use crate::scene::{GeometryKind, NodeId, NodeKind, ProgramId};
 use crate::vars::VarValue;
 use glam::{Mat4, UVec2};
-use kernel::{KernelProgram, KernelSpec};
-use rt_std::program::VariableKind;
+use kernel::{KernelProgram, KernelSpec, SCENE_HEADER_BASES, SCENE_SECTIONS};
+use rt_std::program::{ProgramKind, VariableKind};
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 use wgpu::util::DeviceExt;
@@ -52,6 +75,10 @@ pub struct Gpu {
     queue: wgpu::Queue,
     info: wgpu::AdapterInfo,
     limits: wgpu::Limits,
+    /// How many of the scene's sections get their own binding (see
+    /// [`kernel::SCENE_SECTIONS`]): all of them where the device allows
+    /// enough storage buffers per stage.
+    scene_bindings: usize,
     /// The one bind-group layout of every megakernel, so bind groups outlive
     /// pipelines.
     layout: wgpu::BindGroupLayout,
@@ -111,7 +138,8 @@ impl Health {
 #[derive(Default)]
 struct Resident {
     heap: Option<Mirrored>,
-    scene: Option<Mirrored>,
+    /// One per scene binding.
+    scene: Vec<Option<Mirrored>>,
     log: Option<wgpu::Buffer>,
     /// One 256-byte-aligned launch uniform per dispatch tile.
     uniforms: Option<(wgpu::Buffer, u32)>,
@@ -192,8 +220,12 @@ impl Gpu {
                 "no wgpu adapter ({e}); on a machine without a GPU install Mesa's lavapipe (`apt-get install mesa-vulkan-drivers`)"
             ))
         })?;
-        let limits = wgpu::Limits { max_storage_buffers_per_shader_stage: 4, ..wgpu::Limits::downlevel_defaults() }
-            .using_resolution(adapter.limits());
+        // Heap, log and one binding per scene section, where the adapter
+        // has that many.
+        let storage = (2 + SCENE_SECTIONS.len() as u32).min(adapter.limits().max_storage_buffers_per_shader_stage);
+        let limits =
+            wgpu::Limits { max_storage_buffers_per_shader_stage: storage, ..wgpu::Limits::downlevel_defaults() }
+                .using_resolution(adapter.limits());
         let limits = wgpu::Limits {
             max_storage_buffer_binding_size: adapter.limits().max_storage_buffer_binding_size,
             max_buffer_size: adapter.limits().max_buffer_size,
@@ -216,7 +248,10 @@ impl Gpu {
 
     fn from_parts(device: wgpu::Device, queue: wgpu::Queue, info: wgpu::AdapterInfo, limits: wgpu::Limits) -> Gpu {
         // An explicit layout: a kernel that never reads a binding (no
-        // traces: no `rt_scene`) still takes all four.
+        // traces: no `rt_scene`) still takes them all. Heap, log: 2 storage
+        // buffers; the rest go to the scene's sections.
+        let scene_bindings =
+            (limits.max_storage_buffers_per_shader_stage.saturating_sub(2) as usize).clamp(1, SCENE_SECTIONS.len());
         let buffer = |binding: u32, ty: wgpu::BufferBindingType| wgpu::BindGroupLayoutEntry {
             binding,
             visibility: wgpu::ShaderStages::COMPUTE,
@@ -224,14 +259,16 @@ impl Gpu {
             count: None,
         };
         let storage = |read_only| wgpu::BufferBindingType::Storage { read_only };
+        let mut entries = vec![
+            buffer(0, storage(false)),
+            buffer(1, storage(true)),
+            buffer(2, storage(false)),
+            buffer(3, wgpu::BufferBindingType::Uniform),
+        ];
+        entries.extend((1..scene_bindings).map(|s| buffer(3 + s as u32, storage(true))));
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("rt bindings"),
-            entries: &[
-                buffer(0, storage(false)),
-                buffer(1, storage(true)),
-                buffer(2, storage(false)),
-                buffer(3, wgpu::BufferBindingType::Uniform),
-            ],
+            entries: &entries,
         });
         let health = Arc::new(Health::default());
         let on_lost = Arc::clone(&health);
@@ -248,6 +285,7 @@ impl Gpu {
             queue,
             info,
             limits,
+            scene_bindings,
             layout,
             pipelines: HashMap::new(),
             pipelines_created: 0,
@@ -286,7 +324,9 @@ pub fn probe() -> Option<wgpu::AdapterInfo> {
 
 /// Everything a launch uploads.
 struct Encoded {
-    scene: Vec<u32>,
+    /// The scene's sections ([`kernel::SCENE_SECTIONS`]): offsets inside a
+    /// section are relative to its start.
+    scene: [Vec<u32>; SCENE_SECTIONS.len()],
     heap: Vec<u32>,
     /// `(buffer index, heap offset, words)` of buffers programs may write.
     outputs: Vec<(usize, usize, usize)>,
@@ -348,6 +388,25 @@ fn push_bvh(out: &mut Vec<u32>, bvh: &crate::accel::Bvh, deepest: &mut u32) -> u
         out.extend([f(1.0), f(1.0), f(1.0), f(-1.0), f(-1.0), f(-1.0), 0, 0]);
     }
     at
+}
+
+/// The triangle slot of primitive `p` of geometry instance `gi` (10 words,
+/// see traverse.wgsl): its vertices, then its material index, or `RT_NONE`
+/// when no hit on it can commit (a custom primitive; a material index
+/// past the instance's materials).
+fn push_triangle_slot(ctx: &Context, out: &mut Vec<u32>, gi: u32, p: u32) {
+    let instance = &ctx.instances[gi as usize];
+    match &ctx.geometries[instance.geometry.index() as usize].kind {
+        GeometryKind::Triangles(mesh) => {
+            for i in mesh.indices[p as usize] {
+                let v = mesh.positions[i as usize];
+                out.extend([f(v.x), f(v.y), f(v.z)]);
+            }
+            let m = mesh.material_indices.as_ref().map_or(0, |m| m.get(p as usize).copied().unwrap_or(0));
+            out.push(if (m as usize) < instance.materials.len() { m } else { u32::MAX });
+        }
+        GeometryKind::Custom { .. } => out.extend([0; 9].into_iter().chain([u32::MAX])),
+    }
 }
 
 /// Follows transforms down to a geometry group: (group, object-to-world, mask).
@@ -455,8 +514,11 @@ fn encode(ctx: &Context, entry: u32) -> Result<Encoded> {
         None => (None, 0),
     };
 
-    // Scene.
-    let mut scene: Vec<u32> = vec![0; 8];
+    // Scene: the tables, BVH nodes and the triangles in leaf order in
+    // their own sections.
+    let mut scene: Vec<u32> = vec![0; SCENE_HEADER_BASES + SCENE_SECTIONS.len()];
+    let mut nodes: Vec<u32> = Vec::new();
+    let mut tris: Vec<u32> = Vec::new();
     let accels: &[Option<NodeAccel>] = &ctx.accels.nodes;
     // Instances: one per geometry group and per transform chain.
     let mut instance_of_node: Vec<Option<u32>> = vec![None; ctx.nodes.len()];
@@ -469,21 +531,29 @@ fn encode(ctx: &Context, entry: u32) -> Result<Encoded> {
     }
     // BVHs of geometry groups (and their primitive tables), of groups (and
     // their leaf tables: instances, or other nodes with NODE_BIT).
-    let mut gg_bvh: HashMap<u32, (u32, u32)> = HashMap::new();
+    let mut gg_bvh: HashMap<u32, (u32, u32, u32)> = HashMap::new();
+    // The most instances and nodes a leaf of a group's BVH holds.
+    let mut widest_group_leaf = 1;
+    // The deepest BVH of a group of instances (`None`: no group).
+    let mut deepest_group: Option<u32> = None;
     let mut group_bvh: HashMap<u32, (u32, u32, bool)> = HashMap::new();
     for (n, rec) in ctx.nodes.iter().enumerate() {
         match (&rec.kind, accels.get(n).and_then(|a| a.as_ref())) {
             (NodeKind::GeometryGroup { .. }, Some(NodeAccel::Prims { bvh, prims, .. })) => {
-                let at = push_bvh(&mut scene, bvh, &mut deepest_bvh);
+                let at = push_bvh(&mut nodes, bvh, &mut deepest_bvh);
                 let table = scene.len() as u32;
+                let tri_slots = tris.len() as u32;
                 for slot in &bvh.bvh.primitive_indices {
                     let (gi, p) = prims[*slot as usize];
                     scene.extend([gi, p]);
+                    push_triangle_slot(ctx, &mut tris, gi, p);
                 }
-                gg_bvh.insert(n as u32, (at, table));
+                gg_bvh.insert(n as u32, (at, table, tri_slots));
             }
             (NodeKind::Group { children, .. }, Some(NodeAccel::Children { bvh, .. })) => {
-                let at = push_bvh(&mut scene, bvh, &mut deepest_bvh);
+                let at = push_bvh(&mut nodes, bvh, &mut deepest_bvh);
+                widest_group_leaf = bvh.bvh.nodes.iter().map(|n| n.prim_count).fold(widest_group_leaf, u32::max);
+                deepest_group = Some(deepest_group.unwrap_or(1).max(bvh_depth(bvh)));
                 let table = scene.len() as u32;
                 let mut instances_only = true;
                 for slot in &bvh.bvh.primitive_indices {
@@ -505,8 +575,8 @@ fn encode(ctx: &Context, entry: u32) -> Result<Encoded> {
     for (gg, o2w, mask) in &instances {
         push_mat(&mut scene, *o2w);
         push_mat(&mut scene, o2w.inverse());
-        let (bvh, table) = gg_bvh.get(&gg.index()).copied().unwrap_or((0, 0));
-        scene.extend([bvh, table, *mask, gg.index()]);
+        let (bvh, table, tri_slots) = gg_bvh.get(&gg.index()).copied().unwrap_or((0, 0, 0));
+        scene.extend([bvh, table, *mask, gg.index(), tri_slots, 0, 0, 0]);
     }
     // The node table (after the side data of transforms and selectors), and
     // how deep transforms above groups and selectors nest (in post order:
@@ -690,9 +760,17 @@ fn encode(ctx: &Context, entry: u32) -> Result<Encoded> {
     // at most one pending entry per level; graph traversal, one BVH's worth
     // per transform level. Powers of two, so small changes do not relink.
     let bvh_stack = (deepest_bvh + 2).max(64).next_power_of_two();
+    let tlas_stack = match deepest_group {
+        Some(depth) => (depth + 2 + widest_group_leaf).max(64).next_power_of_two(),
+        None => 0,
+    };
     let graph_stack = ((deepest_bvh + 2) * (graph_levels + 1)).max(96).next_power_of_two();
+    let triangles_only =
+        !programs.iter().any(|p| matches!(p.desc.kind, ProgramKind::AnyHit | ProgramKind::Intersection));
     let spec = KernelSpec {
+        triangles_only,
         bvh_stack,
+        tlas_stack,
         graph_stack,
         ray_generation: rg_prog,
         exception: ex_prog,
@@ -700,8 +778,26 @@ fn encode(ctx: &Context, entry: u32) -> Result<Encoded> {
         max_depth: ctx.max_trace_depth,
         graph_levels,
         default_exception,
+        scene_bindings: SCENE_SECTIONS.len(),
     };
-    Ok(Encoded { scene, heap, outputs, spec, rg_vars, ex_vars })
+    // A binding needs a word.
+    for section in [&mut nodes, &mut tris] {
+        if section.is_empty() {
+            section.push(0);
+        }
+    }
+    Ok(Encoded { scene: [scene, nodes, tris], heap, outputs, spec, rg_vars, ex_vars })
+}
+
+/// A size for messages: MiB (one decimal unless whole) from 1 MiB up,
+/// KiB below.
+fn size(bytes: u64) -> String {
+    const MIB: u64 = 1 << 20;
+    match bytes {
+        b if b >= MIB && b % MIB == 0 => format!("{} MiB", b / MIB),
+        b if b >= MIB => format!("{:.1} MiB", b as f64 / MIB as f64),
+        b => format!("{} KiB", b.div_ceil(1 << 10)),
+    }
 }
 
 fn words_to_bytes(w: &[u32]) -> &[u8] {
@@ -741,7 +837,9 @@ fn launch_on_device(ctx: &mut Context, entry: u32, width: u32, height: u32) -> R
     ctx.accels = cache;
     built?;
     let t1 = std::time::Instant::now();
-    let enc = encode(ctx, entry)?;
+    let mut enc = encode(ctx, entry)?;
+    let scene_bindings = ctx.gpu.as_ref().expect("created above").scene_bindings;
+    enc.spec.scene_bindings = scene_bindings;
     let t2 = std::time::Instant::now();
     let wgsl = kernel::generate(&enc.spec)?;
     if std::env::var_os("RT_DUMP_WGSL").is_some() {
@@ -754,14 +852,40 @@ fn launch_on_device(ctx: &mut Context, entry: u32, width: u32, height: u32) -> R
     let print_enabled = ctx.print_enabled as u32;
     let gpu = ctx.gpu.as_mut().expect("created above");
 
-    let max_binding = gpu.limits.max_storage_buffer_binding_size as usize;
-    for (what, len) in [("the heap (variables, buffers, textures)", enc.heap.len()), ("the scene", enc.scene.len())] {
-        if len * 4 > max_binding {
+    // The scene's bindings: the sections with one of their own, the others
+    // after the tables (their bases in the tables' header).
+    let Encoded { scene, heap, outputs, spec, rg_vars, ex_vars } = enc;
+    let mut sections = Vec::from(scene);
+    let shared = sections.split_off(scene_bindings);
+    let mut shared_names = Vec::new();
+    for (k, words) in shared.into_iter().enumerate() {
+        let s = scene_bindings + k;
+        sections[0][SCENE_HEADER_BASES + s] = sections[0].len() as u32;
+        sections[0].extend(words);
+        shared_names.push(SCENE_SECTIONS[s].what);
+    }
+    let max_binding = gpu.limits.max_storage_buffer_binding_size;
+    let tables_what = if shared_names.is_empty() {
+        SCENE_SECTIONS[0].what.to_string()
+    } else {
+        format!(
+            "{} with {} (one binding: the device allows {} storage buffers per shader stage)",
+            SCENE_SECTIONS[0].what,
+            shared_names.join(" and "),
+            gpu.limits.max_storage_buffers_per_shader_stage
+        )
+    };
+    let mut parts = vec![("the heap (variables, buffers, textures)".to_string(), heap.len())];
+    parts.push((tables_what, sections[0].len()));
+    parts.extend(sections.iter().enumerate().skip(1).map(|(s, w)| (SCENE_SECTIONS[s].what.to_string(), w.len())));
+    for (what, len) in parts {
+        let bytes = len as u64 * 4;
+        if bytes > max_binding {
             return Err(RtError::Gpu(format!(
-                "{what} needs {} MiB but {} binds at most {} MiB per storage buffer",
-                (len * 4) >> 20,
+                "{what} needs {} but {} binds at most {} per storage buffer",
+                size(bytes),
                 gpu.describe(),
-                max_binding >> 20
+                size(max_binding)
             )));
         }
     }
@@ -799,9 +923,12 @@ fn launch_on_device(ctx: &mut Context, entry: u32, width: u32, height: u32) -> R
     let health = &**health;
     let pipeline = &pipelines[&wgsl];
     res.uploaded = 0;
-    let Encoded { scene, heap, outputs, spec, rg_vars, ex_vars } = enc;
     let mut replaced = Resident::sync(device, queue, &mut res.heap, heap, "rt_heap", &mut res.uploaded);
-    replaced |= Resident::sync(device, queue, &mut res.scene, scene, "rt_scene", &mut res.uploaded);
+    res.scene.resize_with(sections.len(), || None);
+    for (s, words) in sections.into_iter().enumerate() {
+        replaced |=
+            Resident::sync(device, queue, &mut res.scene[s], words, SCENE_SECTIONS[s].binding, &mut res.uploaded);
+    }
     let log_words = 4 + LOG_EXCEPTIONS * 3 + LOG_PRINT_WORDS;
     if res.log.is_none() {
         res.log = Some(device.create_buffer(&wgpu::BufferDescriptor {
@@ -870,25 +997,30 @@ fn launch_on_device(ctx: &mut Context, entry: u32, width: u32, height: u32) -> R
         res.bind_groups.clear();
     }
     let heap_buffer = &res.heap.as_ref().expect("synced above").buffer;
-    let scene_buffer = &res.scene.as_ref().expect("synced above").buffer;
+    let scene_buffers: Vec<&wgpu::Buffer> =
+        res.scene.iter().map(|m| &m.as_ref().expect("synced above").buffer).collect();
     while res.bind_groups.len() < tiles.len() {
         let slot = res.bind_groups.len() as u64;
+        let mut entries = vec![
+            wgpu::BindGroupEntry { binding: 0, resource: heap_buffer.as_entire_binding() },
+            wgpu::BindGroupEntry { binding: 1, resource: scene_buffers[0].as_entire_binding() },
+            wgpu::BindGroupEntry { binding: 2, resource: log.as_entire_binding() },
+            wgpu::BindGroupEntry {
+                binding: 3,
+                resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                    buffer: uniforms,
+                    offset: slot * stride,
+                    size: std::num::NonZeroU64::new(48),
+                }),
+            },
+        ];
+        for (s, b) in scene_buffers.iter().enumerate().skip(1) {
+            entries.push(wgpu::BindGroupEntry { binding: 3 + s as u32, resource: b.as_entire_binding() });
+        }
         res.bind_groups.push(device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("rt bindings"),
             layout,
-            entries: &[
-                wgpu::BindGroupEntry { binding: 0, resource: heap_buffer.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 1, resource: scene_buffer.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 2, resource: log.as_entire_binding() },
-                wgpu::BindGroupEntry {
-                    binding: 3,
-                    resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-                        buffer: uniforms,
-                        offset: slot * stride,
-                        size: std::num::NonZeroU64::new(48),
-                    }),
-                },
-            ],
+            entries: &entries,
         }));
     }
     let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("rt launch") });

@@ -241,15 +241,22 @@ fn rt_default_exception(b: RtBuffer) {
 // ---- scene access ----
 // rt_scene header: [0] node table, [1] instance table, [2] geometry
 // instance table, [3] hit record table, [4] ray type count, [5] miss
-// records, [6] intersection records.
+// records, [6] intersection records, [7] node count, [8 + s] base of
+// section s when it shares rt_scene's binding (kernel.rs `SCENE_SECTIONS`).
+// BVH offsets (instance and node-table words) are in the BVH section.
 fn rt_valid_ray(r: RtRay) -> bool {
     let big = vec3<f32>(3.40282347e38);
     return all(abs(r.origin) <= big) && all(abs(r.direction) <= big) && r.tmin == r.tmin && r.tmax == r.tmax;
 }
 
+// A BVH node's words live in the BVH section (`rt_node_word`).
+fn rt_node_v3(w: u32) -> vec3<f32> {
+    return vec3<f32>(bitcast<f32>(rt_node_word(w)), bitcast<f32>(rt_node_word(w + 1u)), bitcast<f32>(rt_node_word(w + 2u)));
+}
+
 fn rt_aabb_hit(w: u32, o: vec3<f32>, inv: vec3<f32>, tmin: f32, tmax: f32) -> f32 {
-    let t0 = (rt_v3(w) - o) * inv;
-    let t1 = (rt_v3(w + 3u) - o) * inv;
+    let t0 = (rt_node_v3(w) - o) * inv;
+    let t1 = (rt_node_v3(w + 3u) - o) * inv;
     let lo = min(t0, t1);
     let hi = max(t0, t1);
     let near = max(max(max(lo.x, lo.y), lo.z), tmin);

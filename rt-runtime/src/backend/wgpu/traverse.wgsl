@@ -12,9 +12,13 @@
 // group or selector, a = offset of [object-to-world, world-to-object],
 // b = the node below; kind 4: selector, a = offset of [visit case, visit
 // record, child count, child nodes...]. mask is the AND of the visibility
-// masks of the nodes the entry stands for. Instances of 36 words
+// masks of the nodes the entry stands for. Instances of 40 words
 // [object-to-world, world-to-object, BVH offset, primitive table, mask,
-// node]; BVH nodes of 8 words [min xyz, max xyz, count, first]; geometry
+// node, triangle slots, 3 unused]; BVH nodes of 8 words [min xyz, max
+// xyz, count, first] in the BVH section; triangle slots of 10 words per
+// primitive table entry, in the triangle section: the triangle's vertices
+// in object space, then its material index, or RT_NONE when it has none
+// (custom primitives, material index past the material count); geometry
 // instances of 8 words [kind, positions, indices, normals, texcoords,
 // material indices, material count, hit records].
 const RT_NODE_BIT: u32 = 0x80000000u;
@@ -113,7 +117,7 @@ const RT_FAR: f32 = 3.40282347e38;
 // The primitives of instance `inst` (a geometry group's BVH, in the
 // instance's object space).
 fn rt_blas(inst: u32) {
-    let ib = rt_scene[1] + inst * 36u;
+    let ib = rt_scene[1] + inst * 40u;
     rt_o2w = rt_m4(ib);
     rt_w2o = rt_m4(ib + 16u);
     rt_blas_in(inst);
@@ -122,7 +126,11 @@ fn rt_blas(inst: u32) {
 // The primitives of instance `inst` with rt_o2w and rt_w2o already set to
 // its full transform.
 fn rt_blas_in(inst: u32) {
-    let ib = rt_scene[1] + inst * 36u;
+    if RT_TRIANGLES_ONLY {
+        rt_blas_triangles(inst);
+        return;
+    }
+    let ib = rt_scene[1] + inst * 40u;
     rt_s_inst = inst;
     var oray = rt_s_wray;
     oray.origin = (rt_w2o * vec4<f32>(rt_s_wray.origin, 1.0)).xyz;
@@ -144,8 +152,8 @@ fn rt_blas_in(inst: u32) {
             continue;
         }
         let n = bvh + e.x * 8u;
-        let count = rt_scene[n + 6u];
-        let first = rt_scene[n + 7u];
+        let count = rt_node_word(n + 6u);
+        let first = rt_node_word(n + 7u);
         if count > 0u {
             for (var i = first; i < first + count; i++) {
                 let p = prims + i * 2u;
@@ -193,6 +201,16 @@ fn rt_enter_hit(ray: RtRay, flags: u32) -> u32 {
     return rec;
 }
 
+// Marks a search stack entry that is an instance to search, not a node of
+// the group's BVH.
+const RT_INST_BIT: u32 = 0x80000000u;
+
+// One loop for a geometry group (one instance on the stack) and a group of
+// instances (its BVH; a leaf pushes its instances, popped in leaf order):
+// rt_blas is called from one place, so the kernel holds one copy of the
+// instance search per trace. (llvmpipe runs a loop no lane takes, and
+// pays for code size: a second copy cost a fifth of the AO workload's
+// time.)
 fn rt_search(object: u32, ray: RtRay, flags: u32, mask: u32) {
     rt_s_wray = ray;
     rt_s_flags = flags;
@@ -205,40 +223,50 @@ fn rt_search(object: u32, ray: RtRay, flags: u32, mask: u32) {
         return;
     }
     let kind = rt_scene[node];
-    if kind == 0u {
-        rt_blas(rt_scene[node + 1u]);
+    if kind != 0u && kind != 1u {
+        rt_search_graph(object, mask);
         return;
     }
-    if kind != 1u {
-        rt_search_graph(object, mask);
+    if !RT_GROUPS {
+        // No group of instances in the scene (the linker's RT_GROUPS): the
+        // object is one instance, searched without the loop below (its
+        // stack and control flow cost llvmpipe a fifth of a search).
+        rt_blas(rt_scene[node + 1u]);
         return;
     }
     let bvh = rt_scene[node + 1u];
     let leaves = rt_scene[node + 2u];
     let inv = 1.0 / ray.direction;
-    if rt_aabb_hit(bvh, ray.origin, inv, ray.tmin, rt_s_tmax) == RT_FAR {
-        return;
+    var stack: array<vec2<u32>, RT_TLAS_STACK>;
+    var sp = 0u;
+    if kind == 0u {
+        stack[0] = vec2<u32>(rt_scene[node + 1u] | RT_INST_BIT, 0u);
+        sp = 1u;
+    } else if rt_aabb_hit(bvh, ray.origin, inv, ray.tmin, rt_s_tmax) != RT_FAR {
+        stack[0] = vec2<u32>(0u, 0u);
+        sp = 1u;
     }
-    var stack: array<vec2<u32>, RT_BVH_STACK>;
-    stack[0] = vec2<u32>(0u, 0u);
-    var sp = 1u;
     while sp > 0u && !rt_s_done {
         sp = sp - 1u;
         let e = stack[sp];
         if bitcast<f32>(e.y) > rt_s_tmax {
             continue;
         }
+        if (e.x & RT_INST_BIT) != 0u {
+            rt_blas(e.x & ~RT_INST_BIT);
+            continue;
+        }
         let n = bvh + e.x * 8u;
-        let count = rt_scene[n + 6u];
-        let first = rt_scene[n + 7u];
+        let count = rt_node_word(n + 6u);
+        let first = rt_node_word(n + 7u);
         if count > 0u {
-            for (var i = first; i < first + count; i++) {
-                let inst = rt_scene[leaves + i];
-                if (rt_scene[rt_scene[1] + inst * 36u + 34u] & mask) != 0u {
-                    rt_blas(inst);
-                }
-                if rt_s_done {
-                    break;
+            // The leaf's instances, last first: popped in leaf order, each
+            // at the leaf's entry distance (its bounds hold theirs).
+            for (var i = first + count; i > first; i--) {
+                let inst = rt_scene[leaves + i - 1u];
+                if (rt_scene[rt_scene[1] + inst * 40u + 34u] & mask) != 0u && sp < RT_TLAS_STACK {
+                    stack[sp] = vec2<u32>(inst | RT_INST_BIT, e.y);
+                    sp = sp + 1u;
                 }
             }
             continue;
@@ -252,13 +280,165 @@ fn rt_search(object: u32, ray: RtRay, flags: u32, mask: u32) {
             near = far;
             far = tmp;
         }
-        if bitcast<f32>(far.y) != RT_FAR && sp < RT_BVH_STACK {
+        if bitcast<f32>(far.y) != RT_FAR && sp < RT_TLAS_STACK {
             stack[sp] = far;
             sp = sp + 1u;
         }
-        if bitcast<f32>(near.y) != RT_FAR && sp < RT_BVH_STACK {
+        if bitcast<f32>(near.y) != RT_FAR && sp < RT_TLAS_STACK {
             stack[sp] = near;
             sp = sp + 1u;
         }
+    }
+}
+
+// ---- triangles without any-hit programs ----
+// Kernels with no intersection and no any-hit program (RT_TRIANGLES_ONLY,
+// set by the linker) search instances here: every primitive is a
+// triangle and every candidate nearer than the closest hit commits, so the
+// search keeps its state in locals, reads each triangle's nine vertex
+// words and its material word from the triangle section in BVH leaf order,
+// and fills the hit state once at the end. Same hits as rt_blas_in's
+// general loop (same tests, same order); llvmpipe runs both sides of every
+// branch under a lane mask, so the loop body's size is its cost.
+
+// The watertight test's per-ray part: the axes (x, y: the shear plane,
+// z: the dominant axis) and the shear.
+struct RtShear {
+    k: vec3<u32>,
+    s: vec3<f32>,
+    ok: bool,
+}
+
+fn rt_shear(d: vec3<f32>) -> RtShear {
+    let ad = abs(d);
+    var kz = 2u;
+    if ad.x > ad.y {
+        if ad.x > ad.z { kz = 0u; }
+    } else if ad.y > ad.z {
+        kz = 1u;
+    }
+    var kx = (kz + 1u) % 3u;
+    var ky = (kx + 1u) % 3u;
+    if d[kz] < 0.0 {
+        let tmp = kx;
+        kx = ky;
+        ky = tmp;
+    }
+    return RtShear(vec3<u32>(kx, ky, kz), vec3<f32>(d[kx] / d[kz], d[ky] / d[kz], 1.0 / d[kz]), d[kz] != 0.0);
+}
+
+// rt_triangle with the shear precomputed: t (negative on a miss), the
+// barycentrics of vertices 1 and 2 in *bary, the side in *front.
+fn rt_triangle_sheared(w: u32, o: vec3<f32>, d: vec3<f32>, sh: RtShear, tmin: f32, tmax: f32, bary: ptr<function, vec2<f32>>, front: ptr<function, bool>) -> f32 {
+    let a = vec3<f32>(bitcast<f32>(rt_tri_word(w)), bitcast<f32>(rt_tri_word(w + 1u)), bitcast<f32>(rt_tri_word(w + 2u)));
+    let b = vec3<f32>(bitcast<f32>(rt_tri_word(w + 3u)), bitcast<f32>(rt_tri_word(w + 4u)), bitcast<f32>(rt_tri_word(w + 5u)));
+    let c = vec3<f32>(bitcast<f32>(rt_tri_word(w + 6u)), bitcast<f32>(rt_tri_word(w + 7u)), bitcast<f32>(rt_tri_word(w + 8u)));
+    let pa = a - o;
+    let pb = b - o;
+    let pc = c - o;
+    let kx = sh.k.x;
+    let ky = sh.k.y;
+    let kz = sh.k.z;
+    let ax = pa[kx] - sh.s.x * pa[kz];
+    let ay = pa[ky] - sh.s.y * pa[kz];
+    let bx = pb[kx] - sh.s.x * pb[kz];
+    let by = pb[ky] - sh.s.y * pb[kz];
+    let cx = pc[kx] - sh.s.x * pc[kz];
+    let cy = pc[ky] - sh.s.y * pc[kz];
+    let u = cx * by - cy * bx;
+    let v = ax * cy - ay * cx;
+    let ww = bx * ay - by * ax;
+    if (u < 0.0 || v < 0.0 || ww < 0.0) && (u > 0.0 || v > 0.0 || ww > 0.0) { return -1.0; }
+    let det = u + v + ww;
+    if det == 0.0 { return -1.0; }
+    let sz = sh.s.z;
+    let t = (u * sz * pa[kz] + v * sz * pb[kz] + ww * sz * pc[kz]) / det;
+    if !(t > tmin && t < tmax) { return -1.0; }
+    *bary = vec2<f32>(v / det, ww / det);
+    *front = dot(d, cross(b - a, c - a)) < 0.0;
+    return t;
+}
+
+fn rt_blas_triangles(inst: u32) {
+    let ib = rt_scene[1] + inst * 40u;
+    let o = (rt_w2o * vec4<f32>(rt_s_wray.origin, 1.0)).xyz;
+    let d = (rt_w2o * vec4<f32>(rt_s_wray.direction, 0.0)).xyz;
+    let tmin = rt_s_wray.tmin;
+    let bvh = rt_scene[ib + 32u];
+    let tris = rt_scene[ib + 36u];
+    let inv = 1.0 / d;
+    var tmax = rt_s_tmax;
+    if rt_aabb_hit(bvh, o, inv, tmin, tmax) == RT_FAR {
+        return;
+    }
+    let sh = rt_shear(d);
+    if !sh.ok {
+        // A zero direction: rt_triangle misses every triangle.
+        return;
+    }
+    let flags = rt_s_flags;
+    let cull_front = (flags & 16u) != 0u;
+    let cull_back = (flags & 8u) != 0u;
+    let terminate = (flags & 1u) != 0u;
+    var hit = RT_NONE;
+    var hit_bary = vec2<f32>();
+    var done = false;
+    var stack: array<u32, RT_BVH_STACK>;
+    stack[0] = 0u;
+    var sp = 1u;
+    while sp > 0u && !done {
+        sp = sp - 1u;
+        let n = bvh + stack[sp] * 8u;
+        let count = rt_node_word(n + 6u);
+        let first = rt_node_word(n + 7u);
+        if count > 0u {
+            for (var i = first; i < first + count; i++) {
+                let w = tris + i * 10u;
+                var bary: vec2<f32>;
+                var front: bool;
+                let t = rt_triangle_sheared(w, o, d, sh, tmin, tmax, &bary, &front);
+                if t >= 0.0 && !((front && cull_front) || (!front && cull_back)) && rt_tri_word(w + 9u) != RT_NONE {
+                    tmax = t;
+                    hit = i;
+                    hit_bary = bary;
+                    if terminate {
+                        done = true;
+                        break;
+                    }
+                }
+            }
+            continue;
+        }
+        let ta = rt_aabb_hit(bvh + first * 8u, o, inv, tmin, tmax);
+        let tb = rt_aabb_hit(bvh + (first + 1u) * 8u, o, inv, tmin, tmax);
+        var near = first;
+        var far = first + 1u;
+        if tb < ta {
+            near = first + 1u;
+            far = first;
+        }
+        if max(ta, tb) != RT_FAR && sp < RT_BVH_STACK {
+            stack[sp] = far;
+            sp = sp + 1u;
+        }
+        if min(ta, tb) != RT_FAR && sp < RT_BVH_STACK {
+            stack[sp] = near;
+            sp = sp + 1u;
+        }
+    }
+    if hit != RT_NONE {
+        let p = rt_scene[ib + 33u] + hit * 2u;
+        rt_s_inst = inst;
+        rt_s_tmax = tmax;
+        rt_h_found = true;
+        rt_h_t = tmax;
+        rt_h_gi = rt_scene[p];
+        rt_h_prim = rt_scene[p + 1u];
+        rt_h_mat = rt_tri_word(tris + hit * 10u + 9u);
+        rt_h_inst = inst;
+        rt_h_custom = false;
+        rt_h_bary = hit_bary;
+        rt_commit_xform();
+        rt_s_done = done;
     }
 }
