@@ -12,7 +12,9 @@
 //! thread-local execution context and the [`Tracer`] it installs.
 //!
 //! Per ray nothing is allocated and nothing is looked up by name: variables
-//! are bound to references once per launch and program use ([`Program`]),
+//! are bound once per launch and program use, their types checked then
+//! ([`rt_std::cpu::BoundVariables`]: a call reads them after one comparison,
+//! not one downcast per variable),
 //! each program call's context is built in place and installed by pointer
 //! ([`rt_std::cpu::in_context`]), the tracer is installed once per chunk of
 //! launch indices, and attribute values are reused from a per-thread pool.
@@ -30,7 +32,7 @@ use crate::scene::{GeometryKind, NodeId, NodeKind, TriangleMesh};
 use glam::{Mat4, UVec2, Vec2, Vec3};
 
 use rayon::prelude::*;
-use rt_std::cpu::{AnyAttributes, CpuArgs, CpuResult, ExecutionContext, Tracer};
+use rt_std::cpu::{AnyAttributes, BoundVariables, CpuArgs, CpuResult, ExecutionContext, Tracer};
 use rt_std::program::{AttributesFromWords, ProgramDescriptor, TypeLayout};
 use rt_std::*;
 use std::any::{Any, TypeId};
@@ -145,55 +147,51 @@ fn link_all<'a>(ctx: &'a Context, accels: &'a [Option<NodeAccel>], entry: u32, d
 }
 
 impl<'a> Linked<'a, Call> {
-    /// The same uses with their variables bound as references, for the run.
-    fn bind(&self) -> Linked<'_, Program<'_>> {
-        fn opt(c: &Option<Call>) -> Option<Program<'_>> {
-            c.as_ref().map(Program::bind)
+    /// The same uses with their variables bound to their programs, for the
+    /// run.
+    fn bind(&self) -> Result<Linked<'_, Program<'_>>> {
+        fn opt(c: &Option<Call>) -> Result<Option<Program<'_>>> {
+            c.as_ref().map(Program::bind).transpose()
         }
-        Linked {
+        Ok(Linked {
             ctx: self.ctx,
             accels: self.accels,
-            ray_generation: Program::bind(&self.ray_generation),
-            exception: opt(&self.exception),
-            miss: self.miss.iter().map(Program::bind).collect(),
+            ray_generation: Program::bind(&self.ray_generation)?,
+            exception: opt(&self.exception)?,
+            miss: self.miss.iter().map(Program::bind).collect::<Result<_>>()?,
             hits: self
                 .hits
                 .iter()
-                .map(|m| m.iter().map(|r| r.iter().map(|(ch, ah)| (opt(ch), opt(ah))).collect()).collect())
-                .collect(),
+                .map(|m| m.iter().map(|r| r.iter().map(|(ch, ah)| Ok((opt(ch)?, opt(ah)?))).collect()).collect())
+                .collect::<Result<_>>()?,
             any_hit: self.any_hit.clone(),
             meshes: self.meshes.clone(),
-            intersection: self.intersection.iter().map(opt).collect(),
-            visit: self.visit.iter().map(opt).collect(),
+            intersection: self.intersection.iter().map(opt).collect::<Result<_>>()?,
+            visit: self.visit.iter().map(opt).collect::<Result<_>>()?,
             launch_dim: self.launch_dim,
-        }
+        })
     }
 }
 
-/// A program use ready to call: its variables as references, in the
-/// program's parameter order, and its attribute type.
+/// A program use ready to call: its variables bound to its parameter types
+/// (checked once here, read per call without a check), and its attribute
+/// type.
 struct Program<'a> {
     desc: &'static ProgramDescriptor,
-    vars: Variables<'a>,
+    call: &'a Call,
+    vars: BoundVariables<'a>,
     attributes: Option<AttributeType>,
 }
 
-/// Variable references as [`CpuArgs`] takes them.
-struct Variables<'a>(Box<[&'a dyn Any]>);
-
-// SAFETY: every reference is made from a `Call`'s `Arc<dyn Any + Send +
-// Sync>` (`Program::bind`); only the auto traits are dropped from the type.
-unsafe impl Sync for Variables<'_> {}
-unsafe impl Send for Variables<'_> {}
-
 impl<'a> Program<'a> {
-    fn bind(call: &'a Call) -> Self {
+    fn bind(call: &'a Call) -> Result<Self> {
         let attributes = match (call.desc.attributes, call.desc.cpu_attributes) {
             (Some(layout), Some(make)) => Some(AttributeType::new(&layout, make)),
             _ => None,
         };
-        let vars = Variables(call.vars.iter().map(|v| &**v as &dyn Any).collect());
-        Program { desc: call.desc, vars, attributes }
+        let refs = link::var_refs(call);
+        let vars = (call.desc.cpu_bind)(&refs[..call.vars.len()]).map_err(|e| link::bind_error(call, e))?;
+        Ok(Program { desc: call.desc, call, vars, attributes })
     }
 }
 
@@ -310,7 +308,7 @@ pub(crate) fn launch(ctx: &mut Context, entry: u32, width: u32, height: u32) -> 
     let t1 = std::time::Instant::now();
     let ctx: &Context = ctx;
     let calls = link_all(ctx, &ctx.accels.nodes, entry, UVec2::new(width, height))?;
-    let linked = calls.bind();
+    let linked = calls.bind()?;
     let t2 = std::time::Instant::now();
     // Chunks of launch indices in row-major order (not rows: a 1D launch
     // spreads over all cores too); reports are merged in index order.
@@ -427,7 +425,7 @@ impl<'a> Lane<'a> {
                 let mut ctx = ExecutionContext { exception_code: code, ..self.base_context() };
                 self.invoke(ex, &mut ctx, None, None, 0);
             } else if let Some(v) = link::default_exception_output(l.ray_generation.desc)
-                && let Some(out) = l.ray_generation.vars.0[v].downcast_ref::<RwBuffer2d<glam::Vec4>>()
+                && let Some(out) = l.ray_generation.call.vars[v].downcast_ref::<RwBuffer2d<glam::Vec4>>()
             {
                 // The default exception program: magenta at the launch index.
                 let size = out.size();
@@ -464,7 +462,7 @@ impl<'a> Lane<'a> {
         attributes: Option<&mut dyn Any>,
         primitive: u32,
     ) -> CpuResult {
-        let mut args = CpuArgs { payload, attributes, primitive, variables: &p.vars.0 };
+        let mut args = CpuArgs { payload, attributes, primitive, variables: &p.vars };
         let r = rt_std::cpu::in_context(ctx, || (p.desc.cpu)(&mut args));
         if let Some(code) = ctx.pending_exception
             && self.exception.get().is_none()
