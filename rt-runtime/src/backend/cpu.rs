@@ -605,8 +605,40 @@ impl<'a> Lane<'a> {
 
     /// A ray/triangle hit `(t, u, v)` with triangle `prim` (vertices
     /// `[a, b, c]`) of instance `gi`: culling, any hit, and the commit.
+    ///
+    /// Inlined into the traversal's triangle test: the usual hit (no
+    /// culling flags, no any-hit program) commits there; the rest is
+    /// [`triangle_hit_protocol`](Self::triangle_hit_protocol)'s.
     #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
     fn triangle_hit(
+        &self,
+        s: &Search,
+        ray: &WatertightRay,
+        mesh: &TriangleMesh,
+        gi: u32,
+        prim: u32,
+        (t, u, v): (f32, f32, f32),
+        [a, b, c]: [Vec3; 3],
+        o2w: &Mat4,
+        w2o: &Mat4,
+    ) {
+        if s.flags & (RAY_FLAG_CULL_FRONT_FACING | RAY_FLAG_CULL_BACK_FACING | RAY_FLAG_TERMINATE_ON_FIRST_HIT) == 0
+            && !self.l.any_hit[gi as usize][s.ray_type as usize]
+            && mesh.material_indices.is_none()
+            && !self.l.hits[gi as usize].is_empty()
+        {
+            Self::commit_triangle(s, gi, 0, prim, (t, u, v), [a, b, c], o2w, w2o);
+        } else {
+            self.triangle_hit_protocol(s, ray, mesh, gi, prim, (t, u, v), [a, b, c], o2w, w2o);
+        }
+    }
+
+    /// [`triangle_hit`](Self::triangle_hit) with culling, materials per
+    /// triangle, any hit and termination.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(never)]
+    fn triangle_hit_protocol(
         &self,
         s: &Search,
         ray: &WatertightRay,
@@ -645,6 +677,23 @@ impl<'a> Lane<'a> {
                 Some(terminated) => terminate |= terminated,
             }
         }
+        Self::commit_triangle(s, gi, material, prim, (t, u, v), [a, b, c], o2w, w2o);
+        s.done.set(s.done.get() | terminate);
+    }
+
+    /// Makes a triangle hit the closest so far.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn commit_triangle(
+        s: &Search,
+        gi: u32,
+        material: u32,
+        prim: u32,
+        (t, u, v): (f32, f32, f32),
+        vertices: [Vec3; 3],
+        o2w: &Mat4,
+        w2o: &Mat4,
+    ) {
         s.tmax.set(t);
         s.committed.set(Some(Hit {
             instance: gi,
@@ -652,11 +701,10 @@ impl<'a> Lane<'a> {
             primitive: prim,
             t,
             barycentrics: Vec2::new(u, v),
-            vertices: [a, b, c],
+            vertices,
             object_to_world: *o2w,
             world_to_object: *w2o,
         }));
-        s.done.set(s.done.get() | terminate);
     }
 
     /// Runs any hit `ah` for a candidate at `t`; None if it ignored the
