@@ -345,10 +345,10 @@ fn prim_bounds(ctx: &Context, children: &[crate::GeometryInstanceId]) -> Result<
                     *bounding_box,
                     Record { instance: Some(*gi), geometry: Some(rec.geometry), ..Record::default() },
                 )?;
+                let refs = link::var_refs(&call);
+                let vars = (call.desc.cpu_bind)(&refs[..call.vars.len()]).map_err(|e| link::bind_error(&call, e))?;
                 for p in 0..*primitive_count {
-                    let refs = link::var_refs(&call);
-                    let mut args =
-                        CpuArgs { payload: None, attributes: None, primitive: p, variables: &refs[..call.vars.len()] };
+                    let mut args = CpuArgs { payload: None, attributes: None, primitive: p, variables: &vars };
                     let (r, _) = rt_std::cpu::with_context(ExecutionContext::DEFAULT, || (call.desc.cpu)(&mut args));
                     let b = match r {
                         CpuResult::Aabb(b) if b.min.is_finite() && b.max.is_finite() => to_oaabb(b.min, b.max),

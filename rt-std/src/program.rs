@@ -126,6 +126,11 @@ pub struct PrintfFormat {
     pub args: &'static [&'static str],
 }
 
+/// Binds variable values to a program's parameter types (CPU backend).
+pub type CpuBind = for<'a> fn(
+    &[&'a (dyn core::any::Any + Send + Sync)],
+) -> Result<crate::cpu::BoundVariables<'a>, crate::cpu::VariableMismatch>;
+
 /// Makes a program's attribute value from heap words (CPU backend).
 pub type AttributesFromWords = fn(&[u32]) -> Box<dyn crate::cpu::AnyAttributes>;
 
@@ -181,6 +186,10 @@ pub struct ProgramDescriptor {
     pub line: u32,
     /// The program compiled as Rust, for the CPU backend.
     pub cpu: fn(&mut CpuArgs<'_>) -> CpuResult,
+    /// Binds variable values (in [`variables`](Self::variables) order) to
+    /// the program's parameter types, checking each once: the
+    /// [`CpuArgs::variables`] that [`cpu`](Self::cpu) takes.
+    pub cpu_bind: CpuBind,
     /// For programs taking attributes: makes a value of the attribute type
     /// from heap words (the CPU backend fills built-in triangle attributes
     /// this way).

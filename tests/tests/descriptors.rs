@@ -3,7 +3,7 @@
 //! the programs fully; the CPU entry runs the Rust function.
 
 use glam::Vec3;
-use rt_std::cpu::{CpuArgs, CpuResult};
+use rt_std::cpu::{BoundVariables, CpuArgs, CpuResult};
 use rt_std::program::{ProgramKind, VariableKind};
 use rt_tests::seed_common::{Normals, Radiance};
 use rt_tests::*;
@@ -84,7 +84,7 @@ fn descriptor_describes_the_program() {
 fn cpu_entry_runs_the_rust_function() {
     let mut prd = Radiance { result: Vec3::ZERO, importance: 1.0, depth: 0 };
     let bg = Vec3::new(0.1, 0.2, 0.3);
-    let vars: [&dyn std::any::Any; 1] = [&bg];
+    let vars = (seed_camera::miss::PROGRAM.cpu_bind)(&[&bg]).unwrap();
     let mut args = CpuArgs { payload: Some(&mut prd), attributes: None, primitive: 0, variables: &vars };
     assert_eq!((seed_camera::miss::PROGRAM.cpu)(&mut args), CpuResult::Unit);
     assert_eq!(prd.result, bg);
@@ -92,15 +92,40 @@ fn cpu_entry_runs_the_rust_function() {
     // The normal shader with identity transforms: n * 0.5 + 0.5.
     let mut prd = Radiance::default();
     let mut attr = Normals { geometric_normal: Vec3::Z, shading_normal: Vec3::new(0.0, 3.0, 0.0) };
-    let mut args = CpuArgs { payload: Some(&mut prd), attributes: Some(&mut attr), primitive: 0, variables: &[] };
+    let mut args = CpuArgs {
+        payload: Some(&mut prd),
+        attributes: Some(&mut attr),
+        primitive: 0,
+        variables: &BoundVariables::NONE,
+    };
     (seed_normal::closest_hit_radiance::PROGRAM.cpu)(&mut args);
     assert_eq!(prd.result, Vec3::new(0.5, 1.0, 0.5));
 
     let lo = Vec3::splat(-1.0);
     let hi = Vec3::new(1.0, 2.0, 3.0);
-    let vars: [&dyn std::any::Any; 2] = [&lo, &hi];
+    let vars = (seed_convex_hull::chull_bounds::PROGRAM.cpu_bind)(&[&lo, &hi]).unwrap();
     let mut args = CpuArgs { payload: None, attributes: None, primitive: 3, variables: &vars };
     assert_eq!((seed_convex_hull::chull_bounds::PROGRAM.cpu)(&mut args), CpuResult::Aabb(rt_std::Aabb::new(lo, hi)));
+}
+
+#[test]
+fn cpu_bind_checks_each_variable_once() {
+    let bg = Vec3::ONE;
+    let wrong = 1.0f32;
+    // The declared type is checked at binding, with the variable's position.
+    let e = (seed_camera::miss::PROGRAM.cpu_bind)(&[&wrong]).unwrap_err();
+    assert_eq!(e.index, 0);
+    assert!(e.expected.ends_with("Vec3"), "{}", e.expected);
+    // So is the count.
+    assert!((seed_camera::miss::PROGRAM.cpu_bind)(&[]).is_err());
+    assert!((seed_camera::miss::PROGRAM.cpu_bind)(&[&bg, &bg]).is_err());
+    // Values bound to one program's types are not read as another's.
+    let vars = (seed_camera::miss::PROGRAM.cpu_bind)(&[&bg]).unwrap();
+    let mut args = CpuArgs { payload: None, attributes: None, primitive: 0, variables: &vars };
+    let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        (seed_convex_hull::chull_bounds::PROGRAM.cpu)(&mut args)
+    }));
+    assert!(r.is_err());
 }
 
 #[test]

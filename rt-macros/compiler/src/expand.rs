@@ -509,6 +509,7 @@ fn program_output(kind: Kind, f: &syn::ItemFn, lowered: Result<Lowered, Errors>)
             file: #file,
             line: #line,
             cpu: cpu,
+            cpu_bind: cpu_bind,
             cpu_attributes: #cpu_attributes,
         }
         }
@@ -559,8 +560,8 @@ fn pass_attributes_to_reports(f: &mut syn::ItemFn, params: &[signature::Param]) 
 /// The CPU entry: unpacks `CpuArgs` and calls the original function.
 fn cpu_thunk(kind: Kind, f: &syn::ItemFn, params: &[signature::Param]) -> TokenStream {
     let name = &f.sig.ident;
-    let name_str = name.to_string();
-    let mut var_index = 0usize;
+    let mut var_types = Vec::new();
+    let mut var_locals = Vec::new();
     let mut bindings = Vec::new();
     let args: Vec<TokenStream> = params
         .iter()
@@ -573,10 +574,9 @@ fn cpu_thunk(kind: Kind, f: &syn::ItemFn, params: &[signature::Param]) -> TokenS
                 Role::Attributes { .. } => quote!(attributes),
                 Role::Primitive => return quote!(*primitive),
                 Role::Variable => {
-                    let i = var_index;
-                    var_index += 1;
-                    let vname = p.name.to_string();
-                    return quote!(::rt_std::cpu::__var::<#ty>(variables, #i, #name_str, #vname));
+                    var_types.push(quote!(::rt_std::cpu::Var<#ty>));
+                    var_locals.push(quote!(::rt_std::cpu::Var(#local)));
+                    return quote!(#local);
                 }
             };
             bindings.push(quote! {
@@ -592,6 +592,11 @@ fn cpu_thunk(kind: Kind, f: &syn::ItemFn, params: &[signature::Param]) -> TokenS
         })
         .collect();
     let _ = kind;
+    // The variables' types as one `VariableList` (tuples of at most eight,
+    // nested), and the pattern that takes it apart.
+    let list = variable_tuple(&var_types);
+    let pattern = variable_tuple(&var_locals);
+    let read_variables = (!var_types.is_empty()).then(|| quote!(let #pattern = variables.get::<#list>();));
     let attributes_from_words = params.iter().find(|p| matches!(p.role, Role::Attributes { .. })).map(|p| {
         let ty = reroot_type(&p.ty);
         quote! {
@@ -603,14 +608,32 @@ fn cpu_thunk(kind: Kind, f: &syn::ItemFn, params: &[signature::Param]) -> TokenS
     });
     quote! {
         #attributes_from_words
+        /// Binds variable values to the program's parameter types (the CPU
+        /// backend, once per launch).
+        pub fn cpu_bind<'a>(
+            values: &[&'a (dyn ::core::any::Any + ::core::marker::Send + ::core::marker::Sync)],
+        ) -> ::core::result::Result<::rt_std::cpu::BoundVariables<'a>, ::rt_std::cpu::VariableMismatch> {
+            ::rt_std::cpu::BoundVariables::bind::<#list>(values)
+        }
         /// Runs the program natively (the CPU backend's entry).
         pub fn cpu(args: &mut ::rt_std::cpu::CpuArgs<'_>) -> ::rt_std::cpu::CpuResult {
             let ::rt_std::cpu::CpuArgs { payload, attributes, primitive, variables } = args;
             let _ = (&payload, &attributes, &primitive, &variables);
+            #read_variables
             #(#bindings)*
             ::rt_std::cpu::CpuResult::from(super::#name(#(#args),*))
         }
     }
+}
+
+/// `(a, b, ...)` of `items`, as tuples of at most eight nested as deep as
+/// needed (rt-std implements `VariableList` for tuples up to eight).
+fn variable_tuple(items: &[TokenStream]) -> TokenStream {
+    if items.len() <= 8 {
+        return quote!((#(#items,)*));
+    }
+    let groups: Vec<TokenStream> = items.chunks(8).map(variable_tuple).collect();
+    variable_tuple(&groups)
 }
 
 /// The struct with `#[repr(C)]` and the derives programs rely on.

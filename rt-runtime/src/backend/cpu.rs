@@ -12,7 +12,9 @@
 //! thread-local execution context and the [`Tracer`] it installs.
 //!
 //! Per ray nothing is allocated and nothing is looked up by name: variables
-//! are bound to references once per launch and program use ([`Program`]),
+//! are bound once per launch and program use, their types checked then
+//! ([`rt_std::cpu::BoundVariables`]: a call reads them after one comparison,
+//! not one downcast per variable),
 //! each program call's context is built in place and installed by pointer
 //! ([`rt_std::cpu::in_context`]), the tracer is installed once per chunk of
 //! launch indices, and attribute values are reused from a per-thread pool.
@@ -30,7 +32,7 @@ use crate::scene::{GeometryKind, NodeId, NodeKind, TriangleMesh};
 use glam::{Mat4, UVec2, Vec2, Vec3};
 
 use rayon::prelude::*;
-use rt_std::cpu::{AnyAttributes, CpuArgs, CpuResult, ExecutionContext, Tracer};
+use rt_std::cpu::{AnyAttributes, BoundVariables, CpuArgs, CpuResult, ExecutionContext, Tracer};
 use rt_std::program::{AttributesFromWords, ProgramDescriptor, TypeLayout};
 use rt_std::*;
 use std::any::{Any, TypeId};
@@ -145,55 +147,51 @@ fn link_all<'a>(ctx: &'a Context, accels: &'a [Option<NodeAccel>], entry: u32, d
 }
 
 impl<'a> Linked<'a, Call> {
-    /// The same uses with their variables bound as references, for the run.
-    fn bind(&self) -> Linked<'_, Program<'_>> {
-        fn opt(c: &Option<Call>) -> Option<Program<'_>> {
-            c.as_ref().map(Program::bind)
+    /// The same uses with their variables bound to their programs, for the
+    /// run.
+    fn bind(&self) -> Result<Linked<'_, Program<'_>>> {
+        fn opt(c: &Option<Call>) -> Result<Option<Program<'_>>> {
+            c.as_ref().map(Program::bind).transpose()
         }
-        Linked {
+        Ok(Linked {
             ctx: self.ctx,
             accels: self.accels,
-            ray_generation: Program::bind(&self.ray_generation),
-            exception: opt(&self.exception),
-            miss: self.miss.iter().map(Program::bind).collect(),
+            ray_generation: Program::bind(&self.ray_generation)?,
+            exception: opt(&self.exception)?,
+            miss: self.miss.iter().map(Program::bind).collect::<Result<_>>()?,
             hits: self
                 .hits
                 .iter()
-                .map(|m| m.iter().map(|r| r.iter().map(|(ch, ah)| (opt(ch), opt(ah))).collect()).collect())
-                .collect(),
+                .map(|m| m.iter().map(|r| r.iter().map(|(ch, ah)| Ok((opt(ch)?, opt(ah)?))).collect()).collect())
+                .collect::<Result<_>>()?,
             any_hit: self.any_hit.clone(),
             meshes: self.meshes.clone(),
-            intersection: self.intersection.iter().map(opt).collect(),
-            visit: self.visit.iter().map(opt).collect(),
+            intersection: self.intersection.iter().map(opt).collect::<Result<_>>()?,
+            visit: self.visit.iter().map(opt).collect::<Result<_>>()?,
             launch_dim: self.launch_dim,
-        }
+        })
     }
 }
 
-/// A program use ready to call: its variables as references, in the
-/// program's parameter order, and its attribute type.
+/// A program use ready to call: its variables bound to its parameter types
+/// (checked once here, read per call without a check), and its attribute
+/// type.
 struct Program<'a> {
     desc: &'static ProgramDescriptor,
-    vars: Variables<'a>,
+    call: &'a Call,
+    vars: BoundVariables<'a>,
     attributes: Option<AttributeType>,
 }
 
-/// Variable references as [`CpuArgs`] takes them.
-struct Variables<'a>(Box<[&'a dyn Any]>);
-
-// SAFETY: every reference is made from a `Call`'s `Arc<dyn Any + Send +
-// Sync>` (`Program::bind`); only the auto traits are dropped from the type.
-unsafe impl Sync for Variables<'_> {}
-unsafe impl Send for Variables<'_> {}
-
 impl<'a> Program<'a> {
-    fn bind(call: &'a Call) -> Self {
+    fn bind(call: &'a Call) -> Result<Self> {
         let attributes = match (call.desc.attributes, call.desc.cpu_attributes) {
             (Some(layout), Some(make)) => Some(AttributeType::new(&layout, make)),
             _ => None,
         };
-        let vars = Variables(call.vars.iter().map(|v| &**v as &dyn Any).collect());
-        Program { desc: call.desc, vars, attributes }
+        let refs = link::var_refs(call);
+        let vars = (call.desc.cpu_bind)(&refs[..call.vars.len()]).map_err(|e| link::bind_error(call, e))?;
+        Ok(Program { desc: call.desc, call, vars, attributes })
     }
 }
 
@@ -310,7 +308,7 @@ pub(crate) fn launch(ctx: &mut Context, entry: u32, width: u32, height: u32) -> 
     let t1 = std::time::Instant::now();
     let ctx: &Context = ctx;
     let calls = link_all(ctx, &ctx.accels.nodes, entry, UVec2::new(width, height))?;
-    let linked = calls.bind();
+    let linked = calls.bind()?;
     let t2 = std::time::Instant::now();
     // Chunks of launch indices in row-major order (not rows: a 1D launch
     // spreads over all cores too); reports are merged in index order.
@@ -427,7 +425,7 @@ impl<'a> Lane<'a> {
                 let mut ctx = ExecutionContext { exception_code: code, ..self.base_context() };
                 self.invoke(ex, &mut ctx, None, None, 0);
             } else if let Some(v) = link::default_exception_output(l.ray_generation.desc)
-                && let Some(out) = l.ray_generation.vars.0[v].downcast_ref::<RwBuffer2d<glam::Vec4>>()
+                && let Some(out) = l.ray_generation.call.vars[v].downcast_ref::<RwBuffer2d<glam::Vec4>>()
             {
                 // The default exception program: magenta at the launch index.
                 let size = out.size();
@@ -443,7 +441,16 @@ impl<'a> Lane<'a> {
     }
 
     fn base_context(&self) -> ExecutionContext {
-        ExecutionContext { launch_index: self.index.get(), launch_dim: self.l.launch_dim, ..ExecutionContext::DEFAULT }
+        // The index goes in as one 8-byte store. Built from two `u32`s, LLVM
+        // stores it as two 4-byte halves, and the 8-byte load of the
+        // program's `launch_index()` just after cannot be forwarded from two
+        // pending stores: it stalls until they reach the cache (about 4% of
+        // a primary + AO launch on the bunny). `black_box` keeps the packed
+        // value whole.
+        let index = self.index.get();
+        let bits = std::hint::black_box(index.x as u64 | (index.y as u64) << 32);
+        let launch_index = UVec2::new(bits as u32, (bits >> 32) as u32);
+        ExecutionContext { launch_index, launch_dim: self.l.launch_dim, ..ExecutionContext::DEFAULT }
     }
 
     /// The search in progress. Only called inside one (during `traverse`).
@@ -464,7 +471,7 @@ impl<'a> Lane<'a> {
         attributes: Option<&mut dyn Any>,
         primitive: u32,
     ) -> CpuResult {
-        let mut args = CpuArgs { payload, attributes, primitive, variables: &p.vars.0 };
+        let mut args = CpuArgs { payload, attributes, primitive, variables: &p.vars };
         let r = rt_std::cpu::in_context(ctx, || (p.desc.cpu)(&mut args));
         if let Some(code) = ctx.pending_exception
             && self.exception.get().is_none()
@@ -607,8 +614,40 @@ impl<'a> Lane<'a> {
 
     /// A ray/triangle hit `(t, u, v)` with triangle `prim` (vertices
     /// `[a, b, c]`) of instance `gi`: culling, any hit, and the commit.
+    ///
+    /// Inlined into the traversal's triangle test: the usual hit (no
+    /// culling flags, no any-hit program) commits there; the rest is
+    /// [`triangle_hit_protocol`](Self::triangle_hit_protocol)'s.
     #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
     fn triangle_hit(
+        &self,
+        s: &Search,
+        ray: &WatertightRay,
+        mesh: &TriangleMesh,
+        gi: u32,
+        prim: u32,
+        (t, u, v): (f32, f32, f32),
+        [a, b, c]: [Vec3; 3],
+        o2w: &Mat4,
+        w2o: &Mat4,
+    ) {
+        if s.flags & (RAY_FLAG_CULL_FRONT_FACING | RAY_FLAG_CULL_BACK_FACING | RAY_FLAG_TERMINATE_ON_FIRST_HIT) == 0
+            && !self.l.any_hit[gi as usize][s.ray_type as usize]
+            && mesh.material_indices.is_none()
+            && !self.l.hits[gi as usize].is_empty()
+        {
+            Self::commit_triangle(s, gi, 0, prim, (t, u, v), [a, b, c], o2w, w2o);
+        } else {
+            self.triangle_hit_protocol(s, ray, mesh, gi, prim, (t, u, v), [a, b, c], o2w, w2o);
+        }
+    }
+
+    /// [`triangle_hit`](Self::triangle_hit) with culling, materials per
+    /// triangle, any hit and termination.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(never)]
+    fn triangle_hit_protocol(
         &self,
         s: &Search,
         ray: &WatertightRay,
@@ -647,6 +686,23 @@ impl<'a> Lane<'a> {
                 Some(terminated) => terminate |= terminated,
             }
         }
+        Self::commit_triangle(s, gi, material, prim, (t, u, v), [a, b, c], o2w, w2o);
+        s.done.set(s.done.get() | terminate);
+    }
+
+    /// Makes a triangle hit the closest so far.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn commit_triangle(
+        s: &Search,
+        gi: u32,
+        material: u32,
+        prim: u32,
+        (t, u, v): (f32, f32, f32),
+        vertices: [Vec3; 3],
+        o2w: &Mat4,
+        w2o: &Mat4,
+    ) {
         s.tmax.set(t);
         s.committed.set(Some(Hit {
             instance: gi,
@@ -654,11 +710,10 @@ impl<'a> Lane<'a> {
             primitive: prim,
             t,
             barycentrics: Vec2::new(u, v),
-            vertices: [a, b, c],
+            vertices,
             object_to_world: *o2w,
             world_to_object: *w2o,
         }));
-        s.done.set(s.done.get() | terminate);
     }
 
     /// Runs any hit `ah` for a candidate at `t`; None if it ignored the
@@ -872,16 +927,22 @@ impl rt_std::Attributes for NoAttributes {}
 /// and Wald, JCGT 2013: no cracks between triangles sharing an edge): the
 /// axis permutation and shear depend on the direction only, so they are
 /// computed once per ray and geometry group.
+///
+/// The permutation and shear are kept as three row vectors, so a vertex's
+/// sheared coordinates are dot products (`p.dot(shear_x)` is `p[kx] - sx *
+/// p[kz]`) instead of components picked by run-time index per triangle. The
+/// values are the same (up to the sign of a zero): the extra terms are exact
+/// zeros, and the sum of the other two rounds as before.
 struct WatertightRay {
     origin: Vec3,
     direction: Vec3,
     tmin: f32,
-    kx: usize,
-    ky: usize,
-    kz: usize,
-    sx: f32,
-    sy: f32,
-    sz: f32,
+    /// `e[kx] - sx * e[kz]`: a point's sheared x.
+    shear_x: Vec3,
+    /// `e[ky] - sy * e[kz]`: a point's sheared y.
+    shear_y: Vec3,
+    /// `sz * e[kz]`: a point's scaled z.
+    scale_z: Vec3,
 }
 
 impl WatertightRay {
@@ -904,52 +965,46 @@ impl WatertightRay {
         if d[kz] == 0.0 {
             return None;
         }
-        Some(WatertightRay {
-            origin: ray.origin,
-            direction: d,
-            tmin: ray.tmin,
-            kx,
-            ky,
-            kz,
-            sx: d[kx] / d[kz],
-            sy: d[ky] / d[kz],
-            sz: 1.0 / d[kz],
-        })
+        let (mut shear_x, mut shear_y, mut scale_z) = (Vec3::ZERO, Vec3::ZERO, Vec3::ZERO);
+        shear_x[kx] = 1.0;
+        shear_x[kz] = -(d[kx] / d[kz]);
+        shear_y[ky] = 1.0;
+        shear_y[kz] = -(d[ky] / d[kz]);
+        scale_z[kz] = 1.0 / d[kz];
+        Some(WatertightRay { origin: ray.origin, direction: d, tmin: ray.tmin, shear_x, shear_y, scale_z })
     }
 
     /// The hit with triangle `(a, b, c)` as `(t, u, v)` for `t` in `(tmin,
     /// tmax)`; `u`, `v` weight vertices `b` and `c`.
     #[inline(always)]
     fn intersect(&self, a: Vec3, b: Vec3, c: Vec3, tmax: f32) -> Option<(f32, f32, f32)> {
-        let (kx, ky, kz) = (self.kx, self.ky, self.kz);
-        let (sx, sy, sz) = (self.sx, self.sy, self.sz);
         let (pa, pb, pc) = (a - self.origin, b - self.origin, c - self.origin);
-        let ax = pa[kx] - sx * pa[kz];
-        let ay = pa[ky] - sy * pa[kz];
-        let bx = pb[kx] - sx * pb[kz];
-        let by = pb[ky] - sy * pb[kz];
-        let cx = pc[kx] - sx * pc[kz];
-        let cy = pc[ky] - sy * pc[kz];
+        let (ax, ay) = (pa.dot(self.shear_x), pa.dot(self.shear_y));
+        let (bx, by) = (pb.dot(self.shear_x), pb.dot(self.shear_y));
+        let (cx, cy) = (pc.dot(self.shear_x), pc.dot(self.shear_y));
         let mut u = cx * by - cy * bx;
         let mut v = ax * cy - ay * cx;
         let mut w = bx * ay - by * ax;
-        if u == 0.0 || v == 0.0 || w == 0.0 {
+        // Whether a ray passes a triangle's edges is a coin toss the branch
+        // predictor loses, so the tests combine with `|` and `&` rather than
+        // `||` and `&&`: short-circuit tests branched up to six times per
+        // triangle. (Comparing the smallest and largest of `u, v, w` instead
+        // measured slower.)
+        if (u == 0.0) | (v == 0.0) | (w == 0.0) {
             // Fall back to double precision on edges.
             let (cxd, cyd, bxd, byd, axd, ayd) = (cx as f64, cy as f64, bx as f64, by as f64, ax as f64, ay as f64);
             u = (cxd * byd - cyd * bxd) as f32;
             v = (axd * cyd - ayd * cxd) as f32;
             w = (bxd * ayd - byd * axd) as f32;
         }
-        if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) {
+        if ((u < 0.0) | (v < 0.0) | (w < 0.0)) & ((u > 0.0) | (v > 0.0) | (w > 0.0)) {
             return None;
         }
         let det = u + v + w;
         if det == 0.0 {
             return None;
         }
-        let az = sz * pa[kz];
-        let bz = sz * pb[kz];
-        let cz = sz * pc[kz];
+        let (az, bz, cz) = (pa.dot(self.scale_z), pb.dot(self.scale_z), pc.dot(self.scale_z));
         let t_scaled = u * az + v * bz + w * cz;
         let t = t_scaled / det;
         if !(t > self.tmin && t < tmax && t.is_finite()) {

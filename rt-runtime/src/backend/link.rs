@@ -269,10 +269,25 @@ pub fn nodes_post_order(ctx: &Context) -> Result<Vec<NodeId>> {
 }
 
 /// The variable references of a call, without allocating.
-pub fn var_refs(call: &Call) -> [&dyn Any; MAX_VARIABLES] {
-    let mut refs: [&dyn Any; MAX_VARIABLES] = [&(); MAX_VARIABLES];
+pub fn var_refs(call: &Call) -> [&(dyn Any + Send + Sync); MAX_VARIABLES] {
+    let mut refs: [&(dyn Any + Send + Sync); MAX_VARIABLES] = [&(); MAX_VARIABLES];
     for (r, v) in refs.iter_mut().zip(&call.vars) {
         *r = &**v;
     }
     refs
+}
+
+/// The error for a value that the program's own binding
+/// ([`ProgramDescriptor::cpu_bind`]) rejects: a Rust type other than the
+/// declared one, though its name passed the link check.
+pub fn bind_error(call: &Call, e: rt_std::cpu::VariableMismatch) -> RtError {
+    let desc = call.desc;
+    RtError::VariableType {
+        program: desc.name,
+        location: desc.location(),
+        variable: desc.variables.get(e.index).map_or_else(|| format!("#{}", e.index), |v| v.name.to_string()),
+        declared: e.expected.to_string(),
+        scope: "bound".to_string(),
+        found: "a value of another Rust type".to_string(),
+    }
 }
