@@ -301,6 +301,7 @@ pub fn mirror_in_a_match(prd: &mut Radiance, attr: &Hit, #[var] top: Object, #[v
 /// [`reflected_color`] with its trace inside a `let`'s value, where the
 /// compiler makes no resumable form.
 #[rt_function]
+#[allow(clippy::let_and_return)] // The `let` is the point.
 pub fn reflected_in_a_let(top: Object, p: Vec3, d: Vec3, depth: i32) -> Vec3 {
     let mut next = Radiance { result: Vec3::ZERO, depth: depth + 1 };
     let seen = {
