@@ -1493,3 +1493,32 @@ fn a_scene_section_over_the_binding_limit_is_a_clear_error() {
     );
     let _ = out;
 }
+
+#[test]
+fn a_heap_over_the_binding_limit_is_a_clear_error() {
+    // A 512x512 output of Vec4 (4 MiB) cannot fit a 1 MiB binding; the
+    // scene can.
+    let (mut ctx, _) = camera(1.2, Backend::Wgpu);
+    let (device, queue, info) = device_with(|l| ::wgpu::Limits { max_storage_buffer_binding_size: 1 << 20, ..l });
+    ctx.use_wgpu_device(device, queue, info);
+    let big = ctx.create_buffer_2d::<Vec4>(BufferType::Output, 512, 512).unwrap();
+    ctx.write_buffer(big, &vec![Vec4::ONE; 512 * 512]).unwrap();
+    ctx.set_var(Scope::Context, "out", big).unwrap();
+    let g = ctx.create_triangles(bumpy_grid(4)).unwrap();
+    let mat = ctx.create_material();
+    let ch = ctx.create_program(&normal_shader::PROGRAM);
+    ctx.set_closest_hit_program(mat, 0, ch).unwrap();
+    let gi = ctx.create_geometry_instance(g, &[mat]).unwrap();
+    let gg = ctx.create_geometry_group(&[gi], Acceleration::new(Builder::Bvh)).unwrap();
+    ctx.set_var(Scope::Context, "top", gg).unwrap();
+    let err = ctx.launch(0, W, W).unwrap_err();
+    assert!(matches!(err, RtError::Gpu(_)), "{err:?}");
+    let err = err.to_string();
+    assert!(
+        err.contains("the heap (variables, buffers, textures) needs 4.0 MiB")
+            && err.contains("binds at most 1 MiB per storage buffer"),
+        "{err}"
+    );
+    // Nothing was written: the buffer holds what the host put there.
+    assert!(ctx.read_buffer::<Vec4>(big).unwrap().iter().all(|p| *p == Vec4::ONE));
+}
