@@ -333,10 +333,10 @@ fn prim_bounds(ctx: &Context, children: &[crate::GeometryInstanceId]) -> Result<
         let geometry = &ctx.geometries[rec.geometry.index() as usize];
         match &geometry.kind {
             GeometryKind::Triangles(mesh) => {
-                for t in 0..mesh.indices.len() {
-                    prims.push((gi.index(), t as u32));
-                    bounds.push(triangle_bounds(mesh, t));
-                }
+                use rayon::prelude::*;
+                let n = mesh.indices.len();
+                prims.extend((0..n as u32).map(|t| (gi.index(), t)));
+                bounds.par_extend((0..n).into_par_iter().with_min_len(4096).map(|t| triangle_bounds(mesh, t)));
             }
             GeometryKind::Custom { primitive_count, bounding_box, .. } => {
                 all_triangles = false;
@@ -492,9 +492,11 @@ fn slot_triangles(
     wide: Option<&obvhs::cwbvh::CwBvh>,
     all: bool,
 ) -> Vec<[Vec3; 3]> {
+    use rayon::prelude::*;
     let Some(cw) = wide.filter(|_| all) else { return Vec::new() };
     cw.primitive_indices
-        .iter()
+        .par_iter()
+        .with_min_len(4096)
         .map(|&p| {
             let (gi, t) = prims[p as usize];
             match &ctx.geometries[ctx.instances[gi as usize].geometry.index() as usize].kind {
