@@ -1384,15 +1384,20 @@ fn bumpy_grid(n: u32) -> TriangleMesh {
     mesh
 }
 
-/// The bumpy grid (20,000 triangles: about 0.5 MiB of tables, 1.2 MiB of
-/// BVH nodes, 0.8 MiB of leaf-ordered triangles) under the normal shader.
-fn render_grid(ctx: &mut Context, out: BufferId) -> Vec<Vec4> {
-    let g = ctx.create_triangles(bumpy_grid(100)).unwrap();
+/// A geometry group over the `n` x `n` bumpy grid under the normal shader.
+fn grid_group(ctx: &mut Context, n: u32) -> NodeId {
+    let g = ctx.create_triangles(bumpy_grid(n)).unwrap();
     let mat = ctx.create_material();
     let ch = ctx.create_program(&normal_shader::PROGRAM);
     ctx.set_closest_hit_program(mat, 0, ch).unwrap();
     let gi = ctx.create_geometry_instance(g, &[mat]).unwrap();
-    let gg = ctx.create_geometry_group(&[gi], Acceleration::new(Builder::Bvh)).unwrap();
+    ctx.create_geometry_group(&[gi], Acceleration::new(Builder::Bvh)).unwrap()
+}
+
+/// The bumpy grid (20,000 triangles: about 0.5 MiB of tables, 1.2 MiB of
+/// BVH nodes, 0.8 MiB of leaf-ordered triangles) under the normal shader.
+fn render_grid(ctx: &mut Context, out: BufferId) -> Vec<Vec4> {
+    let gg = grid_group(ctx, 100);
     let xf = ctx.create_transform(glam::Mat4::from_rotation_x(0.5), gg).unwrap();
     let top = ctx.create_group(&[xf], Acceleration::new(Builder::Bvh)).unwrap();
     ctx.set_var(Scope::Context, "top", top).unwrap();
@@ -1475,12 +1480,7 @@ fn a_scene_section_over_the_binding_limit_is_a_clear_error() {
     let (mut ctx, out) = camera(1.2, Backend::Wgpu);
     let (device, queue, info) = device_with(|l| ::wgpu::Limits { max_storage_buffer_binding_size: 1 << 20, ..l });
     ctx.use_wgpu_device(device, queue, info);
-    let g = ctx.create_triangles(bumpy_grid(100)).unwrap();
-    let mat = ctx.create_material();
-    let ch = ctx.create_program(&normal_shader::PROGRAM);
-    ctx.set_closest_hit_program(mat, 0, ch).unwrap();
-    let gi = ctx.create_geometry_instance(g, &[mat]).unwrap();
-    let gg = ctx.create_geometry_group(&[gi], Acceleration::new(Builder::Bvh)).unwrap();
+    let gg = grid_group(&mut ctx, 100);
     ctx.set_var(Scope::Context, "top", gg).unwrap();
     let err = ctx.launch(0, W, W).unwrap_err();
     assert!(matches!(err, RtError::Gpu(_)), "{err:?}");
@@ -1504,12 +1504,7 @@ fn a_heap_over_the_binding_limit_is_a_clear_error() {
     let big = ctx.create_buffer_2d::<Vec4>(BufferType::Output, 512, 512).unwrap();
     ctx.write_buffer(big, &vec![Vec4::ONE; 512 * 512]).unwrap();
     ctx.set_var(Scope::Context, "out", big).unwrap();
-    let g = ctx.create_triangles(bumpy_grid(4)).unwrap();
-    let mat = ctx.create_material();
-    let ch = ctx.create_program(&normal_shader::PROGRAM);
-    ctx.set_closest_hit_program(mat, 0, ch).unwrap();
-    let gi = ctx.create_geometry_instance(g, &[mat]).unwrap();
-    let gg = ctx.create_geometry_group(&[gi], Acceleration::new(Builder::Bvh)).unwrap();
+    let gg = grid_group(&mut ctx, 4);
     ctx.set_var(Scope::Context, "top", gg).unwrap();
     let err = ctx.launch(0, W, W).unwrap_err();
     assert!(matches!(err, RtError::Gpu(_)), "{err:?}");
