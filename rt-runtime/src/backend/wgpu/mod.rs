@@ -367,8 +367,10 @@ fn bvh_depth(bvh: &crate::accel::Bvh) -> u32 {
     deepest
 }
 
-fn push_bvh(out: &mut Vec<u32>, bvh: &crate::accel::Bvh, deepest: &mut u32) -> u32 {
-    *deepest = (*deepest).max(bvh_depth(bvh));
+/// Appends `bvh`'s nodes to `out`; returns where they start and the BVH's
+/// depth ([`bvh_depth`]).
+fn push_bvh(out: &mut Vec<u32>, bvh: &crate::accel::Bvh) -> (u32, u32) {
+    let depth = bvh_depth(bvh);
     let at = out.len() as u32;
     for n in &bvh.bvh.nodes {
         let b = n.aabb();
@@ -387,7 +389,7 @@ fn push_bvh(out: &mut Vec<u32>, bvh: &crate::accel::Bvh, deepest: &mut u32) -> u
         // An empty group: a root that no ray enters.
         out.extend([f(1.0), f(1.0), f(1.0), f(-1.0), f(-1.0), f(-1.0), 0, 0]);
     }
-    at
+    (at, depth)
 }
 
 /// The triangle slot of primitive `p` of geometry instance `gi` (10 words,
@@ -429,7 +431,9 @@ fn instance_of(ctx: &Context, node: NodeId) -> Result<Option<(NodeId, Mat4, u32)
     Err(RtError::GraphCycle { node: node.index() })
 }
 
-fn encode(ctx: &Context, entry: u32) -> Result<Encoded> {
+/// Encodes the launch of `entry` for a device with `scene_bindings` scene
+/// bindings (see [`kernel::SCENE_SECTIONS`]).
+fn encode(ctx: &Context, entry: u32, scene_bindings: usize) -> Result<Encoded> {
     let count = ctx.entry_points.len() as u32;
     let ep = ctx.entry_points.get(entry as usize).ok_or(RtError::NoSuchEntryPoint { entry, count })?;
     let rg = ep.ray_generation.ok_or(RtError::NoRayGeneration { entry })?;
@@ -540,7 +544,8 @@ fn encode(ctx: &Context, entry: u32) -> Result<Encoded> {
     for (n, rec) in ctx.nodes.iter().enumerate() {
         match (&rec.kind, accels.get(n).and_then(|a| a.as_ref())) {
             (NodeKind::GeometryGroup { .. }, Some(NodeAccel::Prims { bvh, prims, .. })) => {
-                let at = push_bvh(&mut nodes, bvh, &mut deepest_bvh);
+                let (at, depth) = push_bvh(&mut nodes, bvh);
+                deepest_bvh = deepest_bvh.max(depth);
                 let table = scene.len() as u32;
                 let tri_slots = tris.len() as u32;
                 for slot in &bvh.bvh.primitive_indices {
@@ -551,9 +556,10 @@ fn encode(ctx: &Context, entry: u32) -> Result<Encoded> {
                 gg_bvh.insert(n as u32, (at, table, tri_slots));
             }
             (NodeKind::Group { children, .. }, Some(NodeAccel::Children { bvh, .. })) => {
-                let at = push_bvh(&mut nodes, bvh, &mut deepest_bvh);
+                let (at, depth) = push_bvh(&mut nodes, bvh);
+                deepest_bvh = deepest_bvh.max(depth);
                 widest_group_leaf = bvh.bvh.nodes.iter().map(|n| n.prim_count).fold(widest_group_leaf, u32::max);
-                deepest_group = Some(deepest_group.unwrap_or(1).max(bvh_depth(bvh)));
+                deepest_group = Some(deepest_group.unwrap_or(1).max(depth));
                 let table = scene.len() as u32;
                 let mut instances_only = true;
                 for slot in &bvh.bvh.primitive_indices {
@@ -778,7 +784,7 @@ fn encode(ctx: &Context, entry: u32) -> Result<Encoded> {
         max_depth: ctx.max_trace_depth,
         graph_levels,
         default_exception,
-        scene_bindings: SCENE_SECTIONS.len(),
+        scene_bindings,
     };
     // A binding needs a word.
     for section in [&mut nodes, &mut tris] {
@@ -837,9 +843,8 @@ fn launch_on_device(ctx: &mut Context, entry: u32, width: u32, height: u32) -> R
     ctx.accels = cache;
     built?;
     let t1 = std::time::Instant::now();
-    let mut enc = encode(ctx, entry)?;
     let scene_bindings = ctx.gpu.as_ref().expect("created above").scene_bindings;
-    enc.spec.scene_bindings = scene_bindings;
+    let enc = encode(ctx, entry, scene_bindings)?;
     let t2 = std::time::Instant::now();
     let wgsl = kernel::generate(&enc.spec)?;
     if std::env::var_os("RT_DUMP_WGSL").is_some() {
