@@ -369,15 +369,20 @@ fn prim_bounds(ctx: &Context, children: &[crate::GeometryInstanceId]) -> Result<
 fn group_triangles(ctx: &Context, prims: &[(u32, u32)]) -> Vec<obvhs::triangle::Triangle> {
     prims
         .iter()
-        .map(|(gi, t)| {
-            let rec = &ctx.instances[*gi as usize];
-            let GeometryKind::Triangles(mesh) = &ctx.geometries[rec.geometry.index() as usize].kind else {
-                unreachable!("all primitives are triangles")
-            };
-            let [a, b, c] = mesh.indices[*t as usize].map(|v| mesh.positions[v as usize].into());
+        .map(|&(gi, t)| {
+            let [a, b, c] = triangle_vertices(ctx, gi, t).map(Into::into);
             obvhs::triangle::Triangle { v0: a, v1: b, v2: c }
         })
         .collect()
+}
+
+/// The vertices of triangle `t` of geometry instance `gi`, whose geometry
+/// holds triangles (callers check that every primitive is one).
+fn triangle_vertices(ctx: &Context, gi: u32, t: u32) -> [Vec3; 3] {
+    match &ctx.geometries[ctx.instances[gi as usize].geometry.index() as usize].kind {
+        GeometryKind::Triangles(mesh) => mesh.indices[t as usize].map(|v| mesh.positions[v as usize]),
+        GeometryKind::Custom { .. } => unreachable!("all primitives are triangles"),
+    }
 }
 
 /// Builds what is missing and refits what moved, in the form the context's
@@ -499,10 +504,7 @@ fn slot_triangles(
         .with_min_len(4096)
         .map(|&p| {
             let (gi, t) = prims[p as usize];
-            match &ctx.geometries[ctx.instances[gi as usize].geometry.index() as usize].kind {
-                GeometryKind::Triangles(mesh) => mesh.indices[t as usize].map(|v| mesh.positions[v as usize]),
-                GeometryKind::Custom { .. } => unreachable!("all primitives are triangles"),
-            }
+            triangle_vertices(ctx, gi, t)
         })
         .collect()
 }
