@@ -235,8 +235,16 @@ fn clone_estimate(
     total
 }
 
+/// The generated megakernel.
+pub struct Generated {
+    pub wgsl: String,
+    /// What the caller should tell the user when it creates the pipeline
+    /// (once per pipeline, not per launch).
+    pub warning: Option<String>,
+}
+
 /// Generates the megakernel's WGSL.
-pub fn generate(spec: &KernelSpec) -> Result<String> {
+pub fn generate(spec: &KernelSpec) -> Result<Generated> {
     let mut all: Vec<KernelProgram> = vec![spec.ray_generation];
     all.extend(spec.exception);
     all.extend(spec.programs.iter().copied());
@@ -311,19 +319,17 @@ pub fn generate(spec: &KernelSpec) -> Result<String> {
     let clones = clone_estimate(spec, &all, &functions, &tracing_helpers);
     let stuck = all.iter().find(|p| traces(p.desc) && p.desc.wgsl_resumable.is_none());
     let resumable = stuck.is_none() && clones > MAX_CLONES;
-    if let Some(p) = stuck
-        && clones > MAX_CLONES
-    {
-        // Pipeline creation grows with the copies: minutes on Mesa at a few
-        // hundred, out of memory beyond.
-        eprintln!(
+    // Pipeline creation grows with the copies: minutes on Mesa at a few
+    // hundred, out of memory beyond.
+    let warning = stuck.filter(|_| clones > MAX_CLONES).map(|p| {
+        format!(
             "rt-runtime: warning: the megakernel inlines about {clones} copies of the traversal (maximum trace depth {}) because `{}` ({}) has no resumable form ({}); creating its pipeline may take long. Lower the depth with `set_max_trace_depth`, or move that trace into a statement of its own.",
             spec.max_depth,
             p.desc.name,
             p.desc.location(),
             p.desc.not_resumable.unwrap_or("unknown reason"),
-        );
-    }
+        )
+    });
     out.push_str("\n// ---- shared functions ----\n");
     for (name, (text, _)) in &functions {
         if tracing_helpers.contains(*name) && resumable {
@@ -422,7 +428,7 @@ fn rt_main(@builtin(global_invocation_id) gid: vec3<u32>) {{
 }}
 "
     ));
-    Ok(out)
+    Ok(Generated { wgsl: out, warning })
 }
 
 /// Programs and the trace loop for kernels whose tracing programs are all

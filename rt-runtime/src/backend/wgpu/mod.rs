@@ -846,7 +846,7 @@ fn launch_on_device(ctx: &mut Context, entry: u32, width: u32, height: u32) -> R
     let scene_bindings = ctx.gpu.as_ref().expect("created above").scene_bindings;
     let enc = encode(ctx, entry, scene_bindings)?;
     let t2 = std::time::Instant::now();
-    let wgsl = kernel::generate(&enc.spec)?;
+    let kernel::Generated { wgsl, warning } = kernel::generate(&enc.spec)?;
     if std::env::var_os("RT_DUMP_WGSL").is_some() {
         let path = std::env::temp_dir().join(format!("rt_megakernel_entry{entry}.wgsl"));
         let _ = std::fs::write(&path, &wgsl);
@@ -895,6 +895,9 @@ fn launch_on_device(ctx: &mut Context, entry: u32, width: u32, height: u32) -> R
         }
     }
     if !gpu.pipelines.contains_key(&wgsl) {
+        if let Some(w) = &warning {
+            eprintln!("{w}");
+        }
         let scope = gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let module = gpu.device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("rt megakernel"),
