@@ -168,6 +168,10 @@ struct Args {
     /// without), `fast`, `all`, `none`, or names.
     #[arg(long, value_delimiter = ',', default_value = "auto")]
     tour_links: Vec<String>,
+    /// Only the per-scene traversal figures: no primary-ray or build
+    /// figures, no lowering times (for profiling the traversal alone).
+    #[arg(long)]
+    traversal_only: bool,
     /// Use Mesa's usual on-disk shader cache (by default the bench gives
     /// Mesa a fresh one, so each kernel's first compile is cold).
     #[arg(long)]
@@ -610,7 +614,7 @@ fn main() {
     }
 
     let no_scenes = args.scenes.iter().any(|s| s == "none");
-    if !no_scenes && (args.scenes.is_empty() || args.scenes.iter().any(|s| s == "bunny")) {
+    if !no_scenes && !args.traversal_only && (args.scenes.is_empty() || args.scenes.iter().any(|s| s == "bunny")) {
         bunny_primary(&args, &all[0], width, height, reps, &mut json);
     }
 
@@ -644,7 +648,9 @@ fn main() {
         geomean(&figures.iter().map(|(_, f)| ratio(f.obvhs, f.embree)).collect::<Vec<_>>()),
     );
 
-    lowering::measure(if args.quick { 5 } else { 20 }, json.child("lowering"));
+    if !args.traversal_only {
+        lowering::measure(if args.quick { 5 } else { 20 }, json.child("lowering"));
+    }
 
     // The tour's program sets on the wgpu backend.
     if args.backends.iter().any(|b| b == "wgpu") {

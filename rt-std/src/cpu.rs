@@ -342,7 +342,12 @@ pub trait Tracer {
     /// the [`Payload`](crate::Payload) type `P` passed to
     /// [`rt_trace`](crate::rt_trace)). `flags` are `RAY_FLAG_*` bits, `mask`
     /// the visibility mask. The ray has passed [`Ray::is_valid`].
-    fn trace(&self, object: Object, ray: Ray, payload: &mut dyn core::any::Any, flags: u32, mask: u32);
+    ///
+    /// The ray comes by reference: the program that traces it has usually
+    /// just written its fields, and a by-value copy reads them back in wider
+    /// loads than they were stored with, which the CPU cannot forward from
+    /// the pending stores (a stall on every trace).
+    fn trace(&self, object: Object, ray: &Ray, payload: &mut dyn core::any::Any, flags: u32, mask: u32);
     /// [`rt_potential_intersection`](crate::rt_potential_intersection): whether
     /// `t` lies inside the current ray's interval; if so it becomes the
     /// candidate's [`t_hit`](crate::t_hit).

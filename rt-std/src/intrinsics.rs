@@ -126,7 +126,7 @@ pub fn rt_trace_with<P: Payload>(object: Object, ray: Ray, prd: &mut P, flags: u
         cpu::raise(EXCEPTION_INVALID_RAY);
         return;
     }
-    with_installed_tracer(|tracer| tracer.trace(object, ray, prd, flags, mask), || ())
+    with_installed_tracer(|tracer| tracer.trace(object, &ray, prd, flags, mask), || ())
 }
 
 /// Whether distance `t` lies inside the current ray's open interval
@@ -393,7 +393,7 @@ mod tests {
     }
 
     impl Tracer for Recorder {
-        fn trace(&self, object: Object, ray: Ray, payload: &mut dyn Any, flags: u32, mask: u32) {
+        fn trace(&self, object: Object, ray: &Ray, payload: &mut dyn Any, flags: u32, mask: u32) {
             self.log.borrow_mut().push(format!("trace {} {} {flags} {mask:#x}", object.id, ray.ray_type));
             // Run a "closest hit" in a nested context, as a backend would.
             let inner = ExecutionContext { t_hit: 1.0, ..context() };

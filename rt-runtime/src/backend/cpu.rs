@@ -366,10 +366,12 @@ struct Candidate {
 
 /// One ray's search. It lives in `trace`'s frame; the lane points at it
 /// while the traversal runs, so the protocol callbacks find it.
-struct Search {
+struct Search<'r> {
     ray_type: u32,
     flags: u32,
-    world_ray: Ray,
+    /// The traced ray, where the tracing program built it (read field by
+    /// field: see [`Tracer::trace`]).
+    world_ray: &'r Ray,
     payload: *mut dyn Any,
     /// Closest accepted distance so far.
     tmax: Cell<f32>,
@@ -392,7 +394,7 @@ struct Lane<'a> {
     prints: RefCell<Vec<String>>,
     rays: Cell<u64>,
     /// The innermost search in progress (null: none).
-    search: Cell<*const Search>,
+    search: Cell<*const Search<'static>>,
     /// Attribute values not in use, by type, for reuse.
     pool: RefCell<Vec<(TypeId, Box<dyn AnyAttributes>)>>,
 }
@@ -454,7 +456,7 @@ impl<'a> Lane<'a> {
     }
 
     /// The search in progress. Only called inside one (during `traverse`).
-    fn search(&self) -> &Search {
+    fn search(&self) -> &Search<'_> {
         // SAFETY: `trace` points `search` at a `Search` in its own frame for
         // the duration of its traversal and restores the outer pointer
         // before that frame ends; the search is only used through `&`.
@@ -535,7 +537,7 @@ impl<'a> Lane<'a> {
                 let Some(call) = &l.visit[node.index() as usize] else { return };
                 // The ray in the selector's space, `tmax` the closest hit so far.
                 let mut ctx = ExecutionContext {
-                    current_ray: Ray { origin, direction, tmax: s.tmax.get(), ..world_ray },
+                    current_ray: Ray { origin, direction, tmax: s.tmax.get(), ..*world_ray },
                     ..self.base_context()
                 };
                 // SAFETY: the payload pointer comes from the `&mut` the trace
@@ -554,11 +556,16 @@ impl<'a> Lane<'a> {
                 else {
                     return;
                 };
-                let object_ray = Ray { origin, direction, ..world_ray };
+                // The world ray's `tmax` is not read here (the search's is):
+                // copying the whole ray loads `tmin` and `tmax` as one 8-byte
+                // word, which stalls when the tracing program stored them
+                // one by one just before.
+                let (ray_type, tmin) = (world_ray.ray_type, world_ray.tmin);
+                let object_ray = || Ray { origin, direction, ray_type, tmin, tmax: s.tmax.get() };
                 // Prepared on the first triangle test: most rays that miss
                 // never get there.
                 let prepared = std::cell::OnceCell::new();
-                let prepared = || prepared.get_or_init(|| WatertightRay::new(&object_ray)).as_ref();
+                let prepared = || prepared.get_or_init(|| WatertightRay::new(origin, direction, tmin)).as_ref();
                 let visit = |p: u32| {
                     let (gi, prim) = prims[p as usize];
                     match l.meshes[gi as usize] {
@@ -570,7 +577,7 @@ impl<'a> Lane<'a> {
                                 self.triangle_hit(s, ray, mesh, gi, prim, hit, [a, b, c], o2w, w2o);
                             }
                         }
-                        None => self.intersect_custom(s, gi, prim, &object_ray, o2w, w2o),
+                        None => self.intersect_custom(s, gi, prim, &object_ray(), o2w, w2o),
                     }
                 };
                 match wide {
@@ -730,7 +737,7 @@ impl<'a> Lane<'a> {
         mut attributes: Option<Box<dyn AnyAttributes>>,
     ) -> Option<bool> {
         let mut ctx = ExecutionContext {
-            current_ray: Ray { tmax: t, ..s.world_ray },
+            current_ray: Ray { tmax: t, ..*s.world_ray },
             t_hit: t,
             primitive_index: prim,
             object_to_world: *o2w,
@@ -773,7 +780,7 @@ impl<'a> Lane<'a> {
 }
 
 impl Tracer for Lane<'_> {
-    fn trace(&self, object: Object, ray: Ray, payload: &mut dyn Any, flags: u32, mask: u32) {
+    fn trace(&self, object: Object, ray: &Ray, payload: &mut dyn Any, flags: u32, mask: u32) {
         if self.exception.get().is_some() || rt_std::cpu::pending_exception().is_some() {
             return;
         }
@@ -802,7 +809,9 @@ impl Tracer for Lane<'_> {
             candidate: Cell::new(None),
             candidate_t: Cell::new(None),
         };
-        let outer = self.search.replace(&search);
+        // The pointer's lifetime is erased; it is restored below, before
+        // `search` (and the ray it borrows) go away.
+        let outer = self.search.replace((&search as *const Search<'_>).cast());
         self.traverse(&search, node, &Mat4::IDENTITY, &Mat4::IDENTITY, mask & 0xff);
         self.search.set(outer);
         let mut attributes = search.attributes.take();
@@ -818,7 +827,7 @@ impl Tracer for Lane<'_> {
                         attributes = Some(self.attributes_of(ty, Some(&values)));
                     }
                     let mut ctx = ExecutionContext {
-                        current_ray: Ray { tmax: hit.t, ..ray },
+                        current_ray: Ray { tmax: hit.t, ..*ray },
                         t_hit: hit.t,
                         primitive_index: hit.primitive,
                         object_to_world: hit.object_to_world,
@@ -830,7 +839,8 @@ impl Tracer for Lane<'_> {
                 }
             }
             None => {
-                let mut ctx = ExecutionContext { current_ray: ray, ..self.base_context() };
+                let mut ctx = self.base_context();
+                ctx.current_ray = *ray;
                 self.invoke(&l.miss[ray.ray_type as usize], &mut ctx, Some(payload), None, 0);
             }
         }
@@ -947,31 +957,35 @@ struct WatertightRay {
 
 impl WatertightRay {
     /// None for a direction without a non-zero component.
-    fn new(ray: &Ray) -> Option<Self> {
-        let d = ray.direction;
+    ///
+    /// The axes are picked as constants per case: a `Vec3` indexed at run
+    /// time branches on every index, and arrays indexed at run time go
+    /// through the stack and back in loads wider than their stores (which
+    /// stall).
+    fn new(origin: Vec3, d: Vec3, tmin: f32) -> Option<Self> {
         let abs = d.abs();
-        let kz = if abs.x > abs.y {
-            if abs.x > abs.z { 0 } else { 2 }
-        } else if abs.y > abs.z {
-            1
+        // `e_z` is the axis of the largest component, `e_x` and `e_y` the
+        // next two in cyclic order (with the components along them).
+        let (e_z, e_x, e_y, dz, dx, dy) = if abs.x > abs.y && abs.x > abs.z {
+            (Vec3::X, Vec3::Y, Vec3::Z, d.x, d.y, d.z)
+        } else if abs.x <= abs.y && abs.y > abs.z {
+            (Vec3::Y, Vec3::Z, Vec3::X, d.y, d.z, d.x)
         } else {
-            2
+            (Vec3::Z, Vec3::X, Vec3::Y, d.z, d.x, d.y)
         };
-        let mut kx = (kz + 1) % 3;
-        let mut ky = (kx + 1) % 3;
-        if d[kz] < 0.0 {
-            std::mem::swap(&mut kx, &mut ky);
-        }
-        if d[kz] == 0.0 {
+        if dz == 0.0 {
             return None;
         }
-        let (mut shear_x, mut shear_y, mut scale_z) = (Vec3::ZERO, Vec3::ZERO, Vec3::ZERO);
-        shear_x[kx] = 1.0;
-        shear_x[kz] = -(d[kx] / d[kz]);
-        shear_y[ky] = 1.0;
-        shear_y[kz] = -(d[ky] / d[kz]);
-        scale_z[kz] = 1.0 / d[kz];
-        Some(WatertightRay { origin: ray.origin, direction: d, tmin: ray.tmin, shear_x, shear_y, scale_z })
+        // Swapped for a negative component, to keep the winding.
+        let (e_x, e_y, dx, dy) = if dz < 0.0 { (e_y, e_x, dy, dx) } else { (e_x, e_y, dx, dy) };
+        Some(WatertightRay {
+            origin,
+            direction: d,
+            tmin,
+            shear_x: e_x - e_z * (dx / dz),
+            shear_y: e_y - e_z * (dy / dz),
+            scale_z: e_z * (1.0 / dz),
+        })
     }
 
     /// The hit with triangle `(a, b, c)` as `(t, u, v)` for `t` in `(tmin,
