@@ -7,16 +7,21 @@ struct Camera {
     w: vec4<f32>,
     dim: vec4<u32>,
 }
-@group(0) @binding(0) var<storage, read> nodes: array<u32>;
+// Nodes as two arrays, so each binding stays under lavapipe's 128 MiB on the
+// 2M-triangle scene: six bounds per node, and (count, first, primitive).
+@group(0) @binding(0) var<storage, read> bounds: array<f32>;
 @group(0) @binding(1) var<storage, read> tris: array<f32>;
 @group(0) @binding(2) var<storage, read_write> out: array<f32>;
 @group(0) @binding(3) var<uniform> cam: Camera;
+@group(0) @binding(4) var<storage, read> links: array<u32>;
 
 const FAR: f32 = 3.40282347e38;
 
-fn aabb_hit(n: u32, o: vec3<f32>, inv: vec3<f32>, tmin: f32, tmax: f32) -> f32 {
-    let lo = vec3<f32>(bitcast<f32>(nodes[n]), bitcast<f32>(nodes[n + 1u]), bitcast<f32>(nodes[n + 2u]));
-    let hi = vec3<f32>(bitcast<f32>(nodes[n + 3u]), bitcast<f32>(nodes[n + 4u]), bitcast<f32>(nodes[n + 5u]));
+// Node `i`'s box against a ray; its entry distance or FAR.
+fn aabb_hit(i: u32, o: vec3<f32>, inv: vec3<f32>, tmin: f32, tmax: f32) -> f32 {
+    let n = i * 6u;
+    let lo = vec3<f32>(bounds[n], bounds[n + 1u], bounds[n + 2u]);
+    let hi = vec3<f32>(bounds[n + 3u], bounds[n + 4u], bounds[n + 5u]);
     let t0 = (lo - o) * inv;
     let t1 = (hi - o) * inv;
     let near = max(max(max(min(t0.x, t1.x), min(t0.y, t1.y)), min(t0.z, t1.z)), tmin);
@@ -59,12 +64,12 @@ fn closest(o: vec3<f32>, d: vec3<f32>, tmin: f32) -> f32 {
     sp = 1u;
     while sp > 0u {
         sp -= 1u;
-        let n = stack[sp] * 10u;
-        let count = nodes[n + 6u];
-        let first = nodes[n + 7u];
+        let n = stack[sp] * 3u;
+        let count = links[n];
+        let first = links[n + 1u];
         if count > 0u {
             for (var k = first; k < first + count; k++) {
-                let prim = nodes[n + 8u];
+                let prim = links[n + 2u];
                 let t = triangle(prim, o, d, tmin, tmax);
                 if t < tmax {
                     tmax = t;
@@ -73,8 +78,8 @@ fn closest(o: vec3<f32>, d: vec3<f32>, tmin: f32) -> f32 {
             }
             continue;
         }
-        let ta = aabb_hit(first * 10u, o, inv, tmin, tmax);
-        let tb = aabb_hit((first + 1u) * 10u, o, inv, tmin, tmax);
+        let ta = aabb_hit(first, o, inv, tmin, tmax);
+        let tb = aabb_hit(first + 1u, o, inv, tmin, tmax);
         var near = first;
         var far = first + 1u;
         var tn = ta;
