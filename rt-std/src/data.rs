@@ -39,17 +39,35 @@ scalar!(i32, "i32", "i32", |v| v as u32, |w| w as i32);
 scalar!(u32, "u32", "u32", |v| v, |w| w);
 scalar!(bool, "bool", "bool", |v| v as u32, |w| w != 0);
 
+// Whole values go through fixed-size chunks: a copy over however many words
+// the slice has becomes a `memcpy` call of that length, whose stores the
+// value's wider loads then wait on (a store-forwarding stall per read). A
+// slice shorter than the value, which the runtime never passes, takes what
+// fits.
 macro_rules! vector {
     ($t:ty, $s:ty, $n:literal, $rust:literal, $wgsl:literal) => {
         impl RtData for $t {
             const LAYOUT: TypeLayout = TypeLayout { rust: $rust, wgsl: $wgsl, words: $n, fields: &[] };
             fn write_words(&self, out: &mut [u32]) {
                 let a: [$s; $n] = (*self).into();
-                for (o, v) in out.iter_mut().zip(a) {
-                    v.write_words(core::slice::from_mut(o));
+                match out.first_chunk_mut::<$n>() {
+                    Some(o) => {
+                        for (o, v) in o.iter_mut().zip(a) {
+                            v.write_words(core::slice::from_mut(o));
+                        }
+                    }
+                    None => {
+                        for (o, v) in out.iter_mut().zip(a) {
+                            v.write_words(core::slice::from_mut(o));
+                        }
+                    }
                 }
             }
             fn read_words(words: &[u32]) -> Self {
+                if let Some(w) = words.first_chunk::<$n>() {
+                    let a: [$s; $n] = core::array::from_fn(|i| <$s>::read_words(core::slice::from_ref(&w[i])));
+                    return a.into();
+                }
                 let mut a = [<$s>::default(); $n];
                 for (v, w) in a.iter_mut().zip(words) {
                     *v = <$s>::read_words(core::slice::from_ref(w));
@@ -75,11 +93,20 @@ macro_rules! matrix {
         impl RtData for $t {
             const LAYOUT: TypeLayout = TypeLayout { rust: $rust, wgsl: $wgsl, words: $n * $n, fields: &[] };
             fn write_words(&self, out: &mut [u32]) {
-                for (o, v) in out.iter_mut().zip(self.to_cols_array()) {
-                    *o = v.to_bits();
+                let a = self.to_cols_array();
+                match out.first_chunk_mut::<{ $n * $n }>() {
+                    Some(o) => *o = a.map(f32::to_bits),
+                    None => {
+                        for (o, v) in out.iter_mut().zip(a) {
+                            *o = v.to_bits();
+                        }
+                    }
                 }
             }
             fn read_words(words: &[u32]) -> Self {
+                if let Some(w) = words.first_chunk::<{ $n * $n }>() {
+                    return <$t>::from_cols_array(&w.map(f32::from_bits));
+                }
                 let mut a = [0.0f32; $n * $n];
                 for (v, w) in a.iter_mut().zip(words) {
                     *v = f32::from_bits(*w);
