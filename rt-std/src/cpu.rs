@@ -549,7 +549,7 @@ impl<T: crate::Attributes + Send> AnyAttributes for T {
         }
     }
     fn set_words(&mut self, words: &[u32]) {
-        *self = T::read_words(words);
+        self.read_words_into(words);
     }
 }
 

@@ -16,6 +16,13 @@ pub trait RtData: Copy + 'static {
     fn write_words(&self, out: &mut [u32]);
     /// Reads a value from the first `LAYOUT.words` words of `words`.
     fn read_words(words: &[u32]) -> Self;
+    /// [`read_words`](Self::read_words) into `self`. Structs overwrite their
+    /// fields one by one: assigning a whole value built on the stack copies
+    /// it in loads wider than its fields were stored with, which stall.
+    #[inline]
+    fn read_words_into(&mut self, words: &[u32]) {
+        *self = Self::read_words(words);
+    }
 }
 
 macro_rules! scalar {

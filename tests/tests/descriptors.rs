@@ -137,4 +137,19 @@ fn user_structs_round_trip_through_heap_words() {
     assert_eq!(words[6], (-7i32) as u32);
     assert_eq!(seed_common::BasicLight::read_words(&words), l);
     assert_eq!(<seed_common::BasicLight as RtData>::LAYOUT.words, 7);
+    // In place, field by field (how the CPU backend refills attributes).
+    let mut m = seed_common::BasicLight { pos: Vec3::splat(9.0), color: Vec3::ZERO, casts_shadow: 5 };
+    m.read_words_into(&words);
+    assert_eq!(m, l);
+    // Vectors and matrices in place, and from a slice longer than they are.
+    let mut v = Vec3::ZERO;
+    v.read_words_into(&words[3..]);
+    assert_eq!(v, Vec3::ONE);
+    let mat = glam::Mat3::from_cols_array(&[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0]);
+    let mut mw = [0u32; 10];
+    mat.write_words(&mut mw);
+    assert_eq!(mw[9], 0);
+    assert_eq!(glam::Mat3::read_words(&mw), mat);
+    // A short slice takes what fits (the rest zero), as before.
+    assert_eq!(Vec3::read_words(&words[..2]), Vec3::new(1.0, 2.0, 0.0));
 }

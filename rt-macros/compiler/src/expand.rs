@@ -672,10 +672,11 @@ fn rt_data_impl(s: &syn::ItemStruct, role: StructRole) -> TokenStream {
     let mut field_layouts = Vec::new();
     let mut writes = Vec::new();
     let mut reads = Vec::new();
+    let mut reads_into = Vec::new();
     for f in &fields.named {
         let ident = f.ident.as_ref().unwrap();
         let fname = ident.to_string();
-        let (words, write, read, tyname) = match &f.ty {
+        let (words, write, read, read_into, tyname) = match &f.ty {
             syn::Type::Array(a) => {
                 let elem = &a.elem;
                 let len = &a.len;
@@ -692,8 +693,14 @@ fn rt_data_impl(s: &syn::ItemStruct, role: StructRole) -> TokenStream {
                         <#elem as ::rt_std::RtData>::read_words(&words[(#offset) as usize + i * w..])
                     })
                 };
+                let read_into = quote! {
+                    for (i, e) in self.#ident.iter_mut().enumerate() {
+                        let w = <#elem as ::rt_std::RtData>::LAYOUT.words as usize;
+                        ::rt_std::RtData::read_words_into(e, &words[(#offset) as usize + i * w..]);
+                    }
+                };
                 let tyname = signature::type_text(&f.ty);
-                (words, write, read, tyname)
+                (words, write, read, read_into, tyname)
             }
             syn::Type::Path(p)
                 if p.path
@@ -703,18 +710,27 @@ fn rt_data_impl(s: &syn::ItemStruct, role: StructRole) -> TokenStream {
             {
                 // The lowering rejects this field and says why: leave it out of
                 // the layout rather than add rustc's `RtData` errors to it.
-                (quote!(0u32), quote!(), quote!(#ident: ::core::unreachable!()), signature::type_text(&f.ty))
+                (
+                    quote!(0u32),
+                    quote!(),
+                    quote!(#ident: ::core::unreachable!()),
+                    quote!(::core::unreachable!();),
+                    signature::type_text(&f.ty),
+                )
             }
             ty => {
                 let words = quote!(<#ty as ::rt_std::RtData>::LAYOUT.words);
                 let write = quote!(::rt_std::RtData::write_words(&self.#ident, &mut out[(#offset) as usize..]););
                 let read = quote!(#ident: <#ty as ::rt_std::RtData>::read_words(&words[(#offset) as usize..]));
-                (words, write, read, signature::type_text(ty))
+                let read_into =
+                    quote!(::rt_std::RtData::read_words_into(&mut self.#ident, &words[(#offset) as usize..]););
+                (words, write, read, read_into, signature::type_text(ty))
             }
         };
         field_layouts.push(quote!(::rt_std::program::FieldLayout { name: #fname, ty: #tyname, offset_words: #offset }));
         writes.push(write);
         reads.push(read);
+        reads_into.push(read_into);
         offset = quote!(#offset + #words);
     }
     let marker = match role {
@@ -736,6 +752,10 @@ fn rt_data_impl(s: &syn::ItemStruct, role: StructRole) -> TokenStream {
             #[allow(unreachable_code)]
             fn read_words(words: &[u32]) -> Self {
                 Self { #(#reads),* }
+            }
+            #[allow(unreachable_code)]
+            fn read_words_into(&mut self, words: &[u32]) {
+                #(#reads_into)*
             }
         }
         #marker

@@ -797,7 +797,7 @@ impl Tracer for Lane<'_> {
         }
         self.depth.set(depth + 1);
         self.rays.set(self.rays.get() + 1);
-        let search = Search {
+        let mut search = Search {
             ray_type: ray.ray_type,
             flags,
             world_ray: ray,
@@ -815,7 +815,9 @@ impl Tracer for Lane<'_> {
         self.traverse(&search, node, &Mat4::IDENTITY, &Mat4::IDENTITY, mask & 0xff);
         self.search.set(outer);
         let mut attributes = search.attributes.take();
-        match search.committed.get() {
+        // Read in place: a copy of the hit would load the fields its last
+        // commit stored one by one in wider words (a stall).
+        match search.committed.get_mut() {
             Some(hit) => {
                 let (closest, _) = &l.hits[hit.instance as usize][hit.material as usize][ray.ray_type as usize];
                 if let Some(ch) = closest
