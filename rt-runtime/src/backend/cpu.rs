@@ -195,6 +195,21 @@ impl<'a> Program<'a> {
     }
 }
 
+/// Sets `ctx`'s current ray to `ray` with `tmax`, field by field.
+///
+/// Built as a whole `Ray` first, the value went through a temporary in
+/// stores of 4 and 8 bytes and was copied on in 16-byte loads, which the CPU
+/// cannot forward from those stores: a stall per program call.
+#[inline(always)]
+fn set_current_ray(ctx: &mut ExecutionContext, ray: &Ray, tmax: f32) {
+    let r = &mut ctx.current_ray;
+    r.origin = ray.origin;
+    r.direction = ray.direction;
+    r.ray_type = ray.ray_type;
+    r.tmin = ray.tmin;
+    r.tmax = tmax;
+}
+
 /// A built-in triangle attribute.
 #[derive(Clone, Copy)]
 enum Builtin {
@@ -275,7 +290,9 @@ struct TriangleAttributes {
 impl TriangleAttributes {
     /// Triangle `prim` of `mesh`, with vertices `[a, b, c]`, hit at
     /// barycentrics `(u, v)` (weights of vertices 1 and 2).
-    fn new(mesh: &TriangleMesh, prim: u32, [a, b, c]: [Vec3; 3], u: f32, v: f32) -> Self {
+    /// The vertices come by reference: copied as an argument, they went
+    /// through the stack in stores and loads of other widths (a stall).
+    fn new(mesh: &TriangleMesh, prim: u32, &[a, b, c]: &[Vec3; 3], u: f32, v: f32) -> Self {
         let [i0, i1, i2] = mesh.indices[prim as usize].map(|i| i as usize);
         let gn = (b - a).cross(c - a);
         let w = 1.0 - u - v;
@@ -420,12 +437,12 @@ impl<'a> Lane<'a> {
         self.exception.set(None);
         self.rays.set(0);
         let mut ctx = self.base_context();
-        self.invoke(&l.ray_generation, &mut ctx, None, None, 0);
+        self.invoke(&l.ray_generation, &mut ctx, None, None);
         if let Some(code) = self.exception.get() {
             report.exceptions.push(ExceptionRecord { launch_index: index, code });
             if let Some(ex) = &l.exception {
                 let mut ctx = ExecutionContext { exception_code: code, ..self.base_context() };
-                self.invoke(ex, &mut ctx, None, None, 0);
+                self.invoke(ex, &mut ctx, None, None);
             } else if let Some(v) = link::default_exception_output(l.ray_generation.desc)
                 && let Some(out) = l.ray_generation.call.vars[v].downcast_ref::<RwBuffer2d<glam::Vec4>>()
             {
@@ -464,16 +481,22 @@ impl<'a> Lane<'a> {
     }
 
     /// Calls a program in context `ctx`; the first exception it raises is
-    /// kept for the lane. `ctx` holds the flags the program set.
+    /// kept for the lane. `ctx` holds the flags the program set, and the
+    /// primitive index the program gets.
+    ///
+    /// Six arguments, all in registers: the attributes come as a thin
+    /// pointer and the primitive in `ctx`. As a seventh and eighth, the
+    /// attributes' fat pointer went on the stack in two 8-byte stores and
+    /// came back as one 16-byte load, a store-forwarding stall per call.
     fn invoke(
         &self,
         p: &Program<'_>,
         ctx: &mut ExecutionContext,
         payload: Option<&mut dyn Any>,
-        attributes: Option<&mut dyn Any>,
-        primitive: u32,
+        attributes: Option<&mut Box<dyn AnyAttributes>>,
     ) -> CpuResult {
-        let mut args = CpuArgs { payload, attributes, primitive, variables: &p.vars };
+        let attributes = attributes.map(|a| a.as_any_mut());
+        let mut args = CpuArgs { payload, attributes, primitive: ctx.primitive_index, variables: &p.vars };
         let r = rt_std::cpu::in_context(ctx, || (p.desc.cpu)(&mut args));
         if let Some(code) = ctx.pending_exception
             && self.exception.get().is_none()
@@ -543,7 +566,7 @@ impl<'a> Lane<'a> {
                 // SAFETY: the payload pointer comes from the `&mut` the trace
                 // call holds for the whole search; nothing else uses it now.
                 let payload = unsafe { &mut *s.payload };
-                let r = self.invoke(call, &mut ctx, Some(payload), None, 0);
+                let r = self.invoke(call, &mut ctx, Some(payload), None);
                 if let CpuResult::Child(c) = r
                     && let Some(child) = children.get(c as usize)
                 {
@@ -685,7 +708,7 @@ impl<'a> Lane<'a> {
             && let (_, Some(ah)) = &per_ray[s.ray_type as usize]
         {
             let attributes = ah.attributes.as_ref().map(|ty| {
-                let hit = TriangleAttributes::new(mesh, prim, [a, b, c], u, v);
+                let hit = TriangleAttributes::new(mesh, prim, &[a, b, c], u, v);
                 self.attributes_of(ty, Some(&hit))
             });
             match self.any_hit(s, ah, t, prim, o2w, w2o, attributes) {
@@ -746,7 +769,7 @@ impl<'a> Lane<'a> {
         };
         // SAFETY: see `traverse`: the search's payload is only used here.
         let payload = unsafe { &mut *s.payload };
-        self.invoke(ah, &mut ctx, Some(payload), attributes.as_mut().map(|a| a.as_any_mut()), prim);
+        self.invoke(ah, &mut ctx, Some(payload), attributes.as_mut());
         if let Some(a) = attributes {
             self.return_attributes(a);
         }
@@ -771,7 +794,7 @@ impl<'a> Lane<'a> {
             ..self.base_context()
         };
         let mut attributes = call.attributes.as_ref().map(|ty| self.attributes_of(ty, None));
-        self.invoke(call, &mut ctx, None, attributes.as_mut().map(|a| a.as_any_mut()), prim);
+        self.invoke(call, &mut ctx, None, attributes.as_mut());
         if let Some(a) = attributes {
             self.return_attributes(a);
         }
@@ -825,25 +848,24 @@ impl Tracer for Lane<'_> {
                 {
                     if let (Some(mesh), Some(ty)) = (l.meshes[hit.instance as usize], &ch.attributes) {
                         let (u, v) = hit.barycentrics.into();
-                        let values = TriangleAttributes::new(mesh, hit.primitive, hit.vertices, u, v);
+                        let values = TriangleAttributes::new(mesh, hit.primitive, &hit.vertices, u, v);
                         attributes = Some(self.attributes_of(ty, Some(&values)));
                     }
                     let mut ctx = ExecutionContext {
-                        current_ray: Ray { tmax: hit.t, ..*ray },
                         t_hit: hit.t,
                         primitive_index: hit.primitive,
                         object_to_world: hit.object_to_world,
                         world_to_object: hit.world_to_object,
                         ..self.base_context()
                     };
-                    let a = attributes.as_mut().map(|a| a.as_any_mut());
-                    self.invoke(ch, &mut ctx, Some(payload), a, hit.primitive);
+                    set_current_ray(&mut ctx, ray, hit.t);
+                    self.invoke(ch, &mut ctx, Some(payload), attributes.as_mut());
                 }
             }
             None => {
                 let mut ctx = self.base_context();
-                ctx.current_ray = *ray;
-                self.invoke(&l.miss[ray.ray_type as usize], &mut ctx, Some(payload), None, 0);
+                set_current_ray(&mut ctx, ray, ray.tmax);
+                self.invoke(&l.miss[ray.ray_type as usize], &mut ctx, Some(payload), None);
             }
         }
         if let Some(a) = attributes {
