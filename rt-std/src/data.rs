@@ -29,10 +29,12 @@ macro_rules! scalar {
     ($t:ty, $rust:literal, $wgsl:literal, |$v:ident| $to:expr, |$w:ident| $from:expr) => {
         impl RtData for $t {
             const LAYOUT: TypeLayout = TypeLayout { rust: $rust, wgsl: $wgsl, words: 1, fields: &[] };
+            #[inline]
             fn write_words(&self, out: &mut [u32]) {
                 let $v = *self;
                 out[0] = $to;
             }
+            #[inline]
             fn read_words(words: &[u32]) -> Self {
                 let $w = words[0];
                 $from
@@ -55,6 +57,7 @@ macro_rules! vector {
     ($t:ty, $s:ty, $n:literal, $rust:literal, $wgsl:literal) => {
         impl RtData for $t {
             const LAYOUT: TypeLayout = TypeLayout { rust: $rust, wgsl: $wgsl, words: $n, fields: &[] };
+            #[inline]
             fn write_words(&self, out: &mut [u32]) {
                 let a: [$s; $n] = (*self).into();
                 match out.first_chunk_mut::<$n>() {
@@ -70,6 +73,7 @@ macro_rules! vector {
                     }
                 }
             }
+            #[inline]
             fn read_words(words: &[u32]) -> Self {
                 if let Some(w) = words.first_chunk::<$n>() {
                     let a: [$s; $n] = core::array::from_fn(|i| <$s>::read_words(core::slice::from_ref(&w[i])));
@@ -99,6 +103,7 @@ macro_rules! matrix {
     ($t:ty, $n:literal, $rust:literal, $wgsl:literal) => {
         impl RtData for $t {
             const LAYOUT: TypeLayout = TypeLayout { rust: $rust, wgsl: $wgsl, words: $n * $n, fields: &[] };
+            #[inline]
             fn write_words(&self, out: &mut [u32]) {
                 let a = self.to_cols_array();
                 match out.first_chunk_mut::<{ $n * $n }>() {
@@ -110,6 +115,7 @@ macro_rules! matrix {
                     }
                 }
             }
+            #[inline]
             fn read_words(words: &[u32]) -> Self {
                 if let Some(w) = words.first_chunk::<{ $n * $n }>() {
                     return <$t>::from_cols_array(&w.map(f32::from_bits));
