@@ -29,7 +29,7 @@ use crate::accel::{NodeAccel, build_accels};
 use crate::context::Context;
 use crate::error::{Result, RtError};
 use crate::scene::{GeometryKind, NodeId, NodeKind, TriangleMesh};
-use glam::{Mat3A, Mat4, UVec2, Vec2, Vec3, Vec3A};
+use glam::{Mat3A, Mat4, UVec2, Vec2, Vec3, Vec3A, Vec3Swizzles};
 
 use rayon::prelude::*;
 use rt_std::cpu::{AnyAttributes, BoundVariables, CpuArgs, CpuResult, ExecutionContext, Tracer};
@@ -1040,26 +1040,27 @@ impl WatertightRay {
     /// tmax)`; `u`, `v` weight vertices `b` and `c`.
     #[inline(always)]
     fn intersect(&self, a: Vec3, b: Vec3, c: Vec3, tmax: f32) -> Option<(f32, f32, f32)> {
-        let shear = |p: Vec3| self.shear.mul_vec3a(Vec3A::from(p) - self.origin).to_array();
-        let ([ax, ay, az], [bx, by, bz], [cx, cy, cz]) = (shear(a), shear(b), shear(c));
-        let mut u = cx * by - cy * bx;
-        let mut v = ax * cy - ay * cx;
-        let mut w = bx * ay - by * ax;
+        let shear = |p: Vec3| self.shear.mul_vec3a(Vec3A::from(p) - self.origin);
+        let (pa, pb, pc) = (shear(a), shear(b), shear(c));
+        // The sheared coordinates by axis, one vertex per lane.
+        let (x, y) = (Vec3A::new(pa.x, pb.x, pc.x), Vec3A::new(pa.y, pb.y, pc.y));
+        // u = cx * by - cy * bx, v = ax * cy - ay * cx, w = bx * ay - by * ax,
+        // each lane as the scalar expression computes it.
+        let mut uvw = x.zxy() * y.yzx() - y.zxy() * x.yzx();
         // Whether a ray passes a triangle's edges is a coin toss the branch
-        // predictor loses, so the tests combine with `|` and `&` rather than
-        // `||` and `&&`: short-circuit tests branched up to six times per
-        // triangle. (Comparing the smallest and largest of `u, v, w` instead
-        // measured slower.)
-        if (u == 0.0) | (v == 0.0) | (w == 0.0) {
+        // predictor loses, so the sign tests are lane masks combined without
+        // branches (short-circuit tests branched up to six times per
+        // triangle).
+        if uvw.cmpeq(Vec3A::ZERO).any() {
             // Fall back to double precision on edges.
-            let (cxd, cyd, bxd, byd, axd, ayd) = (cx as f64, cy as f64, bx as f64, by as f64, ax as f64, ay as f64);
-            u = (cxd * byd - cyd * bxd) as f32;
-            v = (axd * cyd - ayd * cxd) as f32;
-            w = (bxd * ayd - byd * axd) as f32;
+            let ([ax, bx, cx], [ay, by, cy]) = (x.to_array().map(f64::from), y.to_array().map(f64::from));
+            uvw = Vec3A::new((cx * by - cy * bx) as f32, (ax * cy - ay * cx) as f32, (bx * ay - by * ax) as f32);
         }
-        if ((u < 0.0) | (v < 0.0) | (w < 0.0)) & ((u > 0.0) | (v > 0.0) | (w > 0.0)) {
+        if uvw.cmplt(Vec3A::ZERO).any() & uvw.cmpgt(Vec3A::ZERO).any() {
             return None;
         }
+        let [u, v, w] = uvw.to_array();
+        let (az, bz, cz) = (pa.z, pb.z, pc.z);
         let det = u + v + w;
         if det == 0.0 {
             return None;
