@@ -32,15 +32,8 @@ use core::ops::{Index, IndexMut};
 use glam::UVec2;
 
 use crate::cpu;
-use crate::data::RtData;
+use crate::data::{RtData, zeroed};
 use crate::intrinsics::EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS;
-
-/// The value of `T` whose words are all zero: what out-of-bounds loads read.
-fn zeroed<T: RtData>() -> T {
-    static ZEROS: [u32; 1024] = [0; 1024];
-    let words = T::LAYOUT.words as usize;
-    if words <= ZEROS.len() { T::read_words(&ZEROS[..words]) } else { T::read_words(&vec![0; words]) }
-}
 
 /// The storage behind every handle: `count` elements followed by the sink.
 struct Elements<T> {

@@ -524,9 +524,29 @@ pub trait AnyAttributes: core::any::Any + Send {
     /// Copies `other` into `self` if both are the same type; false otherwise.
     fn copy_from(&mut self, other: &dyn AnyAttributes) -> bool;
     /// Overwrites `self` with the value stored in heap words `words`
-    /// ([`RtData::read_words`](crate::RtData::read_words)): the CPU backend
-    /// refills a reused value with each hit's triangle attributes.
+    /// ([`RtData::read_words`](crate::RtData::read_words)).
     fn set_words(&mut self, words: &[u32]);
+    /// Overwrites `self` with a triangle hit's built-in attributes
+    /// ([`Attributes::set_triangle`](crate::Attributes::set_triangle)): the
+    /// CPU backend refills a reused value with each triangle hit.
+    fn set_triangle(&mut self, t: &TriangleBuiltins);
+}
+
+/// The built-in attributes of a triangle hit, which attribute structs
+/// receive in their fields of the same names and types.
+#[doc(hidden)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TriangleBuiltins {
+    /// The triangle's unnormalised normal, `(b - a) x (c - a)`.
+    pub geometric_normal: glam::Vec3,
+    /// The vertex normals interpolated at the hit (the geometric normal when
+    /// the mesh has none).
+    pub shading_normal: glam::Vec3,
+    /// The texture coordinates interpolated at the hit (the barycentrics
+    /// when the mesh has none).
+    pub texcoord: glam::Vec2,
+    /// The weights of vertices `b` and `c`.
+    pub barycentrics: glam::Vec2,
 }
 
 impl<T: crate::Attributes + Send> AnyAttributes for T {
@@ -550,6 +570,9 @@ impl<T: crate::Attributes + Send> AnyAttributes for T {
     }
     fn set_words(&mut self, words: &[u32]) {
         self.read_words_into(words);
+    }
+    fn set_triangle(&mut self, t: &TriangleBuiltins) {
+        crate::Attributes::set_triangle(self, t);
     }
 }
 

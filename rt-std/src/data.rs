@@ -139,4 +139,37 @@ pub trait Payload: RtData + Default {}
 
 /// Marker for types declared with `#[rt_attributes]`: data an intersection
 /// program hands to hit programs.
-pub trait Attributes: RtData + Default {}
+pub trait Attributes: RtData + Default {
+    /// Overwrites `self` with a triangle hit's built-in attributes, as the
+    /// CPU backend hands them to closest-hit and any-hit programs: the fields
+    /// `geometric_normal` and `shading_normal` (`Vec3`), `texcoord` and
+    /// `barycentrics` (`Vec2`) receive them, every other field is zero. The
+    /// megakernel fills the same fields.
+    ///
+    /// `#[rt_attributes]` writes this field by field; this default goes
+    /// through heap words.
+    #[doc(hidden)]
+    fn set_triangle(&mut self, t: &crate::cpu::TriangleBuiltins) {
+        let mut words = vec![0u32; Self::LAYOUT.words as usize];
+        for f in Self::LAYOUT.fields {
+            let at = f.offset_words as usize;
+            match (f.name, f.ty) {
+                ("geometric_normal", "Vec3") => t.geometric_normal.write_words(&mut words[at..]),
+                ("shading_normal", "Vec3") => t.shading_normal.write_words(&mut words[at..]),
+                ("texcoord", "Vec2") => t.texcoord.write_words(&mut words[at..]),
+                ("barycentrics", "Vec2") => t.barycentrics.write_words(&mut words[at..]),
+                _ => {}
+            }
+        }
+        self.read_words_into(&words);
+    }
+}
+
+/// The value of `T` whose words are all zero (what out-of-bounds loads read,
+/// and the fields of attributes no triangle hit fills).
+#[doc(hidden)]
+pub fn zeroed<T: RtData>() -> T {
+    static ZEROS: [u32; 1024] = [0; 1024];
+    let words = T::LAYOUT.words as usize;
+    if words <= ZEROS.len() { T::read_words(&ZEROS[..words]) } else { T::read_words(&vec![0; words]) }
+}

@@ -2,7 +2,7 @@
 //! from the snapshot corpus) agree with the library lowering and describe
 //! the programs fully; the CPU entry runs the Rust function.
 
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 use rt_std::cpu::{BoundVariables, CpuArgs, CpuResult};
 use rt_std::program::{ProgramKind, VariableKind};
 use rt_tests::seed_common::{Normals, Radiance};
@@ -152,4 +152,62 @@ fn user_structs_round_trip_through_heap_words() {
     assert_eq!(glam::Mat3::read_words(&mw), mat);
     // A short slice takes what fits (the rest zero), as before.
     assert_eq!(Vec3::read_words(&words[..2]), Vec3::new(1.0, 2.0, 0.0));
+}
+
+/// Attributes with the built-in triangle fields, others beside them, and one
+/// of a built-in's name but another type. (Built-ins are matched by the type
+/// as written, `Vec2`, on every backend: a `glam::Vec2` field is not one.)
+#[rt_std::prelude::rt_attributes]
+pub struct Mixed {
+    pub weight: f32,
+    pub geometric_normal: Vec3,
+    pub barycentrics: Vec3,
+    pub frame: glam::Mat3,
+    pub texcoord: Vec2,
+    pub spare: [f32; 2],
+}
+
+#[test]
+fn triangle_hits_fill_the_built_in_attribute_fields_and_zero_the_rest() {
+    use rt_std::cpu::TriangleBuiltins;
+    use rt_std::{Attributes, RtData};
+    let t = TriangleBuiltins {
+        geometric_normal: Vec3::new(1.0, 2.0, 3.0),
+        shading_normal: Vec3::new(4.0, 5.0, 6.0),
+        texcoord: Vec2::new(0.25, 0.5),
+        barycentrics: Vec2::new(0.125, 0.375),
+    };
+    let mut m = Mixed {
+        weight: 7.0,
+        geometric_normal: Vec3::splat(9.0),
+        barycentrics: Vec3::splat(9.0),
+        frame: glam::Mat3::IDENTITY,
+        texcoord: Vec2::splat(9.0),
+        spare: [9.0; 2],
+    };
+    m.set_triangle(&t);
+    let expected = Mixed {
+        weight: 0.0,
+        geometric_normal: t.geometric_normal,
+        // `barycentrics` is a Vec2 built-in: a Vec3 of that name is not it.
+        barycentrics: Vec3::ZERO,
+        frame: glam::Mat3::ZERO,
+        texcoord: t.texcoord,
+        spare: [0.0; 2],
+    };
+    assert_eq!(m, expected);
+    // The generated fill agrees with the runtime's layout: the same value
+    // through heap words, built from the layout's fields by name and type.
+    let mut words = vec![0u32; <Mixed as RtData>::LAYOUT.words as usize];
+    for f in <Mixed as RtData>::LAYOUT.fields {
+        let at = f.offset_words as usize;
+        match (f.name, f.ty) {
+            ("geometric_normal", "Vec3") => t.geometric_normal.write_words(&mut words[at..]),
+            ("shading_normal", "Vec3") => t.shading_normal.write_words(&mut words[at..]),
+            ("texcoord", "Vec2") => t.texcoord.write_words(&mut words[at..]),
+            ("barycentrics", "Vec2") => t.barycentrics.write_words(&mut words[at..]),
+            _ => {}
+        }
+    }
+    assert_eq!(Mixed::read_words(&words), expected);
 }

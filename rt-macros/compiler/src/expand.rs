@@ -673,10 +673,14 @@ fn rt_data_impl(s: &syn::ItemStruct, role: StructRole) -> TokenStream {
     let mut writes = Vec::new();
     let mut reads = Vec::new();
     let mut reads_into = Vec::new();
+    // `Attributes::set_triangle`: the built-in triangle attributes into the
+    // fields of their names and types (as the runtime's layout matches
+    // them), zero into the rest.
+    let mut triangle_sets = Vec::new();
     for f in &fields.named {
         let ident = f.ident.as_ref().unwrap();
         let fname = ident.to_string();
-        let (words, write, read, read_into, tyname) = match &f.ty {
+        let (words, write, read, read_into, zero, tyname) = match &f.ty {
             syn::Type::Array(a) => {
                 let elem = &a.elem;
                 let len = &a.len;
@@ -699,8 +703,9 @@ fn rt_data_impl(s: &syn::ItemStruct, role: StructRole) -> TokenStream {
                         ::rt_std::RtData::read_words_into(e, &words[(#offset) as usize + i * w..]);
                     }
                 };
+                let zero = quote!(self.#ident.fill(::rt_std::data::zeroed::<#elem>()););
                 let tyname = signature::type_text(&f.ty);
-                (words, write, read, read_into, tyname)
+                (words, write, read, read_into, zero, tyname)
             }
             syn::Type::Path(p)
                 if p.path
@@ -715,6 +720,7 @@ fn rt_data_impl(s: &syn::ItemStruct, role: StructRole) -> TokenStream {
                     quote!(),
                     quote!(#ident: ::core::unreachable!()),
                     quote!(::core::unreachable!();),
+                    quote!(::core::unreachable!();),
                     signature::type_text(&f.ty),
                 )
             }
@@ -724,10 +730,16 @@ fn rt_data_impl(s: &syn::ItemStruct, role: StructRole) -> TokenStream {
                 let read = quote!(#ident: <#ty as ::rt_std::RtData>::read_words(&words[(#offset) as usize..]));
                 let read_into =
                     quote!(::rt_std::RtData::read_words_into(&mut self.#ident, &words[(#offset) as usize..]););
-                (words, write, read, read_into, signature::type_text(ty))
+                let zero = quote!(self.#ident = ::rt_std::data::zeroed::<#ty>(););
+                (words, write, read, read_into, zero, signature::type_text(ty))
             }
         };
         field_layouts.push(quote!(::rt_std::program::FieldLayout { name: #fname, ty: #tyname, offset_words: #offset }));
+        let builtin = matches!(
+            (fname.as_str(), tyname.as_str()),
+            ("geometric_normal" | "shading_normal", "Vec3") | ("texcoord" | "barycentrics", "Vec2")
+        );
+        triangle_sets.push(if builtin { quote!(self.#ident = t.#ident;) } else { zero });
         writes.push(write);
         reads.push(read);
         reads_into.push(read_into);
@@ -736,7 +748,14 @@ fn rt_data_impl(s: &syn::ItemStruct, role: StructRole) -> TokenStream {
     let marker = match role {
         StructRole::Data => quote!(),
         StructRole::Payload => quote!(impl ::rt_std::Payload for #name {}),
-        StructRole::Attributes => quote!(impl ::rt_std::Attributes for #name {}),
+        StructRole::Attributes => quote! {
+            impl ::rt_std::Attributes for #name {
+                #[allow(unreachable_code)]
+                fn set_triangle(&mut self, t: &::rt_std::cpu::TriangleBuiltins) {
+                    #(#triangle_sets)*
+                }
+            }
+        },
     };
     quote! {
         impl ::rt_std::RtData for #name {

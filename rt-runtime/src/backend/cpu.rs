@@ -32,7 +32,7 @@ use crate::scene::{GeometryKind, NodeId, NodeKind, TriangleMesh};
 use glam::{Mat3A, Mat4, UVec2, Vec2, Vec3, Vec3A, Vec3Swizzles};
 
 use rayon::prelude::*;
-use rt_std::cpu::{AnyAttributes, BoundVariables, CpuArgs, CpuResult, ExecutionContext, Tracer};
+use rt_std::cpu::{AnyAttributes, BoundVariables, CpuArgs, CpuResult, ExecutionContext, Tracer, TriangleBuiltins};
 use rt_std::program::{AttributesFromWords, ProgramDescriptor, TypeLayout};
 use rt_std::*;
 use std::any::{Any, TypeId};
@@ -210,108 +210,57 @@ fn set_current_ray(ctx: &mut ExecutionContext, ray: &Ray, tmax: f32) {
     r.tmax = tmax;
 }
 
-/// A built-in triangle attribute.
-#[derive(Clone, Copy)]
-enum Builtin {
-    GeometricNormal,
-    ShadingNormal,
-    Texcoord,
-    Barycentrics,
-}
-
 /// The attribute type a program takes, resolved once per launch: how to
-/// make a value, how to recognise a reusable one, and where the built-in
-/// triangle attributes go in its heap words.
+/// make a value and how to recognise a reusable one.
 struct AttributeType {
     id: TypeId,
     words: usize,
     make: AttributesFromWords,
-    /// Word offsets of the built-in triangle attributes, by field name.
-    builtins: Box<[(usize, Builtin)]>,
 }
 
-/// Attribute structs up to this many words are filled on the stack.
+/// Attribute structs up to this many words are zeroed on the stack.
 const STACK_WORDS: usize = 64;
 
 impl AttributeType {
     fn new(layout: &TypeLayout, make: AttributesFromWords) -> Self {
         let words = layout.words as usize;
         let id = Any::type_id(make(&vec![0; words]).as_any());
-        let builtins = layout
-            .fields
-            .iter()
-            .filter_map(|f| {
-                let b = match (f.name, f.ty) {
-                    ("geometric_normal", "Vec3") => Builtin::GeometricNormal,
-                    ("shading_normal", "Vec3") => Builtin::ShadingNormal,
-                    ("texcoord", "Vec2") => Builtin::Texcoord,
-                    ("barycentrics", "Vec2") => Builtin::Barycentrics,
-                    _ => return None,
-                };
-                Some((f.offset_words as usize, b))
-            })
-            .collect();
-        AttributeType { id, words, make, builtins }
+        AttributeType { id, words, make }
     }
 
-    /// Runs `f` on heap words of this type: zero, or with the triangle
-    /// attributes of `hit` filled in.
-    fn with_words<R>(&self, hit: Option<&TriangleAttributes>, f: impl FnOnce(&[u32]) -> R) -> R {
-        // Zeroed on the stack, in a small buffer when that holds them (the
-        // usual attribute struct: four stores rather than a `memset` call).
-        let mut small = [0u32; 16];
-        let mut stack;
-        let mut heap = Vec::new();
-        let words: &mut [u32] = if self.words <= small.len() {
-            &mut small[..self.words]
+    /// Runs `f` on zeroed heap words of this type.
+    fn with_zero_words<R>(&self, f: impl FnOnce(&[u32]) -> R) -> R {
+        // In a small buffer when that holds them (the usual attribute
+        // struct: four stores rather than a `memset` call).
+        let small = [0u32; 16];
+        if self.words <= small.len() {
+            f(&small[..self.words])
         } else if self.words <= STACK_WORDS {
-            stack = [0u32; STACK_WORDS];
-            &mut stack[..self.words]
+            f(&[0u32; STACK_WORDS][..self.words])
         } else {
-            heap.resize(self.words, 0);
-            &mut heap
-        };
-        if let Some(h) = hit {
-            for &(o, b) in &self.builtins {
-                match b {
-                    Builtin::GeometricNormal => h.geometric_normal.write_words(&mut words[o..]),
-                    Builtin::ShadingNormal => h.shading_normal.write_words(&mut words[o..]),
-                    Builtin::Texcoord => h.texcoord.write_words(&mut words[o..]),
-                    Builtin::Barycentrics => h.barycentrics.write_words(&mut words[o..]),
-                }
-            }
+            f(&vec![0; self.words])
         }
-        f(words)
     }
 }
 
-/// The built-in attributes of a triangle hit.
-struct TriangleAttributes {
-    geometric_normal: Vec3,
-    shading_normal: Vec3,
-    texcoord: Vec2,
-    barycentrics: Vec2,
-}
-
-impl TriangleAttributes {
-    /// Triangle `prim` of `mesh`, with vertices `[a, b, c]`, hit at
-    /// barycentrics `(u, v)` (weights of vertices 1 and 2).
-    /// The vertices come by reference: copied as an argument, they went
-    /// through the stack in stores and loads of other widths (a stall).
-    fn new(mesh: &TriangleMesh, prim: u32, &[a, b, c]: &[Vec3; 3], u: f32, v: f32) -> Self {
-        let [i0, i1, i2] = mesh.indices[prim as usize].map(|i| i as usize);
-        let gn = (b - a).cross(c - a);
-        let w = 1.0 - u - v;
-        let sn = match &mesh.normals {
-            Some(n) => n[i0] * w + n[i1] * u + n[i2] * v,
-            None => gn,
-        };
-        let uv = match &mesh.texcoords {
-            Some(tc) => tc[i0] * w + tc[i1] * u + tc[i2] * v,
-            None => Vec2::new(u, v),
-        };
-        TriangleAttributes { geometric_normal: gn, shading_normal: sn, texcoord: uv, barycentrics: Vec2::new(u, v) }
-    }
+/// The built-in attributes of triangle `prim` of `mesh`, with vertices `[a,
+/// b, c]`, hit at barycentrics `(u, v)` (weights of vertices 1 and 2).
+///
+/// The vertices come by reference: copied as an argument, they went through
+/// the stack in stores and loads of other widths (a stall).
+fn triangle_builtins(mesh: &TriangleMesh, prim: u32, &[a, b, c]: &[Vec3; 3], u: f32, v: f32) -> TriangleBuiltins {
+    let [i0, i1, i2] = mesh.indices[prim as usize].map(|i| i as usize);
+    let gn = (b - a).cross(c - a);
+    let w = 1.0 - u - v;
+    let sn = match &mesh.normals {
+        Some(n) => n[i0] * w + n[i1] * u + n[i2] * v,
+        None => gn,
+    };
+    let uv = match &mesh.texcoords {
+        Some(tc) => tc[i0] * w + tc[i1] * u + tc[i2] * v,
+        None => Vec2::new(u, v),
+    };
+    TriangleBuiltins { geometric_normal: gn, shading_normal: sn, texcoord: uv, barycentrics: Vec2::new(u, v) }
 }
 
 /// Runs entry point `entry` over `width` x `height` launch indices.
@@ -391,6 +340,15 @@ impl Xf {
     /// (object to world, world to object) of `xf`, identity for None.
     fn matrices(xf: Option<&Xf>) -> (Mat4, Mat4) {
         xf.map_or((Mat4::IDENTITY, Mat4::IDENTITY), |x| (x.object_to_world, x.world_to_object))
+    }
+
+    /// Puts `xf`'s transforms in `ctx`, which holds the identity already
+    /// (a context from `base_context`): nothing to copy for None.
+    fn set(ctx: &mut ExecutionContext, xf: Option<&Xf>) {
+        if let Some(x) = xf {
+            ctx.object_to_world = x.object_to_world;
+            ctx.world_to_object = x.world_to_object;
+        }
     }
 }
 
@@ -543,9 +501,12 @@ impl<'a> Lane<'a> {
 
     /// An attribute value of type `ty`, holding `hit`'s triangle attributes
     /// (or zero).
-    fn attributes_of(&self, ty: &AttributeType, hit: Option<&TriangleAttributes>) -> Box<dyn AnyAttributes> {
+    fn attributes_of(&self, ty: &AttributeType, hit: Option<&TriangleBuiltins>) -> Box<dyn AnyAttributes> {
         let mut a = self.take_attributes(ty.id, || (ty.make)(&vec![0; ty.words]));
-        ty.with_words(hit, |w| a.set_words(w));
+        match hit {
+            Some(h) => a.set_triangle(h),
+            None => ty.with_zero_words(|w| a.set_words(w)),
+        }
         a
     }
 
@@ -735,7 +696,7 @@ impl<'a> Lane<'a> {
             && let (_, Some(ah)) = &per_ray[s.ray_type as usize]
         {
             let attributes = ah.attributes.as_ref().map(|ty| {
-                let hit = TriangleAttributes::new(mesh, prim, &[a, b, c], u, v);
+                let hit = triangle_builtins(mesh, prim, &[a, b, c], u, v);
                 self.attributes_of(ty, Some(&hit))
             });
             match self.any_hit(s, ah, t, prim, xf, attributes) {
@@ -783,15 +744,13 @@ impl<'a> Lane<'a> {
         xf: Option<&Xf>,
         mut attributes: Option<Box<dyn AnyAttributes>>,
     ) -> Option<bool> {
-        let (object_to_world, world_to_object) = Xf::matrices(xf);
         let mut ctx = ExecutionContext {
             current_ray: Ray { tmax: t, ..*s.world_ray },
             t_hit: t,
             primitive_index: prim,
-            object_to_world,
-            world_to_object,
             ..self.base_context()
         };
+        Xf::set(&mut ctx, xf);
         // SAFETY: see `traverse`: the search's payload is only used here.
         let payload = unsafe { &mut *s.payload };
         self.invoke(ah, &mut ctx, Some(payload), attributes.as_mut());
@@ -805,14 +764,12 @@ impl<'a> Lane<'a> {
         let Some(call) = &self.l.intersection[gi as usize] else { return };
         s.candidate.set(Some(Candidate { instance: gi, primitive: prim, object_ray: *object_ray, xf: xf.copied() }));
         s.candidate_t.set(None);
-        let (object_to_world, world_to_object) = Xf::matrices(xf);
         let mut ctx = ExecutionContext {
             current_ray: Ray { tmax: s.tmax.get(), ..*object_ray },
             primitive_index: prim,
-            object_to_world,
-            world_to_object,
             ..self.base_context()
         };
+        Xf::set(&mut ctx, xf);
         let mut attributes = call.attributes.as_ref().map(|ty| self.attributes_of(ty, None));
         self.invoke(call, &mut ctx, None, attributes.as_mut());
         if let Some(a) = attributes {
@@ -868,17 +825,12 @@ impl Tracer for Lane<'_> {
                 {
                     if let (Some(mesh), Some(ty)) = (l.meshes[hit.instance as usize], &ch.attributes) {
                         let (u, v) = hit.barycentrics.into();
-                        let values = TriangleAttributes::new(mesh, hit.primitive, &hit.vertices, u, v);
+                        let values = triangle_builtins(mesh, hit.primitive, &hit.vertices, u, v);
                         attributes = Some(self.attributes_of(ty, Some(&values)));
                     }
-                    let (object_to_world, world_to_object) = Xf::matrices(hit.xf.as_ref());
-                    let mut ctx = ExecutionContext {
-                        t_hit: hit.t,
-                        primitive_index: hit.primitive,
-                        object_to_world,
-                        world_to_object,
-                        ..self.base_context()
-                    };
+                    let mut ctx =
+                        ExecutionContext { t_hit: hit.t, primitive_index: hit.primitive, ..self.base_context() };
+                    Xf::set(&mut ctx, hit.xf.as_ref());
                     set_current_ray(&mut ctx, ray, hit.t);
                     self.invoke(ch, &mut ctx, Some(payload), attributes.as_mut());
                 }
