@@ -284,7 +284,7 @@ fn bunny_primary(args: &Args, bunny: &scenes::BenchScene, width: u32, height: u3
     };
     let (mut obvhs_times, mut our_times) = (Vec::new(), Vec::new());
     let mut our_build: Result<()> = Ok(());
-    for round in 0..reps * 4 {
+    for round in 0..reps * 6 {
         // Order alternates too (obvhs first, then ours first): whichever
         // runs second finds the other's freed memory and warm threads.
         if round % 2 == 0 {

@@ -499,12 +499,24 @@ fn slot_triangles(
 ) -> Vec<[Vec3; 3]> {
     use rayon::prelude::*;
     let Some(cw) = wide.filter(|_| all) else { return Vec::new() };
+    // Each instance's mesh looked up once, not once per triangle.
+    let meshes: Vec<Option<&TriangleMesh>> = ctx
+        .instances
+        .iter()
+        .map(|rec| match &ctx.geometries[rec.geometry.index() as usize].kind {
+            GeometryKind::Triangles(mesh) => Some(mesh),
+            GeometryKind::Custom { .. } => None,
+        })
+        .collect();
     cw.primitive_indices
         .par_iter()
         .with_min_len(4096)
         .map(|&p| {
             let (gi, t) = prims[p as usize];
-            triangle_vertices(ctx, gi, t)
+            match meshes[gi as usize] {
+                Some(m) => m.indices[t as usize].map(|v| m.positions[v as usize]),
+                None => unreachable!("all primitives are triangles"),
+            }
         })
         .collect()
 }
