@@ -150,19 +150,27 @@ pub trait Attributes: RtData + Default {
     /// through heap words.
     #[doc(hidden)]
     fn set_triangle(&mut self, t: &crate::cpu::TriangleBuiltins) {
-        let mut words = vec![0u32; Self::LAYOUT.words as usize];
-        for f in Self::LAYOUT.fields {
-            let at = f.offset_words as usize;
-            match (f.name, f.ty) {
-                ("geometric_normal", "Vec3") => t.geometric_normal.write_words(&mut words[at..]),
-                ("shading_normal", "Vec3") => t.shading_normal.write_words(&mut words[at..]),
-                ("texcoord", "Vec2") => t.texcoord.write_words(&mut words[at..]),
-                ("barycentrics", "Vec2") => t.barycentrics.write_words(&mut words[at..]),
-                _ => {}
-            }
-        }
-        self.read_words_into(&words);
+        self.read_words_into(&triangle_words(&Self::LAYOUT, t));
     }
+}
+
+/// The heap words of a value of layout `layout` holding a triangle hit's
+/// built-in attributes ([`Attributes::set_triangle`]), found by the fields'
+/// names and types.
+#[doc(hidden)]
+pub fn triangle_words(layout: &TypeLayout, t: &crate::cpu::TriangleBuiltins) -> Vec<u32> {
+    let mut words = vec![0u32; layout.words as usize];
+    for f in layout.fields {
+        let at = f.offset_words as usize;
+        match (f.name, f.ty) {
+            ("geometric_normal", "Vec3") => t.geometric_normal.write_words(&mut words[at..]),
+            ("shading_normal", "Vec3") => t.shading_normal.write_words(&mut words[at..]),
+            ("texcoord", "Vec2") => t.texcoord.write_words(&mut words[at..]),
+            ("barycentrics", "Vec2") => t.barycentrics.write_words(&mut words[at..]),
+            _ => {}
+        }
+    }
+    words
 }
 
 /// The value of `T` whose words are all zero (what out-of-bounds loads read,

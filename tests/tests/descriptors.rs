@@ -196,18 +196,8 @@ fn triangle_hits_fill_the_built_in_attribute_fields_and_zero_the_rest() {
         spare: [0.0; 2],
     };
     assert_eq!(m, expected);
-    // The generated fill agrees with the runtime's layout: the same value
-    // through heap words, built from the layout's fields by name and type.
-    let mut words = vec![0u32; <Mixed as RtData>::LAYOUT.words as usize];
-    for f in <Mixed as RtData>::LAYOUT.fields {
-        let at = f.offset_words as usize;
-        match (f.name, f.ty) {
-            ("geometric_normal", "Vec3") => t.geometric_normal.write_words(&mut words[at..]),
-            ("shading_normal", "Vec3") => t.shading_normal.write_words(&mut words[at..]),
-            ("texcoord", "Vec2") => t.texcoord.write_words(&mut words[at..]),
-            ("barycentrics", "Vec2") => t.barycentrics.write_words(&mut words[at..]),
-            _ => {}
-        }
-    }
+    // The generated fill agrees with the layout: the same value through heap
+    // words, placed by the layout's fields (what the megakernel does too).
+    let words = rt_std::data::triangle_words(&<Mixed as RtData>::LAYOUT, &t);
     assert_eq!(Mixed::read_words(&words), expected);
 }
