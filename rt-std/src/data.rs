@@ -1,7 +1,7 @@
 //! [`RtData`]: values that live in the runtime's buffer heap and variable
 //! records, with one layout for CPU and GPU (packed 32-bit words).
 
-use crate::program::TypeLayout;
+use crate::program::{TriangleBuiltin, TypeLayout};
 use glam::{IVec2, IVec3, IVec4, Mat2, Mat3, Mat4, UVec2, UVec3, UVec4, Vec2, Vec3, Vec4};
 
 /// A type that programs can read from variables and buffers.
@@ -143,8 +143,9 @@ pub trait Attributes: RtData + Default {
     /// Overwrites `self` with a triangle hit's built-in attributes, as the
     /// CPU backend hands them to closest-hit and any-hit programs: the fields
     /// `geometric_normal` and `shading_normal` (`Vec3`), `texcoord` and
-    /// `barycentrics` (`Vec2`) receive them, every other field is zero. The
-    /// megakernel fills the same fields.
+    /// `barycentrics` (`Vec2`) receive them, every other field is zero
+    /// ([`TriangleBuiltin`](crate::program::TriangleBuiltin)). The megakernel
+    /// fills the same fields.
     ///
     /// `#[rt_attributes]` writes this field by field; this default goes
     /// through heap words.
@@ -162,12 +163,12 @@ pub fn triangle_words(layout: &TypeLayout, t: &crate::cpu::TriangleBuiltins) -> 
     let mut words = vec![0u32; layout.words as usize];
     for f in layout.fields {
         let at = f.offset_words as usize;
-        match (f.name, f.ty) {
-            ("geometric_normal", "Vec3") => t.geometric_normal.write_words(&mut words[at..]),
-            ("shading_normal", "Vec3") => t.shading_normal.write_words(&mut words[at..]),
-            ("texcoord", "Vec2") => t.texcoord.write_words(&mut words[at..]),
-            ("barycentrics", "Vec2") => t.barycentrics.write_words(&mut words[at..]),
-            _ => {}
+        match TriangleBuiltin::of_field(f) {
+            Some(TriangleBuiltin::GeometricNormal) => t.geometric_normal.write_words(&mut words[at..]),
+            Some(TriangleBuiltin::ShadingNormal) => t.shading_normal.write_words(&mut words[at..]),
+            Some(TriangleBuiltin::Texcoord) => t.texcoord.write_words(&mut words[at..]),
+            Some(TriangleBuiltin::Barycentrics) => t.barycentrics.write_words(&mut words[at..]),
+            None => {}
         }
     }
     words

@@ -54,6 +54,34 @@ pub struct FieldLayout {
     pub offset_words: u32,
 }
 
+/// A built-in attribute of a triangle hit, which the fields of an attribute
+/// struct receive by name and type: `geometric_normal` and `shading_normal`
+/// of type `Vec3`, `texcoord` and `barycentrics` of type `Vec2` (spelled as
+/// a path too, `glam::Vec2`). Every backend fills them by this rule.
+#[doc(hidden)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TriangleBuiltin {
+    GeometricNormal,
+    ShadingNormal,
+    Texcoord,
+    Barycentrics,
+}
+
+impl TriangleBuiltin {
+    /// The built-in a field of this name and type (as the layout spells
+    /// it) receives, if any.
+    pub fn of_field(f: &FieldLayout) -> Option<Self> {
+        let ty = f.ty.rsplit("::").next().unwrap_or(f.ty).trim();
+        match (f.name, ty) {
+            ("geometric_normal", "Vec3") => Some(Self::GeometricNormal),
+            ("shading_normal", "Vec3") => Some(Self::ShadingNormal),
+            ("texcoord", "Vec2") => Some(Self::Texcoord),
+            ("barycentrics", "Vec2") => Some(Self::Barycentrics),
+            _ => None,
+        }
+    }
+}
+
 /// How a type is spelled in Rust and WGSL, and how it is laid out in the
 /// runtime's buffer heap: fields packed in declaration order, four bytes per
 /// scalar, no padding (so the same bytes serve CPU and GPU).

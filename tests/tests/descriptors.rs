@@ -155,15 +155,15 @@ fn user_structs_round_trip_through_heap_words() {
 }
 
 /// Attributes with the built-in triangle fields, others beside them, and one
-/// of a built-in's name but another type. (Built-ins are matched by the type
-/// as written, `Vec2`, on every backend: a `glam::Vec2` field is not one.)
+/// of a built-in's name but another type; one built-in's type is written as
+/// a path.
 #[rt_std::prelude::rt_attributes]
 pub struct Mixed {
     pub weight: f32,
     pub geometric_normal: Vec3,
     pub barycentrics: Vec3,
     pub frame: glam::Mat3,
-    pub texcoord: Vec2,
+    pub texcoord: glam::Vec2,
     pub spare: [f32; 2],
 }
 

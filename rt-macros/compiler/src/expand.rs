@@ -735,8 +735,11 @@ fn rt_data_impl(s: &syn::ItemStruct, role: StructRole) -> TokenStream {
             }
         };
         field_layouts.push(quote!(::rt_std::program::FieldLayout { name: #fname, ty: #tyname, offset_words: #offset }));
+        // As `rt_std::program::TriangleBuiltin::of_field` matches the
+        // layout: the type as written, or a path ending in it.
+        let ty_name = tyname.rsplit("::").next().unwrap_or(&tyname).trim();
         let builtin = matches!(
-            (fname.as_str(), tyname.as_str()),
+            (fname.as_str(), ty_name),
             ("geometric_normal" | "shading_normal", "Vec3") | ("texcoord" | "barycentrics", "Vec2")
         );
         triangle_sets.push(if builtin { quote!(self.#ident = t.#ident;) } else { zero });

@@ -18,7 +18,7 @@
 //! value never relinks.
 
 use crate::error::{Result, RtError};
-use rt_std::program::{ProgramDescriptor, ProgramKind, TypeLayout, VariableKind};
+use rt_std::program::{ProgramDescriptor, ProgramKind, TriangleBuiltin, TypeLayout, VariableKind};
 use std::collections::{BTreeMap, BTreeSet};
 
 /// The runtime's half of every module.
@@ -742,16 +742,16 @@ fn triangle_attributes(w: &str, layout: &TypeLayout) -> String {
     let mut body = String::new();
     for f in layout.fields {
         let field = wgsl_field(f.name);
-        match (f.name, f.ty) {
-            ("geometric_normal", "Vec3") => body.push_str(&format!("    a.{field} = gn;\n")),
-            ("shading_normal", "Vec3") => body.push_str(&format!(
+        match TriangleBuiltin::of_field(f) {
+            Some(TriangleBuiltin::GeometricNormal) => body.push_str(&format!("    a.{field} = gn;\n")),
+            Some(TriangleBuiltin::ShadingNormal) => body.push_str(&format!(
                 "    a.{field} = gn;\n    if rt_scene[g + 3u] != RT_NONE {{\n        let nb = rt_scene[g + 3u];\n        a.{field} = rt_v3(nb + i0 * 3u) * w + rt_v3(nb + i1 * 3u) * bary.x + rt_v3(nb + i2 * 3u) * bary.y;\n    }}\n"
             )),
-            ("texcoord", "Vec2") => body.push_str(&format!(
+            Some(TriangleBuiltin::Texcoord) => body.push_str(&format!(
                 "    a.{field} = bary;\n    if rt_scene[g + 4u] != RT_NONE {{\n        let tb = rt_scene[g + 4u];\n        a.{field} = vec2<f32>(rt_f(tb + i0 * 2u), rt_f(tb + i0 * 2u + 1u)) * w + vec2<f32>(rt_f(tb + i1 * 2u), rt_f(tb + i1 * 2u + 1u)) * bary.x + vec2<f32>(rt_f(tb + i2 * 2u), rt_f(tb + i2 * 2u + 1u)) * bary.y;\n    }}\n"
             )),
-            ("barycentrics", "Vec2") => body.push_str(&format!("    a.{field} = bary;\n")),
-            _ => {}
+            Some(TriangleBuiltin::Barycentrics) => body.push_str(&format!("    a.{field} = bary;\n")),
+            None => {}
         }
     }
     format!(
@@ -931,4 +931,29 @@ fn trace_function(w: &str, d: u32, note_payload: &str) -> String {
 }}
 "
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use rt_std::program::{FieldLayout, TypeLayout};
+
+    /// The megakernel fills the built-in triangle attributes by the same
+    /// rule as the CPU backend: by name, and by type as written or as a path.
+    #[test]
+    fn triangle_attributes_are_filled_by_name_and_type() {
+        static FIELDS: [FieldLayout; 4] = [
+            FieldLayout { name: "geometric_normal", ty: "Vec3", offset_words: 0 },
+            FieldLayout { name: "texcoord", ty: "glam :: Vec2", offset_words: 3 },
+            FieldLayout { name: "barycentrics", ty: "Vec3", offset_words: 5 },
+            FieldLayout { name: "weight", ty: "f32", offset_words: 8 },
+        ];
+        let layout = TypeLayout { rust: "Mixed", wgsl: "Mixed", words: 9, fields: &FIELDS };
+        let wgsl = super::triangle_attributes("Mixed", &layout);
+        assert!(wgsl.contains("a.geometric_normal = gn;"), "{wgsl}");
+        assert!(wgsl.contains("a.texcoord = bary;"), "{wgsl}");
+        // A Vec3 named `barycentrics` is not the Vec2 built-in, and other
+        // fields stay as `var a` starts them: zero.
+        assert!(!wgsl.contains("a.barycentrics"), "{wgsl}");
+        assert!(!wgsl.contains("a.weight"), "{wgsl}");
+    }
 }
