@@ -559,10 +559,8 @@ fn main() {
     // kernel is cold (what the link figures report), and the same kernel
     // over the next scene is not compiled again.
     let shader_cache = std::env::temp_dir().join(format!("rt-bench-mesa-cache-{}", std::process::id()));
-    if std::env::var_os("XDG_RUNTIME_DIR").is_none() {
-        // SAFETY: as below. (Mesa's Vulkan loader complains without it.)
-        unsafe { std::env::set_var("XDG_RUNTIME_DIR", std::env::temp_dir()) };
-    }
+    // Before any thread exists (rayon and wgpu start later).
+    examples::headless_runtime_dir();
     if !args.warm_shader_cache {
         // SAFETY: set before any thread exists (rayon and wgpu start later).
         unsafe { std::env::set_var("MESA_SHADER_CACHE_DIR", &shader_cache) };
