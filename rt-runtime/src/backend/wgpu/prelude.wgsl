@@ -265,12 +265,18 @@ fn rt_aabb_hit(w: u32, o: vec3<f32>, inv: vec3<f32>, tmin: f32, tmax: f32) -> f3
     return 3.40282347e38;
 }
 
-// Watertight ray/triangle test (Woop, Benthin, Wald 2013). Returns t (or a
-// negative value on a miss) and sets rt_c_bary to the weights of vertices
-// 1 and 2; `front` tells whether the ray hits the counter-clockwise side.
-var<private> rt_tri_front: bool;
-fn rt_triangle(a: vec3<f32>, b: vec3<f32>, c: vec3<f32>, r: RtRay, tmax: f32) -> f32 {
-    let d = r.direction;
+// Watertight ray/triangle test (Woop, Benthin, Wald 2013), in two parts:
+// the per-ray shear (rt_shear: the axes, x and y the shear plane, z the
+// dominant axis) and the test of one triangle with it (rt_watertight).
+// rt_triangle runs both for one triangle; the lean loop of traverse.wgsl
+// computes the shear once per ray.
+struct RtShear {
+    k: vec3<u32>,
+    s: vec3<f32>,
+    ok: bool,
+}
+
+fn rt_shear(d: vec3<f32>) -> RtShear {
     let ad = abs(d);
     var kz = 2u;
     if ad.x > ad.y {
@@ -285,29 +291,51 @@ fn rt_triangle(a: vec3<f32>, b: vec3<f32>, c: vec3<f32>, r: RtRay, tmax: f32) ->
         kx = ky;
         ky = tmp;
     }
-    if d[kz] == 0.0 { return -1.0; }
-    let sx = d[kx] / d[kz];
-    let sy = d[ky] / d[kz];
-    let sz = 1.0 / d[kz];
-    let pa = a - r.origin;
-    let pb = b - r.origin;
-    let pc = c - r.origin;
-    let ax = pa[kx] - sx * pa[kz];
-    let ay = pa[ky] - sy * pa[kz];
-    let bx = pb[kx] - sx * pb[kz];
-    let by = pb[ky] - sy * pb[kz];
-    let cx = pc[kx] - sx * pc[kz];
-    let cy = pc[ky] - sy * pc[kz];
+    return RtShear(vec3<u32>(kx, ky, kz), vec3<f32>(d[kx] / d[kz], d[ky] / d[kz], 1.0 / d[kz]), d[kz] != 0.0);
+}
+
+// Triangle (a, b, c) against the ray from o along d with its shear: t (-1.0
+// on a miss); on a hit, the weights of vertices 1 and 2 in *bary and whether
+// the ray hits the counter-clockwise side in *front.
+fn rt_watertight(a: vec3<f32>, b: vec3<f32>, c: vec3<f32>, o: vec3<f32>, d: vec3<f32>, sh: RtShear, tmin: f32, tmax: f32, bary: ptr<function, vec2<f32>>, front: ptr<function, bool>) -> f32 {
+    let pa = a - o;
+    let pb = b - o;
+    let pc = c - o;
+    let kx = sh.k.x;
+    let ky = sh.k.y;
+    let kz = sh.k.z;
+    let ax = pa[kx] - sh.s.x * pa[kz];
+    let ay = pa[ky] - sh.s.y * pa[kz];
+    let bx = pb[kx] - sh.s.x * pb[kz];
+    let by = pb[ky] - sh.s.y * pb[kz];
+    let cx = pc[kx] - sh.s.x * pc[kz];
+    let cy = pc[ky] - sh.s.y * pc[kz];
     let u = cx * by - cy * bx;
     let v = ax * cy - ay * cx;
     let w = bx * ay - by * ax;
     if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) { return -1.0; }
     let det = u + v + w;
     if det == 0.0 { return -1.0; }
+    let sz = sh.s.z;
     let t = (u * sz * pa[kz] + v * sz * pb[kz] + w * sz * pc[kz]) / det;
-    if !(t > r.tmin && t < tmax) { return -1.0; }
-    rt_c_bary = vec2<f32>(v / det, w / det);
-    rt_tri_front = dot(d, cross(b - a, c - a)) < 0.0;
+    if !(t > tmin && t < tmax) { return -1.0; }
+    *bary = vec2<f32>(v / det, w / det);
+    *front = dot(d, cross(b - a, c - a)) < 0.0;
+    return t;
+}
+
+// The watertight test of one triangle: t (or a negative value on a miss);
+// on a hit, rt_c_bary gets the weights of vertices 1 and 2 and rt_tri_front
+// whether the ray hits the counter-clockwise side.
+var<private> rt_tri_front: bool;
+fn rt_triangle(a: vec3<f32>, b: vec3<f32>, c: vec3<f32>, r: RtRay, tmax: f32) -> f32 {
+    let sh = rt_shear(r.direction);
+    if !sh.ok { return -1.0; }
+    var bary = rt_c_bary;
+    var front = rt_tri_front;
+    let t = rt_watertight(a, b, c, r.origin, r.direction, sh, r.tmin, tmax, &bary, &front);
+    rt_c_bary = bary;
+    rt_tri_front = front;
     return t;
 }
 

@@ -301,62 +301,14 @@ fn rt_search(object: u32, ray: RtRay, flags: u32, mask: u32) {
 // general loop (same tests, same order); llvmpipe runs both sides of every
 // branch under a lane mask, so the loop body's size is its cost.
 
-// The watertight test's per-ray part: the axes (x, y: the shear plane,
-// z: the dominant axis) and the shear.
-struct RtShear {
-    k: vec3<u32>,
-    s: vec3<f32>,
-    ok: bool,
-}
-
-fn rt_shear(d: vec3<f32>) -> RtShear {
-    let ad = abs(d);
-    var kz = 2u;
-    if ad.x > ad.y {
-        if ad.x > ad.z { kz = 0u; }
-    } else if ad.y > ad.z {
-        kz = 1u;
-    }
-    var kx = (kz + 1u) % 3u;
-    var ky = (kx + 1u) % 3u;
-    if d[kz] < 0.0 {
-        let tmp = kx;
-        kx = ky;
-        ky = tmp;
-    }
-    return RtShear(vec3<u32>(kx, ky, kz), vec3<f32>(d[kx] / d[kz], d[ky] / d[kz], 1.0 / d[kz]), d[kz] != 0.0);
-}
-
-// rt_triangle with the shear precomputed: t (negative on a miss), the
-// barycentrics of vertices 1 and 2 in *bary, the side in *front.
+// rt_triangle with the shear precomputed, on the triangle at word w of
+// rt_tris: t (negative on a miss), the barycentrics of vertices 1 and 2 in
+// *bary, the side in *front.
 fn rt_triangle_sheared(w: u32, o: vec3<f32>, d: vec3<f32>, sh: RtShear, tmin: f32, tmax: f32, bary: ptr<function, vec2<f32>>, front: ptr<function, bool>) -> f32 {
     let a = vec3<f32>(bitcast<f32>(rt_tri_word(w)), bitcast<f32>(rt_tri_word(w + 1u)), bitcast<f32>(rt_tri_word(w + 2u)));
     let b = vec3<f32>(bitcast<f32>(rt_tri_word(w + 3u)), bitcast<f32>(rt_tri_word(w + 4u)), bitcast<f32>(rt_tri_word(w + 5u)));
     let c = vec3<f32>(bitcast<f32>(rt_tri_word(w + 6u)), bitcast<f32>(rt_tri_word(w + 7u)), bitcast<f32>(rt_tri_word(w + 8u)));
-    let pa = a - o;
-    let pb = b - o;
-    let pc = c - o;
-    let kx = sh.k.x;
-    let ky = sh.k.y;
-    let kz = sh.k.z;
-    let ax = pa[kx] - sh.s.x * pa[kz];
-    let ay = pa[ky] - sh.s.y * pa[kz];
-    let bx = pb[kx] - sh.s.x * pb[kz];
-    let by = pb[ky] - sh.s.y * pb[kz];
-    let cx = pc[kx] - sh.s.x * pc[kz];
-    let cy = pc[ky] - sh.s.y * pc[kz];
-    let u = cx * by - cy * bx;
-    let v = ax * cy - ay * cx;
-    let ww = bx * ay - by * ax;
-    if (u < 0.0 || v < 0.0 || ww < 0.0) && (u > 0.0 || v > 0.0 || ww > 0.0) { return -1.0; }
-    let det = u + v + ww;
-    if det == 0.0 { return -1.0; }
-    let sz = sh.s.z;
-    let t = (u * sz * pa[kz] + v * sz * pb[kz] + ww * sz * pc[kz]) / det;
-    if !(t > tmin && t < tmax) { return -1.0; }
-    *bary = vec2<f32>(v / det, ww / det);
-    *front = dot(d, cross(b - a, c - a)) < 0.0;
-    return t;
+    return rt_watertight(a, b, c, o, d, sh, tmin, tmax, bary, front);
 }
 
 fn rt_blas_triangles(inst: u32) {
