@@ -1197,6 +1197,11 @@ on_backends!(
     launches_wider_than_the_dispatch_limit_write_every_index,
 );
 
+/// The largest difference of any channel between two images.
+fn largest_difference(a: &[Vec4], b: &[Vec4]) -> f32 {
+    a.iter().zip(b).map(|(x, y)| (*x - *y).abs().max_element()).fold(0.0f32, f32::max)
+}
+
 #[test]
 fn wgpu_and_cpu_render_the_same_sphere() {
     let render = |backend| {
@@ -1206,7 +1211,7 @@ fn wgpu_and_cpu_render_the_same_sphere() {
         ctx.read_buffer::<Vec4>(out).unwrap()
     };
     let (a, b) = (render(Backend::Cpu), render(Backend::Wgpu));
-    let worst = a.iter().zip(&b).map(|(x, y)| (*x - *y).abs().max_element()).fold(0.0f32, f32::max);
+    let worst = largest_difference(&a, &b);
     assert!(worst < 2.0 / 255.0, "largest difference {worst}");
 }
 
@@ -1258,7 +1263,7 @@ fn wgpu_and_cpu_render_the_same_deep_graph() {
     let (a, b) = (render(Backend::Cpu), render(Backend::Wgpu));
     let hits = a.iter().filter(|c| c.truncate() != BG).count();
     assert!(hits > 100, "{hits} pixels hit");
-    let worst = a.iter().zip(&b).map(|(x, y)| (*x - *y).abs().max_element()).fold(0.0f32, f32::max);
+    let worst = largest_difference(&a, &b);
     assert!(worst < 2.0 / 255.0, "largest difference {worst}");
 }
 
@@ -1435,7 +1440,7 @@ fn a_scene_larger_than_one_binding_renders_from_one_binding_per_section() {
     assert!(hits > (W * W / 2) as usize, "{hits} pixels hit");
     assert_eq!(split, merged, "one binding per section and all in one binding differ");
     assert_eq!(split, default);
-    let worst = cpu.iter().zip(&split).map(|(x, y)| (*x - *y).abs().max_element()).fold(0.0f32, f32::max);
+    let worst = largest_difference(&cpu, &split);
     assert!(worst < 2.0 / 255.0, "largest difference from the CPU backend {worst}");
 }
 
@@ -1470,7 +1475,7 @@ fn triangles_with_a_material_index_past_the_materials_are_never_hit() {
     let (cpu, gpu) = (render(Backend::Cpu), render(Backend::Wgpu));
     let holes = cpu.iter().filter(|c| c.truncate() == BG).count();
     assert!(holes > 100 && holes < (W * W - 100) as usize, "{holes} background pixels");
-    let worst = cpu.iter().zip(&gpu).map(|(x, y)| (*x - *y).abs().max_element()).fold(0.0f32, f32::max);
+    let worst = largest_difference(&cpu, &gpu);
     assert!(worst < 2.0 / 255.0, "largest difference from the CPU backend {worst}");
 }
 
