@@ -300,7 +300,7 @@ impl NodeAccel {
 }
 
 fn triangle_bounds(mesh: &TriangleMesh, t: usize) -> OAabb {
-    let [a, b, c] = mesh.indices[t].map(|i| mesh.positions[i as usize]);
+    let [a, b, c] = mesh.triangle(t);
     to_oaabb(a.min(b).min(c), a.max(b).max(c))
 }
 
@@ -370,20 +370,22 @@ fn group_triangles(ctx: &Context, prims: &[(u32, u32)]) -> Vec<obvhs::triangle::
     prims
         .iter()
         .map(|&(gi, t)| {
-            let [a, b, c] = triangle_vertices(ctx, gi, t).map(Into::into);
+            let [a, b, c] = instance_mesh(ctx, gi).expect(ALL_TRIANGLES).triangle(t as usize).map(Into::into);
             obvhs::triangle::Triangle { v0: a, v1: b, v2: c }
         })
         .collect()
 }
 
-/// The vertices of triangle `t` of geometry instance `gi`, whose geometry
-/// holds triangles (callers check that every primitive is one).
-fn triangle_vertices(ctx: &Context, gi: u32, t: u32) -> [Vec3; 3] {
+/// The triangles of geometry instance `gi` (None: custom primitives).
+fn instance_mesh(ctx: &Context, gi: u32) -> Option<&TriangleMesh> {
     match &ctx.geometries[ctx.instances[gi as usize].geometry.index() as usize].kind {
-        GeometryKind::Triangles(mesh) => mesh.indices[t as usize].map(|v| mesh.positions[v as usize]),
-        GeometryKind::Custom { .. } => unreachable!("all primitives are triangles"),
+        GeometryKind::Triangles(mesh) => Some(mesh),
+        GeometryKind::Custom { .. } => None,
     }
 }
+
+/// What the callers of [`instance_mesh`] that read triangles have checked.
+const ALL_TRIANGLES: &str = "all primitives are triangles";
 
 /// Builds what is missing and refits what moved, in the form the context's
 /// backend walks (see [`AccelCache`]).
@@ -409,12 +411,8 @@ pub(crate) fn build_accels(ctx: &Context, cache: &mut AccelCache) -> Result<()> 
                     |prims: &[(u32, u32)]| form == TreeForm::Wide && a.builder != Builder::NoAccel && !prims.is_empty();
                 // Every primitive a triangle: the CPU backend's triangles in
                 // CWBVH slot order.
-                let all_triangles = |prims: &[(u32, u32)]| {
-                    prims.iter().all(|(gi, _)| {
-                        let g = ctx.instances[*gi as usize].geometry.index() as usize;
-                        matches!(ctx.geometries[g].kind, GeometryKind::Triangles(_))
-                    })
-                };
+                let all_triangles =
+                    |prims: &[(u32, u32)]| prims.iter().all(|(gi, _)| instance_mesh(ctx, *gi).is_some());
                 match old {
                     Some(NodeAccel::Prims { mut bvh, mut wide, mut triangles, prims, mut bounds }) => {
                         let moved = cache.moved
@@ -500,23 +498,13 @@ fn slot_triangles(
     use rayon::prelude::*;
     let Some(cw) = wide.filter(|_| all) else { return Vec::new() };
     // Each instance's mesh looked up once, not once per triangle.
-    let meshes: Vec<Option<&TriangleMesh>> = ctx
-        .instances
-        .iter()
-        .map(|rec| match &ctx.geometries[rec.geometry.index() as usize].kind {
-            GeometryKind::Triangles(mesh) => Some(mesh),
-            GeometryKind::Custom { .. } => None,
-        })
-        .collect();
+    let meshes: Vec<Option<&TriangleMesh>> = (0..ctx.instances.len() as u32).map(|gi| instance_mesh(ctx, gi)).collect();
     cw.primitive_indices
         .par_iter()
         .with_min_len(4096)
         .map(|&p| {
             let (gi, t) = prims[p as usize];
-            match meshes[gi as usize] {
-                Some(m) => m.indices[t as usize].map(|v| m.positions[v as usize]),
-                None => unreachable!("all primitives are triangles"),
-            }
+            meshes[gi as usize].expect(ALL_TRIANGLES).triangle(t as usize)
         })
         .collect()
 }

@@ -73,6 +73,12 @@ pub struct TriangleMesh {
 }
 
 impl TriangleMesh {
+    /// The vertices of triangle `t`.
+    #[inline]
+    pub fn triangle(&self, t: usize) -> [Vec3; 3] {
+        self.indices[t].map(|i| self.positions[i as usize])
+    }
+
     /// Checks indices and values; the message names the first problem.
     pub fn validate(&self) -> Result<(), String> {
         if self.indices.is_empty() {

@@ -583,7 +583,7 @@ impl<'a> Lane<'a> {
                     let (gi, prim) = prims[p as usize];
                     match l.meshes[gi as usize] {
                         Some(mesh) => {
-                            let [a, b, c] = mesh.indices[prim as usize].map(|i| mesh.positions[i as usize]);
+                            let [a, b, c] = mesh.triangle(prim as usize);
                             if let Some(ray) = prepared()
                                 && let Some(hit) = ray.intersect(a, b, c, s.tmax.get())
                             {
