@@ -12,16 +12,27 @@ fn bytes(w: &[u32]) -> &[u8] {
     unsafe { std::slice::from_raw_parts(w.as_ptr() as *const u8, std::mem::size_of_val(w)) }
 }
 
-/// Runs the AO workload `reps` times; returns (rays traced, median time of
-/// dispatch + read-back, process CPU time of the `reps` runs, adapter
-/// name), or why it could not run.
+/// What the kernel measured.
+pub struct Measured {
+    /// Rays traced by one run.
+    pub rays: u64,
+    /// Median time of a run: dispatch, wait and read-back.
+    pub time: Duration,
+    /// Median device time of the dispatch (timestamp queries), where the
+    /// adapter has them.
+    pub kernel: Option<Duration>,
+    /// Process CPU time of the `reps` runs.
+    pub cpu: Duration,
+}
+
+/// Runs the AO workload `reps` times, or says why it could not run.
 pub fn run(
     mesh: &TriangleMesh,
     cam: (Vec3, Vec3, Vec3, Vec3),
     width: u32,
     height: u32,
     reps: usize,
-) -> Result<(u64, Duration, Duration, String), String> {
+) -> Result<Measured, String> {
     let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
     let adapter = pollster::block_on(instance.request_adapter(&Default::default())).map_err(|e| e.to_string())?;
     let max_binding = adapter.limits().max_storage_buffer_binding_size as u64;
@@ -40,6 +51,8 @@ pub fn run(
             max_storage_buffer_binding_size: adapter.limits().max_storage_buffer_binding_size,
             ..wgpu::Limits::downlevel_defaults()
         },
+        // As the runtime does: the device's own time of the dispatch.
+        required_features: adapter.features() & wgpu::Features::TIMESTAMP_QUERY,
         ..Default::default()
     }))
     .map_err(|e| e.to_string())?;
@@ -116,7 +129,22 @@ pub fn run(
             wgpu::BindGroupEntry { binding: 4, resource: links_b.as_entire_binding() },
         ],
     });
+    let timestamps = device.features().contains(wgpu::Features::TIMESTAMP_QUERY).then(|| {
+        let set = device.create_query_set(&wgpu::QuerySetDescriptor {
+            label: None,
+            ty: wgpu::QueryType::Timestamp,
+            count: 2,
+        });
+        let resolved = device.create_buffer(&wgpu::BufferDescriptor {
+            label: None,
+            size: 16,
+            usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        (set, resolved)
+    });
     let mut times = Vec::new();
+    let mut kernel_times = Vec::new();
     let mut rays = 0u64;
     let mut cpu = Duration::ZERO;
     for _ in 0..reps + 1 {
@@ -124,25 +152,42 @@ pub fn run(
         let c = crate::peers::process_cpu_time();
         let read = device.create_buffer(&wgpu::BufferDescriptor {
             label: None,
-            size: (pixels * 8) as u64,
+            size: (pixels * 8 + 16) as u64,
             usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
         let mut enc = device.create_command_encoder(&Default::default());
         {
-            let mut pass = enc.begin_compute_pass(&Default::default());
+            let timestamp_writes = timestamps.as_ref().map(|(set, _)| wgpu::ComputePassTimestampWrites {
+                query_set: set,
+                beginning_of_pass_write_index: Some(0),
+                end_of_pass_write_index: Some(1),
+            });
+            let mut pass = enc.begin_compute_pass(&wgpu::ComputePassDescriptor { label: None, timestamp_writes });
             pass.set_pipeline(&pipeline);
             pass.set_bind_group(0, &bind, &[]);
             pass.dispatch_workgroups(width.div_ceil(8), height.div_ceil(8), 1);
         }
         enc.copy_buffer_to_buffer(&out_b, 0, &read, 0, (pixels * 8) as u64);
+        if let Some((set, resolved)) = &timestamps {
+            enc.resolve_query_set(set, 0..2, resolved, 0);
+            enc.copy_buffer_to_buffer(resolved, 0, &read, (pixels * 8) as u64, 16);
+        }
         queue.submit([enc.finish()]);
         let slice = read.slice(..);
         slice.map_async(wgpu::MapMode::Read, |_| {});
         device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| e.to_string())?;
         let data = slice.get_mapped_range().map_err(|e| e.to_string())?;
-        let hits =
-            data[pixels * 4..].chunks_exact(4).filter(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]) == 1.0).count();
+        if timestamps.is_some() {
+            let t =
+                |i: usize| u64::from_le_bytes(data[pixels * 8 + i..pixels * 8 + i + 8].try_into().expect("8 bytes"));
+            let ns = t(8).saturating_sub(t(0)) as f64 * queue.get_timestamp_period() as f64;
+            kernel_times.push(Duration::from_nanos(ns as u64));
+        }
+        let hits = data[pixels * 4..pixels * 8]
+            .chunks_exact(4)
+            .filter(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]) == 1.0)
+            .count();
         rays = (pixels + hits) as u64;
         drop(data);
         read.unmap();
@@ -153,8 +198,8 @@ pub fn run(
     }
     // The first run includes the pipeline's compilation on some drivers.
     times.remove(0);
-    times.sort();
-    Ok((rays, times[times.len() / 2], cpu, adapter.get_info().name))
+    let kernel = (!kernel_times.is_empty()).then(|| crate::peers::median(kernel_times.split_off(1)));
+    Ok(Measured { rays, time: crate::peers::median(times), kernel, cpu })
 }
 
 #[cfg(test)]
@@ -186,7 +231,7 @@ mod tests {
         let tris = teapot.obvhs_triangles();
         let (bvh, _) = peers::obvhs_cwbvh(&tris);
         let obvhs = peers::obvhs_ao(&bvh, &tris, cam, w, h);
-        let (rays, ..) = super::run(&teapot.mesh, cam, w, h, 1).expect("runs on the wgpu adapter");
+        let rays = super::run(&teapot.mesh, cam, w, h, 1).expect("runs on the wgpu adapter").rays;
         let primary_hits = obvhs.primary_t.iter().filter(|t| t.is_finite()).count() as u64;
         assert!(primary_hits > 500, "the teapot is in view: {primary_hits} hits");
         assert!(obvhs.rays.abs_diff(rays) <= 3, "hand-written kernel {rays} rays, obvhs {}", obvhs.rays);

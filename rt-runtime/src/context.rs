@@ -78,6 +78,10 @@ pub struct Context {
     pub(crate) gpu: Option<crate::backend::wgpu::Gpu>,
     pub(crate) last_wgsl: Option<String>,
     pub(crate) lose_device_in_next_launch: bool,
+    /// Bumped by every change but variable values and buffer contents: a
+    /// wgpu launch re-encodes the scene only when it moved (with the
+    /// acceleration structures' builds and refits).
+    pub(crate) structure_version: u64,
 }
 
 impl Default for Context {
@@ -109,6 +113,7 @@ impl Context {
             gpu: None,
             last_wgsl: None,
             lose_device_in_next_launch: false,
+            structure_version: 0,
         }
     }
 
@@ -119,6 +124,7 @@ impl Context {
 
     /// Chooses the backend launches run on.
     pub fn set_backend(&mut self, backend: Backend) {
+        self.structure_version += 1;
         self.backend = backend;
     }
 
@@ -150,6 +156,13 @@ impl Context {
         self.lose_device_in_next_launch = true;
     }
 
+    /// How many wgpu launches encoded and uploaded the scene (tables, BVH
+    /// nodes, triangles); the others found it on the device, unchanged
+    /// since, and encoded only the variables and buffers.
+    pub fn scene_encodes(&self) -> u64 {
+        self.gpu.as_ref().map_or(0, |g| g.scene_encodes)
+    }
+
     /// How many wgpu pipelines (megakernel links) this context created.
     pub fn pipelines_created(&self) -> u64 {
         self.gpu.as_ref().map_or(0, |g| g.pipelines_created)
@@ -170,6 +183,7 @@ impl Context {
     }
 
     pub fn set_entry_point_count(&mut self, n: u32) {
+        self.structure_version += 1;
         self.entry_points.resize(n as usize, EntryPoint::default());
     }
 
@@ -178,6 +192,7 @@ impl Context {
     }
 
     pub fn set_ray_type_count(&mut self, n: u32) {
+        self.structure_version += 1;
         self.miss.resize(n as usize, None);
         for m in &mut self.materials {
             m.closest_hit.resize(n as usize, None);
@@ -192,6 +207,7 @@ impl Context {
     /// Rays may nest this deep (primary rays are depth 1); a trace beyond it
     /// raises the trace-depth-exceeded exception instead.
     pub fn set_max_trace_depth(&mut self, depth: u32) {
+        self.structure_version += 1;
         self.max_trace_depth = depth.max(1);
     }
 
@@ -206,6 +222,7 @@ impl Context {
 
     /// Creates a program from a descriptor (`my_program::PROGRAM`).
     pub fn create_program(&mut self, desc: &'static ProgramDescriptor) -> ProgramId {
+        self.structure_version += 1;
         self.programs.push(ProgramRec { desc, vars: VarScope::default() });
         ProgramId(self.programs.len() as u32 - 1)
     }
@@ -241,6 +258,7 @@ impl Context {
     }
 
     pub fn set_ray_generation_program(&mut self, entry: u32, p: ProgramId) -> Result<()> {
+        self.structure_version += 1;
         self.expect_kind(p, ProgramKind::RayGeneration, format!("entry point {entry}'s ray generation"))?;
         self.entry_mut(entry)?.ray_generation = Some(p);
         Ok(())
@@ -257,12 +275,14 @@ impl Context {
     /// written into it at the launch index (skipped if the index is outside
     /// the buffer), so failing pixels stand out in the image.
     pub fn set_exception_program(&mut self, entry: u32, p: ProgramId) -> Result<()> {
+        self.structure_version += 1;
         self.expect_kind(p, ProgramKind::Exception, format!("entry point {entry}'s exception"))?;
         self.entry_mut(entry)?.exception = Some(p);
         Ok(())
     }
 
     pub fn set_miss_program(&mut self, ray_type: u32, p: ProgramId) -> Result<()> {
+        self.structure_version += 1;
         self.check_ray_type(ray_type)?;
         self.expect_kind(p, ProgramKind::Miss, format!("ray type {ray_type}'s miss"))?;
         self.miss[ray_type as usize] = Some(p);
@@ -273,6 +293,7 @@ impl Context {
 
     /// Creates a triangle geometry; the mesh is checked first.
     pub fn create_triangles(&mut self, mesh: TriangleMesh) -> Result<GeometryId> {
+        self.structure_version += 1;
         let id = self.geometries.len() as u32;
         mesh.validate().map_err(|problem| RtError::BadGeometry { geometry: id, problem })?;
         self.geometries.push(GeometryRec { kind: GeometryKind::Triangles(mesh), vars: VarScope::default() });
@@ -287,6 +308,7 @@ impl Context {
         intersection: ProgramId,
         bounding_box: ProgramId,
     ) -> Result<GeometryId> {
+        self.structure_version += 1;
         self.expect_kind(intersection, ProgramKind::Intersection, "a custom geometry's intersection".into())?;
         self.expect_kind(bounding_box, ProgramKind::BoundingBox, "a custom geometry's bounding box".into())?;
         self.geometries.push(GeometryRec {
@@ -299,6 +321,7 @@ impl Context {
     /// Moves a triangle geometry's vertices (same count): accelerations over
     /// it are refit, not rebuilt, at the next launch.
     pub fn set_triangle_positions(&mut self, g: GeometryId, positions: Vec<glam::Vec3>) -> Result<()> {
+        self.structure_version += 1;
         let rec = self.geometries.get_mut(g.0 as usize).ok_or_else(|| RtError::InvalidHandle(format!("{g:?}")))?;
         let GeometryKind::Triangles(mesh) = &mut rec.kind else {
             return Err(RtError::BadGeometry { geometry: g.0, problem: "not a triangle geometry".into() });
@@ -322,6 +345,7 @@ impl Context {
     }
 
     pub fn create_material(&mut self) -> MaterialId {
+        self.structure_version += 1;
         let n = self.ray_type_count() as usize;
         self.materials.push(MaterialRec {
             closest_hit: vec![None; n],
@@ -336,6 +360,7 @@ impl Context {
     }
 
     pub fn set_closest_hit_program(&mut self, m: MaterialId, ray_type: u32, p: ProgramId) -> Result<()> {
+        self.structure_version += 1;
         self.check_ray_type(ray_type)?;
         self.expect_kind(p, ProgramKind::ClosestHit, format!("ray type {ray_type}'s closest hit"))?;
         self.material_mut(m)?.closest_hit[ray_type as usize] = Some(p);
@@ -343,6 +368,7 @@ impl Context {
     }
 
     pub fn set_any_hit_program(&mut self, m: MaterialId, ray_type: u32, p: ProgramId) -> Result<()> {
+        self.structure_version += 1;
         self.check_ray_type(ray_type)?;
         self.expect_kind(p, ProgramKind::AnyHit, format!("ray type {ray_type}'s any hit"))?;
         self.material_mut(m)?.any_hit[ray_type as usize] = Some(p);
@@ -350,6 +376,7 @@ impl Context {
     }
 
     pub fn create_geometry_instance(&mut self, g: GeometryId, materials: &[MaterialId]) -> Result<GeometryInstanceId> {
+        self.structure_version += 1;
         if g.0 as usize >= self.geometries.len() {
             return Err(RtError::InvalidHandle(format!("{g:?}")));
         }
@@ -371,6 +398,7 @@ impl Context {
     }
 
     fn push_node(&mut self, kind: NodeKind) -> NodeId {
+        self.structure_version += 1;
         self.nodes.push(NodeRec { kind, visibility_mask: 0xff, vars: VarScope::default() });
         NodeId(self.nodes.len() as u32 - 1)
     }
@@ -403,6 +431,7 @@ impl Context {
 
     /// Changes a transform's matrix (a refit of the groups above it).
     pub fn set_transform(&mut self, node: NodeId, matrix: Mat4) -> Result<()> {
+        self.structure_version += 1;
         let inv = checked_inverse(matrix)?;
         match self.nodes.get_mut(node.0 as usize).map(|n| &mut n.kind) {
             Some(NodeKind::Transform { matrix: m, inverse, .. }) => {
@@ -423,6 +452,7 @@ impl Context {
 
     /// Rays trace into `node` only if their mask shares a bit with this.
     pub fn set_visibility_mask(&mut self, node: NodeId, mask: u8) -> Result<()> {
+        self.structure_version += 1;
         let n = self.nodes.get_mut(node.0 as usize).ok_or_else(|| RtError::InvalidHandle(format!("{node:?}")))?;
         n.visibility_mask = mask;
         Ok(())

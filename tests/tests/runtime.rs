@@ -42,6 +42,11 @@ pub fn background(prd: &mut Radiance, #[var] bg_color: Vec3) {
 }
 
 #[rt_program(miss)]
+pub fn flat_miss(prd: &mut Radiance) {
+    prd.result = Vec3::ONE;
+}
+
+#[rt_program(miss)]
 pub fn shadow_miss(prd: &mut ShadowPrd) {
     prd.attenuation = 1.0;
 }
@@ -1328,6 +1333,71 @@ fn launches_upload_only_what_changed_and_host_writes_reach_the_device() {
 }
 
 #[test]
+fn an_unchanged_scene_is_encoded_once_and_every_change_reaches_the_device() {
+    use glam::Mat4;
+    let (mut ctx, out) = camera(2.0, Backend::Wgpu);
+    let (sphere, mat, _) = sphere_scene(&mut ctx, &flat_color::PROGRAM, Vec3::new(-1.0, 0.0, 0.0), 0.5);
+    ctx.set_var(Scope::Context, "color", Vec3::X).unwrap();
+    // The colours at the sphere's centre and at (0.94, 0.06), right of it.
+    let render = |ctx: &mut Context| {
+        let report = ctx.launch(0, W, W).unwrap();
+        assert!(report.exceptions.is_empty(), "{:?}", report.exceptions);
+        let img = ctx.read_buffer::<Vec4>(out).unwrap();
+        (pixel(&img, W / 4, W / 2).truncate(), pixel(&img, 3 * W / 4 - 1, W / 2).truncate())
+    };
+    assert_eq!(render(&mut ctx), (Vec3::X, BG));
+    assert_eq!(ctx.scene_encodes(), 1);
+    // Values and buffers: the scene stays on the device as it is.
+    ctx.set_var(mat, "color", Vec3::Y).unwrap();
+    ctx.write_buffer(out, &vec![Vec4::ONE; (W * W) as usize]).unwrap();
+    let extra = ctx.create_buffer(BufferType::Input, vec![1.0f32; 64]);
+    ctx.set_var(Scope::Context, "unused", extra).unwrap();
+    assert_eq!(render(&mut ctx), (Vec3::Y, BG));
+    assert_eq!(render(&mut ctx), (Vec3::Y, BG));
+    assert_eq!(ctx.scene_encodes(), 1);
+    // Every structural change is encoded again and shows in the image.
+    let normals = ctx.create_program(&normal_shader::PROGRAM);
+    ctx.set_closest_hit_program(mat, 0, normals).unwrap();
+    let (centre, _) = render(&mut ctx);
+    assert!((centre - Vec3::new(0.5, 0.5, 1.0)).abs().max_element() < 0.1, "{centre}");
+    assert_eq!(ctx.scene_encodes(), 2);
+    let flat = ctx.create_program(&flat_color::PROGRAM);
+    ctx.set_closest_hit_program(mat, 0, flat).unwrap();
+    // A quad under a transform, beside the sphere and out of view.
+    let g = ctx.create_triangles(quad(0.0, 0.25)).unwrap();
+    let qi = ctx.create_geometry_instance(g, &[mat]).unwrap();
+    let qg = ctx.create_geometry_group(&[qi], Acceleration::default()).unwrap();
+    let xf = ctx.create_transform(Mat4::from_translation(Vec3::new(0.0, 1.5, 0.0)), qg).unwrap();
+    let top = ctx.create_group(&[sphere, xf], Acceleration::default()).unwrap();
+    ctx.set_var(Scope::Context, "top", top).unwrap();
+    assert_eq!(render(&mut ctx), (Vec3::Y, BG));
+    assert_eq!(ctx.scene_encodes(), 3);
+    // Moved onto the right-hand point.
+    ctx.set_transform(xf, Mat4::from_translation(Vec3::new(0.9, 0.0, 0.0))).unwrap();
+    assert_eq!(render(&mut ctx), (Vec3::Y, Vec3::Y));
+    assert_eq!(ctx.scene_encodes(), 4);
+    // Hidden by its visibility mask, then shown again.
+    ctx.set_visibility_mask(xf, 0).unwrap();
+    assert_eq!(render(&mut ctx), (Vec3::Y, BG));
+    ctx.set_visibility_mask(xf, 0xff).unwrap();
+    assert_eq!(render(&mut ctx), (Vec3::Y, Vec3::Y));
+    assert_eq!(ctx.scene_encodes(), 6);
+    // Its vertices moved back by the transform's offset.
+    let moved: Vec<Vec3> = quad(0.0, 0.25).positions.iter().map(|p| *p - Vec3::new(0.9, 0.0, 0.0)).collect();
+    ctx.set_triangle_positions(g, moved).unwrap();
+    assert_eq!(render(&mut ctx), (Vec3::Y, BG));
+    assert_eq!(ctx.scene_encodes(), 7);
+    // A new miss program.
+    let miss = ctx.create_program(&flat_miss::PROGRAM);
+    ctx.set_miss_program(0, miss).unwrap();
+    assert_eq!(render(&mut ctx), (Vec3::Y, Vec3::ONE));
+    assert_eq!(ctx.scene_encodes(), 8);
+    // And nothing changed: nothing encoded.
+    assert_eq!(render(&mut ctx), (Vec3::Y, Vec3::ONE));
+    assert_eq!(ctx.scene_encodes(), 8);
+}
+
+#[test]
 fn a_scene_over_the_adapters_binding_limit_is_a_clear_error() {
     // A device whose storage bindings hold at most 1 MiB.
     let instance = ::wgpu::Instance::new(::wgpu::InstanceDescriptor::new_without_display_handle_from_env());
@@ -1347,6 +1417,36 @@ fn a_scene_over_the_adapters_binding_limit_is_a_clear_error() {
         err.contains("the heap (variables, buffers, textures) needs 2.0 MiB") && err.contains("binds at most 1 MiB"),
         "{err}"
     );
+}
+
+#[test]
+fn the_device_times_the_kernel_where_it_has_timestamps() {
+    let instance = ::wgpu::Instance::new(::wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+    let adapter = pollster::block_on(instance.request_adapter(&::wgpu::RequestAdapterOptions {
+        power_preference: ::wgpu::PowerPreference::HighPerformance,
+        ..Default::default()
+    }))
+    .expect("an adapter (lavapipe)");
+    let timestamps = adapter.features().contains(::wgpu::Features::TIMESTAMP_QUERY);
+    // The runtime's own device asks for timestamps where the adapter has them.
+    let (mut ctx, out) = camera(2.0, Backend::Wgpu);
+    sphere_scene(&mut ctx, &normal_shader::PROGRAM, Vec3::ZERO, 1.0);
+    ctx.launch(0, W, W).unwrap();
+    let report = ctx.launch(0, W, W).unwrap();
+    assert_eq!(report.timings.kernel.is_some(), timestamps, "{:?} on {}", report.timings, adapter.get_info().name);
+    if let Some(kernel) = report.timings.kernel {
+        assert!(kernel > std::time::Duration::ZERO && kernel <= report.timings.run, "{:?}", report.timings);
+    }
+    assert_eq!(pixel(&ctx.read_buffer::<Vec4>(out).unwrap(), 0, 0).truncate(), BG);
+    // A device the application opened without them: no kernel time, same
+    // image.
+    let (device, queue, info) = device_with(|l| l);
+    let (mut ctx, out) = camera(2.0, Backend::Wgpu);
+    ctx.use_wgpu_device(device, queue, info);
+    sphere_scene(&mut ctx, &normal_shader::PROGRAM, Vec3::ZERO, 1.0);
+    let report = ctx.launch(0, W, W).unwrap();
+    assert_eq!(report.timings.kernel, None);
+    assert_eq!(pixel(&ctx.read_buffer::<Vec4>(out).unwrap(), 0, 0).truncate(), BG);
 }
 
 /// A device on the adapter with `limits` over the downlevel defaults (the

@@ -306,7 +306,8 @@ pub(crate) fn launch(ctx: &mut Context, entry: u32, width: u32, height: u32) -> 
         report.prints.extend(r.prints);
         report.rays += r.rays;
     }
-    report.timings = super::Timings { build: t1 - t0, encode: t2 - t1, link: Default::default(), run: t2.elapsed() };
+    report.timings =
+        super::Timings { build: t1 - t0, encode: t2 - t1, link: Default::default(), run: t2.elapsed(), kernel: None };
     Ok(report)
 }
 

@@ -101,6 +101,11 @@ pub struct Timings {
     pub link: std::time::Duration,
     /// Running the launch and reading results back.
     pub run: std::time::Duration,
+    /// The device's own time for the launch's dispatches, from timestamp
+    /// queries: what the kernel took, without submission, waiting and
+    /// read-back. `None` on the CPU backend and on devices without
+    /// `wgpu::Features::TIMESTAMP_QUERY`.
+    pub kernel: Option<std::time::Duration>,
 }
 
 pub(crate) fn launch(ctx: &mut Context, entry: u32, width: u32, height: u32) -> Result<LaunchReport> {

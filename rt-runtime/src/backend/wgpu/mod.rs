@@ -85,6 +85,8 @@ pub struct Gpu {
     pipelines: HashMap<String, wgpu::ComputePipeline>,
     /// How many pipelines were created (links); for tests of the cache.
     pub pipelines_created: u64,
+    /// How many launches encoded the scene (see [`SceneKey`]).
+    pub scene_encodes: u64,
     resident: Resident,
     health: Arc<Health>,
 }
@@ -144,6 +146,11 @@ struct Resident {
     /// One 256-byte-aligned launch uniform per dispatch tile.
     uniforms: Option<(wgpu::Buffer, u32)>,
     readback: Option<wgpu::Buffer>,
+    /// The scene the `scene` buffers hold, and its records' layout.
+    held: Option<ResidentScene>,
+    /// Two timestamps (start and end of the launch's compute pass) and the
+    /// buffer they resolve to, on devices with timestamp queries.
+    timestamps: Option<(wgpu::QuerySet, wgpu::Buffer)>,
     /// Bind groups per tile, over the buffers above (cleared when one of
     /// them is replaced).
     bind_groups: Vec<wgpu::BindGroup>,
@@ -231,9 +238,13 @@ impl Gpu {
             max_buffer_size: adapter.limits().max_buffer_size,
             ..limits
         };
+        // Timestamps, where the adapter has them: the device's own time of
+        // a launch ([`super::Timings::kernel`]).
+        let required_features = adapter.features() & wgpu::Features::TIMESTAMP_QUERY;
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("rt-runtime"),
             required_limits: limits.clone(),
+            required_features,
             ..Default::default()
         }))
         .map_err(|e| RtError::Gpu(format!("cannot open a device on {}: {e}", adapter.get_info().name)))?;
@@ -289,6 +300,7 @@ impl Gpu {
             layout,
             pipelines: HashMap::new(),
             pipelines_created: 0,
+            scene_encodes: 0,
             resident: Resident::default(),
             health,
         }
@@ -322,17 +334,73 @@ pub fn probe() -> Option<wgpu::AdapterInfo> {
     Some(adapter.get_info())
 }
 
-/// Everything a launch uploads.
+/// The scene a launch uploads: everything but the variables' values and the
+/// buffers' contents (the heap, [`encode_heap`]). It depends only on the
+/// context's structure ([`SceneKey`]), so an unchanged scene is neither
+/// encoded nor compared again.
 struct Encoded {
     /// The scene's sections ([`kernel::SCENE_SECTIONS`]): offsets inside a
     /// section are relative to its start.
     scene: [Vec<u32>; SCENE_SECTIONS.len()],
-    heap: Vec<u32>,
-    /// `(buffer index, heap offset, words)` of buffers programs may write.
-    outputs: Vec<(usize, usize, usize)>,
     spec: KernelSpec,
     rg_vars: u32,
     ex_vars: u32,
+    /// The records the scene points at, in heap order.
+    records: Records,
+}
+
+/// The records of a launch's program uses, laid out before their values
+/// are known: a record's size is fixed by its program's variables.
+#[derive(Clone, Default)]
+struct Records {
+    uses: Vec<(ProgramId, Record)>,
+    words: u32,
+}
+
+impl Records {
+    /// A record for `p` used as `r`; returns its offset in the heap.
+    fn add(&mut self, ctx: &Context, p: ProgramId, r: Record) -> Result<u32> {
+        let at = self.words;
+        let desc = ctx.program(p)?.desc;
+        self.words += desc.variables.iter().map(|v| kernel::variable_words(&v.kind, &v.ty)).sum::<u32>();
+        self.uses.push((p, r));
+        Ok(at)
+    }
+}
+
+/// What a scene's encoding depends on: the context's structure (programs,
+/// geometry, materials, nodes, entry points: anything but variable values
+/// and buffer contents), its acceleration structures, the entry point and
+/// the device's scene bindings.
+#[derive(Clone, Copy, PartialEq, Debug)]
+struct SceneKey {
+    structure: u64,
+    builds: u64,
+    refits: u64,
+    entry: u32,
+    scene_bindings: usize,
+}
+
+impl SceneKey {
+    fn of(ctx: &Context, entry: u32, scene_bindings: usize) -> SceneKey {
+        SceneKey {
+            structure: ctx.structure_version,
+            builds: ctx.accels.builds,
+            refits: ctx.accels.refits,
+            entry,
+            scene_bindings,
+        }
+    }
+}
+
+/// The scene the device holds, and what its launches need of it.
+struct ResidentScene {
+    key: SceneKey,
+    records: Records,
+    rg_vars: u32,
+    ex_vars: u32,
+    wgsl: String,
+    spec: KernelSpec,
 }
 
 fn f(x: f32) -> u32 {
@@ -440,65 +508,8 @@ fn encode(ctx: &Context, entry: u32, scene_bindings: usize) -> Result<Encoded> {
     link::check_types(ctx)?;
     let ray_types = ctx.ray_type_count();
     let mut deepest_bvh = 1;
-
-    // Heap: records first, then buffers, then sampler texels.
-    let mut heap: Vec<u32> = Vec::new();
-    let mut buffer_offsets = Vec::with_capacity(ctx.buffers.len());
-    let mut outputs = Vec::new();
-    // Records need buffer offsets: lay buffers out in a separate vector and
-    // place it after the records.
-    let mut data: Vec<u32> = Vec::new();
-    for (i, b) in ctx.buffers.iter().enumerate() {
-        let start = data.len();
-        b.storage.to_words(&mut data);
-        buffer_offsets.push(start);
-        if b.ty.writable_by_programs() {
-            outputs.push((i, start, data.len() - start));
-        }
-    }
-    let mut sampler_offsets = Vec::with_capacity(ctx.samplers.len());
-    for s in &ctx.samplers {
-        sampler_offsets.push(data.len());
-        for t in s.texels.iter() {
-            data.extend(t.to_array().map(f));
-        }
-    }
-    let mut records: Vec<u32> = Vec::new();
-    // Record offsets are relative to the heap start; data follows records,
-    // so data offsets are patched once the record size is known.
-    let mut patches: Vec<(usize, usize)> = Vec::new();
-    let mut record = |p: ProgramId, r: Record, records: &mut Vec<u32>| -> Result<u32> {
-        let at = records.len() as u32;
-        let desc = ctx.program(p)?.desc;
-        let values = link::resolve_values(ctx, p, r)?;
-        for (value, v) in values.into_iter().zip(desc.variables) {
-            match (value, v.kind) {
-                (VarValue::Data { words, .. }, _) => records.extend(words),
-                (VarValue::Buffer(b), VariableKind::Buffer { .. }) => {
-                    let rec = &ctx.buffers[b.index() as usize];
-                    patches.push((records.len(), buffer_offsets[b.index() as usize]));
-                    records.extend([0, rec.width * rec.height, rec.width, rec.height]);
-                }
-                (VarValue::Sampler(s), _) => {
-                    let rec = &ctx.samplers[s.index() as usize];
-                    patches.push((records.len(), sampler_offsets[s.index() as usize]));
-                    let wrap = match rec.wrap {
-                        rt_std::WrapMode::Repeat => 0,
-                        rt_std::WrapMode::Clamp => 1,
-                        rt_std::WrapMode::Mirror => 2,
-                    };
-                    let filter = match rec.filter {
-                        rt_std::FilterMode::Nearest => 0,
-                        rt_std::FilterMode::Linear => 1,
-                    };
-                    records.extend([0, rec.width, rec.height, wrap | (filter << 8)]);
-                }
-                (VarValue::Object(n), _) => records.push(n.index()),
-                (VarValue::Buffer(_), _) => unreachable!("checked by resolve_values"),
-            }
-        }
-        Ok(at)
-    };
+    let mut records = Records::default();
+    let record = |p: ProgramId, r: Record, records: &mut Records| records.add(ctx, p, r);
     let case = |p: ProgramId| p.index() + 1;
     let mut programs: Vec<KernelProgram> = Vec::new();
     let use_program = |p: ProgramId, programs: &mut Vec<KernelProgram>| -> Result<KernelProgram> {
@@ -744,17 +755,6 @@ fn encode(ctx: &Context, entry: u32, scene_bindings: usize) -> Result<Encoded> {
     scene.extend(isect);
     scene[7] = ctx.nodes.len() as u32;
 
-    // The heap: records, then data (patch data offsets in the records).
-    let base = records.len();
-    for (at, offset) in patches {
-        records[at] = (base + offset) as u32;
-    }
-    heap.extend(records);
-    heap.extend(data);
-    let outputs = outputs.into_iter().map(|(i, o, n)| (i, base + o, n)).collect();
-    if heap.is_empty() {
-        heap.push(0);
-    }
     // The default exception program's image: its offset in the record.
     let default_exception = match ex_prog {
         Some(_) => None,
@@ -792,7 +792,125 @@ fn encode(ctx: &Context, entry: u32, scene_bindings: usize) -> Result<Encoded> {
             section.push(0);
         }
     }
-    Ok(Encoded { scene: [scene, nodes, tris], heap, outputs, spec, rg_vars, ex_vars })
+    Ok(Encoded { scene: [scene, nodes, tris], spec, rg_vars, ex_vars, records })
+}
+
+/// The sections of `scene` as bound on a device with `scene_bindings`
+/// scene bindings: those past the bindings appended to the tables (their
+/// bases in the tables' header). Also returns what the appended ones hold.
+fn place_sections(
+    scene: [Vec<u32>; SCENE_SECTIONS.len()],
+    scene_bindings: usize,
+) -> (Vec<Vec<u32>>, Vec<&'static str>) {
+    let mut sections = Vec::from(scene);
+    let shared = sections.split_off(scene_bindings);
+    let mut shared_names = Vec::new();
+    for (k, words) in shared.into_iter().enumerate() {
+        let s = scene_bindings + k;
+        sections[0][SCENE_HEADER_BASES + s] = sections[0].len() as u32;
+        sections[0].extend(words);
+        shared_names.push(SCENE_SECTIONS[s].what);
+    }
+    (sections, shared_names)
+}
+
+/// Debug builds (the tests) check that a held scene is what encoding the
+/// context now gives: a structural change that does not bump
+/// `Context::structure_version` would otherwise leave a stale scene on the
+/// device.
+#[cfg(debug_assertions)]
+fn check_held_scene(ctx: &Context, entry: u32, held: &ResidentScene) -> Result<()> {
+    let gpu = ctx.gpu.as_ref().expect("a held scene is on a device");
+    let e = encode(ctx, entry, gpu.scene_bindings)?;
+    let (sections, _) = place_sections(e.scene, gpu.scene_bindings);
+    for (s, words) in sections.iter().enumerate() {
+        let device = gpu.resident.scene.get(s).and_then(|m| m.as_ref()).map(|m| &m.words);
+        assert!(device == Some(words), "stale scene on the device: {}", SCENE_SECTIONS[s].what);
+    }
+    assert!(e.records.uses.len() == held.records.uses.len() && e.records.words == held.records.words, "stale records");
+    assert!((e.rg_vars, e.ex_vars) == (held.rg_vars, held.ex_vars), "stale records");
+    Ok(())
+}
+
+/// The heap of a launch: the values of `records` (resolved now, so a
+/// changed variable takes effect), then the buffers' words, then sampler
+/// texels. Also returns the `(buffer index, heap offset, words)` of the
+/// buffers programs may write.
+#[allow(clippy::type_complexity)]
+fn encode_heap(ctx: &Context, records: &Records) -> Result<(Vec<u32>, Vec<(usize, usize, usize)>)> {
+    let base = records.words as usize;
+    let mut heap: Vec<u32> = Vec::with_capacity(base);
+    // Data follows the records: buffers, then sampler texels.
+    let mut data: Vec<u32> = Vec::new();
+    let mut buffer_offsets = Vec::with_capacity(ctx.buffers.len());
+    let mut outputs = Vec::new();
+    for (i, b) in ctx.buffers.iter().enumerate() {
+        let start = data.len();
+        b.storage.to_words(&mut data);
+        buffer_offsets.push(base + start);
+        if b.ty.writable_by_programs() {
+            outputs.push((i, base + start, data.len() - start));
+        }
+    }
+    let mut sampler_offsets = Vec::with_capacity(ctx.samplers.len());
+    for s in &ctx.samplers {
+        sampler_offsets.push(base + data.len());
+        for t in s.texels.iter() {
+            data.extend(t.to_array().map(f));
+        }
+    }
+    for &(p, r) in &records.uses {
+        let desc = ctx.program(p)?.desc;
+        let values = link::resolve_values(ctx, p, r)?;
+        for (value, v) in values.into_iter().zip(desc.variables) {
+            match (value, v.kind) {
+                (VarValue::Data { words, .. }, _) => heap.extend(words),
+                (VarValue::Buffer(b), VariableKind::Buffer { .. }) => {
+                    let rec = &ctx.buffers[b.index() as usize];
+                    heap.extend([
+                        buffer_offsets[b.index() as usize] as u32,
+                        rec.width * rec.height,
+                        rec.width,
+                        rec.height,
+                    ]);
+                }
+                (VarValue::Sampler(s), _) => {
+                    let rec = &ctx.samplers[s.index() as usize];
+                    let wrap = match rec.wrap {
+                        rt_std::WrapMode::Repeat => 0,
+                        rt_std::WrapMode::Clamp => 1,
+                        rt_std::WrapMode::Mirror => 2,
+                    };
+                    let filter = match rec.filter {
+                        rt_std::FilterMode::Nearest => 0,
+                        rt_std::FilterMode::Linear => 1,
+                    };
+                    heap.extend([
+                        sampler_offsets[s.index() as usize] as u32,
+                        rec.width,
+                        rec.height,
+                        wrap | (filter << 8),
+                    ]);
+                }
+                (VarValue::Object(n), _) => heap.push(n.index()),
+                (VarValue::Buffer(_), _) => unreachable!("checked by resolve_values"),
+            }
+        }
+    }
+    // Sizes come from the programs' descriptors; resolved values have the
+    // declared layouts (resolve_values checks), so the records fill exactly
+    // the space laid out for them.
+    if heap.len() != base {
+        return Err(RtError::Gpu(format!(
+            "internal: the records take {} words where {base} were laid out for them",
+            heap.len()
+        )));
+    }
+    heap.extend(data);
+    if heap.is_empty() {
+        heap.push(0);
+    }
+    Ok((heap, outputs))
 }
 
 /// A size for messages: MiB (one decimal unless whole) from 1 MiB up,
@@ -844,9 +962,30 @@ fn launch_on_device(ctx: &mut Context, entry: u32, width: u32, height: u32) -> R
     built?;
     let t1 = std::time::Instant::now();
     let scene_bindings = ctx.gpu.as_ref().expect("created above").scene_bindings;
-    let enc = encode(ctx, entry, scene_bindings)?;
+    // The scene, unless the device holds this one already (same structure,
+    // same acceleration structures): then only the heap is encoded.
+    let key = SceneKey::of(ctx, entry, scene_bindings);
+    let held = ctx.gpu.as_ref().and_then(|g| g.resident.held.as_ref()).filter(|h| h.key == key);
+    #[cfg(debug_assertions)]
+    if let Some(h) = held {
+        check_held_scene(ctx, entry, h)?;
+    }
+    let fresh = if held.is_some() { None } else { Some(encode(ctx, entry, scene_bindings)?) };
+    let (records, rg_vars, ex_vars) = match (&fresh, held) {
+        (Some(e), _) => (&e.records, e.rg_vars, e.ex_vars),
+        (None, Some(h)) => (&h.records, h.rg_vars, h.ex_vars),
+        (None, None) => unreachable!("encoded when none is held"),
+    };
+    let (heap, outputs) = encode_heap(ctx, records)?;
     let t2 = std::time::Instant::now();
-    let kernel::Generated { wgsl, warning } = kernel::generate(&enc.spec)?;
+    let (wgsl, warning) = match (&fresh, held) {
+        (Some(e), _) => {
+            let kernel::Generated { wgsl, warning } = kernel::generate(&e.spec)?;
+            (wgsl, warning)
+        }
+        (None, Some(h)) => (h.wgsl.clone(), None),
+        (None, None) => unreachable!("encoded when none is held"),
+    };
     if std::env::var_os("RT_DUMP_WGSL").is_some() {
         let path = std::env::temp_dir().join(format!("rt_megakernel_entry{entry}.wgsl"));
         let _ = std::fs::write(&path, &wgsl);
@@ -856,33 +995,36 @@ fn launch_on_device(ctx: &mut Context, entry: u32, width: u32, height: u32) -> R
     let print_filter = ctx.print_launch_index.unwrap_or(UVec2::splat(u32::MAX));
     let print_enabled = ctx.print_enabled as u32;
     let gpu = ctx.gpu.as_mut().expect("created above");
+    gpu.scene_encodes += fresh.is_some() as u64;
 
     // The scene's bindings: the sections with one of their own, the others
     // after the tables (their bases in the tables' header).
-    let Encoded { scene, heap, outputs, spec, rg_vars, ex_vars } = enc;
-    let mut sections = Vec::from(scene);
-    let shared = sections.split_off(scene_bindings);
-    let mut shared_names = Vec::new();
-    for (k, words) in shared.into_iter().enumerate() {
-        let s = scene_bindings + k;
-        sections[0][SCENE_HEADER_BASES + s] = sections[0].len() as u32;
-        sections[0].extend(words);
-        shared_names.push(SCENE_SECTIONS[s].what);
-    }
     let max_binding = gpu.limits.max_storage_buffer_binding_size;
-    let tables_what = if shared_names.is_empty() {
-        SCENE_SECTIONS[0].what.to_string()
-    } else {
-        format!(
-            "{} with {} (one binding: the device allows {} storage buffers per shader stage)",
-            SCENE_SECTIONS[0].what,
-            shared_names.join(" and "),
-            gpu.limits.max_storage_buffers_per_shader_stage
-        )
-    };
     let mut parts = vec![("the heap (variables, buffers, textures)".to_string(), heap.len())];
-    parts.push((tables_what, sections[0].len()));
-    parts.extend(sections.iter().enumerate().skip(1).map(|(s, w)| (SCENE_SECTIONS[s].what.to_string(), w.len())));
+    let fresh = fresh.map(|e| {
+        let (sections, shared_names) = place_sections(e.scene, scene_bindings);
+        let tables_what = if shared_names.is_empty() {
+            SCENE_SECTIONS[0].what.to_string()
+        } else {
+            format!(
+                "{} with {} (one binding: the device allows {} storage buffers per shader stage)",
+                SCENE_SECTIONS[0].what,
+                shared_names.join(" and "),
+                gpu.limits.max_storage_buffers_per_shader_stage
+            )
+        };
+        parts.push((tables_what, sections[0].len()));
+        parts.extend(sections.iter().enumerate().skip(1).map(|(s, w)| (SCENE_SECTIONS[s].what.to_string(), w.len())));
+        let held = ResidentScene {
+            key,
+            records: e.records,
+            rg_vars: e.rg_vars,
+            ex_vars: e.ex_vars,
+            wgsl: wgsl.clone(),
+            spec: e.spec,
+        };
+        (sections, held)
+    });
     for (what, len) in parts {
         let bytes = len as u64 * 4;
         if bytes > max_binding {
@@ -932,11 +1074,17 @@ fn launch_on_device(ctx: &mut Context, entry: u32, width: u32, height: u32) -> R
     let pipeline = &pipelines[&wgsl];
     res.uploaded = 0;
     let mut replaced = Resident::sync(device, queue, &mut res.heap, heap, "rt_heap", &mut res.uploaded);
-    res.scene.resize_with(sections.len(), || None);
-    for (s, words) in sections.into_iter().enumerate() {
-        replaced |=
-            Resident::sync(device, queue, &mut res.scene[s], words, SCENE_SECTIONS[s].binding, &mut res.uploaded);
+    if let Some((sections, held)) = fresh {
+        res.held = None;
+        res.scene.resize_with(sections.len(), || None);
+        for (s, words) in sections.into_iter().enumerate() {
+            replaced |=
+                Resident::sync(device, queue, &mut res.scene[s], words, SCENE_SECTIONS[s].binding, &mut res.uploaded);
+        }
+        res.held = Some(held);
     }
+    let held = res.held.as_ref().expect("held or synced above");
+    let (rg_case, ex_case) = (held.spec.ray_generation.case, held.spec.exception.map_or(0, |e| e.case));
     let log_words = 4 + LOG_EXCEPTIONS * 3 + LOG_PRINT_WORDS;
     if res.log.is_none() {
         res.log = Some(device.create_buffer(&wgpu::BufferDescriptor {
@@ -968,9 +1116,9 @@ fn launch_on_device(ctx: &mut Context, entry: u32, width: u32, height: u32) -> R
                 height,
                 x0 * 8,
                 y0 * 8,
-                spec.ray_generation.case,
+                rg_case,
                 rg_vars,
-                spec.exception.map_or(0, |e| e.case),
+                ex_case,
                 ex_vars,
                 LOG_EXCEPTIONS,
                 print_enabled,
@@ -1031,20 +1179,44 @@ fn launch_on_device(ctx: &mut Context, entry: u32, width: u32, height: u32) -> R
             entries: &entries,
         }));
     }
+    if res.timestamps.is_none() && device.features().contains(wgpu::Features::TIMESTAMP_QUERY) {
+        let set = device.create_query_set(&wgpu::QuerySetDescriptor {
+            label: Some("rt launch time"),
+            ty: wgpu::QueryType::Timestamp,
+            count: 2,
+        });
+        let resolved = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("rt launch time"),
+            size: 16,
+            usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        res.timestamps = Some((set, resolved));
+    }
     let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("rt launch") });
     {
-        let mut pass = encoder
-            .begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("rt launch"), timestamp_writes: None });
+        let timestamp_writes = res.timestamps.as_ref().map(|(set, _)| wgpu::ComputePassTimestampWrites {
+            query_set: set,
+            beginning_of_pass_write_index: Some(0),
+            end_of_pass_write_index: Some(1),
+        });
+        let mut pass =
+            encoder.begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("rt launch"), timestamp_writes });
         pass.set_pipeline(pipeline);
         for ((_, gx, gy), bind) in tiles.iter().zip(&res.bind_groups) {
             pass.set_bind_group(0, bind, &[]);
             pass.dispatch_workgroups(*gx, *gy, 1);
         }
     }
-    // Read back: the output buffers' words, then the log's header.
+    // Read back: the output buffers' words, then the log's header, then
+    // the timestamps.
     let mut copies: Vec<(&wgpu::Buffer, u64, u64)> =
         outputs.iter().map(|&(_, offset, n)| (heap_buffer, offset as u64 * 4, n as u64 * 4)).collect();
     copies.push((log, 0, 16));
+    if let Some((set, resolved)) = &res.timestamps {
+        encoder.resolve_query_set(set, 0..2, resolved, 0);
+        copies.push((resolved, 0, 16));
+    }
     let words = read_back(device, queue, &mut res.readback, encoder, &copies, lose)
         .map_err(|what| health.failure(adapter.clone(), what))?;
     if let Some(errors) = health.take_errors() {
@@ -1060,6 +1232,12 @@ fn launch_on_device(ctx: &mut Context, entry: u32, width: u32, height: u32) -> R
         at += n;
     }
     let header = [words[at], words[at + 1], words[at + 2], words[at + 3]];
+    let kernel = res.timestamps.as_ref().map(|_| {
+        let t = &words[at + 4..at + 8];
+        let (start, end) = (t[0] as u64 | (t[1] as u64) << 32, t[2] as u64 | (t[3] as u64) << 32);
+        let ns = end.saturating_sub(start) as f64 * queue.get_timestamp_period() as f64;
+        std::time::Duration::from_nanos(ns as u64)
+    });
     // Exceptions and prints, when the launch logged any: a second, small
     // read.
     let exceptions = header[0].min(LOG_EXCEPTIONS) as u64;
@@ -1084,7 +1262,7 @@ fn launch_on_device(ctx: &mut Context, entry: u32, width: u32, height: u32) -> R
     report.exceptions.sort_by_key(|e| (e.launch_index.y, e.launch_index.x));
     report.prints = decode_prints(ctx, &print_words, print_words.len());
     report.rays = header[2] as u64;
-    report.timings = super::Timings { build: t1 - t0, encode: t2 - t1, link: t3 - t2, run: t3.elapsed() };
+    report.timings = super::Timings { build: t1 - t0, encode: t2 - t1, link: t3 - t2, run: t3.elapsed(), kernel };
     Ok(report)
 }
 
