@@ -192,7 +192,7 @@ fn scene_with(
     width: u32,
     height: u32,
     workload: Workload,
-) -> Result<(Context, BufferId)> {
+) -> Result<(Context, BufferId, NodeId)> {
     let mut ctx = Context::new();
     ctx.set_backend(backend);
     ctx.set_ray_type_count(2);
@@ -220,7 +220,32 @@ fn scene_with(
     }
     ctx.set_var(Scope::Context, "top_object", gg)?;
     ctx.set_var(Scope::Context, "output_buffer", out)?;
-    Ok((ctx, out))
+    Ok((ctx, out, gg))
+}
+
+/// The scene of `ctx` moved under a transform in a group, then launched
+/// `reps` times, the transform changing before each (an animated
+/// instance): medians of (host work before the run, run, kernel).
+fn moving_transform_launches(
+    ctx: &mut Context,
+    gg: NodeId,
+    width: u32,
+    height: u32,
+    reps: usize,
+) -> Result<(Duration, Duration, Option<Duration>)> {
+    let xf = ctx.create_transform(glam::Mat4::IDENTITY, gg)?;
+    let top = ctx.create_group(&[xf], Acceleration::default())?;
+    ctx.set_var(Scope::Context, "top_object", top)?;
+    ctx.launch(0, width, height)?;
+    let (mut prepare, mut run, mut kernel) = (Vec::new(), Vec::new(), Vec::new());
+    for i in 0..reps {
+        ctx.set_transform(xf, glam::Mat4::from_translation(Vec3::new(0.0, 0.0, 1e-4 * (i + 1) as f32)))?;
+        let r = ctx.launch(0, width, height)?;
+        prepare.push(r.timings.build + r.timings.encode + r.timings.link);
+        run.push(r.timings.run);
+        kernel.extend(r.timings.kernel);
+    }
+    Ok((median(prepare), median(run), (!kernel.is_empty()).then(|| median(kernel))))
 }
 
 use peers::median;
@@ -293,7 +318,7 @@ fn bunny_primary(args: &Args, bunny: &scenes::BenchScene, width: u32, height: u3
         t.elapsed()
     };
     let ours_once = || -> Result<Duration> {
-        let (mut ctx, _) = scene_with(mesh, cam, Backend::Cpu, 1, 1, Workload::Primary)?;
+        let (mut ctx, ..) = scene_with(mesh, cam, Backend::Cpu, 1, 1, Workload::Primary)?;
         Ok(ctx.launch(0, 1, 1)?.timings.build)
     };
     let (mut obvhs_times, mut our_times) = (Vec::new(), Vec::new());
@@ -338,7 +363,7 @@ fn bunny_primary(args: &Args, bunny: &scenes::BenchScene, width: u32, height: u3
     for b in &args.backends {
         let backend = if b == "cpu" { Backend::Cpu } else { Backend::Wgpu };
         let run = || -> Result<json::Json> {
-            let (mut ctx, out) = scene_with(mesh, cam, backend, width, height, Workload::Primary)?;
+            let (mut ctx, out, _) = scene_with(mesh, cam, backend, width, height, Workload::Primary)?;
             let device = if backend == Backend::Wgpu {
                 ctx.open_wgpu()?
             } else {
@@ -429,7 +454,7 @@ fn measure_scene(
     };
     let mut cpu_ctx = if args.backends.iter().any(|b| b == "cpu") {
         match scene_with(&scene.mesh, cam, Backend::Cpu, width, height, Workload::Ao)
-            .and_then(|(mut c, _)| c.launch(0, width, height).map(|r| (c, r)))
+            .and_then(|(mut c, ..)| c.launch(0, width, height).map(|r| (c, r)))
         {
             Ok((c, first)) => {
                 j.child("build_ms").set("ours", ms(first.timings.build));
@@ -507,9 +532,10 @@ fn measure_scene(
             j.child("skipped").set("handwritten_wgsl", why.as_str());
         } else {
             let run = || -> Result<(Json, Launches, String)> {
-                let (mut ctx, _) = scene_with(&scene.mesh, cam, Backend::Wgpu, width, height, Workload::Ao)?;
+                let (mut ctx, _, gg) = scene_with(&scene.mesh, cam, Backend::Wgpu, width, height, Workload::Ao)?;
                 let device = ctx.open_wgpu()?;
                 let l = measure_launches(&mut ctx, width, height, reps)?;
+                let (prepare, run, kernel) = moving_transform_launches(&mut ctx, gg, width, height, reps)?;
                 let mut w = Json::obj();
                 w.set("rays", l.rays);
                 w.set("build_ms", ms(l.first.timings.build));
@@ -521,6 +547,11 @@ fn measure_scene(
                 again.set("prepare", ms(l.prepare));
                 again.set("run", ms(l.run));
                 again.set("kernel", l.kernel.map(ms));
+                // The same under a transform that moves before each launch.
+                let moved = w.child("moving_transform_launch_ms");
+                moved.set("prepare", ms(prepare));
+                moved.set("run", ms(run));
+                moved.set("kernel", kernel.map(ms));
                 Ok((w, l, device))
             };
             match run() {
