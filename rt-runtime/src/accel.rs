@@ -254,6 +254,9 @@ pub(crate) struct AccelCache {
     /// ones (for tests).
     pub builds: u64,
     pub refits: u64,
+    /// How many geometry groups were built or refit (the wgpu backend keeps
+    /// the geometry part of the scene on the device until this moves).
+    pub geometry_group_changes: u64,
 }
 
 impl AccelCache {
@@ -423,6 +426,7 @@ pub(crate) fn build_accels(ctx: &Context, cache: &mut AccelCache) -> Result<()> 
                         let had_wide = wide.is_some();
                         if moved {
                             let (_, prim_bounds, _) = prim_bounds(ctx, children)?;
+                            cache.geometry_group_changes += 1;
                             bvh.refit(&prim_bounds);
                             bounds = union(&prim_bounds);
                             wide = None;
@@ -443,6 +447,7 @@ pub(crate) fn build_accels(ctx: &Context, cache: &mut AccelCache) -> Result<()> 
                         let wide = wants_wide(&prims).then(|| widen(&bvh));
                         let triangles = slot_triangles(ctx, &prims, wide.as_ref(), all_tris);
                         any_built = true;
+                        cache.geometry_group_changes += 1;
                         NodeAccel::Prims { bvh, wide, triangles, prims, bounds: union(&bounds) }
                     }
                 }

@@ -82,6 +82,10 @@ pub struct Context {
     /// wgpu launch re-encodes the scene only when it moved (with the
     /// acceleration structures' builds and refits).
     pub(crate) structure_version: u64,
+    /// Bumped by every change to geometries, geometry instances and
+    /// geometry groups: the part of the scene a wgpu launch keeps on the
+    /// device while other things change.
+    pub(crate) geometry_version: u64,
 }
 
 impl Default for Context {
@@ -114,6 +118,7 @@ impl Context {
             last_wgsl: None,
             lose_device_in_next_launch: false,
             structure_version: 0,
+            geometry_version: 0,
         }
     }
 
@@ -124,6 +129,7 @@ impl Context {
 
     /// Chooses the backend launches run on.
     pub fn set_backend(&mut self, backend: Backend) {
+        self.geometry_version += 1;
         self.structure_version += 1;
         self.backend = backend;
     }
@@ -161,6 +167,14 @@ impl Context {
     /// since, and encoded only the variables and buffers.
     pub fn scene_encodes(&self) -> u64 {
         self.gpu.as_ref().map_or(0, |g| g.scene_encodes)
+    }
+
+    /// How many of those encodes also encoded the geometry (geometry groups'
+    /// BVH nodes, primitive tables and triangles; meshes): the others kept
+    /// it on the device and encoded only the rest (transforms, groups,
+    /// programs, records) around it.
+    pub fn geometry_encodes(&self) -> u64 {
+        self.gpu.as_ref().map_or(0, |g| g.geometry_encodes)
     }
 
     /// How many wgpu pipelines (megakernel links) this context created.
@@ -293,6 +307,7 @@ impl Context {
 
     /// Creates a triangle geometry; the mesh is checked first.
     pub fn create_triangles(&mut self, mesh: TriangleMesh) -> Result<GeometryId> {
+        self.geometry_version += 1;
         self.structure_version += 1;
         let id = self.geometries.len() as u32;
         mesh.validate().map_err(|problem| RtError::BadGeometry { geometry: id, problem })?;
@@ -308,6 +323,7 @@ impl Context {
         intersection: ProgramId,
         bounding_box: ProgramId,
     ) -> Result<GeometryId> {
+        self.geometry_version += 1;
         self.structure_version += 1;
         self.expect_kind(intersection, ProgramKind::Intersection, "a custom geometry's intersection".into())?;
         self.expect_kind(bounding_box, ProgramKind::BoundingBox, "a custom geometry's bounding box".into())?;
@@ -321,6 +337,7 @@ impl Context {
     /// Moves a triangle geometry's vertices (same count): accelerations over
     /// it are refit, not rebuilt, at the next launch.
     pub fn set_triangle_positions(&mut self, g: GeometryId, positions: Vec<glam::Vec3>) -> Result<()> {
+        self.geometry_version += 1;
         self.structure_version += 1;
         let rec = self.geometries.get_mut(g.0 as usize).ok_or_else(|| RtError::InvalidHandle(format!("{g:?}")))?;
         let GeometryKind::Triangles(mesh) = &mut rec.kind else {
@@ -376,6 +393,7 @@ impl Context {
     }
 
     pub fn create_geometry_instance(&mut self, g: GeometryId, materials: &[MaterialId]) -> Result<GeometryInstanceId> {
+        self.geometry_version += 1;
         self.structure_version += 1;
         if g.0 as usize >= self.geometries.len() {
             return Err(RtError::InvalidHandle(format!("{g:?}")));
@@ -411,6 +429,8 @@ impl Context {
     }
 
     pub fn create_geometry_group(&mut self, children: &[GeometryInstanceId], accel: Acceleration) -> Result<NodeId> {
+        self.structure_version += 1;
+        self.geometry_version += 1;
         if let Some(c) = children.iter().find(|c| c.0 as usize >= self.instances.len()) {
             return Err(RtError::InvalidHandle(format!("{c:?}")));
         }

@@ -1387,6 +1387,9 @@ fn an_unchanged_scene_is_encoded_once_and_every_change_reaches_the_device() {
     ctx.set_triangle_positions(g, moved).unwrap();
     assert_eq!(render(&mut ctx), (Vec3::Y, BG));
     assert_eq!(ctx.scene_encodes(), 7);
+    // The geometry went up with the first launch, the new quad, and its
+    // moved vertices; every other change encoded only the rest around it.
+    assert_eq!(ctx.geometry_encodes(), 3);
     // A new miss program.
     let miss = ctx.create_program(&flat_miss::PROGRAM);
     ctx.set_miss_program(0, miss).unwrap();
@@ -1542,6 +1545,40 @@ fn a_scene_larger_than_one_binding_renders_from_one_binding_per_section() {
     assert_eq!(split, default);
     let worst = largest_difference(&cpu, &split);
     assert!(worst < 2.0 / 255.0, "largest difference from the CPU backend {worst}");
+}
+
+#[test]
+fn moving_a_transform_keeps_the_geometry_on_the_device_and_renders_as_a_fresh_context() {
+    use glam::Mat4;
+    // The grid (about 2.5 MiB of geometry) under a transform in a group.
+    let scene = |ctx: &mut Context, angle: f32| {
+        let gg = grid_group(ctx, 100);
+        let xf = ctx.create_transform(Mat4::from_rotation_x(angle), gg).unwrap();
+        let top = ctx.create_group(&[xf], Acceleration::new(Builder::Bvh)).unwrap();
+        ctx.set_var(Scope::Context, "top", top).unwrap();
+        xf
+    };
+    let (mut ctx, out) = camera(1.2, Backend::Wgpu);
+    let xf = scene(&mut ctx, 0.5);
+    ctx.launch(0, W, W).unwrap();
+    assert!(ctx.last_upload_bytes() > 2 << 20, "the first launch uploads the grid");
+    for angle in [0.3, -0.4] {
+        ctx.set_transform(xf, Mat4::from_rotation_x(angle)).unwrap();
+        let report = ctx.launch(0, W, W).unwrap();
+        assert!(report.exceptions.is_empty(), "{:?}", report.exceptions);
+        // The tables' header, the instance's matrices and the group's BVH:
+        // a few pages, not the grid.
+        assert!(ctx.last_upload_bytes() < 32 << 10, "{} bytes uploaded", ctx.last_upload_bytes());
+        assert_eq!((ctx.scene_encodes(), ctx.geometry_encodes()), (2 + (angle < 0.0) as u64, 1));
+        let moved = ctx.read_buffer::<Vec4>(out).unwrap();
+        let (mut fresh, fresh_out) = camera(1.2, Backend::Wgpu);
+        scene(&mut fresh, angle);
+        fresh.launch(0, W, W).unwrap();
+        let expected = fresh.read_buffer::<Vec4>(fresh_out).unwrap();
+        let hits = expected.iter().filter(|c| c.truncate() != BG).count();
+        assert!(hits > (W * W / 4) as usize, "{hits} pixels hit at angle {angle}");
+        assert_eq!(largest_difference(&moved, &expected), 0.0, "angle {angle}");
+    }
 }
 
 #[test]

@@ -85,8 +85,10 @@ pub struct Gpu {
     pipelines: HashMap<String, wgpu::ComputePipeline>,
     /// How many pipelines were created (links); for tests of the cache.
     pub pipelines_created: u64,
-    /// How many launches encoded the scene (see [`SceneKey`]).
+    /// How many launches encoded the scene (see [`SceneKey`]), and how many
+    /// of those its geometry part too ([`GeometryKey`]).
     pub scene_encodes: u64,
+    pub geometry_encodes: u64,
     resident: Resident,
     health: Arc<Health>,
 }
@@ -181,26 +183,7 @@ impl Resident {
         if let Some(m) = slot
             && m.words.len() == words.len()
         {
-            let mut page = 0;
-            while page * PAGE_WORDS < words.len() {
-                let at = page * PAGE_WORDS;
-                let end = |p: usize| (p * PAGE_WORDS).min(words.len());
-                if m.words[at..end(page + 1)] == words[at..end(page + 1)] {
-                    page += 1;
-                    continue;
-                }
-                // A run of changed pages: one write.
-                let mut last = page + 1;
-                while last * PAGE_WORDS < words.len()
-                    && m.words[end(last)..end(last + 1)] != words[end(last)..end(last + 1)]
-                {
-                    last += 1;
-                }
-                queue.write_buffer(&m.buffer, (at * 4) as u64, words_to_bytes(&words[at..end(last)]));
-                *uploaded += ((end(last) - at) * 4) as u64;
-                page = last;
-            }
-            m.words = words;
+            write_changed(queue, &m.buffer, &mut m.words, &words, 0, uploaded);
             return false;
         }
         let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -211,6 +194,69 @@ impl Resident {
         *uploaded += (words.len() * 4) as u64;
         *slot = Some(Mirrored { buffer, words });
         true
+    }
+
+    /// Makes `slot`'s device buffer hold `head`, then what it holds now from
+    /// `head.len()` to `keep_end`, then `tail`: the words in between are
+    /// neither compared nor written. Returns true if the buffer had to be
+    /// replaced (a new size: then all of it is uploaded).
+    #[allow(clippy::too_many_arguments)]
+    fn sync_around(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        slot: &mut Option<Mirrored>,
+        head: &[u32],
+        keep_end: usize,
+        tail: Vec<u32>,
+        label: &str,
+        uploaded: &mut u64,
+    ) -> bool {
+        let Some(m) = slot.as_mut().filter(|m| m.words.len() >= keep_end) else {
+            unreachable!("a section kept on the device is mirrored")
+        };
+        if m.words.len() == keep_end + tail.len() {
+            write_changed(queue, &m.buffer, &mut m.words[..head.len()], head, 0, uploaded);
+            write_changed(queue, &m.buffer, &mut m.words[keep_end..], &tail, keep_end, uploaded);
+            return false;
+        }
+        let mut words = std::mem::take(&mut m.words);
+        words[..head.len()].copy_from_slice(head);
+        words.truncate(keep_end);
+        words.extend(tail);
+        *slot = None;
+        Resident::sync(device, queue, slot, words, label, uploaded)
+    }
+}
+
+/// Writes the pages of `new` that differ from `old` (the device's words
+/// from word `at` of `buffer` on, same length) into the buffer, a run of
+/// changed pages at a time, and copies them into `old`.
+fn write_changed(
+    queue: &wgpu::Queue,
+    buffer: &wgpu::Buffer,
+    old: &mut [u32],
+    new: &[u32],
+    at: usize,
+    uploaded: &mut u64,
+) {
+    let end = |p: usize| (p * PAGE_WORDS).min(new.len());
+    let mut page = 0;
+    while page * PAGE_WORDS < new.len() {
+        let start = page * PAGE_WORDS;
+        if old[start..end(page + 1)] == new[start..end(page + 1)] {
+            page += 1;
+            continue;
+        }
+        // A run of changed pages: one write.
+        let mut last = page + 1;
+        while last * PAGE_WORDS < new.len() && old[end(last)..end(last + 1)] != new[end(last)..end(last + 1)] {
+            last += 1;
+        }
+        let run = start..end(last);
+        queue.write_buffer(buffer, ((at + start) * 4) as u64, words_to_bytes(&new[run.clone()]));
+        *uploaded += (run.len() * 4) as u64;
+        old[run.clone()].copy_from_slice(&new[run]);
+        page = last;
     }
 }
 
@@ -301,6 +347,7 @@ impl Gpu {
             pipelines: HashMap::new(),
             pipelines_created: 0,
             scene_encodes: 0,
+            geometry_encodes: 0,
             resident: Resident::default(),
             health,
         }
@@ -337,16 +384,94 @@ pub fn probe() -> Option<wgpu::AdapterInfo> {
 /// The scene a launch uploads: everything but the variables' values and the
 /// buffers' contents (the heap, [`encode_heap`]). It depends only on the
 /// context's structure ([`SceneKey`]), so an unchanged scene is neither
-/// encoded nor compared again.
+/// encoded nor compared again; and each section is led by the part that
+/// comes from geometry alone ([`GeometryLayout`]), so a launch that changed
+/// something else (a transform, a program, a node) encodes and uploads only
+/// what follows it.
 struct Encoded {
-    /// The scene's sections ([`kernel::SCENE_SECTIONS`]): offsets inside a
-    /// section are relative to its start.
-    scene: [Vec<u32>; SCENE_SECTIONS.len()],
+    /// The tables' header: where the tables start, counts, and the bases of
+    /// sections that share the tables' binding.
+    header: [u32; SCENE_HEADER],
+    /// Each section's words after its geometry part.
+    tails: [Vec<u32>; SCENE_SECTIONS.len()],
+    geometry: GeometryLayout,
+    /// The geometry part's words in each section, when it was encoded now
+    /// (`None`: the device holds it).
+    geometry_words: Option<[Vec<u32>; SCENE_SECTIONS.len()]>,
     spec: KernelSpec,
     rg_vars: u32,
     ex_vars: u32,
     /// The records the scene points at, in heap order.
     records: Records,
+}
+
+impl Encoded {
+    /// The whole sections, when the geometry part was encoded now.
+    fn whole_sections(&mut self) -> Option<[Vec<u32>; SCENE_SECTIONS.len()]> {
+        let geometry = self.geometry_words.take()?;
+        let mut s = 0;
+        Some(geometry.map(|mut words| {
+            if s == 0 {
+                words.splice(0..0, self.header);
+            }
+            words.append(&mut self.tails[s]);
+            s += 1;
+            words
+        }))
+    }
+}
+
+/// Words of the tables' header.
+const SCENE_HEADER: usize = SCENE_HEADER_BASES + SCENE_SECTIONS.len();
+
+/// A section's words from `base` on (what precedes them is encoded
+/// separately).
+struct Tail {
+    base: usize,
+    words: Vec<u32>,
+}
+
+impl Tail {
+    fn new(base: usize) -> Tail {
+        Tail { base, words: Vec::new() }
+    }
+
+    /// The offset in the section of the next word.
+    fn at(&self) -> u32 {
+        (self.base + self.words.len()) as u32
+    }
+}
+
+/// Where the geometry part of the scene ([`encode_geometry`]) put things.
+#[derive(Clone)]
+struct GeometryLayout {
+    key: GeometryKey,
+    /// Per geometry group (node index): where its BVH nodes, primitive
+    /// table and triangle slots start.
+    gg_bvh: HashMap<u32, (u32, u32, u32)>,
+    /// Per geometry: its kind and the offsets of its positions, indices,
+    /// normals, texture coordinates and material indices in the tables.
+    geometry_words: Vec<[u32; 6]>,
+    /// The deepest BVH of a geometry group.
+    deepest_bvh: u32,
+    /// Where the part ends in each section (the tables' header included).
+    ends: [usize; SCENE_SECTIONS.len()],
+}
+
+/// What the geometry part of the scene depends on: geometries, geometry
+/// instances and geometry groups, and the geometry groups' acceleration
+/// structures.
+#[derive(Clone, Copy, PartialEq, Debug)]
+struct GeometryKey {
+    geometry: u64,
+    accels: u64,
+    scene_bindings: usize,
+}
+
+impl GeometryKey {
+    fn of(ctx: &Context, scene_bindings: usize) -> GeometryKey {
+        GeometryKey { geometry: ctx.geometry_version, accels: ctx.accels.geometry_group_changes, scene_bindings }
+    }
 }
 
 /// The records of a launch's program uses, laid out before their values
@@ -396,6 +521,7 @@ impl SceneKey {
 /// The scene the device holds, and what its launches need of it.
 struct ResidentScene {
     key: SceneKey,
+    geometry: GeometryLayout,
     records: Records,
     rg_vars: u32,
     ex_vars: u32,
@@ -435,11 +561,11 @@ fn bvh_depth(bvh: &crate::accel::Bvh) -> u32 {
     deepest
 }
 
-/// Appends `bvh`'s nodes to `out`; returns where they start and the BVH's
-/// depth ([`bvh_depth`]).
-fn push_bvh(out: &mut Vec<u32>, bvh: &crate::accel::Bvh) -> (u32, u32) {
+/// Appends `bvh`'s nodes to `out`, which starts at word `base` of its
+/// section; returns where they start and the BVH's depth ([`bvh_depth`]).
+fn push_bvh(out: &mut Vec<u32>, base: usize, bvh: &crate::accel::Bvh) -> (u32, u32) {
     let depth = bvh_depth(bvh);
-    let at = out.len() as u32;
+    let at = (base + out.len()) as u32;
     for n in &bvh.bvh.nodes {
         let b = n.aabb();
         out.extend([
@@ -501,13 +627,12 @@ fn instance_of(ctx: &Context, node: NodeId) -> Result<Option<(NodeId, Mat4, u32)
 
 /// Encodes the launch of `entry` for a device with `scene_bindings` scene
 /// bindings (see [`kernel::SCENE_SECTIONS`]).
-fn encode(ctx: &Context, entry: u32, scene_bindings: usize) -> Result<Encoded> {
+fn encode(ctx: &Context, entry: u32, scene_bindings: usize, held_geometry: Option<&GeometryLayout>) -> Result<Encoded> {
     let count = ctx.entry_points.len() as u32;
     let ep = ctx.entry_points.get(entry as usize).ok_or(RtError::NoSuchEntryPoint { entry, count })?;
     let rg = ep.ray_generation.ok_or(RtError::NoRayGeneration { entry })?;
     link::check_types(ctx)?;
     let ray_types = ctx.ray_type_count();
-    let mut deepest_bvh = 1;
     let mut records = Records::default();
     let record = |p: ProgramId, r: Record, records: &mut Records| records.add(ctx, p, r);
     let case = |p: ProgramId| p.index() + 1;
@@ -530,10 +655,19 @@ fn encode(ctx: &Context, entry: u32, scene_bindings: usize) -> Result<Encoded> {
     };
 
     // Scene: the tables, BVH nodes and the triangles in leaf order in
-    // their own sections.
-    let mut scene: Vec<u32> = vec![0; SCENE_HEADER_BASES + SCENE_SECTIONS.len()];
-    let mut nodes: Vec<u32> = Vec::new();
-    let mut tris: Vec<u32> = Vec::new();
+    // their own sections, each led by the part that comes from geometry
+    // alone (held on the device across launches that change the rest).
+    let (geometry, geometry_words) = match held_geometry {
+        Some(g) => (g.clone(), None),
+        None => {
+            let (layout, words) = encode_geometry(ctx, GeometryKey::of(ctx, scene_bindings));
+            (layout, Some(words))
+        }
+    };
+    let mut deepest_bvh = geometry.deepest_bvh;
+    let mut header = [0u32; SCENE_HEADER];
+    let mut scene = Tail::new(geometry.ends[0]);
+    let mut nodes = Tail::new(geometry.ends[1]);
     let accels: &[Option<NodeAccel>] = &ctx.accels.nodes;
     // Instances: one per geometry group and per transform chain.
     let mut instance_of_node: Vec<Option<u32>> = vec![None; ctx.nodes.len()];
@@ -544,56 +678,42 @@ fn encode(ctx: &Context, entry: u32, scene_bindings: usize) -> Result<Encoded> {
             instances.push(inst);
         }
     }
-    // BVHs of geometry groups (and their primitive tables), of groups (and
-    // their leaf tables: instances, or other nodes with NODE_BIT).
-    let mut gg_bvh: HashMap<u32, (u32, u32, u32)> = HashMap::new();
+    // BVHs of groups, and their leaf tables: instances, or other nodes with
+    // NODE_BIT.
     // The most instances and nodes a leaf of a group's BVH holds.
     let mut widest_group_leaf = 1;
     // The deepest BVH of a group of instances (`None`: no group).
     let mut deepest_group: Option<u32> = None;
     let mut group_bvh: HashMap<u32, (u32, u32, bool)> = HashMap::new();
     for (n, rec) in ctx.nodes.iter().enumerate() {
-        match (&rec.kind, accels.get(n).and_then(|a| a.as_ref())) {
-            (NodeKind::GeometryGroup { .. }, Some(NodeAccel::Prims { bvh, prims, .. })) => {
-                let (at, depth) = push_bvh(&mut nodes, bvh);
-                deepest_bvh = deepest_bvh.max(depth);
-                let table = scene.len() as u32;
-                let tri_slots = tris.len() as u32;
-                for slot in &bvh.bvh.primitive_indices {
-                    let (gi, p) = prims[*slot as usize];
-                    scene.extend([gi, p]);
-                    push_triangle_slot(ctx, &mut tris, gi, p);
-                }
-                gg_bvh.insert(n as u32, (at, table, tri_slots));
-            }
-            (NodeKind::Group { children, .. }, Some(NodeAccel::Children { bvh, .. })) => {
-                let (at, depth) = push_bvh(&mut nodes, bvh);
-                deepest_bvh = deepest_bvh.max(depth);
-                widest_group_leaf = bvh.bvh.nodes.iter().map(|n| n.prim_count).fold(widest_group_leaf, u32::max);
-                deepest_group = Some(deepest_group.unwrap_or(1).max(depth));
-                let table = scene.len() as u32;
-                let mut instances_only = true;
-                for slot in &bvh.bvh.primitive_indices {
-                    let child = children[*slot as usize];
-                    match instance_of_node[child.index() as usize] {
-                        Some(inst) => scene.push(inst),
-                        None => {
-                            instances_only = false;
-                            scene.push(child.index() | NODE_BIT);
-                        }
+        if let (NodeKind::Group { children, .. }, Some(NodeAccel::Children { bvh, .. })) =
+            (&rec.kind, accels.get(n).and_then(|a| a.as_ref()))
+        {
+            let (at, depth) = push_bvh(&mut nodes.words, nodes.base, bvh);
+            deepest_bvh = deepest_bvh.max(depth);
+            widest_group_leaf = bvh.bvh.nodes.iter().map(|n| n.prim_count).fold(widest_group_leaf, u32::max);
+            deepest_group = Some(deepest_group.unwrap_or(1).max(depth));
+            let table = scene.at();
+            let mut instances_only = true;
+            for slot in &bvh.bvh.primitive_indices {
+                let child = children[*slot as usize];
+                match instance_of_node[child.index() as usize] {
+                    Some(inst) => scene.words.push(inst),
+                    None => {
+                        instances_only = false;
+                        scene.words.push(child.index() | NODE_BIT);
                     }
                 }
-                group_bvh.insert(n as u32, (at, table, instances_only));
             }
-            _ => {}
+            group_bvh.insert(n as u32, (at, table, instances_only));
         }
     }
-    scene[1] = scene.len() as u32;
+    header[1] = scene.at();
     for (gg, o2w, mask) in &instances {
-        push_mat(&mut scene, *o2w);
-        push_mat(&mut scene, o2w.inverse());
-        let (bvh, table, tri_slots) = gg_bvh.get(&gg.index()).copied().unwrap_or((0, 0, 0));
-        scene.extend([bvh, table, *mask, gg.index(), tri_slots, 0, 0, 0]);
+        push_mat(&mut scene.words, *o2w);
+        push_mat(&mut scene.words, o2w.inverse());
+        let (bvh, table, tri_slots) = geometry.gg_bvh.get(&gg.index()).copied().unwrap_or((0, 0, 0));
+        scene.words.extend([bvh, table, *mask, gg.index(), tri_slots, 0, 0, 0]);
     }
     // The node table (after the side data of transforms and selectors), and
     // how deep transforms above groups and selectors nest (in post order:
@@ -624,9 +744,9 @@ fn encode(ctx: &Context, entry: u32, scene_bindings: usize) -> Result<Encoded> {
                     mask &= ctx.nodes[below.index() as usize].visibility_mask as u32;
                     below = *child;
                 }
-                let at = scene.len() as u32;
-                push_mat(&mut scene, m);
-                push_mat(&mut scene, m.inverse());
+                let at = scene.at();
+                push_mat(&mut scene.words, m);
+                push_mat(&mut scene.words, m.inverse());
                 node_entries[i] = [3, at, below.index(), mask];
                 levels[i] = 1 + levels[below.index() as usize];
                 graph = true;
@@ -634,9 +754,9 @@ fn encode(ctx: &Context, entry: u32, scene_bindings: usize) -> Result<Encoded> {
             NodeKind::Selector { visit, children } => {
                 let kp = use_program(*visit, &mut programs)?;
                 let vars = record(*visit, Record { node: Some(n), ..Record::default() }, &mut records)?;
-                let at = scene.len() as u32;
-                scene.extend([kp.case, vars, children.len() as u32]);
-                scene.extend(children.iter().map(|c| c.index()));
+                let at = scene.at();
+                scene.words.extend([kp.case, vars, children.len() as u32]);
+                scene.words.extend(children.iter().map(|c| c.index()));
                 node_entries[i] = [4, at, 0, mask];
                 levels[i] = children.iter().map(|c| levels[c.index() as usize]).max().unwrap_or(0);
                 graph = true;
@@ -645,61 +765,16 @@ fn encode(ctx: &Context, entry: u32, scene_bindings: usize) -> Result<Encoded> {
         }
     }
     let graph_levels = if graph { 1 + levels.iter().copied().max().unwrap_or(0) } else { 0 };
-    scene[0] = scene.len() as u32;
-    scene.extend(node_entries.into_iter().flatten());
+    header[0] = scene.at();
+    scene.words.extend(node_entries.into_iter().flatten());
     // Geometry instances, their hit records and intersection records.
-    let mut geometry_words: Vec<(u32, u32, u32, u32, u32, u32)> = Vec::new();
-    for g in &ctx.geometries {
-        match &g.kind {
-            GeometryKind::Triangles(mesh) => {
-                let pos = scene.len() as u32;
-                for p in &mesh.positions {
-                    scene.extend([f(p.x), f(p.y), f(p.z)]);
-                }
-                let idx = scene.len() as u32;
-                for t in &mesh.indices {
-                    scene.extend(t);
-                }
-                let nrm = match &mesh.normals {
-                    Some(ns) => {
-                        let at = scene.len() as u32;
-                        for n in ns {
-                            scene.extend([f(n.x), f(n.y), f(n.z)]);
-                        }
-                        at
-                    }
-                    None => u32::MAX,
-                };
-                let uv = match &mesh.texcoords {
-                    Some(ts) => {
-                        let at = scene.len() as u32;
-                        for t in ts {
-                            scene.extend([f(t.x), f(t.y)]);
-                        }
-                        at
-                    }
-                    None => u32::MAX,
-                };
-                let mi = match &mesh.material_indices {
-                    Some(m) => {
-                        let at = scene.len() as u32;
-                        scene.extend(m);
-                        at
-                    }
-                    None => u32::MAX,
-                };
-                geometry_words.push((0, pos, idx, nrm, uv, mi));
-            }
-            GeometryKind::Custom { .. } => geometry_words.push((1, 0, 0, u32::MAX, u32::MAX, u32::MAX)),
-        }
-    }
-    let gi_table = scene.len();
-    scene[2] = gi_table as u32;
-    scene.resize(gi_table + ctx.instances.len() * 8, 0);
+    let gi_table = scene.words.len();
+    header[2] = scene.at();
+    scene.words.resize(gi_table + ctx.instances.len() * 8, 0);
     let mut isect = Vec::with_capacity(ctx.instances.len() * 2);
     for (i, gi) in ctx.instances.iter().enumerate() {
         let instance = Some(crate::GeometryInstanceId(i as u32));
-        let hit_base = scene.len() as u32;
+        let hit_base = scene.at();
         for m in &gi.materials {
             let mat = &ctx.materials[m.index() as usize];
             let r = Record { instance, material: Some(*m), ..Record::default() };
@@ -715,11 +790,11 @@ fn encode(ctx: &Context, entry: u32, scene_bindings: usize) -> Result<Encoded> {
                     words[2] = kp.case;
                     words[3] = record(*p, r, &mut records)?;
                 }
-                scene.extend(words);
+                scene.words.extend(words);
             }
         }
-        let (kind, pos, idx, nrm, uv, mi) = geometry_words[gi.geometry.index() as usize];
-        scene[gi_table + i * 8..gi_table + i * 8 + 8].copy_from_slice(&[
+        let [kind, pos, idx, nrm, uv, mi] = geometry.geometry_words[gi.geometry.index() as usize];
+        scene.words[gi_table + i * 8..gi_table + i * 8 + 8].copy_from_slice(&[
             kind,
             pos,
             idx,
@@ -742,18 +817,18 @@ fn encode(ctx: &Context, entry: u32, scene_bindings: usize) -> Result<Encoded> {
             GeometryKind::Triangles(_) => isect.extend([0, 0]),
         }
     }
-    scene[3] = 0;
-    scene[4] = ray_types;
-    scene[5] = scene.len() as u32;
+    header[3] = 0;
+    header[4] = ray_types;
+    header[5] = scene.at();
     for (r, m) in ctx.miss.iter().enumerate() {
         let p = m.ok_or(RtError::NoMissProgram { ray_type: r as u32 })?;
         let kp = use_program(p, &mut programs)?;
         let vars = record(p, Record::default(), &mut records)?;
-        scene.extend([kp.case, vars]);
+        scene.words.extend([kp.case, vars]);
     }
-    scene[6] = scene.len() as u32;
-    scene.extend(isect);
-    scene[7] = ctx.nodes.len() as u32;
+    header[6] = scene.at();
+    scene.words.extend(isect);
+    header[7] = ctx.nodes.len() as u32;
 
     // The default exception program's image: its offset in the record.
     let default_exception = match ex_prog {
@@ -786,13 +861,88 @@ fn encode(ctx: &Context, entry: u32, scene_bindings: usize) -> Result<Encoded> {
         default_exception,
         scene_bindings,
     };
+    Ok(Encoded {
+        header,
+        tails: [scene.words, nodes.words, Vec::new()],
+        geometry,
+        geometry_words,
+        spec,
+        rg_vars,
+        ex_vars,
+        records,
+    })
+}
+
+/// The part of the scene that comes from geometry alone: per geometry
+/// group its BVH nodes, its primitive table (in the tables, after the
+/// header) and its triangle slots; per geometry its mesh arrays (in the
+/// tables). Returns its layout and its words in each section.
+fn encode_geometry(ctx: &Context, key: GeometryKey) -> (GeometryLayout, [Vec<u32>; SCENE_SECTIONS.len()]) {
+    let (mut tables, mut nodes, mut tris) = (Vec::new(), Vec::new(), Vec::new());
+    let table_at = |tables: &Vec<u32>| (SCENE_HEADER + tables.len()) as u32;
+    let mut gg_bvh = HashMap::new();
+    let mut deepest_bvh = 1;
+    for (n, rec) in ctx.nodes.iter().enumerate() {
+        if let (NodeKind::GeometryGroup { .. }, Some(NodeAccel::Prims { bvh, prims, .. })) =
+            (&rec.kind, ctx.accels.nodes.get(n).and_then(|a| a.as_ref()))
+        {
+            let (at, depth) = push_bvh(&mut nodes, 0, bvh);
+            deepest_bvh = deepest_bvh.max(depth);
+            let table = table_at(&tables);
+            let tri_slots = tris.len() as u32;
+            for slot in &bvh.bvh.primitive_indices {
+                let (gi, p) = prims[*slot as usize];
+                tables.extend([gi, p]);
+                push_triangle_slot(ctx, &mut tris, gi, p);
+            }
+            gg_bvh.insert(n as u32, (at, table, tri_slots));
+        }
+    }
+    let mut geometry_words = Vec::with_capacity(ctx.geometries.len());
+    for g in &ctx.geometries {
+        match &g.kind {
+            GeometryKind::Triangles(mesh) => {
+                let pos = table_at(&tables);
+                tables.extend(mesh.positions.iter().flat_map(|p| [f(p.x), f(p.y), f(p.z)]));
+                let idx = table_at(&tables);
+                tables.extend(mesh.indices.iter().flatten());
+                let nrm = match &mesh.normals {
+                    Some(ns) => {
+                        let at = table_at(&tables);
+                        tables.extend(ns.iter().flat_map(|n| [f(n.x), f(n.y), f(n.z)]));
+                        at
+                    }
+                    None => u32::MAX,
+                };
+                let uv = match &mesh.texcoords {
+                    Some(ts) => {
+                        let at = table_at(&tables);
+                        tables.extend(ts.iter().flat_map(|t| [f(t.x), f(t.y)]));
+                        at
+                    }
+                    None => u32::MAX,
+                };
+                let mi = match &mesh.material_indices {
+                    Some(m) => {
+                        let at = table_at(&tables);
+                        tables.extend(m);
+                        at
+                    }
+                    None => u32::MAX,
+                };
+                geometry_words.push([0, pos, idx, nrm, uv, mi]);
+            }
+            GeometryKind::Custom { .. } => geometry_words.push([1, 0, 0, u32::MAX, u32::MAX, u32::MAX]),
+        }
+    }
     // A binding needs a word.
     for section in [&mut nodes, &mut tris] {
         if section.is_empty() {
             section.push(0);
         }
     }
-    Ok(Encoded { scene: [scene, nodes, tris], spec, rg_vars, ex_vars, records })
+    let ends = [SCENE_HEADER + tables.len(), nodes.len(), tris.len()];
+    (GeometryLayout { key, gg_bvh, geometry_words, deepest_bvh, ends }, [tables, nodes, tris])
 }
 
 /// The sections of `scene` as bound on a device with `scene_bindings`
@@ -814,21 +964,49 @@ fn place_sections(
     (sections, shared_names)
 }
 
-/// Debug builds (the tests) check that a held scene is what encoding the
-/// context now gives: a structural change that does not bump
-/// `Context::structure_version` would otherwise leave a stale scene on the
-/// device.
+/// A launch's new scene for the device: whole sections, or the header and
+/// the words after the geometry part the device keeps.
+enum NewScene {
+    Whole(Vec<Vec<u32>>),
+    AroundGeometry { header: [u32; SCENE_HEADER], tails: [Vec<u32>; SCENE_SECTIONS.len()] },
+}
+
+/// Debug builds (the tests) check that what the device keeps is what
+/// encoding the context now gives: the whole scene when `held` is to be
+/// reused, the geometry part when `held_geometry` is. A change that does
+/// not bump `Context::structure_version` or `geometry_version` would
+/// otherwise leave stale words on the device.
 #[cfg(debug_assertions)]
-fn check_held_scene(ctx: &Context, entry: u32, held: &ResidentScene) -> Result<()> {
-    let gpu = ctx.gpu.as_ref().expect("a held scene is on a device");
-    let e = encode(ctx, entry, gpu.scene_bindings)?;
-    let (sections, _) = place_sections(e.scene, gpu.scene_bindings);
-    for (s, words) in sections.iter().enumerate() {
-        let device = gpu.resident.scene.get(s).and_then(|m| m.as_ref()).map(|m| &m.words);
-        assert!(device == Some(words), "stale scene on the device: {}", SCENE_SECTIONS[s].what);
+fn check_held_scene(
+    ctx: &Context,
+    entry: u32,
+    held: Option<&ResidentScene>,
+    held_geometry: Option<&GeometryLayout>,
+) -> Result<()> {
+    if held.is_none() && held_geometry.is_none() {
+        return Ok(());
     }
-    assert!(e.records.uses.len() == held.records.uses.len() && e.records.words == held.records.words, "stale records");
-    assert!((e.rg_vars, e.ex_vars) == (held.rg_vars, held.ex_vars), "stale records");
+    let gpu = ctx.gpu.as_ref().expect("a held scene is on a device");
+    let mut e = encode(ctx, entry, gpu.scene_bindings, None)?;
+    let device = |s: usize| gpu.resident.scene.get(s).and_then(|m| m.as_ref()).map(|m| &m.words[..]);
+    if let Some(h) = held {
+        let (sections, _) = place_sections(e.whole_sections().expect("encoded whole"), gpu.scene_bindings);
+        for (s, words) in sections.iter().enumerate() {
+            assert!(device(s) == Some(&words[..]), "stale scene on the device: {}", SCENE_SECTIONS[s].what);
+        }
+        let same = e.records.uses.len() == h.records.uses.len()
+            && e.records.words == h.records.words
+            && (e.rg_vars, e.ex_vars) == (h.rg_vars, h.ex_vars);
+        assert!(same, "stale records");
+    } else if let Some(g) = held_geometry {
+        assert!(e.geometry.ends == g.ends && e.geometry.gg_bvh == g.gg_bvh, "stale geometry layout");
+        let words = e.geometry_words.take().expect("encoded whole");
+        for (s, words) in words.iter().enumerate() {
+            let start = if s == 0 { SCENE_HEADER } else { 0 };
+            let kept = device(s).map(|d| &d[start..g.ends[s]]);
+            assert!(kept == Some(&words[..]), "stale geometry on the device: {}", SCENE_SECTIONS[s].what);
+        }
+    }
     Ok(())
 }
 
@@ -965,12 +1143,16 @@ fn launch_on_device(ctx: &mut Context, entry: u32, width: u32, height: u32) -> R
     // The scene, unless the device holds this one already (same structure,
     // same acceleration structures): then only the heap is encoded.
     let key = SceneKey::of(ctx, entry, scene_bindings);
-    let held = ctx.gpu.as_ref().and_then(|g| g.resident.held.as_ref()).filter(|h| h.key == key);
+    let resident = ctx.gpu.as_ref().and_then(|g| g.resident.held.as_ref());
+    let held = resident.filter(|h| h.key == key);
+    // Else the geometry part the device holds, where the rest can be
+    // encoded around it (every section in a binding of its own).
+    let held_geometry = resident
+        .map(|h| &h.geometry)
+        .filter(|g| g.key == GeometryKey::of(ctx, scene_bindings) && scene_bindings == SCENE_SECTIONS.len());
     #[cfg(debug_assertions)]
-    if let Some(h) = held {
-        check_held_scene(ctx, entry, h)?;
-    }
-    let fresh = if held.is_some() { None } else { Some(encode(ctx, entry, scene_bindings)?) };
+    check_held_scene(ctx, entry, held, held_geometry)?;
+    let fresh = if held.is_some() { None } else { Some(encode(ctx, entry, scene_bindings, held_geometry)?) };
     let (records, rg_vars, ex_vars) = match (&fresh, held) {
         (Some(e), _) => (&e.records, e.rg_vars, e.ex_vars),
         (None, Some(h)) => (&h.records, h.rg_vars, h.ex_vars),
@@ -996,27 +1178,46 @@ fn launch_on_device(ctx: &mut Context, entry: u32, width: u32, height: u32) -> R
     let print_enabled = ctx.print_enabled as u32;
     let gpu = ctx.gpu.as_mut().expect("created above");
     gpu.scene_encodes += fresh.is_some() as u64;
+    gpu.geometry_encodes += fresh.as_ref().is_some_and(|e| e.geometry_words.is_some()) as u64;
 
     // The scene's bindings: the sections with one of their own, the others
     // after the tables (their bases in the tables' header).
     let max_binding = gpu.limits.max_storage_buffer_binding_size;
     let mut parts = vec![("the heap (variables, buffers, textures)".to_string(), heap.len())];
-    let fresh = fresh.map(|e| {
-        let (sections, shared_names) = place_sections(e.scene, scene_bindings);
-        let tables_what = if shared_names.is_empty() {
-            SCENE_SECTIONS[0].what.to_string()
-        } else {
-            format!(
-                "{} with {} (one binding: the device allows {} storage buffers per shader stage)",
-                SCENE_SECTIONS[0].what,
-                shared_names.join(" and "),
-                gpu.limits.max_storage_buffers_per_shader_stage
-            )
+    let fresh = fresh.map(|mut e| {
+        let sections = match e.whole_sections() {
+            Some(whole) => {
+                let (sections, shared_names) = place_sections(whole, scene_bindings);
+                let tables_what = if shared_names.is_empty() {
+                    SCENE_SECTIONS[0].what.to_string()
+                } else {
+                    format!(
+                        "{} with {} (one binding: the device allows {} storage buffers per shader stage)",
+                        SCENE_SECTIONS[0].what,
+                        shared_names.join(" and "),
+                        gpu.limits.max_storage_buffers_per_shader_stage
+                    )
+                };
+                parts.push((tables_what, sections[0].len()));
+                parts.extend(
+                    sections.iter().enumerate().skip(1).map(|(s, w)| (SCENE_SECTIONS[s].what.to_string(), w.len())),
+                );
+                NewScene::Whole(sections)
+            }
+            None => {
+                parts.extend(
+                    SCENE_SECTIONS
+                        .iter()
+                        .zip(&e.tails)
+                        .zip(e.geometry.ends)
+                        .map(|((sec, tail), end)| (sec.what.to_string(), end + tail.len())),
+                );
+                NewScene::AroundGeometry { header: e.header, tails: e.tails }
+            }
         };
-        parts.push((tables_what, sections[0].len()));
-        parts.extend(sections.iter().enumerate().skip(1).map(|(s, w)| (SCENE_SECTIONS[s].what.to_string(), w.len())));
         let held = ResidentScene {
             key,
+            geometry: e.geometry,
             records: e.records,
             rg_vars: e.rg_vars,
             ex_vars: e.ex_vars,
@@ -1076,10 +1277,30 @@ fn launch_on_device(ctx: &mut Context, entry: u32, width: u32, height: u32) -> R
     let mut replaced = Resident::sync(device, queue, &mut res.heap, heap, "rt_heap", &mut res.uploaded);
     if let Some((sections, held)) = fresh {
         res.held = None;
-        res.scene.resize_with(sections.len(), || None);
-        for (s, words) in sections.into_iter().enumerate() {
-            replaced |=
-                Resident::sync(device, queue, &mut res.scene[s], words, SCENE_SECTIONS[s].binding, &mut res.uploaded);
+        match sections {
+            NewScene::Whole(sections) => {
+                res.scene.resize_with(sections.len(), || None);
+                for (s, words) in sections.into_iter().enumerate() {
+                    let label = SCENE_SECTIONS[s].binding;
+                    replaced |= Resident::sync(device, queue, &mut res.scene[s], words, label, &mut res.uploaded);
+                }
+            }
+            NewScene::AroundGeometry { header, tails } => {
+                for (s, tail) in tails.into_iter().enumerate() {
+                    let head: &[u32] = if s == 0 { &header } else { &[] };
+                    let (end, label) = (held.geometry.ends[s], SCENE_SECTIONS[s].binding);
+                    replaced |= Resident::sync_around(
+                        device,
+                        queue,
+                        &mut res.scene[s],
+                        head,
+                        end,
+                        tail,
+                        label,
+                        &mut res.uploaded,
+                    );
+                }
+            }
         }
         res.held = Some(held);
     }
