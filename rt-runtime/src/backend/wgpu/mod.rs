@@ -44,6 +44,17 @@
 //! Caching: the pipeline is keyed by the generated WGSL, which depends on the
 //! program set and the graph's shape but never on variable values or buffer
 //! contents; those only change the uploaded words.
+//!
+//! Residency: buffers stay on the device between launches, and a launch
+//! writes only the 4 KiB pages that changed. The scene is encoded only when
+//! the context's structure changed (`SceneKey`: a launch that changed
+//! only variable values and buffer contents encodes the heap alone), and
+//! then around the geometry part that leads each section (`GeometryKey`:
+//! geometry groups' BVH nodes, primitive tables and triangles, meshes),
+//! which stays as it is until geometry changes. A moving transform over a
+//! 2M-triangle mesh costs under a millisecond of host work a launch.
+//! `Context::scene_encodes` and `geometry_encodes` count both; debug builds
+//! check every kept word against a fresh encoding.
 
 pub mod kernel;
 
