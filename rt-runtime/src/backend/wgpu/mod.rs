@@ -96,8 +96,8 @@ pub struct Gpu {
     pipelines: HashMap<String, wgpu::ComputePipeline>,
     /// How many pipelines were created (links); for tests of the cache.
     pub pipelines_created: u64,
-    /// How many launches encoded the scene (see [`SceneKey`]), and how many
-    /// of those its geometry part too ([`GeometryKey`]).
+    /// How many launches encoded the scene (see `SceneKey`), and how many
+    /// of those its geometry part too (`GeometryKey`).
     pub scene_encodes: u64,
     pub geometry_encodes: u64,
     resident: Resident,
