@@ -4,7 +4,7 @@
 //!
 //! A batch module is the compiler's output for each program minus its stub
 //! prelude (types, functions, program), behind a prelude of our own that
-//! defines the runtime items the programs can name ([`PRELUDE`]: the
+//! defines the runtime items the programs can name (`PRELUDE`: the
 //! compiler's stub prelude with `rt_launch_index` and `rt_launch_dim`
 //! answering for the lane being run). The entry point `fz_main` runs one
 //! workgroup of [`LANES`] lanes per program: workgroup `y` selects the
