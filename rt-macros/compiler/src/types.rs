@@ -308,7 +308,7 @@ pub fn buffer_kind(name: &str) -> Option<BufferKind> {
 
 /// Type names that Rust users reach for but the subset rejects, with what to
 /// use instead (the message reads "the type `T` is not supported in ray
-/// programs: <advice>").
+/// programs: `<advice>`").
 pub fn unsupported_type_advice(name: &str) -> Option<&'static str> {
     Some(match name {
         "f64" => "the GPU computes in f32; use f32",
