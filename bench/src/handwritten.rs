@@ -12,6 +12,16 @@ fn bytes(w: &[u32]) -> &[u8] {
     unsafe { std::slice::from_raw_parts(w.as_ptr() as *const u8, std::mem::size_of_val(w)) }
 }
 
+/// The adapter the runtime opens (`PowerPreference::HighPerformance`: a
+/// discrete GPU over an integrated one or lavapipe), so both kernels run on
+/// the same one.
+pub fn adapter() -> Result<wgpu::Adapter, String> {
+    let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+    let options =
+        wgpu::RequestAdapterOptions { power_preference: wgpu::PowerPreference::HighPerformance, ..Default::default() };
+    pollster::block_on(instance.request_adapter(&options)).map_err(|e| e.to_string())
+}
+
 /// What the kernel measured.
 pub struct Measured {
     /// Rays traced by one run.
@@ -23,6 +33,8 @@ pub struct Measured {
     pub kernel: Option<Duration>,
     /// Process CPU time of the `reps` runs.
     pub cpu: Duration,
+    /// The adapter it ran on, as the runtime describes its own.
+    pub device: String,
 }
 
 /// Runs the AO workload `reps` times, or says why it could not run.
@@ -33,8 +45,7 @@ pub fn run(
     height: u32,
     reps: usize,
 ) -> Result<Measured, String> {
-    let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
-    let adapter = pollster::block_on(instance.request_adapter(&Default::default())).map_err(|e| e.to_string())?;
+    let adapter = adapter()?;
     let max_binding = adapter.limits().max_storage_buffer_binding_size as u64;
     // BVH2 nodes (2n - 1 for n triangles) of 24 bytes of bounds and 12 of
     // links, each array in its own binding, and 36 bytes a triangle.
@@ -199,7 +210,9 @@ pub fn run(
     // The first run includes the pipeline's compilation on some drivers.
     times.remove(0);
     let kernel = (!kernel_times.is_empty()).then(|| crate::peers::median(kernel_times.split_off(1)));
-    Ok(Measured { rays, time: crate::peers::median(times), kernel, cpu })
+    let info = adapter.get_info();
+    let device = format!("{} ({:?}, {:?})", info.name, info.device_type, info.backend);
+    Ok(Measured { rays, time: crate::peers::median(times), kernel, cpu, device })
 }
 
 #[cfg(test)]

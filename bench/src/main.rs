@@ -573,6 +573,11 @@ fn measure_scene(
                     fig.handwritten_per_cpu_s = Some((m.rays * reps as u64) as f64 / m.cpu.as_secs_f64().max(1e-3));
                     fig.handwritten_kernel = m.kernel.map(|k| mrays(m.rays, k));
                     j.child("rays").set("handwritten_wgsl", m.rays);
+                    if j.get("wgpu_device").and_then(|d| d.as_str()).is_some_and(|d| d != m.device) {
+                        eprintln!("hand-written WGSL ran on {}, not on the megakernel's adapter", m.device);
+                        j.set("adapters_differ", true);
+                    }
+                    j.set("handwritten_wgsl_device", m.device);
                 }
                 Err(e) => {
                     eprintln!("hand-written WGSL: {e}");

@@ -42,8 +42,7 @@ struct Probe {
 
 impl Probe {
     fn new() -> Option<Probe> {
-        let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
-        let adapter = pollster::block_on(instance.request_adapter(&Default::default())).ok()?;
+        let adapter = crate::handwritten::adapter().ok()?;
         let (device, _queue) = pollster::block_on(
             adapter.request_device(&wgpu::DeviceDescriptor { required_limits: adapter.limits(), ..Default::default() }),
         )
