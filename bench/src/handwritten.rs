@@ -46,7 +46,7 @@ pub fn run(
     reps: usize,
 ) -> Result<Measured, String> {
     let adapter = adapter()?;
-    let max_binding = adapter.limits().max_storage_buffer_binding_size as u64;
+    let max_binding = adapter.limits().max_storage_buffer_binding_size;
     // BVH2 nodes (2n - 1 for n triangles) of 24 bytes of bounds and 12 of
     // links, each array in its own binding, and 36 bytes a triangle.
     let biggest = (mesh.indices.len() as u64 * 2 * 24).max(mesh.indices.len() as u64 * 36);
