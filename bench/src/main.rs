@@ -225,27 +225,29 @@ fn scene_with(
 
 /// The scene of `ctx` moved under a transform in a group, then launched
 /// `reps` times, the transform changing before each (an animated
-/// instance): medians of (host work before the run, run, kernel).
+/// instance): medians of (host work before the run, run, kernel), and the
+/// rays of a launch.
 fn moving_transform_launches(
     ctx: &mut Context,
     gg: NodeId,
     width: u32,
     height: u32,
     reps: usize,
-) -> Result<(Duration, Duration, Option<Duration>)> {
+) -> Result<(Duration, Duration, Option<Duration>, u64)> {
     let xf = ctx.create_transform(glam::Mat4::IDENTITY, gg)?;
     let top = ctx.create_group(&[xf], Acceleration::default())?;
     ctx.set_var(Scope::Context, "top_object", top)?;
     ctx.launch(0, width, height)?;
-    let (mut prepare, mut run, mut kernel) = (Vec::new(), Vec::new(), Vec::new());
+    let (mut prepare, mut run, mut kernel, mut rays) = (Vec::new(), Vec::new(), Vec::new(), 0);
     for i in 0..reps {
         ctx.set_transform(xf, glam::Mat4::from_translation(Vec3::new(0.0, 0.0, 1e-4 * (i + 1) as f32)))?;
         let r = ctx.launch(0, width, height)?;
         prepare.push(r.timings.build + r.timings.encode + r.timings.link);
         run.push(r.timings.run);
         kernel.extend(r.timings.kernel);
+        rays = r.rays;
     }
-    Ok((median(prepare), median(run), (!kernel.is_empty()).then(|| median(kernel))))
+    Ok((median(prepare), median(run), (!kernel.is_empty()).then(|| median(kernel)), rays))
 }
 
 use peers::median;
@@ -452,12 +454,14 @@ fn measure_scene(
         }
         None => None,
     };
+    let mut cpu_gg = None;
     let mut cpu_ctx = if args.backends.iter().any(|b| b == "cpu") {
         match scene_with(&scene.mesh, cam, Backend::Cpu, width, height, Workload::Ao)
-            .and_then(|(mut c, ..)| c.launch(0, width, height).map(|r| (c, r)))
+            .and_then(|(mut c, _, gg)| c.launch(0, width, height).map(|r| (c, r, gg)))
         {
-            Ok((c, first)) => {
+            Ok((c, first, gg)) => {
                 j.child("build_ms").set("ours", ms(first.timings.build));
+                cpu_gg = Some(gg);
                 Some(c)
             }
             Err(e) => {
@@ -521,6 +525,19 @@ fn measure_scene(
         fig.obvhs.unwrap_or(0.0),
         fig.embree.map_or("-".into(), |x| format!("{x:.2}")),
     );
+    // The same scene as an instance under a moving transform.
+    if let (Some(ctx), Some(gg), Some(flat)) = (cpu_ctx.as_mut(), cpu_gg, fig.cpu) {
+        match moving_transform_launches(ctx, gg, width, height, reps) {
+            Ok((prepare, run, _, rays)) => {
+                let moved = j.child("cpu_moving_transform");
+                moved.set("prepare_ms", ms(prepare));
+                moved.set("run_ms", ms(run));
+                moved.set("mrays_per_s", mrays(rays, run));
+                moved.set("vs_flat", mrays(rays, run) / flat);
+            }
+            Err(e) => eprintln!("cpu under a transform: {e}"),
+        }
+    }
     drop(cpu_ctx);
     drop(embree_scene);
 
@@ -535,7 +552,7 @@ fn measure_scene(
                 let (mut ctx, _, gg) = scene_with(&scene.mesh, cam, Backend::Wgpu, width, height, Workload::Ao)?;
                 let device = ctx.open_wgpu()?;
                 let l = measure_launches(&mut ctx, width, height, reps)?;
-                let (prepare, run, kernel) = moving_transform_launches(&mut ctx, gg, width, height, reps)?;
+                let (prepare, run, kernel, _) = moving_transform_launches(&mut ctx, gg, width, height, reps)?;
                 let mut w = Json::obj();
                 w.set("rays", l.rays);
                 w.set("build_ms", ms(l.first.timings.build));
