@@ -22,6 +22,25 @@ pub fn adapter() -> Result<wgpu::Adapter, String> {
     pollster::block_on(instance.request_adapter(&options)).map_err(|e| e.to_string())
 }
 
+/// A CWBVH node's 20 words as it lies in memory (little-endian).
+fn cwbvh_node_words(n: &obvhs::cwbvh::node::CwBvhNode) -> [u32; 20] {
+    let pair =
+        |b: [u8; 8]| [u32::from_le_bytes([b[0], b[1], b[2], b[3]]), u32::from_le_bytes([b[4], b[5], b[6], b[7]])];
+    let mut w = [0u32; 20];
+    w[..3].copy_from_slice(&[n.p.x, n.p.y, n.p.z].map(f32::to_bits));
+    w[3] = u32::from_le_bytes([n.e[0], n.e[1], n.e[2], n.imask]);
+    w[4] = n.child_base_idx;
+    w[5] = n.primitive_base_idx;
+    for (k, bytes) in
+        [n.child_meta, n.child_min_x, n.child_max_x, n.child_min_y, n.child_max_y, n.child_min_z, n.child_max_z]
+            .into_iter()
+            .enumerate()
+    {
+        w[6 + 2 * k..8 + 2 * k].copy_from_slice(&pair(bytes));
+    }
+    w
+}
+
 /// What the kernel measured.
 pub struct Measured {
     /// Rays traced by one run.
@@ -37,13 +56,25 @@ pub struct Measured {
     pub device: String,
 }
 
-/// Runs the AO workload `reps` times, or says why it could not run.
+/// The tree a hand-written kernel walks.
+#[derive(Clone, Copy, PartialEq)]
+pub enum Tree {
+    /// The BVH2 the megakernel walks (handwritten.wgsl).
+    Bvh2,
+    /// obvhs's CWBVH converted from that BVH2 as the CPU backend converts
+    /// it (handwritten_cwbvh.wgsl): what walking 8-wide nodes would give.
+    Cwbvh,
+}
+
+/// Runs the AO workload `reps` times over `tree`, or says why it could not
+/// run.
 pub fn run(
     mesh: &TriangleMesh,
     cam: (Vec3, Vec3, Vec3, Vec3),
     width: u32,
     height: u32,
     reps: usize,
+    tree: Tree,
 ) -> Result<Measured, String> {
     let adapter = adapter()?;
     let max_binding = adapter.limits().max_storage_buffer_binding_size;
@@ -87,13 +118,20 @@ pub fn run(
         bounds.extend([b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z].map(f32::to_bits));
         links.extend([n.prim_count, n.first_index, prim]);
     }
+    // Triangles by index, or in the CWBVH's primitive order.
+    let cwbvh = (tree == Tree::Cwbvh).then(|| obvhs::cwbvh::bvh2_to_cwbvh::bvh2_to_cwbvh(&bvh, 3, true, false));
+    let order: Vec<u32> = match &cwbvh {
+        Some(cw) => cw.primitive_indices.clone(),
+        None => (0..mesh.indices.len() as u32).collect(),
+    };
     let mut tris: Vec<u32> = Vec::with_capacity(mesh.indices.len() * 9);
-    for t in &mesh.indices {
-        for i in t {
-            let p = mesh.positions[*i as usize];
+    for t in &order {
+        for i in mesh.indices[*t as usize] {
+            let p = mesh.positions[i as usize];
             tris.extend([p.x, p.y, p.z].map(f32::to_bits));
         }
     }
+    let cw_nodes: Vec<u32> = cwbvh.iter().flat_map(|cw| cw.nodes.iter().flat_map(cwbvh_node_words)).collect();
     let (eye, u, v, w) = cam;
     let mut camera: Vec<u32> = Vec::new();
     for c in [eye, u, v, w] {
@@ -102,7 +140,13 @@ pub fn run(
     camera.extend([width, height, 0, 0]);
     let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some("handwritten"),
-        source: wgpu::ShaderSource::Wgsl(include_str!("handwritten.wgsl").into()),
+        source: wgpu::ShaderSource::Wgsl(
+            match tree {
+                Tree::Bvh2 => include_str!("handwritten.wgsl"),
+                Tree::Cwbvh => include_str!("handwritten_cwbvh.wgsl"),
+            }
+            .into(),
+        ),
     });
     let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
         label: Some("handwritten"),
@@ -129,16 +173,23 @@ pub fn run(
         contents: bytes(&camera),
         usage: wgpu::BufferUsages::UNIFORM,
     });
+    let cw_b = storage(&cw_nodes, wgpu::BufferUsages::empty());
+    let mut entries = vec![
+        wgpu::BindGroupEntry {
+            binding: 0,
+            resource: if tree == Tree::Cwbvh { cw_b.as_entire_binding() } else { bounds_b.as_entire_binding() },
+        },
+        wgpu::BindGroupEntry { binding: 1, resource: tris_b.as_entire_binding() },
+        wgpu::BindGroupEntry { binding: 2, resource: out_b.as_entire_binding() },
+        wgpu::BindGroupEntry { binding: 3, resource: cam_b.as_entire_binding() },
+    ];
+    if tree == Tree::Bvh2 {
+        entries.push(wgpu::BindGroupEntry { binding: 4, resource: links_b.as_entire_binding() });
+    }
     let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: None,
         layout: &pipeline.get_bind_group_layout(0),
-        entries: &[
-            wgpu::BindGroupEntry { binding: 0, resource: bounds_b.as_entire_binding() },
-            wgpu::BindGroupEntry { binding: 1, resource: tris_b.as_entire_binding() },
-            wgpu::BindGroupEntry { binding: 2, resource: out_b.as_entire_binding() },
-            wgpu::BindGroupEntry { binding: 3, resource: cam_b.as_entire_binding() },
-            wgpu::BindGroupEntry { binding: 4, resource: links_b.as_entire_binding() },
-        ],
+        entries: &entries,
     });
     let timestamps = device.features().contains(wgpu::Features::TIMESTAMP_QUERY).then(|| {
         let set = device.create_query_set(&wgpu::QuerySetDescriptor {
@@ -220,11 +271,13 @@ mod tests {
     use crate::{peers, scenes};
 
     #[test]
-    fn the_kernel_is_valid_wgsl() {
-        let module = naga::front::wgsl::parse_str(include_str!("handwritten.wgsl")).expect("parses");
-        naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::empty())
-            .validate(&module)
-            .expect("validates");
+    fn the_kernels_are_valid_wgsl() {
+        for source in [include_str!("handwritten.wgsl"), include_str!("handwritten_cwbvh.wgsl")] {
+            let module = naga::front::wgsl::parse_str(source).expect("parses");
+            naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::empty())
+                .validate(&module)
+                .expect("validates");
+        }
     }
 
     /// Equal work: the kernel traces as many rays as obvhs's traversal of
@@ -244,9 +297,11 @@ mod tests {
         let tris = teapot.obvhs_triangles();
         let (bvh, _) = peers::obvhs_cwbvh(&tris);
         let obvhs = peers::obvhs_ao(&bvh, &tris, cam, w, h);
-        let rays = super::run(&teapot.mesh, cam, w, h, 1).expect("runs on the wgpu adapter").rays;
         let primary_hits = obvhs.primary_t.iter().filter(|t| t.is_finite()).count() as u64;
         assert!(primary_hits > 500, "the teapot is in view: {primary_hits} hits");
-        assert!(obvhs.rays.abs_diff(rays) <= 3, "hand-written kernel {rays} rays, obvhs {}", obvhs.rays);
+        for tree in [super::Tree::Bvh2, super::Tree::Cwbvh] {
+            let rays = super::run(&teapot.mesh, cam, w, h, 1, tree).expect("runs on the wgpu adapter").rays;
+            assert!(obvhs.rays.abs_diff(rays) <= 3, "hand-written kernel {rays} rays, obvhs {}", obvhs.rays);
+        }
     }
 }
