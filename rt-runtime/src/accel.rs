@@ -74,19 +74,22 @@ pub(crate) fn to_oaabb(min: Vec3, max: Vec3) -> OAabb {
 
 /// Which tree a backend walks.
 ///
-/// The wgpu backend walks BVH2s with one primitive per leaf, built as
-/// obvhs's `build_bvh2` builds them (PLOC, reinsertion, leaf collapse — a
-/// no-op at one primitive a leaf — and a second reinsertion pass). The CPU
-/// backend walks obvhs's CWBVH of every geometry group, converted from a
-/// BVH2 that gets only what obvhs's own `build_cwbvh` gives it (PLOC and one
-/// reinsertion pass): the conversion regroups the tree into 8-wide nodes, so
-/// the second pass would be paid for and mostly undone. Each context builds
-/// only the form its backend walks, when it first launches there.
+/// Both backends walk obvhs's CWBVH of every geometry group (the wgpu
+/// backend where its kernel searches triangles only; else the BVH2 it was
+/// converted from), converted from a BVH2 that gets only what obvhs's own
+/// `build_cwbvh` gives it (PLOC and one reinsertion pass): the conversion
+/// regroups the tree into 8-wide nodes, so a second pass would be paid for
+/// and mostly undone. Groups' BVHs are BVH2s with one child per leaf, built
+/// as obvhs's `build_bvh2` builds them for the wgpu backend (PLOC,
+/// reinsertion, leaf collapse — a no-op at one primitive a leaf — and a
+/// second reinsertion pass) and in the wide form's BVH2 for the CPU
+/// backend.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum TreeForm {
-    /// BVH2s only (the wgpu backend).
+    /// A BVH2 with a second reinsertion pass (groups, on the wgpu backend).
     Binary,
-    /// BVH2s, plus CWBVHs of geometry groups (the CPU backend).
+    /// A BVH2 with one pass (geometry groups, which are widened; groups on
+    /// the CPU backend).
     Wide,
 }
 
@@ -380,7 +383,7 @@ fn group_triangles(ctx: &Context, prims: &[(u32, u32)]) -> Vec<obvhs::triangle::
 }
 
 /// The triangles of geometry instance `gi` (None: custom primitives).
-fn instance_mesh(ctx: &Context, gi: u32) -> Option<&TriangleMesh> {
+pub(crate) fn instance_mesh(ctx: &Context, gi: u32) -> Option<&TriangleMesh> {
     match &ctx.geometries[ctx.instances[gi as usize].geometry.index() as usize].kind {
         GeometryKind::Triangles(mesh) => Some(mesh),
         GeometryKind::Custom { .. } => None,
@@ -409,13 +412,13 @@ pub(crate) fn build_accels(ctx: &Context, cache: &mut AccelCache) -> Result<()> 
         let new = match &node.kind {
             NodeKind::GeometryGroup { children, accel: a } => {
                 // The CWBVH of a single leaf (`NoAccel`) or of nothing is
-                // pointless: the CPU backend walks the BVH2 then.
-                let wants_wide =
-                    |prims: &[(u32, u32)]| form == TreeForm::Wide && a.builder != Builder::NoAccel && !prims.is_empty();
+                // pointless: both backends walk the BVH2 then.
+                let wants_wide = |prims: &[(u32, u32)]| a.builder != Builder::NoAccel && !prims.is_empty();
                 // Every primitive a triangle: the CPU backend's triangles in
-                // CWBVH slot order.
+                // CWBVH slot order (the wgpu backend encodes its own).
                 let all_triangles =
                     |prims: &[(u32, u32)]| prims.iter().all(|(gi, _)| instance_mesh(ctx, *gi).is_some());
+                let cpu = ctx.backend == crate::Backend::Cpu;
                 match old {
                     Some(NodeAccel::Prims { mut bvh, mut wide, mut triangles, prims, mut bounds }) => {
                         let moved = cache.moved
@@ -435,7 +438,10 @@ pub(crate) fn build_accels(ctx: &Context, cache: &mut AccelCache) -> Result<()> 
                         if wide.is_none() && wants_wide(&prims) {
                             wide = Some(widen(&bvh));
                         }
-                        if moved || (wide.is_some() && !had_wide) {
+                        if moved {
+                            triangles = Vec::new();
+                        }
+                        if cpu && (moved || !had_wide || triangles.is_empty()) {
                             triangles = slot_triangles(ctx, &prims, wide.as_ref(), all_triangles(&prims));
                         }
                         NodeAccel::Prims { bvh, wide, triangles, prims, bounds }
@@ -443,9 +449,10 @@ pub(crate) fn build_accels(ctx: &Context, cache: &mut AccelCache) -> Result<()> 
                     _ => {
                         let (prims, bounds, all_tris) = prim_bounds(ctx, children)?;
                         let tris = (a.builder == Builder::Sbvh && all_tris).then(|| group_triangles(ctx, &prims));
-                        let bvh = build(a.builder, &bounds, tris.as_deref(), form)?;
+                        let bvh = build(a.builder, &bounds, tris.as_deref(), TreeForm::Wide)?;
                         let wide = wants_wide(&prims).then(|| widen(&bvh));
-                        let triangles = slot_triangles(ctx, &prims, wide.as_ref(), all_tris);
+                        let triangles =
+                            if cpu { slot_triangles(ctx, &prims, wide.as_ref(), all_tris) } else { Vec::new() };
                         any_built = true;
                         cache.geometry_group_changes += 1;
                         NodeAccel::Prims { bvh, wide, triangles, prims, bounds: union(&bounds) }

@@ -1102,13 +1102,22 @@ fn launches_wider_than_the_dispatch_limit_write_every_index(backend: Backend) {
 }
 
 /// Nested triangles of geometrically growing size (each a level deeper)
-/// make a BVH that is a chain about 100 levels deep. The wgpu kernel's
-/// traversal stack used to be a fixed 64 entries, dropping entries when
-/// full; it is now sized from the deepest BVH (a near-first traversal keeps
-/// at most one pending entry per level), checked here, and every ray still
-/// finds its triangle on both backends.
+/// make a BVH2 that is a chain about 300 levels deep (its CWBVH, with up to
+/// seven leaves a node, over 32). The wgpu kernel's traversal stacks used
+/// to be a fixed 64 entries, dropping entries when full; they are now sized
+/// from the deepest BVH2 and CWBVH (a near-first traversal keeps at most
+/// one pending entry per level), checked here, and every ray still finds
+/// its triangle on both backends.
 fn a_bvh_deeper_than_64_levels_loses_no_hit(backend: Backend) {
-    const N: u32 = 100;
+    // Without an any-hit program the wgpu kernel walks the CWBVH (about a
+    // third as deep, still past 32 levels); with one, the BVH2.
+    for any_hit in [false, true] {
+        deep_bvh_probe(backend, any_hit);
+    }
+}
+
+fn deep_bvh_probe(backend: Backend, any_hit: bool) {
+    const N: u32 = 300;
     let (mut ctx, _) = camera(1.0, backend);
     let rg = ctx.create_program(&probe_rays::PROGRAM);
     ctx.set_ray_generation_program(0, rg).unwrap();
@@ -1118,7 +1127,7 @@ fn a_bvh_deeper_than_64_levels_loses_no_hit(backend: Backend) {
     for i in 0..N {
         // Triangle i covers x, y >= -s, x + y <= 2s at z = -i; the point
         // (s, 0.9 s) is inside it and outside every smaller one.
-        let s = 1.5f32.powi(i as i32);
+        let s = 1.1f32.powi(i as i32);
         let z = -(i as f32);
         let b = positions.len() as u32;
         positions.extend([Vec3::new(-s, -s, z), Vec3::new(3.0 * s, -s, z), Vec3::new(-s, 3.0 * s, z)]);
@@ -1129,6 +1138,10 @@ fn a_bvh_deeper_than_64_levels_loses_no_hit(backend: Backend) {
     let mat = ctx.create_material();
     let ch = ctx.create_program(&flat_color::PROGRAM);
     ctx.set_closest_hit_program(mat, 0, ch).unwrap();
+    if any_hit {
+        let ah = ctx.create_program(&count_hits::PROGRAM);
+        ctx.set_any_hit_program(mat, 0, ah).unwrap();
+    }
     ctx.set_var(mat, "color", Vec3::X).unwrap();
     let gi = ctx.create_geometry_instance(mesh, &[mat]).unwrap();
     let gg = ctx.create_geometry_group(&[gi], Acceleration::new(Builder::Bvh)).unwrap();
@@ -1141,16 +1154,19 @@ fn a_bvh_deeper_than_64_levels_loses_no_hit(backend: Backend) {
     assert!(report.exceptions.is_empty(), "{:?}", report.exceptions);
     let got = ctx.read_buffer::<f32>(hits).unwrap();
     let missed: Vec<u32> = (0..N).filter(|&i| got[i as usize] != 1.0).collect();
-    assert!(missed.is_empty(), "rays that missed their triangle: {missed:?}");
+    assert!(missed.is_empty(), "rays that missed their triangle (any hit: {any_hit}): {missed:?}");
     if backend == Backend::Wgpu {
         let wgsl = ctx.linked_wgsl().unwrap();
-        let stack: u32 = wgsl
-            .split("const RT_BVH_STACK: u32 = ")
-            .nth(1)
-            .and_then(|t| t.split('u').next())
-            .and_then(|n| n.parse().ok())
-            .expect("the BVH stack size");
-        assert!(stack > 64, "the BVH is not deeper than 64 levels (stack {stack}): the test proves nothing");
+        let constant = |name: &str| -> u32 {
+            wgsl.split(&format!("const {name}: u32 = "))
+                .nth(1)
+                .and_then(|t| t.split('u').next())
+                .and_then(|n| n.parse().ok())
+                .expect(name)
+        };
+        assert_eq!(wgsl.contains("const RT_CWBVH: bool = true;"), !any_hit);
+        let (stack, levels) = if any_hit { (constant("RT_BVH_STACK"), 64) } else { (constant("RT_CW_STACK"), 32) };
+        assert!(stack > levels, "the BVH is not deeper than {levels} levels (stack {stack}): the test proves nothing");
     }
 }
 
@@ -1494,10 +1510,19 @@ fn bumpy_grid(n: u32) -> TriangleMesh {
 
 /// A geometry group over the `n` x `n` bumpy grid under the normal shader.
 fn grid_group(ctx: &mut Context, n: u32) -> NodeId {
+    grid_group_with(ctx, n, false)
+}
+
+/// The same, with an any-hit program (the wgpu kernel walks BVH2s then).
+fn grid_group_with(ctx: &mut Context, n: u32, any_hit: bool) -> NodeId {
     let g = ctx.create_triangles(bumpy_grid(n)).unwrap();
     let mat = ctx.create_material();
     let ch = ctx.create_program(&normal_shader::PROGRAM);
     ctx.set_closest_hit_program(mat, 0, ch).unwrap();
+    if any_hit {
+        let ah = ctx.create_program(&count_hits::PROGRAM);
+        ctx.set_any_hit_program(mat, 0, ah).unwrap();
+    }
     let gi = ctx.create_geometry_instance(g, &[mat]).unwrap();
     ctx.create_geometry_group(&[gi], Acceleration::new(Builder::Bvh)).unwrap()
 }
@@ -1516,10 +1541,10 @@ fn render_grid(ctx: &mut Context, out: BufferId) -> Vec<Vec4> {
 
 #[test]
 fn a_scene_larger_than_one_binding_renders_from_one_binding_per_section() {
-    // The whole scene (about 2.5 MiB) exceeds a 1.5 MiB binding; its
+    // The whole scene (about 1.5 MiB) exceeds a 1 MiB binding; its
     // tables, BVH nodes and leaf-ordered triangles each fit.
     let (mut ctx, out) = camera(1.2, Backend::Wgpu);
-    let (device, queue, info) = device_with(|l| ::wgpu::Limits { max_storage_buffer_binding_size: 3 << 19, ..l });
+    let (device, queue, info) = device_with(|l| ::wgpu::Limits { max_storage_buffer_binding_size: 1 << 20, ..l });
     ctx.use_wgpu_device(device, queue, info);
     let split = render_grid(&mut ctx, out);
     assert!(ctx.linked_wgsl().unwrap().contains("var<storage, read> rt_bvh: array<u32>;"));
@@ -1550,7 +1575,7 @@ fn a_scene_larger_than_one_binding_renders_from_one_binding_per_section() {
 #[test]
 fn moving_a_transform_keeps_the_geometry_on_the_device_and_renders_as_a_fresh_context() {
     use glam::Mat4;
-    // The grid (about 2.5 MiB of geometry) under a transform in a group.
+    // The grid (about 1.5 MiB of geometry) under a transform in a group.
     let scene = |ctx: &mut Context, angle: f32| {
         let gg = grid_group(ctx, 100);
         let xf = ctx.create_transform(Mat4::from_rotation_x(angle), gg).unwrap();
@@ -1561,7 +1586,7 @@ fn moving_a_transform_keeps_the_geometry_on_the_device_and_renders_as_a_fresh_co
     let (mut ctx, out) = camera(1.2, Backend::Wgpu);
     let xf = scene(&mut ctx, 0.5);
     ctx.launch(0, W, W).unwrap();
-    assert!(ctx.last_upload_bytes() > 2 << 20, "the first launch uploads the grid");
+    assert!(ctx.last_upload_bytes() > 1 << 20, "the first launch uploads the grid");
     for angle in [0.3, -0.4] {
         ctx.set_transform(xf, Mat4::from_rotation_x(angle)).unwrap();
         let report = ctx.launch(0, W, W).unwrap();
@@ -1618,11 +1643,12 @@ fn triangles_with_a_material_index_past_the_materials_are_never_hit() {
 
 #[test]
 fn a_scene_section_over_the_binding_limit_is_a_clear_error() {
-    // The grid's BVH nodes (about 1.2 MiB) cannot fit a 1 MiB binding.
+    // The grid's BVH2 nodes (about 1.2 MiB: with an any-hit program the
+    // kernel walks BVH2s) cannot fit a 1 MiB binding.
     let (mut ctx, out) = camera(1.2, Backend::Wgpu);
     let (device, queue, info) = device_with(|l| ::wgpu::Limits { max_storage_buffer_binding_size: 1 << 20, ..l });
     ctx.use_wgpu_device(device, queue, info);
-    let gg = grid_group(&mut ctx, 100);
+    let gg = grid_group_with(&mut ctx, 100, true);
     ctx.set_var(Scope::Context, "top", gg).unwrap();
     let err = ctx.launch(0, W, W).unwrap_err();
     assert!(matches!(err, RtError::Gpu(_)), "{err:?}");

@@ -80,6 +80,10 @@ pub struct KernelSpec {
     /// triangle and every candidate commits, so instances are searched by
     /// the lean loop (`rt_blas_triangles` in traverse.wgsl).
     pub triangles_only: bool,
+    /// Entries of the lean loop's CWBVH stack (at least the deepest
+    /// CWBVH's levels + 1) where every geometry group has a CWBVH over
+    /// triangles (`rt_blas_cwbvh`); 0 where the lean loop walks BVH2s.
+    pub cwbvh_stack: u32,
 }
 
 /// The scene's sections, each its own read-only storage binding where the
@@ -293,11 +297,13 @@ pub fn generate(spec: &KernelSpec) -> Result<Generated> {
     let mut out = String::from(PRELUDE);
     out.push_str(&scene_access(spec.scene_bindings));
     out.push_str(&format!(
-        "\nconst RT_BVH_STACK: u32 = {}u;\nconst RT_TLAS_STACK: u32 = {}u;\nconst RT_GROUPS: bool = {};\nconst RT_TRIANGLES_ONLY: bool = {};\n",
+        "\nconst RT_BVH_STACK: u32 = {}u;\nconst RT_TLAS_STACK: u32 = {}u;\nconst RT_GROUPS: bool = {};\nconst RT_TRIANGLES_ONLY: bool = {};\nconst RT_CWBVH: bool = {};\nconst RT_CW_STACK: u32 = {}u;\n",
         spec.bvh_stack,
         spec.tlas_stack.max(1),
         spec.tlas_stack > 0,
-        spec.triangles_only
+        spec.triangles_only,
+        spec.cwbvh_stack > 0,
+        spec.cwbvh_stack.max(1),
     ));
     out.push_str(TRAVERSE);
     if spec.graph_levels > 0 {

@@ -432,6 +432,9 @@ impl Encoded {
     }
 }
 
+/// No index (the kernel's `RT_NONE`).
+const RT_NONE: u32 = u32::MAX;
+
 /// Words of the tables' header.
 const SCENE_HEADER: usize = SCENE_HEADER_BASES + SCENE_SECTIONS.len();
 
@@ -457,16 +460,30 @@ impl Tail {
 #[derive(Clone)]
 struct GeometryLayout {
     key: GeometryKey,
-    /// Per geometry group (node index): where its BVH nodes, primitive
-    /// table and triangle slots start.
-    gg_bvh: HashMap<u32, (u32, u32, u32)>,
+    /// Per geometry group (node index): where its words start.
+    gg_bvh: HashMap<u32, GroupWords>,
     /// Per geometry: its kind and the offsets of its positions, indices,
     /// normals, texture coordinates and material indices in the tables.
     geometry_words: Vec<[u32; 6]>,
     /// The deepest BVH of a geometry group.
     deepest_bvh: u32,
+    /// Whether geometry groups are encoded as CWBVHs (for a kernel that
+    /// searches triangles only, where every geometry group with primitives
+    /// has one), and the deepest.
+    cwbvh: bool,
+    deepest_cwbvh: u32,
     /// Where the part ends in each section (the tables' header included).
     ends: [usize; SCENE_SECTIONS.len()],
+}
+
+/// Where a geometry group's words start: its BVH's nodes (BVH2 or CWBVH,
+/// see [`GeometryLayout::cwbvh`]; `RT_NONE` for an empty CWBVH), its
+/// primitive table and its triangle slots (both in the BVH's order).
+#[derive(Clone, Copy, PartialEq, Debug)]
+struct GroupWords {
+    bvh: u32,
+    table: u32,
+    tri_slots: u32,
 }
 
 /// What the geometry part of the scene depends on: geometries, geometry
@@ -477,11 +494,26 @@ struct GeometryKey {
     geometry: u64,
     accels: u64,
     scene_bindings: usize,
+    /// No intersection and no any-hit program in use (the kernel's lean
+    /// search, which may walk CWBVHs instead of BVH2s).
+    triangles_only: bool,
 }
 
 impl GeometryKey {
     fn of(ctx: &Context, scene_bindings: usize) -> GeometryKey {
-        GeometryKey { geometry: ctx.geometry_version, accels: ctx.accels.geometry_group_changes, scene_bindings }
+        // Any-hit programs sit in materials' slots, intersection programs
+        // come with custom geometry: none among the instances', none in the
+        // kernel.
+        let triangles_only = ctx.instances.iter().all(|gi| {
+            matches!(ctx.geometries[gi.geometry.index() as usize].kind, GeometryKind::Triangles(_))
+                && gi.materials.iter().all(|m| ctx.materials[m.index() as usize].any_hit.iter().all(Option::is_none))
+        });
+        GeometryKey {
+            geometry: ctx.geometry_version,
+            accels: ctx.accels.geometry_group_changes,
+            scene_bindings,
+            triangles_only,
+        }
     }
 }
 
@@ -723,8 +755,8 @@ fn encode(ctx: &Context, entry: u32, scene_bindings: usize, held_geometry: Optio
     for (gg, o2w, mask) in &instances {
         push_mat(&mut scene.words, *o2w);
         push_mat(&mut scene.words, o2w.inverse());
-        let (bvh, table, tri_slots) = geometry.gg_bvh.get(&gg.index()).copied().unwrap_or((0, 0, 0));
-        scene.words.extend([bvh, table, *mask, gg.index(), tri_slots, 0, 0, 0]);
+        let w = geometry.gg_bvh.get(&gg.index()).copied().unwrap_or(GroupWords { bvh: 0, table: 0, tri_slots: 0 });
+        scene.words.extend([w.bvh, w.table, *mask, gg.index(), w.tri_slots, 0, 0, 0]);
     }
     // The node table (after the side data of transforms and selectors), and
     // how deep transforms above groups and selectors nest (in post order:
@@ -859,6 +891,12 @@ fn encode(ctx: &Context, entry: u32, scene_bindings: usize, held_geometry: Optio
     let graph_stack = ((deepest_bvh + 2) * (graph_levels + 1)).max(96).next_power_of_two();
     let triangles_only =
         !programs.iter().any(|p| matches!(p.desc.kind, ProgramKind::AnyHit | ProgramKind::Intersection));
+    if triangles_only != geometry.key.triangles_only {
+        return Err(RtError::Gpu(format!(
+            "internal: the kernel's programs say triangles only: {triangles_only}, the scene's: {}",
+            geometry.key.triangles_only
+        )));
+    }
     let spec = KernelSpec {
         triangles_only,
         bvh_stack,
@@ -871,6 +909,7 @@ fn encode(ctx: &Context, entry: u32, scene_bindings: usize, held_geometry: Optio
         graph_levels,
         default_exception,
         scene_bindings,
+        cwbvh_stack: if geometry.cwbvh { (geometry.deepest_cwbvh + 2).max(32).next_power_of_two() } else { 0 },
     };
     Ok(Encoded {
         header,
@@ -893,21 +932,44 @@ fn encode_geometry(ctx: &Context, key: GeometryKey) -> (GeometryLayout, [Vec<u32
     let table_at = |tables: &Vec<u32>| (SCENE_HEADER + tables.len()) as u32;
     let mut gg_bvh = HashMap::new();
     let mut deepest_bvh = 1;
-    for (n, rec) in ctx.nodes.iter().enumerate() {
-        if let (NodeKind::GeometryGroup { .. }, Some(NodeAccel::Prims { bvh, prims, .. })) =
-            (&rec.kind, ctx.accels.nodes.get(n).and_then(|a| a.as_ref()))
-        {
-            let (at, depth) = push_bvh(&mut nodes, 0, bvh);
-            deepest_bvh = deepest_bvh.max(depth);
-            let table = table_at(&tables);
-            let tri_slots = tris.len() as u32;
-            for slot in &bvh.bvh.primitive_indices {
-                let (gi, p) = prims[*slot as usize];
-                tables.extend([gi, p]);
-                push_triangle_slot(ctx, &mut tris, gi, p);
+    let mut deepest_cwbvh = 1;
+    let groups = || {
+        ctx.nodes.iter().enumerate().filter_map(|(n, rec)| match (&rec.kind, ctx.accels.nodes.get(n)?.as_ref()?) {
+            (NodeKind::GeometryGroup { .. }, NodeAccel::Prims { bvh, wide, prims, .. }) => Some((n, bvh, wide, prims)),
+            _ => None,
+        })
+    };
+    // A kernel searching triangles only walks CWBVHs where every geometry
+    // group with primitives has one (none is `NoAccel`): their nodes, their
+    // primitive tables and triangle slots in CWBVH order. Otherwise BVH2s:
+    // their nodes, primitive tables in leaf order, and (for the lean
+    // search) triangle slots in leaf order.
+    let cwbvh = key.triangles_only && groups().all(|(_, _, wide, prims)| prims.is_empty() || wide.is_some());
+    for (n, bvh, wide, prims) in groups() {
+        let tri_slots = tris.len() as u32;
+        let (at, table, order) = match wide {
+            Some(cw) if cwbvh => {
+                let at = nodes.len() as u32;
+                for node in &cw.nodes {
+                    nodes.extend(cwbvh_node_words(node));
+                }
+                deepest_cwbvh = deepest_cwbvh.max(cwbvh_depth(cw));
+                (at, table_at(&tables), &cw.primitive_indices)
             }
-            gg_bvh.insert(n as u32, (at, table, tri_slots));
+            // A geometry group without primitives.
+            None if cwbvh => (RT_NONE, table_at(&tables), &bvh.bvh.primitive_indices),
+            _ => {
+                let (at, depth) = push_bvh(&mut nodes, 0, bvh);
+                deepest_bvh = deepest_bvh.max(depth);
+                (at, table_at(&tables), &bvh.bvh.primitive_indices)
+            }
+        };
+        for slot in order {
+            let (gi, p) = prims[*slot as usize];
+            tables.extend([gi, p]);
+            push_triangle_slot(ctx, &mut tris, gi, p);
         }
+        gg_bvh.insert(n as u32, GroupWords { bvh: at, table, tri_slots });
     }
     let mut geometry_words = Vec::with_capacity(ctx.geometries.len());
     for g in &ctx.geometries {
@@ -953,7 +1015,47 @@ fn encode_geometry(ctx: &Context, key: GeometryKey) -> (GeometryLayout, [Vec<u32
         }
     }
     let ends = [SCENE_HEADER + tables.len(), nodes.len(), tris.len()];
-    (GeometryLayout { key, gg_bvh, geometry_words, deepest_bvh, ends }, [tables, nodes, tris])
+    let layout = GeometryLayout { key, gg_bvh, geometry_words, deepest_bvh, cwbvh, deepest_cwbvh, ends };
+    (layout, [tables, nodes, tris])
+}
+
+/// A CWBVH node's 20 words as it lies in memory (obvhs's `CwBvhNode`,
+/// little-endian): p, then e0 e1 e2 imask, child base, primitive base, then
+/// two words each of child meta, min x, max x, min y, max y, min z, max z.
+fn cwbvh_node_words(n: &obvhs::cwbvh::node::CwBvhNode) -> [u32; 20] {
+    let mut w = [0u32; 20];
+    w[..3].copy_from_slice(&[f(n.p.x), f(n.p.y), f(n.p.z)]);
+    w[3] = u32::from_le_bytes([n.e[0], n.e[1], n.e[2], n.imask]);
+    w[4] = n.child_base_idx;
+    w[5] = n.primitive_base_idx;
+    let arrays =
+        [n.child_meta, n.child_min_x, n.child_max_x, n.child_min_y, n.child_max_y, n.child_min_z, n.child_max_z];
+    for (k, b) in arrays.into_iter().enumerate() {
+        w[6 + 2 * k] = u32::from_le_bytes([b[0], b[1], b[2], b[3]]);
+        w[7 + 2 * k] = u32::from_le_bytes([b[4], b[5], b[6], b[7]]);
+    }
+    w
+}
+
+/// Levels of a CWBVH's internal nodes: a traversal keeps at most one
+/// pending group of children per level, so this sizes its stack.
+fn cwbvh_depth(cw: &obvhs::cwbvh::CwBvh) -> u32 {
+    if cw.nodes.is_empty() {
+        return 1;
+    }
+    let mut deepest = 0;
+    let mut stack = vec![(0usize, 1u32)];
+    while let Some((i, d)) = stack.pop() {
+        deepest = deepest.max(d);
+        let n = &cw.nodes[i];
+        for k in 0..n.imask.count_ones() {
+            let child = (n.child_base_idx + k) as usize;
+            if child < cw.nodes.len() {
+                stack.push((child, d + 1));
+            }
+        }
+    }
+    deepest
 }
 
 /// The sections of `scene` as bound on a device with `scene_bindings`
