@@ -1,6 +1,8 @@
 //! The hand-written baseline for `megakernel_vs_handwritten`: a minimal WGSL
 //! kernel (traversal + triangle test + one AO ray, no programs, no
-//! dispatch) over the same BVH2 and the same rays, on the same adapter.
+//! dispatch) over the same tree and the same rays, on the same adapter: the
+//! CWBVH the megakernel walks for this workload (handwritten_cwbvh.wgsl),
+//! and, for comparison, the BVH2 it is converted from (handwritten.wgsl).
 
 use glam::Vec3;
 use rt_runtime::TriangleMesh;
@@ -59,10 +61,11 @@ pub struct Measured {
 /// The tree a hand-written kernel walks.
 #[derive(Clone, Copy, PartialEq)]
 pub enum Tree {
-    /// The BVH2 the megakernel walks (handwritten.wgsl).
+    /// The BVH2 (handwritten.wgsl), what the megakernel walks with any-hit
+    /// or intersection programs.
     Bvh2,
-    /// obvhs's CWBVH converted from that BVH2 as the CPU backend converts
-    /// it (handwritten_cwbvh.wgsl): what walking 8-wide nodes would give.
+    /// obvhs's CWBVH converted from that BVH2 as the runtime converts it
+    /// (handwritten_cwbvh.wgsl), what the megakernel walks otherwise.
     Cwbvh,
 }
 

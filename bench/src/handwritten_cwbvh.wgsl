@@ -1,7 +1,7 @@
 // The hand-written kernel over obvhs's compressed wide BVH (CWBVH, Ylitie et
-// al. 2017) instead of a BVH2: the same rays and the same triangle test as
-// handwritten.wgsl, for the question whether the megakernel should walk
-// 8-wide nodes. Only the traversal differs.
+// al. 2017), as the megakernel walks it for this workload: the same rays
+// and the same triangle test as handwritten.wgsl (the BVH2 variant); only
+// the traversal differs.
 struct Camera {
     eye: vec4<f32>,
     u: vec4<f32>,
