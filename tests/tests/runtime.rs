@@ -705,6 +705,47 @@ fn ray_flags_and_masks(backend: Backend) {
     assert_eq!(center(&mut ctx, RAY_FLAG_NONE, 0b10, 10.0), Vec3::X);
 }
 
+/// Culling without any-hit programs: the wgpu kernel's lean triangle search
+/// (which asks a triangle's side only when a cull flag is set) culls as the
+/// general search and the CPU backend do.
+fn culling_in_the_lean_search(backend: Backend) {
+    let (mut ctx, out) = camera(2.0, backend);
+    let rg = ctx.create_program(&flagged_camera::PROGRAM);
+    ctx.set_ray_generation_program(0, rg).unwrap();
+    // A quad at z = 0 winding counter-clockwise seen from +z.
+    let g = ctx.create_triangles(quad(0.0, 3.0)).unwrap();
+    let mat = ctx.create_material();
+    let ch = ctx.create_program(&flat_color::PROGRAM);
+    ctx.set_closest_hit_program(mat, 0, ch).unwrap();
+    ctx.set_var(mat, "color", Vec3::X).unwrap();
+    let gi = ctx.create_geometry_instance(g, &[mat]).unwrap();
+    let gg = ctx.create_geometry_group(&[gi], Acceleration::default()).unwrap();
+    ctx.set_var(Scope::Context, "top", gg).unwrap();
+    ctx.set_var(Scope::Context, "mask", 0xffu32).unwrap();
+    let mut center = |flags: u32, z: f32| {
+        ctx.set_var(Scope::Context, "flags", flags).unwrap();
+        ctx.set_var(Scope::Context, "z", z).unwrap();
+        ctx.launch(0, 8, 8).unwrap();
+        pixel8(&ctx.read_buffer::<Vec4>(out).unwrap(), 4, 4).truncate()
+    };
+    let both = RAY_FLAG_CULL_FRONT_FACING | RAY_FLAG_CULL_BACK_FACING;
+    for (flags, above, below) in [
+        (RAY_FLAG_NONE, Vec3::X, Vec3::X),
+        (RAY_FLAG_CULL_FRONT_FACING, BG, Vec3::X),
+        (RAY_FLAG_CULL_BACK_FACING, Vec3::X, BG),
+        (both, BG, BG),
+    ] {
+        assert_eq!(center(flags, 10.0), above, "flags {flags:#x} from above");
+        assert_eq!(center(flags, -10.0), below, "flags {flags:#x} from below");
+    }
+    if backend == Backend::Wgpu {
+        let wgsl = ctx.linked_wgsl().unwrap();
+        assert!(
+            wgsl.contains("const RT_TRIANGLES_ONLY: bool = true;") && wgsl.contains("const RT_CWBVH: bool = true;")
+        );
+    }
+}
+
 fn pixel8(img: &[Vec4], x: u32, y: u32) -> Vec4 {
     img[(y * 8 + x) as usize]
 }
@@ -1197,6 +1238,7 @@ on_backends!(
     buffer_overrun_raises_the_exception_and_printf_reaches_the_host,
     nan_rays_raise_invalid_ray,
     ray_flags_and_masks,
+    culling_in_the_lean_search,
     textures_sample_with_wrap_and_filter,
     sphere_silhouette_and_normals,
     triangle_attributes_reach_closest_hit_through_a_transform,

@@ -630,21 +630,27 @@ fn push_bvh(out: &mut Vec<u32>, base: usize, bvh: &crate::accel::Bvh) -> (u32, u
 }
 
 /// The triangle slot of primitive `p` of geometry instance `gi` (10 words,
-/// see traverse.wgsl): its vertices, then its material index, or `RT_NONE`
-/// when no hit on it can commit (a custom primitive; a material index
-/// past the instance's materials).
+/// see traverse.wgsl): its vertices, then its material index. When no hit
+/// on it can commit (a custom primitive; a material index past the
+/// instance's materials), NaN vertices, which the triangle test never
+/// hits, and `RT_NONE`: the lean search checks nothing per candidate.
 fn push_triangle_slot(ctx: &Context, out: &mut Vec<u32>, gi: u32, p: u32) {
     let instance = &ctx.instances[gi as usize];
+    let never = [f(f32::NAN); 9].into_iter().chain([RT_NONE]);
     match &ctx.geometries[instance.geometry.index() as usize].kind {
         GeometryKind::Triangles(mesh) => {
+            let m = mesh.material_indices.as_ref().map_or(0, |m| m.get(p as usize).copied().unwrap_or(0));
+            if (m as usize) >= instance.materials.len() {
+                out.extend(never);
+                return;
+            }
             for i in mesh.indices[p as usize] {
                 let v = mesh.positions[i as usize];
                 out.extend([f(v.x), f(v.y), f(v.z)]);
             }
-            let m = mesh.material_indices.as_ref().map_or(0, |m| m.get(p as usize).copied().unwrap_or(0));
-            out.push(if (m as usize) < instance.materials.len() { m } else { u32::MAX });
+            out.push(m);
         }
-        GeometryKind::Custom { .. } => out.extend([0; 9].into_iter().chain([u32::MAX])),
+        GeometryKind::Custom { .. } => out.extend(never),
     }
 }
 

@@ -294,10 +294,10 @@ fn rt_shear(d: vec3<f32>) -> RtShear {
     return RtShear(vec3<u32>(kx, ky, kz), vec3<f32>(d[kx] / d[kz], d[ky] / d[kz], 1.0 / d[kz]), d[kz] != 0.0);
 }
 
-// Triangle (a, b, c) against the ray from o along d with its shear: t (-1.0
-// on a miss); on a hit, the weights of vertices 1 and 2 in *bary and whether
-// the ray hits the counter-clockwise side in *front.
-fn rt_watertight(a: vec3<f32>, b: vec3<f32>, c: vec3<f32>, o: vec3<f32>, d: vec3<f32>, sh: RtShear, tmin: f32, tmax: f32, bary: ptr<function, vec2<f32>>, front: ptr<function, bool>) -> f32 {
+// Triangle (a, b, c) against the ray from o with its direction's shear: t
+// (-1.0 on a miss); on a hit, the weights of vertices 1 and 2 in *bary. A
+// triangle with NaN vertices is never hit (every comparison fails).
+fn rt_watertight(a: vec3<f32>, b: vec3<f32>, c: vec3<f32>, o: vec3<f32>, sh: RtShear, tmin: f32, tmax: f32, bary: ptr<function, vec2<f32>>) -> f32 {
     let pa = a - o;
     let pb = b - o;
     let pc = c - o;
@@ -320,8 +320,13 @@ fn rt_watertight(a: vec3<f32>, b: vec3<f32>, c: vec3<f32>, o: vec3<f32>, d: vec3
     let t = (u * sz * pa[kz] + v * sz * pb[kz] + w * sz * pc[kz]) / det;
     if !(t > tmin && t < tmax) { return -1.0; }
     *bary = vec2<f32>(v / det, w / det);
-    *front = dot(d, cross(b - a, c - a)) < 0.0;
     return t;
+}
+
+// Whether the ray along d meets triangle (a, b, c) on its counter-clockwise
+// side (asked only where culling needs it).
+fn rt_front(a: vec3<f32>, b: vec3<f32>, c: vec3<f32>, d: vec3<f32>) -> bool {
+    return dot(d, cross(b - a, c - a)) < 0.0;
 }
 
 // The watertight test of one triangle: t (or a negative value on a miss);
@@ -332,10 +337,9 @@ fn rt_triangle(a: vec3<f32>, b: vec3<f32>, c: vec3<f32>, r: RtRay, tmax: f32) ->
     let sh = rt_shear(r.direction);
     if !sh.ok { return -1.0; }
     var bary = rt_c_bary;
-    var front = rt_tri_front;
-    let t = rt_watertight(a, b, c, r.origin, r.direction, sh, r.tmin, tmax, &bary, &front);
+    let t = rt_watertight(a, b, c, r.origin, sh, r.tmin, tmax, &bary);
     rt_c_bary = bary;
-    rt_tri_front = front;
+    rt_tri_front = rt_front(a, b, c, r.direction);
     return t;
 }
 

@@ -305,14 +305,25 @@ fn rt_search(object: u32, ray: RtRay, flags: u32, mask: u32) {
 // general loop (same tests, same order); llvmpipe runs both sides of every
 // branch under a lane mask, so the loop body's size is its cost.
 
-// rt_triangle with the shear precomputed, on the triangle at word w of
-// rt_tris: t (negative on a miss), the barycentrics of vertices 1 and 2 in
-// *bary, the side in *front.
-fn rt_triangle_sheared(w: u32, o: vec3<f32>, d: vec3<f32>, sh: RtShear, tmin: f32, tmax: f32, bary: ptr<function, vec2<f32>>, front: ptr<function, bool>) -> f32 {
-    let a = vec3<f32>(bitcast<f32>(rt_tri_word(w)), bitcast<f32>(rt_tri_word(w + 1u)), bitcast<f32>(rt_tri_word(w + 2u)));
-    let b = vec3<f32>(bitcast<f32>(rt_tri_word(w + 3u)), bitcast<f32>(rt_tri_word(w + 4u)), bitcast<f32>(rt_tri_word(w + 5u)));
-    let c = vec3<f32>(bitcast<f32>(rt_tri_word(w + 6u)), bitcast<f32>(rt_tri_word(w + 7u)), bitcast<f32>(rt_tri_word(w + 8u)));
-    return rt_watertight(a, b, c, o, d, sh, tmin, tmax, bary, front);
+// Vertex k (0-2) of the triangle slot at word w of the triangle section.
+fn rt_slot_vertex(w: u32, k: u32) -> vec3<f32> {
+    let v = w + k * 3u;
+    return vec3<f32>(bitcast<f32>(rt_tri_word(v)), bitcast<f32>(rt_tri_word(v + 1u)), bitcast<f32>(rt_tri_word(v + 2u)));
+}
+
+// rt_triangle with the shear precomputed, on the triangle slot at word w:
+// t (negative on a miss), the barycentrics of vertices 1 and 2 in *bary.
+// A slot no hit may commit on (a material index past the instance's
+// materials) holds NaN vertices, so it never hits.
+fn rt_triangle_sheared(w: u32, o: vec3<f32>, sh: RtShear, tmin: f32, tmax: f32, bary: ptr<function, vec2<f32>>) -> f32 {
+    return rt_watertight(rt_slot_vertex(w, 0u), rt_slot_vertex(w, 1u), rt_slot_vertex(w, 2u), o, sh, tmin, tmax, bary);
+}
+
+// Whether the ray's flags cull the hit on the triangle slot at word w
+// (asked only when a cull flag is set).
+fn rt_slot_culled(w: u32, d: vec3<f32>, flags: u32) -> bool {
+    let front = rt_front(rt_slot_vertex(w, 0u), rt_slot_vertex(w, 1u), rt_slot_vertex(w, 2u), d);
+    return (front && (flags & 16u) != 0u) || (!front && (flags & 8u) != 0u);
 }
 
 fn rt_blas_triangles(inst: u32) {
@@ -333,8 +344,8 @@ fn rt_blas_triangles(inst: u32) {
         return;
     }
     let flags = rt_s_flags;
-    let cull_front = (flags & 16u) != 0u;
-    let cull_back = (flags & 8u) != 0u;
+    // Culling either side of the triangles.
+    let cull = (flags & 24u) != 0u;
     let terminate = (flags & 1u) != 0u;
     var hit = RT_NONE;
     var hit_bary = vec2<f32>();
@@ -351,9 +362,8 @@ fn rt_blas_triangles(inst: u32) {
             for (var i = first; i < first + count; i++) {
                 let w = tris + i * 10u;
                 var bary: vec2<f32>;
-                var front: bool;
-                let t = rt_triangle_sheared(w, o, d, sh, tmin, tmax, &bary, &front);
-                if t >= 0.0 && !((front && cull_front) || (!front && cull_back)) && rt_tri_word(w + 9u) != RT_NONE {
+                let t = rt_triangle_sheared(w, o, sh, tmin, tmax, &bary);
+                if t >= 0.0 && !(cull && rt_slot_culled(w, d, flags)) {
                     tmax = t;
                     hit = i;
                     hit_bary = bary;
@@ -476,8 +486,8 @@ fn rt_blas_cwbvh(inst: u32) {
         return;
     }
     let flags = rt_s_flags;
-    let cull_front = (flags & 16u) != 0u;
-    let cull_back = (flags & 8u) != 0u;
+    // Culling either side of the triangles.
+    let cull = (flags & 24u) != 0u;
     let terminate = (flags & 1u) != 0u;
     let oct_inv4 = select(0x04040404u, 0u, d.x < 0.0) | select(0x02020202u, 0u, d.y < 0.0)
         | select(0x01010101u, 0u, d.z < 0.0);
@@ -498,9 +508,8 @@ fn rt_blas_cwbvh(inst: u32) {
             let i = tris_left.x + k;
             let w = tris + i * 10u;
             var bary: vec2<f32>;
-            var front: bool;
-            let t = rt_triangle_sheared(w, o, d, sh, tmin, tmax, &bary, &front);
-            if t >= 0.0 && !((front && cull_front) || (!front && cull_back)) && rt_tri_word(w + 9u) != RT_NONE {
+            let t = rt_triangle_sheared(w, o, sh, tmin, tmax, &bary);
+            if t >= 0.0 && !(cull && rt_slot_culled(w, d, flags)) {
                 tmax = t;
                 hit = i;
                 hit_bary = bary;
