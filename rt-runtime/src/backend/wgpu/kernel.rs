@@ -97,7 +97,7 @@ pub struct KernelSpec {
 pub const SCENE_SECTIONS: [SceneSection; 3] = [
     SceneSection { binding: "rt_scene", accessor: "", what: "the scene's tables (instances, geometry, records)" },
     SceneSection { binding: "rt_bvh", accessor: "rt_node_word", what: "the scene's BVH nodes" },
-    SceneSection { binding: "rt_tris", accessor: "rt_tri_word", what: "the scene's triangles in BVH leaf order" },
+    SceneSection { binding: "rt_tris", accessor: "rt_tri_word", what: "the scene's triangles in BVH order" },
 ];
 
 /// Header word of the tables holding section `s`'s base in the merged

@@ -6,8 +6,13 @@
 //! the same bindings however many buffers it has), the scene's sections
 //! (read-only, [`kernel::SCENE_SECTIONS`]: `rt_scene` with the geometry,
 //! instance and record tables, `rt_bvh` with every BVH's nodes, `rt_tris`
-//! with every triangle's vertices and material in BVH leaf order), `rt_log`
+//! with every triangle's vertices and material in BVH order), `rt_log`
 //! (exceptions and `rt_printf!` output) and the launch uniform.
+//!
+//! Trees: groups' BVHs are BVH2s. Geometry groups are CWBVHs (obvhs's
+//! compressed 8-wide BVH, 20 words a node) where the kernel searches
+//! triangles only (no any-hit or intersection program) and every geometry
+//! group has one (`RT_CWBVH`), else the BVH2s they are converted from.
 //!
 //! Large scenes: each section is its own binding, so a scene renders when
 //! each section fits the adapter's `max_storage_buffer_binding_size` (128
@@ -35,11 +40,13 @@
 //! and both sides of a divergent branch under a mask, so a search costs
 //! about the code it holds, taken or not. Kernels link the lean forms the
 //! scene allows: without intersection and any-hit programs, instances are
-//! searched by a loop over leaf-ordered triangles with its state in locals
-//! (`RT_TRIANGLES_ONLY`); without groups of instances, `rt_search` has no
-//! loop over one (`RT_GROUPS`). Both are fixed by the program set and the
-//! graph's shape, like the rest of the kernel. (BENCHMARKS.md: the AO
-//! workload from 0.46 to 0.8 of the hand-written kernel.)
+//! searched by a loop over their CWBVH (or leaf-ordered BVH2) triangles
+//! with its state in locals (`RT_TRIANGLES_ONLY`); without groups of
+//! instances, `rt_search` has no loop over one (`RT_GROUPS`). Both are
+//! fixed by the program set and the graph's shape, like the rest of the
+//! kernel. (BENCHMARKS.md: the AO workload from 0.46 to 0.8 of the
+//! hand-written kernel over BVH2s; the CWBVH then made both 1.4-2.5x
+//! faster.)
 //!
 //! Caching: the pipeline is keyed by the generated WGSL, which depends on the
 //! program set and the graph's shape but never on variable values or buffer
