@@ -69,6 +69,17 @@ pub enum Tree {
     Cwbvh,
 }
 
+impl Tree {
+    /// The kernel: the common part, then the tree's traversal.
+    pub fn wgsl(self) -> String {
+        let traversal = match self {
+            Tree::Bvh2 => include_str!("handwritten.wgsl"),
+            Tree::Cwbvh => include_str!("handwritten_cwbvh.wgsl"),
+        };
+        format!("{}\n{traversal}", include_str!("handwritten_common.wgsl"))
+    }
+}
+
 /// Runs the AO workload `reps` times over `tree`, or says why it could not
 /// run.
 pub fn run(
@@ -143,13 +154,7 @@ pub fn run(
     camera.extend([width, height, 0, 0]);
     let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some("handwritten"),
-        source: wgpu::ShaderSource::Wgsl(
-            match tree {
-                Tree::Bvh2 => include_str!("handwritten.wgsl"),
-                Tree::Cwbvh => include_str!("handwritten_cwbvh.wgsl"),
-            }
-            .into(),
-        ),
+        source: wgpu::ShaderSource::Wgsl(tree.wgsl().into()),
     });
     let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
         label: Some("handwritten"),
@@ -275,8 +280,8 @@ mod tests {
 
     #[test]
     fn the_kernels_are_valid_wgsl() {
-        for source in [include_str!("handwritten.wgsl"), include_str!("handwritten_cwbvh.wgsl")] {
-            let module = naga::front::wgsl::parse_str(source).expect("parses");
+        for tree in [super::Tree::Bvh2, super::Tree::Cwbvh] {
+            let module = naga::front::wgsl::parse_str(&tree.wgsl()).expect("parses");
             naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::empty())
                 .validate(&module)
                 .expect("validates");

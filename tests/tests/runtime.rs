@@ -648,21 +648,31 @@ fn nan_rays_raise_invalid_ray(backend: Backend) {
     assert!((img[0].truncate() - Vec3::new(0.5, 0.5, 1.0)).abs().max_element() < 1e-3, "{}", img[0]);
 }
 
-fn ray_flags_and_masks(backend: Backend) {
+/// The flagged camera over a quad at z = 0 (counter-clockwise seen from
+/// +z) under a closest hit painting red and, with `any_hit`, an any hit
+/// that counts (blue += 1): the context, its output and the quad's group.
+fn flagged_quad(backend: Backend, any_hit: bool) -> (Context, BufferId, NodeId) {
     let (mut ctx, out) = camera(2.0, backend);
     let rg = ctx.create_program(&flagged_camera::PROGRAM);
     ctx.set_ray_generation_program(0, rg).unwrap();
-    // Two stacked quads at z = 0 and z = 1, both with an any hit that counts
-    // (blue += 1) and a closest hit painting `color`.
     let g = ctx.create_triangles(quad(0.0, 3.0)).unwrap();
     let mat = ctx.create_material();
     let ch = ctx.create_program(&flat_color::PROGRAM);
-    let ah = ctx.create_program(&count_hits::PROGRAM);
     ctx.set_closest_hit_program(mat, 0, ch).unwrap();
-    ctx.set_any_hit_program(mat, 0, ah).unwrap();
-    ctx.set_var(mat, "color", Vec3::new(1.0, 0.0, 0.0)).unwrap();
+    if any_hit {
+        let ah = ctx.create_program(&count_hits::PROGRAM);
+        ctx.set_any_hit_program(mat, 0, ah).unwrap();
+    }
+    ctx.set_var(mat, "color", Vec3::X).unwrap();
     let gi = ctx.create_geometry_instance(g, &[mat]).unwrap();
     let gg = ctx.create_geometry_group(&[gi], Acceleration::default()).unwrap();
+    (ctx, out, gg)
+}
+
+fn ray_flags_and_masks(backend: Backend) {
+    // Two stacked quads at z = 0 and z = 1, both with an any hit that counts
+    // and a closest hit painting red.
+    let (mut ctx, out, gg) = flagged_quad(backend, true);
     let up = ctx.create_transform(glam::Mat4::from_translation(Vec3::Z), gg).unwrap();
     let top = ctx.create_group(&[gg, up], Acceleration::default()).unwrap();
     ctx.set_var(Scope::Context, "top", top).unwrap();
@@ -709,17 +719,7 @@ fn ray_flags_and_masks(backend: Backend) {
 /// (which asks a triangle's side only when a cull flag is set) culls as the
 /// general search and the CPU backend do.
 fn culling_in_the_lean_search(backend: Backend) {
-    let (mut ctx, out) = camera(2.0, backend);
-    let rg = ctx.create_program(&flagged_camera::PROGRAM);
-    ctx.set_ray_generation_program(0, rg).unwrap();
-    // A quad at z = 0 winding counter-clockwise seen from +z.
-    let g = ctx.create_triangles(quad(0.0, 3.0)).unwrap();
-    let mat = ctx.create_material();
-    let ch = ctx.create_program(&flat_color::PROGRAM);
-    ctx.set_closest_hit_program(mat, 0, ch).unwrap();
-    ctx.set_var(mat, "color", Vec3::X).unwrap();
-    let gi = ctx.create_geometry_instance(g, &[mat]).unwrap();
-    let gg = ctx.create_geometry_group(&[gi], Acceleration::default()).unwrap();
+    let (mut ctx, out, gg) = flagged_quad(backend, false);
     ctx.set_var(Scope::Context, "top", gg).unwrap();
     ctx.set_var(Scope::Context, "mask", 0xffu32).unwrap();
     let mut center = |flags: u32, z: f32| {

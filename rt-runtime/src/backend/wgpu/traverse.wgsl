@@ -319,11 +319,37 @@ fn rt_triangle_sheared(w: u32, o: vec3<f32>, sh: RtShear, tmin: f32, tmax: f32, 
     return rt_watertight(rt_slot_vertex(w, 0u), rt_slot_vertex(w, 1u), rt_slot_vertex(w, 2u), o, sh, tmin, tmax, bary);
 }
 
-// Whether the ray's flags cull the hit on the triangle slot at word w
-// (asked only when a cull flag is set).
-fn rt_slot_culled(w: u32, d: vec3<f32>, flags: u32) -> bool {
-    let front = rt_front(rt_slot_vertex(w, 0u), rt_slot_vertex(w, 1u), rt_slot_vertex(w, 2u), d);
-    return (front && (flags & 16u) != 0u) || (!front && (flags & 8u) != 0u);
+// The triangle slot at word w as a candidate of the lean search: its t
+// (negative when the ray misses it, or when the ray's flags cull the side
+// it meets: asked only when a cull flag is set), barycentrics in *bary.
+fn rt_slot_candidate(w: u32, o: vec3<f32>, d: vec3<f32>, sh: RtShear, tmin: f32, tmax: f32, flags: u32, bary: ptr<function, vec2<f32>>) -> f32 {
+    let t = rt_triangle_sheared(w, o, sh, tmin, tmax, bary);
+    if t >= 0.0 && (flags & 24u) != 0u {
+        let front = rt_front(rt_slot_vertex(w, 0u), rt_slot_vertex(w, 1u), rt_slot_vertex(w, 2u), d);
+        if (front && (flags & 16u) != 0u) || (!front && (flags & 8u) != 0u) {
+            return -1.0;
+        }
+    }
+    return t;
+}
+
+// Commits the lean search's hit on triangle slot `slot` of instance `inst`
+// (its primitive table and triangle slots in the same order).
+fn rt_commit_slot(inst: u32, slot: u32, t: f32, bary: vec2<f32>, done: bool) {
+    let ib = rt_scene[1] + inst * 40u;
+    let p = rt_scene[ib + 33u] + slot * 2u;
+    rt_s_inst = inst;
+    rt_s_tmax = t;
+    rt_h_found = true;
+    rt_h_t = t;
+    rt_h_gi = rt_scene[p];
+    rt_h_prim = rt_scene[p + 1u];
+    rt_h_mat = rt_tri_word(rt_scene[ib + 36u] + slot * 10u + 9u);
+    rt_h_inst = inst;
+    rt_h_custom = false;
+    rt_h_bary = bary;
+    rt_commit_xform();
+    rt_s_done = done;
 }
 
 fn rt_blas_triangles(inst: u32) {
@@ -344,8 +370,6 @@ fn rt_blas_triangles(inst: u32) {
         return;
     }
     let flags = rt_s_flags;
-    // Culling either side of the triangles.
-    let cull = (flags & 24u) != 0u;
     let terminate = (flags & 1u) != 0u;
     var hit = RT_NONE;
     var hit_bary = vec2<f32>();
@@ -360,10 +384,9 @@ fn rt_blas_triangles(inst: u32) {
         let first = rt_node_word(n + 7u);
         if count > 0u {
             for (var i = first; i < first + count; i++) {
-                let w = tris + i * 10u;
                 var bary: vec2<f32>;
-                let t = rt_triangle_sheared(w, o, sh, tmin, tmax, &bary);
-                if t >= 0.0 && !(cull && rt_slot_culled(w, d, flags)) {
+                let t = rt_slot_candidate(tris + i * 10u, o, d, sh, tmin, tmax, flags, &bary);
+                if t >= 0.0 {
                     tmax = t;
                     hit = i;
                     hit_bary = bary;
@@ -393,19 +416,7 @@ fn rt_blas_triangles(inst: u32) {
         }
     }
     if hit != RT_NONE {
-        let p = rt_scene[ib + 33u] + hit * 2u;
-        rt_s_inst = inst;
-        rt_s_tmax = tmax;
-        rt_h_found = true;
-        rt_h_t = tmax;
-        rt_h_gi = rt_scene[p];
-        rt_h_prim = rt_scene[p + 1u];
-        rt_h_mat = rt_tri_word(tris + hit * 10u + 9u);
-        rt_h_inst = inst;
-        rt_h_custom = false;
-        rt_h_bary = hit_bary;
-        rt_commit_xform();
-        rt_s_done = done;
+        rt_commit_slot(inst, hit, tmax, hit_bary, done);
     }
 }
 
@@ -486,8 +497,6 @@ fn rt_blas_cwbvh(inst: u32) {
         return;
     }
     let flags = rt_s_flags;
-    // Culling either side of the triangles.
-    let cull = (flags & 24u) != 0u;
     let terminate = (flags & 1u) != 0u;
     let oct_inv4 = select(0x04040404u, 0u, d.x < 0.0) | select(0x02020202u, 0u, d.y < 0.0)
         | select(0x01010101u, 0u, d.z < 0.0);
@@ -506,10 +515,9 @@ fn rt_blas_cwbvh(inst: u32) {
             let k = firstLeadingBit(tris_left.y);
             tris_left.y &= ~(1u << k);
             let i = tris_left.x + k;
-            let w = tris + i * 10u;
             var bary: vec2<f32>;
-            let t = rt_triangle_sheared(w, o, sh, tmin, tmax, &bary);
-            if t >= 0.0 && !(cull && rt_slot_culled(w, d, flags)) {
+            let t = rt_slot_candidate(tris + i * 10u, o, d, sh, tmin, tmax, flags, &bary);
+            if t >= 0.0 {
                 tmax = t;
                 hit = i;
                 hit_bary = bary;
@@ -549,18 +557,6 @@ fn rt_blas_cwbvh(inst: u32) {
         }
     }
     if hit != RT_NONE {
-        let p = rt_scene[ib + 33u] + hit * 2u;
-        rt_s_inst = inst;
-        rt_s_tmax = tmax;
-        rt_h_found = true;
-        rt_h_t = tmax;
-        rt_h_gi = rt_scene[p];
-        rt_h_prim = rt_scene[p + 1u];
-        rt_h_mat = rt_tri_word(tris + hit * 10u + 9u);
-        rt_h_inst = inst;
-        rt_h_custom = false;
-        rt_h_bary = hit_bary;
-        rt_commit_xform();
-        rt_s_done = done;
+        rt_commit_slot(inst, hit, tmax, hit_bary, done);
     }
 }
