@@ -648,6 +648,44 @@ fn nan_rays_raise_invalid_ray(backend: Backend) {
     assert!((img[0].truncate() - Vec3::new(0.5, 0.5, 1.0)).abs().max_element() < 1e-3, "{}", img[0]);
 }
 
+/// The smallest trees: a geometry group of one triangle (its CWBVH a root
+/// with one leaf child) and one of none, beside each other in a group.
+fn one_triangle_and_an_empty_group(backend: Backend) {
+    let (mut ctx, out) = camera(2.0, backend);
+    let tri = TriangleMesh {
+        positions: vec![Vec3::new(-1.0, -1.0, 0.0), Vec3::new(1.0, -1.0, 0.0), Vec3::new(-1.0, 1.0, 0.0)],
+        indices: vec![[0, 1, 2]],
+        ..TriangleMesh::default()
+    };
+    let g = ctx.create_triangles(tri).unwrap();
+    let mat = ctx.create_material();
+    let ch = ctx.create_program(&flat_color::PROGRAM);
+    ctx.set_closest_hit_program(mat, 0, ch).unwrap();
+    ctx.set_var(mat, "color", Vec3::X).unwrap();
+    let gi = ctx.create_geometry_instance(g, &[mat]).unwrap();
+    let one = ctx.create_geometry_group(&[gi], Acceleration::default()).unwrap();
+    let none = ctx.create_geometry_group(&[], Acceleration::default()).unwrap();
+    let top = ctx.create_group(&[one, none], Acceleration::default()).unwrap();
+    ctx.set_var(Scope::Context, "top", top).unwrap();
+    let report = ctx.launch(0, W, W).unwrap();
+    assert!(report.exceptions.is_empty(), "{:?}", report.exceptions);
+    let img = ctx.read_buffer::<Vec4>(out).unwrap();
+    for y in 0..W {
+        for x in 0..W {
+            let (wx, wy) = world(x, y, 2.0);
+            let c = pixel(&img, x, y).truncate();
+            if wx > -0.95 && wy > -0.95 && wx + wy < -0.05 {
+                assert_eq!(c, Vec3::X, "pixel {x},{y} inside the triangle");
+            } else if wx < -1.05 || wy < -1.05 || wx + wy > 0.05 {
+                assert_eq!(c, BG, "pixel {x},{y} outside the triangle");
+            }
+        }
+    }
+    if backend == Backend::Wgpu {
+        assert!(ctx.linked_wgsl().unwrap().contains("const RT_CWBVH: bool = true;"));
+    }
+}
+
 /// The flagged camera over a quad at z = 0 (counter-clockwise seen from
 /// +z) under a closest hit painting red and, with `any_hit`, an any hit
 /// that counts (blue += 1): the context, its output and the quad's group.
@@ -1239,6 +1277,7 @@ on_backends!(
     nan_rays_raise_invalid_ray,
     ray_flags_and_masks,
     culling_in_the_lean_search,
+    one_triangle_and_an_empty_group,
     textures_sample_with_wrap_and_filter,
     sphere_silhouette_and_normals,
     triangle_attributes_reach_closest_hit_through_a_transform,
