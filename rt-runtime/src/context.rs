@@ -353,10 +353,10 @@ impl Context {
                 ),
             });
         }
-        let mut moved = mesh.clone();
-        moved.positions = positions;
-        moved.validate().map_err(|problem| RtError::BadGeometry { geometry: g.0, problem })?;
-        *mesh = moved;
+        // The rest of the mesh was checked when it was created; with the
+        // same vertex count, only the positions themselves can be wrong.
+        crate::scene::check_positions(&positions).map_err(|problem| RtError::BadGeometry { geometry: g.0, problem })?;
+        mesh.positions = positions;
         self.accels.geometry_moved(g.0);
         Ok(())
     }

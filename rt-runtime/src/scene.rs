@@ -84,9 +84,7 @@ impl TriangleMesh {
         if self.indices.is_empty() {
             return Err("the mesh has no triangles".into());
         }
-        if let Some(i) = self.positions.iter().position(|p| !p.is_finite()) {
-            return Err(format!("vertex {i} has a non-finite position {:?}", self.positions[i]));
-        }
+        check_positions(&self.positions)?;
         let n = self.positions.len() as u32;
         for (t, tri) in self.indices.iter().enumerate() {
             if let Some(bad) = tri.iter().find(|&&i| i >= n) {
@@ -108,6 +106,14 @@ impl TriangleMesh {
             return Err(format!("{} material indices for {} triangles", m.len(), self.indices.len()));
         }
         Ok(())
+    }
+}
+
+/// Vertex positions must be finite.
+pub(crate) fn check_positions(positions: &[Vec3]) -> Result<(), String> {
+    match positions.iter().position(|p| !p.is_finite()) {
+        Some(i) => Err(format!("vertex {i} has a non-finite position {:?}", positions[i])),
+        None => Ok(()),
     }
 }
 

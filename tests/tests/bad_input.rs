@@ -50,6 +50,12 @@ fn quad() -> TriangleMesh {
 }
 
 fn scene(backend: Backend, mesh: TriangleMesh) -> (Context, BufferId) {
+    let (ctx, out, _) = scene_of(backend, mesh);
+    (ctx, out)
+}
+
+/// `scene`, with the mesh's geometry.
+fn scene_of(backend: Backend, mesh: TriangleMesh) -> (Context, BufferId, GeometryId) {
     let mut ctx = Context::new();
     ctx.set_backend(backend);
     let rg = ctx.create_program(&camera::PROGRAM);
@@ -66,7 +72,7 @@ fn scene(backend: Backend, mesh: TriangleMesh) -> (Context, BufferId) {
     ctx.set_var(Scope::Context, "top", gg).unwrap();
     ctx.set_var(Scope::Context, "out", out).unwrap();
     ctx.set_var(Scope::Context, "gain", 1.0f32).unwrap();
-    (ctx, out)
+    (ctx, out, g)
 }
 
 // ---- OBJ and MTL ----
@@ -175,6 +181,25 @@ fn triangles_nan_position() {
     let mut m = quad();
     m.positions[2].y = f32::NAN;
     assert!(geometry_error(m).starts_with("geometry 0: vertex 2 has a non-finite position"));
+}
+
+#[test]
+fn moving_vertices_to_bad_positions_is_refused_and_loses_nothing() {
+    for backend in [Backend::Cpu, Backend::Wgpu] {
+        let (mut ctx, out, g) = scene_of(backend, quad());
+        ctx.launch(0, 8, 8).unwrap();
+        let before = ctx.read_buffer::<Vec4>(out).unwrap();
+        let mut moved = quad().positions;
+        moved[3].x = f32::INFINITY;
+        let err = ctx.set_triangle_positions(g, moved).unwrap_err().to_string();
+        assert!(err.starts_with("geometry 0: vertex 3 has a non-finite position"), "{err}");
+        let err = ctx.set_triangle_positions(g, vec![Vec3::ZERO; 3]).unwrap_err().to_string();
+        assert_eq!(err, "geometry 0: 3 positions given for 4 vertices; create a new geometry to change topology");
+        // The mesh is as it was: the same image, and no refit.
+        ctx.launch(0, 8, 8).unwrap();
+        assert_eq!(ctx.read_buffer::<Vec4>(out).unwrap(), before);
+        assert_eq!(ctx.acceleration_builds().1, 0, "refits on {backend:?}");
+    }
 }
 
 #[test]
