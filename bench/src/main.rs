@@ -192,7 +192,7 @@ fn scene_with(
     width: u32,
     height: u32,
     workload: Workload,
-) -> Result<(Context, BufferId, NodeId)> {
+) -> Result<(Context, BufferId, NodeId, GeometryId)> {
     let mut ctx = Context::new();
     ctx.set_backend(backend);
     ctx.set_ray_type_count(2);
@@ -220,7 +220,33 @@ fn scene_with(
     }
     ctx.set_var(Scope::Context, "top_object", gg)?;
     ctx.set_var(Scope::Context, "output_buffer", out)?;
-    Ok((ctx, out, gg))
+    Ok((ctx, out, gg, g))
+}
+
+/// Geometry `g` (holding `mesh`) launched `reps` times, every vertex moved
+/// before each (an animated mesh): medians of (setting the positions, host
+/// work before the run, run, kernel).
+fn moving_vertex_launches(
+    ctx: &mut Context,
+    g: GeometryId,
+    mesh: &TriangleMesh,
+    width: u32,
+    height: u32,
+    reps: usize,
+) -> Result<(Duration, Duration, Duration, Option<Duration>)> {
+    let (mut set, mut prepare, mut run, mut kernel) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    for i in 0..reps {
+        let offset = Vec3::new(0.0, 0.0, 1e-4 * (i + 1) as f32);
+        let positions: Vec<Vec3> = mesh.positions.iter().map(|p| *p + offset).collect();
+        let t = Instant::now();
+        ctx.set_triangle_positions(g, positions)?;
+        set.push(t.elapsed());
+        let r = ctx.launch(0, width, height)?;
+        prepare.push(r.timings.build + r.timings.encode + r.timings.link);
+        run.push(r.timings.run);
+        kernel.extend(r.timings.kernel);
+    }
+    Ok((median(set), median(prepare), median(run), (!kernel.is_empty()).then(|| median(kernel))))
 }
 
 /// The scene of `ctx` moved under a transform in a group, then launched
@@ -365,7 +391,7 @@ fn bunny_primary(args: &Args, bunny: &scenes::BenchScene, width: u32, height: u3
     for b in &args.backends {
         let backend = if b == "cpu" { Backend::Cpu } else { Backend::Wgpu };
         let run = || -> Result<json::Json> {
-            let (mut ctx, out, _) = scene_with(mesh, cam, backend, width, height, Workload::Primary)?;
+            let (mut ctx, out, ..) = scene_with(mesh, cam, backend, width, height, Workload::Primary)?;
             let device = if backend == Backend::Wgpu {
                 ctx.open_wgpu()?
             } else {
@@ -460,7 +486,7 @@ fn measure_scene(
     let mut cpu_gg = None;
     let mut cpu_ctx = if args.backends.iter().any(|b| b == "cpu") {
         match scene_with(&scene.mesh, cam, Backend::Cpu, width, height, Workload::Ao)
-            .and_then(|(mut c, _, gg)| c.launch(0, width, height).map(|r| (c, r, gg)))
+            .and_then(|(mut c, _, gg, _)| c.launch(0, width, height).map(|r| (c, r, gg)))
         {
             Ok((c, first, gg)) => {
                 j.child("build_ms").set("ours", ms(first.timings.build));
@@ -552,11 +578,12 @@ fn measure_scene(
             j.child("skipped").set("handwritten_wgsl", why.as_str());
         } else {
             let run = || -> Result<(Json, Launches, String)> {
-                let (mut ctx, _, gg) = scene_with(&scene.mesh, cam, Backend::Wgpu, width, height, Workload::Ao)?;
+                let (mut ctx, _, gg, g) = scene_with(&scene.mesh, cam, Backend::Wgpu, width, height, Workload::Ao)?;
                 let device = ctx.open_wgpu()?;
                 let l = measure_launches(&mut ctx, width, height, reps)?;
                 let cwbvh = ctx.linked_wgsl().is_some_and(|w| w.contains("const RT_CWBVH: bool = true;"));
                 let (prepare, run, kernel, _) = moving_transform_launches(&mut ctx, gg, width, height, reps)?;
+                let vertices = moving_vertex_launches(&mut ctx, g, &scene.mesh, width, height, reps)?;
                 let mut w = Json::obj();
                 w.set("tree", if cwbvh { "cwbvh" } else { "bvh2" });
                 w.set("rays", l.rays);
@@ -571,6 +598,14 @@ fn measure_scene(
                 again.set("kernel", l.kernel.map(ms));
                 // The same under a transform that moves before each launch.
                 let moved = w.child("moving_transform_launch_ms");
+                moved.set("prepare", ms(prepare));
+                moved.set("run", ms(run));
+                moved.set("kernel", kernel.map(ms));
+                // Every vertex moved before each launch (refit, geometry
+                // encoded and uploaded again).
+                let (set, prepare, run, kernel) = vertices;
+                let moved = w.child("moving_vertices_launch_ms");
+                moved.set("set_positions", ms(set));
                 moved.set("prepare", ms(prepare));
                 moved.set("run", ms(run));
                 moved.set("kernel", kernel.map(ms));

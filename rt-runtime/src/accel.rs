@@ -431,8 +431,10 @@ pub(crate) fn build_accels(ctx: &Context, cache: &mut AccelCache) -> Result<()> 
                             let (_, prim_bounds, _) = prim_bounds(ctx, children)?;
                             cache.geometry_group_changes += 1;
                             bvh.refit(&prim_bounds);
+                            if let Some(cw) = wide.as_mut() {
+                                refit_wide(cw, &prim_bounds);
+                            }
                             bounds = union(&prim_bounds);
-                            wide = None;
                             any_refit = true;
                         }
                         if wide.is_none() && wants_wide(&prims) {
@@ -525,4 +527,123 @@ fn slot_triangles(
 /// ordered for traversal).
 fn widen(bvh: &Bvh) -> obvhs::cwbvh::CwBvh {
     obvhs::cwbvh::bvh2_to_cwbvh::bvh2_to_cwbvh(&bvh.bvh, 3, true, false)
+}
+
+/// Refits a CWBVH to new primitive bounds (same primitives, moved): the
+/// tree keeps its shape; every node's origin, scale and quantized child
+/// boxes are computed again bottom-up from its children's exact bounds, as
+/// the conversion computes them (origin at the node's minimum, a power-of-2
+/// scale per axis spanning 255 steps, child boxes rounded outwards). A
+/// fraction of converting the refit BVH2 again.
+pub(crate) fn refit_wide(cw: &mut obvhs::cwbvh::CwBvh, prim_bounds: &[OAabb]) {
+    use glam::Vec3A;
+    let mut exact = vec![OAabb::empty(); cw.nodes.len()];
+    // Children come after their parent: bottom-up is back to front.
+    for n in (0..cw.nodes.len()).rev() {
+        let node = cw.nodes[n];
+        let mut children = [OAabb::empty(); 8];
+        let mut rank = 0;
+        for (i, child) in children.iter_mut().enumerate() {
+            let meta = node.child_meta[i];
+            if meta == 0 {
+                continue;
+            }
+            if node.imask & (1 << i) != 0 {
+                *child = exact[(node.child_base_idx + rank) as usize];
+                rank += 1;
+            } else {
+                let first = node.primitive_base_idx + (meta & 0b1_1111) as u32;
+                for slot in first..first + (meta & 0b1110_0000).count_ones() {
+                    *child = child.union(&prim_bounds[cw.primitive_indices[slot as usize] as usize]);
+                }
+            }
+        }
+        let aabb = children.iter().fold(OAabb::empty(), |a, c| a.union(c));
+        exact[n] = aabb;
+        let p: Vec3A = aabb.min;
+        let e = ((aabb.max - aabb.min).max(Vec3A::splat(1e-20)) * (1.0 / 255.0)).log2().ceil().exp2();
+        let rcp = 1.0 / e;
+        let node = &mut cw.nodes[n];
+        node.p = p.into();
+        node.e = [e.x, e.y, e.z].map(|c| (c.to_bits() >> 23) as u8);
+        for (i, child) in children.iter().enumerate() {
+            if node.child_meta[i] == 0 {
+                continue;
+            }
+            let lo = ((child.min - p) * rcp).floor().clamp(Vec3A::ZERO, Vec3A::splat(255.0));
+            let hi = ((child.max - p) * rcp).ceil().clamp(Vec3A::ZERO, Vec3A::splat(255.0));
+            (node.child_min_x[i], node.child_min_y[i], node.child_min_z[i]) = (lo.x as u8, lo.y as u8, lo.z as u8);
+            (node.child_max_x[i], node.child_max_y[i], node.child_max_z[i]) = (hi.x as u8, hi.y as u8, hi.z as u8);
+        }
+    }
+    if let Some(root) = exact.first() {
+        cw.total_aabb = *root;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn grid_bounds(n: u32, lift: f32) -> Vec<OAabb> {
+        (0..n * n)
+            .map(|i| {
+                let (x, y) = ((i % n) as f32, (i / n) as f32);
+                let z = lift * (x * 0.7).sin() * (y * 0.3).cos();
+                to_oaabb(Vec3::new(x, y, z), Vec3::new(x + 1.0, y + 1.0, z + 0.1))
+            })
+            .collect()
+    }
+
+    /// Refitting to the bounds it was built from gives the conversion's own
+    /// nodes, bit for bit.
+    #[test]
+    fn refitting_a_cwbvh_to_its_own_bounds_changes_nothing() {
+        let bounds = grid_bounds(40, 2.0);
+        let bvh = build(Builder::Bvh, &bounds, None, TreeForm::Wide).unwrap();
+        let wide = widen(&bvh);
+        let mut refit = wide.clone();
+        refit_wide(&mut refit, &bounds);
+        assert_eq!(refit.nodes, wide.nodes);
+    }
+
+    /// After a move, every child box still holds what lies under it.
+    #[test]
+    fn a_refit_cwbvh_holds_the_moved_bounds() {
+        let mut bvh = build(Builder::Bvh, &grid_bounds(40, 2.0), None, TreeForm::Wide).unwrap();
+        let mut wide = widen(&bvh);
+        let moved = grid_bounds(40, -5.0);
+        bvh.refit(&moved);
+        refit_wide(&mut wide, &moved);
+        // The exact bounds of what lies under child i of node n.
+        fn under(wide: &obvhs::cwbvh::CwBvh, bounds: &[OAabb], n: usize, i: usize) -> OAabb {
+            let node = &wide.nodes[n];
+            let meta = node.child_meta[i];
+            if node.imask & (1 << i) != 0 {
+                let child = (node.child_base_idx + (node.imask as u32 & ((1 << i) - 1)).count_ones()) as usize;
+                (0..8)
+                    .filter(|&k| wide.nodes[child].child_meta[k] != 0)
+                    .fold(OAabb::empty(), |a, k| a.union(&under(wide, bounds, child, k)))
+            } else {
+                let first = node.primitive_base_idx + (meta & 0b1_1111) as u32;
+                (first..first + (meta & 0b1110_0000).count_ones())
+                    .map(|s| bounds[wide.primitive_indices[s as usize] as usize])
+                    .fold(OAabb::empty(), |a, c| a.union(&c))
+            }
+        }
+        for (n, node) in wide.nodes.iter().enumerate() {
+            for i in 0..8 {
+                if node.child_meta[i] == 0 {
+                    continue;
+                }
+                let b = node.child_aabb(i);
+                let under = under(&wide, &moved, n, i);
+                let slack = 1e-4 * (1.0 + under.max.abs().max_element());
+                assert!(
+                    (b.min - under.min).max_element() <= slack && (under.max - b.max).max_element() <= slack,
+                    "child {i}: {b:?} does not hold {under:?}"
+                );
+            }
+        }
+    }
 }

@@ -612,6 +612,42 @@ fn moving_geometry_refits_instead_of_rebuilding(backend: Backend) {
     assert_eq!(pixel(&ctx.read_buffer::<Vec4>(out).unwrap(), 0, 0).truncate(), Vec3::ONE);
 }
 
+/// A deformed mesh: its refit trees (the BVH2, and the CWBVH both backends
+/// walk, re-quantized in place) find what trees built for the new shape
+/// find.
+fn a_refit_mesh_renders_as_one_built_for_its_new_shape(backend: Backend) {
+    let wave = |mesh: &TriangleMesh| -> Vec<Vec3> {
+        mesh.positions.iter().map(|p| Vec3::new(p.x * 1.3, p.y, p.z + 0.4 * (3.0 * p.x).sin() * p.y)).collect()
+    };
+    let scene = |ctx: &mut Context, mesh: TriangleMesh| {
+        let g = ctx.create_triangles(mesh).unwrap();
+        let mat = ctx.create_material();
+        let ch = ctx.create_program(&normal_shader::PROGRAM);
+        ctx.set_closest_hit_program(mat, 0, ch).unwrap();
+        let gi = ctx.create_geometry_instance(g, &[mat]).unwrap();
+        let gg = ctx.create_geometry_group(&[gi], Acceleration::default()).unwrap();
+        ctx.set_var(Scope::Context, "top", gg).unwrap();
+        g
+    };
+    let grid = bumpy_grid(30);
+    let (mut ctx, out) = camera(1.4, backend);
+    let g = scene(&mut ctx, grid.clone());
+    ctx.launch(0, W, W).unwrap();
+    ctx.set_triangle_positions(g, wave(&grid)).unwrap();
+    ctx.launch(0, W, W).unwrap();
+    assert_eq!(ctx.acceleration_builds(), (1, 1), "moved geometry is refit, not rebuilt");
+    let refit = ctx.read_buffer::<Vec4>(out).unwrap();
+    let (mut fresh, fresh_out) = camera(1.4, backend);
+    scene(&mut fresh, TriangleMesh { positions: wave(&grid), ..grid });
+    fresh.launch(0, W, W).unwrap();
+    let built = fresh.read_buffer::<Vec4>(fresh_out).unwrap();
+    let hits = built.iter().filter(|c| c.truncate() != BG).count();
+    assert!(hits > (W * W / 2) as usize, "{hits} pixels hit");
+    // The same closest triangles (a tie on a shared edge may go either way).
+    let differ = refit.iter().zip(&built).filter(|(a, b)| (**a - **b).abs().max_element() > 1e-4).count();
+    assert!(differ <= 2, "{differ} pixels differ between the refit and the built trees");
+}
+
 fn buffer_overrun_raises_the_exception_and_printf_reaches_the_host(backend: Backend) {
     let (mut ctx, _) = camera(2.0, backend);
     sphere_scene(&mut ctx, &reads_past_the_end::PROGRAM, Vec3::ZERO, 1.0);
@@ -1278,6 +1314,7 @@ on_backends!(
     ray_flags_and_masks,
     culling_in_the_lean_search,
     one_triangle_and_an_empty_group,
+    a_refit_mesh_renders_as_one_built_for_its_new_shape,
     textures_sample_with_wrap_and_filter,
     sphere_silhouette_and_normals,
     triangle_attributes_reach_closest_hit_through_a_transform,
