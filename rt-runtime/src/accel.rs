@@ -75,21 +75,20 @@ pub(crate) fn to_oaabb(min: Vec3, max: Vec3) -> OAabb {
 /// Which tree a backend walks.
 ///
 /// Both backends walk obvhs's CWBVH of every geometry group (the wgpu
-/// backend where its kernel searches triangles only; else the BVH2 it was
-/// converted from), converted from a BVH2 that gets only what obvhs's own
-/// `build_cwbvh` gives it (PLOC and one reinsertion pass): the conversion
-/// regroups the tree into 8-wide nodes, so a second pass would be paid for
-/// and mostly undone. Groups' BVHs are BVH2s with one child per leaf, built
-/// as obvhs's `build_bvh2` builds them for the wgpu backend (PLOC,
-/// reinsertion, leaf collapse — a no-op at one primitive a leaf — and a
-/// second reinsertion pass) and in the wide form's BVH2 for the CPU
-/// backend.
+/// backend where its kernel searches triangles only; else the BVH2),
+/// converted from a BVH2 that gets only what obvhs's own `build_cwbvh`
+/// gives it (PLOC and one reinsertion pass): the conversion regroups the
+/// tree into 8-wide nodes, so a second pass would be paid for and mostly
+/// undone. BVH2s that are walked as they are (groups', and geometry
+/// groups' on wgpu with any-hit or intersection programs) are built as
+/// obvhs's `build_bvh2` builds them (PLOC, reinsertion, leaf collapse — a
+/// no-op at one primitive a leaf — and a second reinsertion pass), except
+/// groups' on the CPU backend, which get the wide form's.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum TreeForm {
-    /// A BVH2 with a second reinsertion pass (groups, on the wgpu backend).
+    /// A BVH2 with a second reinsertion pass (walked as it is on wgpu).
     Binary,
-    /// A BVH2 with one pass (geometry groups, which are widened; groups on
-    /// the CPU backend).
+    /// A BVH2 with one pass (widened; groups on the CPU backend).
     Wide,
 }
 
@@ -400,6 +399,12 @@ pub(crate) fn build_accels(ctx: &Context, cache: &mut AccelCache) -> Result<()> 
         crate::Backend::Cpu => TreeForm::Wide,
         _ => TreeForm::Binary,
     };
+    // Geometry groups get a CWBVH where it is walked: always on the CPU
+    // backend, on wgpu when the kernel searches triangles only (its BVH2 is
+    // then built as the widened form's, with one reinsertion pass).
+    let cpu = ctx.backend == crate::Backend::Cpu;
+    let widened = cpu || ctx.searches_triangles_only();
+    let gg_form = if widened { TreeForm::Wide } else { form };
     let order = link::nodes_post_order(ctx)?;
     let mut built: Vec<Option<NodeAccel>> = std::mem::take(&mut cache.nodes);
     built.resize_with(ctx.nodes.len(), || None);
@@ -413,12 +418,11 @@ pub(crate) fn build_accels(ctx: &Context, cache: &mut AccelCache) -> Result<()> 
             NodeKind::GeometryGroup { children, accel: a } => {
                 // The CWBVH of a single leaf (`NoAccel`) or of nothing is
                 // pointless: both backends walk the BVH2 then.
-                let wants_wide = |prims: &[(u32, u32)]| a.builder != Builder::NoAccel && !prims.is_empty();
+                let wants_wide = |prims: &[(u32, u32)]| widened && a.builder != Builder::NoAccel && !prims.is_empty();
                 // Every primitive a triangle: the CPU backend's triangles in
                 // CWBVH slot order (the wgpu backend encodes its own).
                 let all_triangles =
                     |prims: &[(u32, u32)]| prims.iter().all(|(gi, _)| instance_mesh(ctx, *gi).is_some());
-                let cpu = ctx.backend == crate::Backend::Cpu;
                 match old {
                     Some(NodeAccel::Prims { mut bvh, mut wide, mut triangles, prims, mut bounds }) => {
                         let moved = cache.moved
@@ -451,7 +455,7 @@ pub(crate) fn build_accels(ctx: &Context, cache: &mut AccelCache) -> Result<()> 
                     _ => {
                         let (prims, bounds, all_tris) = prim_bounds(ctx, children)?;
                         let tris = (a.builder == Builder::Sbvh && all_tris).then(|| group_triangles(ctx, &prims));
-                        let bvh = build(a.builder, &bounds, tris.as_deref(), TreeForm::Wide)?;
+                        let bvh = build(a.builder, &bounds, tris.as_deref(), gg_form)?;
                         let wide = wants_wide(&prims).then(|| widen(&bvh));
                         let triangles =
                             if cpu { slot_triangles(ctx, &prims, wide.as_ref(), all_tris) } else { Vec::new() };

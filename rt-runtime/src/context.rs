@@ -177,6 +177,18 @@ impl Context {
         self.gpu.as_ref().map_or(0, |g| g.geometry_encodes)
     }
 
+    /// No any-hit and no intersection program in use: every primitive is a
+    /// triangle and every candidate commits, so the wgpu kernel searches
+    /// instances with its lean loop over CWBVHs. (Any-hit programs sit in
+    /// materials' slots, intersection programs come with custom geometry:
+    /// none among the instances', none in the kernel.)
+    pub(crate) fn searches_triangles_only(&self) -> bool {
+        self.instances.iter().all(|gi| {
+            matches!(self.geometries[gi.geometry.index() as usize].kind, crate::scene::GeometryKind::Triangles(_))
+                && gi.materials.iter().all(|m| self.materials[m.index() as usize].any_hit.iter().all(Option::is_none))
+        })
+    }
+
     /// How many wgpu pipelines (megakernel links) this context created.
     pub fn pipelines_created(&self) -> u64 {
         self.gpu.as_ref().map_or(0, |g| g.pipelines_created)

@@ -1535,6 +1535,49 @@ fn an_unchanged_scene_is_encoded_once_and_every_change_reaches_the_device() {
 }
 
 #[test]
+fn an_any_hit_program_added_later_switches_the_kernel_to_bvh2s_and_the_image_stays() {
+    // The grid shifted off the pixel diagonal: no ray meets a shared edge,
+    // where either triangle may win.
+    let mut grid = bumpy_grid(30);
+    for p in &mut grid.positions {
+        p.x += 0.0137;
+    }
+    let render = |backend, any_hit: bool| {
+        let (mut ctx, out) = camera(1.2, backend);
+        let g = ctx.create_triangles(grid.clone()).unwrap();
+        let mat = ctx.create_material();
+        let ch = ctx.create_program(&normal_shader::PROGRAM);
+        ctx.set_closest_hit_program(mat, 0, ch).unwrap();
+        let gi = ctx.create_geometry_instance(g, &[mat]).unwrap();
+        let gg = ctx.create_geometry_group(&[gi], Acceleration::default()).unwrap();
+        ctx.set_var(Scope::Context, "top", gg).unwrap();
+        ctx.launch(0, W, W).unwrap();
+        if backend == Backend::Wgpu {
+            assert!(ctx.linked_wgsl().unwrap().contains("const RT_CWBVH: bool = true;"));
+        }
+        let first = ctx.read_buffer::<Vec4>(out).unwrap();
+        if !any_hit {
+            return (first, None, ctx);
+        }
+        // The closest hit overwrites what the any hit adds: the same image.
+        let ah = ctx.create_program(&count_hits::PROGRAM);
+        ctx.set_any_hit_program(mat, 0, ah).unwrap();
+        ctx.launch(0, W, W).unwrap();
+        let second = ctx.read_buffer::<Vec4>(out).unwrap();
+        (first, Some(second), ctx)
+    };
+    let (walked_wide, walked_binary, ctx) = render(Backend::Wgpu, true);
+    let wgsl = ctx.linked_wgsl().unwrap();
+    assert!(wgsl.contains("const RT_TRIANGLES_ONLY: bool = false;") && wgsl.contains("const RT_CWBVH: bool = false;"));
+    let (cpu, ..) = render(Backend::Cpu, false);
+    let hits = cpu.iter().filter(|c| c.truncate() != BG).count();
+    assert!(hits > (W * W / 2) as usize, "{hits} pixels hit");
+    assert!(largest_difference(&walked_wide, &cpu) < 2.0 / 255.0, "CWBVH search against the CPU backend");
+    let walked_binary = walked_binary.expect("rendered with the any hit");
+    assert!(largest_difference(&walked_binary, &cpu) < 2.0 / 255.0, "BVH2 search against the CPU backend");
+}
+
+#[test]
 fn a_scene_over_the_adapters_binding_limit_is_a_clear_error() {
     // A device whose storage bindings hold at most 1 MiB.
     let instance = ::wgpu::Instance::new(::wgpu::InstanceDescriptor::new_without_display_handle_from_env());

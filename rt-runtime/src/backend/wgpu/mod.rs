@@ -508,13 +508,7 @@ struct GeometryKey {
 
 impl GeometryKey {
     fn of(ctx: &Context, scene_bindings: usize) -> GeometryKey {
-        // Any-hit programs sit in materials' slots, intersection programs
-        // come with custom geometry: none among the instances', none in the
-        // kernel.
-        let triangles_only = ctx.instances.iter().all(|gi| {
-            matches!(ctx.geometries[gi.geometry.index() as usize].kind, GeometryKind::Triangles(_))
-                && gi.materials.iter().all(|m| ctx.materials[m.index() as usize].any_hit.iter().all(Option::is_none))
-        });
+        let triangles_only = ctx.searches_triangles_only();
         GeometryKey {
             geometry: ctx.geometry_version,
             accels: ctx.accels.geometry_group_changes,
