@@ -433,6 +433,23 @@ fn quad(z: f32, half: f32) -> TriangleMesh {
     }
 }
 
+/// `mesh` under a material with closest hit `program`, in a geometry group
+/// that becomes `top`: its geometry and material.
+fn mesh_scene(
+    ctx: &mut Context,
+    mesh: TriangleMesh,
+    program: &'static rt_std::program::ProgramDescriptor,
+) -> (GeometryId, MaterialId) {
+    let g = ctx.create_triangles(mesh).unwrap();
+    let mat = ctx.create_material();
+    let ch = ctx.create_program(program);
+    ctx.set_closest_hit_program(mat, 0, ch).unwrap();
+    let gi = ctx.create_geometry_instance(g, &[mat]).unwrap();
+    let gg = ctx.create_geometry_group(&[gi], Acceleration::default()).unwrap();
+    ctx.set_var(Scope::Context, "top", gg).unwrap();
+    (g, mat)
+}
+
 fn triangle_attributes_reach_closest_hit_through_a_transform(backend: Backend) {
     let (mut ctx, out) = camera(2.0, backend);
     let geom = ctx.create_triangles(quad(0.0, 1.0)).unwrap();
@@ -619,26 +636,16 @@ fn a_refit_mesh_renders_as_one_built_for_its_new_shape(backend: Backend) {
     let wave = |mesh: &TriangleMesh| -> Vec<Vec3> {
         mesh.positions.iter().map(|p| Vec3::new(p.x * 1.3, p.y, p.z + 0.4 * (3.0 * p.x).sin() * p.y)).collect()
     };
-    let scene = |ctx: &mut Context, mesh: TriangleMesh| {
-        let g = ctx.create_triangles(mesh).unwrap();
-        let mat = ctx.create_material();
-        let ch = ctx.create_program(&normal_shader::PROGRAM);
-        ctx.set_closest_hit_program(mat, 0, ch).unwrap();
-        let gi = ctx.create_geometry_instance(g, &[mat]).unwrap();
-        let gg = ctx.create_geometry_group(&[gi], Acceleration::default()).unwrap();
-        ctx.set_var(Scope::Context, "top", gg).unwrap();
-        g
-    };
     let grid = bumpy_grid(30);
     let (mut ctx, out) = camera(1.4, backend);
-    let g = scene(&mut ctx, grid.clone());
+    let (g, _) = mesh_scene(&mut ctx, grid.clone(), &normal_shader::PROGRAM);
     ctx.launch(0, W, W).unwrap();
     ctx.set_triangle_positions(g, wave(&grid)).unwrap();
     ctx.launch(0, W, W).unwrap();
     assert_eq!(ctx.acceleration_builds(), (1, 1), "moved geometry is refit, not rebuilt");
     let refit = ctx.read_buffer::<Vec4>(out).unwrap();
     let (mut fresh, fresh_out) = camera(1.4, backend);
-    scene(&mut fresh, TriangleMesh { positions: wave(&grid), ..grid });
+    mesh_scene(&mut fresh, TriangleMesh { positions: wave(&grid), ..grid }, &normal_shader::PROGRAM);
     fresh.launch(0, W, W).unwrap();
     let built = fresh.read_buffer::<Vec4>(fresh_out).unwrap();
     let hits = built.iter().filter(|c| c.truncate() != BG).count();
@@ -829,13 +836,7 @@ fn textures_sample_with_wrap_and_filter(backend: Backend) {
     let mut mesh = quad(0.0, 1.0);
     // Texture coordinates from -1 to 2: wrapping shows.
     mesh.texcoords = Some(vec![Vec2::new(-1.0, -1.0), Vec2::new(2.0, -1.0), Vec2::new(2.0, 2.0), Vec2::new(-1.0, 2.0)]);
-    let g = ctx.create_triangles(mesh).unwrap();
-    let mat = ctx.create_material();
-    let ch = ctx.create_program(&textured::PROGRAM);
-    ctx.set_closest_hit_program(mat, 0, ch).unwrap();
-    let gi = ctx.create_geometry_instance(g, &[mat]).unwrap();
-    let gg = ctx.create_geometry_group(&[gi], Acceleration::default()).unwrap();
-    ctx.set_var(Scope::Context, "top", gg).unwrap();
+    mesh_scene(&mut ctx, mesh, &textured::PROGRAM);
     let texels =
         vec![Vec4::new(1.0, 0.0, 0.0, 1.0), Vec4::new(0.0, 1.0, 0.0, 1.0), Vec4::new(0.0, 0.0, 1.0, 1.0), Vec4::ONE];
     for (wrap, filter) in [
@@ -1544,13 +1545,7 @@ fn an_any_hit_program_added_later_switches_the_kernel_to_bvh2s_and_the_image_sta
     }
     let render = |backend, any_hit: bool| {
         let (mut ctx, out) = camera(1.2, backend);
-        let g = ctx.create_triangles(grid.clone()).unwrap();
-        let mat = ctx.create_material();
-        let ch = ctx.create_program(&normal_shader::PROGRAM);
-        ctx.set_closest_hit_program(mat, 0, ch).unwrap();
-        let gi = ctx.create_geometry_instance(g, &[mat]).unwrap();
-        let gg = ctx.create_geometry_group(&[gi], Acceleration::default()).unwrap();
-        ctx.set_var(Scope::Context, "top", gg).unwrap();
+        let (_, mat) = mesh_scene(&mut ctx, grid.clone(), &normal_shader::PROGRAM);
         ctx.launch(0, W, W).unwrap();
         if backend == Backend::Wgpu {
             assert!(ctx.linked_wgsl().unwrap().contains("const RT_CWBVH: bool = true;"));
