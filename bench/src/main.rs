@@ -224,8 +224,8 @@ fn scene_with(
 }
 
 /// Geometry `g` (holding `mesh`) launched `reps` times, every vertex moved
-/// before each (an animated mesh): medians of (setting the positions, host
-/// work before the run, run, kernel).
+/// before each (an animated mesh); `change` is the time of setting the
+/// positions.
 fn moving_vertex_launches(
     ctx: &mut Context,
     g: GeometryId,
@@ -233,47 +233,29 @@ fn moving_vertex_launches(
     width: u32,
     height: u32,
     reps: usize,
-) -> Result<(Duration, Duration, Duration, Option<Duration>)> {
-    let (mut set, mut prepare, mut run, mut kernel) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
-    for i in 0..reps {
+) -> Result<Repeated> {
+    repeat_launches(ctx, width, height, reps, |ctx, i| {
         let offset = Vec3::new(0.0, 0.0, 1e-4 * (i + 1) as f32);
         let positions: Vec<Vec3> = mesh.positions.iter().map(|p| *p + offset).collect();
         let t = Instant::now();
         ctx.set_triangle_positions(g, positions)?;
-        set.push(t.elapsed());
-        let r = ctx.launch(0, width, height)?;
-        prepare.push(r.timings.build + r.timings.encode + r.timings.link);
-        run.push(r.timings.run);
-        kernel.extend(r.timings.kernel);
-    }
-    Ok((median(set), median(prepare), median(run), (!kernel.is_empty()).then(|| median(kernel))))
+        Ok(t.elapsed())
+    })
 }
 
 /// The scene of `ctx` moved under a transform in a group, then launched
 /// `reps` times, the transform changing before each (an animated
-/// instance): medians of (host work before the run, run, kernel), and the
-/// rays of a launch.
-fn moving_transform_launches(
-    ctx: &mut Context,
-    gg: NodeId,
-    width: u32,
-    height: u32,
-    reps: usize,
-) -> Result<(Duration, Duration, Option<Duration>, u64)> {
+/// instance).
+fn moving_transform_launches(ctx: &mut Context, gg: NodeId, width: u32, height: u32, reps: usize) -> Result<Repeated> {
     let xf = ctx.create_transform(glam::Mat4::IDENTITY, gg)?;
     let top = ctx.create_group(&[xf], Acceleration::default())?;
     ctx.set_var(Scope::Context, "top_object", top)?;
     ctx.launch(0, width, height)?;
-    let (mut prepare, mut run, mut kernel, mut rays) = (Vec::new(), Vec::new(), Vec::new(), 0);
-    for i in 0..reps {
+    repeat_launches(ctx, width, height, reps, |ctx, i| {
+        let t = Instant::now();
         ctx.set_transform(xf, glam::Mat4::from_translation(Vec3::new(0.0, 0.0, 1e-4 * (i + 1) as f32)))?;
-        let r = ctx.launch(0, width, height)?;
-        prepare.push(r.timings.build + r.timings.encode + r.timings.link);
-        run.push(r.timings.run);
-        kernel.extend(r.timings.kernel);
-        rays = r.rays;
-    }
-    Ok((median(prepare), median(run), (!kernel.is_empty()).then(|| median(kernel)), rays))
+        Ok(t.elapsed())
+    })
 }
 
 use peers::median;
@@ -286,39 +268,54 @@ fn mrays(rays: u64, t: Duration) -> f64 {
     rays as f64 / t.as_secs_f64() / 1e6
 }
 
-/// What [`measure_launches`] measured.
-struct Launches {
-    /// The first launch (building and linking).
-    first: LaunchReport,
+/// What [`repeat_launches`] measured: medians, and the rays of a launch.
+struct Repeated {
     /// Rays of a launch.
     rays: u64,
+    /// Median time of the change made before each launch (what the change
+    /// itself measured; zero for none).
+    change: Duration,
+    /// Median time of a launch's encoding and building (refit checks),
+    /// before its run.
+    prepare: Duration,
     /// Median wall-clock run time (dispatch, wait and read-back on wgpu).
     run: Duration,
     /// Median device time of the kernel, where the device has timestamps.
     kernel: Option<Duration>,
-    /// Median time of a launch's encoding and building (refit checks),
-    /// before its run.
-    prepare: Duration,
-    /// Process CPU time of the `reps` launches.
+    /// Process CPU time of the `reps` launches and changes.
     cpu: Duration,
 }
 
-/// Launches `ctx` once (building and linking), then `reps` times.
-fn measure_launches(ctx: &mut Context, width: u32, height: u32, reps: usize) -> Result<Launches> {
-    let first = ctx.launch(0, width, height)?;
-    let (mut runs, mut kernels, mut prepares) = (Vec::new(), Vec::new(), Vec::new());
+/// Launches `ctx` `reps` times, calling `change` (with the launch's number;
+/// it returns the time of what it measures) before each.
+fn repeat_launches(
+    ctx: &mut Context,
+    width: u32,
+    height: u32,
+    reps: usize,
+    mut change: impl FnMut(&mut Context, usize) -> Result<Duration>,
+) -> Result<Repeated> {
+    let (mut changes, mut prepares, mut runs, mut kernels) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     let mut rays = 0;
     let cpu = peers::process_cpu_time();
-    for _ in 0..reps {
+    for i in 0..reps {
+        changes.push(change(ctx, i)?);
         let r = ctx.launch(0, width, height)?;
         rays = r.rays;
+        prepares.push(r.timings.build + r.timings.encode + r.timings.link);
         runs.push(r.timings.run);
         kernels.extend(r.timings.kernel);
-        prepares.push(r.timings.build + r.timings.encode + r.timings.link);
     }
     let cpu = peers::process_cpu_time().saturating_sub(cpu);
     let kernel = (!kernels.is_empty()).then(|| median(kernels));
-    Ok(Launches { first, rays, run: median(runs), kernel, prepare: median(prepares), cpu })
+    Ok(Repeated { rays, change: median(changes), prepare: median(prepares), run: median(runs), kernel, cpu })
+}
+
+/// Launches `ctx` once (building and linking), then `reps` times as they
+/// are: the first launch's report and the repeats' figures.
+fn measure_launches(ctx: &mut Context, width: u32, height: u32, reps: usize) -> Result<(LaunchReport, Repeated)> {
+    let first = ctx.launch(0, width, height)?;
+    Ok((first, repeat_launches(ctx, width, height, reps, |_, _| Ok(Duration::ZERO))?))
 }
 
 /// Primary rays (normal shader) on the bunny per backend, and the build
@@ -397,7 +394,7 @@ fn bunny_primary(args: &Args, bunny: &scenes::BenchScene, width: u32, height: u3
             } else {
                 format!("cpu, {} threads", rayon::current_num_threads())
             };
-            let Launches { first, rays, run, kernel, .. } = measure_launches(&mut ctx, width, height, reps)?;
+            let (first, Repeated { rays, run, kernel, .. }) = measure_launches(&mut ctx, width, height, reps)?;
             let m = mrays(rays, run);
             let img = ctx.read_buffer::<Vec4>(out)?;
             let hit = img.iter().filter(|c| c.truncate() != Vec3::new(0.2, 0.2, 0.25)).count();
@@ -557,12 +554,12 @@ fn measure_scene(
     // The same scene as an instance under a moving transform.
     if let (Some(ctx), Some(gg), Some(flat)) = (cpu_ctx.as_mut(), cpu_gg, fig.cpu) {
         match moving_transform_launches(ctx, gg, width, height, reps) {
-            Ok((prepare, run, _, rays)) => {
+            Ok(m) => {
                 let moved = j.child("cpu_moving_transform");
-                moved.set("prepare_ms", ms(prepare));
-                moved.set("run_ms", ms(run));
-                moved.set("mrays_per_s", mrays(rays, run));
-                moved.set("vs_flat", mrays(rays, run) / flat);
+                moved.set("prepare_ms", ms(m.prepare));
+                moved.set("run_ms", ms(m.run));
+                moved.set("mrays_per_s", mrays(m.rays, m.run));
+                moved.set("vs_flat", mrays(m.rays, m.run) / flat);
             }
             Err(e) => eprintln!("cpu under a transform: {e}"),
         }
@@ -577,38 +574,35 @@ fn measure_scene(
             j.child("skipped").set("wgpu", why.as_str());
             j.child("skipped").set("handwritten_wgsl", why.as_str());
         } else {
-            let run = || -> Result<(Json, Launches, String)> {
+            let run = || -> Result<(Json, Repeated, String)> {
                 let (mut ctx, _, gg, g) = scene_with(&scene.mesh, cam, Backend::Wgpu, width, height, Workload::Ao)?;
                 let device = ctx.open_wgpu()?;
-                let l = measure_launches(&mut ctx, width, height, reps)?;
+                let (first, l) = measure_launches(&mut ctx, width, height, reps)?;
                 let cwbvh = ctx.linked_wgsl().is_some_and(|w| w.contains("const RT_CWBVH: bool = true;"));
-                let (prepare, run, kernel, _) = moving_transform_launches(&mut ctx, gg, width, height, reps)?;
+                let transform = moving_transform_launches(&mut ctx, gg, width, height, reps)?;
                 let vertices = moving_vertex_launches(&mut ctx, g, &scene.mesh, width, height, reps)?;
                 let mut w = Json::obj();
                 w.set("tree", if cwbvh { "cwbvh" } else { "bvh2" });
                 w.set("rays", l.rays);
-                w.set("build_ms", ms(l.first.timings.build));
-                w.set("link_ms", ms(l.first.timings.link));
-                w.set("first_dispatch_ms", ms(l.first.timings.run.saturating_sub(l.run)));
-                // A repeated launch, in medians: the host's preparation,
-                // the run (upload, dispatch, wait, read-back), the kernel.
-                let again = w.child("repeat_launch_ms");
-                again.set("prepare", ms(l.prepare));
-                again.set("run", ms(l.run));
-                again.set("kernel", l.kernel.map(ms));
-                // The same under a transform that moves before each launch.
-                let moved = w.child("moving_transform_launch_ms");
-                moved.set("prepare", ms(prepare));
-                moved.set("run", ms(run));
-                moved.set("kernel", kernel.map(ms));
-                // Every vertex moved before each launch (refit, geometry
+                w.set("build_ms", ms(first.timings.build));
+                w.set("link_ms", ms(first.timings.link));
+                w.set("first_dispatch_ms", ms(first.timings.run.saturating_sub(l.run)));
+                // Repeated launches, in medians: the host's preparation, the
+                // run (upload, dispatch, wait, read-back), the kernel; as
+                // they are, under a transform that moves before each launch,
+                // and with every vertex moved before each (refit, geometry
                 // encoded and uploaded again).
-                let (set, prepare, run, kernel) = vertices;
-                let moved = w.child("moving_vertices_launch_ms");
-                moved.set("set_positions", ms(set));
-                moved.set("prepare", ms(prepare));
-                moved.set("run", ms(run));
-                moved.set("kernel", kernel.map(ms));
+                for (key, r) in [
+                    ("repeat_launch_ms", &l),
+                    ("moving_transform_launch_ms", &transform),
+                    ("moving_vertices_launch_ms", &vertices),
+                ] {
+                    let o = w.child(key);
+                    o.set("prepare", ms(r.prepare));
+                    o.set("run", ms(r.run));
+                    o.set("kernel", r.kernel.map(ms));
+                }
+                w.child("moving_vertices_launch_ms").set("set_positions", ms(vertices.change));
                 Ok((w, l, device))
             };
             match run() {
