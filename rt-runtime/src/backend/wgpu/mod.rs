@@ -414,7 +414,8 @@ struct Encoded {
     tails: [Vec<u32>; SCENE_SECTIONS.len()],
     geometry: GeometryLayout,
     /// The geometry part's words in each section, when it was encoded now
-    /// (`None`: the device holds it).
+    /// (`None`: the device holds it); the tables' words begin with room for
+    /// the header.
     geometry_words: Option<[Vec<u32>; SCENE_SECTIONS.len()]>,
     spec: KernelSpec,
     rg_vars: u32,
@@ -424,18 +425,15 @@ struct Encoded {
 }
 
 impl Encoded {
-    /// The whole sections, when the geometry part was encoded now.
+    /// The whole sections, when the geometry part was encoded now (its
+    /// tables begin with room for the header).
     fn whole_sections(&mut self) -> Option<[Vec<u32>; SCENE_SECTIONS.len()]> {
-        let geometry = self.geometry_words.take()?;
-        let mut s = 0;
-        Some(geometry.map(|mut words| {
-            if s == 0 {
-                words.splice(0..0, self.header);
-            }
-            words.append(&mut self.tails[s]);
-            s += 1;
-            words
-        }))
+        let mut sections = self.geometry_words.take()?;
+        sections[0][..SCENE_HEADER].copy_from_slice(&self.header);
+        for (words, tail) in sections.iter_mut().zip(&mut self.tails) {
+            words.append(tail);
+        }
+        Some(sections)
     }
 }
 
@@ -931,12 +929,12 @@ fn encode(ctx: &Context, entry: u32, scene_bindings: usize, held_geometry: Optio
 }
 
 /// The part of the scene that comes from geometry alone: per geometry
-/// group its BVH nodes, its primitive table (in the tables, after the
-/// header) and its triangle slots; per geometry its mesh arrays (in the
+/// group its BVH nodes, its primitive table (in the tables, after room for
+/// the header) and its triangle slots; per geometry its mesh arrays (in the
 /// tables). Returns its layout and its words in each section.
 fn encode_geometry(ctx: &Context, key: GeometryKey) -> (GeometryLayout, [Vec<u32>; SCENE_SECTIONS.len()]) {
-    let (mut tables, mut nodes, mut tris) = (Vec::new(), Vec::new(), Vec::new());
-    let table_at = |tables: &Vec<u32>| (SCENE_HEADER + tables.len()) as u32;
+    let (mut tables, mut nodes, mut tris) = (vec![0; SCENE_HEADER], Vec::new(), Vec::new());
+    let table_at = |tables: &Vec<u32>| tables.len() as u32;
     let mut gg_bvh = HashMap::new();
     let mut deepest_bvh = 1;
     let mut deepest_cwbvh = 1;
@@ -1021,7 +1019,7 @@ fn encode_geometry(ctx: &Context, key: GeometryKey) -> (GeometryLayout, [Vec<u32
             section.push(0);
         }
     }
-    let ends = [SCENE_HEADER + tables.len(), nodes.len(), tris.len()];
+    let ends = [tables.len(), nodes.len(), tris.len()];
     let layout = GeometryLayout { key, gg_bvh, geometry_words, deepest_bvh, cwbvh, deepest_cwbvh, ends };
     (layout, [tables, nodes, tris])
 }
@@ -1122,9 +1120,10 @@ fn check_held_scene(
         assert!(e.geometry.ends == g.ends && e.geometry.gg_bvh == g.gg_bvh, "stale geometry layout");
         let words = e.geometry_words.take().expect("encoded whole");
         for (s, words) in words.iter().enumerate() {
+            // The header is not geometry.
             let start = if s == 0 { SCENE_HEADER } else { 0 };
             let kept = device(s).map(|d| &d[start..g.ends[s]]);
-            assert!(kept == Some(&words[..]), "stale geometry on the device: {}", SCENE_SECTIONS[s].what);
+            assert!(kept == Some(&words[start..]), "stale geometry on the device: {}", SCENE_SECTIONS[s].what);
         }
     }
     Ok(())
@@ -1268,8 +1267,9 @@ fn launch_on_device(ctx: &mut Context, entry: u32, width: u32, height: u32) -> R
     // Else the geometry part the device holds, where the rest can be
     // encoded around it (every section in a binding of its own).
     let held_geometry = resident
+        .filter(|_| held.is_none() && scene_bindings == SCENE_SECTIONS.len())
         .map(|h| &h.geometry)
-        .filter(|g| g.key == GeometryKey::of(ctx, scene_bindings) && scene_bindings == SCENE_SECTIONS.len());
+        .filter(|g| g.key == GeometryKey::of(ctx, scene_bindings));
     #[cfg(debug_assertions)]
     check_held_scene(ctx, entry, held, held_geometry)?;
     let fresh = if held.is_some() { None } else { Some(encode(ctx, entry, scene_bindings, held_geometry)?) };
