@@ -285,8 +285,9 @@ pub(crate) enum NodeAccel {
         wide: Option<obvhs::cwbvh::CwBvh>,
         /// The vertices of each primitive of `wide` in its slot order, when
         /// all are triangles (else empty): the CPU backend's triangle test
-        /// reads them without the index and position lookups.
-        triangles: Vec<[Vec3; 3]>,
+        /// reads them without the index and position lookups. None until
+        /// the CPU backend launches (the wgpu backend encodes its own).
+        triangles: Option<Vec<[Vec3; 3]>>,
         prims: Vec<(u32, u32)>,
         bounds: OAabb,
     },
@@ -444,11 +445,11 @@ pub(crate) fn build_accels(ctx: &Context, cache: &mut AccelCache) -> Result<()> 
                         if wide.is_none() && wants_wide(&prims) {
                             wide = Some(widen(&bvh));
                         }
-                        if moved {
-                            triangles = Vec::new();
+                        if moved || (wide.is_some() && !had_wide) {
+                            triangles = None;
                         }
-                        if cpu && (moved || !had_wide || triangles.is_empty()) {
-                            triangles = slot_triangles(ctx, &prims, wide.as_ref(), all_triangles(&prims));
+                        if cpu && triangles.is_none() {
+                            triangles = Some(slot_triangles(ctx, &prims, wide.as_ref(), all_triangles(&prims)));
                         }
                         NodeAccel::Prims { bvh, wide, triangles, prims, bounds }
                     }
@@ -457,8 +458,7 @@ pub(crate) fn build_accels(ctx: &Context, cache: &mut AccelCache) -> Result<()> 
                         let tris = (a.builder == Builder::Sbvh && all_tris).then(|| group_triangles(ctx, &prims));
                         let bvh = build(a.builder, &bounds, tris.as_deref(), gg_form)?;
                         let wide = wants_wide(&prims).then(|| widen(&bvh));
-                        let triangles =
-                            if cpu { slot_triangles(ctx, &prims, wide.as_ref(), all_tris) } else { Vec::new() };
+                        let triangles = cpu.then(|| slot_triangles(ctx, &prims, wide.as_ref(), all_tris));
                         any_built = true;
                         cache.geometry_group_changes += 1;
                         NodeAccel::Prims { bvh, wide, triangles, prims, bounds: union(&bounds) }

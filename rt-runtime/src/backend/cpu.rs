@@ -594,10 +594,10 @@ impl<'a> Lane<'a> {
                         None => self.intersect_custom(s, gi, prim, &object_ray(), xf),
                     }
                 };
-                match wide {
+                match (wide, triangles.as_deref()) {
                     // obvhs's 8-wide traversal over triangles in slot order:
                     // the instance and primitive are looked up on hits only.
-                    Some(cw) if !triangles.is_empty() => {
+                    (Some(cw), Some(triangles)) if !triangles.is_empty() => {
                         let mut hit = obvhs::ray::RayHit::none();
                         let ray = obvhs::ray::Ray::new(origin.into(), direction.into(), world_ray.tmin, s.tmax.get());
                         cw.ray_traverse(ray, &mut hit, |_, slot| {
@@ -616,7 +616,7 @@ impl<'a> Lane<'a> {
                     // obvhs's 8-wide traversal; the callback runs the whole
                     // hit protocol and returns the closest committed distance
                     // (unchanged if nothing committed), or -inf to stop.
-                    Some(cw) => {
+                    (Some(cw), _) => {
                         let mut hit = obvhs::ray::RayHit::none();
                         let ray = obvhs::ray::Ray::new(origin.into(), direction.into(), world_ray.tmin, s.tmax.get());
                         cw.ray_traverse(ray, &mut hit, |_, slot| {
@@ -624,7 +624,7 @@ impl<'a> Lane<'a> {
                             if s.done.get() { f32::NEG_INFINITY } else { s.tmax.get() }
                         });
                     }
-                    None => bvh.traverse(origin, direction.recip(), world_ray.tmin, &|| s.tmax.get(), &mut |p| {
+                    (None, _) => bvh.traverse(origin, direction.recip(), world_ray.tmin, &|| s.tmax.get(), &mut |p| {
                         visit(p);
                         !s.done.get()
                     }),
