@@ -438,7 +438,7 @@ fn rt_byte_f(w: u32, i: u32) -> f32 {
 // enters: internal children as bits 24-31 (at the slot the ray's octant
 // orders them to), leaf children as their triangles' bits 0-23.
 fn rt_cw_node_hits(n: u32, o: vec3<f32>, inv: vec3<f32>, oct_inv4: u32, tmin: f32, tmax: f32) -> u32 {
-    let p = vec3<f32>(bitcast<f32>(rt_node_word(n)), bitcast<f32>(rt_node_word(n + 1u)), bitcast<f32>(rt_node_word(n + 2u)));
+    let p = rt_node_v3(n);
     let ew = rt_node_word(n + 3u);
     // The node's scale per axis: a power of two with the stored exponent.
     let e = vec3<f32>(
