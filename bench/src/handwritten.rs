@@ -24,25 +24,6 @@ pub fn adapter() -> Result<wgpu::Adapter, String> {
     pollster::block_on(instance.request_adapter(&options)).map_err(|e| e.to_string())
 }
 
-/// A CWBVH node's 20 words as it lies in memory (little-endian).
-fn cwbvh_node_words(n: &obvhs::cwbvh::node::CwBvhNode) -> [u32; 20] {
-    let pair =
-        |b: [u8; 8]| [u32::from_le_bytes([b[0], b[1], b[2], b[3]]), u32::from_le_bytes([b[4], b[5], b[6], b[7]])];
-    let mut w = [0u32; 20];
-    w[..3].copy_from_slice(&[n.p.x, n.p.y, n.p.z].map(f32::to_bits));
-    w[3] = u32::from_le_bytes([n.e[0], n.e[1], n.e[2], n.imask]);
-    w[4] = n.child_base_idx;
-    w[5] = n.primitive_base_idx;
-    for (k, bytes) in
-        [n.child_meta, n.child_min_x, n.child_max_x, n.child_min_y, n.child_max_y, n.child_min_z, n.child_max_z]
-            .into_iter()
-            .enumerate()
-    {
-        w[6 + 2 * k..8 + 2 * k].copy_from_slice(&pair(bytes));
-    }
-    w
-}
-
 /// What the kernel measured.
 pub struct Measured {
     /// Rays traced by one run.
@@ -145,7 +126,8 @@ pub fn run(
             tris.extend([p.x, p.y, p.z].map(f32::to_bits));
         }
     }
-    let cw_nodes: Vec<u32> = cwbvh.iter().flat_map(|cw| cw.nodes.iter().flat_map(cwbvh_node_words)).collect();
+    let cw_nodes: Vec<u32> =
+        cwbvh.iter().flat_map(|cw| cw.nodes.iter().flat_map(rt_runtime::backend::wgpu::cwbvh_node_words)).collect();
     let (eye, u, v, w) = cam;
     let mut camera: Vec<u32> = Vec::new();
     for c in [eye, u, v, w] {

@@ -1027,7 +1027,9 @@ fn encode_geometry(ctx: &Context, key: GeometryKey) -> (GeometryLayout, [Vec<u32
 /// A CWBVH node's 20 words as it lies in memory (obvhs's `CwBvhNode`,
 /// little-endian): p, then e0 e1 e2 imask, child base, primitive base, then
 /// two words each of child meta, min x, max x, min y, max y, min z, max z.
-fn cwbvh_node_words(n: &obvhs::cwbvh::node::CwBvhNode) -> [u32; 20] {
+/// The layout the kernel reads (`rt_cw_node_hits`); public for other WGSL
+/// over the same nodes (rt-bench's hand-written kernel).
+pub fn cwbvh_node_words(n: &obvhs::cwbvh::node::CwBvhNode) -> [u32; 20] {
     let mut w = [0u32; 20];
     w[..3].copy_from_slice(&[f(n.p.x), f(n.p.y), f(n.p.z)]);
     w[3] = u32::from_le_bytes([n.e[0], n.e[1], n.e[2], n.imask]);
