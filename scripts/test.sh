@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # The project's test command (README.md; .ci/run calls it). Builds with two
-# jobs, as on the CI machine, and runs every test in the workspace (all
-# targets, then doc tests). Tests of the wgpu backend need an adapter: on a
-# machine without a GPU that is Mesa's lavapipe, installed here when missing
-# (as root). A missing adapter fails those tests; it is never skipped. The
-# viewer's tests need Xvfb, installed here too.
+# jobs, as on the CI machine, checks formatting and clippy's lints, and runs
+# every test in the workspace (all targets, then doc tests). Tests of the
+# wgpu backend need an adapter: on a machine without a GPU that is Mesa's
+# lavapipe, installed here when missing (as root). A missing adapter fails
+# those tests; it is never skipped. The viewer's tests need Xvfb, installed
+# here too.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 if [ ! -e /usr/share/vulkan/icd.d/lvp_icd.x86_64.json ] && [ ! -e /usr/share/vulkan/icd.d/lvp_icd.json ]; then
@@ -32,6 +33,10 @@ fi
 export XDG_RUNTIME_DIR="${XDG_RUNTIME_DIR:-/tmp}"
 export CARGO_BUILD_JOBS="${CARGO_BUILD_JOBS:-2}"
 start=$(date +%s)
+# Lint first: formatting and clippy's warnings fail the run as a test does.
+echo "scripts/test.sh: cargo fmt --check and cargo clippy (-D warnings)"
+cargo fmt --all --check
+cargo clippy --workspace --all-targets -j"$CARGO_BUILD_JOBS" -- -D warnings
 log=$(mktemp)
 trap 'rm -f "$log"' EXIT
 cargo test --workspace --all-targets -j"$CARGO_BUILD_JOBS" 2>&1 | tee "$log"

@@ -25,20 +25,20 @@ use crate::scene::{Object, TransformKind};
 /// depth; the ray was not traced.
 #[doc(alias = "RT_EXCEPTION_STACK_OVERFLOW")]
 #[doc(alias = "RT_EXCEPTION_TRACE_DEPTH_EXCEEDED")]
-pub const EXCEPTION_TRACE_DEPTH_EXCEEDED: u32 = 0x3FC;
+pub const EXCEPTION_TRACE_DEPTH_EXCEEDED: u32 = rt_abi::EXCEPTION_TRACE_DEPTH_EXCEEDED;
 /// Exception code: a buffer was accessed outside its bounds; loads read
 /// zero, stores were dropped.
 #[doc(alias = "RT_EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS")]
-pub const EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS: u32 = 0x3FB;
+pub const EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS: u32 = rt_abi::EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS;
 /// Exception code: `rt_trace` was given a ray with NaN or infinite origin or
 /// direction, or NaN `tmin`/`tmax` (see [`Ray::is_valid`]); it was not
 /// traced.
 #[doc(alias = "RT_EXCEPTION_INVALID_RAY")]
-pub const EXCEPTION_INVALID_RAY: u32 = 0x3F6;
+pub const EXCEPTION_INVALID_RAY: u32 = rt_abi::EXCEPTION_INVALID_RAY;
 /// The first exception code free for programs' own [`rt_throw`] codes; the
 /// codes below are reserved for the runtime's exceptions.
 #[doc(alias = "RT_EXCEPTION_USER")]
-pub const EXCEPTION_USER: u32 = 0x400;
+pub const EXCEPTION_USER: u32 = rt_abi::EXCEPTION_USER;
 
 /// The launch index being computed: in `[0, launch_dim())`.
 ///
@@ -244,6 +244,18 @@ pub fn rt_transform_normal(kind: TransformKind, n: Vec3) -> Vec3 {
         TransformKind::WorldToObject => TransformKind::ObjectToWorld,
     };
     (transform(inverse).transpose() * n.extend(0.0)).truncate()
+}
+
+/// The current instance's transform that `kind` names, as a matrix: the
+/// product of the transforms above the geometry instance being hit (or
+/// intersected) for [`ObjectToWorld`](TransformKind::ObjectToWorld), its
+/// inverse for [`WorldToObject`](TransformKind::WorldToObject). The
+/// identity where no transform is above it, or without a tracer.
+///
+/// Program kinds: closest_hit, any_hit, intersection.
+#[doc(alias = "rtGetTransform")]
+pub fn rt_get_transform(kind: TransformKind) -> Mat4 {
+    transform(kind)
 }
 
 /// Prints formatted text for debugging, like `print!`: `{}` placeholders

@@ -23,7 +23,7 @@ pub use crate::data::{Attributes, Payload, RtData};
 pub use crate::geometry::Aabb;
 pub use crate::intrinsics::{
     EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS, EXCEPTION_INVALID_RAY, EXCEPTION_TRACE_DEPTH_EXCEEDED, EXCEPTION_USER,
-    current_ray, exception_code, launch_dim, launch_index, primitive_index, rt_ignore_intersection,
+    current_ray, exception_code, launch_dim, launch_index, primitive_index, rt_get_transform, rt_ignore_intersection,
     rt_potential_intersection, rt_report_intersection, rt_terminate_ray, rt_throw, rt_trace, rt_trace_with,
     rt_transform_normal, rt_transform_point, rt_transform_vector, t_hit,
 };

@@ -80,22 +80,22 @@ impl RtData for Ray {
 }
 
 /// No flags: the default of [`rt_trace`](crate::rt_trace).
-pub const RAY_FLAG_NONE: u32 = 0;
+pub const RAY_FLAG_NONE: u32 = rt_abi::RAY_FLAG_NONE;
 /// End the search at the first accepted intersection (a shadow ray).
-pub const RAY_FLAG_TERMINATE_ON_FIRST_HIT: u32 = 1;
+pub const RAY_FLAG_TERMINATE_ON_FIRST_HIT: u32 = rt_abi::RAY_FLAG_TERMINATE_ON_FIRST_HIT;
 /// Skip any-hit programs: every reported intersection is accepted.
-pub const RAY_FLAG_DISABLE_ANYHIT: u32 = 2;
+pub const RAY_FLAG_DISABLE_ANYHIT: u32 = rt_abi::RAY_FLAG_DISABLE_ANYHIT;
 /// Skip the closest-hit program of the committed intersection.
-pub const RAY_FLAG_DISABLE_CLOSESTHIT: u32 = 4;
+pub const RAY_FLAG_DISABLE_CLOSESTHIT: u32 = rt_abi::RAY_FLAG_DISABLE_CLOSESTHIT;
 /// Ignore triangles whose back faces the ray.
-pub const RAY_FLAG_CULL_BACK_FACING: u32 = 8;
+pub const RAY_FLAG_CULL_BACK_FACING: u32 = rt_abi::RAY_FLAG_CULL_BACK_FACING;
 /// Ignore triangles whose front faces the ray.
-pub const RAY_FLAG_CULL_FRONT_FACING: u32 = 16;
+pub const RAY_FLAG_CULL_FRONT_FACING: u32 = rt_abi::RAY_FLAG_CULL_FRONT_FACING;
 
 /// The visibility mask [`rt_trace`](crate::rt_trace) uses: every bit of an
 /// instance's 8-bit mask, as OptiX's `RT_VISIBILITY_ALL`.
 #[doc(alias = "RT_VISIBILITY_ALL")]
-pub const RAY_MASK_ALL: u32 = 0xFF;
+pub const RAY_MASK_ALL: u32 = rt_abi::RAY_MASK_ALL;
 
 #[cfg(test)]
 mod tests {

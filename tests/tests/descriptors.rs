@@ -31,7 +31,7 @@ fn macro_wgsl_equals_the_checked_in_snapshot() {
         let expected = snapshot.split_once('\n').unwrap().1;
         // The snapshot holds the per-type stubs of the prelude too, and a
         // tracing program's resumable form after the module.
-        let stubs = p.wgsl_prelude.strip_prefix(rt_compiler::lower::PRELUDE).unwrap();
+        let stubs = p.wgsl_prelude.strip_prefix(rt_compiler::lower::PRELUDE.as_str()).unwrap();
         let mut got = format!("{stubs}{}", body.unwrap());
         if let Some(r) = p.wgsl_resumable {
             got.push_str("\n// ---- resumable form ----\n");

@@ -258,6 +258,16 @@ pub fn parity_camera(#[var] top: Object, #[var] mut out: RwBuffer2d<Vec4>, #[var
     out[idx] = prd.result.extend(1.0);
 }
 
+/// Column `column % 4` of the hit instance's object-to-world matrix
+/// (`column < 4`) or of its world-to-object matrix, from `rt_get_transform`.
+#[rt_program(closest_hit)]
+pub fn transform_column(prd: &mut Radiance, #[var] column: u32) {
+    let o2w = rt_get_transform(ObjectToWorld);
+    let w2o = rt_get_transform(WorldToObject);
+    let m = if column < 4 { o2w } else { w2o };
+    prd.result = m.col((column % 4) as usize).truncate();
+}
+
 /// A mirror: traces the reflected ray and keeps `reflectance` of its colour.
 #[rt_program(closest_hit)]
 pub fn mirror(prd: &mut Radiance, attr: &Hit, #[var] top: Object, #[var] reflectance: f32) {
@@ -470,6 +480,37 @@ fn triangle_attributes_reach_closest_hit_through_a_transform(backend: Backend) {
     assert!((c.truncate() - Vec3::new(0.5, 0.5, 0.0)).abs().max_element() < 1e-4, "{c}");
     // Outside the quad's [-1, 1] square (extent 2): background.
     assert_eq!(pixel(&img, 0, 0).truncate(), BG);
+}
+
+/// `rt_get_transform` gives the transform above the hit instance and its
+/// inverse, column by column, as glam computes them on the host; without a
+/// transform above it, the identity.
+fn rt_get_transform_reads_the_instance_transform_and_its_inverse(backend: Backend) {
+    let (mut ctx, out) = camera(2.0, backend);
+    let geom = ctx.create_triangles(quad(0.0, 1.0)).unwrap();
+    let mat = ctx.create_material();
+    let ch = ctx.create_program(&transform_column::PROGRAM);
+    ctx.set_closest_hit_program(mat, 0, ch).unwrap();
+    let gi = ctx.create_geometry_instance(geom, &[mat]).unwrap();
+    let gg = ctx.create_geometry_group(&[gi], Acceleration::default()).unwrap();
+    let m = glam::Mat4::from_scale_rotation_translation(
+        Vec3::new(1.5, 1.25, 2.0),
+        glam::Quat::from_rotation_z(0.5),
+        Vec3::new(0.1, -0.2, 1.0),
+    );
+    let xf = ctx.create_transform(m, gg).unwrap();
+    let transformed = ctx.create_group(&[xf], Acceleration::default()).unwrap();
+    for (top, m) in [(transformed, m), (gg, glam::Mat4::IDENTITY)] {
+        ctx.set_var(Scope::Context, "top", top).unwrap();
+        for column in 0..8u32 {
+            ctx.set_var(Scope::Context, "column", column).unwrap();
+            ctx.launch(0, W, W).unwrap();
+            let got = pixel(&ctx.read_buffer::<Vec4>(out).unwrap(), W / 2, W / 2).truncate();
+            let of = if column < 4 { m } else { m.inverse() };
+            let want = of.col((column % 4) as usize).truncate();
+            assert!((got - want).abs().max_element() < 1e-5, "column {column}: {got} against {want}");
+        }
+    }
 }
 
 fn any_hit_terminate_casts_a_shadow_with_a_sharp_edge(backend: Backend) {
@@ -1319,6 +1360,7 @@ on_backends!(
     textures_sample_with_wrap_and_filter,
     sphere_silhouette_and_normals,
     triangle_attributes_reach_closest_hit_through_a_transform,
+    rt_get_transform_reads_the_instance_transform_and_its_inverse,
     any_hit_terminate_casts_a_shadow_with_a_sharp_edge,
     trace_depth_limit_raises_the_exception_and_the_exception_program_runs,
     user_exception_reaches_the_exception_program_and_other_pixels_are_untouched,

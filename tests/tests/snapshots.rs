@@ -44,7 +44,7 @@ const RESUMABLE: &str = "\n// ---- resumable form ----\n";
 /// tracing program's resumable form (with the resumable forms of the
 /// helpers it calls) or why it has none.
 fn snapshot_text(l: &rt_compiler::Lowered) -> String {
-    let body = l.wgsl.strip_prefix(rt_compiler::lower::PRELUDE).expect("module starts with the prelude");
+    let body = l.wgsl.strip_prefix(rt_compiler::lower::PRELUDE.as_str()).expect("module starts with the prelude");
     let mut text = format!("// {} program `{}`\n{}", l.kind.unwrap().name(), l.name, body);
     if let Some(r) = &l.resumable {
         text.push_str(RESUMABLE);
@@ -120,9 +120,9 @@ fn every_checked_in_snapshot_validates_with_naga() {
                         "fn rt_request_{p}(object: u32, ray: RtRay, prd: {p}, flags: u32, mask: u32) {{}}\nfn rt_result_{p}() -> {p} {{\n    var p: {p};\n    return p;\n}}\n"
                     ));
                 }
-                format!("{}{}{stubs}{resumable}", rt_compiler::lower::PRELUDE, &plain[..program])
+                format!("{}{}{stubs}{resumable}", *rt_compiler::lower::PRELUDE, &plain[..program])
             }
-            None => format!("{}{}", rt_compiler::lower::PRELUDE, text),
+            None => format!("{}{}", *rt_compiler::lower::PRELUDE, text),
         };
         let parsed = naga::front::wgsl::parse_str(&module)
             .unwrap_or_else(|e| panic!("{}: {}", path.display(), e.emit_to_string(&module)));

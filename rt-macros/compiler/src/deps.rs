@@ -73,7 +73,7 @@ fn is_const_like(name: &str) -> bool {
 }
 
 fn is_builtin_const(name: &str) -> bool {
-    kinds::CONSTANTS.iter().any(|(n, _, _)| *n == name) || kinds::F32_CONSTS.iter().any(|(n, _)| *n == name)
+    kinds::constant(name).is_some() || kinds::F32_CONSTS.iter().any(|(n, _)| *n == name)
 }
 
 impl<'ast> Visit<'ast> for Deps {

@@ -163,15 +163,23 @@ impl Device {
 }
 
 /// The prelude of a batch module: the compiler's stub prelude, with the
-/// launch index and size of the lane being run.
+/// launch index and size of the lane being run and the buffer bounds checks
+/// (the runtime's, less the exception: an index out of range is dropped).
 pub fn prelude() -> String {
-    let stub = rt_compiler::lower::PRELUDE;
-    let index = "fn rt_launch_index() -> vec2<u32> { return vec2<u32>(); }";
-    let dim = "fn rt_launch_dim() -> vec2<u32> { return vec2<u32>(1u); }";
-    assert!(stub.contains(index) && stub.contains(dim), "the compiler's stub prelude changed: update the fuzzer");
-    let mut s = stub
-        .replace(index, "fn rt_launch_index() -> vec2<u32> { return vec2<u32>(fz_lane, 0u); }")
-        .replace(dim, &format!("fn rt_launch_dim() -> vec2<u32> {{ return vec2<u32>({LANES}u, 1u); }}"));
+    let dim = format!("vec2<u32>({LANES}u, 1u)");
+    let bodies = [
+        ("rt_launch_index", "return vec2<u32>(fz_lane, 0u);".to_string()),
+        ("rt_launch_dim", format!("return {dim};")),
+        ("rt_buf_check", "return i < b.len;".to_string()),
+        ("rt_buf_check2", "return i.x < b.width && i.y < b.height;".to_string()),
+    ];
+    let mut s = rt_compiler::lower::PRELUDE.clone();
+    for (name, body) in bodies {
+        let f = rt_abi::intrinsics::wgsl_functions().find(|f| f.name == name).expect("a function of the contract");
+        let stub = rt_abi::wgsl::stub(f);
+        assert!(s.contains(&stub), "the stub prelude has no `{stub}`");
+        s = s.replace(&stub, &format!("{} {{ {body} }}", rt_abi::wgsl::signature(f)));
+    }
     s.insert_str(0, "var<private> fz_lane: u32;\n");
     s
 }

@@ -863,8 +863,8 @@ impl<'m> FnLowerer<'m> {
         {
             return Ok(Val::new(f32_literal(*v), F32));
         }
-        if let Some((_, s, v)) = kinds::CONSTANTS.iter().find(|(n, _, _)| *n == last) {
-            return Ok(Val::new(*v, Ty::Scalar(*s)));
+        if let Some(v) = kinds::constant(last) {
+            return Ok(Val::new(format!("{v}u"), U32));
         }
         if segs.len() == 1 && (last == "ObjectToWorld" || last == "WorldToObject") {
             return transform_kind(last, p.span());
@@ -2048,7 +2048,7 @@ impl<'m> FnLowerer<'m> {
     fn is_const_name(&self, name: &str) -> bool {
         match self.lookup(name) {
             Some(l) => self.local_consts.contains(&l.wgsl),
-            None => self.m.consts.contains_key(name) || kinds::CONSTANTS.iter().any(|(n, _, _)| *n == name),
+            None => self.m.consts.contains_key(name) || kinds::constant(name).is_some(),
         }
     }
 
@@ -2624,38 +2624,12 @@ impl<'m> FnLowerer<'m> {
     fn intrinsic_call(&mut self, name: &str, args: &[&Expr], span: Span) -> Result<Option<Val>> {
         let Some(intr) = kinds::intrinsic(name) else { return Ok(None) };
         self.use_intrinsic(intr.name, span)?;
-        let v3 = Ty::vec(3);
-        let nullary = |f: &str, ret: Ty| -> Result<Option<Val>> {
-            if !args.is_empty() {
-                return Err(Error::new(span, format!("`{name}` takes no arguments")));
-            }
-            Ok(Some(Val::new(format!("{f}()"), ret)))
-        };
+        if intr.form != kinds::Form::Special
+            && let Some(f) = intr.wgsl
+        {
+            return self.contract_call(name, &f, args, span).map(Some);
+        }
         match name {
-            "launch_index" => nullary("rt_launch_index", Ty::Vec(2, Scalar::U32)),
-            "launch_dim" => nullary("rt_launch_dim", Ty::Vec(2, Scalar::U32)),
-            "current_ray" => nullary("rt_current_ray", Ty::Ray),
-            "t_hit" => nullary("rt_t_hit", F32),
-            "primitive_index" => nullary("rt_primitive_index", U32),
-            "exception_code" => nullary("rt_exception_code", U32),
-            "rt_ignore_intersection" | "rt_terminate_ray" => {
-                if !args.is_empty() {
-                    return Err(Error::new(span, format!("`{name}` takes no arguments")));
-                }
-                let line = self.mark(span, &format!("{name}();"));
-                self.emit(line);
-                Ok(Some(Val::new("", Ty::Unit)))
-            }
-            "rt_throw" => {
-                let a = self.args_typed(args, &[U32], span, name)?;
-                let line = self.mark(span, &format!("rt_throw({});", a[0]));
-                self.emit(line);
-                Ok(Some(Val::new("", Ty::Unit)))
-            }
-            "rt_potential_intersection" => {
-                let a = self.args_typed(args, &[F32], span, name)?;
-                Ok(Some(Val::new(format!("rt_potential_intersection({})", a[0]), BOOL)))
-            }
             "rt_report_intersection" => {
                 let a = self.args_typed(args, &[U32], span, name)?;
                 let attr = self.scopes[0].iter().find(|(_, l)| matches!(&l.ty, Ty::Ref(true, t) if matches!(&**t, Ty::Struct(s) if s.role == crate::StructRole::Attributes))).map(|(_, l)| l.clone());
@@ -2666,10 +2640,6 @@ impl<'m> FnLowerer<'m> {
                     }
                     _ => Ok(Some(Val::new(format!("rt_report_intersection({})", a[0]), BOOL))),
                 }
-            }
-            "rt_transform_point" | "rt_transform_vector" | "rt_transform_normal" => {
-                let a = self.args_typed(args, &[Ty::TransformKind, v3.clone()], span, name)?;
-                Ok(Some(Val::new(format!("{name}({}, {})", a[0], a[1]), v3)))
             }
             "rt_trace" | "rt_trace_with" => {
                 let n = if name == "rt_trace" { 3 } else { 5 };
@@ -2709,6 +2679,30 @@ impl<'m> FnLowerer<'m> {
                 Ok(Some(Val::new("", Ty::Unit)))
             }
             _ => Ok(None),
+        }
+    }
+
+    /// A call of an intrinsic the contract lowers by its row alone: the
+    /// arguments checked against the row's parameters, then the runtime
+    /// function called as a value, or as a statement of its own.
+    fn contract_call(&mut self, name: &str, f: &kinds::WgslFn, args: &[&Expr], span: Span) -> Result<Val> {
+        if f.params.is_empty() && !args.is_empty() {
+            return Err(Error::new(span, format!("`{name}` takes no arguments")));
+        }
+        let types: Option<Vec<Ty>> = f.params.iter().map(|(_, t)| abi_ty(*t)).chain([abi_ty(f.ret)]).collect();
+        let Some(mut params) = types else {
+            return Err(Error::new(span, format!("`{name}`: its contract row passes a handle by value")));
+        };
+        let ret = params.pop().unwrap_or(Ty::Unit);
+        let a = self.args_typed(args, &params, span, name)?;
+        let call = format!("{}({})", f.name, a.join(", "));
+        match f.ret {
+            kinds::AbiTy::Unit => {
+                let line = self.mark(span, &format!("{call};"));
+                self.emit(line);
+                Ok(Val::new("", Ty::Unit))
+            }
+            _ => Ok(Val::new(call, ret)),
         }
     }
 
@@ -3188,4 +3182,24 @@ fn ends_in_return(b: &syn::Block) -> bool {
         stmts.iter().any(|s| quote::quote!(#s).to_string().contains("break"))
     }
     block_diverges(b)
+}
+
+/// The compiler's type for a contract type (none for the handles, which
+/// no intrinsic passes by value).
+fn abi_ty(t: kinds::AbiTy) -> Option<Ty> {
+    use kinds::AbiTy as A;
+    Some(match t {
+        A::Unit => Ty::Unit,
+        A::Bool => BOOL,
+        A::U32 => U32,
+        A::F32 => F32,
+        A::UVec2 => Ty::Vec(2, Scalar::U32),
+        A::Vec2 => Ty::vec(2),
+        A::Vec3 => Ty::vec(3),
+        A::Vec4 => Ty::vec(4),
+        A::Mat4 => Ty::Mat(4),
+        A::Ray => Ty::Ray,
+        A::TransformKind => Ty::TransformKind,
+        A::Buffer | A::Sampler => return None,
+    })
 }

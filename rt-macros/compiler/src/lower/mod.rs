@@ -1050,7 +1050,7 @@ fn program_unit(
 /// Stubs for everything the runtime provides. They only need the right
 /// signatures: the linker replaces this whole section.
 fn prelude(m: &ModuleCtx) -> String {
-    let mut s = String::from(PRELUDE);
+    let mut s = PRELUDE.clone();
     for ty in m.trace_types.borrow().values() {
         s.push_str(&format!(
             "fn rt_trace_{}(object: u32, ray: RtRay, prd: ptr<function, {}>, flags: u32, mask: u32) {{}}\n",
@@ -1080,50 +1080,6 @@ pub fn resumable_stubs(m: &ModuleCtx) -> String {
     s
 }
 
-/// The fixed part of the stub prelude.
-pub const PRELUDE: &str = "\
-struct RtRay {
-    origin: vec3<f32>,
-    direction: vec3<f32>,
-    ray_type: u32,
-    tmin: f32,
-    tmax: f32,
-}
-struct RtAabb {
-    min: vec3<f32>,
-    max: vec3<f32>,
-}
-struct RtBuffer {
-    offset: u32,
-    len: u32,
-    width: u32,
-    height: u32,
-}
-struct RtSampler {
-    offset: u32,
-    width: u32,
-    height: u32,
-    mode: u32,
-}
-@group(0) @binding(0) var<storage, read_write> rt_heap: array<u32>;
-fn rt_buf_check(b: RtBuffer, i: u32) -> bool { return i < b.len; }
-fn rt_buf_check2(b: RtBuffer, i: vec2<u32>) -> bool { return i.x < b.width && i.y < b.height; }
-fn rt_launch_index() -> vec2<u32> { return vec2<u32>(); }
-fn rt_launch_dim() -> vec2<u32> { return vec2<u32>(1u); }
-fn rt_current_ray() -> RtRay { return RtRay(); }
-fn rt_t_hit() -> f32 { return 0.0; }
-fn rt_primitive_index() -> u32 { return 0u; }
-fn rt_exception_code() -> u32 { return 0u; }
-fn rt_potential_intersection(t: f32) -> bool { return false; }
-fn rt_report_intersection(material: u32) -> bool { return false; }
-fn rt_ignore_intersection() {}
-fn rt_terminate_ray() {}
-fn rt_throw(code: u32) {}
-fn rt_transform_point(kind: u32, p: vec3<f32>) -> vec3<f32> { return p; }
-fn rt_transform_vector(kind: u32, v: vec3<f32>) -> vec3<f32> { return v; }
-fn rt_transform_normal(kind: u32, n: vec3<f32>) -> vec3<f32> { return n; }
-fn rt_tex_sample(s: RtSampler, uv: vec2<f32>) -> vec4<f32> { return vec4<f32>(); }
-fn rt_tex_fetch(s: RtSampler, texel: vec2<u32>) -> vec4<f32> { return vec4<f32>(); }
-fn rt_printf_begin(format: u32, words: u32) -> bool { return false; }
-fn rt_printf_word(word: u32) {}
-";
+/// The fixed part of the stub prelude: the contract's records and a stub
+/// of every runtime function (`rt_abi::wgsl::stub_prelude`).
+pub static PRELUDE: std::sync::LazyLock<String> = std::sync::LazyLock::new(rt_abi::wgsl::stub_prelude);

@@ -21,10 +21,22 @@ use crate::error::{Result, RtError};
 use rt_std::program::{ProgramDescriptor, ProgramKind, TriangleBuiltin, TypeLayout, VariableKind};
 use std::collections::{BTreeMap, BTreeSet};
 
-/// The runtime's half of every module.
-pub const PRELUDE: &str = include_str!("prelude.wgsl");
+/// The runtime's half of every module, after the contract's records, heap
+/// and exception codes (see [`prelude`]).
+const PRELUDE: &str = include_str!("prelude.wgsl");
 const TRAVERSE: &str = include_str!("traverse.wgsl");
 const GRAPH: &str = include_str!("graph.wgsl");
+
+/// The start of every module: the records and heap binding the programs
+/// were validated against (rt-abi's, not a copy), the exception codes,
+/// then the runtime's implementations of the contract's functions.
+pub fn prelude() -> String {
+    let mut out = String::from(rt_abi::wgsl::RECORDS);
+    out.push_str(rt_abi::wgsl::HEAP);
+    out.push_str(&rt_abi::wgsl::exception_constants());
+    out.push_str(PRELUDE);
+    out
+}
 
 /// What a kernel without graph traversal links in its place: hits take
 /// their transforms from the instance table.
@@ -294,7 +306,7 @@ pub fn generate(spec: &KernelSpec) -> Result<Generated> {
         }
     }
 
-    let mut out = String::from(PRELUDE);
+    let mut out = prelude();
     out.push_str(&scene_access(spec.scene_bindings));
     out.push_str(&format!(
         "\nconst RT_BVH_STACK: u32 = {}u;\nconst RT_TLAS_STACK: u32 = {}u;\nconst RT_GROUPS: bool = {};\nconst RT_TRIANGLES_ONLY: bool = {};\nconst RT_CWBVH: bool = {};\nconst RT_CW_STACK: u32 = {}u;\n",

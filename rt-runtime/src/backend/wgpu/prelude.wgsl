@@ -3,29 +3,10 @@
 // against (same names and signatures), plus the state and scene access the
 // generated traversal and dispatch code use.
 
-struct RtRay {
-    origin: vec3<f32>,
-    direction: vec3<f32>,
-    ray_type: u32,
-    tmin: f32,
-    tmax: f32,
-}
-struct RtAabb {
-    min: vec3<f32>,
-    max: vec3<f32>,
-}
-struct RtBuffer {
-    offset: u32,
-    len: u32,
-    width: u32,
-    height: u32,
-}
-struct RtSampler {
-    offset: u32,
-    width: u32,
-    height: u32,
-    mode: u32,
-}
+// The records shared with the compiler (RtRay, RtAabb, RtBuffer,
+// RtSampler), the heap binding and the RT_EXC_* codes come first, from
+// rt-abi (see kernel.rs).
+
 struct RtLaunch {
     dim: vec2<u32>,
     origin: vec2<u32>,
@@ -36,14 +17,10 @@ struct RtLaunch {
     print_filter: vec2<u32>,
 }
 
-@group(0) @binding(0) var<storage, read_write> rt_heap: array<u32>;
 @group(0) @binding(1) var<storage, read> rt_scene: array<u32>;
 @group(0) @binding(2) var<storage, read_write> rt_log: array<atomic<u32>>;
 @group(0) @binding(3) var<uniform> rt_launch: RtLaunch;
 
-const RT_EXC_TRACE_DEPTH: u32 = 1020u;
-const RT_EXC_BUFFER_INDEX: u32 = 1019u;
-const RT_EXC_INVALID_RAY: u32 = 1014u;
 const RT_NONE: u32 = 0xffffffffu;
 
 // Per-invocation state behind the intrinsics.
@@ -122,6 +99,10 @@ fn rt_ignore_intersection() { rt_ignored = true; }
 fn rt_terminate_ray() { rt_terminated = true; }
 fn rt_throw(code: u32) { rt_raise(code); }
 
+fn rt_get_transform(kind: u32) -> mat4x4<f32> {
+    if kind == 0u { return rt_o2w; }
+    return rt_w2o;
+}
 fn rt_transform_point(kind: u32, p: vec3<f32>) -> vec3<f32> {
     if kind == 0u { return (rt_o2w * vec4<f32>(p, 1.0)).xyz; }
     return (rt_w2o * vec4<f32>(p, 1.0)).xyz;

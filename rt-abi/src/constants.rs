@@ -1,0 +1,47 @@
+//! The values of rt-std's ray flags, visibility mask and exception codes.
+//! rt-std re-exports them (with their docs), the compiler folds them into
+//! WGSL literals and the runtime's backends test against them.
+
+/// No flags.
+pub const RAY_FLAG_NONE: u32 = 0;
+/// End the search at the first accepted intersection.
+pub const RAY_FLAG_TERMINATE_ON_FIRST_HIT: u32 = 1;
+/// Skip any-hit programs.
+pub const RAY_FLAG_DISABLE_ANYHIT: u32 = 2;
+/// Skip the closest-hit program of the committed intersection.
+pub const RAY_FLAG_DISABLE_CLOSESTHIT: u32 = 4;
+/// Ignore triangles whose back faces the ray.
+pub const RAY_FLAG_CULL_BACK_FACING: u32 = 8;
+/// Ignore triangles whose front faces the ray.
+pub const RAY_FLAG_CULL_FRONT_FACING: u32 = 16;
+/// Every bit of an instance's 8-bit visibility mask.
+pub const RAY_MASK_ALL: u32 = 0xFF;
+
+/// `rt_trace` at the context's maximum trace depth.
+pub const EXCEPTION_TRACE_DEPTH_EXCEEDED: u32 = 0x3FC;
+/// A buffer accessed outside its bounds.
+pub const EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS: u32 = 0x3FB;
+/// `rt_trace` given a NaN or infinite ray.
+pub const EXCEPTION_INVALID_RAY: u32 = 0x3F6;
+/// The first code free for programs' own `rt_throw` codes.
+pub const EXCEPTION_USER: u32 = 0x400;
+
+/// Every constant above that programs may name, by its rt-std name.
+pub const CONSTANTS: &[(&str, u32)] = &[
+    ("RAY_FLAG_NONE", RAY_FLAG_NONE),
+    ("RAY_FLAG_TERMINATE_ON_FIRST_HIT", RAY_FLAG_TERMINATE_ON_FIRST_HIT),
+    ("RAY_FLAG_DISABLE_ANYHIT", RAY_FLAG_DISABLE_ANYHIT),
+    ("RAY_FLAG_DISABLE_CLOSESTHIT", RAY_FLAG_DISABLE_CLOSESTHIT),
+    ("RAY_FLAG_CULL_BACK_FACING", RAY_FLAG_CULL_BACK_FACING),
+    ("RAY_FLAG_CULL_FRONT_FACING", RAY_FLAG_CULL_FRONT_FACING),
+    ("RAY_MASK_ALL", RAY_MASK_ALL),
+    ("EXCEPTION_TRACE_DEPTH_EXCEEDED", EXCEPTION_TRACE_DEPTH_EXCEEDED),
+    ("EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS", EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS),
+    ("EXCEPTION_INVALID_RAY", EXCEPTION_INVALID_RAY),
+    ("EXCEPTION_USER", EXCEPTION_USER),
+];
+
+/// The value of the constant rt-std calls `name`.
+pub fn constant(name: &str) -> Option<u32> {
+    CONSTANTS.iter().find(|(n, _)| *n == name).map(|(_, v)| *v)
+}

@@ -1,0 +1,262 @@
+//! The intrinsics: what rt-std offers programs beyond plain math, which
+//! kinds may call each, and the WGSL function each lowers to.
+
+use crate::kinds::{Callers, Kind, Kind::*};
+
+/// A type at the compiler-runtime boundary, as both sides spell it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AbiTy {
+    Unit,
+    Bool,
+    U32,
+    F32,
+    UVec2,
+    Vec2,
+    Vec3,
+    Vec4,
+    Mat4,
+    /// `rt_std::Ray`, WGSL `RtRay`.
+    Ray,
+    /// `rt_std::TransformKind`, passed as `u32` (0 object to world, 1 world
+    /// to object).
+    TransformKind,
+    /// A buffer handle, WGSL `RtBuffer`.
+    Buffer,
+    /// A sampler handle, WGSL `RtSampler`.
+    Sampler,
+}
+
+impl AbiTy {
+    /// The WGSL type.
+    pub fn wgsl(self) -> &'static str {
+        match self {
+            AbiTy::Unit => "",
+            AbiTy::Bool => "bool",
+            AbiTy::U32 | AbiTy::TransformKind => "u32",
+            AbiTy::F32 => "f32",
+            AbiTy::UVec2 => "vec2<u32>",
+            AbiTy::Vec2 => "vec2<f32>",
+            AbiTy::Vec3 => "vec3<f32>",
+            AbiTy::Vec4 => "vec4<f32>",
+            AbiTy::Mat4 => "mat4x4<f32>",
+            AbiTy::Ray => "RtRay",
+            AbiTy::Buffer => "RtBuffer",
+            AbiTy::Sampler => "RtSampler",
+        }
+    }
+
+    /// The Rust type rt-std's CPU body takes or returns.
+    pub fn rust(self) -> &'static str {
+        match self {
+            AbiTy::Unit => "()",
+            AbiTy::Bool => "bool",
+            AbiTy::U32 => "u32",
+            AbiTy::F32 => "f32",
+            AbiTy::UVec2 => "UVec2",
+            AbiTy::Vec2 => "Vec2",
+            AbiTy::Vec3 => "Vec3",
+            AbiTy::Vec4 => "Vec4",
+            AbiTy::Mat4 => "Mat4",
+            AbiTy::Ray => "Ray",
+            AbiTy::TransformKind => "TransformKind",
+            AbiTy::Buffer => "RtBuffer",
+            AbiTy::Sampler => "Sampler2d",
+        }
+    }
+}
+
+/// A WGSL function the runtime's prelude defines and lowered programs call.
+#[derive(Clone, Copy, Debug)]
+pub struct WgslFn {
+    pub name: &'static str,
+    /// Parameter names and types.
+    pub params: &'static [(&'static str, AbiTy)],
+    pub ret: AbiTy,
+}
+
+/// How the compiler lowers a call.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Form {
+    /// An expression: the WGSL function called with the arguments, checked
+    /// against its parameters.
+    Value,
+    /// A statement of its own (it has an effect and returns nothing).
+    Statement,
+    /// Lowered by the compiler's own code (the trace, the report, printf):
+    /// its WGSL function, if any, has per-type variants.
+    Special,
+}
+
+/// One intrinsic of rt-std that depends on the program kind.
+#[derive(Clone, Copy, Debug)]
+pub struct Intrinsic {
+    /// Rust name in rt-std.
+    pub name: &'static str,
+    /// OptiX's name (rt-std carries it as `#[doc(alias)]`).
+    pub optix: &'static str,
+    pub callers: Callers,
+    pub form: Form,
+    /// The runtime function a call lowers to.
+    pub wgsl: Option<WgslFn>,
+}
+
+const NOT_BOUNDS: &[Kind] = &[RayGeneration, Exception, ClosestHit, AnyHit, Miss, Intersection, Visit];
+const RAY_KINDS: &[Kind] = &[ClosestHit, AnyHit, Miss, Intersection, Visit];
+const HITS: &[Kind] = &[ClosestHit, AnyHit];
+const TRACERS: &[Kind] = &[RayGeneration, ClosestHit, Miss];
+const THROWERS: &[Kind] = &[RayGeneration, ClosestHit, AnyHit, Miss, Intersection, Visit];
+const TRANSFORMERS: &[Kind] = &[ClosestHit, AnyHit, Intersection];
+
+use AbiTy::*;
+
+const fn row(
+    name: &'static str,
+    optix: &'static str,
+    callers: &'static [Kind],
+    form: Form,
+    wgsl: &'static str,
+    params: &'static [(&'static str, AbiTy)],
+    ret: AbiTy,
+) -> Intrinsic {
+    Intrinsic { name, optix, callers: Callers::Only(callers), form, wgsl: Some(WgslFn { name: wgsl, params, ret }) }
+}
+
+/// Kind-restricted intrinsics. Math helpers, buffer and sampler methods are
+/// callable from every kind and are not listed (their runtime functions are
+/// in [`RUNTIME_FUNCTIONS`]).
+pub const INTRINSICS: &[Intrinsic] = &[
+    row("launch_index", "rtLaunchIndex", NOT_BOUNDS, Form::Value, "rt_launch_index", &[], UVec2),
+    row("launch_dim", "rtLaunchDim", NOT_BOUNDS, Form::Value, "rt_launch_dim", &[], UVec2),
+    row("current_ray", "rtCurrentRay", RAY_KINDS, Form::Value, "rt_current_ray", &[], Ray),
+    row("t_hit", "rtIntersectionDistance", HITS, Form::Value, "rt_t_hit", &[], F32),
+    row(
+        "primitive_index",
+        "rtPrimitiveIndex",
+        &[ClosestHit, AnyHit, Intersection],
+        Form::Value,
+        "rt_primitive_index",
+        &[],
+        U32,
+    ),
+    row("exception_code", "rtGetExceptionCode", &[Exception], Form::Value, "rt_exception_code", &[], U32),
+    Intrinsic { name: "rt_trace", optix: "rtTrace", callers: Callers::Only(TRACERS), form: Form::Special, wgsl: None },
+    Intrinsic {
+        name: "rt_trace_with",
+        optix: "rtTrace",
+        callers: Callers::Only(TRACERS),
+        form: Form::Special,
+        wgsl: None,
+    },
+    row(
+        "rt_potential_intersection",
+        "rtPotentialIntersection",
+        &[Intersection],
+        Form::Value,
+        "rt_potential_intersection",
+        &[("t", F32)],
+        Bool,
+    ),
+    row(
+        "rt_report_intersection",
+        "rtReportIntersection",
+        &[Intersection],
+        Form::Special,
+        "rt_report_intersection",
+        &[("material", U32)],
+        Bool,
+    ),
+    row(
+        "rt_ignore_intersection",
+        "rtIgnoreIntersection",
+        &[AnyHit],
+        Form::Statement,
+        "rt_ignore_intersection",
+        &[],
+        Unit,
+    ),
+    row("rt_terminate_ray", "rtTerminateRay", &[AnyHit], Form::Statement, "rt_terminate_ray", &[], Unit),
+    row("rt_throw", "rtThrow", THROWERS, Form::Statement, "rt_throw", &[("code", U32)], Unit),
+    row(
+        "rt_transform_point",
+        "rtTransformPoint",
+        TRANSFORMERS,
+        Form::Value,
+        "rt_transform_point",
+        &[("kind", TransformKind), ("p", Vec3)],
+        Vec3,
+    ),
+    row(
+        "rt_transform_vector",
+        "rtTransformVector",
+        TRANSFORMERS,
+        Form::Value,
+        "rt_transform_vector",
+        &[("kind", TransformKind), ("v", Vec3)],
+        Vec3,
+    ),
+    row(
+        "rt_transform_normal",
+        "rtTransformNormal",
+        TRANSFORMERS,
+        Form::Value,
+        "rt_transform_normal",
+        &[("kind", TransformKind), ("n", Vec3)],
+        Vec3,
+    ),
+    row(
+        "rt_get_transform",
+        "rtGetTransform",
+        TRANSFORMERS,
+        Form::Value,
+        "rt_get_transform",
+        &[("kind", TransformKind)],
+        Mat4,
+    ),
+    Intrinsic { name: "rt_printf", optix: "rtPrintf", callers: Callers::All, form: Form::Special, wgsl: None },
+];
+
+/// The runtime functions lowered code calls that are not intrinsics of
+/// their own: buffer bounds checks, texture reads, debug output.
+pub const RUNTIME_FUNCTIONS: &[WgslFn] = &[
+    WgslFn { name: "rt_buf_check", params: &[("b", Buffer), ("i", U32)], ret: Bool },
+    WgslFn { name: "rt_buf_check2", params: &[("b", Buffer), ("i", UVec2)], ret: Bool },
+    WgslFn { name: "rt_tex_sample", params: &[("s", Sampler), ("uv", Vec2)], ret: Vec4 },
+    WgslFn { name: "rt_tex_fetch", params: &[("s", Sampler), ("texel", UVec2)], ret: Vec4 },
+    WgslFn { name: "rt_printf_begin", params: &[("format", U32), ("words", U32)], ret: Bool },
+    WgslFn { name: "rt_printf_word", params: &[("word", U32)], ret: Unit },
+];
+
+/// The row of the intrinsic rt-std calls `name`.
+pub fn intrinsic(name: &str) -> Option<&'static Intrinsic> {
+    INTRINSICS.iter().find(|i| i.name == name)
+}
+
+/// Every WGSL function of the contract: the intrinsics' and the others.
+pub fn wgsl_functions() -> impl Iterator<Item = &'static WgslFn> {
+    INTRINSICS.iter().filter_map(|i| i.wgsl.as_ref()).chain(RUNTIME_FUNCTIONS)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_are_unique() {
+        let mut rust: Vec<&str> = INTRINSICS.iter().map(|i| i.name).collect();
+        rust.sort();
+        rust.dedup();
+        assert_eq!(rust.len(), INTRINSICS.len());
+        let mut wgsl: Vec<&str> = wgsl_functions().map(|f| f.name).collect();
+        wgsl.sort();
+        wgsl.dedup();
+        assert_eq!(wgsl.len(), wgsl_functions().count());
+    }
+
+    #[test]
+    fn lowered_rows_have_a_function() {
+        for i in INTRINSICS.iter().filter(|i| i.form != Form::Special) {
+            let f = i.wgsl.unwrap_or_else(|| panic!("`{}` has no WGSL function", i.name));
+            assert_eq!(i.form == Form::Statement, f.ret == AbiTy::Unit, "`{}`", i.name);
+        }
+    }
+}
