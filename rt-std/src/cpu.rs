@@ -586,3 +586,9 @@ pub fn __report_intersection<A: crate::Attributes + Send>(material: u32, attribu
         None => true,
     }
 }
+
+/// Sends `rt_printf!` text to the tracer or stdout.
+#[doc(hidden)]
+pub fn __print(text: &str) {
+    with_installed_tracer(|tracer| tracer.print(text), || print!("{text}"))
+}

@@ -274,14 +274,8 @@ pub fn rt_get_transform(kind: TransformKind) -> Mat4 {
 #[macro_export]
 macro_rules! rt_printf {
     ($($arg:tt)*) => {
-        $crate::intrinsics::__print(&::std::format!($($arg)*))
+        $crate::cpu::__print(&::std::format!($($arg)*))
     };
-}
-
-/// Sends `rt_printf!` text to the tracer or stdout.
-#[doc(hidden)]
-pub fn __print(text: &str) {
-    with_installed_tracer(|tracer| tracer.print(text), || print!("{text}"))
 }
 
 #[cfg(test)]

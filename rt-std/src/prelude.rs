@@ -21,12 +21,7 @@ pub use crate::rt_printf;
 pub use crate::buffer::{Buffer, Buffer2d, RwBuffer, RwBuffer2d};
 pub use crate::data::{Attributes, Payload, RtData};
 pub use crate::geometry::Aabb;
-pub use crate::intrinsics::{
-    EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS, EXCEPTION_INVALID_RAY, EXCEPTION_TRACE_DEPTH_EXCEEDED, EXCEPTION_USER,
-    current_ray, exception_code, launch_dim, launch_index, primitive_index, rt_get_transform, rt_ignore_intersection,
-    rt_potential_intersection, rt_report_intersection, rt_terminate_ray, rt_throw, rt_trace, rt_trace_with,
-    rt_transform_normal, rt_transform_point, rt_transform_vector, t_hit,
-};
+pub use crate::intrinsics::*;
 pub use crate::math::{GenType, MixFactor, faceforward, mix, reflect, refract, saturate, smoothstep, step};
 pub use crate::ray::{
     RAY_FLAG_CULL_BACK_FACING, RAY_FLAG_CULL_FRONT_FACING, RAY_FLAG_DISABLE_ANYHIT, RAY_FLAG_DISABLE_CLOSESTHIT,

@@ -28,12 +28,14 @@
 //!    layouts, variables, intrinsics used, and file/line.
 //!
 //! ## Invariants
-//! - The program kinds and the intrinsics each may call are one table,
-//!   [`kinds`]; the WGSL spelling and heap layout of a type are defined once,
-//!   in [`types`].
-//! - A lowered module has four sections (prelude of runtime stubs, types,
-//!   functions, program); the runtime's linker replaces the prelude and
-//!   deduplicates shared types and functions by name.
+//! - The program kinds, the intrinsics each may call and their WGSL
+//!   signatures are one table, the contract crate `rt-abi` (re-exported
+//!   in [`kinds`]), which rt-std and the runtime read too; the WGSL spelling
+//!   and heap layout of a type are defined once, in [`types`].
+//! - A lowered module has four sections (prelude of runtime stubs, generated
+//!   from the contract; types; functions; program); the runtime's linker
+//!   replaces the prelude and deduplicates shared types and functions by
+//!   name.
 
 pub mod deps;
 pub mod error;
