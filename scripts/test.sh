@@ -29,8 +29,6 @@ if ! command -v Xvfb >/dev/null || ! dpkg -s $x11_packages >/dev/null 2>&1; then
         echo "scripts/test.sh: no Xvfb (or X11 libraries) found; the viewer's window tests may be skipped or fail (apt-get install $x11_packages)" >&2
     fi
 fi
-# Mesa's window-system code complains when this is unset; it is not needed.
-export XDG_RUNTIME_DIR="${XDG_RUNTIME_DIR:-/tmp}"
 export CARGO_BUILD_JOBS="${CARGO_BUILD_JOBS:-2}"
 start=$(date +%s)
 # Lint first: formatting and clippy's warnings fail the run as a test does.

@@ -18,7 +18,7 @@ fn bytes(w: &[u32]) -> &[u8] {
 /// discrete GPU over an integrated one or lavapipe), so both kernels run on
 /// the same one.
 pub fn adapter() -> Result<wgpu::Adapter, String> {
-    let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+    let instance = rt_runtime::backend::wgpu::instance();
     let options =
         wgpu::RequestAdapterOptions { power_preference: wgpu::PowerPreference::HighPerformance, ..Default::default() };
     pollster::block_on(instance.request_adapter(&options)).map_err(|e| e.to_string())

@@ -713,7 +713,6 @@ fn main() {
     // over the next scene is not compiled again.
     let shader_cache = std::env::temp_dir().join(format!("rt-bench-mesa-cache-{}", std::process::id()));
     // Before any thread exists (rayon and wgpu start later).
-    examples::headless_runtime_dir();
     if !args.warm_shader_cache {
         // SAFETY: set before any thread exists (rayon and wgpu start later).
         unsafe { std::env::set_var("MESA_SHADER_CACHE_DIR", &shader_cache) };

@@ -84,21 +84,6 @@ pub const EXAMPLES: [Example; 10] = [
     Example { name: "instances", summary: "100 instances of one BVH", build: instances::scene, progressive: false },
 ];
 
-/// Gives the process an `XDG_RUNTIME_DIR` (the temporary directory) when it
-/// has none, as on a headless machine or in a container: Mesa's Vulkan
-/// drivers print "error: XDG_RUNTIME_DIR is invalid or not set" while wgpu
-/// looks for adapters, which reads like a failure and is not one.
-///
-/// Call it first thing in `main`, before any thread starts (it sets an
-/// environment variable).
-pub fn headless_runtime_dir() {
-    if std::env::var_os("XDG_RUNTIME_DIR").is_none() {
-        // SAFETY: called at the start of `main`, while the process has one
-        // thread; nothing reads the environment concurrently.
-        unsafe { std::env::set_var("XDG_RUNTIME_DIR", std::env::temp_dir()) };
-    }
-}
-
 /// The example called `name`.
 pub fn example(name: &str) -> Option<&'static Example> {
     EXAMPLES.iter().find(|e| e.name == name)

@@ -227,6 +227,26 @@ fn render_runs_on_the_wgpu_backend_or_says_why_not() {
     }
 }
 
+/// Headless as it comes: without `XDG_RUNTIME_DIR` (a container, a CI
+/// runner) a wgpu render prints nothing on stderr; Mesa's device-selection
+/// layer used to print "error: XDG_RUNTIME_DIR is invalid or not set".
+#[test]
+fn a_wgpu_render_without_xdg_runtime_dir_prints_nothing_on_stderr() {
+    let dir = temp_dir("headless");
+    let obj = dir.join("triangle.obj");
+    std::fs::write(&obj, format!("{TRIANGLE}f 1 2 3\n")).unwrap();
+    let png = dir.join("triangle.png");
+    let out = Command::new(env!("CARGO_BIN_EXE_render"))
+        .args([obj.to_str().unwrap(), "--out", png.to_str().unwrap(), "--width", "8", "--height", "6"])
+        .args(["--spp", "1", "--backend", "wgpu"])
+        .env_remove("XDG_RUNTIME_DIR")
+        .env_remove("NODEVICE_SELECT")
+        .output()
+        .expect("render runs");
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    assert_eq!(stderr(&out), "");
+}
+
 #[test]
 fn tour_renders_the_named_examples_and_says_which_backend() {
     let dir = temp_dir("tour");

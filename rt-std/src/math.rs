@@ -60,12 +60,22 @@ pub fn step<T: GenType>(edge: T, x: T) -> T {
 }
 
 /// Per component: `x` clamped to `[0, 1]` (NaN becomes 0, as GPUs'
-/// saturate does).
+/// saturate does). The sign of a zero is kept (`-0.0` stays `-0.0`), as the
+/// WGSL `saturate` the GPU backend runs gives it, in every build: written
+/// with comparisons, not `f32::max`/`min`, whose sign of zero is left to the
+/// optimiser (debug and release builds differed).
 ///
 /// Program kinds: all.
-#[allow(clippy::manual_clamp)] // Not `clamp`, which keeps NaN.
 pub fn saturate<T: GenType>(x: T) -> T {
-    T::zip3(x, x, x, |x, _, _| x.max(0.0).min(1.0))
+    T::zip3(x, x, x, |x, _, _| {
+        if x.is_nan() || x < 0.0 {
+            0.0
+        } else if x > 1.0 {
+            1.0
+        } else {
+            x
+        }
+    })
 }
 
 /// Linear blend from `a` (at `t = 0`) to `b` (at `t = 1`):
@@ -197,6 +207,10 @@ mod tests {
         assert_eq!(step(Vec2::new(1.0, 2.0), Vec2::splat(1.5)), Vec2::new(1.0, 0.0));
         assert_eq!(saturate(-0.5), 0.0);
         assert_eq!(saturate(f32::NAN), 0.0);
+        // The sign of zero: WGSL's answer, in debug and release builds.
+        assert_eq!(saturate(-0.0f32).to_bits(), (-0.0f32).to_bits());
+        assert_eq!(saturate(f32::NAN).to_bits(), 0.0f32.to_bits());
+        assert_eq!(saturate(-0.5f32).to_bits(), 0.0f32.to_bits());
         assert_eq!(saturate(Vec4::new(-1.0, 0.25, 1.0, 7.0)), Vec4::new(0.0, 0.25, 1.0, 1.0));
         assert_eq!(saturate(Vec3::new(f32::NAN, 2.0, 0.5)), Vec3::new(0.0, 1.0, 0.5));
     }

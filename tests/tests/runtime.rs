@@ -1617,7 +1617,7 @@ fn an_any_hit_program_added_later_switches_the_kernel_to_bvh2s_and_the_image_sta
 #[test]
 fn a_scene_over_the_adapters_binding_limit_is_a_clear_error() {
     // A device whose storage bindings hold at most 1 MiB.
-    let instance = ::wgpu::Instance::new(::wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+    let instance = rt_runtime::backend::wgpu::instance();
     let adapter = pollster::block_on(instance.request_adapter(&Default::default())).expect("an adapter (lavapipe)");
     let limits = ::wgpu::Limits { max_storage_buffer_binding_size: 1 << 20, ..::wgpu::Limits::downlevel_defaults() };
     let (device, queue) = pollster::block_on(
@@ -1638,7 +1638,7 @@ fn a_scene_over_the_adapters_binding_limit_is_a_clear_error() {
 
 #[test]
 fn the_device_times_the_kernel_where_it_has_timestamps() {
-    let instance = ::wgpu::Instance::new(::wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+    let instance = rt_runtime::backend::wgpu::instance();
     let adapter = pollster::block_on(instance.request_adapter(&::wgpu::RequestAdapterOptions {
         power_preference: ::wgpu::PowerPreference::HighPerformance,
         ..Default::default()
@@ -1672,7 +1672,7 @@ fn the_device_times_the_kernel_where_it_has_timestamps() {
 fn device_with(
     limits: impl FnOnce(::wgpu::Limits) -> ::wgpu::Limits,
 ) -> (::wgpu::Device, ::wgpu::Queue, ::wgpu::AdapterInfo) {
-    let instance = ::wgpu::Instance::new(::wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+    let instance = rt_runtime::backend::wgpu::instance();
     let adapter = pollster::block_on(instance.request_adapter(&Default::default())).expect("an adapter (lavapipe)");
     // As the runtime asks: a storage buffer per scene section, heap and log.
     let limits = limits(::wgpu::Limits {

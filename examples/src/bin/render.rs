@@ -38,7 +38,6 @@ struct Args {
 }
 
 fn main() -> ExitCode {
-    examples::headless_runtime_dir();
     let args = Args::parse();
     match run(&args) {
         Ok(()) => ExitCode::SUCCESS,

@@ -42,7 +42,7 @@ impl Gpu {
     }
 
     fn open() -> Result<(Device, String), String> {
-        let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+        let instance = rt_runtime::backend::wgpu::instance();
         let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
             power_preference: wgpu::PowerPreference::HighPerformance,
             ..Default::default()

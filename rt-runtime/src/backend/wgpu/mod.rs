@@ -281,7 +281,7 @@ fn write_changed(
 impl Gpu {
     /// Opens the first adapter wgpu finds (a GPU, else lavapipe).
     pub fn new() -> Result<Gpu> {
-        let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+        let instance = instance();
         let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
             power_preference: wgpu::PowerPreference::HighPerformance,
             ..Default::default()
@@ -388,9 +388,33 @@ impl Gpu {
     }
 }
 
+/// A wgpu instance for headless compute, as every device of the runtime is
+/// opened.
+///
+/// On a machine without a window system (no `XDG_RUNTIME_DIR`), Mesa's
+/// implicit Vulkan layer `VK_LAYER_MESA_device_select` tries to reach a
+/// Wayland compositor while adapters are enumerated, and libwayland prints
+/// "error: XDG_RUNTIME_DIR is invalid or not set in the environment." to
+/// stderr each time. The layer only reorders devices, which wgpu's own
+/// power preference decides anyway, so there the runtime turns it off the
+/// way its manifest offers (`NODEVICE_SELECT=1`), once, before it creates
+/// its first instance. A user's own setting of either variable wins.
+pub fn instance() -> wgpu::Instance {
+    static QUIET: std::sync::Once = std::sync::Once::new();
+    QUIET.call_once(|| {
+        if std::env::var_os("XDG_RUNTIME_DIR").is_none() && std::env::var_os("NODEVICE_SELECT").is_none() {
+            // SAFETY: runs once, before the runtime has created any Vulkan
+            // instance (so before any driver thread of ours reads the
+            // environment); std's own environment accesses are locked.
+            unsafe { std::env::set_var("NODEVICE_SELECT", "1") };
+        }
+    });
+    wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env())
+}
+
 /// The adapter wgpu would pick, without opening a device.
 pub fn probe() -> Option<wgpu::AdapterInfo> {
-    let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+    let instance = instance();
     let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
         power_preference: wgpu::PowerPreference::HighPerformance,
         ..Default::default()
