@@ -43,6 +43,24 @@ pub fn rt_const(attr: TokenStream, item: TokenStream) -> TokenStream {
     rt_compiler::expand::rt_const(attr.into(), item.into()).into()
 }
 
+/// Marks rt-std's CPU body of an intrinsic of the contract (`rt-abi`): adds
+/// its callers' doc line and OptiX alias from its row and checks its
+/// signature against the row's.
+#[doc(hidden)]
+#[proc_macro_attribute]
+pub fn rt_intrinsic(attr: TokenStream, item: TokenStream) -> TokenStream {
+    rt_compiler::intrinsic::rt_intrinsic(attr.into(), item.into()).into()
+}
+
+/// `__rt_intrinsic_names!(callback)` expands to `callback!(name, ...)` with
+/// the Rust name of every intrinsic of the contract, for checks that every
+/// row has its item in rt-std.
+#[doc(hidden)]
+#[proc_macro]
+pub fn __rt_intrinsic_names(input: TokenStream) -> TokenStream {
+    rt_compiler::intrinsic::names(input.into()).into()
+}
+
 /// Internal step of the dependency chain (see `rt_compiler::expand`).
 #[doc(hidden)]
 #[proc_macro]

@@ -41,18 +41,14 @@ pub const EXCEPTION_INVALID_RAY: u32 = rt_abi::EXCEPTION_INVALID_RAY;
 pub const EXCEPTION_USER: u32 = rt_abi::EXCEPTION_USER;
 
 /// The launch index being computed: in `[0, launch_dim())`.
-///
-/// Program kinds: ray_generation, exception, closest_hit, any_hit, miss, intersection, visit.
-#[doc(alias = "rtLaunchIndex")]
+#[rt_macros::rt_intrinsic]
 #[inline]
 pub fn launch_index() -> UVec2 {
     crate::cpu::read(|c| c.launch_index)
 }
 
 /// The size of the launch.
-///
-/// Program kinds: ray_generation, exception, closest_hit, any_hit, miss, intersection, visit.
-#[doc(alias = "rtLaunchDim")]
+#[rt_macros::rt_intrinsic]
 #[inline]
 pub fn launch_dim() -> UVec2 {
     crate::cpu::read(|c| c.launch_dim)
@@ -63,9 +59,7 @@ pub fn launch_dim() -> UVec2 {
 /// (and their any-hit and closest-hit programs) it is in the object space of
 /// the current instance; in miss and visit programs, in the space of the
 /// node being traversed.
-///
-/// Program kinds: closest_hit, any_hit, miss, intersection, visit.
-#[doc(alias = "rtCurrentRay")]
+#[rt_macros::rt_intrinsic]
 #[inline]
 pub fn current_ray() -> Ray {
     crate::cpu::read(|c| c.current_ray)
@@ -73,9 +67,7 @@ pub fn current_ray() -> Ray {
 
 /// The distance along the current ray of the intersection being considered
 /// (any hit) or committed (closest hit).
-///
-/// Program kinds: closest_hit, any_hit.
-#[doc(alias = "rtIntersectionDistance")]
+#[rt_macros::rt_intrinsic]
 #[inline]
 pub fn t_hit() -> f32 {
     crate::cpu::read(|c| c.t_hit)
@@ -83,9 +75,7 @@ pub fn t_hit() -> f32 {
 
 /// The index, within its geometry, of the primitive being intersected or
 /// hit.
-///
-/// Program kinds: closest_hit, any_hit, intersection.
-#[doc(alias = "rtPrimitiveIndex")]
+#[rt_macros::rt_intrinsic]
 #[inline]
 pub fn primitive_index() -> u32 {
     crate::cpu::read(|c| c.primitive_index)
@@ -93,9 +83,7 @@ pub fn primitive_index() -> u32 {
 
 /// The code of the exception being handled: one of the `EXCEPTION_*`
 /// constants, or a program's own code from [`rt_throw`].
-///
-/// Program kinds: exception.
-#[doc(alias = "rtGetExceptionCode")]
+#[rt_macros::rt_intrinsic]
 #[inline]
 pub fn exception_code() -> u32 {
     crate::cpu::read(|c| c.exception_code)
@@ -105,9 +93,7 @@ pub fn exception_code() -> u32 {
 /// any-hit and closest-hit programs of what it hits, or the miss program of
 /// its ray type, which update `prd`. Same as [`rt_trace_with`] with
 /// [`RAY_FLAG_NONE`] and [`RAY_MASK_ALL`].
-///
-/// Program kinds: ray_generation, closest_hit, miss.
-#[doc(alias = "rtTrace")]
+#[rt_macros::rt_intrinsic]
 pub fn rt_trace<P: Payload>(object: Object, ray: Ray, prd: &mut P) {
     rt_trace_with(object, ray, prd, RAY_FLAG_NONE, RAY_MASK_ALL)
 }
@@ -118,9 +104,7 @@ pub fn rt_trace<P: Payload>(object: Object, ray: Ray, prd: &mut P) {
 /// An invalid ray ([`Ray::is_valid`]) raises [`EXCEPTION_INVALID_RAY`] and is
 /// not traced; `prd` is left as it is. Without a tracer, `prd` is also left
 /// as it is.
-///
-/// Program kinds: ray_generation, closest_hit, miss.
-#[doc(alias = "rtTrace")]
+#[rt_macros::rt_intrinsic]
 pub fn rt_trace_with<P: Payload>(object: Object, ray: Ray, prd: &mut P, flags: u32, mask: u32) {
     if !ray.is_valid() {
         cpu::raise(EXCEPTION_INVALID_RAY);
@@ -136,9 +120,7 @@ pub fn rt_trace_with<P: Payload>(object: Object, ray: Ray, prd: &mut P, flags: u
 ///
 /// Without a tracer: `t > tmin && t < tmax` of the context's current ray,
 /// also setting the context's `t_hit` when true.
-///
-/// Program kinds: intersection.
-#[doc(alias = "rtPotentialIntersection")]
+#[rt_macros::rt_intrinsic]
 pub fn rt_potential_intersection(t: f32) -> bool {
     with_installed_tracer(
         |tracer| tracer.potential_intersection(t),
@@ -161,9 +143,7 @@ pub fn rt_potential_intersection(t: f32) -> bool {
 /// accepted (not ignored); if so it becomes the closest hit so far.
 ///
 /// Without a tracer: returns true and records nothing.
-///
-/// Program kinds: intersection.
-#[doc(alias = "rtReportIntersection")]
+#[rt_macros::rt_intrinsic]
 pub fn rt_report_intersection(material: u32) -> bool {
     with_installed_tracer(|tracer| tracer.report_intersection(material, None), || true)
 }
@@ -171,9 +151,7 @@ pub fn rt_report_intersection(material: u32) -> bool {
 /// Rejects the current candidate intersection: when the any-hit program
 /// returns, the search goes on as if it had not been reported. Returns (see
 /// the [module docs](self)).
-///
-/// Program kinds: any_hit.
-#[doc(alias = "rtIgnoreIntersection")]
+#[rt_macros::rt_intrinsic]
 pub fn rt_ignore_intersection() {
     update(|ctx| ctx.ignored = true);
 }
@@ -181,9 +159,7 @@ pub fn rt_ignore_intersection() {
 /// Accepts the current candidate intersection and ends the search: when the
 /// any-hit program returns, it becomes the committed hit and closest hit
 /// runs. Returns (see the [module docs](self)).
-///
-/// Program kinds: any_hit.
-#[doc(alias = "rtTerminateRay")]
+#[rt_macros::rt_intrinsic]
 pub fn rt_terminate_ray() {
     update(|ctx| ctx.terminated = true);
 }
@@ -195,9 +171,7 @@ pub fn rt_terminate_ray() {
 /// are reserved for the runtime's exceptions (a smaller code is still
 /// recorded as given, and the exception program cannot tell it from the
 /// runtime's). Returns (see the [module docs](self)).
-///
-/// Program kinds: ray_generation, closest_hit, any_hit, miss, intersection, visit.
-#[doc(alias = "rtThrow")]
+#[rt_macros::rt_intrinsic]
 pub fn rt_throw(code: u32) {
     cpu::raise(code);
 }
@@ -213,9 +187,7 @@ fn transform(kind: TransformKind) -> Mat4 {
 /// Transforms point `p` between the current instance's object space and
 /// world space: `(M * vec4(p, 1)).xyz` with `M` the transform `kind` names
 /// (affine: no division by `w`).
-///
-/// Program kinds: closest_hit, any_hit, intersection.
-#[doc(alias = "rtTransformPoint")]
+#[rt_macros::rt_intrinsic]
 pub fn rt_transform_point(kind: TransformKind, p: Vec3) -> Vec3 {
     (transform(kind) * p.extend(1.0)).truncate()
 }
@@ -223,9 +195,7 @@ pub fn rt_transform_point(kind: TransformKind, p: Vec3) -> Vec3 {
 /// Transforms direction `v` between the current instance's object space
 /// and world space: `(M * vec4(v, 0)).xyz` with `M` the transform `kind`
 /// names. The result is not normalised.
-///
-/// Program kinds: closest_hit, any_hit, intersection.
-#[doc(alias = "rtTransformVector")]
+#[rt_macros::rt_intrinsic]
 pub fn rt_transform_vector(kind: TransformKind, v: Vec3) -> Vec3 {
     (transform(kind) * v.extend(0.0)).truncate()
 }
@@ -235,9 +205,7 @@ pub fn rt_transform_vector(kind: TransformKind, v: Vec3) -> Vec3 {
 /// the surface: `(transpose(W) * vec4(n, 0)).xyz` where `W` is the *other*
 /// transform (world-to-object for [`ObjectToWorld`](TransformKind::ObjectToWorld)).
 /// The result is not normalised.
-///
-/// Program kinds: closest_hit, any_hit, intersection.
-#[doc(alias = "rtTransformNormal")]
+#[rt_macros::rt_intrinsic]
 pub fn rt_transform_normal(kind: TransformKind, n: Vec3) -> Vec3 {
     let inverse = match kind {
         TransformKind::ObjectToWorld => TransformKind::WorldToObject,
@@ -251,9 +219,7 @@ pub fn rt_transform_normal(kind: TransformKind, n: Vec3) -> Vec3 {
 /// intersected) for [`ObjectToWorld`](TransformKind::ObjectToWorld), its
 /// inverse for [`WorldToObject`](TransformKind::WorldToObject). The
 /// identity where no transform is above it, or without a tracer.
-///
-/// Program kinds: closest_hit, any_hit, intersection.
-#[doc(alias = "rtGetTransform")]
+#[rt_macros::rt_intrinsic]
 pub fn rt_get_transform(kind: TransformKind) -> Mat4 {
     transform(kind)
 }

@@ -40,6 +40,7 @@
 pub mod deps;
 pub mod error;
 pub mod expand;
+pub mod intrinsic;
 pub mod kinds;
 pub mod lower;
 pub mod signature;
