@@ -13,6 +13,9 @@
 //!   prelude is checked against the same rows (a test parses both with
 //!   naga and compares the signatures);
 //! - [`constants`]: the ray-flag, mask and exception-code values;
+//! - [`records`]: the GPU records the runtime writes and the megakernel
+//!   reads (the launch uniform), as Rust structs with their word layout,
+//!   from which their WGSL is generated;
 //! - [`wgsl`]: the WGSL text both sides share (the records a program and the
 //!   megakernel exchange, the constants) and the stub generator.
 //!
@@ -26,6 +29,7 @@
 pub mod constants;
 pub mod intrinsics;
 pub mod kinds;
+pub mod records;
 pub mod wgsl;
 
 pub use constants::*;

@@ -34,6 +34,7 @@ pub fn prelude() -> String {
     let mut out = String::from(rt_abi::wgsl::RECORDS);
     out.push_str(rt_abi::wgsl::HEAP);
     out.push_str(&rt_abi::wgsl::exception_constants());
+    out.push_str(&rt_abi::records::LaunchUniform::wgsl());
     out.push_str(PRELUDE);
     out
 }

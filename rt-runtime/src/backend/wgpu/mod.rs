@@ -74,6 +74,7 @@ use crate::scene::{GeometryKind, NodeId, NodeKind, ProgramId};
 use crate::vars::VarValue;
 use glam::{Mat4, UVec2};
 use kernel::{KernelProgram, KernelSpec, SCENE_HEADER_BASES, SCENE_SECTIONS};
+use rt_abi::records::LaunchUniform;
 use rt_std::program::{ProgramKind, VariableKind};
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
@@ -1471,33 +1472,30 @@ fn launch_on_device(ctx: &mut Context, entry: u32, width: u32, height: u32) -> R
     let tiles_x = width.div_ceil(8);
     let tiles_y = height.div_ceil(8);
     let max_groups = limits.max_compute_workgroups_per_dimension.max(1);
-    let mut tiles: Vec<([u32; 12], u32, u32)> = Vec::new();
+    let mut tiles: Vec<([u32; LaunchUniform::WORDS], u32, u32)> = Vec::new();
     let mut y0 = 0;
     while y0 < tiles_y {
         let gy = (tiles_y - y0).min(max_groups);
         let mut x0 = 0;
         while x0 < tiles_x {
             let gx = (tiles_x - x0).min(max_groups);
-            let uniform: [u32; 12] = [
-                width,
-                height,
-                x0 * 8,
-                y0 * 8,
-                rg_case,
-                rg_vars,
-                ex_case,
-                ex_vars,
-                LOG_EXCEPTIONS,
+            let uniform = LaunchUniform {
+                dim: [width, height],
+                origin: [x0 * 8, y0 * 8],
+                ray_generation: [rg_case, rg_vars],
+                exception: [ex_case, ex_vars],
+                log_capacity: LOG_EXCEPTIONS,
                 print_enabled,
-                print_filter.x,
-                print_filter.y,
-            ];
+                print_filter: print_filter.to_array(),
+            }
+            .words();
             tiles.push((uniform, gx, gy));
             x0 += gx;
         }
         y0 += gy;
     }
-    let stride = limits.min_uniform_buffer_offset_alignment.max(48) as u64;
+    let uniform_bytes = (LaunchUniform::WORDS * 4) as u32;
+    let stride = limits.min_uniform_buffer_offset_alignment.max(uniform_bytes) as u64;
     if res.uniforms.as_ref().is_none_or(|(_, slots)| (*slots as usize) < tiles.len()) {
         let slots = tiles.len() as u32;
         res.uniforms = Some((
@@ -1514,7 +1512,7 @@ fn launch_on_device(ctx: &mut Context, entry: u32, width: u32, height: u32) -> R
     let (uniforms, _) = res.uniforms.as_ref().expect("created above");
     for (i, (uniform, _, _)) in tiles.iter().enumerate() {
         queue.write_buffer(uniforms, i as u64 * stride, words_to_bytes(uniform));
-        res.uploaded += 48;
+        res.uploaded += uniform_bytes as u64;
     }
     if replaced {
         res.bind_groups.clear();

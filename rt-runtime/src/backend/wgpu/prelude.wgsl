@@ -5,17 +5,8 @@
 
 // The records shared with the compiler (RtRay, RtAabb, RtBuffer,
 // RtSampler), the heap binding and the RT_EXC_* codes come first, from
-// rt-abi (see kernel.rs).
+// rt-abi (see kernel.rs), and so does the launch uniform's struct RtLaunch.
 
-struct RtLaunch {
-    dim: vec2<u32>,
-    origin: vec2<u32>,
-    ray_generation: vec2<u32>,
-    exception: vec2<u32>,
-    log_capacity: u32,
-    print_enabled: u32,
-    print_filter: vec2<u32>,
-}
 
 @group(0) @binding(1) var<storage, read> rt_scene: array<u32>;
 @group(0) @binding(2) var<storage, read_write> rt_log: array<atomic<u32>>;
