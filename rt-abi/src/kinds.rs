@@ -1,16 +1,25 @@
 //! Program kinds: the `#[rt_program(kind)]` spellings and what each kind
 //! may take and call.
 
-/// A program kind, as written in `#[rt_program(kind)]`.
+/// The eight kinds of ray program, as in OptiX, written
+/// `#[rt_program(kind)]` (rt-std calls it `ProgramKind`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Kind {
+    /// Entry point, run once per launch index.
     RayGeneration,
+    /// Called when an exception is raised.
     Exception,
+    /// Called for the closest committed intersection.
     ClosestHit,
+    /// Called for every potential closest intersection.
     AnyHit,
+    /// Called when a ray hits nothing.
     Miss,
+    /// Intersects a ray with one custom primitive.
     Intersection,
+    /// Computes the bounds of one custom primitive.
     BoundingBox,
+    /// Chooses which child of a selector a ray enters.
     Visit,
 }
 
@@ -21,7 +30,7 @@ pub const ALL_KINDS: [Kind; 8] = [RayGeneration, Exception, ClosestHit, AnyHit, 
 
 impl Kind {
     /// The `#[rt_program(...)]` spelling.
-    pub fn name(self) -> &'static str {
+    pub const fn name(self) -> &'static str {
         match self {
             RayGeneration => "ray_generation",
             Exception => "exception",

@@ -6,42 +6,9 @@
 
 use crate::cpu::{CpuArgs, CpuResult};
 
-/// The eight kinds of ray program, as in OptiX.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum ProgramKind {
-    /// Entry point, run once per launch index.
-    RayGeneration,
-    /// Called when an exception is raised.
-    Exception,
-    /// Called for the closest committed intersection.
-    ClosestHit,
-    /// Called for every potential closest intersection.
-    AnyHit,
-    /// Called when a ray hits nothing.
-    Miss,
-    /// Intersects a ray with one custom primitive.
-    Intersection,
-    /// Computes the bounds of one custom primitive.
-    BoundingBox,
-    /// Chooses which child of a selector a ray enters.
-    Visit,
-}
-
-impl ProgramKind {
-    /// The spelling used in `#[rt_program(...)]`.
-    pub const fn attribute_name(self) -> &'static str {
-        match self {
-            ProgramKind::RayGeneration => "ray_generation",
-            ProgramKind::Exception => "exception",
-            ProgramKind::ClosestHit => "closest_hit",
-            ProgramKind::AnyHit => "any_hit",
-            ProgramKind::Miss => "miss",
-            ProgramKind::Intersection => "intersection",
-            ProgramKind::BoundingBox => "bounding_box",
-            ProgramKind::Visit => "visit",
-        }
-    }
-}
+/// The eight kinds of ray program, as in OptiX: the contract's
+/// [`rt_abi::Kind`], whose `name()` is the `#[rt_program(...)]` spelling.
+pub use rt_abi::Kind as ProgramKind;
 
 /// One field of a struct type, in packed 32-bit words.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
