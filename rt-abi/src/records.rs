@@ -62,6 +62,75 @@ impl LaunchUniform {
     }
 }
 
+/// One instance of the two-level scene (a geometry group, or a chain of
+/// transforms above one), in the scene's instance table: 40 words at
+/// `rt_scene[1] + instance * WORDS`. The megakernel reads it through the
+/// `RT_INST_*` constants of [`InstanceRecord::wgsl_constants`].
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct InstanceRecord {
+    /// Object to world, column-major.
+    pub object_to_world: [f32; 16],
+    /// Its inverse, column-major.
+    pub world_to_object: [f32; 16],
+    /// Scene word of the geometry group's BVH.
+    pub bvh: u32,
+    /// Scene word of its primitive table.
+    pub primitives: u32,
+    /// The 8-bit visibility mask.
+    pub mask: u32,
+    /// The geometry group's node index.
+    pub geometry_group: u32,
+    /// Scene word of its triangle slots.
+    pub triangles: u32,
+}
+
+impl InstanceRecord {
+    /// Its size in 32-bit words (three words of padding at the end).
+    pub const WORDS: u32 = 40;
+    pub const OBJECT_TO_WORLD: u32 = 0;
+    pub const WORLD_TO_OBJECT: u32 = 16;
+    pub const BVH: u32 = 32;
+    pub const PRIMITIVES: u32 = 33;
+    pub const MASK: u32 = 34;
+    pub const GEOMETRY_GROUP: u32 = 35;
+    pub const TRIANGLES: u32 = 36;
+
+    /// The record's words, floats as their bits.
+    pub fn words(&self) -> [u32; Self::WORDS as usize] {
+        let mut w = [0u32; Self::WORDS as usize];
+        let at = |o: u32| o as usize;
+        for (i, v) in self.object_to_world.iter().enumerate() {
+            w[at(Self::OBJECT_TO_WORLD) + i] = v.to_bits();
+        }
+        for (i, v) in self.world_to_object.iter().enumerate() {
+            w[at(Self::WORLD_TO_OBJECT) + i] = v.to_bits();
+        }
+        w[at(Self::BVH)] = self.bvh;
+        w[at(Self::PRIMITIVES)] = self.primitives;
+        w[at(Self::MASK)] = self.mask;
+        w[at(Self::GEOMETRY_GROUP)] = self.geometry_group;
+        w[at(Self::TRIANGLES)] = self.triangles;
+        w
+    }
+
+    /// The WGSL constants the megakernel reads the record by.
+    pub fn wgsl_constants() -> String {
+        [
+            ("RT_INST_WORDS", Self::WORDS),
+            ("RT_INST_O2W", Self::OBJECT_TO_WORLD),
+            ("RT_INST_W2O", Self::WORLD_TO_OBJECT),
+            ("RT_INST_BVH", Self::BVH),
+            ("RT_INST_PRIMS", Self::PRIMITIVES),
+            ("RT_INST_MASK", Self::MASK),
+            ("RT_INST_GG", Self::GEOMETRY_GROUP),
+            ("RT_INST_TRIS", Self::TRIANGLES),
+        ]
+        .iter()
+        .map(|(n, v)| format!("const {n}: u32 = {v}u;\n"))
+        .collect()
+    }
+}
+
 /// `struct name { field: type, ... }` with one line a field.
 fn record_wgsl(name: &str, fields: &[Field]) -> String {
     let mut s = format!("struct {name} {{\n");
@@ -115,5 +184,39 @@ mod tests {
             assert_eq!(w[f.word as usize], v, "`{}`", f.name);
         }
         assert!(LaunchUniform::wgsl().contains("    print_filter: vec2<u32>,\n"));
+    }
+
+    #[test]
+    fn instance_fields_land_at_their_words() {
+        let mut o2w = [0.0f32; 16];
+        let mut w2o = [0.0f32; 16];
+        for i in 0..16 {
+            o2w[i] = i as f32 + 1.0;
+            w2o[i] = -(i as f32) - 1.0;
+        }
+        let r = InstanceRecord {
+            object_to_world: o2w,
+            world_to_object: w2o,
+            bvh: 101,
+            primitives: 102,
+            mask: 0x7f,
+            geometry_group: 104,
+            triangles: 105,
+        };
+        let w = r.words();
+        assert_eq!(f32::from_bits(w[InstanceRecord::OBJECT_TO_WORLD as usize + 5]), 6.0);
+        assert_eq!(f32::from_bits(w[InstanceRecord::WORLD_TO_OBJECT as usize + 15]), -16.0);
+        let fields = [
+            (InstanceRecord::BVH, 101),
+            (InstanceRecord::PRIMITIVES, 102),
+            (InstanceRecord::MASK, 0x7f),
+            (InstanceRecord::GEOMETRY_GROUP, 104),
+            (InstanceRecord::TRIANGLES, 105),
+        ];
+        for (at, v) in fields {
+            assert_eq!(w[at as usize], v);
+        }
+        assert!(w[37..].iter().all(|&p| p == 0));
+        assert!(InstanceRecord::wgsl_constants().contains("const RT_INST_MASK: u32 = 34u;\n"));
     }
 }

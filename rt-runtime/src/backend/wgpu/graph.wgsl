@@ -47,12 +47,12 @@ fn rt_enter_level(level: u32, o2w: mat4x4<f32>, w2o: mat4x4<f32>) {
 
 // Instance `inst` seen from transform level `level`.
 fn rt_graph_instance(inst: u32, level: u32, mask: u32) {
-    let ib = rt_scene[1] + inst * 40u;
-    if (rt_scene[ib + 34u] & mask) == 0u {
+    let ib = rt_scene[1] + inst * RT_INST_WORDS;
+    if (rt_scene[ib + RT_INST_MASK] & mask) == 0u {
         return;
     }
     rt_o2w = rt_g_o2w[level] * rt_m4(ib);
-    rt_w2o = rt_m4(ib + 16u) * rt_g_w2o[level];
+    rt_w2o = rt_m4(ib + RT_INST_W2O) * rt_g_w2o[level];
     rt_blas_in(inst);
 }
 

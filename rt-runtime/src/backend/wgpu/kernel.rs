@@ -35,6 +35,7 @@ pub fn prelude() -> String {
     out.push_str(rt_abi::wgsl::HEAP);
     out.push_str(&rt_abi::wgsl::exception_constants());
     out.push_str(&rt_abi::records::LaunchUniform::wgsl());
+    out.push_str(&rt_abi::records::InstanceRecord::wgsl_constants());
     out.push_str(PRELUDE);
     out
 }
@@ -44,9 +45,9 @@ pub fn prelude() -> String {
 const TWO_LEVEL: &str = "
 fn rt_commit_xform() {}
 fn rt_hit_xform() {
-    let ib = rt_scene[1] + rt_h_inst * 40u;
+    let ib = rt_scene[1] + rt_h_inst * RT_INST_WORDS;
     rt_o2w = rt_m4(ib);
-    rt_w2o = rt_m4(ib + 16u);
+    rt_w2o = rt_m4(ib + RT_INST_W2O);
 }
 fn rt_search_graph(object: u32, mask: u32) {}
 ";

@@ -74,7 +74,7 @@ use crate::scene::{GeometryKind, NodeId, NodeKind, ProgramId};
 use crate::vars::VarValue;
 use glam::{Mat4, UVec2};
 use kernel::{KernelProgram, KernelSpec, SCENE_HEADER_BASES, SCENE_SECTIONS};
-use rt_abi::records::LaunchUniform;
+use rt_abi::records::{InstanceRecord, LaunchUniform};
 use rt_std::program::{ProgramKind, VariableKind};
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
@@ -783,10 +783,17 @@ fn encode(ctx: &Context, entry: u32, scene_bindings: usize, held_geometry: Optio
     }
     header[1] = scene.at();
     for (gg, o2w, mask) in &instances {
-        push_mat(&mut scene.words, *o2w);
-        push_mat(&mut scene.words, o2w.inverse());
         let w = geometry.gg_bvh.get(&gg.index()).copied().unwrap_or(GroupWords { bvh: 0, table: 0, tri_slots: 0 });
-        scene.words.extend([w.bvh, w.table, *mask, gg.index(), w.tri_slots, 0, 0, 0]);
+        let record = InstanceRecord {
+            object_to_world: o2w.to_cols_array(),
+            world_to_object: o2w.inverse().to_cols_array(),
+            bvh: w.bvh,
+            primitives: w.table,
+            mask: *mask,
+            geometry_group: gg.index(),
+            triangles: w.tri_slots,
+        };
+        scene.words.extend(record.words());
     }
     // The node table (after the side data of transforms and selectors), and
     // how deep transforms above groups and selectors nest (in post order:

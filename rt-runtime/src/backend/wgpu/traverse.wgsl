@@ -117,9 +117,9 @@ const RT_FAR: f32 = 3.40282347e38;
 // The primitives of instance `inst` (a geometry group's BVH, in the
 // instance's object space).
 fn rt_blas(inst: u32) {
-    let ib = rt_scene[1] + inst * 40u;
+    let ib = rt_scene[1] + inst * RT_INST_WORDS;
     rt_o2w = rt_m4(ib);
-    rt_w2o = rt_m4(ib + 16u);
+    rt_w2o = rt_m4(ib + RT_INST_W2O);
     rt_blas_in(inst);
 }
 
@@ -134,14 +134,14 @@ fn rt_blas_in(inst: u32) {
         }
         return;
     }
-    let ib = rt_scene[1] + inst * 40u;
+    let ib = rt_scene[1] + inst * RT_INST_WORDS;
     rt_s_inst = inst;
     var oray = rt_s_wray;
     oray.origin = (rt_w2o * vec4<f32>(rt_s_wray.origin, 1.0)).xyz;
     oray.direction = (rt_w2o * vec4<f32>(rt_s_wray.direction, 0.0)).xyz;
     rt_s_oray = oray;
-    let bvh = rt_scene[ib + 32u];
-    let prims = rt_scene[ib + 33u];
+    let bvh = rt_scene[ib + RT_INST_BVH];
+    let prims = rt_scene[ib + RT_INST_PRIMS];
     let inv = 1.0 / oray.direction;
     if rt_aabb_hit(bvh, oray.origin, inv, oray.tmin, rt_s_tmax) == RT_FAR {
         return;
@@ -268,7 +268,7 @@ fn rt_search(object: u32, ray: RtRay, flags: u32, mask: u32) {
             // at the leaf's entry distance (its bounds hold theirs).
             for (var i = first + count; i > first; i--) {
                 let inst = rt_scene[leaves + i - 1u];
-                if (rt_scene[rt_scene[1] + inst * 40u + 34u] & mask) != 0u && sp < RT_TLAS_STACK {
+                if (rt_scene[rt_scene[1] + inst * RT_INST_WORDS + RT_INST_MASK] & mask) != 0u && sp < RT_TLAS_STACK {
                     stack[sp] = vec2<u32>(inst | RT_INST_BIT, e.y);
                     sp = sp + 1u;
                 }
@@ -336,15 +336,15 @@ fn rt_slot_candidate(w: u32, o: vec3<f32>, d: vec3<f32>, sh: RtShear, tmin: f32,
 // Commits the lean search's hit on triangle slot `slot` of instance `inst`
 // (its primitive table and triangle slots in the same order).
 fn rt_commit_slot(inst: u32, slot: u32, t: f32, bary: vec2<f32>, done: bool) {
-    let ib = rt_scene[1] + inst * 40u;
-    let p = rt_scene[ib + 33u] + slot * 2u;
+    let ib = rt_scene[1] + inst * RT_INST_WORDS;
+    let p = rt_scene[ib + RT_INST_PRIMS] + slot * 2u;
     rt_s_inst = inst;
     rt_s_tmax = t;
     rt_h_found = true;
     rt_h_t = t;
     rt_h_gi = rt_scene[p];
     rt_h_prim = rt_scene[p + 1u];
-    rt_h_mat = rt_tri_word(rt_scene[ib + 36u] + slot * 10u + 9u);
+    rt_h_mat = rt_tri_word(rt_scene[ib + RT_INST_TRIS] + slot * 10u + 9u);
     rt_h_inst = inst;
     rt_h_custom = false;
     rt_h_bary = bary;
@@ -353,12 +353,12 @@ fn rt_commit_slot(inst: u32, slot: u32, t: f32, bary: vec2<f32>, done: bool) {
 }
 
 fn rt_blas_triangles(inst: u32) {
-    let ib = rt_scene[1] + inst * 40u;
+    let ib = rt_scene[1] + inst * RT_INST_WORDS;
     let o = (rt_w2o * vec4<f32>(rt_s_wray.origin, 1.0)).xyz;
     let d = (rt_w2o * vec4<f32>(rt_s_wray.direction, 0.0)).xyz;
     let tmin = rt_s_wray.tmin;
-    let bvh = rt_scene[ib + 32u];
-    let tris = rt_scene[ib + 36u];
+    let bvh = rt_scene[ib + RT_INST_BVH];
+    let tris = rt_scene[ib + RT_INST_TRIS];
     let inv = 1.0 / d;
     var tmax = rt_s_tmax;
     if rt_aabb_hit(bvh, o, inv, tmin, tmax) == RT_FAR {
@@ -479,8 +479,8 @@ fn rt_cw_node_hits(n: u32, o: vec3<f32>, inv: vec3<f32>, oct_inv4: u32, tmin: f3
 }
 
 fn rt_blas_cwbvh(inst: u32) {
-    let ib = rt_scene[1] + inst * 40u;
-    let cw = rt_scene[ib + 32u];
+    let ib = rt_scene[1] + inst * RT_INST_WORDS;
+    let cw = rt_scene[ib + RT_INST_BVH];
     if cw == RT_NONE {
         // A geometry group without primitives.
         return;
@@ -488,7 +488,7 @@ fn rt_blas_cwbvh(inst: u32) {
     let o = (rt_w2o * vec4<f32>(rt_s_wray.origin, 1.0)).xyz;
     let d = (rt_w2o * vec4<f32>(rt_s_wray.direction, 0.0)).xyz;
     let tmin = rt_s_wray.tmin;
-    let tris = rt_scene[ib + 36u];
+    let tris = rt_scene[ib + RT_INST_TRIS];
     let inv = 1.0 / d;
     var tmax = rt_s_tmax;
     let sh = rt_shear(d);
