@@ -131,6 +131,48 @@ impl InstanceRecord {
     }
 }
 
+/// The kind of an entry of the scene's node table. Each entry is four
+/// words, `[kind, a, b, mask]`, where `mask` is the AND of the visibility
+/// masks of the nodes it stands for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(u32)]
+pub enum NodeEntry {
+    /// A geometry group, or a transform chain down to one: `a` is its
+    /// instance.
+    Instance = 0,
+    /// A group whose children are all instances: `a` is its BVH, `b` its
+    /// leaf table of instance indices.
+    InstanceGroup = 1,
+    /// A group with other children: leaves are instance indices, or node
+    /// indices with the node bit set.
+    Group = 2,
+    /// A transform chain above a group or selector: `a` is the scene word of
+    /// `[object-to-world, world-to-object]`, `b` the node below.
+    Transform = 3,
+    /// A selector: `a` is the scene word of `[visit case, visit record,
+    /// child count, child nodes...]`.
+    Selector = 4,
+}
+
+impl NodeEntry {
+    /// Words an entry takes.
+    pub const WORDS: u32 = 4;
+
+    /// The WGSL constants the megakernel matches the kinds by.
+    pub fn wgsl_constants() -> String {
+        [
+            ("RT_NODE_INSTANCE", NodeEntry::Instance),
+            ("RT_NODE_INSTANCE_GROUP", NodeEntry::InstanceGroup),
+            ("RT_NODE_GROUP", NodeEntry::Group),
+            ("RT_NODE_TRANSFORM", NodeEntry::Transform),
+            ("RT_NODE_SELECTOR", NodeEntry::Selector),
+        ]
+        .iter()
+        .map(|(n, k)| format!("const {n}: u32 = {}u;\n", *k as u32))
+        .collect()
+    }
+}
+
 /// `struct name { field: type, ... }` with one line a field.
 fn record_wgsl(name: &str, fields: &[Field]) -> String {
     let mut s = format!("struct {name} {{\n");

@@ -37,14 +37,19 @@ struct RtSampler {
 /// The heap binding every lowered program reads buffers through.
 pub const HEAP: &str = "@group(0) @binding(0) var<storage, read_write> rt_heap: array<u32>;\n";
 
-/// The runtime's exception codes as WGSL constants (`RT_EXC_*`).
-pub fn exception_constants() -> String {
-    format!(
+/// The runtime's exception codes (`RT_EXC_*`) and the ray flags
+/// (`RT_RAY_FLAG_*`) as WGSL constants.
+pub fn constants() -> String {
+    let mut s = format!(
         "const RT_EXC_TRACE_DEPTH: u32 = {}u;\nconst RT_EXC_BUFFER_INDEX: u32 = {}u;\nconst RT_EXC_INVALID_RAY: u32 = {}u;\n",
         constants::EXCEPTION_TRACE_DEPTH_EXCEEDED,
         constants::EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS,
         constants::EXCEPTION_INVALID_RAY,
-    )
+    );
+    for (name, value) in constants::CONSTANTS.iter().filter(|(n, _)| n.starts_with("RAY_FLAG_")) {
+        s.push_str(&format!("const RT_{name}: u32 = {value}u;\n"));
+    }
+    s
 }
 
 /// A value of `ty` for a stub to return.

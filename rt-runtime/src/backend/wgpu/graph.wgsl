@@ -92,17 +92,17 @@ fn rt_search_graph(object: u32, mask: u32) {
                 continue;
             }
             switch kind {
-                case 0u: {
+                case RT_NODE_INSTANCE: {
                     rt_graph_instance(rt_scene[node + 1u], level, mask);
                 }
-                case 1u, 2u: {
+                case RT_NODE_INSTANCE_GROUP, RT_NODE_GROUP: {
                     let t = rt_aabb_hit(rt_scene[node + 1u], org, inv, rt_s_wray.tmin, rt_s_tmax);
                     if t != RT_FAR && sp < RT_GRAPH_STACK {
                         stack[sp] = vec4<u32>(e.x, 0u, bitcast<u32>(t), level);
                         sp = sp + 1u;
                     }
                 }
-                case 3u: {
+                case RT_NODE_TRANSFORM: {
                     if level + 1u < RT_LEVELS && sp < RT_GRAPH_STACK {
                         let m = rt_scene[node + 1u];
                         rt_enter_level(level + 1u, rt_g_o2w[level] * rt_m4(m), rt_m4(m + 16u) * rt_g_w2o[level]);
@@ -110,7 +110,7 @@ fn rt_search_graph(object: u32, mask: u32) {
                         sp = sp + 1u;
                     }
                 }
-                case 4u: {
+                case RT_NODE_SELECTOR: {
                     let sel = rt_scene[node + 1u];
                     let child = rt_visit(sel, level);
                     if child < rt_scene[sel + 2u] && sp < RT_GRAPH_STACK {

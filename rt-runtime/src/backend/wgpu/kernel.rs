@@ -28,14 +28,17 @@ const TRAVERSE: &str = include_str!("traverse.wgsl");
 const GRAPH: &str = include_str!("graph.wgsl");
 
 /// The start of every module: the records and heap binding the programs
-/// were validated against (rt-abi's, not a copy), the exception codes,
-/// then the runtime's implementations of the contract's functions.
+/// were validated against (rt-abi's, not a copy), the exception codes and
+/// ray flags, the launch uniform, the instance record's and node table's
+/// constants, then the runtime's implementations of the contract's
+/// functions.
 pub fn prelude() -> String {
     let mut out = String::from(rt_abi::wgsl::RECORDS);
     out.push_str(rt_abi::wgsl::HEAP);
-    out.push_str(&rt_abi::wgsl::exception_constants());
+    out.push_str(&rt_abi::wgsl::constants());
     out.push_str(&rt_abi::records::LaunchUniform::wgsl());
     out.push_str(&rt_abi::records::InstanceRecord::wgsl_constants());
+    out.push_str(&rt_abi::records::NodeEntry::wgsl_constants());
     out.push_str(PRELUDE);
     out
 }

@@ -74,7 +74,7 @@ use crate::scene::{GeometryKind, NodeId, NodeKind, ProgramId};
 use crate::vars::VarValue;
 use glam::{Mat4, UVec2};
 use kernel::{KernelProgram, KernelSpec, SCENE_HEADER_BASES, SCENE_SECTIONS};
-use rt_abi::records::{InstanceRecord, LaunchUniform};
+use rt_abi::records::{InstanceRecord, LaunchUniform, NodeEntry};
 use rt_std::program::{ProgramKind, VariableKind};
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
@@ -805,14 +805,15 @@ fn encode(ctx: &Context, entry: u32, scene_bindings: usize, held_geometry: Optio
         let i = n.index() as usize;
         let rec = &ctx.nodes[i];
         if let Some(inst) = instance_of_node[i] {
-            node_entries[i] = [0, inst, 0, instances[inst as usize].2];
+            node_entries[i] = [NodeEntry::Instance as u32, inst, 0, instances[inst as usize].2];
             continue;
         }
         let mask = rec.visibility_mask as u32;
         match &rec.kind {
             NodeKind::Group { children, .. } => {
                 let (bvh, table, instances_only) = group_bvh[&n.index()];
-                node_entries[i] = [if instances_only { 1 } else { 2 }, bvh, table, mask];
+                let kind = if instances_only { NodeEntry::InstanceGroup } else { NodeEntry::Group };
+                node_entries[i] = [kind as u32, bvh, table, mask];
                 levels[i] = children.iter().map(|c| levels[c.index() as usize]).max().unwrap_or(0);
                 graph |= !instances_only;
             }
@@ -827,7 +828,7 @@ fn encode(ctx: &Context, entry: u32, scene_bindings: usize, held_geometry: Optio
                 let at = scene.at();
                 push_mat(&mut scene.words, m);
                 push_mat(&mut scene.words, m.inverse());
-                node_entries[i] = [3, at, below.index(), mask];
+                node_entries[i] = [NodeEntry::Transform as u32, at, below.index(), mask];
                 levels[i] = 1 + levels[below.index() as usize];
                 graph = true;
             }
@@ -837,7 +838,7 @@ fn encode(ctx: &Context, entry: u32, scene_bindings: usize, held_geometry: Optio
                 let at = scene.at();
                 scene.words.extend([kp.case, vars, children.len() as u32]);
                 scene.words.extend(children.iter().map(|c| c.index()));
-                node_entries[i] = [4, at, 0, mask];
+                node_entries[i] = [NodeEntry::Selector as u32, at, 0, mask];
                 levels[i] = children.iter().map(|c| levels[c.index() as usize]).max().unwrap_or(0);
                 graph = true;
             }

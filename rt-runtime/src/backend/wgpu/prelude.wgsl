@@ -4,8 +4,9 @@
 // generated traversal and dispatch code use.
 
 // The records shared with the compiler (RtRay, RtAabb, RtBuffer,
-// RtSampler), the heap binding and the RT_EXC_* codes come first, from
-// rt-abi (see kernel.rs), and so does the launch uniform's struct RtLaunch.
+// RtSampler), the heap binding, the RT_EXC_* codes, the RT_RAY_FLAG_*
+// flags, the launch uniform's struct RtLaunch and the RT_INST_* and
+// RT_NODE_* layout constants come first, from rt-abi (see kernel.rs).
 
 
 @group(0) @binding(1) var<storage, read> rt_scene: array<u32>;

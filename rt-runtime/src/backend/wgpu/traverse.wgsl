@@ -4,17 +4,10 @@
 // transform over a geometry group's BVH of primitives); deeper graphs
 // (groups of groups, transforms above groups, selectors) go through
 // rt_search_graph (graph.wgsl, linked only when the scene has them).
-// Scene words (see mod.rs `encode`): node table entries [kind, a, b, mask]:
-// kind 0: geometry group or transform chain down to one, a = instance;
-// kind 1: group of instances only, a = BVH offset, b = leaf table of
-// instance indices; kind 2: group with other children, leaves are instance
-// indices or node indices | RT_NODE_BIT; kind 3: transform chain above a
-// group or selector, a = offset of [object-to-world, world-to-object],
-// b = the node below; kind 4: selector, a = offset of [visit case, visit
-// record, child count, child nodes...]. mask is the AND of the visibility
-// masks of the nodes the entry stands for. Instances of 40 words
-// [object-to-world, world-to-object, BVH offset, primitive table, mask,
-// node, triangle slots, 3 unused]; BVH nodes of 8 words [min xyz, max
+// Scene words (see mod.rs `encode`): node table entries [kind, a, b, mask]
+// with kinds RT_NODE_* (rt-abi's NodeEntry, which says what a and b are);
+// instances of RT_INST_WORDS words (rt-abi's InstanceRecord, read by the
+// RT_INST_* offsets); BVH nodes of 8 words [min xyz, max
 // xyz, count, first] in the BVH section; triangle slots of 10 words per
 // primitive table entry, in the triangle section: the triangle's vertices
 // in object space, then its material index, or RT_NONE when it has none
@@ -35,8 +28,8 @@ fn rt_report(m: u32) -> bool {
     }
     let rec = rt_scene[g + 7u] + (m * rt_scene[4] + rt_s_ray_type) * 4u;
     let ah = rt_scene[rec + 2u];
-    var terminate = (rt_s_flags & 1u) != 0u;
-    if ah != 0u && (rt_s_flags & 2u) == 0u {
+    var terminate = (rt_s_flags & RT_RAY_FLAG_TERMINATE_ON_FIRST_HIT) != 0u;
+    if ah != 0u && (rt_s_flags & RT_RAY_FLAG_DISABLE_ANYHIT) == 0u {
         let saved_ray = rt_ray;
         let saved_t = rt_t;
         let saved_prim = rt_prim;
@@ -88,7 +81,7 @@ fn rt_intersect_prim(gi: u32, prim: u32) {
         if t < 0.0 {
             return;
         }
-        if (rt_tri_front && (rt_s_flags & 16u) != 0u) || (!rt_tri_front && (rt_s_flags & 8u) != 0u) {
+        if (rt_tri_front && (rt_s_flags & RT_RAY_FLAG_CULL_FRONT_FACING) != 0u) || (!rt_tri_front && (rt_s_flags & RT_RAY_FLAG_CULL_BACK_FACING) != 0u) {
             return;
         }
         var m = 0u;
@@ -194,7 +187,7 @@ fn rt_blas_in(inst: u32) {
 fn rt_enter_hit(ray: RtRay, flags: u32) -> u32 {
     let g = rt_scene[2] + rt_h_gi * 8u;
     let rec = rt_scene[g + 7u] + (rt_h_mat * rt_scene[4] + ray.ray_type) * 4u;
-    if rt_scene[rec] == 0u || (flags & 4u) != 0u {
+    if rt_scene[rec] == 0u || (flags & RT_RAY_FLAG_DISABLE_CLOSESTHIT) != 0u {
         return RT_NONE;
     }
     rt_ray = ray;
@@ -227,7 +220,7 @@ fn rt_search(object: u32, ray: RtRay, flags: u32, mask: u32) {
         return;
     }
     let kind = rt_scene[node];
-    if kind != 0u && kind != 1u {
+    if kind != RT_NODE_INSTANCE && kind != RT_NODE_INSTANCE_GROUP {
         rt_search_graph(object, mask);
         return;
     }
@@ -243,7 +236,7 @@ fn rt_search(object: u32, ray: RtRay, flags: u32, mask: u32) {
     let inv = 1.0 / ray.direction;
     var stack: array<vec2<u32>, RT_TLAS_STACK>;
     var sp = 0u;
-    if kind == 0u {
+    if kind == RT_NODE_INSTANCE {
         stack[0] = vec2<u32>(rt_scene[node + 1u] | RT_INST_BIT, 0u);
         sp = 1u;
     } else if rt_aabb_hit(bvh, ray.origin, inv, ray.tmin, rt_s_tmax) != RT_FAR {
@@ -324,9 +317,9 @@ fn rt_triangle_sheared(w: u32, o: vec3<f32>, sh: RtShear, tmin: f32, tmax: f32, 
 // it meets: asked only when a cull flag is set), barycentrics in *bary.
 fn rt_slot_candidate(w: u32, o: vec3<f32>, d: vec3<f32>, sh: RtShear, tmin: f32, tmax: f32, flags: u32, bary: ptr<function, vec2<f32>>) -> f32 {
     let t = rt_triangle_sheared(w, o, sh, tmin, tmax, bary);
-    if t >= 0.0 && (flags & 24u) != 0u {
+    if t >= 0.0 && (flags & (RT_RAY_FLAG_CULL_FRONT_FACING | RT_RAY_FLAG_CULL_BACK_FACING)) != 0u {
         let front = rt_front(rt_slot_vertex(w, 0u), rt_slot_vertex(w, 1u), rt_slot_vertex(w, 2u), d);
-        if (front && (flags & 16u) != 0u) || (!front && (flags & 8u) != 0u) {
+        if (front && (flags & RT_RAY_FLAG_CULL_FRONT_FACING) != 0u) || (!front && (flags & RT_RAY_FLAG_CULL_BACK_FACING) != 0u) {
             return -1.0;
         }
     }
@@ -370,7 +363,7 @@ fn rt_blas_triangles(inst: u32) {
         return;
     }
     let flags = rt_s_flags;
-    let terminate = (flags & 1u) != 0u;
+    let terminate = (flags & RT_RAY_FLAG_TERMINATE_ON_FIRST_HIT) != 0u;
     var hit = RT_NONE;
     var hit_bary = vec2<f32>();
     var done = false;
@@ -497,7 +490,7 @@ fn rt_blas_cwbvh(inst: u32) {
         return;
     }
     let flags = rt_s_flags;
-    let terminate = (flags & 1u) != 0u;
+    let terminate = (flags & RT_RAY_FLAG_TERMINATE_ON_FIRST_HIT) != 0u;
     let oct_inv4 = select(0x04040404u, 0u, d.x < 0.0) | select(0x02020202u, 0u, d.y < 0.0)
         | select(0x01010101u, 0u, d.z < 0.0);
     var hit = RT_NONE;
