@@ -2,6 +2,8 @@
 //! once: each a Rust struct with its word layout, from which the WGSL
 //! declaration is generated, so no offset is kept by hand in two languages.
 
+use crate::wgsl::u32_constants;
+
 /// One field of a record: its WGSL name and type and its first word.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Field {
@@ -115,7 +117,7 @@ impl InstanceRecord {
 
     /// The WGSL constants the megakernel reads the record by.
     pub fn wgsl_constants() -> String {
-        [
+        u32_constants(&[
             ("RT_INST_WORDS", Self::WORDS),
             ("RT_INST_O2W", Self::OBJECT_TO_WORLD),
             ("RT_INST_W2O", Self::WORLD_TO_OBJECT),
@@ -124,10 +126,7 @@ impl InstanceRecord {
             ("RT_INST_MASK", Self::MASK),
             ("RT_INST_GG", Self::GEOMETRY_GROUP),
             ("RT_INST_TRIS", Self::TRIANGLES),
-        ]
-        .iter()
-        .map(|(n, v)| format!("const {n}: u32 = {v}u;\n"))
-        .collect()
+        ])
     }
 }
 
@@ -155,21 +154,15 @@ pub enum NodeEntry {
 }
 
 impl NodeEntry {
-    /// Words an entry takes.
-    pub const WORDS: u32 = 4;
-
     /// The WGSL constants the megakernel matches the kinds by.
     pub fn wgsl_constants() -> String {
-        [
-            ("RT_NODE_INSTANCE", NodeEntry::Instance),
-            ("RT_NODE_INSTANCE_GROUP", NodeEntry::InstanceGroup),
-            ("RT_NODE_GROUP", NodeEntry::Group),
-            ("RT_NODE_TRANSFORM", NodeEntry::Transform),
-            ("RT_NODE_SELECTOR", NodeEntry::Selector),
-        ]
-        .iter()
-        .map(|(n, k)| format!("const {n}: u32 = {}u;\n", *k as u32))
-        .collect()
+        u32_constants(&[
+            ("RT_NODE_INSTANCE", NodeEntry::Instance as u32),
+            ("RT_NODE_INSTANCE_GROUP", NodeEntry::InstanceGroup as u32),
+            ("RT_NODE_GROUP", NodeEntry::Group as u32),
+            ("RT_NODE_TRANSFORM", NodeEntry::Transform as u32),
+            ("RT_NODE_SELECTOR", NodeEntry::Selector as u32),
+        ])
     }
 }
 

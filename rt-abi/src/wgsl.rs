@@ -40,16 +40,20 @@ pub const HEAP: &str = "@group(0) @binding(0) var<storage, read_write> rt_heap: 
 /// The runtime's exception codes (`RT_EXC_*`) and the ray flags
 /// (`RT_RAY_FLAG_*`) as WGSL constants.
 pub fn constants() -> String {
-    let mut s = format!(
-        "const RT_EXC_TRACE_DEPTH: u32 = {}u;\nconst RT_EXC_BUFFER_INDEX: u32 = {}u;\nconst RT_EXC_INVALID_RAY: u32 = {}u;\n",
-        constants::EXCEPTION_TRACE_DEPTH_EXCEEDED,
-        constants::EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS,
-        constants::EXCEPTION_INVALID_RAY,
-    );
+    let mut s = u32_constants(&[
+        ("RT_EXC_TRACE_DEPTH", constants::EXCEPTION_TRACE_DEPTH_EXCEEDED),
+        ("RT_EXC_BUFFER_INDEX", constants::EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS),
+        ("RT_EXC_INVALID_RAY", constants::EXCEPTION_INVALID_RAY),
+    ]);
     for (name, value) in constants::CONSTANTS.iter().filter(|(n, _)| n.starts_with("RAY_FLAG_")) {
-        s.push_str(&format!("const RT_{name}: u32 = {value}u;\n"));
+        s.push_str(&u32_constants(&[(&format!("RT_{name}"), *value)]));
     }
     s
+}
+
+/// `const NAME: u32 = Vu;`, a line each.
+pub(crate) fn u32_constants(pairs: &[(&str, u32)]) -> String {
+    pairs.iter().map(|(n, v)| format!("const {n}: u32 = {v}u;\n")).collect()
 }
 
 /// A value of `ty` for a stub to return.
