@@ -2689,11 +2689,10 @@ impl<'m> FnLowerer<'m> {
         if f.params.is_empty() && !args.is_empty() {
             return Err(Error::new(span, format!("`{name}` takes no arguments")));
         }
-        let types: Option<Vec<Ty>> = f.params.iter().map(|(_, t)| abi_ty(*t)).chain([abi_ty(f.ret)]).collect();
-        let Some(mut params) = types else {
+        let params: Option<Vec<Ty>> = f.params.iter().map(|(_, t)| abi_ty(*t)).collect();
+        let (Some(params), Some(ret)) = (params, abi_ty(f.ret)) else {
             return Err(Error::new(span, format!("`{name}`: its contract row passes a handle by value")));
         };
-        let ret = params.pop().unwrap_or(Ty::Unit);
         let a = self.args_typed(args, &params, span, name)?;
         let call = format!("{}({})", f.name, a.join(", "));
         match f.ret {
