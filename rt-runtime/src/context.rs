@@ -1,91 +1,33 @@
 //! The context: programs, the scene graph, variables, buffers and launches.
 
 use crate::accel::Acceleration;
-use crate::backend::{self, Backend, LaunchReport};
+use crate::accel::cache::AccelCache;
+use crate::backend::wgpu::{Gpu, WgpuBackend};
+use crate::backend::{self, Backend, LaunchBackend, LaunchReport, Settings};
 use crate::buffer::{BufferRec, BufferType, SamplerRec, Typed};
 use crate::error::{Result, RtError};
 use crate::scene::*;
 use crate::vars::{IntoVariable, VarScope};
+use std::any::Any;
+
+pub use crate::scene::Scope;
 use glam::{Mat4, Vec4};
 use rt_std::program::{ProgramDescriptor, ProgramKind};
 use rt_std::{FilterMode, RtData, WrapMode};
 
-pub(crate) struct ProgramRec {
-    pub desc: &'static ProgramDescriptor,
-    pub vars: VarScope,
-}
-
-#[derive(Clone, Copy, Default)]
-pub(crate) struct EntryPoint {
-    pub ray_generation: Option<ProgramId>,
-    pub exception: Option<ProgramId>,
-}
-
-/// Where a variable is set.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Scope {
-    Context,
-    Program(ProgramId),
-    Geometry(GeometryId),
-    GeometryInstance(GeometryInstanceId),
-    Material(MaterialId),
-    Node(NodeId),
-}
-
-impl From<ProgramId> for Scope {
-    fn from(p: ProgramId) -> Scope {
-        Scope::Program(p)
-    }
-}
-impl From<GeometryId> for Scope {
-    fn from(g: GeometryId) -> Scope {
-        Scope::Geometry(g)
-    }
-}
-impl From<GeometryInstanceId> for Scope {
-    fn from(g: GeometryInstanceId) -> Scope {
-        Scope::GeometryInstance(g)
-    }
-}
-impl From<MaterialId> for Scope {
-    fn from(m: MaterialId) -> Scope {
-        Scope::Material(m)
-    }
-}
-impl From<NodeId> for Scope {
-    fn from(n: NodeId) -> Scope {
-        Scope::Node(n)
-    }
-}
-
 /// A ray-tracing context: the root of everything, as in OptiX.
+///
+/// It holds the scene it edits ([`Scene`]), the launch settings, the
+/// acceleration structures built for the scene, and the backend launches
+/// run on, behind [`LaunchBackend`]. A backend it ran on before (or opened
+/// ahead, [`Context::open_wgpu`]) is kept, with its device and its
+/// statistics, for when the context switches back.
 pub struct Context {
-    pub(crate) programs: Vec<ProgramRec>,
-    pub(crate) geometries: Vec<GeometryRec>,
-    pub(crate) materials: Vec<MaterialRec>,
-    pub(crate) instances: Vec<GeometryInstanceRec>,
-    pub(crate) nodes: Vec<NodeRec>,
-    pub(crate) buffers: Vec<BufferRec>,
-    pub(crate) samplers: Vec<SamplerRec>,
-    pub(crate) vars: VarScope,
-    pub(crate) entry_points: Vec<EntryPoint>,
-    pub(crate) miss: Vec<Option<ProgramId>>,
-    pub(crate) max_trace_depth: u32,
-    pub(crate) print_enabled: bool,
-    pub(crate) print_launch_index: Option<glam::UVec2>,
-    pub(crate) backend: Backend,
-    pub(crate) accels: crate::accel::AccelCache,
-    pub(crate) gpu: Option<crate::backend::wgpu::Gpu>,
-    pub(crate) last_wgsl: Option<String>,
-    pub(crate) lose_device_in_next_launch: bool,
-    /// Bumped by every change but variable values and buffer contents: a
-    /// wgpu launch re-encodes the scene only when it moved (with the
-    /// acceleration structures' builds and refits).
-    pub(crate) structure_version: u64,
-    /// Bumped by every change to geometries, geometry instances and
-    /// geometry groups: the part of the scene a wgpu launch keeps on the
-    /// device while other things change.
-    pub(crate) geometry_version: u64,
+    pub(crate) scene: Scene,
+    pub(crate) settings: Settings,
+    pub(crate) accels: AccelCache,
+    backend: Box<dyn LaunchBackend>,
+    parked: Vec<Box<dyn LaunchBackend>>,
 }
 
 impl Default for Context {
@@ -99,54 +41,67 @@ impl Context {
     /// trace depth of 5, on the CPU backend.
     pub fn new() -> Self {
         Context {
-            programs: Vec::new(),
-            geometries: Vec::new(),
-            materials: Vec::new(),
-            instances: Vec::new(),
-            nodes: Vec::new(),
-            buffers: Vec::new(),
-            samplers: Vec::new(),
-            vars: VarScope::default(),
-            entry_points: vec![EntryPoint::default()],
-            miss: vec![None],
-            max_trace_depth: 5,
-            print_enabled: true,
-            print_launch_index: None,
-            backend: Backend::Cpu,
+            scene: Scene::default(),
+            settings: Settings::default(),
             accels: Default::default(),
-            gpu: None,
-            last_wgsl: None,
-            lose_device_in_next_launch: false,
-            structure_version: 0,
-            geometry_version: 0,
+            backend: Backend::Cpu.create(),
+            parked: Vec::new(),
         }
     }
 
     /// The backend launches run on.
     pub fn backend(&self) -> Backend {
-        self.backend
+        self.backend.kind()
     }
 
     /// Chooses the backend launches run on.
     pub fn set_backend(&mut self, backend: Backend) {
-        self.geometry_version += 1;
-        self.structure_version += 1;
-        self.backend = backend;
+        self.scene.geometry_version += 1;
+        self.scene.structure_version += 1;
+        self.run_on(backend);
+    }
+
+    /// Makes `kind` the backend launches run on: the one kept from before,
+    /// else a new one.
+    fn run_on(&mut self, kind: Backend) {
+        if self.backend.kind() == kind {
+            return;
+        }
+        let next = match self.parked.iter().position(|b| b.kind() == kind) {
+            Some(i) => self.parked.swap_remove(i),
+            None => kind.create(),
+        };
+        let previous = std::mem::replace(&mut self.backend, next);
+        self.parked.push(previous);
+    }
+
+    /// The active backend, then the parked ones.
+    fn backends(&self) -> impl Iterator<Item = &dyn LaunchBackend> {
+        std::iter::once(&*self.backend).chain(self.parked.iter().map(|b| &**b))
+    }
+
+    /// The wgpu backend, active or parked (a new one parked if there is
+    /// none yet).
+    fn wgpu_backend(&mut self) -> &mut WgpuBackend {
+        if !self.backends().any(|b| b.kind() == Backend::Wgpu) {
+            self.parked.push(Backend::Wgpu.create());
+        }
+        std::iter::once(&mut self.backend)
+            .chain(self.parked.iter_mut())
+            .find_map(|b| (&mut **b as &mut dyn Any).downcast_mut::<WgpuBackend>())
+            .expect("added above")
     }
 
     /// Runs launches on a wgpu device the application already has.
     pub fn use_wgpu_device(&mut self, device: wgpu::Device, queue: wgpu::Queue, info: wgpu::AdapterInfo) {
-        self.gpu = Some(crate::backend::wgpu::Gpu::from_device(device, queue, info));
-        self.backend = Backend::Wgpu;
+        self.wgpu_backend().use_device(Gpu::from_device(device, queue, info));
+        self.run_on(Backend::Wgpu);
     }
 
     /// Opens the wgpu device now (launches do it on first use), returning the
     /// adapter's description.
     pub fn open_wgpu(&mut self) -> Result<String> {
-        if self.gpu.is_none() {
-            self.gpu = Some(crate::backend::wgpu::Gpu::new()?);
-        }
-        Ok(self.gpu.as_ref().map(|g| g.describe()).unwrap_or_default())
+        self.wgpu_backend().open()
     }
 
     /// How many full acceleration builds and refits launches have done.
@@ -159,14 +114,14 @@ impl Context {
     /// launch fails with [`RtError::DeviceLost`] and writes no outputs; the
     /// one after opens a new device.
     pub fn simulate_device_loss_in_next_launch(&mut self) {
-        self.lose_device_in_next_launch = true;
+        self.wgpu_backend().lose_device_in_next_launch();
     }
 
     /// How many wgpu launches encoded and uploaded the scene (tables, BVH
     /// nodes, triangles); the others found it on the device, unchanged
     /// since, and encoded only the variables and buffers.
     pub fn scene_encodes(&self) -> u64 {
-        self.gpu.as_ref().map_or(0, |g| g.scene_encodes)
+        self.backends().map(|b| b.stats().scene_encodes).sum()
     }
 
     /// How many of those encodes also encoded the geometry (geometry groups'
@@ -174,24 +129,12 @@ impl Context {
     /// it on the device and encoded only the rest (transforms, groups,
     /// programs, records) around it.
     pub fn geometry_encodes(&self) -> u64 {
-        self.gpu.as_ref().map_or(0, |g| g.geometry_encodes)
-    }
-
-    /// No any-hit and no intersection program in use: every primitive is a
-    /// triangle and every candidate commits, so the wgpu kernel searches
-    /// instances with its lean loop over CWBVHs. (Any-hit programs sit in
-    /// materials' slots, intersection programs come with custom geometry:
-    /// none among the instances', none in the kernel.)
-    pub(crate) fn searches_triangles_only(&self) -> bool {
-        self.instances.iter().all(|gi| {
-            matches!(self.geometries[gi.geometry.index() as usize].kind, crate::scene::GeometryKind::Triangles(_))
-                && gi.materials.iter().all(|m| self.materials[m.index() as usize].any_hit.iter().all(Option::is_none))
-        })
+        self.backends().map(|b| b.stats().geometry_encodes).sum()
     }
 
     /// How many wgpu pipelines (megakernel links) this context created.
     pub fn pipelines_created(&self) -> u64 {
-        self.gpu.as_ref().map_or(0, |g| g.pipelines_created)
+        self.backends().map(|b| b.stats().pipelines_created).sum()
     }
 
     /// Bytes the last wgpu launch wrote to the device: the pages of the
@@ -199,66 +142,62 @@ impl Context {
     /// the launch before, the log's counters and the launch uniform (0 before
     /// any wgpu launch).
     pub fn last_upload_bytes(&self) -> u64 {
-        self.gpu.as_ref().map_or(0, |g| g.last_upload_bytes())
+        self.backends().map(|b| b.stats().last_upload_bytes).sum()
     }
 
     /// The megakernel WGSL of the last wgpu launch (`RT_DUMP_WGSL=1` also
     /// writes it to the temporary directory).
     pub fn linked_wgsl(&self) -> Option<&str> {
-        self.last_wgsl.as_deref()
+        self.backends().find_map(|b| b.stats().linked_wgsl)
     }
 
     pub fn set_entry_point_count(&mut self, n: u32) {
-        self.structure_version += 1;
-        self.entry_points.resize(n as usize, EntryPoint::default());
+        self.scene.structure_version += 1;
+        self.scene.entry_points.resize(n as usize, EntryPoint::default());
     }
 
     pub fn entry_point_count(&self) -> u32 {
-        self.entry_points.len() as u32
+        self.scene.entry_points.len() as u32
     }
 
     pub fn set_ray_type_count(&mut self, n: u32) {
-        self.structure_version += 1;
-        self.miss.resize(n as usize, None);
-        for m in &mut self.materials {
+        self.scene.structure_version += 1;
+        self.scene.miss.resize(n as usize, None);
+        for m in &mut self.scene.materials {
             m.closest_hit.resize(n as usize, None);
             m.any_hit.resize(n as usize, None);
         }
     }
 
     pub fn ray_type_count(&self) -> u32 {
-        self.miss.len() as u32
+        self.scene.ray_type_count()
     }
 
     /// Rays may nest this deep (primary rays are depth 1); a trace beyond it
     /// raises the trace-depth-exceeded exception instead.
     pub fn set_max_trace_depth(&mut self, depth: u32) {
-        self.structure_version += 1;
-        self.max_trace_depth = depth.max(1);
+        self.scene.structure_version += 1;
+        self.settings.max_trace_depth = depth.max(1);
     }
 
     /// Turns `rt_printf!` output on or off, and optionally limits it to one
     /// launch index (as OptiX's `rtContextSetPrintLaunchIndex`).
     pub fn set_print(&mut self, enabled: bool, launch_index: Option<glam::UVec2>) {
-        self.print_enabled = enabled;
-        self.print_launch_index = launch_index;
+        self.settings.print_enabled = enabled;
+        self.settings.print_launch_index = launch_index;
     }
 
     // ---- programs ----
 
     /// Creates a program from a descriptor (`my_program::PROGRAM`).
     pub fn create_program(&mut self, desc: &'static ProgramDescriptor) -> ProgramId {
-        self.structure_version += 1;
-        self.programs.push(ProgramRec { desc, vars: VarScope::default() });
-        ProgramId(self.programs.len() as u32 - 1)
-    }
-
-    pub(crate) fn program(&self, p: ProgramId) -> Result<&ProgramRec> {
-        self.programs.get(p.0 as usize).ok_or_else(|| RtError::InvalidHandle(format!("{p:?}")))
+        self.scene.structure_version += 1;
+        self.scene.programs.push(ProgramRec { desc, vars: VarScope::default() });
+        ProgramId(self.scene.programs.len() as u32 - 1)
     }
 
     fn expect_kind(&self, p: ProgramId, expected: ProgramKind, slot: String) -> Result<()> {
-        let desc = self.program(p)?.desc;
+        let desc = self.scene.program(p)?.desc;
         if desc.kind != expected {
             return Err(RtError::WrongProgramKind {
                 program: desc.name,
@@ -272,8 +211,8 @@ impl Context {
     }
 
     fn entry_mut(&mut self, entry: u32) -> Result<&mut EntryPoint> {
-        let count = self.entry_points.len() as u32;
-        self.entry_points.get_mut(entry as usize).ok_or(RtError::NoSuchEntryPoint { entry, count })
+        let count = self.scene.entry_points.len() as u32;
+        self.scene.entry_points.get_mut(entry as usize).ok_or(RtError::NoSuchEntryPoint { entry, count })
     }
 
     fn check_ray_type(&self, ray_type: u32) -> Result<()> {
@@ -284,7 +223,7 @@ impl Context {
     }
 
     pub fn set_ray_generation_program(&mut self, entry: u32, p: ProgramId) -> Result<()> {
-        self.structure_version += 1;
+        self.scene.structure_version += 1;
         self.expect_kind(p, ProgramKind::RayGeneration, format!("entry point {entry}'s ray generation"))?;
         self.entry_mut(entry)?.ray_generation = Some(p);
         Ok(())
@@ -301,17 +240,17 @@ impl Context {
     /// written into it at the launch index (skipped if the index is outside
     /// the buffer), so failing pixels stand out in the image.
     pub fn set_exception_program(&mut self, entry: u32, p: ProgramId) -> Result<()> {
-        self.structure_version += 1;
+        self.scene.structure_version += 1;
         self.expect_kind(p, ProgramKind::Exception, format!("entry point {entry}'s exception"))?;
         self.entry_mut(entry)?.exception = Some(p);
         Ok(())
     }
 
     pub fn set_miss_program(&mut self, ray_type: u32, p: ProgramId) -> Result<()> {
-        self.structure_version += 1;
+        self.scene.structure_version += 1;
         self.check_ray_type(ray_type)?;
         self.expect_kind(p, ProgramKind::Miss, format!("ray type {ray_type}'s miss"))?;
-        self.miss[ray_type as usize] = Some(p);
+        self.scene.miss[ray_type as usize] = Some(p);
         Ok(())
     }
 
@@ -319,11 +258,11 @@ impl Context {
 
     /// Creates a triangle geometry; the mesh is checked first.
     pub fn create_triangles(&mut self, mesh: TriangleMesh) -> Result<GeometryId> {
-        self.geometry_version += 1;
-        self.structure_version += 1;
-        let id = self.geometries.len() as u32;
+        self.scene.geometry_version += 1;
+        self.scene.structure_version += 1;
+        let id = self.scene.geometries.len() as u32;
         mesh.validate().map_err(|problem| RtError::BadGeometry { geometry: id, problem })?;
-        self.geometries.push(GeometryRec { kind: GeometryKind::Triangles(mesh), vars: VarScope::default() });
+        self.scene.geometries.push(GeometryRec { kind: GeometryKind::Triangles(mesh), vars: VarScope::default() });
         Ok(GeometryId(id))
     }
 
@@ -335,23 +274,24 @@ impl Context {
         intersection: ProgramId,
         bounding_box: ProgramId,
     ) -> Result<GeometryId> {
-        self.geometry_version += 1;
-        self.structure_version += 1;
+        self.scene.geometry_version += 1;
+        self.scene.structure_version += 1;
         self.expect_kind(intersection, ProgramKind::Intersection, "a custom geometry's intersection".into())?;
         self.expect_kind(bounding_box, ProgramKind::BoundingBox, "a custom geometry's bounding box".into())?;
-        self.geometries.push(GeometryRec {
+        self.scene.geometries.push(GeometryRec {
             kind: GeometryKind::Custom { primitive_count, intersection, bounding_box },
             vars: VarScope::default(),
         });
-        Ok(GeometryId(self.geometries.len() as u32 - 1))
+        Ok(GeometryId(self.scene.geometries.len() as u32 - 1))
     }
 
     /// Moves a triangle geometry's vertices (same count): accelerations over
     /// it are refit, not rebuilt, at the next launch.
     pub fn set_triangle_positions(&mut self, g: GeometryId, positions: Vec<glam::Vec3>) -> Result<()> {
-        self.geometry_version += 1;
-        self.structure_version += 1;
-        let rec = self.geometries.get_mut(g.0 as usize).ok_or_else(|| RtError::InvalidHandle(format!("{g:?}")))?;
+        self.scene.geometry_version += 1;
+        self.scene.structure_version += 1;
+        let rec =
+            self.scene.geometries.get_mut(g.0 as usize).ok_or_else(|| RtError::InvalidHandle(format!("{g:?}")))?;
         let GeometryKind::Triangles(mesh) = &mut rec.kind else {
             return Err(RtError::BadGeometry { geometry: g.0, problem: "not a triangle geometry".into() });
         };
@@ -367,29 +307,29 @@ impl Context {
         }
         // The rest of the mesh was checked when it was created; with the
         // same vertex count, only the positions themselves can be wrong.
-        crate::scene::check_positions(&positions).map_err(|problem| RtError::BadGeometry { geometry: g.0, problem })?;
+        check_positions(&positions).map_err(|problem| RtError::BadGeometry { geometry: g.0, problem })?;
         mesh.positions = positions;
         self.accels.geometry_moved(g.0);
         Ok(())
     }
 
     pub fn create_material(&mut self) -> MaterialId {
-        self.structure_version += 1;
+        self.scene.structure_version += 1;
         let n = self.ray_type_count() as usize;
-        self.materials.push(MaterialRec {
+        self.scene.materials.push(MaterialRec {
             closest_hit: vec![None; n],
             any_hit: vec![None; n],
             vars: VarScope::default(),
         });
-        MaterialId(self.materials.len() as u32 - 1)
+        MaterialId(self.scene.materials.len() as u32 - 1)
     }
 
     fn material_mut(&mut self, m: MaterialId) -> Result<&mut MaterialRec> {
-        self.materials.get_mut(m.0 as usize).ok_or_else(|| RtError::InvalidHandle(format!("{m:?}")))
+        self.scene.materials.get_mut(m.0 as usize).ok_or_else(|| RtError::InvalidHandle(format!("{m:?}")))
     }
 
     pub fn set_closest_hit_program(&mut self, m: MaterialId, ray_type: u32, p: ProgramId) -> Result<()> {
-        self.structure_version += 1;
+        self.scene.structure_version += 1;
         self.check_ray_type(ray_type)?;
         self.expect_kind(p, ProgramKind::ClosestHit, format!("ray type {ray_type}'s closest hit"))?;
         self.material_mut(m)?.closest_hit[ray_type as usize] = Some(p);
@@ -397,7 +337,7 @@ impl Context {
     }
 
     pub fn set_any_hit_program(&mut self, m: MaterialId, ray_type: u32, p: ProgramId) -> Result<()> {
-        self.structure_version += 1;
+        self.scene.structure_version += 1;
         self.check_ray_type(ray_type)?;
         self.expect_kind(p, ProgramKind::AnyHit, format!("ray type {ray_type}'s any hit"))?;
         self.material_mut(m)?.any_hit[ray_type as usize] = Some(p);
@@ -405,12 +345,12 @@ impl Context {
     }
 
     pub fn create_geometry_instance(&mut self, g: GeometryId, materials: &[MaterialId]) -> Result<GeometryInstanceId> {
-        self.geometry_version += 1;
-        self.structure_version += 1;
-        if g.0 as usize >= self.geometries.len() {
+        self.scene.geometry_version += 1;
+        self.scene.structure_version += 1;
+        if g.0 as usize >= self.scene.geometries.len() {
             return Err(RtError::InvalidHandle(format!("{g:?}")));
         }
-        if let Some(m) = materials.iter().find(|m| m.0 as usize >= self.materials.len()) {
+        if let Some(m) = materials.iter().find(|m| m.0 as usize >= self.scene.materials.len()) {
             return Err(RtError::InvalidHandle(format!("{m:?}")));
         }
         if materials.is_empty() {
@@ -419,31 +359,31 @@ impl Context {
                 problem: "a geometry instance needs at least one material".into(),
             });
         }
-        self.instances.push(GeometryInstanceRec {
+        self.scene.instances.push(GeometryInstanceRec {
             geometry: g,
             materials: materials.to_vec(),
             vars: VarScope::default(),
         });
-        Ok(GeometryInstanceId(self.instances.len() as u32 - 1))
+        Ok(GeometryInstanceId(self.scene.instances.len() as u32 - 1))
     }
 
     fn push_node(&mut self, kind: NodeKind) -> NodeId {
-        self.structure_version += 1;
-        self.nodes.push(NodeRec { kind, visibility_mask: 0xff, vars: VarScope::default() });
-        NodeId(self.nodes.len() as u32 - 1)
+        self.scene.structure_version += 1;
+        self.scene.nodes.push(NodeRec { kind, visibility_mask: 0xff, vars: VarScope::default() });
+        NodeId(self.scene.nodes.len() as u32 - 1)
     }
 
     fn check_nodes(&self, nodes: &[NodeId]) -> Result<()> {
-        match nodes.iter().find(|n| n.0 as usize >= self.nodes.len()) {
+        match nodes.iter().find(|n| n.0 as usize >= self.scene.nodes.len()) {
             Some(n) => Err(RtError::InvalidHandle(format!("{n:?}"))),
             None => Ok(()),
         }
     }
 
     pub fn create_geometry_group(&mut self, children: &[GeometryInstanceId], accel: Acceleration) -> Result<NodeId> {
-        self.structure_version += 1;
-        self.geometry_version += 1;
-        if let Some(c) = children.iter().find(|c| c.0 as usize >= self.instances.len()) {
+        self.scene.structure_version += 1;
+        self.scene.geometry_version += 1;
+        if let Some(c) = children.iter().find(|c| c.0 as usize >= self.scene.instances.len()) {
             return Err(RtError::InvalidHandle(format!("{c:?}")));
         }
         Ok(self.push_node(NodeKind::GeometryGroup { children: children.to_vec(), accel }))
@@ -463,9 +403,9 @@ impl Context {
 
     /// Changes a transform's matrix (a refit of the groups above it).
     pub fn set_transform(&mut self, node: NodeId, matrix: Mat4) -> Result<()> {
-        self.structure_version += 1;
+        self.scene.structure_version += 1;
         let inv = checked_inverse(matrix)?;
-        match self.nodes.get_mut(node.0 as usize).map(|n| &mut n.kind) {
+        match self.scene.nodes.get_mut(node.0 as usize).map(|n| &mut n.kind) {
             Some(NodeKind::Transform { matrix: m, inverse, .. }) => {
                 *m = matrix;
                 *inverse = inv;
@@ -484,8 +424,8 @@ impl Context {
 
     /// Rays trace into `node` only if their mask shares a bit with this.
     pub fn set_visibility_mask(&mut self, node: NodeId, mask: u8) -> Result<()> {
-        self.structure_version += 1;
-        let n = self.nodes.get_mut(node.0 as usize).ok_or_else(|| RtError::InvalidHandle(format!("{node:?}")))?;
+        self.scene.structure_version += 1;
+        let n = self.scene.nodes.get_mut(node.0 as usize).ok_or_else(|| RtError::InvalidHandle(format!("{node:?}")))?;
         n.visibility_mask = mask;
         Ok(())
     }
@@ -497,37 +437,13 @@ impl Context {
     /// never relinks.
     pub fn set_var(&mut self, scope: impl Into<Scope>, name: &str, value: impl IntoVariable) -> Result<()> {
         let value = value.into_variable();
-        self.scope_mut(scope.into())?.set(name, value);
+        self.scene.scope_mut(scope.into())?.set(name, value);
         Ok(())
     }
 
     /// Removes variable `name` from `scope`; returns whether it was set.
     pub fn remove_var(&mut self, scope: impl Into<Scope>, name: &str) -> Result<bool> {
-        Ok(self.scope_mut(scope.into())?.remove(name).is_some())
-    }
-
-    pub(crate) fn scope(&self, scope: Scope) -> Result<&VarScope> {
-        let missing = || RtError::InvalidHandle(format!("{scope:?}"));
-        Ok(match scope {
-            Scope::Context => &self.vars,
-            Scope::Program(p) => &self.programs.get(p.0 as usize).ok_or_else(missing)?.vars,
-            Scope::Geometry(g) => &self.geometries.get(g.0 as usize).ok_or_else(missing)?.vars,
-            Scope::GeometryInstance(g) => &self.instances.get(g.0 as usize).ok_or_else(missing)?.vars,
-            Scope::Material(m) => &self.materials.get(m.0 as usize).ok_or_else(missing)?.vars,
-            Scope::Node(n) => &self.nodes.get(n.0 as usize).ok_or_else(missing)?.vars,
-        })
-    }
-
-    fn scope_mut(&mut self, scope: Scope) -> Result<&mut VarScope> {
-        let missing = || RtError::InvalidHandle(format!("{scope:?}"));
-        Ok(match scope {
-            Scope::Context => &mut self.vars,
-            Scope::Program(p) => &mut self.programs.get_mut(p.0 as usize).ok_or_else(missing)?.vars,
-            Scope::Geometry(g) => &mut self.geometries.get_mut(g.0 as usize).ok_or_else(missing)?.vars,
-            Scope::GeometryInstance(g) => &mut self.instances.get_mut(g.0 as usize).ok_or_else(missing)?.vars,
-            Scope::Material(m) => &mut self.materials.get_mut(m.0 as usize).ok_or_else(missing)?.vars,
-            Scope::Node(n) => &mut self.nodes.get_mut(n.0 as usize).ok_or_else(missing)?.vars,
-        })
+        Ok(self.scene.scope_mut(scope.into())?.remove(name).is_some())
     }
 
     // ---- buffers and samplers ----
@@ -535,8 +451,8 @@ impl Context {
     /// A 1D buffer holding `data`.
     pub fn create_buffer<T: RtData + Send + Sync>(&mut self, ty: BufferType, data: Vec<T>) -> BufferId {
         let len = data.len() as u32;
-        self.buffers.push(BufferRec { storage: Box::new(Typed::new(data)), ty, width: len, height: 1, dims: 1 });
-        BufferId(self.buffers.len() as u32 - 1)
+        self.scene.buffers.push(BufferRec { storage: Box::new(Typed::new(data)), ty, width: len, height: 1, dims: 1 });
+        BufferId(self.scene.buffers.len() as u32 - 1)
     }
 
     /// A 2D buffer of `width` x `height` zeroed elements.
@@ -549,23 +465,23 @@ impl Context {
         let n = (width as u64) * (height as u64);
         if n > (u32::MAX as u64) {
             return Err(RtError::BadBuffer {
-                buffer: self.buffers.len() as u32,
+                buffer: self.scene.buffers.len() as u32,
                 problem: format!("{width}x{height} elements do not fit in 32-bit indices"),
             });
         }
         let zero = T::read_words(&vec![0u32; T::LAYOUT.words as usize]);
-        self.buffers.push(BufferRec {
+        self.scene.buffers.push(BufferRec {
             storage: Box::new(Typed::new(vec![zero; n as usize])),
             ty,
             width,
             height,
             dims: 2,
         });
-        Ok(BufferId(self.buffers.len() as u32 - 1))
+        Ok(BufferId(self.scene.buffers.len() as u32 - 1))
     }
 
     fn typed<T: RtData + Send + Sync>(&self, b: BufferId) -> Result<&Typed<T>> {
-        let rec = self.buffers.get(b.0 as usize).ok_or_else(|| RtError::InvalidHandle(format!("{b:?}")))?;
+        let rec = self.scene.buffers.get(b.0 as usize).ok_or_else(|| RtError::InvalidHandle(format!("{b:?}")))?;
         rec.storage.as_any().downcast_ref::<Typed<T>>().ok_or_else(|| RtError::BadBuffer {
             buffer: b.0,
             problem: format!("holds `{}`, not `{}`", rec.storage.layout().rust, T::LAYOUT.rust),
@@ -586,14 +502,14 @@ impl Context {
                 problem: format!("{} elements written to a buffer of {len}", data.len()),
             });
         }
-        let rec = &mut self.buffers[b.0 as usize];
+        let rec = &mut self.scene.buffers[b.0 as usize];
         rec.storage.as_any_mut().downcast_mut::<Typed<T>>().expect("checked above").write(data);
         Ok(())
     }
 
     /// `(width, height)` of a buffer (height 1 for 1D buffers).
     pub fn buffer_size(&self, b: BufferId) -> Result<(u32, u32)> {
-        let rec = self.buffers.get(b.0 as usize).ok_or_else(|| RtError::InvalidHandle(format!("{b:?}")))?;
+        let rec = self.scene.buffers.get(b.0 as usize).ok_or_else(|| RtError::InvalidHandle(format!("{b:?}")))?;
         Ok((rec.width, rec.height))
     }
 
@@ -608,12 +524,12 @@ impl Context {
     ) -> Result<SamplerId> {
         if texels.len() != width as usize * height as usize || texels.is_empty() {
             return Err(RtError::BadBuffer {
-                buffer: self.samplers.len() as u32,
+                buffer: self.scene.samplers.len() as u32,
                 problem: format!("{} texels for a {width}x{height} texture", texels.len()),
             });
         }
-        self.samplers.push(SamplerRec { texels: texels.into_boxed_slice(), width, height, wrap, filter });
-        Ok(SamplerId(self.samplers.len() as u32 - 1))
+        self.scene.samplers.push(SamplerRec { texels: texels.into_boxed_slice(), width, height, wrap, filter });
+        Ok(SamplerId(self.scene.samplers.len() as u32 - 1))
     }
 
     /// A sampler from an image (8-bit channels map to `[0, 1]`, float
@@ -662,7 +578,7 @@ impl Context {
 
     /// Runs entry point `entry` over `width` x `height` launch indices.
     pub fn launch(&mut self, entry: u32, width: u32, height: u32) -> Result<LaunchReport> {
-        backend::launch(self, entry, width, height)
+        backend::launch(&mut *self.backend, &mut self.scene, &self.settings, &mut self.accels, entry, width, height)
     }
 
     /// A 1D launch of `width` indices.

@@ -1,61 +1,17 @@
-//! The scene graph: geometry, materials, geometry instances and the nodes
-//! above them, as in OptiX. Handles are small copyable ids into the
-//! context's tables.
+//! The scene graph: programs, geometry, materials, geometry instances and
+//! the nodes above them, as in OptiX, with buffers, samplers, variables and
+//! entry points: everything a launch runs over ([`Scene`]). Handles
+//! ([`crate::handles`]) are small copyable ids into its tables. The context
+//! owns one and edits it; backends read it.
 
 use crate::accel::Acceleration;
+use crate::buffer::{BufferRec, SamplerRec};
+use crate::error::{Result, RtError};
 use crate::vars::VarScope;
 use glam::{Mat4, Vec2, Vec3};
+use rt_std::program::ProgramDescriptor;
 
-macro_rules! handle {
-    ($(#[$doc:meta])* $name:ident) => {
-        $(#[$doc])*
-        #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-        pub struct $name(pub(crate) u32);
-        impl $name {
-            /// The index of this handle in its table.
-            pub fn index(self) -> u32 {
-                self.0
-            }
-        }
-    };
-}
-
-handle!(
-    /// A program created from a descriptor (a variable scope of its own).
-    ProgramId
-);
-handle!(
-    /// A geometry: triangles or custom primitives.
-    GeometryId
-);
-handle!(
-    /// A material: closest-hit and any-hit programs per ray type.
-    MaterialId
-);
-handle!(
-    /// A geometry with its materials.
-    GeometryInstanceId
-);
-handle!(
-    /// A node of the graph above geometry instances: geometry group, group,
-    /// transform or selector. Programs trace against nodes (`Object`).
-    NodeId
-);
-handle!(
-    /// A buffer.
-    BufferId
-);
-handle!(
-    /// A texture sampler.
-    SamplerId
-);
-
-impl NodeId {
-    /// The handle programs receive for this node.
-    pub fn object(self) -> rt_std::Object {
-        rt_std::Object::new(self.0)
-    }
-}
+pub use crate::handles::{BufferId, GeometryId, GeometryInstanceId, MaterialId, NodeId, ProgramId, SamplerId};
 
 /// A triangle mesh in object space.
 #[derive(Clone, Debug, Default)]
@@ -126,7 +82,7 @@ pub enum GeometryKind {
     /// (Vec2).
     Triangles(TriangleMesh),
     /// Custom primitives: an intersection and a bounding-box program.
-    Custom { primitive_count: u32, intersection: crate::ProgramId, bounding_box: crate::ProgramId },
+    Custom { primitive_count: u32, intersection: ProgramId, bounding_box: ProgramId },
 }
 
 pub(crate) struct GeometryRec {
@@ -135,8 +91,8 @@ pub(crate) struct GeometryRec {
 }
 
 pub(crate) struct MaterialRec {
-    pub closest_hit: Vec<Option<crate::ProgramId>>,
-    pub any_hit: Vec<Option<crate::ProgramId>>,
+    pub closest_hit: Vec<Option<ProgramId>>,
+    pub any_hit: Vec<Option<ProgramId>>,
     pub vars: VarScope,
 }
 
@@ -150,7 +106,7 @@ pub(crate) enum NodeKind {
     GeometryGroup { children: Vec<GeometryInstanceId>, accel: Acceleration },
     Group { children: Vec<NodeId>, accel: Acceleration },
     Transform { matrix: Mat4, inverse: Mat4, child: NodeId },
-    Selector { visit: crate::ProgramId, children: Vec<NodeId> },
+    Selector { visit: ProgramId, children: Vec<NodeId> },
 }
 
 pub(crate) struct NodeRec {
@@ -158,4 +114,143 @@ pub(crate) struct NodeRec {
     /// Rays whose mask shares no bit with this are not traced into it.
     pub visibility_mask: u8,
     pub vars: VarScope,
+}
+
+pub(crate) struct ProgramRec {
+    pub desc: &'static ProgramDescriptor,
+    pub vars: VarScope,
+}
+
+#[derive(Clone, Copy, Default)]
+pub(crate) struct EntryPoint {
+    pub ray_generation: Option<ProgramId>,
+    pub exception: Option<ProgramId>,
+}
+
+/// Where a variable is set.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Scope {
+    Context,
+    Program(ProgramId),
+    Geometry(GeometryId),
+    GeometryInstance(GeometryInstanceId),
+    Material(MaterialId),
+    Node(NodeId),
+}
+
+impl From<ProgramId> for Scope {
+    fn from(p: ProgramId) -> Scope {
+        Scope::Program(p)
+    }
+}
+impl From<GeometryId> for Scope {
+    fn from(g: GeometryId) -> Scope {
+        Scope::Geometry(g)
+    }
+}
+impl From<GeometryInstanceId> for Scope {
+    fn from(g: GeometryInstanceId) -> Scope {
+        Scope::GeometryInstance(g)
+    }
+}
+impl From<MaterialId> for Scope {
+    fn from(m: MaterialId) -> Scope {
+        Scope::Material(m)
+    }
+}
+impl From<NodeId> for Scope {
+    fn from(n: NodeId) -> Scope {
+        Scope::Node(n)
+    }
+}
+
+/// Everything a launch runs over: the tables the handles index, the
+/// context's variables, entry points and miss programs, and the versions
+/// that tell a backend what changed since its last launch.
+pub(crate) struct Scene {
+    pub programs: Vec<ProgramRec>,
+    pub geometries: Vec<GeometryRec>,
+    pub materials: Vec<MaterialRec>,
+    pub instances: Vec<GeometryInstanceRec>,
+    pub nodes: Vec<NodeRec>,
+    pub buffers: Vec<BufferRec>,
+    pub samplers: Vec<SamplerRec>,
+    pub vars: VarScope,
+    pub entry_points: Vec<EntryPoint>,
+    pub miss: Vec<Option<ProgramId>>,
+    /// Bumped by every change but variable values and buffer contents: a
+    /// wgpu launch re-encodes the scene only when it moved (with the
+    /// acceleration structures' builds and refits).
+    pub structure_version: u64,
+    /// Bumped by every change to geometries, geometry instances and
+    /// geometry groups: the part of the scene a wgpu launch keeps on the
+    /// device while other things change.
+    pub geometry_version: u64,
+}
+
+impl Default for Scene {
+    /// One entry point and one ray type, nothing else.
+    fn default() -> Self {
+        Scene {
+            programs: Vec::new(),
+            geometries: Vec::new(),
+            materials: Vec::new(),
+            instances: Vec::new(),
+            nodes: Vec::new(),
+            buffers: Vec::new(),
+            samplers: Vec::new(),
+            vars: VarScope::default(),
+            entry_points: vec![EntryPoint::default()],
+            miss: vec![None],
+            structure_version: 0,
+            geometry_version: 0,
+        }
+    }
+}
+
+impl Scene {
+    pub fn program(&self, p: ProgramId) -> Result<&ProgramRec> {
+        self.programs.get(p.0 as usize).ok_or_else(|| RtError::InvalidHandle(format!("{p:?}")))
+    }
+
+    pub fn ray_type_count(&self) -> u32 {
+        self.miss.len() as u32
+    }
+
+    /// No any-hit and no intersection program in use: every primitive is a
+    /// triangle and every candidate commits, so the wgpu kernel searches
+    /// instances with its lean loop over CWBVHs. (Any-hit programs sit in
+    /// materials' slots, intersection programs come with custom geometry:
+    /// none among the instances', none in the kernel.)
+    pub fn searches_triangles_only(&self) -> bool {
+        self.instances.iter().all(|gi| {
+            matches!(self.geometries[gi.geometry.index() as usize].kind, GeometryKind::Triangles(_))
+                && gi.materials.iter().all(|m| self.materials[m.index() as usize].any_hit.iter().all(Option::is_none))
+        })
+    }
+
+    /// The variables set on `scope`.
+    pub fn scope(&self, scope: Scope) -> Result<&VarScope> {
+        let missing = || RtError::InvalidHandle(format!("{scope:?}"));
+        Ok(match scope {
+            Scope::Context => &self.vars,
+            Scope::Program(p) => &self.programs.get(p.0 as usize).ok_or_else(missing)?.vars,
+            Scope::Geometry(g) => &self.geometries.get(g.0 as usize).ok_or_else(missing)?.vars,
+            Scope::GeometryInstance(g) => &self.instances.get(g.0 as usize).ok_or_else(missing)?.vars,
+            Scope::Material(m) => &self.materials.get(m.0 as usize).ok_or_else(missing)?.vars,
+            Scope::Node(n) => &self.nodes.get(n.0 as usize).ok_or_else(missing)?.vars,
+        })
+    }
+
+    pub fn scope_mut(&mut self, scope: Scope) -> Result<&mut VarScope> {
+        let missing = || RtError::InvalidHandle(format!("{scope:?}"));
+        Ok(match scope {
+            Scope::Context => &mut self.vars,
+            Scope::Program(p) => &mut self.programs.get_mut(p.0 as usize).ok_or_else(missing)?.vars,
+            Scope::Geometry(g) => &mut self.geometries.get_mut(g.0 as usize).ok_or_else(missing)?.vars,
+            Scope::GeometryInstance(g) => &mut self.instances.get_mut(g.0 as usize).ok_or_else(missing)?.vars,
+            Scope::Material(m) => &mut self.materials.get_mut(m.0 as usize).ok_or_else(missing)?.vars,
+            Scope::Node(n) => &mut self.nodes.get_mut(n.0 as usize).ok_or_else(missing)?.vars,
+        })
+    }
 }

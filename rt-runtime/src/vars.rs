@@ -7,7 +7,7 @@
 //! outer ones ([`lookup_order`]). Resolution happens once per link, per
 //! program and scope record, never per ray.
 
-use crate::{BufferId, NodeId, SamplerId};
+use crate::handles::{BufferId, NodeId, SamplerId};
 use rt_std::RtData;
 use rt_std::program::{ProgramKind, TypeLayout};
 use std::any::Any;

@@ -22,13 +22,13 @@
 //! distance and barycentrics; the attributes are computed once, for the
 //! closest hit.
 
-use super::link::{self, Call, Record};
-use super::{ExceptionRecord, LaunchReport};
-use crate::accel::{NodeAccel, build_accels};
-
-use crate::context::Context;
+use super::{ExceptionRecord, Launch, LaunchBackend, LaunchReport, Settings};
+use crate::accel::bvh::TreeForm;
+use crate::accel::cache::{NodeAccel, Trees};
+use crate::buffer::BufferRec;
 use crate::error::{Result, RtError};
-use crate::scene::{GeometryKind, NodeId, NodeKind, TriangleMesh};
+use crate::link::{self, Call, Record};
+use crate::scene::{GeometryKind, NodeId, NodeKind, Scene, TriangleMesh};
 use glam::{Mat3A, Mat4, UVec2, Vec2, Vec3, Vec3A, Vec3Swizzles};
 
 use rayon::prelude::*;
@@ -44,7 +44,8 @@ type HitPrograms<P> = (Option<P>, Option<P>);
 /// Every program use of a launch, resolved: `P` is [`Call`] (variables
 /// owned) after linking, [`Program`] (variables bound) while running.
 struct Linked<'a, P> {
-    ctx: &'a Context,
+    scene: &'a Scene,
+    settings: &'a Settings,
     accels: &'a [Option<NodeAccel>],
     ray_generation: P,
     exception: Option<P>,
@@ -64,32 +65,38 @@ struct Linked<'a, P> {
     launch_dim: UVec2,
 }
 
-fn link_all<'a>(ctx: &'a Context, accels: &'a [Option<NodeAccel>], entry: u32, dim: UVec2) -> Result<Linked<'a, Call>> {
-    let count = ctx.entry_points.len() as u32;
-    let ep = ctx.entry_points.get(entry as usize).ok_or(RtError::NoSuchEntryPoint { entry, count })?;
+fn link_all<'a>(
+    scene: &'a Scene,
+    settings: &'a Settings,
+    accels: &'a [Option<NodeAccel>],
+    entry: u32,
+    dim: UVec2,
+) -> Result<Linked<'a, Call>> {
+    let count = scene.entry_points.len() as u32;
+    let ep = scene.entry_points.get(entry as usize).ok_or(RtError::NoSuchEntryPoint { entry, count })?;
     let rg = ep.ray_generation.ok_or(RtError::NoRayGeneration { entry })?;
-    link::check_types(ctx)?;
-    let ray_generation = link::resolve(ctx, rg, Record::default())?;
-    let exception = ep.exception.map(|p| link::resolve(ctx, p, Record::default())).transpose()?;
-    let miss = ctx
+    link::check_types(scene)?;
+    let ray_generation = link::resolve(scene, rg, Record::default())?;
+    let exception = ep.exception.map(|p| link::resolve(scene, p, Record::default())).transpose()?;
+    let miss = scene
         .miss
         .iter()
         .enumerate()
         .map(|(r, m)| {
             let p = m.ok_or(RtError::NoMissProgram { ray_type: r as u32 })?;
-            link::resolve(ctx, p, Record::default())
+            link::resolve(scene, p, Record::default())
         })
         .collect::<Result<Vec<_>>>()?;
-    let mut hits = Vec::with_capacity(ctx.instances.len());
-    let mut any_hit = Vec::with_capacity(ctx.instances.len());
-    let mut meshes = Vec::with_capacity(ctx.instances.len());
-    let mut intersection = Vec::with_capacity(ctx.instances.len());
-    for (i, gi) in ctx.instances.iter().enumerate() {
-        let instance = Some(crate::GeometryInstanceId(i as u32));
+    let mut hits = Vec::with_capacity(scene.instances.len());
+    let mut any_hit = Vec::with_capacity(scene.instances.len());
+    let mut meshes = Vec::with_capacity(scene.instances.len());
+    let mut intersection = Vec::with_capacity(scene.instances.len());
+    for (i, gi) in scene.instances.iter().enumerate() {
+        let instance = Some(crate::handles::GeometryInstanceId(i as u32));
         let mut per_material = Vec::new();
-        let mut with_any_hit = vec![false; ctx.ray_type_count() as usize];
+        let mut with_any_hit = vec![false; scene.ray_type_count() as usize];
         for m in &gi.materials {
-            let mat = &ctx.materials[m.index() as usize];
+            let mat = &scene.materials[m.index() as usize];
             let record = Record { instance, material: Some(*m), ..Record::default() };
             let mut per_ray = Vec::new();
             for (r, (ch, ah)) in mat.closest_hit.iter().zip(&mat.any_hit).enumerate() {
@@ -97,19 +104,19 @@ fn link_all<'a>(ctx: &'a Context, accels: &'a [Option<NodeAccel>], entry: u32, d
                     *flag |= ah.is_some();
                 }
                 per_ray.push((
-                    ch.map(|p| link::resolve(ctx, p, record)).transpose()?,
-                    ah.map(|p| link::resolve(ctx, p, record)).transpose()?,
+                    ch.map(|p| link::resolve(scene, p, record)).transpose()?,
+                    ah.map(|p| link::resolve(scene, p, record)).transpose()?,
                 ));
             }
             per_material.push(per_ray);
         }
         hits.push(per_material);
         any_hit.push(with_any_hit);
-        match &ctx.geometries[gi.geometry.index() as usize].kind {
+        match &scene.geometries[gi.geometry.index() as usize].kind {
             GeometryKind::Custom { intersection: p, .. } => {
                 meshes.push(None);
                 intersection.push(Some(link::resolve(
-                    ctx,
+                    scene,
                     *p,
                     Record { instance, geometry: Some(gi.geometry), ..Record::default() },
                 )?));
@@ -120,19 +127,20 @@ fn link_all<'a>(ctx: &'a Context, accels: &'a [Option<NodeAccel>], entry: u32, d
             }
         }
     }
-    let visit = ctx
+    let visit = scene
         .nodes
         .iter()
         .enumerate()
         .map(|(n, rec)| match rec.kind {
             NodeKind::Selector { visit, .. } => {
-                link::resolve(ctx, visit, Record { node: Some(NodeId(n as u32)), ..Record::default() }).map(Some)
+                link::resolve(scene, visit, Record { node: Some(NodeId(n as u32)), ..Record::default() }).map(Some)
             }
             _ => Ok(None),
         })
         .collect::<Result<Vec<_>>>()?;
     Ok(Linked {
-        ctx,
+        scene,
+        settings,
         accels,
         ray_generation,
         exception,
@@ -154,7 +162,8 @@ impl<'a> Linked<'a, Call> {
             c.as_ref().map(Program::bind).transpose()
         }
         Ok(Linked {
-            ctx: self.ctx,
+            scene: self.scene,
+            settings: self.settings,
             accels: self.accels,
             ray_generation: Program::bind(&self.ray_generation)?,
             exception: opt(&self.exception)?,
@@ -263,23 +272,42 @@ fn triangle_builtins(mesh: &TriangleMesh, prim: u32, &[a, b, c]: &[Vec3; 3], u: 
     TriangleBuiltins { geometric_normal: gn, shading_normal: sn, texcoord: uv, barycentrics: Vec2::new(u, v) }
 }
 
-/// Runs entry point `entry` over `width` x `height` launch indices.
-pub(crate) fn launch(ctx: &mut Context, entry: u32, width: u32, height: u32) -> Result<LaunchReport> {
-    if width == 0 || height == 0 {
-        return Err(RtError::BadLaunch {
-            width,
-            height,
-            problem: "a launch needs at least one index in each dimension".into(),
-        });
+/// The CPU backend: it keeps nothing between launches.
+#[derive(Default)]
+pub(crate) struct CpuBackend;
+
+impl LaunchBackend for CpuBackend {
+    fn kind(&self) -> super::Backend {
+        super::Backend::Cpu
     }
-    let t0 = std::time::Instant::now();
-    let mut cache = std::mem::take(&mut ctx.accels);
-    let built = build_accels(ctx, &mut cache);
-    ctx.accels = cache;
-    built?;
+
+    fn prepare(&mut self) -> Result<()> {
+        Ok(())
+    }
+
+    /// Groups' BVH2s as the wide form's; every geometry group's CWBVH with
+    /// its triangles in slot order.
+    fn trees(&self, _: &Scene) -> Trees {
+        Trees { groups: TreeForm::Wide, cwbvh: true, slot_triangles: true }
+    }
+
+    fn launch(&mut self, launch: &Launch) -> Result<LaunchReport> {
+        run(launch)
+    }
+
+    /// Programs wrote the host's buffers themselves.
+    fn read_back_outputs(&mut self, _: &mut [BufferRec]) {}
+
+    fn stats(&self) -> super::BackendStats<'_> {
+        super::BackendStats::default()
+    }
+}
+
+/// Runs a launch over its launch indices.
+fn run(launch: &Launch) -> Result<LaunchReport> {
+    let &Launch { scene, settings, accels, entry, width, height } = launch;
     let t1 = std::time::Instant::now();
-    let ctx: &Context = ctx;
-    let calls = link_all(ctx, &ctx.accels.nodes, entry, UVec2::new(width, height))?;
+    let calls = link_all(scene, settings, &accels.nodes, entry, UVec2::new(width, height))?;
     let linked = calls.bind()?;
     let t2 = std::time::Instant::now();
     // Chunks of launch indices in row-major order (not rows: a 1D launch
@@ -306,8 +334,13 @@ pub(crate) fn launch(ctx: &mut Context, entry: u32, width: u32, height: u32) -> 
         report.prints.extend(r.prints);
         report.rays += r.rays;
     }
-    report.timings =
-        super::Timings { build: t1 - t0, encode: t2 - t1, link: Default::default(), run: t2.elapsed(), kernel: None };
+    report.timings = super::Timings {
+        build: Default::default(),
+        encode: t2 - t1,
+        link: Default::default(),
+        run: t2.elapsed(),
+        kernel: None,
+    };
     Ok(report)
 }
 
@@ -520,7 +553,7 @@ impl<'a> Lane<'a> {
 
     fn traverse(&self, s: &Search, node: NodeId, xf: Option<&Xf>, mask: u32) {
         let l = self.l;
-        let rec = &l.ctx.nodes[node.index() as usize];
+        let rec = &l.scene.nodes[node.index() as usize];
         if (rec.visibility_mask as u32) & mask == 0 || s.done.get() {
             return;
         }
@@ -787,12 +820,12 @@ impl Tracer for Lane<'_> {
         }
         let depth = self.depth.get();
         let l = self.l;
-        if depth >= l.ctx.max_trace_depth {
+        if depth >= l.settings.max_trace_depth {
             rt_std::cpu::raise(EXCEPTION_TRACE_DEPTH_EXCEEDED);
             return;
         }
         let node = NodeId(object.id);
-        if object.id as usize >= l.ctx.nodes.len() || ray.ray_type >= l.ctx.ray_type_count() {
+        if object.id as usize >= l.scene.nodes.len() || ray.ray_type >= l.scene.ray_type_count() {
             rt_std::cpu::raise(EXCEPTION_INVALID_RAY);
             return;
         }
@@ -909,8 +942,8 @@ impl Tracer for Lane<'_> {
     }
 
     fn print(&self, text: &str) {
-        let ctx = self.l.ctx;
-        if ctx.print_enabled && ctx.print_launch_index.is_none_or(|i| i == self.index.get()) {
+        let settings = self.l.settings;
+        if settings.print_enabled && settings.print_launch_index.is_none_or(|i| i == self.index.get()) {
             self.prints.borrow_mut().push(text.to_string());
         }
     }

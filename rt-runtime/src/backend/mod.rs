@@ -1,13 +1,27 @@
-//! Backends: where launches run. The link step (variable resolution by
-//! scope, payload and attribute agreement) is shared; see `link`.
+//! Backends: where launches run.
+//!
+//! A backend implements [`LaunchBackend`]: it says which trees it walks
+//! ([`LaunchBackend::trees`]), gets ready ([`LaunchBackend::prepare`]: the
+//! wgpu backend opens its device), runs a launch over the scene
+//! ([`LaunchBackend::launch`]), hands what programs wrote to the host's
+//! buffers ([`LaunchBackend::read_back_outputs`]) and counts what it did
+//! ([`LaunchBackend::stats`]). What every launch does around that (the
+//! size check, the acceleration structures' build) is written once, in
+//! [`launch`]. The link step (variable resolution by scope, payload and
+//! attribute agreement) is shared too: [`crate::link`].
+//!
+//! The backends: [`cpu`] runs programs natively; [`wgpu`] links them into
+//! one megakernel (its traversal in `wgpu/compute/`).
 
 pub mod cpu;
-pub mod link;
 pub mod wgpu;
 
-use crate::Context;
-use crate::error::Result;
+use crate::accel::cache::{AccelCache, Trees, build_accels};
+use crate::buffer::BufferRec;
+use crate::error::{Result, RtError};
+use crate::scene::Scene;
 use glam::UVec2;
+use std::any::Any;
 
 /// Where a context's launches run.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -26,12 +40,12 @@ impl Backend {
     /// otherwise the CPU backend, which outruns Mesa's lavapipe on CPU-only
     /// machines (3.7 vs 0.9 Mrays/s for the bunny's primary rays on a 2-core
     /// VM, BENCHMARKS.md).
-    pub fn choose() -> Result<(Backend, String), crate::RtError> {
+    pub fn choose() -> Result<(Backend, String), RtError> {
         if let Ok(v) = std::env::var("RT_BACKEND") {
             return match v.as_str() {
                 "cpu" => Ok((Backend::Cpu, "RT_BACKEND=cpu".into())),
                 "wgpu" => Ok((Backend::Wgpu, "RT_BACKEND=wgpu".into())),
-                other => Err(crate::RtError::Gpu(format!("RT_BACKEND is `{other}`; expected `cpu` or `wgpu`"))),
+                other => Err(RtError::Gpu(format!("RT_BACKEND is `{other}`; expected `cpu` or `wgpu`"))),
             };
         }
         match wgpu::probe() {
@@ -108,9 +122,107 @@ pub struct Timings {
     pub kernel: Option<std::time::Duration>,
 }
 
-pub(crate) fn launch(ctx: &mut Context, entry: u32, width: u32, height: u32) -> Result<LaunchReport> {
-    match ctx.backend {
-        Backend::Cpu => cpu::launch(ctx, entry, width, height),
-        Backend::Wgpu => wgpu::launch(ctx, entry, width, height),
+/// How a context's launches run, besides its scene: set by the context,
+/// read by every backend.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Settings {
+    pub max_trace_depth: u32,
+    pub print_enabled: bool,
+    pub print_launch_index: Option<UVec2>,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings { max_trace_depth: 5, print_enabled: true, print_launch_index: None }
     }
+}
+
+/// One launch, as a backend receives it: the scene, the settings, the
+/// acceleration structures built for it ([`LaunchBackend::trees`]), the
+/// entry point and the launch's size (at least 1 x 1).
+pub(crate) struct Launch<'a> {
+    pub scene: &'a Scene,
+    pub settings: &'a Settings,
+    pub accels: &'a AccelCache,
+    pub entry: u32,
+    pub width: u32,
+    pub height: u32,
+}
+
+/// What a backend counts (zero where it does not apply: the CPU backend
+/// encodes, uploads and links nothing).
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct BackendStats<'a> {
+    /// Launches that encoded and uploaded the scene.
+    pub scene_encodes: u64,
+    /// Of those, the ones that encoded the geometry part too.
+    pub geometry_encodes: u64,
+    /// Pipelines (megakernel links) created.
+    pub pipelines_created: u64,
+    /// Bytes the last launch wrote to a device.
+    pub last_upload_bytes: u64,
+    /// The last launch's linked kernel source.
+    pub linked_wgsl: Option<&'a str>,
+}
+
+/// Where launches run: implemented by the CPU backend and the wgpu
+/// megakernel; a context holds one and calls it through [`launch`].
+pub(crate) trait LaunchBackend: Any {
+    /// Which backend this is.
+    fn kind(&self) -> Backend;
+    /// Gets ready for a launch, before anything is built (the wgpu backend
+    /// drops a lost device and opens one).
+    fn prepare(&mut self) -> Result<()>;
+    /// The trees this backend walks, which the acceleration builder builds
+    /// for it.
+    fn trees(&self, scene: &Scene) -> Trees;
+    /// Runs a launch. Outputs wait for [`LaunchBackend::read_back_outputs`].
+    fn launch(&mut self, launch: &Launch) -> Result<LaunchReport>;
+    /// Writes what the last launch's programs wrote into the host's
+    /// buffers (called after every launch, failed or not; a backend writes
+    /// only what it read back whole).
+    fn read_back_outputs(&mut self, buffers: &mut [BufferRec]);
+    /// What this backend counted.
+    fn stats(&self) -> BackendStats<'_>;
+}
+
+impl Backend {
+    /// A new backend of this kind (nothing opened yet).
+    pub(crate) fn create(self) -> Box<dyn LaunchBackend> {
+        match self {
+            Backend::Cpu => Box::new(cpu::CpuBackend),
+            Backend::Wgpu => Box::new(wgpu::WgpuBackend::default()),
+        }
+    }
+}
+
+/// Runs entry point `entry` over `width` x `height` launch indices on
+/// `backend`: checks the size, gets the backend ready, builds or refits the
+/// acceleration structures in the forms it walks, runs it and takes its
+/// outputs.
+pub(crate) fn launch(
+    backend: &mut dyn LaunchBackend,
+    scene: &mut Scene,
+    settings: &Settings,
+    accels: &mut AccelCache,
+    entry: u32,
+    width: u32,
+    height: u32,
+) -> Result<LaunchReport> {
+    if width == 0 || height == 0 {
+        return Err(RtError::BadLaunch {
+            width,
+            height,
+            problem: "a launch needs at least one index in each dimension".into(),
+        });
+    }
+    backend.prepare()?;
+    let t0 = std::time::Instant::now();
+    build_accels(scene, accels, backend.trees(scene))?;
+    let build = t0.elapsed();
+    let result = backend.launch(&Launch { scene, settings, accels, entry, width, height });
+    backend.read_back_outputs(&mut scene.buffers);
+    let mut report = result?;
+    report.timings.build = build;
+    Ok(report)
 }

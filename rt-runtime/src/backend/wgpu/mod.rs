@@ -65,12 +65,13 @@
 
 pub mod kernel;
 
-use super::link::{self, Record};
-use super::{ExceptionRecord, LaunchReport};
-use crate::accel::{NodeAccel, build_accels};
-use crate::context::Context;
+use super::{BackendStats, ExceptionRecord, Launch, LaunchBackend, LaunchReport};
+use crate::accel::bvh::TreeForm;
+use crate::accel::cache::{AccelCache, NodeAccel, Trees};
+use crate::buffer::BufferRec;
 use crate::error::{Result, RtError};
-use crate::scene::{GeometryKind, NodeId, NodeKind, ProgramId};
+use crate::link::{self, Record};
+use crate::scene::{GeometryKind, NodeId, NodeKind, ProgramId, Scene};
 use crate::vars::VarValue;
 use glam::{Mat4, UVec2};
 use kernel::{KernelProgram, KernelSpec, SCENE_HEADER_BASES, SCENE_SECTIONS};
@@ -530,11 +531,11 @@ struct GeometryKey {
 }
 
 impl GeometryKey {
-    fn of(ctx: &Context, scene_bindings: usize) -> GeometryKey {
-        let triangles_only = ctx.searches_triangles_only();
+    fn of(scene: &Scene, accels: &AccelCache, scene_bindings: usize) -> GeometryKey {
+        let triangles_only = scene.searches_triangles_only();
         GeometryKey {
-            geometry: ctx.geometry_version,
-            accels: ctx.accels.geometry_group_changes,
+            geometry: scene.geometry_version,
+            accels: accels.geometry_group_changes,
             scene_bindings,
             triangles_only,
         }
@@ -551,9 +552,9 @@ struct Records {
 
 impl Records {
     /// A record for `p` used as `r`; returns its offset in the heap.
-    fn add(&mut self, ctx: &Context, p: ProgramId, r: Record) -> Result<u32> {
+    fn add(&mut self, scene: &Scene, p: ProgramId, r: Record) -> Result<u32> {
         let at = self.words;
-        let desc = ctx.program(p)?.desc;
+        let desc = scene.program(p)?.desc;
         self.words += desc.variables.iter().map(|v| kernel::variable_words(&v.kind, &v.ty)).sum::<u32>();
         self.uses.push((p, r));
         Ok(at)
@@ -574,11 +575,11 @@ struct SceneKey {
 }
 
 impl SceneKey {
-    fn of(ctx: &Context, entry: u32, scene_bindings: usize) -> SceneKey {
+    fn of(scene: &Scene, accels: &AccelCache, entry: u32, scene_bindings: usize) -> SceneKey {
         SceneKey {
-            structure: ctx.structure_version,
-            builds: ctx.accels.builds,
-            refits: ctx.accels.refits,
+            structure: scene.structure_version,
+            builds: accels.builds,
+            refits: accels.refits,
             entry,
             scene_bindings,
         }
@@ -606,7 +607,7 @@ fn push_mat(out: &mut Vec<u32>, m: Mat4) {
 
 /// Levels of a BVH2 (1 for a lone leaf): a near-first traversal keeps at
 /// most one pending entry per level, so this sizes the kernel's stacks.
-fn bvh_depth(bvh: &crate::accel::Bvh) -> u32 {
+fn bvh_depth(bvh: &crate::accel::bvh::Bvh) -> u32 {
     let nodes = &bvh.bvh.nodes;
     if nodes.is_empty() {
         return 1;
@@ -630,7 +631,7 @@ fn bvh_depth(bvh: &crate::accel::Bvh) -> u32 {
 
 /// Appends `bvh`'s nodes to `out`, which starts at word `base` of its
 /// section; returns where they start and the BVH's depth ([`bvh_depth`]).
-fn push_bvh(out: &mut Vec<u32>, base: usize, bvh: &crate::accel::Bvh) -> (u32, u32) {
+fn push_bvh(out: &mut Vec<u32>, base: usize, bvh: &crate::accel::bvh::Bvh) -> (u32, u32) {
     let depth = bvh_depth(bvh);
     let at = (base + out.len()) as u32;
     for n in &bvh.bvh.nodes {
@@ -658,10 +659,10 @@ fn push_bvh(out: &mut Vec<u32>, base: usize, bvh: &crate::accel::Bvh) -> (u32, u
 /// on it can commit (a custom primitive; a material index past the
 /// instance's materials), NaN vertices, which the triangle test never
 /// hits, and `RT_NONE`: the lean search checks nothing per candidate.
-fn push_triangle_slot(ctx: &Context, out: &mut Vec<u32>, gi: u32, p: u32) {
-    let instance = &ctx.instances[gi as usize];
+fn push_triangle_slot(scene: &Scene, out: &mut Vec<u32>, gi: u32, p: u32) {
+    let instance = &scene.instances[gi as usize];
     let never = [f(f32::NAN); 9].into_iter().chain([RT_NONE]);
-    match &ctx.geometries[instance.geometry.index() as usize].kind {
+    match &scene.geometries[instance.geometry.index() as usize].kind {
         GeometryKind::Triangles(mesh) => {
             let m = mesh.material_indices.as_ref().map_or(0, |m| m.get(p as usize).copied().unwrap_or(0));
             if (m as usize) >= instance.materials.len() {
@@ -679,12 +680,12 @@ fn push_triangle_slot(ctx: &Context, out: &mut Vec<u32>, gi: u32, p: u32) {
 }
 
 /// Follows transforms down to a geometry group: (group, object-to-world, mask).
-fn instance_of(ctx: &Context, node: NodeId) -> Result<Option<(NodeId, Mat4, u32)>> {
+fn instance_of(scene: &Scene, node: NodeId) -> Result<Option<(NodeId, Mat4, u32)>> {
     let mut m = Mat4::IDENTITY;
     let mut mask = 0xffu32;
     let mut n = node;
-    for _ in 0..=ctx.nodes.len() {
-        let rec = &ctx.nodes[n.index() as usize];
+    for _ in 0..=scene.nodes.len() {
+        let rec = &scene.nodes[n.index() as usize];
         mask &= rec.visibility_mask as u32;
         match &rec.kind {
             NodeKind::GeometryGroup { .. } => return Ok(Some((n, m, mask))),
@@ -698,30 +699,31 @@ fn instance_of(ctx: &Context, node: NodeId) -> Result<Option<(NodeId, Mat4, u32)
     Err(RtError::GraphCycle { node: node.index() })
 }
 
-/// Encodes the launch of `entry` for a device with `scene_bindings` scene
+/// Encodes launch `l` for a device with `scene_bindings` tables
 /// bindings (see [`kernel::SCENE_SECTIONS`]).
-fn encode(ctx: &Context, entry: u32, scene_bindings: usize, held_geometry: Option<&GeometryLayout>) -> Result<Encoded> {
-    let count = ctx.entry_points.len() as u32;
-    let ep = ctx.entry_points.get(entry as usize).ok_or(RtError::NoSuchEntryPoint { entry, count })?;
+fn encode(l: &Launch, scene_bindings: usize, held_geometry: Option<&GeometryLayout>) -> Result<Encoded> {
+    let (scene, entry) = (l.scene, l.entry);
+    let count = scene.entry_points.len() as u32;
+    let ep = scene.entry_points.get(entry as usize).ok_or(RtError::NoSuchEntryPoint { entry, count })?;
     let rg = ep.ray_generation.ok_or(RtError::NoRayGeneration { entry })?;
-    link::check_types(ctx)?;
-    let ray_types = ctx.ray_type_count();
+    link::check_types(scene)?;
+    let ray_types = scene.ray_type_count();
     let mut records = Records::default();
-    let record = |p: ProgramId, r: Record, records: &mut Records| records.add(ctx, p, r);
+    let record = |p: ProgramId, r: Record, records: &mut Records| records.add(scene, p, r);
     let case = |p: ProgramId| p.index() + 1;
     let mut programs: Vec<KernelProgram> = Vec::new();
     let use_program = |p: ProgramId, programs: &mut Vec<KernelProgram>| -> Result<KernelProgram> {
-        let kp = KernelProgram { case: case(p), desc: ctx.program(p)?.desc };
+        let kp = KernelProgram { case: case(p), desc: scene.program(p)?.desc };
         if !programs.iter().any(|q| q.case == kp.case) {
             programs.push(kp);
         }
         Ok(kp)
     };
     let rg_vars = record(rg, Record::default(), &mut records)?;
-    let rg_prog = KernelProgram { case: case(rg), desc: ctx.program(rg)?.desc };
+    let rg_prog = KernelProgram { case: case(rg), desc: scene.program(rg)?.desc };
     let (ex_prog, ex_vars) = match ep.exception {
         Some(e) => (
-            Some(KernelProgram { case: case(e), desc: ctx.program(e)?.desc }),
+            Some(KernelProgram { case: case(e), desc: scene.program(e)?.desc }),
             record(e, Record::default(), &mut records)?,
         ),
         None => (None, 0),
@@ -733,20 +735,20 @@ fn encode(ctx: &Context, entry: u32, scene_bindings: usize, held_geometry: Optio
     let (geometry, geometry_words) = match held_geometry {
         Some(g) => (g.clone(), None),
         None => {
-            let (layout, words) = encode_geometry(ctx, GeometryKey::of(ctx, scene_bindings));
+            let (layout, words) = encode_geometry(scene, l.accels, GeometryKey::of(scene, l.accels, scene_bindings));
             (layout, Some(words))
         }
     };
     let mut deepest_bvh = geometry.deepest_bvh;
     let mut header = [0u32; SCENE_HEADER];
-    let mut scene = Tail::new(geometry.ends[0]);
+    let mut tables = Tail::new(geometry.ends[0]);
     let mut nodes = Tail::new(geometry.ends[1]);
-    let accels: &[Option<NodeAccel>] = &ctx.accels.nodes;
+    let accels: &[Option<NodeAccel>] = &l.accels.nodes;
     // Instances: one per geometry group and per transform chain.
-    let mut instance_of_node: Vec<Option<u32>> = vec![None; ctx.nodes.len()];
+    let mut instance_of_node: Vec<Option<u32>> = vec![None; scene.nodes.len()];
     let mut instances: Vec<(NodeId, Mat4, u32)> = Vec::new();
     for (n, slot) in instance_of_node.iter_mut().enumerate() {
-        if let Some(inst) = instance_of(ctx, NodeId(n as u32))? {
+        if let Some(inst) = instance_of(scene, NodeId(n as u32))? {
             *slot = Some(instances.len() as u32);
             instances.push(inst);
         }
@@ -758,7 +760,7 @@ fn encode(ctx: &Context, entry: u32, scene_bindings: usize, held_geometry: Optio
     // The deepest BVH of a group of instances (`None`: no group).
     let mut deepest_group: Option<u32> = None;
     let mut group_bvh: HashMap<u32, (u32, u32, bool)> = HashMap::new();
-    for (n, rec) in ctx.nodes.iter().enumerate() {
+    for (n, rec) in scene.nodes.iter().enumerate() {
         if let (NodeKind::Group { children, .. }, Some(NodeAccel::Children { bvh, .. })) =
             (&rec.kind, accels.get(n).and_then(|a| a.as_ref()))
         {
@@ -766,22 +768,22 @@ fn encode(ctx: &Context, entry: u32, scene_bindings: usize, held_geometry: Optio
             deepest_bvh = deepest_bvh.max(depth);
             widest_group_leaf = bvh.bvh.nodes.iter().map(|n| n.prim_count).fold(widest_group_leaf, u32::max);
             deepest_group = Some(deepest_group.unwrap_or(1).max(depth));
-            let table = scene.at();
+            let table = tables.at();
             let mut instances_only = true;
             for slot in &bvh.bvh.primitive_indices {
                 let child = children[*slot as usize];
                 match instance_of_node[child.index() as usize] {
-                    Some(inst) => scene.words.push(inst),
+                    Some(inst) => tables.words.push(inst),
                     None => {
                         instances_only = false;
-                        scene.words.push(child.index() | NODE_BIT);
+                        tables.words.push(child.index() | NODE_BIT);
                     }
                 }
             }
             group_bvh.insert(n as u32, (at, table, instances_only));
         }
     }
-    header[1] = scene.at();
+    header[1] = tables.at();
     for (gg, o2w, mask) in &instances {
         let w = geometry.gg_bvh.get(&gg.index()).copied().unwrap_or(GroupWords { bvh: 0, table: 0, tri_slots: 0 });
         let record = InstanceRecord {
@@ -793,17 +795,17 @@ fn encode(ctx: &Context, entry: u32, scene_bindings: usize, held_geometry: Optio
             geometry_group: gg.index(),
             triangles: w.tri_slots,
         };
-        scene.words.extend(record.words());
+        tables.words.extend(record.words());
     }
     // The node table (after the side data of transforms and selectors), and
     // how deep transforms above groups and selectors nest (in post order:
     // children before parents).
-    let mut node_entries: Vec<[u32; 4]> = vec![[0; 4]; ctx.nodes.len()];
-    let mut levels: Vec<u32> = vec![0; ctx.nodes.len()];
+    let mut node_entries: Vec<[u32; 4]> = vec![[0; 4]; scene.nodes.len()];
+    let mut levels: Vec<u32> = vec![0; scene.nodes.len()];
     let mut graph = false;
-    for n in link::nodes_post_order(ctx)? {
+    for n in link::nodes_post_order(scene)? {
         let i = n.index() as usize;
-        let rec = &ctx.nodes[i];
+        let rec = &scene.nodes[i];
         if let Some(inst) = instance_of_node[i] {
             node_entries[i] = [NodeEntry::Instance as u32, inst, 0, instances[inst as usize].2];
             continue;
@@ -820,14 +822,14 @@ fn encode(ctx: &Context, entry: u32, scene_bindings: usize, held_geometry: Optio
             NodeKind::Transform { .. } => {
                 // A chain of transforms down to a group or selector.
                 let (mut m, mut mask, mut below) = (Mat4::IDENTITY, 0xffu32, n);
-                while let NodeKind::Transform { matrix, child, .. } = &ctx.nodes[below.index() as usize].kind {
+                while let NodeKind::Transform { matrix, child, .. } = &scene.nodes[below.index() as usize].kind {
                     m *= *matrix;
-                    mask &= ctx.nodes[below.index() as usize].visibility_mask as u32;
+                    mask &= scene.nodes[below.index() as usize].visibility_mask as u32;
                     below = *child;
                 }
-                let at = scene.at();
-                push_mat(&mut scene.words, m);
-                push_mat(&mut scene.words, m.inverse());
+                let at = tables.at();
+                push_mat(&mut tables.words, m);
+                push_mat(&mut tables.words, m.inverse());
                 node_entries[i] = [NodeEntry::Transform as u32, at, below.index(), mask];
                 levels[i] = 1 + levels[below.index() as usize];
                 graph = true;
@@ -835,9 +837,9 @@ fn encode(ctx: &Context, entry: u32, scene_bindings: usize, held_geometry: Optio
             NodeKind::Selector { visit, children } => {
                 let kp = use_program(*visit, &mut programs)?;
                 let vars = record(*visit, Record { node: Some(n), ..Record::default() }, &mut records)?;
-                let at = scene.at();
-                scene.words.extend([kp.case, vars, children.len() as u32]);
-                scene.words.extend(children.iter().map(|c| c.index()));
+                let at = tables.at();
+                tables.words.extend([kp.case, vars, children.len() as u32]);
+                tables.words.extend(children.iter().map(|c| c.index()));
                 node_entries[i] = [NodeEntry::Selector as u32, at, 0, mask];
                 levels[i] = children.iter().map(|c| levels[c.index() as usize]).max().unwrap_or(0);
                 graph = true;
@@ -846,18 +848,18 @@ fn encode(ctx: &Context, entry: u32, scene_bindings: usize, held_geometry: Optio
         }
     }
     let graph_levels = if graph { 1 + levels.iter().copied().max().unwrap_or(0) } else { 0 };
-    header[0] = scene.at();
-    scene.words.extend(node_entries.into_iter().flatten());
+    header[0] = tables.at();
+    tables.words.extend(node_entries.into_iter().flatten());
     // Geometry instances, their hit records and intersection records.
-    let gi_table = scene.words.len();
-    header[2] = scene.at();
-    scene.words.resize(gi_table + ctx.instances.len() * 8, 0);
-    let mut isect = Vec::with_capacity(ctx.instances.len() * 2);
-    for (i, gi) in ctx.instances.iter().enumerate() {
-        let instance = Some(crate::GeometryInstanceId(i as u32));
-        let hit_base = scene.at();
+    let gi_table = tables.words.len();
+    header[2] = tables.at();
+    tables.words.resize(gi_table + scene.instances.len() * 8, 0);
+    let mut isect = Vec::with_capacity(scene.instances.len() * 2);
+    for (i, gi) in scene.instances.iter().enumerate() {
+        let instance = Some(crate::handles::GeometryInstanceId(i as u32));
+        let hit_base = tables.at();
         for m in &gi.materials {
-            let mat = &ctx.materials[m.index() as usize];
+            let mat = &scene.materials[m.index() as usize];
             let r = Record { instance, material: Some(*m), ..Record::default() };
             for (ch, ah) in mat.closest_hit.iter().zip(&mat.any_hit) {
                 let mut words = [0u32; 4];
@@ -871,11 +873,11 @@ fn encode(ctx: &Context, entry: u32, scene_bindings: usize, held_geometry: Optio
                     words[2] = kp.case;
                     words[3] = record(*p, r, &mut records)?;
                 }
-                scene.words.extend(words);
+                tables.words.extend(words);
             }
         }
         let [kind, pos, idx, nrm, uv, mi] = geometry.geometry_words[gi.geometry.index() as usize];
-        scene.words[gi_table + i * 8..gi_table + i * 8 + 8].copy_from_slice(&[
+        tables.words[gi_table + i * 8..gi_table + i * 8 + 8].copy_from_slice(&[
             kind,
             pos,
             idx,
@@ -885,7 +887,7 @@ fn encode(ctx: &Context, entry: u32, scene_bindings: usize, held_geometry: Optio
             gi.materials.len() as u32,
             hit_base,
         ]);
-        match ctx.geometries[gi.geometry.index() as usize].kind {
+        match scene.geometries[gi.geometry.index() as usize].kind {
             GeometryKind::Custom { intersection, .. } => {
                 let kp = use_program(intersection, &mut programs)?;
                 let vars = record(
@@ -900,16 +902,16 @@ fn encode(ctx: &Context, entry: u32, scene_bindings: usize, held_geometry: Optio
     }
     header[3] = 0;
     header[4] = ray_types;
-    header[5] = scene.at();
-    for (r, m) in ctx.miss.iter().enumerate() {
+    header[5] = tables.at();
+    for (r, m) in scene.miss.iter().enumerate() {
         let p = m.ok_or(RtError::NoMissProgram { ray_type: r as u32 })?;
         let kp = use_program(p, &mut programs)?;
         let vars = record(p, Record::default(), &mut records)?;
-        scene.words.extend([kp.case, vars]);
+        tables.words.extend([kp.case, vars]);
     }
-    header[6] = scene.at();
-    scene.words.extend(isect);
-    header[7] = ctx.nodes.len() as u32;
+    header[6] = tables.at();
+    tables.words.extend(isect);
+    header[7] = scene.nodes.len() as u32;
 
     // The default exception program's image: its offset in the record.
     let default_exception = match ex_prog {
@@ -931,7 +933,7 @@ fn encode(ctx: &Context, entry: u32, scene_bindings: usize, held_geometry: Optio
         !programs.iter().any(|p| matches!(p.desc.kind, ProgramKind::AnyHit | ProgramKind::Intersection));
     if triangles_only != geometry.key.triangles_only {
         return Err(RtError::Gpu(format!(
-            "internal: the kernel's programs say triangles only: {triangles_only}, the scene's: {}",
+            "internal: the kernel's programs say triangles only: {triangles_only}, the tables's: {}",
             geometry.key.triangles_only
         )));
     }
@@ -943,7 +945,7 @@ fn encode(ctx: &Context, entry: u32, scene_bindings: usize, held_geometry: Optio
         ray_generation: rg_prog,
         exception: ex_prog,
         programs,
-        max_depth: ctx.max_trace_depth,
+        max_depth: l.settings.max_trace_depth,
         graph_levels,
         default_exception,
         scene_bindings,
@@ -951,7 +953,7 @@ fn encode(ctx: &Context, entry: u32, scene_bindings: usize, held_geometry: Optio
     };
     Ok(Encoded {
         header,
-        tails: [scene.words, nodes.words, Vec::new()],
+        tails: [tables.words, nodes.words, Vec::new()],
         geometry,
         geometry_words,
         spec,
@@ -965,14 +967,18 @@ fn encode(ctx: &Context, entry: u32, scene_bindings: usize, held_geometry: Optio
 /// group its BVH nodes, its primitive table (in the tables, after room for
 /// the header) and its triangle slots; per geometry its mesh arrays (in the
 /// tables). Returns its layout and its words in each section.
-fn encode_geometry(ctx: &Context, key: GeometryKey) -> (GeometryLayout, [Vec<u32>; SCENE_SECTIONS.len()]) {
+fn encode_geometry(
+    scene: &Scene,
+    accels: &AccelCache,
+    key: GeometryKey,
+) -> (GeometryLayout, [Vec<u32>; SCENE_SECTIONS.len()]) {
     let (mut tables, mut nodes, mut tris) = (vec![0; SCENE_HEADER], Vec::new(), Vec::new());
     let table_at = |tables: &Vec<u32>| tables.len() as u32;
     let mut gg_bvh = HashMap::new();
     let mut deepest_bvh = 1;
     let mut deepest_cwbvh = 1;
     let groups = || {
-        ctx.nodes.iter().enumerate().filter_map(|(n, rec)| match (&rec.kind, ctx.accels.nodes.get(n)?.as_ref()?) {
+        scene.nodes.iter().enumerate().filter_map(|(n, rec)| match (&rec.kind, accels.nodes.get(n)?.as_ref()?) {
             (NodeKind::GeometryGroup { .. }, NodeAccel::Prims { bvh, wide, prims, .. }) => Some((n, bvh, wide, prims)),
             _ => None,
         })
@@ -1005,12 +1011,12 @@ fn encode_geometry(ctx: &Context, key: GeometryKey) -> (GeometryLayout, [Vec<u32
         for slot in order {
             let (gi, p) = prims[*slot as usize];
             tables.extend([gi, p]);
-            push_triangle_slot(ctx, &mut tris, gi, p);
+            push_triangle_slot(scene, &mut tris, gi, p);
         }
         gg_bvh.insert(n as u32, GroupWords { bvh: at, table, tri_slots });
     }
-    let mut geometry_words = Vec::with_capacity(ctx.geometries.len());
-    for g in &ctx.geometries {
+    let mut geometry_words = Vec::with_capacity(scene.geometries.len());
+    for g in &scene.geometries {
         match &g.kind {
             GeometryKind::Triangles(mesh) => {
                 let pos = table_at(&tables);
@@ -1131,16 +1137,15 @@ enum NewScene {
 /// otherwise leave stale words on the device.
 #[cfg(debug_assertions)]
 fn check_held_scene(
-    ctx: &Context,
-    entry: u32,
+    l: &Launch,
+    gpu: &Gpu,
     held: Option<&ResidentScene>,
     held_geometry: Option<&GeometryLayout>,
 ) -> Result<()> {
     if held.is_none() && held_geometry.is_none() {
         return Ok(());
     }
-    let gpu = ctx.gpu.as_ref().expect("a held scene is on a device");
-    let mut e = encode(ctx, entry, gpu.scene_bindings, None)?;
+    let mut e = encode(l, gpu.scene_bindings, None)?;
     let device = |s: usize| gpu.resident.scene.get(s).and_then(|m| m.as_ref()).map(|m| &m.words[..]);
     if let Some(h) = held {
         let (sections, _) = place_sections(e.whole_sections().expect("encoded whole"), gpu.scene_bindings);
@@ -1169,14 +1174,14 @@ fn check_held_scene(
 /// texels. Also returns the `(buffer index, heap offset, words)` of the
 /// buffers programs may write.
 #[allow(clippy::type_complexity)]
-fn encode_heap(ctx: &Context, records: &Records) -> Result<(Vec<u32>, Vec<(usize, usize, usize)>)> {
+fn encode_heap(scene: &Scene, records: &Records) -> Result<(Vec<u32>, Vec<(usize, usize, usize)>)> {
     let base = records.words as usize;
     let mut heap: Vec<u32> = Vec::with_capacity(base);
     // Data follows the records: buffers, then sampler texels.
     let mut data: Vec<u32> = Vec::new();
-    let mut buffer_offsets = Vec::with_capacity(ctx.buffers.len());
+    let mut buffer_offsets = Vec::with_capacity(scene.buffers.len());
     let mut outputs = Vec::new();
-    for (i, b) in ctx.buffers.iter().enumerate() {
+    for (i, b) in scene.buffers.iter().enumerate() {
         let start = data.len();
         b.storage.to_words(&mut data);
         buffer_offsets.push(base + start);
@@ -1184,21 +1189,21 @@ fn encode_heap(ctx: &Context, records: &Records) -> Result<(Vec<u32>, Vec<(usize
             outputs.push((i, base + start, data.len() - start));
         }
     }
-    let mut sampler_offsets = Vec::with_capacity(ctx.samplers.len());
-    for s in &ctx.samplers {
+    let mut sampler_offsets = Vec::with_capacity(scene.samplers.len());
+    for s in &scene.samplers {
         sampler_offsets.push(base + data.len());
         for t in s.texels.iter() {
             data.extend(t.to_array().map(f));
         }
     }
     for &(p, r) in &records.uses {
-        let desc = ctx.program(p)?.desc;
-        let values = link::resolve_values(ctx, p, r)?;
+        let desc = scene.program(p)?.desc;
+        let values = link::resolve_values(scene, p, r)?;
         for (value, v) in values.into_iter().zip(desc.variables) {
             match (value, v.kind) {
                 (VarValue::Data { words, .. }, _) => heap.extend(words),
                 (VarValue::Buffer(b), VariableKind::Buffer { .. }) => {
-                    let rec = &ctx.buffers[b.index() as usize];
+                    let rec = &scene.buffers[b.index() as usize];
                     heap.extend([
                         buffer_offsets[b.index() as usize] as u32,
                         rec.width * rec.height,
@@ -1207,7 +1212,7 @@ fn encode_heap(ctx: &Context, records: &Records) -> Result<(Vec<u32>, Vec<(usize
                     ]);
                 }
                 (VarValue::Sampler(s), _) => {
-                    let rec = &ctx.samplers[s.index() as usize];
+                    let rec = &scene.samplers[s.index() as usize];
                     let wrap = match rec.wrap {
                         rt_std::WrapMode::Repeat => 0,
                         rt_std::WrapMode::Clamp => 1,
@@ -1261,59 +1266,133 @@ fn words_to_bytes(w: &[u32]) -> &[u8] {
     unsafe { std::slice::from_raw_parts(w.as_ptr() as *const u8, std::mem::size_of_val(w)) }
 }
 
-/// Runs entry point `entry` on the GPU. A device that is lost (before or
-/// during the launch) is dropped with everything it held, so the next launch
-/// opens a new one and uploads the scene from the host again; the host's
-/// copies of buffers are only written from a read-back that completed.
-pub(crate) fn launch(ctx: &mut Context, entry: u32, width: u32, height: u32) -> Result<LaunchReport> {
-    if ctx.gpu.as_ref().is_some_and(|g| g.health.lost_reason().is_some()) {
-        ctx.gpu = None;
-    }
-    let result = launch_on_device(ctx, entry, width, height);
-    if matches!(result, Err(RtError::DeviceLost { .. })) {
-        ctx.gpu = None;
-    }
-    result
+/// The wgpu backend: its device (opened at the first launch, dropped when
+/// lost), the last launch's kernel and the outputs it read back.
+#[derive(Default)]
+pub(crate) struct WgpuBackend {
+    gpu: Option<Gpu>,
+    last_wgsl: Option<String>,
+    lose_device_in_next_launch: bool,
+    pending: Option<ReadOutputs>,
 }
 
-fn launch_on_device(ctx: &mut Context, entry: u32, width: u32, height: u32) -> Result<LaunchReport> {
-    if width == 0 || height == 0 {
-        return Err(RtError::BadLaunch {
-            width,
-            height,
-            problem: "a launch needs at least one index in each dimension".into(),
-        });
+/// What a launch read back of its output buffers, for the host's copies.
+struct ReadOutputs {
+    /// The output buffers' words, in the order of `outputs` (then the log's
+    /// header and the timestamps).
+    words: Vec<u32>,
+    /// `(buffer index, heap offset, words)` of each output buffer.
+    outputs: Vec<(usize, usize, usize)>,
+}
+
+impl WgpuBackend {
+    /// Runs launches on `gpu` from now on.
+    pub(crate) fn use_device(&mut self, gpu: Gpu) {
+        self.gpu = Some(gpu);
     }
-    if ctx.gpu.is_none() {
-        ctx.gpu = Some(Gpu::new()?);
+
+    /// Opens the device now, unless it is open; describes its adapter.
+    pub(crate) fn open(&mut self) -> Result<String> {
+        if self.gpu.is_none() {
+            self.gpu = Some(Gpu::new()?);
+        }
+        Ok(self.gpu.as_ref().map(|g| g.describe()).unwrap_or_default())
     }
-    let t0 = std::time::Instant::now();
-    let mut cache = std::mem::take(&mut ctx.accels);
-    let built = build_accels(ctx, &mut cache);
-    ctx.accels = cache;
-    built?;
+
+    /// The next launch destroys its device once its work is submitted.
+    pub(crate) fn lose_device_in_next_launch(&mut self) {
+        self.lose_device_in_next_launch = true;
+    }
+}
+
+impl LaunchBackend for WgpuBackend {
+    fn kind(&self) -> super::Backend {
+        super::Backend::Wgpu
+    }
+
+    /// A device that was lost is dropped with everything it held, so this
+    /// launch opens a new one and uploads the scene from the host again.
+    fn prepare(&mut self) -> Result<()> {
+        if self.gpu.as_ref().is_some_and(|g| g.health.lost_reason().is_some()) {
+            self.gpu = None;
+        }
+        if self.gpu.is_none() {
+            self.gpu = Some(Gpu::new()?);
+        }
+        Ok(())
+    }
+
+    /// Groups' BVH2s as they are walked; geometry groups' CWBVHs where the
+    /// kernel searches triangles only.
+    fn trees(&self, scene: &Scene) -> Trees {
+        Trees { groups: TreeForm::Binary, cwbvh: scene.searches_triangles_only(), slot_triangles: false }
+    }
+
+    /// Runs the launch on the device. A device lost during it is dropped
+    /// (see [`LaunchBackend::prepare`]); the host's copies of buffers are
+    /// only written from a read-back that completed.
+    fn launch(&mut self, l: &Launch) -> Result<LaunchReport> {
+        self.pending = None;
+        let WgpuBackend { gpu, last_wgsl, lose_device_in_next_launch, pending } = self;
+        let device = gpu.as_mut().expect("opened by prepare");
+        let result = launch_on_device(device, last_wgsl, lose_device_in_next_launch, pending, l);
+        if matches!(result, Err(RtError::DeviceLost { .. })) {
+            self.gpu = None;
+        }
+        result
+    }
+
+    fn read_back_outputs(&mut self, buffers: &mut [BufferRec]) {
+        let Some(ReadOutputs { words, outputs }) = self.pending.take() else { return };
+        let mut at = 0;
+        for (i, _, n) in outputs {
+            buffers[i].storage.read_words(&words[at..at + n]);
+            at += n;
+        }
+    }
+
+    fn stats(&self) -> BackendStats<'_> {
+        let gpu = self.gpu.as_ref();
+        BackendStats {
+            scene_encodes: gpu.map_or(0, |g| g.scene_encodes),
+            geometry_encodes: gpu.map_or(0, |g| g.geometry_encodes),
+            pipelines_created: gpu.map_or(0, |g| g.pipelines_created),
+            last_upload_bytes: gpu.map_or(0, |g| g.last_upload_bytes()),
+            linked_wgsl: self.last_wgsl.as_deref(),
+        }
+    }
+}
+
+fn launch_on_device(
+    gpu: &mut Gpu,
+    last_wgsl: &mut Option<String>,
+    lose_device: &mut bool,
+    pending: &mut Option<ReadOutputs>,
+    l: &Launch,
+) -> Result<LaunchReport> {
+    let (entry, width, height) = (l.entry, l.width, l.height);
     let t1 = std::time::Instant::now();
-    let scene_bindings = ctx.gpu.as_ref().expect("created above").scene_bindings;
+    let scene_bindings = gpu.scene_bindings;
     // The scene, unless the device holds this one already (same structure,
     // same acceleration structures): then only the heap is encoded.
-    let key = SceneKey::of(ctx, entry, scene_bindings);
-    let resident = ctx.gpu.as_ref().and_then(|g| g.resident.held.as_ref());
+    let key = SceneKey::of(l.scene, l.accels, entry, scene_bindings);
+    let resident = gpu.resident.held.as_ref();
     let held = resident.filter(|h| h.key == key);
     // Else the geometry part the device holds, where the rest can be
     // encoded around it (every section in a binding of its own).
     let held_geometry = resident
         .filter(|_| held.is_none() && scene_bindings == SCENE_SECTIONS.len())
         .map(|h| &h.geometry)
-        .filter(|g| g.key == GeometryKey::of(ctx, scene_bindings));
+        .filter(|g| g.key == GeometryKey::of(l.scene, l.accels, scene_bindings));
     #[cfg(debug_assertions)]
-    check_held_scene(ctx, entry, held, held_geometry)?;
-    let fresh = if held.is_some() { None } else { Some(encode(ctx, entry, scene_bindings, held_geometry)?) };
+    check_held_scene(l, gpu, held, held_geometry)?;
+    let fresh = if held.is_some() { None } else { Some(encode(l, scene_bindings, held_geometry)?) };
     let (records, rg_vars, ex_vars) = match (&fresh, held) {
         (Some(e), _) => (&e.records, e.rg_vars, e.ex_vars),
         (None, Some(h)) => (&h.records, h.rg_vars, h.ex_vars),
         (None, None) => unreachable!("encoded when none is held"),
     };
-    let (heap, outputs) = encode_heap(ctx, records)?;
+    let (heap, outputs) = encode_heap(l.scene, records)?;
     let t2 = std::time::Instant::now();
     let (wgsl, warning) = match (&fresh, held) {
         (Some(e), _) => {
@@ -1328,10 +1407,9 @@ fn launch_on_device(ctx: &mut Context, entry: u32, width: u32, height: u32) -> R
         let _ = std::fs::write(&path, &wgsl);
         eprintln!("rt-runtime: linked WGSL written to {}", path.display());
     }
-    ctx.last_wgsl = Some(wgsl.clone());
-    let print_filter = ctx.print_launch_index.unwrap_or(UVec2::splat(u32::MAX));
-    let print_enabled = ctx.print_enabled as u32;
-    let gpu = ctx.gpu.as_mut().expect("created above");
+    *last_wgsl = Some(wgsl.clone());
+    let print_filter = l.settings.print_launch_index.unwrap_or(UVec2::splat(u32::MAX));
+    let print_enabled = l.settings.print_enabled as u32;
     gpu.scene_encodes += fresh.is_some() as u64;
     gpu.geometry_encodes += fresh.as_ref().is_some_and(|e| e.geometry_words.is_some()) as u64;
 
@@ -1424,7 +1502,7 @@ fn launch_on_device(ctx: &mut Context, entry: u32, width: u32, height: u32) -> R
     }
     let t3 = std::time::Instant::now();
     let adapter = gpu.describe();
-    let lose = std::mem::take(&mut ctx.lose_device_in_next_launch);
+    let lose = std::mem::take(lose_device);
     let Gpu { device, queue, limits, layout, pipelines, resident: res, health, .. } = gpu;
     let health = &**health;
     let pipeline = &pipelines[&wgsl];
@@ -1598,10 +1676,8 @@ fn launch_on_device(ctx: &mut Context, entry: u32, width: u32, height: u32) -> R
     }
     let mut at = 0;
     let heap_mirror = &mut res.heap.as_mut().expect("synced above").words;
-    for (i, offset, n) in &outputs {
-        let w = &words[at..at + n];
-        ctx.buffers[*i].storage.read_words(w);
-        heap_mirror[*offset..offset + n].copy_from_slice(w);
+    for (_, offset, n) in &outputs {
+        heap_mirror[*offset..offset + n].copy_from_slice(&words[at..at + n]);
         at += n;
     }
     let header = [words[at], words[at + 1], words[at + 2], words[at + 3]];
@@ -1611,6 +1687,8 @@ fn launch_on_device(ctx: &mut Context, entry: u32, width: u32, height: u32) -> R
         let ns = end.saturating_sub(start) as f64 * queue.get_timestamp_period() as f64;
         std::time::Duration::from_nanos(ns as u64)
     });
+    // The outputs go to the host's buffers now, whatever happens next.
+    *pending = Some(ReadOutputs { words, outputs });
     // Exceptions and prints, when the launch logged any: a second, small
     // read.
     let exceptions = header[0].min(LOG_EXCEPTIONS) as u64;
@@ -1633,9 +1711,10 @@ fn launch_on_device(ctx: &mut Context, entry: u32, width: u32, height: u32) -> R
         report.exceptions.push(ExceptionRecord { launch_index: UVec2::new(w[0], w[1]), code: w[2] });
     }
     report.exceptions.sort_by_key(|e| (e.launch_index.y, e.launch_index.x));
-    report.prints = decode_prints(ctx, &print_words, print_words.len());
+    report.prints = decode_prints(l.scene, &print_words, print_words.len());
     report.rays = header[2] as u64;
-    report.timings = super::Timings { build: t1 - t0, encode: t2 - t1, link: t3 - t2, run: t3.elapsed(), kernel };
+    report.timings =
+        super::Timings { build: Default::default(), encode: t2 - t1, link: t3 - t2, run: t3.elapsed(), kernel };
     Ok(report)
 }
 
@@ -1694,9 +1773,9 @@ fn read_back(
 }
 
 /// Formats `rt_printf!` records with the formats of every program.
-fn decode_prints(ctx: &Context, words: &[u32], used: usize) -> Vec<(UVec2, String)> {
+fn decode_prints(scene: &Scene, words: &[u32], used: usize) -> Vec<(UVec2, String)> {
     let formats: HashMap<u32, &rt_std::program::PrintfFormat> =
-        ctx.programs.iter().flat_map(|p| p.desc.printf.iter().map(|f| (f.id, f))).collect();
+        scene.programs.iter().flat_map(|p| p.desc.printf.iter().map(|f| (f.id, f))).collect();
     let mut out = Vec::new();
     let mut at = 0;
     let used = used.min(words.len());

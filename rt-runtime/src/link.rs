@@ -7,9 +7,9 @@
 //! each variable is set in some scope of the program's lookup order
 //! ([`crate::vars::lookup_order`]) with the declared type.
 
-use crate::context::{Context, Scope};
 use crate::error::{Result, RtError};
 use crate::scene::{GeometryKind, NodeId, NodeKind, ProgramId};
+use crate::scene::{Scene, Scope};
 use crate::vars::{ScopeKind, VarValue, lookup_order};
 use rt_std::program::{ProgramDescriptor, TypeLayout, VariableKind};
 use std::any::Any;
@@ -40,9 +40,9 @@ pub fn default_exception_output(ray_generation: &ProgramDescriptor) -> Option<us
 /// The ids a program use is resolved against.
 #[derive(Clone, Copy, Default)]
 pub struct Record {
-    pub instance: Option<crate::GeometryInstanceId>,
-    pub material: Option<crate::MaterialId>,
-    pub geometry: Option<crate::GeometryId>,
+    pub instance: Option<crate::handles::GeometryInstanceId>,
+    pub material: Option<crate::handles::MaterialId>,
+    pub geometry: Option<crate::handles::GeometryId>,
     pub node: Option<NodeId>,
 }
 
@@ -59,8 +59,8 @@ fn scope_name(s: Scope) -> String {
 
 /// Finds and type-checks the values of program `p`'s variables used at
 /// `record`, in declaration order.
-pub fn resolve_values(ctx: &Context, p: ProgramId, record: Record) -> Result<Vec<&VarValue>> {
-    let desc = ctx.program(p)?.desc;
+pub fn resolve_values(scene: &Scene, p: ProgramId, record: Record) -> Result<Vec<&VarValue>> {
+    let desc = scene.program(p)?.desc;
     if desc.variables.len() > MAX_VARIABLES {
         return Err(RtError::TooManyVariables {
             program: desc.name,
@@ -84,7 +84,7 @@ pub fn resolve_values(ctx: &Context, p: ProgramId, record: Record) -> Result<Vec
     for v in desc.variables {
         let mut found = None;
         for s in &scopes {
-            if let Some(value) = ctx.scope(*s)?.get(v.name) {
+            if let Some(value) = scene.scope(*s)?.get(v.name) {
                 found = Some((*s, value));
                 break;
             }
@@ -110,17 +110,17 @@ pub fn resolve_values(ctx: &Context, p: ProgramId, record: Record) -> Result<Vec
             (VarValue::Data { layout, .. }, VariableKind::Value) => layout.rust == v.ty.rust,
             (VarValue::Buffer(b), VariableKind::Buffer { element, dimensions, writable }) => {
                 let rec =
-                    ctx.buffers.get(b.index() as usize).ok_or_else(|| RtError::InvalidHandle(format!("{b:?}")))?;
+                    scene.buffers.get(b.index() as usize).ok_or_else(|| RtError::InvalidHandle(format!("{b:?}")))?;
                 rec.storage.layout().rust == element.rust
                     && rec.dims == dimensions
                     && (!writable || rec.ty.writable_by_programs())
             }
             (VarValue::Sampler(s), VariableKind::Sampler) => {
-                ctx.samplers.get(s.index() as usize).ok_or_else(|| RtError::InvalidHandle(format!("{s:?}")))?;
+                scene.samplers.get(s.index() as usize).ok_or_else(|| RtError::InvalidHandle(format!("{s:?}")))?;
                 true
             }
             (VarValue::Object(n), VariableKind::Object) => {
-                if n.index() as usize >= ctx.nodes.len() {
+                if n.index() as usize >= scene.nodes.len() {
                     return Err(RtError::InvalidHandle(format!("{n:?}")));
                 }
                 true
@@ -129,7 +129,7 @@ pub fn resolve_values(ctx: &Context, p: ProgramId, record: Record) -> Result<Vec
         };
         if !ok {
             return Err(mismatch(value.type_name(&|b| {
-                ctx.buffers.get(b.index() as usize).map(|r| r.type_name()).unwrap_or_else(|| format!("{b:?}"))
+                scene.buffers.get(b.index() as usize).map(|r| r.type_name()).unwrap_or_else(|| format!("{b:?}"))
             })));
         }
         values.push(value);
@@ -139,9 +139,9 @@ pub fn resolve_values(ctx: &Context, p: ProgramId, record: Record) -> Result<Vec
 
 /// Resolves the variables of program `p` used at `record` to the values the
 /// CPU entry receives (handles for buffers, samplers and nodes).
-pub fn resolve(ctx: &Context, p: ProgramId, record: Record) -> Result<Call> {
-    let desc = ctx.program(p)?.desc;
-    let values = resolve_values(ctx, p, record)?;
+pub fn resolve(scene: &Scene, p: ProgramId, record: Record) -> Result<Call> {
+    let desc = scene.program(p)?.desc;
+    let values = resolve_values(scene, p, record)?;
     let vars = values
         .into_iter()
         .zip(desc.variables)
@@ -149,10 +149,10 @@ pub fn resolve(ctx: &Context, p: ProgramId, record: Record) -> Result<Call> {
             match (value, v.kind) {
                 (VarValue::Data { value, .. }, _) => value.clone(),
                 (VarValue::Buffer(b), VariableKind::Buffer { dimensions, writable, .. }) => {
-                    let rec = &ctx.buffers[b.index() as usize];
+                    let rec = &scene.buffers[b.index() as usize];
                     Arc::from(rec.storage.handle(dimensions, writable, rec.width, rec.height))
                 }
-                (VarValue::Sampler(s), _) => Arc::new(ctx.samplers[s.index() as usize].handle()),
+                (VarValue::Sampler(s), _) => Arc::new(scene.samplers[s.index() as usize].handle()),
                 (VarValue::Object(n), _) => Arc::new(n.object()),
                 (VarValue::Buffer(_), _) => unreachable!("checked by resolve_values"),
             }
@@ -162,9 +162,9 @@ pub fn resolve(ctx: &Context, p: ProgramId, record: Record) -> Result<Call> {
 }
 
 /// Payload and attribute agreement across the whole context.
-pub fn check_types(ctx: &Context) -> Result<()> {
+pub fn check_types(scene: &Scene) -> Result<()> {
     let mut payload_of_ray_type: Vec<Option<(&'static ProgramDescriptor, TypeLayout)>> =
-        vec![None; ctx.ray_type_count() as usize];
+        vec![None; scene.ray_type_count() as usize];
     let mut note = |ray_type: u32, desc: &'static ProgramDescriptor| -> Result<()> {
         let Some(payload) = desc.payload else { return Ok(()) };
         let slot = &mut payload_of_ray_type[ray_type as usize];
@@ -185,20 +185,20 @@ pub fn check_types(ctx: &Context) -> Result<()> {
             }
         }
     };
-    for (r, m) in ctx.miss.iter().enumerate() {
+    for (r, m) in scene.miss.iter().enumerate() {
         match m {
-            Some(p) => note(r as u32, ctx.program(*p)?.desc)?,
+            Some(p) => note(r as u32, scene.program(*p)?.desc)?,
             None => return Err(RtError::NoMissProgram { ray_type: r as u32 }),
         }
     }
-    for mat in &ctx.materials {
+    for mat in &scene.materials {
         for (r, (ch, ah)) in mat.closest_hit.iter().zip(&mat.any_hit).enumerate() {
             for p in [ch, ah].into_iter().flatten() {
-                note(r as u32, ctx.program(*p)?.desc)?;
+                note(r as u32, scene.program(*p)?.desc)?;
             }
         }
     }
-    for prog in &ctx.programs {
+    for prog in &scene.programs {
         for traced in prog.desc.traced_payloads {
             let known = payload_of_ray_type.iter().flatten().any(|(_, l)| l.rust == traced.rust);
             if !known {
@@ -212,14 +212,14 @@ pub fn check_types(ctx: &Context) -> Result<()> {
     }
     // Attributes: what an intersection program reports is what the hit
     // programs of its instances' materials take.
-    for gi in &ctx.instances {
-        let geometry = &ctx.geometries[gi.geometry.index() as usize];
+    for gi in &scene.instances {
+        let geometry = &scene.geometries[gi.geometry.index() as usize];
         let GeometryKind::Custom { intersection, .. } = geometry.kind else { continue };
-        let isect = ctx.program(intersection)?.desc;
+        let isect = scene.program(intersection)?.desc;
         for m in &gi.materials {
-            let mat = &ctx.materials[m.index() as usize];
+            let mat = &scene.materials[m.index() as usize];
             for p in mat.closest_hit.iter().chain(&mat.any_hit).flatten() {
-                let hit = ctx.program(*p)?.desc;
+                let hit = scene.program(*p)?.desc;
                 if let (Some(taken), reported) = (hit.attributes, isect.attributes)
                     && reported.is_none_or(|r| r.rust != taken.rust)
                 {
@@ -240,30 +240,30 @@ pub fn check_types(ctx: &Context) -> Result<()> {
 
 /// The nodes reachable from `roots`, children before parents; a cycle is an
 /// error.
-pub fn nodes_post_order(ctx: &Context) -> Result<Vec<NodeId>> {
-    let mut state = vec![0u8; ctx.nodes.len()];
+pub fn nodes_post_order(scene: &Scene) -> Result<Vec<NodeId>> {
+    let mut state = vec![0u8; scene.nodes.len()];
     let mut order = Vec::new();
-    fn visit(ctx: &Context, n: usize, state: &mut [u8], order: &mut Vec<NodeId>) -> Result<()> {
+    fn visit(scene: &Scene, n: usize, state: &mut [u8], order: &mut Vec<NodeId>) -> Result<()> {
         match state[n] {
             1 => return Err(RtError::GraphCycle { node: n as u32 }),
             2 => return Ok(()),
             _ => {}
         }
         state[n] = 1;
-        let children: Vec<NodeId> = match &ctx.nodes[n].kind {
+        let children: Vec<NodeId> = match &scene.nodes[n].kind {
             NodeKind::Group { children, .. } | NodeKind::Selector { children, .. } => children.clone(),
             NodeKind::Transform { child, .. } => vec![*child],
             NodeKind::GeometryGroup { .. } => Vec::new(),
         };
         for c in children {
-            visit(ctx, c.index() as usize, state, order)?;
+            visit(scene, c.index() as usize, state, order)?;
         }
         state[n] = 2;
         order.push(NodeId(n as u32));
         Ok(())
     }
-    for n in 0..ctx.nodes.len() {
-        visit(ctx, n, &mut state, &mut order)?;
+    for n in 0..scene.nodes.len() {
+        visit(scene, n, &mut state, &mut order)?;
     }
     Ok(order)
 }

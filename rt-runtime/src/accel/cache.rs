@@ -1,0 +1,312 @@
+//! Per-node structures of a scene, shared by the backends, kept across
+//! launches.
+
+use super::Builder;
+use super::bvh::{Bvh, TreeForm, build, refit_wide, to_oaabb, widen};
+use crate::error::Result;
+use crate::link::{self, Record};
+use crate::scene::{GeometryKind, NodeKind, Scene, TriangleMesh};
+use glam::{Mat4, Vec3};
+use obvhs::aabb::Aabb as OAabb;
+use rt_std::cpu::{CpuArgs, CpuResult, ExecutionContext};
+
+/// Built acceleration structures, kept across launches.
+///
+/// Nodes never change their children once created, so an entry stays valid
+/// until something under it moves: a new node is built at the next launch
+/// and the others are kept; moved geometry refits the geometry groups over
+/// it (and the groups above refit to their children's new bounds). The
+/// CWBVH form is added to kept entries the first time the CPU backend
+/// launches ([`TreeForm`]).
+#[derive(Default)]
+pub(crate) struct AccelCache {
+    pub(crate) nodes: Vec<Option<NodeAccel>>,
+    /// Geometries moved since the last launch, and whether any transform
+    /// changed.
+    moved_geometries: Vec<u32>,
+    moved: bool,
+    /// How many launches built new structures and how many refit moved
+    /// ones (for tests).
+    pub builds: u64,
+    pub refits: u64,
+    /// How many geometry groups were built or refit (the wgpu backend keeps
+    /// the geometry part of the scene on the device until this moves).
+    pub geometry_group_changes: u64,
+}
+
+impl AccelCache {
+    /// Geometry `g`'s vertices moved.
+    pub fn geometry_moved(&mut self, g: u32) {
+        self.moved = true;
+        if !self.moved_geometries.contains(&g) {
+            self.moved_geometries.push(g);
+        }
+    }
+
+    /// A transform changed.
+    pub fn transform_moved(&mut self) {
+        self.moved = true;
+    }
+}
+
+pub(crate) enum NodeAccel {
+    /// A geometry group: a BVH over `(instance, primitive)` pairs.
+    Prims {
+        bvh: Bvh,
+        /// The same tree converted to obvhs's 8-wide compressed BVH, which
+        /// the CPU backend traverses (None for `NoAccel`'s single leaf).
+        wide: Option<obvhs::cwbvh::CwBvh>,
+        /// The vertices of each primitive of `wide` in its slot order, when
+        /// all are triangles (else empty): the CPU backend's triangle test
+        /// reads them without the index and position lookups. None until
+        /// the CPU backend launches (the wgpu backend encodes its own).
+        triangles: Option<Vec<[Vec3; 3]>>,
+        prims: Vec<(u32, u32)>,
+        bounds: OAabb,
+    },
+    /// A group: a BVH over its children's bounds.
+    Children { bvh: Bvh, bounds: OAabb },
+    /// Transforms and selectors: just bounds.
+    Bounds(OAabb),
+}
+
+impl NodeAccel {
+    pub(crate) fn bounds(&self) -> OAabb {
+        match self {
+            NodeAccel::Prims { bounds, .. } | NodeAccel::Children { bounds, .. } | NodeAccel::Bounds(bounds) => *bounds,
+        }
+    }
+}
+
+fn triangle_bounds(mesh: &TriangleMesh, t: usize) -> OAabb {
+    let [a, b, c] = mesh.triangle(t);
+    to_oaabb(a.min(b).min(c), a.max(b).max(c))
+}
+
+fn transform_bounds(m: Mat4, b: &OAabb) -> OAabb {
+    if b.min.x > b.max.x {
+        return *b;
+    }
+    let mut out = OAabb::empty();
+    for i in 0..8 {
+        let p = Vec3::new(
+            if i & 1 == 0 { b.min.x } else { b.max.x },
+            if i & 2 == 0 { b.min.y } else { b.max.y },
+            if i & 4 == 0 { b.min.z } else { b.max.z },
+        );
+        out.extend(m.transform_point3(p).into());
+    }
+    out
+}
+
+/// Primitive bounds of a geometry group, in the order of `prims`.
+/// `(instance, primitive)` pairs, their bounds, and whether all are triangles.
+type PrimBounds = (Vec<(u32, u32)>, Vec<OAabb>, bool);
+
+fn prim_bounds(scene: &Scene, children: &[crate::handles::GeometryInstanceId]) -> Result<PrimBounds> {
+    let mut prims = Vec::new();
+    let mut bounds = Vec::new();
+    let mut all_triangles = true;
+    for gi in children {
+        let rec = &scene.instances[gi.index() as usize];
+        let geometry = &scene.geometries[rec.geometry.index() as usize];
+        match &geometry.kind {
+            GeometryKind::Triangles(mesh) => {
+                use rayon::prelude::*;
+                let n = mesh.indices.len();
+                prims.extend((0..n as u32).map(|t| (gi.index(), t)));
+                bounds.par_extend((0..n).into_par_iter().with_min_len(4096).map(|t| triangle_bounds(mesh, t)));
+            }
+            GeometryKind::Custom { primitive_count, bounding_box, .. } => {
+                all_triangles = false;
+                let call = link::resolve(
+                    scene,
+                    *bounding_box,
+                    Record { instance: Some(*gi), geometry: Some(rec.geometry), ..Record::default() },
+                )?;
+                let refs = link::var_refs(&call);
+                let vars = (call.desc.cpu_bind)(&refs[..call.vars.len()]).map_err(|e| link::bind_error(&call, e))?;
+                for p in 0..*primitive_count {
+                    let mut args = CpuArgs { payload: None, attributes: None, primitive: p, variables: &vars };
+                    let (r, _) = rt_std::cpu::with_context(ExecutionContext::DEFAULT, || (call.desc.cpu)(&mut args));
+                    let b = match r {
+                        CpuResult::Aabb(b) if b.min.is_finite() && b.max.is_finite() => to_oaabb(b.min, b.max),
+                        // A primitive without finite bounds can never be hit.
+                        _ => OAabb::empty(),
+                    };
+                    prims.push((gi.index(), p));
+                    bounds.push(b);
+                }
+            }
+        }
+    }
+    Ok((prims, bounds, all_triangles))
+}
+
+/// The triangles of a geometry group's primitives, for `Sbvh`'s spatial
+/// splits (`None` unless every primitive is a triangle).
+fn group_triangles(scene: &Scene, prims: &[(u32, u32)]) -> Vec<obvhs::triangle::Triangle> {
+    prims
+        .iter()
+        .map(|&(gi, t)| {
+            let [a, b, c] = instance_mesh(scene, gi).expect(ALL_TRIANGLES).triangle(t as usize).map(Into::into);
+            obvhs::triangle::Triangle { v0: a, v1: b, v2: c }
+        })
+        .collect()
+}
+
+/// The triangles of geometry instance `gi` (None: custom primitives).
+pub(crate) fn instance_mesh(scene: &Scene, gi: u32) -> Option<&TriangleMesh> {
+    match &scene.geometries[scene.instances[gi as usize].geometry.index() as usize].kind {
+        GeometryKind::Triangles(mesh) => Some(mesh),
+        GeometryKind::Custom { .. } => None,
+    }
+}
+
+/// What the callers of [`instance_mesh`] that read triangles have checked.
+const ALL_TRIANGLES: &str = "all primitives are triangles";
+
+/// The trees a backend walks, which it tells the builder
+/// ([`crate::backend::LaunchBackend::trees`]); see [`TreeForm`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Trees {
+    /// The form of groups' BVH2s.
+    pub groups: TreeForm,
+    /// Whether geometry groups get obvhs's CWBVH (their BVH2 then built in
+    /// the widened form, with one reinsertion pass).
+    pub cwbvh: bool,
+    /// Whether geometry groups keep their triangles' vertices in CWBVH slot
+    /// order ([`NodeAccel::Prims`]'s `triangles`: the CPU backend's triangle
+    /// test).
+    pub slot_triangles: bool,
+}
+
+/// Builds what is missing and refits what moved, in the forms `trees` asks
+/// for (see [`AccelCache`]).
+pub(crate) fn build_accels(scene: &Scene, cache: &mut AccelCache, trees: Trees) -> Result<()> {
+    let form = trees.groups;
+    let widened = trees.cwbvh;
+    let gg_form = if widened { TreeForm::Wide } else { form };
+    let keep_slot_triangles = trees.slot_triangles;
+    let order = link::nodes_post_order(scene)?;
+    let mut built: Vec<Option<NodeAccel>> = std::mem::take(&mut cache.nodes);
+    built.resize_with(scene.nodes.len(), || None);
+    let (mut any_built, mut any_refit) = (false, false);
+    let union = |bounds: &[OAabb]| bounds.iter().fold(OAabb::empty(), |acc, b| acc.union(b));
+    for n in order {
+        let i = n.index() as usize;
+        let node = &scene.nodes[i];
+        let old = built[i].take();
+        let new = match &node.kind {
+            NodeKind::GeometryGroup { children, accel: a } => {
+                // The CWBVH of a single leaf (`NoAccel`) or of nothing is
+                // pointless: both backends walk the BVH2 then.
+                let wants_wide = |prims: &[(u32, u32)]| widened && a.builder != Builder::NoAccel && !prims.is_empty();
+                // Every primitive a triangle: the CPU backend's triangles in
+                // CWBVH slot order (the wgpu backend encodes its own).
+                let all_triangles =
+                    |prims: &[(u32, u32)]| prims.iter().all(|(gi, _)| instance_mesh(scene, *gi).is_some());
+                match old {
+                    Some(NodeAccel::Prims { mut bvh, mut wide, mut triangles, prims, mut bounds }) => {
+                        let moved = cache.moved
+                            && children.iter().any(|gi| {
+                                let g = scene.instances[gi.index() as usize].geometry.index();
+                                cache.moved_geometries.contains(&g)
+                            });
+                        let had_wide = wide.is_some();
+                        if moved {
+                            let (_, prim_bounds, _) = prim_bounds(scene, children)?;
+                            cache.geometry_group_changes += 1;
+                            bvh.refit(&prim_bounds);
+                            if let Some(cw) = wide.as_mut() {
+                                refit_wide(cw, &prim_bounds);
+                            }
+                            bounds = union(&prim_bounds);
+                            any_refit = true;
+                        }
+                        if wide.is_none() && wants_wide(&prims) {
+                            wide = Some(widen(&bvh));
+                        }
+                        if moved || (wide.is_some() && !had_wide) {
+                            triangles = None;
+                        }
+                        if keep_slot_triangles && triangles.is_none() {
+                            triangles = Some(slot_triangles(scene, &prims, wide.as_ref(), all_triangles(&prims)));
+                        }
+                        NodeAccel::Prims { bvh, wide, triangles, prims, bounds }
+                    }
+                    _ => {
+                        let (prims, bounds, all_tris) = prim_bounds(scene, children)?;
+                        let tris = (a.builder == Builder::Sbvh && all_tris).then(|| group_triangles(scene, &prims));
+                        let bvh = build(a.builder, &bounds, tris.as_deref(), gg_form)?;
+                        let wide = wants_wide(&prims).then(|| widen(&bvh));
+                        let triangles =
+                            keep_slot_triangles.then(|| slot_triangles(scene, &prims, wide.as_ref(), all_tris));
+                        any_built = true;
+                        cache.geometry_group_changes += 1;
+                        NodeAccel::Prims { bvh, wide, triangles, prims, bounds: union(&bounds) }
+                    }
+                }
+            }
+            NodeKind::Group { children, accel: a } => {
+                let bounds: Vec<OAabb> = children
+                    .iter()
+                    .map(|c| built[c.index() as usize].as_ref().map(|b| b.bounds()).unwrap_or(OAabb::empty()))
+                    .collect();
+                match old {
+                    Some(NodeAccel::Children { mut bvh, .. }) => {
+                        if cache.moved {
+                            bvh.refit(&bounds);
+                            any_refit = true;
+                        }
+                        NodeAccel::Children { bvh, bounds: union(&bounds) }
+                    }
+                    _ => {
+                        any_built = true;
+                        NodeAccel::Children { bvh: build(a.builder, &bounds, None, form)?, bounds: union(&bounds) }
+                    }
+                }
+            }
+            NodeKind::Transform { matrix, child, .. } => {
+                let b = built[child.index() as usize].as_ref().map(|b| b.bounds()).unwrap_or(OAabb::empty());
+                NodeAccel::Bounds(transform_bounds(*matrix, &b))
+            }
+            NodeKind::Selector { children, .. } => NodeAccel::Bounds(
+                children
+                    .iter()
+                    .filter_map(|c| built[c.index() as usize].as_ref().map(|b| b.bounds()))
+                    .fold(OAabb::empty(), |acc, b| acc.union(&b)),
+            ),
+        };
+        built[i] = Some(new);
+    }
+    cache.builds += any_built as u64;
+    cache.refits += any_refit as u64;
+    cache.nodes = built;
+    cache.moved = false;
+    cache.moved_geometries.clear();
+    Ok(())
+}
+
+/// The vertices of `prims` in `wide`'s slot order (empty unless all are
+/// triangles).
+fn slot_triangles(
+    scene: &Scene,
+    prims: &[(u32, u32)],
+    wide: Option<&obvhs::cwbvh::CwBvh>,
+    all: bool,
+) -> Vec<[Vec3; 3]> {
+    use rayon::prelude::*;
+    let Some(cw) = wide.filter(|_| all) else { return Vec::new() };
+    // Each instance's mesh looked up once, not once per triangle.
+    let meshes: Vec<Option<&TriangleMesh>> =
+        (0..scene.instances.len() as u32).map(|gi| instance_mesh(scene, gi)).collect();
+    cw.primitive_indices
+        .par_iter()
+        .with_min_len(4096)
+        .map(|&p| {
+            let (gi, t) = prims[p as usize];
+            meshes[gi as usize].expect(ALL_TRIANGLES).triangle(t as usize)
+        })
+        .collect()
+}

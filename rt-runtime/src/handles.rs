@@ -1,0 +1,53 @@
+//! Handles: small copyable ids into the scene's tables (programs,
+//! geometries, materials, geometry instances, nodes, buffers, samplers).
+
+macro_rules! handle {
+    ($(#[$doc:meta])* $name:ident) => {
+        $(#[$doc])*
+        #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+        pub struct $name(pub(crate) u32);
+        impl $name {
+            /// The index of this handle in its table.
+            pub fn index(self) -> u32 {
+                self.0
+            }
+        }
+    };
+}
+
+handle!(
+    /// A program created from a descriptor (a variable scope of its own).
+    ProgramId
+);
+handle!(
+    /// A geometry: triangles or custom primitives.
+    GeometryId
+);
+handle!(
+    /// A material: closest-hit and any-hit programs per ray type.
+    MaterialId
+);
+handle!(
+    /// A geometry with its materials.
+    GeometryInstanceId
+);
+handle!(
+    /// A node of the graph above geometry instances: geometry group, group,
+    /// transform or selector. Programs trace against nodes (`Object`).
+    NodeId
+);
+handle!(
+    /// A buffer.
+    BufferId
+);
+handle!(
+    /// A texture sampler.
+    SamplerId
+);
+
+impl NodeId {
+    /// The handle programs receive for this node.
+    pub fn object(self) -> rt_std::Object {
+        rt_std::Object::new(self.0)
+    }
+}
