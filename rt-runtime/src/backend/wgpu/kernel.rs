@@ -24,8 +24,8 @@ use std::collections::{BTreeMap, BTreeSet};
 /// The runtime's half of every module, after the contract's records, heap
 /// and exception codes (see [`prelude`]).
 const PRELUDE: &str = include_str!("prelude.wgsl");
-const TRAVERSE: &str = include_str!("traverse.wgsl");
-const GRAPH: &str = include_str!("graph.wgsl");
+const TRAVERSE: &str = include_str!("compute/traverse.wgsl");
+const GRAPH: &str = include_str!("compute/graph.wgsl");
 
 /// The start of every module: the records and heap binding the programs
 /// were validated against (rt-abi's, not a copy), the exception codes and

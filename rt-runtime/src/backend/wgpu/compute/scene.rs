@@ -1,0 +1,564 @@
+//! The compute traversal's scene: instances (transform chains flattened),
+//! groups' BVHs and leaf tables, the node table of the graph traversal, the
+//! geometry instances' hit and intersection records, miss records, around
+//! the geometry part ([`super::geometry`]); and the kernel's spec.
+
+use super::super::Launch;
+use super::super::heap::{Records, encode_heap};
+use super::super::kernel::{self, KernelProgram, KernelSpec, SCENE_HEADER_BASES, SCENE_SECTIONS};
+use super::geometry::{GeometryKey, GeometryLayout, GroupWords, SCENE_HEADER, encode_geometry, f, push_bvh};
+use crate::accel::cache::{AccelCache, NodeAccel};
+use crate::error::{Result, RtError};
+use crate::link::{self, Record};
+use crate::scene::{GeometryKind, NodeId, NodeKind, ProgramId, Scene};
+use glam::Mat4;
+use rt_abi::records::{InstanceRecord, NodeEntry};
+use rt_std::program::ProgramKind;
+use std::collections::HashMap;
+
+/// Marks a group's leaf that is a node (group, selector, transform above
+/// one), not an instance (`RT_NODE_BIT` in traverse.wgsl).
+pub(crate) const NODE_BIT: u32 = 0x8000_0000;
+
+/// The scene a launch uploads: everything but the variables' values and the
+/// buffers' contents (the heap, [`encode_heap`]). It depends only on the
+/// context's structure ([`SceneKey`]), so an unchanged scene is neither
+/// encoded nor compared again; and each section is led by the part that
+/// comes from geometry alone ([`GeometryLayout`]), so a launch that changed
+/// something else (a transform, a program, a node) encodes and uploads only
+/// what follows it.
+pub(crate) struct Encoded {
+    /// The tables' header: where the tables start, counts, and the bases of
+    /// sections that share the tables' binding.
+    pub(crate) header: [u32; SCENE_HEADER],
+    /// Each section's words after its geometry part.
+    pub(crate) tails: [Vec<u32>; SCENE_SECTIONS.len()],
+    pub(crate) geometry: GeometryLayout,
+    /// The geometry part's words in each section, when it was encoded now
+    /// (`None`: the device holds it); the tables' words begin with room for
+    /// the header.
+    pub(crate) geometry_words: Option<[Vec<u32>; SCENE_SECTIONS.len()]>,
+    pub(crate) spec: KernelSpec,
+    pub(crate) rg_vars: u32,
+    pub(crate) ex_vars: u32,
+    /// The records the scene points at, in heap order.
+    pub(crate) records: Records,
+}
+
+impl Encoded {
+    /// The whole sections, when the geometry part was encoded now (its
+    /// tables begin with room for the header).
+    pub(crate) fn whole_sections(&mut self) -> Option<[Vec<u32>; SCENE_SECTIONS.len()]> {
+        let mut sections = self.geometry_words.take()?;
+        sections[0][..SCENE_HEADER].copy_from_slice(&self.header);
+        for (words, tail) in sections.iter_mut().zip(&mut self.tails) {
+            words.append(tail);
+        }
+        Some(sections)
+    }
+}
+
+/// A section's words from `base` on (what precedes them is encoded
+/// separately).
+pub(crate) struct Tail {
+    pub(crate) base: usize,
+    pub(crate) words: Vec<u32>,
+}
+
+impl Tail {
+    pub(crate) fn new(base: usize) -> Tail {
+        Tail { base, words: Vec::new() }
+    }
+
+    /// The offset in the section of the next word.
+    pub(crate) fn at(&self) -> u32 {
+        (self.base + self.words.len()) as u32
+    }
+}
+
+/// What a scene's encoding depends on: the context's structure (programs,
+/// geometry, materials, nodes, entry points: anything but variable values
+/// and buffer contents), its acceleration structures, the entry point and
+/// the device's scene bindings.
+#[derive(Clone, Copy, PartialEq, Debug)]
+pub(crate) struct SceneKey {
+    pub(crate) structure: u64,
+    pub(crate) builds: u64,
+    pub(crate) refits: u64,
+    pub(crate) entry: u32,
+    pub(crate) scene_bindings: usize,
+}
+
+impl SceneKey {
+    pub(crate) fn of(scene: &Scene, accels: &AccelCache, entry: u32, scene_bindings: usize) -> SceneKey {
+        SceneKey {
+            structure: scene.structure_version,
+            builds: accels.builds,
+            refits: accels.refits,
+            entry,
+            scene_bindings,
+        }
+    }
+}
+
+/// The scene the device holds, and what its launches need of it.
+pub(crate) struct ResidentScene {
+    pub(crate) key: SceneKey,
+    pub(crate) geometry: GeometryLayout,
+    pub(crate) records: Records,
+    pub(crate) rg_vars: u32,
+    pub(crate) ex_vars: u32,
+    pub(crate) wgsl: String,
+    pub(crate) spec: KernelSpec,
+}
+
+pub(crate) fn push_mat(out: &mut Vec<u32>, m: Mat4) {
+    out.extend(m.to_cols_array().map(f));
+}
+
+/// Follows transforms down to a geometry group: (group, object-to-world, mask).
+pub(crate) fn instance_of(scene: &Scene, node: NodeId) -> Result<Option<(NodeId, Mat4, u32)>> {
+    let mut m = Mat4::IDENTITY;
+    let mut mask = 0xffu32;
+    let mut n = node;
+    for _ in 0..=scene.nodes.len() {
+        let rec = &scene.nodes[n.index() as usize];
+        mask &= rec.visibility_mask as u32;
+        match &rec.kind {
+            NodeKind::GeometryGroup { .. } => return Ok(Some((n, m, mask))),
+            NodeKind::Transform { matrix, child, .. } => {
+                m *= *matrix;
+                n = *child;
+            }
+            NodeKind::Group { .. } | NodeKind::Selector { .. } => return Ok(None),
+        }
+    }
+    Err(RtError::GraphCycle { node: node.index() })
+}
+
+/// Encodes launch `l` for a device with `scene_bindings` tables
+/// bindings (see [`kernel::SCENE_SECTIONS`]).
+pub(crate) fn encode(l: &Launch, scene_bindings: usize, held_geometry: Option<&GeometryLayout>) -> Result<Encoded> {
+    let (scene, entry) = (l.scene, l.entry);
+    let count = scene.entry_points.len() as u32;
+    let ep = scene.entry_points.get(entry as usize).ok_or(RtError::NoSuchEntryPoint { entry, count })?;
+    let rg = ep.ray_generation.ok_or(RtError::NoRayGeneration { entry })?;
+    link::check_types(scene)?;
+    let ray_types = scene.ray_type_count();
+    let mut records = Records::default();
+    let record = |p: ProgramId, r: Record, records: &mut Records| records.add(scene, p, r);
+    let case = |p: ProgramId| p.index() + 1;
+    let mut programs: Vec<KernelProgram> = Vec::new();
+    let use_program = |p: ProgramId, programs: &mut Vec<KernelProgram>| -> Result<KernelProgram> {
+        let kp = KernelProgram { case: case(p), desc: scene.program(p)?.desc };
+        if !programs.iter().any(|q| q.case == kp.case) {
+            programs.push(kp);
+        }
+        Ok(kp)
+    };
+    let rg_vars = record(rg, Record::default(), &mut records)?;
+    let rg_prog = KernelProgram { case: case(rg), desc: scene.program(rg)?.desc };
+    let (ex_prog, ex_vars) = match ep.exception {
+        Some(e) => (
+            Some(KernelProgram { case: case(e), desc: scene.program(e)?.desc }),
+            record(e, Record::default(), &mut records)?,
+        ),
+        None => (None, 0),
+    };
+
+    // Scene: the tables, BVH nodes and the triangles in leaf order in
+    // their own sections, each led by the part that comes from geometry
+    // alone (held on the device across launches that change the rest).
+    let (geometry, geometry_words) = match held_geometry {
+        Some(g) => (g.clone(), None),
+        None => {
+            let (layout, words) = encode_geometry(scene, l.accels, GeometryKey::of(scene, l.accels, scene_bindings));
+            (layout, Some(words))
+        }
+    };
+    let mut deepest_bvh = geometry.deepest_bvh;
+    let mut header = [0u32; SCENE_HEADER];
+    let mut tables = Tail::new(geometry.ends[0]);
+    let mut nodes = Tail::new(geometry.ends[1]);
+    let accels: &[Option<NodeAccel>] = &l.accels.nodes;
+    // Instances: one per geometry group and per transform chain.
+    let mut instance_of_node: Vec<Option<u32>> = vec![None; scene.nodes.len()];
+    let mut instances: Vec<(NodeId, Mat4, u32)> = Vec::new();
+    for (n, slot) in instance_of_node.iter_mut().enumerate() {
+        if let Some(inst) = instance_of(scene, NodeId(n as u32))? {
+            *slot = Some(instances.len() as u32);
+            instances.push(inst);
+        }
+    }
+    // BVHs of groups, and their leaf tables: instances, or other nodes with
+    // NODE_BIT.
+    // The most instances and nodes a leaf of a group's BVH holds.
+    let mut widest_group_leaf = 1;
+    // The deepest BVH of a group of instances (`None`: no group).
+    let mut deepest_group: Option<u32> = None;
+    let mut group_bvh: HashMap<u32, (u32, u32, bool)> = HashMap::new();
+    for (n, rec) in scene.nodes.iter().enumerate() {
+        if let (NodeKind::Group { children, .. }, Some(NodeAccel::Children { bvh, .. })) =
+            (&rec.kind, accels.get(n).and_then(|a| a.as_ref()))
+        {
+            let (at, depth) = push_bvh(&mut nodes.words, nodes.base, bvh);
+            deepest_bvh = deepest_bvh.max(depth);
+            widest_group_leaf = bvh.bvh.nodes.iter().map(|n| n.prim_count).fold(widest_group_leaf, u32::max);
+            deepest_group = Some(deepest_group.unwrap_or(1).max(depth));
+            let table = tables.at();
+            let mut instances_only = true;
+            for slot in &bvh.bvh.primitive_indices {
+                let child = children[*slot as usize];
+                match instance_of_node[child.index() as usize] {
+                    Some(inst) => tables.words.push(inst),
+                    None => {
+                        instances_only = false;
+                        tables.words.push(child.index() | NODE_BIT);
+                    }
+                }
+            }
+            group_bvh.insert(n as u32, (at, table, instances_only));
+        }
+    }
+    header[1] = tables.at();
+    for (gg, o2w, mask) in &instances {
+        let w = geometry.gg_bvh.get(&gg.index()).copied().unwrap_or(GroupWords { bvh: 0, table: 0, tri_slots: 0 });
+        let record = InstanceRecord {
+            object_to_world: o2w.to_cols_array(),
+            world_to_object: o2w.inverse().to_cols_array(),
+            bvh: w.bvh,
+            primitives: w.table,
+            mask: *mask,
+            geometry_group: gg.index(),
+            triangles: w.tri_slots,
+        };
+        tables.words.extend(record.words());
+    }
+    // The node table (after the side data of transforms and selectors), and
+    // how deep transforms above groups and selectors nest (in post order:
+    // children before parents).
+    let mut node_entries: Vec<[u32; 4]> = vec![[0; 4]; scene.nodes.len()];
+    let mut levels: Vec<u32> = vec![0; scene.nodes.len()];
+    let mut graph = false;
+    for n in link::nodes_post_order(scene)? {
+        let i = n.index() as usize;
+        let rec = &scene.nodes[i];
+        if let Some(inst) = instance_of_node[i] {
+            node_entries[i] = [NodeEntry::Instance as u32, inst, 0, instances[inst as usize].2];
+            continue;
+        }
+        let mask = rec.visibility_mask as u32;
+        match &rec.kind {
+            NodeKind::Group { children, .. } => {
+                let (bvh, table, instances_only) = group_bvh[&n.index()];
+                let kind = if instances_only { NodeEntry::InstanceGroup } else { NodeEntry::Group };
+                node_entries[i] = [kind as u32, bvh, table, mask];
+                levels[i] = children.iter().map(|c| levels[c.index() as usize]).max().unwrap_or(0);
+                graph |= !instances_only;
+            }
+            NodeKind::Transform { .. } => {
+                // A chain of transforms down to a group or selector.
+                let (mut m, mut mask, mut below) = (Mat4::IDENTITY, 0xffu32, n);
+                while let NodeKind::Transform { matrix, child, .. } = &scene.nodes[below.index() as usize].kind {
+                    m *= *matrix;
+                    mask &= scene.nodes[below.index() as usize].visibility_mask as u32;
+                    below = *child;
+                }
+                let at = tables.at();
+                push_mat(&mut tables.words, m);
+                push_mat(&mut tables.words, m.inverse());
+                node_entries[i] = [NodeEntry::Transform as u32, at, below.index(), mask];
+                levels[i] = 1 + levels[below.index() as usize];
+                graph = true;
+            }
+            NodeKind::Selector { visit, children } => {
+                let kp = use_program(*visit, &mut programs)?;
+                let vars = record(*visit, Record { node: Some(n), ..Record::default() }, &mut records)?;
+                let at = tables.at();
+                tables.words.extend([kp.case, vars, children.len() as u32]);
+                tables.words.extend(children.iter().map(|c| c.index()));
+                node_entries[i] = [NodeEntry::Selector as u32, at, 0, mask];
+                levels[i] = children.iter().map(|c| levels[c.index() as usize]).max().unwrap_or(0);
+                graph = true;
+            }
+            NodeKind::GeometryGroup { .. } => unreachable!("a geometry group is an instance"),
+        }
+    }
+    let graph_levels = if graph { 1 + levels.iter().copied().max().unwrap_or(0) } else { 0 };
+    header[0] = tables.at();
+    tables.words.extend(node_entries.into_iter().flatten());
+    // Geometry instances, their hit records and intersection records.
+    let gi_table = tables.words.len();
+    header[2] = tables.at();
+    tables.words.resize(gi_table + scene.instances.len() * 8, 0);
+    let mut isect = Vec::with_capacity(scene.instances.len() * 2);
+    for (i, gi) in scene.instances.iter().enumerate() {
+        let instance = Some(crate::handles::GeometryInstanceId(i as u32));
+        let hit_base = tables.at();
+        for m in &gi.materials {
+            let mat = &scene.materials[m.index() as usize];
+            let r = Record { instance, material: Some(*m), ..Record::default() };
+            for (ch, ah) in mat.closest_hit.iter().zip(&mat.any_hit) {
+                let mut words = [0u32; 4];
+                if let Some(p) = ch {
+                    let kp = use_program(*p, &mut programs)?;
+                    words[0] = kp.case;
+                    words[1] = record(*p, r, &mut records)?;
+                }
+                if let Some(p) = ah {
+                    let kp = use_program(*p, &mut programs)?;
+                    words[2] = kp.case;
+                    words[3] = record(*p, r, &mut records)?;
+                }
+                tables.words.extend(words);
+            }
+        }
+        let [kind, pos, idx, nrm, uv, mi] = geometry.geometry_words[gi.geometry.index() as usize];
+        tables.words[gi_table + i * 8..gi_table + i * 8 + 8].copy_from_slice(&[
+            kind,
+            pos,
+            idx,
+            nrm,
+            uv,
+            mi,
+            gi.materials.len() as u32,
+            hit_base,
+        ]);
+        match scene.geometries[gi.geometry.index() as usize].kind {
+            GeometryKind::Custom { intersection, .. } => {
+                let kp = use_program(intersection, &mut programs)?;
+                let vars = record(
+                    intersection,
+                    Record { instance, geometry: Some(gi.geometry), ..Record::default() },
+                    &mut records,
+                )?;
+                isect.extend([kp.case, vars]);
+            }
+            GeometryKind::Triangles(_) => isect.extend([0, 0]),
+        }
+    }
+    header[3] = 0;
+    header[4] = ray_types;
+    header[5] = tables.at();
+    for (r, m) in scene.miss.iter().enumerate() {
+        let p = m.ok_or(RtError::NoMissProgram { ray_type: r as u32 })?;
+        let kp = use_program(p, &mut programs)?;
+        let vars = record(p, Record::default(), &mut records)?;
+        tables.words.extend([kp.case, vars]);
+    }
+    header[6] = tables.at();
+    tables.words.extend(isect);
+    header[7] = scene.nodes.len() as u32;
+
+    // The default exception program's image: its offset in the record.
+    let default_exception = match ex_prog {
+        Some(_) => None,
+        None => link::default_exception_output(rg_prog.desc).map(|v| {
+            rg_prog.desc.variables[..v].iter().map(|var| kernel::variable_words(&var.kind, &var.ty)).sum::<u32>()
+        }),
+    };
+    // Stacks sized so that no entry is ever dropped: a BVH traversal keeps
+    // at most one pending entry per level; graph traversal, one BVH's worth
+    // per transform level. Powers of two, so small changes do not relink.
+    let bvh_stack = (deepest_bvh + 2).max(64).next_power_of_two();
+    let tlas_stack = match deepest_group {
+        Some(depth) => (depth + 2 + widest_group_leaf).max(64).next_power_of_two(),
+        None => 0,
+    };
+    let graph_stack = ((deepest_bvh + 2) * (graph_levels + 1)).max(96).next_power_of_two();
+    let triangles_only =
+        !programs.iter().any(|p| matches!(p.desc.kind, ProgramKind::AnyHit | ProgramKind::Intersection));
+    if triangles_only != geometry.key.triangles_only {
+        return Err(RtError::Gpu(format!(
+            "internal: the kernel's programs say triangles only: {triangles_only}, the tables's: {}",
+            geometry.key.triangles_only
+        )));
+    }
+    let spec = KernelSpec {
+        triangles_only,
+        bvh_stack,
+        tlas_stack,
+        graph_stack,
+        ray_generation: rg_prog,
+        exception: ex_prog,
+        programs,
+        max_depth: l.settings.max_trace_depth,
+        graph_levels,
+        default_exception,
+        scene_bindings,
+        cwbvh_stack: if geometry.cwbvh { (geometry.deepest_cwbvh + 2).max(32).next_power_of_two() } else { 0 },
+    };
+    Ok(Encoded {
+        header,
+        tails: [tables.words, nodes.words, Vec::new()],
+        geometry,
+        geometry_words,
+        spec,
+        rg_vars,
+        ex_vars,
+        records,
+    })
+}
+
+/// The sections of `scene` as bound on a device with `scene_bindings`
+/// scene bindings: those past the bindings appended to the tables (their
+/// bases in the tables' header). Also returns what the appended ones hold.
+pub(crate) fn place_sections(
+    scene: [Vec<u32>; SCENE_SECTIONS.len()],
+    scene_bindings: usize,
+) -> (Vec<Vec<u32>>, Vec<&'static str>) {
+    let mut sections = Vec::from(scene);
+    let shared = sections.split_off(scene_bindings);
+    let mut shared_names = Vec::new();
+    for (k, words) in shared.into_iter().enumerate() {
+        let s = scene_bindings + k;
+        sections[0][SCENE_HEADER_BASES + s] = sections[0].len() as u32;
+        sections[0].extend(words);
+        shared_names.push(SCENE_SECTIONS[s].what);
+    }
+    (sections, shared_names)
+}
+
+/// A launch's new scene for the device: whole sections, or the header and
+/// the words after the geometry part the device keeps.
+pub(crate) enum NewScene {
+    Whole(Vec<Vec<u32>>),
+    AroundGeometry { header: [u32; SCENE_HEADER], tails: [Vec<u32>; SCENE_SECTIONS.len()] },
+}
+
+/// Debug builds (the tests) check that what the device keeps is what
+/// encoding the context now gives: the whole scene when `held` is to be
+/// reused, the geometry part when `held_geometry` is. A change that does
+/// not bump `Context::structure_version` or `geometry_version` would
+/// otherwise leave stale words on the device.
+#[cfg(debug_assertions)]
+pub(crate) fn check_held_scene(
+    l: &Launch,
+    scene_bindings: usize,
+    device_sections: &[Option<&[u32]>],
+    held: Option<&ResidentScene>,
+    held_geometry: Option<&GeometryLayout>,
+) -> Result<()> {
+    if held.is_none() && held_geometry.is_none() {
+        return Ok(());
+    }
+    let mut e = encode(l, scene_bindings, None)?;
+    let device = |s: usize| device_sections.get(s).copied().flatten();
+    if let Some(h) = held {
+        let (sections, _) = place_sections(e.whole_sections().expect("encoded whole"), scene_bindings);
+        for (s, words) in sections.iter().enumerate() {
+            assert!(device(s) == Some(&words[..]), "stale scene on the device: {}", SCENE_SECTIONS[s].what);
+        }
+        let same = e.records.uses.len() == h.records.uses.len()
+            && e.records.words == h.records.words
+            && (e.rg_vars, e.ex_vars) == (h.rg_vars, h.ex_vars);
+        assert!(same, "stale records");
+    } else if let Some(g) = held_geometry {
+        assert!(e.geometry.ends == g.ends && e.geometry.gg_bvh == g.gg_bvh, "stale geometry layout");
+        let words = e.geometry_words.take().expect("encoded whole");
+        for (s, words) in words.iter().enumerate() {
+            // The header is not geometry.
+            let start = if s == 0 { SCENE_HEADER } else { 0 };
+            let kept = device(s).map(|d| &d[start..g.ends[s]]);
+            assert!(kept == Some(&words[start..]), "stale geometry on the device: {}", SCENE_SECTIONS[s].what);
+        }
+    }
+    Ok(())
+}
+
+/// What a launch encoded: the scene (`fresh`) unless the device holds it
+/// (then `held_wgsl` is its kernel), and the heap with its output buffers'
+/// `(buffer index, heap offset, words)`.
+pub(crate) struct Encoding {
+    pub fresh: Option<Encoded>,
+    pub held_wgsl: Option<String>,
+    pub heap: Vec<u32>,
+    pub outputs: Vec<(usize, usize, usize)>,
+    pub rg_vars: u32,
+    pub ex_vars: u32,
+}
+
+/// Encodes launch `l`: the scene unless `resident` (what the device holds,
+/// `device_sections` its words) is the scene of `key`; around its geometry
+/// part where that is the same (every section in a binding of its own);
+/// then the heap.
+pub(crate) fn encode_launch(
+    l: &Launch,
+    key: SceneKey,
+    resident: Option<&ResidentScene>,
+    device_sections: &[Option<&[u32]>],
+) -> Result<Encoding> {
+    let scene_bindings = key.scene_bindings;
+    let held = resident.filter(|h| h.key == key);
+    let held_geometry = resident
+        .filter(|_| held.is_none() && scene_bindings == SCENE_SECTIONS.len())
+        .map(|h| &h.geometry)
+        .filter(|g| g.key == GeometryKey::of(l.scene, l.accels, scene_bindings));
+    #[cfg(debug_assertions)]
+    check_held_scene(l, scene_bindings, device_sections, held, held_geometry)?;
+    #[cfg(not(debug_assertions))]
+    let _ = device_sections;
+    let fresh = if held.is_some() { None } else { Some(encode(l, scene_bindings, held_geometry)?) };
+    let (records, rg_vars, ex_vars) = match (&fresh, held) {
+        (Some(e), _) => (&e.records, e.rg_vars, e.ex_vars),
+        (None, Some(h)) => (&h.records, h.rg_vars, h.ex_vars),
+        (None, None) => unreachable!("encoded when none is held"),
+    };
+    let (heap, outputs) = encode_heap(l.scene, records)?;
+    let held_wgsl = if fresh.is_some() { None } else { held.map(|h| h.wgsl.clone()) };
+    Ok(Encoding { fresh, held_wgsl, heap, outputs, rg_vars, ex_vars })
+}
+
+/// A freshly encoded scene placed in the device's bindings: whole
+/// sections, or the words around the geometry part the device keeps; and
+/// the scene the device then holds. Appends what each binding holds to
+/// `parts` (for the binding-size check).
+pub(crate) fn place_scene(
+    mut e: Encoded,
+    key: SceneKey,
+    wgsl: &str,
+    scene_bindings: usize,
+    max_storage_buffers: u32,
+    parts: &mut Vec<(String, usize)>,
+) -> (NewScene, ResidentScene) {
+    let sections = match e.whole_sections() {
+        Some(whole) => {
+            let (sections, shared_names) = place_sections(whole, scene_bindings);
+            let tables_what = if shared_names.is_empty() {
+                SCENE_SECTIONS[0].what.to_string()
+            } else {
+                format!(
+                    "{} with {} (one binding: the device allows {} storage buffers per shader stage)",
+                    SCENE_SECTIONS[0].what,
+                    shared_names.join(" and "),
+                    max_storage_buffers
+                )
+            };
+            parts.push((tables_what, sections[0].len()));
+            parts.extend(
+                sections.iter().enumerate().skip(1).map(|(s, w)| (SCENE_SECTIONS[s].what.to_string(), w.len())),
+            );
+            NewScene::Whole(sections)
+        }
+        None => {
+            parts.extend(
+                SCENE_SECTIONS
+                    .iter()
+                    .zip(&e.tails)
+                    .zip(e.geometry.ends)
+                    .map(|((sec, tail), end)| (sec.what.to_string(), end + tail.len())),
+            );
+            NewScene::AroundGeometry { header: e.header, tails: e.tails }
+        }
+    };
+    let held = ResidentScene {
+        key,
+        geometry: e.geometry,
+        records: e.records,
+        rg_vars: e.rg_vars,
+        ex_vars: e.ex_vars,
+        wgsl: wgsl.to_string(),
+        spec: e.spec,
+    };
+    (sections, held)
+}

@@ -1,0 +1,218 @@
+//! The device and its health: the adapter opened (or the application's
+//! device), its limits and the one bind-group layout, and what its
+//! callbacks report (a lost device, uncaptured errors).
+
+use super::kernel::SCENE_SECTIONS;
+use super::resident::Resident;
+use crate::error::{Result, RtError};
+use std::collections::HashMap;
+use std::sync::{Arc, Mutex};
+
+/// A wgpu device and what the backend keeps on it between launches.
+pub struct Gpu {
+    pub(crate) device: wgpu::Device,
+    pub(crate) queue: wgpu::Queue,
+    pub(crate) info: wgpu::AdapterInfo,
+    pub(crate) limits: wgpu::Limits,
+    /// How many of the scene's sections get their own binding (see
+    /// [`kernel::SCENE_SECTIONS`]): all of them where the device allows
+    /// enough storage buffers per stage.
+    pub(crate) scene_bindings: usize,
+    /// The one bind-group layout of every megakernel, so bind groups outlive
+    /// pipelines.
+    pub(crate) layout: wgpu::BindGroupLayout,
+    pub(crate) pipelines: HashMap<String, wgpu::ComputePipeline>,
+    /// How many pipelines were created (links); for tests of the cache.
+    pub pipelines_created: u64,
+    /// How many launches encoded the scene (see `SceneKey`), and how many
+    /// of those its geometry part too (`GeometryKey`).
+    pub scene_encodes: u64,
+    pub geometry_encodes: u64,
+    pub(crate) resident: Resident,
+    pub(crate) health: Arc<Health>,
+}
+
+/// What the device's callbacks report.
+#[derive(Default)]
+pub(crate) struct Health {
+    /// Why the device was lost, once it is (its lost callback writes it).
+    pub(crate) lost: Mutex<Option<String>>,
+    /// Errors outside any error scope (wgpu's default handler would panic
+    /// on them); a launch that finds one fails with it.
+    pub(crate) uncaptured: Mutex<Vec<String>>,
+}
+
+impl Health {
+    pub(crate) fn lost_reason(&self) -> Option<String> {
+        self.lost.lock().unwrap_or_else(|e| e.into_inner()).clone()
+    }
+
+    /// The error for a launch that failed on the device `adapter`:
+    /// `DeviceLost` when the device is gone, else `what` with any uncaptured
+    /// wgpu errors.
+    pub(crate) fn failure(&self, adapter: String, what: String) -> RtError {
+        if let Some(reason) = self.lost_reason() {
+            return RtError::DeviceLost { adapter, reason };
+        }
+        match self.take_errors() {
+            Some(errors) => RtError::Gpu(format!("{what}: {errors}")),
+            None => RtError::Gpu(what),
+        }
+    }
+
+    /// The uncaptured errors since the last call, joined.
+    pub(crate) fn take_errors(&self) -> Option<String> {
+        let errors = std::mem::take(&mut *self.uncaptured.lock().unwrap_or_else(|e| e.into_inner()));
+        (!errors.is_empty()).then(|| errors.join("; "))
+    }
+}
+
+impl Gpu {
+    /// Opens the first adapter wgpu finds (a GPU, else lavapipe).
+    pub fn new() -> Result<Gpu> {
+        let instance = instance();
+        let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
+            power_preference: wgpu::PowerPreference::HighPerformance,
+            ..Default::default()
+        }))
+        .map_err(|e| {
+            RtError::Gpu(format!(
+                "no wgpu adapter ({e}); on a machine without a GPU install Mesa's lavapipe (`apt-get install mesa-vulkan-drivers`)"
+            ))
+        })?;
+        // Heap, log and one binding per scene section, where the adapter
+        // has that many.
+        let storage = (2 + SCENE_SECTIONS.len() as u32).min(adapter.limits().max_storage_buffers_per_shader_stage);
+        let limits =
+            wgpu::Limits { max_storage_buffers_per_shader_stage: storage, ..wgpu::Limits::downlevel_defaults() }
+                .using_resolution(adapter.limits());
+        let limits = wgpu::Limits {
+            max_storage_buffer_binding_size: adapter.limits().max_storage_buffer_binding_size,
+            max_buffer_size: adapter.limits().max_buffer_size,
+            ..limits
+        };
+        // Timestamps, where the adapter has them: the device's own time of
+        // a launch ([`super::Timings::kernel`]).
+        let required_features = adapter.features() & wgpu::Features::TIMESTAMP_QUERY;
+        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+            label: Some("rt-runtime"),
+            required_limits: limits.clone(),
+            required_features,
+            ..Default::default()
+        }))
+        .map_err(|e| RtError::Gpu(format!("cannot open a device on {}: {e}", adapter.get_info().name)))?;
+        Ok(Gpu::from_parts(device, queue, adapter.get_info(), limits))
+    }
+
+    /// Uses a device the application already has.
+    pub fn from_device(device: wgpu::Device, queue: wgpu::Queue, info: wgpu::AdapterInfo) -> Gpu {
+        let limits = device.limits();
+        Gpu::from_parts(device, queue, info, limits)
+    }
+
+    pub(crate) fn from_parts(
+        device: wgpu::Device,
+        queue: wgpu::Queue,
+        info: wgpu::AdapterInfo,
+        limits: wgpu::Limits,
+    ) -> Gpu {
+        // An explicit layout: a kernel that never reads a binding (no
+        // traces: no `rt_scene`) still takes them all. Heap, log: 2 storage
+        // buffers; the rest go to the scene's sections.
+        let scene_bindings =
+            (limits.max_storage_buffers_per_shader_stage.saturating_sub(2) as usize).clamp(1, SCENE_SECTIONS.len());
+        let buffer = |binding: u32, ty: wgpu::BufferBindingType| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::COMPUTE,
+            ty: wgpu::BindingType::Buffer { ty, has_dynamic_offset: false, min_binding_size: None },
+            count: None,
+        };
+        let storage = |read_only| wgpu::BufferBindingType::Storage { read_only };
+        let mut entries = vec![
+            buffer(0, storage(false)),
+            buffer(1, storage(true)),
+            buffer(2, storage(false)),
+            buffer(3, wgpu::BufferBindingType::Uniform),
+        ];
+        entries.extend((1..scene_bindings).map(|s| buffer(3 + s as u32, storage(true))));
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("rt bindings"),
+            entries: &entries,
+        });
+        let health = Arc::new(Health::default());
+        let on_lost = Arc::clone(&health);
+        device.set_device_lost_callback(move |reason, message| {
+            let why = if message.is_empty() { format!("{reason:?}") } else { format!("{reason:?}: {message}") };
+            *on_lost.lost.lock().unwrap_or_else(|e| e.into_inner()) = Some(why);
+        });
+        let on_error = Arc::clone(&health);
+        device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| {
+            on_error.uncaptured.lock().unwrap_or_else(|e| e.into_inner()).push(e.to_string());
+        }));
+        Gpu {
+            device,
+            queue,
+            info,
+            limits,
+            scene_bindings,
+            layout,
+            pipelines: HashMap::new(),
+            pipelines_created: 0,
+            scene_encodes: 0,
+            geometry_encodes: 0,
+            resident: Resident::default(),
+            health,
+        }
+    }
+
+    /// Bytes the last launch wrote to the device (scene, heap pages, log
+    /// header, launch uniforms).
+    pub fn last_upload_bytes(&self) -> u64 {
+        self.resident.uploaded
+    }
+
+    /// The adapter's name and type, for messages ("llvmpipe (Cpu)").
+    pub fn describe(&self) -> String {
+        format!("{} ({:?}, {:?})", self.info.name, self.info.device_type, self.info.backend)
+    }
+
+    /// Whether the adapter is a software rasteriser (lavapipe).
+    pub fn is_cpu(&self) -> bool {
+        self.info.device_type == wgpu::DeviceType::Cpu
+    }
+}
+
+/// A wgpu instance for headless compute, as every device of the runtime is
+/// opened.
+///
+/// On a machine without a window system (no `XDG_RUNTIME_DIR`), Mesa's
+/// implicit Vulkan layer `VK_LAYER_MESA_device_select` tries to reach a
+/// Wayland compositor while adapters are enumerated, and libwayland prints
+/// "error: XDG_RUNTIME_DIR is invalid or not set in the environment." to
+/// stderr each time. The layer only reorders devices, which wgpu's own
+/// power preference decides anyway, so there the runtime turns it off the
+/// way its manifest offers (`NODEVICE_SELECT=1`), once, before it creates
+/// its first instance. A user's own setting of either variable wins.
+pub fn instance() -> wgpu::Instance {
+    static QUIET: std::sync::Once = std::sync::Once::new();
+    QUIET.call_once(|| {
+        if std::env::var_os("XDG_RUNTIME_DIR").is_none() && std::env::var_os("NODEVICE_SELECT").is_none() {
+            // SAFETY: runs once, before the runtime has created any Vulkan
+            // instance (so before any driver thread of ours reads the
+            // environment); std's own environment accesses are locked.
+            unsafe { std::env::set_var("NODEVICE_SELECT", "1") };
+        }
+    });
+    wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env())
+}
+
+/// The adapter wgpu would pick, without opening a device.
+pub fn probe() -> Option<wgpu::AdapterInfo> {
+    let instance = instance();
+    let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
+        power_preference: wgpu::PowerPreference::HighPerformance,
+        ..Default::default()
+    }))
+    .ok()?;
+    Some(adapter.get_info())
+}

@@ -1,0 +1,110 @@
+//! The heap: the records of the launch's program uses (their variables'
+//! values), then the buffers' words, then sampler texels, all addressed by
+//! word offset in the one read-write binding `rt_heap`.
+
+use super::kernel;
+use crate::error::{Result, RtError};
+use crate::link::{self, Record};
+use crate::scene::{ProgramId, Scene};
+use crate::vars::VarValue;
+use rt_std::program::VariableKind;
+
+/// The records of a launch's program uses, laid out before their values
+/// are known: a record's size is fixed by its program's variables.
+#[derive(Clone, Default)]
+pub(crate) struct Records {
+    pub(crate) uses: Vec<(ProgramId, Record)>,
+    pub(crate) words: u32,
+}
+
+impl Records {
+    /// A record for `p` used as `r`; returns its offset in the heap.
+    pub(crate) fn add(&mut self, scene: &Scene, p: ProgramId, r: Record) -> Result<u32> {
+        let at = self.words;
+        let desc = scene.program(p)?.desc;
+        self.words += desc.variables.iter().map(|v| kernel::variable_words(&v.kind, &v.ty)).sum::<u32>();
+        self.uses.push((p, r));
+        Ok(at)
+    }
+}
+
+/// The heap of a launch: the values of `records` (resolved now, so a
+/// changed variable takes effect), then the buffers' words, then sampler
+/// texels. Also returns the `(buffer index, heap offset, words)` of the
+/// buffers programs may write.
+#[allow(clippy::type_complexity)]
+pub(crate) fn encode_heap(scene: &Scene, records: &Records) -> Result<(Vec<u32>, Vec<(usize, usize, usize)>)> {
+    let base = records.words as usize;
+    let mut heap: Vec<u32> = Vec::with_capacity(base);
+    // Data follows the records: buffers, then sampler texels.
+    let mut data: Vec<u32> = Vec::new();
+    let mut buffer_offsets = Vec::with_capacity(scene.buffers.len());
+    let mut outputs = Vec::new();
+    for (i, b) in scene.buffers.iter().enumerate() {
+        let start = data.len();
+        b.storage.to_words(&mut data);
+        buffer_offsets.push(base + start);
+        if b.ty.writable_by_programs() {
+            outputs.push((i, base + start, data.len() - start));
+        }
+    }
+    let mut sampler_offsets = Vec::with_capacity(scene.samplers.len());
+    for s in &scene.samplers {
+        sampler_offsets.push(base + data.len());
+        for t in s.texels.iter() {
+            data.extend(t.to_array().map(f32::to_bits));
+        }
+    }
+    for &(p, r) in &records.uses {
+        let desc = scene.program(p)?.desc;
+        let values = link::resolve_values(scene, p, r)?;
+        for (value, v) in values.into_iter().zip(desc.variables) {
+            match (value, v.kind) {
+                (VarValue::Data { words, .. }, _) => heap.extend(words),
+                (VarValue::Buffer(b), VariableKind::Buffer { .. }) => {
+                    let rec = &scene.buffers[b.index() as usize];
+                    heap.extend([
+                        buffer_offsets[b.index() as usize] as u32,
+                        rec.width * rec.height,
+                        rec.width,
+                        rec.height,
+                    ]);
+                }
+                (VarValue::Sampler(s), _) => {
+                    let rec = &scene.samplers[s.index() as usize];
+                    let wrap = match rec.wrap {
+                        rt_std::WrapMode::Repeat => 0,
+                        rt_std::WrapMode::Clamp => 1,
+                        rt_std::WrapMode::Mirror => 2,
+                    };
+                    let filter = match rec.filter {
+                        rt_std::FilterMode::Nearest => 0,
+                        rt_std::FilterMode::Linear => 1,
+                    };
+                    heap.extend([
+                        sampler_offsets[s.index() as usize] as u32,
+                        rec.width,
+                        rec.height,
+                        wrap | (filter << 8),
+                    ]);
+                }
+                (VarValue::Object(n), _) => heap.push(n.index()),
+                (VarValue::Buffer(_), _) => unreachable!("checked by resolve_values"),
+            }
+        }
+    }
+    // Sizes come from the programs' descriptors; resolved values have the
+    // declared layouts (resolve_values checks), so the records fill exactly
+    // the space laid out for them.
+    if heap.len() != base {
+        return Err(RtError::Gpu(format!(
+            "internal: the records take {} words where {base} were laid out for them",
+            heap.len()
+        )));
+    }
+    heap.extend(data);
+    if heap.is_empty() {
+        heap.push(0);
+    }
+    Ok((heap, outputs))
+}
