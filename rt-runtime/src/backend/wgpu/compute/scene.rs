@@ -136,32 +136,246 @@ pub(crate) fn instance_of(scene: &Scene, node: NodeId) -> Result<Option<(NodeId,
     Err(RtError::GraphCycle { node: node.index() })
 }
 
-/// Encodes launch `l` for a device with `scene_bindings` tables
-/// bindings (see [`kernel::SCENE_SECTIONS`]).
+/// The scene's words as they are encoded: the tables and the BVH nodes
+/// after the geometry part, and the records and programs they point at.
+struct Encoder<'a> {
+    scene: &'a Scene,
+    header: [u32; SCENE_HEADER],
+    tables: Tail,
+    nodes: Tail,
+    records: Records,
+    /// The programs the kernel dispatches to, in first-use order.
+    programs: Vec<KernelProgram>,
+}
+
+/// Where groups' BVHs went ([`Encoder::groups`]).
+struct Groups {
+    /// Per group (node index): its BVH, its leaf table, and whether every
+    /// leaf is an instance.
+    bvh: HashMap<u32, (u32, u32, bool)>,
+    /// The most instances and nodes a leaf of a group's BVH holds.
+    widest_leaf: u32,
+    /// The deepest BVH of a group of instances (`None`: no group).
+    deepest: Option<u32>,
+}
+
+/// An instance: a geometry group, its object-to-world matrix and mask.
+type Instance = (NodeId, Mat4, u32);
+
+impl Encoder<'_> {
+    /// Program `p`'s case in the kernel's dispatch, added to the kernel's
+    /// programs.
+    fn use_program(&mut self, p: ProgramId) -> Result<KernelProgram> {
+        let kp = KernelProgram { case: case(p), desc: self.scene.program(p)?.desc };
+        if !self.programs.iter().any(|q| q.case == kp.case) {
+            self.programs.push(kp);
+        }
+        Ok(kp)
+    }
+
+    /// A record for `p` used as `r`: its offset in the heap.
+    fn record(&mut self, p: ProgramId, r: Record) -> Result<u32> {
+        self.records.add(self.scene, p, r)
+    }
+
+    /// BVHs of groups, and their leaf tables: instances, or other nodes
+    /// with `NODE_BIT`. Raises `deepest_bvh` to theirs.
+    fn groups(&mut self, accels: &AccelCache, instance_of_node: &[Option<u32>], deepest_bvh: &mut u32) -> Groups {
+        let mut groups = Groups { bvh: HashMap::new(), widest_leaf: 1, deepest: None };
+        for (n, rec) in self.scene.nodes.iter().enumerate() {
+            if let (NodeKind::Group { children, .. }, Some(NodeAccel::Children { bvh, .. })) =
+                (&rec.kind, accels.nodes.get(n).and_then(|a| a.as_ref()))
+            {
+                let (at, depth) = push_bvh(&mut self.nodes.words, self.nodes.base, bvh);
+                *deepest_bvh = (*deepest_bvh).max(depth);
+                groups.widest_leaf = bvh.bvh.nodes.iter().map(|n| n.prim_count).fold(groups.widest_leaf, u32::max);
+                groups.deepest = Some(groups.deepest.unwrap_or(1).max(depth));
+                let table = self.tables.at();
+                let mut instances_only = true;
+                for slot in &bvh.bvh.primitive_indices {
+                    let child = children[*slot as usize];
+                    match instance_of_node[child.index() as usize] {
+                        Some(inst) => self.tables.words.push(inst),
+                        None => {
+                            instances_only = false;
+                            self.tables.words.push(child.index() | NODE_BIT);
+                        }
+                    }
+                }
+                groups.bvh.insert(n as u32, (at, table, instances_only));
+            }
+        }
+        groups
+    }
+
+    /// The instance records.
+    fn instances(&mut self, instances: &[Instance], geometry: &GeometryLayout) {
+        self.header[1] = self.tables.at();
+        for (gg, o2w, mask) in instances {
+            let w = geometry.gg_bvh.get(&gg.index()).copied().unwrap_or(GroupWords { bvh: 0, table: 0, tri_slots: 0 });
+            let record = InstanceRecord {
+                object_to_world: o2w.to_cols_array(),
+                world_to_object: o2w.inverse().to_cols_array(),
+                bvh: w.bvh,
+                primitives: w.table,
+                mask: *mask,
+                geometry_group: gg.index(),
+                triangles: w.tri_slots,
+            };
+            self.tables.words.extend(record.words());
+        }
+    }
+
+    /// The node table (after the side data of transforms and selectors);
+    /// returns how many transform levels the graph traversal keeps (0: the
+    /// scene needs no graph traversal).
+    fn node_table(&mut self, instance_of_node: &[Option<u32>], instances: &[Instance], groups: &Groups) -> Result<u32> {
+        let scene = self.scene;
+        let mut node_entries: Vec<[u32; 4]> = vec![[0; 4]; scene.nodes.len()];
+        // How deep transforms above groups and selectors nest (in post
+        // order: children before parents).
+        let mut levels: Vec<u32> = vec![0; scene.nodes.len()];
+        let mut graph = false;
+        for n in link::nodes_post_order(scene)? {
+            let i = n.index() as usize;
+            let rec = &scene.nodes[i];
+            if let Some(inst) = instance_of_node[i] {
+                node_entries[i] = [NodeEntry::Instance as u32, inst, 0, instances[inst as usize].2];
+                continue;
+            }
+            let mask = rec.visibility_mask as u32;
+            match &rec.kind {
+                NodeKind::Group { children, .. } => {
+                    let (bvh, table, instances_only) = groups.bvh[&n.index()];
+                    let kind = if instances_only { NodeEntry::InstanceGroup } else { NodeEntry::Group };
+                    node_entries[i] = [kind as u32, bvh, table, mask];
+                    levels[i] = children.iter().map(|c| levels[c.index() as usize]).max().unwrap_or(0);
+                    graph |= !instances_only;
+                }
+                NodeKind::Transform { .. } => {
+                    // A chain of transforms down to a group or selector.
+                    let (mut m, mut mask, mut below) = (Mat4::IDENTITY, 0xffu32, n);
+                    while let NodeKind::Transform { matrix, child, .. } = &scene.nodes[below.index() as usize].kind {
+                        m *= *matrix;
+                        mask &= scene.nodes[below.index() as usize].visibility_mask as u32;
+                        below = *child;
+                    }
+                    let at = self.tables.at();
+                    push_mat(&mut self.tables.words, m);
+                    push_mat(&mut self.tables.words, m.inverse());
+                    node_entries[i] = [NodeEntry::Transform as u32, at, below.index(), mask];
+                    levels[i] = 1 + levels[below.index() as usize];
+                    graph = true;
+                }
+                NodeKind::Selector { visit, children } => {
+                    let kp = self.use_program(*visit)?;
+                    let vars = self.record(*visit, Record { node: Some(n), ..Record::default() })?;
+                    let at = self.tables.at();
+                    self.tables.words.extend([kp.case, vars, children.len() as u32]);
+                    self.tables.words.extend(children.iter().map(|c| c.index()));
+                    node_entries[i] = [NodeEntry::Selector as u32, at, 0, mask];
+                    levels[i] = children.iter().map(|c| levels[c.index() as usize]).max().unwrap_or(0);
+                    graph = true;
+                }
+                NodeKind::GeometryGroup { .. } => unreachable!("a geometry group is an instance"),
+            }
+        }
+        self.header[0] = self.tables.at();
+        self.tables.words.extend(node_entries.into_iter().flatten());
+        Ok(if graph { 1 + levels.iter().copied().max().unwrap_or(0) } else { 0 })
+    }
+
+    /// Geometry instances, their hit records and intersection records, then
+    /// the miss records.
+    fn geometry_instances(&mut self, geometry: &GeometryLayout) -> Result<()> {
+        let scene = self.scene;
+        let gi_table = self.tables.words.len();
+        self.header[2] = self.tables.at();
+        self.tables.words.resize(gi_table + scene.instances.len() * 8, 0);
+        let mut isect = Vec::with_capacity(scene.instances.len() * 2);
+        for (i, gi) in scene.instances.iter().enumerate() {
+            let instance = Some(crate::handles::GeometryInstanceId(i as u32));
+            let hit_base = self.tables.at();
+            for m in &gi.materials {
+                let mat = &scene.materials[m.index() as usize];
+                let r = Record { instance, material: Some(*m), ..Record::default() };
+                for (ch, ah) in mat.closest_hit.iter().zip(&mat.any_hit) {
+                    let mut words = [0u32; 4];
+                    if let Some(p) = ch {
+                        words[0] = self.use_program(*p)?.case;
+                        words[1] = self.record(*p, r)?;
+                    }
+                    if let Some(p) = ah {
+                        words[2] = self.use_program(*p)?.case;
+                        words[3] = self.record(*p, r)?;
+                    }
+                    self.tables.words.extend(words);
+                }
+            }
+            let [kind, pos, idx, nrm, uv, mi] = geometry.geometry_words[gi.geometry.index() as usize];
+            let entry = [kind, pos, idx, nrm, uv, mi, gi.materials.len() as u32, hit_base];
+            self.tables.words[gi_table + i * 8..gi_table + i * 8 + 8].copy_from_slice(&entry);
+            match scene.geometries[gi.geometry.index() as usize].kind {
+                GeometryKind::Custom { intersection, .. } => {
+                    let kp = self.use_program(intersection)?;
+                    let r = Record { instance, geometry: Some(gi.geometry), ..Record::default() };
+                    let vars = self.record(intersection, r)?;
+                    isect.extend([kp.case, vars]);
+                }
+                GeometryKind::Triangles(_) => isect.extend([0, 0]),
+            }
+        }
+        self.header[3] = 0;
+        self.header[4] = scene.ray_type_count();
+        self.header[5] = self.tables.at();
+        for (r, m) in scene.miss.iter().enumerate() {
+            let p = m.ok_or(RtError::NoMissProgram { ray_type: r as u32 })?;
+            let kp = self.use_program(p)?;
+            let vars = self.record(p, Record::default())?;
+            self.tables.words.extend([kp.case, vars]);
+        }
+        self.header[6] = self.tables.at();
+        self.tables.words.extend(isect);
+        self.header[7] = scene.nodes.len() as u32;
+        Ok(())
+    }
+}
+
+/// Program `p`'s case in the kernel's dispatch (0 is none).
+fn case(p: ProgramId) -> u32 {
+    p.index() + 1
+}
+
+/// Instances: one per geometry group and per transform chain; and each
+/// node's instance, if it is one.
+fn instances(scene: &Scene) -> Result<(Vec<Option<u32>>, Vec<Instance>)> {
+    let mut instance_of_node: Vec<Option<u32>> = vec![None; scene.nodes.len()];
+    let mut instances: Vec<Instance> = Vec::new();
+    for (n, slot) in instance_of_node.iter_mut().enumerate() {
+        if let Some(inst) = instance_of(scene, NodeId(n as u32))? {
+            *slot = Some(instances.len() as u32);
+            instances.push(inst);
+        }
+    }
+    Ok((instance_of_node, instances))
+}
+
+/// Encodes launch `l` for a device with `scene_bindings` scene bindings
+/// (see [`kernel::SCENE_SECTIONS`]), around `held_geometry` when the device
+/// keeps it.
 pub(crate) fn encode(l: &Launch, scene_bindings: usize, held_geometry: Option<&GeometryLayout>) -> Result<Encoded> {
     let (scene, entry) = (l.scene, l.entry);
     let count = scene.entry_points.len() as u32;
     let ep = scene.entry_points.get(entry as usize).ok_or(RtError::NoSuchEntryPoint { entry, count })?;
     let rg = ep.ray_generation.ok_or(RtError::NoRayGeneration { entry })?;
     link::check_types(scene)?;
-    let ray_types = scene.ray_type_count();
     let mut records = Records::default();
-    let record = |p: ProgramId, r: Record, records: &mut Records| records.add(scene, p, r);
-    let case = |p: ProgramId| p.index() + 1;
-    let mut programs: Vec<KernelProgram> = Vec::new();
-    let use_program = |p: ProgramId, programs: &mut Vec<KernelProgram>| -> Result<KernelProgram> {
-        let kp = KernelProgram { case: case(p), desc: scene.program(p)?.desc };
-        if !programs.iter().any(|q| q.case == kp.case) {
-            programs.push(kp);
-        }
-        Ok(kp)
-    };
-    let rg_vars = record(rg, Record::default(), &mut records)?;
+    let rg_vars = records.add(scene, rg, Record::default())?;
     let rg_prog = KernelProgram { case: case(rg), desc: scene.program(rg)?.desc };
     let (ex_prog, ex_vars) = match ep.exception {
         Some(e) => (
             Some(KernelProgram { case: case(e), desc: scene.program(e)?.desc }),
-            record(e, Record::default(), &mut records)?,
+            records.add(scene, e, Record::default())?,
         ),
         None => (None, 0),
     };
@@ -177,179 +391,53 @@ pub(crate) fn encode(l: &Launch, scene_bindings: usize, held_geometry: Option<&G
         }
     };
     let mut deepest_bvh = geometry.deepest_bvh;
-    let mut header = [0u32; SCENE_HEADER];
-    let mut tables = Tail::new(geometry.ends[0]);
-    let mut nodes = Tail::new(geometry.ends[1]);
-    let accels: &[Option<NodeAccel>] = &l.accels.nodes;
-    // Instances: one per geometry group and per transform chain.
-    let mut instance_of_node: Vec<Option<u32>> = vec![None; scene.nodes.len()];
-    let mut instances: Vec<(NodeId, Mat4, u32)> = Vec::new();
-    for (n, slot) in instance_of_node.iter_mut().enumerate() {
-        if let Some(inst) = instance_of(scene, NodeId(n as u32))? {
-            *slot = Some(instances.len() as u32);
-            instances.push(inst);
-        }
-    }
-    // BVHs of groups, and their leaf tables: instances, or other nodes with
-    // NODE_BIT.
-    // The most instances and nodes a leaf of a group's BVH holds.
-    let mut widest_group_leaf = 1;
-    // The deepest BVH of a group of instances (`None`: no group).
-    let mut deepest_group: Option<u32> = None;
-    let mut group_bvh: HashMap<u32, (u32, u32, bool)> = HashMap::new();
-    for (n, rec) in scene.nodes.iter().enumerate() {
-        if let (NodeKind::Group { children, .. }, Some(NodeAccel::Children { bvh, .. })) =
-            (&rec.kind, accels.get(n).and_then(|a| a.as_ref()))
-        {
-            let (at, depth) = push_bvh(&mut nodes.words, nodes.base, bvh);
-            deepest_bvh = deepest_bvh.max(depth);
-            widest_group_leaf = bvh.bvh.nodes.iter().map(|n| n.prim_count).fold(widest_group_leaf, u32::max);
-            deepest_group = Some(deepest_group.unwrap_or(1).max(depth));
-            let table = tables.at();
-            let mut instances_only = true;
-            for slot in &bvh.bvh.primitive_indices {
-                let child = children[*slot as usize];
-                match instance_of_node[child.index() as usize] {
-                    Some(inst) => tables.words.push(inst),
-                    None => {
-                        instances_only = false;
-                        tables.words.push(child.index() | NODE_BIT);
-                    }
-                }
-            }
-            group_bvh.insert(n as u32, (at, table, instances_only));
-        }
-    }
-    header[1] = tables.at();
-    for (gg, o2w, mask) in &instances {
-        let w = geometry.gg_bvh.get(&gg.index()).copied().unwrap_or(GroupWords { bvh: 0, table: 0, tri_slots: 0 });
-        let record = InstanceRecord {
-            object_to_world: o2w.to_cols_array(),
-            world_to_object: o2w.inverse().to_cols_array(),
-            bvh: w.bvh,
-            primitives: w.table,
-            mask: *mask,
-            geometry_group: gg.index(),
-            triangles: w.tri_slots,
-        };
-        tables.words.extend(record.words());
-    }
-    // The node table (after the side data of transforms and selectors), and
-    // how deep transforms above groups and selectors nest (in post order:
-    // children before parents).
-    let mut node_entries: Vec<[u32; 4]> = vec![[0; 4]; scene.nodes.len()];
-    let mut levels: Vec<u32> = vec![0; scene.nodes.len()];
-    let mut graph = false;
-    for n in link::nodes_post_order(scene)? {
-        let i = n.index() as usize;
-        let rec = &scene.nodes[i];
-        if let Some(inst) = instance_of_node[i] {
-            node_entries[i] = [NodeEntry::Instance as u32, inst, 0, instances[inst as usize].2];
-            continue;
-        }
-        let mask = rec.visibility_mask as u32;
-        match &rec.kind {
-            NodeKind::Group { children, .. } => {
-                let (bvh, table, instances_only) = group_bvh[&n.index()];
-                let kind = if instances_only { NodeEntry::InstanceGroup } else { NodeEntry::Group };
-                node_entries[i] = [kind as u32, bvh, table, mask];
-                levels[i] = children.iter().map(|c| levels[c.index() as usize]).max().unwrap_or(0);
-                graph |= !instances_only;
-            }
-            NodeKind::Transform { .. } => {
-                // A chain of transforms down to a group or selector.
-                let (mut m, mut mask, mut below) = (Mat4::IDENTITY, 0xffu32, n);
-                while let NodeKind::Transform { matrix, child, .. } = &scene.nodes[below.index() as usize].kind {
-                    m *= *matrix;
-                    mask &= scene.nodes[below.index() as usize].visibility_mask as u32;
-                    below = *child;
-                }
-                let at = tables.at();
-                push_mat(&mut tables.words, m);
-                push_mat(&mut tables.words, m.inverse());
-                node_entries[i] = [NodeEntry::Transform as u32, at, below.index(), mask];
-                levels[i] = 1 + levels[below.index() as usize];
-                graph = true;
-            }
-            NodeKind::Selector { visit, children } => {
-                let kp = use_program(*visit, &mut programs)?;
-                let vars = record(*visit, Record { node: Some(n), ..Record::default() }, &mut records)?;
-                let at = tables.at();
-                tables.words.extend([kp.case, vars, children.len() as u32]);
-                tables.words.extend(children.iter().map(|c| c.index()));
-                node_entries[i] = [NodeEntry::Selector as u32, at, 0, mask];
-                levels[i] = children.iter().map(|c| levels[c.index() as usize]).max().unwrap_or(0);
-                graph = true;
-            }
-            NodeKind::GeometryGroup { .. } => unreachable!("a geometry group is an instance"),
-        }
-    }
-    let graph_levels = if graph { 1 + levels.iter().copied().max().unwrap_or(0) } else { 0 };
-    header[0] = tables.at();
-    tables.words.extend(node_entries.into_iter().flatten());
-    // Geometry instances, their hit records and intersection records.
-    let gi_table = tables.words.len();
-    header[2] = tables.at();
-    tables.words.resize(gi_table + scene.instances.len() * 8, 0);
-    let mut isect = Vec::with_capacity(scene.instances.len() * 2);
-    for (i, gi) in scene.instances.iter().enumerate() {
-        let instance = Some(crate::handles::GeometryInstanceId(i as u32));
-        let hit_base = tables.at();
-        for m in &gi.materials {
-            let mat = &scene.materials[m.index() as usize];
-            let r = Record { instance, material: Some(*m), ..Record::default() };
-            for (ch, ah) in mat.closest_hit.iter().zip(&mat.any_hit) {
-                let mut words = [0u32; 4];
-                if let Some(p) = ch {
-                    let kp = use_program(*p, &mut programs)?;
-                    words[0] = kp.case;
-                    words[1] = record(*p, r, &mut records)?;
-                }
-                if let Some(p) = ah {
-                    let kp = use_program(*p, &mut programs)?;
-                    words[2] = kp.case;
-                    words[3] = record(*p, r, &mut records)?;
-                }
-                tables.words.extend(words);
-            }
-        }
-        let [kind, pos, idx, nrm, uv, mi] = geometry.geometry_words[gi.geometry.index() as usize];
-        tables.words[gi_table + i * 8..gi_table + i * 8 + 8].copy_from_slice(&[
-            kind,
-            pos,
-            idx,
-            nrm,
-            uv,
-            mi,
-            gi.materials.len() as u32,
-            hit_base,
-        ]);
-        match scene.geometries[gi.geometry.index() as usize].kind {
-            GeometryKind::Custom { intersection, .. } => {
-                let kp = use_program(intersection, &mut programs)?;
-                let vars = record(
-                    intersection,
-                    Record { instance, geometry: Some(gi.geometry), ..Record::default() },
-                    &mut records,
-                )?;
-                isect.extend([kp.case, vars]);
-            }
-            GeometryKind::Triangles(_) => isect.extend([0, 0]),
-        }
-    }
-    header[3] = 0;
-    header[4] = ray_types;
-    header[5] = tables.at();
-    for (r, m) in scene.miss.iter().enumerate() {
-        let p = m.ok_or(RtError::NoMissProgram { ray_type: r as u32 })?;
-        let kp = use_program(p, &mut programs)?;
-        let vars = record(p, Record::default(), &mut records)?;
-        tables.words.extend([kp.case, vars]);
-    }
-    header[6] = tables.at();
-    tables.words.extend(isect);
-    header[7] = scene.nodes.len() as u32;
+    let mut e = Encoder {
+        scene,
+        header: [0u32; SCENE_HEADER],
+        tables: Tail::new(geometry.ends[0]),
+        nodes: Tail::new(geometry.ends[1]),
+        records,
+        programs: Vec::new(),
+    };
+    let (instance_of_node, instances) = instances(scene)?;
+    let groups = e.groups(l.accels, &instance_of_node, &mut deepest_bvh);
+    e.instances(&instances, &geometry);
+    let graph_levels = e.node_table(&instance_of_node, &instances, &groups)?;
+    e.geometry_instances(&geometry)?;
+    let Encoder { header, tables, nodes, records, programs, .. } = e;
+    let shape = Shape { deepest_bvh, groups: &groups, graph_levels, geometry: &geometry, scene_bindings };
+    let spec = kernel_spec(l, rg_prog, ex_prog, programs, shape)?;
+    Ok(Encoded {
+        header,
+        tails: [tables.words, nodes.words, Vec::new()],
+        geometry,
+        geometry_words,
+        spec,
+        rg_vars,
+        ex_vars,
+        records,
+    })
+}
 
+/// What sizes the kernel's stacks: the scene's shape.
+struct Shape<'a> {
+    deepest_bvh: u32,
+    groups: &'a Groups,
+    graph_levels: u32,
+    geometry: &'a GeometryLayout,
+    scene_bindings: usize,
+}
+
+/// The kernel for the encoded scene: its programs, the default exception
+/// program's output, stacks sized for the scene's shape.
+fn kernel_spec(
+    l: &Launch,
+    rg_prog: KernelProgram,
+    ex_prog: Option<KernelProgram>,
+    programs: Vec<KernelProgram>,
+    shape: Shape,
+) -> Result<KernelSpec> {
+    let Shape { deepest_bvh, groups, graph_levels, geometry, scene_bindings } = shape;
     // The default exception program's image: its offset in the record.
     let default_exception = match ex_prog {
         Some(_) => None,
@@ -361,8 +449,8 @@ pub(crate) fn encode(l: &Launch, scene_bindings: usize, held_geometry: Option<&G
     // at most one pending entry per level; graph traversal, one BVH's worth
     // per transform level. Powers of two, so small changes do not relink.
     let bvh_stack = (deepest_bvh + 2).max(64).next_power_of_two();
-    let tlas_stack = match deepest_group {
-        Some(depth) => (depth + 2 + widest_group_leaf).max(64).next_power_of_two(),
+    let tlas_stack = match groups.deepest {
+        Some(depth) => (depth + 2 + groups.widest_leaf).max(64).next_power_of_two(),
         None => 0,
     };
     let graph_stack = ((deepest_bvh + 2) * (graph_levels + 1)).max(96).next_power_of_two();
@@ -370,11 +458,11 @@ pub(crate) fn encode(l: &Launch, scene_bindings: usize, held_geometry: Option<&G
         !programs.iter().any(|p| matches!(p.desc.kind, ProgramKind::AnyHit | ProgramKind::Intersection));
     if triangles_only != geometry.key.triangles_only {
         return Err(RtError::Gpu(format!(
-            "internal: the kernel's programs say triangles only: {triangles_only}, the tables's: {}",
+            "internal: the kernel's programs say triangles only: {triangles_only}, the scene's: {}",
             geometry.key.triangles_only
         )));
     }
-    let spec = KernelSpec {
+    Ok(KernelSpec {
         triangles_only,
         bvh_stack,
         tlas_stack,
@@ -387,16 +475,6 @@ pub(crate) fn encode(l: &Launch, scene_bindings: usize, held_geometry: Option<&G
         default_exception,
         scene_bindings,
         cwbvh_stack: if geometry.cwbvh { (geometry.deepest_cwbvh + 2).max(32).next_power_of_two() } else { 0 },
-    };
-    Ok(Encoded {
-        header,
-        tails: [tables.words, nodes.words, Vec::new()],
-        geometry,
-        geometry_words,
-        spec,
-        rg_vars,
-        ex_vars,
-        records,
     })
 }
 
