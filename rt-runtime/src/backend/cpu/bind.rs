@@ -1,0 +1,213 @@
+//! Every program use of a launch resolved ([`link_all`]: variables by
+//! scope, per instance, material and ray type) and bound to its program's
+//! parameter types ([`Linked::bind`]), once per launch; attribute types
+//! resolved with them.
+
+use super::super::Settings;
+use crate::accel::cache::NodeAccel;
+use crate::error::{Result, RtError};
+use crate::link::{self, Call, Record};
+use crate::scene::{GeometryKind, NodeId, NodeKind, Scene, TriangleMesh};
+use glam::UVec2;
+use rt_std::cpu::BoundVariables;
+use rt_std::program::{AttributesFromWords, ProgramDescriptor, TypeLayout};
+use std::any::{Any, TypeId};
+
+/// Closest hit and any hit of one (instance, material, ray type).
+pub(crate) type HitPrograms<P> = (Option<P>, Option<P>);
+
+/// Every program use of a launch, resolved: `P` is [`Call`] (variables
+/// owned) after linking, [`Program`] (variables bound) while running.
+pub(crate) struct Linked<'a, P> {
+    pub(crate) scene: &'a Scene,
+    pub(crate) settings: &'a Settings,
+    pub(crate) accels: &'a [Option<NodeAccel>],
+    pub(crate) ray_generation: P,
+    pub(crate) exception: Option<P>,
+    pub(crate) miss: Vec<P>,
+    /// `[instance][material slot][ray type]` → (closest hit, any hit).
+    pub(crate) hits: Vec<Vec<Vec<HitPrograms<P>>>>,
+    /// `[instance][ray type]`: whether some material of the instance has an
+    /// any-hit program for the ray type (if not, triangle hits commit
+    /// without building attributes).
+    pub(crate) any_hit: Vec<Vec<bool>>,
+    /// The triangles of each instance (None: custom geometry).
+    pub(crate) meshes: Vec<Option<&'a TriangleMesh>>,
+    /// Intersection program per instance (custom geometry only).
+    pub(crate) intersection: Vec<Option<P>>,
+    /// Visit program per node (selectors only).
+    pub(crate) visit: Vec<Option<P>>,
+    pub(crate) launch_dim: UVec2,
+}
+
+pub(crate) fn link_all<'a>(
+    scene: &'a Scene,
+    settings: &'a Settings,
+    accels: &'a [Option<NodeAccel>],
+    entry: u32,
+    dim: UVec2,
+) -> Result<Linked<'a, Call>> {
+    let count = scene.entry_points.len() as u32;
+    let ep = scene.entry_points.get(entry as usize).ok_or(RtError::NoSuchEntryPoint { entry, count })?;
+    let rg = ep.ray_generation.ok_or(RtError::NoRayGeneration { entry })?;
+    link::check_types(scene)?;
+    let ray_generation = link::resolve(scene, rg, Record::default())?;
+    let exception = ep.exception.map(|p| link::resolve(scene, p, Record::default())).transpose()?;
+    let miss = scene
+        .miss
+        .iter()
+        .enumerate()
+        .map(|(r, m)| {
+            let p = m.ok_or(RtError::NoMissProgram { ray_type: r as u32 })?;
+            link::resolve(scene, p, Record::default())
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let mut hits = Vec::with_capacity(scene.instances.len());
+    let mut any_hit = Vec::with_capacity(scene.instances.len());
+    let mut meshes = Vec::with_capacity(scene.instances.len());
+    let mut intersection = Vec::with_capacity(scene.instances.len());
+    for (i, gi) in scene.instances.iter().enumerate() {
+        let instance = Some(crate::handles::GeometryInstanceId(i as u32));
+        let mut per_material = Vec::new();
+        let mut with_any_hit = vec![false; scene.ray_type_count() as usize];
+        for m in &gi.materials {
+            let mat = &scene.materials[m.index() as usize];
+            let record = Record { instance, material: Some(*m), ..Record::default() };
+            let mut per_ray = Vec::new();
+            for (r, (ch, ah)) in mat.closest_hit.iter().zip(&mat.any_hit).enumerate() {
+                if let Some(flag) = with_any_hit.get_mut(r) {
+                    *flag |= ah.is_some();
+                }
+                per_ray.push((
+                    ch.map(|p| link::resolve(scene, p, record)).transpose()?,
+                    ah.map(|p| link::resolve(scene, p, record)).transpose()?,
+                ));
+            }
+            per_material.push(per_ray);
+        }
+        hits.push(per_material);
+        any_hit.push(with_any_hit);
+        match &scene.geometries[gi.geometry.index() as usize].kind {
+            GeometryKind::Custom { intersection: p, .. } => {
+                meshes.push(None);
+                intersection.push(Some(link::resolve(
+                    scene,
+                    *p,
+                    Record { instance, geometry: Some(gi.geometry), ..Record::default() },
+                )?));
+            }
+            GeometryKind::Triangles(mesh) => {
+                meshes.push(Some(mesh));
+                intersection.push(None);
+            }
+        }
+    }
+    let visit = scene
+        .nodes
+        .iter()
+        .enumerate()
+        .map(|(n, rec)| match rec.kind {
+            NodeKind::Selector { visit, .. } => {
+                link::resolve(scene, visit, Record { node: Some(NodeId(n as u32)), ..Record::default() }).map(Some)
+            }
+            _ => Ok(None),
+        })
+        .collect::<Result<Vec<_>>>()?;
+    Ok(Linked {
+        scene,
+        settings,
+        accels,
+        ray_generation,
+        exception,
+        miss,
+        hits,
+        any_hit,
+        meshes,
+        intersection,
+        visit,
+        launch_dim: dim,
+    })
+}
+
+impl<'a> Linked<'a, Call> {
+    /// The same uses with their variables bound to their programs, for the
+    /// run.
+    pub(crate) fn bind(&self) -> Result<Linked<'_, Program<'_>>> {
+        fn opt(c: &Option<Call>) -> Result<Option<Program<'_>>> {
+            c.as_ref().map(Program::bind).transpose()
+        }
+        Ok(Linked {
+            scene: self.scene,
+            settings: self.settings,
+            accels: self.accels,
+            ray_generation: Program::bind(&self.ray_generation)?,
+            exception: opt(&self.exception)?,
+            miss: self.miss.iter().map(Program::bind).collect::<Result<_>>()?,
+            hits: self
+                .hits
+                .iter()
+                .map(|m| m.iter().map(|r| r.iter().map(|(ch, ah)| Ok((opt(ch)?, opt(ah)?))).collect()).collect())
+                .collect::<Result<_>>()?,
+            any_hit: self.any_hit.clone(),
+            meshes: self.meshes.clone(),
+            intersection: self.intersection.iter().map(opt).collect::<Result<_>>()?,
+            visit: self.visit.iter().map(opt).collect::<Result<_>>()?,
+            launch_dim: self.launch_dim,
+        })
+    }
+}
+
+/// A program use ready to call: its variables bound to its parameter types
+/// (checked once here, read per call without a check), and its attribute
+/// type.
+pub(crate) struct Program<'a> {
+    pub(crate) desc: &'static ProgramDescriptor,
+    pub(crate) call: &'a Call,
+    pub(crate) vars: BoundVariables<'a>,
+    pub(crate) attributes: Option<AttributeType>,
+}
+
+impl<'a> Program<'a> {
+    pub(crate) fn bind(call: &'a Call) -> Result<Self> {
+        let attributes = match (call.desc.attributes, call.desc.cpu_attributes) {
+            (Some(layout), Some(make)) => Some(AttributeType::new(&layout, make)),
+            _ => None,
+        };
+        let refs = link::var_refs(call);
+        let vars = (call.desc.cpu_bind)(&refs[..call.vars.len()]).map_err(|e| link::bind_error(call, e))?;
+        Ok(Program { desc: call.desc, call, vars, attributes })
+    }
+}
+
+/// The attribute type a program takes, resolved once per launch: how to
+/// make a value and how to recognise a reusable one.
+pub(crate) struct AttributeType {
+    pub(crate) id: TypeId,
+    pub(crate) words: usize,
+    pub(crate) make: AttributesFromWords,
+}
+
+/// Attribute structs up to this many words are zeroed on the stack.
+pub(crate) const STACK_WORDS: usize = 64;
+
+impl AttributeType {
+    pub(crate) fn new(layout: &TypeLayout, make: AttributesFromWords) -> Self {
+        let words = layout.words as usize;
+        let id = Any::type_id(make(&vec![0; words]).as_any());
+        AttributeType { id, words, make }
+    }
+
+    /// Runs `f` on zeroed heap words of this type.
+    pub(crate) fn with_zero_words<R>(&self, f: impl FnOnce(&[u32]) -> R) -> R {
+        // In a small buffer when that holds them (the usual attribute
+        // struct: four stores rather than a `memset` call).
+        let small = [0u32; 16];
+        if self.words <= small.len() {
+            f(&small[..self.words])
+        } else if self.words <= STACK_WORDS {
+            f(&[0u32; STACK_WORDS][..self.words])
+        } else {
+            f(&vec![0; self.words])
+        }
+    }
+}

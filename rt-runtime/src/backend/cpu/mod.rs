@@ -1,0 +1,114 @@
+//! The CPU backend: programs run natively as Rust (each descriptor's `cpu`
+//! entry), rays traverse the node graph as built (groups' obvhs BVH2s over
+//! their children, transforms composed on the way down, selectors' visit
+//! programs choosing one child, geometry groups' BVH2s over primitives),
+//! rayon spreads chunks of launch indices over all cores.
+//!
+//! Semantics are OptiX's and the megakernel's: the intersection protocol
+//! (`rt_potential_intersection` accepts `t` in `(tmin, closest)`,
+//! `rt_report_intersection` runs any hit, which may ignore the candidate or
+//! terminate the ray), ray flags and visibility masks, the trace-depth limit
+//! and exceptions. Intrinsics reach this backend through rt-std's
+//! thread-local execution context and the [`Tracer`] it installs.
+//!
+//! Per ray nothing is allocated and nothing is looked up by name: variables
+//! are bound once per launch and program use, their types checked then
+//! ([`rt_std::cpu::BoundVariables`]: a call reads them after one comparison,
+//! not one downcast per variable),
+//! each program call's context is built in place and installed by pointer
+//! ([`rt_std::cpu::in_context`]), the tracer is installed once per chunk of
+//! launch indices, and attribute values are reused from a per-thread pool.
+//! Triangle hits of instances without any-hit programs commit just the
+//! distance and barycentrics; the attributes are computed once, for the
+//! closest hit.
+//!
+//! Files: [`bind`] resolves and binds every program use of a launch,
+//! [`lane`] runs launch indices and traces rays, [`triangle`] holds the
+//! watertight triangle test; this file is the backend and its run.
+
+mod bind;
+mod lane;
+mod triangle;
+
+use super::{Launch, LaunchBackend, LaunchReport};
+use crate::accel::bvh::TreeForm;
+use crate::accel::cache::Trees;
+use crate::buffer::BufferRec;
+use crate::error::Result;
+use crate::scene::Scene;
+use bind::link_all;
+use glam::UVec2;
+use lane::Lane;
+use rayon::prelude::*;
+
+/// The CPU backend: it keeps nothing between launches.
+#[derive(Default)]
+pub(crate) struct CpuBackend;
+
+impl LaunchBackend for CpuBackend {
+    fn kind(&self) -> super::Backend {
+        super::Backend::Cpu
+    }
+
+    fn prepare(&mut self) -> Result<()> {
+        Ok(())
+    }
+
+    /// Groups' BVH2s as the wide form's; every geometry group's CWBVH with
+    /// its triangles in slot order.
+    fn trees(&self, _: &Scene) -> Trees {
+        Trees { groups: TreeForm::Wide, cwbvh: true, slot_triangles: true }
+    }
+
+    fn launch(&mut self, launch: &Launch) -> Result<LaunchReport> {
+        run(launch)
+    }
+
+    /// Programs wrote the host's buffers themselves.
+    fn read_back_outputs(&mut self, _: &mut [BufferRec]) {}
+
+    fn stats(&self) -> super::BackendStats<'_> {
+        super::BackendStats::default()
+    }
+}
+
+/// Runs a launch over its launch indices.
+fn run(launch: &Launch) -> Result<LaunchReport> {
+    let &Launch { scene, settings, accels, entry, width, height } = launch;
+    let t1 = std::time::Instant::now();
+    let calls = link_all(scene, settings, &accels.nodes, entry, UVec2::new(width, height))?;
+    let linked = calls.bind()?;
+    let t2 = std::time::Instant::now();
+    // Chunks of launch indices in row-major order (not rows: a 1D launch
+    // spreads over all cores too); reports are merged in index order.
+    let total = width as u64 * height as u64;
+    let chunk = (total / (rayon::current_num_threads() as u64 * 8)).clamp(64, 16384);
+    let chunks: Vec<LaunchReport> = (0..total.div_ceil(chunk))
+        .into_par_iter()
+        .map(|c| {
+            let mut report = LaunchReport::default();
+            let lane = Lane::new(&linked);
+            rt_std::cpu::serving(&lane, || {
+                for i in c * chunk..((c + 1) * chunk).min(total) {
+                    let index = UVec2::new((i % width as u64) as u32, (i / width as u64) as u32);
+                    lane.run_index(index, &mut report);
+                }
+            });
+            report
+        })
+        .collect();
+    let mut report = LaunchReport::default();
+    for r in chunks {
+        report.exceptions.extend(r.exceptions);
+        report.prints.extend(r.prints);
+        report.rays += r.rays;
+    }
+    report.timings = super::Timings {
+        build: Default::default(),
+        encode: t2 - t1,
+        link: Default::default(),
+        run: t2.elapsed(),
+        kernel: None,
+    };
+    Ok(report)
+}
