@@ -271,29 +271,7 @@ pub fn generate(spec: &KernelSpec) -> Result<Generated> {
     all.extend(spec.programs.iter().copied());
 
     // Types and shared functions, deduplicated by name.
-    let mut types: BTreeMap<&str, (&str, &ProgramDescriptor)> = BTreeMap::new();
-    let mut functions: BTreeMap<&str, (&str, &ProgramDescriptor)> = BTreeMap::new();
-    for p in &all {
-        for (table, items) in [(&mut types, p.desc.wgsl_types), (&mut functions, p.desc.wgsl_functions)] {
-            for item in items {
-                match table.get(item.name) {
-                    Some((text, other)) if *text != item.text => {
-                        return Err(RtError::LinkConflict {
-                            item: item.name.to_string(),
-                            a: other.name,
-                            a_location: other.location(),
-                            b: p.desc.name,
-                            b_location: p.desc.location(),
-                        });
-                    }
-                    Some(_) => {}
-                    None => {
-                        table.insert(item.name, (item.text, p.desc));
-                    }
-                }
-            }
-        }
-    }
+    let (types, functions) = linked_items(&all)?;
     let tracing_helpers: BTreeSet<String> =
         functions.iter().filter(|(_, (t, _))| t.contains("rt_trace_")).map(|(n, _)| n.to_string()).collect();
 
@@ -366,27 +344,7 @@ pub fn generate(spec: &KernelSpec) -> Result<Generated> {
         }
     }
 
-    // Per-payload and per-attribute state.
-    out.push_str("\n// ---- payload and attribute state ----\n");
-    for w in payloads.keys() {
-        out.push_str(&format!("var<private> rt_prd_{w}: {w};\n"));
-    }
-    for (w, layout) in &attributes {
-        out.push_str(&format!("var<private> rt_c_attr_{w}: {w};\nvar<private> rt_h_attr_{w}: {w};\n"));
-        out.push_str(&triangle_attributes(w, layout));
-        out.push_str(&format!(
-            "fn rt_report_intersection_{w}(material: u32, attr: ptr<function, {w}>) -> bool {{\n    if !rt_c_ok {{ return false; }}\n    rt_c_attr_{w} = *attr;\n    rt_c_custom = true;\n    return rt_report(material);\n}}\n"
-        ));
-        out.push_str(&format!(
-            "fn rt_cand_attr_{w}() -> {w} {{\n    if rt_c_custom {{ return rt_c_attr_{w}; }}\n    return rt_tri_attr_{w}(rt_s_gi, rt_c_prim, rt_c_bary);\n}}\nfn rt_hit_attr_{w}() -> {w} {{\n    if rt_h_custom {{ return rt_h_attr_{w}; }}\n    return rt_tri_attr_{w}(rt_h_gi, rt_h_prim, rt_h_bary);\n}}\n"
-        ));
-    }
-    out.push_str("fn rt_commit_attributes() {\n");
-    for w in attributes.keys() {
-        out.push_str(&format!("    rt_h_attr_{w} = rt_c_attr_{w};\n"));
-    }
-    out.push_str("}\n");
-    out.push_str("fn rt_report_intersection(material: u32) -> bool {\n    if !rt_c_ok { return false; }\n    rt_c_custom = true;\n    return rt_report(material);\n}\n");
+    out.push_str(&payload_and_attribute_state(&payloads, &attributes));
 
     let payload_ids: BTreeMap<&str, u32> = payloads.keys().enumerate().map(|(i, w)| (*w, i as u32)).collect();
     out.push_str("\n// ---- dispatch ----\n");
@@ -418,7 +376,78 @@ pub fn generate(spec: &KernelSpec) -> Result<Generated> {
         )
     };
 
-    // The entry point.
+    out.push_str(&entry_point(spec, &run_ray_generation));
+    Ok(Generated { wgsl: out, warning })
+}
+
+/// The WGSL types and shared functions of `all`, deduplicated by name; two
+/// programs with different items of one name are a link conflict.
+#[allow(clippy::type_complexity)]
+fn linked_items(
+    all: &[KernelProgram],
+) -> Result<(
+    BTreeMap<&'static str, (&'static str, &'static ProgramDescriptor)>,
+    BTreeMap<&'static str, (&'static str, &'static ProgramDescriptor)>,
+)> {
+    let mut types: BTreeMap<&str, (&str, &ProgramDescriptor)> = BTreeMap::new();
+    let mut functions: BTreeMap<&str, (&str, &ProgramDescriptor)> = BTreeMap::new();
+    for p in all {
+        for (table, items) in [(&mut types, p.desc.wgsl_types), (&mut functions, p.desc.wgsl_functions)] {
+            for item in items {
+                match table.get(item.name) {
+                    Some((text, other)) if *text != item.text => {
+                        return Err(RtError::LinkConflict {
+                            item: item.name.to_string(),
+                            a: other.name,
+                            a_location: other.location(),
+                            b: p.desc.name,
+                            b_location: p.desc.location(),
+                        });
+                    }
+                    Some(_) => {}
+                    None => {
+                        table.insert(item.name, (item.text, p.desc));
+                    }
+                }
+            }
+        }
+    }
+    Ok((types, functions))
+}
+
+/// Per-payload and per-attribute state, and the functions that report,
+/// read and commit attributes.
+fn payload_and_attribute_state(
+    payloads: &BTreeMap<&str, TypeLayout>,
+    attributes: &BTreeMap<&str, TypeLayout>,
+) -> String {
+    let mut out = String::new();
+    out.push_str("\n// ---- payload and attribute state ----\n");
+    for w in payloads.keys() {
+        out.push_str(&format!("var<private> rt_prd_{w}: {w};\n"));
+    }
+    for (w, layout) in attributes {
+        out.push_str(&format!("var<private> rt_c_attr_{w}: {w};\nvar<private> rt_h_attr_{w}: {w};\n"));
+        out.push_str(&triangle_attributes(w, layout));
+        out.push_str(&format!(
+            "fn rt_report_intersection_{w}(material: u32, attr: ptr<function, {w}>) -> bool {{\n    if !rt_c_ok {{ return false; }}\n    rt_c_attr_{w} = *attr;\n    rt_c_custom = true;\n    return rt_report(material);\n}}\n"
+        ));
+        out.push_str(&format!(
+            "fn rt_cand_attr_{w}() -> {w} {{\n    if rt_c_custom {{ return rt_c_attr_{w}; }}\n    return rt_tri_attr_{w}(rt_s_gi, rt_c_prim, rt_c_bary);\n}}\nfn rt_hit_attr_{w}() -> {w} {{\n    if rt_h_custom {{ return rt_h_attr_{w}; }}\n    return rt_tri_attr_{w}(rt_h_gi, rt_h_prim, rt_h_bary);\n}}\n"
+        ));
+    }
+    out.push_str("fn rt_commit_attributes() {\n");
+    for w in attributes.keys() {
+        out.push_str(&format!("    rt_h_attr_{w} = rt_c_attr_{w};\n"));
+    }
+    out.push_str("}\n");
+    out.push_str("fn rt_report_intersection(material: u32) -> bool {\n    if !rt_c_ok { return false; }\n    rt_c_custom = true;\n    return rt_report(material);\n}\n");
+    out
+}
+
+/// The kernel's entry point: per launch index, the ray-generation call
+/// `run_ray_generation`, then the exception program after an exception.
+fn entry_point(spec: &KernelSpec, run_ray_generation: &str) -> String {
     let ex_call = match (spec.exception, spec.default_exception) {
         (Some(ex), _) => {
             format!("        {}({});\n", ex.desc.wgsl_entry, var_args(ex.desc, "rt_launch.exception.y").join(", "))
@@ -428,7 +457,7 @@ pub fn generate(spec: &KernelSpec) -> Result<Generated> {
         }
         (None, None) => String::new(),
     };
-    out.push_str(&format!(
+    format!(
         "
 @compute @workgroup_size(8, 8, 1)
 fn rt_main(@builtin(global_invocation_id) gid: vec3<u32>) {{
@@ -450,8 +479,7 @@ fn rt_main(@builtin(global_invocation_id) gid: vec3<u32>) {{
     }}
 }}
 "
-    ));
-    Ok(Generated { wgsl: out, warning })
+    )
 }
 
 /// Programs and the trace loop for kernels whose tracing programs are all
