@@ -145,7 +145,7 @@ impl VisitMut for Rewriter {
 
     fn visit_macro_mut(&mut self, m: &mut syn::Macro) {
         // `rt_printf!("...", args)`: the arguments are expressions.
-        if !m.path.segments.last().is_some_and(|s| s.ident == "rt_printf") {
+        if m.path.segments.last().is_none_or(|s| s.ident != "rt_printf") {
             return;
         }
         let parser = syn::punctuated::Punctuated::<Expr, syn::Token![,]>::parse_terminated;
