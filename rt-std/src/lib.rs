@@ -127,6 +127,7 @@
 
 #![warn(missing_docs)]
 
+pub mod arith;
 pub mod buffer;
 pub mod cpu;
 pub mod data;

@@ -87,6 +87,7 @@ pub fn rt_program(attr: TokenStream, item: TokenStream) -> TokenStream {
     if kind == Kind::Intersection {
         pass_attributes_to_reports(&mut stripped, &params);
     }
+    crate::cpu_semantics::rewrite_fn(&mut stripped);
     let name = &f.sig.ident;
     let vis = &f.vis;
     let thunk = cpu_thunk(kind, &f, &params);
@@ -137,7 +138,9 @@ pub fn rt_function(attr: TokenStream, item: TokenStream) -> TokenStream {
         return with_errors(Error::new(attr.span(), "`#[rt_function]` takes no arguments").into(), item);
     }
     let body = start_chain(quote!(function { #item }), deps::of_fn(&f));
-    quote!(#item #body)
+    let mut cpu = f;
+    crate::cpu_semantics::rewrite_fn(&mut cpu);
+    quote!(#cpu #body)
 }
 
 /// `#[rt_struct]`, `#[rt_payload]`, `#[rt_attributes]`.

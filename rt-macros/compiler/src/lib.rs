@@ -37,6 +37,7 @@
 //!   replaces the prelude and deduplicates shared types and functions by
 //!   name.
 
+pub mod cpu_semantics;
 pub mod deps;
 pub mod error;
 pub mod expand;

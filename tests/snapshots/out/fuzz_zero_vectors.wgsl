@@ -13,7 +13,7 @@ fn rt_bufstore_u32(b: RtBuffer, i: u32, v: u32) {
 }
 
 fn rt_f2u(x: f32) -> u32 {
-    return select(u32(x), u32(4294967295u), x >= f32(4294967296.0));
+    return select(select(u32(x), u32(4294967295u), x >= f32(4294967296.0)), u32(0), (bitcast<u32>(x) & u32(0x7fffffffu)) > u32(0x7f800000u));
 }
 
 fn rt_load_f32(w: u32) -> f32 {

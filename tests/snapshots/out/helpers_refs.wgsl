@@ -19,7 +19,7 @@ fn rt_bufstore2_vec4f(b: RtBuffer, i: vec2<u32>, v: vec4<f32>) {
 }
 
 fn rt_f2u(x: f32) -> u32 {
-    return select(u32(x), u32(4294967295u), x >= f32(4294967296.0));
+    return select(select(u32(x), u32(4294967295u), x >= f32(4294967296.0)), u32(0), (bitcast<u32>(x) & u32(0x7fffffffu)) > u32(0x7f800000u));
 }
 
 fn rt_load_f32(w: u32) -> f32 {

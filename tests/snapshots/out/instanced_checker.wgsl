@@ -19,7 +19,7 @@ fn rt_bufload_vec3f(b: RtBuffer, i: u32) -> vec3<f32> {
 }
 
 fn rt_f2i3(x: vec3<f32>) -> vec3<i32> {
-    return select(vec3<i32>(x), vec3<i32>(2147483647i), x >= vec3<f32>(2147483648.0));
+    return select(select(vec3<i32>(x), vec3<i32>(2147483647i), x >= vec3<f32>(2147483648.0)), vec3<i32>(0), (bitcast<vec3<u32>>(x) & vec3<u32>(0x7fffffffu)) > vec3<u32>(0x7f800000u));
 }
 
 fn rt_load_f32(w: u32) -> f32 {

@@ -18,7 +18,7 @@ struct RampStop {
 }
 
 fn rt_f2u(x: f32) -> u32 {
-    return select(u32(x), u32(4294967295u), x >= f32(4294967296.0));
+    return select(select(u32(x), u32(4294967295u), x >= f32(4294967296.0)), u32(0), (bitcast<u32>(x) & u32(0x7fffffffu)) > u32(0x7f800000u));
 }
 
 fn rt_load_Ramp(w: u32) -> Ramp {

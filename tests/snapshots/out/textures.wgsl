@@ -12,7 +12,7 @@ struct Radiance {
 }
 
 fn rt_f2u2(x: vec2<f32>) -> vec2<u32> {
-    return select(vec2<u32>(x), vec2<u32>(4294967295u), x >= vec2<f32>(4294967296.0));
+    return select(select(vec2<u32>(x), vec2<u32>(4294967295u), x >= vec2<f32>(4294967296.0)), vec2<u32>(0), (bitcast<vec2<u32>>(x) & vec2<u32>(0x7fffffffu)) > vec2<u32>(0x7f800000u));
 }
 
 fn rt_load_f32(w: u32) -> f32 {

@@ -14,15 +14,15 @@ fn rt_bufstore2_vec4f(b: RtBuffer, i: vec2<u32>, v: vec4<f32>) {
 }
 
 fn rt_f2i2(x: vec2<f32>) -> vec2<i32> {
-    return select(vec2<i32>(x), vec2<i32>(2147483647i), x >= vec2<f32>(2147483648.0));
+    return select(select(vec2<i32>(x), vec2<i32>(2147483647i), x >= vec2<f32>(2147483648.0)), vec2<i32>(0), (bitcast<vec2<u32>>(x) & vec2<u32>(0x7fffffffu)) > vec2<u32>(0x7f800000u));
 }
 
 fn rt_f2u2(x: vec2<f32>) -> vec2<u32> {
-    return select(vec2<u32>(x), vec2<u32>(4294967295u), x >= vec2<f32>(4294967296.0));
+    return select(select(vec2<u32>(x), vec2<u32>(4294967295u), x >= vec2<f32>(4294967296.0)), vec2<u32>(0), (bitcast<vec2<u32>>(x) & vec2<u32>(0x7fffffffu)) > vec2<u32>(0x7f800000u));
 }
 
 fn rt_f2u3(x: vec3<f32>) -> vec3<u32> {
-    return select(vec3<u32>(x), vec3<u32>(4294967295u), x >= vec3<f32>(4294967296.0));
+    return select(select(vec3<u32>(x), vec3<u32>(4294967295u), x >= vec3<f32>(4294967296.0)), vec3<u32>(0), (bitcast<vec3<u32>>(x) & vec3<u32>(0x7fffffffu)) > vec3<u32>(0x7f800000u));
 }
 
 fn rt_load_f32(w: u32) -> f32 {

@@ -15,8 +15,10 @@
 //! Programs stay inside what Rust defines in every build and what the
 //! subset supports:
 //!
-//! - integer divisors are built non-zero and never -1 (`(d & 15) + 1`,
-//!   `-((d & 15) + 2)`, `d | 1`, `(d % 7) + 1`, non-zero literals);
+//! - integer divisors are mostly non-zero (`(d & 15) + 1`, `-((d & 15) +
+//!   2)`, `d | 1`, `(d % 7) + 1`, non-zero literals) and a quarter of the
+//!   time `(d & 3) - 1` or `d & 3`, so that division and remainder by zero
+//!   and `MIN / -1` are generated too (`rt_std::arith` defines them);
 //! - float divisors are kept away from zero (`d.abs() + 0.5`, literals);
 //!   arguments of `sqrt`, `ln`, `powf` are made positive, of `exp` clamped,
 //!   of `sin`/`cos` reduced with `% 3.0` (mostly);
@@ -36,6 +38,11 @@
 //! `let`), as a Rust programmer writes them; elsewhere they carry a suffix.
 
 use super::ast::*;
+
+/// `launch_index().x as i32`.
+fn launch_x_i32() -> Expr {
+    Expr::Cast(Box::new(Expr::LaunchX), Scalar::I32)
+}
 
 /// A small deterministic generator (splitmix64).
 #[derive(Clone)]
@@ -1241,7 +1248,12 @@ impl Gen {
         Expr::StructLit(k, vals)
     }
 
-    /// A non-zero divisor of type `t` (never -1 for `i32`).
+    /// A divisor of type `t`: floats kept away from zero; integers mostly
+    /// non-zero, a quarter of them from -1..=2 (zero and `-1` included:
+    /// `rt_std::arith` defines both on every backend). Those mix in the
+    /// launch index: naga rejects a division by a *constant* zero (its
+    /// constant evaluator reports "Division by zero"), which a generated
+    /// expression of literals could be.
     fn divisor(&mut self, t: &Ty, d: u32) -> Expr {
         let d = d.saturating_sub(1).max(1);
         match t {
@@ -1253,8 +1265,13 @@ impl Gen {
                     bin(BinOp::Add, method(x, "abs", vec![]), lit(LitV::F32(0.5), false))
                 }
             }
-            Ty::S(Scalar::I32) => match self.r.below(3) {
+            Ty::S(Scalar::I32) => match self.r.below(4) {
                 0 => lit(LitV::I32(self.r.pick(&[2, 3, -2, 7, -5, 16])), true),
+                3 => {
+                    // -1..=2: zero and -1 as often as not (`rt_std::arith`).
+                    let x = bin(BinOp::BitXor, self.expr(&I32, d, false), launch_x_i32());
+                    bin(BinOp::Sub, bin(BinOp::BitAnd, x, lit(LitV::I32(3), false)), lit(LitV::I32(1), false))
+                }
                 1 => {
                     let x = self.expr(&I32, d, false);
                     bin(BinOp::Add, bin(BinOp::BitAnd, x, lit(LitV::I32(15), false)), lit(LitV::I32(1), false))
@@ -1265,8 +1282,12 @@ impl Gen {
                     Expr::Unary(UnOp::Neg, b(m))
                 }
             },
-            Ty::S(_) => match self.r.below(3) {
+            Ty::S(_) => match self.r.below(4) {
                 0 => lit(LitV::U32(self.r.pick(&[2, 3, 7, 16, 1000])), true),
+                3 => {
+                    let x = bin(BinOp::BitXor, self.expr(&U32, d, false), Expr::LaunchX);
+                    bin(BinOp::BitAnd, x, lit(LitV::U32(3), false))
+                }
                 1 => {
                     let x = self.expr(&U32, d, false);
                     bin(BinOp::BitOr, x, lit(LitV::U32(1), false))
@@ -1282,10 +1303,17 @@ impl Gen {
             }
             Ty::V(n, Scalar::I32) => {
                 let x = self.expr(&Ty::V(*n, Scalar::I32), d, false);
+                if self.r.chance(25) {
+                    let x = bin(BinOp::BitXor, x, launch_x_i32());
+                    return bin(BinOp::Sub, bin(BinOp::BitAnd, x, lit(LitV::I32(3), true)), lit(LitV::I32(1), true));
+                }
                 bin(BinOp::Add, bin(BinOp::BitAnd, x, lit(LitV::I32(15), true)), lit(LitV::I32(1), true))
             }
             Ty::V(n, s) => {
                 let x = self.expr(&Ty::V(*n, *s), d, false);
+                if self.r.chance(25) {
+                    return bin(BinOp::BitAnd, bin(BinOp::BitXor, x, Expr::LaunchX), lit(LitV::U32(3), true));
+                }
                 bin(BinOp::BitOr, x, lit(LitV::U32(1), true))
             }
             _ => unreachable!(),

@@ -494,10 +494,11 @@ fn scalar_bin(op: BinOp, a: &V, b: &V) -> R<V> {
                 Add => V::I(x.wrapping_add(y), u),
                 Sub => V::I(x.wrapping_sub(y), u),
                 Mul => V::I(x.wrapping_mul(y), u),
-                Div | Rem => {
-                    assert!(y != 0 && !(x == i32::MIN && y == -1), "generator bug: i32 {x} {op:?} {y}");
-                    V::I(if op == Div { x / y } else { x % y }, u)
-                }
+                // `rt_std::arith`: `x / 0` is `x`, `x % 0` is 0, `MIN / -1`
+                // wraps.
+                Div | Rem if y == 0 => V::I(if op == Div { x } else { 0 }, u),
+                Div => V::I(x.wrapping_div(y), u),
+                Rem => V::I(x.wrapping_rem(y), u),
                 BitAnd => V::I(x & y, u),
                 BitOr => V::I(x | y, u),
                 BitXor => V::I(x ^ y, u),
@@ -517,10 +518,9 @@ fn scalar_bin(op: BinOp, a: &V, b: &V) -> R<V> {
                 Add => V::U(x.wrapping_add(y), u),
                 Sub => V::U(x.wrapping_sub(y), u),
                 Mul => V::U(x.wrapping_mul(y), u),
-                Div | Rem => {
-                    assert!(y != 0, "generator bug: u32 {x} {op:?} 0");
-                    V::U(if op == Div { x / y } else { x % y }, u)
-                }
+                Div | Rem if y == 0 => V::U(if op == Div { x } else { 0 }, u),
+                Div => V::U(x / y, u),
+                Rem => V::U(x % y, u),
                 BitAnd => V::U(x & y, u),
                 BitOr => V::U(x | y, u),
                 BitXor => V::U(x ^ y, u),

@@ -143,11 +143,13 @@ pub const VEC4_REM: (&str, &str) =
 /// `as_uvecN`): truncate, saturate at the type's limits. WGSL clamps to the
 /// largest *float* below the limit first (`i32(1e20)` is 2147483520,
 /// `u32(1e20)` 4294967040, where Rust gives `i32::MAX` and `u32::MAX`), so
-/// values from 2^31 (2^32) up select the maximum. `(name, text)` for an
+/// values from 2^31 (2^32) up select the maximum. NaN converts to 0, as in
+/// Rust (WGSL leaves it to the driver: lavapipe gives `i32::MIN`), found by
+/// its bits: WGSL lets a compiler assume no NaN, so `x != x` may fold away. `(name, text)` for an
 /// `n`-vector (`n == 1`: scalar) to `i32` (`signed`) or `u32`.
 pub fn float_to_int(n: u8, signed: bool) -> (&'static str, &'static str) {
     macro_rules! f2i {
-        ($name:literal, $from:literal, $to:literal, $max:literal, $limit:literal) => {
+        ($name:literal, $from:literal, $to:literal, $bits:literal, $max:literal, $limit:literal) => {
             (
                 $name,
                 concat!(
@@ -157,7 +159,7 @@ pub fn float_to_int(n: u8, signed: bool) -> (&'static str, &'static str) {
                     $from,
                     ") -> ",
                     $to,
-                    " {\n    return select(",
+                    " {\n    return select(select(",
                     $to,
                     "(x), ",
                     $to,
@@ -167,20 +169,28 @@ pub fn float_to_int(n: u8, signed: bool) -> (&'static str, &'static str) {
                     $from,
                     "(",
                     $limit,
-                    "));\n}\n"
+                    ")), ",
+                    $to,
+                    "(0), (bitcast<",
+                    $bits,
+                    ">(x) & ",
+                    $bits,
+                    "(0x7fffffffu)) > ",
+                    $bits,
+                    "(0x7f800000u));\n}\n"
                 ),
             )
         };
     }
     match (n, signed) {
-        (1, true) => f2i!("rt_f2i", "f32", "i32", "2147483647i", "2147483648.0"),
-        (2, true) => f2i!("rt_f2i2", "vec2<f32>", "vec2<i32>", "2147483647i", "2147483648.0"),
-        (3, true) => f2i!("rt_f2i3", "vec3<f32>", "vec3<i32>", "2147483647i", "2147483648.0"),
-        (_, true) => f2i!("rt_f2i4", "vec4<f32>", "vec4<i32>", "2147483647i", "2147483648.0"),
-        (1, false) => f2i!("rt_f2u", "f32", "u32", "4294967295u", "4294967296.0"),
-        (2, false) => f2i!("rt_f2u2", "vec2<f32>", "vec2<u32>", "4294967295u", "4294967296.0"),
-        (3, false) => f2i!("rt_f2u3", "vec3<f32>", "vec3<u32>", "4294967295u", "4294967296.0"),
-        (_, false) => f2i!("rt_f2u4", "vec4<f32>", "vec4<u32>", "4294967295u", "4294967296.0"),
+        (1, true) => f2i!("rt_f2i", "f32", "i32", "u32", "2147483647i", "2147483648.0"),
+        (2, true) => f2i!("rt_f2i2", "vec2<f32>", "vec2<i32>", "vec2<u32>", "2147483647i", "2147483648.0"),
+        (3, true) => f2i!("rt_f2i3", "vec3<f32>", "vec3<i32>", "vec3<u32>", "2147483647i", "2147483648.0"),
+        (_, true) => f2i!("rt_f2i4", "vec4<f32>", "vec4<i32>", "vec4<u32>", "2147483647i", "2147483648.0"),
+        (1, false) => f2i!("rt_f2u", "f32", "u32", "u32", "4294967295u", "4294967296.0"),
+        (2, false) => f2i!("rt_f2u2", "vec2<f32>", "vec2<u32>", "vec2<u32>", "4294967295u", "4294967296.0"),
+        (3, false) => f2i!("rt_f2u3", "vec3<f32>", "vec3<u32>", "vec3<u32>", "4294967295u", "4294967296.0"),
+        (_, false) => f2i!("rt_f2u4", "vec4<f32>", "vec4<u32>", "vec4<u32>", "4294967295u", "4294967296.0"),
     }
 }
 

@@ -1,0 +1,209 @@
+//! The CPU copy of a program or helper with the GPU's integer semantics.
+//!
+//! rustc panics on integer overflow (debug builds), division by zero and
+//! out-of-range indices; the megakernel defines each (`rt_std::arith`).
+//! The function rustc compiles for the CPU backend is the user's own, with
+//! its operators and indexing rewritten into calls of `rt_std::arith`,
+//! which do what WGSL does. Each call carries the span of the operator it
+//! replaces, so rustc's errors still point at the user's code.
+//!
+//! Rewritten: `+ - * / % << >>` and their compound assignments, unary `-`
+//! (but not of a literal: `-2147483648i32` stays a literal), indexing
+//! (`a[i]` reads through `arith::at`, a written place through
+//! `arith::at_mut`), and the methods whose Rust versions panic where WGSL
+//! answers: `.abs()` (of `i32::MIN`) and `.clamp(lo, hi)` (with `lo > hi`).
+//! Bitwise operators, comparisons and casts already agree and are left as
+//! written, as is everything inside macro invocations and `const` items.
+
+use proc_macro2::Span;
+use syn::spanned::Spanned;
+use syn::visit_mut::{self, VisitMut};
+use syn::{BinOp, Expr, UnOp};
+
+/// Rewrites `f`'s body in place.
+pub fn rewrite_fn(f: &mut syn::ItemFn) {
+    Rewriter.visit_block_mut(&mut f.block);
+    // The rewrite wraps index reads in parentheses and keeps the user's own
+    // around what became call arguments.
+    f.attrs.push(syn::parse_quote!(#[allow(unused_parens)]));
+}
+
+struct Rewriter;
+
+/// The `rt_std::arith` function for a binary operator, and whether it is
+/// the compound-assignment form.
+fn arith_fn(op: &BinOp) -> Option<(&'static str, bool)> {
+    Some(match op {
+        BinOp::Add(_) => ("add", false),
+        BinOp::Sub(_) => ("sub", false),
+        BinOp::Mul(_) => ("mul", false),
+        BinOp::Div(_) => ("div", false),
+        BinOp::Rem(_) => ("rem", false),
+        BinOp::Shl(_) => ("shl", false),
+        BinOp::Shr(_) => ("shr", false),
+        BinOp::AddAssign(_) => ("add_assign", true),
+        BinOp::SubAssign(_) => ("sub_assign", true),
+        BinOp::MulAssign(_) => ("mul_assign", true),
+        BinOp::DivAssign(_) => ("div_assign", true),
+        BinOp::RemAssign(_) => ("rem_assign", true),
+        BinOp::ShlAssign(_) => ("shl_assign", true),
+        BinOp::ShrAssign(_) => ("shr_assign", true),
+        _ => return None,
+    })
+}
+
+fn is_assign(op: &BinOp) -> bool {
+    matches!(op, BinOp::BitAndAssign(_) | BinOp::BitOrAssign(_) | BinOp::BitXorAssign(_))
+}
+
+fn path(name: &str, span: Span) -> syn::Path {
+    let ident = syn::Ident::new(name, span);
+    syn::parse_quote_spanned!(span=> ::rt_std::arith::#ident)
+}
+
+impl Rewriter {
+    /// `e` in a place that is written or borrowed mutably.
+    fn place(&mut self, e: &mut Expr) {
+        match e {
+            Expr::Index(i) => {
+                self.place(&mut i.expr);
+                self.visit_expr_mut(&mut i.index);
+                let span = i.bracket_token.span.join();
+                let (base, index) = (&i.expr, &i.index);
+                let f = path("at_mut", span);
+                *e = syn::parse_quote_spanned!(span=> (*#f(&mut #base, #index)));
+            }
+            Expr::Field(f) => self.place(&mut f.base),
+            Expr::Paren(p) => self.place(&mut p.expr),
+            _ => self.visit_expr_mut(e),
+        }
+    }
+}
+
+impl VisitMut for Rewriter {
+    fn visit_expr_mut(&mut self, e: &mut Expr) {
+        match e {
+            Expr::Assign(a) => {
+                self.place(&mut a.left);
+                self.visit_expr_mut(&mut a.right);
+            }
+            Expr::Binary(b) if arith_fn(&b.op).is_some() => {
+                let (name, compound) = arith_fn(&b.op).unwrap();
+                let span = b.op.span();
+                let f = path(name, span);
+                if compound {
+                    self.place(&mut b.left);
+                    self.visit_expr_mut(&mut b.right);
+                    let (l, r) = (&b.left, &b.right);
+                    // The right side first, then the borrow: Rust's order
+                    // for primitive types, and `x += x * 2` borrows cleanly.
+                    *e = syn::parse_quote_spanned!(span=> { let __rt_rhs = #r; #f(&mut #l, __rt_rhs) });
+                } else {
+                    self.visit_expr_mut(&mut b.left);
+                    self.visit_expr_mut(&mut b.right);
+                    let (l, r) = (&b.left, &b.right);
+                    *e = syn::parse_quote_spanned!(span=> #f(#l, #r));
+                }
+            }
+            Expr::Unary(u) if matches!(u.op, UnOp::Neg(_)) => {
+                if matches!(&*u.expr, Expr::Lit(_)) {
+                    return;
+                }
+                self.visit_expr_mut(&mut u.expr);
+                let span = u.op.span();
+                let f = path("neg", span);
+                let x = &u.expr;
+                *e = syn::parse_quote_spanned!(span=> #f(#x));
+            }
+            Expr::Binary(b) if is_assign(&b.op) => {
+                // `&=`, `|=`, `^=`: the left side is a place all the same.
+                self.place(&mut b.left);
+                self.visit_expr_mut(&mut b.right);
+            }
+            Expr::Reference(r) if r.mutability.is_some() => self.place(&mut r.expr),
+            Expr::Index(i) => {
+                self.visit_expr_mut(&mut i.expr);
+                self.visit_expr_mut(&mut i.index);
+                let span = i.bracket_token.span.join();
+                let (base, index) = (&i.expr, &i.index);
+                let f = path("at", span);
+                *e = syn::parse_quote_spanned!(span=> (*#f(&#base, #index)));
+            }
+            Expr::MethodCall(m)
+                if (m.method == "abs" && m.args.is_empty()) || (m.method == "clamp" && m.args.len() == 2) =>
+            {
+                visit_mut::visit_expr_method_call_mut(self, m);
+                let span = m.method.span();
+                let f = path(if m.method == "abs" { "abs" } else { "clamp" }, span);
+                let recv = &m.receiver;
+                let args = &m.args;
+                *e = syn::parse_quote_spanned!(span=> #f(#recv, #args));
+            }
+            _ => visit_mut::visit_expr_mut(self, e),
+        }
+    }
+
+    fn visit_macro_mut(&mut self, m: &mut syn::Macro) {
+        // `rt_printf!("...", args)`: the arguments are expressions.
+        if m.path.segments.last().is_none_or(|s| s.ident != "rt_printf") {
+            return;
+        }
+        let parser = syn::punctuated::Punctuated::<Expr, syn::Token![,]>::parse_terminated;
+        if let Ok(mut args) = syn::parse::Parser::parse2(parser, m.tokens.clone()) {
+            for a in args.iter_mut().skip(1) {
+                self.visit_expr_mut(a);
+            }
+            m.tokens = quote::ToTokens::to_token_stream(&args);
+        }
+    }
+
+    fn visit_item_mut(&mut self, _: &mut syn::Item) {
+        // Nested items (`const`, `fn`) keep their own meaning: a `const`
+        // must stay evaluable by rustc.
+    }
+
+    fn visit_type_mut(&mut self, _: &mut syn::Type) {
+        // Array lengths in types are constant expressions.
+    }
+
+    fn visit_expr_repeat_mut(&mut self, r: &mut syn::ExprRepeat) {
+        // `[x; N]`: the length is a constant expression.
+        self.visit_expr_mut(&mut r.expr);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use quote::ToTokens;
+
+    fn rewritten(src: &str) -> String {
+        let mut f: syn::ItemFn = syn::parse_str(src).unwrap();
+        rewrite_fn(&mut f);
+        f.block.to_token_stream().to_string()
+    }
+
+    #[test]
+    fn operators_and_indices_become_arith_calls() {
+        let got = rewritten("fn f() { let h = (i + seed) * 7u32; arr[k as usize] = -x; y -= arr[1]; let n = -1i32; }");
+        assert_eq!(
+            got,
+            "{ let h = :: rt_std :: arith :: mul ((:: rt_std :: arith :: add (i , seed)) , 7u32) ; \
+             (* :: rt_std :: arith :: at_mut (& mut arr , k as usize)) = :: rt_std :: arith :: neg (x) ; \
+             { let __rt_rhs = (* :: rt_std :: arith :: at (& arr , 1)) ; :: rt_std :: arith :: sub_assign (& mut y , __rt_rhs) } ; \
+             let n = - 1i32 ; }"
+        );
+    }
+
+    #[test]
+    fn constants_and_macros_are_left_alone() {
+        let got = rewritten(
+            "fn f() { const N: usize = 2 + 2; let a = [0u32; 2 * 2]; other!(a + b); rt_printf!(\"{}\", a + b); }",
+        );
+        assert_eq!(
+            got,
+            "{ const N : usize = 2 + 2 ; let a = [0u32 ; 2 * 2] ; other ! (a + b) ; \
+             rt_printf ! (\"{}\" , :: rt_std :: arith :: add (a , b)) ; }"
+        );
+    }
+}

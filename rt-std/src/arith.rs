@@ -1,0 +1,710 @@
+//! One integer semantics on every backend: what the GPU does, in debug and
+//! release builds alike.
+//!
+//! Rust panics on integer overflow in debug builds and on division by zero
+//! and out-of-range indices in every build; WGSL (as naga emits it) defines
+//! all of them. A ray program must give the same answer wherever it runs and
+//! must not take a launch down, so the CPU copy of every `#[rt_program]` and
+//! `#[rt_function]` is rewritten by the macro to call the functions of this
+//! module instead of the operators, and they do what the megakernel does:
+//!
+//! | expression | result |
+//! | --- | --- |
+//! | `a + b`, `a - b`, `a * b`, `-a` on `u32`, `i32`, `usize` and their vectors | wraps (two's complement, 32 bits; `usize` is 32 bits wide in WGSL) |
+//! | `a / 0` | `a` |
+//! | `a % 0` | `0` |
+//! | `i32::MIN / -1` | `i32::MIN` |
+//! | `i32::MIN % -1` | `0` |
+//! | `a << n`, `a >> n` with `n >= 32` | shifts by `n % 32` (`>>` on `i32` is arithmetic) |
+//! | `x as i32`, `x as u32` for `f32` NaN | `0` |
+//! | `x as i32`, `x as u32` for `f32` out of range | the nearest representable value (saturating) |
+//! | `arr[i]`, `v[i]` with `i` past the end of a local array or vector | the last element (naga's `Restrict` bounds-check policy) |
+//! | `buf[i]` with `i` past the end of a buffer | raises `EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS` ([`crate::buffer`]) |
+//!
+//! Floating-point operators keep Rust's (IEEE) meaning. `abs` of
+//! `i32::MIN` is `i32::MIN`, as on the GPU (`wrapping_abs`).
+//!
+//! The functions are `#[doc(hidden)]` plumbing for the macro: programs write
+//! the operators.
+
+use glam::{IVec2, IVec3, IVec4, Mat2, Mat3, Mat4, Quat, UVec2, UVec3, UVec4, Vec2, Vec3, Vec4};
+
+/// Types whose operators keep Rust's meaning: floats, float vectors and
+/// matrices, quaternions.
+#[doc(hidden)]
+pub trait Plain {}
+impl Plain for f32 {}
+impl Plain for Vec2 {}
+impl Plain for Vec3 {}
+impl Plain for Vec4 {}
+impl Plain for Mat2 {}
+impl Plain for Mat3 {}
+impl Plain for Mat4 {}
+impl Plain for Quat {}
+impl Plain for bool {}
+
+/// Integer scalars with the GPU's meaning of each operator.
+trait Int: Copy {
+    fn i_add(self, b: Self) -> Self;
+    fn i_sub(self, b: Self) -> Self;
+    fn i_mul(self, b: Self) -> Self;
+    fn i_div(self, b: Self) -> Self;
+    fn i_rem(self, b: Self) -> Self;
+    fn i_shl(self, n: u32) -> Self;
+    fn i_shr(self, n: u32) -> Self;
+}
+
+impl Int for u32 {
+    fn i_add(self, b: u32) -> u32 {
+        self.wrapping_add(b)
+    }
+    fn i_sub(self, b: u32) -> u32 {
+        self.wrapping_sub(b)
+    }
+    fn i_mul(self, b: u32) -> u32 {
+        self.wrapping_mul(b)
+    }
+    fn i_div(self, b: u32) -> u32 {
+        self.checked_div(b).unwrap_or(self)
+    }
+    fn i_rem(self, b: u32) -> u32 {
+        self.checked_rem(b).unwrap_or(0)
+    }
+    fn i_shl(self, n: u32) -> u32 {
+        self.wrapping_shl(n)
+    }
+    fn i_shr(self, n: u32) -> u32 {
+        self.wrapping_shr(n)
+    }
+}
+
+impl Int for i32 {
+    fn i_add(self, b: i32) -> i32 {
+        self.wrapping_add(b)
+    }
+    fn i_sub(self, b: i32) -> i32 {
+        self.wrapping_sub(b)
+    }
+    fn i_mul(self, b: i32) -> i32 {
+        self.wrapping_mul(b)
+    }
+    fn i_div(self, b: i32) -> i32 {
+        if b == 0 { self } else { self.wrapping_div(b) }
+    }
+    fn i_rem(self, b: i32) -> i32 {
+        if b == 0 { 0 } else { self.wrapping_rem(b) }
+    }
+    fn i_shl(self, n: u32) -> i32 {
+        self.wrapping_shl(n)
+    }
+    fn i_shr(self, n: u32) -> i32 {
+        self.wrapping_shr(n)
+    }
+}
+
+/// `usize` is `u32` in WGSL: it wraps at 32 bits.
+impl Int for usize {
+    fn i_add(self, b: usize) -> usize {
+        (self as u32).i_add(b as u32) as usize
+    }
+    fn i_sub(self, b: usize) -> usize {
+        (self as u32).i_sub(b as u32) as usize
+    }
+    fn i_mul(self, b: usize) -> usize {
+        (self as u32).i_mul(b as u32) as usize
+    }
+    fn i_div(self, b: usize) -> usize {
+        (self as u32).i_div(b as u32) as usize
+    }
+    fn i_rem(self, b: usize) -> usize {
+        (self as u32).i_rem(b as u32) as usize
+    }
+    fn i_shl(self, n: u32) -> usize {
+        (self as u32).i_shl(n) as usize
+    }
+    fn i_shr(self, n: u32) -> usize {
+        (self as u32).i_shr(n) as usize
+    }
+}
+
+macro_rules! binary_trait {
+    ($trait:ident, $method:ident, $op:ident, $message:literal, $label:literal) => {
+        #[doc(hidden)]
+        #[diagnostic::on_unimplemented(message = $message, label = $label)]
+        pub trait $trait<R> {
+            type Output;
+            fn $method(self, r: R) -> Self::Output;
+        }
+        #[diagnostic::do_not_recommend]
+        impl<A: Plain + core::ops::$op<B>, B> $trait<B> for A {
+            type Output = <A as core::ops::$op<B>>::Output;
+            #[inline(always)]
+            fn $method(self, r: B) -> Self::Output {
+                core::ops::$op::$method(self, r)
+            }
+        }
+    };
+}
+
+binary_trait!(RtAdd, add, Add, "cannot add `{R}` to `{Self}`", "no implementation for `{Self} + {R}`");
+binary_trait!(RtSub, sub, Sub, "cannot subtract `{R}` from `{Self}`", "no implementation for `{Self} - {R}`");
+binary_trait!(RtMul, mul, Mul, "cannot multiply `{Self}` by `{R}`", "no implementation for `{Self} * {R}`");
+binary_trait!(RtDiv, div, Div, "cannot divide `{Self}` by `{R}`", "no implementation for `{Self} / {R}`");
+binary_trait!(
+    RtRem,
+    rem,
+    Rem,
+    "cannot calculate the remainder of `{Self}` divided by `{R}`",
+    "no implementation for `{Self} % {R}`"
+);
+
+/// A shift: the amount is any integer scalar (or a vector of them for a
+/// vector), taken modulo 32 as WGSL does.
+#[doc(hidden)]
+#[diagnostic::on_unimplemented(message = "cannot shift `{Self}` by `{R}`")]
+pub trait RtShift<R> {
+    fn shl(self, r: R) -> Self;
+    fn shr(self, r: R) -> Self;
+}
+
+/// Negation: wraps on integers.
+#[doc(hidden)]
+#[diagnostic::on_unimplemented(message = "cannot apply unary `-` to `{Self}`")]
+pub trait RtNeg {
+    type Output;
+    fn neg(self) -> Self::Output;
+}
+
+impl<A: Plain + core::ops::Neg> RtNeg for A {
+    type Output = A::Output;
+    #[inline(always)]
+    fn neg(self) -> A::Output {
+        -self
+    }
+}
+
+macro_rules! int_scalar {
+    ($t:ty) => {
+        impl RtAdd<$t> for $t {
+            type Output = $t;
+            #[inline(always)]
+            fn add(self, r: $t) -> $t {
+                Int::i_add(self, r)
+            }
+        }
+        impl RtSub<$t> for $t {
+            type Output = $t;
+            #[inline(always)]
+            fn sub(self, r: $t) -> $t {
+                Int::i_sub(self, r)
+            }
+        }
+        impl RtMul<$t> for $t {
+            type Output = $t;
+            #[inline(always)]
+            fn mul(self, r: $t) -> $t {
+                Int::i_mul(self, r)
+            }
+        }
+        impl RtDiv<$t> for $t {
+            type Output = $t;
+            #[inline(always)]
+            fn div(self, r: $t) -> $t {
+                Int::i_div(self, r)
+            }
+        }
+        impl RtRem<$t> for $t {
+            type Output = $t;
+            #[inline(always)]
+            fn rem(self, r: $t) -> $t {
+                Int::i_rem(self, r)
+            }
+        }
+        impl RtShift<u32> for $t {
+            #[inline(always)]
+            fn shl(self, n: u32) -> $t {
+                Int::i_shl(self, n)
+            }
+            #[inline(always)]
+            fn shr(self, n: u32) -> $t {
+                Int::i_shr(self, n)
+            }
+        }
+        impl RtShift<i32> for $t {
+            #[inline(always)]
+            fn shl(self, n: i32) -> $t {
+                Int::i_shl(self, n as u32)
+            }
+            #[inline(always)]
+            fn shr(self, n: i32) -> $t {
+                Int::i_shr(self, n as u32)
+            }
+        }
+        impl RtShift<usize> for $t {
+            #[inline(always)]
+            fn shl(self, n: usize) -> $t {
+                Int::i_shl(self, n as u32)
+            }
+            #[inline(always)]
+            fn shr(self, n: usize) -> $t {
+                Int::i_shr(self, n as u32)
+            }
+        }
+    };
+}
+
+int_scalar!(u32);
+int_scalar!(i32);
+int_scalar!(usize);
+
+impl RtNeg for i32 {
+    type Output = i32;
+    #[inline(always)]
+    fn neg(self) -> i32 {
+        self.wrapping_neg()
+    }
+}
+
+impl RtNeg for IVec2 {
+    type Output = IVec2;
+    #[inline(always)]
+    fn neg(self) -> IVec2 {
+        IVec2::ZERO.wrapping_sub(self)
+    }
+}
+impl RtNeg for IVec3 {
+    type Output = IVec3;
+    #[inline(always)]
+    fn neg(self) -> IVec3 {
+        IVec3::ZERO.wrapping_sub(self)
+    }
+}
+impl RtNeg for IVec4 {
+    type Output = IVec4;
+    #[inline(always)]
+    fn neg(self) -> IVec4 {
+        IVec4::ZERO.wrapping_sub(self)
+    }
+}
+
+/// Integer vectors: each operator component-wise with the scalar's meaning,
+/// vector with vector, vector with scalar and scalar with vector.
+macro_rules! int_vector {
+    ($v:ty, $s:ty, $uv:ty, $iv:ty) => {
+        int_vector!(@op $v, $s, RtAdd, add, i_add);
+        int_vector!(@op $v, $s, RtSub, sub, i_sub);
+        int_vector!(@op $v, $s, RtMul, mul, i_mul);
+        int_vector!(@op $v, $s, RtDiv, div, i_div);
+        int_vector!(@op $v, $s, RtRem, rem, i_rem);
+        int_vector!(@shift $v, u32);
+        int_vector!(@shift $v, i32);
+        int_vector!(@shifts $v, $uv, $iv);
+    };
+    (@shift $v:ty, $n:ty) => {
+        impl RtShift<$n> for $v {
+            #[inline(always)]
+            fn shl(self, n: $n) -> $v {
+                <$v>::from_array(self.to_array().map(|x| Int::i_shl(x, n as u32)))
+            }
+            #[inline(always)]
+            fn shr(self, n: $n) -> $v {
+                <$v>::from_array(self.to_array().map(|x| Int::i_shr(x, n as u32)))
+            }
+        }
+    };
+    (@shifts $v:ty, $($nv:ty),*) => {$(
+        impl RtShift<$nv> for $v {
+            #[inline(always)]
+            fn shl(self, n: $nv) -> $v {
+                let n = n.to_array();
+                let mut i = 0;
+                <$v>::from_array(self.to_array().map(|x| {
+                    i += 1;
+                    Int::i_shl(x, n[i - 1] as u32)
+                }))
+            }
+            #[inline(always)]
+            fn shr(self, n: $nv) -> $v {
+                let n = n.to_array();
+                let mut i = 0;
+                <$v>::from_array(self.to_array().map(|x| {
+                    i += 1;
+                    Int::i_shr(x, n[i - 1] as u32)
+                }))
+            }
+        }
+    )*};
+    (@op $v:ty, $s:ty, $trait:ident, $method:ident, $int:ident) => {
+        impl $trait<$v> for $v {
+            type Output = $v;
+            #[inline(always)]
+            fn $method(self, r: $v) -> $v {
+                let r = r.to_array();
+                let mut i = 0;
+                <$v>::from_array(self.to_array().map(|x| {
+                    i += 1;
+                    Int::$int(x, r[i - 1])
+                }))
+            }
+        }
+        impl $trait<$s> for $v {
+            type Output = $v;
+            #[inline(always)]
+            fn $method(self, r: $s) -> $v {
+                <$v>::from_array(self.to_array().map(|x| Int::$int(x, r)))
+            }
+        }
+        impl $trait<$v> for $s {
+            type Output = $v;
+            #[inline(always)]
+            fn $method(self, r: $v) -> $v {
+                <$v>::from_array(r.to_array().map(|x| Int::$int(self, x)))
+            }
+        }
+    };
+}
+
+int_vector!(UVec2, u32, UVec2, IVec2);
+int_vector!(UVec3, u32, UVec3, IVec3);
+int_vector!(UVec4, u32, UVec4, IVec4);
+int_vector!(IVec2, i32, UVec2, IVec2);
+int_vector!(IVec3, i32, UVec3, IVec3);
+int_vector!(IVec4, i32, UVec4, IVec4);
+
+#[doc(hidden)]
+#[inline(always)]
+pub fn add<A: RtAdd<B>, B>(a: A, b: B) -> A::Output {
+    a.add(b)
+}
+#[doc(hidden)]
+#[inline(always)]
+pub fn sub<A: RtSub<B>, B>(a: A, b: B) -> A::Output {
+    a.sub(b)
+}
+#[doc(hidden)]
+#[inline(always)]
+pub fn mul<A: RtMul<B>, B>(a: A, b: B) -> A::Output {
+    a.mul(b)
+}
+#[doc(hidden)]
+#[inline(always)]
+pub fn div<A: RtDiv<B>, B>(a: A, b: B) -> A::Output {
+    a.div(b)
+}
+#[doc(hidden)]
+#[inline(always)]
+pub fn rem<A: RtRem<B>, B>(a: A, b: B) -> A::Output {
+    a.rem(b)
+}
+#[doc(hidden)]
+#[inline(always)]
+pub fn shl<A: RtShift<B>, B>(a: A, b: B) -> A {
+    a.shl(b)
+}
+#[doc(hidden)]
+#[inline(always)]
+pub fn shr<A: RtShift<B>, B>(a: A, b: B) -> A {
+    a.shr(b)
+}
+#[doc(hidden)]
+#[inline(always)]
+pub fn neg<A: RtNeg>(a: A) -> A::Output {
+    a.neg()
+}
+
+/// `x.abs()`: `i32::MIN.abs()` is `i32::MIN`, as on the GPU.
+#[doc(hidden)]
+pub trait RtAbs {
+    fn rt_abs(self) -> Self;
+}
+impl RtAbs for i32 {
+    #[inline(always)]
+    fn rt_abs(self) -> i32 {
+        self.wrapping_abs()
+    }
+}
+macro_rules! abs_via {
+    ($($t:ty),*) => {$(
+        impl RtAbs for $t {
+            #[inline(always)]
+            fn rt_abs(self) -> $t {
+                <$t>::abs(self)
+            }
+        }
+    )*};
+}
+abs_via!(f32, Vec2, Vec3, Vec4);
+macro_rules! abs_ivec {
+    ($($t:ty),*) => {$(
+        impl RtAbs for $t {
+            #[inline(always)]
+            fn rt_abs(self) -> $t {
+                <$t>::from_array(self.to_array().map(i32::wrapping_abs))
+            }
+        }
+    )*};
+}
+abs_ivec!(IVec2, IVec3, IVec4);
+
+#[doc(hidden)]
+#[inline(always)]
+pub fn abs<A: RtAbs>(a: A) -> A {
+    a.rt_abs()
+}
+
+/// `x.clamp(lo, hi)`: WGSL's `min(max(x, lo), hi)` where Rust would panic
+/// (`lo > hi`, or a NaN bound); Rust's `clamp` otherwise.
+#[doc(hidden)]
+pub trait RtClamp: Sized {
+    fn rt_clamp(self, lo: Self, hi: Self) -> Self;
+}
+macro_rules! clamp_scalar {
+    ($($t:ty),*) => {$(
+        impl RtClamp for $t {
+            #[inline(always)]
+            fn rt_clamp(self, lo: $t, hi: $t) -> $t {
+                if lo <= hi { <$t>::clamp(self, lo, hi) } else { self.max(lo).min(hi) }
+            }
+        }
+    )*};
+}
+clamp_scalar!(f32, u32, i32);
+macro_rules! clamp_vector {
+    ($($t:ty),*) => {$(
+        impl RtClamp for $t {
+            #[inline(always)]
+            fn rt_clamp(self, lo: $t, hi: $t) -> $t {
+                let (x, lo, hi) = (self.to_array(), lo.to_array(), hi.to_array());
+                let mut i = 0;
+                <$t>::from_array(x.map(|x| {
+                    i += 1;
+                    RtClamp::rt_clamp(x, lo[i - 1], hi[i - 1])
+                }))
+            }
+        }
+    )*};
+}
+clamp_vector!(Vec2, Vec3, Vec4, UVec2, UVec3, UVec4, IVec2, IVec3, IVec4);
+
+#[doc(hidden)]
+#[inline(always)]
+pub fn clamp<A: RtClamp>(x: A, lo: A, hi: A) -> A {
+    x.rt_clamp(lo, hi)
+}
+
+/// `a op= b`: `b` is evaluated by the caller before `a` is borrowed, as for
+/// Rust's primitive types.
+macro_rules! assign {
+    ($name:ident, $trait:ident, $method:ident) => {
+        #[doc(hidden)]
+        #[inline(always)]
+        pub fn $name<A: $trait<B, Output = A> + Copy, B>(a: &mut A, b: B) {
+            *a = (*a).$method(b);
+        }
+    };
+}
+assign!(add_assign, RtAdd, add);
+assign!(sub_assign, RtSub, sub);
+assign!(mul_assign, RtMul, mul);
+assign!(div_assign, RtDiv, div);
+assign!(rem_assign, RtRem, rem);
+
+#[doc(hidden)]
+#[inline(always)]
+pub fn shl_assign<A: RtShift<B> + Copy, B>(a: &mut A, b: B) {
+    *a = (*a).shl(b);
+}
+#[doc(hidden)]
+#[inline(always)]
+pub fn shr_assign<A: RtShift<B> + Copy, B>(a: &mut A, b: B) {
+    *a = (*a).shr(b);
+}
+
+/// Indexing: local arrays and vectors clamp the index to the last element
+/// (naga's `Restrict` policy); buffers keep their own `Index`, which raises
+/// the out-of-bounds exception.
+#[doc(hidden)]
+#[diagnostic::on_unimplemented(message = "cannot index into a value of type `{Self}` with `{I}`")]
+pub trait RtIndex<I> {
+    type Output: ?Sized;
+    fn at(&self, i: I) -> &Self::Output;
+}
+
+/// Indexing in a place that is written.
+#[doc(hidden)]
+#[diagnostic::on_unimplemented(
+    message = "cannot assign through an index into `{Self}`",
+    label = "`{Self}` is not writable",
+    note = "a `Buffer` is read-only in ray programs: declare the variable as `RwBuffer`"
+)]
+pub trait RtIndexMut<I>: RtIndex<I> {
+    fn at_mut(&mut self, i: I) -> &mut Self::Output;
+}
+
+impl<T, const N: usize> RtIndex<usize> for [T; N] {
+    type Output = T;
+    #[inline(always)]
+    fn at(&self, i: usize) -> &T {
+        &self[i.min(N - 1)]
+    }
+}
+impl<T, const N: usize> RtIndexMut<usize> for [T; N] {
+    #[inline(always)]
+    fn at_mut(&mut self, i: usize) -> &mut T {
+        &mut self[i.min(N - 1)]
+    }
+}
+
+macro_rules! vector_index {
+    ($v:ty, $s:ty, $n:literal) => {
+        impl RtIndex<usize> for $v {
+            type Output = $s;
+            #[inline(always)]
+            fn at(&self, i: usize) -> &$s {
+                &self[i.min($n - 1)]
+            }
+        }
+        impl RtIndexMut<usize> for $v {
+            #[inline(always)]
+            fn at_mut(&mut self, i: usize) -> &mut $s {
+                &mut self[i.min($n - 1)]
+            }
+        }
+    };
+}
+vector_index!(Vec2, f32, 2);
+vector_index!(Vec3, f32, 3);
+vector_index!(Vec4, f32, 4);
+vector_index!(UVec2, u32, 2);
+vector_index!(UVec3, u32, 3);
+vector_index!(UVec4, u32, 4);
+vector_index!(IVec2, i32, 2);
+vector_index!(IVec3, i32, 3);
+vector_index!(IVec4, i32, 4);
+
+macro_rules! buffer_index {
+    ($b:ident, $i:ty) => {
+        impl<T: crate::RtData> RtIndex<$i> for crate::buffer::$b<T> {
+            type Output = T;
+            #[inline(always)]
+            fn at(&self, i: $i) -> &T {
+                &self[i]
+            }
+        }
+    };
+    ($b:ident, $i:ty, mut) => {
+        buffer_index!($b, $i);
+        impl<T: crate::RtData> RtIndexMut<$i> for crate::buffer::$b<T> {
+            #[inline(always)]
+            fn at_mut(&mut self, i: $i) -> &mut T {
+                &mut self[i]
+            }
+        }
+    };
+}
+buffer_index!(Buffer, u32);
+buffer_index!(RwBuffer, u32, mut);
+buffer_index!(Buffer2d, UVec2);
+buffer_index!(RwBuffer2d, UVec2, mut);
+
+#[diagnostic::do_not_recommend]
+impl<C: RtIndex<I> + ?Sized, I> RtIndex<I> for &C {
+    type Output = C::Output;
+    #[inline(always)]
+    fn at(&self, i: I) -> &C::Output {
+        (**self).at(i)
+    }
+}
+
+#[diagnostic::do_not_recommend]
+impl<C: RtIndex<I> + ?Sized, I> RtIndex<I> for &mut C {
+    type Output = C::Output;
+    #[inline(always)]
+    fn at(&self, i: I) -> &C::Output {
+        (**self).at(i)
+    }
+}
+
+#[diagnostic::do_not_recommend]
+impl<C: RtIndexMut<I> + ?Sized, I> RtIndexMut<I> for &mut C {
+    #[inline(always)]
+    fn at_mut(&mut self, i: I) -> &mut C::Output {
+        (**self).at_mut(i)
+    }
+}
+
+#[doc(hidden)]
+#[inline(always)]
+pub fn at<C: RtIndex<I> + ?Sized, I>(c: &C, i: I) -> &C::Output {
+    c.at(i)
+}
+
+#[doc(hidden)]
+#[inline(always)]
+pub fn at_mut<C: RtIndexMut<I> + ?Sized, I>(c: &mut C, i: I) -> &mut C::Output {
+    c.at_mut(i)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn integers_wrap_and_divide_as_the_gpu_does() {
+        assert_eq!(mul(0x9e37_79b9u32, 0x9e37_79b9u32), 0xe35e_67b1);
+        assert_eq!(div(0x9e37_79b9u32, 0), 0x9e37_79b9);
+        assert_eq!(rem(7u32, 0), 0);
+        assert_eq!(div(i32::MIN, -1), i32::MIN);
+        assert_eq!(rem(i32::MIN, -1), 0);
+        assert_eq!(div(i32::MIN, 0), i32::MIN);
+        assert_eq!(rem(-7i32, 0), 0);
+        assert_eq!(shl(0x9e37_79b9u32, 33u32), 0x3c6e_f372);
+        assert_eq!(shr(i32::MIN, 33u32), -0x4000_0000);
+        assert_eq!(shl(i32::MIN, 33u32), 0);
+        assert_eq!(neg(i32::MIN), i32::MIN);
+        assert_eq!(sub(0u32, 0x9e37_79b9), 0x61c8_8647);
+        assert_eq!(mul(i32::MIN, i32::MIN), 0);
+        assert_eq!(add(usize::MAX >> 32, 1), 0, "usize wraps at 32 bits");
+        assert_eq!(div(UVec3::new(6, 7, 8), UVec3::new(2, 0, 3)), UVec3::new(3, 7, 2));
+        assert_eq!(rem(IVec2::new(i32::MIN, 5), -1), IVec2::new(0, 0));
+        assert_eq!(mul(2u32, UVec2::new(u32::MAX, 3)), UVec2::new(u32::MAX - 1, 6));
+        assert_eq!(neg(IVec2::new(i32::MIN, 1)), IVec2::new(i32::MIN, -1));
+        assert_eq!(shl(UVec2::new(1, 1), UVec2::new(33, 2)), UVec2::new(2, 4));
+        assert_eq!(abs(i32::MIN), i32::MIN);
+        assert_eq!(abs(IVec2::new(i32::MIN, -3)), IVec2::new(i32::MIN, 3));
+        assert_eq!(clamp(5u32, 7, 3), 3, "min(max(5, 7), 3)");
+        assert_eq!(clamp(5i32, 1, 9), 5);
+        assert_eq!(clamp(Vec2::new(0.5, 2.0), Vec2::ZERO, Vec2::ONE), Vec2::new(0.5, 1.0));
+        assert_eq!(clamp(0.5f32, f32::NAN, 1.0), 0.5);
+    }
+
+    #[test]
+    fn floats_keep_their_operators() {
+        assert_eq!(mul(Vec3::ONE, 2.0), Vec3::splat(2.0));
+        assert_eq!(mul(2.0, Vec3::ONE), Vec3::splat(2.0));
+        assert_eq!(div(1.0f32, 0.0), f32::INFINITY);
+        assert_eq!(neg(Vec2::X), -Vec2::X);
+        let mut v = Vec3::ONE;
+        mul_assign(&mut v, 3.0);
+        add_assign(&mut v, Vec3::X);
+        assert_eq!(v, Vec3::new(4.0, 3.0, 3.0));
+    }
+
+    #[test]
+    fn local_indices_clamp_to_the_last_element() {
+        let mut arr = [1u32, 2, 3, 4];
+        assert_eq!(*at(&arr, 4), 4);
+        assert_eq!(*at(&arr, usize::MAX), 4);
+        *at_mut(&mut arr, 9) = 7;
+        assert_eq!(arr, [1, 2, 3, 7]);
+        let v = Vec3::new(1.0, 2.0, 3.0);
+        assert_eq!(*at(&v, 3), 3.0);
+        let r = &arr;
+        assert_eq!(*at(&r, 0), 1);
+        let mut x = 5u32;
+        add_assign(&mut x, u32::MAX);
+        assert_eq!(x, 4);
+        shl_assign(&mut x, 34);
+        assert_eq!(x, 16);
+    }
+}

@@ -1,0 +1,149 @@
+//! One integer semantics on both backends (`rt_std::arith`): overflow wraps,
+//! division and remainder by zero, `MIN / -1`, shifts by 32 or more, float
+//! to integer casts of NaN and out-of-range values, and out-of-range local
+//! indices give the same values on the CPU (debug and release builds) and
+//! on wgpu, with no panic and no exception.
+
+use rt_runtime::*;
+use rt_std::prelude::*;
+
+#[rt_function]
+fn bump(x: &mut u32, by: u32) {
+    *x += by;
+    *x *= by;
+}
+
+#[rt_program(ray_generation)]
+#[allow(clippy::too_many_arguments)]
+pub fn edge_cases(
+    #[var] mut out: RwBuffer<u32>,
+    #[var] a: u32,
+    #[var] zero: u32,
+    #[var] min: i32,
+    #[var] minus_one: i32,
+    #[var] k: u32,
+    #[var] nan: f32,
+    #[var] negative: f32,
+    #[var] big: f32,
+) {
+    let arr = [1u32, 2, 3, 4];
+    let mut local = [10i32, 20, 30];
+    out[0] = a * a;
+    out[1] = a / zero;
+    out[2] = a % zero;
+    out[3] = (min / minus_one) as u32;
+    out[4] = (min % minus_one) as u32;
+    out[5] = a << k;
+    out[6] = a >> k;
+    out[7] = (min >> k) as u32;
+    out[8] = nan as u32;
+    out[9] = nan as i32 as u32;
+    out[10] = negative as u32;
+    out[11] = big as i32 as u32;
+    out[12] = arr[(k - 29) as usize];
+    out[13] = (min / (minus_one + 1)) as u32;
+    out[14] = (min % (minus_one + 1)) as u32;
+    out[15] = (-min) as u32;
+    out[16] = min.abs() as u32;
+    out[17] = zero - a;
+    out[18] = (min * min) as u32;
+    out[19] = big as u32;
+    out[20] = (7i32 / (minus_one + 1)) as u32;
+    out[21] = ((-7i32) % (minus_one + 1)) as u32;
+    out[22] = (min << k) as u32;
+    local[k as usize] += min;
+    out[23] = local[2] as u32;
+    let mut h = a;
+    h += a;
+    h *= 2654435761u32;
+    h -= a * 3;
+    h <<= k;
+    bump(&mut h, a);
+    out[24] = h;
+    out[25] = a.clamp(k, zero);
+    let v = uvec3(a, a, 7) * 5u32 / uvec3(zero, 2, zero);
+    out[26] = v.x;
+    out[27] = v.y;
+    out[28] = v.z;
+    out[29] = (min - 1) as u32;
+}
+
+/// `(index, value, what)`: the defined results.
+fn expected() -> Vec<(usize, u32, &'static str)> {
+    let a = 0x9e37_79b9u32;
+    let mut h = a.wrapping_add(a).wrapping_mul(2654435761).wrapping_sub(a.wrapping_mul(3)) << 1;
+    h = h.wrapping_add(a).wrapping_mul(a);
+    vec![
+        (0, a.wrapping_mul(a), "a * a wraps"),
+        (1, a, "a / 0 is a"),
+        (2, 0, "a % 0 is 0"),
+        (3, i32::MIN as u32, "MIN / -1 is MIN"),
+        (4, 0, "MIN % -1 is 0"),
+        (5, a << 1, "a << 33 is a << 1"),
+        (6, a >> 1, "a >> 33 is a >> 1"),
+        (7, (i32::MIN >> 1) as u32, "MIN >> 33 is arithmetic, by 1"),
+        (8, 0, "NaN as u32 is 0"),
+        (9, 0, "NaN as i32 is 0"),
+        (10, 0, "-5.0 as u32 saturates to 0"),
+        (11, i32::MAX as u32, "3e9 as i32 saturates"),
+        (12, 4, "arr[4] of a 4-element local array reads the last element"),
+        (13, i32::MIN as u32, "MIN / 0 is MIN"),
+        (14, 0, "MIN % 0 is 0"),
+        (15, i32::MIN as u32, "-MIN wraps to MIN"),
+        (16, i32::MIN as u32, "MIN.abs() is MIN"),
+        (17, 0u32.wrapping_sub(a), "0 - a wraps"),
+        (18, 0, "MIN * MIN wraps to 0"),
+        (19, 3_000_000_000, "3e9 as u32"),
+        (20, 7, "7 / 0 is 7"),
+        (21, 0, "-7 % 0 is 0"),
+        (22, 0, "MIN << 33 is MIN << 1, 0"),
+        (23, 30i32.wrapping_add(i32::MIN) as u32, "local[33] += MIN writes the last element"),
+        (24, h, "compound assignments wrap, also through &mut in a helper"),
+        (25, 0, "a.clamp(33, 0) is min(max(a, 33), 0)"),
+        (26, a.wrapping_mul(5), "vector / 0 per component is the dividend"),
+        (27, a.wrapping_mul(5) / 2, "vector division"),
+        (28, 35, "7 * 5 / 0"),
+        (29, i32::MAX as u32, "MIN - 1 wraps to MAX"),
+    ]
+}
+
+fn run(backend: Backend) -> Vec<u32> {
+    let mut ctx = Context::new();
+    ctx.set_backend(backend);
+    ctx.set_ray_type_count(0);
+    let out = ctx.create_buffer::<u32>(BufferType::InputOutput, vec![0xdead; 32]);
+    let p = ctx.create_program(&edge_cases::PROGRAM);
+    ctx.set_ray_generation_program(0, p).unwrap();
+    ctx.set_var(Scope::Context, "out", out).unwrap();
+    ctx.set_var(Scope::Context, "a", 0x9e37_79b9u32).unwrap();
+    ctx.set_var(Scope::Context, "zero", 0u32).unwrap();
+    ctx.set_var(Scope::Context, "min", i32::MIN).unwrap();
+    ctx.set_var(Scope::Context, "minus_one", -1i32).unwrap();
+    ctx.set_var(Scope::Context, "k", 33u32).unwrap();
+    ctx.set_var(Scope::Context, "nan", f32::NAN).unwrap();
+    ctx.set_var(Scope::Context, "negative", -5.0f32).unwrap();
+    ctx.set_var(Scope::Context, "big", 3e9f32).unwrap();
+    let report = ctx.launch(0, 1, 1).unwrap();
+    assert_eq!(report.exceptions, vec![], "{backend:?}: no exception");
+    ctx.read_buffer::<u32>(out).unwrap()
+}
+
+fn check(backend: Backend) {
+    let got = run(backend);
+    let wrong: Vec<String> = expected()
+        .into_iter()
+        .filter(|&(i, want, _)| got[i] != want)
+        .map(|(i, want, what)| format!("out[{i}] = {:#x}, want {want:#x}: {what}", got[i]))
+        .collect();
+    assert!(wrong.is_empty(), "{backend:?}:\n{}", wrong.join("\n"));
+}
+
+#[test]
+fn cpu_gives_the_defined_values_without_panicking() {
+    check(Backend::Cpu);
+}
+
+#[test]
+fn wgpu_gives_the_defined_values() {
+    check(Backend::Wgpu);
+}
