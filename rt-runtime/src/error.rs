@@ -91,6 +91,26 @@ pub enum RtError {
     TooManyVariables { program: &'static str, location: String, count: usize, max: usize },
     #[error("the scene graph has a cycle through node {node}")]
     GraphCycle { node: u32 },
+    #[error(
+        "program `{program}` ({location}) panicked at launch index {launch_index} ({at}): {message}; the launch wrote none of its outputs"
+    )]
+    ProgramPanicked {
+        program: &'static str,
+        location: String,
+        launch_index: glam::UVec2,
+        message: String,
+        /// Where the panic happened (`file:line:column`), in the program or
+        /// in code it called.
+        at: String,
+    },
+    #[error(
+        "bounding-box program `{program}` ({location}) panicked for primitive {primitive} ({at}): {message}; nothing was built"
+    )]
+    BoundsPanicked { program: &'static str, location: String, primitive: u32, message: String, at: String },
+    #[error(
+        "the {backend} backend panicked during the launch ({at}): {message}; this is a bug in rt-runtime; the launch wrote none of its outputs and the next launch starts afresh"
+    )]
+    RuntimePanicked { backend: &'static str, message: String, at: String },
     #[error("writing {path}: {problem}")]
     Image { path: String, problem: String },
 }

@@ -36,6 +36,7 @@ pub mod error;
 mod handles;
 pub mod image_out;
 pub(crate) mod link;
+mod panics;
 pub mod scene;
 pub mod vars;
 

@@ -3,7 +3,7 @@
 
 use super::Builder;
 use super::bvh::{Bvh, TreeForm, build, refit_wide, to_oaabb, widen};
-use crate::error::Result;
+use crate::error::{Result, RtError};
 use crate::link::{self, Record};
 use crate::scene::{GeometryKind, NodeKind, Scene, TriangleMesh};
 use glam::{Mat4, Vec3};
@@ -128,7 +128,14 @@ fn prim_bounds(scene: &Scene, children: &[crate::handles::GeometryInstanceId]) -
                 let vars = (call.desc.cpu_bind)(&refs[..call.vars.len()]).map_err(|e| link::bind_error(&call, e))?;
                 for p in 0..*primitive_count {
                     let mut args = CpuArgs { payload: None, attributes: None, primitive: p, variables: &vars };
-                    let (r, _) = rt_std::cpu::with_context(ExecutionContext::DEFAULT, || (call.desc.cpu)(&mut args));
+                    let run = || rt_std::cpu::with_context(ExecutionContext::DEFAULT, || (call.desc.cpu)(&mut args));
+                    let (r, _) = crate::panics::catching(run).map_err(|caught| RtError::BoundsPanicked {
+                        program: call.desc.name,
+                        location: format!("{}:{}", call.desc.file, call.desc.line),
+                        primitive: p,
+                        message: caught.message,
+                        at: caught.at,
+                    })?;
                     let b = match r {
                         CpuResult::Aabb(b) if b.min.is_finite() && b.max.is_finite() => to_oaabb(b.min, b.max),
                         // A primitive without finite bounds can never be hit.

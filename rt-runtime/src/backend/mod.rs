@@ -184,6 +184,15 @@ pub(crate) trait LaunchBackend: Any {
     fn read_back_outputs(&mut self, buffers: &mut [BufferRec]);
     /// What this backend counted.
     fn stats(&self) -> BackendStats<'_>;
+    /// Whether programs write the host's buffers in place during
+    /// [`LaunchBackend::launch`] (the CPU backend): the launch keeps a copy
+    /// of the writable buffers to put back if it panics.
+    fn writes_host_buffers(&self) -> bool {
+        false
+    }
+    /// Forgets what a launch that panicked may have left half done (the
+    /// wgpu backend drops its device; the next launch opens one).
+    fn after_panic(&mut self) {}
 }
 
 impl Backend {
@@ -193,6 +202,26 @@ impl Backend {
             Backend::Cpu => Box::new(cpu::CpuBackend),
             Backend::Wgpu => Box::new(wgpu::WgpuBackend::default()),
         }
+    }
+}
+
+/// The words of every buffer programs may write, by index.
+fn keep_writable(buffers: &[BufferRec]) -> Vec<(usize, Vec<u32>)> {
+    let writable = buffers.iter().enumerate().filter(|(_, b)| b.ty.writable_by_programs());
+    writable
+        .map(|(i, b)| {
+            let mut words = Vec::new();
+            b.storage.to_words(&mut words);
+            (i, words)
+        })
+        .collect()
+}
+
+/// Puts back what [`keep_writable`] kept: a failed launch leaves the
+/// buffers as they were.
+fn put_back(buffers: &mut [BufferRec], kept: Vec<(usize, Vec<u32>)>) {
+    for (i, words) in kept {
+        buffers[i].storage.read_words(&words);
     }
 }
 
@@ -220,7 +249,21 @@ pub(crate) fn launch(
     let t0 = std::time::Instant::now();
     build_accels(scene, accels, backend.trees(scene))?;
     let build = t0.elapsed();
-    let result = backend.launch(&Launch { scene, settings, accels, entry, width, height });
+    let kept = backend.writes_host_buffers().then(|| keep_writable(&scene.buffers));
+    let result = {
+        let launch = Launch { scene, settings, accels, entry, width, height };
+        crate::panics::catching(|| backend.launch(&launch)).unwrap_or_else(|caught| {
+            Err(RtError::RuntimePanicked { backend: backend.kind().name(), message: caught.message, at: caught.at })
+        })
+    };
+    if matches!(result, Err(RtError::RuntimePanicked { .. })) {
+        backend.after_panic();
+    }
+    if result.is_err()
+        && let Some(kept) = kept
+    {
+        put_back(&mut scene.buffers, kept);
+    }
     backend.read_back_outputs(&mut scene.buffers);
     let mut report = result?;
     report.timings.build = build;

@@ -109,6 +109,9 @@ pub(crate) struct Lane<'a> {
     pub(crate) index: Cell<UVec2>,
     pub(crate) depth: Cell<u32>,
     pub(crate) exception: Cell<Option<u32>>,
+    /// The innermost program running (left as it was when a panic unwinds
+    /// past `invoke`: the program that panicked).
+    pub(crate) program: Cell<Option<&'static rt_std::program::ProgramDescriptor>>,
     pub(crate) prints: RefCell<Vec<String>>,
     pub(crate) rays: Cell<u64>,
     /// The innermost search in progress (null: none).
@@ -124,6 +127,7 @@ impl<'a> Lane<'a> {
             index: Cell::new(UVec2::ZERO),
             depth: Cell::new(0),
             exception: Cell::new(None),
+            program: Cell::new(None),
             prints: RefCell::new(Vec::new()),
             rays: Cell::new(0),
             search: Cell::new(std::ptr::null()),
@@ -136,6 +140,7 @@ impl<'a> Lane<'a> {
         self.index.set(index);
         self.depth.set(0);
         self.exception.set(None);
+        self.program.set(None);
         self.rays.set(0);
         let mut ctx = self.base_context();
         self.invoke(&l.ray_generation, &mut ctx, None, None);
@@ -198,7 +203,9 @@ impl<'a> Lane<'a> {
     ) -> CpuResult {
         let attributes = attributes.map(|a| a.as_any_mut());
         let mut args = CpuArgs { payload, attributes, primitive: ctx.primitive_index, variables: &p.vars };
+        let outer = self.program.replace(Some(p.desc));
         let r = rt_std::cpu::in_context(ctx, || (p.desc.cpu)(&mut args));
+        self.program.set(outer);
         if let Some(code) = ctx.pending_exception
             && self.exception.get().is_none()
         {

@@ -34,12 +34,14 @@ use super::{Launch, LaunchBackend, LaunchReport};
 use crate::accel::bvh::TreeForm;
 use crate::accel::cache::Trees;
 use crate::buffer::BufferRec;
-use crate::error::Result;
+use crate::error::{Result, RtError};
+use crate::panics;
 use crate::scene::Scene;
 use bind::link_all;
 use glam::UVec2;
 use lane::Lane;
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// The CPU backend: it keeps nothing between launches.
 #[derive(Default)]
@@ -64,11 +66,34 @@ impl LaunchBackend for CpuBackend {
         run(launch)
     }
 
+    fn writes_host_buffers(&self) -> bool {
+        true
+    }
+
     /// Programs wrote the host's buffers themselves.
     fn read_back_outputs(&mut self, _: &mut [BufferRec]) {}
 
     fn stats(&self) -> super::BackendStats<'_> {
         super::BackendStats::default()
+    }
+}
+
+/// The error for a panic at `index`, in `program` (`None`: in the runtime,
+/// between programs).
+fn panicked(
+    program: Option<&'static rt_std::program::ProgramDescriptor>,
+    index: UVec2,
+    caught: panics::Caught,
+) -> RtError {
+    match program {
+        Some(p) => RtError::ProgramPanicked {
+            program: p.name,
+            location: format!("{}:{}", p.file, p.line),
+            launch_index: index,
+            message: caught.message,
+            at: caught.at,
+        },
+        None => RtError::RuntimePanicked { backend: "cpu", message: caught.message, at: caught.at },
     }
 }
 
@@ -83,22 +108,32 @@ fn run(launch: &Launch) -> Result<LaunchReport> {
     // spreads over all cores too); reports are merged in index order.
     let total = width as u64 * height as u64;
     let chunk = (total / (rayon::current_num_threads() as u64 * 8)).clamp(64, 16384);
-    let chunks: Vec<LaunchReport> = (0..total.div_ceil(chunk))
+    // A panic stops its chunk, and the others at their next index.
+    let stop = AtomicBool::new(false);
+    let chunks: Vec<std::result::Result<LaunchReport, RtError>> = (0..total.div_ceil(chunk))
         .into_par_iter()
         .map(|c| {
             let mut report = LaunchReport::default();
             let lane = Lane::new(&linked);
             rt_std::cpu::serving(&lane, || {
                 for i in c * chunk..((c + 1) * chunk).min(total) {
+                    if stop.load(Ordering::Relaxed) {
+                        break;
+                    }
                     let index = UVec2::new((i % width as u64) as u32, (i / width as u64) as u32);
-                    lane.run_index(index, &mut report);
+                    if let Err(caught) = panics::catching(|| lane.run_index(index, &mut report)) {
+                        stop.store(true, Ordering::Relaxed);
+                        return Err(panicked(lane.program.get(), index, caught));
+                    }
                 }
-            });
-            report
+                Ok(report)
+            })
         })
         .collect();
     let mut report = LaunchReport::default();
+    // The error of the lowest launch index that panicked.
     for r in chunks {
+        let r = r?;
         report.exceptions.extend(r.exceptions);
         report.prints.extend(r.prints);
         report.rays += r.rays;

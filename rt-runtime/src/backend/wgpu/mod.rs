@@ -133,6 +133,11 @@ impl LaunchBackend for WgpuBackend {
 
     /// A device that was lost is dropped with everything it held, so this
     /// launch opens a new one and uploads the scene from the host again.
+    fn after_panic(&mut self) {
+        self.gpu = None;
+        self.pending = None;
+    }
+
     fn prepare(&mut self) -> Result<()> {
         if self.gpu.as_ref().is_some_and(|g| g.health.lost_reason().is_some()) {
             self.gpu = None;
