@@ -4,7 +4,7 @@
 //! half away from zero, `fract` is `x - trunc(x)`, `signum(0.0)` is 1) the
 //! lowering spells Rust's definition out.
 
-use super::func::{Val, f32_literal};
+use super::value::{Val, f32_literal};
 use crate::types::{F32, Scalar, Ty, U32};
 
 /// Builds a method call's WGSL from the lowered receiver and arguments.

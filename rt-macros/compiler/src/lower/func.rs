@@ -4,6 +4,7 @@
 //! later uses resolve, `i32` by default as in Rust).
 
 use super::text::{self, indent, int_literal_placeholder, mark};
+use super::value::{Place, Val, f32_literal};
 use super::{HelperSig, ModuleCtx};
 use crate::error::{Error, Errors, Result};
 use crate::kinds::{self, Kind};
@@ -15,19 +16,6 @@ use syn::{BinOp, Expr, Stmt, UnOp};
 
 mod resume;
 
-/// A lowered expression: WGSL text and its type.
-#[derive(Clone, Debug)]
-pub struct Val {
-    pub code: String,
-    pub ty: Ty,
-}
-
-impl Val {
-    fn new(code: impl Into<String>, ty: Ty) -> Val {
-        Val { code: code.into(), ty }
-    }
-}
-
 #[derive(Clone, Debug)]
 struct Local {
     wgsl: String,
@@ -38,20 +26,6 @@ struct Local {
 
 /// The WGSL name of a local whose `let` failed (see `poison_pattern`).
 const POISONED: &str = "<poisoned>";
-
-/// Something that can be assigned to.
-enum Place {
-    Wgsl(String, Ty),
-    /// An element of a buffer, with an optional member path into it.
-    Buffer {
-        buf: Val,
-        kind: BufferKind,
-        elem: Ty,
-        index: String,
-        path: String,
-        ty: Ty,
-    },
-}
 
 /// What the function being lowered is.
 pub enum FnRole {
@@ -3053,18 +3027,6 @@ fn check_int_range(value: u64, s: Scalar, span: Span) -> Result<()> {
         return Err(Error::new(span, format!("literal out of range for `{}`: the largest is {max}{hint}", s.rust())));
     }
     Ok(())
-}
-
-/// An f32 literal in WGSL: the shortest text that round-trips, with `f`.
-pub fn f32_literal(v: f32) -> String {
-    if v.is_nan() {
-        return "bitcast<f32>(0x7fc00000u)".into();
-    }
-    if v.is_infinite() {
-        return if v > 0.0 { "bitcast<f32>(0x7f800000u)".into() } else { "bitcast<f32>(0xff800000u)".into() };
-    }
-    let s = format!("{v:?}");
-    format!("{s}f")
 }
 
 fn const_len(e: &Expr) -> Result<u32> {

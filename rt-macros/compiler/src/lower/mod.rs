@@ -11,6 +11,7 @@ pub mod accessors;
 pub mod builtins;
 pub mod func;
 pub mod text;
+pub mod value;
 
 use crate::error::{Error, Errors, Result};
 use crate::kinds::Kind;
