@@ -275,6 +275,67 @@ impl FnLowerer<'_> {
         Ok(Val::new("", Ty::Unit))
     }
 
+    /// `break`: out of the innermost loop, through a `match` arm's flag (see
+    /// `breaks`).
+    pub(super) fn break_expr(&mut self, b: &syn::ExprBreak) -> Result<Val> {
+        if let Some(l) = &b.label {
+            return Err(Error::unsupported(l.span(), "a labeled `break`", "WGSL has no labels; use a flag variable"));
+        }
+        if let Some(v) = &b.expr {
+            return Err(Error::unsupported(v.span(), "`break` with a value", "assign to a variable before `break`"));
+        }
+        if self.loop_depth == 0 {
+            return Err(Error::new(b.span(), "`break` outside of a loop"));
+        }
+        let text = self.break_text();
+        let line = self.mark(b.span(), &text);
+        self.emit(line);
+        Ok(Val::new("", Ty::Never))
+    }
+
+    /// `continue`.
+    pub(super) fn continue_expr(&mut self, c: &syn::ExprContinue) -> Result<Val> {
+        if let Some(l) = &c.label {
+            return Err(Error::unsupported(
+                l.span(),
+                "a labeled `continue`",
+                "WGSL has no labels; use a flag variable",
+            ));
+        }
+        if self.loop_depth == 0 {
+            return Err(Error::new(c.span(), "`continue` outside of a loop"));
+        }
+        let line = self.mark(c.span(), "continue;");
+        self.emit(line);
+        Ok(Val::new("", Ty::Never))
+    }
+
+    /// `return`, with a value or without.
+    pub(super) fn return_expr(&mut self, r: &syn::ExprReturn) -> Result<Val> {
+        let ret = self.ret.clone();
+        match &r.expr {
+            Some(v) => {
+                let val = self.expr(v, Some(&ret))?;
+                let val = self.coerce(val, &ret, v.span())?;
+                let line = if matches!(ret, Ty::Unit) {
+                    format!("_ = {};\nreturn;", val.code)
+                } else {
+                    format!("return {};", val.code)
+                };
+                let line = self.mark(r.span(), &line);
+                self.emit(line);
+            }
+            None => {
+                if !matches!(ret, Ty::Unit) {
+                    return Err(Error::new(r.span(), format!("`return` needs a value of type `{ret}`")));
+                }
+                let line = self.mark(r.span(), "return;");
+                self.emit(line);
+            }
+        }
+        Ok(Val::new("", Ty::Never))
+    }
+
     pub(super) fn match_expr(&mut self, m: &syn::ExprMatch, want: Option<&Ty>) -> Result<Val> {
         let scrut = self.expr(&m.expr, None)?;
         let mut scrut = self.deref(scrut);

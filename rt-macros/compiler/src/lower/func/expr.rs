@@ -48,68 +48,9 @@ impl FnLowerer<'_> {
             Expr::While(w) => self.while_loop(w),
             Expr::Loop(l) => self.loop_expr(l),
             Expr::ForLoop(f) => self.for_loop(f),
-            Expr::Break(b) => {
-                if let Some(l) = &b.label {
-                    return Err(Error::unsupported(
-                        l.span(),
-                        "a labeled `break`",
-                        "WGSL has no labels; use a flag variable",
-                    ));
-                }
-                if let Some(v) = &b.expr {
-                    return Err(Error::unsupported(
-                        v.span(),
-                        "`break` with a value",
-                        "assign to a variable before `break`",
-                    ));
-                }
-                if self.loop_depth == 0 {
-                    return Err(Error::new(b.span(), "`break` outside of a loop"));
-                }
-                let text = self.break_text();
-                let line = self.mark(b.span(), &text);
-                self.emit(line);
-                Ok(Val::new("", Ty::Never))
-            }
-            Expr::Continue(c) => {
-                if let Some(l) = &c.label {
-                    return Err(Error::unsupported(
-                        l.span(),
-                        "a labeled `continue`",
-                        "WGSL has no labels; use a flag variable",
-                    ));
-                }
-                if self.loop_depth == 0 {
-                    return Err(Error::new(c.span(), "`continue` outside of a loop"));
-                }
-                let line = self.mark(c.span(), "continue;");
-                self.emit(line);
-                Ok(Val::new("", Ty::Never))
-            }
-            Expr::Return(r) => {
-                let ret = self.ret.clone();
-                match &r.expr {
-                    Some(v) => {
-                        let val = self.expr(v, Some(&ret))?;
-                        let val = self.coerce(val, &ret, v.span())?;
-                        let line = if matches!(ret, Ty::Unit) {
-                            format!("_ = {};\nreturn;", val.code)
-                        } else {
-                            format!("return {};", val.code)
-                        };
-                        let line = self.mark(r.span(), &line);
-                        self.emit(line);
-                    }
-                    None => {
-                        if !matches!(ret, Ty::Unit) {
-                            return Err(Error::new(r.span(), format!("`return` needs a value of type `{ret}`")));
-                        }
-                        let line = self.mark(r.span(), "return;");
-                        self.emit(line);
-                    }
-                }
-                Ok(Val::new("", Ty::Never))
-            }
+            Expr::Break(b) => self.break_expr(b),
+            Expr::Continue(c) => self.continue_expr(c),
+            Expr::Return(r) => self.return_expr(r),
             Expr::Match(m) => self.match_expr(m, want),
             Expr::Macro(m) => {
                 self.macro_stmt(&m.mac)?;
