@@ -367,7 +367,7 @@ impl FnLowerer<'_> {
     }
 
     pub(super) fn repeat_lit(&mut self, r: &syn::ExprRepeat, want: Option<&Ty>) -> Result<Val> {
-        let n = const_len(&r.len)?;
+        let n = crate::lower::resolve::array_len(&r.len)?;
         let elem_want = match want.map(|w| self.resolved(w)) {
             Some(Ty::Array(e, _)) => Some(*e),
             _ => None,
@@ -407,21 +407,4 @@ fn check_int_range(value: u64, s: Scalar, span: Span) -> Result<()> {
         return Err(Error::new(span, format!("literal out of range for `{}`: the largest is {max}{hint}", s.rust())));
     }
     Ok(())
-}
-
-fn const_len(e: &Expr) -> Result<u32> {
-    match e {
-        Expr::Lit(syn::ExprLit { lit: syn::Lit::Int(i), .. }) => {
-            let n: u32 = i.base10_parse()?;
-            if n == 0 {
-                return Err(Error::unsupported(i.span(), "a zero-length array", "arrays need at least one element"));
-            }
-            Ok(n)
-        }
-        other => Err(Error::unsupported(other.span(), "a non-literal array length", "write the length as a number")),
-    }
-}
-
-pub fn array_len(e: &Expr) -> Result<u32> {
-    const_len(e)
 }

@@ -46,7 +46,6 @@ mod resume;
 mod stmt;
 
 use eval::{int_literal_value, may_have_effects};
-pub use expr::array_len;
 use ops::{compound_base, is_compound, op_symbol};
 pub use stmt::count_placeholders;
 
