@@ -5,7 +5,7 @@
 
 use super::func::{FnLowerer, FnRole, LParam};
 use super::items::check_fn_shape;
-use super::{Lowered, ModuleCtx, text};
+use super::{Lowered, ModuleCtx};
 use crate::StructRole;
 use crate::error::{Error, Errors};
 use crate::kinds::Kind;
@@ -141,7 +141,7 @@ pub(super) fn program_unit(
     let name = f.sig.ident.to_string();
     let mut l = FnLowerer::new(m, FnRole::Program(kind), &name, ret);
     let text = l.function(&out.wgsl_entry, &lps, &f.block);
-    let (clean, ranges) = text::finish(&text, &|v| l.resolve_var(v));
+    let (clean, ranges) = l.finish(&text);
     let mut intr: Vec<String> = l.intrinsics.iter().map(|(n, _)| n.to_string()).collect();
     intr.sort();
     intr.dedup();
@@ -155,7 +155,7 @@ pub(super) fn program_unit(
         let mut r = FnLowerer::new(m, FnRole::Program(kind), &name, Ty::Unit);
         match r.function_resumable(&out.wgsl_entry, &lps, &f.block) {
             Ok(text) => {
-                let (clean, _) = text::finish(&text, &|v| r.resolve_var(v));
+                let (clean, _) = r.finish(&text);
                 out.resumable = Some(r.fill_frame_saves(&clean));
             }
             Err(e) => out.not_resumable = Some(e.message),

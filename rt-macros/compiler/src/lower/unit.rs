@@ -10,7 +10,7 @@ use super::program::program_unit;
 use super::{ConstInfo, Entry, HelperSig, Lowered, ModuleCtx, text, wgsl_ident};
 use crate::StructRole;
 use crate::error::{Error, Errors};
-use crate::types::{StructDef, Ty};
+use crate::types::{Scalar, StructDef, Ty};
 use std::collections::HashMap;
 use std::ops::Range;
 use std::rc::Rc;
@@ -124,11 +124,9 @@ impl<'e, 'a> Unit<'e, 'a> {
                     }
                     let text =
                         text::mark(m.span_id(c.span()), &format!("const {wname}: {} = {};\n", ty.wgsl(), v.code));
-                    let resolve = |_v: u32| match &ty {
-                        Ty::Scalar(s) if s.is_int() => *s,
-                        _ => crate::types::Scalar::I32,
-                    };
-                    let (clean, ranges) = text::finish(&text, &resolve);
+                    // A constant's integer literals take its type.
+                    let signed = |_v: u32| !matches!(ty, Ty::Scalar(Scalar::U32 | Scalar::Usize));
+                    let (clean, ranges) = text::finish(&text, &signed);
                     self.errors.0.extend(l.errors.0);
                     for (id, r) in ranges {
                         self.source_ranges.push((wname.clone(), id, r));
@@ -205,7 +203,7 @@ impl<'e, 'a> Unit<'e, 'a> {
             let params = lparams(f, &sig.params);
             let mut l = FnLowerer::new(&m, FnRole::Helper, &name, sig.ret.clone());
             let body = l.function(&sig.wgsl_name, &params, &f.block);
-            let (clean, ranges) = text::finish(&body, &|v| l.resolve_var(v));
+            let (clean, ranges) = l.finish(&body);
             let mut intr: Vec<&'static str> = l.intrinsics.iter().map(|(n, _)| *n).collect();
             intr.sort();
             intr.dedup();
@@ -223,7 +221,7 @@ impl<'e, 'a> Unit<'e, 'a> {
                 let rs_name = format!("{}_rs", sig.wgsl_name);
                 match r.function_resumable(&rs_name, &params, &f.block) {
                     Ok(text) => {
-                        let (clean, _) = text::finish(&text, &|v| r.resolve_var(v));
+                        let (clean, _) = r.finish(&text);
                         self.resumable_functions.push((rs_name, r.fill_frame_saves(&clean)));
                         m.helpers.get_mut(&name).unwrap().resumable = true;
                     }

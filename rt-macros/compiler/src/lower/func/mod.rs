@@ -205,6 +205,12 @@ impl<'m> FnLowerer<'m> {
         (sig, copies)
     }
 
+    /// Resolves the placeholders of `text` with this function's inference
+    /// variables and strips its markers (see [`text::finish`]).
+    pub fn finish(&self, text: &str) -> (String, Vec<(usize, std::ops::Range<usize>)>) {
+        text::finish(text, &|v| self.resolve_var(v) == Scalar::I32)
+    }
+
     /// Resolves an integer inference variable (default `i32`).
     pub fn resolve_var(&self, v: u32) -> Scalar {
         let root = self.find(v);
