@@ -24,8 +24,63 @@ pub(super) fn program_unit(
     check_fn_shape(f)?;
     let params = signature::program_params(kind, f)?;
     let mut errors = Errors::default();
+    let lps = program_lparams(m, kind, f, &params, out, &mut errors);
+    let ret = program_ret(m, kind, f, &mut errors);
+    if !errors.is_empty() {
+        return Err(errors);
+    }
+    // The WGSL function takes its parameters in one canonical order whatever
+    // the Rust order: payload, attributes, primitive index, then variables
+    // (in declaration order), so the linker can call every program alike.
+    let rank = |p: &signature::Param| match p.role {
+        Role::Payload { .. } => 0,
+        Role::Attributes { .. } => 1,
+        Role::Primitive => 2,
+        Role::Variable => 3,
+    };
+    let mut order: Vec<usize> = (0..lps.len()).collect();
+    order.sort_by_key(|i| rank(&params[*i]));
+    let mut slots: Vec<Option<LParam>> = lps.into_iter().map(Some).collect();
+    let lps: Vec<LParam> = order.into_iter().filter_map(|i| slots[i].take()).collect();
+    let name = f.sig.ident.to_string();
+    let mut l = FnLowerer::new(m, FnRole::Program(kind), &name, ret);
+    let text = l.function(&out.wgsl_entry, &lps, &f.block);
+    let (clean, ranges) = l.finish(&text);
+    let mut intr: Vec<String> = l.intrinsics.iter().map(|(n, _)| n.to_string()).collect();
+    intr.sort();
+    intr.dedup();
+    out.intrinsics = intr;
+    out.traced = l.traced.clone();
+    out.traced.dedup();
+    if !l.errors.is_empty() {
+        return Err(l.errors);
+    }
+    if !out.traced.is_empty() {
+        let mut r = FnLowerer::new(m, FnRole::Program(kind), &name, Ty::Unit);
+        match r.function_resumable(&out.wgsl_entry, &lps, &f.block) {
+            Ok(text) => {
+                let (clean, _) = r.finish(&text);
+                out.resumable = Some(r.fill_frame_saves(&clean));
+            }
+            Err(e) => out.not_resumable = Some(e.message),
+        }
+    }
+    Ok((clean, ranges))
+}
+
+/// The program's parameters as the lowering binds them (payload and
+/// attributes by their struct roles, variables checked and recorded in
+/// `out`), in the Rust order.
+fn program_lparams(
+    m: &ModuleCtx,
+    kind: Kind,
+    f: &syn::ItemFn,
+    params: &[signature::Param],
+    out: &mut Lowered,
+    errors: &mut Errors,
+) -> Vec<LParam> {
     let mut lps = Vec::new();
-    for p in &params {
+    for p in params {
         let ty = match m.resolve_type(&p.ty) {
             Ok(t) => t,
             Err(e) => {
@@ -82,7 +137,12 @@ pub(super) fn program_unit(
         });
         lps.push(LParam { rust: p.name.to_string(), ty: lty, mutable_binding, span: p.span });
     }
-    let ret = match (&f.sig.output, kind) {
+    lps
+}
+
+/// The return type a program of `kind` must declare.
+fn program_ret(m: &ModuleCtx, kind: Kind, f: &syn::ItemFn, errors: &mut Errors) -> Ty {
+    match (&f.sig.output, kind) {
         (syn::ReturnType::Default, Kind::BoundingBox) => {
             errors.push(Error::new(
                 f.sig.ident.span(),
@@ -121,45 +181,5 @@ pub(super) fn program_unit(
                 }
             }
         }
-    };
-    if !errors.is_empty() {
-        return Err(errors);
     }
-    // The WGSL function takes its parameters in one canonical order whatever
-    // the Rust order: payload, attributes, primitive index, then variables
-    // (in declaration order), so the linker can call every program alike.
-    let rank = |p: &signature::Param| match p.role {
-        Role::Payload { .. } => 0,
-        Role::Attributes { .. } => 1,
-        Role::Primitive => 2,
-        Role::Variable => 3,
-    };
-    let mut order: Vec<usize> = (0..lps.len()).collect();
-    order.sort_by_key(|i| rank(&params[*i]));
-    let mut slots: Vec<Option<LParam>> = lps.into_iter().map(Some).collect();
-    let lps: Vec<LParam> = order.into_iter().filter_map(|i| slots[i].take()).collect();
-    let name = f.sig.ident.to_string();
-    let mut l = FnLowerer::new(m, FnRole::Program(kind), &name, ret);
-    let text = l.function(&out.wgsl_entry, &lps, &f.block);
-    let (clean, ranges) = l.finish(&text);
-    let mut intr: Vec<String> = l.intrinsics.iter().map(|(n, _)| n.to_string()).collect();
-    intr.sort();
-    intr.dedup();
-    out.intrinsics = intr;
-    out.traced = l.traced.clone();
-    out.traced.dedup();
-    if !l.errors.is_empty() {
-        return Err(l.errors);
-    }
-    if !out.traced.is_empty() {
-        let mut r = FnLowerer::new(m, FnRole::Program(kind), &name, Ty::Unit);
-        match r.function_resumable(&out.wgsl_entry, &lps, &f.block) {
-            Ok(text) => {
-                let (clean, _) = r.finish(&text);
-                out.resumable = Some(r.fill_frame_saves(&clean));
-            }
-            Err(e) => out.not_resumable = Some(e.message),
-        }
-    }
-    Ok((clean, ranges))
 }

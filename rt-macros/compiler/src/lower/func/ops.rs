@@ -216,30 +216,35 @@ impl FnLowerer<'_> {
             _ => return Err(Error::unsupported(span, &format!("the `{sym}` operator"), "see the supported operators")),
         };
         if matches!(op, BinOp::Rem(_)) && ty.scalar() == Some(Scalar::F32) {
-            // Rust's `fmod`, not WGSL's `x - y * trunc(x / y)`.
-            let mut fns = self.m.accessors.borrow_mut();
-            if !matches!(ty, Ty::Vec(4, _)) {
-                fns.functions.entry("rt_fmod".to_string()).or_insert_with(|| builtins::FMOD.to_string());
-            }
-            let code = match ty {
-                Ty::Vec(n, _) => {
-                    // glam's `Vec4` is SIMD on every target with SIMD (SSE2,
-                    // NEON, wasm), and its `%` is `x - floor(x / y) * y`
-                    // there, not `f32`'s `%` per component as for `Vec2` and
-                    // `Vec3`.
-                    let (f, text) = if n == 4 { builtins::VEC4_REM } else { builtins::fmod_vec(n) };
-                    fns.functions.entry(f.to_string()).or_insert_with(|| text.to_string());
-                    let splat = |v: &Val, t: &Ty| match t {
-                        Ty::Vec(..) => v.code.clone(),
-                        _ => format!("vec{n}<f32>({})", v.code),
-                    };
-                    format!("{f}({}, {})", splat(&l, &lt), splat(&r, &rt))
-                }
-                _ => format!("rt_fmod({}, {})", l.code, r.code),
-            };
-            return Ok(Val::new(code, ty));
+            return Ok(self.float_rem(l, &lt, r, &rt, ty));
         }
         Ok(Val::new(format!("({} {sym} {})", l.code, r.code), ty))
+    }
+
+    /// Float `l % r` of type `ty`: Rust's `fmod`, not WGSL's
+    /// `x - y * trunc(x / y)`.
+    fn float_rem(&self, l: Val, lt: &Ty, r: Val, rt: &Ty, ty: Ty) -> Val {
+        let mut fns = self.m.accessors.borrow_mut();
+        if !matches!(ty, Ty::Vec(4, _)) {
+            fns.functions.entry("rt_fmod".to_string()).or_insert_with(|| builtins::FMOD.to_string());
+        }
+        let code = match ty {
+            Ty::Vec(n, _) => {
+                // glam's `Vec4` is SIMD on every target with SIMD (SSE2,
+                // NEON, wasm), and its `%` is `x - floor(x / y) * y`
+                // there, not `f32`'s `%` per component as for `Vec2` and
+                // `Vec3`.
+                let (f, text) = if n == 4 { builtins::VEC4_REM } else { builtins::fmod_vec(n) };
+                fns.functions.entry(f.to_string()).or_insert_with(|| text.to_string());
+                let splat = |v: &Val, t: &Ty| match t {
+                    Ty::Vec(..) => v.code.clone(),
+                    _ => format!("vec{n}<f32>({})", v.code),
+                };
+                format!("{f}({}, {})", splat(&l, lt), splat(&r, rt))
+            }
+            _ => format!("rt_fmod({}, {})", l.code, r.code),
+        };
+        Val::new(code, ty)
     }
 
     pub(super) fn short_circuit(&mut self, b: &syn::ExprBinary) -> Result<Val> {
