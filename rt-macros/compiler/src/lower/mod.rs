@@ -6,6 +6,11 @@
 //! the *types*, the *functions* (accessors, constants and helpers) and the
 //! *program*. Names: programs are `rtp_<name>`, helpers `rtf_<name>`, runtime
 //! items `rt_*`/`Rt*`; user structs and constants keep their names.
+//!
+//! [`lower`] runs the phases of [`unit`] in order: the items the entry
+//! reaches ([`items`]), sorted by dependency ([`order`]); constants; helper
+//! signatures, then bodies, callees first ([`func`] lowers one body); the
+//! program ([`program`]); and [`assemble`]s and validates the module.
 
 pub mod accessors;
 mod assemble;
