@@ -11,6 +11,9 @@
 use std::collections::HashSet;
 use std::hash::Hash;
 
+/// A node's dependencies, each with what its edge carries.
+pub type Deps<G> = Vec<(<G as Graph>::Node, <G as Graph>::Edge)>;
+
 /// What the sort needs to know of a graph.
 pub trait Graph {
     type Node: Clone + Eq + Hash;
@@ -21,7 +24,7 @@ pub trait Graph {
     /// The nodes `n` depends on, in the order to visit them, or why `n`
     /// cannot be ordered (which stops the walk). Asked each time `n` is
     /// entered.
-    fn deps(&mut self, n: &Self::Node) -> Result<Vec<(Self::Node, Self::Edge)>, Self::Error>;
+    fn deps(&mut self, n: &Self::Node) -> Result<Deps<Self>, Self::Error>;
 
     /// `n`'s dependencies are done; an error stops the walk before `n`
     /// joins the order.

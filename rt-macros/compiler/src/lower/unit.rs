@@ -111,7 +111,7 @@ impl<'e, 'a> Unit<'e, 'a> {
                     continue;
                 }
             };
-            let mut l = FnLowerer::new(&m, FnRole::Helper, &wname, Ty::Unit);
+            let mut l = FnLowerer::new(m, FnRole::Helper, &wname, Ty::Unit);
             let r = l.expr(&c.expr, Some(&ty));
             match r {
                 Ok(v) => {
@@ -188,7 +188,7 @@ impl<'e, 'a> Unit<'e, 'a> {
     /// Lowers the helpers' bodies, callees first; helpers that trace also
     /// in their resumable form.
     pub fn lower_helpers(&mut self, m: &mut ModuleCtx, helper_items: &HashMap<String, &syn::ItemFn>) {
-        let order = match helper_order(&helper_items) {
+        let order = match helper_order(helper_items) {
             Ok(o) => o,
             Err((name, e)) => {
                 self.own(&name);
@@ -201,7 +201,7 @@ impl<'e, 'a> Unit<'e, 'a> {
             let f = helper_items[&name];
             let sig = m.helpers[&name].clone();
             let params = lparams(f, &sig.params);
-            let mut l = FnLowerer::new(&m, FnRole::Helper, &name, sig.ret.clone());
+            let mut l = FnLowerer::new(m, FnRole::Helper, &name, sig.ret.clone());
             let body = l.function(&sig.wgsl_name, &params, &f.block);
             let (clean, ranges) = l.finish(&body);
             let mut intr: Vec<&'static str> = l.intrinsics.iter().map(|(n, _)| *n).collect();
@@ -217,7 +217,7 @@ impl<'e, 'a> Unit<'e, 'a> {
             h.intrinsics = intr;
             h.traced = traced;
             if !h.traced.is_empty() {
-                let mut r = FnLowerer::new(&m, FnRole::Helper, &name, sig.ret.clone());
+                let mut r = FnLowerer::new(m, FnRole::Helper, &name, sig.ret.clone());
                 let rs_name = format!("{}_rs", sig.wgsl_name);
                 match r.function_resumable(&rs_name, &params, &f.block) {
                     Ok(text) => {
