@@ -504,16 +504,16 @@ pub fn assoc_const(owner: &str, name: &str) -> Option<Val> {
                 "NAN" => f32::NAN,
                 _ => return None,
             };
-            Some(Val { code: f32_literal(v), ty })
+            Some(Val::new(f32_literal(v), ty))
         }
         Ty::Scalar(Scalar::I32) => match name {
-            "MAX" => Some(Val { code: "2147483647i".into(), ty }),
-            "MIN" => Some(Val { code: "i32(-2147483648)".into(), ty }),
+            "MAX" => Some(Val::new("2147483647i", ty)),
+            "MIN" => Some(Val::new("i32(-2147483648)", ty)),
             _ => None,
         },
         Ty::Scalar(Scalar::U32) => match name {
-            "MAX" => Some(Val { code: "4294967295u".into(), ty }),
-            "MIN" => Some(Val { code: "0u".into(), ty }),
+            "MAX" => Some(Val::new("4294967295u", ty)),
+            "MIN" => Some(Val::new("0u", ty)),
             _ => None,
         },
         Ty::Vec(n, s) => {
@@ -540,10 +540,10 @@ pub fn assoc_const(owner: &str, name: &str) -> Option<Val> {
                 "NEG_W" if *n >= 4 => axis(3, neg?),
                 _ => return None,
             };
-            Some(Val { code, ty })
+            Some(Val::new(code, ty))
         }
         Ty::Mat(n) => match name {
-            "ZERO" => Some(Val { code: format!("{w}()"), ty }),
+            "ZERO" => Some(Val::new(format!("{w}()"), ty)),
             "IDENTITY" => {
                 let cols: Vec<String> = (0..*n)
                     .map(|i| {
@@ -551,7 +551,7 @@ pub fn assoc_const(owner: &str, name: &str) -> Option<Val> {
                         format!("vec{n}<f32>({})", c.join(", "))
                     })
                     .collect();
-                Some(Val { code: format!("{w}({})", cols.join(", ")), ty })
+                Some(Val::new(format!("{w}({})", cols.join(", ")), ty))
             }
             _ => None,
         },

@@ -8,17 +8,40 @@ use crate::types::{BufferKind, Ty};
 pub struct Val {
     pub code: String,
     pub ty: Ty,
+    /// Evaluating `code` may have side effects: it calls a helper (which
+    /// may write through `&mut` parameters or to buffers) or an intrinsic
+    /// that reports an intersection. Set where such a call is lowered and
+    /// carried into every value whose code contains it.
+    pub effects: bool,
 }
 
 impl Val {
+    /// A value without effects.
     pub fn new(code: impl Into<String>, ty: Ty) -> Val {
-        Val { code: code.into(), ty }
+        Val { code: code.into(), ty, effects: false }
     }
+
+    /// The value with its `effects` recorded.
+    pub fn with_effects(mut self, effects: bool) -> Val {
+        self.effects = effects;
+        self
+    }
+}
+
+/// The code of each value.
+pub fn codes(vals: &[Val]) -> Vec<String> {
+    vals.iter().map(|v| v.code.clone()).collect()
+}
+
+/// Whether any of the values has effects.
+pub fn any_effects(vals: &[Val]) -> bool {
+    vals.iter().any(|v| v.effects)
 }
 
 /// Something that can be assigned to.
 pub enum Place {
-    Wgsl(String, Ty),
+    /// A WGSL reference expression (with effects where an index has them).
+    Wgsl(Val),
     /// An element of a buffer, with an optional member path into it.
     Buffer {
         buf: Val,
@@ -27,6 +50,8 @@ pub enum Place {
         index: String,
         path: String,
         ty: Ty,
+        /// An index in `path` has effects.
+        effects: bool,
     },
 }
 

@@ -4,11 +4,11 @@
 use super::*;
 
 impl FnLowerer<'_> {
-    pub(super) fn buffer_index(&mut self, kind: BufferKind, e: &Expr) -> Result<String> {
+    pub(super) fn buffer_index(&mut self, kind: BufferKind, e: &Expr) -> Result<Val> {
         let want = if kind.dims == 2 { Ty::Vec(2, Scalar::U32) } else { U32 };
         let v = self.expr(e, Some(&want))?;
         let v = self.deref(v);
-        Ok(self.coerce(v, &want, e.span())?.code)
+        self.coerce(v, &want, e.span())
     }
 
     #[allow(clippy::too_many_arguments)]
@@ -35,21 +35,23 @@ impl FnLowerer<'_> {
         match (name, kind.dims) {
             ("len", 1) => {
                 want_args(0)?;
-                Ok(Val::new(format!("{}.len", recv.code), U32))
+                Ok(Val::new(format!("{}.len", recv.code), U32).with_effects(recv.effects))
             }
             ("is_empty", 1) => {
                 want_args(0)?;
-                Ok(Val::new(format!("({}.len == 0u)", recv.code), BOOL))
+                Ok(Val::new(format!("({}.len == 0u)", recv.code), BOOL).with_effects(recv.effects))
             }
             ("size", 2) => {
                 want_args(0)?;
-                Ok(Val::new(format!("vec2<u32>({0}.width, {0}.height)", recv.code), Ty::Vec(2, Scalar::U32)))
+                let size = format!("vec2<u32>({0}.width, {0}.height)", recv.code);
+                Ok(Val::new(size, Ty::Vec(2, Scalar::U32)).with_effects(recv.effects))
             }
             ("load", _) => {
                 want_args(1)?;
                 let idx = self.buffer_index(kind, args[0])?;
                 let f = self.m.accessors.borrow_mut().buffer_load(kind.dims, elem);
-                Ok(Val::new(format!("{f}({}, {idx})", recv.code), elem.clone()))
+                let effects = recv.effects || idx.effects;
+                Ok(Val::new(format!("{f}({}, {})", recv.code, idx.code), elem.clone()).with_effects(effects))
             }
             ("store", _) => {
                 want_args(2)?;
@@ -62,8 +64,7 @@ impl FnLowerer<'_> {
                         ),
                     ));
                 }
-                let idx = self.buffer_index(kind, args[0])?;
-                let mut idx = Val::new(idx, U32);
+                let mut idx = self.buffer_index(kind, args[0])?;
                 let at = self.here();
                 let v = self.expr(args[1], Some(elem))?;
                 let v = self.deref(v);
@@ -100,7 +101,8 @@ impl FnLowerer<'_> {
                 if !args.is_empty() {
                     return Err(Error::new(name_span, "`Sampler2d::size` takes no arguments"));
                 }
-                return Ok(Val::new(format!("vec2<u32>({0}.width, {0}.height)", recv.code), Ty::Vec(2, Scalar::U32)));
+                let size = format!("vec2<u32>({0}.width, {0}.height)", recv.code);
+                return Ok(Val::new(size, Ty::Vec(2, Scalar::U32)).with_effects(recv.effects));
             }
             _ => {
                 return Err(Error::new(
@@ -115,6 +117,6 @@ impl FnLowerer<'_> {
         let v = self.expr(args[0], Some(&arg_ty))?;
         let v = self.deref(v);
         let v = self.coerce(v, &arg_ty, args[0].span())?;
-        Ok(Val::new(format!("{f}({}, {})", recv.code, v.code), ret))
+        Ok(Val::new(format!("{f}({}, {})", recv.code, v.code), ret).with_effects(recv.effects || v.effects))
     }
 }

@@ -75,27 +75,33 @@ impl FnLowerer<'_> {
         {
             vals[0] = self.at_run_time(vals[0].clone());
         }
-        let mut codes: Vec<String> = vals.into_iter().map(|v| v.code).collect();
         // A lowering that repeats an operand (`(x - trunc(x))`) must not
         // repeat its side effects: evaluate such operands (and, to keep
         // Rust's left-to-right order, effectful ones before them) once, first.
-        let probe: Vec<String> = (0..codes.len()).map(|i| format!("\u{6}{i}\u{6}")).collect();
+        // Which operands a row repeats is learnt from the row's own lowering,
+        // applied to a probe per operand.
+        let probe: Vec<String> = (0..vals.len()).map(|i| format!("\u{6}{i}\u{6}")).collect();
         let shape = (sig.lower)(&probe);
-        let last_repeated =
-            (0..codes.len()).rev().find(|&i| shape.matches(&probe[i]).count() > 1 && may_have_effects(&codes[i]));
+        let last_repeated = (0..vals.len()).rev().find(|&i| shape.matches(&probe[i]).count() > 1 && vals[i].effects);
         if let Some(last) = last_repeated {
-            for c in codes.iter_mut().take(last + 1) {
-                if may_have_effects(c) {
-                    let t = self.tmp();
-                    self.emit(format!("let {t} = {c};"));
-                    *c = t;
-                }
-            }
+            self.once(&mut vals[..=last]);
         }
         if let Some((name, text)) = sig.support {
             self.m.accessors.borrow_mut().functions.entry(name.to_string()).or_insert_with(|| text.to_string());
         }
-        Ok(Val::new((sig.lower)(&codes), sig.ret))
+        let effects = any_effects(&vals);
+        Ok(Val::new((sig.lower)(&codes(&vals)), sig.ret).with_effects(effects))
+    }
+
+    /// Evaluates the operands with effects into `let`s, in order.
+    fn once(&mut self, vals: &mut [Val]) {
+        for v in vals {
+            if v.effects {
+                let t = self.tmp();
+                self.emit_let(format!("let {t} = {};", v.code), v);
+                *v = Val::new(t, v.ty.clone());
+            }
+        }
     }
 
     pub(super) fn call(&mut self, c: &syn::ExprCall, want: Option<&Ty>) -> Result<Val> {
@@ -182,7 +188,7 @@ impl FnLowerer<'_> {
         ))
     }
 
-    pub(super) fn args_typed(&mut self, args: &[&Expr], params: &[Ty], span: Span, what: &str) -> Result<Vec<String>> {
+    pub(super) fn args_typed(&mut self, args: &[&Expr], params: &[Ty], span: Span, what: &str) -> Result<Vec<Val>> {
         if args.len() != params.len() {
             return Err(Error::new(span, format!("`{what}` takes {} argument(s), found {}", params.len(), args.len())));
         }
@@ -195,7 +201,7 @@ impl FnLowerer<'_> {
             self.spill(at, &mut out.iter_mut().collect::<Vec<_>>());
             out.push(v);
         }
-        Ok(out.into_iter().map(|v| v.code).collect())
+        Ok(out)
     }
 
     pub(super) fn constructor(&mut self, ty: &Ty, name: &str, args: &[&Expr], span: Span) -> Result<Option<Val>> {
@@ -204,21 +210,21 @@ impl FnLowerer<'_> {
             (Ty::Vec(n, s), "new") => {
                 let params = vec![Ty::Scalar(*s); *n as usize];
                 let a = self.args_typed(args, &params, span, &format!("{ty}::new"))?;
-                Ok(Some(Val::new(format!("{w}({})", a.join(", ")), ty.clone())))
+                Ok(Some(Val::new(format!("{w}({})", codes(&a).join(", ")), ty.clone()).with_effects(any_effects(&a))))
             }
             (Ty::Vec(_, s), "splat") => {
                 let a = self.args_typed(args, &[Ty::Scalar(*s)], span, &format!("{ty}::splat"))?;
-                Ok(Some(Val::new(format!("{w}({})", a[0]), ty.clone())))
+                Ok(Some(Val::new(format!("{w}({})", a[0].code), ty.clone()).with_effects(a[0].effects)))
             }
             (Ty::Mat(n), "from_cols") => {
                 let params = vec![Ty::vec(*n); *n as usize];
                 let a = self.args_typed(args, &params, span, &format!("{ty}::from_cols"))?;
-                Ok(Some(Val::new(format!("{w}({})", a.join(", ")), ty.clone())))
+                Ok(Some(Val::new(format!("{w}({})", codes(&a).join(", ")), ty.clone()).with_effects(any_effects(&a))))
             }
             (Ty::Mat(n), "from_diagonal") => {
                 let a = self.args_typed(args, &[Ty::vec(*n)], span, &format!("{ty}::from_diagonal"))?;
                 let t = self.tmp();
-                self.emit(format!("let {t} = {};", a[0]));
+                self.emit_let(format!("let {t} = {};", a[0].code), &a[0]);
                 let cols: Vec<String> = (0..*n)
                     .map(|i| {
                         let comps: Vec<String> =
@@ -231,11 +237,11 @@ impl FnLowerer<'_> {
             (Ty::Ray, "new") => {
                 let params = [Ty::vec(3), Ty::vec(3), U32, F32, F32];
                 let a = self.args_typed(args, &params, span, "Ray::new")?;
-                Ok(Some(Val::new(format!("RtRay({})", a.join(", ")), Ty::Ray)))
+                Ok(Some(Val::new(format!("RtRay({})", codes(&a).join(", ")), Ty::Ray).with_effects(any_effects(&a))))
             }
             (Ty::Aabb, "new") => {
                 let a = self.args_typed(args, &[Ty::vec(3), Ty::vec(3)], span, "Aabb::new")?;
-                Ok(Some(Val::new(format!("RtAabb({})", a.join(", ")), Ty::Aabb)))
+                Ok(Some(Val::new(format!("RtAabb({})", codes(&a).join(", ")), Ty::Aabb).with_effects(any_effects(&a))))
             }
             _ => Ok(None),
         }
@@ -315,23 +321,19 @@ impl FnLowerer<'_> {
                     Ty::Vec(..) => (format!("{}(0.0)", ret.wgsl()), format!("{}(1.0)", ret.wgsl())),
                     _ => ("0.0f".to_string(), "1.0f".to_string()),
                 };
-                return Ok(Some(Val::new(format!("select({zero}, {one}, {} >= {})", a[1], a[0]), ret)));
+                let code = format!("select({zero}, {one}, {} >= {})", a[1].code, a[0].code);
+                return Ok(Some(Val::new(code, ret).with_effects(any_effects(&a))));
             }
             if f == "mix" {
                 // rt-std's formula (see `builtins::lerp_formula`); `t` is
                 // used twice: once evaluated.
-                if may_have_effects(&a[2]) {
-                    for c in a.iter_mut() {
-                        if may_have_effects(c) {
-                            let t = self.tmp();
-                            self.emit(format!("let {t} = {c};"));
-                            *c = t;
-                        }
-                    }
+                if a[2].effects {
+                    self.once(&mut a);
                 }
-                return Ok(Some(Val::new(builtins::lerp_formula(&a[0], &a[1], &a[2]), ret)));
+                let code = builtins::lerp_formula(&a[0].code, &a[1].code, &a[2].code);
+                return Ok(Some(Val::new(code, ret).with_effects(any_effects(&a))));
             }
-            return Ok(Some(Val::new(format!("{f}({})", a.join(", ")), ret)));
+            return Ok(Some(Val::new(format!("{f}({})", codes(&a).join(", ")), ret).with_effects(any_effects(&a))));
         }
         self.intrinsic_call(name, args, span)
     }
@@ -416,7 +418,8 @@ impl FnLowerer<'_> {
             writebacks.into_iter().for_each(|w| self.emit(w));
             Ok(Val::new("", Ty::Unit))
         } else if writebacks.is_empty() {
-            Ok(Val::new(code, sig.ret.clone()))
+            // A helper may write through its `&mut` parameters and to buffers.
+            Ok(Val::new(code, sig.ret.clone()).with_effects(true))
         } else {
             // The result must be taken before the temporaries are copied back.
             let t = self.tmp();

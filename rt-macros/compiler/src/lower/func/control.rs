@@ -33,11 +33,11 @@ impl FnLowerer<'_> {
                     Some((lines, v.unwrap_or(Val::new("", Ty::Unit)), span))
                 }
                 _ => {
-                    self.blocks.push(Vec::new());
+                    self.blocks.push(Block::default());
                     self.scopes.push(Vec::new());
                     let r = self.expr(e, else_want.as_ref());
                     self.scopes.pop();
-                    let lines = self.blocks.pop().unwrap();
+                    let lines = self.blocks.pop().unwrap().lines;
                     Some((lines, r?, e.span()))
                 }
             },
@@ -155,9 +155,9 @@ impl FnLowerer<'_> {
                 "loop with a plain condition (`while n > 0`), or `loop` with `if ... { break; }`",
             ));
         }
-        self.blocks.push(Vec::new());
+        self.blocks.push(Block::default());
         let cond = self.cond(&w.cond);
-        let hoisted = self.blocks.pop().unwrap();
+        let hoisted = self.blocks.pop().unwrap().lines;
         let cond = cond?;
         let body = self.loop_body(&w.body.stmts)?;
         let text = if hoisted.is_empty() {
@@ -230,7 +230,7 @@ impl FnLowerer<'_> {
             e.code
         } else {
             let t = self.fresh("end");
-            self.emit(format!("let {t} = {};", e.code));
+            self.emit_let(format!("let {t} = {};", e.code), &e);
             t
         };
         self.scopes.push(Vec::new());
@@ -350,10 +350,10 @@ impl FnLowerer<'_> {
                 _ => false,
             }
         }
-        if may_have_effects(&scrut.code) && m.arms.iter().any(|a| binds(&a.pat)) {
+        if scrut.effects && m.arms.iter().any(|a| binds(&a.pat)) {
             let t = self.fresh("scrutinee");
-            self.emit(format!("let {t} = {};", scrut.code));
-            scrut.code = t;
+            self.emit_let(format!("let {t} = {};", scrut.code), &scrut);
+            scrut = Val::new(t, scrut.ty);
         }
         if !self.is_int(&sty) {
             return Err(Error::unsupported(
@@ -430,15 +430,15 @@ impl FnLowerer<'_> {
             let mut binding = None;
             self.match_pattern(&arm.pat, sty, &mut labels, &mut binding)?;
             self.scopes.push(Vec::new());
-            self.blocks.push(Vec::new());
+            self.blocks.push(Block::default());
             if let Some(b) = &binding {
                 let w = self.fresh(b);
-                self.emit(format!("let {w} = {};", scrut.code));
+                self.emit_let(format!("let {w} = {};", scrut.code), scrut);
                 self.bind(b, Local { wgsl: w, ty: sty.clone(), var: false });
             }
             let want_arm = result_ty.clone().or(want.cloned());
             let r = self.expr(&arm.body, want_arm.as_ref());
-            let mut lines = self.blocks.pop().unwrap();
+            let mut lines = self.blocks.pop().unwrap().lines;
             self.scopes.pop();
             let v = r?;
             let vty = self.resolved(&v.ty);

@@ -22,31 +22,33 @@ impl FnLowerer<'_> {
     /// read mutable state are evaluated into temporaries at `at`, first.
     pub(super) fn spill(&mut self, at: usize, earlier: &mut [&mut Val]) {
         // `let`s of effect-free values change nothing.
-        let writes = self.blocks.last().unwrap()[at..]
-            .iter()
-            .any(|line| !text::strip(line).trim_start().starts_with("let ") || may_have_effects(line));
-        if !writes {
+        if !self.blocks.last().unwrap().writes_since(at) {
             return;
         }
         let mut lets = Vec::new();
         for v in earlier.iter_mut() {
-            if v.code.is_empty() || matches!(v.ty, Ty::Ref(..)) || !self.reads_state(&v.code) {
+            if v.code.is_empty() || matches!(v.ty, Ty::Ref(..)) || !self.reads_state(v) {
                 continue;
             }
             let t = self.tmp();
-            let kw = if matches!(self.resolved(&v.ty), Ty::Array(..) | Ty::Mat(_)) { "var" } else { "let" };
-            lets.push(format!("{kw} {t} = {};", v.code));
+            let var = matches!(self.resolved(&v.ty), Ty::Array(..) | Ty::Mat(_));
+            let kw = if var { "var" } else { "let" };
+            lets.push((format!("{kw} {t} = {};", v.code), var || v.effects));
             v.code = t;
+            v.effects = false;
         }
         let block = self.blocks.last_mut().unwrap();
-        for (i, l) in lets.into_iter().enumerate() {
-            block.insert(at + i, l);
+        for (i, (line, writes)) in lets.into_iter().enumerate() {
+            block.insert(at + i, line, writes);
         }
     }
 
-    /// Whether lowered code reads something that statements can change:
-    /// a `var` local, a pointer parameter, a buffer, or a call with effects.
-    pub(super) fn reads_state(&self, code: &str) -> bool {
+    /// Whether a value reads something that statements can change: a
+    /// `var` local, a pointer parameter, a buffer, or a call with effects.
+    pub(super) fn reads_state(&self, v: &Val) -> bool {
+        if v.effects {
+            return true;
+        }
         let mutable: HashSet<&str> = self
             .scopes
             .iter()
@@ -54,12 +56,12 @@ impl FnLowerer<'_> {
             .filter(|(_, l)| l.var || matches!(l.ty, Ty::Ref(true, _)))
             .map(|(_, l)| l.wgsl.as_str())
             .collect();
-        wgsl_idents(code).iter().any(|id| {
-            mutable.contains(id.as_str())
-                || id.starts_with("rt_bufload")
-                || id.starts_with("rt_load")
-                || may_have_effects(id)
-        })
+        // The names the code reads (lowered code names locals by their WGSL
+        // names, and loads from the heap by the accessors' `rt_bufload*`
+        // and `rt_load*`).
+        wgsl_idents(&v.code)
+            .iter()
+            .any(|id| mutable.contains(id.as_str()) || id.starts_with("rt_bufload") || id.starts_with("rt_load"))
     }
 
     /// Whether lowered code is a WGSL const-expression (literals,
@@ -83,7 +85,7 @@ impl FnLowerer<'_> {
             return v;
         }
         let t = self.tmp();
-        self.emit(format!("let {t} = {};", v.code));
+        self.emit_let(format!("let {t} = {};", v.code), &v);
         Val::new(t, v.ty)
     }
 
@@ -238,11 +240,4 @@ fn const_overflows(op: &BinOp, a: i64, b: i64, scalar: Option<Scalar>) -> bool {
         Some(Scalar::U32 | Scalar::Usize) => fails(false),
         _ => fails(true) || fails(false),
     }
-}
-
-/// Whether evaluating lowered code may have side effects: only calls of
-/// helpers (which may write through `&mut` parameters or to buffers) and
-/// of the intersection-reporting intrinsics do.
-pub(super) fn may_have_effects(code: &str) -> bool {
-    code.contains("rtf_") || code.contains("rt_report_intersection") || code.contains("rt_potential_intersection")
 }

@@ -8,7 +8,7 @@ impl FnLowerer<'_> {
         let span = e.span();
         let v = self.expr_inner(e, want)?;
         let code = if v.code.is_empty() { v.code } else { self.mark(span, &v.code) };
-        Ok(Val { code, ty: v.ty })
+        Ok(Val { code, ty: v.ty, effects: v.effects })
     }
 
     pub(super) fn expr_inner(&mut self, e: &Expr, want: Option<&Ty>) -> Result<Val> {
@@ -18,7 +18,11 @@ impl FnLowerer<'_> {
                 // Binary operators are always parenthesised; only a unary
                 // operand needs the parentheses kept (`(-v).x`).
                 let v = self.expr(&p.expr, want)?;
-                if matches!(&*p.expr, Expr::Unary(_)) { Ok(Val::new(format!("({})", v.code), v.ty)) } else { Ok(v) }
+                if matches!(&*p.expr, Expr::Unary(_)) {
+                    Ok(Val::new(format!("({})", v.code), v.ty).with_effects(v.effects))
+                } else {
+                    Ok(v)
+                }
             }
             Expr::Group(g) => self.expr_inner(&g.expr, want),
             Expr::Path(p) => self.path_expr(p),
@@ -216,19 +220,21 @@ impl FnLowerer<'_> {
             Ty::Vec(n, s) => {
                 let idx = "xyzw".find(name).filter(|i| name.len() == 1 && *i < *n as usize);
                 match idx {
-                    Some(_) => Ok(Val::new(format!("{}.{name}", base.code), Ty::Scalar(*s))),
+                    Some(_) => Ok(Val::new(format!("{}.{name}", base.code), Ty::Scalar(*s)).with_effects(base.effects)),
                     None => Err(Error::new(span, format!("no field `{name}` on `{t}`"))),
                 }
             }
             Ty::Mat(n) => {
                 let axis = ["x_axis", "y_axis", "z_axis", "w_axis"].iter().position(|a| *a == name);
                 match axis {
-                    Some(i) if i < *n as usize => Ok(Val::new(format!("{}[{i}]", base.code), Ty::vec(*n))),
+                    Some(i) if i < *n as usize => {
+                        Ok(Val::new(format!("{}[{i}]", base.code), Ty::vec(*n)).with_effects(base.effects))
+                    }
                     _ => Err(Error::new(span, format!("no field `{name}` on `{t}`"))),
                 }
             }
             Ty::Struct(_) | Ty::Ray | Ty::Aabb => match t.fields().into_iter().find(|(n, _)| n == name) {
-                Some((_, fty)) => Ok(Val::new(format!("{}.{name}", base.code), fty)),
+                Some((_, fty)) => Ok(Val::new(format!("{}.{name}", base.code), fty).with_effects(base.effects)),
                 None => Err(Error::new(span, format!("no field `{name}` on `{t}`"))),
             },
             _ => Err(Error::new(span, format!("no field `{name}` on `{t}`"))),
@@ -243,30 +249,33 @@ impl FnLowerer<'_> {
             Ty::Buffer(kind, elem) => {
                 let idx = self.buffer_index(kind, &i.index)?;
                 let f = self.m.accessors.borrow_mut().buffer_load(kind.dims, &elem);
-                Ok(Val::new(format!("{f}({}, {})", base.code, idx), *elem))
+                let effects = base.effects || idx.effects;
+                Ok(Val::new(format!("{f}({}, {})", base.code, idx.code), *elem).with_effects(effects))
             }
             Ty::Array(elem, _) => {
                 let idx = self.int_index(&i.index)?;
                 self.spill(at, &mut [&mut base]);
-                Ok(Val::new(format!("{}[{idx}]", base.code), *elem))
+                let effects = base.effects || idx.effects;
+                Ok(Val::new(format!("{}[{}]", base.code, idx.code), *elem).with_effects(effects))
             }
             Ty::Vec(_, s) => {
                 let idx = self.int_index(&i.index)?;
                 self.spill(at, &mut [&mut base]);
-                Ok(Val::new(format!("{}[{idx}]", base.code), Ty::Scalar(s)))
+                let effects = base.effects || idx.effects;
+                Ok(Val::new(format!("{}[{}]", base.code, idx.code), Ty::Scalar(s)).with_effects(effects))
             }
             t => Err(Error::new(i.expr.span(), format!("cannot index into a value of type `{t}`"))),
         }
     }
 
-    pub(super) fn int_index(&mut self, e: &Expr) -> Result<String> {
+    pub(super) fn int_index(&mut self, e: &Expr) -> Result<Val> {
         let v = self.expr(e, Some(&Ty::Scalar(Scalar::Usize)))?;
         let v = self.deref(v);
         if !self.is_int(&v.ty) {
             return Err(Error::new(e.span(), format!("an index must be an integer, found `{}`", self.resolved(&v.ty))));
         }
         self.unify(&v.ty, &Ty::Scalar(Scalar::Usize));
-        Ok(v.code)
+        Ok(v)
     }
 
     pub(super) fn struct_lit(&mut self, s: &syn::ExprStruct) -> Result<Val> {
@@ -318,13 +327,14 @@ impl FnLowerer<'_> {
             let v = self.deref(v);
             let mut v = self.coerce(v, &fty, fv.expr.span())?;
             self.spill(at, &mut done.iter_mut().map(|(_, v)| v).collect::<Vec<_>>());
-            if !in_order && may_have_effects(&v.code) {
+            if !in_order && v.effects {
                 let t = self.tmp();
-                self.emit(format!("let {t} = {};", v.code));
-                v.code = t;
+                self.emit_let(format!("let {t} = {};", v.code), &v);
+                v = Val::new(t, v.ty);
             }
             done.push((idx, v));
         }
+        let effects = done.iter().any(|(_, v)| v.effects);
         for (idx, v) in done {
             given[idx] = Some(v.code);
         }
@@ -337,7 +347,7 @@ impl FnLowerer<'_> {
             ));
         }
         let args: Vec<String> = given.into_iter().map(|g| g.unwrap()).collect();
-        Ok(Val::new(format!("{}({})", ty.wgsl(), args.join(", ")), ty))
+        Ok(Val::new(format!("{}({})", ty.wgsl(), args.join(", ")), ty).with_effects(effects))
     }
 
     pub(super) fn array_lit(&mut self, a: &syn::ExprArray, want: Option<&Ty>) -> Result<Val> {
@@ -361,9 +371,10 @@ impl FnLowerer<'_> {
             elem_want = Some(v.ty.clone());
             vals.push(v);
         }
+        let effects = vals.iter().any(|v| v.effects);
         let codes: Vec<String> = vals.into_iter().map(|v| v.code).collect();
         let ty = Ty::Array(Box::new(elem_want.unwrap()), codes.len() as u32);
-        Ok(Val::new(format!("{}({})", ty.wgsl(), codes.join(", ")), ty))
+        Ok(Val::new(format!("{}({})", ty.wgsl(), codes.join(", ")), ty).with_effects(effects))
     }
 
     pub(super) fn repeat_lit(&mut self, r: &syn::ExprRepeat, want: Option<&Ty>) -> Result<Val> {
@@ -384,7 +395,7 @@ impl FnLowerer<'_> {
             v.code
         } else {
             let t = self.tmp();
-            self.emit(format!("let {t} = {};", v.code));
+            self.emit_let(format!("let {t} = {};", v.code), &v);
             t
         };
         let parts = vec![value; n as usize];

@@ -64,7 +64,7 @@ impl FnLowerer<'_> {
 
     pub(super) fn coerce(&mut self, v: Val, want: &Ty, span: Span) -> Result<Val> {
         if self.unify(&v.ty, want) {
-            Ok(Val { code: v.code, ty: self.resolved(want) })
+            Ok(Val { code: v.code, ty: self.resolved(want), effects: v.effects })
         } else {
             Err(Error::new(
                 span,
@@ -76,8 +76,8 @@ impl FnLowerer<'_> {
     /// Reads through a reference parameter.
     pub(super) fn deref(&self, v: Val) -> Val {
         match v.ty {
-            Ty::Ref(true, t) => Val::new(format!("(*{})", v.code), *t),
-            Ty::Ref(false, t) => Val::new(v.code, *t),
+            Ty::Ref(true, t) => Val::new(format!("(*{})", v.code), *t).with_effects(v.effects),
+            Ty::Ref(false, t) => Val::new(v.code, *t).with_effects(v.effects),
             _ => v,
         }
     }
@@ -86,7 +86,7 @@ impl FnLowerer<'_> {
     /// pick an overload). Only cheap, side-effect-free forms are probed.
     pub(super) fn peek_type(&mut self, e: &Expr) -> Result<Option<Ty>> {
         let saved_blocks = self.blocks.len();
-        self.blocks.push(Vec::new());
+        self.blocks.push(Block::default());
         let saved_intr = self.intrinsics.len();
         let saved_calls = self.calls.len();
         let saved_ivars = self.ivars.clone();

@@ -39,9 +39,10 @@ impl FnLowerer<'_> {
                 match attr {
                     Some(Local { wgsl, ty: Ty::Ref(_, t), .. }) => {
                         self.m.report_types.borrow_mut().insert(t.wgsl(), (*t).clone());
-                        Ok(Some(Val::new(format!("rt_report_intersection_{}({}, {wgsl})", t.mangle(), a[0]), BOOL)))
+                        let code = format!("rt_report_intersection_{}({}, {wgsl})", t.mangle(), a[0].code);
+                        Ok(Some(Val::new(code, BOOL).with_effects(true)))
                     }
-                    _ => Ok(Some(Val::new(format!("rt_report_intersection({})", a[0]), BOOL))),
+                    _ => Ok(Some(Val::new(format!("rt_report_intersection({})", a[0].code), BOOL).with_effects(true))),
                 }
             }
             "rt_trace" | "rt_trace_with" => {
@@ -63,17 +64,18 @@ impl FnLowerer<'_> {
                 }
                 let (flags, mask) = if n == 5 {
                     let fm = self.args_typed(&args[3..], &[U32, U32], span, name)?;
-                    (fm[0].clone(), fm[1].clone())
+                    (fm[0].code.clone(), fm[1].code.clone())
                 } else {
                     ("0u".to_string(), "255u".to_string())
                 };
                 self.traced.push(pty.clone());
                 self.m.trace_types.borrow_mut().insert(pty.wgsl(), pty.clone());
                 if self.resume.is_some() {
-                    self.trace_site(&pty.mangle(), [&obj[0], &ray[0], &flags, &mask], &prd, span)?;
+                    self.trace_site(&pty.mangle(), [&obj[0].code, &ray[0].code, &flags, &mask], &prd, span)?;
                     return Ok(Some(Val::new("", Ty::Unit)));
                 }
-                let line = format!("rt_trace_{}({}, {}, {prd}, {flags}, {mask});", pty.mangle(), obj[0], ray[0]);
+                let line =
+                    format!("rt_trace_{}({}, {}, {prd}, {flags}, {mask});", pty.mangle(), obj[0].code, ray[0].code);
                 let line = self.mark(span, &line);
                 self.emit(line);
                 for w in std::mem::take(&mut self.writebacks) {
@@ -97,14 +99,16 @@ impl FnLowerer<'_> {
             return Err(Error::new(span, format!("`{name}`: its contract row passes a handle by value")));
         };
         let a = self.args_typed(args, &params, span, name)?;
-        let call = format!("{}({})", f.name, a.join(", "));
+        let call = format!("{}({})", f.name, codes(&a).join(", "));
         match f.ret {
             kinds::AbiTy::Unit => {
                 let line = self.mark(span, &format!("{call};"));
                 self.emit(line);
                 Ok(Val::new("", Ty::Unit))
             }
-            _ => Ok(Val::new(call, ret)),
+            // `rt_potential_intersection` may accept a hit, which a later
+            // operand would see.
+            _ => Ok(Val::new(call, ret).with_effects(any_effects(&a) || name == "rt_potential_intersection")),
         }
     }
 }

@@ -23,7 +23,7 @@
 //! names and scopes, and the block walker.
 
 use super::text::{self, indent, int_literal_placeholder, mark};
-use super::value::{Place, Val, f32_literal};
+use super::value::{Place, Val, any_effects, codes, f32_literal};
 use super::{HelperSig, ModuleCtx, builtins, is_reserved};
 use crate::error::{Error, Errors, Result};
 use crate::kinds::{self, Kind};
@@ -45,7 +45,7 @@ mod places;
 mod resume;
 mod stmt;
 
-use eval::{int_literal_value, may_have_effects};
+use eval::int_literal_value;
 use ops::{compound_base, is_compound, op_symbol};
 pub use stmt::count_placeholders;
 
@@ -73,7 +73,7 @@ pub struct FnLowerer<'m> {
     scopes: Vec<Vec<(String, Local)>>,
     names: HashSet<String>,
     ivars: Vec<(u32, Option<Scalar>)>,
-    blocks: Vec<Vec<String>>,
+    blocks: Vec<Block>,
     ret: Ty,
     loop_depth: u32,
     /// Lowering a function body (not a constant's initialiser, which has no
@@ -105,6 +105,41 @@ pub struct FnLowerer<'m> {
     hoisted_calls: usize,
 }
 
+/// The statements emitted into one block so far, each with whether it
+/// may change state (anything but a `let` of a value without effects), for
+/// [`FnLowerer::spill`].
+#[derive(Default)]
+struct Block {
+    lines: Vec<String>,
+    writes: Vec<bool>,
+}
+
+impl Block {
+    fn push(&mut self, line: String, writes: bool) {
+        self.insert(self.lines.len(), line, writes);
+    }
+
+    fn insert(&mut self, at: usize, line: String, writes: bool) {
+        self.lines.insert(at, line);
+        self.writes.insert(at, writes);
+    }
+
+    fn len(&self) -> usize {
+        self.lines.len()
+    }
+
+    /// Whether a statement from `at` on may change state.
+    fn writes_since(&self, at: usize) -> bool {
+        self.writes[at..].iter().any(|w| *w)
+    }
+
+    /// The statements from `at` on, taken out.
+    fn split_off(&mut self, at: usize) -> Vec<String> {
+        self.writes.truncate(at);
+        self.lines.split_off(at)
+    }
+}
+
 /// A parameter as the lowering sees it.
 pub struct LParam {
     pub rust: String,
@@ -124,7 +159,7 @@ impl<'m> FnLowerer<'m> {
             scopes: vec![Vec::new()],
             names,
             ivars: Vec::new(),
-            blocks: vec![Vec::new()],
+            blocks: vec![Block::default()],
             ret,
             loop_depth: 0,
             in_function: false,
@@ -154,7 +189,7 @@ impl<'m> FnLowerer<'m> {
         self.in_function = true;
         let (sig, copies) = self.bind_params(params);
         let prologue = copies.into_iter().map(|(local, pname, _)| format!("var {local} = {pname};"));
-        self.blocks.last_mut().unwrap().extend(prologue);
+        prologue.for_each(|line| self.emit(line));
         let ret = self.ret.clone();
         let tail = self.block_inner(&body.stmts, Some(&ret));
         match tail {
@@ -180,7 +215,7 @@ impl<'m> FnLowerer<'m> {
             }
             Err(e) => self.errors.push(e),
         }
-        let lines = self.blocks.pop().unwrap();
+        let lines = self.blocks.pop().unwrap().lines;
         let ret_text = if matches!(ret, Ty::Unit) { String::new() } else { format!(" -> {}", ret.wgsl()) };
         format!("fn {wgsl_name}({}){ret_text} {{\n{}}}\n", sig.join(", "), indent(&lines.join("\n")))
     }
@@ -258,8 +293,15 @@ impl<'m> FnLowerer<'m> {
         self.scopes.iter().rev().flat_map(|s| s.iter().rev()).find(|(n, _)| n == rust).map(|(_, l)| l)
     }
 
+    /// Emits a statement that may change state.
     fn emit(&mut self, line: String) {
-        self.blocks.last_mut().unwrap().push(line);
+        self.blocks.last_mut().unwrap().push(line, true);
+    }
+
+    /// Emits `line`, a `let` of `value`: it changes state only if the
+    /// value has effects.
+    fn emit_let(&mut self, line: String, value: &Val) {
+        self.blocks.last_mut().unwrap().push(line, value.effects);
     }
 
     fn mark(&self, span: Span, text: &str) -> String {
@@ -273,13 +315,13 @@ impl<'m> FnLowerer<'m> {
     /// Lowers statements in a new scope and buffer; returns the lines and
     /// the tail value.
     fn sub_block(&mut self, stmts: &[Stmt], want: Option<&Ty>) -> Result<(Vec<String>, Option<Val>)> {
-        self.blocks.push(Vec::new());
+        self.blocks.push(Block::default());
         self.scopes.push(Vec::new());
         let hoist = std::mem::replace(&mut self.hoist, false);
         let r = self.block_inner(stmts, want);
         self.hoist = hoist;
         self.scopes.pop();
-        let lines = self.blocks.pop().unwrap();
+        let lines = self.blocks.pop().unwrap().lines;
         r.map(|v| (lines, v))
     }
 

@@ -28,10 +28,12 @@ impl FnLowerer<'_> {
                     v
                 };
                 match t.scalar() {
-                    Some(Scalar::F32) | Some(Scalar::I32) => Ok(Val::new(negate(&v.code), v.ty)),
+                    Some(Scalar::F32) | Some(Scalar::I32) => {
+                        Ok(Val::new(negate(&v.code), v.ty).with_effects(v.effects))
+                    }
                     _ if matches!(t, Ty::IntVar(_)) => {
                         self.unify(&t, &I32);
-                        Ok(Val::new(negate(&v.code), I32))
+                        Ok(Val::new(negate(&v.code), I32).with_effects(v.effects))
                     }
                     _ => Err(Error::new(u.span(), format!("cannot negate a value of type `{t}`"))),
                 }
@@ -41,9 +43,9 @@ impl FnLowerer<'_> {
                 let v = self.deref(v);
                 let t = self.resolved(&v.ty);
                 if t == BOOL {
-                    Ok(Val::new(format!("!{}", v.code), BOOL))
+                    Ok(Val::new(format!("!{}", v.code), BOOL).with_effects(v.effects))
                 } else if self.is_int(&t) || matches!(t, Ty::Vec(_, s) if s.is_int()) {
-                    Ok(Val::new(format!("~{}", v.code), v.ty))
+                    Ok(Val::new(format!("~{}", v.code), v.ty).with_effects(v.effects))
                 } else {
                     Err(Error::new(u.span(), format!("cannot apply `!` to a value of type `{t}`")))
                 }
@@ -99,6 +101,7 @@ impl FnLowerer<'_> {
             _ => l,
         };
         let (lt, rt) = (self.resolved(&l.ty), self.resolved(&r.ty));
+        let effects = l.effects || r.effects;
         let sym = op_symbol(op);
         let mismatch = |lt: &Ty, rt: &Ty| {
             let numeric = |t: &Ty| matches!(t, Ty::Scalar(s) if *s != Scalar::Bool);
@@ -139,7 +142,7 @@ impl FnLowerer<'_> {
             BinOp::BitAnd(_) | BinOp::BitOr(_) | BinOp::BitXor(_) => {
                 if lt == BOOL && rt == BOOL {
                     if matches!(op, BinOp::BitXor(_)) {
-                        return Ok(Val::new(format!("({} != {})", l.code, r.code), BOOL));
+                        return Ok(Val::new(format!("({} != {})", l.code, r.code), BOOL).with_effects(effects));
                     }
                     BOOL
                 } else if self.is_int(&lt) && self.unify(&lt, &rt) {
@@ -151,7 +154,8 @@ impl FnLowerer<'_> {
                     && self.unify(&rt, &Ty::Scalar(s))
                 {
                     // glam's `v & 1`: WGSL wants both sides the same type.
-                    return Ok(Val::new(format!("({} {sym} vec{n}<{}>({}))", l.code, s.wgsl(), r.code), lt));
+                    let code = format!("({} {sym} vec{n}<{}>({}))", l.code, s.wgsl(), r.code);
+                    return Ok(Val::new(code, lt).with_effects(effects));
                 } else {
                     return Err(mismatch(&lt, &rt));
                 }
@@ -169,7 +173,7 @@ impl FnLowerer<'_> {
                     _ => return Err(mismatch(&lt, &rt)),
                 };
                 let amount = self.mask_amount(amount, Some(n));
-                return Ok(Val::new(format!("({} {sym} {amount})", l.code), lt));
+                return Ok(Val::new(format!("({} {sym} {amount})", l.code), lt).with_effects(effects));
             }
             BinOp::Shl(_) | BinOp::Shr(_) => {
                 if !self.is_int(&lt) || !self.is_int(&rt) {
@@ -184,7 +188,7 @@ impl FnLowerer<'_> {
                     _ => format!("u32({})", r.code),
                 };
                 let amount = self.mask_amount(amount, None);
-                return Ok(Val::new(format!("({} {sym} {amount})", l.code), lt));
+                return Ok(Val::new(format!("({} {sym} {amount})", l.code), lt).with_effects(effects));
             }
             BinOp::Eq(_) | BinOp::Ne(_) => {
                 if !self.unify(&lt, &rt) || !lt.is_value() {
@@ -193,10 +197,10 @@ impl FnLowerer<'_> {
                 return Ok(match lt {
                     Ty::Vec(..) => {
                         let f = if matches!(op, BinOp::Eq(_)) { "all" } else { "any" };
-                        Val::new(format!("{f}({} {sym} {})", l.code, r.code), BOOL)
+                        Val::new(format!("{f}({} {sym} {})", l.code, r.code), BOOL).with_effects(effects)
                     }
                     Ty::Scalar(_) | Ty::IntVar(_) | Ty::Object | Ty::TransformKind => {
-                        Val::new(format!("({} {sym} {})", l.code, r.code), BOOL)
+                        Val::new(format!("({} {sym} {})", l.code, r.code), BOOL).with_effects(effects)
                     }
                     other => {
                         return Err(Error::new(
@@ -211,14 +215,14 @@ impl FnLowerer<'_> {
                 if !ok {
                     return Err(mismatch(&lt, &rt));
                 }
-                return Ok(Val::new(format!("({} {sym} {})", l.code, r.code), BOOL));
+                return Ok(Val::new(format!("({} {sym} {})", l.code, r.code), BOOL).with_effects(effects));
             }
             _ => return Err(Error::unsupported(span, &format!("the `{sym}` operator"), "see the supported operators")),
         };
         if matches!(op, BinOp::Rem(_)) && ty.scalar() == Some(Scalar::F32) {
             return Ok(self.float_rem(l, &lt, r, &rt, ty));
         }
-        Ok(Val::new(format!("({} {sym} {})", l.code, r.code), ty))
+        Ok(Val::new(format!("({} {sym} {})", l.code, r.code), ty).with_effects(effects))
     }
 
     /// Float `l % r` of type `ty`: Rust's `fmod`, not WGSL's
@@ -244,7 +248,7 @@ impl FnLowerer<'_> {
             }
             _ => format!("rt_fmod({}, {})", l.code, r.code),
         };
-        Val::new(code, ty)
+        Val::new(code, ty).with_effects(l.effects || r.effects)
     }
 
     pub(super) fn short_circuit(&mut self, b: &syn::ExprBinary) -> Result<Val> {
@@ -252,15 +256,16 @@ impl FnLowerer<'_> {
         let l = self.expr(&b.left, Some(&BOOL))?;
         let l = self.deref(l);
         let l = self.coerce(l, &BOOL, b.left.span())?;
-        self.blocks.push(Vec::new());
+        self.blocks.push(Block::default());
         let r = self.expr(&b.right, Some(&BOOL));
-        let hoisted = self.blocks.pop().unwrap();
+        let hoisted = self.blocks.pop().unwrap().lines;
         let r = r?;
         let r = self.deref(r);
         let r = self.coerce(r, &BOOL, b.right.span())?;
         let sym = if and { "&&" } else { "||" };
         if hoisted.is_empty() {
-            return Ok(Val::new(format!("({} {sym} {})", l.code, r.code), BOOL));
+            let effects = l.effects || r.effects;
+            return Ok(Val::new(format!("({} {sym} {})", l.code, r.code), BOOL).with_effects(effects));
         }
         // The right side needs statements: keep short-circuit order by hand.
         let t = self.tmp();
@@ -308,6 +313,7 @@ impl FnLowerer<'_> {
         if fs == Scalar::Bool && ts == Scalar::F32 {
             return Err(Error::new(c.span(), "cannot cast `bool` as `f32`: cast to u32 first or use `select`"));
         }
+        let effects = v.effects;
         let code = if fs == Scalar::F32 && ts.is_int() {
             // Saturating at the integer limits, as Rust's `as`.
             let (f, text) = builtins::float_to_int(1, ts == Scalar::I32);
@@ -318,7 +324,7 @@ impl FnLowerer<'_> {
         } else {
             format!("{}({})", ts.wgsl(), v.code)
         };
-        Ok(Val::new(code, Ty::Scalar(ts)))
+        Ok(Val::new(code, Ty::Scalar(ts)).with_effects(effects))
     }
 }
 

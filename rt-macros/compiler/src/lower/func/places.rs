@@ -13,7 +13,7 @@ impl FnLowerer<'_> {
                 let name = p.path.segments[0].ident.to_string();
                 match self.lookup(&name).cloned() {
                     Some(Local { wgsl, .. }) if wgsl == POISONED => Err(Error::silent(p.span())),
-                    Some(Local { wgsl, ty, var: true }) => Ok(Place::Wgsl(self.mark(p.span(), &wgsl), ty)),
+                    Some(Local { wgsl, ty, var: true }) => Ok(Place::Wgsl(Val::new(self.mark(p.span(), &wgsl), ty))),
                     Some(Local { ty: Ty::Ref(..), .. }) => Err(Error::new(
                         p.span(),
                         format!("cannot assign to the reference `{name}`: assign through it with `*{name} = ...`"),
@@ -25,7 +25,7 @@ impl FnLowerer<'_> {
             Expr::Unary(u) if matches!(u.op, UnOp::Deref(_)) => {
                 let v = self.expr(&u.expr, None)?;
                 match v.ty {
-                    Ty::Ref(true, t) => Ok(Place::Wgsl(format!("(*{})", v.code), *t)),
+                    Ty::Ref(true, t) => Ok(Place::Wgsl(Val::new(format!("(*{})", v.code), *t).with_effects(v.effects))),
                     t => Err(Error::new(u.span(), format!("cannot assign through `{t}`"))),
                 }
             }
@@ -37,17 +37,16 @@ impl FnLowerer<'_> {
                     }
                 };
                 // Fields of reference parameters are places through the pointer.
-                let base =
-                    if let Some(r) = self.ref_base(&f.base) { Place::Wgsl(r.0, r.1) } else { self.place(&f.base)? };
+                let base = match self.ref_base(&f.base) {
+                    Some((code, ty)) => Place::Wgsl(Val::new(code, ty)),
+                    None => self.place(&f.base)?,
+                };
                 match base {
-                    Place::Wgsl(code, ty) => {
-                        let v = self.field_of(Val::new(code, ty), &name, f.member.span())?;
-                        Ok(Place::Wgsl(v.code, v.ty))
-                    }
-                    Place::Buffer { buf, kind, elem, index, path, ty } => {
+                    Place::Wgsl(v) => Ok(Place::Wgsl(self.field_of(v, &name, f.member.span())?)),
+                    Place::Buffer { buf, kind, elem, index, path, ty, effects } => {
                         let v = self.field_of(Val::new("e", ty), &name, f.member.span())?;
                         let path = format!("{path}{}", &v.code[1..]);
-                        Ok(Place::Buffer { buf, kind, elem, index, path, ty: v.ty })
+                        Ok(Place::Buffer { buf, kind, elem, index, path, ty: v.ty, effects })
                     }
                 }
             }
@@ -65,7 +64,7 @@ impl FnLowerer<'_> {
                     }
                     let index = self.buffer_index(kind, &i.index)?;
                     let t = self.tmp();
-                    self.emit(format!("let {t} = {index};"));
+                    self.emit_let(format!("let {t} = {};", index.code), &index);
                     let buf = self.deref(base_val);
                     return Ok(Place::Buffer {
                         buf,
@@ -74,15 +73,20 @@ impl FnLowerer<'_> {
                         index: t,
                         path: String::new(),
                         ty: *elem,
+                        effects: false,
                     });
                 }
                 let base = self.place(&i.expr)?;
                 let idx = self.int_index(&i.index)?;
+                let element = |code: String, ty: Ty, effects: bool| {
+                    Place::Wgsl(Val::new(format!("{code}[{}]", idx.code), ty).with_effects(effects || idx.effects))
+                };
                 match base {
-                    Place::Wgsl(code, Ty::Array(elem, _)) => Ok(Place::Wgsl(format!("{code}[{idx}]"), *elem)),
-                    Place::Wgsl(code, Ty::Vec(_, s)) => Ok(Place::Wgsl(format!("{code}[{idx}]"), Ty::Scalar(s))),
-                    Place::Buffer { buf, kind, elem, index, path, ty: Ty::Array(e, _) } => {
-                        Ok(Place::Buffer { buf, kind, elem, index, path: format!("{path}[{idx}]"), ty: *e })
+                    Place::Wgsl(Val { code, ty: Ty::Array(elem, _), effects }) => Ok(element(code, *elem, effects)),
+                    Place::Wgsl(Val { code, ty: Ty::Vec(_, s), effects }) => Ok(element(code, Ty::Scalar(s), effects)),
+                    Place::Buffer { buf, kind, elem, index, path, ty: Ty::Array(e, _), effects } => {
+                        let path = format!("{path}[{}]", idx.code);
+                        Ok(Place::Buffer { buf, kind, elem, index, path, ty: *e, effects: effects || idx.effects })
                     }
                     _ => Err(Error::new(i.expr.span(), "cannot index into this value")),
                 }
@@ -93,11 +97,16 @@ impl FnLowerer<'_> {
 
     /// `prd` where `prd: &mut T` is a parameter: the pointer's target.
     pub(super) fn ref_base(&mut self, e: &Expr) -> Option<(String, Ty)> {
+        self.ref_param(e).map(|(ptr, ty)| (format!("(*{ptr})"), ty))
+    }
+
+    /// `prd` where `prd: &mut T` is a parameter: the pointer.
+    fn ref_param(&self, e: &Expr) -> Option<(String, Ty)> {
         if let Expr::Path(p) = e
             && p.path.segments.len() == 1
             && let Some(Local { wgsl, ty: Ty::Ref(true, t), .. }) = self.lookup(&p.path.segments[0].ident.to_string())
         {
-            return Some((format!("(*{wgsl})"), (**t).clone()));
+            return Some((wgsl.clone(), (**t).clone()));
         }
         None
     }
@@ -110,7 +119,7 @@ impl FnLowerer<'_> {
         let place = self.place(left)?;
         self.spill(at, &mut [&mut value]);
         let pty = match &place {
-            Place::Wgsl(_, t) | Place::Buffer { ty: t, .. } => t.clone(),
+            Place::Wgsl(Val { ty: t, .. }) | Place::Buffer { ty: t, .. } => t.clone(),
         };
         let value = match op {
             None => self.coerce(value, &pty, vspan)?,
@@ -125,6 +134,7 @@ impl FnLowerer<'_> {
                     ));
                 }
                 let vty = self.resolved(&value.ty);
+                let effects = value.effects;
                 // `x <<= n` needs a u32 amount; `v <<= n` and `v &= n` a vector.
                 match (base_op, self.resolved(&pty)) {
                     (BinOp::Shl(_) | BinOp::Shr(_), Ty::Vec(n, _)) => {
@@ -133,12 +143,12 @@ impl FnLowerer<'_> {
                             Ty::Scalar(Scalar::I32) => format!("vec{n}<u32>(u32({}))", value.code),
                             _ => format!("vec{n}<u32>({})", value.code),
                         };
-                        Val::new(self.mask_amount(amount, Some(n)), Ty::Vec(n, Scalar::U32))
+                        Val::new(self.mask_amount(amount, Some(n)), Ty::Vec(n, Scalar::U32)).with_effects(effects)
                     }
                     (BinOp::BitAnd(_) | BinOp::BitOr(_) | BinOp::BitXor(_), Ty::Vec(n, s))
                         if !matches!(vty, Ty::Vec(..)) =>
                     {
-                        Val::new(format!("vec{n}<{}>({})", s.wgsl(), value.code), Ty::Vec(n, s))
+                        Val::new(format!("vec{n}<{}>({})", s.wgsl(), value.code), Ty::Vec(n, s)).with_effects(effects)
                     }
                     (BinOp::Shl(_) | BinOp::Shr(_), Ty::Scalar(_) | Ty::IntVar(_)) => {
                         let amount = if matches!(vty, Ty::Scalar(Scalar::U32 | Scalar::Usize)) {
@@ -146,7 +156,7 @@ impl FnLowerer<'_> {
                         } else {
                             format!("u32({})", value.code)
                         };
-                        Val::new(self.mask_amount(amount, None), U32)
+                        Val::new(self.mask_amount(amount, None), U32).with_effects(effects)
                     }
                     _ => value,
                 }
@@ -159,13 +169,19 @@ impl FnLowerer<'_> {
         let bool_xor = matches!(op, Some(BinOp::BitXorAssign(_))) && self.resolved(&pty) == BOOL;
         let mut sym = op.map(op_symbol).unwrap_or("=");
         let mut value = value;
+        // The local a buffer element is read into, changed in and stored
+        // back from (named here: `%=` and `^=` read it in the value).
+        let elem_local = match &place {
+            Place::Buffer { path, .. } if !(path.is_empty() && op.is_none()) => Some(self.tmp()),
+            _ => None,
+        };
         if float_rem || bool_xor {
             sym = "=";
-            let place_code = match &place {
-                Place::Wgsl(code, _) => code.clone(),
-                Place::Buffer { path, .. } => format!("\u{7}{path}"),
+            let (place_code, effects) = match &place {
+                Place::Wgsl(v) => (v.code.clone(), v.effects),
+                Place::Buffer { path, effects, .. } => (format!("{}{path}", elem_local.as_ref().unwrap()), *effects),
             };
-            if may_have_effects(&place_code) {
+            if effects {
                 return Err(Error::unsupported(
                     left.span(),
                     &format!("`{}` on a place whose index calls a helper", op_symbol(op.unwrap())),
@@ -176,19 +192,17 @@ impl FnLowerer<'_> {
             value = self.binary_op(&compound_base(op.unwrap()), cur, value, vspan)?;
         }
         let line = match place {
-            Place::Wgsl(code, _) => format!("{code} {sym} {};", value.code),
+            Place::Wgsl(v) => format!("{} {sym} {};", v.code, value.code),
             Place::Buffer { buf, kind, elem, index, path, .. } => {
                 let load = self.m.accessors.borrow_mut().buffer_load(kind.dims, &elem);
                 let store = self.m.accessors.borrow_mut().buffer_store(kind.dims, &elem);
-                if path.is_empty() && op.is_none() {
-                    format!("{store}({}, {index}, {});", buf.code, value.code)
-                } else {
-                    let t = self.tmp();
-                    format!(
+                match elem_local {
+                    None => format!("{store}({}, {index}, {});", buf.code, value.code),
+                    Some(t) => format!(
                         "var {t} = {load}({b}, {index});\n{t}{path} {sym} {};\n{store}({b}, {index}, {t});",
-                        value.code.replace('\u{7}', &t),
+                        value.code,
                         b = buf.code
-                    )
+                    ),
                 }
             }
         };
@@ -202,26 +216,26 @@ impl FnLowerer<'_> {
     pub(super) fn mut_ref_arg(&mut self, e: &Expr) -> Result<(String, Ty)> {
         match e {
             Expr::Reference(r) if r.mutability.is_some() => {
-                if let Some((code, ty)) = self.ref_base(&r.expr) {
+                if let Some(ptr) = self.ref_param(&r.expr) {
                     // `&mut *prd` or `&mut prd` where prd is `&mut T`.
-                    return Ok((code.trim_start_matches("(*").trim_end_matches(')').to_string(), ty));
+                    return Ok(ptr);
                 }
                 let inner = match &*r.expr {
                     Expr::Unary(u) if matches!(u.op, UnOp::Deref(_)) => {
-                        if let Some((code, ty)) = self.ref_base(&u.expr) {
-                            return Ok((code.trim_start_matches("(*").trim_end_matches(')').to_string(), ty));
+                        if let Some(ptr) = self.ref_param(&u.expr) {
+                            return Ok(ptr);
                         }
                         &r.expr
                     }
                     _ => &r.expr,
                 };
+                let whole = is_local(inner);
                 match self.place(inner)? {
-                    Place::Wgsl(code, ty) => {
+                    Place::Wgsl(Val { code, ty, .. }) => {
                         // WGSL passes pointers to whole variables only: a
                         // field or element goes through a temporary that is
                         // written back after the call.
-                        let clean = text::strip(&code);
-                        if clean.chars().all(|c| c.is_alphanumeric() || c == '_') {
+                        if whole {
                             Ok((format!("&{}", paren(&code)), ty))
                         } else {
                             let t = self.tmp();
@@ -245,6 +259,17 @@ impl FnLowerer<'_> {
                 }
             }
         }
+    }
+}
+
+/// Whether a place expression names a local itself (not a field, an
+/// element or through a pointer).
+fn is_local(e: &Expr) -> bool {
+    match e {
+        Expr::Paren(p) => is_local(&p.expr),
+        Expr::Group(g) => is_local(&g.expr),
+        Expr::Path(p) => p.path.segments.len() == 1,
+        _ => false,
     }
 }
 

@@ -146,13 +146,13 @@ impl FnLowerer<'_> {
             self.bind(&name, Local { wgsl: wname, ty, var });
             return Ok(());
         }
-        let line = match (&init, var) {
-            (Some(v), true) => format!("var {wname}: {} = {};", ty.wgsl(), v.code),
-            (Some(v), false) => format!("let {wname}: {} = {};", ty.wgsl(), v.code),
-            (None, _) => format!("var {wname}: {};", ty.wgsl()),
+        let (line, writes) = match (&init, var) {
+            (Some(v), true) => (format!("var {wname}: {} = {};", ty.wgsl(), v.code), true),
+            (Some(v), false) => (format!("let {wname}: {} = {};", ty.wgsl(), v.code), v.effects),
+            (None, _) => (format!("var {wname}: {};", ty.wgsl()), true),
         };
         let line = self.mark(l.span(), &line);
-        self.emit(line);
+        self.blocks.last_mut().unwrap().push(line, writes);
         self.bind(&name, Local { wgsl: wname, ty, var });
         Ok(())
     }
@@ -203,7 +203,7 @@ impl FnLowerer<'_> {
                 }
             };
             let t = self.tmp();
-            self.emit(format!("let {t} = {};", v.code));
+            self.emit_let(format!("let {t} = {};", v.code), &v);
             for (i, (_, s)) in comps.iter().enumerate() {
                 let c = if matches!(ty, Ty::Vec(..)) { format!("{t}[{i}]") } else { t.clone() };
                 words.push(match s {
