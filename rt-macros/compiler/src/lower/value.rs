@@ -13,17 +13,27 @@ pub struct Val {
     /// that reports an intersection. Set where such a call is lowered and
     /// carried into every value whose code contains it.
     pub effects: bool,
+    /// `code` reads state that statements can change: a `var` local, a
+    /// pointer parameter or a buffer element. Set where such a name or
+    /// load is lowered and carried like `effects`.
+    pub reads: bool,
 }
 
 impl Val {
     /// A value without effects.
     pub fn new(code: impl Into<String>, ty: Ty) -> Val {
-        Val { code: code.into(), ty, effects: false }
+        Val { code: code.into(), ty, effects: false, reads: false }
     }
 
     /// The value with its `effects` recorded.
     pub fn with_effects(mut self, effects: bool) -> Val {
         self.effects = effects;
+        self
+    }
+
+    /// The value with `reads` recorded.
+    pub fn with_reads(mut self, reads: bool) -> Val {
+        self.reads = reads;
         self
     }
 }
@@ -36,6 +46,11 @@ pub fn codes(vals: &[Val]) -> Vec<String> {
 /// Whether any of the values has effects.
 pub fn any_effects(vals: &[Val]) -> bool {
     vals.iter().any(|v| v.effects)
+}
+
+/// Whether any of the values reads state.
+pub fn any_reads(vals: &[Val]) -> bool {
+    vals.iter().any(|v| v.reads)
 }
 
 /// Something that can be assigned to.

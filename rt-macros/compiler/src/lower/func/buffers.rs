@@ -35,23 +35,27 @@ impl FnLowerer<'_> {
         match (name, kind.dims) {
             ("len", 1) => {
                 want_args(0)?;
-                Ok(Val::new(format!("{}.len", recv.code), U32).with_effects(recv.effects))
+                Ok(Val::new(format!("{}.len", recv.code), U32).with_effects(recv.effects).with_reads(recv.reads))
             }
             ("is_empty", 1) => {
                 want_args(0)?;
-                Ok(Val::new(format!("({}.len == 0u)", recv.code), BOOL).with_effects(recv.effects))
+                Ok(Val::new(format!("({}.len == 0u)", recv.code), BOOL)
+                    .with_effects(recv.effects)
+                    .with_reads(recv.reads))
             }
             ("size", 2) => {
                 want_args(0)?;
                 let size = format!("vec2<u32>({0}.width, {0}.height)", recv.code);
-                Ok(Val::new(size, Ty::Vec(2, Scalar::U32)).with_effects(recv.effects))
+                Ok(Val::new(size, Ty::Vec(2, Scalar::U32)).with_effects(recv.effects).with_reads(recv.reads))
             }
             ("load", _) => {
                 want_args(1)?;
                 let idx = self.buffer_index(kind, args[0])?;
                 let f = self.m.accessors.borrow_mut().buffer_load(kind.dims, elem);
                 let effects = recv.effects || idx.effects;
-                Ok(Val::new(format!("{f}({}, {})", recv.code, idx.code), elem.clone()).with_effects(effects))
+                Ok(Val::new(format!("{f}({}, {})", recv.code, idx.code), elem.clone())
+                    .with_effects(effects)
+                    .with_reads(true))
             }
             ("store", _) => {
                 want_args(2)?;
@@ -102,7 +106,7 @@ impl FnLowerer<'_> {
                     return Err(Error::new(name_span, "`Sampler2d::size` takes no arguments"));
                 }
                 let size = format!("vec2<u32>({0}.width, {0}.height)", recv.code);
-                return Ok(Val::new(size, Ty::Vec(2, Scalar::U32)).with_effects(recv.effects));
+                return Ok(Val::new(size, Ty::Vec(2, Scalar::U32)).with_effects(recv.effects).with_reads(recv.reads));
             }
             _ => {
                 return Err(Error::new(
@@ -117,6 +121,8 @@ impl FnLowerer<'_> {
         let v = self.expr(args[0], Some(&arg_ty))?;
         let v = self.deref(v);
         let v = self.coerce(v, &arg_ty, args[0].span())?;
-        Ok(Val::new(format!("{f}({}, {})", recv.code, v.code), ret).with_effects(recv.effects || v.effects))
+        Ok(Val::new(format!("{f}({}, {})", recv.code, v.code), ret)
+            .with_effects(recv.effects || v.effects)
+            .with_reads(recv.reads || v.reads))
     }
 }

@@ -90,7 +90,8 @@ impl FnLowerer<'_> {
             self.m.accessors.borrow_mut().functions.entry(name.to_string()).or_insert_with(|| text.to_string());
         }
         let effects = any_effects(&vals);
-        Ok(Val::new((sig.lower)(&codes(&vals)), sig.ret).with_effects(effects))
+        let reads = any_reads(&vals);
+        Ok(Val::new((sig.lower)(&codes(&vals)), sig.ret).with_effects(effects).with_reads(reads))
     }
 
     /// Evaluates the operands with effects into `let`s, in order.
@@ -210,16 +211,28 @@ impl FnLowerer<'_> {
             (Ty::Vec(n, s), "new") => {
                 let params = vec![Ty::Scalar(*s); *n as usize];
                 let a = self.args_typed(args, &params, span, &format!("{ty}::new"))?;
-                Ok(Some(Val::new(format!("{w}({})", codes(&a).join(", ")), ty.clone()).with_effects(any_effects(&a))))
+                Ok(Some(
+                    Val::new(format!("{w}({})", codes(&a).join(", ")), ty.clone())
+                        .with_effects(any_effects(&a))
+                        .with_reads(any_reads(&a)),
+                ))
             }
             (Ty::Vec(_, s), "splat") => {
                 let a = self.args_typed(args, &[Ty::Scalar(*s)], span, &format!("{ty}::splat"))?;
-                Ok(Some(Val::new(format!("{w}({})", a[0].code), ty.clone()).with_effects(a[0].effects)))
+                Ok(Some(
+                    Val::new(format!("{w}({})", a[0].code), ty.clone())
+                        .with_effects(a[0].effects)
+                        .with_reads(a[0].reads),
+                ))
             }
             (Ty::Mat(n), "from_cols") => {
                 let params = vec![Ty::vec(*n); *n as usize];
                 let a = self.args_typed(args, &params, span, &format!("{ty}::from_cols"))?;
-                Ok(Some(Val::new(format!("{w}({})", codes(&a).join(", ")), ty.clone()).with_effects(any_effects(&a))))
+                Ok(Some(
+                    Val::new(format!("{w}({})", codes(&a).join(", ")), ty.clone())
+                        .with_effects(any_effects(&a))
+                        .with_reads(any_reads(&a)),
+                ))
             }
             (Ty::Mat(n), "from_diagonal") => {
                 let a = self.args_typed(args, &[Ty::vec(*n)], span, &format!("{ty}::from_diagonal"))?;
@@ -237,11 +250,19 @@ impl FnLowerer<'_> {
             (Ty::Ray, "new") => {
                 let params = [Ty::vec(3), Ty::vec(3), U32, F32, F32];
                 let a = self.args_typed(args, &params, span, "Ray::new")?;
-                Ok(Some(Val::new(format!("RtRay({})", codes(&a).join(", ")), Ty::Ray).with_effects(any_effects(&a))))
+                Ok(Some(
+                    Val::new(format!("RtRay({})", codes(&a).join(", ")), Ty::Ray)
+                        .with_effects(any_effects(&a))
+                        .with_reads(any_reads(&a)),
+                ))
             }
             (Ty::Aabb, "new") => {
                 let a = self.args_typed(args, &[Ty::vec(3), Ty::vec(3)], span, "Aabb::new")?;
-                Ok(Some(Val::new(format!("RtAabb({})", codes(&a).join(", ")), Ty::Aabb).with_effects(any_effects(&a))))
+                Ok(Some(
+                    Val::new(format!("RtAabb({})", codes(&a).join(", ")), Ty::Aabb)
+                        .with_effects(any_effects(&a))
+                        .with_reads(any_reads(&a)),
+                ))
             }
             _ => Ok(None),
         }
@@ -322,7 +343,7 @@ impl FnLowerer<'_> {
                     _ => ("0.0f".to_string(), "1.0f".to_string()),
                 };
                 let code = format!("select({zero}, {one}, {} >= {})", a[1].code, a[0].code);
-                return Ok(Some(Val::new(code, ret).with_effects(any_effects(&a))));
+                return Ok(Some(Val::new(code, ret).with_effects(any_effects(&a)).with_reads(any_reads(&a))));
             }
             if f == "mix" {
                 // rt-std's formula (see `builtins::lerp_formula`); `t` is
@@ -331,9 +352,13 @@ impl FnLowerer<'_> {
                     self.once(&mut a);
                 }
                 let code = builtins::lerp_formula(&a[0].code, &a[1].code, &a[2].code);
-                return Ok(Some(Val::new(code, ret).with_effects(any_effects(&a))));
+                return Ok(Some(Val::new(code, ret).with_effects(any_effects(&a)).with_reads(any_reads(&a))));
             }
-            return Ok(Some(Val::new(format!("{f}({})", codes(&a).join(", ")), ret).with_effects(any_effects(&a))));
+            return Ok(Some(
+                Val::new(format!("{f}({})", codes(&a).join(", ")), ret)
+                    .with_effects(any_effects(&a))
+                    .with_reads(any_reads(&a)),
+            ));
         }
         self.intrinsic_call(name, args, span)
     }

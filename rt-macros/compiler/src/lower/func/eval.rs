@@ -3,6 +3,14 @@
 //! left-to-right order, and integer arithmetic that WGSL would evaluate at
 //! shader creation (with stricter rules than Rust's run time) is moved to
 //! run time.
+//!
+//! What statements and values may change or read is recorded as they are
+//! lowered ([`Val::effects`], [`Val::reads`], the block's per-statement
+//! `writes`). Whether code is a WGSL const-expression, or one integer
+//! literal, is asked of the lowered text itself (`wgsl_idents`,
+//! `int_literal_value`): WGSL decides what it evaluates at shader creation
+//! from the expression's form, and a builtin method's lowering is a closure
+//! whose text is all there is to ask.
 
 use super::*;
 
@@ -36,6 +44,7 @@ impl FnLowerer<'_> {
             lets.push((format!("{kw} {t} = {};", v.code), var || v.effects));
             v.code = t;
             v.effects = false;
+            v.reads = false;
         }
         let block = self.blocks.last_mut().unwrap();
         for (i, (line, writes)) in lets.into_iter().enumerate() {
@@ -46,22 +55,7 @@ impl FnLowerer<'_> {
     /// Whether a value reads something that statements can change: a
     /// `var` local, a pointer parameter, a buffer, or a call with effects.
     pub(super) fn reads_state(&self, v: &Val) -> bool {
-        if v.effects {
-            return true;
-        }
-        let mutable: HashSet<&str> = self
-            .scopes
-            .iter()
-            .flatten()
-            .filter(|(_, l)| l.var || matches!(l.ty, Ty::Ref(true, _)))
-            .map(|(_, l)| l.wgsl.as_str())
-            .collect();
-        // The names the code reads (lowered code names locals by their WGSL
-        // names, and loads from the heap by the accessors' `rt_bufload*`
-        // and `rt_load*`).
-        wgsl_idents(&v.code)
-            .iter()
-            .any(|id| mutable.contains(id.as_str()) || id.starts_with("rt_bufload") || id.starts_with("rt_load"))
+        v.effects || v.reads
     }
 
     /// Whether lowered code is a WGSL const-expression (literals,

@@ -8,7 +8,7 @@ impl FnLowerer<'_> {
         let span = e.span();
         let v = self.expr_inner(e, want)?;
         let code = if v.code.is_empty() { v.code } else { self.mark(span, &v.code) };
-        Ok(Val { code, ty: v.ty, effects: v.effects })
+        Ok(Val { code, ty: v.ty, effects: v.effects, reads: v.reads })
     }
 
     pub(super) fn expr_inner(&mut self, e: &Expr, want: Option<&Ty>) -> Result<Val> {
@@ -19,7 +19,7 @@ impl FnLowerer<'_> {
                 // operand needs the parentheses kept (`(-v).x`).
                 let v = self.expr(&p.expr, want)?;
                 if matches!(&*p.expr, Expr::Unary(_)) {
-                    Ok(Val::new(format!("({})", v.code), v.ty).with_effects(v.effects))
+                    Ok(Val::new(format!("({})", v.code), v.ty).with_effects(v.effects).with_reads(v.reads))
                 } else {
                     Ok(v)
                 }
@@ -165,7 +165,8 @@ impl FnLowerer<'_> {
                 if l.wgsl == POISONED {
                     return Err(Error::silent(p.span()));
                 }
-                return Ok(Val::new(l.wgsl.clone(), l.ty.clone()));
+                let reads = l.var || matches!(l.ty, Ty::Ref(true, _));
+                return Ok(Val::new(l.wgsl.clone(), l.ty.clone()).with_reads(reads));
             }
         }
         let last = segs.last().unwrap().as_str();
@@ -220,21 +221,25 @@ impl FnLowerer<'_> {
             Ty::Vec(n, s) => {
                 let idx = "xyzw".find(name).filter(|i| name.len() == 1 && *i < *n as usize);
                 match idx {
-                    Some(_) => Ok(Val::new(format!("{}.{name}", base.code), Ty::Scalar(*s)).with_effects(base.effects)),
+                    Some(_) => Ok(Val::new(format!("{}.{name}", base.code), Ty::Scalar(*s))
+                        .with_effects(base.effects)
+                        .with_reads(base.reads)),
                     None => Err(Error::new(span, format!("no field `{name}` on `{t}`"))),
                 }
             }
             Ty::Mat(n) => {
                 let axis = ["x_axis", "y_axis", "z_axis", "w_axis"].iter().position(|a| *a == name);
                 match axis {
-                    Some(i) if i < *n as usize => {
-                        Ok(Val::new(format!("{}[{i}]", base.code), Ty::vec(*n)).with_effects(base.effects))
-                    }
+                    Some(i) if i < *n as usize => Ok(Val::new(format!("{}[{i}]", base.code), Ty::vec(*n))
+                        .with_effects(base.effects)
+                        .with_reads(base.reads)),
                     _ => Err(Error::new(span, format!("no field `{name}` on `{t}`"))),
                 }
             }
             Ty::Struct(_) | Ty::Ray | Ty::Aabb => match t.fields().into_iter().find(|(n, _)| n == name) {
-                Some((_, fty)) => Ok(Val::new(format!("{}.{name}", base.code), fty).with_effects(base.effects)),
+                Some((_, fty)) => {
+                    Ok(Val::new(format!("{}.{name}", base.code), fty).with_effects(base.effects).with_reads(base.reads))
+                }
                 None => Err(Error::new(span, format!("no field `{name}` on `{t}`"))),
             },
             _ => Err(Error::new(span, format!("no field `{name}` on `{t}`"))),
@@ -250,19 +255,23 @@ impl FnLowerer<'_> {
                 let idx = self.buffer_index(kind, &i.index)?;
                 let f = self.m.accessors.borrow_mut().buffer_load(kind.dims, &elem);
                 let effects = base.effects || idx.effects;
-                Ok(Val::new(format!("{f}({}, {})", base.code, idx.code), *elem).with_effects(effects))
+                Ok(Val::new(format!("{f}({}, {})", base.code, idx.code), *elem).with_effects(effects).with_reads(true))
             }
             Ty::Array(elem, _) => {
                 let idx = self.int_index(&i.index)?;
                 self.spill(at, &mut [&mut base]);
                 let effects = base.effects || idx.effects;
-                Ok(Val::new(format!("{}[{}]", base.code, idx.code), *elem).with_effects(effects))
+                let reads = base.reads || idx.reads;
+                Ok(Val::new(format!("{}[{}]", base.code, idx.code), *elem).with_effects(effects).with_reads(reads))
             }
             Ty::Vec(_, s) => {
                 let idx = self.int_index(&i.index)?;
                 self.spill(at, &mut [&mut base]);
                 let effects = base.effects || idx.effects;
-                Ok(Val::new(format!("{}[{}]", base.code, idx.code), Ty::Scalar(s)).with_effects(effects))
+                let reads = base.reads || idx.reads;
+                Ok(Val::new(format!("{}[{}]", base.code, idx.code), Ty::Scalar(s))
+                    .with_effects(effects)
+                    .with_reads(reads))
             }
             t => Err(Error::new(i.expr.span(), format!("cannot index into a value of type `{t}`"))),
         }
@@ -335,6 +344,7 @@ impl FnLowerer<'_> {
             done.push((idx, v));
         }
         let effects = done.iter().any(|(_, v)| v.effects);
+        let reads = done.iter().any(|(_, v)| v.reads);
         for (idx, v) in done {
             given[idx] = Some(v.code);
         }
@@ -347,7 +357,7 @@ impl FnLowerer<'_> {
             ));
         }
         let args: Vec<String> = given.into_iter().map(|g| g.unwrap()).collect();
-        Ok(Val::new(format!("{}({})", ty.wgsl(), args.join(", ")), ty).with_effects(effects))
+        Ok(Val::new(format!("{}({})", ty.wgsl(), args.join(", ")), ty).with_effects(effects).with_reads(reads))
     }
 
     pub(super) fn array_lit(&mut self, a: &syn::ExprArray, want: Option<&Ty>) -> Result<Val> {
@@ -372,9 +382,10 @@ impl FnLowerer<'_> {
             vals.push(v);
         }
         let effects = vals.iter().any(|v| v.effects);
+        let reads = vals.iter().any(|v| v.reads);
         let codes: Vec<String> = vals.into_iter().map(|v| v.code).collect();
         let ty = Ty::Array(Box::new(elem_want.unwrap()), codes.len() as u32);
-        Ok(Val::new(format!("{}({})", ty.wgsl(), codes.join(", ")), ty).with_effects(effects))
+        Ok(Val::new(format!("{}({})", ty.wgsl(), codes.join(", ")), ty).with_effects(effects).with_reads(reads))
     }
 
     pub(super) fn repeat_lit(&mut self, r: &syn::ExprRepeat, want: Option<&Ty>) -> Result<Val> {
@@ -392,14 +403,15 @@ impl FnLowerer<'_> {
         let ty = Ty::Array(Box::new(v.ty.clone()), n);
         let simple = matches!(&*r.expr, Expr::Lit(_) | Expr::Path(_));
         let value = if simple {
-            v.code
+            v
         } else {
             let t = self.tmp();
             self.emit_let(format!("let {t} = {};", v.code), &v);
-            t
+            Val::new(t, v.ty)
         };
-        let parts = vec![value; n as usize];
-        Ok(Val::new(format!("{}({})", ty.wgsl(), parts.join(", ")), ty))
+        let parts = vec![value.code; n as usize];
+        let code = format!("{}({})", ty.wgsl(), parts.join(", "));
+        Ok(Val::new(code, ty).with_effects(value.effects).with_reads(value.reads))
     }
 }
 

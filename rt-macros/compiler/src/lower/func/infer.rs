@@ -64,7 +64,7 @@ impl FnLowerer<'_> {
 
     pub(super) fn coerce(&mut self, v: Val, want: &Ty, span: Span) -> Result<Val> {
         if self.unify(&v.ty, want) {
-            Ok(Val { code: v.code, ty: self.resolved(want), effects: v.effects })
+            Ok(Val { code: v.code, ty: self.resolved(want), effects: v.effects, reads: v.reads })
         } else {
             Err(Error::new(
                 span,
@@ -76,8 +76,8 @@ impl FnLowerer<'_> {
     /// Reads through a reference parameter.
     pub(super) fn deref(&self, v: Val) -> Val {
         match v.ty {
-            Ty::Ref(true, t) => Val::new(format!("(*{})", v.code), *t).with_effects(v.effects),
-            Ty::Ref(false, t) => Val::new(v.code, *t).with_effects(v.effects),
+            Ty::Ref(true, t) => Val::new(format!("(*{})", v.code), *t).with_effects(v.effects).with_reads(v.reads),
+            Ty::Ref(false, t) => Val::new(v.code, *t).with_effects(v.effects).with_reads(v.reads),
             _ => v,
         }
     }

@@ -108,7 +108,9 @@ impl FnLowerer<'_> {
             }
             // `rt_potential_intersection` may accept a hit, which a later
             // operand would see.
-            _ => Ok(Val::new(call, ret).with_effects(any_effects(&a) || name == "rt_potential_intersection")),
+            _ => Ok(Val::new(call, ret)
+                .with_effects(any_effects(&a) || name == "rt_potential_intersection")
+                .with_reads(any_reads(&a))),
         }
     }
 }

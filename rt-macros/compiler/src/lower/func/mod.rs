@@ -23,7 +23,7 @@
 //! names and scopes, and the block walker.
 
 use super::text::{self, indent, int_literal_placeholder, mark};
-use super::value::{Place, Val, any_effects, codes, f32_literal};
+use super::value::{Place, Val, any_effects, any_reads, codes, f32_literal};
 use super::{HelperSig, ModuleCtx, builtins, is_reserved};
 use crate::error::{Error, Errors, Result};
 use crate::kinds::{self, Kind};

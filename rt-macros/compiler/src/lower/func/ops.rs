@@ -29,11 +29,11 @@ impl FnLowerer<'_> {
                 };
                 match t.scalar() {
                     Some(Scalar::F32) | Some(Scalar::I32) => {
-                        Ok(Val::new(negate(&v.code), v.ty).with_effects(v.effects))
+                        Ok(Val::new(negate(&v.code), v.ty).with_effects(v.effects).with_reads(v.reads))
                     }
                     _ if matches!(t, Ty::IntVar(_)) => {
                         self.unify(&t, &I32);
-                        Ok(Val::new(negate(&v.code), I32).with_effects(v.effects))
+                        Ok(Val::new(negate(&v.code), I32).with_effects(v.effects).with_reads(v.reads))
                     }
                     _ => Err(Error::new(u.span(), format!("cannot negate a value of type `{t}`"))),
                 }
@@ -43,9 +43,9 @@ impl FnLowerer<'_> {
                 let v = self.deref(v);
                 let t = self.resolved(&v.ty);
                 if t == BOOL {
-                    Ok(Val::new(format!("!{}", v.code), BOOL).with_effects(v.effects))
+                    Ok(Val::new(format!("!{}", v.code), BOOL).with_effects(v.effects).with_reads(v.reads))
                 } else if self.is_int(&t) || matches!(t, Ty::Vec(_, s) if s.is_int()) {
-                    Ok(Val::new(format!("~{}", v.code), v.ty).with_effects(v.effects))
+                    Ok(Val::new(format!("~{}", v.code), v.ty).with_effects(v.effects).with_reads(v.reads))
                 } else {
                     Err(Error::new(u.span(), format!("cannot apply `!` to a value of type `{t}`")))
                 }
@@ -102,6 +102,7 @@ impl FnLowerer<'_> {
         };
         let (lt, rt) = (self.resolved(&l.ty), self.resolved(&r.ty));
         let effects = l.effects || r.effects;
+        let reads = l.reads || r.reads;
         let sym = op_symbol(op);
         let mismatch = |lt: &Ty, rt: &Ty| {
             let numeric = |t: &Ty| matches!(t, Ty::Scalar(s) if *s != Scalar::Bool);
@@ -142,7 +143,9 @@ impl FnLowerer<'_> {
             BinOp::BitAnd(_) | BinOp::BitOr(_) | BinOp::BitXor(_) => {
                 if lt == BOOL && rt == BOOL {
                     if matches!(op, BinOp::BitXor(_)) {
-                        return Ok(Val::new(format!("({} != {})", l.code, r.code), BOOL).with_effects(effects));
+                        return Ok(Val::new(format!("({} != {})", l.code, r.code), BOOL)
+                            .with_effects(effects)
+                            .with_reads(reads));
                     }
                     BOOL
                 } else if self.is_int(&lt) && self.unify(&lt, &rt) {
@@ -155,7 +158,7 @@ impl FnLowerer<'_> {
                 {
                     // glam's `v & 1`: WGSL wants both sides the same type.
                     let code = format!("({} {sym} vec{n}<{}>({}))", l.code, s.wgsl(), r.code);
-                    return Ok(Val::new(code, lt).with_effects(effects));
+                    return Ok(Val::new(code, lt).with_effects(effects).with_reads(reads));
                 } else {
                     return Err(mismatch(&lt, &rt));
                 }
@@ -173,7 +176,9 @@ impl FnLowerer<'_> {
                     _ => return Err(mismatch(&lt, &rt)),
                 };
                 let amount = self.mask_amount(amount, Some(n));
-                return Ok(Val::new(format!("({} {sym} {amount})", l.code), lt).with_effects(effects));
+                return Ok(Val::new(format!("({} {sym} {amount})", l.code), lt)
+                    .with_effects(effects)
+                    .with_reads(reads));
             }
             BinOp::Shl(_) | BinOp::Shr(_) => {
                 if !self.is_int(&lt) || !self.is_int(&rt) {
@@ -188,7 +193,9 @@ impl FnLowerer<'_> {
                     _ => format!("u32({})", r.code),
                 };
                 let amount = self.mask_amount(amount, None);
-                return Ok(Val::new(format!("({} {sym} {amount})", l.code), lt).with_effects(effects));
+                return Ok(Val::new(format!("({} {sym} {amount})", l.code), lt)
+                    .with_effects(effects)
+                    .with_reads(reads));
             }
             BinOp::Eq(_) | BinOp::Ne(_) => {
                 if !self.unify(&lt, &rt) || !lt.is_value() {
@@ -197,10 +204,12 @@ impl FnLowerer<'_> {
                 return Ok(match lt {
                     Ty::Vec(..) => {
                         let f = if matches!(op, BinOp::Eq(_)) { "all" } else { "any" };
-                        Val::new(format!("{f}({} {sym} {})", l.code, r.code), BOOL).with_effects(effects)
+                        Val::new(format!("{f}({} {sym} {})", l.code, r.code), BOOL)
+                            .with_effects(effects)
+                            .with_reads(reads)
                     }
                     Ty::Scalar(_) | Ty::IntVar(_) | Ty::Object | Ty::TransformKind => {
-                        Val::new(format!("({} {sym} {})", l.code, r.code), BOOL).with_effects(effects)
+                        Val::new(format!("({} {sym} {})", l.code, r.code), BOOL).with_effects(effects).with_reads(reads)
                     }
                     other => {
                         return Err(Error::new(
@@ -215,14 +224,16 @@ impl FnLowerer<'_> {
                 if !ok {
                     return Err(mismatch(&lt, &rt));
                 }
-                return Ok(Val::new(format!("({} {sym} {})", l.code, r.code), BOOL).with_effects(effects));
+                return Ok(Val::new(format!("({} {sym} {})", l.code, r.code), BOOL)
+                    .with_effects(effects)
+                    .with_reads(reads));
             }
             _ => return Err(Error::unsupported(span, &format!("the `{sym}` operator"), "see the supported operators")),
         };
         if matches!(op, BinOp::Rem(_)) && ty.scalar() == Some(Scalar::F32) {
             return Ok(self.float_rem(l, &lt, r, &rt, ty));
         }
-        Ok(Val::new(format!("({} {sym} {})", l.code, r.code), ty).with_effects(effects))
+        Ok(Val::new(format!("({} {sym} {})", l.code, r.code), ty).with_effects(effects).with_reads(reads))
     }
 
     /// Float `l % r` of type `ty`: Rust's `fmod`, not WGSL's
@@ -248,7 +259,7 @@ impl FnLowerer<'_> {
             }
             _ => format!("rt_fmod({}, {})", l.code, r.code),
         };
-        Val::new(code, ty).with_effects(l.effects || r.effects)
+        Val::new(code, ty).with_effects(l.effects || r.effects).with_reads(l.reads || r.reads)
     }
 
     pub(super) fn short_circuit(&mut self, b: &syn::ExprBinary) -> Result<Val> {
@@ -265,7 +276,10 @@ impl FnLowerer<'_> {
         let sym = if and { "&&" } else { "||" };
         if hoisted.is_empty() {
             let effects = l.effects || r.effects;
-            return Ok(Val::new(format!("({} {sym} {})", l.code, r.code), BOOL).with_effects(effects));
+            let reads = l.reads || r.reads;
+            return Ok(Val::new(format!("({} {sym} {})", l.code, r.code), BOOL)
+                .with_effects(effects)
+                .with_reads(reads));
         }
         // The right side needs statements: keep short-circuit order by hand.
         let t = self.tmp();
@@ -314,6 +328,7 @@ impl FnLowerer<'_> {
             return Err(Error::new(c.span(), "cannot cast `bool` as `f32`: cast to u32 first or use `select`"));
         }
         let effects = v.effects;
+        let reads = v.reads;
         let code = if fs == Scalar::F32 && ts.is_int() {
             // Saturating at the integer limits, as Rust's `as`.
             let (f, text) = builtins::float_to_int(1, ts == Scalar::I32);
@@ -324,7 +339,7 @@ impl FnLowerer<'_> {
         } else {
             format!("{}({})", ts.wgsl(), v.code)
         };
-        Ok(Val::new(code, Ty::Scalar(ts)).with_effects(effects))
+        Ok(Val::new(code, Ty::Scalar(ts)).with_effects(effects).with_reads(reads))
     }
 }
 

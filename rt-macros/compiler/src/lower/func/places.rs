@@ -82,8 +82,10 @@ impl FnLowerer<'_> {
                     Place::Wgsl(Val::new(format!("{code}[{}]", idx.code), ty).with_effects(effects || idx.effects))
                 };
                 match base {
-                    Place::Wgsl(Val { code, ty: Ty::Array(elem, _), effects }) => Ok(element(code, *elem, effects)),
-                    Place::Wgsl(Val { code, ty: Ty::Vec(_, s), effects }) => Ok(element(code, Ty::Scalar(s), effects)),
+                    Place::Wgsl(Val { code, ty: Ty::Array(elem, _), effects, .. }) => Ok(element(code, *elem, effects)),
+                    Place::Wgsl(Val { code, ty: Ty::Vec(_, s), effects, .. }) => {
+                        Ok(element(code, Ty::Scalar(s), effects))
+                    }
                     Place::Buffer { buf, kind, elem, index, path, ty: Ty::Array(e, _), effects } => {
                         let path = format!("{path}[{}]", idx.code);
                         Ok(Place::Buffer { buf, kind, elem, index, path, ty: *e, effects: effects || idx.effects })
@@ -135,6 +137,7 @@ impl FnLowerer<'_> {
                 }
                 let vty = self.resolved(&value.ty);
                 let effects = value.effects;
+                let reads = value.reads;
                 // `x <<= n` needs a u32 amount; `v <<= n` and `v &= n` a vector.
                 match (base_op, self.resolved(&pty)) {
                     (BinOp::Shl(_) | BinOp::Shr(_), Ty::Vec(n, _)) => {
@@ -143,12 +146,16 @@ impl FnLowerer<'_> {
                             Ty::Scalar(Scalar::I32) => format!("vec{n}<u32>(u32({}))", value.code),
                             _ => format!("vec{n}<u32>({})", value.code),
                         };
-                        Val::new(self.mask_amount(amount, Some(n)), Ty::Vec(n, Scalar::U32)).with_effects(effects)
+                        Val::new(self.mask_amount(amount, Some(n)), Ty::Vec(n, Scalar::U32))
+                            .with_effects(effects)
+                            .with_reads(reads)
                     }
                     (BinOp::BitAnd(_) | BinOp::BitOr(_) | BinOp::BitXor(_), Ty::Vec(n, s))
                         if !matches!(vty, Ty::Vec(..)) =>
                     {
-                        Val::new(format!("vec{n}<{}>({})", s.wgsl(), value.code), Ty::Vec(n, s)).with_effects(effects)
+                        Val::new(format!("vec{n}<{}>({})", s.wgsl(), value.code), Ty::Vec(n, s))
+                            .with_effects(effects)
+                            .with_reads(reads)
                     }
                     (BinOp::Shl(_) | BinOp::Shr(_), Ty::Scalar(_) | Ty::IntVar(_)) => {
                         let amount = if matches!(vty, Ty::Scalar(Scalar::U32 | Scalar::Usize)) {
@@ -156,7 +163,7 @@ impl FnLowerer<'_> {
                         } else {
                             format!("u32({})", value.code)
                         };
-                        Val::new(self.mask_amount(amount, None), U32).with_effects(effects)
+                        Val::new(self.mask_amount(amount, None), U32).with_effects(effects).with_reads(reads)
                     }
                     _ => value,
                 }

@@ -278,6 +278,8 @@ impl FnLowerer<'_> {
             return Err(not_resumable(span, "this trace is not a statement of its own"));
         }
         r.expect_site = false;
+        // `ptr` is what `mut_ref_arg` gave: `&local`, a pointer parameter,
+        // or `&tmp` for a field (which has a writeback).
         let clean = text::strip(ptr);
         let payload = match clean.strip_prefix('&') {
             Some(name) if name.chars().all(|c| c.is_alphanumeric() || c == '_') => name.to_string(),
