@@ -4,7 +4,7 @@
 //! half away from zero, `fract` is `x - trunc(x)`, `signum(0.0)` is 1) the
 //! lowering spells Rust's definition out.
 
-use super::func::{Val, f32_literal};
+use super::value::{Val, f32_literal};
 use crate::types::{F32, Scalar, Ty, U32};
 
 /// Builds a method call's WGSL from the lowered receiver and arguments.
@@ -227,12 +227,6 @@ pub fn method_sig(recv: &Ty, name: &str) -> Option<MethodSig> {
     let t = recv.clone();
     let is_float = recv.scalar() == Some(Scalar::F32) && !matches!(recv, Ty::Mat(_));
     let is_int = matches!(recv, Ty::Scalar(s) | Ty::Vec(_, s) if s.is_int());
-    let is_vec = matches!(recv, Ty::Vec(..));
-    let is_scalar = matches!(recv, Ty::Scalar(_));
-    let n = match recv {
-        Ty::Vec(n, _) => *n,
-        _ => 1,
-    };
     // Methods shared by every copyable value.
     if name == "clone" && recv.is_value() {
         return sig(vec![], t, |a| a[0].clone());
@@ -240,144 +234,11 @@ pub fn method_sig(recv: &Ty, name: &str) -> Option<MethodSig> {
     if let Ty::Mat(m) = recv {
         return mat_method(*m, name);
     }
-    if is_float {
-        let unary = match name {
-            "abs" => Some("abs"),
-            "sqrt" => Some("sqrt"),
-            "exp" => Some("exp"),
-            "exp2" => Some("exp2"),
-            "ln" => Some("log"),
-            "log2" => Some("log2"),
-            "sin" => Some("sin"),
-            "cos" => Some("cos"),
-            "tan" => Some("tan"),
-            "asin" => Some("asin"),
-            "acos" => Some("acos"),
-            "atan" => Some("atan"),
-            "sinh" => Some("sinh"),
-            "cosh" => Some("cosh"),
-            "tanh" => Some("tanh"),
-            "asinh" => Some("asinh"),
-            "acosh" => Some("acosh"),
-            "atanh" => Some("atanh"),
-            "floor" => Some("floor"),
-            "ceil" => Some("ceil"),
-            "trunc" => Some("trunc"),
-            "fract_gl" => Some("fract"),
-            "to_radians" => Some("radians"),
-            "to_degrees" => Some("degrees"),
-            "round_ties_even" => Some("round"),
-            _ => None,
-        };
-        if let Some(f) = unary {
-            return sig(vec![], t, wgsl_fn(f));
-        }
-        let w = t.wgsl();
-        let one = if is_vec { format!("{w}(1.0)") } else { "1.0f".to_string() };
-        match name {
-            "recip" => return sig(vec![], t, move |a| format!("({one} / {})", a[0])),
-            "fract" => return sig(vec![], t, |a| format!("({0} - trunc({0}))", a[0])),
-            // Half away from zero. (`floor(abs(x) + 0.5)` is wrong where the
-            // addition rounds: 0.49999997, and odd values from 2^23 on.)
-            "round" => {
-                let half = if is_vec { format!("{w}(0.5)") } else { "0.5f".to_string() };
-                return sig(vec![], t, move |a| {
-                    format!("(trunc({0}) + sign({0}) * step({half}, abs({0} - trunc({0}))))", a[0])
-                });
-            }
-            "signum" => {
-                let (pos, neg) =
-                    if is_vec { (format!("{w}(1.0)"), format!("{w}(-1.0)")) } else { ("1.0f".into(), "-1.0f".into()) };
-                let sign_bit = if is_vec {
-                    format!("(bitcast<vec{n}<u32>>({{}}) & vec{n}<u32>(0x80000000u)) != vec{n}<u32>(0u)")
-                } else {
-                    "(bitcast<u32>({}) & 0x80000000u) != 0u".to_string()
-                };
-                return sig(vec![], t, move |a| format!("select({pos}, {neg}, {})", sign_bit.replace("{}", &a[0])));
-            }
-            "powf" => {
-                return sig(vec![F32], t, move |a| {
-                    if is_vec { format!("pow({}, {w}({}))", a[0], a[1]) } else { format!("pow({}, {})", a[0], a[1]) }
-                });
-            }
-            "powi" if is_scalar => {
-                let mut s = sig(vec![Ty::Scalar(Scalar::I32)], t, |a| format!("rt_powi({}, {})", a[0], a[1]))?;
-                s.support = Some(("rt_powi", POWI));
-                return Some(s);
-            }
-            "atan2" if is_scalar => return sig(vec![F32], t, |a| format!("atan2({}, {})", a[0], a[1])),
-            "mul_add" => return sig(vec![t.clone(), t.clone()], t, wgsl_fn("fma")),
-            "is_nan" if is_scalar => return sig(vec![], Ty::Scalar(Scalar::Bool), |a| format!("({0} != {0})", a[0])),
-            "is_finite" if is_scalar => {
-                return sig(vec![], Ty::Scalar(Scalar::Bool), |a| {
-                    format!("(abs({}) <= {})", a[0], f32_literal(f32::MAX))
-                });
-            }
-            "is_infinite" if is_scalar => {
-                return sig(vec![], Ty::Scalar(Scalar::Bool), |a| {
-                    format!("(abs({}) > {})", a[0], f32_literal(f32::MAX))
-                });
-            }
-            "hypot" if is_scalar => return sig(vec![F32], t, |a| format!("length(vec2<f32>({}, {}))", a[0], a[1])),
-            _ => {}
-        }
-        if is_vec {
-            let v3 = Ty::vec(3);
-            match name {
-                "length" => return sig(vec![], F32, wgsl_fn("length")),
-                "length_squared" => return sig(vec![], F32, |a| format!("dot({0}, {0})", a[0])),
-                "length_recip" => return sig(vec![], F32, |a| format!("inverseSqrt(dot({0}, {0}))", a[0])),
-                "normalize" => return sig(vec![], t, wgsl_fn("normalize")),
-                // (`inverseSqrt` of a positive length only: WGSL rejects a
-                // constant zero vector's `inverseSqrt(0.0)` even unselected.)
-                "normalize_or_zero" => {
-                    return sig(vec![], t, move |a| {
-                        format!(
-                            "select({w}(), {0} * inverseSqrt(select(1.0, dot({0}, {0}), dot({0}, {0}) > 0.0)), dot({0}, {0}) > 0.0)",
-                            a[0]
-                        )
-                    });
-                }
-                "distance" => return sig(vec![t.clone()], F32, wgsl_fn("distance")),
-                "distance_squared" => {
-                    return sig(vec![t.clone()], F32, |a| format!("dot({0} - {1}, {0} - {1})", a[0], a[1]));
-                }
-                // glam's formula, not WGSL's `mix`: GPUs compute that as
-                // `a + t * (b - a)`, which misses `b` at `t == 1` (glam
-                // promises both ends exactly).
-                "lerp" => return sig(vec![t.clone(), F32], t, |a| lerp_formula(&a[0], &a[1], &a[2])),
-                "reflect" if n == 3 => return sig(vec![v3.clone()], v3, wgsl_fn("reflect")),
-                "refract" if n == 3 => return sig(vec![v3.clone(), F32], v3, wgsl_fn("refract")),
-                "cross" if n == 3 => return sig(vec![v3.clone()], v3, wgsl_fn("cross")),
-                _ => {}
-            }
-        }
+    if is_float && let Some(m) = float_method(recv, name) {
+        return Some(m);
     }
-    if is_int {
-        let u = U32;
-        let cnt = |f: &'static str| {
-            let scalar_is_u = recv.scalar() == Some(Scalar::U32);
-            move |a: &[String]| if scalar_is_u { format!("{f}({})", a[0]) } else { format!("u32({f}({}))", a[0]) }
-        };
-        match name {
-            "abs" if recv.scalar() == Some(Scalar::I32) => return sig(vec![], t, wgsl_fn("abs")),
-            "signum" if recv.scalar() == Some(Scalar::I32) => return sig(vec![], t, wgsl_fn("sign")),
-            "count_ones" if is_scalar => return sig(vec![], u, cnt("countOneBits")),
-            "leading_zeros" if is_scalar => return sig(vec![], u, cnt("countLeadingZeros")),
-            "trailing_zeros" if is_scalar => return sig(vec![], u, cnt("countTrailingZeros")),
-            "reverse_bits" if is_scalar => return sig(vec![], t, wgsl_fn("reverseBits")),
-            // `n.is_multiple_of(0)` is `n == 0`. (The divisor is never a
-            // zero: WGSL rejects `n % 0u` when it can see the zero.)
-            "is_multiple_of" if matches!(recv, Ty::Scalar(Scalar::U32 | Scalar::Usize)) => {
-                return sig(vec![t.clone()], Ty::Scalar(Scalar::Bool), |a| {
-                    format!("select(({0} % select({1}, 1u, {1} == 0u)) == 0u, {0} == 0u, {1} == 0u)", a[0], a[1])
-                });
-            }
-            "wrapping_add" => return sig(vec![t.clone()], t, |a| format!("({} + {})", a[0], a[1])),
-            "wrapping_sub" => return sig(vec![t.clone()], t, |a| format!("({} - {})", a[0], a[1])),
-            "wrapping_mul" => return sig(vec![t.clone()], t, |a| format!("({} * {})", a[0], a[1])),
-            _ => {}
-        }
+    if is_int && let Some(m) = int_method(recv, name) {
+        return Some(m);
     }
     if is_float || is_int {
         match name {
@@ -387,55 +248,217 @@ pub fn method_sig(recv: &Ty, name: &str) -> Option<MethodSig> {
             _ => {}
         }
     }
-    if is_vec && recv.scalar() != Some(Scalar::Bool) {
-        let s = recv.scalar().unwrap();
-        let comps = |f: &'static str| {
-            move |a: &[String]| {
-                let parts: Vec<String> =
-                    (0..n).map(|i| format!("{}.{}", a[0], &"xyzw"[i as usize..i as usize + 1])).collect();
-                match f {
-                    "+" | "*" => format!("({})", parts.join(&format!(" {f} "))),
-                    _ => parts[1..].iter().fold(parts[0].clone(), |acc, p| format!("{f}({acc}, {p})")),
-                }
-            }
-        };
+    if matches!(recv, Ty::Vec(..)) && recv.scalar() != Some(Scalar::Bool) {
+        return vec_method(recv, name);
+    }
+    None
+}
+
+/// Methods of `f32` and float vectors (glam's).
+fn float_method(recv: &Ty, name: &str) -> Option<MethodSig> {
+    let t = recv.clone();
+    let is_vec = matches!(recv, Ty::Vec(..));
+    let is_scalar = matches!(recv, Ty::Scalar(_));
+    let n = match recv {
+        Ty::Vec(n, _) => *n,
+        _ => 1,
+    };
+    let unary = match name {
+        "abs" => Some("abs"),
+        "sqrt" => Some("sqrt"),
+        "exp" => Some("exp"),
+        "exp2" => Some("exp2"),
+        "ln" => Some("log"),
+        "log2" => Some("log2"),
+        "sin" => Some("sin"),
+        "cos" => Some("cos"),
+        "tan" => Some("tan"),
+        "asin" => Some("asin"),
+        "acos" => Some("acos"),
+        "atan" => Some("atan"),
+        "sinh" => Some("sinh"),
+        "cosh" => Some("cosh"),
+        "tanh" => Some("tanh"),
+        "asinh" => Some("asinh"),
+        "acosh" => Some("acosh"),
+        "atanh" => Some("atanh"),
+        "floor" => Some("floor"),
+        "ceil" => Some("ceil"),
+        "trunc" => Some("trunc"),
+        "fract_gl" => Some("fract"),
+        "to_radians" => Some("radians"),
+        "to_degrees" => Some("degrees"),
+        "round_ties_even" => Some("round"),
+        _ => None,
+    };
+    if let Some(f) = unary {
+        return sig(vec![], t, wgsl_fn(f));
+    }
+    let w = t.wgsl();
+    let one = if is_vec { format!("{w}(1.0)") } else { "1.0f".to_string() };
+    match name {
+        "recip" => return sig(vec![], t, move |a| format!("({one} / {})", a[0])),
+        "fract" => return sig(vec![], t, |a| format!("({0} - trunc({0}))", a[0])),
+        // Half away from zero. (`floor(abs(x) + 0.5)` is wrong where the
+        // addition rounds: 0.49999997, and odd values from 2^23 on.)
+        "round" => {
+            let half = if is_vec { format!("{w}(0.5)") } else { "0.5f".to_string() };
+            return sig(vec![], t, move |a| {
+                format!("(trunc({0}) + sign({0}) * step({half}, abs({0} - trunc({0}))))", a[0])
+            });
+        }
+        "signum" => {
+            let (pos, neg) =
+                if is_vec { (format!("{w}(1.0)"), format!("{w}(-1.0)")) } else { ("1.0f".into(), "-1.0f".into()) };
+            let sign_bit = if is_vec {
+                format!("(bitcast<vec{n}<u32>>({{}}) & vec{n}<u32>(0x80000000u)) != vec{n}<u32>(0u)")
+            } else {
+                "(bitcast<u32>({}) & 0x80000000u) != 0u".to_string()
+            };
+            return sig(vec![], t, move |a| format!("select({pos}, {neg}, {})", sign_bit.replace("{}", &a[0])));
+        }
+        "powf" => {
+            return sig(vec![F32], t, move |a| {
+                if is_vec { format!("pow({}, {w}({}))", a[0], a[1]) } else { format!("pow({}, {})", a[0], a[1]) }
+            });
+        }
+        "powi" if is_scalar => {
+            let mut s = sig(vec![Ty::Scalar(Scalar::I32)], t, |a| format!("rt_powi({}, {})", a[0], a[1]))?;
+            s.support = Some(("rt_powi", POWI));
+            return Some(s);
+        }
+        "atan2" if is_scalar => return sig(vec![F32], t, |a| format!("atan2({}, {})", a[0], a[1])),
+        "mul_add" => return sig(vec![t.clone(), t.clone()], t, wgsl_fn("fma")),
+        "is_nan" if is_scalar => return sig(vec![], Ty::Scalar(Scalar::Bool), |a| format!("({0} != {0})", a[0])),
+        "is_finite" if is_scalar => {
+            return sig(vec![], Ty::Scalar(Scalar::Bool), |a| format!("(abs({}) <= {})", a[0], f32_literal(f32::MAX)));
+        }
+        "is_infinite" if is_scalar => {
+            return sig(vec![], Ty::Scalar(Scalar::Bool), |a| format!("(abs({}) > {})", a[0], f32_literal(f32::MAX)));
+        }
+        "hypot" if is_scalar => return sig(vec![F32], t, |a| format!("length(vec2<f32>({}, {}))", a[0], a[1])),
+        _ => {}
+    }
+    if is_vec {
+        let v3 = Ty::vec(3);
         match name {
-            "dot" => return sig(vec![t.clone()], Ty::Scalar(s), wgsl_fn("dot")),
-            "element_sum" => return sig(vec![], Ty::Scalar(s), comps("+")),
-            "element_product" => return sig(vec![], Ty::Scalar(s), comps("*")),
-            "min_element" => return sig(vec![], Ty::Scalar(s), comps("min")),
-            "max_element" => return sig(vec![], Ty::Scalar(s), comps("max")),
-            "extend" if n < 4 => {
-                let out = Ty::Vec(n + 1, s);
-                let w = out.wgsl();
-                return sig(vec![Ty::Scalar(s)], out, move |a| format!("{w}({}, {})", a[0], a[1]));
+            "length" => return sig(vec![], F32, wgsl_fn("length")),
+            "length_squared" => return sig(vec![], F32, |a| format!("dot({0}, {0})", a[0])),
+            "length_recip" => return sig(vec![], F32, |a| format!("inverseSqrt(dot({0}, {0}))", a[0])),
+            "normalize" => return sig(vec![], t, wgsl_fn("normalize")),
+            // (`inverseSqrt` of a positive length only: WGSL rejects a
+            // constant zero vector's `inverseSqrt(0.0)` even unselected.)
+            "normalize_or_zero" => {
+                return sig(vec![], t, move |a| {
+                    format!(
+                        "select({w}(), {0} * inverseSqrt(select(1.0, dot({0}, {0}), dot({0}, {0}) > 0.0)), dot({0}, {0}) > 0.0)",
+                        a[0]
+                    )
+                });
             }
-            "truncate" if n > 2 => {
-                let sw = &"xyzw"[..(n - 1) as usize];
-                let sw = sw.to_string();
-                return sig(vec![], Ty::Vec(n - 1, s), move |a| format!("{}.{sw}", a[0]));
+            "distance" => return sig(vec![t.clone()], F32, wgsl_fn("distance")),
+            "distance_squared" => {
+                return sig(vec![t.clone()], F32, |a| format!("dot({0} - {1}, {0} - {1})", a[0], a[1]));
             }
+            // glam's formula, not WGSL's `mix`: GPUs compute that as
+            // `a + t * (b - a)`, which misses `b` at `t == 1` (glam
+            // promises both ends exactly).
+            "lerp" => return sig(vec![t.clone(), F32], t, |a| lerp_formula(&a[0], &a[1], &a[2])),
+            "reflect" if n == 3 => return sig(vec![v3.clone()], v3, wgsl_fn("reflect")),
+            "refract" if n == 3 => return sig(vec![v3.clone(), F32], v3, wgsl_fn("refract")),
+            "cross" if n == 3 => return sig(vec![v3.clone()], v3, wgsl_fn("cross")),
             _ => {}
         }
-        for (prefix, target) in [("as_vec", Scalar::F32), ("as_ivec", Scalar::I32), ("as_uvec", Scalar::U32)] {
-            if name == format!("{prefix}{n}") {
-                let out = Ty::Vec(n, target);
-                if s == Scalar::F32 && target != Scalar::F32 {
-                    // Saturating, as `as i32` / `as u32` per component.
-                    let (f, text) = float_to_int(n, target == Scalar::I32);
-                    let mut m = sig(vec![], out, move |a| format!("{f}({})", a[0]))?;
-                    m.support = Some((f, text));
-                    return Some(m);
-                }
-                let w = out.wgsl();
-                return sig(vec![], out, move |a| format!("{w}({})", a[0]));
+    }
+    None
+}
+
+/// Methods of the integer scalars and vectors.
+fn int_method(recv: &Ty, name: &str) -> Option<MethodSig> {
+    let t = recv.clone();
+    let is_scalar = matches!(recv, Ty::Scalar(_));
+    let u = U32;
+    let cnt = |f: &'static str| {
+        let scalar_is_u = recv.scalar() == Some(Scalar::U32);
+        move |a: &[String]| if scalar_is_u { format!("{f}({})", a[0]) } else { format!("u32({f}({}))", a[0]) }
+    };
+    match name {
+        "abs" if recv.scalar() == Some(Scalar::I32) => return sig(vec![], t, wgsl_fn("abs")),
+        "signum" if recv.scalar() == Some(Scalar::I32) => return sig(vec![], t, wgsl_fn("sign")),
+        "count_ones" if is_scalar => return sig(vec![], u, cnt("countOneBits")),
+        "leading_zeros" if is_scalar => return sig(vec![], u, cnt("countLeadingZeros")),
+        "trailing_zeros" if is_scalar => return sig(vec![], u, cnt("countTrailingZeros")),
+        "reverse_bits" if is_scalar => return sig(vec![], t, wgsl_fn("reverseBits")),
+        // `n.is_multiple_of(0)` is `n == 0`. (The divisor is never a
+        // zero: WGSL rejects `n % 0u` when it can see the zero.)
+        "is_multiple_of" if matches!(recv, Ty::Scalar(Scalar::U32 | Scalar::Usize)) => {
+            return sig(vec![t.clone()], Ty::Scalar(Scalar::Bool), |a| {
+                format!("select(({0} % select({1}, 1u, {1} == 0u)) == 0u, {0} == 0u, {1} == 0u)", a[0], a[1])
+            });
+        }
+        "wrapping_add" => return sig(vec![t.clone()], t, |a| format!("({} + {})", a[0], a[1])),
+        "wrapping_sub" => return sig(vec![t.clone()], t, |a| format!("({} - {})", a[0], a[1])),
+        "wrapping_mul" => return sig(vec![t.clone()], t, |a| format!("({} * {})", a[0], a[1])),
+        _ => {}
+    }
+    None
+}
+
+/// Methods of every numeric vector: reductions, `extend`/`truncate`,
+/// conversions and swizzles.
+fn vec_method(recv: &Ty, name: &str) -> Option<MethodSig> {
+    let t = recv.clone();
+    let n = match recv {
+        Ty::Vec(n, _) => *n,
+        _ => 1,
+    };
+    let s = recv.scalar().unwrap();
+    let comps = |f: &'static str| {
+        move |a: &[String]| {
+            let parts: Vec<String> =
+                (0..n).map(|i| format!("{}.{}", a[0], &"xyzw"[i as usize..i as usize + 1])).collect();
+            match f {
+                "+" | "*" => format!("({})", parts.join(&format!(" {f} "))),
+                _ => parts[1..].iter().fold(parts[0].clone(), |acc, p| format!("{f}({acc}, {p})")),
             }
         }
-        // Swizzles: `v.xy()`, `v.zyx()`, `v.xxxx()`.
-        if (2..=4).contains(&name.len()) && name.chars().all(|c| "xyzw"[..n as usize].contains(c)) {
-            let sw = name.to_string();
-            return sig(vec![], Ty::Vec(name.len() as u8, s), move |a| format!("{}.{sw}", a[0]));
+    };
+    match name {
+        "dot" => return sig(vec![t.clone()], Ty::Scalar(s), wgsl_fn("dot")),
+        "element_sum" => return sig(vec![], Ty::Scalar(s), comps("+")),
+        "element_product" => return sig(vec![], Ty::Scalar(s), comps("*")),
+        "min_element" => return sig(vec![], Ty::Scalar(s), comps("min")),
+        "max_element" => return sig(vec![], Ty::Scalar(s), comps("max")),
+        "extend" if n < 4 => {
+            let out = Ty::Vec(n + 1, s);
+            let w = out.wgsl();
+            return sig(vec![Ty::Scalar(s)], out, move |a| format!("{w}({}, {})", a[0], a[1]));
         }
+        "truncate" if n > 2 => {
+            let sw = &"xyzw"[..(n - 1) as usize];
+            let sw = sw.to_string();
+            return sig(vec![], Ty::Vec(n - 1, s), move |a| format!("{}.{sw}", a[0]));
+        }
+        _ => {}
+    }
+    for (prefix, target) in [("as_vec", Scalar::F32), ("as_ivec", Scalar::I32), ("as_uvec", Scalar::U32)] {
+        if name == format!("{prefix}{n}") {
+            let out = Ty::Vec(n, target);
+            if s == Scalar::F32 && target != Scalar::F32 {
+                // Saturating, as `as i32` / `as u32` per component.
+                let (f, text) = float_to_int(n, target == Scalar::I32);
+                let mut m = sig(vec![], out, move |a| format!("{f}({})", a[0]))?;
+                m.support = Some((f, text));
+                return Some(m);
+            }
+            let w = out.wgsl();
+            return sig(vec![], out, move |a| format!("{w}({})", a[0]));
+        }
+    }
+    // Swizzles: `v.xy()`, `v.zyx()`, `v.xxxx()`.
+    if (2..=4).contains(&name.len()) && name.chars().all(|c| "xyzw"[..n as usize].contains(c)) {
+        let sw = name.to_string();
+        return sig(vec![], Ty::Vec(name.len() as u8, s), move |a| format!("{}.{sw}", a[0]));
     }
     None
 }
@@ -491,16 +514,16 @@ pub fn assoc_const(owner: &str, name: &str) -> Option<Val> {
                 "NAN" => f32::NAN,
                 _ => return None,
             };
-            Some(Val { code: f32_literal(v), ty })
+            Some(Val::new(f32_literal(v), ty))
         }
         Ty::Scalar(Scalar::I32) => match name {
-            "MAX" => Some(Val { code: "2147483647i".into(), ty }),
-            "MIN" => Some(Val { code: "i32(-2147483648)".into(), ty }),
+            "MAX" => Some(Val::new("2147483647i", ty)),
+            "MIN" => Some(Val::new("i32(-2147483648)", ty)),
             _ => None,
         },
         Ty::Scalar(Scalar::U32) => match name {
-            "MAX" => Some(Val { code: "4294967295u".into(), ty }),
-            "MIN" => Some(Val { code: "0u".into(), ty }),
+            "MAX" => Some(Val::new("4294967295u", ty)),
+            "MIN" => Some(Val::new("0u", ty)),
             _ => None,
         },
         Ty::Vec(n, s) => {
@@ -527,10 +550,10 @@ pub fn assoc_const(owner: &str, name: &str) -> Option<Val> {
                 "NEG_W" if *n >= 4 => axis(3, neg?),
                 _ => return None,
             };
-            Some(Val { code, ty })
+            Some(Val::new(code, ty))
         }
         Ty::Mat(n) => match name {
-            "ZERO" => Some(Val { code: format!("{w}()"), ty }),
+            "ZERO" => Some(Val::new(format!("{w}()"), ty)),
             "IDENTITY" => {
                 let cols: Vec<String> = (0..*n)
                     .map(|i| {
@@ -538,7 +561,7 @@ pub fn assoc_const(owner: &str, name: &str) -> Option<Val> {
                         format!("vec{n}<f32>({})", c.join(", "))
                     })
                     .collect();
-                Some(Val { code: format!("{w}({})", cols.join(", ")), ty })
+                Some(Val::new(format!("{w}({})", cols.join(", ")), ty))
             }
             _ => None,
         },

@@ -7,8 +7,10 @@
 //! (`\u{4}L var value\u{5}`, `\u{4}T var\u{5}`). [`finish`] resolves the
 //! placeholders, strips the markers and returns the byte range of every
 //! marked piece: the source map from WGSL spans to Rust spans.
-
-use crate::types::Scalar;
+//!
+//! This module knows the markers only, not the compiler's types: the
+//! placeholders of an integer variable resolve to `i32` or `u32`, as the
+//! caller says.
 
 const OPEN: char = '\u{1}';
 const MID: char = '\u{2}';
@@ -29,9 +31,10 @@ pub fn int_type_placeholder(var: u32) -> String {
     format!("{PH_OPEN}T{var}{PH_CLOSE}")
 }
 
-/// Resolves placeholders with `resolve(var)` and strips markers; returns the
-/// clean text and `(id, byte range)` for every marked piece.
-pub fn finish(text: &str, resolve: &dyn Fn(u32) -> Scalar) -> (String, Vec<(usize, std::ops::Range<usize>)>) {
+/// Resolves placeholders and strips markers; returns the clean text and
+/// `(id, byte range)` for every marked piece. `signed(var)`: whether
+/// integer variable `var` is an `i32` (else a `u32`).
+pub fn finish(text: &str, signed: &dyn Fn(u32) -> bool) -> (String, Vec<(usize, std::ops::Range<usize>)>) {
     let mut out = String::with_capacity(text.len());
     let mut ranges = Vec::new();
     let mut stack: Vec<(usize, usize)> = Vec::new();
@@ -65,11 +68,11 @@ pub fn finish(text: &str, resolve: &dyn Fn(u32) -> Scalar) -> (String, Vec<(usiz
                 match tag {
                     "L" => {
                         let (var, value) = rest.split_once(' ').unwrap_or((rest, "0"));
-                        let s = resolve(var.parse().unwrap_or(0));
+                        let signed = signed(var.parse().unwrap_or(0));
                         out.push_str(value);
-                        out.push_str(if s == Scalar::I32 { "i" } else { "u" });
+                        out.push_str(if signed { "i" } else { "u" });
                     }
-                    _ => out.push_str(resolve(rest.parse().unwrap_or(0)).wgsl()),
+                    _ => out.push_str(if signed(rest.parse().unwrap_or(0)) { "i32" } else { "u32" }),
                 }
             }
             _ => out.push(c),
@@ -80,7 +83,7 @@ pub fn finish(text: &str, resolve: &dyn Fn(u32) -> Scalar) -> (String, Vec<(usiz
 
 /// Strips markers only (for text that has no placeholders left).
 pub fn strip(text: &str) -> String {
-    finish(text, &|_| Scalar::I32).0
+    finish(text, &|_| true).0
 }
 
 /// Indents every line of `body` by one level.

@@ -278,6 +278,8 @@ impl FnLowerer<'_> {
             return Err(not_resumable(span, "this trace is not a statement of its own"));
         }
         r.expect_site = false;
+        // `ptr` is what `mut_ref_arg` gave: `&local`, a pointer parameter,
+        // or `&tmp` for a field (which has a writeback).
         let clean = text::strip(ptr);
         let payload = match clean.strip_prefix('&') {
             Some(name) if name.chars().all(|c| c.is_alphanumeric() || c == '_') => name.to_string(),
@@ -366,9 +368,9 @@ impl FnLowerer<'_> {
 
     /// Lowers `f` into a fresh buffer; returns its lines.
     fn buffered<T>(&mut self, f: impl FnOnce(&mut Self) -> Result<T>) -> Result<(Vec<String>, T)> {
-        self.blocks.push(Vec::new());
+        self.blocks.push(Block::default());
         let r = f(self);
-        let lines = self.blocks.pop().unwrap();
+        let lines = self.blocks.pop().unwrap().lines;
         r.map(|v| (lines, v))
     }
 
@@ -622,8 +624,8 @@ impl FnLowerer<'_> {
             Some(Some(Some((flag, true)))) => Some(flag),
             _ => None,
         };
-        let mut cases = arms?;
-        if !cases.iter().any(|c| c.starts_with("default")) {
+        let (mut cases, has_default) = arms?;
+        if !has_default {
             // WGSL needs a default; Rust's exhaustiveness check makes it
             // unreachable.
             cases.push("default: {}".to_string());
@@ -641,8 +643,11 @@ impl FnLowerer<'_> {
 
     /// The cases of [`Self::resumable_match`]'s `switch`, arms bound to the
     /// scrutinee's local `sel`.
-    fn resumable_arms(&mut self, m: &syn::ExprMatch, sty: &Ty, sel: &str) -> Result<Vec<String>> {
+    /// The `switch` cases of a `match`'s arms, and whether one is the
+    /// default.
+    fn resumable_arms(&mut self, m: &syn::ExprMatch, sty: &Ty, sel: &str) -> Result<(Vec<String>, bool)> {
         let mut cases = Vec::new();
+        let mut has_default = false;
         for arm in &m.arms {
             if let Some((if_token, _)) = &arm.guard {
                 return Err(not_resumable(if_token.span, "a match guard"));
@@ -661,10 +666,11 @@ impl FnLowerer<'_> {
             let r = self.resumable_block(&stmts);
             self.scopes.pop();
             let lines = r?;
+            has_default |= labels.is_empty();
             let head = if labels.is_empty() { "default".to_string() } else { format!("case {}", labels.join(", ")) };
             cases.push(format!("{head}: {{\n{}}}", indent(&lines.join("\n"))));
         }
-        Ok(cases)
+        Ok((cases, has_default))
     }
 
     /// A loop body with traces; `bind` binds the loop variable.

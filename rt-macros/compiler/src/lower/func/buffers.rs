@@ -1,0 +1,128 @@
+//! Buffers and samplers: `Buffer`/`RwBuffer` (1D and 2D) indexing and
+//! methods through the heap accessors, and `Sampler2d`'s methods.
+
+use super::*;
+
+impl FnLowerer<'_> {
+    pub(super) fn buffer_index(&mut self, kind: BufferKind, e: &Expr) -> Result<Val> {
+        let want = if kind.dims == 2 { Ty::Vec(2, Scalar::U32) } else { U32 };
+        let v = self.expr(e, Some(&want))?;
+        let v = self.deref(v);
+        self.coerce(v, &want, e.span())
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn buffer_method(
+        &mut self,
+        recv: Val,
+        kind: BufferKind,
+        elem: &Ty,
+        name: &str,
+        args: &[&Expr],
+        name_span: Span,
+        span: Span,
+    ) -> Result<Val> {
+        let want_args = |n: usize| -> Result<()> {
+            if args.len() != n {
+                Err(Error::new(
+                    name_span,
+                    format!("`{}::{name}` takes {n} argument(s), found {}", kind.rust_name(), args.len()),
+                ))
+            } else {
+                Ok(())
+            }
+        };
+        match (name, kind.dims) {
+            ("len", 1) => {
+                want_args(0)?;
+                Ok(Val::new(format!("{}.len", recv.code), U32).with_effects(recv.effects).with_reads(recv.reads))
+            }
+            ("is_empty", 1) => {
+                want_args(0)?;
+                Ok(Val::new(format!("({}.len == 0u)", recv.code), BOOL)
+                    .with_effects(recv.effects)
+                    .with_reads(recv.reads))
+            }
+            ("size", 2) => {
+                want_args(0)?;
+                let size = format!("vec2<u32>({0}.width, {0}.height)", recv.code);
+                Ok(Val::new(size, Ty::Vec(2, Scalar::U32)).with_effects(recv.effects).with_reads(recv.reads))
+            }
+            ("load", _) => {
+                want_args(1)?;
+                let idx = self.buffer_index(kind, args[0])?;
+                let f = self.m.accessors.borrow_mut().buffer_load(kind.dims, elem);
+                let effects = recv.effects || idx.effects;
+                Ok(Val::new(format!("{f}({}, {})", recv.code, idx.code), elem.clone())
+                    .with_effects(effects)
+                    .with_reads(true))
+            }
+            ("store", _) => {
+                want_args(2)?;
+                if !kind.writable {
+                    return Err(Error::new(
+                        name_span,
+                        format!(
+                            "cannot store into a read-only `{}`: declare the variable as `RwBuffer`/`RwBuffer2d`",
+                            kind.rust_name()
+                        ),
+                    ));
+                }
+                let mut idx = self.buffer_index(kind, args[0])?;
+                let at = self.here();
+                let v = self.expr(args[1], Some(elem))?;
+                let v = self.deref(v);
+                let v = self.coerce(v, elem, args[1].span())?;
+                self.spill(at, &mut [&mut idx]);
+                let f = self.m.accessors.borrow_mut().buffer_store(kind.dims, elem);
+                let line = self.mark(span, &format!("{f}({}, {}, {});", recv.code, idx.code, v.code));
+                self.emit(line);
+                Ok(Val::new("", Ty::Unit))
+            }
+            _ => Err(Error::new(
+                name_span,
+                format!(
+                    "no method `{name}` on `{}<{elem}>` (it has load, store, {})",
+                    kind.rust_name(),
+                    if kind.dims == 2 { "size" } else { "len, is_empty" }
+                ),
+            )),
+        }
+    }
+
+    pub(super) fn sampler_method(
+        &mut self,
+        recv: Val,
+        name: &str,
+        args: &[&Expr],
+        name_span: Span,
+        _span: Span,
+    ) -> Result<Val> {
+        let (f, arg_ty, ret) = match name {
+            "sample" => ("rt_tex_sample", Ty::vec(2), Ty::vec(4)),
+            "fetch" => ("rt_tex_fetch", Ty::Vec(2, Scalar::U32), Ty::vec(4)),
+            "size" => {
+                if !args.is_empty() {
+                    return Err(Error::new(name_span, "`Sampler2d::size` takes no arguments"));
+                }
+                let size = format!("vec2<u32>({0}.width, {0}.height)", recv.code);
+                return Ok(Val::new(size, Ty::Vec(2, Scalar::U32)).with_effects(recv.effects).with_reads(recv.reads));
+            }
+            _ => {
+                return Err(Error::new(
+                    name_span,
+                    format!("no method `{name}` on `Sampler2d` (it has sample, fetch, size)"),
+                ));
+            }
+        };
+        if args.len() != 1 {
+            return Err(Error::new(name_span, format!("`Sampler2d::{name}` takes 1 argument, found {}", args.len())));
+        }
+        let v = self.expr(args[0], Some(&arg_ty))?;
+        let v = self.deref(v);
+        let v = self.coerce(v, &arg_ty, args[0].span())?;
+        Ok(Val::new(format!("{f}({}, {})", recv.code, v.code), ret)
+            .with_effects(recv.effects || v.effects)
+            .with_reads(recv.reads || v.reads))
+    }
+}

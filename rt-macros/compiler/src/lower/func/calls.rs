@@ -1,0 +1,457 @@
+//! Calls: methods of builtin types (rows of `builtins`), `Type::f(...)`
+//! constructors and UFCS, glam's free functions, and `#[rt_function]`
+//! helpers (their intrinsics, traces and `&mut` writebacks).
+
+use super::*;
+
+impl FnLowerer<'_> {
+    pub(super) fn method_call(&mut self, m: &syn::ExprMethodCall, _want: Option<&Ty>) -> Result<Val> {
+        if let Some(t) = &m.turbofish {
+            return Err(Error::unsupported(t.span(), "generic arguments", "ray programs are not generic"));
+        }
+        let recv = self.expr(&m.receiver, None)?;
+        let recv = self.deref(recv);
+        let name = m.method.to_string();
+        let args: Vec<&Expr> = m.args.iter().collect();
+        self.method(recv, &name, &args, m.method.span(), m.span())
+    }
+
+    /// Lowers `recv.name(args)`.
+    pub(super) fn method(&mut self, recv: Val, name: &str, args: &[&Expr], name_span: Span, span: Span) -> Result<Val> {
+        let rt = self.resolved(&recv.ty);
+        if let Ty::IntVar(_) = rt {
+            // `3.max(x)`: the literal's type comes from the argument.
+            // (Probed, not lowered: lowering twice would emit its statements twice.)
+            if let Some(a) = args.first()
+                && let Some(t @ Ty::Scalar(_)) = self.peek_type(a)?
+            {
+                self.unify(&rt, &t);
+            }
+        }
+        let rt = self.resolved(&recv.ty);
+        match &rt {
+            Ty::Buffer(kind, elem) => return self.buffer_method(recv, *kind, elem, name, args, name_span, span),
+            Ty::Sampler => return self.sampler_method(recv, name, args, name_span, span),
+            _ => {}
+        }
+        let sig = builtins::method_sig(&rt, name).ok_or_else(|| {
+            let hint = builtins::method_hint(&rt, name);
+            Error::new(name_span, format!("no method `{name}` on `{rt}` in ray programs{hint}"))
+        })?;
+        if args.len() != sig.params.len() {
+            let n = sig.params.len();
+            let want = match n {
+                0 => "no arguments".to_string(),
+                _ => {
+                    let tys: Vec<String> = sig.params.iter().map(|t| format!("`{t}`")).collect();
+                    format!("{n} argument{} ({})", if n == 1 { "" } else { "s" }, tys.join(", "))
+                }
+            };
+            return Err(Error::new(name_span, format!("`{rt}::{name}` takes {want}, found {}", args.len())));
+        }
+        let mut vals = vec![recv.clone()];
+        for (a, p) in args.iter().zip(&sig.params) {
+            // glam takes some operands by reference: `m.mul_mat3(&n)`.
+            let a = match a {
+                Expr::Reference(r) if r.mutability.is_none() => &*r.expr,
+                a => *a,
+            };
+            let at = self.here();
+            let v = self.expr(a, Some(p))?;
+            let v = self.deref(v);
+            let v = self.coerce(v, p, a.span())?;
+            self.spill(at, &mut vals.iter_mut().collect::<Vec<_>>());
+            vals.push(v);
+        }
+        // Integer arithmetic on constants only: at run time (see
+        // `const_int_op`).
+        let wraps = matches!(
+            name,
+            "wrapping_add" | "wrapping_sub" | "wrapping_mul" | "dot" | "element_sum" | "element_product"
+        );
+        if wraps
+            && (self.is_int(&rt) || matches!(rt, Ty::Vec(_, s) if s.is_int()))
+            && vals.iter().all(|v| self.is_const_code(&v.code))
+        {
+            vals[0] = self.at_run_time(vals[0].clone());
+        }
+        // A lowering that repeats an operand (`(x - trunc(x))`) must not
+        // repeat its side effects: evaluate such operands (and, to keep
+        // Rust's left-to-right order, effectful ones before them) once, first.
+        // Which operands a row repeats is learnt from the row's own lowering,
+        // applied to a probe per operand.
+        let probe: Vec<String> = (0..vals.len()).map(|i| format!("\u{6}{i}\u{6}")).collect();
+        let shape = (sig.lower)(&probe);
+        let last_repeated = (0..vals.len()).rev().find(|&i| shape.matches(&probe[i]).count() > 1 && vals[i].effects);
+        if let Some(last) = last_repeated {
+            self.once(&mut vals[..=last]);
+        }
+        if let Some((name, text)) = sig.support {
+            self.m.accessors.borrow_mut().functions.entry(name.to_string()).or_insert_with(|| text.to_string());
+        }
+        let effects = any_effects(&vals);
+        let reads = any_reads(&vals);
+        Ok(Val::new((sig.lower)(&codes(&vals)), sig.ret).with_effects(effects).with_reads(reads))
+    }
+
+    /// Evaluates the operands with effects into `let`s, in order.
+    fn once(&mut self, vals: &mut [Val]) {
+        for v in vals {
+            if v.effects {
+                let t = self.tmp();
+                self.emit_let(format!("let {t} = {};", v.code), v);
+                *v = Val::new(t, v.ty.clone());
+            }
+        }
+    }
+
+    pub(super) fn call(&mut self, c: &syn::ExprCall, want: Option<&Ty>) -> Result<Val> {
+        let path = match &*c.func {
+            Expr::Path(p) if p.qself.is_none() => &p.path,
+            other => {
+                return Err(Error::unsupported(other.span(), "calling this expression", "call a function by name"));
+            }
+        };
+        if let Some(seg) = path.segments.iter().find(|s| !s.arguments.is_none()) {
+            return Err(Error::unsupported(seg.arguments.span(), "generic arguments", "ray programs are not generic"));
+        }
+        let segs: Vec<String> = path.segments.iter().map(|s| s.ident.to_string()).collect();
+        let name = segs.last().unwrap().clone();
+        let args: Vec<&Expr> = c.args.iter().collect();
+        let span = c.span();
+        let name_span = path.segments.last().unwrap().ident.span();
+
+        if segs.len() == 1
+            && let Some(l) = self.lookup(&name)
+        {
+            if l.wgsl == POISONED {
+                return Err(Error::silent(path.span()));
+            }
+            return Err(Error::unsupported(
+                path.span(),
+                &format!("calling the local `{name}`"),
+                "call a #[rt_function] helper by name",
+            ));
+        }
+        // `Type::function(...)`: constructors and UFCS methods of builtin types.
+        if segs.len() >= 2 {
+            let owner = segs[segs.len() - 2].as_str();
+            if let Some(advice) = crate::types::unsupported_type_advice(owner) {
+                let owner_span = path.segments[segs.len() - 2].ident.span();
+                return Err(Error::unsupported(owner_span, &format!("the type `{owner}`"), advice));
+            }
+            if let Some(ty) = crate::types::builtin_type(owner) {
+                if let Some(v) = self.constructor(&ty, &name, &args, span)? {
+                    return Ok(v);
+                }
+                if name == "default" && args.is_empty() {
+                    return Ok(Val::new(builtins::zero_value(&ty), ty));
+                }
+                // UFCS: `f32::max(a, b)` is `a.max(b)`.
+                if let Some((first, rest)) = args.split_first() {
+                    let recv = self.expr(first, Some(&ty))?;
+                    let recv = self.deref(recv);
+                    let recv = self.coerce(recv, &ty, first.span())?;
+                    return self.method(recv, &name, rest, name_span, span);
+                }
+            }
+            if let Some(d) = self.m.structs.get(owner)
+                && name == "default"
+                && args.is_empty()
+            {
+                let ty = Ty::Struct(d.clone());
+                return Ok(Val::new(format!("{}()", ty.wgsl()), ty));
+            }
+        }
+        if let Some(v) = self.free_builtin(&name, &args, span, want)? {
+            return Ok(v);
+        }
+        if let Some(sig) = self.m.helpers.get(&name) {
+            return self.helper_call(sig, &args, span);
+        }
+        if name == self.fn_name {
+            return Err(Error::unsupported(
+                span,
+                &format!("recursion (`{name}` calls itself)"),
+                "WGSL has no recursion; rewrite it as a loop",
+            ));
+        }
+        if self.m.failed.contains(&name) {
+            // A helper whose own macro reports its mistake.
+            return Err(Error::silent(path.span()));
+        }
+        Err(Error::new(
+            path.span(),
+            format!(
+                "cannot find function `{}`: ray programs may call #[rt_function] helpers and rt-std items",
+                segs.join("::")
+            ),
+        ))
+    }
+
+    pub(super) fn args_typed(&mut self, args: &[&Expr], params: &[Ty], span: Span, what: &str) -> Result<Vec<Val>> {
+        if args.len() != params.len() {
+            return Err(Error::new(span, format!("`{what}` takes {} argument(s), found {}", params.len(), args.len())));
+        }
+        let mut out: Vec<Val> = Vec::new();
+        for (a, p) in args.iter().zip(params) {
+            let at = self.here();
+            let v = self.expr(a, Some(p))?;
+            let v = self.deref(v);
+            let v = self.coerce(v, p, a.span())?;
+            self.spill(at, &mut out.iter_mut().collect::<Vec<_>>());
+            out.push(v);
+        }
+        Ok(out)
+    }
+
+    pub(super) fn constructor(&mut self, ty: &Ty, name: &str, args: &[&Expr], span: Span) -> Result<Option<Val>> {
+        let w = ty.wgsl();
+        match (ty, name) {
+            (Ty::Vec(n, s), "new") => {
+                let params = vec![Ty::Scalar(*s); *n as usize];
+                let a = self.args_typed(args, &params, span, &format!("{ty}::new"))?;
+                Ok(Some(
+                    Val::new(format!("{w}({})", codes(&a).join(", ")), ty.clone())
+                        .with_effects(any_effects(&a))
+                        .with_reads(any_reads(&a)),
+                ))
+            }
+            (Ty::Vec(_, s), "splat") => {
+                let a = self.args_typed(args, &[Ty::Scalar(*s)], span, &format!("{ty}::splat"))?;
+                Ok(Some(
+                    Val::new(format!("{w}({})", a[0].code), ty.clone())
+                        .with_effects(a[0].effects)
+                        .with_reads(a[0].reads),
+                ))
+            }
+            (Ty::Mat(n), "from_cols") => {
+                let params = vec![Ty::vec(*n); *n as usize];
+                let a = self.args_typed(args, &params, span, &format!("{ty}::from_cols"))?;
+                Ok(Some(
+                    Val::new(format!("{w}({})", codes(&a).join(", ")), ty.clone())
+                        .with_effects(any_effects(&a))
+                        .with_reads(any_reads(&a)),
+                ))
+            }
+            (Ty::Mat(n), "from_diagonal") => {
+                let a = self.args_typed(args, &[Ty::vec(*n)], span, &format!("{ty}::from_diagonal"))?;
+                let t = self.tmp();
+                self.emit_let(format!("let {t} = {};", a[0].code), &a[0]);
+                let cols: Vec<String> = (0..*n)
+                    .map(|i| {
+                        let comps: Vec<String> =
+                            (0..*n).map(|j| if i == j { format!("{t}[{i}]") } else { "0.0".into() }).collect();
+                        format!("vec{n}<f32>({})", comps.join(", "))
+                    })
+                    .collect();
+                Ok(Some(Val::new(format!("{w}({})", cols.join(", ")), ty.clone())))
+            }
+            (Ty::Ray, "new") => {
+                let params = [Ty::vec(3), Ty::vec(3), U32, F32, F32];
+                let a = self.args_typed(args, &params, span, "Ray::new")?;
+                Ok(Some(
+                    Val::new(format!("RtRay({})", codes(&a).join(", ")), Ty::Ray)
+                        .with_effects(any_effects(&a))
+                        .with_reads(any_reads(&a)),
+                ))
+            }
+            (Ty::Aabb, "new") => {
+                let a = self.args_typed(args, &[Ty::vec(3), Ty::vec(3)], span, "Aabb::new")?;
+                Ok(Some(
+                    Val::new(format!("RtAabb({})", codes(&a).join(", ")), Ty::Aabb)
+                        .with_effects(any_effects(&a))
+                        .with_reads(any_reads(&a)),
+                ))
+            }
+            _ => Ok(None),
+        }
+    }
+
+    pub(super) fn free_builtin(
+        &mut self,
+        name: &str,
+        args: &[&Expr],
+        span: Span,
+        want: Option<&Ty>,
+    ) -> Result<Option<Val>> {
+        // glam's `vec3(x, y, z)` style constructors.
+        let ctor = match name {
+            "vec2" => Some(Ty::vec(2)),
+            "vec3" => Some(Ty::vec(3)),
+            "vec4" => Some(Ty::vec(4)),
+            "ivec2" => Some(Ty::Vec(2, Scalar::I32)),
+            "ivec3" => Some(Ty::Vec(3, Scalar::I32)),
+            "ivec4" => Some(Ty::Vec(4, Scalar::I32)),
+            "uvec2" => Some(Ty::Vec(2, Scalar::U32)),
+            "uvec3" => Some(Ty::Vec(3, Scalar::U32)),
+            "uvec4" => Some(Ty::Vec(4, Scalar::U32)),
+            _ => None,
+        };
+        if let Some(ty) = ctor {
+            return self.constructor(&ty, "new", args, span);
+        }
+        let v3 = Ty::vec(3);
+        let simple = |s: &str, params: Vec<Ty>, ret: Ty| Some((s.to_string(), params, ret));
+        let generic_ty = |this: &mut Self| -> Result<Ty> {
+            // smoothstep/step/saturate/mix work on f32 and f32 vectors: take
+            // the type from the last argument (or the expected type).
+            let probe = args.last().map(|a| this.peek_type(a)).transpose()?.flatten();
+            Ok(match probe.or(want.cloned()) {
+                Some(t @ Ty::Vec(_, Scalar::F32)) => t,
+                _ => F32,
+            })
+        };
+        let call = match name {
+            "reflect" => simple("reflect", vec![v3.clone(), v3.clone()], v3.clone()),
+            "refract" => simple("refract", vec![v3.clone(), v3.clone(), F32], v3.clone()),
+            "faceforward" => simple("faceForward", vec![v3.clone(), v3.clone(), v3.clone()], v3.clone()),
+            "smoothstep" => {
+                let t = generic_ty(self)?;
+                simple("smoothstep", vec![t.clone(), t.clone(), t.clone()], t)
+            }
+            "step" => {
+                let t = generic_ty(self)?;
+                simple("step", vec![t.clone(), t.clone()], t)
+            }
+            "saturate" => {
+                let t = generic_ty(self)?;
+                simple("saturate", vec![t.clone()], t)
+            }
+            "mix" => {
+                let a_ty = match args.first().map(|a| self.peek_type(a)).transpose()?.flatten().or(want.cloned()) {
+                    Some(t @ Ty::Vec(_, Scalar::F32)) => t,
+                    _ => F32,
+                };
+                let t_ty = match args.get(2).map(|a| self.peek_type(a)).transpose()?.flatten() {
+                    Some(t @ Ty::Vec(_, Scalar::F32)) => t,
+                    _ => F32,
+                };
+                simple("mix", vec![a_ty.clone(), a_ty.clone(), t_ty], a_ty)
+            }
+            _ => None,
+        };
+        if let Some((f, params, ret)) = call {
+            let mut a = self.args_typed(args, &params, span, name)?;
+            if f == "step" {
+                // rt-std's definition, `x >= edge` selecting 1 or 0, rather
+                // than WGSL's `step`: lavapipe folds a constant added to a
+                // `step` at reduced precision (`step(e, x) - 0.001` loses the
+                // low 8 bits of the result).
+                let (zero, one) = match &ret {
+                    Ty::Vec(..) => (format!("{}(0.0)", ret.wgsl()), format!("{}(1.0)", ret.wgsl())),
+                    _ => ("0.0f".to_string(), "1.0f".to_string()),
+                };
+                let code = format!("select({zero}, {one}, {} >= {})", a[1].code, a[0].code);
+                return Ok(Some(Val::new(code, ret).with_effects(any_effects(&a)).with_reads(any_reads(&a))));
+            }
+            if f == "mix" {
+                // rt-std's formula (see `builtins::lerp_formula`); `t` is
+                // used twice: once evaluated.
+                if a[2].effects {
+                    self.once(&mut a);
+                }
+                let code = builtins::lerp_formula(&a[0].code, &a[1].code, &a[2].code);
+                return Ok(Some(Val::new(code, ret).with_effects(any_effects(&a)).with_reads(any_reads(&a))));
+            }
+            return Ok(Some(
+                Val::new(format!("{f}({})", codes(&a).join(", ")), ret)
+                    .with_effects(any_effects(&a))
+                    .with_reads(any_reads(&a)),
+            ));
+        }
+        self.intrinsic_call(name, args, span)
+    }
+
+    pub(super) fn helper_call(&mut self, sig: &HelperSig, args: &[&Expr], span: Span) -> Result<Val> {
+        if args.len() != sig.params.len() {
+            return Err(Error::new(
+                span,
+                format!("`{}` takes {} argument(s), found {}", sig.name, sig.params.len(), args.len()),
+            ));
+        }
+        if let Some(kind) = self.kind() {
+            for intr in &sig.intrinsics {
+                if let Some(i) = kinds::intrinsic(intr)
+                    && !i.callers.allows(kind)
+                {
+                    return Err(Error::new(
+                        span,
+                        format!(
+                            "`{}` calls `{intr}`, which cannot be called from {} ({})",
+                            sig.name,
+                            kind.a_program(),
+                            i.callers.doc_line().trim_end_matches('.').replace("Program kinds:", "allowed in:")
+                        ),
+                    ));
+                }
+            }
+        }
+        // Arguments in order; a pointer argument is a place, never spilled
+        // (its type stays `Ref`).
+        let start = self.here();
+        let mut vals: Vec<Val> = Vec::new();
+        for (a, p) in args.iter().zip(&sig.params) {
+            let at = self.here();
+            let v = match p {
+                Ty::Ref(true, inner) => {
+                    let (code, ty) = self.mut_ref_arg(a)?;
+                    if !self.unify(&ty, inner) {
+                        return Err(Error::new(
+                            a.span(),
+                            format!("mismatched types: expected `&mut {inner}`, found `&mut {ty}`"),
+                        ));
+                    }
+                    Val::new(code, p.clone())
+                }
+                Ty::Ref(false, inner) => {
+                    let target = match a {
+                        Expr::Reference(r) if r.mutability.is_none() => &*r.expr,
+                        other => other,
+                    };
+                    let v = self.expr(target, Some(inner))?;
+                    let v = self.deref(v);
+                    self.coerce(v, inner, a.span())?
+                }
+                p => {
+                    let v = self.expr(a, Some(p))?;
+                    let v = self.deref(v);
+                    self.coerce(v, p, a.span())?
+                }
+            };
+            self.spill(at, &mut vals.iter_mut().collect::<Vec<_>>());
+            vals.push(v);
+        }
+        let codes: Vec<String> = vals.into_iter().map(|v| v.code).collect();
+        if self.resume.is_some() && !sig.traced.is_empty() {
+            self.calls.push(sig.name.clone());
+            self.traced.extend(sig.traced.iter().cloned());
+            return self.helper_site(sig, codes, start, span);
+        }
+        for intr in &sig.intrinsics {
+            if let Some(i) = kinds::intrinsic(intr) {
+                self.intrinsics.push((i.name, span));
+            }
+        }
+        self.traced.extend(sig.traced.iter().cloned());
+        self.calls.push(sig.name.clone());
+        let code = format!("{}({})", sig.wgsl_name, codes.join(", "));
+        let writebacks = std::mem::take(&mut self.writebacks);
+        if matches!(sig.ret, Ty::Unit) {
+            let line = self.mark(span, &format!("{code};"));
+            self.emit(line);
+            writebacks.into_iter().for_each(|w| self.emit(w));
+            Ok(Val::new("", Ty::Unit))
+        } else if writebacks.is_empty() {
+            // A helper may write through its `&mut` parameters and to buffers.
+            Ok(Val::new(code, sig.ret.clone()).with_effects(true))
+        } else {
+            // The result must be taken before the temporaries are copied back.
+            let t = self.tmp();
+            let line = self.mark(span, &format!("let {t} = {code};"));
+            self.emit(line);
+            writebacks.into_iter().for_each(|w| self.emit(w));
+            Ok(Val::new(t, sig.ret.clone()))
+        }
+    }
+}

@@ -1,0 +1,270 @@
+//! Statements: `let` (locals), `const` items, expression statements and
+//! `rt_printf!`.
+
+use super::*;
+
+impl FnLowerer<'_> {
+    pub(super) fn stmt(&mut self, s: &Stmt) -> Result<()> {
+        match s {
+            Stmt::Local(l) => {
+                let before = self.errors.0.len();
+                let r = self.local(l);
+                if let Err(e) = r {
+                    // Later uses of the names are silent errors, not "cannot
+                    // find value"; and a `let` whose initialiser already
+                    // reported an error reports nothing more.
+                    self.poison_pattern(&l.pat);
+                    return Err(if self.errors.0.len() > before { Error::silent(e.span) } else { e });
+                }
+                Ok(())
+            }
+            Stmt::Item(syn::Item::Const(c)) => {
+                let ty = self.resolve_type(&c.ty)?;
+                let v = self.expr(&c.expr, Some(&ty))?;
+                let v = self.coerce(v, &ty, c.expr.span())?;
+                let name = self.fresh(&c.ident.to_string());
+                let line = format!("const {name}: {} = {};", ty.wgsl(), v.code);
+                let line = self.mark(c.span(), &line);
+                if self.hoisting() {
+                    self.hoist_const(line);
+                } else {
+                    self.emit(line);
+                }
+                self.local_consts.insert(name.clone());
+                self.bind(&c.ident.to_string(), Local { wgsl: name, ty, var: false });
+                Ok(())
+            }
+            Stmt::Item(syn::Item::Fn(f)) => Err(Error::unsupported(
+                f.sig.ident.span(),
+                "a nested function",
+                "declare it at module level with `#[rt_function]`",
+            )),
+            Stmt::Item(other) => {
+                Err(Error::unsupported(other.span(), "this item inside a function", "move it out of the function"))
+            }
+            Stmt::Macro(m) => self.macro_stmt(&m.mac),
+            Stmt::Expr(e, _) => {
+                let v = self.expr(e, None)?;
+                if !matches!(self.resolved(&v.ty), Ty::Unit | Ty::Never) && !v.code.is_empty() {
+                    let line = format!("_ = {};", v.code);
+                    self.emit(line);
+                }
+                Ok(())
+            }
+        }
+    }
+
+    pub(super) fn local(&mut self, l: &syn::Local) -> Result<()> {
+        let (pat, annot) = match &l.pat {
+            syn::Pat::Type(pt) => (&*pt.pat, Some(self.resolve_type(&pt.ty)?)),
+            p => (p, None),
+        };
+        let (name, mutable) = match pat {
+            syn::Pat::Ident(pi) => {
+                if pi.by_ref.is_some() {
+                    return Err(Error::unsupported(pi.span(), "a `ref` binding", "bind by value"));
+                }
+                if pi.subpat.is_some() {
+                    return Err(Error::unsupported(pi.span(), "a `@` pattern", "bind a plain name"));
+                }
+                (pi.ident.to_string(), pi.mutability.is_some())
+            }
+            syn::Pat::Wild(_) => ("_".to_string(), false),
+            syn::Pat::Tuple(t) => {
+                return Err(Error::unsupported(
+                    t.span(),
+                    "a tuple pattern",
+                    "use a struct and bind its fields one by one",
+                ));
+            }
+            other => return Err(Error::unsupported(other.span(), "this pattern", "bind a plain name")),
+        };
+        if let Some(a) = annot.as_ref()
+            && matches!(a, Ty::Ref(..))
+        {
+            return Err(Error::unsupported(
+                l.pat.span(),
+                "a reference local",
+                "copy the value (`let x = *r;`) or pass `&mut` directly to a call",
+            ));
+        }
+        let init = match &l.init {
+            Some(init) => {
+                if let Some((_, d)) = &init.diverge {
+                    return Err(Error::unsupported(d.span(), "`let ... else`", "use if/else"));
+                }
+                if let Expr::Reference(r) = &*init.expr {
+                    return Err(Error::unsupported(
+                        r.and_token.span,
+                        "a reference in a local",
+                        "bind the value itself (`let r = x;`) and pass `&mut x` directly to the call that needs it",
+                    ));
+                }
+                let v = self.expr(&init.expr, annot.as_ref())?;
+                let v = match &annot {
+                    Some(a) => self.coerce(v, a, init.expr.span())?,
+                    None => v,
+                };
+                if matches!(v.ty, Ty::Ref(..)) {
+                    return Err(Error::unsupported(
+                        init.expr.span(),
+                        "a reference local",
+                        "copy the value (`let x = *r;`) or pass `&mut` directly to a call",
+                    ));
+                }
+                if !v.ty.is_value() {
+                    return Err(Error::new(init.expr.span(), format!("cannot bind a value of type `{}`", v.ty)));
+                }
+                Some(v)
+            }
+            None => None,
+        };
+        if name == "_" {
+            if let Some(v) = init {
+                self.emit(format!("_ = {};", v.code));
+            }
+            return Ok(());
+        }
+        let ty = match (&annot, &init) {
+            (Some(a), _) => a.clone(),
+            (None, Some(v)) => v.ty.clone(),
+            (None, None) => {
+                return Err(Error::new(
+                    l.pat.span(),
+                    format!(
+                        "`{name}` needs a type annotation or an initial value (e.g. `let {name}: f32;` or `let {name} = 0.0;`)"
+                    ),
+                ));
+            }
+        };
+        // Arrays and matrices may be indexed dynamically, which WGSL allows
+        // only on `var`s; so are deferred initialisations.
+        let var = mutable || init.is_none() || matches!(ty, Ty::Array(..) | Ty::Mat(_));
+        let wname = self.fresh(&name);
+        if self.hoisting() {
+            self.hoisted_let(&wname, &ty, init.as_ref());
+            self.bind(&name, Local { wgsl: wname, ty, var });
+            return Ok(());
+        }
+        let (line, writes) = match (&init, var) {
+            (Some(v), true) => (format!("var {wname}: {} = {};", ty.wgsl(), v.code), true),
+            (Some(v), false) => (format!("let {wname}: {} = {};", ty.wgsl(), v.code), v.effects),
+            (None, _) => (format!("var {wname}: {};", ty.wgsl()), true),
+        };
+        let line = self.mark(l.span(), &line);
+        self.blocks.last_mut().unwrap().push(line, writes);
+        self.bind(&name, Local { wgsl: wname, ty, var });
+        Ok(())
+    }
+
+    pub(super) fn macro_stmt(&mut self, mac: &syn::Macro) -> Result<()> {
+        let name = mac.path.segments.last().map(|s| s.ident.to_string()).unwrap_or_default();
+        if name != "rt_printf" {
+            return Err(unsupported_macro(mac, &name));
+        }
+        self.use_intrinsic("rt_printf", mac.span())?;
+        let args = mac.parse_body_with(syn::punctuated::Punctuated::<Expr, syn::Token![,]>::parse_terminated)?;
+        let mut it = args.iter();
+        let fmt = match it.next() {
+            Some(Expr::Lit(syn::ExprLit { lit: syn::Lit::Str(s), .. })) => s.value(),
+            Some(other) => {
+                return Err(Error::new(other.span(), "rt_printf! takes a string literal as its first argument"));
+            }
+            None => return Err(Error::new(mac.span(), "rt_printf! needs a format string")),
+        };
+        let holes = count_placeholders(&fmt).map_err(|m| Error::new(mac.span(), m))?;
+        let rest: Vec<&Expr> = it.collect();
+        if holes != rest.len() {
+            return Err(Error::new(
+                mac.span(),
+                format!("rt_printf! format has {holes} `{{}}` placeholders but {} arguments", rest.len()),
+            ));
+        }
+        let mut words = Vec::new();
+        let mut types = Vec::new();
+        for a in rest {
+            let v = self.expr(a, None)?;
+            let v = self.deref(v);
+            let ty = self.resolved(&v.ty);
+            let ty = if let Ty::IntVar(x) = ty {
+                self.ivars[x as usize].1 = Some(Scalar::I32);
+                I32
+            } else {
+                ty
+            };
+            let comps: Vec<(String, Scalar)> = match &ty {
+                Ty::Scalar(s) => vec![(v.code.clone(), *s)],
+                Ty::Vec(n, s) => (0..*n).map(|i| (format!("{}[{i}]", v.code), *s)).collect(),
+                other => {
+                    return Err(Error::new(
+                        a.span(),
+                        format!("rt_printf! can print scalars and vectors, not `{other}`"),
+                    ));
+                }
+            };
+            let t = self.tmp();
+            self.emit_let(format!("let {t} = {};", v.code), &v);
+            for (i, (_, s)) in comps.iter().enumerate() {
+                let c = if matches!(ty, Ty::Vec(..)) { format!("{t}[{i}]") } else { t.clone() };
+                words.push(match s {
+                    Scalar::F32 | Scalar::I32 => format!("bitcast<u32>({c})"),
+                    Scalar::Bool => format!("select(0u, 1u, {c})"),
+                    _ => c,
+                });
+            }
+            types.push(ty.wgsl());
+        }
+        let id = self.m.printf_id(&fmt, &types);
+        let mut body = Vec::new();
+        for w in &words {
+            body.push(format!("rt_printf_word({w});"));
+        }
+        let line = format!("if rt_printf_begin({id}u, {}u) {{\n{}}}", words.len(), indent(&body.join("\n")));
+        let line = self.mark(mac.span(), &line);
+        self.emit(line);
+        Ok(())
+    }
+}
+
+fn unsupported_macro(mac: &syn::Macro, name: &str) -> Error {
+    let instead = match name {
+        "println" | "print" | "eprintln" | "eprint" | "dbg" => "use `rt_printf!`",
+        "panic" | "assert" | "assert_eq" | "assert_ne" | "debug_assert" | "unreachable" | "todo" | "unimplemented" => {
+            "raise an exception with `rt_throw(code)`"
+        }
+        "vec" => "use a fixed-size array",
+        _ => "only `rt_printf!` is available",
+    };
+    Error::unsupported(mac.path.span(), &format!("the macro `{name}!`"), instead)
+}
+
+/// Counts `{}` placeholders; `{{` and `}}` are escapes.
+pub fn count_placeholders(fmt: &str) -> std::result::Result<usize, String> {
+    let mut n = 0;
+    let mut chars = fmt.chars().peekable();
+    while let Some(c) = chars.next() {
+        match c {
+            '{' if chars.peek() == Some(&'{') => {
+                chars.next();
+            }
+            '{' => {
+                let mut spec = String::new();
+                for d in chars.by_ref() {
+                    if d == '}' {
+                        break;
+                    }
+                    spec.push(d);
+                }
+                if !spec.is_empty() {
+                    return Err(format!("rt_printf! supports only plain `{{}}` placeholders, found `{{{spec}}}`"));
+                }
+                n += 1;
+            }
+            '}' if chars.peek() == Some(&'}') => {
+                chars.next();
+            }
+            _ => {}
+        }
+    }
+    Ok(n)
+}

@@ -1,0 +1,313 @@
+//! The items of a unit and their order: what the entry reaches, the
+//! constants and structs in dependency order (the structs built as they
+//! come), the helpers callees first, and the checks of a function's shape.
+
+use super::order::{Graph, Order};
+use super::{Entry, LParam, resolve_type, wgsl_ident};
+use crate::error::{Error, Errors, Result};
+use crate::types::{StructDef, Ty};
+use crate::{Item, StructRole};
+use proc_macro2::Span;
+use std::collections::{HashMap, HashSet};
+use std::rc::Rc;
+use syn::spanned::Spanned;
+
+/// The dependencies `entry` reaches, directly or through other dependencies
+/// (callers may pass a superset, such as every item of a file).
+pub(super) fn reachable(entry: &Entry<'_>, deps: &[Item]) -> Vec<Item> {
+    let names_of = |paths: Vec<syn::Path>| -> Vec<String> {
+        paths.iter().filter_map(|p| p.segments.last().map(|s| s.ident.to_string())).collect()
+    };
+    let mut todo = match entry {
+        Entry::Program(_, f) | Entry::Helper(f) => names_of(crate::deps::of_fn(f)),
+        Entry::Struct(s) => names_of(crate::deps::of_struct(s)),
+        Entry::Const(c) => names_of(crate::deps::of_const(c)),
+    };
+    let mut seen: HashSet<String> = HashSet::new();
+    let mut out = Vec::new();
+    while let Some(n) = todo.pop() {
+        if !seen.insert(n.clone()) {
+            continue;
+        }
+        if let Some(item) = deps.iter().find(|d| d.name() == n) {
+            todo.extend(names_of(match item {
+                Item::Struct(s, _) => crate::deps::of_struct(s),
+                Item::Function(f) => crate::deps::of_fn(f),
+                Item::Const(c) => crate::deps::of_const(c),
+            }));
+            out.push(item.clone());
+        }
+    }
+    // Keep the caller's order for stable output.
+    out.sort_by_key(|i| deps.iter().position(|d| d.name() == i.name()));
+    out
+}
+
+/// Rejects function shapes the subset has no use for.
+pub(super) fn check_fn_shape(f: &syn::ItemFn) -> std::result::Result<(), Errors> {
+    let mut errors = Errors::default();
+    if !f.sig.generics.params.is_empty() {
+        errors.push(Error::unsupported(f.sig.generics.span(), "a generic function", "write one function per type"));
+    }
+    if let Some(a) = &f.sig.asyncness {
+        errors.push(Error::unsupported(a.span(), "an `async` function", "ray programs are synchronous"));
+    }
+    if let Some(u) = &f.sig.unsafety {
+        errors.push(Error::unsupported(u.span(), "an `unsafe` function", "ray programs are safe code"));
+    }
+    if let Some(v) = &f.sig.variadic {
+        errors.push(Error::unsupported(v.span(), "a variadic function", "take a fixed list of parameters"));
+    }
+    for input in &f.sig.inputs {
+        if let syn::FnArg::Receiver(r) = input {
+            errors.push(Error::unsupported(r.span(), "a `self` parameter", "helpers are free functions"));
+        }
+    }
+    if errors.is_empty() { Ok(()) } else { Err(errors) }
+}
+
+pub(super) fn lparams(f: &syn::ItemFn, tys: &[Ty]) -> Vec<LParam> {
+    f.sig
+        .inputs
+        .iter()
+        .filter_map(|i| match i {
+            syn::FnArg::Typed(pt) => Some(pt),
+            _ => None,
+        })
+        .zip(tys)
+        .map(|(pt, ty)| {
+            let (rust, mutable_binding) = match &*pt.pat {
+                syn::Pat::Ident(pi) => (pi.ident.to_string(), pi.mutability.is_some()),
+                _ => ("_".to_string(), false),
+            };
+            LParam { rust, ty: ty.clone(), mutable_binding, span: pt.span() }
+        })
+        .collect()
+}
+
+/// Constants in dependency order: a constant's value may name others, and
+/// the macro chain collects them in the order uses were first seen. A
+/// cycle is not an error here: lowering the values reports it.
+pub(super) fn const_order<'a>(consts: &[&'a syn::ItemConst]) -> Vec<&'a syn::ItemConst> {
+    struct Consts<'c, 'a>(&'c [&'a syn::ItemConst]);
+    impl Graph for Consts<'_, '_> {
+        type Node = String;
+        type Edge = ();
+        type Error = std::convert::Infallible;
+        fn deps(&mut self, n: &String) -> std::result::Result<Vec<(String, ())>, Self::Error> {
+            let c = self.0.iter().find(|c| c.ident == n).unwrap();
+            Ok(crate::deps::of_const(c)
+                .iter()
+                .filter_map(|p| p.segments.last())
+                .filter_map(|last| self.0.iter().find(|d| d.ident == last.ident))
+                .map(|d| (d.ident.to_string(), ()))
+                .collect())
+        }
+        fn cycle(&mut self, _: &String, _: &String, _: &()) -> Option<Self::Error> {
+            None
+        }
+    }
+    let mut order = Order::new();
+    for c in consts {
+        let Ok(()) = order.visit(&mut Consts(consts), &c.ident.to_string());
+    }
+    order.nodes.iter().map(|n| *consts.iter().find(|c| c.ident == n).unwrap()).collect()
+}
+
+/// A struct, or one of its fields (resolved once the field's own struct
+/// dependencies are built, before the next field's are).
+#[derive(Clone, PartialEq, Eq, Hash)]
+pub(super) enum StructNode {
+    Struct(String),
+    Field(String, usize),
+}
+
+/// The structs as a graph for [`Order`]: built as the order reaches them
+/// (a field's struct before the struct).
+pub(super) struct StructGraph<'r, 'a> {
+    raw: &'r [(&'a syn::ItemStruct, StructRole)],
+    /// The structs built so far.
+    pub defs: HashMap<String, Rc<StructDef>>,
+    /// Fields resolved so far: `(struct, index) -> (name, type)`.
+    fields: HashMap<(String, usize), (String, Ty)>,
+}
+
+impl<'r, 'a> StructGraph<'r, 'a> {
+    pub fn new(raw: &'r [(&'a syn::ItemStruct, StructRole)]) -> Self {
+        StructGraph { raw, defs: HashMap::new(), fields: HashMap::new() }
+    }
+
+    fn raw(&self, name: &str) -> Option<&(&'a syn::ItemStruct, StructRole)> {
+        self.raw.iter().find(|(s, _)| s.ident == name)
+    }
+
+    fn named_fields(&self, name: &str) -> &'a syn::FieldsNamed {
+        match &self.raw(name).unwrap().0.fields {
+            syn::Fields::Named(f) => f,
+            _ => unreachable!("checked on entering the struct"),
+        }
+    }
+}
+
+impl Graph for StructGraph<'_, '_> {
+    type Node = StructNode;
+    type Edge = ();
+    type Error = Error;
+
+    fn deps(&mut self, n: &StructNode) -> Result<Vec<(StructNode, ())>> {
+        match n {
+            StructNode::Struct(name) => {
+                let (s, _) = self.raw(name).unwrap();
+                if !s.generics.params.is_empty() {
+                    return Err(Error::unsupported(s.generics.span(), "a generic struct", "use concrete field types"));
+                }
+                let fields_named = match &s.fields {
+                    syn::Fields::Named(f) => f,
+                    syn::Fields::Unnamed(f) => {
+                        return Err(Error::unsupported(f.span(), "a tuple struct", "use named fields"));
+                    }
+                    syn::Fields::Unit => {
+                        return Err(Error::unsupported(s.ident.span(), "a unit struct", "give it at least one field"));
+                    }
+                };
+                Ok((0..fields_named.named.len()).map(|i| (StructNode::Field(name.clone(), i), ())).collect())
+            }
+            StructNode::Field(name, i) => {
+                // Nested structs first, so they are built when the field's
+                // type is resolved.
+                let f = &self.named_fields(name).named[*i];
+                let elem = match &f.ty {
+                    syn::Type::Array(a) => &*a.elem,
+                    t => t,
+                };
+                let dep = match elem {
+                    syn::Type::Path(p) => p.path.segments.last().map(|seg| seg.ident.to_string()),
+                    _ => None,
+                };
+                Ok(dep.filter(|d| self.raw(d).is_some()).map(|d| (StructNode::Struct(d), ())).into_iter().collect())
+            }
+        }
+    }
+
+    fn done(&mut self, n: &StructNode) -> Result<()> {
+        match n {
+            StructNode::Field(name, i) => {
+                let f = &self.named_fields(name).named[*i];
+                let fname = f.ident.as_ref().unwrap().to_string();
+                let ty = resolve_type(&f.ty, &|n| self.defs.get(n).map(|d| Ty::Struct(d.clone())))?;
+                if !ty.is_plain_data() {
+                    return Err(Error::new(
+                        f.ty.span(),
+                        format!("a struct field cannot be a `{ty}`: fields are plain data"),
+                    ));
+                }
+                self.fields.insert((name.clone(), *i), (fname, ty));
+            }
+            StructNode::Struct(name) => {
+                let (s, role) = *self.raw(name).unwrap();
+                let n = self.named_fields(name).named.len();
+                let fields = (0..n).map(|i| self.fields[&(name.clone(), i)].clone()).collect();
+                let def = Rc::new(StructDef {
+                    name: name.to_string(),
+                    wgsl_name: wgsl_ident(name),
+                    role,
+                    fields,
+                    span: s.ident.span(),
+                });
+                self.defs.insert(name.to_string(), def);
+            }
+        }
+        Ok(())
+    }
+
+    fn cycle(&mut self, _: &StructNode, to: &StructNode, _: &()) -> Option<Error> {
+        let StructNode::Struct(name) = to else { unreachable!("a field is entered from its struct only") };
+        let (s, _) = self.raw(name).unwrap();
+        Some(Error::new(s.ident.span(), format!("struct `{name}` contains itself")))
+    }
+}
+
+/// The dependencies by kind, with the entry among them if it is an item:
+/// `(structs, helpers, constants)`.
+#[allow(clippy::type_complexity)]
+pub(super) fn by_kind<'a>(
+    entry: &'a Entry<'_>,
+    deps: &'a [Item],
+) -> (Vec<(&'a syn::ItemStruct, StructRole)>, Vec<&'a syn::ItemFn>, Vec<&'a syn::ItemConst>) {
+    let mut structs_raw: Vec<(&syn::ItemStruct, StructRole)> = Vec::new();
+    let mut helpers_raw: Vec<&syn::ItemFn> = Vec::new();
+    let mut consts_raw: Vec<&syn::ItemConst> = Vec::new();
+    for d in deps {
+        match d {
+            Item::Struct(s, r) => structs_raw.push((s, *r)),
+            Item::Function(f) => helpers_raw.push(f),
+            Item::Const(c) => consts_raw.push(c),
+        }
+    }
+    match &entry {
+        Entry::Struct(s) => {
+            if !structs_raw.iter().any(|(x, _)| x.ident == s.ident) {
+                structs_raw.push((s, StructRole::Data));
+            }
+        }
+        Entry::Helper(f) => {
+            if !helpers_raw.iter().any(|x| x.sig.ident == f.sig.ident) {
+                helpers_raw.push(f);
+            }
+        }
+        Entry::Const(c) => {
+            if !consts_raw.iter().any(|x| x.ident == c.ident) {
+                consts_raw.push(c);
+            }
+        }
+        Entry::Program(..) => {}
+    }
+    (structs_raw, helpers_raw, consts_raw)
+}
+
+/// Orders helpers callees-first; a cycle is recursion, which WGSL lacks (the
+/// error comes with the helper whose call closes the cycle).
+pub(super) fn helper_order(items: &HashMap<String, &syn::ItemFn>) -> std::result::Result<Vec<String>, (String, Error)> {
+    struct Calls<'i, 'a>(&'i HashMap<String, &'a syn::ItemFn>);
+    impl Graph for Calls<'_, '_> {
+        type Node = String;
+        type Edge = Span;
+        type Error = (String, Error);
+        fn deps(&mut self, n: &String) -> std::result::Result<Vec<(String, Span)>, Self::Error> {
+            let mut found = Vec::new();
+            collect_calls(&self.0[n].block, &mut found);
+            Ok(found.into_iter().filter(|(c, _)| self.0.contains_key(c)).collect())
+        }
+        fn cycle(&mut self, n: &String, c: &String, span: &Span) -> Option<Self::Error> {
+            let what = if n == c {
+                format!("recursion (`{n}` calls itself)")
+            } else {
+                format!("recursion (`{n}` calls `{c}`, which leads back to `{n}`)")
+            };
+            Some((n.to_string(), Error::unsupported(*span, &what, "WGSL has no recursion; rewrite it as a loop")))
+        }
+    }
+    let mut names: Vec<&String> = items.keys().collect();
+    names.sort();
+    let mut order = Order::new();
+    for n in names {
+        order.visit(&mut Calls(items), n)?;
+    }
+    Ok(order.nodes)
+}
+
+/// Names of functions called in a block, with the call span.
+pub fn collect_calls(block: &syn::Block, out: &mut Vec<(String, Span)>) {
+    struct V<'a>(&'a mut Vec<(String, Span)>);
+    impl<'ast> syn::visit::Visit<'ast> for V<'_> {
+        fn visit_expr_call(&mut self, c: &'ast syn::ExprCall) {
+            if let syn::Expr::Path(p) = &*c.func
+                && let Some(seg) = p.path.segments.last()
+            {
+                self.0.push((seg.ident.to_string(), c.span()));
+            }
+            syn::visit::visit_expr_call(self, c);
+        }
+    }
+    syn::visit::Visit::visit_block(&mut V(out), block);
+}

@@ -1,0 +1,189 @@
+//! Rust types and names as WGSL sees them: the subset's types resolved
+//! from syn's, and the identifiers that must be renamed because WGSL
+//! reserves them.
+
+use crate::error::{Error, Result};
+use crate::types::{self, Ty};
+use syn::Expr;
+use syn::spanned::Spanned;
+
+/// Resolves a Rust type in the subset; `user` looks up user structs.
+pub fn resolve_type(ty: &syn::Type, user: &dyn Fn(&str) -> Option<Ty>) -> Result<Ty> {
+    match ty {
+        syn::Type::Path(p) => {
+            if p.qself.is_some() {
+                return Err(Error::unsupported(p.span(), "a qualified type", "name the type directly"));
+            }
+            let seg = p.path.segments.last().unwrap();
+            let name = seg.ident.to_string();
+            if let Some(kind) = types::buffer_kind(&name) {
+                let arg = match &seg.arguments {
+                    syn::PathArguments::AngleBracketed(a) if a.args.len() == 1 => match &a.args[0] {
+                        syn::GenericArgument::Type(t) => t,
+                        other => return Err(Error::new(other.span(), format!("`{name}` takes an element type"))),
+                    },
+                    _ => return Err(Error::new(seg.span(), format!("`{name}` takes one element type: `{name}<T>`"))),
+                };
+                let elem = resolve_type(arg, user)?;
+                if !elem.is_plain_data() {
+                    return Err(Error::new(arg.span(), format!("`{elem}` cannot be a buffer element")));
+                }
+                return Ok(Ty::Buffer(kind, Box::new(elem)));
+            }
+            // Before the generic arguments: `Vec<f32>` is a heap type.
+            if let Some(advice) = types::unsupported_type_advice(&name) {
+                return Err(Error::unsupported(seg.ident.span(), &format!("the type `{name}`"), advice));
+            }
+            if !seg.arguments.is_none() {
+                return Err(Error::unsupported(seg.arguments.span(), "generic type arguments", "use concrete types"));
+            }
+            if let Some(t) = types::builtin_type(&name) {
+                return Ok(t);
+            }
+            if let Some(t) = user(&name) {
+                return Ok(t);
+            }
+            if name == "Self" {
+                return Err(Error::unsupported(p.span(), "`Self`", "name the type"));
+            }
+            Err(Error::new(
+                p.span(),
+                format!(
+                    "cannot find type `{name}` in ray programs: declare it with #[rt_struct], #[rt_payload] or #[rt_attributes]"
+                ),
+            ))
+        }
+        syn::Type::Array(a) => {
+            let elem = resolve_type(&a.elem, user)?;
+            let n = array_len(&a.len)?;
+            Ok(Ty::Array(Box::new(elem), n))
+        }
+        syn::Type::Reference(r) => {
+            if r.lifetime.is_some() {
+                return Err(Error::unsupported(r.span(), "a lifetime", "leave lifetimes out"));
+            }
+            Ok(Ty::Ref(r.mutability.is_some(), Box::new(resolve_type(&r.elem, user)?)))
+        }
+        syn::Type::Tuple(t) if t.elems.is_empty() => Ok(Ty::Unit),
+        syn::Type::Tuple(t) => {
+            Err(Error::unsupported(t.span(), "a tuple type", "use a struct declared with #[rt_struct]"))
+        }
+        syn::Type::Paren(p) => resolve_type(&p.elem, user),
+        syn::Type::Slice(s) => {
+            Err(Error::unsupported(s.span(), "a slice", "use a fixed-size array or a buffer variable"))
+        }
+        syn::Type::Ptr(p) => Err(Error::unsupported(p.span(), "a raw pointer", "use `&mut` parameters")),
+        syn::Type::TraitObject(t) => {
+            Err(Error::unsupported(t.span(), "a trait object", "WGSL has no dynamic dispatch; take a concrete type"))
+        }
+        syn::Type::ImplTrait(t) => Err(Error::unsupported(t.span(), "`impl Trait`", "use concrete types")),
+        syn::Type::BareFn(f) => {
+            Err(Error::unsupported(f.span(), "a function pointer", "WGSL has no function pointers"))
+        }
+        syn::Type::Never(n) => Err(Error::unsupported(n.span(), "the never type", "return a value")),
+        other => {
+            Err(Error::unsupported(other.span(), "this type", "use scalars, glam types, arrays and #[rt_struct]s"))
+        }
+    }
+}
+
+/// WGSL reserved words and the builtin names our output uses; identifiers
+/// from Rust that collide get a trailing `_`.
+pub fn is_reserved(name: &str) -> bool {
+    const EXTRA: &[&str] = &[
+        "vec2",
+        "vec3",
+        "vec4",
+        "mat2x2",
+        "mat3x3",
+        "mat4x4",
+        "array",
+        "bool",
+        "f32",
+        "i32",
+        "u32",
+        "ptr",
+        "atomic",
+        "sampler",
+        "texture_2d",
+        "abs",
+        "acos",
+        "acosh",
+        "all",
+        "any",
+        "asin",
+        "asinh",
+        "atan",
+        "atan2",
+        "atanh",
+        "bitcast",
+        "ceil",
+        "clamp",
+        "cos",
+        "cosh",
+        "countLeadingZeros",
+        "countOneBits",
+        "countTrailingZeros",
+        "cross",
+        "degrees",
+        "determinant",
+        "distance",
+        "dot",
+        "exp",
+        "exp2",
+        "faceForward",
+        "floor",
+        "fma",
+        "fract",
+        "inverseSqrt",
+        "length",
+        "log",
+        "log2",
+        "max",
+        "min",
+        "mix",
+        "normalize",
+        "pow",
+        "radians",
+        "reflect",
+        "refract",
+        "reverseBits",
+        "round",
+        "saturate",
+        "select",
+        "sign",
+        "sin",
+        "sinh",
+        "smoothstep",
+        "sqrt",
+        "step",
+        "tan",
+        "tanh",
+        "transpose",
+        "trunc",
+    ];
+    naga::keywords::wgsl::RESERVED.contains(&name) || EXTRA.contains(&name)
+}
+
+/// The WGSL name of a struct field or module-level identifier.
+pub fn wgsl_ident(name: &str) -> String {
+    if is_reserved(name) || name.starts_with("rt") || name.starts_with("Rt") || name.starts_with("__") {
+        format!("{name}_")
+    } else {
+        name.to_string()
+    }
+}
+
+/// The length of an array type or repeat expression: a literal, not zero.
+pub fn array_len(e: &Expr) -> Result<u32> {
+    match e {
+        Expr::Lit(syn::ExprLit { lit: syn::Lit::Int(i), .. }) => {
+            let n: u32 = i.base10_parse()?;
+            if n == 0 {
+                return Err(Error::unsupported(i.span(), "a zero-length array", "arrays need at least one element"));
+            }
+            Ok(n)
+        }
+        other => Err(Error::unsupported(other.span(), "a non-literal array length", "write the length as a number")),
+    }
+}
