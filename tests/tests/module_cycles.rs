@@ -482,7 +482,6 @@ fn rt_runtime_has_no_import_cycle() {
 }
 
 #[test]
-#[ignore = "the compiler crate's layering is its own issue; run with --ignored"]
 fn rt_compiler_has_no_import_cycle() {
     assert_no_cycles(&crate_src("../rt-macros/compiler/src"));
 }
