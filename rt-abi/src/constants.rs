@@ -23,6 +23,13 @@ pub const EXCEPTION_TRACE_DEPTH_EXCEEDED: u32 = 0x3FC;
 pub const EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS: u32 = 0x3FB;
 /// `rt_trace` given a NaN or infinite ray.
 pub const EXCEPTION_INVALID_RAY: u32 = 0x3F6;
+/// Integer overflow (`+ - *`, negation, `abs`, shifts by 32 or more,
+/// `MIN / -1`): raised only on the CPU backend with
+/// integer exceptions on (`Context::set_integer_exceptions`).
+pub const EXCEPTION_INTEGER_OVERFLOW: u32 = 0x3F1;
+/// Integer division or remainder by zero: as
+/// [`EXCEPTION_INTEGER_OVERFLOW`], on request, on the CPU backend.
+pub const EXCEPTION_INTEGER_DIVIDE_BY_ZERO: u32 = 0x3F2;
 /// The first code free for programs' own `rt_throw` codes.
 pub const EXCEPTION_USER: u32 = 0x400;
 
@@ -38,6 +45,8 @@ pub const CONSTANTS: &[(&str, u32)] = &[
     ("EXCEPTION_TRACE_DEPTH_EXCEEDED", EXCEPTION_TRACE_DEPTH_EXCEEDED),
     ("EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS", EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS),
     ("EXCEPTION_INVALID_RAY", EXCEPTION_INVALID_RAY),
+    ("EXCEPTION_INTEGER_OVERFLOW", EXCEPTION_INTEGER_OVERFLOW),
+    ("EXCEPTION_INTEGER_DIVIDE_BY_ZERO", EXCEPTION_INTEGER_DIVIDE_BY_ZERO),
     ("EXCEPTION_USER", EXCEPTION_USER),
 ];
 

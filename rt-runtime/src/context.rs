@@ -180,6 +180,20 @@ impl Context {
         self.settings.max_trace_depth = depth.max(1);
     }
 
+    /// A debugging mode beyond OptiX, off by default: on the CPU backend,
+    /// integer overflow (`+ - *`, negation, `abs`, shifts by 32 or more,
+    /// `i32::MIN / -1`) raises [`EXCEPTION_INTEGER_OVERFLOW`](rt_std::EXCEPTION_INTEGER_OVERFLOW)
+    /// and division or remainder by zero
+    /// [`EXCEPTION_INTEGER_DIVIDE_BY_ZERO`](rt_std::EXCEPTION_INTEGER_DIVIDE_BY_ZERO),
+    /// reported through the exception program and in the launch report's
+    /// [`ExceptionRecord`](crate::ExceptionRecord) with the operator's file
+    /// and line; the value is the wrapped one either way, and the program
+    /// goes on. The wgpu backend computes the same values and raises
+    /// nothing (off, both backends agree, as with Rust's release builds).
+    pub fn set_integer_exceptions(&mut self, on: bool) {
+        self.settings.integer_exceptions = on;
+    }
+
     /// Turns `rt_printf!` output on or off, and optionally limits it to one
     /// launch index (as OptiX's `rtContextSetPrintLaunchIndex`).
     pub fn set_print(&mut self, enabled: bool, launch_index: Option<glam::UVec2>) {

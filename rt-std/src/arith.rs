@@ -43,6 +43,49 @@ impl Plain for Mat4 {}
 impl Plain for Quat {}
 impl Plain for bool {}
 
+/// Whether integer exceptions are on for this thread's launch (the CPU
+/// backend sets it around its work: [`checking_integers`]).
+mod checking {
+    use core::cell::Cell;
+    thread_local! {
+        pub static ON: Cell<bool> = const { Cell::new(false) };
+    }
+}
+
+/// Runs `f` with integer exceptions `on` (or off) on this thread: an
+/// overflow raises [`EXCEPTION_INTEGER_OVERFLOW`](crate::EXCEPTION_INTEGER_OVERFLOW),
+/// a division by zero [`EXCEPTION_INTEGER_DIVIDE_BY_ZERO`](crate::EXCEPTION_INTEGER_DIVIDE_BY_ZERO),
+/// with the operator's place; the value is the wrapped one either way.
+#[doc(hidden)]
+pub fn checking_integers<R>(on: bool, f: impl FnOnce() -> R) -> R {
+    struct Restore(bool);
+    impl Drop for Restore {
+        fn drop(&mut self) {
+            checking::ON.with(|c| c.set(self.0));
+        }
+    }
+    let _restore = Restore(checking::ON.with(|c| c.replace(on)));
+    f()
+}
+
+/// Raises `code` at the caller's operator when integer exceptions are on.
+#[track_caller]
+#[inline]
+fn trap(code: u32) {
+    if checking::ON.with(|c| c.get()) {
+        crate::cpu::raise_here(code);
+    }
+}
+
+#[track_caller]
+#[inline(always)]
+fn overflowed<T>((v, o): (T, bool)) -> T {
+    if o {
+        trap(crate::EXCEPTION_INTEGER_OVERFLOW);
+    }
+    v
+}
+
 /// Integer scalars with the GPU's meaning of each operator.
 trait Int: Copy {
     fn i_add(self, b: Self) -> Self;
@@ -54,74 +97,94 @@ trait Int: Copy {
     fn i_shr(self, n: u32) -> Self;
 }
 
-impl Int for u32 {
-    fn i_add(self, b: u32) -> u32 {
-        self.wrapping_add(b)
-    }
-    fn i_sub(self, b: u32) -> u32 {
-        self.wrapping_sub(b)
-    }
-    fn i_mul(self, b: u32) -> u32 {
-        self.wrapping_mul(b)
-    }
-    fn i_div(self, b: u32) -> u32 {
-        self.checked_div(b).unwrap_or(self)
-    }
-    fn i_rem(self, b: u32) -> u32 {
-        self.checked_rem(b).unwrap_or(0)
-    }
-    fn i_shl(self, n: u32) -> u32 {
-        self.wrapping_shl(n)
-    }
-    fn i_shr(self, n: u32) -> u32 {
-        self.wrapping_shr(n)
-    }
+macro_rules! int_impl {
+    ($t:ty) => {
+        impl Int for $t {
+            #[track_caller]
+            #[inline(always)]
+            fn i_add(self, b: $t) -> $t {
+                overflowed(self.overflowing_add(b))
+            }
+            #[track_caller]
+            #[inline(always)]
+            fn i_sub(self, b: $t) -> $t {
+                overflowed(self.overflowing_sub(b))
+            }
+            #[track_caller]
+            #[inline(always)]
+            fn i_mul(self, b: $t) -> $t {
+                overflowed(self.overflowing_mul(b))
+            }
+            #[track_caller]
+            #[inline(always)]
+            fn i_div(self, b: $t) -> $t {
+                if b == 0 {
+                    trap(crate::EXCEPTION_INTEGER_DIVIDE_BY_ZERO);
+                    self
+                } else {
+                    overflowed(self.overflowing_div(b))
+                }
+            }
+            #[track_caller]
+            #[inline(always)]
+            fn i_rem(self, b: $t) -> $t {
+                if b == 0 {
+                    trap(crate::EXCEPTION_INTEGER_DIVIDE_BY_ZERO);
+                    0
+                } else {
+                    overflowed(self.overflowing_rem(b))
+                }
+            }
+            #[track_caller]
+            #[inline(always)]
+            fn i_shl(self, n: u32) -> $t {
+                overflowed(self.overflowing_shl(n))
+            }
+            #[track_caller]
+            #[inline(always)]
+            fn i_shr(self, n: u32) -> $t {
+                overflowed(self.overflowing_shr(n))
+            }
+        }
+    };
 }
-
-impl Int for i32 {
-    fn i_add(self, b: i32) -> i32 {
-        self.wrapping_add(b)
-    }
-    fn i_sub(self, b: i32) -> i32 {
-        self.wrapping_sub(b)
-    }
-    fn i_mul(self, b: i32) -> i32 {
-        self.wrapping_mul(b)
-    }
-    fn i_div(self, b: i32) -> i32 {
-        if b == 0 { self } else { self.wrapping_div(b) }
-    }
-    fn i_rem(self, b: i32) -> i32 {
-        if b == 0 { 0 } else { self.wrapping_rem(b) }
-    }
-    fn i_shl(self, n: u32) -> i32 {
-        self.wrapping_shl(n)
-    }
-    fn i_shr(self, n: u32) -> i32 {
-        self.wrapping_shr(n)
-    }
-}
+int_impl!(u32);
+int_impl!(i32);
 
 /// `usize` is `u32` in WGSL: it wraps at 32 bits.
 impl Int for usize {
+    #[track_caller]
+    #[inline(always)]
     fn i_add(self, b: usize) -> usize {
         (self as u32).i_add(b as u32) as usize
     }
+    #[track_caller]
+    #[inline(always)]
     fn i_sub(self, b: usize) -> usize {
         (self as u32).i_sub(b as u32) as usize
     }
+    #[track_caller]
+    #[inline(always)]
     fn i_mul(self, b: usize) -> usize {
         (self as u32).i_mul(b as u32) as usize
     }
+    #[track_caller]
+    #[inline(always)]
     fn i_div(self, b: usize) -> usize {
         (self as u32).i_div(b as u32) as usize
     }
+    #[track_caller]
+    #[inline(always)]
     fn i_rem(self, b: usize) -> usize {
         (self as u32).i_rem(b as u32) as usize
     }
+    #[track_caller]
+    #[inline(always)]
     fn i_shl(self, n: u32) -> usize {
         (self as u32).i_shl(n) as usize
     }
+    #[track_caller]
+    #[inline(always)]
     fn i_shr(self, n: u32) -> usize {
         (self as u32).i_shr(n) as usize
     }
@@ -138,6 +201,7 @@ macro_rules! binary_trait {
         #[diagnostic::do_not_recommend]
         impl<A: Plain + core::ops::$op<B>, B> $trait<B> for A {
             type Output = <A as core::ops::$op<B>>::Output;
+            #[track_caller]
             #[inline(always)]
             fn $method(self, r: B) -> Self::Output {
                 core::ops::$op::$method(self, r)
@@ -177,6 +241,7 @@ pub trait RtNeg {
 
 impl<A: Plain + core::ops::Neg> RtNeg for A {
     type Output = A::Output;
+    #[track_caller]
     #[inline(always)]
     fn neg(self) -> A::Output {
         -self
@@ -187,6 +252,7 @@ macro_rules! int_scalar {
     ($t:ty) => {
         impl RtAdd<$t> for $t {
             type Output = $t;
+            #[track_caller]
             #[inline(always)]
             fn add(self, r: $t) -> $t {
                 Int::i_add(self, r)
@@ -194,6 +260,7 @@ macro_rules! int_scalar {
         }
         impl RtSub<$t> for $t {
             type Output = $t;
+            #[track_caller]
             #[inline(always)]
             fn sub(self, r: $t) -> $t {
                 Int::i_sub(self, r)
@@ -201,6 +268,7 @@ macro_rules! int_scalar {
         }
         impl RtMul<$t> for $t {
             type Output = $t;
+            #[track_caller]
             #[inline(always)]
             fn mul(self, r: $t) -> $t {
                 Int::i_mul(self, r)
@@ -208,6 +276,7 @@ macro_rules! int_scalar {
         }
         impl RtDiv<$t> for $t {
             type Output = $t;
+            #[track_caller]
             #[inline(always)]
             fn div(self, r: $t) -> $t {
                 Int::i_div(self, r)
@@ -215,36 +284,43 @@ macro_rules! int_scalar {
         }
         impl RtRem<$t> for $t {
             type Output = $t;
+            #[track_caller]
             #[inline(always)]
             fn rem(self, r: $t) -> $t {
                 Int::i_rem(self, r)
             }
         }
         impl RtShift<u32> for $t {
+            #[track_caller]
             #[inline(always)]
             fn shl(self, n: u32) -> $t {
                 Int::i_shl(self, n)
             }
+            #[track_caller]
             #[inline(always)]
             fn shr(self, n: u32) -> $t {
                 Int::i_shr(self, n)
             }
         }
         impl RtShift<i32> for $t {
+            #[track_caller]
             #[inline(always)]
             fn shl(self, n: i32) -> $t {
                 Int::i_shl(self, n as u32)
             }
+            #[track_caller]
             #[inline(always)]
             fn shr(self, n: i32) -> $t {
                 Int::i_shr(self, n as u32)
             }
         }
         impl RtShift<usize> for $t {
+            #[track_caller]
             #[inline(always)]
             fn shl(self, n: usize) -> $t {
                 Int::i_shl(self, n as u32)
             }
+            #[track_caller]
             #[inline(always)]
             fn shr(self, n: usize) -> $t {
                 Int::i_shr(self, n as u32)
@@ -259,31 +335,35 @@ int_scalar!(usize);
 
 impl RtNeg for i32 {
     type Output = i32;
+    #[track_caller]
     #[inline(always)]
     fn neg(self) -> i32 {
-        self.wrapping_neg()
+        overflowed(self.overflowing_neg())
     }
 }
 
 impl RtNeg for IVec2 {
     type Output = IVec2;
+    #[track_caller]
     #[inline(always)]
     fn neg(self) -> IVec2 {
-        IVec2::ZERO.wrapping_sub(self)
+        0i32.sub(self)
     }
 }
 impl RtNeg for IVec3 {
     type Output = IVec3;
+    #[track_caller]
     #[inline(always)]
     fn neg(self) -> IVec3 {
-        IVec3::ZERO.wrapping_sub(self)
+        0i32.sub(self)
     }
 }
 impl RtNeg for IVec4 {
     type Output = IVec4;
+    #[track_caller]
     #[inline(always)]
     fn neg(self) -> IVec4 {
-        IVec4::ZERO.wrapping_sub(self)
+        0i32.sub(self)
     }
 }
 
@@ -302,63 +382,83 @@ macro_rules! int_vector {
     };
     (@shift $v:ty, $n:ty) => {
         impl RtShift<$n> for $v {
-            #[inline(always)]
+            #[track_caller]
+    #[inline(always)]
             fn shl(self, n: $n) -> $v {
-                <$v>::from_array(self.to_array().map(|x| Int::i_shl(x, n as u32)))
+                let mut a = self.to_array();
+                for x in a.iter_mut() {
+                    *x = Int::i_shl(*x, n as u32);
+                }
+                <$v>::from_array(a)
             }
-            #[inline(always)]
+            #[track_caller]
+    #[inline(always)]
             fn shr(self, n: $n) -> $v {
-                <$v>::from_array(self.to_array().map(|x| Int::i_shr(x, n as u32)))
+                let mut a = self.to_array();
+                for x in a.iter_mut() {
+                    *x = Int::i_shr(*x, n as u32);
+                }
+                <$v>::from_array(a)
             }
         }
     };
     (@shifts $v:ty, $($nv:ty),*) => {$(
         impl RtShift<$nv> for $v {
-            #[inline(always)]
+            #[track_caller]
+    #[inline(always)]
             fn shl(self, n: $nv) -> $v {
-                let n = n.to_array();
-                let mut i = 0;
-                <$v>::from_array(self.to_array().map(|x| {
-                    i += 1;
-                    Int::i_shl(x, n[i - 1] as u32)
-                }))
+                let (mut a, n) = (self.to_array(), n.to_array());
+                for i in 0..a.len() {
+                    a[i] = Int::i_shl(a[i], n[i] as u32);
+                }
+                <$v>::from_array(a)
             }
-            #[inline(always)]
+            #[track_caller]
+    #[inline(always)]
             fn shr(self, n: $nv) -> $v {
-                let n = n.to_array();
-                let mut i = 0;
-                <$v>::from_array(self.to_array().map(|x| {
-                    i += 1;
-                    Int::i_shr(x, n[i - 1] as u32)
-                }))
+                let (mut a, n) = (self.to_array(), n.to_array());
+                for i in 0..a.len() {
+                    a[i] = Int::i_shr(a[i], n[i] as u32);
+                }
+                <$v>::from_array(a)
             }
         }
     )*};
     (@op $v:ty, $s:ty, $trait:ident, $method:ident, $int:ident) => {
         impl $trait<$v> for $v {
             type Output = $v;
-            #[inline(always)]
+            #[track_caller]
+    #[inline(always)]
             fn $method(self, r: $v) -> $v {
-                let r = r.to_array();
-                let mut i = 0;
-                <$v>::from_array(self.to_array().map(|x| {
-                    i += 1;
-                    Int::$int(x, r[i - 1])
-                }))
+                let (mut a, r) = (self.to_array(), r.to_array());
+                for i in 0..a.len() {
+                    a[i] = Int::$int(a[i], r[i]);
+                }
+                <$v>::from_array(a)
             }
         }
         impl $trait<$s> for $v {
             type Output = $v;
-            #[inline(always)]
+            #[track_caller]
+    #[inline(always)]
             fn $method(self, r: $s) -> $v {
-                <$v>::from_array(self.to_array().map(|x| Int::$int(x, r)))
+                let mut a = self.to_array();
+                for x in a.iter_mut() {
+                    *x = Int::$int(*x, r);
+                }
+                <$v>::from_array(a)
             }
         }
         impl $trait<$v> for $s {
             type Output = $v;
-            #[inline(always)]
+            #[track_caller]
+    #[inline(always)]
             fn $method(self, r: $v) -> $v {
-                <$v>::from_array(r.to_array().map(|x| Int::$int(self, x)))
+                let mut a = r.to_array();
+                for x in a.iter_mut() {
+                    *x = Int::$int(self, *x);
+                }
+                <$v>::from_array(a)
             }
         }
     };
@@ -372,41 +472,49 @@ int_vector!(IVec3, i32, UVec3, IVec3);
 int_vector!(IVec4, i32, UVec4, IVec4);
 
 #[doc(hidden)]
+#[track_caller]
 #[inline(always)]
 pub fn add<A: RtAdd<B>, B>(a: A, b: B) -> A::Output {
     a.add(b)
 }
 #[doc(hidden)]
+#[track_caller]
 #[inline(always)]
 pub fn sub<A: RtSub<B>, B>(a: A, b: B) -> A::Output {
     a.sub(b)
 }
 #[doc(hidden)]
+#[track_caller]
 #[inline(always)]
 pub fn mul<A: RtMul<B>, B>(a: A, b: B) -> A::Output {
     a.mul(b)
 }
 #[doc(hidden)]
+#[track_caller]
 #[inline(always)]
 pub fn div<A: RtDiv<B>, B>(a: A, b: B) -> A::Output {
     a.div(b)
 }
 #[doc(hidden)]
+#[track_caller]
 #[inline(always)]
 pub fn rem<A: RtRem<B>, B>(a: A, b: B) -> A::Output {
     a.rem(b)
 }
 #[doc(hidden)]
+#[track_caller]
 #[inline(always)]
 pub fn shl<A: RtShift<B>, B>(a: A, b: B) -> A {
     a.shl(b)
 }
 #[doc(hidden)]
+#[track_caller]
 #[inline(always)]
 pub fn shr<A: RtShift<B>, B>(a: A, b: B) -> A {
     a.shr(b)
 }
 #[doc(hidden)]
+#[track_caller]
 #[inline(always)]
 pub fn neg<A: RtNeg>(a: A) -> A::Output {
     a.neg()
@@ -418,15 +526,17 @@ pub trait RtAbs {
     fn rt_abs(self) -> Self;
 }
 impl RtAbs for i32 {
+    #[track_caller]
     #[inline(always)]
     fn rt_abs(self) -> i32 {
-        self.wrapping_abs()
+        overflowed(self.overflowing_abs())
     }
 }
 macro_rules! abs_via {
     ($($t:ty),*) => {$(
         impl RtAbs for $t {
-            #[inline(always)]
+            #[track_caller]
+    #[inline(always)]
             fn rt_abs(self) -> $t {
                 <$t>::abs(self)
             }
@@ -437,9 +547,14 @@ abs_via!(f32, Vec2, Vec3, Vec4);
 macro_rules! abs_ivec {
     ($($t:ty),*) => {$(
         impl RtAbs for $t {
-            #[inline(always)]
+            #[track_caller]
+    #[inline(always)]
             fn rt_abs(self) -> $t {
-                <$t>::from_array(self.to_array().map(i32::wrapping_abs))
+                let mut a = self.to_array();
+                for x in a.iter_mut() {
+                    *x = x.rt_abs();
+                }
+                <$t>::from_array(a)
             }
         }
     )*};
@@ -447,6 +562,7 @@ macro_rules! abs_ivec {
 abs_ivec!(IVec2, IVec3, IVec4);
 
 #[doc(hidden)]
+#[track_caller]
 #[inline(always)]
 pub fn abs<A: RtAbs>(a: A) -> A {
     a.rt_abs()
@@ -461,7 +577,8 @@ pub trait RtClamp: Sized {
 macro_rules! clamp_scalar {
     ($($t:ty),*) => {$(
         impl RtClamp for $t {
-            #[inline(always)]
+            #[track_caller]
+    #[inline(always)]
             fn rt_clamp(self, lo: $t, hi: $t) -> $t {
                 if lo <= hi { <$t>::clamp(self, lo, hi) } else { self.max(lo).min(hi) }
             }
@@ -472,7 +589,8 @@ clamp_scalar!(f32, u32, i32);
 macro_rules! clamp_vector {
     ($($t:ty),*) => {$(
         impl RtClamp for $t {
-            #[inline(always)]
+            #[track_caller]
+    #[inline(always)]
             fn rt_clamp(self, lo: $t, hi: $t) -> $t {
                 let (x, lo, hi) = (self.to_array(), lo.to_array(), hi.to_array());
                 let mut i = 0;
@@ -487,6 +605,7 @@ macro_rules! clamp_vector {
 clamp_vector!(Vec2, Vec3, Vec4, UVec2, UVec3, UVec4, IVec2, IVec3, IVec4);
 
 #[doc(hidden)]
+#[track_caller]
 #[inline(always)]
 pub fn clamp<A: RtClamp>(x: A, lo: A, hi: A) -> A {
     x.rt_clamp(lo, hi)
@@ -497,6 +616,7 @@ pub fn clamp<A: RtClamp>(x: A, lo: A, hi: A) -> A {
 macro_rules! assign {
     ($name:ident, $trait:ident, $method:ident) => {
         #[doc(hidden)]
+        #[track_caller]
         #[inline(always)]
         pub fn $name<A: $trait<B, Output = A> + Copy, B>(a: &mut A, b: B) {
             *a = (*a).$method(b);
@@ -510,11 +630,13 @@ assign!(div_assign, RtDiv, div);
 assign!(rem_assign, RtRem, rem);
 
 #[doc(hidden)]
+#[track_caller]
 #[inline(always)]
 pub fn shl_assign<A: RtShift<B> + Copy, B>(a: &mut A, b: B) {
     *a = (*a).shl(b);
 }
 #[doc(hidden)]
+#[track_caller]
 #[inline(always)]
 pub fn shr_assign<A: RtShift<B> + Copy, B>(a: &mut A, b: B) {
     *a = (*a).shr(b);
@@ -543,12 +665,14 @@ pub trait RtIndexMut<I>: RtIndex<I> {
 
 impl<T, const N: usize> RtIndex<usize> for [T; N] {
     type Output = T;
+    #[track_caller]
     #[inline(always)]
     fn at(&self, i: usize) -> &T {
         &self[i.min(N - 1)]
     }
 }
 impl<T, const N: usize> RtIndexMut<usize> for [T; N] {
+    #[track_caller]
     #[inline(always)]
     fn at_mut(&mut self, i: usize) -> &mut T {
         &mut self[i.min(N - 1)]
@@ -559,12 +683,14 @@ macro_rules! vector_index {
     ($v:ty, $s:ty, $n:literal) => {
         impl RtIndex<usize> for $v {
             type Output = $s;
+            #[track_caller]
             #[inline(always)]
             fn at(&self, i: usize) -> &$s {
                 &self[i.min($n - 1)]
             }
         }
         impl RtIndexMut<usize> for $v {
+            #[track_caller]
             #[inline(always)]
             fn at_mut(&mut self, i: usize) -> &mut $s {
                 &mut self[i.min($n - 1)]
@@ -586,6 +712,7 @@ macro_rules! buffer_index {
     ($b:ident, $i:ty) => {
         impl<T: crate::RtData> RtIndex<$i> for crate::buffer::$b<T> {
             type Output = T;
+            #[track_caller]
             #[inline(always)]
             fn at(&self, i: $i) -> &T {
                 &self[i]
@@ -595,6 +722,7 @@ macro_rules! buffer_index {
     ($b:ident, $i:ty, mut) => {
         buffer_index!($b, $i);
         impl<T: crate::RtData> RtIndexMut<$i> for crate::buffer::$b<T> {
+            #[track_caller]
             #[inline(always)]
             fn at_mut(&mut self, i: $i) -> &mut T {
                 &mut self[i]
@@ -610,6 +738,7 @@ buffer_index!(RwBuffer2d, UVec2, mut);
 #[diagnostic::do_not_recommend]
 impl<C: RtIndex<I> + ?Sized, I> RtIndex<I> for &C {
     type Output = C::Output;
+    #[track_caller]
     #[inline(always)]
     fn at(&self, i: I) -> &C::Output {
         (**self).at(i)
@@ -619,6 +748,7 @@ impl<C: RtIndex<I> + ?Sized, I> RtIndex<I> for &C {
 #[diagnostic::do_not_recommend]
 impl<C: RtIndex<I> + ?Sized, I> RtIndex<I> for &mut C {
     type Output = C::Output;
+    #[track_caller]
     #[inline(always)]
     fn at(&self, i: I) -> &C::Output {
         (**self).at(i)
@@ -627,6 +757,7 @@ impl<C: RtIndex<I> + ?Sized, I> RtIndex<I> for &mut C {
 
 #[diagnostic::do_not_recommend]
 impl<C: RtIndexMut<I> + ?Sized, I> RtIndexMut<I> for &mut C {
+    #[track_caller]
     #[inline(always)]
     fn at_mut(&mut self, i: I) -> &mut C::Output {
         (**self).at_mut(i)
@@ -634,12 +765,14 @@ impl<C: RtIndexMut<I> + ?Sized, I> RtIndexMut<I> for &mut C {
 }
 
 #[doc(hidden)]
+#[track_caller]
 #[inline(always)]
 pub fn at<C: RtIndex<I> + ?Sized, I>(c: &C, i: I) -> &C::Output {
     c.at(i)
 }
 
 #[doc(hidden)]
+#[track_caller]
 #[inline(always)]
 pub fn at_mut<C: RtIndexMut<I> + ?Sized, I>(c: &mut C, i: I) -> &mut C::Output {
     c.at_mut(i)

@@ -286,6 +286,9 @@ pub struct ExecutionContext {
     /// invalid ray passed to [`rt_trace`](crate::rt_trace). Later ones are
     /// dropped.
     pub pending_exception: Option<u32>,
+    /// Where the pending exception was raised, when the raiser knows
+    /// (integer exceptions: the operator's file, line and column).
+    pub pending_location: Option<&'static core::panic::Location<'static>>,
 }
 
 impl ExecutionContext {
@@ -312,6 +315,7 @@ impl ExecutionContext {
         ignored: false,
         terminated: false,
         pending_exception: None,
+        pending_location: None,
     };
 
     /// Records `code` as the pending exception unless one is pending already:
@@ -320,6 +324,14 @@ impl ExecutionContext {
     pub fn raise(&mut self, code: u32) {
         if self.pending_exception.is_none() {
             self.pending_exception = Some(code);
+        }
+    }
+
+    /// [`raise`](Self::raise), remembering where.
+    pub fn raise_at(&mut self, code: u32, at: &'static core::panic::Location<'static>) {
+        if self.pending_exception.is_none() {
+            self.pending_exception = Some(code);
+            self.pending_location = Some(at);
         }
     }
 }
@@ -430,6 +442,14 @@ pub fn pending_exception() -> Option<u32> {
 #[inline]
 pub fn raise(code: u32) {
     update(|ctx| ctx.raise(code));
+}
+
+/// [`raise`], remembering where (the caller's caller, through
+/// `#[track_caller]`).
+#[track_caller]
+pub fn raise_here(code: u32) {
+    let at = core::panic::Location::caller();
+    update(|ctx| ctx.raise_at(code, at));
 }
 
 /// Runs `f` with `ctx` as this thread's execution context and no tracer, and

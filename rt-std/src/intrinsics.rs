@@ -35,6 +35,17 @@ pub const EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS: u32 = rt_abi::EXCEPTION_BUFFER_I
 /// traced.
 #[doc(alias = "RT_EXCEPTION_INVALID_RAY")]
 pub const EXCEPTION_INVALID_RAY: u32 = rt_abi::EXCEPTION_INVALID_RAY;
+/// Exception code: integer overflow (`+ - *`, negation, `abs`, a shift by
+/// 32 or more, `i32::MIN / -1`). Raised only on the CPU backend with
+/// integer exceptions on (`Context::set_integer_exceptions`), a debugging
+/// aid OptiX does not have; otherwise the value wraps as on the GPU
+/// ([`crate::arith`]). The exception record carries the operator's file
+/// and line.
+pub const EXCEPTION_INTEGER_OVERFLOW: u32 = rt_abi::EXCEPTION_INTEGER_OVERFLOW;
+/// Exception code: integer division or remainder by zero, raised as
+/// [`EXCEPTION_INTEGER_OVERFLOW`] is (`x / 0` is `x` and `x % 0` is 0
+/// either way).
+pub const EXCEPTION_INTEGER_DIVIDE_BY_ZERO: u32 = rt_abi::EXCEPTION_INTEGER_DIVIDE_BY_ZERO;
 /// The first exception code free for programs' own [`rt_throw`] codes; the
 /// codes below are reserved for the runtime's exceptions.
 #[doc(alias = "RT_EXCEPTION_USER")]

@@ -147,3 +147,84 @@ fn cpu_gives_the_defined_values_without_panicking() {
 fn wgpu_gives_the_defined_values() {
     check(Backend::Wgpu);
 }
+
+#[rt_program(ray_generation)]
+pub fn divides(#[var] mut out: RwBuffer<u32>, #[var] a: u32, #[var] zero: u32) {
+    out[0] = a / zero;
+    out[1] = a * a;
+}
+
+#[rt_program(exception)]
+pub fn record_code(#[var] mut out: RwBuffer<u32>) {
+    out[2] = exception_code();
+}
+
+fn context_for(program: &'static rt_std::program::ProgramDescriptor, backend: Backend) -> (Context, BufferId) {
+    let mut ctx = Context::new();
+    ctx.set_backend(backend);
+    ctx.set_ray_type_count(0);
+    ctx.set_integer_exceptions(true);
+    let out = ctx.create_buffer::<u32>(BufferType::InputOutput, vec![0xdead; 32]);
+    let p = ctx.create_program(program);
+    ctx.set_ray_generation_program(0, p).unwrap();
+    let ex = ctx.create_program(&record_code::PROGRAM);
+    ctx.set_exception_program(0, ex).unwrap();
+    for (name, v) in [("a", 0x9e37_79b9u32), ("zero", 0), ("k", 33)] {
+        ctx.set_var(Scope::Context, name, v).unwrap();
+    }
+    ctx.set_var(Scope::Context, "out", out).unwrap();
+    (ctx, out)
+}
+
+#[test]
+fn integer_exceptions_on_the_cpu_name_the_operator_and_reach_the_exception_program() {
+    let (mut ctx, out) = context_for(&divides::PROGRAM, Backend::Cpu);
+    let report = ctx.launch(0, 1, 1).unwrap();
+    assert_eq!(report.exceptions.len(), 1, "{:?}", report.exceptions);
+    let e = report.exceptions[0];
+    assert_eq!((e.launch_index, e.code), (glam::UVec2::ZERO, EXCEPTION_INTEGER_DIVIDE_BY_ZERO));
+    let at = e.location.expect("the operator's place");
+    assert!(at.file().ends_with("integer_semantics.rs"), "{at}");
+    assert_eq!((at.line(), at.column()), (153, 16), "the `/` of `a / zero`");
+    let got = ctx.read_buffer::<u32>(out).unwrap();
+    // The program went on with the defined values; the exception program
+    // saw the code.
+    assert_eq!(&got[..3], &[0x9e37_79b9, 0x9e37_79b9u32.wrapping_mul(0x9e37_79b9), EXCEPTION_INTEGER_DIVIDE_BY_ZERO]);
+}
+
+#[test]
+fn integer_exceptions_report_the_first_overflow_and_keep_the_wrapped_values() {
+    let (mut ctx, out) = context_for(&edge_cases::PROGRAM, Backend::Cpu);
+    for (name, v) in [("min", i32::MIN), ("minus_one", -1)] {
+        ctx.set_var(Scope::Context, name, v).unwrap();
+    }
+    for (name, v) in [("nan", f32::NAN), ("negative", -5.0), ("big", 3e9)] {
+        ctx.set_var(Scope::Context, name, v).unwrap();
+    }
+    let report = ctx.launch(0, 1, 1).unwrap();
+    let e = report.exceptions[..].first().copied().expect("an exception");
+    assert_eq!(e.code, EXCEPTION_INTEGER_OVERFLOW);
+    let at = e.location.unwrap();
+    assert_eq!((at.line(), at.column()), (31, 16), "the `*` of `a * a`");
+    let got = ctx.read_buffer::<u32>(out).unwrap();
+    for (i, want, what) in expected() {
+        if i != 2 {
+            assert_eq!(got[i], want, "{what}");
+        }
+    }
+    assert_eq!(got[2], EXCEPTION_INTEGER_OVERFLOW, "out[2], written by the exception program");
+}
+
+#[test]
+fn integer_exceptions_are_off_by_default_and_raise_nothing_on_wgpu() {
+    let (mut ctx, out) = context_for(&divides::PROGRAM, Backend::Wgpu);
+    let report = ctx.launch(0, 1, 1).unwrap();
+    assert_eq!(report.exceptions, vec![]);
+    assert_eq!(
+        ctx.read_buffer::<u32>(out).unwrap()[..3],
+        [0x9e37_79b9, 0x9e37_79b9u32.wrapping_mul(0x9e37_79b9), 0xdead]
+    );
+    ctx.set_backend(Backend::Cpu);
+    ctx.set_integer_exceptions(false);
+    assert_eq!(ctx.launch(0, 1, 1).unwrap().exceptions, vec![]);
+}

@@ -705,7 +705,11 @@ fn buffer_overrun_raises_the_exception_and_printf_reaches_the_host(backend: Back
     let report = ctx.launch(0, W, W).unwrap();
     assert_eq!(
         report.exceptions,
-        vec![ExceptionRecord { launch_index: UVec2::new(W / 2, W / 2), code: EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS }]
+        vec![ExceptionRecord {
+            launch_index: UVec2::new(W / 2, W / 2),
+            code: EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS,
+            location: None
+        }]
     );
     // The out-of-bounds read yields zero; the print is filtered to one index.
     assert_eq!(report.prints, vec![(UVec2::new(W / 2, W / 2), format!("pixel [{}, {}] read 0 of 3", W / 2, W / 2))]);
@@ -725,7 +729,7 @@ fn nan_rays_raise_invalid_ray(backend: Backend) {
     let report = ctx.launch(0, 4, 4).unwrap();
     assert_eq!(
         report.exceptions,
-        vec![ExceptionRecord { launch_index: UVec2::new(1, 2), code: EXCEPTION_INVALID_RAY }]
+        vec![ExceptionRecord { launch_index: UVec2::new(1, 2), code: EXCEPTION_INVALID_RAY, location: None }]
     );
     let img = ctx.read_buffer::<Vec4>(out).unwrap();
     // Other launch indices completed: they hit the sphere head on.

@@ -88,6 +88,10 @@ pub struct ExceptionRecord {
     pub launch_index: UVec2,
     /// `EXCEPTION_*` code, or a user code from `rt_throw`.
     pub code: u32,
+    /// Where in the program's source the exception was raised, when the
+    /// backend knows: the operator of an integer exception on the CPU
+    /// backend ([`Context::set_integer_exceptions`](crate::Context::set_integer_exceptions)); `None` otherwise.
+    pub location: Option<&'static std::panic::Location<'static>>,
 }
 
 /// What a launch did besides writing its buffers.
@@ -129,11 +133,13 @@ pub(crate) struct Settings {
     pub max_trace_depth: u32,
     pub print_enabled: bool,
     pub print_launch_index: Option<UVec2>,
+    /// Integer overflow and division by zero raise exceptions (CPU backend).
+    pub integer_exceptions: bool,
 }
 
 impl Default for Settings {
     fn default() -> Self {
-        Settings { max_trace_depth: 5, print_enabled: true, print_launch_index: None }
+        Settings { max_trace_depth: 5, print_enabled: true, print_launch_index: None, integer_exceptions: false }
     }
 }
 

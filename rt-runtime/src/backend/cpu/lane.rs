@@ -108,7 +108,9 @@ pub(crate) struct Lane<'a> {
     pub(crate) l: &'a Linked<'a, Program<'a>>,
     pub(crate) index: Cell<UVec2>,
     pub(crate) depth: Cell<u32>,
-    pub(crate) exception: Cell<Option<u32>>,
+    /// The launch index's first exception, and where it was raised when
+    /// the raiser said (integer exceptions).
+    pub(crate) exception: Cell<Option<(u32, Option<&'static std::panic::Location<'static>>)>>,
     /// The innermost program running (left as it was when a panic unwinds
     /// past `invoke`: the program that panicked).
     pub(crate) program: Cell<Option<&'static rt_std::program::ProgramDescriptor>>,
@@ -144,8 +146,8 @@ impl<'a> Lane<'a> {
         self.rays.set(0);
         let mut ctx = self.base_context();
         self.invoke(&l.ray_generation, &mut ctx, None, None);
-        if let Some(code) = self.exception.get() {
-            report.exceptions.push(ExceptionRecord { launch_index: index, code });
+        if let Some((code, location)) = self.exception.get() {
+            report.exceptions.push(ExceptionRecord { launch_index: index, code, location });
             if let Some(ex) = &l.exception {
                 let mut ctx = ExecutionContext { exception_code: code, ..self.base_context() };
                 self.invoke(ex, &mut ctx, None, None);
@@ -209,7 +211,7 @@ impl<'a> Lane<'a> {
         if let Some(code) = ctx.pending_exception
             && self.exception.get().is_none()
         {
-            self.exception.set(Some(code));
+            self.exception.set(Some((code, ctx.pending_location)));
         }
         r
     }

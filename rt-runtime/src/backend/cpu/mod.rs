@@ -115,18 +115,21 @@ fn run(launch: &Launch) -> Result<LaunchReport> {
         .map(|c| {
             let mut report = LaunchReport::default();
             let lane = Lane::new(&linked);
+            let checking = settings.integer_exceptions;
             rt_std::cpu::serving(&lane, || {
-                for i in c * chunk..((c + 1) * chunk).min(total) {
-                    if stop.load(Ordering::Relaxed) {
-                        break;
+                rt_std::arith::checking_integers(checking, || {
+                    for i in c * chunk..((c + 1) * chunk).min(total) {
+                        if stop.load(Ordering::Relaxed) {
+                            break;
+                        }
+                        let index = UVec2::new((i % width as u64) as u32, (i / width as u64) as u32);
+                        if let Err(caught) = panics::catching(|| lane.run_index(index, &mut report)) {
+                            stop.store(true, Ordering::Relaxed);
+                            return Err(panicked(lane.program.get(), index, caught));
+                        }
                     }
-                    let index = UVec2::new((i % width as u64) as u32, (i / width as u64) as u32);
-                    if let Err(caught) = panics::catching(|| lane.run_index(index, &mut report)) {
-                        stop.store(true, Ordering::Relaxed);
-                        return Err(panicked(lane.program.get(), index, caught));
-                    }
-                }
-                Ok(report)
+                    Ok(report)
+                })
             })
         })
         .collect();

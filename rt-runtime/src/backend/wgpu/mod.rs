@@ -236,7 +236,7 @@ fn launch_on_device(
     let (exception_words, print_words) = readback::log(gpu, header)?;
     let mut report = LaunchReport::default();
     for w in exception_words.chunks_exact(3) {
-        report.exceptions.push(ExceptionRecord { launch_index: UVec2::new(w[0], w[1]), code: w[2] });
+        report.exceptions.push(ExceptionRecord { launch_index: UVec2::new(w[0], w[1]), code: w[2], location: None });
     }
     report.exceptions.sort_by_key(|e| (e.launch_index.y, e.launch_index.x));
     report.prints = readback::decode_prints(l.scene, &print_words, print_words.len());
