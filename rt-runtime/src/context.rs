@@ -22,6 +22,14 @@ use rt_std::{FilterMode, RtData, WrapMode};
 /// run on, behind [`LaunchBackend`]. A backend it ran on before (or opened
 /// ahead, [`Context::open_wgpu`]) is kept, with its device and its
 /// statistics, for when the context switches back.
+///
+/// A context is `Send` and `Sync`: it may move to another thread, and
+/// `&Context` (reading buffers, statistics) may be shared; launches and
+/// edits take `&mut`. Contexts on several threads run at once, each CPU
+/// launch on rayon's shared pool, and wgpu contexts with a device each or
+/// sharing one ([`Context::use_wgpu_device`] with clones of one device and
+/// queue): `tests/tests/concurrency.rs` checks that they render what a
+/// serial run does.
 pub struct Context {
     pub(crate) scene: Scene,
     pub(crate) settings: Settings,

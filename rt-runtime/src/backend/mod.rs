@@ -173,7 +173,7 @@ pub(crate) struct BackendStats<'a> {
 
 /// Where launches run: implemented by the CPU backend and the wgpu
 /// megakernel; a context holds one and calls it through [`launch`].
-pub(crate) trait LaunchBackend: Any {
+pub(crate) trait LaunchBackend: Any + Send + Sync {
     /// Which backend this is.
     fn kind(&self) -> Backend;
     /// Gets ready for a launch, before anything is built (the wgpu backend
