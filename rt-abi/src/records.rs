@@ -78,7 +78,9 @@ pub struct InstanceRecord {
     pub bvh: u32,
     /// Scene word of its primitive table.
     pub primitives: u32,
-    /// The 8-bit visibility mask.
+    /// The visibility word: up to four 8-bit masks, one per byte, each of
+    /// which a ray mask must share a bit with (the chain of transforms down
+    /// to the geometry group; the wgpu encoder's `visibility`).
     pub mask: u32,
     /// The geometry group's node index.
     pub geometry_group: u32,
@@ -131,8 +133,9 @@ impl InstanceRecord {
 }
 
 /// The kind of an entry of the scene's node table. Each entry is four
-/// words, `[kind, a, b, mask]`, where `mask` is the AND of the visibility
-/// masks of the nodes it stands for.
+/// words, `[kind, a, b, mask]`, where `mask` is the visibility word of the
+/// nodes it stands for (up to four 8-bit masks, one per byte, each of which
+/// a ray's mask must share a bit with).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[repr(u32)]
 pub enum NodeEntry {

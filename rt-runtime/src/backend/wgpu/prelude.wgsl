@@ -227,6 +227,23 @@ fn rt_node_v3(w: u32) -> vec3<f32> {
     return vec3<f32>(bitcast<f32>(rt_node_word(w)), bitcast<f32>(rt_node_word(w + 1u)), bitcast<f32>(rt_node_word(w + 2u)));
 }
 
+// Whether a ray with mask `r` enters a node or chain of nodes with
+// visibility word `masks` (compute/scene.rs `visibility`): each of its four
+// byte masks shares a bit with `r`.
+fn rt_visible(masks: u32, r: u32) -> bool {
+    let m = masks & ((r & 0xffu) * 0x01010101u);
+    return (m & 0xffu) != 0u && (m & 0xff00u) != 0u && (m & 0xff0000u) != 0u && (m & 0xff000000u) != 0u;
+}
+
+// 1 / d for the slab tests, finite: a zero component (an axis-aligned
+// ray) gives +-1e30, not infinity. WGSL lets a compiler assume no
+// infinities, and lavapipe's does: with 1.0 / 0.0 the instance-level slab
+// test of a group missed every ray parallel to an axis.
+fn rt_safe_inv(d: vec3<f32>) -> vec3<f32> {
+    let m = max(abs(d), vec3<f32>(1e-30));
+    return select(vec3<f32>(1.0), vec3<f32>(-1.0), d < vec3<f32>(0.0)) / m;
+}
+
 fn rt_aabb_hit(w: u32, o: vec3<f32>, inv: vec3<f32>, tmin: f32, tmax: f32) -> f32 {
     let t0 = (rt_node_v3(w) - o) * inv;
     let t1 = (rt_node_v3(w + 3u) - o) * inv;

@@ -42,13 +42,13 @@ fn rt_enter_level(level: u32, o2w: mat4x4<f32>, w2o: mat4x4<f32>) {
     rt_g_org[level] = (w2o * vec4<f32>(rt_s_wray.origin, 1.0)).xyz;
     let d = (w2o * vec4<f32>(rt_s_wray.direction, 0.0)).xyz;
     rt_g_dir[level] = d;
-    rt_g_inv[level] = 1.0 / d;
+    rt_g_inv[level] = rt_safe_inv(d);
 }
 
 // Instance `inst` seen from transform level `level`.
 fn rt_graph_instance(inst: u32, level: u32, mask: u32) {
     let ib = rt_scene[1] + inst * RT_INST_WORDS;
-    if (rt_scene[ib + RT_INST_MASK] & mask) == 0u {
+    if !rt_visible(rt_scene[ib + RT_INST_MASK], mask) {
         return;
     }
     rt_o2w = rt_g_o2w[level] * rt_m4(ib);
@@ -88,7 +88,7 @@ fn rt_search_graph(object: u32, mask: u32) {
         let inv = rt_g_inv[level];
         if e.y == RT_NONE {
             // Enter graph node e.x.
-            if (rt_scene[node + 3u] & mask) == 0u {
+            if !rt_visible(rt_scene[node + 3u], mask) {
                 continue;
             }
             switch kind {

@@ -116,16 +116,48 @@ pub(crate) fn push_mat(out: &mut Vec<u32>, m: Mat4) {
     out.extend(m.to_cols_array().map(f));
 }
 
-/// Follows transforms down to a geometry group: (group, object-to-world, mask).
+/// The visibility word of a chain of nodes with visibility `masks`: a ray
+/// with mask `r` enters the chain when *each* node's mask shares a bit
+/// with `r` (as on the CPU backend), which one AND of the masks cannot say
+/// (0x01 and 0xfe share no bit, yet each shares one with 0x03). The word
+/// holds up to four masks, one per byte, unused bytes 0xff; the kernel's
+/// `rt_visible` tests every byte. A mask that contains another is implied
+/// by it and dropped, so only chains of more than four masks none of
+/// which contains another are refused.
+pub(crate) fn visibility(masks: &[u8], node: NodeId) -> Result<u32> {
+    let mut kept: Vec<u8> = Vec::new();
+    for &m in masks {
+        if kept.iter().any(|&k| k & m == k) {
+            continue;
+        }
+        kept.retain(|&k| k & m != m);
+        kept.push(m);
+    }
+    if kept.len() > 4 {
+        return Err(RtError::BadTransform {
+            problem: format!(
+                "the chain of transforms from node {} has {} visibility masks none of which contains another ({:02x?}); the wgpu backend tests at most 4 per chain",
+                node.index(),
+                kept.len(),
+                kept
+            ),
+        });
+    }
+    kept.resize(4, 0xff);
+    Ok(u32::from_le_bytes([kept[0], kept[1], kept[2], kept[3]]))
+}
+
+/// Follows transforms down to a geometry group: (group, object-to-world,
+/// visibility word).
 pub(crate) fn instance_of(scene: &Scene, node: NodeId) -> Result<Option<(NodeId, Mat4, u32)>> {
     let mut m = Mat4::IDENTITY;
-    let mut mask = 0xffu32;
+    let mut masks = Vec::new();
     let mut n = node;
     for _ in 0..=scene.nodes.len() {
         let rec = &scene.nodes[n.index() as usize];
-        mask &= rec.visibility_mask as u32;
+        masks.push(rec.visibility_mask);
         match &rec.kind {
-            NodeKind::GeometryGroup { .. } => return Ok(Some((n, m, mask))),
+            NodeKind::GeometryGroup { .. } => return Ok(Some((n, m, visibility(&masks, node)?))),
             NodeKind::Transform { matrix, child, .. } => {
                 m *= *matrix;
                 n = *child;
@@ -243,7 +275,7 @@ impl Encoder<'_> {
                 node_entries[i] = [NodeEntry::Instance as u32, inst, 0, instances[inst as usize].2];
                 continue;
             }
-            let mask = rec.visibility_mask as u32;
+            let mask = visibility(&[rec.visibility_mask], n)?;
             match &rec.kind {
                 NodeKind::Group { children, .. } => {
                     let (bvh, table, instances_only) = groups.bvh[&n.index()];
@@ -254,12 +286,13 @@ impl Encoder<'_> {
                 }
                 NodeKind::Transform { .. } => {
                     // A chain of transforms down to a group or selector.
-                    let (mut m, mut mask, mut below) = (Mat4::IDENTITY, 0xffu32, n);
+                    let (mut m, mut masks, mut below) = (Mat4::IDENTITY, Vec::new(), n);
                     while let NodeKind::Transform { matrix, child, .. } = &scene.nodes[below.index() as usize].kind {
                         m *= *matrix;
-                        mask &= scene.nodes[below.index() as usize].visibility_mask as u32;
+                        masks.push(scene.nodes[below.index() as usize].visibility_mask);
                         below = *child;
                     }
+                    let mask = visibility(&masks, n)?;
                     let at = self.tables.at();
                     push_mat(&mut self.tables.words, m);
                     push_mat(&mut self.tables.words, m.inverse());

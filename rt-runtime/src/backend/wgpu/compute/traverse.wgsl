@@ -135,7 +135,7 @@ fn rt_blas_in(inst: u32) {
     rt_s_oray = oray;
     let bvh = rt_scene[ib + RT_INST_BVH];
     let prims = rt_scene[ib + RT_INST_PRIMS];
-    let inv = 1.0 / oray.direction;
+    let inv = rt_safe_inv(oray.direction);
     if rt_aabb_hit(bvh, oray.origin, inv, oray.tmin, rt_s_tmax) == RT_FAR {
         return;
     }
@@ -216,7 +216,7 @@ fn rt_search(object: u32, ray: RtRay, flags: u32, mask: u32) {
     rt_s_tmax = ray.tmax;
     rt_h_found = false;
     let node = rt_scene[0] + object * 4u;
-    if (rt_scene[node + 3u] & mask) == 0u {
+    if !rt_visible(rt_scene[node + 3u], mask) {
         return;
     }
     let kind = rt_scene[node];
@@ -233,7 +233,7 @@ fn rt_search(object: u32, ray: RtRay, flags: u32, mask: u32) {
     }
     let bvh = rt_scene[node + 1u];
     let leaves = rt_scene[node + 2u];
-    let inv = 1.0 / ray.direction;
+    let inv = rt_safe_inv(ray.direction);
     var stack: array<vec2<u32>, RT_TLAS_STACK>;
     var sp = 0u;
     if kind == RT_NODE_INSTANCE {
@@ -261,7 +261,7 @@ fn rt_search(object: u32, ray: RtRay, flags: u32, mask: u32) {
             // at the leaf's entry distance (its bounds hold theirs).
             for (var i = first + count; i > first; i--) {
                 let inst = rt_scene[leaves + i - 1u];
-                if (rt_scene[rt_scene[1] + inst * RT_INST_WORDS + RT_INST_MASK] & mask) != 0u && sp < RT_TLAS_STACK {
+                if rt_visible(rt_scene[rt_scene[1] + inst * RT_INST_WORDS + RT_INST_MASK], mask) && sp < RT_TLAS_STACK {
                     stack[sp] = vec2<u32>(inst | RT_INST_BIT, e.y);
                     sp = sp + 1u;
                 }
@@ -352,7 +352,7 @@ fn rt_blas_triangles(inst: u32) {
     let tmin = rt_s_wray.tmin;
     let bvh = rt_scene[ib + RT_INST_BVH];
     let tris = rt_scene[ib + RT_INST_TRIS];
-    let inv = 1.0 / d;
+    let inv = rt_safe_inv(d);
     var tmax = rt_s_tmax;
     if rt_aabb_hit(bvh, o, inv, tmin, tmax) == RT_FAR {
         return;
@@ -482,7 +482,7 @@ fn rt_blas_cwbvh(inst: u32) {
     let d = (rt_w2o * vec4<f32>(rt_s_wray.direction, 0.0)).xyz;
     let tmin = rt_s_wray.tmin;
     let tris = rt_scene[ib + RT_INST_TRIS];
-    let inv = 1.0 / d;
+    let inv = rt_safe_inv(d);
     var tmax = rt_s_tmax;
     let sh = rt_shear(d);
     if !sh.ok {
