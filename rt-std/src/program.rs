@@ -109,6 +109,54 @@ pub struct WgslItem {
     pub name: &'static str,
     /// Its full WGSL text.
     pub text: &'static str,
+    /// The names in `text` that per-depth clones rename (see [`WgslSite`]);
+    /// empty for types and resumable forms.
+    pub sites: &'static [WgslSite],
+}
+
+/// A name in a WGSL function's text that the linker's per-depth clones
+/// suffix with `_d<k>`, recorded by the compiler where it lowered the name:
+/// where the name ends (a byte offset into the text) and what it names.
+/// Recorded for the plain forms of programs and helpers, in text order, so
+/// the linker renames by offset and never searches the text.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct WgslSite {
+    /// Byte offset in the function's text just past the name.
+    pub end: u32,
+    /// What the name is.
+    pub name: WgslName,
+}
+
+/// What a [`WgslSite`] names.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum WgslName {
+    /// The function's own name, in its definition (`fn <name>(`).
+    Definition,
+    /// A trace call, `rt_trace_<payload>(`: the payload type's WGSL name.
+    Trace(&'static str),
+    /// A call of the helper of this WGSL name (`rtf_<helper>(`).
+    Call(&'static str),
+}
+
+impl WgslSite {
+    /// The trace call sites among `sites`, per payload type (its WGSL
+    /// name), in name order.
+    pub fn traces_per_payload(sites: &[WgslSite]) -> Vec<(&'static str, usize)> {
+        let mut per: std::collections::BTreeMap<&'static str, usize> = Default::default();
+        for s in sites {
+            if let WgslName::Trace(p) = s.name {
+                *per.entry(p).or_default() += 1;
+            }
+        }
+        per.into_iter().collect()
+    }
+
+    /// The helpers (WGSL names) `sites` call, each once, in name order.
+    pub fn helpers_called(sites: &[WgslSite]) -> Vec<&'static str> {
+        let called: std::collections::BTreeSet<&'static str> =
+            sites.iter().filter_map(|s| if let WgslName::Call(h) = s.name { Some(h) } else { None }).collect();
+        called.into_iter().collect()
+    }
 }
 
 /// A format string of an `rt_printf!` call, with the types of its arguments.
@@ -152,6 +200,9 @@ pub struct ProgramDescriptor {
     pub wgsl_functions: &'static [WgslItem],
     /// The program function itself.
     pub wgsl_program: &'static str,
+    /// The names in `wgsl_program` that per-depth clones rename: its own,
+    /// its trace calls and its helper calls (see [`WgslSite`]).
+    pub wgsl_program_sites: &'static [WgslSite],
     /// For programs that trace: the resumable form (per-depth frame arrays
     /// and the same function, which returns to the kernel at each trace and
     /// is called again to resume), when the compiler could make one. The

@@ -81,6 +81,38 @@ fn descriptor_describes_the_program() {
 }
 
 #[test]
+fn descriptor_records_the_sites_per_depth_clones_rename() {
+    use rt_std::program::{WgslName, WgslSite};
+    // `glass` traces twice (reflection and refraction) and calls one helper
+    // that does not trace.
+    let p = &seed_convex_hull::glass::PROGRAM;
+    assert_eq!(WgslSite::traces_per_payload(p.wgsl_program_sites), [("Radiance", 2)]);
+    assert_eq!(WgslSite::helpers_called(p.wgsl_program_sites), ["rtf_fresnel_schlick"]);
+    assert_eq!(p.wgsl_program_sites[0].name, WgslName::Definition);
+    // Every site ends where its name does, in the text it was recorded for.
+    let helper = p.wgsl_functions.iter().find(|f| f.name == "rtf_fresnel_schlick").unwrap();
+    assert_eq!(helper.sites.iter().map(|s| s.name).collect::<Vec<_>>(), [WgslName::Definition]);
+    for (text, sites, own) in
+        [(p.wgsl_program, p.wgsl_program_sites, p.wgsl_entry), (helper.text, helper.sites, helper.name)]
+    {
+        for s in sites {
+            let name = match s.name {
+                WgslName::Definition => format!("fn {own}"),
+                WgslName::Trace(payload) => format!("rt_trace_{payload}"),
+                WgslName::Call(h) => h.to_string(),
+            };
+            let (before, after) = text.split_at(s.end as usize);
+            assert!(before.ends_with(&name) && after.starts_with('('), "{s:?} in {own}");
+        }
+    }
+    // Types and resumable forms have none; a program that does not trace or
+    // call anything only its own name.
+    assert!(p.wgsl_types.iter().chain(p.wgsl_resumable_functions).all(|t| t.sites.is_empty()));
+    let miss = &seed_camera::miss::PROGRAM;
+    assert_eq!(miss.wgsl_program_sites.iter().map(|s| s.name).collect::<Vec<_>>(), [WgslName::Definition]);
+}
+
+#[test]
 fn cpu_entry_runs_the_rust_function() {
     let mut prd = Radiance { result: Vec3::ZERO, importance: 1.0, depth: 0 };
     let bg = Vec3::new(0.1, 0.2, 0.3);

@@ -25,12 +25,14 @@
 
 use crate::error::{Error, Errors};
 use crate::kinds::Kind;
+use crate::lower::text::Site;
 use crate::lower::{self, Entry, Lowered};
 use crate::signature::{self, Role};
 use crate::types::Ty;
 use crate::{Item, StructRole, deps};
 use proc_macro2::{Span, TokenStream, TokenTree};
 use quote::{format_ident, quote, quote_spanned};
+use std::collections::BTreeMap;
 use syn::spanned::Spanned;
 
 pub fn parse_kind(ident: &syn::Ident) -> Result<Kind, Error> {
@@ -423,9 +425,28 @@ fn option_layout(ty: &Option<Ty>) -> TokenStream {
     }
 }
 
-fn wgsl_items(items: &[(String, String)]) -> TokenStream {
-    let items = items.iter().map(|(n, t)| quote!(::rt_std::program::WgslItem { name: #n, text: #t }));
+/// `WgslItem` tokens, with the sites the lowering recorded for each (none
+/// for types and resumable forms).
+fn wgsl_items(items: &[(String, String)], sites: &BTreeMap<String, Vec<(Site, usize)>>) -> TokenStream {
+    let items = items.iter().map(|(n, t)| {
+        let s = wgsl_sites(sites.get(n).map_or(&[], Vec::as_slice));
+        quote!(::rt_std::program::WgslItem { name: #n, text: #t, sites: #s })
+    });
     quote!(&[#(#items),*])
+}
+
+/// `WgslSite` tokens.
+fn wgsl_sites(sites: &[(Site, usize)]) -> TokenStream {
+    let sites = sites.iter().map(|(s, end)| {
+        let end = *end as u32;
+        let name = match s {
+            Site::Definition => quote!(Definition),
+            Site::Trace(p) => quote!(Trace(#p)),
+            Site::Call(h) => quote!(Call(#h)),
+        };
+        quote!(::rt_std::program::WgslSite { end: #end, name: ::rt_std::program::WgslName::#name })
+    });
+    quote!(&[#(#sites),*])
 }
 
 fn program_output(kind: Kind, f: &syn::ItemFn, lowered: Result<Lowered, Errors>) -> TokenStream {
@@ -438,10 +459,12 @@ fn program_output(kind: Kind, f: &syn::ItemFn, lowered: Result<Lowered, Errors>)
     let wgsl_entry = format!("rtp_{name}");
     let wgsl = &l.wgsl;
     let prelude = &l.prelude;
-    let types = wgsl_items(&l.types);
-    let functions = wgsl_items(&l.functions);
-    let resumable_functions = wgsl_items(&l.resumable_functions);
+    let no_sites = BTreeMap::new();
+    let types = wgsl_items(&l.types, &no_sites);
+    let functions = wgsl_items(&l.functions, &l.sites);
+    let resumable_functions = wgsl_items(&l.resumable_functions, &no_sites);
     let program = &l.program;
+    let program_sites = wgsl_sites(l.sites.get(&l.wgsl_entry).map_or(&[], Vec::as_slice));
     let resumable = match &l.resumable {
         Some(r) => quote!(Some(#r)),
         None => quote!(None),
@@ -500,6 +523,7 @@ fn program_output(kind: Kind, f: &syn::ItemFn, lowered: Result<Lowered, Errors>)
             wgsl_types: #types,
             wgsl_functions: #functions,
             wgsl_program: #program,
+            wgsl_program_sites: #program_sites,
             wgsl_resumable: #resumable,
             wgsl_resumable_functions: #resumable_functions,
             not_resumable: #not_resumable,

@@ -35,6 +35,7 @@ pub(super) fn assemble(
         out.functions.push((name.clone(), text.clone()));
     }
     out.functions.extend(unit.sections);
+    out.sites.extend(unit.sites);
     out.program = program_text;
     if out.resumable.is_some() {
         out.resumable_functions = unit.resumable_functions;

@@ -135,6 +135,10 @@ pub struct Lowered {
     /// Resumable forms of the helpers that trace (`(name, text)`, callees
     /// first).
     pub resumable_functions: Vec<(String, String)>,
+    /// Per plain function, by WGSL name (the program under `wgsl_entry`,
+    /// each helper under its own): the names per-depth clones rename and
+    /// the byte offsets where they end, in text order (`text::Site`).
+    pub sites: BTreeMap<String, Vec<(text::Site, usize)>>,
 }
 
 /// The entry being lowered.

@@ -45,7 +45,8 @@ pub(super) fn program_unit(
     let name = f.sig.ident.to_string();
     let mut l = FnLowerer::new(m, FnRole::Program(kind), &name, ret);
     let text = l.function(&out.wgsl_entry, &lps, &f.block);
-    let (clean, ranges) = l.finish(&text);
+    let done = l.finish(&text);
+    out.sites.insert(out.wgsl_entry.clone(), done.sites);
     let mut intr: Vec<String> = l.intrinsics.iter().map(|(n, _)| n.to_string()).collect();
     intr.sort();
     intr.dedup();
@@ -59,13 +60,13 @@ pub(super) fn program_unit(
         let mut r = FnLowerer::new(m, FnRole::Program(kind), &name, Ty::Unit);
         match r.function_resumable(&out.wgsl_entry, &lps, &f.block) {
             Ok(text) => {
-                let (clean, _) = r.finish(&text);
+                let clean = r.finish(&text).text;
                 out.resumable = Some(r.fill_frame_saves(&clean));
             }
             Err(e) => out.not_resumable = Some(e.message),
         }
     }
-    Ok((clean, ranges))
+    Ok((done.text, done.ranges))
 }
 
 /// The program's parameters as the lowering binds them (payload and

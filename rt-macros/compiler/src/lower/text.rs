@@ -6,7 +6,11 @@
 //! types whose integer type is not yet inferred are written as placeholders
 //! (`\u{4}L var value\u{5}`, `\u{4}T var\u{5}`). [`finish`] resolves the
 //! placeholders, strips the markers and returns the byte range of every
-//! marked piece: the source map from WGSL spans to Rust spans.
+//! marked piece: the source map from WGSL spans to Rust spans. Names the
+//! linker renames per trace depth (a function's own, its trace and helper
+//! calls) are followed by a [`site`] placeholder, which `finish` turns into
+//! the byte offset where the name ends: the facts the linker reads instead
+//! of searching the text.
 //!
 //! This module knows the markers only, not the compiler's types: the
 //! placeholders of an integer variable resolve to `i32` or `u32`, as the
@@ -31,12 +35,44 @@ pub fn int_type_placeholder(var: u32) -> String {
     format!("{PH_OPEN}T{var}{PH_CLOSE}")
 }
 
-/// Resolves placeholders and strips markers; returns the clean text and
-/// `(id, byte range)` for every marked piece. `signed(var)`: whether
-/// integer variable `var` is an `i32` (else a `u32`).
-pub fn finish(text: &str, signed: &dyn Fn(u32) -> bool) -> (String, Vec<(usize, std::ops::Range<usize>)>) {
+/// A name that per-depth clones rename (the linker's `WgslSite`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Site {
+    /// The function's own name, in its definition.
+    Definition,
+    /// A call of `rt_trace_<payload>`: the payload's WGSL name.
+    Trace(String),
+    /// A call of the helper of this WGSL name.
+    Call(String),
+}
+
+/// A placeholder written right after the name `site` describes: [`finish`]
+/// removes it and records where the name ends.
+pub fn site(site: &Site) -> String {
+    match site {
+        Site::Definition => format!("{PH_OPEN}D{PH_CLOSE}"),
+        Site::Trace(p) => format!("{PH_OPEN}R{p}{PH_CLOSE}"),
+        Site::Call(h) => format!("{PH_OPEN}C{h}{PH_CLOSE}"),
+    }
+}
+
+/// Clean text and what its markers and placeholders said.
+pub struct Finished {
+    pub text: String,
+    /// `(id, byte range)` for every marked piece.
+    pub ranges: Vec<(usize, std::ops::Range<usize>)>,
+    /// Every [`site`] and the byte offset where its name ends, in text order.
+    pub sites: Vec<(Site, usize)>,
+}
+
+/// Resolves placeholders and strips markers; returns the clean text,
+/// `(id, byte range)` for every marked piece and where each site's name
+/// ends. `signed(var)`: whether integer variable `var` is an `i32` (else a
+/// `u32`).
+pub fn finish(text: &str, signed: &dyn Fn(u32) -> bool) -> Finished {
     let mut out = String::with_capacity(text.len());
     let mut ranges = Vec::new();
+    let mut sites = Vec::new();
     let mut stack: Vec<(usize, usize)> = Vec::new();
     let mut chars = text.char_indices().peekable();
     while let Some((_, c)) = chars.next() {
@@ -66,6 +102,9 @@ pub fn finish(text: &str, signed: &dyn Fn(u32) -> bool) -> (String, Vec<(usize, 
                 }
                 let (tag, rest) = body.split_at(1);
                 match tag {
+                    "D" => sites.push((Site::Definition, out.len())),
+                    "R" => sites.push((Site::Trace(rest.to_string()), out.len())),
+                    "C" => sites.push((Site::Call(rest.to_string()), out.len())),
                     "L" => {
                         let (var, value) = rest.split_once(' ').unwrap_or((rest, "0"));
                         let signed = signed(var.parse().unwrap_or(0));
@@ -78,12 +117,12 @@ pub fn finish(text: &str, signed: &dyn Fn(u32) -> bool) -> (String, Vec<(usize, 
             _ => out.push(c),
         }
     }
-    (out, ranges)
+    Finished { text: out, ranges, sites }
 }
 
 /// Strips markers only (for text that has no placeholders left).
 pub fn strip(text: &str) -> String {
-    finish(text, &|_| true).0
+    finish(text, &|_| true).text
 }
 
 /// Indents every line of `body` by one level.

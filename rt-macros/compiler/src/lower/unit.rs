@@ -28,6 +28,8 @@ pub(super) struct Unit<'e, 'a> {
     pub sections: Vec<(String, String)>,
     /// Source-map entries: `(section, span id, byte range in the section)`.
     pub source_ranges: Vec<(String, usize, Range<usize>)>,
+    /// The helpers' sites (see [`Lowered::sites`]): `(name, sites)`.
+    pub sites: Vec<(String, Vec<(text::Site, usize)>)>,
     /// Resumable forms of the helpers that trace: `(name, text)`.
     pub resumable_functions: Vec<(String, String)>,
     /// Why tracing helpers have no resumable form.
@@ -42,6 +44,7 @@ impl<'e, 'a> Unit<'e, 'a> {
             owners: Vec::new(),
             sections: Vec::new(),
             source_ranges: Vec::new(),
+            sites: Vec::new(),
             resumable_functions: Vec::new(),
             not_resumable_helpers: Vec::new(),
         }
@@ -126,12 +129,12 @@ impl<'e, 'a> Unit<'e, 'a> {
                         text::mark(m.span_id(c.span()), &format!("const {wname}: {} = {};\n", ty.wgsl(), v.code));
                     // A constant's integer literals take its type.
                     let signed = |_v: u32| !matches!(ty, Ty::Scalar(Scalar::U32 | Scalar::Usize));
-                    let (clean, ranges) = text::finish(&text, &signed);
+                    let done = text::finish(&text, &signed);
                     self.errors.0.extend(l.errors.0);
-                    for (id, r) in ranges {
+                    for (id, r) in done.ranges {
                         self.source_ranges.push((wname.clone(), id, r));
                     }
-                    self.sections.push((wname.clone(), clean));
+                    self.sections.push((wname.clone(), done.text));
                     m.consts.insert(name, ConstInfo { wgsl_name: wname, ty });
                 }
                 Err(e) => self.errors.push(e),
@@ -203,16 +206,17 @@ impl<'e, 'a> Unit<'e, 'a> {
             let params = lparams(f, &sig.params);
             let mut l = FnLowerer::new(m, FnRole::Helper, &name, sig.ret.clone());
             let body = l.function(&sig.wgsl_name, &params, &f.block);
-            let (clean, ranges) = l.finish(&body);
+            let done = l.finish(&body);
             let mut intr: Vec<&'static str> = l.intrinsics.iter().map(|(n, _)| *n).collect();
             intr.sort();
             intr.dedup();
             let traced = l.traced.clone();
             self.errors.0.extend(l.errors.0);
-            for (id, r) in ranges {
+            for (id, r) in done.ranges {
                 self.source_ranges.push((sig.wgsl_name.clone(), id, r));
             }
-            self.sections.push((sig.wgsl_name.clone(), clean));
+            self.sites.push((sig.wgsl_name.clone(), done.sites));
+            self.sections.push((sig.wgsl_name.clone(), done.text));
             let h = m.helpers.get_mut(&name).unwrap();
             h.intrinsics = intr;
             h.traced = traced;
@@ -221,7 +225,7 @@ impl<'e, 'a> Unit<'e, 'a> {
                 let rs_name = format!("{}_rs", sig.wgsl_name);
                 match r.function_resumable(&rs_name, &params, &f.block) {
                     Ok(text) => {
-                        let (clean, _) = r.finish(&text);
+                        let clean = r.finish(&text).text;
                         self.resumable_functions.push((rs_name, r.fill_frame_saves(&clean)));
                         m.helpers.get_mut(&name).unwrap().resumable = true;
                     }

@@ -435,7 +435,8 @@ impl FnLowerer<'_> {
         }
         self.traced.extend(sig.traced.iter().cloned());
         self.calls.push(sig.name.clone());
-        let code = format!("{}({})", sig.wgsl_name, codes.join(", "));
+        let site = text::site(&text::Site::Call(sig.wgsl_name.clone()));
+        let code = format!("{}{site}({})", sig.wgsl_name, codes.join(", "));
         let writebacks = std::mem::take(&mut self.writebacks);
         if matches!(sig.ret, Ty::Unit) {
             let line = self.mark(span, &format!("{code};"));

@@ -74,8 +74,13 @@ impl FnLowerer<'_> {
                     self.trace_site(&pty.mangle(), [&obj[0].code, &ray[0].code, &flags, &mask], &prd, span)?;
                     return Ok(Some(Val::new("", Ty::Unit)));
                 }
-                let line =
-                    format!("rt_trace_{}({}, {}, {prd}, {flags}, {mask});", pty.mangle(), obj[0].code, ray[0].code);
+                let site = text::site(&text::Site::Trace(pty.mangle()));
+                let line = format!(
+                    "rt_trace_{}{site}({}, {}, {prd}, {flags}, {mask});",
+                    pty.mangle(),
+                    obj[0].code,
+                    ray[0].code
+                );
                 let line = self.mark(span, &line);
                 self.emit(line);
                 for w in std::mem::take(&mut self.writebacks) {

@@ -217,7 +217,8 @@ impl<'m> FnLowerer<'m> {
         }
         let lines = self.blocks.pop().unwrap().lines;
         let ret_text = if matches!(ret, Ty::Unit) { String::new() } else { format!(" -> {}", ret.wgsl()) };
-        format!("fn {wgsl_name}({}){ret_text} {{\n{}}}\n", sig.join(", "), indent(&lines.join("\n")))
+        let def = text::site(&text::Site::Definition);
+        format!("fn {wgsl_name}{def}({}){ret_text} {{\n{}}}\n", sig.join(", "), indent(&lines.join("\n")))
     }
 
     /// Binds the parameters: the signature's entries, and for each
@@ -242,7 +243,7 @@ impl<'m> FnLowerer<'m> {
 
     /// Resolves the placeholders of `text` with this function's inference
     /// variables and strips its markers (see [`text::finish`]).
-    pub fn finish(&self, text: &str) -> (String, Vec<(usize, std::ops::Range<usize>)>) {
+    pub fn finish(&self, text: &str) -> text::Finished {
         text::finish(text, &|v| self.resolve_var(v) == Scalar::I32)
     }
 

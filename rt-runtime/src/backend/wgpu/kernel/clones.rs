@@ -2,64 +2,64 @@
 //! have no resumable form. WGSL has no recursion, so everything that traces
 //! is cloned per trace depth (`_d<k>`), each clone's traces calling the
 //! next depth's; `clone_estimate` says what that costs before it is built.
+//!
+//! Which names a clone renames is a fact the compiler recorded while
+//! lowering ([`WgslSite`]: a function's own name, its trace calls and its
+//! helper calls, each with the byte offset where the name ends): the linker
+//! inserts suffixes at those offsets and searches no text.
 
 use super::*;
-use rt_std::program::{ProgramDescriptor, TypeLayout};
+use rt_std::program::{ProgramDescriptor, TypeLayout, WgslItem, WgslName, WgslSite};
 use std::collections::{BTreeMap, BTreeSet};
 
-/// Renames a function's tracing calls for depth `k`.
-pub(super) fn at_depth(
-    text: &str,
-    depth: u32,
-    tracing_helpers: &BTreeSet<String>,
-    rename_self: Option<&str>,
-) -> String {
-    let mut out = text.to_string();
-    if let Some(name) = rename_self {
-        out = out.replacen(&format!("fn {name}("), &format!("fn {name}_d{depth}("), 1);
-    }
-    // rt_trace_<P>( → rt_trace_<P>_d<k+1>(
-    let mut result = String::with_capacity(out.len());
-    let mut rest = out.as_str();
-    while let Some(i) = rest.find("rt_trace_") {
-        result.push_str(&rest[..i]);
-        let tail = &rest[i..];
-        let end = tail.find('(').unwrap_or(tail.len());
-        let ident = &tail[..end];
-        if ident.chars().all(|c| c.is_alphanumeric() || c == '_') && end < tail.len() {
-            result.push_str(&format!("{ident}_d{}", depth + 1));
-        } else {
-            result.push_str(ident);
-        }
-        rest = &tail[end..];
-    }
-    result.push_str(rest);
-    for h in tracing_helpers {
-        result = result.replace(&format!("{h}("), &format!("{h}_d{depth}("));
-        // Undo the rename of the helper's own definition line when cloning
-        // the helper itself (handled by `rename_self`).
-        result = result.replace(&format!("fn {h}_d{depth}_d{depth}("), &format!("fn {h}_d{depth}("));
-    }
-    result
+/// Linked types or shared functions by WGSL name, each with the program it
+/// came from.
+pub(super) type Linked = BTreeMap<&'static str, (&'static WgslItem, &'static ProgramDescriptor)>;
+
+/// The helpers that trace themselves (a trace call site of their own).
+pub(super) fn helpers_that_trace(functions: &Linked) -> BTreeSet<&'static str> {
+    functions
+        .iter()
+        .filter(|(_, (f, _))| f.sites.iter().any(|s| matches!(s.name, WgslName::Trace(_))))
+        .map(|(n, _)| *n)
+        .collect()
 }
 
-/// Trace call sites in a function's text, counting those of the tracing
-/// helpers it calls.
-pub(super) fn trace_sites(
-    text: &str,
-    functions: &BTreeMap<&str, (&str, &ProgramDescriptor)>,
-    tracing: &BTreeSet<String>,
-) -> u64 {
-    let mut n = text.matches("rt_trace_").count() as u64;
-    for h in tracing {
-        let calls = text.matches(&format!("{h}(")).count().saturating_sub(text.matches(&format!("fn {h}(")).count());
-        if calls > 0
-            && let Some((body, _)) = functions.get(h.as_str())
-        {
-            n = n.saturating_add((calls as u64).saturating_mul(trace_sites(body, functions, tracing)));
-        }
+/// A function's text at depth `k`: its own name and its calls of tracing
+/// helpers get `_d<k>`, its trace calls `_d<k+1>` (the next depth's trace
+/// functions).
+pub(super) fn at_depth(text: &str, sites: &[WgslSite], depth: u32, tracing_helpers: &BTreeSet<&str>) -> String {
+    let mut out = String::with_capacity(text.len() + 4 * sites.len());
+    let mut from = 0;
+    for site in sites {
+        let d = match site.name {
+            WgslName::Definition => depth,
+            WgslName::Trace(_) => depth + 1,
+            WgslName::Call(h) if tracing_helpers.contains(h) => depth,
+            WgslName::Call(_) => continue,
+        };
+        let end = site.end as usize;
+        out.push_str(&text[from..end]);
+        out.push_str(&format!("_d{d}"));
+        from = end;
     }
-    n
+    out.push_str(&text[from..]);
+    out
+}
+
+/// Trace call sites of a function, counting those of the tracing helpers it
+/// calls.
+pub(super) fn trace_sites(sites: &[WgslSite], functions: &Linked, tracing: &BTreeSet<&str>) -> u64 {
+    sites
+        .iter()
+        .map(|s| match s.name {
+            WgslName::Trace(_) => 1,
+            WgslName::Call(h) if tracing.contains(h) => {
+                functions.get(h).map_or(0, |(f, _)| trace_sites(f.sites, functions, tracing))
+            }
+            WgslName::Call(_) | WgslName::Definition => 0,
+        })
+        .fold(0, u64::saturating_add)
 }
 
 /// How many copies of the traversal per-depth clones inline: the
@@ -68,17 +68,17 @@ pub(super) fn trace_sites(
 pub(super) fn clone_estimate(
     spec: &KernelSpec,
     all: &[KernelProgram],
-    functions: &BTreeMap<&str, (&str, &ProgramDescriptor)>,
-    tracing: &BTreeSet<String>,
+    functions: &Linked,
+    tracing: &BTreeSet<&str>,
 ) -> u64 {
-    let rg = trace_sites(spec.ray_generation.desc.wgsl_program, functions, tracing);
+    let rg = trace_sites(spec.ray_generation.desc.wgsl_program_sites, functions, tracing);
     let mut seen = BTreeSet::new();
     let per_level: u64 = all
         .iter()
         .filter(|p| {
             matches!(p.desc.kind, ProgramKind::ClosestHit | ProgramKind::Miss) && seen.insert(p.desc.wgsl_entry)
         })
-        .map(|p| trace_sites(p.desc.wgsl_program, functions, tracing))
+        .map(|p| trace_sites(p.desc.wgsl_program_sites, functions, tracing))
         .fold(0, u64::saturating_add);
     let (mut total, mut level) = (0u64, rg);
     for _ in 0..spec.max_depth {
@@ -98,7 +98,7 @@ pub(super) fn per_depth_clones(
     all: &[KernelProgram],
     payloads: &BTreeMap<&str, TypeLayout>,
     payload_ids: &BTreeMap<&str, u32>,
-    tracing_helpers: &BTreeSet<String>,
+    tracing_helpers: &BTreeSet<&str>,
 ) -> String {
     let mut out = String::new();
     // Programs: tracing kinds cloned per depth.
@@ -108,21 +108,12 @@ pub(super) fn per_depth_clones(
         if !emitted.insert(p.desc.wgsl_entry) {
             continue;
         }
-        let text = p.desc.wgsl_program;
+        let (text, sites) = (p.desc.wgsl_program, p.desc.wgsl_program_sites);
         match p.desc.kind {
-            ProgramKind::RayGeneration => out.push_str(&at_depth(text, 0, tracing_helpers, Some(p.desc.wgsl_entry))),
-            ProgramKind::ClosestHit | ProgramKind::Miss if traces(p.desc) || text.contains("rtf_") => {
-                for d in 1..=spec.max_depth {
-                    out.push_str(&at_depth(text, d, tracing_helpers, Some(p.desc.wgsl_entry)));
-                }
-            }
+            ProgramKind::RayGeneration => out.push_str(&at_depth(text, sites, 0, tracing_helpers)),
             ProgramKind::ClosestHit | ProgramKind::Miss => {
                 for d in 1..=spec.max_depth {
-                    out.push_str(&text.replacen(
-                        &format!("fn {}(", p.desc.wgsl_entry),
-                        &format!("fn {}_d{d}(", p.desc.wgsl_entry),
-                        1,
-                    ));
+                    out.push_str(&at_depth(text, sites, d, tracing_helpers));
                 }
             }
             _ => out.push_str(text),

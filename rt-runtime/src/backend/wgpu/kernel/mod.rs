@@ -20,7 +20,7 @@
 mod clones;
 
 use crate::error::{Result, RtError};
-use clones::{at_depth, clone_estimate, per_depth_clones};
+use clones::{Linked, at_depth, clone_estimate, helpers_that_trace, per_depth_clones};
 use rt_std::program::{ProgramDescriptor, ProgramKind, TriangleBuiltin, TypeLayout, VariableKind};
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -200,8 +200,7 @@ pub fn generate(spec: &KernelSpec) -> Result<Generated> {
 
     // Types and shared functions, deduplicated by name.
     let (types, functions) = linked_items(&all)?;
-    let tracing_helpers: BTreeSet<String> =
-        functions.iter().filter(|(_, (t, _))| t.contains("rt_trace_")).map(|(n, _)| n.to_string()).collect();
+    let tracing_helpers = helpers_that_trace(&functions);
 
     let mut payloads: BTreeMap<&str, TypeLayout> = BTreeMap::new();
     let mut attributes: BTreeMap<&str, TypeLayout> = BTreeMap::new();
@@ -239,8 +238,8 @@ pub fn generate(spec: &KernelSpec) -> Result<Generated> {
         out.push_str(TWO_LEVEL);
     }
     out.push_str("\n// ---- types ----\n");
-    for (text, _) in types.values() {
-        out.push_str(text);
+    for (item, _) in types.values() {
+        out.push_str(item.text);
     }
     // Every tracing program resumable and per-depth clones would be many:
     // one loop runs them all. Few clones (nothing traces from a closest hit
@@ -260,15 +259,15 @@ pub fn generate(spec: &KernelSpec) -> Result<Generated> {
         )
     });
     out.push_str("\n// ---- shared functions ----\n");
-    for (name, (text, _)) in &functions {
+    for (name, (item, _)) in &functions {
         if tracing_helpers.contains(*name) && resumable {
             // Only their resumable forms are called.
         } else if tracing_helpers.contains(*name) {
             for d in 0..=spec.max_depth {
-                out.push_str(&at_depth(text, d, &tracing_helpers, Some(name)));
+                out.push_str(&at_depth(item.text, item.sites, d, &tracing_helpers));
             }
         } else {
-            out.push_str(text);
+            out.push_str(item.text);
         }
     }
 
@@ -310,20 +309,14 @@ pub fn generate(spec: &KernelSpec) -> Result<Generated> {
 
 /// The WGSL types and shared functions of `all`, deduplicated by name; two
 /// programs with different items of one name are a link conflict.
-#[allow(clippy::type_complexity)]
-fn linked_items(
-    all: &[KernelProgram],
-) -> Result<(
-    BTreeMap<&'static str, (&'static str, &'static ProgramDescriptor)>,
-    BTreeMap<&'static str, (&'static str, &'static ProgramDescriptor)>,
-)> {
-    let mut types: BTreeMap<&str, (&str, &ProgramDescriptor)> = BTreeMap::new();
-    let mut functions: BTreeMap<&str, (&str, &ProgramDescriptor)> = BTreeMap::new();
+fn linked_items(all: &[KernelProgram]) -> Result<(Linked, Linked)> {
+    let mut types = Linked::new();
+    let mut functions = Linked::new();
     for p in all {
         for (table, items) in [(&mut types, p.desc.wgsl_types), (&mut functions, p.desc.wgsl_functions)] {
             for item in items {
                 match table.get(item.name) {
-                    Some((text, other)) if *text != item.text => {
+                    Some((linked, other)) if linked.text != item.text => {
                         return Err(RtError::LinkConflict {
                             item: item.name.to_string(),
                             a: other.name,
@@ -334,7 +327,7 @@ fn linked_items(
                     }
                     Some(_) => {}
                     None => {
-                        table.insert(item.name, (item.text, p.desc));
+                        table.insert(item.name, (item, p.desc));
                     }
                 }
             }
