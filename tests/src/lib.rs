@@ -5,6 +5,7 @@
 #![allow(dead_code, clippy::too_many_arguments)]
 
 pub mod fuzz;
+pub mod scene_fuzz;
 
 #[path = "../snapshots/in/buffers.rs"]
 pub mod buffers;

@@ -1,0 +1,677 @@
+//! A differential fuzzer for the scene graph (issue 16): random graphs of
+//! groups, transforms (rotated, scaled, mirrored, nearly singular),
+//! selectors, geometry groups sharing geometry and nodes, visibility masks,
+//! custom spheres and triangle meshes, any-hit programs that ignore or
+//! terminate, and ray flags, rendered on every backend and compared per
+//! launch index.
+//!
+//! ## Design
+//! 1. [`generate`] makes a [`Graph`] from a seed and an index: a DAG of
+//!    nodes (children before parents, so a node may be shared by several
+//!    parents), its geometry, its instances' materials and variables, the
+//!    camera, the ray flags and the ray mask. Graphs come in four shape
+//!    [`Class`]es, each with its own kernel on wgpu: triangles only or with
+//!    spheres and any-hit programs, two-level (a group of instances) or a
+//!    full graph with nested groups, transforms above groups and selectors.
+//! 2. Every graph runs the one fixed set of programs in [`programs`], so a
+//!    context per class and backend is reused across graphs (each graph
+//!    adds its nodes and becomes `top`): the kernel, keyed by the program
+//!    set and the whole scene's shape, is relinked only when a stack grows.
+//!    A context is replaced every [`GRAPHS_PER_CONTEXT`] graphs of its class,
+//!    so the scene (encoded whole on wgpu) stays small.
+//! 3. [`check`] compares: hit or miss exactly, the hit's id (instance and
+//!    primitive) exactly, `t` and the instance's origin within a relative
+//!    bound. Rays that pass within an epsilon of a triangle's edge, graze
+//!    its plane, touch a sphere's silhouette, meet two surfaces at the same
+//!    distance, or enter a side-choosing selector with a direction on its
+//!    plane are skipped (counted): there the backends may legitimately
+//!    differ. Where the ray terminates on its first hit (the flag, or an
+//!    any hit that terminates and is not disabled), which hit is not
+//!    defined between backends: only hit or miss is compared.
+//!
+//! `RT_SCENE_FUZZ=<graphs>`, `RT_SCENE_FUZZ_SEED=<seed>` and
+//! `RT_SCENE_FUZZ_ONLY=<index>` choose what a run does.
+
+pub mod check;
+pub mod programs;
+
+use crate::fuzz::generate::Rng;
+use programs::*;
+use rt_runtime::*;
+use rt_std::prelude::*;
+use std::fmt::Write;
+
+/// Launch size per graph (square).
+pub const SIZE: u32 = 20;
+/// Graphs of one class that share a context.
+pub const GRAPHS_PER_CONTEXT: usize = 40;
+
+/// What a run does.
+#[derive(Clone, Debug)]
+pub struct Config {
+    pub seed: u64,
+    pub first: usize,
+    pub graphs: usize,
+}
+
+impl Config {
+    pub fn from_env(seed: u64, graphs: usize) -> Config {
+        let var = |name: &str| std::env::var(name).ok().and_then(|v| v.parse::<u64>().ok());
+        let seed = var("RT_SCENE_FUZZ_SEED").unwrap_or(seed);
+        let graphs = var("RT_SCENE_FUZZ").map_or(graphs, |n| n as usize);
+        match var("RT_SCENE_FUZZ_ONLY") {
+            Some(i) => Config { seed, first: i as usize, graphs: 1 },
+            None => Config { seed, first: 0, graphs },
+        }
+    }
+}
+
+/// A graph's kernel shape.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Class {
+    /// Spheres (an intersection program) and any-hit programs.
+    pub custom: bool,
+    /// Nested groups, transforms above groups, selectors.
+    pub deep: bool,
+}
+
+impl Class {
+    pub const ALL: [Class; 4] = [
+        Class { custom: false, deep: false },
+        Class { custom: true, deep: false },
+        Class { custom: false, deep: true },
+        Class { custom: true, deep: true },
+    ];
+}
+
+#[derive(Clone, Debug)]
+pub enum Geom {
+    Triangles { positions: Vec<Vec3>, indices: Vec<[u32; 3]> },
+    Spheres(Vec<Vec4>),
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Material {
+    Plain,
+    Ignore,
+    Terminate,
+}
+
+#[derive(Clone, Debug)]
+pub struct Instance {
+    pub geom: usize,
+    pub material: Material,
+    /// 1-based: ids are `instance_id * 64 + primitive`.
+    pub id: u32,
+    pub ignore_every: u32,
+}
+
+#[derive(Clone, Debug)]
+pub enum NodeKind {
+    GeometryGroup(Vec<usize>),
+    Group(Vec<usize>),
+    Transform(Mat4, usize),
+    /// Visit rule (see [`programs::fuzz_visit`]) and children.
+    Selector(u32, Vec<usize>),
+}
+
+#[derive(Clone, Debug)]
+pub struct Node {
+    pub kind: NodeKind,
+    pub mask: u8,
+    pub builder: Builder,
+}
+
+/// One generated scene and how it is looked at.
+#[derive(Clone, Debug)]
+pub struct Graph {
+    pub class: Class,
+    pub geoms: Vec<Geom>,
+    pub instances: Vec<Instance>,
+    /// Children before parents; the last is the root.
+    pub nodes: Vec<Node>,
+    pub flags: u32,
+    pub ray_mask: u32,
+    pub eye: Vec3,
+    pub forward: Vec3,
+    pub right: Vec3,
+    pub up: Vec3,
+}
+
+impl Graph {
+    pub fn root(&self) -> usize {
+        self.nodes.len() - 1
+    }
+
+    /// Whether the hit a ray reports is defined between backends: not when
+    /// it may stop at its first hit.
+    pub fn which_hit_defined(&self) -> bool {
+        let terminate_ah = self.instances.iter().any(|i| i.material == Material::Terminate);
+        self.flags & RAY_FLAG_TERMINATE_ON_FIRST_HIT == 0
+            && !(terminate_ah && self.flags & RAY_FLAG_DISABLE_ANYHIT == 0)
+    }
+
+    /// World-space ray of launch index `(x, y)`, as the camera computes it.
+    pub fn ray(&self, x: u32, y: u32) -> (Vec3, Vec3) {
+        let p = |i: u32| (i as f32 + 0.5) / SIZE as f32 * 2.0 - 1.0;
+        (self.eye, (self.forward + self.right * p(x) + self.up * p(y)).normalize())
+    }
+
+    /// A readable description: flags, mask, camera, then the DAG from the root.
+    pub fn describe(&self) -> String {
+        let mut s = String::new();
+        let _ = writeln!(
+            s,
+            "class {:?}, flags {:#x}, ray mask {:#x}, eye {}, forward {}",
+            self.class, self.flags, self.ray_mask, self.eye, self.forward
+        );
+        for (i, g) in self.geoms.iter().enumerate() {
+            match g {
+                Geom::Triangles { positions, indices } => {
+                    let _ = writeln!(s, "geometry {i}: {} triangles {positions:?} {indices:?}", indices.len());
+                }
+                Geom::Spheres(sp) => {
+                    let _ = writeln!(s, "geometry {i}: spheres {sp:?}");
+                }
+            }
+        }
+        for (i, inst) in self.instances.iter().enumerate() {
+            let _ = writeln!(
+                s,
+                "instance {i}: geometry {}, {:?} (ignore_every {}), id {}",
+                inst.geom, inst.material, inst.ignore_every, inst.id
+            );
+        }
+        let mut seen = vec![false; self.nodes.len()];
+        self.describe_node(self.root(), 0, &mut seen, &mut s);
+        s
+    }
+
+    fn describe_node(&self, n: usize, depth: usize, seen: &mut [bool], s: &mut String) {
+        let node = &self.nodes[n];
+        let pad = "  ".repeat(depth);
+        let mask = if node.mask == 0xff { String::new() } else { format!(" mask {:#04x}", node.mask) };
+        let again = if seen[n] { " (shared, above)" } else { "" };
+        let (line, children): (String, Vec<usize>) = match &node.kind {
+            NodeKind::GeometryGroup(insts) => (format!("geometry group {insts:?} {:?}", node.builder), vec![]),
+            NodeKind::Group(c) => (format!("group {:?}", node.builder), c.clone()),
+            NodeKind::Transform(m, c) => {
+                let (sc, r, t) = m.to_scale_rotation_translation();
+                (format!("transform scale {sc} rotation {r} translation {t} det {:.3e}", m.determinant()), vec![*c])
+            }
+            NodeKind::Selector(rule, c) => (format!("selector rule {rule}"), c.clone()),
+        };
+        let _ = writeln!(s, "{pad}node {n}: {line}{mask}{again}");
+        if seen[n] {
+            return;
+        }
+        seen[n] = true;
+        for c in children {
+            self.describe_node(c, depth + 1, seen, s);
+        }
+    }
+}
+
+fn f(rng: &mut Rng, lo: f32, hi: f32) -> f32 {
+    lo + (hi - lo) * (rng.below(1 << 24) as f32 / (1u32 << 24) as f32)
+}
+
+fn unit(rng: &mut Rng) -> Vec3 {
+    loop {
+        let v = Vec3::new(f(rng, -1.0, 1.0), f(rng, -1.0, 1.0), f(rng, -1.0, 1.0));
+        if v.length_squared() > 0.05 && v.length_squared() <= 1.0 {
+            return v.normalize();
+        }
+    }
+}
+
+fn chance(rng: &mut Rng, p: f32) -> bool {
+    f(rng, 0.0, 1.0) < p
+}
+
+fn random_geom(rng: &mut Rng, custom: bool) -> Geom {
+    let kinds = if custom { 3 } else { 2 };
+    match rng.below(kinds) {
+        0 => {
+            // A quad (two triangles sharing a diagonal), its corners jittered.
+            let h = f(rng, 0.4, 1.2);
+            let mut positions =
+                vec![Vec3::new(-h, -h, 0.0), Vec3::new(h, -h, 0.0), Vec3::new(h, h, 0.0), Vec3::new(-h, h, 0.0)];
+            for p in &mut positions {
+                *p += Vec3::new(f(rng, -0.2, 0.2), f(rng, -0.2, 0.2), f(rng, -0.1, 0.1));
+            }
+            Geom::Triangles { positions, indices: vec![[0, 1, 2], [0, 2, 3]] }
+        }
+        1 => {
+            // A tetrahedron: a closed mesh.
+            let r = f(rng, 0.4, 1.0);
+            let mut positions = vec![
+                Vec3::new(1.0, 1.0, 1.0),
+                Vec3::new(1.0, -1.0, -1.0),
+                Vec3::new(-1.0, 1.0, -1.0),
+                Vec3::new(-1.0, -1.0, 1.0),
+            ];
+            for p in &mut positions {
+                *p = *p * r + Vec3::new(f(rng, -0.15, 0.15), f(rng, -0.15, 0.15), f(rng, -0.15, 0.15));
+            }
+            Geom::Triangles { positions, indices: vec![[0, 1, 2], [0, 3, 1], [0, 2, 3], [1, 3, 2]] }
+        }
+        _ => {
+            let n = 1 + rng.below(3) as usize;
+            Geom::Spheres(
+                (0..n)
+                    .map(|_| {
+                        Vec3::new(f(rng, -0.8, 0.8), f(rng, -0.8, 0.8), f(rng, -0.8, 0.8)).extend(f(rng, 0.2, 0.6))
+                    })
+                    .collect(),
+            )
+        }
+    }
+}
+
+fn random_transform(rng: &mut Rng) -> Mat4 {
+    let rotation = Mat4::from_axis_angle(unit(rng), f(rng, -3.0, 3.0));
+    let translation = Vec3::new(f(rng, -1.2, 1.2), f(rng, -1.2, 1.2), f(rng, -1.2, 1.2));
+    let mut scale = match rng.below(3) {
+        0 => Vec3::splat(f(rng, 0.6, 1.4)),
+        _ => Vec3::new(f(rng, 0.6, 1.4), f(rng, 0.6, 1.4), f(rng, 0.6, 1.4)),
+    };
+    match rng.below(8) {
+        // Mirrored: a negative determinant.
+        0 | 1 => scale[rng.below(3) as usize] *= -1.0,
+        // Nearly singular but invertible.
+        2 => scale[rng.below(3) as usize] = 1e-3,
+        3 => scale[rng.below(3) as usize] = 2e-2,
+        _ => {}
+    }
+    // Sometimes a shear too (not a scale-rotation-translation).
+    let shear = if chance(rng, 0.2) {
+        let mut m = Mat4::IDENTITY;
+        m.x_axis.y = f(rng, -0.5, 0.5);
+        m
+    } else {
+        Mat4::IDENTITY
+    };
+    Mat4::from_translation(translation) * rotation * Mat4::from_scale(scale) * shear
+}
+
+fn random_mask(rng: &mut Rng) -> u8 {
+    if chance(rng, 0.8) { 0xff } else { [0x00, 0x01, 0x02, 0x03, 0xfe][rng.below(5) as usize] }
+}
+
+/// A builder any node may use (spatial splits need triangles: geometry
+/// groups of meshes get `Sbvh` at times, see [`generate`]).
+fn random_builder(rng: &mut Rng) -> Builder {
+    [Builder::Bvh, Builder::MedianBvh, Builder::Lbvh, Builder::NoAccel][rng.below(4) as usize]
+}
+
+/// Graph `index` of `seed`'s sequence.
+pub fn generate(seed: u64, index: usize) -> Graph {
+    let mut rng = Rng::new(seed ^ (index as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15));
+    let class = Class::ALL[index % 4];
+    let geoms: Vec<Geom> = (0..1 + rng.below(3)).map(|_| random_geom(&mut rng, class.custom)).collect();
+    let instances: Vec<Instance> = (0..2 + rng.below(4) as usize)
+        .map(|i| Instance {
+            geom: rng.below(geoms.len() as u64) as usize,
+            material: if !class.custom {
+                Material::Plain
+            } else {
+                [Material::Plain, Material::Plain, Material::Ignore, Material::Terminate][rng.below(4) as usize]
+            },
+            id: i as u32 + 1,
+            ignore_every: 1 + rng.below(4) as u32,
+        })
+        .collect();
+    let mut g = Graph {
+        class,
+        geoms,
+        instances,
+        nodes: Vec::new(),
+        flags: 0,
+        ray_mask: 0xff,
+        eye: Vec3::ZERO,
+        forward: Vec3::ZERO,
+        right: Vec3::ZERO,
+        up: Vec3::ZERO,
+    };
+    // Node heights, for sharing a node only where it fits the depth bound.
+    let mut heights: Vec<u32> = Vec::new();
+    let max_depth = if class.deep { 2 + rng.below(3) as u32 } else { 2 };
+    fn push(g: &mut Graph, heights: &mut Vec<u32>, rng: &mut Rng, kind: NodeKind, h: u32) -> usize {
+        let mask = random_mask(rng);
+        let builder = random_builder(rng);
+        g.nodes.push(Node { kind, mask, builder });
+        heights.push(h);
+        g.nodes.len() - 1
+    }
+    fn geometry_group(g: &mut Graph, heights: &mut Vec<u32>, rng: &mut Rng) -> usize {
+        let n = 1 + rng.below(3) as usize;
+        let insts = (0..n).map(|_| rng.below(g.instances.len() as u64) as usize).collect::<Vec<_>>();
+        // Instances of distinct geometries: two instances of one geometry
+        // in one group would meet every ray at the same distance.
+        let mut insts = insts.clone();
+        insts.sort_unstable_by_key(|i| g.instances[*i].geom);
+        insts.dedup_by_key(|i| g.instances[*i].geom);
+        let meshes = insts.iter().all(|&i| matches!(g.geoms[g.instances[i].geom], Geom::Triangles { .. }));
+        let n = push(g, heights, rng, NodeKind::GeometryGroup(insts), 0);
+        if meshes && chance(rng, 0.25) {
+            g.nodes[n].builder = Builder::Sbvh;
+        }
+        n
+    }
+    // A node of height at most `h` (0: a geometry group).
+    fn node(g: &mut Graph, heights: &mut Vec<u32>, rng: &mut Rng, h: u32, deep: bool) -> usize {
+        // Share an existing node now and then (instancing of subgraphs).
+        if !heights.is_empty() && chance(rng, 0.3) {
+            let fits: Vec<usize> = (0..heights.len()).filter(|&i| heights[i] <= h).collect();
+            if !fits.is_empty() {
+                let pick = fits[rng.below(fits.len() as u64) as usize];
+                // Shared children get a transform of their own, so that
+                // their copies are not at the same place.
+                if h >= 1 && heights[pick] < h {
+                    let m = random_transform(rng);
+                    return push(g, heights, rng, NodeKind::Transform(m, pick), heights[pick] + 1);
+                }
+            }
+        }
+        if h == 0 || chance(rng, 0.2) {
+            return geometry_group(g, heights, rng);
+        }
+        if !deep {
+            // Two-level: transforms (chains) over geometry groups.
+            let child = if h >= 2 && chance(rng, 0.3) {
+                node(g, heights, rng, 1, deep)
+            } else {
+                geometry_group(g, heights, rng)
+            };
+            let m = random_transform(rng);
+            return push(g, heights, rng, NodeKind::Transform(m, child), heights[child] + 1);
+        }
+        match rng.below(5) {
+            0 | 1 => {
+                let child = node(g, heights, rng, h - 1, deep);
+                let m = random_transform(rng);
+                push(g, heights, rng, NodeKind::Transform(m, child), heights[child] + 1)
+            }
+            2 | 3 => {
+                let n = 1 + rng.below(4) as usize;
+                let children: Vec<usize> = (0..n).map(|_| node(g, heights, rng, h - 1, deep)).collect();
+                let ht = 1 + children.iter().map(|&c| heights[c]).max().unwrap();
+                push(g, heights, rng, NodeKind::Group(children), ht)
+            }
+            _ => {
+                let n = 2 + rng.below(2) as usize;
+                let children: Vec<usize> = (0..n).map(|_| node(g, heights, rng, h - 1, deep)).collect();
+                let ht = 1 + children.iter().map(|&c| heights[c]).max().unwrap();
+                let rule = rng.below(2) as u32;
+                push(g, heights, rng, NodeKind::Selector(rule, children), ht)
+            }
+        }
+    }
+    if !class.deep && chance(&mut rng, 0.1) {
+        geometry_group(&mut g, &mut heights, &mut rng);
+    } else {
+        let n = 1 + rng.below(4) as usize;
+        let children: Vec<usize> =
+            (0..n).map(|_| node(&mut g, &mut heights, &mut rng, max_depth - 1, class.deep)).collect();
+        let ht = 1 + children.iter().map(|&c| heights[c]).max().unwrap();
+        push(&mut g, &mut heights, &mut rng, NodeKind::Group(children), ht);
+    }
+    // A geometry group at the root of a two-level graph keeps full masks
+    // sometimes, so that something is seen.
+    g.flags = [
+        RAY_FLAG_NONE,
+        RAY_FLAG_NONE,
+        RAY_FLAG_DISABLE_ANYHIT,
+        RAY_FLAG_TERMINATE_ON_FIRST_HIT,
+        RAY_FLAG_CULL_BACK_FACING,
+        RAY_FLAG_CULL_FRONT_FACING,
+        RAY_FLAG_DISABLE_CLOSESTHIT,
+        RAY_FLAG_CULL_BACK_FACING | RAY_FLAG_DISABLE_ANYHIT,
+    ][rng.below(8) as usize];
+    g.ray_mask = [0xff, 0xff, 0xff, 0x01, 0x02, 0x03][rng.below(6) as usize];
+    let dir = unit(&mut rng);
+    g.eye = dir * f(&mut rng, 6.0, 9.0);
+    g.forward = -dir;
+    let helper = if dir.y.abs() < 0.9 { Vec3::Y } else { Vec3::X };
+    let spread = f(&mut rng, 0.12, 0.25);
+    g.right = dir.cross(helper).normalize() * -spread;
+    g.up = g.right.cross(g.forward).normalize() * spread;
+    g
+}
+
+/// A context of one class on one backend, with the fixed programs.
+pub struct Runner {
+    pub ctx: Context,
+    out: BufferId,
+    origins: BufferId,
+    plain: MaterialId,
+    ignore: Option<MaterialId>,
+    terminate: Option<MaterialId>,
+    sphere: Option<(ProgramId, ProgramId)>,
+    visit: Option<ProgramId>,
+    pub graphs: usize,
+}
+
+/// What one backend saw for a graph: `out` and `origins` per launch index.
+pub struct Seen {
+    pub out: Vec<Vec4>,
+    pub origins: Vec<Vec4>,
+    pub exceptions: usize,
+}
+
+impl Runner {
+    pub fn new(backend: Backend, class: Class) -> Runner {
+        let mut ctx = Context::new();
+        ctx.set_backend(backend);
+        let rg = ctx.create_program(&fuzz_camera::PROGRAM);
+        ctx.set_ray_generation_program(0, rg).unwrap();
+        let miss = ctx.create_program(&fuzz_miss::PROGRAM);
+        ctx.set_miss_program(0, miss).unwrap();
+        let out = ctx.create_buffer_2d::<Vec4>(BufferType::Output, SIZE, SIZE).unwrap();
+        let origins = ctx.create_buffer_2d::<Vec4>(BufferType::Output, SIZE, SIZE).unwrap();
+        ctx.set_var(Scope::Context, "out", out).unwrap();
+        ctx.set_var(Scope::Context, "origins", origins).unwrap();
+        let ch = ctx.create_program(&fuzz_hit::PROGRAM);
+        let material = |ctx: &mut Context, ah: Option<&'static rt_std::program::ProgramDescriptor>| {
+            let m = ctx.create_material();
+            ctx.set_closest_hit_program(m, 0, ch).unwrap();
+            if let Some(ah) = ah {
+                let p = ctx.create_program(ah);
+                ctx.set_any_hit_program(m, 0, p).unwrap();
+            }
+            m
+        };
+        let plain = material(&mut ctx, None);
+        let (ignore, terminate, sphere) = if class.custom {
+            let i = material(&mut ctx, Some(&fuzz_ignore::PROGRAM));
+            let t = material(&mut ctx, Some(&fuzz_terminate::PROGRAM));
+            let s = (ctx.create_program(&fuzz_sphere::PROGRAM), ctx.create_program(&fuzz_sphere_bounds::PROGRAM));
+            (Some(i), Some(t), Some(s))
+        } else {
+            (None, None, None)
+        };
+        let visit = class.deep.then(|| ctx.create_program(&fuzz_visit::PROGRAM));
+        Runner { ctx, out, origins, plain, ignore, terminate, sphere, visit, graphs: 0 }
+    }
+
+    /// Adds `g`'s nodes to the context, makes its root `top` and launches.
+    #[allow(clippy::result_large_err)] // rt_runtime::Result, as the context returns it.
+    pub fn run(&mut self, g: &Graph) -> Result<Seen> {
+        self.graphs += 1;
+        let ctx = &mut self.ctx;
+        let mut geoms = Vec::new();
+        for geom in &g.geoms {
+            geoms.push(match geom {
+                Geom::Triangles { positions, indices } => ctx.create_triangles(TriangleMesh {
+                    positions: positions.clone(),
+                    indices: indices.clone(),
+                    ..TriangleMesh::default()
+                })?,
+                Geom::Spheres(s) => {
+                    let (isect, bounds) = self.sphere.expect("spheres in a class without custom primitives");
+                    let id = ctx.create_custom_geometry(s.len() as u32, isect, bounds)?;
+                    let b = ctx.create_buffer(BufferType::Input, s.clone());
+                    ctx.set_var(id, "spheres", b)?;
+                    id
+                }
+            });
+        }
+        let mut insts = Vec::new();
+        for inst in &g.instances {
+            let m = match inst.material {
+                Material::Plain => self.plain,
+                Material::Ignore => self.ignore.unwrap(),
+                Material::Terminate => self.terminate.unwrap(),
+            };
+            let gi = ctx.create_geometry_instance(geoms[inst.geom], &[m])?;
+            ctx.set_var(gi, "instance_id", inst.id)?;
+            if inst.material == Material::Ignore {
+                ctx.set_var(gi, "ignore_every", inst.ignore_every)?;
+            }
+            insts.push(gi);
+        }
+        let mut ids: Vec<NodeId> = Vec::new();
+        for n in &g.nodes {
+            let accel = Acceleration::new(n.builder);
+            let id = match &n.kind {
+                NodeKind::GeometryGroup(c) => {
+                    ctx.create_geometry_group(&c.iter().map(|&i| insts[i]).collect::<Vec<_>>(), accel)?
+                }
+                NodeKind::Group(c) => ctx.create_group(&c.iter().map(|&i| ids[i]).collect::<Vec<_>>(), accel)?,
+                NodeKind::Transform(m, c) => ctx.create_transform(*m, ids[*c])?,
+                NodeKind::Selector(rule, c) => {
+                    let s = ctx.create_selector(self.visit.unwrap(), &c.iter().map(|&i| ids[i]).collect::<Vec<_>>())?;
+                    ctx.set_var(s, "visit_rule", *rule)?;
+                    ctx.set_var(s, "visit_children", c.len() as u32)?;
+                    s
+                }
+            };
+            if n.mask != 0xff {
+                ctx.set_visibility_mask(id, n.mask)?;
+            }
+            ids.push(id);
+        }
+        ctx.set_var(Scope::Context, "top", ids[g.root()])?;
+        ctx.set_var(Scope::Context, "eye", g.eye)?;
+        ctx.set_var(Scope::Context, "forward", g.forward)?;
+        ctx.set_var(Scope::Context, "right", g.right)?;
+        ctx.set_var(Scope::Context, "up", g.up)?;
+        ctx.set_var(Scope::Context, "flags", g.flags)?;
+        ctx.set_var(Scope::Context, "mask", g.ray_mask)?;
+        let report = ctx.launch(0, SIZE, SIZE)?;
+        Ok(Seen {
+            out: ctx.read_buffer::<Vec4>(self.out)?,
+            origins: ctx.read_buffer::<Vec4>(self.origins)?,
+            exceptions: report.exceptions.len(),
+        })
+    }
+}
+
+/// A graph whose backends disagree.
+pub struct Failure {
+    pub index: usize,
+    pub description: String,
+    pub detail: String,
+}
+
+#[derive(Default, Debug)]
+pub struct Stats {
+    pub graphs: usize,
+    pub rays_compared: usize,
+    pub rays_hit_only: usize,
+    pub skipped: usize,
+    pub hits: usize,
+    pub mismatched_rays: usize,
+    pub pipelines: u64,
+    pub contexts: usize,
+}
+
+pub struct Report {
+    pub stats: Stats,
+    pub failures: Vec<Failure>,
+}
+
+impl Report {
+    pub fn summary(&self) -> String {
+        let s = &self.stats;
+        format!(
+            "scene fuzz: {} graphs, {} rays compared ({} by hit or miss only, {} hits), {} skipped as ambiguous, {} mismatched rays in {} graphs; {} wgpu pipelines created over {} contexts",
+            s.graphs,
+            s.rays_compared,
+            s.rays_hit_only,
+            s.hits,
+            s.skipped,
+            s.mismatched_rays,
+            self.failures.len(),
+            s.pipelines,
+            s.contexts
+        )
+    }
+}
+
+/// Runs `cfg`'s graphs on the CPU and wgpu backends and compares them.
+pub fn run(cfg: &Config) -> Report {
+    let mut stats = Stats::default();
+    let mut failures = Vec::new();
+    let mut runners: Vec<Option<(Runner, Runner)>> = (0..4).map(|_| None).collect();
+    let mut retired_pipelines = 0;
+    for index in cfg.first..cfg.first + cfg.graphs {
+        let g = generate(cfg.seed, index);
+        let slot = Class::ALL.iter().position(|c| *c == g.class).unwrap();
+        if runners[slot].as_ref().is_some_and(|(c, _)| c.graphs >= GRAPHS_PER_CONTEXT) {
+            let (_, w) = runners[slot].take().unwrap();
+            retired_pipelines += w.ctx.pipelines_created();
+        }
+        let (cpu, gpu) = runners[slot].get_or_insert_with(|| {
+            stats.contexts += 1;
+            (Runner::new(Backend::Cpu, g.class), Runner::new(Backend::Wgpu, g.class))
+        });
+        stats.graphs += 1;
+        let started = std::time::Instant::now();
+        let seen = (cpu.run(&g), gpu.run(&g));
+        if started.elapsed().as_secs_f32() > 2.0 {
+            eprintln!("scene fuzz: graph {index} took {:.1?}", started.elapsed());
+        }
+        let (a, b) = match seen {
+            (Ok(a), Ok(b)) => (a, b),
+            (a, b) => {
+                failures.push(Failure {
+                    index,
+                    description: g.describe(),
+                    detail: format!(
+                        "a launch fails: cpu {:?}, wgpu {:?}",
+                        a.err().map(|e| e.to_string()),
+                        b.err().map(|e| e.to_string())
+                    ),
+                });
+                // The contexts may be unusable for the next graphs.
+                runners[slot] = None;
+                continue;
+            }
+        };
+        let c = check::compare(&g, &a, &b);
+        stats.rays_compared += c.compared;
+        stats.rays_hit_only += c.hit_only;
+        stats.skipped += c.skipped;
+        stats.hits += c.hits;
+        stats.mismatched_rays += c.mismatches.len();
+        if !c.mismatches.is_empty() || a.exceptions + b.exceptions > 0 {
+            let mut detail = format!("exceptions: cpu {}, wgpu {}\n", a.exceptions, b.exceptions);
+            for m in c.mismatches.iter().take(12) {
+                let _ = writeln!(detail, "{m}");
+            }
+            if c.mismatches.len() > 12 {
+                let _ = writeln!(detail, "... {} more", c.mismatches.len() - 12);
+            }
+            failures.push(Failure { index, description: g.describe(), detail });
+        }
+    }
+    stats.pipelines = retired_pipelines + runners.iter().flatten().map(|(_, w)| w.ctx.pipelines_created()).sum::<u64>();
+    Report { stats, failures }
+}
+
+/// The launch index of a flat output index.
+pub fn launch_index(i: usize) -> UVec2 {
+    UVec2::new(i as u32 % SIZE, i as u32 / SIZE)
+}
