@@ -1,0 +1,158 @@
+//! Program-level items: the entry point's body, the final dump of the
+//! live locals, `#[rt_function]` helpers.
+
+use super::*;
+
+impl Gen {
+    pub(super) fn generate(&mut self, id: usize) {
+        let _ = id;
+        // The program's vector types.
+        let all: Vec<Ty> =
+            [Scalar::F32, Scalar::I32, Scalar::U32].iter().flat_map(|s| (2..=4).map(move |n| Ty::V(n, *s))).collect();
+        for _ in 0..self.r.range(2, 4) {
+            let t = self.r.pick(&all);
+            if !self.vecs.contains(&t) {
+                self.vecs.push(t);
+            }
+        }
+        // Structs (a later one may contain an earlier one).
+        for i in 0..self.r.range(0, 2) as usize {
+            let mut fields = Vec::new();
+            for k in 0..self.r.range(2, 4) {
+                let t = match self.r.weighted(&[4, 3, if i > 0 { 1 } else { 0 }]) {
+                    0 => Ty::S(self.scalar()),
+                    1 => self.r.pick(&self.vecs),
+                    _ => Ty::Struct(i - 1),
+                };
+                fields.push((format!("f{k}"), t));
+            }
+            self.p
+                .structs
+                .push(StructDef { name: format!("Fz{}S{i}", self.p.name.trim_start_matches("fuzz")), fields });
+        }
+        // Helpers, each may call the earlier ones.
+        let n_helpers = self.r.range(0, 3) as usize;
+        let mut_helper =
+            if n_helpers > 0 && self.r.chance(70) { Some(self.r.below(n_helpers as u64) as usize) } else { None };
+        for i in 0..n_helpers {
+            self.callable = i;
+            let h = self.helper(i, mut_helper == Some(i));
+            self.p.helpers.push(h);
+        }
+        self.callable = n_helpers;
+        // Inputs and outputs.
+        for k in 0..self.r.range(2, 5) {
+            let t = self.var_ty();
+            self.p.inputs.push((format!("in{k}"), t));
+        }
+        self.p.outputs.push(("out_u".into(), U32));
+        self.p.outputs.push(("out_f".into(), F32));
+        let mut v_types = self.vecs.clone();
+        v_types.extend((0..self.p.structs.len()).map(Ty::Struct));
+        v_types.push(I32);
+        let vt = self.r.pick(&v_types);
+        self.p.outputs.push(("out_v".into(), vt));
+        // The body.
+        self.scopes = vec![Vec::new()];
+        for (n, t) in self.p.inputs.clone() {
+            self.bind(&n, t, false, Kind::Input);
+        }
+        self.bind("slot", U32, false, Kind::ReadOnly);
+        self.stmts_left = self.r.range(8, 28) as u32;
+        let mut stmts = Vec::new();
+        while self.stmts_left > 0 {
+            self.stmts_left -= 1;
+            self.stmt(&mut stmts);
+        }
+        // Every local still in scope, to the outputs.
+        let mut counts = [SCRATCH; 3];
+        let locals: Vec<Var> = self.scopes[0].iter().filter(|v| v.kind == Kind::Local).cloned().collect();
+        for v in locals {
+            self.dump(Expr::Var(v.name.clone()), &v.ty, &mut counts, &mut stmts);
+        }
+        let slots = counts.iter().copied().max().unwrap();
+        self.p.slots = slots;
+        stmts.insert(
+            0,
+            Stmt::Let {
+                name: "slot".into(),
+                mutable: false,
+                ty: U32,
+                annotate: false,
+                init: bin(BinOp::Mul, Expr::LaunchX, lit(LitV::U32(slots), false)),
+            },
+        );
+        self.p.body = Block { stmts, tail: None };
+    }
+
+    /// Stores `e` (of type `t`) into the next free output elements.
+    pub(super) fn dump(&mut self, e: Expr, t: &Ty, counts: &mut [u32; 3], out: &mut Vec<Stmt>) {
+        const MAX: u32 = SCRATCH + 40;
+        let store = |g: &mut Gen, buf: usize, value: Expr, counts: &mut [u32; 3], out: &mut Vec<Stmt>| {
+            if counts[buf] >= MAX {
+                return;
+            }
+            let index = bin(BinOp::Add, Expr::Var("slot".into()), lit(LitV::U32(counts[buf]), false));
+            let form = if g.r.chance(50) { StoreForm::Method } else { StoreForm::Index };
+            out.push(Stmt::Store { buf, index, value, form });
+            counts[buf] += 1;
+        };
+        if *t == self.p.outputs[2].1 && self.r.chance(70) {
+            return store(self, 2, e, counts, out);
+        }
+        match t {
+            Ty::S(Scalar::F32) => store(self, 1, e, counts, out),
+            Ty::S(Scalar::U32) => store(self, 0, e, counts, out),
+            Ty::S(_) => store(self, 0, Expr::Cast(b(e), Scalar::U32), counts, out),
+            Ty::V(n, s) => {
+                for i in 0..*n as usize {
+                    self.dump(Expr::Field(b(e.clone()), COMP[i].into(), i), &Ty::S(*s), counts, out);
+                }
+            }
+            Ty::Struct(k) => {
+                for (i, (f, ft)) in self.p.structs[*k].fields.clone().iter().enumerate() {
+                    self.dump(Expr::Field(b(e.clone()), f.clone(), i), ft, counts, out);
+                }
+            }
+            Ty::Arr(et, n) => {
+                for i in 0..*n {
+                    self.dump(Expr::Index(b(e.clone()), b(lit(LitV::U32(i), false))), et, counts, out);
+                }
+            }
+        }
+    }
+
+    pub(super) fn helper(&mut self, i: usize, takes_mut: bool) -> Helper {
+        let name = format!("{}_h{i}", self.p.name);
+        self.scopes = vec![Vec::new()];
+        let mut params = Vec::new();
+        if takes_mut {
+            let n = format!("state{i}");
+            self.bind(&n, U32, true, Kind::RefParam);
+            params.push(Param::MutRef(n, U32));
+        }
+        for k in 0..self.r.range(if takes_mut { 0 } else { 1 }, 3) {
+            let t = self.var_ty();
+            let n = format!("p{i}_{k}");
+            self.bind(&n, t.clone(), false, Kind::ReadOnly);
+            params.push(Param::Val(n, t));
+        }
+        let ret = self.var_ty();
+        self.ret = Some(ret.clone());
+        self.stmts_left = self.r.range(1, 8) as u32;
+        let mut stmts = Vec::new();
+        while self.stmts_left > 0 {
+            self.stmts_left -= 1;
+            self.stmt(&mut stmts);
+        }
+        if takes_mut {
+            // At least one write through the reference.
+            let v = self.expr(&U32, DEPTH, true);
+            let op = self.r.pick(&[None, Some(BinOp::Add), Some(BinOp::BitXor), Some(BinOp::Mul)]);
+            stmts.push(Stmt::Assign(Place::Deref(format!("state{i}")), op, v));
+        }
+        let tail = self.expr(&ret, DEPTH, true);
+        self.ret = None;
+        Helper { name, params, ret: Some(ret), body: Block { stmts, tail: Some(tail) } }
+    }
+}
