@@ -23,3 +23,40 @@ fn generated_graphs_agree_on_cpu_and_wgpu() {
         panic!("{} of {} graphs disagree:{msg}", report.failures.len(), report.stats.graphs);
     }
 }
+
+fn graph_agrees(seed: u64, index: usize) {
+    let report = scene_fuzz::run(&scene_fuzz::Config { seed, first: index, graphs: 1 });
+    assert!(report.stats.graphs == 1);
+    if let Some(f) = report.failures.first() {
+        panic!("graph {index} of seed {seed:#x}:\n{}--- graph\n{}", f.detail, f.description);
+    }
+}
+
+/// Found by the fuzzer (seed 7, graph 281): a transform with visibility
+/// mask 0x01 over a geometry group with mask 0xfe, traced with ray mask
+/// 0x03. Each node shares a bit with the ray, so the CPU backend hits;
+/// wgpu ANDed the chain's masks into 0x00 and saw nothing. Fixed by the
+/// per-node visibility word (`rt_visible`).
+#[test]
+fn masks_along_a_chain_are_tested_node_by_node_on_wgpu() {
+    graph_agrees(7, 281);
+}
+
+/// Found by the fuzzer (seed 7, graph 47): a deep graph with back-face
+/// culling; it passes since the mask fix.
+#[test]
+fn a_deep_culled_graph_agrees() {
+    graph_agrees(7, 47);
+}
+
+/// Found by the fuzzer (seed 7, graph 371), not fixed: two nearly singular
+/// transforms in a chain (z scaled by 1e-3 each, determinant 2.4e-7 in
+/// all) over squashed spheres; three rays grazing them hit on the CPU
+/// backend and miss on wgpu. The CPU backend transforms the ray level by
+/// level, the wgpu encoder composes the chain and inverts it once in f32:
+/// at this condition number the two disagree near the silhouette.
+#[test]
+#[ignore = "known: f32 precision of a composed, nearly singular transform chain on wgpu (see the doc comment)"]
+fn a_chain_of_two_nearly_singular_transforms_agrees() {
+    graph_agrees(7, 371);
+}
