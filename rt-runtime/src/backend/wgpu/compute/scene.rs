@@ -125,12 +125,14 @@ pub(crate) fn push_mat(out: &mut Vec<u32>, m: Mat4) {
 /// by it and dropped, so only chains of more than four masks none of
 /// which contains another are refused.
 pub(crate) fn visibility(masks: &[u8], node: NodeId) -> Result<u32> {
+    // `a` within `b`: a ray sharing a bit with `a` shares one with `b`.
+    let within = |a: u8, b: u8| a & !b == 0;
     let mut kept: Vec<u8> = Vec::new();
     for &m in masks {
-        if kept.iter().any(|&k| k & m == k) {
+        if kept.iter().any(|&k| within(k, m)) {
             continue;
         }
-        kept.retain(|&k| k & m != m);
+        kept.retain(|&k| !within(m, k));
         kept.push(m);
     }
     if kept.len() > 4 {
@@ -672,4 +674,45 @@ pub(crate) fn place_scene(
         spec: e.spec,
     };
     (sections, held)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The CPU backend's rule: each mask shares a bit with the ray's.
+    fn enters(masks: &[u8], ray: u32) -> bool {
+        masks.iter().all(|&m| m as u32 & ray != 0)
+    }
+
+    /// The kernel's `rt_visible`, in Rust.
+    fn visible(word: u32, ray: u32) -> bool {
+        let m = word & ((ray & 0xff) * 0x0101_0101);
+        (0..4).all(|b| (m >> (8 * b)) & 0xff != 0)
+    }
+
+    #[test]
+    fn the_visibility_word_tests_every_mask_of_a_chain() {
+        let chains: [&[u8]; 6] = [
+            &[0xff],
+            &[0x01, 0xfe],
+            &[0x03, 0x01, 0x07],
+            &[0x00, 0xff],
+            &[0x10, 0x20, 0x40, 0x80],
+            &[0xf0, 0x0f, 0x3c],
+        ];
+        for chain in chains {
+            let word = visibility(chain, NodeId(0)).unwrap();
+            for ray in 0..=0xffu32 {
+                assert_eq!(visible(word, ray), enters(chain, ray), "chain {chain:02x?}, ray {ray:#x}");
+            }
+        }
+        assert!(
+            visibility(&[1, 2, 4, 8, 16], NodeId(3))
+                .unwrap_err()
+                .to_string()
+                .contains("from node 3 has 5 visibility masks")
+        );
+        assert!(visibility(&[1, 3, 7, 15, 31, 63], NodeId(0)).is_ok(), "masks containing another are implied");
+    }
 }
