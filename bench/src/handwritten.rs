@@ -61,29 +61,10 @@ impl Tree {
     }
 }
 
-/// Runs the AO workload `reps` times over `tree`, or says why it could not
-/// run.
-pub fn run(
-    mesh: &TriangleMesh,
-    cam: (Vec3, Vec3, Vec3, Vec3),
-    width: u32,
-    height: u32,
-    reps: usize,
-    tree: Tree,
-) -> Result<Measured, String> {
-    let adapter = adapter()?;
-    let max_binding = adapter.limits().max_storage_buffer_binding_size;
-    // BVH2 nodes (2n - 1 for n triangles) of 24 bytes of bounds and 12 of
-    // links, each array in its own binding, and 36 bytes a triangle.
-    let biggest = (mesh.indices.len() as u64 * 2 * 24).max(mesh.indices.len() as u64 * 36);
-    if biggest > max_binding {
-        return Err(format!(
-            "the BVH needs a {} MiB storage buffer but the adapter binds at most {} MiB",
-            biggest >> 20,
-            max_binding >> 20
-        ));
-    }
-    let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+/// A device on `adapter` with its largest storage binding and, where it
+/// has them, timestamps (as the runtime opens one).
+fn open_device(adapter: &wgpu::Adapter) -> Result<(wgpu::Device, wgpu::Queue), String> {
+    pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
         required_limits: wgpu::Limits {
             max_storage_buffer_binding_size: adapter.limits().max_storage_buffer_binding_size,
             ..wgpu::Limits::downlevel_defaults()
@@ -92,7 +73,13 @@ pub fn run(
         required_features: adapter.features() & wgpu::Features::TIMESTAMP_QUERY,
         ..Default::default()
     }))
-    .map_err(|e| e.to_string())?;
+    .map_err(|e| e.to_string())
+}
+
+/// The kernel's buffers for `mesh` over `tree`: the BVH2's bounds and
+/// links, the triangles (in the CWBVH's primitive order for `Tree::Cwbvh`)
+/// and the CWBVH's nodes (empty for `Tree::Bvh2`).
+fn encode(mesh: &TriangleMesh, tree: Tree) -> (Vec<u32>, Vec<u32>, Vec<u32>, Vec<u32>) {
     // The BVH the runtime builds: obvhs medium_build, one primitive a leaf.
     let prim_bounds: Vec<obvhs::aabb::Aabb> = mesh
         .indices
@@ -128,6 +115,33 @@ pub fn run(
     }
     let cw_nodes: Vec<u32> =
         cwbvh.iter().flat_map(|cw| cw.nodes.iter().flat_map(rt_runtime::backend::wgpu::cwbvh_node_words)).collect();
+    (bounds, links, tris, cw_nodes)
+}
+
+/// Runs the AO workload `reps` times over `tree`, or says why it could not
+/// run.
+pub fn run(
+    mesh: &TriangleMesh,
+    cam: (Vec3, Vec3, Vec3, Vec3),
+    width: u32,
+    height: u32,
+    reps: usize,
+    tree: Tree,
+) -> Result<Measured, String> {
+    let adapter = adapter()?;
+    let max_binding = adapter.limits().max_storage_buffer_binding_size;
+    // BVH2 nodes (2n - 1 for n triangles) of 24 bytes of bounds and 12 of
+    // links, each array in its own binding, and 36 bytes a triangle.
+    let biggest = (mesh.indices.len() as u64 * 2 * 24).max(mesh.indices.len() as u64 * 36);
+    if biggest > max_binding {
+        return Err(format!(
+            "the BVH needs a {} MiB storage buffer but the adapter binds at most {} MiB",
+            biggest >> 20,
+            max_binding >> 20
+        ));
+    }
+    let (device, queue) = open_device(&adapter)?;
+    let (bounds, links, tris, cw_nodes) = encode(mesh, tree);
     let (eye, u, v, w) = cam;
     let mut camera: Vec<u32> = Vec::new();
     for c in [eye, u, v, w] {

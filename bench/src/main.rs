@@ -455,7 +455,6 @@ fn measure_scene(
     wgpu_max_triangles: usize,
     j: &mut json::Json,
 ) -> SceneFigures {
-    use json::Json;
     let mut fig = SceneFigures::default();
     let cam = scene.camera(width, height);
     let tris = scene.obvhs_triangles();
@@ -569,98 +568,120 @@ fn measure_scene(
 
     // The megakernel against the hand-written kernel, same adapter.
     if args.backends.iter().any(|b| b == "wgpu") {
-        if scene.triangles() > wgpu_max_triangles {
-            let why = format!("{} triangles > --wgpu-max-triangles {wgpu_max_triangles}", scene.triangles());
-            j.child("skipped").set("wgpu", why.as_str());
-            j.child("skipped").set("handwritten_wgsl", why.as_str());
-        } else {
-            let run = || -> Result<(Json, Repeated, String)> {
-                let (mut ctx, _, gg, g) = scene_with(&scene.mesh, cam, Backend::Wgpu, width, height, Workload::Ao)?;
-                let device = ctx.open_wgpu()?;
-                let (first, l) = measure_launches(&mut ctx, width, height, reps)?;
-                let cwbvh = ctx.linked_wgsl().is_some_and(|w| w.contains("const RT_CWBVH: bool = true;"));
-                let transform = moving_transform_launches(&mut ctx, gg, width, height, reps)?;
-                let vertices = moving_vertex_launches(&mut ctx, g, &scene.mesh, width, height, reps)?;
-                let mut w = Json::obj();
-                w.set("tree", if cwbvh { "cwbvh" } else { "bvh2" });
-                w.set("rays", l.rays);
-                w.set("build_ms", ms(first.timings.build));
-                w.set("link_ms", ms(first.timings.link));
-                w.set("first_dispatch_ms", ms(first.timings.run.saturating_sub(l.run)));
-                // Repeated launches, in medians: the host's preparation, the
-                // run (upload, dispatch, wait, read-back), the kernel; as
-                // they are, under a transform that moves before each launch,
-                // and with every vertex moved before each (refit, geometry
-                // encoded and uploaded again).
-                for (key, r) in [
-                    ("repeat_launch_ms", &l),
-                    ("moving_transform_launch_ms", &transform),
-                    ("moving_vertices_launch_ms", &vertices),
-                ] {
-                    let o = w.child(key);
-                    o.set("prepare", ms(r.prepare));
-                    o.set("run", ms(r.run));
-                    o.set("kernel", r.kernel.map(ms));
-                }
-                w.child("moving_vertices_launch_ms").set("set_positions", ms(vertices.change));
-                Ok((w, l, device))
-            };
-            match run() {
-                Ok((w, l, device)) => {
-                    j.set("wgpu_first_launch", w);
-                    j.set("wgpu_device", device);
-                    fig.wgpu = Some(mrays(l.rays, l.run));
-                    fig.wgpu_per_cpu_s = Some((l.rays * reps as u64) as f64 / l.cpu.as_secs_f64().max(1e-3));
-                    fig.wgpu_kernel = l.kernel.map(|k| mrays(l.rays, k));
-                }
-                Err(e) => {
-                    eprintln!("wgpu: {e}");
-                    j.child("skipped").set("wgpu", e.to_string());
-                }
-            }
-            match handwritten::run(&scene.mesh, cam, width, height, reps, handwritten::Tree::Cwbvh) {
-                Ok(m) => {
-                    fig.handwritten = Some(mrays(m.rays, m.time));
-                    fig.handwritten_per_cpu_s = Some((m.rays * reps as u64) as f64 / m.cpu.as_secs_f64().max(1e-3));
-                    fig.handwritten_kernel = m.kernel.map(|k| mrays(m.rays, k));
-                    j.child("rays").set("handwritten_wgsl", m.rays);
-                    if j.get("wgpu_device").and_then(|d| d.as_str()).is_some_and(|d| d != m.device) {
-                        eprintln!("hand-written WGSL ran on {}, not on the megakernel's adapter", m.device);
-                        j.set("adapters_differ", true);
-                    }
-                    j.set("handwritten_wgsl_device", m.device);
-                }
-                Err(e) => {
-                    eprintln!("hand-written WGSL: {e}");
-                    j.child("skipped").set("handwritten_wgsl", e);
-                }
-            }
-            // The same kernel over the BVH2 the CWBVH is converted from
-            // (what the megakernel walks with any-hit or intersection
-            // programs; the baseline before it walked CWBVHs).
-            match handwritten::run(&scene.mesh, cam, width, height, reps, handwritten::Tree::Bvh2) {
-                Ok(m) => {
-                    fig.handwritten_bvh2 = Some(mrays(m.rays, m.time));
-                    fig.handwritten_bvh2_kernel = m.kernel.map(|k| mrays(m.rays, k));
-                    j.child("rays").set("handwritten_bvh2_wgsl", m.rays);
-                }
-                Err(e) => {
-                    eprintln!("hand-written BVH2 WGSL: {e}");
-                    j.child("skipped").set("handwritten_bvh2_wgsl", e);
-                }
-            }
-            let show = |x: Option<f64>| x.map_or("-".into(), |x| format!("{x:.2}"));
-            eprintln!(
-                "megakernel {} Mrays/s, hand-written WGSL {} (BVH2: {}); device time alone: megakernel {}, hand-written {} (BVH2: {})",
-                show(fig.wgpu),
-                show(fig.handwritten),
-                show(fig.handwritten_bvh2),
-                show(fig.wgpu_kernel),
-                show(fig.handwritten_kernel),
-                show(fig.handwritten_bvh2_kernel),
-            );
-        }
+        measure_gpu(scene, cam, (width, height), reps, wgpu_max_triangles, j, &mut fig);
     }
+    record_figures(j, &fig);
+    fig
+}
+
+/// The wgpu side of [`measure_scene`]: the megakernel, then the
+/// hand-written kernel over the CWBVH and over the BVH2, on one adapter.
+#[allow(clippy::too_many_arguments)]
+fn measure_gpu(
+    scene: &scenes::BenchScene,
+    cam: scenes::Camera,
+    (width, height): (u32, u32),
+    reps: usize,
+    wgpu_max_triangles: usize,
+    j: &mut json::Json,
+    fig: &mut SceneFigures,
+) {
+    use json::Json;
+    if scene.triangles() > wgpu_max_triangles {
+        let why = format!("{} triangles > --wgpu-max-triangles {wgpu_max_triangles}", scene.triangles());
+        j.child("skipped").set("wgpu", why.as_str());
+        j.child("skipped").set("handwritten_wgsl", why.as_str());
+    } else {
+        let run = || -> Result<(Json, Repeated, String)> {
+            let (mut ctx, _, gg, g) = scene_with(&scene.mesh, cam, Backend::Wgpu, width, height, Workload::Ao)?;
+            let device = ctx.open_wgpu()?;
+            let (first, l) = measure_launches(&mut ctx, width, height, reps)?;
+            let cwbvh = ctx.linked_wgsl().is_some_and(|w| w.contains("const RT_CWBVH: bool = true;"));
+            let transform = moving_transform_launches(&mut ctx, gg, width, height, reps)?;
+            let vertices = moving_vertex_launches(&mut ctx, g, &scene.mesh, width, height, reps)?;
+            let mut w = Json::obj();
+            w.set("tree", if cwbvh { "cwbvh" } else { "bvh2" });
+            w.set("rays", l.rays);
+            w.set("build_ms", ms(first.timings.build));
+            w.set("link_ms", ms(first.timings.link));
+            w.set("first_dispatch_ms", ms(first.timings.run.saturating_sub(l.run)));
+            // Repeated launches, in medians: the host's preparation, the
+            // run (upload, dispatch, wait, read-back), the kernel; as
+            // they are, under a transform that moves before each launch,
+            // and with every vertex moved before each (refit, geometry
+            // encoded and uploaded again).
+            for (key, r) in [
+                ("repeat_launch_ms", &l),
+                ("moving_transform_launch_ms", &transform),
+                ("moving_vertices_launch_ms", &vertices),
+            ] {
+                let o = w.child(key);
+                o.set("prepare", ms(r.prepare));
+                o.set("run", ms(r.run));
+                o.set("kernel", r.kernel.map(ms));
+            }
+            w.child("moving_vertices_launch_ms").set("set_positions", ms(vertices.change));
+            Ok((w, l, device))
+        };
+        match run() {
+            Ok((w, l, device)) => {
+                j.set("wgpu_first_launch", w);
+                j.set("wgpu_device", device);
+                fig.wgpu = Some(mrays(l.rays, l.run));
+                fig.wgpu_per_cpu_s = Some((l.rays * reps as u64) as f64 / l.cpu.as_secs_f64().max(1e-3));
+                fig.wgpu_kernel = l.kernel.map(|k| mrays(l.rays, k));
+            }
+            Err(e) => {
+                eprintln!("wgpu: {e}");
+                j.child("skipped").set("wgpu", e.to_string());
+            }
+        }
+        match handwritten::run(&scene.mesh, cam, width, height, reps, handwritten::Tree::Cwbvh) {
+            Ok(m) => {
+                fig.handwritten = Some(mrays(m.rays, m.time));
+                fig.handwritten_per_cpu_s = Some((m.rays * reps as u64) as f64 / m.cpu.as_secs_f64().max(1e-3));
+                fig.handwritten_kernel = m.kernel.map(|k| mrays(m.rays, k));
+                j.child("rays").set("handwritten_wgsl", m.rays);
+                if j.get("wgpu_device").and_then(|d| d.as_str()).is_some_and(|d| d != m.device) {
+                    eprintln!("hand-written WGSL ran on {}, not on the megakernel's adapter", m.device);
+                    j.set("adapters_differ", true);
+                }
+                j.set("handwritten_wgsl_device", m.device);
+            }
+            Err(e) => {
+                eprintln!("hand-written WGSL: {e}");
+                j.child("skipped").set("handwritten_wgsl", e);
+            }
+        }
+        // The same kernel over the BVH2 the CWBVH is converted from
+        // (what the megakernel walks with any-hit or intersection
+        // programs; the baseline before it walked CWBVHs).
+        match handwritten::run(&scene.mesh, cam, width, height, reps, handwritten::Tree::Bvh2) {
+            Ok(m) => {
+                fig.handwritten_bvh2 = Some(mrays(m.rays, m.time));
+                fig.handwritten_bvh2_kernel = m.kernel.map(|k| mrays(m.rays, k));
+                j.child("rays").set("handwritten_bvh2_wgsl", m.rays);
+            }
+            Err(e) => {
+                eprintln!("hand-written BVH2 WGSL: {e}");
+                j.child("skipped").set("handwritten_bvh2_wgsl", e);
+            }
+        }
+        let show = |x: Option<f64>| x.map_or("-".into(), |x| format!("{x:.2}"));
+        eprintln!(
+            "megakernel {} Mrays/s, hand-written WGSL {} (BVH2: {}); device time alone: megakernel {}, hand-written {} (BVH2: {})",
+            show(fig.wgpu),
+            show(fig.handwritten),
+            show(fig.handwritten_bvh2),
+            show(fig.wgpu_kernel),
+            show(fig.handwritten_kernel),
+            show(fig.handwritten_bvh2_kernel),
+        );
+    }
+}
+
+/// A scene's figures into its JSON object.
+fn record_figures(j: &mut json::Json, fig: &SceneFigures) {
     for (k, v) in [
         ("cpu", fig.cpu),
         ("wgpu", fig.wgpu),
@@ -684,7 +705,6 @@ fn measure_scene(
     if fig.wgpu.is_some() {
         j.set("wgpu_grays_timed_by", if fig.wgpu_kernel.is_some() { "device timestamps" } else { "wall clock" });
     }
-    fig
 }
 
 /// One of the headline ratios, from one scene's figures.
