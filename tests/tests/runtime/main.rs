@@ -334,6 +334,23 @@ pub fn reflected_in_a_let(top: Object, p: Vec3, d: Vec3, depth: i32) -> Vec3 {
     seen
 }
 
+/// A helper that traces only through another helper
+/// ([`reflected_in_a_let`]).
+#[rt_function]
+pub fn reflected_two_helpers_down(top: Object, p: Vec3, d: Vec3, depth: i32) -> Vec3 {
+    reflected_in_a_let(top, p, d, depth)
+}
+
+/// [`mirror`] through [`reflected_two_helpers_down`]: per-depth clones of a
+/// helper whose trace is one helper further down.
+#[rt_program(closest_hit)]
+pub fn mirror_through_two_helpers(prd: &mut Radiance, attr: &Hit, #[var] top: Object, #[var] reflectance: f32) {
+    let ray = current_ray();
+    let p = ray.origin + t_hit() * ray.direction;
+    let n = rt_transform_normal(ObjectToWorld, attr.geometric_normal).normalize();
+    prd.result = reflected_two_helpers_down(top, p, reflect(ray.direction, n), prd.depth) * reflectance;
+}
+
 /// [`mirror`] through [`reflected_in_a_let`]: no resumable form, so
 /// kernels using it clone what traces per depth instead.
 #[rt_program(closest_hit)]
@@ -453,6 +470,7 @@ on_backends!(
     a_bvh_deeper_than_64_levels_loses_no_hit,
     a_trace_in_a_match_arm_resumes_in_that_arm,
     a_program_without_a_resumable_form_links_per_depth_clones,
+    a_helper_tracing_through_another_helper_links_per_depth_clones,
     launches_wider_than_the_dispatch_limit_write_every_index,
 );
 

@@ -40,6 +40,15 @@ pub(crate) fn a_program_without_a_resumable_form_links_per_depth_clones(backend:
     }
 }
 
+pub(crate) fn a_helper_tracing_through_another_helper_links_per_depth_clones(backend: Backend) {
+    assert!(mirror_through_two_helpers::PROGRAM.wgsl_resumable.is_none());
+    let ctx = mirror_scene(backend, &mirror_through_two_helpers::PROGRAM, 3);
+    if backend == Backend::Wgpu {
+        let wgsl = ctx.linked_wgsl().unwrap();
+        assert!(wgsl.contains("fn rtf_reflected_two_helpers_down_d1("), "the outer helper is cloned per depth too");
+    }
+}
+
 /// A tilted mirror (closest hit `program`) reflecting a green wall and the
 /// background, checked pixel by pixel, with a maximum trace depth of
 /// `depth` (20: deep enough that per-depth clones would be many, so the

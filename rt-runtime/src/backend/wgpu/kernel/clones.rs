@@ -16,13 +16,31 @@ use std::collections::{BTreeMap, BTreeSet};
 /// came from.
 pub(super) type Linked = BTreeMap<&'static str, (&'static WgslItem, &'static ProgramDescriptor)>;
 
-/// The helpers that trace themselves (a trace call site of their own).
+/// The helpers that trace: with a trace call site of their own, or calling
+/// a helper that traces (a helper tracing only through another was emitted
+/// once, calling a name only its per-depth clones had: the link failed).
 pub(super) fn helpers_that_trace(functions: &Linked) -> BTreeSet<&'static str> {
-    functions
+    let mut tracing: BTreeSet<&'static str> = functions
         .iter()
         .filter(|(_, (f, _))| f.sites.iter().any(|s| matches!(s.name, WgslName::Trace(_))))
         .map(|(n, _)| *n)
-        .collect()
+        .collect();
+    // And those that call one, however far down (helpers do not recurse:
+    // the compiler rejects it, so this ends).
+    loop {
+        let callers: Vec<&'static str> = functions
+            .iter()
+            .filter(|(n, (f, _))| {
+                !tracing.contains(*n)
+                    && f.sites.iter().any(|s| matches!(s.name, WgslName::Call(h) if tracing.contains(h)))
+            })
+            .map(|(n, _)| *n)
+            .collect();
+        if callers.is_empty() {
+            return tracing;
+        }
+        tracing.extend(callers);
+    }
 }
 
 /// A function's text at depth `k`: its own name and its calls of tracing
