@@ -159,6 +159,34 @@ impl Context {
         self.backends().find_map(|b| b.stats().linked_wgsl)
     }
 
+    /// How the wgpu backend walks the scene: [`Traversal::Auto`] (the
+    /// default) takes hardware ray queries where the adapter has them and
+    /// the scene allows (no selectors; masks along each path that one 8-bit
+    /// mask says), else the compute traversal, and reads
+    /// `RT_TRAVERSAL=compute|rayquery`; [`Traversal::RayQuery`] on an
+    /// adapter without ray queries fails the launch with an error naming
+    /// the adapter. The CPU backend ignores it.
+    ///
+    /// [`Traversal`]: crate::Traversal
+    /// [`Traversal::Auto`]: crate::Traversal::Auto
+    /// [`Traversal::RayQuery`]: crate::Traversal::RayQuery
+    pub fn set_traversal(&mut self, traversal: crate::Traversal) {
+        self.settings.traversal = traversal;
+    }
+
+    /// The traversal the last wgpu launch used (`Compute` or `RayQuery`)
+    /// and why; None before any wgpu launch.
+    pub fn traversal(&self) -> Option<(crate::Traversal, &str)> {
+        self.backends().find_map(|b| b.stats().traversal)
+    }
+
+    /// How many BLASes (one per kind of geometry in a geometry group) and
+    /// TLASes (one per traced root) the ray-query traversal built: a moved
+    /// transform rebuilds TLASes only, moved vertices the BLASes over them.
+    pub fn ray_query_builds(&self) -> (u64, u64) {
+        self.backends().fold((0, 0), |(b, t), s| (b + s.stats().blas_builds, t + s.stats().tlas_builds))
+    }
+
     pub fn set_entry_point_count(&mut self, n: u32) {
         self.scene.structure_version += 1;
         self.scene.entry_points.resize(n as usize, EntryPoint::default());

@@ -92,6 +92,10 @@ pub enum RtError {
     #[error("the scene graph has a cycle through node {node}")]
     GraphCycle { node: u32 },
     #[error(
+        "node {node}: {count} {what} is more than {adapter} builds (at most {limit}); use the compute traversal (`Traversal::Compute`, RT_TRAVERSAL=compute) or split the scene"
+    )]
+    AccelerationLimit { node: u32, what: &'static str, count: u64, limit: u64, adapter: String },
+    #[error(
         "program `{program}` ({location}) panicked at launch index {launch_index} ({at}): {message}; the launch wrote none of its outputs"
     )]
     ProgramPanicked {

@@ -6,6 +6,7 @@
 
 pub mod fuzz;
 pub mod scene_fuzz;
+pub mod targets;
 
 #[path = "../snapshots/in/buffers.rs"]
 pub mod buffers;

@@ -32,6 +32,9 @@ pub(crate) struct AccelCache {
     /// How many geometry groups were built or refit (the wgpu backend keeps
     /// the geometry part of the scene on the device until this moves).
     pub geometry_group_changes: u64,
+    /// The last stamp given to a geometry group's tree (see
+    /// [`NodeAccel::Prims`]'s `stamp`).
+    stamps: u64,
 }
 
 impl AccelCache {
@@ -63,6 +66,10 @@ pub(crate) enum NodeAccel {
         triangles: Option<Vec<[Vec3; 3]>>,
         prims: Vec<(u32, u32)>,
         bounds: OAabb,
+        /// Changes whenever the tree is built or refit: what a backend
+        /// that builds its own structure per geometry group from it (the
+        /// ray-query traversal's BLASes) keys that structure on.
+        stamp: u64,
     },
     /// A group: a BVH over its children's bounds.
     Children { bvh: Bvh, bounds: OAabb },
@@ -103,7 +110,7 @@ fn transform_bounds(m: Mat4, b: &OAabb) -> OAabb {
 /// `(instance, primitive)` pairs, their bounds, and whether all are triangles.
 type PrimBounds = (Vec<(u32, u32)>, Vec<OAabb>, bool);
 
-fn prim_bounds(scene: &Scene, children: &[crate::handles::GeometryInstanceId]) -> Result<PrimBounds> {
+pub(crate) fn prim_bounds(scene: &Scene, children: &[crate::handles::GeometryInstanceId]) -> Result<PrimBounds> {
     let mut prims = Vec::new();
     let mut bounds = Vec::new();
     let mut all_triangles = true;
@@ -214,7 +221,7 @@ pub(crate) fn build_accels(scene: &Scene, cache: &mut AccelCache, trees: Trees) 
                 let all_triangles =
                     |prims: &[(u32, u32)]| prims.iter().all(|(gi, _)| instance_mesh(scene, *gi).is_some());
                 match old {
-                    Some(NodeAccel::Prims { mut bvh, mut wide, mut triangles, prims, mut bounds }) => {
+                    Some(NodeAccel::Prims { mut bvh, mut wide, mut triangles, prims, mut bounds, mut stamp }) => {
                         let moved = cache.moved
                             && children.iter().any(|gi| {
                                 let g = scene.instances[gi.index() as usize].geometry.index();
@@ -230,6 +237,8 @@ pub(crate) fn build_accels(scene: &Scene, cache: &mut AccelCache, trees: Trees) 
                             }
                             bounds = union(&prim_bounds);
                             any_refit = true;
+                            cache.stamps += 1;
+                            stamp = cache.stamps;
                         }
                         if wide.is_none() && wants_wide(&prims) {
                             wide = Some(widen(&bvh));
@@ -240,7 +249,7 @@ pub(crate) fn build_accels(scene: &Scene, cache: &mut AccelCache, trees: Trees) 
                         if keep_slot_triangles && triangles.is_none() {
                             triangles = Some(slot_triangles(scene, &prims, wide.as_ref(), all_triangles(&prims)));
                         }
-                        NodeAccel::Prims { bvh, wide, triangles, prims, bounds }
+                        NodeAccel::Prims { bvh, wide, triangles, prims, bounds, stamp }
                     }
                     _ => {
                         let (prims, bounds, all_tris) = prim_bounds(scene, children)?;
@@ -251,7 +260,8 @@ pub(crate) fn build_accels(scene: &Scene, cache: &mut AccelCache, trees: Trees) 
                             keep_slot_triangles.then(|| slot_triangles(scene, &prims, wide.as_ref(), all_tris));
                         any_built = true;
                         cache.geometry_group_changes += 1;
-                        NodeAccel::Prims { bvh, wide, triangles, prims, bounds: union(&bounds) }
+                        cache.stamps += 1;
+                        NodeAccel::Prims { bvh, wide, triangles, prims, bounds: union(&bounds), stamp: cache.stamps }
                     }
                 }
             }

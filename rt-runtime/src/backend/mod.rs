@@ -135,11 +135,19 @@ pub(crate) struct Settings {
     pub print_launch_index: Option<UVec2>,
     /// Integer overflow and division by zero raise exceptions (CPU backend).
     pub integer_exceptions: bool,
+    /// How the wgpu backend walks the scene.
+    pub traversal: wgpu::Traversal,
 }
 
 impl Default for Settings {
     fn default() -> Self {
-        Settings { max_trace_depth: 5, print_enabled: true, print_launch_index: None, integer_exceptions: false }
+        Settings {
+            max_trace_depth: 5,
+            print_enabled: true,
+            print_launch_index: None,
+            integer_exceptions: false,
+            traversal: wgpu::Traversal::Auto,
+        }
     }
 }
 
@@ -169,6 +177,11 @@ pub(crate) struct BackendStats<'a> {
     pub last_upload_bytes: u64,
     /// The last launch's linked kernel source.
     pub linked_wgsl: Option<&'a str>,
+    /// The wgpu backend's last traversal and why.
+    pub traversal: Option<(wgpu::Traversal, &'a str)>,
+    /// BLASes and TLASes the ray-query traversal built.
+    pub blas_builds: u64,
+    pub tlas_builds: u64,
 }
 
 /// Where launches run: implemented by the CPU backend and the wgpu

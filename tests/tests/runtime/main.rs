@@ -7,6 +7,7 @@
 use glam::{UVec2, Vec2, Vec3, Vec4};
 use rt_runtime::*;
 use rt_std::prelude::*;
+use rt_tests::targets::On;
 
 mod device;
 mod shading;
@@ -382,9 +383,8 @@ const W: u32 = 32;
 const BG: Vec3 = Vec3::new(0.1, 0.2, 0.3);
 
 /// A context with the ortho camera, a background miss and an output buffer.
-fn camera(extent: f32, backend: Backend) -> (Context, BufferId) {
-    let mut ctx = Context::new();
-    ctx.set_backend(backend);
+fn camera(extent: f32, on: impl Into<On>) -> (Context, BufferId) {
+    let mut ctx = on.into().context();
     ctx.set_ray_type_count(2);
     let rg = ctx.create_program(&ortho::PROGRAM);
     ctx.set_ray_generation_program(0, rg).unwrap();
@@ -428,16 +428,21 @@ fn world(x: u32, y: u32, extent: f32) -> (f32, f32) {
     (p(x), p(y))
 }
 
-/// Instantiates every test of `shading` and `tracing` once per backend.
+/// Instantiates every test of `shading` and `tracing` once per target: the
+/// CPU backend, the compute traversal, the ray-query traversal.
 macro_rules! on_backends {
     ($($name:ident),* $(,)?) => {
         mod cpu {
             use super::*;
-            $( #[test] fn $name() { super::$name(Backend::Cpu) } )*
+            $( #[test] fn $name() { super::$name(On::CPU) } )*
         }
         mod wgpu {
             use super::*;
-            $( #[test] fn $name() { super::$name(Backend::Wgpu) } )*
+            $( #[test] fn $name() { super::$name(On::COMPUTE) } )*
+        }
+        mod rayquery {
+            use super::*;
+            $( #[test] fn $name() { if On::RAY_QUERY.available() { super::$name(On::RAY_QUERY) } } )*
         }
     };
 }

@@ -3,7 +3,7 @@
 
 use super::*;
 
-pub(crate) fn sphere_silhouette_and_normals(backend: Backend) {
+pub(crate) fn sphere_silhouette_and_normals(backend: On) {
     let extent = 2.0;
     let (mut ctx, out) = camera(extent, backend);
     sphere_scene(&mut ctx, &normal_shader::PROGRAM, Vec3::ZERO, 1.0);
@@ -60,7 +60,7 @@ pub(crate) fn mesh_scene(
     (g, mat)
 }
 
-pub(crate) fn triangle_attributes_reach_closest_hit_through_a_transform(backend: Backend) {
+pub(crate) fn triangle_attributes_reach_closest_hit_through_a_transform(backend: On) {
     let (mut ctx, out) = camera(2.0, backend);
     let geom = ctx.create_triangles(quad(0.0, 1.0)).unwrap();
     let mat = ctx.create_material();
@@ -85,7 +85,7 @@ pub(crate) fn triangle_attributes_reach_closest_hit_through_a_transform(backend:
 /// `rt_get_transform` gives the transform above the hit instance and its
 /// inverse, column by column, as glam computes them on the host; without a
 /// transform above it, the identity.
-pub(crate) fn rt_get_transform_reads_the_instance_transform_and_its_inverse(backend: Backend) {
+pub(crate) fn rt_get_transform_reads_the_instance_transform_and_its_inverse(backend: On) {
     let (mut ctx, out) = camera(2.0, backend);
     let geom = ctx.create_triangles(quad(0.0, 1.0)).unwrap();
     let mat = ctx.create_material();
@@ -113,7 +113,7 @@ pub(crate) fn rt_get_transform_reads_the_instance_transform_and_its_inverse(back
     }
 }
 
-pub(crate) fn any_hit_terminate_casts_a_shadow_with_a_sharp_edge(backend: Backend) {
+pub(crate) fn any_hit_terminate_casts_a_shadow_with_a_sharp_edge(backend: On) {
     let extent = 2.0;
     let (mut ctx, out) = camera(extent, backend);
     // A floor quad at z = 0 and a blocker over x in [-3, 0] at z = 1, the
@@ -168,7 +168,7 @@ pub(crate) fn any_hit_terminate_casts_a_shadow_with_a_sharp_edge(backend: Backen
     assert!(img.iter().all(|c| c.x == 1.0));
 }
 
-pub(crate) fn trace_depth_limit_raises_the_exception_and_the_exception_program_runs(backend: Backend) {
+pub(crate) fn trace_depth_limit_raises_the_exception_and_the_exception_program_runs(backend: On) {
     let (mut ctx, out) = camera(2.0, backend);
     ctx.set_max_trace_depth(3);
     // Two facing quads: every ray bounces between them forever.
@@ -190,7 +190,7 @@ pub(crate) fn trace_depth_limit_raises_the_exception_and_the_exception_program_r
     assert_eq!(pixel(&img, 3, 5), Vec4::new(1.0, 0.0, 1.0, EXCEPTION_TRACE_DEPTH_EXCEEDED as f32));
 }
 
-pub(crate) fn user_exception_reaches_the_exception_program_and_other_pixels_are_untouched(backend: Backend) {
+pub(crate) fn user_exception_reaches_the_exception_program_and_other_pixels_are_untouched(backend: On) {
     let extent = 2.0;
     let (mut ctx, out) = camera(extent, backend);
     sphere_scene(&mut ctx, &throws::PROGRAM, Vec3::ZERO, 1.0);
@@ -209,7 +209,7 @@ pub(crate) fn user_exception_reaches_the_exception_program_and_other_pixels_are_
     }));
 }
 
-pub(crate) fn variables_resolve_innermost_scope_first(backend: Backend) {
+pub(crate) fn variables_resolve_innermost_scope_first(backend: On) {
     let (mut ctx, out) = camera(2.0, backend);
     let (_, mat, gi) = sphere_scene(&mut ctx, &flat_color::PROGRAM, Vec3::ZERO, 1.0);
     ctx.set_var(Scope::Context, "color", Vec3::new(1.0, 0.0, 0.0)).unwrap();
@@ -224,7 +224,7 @@ pub(crate) fn variables_resolve_innermost_scope_first(backend: Backend) {
     assert_eq!(pixel(&ctx.read_buffer::<Vec4>(out).unwrap(), W / 2, W / 2).truncate(), Vec3::Z);
 }
 
-pub(crate) fn link_errors_name_the_program_the_variable_and_the_scopes(backend: Backend) {
+pub(crate) fn link_errors_name_the_program_the_variable_and_the_scopes(backend: On) {
     let (mut ctx, _) = camera(2.0, backend);
     sphere_scene(&mut ctx, &flat_color::PROGRAM, Vec3::ZERO, 1.0);
     let err = ctx.launch(0, W, W).unwrap_err().to_string();
@@ -250,7 +250,7 @@ pub(crate) fn link_errors_name_the_program_the_variable_and_the_scopes(backend: 
     assert!(matches!(ctx.launch(0, 0, 4), Err(RtError::BadLaunch { .. })));
 }
 
-pub(crate) fn moving_geometry_refits_instead_of_rebuilding(backend: Backend) {
+pub(crate) fn moving_geometry_refits_instead_of_rebuilding(backend: On) {
     let (mut ctx, out) = camera(2.0, backend);
     let geom = ctx.create_triangles(quad(0.0, 0.5)).unwrap();
     let mat = ctx.create_material();
@@ -273,7 +273,7 @@ pub(crate) fn moving_geometry_refits_instead_of_rebuilding(backend: Backend) {
 /// A deformed mesh: its refit trees (the BVH2, and the CWBVH both backends
 /// walk, re-quantized in place) find what trees built for the new shape
 /// find.
-pub(crate) fn a_refit_mesh_renders_as_one_built_for_its_new_shape(backend: Backend) {
+pub(crate) fn a_refit_mesh_renders_as_one_built_for_its_new_shape(backend: On) {
     let wave = |mesh: &TriangleMesh| -> Vec<Vec3> {
         mesh.positions.iter().map(|p| Vec3::new(p.x * 1.3, p.y, p.z + 0.4 * (3.0 * p.x).sin() * p.y)).collect()
     };
@@ -296,7 +296,7 @@ pub(crate) fn a_refit_mesh_renders_as_one_built_for_its_new_shape(backend: Backe
     assert!(differ <= 2, "{differ} pixels differ between the refit and the built trees");
 }
 
-pub(crate) fn buffer_overrun_raises_the_exception_and_printf_reaches_the_host(backend: Backend) {
+pub(crate) fn buffer_overrun_raises_the_exception_and_printf_reaches_the_host(backend: On) {
     let (mut ctx, _) = camera(2.0, backend);
     sphere_scene(&mut ctx, &reads_past_the_end::PROGRAM, Vec3::ZERO, 1.0);
     let table = ctx.create_buffer(BufferType::Input, vec![0.25f32, 0.5, 0.75]);
@@ -321,7 +321,7 @@ pub(crate) fn buffer_overrun_raises_the_exception_and_printf_reaches_the_host(ba
     );
 }
 
-pub(crate) fn nan_rays_raise_invalid_ray(backend: Backend) {
+pub(crate) fn nan_rays_raise_invalid_ray(backend: On) {
     let (mut ctx, out) = camera(2.0, backend);
     sphere_scene(&mut ctx, &normal_shader::PROGRAM, Vec3::ZERO, 1.0);
     let rg = ctx.create_program(&nan_camera::PROGRAM);
@@ -338,7 +338,7 @@ pub(crate) fn nan_rays_raise_invalid_ray(backend: Backend) {
 
 /// The smallest trees: a geometry group of one triangle (its CWBVH a root
 /// with one leaf child) and one of none, beside each other in a group.
-pub(crate) fn one_triangle_and_an_empty_group(backend: Backend) {
+pub(crate) fn one_triangle_and_an_empty_group(backend: On) {
     let (mut ctx, out) = camera(2.0, backend);
     let tri = TriangleMesh {
         positions: vec![Vec3::new(-1.0, -1.0, 0.0), Vec3::new(1.0, -1.0, 0.0), Vec3::new(-1.0, 1.0, 0.0)],
@@ -377,7 +377,7 @@ pub(crate) fn one_triangle_and_an_empty_group(backend: Backend) {
 /// The flagged camera over a quad at z = 0 (counter-clockwise seen from
 /// +z) under a closest hit painting red and, with `any_hit`, an any hit
 /// that counts (blue += 1): the context, its output and the quad's group.
-pub(crate) fn flagged_quad(backend: Backend, any_hit: bool) -> (Context, BufferId, NodeId) {
+pub(crate) fn flagged_quad(backend: On, any_hit: bool) -> (Context, BufferId, NodeId) {
     let (mut ctx, out) = camera(2.0, backend);
     let rg = ctx.create_program(&flagged_camera::PROGRAM);
     ctx.set_ray_generation_program(0, rg).unwrap();
@@ -395,7 +395,7 @@ pub(crate) fn flagged_quad(backend: Backend, any_hit: bool) -> (Context, BufferI
     (ctx, out, gg)
 }
 
-pub(crate) fn ray_flags_and_masks(backend: Backend) {
+pub(crate) fn ray_flags_and_masks(backend: On) {
     // Two stacked quads at z = 0 and z = 1, both with an any hit that counts
     // and a closest hit painting red.
     let (mut ctx, out, gg) = flagged_quad(backend, true);
@@ -444,7 +444,7 @@ pub(crate) fn ray_flags_and_masks(backend: Backend) {
 /// Culling without any-hit programs: the wgpu kernel's lean triangle search
 /// (which asks a triangle's side only when a cull flag is set) culls as the
 /// general search and the CPU backend do.
-pub(crate) fn culling_in_the_lean_search(backend: Backend) {
+pub(crate) fn culling_in_the_lean_search(backend: On) {
     let (mut ctx, out, gg) = flagged_quad(backend, false);
     ctx.set_var(Scope::Context, "top", gg).unwrap();
     ctx.set_var(Scope::Context, "mask", 0xffu32).unwrap();
@@ -476,7 +476,7 @@ pub(crate) fn pixel8(img: &[Vec4], x: u32, y: u32) -> Vec4 {
     img[(y * 8 + x) as usize]
 }
 
-pub(crate) fn textures_sample_with_wrap_and_filter(backend: Backend) {
+pub(crate) fn textures_sample_with_wrap_and_filter(backend: On) {
     let (mut ctx, out) = camera(1.0, backend);
     let mut mesh = quad(0.0, 1.0);
     // Texture coordinates from -1 to 2: wrapping shows.
@@ -510,7 +510,7 @@ pub(crate) fn textures_sample_with_wrap_and_filter(backend: Backend) {
     }
 }
 
-pub(crate) fn payload_of_the_wrong_ray_type_raises_invalid_ray(backend: Backend) {
+pub(crate) fn payload_of_the_wrong_ray_type_raises_invalid_ray(backend: On) {
     let (mut ctx, _) = camera(2.0, backend);
     sphere_scene(&mut ctx, &normal_shader::PROGRAM, Vec3::new(0.0, 0.0, 5.0), 1.0);
     let rg = ctx.create_program(&wrong_payload_camera::PROGRAM);
@@ -534,7 +534,7 @@ pub(crate) fn colored_sphere(ctx: &mut Context, center: Vec3, radius: f32, color
     ctx.create_geometry_group(&[gi], Acceleration::default()).unwrap()
 }
 
-pub(crate) fn selector_chooses_a_child_from_the_payload_and_launch_index_parity(backend: Backend) {
+pub(crate) fn selector_chooses_a_child_from_the_payload_and_launch_index_parity(backend: On) {
     let extent = 2.0;
     let (mut ctx, out) = camera(extent, backend);
     let rg = ctx.create_program(&parity_camera::PROGRAM);
@@ -584,7 +584,7 @@ pub(crate) fn selector_chooses_a_child_from_the_payload_and_launch_index_parity(
     assert!(seen[1] > 50 && seen[2] > 50, "{seen:?}");
 }
 
-pub(crate) fn visit_programs_see_the_ray_in_the_selectors_space_and_check_the_payload_type(backend: Backend) {
+pub(crate) fn visit_programs_see_the_ray_in_the_selectors_space_and_check_the_payload_type(backend: On) {
     let extent = 2.0;
     let (mut ctx, out) = camera(extent, backend);
     let red = colored_sphere(&mut ctx, Vec3::ZERO, 1.5, Vec3::X);
@@ -619,7 +619,7 @@ pub(crate) fn visit_programs_see_the_ray_in_the_selectors_space_and_check_the_pa
     assert_eq!(img[0], Vec4::new(1.0, 0.0, 1.0, 1.0));
 }
 
-pub(crate) fn three_level_graph_group_of_groups_of_transforms(backend: Backend) {
+pub(crate) fn three_level_graph_group_of_groups_of_transforms(backend: On) {
     let extent = 2.0;
     let (mut ctx, out) = camera(extent, backend);
     // One unit sphere's geometry group, instanced twice:
@@ -655,9 +655,13 @@ pub(crate) fn three_level_graph_group_of_groups_of_transforms(backend: Backend) 
     ctx.set_var(Scope::Context, "top", top).unwrap();
     let report = ctx.launch(0, W, W).unwrap();
     assert!(report.exceptions.is_empty(), "{:?}", report.exceptions);
-    if backend == Backend::Wgpu {
+    if backend == On::COMPUTE {
         // The graph traversal is linked, with one transform level below world space.
         assert!(ctx.linked_wgsl().unwrap().contains("const RT_LEVELS: u32 = 2u;"));
+    } else if backend == On::RAY_QUERY {
+        // Flattened into one TLAS: no graph traversal.
+        assert_eq!(ctx.traversal().map(|t| t.0), Some(Traversal::RayQuery));
+        assert!(!ctx.linked_wgsl().unwrap().contains("RT_LEVELS"));
     }
     let img = ctx.read_buffer::<Vec4>(out).unwrap();
     // World spheres: (-1, 0.5) radius 0.5; Tz * (0.8, 0) = (1.16, -0.6), radius 0.6.
@@ -692,7 +696,7 @@ pub(crate) fn three_level_graph_group_of_groups_of_transforms(backend: Backend) 
     assert_eq!(pixel(&img, x, y).truncate(), BG);
 }
 
-pub(crate) fn default_exception_paints_magenta_and_records_the_exception(backend: Backend) {
+pub(crate) fn default_exception_paints_magenta_and_records_the_exception(backend: On) {
     let extent = 2.0;
     let (mut ctx, out) = camera(extent, backend);
     sphere_scene(&mut ctx, &throws::PROGRAM, Vec3::ZERO, 1.0);

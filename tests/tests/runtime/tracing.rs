@@ -3,11 +3,11 @@
 
 use super::*;
 
-pub(crate) fn mirror_shows_the_reflected_object_and_the_reflected_background(backend: Backend) {
+pub(crate) fn mirror_shows_the_reflected_object_and_the_reflected_background(backend: On) {
     mirror_scene(backend, &mirror::PROGRAM, 20);
 }
 
-pub(crate) fn a_helper_that_traces_works_from_a_closest_hit(backend: Backend) {
+pub(crate) fn a_helper_that_traces_works_from_a_closest_hit(backend: On) {
     let ctx = mirror_scene(backend, &mirror_through_a_helper::PROGRAM, 20);
     if backend == Backend::Wgpu {
         // One loop runs the resumable forms: no per-depth clones.
@@ -16,7 +16,7 @@ pub(crate) fn a_helper_that_traces_works_from_a_closest_hit(backend: Backend) {
     }
 }
 
-pub(crate) fn a_trace_in_a_match_arm_resumes_in_that_arm(backend: Backend) {
+pub(crate) fn a_trace_in_a_match_arm_resumes_in_that_arm(backend: On) {
     assert!(mirror_in_a_match::PROGRAM.wgsl_resumable.is_some());
     let ctx = mirror_scene(backend, &mirror_in_a_match::PROGRAM, 20);
     if backend == Backend::Wgpu {
@@ -25,7 +25,7 @@ pub(crate) fn a_trace_in_a_match_arm_resumes_in_that_arm(backend: Backend) {
     }
 }
 
-pub(crate) fn a_program_without_a_resumable_form_links_per_depth_clones(backend: Backend) {
+pub(crate) fn a_program_without_a_resumable_form_links_per_depth_clones(backend: On) {
     assert!(mirror_without_a_resumable_form::PROGRAM.wgsl_resumable.is_none());
     assert_eq!(
         mirror_without_a_resumable_form::PROGRAM.not_resumable,
@@ -40,7 +40,7 @@ pub(crate) fn a_program_without_a_resumable_form_links_per_depth_clones(backend:
     }
 }
 
-pub(crate) fn a_helper_tracing_through_another_helper_links_per_depth_clones(backend: Backend) {
+pub(crate) fn a_helper_tracing_through_another_helper_links_per_depth_clones(backend: On) {
     assert!(mirror_through_two_helpers::PROGRAM.wgsl_resumable.is_none());
     let ctx = mirror_scene(backend, &mirror_through_two_helpers::PROGRAM, 3);
     if backend == Backend::Wgpu {
@@ -53,11 +53,7 @@ pub(crate) fn a_helper_tracing_through_another_helper_links_per_depth_clones(bac
 /// background, checked pixel by pixel, with a maximum trace depth of
 /// `depth` (20: deep enough that per-depth clones would be many, so the
 /// wgpu kernel runs resumable programs from its loop).
-pub(crate) fn mirror_scene(
-    backend: Backend,
-    program: &'static rt_std::program::ProgramDescriptor,
-    depth: u32,
-) -> Context {
+pub(crate) fn mirror_scene(backend: On, program: &'static rt_std::program::ProgramDescriptor, depth: u32) -> Context {
     let extent = 2.0;
     let (mut ctx, out) = camera(extent, backend);
     ctx.set_max_trace_depth(depth);
@@ -143,7 +139,7 @@ pub(crate) fn wgpu_kernel_size_does_not_grow_with_the_trace_depth() {
     assert!(!shallow.contains("fn rt_run(") && shallow.contains("fn rtp_mirror_forever_d2("));
 }
 
-pub(crate) fn launches_wider_than_the_dispatch_limit_write_every_index(backend: Backend) {
+pub(crate) fn launches_wider_than_the_dispatch_limit_write_every_index(backend: On) {
     // 600,000 indices in 8x8 workgroups are 75,000 groups across: more than
     // wgpu's 65,535 per dimension, so the wgpu backend tiles the launch in x.
     const N: u32 = 600_000;
@@ -167,7 +163,7 @@ pub(crate) fn launches_wider_than_the_dispatch_limit_write_every_index(backend: 
 /// from the deepest BVH2 and CWBVH (a near-first traversal keeps at most
 /// one pending entry per level), checked here, and every ray still finds
 /// its triangle on both backends.
-pub(crate) fn a_bvh_deeper_than_64_levels_loses_no_hit(backend: Backend) {
+pub(crate) fn a_bvh_deeper_than_64_levels_loses_no_hit(backend: On) {
     // Without an any-hit program the wgpu kernel walks the CWBVH (about a
     // third as deep, still past 32 levels); with one, the BVH2.
     for any_hit in [false, true] {
@@ -175,7 +171,7 @@ pub(crate) fn a_bvh_deeper_than_64_levels_loses_no_hit(backend: Backend) {
     }
 }
 
-pub(crate) fn deep_bvh_probe(backend: Backend, any_hit: bool) {
+pub(crate) fn deep_bvh_probe(backend: On, any_hit: bool) {
     const N: u32 = 300;
     let (mut ctx, _) = camera(1.0, backend);
     let rg = ctx.create_program(&probe_rays::PROGRAM);
@@ -229,7 +225,7 @@ pub(crate) fn deep_bvh_probe(backend: Backend, any_hit: bool) {
     }
 }
 
-pub(crate) fn mut_references_to_payload_fields_reach_helpers(backend: Backend) {
+pub(crate) fn mut_references_to_payload_fields_reach_helpers(backend: On) {
     let (mut ctx, out) = camera(2.0, backend);
     sphere_scene(&mut ctx, &bumps_a_payload_field::PROGRAM, Vec3::ZERO, 1.0);
     ctx.launch(0, W, W).unwrap();

@@ -3,6 +3,7 @@
 //! callbacks report (a lost device, uncaptured errors).
 
 use super::kernel::SCENE_SECTIONS;
+use super::rayquery::accel::RayQueryAccels;
 use super::resident::Resident;
 use crate::error::{Result, RtError};
 use std::collections::HashMap;
@@ -30,6 +31,14 @@ pub struct Gpu {
     pub geometry_encodes: u64,
     pub(crate) resident: Resident,
     pub(crate) health: Arc<Health>,
+    /// Whether the device has ray queries (`EXPERIMENTAL_RAY_QUERY`,
+    /// requested wherever the adapter has it).
+    pub(crate) ray_query: bool,
+    /// The ray-query traversal's acceleration structures.
+    pub(crate) ray_query_accels: RayQueryAccels,
+    /// Bind-group layouts of ray-query kernels, by TLAS slot count: the
+    /// compute layout's entries, the side table and the TLASes.
+    pub(crate) ray_query_layouts: HashMap<u32, wgpu::BindGroupLayout>,
 }
 
 /// What the device's callbacks report.
@@ -82,7 +91,10 @@ impl Gpu {
         })?;
         // Heap, log and one binding per scene section, where the adapter
         // has that many.
-        let storage = (2 + SCENE_SECTIONS.len() as u32).min(adapter.limits().max_storage_buffers_per_shader_stage);
+        // The ray-query traversal binds its side table too.
+        let has_ray_query = adapter.features().contains(wgpu::Features::EXPERIMENTAL_RAY_QUERY);
+        let storage = (2 + SCENE_SECTIONS.len() as u32 + has_ray_query as u32)
+            .min(adapter.limits().max_storage_buffers_per_shader_stage);
         let limits =
             wgpu::Limits { max_storage_buffers_per_shader_stage: storage, ..wgpu::Limits::downlevel_defaults() }
                 .using_resolution(adapter.limits());
@@ -93,11 +105,36 @@ impl Gpu {
         };
         // Timestamps, where the adapter has them: the device's own time of
         // a launch ([`super::Timings::kernel`]).
-        let required_features = adapter.features() & wgpu::Features::TIMESTAMP_QUERY;
+        let mut required_features = adapter.features() & wgpu::Features::TIMESTAMP_QUERY;
+        // Ray queries, where the adapter has them (the ray-query traversal,
+        // rayquery/): wgpu marks them experimental, and every acceleration
+        // structure limit is 0 unless raised to the adapter's.
+        let ray_query = has_ray_query;
+        let mut experimental_features = wgpu::ExperimentalFeatures::disabled();
+        let mut limits = limits;
+        if ray_query {
+            required_features |= wgpu::Features::EXPERIMENTAL_RAY_QUERY;
+            // SAFETY: wgpu's experimental features may have bugs that cause
+            // undefined behaviour in the driver; ray queries are what the
+            // ray-query traversal needs, tested on every launch of the
+            // suite on lavapipe.
+            experimental_features = unsafe { wgpu::ExperimentalFeatures::enabled() };
+            let a = adapter.limits();
+            limits = wgpu::Limits {
+                max_blas_primitive_count: a.max_blas_primitive_count,
+                max_blas_geometry_count: a.max_blas_geometry_count,
+                max_tlas_instance_count: a.max_tlas_instance_count,
+                max_acceleration_structures_per_shader_stage: a.max_acceleration_structures_per_shader_stage,
+                max_buffers_and_acceleration_structures_per_shader_stage: a
+                    .max_buffers_and_acceleration_structures_per_shader_stage,
+                ..limits
+            };
+        }
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("rt-runtime"),
             required_limits: limits.clone(),
             required_features,
+            experimental_features,
             ..Default::default()
         }))
         .map_err(|e| RtError::Gpu(format!("cannot open a device on {}: {e}", adapter.get_info().name)))?;
@@ -121,20 +158,7 @@ impl Gpu {
         // buffers; the rest go to the scene's sections.
         let scene_bindings =
             (limits.max_storage_buffers_per_shader_stage.saturating_sub(2) as usize).clamp(1, SCENE_SECTIONS.len());
-        let buffer = |binding: u32, ty: wgpu::BufferBindingType| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: wgpu::ShaderStages::COMPUTE,
-            ty: wgpu::BindingType::Buffer { ty, has_dynamic_offset: false, min_binding_size: None },
-            count: None,
-        };
-        let storage = |read_only| wgpu::BufferBindingType::Storage { read_only };
-        let mut entries = vec![
-            buffer(0, storage(false)),
-            buffer(1, storage(true)),
-            buffer(2, storage(false)),
-            buffer(3, wgpu::BufferBindingType::Uniform),
-        ];
-        entries.extend((1..scene_bindings).map(|s| buffer(3 + s as u32, storage(true))));
+        let entries = base_entries(scene_bindings);
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("rt bindings"),
             entries: &entries,
@@ -149,6 +173,7 @@ impl Gpu {
         device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| {
             on_error.uncaptured.lock().unwrap_or_else(|e| e.into_inner()).push(e.to_string());
         }));
+        let ray_query = device.features().contains(wgpu::Features::EXPERIMENTAL_RAY_QUERY);
         Gpu {
             device,
             queue,
@@ -162,7 +187,36 @@ impl Gpu {
             geometry_encodes: 0,
             resident: Resident::default(),
             health,
+            ray_query,
+            ray_query_accels: RayQueryAccels::default(),
+            ray_query_layouts: HashMap::new(),
         }
+    }
+
+    /// The bind-group layout of kernels with `slots` TLASes (0: the compute
+    /// traversal's).
+    pub(crate) fn layout_for(&mut self, slots: u32) -> &wgpu::BindGroupLayout {
+        if slots == 0 {
+            return &self.layout;
+        }
+        let Gpu { device, ray_query_layouts, scene_bindings, .. } = self;
+        ray_query_layouts.entry(slots).or_insert_with(|| {
+            let mut entries = base_entries(*scene_bindings);
+            entries.push(buffer_entry(
+                super::rayquery::SIDE_BINDING,
+                wgpu::BufferBindingType::Storage { read_only: true },
+            ));
+            entries.extend((0..slots).map(|s| wgpu::BindGroupLayoutEntry {
+                binding: super::rayquery::SIDE_BINDING + 1 + s,
+                visibility: wgpu::ShaderStages::COMPUTE,
+                ty: wgpu::BindingType::AccelerationStructure { vertex_return: false },
+                count: None,
+            }));
+            device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                label: Some("rt bindings (ray queries)"),
+                entries: &entries,
+            })
+        })
     }
 
     /// Bytes the last launch wrote to the device (scene, heap pages, log
@@ -180,6 +234,29 @@ impl Gpu {
     pub fn is_cpu(&self) -> bool {
         self.info.device_type == wgpu::DeviceType::Cpu
     }
+}
+
+fn buffer_entry(binding: u32, ty: wgpu::BufferBindingType) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Buffer { ty, has_dynamic_offset: false, min_binding_size: None },
+        count: None,
+    }
+}
+
+/// The bindings of every kernel: heap, the first scene section, log and
+/// launch uniform (0-3), then the other scene sections.
+fn base_entries(scene_bindings: usize) -> Vec<wgpu::BindGroupLayoutEntry> {
+    let storage = |read_only| wgpu::BufferBindingType::Storage { read_only };
+    let mut entries = vec![
+        buffer_entry(0, storage(false)),
+        buffer_entry(1, storage(true)),
+        buffer_entry(2, storage(false)),
+        buffer_entry(3, wgpu::BufferBindingType::Uniform),
+    ];
+    entries.extend((1..scene_bindings).map(|s| buffer_entry(3 + s as u32, storage(true))));
+    entries
 }
 
 /// A wgpu instance for headless compute, as every device of the runtime is
@@ -208,11 +285,20 @@ pub fn instance() -> wgpu::Instance {
 
 /// The adapter wgpu would pick, without opening a device.
 pub fn probe() -> Option<wgpu::AdapterInfo> {
+    probe_adapter().map(|a| a.get_info())
+}
+
+/// Whether the adapter wgpu would pick has ray queries (the ray-query
+/// traversal), without opening a device.
+pub fn probe_ray_queries() -> bool {
+    probe_adapter().is_some_and(|a| a.features().contains(wgpu::Features::EXPERIMENTAL_RAY_QUERY))
+}
+
+fn probe_adapter() -> Option<wgpu::Adapter> {
     let instance = instance();
-    let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
+    pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
         power_preference: wgpu::PowerPreference::HighPerformance,
         ..Default::default()
     }))
-    .ok()?;
-    Some(adapter.get_info())
+    .ok()
 }

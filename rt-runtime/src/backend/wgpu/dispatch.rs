@@ -1,6 +1,7 @@
 //! Dispatch: a launch as tiles of 8 x 8 workgroups within the device's
 //! dispatch limit, each with its launch uniform, and the compute pass over
-//! them (with timestamps where the device has them).
+//! them (with timestamps where the device has them). Ray-query kernels
+//! also bind the side table and their TLASes.
 
 use super::Launch;
 use super::device::Gpu;
@@ -50,8 +51,15 @@ pub(crate) fn tiles(l: &Launch, limits: &wgpu::Limits, ray_generation: [u32; 2],
 /// Writes the tiles' uniforms, makes a bind group per tile (again when a
 /// buffer was `replaced`) and records the compute pass of `wgsl`'s
 /// pipeline over them; returns the encoder, for the read-back's copies.
-pub(crate) fn record(gpu: &mut Gpu, wgsl: &str, tiles: &[Tile], mut replaced: bool) -> wgpu::CommandEncoder {
-    let Gpu { device, queue, limits, layout, pipelines, resident: res, .. } = gpu;
+pub(crate) fn record(
+    gpu: &mut Gpu,
+    wgsl: &str,
+    slots: u32,
+    tiles: &[Tile],
+    mut replaced: bool,
+) -> wgpu::CommandEncoder {
+    let layout = gpu.layout_for(slots).clone();
+    let Gpu { device, queue, limits, pipelines, resident: res, ray_query_accels, .. } = gpu;
     let pipeline = &pipelines[wgsl];
     let uniform_bytes = (LaunchUniform::WORDS * 4) as u32;
     let stride = limits.min_uniform_buffer_offset_alignment.max(uniform_bytes) as u64;
@@ -72,6 +80,10 @@ pub(crate) fn record(gpu: &mut Gpu, wgsl: &str, tiles: &[Tile], mut replaced: bo
     for (i, (uniform, _, _)) in tiles.iter().enumerate() {
         queue.write_buffer(uniforms, i as u64 * stride, words_to_bytes(uniform));
         res.uploaded += uniform_bytes as u64;
+    }
+    if res.bind_slots != slots {
+        res.bind_slots = slots;
+        replaced = true;
     }
     if replaced {
         res.bind_groups.clear();
@@ -98,9 +110,12 @@ pub(crate) fn record(gpu: &mut Gpu, wgsl: &str, tiles: &[Tile], mut replaced: bo
         for (s, b) in scene_buffers.iter().enumerate().skip(1) {
             entries.push(wgpu::BindGroupEntry { binding: 3 + s as u32, resource: b.as_entire_binding() });
         }
+        if slots > 0 {
+            entries.extend(ray_query_accels.entries());
+        }
         res.bind_groups.push(device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("rt bindings"),
-            layout,
+            layout: &layout,
             entries: &entries,
         }));
     }

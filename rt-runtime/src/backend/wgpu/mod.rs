@@ -71,11 +71,13 @@ pub(crate) mod dispatch;
 pub(crate) mod heap;
 pub mod kernel;
 pub(crate) mod pipeline;
+pub(crate) mod rayquery;
 pub(crate) mod readback;
 pub(crate) mod resident;
 
 pub use compute::geometry::cwbvh_node_words;
-pub use device::{Gpu, instance, probe};
+pub use device::{Gpu, instance, probe, probe_ray_queries};
+pub use rayquery::Traversal;
 
 use super::{BackendStats, ExceptionRecord, Launch, LaunchBackend, LaunchReport};
 use crate::accel::bvh::TreeForm;
@@ -93,6 +95,8 @@ use readback::{LOG_EXCEPTIONS, LOG_PRINT_WORDS};
 pub(crate) struct WgpuBackend {
     gpu: Option<Gpu>,
     last_wgsl: Option<String>,
+    /// The last launch's traversal and why it was chosen.
+    last_traversal: Option<(Traversal, String)>,
     lose_device_in_next_launch: bool,
     pending: Option<ReadOutputs>,
 }
@@ -159,9 +163,9 @@ impl LaunchBackend for WgpuBackend {
     /// only written from a read-back that completed.
     fn launch(&mut self, l: &Launch) -> Result<LaunchReport> {
         self.pending = None;
-        let WgpuBackend { gpu, last_wgsl, lose_device_in_next_launch, pending } = self;
+        let WgpuBackend { gpu, last_wgsl, last_traversal, lose_device_in_next_launch, pending } = self;
         let device = gpu.as_mut().expect("opened by prepare");
-        let result = launch_on_device(device, last_wgsl, lose_device_in_next_launch, pending, l);
+        let result = launch_on_device(device, last_wgsl, last_traversal, lose_device_in_next_launch, pending, l);
         if matches!(result, Err(RtError::DeviceLost { .. })) {
             self.gpu = None;
         }
@@ -185,6 +189,9 @@ impl LaunchBackend for WgpuBackend {
             pipelines_created: gpu.map_or(0, |g| g.pipelines_created),
             last_upload_bytes: gpu.map_or(0, |g| g.last_upload_bytes()),
             linked_wgsl: self.last_wgsl.as_deref(),
+            traversal: self.last_traversal.as_ref().map(|(t, why)| (*t, why.as_str())),
+            blas_builds: gpu.map_or(0, |g| g.ray_query_accels.blas_builds),
+            tlas_builds: gpu.map_or(0, |g| g.ray_query_accels.tlas_builds),
         }
     }
 }
@@ -196,6 +203,7 @@ impl LaunchBackend for WgpuBackend {
 fn launch_on_device(
     gpu: &mut Gpu,
     last_wgsl: &mut Option<String>,
+    last_traversal: &mut Option<(Traversal, String)>,
     lose_device: &mut bool,
     pending: &mut Option<ReadOutputs>,
     l: &Launch,
@@ -204,7 +212,16 @@ fn launch_on_device(
     let scene_bindings = gpu.scene_bindings;
     // The scene, unless the device holds this one already (same structure,
     // same acceleration structures): then only the heap is encoded.
-    let key = SceneKey::of(l.scene, l.accels, l.entry, scene_bindings);
+    let plan = rayquery::plan(l.scene, gpu, l.settings.traversal)?;
+    let slots = match &plan {
+        rayquery::Plan::RayQuery(flat) => flat.roots.len() as u32,
+        rayquery::Plan::Compute(_) => 0,
+    };
+    *last_traversal = Some(match &plan {
+        rayquery::Plan::RayQuery(_) => (Traversal::RayQuery, format!("{} has ray queries", gpu.describe())),
+        rayquery::Plan::Compute(why) => (Traversal::Compute, why.clone()),
+    });
+    let key = SceneKey::of(l.scene, l.accels, l.entry, scene_bindings, slots);
     let device_sections: Vec<Option<&[u32]>> =
         gpu.resident.scene.iter().map(|m| m.as_ref().map(|m| &m.words[..])).collect();
     let encoding = compute::scene::encode_launch(l, key, gpu.resident.held.as_ref(), &device_sections)?;
@@ -220,15 +237,18 @@ fn launch_on_device(
     let max_buffers = gpu.limits.max_storage_buffers_per_shader_stage;
     let fresh = fresh.map(|e| compute::scene::place_scene(e, key, &wgsl, scene_bindings, max_buffers, &mut parts));
     check_bindings(gpu, &parts)?;
-    pipeline::ensure(gpu, &wgsl, warning.as_deref())?;
+    pipeline::ensure(gpu, &wgsl, slots, warning.as_deref())?;
     let t3 = std::time::Instant::now();
     let lose = std::mem::take(lose_device);
     let log_words = 4 + LOG_EXCEPTIONS * 3 + LOG_PRINT_WORDS;
-    let replaced = resident::upload(&gpu.device, &gpu.queue, &mut gpu.resident, heap, fresh, log_words);
+    let mut replaced = resident::upload(&gpu.device, &gpu.queue, &mut gpu.resident, heap, fresh, log_words);
+    if let rayquery::Plan::RayQuery(flat) = &plan {
+        replaced |= rayquery::accel::sync(gpu, l.scene, l.accels, flat)?;
+    }
     let held = gpu.resident.held.as_ref().expect("held or synced above");
     let (rg_case, ex_case) = (held.spec.ray_generation.case, held.spec.exception.map_or(0, |e| e.case));
     let tiles = dispatch::tiles(l, &gpu.limits, [rg_case, rg_vars], [ex_case, ex_vars]);
-    let encoder = dispatch::record(gpu, &wgsl, &tiles, replaced);
+    let encoder = dispatch::record(gpu, &wgsl, slots, &tiles, replaced);
     let results = readback::results(gpu, encoder, &outputs, lose)?;
     let (header, kernel) = (results.header, results.kernel);
     // The outputs go to the host's buffers now, whatever happens next.

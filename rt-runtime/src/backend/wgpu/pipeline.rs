@@ -1,5 +1,6 @@
 //! The pipeline cache: one compute pipeline per megakernel WGSL, created
-//! the first time a launch links that source.
+//! the first time a launch links that source, over the bind-group layout
+//! of its traversal (`slots` TLASes: 0 for the compute traversal).
 
 use super::device::Gpu;
 use crate::error::{Result, RtError};
@@ -7,7 +8,7 @@ use crate::error::{Result, RtError};
 /// Makes `gpu` hold a pipeline for `wgsl` (printing the generator's
 /// `warning` when it creates one); a kernel that does not compile is an
 /// error naming `RT_DUMP_WGSL`.
-pub(crate) fn ensure(gpu: &mut Gpu, wgsl: &str, warning: Option<&str>) -> Result<()> {
+pub(crate) fn ensure(gpu: &mut Gpu, wgsl: &str, slots: u32, warning: Option<&str>) -> Result<()> {
     if gpu.pipelines.contains_key(wgsl) {
         return Ok(());
     }
@@ -19,9 +20,10 @@ pub(crate) fn ensure(gpu: &mut Gpu, wgsl: &str, warning: Option<&str>) -> Result
         label: Some("rt megakernel"),
         source: wgpu::ShaderSource::Wgsl(wgsl.to_string().into()),
     });
+    let layout = gpu.layout_for(slots).clone();
     let pipeline_layout = gpu.device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some("rt megakernel"),
-        bind_group_layouts: &[Some(&gpu.layout)],
+        bind_group_layouts: &[Some(&layout)],
         immediate_size: 0,
     });
     let pipeline = gpu.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {

@@ -33,6 +33,8 @@ pub(crate) struct Resident {
     /// Bind groups per tile, over the buffers above (cleared when one of
     /// them is replaced).
     pub(crate) bind_groups: Vec<wgpu::BindGroup>,
+    /// The TLAS slots of the layout the bind groups were made for.
+    pub(crate) bind_slots: u32,
     /// Bytes written to the device by the last launch (for tests).
     pub(crate) uploaded: u64,
 }

@@ -87,16 +87,25 @@ pub(crate) struct SceneKey {
     pub(crate) refits: u64,
     pub(crate) entry: u32,
     pub(crate) scene_bindings: usize,
+    /// The ray-query traversal's TLAS slots (0: the compute traversal).
+    pub(crate) ray_query_slots: u32,
 }
 
 impl SceneKey {
-    pub(crate) fn of(scene: &Scene, accels: &AccelCache, entry: u32, scene_bindings: usize) -> SceneKey {
+    pub(crate) fn of(
+        scene: &Scene,
+        accels: &AccelCache,
+        entry: u32,
+        scene_bindings: usize,
+        ray_query_slots: u32,
+    ) -> SceneKey {
         SceneKey {
             structure: scene.structure_version,
             builds: accels.builds,
             refits: accels.refits,
             entry,
             scene_bindings,
+            ray_query_slots,
         }
     }
 }
@@ -194,7 +203,7 @@ struct Groups {
 }
 
 /// An instance: a geometry group, its object-to-world matrix and mask.
-type Instance = (NodeId, Mat4, u32);
+pub(crate) type Instance = (NodeId, Mat4, u32);
 
 impl Encoder<'_> {
     /// Program `p`'s case in the kernel's dispatch, added to the kernel's
@@ -383,7 +392,7 @@ fn case(p: ProgramId) -> u32 {
 
 /// Instances: one per geometry group and per transform chain; and each
 /// node's instance, if it is one.
-fn instances(scene: &Scene) -> Result<(Vec<Option<u32>>, Vec<Instance>)> {
+pub(crate) fn instances(scene: &Scene) -> Result<(Vec<Option<u32>>, Vec<Instance>)> {
     let mut instance_of_node: Vec<Option<u32>> = vec![None; scene.nodes.len()];
     let mut instances: Vec<Instance> = Vec::new();
     for (n, slot) in instance_of_node.iter_mut().enumerate() {
@@ -509,6 +518,7 @@ fn kernel_spec(
         graph_levels,
         default_exception,
         scene_bindings,
+        ray_query_slots: 0,
         cwbvh_stack: if geometry.cwbvh { (geometry.deepest_cwbvh + 2).max(32).next_power_of_two() } else { 0 },
     })
 }
@@ -611,7 +621,19 @@ pub(crate) fn encode_launch(
     check_held_scene(l, scene_bindings, device_sections, held, held_geometry)?;
     #[cfg(not(debug_assertions))]
     let _ = device_sections;
-    let fresh = if held.is_some() { None } else { Some(encode(l, scene_bindings, held_geometry)?) };
+    let fresh = match held {
+        Some(_) => None,
+        None => {
+            let mut e = encode(l, scene_bindings, held_geometry)?;
+            // Ray queries walk no graph: they need neither its stacks nor
+            // the selectors' visit dispatch (they refuse selectors).
+            e.spec.ray_query_slots = key.ray_query_slots;
+            if key.ray_query_slots > 0 {
+                e.spec.graph_levels = 0;
+            }
+            Some(e)
+        }
+    };
     let (records, rg_vars, ex_vars) = match (&fresh, held) {
         (Some(e), _) => (&e.records, e.rg_vars, e.ex_vars),
         (None, Some(h)) => (&h.records, h.rg_vars, h.ex_vars),

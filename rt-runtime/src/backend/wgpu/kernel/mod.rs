@@ -27,6 +27,7 @@ use std::collections::{BTreeMap, BTreeSet};
 /// The runtime's half of every module, after the contract's records, heap
 /// and exception codes (see [`prelude`]).
 const PRELUDE: &str = include_str!("../prelude.wgsl");
+const HITS: &str = include_str!("hits.wgsl");
 const TRAVERSE: &str = include_str!("../compute/traverse.wgsl");
 const GRAPH: &str = include_str!("../compute/graph.wgsl");
 
@@ -104,6 +105,9 @@ pub struct KernelSpec {
     /// CWBVH's levels + 1) where every geometry group has a CWBVH over
     /// triangles (`rt_blas_cwbvh`); 0 where the lean loop walks BVH2s.
     pub cwbvh_stack: u32,
+    /// TLASes the ray-query traversal binds (0: the compute traversal is
+    /// linked instead; see `rayquery/`).
+    pub ray_query_slots: u32,
 }
 
 /// The scene's sections, each its own read-only storage binding where the
@@ -216,7 +220,9 @@ pub fn generate(spec: &KernelSpec) -> Result<Generated> {
         }
     }
 
-    let mut out = prelude();
+    // Ray queries are a WGSL extension, enabled before anything else.
+    let mut out = if spec.ray_query_slots > 0 { String::from("enable wgpu_ray_query;\n") } else { String::new() };
+    out.push_str(&prelude());
     out.push_str(&scene_access(spec.scene_bindings));
     out.push_str(&format!(
         "\nconst RT_BVH_STACK: u32 = {}u;\nconst RT_TLAS_STACK: u32 = {}u;\nconst RT_GROUPS: bool = {};\nconst RT_TRIANGLES_ONLY: bool = {};\nconst RT_CWBVH: bool = {};\nconst RT_CW_STACK: u32 = {}u;\n",
@@ -227,15 +233,21 @@ pub fn generate(spec: &KernelSpec) -> Result<Generated> {
         spec.cwbvh_stack > 0,
         spec.cwbvh_stack.max(1),
     ));
-    out.push_str(TRAVERSE);
-    if spec.graph_levels > 0 {
-        out.push_str(&format!(
-            "\nconst RT_LEVELS: u32 = {}u;\nconst RT_GRAPH_STACK: u32 = {}u;\nvar<private> rt_s_payload: u32;\n",
-            spec.graph_levels, spec.graph_stack
-        ));
-        out.push_str(GRAPH);
+    out.push_str(HITS);
+    if spec.ray_query_slots > 0 {
+        // The ray-query loop: it defines rt_search and the hit transforms.
+        out.push_str(&super::rayquery::search_wgsl(spec.ray_query_slots));
     } else {
-        out.push_str(TWO_LEVEL);
+        out.push_str(TRAVERSE);
+        if spec.graph_levels > 0 {
+            out.push_str(&format!(
+                "\nconst RT_LEVELS: u32 = {}u;\nconst RT_GRAPH_STACK: u32 = {}u;\nvar<private> rt_s_payload: u32;\n",
+                spec.graph_levels, spec.graph_stack
+            ));
+            out.push_str(GRAPH);
+        } else {
+            out.push_str(TWO_LEVEL);
+        }
     }
     out.push_str("\n// ---- types ----\n");
     for (item, _) in types.values() {

@@ -1,0 +1,430 @@
+//! Acceleration structures on the device for the ray-query traversal, kept
+//! across launches: one BLAS per part of a geometry group (its triangle
+//! geometry instances, one BLAS geometry each; its custom primitives'
+//! boxes from their bounding-box programs), keyed by the stamp of the
+//! group's tree in the acceleration cache, so moving vertices rebuilds only
+//! the BLASes over them; one TLAS per traced root, rebuilt when its
+//! instances (transforms, masks, BLASes) changed, so moving a transform
+//! rebuilds only TLASes. Also the kernel's side table (`rt_query_side`, see
+//! search.wgsl).
+//!
+//! OptiX's builder names: `Sbvh`, `Bvh` and `MedianBvh` ask the driver for
+//! fast traces (`PREFER_FAST_TRACE`), `Lbvh` and `NoAccel` for fast builds
+//! (`PREFER_FAST_BUILD`); `TriangleKdTree` is refused as everywhere.
+
+use super::flatten::{Flat, FlatInstance, parts};
+use crate::accel::Builder;
+use crate::accel::cache::{AccelCache, NodeAccel, instance_mesh, prim_bounds};
+use crate::backend::wgpu::device::Gpu;
+use crate::error::{Result, RtError};
+use crate::handles::GeometryInstanceId;
+use crate::scene::{NodeId, NodeKind, Scene};
+use std::collections::HashMap;
+use wgpu::util::DeviceExt;
+
+/// A geometry group's BLASes: `[triangles, boxes]`, each absent when the
+/// group has none of that kind.
+struct GroupBlas {
+    stamp: u64,
+    parts: [Option<wgpu::Blas>; 2],
+}
+
+/// What a TLAS instance is built from, to tell whether a TLAS changed:
+/// `(group, part, group stamp, transform bits, custom data, mask)`.
+type InstanceKey = (u32, u32, u64, [u32; 12], u32, u8);
+
+/// The device's acceleration structures and side table.
+#[derive(Default)]
+pub(crate) struct RayQueryAccels {
+    groups: HashMap<u32, GroupBlas>,
+    /// One per root slot.
+    tlas: Vec<(Vec<InstanceKey>, wgpu::Tlas)>,
+    side: Option<(Vec<u32>, wgpu::Buffer)>,
+    /// BLASes built, TLASes built (for tests and the benchmark).
+    pub blas_builds: u64,
+    pub tlas_builds: u64,
+}
+
+impl RayQueryAccels {
+    /// The bind-group entries of the side table and the TLASes (after
+    /// [`RayQueryAccels::sync`]).
+    pub(crate) fn entries(&self) -> Vec<wgpu::BindGroupEntry<'_>> {
+        let mut out = Vec::new();
+        if let Some((_, side)) = &self.side {
+            out.push(wgpu::BindGroupEntry { binding: super::SIDE_BINDING, resource: side.as_entire_binding() });
+        }
+        for (s, (_, tlas)) in self.tlas.iter().enumerate() {
+            out.push(wgpu::BindGroupEntry { binding: super::SIDE_BINDING + 1 + s as u32, resource: tlas.as_binding() });
+        }
+        out
+    }
+}
+
+/// The driver's build preference for a builder.
+fn build_flags(builder: Builder) -> wgpu::AccelerationStructureFlags {
+    match builder {
+        Builder::Lbvh | Builder::NoAccel => wgpu::AccelerationStructureFlags::PREFER_FAST_BUILD,
+        _ => wgpu::AccelerationStructureFlags::PREFER_FAST_TRACE,
+    }
+}
+
+/// A 3x4 row-major matrix, as TLAS instances take it.
+fn rows(m: glam::Mat4) -> [f32; 12] {
+    let r = |i: usize| m.row(i);
+    let (a, b, c) = (r(0), r(1), r(2));
+    [a.x, a.y, a.z, a.w, b.x, b.y, b.z, b.w, c.x, c.y, c.z, c.w]
+}
+
+/// Whether geometry instance `gi`'s triangles may all commit without a
+/// program: no any-hit program for any ray type, and every material index
+/// in range (an index past the materials is never hit, as in the compute
+/// traversal, which only a candidate can say).
+fn opaque(scene: &Scene, gi: u32) -> bool {
+    let rec = &scene.instances[gi as usize];
+    let any_hit = rec.materials.iter().any(|m| scene.materials[m.index() as usize].any_hit.iter().any(Option::is_some));
+    let in_range = match instance_mesh(scene, gi).and_then(|mesh| mesh.material_indices.as_ref()) {
+        Some(indices) => indices.iter().all(|&m| (m as usize) < rec.materials.len()),
+        None => !rec.materials.is_empty(),
+    };
+    !any_hit && in_range
+}
+
+fn bytes<T: Copy>(v: &[T]) -> &[u8] {
+    // SAFETY: only called with f32 and u32 arrays (no padding, any byte
+    // pattern valid as u8).
+    unsafe { std::slice::from_raw_parts(v.as_ptr() as *const u8, std::mem::size_of_val(v)) }
+}
+
+/// The input buffers and size descriptors of one BLAS, alive until its
+/// build is recorded.
+enum BlasInput {
+    Triangles { sizes: Vec<wgpu::BlasTriangleGeometrySizeDescriptor>, buffers: Vec<(wgpu::Buffer, wgpu::Buffer)> },
+    Boxes { sizes: Vec<wgpu::BlasAABBGeometrySizeDescriptor>, buffers: Vec<wgpu::Buffer> },
+}
+
+/// Makes the device hold the BLASes of `flat`'s groups, its roots' TLASes
+/// and the side table; returns true when a binding changed (the bind
+/// groups over them are stale).
+pub(crate) fn sync(gpu: &mut Gpu, scene: &Scene, accels: &AccelCache, flat: &Flat) -> Result<bool> {
+    let limits = gpu.limits.clone();
+    let adapter = gpu.describe();
+    let device = gpu.device.clone();
+    let rq = &mut gpu.ray_query_accels;
+    let mut replaced = false;
+
+    // BLASes of the groups whose trees changed (or are new).
+    let mut used: Vec<NodeId> = flat.roots.iter().flat_map(|(_, insts)| insts.iter().map(|i| i.group)).collect();
+    used.sort();
+    used.dedup();
+    rq.groups.retain(|g, _| used.iter().any(|u| u.index() == *g));
+    let stamp_of = |g: NodeId| match accels.nodes.get(g.index() as usize) {
+        Some(Some(NodeAccel::Prims { stamp, .. })) => *stamp,
+        _ => 0,
+    };
+    let mut builds: Vec<(wgpu::Blas, BlasInput)> = Vec::new();
+    let mut new_groups: Vec<(u32, GroupBlas)> = Vec::new();
+    for &g in &used {
+        let stamp = stamp_of(g);
+        if rq.groups.get(&g.index()).is_some_and(|b| b.stamp == stamp) {
+            continue;
+        }
+        let NodeKind::GeometryGroup { accel, .. } = &scene.nodes[g.index() as usize].kind else { continue };
+        let flags = build_flags(accel.builder);
+        let [tris, boxes] = parts(scene, g);
+        let mut group = GroupBlas { stamp, parts: [None, None] };
+        if !tris.is_empty() {
+            let (blas, input) = triangle_blas(&device, scene, g, &tris, flags, &limits, &adapter)?;
+            group.parts[0] = Some(blas.clone());
+            builds.push((blas, input));
+        }
+        if !boxes.is_empty() {
+            let built = box_blas(&device, scene, g, &boxes, flags, &limits, &adapter)?;
+            if let Some((blas, input)) = built {
+                group.parts[1] = Some(blas.clone());
+                builds.push((blas, input));
+            }
+        }
+        new_groups.push((g.index(), group));
+    }
+    rq.blas_builds += builds.len() as u64;
+    rq.groups.extend(new_groups);
+
+    // TLASes: one per root, rebuilt when an instance changed.
+    let mut tlas_builds: Vec<usize> = Vec::new();
+    rq.tlas.truncate(flat.roots.len());
+    for (slot, (root, instances)) in flat.roots.iter().enumerate() {
+        let mut keys: Vec<InstanceKey> = Vec::new();
+        for FlatInstance { group, record, object_to_world, mask } in instances {
+            let Some(blas) = rq.groups.get(&group.index()) else { continue };
+            for part in 0..2u32 {
+                if blas.parts[part as usize].is_some() {
+                    let custom = record * 2 + part;
+                    keys.push((
+                        group.index(),
+                        part,
+                        blas.stamp,
+                        rows(*object_to_world).map(f32::to_bits),
+                        custom,
+                        *mask,
+                    ));
+                }
+            }
+        }
+        if keys.len() as u64 > limits.max_tlas_instance_count as u64 {
+            return Err(RtError::AccelerationLimit {
+                node: root.index(),
+                what: "TLAS instances (paths down to geometry groups)",
+                count: keys.len() as u64,
+                limit: limits.max_tlas_instance_count as u64,
+                adapter: adapter.clone(),
+            });
+        }
+        if keys.iter().any(|k| k.4 >= 1 << 24) {
+            return Err(RtError::AccelerationLimit {
+                node: root.index(),
+                what: "instance records (the 24 bits of a TLAS instance's custom data hold two per record)",
+                count: flat.records as u64,
+                limit: 1 << 23,
+                adapter: adapter.clone(),
+            });
+        }
+        if rq.tlas.get(slot).is_some_and(|(k, _)| *k == keys) {
+            continue;
+        }
+        let mut tlas = device.create_tlas(&wgpu::CreateTlasDescriptor {
+            label: Some("rt tlas"),
+            max_instances: keys.len().max(1) as u32,
+            flags: wgpu::AccelerationStructureFlags::PREFER_FAST_TRACE,
+            update_mode: wgpu::AccelerationStructureUpdateMode::Build,
+        });
+        for (i, k) in keys.iter().enumerate() {
+            let blas = rq.groups[&k.0].parts[k.1 as usize].as_ref().expect("a part with a key has a BLAS");
+            tlas[i] = Some(wgpu::TlasInstance::new(blas, k.3.map(f32::from_bits), k.4, k.5));
+        }
+        if slot < rq.tlas.len() {
+            rq.tlas[slot] = (keys, tlas);
+        } else {
+            rq.tlas.push((keys, tlas));
+        }
+        tlas_builds.push(slot);
+        replaced = true;
+    }
+    rq.tlas_builds += tlas_builds.len() as u64;
+
+    // Record every build in one submission.
+    if !builds.is_empty() || !tlas_builds.is_empty() {
+        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("rt accels") });
+        let entries: Vec<wgpu::BlasBuildEntry> = builds.iter().map(|(blas, input)| build_entry(blas, input)).collect();
+        encoder.build_acceleration_structures(entries.iter(), tlas_builds.iter().map(|&s| &rq.tlas[s].1));
+        gpu.queue.submit([encoder.finish()]);
+        if let Some(e) = pollster::block_on(scope.pop()) {
+            rq.groups.clear();
+            rq.tlas.clear();
+            return Err(RtError::Gpu(format!("building the ray-query acceleration structures on {adapter}: {e}")));
+        }
+    }
+
+    // The side table.
+    let words = side_table(scene, flat, &rq.groups);
+    if rq.side.as_ref().is_none_or(|(w, _)| *w != words) {
+        let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("rt_query_side"),
+            contents: bytes(&words),
+            usage: wgpu::BufferUsages::STORAGE,
+        });
+        rq.side = Some((words, buffer));
+        replaced = true;
+    }
+    Ok(replaced)
+}
+
+/// The build of one BLAS over its recorded inputs.
+fn build_entry<'a>(blas: &'a wgpu::Blas, input: &'a BlasInput) -> wgpu::BlasBuildEntry<'a> {
+    let geometry = match input {
+        BlasInput::Triangles { sizes, buffers } => wgpu::BlasGeometries::TriangleGeometries(
+            sizes
+                .iter()
+                .zip(buffers)
+                .map(|(size, (vertices, indices))| wgpu::BlasTriangleGeometry {
+                    size,
+                    vertex_buffer: vertices,
+                    first_vertex: 0,
+                    vertex_stride: 12,
+                    index_buffer: Some(indices),
+                    first_index: Some(0),
+                    transform_buffer: None,
+                    transform_buffer_offset: None,
+                })
+                .collect(),
+        ),
+        BlasInput::Boxes { sizes, buffers } => wgpu::BlasGeometries::AabbGeometries(
+            sizes
+                .iter()
+                .zip(buffers)
+                .map(|(size, boxes)| wgpu::BlasAabbGeometry {
+                    size,
+                    stride: wgpu::AABB_GEOMETRY_MIN_STRIDE,
+                    aabb_buffer: boxes,
+                    primitive_offset: 0,
+                })
+                .collect(),
+        ),
+    };
+    wgpu::BlasBuildEntry { blas, geometry }
+}
+
+/// Fails when a BLAS of `group` would pass the adapter's limits.
+fn check_blas(group: NodeId, geometries: usize, primitives: u64, limits: &wgpu::Limits, adapter: &str) -> Result<()> {
+    let over = |what, count: u64, limit: u32| RtError::AccelerationLimit {
+        node: group.index(),
+        what,
+        count,
+        limit: limit as u64,
+        adapter: adapter.to_string(),
+    };
+    if geometries as u64 > limits.max_blas_geometry_count as u64 {
+        return Err(over("BLAS geometries (geometry instances)", geometries as u64, limits.max_blas_geometry_count));
+    }
+    if primitives > limits.max_blas_primitive_count as u64 {
+        return Err(over("BLAS primitives", primitives, limits.max_blas_primitive_count));
+    }
+    Ok(())
+}
+
+/// The BLAS of group `g`'s triangle geometry instances `gis`.
+fn triangle_blas(
+    device: &wgpu::Device,
+    scene: &Scene,
+    g: NodeId,
+    gis: &[u32],
+    flags: wgpu::AccelerationStructureFlags,
+    limits: &wgpu::Limits,
+    adapter: &str,
+) -> Result<(wgpu::Blas, BlasInput)> {
+    let mut sizes = Vec::new();
+    let mut buffers = Vec::new();
+    let mut primitives = 0u64;
+    for &gi in gis {
+        let Some(mesh) = instance_mesh(scene, gi) else { continue };
+        primitives = primitives.max(mesh.indices.len() as u64);
+        let geometry_flags = if opaque(scene, gi) {
+            wgpu::AccelerationStructureGeometryFlags::OPAQUE
+        } else {
+            wgpu::AccelerationStructureGeometryFlags::NO_DUPLICATE_ANY_HIT_INVOCATION
+        };
+        sizes.push(wgpu::BlasTriangleGeometrySizeDescriptor {
+            vertex_format: wgpu::VertexFormat::Float32x3,
+            vertex_count: mesh.positions.len() as u32,
+            index_format: Some(wgpu::IndexFormat::Uint32),
+            index_count: Some(mesh.indices.len() as u32 * 3),
+            flags: geometry_flags,
+        });
+        let positions: Vec<f32> = mesh.positions.iter().flat_map(|p| p.to_array()).collect();
+        let indices: Vec<u32> = mesh.indices.iter().flatten().copied().collect();
+        let input = |label, contents| {
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents,
+                usage: wgpu::BufferUsages::BLAS_INPUT,
+            })
+        };
+        buffers.push((input("rt blas vertices", bytes(&positions)), input("rt blas indices", bytes(&indices))));
+    }
+    check_blas(g, sizes.len(), primitives, limits, adapter)?;
+    let blas = device.create_blas(
+        &wgpu::CreateBlasDescriptor {
+            label: Some("rt blas triangles"),
+            flags,
+            update_mode: wgpu::AccelerationStructureUpdateMode::Build,
+        },
+        wgpu::BlasGeometrySizeDescriptors::Triangles { descriptors: sizes.clone() },
+    );
+    Ok((blas, BlasInput::Triangles { sizes, buffers }))
+}
+
+/// The BLAS of group `g`'s custom-primitive geometry instances `gis`: each
+/// primitive's box from its bounding-box program. A box with a NaN or an
+/// infinite bound is never hit (as in the compute traversal): it is
+/// written as Vulkan's inactive primitive (a NaN minimum). None when no
+/// instance has a primitive.
+fn box_blas(
+    device: &wgpu::Device,
+    scene: &Scene,
+    g: NodeId,
+    gis: &[u32],
+    flags: wgpu::AccelerationStructureFlags,
+    limits: &wgpu::Limits,
+    adapter: &str,
+) -> Result<Option<(wgpu::Blas, BlasInput)>> {
+    let mut sizes = Vec::new();
+    let mut buffers = Vec::new();
+    let mut primitives = 0u64;
+    for &gi in gis {
+        let (_, bounds, _) = prim_bounds(scene, &[GeometryInstanceId(gi)])?;
+        primitives = primitives.max(bounds.len() as u64);
+        let mut words: Vec<f32> = Vec::with_capacity(bounds.len().max(1) * 6);
+        for b in &bounds {
+            if b.min.is_finite() && b.max.is_finite() && b.min.cmple(b.max).all() {
+                words.extend([b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z]);
+            } else {
+                words.extend([f32::NAN, 0.0, 0.0, 0.0, 0.0, 0.0]);
+            }
+        }
+        if bounds.is_empty() {
+            // No primitives: one inactive box, so that BLAS geometry
+            // indices stay the instances' positions in the part.
+            words.extend([f32::NAN, 0.0, 0.0, 0.0, 0.0, 0.0]);
+        }
+        let flags = wgpu::AccelerationStructureGeometryFlags::NO_DUPLICATE_ANY_HIT_INVOCATION;
+        sizes.push(wgpu::BlasAABBGeometrySizeDescriptor { primitive_count: (words.len() / 6) as u32, flags });
+        buffers.push(device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("rt blas boxes"),
+            contents: bytes(&words),
+            usage: wgpu::BufferUsages::BLAS_INPUT,
+        }));
+    }
+    if sizes.is_empty() {
+        return Ok(None);
+    }
+    check_blas(g, sizes.len(), primitives, limits, adapter)?;
+    let blas = device.create_blas(
+        &wgpu::CreateBlasDescriptor {
+            label: Some("rt blas boxes"),
+            flags,
+            update_mode: wgpu::AccelerationStructureUpdateMode::Build,
+        },
+        wgpu::BlasGeometrySizeDescriptors::AABBs { descriptors: sizes.clone() },
+    );
+    Ok(Some((blas, BlasInput::Boxes { sizes, buffers })))
+}
+
+/// The kernel's side table (search.wgsl): node slots, then two words per
+/// instance record (where its parts' geometry instances start), then those
+/// lists.
+fn side_table(scene: &Scene, flat: &Flat, groups: &HashMap<u32, GroupBlas>) -> Vec<u32> {
+    let n = scene.nodes.len();
+    let base = 1 + n;
+    let mut words = vec![u32::MAX; base + flat.records as usize * 2];
+    words[0] = n as u32;
+    for (slot, (root, _)) in flat.roots.iter().enumerate() {
+        words[1 + root.index() as usize] = slot as u32;
+    }
+    let mut listed = vec![false; flat.records as usize];
+    for (_, instances) in &flat.roots {
+        for inst in instances {
+            if listed[inst.record as usize] || !groups.contains_key(&inst.group.index()) {
+                continue;
+            }
+            listed[inst.record as usize] = true;
+            for (part, gis) in parts(scene, inst.group).into_iter().enumerate() {
+                if gis.is_empty() {
+                    continue;
+                }
+                words[base + inst.record as usize * 2 + part] = words.len() as u32;
+                words.extend(gis);
+            }
+        }
+    }
+    words
+}

@@ -1,0 +1,156 @@
+//! The hardware ray-query traversal: the megakernel's searches as
+//! `rayQueryProceed` loops over acceleration structures the device builds
+//! (a BLAS per geometry group, a TLAS per traced root), beside the compute
+//! traversal ([`super::compute`]) and sharing everything else with it: the
+//! scene's tables (geometry instances, materials, hit records), the heap,
+//! the linker and the dispatch.
+//!
+//! Files: [`flatten`] (the graph as one level of instances per root, or why
+//! it cannot be), [`accel`] (BLASes and TLASes on the device, rebuilt only
+//! where something moved, and the kernel's side table), `search.wgsl` (the
+//! loop); [`search_wgsl`] writes the per-kernel part (bindings, the slot
+//! switch).
+//!
+//! Which traversal a launch uses ([`Traversal`], [`plan`]): ray queries on
+//! an adapter with `wgpu::Features::EXPERIMENTAL_RAY_QUERY` unless the
+//! scene cannot be flattened (a selector, masks no 8-bit mask says) or the
+//! context or `RT_TRAVERSAL` asks for the compute traversal; the compute
+//! traversal otherwise. The launch says once why it fell back.
+
+pub(crate) mod accel;
+pub(crate) mod flatten;
+
+use super::device::Gpu;
+use crate::error::{Result, RtError};
+use crate::scene::Scene;
+use flatten::{Flat, Unsupported};
+
+/// How the wgpu backend walks the scene.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[non_exhaustive]
+pub enum Traversal {
+    /// Ray queries where the adapter has them and the scene allows, else
+    /// the compute traversal; `RT_TRAVERSAL=compute|rayquery` overrides.
+    #[default]
+    Auto,
+    /// The megakernel's own BVH walk in a compute shader (every adapter).
+    Compute,
+    /// Hardware ray queries (`wgpu::Features::EXPERIMENTAL_RAY_QUERY`): an
+    /// error on an adapter without them.
+    RayQuery,
+}
+
+impl Traversal {
+    pub fn name(self) -> &'static str {
+        match self {
+            Traversal::Auto => "auto",
+            Traversal::Compute => "compute",
+            Traversal::RayQuery => "rayquery",
+        }
+    }
+
+    /// Parses `auto`, `compute` or `rayquery`.
+    pub fn from_name(name: &str) -> Option<Traversal> {
+        match name {
+            "auto" => Some(Traversal::Auto),
+            "compute" => Some(Traversal::Compute),
+            "rayquery" => Some(Traversal::RayQuery),
+            _ => None,
+        }
+    }
+}
+
+/// What a launch's traversal is and why.
+pub(crate) enum Plan {
+    Compute(String),
+    RayQuery(Flat),
+}
+
+/// Chooses the traversal for a launch over `scene` on `gpu`, asked for as
+/// `asked` (`Auto` reads `RT_TRAVERSAL`).
+pub(crate) fn plan(scene: &Scene, gpu: &Gpu, asked: Traversal) -> Result<Plan> {
+    let asked = match (asked, std::env::var("RT_TRAVERSAL")) {
+        (Traversal::Auto, Ok(v)) => Traversal::from_name(&v)
+            .ok_or_else(|| RtError::Gpu(format!("RT_TRAVERSAL is `{v}`; expected `auto`, `compute` or `rayquery`")))?,
+        (asked, _) => asked,
+    };
+    if asked == Traversal::Compute {
+        return Ok(Plan::Compute("asked for".into()));
+    }
+    if !gpu.ray_query {
+        let why = format!("{} has no ray queries (wgpu::Features::EXPERIMENTAL_RAY_QUERY)", gpu.describe());
+        if asked == Traversal::RayQuery {
+            return Err(RtError::Gpu(format!("the ray-query traversal was asked for, but {why}")));
+        }
+        return Ok(Plan::Compute(why));
+    }
+    // The side table is one storage buffer more than the compute
+    // traversal binds (an application's device may have no room for it).
+    let storage = gpu.limits.max_storage_buffers_per_shader_stage as usize;
+    if storage < 2 + gpu.scene_bindings + 1 {
+        let why = format!(
+            "the device binds {storage} storage buffers per stage; the ray-query traversal needs {}",
+            2 + gpu.scene_bindings + 1
+        );
+        if asked == Traversal::RayQuery {
+            return Err(RtError::Gpu(format!("the ray-query traversal was asked for, but {why}")));
+        }
+        return Ok(Plan::Compute(why));
+    }
+    match flatten::flatten(scene)? {
+        Ok(flat) => Ok(Plan::RayQuery(flat)),
+        Err(Unsupported::NoRoots) => Ok(Plan::Compute(Unsupported::NoRoots.to_string())),
+        Err(why) => {
+            let why = why.to_string();
+            warn_once(&why);
+            Ok(Plan::Compute(why))
+        }
+    }
+}
+
+/// Says on stderr, once per reason, that a scene keeps the compute
+/// traversal.
+fn warn_once(why: &str) {
+    static SAID: std::sync::Mutex<Vec<String>> = std::sync::Mutex::new(Vec::new());
+    let mut said = SAID.lock().unwrap_or_else(|e| e.into_inner());
+    if !said.iter().any(|s| s == why) {
+        eprintln!("rt-runtime: this scene uses the compute traversal, not ray queries: {why}");
+        said.push(why.to_string());
+    }
+}
+
+/// The binding of the side table, then of the TLASes (one per slot).
+pub(crate) const SIDE_BINDING: u32 = 16;
+
+const SEARCH: &str = include_str!("search.wgsl");
+
+/// The kernel's ray-query part for `slots` roots: the bindings, the loop
+/// and `rt_search` switching on the root's slot.
+pub(crate) fn search_wgsl(slots: u32) -> String {
+    let mut out = format!("\n@group(0) @binding({SIDE_BINDING}) var<storage, read> rt_query_side: array<u32>;\n");
+    let mut cases = String::new();
+    for s in 0..slots {
+        out.push_str(&format!(
+            "@group(0) @binding({}) var rt_tlas{s}: acceleration_structure;\n",
+            SIDE_BINDING + 1 + s
+        ));
+        cases.push_str(&format!(
+            "        case {s}u: {{\n            rt_query_search(rt_tlas{s}, ray, flags, mask);\n        }}\n"
+        ));
+    }
+    out.push_str(SEARCH);
+    out.push_str(&format!(
+        "
+fn rt_search(object: u32, ray: RtRay, flags: u32, mask: u32) {{
+    rt_query_begin(ray, flags);
+    switch rt_query_side[1u + object] {{
+{cases}        default: {{
+            // Not a root the launch found in a variable.
+            rt_raise(RT_EXC_INVALID_RAY);
+        }}
+    }}
+}}
+"
+    ));
+    out
+}
