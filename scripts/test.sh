@@ -3,18 +3,19 @@
 # jobs, as on the CI machine, checks formatting and clippy's lints, and runs
 # every test in the workspace (all targets, then doc tests). Tests of the
 # wgpu backend need an adapter: on a machine without a GPU that is Mesa's
-# lavapipe, installed here when missing (as root). A missing adapter fails
-# those tests; it is never skipped. The viewer's tests need Xvfb, installed
+# lavapipe, installed here when missing or too old for ray queries (as
+# root: Mesa 25 from bookworm-backports). A missing adapter fails those
+# tests; it is never skipped. The viewer's tests need Xvfb, installed
 # here too.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-if [ ! -e /usr/share/vulkan/icd.d/lvp_icd.x86_64.json ] && [ ! -e /usr/share/vulkan/icd.d/lvp_icd.json ]; then
-    if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null; then
-        echo "scripts/test.sh: installing mesa-vulkan-drivers (lavapipe) for the wgpu tests"
-        apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq mesa-vulkan-drivers libvulkan1 >/dev/null
-    else
-        echo "scripts/test.sh: no lavapipe ICD found; wgpu tests need a Vulkan adapter (apt-get install mesa-vulkan-drivers)" >&2
-    fi
+# The ray-query traversal's tests need lavapipe with VK_KHR_ray_query:
+# Mesa 25 from bookworm-backports (bookworm's own 22.3 has none).
+. "$(dirname "$0")/lavapipe.sh"
+ensure_lavapipe
+if lavapipe_has_ray_queries; then
+    # Its tests then fail rather than skip.
+    export RT_REQUIRE_RAY_QUERY="${RT_REQUIRE_RAY_QUERY:-1}"
 fi
 # The viewer's tests open its window on a virtual X display; the viewer
 # loads the X11 libraries it needs at run time.

@@ -87,7 +87,7 @@ pub fn measure(names: &[String], out: &mut Json) {
             out.child("skipped").set(ex.name, slow_reason(ex.name));
             continue;
         }
-        let settings = examples::Settings { width: w, height: h, spp: 1, backend: Backend::Wgpu };
+        let settings = examples::Settings { spp: 1, backend: Backend::Wgpu, ..examples::Settings::new(w, h) };
         let run = || -> Result<Json, String> {
             let mut scene = (ex.build)(&settings).map_err(|e| e.to_string())?;
             if ex.progressive {

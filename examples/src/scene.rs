@@ -3,7 +3,7 @@
 //! small meshes made in code.
 
 use glam::{Vec3, Vec4};
-use rt_runtime::{Backend, BufferId, BufferType, Context, ExceptionRecord, RtError, Scope, TriangleMesh};
+use rt_runtime::{Backend, BufferId, BufferType, Context, ExceptionRecord, RtError, Scope, Traversal, TriangleMesh};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -51,7 +51,12 @@ impl BackendChoice {
                     name: "wgpu",
                     why: "wgpu finds no adapter (no GPU, and no Vulkan driver such as Mesa's lavapipe); run with `--backend cpu`".into(),
                 })?;
-                format!("the wgpu backend on {} ({:?})", info.name, info.device_type)
+                let (traversal, why) = rt_runtime::Traversal::choose()?;
+                let traversal = match traversal {
+                    rt_runtime::Traversal::RayQuery => "hardware ray queries",
+                    _ => "the compute traversal",
+                };
+                format!("the wgpu backend on {} ({:?}) with {traversal} ({why})", info.name, info.device_type)
             }
             _ => format!(
                 "the {} backend ({} threads)",
@@ -73,6 +78,9 @@ pub struct Settings {
     /// pixel whatever this says.
     pub spp: u32,
     pub backend: Backend,
+    /// How the wgpu backend walks the scene (`Auto`: ray queries where the
+    /// adapter has them).
+    pub traversal: Traversal,
 }
 
 impl Settings {
@@ -84,7 +92,7 @@ impl Settings {
     pub const DEFAULT_SPP: u32 = 64;
 
     pub fn new(width: u32, height: u32) -> Self {
-        Settings { width, height, spp: Self::DEFAULT_SPP, backend: Backend::Cpu }
+        Settings { width, height, spp: Self::DEFAULT_SPP, backend: Backend::Cpu, traversal: Traversal::Auto }
     }
 
     pub fn with_spp(self, spp: u32) -> Self {
@@ -300,6 +308,7 @@ impl Scene {
         settings.check()?;
         let mut ctx = Context::new();
         ctx.set_backend(settings.backend);
+        ctx.set_traversal(settings.traversal);
         ctx.set_ray_type_count(2);
         let ex = ctx.create_program(&crate::common::exception::PROGRAM);
         ctx.set_exception_program(0, ex)?;

@@ -17,7 +17,9 @@
 //! backends: no example needs a denoised statistic, each is compared pixel
 //! by pixel.
 //!
-//! Every example is checked on the wgpu backend too. The first launch of a
+//! Every example is checked on the wgpu backend too, with each traversal:
+//! the compute traversal (`wgpu::*`) and hardware ray queries
+//! (`rayquery::*`, where the adapter has them: lavapipe from Mesa 25). The first launch of a
 //! process compiles the megakernel; where per-depth clones would be many,
 //! programs that trace run from one loop in their resumable form
 //! (rt-compiler's `func/resume.rs`), so the kernel holds each program and
@@ -44,7 +46,7 @@
 
 use examples::{EXAMPLES, Image, Settings};
 use image::RgbaImage;
-use rt_runtime::Backend;
+use rt_runtime::{Backend, Traversal};
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -58,14 +60,47 @@ fn golden_path(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/golden").join(format!("{name}.png"))
 }
 
+/// A backend and, on wgpu, its traversal.
+#[derive(Clone, Copy)]
+struct Target(Backend, Traversal);
+
+const CPU: Target = Target(Backend::Cpu, Traversal::Auto);
+const COMPUTE: Target = Target(Backend::Wgpu, Traversal::Compute);
+const RAY_QUERY: Target = Target(Backend::Wgpu, Traversal::RayQuery);
+
+impl Target {
+    fn name(self) -> &'static str {
+        match self {
+            Target(Backend::Cpu, _) => "cpu",
+            Target(_, Traversal::RayQuery) => "rayquery",
+            _ => "compute",
+        }
+    }
+
+    /// Whether it runs here: ray queries need an adapter with them (without
+    /// one the test passes with a note, or fails when
+    /// `RT_REQUIRE_RAY_QUERY=1`, as scripts/test.sh sets with Mesa 25).
+    fn available(self) -> bool {
+        if self.1 != Traversal::RayQuery || rt_runtime::backend::wgpu::probe_ray_queries() {
+            return true;
+        }
+        assert!(
+            std::env::var("RT_REQUIRE_RAY_QUERY").as_deref() != Ok("1"),
+            "RT_REQUIRE_RAY_QUERY=1 but the adapter has no ray queries"
+        );
+        eprintln!("skipped: the adapter has no ray queries");
+        false
+    }
+}
+
 fn blessing() -> bool {
     std::env::var("RT_BLESS").is_ok_and(|v| !v.is_empty() && v != "0")
 }
 
 /// `name` rendered on `backend`, without exceptions.
-fn render(name: &str, backend: Backend) -> Image {
+fn render(name: &str, backend: Target) -> Image {
     let example = examples::example(name).unwrap_or_else(|| panic!("no example {name}"));
-    let settings = Settings { width: W, height: H, spp: SPP, backend };
+    let settings = Settings { spp: SPP, backend: backend.0, traversal: backend.1, ..Settings::new(W, H) };
     let start = Instant::now();
     let mut scene = (example.build)(&settings).unwrap_or_else(|e| panic!("{name}: {e}"));
     let rendered = scene.render(&mut |_, _| {}).unwrap_or_else(|e| panic!("{name} on {}: {e}", backend.name()));
@@ -95,7 +130,7 @@ fn rgba8(image: &Image) -> RgbaImage {
 /// CPU test may be rewriting the file).
 fn golden(name: &str) -> RgbaImage {
     if blessing() {
-        return rgba8(&render(name, Backend::Cpu));
+        return rgba8(&render(name, CPU));
     }
     let path = golden_path(name);
     image::open(&path)
@@ -108,7 +143,7 @@ fn golden(name: &str) -> RgbaImage {
 /// The differential rule, or what breaks it: the worst pixels with their
 /// PNG position (top-left origin), launch index and both values. The
 /// rendered picture is saved for a look.
-fn compare(name: &str, backend: Backend, want: &RgbaImage, got: &RgbaImage) -> Result<(), String> {
+fn compare(name: &str, backend: Target, want: &RgbaImage, got: &RgbaImage) -> Result<(), String> {
     let what = format!("{name} on {}", backend.name());
     if want.dimensions() != got.dimensions() {
         return Err(format!("{what}: rendered {:?}, golden {:?}", got.dimensions(), want.dimensions()));
@@ -156,7 +191,10 @@ fn compare(name: &str, backend: Backend, want: &RgbaImage, got: &RgbaImage) -> R
 }
 
 /// Renders `name` on `backend` and compares it with its golden.
-fn check(name: &str, backend: Backend) {
+fn check(name: &str, backend: Target) {
+    if !backend.available() {
+        return;
+    }
     let got = rgba8(&render(name, backend));
     if let Err(e) = compare(name, backend, &golden(name), &got) {
         panic!("{e}");
@@ -169,7 +207,7 @@ fn check(name: &str, backend: Backend) {
 fn cpu_renders_match_the_goldens() {
     let mut failures = Vec::new();
     for example in &EXAMPLES {
-        let image = render(example.name, Backend::Cpu);
+        let image = render(example.name, CPU);
         if blessing() {
             let path = golden_path(example.name);
             std::fs::create_dir_all(path.parent().expect("a parent")).expect("the golden directory");
@@ -177,7 +215,7 @@ fn cpu_renders_match_the_goldens() {
             eprintln!("golden: wrote {}", path.display());
             continue;
         }
-        if let Err(e) = compare(example.name, Backend::Cpu, &golden(example.name), &rgba8(&image)) {
+        if let Err(e) = compare(example.name, CPU, &golden(example.name), &rgba8(&image)) {
             failures.push(e);
         }
     }
@@ -216,14 +254,30 @@ macro_rules! wgpu_goldens {
             $(
                 #[test]
                 fn $checked() {
-                    check(stringify!($checked), Backend::Wgpu);
+                    check(stringify!($checked), COMPUTE);
                 }
             )*
             $(
                 #[test]
                 #[ignore = $why]
                 fn $skipped() {
-                    check(stringify!($skipped), Backend::Wgpu);
+                    check(stringify!($skipped), COMPUTE);
+                }
+            )*
+        }
+        mod rayquery {
+            use super::*;
+            $(
+                #[test]
+                fn $checked() {
+                    check(stringify!($checked), RAY_QUERY);
+                }
+            )*
+            $(
+                #[test]
+                #[ignore = $why]
+                fn $skipped() {
+                    check(stringify!($skipped), RAY_QUERY);
                 }
             )*
         }

@@ -1,14 +1,30 @@
 //! The scene-graph fuzzer (see `rt_tests::scene_fuzz`): 200
 //! generated graphs with a fixed seed, each rendered on the CPU backend and
-//! on wgpu (lavapipe without a GPU), hits compared per launch index.
+//! on wgpu (lavapipe without a GPU) with each traversal, hits compared per
+//! launch index.
 //! `RT_SCENE_FUZZ=2000 RT_SCENE_FUZZ_SEED=7` runs more or others;
 //! `RT_SCENE_FUZZ_ONLY=<index>` one.
 
+use rt_runtime::Traversal;
 use rt_tests::scene_fuzz;
+use rt_tests::targets::On;
 
 #[test]
 fn generated_graphs_agree_on_cpu_and_wgpu() {
-    let cfg = scene_fuzz::Config::from_env(0x5ce7e, 200);
+    fuzz(Traversal::Compute);
+}
+
+/// The same graphs on the ray-query traversal (graphs with selectors, or
+/// masks no one mask says, take the compute traversal there too).
+#[test]
+fn generated_graphs_agree_on_cpu_and_ray_queries() {
+    if On::RAY_QUERY.available() {
+        fuzz(Traversal::RayQuery);
+    }
+}
+
+fn fuzz(traversal: Traversal) {
+    let cfg = scene_fuzz::Config::from_env(0x5ce7e, 200, traversal);
     let t = std::time::Instant::now();
     let report = scene_fuzz::run(&cfg);
     eprintln!("{} ({:.1?} in all)", report.summary(), t.elapsed());
@@ -25,7 +41,7 @@ fn generated_graphs_agree_on_cpu_and_wgpu() {
 }
 
 fn graph_agrees(seed: u64, index: usize) {
-    let report = scene_fuzz::run(&scene_fuzz::Config { seed, first: index, graphs: 1 });
+    let report = scene_fuzz::run(&scene_fuzz::Config { seed, first: index, graphs: 1, traversal: Traversal::Compute });
     assert!(report.stats.graphs == 1);
     if let Some(f) = report.failures.first() {
         panic!("graph {index} of seed {seed:#x}:\n{}--- graph\n{}", f.detail, f.description);

@@ -53,7 +53,7 @@ fn main() -> ExitCode {
 
 fn run(args: &Args) -> Result<(), Error> {
     let (backend, what) = BackendChoice::open_or_choose(args.backend)?;
-    let settings = Settings { width: args.width, height: args.height, spp: args.spp, backend };
+    let settings = Settings { spp: args.spp, backend, ..Settings::new(args.width, args.height) };
     let loaded = mesh::load_obj(&args.mesh)?;
     for warning in &loaded.warnings {
         eprintln!("render: warning: {warning}");

@@ -51,7 +51,7 @@ fn run(args: &Args) -> Result<(), String> {
         let names: Vec<&str> = EXAMPLES.iter().map(|e| e.name).collect();
         return Err(format!("no example is called `{unknown}`; the examples are {}", names.join(", ")));
     }
-    let settings = Settings { width: args.width, height: args.height, spp: args.spp, backend };
+    let settings = Settings { spp: args.spp, backend, ..Settings::new(args.width, args.height) };
     std::fs::create_dir_all(&args.out).map_err(|e| format!("{}: {e}", args.out.display()))?;
     eprintln!(
         "tour: rendering {}x{} with {what}, {} spp for progressive examples",

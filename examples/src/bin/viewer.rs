@@ -118,7 +118,7 @@ fn run(args: &Args) -> Result<(), Failure> {
     }
     let (backend, what) = BackendChoice::open_or_choose(args.backend)?;
     let (width, height) = args.size;
-    let view = Progressive::new(&loaded, &Settings { width, height, spp: 1, backend })?;
+    let view = Progressive::new(&loaded, &Settings { spp: 1, backend, ..Settings::new(width, height) })?;
     let name = path.file_name().map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned());
     let event_loop =
         EventLoop::new().map_err(|e| Failure::Other(format!("cannot open a window: {}", without_location(&e))))?;

@@ -52,16 +52,18 @@ pub struct Config {
     pub seed: u64,
     pub first: usize,
     pub graphs: usize,
+    /// The wgpu side's traversal.
+    pub traversal: Traversal,
 }
 
 impl Config {
-    pub fn from_env(seed: u64, graphs: usize) -> Config {
+    pub fn from_env(seed: u64, graphs: usize, traversal: Traversal) -> Config {
         let var = |name: &str| std::env::var(name).ok().and_then(|v| v.parse::<u64>().ok());
         let seed = var("RT_SCENE_FUZZ_SEED").unwrap_or(seed);
         let graphs = var("RT_SCENE_FUZZ").map_or(graphs, |n| n as usize);
         match var("RT_SCENE_FUZZ_ONLY") {
-            Some(i) => Config { seed, first: i as usize, graphs: 1 },
-            None => Config { seed, first: 0, graphs },
+            Some(i) => Config { seed, first: i as usize, graphs: 1, traversal },
+            None => Config { seed, first: 0, graphs, traversal },
         }
     }
 }
@@ -461,9 +463,10 @@ pub struct Seen {
 }
 
 impl Runner {
-    pub fn new(backend: Backend, class: Class) -> Runner {
+    pub fn new(backend: Backend, traversal: Traversal, class: Class) -> Runner {
         let mut ctx = Context::new();
         ctx.set_backend(backend);
+        ctx.set_traversal(traversal);
         let rg = ctx.create_program(&fuzz_camera::PROGRAM);
         ctx.set_ray_generation_program(0, rg).unwrap();
         let miss = ctx.create_program(&fuzz_miss::PROGRAM);
@@ -585,6 +588,8 @@ pub struct Stats {
     pub mismatched_rays: usize,
     pub pipelines: u64,
     pub contexts: usize,
+    /// Graphs whose wgpu launch took the ray-query traversal.
+    pub ray_query_graphs: usize,
 }
 
 pub struct Report {
@@ -596,7 +601,7 @@ impl Report {
     pub fn summary(&self) -> String {
         let s = &self.stats;
         format!(
-            "scene fuzz: {} graphs, {} rays compared ({} by hit or miss only, {} hits), {} skipped as ambiguous, {} mismatched rays in {} graphs; {} wgpu pipelines created over {} contexts",
+            "scene fuzz: {} graphs, {} rays compared ({} by hit or miss only, {} hits), {} skipped as ambiguous, {} mismatched rays in {} graphs; {} wgpu pipelines created over {} contexts; {} graphs traced with ray queries",
             s.graphs,
             s.rays_compared,
             s.rays_hit_only,
@@ -605,7 +610,8 @@ impl Report {
             s.mismatched_rays,
             self.failures.len(),
             s.pipelines,
-            s.contexts
+            s.contexts,
+            s.ray_query_graphs
         )
     }
 }
@@ -625,11 +631,12 @@ pub fn run(cfg: &Config) -> Report {
         }
         let (cpu, gpu) = runners[slot].get_or_insert_with(|| {
             stats.contexts += 1;
-            (Runner::new(Backend::Cpu, g.class), Runner::new(Backend::Wgpu, g.class))
+            (Runner::new(Backend::Cpu, Traversal::Auto, g.class), Runner::new(Backend::Wgpu, cfg.traversal, g.class))
         });
         stats.graphs += 1;
         let started = std::time::Instant::now();
         let seen = (cpu.run(&g), gpu.run(&g));
+        stats.ray_query_graphs += (gpu.ctx.traversal().map(|t| t.0) == Some(Traversal::RayQuery)) as usize;
         if started.elapsed().as_secs_f32() > 2.0 {
             eprintln!("scene fuzz: graph {index} took {:.1?}", started.elapsed());
         }

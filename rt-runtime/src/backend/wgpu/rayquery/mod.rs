@@ -49,6 +49,29 @@ impl Traversal {
         }
     }
 
+    /// The traversal launches take on the default adapter with
+    /// [`Traversal::Auto`], and why: `RT_TRAVERSAL` when set, else ray
+    /// queries where the adapter has them. (A scene that cannot be
+    /// flattened still takes the compute traversal, per launch: see
+    /// [`crate::Context::traversal`].)
+    pub fn choose() -> Result<(Traversal, String)> {
+        if let Ok(v) = std::env::var("RT_TRAVERSAL") {
+            return match Traversal::from_name(&v) {
+                Some(Traversal::Auto) | None => {
+                    Err(RtError::Gpu(format!("RT_TRAVERSAL is `{v}`; expected `compute` or `rayquery`")))
+                }
+                Some(t) => Ok((t, format!("RT_TRAVERSAL={v}"))),
+            };
+        }
+        Ok(match super::device::probe() {
+            Some(info) if super::device::probe_ray_queries() => {
+                (Traversal::RayQuery, format!("{} has ray queries", info.name))
+            }
+            Some(info) => (Traversal::Compute, format!("{} has no ray queries", info.name)),
+            None => (Traversal::Compute, "no adapter".into()),
+        })
+    }
+
     /// Parses `auto`, `compute` or `rayquery`.
     pub fn from_name(name: &str) -> Option<Traversal> {
         match name {

@@ -71,10 +71,19 @@ fn rt_query_flags(flags: u32) -> u32 {
 fn rt_query_search(acs: acceleration_structure, ray: RtRay, flags: u32, mask: u32) {
     var rq: ray_query;
     rayQueryInitialize(&rq, acs, RayDesc(rt_query_flags(flags), mask & 0xffu, ray.tmin, ray.tmax, ray.origin, ray.direction));
+    // The t of the last generated intersection (the closest: each is
+    // generated only nearer than what is committed). Lavapipe does not
+    // report a committed generated intersection as one (its kind and t read
+    // otherwise), so the loop keeps its own and reads the query only for
+    // triangles.
+    var generated = ray.tmax;
     while rayQueryProceed(&rq) {
         let c = rayQueryGetCandidateIntersection(&rq);
         let committed = rayQueryGetCommittedIntersection(&rq);
-        rt_s_tmax = select(ray.tmax, committed.t, committed.kind != RAY_QUERY_INTERSECTION_NONE);
+        rt_s_tmax = generated;
+        if committed.kind == RAY_QUERY_INTERSECTION_TRIANGLE {
+            rt_s_tmax = min(committed.t, generated);
+        }
         rt_s_inst = c.instance_custom_data >> 1u;
         rt_o2w = rt_query_m43(c.object_to_world);
         rt_w2o = rt_query_m43(c.world_to_object);
@@ -104,6 +113,7 @@ fn rt_query_search(acs: acceleration_structure, ray: RtRay, flags: u32, mask: u3
             let reported = rt_s_tmax;
             if reported < before {
                 rayQueryGenerateIntersection(&rq, reported);
+                generated = reported;
             }
         }
         if rt_s_done {
@@ -111,7 +121,7 @@ fn rt_query_search(acs: acceleration_structure, ray: RtRay, flags: u32, mask: u3
         }
     }
     let h = rayQueryGetCommittedIntersection(&rq);
-    if h.kind == RAY_QUERY_INTERSECTION_TRIANGLE {
+    if h.kind == RAY_QUERY_INTERSECTION_TRIANGLE && h.t < generated {
         let gi = rt_query_gi(h.instance_custom_data, h.geometry_index);
         rt_h_found = true;
         rt_h_t = h.t;
@@ -123,9 +133,11 @@ fn rt_query_search(acs: acceleration_structure, ray: RtRay, flags: u32, mask: u3
         rt_h_bary = h.barycentrics;
         rt_h_o2w = rt_query_m43(h.object_to_world);
         rt_h_w2o = rt_query_m43(h.world_to_object);
-    } else if h.kind == RAY_QUERY_INTERSECTION_NONE {
+    } else if !(generated < ray.tmax) {
         rt_h_found = false;
     }
+    // Else a generated intersection is the closest: rt_report filled the
+    // hit state when it was reported.
 }
 
 // The search state for a trace of `ray` (rt_search, generated with the
