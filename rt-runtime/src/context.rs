@@ -174,6 +174,11 @@ impl Context {
         self.settings.traversal = traversal;
     }
 
+    /// The traversal [`Context::set_traversal`] asked for.
+    pub fn traversal_setting(&self) -> crate::Traversal {
+        self.settings.traversal
+    }
+
     /// The traversal the last wgpu launch used (`Compute` or `RayQuery`)
     /// and why; None before any wgpu launch.
     pub fn traversal(&self) -> Option<(crate::Traversal, &str)> {

@@ -89,6 +89,17 @@ pub enum RtError {
     BadLaunch { width: u32, height: u32, problem: String },
     #[error("program `{program}` ({location}) declares {count} variables; at most {max} are supported")]
     TooManyVariables { program: &'static str, location: String, count: usize, max: usize },
+    #[error(
+        "bounding-box program `{program}` ({location}) gave primitive {primitive} of geometry {geometry} the box {bounds}, with {problem}; a box must be finite with min <= max on every axis"
+    )]
+    BadBounds {
+        program: &'static str,
+        location: String,
+        geometry: u32,
+        primitive: u32,
+        bounds: String,
+        problem: &'static str,
+    },
     #[error("the scene graph has a cycle through node {node}")]
     GraphCycle { node: u32 },
     #[error(

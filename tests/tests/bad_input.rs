@@ -505,3 +505,58 @@ fn mutated_obj_files_never_panic() {
     }
     assert!(built > 0, "no mutant loaded: the fuzzer explores nothing");
 }
+
+/// The box `[lo, hi]` from the variables, as given (NaN, inverted).
+#[rt_program(bounding_box)]
+pub fn given_box(prim: u32, #[var] lo: Vec3, #[var] hi: Vec3) -> Aabb {
+    let _ = prim;
+    Aabb::new(lo, hi)
+}
+
+#[rt_program(intersection)]
+pub fn never_hits(prim: u32) {
+    let _ = prim;
+}
+
+/// A bounding-box program returning a NaN, an infinite or an inverted box:
+/// a typed error naming the program, its file and line, the geometry and
+/// the primitive on every target (the CPU backend, the compute traversal,
+/// ray queries), never a panic or a device loss; fixed, the next launch
+/// works.
+#[test]
+fn a_bounding_box_program_returning_no_box_is_an_error_naming_it() {
+    use rt_tests::targets::On;
+    for on in On::ALL.into_iter().filter(|on| on.available()) {
+        let (mut ctx, _) = scene(on.backend, quad());
+        ctx.set_traversal(on.traversal);
+        let isect = ctx.create_program(&never_hits::PROGRAM);
+        let bounds = ctx.create_program(&given_box::PROGRAM);
+        let geom = ctx.create_custom_geometry(3, isect, bounds).unwrap();
+        let mat = ctx.create_material();
+        let gi = ctx.create_geometry_instance(geom, &[mat]).unwrap();
+        for (lo, hi, problem) in [
+            (Vec3::new(f32::NAN, 0.0, 0.0), Vec3::ONE, "a NaN bound"),
+            (Vec3::ZERO, Vec3::new(1.0, f32::INFINITY, 1.0), "an infinite bound"),
+            (Vec3::ZERO, Vec3::new(1.0, -1.0, 1.0), "min above max"),
+        ] {
+            ctx.set_var(geom, "lo", lo).unwrap();
+            ctx.set_var(geom, "hi", hi).unwrap();
+            // A fresh geometry group each time: bounds are read when a
+            // group's tree is built.
+            let gg = ctx.create_geometry_group(&[gi], Acceleration::default()).unwrap();
+            ctx.set_var(Scope::Context, "top", gg).unwrap();
+            let err = ctx.launch(0, 4, 4).unwrap_err();
+            let RtError::BadBounds { program, location, geometry, primitive, .. } = &err else {
+                panic!("{}: expected BadBounds, got {err:?}", on.name());
+            };
+            assert_eq!((*program, *geometry, *primitive), ("given_box", geom.index(), 0), "{}", on.name());
+            assert!(location.contains("bad_input.rs:"), "{location}");
+            assert!(err.to_string().contains(problem), "{}: {err}", on.name());
+        }
+        ctx.set_var(geom, "lo", Vec3::ZERO).unwrap();
+        ctx.set_var(geom, "hi", Vec3::ONE).unwrap();
+        let gg = ctx.create_geometry_group(&[gi], Acceleration::default()).unwrap();
+        ctx.set_var(Scope::Context, "top", gg).unwrap();
+        ctx.launch(0, 4, 4).unwrap_or_else(|e| panic!("{}: {e}", on.name()));
+    }
+}

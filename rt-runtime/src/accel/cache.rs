@@ -143,9 +143,30 @@ pub(crate) fn prim_bounds(scene: &Scene, children: &[crate::handles::GeometryIns
                         message: caught.message,
                         at: caught.at,
                     })?;
+                    // A box that is not one (NaN, infinite, inverted) is the
+                    // program's error: the backends' trees and the
+                    // ray-query BLASes need real boxes.
                     let b = match r {
-                        CpuResult::Aabb(b) if b.min.is_finite() && b.max.is_finite() => to_oaabb(b.min, b.max),
-                        // A primitive without finite bounds can never be hit.
+                        CpuResult::Aabb(b) if b.min.is_finite() && b.max.is_finite() && b.min.cmple(b.max).all() => {
+                            to_oaabb(b.min, b.max)
+                        }
+                        CpuResult::Aabb(b) => {
+                            let problem = if b.min.is_nan() || b.max.is_nan() {
+                                "a NaN bound"
+                            } else if !(b.min.is_finite() && b.max.is_finite()) {
+                                "an infinite bound"
+                            } else {
+                                "min above max"
+                            };
+                            return Err(RtError::BadBounds {
+                                program: call.desc.name,
+                                location: format!("{}:{}", call.desc.file, call.desc.line),
+                                geometry: rec.geometry.index(),
+                                primitive: p,
+                                bounds: format!("min {} max {}", b.min, b.max),
+                                problem,
+                            });
+                        }
                         _ => OAabb::empty(),
                     };
                     prims.push((gi.index(), p));

@@ -173,9 +173,10 @@ fn spot_checks_against_known_values() {
     h.finish();
 
     // In-place `%=` through buffer element places.
-    for backend in [Backend::Cpu, Backend::Wgpu] {
-        let mut h = Harness::new();
-        let ctx = if backend == Backend::Cpu { &mut h.cpu } else { &mut h.gpu };
+    for on in On::ALL.into_iter().filter(|on| on.available()) {
+        let backend = on.name();
+        let mut ctx = Harness::context(on);
+        let ctx = &mut ctx;
         let p = ctx.create_program(&rem_in_place::PROGRAM);
         let io = ctx.create_buffer(BufferType::InputOutput, vec![1.0f32, -7.5, 0.25]);
         let iov =

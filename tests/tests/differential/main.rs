@@ -77,6 +77,7 @@
 use rt_runtime::*;
 use rt_std::prelude::*;
 use rt_std::program::ProgramDescriptor;
+use rt_tests::targets::On;
 use std::fmt::Debug;
 
 // ---------------------------------------------------------------------------
@@ -296,29 +297,33 @@ pub fn keep_scene_binding(top: Object, idx: u32) {
 /// mismatches found so far.
 pub struct Harness {
     cpu: Context,
-    gpu: Context,
+    /// The wgpu backend with each traversal: compute, then ray queries
+    /// where the adapter has them (see `rt_tests::targets`).
+    gpus: Vec<Context>,
     failures: Vec<String>,
     verbose: bool,
 }
 
 impl Harness {
     fn new() -> Harness {
-        let setup = |backend| {
-            let mut ctx = Context::new();
-            ctx.set_backend(backend);
-            ctx.set_max_trace_depth(1);
-            let miss = ctx.create_program(&unused_miss::PROGRAM);
-            ctx.set_miss_program(0, miss).unwrap();
-            let top = ctx.create_geometry_group(&[], Acceleration::default()).unwrap();
-            ctx.set_var(Scope::Context, "top", top).unwrap();
-            ctx
-        };
         Harness {
-            cpu: setup(Backend::Cpu),
-            gpu: setup(Backend::Wgpu),
+            cpu: Harness::context(On::CPU),
+            gpus: [On::COMPUTE, On::RAY_QUERY].into_iter().filter(|on| on.available()).map(Harness::context).collect(),
             failures: Vec::new(),
             verbose: std::env::var_os("RT_DIFF_VERBOSE").is_some(),
         }
+    }
+
+    /// A context on `on` for the harness's programs: depth 1, a miss
+    /// program, `top` an empty geometry group.
+    fn context(on: On) -> Context {
+        let mut ctx = on.context();
+        ctx.set_max_trace_depth(1);
+        let miss = ctx.create_program(&unused_miss::PROGRAM);
+        ctx.set_miss_program(0, miss).unwrap();
+        let top = ctx.create_geometry_group(&[], Acceleration::default()).unwrap();
+        ctx.set_var(Scope::Context, "top", top).unwrap();
+        ctx
     }
 
     /// Runs `desc` over `rows` on `ctx`: `n` results per row.
@@ -355,43 +360,46 @@ impl Harness {
         let t0 = std::time::Instant::now();
         let cpu: Vec<R> = Self::launch(&mut self.cpu, desc, names, rows, N);
         let t1 = std::time::Instant::now();
-        let gpu: Vec<R> = Self::launch(&mut self.gpu, desc, names, rows, N);
-        let t2 = std::time::Instant::now();
         let mut worst = 0u64;
-        let mut reported = 0;
-        for (i, row) in rows.iter().enumerate() {
-            let expected = reference(*row);
-            for k in 0..N {
-                let (c, g) = (&cpu[i * N + k], &gpu[i * N + k]);
-                let (ec, cc, gc) = (expected[k].comps(), c.comps(), g.comps());
-                let mut cpu_ok = true;
-                let mut gpu_ok = true;
-                for ((e, c), g) in ec.iter().zip(&cc).zip(&gc) {
-                    match (e, c, g) {
-                        (Comp::F(e), Comp::F(c), Comp::F(g)) => {
-                            cpu_ok &= e.to_bits() == c.to_bits() || (e.is_nan() && c.is_nan());
-                            gpu_ok &= close(*g, *c, tol);
-                            if c.is_finite() && g.is_finite() {
-                                worst = worst.max(ulps(flush(*g), flush(*c)));
+        for gpu_ctx in &mut self.gpus {
+            let traversal = gpu_ctx.traversal_setting().name();
+            let gpu: Vec<R> = Self::launch(gpu_ctx, desc, names, rows, N);
+            let mut reported = 0;
+            for (i, row) in rows.iter().enumerate() {
+                let expected = reference(*row);
+                for k in 0..N {
+                    let (c, g) = (&cpu[i * N + k], &gpu[i * N + k]);
+                    let (ec, cc, gc) = (expected[k].comps(), c.comps(), g.comps());
+                    let mut cpu_ok = true;
+                    let mut gpu_ok = true;
+                    for ((e, c), g) in ec.iter().zip(&cc).zip(&gc) {
+                        match (e, c, g) {
+                            (Comp::F(e), Comp::F(c), Comp::F(g)) => {
+                                cpu_ok &= e.to_bits() == c.to_bits() || (e.is_nan() && c.is_nan());
+                                gpu_ok &= close(*g, *c, tol);
+                                if c.is_finite() && g.is_finite() {
+                                    worst = worst.max(ulps(flush(*g), flush(*c)));
+                                }
                             }
+                            (Comp::I(e), Comp::I(c), Comp::I(g)) => {
+                                cpu_ok &= e == c;
+                                gpu_ok &= c == g;
+                            }
+                            _ => unreachable!(),
                         }
-                        (Comp::I(e), Comp::I(c), Comp::I(g)) => {
-                            cpu_ok &= e == c;
-                            gpu_ok &= c == g;
-                        }
-                        _ => unreachable!(),
                     }
-                }
-                if (!cpu_ok || !gpu_ok) && reported < 8 {
-                    reported += 1;
-                    let which = if cpu_ok { "gpu != cpu" } else { "cpu != plain Rust" };
-                    self.failures.push(format!(
-                        "{}: {which} at inputs {row:?}, result {k}: rust {:?}, cpu {c:?}, gpu {g:?} ({tol:?})",
-                        desc.name, expected[k]
-                    ));
+                    if (!cpu_ok || !gpu_ok) && reported < 8 {
+                        reported += 1;
+                        let which = if cpu_ok { "gpu != cpu" } else { "cpu != plain Rust" };
+                        self.failures.push(format!(
+                            "{} ({traversal}): {which} at inputs {row:?}, result {k}: rust {:?}, cpu {c:?}, gpu {g:?} ({tol:?})",
+                            desc.name, expected[k]
+                        ));
+                    }
                 }
             }
         }
+        let t2 = std::time::Instant::now();
         if self.verbose {
             eprintln!(
                 "{}: {} rows x {N}, worst float difference {worst} ulp (cpu {:?}, gpu {:?})",
@@ -412,8 +420,8 @@ impl Harness {
         cases: &[(I, [R; N])],
     ) {
         let rows: Vec<I> = cases.iter().map(|c| c.0).collect();
-        for ctx in [&mut self.cpu, &mut self.gpu] {
-            let backend = ctx.backend();
+        for ctx in std::iter::once(&mut self.cpu).chain(&mut self.gpus) {
+            let backend = (ctx.backend(), ctx.traversal_setting());
             let got: Vec<R> = Self::launch(ctx, desc, names, &rows, N);
             for (i, (row, expected)) in cases.iter().enumerate() {
                 for k in 0..N {
