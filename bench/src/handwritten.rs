@@ -195,6 +195,25 @@ pub fn run(
         layout: &pipeline.get_bind_group_layout(0),
         entries: &entries,
     });
+    time_runs(&device, &queue, &pipeline, &bind, &out_b, (width, height), reps, &adapter)
+}
+
+/// Runs `pipeline` over `bind` at `width` x `height`, `reps` times after one
+/// warm-up run, and counts the rays it traced from `out_b`: one value a
+/// pixel, then a 1.0 for every pixel whose primary ray hit (whose AO ray
+/// was traced).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn time_runs(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    pipeline: &wgpu::ComputePipeline,
+    bind: &wgpu::BindGroup,
+    out_b: &wgpu::Buffer,
+    (width, height): (u32, u32),
+    reps: usize,
+    adapter: &wgpu::Adapter,
+) -> Result<Measured, String> {
+    let pixels = (width * height) as usize;
     let timestamps = device.features().contains(wgpu::Features::TIMESTAMP_QUERY).then(|| {
         let set = device.create_query_set(&wgpu::QuerySetDescriptor {
             label: None,
@@ -230,11 +249,11 @@ pub fn run(
                 end_of_pass_write_index: Some(1),
             });
             let mut pass = enc.begin_compute_pass(&wgpu::ComputePassDescriptor { label: None, timestamp_writes });
-            pass.set_pipeline(&pipeline);
-            pass.set_bind_group(0, &bind, &[]);
+            pass.set_pipeline(pipeline);
+            pass.set_bind_group(0, bind, &[]);
             pass.dispatch_workgroups(width.div_ceil(8), height.div_ceil(8), 1);
         }
-        enc.copy_buffer_to_buffer(&out_b, 0, &read, 0, (pixels * 8) as u64);
+        enc.copy_buffer_to_buffer(out_b, 0, &read, 0, (pixels * 8) as u64);
         if let Some((set, resolved)) = &timestamps {
             enc.resolve_query_set(set, 0..2, resolved, 0);
             enc.copy_buffer_to_buffer(resolved, 0, &read, (pixels * 8) as u64, 16);

@@ -25,9 +25,11 @@
 
 mod embree;
 mod handwritten;
+mod handwritten_rayquery;
 mod json;
 mod lowering;
 mod peers;
+mod rayquery;
 mod scenes;
 mod tour;
 
@@ -389,6 +391,8 @@ fn bunny_primary(args: &Args, bunny: &scenes::BenchScene, width: u32, height: u3
         let backend = if b == "cpu" { Backend::Cpu } else { Backend::Wgpu };
         let run = || -> Result<json::Json> {
             let (mut ctx, out, ..) = scene_with(mesh, cam, backend, width, height, Workload::Primary)?;
+            // The compute traversal (the ray-query one is measured per scene).
+            ctx.set_traversal(rt_runtime::Traversal::Compute);
             let device = if backend == Backend::Wgpu {
                 ctx.open_wgpu()?
             } else {
@@ -441,6 +445,12 @@ struct SceneFigures {
     /// The hand-written kernel over the BVH2 instead of the CWBVH.
     handwritten_bvh2: Option<f64>,
     handwritten_bvh2_kernel: Option<f64>,
+    /// The megakernel with the ray-query traversal, and the hand-written
+    /// ray-query kernel (wall clock, device time).
+    rayquery: Option<f64>,
+    rayquery_kernel: Option<f64>,
+    rayquery_handwritten: Option<f64>,
+    rayquery_handwritten_kernel: Option<f64>,
 }
 
 /// The AO workload on one scene: every backend and peer.
@@ -594,6 +604,7 @@ fn measure_gpu(
     } else {
         let run = || -> Result<(Json, Repeated, String)> {
             let (mut ctx, _, gg, g) = scene_with(&scene.mesh, cam, Backend::Wgpu, width, height, Workload::Ao)?;
+            ctx.set_traversal(rt_runtime::Traversal::Compute);
             let device = ctx.open_wgpu()?;
             let (first, l) = measure_launches(&mut ctx, width, height, reps)?;
             let cwbvh = ctx.linked_wgsl().is_some_and(|w| w.contains("const RT_CWBVH: bool = true;"));
@@ -667,9 +678,10 @@ fn measure_gpu(
                 j.child("skipped").set("handwritten_bvh2_wgsl", e);
             }
         }
+        rayquery::measure(scene, cam, (width, height), reps, j, fig);
         let show = |x: Option<f64>| x.map_or("-".into(), |x| format!("{x:.2}"));
         eprintln!(
-            "megakernel {} Mrays/s, hand-written WGSL {} (BVH2: {}); device time alone: megakernel {}, hand-written {} (BVH2: {})",
+            "compute traversal: megakernel {} Mrays/s, hand-written WGSL {} (BVH2: {}); device time alone: megakernel {}, hand-written {} (BVH2: {})",
             show(fig.wgpu),
             show(fig.handwritten),
             show(fig.handwritten_bvh2),
@@ -689,6 +701,8 @@ fn record_figures(j: &mut json::Json, fig: &SceneFigures) {
         ("embree", fig.embree),
         ("handwritten_wgsl", fig.handwritten),
         ("handwritten_bvh2_wgsl", fig.handwritten_bvh2),
+        ("rayquery", fig.rayquery),
+        ("handwritten_rayquery", fig.rayquery_handwritten),
     ] {
         j.child("mrays_per_s").set(k, v);
     }
@@ -698,6 +712,8 @@ fn record_figures(j: &mut json::Json, fig: &SceneFigures) {
         ("wgpu", fig.wgpu_kernel),
         ("handwritten_wgsl", fig.handwritten_kernel),
         ("handwritten_bvh2_wgsl", fig.handwritten_bvh2_kernel),
+        ("rayquery", fig.rayquery_kernel),
+        ("handwritten_rayquery", fig.rayquery_handwritten_kernel),
     ] {
         j.child("kernel_mrays_per_s").set(k, v);
     }
@@ -800,7 +816,7 @@ fn main() {
     // The headline ratios on the bunny (as before issue #6), and their
     // geometric means over the scenes where both sides were measured.
     let pick = |name: &str| figures.iter().find(|(n, _)| *n == name).map(|(_, f)| f);
-    let ratios: [(&str, RatioOf); 6] = [
+    let ratios: [(&str, RatioOf); 10] = [
         ("cpu_vs_obvhs", |f| ratio(f.cpu, f.obvhs)),
         ("cpu_vs_embree", |f| ratio(f.cpu, f.embree)),
         ("megakernel_vs_handwritten", |f| ratio(f.wgpu, f.handwritten)),
@@ -813,6 +829,13 @@ fn main() {
         // What 8-wide nodes give a kernel on this adapter (device time;
         // above 1: the CWBVH kernel is faster).
         ("handwritten_cwbvh_vs_bvh2_kernel", |f| ratio(f.handwritten_kernel, f.handwritten_bvh2_kernel)),
+        // The megakernel's two traversals on one adapter (above 1: ray
+        // queries are faster), and the ray-query megakernel against the
+        // hand-written ray-query kernel (goal >= 0.9).
+        ("rayquery_vs_compute", |f| ratio(f.rayquery, f.wgpu)),
+        ("rayquery_vs_compute_kernel", |f| ratio(f.rayquery_kernel, f.wgpu_kernel)),
+        ("megakernel_rayquery_vs_handwritten", |f| ratio(f.rayquery, f.rayquery_handwritten)),
+        ("megakernel_rayquery_vs_handwritten_kernel", |f| ratio(f.rayquery_kernel, f.rayquery_handwritten_kernel)),
     ];
     for (key, r) in ratios {
         json.set(key, pick("bunny").and_then(r));

@@ -160,9 +160,10 @@ impl Context {
     }
 
     /// How the wgpu backend walks the scene: [`Traversal::Auto`] (the
-    /// default) takes hardware ray queries where the adapter has them and
-    /// the scene allows (no selectors; masks along each path that one 8-bit
-    /// mask says), else the compute traversal, and reads
+    /// default) takes hardware ray queries where a GPU has them and the
+    /// scene allows (no selectors; masks along each path that one 8-bit
+    /// mask says), else the compute traversal (also on software adapters
+    /// such as lavapipe, whose ray queries are slower than it), and reads
     /// `RT_TRAVERSAL=compute|rayquery`; [`Traversal::RayQuery`] on an
     /// adapter without ray queries fails the launch with an error naming
     /// the adapter. The CPU backend ignores it.

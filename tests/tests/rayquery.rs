@@ -294,12 +294,35 @@ fn ten_thousand_instances_each_hit_where_it_is() {
     }
 }
 
+/// `Auto` on a software adapter (lavapipe) takes the compute traversal,
+/// saying why; on an adapter without ray queries too.
+#[test]
+fn auto_takes_the_compute_traversal_on_a_software_adapter() {
+    let Some(info) = rt_runtime::backend::wgpu::probe() else {
+        eprintln!("skipped: no wgpu adapter");
+        return;
+    };
+    if info.device_type != ::wgpu::DeviceType::Cpu {
+        eprintln!("skipped: {} is not a software adapter", info.name);
+        return;
+    }
+    let (mut ctx, out) = camera(On { traversal: Traversal::Auto, ..On::RAY_QUERY }, 1.0, 5.0);
+    let (gg, _) = quad(&mut ctx, 0.5);
+    ctx.set_var(Scope::Context, "top", gg).unwrap();
+    let img = image(&mut ctx, out);
+    let (traversal, why) = ctx.traversal().unwrap();
+    assert_eq!(traversal, Traversal::Compute);
+    assert!(why.contains("software adapter") || why.contains("no ray queries"), "{why}");
+    assert_eq!(img[(W / 2 * W + W / 2) as usize].w, 5.0);
+}
+
 #[test]
 fn a_selector_scene_keeps_the_compute_traversal_and_says_why() {
     if !On::RAY_QUERY.available() {
         return;
     }
-    let (mut ctx, out) = camera(On { traversal: Traversal::Auto, ..On::RAY_QUERY }, 1.0, 5.0);
+    // Asked for ray queries: the scene still cannot have them.
+    let (mut ctx, out) = camera(On::RAY_QUERY, 1.0, 5.0);
     let (gg, _) = quad(&mut ctx, 0.5);
     let visit = ctx.create_program(&first_child::PROGRAM);
     let sel = ctx.create_selector(visit, &[gg]).unwrap();

@@ -36,7 +36,9 @@ pub enum Backend {
 
 impl Backend {
     /// The backend to use by default, and why: `RT_BACKEND=cpu|wgpu` when
-    /// set; otherwise a discrete or integrated GPU when wgpu finds one;
+    /// set; otherwise a discrete or integrated GPU when wgpu finds one (the
+    /// reason then names the traversal its launches take, see
+    /// [`wgpu::Traversal::choose`]);
     /// otherwise the CPU backend, which outruns Mesa's lavapipe on CPU-only
     /// machines (3.7 vs 0.9 Mrays/s for the bunny's primary rays on a 2-core
     /// VM, BENCHMARKS.md).
@@ -52,7 +54,11 @@ impl Backend {
             Some(info)
                 if matches!(info.device_type, ::wgpu::DeviceType::DiscreteGpu | ::wgpu::DeviceType::IntegratedGpu) =>
             {
-                Ok((Backend::Wgpu, format!("GPU adapter {} ({:?})", info.name, info.device_type)))
+                let traversal = match wgpu::Traversal::choose() {
+                    Ok((t, why)) => format!("{} traversal: {why}", t.name()),
+                    Err(e) => e.to_string(),
+                };
+                Ok((Backend::Wgpu, format!("GPU adapter {} ({:?}), {traversal}", info.name, info.device_type)))
             }
             Some(info) => Ok((
                 Backend::Cpu,
@@ -119,6 +125,10 @@ pub struct Timings {
     pub link: std::time::Duration,
     /// Running the launch and reading results back.
     pub run: std::time::Duration,
+    /// Building the ray-query traversal's acceleration structures on the
+    /// device (BLASes, TLASes), until the device finished them; part of
+    /// `run`. Zero when nothing was built, and off the ray-query traversal.
+    pub accel: std::time::Duration,
     /// The device's own time for the launch's dispatches, from timestamp
     /// queries: what the kernel took, without submission, waiting and
     /// read-back. `None` on the CPU backend and on devices without

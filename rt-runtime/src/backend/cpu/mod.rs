@@ -147,6 +147,7 @@ fn run(launch: &Launch) -> Result<LaunchReport> {
         link: Default::default(),
         run: t2.elapsed(),
         kernel: None,
+        accel: Default::default(),
     };
     Ok(report)
 }

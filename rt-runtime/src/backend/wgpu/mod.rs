@@ -25,12 +25,19 @@
 //! Tests force both with devices of smaller limits (`device_with` in
 //! tests/tests/runtime.rs). The heap is one binding.
 //!
-//! Traversal: the compute traversal ([`compute`]: the scene's encoding and
-//! the WGSL that walks it) is one folder, beside which a hardware ray-query
-//! traversal would be another, sharing the megakernel linker
-//! ([`kernel`]), the heap ([`heap`]) and the dispatch ([`dispatch`]).
+//! Traversal: two, each a folder, sharing the megakernel linker
+//! ([`kernel`], with the candidate and hit code both use in
+//! `kernel/hits.wgsl`), the heap ([`heap`]) and the dispatch
+//! ([`dispatch`]): the compute traversal ([`compute`]: the scene's
+//! encoding and the WGSL that walks it, on every adapter) and hardware ray
+//! queries ([`rayquery`]: BLASes and TLASes the device builds, a
+//! `rayQueryProceed` loop running any-hit and intersection programs, on
+//! adapters with `EXPERIMENTAL_RAY_QUERY`). [`Traversal`] chooses; the
+//! ray-query traversal still reads the compute encoding's tables (geometry
+//! instances, materials, hit records).
 //!
-//! Files: [`device`] (the device and its health), [`resident`] (buffers
+//! Files: [`device`] (the device and its health, ray queries requested
+//! where the adapter has them), [`resident`] (buffers
 //! kept on the device, uploads of changed pages), [`heap`] (variables'
 //! records, buffers, textures), [`kernel`] (the megakernel's WGSL),
 //! [`pipeline`] (pipelines by WGSL), [`dispatch`] (tiles, uniforms, bind
@@ -242,8 +249,14 @@ fn launch_on_device(
     let lose = std::mem::take(lose_device);
     let log_words = 4 + LOG_EXCEPTIONS * 3 + LOG_PRINT_WORDS;
     let mut replaced = resident::upload(&gpu.device, &gpu.queue, &mut gpu.resident, heap, fresh, log_words);
+    let mut accel = std::time::Duration::ZERO;
     if let rayquery::Plan::RayQuery(flat) = &plan {
-        replaced |= rayquery::accel::sync(gpu, l.scene, l.accels, flat)?;
+        let t = std::time::Instant::now();
+        let (new_bindings, built) = rayquery::accel::sync(gpu, l.scene, l.accels, flat)?;
+        replaced |= new_bindings;
+        if built {
+            accel = t.elapsed();
+        }
     }
     let held = gpu.resident.held.as_ref().expect("held or synced above");
     let (rg_case, ex_case) = (held.spec.ray_generation.case, held.spec.exception.map_or(0, |e| e.case));
@@ -262,7 +275,7 @@ fn launch_on_device(
     report.prints = readback::decode_prints(l.scene, &print_words, print_words.len());
     report.rays = header[2] as u64;
     report.timings =
-        super::Timings { build: Default::default(), encode: t2 - t1, link: t3 - t2, run: t3.elapsed(), kernel };
+        super::Timings { build: Default::default(), encode: t2 - t1, link: t3 - t2, run: t3.elapsed(), kernel, accel };
     Ok(report)
 }
 

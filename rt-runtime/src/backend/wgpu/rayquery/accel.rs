@@ -103,9 +103,10 @@ enum BlasInput {
 }
 
 /// Makes the device hold the BLASes of `flat`'s groups, its roots' TLASes
-/// and the side table; returns true when a binding changed (the bind
-/// groups over them are stale).
-pub(crate) fn sync(gpu: &mut Gpu, scene: &Scene, accels: &AccelCache, flat: &Flat) -> Result<bool> {
+/// and the side table; returns whether a binding changed (the bind groups
+/// over them are stale) and whether anything was built (then this waited
+/// for the device to finish the builds, so that their time is theirs).
+pub(crate) fn sync(gpu: &mut Gpu, scene: &Scene, accels: &AccelCache, flat: &Flat) -> Result<(bool, bool)> {
     let limits = gpu.limits.clone();
     let adapter = gpu.describe();
     let device = gpu.device.clone();
@@ -212,12 +213,14 @@ pub(crate) fn sync(gpu: &mut Gpu, scene: &Scene, accels: &AccelCache, flat: &Fla
     rq.tlas_builds += tlas_builds.len() as u64;
 
     // Record every build in one submission.
-    if !builds.is_empty() || !tlas_builds.is_empty() {
+    let built = !builds.is_empty() || !tlas_builds.is_empty();
+    if built {
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("rt accels") });
         let entries: Vec<wgpu::BlasBuildEntry> = builds.iter().map(|(blas, input)| build_entry(blas, input)).collect();
         encoder.build_acceleration_structures(entries.iter(), tlas_builds.iter().map(|&s| &rq.tlas[s].1));
         gpu.queue.submit([encoder.finish()]);
+        let _ = device.poll(wgpu::PollType::wait_indefinitely());
         if let Some(e) = pollster::block_on(scope.pop()) {
             rq.groups.clear();
             rq.tlas.clear();
@@ -236,7 +239,7 @@ pub(crate) fn sync(gpu: &mut Gpu, scene: &Scene, accels: &AccelCache, flat: &Fla
         rq.side = Some((words, buffer));
         replaced = true;
     }
-    Ok(replaced)
+    Ok((replaced, built))
 }
 
 /// The build of one BLAS over its recorded inputs.

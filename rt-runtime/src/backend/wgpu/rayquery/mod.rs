@@ -12,10 +12,12 @@
 //! switch).
 //!
 //! Which traversal a launch uses ([`Traversal`], [`plan`]): ray queries on
-//! an adapter with `wgpu::Features::EXPERIMENTAL_RAY_QUERY` unless the
-//! scene cannot be flattened (a selector, masks no 8-bit mask says) or the
+//! a GPU with `wgpu::Features::EXPERIMENTAL_RAY_QUERY` unless the scene
+//! cannot be flattened (a selector, masks no 8-bit mask says) or the
 //! context or `RT_TRAVERSAL` asks for the compute traversal; the compute
-//! traversal otherwise. The launch says once why it fell back.
+//! traversal otherwise, and on software adapters (lavapipe), whose ray
+//! queries are slower than it unless asked for. The launch says once why a
+//! scene fell back.
 
 pub(crate) mod accel;
 pub(crate) mod flatten;
@@ -29,8 +31,10 @@ use flatten::{Flat, Unsupported};
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 #[non_exhaustive]
 pub enum Traversal {
-    /// Ray queries where the adapter has them and the scene allows, else
-    /// the compute traversal; `RT_TRAVERSAL=compute|rayquery` overrides.
+    /// Ray queries where a GPU has them and the scene allows, else the
+    /// compute traversal (also on software adapters such as lavapipe,
+    /// whose ray queries are slower); `RT_TRAVERSAL=compute|rayquery`
+    /// overrides.
     #[default]
     Auto,
     /// The megakernel's own BVH walk in a compute shader (every adapter).
@@ -64,6 +68,13 @@ impl Traversal {
             };
         }
         Ok(match super::device::probe() {
+            Some(info) if info.device_type == wgpu::DeviceType::Cpu => {
+                let why = SOFTWARE.replace("{adapter}", &info.name);
+                (
+                    Traversal::Compute,
+                    if super::device::probe_ray_queries() { why } else { format!("{} has no ray queries", info.name) },
+                )
+            }
             Some(info) if super::device::probe_ray_queries() => {
                 (Traversal::RayQuery, format!("{} has ray queries", info.name))
             }
@@ -100,6 +111,9 @@ pub(crate) fn plan(scene: &Scene, gpu: &Gpu, asked: Traversal) -> Result<Plan> {
     if asked == Traversal::Compute {
         return Ok(Plan::Compute("asked for".into()));
     }
+    if asked == Traversal::Auto && gpu.ray_query && gpu.is_cpu() {
+        return Ok(Plan::Compute(SOFTWARE.replace("{adapter}", &gpu.describe())));
+    }
     if !gpu.ray_query {
         let why = format!("{} has no ray queries (wgpu::Features::EXPERIMENTAL_RAY_QUERY)", gpu.describe());
         if asked == Traversal::RayQuery {
@@ -130,6 +144,12 @@ pub(crate) fn plan(scene: &Scene, gpu: &Gpu, asked: Traversal) -> Result<Plan> {
         }
     }
 }
+
+/// Why `Auto` keeps the compute traversal on a software adapter that has
+/// ray queries (lavapipe from Mesa 25): its ray queries are Mesa's own BVH
+/// and traversal run by llvmpipe, slower than the megakernel's walk on
+/// every bench scene (BENCHMARKS.md, "Ray queries").
+const SOFTWARE: &str = "{adapter} is a software adapter, whose ray queries are slower than the compute traversal (BENCHMARKS.md); Traversal::RayQuery or RT_TRAVERSAL=rayquery uses them";
 
 /// Says on stderr, once per reason, that a scene keeps the compute
 /// traversal.
