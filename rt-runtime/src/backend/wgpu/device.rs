@@ -203,11 +203,11 @@ impl Gpu {
         ray_query_layouts.entry(slots).or_insert_with(|| {
             let mut entries = base_entries(*scene_bindings);
             entries.push(buffer_entry(
-                super::rayquery::SIDE_BINDING,
+                super::rayquery::wgsl::SIDE_BINDING,
                 wgpu::BufferBindingType::Storage { read_only: true },
             ));
             entries.extend((0..slots).map(|s| wgpu::BindGroupLayoutEntry {
-                binding: super::rayquery::SIDE_BINDING + 1 + s,
+                binding: super::rayquery::wgsl::SIDE_BINDING + 1 + s,
                 visibility: wgpu::ShaderStages::COMPUTE,
                 ty: wgpu::BindingType::AccelerationStructure { vertex_return: false },
                 count: None,

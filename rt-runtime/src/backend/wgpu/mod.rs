@@ -252,7 +252,10 @@ fn launch_on_device(
     let mut accel = std::time::Duration::ZERO;
     if let rayquery::Plan::RayQuery(flat) = &plan {
         let t = std::time::Instant::now();
-        let (new_bindings, built) = rayquery::accel::sync(gpu, l.scene, l.accels, flat)?;
+        let adapter = gpu.describe();
+        let Gpu { device, queue, limits, ray_query_accels, .. } = gpu;
+        let (new_bindings, built) =
+            rayquery::accel::sync((device, queue, limits, &adapter), ray_query_accels, l.scene, l.accels, flat)?;
         replaced |= new_bindings;
         if built {
             accel = t.elapsed();

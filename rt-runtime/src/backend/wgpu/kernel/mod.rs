@@ -236,7 +236,7 @@ pub fn generate(spec: &KernelSpec) -> Result<Generated> {
     out.push_str(HITS);
     if spec.ray_query_slots > 0 {
         // The ray-query loop: it defines rt_search and the hit transforms.
-        out.push_str(&super::rayquery::search_wgsl(spec.ray_query_slots));
+        out.push_str(&super::rayquery::wgsl::search_wgsl(spec.ray_query_slots));
     } else {
         out.push_str(TRAVERSE);
         if spec.graph_levels > 0 {

@@ -15,7 +15,6 @@
 use super::flatten::{Flat, FlatInstance, parts};
 use crate::accel::Builder;
 use crate::accel::cache::{AccelCache, NodeAccel, instance_mesh, prim_bounds};
-use crate::backend::wgpu::device::Gpu;
 use crate::error::{Result, RtError};
 use crate::handles::GeometryInstanceId;
 use crate::scene::{NodeId, NodeKind, Scene};
@@ -51,10 +50,13 @@ impl RayQueryAccels {
     pub(crate) fn entries(&self) -> Vec<wgpu::BindGroupEntry<'_>> {
         let mut out = Vec::new();
         if let Some((_, side)) = &self.side {
-            out.push(wgpu::BindGroupEntry { binding: super::SIDE_BINDING, resource: side.as_entire_binding() });
+            out.push(wgpu::BindGroupEntry { binding: super::wgsl::SIDE_BINDING, resource: side.as_entire_binding() });
         }
         for (s, (_, tlas)) in self.tlas.iter().enumerate() {
-            out.push(wgpu::BindGroupEntry { binding: super::SIDE_BINDING + 1 + s as u32, resource: tlas.as_binding() });
+            out.push(wgpu::BindGroupEntry {
+                binding: super::wgsl::SIDE_BINDING + 1 + s as u32,
+                resource: tlas.as_binding(),
+            });
         }
         out
     }
@@ -106,11 +108,14 @@ enum BlasInput {
 /// and the side table; returns whether a binding changed (the bind groups
 /// over them are stale) and whether anything was built (then this waited
 /// for the device to finish the builds, so that their time is theirs).
-pub(crate) fn sync(gpu: &mut Gpu, scene: &Scene, accels: &AccelCache, flat: &Flat) -> Result<(bool, bool)> {
-    let limits = gpu.limits.clone();
-    let adapter = gpu.describe();
-    let device = gpu.device.clone();
-    let rq = &mut gpu.ray_query_accels;
+pub(crate) fn sync(
+    (device, queue, limits, adapter): (&wgpu::Device, &wgpu::Queue, &wgpu::Limits, &str),
+    rq: &mut RayQueryAccels,
+    scene: &Scene,
+    accels: &AccelCache,
+    flat: &Flat,
+) -> Result<(bool, bool)> {
+    let adapter = adapter.to_string();
     let mut replaced = false;
 
     // BLASes of the groups whose trees changed (or are new).
@@ -134,12 +139,12 @@ pub(crate) fn sync(gpu: &mut Gpu, scene: &Scene, accels: &AccelCache, flat: &Fla
         let [tris, boxes] = parts(scene, g);
         let mut group = GroupBlas { stamp, parts: [None, None] };
         if !tris.is_empty() {
-            let (blas, input) = triangle_blas(&device, scene, g, &tris, flags, &limits, &adapter)?;
+            let (blas, input) = triangle_blas(device, scene, g, &tris, flags, limits, &adapter)?;
             group.parts[0] = Some(blas.clone());
             builds.push((blas, input));
         }
         if !boxes.is_empty() {
-            let built = box_blas(&device, scene, g, &boxes, flags, &limits, &adapter)?;
+            let built = box_blas(device, scene, g, &boxes, flags, limits, &adapter)?;
             if let Some((blas, input)) = built {
                 group.parts[1] = Some(blas.clone());
                 builds.push((blas, input));
@@ -219,7 +224,7 @@ pub(crate) fn sync(gpu: &mut Gpu, scene: &Scene, accels: &AccelCache, flat: &Fla
         let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("rt accels") });
         let entries: Vec<wgpu::BlasBuildEntry> = builds.iter().map(|(blas, input)| build_entry(blas, input)).collect();
         encoder.build_acceleration_structures(entries.iter(), tlas_builds.iter().map(|&s| &rq.tlas[s].1));
-        gpu.queue.submit([encoder.finish()]);
+        queue.submit([encoder.finish()]);
         let _ = device.poll(wgpu::PollType::wait_indefinitely());
         if let Some(e) = pollster::block_on(scope.pop()) {
             rq.groups.clear();

@@ -8,8 +8,7 @@
 //! Files: [`flatten`] (the graph as one level of instances per root, or why
 //! it cannot be), [`accel`] (BLASes and TLASes on the device, rebuilt only
 //! where something moved, and the kernel's side table), `search.wgsl` (the
-//! loop); [`search_wgsl`] writes the per-kernel part (bindings, the slot
-//! switch).
+//! loop) and [`wgsl`] (the per-kernel part: bindings, the slot switch).
 //!
 //! Which traversal a launch uses ([`Traversal`], [`plan`]): ray queries on
 //! a GPU with `wgpu::Features::EXPERIMENTAL_RAY_QUERY` unless the scene
@@ -21,6 +20,7 @@
 
 pub(crate) mod accel;
 pub(crate) mod flatten;
+pub(crate) mod wgsl;
 
 use super::device::Gpu;
 use crate::error::{Result, RtError};
@@ -160,40 +160,4 @@ fn warn_once(why: &str) {
         eprintln!("rt-runtime: this scene uses the compute traversal, not ray queries: {why}");
         said.push(why.to_string());
     }
-}
-
-/// The binding of the side table, then of the TLASes (one per slot).
-pub(crate) const SIDE_BINDING: u32 = 16;
-
-const SEARCH: &str = include_str!("search.wgsl");
-
-/// The kernel's ray-query part for `slots` roots: the bindings, the loop
-/// and `rt_search` switching on the root's slot.
-pub(crate) fn search_wgsl(slots: u32) -> String {
-    let mut out = format!("\n@group(0) @binding({SIDE_BINDING}) var<storage, read> rt_query_side: array<u32>;\n");
-    let mut cases = String::new();
-    for s in 0..slots {
-        out.push_str(&format!(
-            "@group(0) @binding({}) var rt_tlas{s}: acceleration_structure;\n",
-            SIDE_BINDING + 1 + s
-        ));
-        cases.push_str(&format!(
-            "        case {s}u: {{\n            rt_query_search(rt_tlas{s}, ray, flags, mask);\n        }}\n"
-        ));
-    }
-    out.push_str(SEARCH);
-    out.push_str(&format!(
-        "
-fn rt_search(object: u32, ray: RtRay, flags: u32, mask: u32) {{
-    rt_query_begin(ray, flags);
-    switch rt_query_side[1u + object] {{
-{cases}        default: {{
-            // Not a root the launch found in a variable.
-            rt_raise(RT_EXC_INVALID_RAY);
-        }}
-    }}
-}}
-"
-    ));
-    out
 }
