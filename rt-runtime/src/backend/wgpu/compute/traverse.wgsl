@@ -105,7 +105,7 @@ fn rt_intersect_prim(gi: u32, prim: u32) {
     }
 }
 
-const RT_FAR: f32 = 3.40282347e38;
+const RT_FAR: f32 = RT_F32_MAX;
 
 // The primitives of instance `inst` (a geometry group's BVH, in the
 // instance's object space).
