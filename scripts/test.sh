@@ -44,6 +44,11 @@ if command -v npm >/dev/null && [ ! -e scripts/tint/node_modules/webgpu/package.
     echo "scripts/test.sh: npm ci in scripts/tint (Dawn for Node, the package \`webgpu\`)"
     npm ci --prefix scripts/tint --no-audit --no-fund --loglevel=error
 fi
+# rt-runtime's wgpu backend also builds for the browser (wasm32, WebGPU).
+if command -v rustup >/dev/null && ! rustup target list --installed | grep -qx wasm32-unknown-unknown; then
+    echo "scripts/test.sh: rustup target add wasm32-unknown-unknown"
+    rustup target add wasm32-unknown-unknown
+fi
 export RT_TINT=require
 # rt-runtime keeps every kernel the suite links here, for the Tint check.
 export RT_WGSL_KERNEL_DIR="$PWD/target/rt-kernels"
@@ -54,6 +59,8 @@ start=$(date +%s)
 echo "scripts/test.sh: cargo fmt --check and cargo clippy (-D warnings)"
 cargo fmt --all --check
 cargo clippy --workspace --all-targets -j"$CARGO_BUILD_JOBS" -- -D warnings
+echo "scripts/test.sh: cargo build --target wasm32-unknown-unknown -p rt-runtime"
+cargo build --target wasm32-unknown-unknown -p rt-runtime -j"$CARGO_BUILD_JOBS"
 log=$(mktemp)
 trap 'rm -f "$log"' EXIT
 # The Tint check reads the kernels the rest of the suite linked: it runs
