@@ -6,7 +6,7 @@
 # lavapipe, installed here when missing or too old for ray queries (as
 # root: Mesa 25 from bookworm-backports). A missing adapter fails those
 # tests; it is never skipped. The viewer's tests need Xvfb, installed
-# here too.
+# here too. Node and Dawn's npm package run the Tint check (tint.rs).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # The ray-query traversal's tests need lavapipe with VK_KHR_ray_query:
@@ -30,15 +30,45 @@ if ! command -v Xvfb >/dev/null || ! dpkg -s $x11_packages >/dev/null 2>&1; then
         echo "scripts/test.sh: no Xvfb (or X11 libraries) found; the viewer's window tests may be skipped or fail (apt-get install $x11_packages)" >&2
     fi
 fi
+# Tint, Dawn's WGSL compiler (Chrome's), through Node and the npm package
+# `webgpu` (scripts/tint): tests/tests/tint.rs gives it every kernel the
+# suite links and every snapshot. Required here: without Node it fails.
+if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
+    if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null; then
+        echo "scripts/test.sh: installing nodejs and npm for the Tint check"
+        apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq nodejs npm >/dev/null
+    else
+        echo "scripts/test.sh: no node/npm found; the Tint check (tests/tests/tint.rs) will fail (apt-get install nodejs npm)" >&2
+    fi
+fi
+if command -v npm >/dev/null && [ ! -e scripts/tint/node_modules/webgpu/package.json ]; then
+    echo "scripts/test.sh: npm ci in scripts/tint (Dawn for Node, the package \`webgpu\`)"
+    npm ci --prefix scripts/tint --no-audit --no-fund --loglevel=error
+fi
+# rt-runtime's wgpu backend also builds for the browser (wasm32, WebGPU).
+if command -v rustup >/dev/null && ! rustup target list --installed | grep -qx wasm32-unknown-unknown; then
+    echo "scripts/test.sh: rustup target add wasm32-unknown-unknown"
+    rustup target add wasm32-unknown-unknown
+fi
+export RT_TINT=require
+# rt-runtime keeps every kernel the suite links here, for the Tint check.
+export RT_WGSL_KERNEL_DIR="$PWD/target/rt-kernels"
+rm -rf "$RT_WGSL_KERNEL_DIR"
 export CARGO_BUILD_JOBS="${CARGO_BUILD_JOBS:-2}"
 start=$(date +%s)
 # Lint first: formatting and clippy's warnings fail the run as a test does.
 echo "scripts/test.sh: cargo fmt --check and cargo clippy (-D warnings)"
 cargo fmt --all --check
 cargo clippy --workspace --all-targets -j"$CARGO_BUILD_JOBS" -- -D warnings
+echo "scripts/test.sh: cargo build --target wasm32-unknown-unknown -p rt-runtime"
+cargo build --target wasm32-unknown-unknown -p rt-runtime -j"$CARGO_BUILD_JOBS"
 log=$(mktemp)
 trap 'rm -f "$log"' EXIT
-cargo test --workspace --all-targets -j"$CARGO_BUILD_JOBS" 2>&1 | tee "$log"
+# The Tint check reads the kernels the rest of the suite linked: it runs
+# after it.
+tint_test=tint_accepts_every_kernel_and_snapshot
+cargo test --workspace --all-targets -j"$CARGO_BUILD_JOBS" -- --skip "$tint_test" 2>&1 | tee "$log"
+cargo test -p rt-tests --test tint -j"$CARGO_BUILD_JOBS" -- --exact "$tint_test" --nocapture 2>&1 | tee -a "$log"
 cargo test --workspace --doc -j"$CARGO_BUILD_JOBS" 2>&1 | tee -a "$log"
 passed=$(grep -Eo '^test result: [a-zA-Z]+\. [0-9]+ passed' "$log" | awk '{s += $4} END {print s + 0}')
 failed=$(grep -Eo '[0-9]+ failed;' "$log" | awk '{s += $1} END {print s + 0}')

@@ -14,7 +14,7 @@ struct Camera {
 @group(0) @binding(2) var<storage, read_write> out: array<f32>;
 @group(0) @binding(3) var<uniform> cam: Camera;
 
-const FAR: f32 = 3.40282347e38;
+const FAR: f32 = 0x1.fffffep+127f;
 
 // Moeller-Trumbore; returns t or FAR.
 fn triangle(i: u32, o: vec3<f32>, d: vec3<f32>, tmin: f32, tmax: f32) -> f32 {

@@ -34,6 +34,53 @@ struct RtSampler {
 }
 ";
 
+/// An f32 as WGSL text every conformant compiler accepts: the shortest
+/// decimal that round-trips, with `f`; the extremes `±f32::MAX` as hex
+/// floats (their shortest decimal, `3.4028235e38`, lies above `f32::MAX`,
+/// and Tint rejects a literal it cannot represent); infinity and NaN as a
+/// call of [`FLOATS`]' `rt_f32_from_bits`. WGSL has no literal for those,
+/// and a constant expression that evaluates to one is a shader-creation
+/// error (Tint: "value inf cannot be represented as 'f32'"; naga lets
+/// `bitcast<f32>(0x7f800000u)` through): a call of a user function is never
+/// a constant expression, so the bitcast happens at run time. The one
+/// spelling of f32 values for the compiler and the runtime alike.
+///
+/// ```
+/// use rt_abi::wgsl::f32_wgsl;
+/// assert_eq!(f32_wgsl(0.5), "0.5f");
+/// assert_eq!(f32_wgsl(f32::MIN), "-0x1.fffffep+127f");
+/// assert_eq!(f32_wgsl(f32::INFINITY), "rt_f32_from_bits(0x7f800000u)");
+/// ```
+pub fn f32_wgsl(v: f32) -> String {
+    if v.is_nan() {
+        return format!("{F32_FROM_BITS}({F32_NAN_BITS:#010x}u)");
+    }
+    if v.is_infinite() {
+        return format!("{F32_FROM_BITS}({:#010x}u)", v.to_bits());
+    }
+    if v.abs() == f32::MAX {
+        return if v > 0.0 { "0x1.fffffep+127f".into() } else { "-0x1.fffffep+127f".into() };
+    }
+    format!("{v:?}f")
+}
+
+/// The function [`f32_wgsl`] spells infinity and NaN with: lowered code
+/// that calls it is not a constant expression.
+pub const F32_FROM_BITS: &str = "rt_f32_from_bits";
+
+/// The bits lowered code gives every NaN (Rust's `f32::NAN`, quiet).
+const F32_NAN_BITS: u32 = 0x7fc0_0000;
+
+/// What [`f32_wgsl`] spells infinity and NaN with, and `RT_F32_MAX` (the
+/// runtime's WGSL files read it, so that the extreme is spelled once): in
+/// the compiler's stub module and in every megakernel.
+pub fn floats() -> String {
+    format!(
+        "fn {F32_FROM_BITS}(bits: u32) -> f32 {{ return bitcast<f32>(bits); }}\nconst RT_F32_MAX: f32 = {};\n",
+        f32_wgsl(f32::MAX)
+    )
+}
+
 /// The heap binding every lowered program reads buffers through.
 pub const HEAP: &str = "@group(0) @binding(0) var<storage, read_write> rt_heap: array<u32>;\n";
 
@@ -89,6 +136,7 @@ pub fn stub(f: &WgslFn) -> String {
 pub fn stub_prelude() -> String {
     let mut s = String::from(RECORDS);
     s.push_str(HEAP);
+    s.push_str(&floats());
     for f in wgsl_functions() {
         s.push_str(&stub(f));
         s.push('\n');
@@ -107,5 +155,21 @@ mod tests {
         let t = crate::intrinsic("rt_terminate_ray").unwrap().wgsl.unwrap();
         assert_eq!(stub(&t), "fn rt_terminate_ray() {}");
         assert!(stub_prelude().starts_with(RECORDS));
+    }
+
+    #[test]
+    fn f32_text_round_trips_and_stays_finite() {
+        for v in [0.0f32, -0.0, 1.0, 0.1, 1e-45, f32::MIN_POSITIVE, f32::EPSILON, 3.4028233e38, -1.5e30] {
+            let s = f32_wgsl(v);
+            let back: f32 = s.strip_suffix('f').unwrap().parse().unwrap();
+            assert_eq!(back.to_bits(), v.to_bits(), "{s}");
+            // No decimal above f32::MAX: every conformant compiler takes it.
+            assert!(s.strip_suffix('f').unwrap().parse::<f64>().unwrap().abs() <= f32::MAX as f64, "{s}");
+        }
+        assert_eq!(f32_wgsl(f32::MAX), "0x1.fffffep+127f");
+        assert_eq!(f32_wgsl(f32::NEG_INFINITY), "rt_f32_from_bits(0xff800000u)");
+        assert_eq!(f32_wgsl(f32::NAN), "rt_f32_from_bits(0x7fc00000u)");
+        assert!(floats().contains("const RT_F32_MAX: f32 = 0x1.fffffep+127f;"));
+        assert!(stub_prelude().contains(&floats()));
     }
 }

@@ -25,7 +25,9 @@ pub struct Call {
     pub vars: Vec<Arc<dyn Any + Send + Sync>>,
 }
 
-/// What the default exception program writes (OptiX's error colour).
+/// What the default exception program writes (OptiX's error colour; the
+/// CPU backend's, not built for wasm32).
+#[cfg(not(target_arch = "wasm32"))]
 pub const EXCEPTION_COLOR: glam::Vec4 = glam::Vec4::new(1.0, 0.0, 1.0, 1.0);
 
 /// The variable the default exception program paints (an entry point

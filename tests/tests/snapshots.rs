@@ -4,11 +4,8 @@
 //! naga on its own. Run with `RT_BLESS=1` to rewrite the snapshots.
 
 use rt_compiler::{Declared, Item};
-use std::path::{Path, PathBuf};
-
-fn corpus_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("snapshots")
-}
+use snapshot_modules::corpus_dir;
+use std::path::PathBuf;
 
 /// `(file, program kind, program)` for every program, and every item.
 fn corpus() -> (Vec<(String, rt_compiler::Kind, syn::ItemFn)>, Vec<Item>) {
@@ -37,8 +34,9 @@ fn corpus() -> (Vec<(String, rt_compiler::Kind, syn::ItemFn)>, Vec<Item>) {
     (programs, items)
 }
 
-/// Where a tracing program's snapshot goes on with its resumable form.
-const RESUMABLE: &str = "\n// ---- resumable form ----\n";
+#[path = "common/snapshot_modules.rs"]
+mod snapshot_modules;
+use snapshot_modules::RESUMABLE;
 
 /// The snapshot text: the module without the fixed runtime prelude, then a
 /// tracing program's resumable form (with the resumable forms of the
@@ -97,39 +95,13 @@ fn snapshots_match_and_validate() {
 
 #[test]
 fn every_checked_in_snapshot_validates_with_naga() {
-    let mut n = 0;
-    for e in std::fs::read_dir(corpus_dir().join("out")).unwrap() {
-        let path = e.unwrap().path();
-        if path.extension().is_none_or(|e| e != "wgsl") {
-            continue;
-        }
-        let text = std::fs::read_to_string(&path).unwrap();
-        let module = match text.split_once(RESUMABLE) {
-            // The resumable form replaces the plain program, with stubs for
-            // what the linker gives it.
-            Some((plain, resumable)) => {
-                let program = plain.rfind("\nfn rtp_").expect("the plain program");
-                let mut stubs =
-                    String::from("var<private> rt_rs: u32;\nvar<private> rt_d: u32;\nconst RT_DEPTHS: u32 = 1u;\n");
-                let mut payloads: Vec<&str> =
-                    resumable.split("rt_request_").skip(1).map(|t| t.split('(').next().unwrap()).collect();
-                payloads.sort_unstable();
-                payloads.dedup();
-                for p in payloads {
-                    stubs.push_str(&format!(
-                        "fn rt_request_{p}(object: u32, ray: RtRay, prd: {p}, flags: u32, mask: u32) {{}}\nfn rt_result_{p}() -> {p} {{\n    var p: {p};\n    return p;\n}}\n"
-                    ));
-                }
-                format!("{}{}{stubs}{resumable}", *rt_compiler::lower::PRELUDE, &plain[..program])
-            }
-            None => format!("{}{}", *rt_compiler::lower::PRELUDE, text),
-        };
-        let parsed = naga::front::wgsl::parse_str(&module)
-            .unwrap_or_else(|e| panic!("{}: {}", path.display(), e.emit_to_string(&module)));
+    let modules = snapshot_modules::modules();
+    for (path, module) in &modules {
+        let parsed = naga::front::wgsl::parse_str(module)
+            .unwrap_or_else(|e| panic!("{}: {}", path.display(), e.emit_to_string(module)));
         naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::default())
             .validate(&parsed)
-            .unwrap_or_else(|e| panic!("{}: {}", path.display(), e.emit_to_string(&module)));
-        n += 1;
+            .unwrap_or_else(|e| panic!("{}: {}", path.display(), e.emit_to_string(module)));
     }
-    assert!(n >= 25, "only {n} snapshots");
+    assert!(modules.len() >= 25, "only {} snapshots", modules.len());
 }

@@ -114,6 +114,8 @@ impl Bvh {
     /// Visits the primitives whose leaves the ray segment `(tmin, tmax())`
     /// enters, nearest leaves first; `visit` returns false to stop.
     /// `tmax` is re-read after every leaf so closer hits prune the search.
+    /// (The CPU backend's walk: not built for wasm32.)
+    #[cfg(not(target_arch = "wasm32"))]
     pub fn traverse(
         &self,
         origin: Vec3,

@@ -119,10 +119,15 @@ pub(crate) fn prim_bounds(scene: &Scene, children: &[crate::handles::GeometryIns
         let geometry = &scene.geometries[rec.geometry.index() as usize];
         match &geometry.kind {
             GeometryKind::Triangles(mesh) => {
-                use rayon::prelude::*;
                 let n = mesh.indices.len();
                 prims.extend((0..n as u32).map(|t| (gi.index(), t)));
-                bounds.par_extend((0..n).into_par_iter().with_min_len(4096).map(|t| triangle_bounds(mesh, t)));
+                #[cfg(not(target_arch = "wasm32"))]
+                {
+                    use rayon::prelude::*;
+                    bounds.par_extend((0..n).into_par_iter().with_min_len(4096).map(|t| triangle_bounds(mesh, t)));
+                }
+                #[cfg(target_arch = "wasm32")]
+                bounds.extend((0..n).map(|t| triangle_bounds(mesh, t)));
             }
             GeometryKind::Custom { primitive_count, bounding_box, .. } => {
                 all_triangles = false;
@@ -334,17 +339,19 @@ fn slot_triangles(
     wide: Option<&obvhs::cwbvh::CwBvh>,
     all: bool,
 ) -> Vec<[Vec3; 3]> {
-    use rayon::prelude::*;
     let Some(cw) = wide.filter(|_| all) else { return Vec::new() };
     // Each instance's mesh looked up once, not once per triangle.
     let meshes: Vec<Option<&TriangleMesh>> =
         (0..scene.instances.len() as u32).map(|gi| instance_mesh(scene, gi)).collect();
-    cw.primitive_indices
-        .par_iter()
-        .with_min_len(4096)
-        .map(|&p| {
-            let (gi, t) = prims[p as usize];
-            meshes[gi as usize].expect(ALL_TRIANGLES).triangle(t as usize)
-        })
-        .collect()
+    let slot = |p: &u32| {
+        let (gi, t) = prims[*p as usize];
+        meshes[gi as usize].expect(ALL_TRIANGLES).triangle(t as usize)
+    };
+    #[cfg(not(target_arch = "wasm32"))]
+    {
+        use rayon::prelude::*;
+        cw.primitive_indices.par_iter().with_min_len(4096).map(slot).collect()
+    }
+    #[cfg(target_arch = "wasm32")]
+    cw.primitive_indices.iter().map(slot).collect()
 }

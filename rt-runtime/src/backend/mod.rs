@@ -13,6 +13,7 @@
 //! The backends: [`cpu`] runs programs natively; [`wgpu`] links them into
 //! one megakernel (its traversal in `wgpu/compute/`).
 
+#[cfg(not(target_arch = "wasm32"))]
 pub mod cpu;
 pub mod wgpu;
 
@@ -228,9 +229,38 @@ impl Backend {
     /// A new backend of this kind (nothing opened yet).
     pub(crate) fn create(self) -> Box<dyn LaunchBackend> {
         match self {
+            #[cfg(not(target_arch = "wasm32"))]
             Backend::Cpu => Box::new(cpu::CpuBackend),
+            #[cfg(target_arch = "wasm32")]
+            Backend::Cpu => Box::new(NoCpuBackend),
             Backend::Wgpu => Box::new(wgpu::WgpuBackend::default()),
         }
+    }
+}
+
+/// What `Backend::Cpu` is on wasm32, where the CPU backend is not built
+/// (it runs launches on threads, which a browser page does not have): a
+/// launch fails, naming the backend to use instead.
+#[cfg(target_arch = "wasm32")]
+struct NoCpuBackend;
+
+#[cfg(target_arch = "wasm32")]
+impl LaunchBackend for NoCpuBackend {
+    fn kind(&self) -> Backend {
+        Backend::Cpu
+    }
+    fn prepare(&mut self) -> Result<()> {
+        Err(RtError::Gpu("the CPU backend is not built for wasm32 (no threads there): use Backend::Wgpu".into()))
+    }
+    fn trees(&self, _: &Scene) -> Trees {
+        Trees { groups: crate::accel::bvh::TreeForm::Binary, cwbvh: false, slot_triangles: false }
+    }
+    fn launch(&mut self, _: &Launch) -> Result<LaunchReport> {
+        self.prepare().map(|_| LaunchReport::default())
+    }
+    fn read_back_outputs(&mut self, _: &mut [BufferRec]) {}
+    fn stats(&self) -> BackendStats<'_> {
+        BackendStats::default()
     }
 }
 

@@ -1,6 +1,7 @@
 //! Constants: `#[rt_const]` items of scalar, vector, array and struct type,
 //! constants computed from other constants, and `const` items inside a
-//! function body.
+//! function body (one infinite: a `let` in WGSL, where infinity is a
+//! run-time value).
 use super::seed_common::*;
 use rt_std::prelude::*;
 
@@ -26,6 +27,7 @@ pub const STOPS: [f32; 3] = [0.5, 1.0, 2.0];
 pub fn consts(prd: &mut Radiance) {
     const GAMMA: f32 = 1.0 / 2.2;
     const STEPS: i32 = 3;
+    const FAR: f32 = f32::INFINITY;
     let d = current_ray().direction;
     let t = d.y.max(0.0);
     let sky = HORIZON.lerp(ZENITH, t.powf(GAMMA));
@@ -33,4 +35,5 @@ pub fn consts(prd: &mut Radiance) {
     let stops = STOPS;
     let exposure = stops[(cell % STRATA) as usize % 3] + STOPS[cell as usize % 3];
     prd.result = sky * exposure * RADIANCE_RAY as f32;
+    prd.importance = prd.importance.min(FAR);
 }

@@ -22,7 +22,7 @@ fn rtf_seen_above(top_object: u32, p: vec3<f32>, depth: u32) -> vec3<f32> {
     var up: Shade = Shade(vec3<f32>(0.0), (depth + 1u));
     var tmp: vec3<f32>;
     {
-        let r: RtRay = RtRay(p, vec3<f32>(0.0f, 1.0f, 0.0f), 0u, 0.001f, bitcast<f32>(0x7f800000u));
+        let r: RtRay = RtRay(p, vec3<f32>(0.0f, 1.0f, 0.0f), 0u, 0.001f, rt_f32_from_bits(0x7f800000u));
         rt_trace_Shade(top_object, r, &up, 0u, 255u);
         tmp = (up.color * 0.5f);
     }
@@ -37,12 +37,12 @@ fn rtp_by_kind(prd: ptr<function, Shade>, kind: u32, top_object: u32, tint: vec3
         case 0u: {
             {
                 let d: vec3<f32> = vec3<f32>(ray.direction.x, -ray.direction.y, ray.direction.z);
-                rt_trace_Shade(top_object, RtRay(p, d, 0u, 0.001f, bitcast<f32>(0x7f800000u)), &next, 0u, 255u);
+                rt_trace_Shade(top_object, RtRay(p, d, 0u, 0.001f, rt_f32_from_bits(0x7f800000u)), &next, 0u, 255u);
                 (*prd).color = (next.color * tint);
             }
         }
         case 1u, 2u: {
-            rt_trace_Shade(top_object, RtRay(p, ray.direction, 0u, 0.001f, bitcast<f32>(0x7f800000u)), &next, 0u, 255u);
+            rt_trace_Shade(top_object, RtRay(p, ray.direction, 0u, 0.001f, rt_f32_from_bits(0x7f800000u)), &next, 0u, 255u);
         }
         default: {
             let k = kind;
@@ -70,7 +70,7 @@ fn rtf_seen_above_rs(top_object: u32, p: vec3<f32>, depth: u32) -> vec3<f32> {
     }
     if rt_site == 0u {
         up = Shade(vec3<f32>(0.0), (depth + 1u));
-        r = RtRay(p, vec3<f32>(0.0f, 1.0f, 0.0f), 0u, 0.001f, bitcast<f32>(0x7f800000u));
+        r = RtRay(p, vec3<f32>(0.0f, 1.0f, 0.0f), 0u, 0.001f, rt_f32_from_bits(0x7f800000u));
     }
     if rt_site == 0u {
         rt_request_Shade(top_object, r, up, 0u, 255u);
@@ -138,7 +138,7 @@ fn rtp_by_kind(prd: ptr<function, Shade>, kind: u32, top_object: u32, tint: vec3
                     d = vec3<f32>(ray.direction.x, -ray.direction.y, ray.direction.z);
                 }
                 if rt_site == 0u {
-                    rt_request_Shade(top_object, RtRay(p, d, 0u, 0.001f, bitcast<f32>(0x7f800000u)), next, 0u, 255u);
+                    rt_request_Shade(top_object, RtRay(p, d, 0u, 0.001f, rt_f32_from_bits(0x7f800000u)), next, 0u, 255u);
                     rt_fr_rtp_by_kind_ray[rt_d] = ray;
                     rt_fr_rtp_by_kind_p[rt_d] = p;
                     rt_fr_rtp_by_kind_next[rt_d] = next;
@@ -163,7 +163,7 @@ fn rtp_by_kind(prd: ptr<function, Shade>, kind: u32, top_object: u32, tint: vec3
             }
             case 1u, 2u: {
                 if rt_site == 0u {
-                    rt_request_Shade(top_object, RtRay(p, ray.direction, 0u, 0.001f, bitcast<f32>(0x7f800000u)), next, 0u, 255u);
+                    rt_request_Shade(top_object, RtRay(p, ray.direction, 0u, 0.001f, rt_f32_from_bits(0x7f800000u)), next, 0u, 255u);
                     rt_fr_rtp_by_kind_ray[rt_d] = ray;
                     rt_fr_rtp_by_kind_p[rt_d] = p;
                     rt_fr_rtp_by_kind_next[rt_d] = next;

@@ -26,7 +26,7 @@ const ERR_BAD_SCALE: u32 = (1024u + 1u);
 fn rtp_checked_fill(scale: f32, values: RtBuffer, out: RtBuffer) {
     var out_1 = out;
     let i: u32 = (rt_launch_index().x + (rt_launch_index().y * rt_launch_dim().x));
-    if (!(abs(scale) <= 3.4028235e38f) || (scale <= 0.0f)) {
+    if (!(abs(scale) <= 0x1.fffffep+127f) || (scale <= 0.0f)) {
         rt_throw(ERR_BAD_SCALE);
         return;
     }

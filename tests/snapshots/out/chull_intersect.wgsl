@@ -24,8 +24,8 @@ fn rt_load_vec4f(w: u32) -> vec4<f32> {
 fn rtp_chull_intersect(attr: ptr<function, Normals>, prim: u32, planes: RtBuffer) {
     _ = prim;
     let ray: RtRay = rt_current_ray();
-    var t0: f32 = -3.4028235e38f;
-    var t1: f32 = 3.4028235e38f;
+    var t0: f32 = -0x1.fffffep+127f;
+    var t1: f32 = 0x1.fffffep+127f;
     var t0_normal: vec3<f32> = vec3<f32>(0.0);
     var t1_normal: vec3<f32> = vec3<f32>(0.0);
     let n: u32 = planes.len;

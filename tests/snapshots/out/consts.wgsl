@@ -23,6 +23,7 @@ const ZENITH: vec3<f32> = vec3<f32>(0.2f, 0.4f, 0.9f);
 fn rtp_consts(prd: ptr<function, Radiance>) {
     const GAMMA: f32 = (1.0f / 2.2f);
     const STEPS: i32 = 3i;
+    let FAR: f32 = rt_f32_from_bits(0x7f800000u);
     let d: vec3<f32> = rt_current_ray().direction;
     let t: f32 = max(d.y, 0.0f);
     let sky: vec3<f32> = (HORIZON * (1.0 - pow(t, GAMMA)) + ZENITH * pow(t, GAMMA));
@@ -30,4 +31,5 @@ fn rtp_consts(prd: ptr<function, Radiance>) {
     var stops: array<f32, 3> = STOPS;
     let exposure: f32 = (stops[((cell % STRATA) % 3u)] + STOPS[(cell % 3u)]);
     (*prd).result = ((sky * exposure) * f32(RADIANCE_RAY));
+    (*prd).importance = min((*prd).importance, FAR);
 }

@@ -39,7 +39,7 @@ fn rtp_floor_reflect(prd: ptr<function, Radiance>, attr: Normals, floor_color: v
     if ((importance > importance_cutoff) && ((*prd).depth < max_depth)) {
         var refl: Radiance = Radiance(vec3<f32>(0.0), importance, ((*prd).depth + 1i));
         let r: vec3<f32> = reflect(ray.direction, n);
-        rt_trace_Radiance(top_object, RtRay(hit_point, r, RADIANCE_RAY, scene_epsilon, bitcast<f32>(0x7f800000u)), &refl, 0u, 255u);
+        rt_trace_Radiance(top_object, RtRay(hit_point, r, RADIANCE_RAY, scene_epsilon, rt_f32_from_bits(0x7f800000u)), &refl, 0u, 255u);
         result += (reflectivity * refl.result);
     }
     (*prd).result = result;
@@ -93,7 +93,7 @@ fn rtp_floor_reflect(prd: ptr<function, Radiance>, attr: Normals, floor_color: v
                 r = reflect(ray.direction, n);
             }
             if rt_site == 0u {
-                rt_request_Radiance(top_object, RtRay(hit_point, r, RADIANCE_RAY, scene_epsilon, bitcast<f32>(0x7f800000u)), refl, 0u, 255u);
+                rt_request_Radiance(top_object, RtRay(hit_point, r, RADIANCE_RAY, scene_epsilon, rt_f32_from_bits(0x7f800000u)), refl, 0u, 255u);
                 rt_fr_rtp_floor_reflect_ray[rt_d] = ray;
                 rt_fr_rtp_floor_reflect_n[rt_d] = n;
                 rt_fr_rtp_floor_reflect_hit_point[rt_d] = hit_point;

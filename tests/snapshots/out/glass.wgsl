@@ -77,11 +77,11 @@ fn rtp_glass(prd: ptr<function, Radiance>, attr: Normals, refraction_index: f32,
     var result: vec3<f32> = vec3<f32>(0.0);
     if ((*prd).depth < max_depth) {
         var refl: Radiance = Radiance(vec3<f32>(0.0), ((*prd).importance * fresnel), ((*prd).depth + 1i));
-        rt_trace_Radiance(top_object, RtRay(hit_point, reflect_dir, RADIANCE_RAY, scene_epsilon, bitcast<f32>(0x7f800000u)), &refl, 0u, 255u);
+        rt_trace_Radiance(top_object, RtRay(hit_point, reflect_dir, RADIANCE_RAY, scene_epsilon, rt_f32_from_bits(0x7f800000u)), &refl, 0u, 255u);
         result += (fresnel * refl.result);
         if (fresnel < 1.0f) {
             var refr: Radiance = Radiance(vec3<f32>(0.0), ((*prd).importance * (1.0f - fresnel)), ((*prd).depth + 1i));
-            rt_trace_Radiance(top_object, RtRay(hit_point, refract_dir, RADIANCE_RAY, scene_epsilon, bitcast<f32>(0x7f800000u)), &refr, 0u, 255u);
+            rt_trace_Radiance(top_object, RtRay(hit_point, refract_dir, RADIANCE_RAY, scene_epsilon, rt_f32_from_bits(0x7f800000u)), &refr, 0u, 255u);
             result += (((1.0f - fresnel) * glass_color) * refr.result);
         }
     }
@@ -181,7 +181,7 @@ fn rtp_glass(prd: ptr<function, Radiance>, attr: Normals, refraction_index: f32,
                 refl = Radiance(vec3<f32>(0.0), ((*prd).importance * fresnel), ((*prd).depth + 1i));
             }
             if rt_site == 0u {
-                rt_request_Radiance(top_object, RtRay(hit_point, reflect_dir, RADIANCE_RAY, scene_epsilon, bitcast<f32>(0x7f800000u)), refl, 0u, 255u);
+                rt_request_Radiance(top_object, RtRay(hit_point, reflect_dir, RADIANCE_RAY, scene_epsilon, rt_f32_from_bits(0x7f800000u)), refl, 0u, 255u);
                 rt_fr_rtp_glass_ray[rt_d] = ray;
                 rt_fr_rtp_glass_hit_point[rt_d] = hit_point;
                 rt_fr_rtp_glass_n[rt_d] = n;
@@ -219,7 +219,7 @@ fn rtp_glass(prd: ptr<function, Radiance>, attr: Normals, refraction_index: f32,
                         refr = Radiance(vec3<f32>(0.0), ((*prd).importance * (1.0f - fresnel)), ((*prd).depth + 1i));
                     }
                     if rt_site == 0u {
-                        rt_request_Radiance(top_object, RtRay(hit_point, refract_dir, RADIANCE_RAY, scene_epsilon, bitcast<f32>(0x7f800000u)), refr, 0u, 255u);
+                        rt_request_Radiance(top_object, RtRay(hit_point, refract_dir, RADIANCE_RAY, scene_epsilon, rt_f32_from_bits(0x7f800000u)), refr, 0u, 255u);
                         rt_fr_rtp_glass_ray[rt_d] = ray;
                         rt_fr_rtp_glass_hit_point[rt_d] = hit_point;
                         rt_fr_rtp_glass_n[rt_d] = n;

@@ -70,7 +70,7 @@ fn rtp_match_camera(top_object: u32, out: RtBuffer, plan: RtBuffer) {
                 let n = rt_bufload_i32(plan, step_);
                 {
                     let o: vec3<f32> = vec3<f32>(f32(idx.x), f32(idx.y), f32(n));
-                    rt_trace_Shade(top_object, RtRay(o, vec3<f32>(0.0f, 0.0f, -1.0f), 0u, 0.0f, bitcast<f32>(0x7f800000u)), &prd, 0u, 255u);
+                    rt_trace_Shade(top_object, RtRay(o, vec3<f32>(0.0f, 0.0f, -1.0f), 0u, 0.0f, rt_f32_from_bits(0x7f800000u)), &prd, 0u, 255u);
                     total += prd.color;
                 }
             }
@@ -150,7 +150,7 @@ fn rtp_match_camera(top_object: u32, out: RtBuffer, plan: RtBuffer) {
                             o = vec3<f32>(f32(idx.x), f32(idx.y), f32(sel));
                         }
                         if rt_site == 0u {
-                            rt_request_Shade(top_object, RtRay(o, vec3<f32>(0.0f, 0.0f, -1.0f), 0u, 0.0f, bitcast<f32>(0x7f800000u)), prd, 0u, 255u);
+                            rt_request_Shade(top_object, RtRay(o, vec3<f32>(0.0f, 0.0f, -1.0f), 0u, 0.0f, rt_f32_from_bits(0x7f800000u)), prd, 0u, 255u);
                             rt_fr_rtp_match_camera_out_1[rt_d] = out_1;
                             rt_fr_rtp_match_camera_idx[rt_d] = idx;
                             rt_fr_rtp_match_camera_total[rt_d] = total;

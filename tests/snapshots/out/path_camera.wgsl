@@ -74,7 +74,7 @@ fn rtp_path_camera(eye: vec3<f32>, camera: mat3x3<f32>, frame: u32, spp: u32, ma
         var prd: PathState = PathState(vec3<f32>(0.0), vec3<f32>(1.0), eye, normalize((camera * vec3<f32>(d.x, -d.y, 1.0f))), seed, false);
         var bounce: u32 = 0u;
         while ((bounce < max_bounces) && !prd.done) {
-            let ray: RtRay = RtRay(prd.origin, prd.direction, PATH_RAY, scene_epsilon, bitcast<f32>(0x7f800000u));
+            let ray: RtRay = RtRay(prd.origin, prd.direction, PATH_RAY, scene_epsilon, rt_f32_from_bits(0x7f800000u));
             rt_trace_PathState(top_object, ray, &prd, 0u, 255u);
             bounce += 1u;
         }
@@ -174,7 +174,7 @@ fn rtp_path_camera(eye: vec3<f32>, camera: mat3x3<f32>, frame: u32, spp: u32, ma
                         }
                     }
                     if rt_site == 0u {
-                        ray = RtRay(prd.origin, prd.direction, PATH_RAY, scene_epsilon, bitcast<f32>(0x7f800000u));
+                        ray = RtRay(prd.origin, prd.direction, PATH_RAY, scene_epsilon, rt_f32_from_bits(0x7f800000u));
                     }
                     if rt_site == 0u {
                         rt_request_PathState(top_object, ray, prd, 0u, 255u);

@@ -51,7 +51,7 @@ fn rtp_pinhole_camera(eye: vec3<f32>, u: vec3<f32>, v: vec3<f32>, w: vec3<f32>, 
     let dim: vec2<u32> = rt_launch_dim();
     let d: vec2<f32> = ((((vec2<f32>(idx) + vec2<f32>(0.5f)) / vec2<f32>(dim)) * 2.0f) - vec2<f32>(1.0));
     let ray_direction: vec3<f32> = normalize((((d.x * u) + (d.y * v)) + w));
-    let ray: RtRay = RtRay(eye, ray_direction, RADIANCE_RAY, scene_epsilon, bitcast<f32>(0x7f800000u));
+    let ray: RtRay = RtRay(eye, ray_direction, RADIANCE_RAY, scene_epsilon, rt_f32_from_bits(0x7f800000u));
     var prd: Radiance = Radiance(vec3<f32>(0.0), 1.0f, 0i);
     rt_trace_Radiance(top_object, ray, &prd, 0u, 255u);
     let tmp = idx;
@@ -94,7 +94,7 @@ fn rtp_pinhole_camera(eye: vec3<f32>, u: vec3<f32>, v: vec3<f32>, w: vec3<f32>, 
         dim = rt_launch_dim();
         d = ((((vec2<f32>(idx) + vec2<f32>(0.5f)) / vec2<f32>(dim)) * 2.0f) - vec2<f32>(1.0));
         ray_direction = normalize((((d.x * u) + (d.y * v)) + w));
-        ray = RtRay(eye, ray_direction, RADIANCE_RAY, scene_epsilon, bitcast<f32>(0x7f800000u));
+        ray = RtRay(eye, ray_direction, RADIANCE_RAY, scene_epsilon, rt_f32_from_bits(0x7f800000u));
         prd = Radiance(vec3<f32>(0.0), 1.0f, 0i);
     }
     if rt_site == 0u {

@@ -53,7 +53,7 @@ fn rtp_ray_flags(prd: ptr<function, Radiance>, attr: Normals, light_pos: vec3<f3
     rt_trace_Shadow(top_object, shadow_ray, &shadow, flags, MASK_CASTERS);
     var bounce: Radiance = Radiance(vec3<f32>(0.0), ((*prd).importance * 0.5f), ((*prd).depth + 1i));
     if ((*prd).depth < 2i) {
-        let r: RtRay = RtRay(p, reflect(ray.direction, n), RADIANCE_RAY, scene_epsilon, bitcast<f32>(0x7f800000u));
+        let r: RtRay = RtRay(p, reflect(ray.direction, n), RADIANCE_RAY, scene_epsilon, rt_f32_from_bits(0x7f800000u));
         rt_trace_Radiance(top_object, r, &bounce, (16u | 2u), (255u & ~MASK_CASTERS));
         rt_trace_Radiance(top_object, r, &bounce, 0u, 255u);
     }
@@ -151,7 +151,7 @@ fn rtp_ray_flags(prd: ptr<function, Radiance>, attr: Normals, light_pos: vec3<f3
     if rt_site == 0u || (rt_site >= 2u && rt_site <= 3u) {
         if cond {
             if rt_site == 0u {
-                r = RtRay(p, reflect(ray.direction, n), RADIANCE_RAY, scene_epsilon, bitcast<f32>(0x7f800000u));
+                r = RtRay(p, reflect(ray.direction, n), RADIANCE_RAY, scene_epsilon, rt_f32_from_bits(0x7f800000u));
             }
             if rt_site == 0u {
                 rt_request_Radiance(top_object, r, bounce, (16u | 2u), (255u & ~MASK_CASTERS));

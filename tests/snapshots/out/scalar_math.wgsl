@@ -41,8 +41,8 @@ fn rtp_scalar_math(x: f32, y: f32, out: RtBuffer) {
     let misc: f32 = (((((fma(x, y, 1.0f) + length(vec2<f32>(x, y))) + min(x, y)) + max(x, y)) + max(x, 0.0f)) + min(y, 3.1415927f));
     let consts: f32 = (((((6.2831855f * 0.31830987f) + (2.7182817f * 0.6931472f)) + (1.4142135f * 0.7853982f)) + 1.0471976f) + 1.1920929e-7f);
     var total: f32 = ((((((roots + exps) + trig) + hyper) + rounding) + misc) + consts);
-    if (((total != total) || (abs(total) > 3.4028235e38f)) || !(abs(total) <= 3.4028235e38f)) {
-        total = min(3.4028235e38f, (1.1754944e-38f + abs(-3.4028235e38f)));
+    if (((total != total) || (abs(total) > 0x1.fffffep+127f)) || !(abs(total) <= 0x1.fffffep+127f)) {
+        total = min(0x1.fffffep+127f, (1.1754944e-38f + abs(-0x1.fffffep+127f)));
     }
     rt_bufstore_f32(out, slot, total);
 }

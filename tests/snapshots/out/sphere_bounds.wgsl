@@ -19,7 +19,7 @@ fn rtp_sphere_bounds(prim: u32, spheres: RtBuffer) -> RtAabb {
     let s: vec4<f32> = rt_bufload_vec4f(spheres, prim);
     let r: vec3<f32> = vec3<f32>(abs(s.w));
     if (s.w <= 0.0f) {
-        return RtAabb(vec3<f32>(bitcast<f32>(0x7f800000u)), vec3<f32>(bitcast<f32>(0xff800000u)));
+        return RtAabb(vec3<f32>(rt_f32_from_bits(0x7f800000u)), vec3<f32>(rt_f32_from_bits(0xff800000u)));
     }
     return RtAabb((s.xyz - r), (s.xyz + r));
 }

@@ -125,6 +125,17 @@ impl<'e, 'a> Unit<'e, 'a> {
                         ));
                         continue;
                     }
+                    if v.code.contains(rt_abi::wgsl::F32_FROM_BITS) {
+                        self.errors.push(Error::new(
+                            c.expr.span(),
+                            format!(
+                                "constant `{name}` is infinite or NaN, which a WGSL constant cannot hold; \
+                                 write `f32::INFINITY` (or `f32::NAN`) where it is used, or declare it \
+                                 as a `const` inside the function"
+                            ),
+                        ));
+                        continue;
+                    }
                     let text =
                         text::mark(m.span_id(c.span()), &format!("const {wname}: {} = {};\n", ty.wgsl(), v.code));
                     // A constant's integer literals take its type.

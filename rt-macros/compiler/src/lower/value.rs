@@ -70,14 +70,8 @@ pub enum Place {
     },
 }
 
-/// An f32 literal in WGSL: the shortest text that round-trips, with `f`.
+/// An f32 in WGSL (rt-abi's `f32_wgsl`: the shortest text that round-trips,
+/// with `f`; infinity and NaN as a run-time call, never a constant).
 pub fn f32_literal(v: f32) -> String {
-    if v.is_nan() {
-        return "bitcast<f32>(0x7fc00000u)".into();
-    }
-    if v.is_infinite() {
-        return if v > 0.0 { "bitcast<f32>(0x7f800000u)".into() } else { "bitcast<f32>(0xff800000u)".into() };
-    }
-    let s = format!("{v:?}");
-    format!("{s}f")
+    rt_abi::wgsl::f32_wgsl(v)
 }

@@ -72,6 +72,7 @@
 //! `Context::scene_encodes` and `geometry_encodes` count both; debug builds
 //! check every kept word against a fresh encoding.
 
+pub mod capture;
 pub(crate) mod compute;
 pub(crate) mod device;
 pub(crate) mod dispatch;
@@ -82,6 +83,7 @@ pub(crate) mod rayquery;
 pub(crate) mod readback;
 pub(crate) mod resident;
 
+pub use capture::capture_launches_to;
 pub use compute::geometry::cwbvh_node_words;
 pub use device::{Gpu, instance, probe, probe_ray_queries};
 pub use rayquery::Traversal;
@@ -264,9 +266,13 @@ fn launch_on_device(
     let held = gpu.resident.held.as_ref().expect("held or synced above");
     let (rg_case, ex_case) = (held.spec.ray_generation.case, held.spec.exception.map_or(0, |e| e.case));
     let tiles = dispatch::tiles(l, &gpu.limits, [rg_case, rg_vars], [ex_case, ex_vars]);
+    let capture = capture::folder().map(|folder| capture_before(folder, &wgsl, &gpu.resident, log_words, &tiles));
     let encoder = dispatch::record(gpu, &wgsl, slots, &tiles, replaced);
     let results = readback::results(gpu, encoder, &outputs, lose)?;
     let (header, kernel) = (results.header, results.kernel);
+    if let Some(before) = &capture {
+        capture::write(before, &outputs, &results.words, header[2]);
+    }
     // The outputs go to the host's buffers now, whatever happens next.
     *pending = Some(ReadOutputs { words: results.words, outputs });
     let (exception_words, print_words) = readback::log(gpu, header)?;
@@ -280,6 +286,51 @@ fn launch_on_device(
     report.timings =
         super::Timings { build: Default::default(), encode: t2 - t1, link: t3 - t2, run: t3.elapsed(), kernel, accel };
     Ok(report)
+}
+
+/// What [`capture`] keeps of a launch before it runs: the kernel, the heap,
+/// the log (its header reset, as the upload leaves it) and the scene's
+/// bindings (1, then 4 up), as the device holds them.
+fn capture_before(
+    folder: std::path::PathBuf,
+    wgsl: &str,
+    res: &resident::Resident,
+    log_words: u32,
+    tiles: &[dispatch::Tile],
+) -> capture::Before {
+    let mut bindings = vec![(0, res.heap.as_ref().map(|m| m.words.clone()).unwrap_or_default())];
+    bindings.push((2, vec![0; log_words as usize]));
+    for (s, m) in res.scene.iter().enumerate() {
+        let binding = if s == 0 { 1 } else { 3 + s as u32 };
+        bindings.push((binding, m.as_ref().map(|m| m.words.clone()).unwrap_or_default()));
+    }
+    capture::Before { folder, kernel: wgsl.to_string(), bindings, tiles: tiles.to_vec() }
+}
+
+/// The variable naming a directory where every linked megakernel is kept,
+/// once per text (`<hash>.wgsl`): scripts/test.sh sets it so that
+/// tests/tests/tint.rs can give the kernels of the whole suite to Tint.
+pub const KERNEL_DIR_VAR: &str = "RT_WGSL_KERNEL_DIR";
+
+/// Keeps `wgsl` in `dir` (best effort: a collection for tests, never a
+/// reason for a launch to fail). Many test threads link at once: the file
+/// is written under a temporary name and renamed, so a reader never sees
+/// half a kernel.
+fn collect_kernel(dir: &std::path::Path, wgsl: &str) {
+    use std::hash::{Hash, Hasher};
+    let mut h = std::collections::hash_map::DefaultHasher::new();
+    wgsl.hash(&mut h);
+    let name = format!("{:016x}.wgsl", h.finish());
+    let path = dir.join(&name);
+    if path.exists() || std::fs::create_dir_all(dir).is_err() {
+        return;
+    }
+    static WRITES: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+    let n = WRITES.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let tmp = dir.join(format!("{name}.{}-{n}.tmp", std::process::id()));
+    if std::fs::write(&tmp, wgsl).is_ok() {
+        let _ = std::fs::rename(&tmp, &path);
+    }
 }
 
 /// The megakernel's WGSL for the launch: generated from a fresh encoding's
@@ -298,6 +349,9 @@ fn link_kernel(entry: u32, encoding: &Encoding) -> Result<(String, Option<String
         let path = std::env::temp_dir().join(format!("rt_megakernel_entry{entry}.wgsl"));
         let _ = std::fs::write(&path, &wgsl);
         eprintln!("rt-runtime: linked WGSL written to {}", path.display());
+    }
+    if let Some(dir) = std::env::var_os(KERNEL_DIR_VAR) {
+        collect_kernel(std::path::Path::new(&dir), &wgsl);
     }
     Ok((wgsl, warning))
 }

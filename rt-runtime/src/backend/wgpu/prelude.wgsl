@@ -4,7 +4,8 @@
 // generated traversal and dispatch code use.
 
 // The records shared with the compiler (RtRay, RtAabb, RtBuffer,
-// RtSampler), the heap binding, the RT_EXC_* codes, the RT_RAY_FLAG_*
+// RtSampler), the heap binding, rt_f32_from_bits and RT_F32_MAX (how
+// infinity, NaN and the f32 extreme are spelled), the RT_EXC_* codes, the RT_RAY_FLAG_*
 // flags, the launch uniform's struct RtLaunch and the RT_INST_* and
 // RT_NODE_* layout constants come first, from rt-abi (see kernel.rs).
 
@@ -141,7 +142,7 @@ fn rt_tex_fetch(s: RtSampler, texel: vec2<u32>) -> vec4<f32> {
 }
 fn rt_tex_sample(s: RtSampler, uv_in: vec2<f32>) -> vec4<f32> {
     if s.width == 0u || s.height == 0u { return vec4<f32>(); }
-    let finite = abs(uv_in) <= vec2<f32>(3.40282347e38);
+    let finite = abs(uv_in) <= vec2<f32>(RT_F32_MAX);
     let uv = select(vec2<f32>(0.0), uv_in, finite);
     let wrap = s.mode & 0xffu;
     let linear = (s.mode >> 8u) != 0u;
@@ -218,7 +219,7 @@ fn rt_default_exception(b: RtBuffer) {
 // section s when it shares rt_scene's binding (kernel.rs `SCENE_SECTIONS`).
 // BVH offsets (instance and node-table words) are in the BVH section.
 fn rt_valid_ray(r: RtRay) -> bool {
-    let big = vec3<f32>(3.40282347e38);
+    let big = vec3<f32>(RT_F32_MAX);
     return all(abs(r.origin) <= big) && all(abs(r.direction) <= big) && r.tmin == r.tmin && r.tmax == r.tmax;
 }
 
@@ -252,7 +253,7 @@ fn rt_aabb_hit(w: u32, o: vec3<f32>, inv: vec3<f32>, tmin: f32, tmax: f32) -> f3
     let near = max(max(max(lo.x, lo.y), lo.z), tmin);
     let far = min(min(min(hi.x, hi.y), hi.z), tmax);
     if near <= far { return near; }
-    return 3.40282347e38;
+    return RT_F32_MAX;
 }
 
 // Watertight ray/triangle test (Woop, Benthin, Wald 2013), in two parts:

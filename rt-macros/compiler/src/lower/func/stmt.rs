@@ -23,14 +23,20 @@ impl FnLowerer<'_> {
                 let v = self.expr(&c.expr, Some(&ty))?;
                 let v = self.coerce(v, &ty, c.expr.span())?;
                 let name = self.fresh(&c.ident.to_string());
-                let line = format!("const {name}: {} = {};", ty.wgsl(), v.code);
+                // Infinity and NaN are run-time values in WGSL (rt-abi's
+                // `f32_wgsl`): a constant holding one is a `let`.
+                let run_time = v.code.contains(rt_abi::wgsl::F32_FROM_BITS);
+                let keyword = if run_time { "let" } else { "const" };
+                let line = format!("{keyword} {name}: {} = {};", ty.wgsl(), v.code);
                 let line = self.mark(c.span(), &line);
                 if self.hoisting() {
                     self.hoist_const(line);
                 } else {
                     self.emit(line);
                 }
-                self.local_consts.insert(name.clone());
+                if !run_time {
+                    self.local_consts.insert(name.clone());
+                }
                 self.bind(&c.ident.to_string(), Local { wgsl: name, ty, var: false });
                 Ok(())
             }

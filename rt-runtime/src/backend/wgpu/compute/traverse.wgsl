@@ -16,7 +16,7 @@
 // material indices, material count, hit records].
 const RT_NODE_BIT: u32 = 0x80000000u;
 
-const RT_FAR: f32 = 3.40282347e38;
+const RT_FAR: f32 = RT_F32_MAX;
 
 // The primitives of instance `inst` (a geometry group's BVH, in the
 // instance's object space).

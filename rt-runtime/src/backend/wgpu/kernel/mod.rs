@@ -39,6 +39,7 @@ const GRAPH: &str = include_str!("../compute/graph.wgsl");
 pub fn prelude() -> String {
     let mut out = String::from(rt_abi::wgsl::RECORDS);
     out.push_str(rt_abi::wgsl::HEAP);
+    out.push_str(&rt_abi::wgsl::floats());
     out.push_str(&rt_abi::wgsl::constants());
     out.push_str(&rt_abi::records::LaunchUniform::wgsl());
     out.push_str(&rt_abi::records::InstanceRecord::wgsl_constants());
