@@ -19,6 +19,8 @@ pub mod compare_logic;
 pub mod consts;
 #[path = "../snapshots/in/control_flow.rs"]
 pub mod control_flow;
+#[path = "../snapshots/in/enums.rs"]
+pub mod enums;
 #[path = "../snapshots/in/exceptions.rs"]
 pub mod exceptions;
 #[path = "../snapshots/in/fuzz_regressions.rs"]

@@ -150,6 +150,10 @@ pub fn rt_struct(attr: TokenStream, item: TokenStream, role: StructRole) -> Toke
     let s: syn::ItemStruct = match syn::parse2(item.clone()) {
         Ok(s) => s,
         Err(e) => {
+            if let Ok(en) = syn::parse2::<syn::ItemEnum>(item.clone()) {
+                let msg = format!("`{}` is an enum: declare it with #[rt_enum]", en.ident);
+                return with_errors(Error::new(en.enum_token.span, msg).into(), item);
+            }
             let err = e.to_compile_error();
             return quote!(#err #item);
         }
@@ -162,6 +166,38 @@ pub fn rt_struct(attr: TokenStream, item: TokenStream, role: StructRole) -> Toke
     let role_kw = format_ident!("{}", role.keyword());
     let body = start_chain(quote!(struct #role_kw { #item }), deps::of_struct(&s));
     quote!(#decorated #data_impl #body)
+}
+
+/// `#[rt_enum]`: the enum with its `RtData`, and its link in the chain
+/// (an enum depends on nothing). A shape the subset rejects is an error at
+/// the enum, and the enum as written.
+pub fn rt_enum(attr: TokenStream, item: TokenStream) -> TokenStream {
+    let e: syn::ItemEnum = match syn::parse2(item.clone()) {
+        Ok(e) => e,
+        Err(_) => {
+            let span = syn::parse2::<syn::Item>(item.clone()).map(|i| i.span()).unwrap_or_else(|_| Span::call_site());
+            return with_errors(
+                Error::new(span, "`#[rt_enum]` declares an enum: use #[rt_struct] for a struct").into(),
+                item,
+            );
+        }
+    };
+    if !attr.is_empty() {
+        return with_errors(Error::new(attr.span(), "`#[rt_enum]` takes no arguments").into(), item);
+    }
+    // Exported even when the shape is wrong: programs that name the enum
+    // then stay silent (the lowering sees it failed) rather than add
+    // "cannot find macro" to the one error.
+    let export = export_macro(&e.ident, quote!(enum { #item }));
+    let def = match crate::enums::check(&e) {
+        Ok(d) => d,
+        Err(err) => {
+            let errs = Errors::from(err).to_compile_errors();
+            return quote!(#errs #item #export);
+        }
+    };
+    let rust = crate::enums::rust_side(&e, &def);
+    quote!(#rust #export)
 }
 
 /// `#[rt_const]`.
@@ -297,6 +333,7 @@ pub fn parse_defs(tokens: TokenStream) -> syn::Result<Vec<Item>> {
             ("struct", Some(r)) => Item::Struct(syn::parse2(g.stream())?, r),
             ("function", _) => Item::Function(syn::parse2(g.stream())?),
             ("constant", _) => Item::Const(syn::parse2(g.stream())?),
+            ("enum", _) => Item::Enum(syn::parse2(g.stream())?),
             _ => return Err(syn::Error::new(g.span(), "malformed definition")),
         };
         if !items.iter().any(|i: &Item| i.name() == item.name()) {
@@ -665,19 +702,7 @@ fn variable_tuple(items: &[TokenStream]) -> TokenStream {
 
 /// The struct with `#[repr(C)]` and the derives programs rely on.
 fn decorate_struct(s: &syn::ItemStruct) -> TokenStream {
-    let mut derived: Vec<String> = Vec::new();
-    for a in &s.attrs {
-        if a.path().is_ident("derive") {
-            let _ = a.parse_nested_meta(|m| {
-                if let Some(i) = m.path.get_ident() {
-                    derived.push(i.to_string());
-                } else if let Some(seg) = m.path.segments.last() {
-                    derived.push(seg.ident.to_string());
-                }
-                Ok(())
-            });
-        }
-    }
+    let derived = derived_traits(&s.attrs);
     let wanted = ["Clone", "Copy", "Debug", "Default", "PartialEq"];
     let missing: Vec<syn::Ident> =
         wanted.iter().filter(|w| !derived.iter().any(|d| d == *w)).map(|w| format_ident!("{}", w)).collect();
@@ -685,6 +710,22 @@ fn decorate_struct(s: &syn::ItemStruct) -> TokenStream {
     let repr = if has_repr { quote!() } else { quote!(#[repr(C)]) };
     let derive = if missing.is_empty() { quote!() } else { quote!(#[derive(#(#missing),*)]) };
     quote!(#derive #repr #s)
+}
+
+/// The traits an item's `#[derive]`s name (last path segments).
+pub(crate) fn derived_traits(attrs: &[syn::Attribute]) -> Vec<String> {
+    let mut derived: Vec<String> = Vec::new();
+    for a in attrs {
+        if a.path().is_ident("derive") {
+            let _ = a.parse_nested_meta(|m| {
+                if let Some(seg) = m.path.segments.last() {
+                    derived.push(seg.ident.to_string());
+                }
+                Ok(())
+            });
+        }
+    }
+    derived
 }
 
 /// `impl RtData` (and the role's marker trait) for a user struct.

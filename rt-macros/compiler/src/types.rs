@@ -91,6 +91,22 @@ impl StructDef {
     }
 }
 
+/// A C-like enum declared with `#[rt_enum]`: a `u32` in WGSL and one word
+/// in the heap, its variants' discriminants as values.
+#[derive(Debug)]
+pub struct EnumDef {
+    pub name: String,
+    /// `(variant, discriminant)` in declaration order.
+    pub variants: Vec<(String, u32)>,
+    pub span: proc_macro2::Span,
+}
+
+impl EnumDef {
+    pub fn variant(&self, name: &str) -> Option<u32> {
+        self.variants.iter().find(|(n, _)| n == name).map(|(_, v)| *v)
+    }
+}
+
 /// A type in the subset.
 #[derive(Clone, Debug)]
 pub enum Ty {
@@ -103,6 +119,8 @@ pub enum Ty {
     /// Square f32 matrix (`Mat2`, `Mat3`, `Mat4`).
     Mat(u8),
     Struct(Rc<StructDef>),
+    /// A `#[rt_enum]`.
+    Enum(Rc<EnumDef>),
     Array(Box<Ty>, u32),
     Ray,
     Aabb,
@@ -127,6 +145,7 @@ impl PartialEq for Ty {
             (Vec(n, a), Vec(m, b)) => n == m && a == b,
             (Mat(n), Mat(m)) => n == m,
             (Struct(a), Struct(b)) => a.name == b.name,
+            (Enum(a), Enum(b)) => a.name == b.name,
             (Array(a, n), Array(b, m)) => n == m && a == b,
             (Buffer(k, a), Buffer(l, b)) => k == l && a == b,
             (Ref(m, a), Ref(n, b)) => m == n && a == b,
@@ -164,7 +183,7 @@ impl Ty {
         match self {
             Ty::Scalar(s) => *s != Scalar::Usize,
             Ty::Vec(_, s) => *s != Scalar::Bool,
-            Ty::Mat(_) | Ty::Struct(_) | Ty::Ray | Ty::Aabb => true,
+            Ty::Mat(_) | Ty::Struct(_) | Ty::Enum(_) | Ty::Ray | Ty::Aabb => true,
             Ty::Array(t, _) => t.is_plain_data(),
             _ => false,
         }
@@ -188,7 +207,7 @@ impl Ty {
             Ty::Array(t, n) => format!("array<{}, {n}>", t.wgsl()),
             Ty::Ray => "RtRay".into(),
             Ty::Aabb => "RtAabb".into(),
-            Ty::Object | Ty::TransformKind => "u32".into(),
+            Ty::Object | Ty::TransformKind | Ty::Enum(_) => "u32".into(),
             Ty::Buffer(..) => "RtBuffer".into(),
             Ty::Sampler => "RtSampler".into(),
             Ty::Ref(true, t) => format!("ptr<function, {}>", t.wgsl()),
@@ -214,7 +233,7 @@ impl Ty {
     /// Size in 32-bit words when stored in the heap.
     pub fn words(&self) -> u32 {
         match self {
-            Ty::Scalar(_) | Ty::IntVar(_) | Ty::Object | Ty::TransformKind => 1,
+            Ty::Scalar(_) | Ty::IntVar(_) | Ty::Object | Ty::TransformKind | Ty::Enum(_) => 1,
             Ty::Vec(n, _) => *n as u32,
             Ty::Mat(n) => (*n as u32) * (*n as u32),
             Ty::Struct(s) => s.fields.iter().map(|(_, t)| t.words()).sum(),
@@ -253,6 +272,7 @@ impl fmt::Display for Ty {
             Ty::Vec(n, s) => write!(f, "{}Vec{n}", s.glam_prefix()),
             Ty::Mat(n) => write!(f, "Mat{n}"),
             Ty::Struct(s) => write!(f, "{}", s.name),
+            Ty::Enum(e) => write!(f, "{}", e.name),
             Ty::Array(t, n) => write!(f, "[{t}; {n}]"),
             Ty::Ray => write!(f, "Ray"),
             Ty::Aabb => write!(f, "Aabb"),

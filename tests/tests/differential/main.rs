@@ -514,6 +514,7 @@ macro_rules! differential {
 
 mod control_flow;
 mod edge_cases;
+mod enums;
 mod grids;
 mod math;
 mod scalars;

@@ -179,6 +179,18 @@ impl FnLowerer<'_> {
             if owner == "TransformKind" {
                 return transform_kind(last, p.span());
             }
+            if let Some(e) = self.m.enums.get(owner) {
+                return match e.variant(last) {
+                    Some(d) => Ok(Val::new(format!("{d}u"), Ty::Enum(e.clone()))),
+                    None => {
+                        let at = p.path.segments.last().map_or(p.span(), |s| s.ident.span());
+                        Err(Error::new(at, format!("no variant `{last}` on enum `{owner}`")))
+                    }
+                };
+            }
+            if self.m.failed.contains(owner) {
+                return Err(Error::silent(p.span()));
+            }
         }
         if (segs.len() == 1 || segs[segs.len() - 2] == "consts")
             && let Some((_, v)) = kinds::F32_CONSTS.iter().find(|(n, _)| *n == last)
