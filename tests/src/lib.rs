@@ -71,6 +71,8 @@ pub mod seed_reflections;
 pub mod structs_arrays;
 #[path = "../snapshots/in/textures.rs"]
 pub mod textures;
+#[path = "../snapshots/in/tuples.rs"]
+pub mod tuples;
 #[path = "../snapshots/in/vectors.rs"]
 pub mod vectors;
 #[path = "../snapshots/in/vectors_int.rs"]

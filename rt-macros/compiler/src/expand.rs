@@ -96,6 +96,7 @@ pub fn rt_program(attr: TokenStream, item: TokenStream) -> TokenStream {
     let kind_ident = format_ident!("{}", kind.name());
     let entry = quote!(program #kind_ident { #item });
     let deps: Vec<syn::Path> = deps::of_fn(&f).into_iter().map(|p| reroot(&p)).collect();
+    let declared = declared_checks(&deps, &params);
     let body = start_chain(entry, deps);
     quote! {
         #stripped
@@ -103,6 +104,7 @@ pub fn rt_program(attr: TokenStream, item: TokenStream) -> TokenStream {
         #[allow(non_snake_case, unused_imports, clippy::all)]
         #vis mod #name {
             use super::*;
+            #declared
             #thunk
             /// The program's descriptor: WGSL, layouts, variables and the CPU entry.
             pub static PROGRAM: ::rt_std::program::ProgramDescriptor = #body;
@@ -139,10 +141,12 @@ pub fn rt_function(attr: TokenStream, item: TokenStream) -> TokenStream {
     if !attr.is_empty() {
         return with_errors(Error::new(attr.span(), "`#[rt_function]` takes no arguments").into(), item);
     }
-    let body = start_chain(quote!(function { #item }), deps::of_fn(&f));
+    let deps = deps::of_fn(&f);
+    let declared = declared_checks(&deps, &[]);
+    let body = start_chain(quote!(function { #item }), deps);
     let mut cpu = f;
     crate::cpu_semantics::rewrite_fn(&mut cpu);
-    quote!(#cpu #body)
+    quote!(#cpu const _: () = { #declared }; #body)
 }
 
 /// `#[rt_struct]`, `#[rt_payload]`, `#[rt_attributes]`.
@@ -235,6 +239,47 @@ fn error_expr(e: &Errors) -> TokenStream {
     match errs.split_last() {
         Some((last, rest)) => quote!({ #(#rest;)* #last }),
         None => quote!(::core::compile_error!("rt_program failed")),
+    }
+}
+
+/// A function that does nothing but require, at each use's span, that the
+/// types the item names were declared with an rt attribute: a type that was
+/// not is rustc's "cannot find macro" in the chain, and this adds the
+/// message of `RtData`, `Payload` or `Attributes`
+/// (`#[diagnostic::on_unimplemented]`), which says which attribute to add.
+fn declared_checks(deps: &[syn::Path], params: &[signature::Param]) -> TokenStream {
+    let mut checks = Vec::new();
+    let mut roles = Vec::new();
+    for p in params {
+        let check = match p.role {
+            Role::Payload { .. } => quote!(__require_payload),
+            Role::Attributes { .. } => quote!(__require_attributes),
+            _ => continue,
+        };
+        let ty = reroot_type(&p.ty);
+        roles.push(quote!(#ty).to_string());
+        let span = p.ty.span();
+        checks.push(quote_spanned!(span=> ::rt_std::data::#check::<#ty>();));
+    }
+    for d in deps {
+        let Some(last) = d.segments.last() else { continue };
+        let name = last.ident.to_string();
+        let type_like =
+            name.chars().next().is_some_and(|c| c.is_ascii_uppercase()) && name.chars().any(|c| c.is_ascii_lowercase());
+        if !type_like || roles.contains(&quote!(#d).to_string()) {
+            continue;
+        }
+        let span = last.ident.span();
+        checks.push(quote_spanned!(span=> ::rt_std::data::__require_declared::<#d>();));
+    }
+    if checks.is_empty() {
+        return TokenStream::new();
+    }
+    quote! {
+        #[allow(dead_code)]
+        fn __rt_declared() {
+            #(#checks)*
+        }
     }
 }
 

@@ -121,6 +121,9 @@ pub enum Ty {
     Struct(Rc<StructDef>),
     /// A `#[rt_enum]`.
     Enum(Rc<EnumDef>),
+    /// `(A, B, ...)`, at least one element: a WGSL struct with fields `f0`,
+    /// `f1`, ... (see [`Ty::wgsl`]).
+    Tuple(Vec<Ty>),
     Array(Box<Ty>, u32),
     Ray,
     Aabb,
@@ -146,6 +149,7 @@ impl PartialEq for Ty {
             (Mat(n), Mat(m)) => n == m,
             (Struct(a), Struct(b)) => a.name == b.name,
             (Enum(a), Enum(b)) => a.name == b.name,
+            (Tuple(a), Tuple(b)) => a == b,
             (Array(a, n), Array(b, m)) => n == m && a == b,
             (Buffer(k, a), Buffer(l, b)) => k == l && a == b,
             (Ref(m, a), Ref(n, b)) => m == n && a == b,
@@ -185,6 +189,7 @@ impl Ty {
             Ty::Vec(_, s) => *s != Scalar::Bool,
             Ty::Mat(_) | Ty::Struct(_) | Ty::Enum(_) | Ty::Ray | Ty::Aabb => true,
             Ty::Array(t, _) => t.is_plain_data(),
+            Ty::Tuple(ts) => ts.iter().all(Ty::is_plain_data),
             _ => false,
         }
     }
@@ -205,6 +210,10 @@ impl Ty {
             Ty::Mat(n) => format!("mat{n}x{n}<f32>"),
             Ty::Struct(s) => s.wgsl_name.clone(),
             Ty::Array(t, n) => format!("array<{}, {n}>", t.wgsl()),
+            // One name per element list, the same in every module (the
+            // linker shares it); `rt_` names are never the user's, and the
+            // trailing `_` keeps naga from renaming it.
+            Ty::Tuple(ts) => format!("rt_tuple_{}_", ts.iter().map(Ty::mangle).collect::<Vec<_>>().join("_")),
             Ty::Ray => "RtRay".into(),
             Ty::Aabb => "RtAabb".into(),
             Ty::Object | Ty::TransformKind | Ty::Enum(_) => "u32".into(),
@@ -238,6 +247,7 @@ impl Ty {
             Ty::Mat(n) => (*n as u32) * (*n as u32),
             Ty::Struct(s) => s.fields.iter().map(|(_, t)| t.words()).sum(),
             Ty::Array(t, n) => t.words() * n,
+            Ty::Tuple(ts) => ts.iter().map(Ty::words).sum(),
             Ty::Ray => 9,
             Ty::Aabb => 6,
             Ty::Buffer(..) | Ty::Sampler => 4,
@@ -257,6 +267,7 @@ impl Ty {
                 ("tmax".into(), F32),
             ],
             Ty::Aabb => vec![("min".into(), Ty::vec(3)), ("max".into(), Ty::vec(3))],
+            Ty::Tuple(ts) => ts.iter().enumerate().map(|(i, t)| (format!("f{i}"), t.clone())).collect(),
             _ => Vec::new(),
         }
     }
@@ -273,6 +284,10 @@ impl fmt::Display for Ty {
             Ty::Mat(n) => write!(f, "Mat{n}"),
             Ty::Struct(s) => write!(f, "{}", s.name),
             Ty::Enum(e) => write!(f, "{}", e.name),
+            Ty::Tuple(ts) => {
+                let parts: Vec<String> = ts.iter().map(Ty::to_string).collect();
+                if parts.len() == 1 { write!(f, "({},)", parts[0]) } else { write!(f, "({})", parts.join(", ")) }
+            }
             Ty::Array(t, n) => write!(f, "[{t}; {n}]"),
             Ty::Ray => write!(f, "Ray"),
             Ty::Aabb => write!(f, "Aabb"),

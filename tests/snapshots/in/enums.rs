@@ -89,3 +89,10 @@ pub fn enum_attributes(prd: &mut KindShade, attr: &SurfaceHit) {
         _ => Vec3::ONE,
     };
 }
+
+/// `let _ = attr;` silences an unused reference parameter.
+#[rt_program(any_hit)]
+pub fn enum_silenced(prd: &mut KindShade, attr: &SurfaceHit) {
+    let _ = attr;
+    prd.hit = Material::Glass;
+}

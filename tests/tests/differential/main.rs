@@ -519,6 +519,7 @@ mod grids;
 mod math;
 mod scalars;
 mod structs_arrays;
+mod tuples;
 mod vectors;
 
 use grids::*;

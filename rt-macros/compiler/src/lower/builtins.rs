@@ -336,6 +336,11 @@ fn float_method(recv: &Ty, name: &str) -> Option<MethodSig> {
         "is_infinite" if is_scalar => {
             return sig(vec![], Ty::Scalar(Scalar::Bool), |a| format!("(abs({}) > {})", a[0], f32_literal(f32::MAX)));
         }
+        "sin_cos" if is_scalar => {
+            let pair = Ty::Tuple(vec![F32, F32]);
+            let name = pair.wgsl();
+            return sig(vec![], pair, move |a| format!("{name}(sin({0}), cos({0}))", a[0]));
+        }
         "hypot" if is_scalar => return sig(vec![F32], t, |a| format!("length(vec2<f32>({}, {}))", a[0], a[1])),
         _ => {}
     }
@@ -399,6 +404,25 @@ fn int_method(recv: &Ty, name: &str) -> Option<MethodSig> {
         "wrapping_add" => return sig(vec![t.clone()], t, |a| format!("({} + {})", a[0], a[1])),
         "wrapping_sub" => return sig(vec![t.clone()], t, |a| format!("({} - {})", a[0], a[1])),
         "wrapping_mul" => return sig(vec![t.clone()], t, |a| format!("({} * {})", a[0], a[1])),
+        // `(wrapped, overflowed)`: unsigned, the result passed an operand;
+        // signed, the operands' signs agreed and the result's differs.
+        "overflowing_add" | "overflowing_sub" if is_scalar => {
+            let pair = Ty::Tuple(vec![t.clone(), Ty::Scalar(Scalar::Bool)]);
+            let name_ = pair.wgsl();
+            let signed = recv.scalar() == Some(Scalar::I32);
+            let add = name == "overflowing_add";
+            return sig(vec![t.clone()], pair, move |a| {
+                let (x, y) = (&a[0], &a[1]);
+                let r = if add { format!("({x} + {y})") } else { format!("({x} - {y})") };
+                let over = match (signed, add) {
+                    (false, true) => format!("({r} < {x})"),
+                    (false, false) => format!("({x} < {y})"),
+                    (true, true) => format!("((({x} ^ {r}) & ({y} ^ {r})) < 0i)"),
+                    (true, false) => format!("((({x} ^ {y}) & ({x} ^ {r})) < 0i)"),
+                };
+                format!("{name_}({r}, {over})")
+            });
+        }
         _ => {}
     }
     None
@@ -493,7 +517,6 @@ pub fn method_hint(recv: &Ty, name: &str) -> String {
         }
         (_, "to_string") => ": strings are not supported".into(),
         (_, "unwrap" | "expect") => ": Option and Result are not supported".into(),
-        (_, "sin_cos") => ": call sin() and cos() separately".into(),
         _ => ": write it with the methods rt_std documents as supported (a #[rt_function] helper can hold it)".into(),
     }
 }

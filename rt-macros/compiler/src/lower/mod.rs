@@ -63,6 +63,9 @@ pub struct ConstInfo {
 pub struct ModuleCtx {
     pub structs: HashMap<String, Rc<StructDef>>,
     pub enums: HashMap<String, Rc<EnumDef>>,
+    /// The tuple types the module uses, by WGSL name: each is declared as a
+    /// struct.
+    pub tuples: RefCell<BTreeMap<String, Ty>>,
     pub consts: HashMap<String, ConstInfo>,
     pub helpers: HashMap<String, HelperSig>,
     pub global_names: HashSet<String>,
@@ -94,6 +97,27 @@ impl ModuleCtx {
         h
     }
 
+    /// The tuple of `elems`, declared in the module.
+    pub fn tuple(&self, elems: Vec<Ty>) -> Ty {
+        let t = Ty::Tuple(elems);
+        self.note_tuples(&t);
+        t
+    }
+
+    /// Declares every tuple type `ty` contains.
+    pub fn note_tuples(&self, ty: &Ty) {
+        match ty {
+            Ty::Tuple(ts) => {
+                for t in ts {
+                    self.note_tuples(t);
+                }
+                self.tuples.borrow_mut().entry(ty.wgsl()).or_insert_with(|| ty.clone());
+            }
+            Ty::Array(t, _) | Ty::Ref(_, t) | Ty::Buffer(_, t) => self.note_tuples(t),
+            _ => {}
+        }
+    }
+
     pub fn resolve_type(&self, ty: &syn::Type) -> Result<Ty> {
         let user = |name: &str| {
             self.structs
@@ -101,7 +125,11 @@ impl ModuleCtx {
                 .map(|d| Ty::Struct(d.clone()))
                 .or_else(|| self.enums.get(name).map(|e| Ty::Enum(e.clone())))
         };
-        resolve_type(ty, &user).map_err(|e| {
+        let resolved = resolve_type(ty, &user);
+        if let Ok(t) = &resolved {
+            self.note_tuples(t);
+        }
+        resolved.map_err(|e| {
             // A struct whose own declaration failed: that error is enough.
             fn mentions(ts: proc_macro2::TokenStream, names: &HashSet<String>) -> bool {
                 ts.into_iter().any(|t| match t {
@@ -182,6 +210,7 @@ fn lower_impl(entry: Entry<'_>, deps: &[Item], report_deps: bool) -> std::result
     let mut m = ModuleCtx {
         structs,
         enums,
+        tuples: RefCell::new(BTreeMap::new()),
         consts: HashMap::new(),
         helpers: HashMap::new(),
         global_names: HashSet::new(),
@@ -192,8 +221,11 @@ fn lower_impl(entry: Entry<'_>, deps: &[Item], report_deps: bool) -> std::result
         report_types: RefCell::new(BTreeMap::new()),
         printf: RefCell::new(BTreeMap::new()),
     };
-    for name in m.structs.keys() {
+    for (name, d) in &m.structs {
         m.global_names.insert(wgsl_ident(name));
+        for (_, t) in &d.fields {
+            m.note_tuples(t);
+        }
     }
     unit.lower_consts(&mut m, &consts_raw);
     let helper_items = unit.helper_signatures(&mut m, &helpers_raw);

@@ -355,6 +355,9 @@ impl FnLowerer<'_> {
             self.emit_let(format!("let {t} = {};", scrut.code), &scrut);
             scrut = Val::new(t, scrut.ty);
         }
+        if let Ty::Tuple(_) = sty {
+            return self.match_tuple(m, want, scrut, sty);
+        }
         if !self.is_int(&sty) && !matches!(sty, Ty::Enum(_)) {
             return Err(Error::unsupported(
                 m.expr.span(),

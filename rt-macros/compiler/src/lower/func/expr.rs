@@ -61,7 +61,7 @@ impl FnLowerer<'_> {
                 Ok(Val::new("", Ty::Unit))
             }
             Expr::Tuple(t) if t.elems.is_empty() => Ok(Val::new("", Ty::Unit)),
-            Expr::Tuple(t) => Err(Error::unsupported(t.span(), "a tuple", "use a struct declared with #[rt_struct]")),
+            Expr::Tuple(t) => self.tuple_lit(t, want),
             Expr::Closure(c) => {
                 Err(Error::unsupported(c.or1_token.span, "a closure", "write a #[rt_function] helper and call it"))
             }
@@ -220,9 +220,7 @@ impl FnLowerer<'_> {
         let base = self.deref(base);
         let name = match &f.member {
             syn::Member::Named(n) => n.to_string(),
-            syn::Member::Unnamed(i) => {
-                return Err(Error::unsupported(i.span(), "a tuple field", "use a struct with named fields"));
-            }
+            syn::Member::Unnamed(i) => i.index.to_string(),
         };
         self.field_of(base, &name, f.member.span())
     }
@@ -254,6 +252,15 @@ impl FnLowerer<'_> {
                 }
                 None => Err(Error::new(span, format!("no field `{name}` on `{t}`"))),
             },
+            Ty::Tuple(elems) => match name.parse::<usize>().ok().and_then(|i| elems.get(i).map(|e| (i, e))) {
+                Some((i, ety)) => Ok(Val::new(format!("{}.f{i}", base.code), ety.clone())
+                    .with_effects(base.effects)
+                    .with_reads(base.reads)),
+                None => Err(Error::new(span, format!("no field `{name}` on `{t}`"))),
+            },
+            _ if name.parse::<usize>().is_ok() => {
+                Err(Error::new(span, format!("no field `{name}` on `{t}`: `.{name}` reads an element of a tuple")))
+            }
             _ => Err(Error::new(span, format!("no field `{name}` on `{t}`"))),
         }
     }
