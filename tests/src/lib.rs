@@ -25,6 +25,8 @@ pub mod enums;
 pub mod exceptions;
 #[path = "../snapshots/in/fuzz_regressions.rs"]
 pub mod fuzz_regressions;
+#[path = "../snapshots/in/glam_more.rs"]
+pub mod glam_more;
 #[path = "../snapshots/in/helpers_refs.rs"]
 pub mod helpers_refs;
 #[path = "../snapshots/in/instancing.rs"]

@@ -515,6 +515,7 @@ macro_rules! differential {
 mod control_flow;
 mod edge_cases;
 mod enums;
+mod glam_more;
 mod grids;
 mod math;
 mod scalars;

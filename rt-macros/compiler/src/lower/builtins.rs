@@ -16,13 +16,13 @@ pub struct MethodSig {
     pub params: Vec<Ty>,
     pub ret: Ty,
     pub lower: LowerFn,
-    /// A WGSL function the lowering calls, `(name, text)`, for the module's
+    /// WGSL functions the lowering calls, `(name, text)`, for the module's
     /// function section.
-    pub support: Option<(&'static str, &'static str)>,
+    pub support: Vec<(&'static str, &'static str)>,
 }
 
 fn sig(params: Vec<Ty>, ret: Ty, lower: impl Fn(&[String]) -> String + 'static) -> Option<MethodSig> {
-    Some(MethodSig { params, ret, lower: Box::new(lower), support: None })
+    Some(MethodSig { params, ret, lower: Box::new(lower), support: Vec::new() })
 }
 
 /// `f32::powi` as Rust computes it (LLVM's `powi`, compiler-rt's
@@ -231,6 +231,9 @@ pub fn method_sig(recv: &Ty, name: &str) -> Option<MethodSig> {
     if name == "clone" && recv.is_value() {
         return sig(vec![], t, |a| a[0].clone());
     }
+    if let Some(m) = super::glam_more::method(recv, name) {
+        return Some(m);
+    }
     if let Ty::Mat(m) = recv {
         return mat_method(*m, name);
     }
@@ -324,7 +327,7 @@ fn float_method(recv: &Ty, name: &str) -> Option<MethodSig> {
         }
         "powi" if is_scalar => {
             let mut s = sig(vec![Ty::Scalar(Scalar::I32)], t, |a| format!("rt_powi({}, {})", a[0], a[1]))?;
-            s.support = Some(("rt_powi", POWI));
+            s.support = vec![("rt_powi", POWI)];
             return Some(s);
         }
         "atan2" if is_scalar => return sig(vec![F32], t, |a| format!("atan2({}, {})", a[0], a[1])),
@@ -472,7 +475,7 @@ fn vec_method(recv: &Ty, name: &str) -> Option<MethodSig> {
                 // Saturating, as `as i32` / `as u32` per component.
                 let (f, text) = float_to_int(n, target == Scalar::I32);
                 let mut m = sig(vec![], out, move |a| format!("{f}({})", a[0]))?;
-                m.support = Some((f, text));
+                m.support = vec![(f, text)];
                 return Some(m);
             }
             let w = out.wgsl();
@@ -511,7 +514,6 @@ fn mat_method(n: u8, name: &str) -> Option<MethodSig> {
 /// Extra advice for methods users reach for that have no WGSL equivalent.
 pub fn method_hint(recv: &Ty, name: &str) -> String {
     match (recv, name) {
-        (Ty::Mat(_), "inverse") => ": WGSL has no matrix inverse; pass the inverse as a variable".into(),
         (_, "iter" | "into_iter" | "map" | "for_each") => {
             ": iterators are not supported; loop over an index range".into()
         }

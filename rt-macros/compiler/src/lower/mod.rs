@@ -16,6 +16,7 @@ pub mod accessors;
 mod assemble;
 pub mod builtins;
 pub mod func;
+mod glam_more;
 mod items;
 mod order;
 mod program;
