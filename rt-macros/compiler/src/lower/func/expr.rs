@@ -216,6 +216,11 @@ impl FnLowerer<'_> {
     }
 
     pub(super) fn field(&mut self, f: &syn::ExprField) -> Result<Val> {
+        if let (Expr::Tuple(t), syn::Member::Unnamed(i)) = (strip_parens(&f.base), &f.member)
+            && (i.index as usize) < t.elems.len()
+        {
+            return self.tuple_lit_field(t, i.index as usize);
+        }
         let base = self.expr(&f.base, None)?;
         let base = self.deref(base);
         let name = match &f.member {
@@ -431,6 +436,14 @@ impl FnLowerer<'_> {
         let parts = vec![value.code; n as usize];
         let code = format!("{}({})", ty.wgsl(), parts.join(", "));
         Ok(Val::new(code, ty).with_effects(value.effects).with_reads(value.reads))
+    }
+}
+
+fn strip_parens(e: &Expr) -> &Expr {
+    match e {
+        Expr::Paren(p) => strip_parens(&p.expr),
+        Expr::Group(g) => strip_parens(&g.expr),
+        e => e,
     }
 }
 

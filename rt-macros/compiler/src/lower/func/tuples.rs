@@ -43,6 +43,29 @@ impl FnLowerer<'_> {
         Ok(Val::new(format!("{}({})", ty.wgsl(), codes(&vals).join(", ")), ty).with_effects(effects).with_reads(reads))
     }
 
+    /// `(a, b).k`: every element evaluated, in order, and element `k` the
+    /// value, with its own type (an unsuffixed integer stays open to
+    /// inference, as in Rust, rather than becoming the `i32` a tuple
+    /// value would need).
+    pub(super) fn tuple_lit_field(&mut self, t: &syn::ExprTuple, k: usize) -> Result<Val> {
+        let mut picked: Option<Val> = None;
+        for (i, e) in t.elems.iter().enumerate() {
+            let at = self.here();
+            let v = self.expr(e, None)?;
+            let v = self.deref(v);
+            if let Some(p) = picked.as_mut() {
+                self.spill(at, &mut [p]);
+            }
+            if i == k {
+                picked = Some(v);
+            } else if v.effects {
+                let tmp = self.tmp();
+                self.emit_let(format!("let {tmp} = {};", v.code), &v);
+            }
+        }
+        Ok(picked.expect("k is in range"))
+    }
+
     /// `let (a, (b, _)) = value;`: the value once, then each name bound to
     /// its element.
     pub(super) fn let_tuple(&mut self, pat: &syn::Pat, annot: Option<&Ty>, init: &Expr, span: Span) -> Result<()> {
