@@ -97,7 +97,7 @@ pub fn check(e: &syn::ItemEnum) -> Result<EnumDef> {
 /// first variant, as the CPU backend must give some value where the GPU
 /// would hold that word).
 pub fn rust_side(e: &syn::ItemEnum, def: &EnumDef) -> TokenStream {
-    let derived = crate::expand::derived_traits(&e.attrs);
+    let derived = derived_traits(&e.attrs);
     let wanted = ["Clone", "Copy", "Debug", "PartialEq", "Eq"];
     let missing: Vec<syn::Ident> =
         wanted.iter().filter(|w| !derived.iter().any(|d| d == *w)).map(|w| format_ident!("{}", w)).collect();
@@ -142,6 +142,22 @@ pub fn rust_side(e: &syn::ItemEnum, def: &EnumDef) -> TokenStream {
             }
         }
     }
+}
+
+/// The traits an item's `#[derive]`s name (last path segments).
+pub(crate) fn derived_traits(attrs: &[syn::Attribute]) -> Vec<String> {
+    let mut derived: Vec<String> = Vec::new();
+    for a in attrs {
+        if a.path().is_ident("derive") {
+            let _ = a.parse_nested_meta(|m| {
+                if let Some(seg) = m.path.segments.last() {
+                    derived.push(seg.ident.to_string());
+                }
+                Ok(())
+            });
+        }
+    }
+    derived
 }
 
 #[cfg(test)]

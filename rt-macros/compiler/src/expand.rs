@@ -747,7 +747,7 @@ fn variable_tuple(items: &[TokenStream]) -> TokenStream {
 
 /// The struct with `#[repr(C)]` and the derives programs rely on.
 fn decorate_struct(s: &syn::ItemStruct) -> TokenStream {
-    let derived = derived_traits(&s.attrs);
+    let derived = crate::enums::derived_traits(&s.attrs);
     let wanted = ["Clone", "Copy", "Debug", "Default", "PartialEq"];
     let missing: Vec<syn::Ident> =
         wanted.iter().filter(|w| !derived.iter().any(|d| d == *w)).map(|w| format_ident!("{}", w)).collect();
@@ -755,22 +755,6 @@ fn decorate_struct(s: &syn::ItemStruct) -> TokenStream {
     let repr = if has_repr { quote!() } else { quote!(#[repr(C)]) };
     let derive = if missing.is_empty() { quote!() } else { quote!(#[derive(#(#missing),*)]) };
     quote!(#derive #repr #s)
-}
-
-/// The traits an item's `#[derive]`s name (last path segments).
-pub(crate) fn derived_traits(attrs: &[syn::Attribute]) -> Vec<String> {
-    let mut derived: Vec<String> = Vec::new();
-    for a in attrs {
-        if a.path().is_ident("derive") {
-            let _ = a.parse_nested_meta(|m| {
-                if let Some(seg) = m.path.segments.last() {
-                    derived.push(seg.ident.to_string());
-                }
-                Ok(())
-            });
-        }
-    }
-    derived
 }
 
 /// `impl RtData` (and the role's marker trait) for a user struct.

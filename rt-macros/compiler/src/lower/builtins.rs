@@ -4,6 +4,8 @@
 //! half away from zero, `fract` is `x - trunc(x)`, `signum(0.0)` is 1) the
 //! lowering spells Rust's definition out.
 
+mod glam_more;
+
 use super::value::{Val, f32_literal};
 use crate::types::{F32, Scalar, Ty, U32};
 
@@ -231,7 +233,7 @@ pub fn method_sig(recv: &Ty, name: &str) -> Option<MethodSig> {
     if name == "clone" && recv.is_value() {
         return sig(vec![], t, |a| a[0].clone());
     }
-    if let Some(m) = super::glam_more::method(recv, name) {
+    if let Some(m) = glam_more::method(recv, name) {
         return Some(m);
     }
     if let Ty::Mat(m) = recv {

@@ -16,7 +16,6 @@ pub mod accessors;
 mod assemble;
 pub mod builtins;
 pub mod func;
-mod glam_more;
 mod items;
 mod order;
 mod program;

@@ -3,10 +3,9 @@
 //! rejections, `any_orthonormal_vector`, Euclidean division and remainder of
 //! floats, `log10`, `copysign`, integer rotations. Each follows glam's (or
 //! std's) definition operation for operation, so the two backends differ
-//! only by WGSL's rounding; [`super::builtins::method_sig`] asks here
-//! first.
+//! only by WGSL's rounding; [`super::method_sig`] asks here first.
 
-use super::builtins::MethodSig;
+use super::MethodSig;
 use crate::types::{F32, Scalar, Ty};
 
 fn sig(params: Vec<Ty>, ret: Ty, lower: impl Fn(&[String]) -> String + 'static) -> Option<MethodSig> {
@@ -230,7 +229,7 @@ fn float(name: &str) -> Option<MethodSig> {
 /// `rt_fmod` too (see `calls.rs`, which adds a method's support).
 fn with_fmod(m: Option<MethodSig>) -> Option<MethodSig> {
     m.map(|mut m| {
-        m.support.push(("rt_fmod", super::builtins::FMOD));
+        m.support.push(("rt_fmod", super::FMOD));
         m
     })
 }
