@@ -37,6 +37,13 @@ pub fn rt_attributes(attr: TokenStream, item: TokenStream) -> TokenStream {
     rt_compiler::expand::rt_struct(attr.into(), item.into(), rt_compiler::StructRole::Attributes).into()
 }
 
+/// Declares a C-like enum programs may use (locals, fields, buffer elements,
+/// variables, `match`): a `u32` in WGSL.
+#[proc_macro_attribute]
+pub fn rt_enum(attr: TokenStream, item: TokenStream) -> TokenStream {
+    rt_compiler::expand::rt_enum(attr.into(), item.into()).into()
+}
+
 /// Declares a constant programs may use.
 #[proc_macro_attribute]
 pub fn rt_const(attr: TokenStream, item: TokenStream) -> TokenStream {

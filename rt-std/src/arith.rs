@@ -544,6 +544,18 @@ macro_rules! abs_via {
     )*};
 }
 abs_via!(f32, Vec2, Vec3, Vec4);
+// glam takes matrices by reference: `m.abs()`.
+macro_rules! abs_mat {
+    ($($t:ty),*) => {$(
+        impl RtAbs for $t {
+            #[inline(always)]
+            fn rt_abs(self) -> $t {
+                <$t>::abs(&self)
+            }
+        }
+    )*};
+}
+abs_mat!(Mat2, Mat3, Mat4);
 macro_rules! abs_ivec {
     ($($t:ty),*) => {$(
         impl RtAbs for $t {

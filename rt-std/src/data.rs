@@ -8,7 +8,11 @@ use glam::{IVec2, IVec3, IVec4, Mat2, Mat3, Mat4, UVec2, UVec3, UVec4, Vec2, Vec
 ///
 /// Layout: fields packed in declaration order, each scalar one 32-bit word,
 /// no padding. `#[rt_struct]`, `#[rt_payload]` and `#[rt_attributes]`
-/// implement it for user structs.
+/// implement it for user structs, `#[rt_enum]` for user enums.
+#[diagnostic::on_unimplemented(
+    message = "`{Self}` is not declared for ray programs",
+    label = "mark `{Self}` with #[rt_struct] (or #[rt_payload], #[rt_attributes], #[rt_enum])"
+)]
 pub trait RtData: Copy + 'static {
     /// Spelling and size of the type.
     const LAYOUT: TypeLayout;
@@ -134,11 +138,55 @@ matrix!(Mat2, 2, "Mat2", "mat2x2<f32>");
 matrix!(Mat3, 3, "Mat3", "mat3x3<f32>");
 matrix!(Mat4, 4, "Mat4", "mat4x4<f32>");
 
+// Tuples (struct fields of tuple types): the elements packed in order, as
+// the WGSL struct `rt_tuple_<elements>_` the compiler declares for them.
+// Their layout's names are generic: tuples are never variables or
+// payloads, whose types the linker matches by name.
+macro_rules! tuple {
+    ($($t:ident $i:tt),+) => {
+        impl<$($t: RtData),+> RtData for ($($t,)+) {
+            const LAYOUT: TypeLayout =
+                TypeLayout { rust: "(tuple)", wgsl: "(tuple)", words: 0 $(+ $t::LAYOUT.words)+, fields: &[] };
+            #[inline]
+            #[allow(unused_assignments)]
+            fn write_words(&self, out: &mut [u32]) {
+                let mut at = 0usize;
+                $(
+                    self.$i.write_words(&mut out[at..]);
+                    at += $t::LAYOUT.words as usize;
+                )+
+            }
+            #[inline]
+            #[allow(unused_assignments)]
+            fn read_words(words: &[u32]) -> Self {
+                let mut at = 0usize;
+                ($(
+                    {
+                        let v = $t::read_words(&words[at..]);
+                        at += $t::LAYOUT.words as usize;
+                        v
+                    },
+                )+)
+            }
+        }
+    };
+}
+
+tuple!(A 0);
+tuple!(A 0, B 1);
+tuple!(A 0, B 1, C 2);
+tuple!(A 0, B 1, C 2, D 3);
+
 /// Marker for types declared with `#[rt_payload]`: per-ray data.
+#[diagnostic::on_unimplemented(message = "`{Self}` is not a ray payload", label = "mark `{Self}` with #[rt_payload]")]
 pub trait Payload: RtData + Default {}
 
 /// Marker for types declared with `#[rt_attributes]`: data an intersection
 /// program hands to hit programs.
+#[diagnostic::on_unimplemented(
+    message = "`{Self}` is not an attribute struct",
+    label = "mark `{Self}` with #[rt_attributes]"
+)]
 pub trait Attributes: RtData + Default {
     /// Overwrites `self` with a triangle hit's built-in attributes, as the
     /// CPU backend hands them to closest-hit and any-hit programs: the fields
@@ -173,6 +221,51 @@ pub fn triangle_words(layout: &TypeLayout, t: &crate::cpu::TriangleBuiltins) -> 
     }
     words
 }
+
+// The checks `#[rt_program]` and `#[rt_function]` emit for the types they
+// name (`rt_compiler::expand::declared_checks`): a type declared without
+// its rt attribute gets one error that names the attribute to add. They
+// go through traits of their own, with blanket impls rustc does not
+// recommend, so the error lists no implementing types (a list that would
+// change with every struct of the workspace).
+#[doc(hidden)]
+#[diagnostic::on_unimplemented(
+    message = "`{Self}` is not declared for ray programs",
+    label = "mark `{Self}` with #[rt_struct] (or #[rt_payload], #[rt_attributes], #[rt_enum])"
+)]
+pub trait DeclaredData {}
+#[diagnostic::do_not_recommend]
+impl<T: RtData> DeclaredData for T {}
+
+#[doc(hidden)]
+#[diagnostic::on_unimplemented(message = "`{Self}` is not a ray payload", label = "mark `{Self}` with #[rt_payload]")]
+pub trait DeclaredPayload {}
+#[diagnostic::do_not_recommend]
+impl<T: Payload> DeclaredPayload for T {}
+
+#[doc(hidden)]
+#[diagnostic::on_unimplemented(
+    message = "`{Self}` is not an attribute struct",
+    label = "mark `{Self}` with #[rt_attributes]"
+)]
+pub trait DeclaredAttributes {}
+#[diagnostic::do_not_recommend]
+impl<T: Attributes> DeclaredAttributes for T {}
+
+/// Requires that `T` was declared with an rt attribute.
+#[doc(hidden)]
+#[inline(always)]
+pub fn __require_declared<T: DeclaredData + ?Sized>() {}
+
+/// Requires that `T` was declared with `#[rt_payload]`.
+#[doc(hidden)]
+#[inline(always)]
+pub fn __require_payload<T: DeclaredPayload + ?Sized>() {}
+
+/// Requires that `T` was declared with `#[rt_attributes]`.
+#[doc(hidden)]
+#[inline(always)]
+pub fn __require_attributes<T: DeclaredAttributes + ?Sized>() {}
 
 /// The value of `T` whose words are all zero (what out-of-bounds loads read,
 /// and the fields of attributes no triangle hit fills).

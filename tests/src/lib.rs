@@ -20,10 +20,14 @@ pub mod compare_logic;
 pub mod consts;
 #[path = "../snapshots/in/control_flow.rs"]
 pub mod control_flow;
+#[path = "../snapshots/in/enums.rs"]
+pub mod enums;
 #[path = "../snapshots/in/exceptions.rs"]
 pub mod exceptions;
 #[path = "../snapshots/in/fuzz_regressions.rs"]
 pub mod fuzz_regressions;
+#[path = "../snapshots/in/glam_more.rs"]
+pub mod glam_more;
 #[path = "../snapshots/in/helpers_refs.rs"]
 pub mod helpers_refs;
 #[path = "../snapshots/in/instancing.rs"]
@@ -70,6 +74,8 @@ pub mod seed_reflections;
 pub mod structs_arrays;
 #[path = "../snapshots/in/textures.rs"]
 pub mod textures;
+#[path = "../snapshots/in/tuples.rs"]
+pub mod tuples;
 #[path = "../snapshots/in/vectors.rs"]
 pub mod vectors;
 #[path = "../snapshots/in/vectors_int.rs"]

@@ -25,6 +25,23 @@ fn generated_programs_agree_on_cpu_and_gpu() {
     }
 }
 
+/// The run above includes the forms of issue 19: tuple literals read by
+/// `.0`/`.1` and values through an `#[rt_enum]` (`FuzzKind`, matched
+/// exhaustively), in a fair share of its programs.
+#[test]
+fn the_fixed_seed_generates_tuples_and_enums() {
+    let cfg = fuzz::Config::from_env(0x5eed, 300);
+    let (tuples, enums) = fuzz::on_big_stack(move || {
+        let sources: Vec<String> =
+            (cfg.first..cfg.first + cfg.programs).map(|id| fuzz::generate::program(cfg.seed, id).source()).collect();
+        let tuples = sources.iter().filter(|s| s.contains(",).0") || s.contains(",).1")).count();
+        let enums = sources.iter().filter(|s| s.contains("FuzzKind::Alpha => 10u32")).count();
+        (tuples, enums)
+    });
+    eprintln!("of 300 programs, {tuples} build tuples and {enums} match a FuzzKind");
+    assert!(tuples >= 30 && enums >= 30, "of 300 programs, {tuples} build tuples and {enums} match a FuzzKind");
+}
+
 /// The interpreter against rustc: the generated programs built natively
 /// (through the real macros, overflow checks off) and run with the same
 /// inputs must give the interpreter's outputs. Builds a Cargo project of

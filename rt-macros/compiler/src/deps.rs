@@ -72,6 +72,11 @@ fn is_const_like(name: &str) -> bool {
         && name.chars().all(|c| c.is_ascii_uppercase() || c.is_ascii_digit() || c == '_')
 }
 
+/// `CamelCase`: a type's or a variant's name.
+fn is_type_like(name: &str) -> bool {
+    name.chars().next().is_some_and(|c| c.is_ascii_uppercase()) && !is_const_like(name)
+}
+
 fn is_builtin_const(name: &str) -> bool {
     kinds::constant(name).is_some() || kinds::F32_CONSTS.iter().any(|(n, _)| *n == name)
 }
@@ -136,6 +141,16 @@ impl<'ast> Visit<'ast> for Deps {
             let owner = &segs[segs.len() - 2];
             if is_const_like(&last) && !is_builtin_type_name(owner) && owner != "consts" && owner != "TransformKind" {
                 self.add(&p.path);
+            } else if is_type_like(owner) && is_type_like(&last) && !is_builtin_type_name(owner) {
+                // `Kind::Metal`, in an expression or a pattern: an
+                // `#[rt_enum]`'s variant; the enum is the dependency.
+                let mut owner_path = p.path.clone();
+                owner_path.segments.pop();
+                let owner_path = syn::Path {
+                    leading_colon: owner_path.leading_colon,
+                    segments: owner_path.segments.into_pairs().map(|p| p.into_value()).collect(),
+                };
+                self.add(&owner_path);
             }
         }
     }

@@ -96,6 +96,7 @@ pub fn rt_program(attr: TokenStream, item: TokenStream) -> TokenStream {
     let kind_ident = format_ident!("{}", kind.name());
     let entry = quote!(program #kind_ident { #item });
     let deps: Vec<syn::Path> = deps::of_fn(&f).into_iter().map(|p| reroot(&p)).collect();
+    let declared = declared_checks(&deps, &params);
     let body = start_chain(entry, deps);
     quote! {
         #stripped
@@ -103,6 +104,7 @@ pub fn rt_program(attr: TokenStream, item: TokenStream) -> TokenStream {
         #[allow(non_snake_case, unused_imports, clippy::all)]
         #vis mod #name {
             use super::*;
+            #declared
             #thunk
             /// The program's descriptor: WGSL, layouts, variables and the CPU entry.
             pub static PROGRAM: ::rt_std::program::ProgramDescriptor = #body;
@@ -139,10 +141,12 @@ pub fn rt_function(attr: TokenStream, item: TokenStream) -> TokenStream {
     if !attr.is_empty() {
         return with_errors(Error::new(attr.span(), "`#[rt_function]` takes no arguments").into(), item);
     }
-    let body = start_chain(quote!(function { #item }), deps::of_fn(&f));
+    let deps = deps::of_fn(&f);
+    let declared = declared_checks(&deps, &[]);
+    let body = start_chain(quote!(function { #item }), deps);
     let mut cpu = f;
     crate::cpu_semantics::rewrite_fn(&mut cpu);
-    quote!(#cpu #body)
+    quote!(#cpu const _: () = { #declared }; #body)
 }
 
 /// `#[rt_struct]`, `#[rt_payload]`, `#[rt_attributes]`.
@@ -150,6 +154,10 @@ pub fn rt_struct(attr: TokenStream, item: TokenStream, role: StructRole) -> Toke
     let s: syn::ItemStruct = match syn::parse2(item.clone()) {
         Ok(s) => s,
         Err(e) => {
+            if let Ok(en) = syn::parse2::<syn::ItemEnum>(item.clone()) {
+                let msg = format!("`{}` is an enum: declare it with #[rt_enum]", en.ident);
+                return with_errors(Error::new(en.enum_token.span, msg).into(), item);
+            }
             let err = e.to_compile_error();
             return quote!(#err #item);
         }
@@ -162,6 +170,38 @@ pub fn rt_struct(attr: TokenStream, item: TokenStream, role: StructRole) -> Toke
     let role_kw = format_ident!("{}", role.keyword());
     let body = start_chain(quote!(struct #role_kw { #item }), deps::of_struct(&s));
     quote!(#decorated #data_impl #body)
+}
+
+/// `#[rt_enum]`: the enum with its `RtData`, and its link in the chain
+/// (an enum depends on nothing). A shape the subset rejects is an error at
+/// the enum, and the enum as written.
+pub fn rt_enum(attr: TokenStream, item: TokenStream) -> TokenStream {
+    let e: syn::ItemEnum = match syn::parse2(item.clone()) {
+        Ok(e) => e,
+        Err(_) => {
+            let span = syn::parse2::<syn::Item>(item.clone()).map(|i| i.span()).unwrap_or_else(|_| Span::call_site());
+            return with_errors(
+                Error::new(span, "`#[rt_enum]` declares an enum: use #[rt_struct] for a struct").into(),
+                item,
+            );
+        }
+    };
+    if !attr.is_empty() {
+        return with_errors(Error::new(attr.span(), "`#[rt_enum]` takes no arguments").into(), item);
+    }
+    // Exported even when the shape is wrong: programs that name the enum
+    // then stay silent (the lowering sees it failed) rather than add
+    // "cannot find macro" to the one error.
+    let export = export_macro(&e.ident, quote!(enum { #item }));
+    let def = match crate::enums::check(&e) {
+        Ok(d) => d,
+        Err(err) => {
+            let errs = Errors::from(err).to_compile_errors();
+            return quote!(#errs #item #export);
+        }
+    };
+    let rust = crate::enums::rust_side(&e, &def);
+    quote!(#rust #export)
 }
 
 /// `#[rt_const]`.
@@ -199,6 +239,47 @@ fn error_expr(e: &Errors) -> TokenStream {
     match errs.split_last() {
         Some((last, rest)) => quote!({ #(#rest;)* #last }),
         None => quote!(::core::compile_error!("rt_program failed")),
+    }
+}
+
+/// A function that does nothing but require, at each use's span, that the
+/// types the item names were declared with an rt attribute: a type that was
+/// not is rustc's "cannot find macro" in the chain, and this adds the
+/// message of `RtData`, `Payload` or `Attributes`
+/// (`#[diagnostic::on_unimplemented]`), which says which attribute to add.
+fn declared_checks(deps: &[syn::Path], params: &[signature::Param]) -> TokenStream {
+    let mut checks = Vec::new();
+    let mut roles = Vec::new();
+    for p in params {
+        let check = match p.role {
+            Role::Payload { .. } => quote!(__require_payload),
+            Role::Attributes { .. } => quote!(__require_attributes),
+            _ => continue,
+        };
+        let ty = reroot_type(&p.ty);
+        roles.push(quote!(#ty).to_string());
+        let span = p.ty.span();
+        checks.push(quote_spanned!(span=> ::rt_std::data::#check::<#ty>();));
+    }
+    for d in deps {
+        let Some(last) = d.segments.last() else { continue };
+        let name = last.ident.to_string();
+        let type_like =
+            name.chars().next().is_some_and(|c| c.is_ascii_uppercase()) && name.chars().any(|c| c.is_ascii_lowercase());
+        if !type_like || roles.contains(&quote!(#d).to_string()) {
+            continue;
+        }
+        let span = last.ident.span();
+        checks.push(quote_spanned!(span=> ::rt_std::data::__require_declared::<#d>();));
+    }
+    if checks.is_empty() {
+        return TokenStream::new();
+    }
+    quote! {
+        #[allow(dead_code)]
+        fn __rt_declared() {
+            #(#checks)*
+        }
     }
 }
 
@@ -297,6 +378,7 @@ pub fn parse_defs(tokens: TokenStream) -> syn::Result<Vec<Item>> {
             ("struct", Some(r)) => Item::Struct(syn::parse2(g.stream())?, r),
             ("function", _) => Item::Function(syn::parse2(g.stream())?),
             ("constant", _) => Item::Const(syn::parse2(g.stream())?),
+            ("enum", _) => Item::Enum(syn::parse2(g.stream())?),
             _ => return Err(syn::Error::new(g.span(), "malformed definition")),
         };
         if !items.iter().any(|i: &Item| i.name() == item.name()) {
@@ -665,19 +747,7 @@ fn variable_tuple(items: &[TokenStream]) -> TokenStream {
 
 /// The struct with `#[repr(C)]` and the derives programs rely on.
 fn decorate_struct(s: &syn::ItemStruct) -> TokenStream {
-    let mut derived: Vec<String> = Vec::new();
-    for a in &s.attrs {
-        if a.path().is_ident("derive") {
-            let _ = a.parse_nested_meta(|m| {
-                if let Some(i) = m.path.get_ident() {
-                    derived.push(i.to_string());
-                } else if let Some(seg) = m.path.segments.last() {
-                    derived.push(seg.ident.to_string());
-                }
-                Ok(())
-            });
-        }
-    }
+    let derived = crate::enums::derived_traits(&s.attrs);
     let wanted = ["Clone", "Copy", "Debug", "Default", "PartialEq"];
     let missing: Vec<syn::Ident> =
         wanted.iter().filter(|w| !derived.iter().any(|d| d == *w)).map(|w| format_ident!("{}", w)).collect();

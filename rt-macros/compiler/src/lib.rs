@@ -39,6 +39,7 @@
 
 pub mod cpu_semantics;
 pub mod deps;
+pub mod enums;
 pub mod error;
 pub mod expand;
 pub mod intrinsic;
@@ -90,6 +91,8 @@ pub enum Item {
     Struct(syn::ItemStruct, StructRole),
     Function(syn::ItemFn),
     Const(syn::ItemConst),
+    /// `#[rt_enum]`: a C-like enum.
+    Enum(syn::ItemEnum),
 }
 
 impl Item {
@@ -98,6 +101,7 @@ impl Item {
             Item::Struct(s, _) => s.ident.to_string(),
             Item::Function(f) => f.sig.ident.to_string(),
             Item::Const(c) => c.ident.to_string(),
+            Item::Enum(e) => e.ident.to_string(),
         }
     }
 }
@@ -114,6 +118,7 @@ pub fn declared(item: &syn::Item) -> Option<Result<Declared, Error>> {
         syn::Item::Fn(f) => &f.attrs,
         syn::Item::Struct(s) => &s.attrs,
         syn::Item::Const(c) => &c.attrs,
+        syn::Item::Enum(e) => &e.attrs,
         _ => return None,
     };
     let attr = attrs.iter().find(|a| {
@@ -121,7 +126,7 @@ pub fn declared(item: &syn::Item) -> Option<Result<Declared, Error>> {
         p.segments.last().is_some_and(|s| {
             matches!(
                 s.ident.to_string().as_str(),
-                "rt_program" | "rt_function" | "rt_struct" | "rt_payload" | "rt_attributes" | "rt_const"
+                "rt_program" | "rt_function" | "rt_struct" | "rt_payload" | "rt_attributes" | "rt_const" | "rt_enum"
             )
         })
     })?;
@@ -138,6 +143,10 @@ pub fn declared(item: &syn::Item) -> Option<Result<Declared, Error>> {
             ("rt_payload", syn::Item::Struct(s)) => Declared::Item(Item::Struct(s.clone(), StructRole::Payload)),
             ("rt_attributes", syn::Item::Struct(s)) => Declared::Item(Item::Struct(s.clone(), StructRole::Attributes)),
             ("rt_const", syn::Item::Const(c)) => Declared::Item(Item::Const(c.clone())),
+            ("rt_enum", syn::Item::Enum(e)) => {
+                enums::check(e)?;
+                Declared::Item(Item::Enum(e.clone()))
+            }
             (n, _) => {
                 return Err(Error::new(
                     syn::spanned::Spanned::span(attr),

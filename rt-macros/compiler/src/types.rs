@@ -91,6 +91,22 @@ impl StructDef {
     }
 }
 
+/// A C-like enum declared with `#[rt_enum]`: a `u32` in WGSL and one word
+/// in the heap, its variants' discriminants as values.
+#[derive(Debug)]
+pub struct EnumDef {
+    pub name: String,
+    /// `(variant, discriminant)` in declaration order.
+    pub variants: Vec<(String, u32)>,
+    pub span: proc_macro2::Span,
+}
+
+impl EnumDef {
+    pub fn variant(&self, name: &str) -> Option<u32> {
+        self.variants.iter().find(|(n, _)| n == name).map(|(_, v)| *v)
+    }
+}
+
 /// A type in the subset.
 #[derive(Clone, Debug)]
 pub enum Ty {
@@ -103,6 +119,11 @@ pub enum Ty {
     /// Square f32 matrix (`Mat2`, `Mat3`, `Mat4`).
     Mat(u8),
     Struct(Rc<StructDef>),
+    /// A `#[rt_enum]`.
+    Enum(Rc<EnumDef>),
+    /// `(A, B, ...)`, at least one element: a WGSL struct with fields `f0`,
+    /// `f1`, ... (see [`Ty::wgsl`]).
+    Tuple(Vec<Ty>),
     Array(Box<Ty>, u32),
     Ray,
     Aabb,
@@ -127,6 +148,8 @@ impl PartialEq for Ty {
             (Vec(n, a), Vec(m, b)) => n == m && a == b,
             (Mat(n), Mat(m)) => n == m,
             (Struct(a), Struct(b)) => a.name == b.name,
+            (Enum(a), Enum(b)) => a.name == b.name,
+            (Tuple(a), Tuple(b)) => a == b,
             (Array(a, n), Array(b, m)) => n == m && a == b,
             (Buffer(k, a), Buffer(l, b)) => k == l && a == b,
             (Ref(m, a), Ref(n, b)) => m == n && a == b,
@@ -164,8 +187,9 @@ impl Ty {
         match self {
             Ty::Scalar(s) => *s != Scalar::Usize,
             Ty::Vec(_, s) => *s != Scalar::Bool,
-            Ty::Mat(_) | Ty::Struct(_) | Ty::Ray | Ty::Aabb => true,
+            Ty::Mat(_) | Ty::Struct(_) | Ty::Enum(_) | Ty::Ray | Ty::Aabb => true,
             Ty::Array(t, _) => t.is_plain_data(),
+            Ty::Tuple(ts) => ts.iter().all(Ty::is_plain_data),
             _ => false,
         }
     }
@@ -186,9 +210,13 @@ impl Ty {
             Ty::Mat(n) => format!("mat{n}x{n}<f32>"),
             Ty::Struct(s) => s.wgsl_name.clone(),
             Ty::Array(t, n) => format!("array<{}, {n}>", t.wgsl()),
+            // One name per element list, the same in every module (the
+            // linker shares it); `rt_` names are never the user's, and the
+            // trailing `_` keeps naga from renaming it.
+            Ty::Tuple(ts) => format!("rt_tuple_{}_", ts.iter().map(Ty::mangle).collect::<Vec<_>>().join("_")),
             Ty::Ray => "RtRay".into(),
             Ty::Aabb => "RtAabb".into(),
-            Ty::Object | Ty::TransformKind => "u32".into(),
+            Ty::Object | Ty::TransformKind | Ty::Enum(_) => "u32".into(),
             Ty::Buffer(..) => "RtBuffer".into(),
             Ty::Sampler => "RtSampler".into(),
             Ty::Ref(true, t) => format!("ptr<function, {}>", t.wgsl()),
@@ -214,11 +242,12 @@ impl Ty {
     /// Size in 32-bit words when stored in the heap.
     pub fn words(&self) -> u32 {
         match self {
-            Ty::Scalar(_) | Ty::IntVar(_) | Ty::Object | Ty::TransformKind => 1,
+            Ty::Scalar(_) | Ty::IntVar(_) | Ty::Object | Ty::TransformKind | Ty::Enum(_) => 1,
             Ty::Vec(n, _) => *n as u32,
             Ty::Mat(n) => (*n as u32) * (*n as u32),
             Ty::Struct(s) => s.fields.iter().map(|(_, t)| t.words()).sum(),
             Ty::Array(t, n) => t.words() * n,
+            Ty::Tuple(ts) => ts.iter().map(Ty::words).sum(),
             Ty::Ray => 9,
             Ty::Aabb => 6,
             Ty::Buffer(..) | Ty::Sampler => 4,
@@ -238,6 +267,7 @@ impl Ty {
                 ("tmax".into(), F32),
             ],
             Ty::Aabb => vec![("min".into(), Ty::vec(3)), ("max".into(), Ty::vec(3))],
+            Ty::Tuple(ts) => ts.iter().enumerate().map(|(i, t)| (format!("f{i}"), t.clone())).collect(),
             _ => Vec::new(),
         }
     }
@@ -253,6 +283,11 @@ impl fmt::Display for Ty {
             Ty::Vec(n, s) => write!(f, "{}Vec{n}", s.glam_prefix()),
             Ty::Mat(n) => write!(f, "Mat{n}"),
             Ty::Struct(s) => write!(f, "{}", s.name),
+            Ty::Enum(e) => write!(f, "{}", e.name),
+            Ty::Tuple(ts) => {
+                let parts: Vec<String> = ts.iter().map(Ty::to_string).collect();
+                if parts.len() == 1 { write!(f, "({},)", parts[0]) } else { write!(f, "({})", parts.join(", ")) }
+            }
             Ty::Array(t, n) => write!(f, "[{t}; {n}]"),
             Ty::Ray => write!(f, "Ray"),
             Ty::Aabb => write!(f, "Aabb"),

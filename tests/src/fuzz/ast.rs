@@ -214,6 +214,13 @@ pub enum Expr {
     /// A load from an output buffer: buffer index, element index, and
     /// whether it is written `buf.load(i)` (else `buf[i]`).
     BufLoad(usize, Box<Expr>, bool),
+    /// `(a, b).k`: a tuple literal, its elements evaluated in order, one
+    /// read.
+    TupleField(Vec<Expr>, usize),
+    /// An `i32`/`u32` through the `#[rt_enum] FuzzKind` every program
+    /// declares: `x % 3` picks a variant (0: `Alpha`, 1: `Beta`, else
+    /// `Gamma`), an exhaustive `match` on it gives 10, `Beta as u32` (5) or 7.
+    EnumRound(Box<Expr>),
 }
 
 /// A `match` arm: literal patterns joined with `|` (none: a catch-all,
@@ -337,6 +344,7 @@ impl Program {
     /// The program as a Rust source file.
     pub fn source(&self) -> String {
         let mut s = String::from("use rt_std::prelude::*;\n");
+        s.push_str("\n#[rt_enum]\npub enum FuzzKind {\n    Alpha,\n    Beta = 5,\n    Gamma,\n}\n");
         for d in &self.structs {
             s.push_str("\n#[rt_struct]\npub struct ");
             s.push_str(&d.name);
@@ -543,6 +551,12 @@ impl Program {
                 let b = &self.outputs[*b].0;
                 if *method { format!("{b}.load({})", self.expr(i)) } else { format!("{b}[{}]", self.expr(i)) }
             }
+            Expr::TupleField(xs, k) => format!("({},).{k}", self.args(xs)),
+            Expr::EnumRound(x) => format!(
+                "(match (match ({}) % 3 {{ 0 => FuzzKind::Alpha, 1 => FuzzKind::Beta, _ => FuzzKind::Gamma }}) \
+                 {{ FuzzKind::Alpha => 10u32, FuzzKind::Beta => FuzzKind::Beta as u32, FuzzKind::Gamma => 7u32 }})",
+                self.expr(x)
+            ),
         }
     }
 
@@ -614,7 +628,12 @@ impl Expr {
         let any = |xs: &[Expr]| xs.iter().any(|x| x.has_effects(p));
         match self {
             Expr::Lit(_) | Expr::Var(_) | Expr::Deref(_) | Expr::LaunchX | Expr::Const(..) => false,
-            Expr::Field(b, ..) | Expr::Unary(_, b) | Expr::Cast(b, _) | Expr::ArrayRepeat(b, _) => b.has_effects(p),
+            Expr::Field(b, ..)
+            | Expr::Unary(_, b)
+            | Expr::Cast(b, _)
+            | Expr::ArrayRepeat(b, _)
+            | Expr::EnumRound(b) => b.has_effects(p),
+            Expr::TupleField(xs, _) => any(xs),
             Expr::Index(a, b) | Expr::Bin(_, a, b) => a.has_effects(p) || b.has_effects(p),
             Expr::Method(r, _, args) => r.has_effects(p) || any(args),
             Expr::Path(_, _, args) | Expr::Free(_, args) | Expr::ArrayLit(args) => any(args),
@@ -648,7 +667,12 @@ impl Expr {
         f(self);
         match self {
             Expr::Lit(_) | Expr::Var(_) | Expr::Deref(_) | Expr::LaunchX | Expr::Const(..) => {}
-            Expr::Field(x, ..) | Expr::Unary(_, x) | Expr::Cast(x, _) | Expr::ArrayRepeat(x, _) => x.visit(f),
+            Expr::Field(x, ..)
+            | Expr::Unary(_, x)
+            | Expr::Cast(x, _)
+            | Expr::ArrayRepeat(x, _)
+            | Expr::EnumRound(x) => x.visit(f),
+            Expr::TupleField(xs, _) => xs.iter().for_each(|a| a.visit(f)),
             Expr::Index(a, b) | Expr::Bin(_, a, b) => {
                 a.visit(f);
                 b.visit(f);

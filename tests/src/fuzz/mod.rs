@@ -7,7 +7,9 @@
 //!    ([`ast`]): scalars, glam vectors, a struct or two, arithmetic, bit
 //!    operations, comparisons, casts, vector methods and rt-std's math,
 //!    nested `if`/`match`/loops, helpers (one taking `&mut u32`), buffer
-//!    loads and stores. The AST prints as the Rust source of an
+//!    loads and stores, tuple literals read by `.0`/`.1`, and integers
+//!    through an `#[rt_enum]` every program declares (`FuzzKind`, matched
+//!    exhaustively). The AST prints as the Rust source of an
 //!    `#[rt_program(ray_generation)]` with its `#[rt_struct]`s and
 //!    `#[rt_function]`s.
 //! 2. The CPU side is [`interp`], an interpreter of that AST with Rust's

@@ -522,10 +522,13 @@ macro_rules! differential {
 
 mod control_flow;
 mod edge_cases;
+mod enums;
+mod glam_more;
 mod grids;
 mod math;
 mod scalars;
 mod structs_arrays;
+mod tuples;
 mod vectors;
 
 use grids::*;

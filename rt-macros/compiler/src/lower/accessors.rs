@@ -22,7 +22,7 @@ impl Accessors {
         let body = match ty {
             Ty::Scalar(Scalar::F32) => "return bitcast<f32>(rt_heap[w]);".to_string(),
             Ty::Scalar(Scalar::I32) => "return bitcast<i32>(rt_heap[w]);".to_string(),
-            Ty::Scalar(Scalar::U32) | Ty::Scalar(Scalar::Usize) | Ty::Object | Ty::TransformKind => {
+            Ty::Scalar(Scalar::U32) | Ty::Scalar(Scalar::Usize) | Ty::Object | Ty::TransformKind | Ty::Enum(_) => {
                 "return rt_heap[w];".to_string()
             }
             Ty::Scalar(Scalar::Bool) => "return rt_heap[w] != 0u;".to_string(),
@@ -67,7 +67,7 @@ impl Accessors {
         let t = ty.wgsl();
         let body = match ty {
             Ty::Scalar(Scalar::F32) | Ty::Scalar(Scalar::I32) => "rt_heap[w] = bitcast<u32>(v);".to_string(),
-            Ty::Scalar(Scalar::U32) | Ty::Scalar(Scalar::Usize) | Ty::Object | Ty::TransformKind => {
+            Ty::Scalar(Scalar::U32) | Ty::Scalar(Scalar::Usize) | Ty::Object | Ty::TransformKind | Ty::Enum(_) => {
                 "rt_heap[w] = v;".to_string()
             }
             Ty::Scalar(Scalar::Bool) => "rt_heap[w] = select(0u, 1u, v);".to_string(),

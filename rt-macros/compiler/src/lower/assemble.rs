@@ -31,6 +31,10 @@ pub(super) fn assemble(
             d.fields.iter().map(|(n, t)| format!("    {}: {},", wgsl_ident(n), t.wgsl())).collect();
         out.types.push((d.wgsl_name.clone(), format!("struct {} {{\n{}\n}}\n", d.wgsl_name, fields.join("\n"))));
     }
+    for (name, ty) in m.tuples.borrow().iter() {
+        let fields: Vec<String> = ty.fields().iter().map(|(n, t)| format!("    {n}: {},", t.wgsl())).collect();
+        out.types.push((name.clone(), format!("struct {name} {{\n{}\n}}\n", fields.join("\n"))));
+    }
     for (name, text) in m.accessors.borrow().functions.iter() {
         out.functions.push((name.clone(), text.clone()));
     }

@@ -4,6 +4,8 @@
 //! half away from zero, `fract` is `x - trunc(x)`, `signum(0.0)` is 1) the
 //! lowering spells Rust's definition out.
 
+mod glam_more;
+
 use super::value::{Val, f32_literal};
 use crate::types::{F32, Scalar, Ty, U32};
 
@@ -16,13 +18,13 @@ pub struct MethodSig {
     pub params: Vec<Ty>,
     pub ret: Ty,
     pub lower: LowerFn,
-    /// A WGSL function the lowering calls, `(name, text)`, for the module's
+    /// WGSL functions the lowering calls, `(name, text)`, for the module's
     /// function section.
-    pub support: Option<(&'static str, &'static str)>,
+    pub support: Vec<(&'static str, &'static str)>,
 }
 
 fn sig(params: Vec<Ty>, ret: Ty, lower: impl Fn(&[String]) -> String + 'static) -> Option<MethodSig> {
-    Some(MethodSig { params, ret, lower: Box::new(lower), support: None })
+    Some(MethodSig { params, ret, lower: Box::new(lower), support: Vec::new() })
 }
 
 /// `f32::powi` as Rust computes it (LLVM's `powi`, compiler-rt's
@@ -231,6 +233,9 @@ pub fn method_sig(recv: &Ty, name: &str) -> Option<MethodSig> {
     if name == "clone" && recv.is_value() {
         return sig(vec![], t, |a| a[0].clone());
     }
+    if let Some(m) = glam_more::method(recv, name) {
+        return Some(m);
+    }
     if let Ty::Mat(m) = recv {
         return mat_method(*m, name);
     }
@@ -324,7 +329,7 @@ fn float_method(recv: &Ty, name: &str) -> Option<MethodSig> {
         }
         "powi" if is_scalar => {
             let mut s = sig(vec![Ty::Scalar(Scalar::I32)], t, |a| format!("rt_powi({}, {})", a[0], a[1]))?;
-            s.support = Some(("rt_powi", POWI));
+            s.support = vec![("rt_powi", POWI)];
             return Some(s);
         }
         "atan2" if is_scalar => return sig(vec![F32], t, |a| format!("atan2({}, {})", a[0], a[1])),
@@ -335,6 +340,11 @@ fn float_method(recv: &Ty, name: &str) -> Option<MethodSig> {
         }
         "is_infinite" if is_scalar => {
             return sig(vec![], Ty::Scalar(Scalar::Bool), |a| format!("(abs({}) > {})", a[0], f32_literal(f32::MAX)));
+        }
+        "sin_cos" if is_scalar => {
+            let pair = Ty::Tuple(vec![F32, F32]);
+            let name = pair.wgsl();
+            return sig(vec![], pair, move |a| format!("{name}(sin({0}), cos({0}))", a[0]));
         }
         "hypot" if is_scalar => return sig(vec![F32], t, |a| format!("length(vec2<f32>({}, {}))", a[0], a[1])),
         _ => {}
@@ -399,6 +409,25 @@ fn int_method(recv: &Ty, name: &str) -> Option<MethodSig> {
         "wrapping_add" => return sig(vec![t.clone()], t, |a| format!("({} + {})", a[0], a[1])),
         "wrapping_sub" => return sig(vec![t.clone()], t, |a| format!("({} - {})", a[0], a[1])),
         "wrapping_mul" => return sig(vec![t.clone()], t, |a| format!("({} * {})", a[0], a[1])),
+        // `(wrapped, overflowed)`: unsigned, the result passed an operand;
+        // signed, the operands' signs agreed and the result's differs.
+        "overflowing_add" | "overflowing_sub" if is_scalar => {
+            let pair = Ty::Tuple(vec![t.clone(), Ty::Scalar(Scalar::Bool)]);
+            let name_ = pair.wgsl();
+            let signed = recv.scalar() == Some(Scalar::I32);
+            let add = name == "overflowing_add";
+            return sig(vec![t.clone()], pair, move |a| {
+                let (x, y) = (&a[0], &a[1]);
+                let r = if add { format!("({x} + {y})") } else { format!("({x} - {y})") };
+                let over = match (signed, add) {
+                    (false, true) => format!("({r} < {x})"),
+                    (false, false) => format!("({x} < {y})"),
+                    (true, true) => format!("((({x} ^ {r}) & ({y} ^ {r})) < 0i)"),
+                    (true, false) => format!("((({x} ^ {y}) & ({x} ^ {r})) < 0i)"),
+                };
+                format!("{name_}({r}, {over})")
+            });
+        }
         _ => {}
     }
     None
@@ -448,7 +477,7 @@ fn vec_method(recv: &Ty, name: &str) -> Option<MethodSig> {
                 // Saturating, as `as i32` / `as u32` per component.
                 let (f, text) = float_to_int(n, target == Scalar::I32);
                 let mut m = sig(vec![], out, move |a| format!("{f}({})", a[0]))?;
-                m.support = Some((f, text));
+                m.support = vec![(f, text)];
                 return Some(m);
             }
             let w = out.wgsl();
@@ -487,13 +516,11 @@ fn mat_method(n: u8, name: &str) -> Option<MethodSig> {
 /// Extra advice for methods users reach for that have no WGSL equivalent.
 pub fn method_hint(recv: &Ty, name: &str) -> String {
     match (recv, name) {
-        (Ty::Mat(_), "inverse") => ": WGSL has no matrix inverse; pass the inverse as a variable".into(),
         (_, "iter" | "into_iter" | "map" | "for_each") => {
             ": iterators are not supported; loop over an index range".into()
         }
         (_, "to_string") => ": strings are not supported".into(),
         (_, "unwrap" | "expect") => ": Option and Result are not supported".into(),
-        (_, "sin_cos") => ": call sin() and cos() separately".into(),
         _ => ": write it with the methods rt_std documents as supported (a #[rt_function] helper can hold it)".into(),
     }
 }

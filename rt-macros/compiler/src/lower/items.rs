@@ -5,7 +5,7 @@
 use super::order::{Graph, Order};
 use super::{Entry, LParam, resolve_type, wgsl_ident};
 use crate::error::{Error, Errors, Result};
-use crate::types::{StructDef, Ty};
+use crate::types::{EnumDef, StructDef, Ty};
 use crate::{Item, StructRole};
 use proc_macro2::Span;
 use std::collections::{HashMap, HashSet};
@@ -34,6 +34,7 @@ pub(super) fn reachable(entry: &Entry<'_>, deps: &[Item]) -> Vec<Item> {
                 Item::Struct(s, _) => crate::deps::of_struct(s),
                 Item::Function(f) => crate::deps::of_fn(f),
                 Item::Const(c) => crate::deps::of_const(c),
+                Item::Enum(_) => Vec::new(),
             }));
             out.push(item.clone());
         }
@@ -130,11 +131,13 @@ pub(super) struct StructGraph<'r, 'a> {
     pub defs: HashMap<String, Rc<StructDef>>,
     /// Fields resolved so far: `(struct, index) -> (name, type)`.
     fields: HashMap<(String, usize), (String, Ty)>,
+    /// The unit's `#[rt_enum]`s, which fields may name.
+    enums: &'r HashMap<String, Rc<EnumDef>>,
 }
 
 impl<'r, 'a> StructGraph<'r, 'a> {
-    pub fn new(raw: &'r [(&'a syn::ItemStruct, StructRole)]) -> Self {
-        StructGraph { raw, defs: HashMap::new(), fields: HashMap::new() }
+    pub fn new(raw: &'r [(&'a syn::ItemStruct, StructRole)], enums: &'r HashMap<String, Rc<EnumDef>>) -> Self {
+        StructGraph { raw, defs: HashMap::new(), fields: HashMap::new(), enums }
     }
 
     fn raw(&self, name: &str) -> Option<&(&'a syn::ItemStruct, StructRole)> {
@@ -194,7 +197,12 @@ impl Graph for StructGraph<'_, '_> {
             StructNode::Field(name, i) => {
                 let f = &self.named_fields(name).named[*i];
                 let fname = f.ident.as_ref().unwrap().to_string();
-                let ty = resolve_type(&f.ty, &|n| self.defs.get(n).map(|d| Ty::Struct(d.clone())))?;
+                let ty = resolve_type(&f.ty, &|n| {
+                    self.defs
+                        .get(n)
+                        .map(|d| Ty::Struct(d.clone()))
+                        .or_else(|| self.enums.get(n).map(|e| Ty::Enum(e.clone())))
+                })?;
                 if !ty.is_plain_data() {
                     return Err(Error::new(
                         f.ty.span(),
@@ -227,6 +235,26 @@ impl Graph for StructGraph<'_, '_> {
     }
 }
 
+/// The unit's `#[rt_enum]`s by name, and the names of those whose shape
+/// the subset rejects (their own macro reports why).
+pub(super) fn enums(deps: &[Item]) -> (HashMap<String, Rc<EnumDef>>, HashSet<String>) {
+    let mut defs = HashMap::new();
+    let mut failed = HashSet::new();
+    for d in deps {
+        if let Item::Enum(e) = d {
+            match crate::enums::check(e) {
+                Ok(def) => {
+                    defs.insert(def.name.clone(), Rc::new(def));
+                }
+                Err(_) => {
+                    failed.insert(e.ident.to_string());
+                }
+            }
+        }
+    }
+    (defs, failed)
+}
+
 /// The dependencies by kind, with the entry among them if it is an item:
 /// `(structs, helpers, constants)`.
 #[allow(clippy::type_complexity)]
@@ -242,6 +270,8 @@ pub(super) fn by_kind<'a>(
             Item::Struct(s, r) => structs_raw.push((s, *r)),
             Item::Function(f) => helpers_raw.push(f),
             Item::Const(c) => consts_raw.push(c),
+            // Built before the structs (`ModuleCtx::enums`).
+            Item::Enum(_) => {}
         }
     }
     match &entry {

@@ -27,7 +27,7 @@ pub mod value;
 use crate::Item;
 use crate::error::{Error, Errors, Result};
 use crate::kinds::Kind;
-use crate::types::{StructDef, Ty};
+use crate::types::{EnumDef, StructDef, Ty};
 use accessors::Accessors;
 use func::LParam;
 use proc_macro2::Span;
@@ -62,6 +62,10 @@ pub struct ConstInfo {
 /// Module-wide state shared by the functions being lowered.
 pub struct ModuleCtx {
     pub structs: HashMap<String, Rc<StructDef>>,
+    pub enums: HashMap<String, Rc<EnumDef>>,
+    /// The tuple types the module uses, by WGSL name: each is declared as a
+    /// struct.
+    pub tuples: RefCell<BTreeMap<String, Ty>>,
     pub consts: HashMap<String, ConstInfo>,
     pub helpers: HashMap<String, HelperSig>,
     pub global_names: HashSet<String>,
@@ -93,8 +97,39 @@ impl ModuleCtx {
         h
     }
 
+    /// The tuple of `elems`, declared in the module.
+    pub fn tuple(&self, elems: Vec<Ty>) -> Ty {
+        let t = Ty::Tuple(elems);
+        self.note_tuples(&t);
+        t
+    }
+
+    /// Declares every tuple type `ty` contains.
+    pub fn note_tuples(&self, ty: &Ty) {
+        match ty {
+            Ty::Tuple(ts) => {
+                for t in ts {
+                    self.note_tuples(t);
+                }
+                self.tuples.borrow_mut().entry(ty.wgsl()).or_insert_with(|| ty.clone());
+            }
+            Ty::Array(t, _) | Ty::Ref(_, t) | Ty::Buffer(_, t) => self.note_tuples(t),
+            _ => {}
+        }
+    }
+
     pub fn resolve_type(&self, ty: &syn::Type) -> Result<Ty> {
-        resolve_type(ty, &|name| self.structs.get(name).map(|d| Ty::Struct(d.clone()))).map_err(|e| {
+        let user = |name: &str| {
+            self.structs
+                .get(name)
+                .map(|d| Ty::Struct(d.clone()))
+                .or_else(|| self.enums.get(name).map(|e| Ty::Enum(e.clone())))
+        };
+        let resolved = resolve_type(ty, &user);
+        if let Ok(t) = &resolved {
+            self.note_tuples(t);
+        }
+        resolved.map_err(|e| {
             // A struct whose own declaration failed: that error is enough.
             fn mentions(ts: proc_macro2::TokenStream, names: &HashSet<String>) -> bool {
                 ts.into_iter().any(|t| match t {
@@ -167,11 +202,15 @@ fn lower_impl(entry: Entry<'_>, deps: &[Item], report_deps: bool) -> std::result
     let deps = items::reachable(&entry, deps);
     let (structs_raw, helpers_raw, consts_raw) = items::by_kind(&entry, &deps);
     let consts_raw = items::const_order(&consts_raw);
-    let (structs, struct_order) = unit.build_structs(&structs_raw);
-    let failed_structs: HashSet<String> =
+    let (enums, failed_enums) = items::enums(&deps);
+    let (structs, struct_order) = unit.build_structs(&structs_raw, &enums);
+    let mut failed_structs: HashSet<String> =
         structs_raw.iter().map(|(s, _)| s.ident.to_string()).filter(|n| !structs.contains_key(n)).collect();
+    failed_structs.extend(failed_enums);
     let mut m = ModuleCtx {
         structs,
+        enums,
+        tuples: RefCell::new(BTreeMap::new()),
         consts: HashMap::new(),
         helpers: HashMap::new(),
         global_names: HashSet::new(),
@@ -182,8 +221,11 @@ fn lower_impl(entry: Entry<'_>, deps: &[Item], report_deps: bool) -> std::result
         report_types: RefCell::new(BTreeMap::new()),
         printf: RefCell::new(BTreeMap::new()),
     };
-    for name in m.structs.keys() {
+    for (name, d) in &m.structs {
         m.global_names.insert(wgsl_ident(name));
+        for (_, t) in &d.fields {
+            m.note_tuples(t);
+        }
     }
     unit.lower_consts(&mut m, &consts_raw);
     let helper_items = unit.helper_signatures(&mut m, &helpers_raw);

@@ -66,7 +66,13 @@ pub fn resolve_type(ty: &syn::Type, user: &dyn Fn(&str) -> Option<Ty>) -> Result
         }
         syn::Type::Tuple(t) if t.elems.is_empty() => Ok(Ty::Unit),
         syn::Type::Tuple(t) => {
-            Err(Error::unsupported(t.span(), "a tuple type", "use a struct declared with #[rt_struct]"))
+            let mut elems = Vec::new();
+            for e in &t.elems {
+                let ty = resolve_type(e, user)?;
+                check_tuple_element(&ty, e.span())?;
+                elems.push(ty);
+            }
+            Ok(Ty::Tuple(elems))
         }
         syn::Type::Paren(p) => resolve_type(&p.elem, user),
         syn::Type::Slice(s) => {
@@ -84,6 +90,25 @@ pub fn resolve_type(ty: &syn::Type, user: &dyn Fn(&str) -> Option<Ty>) -> Result
         other => {
             Err(Error::unsupported(other.span(), "this type", "use scalars, glam types, arrays and #[rt_struct]s"))
         }
+    }
+}
+
+/// A tuple holds plain values (scalars, vectors, matrices, arrays,
+/// structs, enums, tuples): not handles, references or `()`.
+pub fn check_tuple_element(ty: &Ty, span: proc_macro2::Span) -> Result<()> {
+    let ok = match ty {
+        Ty::Scalar(_) => true,
+        Ty::Tuple(ts) => ts.iter().all(|t| !matches!(t, Ty::Unit)),
+        t => t.is_plain_data(),
+    };
+    if ok {
+        Ok(())
+    } else {
+        Err(Error::unsupported(
+            span,
+            &format!("a tuple of `{ty}`"),
+            "tuples hold plain values (scalars, vectors, matrices, arrays, structs, enums); pass handles and references as parameters of their own",
+        ))
     }
 }
 

@@ -10,7 +10,7 @@ use super::program::program_unit;
 use super::{ConstInfo, Entry, HelperSig, Lowered, ModuleCtx, text, wgsl_ident};
 use crate::StructRole;
 use crate::error::{Error, Errors};
-use crate::types::{Scalar, StructDef, Ty};
+use crate::types::{EnumDef, Scalar, StructDef, Ty};
 use std::collections::HashMap;
 use std::ops::Range;
 use std::rc::Rc;
@@ -80,8 +80,9 @@ impl<'e, 'a> Unit<'e, 'a> {
     pub fn build_structs(
         &mut self,
         raw: &[(&syn::ItemStruct, StructRole)],
+        enums: &HashMap<String, Rc<EnumDef>>,
     ) -> (HashMap<String, Rc<StructDef>>, Vec<String>) {
-        let mut graph = StructGraph::new(raw);
+        let mut graph = StructGraph::new(raw, enums);
         let mut order = Order::new();
         for (s, _) in raw {
             self.own(&s.ident.to_string());

@@ -150,6 +150,11 @@ impl Gen {
                     return c;
                 }
             }
+            16..=17 => return self.tuple_field(t, d),
+            18..=19 if *t == Ty::S(Scalar::U32) => {
+                let s = self.r.pick(&[Scalar::I32, Scalar::U32]);
+                return Expr::EnumRound(b(self.expr(&Ty::S(s), d - 1, false)));
+            }
             _ => {}
         }
         match t {
@@ -161,6 +166,22 @@ impl Gen {
             Ty::Struct(k) => self.struct_lit(*k, d),
             Ty::Arr(..) => unreachable!(),
         }
+    }
+
+    /// `(x, other).0` or `(other, x).1`: a tuple literal with the value and
+    /// one of another type, one element read.
+    fn tuple_field(&mut self, t: &Ty, d: u32) -> Expr {
+        let other = self.r.pick(&[
+            Ty::S(Scalar::F32),
+            Ty::S(Scalar::I32),
+            Ty::S(Scalar::U32),
+            Ty::S(Scalar::Bool),
+            Ty::V(3, Scalar::F32),
+        ]);
+        // Nothing outside fixes the elements' types (`typed: false`).
+        let x = self.expr(t, d - 1, false);
+        let o = self.expr(&other, d - 1, false);
+        if self.r.chance(50) { Expr::TupleField(vec![x, o], 0) } else { Expr::TupleField(vec![o, x], 1) }
     }
 
     /// Operands of a binary operator: one fixes the type, the other may

@@ -291,6 +291,8 @@ impl Gen {
                 t.tail.as_ref().is_some_and(|x| self.is_const(x)) || e2.tail.as_ref().is_some_and(|x| self.is_const(x))
             }
             Expr::Match(_, arms) => arms.iter().any(|a| a.body.tail.as_ref().is_some_and(|x| self.is_const(x))),
+            Expr::TupleField(xs, k) => self.is_const(&xs[*k]),
+            Expr::EnumRound(x) => self.is_const(x),
         }
     }
 

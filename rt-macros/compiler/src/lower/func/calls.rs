@@ -86,9 +86,10 @@ impl FnLowerer<'_> {
         if let Some(last) = last_repeated {
             self.once(&mut vals[..=last]);
         }
-        if let Some((name, text)) = sig.support {
+        for (name, text) in sig.support {
             self.m.accessors.borrow_mut().functions.entry(name.to_string()).or_insert_with(|| text.to_string());
         }
+        self.m.note_tuples(&sig.ret);
         let effects = any_effects(&vals);
         let reads = any_reads(&vals);
         Ok(Val::new((sig.lower)(&codes(&vals)), sig.ret).with_effects(effects).with_reads(reads))

@@ -355,11 +355,14 @@ impl FnLowerer<'_> {
             self.emit_let(format!("let {t} = {};", scrut.code), &scrut);
             scrut = Val::new(t, scrut.ty);
         }
-        if !self.is_int(&sty) {
+        if let Ty::Tuple(_) = sty {
+            return self.match_tuple(m, want, scrut, sty);
+        }
+        if !self.is_int(&sty) && !matches!(sty, Ty::Enum(_)) {
             return Err(Error::unsupported(
                 m.expr.span(),
                 &format!("`match` on `{sty}`"),
-                "match on i32/u32 values, or use if/else",
+                "match on i32/u32 values and #[rt_enum]s, or use if/else",
             ));
         }
         let mut cases = Vec::new();
@@ -385,7 +388,13 @@ impl FnLowerer<'_> {
             None
         };
         arms?;
-        if !has_default {
+        if !has_default && matches!(sty, Ty::Enum(_)) && !cases.is_empty() {
+            // Every variant listed (Rust checks it): the last arm is WGSL's
+            // default too, so every path through the `switch` runs an arm.
+            let last = cases.pop().unwrap();
+            let (head, body) = last.split_once(": {").unwrap_or((&last, ""));
+            cases.push(format!("{head}, default: {{{body}"));
+        } else if !has_default {
             // WGSL needs a default; Rust's exhaustiveness check guarantees
             // it is unreachable.
             cases.push("default: {}".to_string());

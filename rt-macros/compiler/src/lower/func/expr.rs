@@ -61,7 +61,7 @@ impl FnLowerer<'_> {
                 Ok(Val::new("", Ty::Unit))
             }
             Expr::Tuple(t) if t.elems.is_empty() => Ok(Val::new("", Ty::Unit)),
-            Expr::Tuple(t) => Err(Error::unsupported(t.span(), "a tuple", "use a struct declared with #[rt_struct]")),
+            Expr::Tuple(t) => self.tuple_lit(t, want),
             Expr::Closure(c) => {
                 Err(Error::unsupported(c.or1_token.span, "a closure", "write a #[rt_function] helper and call it"))
             }
@@ -179,6 +179,18 @@ impl FnLowerer<'_> {
             if owner == "TransformKind" {
                 return transform_kind(last, p.span());
             }
+            if let Some(e) = self.m.enums.get(owner) {
+                return match e.variant(last) {
+                    Some(d) => Ok(Val::new(format!("{d}u"), Ty::Enum(e.clone()))),
+                    None => {
+                        let at = p.path.segments.last().map_or(p.span(), |s| s.ident.span());
+                        Err(Error::new(at, format!("no variant `{last}` on enum `{owner}`")))
+                    }
+                };
+            }
+            if self.m.failed.contains(owner) {
+                return Err(Error::silent(p.span()));
+            }
         }
         if (segs.len() == 1 || segs[segs.len() - 2] == "consts")
             && let Some((_, v)) = kinds::F32_CONSTS.iter().find(|(n, _)| *n == last)
@@ -204,13 +216,16 @@ impl FnLowerer<'_> {
     }
 
     pub(super) fn field(&mut self, f: &syn::ExprField) -> Result<Val> {
+        if let (Expr::Tuple(t), syn::Member::Unnamed(i)) = (strip_parens(&f.base), &f.member)
+            && (i.index as usize) < t.elems.len()
+        {
+            return self.tuple_lit_field(t, i.index as usize);
+        }
         let base = self.expr(&f.base, None)?;
         let base = self.deref(base);
         let name = match &f.member {
             syn::Member::Named(n) => n.to_string(),
-            syn::Member::Unnamed(i) => {
-                return Err(Error::unsupported(i.span(), "a tuple field", "use a struct with named fields"));
-            }
+            syn::Member::Unnamed(i) => i.index.to_string(),
         };
         self.field_of(base, &name, f.member.span())
     }
@@ -242,6 +257,15 @@ impl FnLowerer<'_> {
                 }
                 None => Err(Error::new(span, format!("no field `{name}` on `{t}`"))),
             },
+            Ty::Tuple(elems) => match name.parse::<usize>().ok().and_then(|i| elems.get(i).map(|e| (i, e))) {
+                Some((i, ety)) => Ok(Val::new(format!("{}.f{i}", base.code), ety.clone())
+                    .with_effects(base.effects)
+                    .with_reads(base.reads)),
+                None => Err(Error::new(span, format!("no field `{name}` on `{t}`"))),
+            },
+            _ if name.parse::<usize>().is_ok() => {
+                Err(Error::new(span, format!("no field `{name}` on `{t}`: `.{name}` reads an element of a tuple")))
+            }
             _ => Err(Error::new(span, format!("no field `{name}` on `{t}`"))),
         }
     }
@@ -412,6 +436,14 @@ impl FnLowerer<'_> {
         let parts = vec![value.code; n as usize];
         let code = format!("{}({})", ty.wgsl(), parts.join(", "));
         Ok(Val::new(code, ty).with_effects(value.effects).with_reads(value.reads))
+    }
+}
+
+fn strip_parens(e: &Expr) -> &Expr {
+    match e {
+        Expr::Paren(p) => strip_parens(&p.expr),
+        Expr::Group(g) => strip_parens(&g.expr),
+        e => e,
     }
 }
 

@@ -17,6 +17,7 @@
 //! - [`intrinsics`]: intrinsic calls from the contract's rows;
 //! - [`buffers`]: buffer and sampler access;
 //! - [`infer`]: integer inference variables, coercion;
+//! - [`tuples`]: tuple values, `let` and `match` over tuple patterns;
 //! - [`resume`]: the resumable form of a tracing function.
 //!
 //! This file holds the struct, the entry point ([`FnLowerer::function`]),
@@ -44,6 +45,7 @@ mod ops;
 mod places;
 mod resume;
 mod stmt;
+mod tuples;
 
 use eval::int_literal_value;
 use ops::{compound_base, is_compound, op_symbol};

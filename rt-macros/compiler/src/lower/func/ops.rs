@@ -208,7 +208,7 @@ impl FnLowerer<'_> {
                             .with_effects(effects)
                             .with_reads(reads)
                     }
-                    Ty::Scalar(_) | Ty::IntVar(_) | Ty::Object | Ty::TransformKind => {
+                    Ty::Scalar(_) | Ty::IntVar(_) | Ty::Object | Ty::TransformKind | Ty::Enum(_) => {
                         Val::new(format!("({} {sym} {})", l.code, r.code), BOOL).with_effects(effects).with_reads(reads)
                     }
                     other => {
@@ -307,6 +307,15 @@ impl FnLowerer<'_> {
             }
         };
         let from = match from {
+            // `kind as u32`: the discriminant, as in Rust (which casts C-like
+            // enums to integers only).
+            Ty::Enum(_) if ts.is_int() => U32,
+            Ty::Enum(e) => {
+                return Err(Error::new(
+                    c.span(),
+                    format!("cannot cast enum `{}` as `{}`: cast it to an integer", e.name, ts.rust()),
+                ));
+            }
             Ty::IntVar(_) => {
                 // `5 as f32`: the literal is an i32 as in Rust.
                 self.unify(&from, &I32);

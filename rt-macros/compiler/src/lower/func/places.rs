@@ -32,9 +32,7 @@ impl FnLowerer<'_> {
             Expr::Field(f) => {
                 let name = match &f.member {
                     syn::Member::Named(n) => n.to_string(),
-                    syn::Member::Unnamed(i) => {
-                        return Err(Error::unsupported(i.span(), "a tuple field", "use a struct with named fields"));
-                    }
+                    syn::Member::Unnamed(i) => i.index.to_string(),
                 };
                 // Fields of reference parameters are places through the pointer.
                 let base = match self.ref_base(&f.base) {

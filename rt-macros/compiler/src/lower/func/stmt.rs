@@ -76,12 +76,14 @@ impl FnLowerer<'_> {
                 (pi.ident.to_string(), pi.mutability.is_some())
             }
             syn::Pat::Wild(_) => ("_".to_string(), false),
-            syn::Pat::Tuple(t) => {
-                return Err(Error::unsupported(
-                    t.span(),
-                    "a tuple pattern",
-                    "use a struct and bind its fields one by one",
-                ));
+            syn::Pat::Tuple(_) => {
+                let Some(init) = &l.init else {
+                    return Err(Error::new(pat.span(), "a tuple pattern needs a value: `let (a, b) = ...;`"));
+                };
+                if let Some((_, d)) = &init.diverge {
+                    return Err(Error::unsupported(d.span(), "`let ... else`", "use if/else"));
+                }
+                return self.let_tuple(pat, annot.as_ref(), &init.expr, l.span());
             }
             other => return Err(Error::unsupported(other.span(), "this pattern", "bind a plain name")),
         };
@@ -111,14 +113,15 @@ impl FnLowerer<'_> {
                     Some(a) => self.coerce(v, a, init.expr.span())?,
                     None => v,
                 };
-                if matches!(v.ty, Ty::Ref(..)) {
+                if matches!(v.ty, Ty::Ref(..)) && name != "_" {
                     return Err(Error::unsupported(
                         init.expr.span(),
                         "a reference local",
                         "copy the value (`let x = *r;`) or pass `&mut` directly to a call",
                     ));
                 }
-                if !v.ty.is_value() {
+                let silenced_ref = name == "_" && matches!(v.ty, Ty::Ref(..));
+                if !v.ty.is_value() && !silenced_ref {
                     return Err(Error::new(init.expr.span(), format!("cannot bind a value of type `{}`", v.ty)));
                 }
                 Some(v)
@@ -126,7 +129,12 @@ impl FnLowerer<'_> {
             None => None,
         };
         if name == "_" {
-            if let Some(v) = init {
+            // `let _ = attr;` silences an unused reference parameter: it
+            // reads nothing, so it emits nothing.
+            if let Some(v) = init
+                && (v.effects || !matches!(v.ty, Ty::Ref(..)))
+            {
+                let v = self.deref(v);
                 self.emit(format!("_ = {};", v.code));
             }
             return Ok(());
@@ -143,24 +151,29 @@ impl FnLowerer<'_> {
                 ));
             }
         };
-        // Arrays and matrices may be indexed dynamically, which WGSL allows
-        // only on `var`s; so are deferred initialisations.
         let var = mutable || init.is_none() || matches!(ty, Ty::Array(..) | Ty::Mat(_));
         let wname = self.fresh(&name);
+        self.declare_local(&wname, mutable, ty.clone(), init, l.span());
+        self.bind(&name, Local { wgsl: wname, ty, var });
+        Ok(())
+    }
+
+    /// Declares the WGSL local `wname` (already fresh) of type `ty`: a `var`
+    /// when `mutable`, deferred, or an array or matrix (which may be
+    /// indexed dynamically, as WGSL allows only on `var`s); else a `let`.
+    pub(super) fn declare_local(&mut self, wname: &str, mutable: bool, ty: Ty, init: Option<Val>, span: Span) {
+        let var = mutable || init.is_none() || matches!(ty, Ty::Array(..) | Ty::Mat(_));
         if self.hoisting() {
-            self.hoisted_let(&wname, &ty, init.as_ref());
-            self.bind(&name, Local { wgsl: wname, ty, var });
-            return Ok(());
+            self.hoisted_let(wname, &ty, init.as_ref());
+            return;
         }
         let (line, writes) = match (&init, var) {
             (Some(v), true) => (format!("var {wname}: {} = {};", ty.wgsl(), v.code), true),
             (Some(v), false) => (format!("let {wname}: {} = {};", ty.wgsl(), v.code), v.effects),
             (None, _) => (format!("var {wname}: {};", ty.wgsl()), true),
         };
-        let line = self.mark(l.span(), &line);
+        let line = self.mark(span, &line);
         self.blocks.last_mut().unwrap().push(line, writes);
-        self.bind(&name, Local { wgsl: wname, ty, var });
-        Ok(())
     }
 
     pub(super) fn macro_stmt(&mut self, mac: &syn::Macro) -> Result<()> {

@@ -1,0 +1,208 @@
+//! The glam methods programs may call, checked against glam's own API and
+//! published as `docs/glam_methods.md` (`RT_BLESS=1` rewrites it).
+//!
+//! glam's API is read from its source (the version in `Cargo.lock`, in
+//! cargo's registry): every `pub fn` with a `self` receiver in an inherent
+//! `impl` of `Vec2/3/4`, `IVec2/3/4`, `UVec2/3/4` and `Mat2/3/4`. For each,
+//! the compiler's own method table (`rt_compiler::lower::builtins::method_sig`)
+//! says whether programs may call it; a supported method whose parameter or
+//! result types differ from glam's fails the test. Associated functions
+//! (`Vec3::new`, `Mat3::from_cols`) and the scalar types' methods (std's,
+//! not glam's) are not counted here.
+
+use rt_compiler::types::{Scalar, Ty};
+use std::path::{Path, PathBuf};
+
+/// The types, their glam source files (the scalar, not SIMD, forms).
+const TYPES: &[(&str, &str)] = &[
+    ("Vec2", "f32/vec2.rs"),
+    ("Vec3", "f32/vec3.rs"),
+    ("Vec4", "f32/scalar/vec4.rs"),
+    ("IVec2", "i32/ivec2.rs"),
+    ("IVec3", "i32/ivec3.rs"),
+    ("IVec4", "i32/ivec4.rs"),
+    ("UVec2", "u32/uvec2.rs"),
+    ("UVec3", "u32/uvec3.rs"),
+    ("UVec4", "u32/uvec4.rs"),
+    ("Mat2", "f32/scalar/mat2.rs"),
+    ("Mat3", "f32/mat3.rs"),
+    ("Mat4", "f32/scalar/mat4.rs"),
+];
+
+/// glam's source directory, from `Cargo.lock`'s version and cargo's home.
+fn glam_src() -> PathBuf {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let lock = std::fs::read_to_string(root.join("Cargo.lock")).expect("Cargo.lock");
+    let version = lock
+        .split("[[package]]")
+        .find(|p| p.contains("name = \"glam\""))
+        .and_then(|p| p.lines().find_map(|l| l.strip_prefix("version = \"")))
+        .map(|v| v.trim_end_matches('"').to_string())
+        .expect("glam in Cargo.lock");
+    let home = std::env::var_os("CARGO_HOME")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| PathBuf::from(std::env::var_os("HOME").expect("HOME")).join(".cargo"));
+    let registry = home.join("registry/src");
+    for index in std::fs::read_dir(&registry).unwrap_or_else(|e| panic!("{}: {e}", registry.display())) {
+        let dir = index.unwrap().path().join(format!("glam-{version}/src"));
+        if dir.is_dir() {
+            return dir;
+        }
+    }
+    panic!("glam {version}'s source is not in {}", registry.display());
+}
+
+/// A glam method: name, parameter types and result type as written
+/// (`Self` replaced by the type's name, references dropped).
+struct GlamMethod {
+    name: String,
+    params: Vec<String>,
+    ret: String,
+}
+
+fn spell(ty: &syn::Type, owner: &str) -> String {
+    let t = match ty {
+        syn::Type::Reference(r) => &*r.elem,
+        t => t,
+    };
+    let s = quote::ToTokens::to_token_stream(t).to_string().replace(' ', "").replace("crate::", "");
+    if s == "Self" { owner.to_string() } else { s }
+}
+
+fn glam_methods(owner: &str, file: &Path) -> Vec<GlamMethod> {
+    let text = std::fs::read_to_string(file).unwrap_or_else(|e| panic!("{}: {e}", file.display()));
+    let ast: syn::File = syn::parse_str(&text).unwrap_or_else(|e| panic!("{}: {e}", file.display()));
+    let mut out = Vec::new();
+    for item in &ast.items {
+        let syn::Item::Impl(imp) = item else { continue };
+        let is_owner = matches!(&*imp.self_ty, syn::Type::Path(p) if p.path.is_ident(owner));
+        if imp.trait_.is_some() || !is_owner {
+            continue;
+        }
+        for it in &imp.items {
+            let syn::ImplItem::Fn(f) = it else { continue };
+            if !matches!(f.vis, syn::Visibility::Public(_)) || f.sig.receiver().is_none() {
+                continue;
+            }
+            let params = f
+                .sig
+                .inputs
+                .iter()
+                .filter_map(|i| match i {
+                    syn::FnArg::Typed(pt) => Some(spell(&pt.ty, owner)),
+                    syn::FnArg::Receiver(_) => None,
+                })
+                .collect();
+            let ret = match &f.sig.output {
+                syn::ReturnType::Default => "()".to_string(),
+                syn::ReturnType::Type(_, t) => spell(t, owner),
+            };
+            out.push(GlamMethod { name: f.sig.ident.to_string(), params, ret });
+        }
+    }
+    out
+}
+
+/// Why a glam method has no WGSL meaning in the subset, from its signature.
+fn reason(m: &GlamMethod) -> &'static str {
+    let all: Vec<&str> = m.params.iter().map(String::as_str).chain([m.ret.as_str()]).collect();
+    let any = |f: &dyn Fn(&str) -> bool| all.iter().any(|t| f(t));
+    if m.ret.starts_with("Option") {
+        "returns `Option`"
+    } else if any(&|t| t.contains("f64") || t.starts_with("DVec") || t.starts_with("DMat")) {
+        "f64"
+    } else if any(&|t| {
+        ["I64", "U64", "I16", "U16", "I8", "U8", "i64", "u64", "i16", "u16", "i8", "u8", "isize"]
+            .iter()
+            .any(|p| t.contains(p))
+    }) {
+        "64/16/8-bit integers"
+    } else if any(&|t| t.starts_with("BVec")) {
+        "bool vectors (`BVec`)"
+    } else if any(&|t| t.starts_with('[') || t.contains("[f32]") || t.contains("[i32]") || t.contains("[u32]")) {
+        "arrays and slices"
+    } else if any(&|t| t.contains("Quat") || t.contains("Affine") || t.contains("Vec3A") || t.contains("Mat3A")) {
+        "Quat, Affine and SIMD types are not in the subset"
+    } else if any(&|t| t.contains("impl") || t.contains("Fn")) {
+        "takes a closure"
+    } else {
+        "not written out yet"
+    }
+}
+
+fn ty_of(name: &str) -> Ty {
+    match name {
+        "Vec2" => Ty::Vec(2, Scalar::F32),
+        "Vec3" => Ty::Vec(3, Scalar::F32),
+        "Vec4" => Ty::Vec(4, Scalar::F32),
+        "IVec2" => Ty::Vec(2, Scalar::I32),
+        "IVec3" => Ty::Vec(3, Scalar::I32),
+        "IVec4" => Ty::Vec(4, Scalar::I32),
+        "UVec2" => Ty::Vec(2, Scalar::U32),
+        "UVec3" => Ty::Vec(3, Scalar::U32),
+        "UVec4" => Ty::Vec(4, Scalar::U32),
+        "Mat2" => Ty::Mat(2),
+        "Mat3" => Ty::Mat(3),
+        _ => Ty::Mat(4),
+    }
+}
+
+#[test]
+fn supported_glam_methods_have_glam_signatures_and_the_table_is_current() {
+    let src = glam_src();
+    let mut doc = String::from(
+        "# glam methods in ray programs\n\n\
+         Generated by `tests/tests/glam_coverage.rs` from the compiler's method table and glam's source \
+         (`RT_BLESS=1 cargo test -p rt-tests --test glam_coverage` rewrites it). Counted: every public \
+         method with a `self` receiver of an inherent `impl` of the type in glam; associated functions \
+         and std's scalar methods are not counted.\n\n",
+    );
+    let mut mismatches = Vec::new();
+    let (mut supported_total, mut total) = (0, 0);
+    let mut sections = String::new();
+    for (owner, file) in TYPES {
+        let ty = ty_of(owner);
+        let methods = glam_methods(owner, &src.join(file));
+        let mut yes = Vec::new();
+        let mut no = Vec::new();
+        for m in &methods {
+            match rt_compiler::lower::builtins::method_sig(&ty, &m.name) {
+                Some(sig) => {
+                    let ours: Vec<String> = sig.params.iter().map(Ty::to_string).collect();
+                    let ret = match &sig.ret {
+                        Ty::Tuple(ts) => format!("({})", ts.iter().map(Ty::to_string).collect::<Vec<_>>().join(",")),
+                        t => t.to_string(),
+                    };
+                    if ours != m.params || ret != m.ret {
+                        mismatches.push(format!(
+                            "{owner}::{}: glam ({}) -> {}, ours ({}) -> {ret}",
+                            m.name,
+                            m.params.join(", "),
+                            m.ret,
+                            ours.join(", ")
+                        ));
+                    }
+                    yes.push(m.name.clone());
+                }
+                None => no.push(format!("`{}` ({})", m.name, reason(m))),
+            }
+        }
+        supported_total += yes.len();
+        total += methods.len();
+        sections.push_str(&format!(
+            "## {owner}: {} of {}\n\nSupported: {}\n\nLeft out: {}\n\n",
+            yes.len(),
+            methods.len(),
+            yes.iter().map(|n| format!("`{n}`")).collect::<Vec<_>>().join(", "),
+            if no.is_empty() { "none".to_string() } else { no.join(", ") }
+        ));
+    }
+    doc.push_str(&format!("**{supported_total} of {total} methods supported.**\n\n{sections}"));
+    assert!(mismatches.is_empty(), "signatures that differ from glam's:\n{}", mismatches.join("\n"));
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs/glam_methods.md");
+    if std::env::var_os("RT_BLESS").is_some() {
+        std::fs::write(&path, &doc).unwrap();
+    }
+    let current = std::fs::read_to_string(&path).unwrap_or_default();
+    assert!(current == doc, "docs/glam_methods.md is out of date (RT_BLESS=1 to rewrite it)");
+}
