@@ -126,55 +126,37 @@ pub fn camera(loaded: &LoadedMesh, view: MeshView, aspect: f32) -> Camera {
 /// Where [`mesh_scene`] puts the key light: eight mesh radii from its
 /// centre along `view.key_direction`.
 pub fn key_light_position(loaded: &LoadedMesh, view: MeshView) -> Vec3 {
-    let radius = ((loaded.max - loaded.min).length() * 0.5).max(1e-6);
-    (loaded.min + loaded.max) * 0.5 + view.key_direction.normalize() * radius * 8.0
+    key_light_position_in((loaded.min, loaded.max), view)
+}
+
+/// [`key_light_position`] for bounds `(min, max)`.
+pub fn key_light_position_in((min, max): (Vec3, Vec3), view: MeshView) -> Vec3 {
+    let radius = ((max - min).length() * 0.5).max(1e-6);
+    (min + max) * 0.5 + view.key_direction.normalize() * radius * 8.0
 }
 
 /// A scene of `loaded` on a floor, framed from its bounds, `settings.spp`
 /// launches.
 pub fn mesh_scene(loaded: &LoadedMesh, settings: &Settings, view: MeshView) -> Result<Scene, Error> {
-    let (min, max) = (loaded.min, loaded.max);
-    let center = (min + max) * 0.5;
-    let radius = ((max - min).length() * 0.5).max(1e-6);
-    let (mut ctx, output) = Scene::start(settings, radius * 1e-4)?;
-    let ray_generation = ctx.create_program(&accumulating_camera::PROGRAM);
-    ctx.set_ray_generation_program(0, ray_generation)?;
-    let miss = ctx.create_program(&background::PROGRAM);
-    ctx.set_miss_program(RADIANCE_RAY, miss)?;
-    let shadow_miss = ctx.create_program(&shadow_miss::PROGRAM);
-    ctx.set_miss_program(SHADOW_RAY, shadow_miss)?;
-    ctx.set_var(Scope::Context, "bg_color", BACKGROUND)?;
-    camera(loaded, view, settings.aspect()).set_vars(&mut ctx, settings.aspect())?;
-    let accum = ctx.create_buffer_2d::<Vec4>(BufferType::InputOutput, settings.width, settings.height)?;
-    ctx.set_var(Scope::Context, "accum_buffer", accum)?;
-    let key = BasicLight { pos: key_light_position(loaded, view), color: Vec3::new(0.75, 0.7, 0.62), casts_shadow: 1 };
-    let lights = ctx.create_buffer(BufferType::Input, vec![key]);
-    ctx.set_var(Scope::Context, "lights", lights)?;
-    ctx.set_var(Scope::Context, "ambient_light_color", SKY)?;
-    ctx.set_var(Scope::Context, "ao_samples", AO_SAMPLES)?;
-    ctx.set_var(Scope::Context, "ao_radius", radius * 0.6)?;
-    ctx.set_var(Scope::Context, "ks", Vec3::splat(0.12))?;
-    ctx.set_var(Scope::Context, "phong_exp", 40.0f32)?;
+    mesh_scene_from(loaded, settings, view, camera(loaded, view, settings.aspect()))
+}
 
-    let shade = ctx.create_program(&occluded_shade::PROGRAM);
-    let block = ctx.create_program(&any_hit_shadow::PROGRAM);
-    let mut material = |kd: Vec3| -> Result<_, Error> {
-        let m = ctx.create_material();
-        ctx.set_closest_hit_program(m, RADIANCE_RAY, shade)?;
-        ctx.set_any_hit_program(m, SHADOW_RAY, block)?;
-        ctx.set_var(m, "kd", kd)?;
-        Ok(m)
-    };
-    let materials = loaded.materials.iter().map(|m| material(m.diffuse)).collect::<Result<Vec<_>, _>>()?;
-    let floor_material = material(FLOOR_KD)?;
+/// [`mesh_scene`] seen by `camera`.
+pub fn mesh_scene_from(
+    loaded: &LoadedMesh,
+    settings: &Settings,
+    view: MeshView,
+    camera: Camera,
+) -> Result<Scene, Error> {
+    let (min, max) = (loaded.min, loaded.max);
+    let (mut ctx, output) = Scene::start(settings, 1.0)?;
+    let lit = light_and_frame(&mut ctx, settings, (min, max), view, camera)?;
+    let materials =
+        loaded.materials.iter().map(|m| lit.material(&mut ctx, m.diffuse)).collect::<Result<Vec<_>, _>>()?;
+    let floor_material = lit.material(&mut ctx, FLOOR_KD)?;
     let model = ctx.create_triangles(loaded.mesh.clone())?;
     let model = ctx.create_geometry_instance(model, &materials)?;
-    let half = radius * 40.0;
-    let floor = ctx.create_triangles(quad(
-        Vec3::new(center.x - half, min.y, center.z - half),
-        Vec3::new(0.0, 0.0, 2.0 * half),
-        Vec3::new(2.0 * half, 0.0, 0.0),
-    ))?;
+    let floor = ctx.create_triangles(floor_quad(min, max))?;
     let floor = ctx.create_geometry_instance(floor, &[floor_material])?;
     let top = ctx.create_geometry_group(&[model, floor], Acceleration::new(Builder::Bvh))?;
     ctx.set_var(Scope::Context, "top_object", top)?;
@@ -182,6 +164,80 @@ pub fn mesh_scene(loaded: &LoadedMesh, settings: &Settings, view: MeshView) -> R
     let mut scene = Scene::new(ctx, output, settings);
     scene.frames = settings.spp;
     Ok(scene)
+}
+
+/// What [`light_and_frame`] made: the programs every material of a lit
+/// scene runs.
+pub struct Lit {
+    shade: rt_runtime::ProgramId,
+    block: rt_runtime::ProgramId,
+}
+
+impl Lit {
+    /// A material shaded by [`occluded_shade`] in diffuse colour `kd`
+    /// (blocking shadow rays).
+    pub fn material(&self, ctx: &mut rt_runtime::Context, kd: Vec3) -> Result<rt_runtime::MaterialId, Error> {
+        let m = ctx.create_material();
+        self.attach(ctx, m, kd)?;
+        Ok(m)
+    }
+
+    /// Makes an existing material (a loaded scene's) one of this scene's.
+    pub fn attach(&self, ctx: &mut rt_runtime::Context, m: rt_runtime::MaterialId, kd: Vec3) -> Result<(), Error> {
+        ctx.set_closest_hit_program(m, RADIANCE_RAY, self.shade)?;
+        ctx.set_any_hit_program(m, SHADOW_RAY, self.block)?;
+        ctx.set_var(m, "kd", kd)?;
+        Ok(())
+    }
+}
+
+/// Everything of [`mesh_scene`] but the geometry: its programs, the
+/// background, `camera`, the accumulation buffer, the key light and sky
+/// placed from `bounds`, and `scene_epsilon` from their size.
+pub fn light_and_frame(
+    ctx: &mut rt_runtime::Context,
+    settings: &Settings,
+    bounds: (Vec3, Vec3),
+    view: MeshView,
+    camera: Camera,
+) -> Result<Lit, Error> {
+    let (min, max) = bounds;
+    let radius = ((max - min).length() * 0.5).max(1e-6);
+    ctx.set_var(Scope::Context, "scene_epsilon", radius * 1e-4)?;
+    let ray_generation = ctx.create_program(&accumulating_camera::PROGRAM);
+    ctx.set_ray_generation_program(0, ray_generation)?;
+    let miss = ctx.create_program(&background::PROGRAM);
+    ctx.set_miss_program(RADIANCE_RAY, miss)?;
+    let shadow_miss = ctx.create_program(&shadow_miss::PROGRAM);
+    ctx.set_miss_program(SHADOW_RAY, shadow_miss)?;
+    ctx.set_var(Scope::Context, "bg_color", BACKGROUND)?;
+    camera.set_vars(ctx, settings.aspect())?;
+    let accum = ctx.create_buffer_2d::<Vec4>(BufferType::InputOutput, settings.width, settings.height)?;
+    ctx.set_var(Scope::Context, "accum_buffer", accum)?;
+    let key =
+        BasicLight { pos: key_light_position_in(bounds, view), color: Vec3::new(0.75, 0.7, 0.62), casts_shadow: 1 };
+    let lights = ctx.create_buffer(BufferType::Input, vec![key]);
+    ctx.set_var(Scope::Context, "lights", lights)?;
+    ctx.set_var(Scope::Context, "ambient_light_color", SKY)?;
+    ctx.set_var(Scope::Context, "ao_samples", AO_SAMPLES)?;
+    ctx.set_var(Scope::Context, "ao_radius", radius * 0.6)?;
+    ctx.set_var(Scope::Context, "ks", Vec3::splat(0.12))?;
+    ctx.set_var(Scope::Context, "phong_exp", 40.0f32)?;
+    let shade = ctx.create_program(&occluded_shade::PROGRAM);
+    let block = ctx.create_program(&any_hit_shadow::PROGRAM);
+    Ok(Lit { shade, block })
+}
+
+/// The floor under `[min, max]`: a square 80 radii wide at `min.y`.
+pub fn floor_quad(min: Vec3, max: Vec3) -> rt_runtime::TriangleMesh {
+    let center = (min + max) * 0.5;
+    let radius = ((max - min).length() * 0.5).max(1e-6);
+    let half = radius * 40.0;
+    quad(
+        Vec3::new(center.x - half, min.y, center.z - half),
+        Vec3::new(0.0, 0.0, 2.0 * half),
+        Vec3::new(2.0 * half, 0.0, 0.0),
+    )
 }
 
 /// The bunny.

@@ -21,7 +21,8 @@
 //! examples 1 to 7, [`scene`] the host side of every example (settings,
 //! camera, rendering to an [`Image`]), and [`mesh`] OBJ loading with
 //! line-precise errors; [`viewer`] is the live viewer's progressive
-//! rendering. Each module builds its scene with the public API of
+//! rendering, and [`model`] a user's OBJ or glTF file framed by the
+//! camera they ask for. Each module builds its scene with the public API of
 //! `rt-runtime` only.
 //!
 //! ```no_run
@@ -44,7 +45,10 @@ pub mod cornell;
 pub mod diffuse;
 pub mod envmap;
 pub mod instances;
-pub mod mesh;
+pub mod model;
+/// OBJ loading, moved to `rt-scene` ([`rt_scene::obj`]); kept here by its
+/// old name.
+pub use rt_scene::obj as mesh;
 pub mod normal;
 pub mod phong;
 pub mod reflections;

@@ -129,12 +129,27 @@ pub enum Error {
     Runtime(Box<RtError>),
     #[error(transparent)]
     Mesh(#[from] crate::mesh::MeshError),
+    /// A glTF file (or a file of no known format) that cannot be used.
+    #[error(transparent)]
+    Scene(#[from] rt_scene::SceneError),
     #[error("the {name} backend is not available: {why}")]
     BackendUnavailable { name: &'static str, why: String },
     #[error("{0}")]
     Settings(String),
     #[error("{path}: {problem}")]
     Io { path: String, problem: String },
+}
+
+impl Error {
+    /// Whether the input is at fault (a bad file, bad arguments, a backend
+    /// that is not there): the binaries exit 2 for these.
+    pub fn is_bad_input(&self) -> bool {
+        match self {
+            Error::Mesh(_) | Error::BackendUnavailable { .. } | Error::Settings(_) => true,
+            Error::Scene(e) => e.is_bad_input(),
+            Error::Runtime(_) | Error::Io { .. } => false,
+        }
+    }
 }
 
 impl From<RtError> for Error {
@@ -371,18 +386,31 @@ impl Image {
     /// `path` and renamed over it.
     pub fn save_png(&self, path: &Path) -> Result<(), Error> {
         let bytes = self.encode_png()?;
-        let io = |e: std::io::Error| Error::Io { path: path.display().to_string(), problem: e.to_string() };
-        let mut tmp = PathBuf::from(path);
-        tmp.set_file_name(format!(
-            ".{}.partial",
-            path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default()
-        ));
-        std::fs::write(&tmp, bytes).map_err(io)?;
-        std::fs::rename(&tmp, path).map_err(|e| {
-            let _ = std::fs::remove_file(&tmp);
-            io(e)
-        })
+        write_whole(path, bytes)
     }
+
+    /// Writes the picture as OpenEXR (float RGBA, values as they are), whole
+    /// or not at all as [`Image::save_png`] does.
+    pub fn save_exr(&self, path: &Path) -> Result<(), Error> {
+        let bytes = rt_runtime::image_out::encode_exr(self.width, self.height, &self.pixels)
+            .map_err(|e| Error::Io { path: path.display().to_string(), problem: e })?;
+        write_whole(path, bytes)
+    }
+}
+
+/// `bytes` written beside `path` and renamed over it.
+fn write_whole(path: &Path, bytes: Vec<u8>) -> Result<(), Error> {
+    let io = |e: std::io::Error| Error::Io { path: path.display().to_string(), problem: e.to_string() };
+    let mut tmp = PathBuf::from(path);
+    tmp.set_file_name(format!(
+        ".{}.partial",
+        path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default()
+    ));
+    std::fs::write(&tmp, bytes).map_err(io)?;
+    std::fs::rename(&tmp, path).map_err(|e| {
+        let _ = std::fs::remove_file(&tmp);
+        io(e)
+    })
 }
 
 /// A quad `corner, corner + a, corner + a + b, corner + b` as two triangles;

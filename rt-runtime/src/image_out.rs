@@ -1,5 +1,5 @@
-//! Writing output buffers as images: PNG (8-bit, clamped to `[0, 1]`) and
-//! Radiance HDR (float). Launch index `(0, 0)` is the bottom-left pixel, as
+//! Writing output buffers as images: PNG (8-bit, clamped to `[0, 1]`),
+//! Radiance HDR (float RGB) and OpenEXR (float RGBA, values as they are). Launch index `(0, 0)` is the bottom-left pixel, as
 //! in OptiX's samples, so rows are flipped on the way out.
 
 use crate::error::{Result, RtError};
@@ -51,6 +51,35 @@ impl Context {
             .encode(&rows, w as usize, h as usize)
             .map_err(|e| image_err(path, e))
     }
+}
+
+impl Context {
+    /// Saves a 2D output buffer as an OpenEXR image: 32-bit float RGBA,
+    /// every value as the buffer holds it (no clamping, no gamma), so a
+    /// reader gets back the same bits.
+    pub fn save_exr(&self, b: BufferId, path: impl AsRef<std::path::Path>) -> Result<()> {
+        let path = path.as_ref();
+        let (w, h, px) = rgba(self, b)?;
+        let bytes = encode_exr(w, h, &px).map_err(|e| image_err(path, e))?;
+        std::fs::write(path, bytes).map_err(|e| image_err(path, e))
+    }
+}
+
+/// RGBA pixels (row 0 at the bottom) as OpenEXR bytes (32-bit float RGBA,
+/// row 0 at the top).
+pub fn encode_exr(w: u32, h: u32, px: &[Vec4]) -> std::result::Result<Vec<u8>, String> {
+    let mut rows = Vec::with_capacity(px.len() * 4);
+    for y in (0..h).rev() {
+        for x in 0..w {
+            rows.extend(px[(y * w + x) as usize].to_array());
+        }
+    }
+    let image = image::Rgba32FImage::from_raw(w, h, rows).ok_or("the pixels do not fill the image")?;
+    let mut bytes = std::io::Cursor::new(Vec::new());
+    image::DynamicImage::ImageRgba32F(image)
+        .write_to(&mut bytes, image::ImageFormat::OpenExr)
+        .map_err(|e| e.to_string())?;
+    Ok(bytes.into_inner())
 }
 
 /// Writes RGBA pixels (row 0 at the bottom) as an 8-bit PNG.

@@ -1,7 +1,8 @@
-//! Shows an OBJ mesh (the Stanford bunny by default) in a window, the way
-//! `render` draws it, refined sample by sample while the camera is still.
+//! Shows an OBJ or glTF model (the Stanford bunny by default) in a window,
+//! the way `render` draws it, refined sample by sample while the camera is
+//! still.
 //!
-//!     cargo run --release -p examples --bin viewer -- [MESH.obj]
+//!     cargo run --release -p examples --bin viewer -- [MODEL.{obj,gltf,glb}] [--up z]
 //!
 //! Left-drag orbits, the wheel zooms, W/A/S/D walk, Q/E go down and up, R
 //! resets the camera, Esc quits. The title says the frame rate, the rays
@@ -19,7 +20,7 @@
 
 use clap::Parser;
 use examples::viewer::{self, Progressive};
-use examples::{BackendChoice, Camera, Error, Image, Settings, mesh, scene};
+use examples::{BackendChoice, Camera, Error, Image, Settings, scene};
 use std::collections::HashSet;
 use std::num::NonZeroU32;
 use std::path::PathBuf;
@@ -33,12 +34,16 @@ use winit::event_loop::{ActiveEventLoop, EventLoop};
 use winit::keyboard::{KeyCode, PhysicalKey};
 use winit::window::{Window, WindowId};
 
-/// Show an OBJ mesh in a window, refined progressively.
+/// Show an OBJ or glTF model in a window, refined progressively.
 #[derive(Parser, Debug)]
 #[command(version, about)]
 struct Args {
-    /// The OBJ file (default: the Stanford bunny of the shared scenes).
+    /// The OBJ, glTF or GLB file (default: the Stanford bunny of the shared
+    /// scenes); a glTF scene is shown as one mesh, its instances baked.
     mesh: Option<PathBuf>,
+    /// The model's up axis (glTF's is y; scans are often z).
+    #[arg(long, value_enum, default_value_t = examples::model::UpAxis::Y)]
+    up: examples::model::UpAxis,
     /// The window's inner size in pixels.
     #[arg(long, value_parser = parse_size, default_value = "512x384")]
     size: (u32, u32),
@@ -103,16 +108,19 @@ enum Failure {
 
 impl From<Error> for Failure {
     fn from(e: Error) -> Failure {
-        match e {
-            Error::Mesh(_) | Error::BackendUnavailable { .. } | Error::Settings(_) => Failure::Input(e),
-            other => Failure::Other(other.to_string()),
-        }
+        if e.is_bad_input() { Failure::Input(e) } else { Failure::Other(e.to_string()) }
     }
 }
 
 fn run(args: &Args) -> Result<(), Failure> {
     let path = args.mesh.clone().unwrap_or_else(|| scene::shared_scene("stanford-bunny.obj"));
-    let loaded = mesh::load_obj(&path).map_err(Error::from)?;
+    // glTF scenes are shown flattened into one world-space mesh (the
+    // viewer's scene is `bunny::mesh_scene`'s).
+    let (mut loaded, _) = rt_scene::load_flat(&path).map_err(|e| match e {
+        rt_scene::SceneError::Obj(e) => Error::Mesh(e),
+        e => Error::Scene(e),
+    })?;
+    examples::model::turn(&mut loaded, args.up.to_y_up());
     for warning in &loaded.warnings {
         eprintln!("viewer: warning: {warning}");
     }

@@ -113,8 +113,8 @@ pub fn enum_variable(#[var] shape: Shape, #[var] channel: Channel, #[var] mut ou
 #[test]
 fn enum_variables_are_set_from_the_host() {
     let mut h = Harness::new();
-    for ctx in [&mut h.cpu, &mut h.gpu] {
-        let backend = ctx.backend();
+    for ctx in std::iter::once(&mut h.cpu).chain(&mut h.gpus) {
+        let backend = (ctx.backend(), ctx.traversal_setting());
         let p = ctx.create_program(&enum_variable::PROGRAM);
         let out = ctx.create_buffer(BufferType::Output, vec![0u32; 1]);
         ctx.set_var(p, "out", out).unwrap();

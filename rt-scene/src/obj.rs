@@ -8,6 +8,9 @@
 //! indices that are zero or out of range, faces of fewer than three
 //! vertices, each with its line. What it passes, `tobj` loads (triangulating
 //! polygons); a mesh with no triangles is refused after loading.
+//!
+//! (Moved here from the examples crate, where `examples::mesh` re-exports
+//! it, so the `render` binary, the examples and users share one loader.)
 
 use glam::Vec3;
 use rt_runtime::TriangleMesh;
@@ -384,6 +387,26 @@ pub fn object_vertices(text: &str, name: &str) -> Vec<Vec3> {
 mod tests {
     use super::*;
 
+    /// A unit cube, four vertices per face (so every face is flat).
+    fn unit_cube() -> TriangleMesh {
+        let mut mesh = TriangleMesh::default();
+        for (n, t1, t2) in [
+            (Vec3::X, Vec3::Y, Vec3::Z),
+            (-Vec3::X, Vec3::Z, Vec3::Y),
+            (Vec3::Y, Vec3::Z, Vec3::X),
+            (-Vec3::Y, Vec3::X, Vec3::Z),
+            (Vec3::Z, Vec3::X, Vec3::Y),
+            (-Vec3::Z, Vec3::Y, Vec3::X),
+        ] {
+            let base = mesh.positions.len() as u32;
+            for (s1, s2) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
+                mesh.positions.push((n + t1 * s1 + t2 * s2) * 0.5);
+            }
+            mesh.indices.extend([[base, base + 1, base + 2], [base, base + 2, base + 3]]);
+        }
+        mesh
+    }
+
     fn load(text: &str) -> Result<LoadedMesh, MeshError> {
         parse_obj(text, "test.obj", None)
     }
@@ -429,7 +452,7 @@ mod tests {
 
     #[test]
     fn the_cornell_box_has_its_materials_and_a_commented_out_light() {
-        let path = crate::scene::shared_scene("cornell_box.obj");
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/scenes/cornell_box.obj");
         let m = load_obj(&path).unwrap();
         assert_eq!(m.mesh.indices.len(), 34, "17 quads");
         let names: Vec<&str> = m.materials.iter().map(|m| m.name.as_str()).collect();
@@ -451,7 +474,7 @@ mod tests {
 
     #[test]
     fn crease_normals_keep_a_cube_flat_and_smooth_a_gentle_fold() {
-        let cube = crate::scene::oriented_box(Vec3::ZERO, Vec3::ONE, 0.0);
+        let cube = unit_cube();
         let flat = with_crease_normals(cube.clone(), CREASE_DEGREES);
         for (t, tri) in flat.indices.iter().enumerate() {
             let [a, b, c] = tri.map(|i| flat.positions[i as usize]);

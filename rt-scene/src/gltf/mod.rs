@@ -1,0 +1,277 @@
+//! glTF 2.0 (`.gltf` with external or embedded buffers, and `.glb`) read
+//! into an [`Asset`]: plain data, no context yet ([`crate::build`] makes
+//! the graph of it).
+//!
+//! What is read: the default scene's node hierarchy (or the first scene's,
+//! or every root node's when there are no scenes), each node's world matrix
+//! (parent times local, TRS or matrix); every mesh a node uses, once, with
+//! its primitives ([`mesh`]); materials' base colour factor and texture,
+//! metallic and roughness factors and emissive factor; the first
+//! perspective camera met in the hierarchy; `KHR_lights_punctual` lights.
+//! What is ignored is listed in [`Asset::warnings`]: skins, morph targets,
+//! animations, orthographic cameras, texture sets other than 0, textures in
+//! formats this build does not decode (only PNG is enabled).
+//!
+//! Problems are [`GltfError`]s naming the file and the object, never
+//! panics: the GLB header and every accessor's byte range are checked
+//! ([`buffers`]) before the `gltf` crate reads anything.
+
+pub(crate) mod buffers;
+mod mesh;
+
+pub use mesh::MeshData;
+
+use crate::error::GltfError;
+use crate::{Light, LightKind, MaterialInfo, SceneCamera, Texture};
+use glam::{Mat4, Vec3, Vec4};
+use std::path::Path;
+
+/// What a glTF file holds, read and checked.
+#[derive(Clone, Debug)]
+pub struct Asset {
+    /// Each mesh some node uses, once.
+    pub meshes: Vec<MeshData>,
+    /// Each node that shows a mesh: the index into `meshes` and the node's
+    /// world matrix.
+    pub instances: Vec<(usize, Mat4)>,
+    /// The document's materials, by glTF index.
+    pub materials: Vec<MaterialInfo>,
+    pub camera: Option<SceneCamera>,
+    pub lights: Vec<Light>,
+    /// What was in the file but is not used, one line each.
+    pub warnings: Vec<String>,
+}
+
+/// Names the file in errors.
+pub(crate) struct Reader {
+    file: String,
+}
+
+impl Reader {
+    pub(crate) fn error(&self, object: &str, problem: String) -> GltfError {
+        GltfError { file: self.file.clone(), object: Some(object.to_string()), problem }
+    }
+
+    pub(crate) fn file_error(&self, problem: String) -> GltfError {
+        GltfError { file: self.file.clone(), object: None, problem }
+    }
+}
+
+/// Deeper node hierarchies are refused (the `gltf` crate does not check
+/// for cycles).
+const MAX_DEPTH: usize = 256;
+
+/// Reads the glTF or GLB file at `path` (buffers and images relative to it).
+pub fn read(path: &Path) -> Result<Asset, GltfError> {
+    let r = Reader { file: path.display().to_string() };
+    let bytes = std::fs::read(path).map_err(|e| {
+        let why = if e.kind() == std::io::ErrorKind::NotFound { "no such file".to_string() } else { e.to_string() };
+        r.file_error(format!("cannot read the file: {why}"))
+    })?;
+    read_bytes(&r, &bytes, path.parent())
+}
+
+/// Reads glTF or GLB bytes; `file` names them in errors, relative URIs are
+/// looked up in `dir`.
+pub fn parse(bytes: &[u8], file: &str, dir: Option<&Path>) -> Result<Asset, GltfError> {
+    read_bytes(&Reader { file: file.to_string() }, bytes, dir)
+}
+
+fn read_bytes(r: &Reader, bytes: &[u8], dir: Option<&Path>) -> Result<Asset, GltfError> {
+    if bytes.starts_with(b"glTF") {
+        buffers::check_glb_header(r, bytes)?;
+    }
+    let gltf = gltf::Gltf::from_slice(bytes).map_err(|e| document_error(r, e))?;
+    let buffers = buffers::load_buffers(r, &gltf.document, gltf.blob.clone(), dir)?;
+    let doc = &gltf.document;
+    let mut asset = Asset {
+        meshes: Vec::new(),
+        instances: Vec::new(),
+        materials: Vec::new(),
+        camera: None,
+        lights: Vec::new(),
+        warnings: Vec::new(),
+    };
+    for material in doc.materials() {
+        asset.materials.push(read_material(r, &material, &buffers, dir, &mut asset.warnings)?);
+    }
+    let roots: Vec<gltf::Node> = match doc.default_scene().or_else(|| doc.scenes().next()) {
+        Some(scene) => scene.nodes().collect(),
+        None => {
+            let children: std::collections::HashSet<usize> =
+                doc.nodes().flat_map(|n| n.children().map(|c| c.index()).collect::<Vec<_>>()).collect();
+            doc.nodes().filter(|n| !children.contains(&n.index())).collect()
+        }
+    };
+    let mut mesh_slot = vec![None; doc.meshes().len()];
+    let mut stack: Vec<(gltf::Node, Mat4, usize)> = roots.into_iter().rev().map(|n| (n, Mat4::IDENTITY, 0)).collect();
+    while let Some((node, parent, depth)) = stack.pop() {
+        let object = format!("nodes[{}]", node.index());
+        if depth > MAX_DEPTH {
+            return Err(r.error(&object, format!("the node hierarchy is deeper than {MAX_DEPTH} (a cycle?)")));
+        }
+        let world = parent * Mat4::from_cols_array_2d(&node.transform().matrix());
+        if !world.is_finite() {
+            return Err(r.error(&object, "its transform is not finite".into()));
+        }
+        if let Some(mesh) = node.mesh() {
+            let slot = match mesh_slot[mesh.index()] {
+                Some(s) => s,
+                None => {
+                    asset.meshes.push(mesh::read_mesh(r, &mesh, &buffers)?);
+                    if mesh.primitives().any(|p| p.morph_targets().next().is_some()) {
+                        asset.warnings.push(format!("meshes[{}]: morph targets ignored", mesh.index()));
+                    }
+                    mesh_slot[mesh.index()] = Some(asset.meshes.len() - 1);
+                    asset.meshes.len() - 1
+                }
+            };
+            asset.instances.push((slot, world));
+        }
+        if node.skin().is_some() {
+            asset.warnings.push(format!("{object}: skin ignored (the mesh is shown in its bind pose)"));
+        }
+        if let Some(camera) = node.camera() {
+            read_camera(&object, &camera, world, &mut asset);
+        }
+        if let Some(light) = node.light() {
+            asset.lights.push(read_light(&light, world));
+        }
+        for child in node.children().collect::<Vec<_>>().into_iter().rev() {
+            stack.push((child, world, depth + 1));
+        }
+    }
+    if doc.animations().next().is_some() {
+        asset.warnings.push(format!("{} animations ignored", doc.animations().count()));
+    }
+    if asset.instances.is_empty() {
+        return Err(r.file_error("the scene shows no meshes".into()));
+    }
+    Ok(asset)
+}
+
+/// The `gltf` crate's refusal, as one line naming the object when it can.
+fn document_error(r: &Reader, e: gltf::Error) -> GltfError {
+    match e {
+        gltf::Error::Validation(errors) => {
+            let (path, why) = &errors[0];
+            let more =
+                if errors.len() > 1 { format!(" (and {} more problems)", errors.len() - 1) } else { String::new() };
+            r.error(&path.to_string(), format!("{why}{more}"))
+        }
+        gltf::Error::Binary(e) => r.file_error(format!("not a valid GLB file: {e}")),
+        gltf::Error::Deserialize(e) => r.file_error(format!("not valid glTF JSON: {e}")),
+        other => r.file_error(other.to_string()),
+    }
+}
+
+fn read_material(
+    r: &Reader,
+    material: &gltf::Material,
+    buffers: &[Vec<u8>],
+    dir: Option<&Path>,
+    warnings: &mut Vec<String>,
+) -> Result<MaterialInfo, GltfError> {
+    let index = material.index().expect("document materials have indices");
+    let pbr = material.pbr_metallic_roughness();
+    let object = format!("materials[{index}]");
+    let base_color_texture = match pbr.base_color_texture() {
+        None => None,
+        Some(info) => {
+            if info.tex_coord() != 0 {
+                warnings.push(format!("{object}: base colour texture uses TEXCOORD_{}; ignored", info.tex_coord()));
+                None
+            } else {
+                read_texture(r, &object, &info.texture(), buffers, dir, warnings)?
+            }
+        }
+    };
+    Ok(MaterialInfo {
+        name: material.name().map_or_else(|| object.clone(), str::to_string),
+        base_color: Vec4::from_array(pbr.base_color_factor()),
+        base_color_texture,
+        metallic: pbr.metallic_factor(),
+        roughness: pbr.roughness_factor(),
+        emissive: Vec3::from_array(material.emissive_factor()),
+    })
+}
+
+/// A texture's image decoded to linear RGBA (glTF colour textures are
+/// sRGB), or `None` with a warning for a format this build does not decode.
+fn read_texture(
+    r: &Reader,
+    material: &str,
+    texture: &gltf::Texture,
+    buffers: &[Vec<u8>],
+    dir: Option<&Path>,
+    warnings: &mut Vec<String>,
+) -> Result<Option<Texture>, GltfError> {
+    let image = texture.source();
+    let object = format!("images[{}]", image.index());
+    let bytes = match image.source() {
+        gltf::image::Source::View { view, .. } => {
+            let data = &buffers[view.buffer().index()];
+            let end = view.offset() + view.length();
+            data.get(view.offset()..end)
+                .ok_or_else(|| {
+                    r.error(&object, format!("bufferViews[{}] is out of range of its buffer", view.index()))
+                })?
+                .to_vec()
+        }
+        gltf::image::Source::Uri { uri, .. } => buffers::read_uri(r, &object, uri, dir)?,
+    };
+    let format = image::guess_format(&bytes).ok();
+    if format != Some(image::ImageFormat::Png) {
+        warnings.push(format!(
+            "{material}: {object} is {}, which this build does not decode (PNG only); base colour factor used alone",
+            format.map_or("not a known image format".to_string(), |f| format!("{f:?}"))
+        ));
+        return Ok(None);
+    }
+    let decoded = image::load_from_memory_with_format(&bytes, image::ImageFormat::Png)
+        .map_err(|e| r.error(&object, format!("the PNG does not decode: {e}")))?
+        .to_rgba32f();
+    let (width, height) = decoded.dimensions();
+    // 0 and 1 map to themselves exactly.
+    let linear = |c: f32| match c {
+        c if c <= 0.04045 => c / 12.92,
+        c if c >= 1.0 => c,
+        c => ((c + 0.055) / 1.055).powf(2.4),
+    };
+    let texels = decoded.pixels().map(|p| Vec4::new(linear(p[0]), linear(p[1]), linear(p[2]), p[3])).collect();
+    Ok(Some(Texture { width, height, texels }))
+}
+
+fn read_camera(object: &str, camera: &gltf::Camera, world: Mat4, asset: &mut Asset) {
+    let gltf::camera::Projection::Perspective(p) = camera.projection() else {
+        asset.warnings.push(format!("{object}: orthographic cameras[{}] ignored", camera.index()));
+        return;
+    };
+    if asset.camera.is_some() {
+        asset.warnings.push(format!("{object}: cameras[{}] ignored (the first camera is used)", camera.index()));
+        return;
+    }
+    let eye = world.transform_point3(Vec3::ZERO);
+    let forward = world.transform_vector3(-Vec3::Z).normalize_or(-Vec3::Z);
+    let up = world.transform_vector3(Vec3::Y).normalize_or(Vec3::Y);
+    asset.camera =
+        Some(SceneCamera { eye, forward, up, vfov_degrees: p.yfov().to_degrees(), aspect: p.aspect_ratio() });
+}
+
+fn read_light(light: &gltf::khr_lights_punctual::Light, world: Mat4) -> Light {
+    use gltf::khr_lights_punctual::Kind;
+    let kind = match light.kind() {
+        Kind::Directional => LightKind::Directional,
+        Kind::Point => LightKind::Point,
+        Kind::Spot { inner_cone_angle, outer_cone_angle } => LightKind::Spot { inner_cone_angle, outer_cone_angle },
+    };
+    Light {
+        name: light.name().map_or_else(|| format!("lights[{}]", light.index()), str::to_string),
+        kind,
+        color: Vec3::from_array(light.color()),
+        intensity: light.intensity(),
+        range: light.range(),
+        position: world.transform_point3(Vec3::ZERO),
+        direction: world.transform_vector3(-Vec3::Z).normalize_or(-Vec3::Z),
+    }
+}

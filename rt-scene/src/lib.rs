@@ -1,0 +1,266 @@
+//! # Scenes users already have
+//!
+//! [`load`] reads a glTF 2.0 file (`.gltf`, with external or embedded
+//! buffers, or `.glb`) or an OBJ with its `.mtl` files into a context's
+//! scene graph and returns the graph's top node, its materials and what it
+//! found ([`SceneInfo`]: counts, world bounds, the file's camera and
+//! lights, warnings for what it ignored). Add your own programs to the
+//! materials and launch:
+//!
+//! ```no_run
+//! # fn main() -> Result<(), Box<dyn std::error::Error>> {
+//! let mut ctx = rt_runtime::Context::new();
+//! let scene = rt_scene::load(&mut ctx, std::path::Path::new("model.glb"))?;
+//! for m in &scene.materials {
+//!     // ctx.set_closest_hit_program(m.id, 0, my_shader)?;
+//!     println!("{}: base colour {}", m.info.name, m.info.base_color);
+//! }
+//! ctx.set_var(rt_runtime::Scope::Context, "top_object", scene.top)?;
+//! println!("{} triangles in {:?}..{:?}", scene.info.triangles, scene.info.min, scene.info.max);
+//! # Ok(()) }
+//! ```
+//!
+//! ## The graph
+//! Each mesh is one geometry and one BVH, instanced by a `Transform` per
+//! node that shows it, all under one top `Group` ([`build`]): two levels,
+//! whatever the file's hierarchy.
+//!
+//! ## Materials as variables
+//! Every material carries the same variables, so one set of programs reads
+//! any loaded scene (OBJ materials fill them from `Kd` and `Ke`):
+//!
+//! | variable | type | glTF |
+//! | --- | --- | --- |
+//! | `base_color` | `Vec3` | `pbrMetallicRoughness.baseColorFactor` (rgb) |
+//! | `base_color_texture` | `Sampler2d` | `baseColorTexture` in linear RGB, or 1x1 white |
+//! | `metallic` | `f32` | `metallicFactor` |
+//! | `roughness` | `f32` | `roughnessFactor` |
+//! | `emissive` | `Vec3` | `emissiveFactor` |
+//!
+//! Triangles report `texcoord` (set 0) to hit programs that declare it.
+//!
+//! ## Errors
+//! Bad input is a [`SceneError`] naming the file and, for glTF, the object
+//! (`meshes[2].primitives[0]`) and the problem; nothing here panics on a
+//! file's contents.
+//!
+//! ## Why a crate of its own
+//! Loading pulls in file-format crates (`gltf`, `tobj`) that the runtime
+//! does not need to trace rays; keeping them out of `rt-runtime` keeps its
+//! build, its API and its review surface about ray tracing. The binaries,
+//! examples and benchmarks depend on this crate; a user who builds scenes
+//! by hand never compiles it.
+
+pub mod build;
+pub mod error;
+pub mod glb;
+pub mod gltf;
+pub mod obj;
+
+pub use error::{GltfError, SceneError};
+
+use glam::{Vec3, Vec4};
+use rt_runtime::{Context, MaterialId, NodeId};
+use std::path::Path;
+
+/// A scene added to a context.
+#[derive(Debug)]
+pub struct Loaded {
+    /// The graph's top node (set it as `top_object`).
+    pub top: NodeId,
+    /// The materials made, each with the variables of the table above.
+    pub materials: Vec<Material>,
+    pub info: SceneInfo,
+}
+
+/// One material of a loaded scene: its context handle and what it was made
+/// from.
+#[derive(Clone, Debug)]
+pub struct Material {
+    pub id: MaterialId,
+    pub info: MaterialInfo,
+}
+
+/// A material as a file describes it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MaterialInfo {
+    pub name: String,
+    /// Linear RGBA.
+    pub base_color: Vec4,
+    pub base_color_texture: Option<Texture>,
+    pub metallic: f32,
+    pub roughness: f32,
+    pub emissive: Vec3,
+}
+
+/// A decoded texture: linear RGBA texels, row 0 the image's top row (glTF's
+/// texture coordinate (0, 0)).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Texture {
+    pub width: u32,
+    pub height: u32,
+    pub texels: Vec<Vec4>,
+}
+
+/// What a loaded file holds.
+#[derive(Clone, Debug)]
+pub struct SceneInfo {
+    /// Distinct meshes (geometries and BVHs built).
+    pub meshes: usize,
+    /// Nodes that show a mesh.
+    pub instances: usize,
+    /// Triangles as seen, counting each instance.
+    pub triangles: usize,
+    /// Triangles stored, counting each mesh once.
+    pub unique_triangles: usize,
+    /// World-space bounds of everything shown.
+    pub min: Vec3,
+    pub max: Vec3,
+    /// The file's first perspective camera.
+    pub camera: Option<SceneCamera>,
+    /// `KHR_lights_punctual` lights, in world space.
+    pub lights: Vec<Light>,
+    /// What the file has that was ignored, one line each.
+    pub warnings: Vec<String>,
+}
+
+/// A file's perspective camera, in world space.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SceneCamera {
+    pub eye: Vec3,
+    /// Unit view direction.
+    pub forward: Vec3,
+    pub up: Vec3,
+    pub vfov_degrees: f32,
+    /// The aspect ratio the file asks for, if any.
+    pub aspect: Option<f32>,
+}
+
+/// A punctual light, in world space.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Light {
+    pub name: String,
+    pub kind: LightKind,
+    /// Linear RGB.
+    pub color: Vec3,
+    /// Candela (point, spot) or lux (directional).
+    pub intensity: f32,
+    pub range: Option<f32>,
+    pub position: Vec3,
+    /// Unit direction the light shines (directional, spot).
+    pub direction: Vec3,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum LightKind {
+    Directional,
+    Point,
+    Spot { inner_cone_angle: f32, outer_cone_angle: f32 },
+}
+
+/// Which loader a file needs, by extension.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Format {
+    Obj,
+    Gltf,
+}
+
+impl Format {
+    /// `.obj`, `.gltf` or `.glb` (any case).
+    pub fn of(path: &Path) -> Option<Format> {
+        let ext = path.extension()?.to_str()?.to_ascii_lowercase();
+        match ext.as_str() {
+            "obj" => Some(Format::Obj),
+            "gltf" | "glb" => Some(Format::Gltf),
+            _ => None,
+        }
+    }
+}
+
+/// Loads the scene at `path` into `ctx`, by its extension.
+pub fn load(ctx: &mut Context, path: &Path) -> Result<Loaded, SceneError> {
+    let file = path.display().to_string();
+    match Format::of(path) {
+        Some(Format::Obj) => build::build_obj(ctx, obj::load_obj(path)?, &file),
+        Some(Format::Gltf) => build::build_gltf(ctx, gltf::read(path)?, &file),
+        None => Err(SceneError::UnknownFormat { file }),
+    }
+}
+
+/// Loads the scene at `path` as one mesh in world space (every instance's
+/// triangles transformed and concatenated, material indices into one
+/// list): for code that takes an OBJ-style [`obj::LoadedMesh`].
+pub fn load_flat(path: &Path) -> Result<(obj::LoadedMesh, Option<SceneCamera>), SceneError> {
+    match Format::of(path) {
+        Some(Format::Obj) => Ok((obj::load_obj(path)?, None)),
+        Some(Format::Gltf) => {
+            let asset = gltf::read(path)?;
+            let camera = asset.camera;
+            Ok((flatten(asset), camera))
+        }
+        None => Err(SceneError::UnknownFormat { file: path.display().to_string() }),
+    }
+}
+
+/// `asset`'s instances baked into one world-space mesh.
+pub fn flatten(asset: gltf::Asset) -> obj::LoadedMesh {
+    use rt_runtime::TriangleMesh;
+    let mut mesh = TriangleMesh { normals: Some(Vec::new()), material_indices: Some(Vec::new()), ..Default::default() };
+    let mut materials: Vec<obj::MeshMaterial> = Vec::new();
+    let mut slot_of: Vec<Option<usize>> = Vec::new();
+    let mut default_slot = None;
+    let (mut min, mut max) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
+    for &(m, world) in &asset.instances {
+        let data = &asset.meshes[m];
+        let normal_matrix = world.inverse().transpose();
+        let base = mesh.positions.len() as u32;
+        for p in &data.mesh.positions {
+            let q = world.transform_point3(*p);
+            min = min.min(q);
+            max = max.max(q);
+            mesh.positions.push(q);
+        }
+        let normals = data.mesh.normals.as_deref().unwrap_or(&[]);
+        mesh.normals
+            .as_mut()
+            .expect("set above")
+            .extend(normals.iter().map(|n| normal_matrix.transform_vector3(*n).normalize_or(Vec3::Y)));
+        let flip = world.determinant() < 0.0;
+        for t in &data.mesh.indices {
+            let [a, b, c] = t.map(|i| i + base);
+            mesh.indices.push(if flip { [a, c, b] } else { [a, b, c] });
+        }
+        let slots: Vec<u32> = data
+            .materials
+            .iter()
+            .map(|gm| {
+                let slot = match gm {
+                    Some(i) => {
+                        if slot_of.len() <= *i {
+                            slot_of.resize(*i + 1, None);
+                        }
+                        *slot_of[*i].get_or_insert_with(|| {
+                            materials.push(mesh_material(&asset.materials[*i]));
+                            materials.len() - 1
+                        })
+                    }
+                    None => *default_slot.get_or_insert_with(|| {
+                        materials.push(mesh_material(&MaterialInfo::default()));
+                        materials.len() - 1
+                    }),
+                };
+                slot as u32
+            })
+            .collect();
+        let local = data.mesh.material_indices.as_deref().unwrap_or(&[]);
+        mesh.material_indices
+            .as_mut()
+            .expect("set above")
+            .extend((0..data.mesh.indices.len()).map(|t| slots[local.get(t).copied().unwrap_or(0) as usize]));
+    }
+    obj::LoadedMesh { mesh, materials, min, max, warnings: asset.warnings }
+}
+
+fn mesh_material(m: &MaterialInfo) -> obj::MeshMaterial {
+    obj::MeshMaterial { name: m.name.clone(), diffuse: m.base_color.truncate(), emission: m.emissive }
+}
