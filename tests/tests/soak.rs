@@ -202,8 +202,14 @@ fn soak(backend: Backend, n: usize) -> (i64, Option<i64>) {
     (rss, alloc)
 }
 
+/// The process's resident memory is what the soak measures: the other test
+/// of this binary (wgpu pipelines compiled by lavapipe's LLVM) must not run
+/// beside it. Each test holds this while it runs.
+static ALONE: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
 #[test]
 fn two_thousand_changing_launches_keep_memory_flat_and_images_fresh() {
+    let _alone = ALONE.lock().unwrap_or_else(|e| e.into_inner());
     let n: usize = std::env::var("RT_SOAK").ok().and_then(|v| v.parse().ok()).unwrap_or(2000);
     for backend in [Backend::Cpu, Backend::Wgpu] {
         let t = std::time::Instant::now();
@@ -228,6 +234,7 @@ fn two_thousand_changing_launches_keep_memory_flat_and_images_fresh() {
 /// finite reciprocal (`rt_safe_inv`).
 #[test]
 fn axis_aligned_rays_through_a_group_hit_on_wgpu_as_on_the_cpu() {
+    let _alone = ALONE.lock().unwrap_or_else(|e| e.into_inner());
     let state = State { tilt: 0.0, transform: Mat4::IDENTITY, ..State::at(0) };
     let cpu = Rig::new(Backend::Cpu, None, &state).image();
     let gpu = Rig::new(Backend::Wgpu, None, &state).image();
