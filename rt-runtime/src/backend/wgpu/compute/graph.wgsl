@@ -21,20 +21,9 @@ var<private> rt_g_w2o: array<mat4x4<f32>, RT_LEVELS>;
 var<private> rt_g_org: array<vec3<f32>, RT_LEVELS>;
 var<private> rt_g_dir: array<vec3<f32>, RT_LEVELS>;
 var<private> rt_g_inv: array<vec3<f32>, RT_LEVELS>;
-// The committed hit's transforms (instances under transform entries have
-// no single matrix in the instance table).
-var<private> rt_h_o2w: mat4x4<f32>;
-var<private> rt_h_w2o: mat4x4<f32>;
-
-fn rt_commit_xform() {
-    rt_h_o2w = rt_o2w;
-    rt_h_w2o = rt_w2o;
-}
-
-fn rt_hit_xform() {
-    rt_o2w = rt_h_o2w;
-    rt_w2o = rt_h_w2o;
-}
+// The committed hit's transforms are kept (KEPT_XFORM in kernel/mod.rs):
+// instances under transform entries have no single matrix in the
+// instance table.
 
 fn rt_enter_level(level: u32, o2w: mat4x4<f32>, w2o: mat4x4<f32>) {
     rt_g_o2w[level] = o2w;

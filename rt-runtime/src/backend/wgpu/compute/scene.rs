@@ -134,16 +134,7 @@ pub(crate) fn push_mat(out: &mut Vec<u32>, m: Mat4) {
 /// by it and dropped, so only chains of more than four masks none of
 /// which contains another are refused.
 pub(crate) fn visibility(masks: &[u8], node: NodeId) -> Result<u32> {
-    // `a` within `b`: a ray sharing a bit with `a` shares one with `b`.
-    let within = |a: u8, b: u8| a & !b == 0;
-    let mut kept: Vec<u8> = Vec::new();
-    for &m in masks {
-        if kept.iter().any(|&k| within(k, m)) {
-            continue;
-        }
-        kept.retain(|&k| !within(m, k));
-        kept.push(m);
-    }
+    let mut kept = kept_masks(masks);
     if kept.len() > 4 {
         return Err(RtError::BadTransform {
             problem: format!(
@@ -156,6 +147,22 @@ pub(crate) fn visibility(masks: &[u8], node: NodeId) -> Result<u32> {
     }
     kept.resize(4, 0xff);
     Ok(u32::from_le_bytes([kept[0], kept[1], kept[2], kept[3]]))
+}
+
+/// The masks of a chain that a ray must each share a bit with, less those
+/// implied by another: a mask containing another (`a & !b == 0`: a ray
+/// sharing a bit with `a` shares one with `b`) is dropped.
+pub(crate) fn kept_masks(masks: &[u8]) -> Vec<u8> {
+    let within = |a: u8, b: u8| a & !b == 0;
+    let mut kept: Vec<u8> = Vec::new();
+    for &m in masks {
+        if kept.iter().any(|&k| within(k, m)) {
+            continue;
+        }
+        kept.retain(|&k| !within(m, k));
+        kept.push(m);
+    }
+    kept
 }
 
 /// Follows transforms down to a geometry group: (group, object-to-world,

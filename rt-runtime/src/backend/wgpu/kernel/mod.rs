@@ -60,6 +60,22 @@ fn rt_hit_xform() {
 fn rt_search_graph(object: u32, mask: u32) {}
 ";
 
+/// What kernels whose hits carry their own transforms link (the graph
+/// traversal: instances under transform entries; ray queries: the committed
+/// intersection's matrices): the committed hit's transforms, kept.
+const KEPT_XFORM: &str = "
+var<private> rt_h_o2w: mat4x4<f32>;
+var<private> rt_h_w2o: mat4x4<f32>;
+fn rt_commit_xform() {
+    rt_h_o2w = rt_o2w;
+    rt_h_w2o = rt_w2o;
+}
+fn rt_hit_xform() {
+    rt_o2w = rt_h_o2w;
+    rt_w2o = rt_h_w2o;
+}
+";
+
 /// A program the kernel may dispatch to, with its case id (> 0).
 #[derive(Clone, Copy)]
 pub struct KernelProgram {
@@ -236,7 +252,8 @@ pub fn generate(spec: &KernelSpec) -> Result<Generated> {
     ));
     out.push_str(HITS);
     if spec.ray_query_slots > 0 {
-        // The ray-query loop: it defines rt_search and the hit transforms.
+        // The ray-query loop: it defines rt_search.
+        out.push_str(KEPT_XFORM);
         out.push_str(&super::rayquery::wgsl::search_wgsl(spec.ray_query_slots));
     } else {
         out.push_str(TRAVERSE);
@@ -245,6 +262,7 @@ pub fn generate(spec: &KernelSpec) -> Result<Generated> {
                 "\nconst RT_LEVELS: u32 = {}u;\nconst RT_GRAPH_STACK: u32 = {}u;\nvar<private> rt_s_payload: u32;\n",
                 spec.graph_levels, spec.graph_stack
             ));
+            out.push_str(KEPT_XFORM);
             out.push_str(GRAPH);
         } else {
             out.push_str(TWO_LEVEL);

@@ -7,7 +7,7 @@
 //! cannot be flattened: such scenes keep the compute traversal
 //! ([`Unsupported`] says which node and why).
 
-use crate::backend::wgpu::compute::scene::instances;
+use crate::backend::wgpu::compute::scene::{instances, kept_masks};
 use crate::error::Result;
 use crate::scene::{GeometryKind, NodeId, NodeKind, Scene};
 use crate::vars::{VarScope, VarValue};
@@ -132,16 +132,7 @@ pub(crate) fn flatten(scene: &Scene) -> Result<std::result::Result<Flat, Unsuppo
 /// one: masks containing another are implied by it (as in the compute
 /// traversal's visibility words), so one mask must remain.
 fn one_mask(masks: &[u8]) -> Option<u8> {
-    let within = |a: u8, b: u8| a & !b == 0;
-    let mut kept: Vec<u8> = Vec::new();
-    for &m in masks {
-        if kept.iter().any(|&k| within(k, m)) {
-            continue;
-        }
-        kept.retain(|&k| !within(m, k));
-        kept.push(m);
-    }
-    match kept[..] {
+    match kept_masks(masks)[..] {
         [] => Some(0xff),
         [m] => Some(m),
         _ => None,

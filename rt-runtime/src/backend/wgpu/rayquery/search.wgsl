@@ -18,18 +18,8 @@
 // part, the TLAS instance's custom data) where the part's geometry
 // instances start, one word per BLAS geometry index.
 
-var<private> rt_h_o2w: mat4x4<f32>;
-var<private> rt_h_w2o: mat4x4<f32>;
-
-fn rt_commit_xform() {
-    rt_h_o2w = rt_o2w;
-    rt_h_w2o = rt_w2o;
-}
-
-fn rt_hit_xform() {
-    rt_o2w = rt_h_o2w;
-    rt_w2o = rt_h_w2o;
-}
+// The committed hit's transforms are kept (KEPT_XFORM in kernel/mod.rs):
+// a triangle's come from the committed intersection.
 
 fn rt_query_m43(m: mat4x3<f32>) -> mat4x4<f32> {
     return mat4x4<f32>(vec4<f32>(m[0], 0.0), vec4<f32>(m[1], 0.0), vec4<f32>(m[2], 0.0), vec4<f32>(m[3], 1.0));
