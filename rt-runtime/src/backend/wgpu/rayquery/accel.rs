@@ -282,7 +282,8 @@ fn build_entry<'a>(blas: &'a wgpu::Blas, input: &'a BlasInput) -> wgpu::BlasBuil
     wgpu::BlasBuildEntry { blas, geometry }
 }
 
-/// Fails when a BLAS of `group` would pass the adapter's limits.
+/// Fails when a BLAS of `group` would pass the adapter's limits (its
+/// geometries, and its primitives over all of them).
 fn check_blas(group: NodeId, geometries: usize, primitives: u64, limits: &wgpu::Limits, adapter: &str) -> Result<()> {
     let over = |what, count: u64, limit: u32| RtError::AccelerationLimit {
         node: group.index(),
@@ -315,7 +316,7 @@ fn triangle_blas(
     let mut primitives = 0u64;
     for &gi in gis {
         let Some(mesh) = instance_mesh(scene, gi) else { continue };
-        primitives = primitives.max(mesh.indices.len() as u64);
+        primitives += mesh.indices.len() as u64;
         let geometry_flags = if opaque(scene, gi) {
             wgpu::AccelerationStructureGeometryFlags::OPAQUE
         } else {
@@ -352,9 +353,10 @@ fn triangle_blas(
 }
 
 /// The BLAS of group `g`'s custom-primitive geometry instances `gis`: each
-/// primitive's box from its bounding-box program. A box with a NaN or an
-/// infinite bound is never hit (as in the compute traversal): it is
-/// written as Vulkan's inactive primitive (a NaN minimum). None when no
+/// primitive's box from its bounding-box program (the acceleration build
+/// refused boxes with a NaN, infinite or inverted bound as
+/// `RtError::BadBounds`; an empty box, a primitive that can never be hit,
+/// is written as Vulkan's inactive primitive: a NaN minimum). None when no
 /// instance has a primitive.
 fn box_blas(
     device: &wgpu::Device,
@@ -370,7 +372,7 @@ fn box_blas(
     let mut primitives = 0u64;
     for &gi in gis {
         let (_, bounds, _) = prim_bounds(scene, &[GeometryInstanceId(gi)])?;
-        primitives = primitives.max(bounds.len() as u64);
+        primitives += bounds.len() as u64;
         let mut words: Vec<f32> = Vec::with_capacity(bounds.len().max(1) * 6);
         for b in &bounds {
             if b.min.is_finite() && b.max.is_finite() && b.min.cmple(b.max).all() {
