@@ -1,5 +1,6 @@
 //! Embree 3 as a peer: `libembree3` loaded at run time (so building the
-//! bench never needs it), single rays through `rtcIntersect1`.
+//! bench never needs it), single rays through `rtcIntersect1` and packets
+//! of 16 through `rtcIntersect16`.
 //!
 //! The declarations below follow Debian's Embree 3.13 headers
 //! (`/usr/include/embree3`), built with `RTC_MAX_INSTANCE_LEVEL_COUNT` 1 and
@@ -20,6 +21,7 @@ const RTC_FORMAT_FLOAT3: i32 = 0x9003;
 const RTC_BUILD_QUALITY_MEDIUM: i32 = 1;
 const RTC_DEVICE_PROPERTY_VERSION: i32 = 0;
 const RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT: i32 = 0;
+const RTC_INTERSECT_CONTEXT_FLAG_COHERENT: i32 = 1;
 const RTC_INVALID_GEOMETRY_ID: u32 = u32::MAX;
 
 #[repr(C, align(16))]
@@ -52,6 +54,28 @@ struct RtcRayHit {
     ray: RtcRay,
     hit: RtcHit,
 }
+
+/// `RTCRayHit16`: sixteen rays and hits, one array per field.
+#[repr(C, align(64))]
+#[derive(Clone, Copy)]
+struct RtcRayHit16 {
+    org: [[f32; 16]; 3],
+    tnear: [f32; 16],
+    dir: [[f32; 16]; 3],
+    time: [f32; 16],
+    tfar: [f32; 16],
+    mask: [u32; 16],
+    id: [u32; 16],
+    flags: [u32; 16],
+    ng: [[f32; 16]; 3],
+    u: [f32; 16],
+    v: [f32; 16],
+    prim_id: [u32; 16],
+    geom_id: [u32; 16],
+    inst_id: [u32; 16],
+}
+
+const _: () = assert!(std::mem::size_of::<RtcRayHit16>() == 20 * 64);
 
 /// `RTCIntersectContext` for `RTC_MAX_INSTANCE_LEVEL_COUNT` 1: no
 /// `instStackSize`, no `minWidthDistanceFactor`.
@@ -92,6 +116,7 @@ struct Api {
     attach_geometry: unsafe extern "C" fn(Handle, Handle) -> u32,
     release_geometry: unsafe extern "C" fn(Handle),
     intersect1: unsafe extern "C" fn(Handle, *mut RtcIntersectContext, *mut RtcRayHit),
+    intersect16: unsafe extern "C" fn(*const i32, Handle, *mut RtcIntersectContext, *mut RtcRayHit16),
 }
 
 /// A loaded Embree and one device.
@@ -195,6 +220,7 @@ impl Embree {
                 attach_geometry: sym!(b"rtcAttachGeometry\0"),
                 release_geometry: sym!(b"rtcReleaseGeometry\0"),
                 intersect1: sym!(b"rtcIntersect1\0"),
+                intersect16: sym!(b"rtcIntersect16\0"),
             }
         };
         // Never unloaded: TBB's worker threads outlive the device, and
@@ -308,6 +334,44 @@ impl Scene<'_> {
         // aligned ray/hit.
         unsafe { (self.embree.api.intersect1)(self.scene, &mut ctx, &mut rh) };
         (rh.hit.geom_id != RTC_INVALID_GEOMETRY_ID).then_some((rh.ray.tfar, rh.hit.prim_id))
+    }
+}
+
+/// Up to sixteen rays for [`Scene::intersect16`]: origin, direction, tmin.
+pub type Rays16<'r> = &'r [(Vec3, Vec3, f32)];
+
+impl Scene<'_> {
+    /// The closest hits of up to sixteen rays in one `rtcIntersect16` call
+    /// (`coherent`: the context's coherent flag, for primary rays), in
+    /// `out` by ray.
+    pub fn intersect16(&self, rays: Rays16, coherent: bool, out: &mut [Option<(f32, u32)>]) {
+        assert!(rays.len() <= 16 && out.len() >= rays.len());
+        let mut valid = [0i32; 16];
+        // SAFETY: all-zero is a valid value of this plain-data struct.
+        let mut rh: RtcRayHit16 = unsafe { std::mem::zeroed() };
+        for (i, (o, d, tmin)) in rays.iter().enumerate() {
+            valid[i] = -1;
+            for k in 0..3 {
+                rh.org[k][i] = o[k];
+                rh.dir[k][i] = d[k];
+            }
+            rh.tnear[i] = *tmin;
+            rh.tfar[i] = f32::INFINITY;
+            rh.mask[i] = u32::MAX;
+            rh.geom_id[i] = RTC_INVALID_GEOMETRY_ID;
+            rh.prim_id[i] = RTC_INVALID_GEOMETRY_ID;
+            rh.inst_id[i] = RTC_INVALID_GEOMETRY_ID;
+        }
+        let mut ctx = RtcIntersectContext::new();
+        if coherent {
+            ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+        }
+        // SAFETY: a committed scene, an initialised context, a 64-byte
+        // aligned packet and a valid mask of 16 ints.
+        unsafe { (self.embree.api.intersect16)(valid.as_ptr(), self.scene, &mut ctx, &mut rh) };
+        for (i, o) in out.iter_mut().enumerate().take(rays.len()) {
+            *o = (rh.geom_id[i] != RTC_INVALID_GEOMETRY_ID).then_some((rh.tfar[i], rh.prim_id[i]));
+        }
     }
 }
 

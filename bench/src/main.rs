@@ -431,7 +431,14 @@ fn bunny_primary(args: &Args, bunny: &scenes::BenchScene, width: u32, height: u3
 struct SceneFigures {
     cpu: Option<f64>,
     obvhs: Option<f64>,
+    /// Embree's best mode: the faster of `embree1` and `embree16`.
     embree: Option<f64>,
+    /// `rtcIntersect1` (single rays) and `rtcIntersect16` (4x4 tiles).
+    embree1: Option<f64>,
+    embree16: Option<f64>,
+    /// The CPU backend's tree and walk without its programs, and its rays.
+    walk: Option<f64>,
+    walk_rays: u64,
     wgpu: Option<f64>,
     handwritten: Option<f64>,
     /// Rays per CPU second of the process (lavapipe's threads), which
@@ -510,7 +517,16 @@ fn measure_scene(
 
     // Traversal, interleaved so load from elsewhere spreads over all sides.
     let (mut ours, mut theirs, mut emb, mut our_prepare) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
-    let (mut our_rays, mut obvhs_run, mut embree_run) = (0, None, None);
+    let mut emb16 = Vec::new();
+    let (mut our_rays, mut obvhs_run, mut embree_run, mut embree16_run) = (0, None, None, None);
+    // The CPU backend's walk alone (its tree, no programs): how much of
+    // the gap to Embree is traversal and how much the programs around it.
+    let walk_tree = (args.backends.iter().any(|b| b == "cpu")).then(|| {
+        let flat: Vec<[glam::Vec3; 3]> = tris.iter().map(|t| [t.v0, t.v1, t.v2].map(glam::Vec3::from)).collect();
+        rt_runtime::accel::wide::testing::Triangles::new(flat)
+    });
+    let simd = rt_runtime::accel::CpuSimd::current();
+    let mut walks = Vec::new();
     for _ in 0..reps {
         if let Some(ctx) = cpu_ctx.as_mut() {
             match ctx.launch(0, width, height) {
@@ -525,6 +541,13 @@ fn measure_scene(
                 }
             }
         }
+        if let Some(t) = &walk_tree {
+            let w = peers::trace_ao(&tris, cam, width, height, |o, d, tmin| {
+                t.closest(simd, o, d, tmin, f32::INFINITY).map(|h| (h.0, h.1))
+            });
+            walks.push(w.time);
+            fig.walk_rays = w.rays;
+        }
         let o = peers::obvhs_ao(&bvh, &tris, cam, width, height);
         theirs.push(o.time);
         obvhs_run = Some(o);
@@ -532,9 +555,16 @@ fn measure_scene(
             let e = peers::trace_ao(&tris, cam, width, height, |o, d, tmin| s.intersect(o, d, tmin));
             emb.push(e.time);
             embree_run = Some(e);
+            let e =
+                peers::trace_ao16(&tris, cam, width, height, |rays, coherent, out| s.intersect16(rays, coherent, out));
+            emb16.push(e.time);
+            embree16_run = Some(e);
         }
     }
     let obvhs_run = obvhs_run.expect("reps >= 1");
+    if !walks.is_empty() {
+        fig.walk = Some(mrays(fig.walk_rays, median(walks)));
+    }
     let rays = j.child("rays");
     rays.set("obvhs", obvhs_run.rays);
     fig.obvhs = Some(mrays(obvhs_run.rays, median(theirs)));
@@ -545,8 +575,19 @@ fn measure_scene(
         j.set("cpu_repeat_prepare_ms", ms(median(our_prepare)));
         j.child("rays").set("cpu", our_rays);
     }
+    if let Some(e) = &embree16_run {
+        fig.embree16 = Some(mrays(e.rays, median(emb16)));
+        let (p, a) = peers::mismatches(e, &obvhs_run);
+        let m = j.child("embree16_vs_obvhs_mismatches");
+        m.set("primary", p);
+        m.set("ao", a);
+    }
     if let Some(e) = &embree_run {
-        fig.embree = Some(mrays(e.rays, median(emb)));
+        fig.embree1 = Some(mrays(e.rays, median(emb)));
+        fig.embree = match (fig.embree1, fig.embree16) {
+            (Some(a), Some(b)) => Some(a.max(b)),
+            (a, b) => a.or(b),
+        };
         j.child("rays").set("embree", e.rays);
         let (p, a) = peers::mismatches(e, &obvhs_run);
         let m = j.child("embree_vs_obvhs_mismatches");
@@ -555,10 +596,13 @@ fn measure_scene(
         m.set("pixels", (width * height) as usize);
     }
     eprintln!(
-        "cpu backend {} Mrays/s, obvhs CWBVH {:.2}, embree {}",
+        "cpu backend {} Mrays/s (its walk alone {}), obvhs CWBVH {:.2}, embree {} (rtcIntersect1 {}, rtcIntersect16 {})",
         fig.cpu.map_or("-".into(), |x| format!("{x:.2}")),
+        fig.walk.map_or("-".into(), |x| format!("{x:.2}")),
         fig.obvhs.unwrap_or(0.0),
         fig.embree.map_or("-".into(), |x| format!("{x:.2}")),
+        fig.embree1.map_or("-".into(), |x| format!("{x:.2}")),
+        fig.embree16.map_or("-".into(), |x| format!("{x:.2}")),
     );
     // The same scene as an instance under a moving transform.
     if let (Some(ctx), Some(gg), Some(flat)) = (cpu_ctx.as_mut(), cpu_gg, fig.cpu) {
@@ -699,6 +743,9 @@ fn record_figures(j: &mut json::Json, fig: &SceneFigures) {
         ("wgpu", fig.wgpu),
         ("obvhs", fig.obvhs),
         ("embree", fig.embree),
+        ("embree_intersect1", fig.embree1),
+        ("embree_intersect16", fig.embree16),
+        ("cpu_walk_only", fig.walk),
         ("handwritten_wgsl", fig.handwritten),
         ("handwritten_bvh2_wgsl", fig.handwritten_bvh2),
         ("rayquery", fig.rayquery),
@@ -786,11 +833,17 @@ fn main() {
     let embree = if args.no_embree { Err("--no-embree".to_string()) } else { embree::Embree::load(!args.no_install) };
     match &embree {
         Ok(e) => {
-            eprintln!("embree {} ({}): rtcIntersect1, its own BVH (medium build quality)", e.version, e.library);
+            eprintln!(
+                "embree {} ({}): rtcIntersect1 and rtcIntersect16, its own BVH (medium build quality)",
+                e.version, e.library
+            );
             let j = json.child("embree");
             j.set("version", e.version.as_str());
             j.set("library", e.library.as_str());
-            j.set("api", "rtcIntersect1 (single rays), its own BVH (RTC_BUILD_QUALITY_MEDIUM), rayon threads");
+            j.set(
+                "api",
+                "the faster of rtcIntersect1 (single rays) and rtcIntersect16 (4x4 tiles: primary rays, then their AO rays), its own BVH (RTC_BUILD_QUALITY_MEDIUM), rayon threads",
+            );
         }
         Err(why) => {
             eprintln!("embree: absent: {why}");
@@ -842,6 +895,14 @@ fn main() {
         let all: Vec<Option<f64>> = figures.iter().map(|(_, f)| r(f)).collect();
         json.set(&format!("{key}_geomean"), geomean(&all));
     }
+    // How each side's speed holds from the bunny (69k triangles) to the
+    // wall (2M): Mrays/s on the wall over Mrays/s on the bunny.
+    let scaling = |side: fn(&SceneFigures) -> Option<f64>| {
+        ratio(pick("bunny_wall_2m").and_then(side), pick("bunny").and_then(side))
+    };
+    json.set("cpu_scaling", scaling(|f| f.cpu));
+    json.set("embree_scaling", scaling(|f| f.embree));
+    json.set("cpu_simd", rt_runtime::accel::CpuSimd::current().name());
     json.set(
         "obvhs_vs_embree_geomean",
         geomean(&figures.iter().map(|(_, f)| ratio(f.obvhs, f.embree)).collect::<Vec<_>>()),

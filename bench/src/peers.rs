@@ -62,6 +62,80 @@ where
     AoRun { rays, time: start.elapsed(), primary_t, ao_hit }
 }
 
+/// The workload in packets: each 4x4 tile's primary rays through
+/// `closest16` together, then the AO rays of the tile's hits together
+/// (Embree's `rtcIntersect16`; the same rays as [`trace_ao`]).
+pub fn trace_ao16<F>(tris: &[Triangle], cam: Camera, width: u32, height: u32, closest16: F) -> AoRun
+where
+    F: Fn(&[(Vec3, Vec3, f32)], bool, &mut [Option<(f32, u32)>]) + Sync,
+{
+    let (eye, u, v, w) = cam;
+    let pixels = (width * height) as usize;
+    let mut primary_t = vec![f32::INFINITY; pixels];
+    let mut ao_hit = vec![false; pixels];
+    let start = Instant::now();
+    let tiles_x = width.div_ceil(4);
+    let tiles = (tiles_x * height.div_ceil(4)) as usize;
+    // Per tile: rays traced, and (pixel, primary distance, AO hit).
+    type Tile = (u64, Vec<(usize, f32, bool)>);
+    let results: Vec<Tile> = (0..tiles)
+        .into_par_iter()
+        .with_min_len(16)
+        .map(|tile| {
+            let (tx, ty) = (tile as u32 % tiles_x * 4, tile as u32 / tiles_x * 4);
+            let mut pixels = Vec::with_capacity(16);
+            let mut rays = Vec::with_capacity(16);
+            for y in ty..(ty + 4).min(height) {
+                for x in tx..(tx + 4).min(width) {
+                    let d = (Vec2::new(x as f32, y as f32) + 0.5) / Vec2::new(width as f32, height as f32) * 2.0 - 1.0;
+                    pixels.push((x, y));
+                    rays.push((eye, (d.x * u + d.y * v + w).normalize(), 1e-4));
+                }
+            }
+            let mut hits = [None; 16];
+            closest16(&rays, true, &mut hits);
+            let mut traced = rays.len() as u64;
+            let (mut ao_rays, mut ao_of) = (Vec::with_capacity(16), Vec::with_capacity(16));
+            let mut out = Vec::with_capacity(16);
+            for (k, &(x, y)) in pixels.iter().enumerate() {
+                let i = (y * width + x) as usize;
+                let Some((t, prim)) = hits[k] else {
+                    out.push((i, f32::INFINITY, false));
+                    continue;
+                };
+                let dir = rays[k].1;
+                let p = eye + t * dir;
+                let n = Vec3::from(tris[prim as usize].compute_normal()).normalize();
+                let n = faceforward(n, dir, n);
+                let h1 = crate::hash(x + y * width);
+                let h2 = crate::hash(h1);
+                let ao = crate::cosine_direction(n, (h1 >> 8) as f32 / 16777216.0, (h2 >> 8) as f32 / 16777216.0);
+                ao_rays.push((p + n * 1e-4, ao, 0.0));
+                ao_of.push(out.len());
+                out.push((i, t, false));
+            }
+            if !ao_rays.is_empty() {
+                let mut ao_hits = [None; 16];
+                closest16(&ao_rays, false, &mut ao_hits);
+                traced += ao_rays.len() as u64;
+                for (k, &o) in ao_of.iter().enumerate() {
+                    out[o].2 = ao_hits[k].is_some();
+                }
+            }
+            (traced, out)
+        })
+        .collect();
+    let mut rays = 0;
+    for (traced, out) in results {
+        rays += traced;
+        for (i, t, ao) in out {
+            primary_t[i] = t;
+            ao_hit[i] = ao;
+        }
+    }
+    AoRun { rays, time: start.elapsed(), primary_t, ao_hit }
+}
+
 /// obvhs's own CWBVH over `tris` (`medium_build`), and its build time.
 pub fn obvhs_cwbvh(tris: &[Triangle]) -> (obvhs::cwbvh::CwBvh, Duration) {
     let mut core = Duration::ZERO;

@@ -3,6 +3,8 @@
 
 use super::Builder;
 use super::bvh::{Bvh, TreeForm, build, refit_wide, to_oaabb, widen};
+use super::wide::WideBvh;
+use super::wide::collapse::collapse;
 use crate::error::{Result, RtError};
 use crate::link::{self, Record};
 use crate::scene::{GeometryKind, NodeKind, Scene, TriangleMesh};
@@ -59,11 +61,11 @@ pub(crate) enum NodeAccel {
         /// The same tree converted to obvhs's 8-wide compressed BVH, which
         /// the CPU backend traverses (None for `NoAccel`'s single leaf).
         wide: Option<obvhs::cwbvh::CwBvh>,
-        /// The vertices of each primitive of `wide` in its slot order, when
-        /// all are triangles (else empty): the CPU backend's triangle test
-        /// reads them without the index and position lookups. None until
-        /// the CPU backend launches (the wgpu backend encodes its own).
-        triangles: Option<Vec<[Vec3; 3]>>,
+        /// The same tree in the CPU backend's SIMD layout, with the
+        /// triangles' vertices in its leaves when all primitives are
+        /// triangles. None until the CPU backend launches (and for
+        /// `NoAccel`'s single leaf).
+        simd: Option<Box<WideBvh>>,
         prims: Vec<(u32, u32)>,
         bounds: OAabb,
         /// Changes whenever the tree is built or refit: what a backend
@@ -215,10 +217,10 @@ pub(crate) struct Trees {
     /// Whether geometry groups get obvhs's CWBVH (their BVH2 then built in
     /// the widened form, with one reinsertion pass).
     pub cwbvh: bool,
-    /// Whether geometry groups keep their triangles' vertices in CWBVH slot
-    /// order ([`NodeAccel::Prims`]'s `triangles`: the CPU backend's triangle
-    /// test).
-    pub slot_triangles: bool,
+    /// Whether geometry groups get the CPU backend's SIMD layout
+    /// ([`NodeAccel::Prims`]'s `simd`; their BVH2 then built in the
+    /// widened form too).
+    pub simd: bool,
 }
 
 /// Builds what is missing and refits what moved, in the forms `trees` asks
@@ -226,8 +228,7 @@ pub(crate) struct Trees {
 pub(crate) fn build_accels(scene: &Scene, cache: &mut AccelCache, trees: Trees) -> Result<()> {
     let form = trees.groups;
     let widened = trees.cwbvh;
-    let gg_form = if widened { TreeForm::Wide } else { form };
-    let keep_slot_triangles = trees.slot_triangles;
+    let gg_form = if widened || trees.simd { TreeForm::Wide } else { form };
     let order = link::nodes_post_order(scene)?;
     let mut built: Vec<Option<NodeAccel>> = std::mem::take(&mut cache.nodes);
     built.resize_with(scene.nodes.len(), || None);
@@ -239,21 +240,18 @@ pub(crate) fn build_accels(scene: &Scene, cache: &mut AccelCache, trees: Trees) 
         let old = built[i].take();
         let new = match &node.kind {
             NodeKind::GeometryGroup { children, accel: a } => {
-                // The CWBVH of a single leaf (`NoAccel`) or of nothing is
-                // pointless: both backends walk the BVH2 then.
-                let wants_wide = |prims: &[(u32, u32)]| widened && a.builder != Builder::NoAccel && !prims.is_empty();
-                // Every primitive a triangle: the CPU backend's triangles in
-                // CWBVH slot order (the wgpu backend encodes its own).
-                let all_triangles =
-                    |prims: &[(u32, u32)]| prims.iter().all(|(gi, _)| instance_mesh(scene, *gi).is_some());
+                // The wide forms of a single leaf (`NoAccel`) or of nothing
+                // are pointless: both backends walk the BVH2 then.
+                let widens = |prims: &[(u32, u32)]| a.builder != Builder::NoAccel && !prims.is_empty();
+                let wants_wide = |prims: &[(u32, u32)]| widened && widens(prims);
+                let wants_simd = |prims: &[(u32, u32)]| trees.simd && widens(prims);
                 match old {
-                    Some(NodeAccel::Prims { mut bvh, mut wide, mut triangles, prims, mut bounds, mut stamp }) => {
+                    Some(NodeAccel::Prims { mut bvh, mut wide, mut simd, prims, mut bounds, mut stamp }) => {
                         let moved = cache.moved
                             && children.iter().any(|gi| {
                                 let g = scene.instances[gi.index() as usize].geometry.index();
                                 cache.moved_geometries.contains(&g)
                             });
-                        let had_wide = wide.is_some();
                         if moved {
                             let (_, prim_bounds, _) = prim_bounds(scene, children)?;
                             cache.geometry_group_changes += 1;
@@ -269,25 +267,26 @@ pub(crate) fn build_accels(scene: &Scene, cache: &mut AccelCache, trees: Trees) 
                         if wide.is_none() && wants_wide(&prims) {
                             wide = Some(widen(&bvh));
                         }
-                        if moved || (wide.is_some() && !had_wide) {
-                            triangles = None;
+                        // Moved: collapsed again from the refit BVH2 (a
+                        // linear pass), its packets holding the new vertices.
+                        if moved {
+                            simd = None;
                         }
-                        if keep_slot_triangles && triangles.is_none() {
-                            triangles = Some(slot_triangles(scene, &prims, wide.as_ref(), all_triangles(&prims)));
+                        if simd.is_none() && wants_simd(&prims) {
+                            simd = Some(Box::new(simd_tree(scene, &bvh, &prims)));
                         }
-                        NodeAccel::Prims { bvh, wide, triangles, prims, bounds, stamp }
+                        NodeAccel::Prims { bvh, wide, simd, prims, bounds, stamp }
                     }
                     _ => {
                         let (prims, bounds, all_tris) = prim_bounds(scene, children)?;
                         let tris = (a.builder == Builder::Sbvh && all_tris).then(|| group_triangles(scene, &prims));
                         let bvh = build(a.builder, &bounds, tris.as_deref(), gg_form)?;
                         let wide = wants_wide(&prims).then(|| widen(&bvh));
-                        let triangles =
-                            keep_slot_triangles.then(|| slot_triangles(scene, &prims, wide.as_ref(), all_tris));
+                        let simd = wants_simd(&prims).then(|| Box::new(simd_tree(scene, &bvh, &prims)));
                         any_built = true;
                         cache.geometry_group_changes += 1;
                         cache.stamps += 1;
-                        NodeAccel::Prims { bvh, wide, triangles, prims, bounds: union(&bounds), stamp: cache.stamps }
+                        NodeAccel::Prims { bvh, wide, simd, prims, bounds: union(&bounds), stamp: cache.stamps }
                     }
                 }
             }
@@ -331,27 +330,16 @@ pub(crate) fn build_accels(scene: &Scene, cache: &mut AccelCache, trees: Trees) 
     Ok(())
 }
 
-/// The vertices of `prims` in `wide`'s slot order (empty unless all are
-/// triangles).
-fn slot_triangles(
-    scene: &Scene,
-    prims: &[(u32, u32)],
-    wide: Option<&obvhs::cwbvh::CwBvh>,
-    all: bool,
-) -> Vec<[Vec3; 3]> {
-    let Some(cw) = wide.filter(|_| all) else { return Vec::new() };
+/// `bvh` in the CPU backend's SIMD layout, its leaves holding the
+/// triangles' vertices when every primitive of `prims` is a triangle.
+fn simd_tree(scene: &Scene, bvh: &Bvh, prims: &[(u32, u32)]) -> WideBvh {
     // Each instance's mesh looked up once, not once per triangle.
     let meshes: Vec<Option<&TriangleMesh>> =
         (0..scene.instances.len() as u32).map(|gi| instance_mesh(scene, gi)).collect();
-    let slot = |p: &u32| {
-        let (gi, t) = prims[*p as usize];
+    let all = prims.iter().all(|(gi, _)| meshes[*gi as usize].is_some());
+    let triangle = |p: u32| {
+        let (gi, t) = prims[p as usize];
         meshes[gi as usize].expect(ALL_TRIANGLES).triangle(t as usize)
     };
-    #[cfg(not(target_arch = "wasm32"))]
-    {
-        use rayon::prelude::*;
-        cw.primitive_indices.par_iter().with_min_len(4096).map(slot).collect()
-    }
-    #[cfg(target_arch = "wasm32")]
-    cw.primitive_indices.iter().map(slot).collect()
+    collapse(&bvh.bvh, all.then_some(&triangle as &(dyn Fn(u32) -> [Vec3; 3] + Sync)))
 }

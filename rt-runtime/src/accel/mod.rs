@@ -10,12 +10,17 @@
 //! | `NoAccel` | a single leaf holding every primitive | linear scan |
 //!
 //! Files: [`bvh`] builds, refits and walks one tree (obvhs's BVH2, widened
-//! to its CWBVH); [`cache`] keeps a scene's trees across launches, building
+//! to its CWBVH for the wgpu backend); [`wide`] is the CPU backend's SIMD
+//! layout of a geometry group's tree (8-wide nodes, 4-triangle leaves) and
+//! its walk; [`cache`] keeps a scene's trees across launches, building
 //! what is new and refitting what moved, in the forms the launch's backend
 //! walks ([`cache::Trees`]).
 
 pub(crate) mod bvh;
 pub(crate) mod cache;
+pub mod wide;
+
+pub use wide::isa::Isa as CpuSimd;
 
 /// An acceleration builder, by OptiX's names.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -253,7 +253,7 @@ impl LaunchBackend for NoCpuBackend {
         Err(RtError::Gpu("the CPU backend is not built for wasm32 (no threads there): use Backend::Wgpu".into()))
     }
     fn trees(&self, _: &Scene) -> Trees {
-        Trees { groups: crate::accel::bvh::TreeForm::Binary, cwbvh: false, slot_triangles: false }
+        Trees { groups: crate::accel::bvh::TreeForm::Binary, cwbvh: false, simd: false }
     }
     fn launch(&mut self, _: &Launch) -> Result<LaunchReport> {
         self.prepare().map(|_| LaunchReport::default())

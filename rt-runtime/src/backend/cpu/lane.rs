@@ -5,8 +5,12 @@
 
 use super::super::{ExceptionRecord, LaunchReport};
 use super::bind::{AttributeType, Linked, Program};
-use super::triangle::{WatertightRay, triangle_builtins};
+use super::triangle::triangle_builtins;
 use crate::accel::cache::NodeAccel;
+use crate::accel::wide::isa::{Isa, walk_on};
+use crate::accel::wide::kernels::WalkRay;
+use crate::accel::wide::watertight::WatertightRay;
+use crate::accel::wide::{PACKET, leaf_of};
 use crate::link;
 use crate::scene::{NodeId, NodeKind, TriangleMesh};
 use glam::{Mat4, UVec2, Vec2, Vec3};
@@ -120,6 +124,8 @@ pub(crate) struct Lane<'a> {
     pub(crate) search: Cell<*const Search<'static>>,
     /// Attribute values not in use, by type, for reuse.
     pub(crate) pool: RefCell<Vec<(TypeId, Box<dyn AnyAttributes>)>>,
+    /// The instruction set geometry groups' trees are walked on.
+    pub(crate) isa: Isa,
 }
 
 impl<'a> Lane<'a> {
@@ -134,6 +140,7 @@ impl<'a> Lane<'a> {
             rays: Cell::new(0),
             search: Cell::new(std::ptr::null()),
             pool: RefCell::new(Vec::new()),
+            isa: Isa::current(),
         }
     }
 
@@ -298,9 +305,7 @@ impl<'a> Lane<'a> {
                 }
             }
             NodeKind::GeometryGroup { .. } => {
-                let Some(Some(NodeAccel::Prims { bvh, wide, triangles, prims, .. })) =
-                    l.accels.get(node.index() as usize)
-                else {
+                let Some(Some(NodeAccel::Prims { bvh, simd, prims, .. })) = l.accels.get(node.index() as usize) else {
                     return;
                 };
                 // The world ray's `tmax` is not read here (the search's is):
@@ -309,16 +314,13 @@ impl<'a> Lane<'a> {
                 // one by one just before.
                 let (ray_type, tmin) = (world_ray.ray_type, world_ray.tmin);
                 let object_ray = || Ray { origin, direction, ray_type, tmin, tmax: s.tmax.get() };
-                // Prepared on the first triangle test: most rays that miss
-                // never get there.
-                let prepared = std::cell::OnceCell::new();
-                let prepared = || prepared.get_or_init(|| WatertightRay::new(origin, direction, tmin)).as_ref();
+                let prepared = WatertightRay::new(origin, direction, tmin);
                 let visit = |p: u32| {
                     let (gi, prim) = prims[p as usize];
                     match l.meshes[gi as usize] {
                         Some(mesh) => {
                             let [a, b, c] = mesh.triangle(prim as usize);
-                            if let Some(ray) = prepared()
+                            if let Some(ray) = &prepared
                                 && let Some(hit) = ray.intersect(a, b, c, s.tmax.get())
                             {
                                 self.triangle_hit(s, ray, mesh, gi, prim, hit, [a, b, c], xf);
@@ -327,41 +329,65 @@ impl<'a> Lane<'a> {
                         None => self.intersect_custom(s, gi, prim, &object_ray(), xf),
                     }
                 };
-                match (wide, triangles.as_deref()) {
-                    // obvhs's 8-wide traversal over triangles in slot order:
-                    // the instance and primitive are looked up on hits only.
-                    (Some(cw), Some(triangles)) if !triangles.is_empty() => {
-                        let mut hit = obvhs::ray::RayHit::none();
-                        let ray = obvhs::ray::Ray::new(origin.into(), direction.into(), world_ray.tmin, s.tmax.get());
-                        cw.ray_traverse(ray, &mut hit, |_, slot| {
-                            let [a, b, c] = triangles[slot];
-                            if let Some(ray) = prepared()
-                                && let Some(hit) = ray.intersect(a, b, c, s.tmax.get())
-                            {
-                                let (gi, prim) = prims[cw.primitive_indices[slot] as usize];
-                                if let Some(mesh) = l.meshes[gi as usize] {
-                                    self.triangle_hit(s, ray, mesh, gi, prim, hit, [a, b, c], xf);
-                                }
-                            }
-                            if s.done.get() { f32::NEG_INFINITY } else { s.tmax.get() }
-                        });
-                    }
-                    // obvhs's 8-wide traversal; the callback runs the whole
-                    // hit protocol and returns the closest committed distance
-                    // (unchanged if nothing committed), or -inf to stop.
-                    (Some(cw), _) => {
-                        let mut hit = obvhs::ray::RayHit::none();
-                        let ray = obvhs::ray::Ray::new(origin.into(), direction.into(), world_ray.tmin, s.tmax.get());
-                        cw.ray_traverse(ray, &mut hit, |_, slot| {
-                            visit(cw.primitive_indices[slot]);
-                            if s.done.get() { f32::NEG_INFINITY } else { s.tmax.get() }
-                        });
-                    }
-                    (None, _) => bvh.traverse(origin, direction.recip(), world_ray.tmin, &|| s.tmax.get(), &mut |p| {
+                let Some(tree) = simd else {
+                    // `NoAccel`'s single leaf.
+                    bvh.traverse(origin, direction.recip(), tmin, &|| s.tmax.get(), &mut |p| {
                         visit(p);
                         !s.done.get()
-                    }),
-                }
+                    });
+                    return;
+                };
+                let ray = WalkRay { origin, inv_dir: direction.recip(), tmin, triangle: prepared.as_ref() };
+                let next = || (!s.done.get()).then(|| s.tmax.get());
+                walk_on(self.isa, tree, &ray, s.tmax.get(), |leaf, hits| {
+                    let (index, count) = leaf_of(leaf);
+                    let slots = &tree.slots[index as usize * PACKET..][..count as usize];
+                    match hits {
+                        // Triangle packets: each lane hit, in lane order,
+                        // against the closest hit so far (an earlier lane
+                        // may have committed a closer one).
+                        Some(hits) => {
+                            // (The walk tests packets only with a setup.)
+                            let ray = prepared.as_ref()?;
+                            let mut mask = hits.mask;
+                            while mask != 0 {
+                                let lane = mask.trailing_zeros() as usize;
+                                mask &= mask - 1;
+                                let t = hits.t[lane];
+                                // (Hits are never NaN.)
+                                if t >= s.tmax.get() {
+                                    continue;
+                                }
+                                let (gi, prim) = prims[slots[lane] as usize];
+                                if let Some(mesh) = l.meshes[gi as usize] {
+                                    let vertices = tree.packets[index as usize].vertices(lane);
+                                    self.triangle_hit(
+                                        s,
+                                        ray,
+                                        mesh,
+                                        gi,
+                                        prim,
+                                        (t, hits.u[lane], hits.v[lane]),
+                                        vertices,
+                                        xf,
+                                    );
+                                }
+                                if s.done.get() {
+                                    return None;
+                                }
+                            }
+                        }
+                        None => {
+                            for &p in slots {
+                                visit(p);
+                                if s.done.get() {
+                                    return None;
+                                }
+                            }
+                        }
+                    }
+                    next()
+                });
             }
         }
     }

@@ -59,7 +59,7 @@ impl LaunchBackend for CpuBackend {
     /// Groups' BVH2s as the wide form's; every geometry group's CWBVH with
     /// its triangles in slot order.
     fn trees(&self, _: &Scene) -> Trees {
-        Trees { groups: TreeForm::Wide, cwbvh: true, slot_triangles: true }
+        Trees { groups: TreeForm::Wide, cwbvh: false, simd: true }
     }
 
     fn launch(&mut self, launch: &Launch) -> Result<LaunchReport> {

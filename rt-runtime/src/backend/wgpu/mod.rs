@@ -164,7 +164,7 @@ impl LaunchBackend for WgpuBackend {
     /// Groups' BVH2s as they are walked; geometry groups' CWBVHs where the
     /// kernel searches triangles only.
     fn trees(&self, scene: &Scene) -> Trees {
-        Trees { groups: TreeForm::Binary, cwbvh: scene.searches_triangles_only(), slot_triangles: false }
+        Trees { groups: TreeForm::Binary, cwbvh: scene.searches_triangles_only(), simd: false }
     }
 
     /// Runs the launch on the device. A device lost during it is dropped
