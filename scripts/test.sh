@@ -70,6 +70,16 @@ tint_test=tint_accepts_every_kernel_and_snapshot
 cargo test --workspace --all-targets -j"$CARGO_BUILD_JOBS" -- --skip "$tint_test" 2>&1 | tee "$log"
 cargo test -p rt-tests --test tint -j"$CARGO_BUILD_JOBS" -- --exact "$tint_test" --nocapture 2>&1 | tee -a "$log"
 cargo test --workspace --doc -j"$CARGO_BUILD_JOBS" 2>&1 | tee -a "$log"
+# The CPU backend's traversal on each instruction set it is built for (the
+# runs above took the best this CPU has): the runtime suite's CPU tests,
+# the bunny and the example goldens on the CPU backend. (Its own tests,
+# rt-runtime's accel::wide and rt-tests' cpu_simd, walk every path in
+# one run.)
+for simd in sse4.1 scalar; do
+    echo "scripts/test.sh: the CPU backend's traversal tests with RT_CPU_SIMD=$simd"
+    RT_CPU_SIMD=$simd cargo test -p rt-tests --test runtime -j"$CARGO_BUILD_JOBS" -- cpu:: 2>&1 | tee -a "$log"
+    RT_CPU_SIMD=$simd cargo test -p examples --test golden -j"$CARGO_BUILD_JOBS" -- cpu_renders_match_the_goldens 2>&1 | tee -a "$log"
+done
 passed=$(grep -Eo '^test result: [a-zA-Z]+\. [0-9]+ passed' "$log" | awk '{s += $4} END {print s + 0}')
 failed=$(grep -Eo '[0-9]+ failed;' "$log" | awk '{s += $1} END {print s + 0}')
 echo "scripts/test.sh: tests took $(( $(date +%s) - start )) s"

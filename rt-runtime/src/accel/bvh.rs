@@ -136,18 +136,20 @@ impl Bvh {
             let far = t0.max(t1).min_element().min(tmax);
             if near <= far { near } else { f32::INFINITY }
         };
-        // (node, entry distance): a node is skipped if a closer hit was found
-        // after it was pushed.
-        let mut stack: [(u32, f32); 128] = [(0, 0.0); 128];
         let root = hit(&nodes[0], tmax());
         if root == f32::INFINITY {
             return;
         }
-        stack[0] = (0, root);
+        // (node, entry distance): a node is skipped if a closer hit was found
+        // after it was pushed. Left uninitialised: zeroing 1 KiB cost more
+        // than walking a small group.
+        let mut stack = [const { std::mem::MaybeUninit::<(u32, f32)>::uninit() }; 128];
+        stack[0].write((0, root));
         let mut sp = 1usize;
         while sp > 0 {
             sp -= 1;
-            let (index, t) = stack[sp];
+            // SAFETY: entries below `sp` were written.
+            let (index, t) = unsafe { stack[sp].assume_init() };
             if t > tmax() {
                 continue;
             }
@@ -167,7 +169,7 @@ impl Bvh {
             let ((near, tn), (far, tf)) = if ta <= tb { ((a, ta), (b, tb)) } else { ((b, tb), (a, ta)) };
             for (n, t) in [(far, tf), (near, tn)] {
                 if t != f32::INFINITY && sp < stack.len() {
-                    stack[sp] = (n, t);
+                    stack[sp].write((n, t));
                     sp += 1;
                 }
             }

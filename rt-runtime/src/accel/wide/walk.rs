@@ -36,10 +36,15 @@ pub(crate) fn walk<K: Kernels, F: FnMut(u32, Option<&Hits>) -> Option<f32>>(
     let mut current = tree.root;
     loop {
         if current & LEAF == 0 {
-            let node = &tree.nodes[current as usize];
+            debug_assert!((current as usize) < tree.nodes.len());
+            // SAFETY: child references are built by `collapse`, each naming a
+            // node it pushed.
+            let node = unsafe { tree.nodes.get_unchecked(current as usize) };
             let (mut mask, tnear) = K::node(node, &k, tmax);
             if mask != 0 {
-                let first = mask.trailing_zeros() as usize;
+                // (`& 7`: the mask has eight bits, which the compiler cannot
+                // see, so indexing by it would be bounds-checked.)
+                let first = mask.trailing_zeros() as usize & 7;
                 mask &= mask - 1;
                 if mask == 0 {
                     current = node.child[first];
@@ -50,7 +55,7 @@ pub(crate) fn walk<K: Kernels, F: FnMut(u32, Option<&Hits>) -> Option<f32>>(
                 hit[0] = (node.child[first], tnear[first]);
                 let mut n = 1;
                 while mask != 0 {
-                    let i = mask.trailing_zeros() as usize;
+                    let i = mask.trailing_zeros() as usize & 7;
                     mask &= mask - 1;
                     let e = (node.child[i], tnear[i]);
                     // Insertion by descending distance.
@@ -62,8 +67,11 @@ pub(crate) fn walk<K: Kernels, F: FnMut(u32, Option<&Hits>) -> Option<f32>>(
                     hit[j] = e;
                     n += 1;
                 }
+                debug_assert!(sp + n - 1 <= stack.len());
                 for e in &hit[..n - 1] {
-                    stack[sp].write(*e);
+                    // SAFETY: the stack holds `stack_len(tree)` entries, which
+                    // bounds the pushes along any path.
+                    unsafe { stack.get_unchecked_mut(sp).write(*e) };
                     sp += 1;
                 }
                 current = hit[n - 1].0;
@@ -71,7 +79,10 @@ pub(crate) fn walk<K: Kernels, F: FnMut(u32, Option<&Hits>) -> Option<f32>>(
             }
         } else if packets {
             let (index, _) = super::leaf_of(current);
-            let hits = K::packet(&tree.packets[index as usize], &k, tmax);
+            debug_assert!((index as usize) < tree.packets.len());
+            // SAFETY: leaf references are built by `collapse`, each naming a
+            // leaf it pushed (with a packet, in trees that have packets).
+            let hits = K::packet(unsafe { tree.packets.get_unchecked(index as usize) }, &k, tmax);
             if hits.mask != 0 {
                 match leaf(current, Some(&hits)) {
                     Some(t) => tmax = t,
@@ -91,7 +102,7 @@ pub(crate) fn walk<K: Kernels, F: FnMut(u32, Option<&Hits>) -> Option<f32>>(
             }
             sp -= 1;
             // SAFETY: entries below `sp` were written above.
-            let (r, t) = unsafe { stack[sp].assume_init() };
+            let (r, t) = unsafe { stack.get_unchecked(sp).assume_init() };
             if t <= tmax {
                 current = r;
                 break;

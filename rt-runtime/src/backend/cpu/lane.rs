@@ -62,11 +62,6 @@ pub(crate) struct Xf {
 }
 
 impl Xf {
-    /// (object to world, world to object) of `xf`, identity for None.
-    pub(crate) fn matrices(xf: Option<&Xf>) -> (Mat4, Mat4) {
-        xf.map_or((Mat4::IDENTITY, Mat4::IDENTITY), |x| (x.object_to_world, x.world_to_object))
-    }
-
     /// Puts `xf`'s transforms in `ctx`, which holds the identity already
     /// (a context from `base_context`): nothing to copy for None.
     pub(crate) fn set(ctx: &mut ExecutionContext, xf: Option<&Xf>) {
@@ -274,10 +269,20 @@ impl<'a> Lane<'a> {
         };
         match &rec.kind {
             NodeKind::Transform { matrix, inverse, child } => {
-                let (o2w, w2o) = Xf::matrices(xf);
-                let composed = Xf { object_to_world: o2w * *matrix, world_to_object: *inverse * w2o };
+                // Under no other transform: the node's own matrices, not
+                // their products with the identity.
+                let composed = match xf {
+                    None => Xf { object_to_world: *matrix, world_to_object: *inverse },
+                    Some(x) => Xf {
+                        object_to_world: x.object_to_world * *matrix,
+                        world_to_object: *inverse * x.world_to_object,
+                    },
+                };
                 self.traverse(s, *child, Some(&composed), mask)
             }
+            // One child (a scene's usual top group): its own tree tests the
+            // ray first thing, so the group's box test would be repeated.
+            NodeKind::Group { children, .. } if children.len() == 1 => self.traverse(s, children[0], xf, mask),
             NodeKind::Group { children, .. } => {
                 let Some(Some(NodeAccel::Children { bvh, .. })) = l.accels.get(node.index() as usize) else {
                     return;

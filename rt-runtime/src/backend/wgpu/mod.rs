@@ -350,7 +350,8 @@ fn link_kernel(entry: u32, encoding: &Encoding) -> Result<(String, Option<String
         let _ = std::fs::write(&path, &wgsl);
         eprintln!("rt-runtime: linked WGSL written to {}", path.display());
     }
-    if let Some(dir) = std::env::var_os(KERNEL_DIR_VAR) {
+    // (Set but empty: unset, not the working directory.)
+    if let Some(dir) = std::env::var_os(KERNEL_DIR_VAR).filter(|d| !d.is_empty()) {
         collect_kernel(std::path::Path::new(&dir), &wgsl);
     }
     Ok((wgsl, warning))
