@@ -869,9 +869,15 @@ fn main() {
     // The headline ratios on the bunny (as before issue #6), and their
     // geometric means over the scenes where both sides were measured.
     let pick = |name: &str| figures.iter().find(|(n, _)| *n == name).map(|(_, f)| f);
-    let ratios: [(&str, RatioOf); 10] = [
+    let ratios: [(&str, RatioOf); 12] = [
         ("cpu_vs_obvhs", |f| ratio(f.cpu, f.obvhs)),
+        // Against Embree's best mode (the faster of rtcIntersect1 and
+        // rtcIntersect16), and against its single rays alone (the key of
+        // the sessions before rtcIntersect16 was measured).
         ("cpu_vs_embree", |f| ratio(f.cpu, f.embree)),
+        ("cpu_vs_embree_intersect1", |f| ratio(f.cpu, f.embree1)),
+        // The CPU backend's walk without programs against Embree's best.
+        ("cpu_walk_only_vs_embree", |f| ratio(f.walk, f.embree)),
         ("megakernel_vs_handwritten", |f| ratio(f.wgpu, f.handwritten)),
         // The same, as rays per CPU second of this process: steady under
         // load from other processes, which the wall-clock ratio is not.

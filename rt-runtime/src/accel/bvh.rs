@@ -18,9 +18,10 @@ pub(crate) fn to_oaabb(min: Vec3, max: Vec3) -> OAabb {
 
 /// Which tree a backend walks.
 ///
-/// Both backends walk obvhs's CWBVH of every geometry group (the wgpu
-/// backend where its kernel searches triangles only; else the BVH2),
-/// converted from a BVH2 that gets only what obvhs's own `build_cwbvh`
+/// Both backends walk 8-wide trees of geometry groups: the wgpu backend
+/// obvhs's CWBVH (where its kernel searches triangles only; else the
+/// BVH2), the CPU backend its SIMD layout ([`crate::accel::wide`]). Both
+/// are converted from a BVH2 that gets only what obvhs's own `build_cwbvh`
 /// gives it (PLOC and one reinsertion pass): the conversion regroups the
 /// tree into 8-wide nodes, so a second pass would be paid for and mostly
 /// undone. BVH2s that are walked as they are (groups', and geometry

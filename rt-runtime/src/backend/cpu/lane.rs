@@ -1,6 +1,6 @@
 //! A lane: one thread's run over launch indices, tracing rays through the
 //! node graph (groups' BVH2s, transforms, selectors, geometry groups'
-//! CWBVHs), calling programs in place, and serving rt-std's intrinsics as
+//! SIMD trees), calling programs in place, and serving rt-std's intrinsics as
 //! its [`Tracer`].
 
 use super::super::{ExceptionRecord, LaunchReport};

@@ -1,8 +1,10 @@
 //! The CPU backend: programs run natively as Rust (each descriptor's `cpu`
 //! entry), rays traverse the node graph as built (groups' obvhs BVH2s over
 //! their children, transforms composed on the way down, selectors' visit
-//! programs choosing one child, geometry groups' BVH2s over primitives),
-//! rayon spreads chunks of launch indices over all cores.
+//! programs choosing one child, geometry groups' trees over primitives in
+//! the SIMD layout of [`crate::accel::wide`], on the instruction set
+//! [`crate::accel::CpuSimd::current`] picks), rayon spreads chunks of
+//! launch indices over all cores.
 //!
 //! Semantics are OptiX's and the megakernel's: the intersection protocol
 //! (`rt_potential_intersection` accepts `t` in `(tmin, closest)`,
@@ -23,8 +25,9 @@
 //! closest hit.
 //!
 //! Files: [`bind`] resolves and binds every program use of a launch,
-//! [`lane`] runs launch indices and traces rays, [`triangle`] holds the
-//! watertight triangle test; this file is the backend and its run.
+//! [`lane`] runs launch indices and traces rays, [`triangle`] computes a
+//! triangle hit's built-in attributes; this file is the backend and its
+//! run.
 
 mod bind;
 mod lane;
@@ -56,8 +59,8 @@ impl LaunchBackend for CpuBackend {
         Ok(())
     }
 
-    /// Groups' BVH2s as the wide form's; every geometry group's CWBVH with
-    /// its triangles in slot order.
+    /// Groups' BVH2s as the wide form's; every geometry group's tree in the
+    /// SIMD layout, its triangles in its leaves.
     fn trees(&self, _: &Scene) -> Trees {
         Trees { groups: TreeForm::Wide, cwbvh: false, simd: true }
     }
