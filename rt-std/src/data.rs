@@ -267,6 +267,35 @@ pub fn __require_payload<T: DeclaredPayload + ?Sized>() {}
 #[inline(always)]
 pub fn __require_attributes<T: DeclaredAttributes + ?Sized>() {}
 
+/// Implemented by `#[rt_impl]` for its type: `#[rt_struct(impl)]` requires
+/// it, so a struct that says it has an impl block and has none is told so.
+#[doc(hidden)]
+#[diagnostic::on_unimplemented(
+    message = "`{Self}` is declared with `(impl)` but has no #[rt_impl] block",
+    label = "write `#[rt_impl] impl {Self} {{ .. }}` beside it, or drop `(impl)`"
+)]
+pub trait __RtImplBlock {}
+
+/// Implemented by `#[rt_struct(impl)]` (and `#[rt_payload(impl)]`,
+/// `#[rt_attributes(impl)]`): `#[rt_impl]` requires it, because the
+/// struct's link in the macro chain is what carries the impl to programs.
+#[doc(hidden)]
+#[diagnostic::on_unimplemented(
+    message = "`{Self}` has an #[rt_impl] block, but its declaration does not say so",
+    label = "declare `{Self}` with #[rt_struct(impl)] (or #[rt_payload(impl)], #[rt_attributes(impl)])"
+)]
+pub trait __RtImplDeclared {}
+
+/// Requires that `T` has an `#[rt_impl]` block.
+#[doc(hidden)]
+#[inline(always)]
+pub fn __require_impl_block<T: __RtImplBlock + ?Sized>() {}
+
+/// Requires that `T` was declared with `(impl)`.
+#[doc(hidden)]
+#[inline(always)]
+pub fn __require_impl_declared<T: __RtImplDeclared + ?Sized>() {}
+
 /// The value of `T` whose words are all zero (what out-of-bounds loads read,
 /// and the fields of attributes no triangle hit fills).
 #[doc(hidden)]

@@ -146,6 +146,8 @@ pub use geometry::Aabb;
 pub use intrinsics::*;
 pub use math::{faceforward, mix, reflect, refract, saturate, smoothstep, step};
 pub use ray::*;
-pub use rt_macros::{__rt_collect, rt_attributes, rt_const, rt_enum, rt_function, rt_payload, rt_program, rt_struct};
+pub use rt_macros::{
+    __rt_collect, rt_attributes, rt_const, rt_enum, rt_function, rt_impl, rt_payload, rt_program, rt_struct,
+};
 pub use scene::{Object, TransformKind};
 pub use texture::{FilterMode, Sampler2d, WrapMode};

@@ -42,6 +42,8 @@ pub mod match_int;
 pub mod math_helpers;
 #[path = "../snapshots/in/matrices.rs"]
 pub mod matrices;
+#[path = "../snapshots/in/methods.rs"]
+pub mod methods;
 #[path = "../snapshots/in/ops_arith.rs"]
 pub mod ops_arith;
 #[path = "../snapshots/in/ops_bits.rs"]

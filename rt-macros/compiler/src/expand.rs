@@ -162,14 +162,93 @@ pub fn rt_struct(attr: TokenStream, item: TokenStream, role: StructRole) -> Toke
             return quote!(#err #item);
         }
     };
-    if !attr.is_empty() {
-        return with_errors(Error::new(attr.span(), "this attribute takes no arguments").into(), item);
-    }
+    let with_impl = match struct_args(attr) {
+        Ok(w) => w,
+        Err(e) => return with_errors(e.into(), item),
+    };
     let decorated = decorate_struct(&s);
     let data_impl = rt_data_impl(&s, role);
     let role_kw = format_ident!("{}", role.keyword());
-    let body = start_chain(quote!(struct #role_kw { #item }), deps::of_struct(&s));
-    quote!(#decorated #data_impl #body)
+    let mut deps = deps::of_struct(&s);
+    let mut impl_checks = TokenStream::new();
+    if let Some(span) = with_impl {
+        // The impl's link: its macro where the struct is (see `methods`),
+        // at `impl`, so a missing block is reported there.
+        let mac = syn::Ident::new(&crate::methods::macro_ident(&s.ident).to_string(), span);
+        deps.push(syn::Path::from(mac));
+        let name = &s.ident;
+        impl_checks = quote_spanned! {span=>
+            impl ::rt_std::data::__RtImplDeclared for #name {}
+            const _: () = {
+                #[allow(dead_code)]
+                fn __rt_impl_block() { ::rt_std::data::__require_impl_block::<#name>(); }
+            };
+        };
+    }
+    let body = start_chain(quote!(struct #role_kw { #item }), deps);
+    quote!(#decorated #data_impl #impl_checks #body)
+}
+
+/// A struct attribute's arguments: none, or `impl` (its span), which says
+/// the type has an `#[rt_impl]` block.
+fn struct_args(attr: TokenStream) -> Result<Option<Span>, Error> {
+    let mut it = attr.clone().into_iter();
+    match (it.next(), it.next()) {
+        (None, _) => Ok(None),
+        (Some(TokenTree::Ident(i)), None) if i == "impl" => Ok(Some(i.span())),
+        _ => Err(Error::new(
+            attr.span(),
+            "this attribute takes no arguments, or `impl` for a type with an #[rt_impl] block",
+        )),
+    }
+}
+
+/// `#[rt_impl]`: the impl as the CPU compiles it, the marker that says the
+/// type has one, and its link in the chain, `__rt_impl_<Type>` (what its
+/// methods name, collected here; see `methods`). Its bodies are checked
+/// where the struct's chain ends, which has the struct.
+pub fn rt_impl(attr: TokenStream, item: TokenStream) -> TokenStream {
+    let i: syn::ItemImpl = match syn::parse2(item.clone()) {
+        Ok(i) => i,
+        Err(_) => {
+            let span = syn::parse2::<syn::Item>(item.clone()).map(|i| i.span()).unwrap_or_else(|_| Span::call_site());
+            return with_errors(Error::new(span, "`#[rt_impl]` goes on an `impl` block").into(), item);
+        }
+    };
+    if !attr.is_empty() {
+        return with_errors(Error::new(attr.span(), "`#[rt_impl]` takes no arguments").into(), item);
+    }
+    let ty_ident = match &*i.self_ty {
+        syn::Type::Path(p) if p.qself.is_none() && !p.path.segments.is_empty() => {
+            p.path.segments.last().unwrap().ident.clone()
+        }
+        _ => {
+            let errs = crate::methods::check_impl(&i).err().unwrap_or_default();
+            return with_errors(errs, item);
+        }
+    };
+    let mac = crate::methods::macro_ident(&ty_ident);
+    let self_ty = &i.self_ty;
+    let span = crate::methods::span(&i);
+    let markers = quote_spanned! {span=>
+        impl ::rt_std::data::__RtImplBlock for #self_ty {}
+        const _: () = {
+            #[allow(dead_code)]
+            fn __rt_impl_declared() { ::rt_std::data::__require_impl_declared::<#self_ty>(); }
+        };
+    };
+    if let Err(e) = crate::methods::check_impl(&i) {
+        // Exported all the same, so the struct's chain closes and says
+        // nothing more; the lowering leaves a rejected impl out.
+        let errs = e.to_compile_errors();
+        let export = export_macro(&mac, quote!(impl { #item }));
+        return quote!(#errs #item #markers #export);
+    }
+    let deps = deps::of_impl(&i);
+    let declared = declared_checks(&deps, &[]);
+    let cpu = crate::methods::cpu_impl(&i);
+    let body = start_chain(quote!(impl { #item }), deps);
+    quote!(#cpu const _: () = { #declared }; #markers #body)
 }
 
 /// `#[rt_enum]`: the enum with its `RtData`, and its link in the chain
@@ -379,6 +458,7 @@ pub fn parse_defs(tokens: TokenStream) -> syn::Result<Vec<Item>> {
             ("function", _) => Item::Function(syn::parse2(g.stream())?),
             ("constant", _) => Item::Const(syn::parse2(g.stream())?),
             ("enum", _) => Item::Enum(syn::parse2(g.stream())?),
+            ("impl", _) => Item::Impl(syn::parse2(g.stream())?),
             _ => return Err(syn::Error::new(g.span(), "malformed definition")),
         };
         if !items.iter().any(|i: &Item| i.name() == item.name()) {
@@ -414,6 +494,22 @@ fn finish(entry: &TokenStream, done: TokenStream) -> TokenStream {
             };
             let lowered = lower::lower_own(Entry::Program(kind, &f), &deps);
             program_output(kind, &f, lowered)
+        }
+        "impl" => {
+            // Checked where the struct's chain ends (see `rt_impl`).
+            let Some(TokenTree::Group(g)) = it.next() else { return quote!(compile_error!("malformed rt entry");) };
+            let item_tokens = g.stream();
+            let i: syn::ItemImpl = match syn::parse2(item_tokens.clone()) {
+                Ok(i) => i,
+                Err(e) => return e.to_compile_error(),
+            };
+            let Some(ty) = (match &*i.self_ty {
+                syn::Type::Path(p) => p.path.segments.last().map(|s| s.ident.clone()),
+                _ => None,
+            }) else {
+                return quote!(compile_error!("malformed rt entry"););
+            };
+            export_macro(&crate::methods::macro_ident(&ty), quote!(impl { #item_tokens } #done))
         }
         "function" | "constant" | "struct" => {
             let role = if kw == "struct" {

@@ -526,6 +526,7 @@ mod enums;
 mod glam_more;
 mod grids;
 mod math;
+mod methods;
 mod scalars;
 mod structs_arrays;
 mod tuples;

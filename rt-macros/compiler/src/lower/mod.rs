@@ -51,6 +51,9 @@ pub struct HelperSig {
     pub traced: Vec<Ty>,
     /// A helper that traces has a resumable form (`<wgsl_name>_rs`).
     pub resumable: bool,
+    /// A method of an `#[rt_impl]` (see `methods`): its first parameter is
+    /// the receiver, and `value.name(..)` calls it.
+    pub has_receiver: bool,
 }
 
 #[derive(Clone, Debug)]
@@ -200,13 +203,15 @@ pub fn lower_own(entry: Entry<'_>, deps: &[Item]) -> std::result::Result<Lowered
 fn lower_impl(entry: Entry<'_>, deps: &[Item], report_deps: bool) -> std::result::Result<Lowered, Errors> {
     let mut unit = unit::Unit::new(&entry);
     let deps = items::reachable(&entry, deps);
-    let (structs_raw, helpers_raw, consts_raw) = items::by_kind(&entry, &deps);
+    let items::ByKind { structs: structs_raw, fns: helpers_raw, consts: consts_raw, failed: failed_members } =
+        items::by_kind(&entry, &deps);
     let consts_raw = items::const_order(&consts_raw);
     let (enums, failed_enums) = items::enums(&deps);
     let (structs, struct_order) = unit.build_structs(&structs_raw, &enums);
     let mut failed_structs: HashSet<String> =
         structs_raw.iter().map(|(s, _)| s.ident.to_string()).filter(|n| !structs.contains_key(n)).collect();
     failed_structs.extend(failed_enums);
+    failed_structs.extend(failed_members);
     let mut m = ModuleCtx {
         structs,
         enums,

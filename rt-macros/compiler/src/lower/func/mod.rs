@@ -48,6 +48,7 @@ mod stmt;
 mod tuples;
 
 use eval::int_literal_value;
+use expr::strip_parens;
 use ops::{compound_base, is_compound, op_symbol};
 pub use stmt::count_placeholders;
 
@@ -92,6 +93,9 @@ pub struct FnLowerer<'m> {
     pub intrinsics: Vec<(&'static str, Span)>,
     /// Helpers called.
     pub calls: Vec<String>,
+    /// Methods called as `value.name(..)`, by key (`Type::name`), with the
+    /// call's span: the helper order needs them (see `Unit::method_calls`).
+    pub method_calls: Vec<(String, Span)>,
     /// Payload types passed to `rt_trace`.
     pub traced: Vec<Ty>,
     pub errors: Errors,
@@ -169,6 +173,7 @@ impl<'m> FnLowerer<'m> {
             local_consts: HashSet::new(),
             intrinsics: Vec::new(),
             calls: Vec::new(),
+            method_calls: Vec::new(),
             traced: Vec::new(),
             errors: Errors::default(),
             writebacks: Vec::new(),
