@@ -275,6 +275,14 @@ pub fn __require_attributes<T: DeclaredAttributes + ?Sized>() {}
     label = "write `#[rt_impl] impl {Self} {{ .. }}` beside it, or drop `(impl)`"
 )]
 pub trait __RtImplBlock {}
+#[diagnostic::do_not_recommend]
+impl<T: __HasRtImplBlock + ?Sized> __RtImplBlock for T {}
+
+/// What `#[rt_impl]` implements; `__RtImplBlock` is asked of it through a
+/// blanket impl, so an error lists no implementing types (that list would
+/// change with every impl in the workspace).
+#[doc(hidden)]
+pub trait __HasRtImplBlock {}
 
 /// Implemented by `#[rt_struct(impl)]` (and `#[rt_payload(impl)]`,
 /// `#[rt_attributes(impl)]`): `#[rt_impl]` requires it, because the
@@ -285,6 +293,12 @@ pub trait __RtImplBlock {}
     label = "declare `{Self}` with #[rt_struct(impl)] (or #[rt_payload(impl)], #[rt_attributes(impl)])"
 )]
 pub trait __RtImplDeclared {}
+#[diagnostic::do_not_recommend]
+impl<T: __DeclaresRtImpl + ?Sized> __RtImplDeclared for T {}
+
+/// What `#[rt_struct(impl)]` implements (see `__HasRtImplBlock`).
+#[doc(hidden)]
+pub trait __DeclaresRtImpl {}
 
 /// Requires that `T` has an `#[rt_impl]` block.
 #[doc(hidden)]

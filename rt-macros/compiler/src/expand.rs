@@ -178,7 +178,7 @@ pub fn rt_struct(attr: TokenStream, item: TokenStream, role: StructRole) -> Toke
         deps.push(syn::Path::from(mac));
         let name = &s.ident;
         impl_checks = quote_spanned! {span=>
-            impl ::rt_std::data::__RtImplDeclared for #name {}
+            impl ::rt_std::data::__DeclaresRtImpl for #name {}
             const _: () = {
                 #[allow(dead_code)]
                 fn __rt_impl_block() { ::rt_std::data::__require_impl_block::<#name>(); }
@@ -231,7 +231,7 @@ pub fn rt_impl(attr: TokenStream, item: TokenStream) -> TokenStream {
     let self_ty = &i.self_ty;
     let span = crate::methods::span(&i);
     let markers = quote_spanned! {span=>
-        impl ::rt_std::data::__RtImplBlock for #self_ty {}
+        impl ::rt_std::data::__HasRtImplBlock for #self_ty {}
         const _: () = {
             #[allow(dead_code)]
             fn __rt_impl_declared() { ::rt_std::data::__require_impl_declared::<#self_ty>(); }
