@@ -14,6 +14,10 @@
 //! the entry. Because each item collects its own dependencies where it is
 //! declared, paths always resolve in the module that wrote them.
 //!
+//! `#[rt_impl] impl S` is a link too, `__rt_impl_S`, and `#[rt_struct(impl)]`
+//! puts it among the struct's dependencies, so `S!` hands out the impl with
+//! the struct (see [`crate::methods`]).
+//!
 //! Programs expand inside `mod <program name> { use super::*; ... }` (a
 //! module and a function may share a name), which holds the CPU thunk and
 //! `pub static PROGRAM: ProgramDescriptor = <chain>;`: a program's chain runs

@@ -69,9 +69,10 @@ pub fn fn_wgsl_name(ty: &str, name: &str) -> String {
     format!("rtm_{ty}__{name}")
 }
 
-/// The WGSL constant of an associated constant.
+/// The WGSL constant of an associated constant (before the lowering's
+/// renaming of names WGSL reserves).
 pub fn const_wgsl_name(ty: &str, name: &str) -> String {
-    crate::lower::wgsl_ident(&format!("{ty}__{name}"))
+    format!("{ty}__{name}")
 }
 
 /// Rejects impl blocks the subset has no meaning for, at the part at

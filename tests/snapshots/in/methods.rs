@@ -146,3 +146,15 @@ pub fn methods_shade(prd: &mut Glow, attr: &BallHit) {
     let l = prd.luminance();
     prd.add(Vec3::splat(l * attr.t));
 }
+
+/// Methods before and after a trace: the program keeps its resumable form.
+#[rt_program(ray_generation)]
+pub fn methods_trace(#[var] top: Object, #[var] mut out: RwBuffer<Vec4>) {
+    let i = launch_index().x;
+    let mut prd = Glow { color: Vec3::ZERO, bounces: 0 };
+    prd.add(Vec3::splat(0.1));
+    let b = Ball::new(Vec3::ZERO, 2.0);
+    rt_trace(top, Ray::new(b.center, Vec3::Z, 0, 1e-3, b.radius * 10.0), &mut prd);
+    prd.add(Vec3::X);
+    out[i] = prd.color.extend(prd.luminance());
+}

@@ -367,7 +367,11 @@ pub(super) fn by_kind<'a>(entry: &'a Entry<'_>, deps: &'a [Item]) -> ByKind<'a> 
             has_receiver: m.has_receiver,
             f: m.f,
         }));
-        k.consts.extend(consts.into_iter().map(|c| ConstDef { key: c.key, wgsl_name: c.wgsl_name, c: c.c }));
+        k.consts.extend(consts.into_iter().map(|c| ConstDef {
+            key: c.key,
+            wgsl_name: wgsl_ident(&c.wgsl_name),
+            c: c.c,
+        }));
         k.failed.extend(failed);
     }
     k

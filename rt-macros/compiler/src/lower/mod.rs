@@ -4,8 +4,10 @@
 //! The module is laid out as four sections the runtime's linker relies on:
 //! a *prelude* of runtime stubs (replaced at link time by the real runtime),
 //! the *types*, the *functions* (accessors, constants and helpers) and the
-//! *program*. Names: programs are `rtp_<name>`, helpers `rtf_<name>`, runtime
-//! items `rt_*`/`Rt*`; user structs and constants keep their names.
+//! *program*. Names: programs are `rtp_<name>`, helpers `rtf_<name>`, the
+//! methods and associated functions of an `#[rt_impl]` `rtm_<Type>__<name>`
+//! and its constants `<Type>__<NAME>`, runtime items `rt_*`/`Rt*`; user
+//! structs and constants keep their names.
 //!
 //! [`lower`] runs the phases of [`unit`] in order: the items the entry
 //! reaches ([`items`]), sorted by dependency ([`order`]); constants; helper
