@@ -102,7 +102,7 @@ fn regressions_agree_on_cpu_and_gpu() {
     use rt_tests::fuzz_regressions as r;
     type Program = fn(u32, i32, f32, RwBuffer<u32>, RwBuffer<f32>);
     // (`fuzz_shift_amounts` overflows in a debug build: compiled only.)
-    let programs: [(&str, Program); 7] = [
+    let programs: [(&str, Program); 8] = [
         ("fuzz_eval_order", r::fuzz_eval_order),
         ("fuzz_assign_order", r::fuzz_assign_order),
         ("fuzz_match_break", r::fuzz_match_break),
@@ -110,6 +110,7 @@ fn regressions_agree_on_cpu_and_gpu() {
         ("fuzz_int_bool_ops", r::fuzz_int_bool_ops),
         ("fuzz_float_formulas", r::fuzz_float_formulas),
         ("fuzz_zero_vectors", r::fuzz_zero_vectors),
+        ("fuzz_bitwise_compound", r::fuzz_bitwise_compound),
     ];
     let source = include_str!("../snapshots/in/fuzz_regressions.rs");
     let gpu = Gpu::new().expect("a wgpu adapter (lavapipe without a GPU)");
