@@ -310,6 +310,48 @@ pub fn __require_impl_block<T: __RtImplBlock + ?Sized>() {}
 #[inline(always)]
 pub fn __require_impl_declared<T: __RtImplDeclared + ?Sized>() {}
 
+/// Asked of the name of a constant a program names: `#[rt_const]`
+/// declares a marker of that name implementing it (see
+/// `rt_compiler::declared`); a plain `const` has none.
+#[doc(hidden)]
+#[diagnostic::on_unimplemented(
+    message = "this constant is not declared for ray programs",
+    label = "declare it with #[rt_const]: a plain `const` is not seen by the macros that compile programs"
+)]
+pub trait __RtConstDeclared {}
+#[diagnostic::do_not_recommend]
+impl<T: __RtConstMarker + ?Sized> __RtConstDeclared for T {}
+
+/// What `#[rt_const]` implements for its marker.
+#[doc(hidden)]
+pub trait __RtConstMarker {}
+
+/// Asked of the name of a function a program calls: `#[rt_function]`
+/// declares a marker of that name implementing it; a plain `fn` has none.
+#[doc(hidden)]
+#[diagnostic::on_unimplemented(
+    message = "this function is not declared for ray programs",
+    label = "declare it with #[rt_function]: a plain `fn` is not seen by the macros that compile programs"
+)]
+pub trait __RtFunctionDeclared {}
+#[diagnostic::do_not_recommend]
+impl<T: __RtFunctionMarker + ?Sized> __RtFunctionDeclared for T {}
+
+/// What `#[rt_function]` implements for its marker.
+#[doc(hidden)]
+pub trait __RtFunctionMarker {}
+
+/// Requires that the constant of this name was declared with `#[rt_const]`.
+#[doc(hidden)]
+#[inline(always)]
+pub fn __require_rt_const<T: __RtConstDeclared + ?Sized>() {}
+
+/// Requires that the function of this name was declared with
+/// `#[rt_function]`.
+#[doc(hidden)]
+#[inline(always)]
+pub fn __require_rt_function<T: __RtFunctionDeclared + ?Sized>() {}
+
 /// The value of `T` whose words are all zero (what out-of-bounds loads read,
 /// and the fields of attributes no triangle hit fills).
 #[doc(hidden)]

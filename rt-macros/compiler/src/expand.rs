@@ -27,6 +27,7 @@
 //! nothing more), and each error is reported once: errors inside a
 //! dependency are its own macro's to report ([`lower::lower_own`]).
 
+use crate::declared::{declared_checks, reroot, reroot_type};
 use crate::error::{Error, Errors};
 use crate::kinds::Kind;
 use crate::lower::text::Site;
@@ -148,9 +149,10 @@ pub fn rt_function(attr: TokenStream, item: TokenStream) -> TokenStream {
     let deps = deps::of_fn(&f);
     let declared = declared_checks(&deps, &[]);
     let body = start_chain(quote!(function { #item }), deps);
+    let marker = crate::declared::marker(&f.vis, &f.sig.ident, true);
     let mut cpu = f;
     crate::cpu_semantics::rewrite_fn(&mut cpu);
-    quote!(#cpu const _: () = { #declared }; #body)
+    quote!(#cpu #marker const _: () = { #declared }; #body)
 }
 
 /// `#[rt_struct]`, `#[rt_payload]`, `#[rt_attributes]`.
@@ -299,8 +301,11 @@ pub fn rt_const(attr: TokenStream, item: TokenStream) -> TokenStream {
     if !attr.is_empty() {
         return with_errors(Error::new(attr.span(), "`#[rt_const]` takes no arguments").into(), item);
     }
-    let body = start_chain(quote!(constant { #item }), deps::of_const(&c));
-    quote!(#item #body)
+    let deps = deps::of_const(&c);
+    let declared = declared_checks(&deps, &[]);
+    let marker = crate::declared::marker(&c.vis, &c.ident, false);
+    let body = start_chain(quote!(constant { #item }), deps);
+    quote!(#item #marker const _: () = { #declared }; #body)
 }
 
 fn with_errors(e: Errors, item: TokenStream) -> TokenStream {
@@ -323,64 +328,6 @@ fn error_expr(e: &Errors) -> TokenStream {
         Some((last, rest)) => quote!({ #(#rest;)* #last }),
         None => quote!(::core::compile_error!("rt_program failed")),
     }
-}
-
-/// A function that does nothing but require, at each use's span, that the
-/// types the item names were declared with an rt attribute: a type that was
-/// not is rustc's "cannot find macro" in the chain, and this adds the
-/// message of `RtData`, `Payload` or `Attributes`
-/// (`#[diagnostic::on_unimplemented]`), which says which attribute to add.
-fn declared_checks(deps: &[syn::Path], params: &[signature::Param]) -> TokenStream {
-    let mut checks = Vec::new();
-    let mut roles = Vec::new();
-    for p in params {
-        let check = match p.role {
-            Role::Payload { .. } => quote!(__require_payload),
-            Role::Attributes { .. } => quote!(__require_attributes),
-            _ => continue,
-        };
-        let ty = reroot_type(&p.ty);
-        roles.push(quote!(#ty).to_string());
-        let span = p.ty.span();
-        checks.push(quote_spanned!(span=> ::rt_std::data::#check::<#ty>();));
-    }
-    for d in deps {
-        let Some(last) = d.segments.last() else { continue };
-        let name = last.ident.to_string();
-        let type_like =
-            name.chars().next().is_some_and(|c| c.is_ascii_uppercase()) && name.chars().any(|c| c.is_ascii_lowercase());
-        if !type_like || roles.contains(&quote!(#d).to_string()) {
-            continue;
-        }
-        let span = last.ident.span();
-        checks.push(quote_spanned!(span=> ::rt_std::data::__require_declared::<#d>();));
-    }
-    if checks.is_empty() {
-        return TokenStream::new();
-    }
-    quote! {
-        #[allow(dead_code)]
-        fn __rt_declared() {
-            #(#checks)*
-        }
-    }
-}
-
-/// Inside the program's module, paths relative to the parent need one more
-/// `super`.
-fn reroot(p: &syn::Path) -> syn::Path {
-    let mut p = p.clone();
-    if p.leading_colon.is_none()
-        && let Some(first) = p.segments.first()
-    {
-        let f = first.ident.to_string();
-        if f == "super" {
-            p.segments.insert(0, syn::PathSegment::from(syn::Ident::new("super", first.ident.span())));
-        } else if f == "self" {
-            p.segments[0].ident = syn::Ident::new("super", first.ident.span());
-        }
-    }
-    p
 }
 
 /// Starts the chain for `entry` with dependency paths `deps`; with none, lowers
@@ -723,20 +670,6 @@ fn program_output(kind: Kind, f: &syn::ItemFn, lowered: Result<Lowered, Errors>)
         }
         }
     }
-}
-
-/// Rewrites `super::` paths in a type for use one module deeper.
-fn reroot_type(ty: &syn::Type) -> syn::Type {
-    struct R;
-    impl syn::visit_mut::VisitMut for R {
-        fn visit_path_mut(&mut self, p: &mut syn::Path) {
-            *p = reroot(p);
-            syn::visit_mut::visit_path_mut(self, p);
-        }
-    }
-    let mut t = ty.clone();
-    syn::visit_mut::VisitMut::visit_type_mut(&mut R, &mut t);
-    t
 }
 
 /// In the CPU copy of an intersection program, `rt_report_intersection(m)`

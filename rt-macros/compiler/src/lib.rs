@@ -38,6 +38,7 @@
 //!   name.
 
 pub mod cpu_semantics;
+pub mod declared;
 pub mod deps;
 pub mod enums;
 pub mod error;
