@@ -109,6 +109,9 @@ pub struct FnLowerer<'m> {
     hoist: bool,
     /// Calls taken out of expressions by the resumable form so far.
     hoisted_calls: usize,
+    /// Tuple types whose integer elements were not inferred yet when they
+    /// were built: declared by [`FnLowerer::finish`].
+    pending_tuples: Vec<Ty>,
 }
 
 /// The statements emitted into one block so far, each with whether it
@@ -180,6 +183,7 @@ impl<'m> FnLowerer<'m> {
             resume: None,
             hoist: false,
             hoisted_calls: 0,
+            pending_tuples: Vec::new(),
         }
     }
 
@@ -250,7 +254,11 @@ impl<'m> FnLowerer<'m> {
 
     /// Resolves the placeholders of `text` with this function's inference
     /// variables and strips its markers (see [`text::finish`]).
+    /// The tuple types still waiting for their integers are declared now.
     pub fn finish(&self, text: &str) -> text::Finished {
+        for t in &self.pending_tuples {
+            self.m.note_tuples(&self.settled(t));
+        }
         text::finish(text, &|v| self.resolve_var(v) == Scalar::I32)
     }
 
