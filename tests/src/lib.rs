@@ -26,6 +26,8 @@ pub mod enums;
 pub mod exceptions;
 #[path = "../snapshots/in/fuzz_regressions.rs"]
 pub mod fuzz_regressions;
+#[path = "../snapshots/in/glam_added.rs"]
+pub mod glam_added;
 #[path = "../snapshots/in/glam_more.rs"]
 pub mod glam_more;
 #[path = "../snapshots/in/helpers_refs.rs"]

@@ -66,7 +66,19 @@ fn spell(ty: &syn::Type, owner: &str) -> String {
         t => t,
     };
     let s = quote::ToTokens::to_token_stream(t).to_string().replace(' ', "").replace("crate::", "");
-    if s == "Self" { owner.to_string() } else { s }
+    // `Self` alone or inside a tuple (`(Self,f32)`), as the owner's name.
+    let mut out = String::new();
+    let mut rest = s.as_str();
+    while let Some(i) = rest.find("Self") {
+        let before = rest[..i].chars().next_back();
+        let after = rest[i + 4..].chars().next();
+        let ident = |c: Option<char>| c.is_some_and(|c| c.is_alphanumeric() || c == '_');
+        out.push_str(&rest[..i]);
+        out.push_str(if ident(before) || ident(after) { "Self" } else { owner });
+        rest = &rest[i + 4..];
+    }
+    out.push_str(rest);
+    out
 }
 
 fn glam_methods(owner: &str, file: &Path) -> Vec<GlamMethod> {

@@ -63,7 +63,8 @@ fn rtm_Ball__area(self_: Ball) -> f32 {
 }
 
 fn rtm_Ball__contains(self_: Ball, p: vec3<f32>) -> bool {
-    return (dot((p - self_.center), (p - self_.center)) <= (self_.radius * self_.radius));
+    let tmp = (p - self_.center);
+    return (dot(tmp, tmp) <= (self_.radius * self_.radius));
 }
 
 fn rtm_Ball__grow(self_: ptr<function, Ball>, by: f32) {

@@ -523,6 +523,7 @@ macro_rules! differential {
 mod control_flow;
 mod edge_cases;
 mod enums;
+mod glam_added;
 mod glam_more;
 mod grids;
 mod math;

@@ -110,6 +110,74 @@ fn rt_div_euclid(a: f32, b: f32) -> f32 {
 }
 ";
 
+/// glam's `normalize_or`: `self * (1 / length)` where that factor is
+/// finite and positive, else the fallback; a function, so that a constant
+/// zero vector's infinite factor is never a constant expression.
+const NORMALIZE_OR: [&str; 3] = [
+    "\
+fn rt_normalize_or2(v: vec2<f32>, fallback: vec2<f32>) -> vec2<f32> {
+    let rcp = 1.0f / length(v);
+    if abs(rcp) <= 0x1.fffffep+127f && rcp > 0.0f {
+        return v * rcp;
+    }
+    return fallback;
+}
+",
+    "\
+fn rt_normalize_or3(v: vec3<f32>, fallback: vec3<f32>) -> vec3<f32> {
+    let rcp = 1.0f / length(v);
+    if abs(rcp) <= 0x1.fffffep+127f && rcp > 0.0f {
+        return v * rcp;
+    }
+    return fallback;
+}
+",
+    "\
+fn rt_normalize_or4(v: vec4<f32>, fallback: vec4<f32>) -> vec4<f32> {
+    let rcp = 1.0f / length(v);
+    if abs(rcp) <= 0x1.fffffep+127f && rcp > 0.0f {
+        return v * rcp;
+    }
+    return fallback;
+}
+",
+];
+
+/// glam's `normalize_and_length`: as `normalize_or`, with the length (or
+/// `(X, 0.0)`).
+const NORMALIZE_AND_LENGTH: [&str; 3] = [
+    "\
+fn rt_normalize_and_length2(v: vec2<f32>) -> rt_tuple_vec2f_f32_ {
+    let length = length(v);
+    let rcp = 1.0f / length;
+    if abs(rcp) <= 0x1.fffffep+127f && rcp > 0.0f {
+        return rt_tuple_vec2f_f32_(v * rcp, length);
+    }
+    return rt_tuple_vec2f_f32_(vec2<f32>(1.0f, 0.0f), 0.0f);
+}
+",
+    "\
+fn rt_normalize_and_length3(v: vec3<f32>) -> rt_tuple_vec3f_f32_ {
+    let length = length(v);
+    let rcp = 1.0f / length;
+    if abs(rcp) <= 0x1.fffffep+127f && rcp > 0.0f {
+        return rt_tuple_vec3f_f32_(v * rcp, length);
+    }
+    return rt_tuple_vec3f_f32_(vec3<f32>(1.0f, 0.0f, 0.0f), 0.0f);
+}
+",
+    "\
+fn rt_normalize_and_length4(v: vec4<f32>) -> rt_tuple_vec4f_f32_ {
+    let length = length(v);
+    let rcp = 1.0f / length;
+    if abs(rcp) <= 0x1.fffffep+127f && rcp > 0.0f {
+        return rt_tuple_vec4f_f32_(v * rcp, length);
+    }
+    return rt_tuple_vec4f_f32_(vec4<f32>(1.0f, 0.0f, 0.0f, 0.0f), 0.0f);
+}
+",
+];
+
 /// The glam methods of this file for `recv.name(...)`, if it is one.
 pub fn method(recv: &Ty, name: &str) -> Option<MethodSig> {
     match recv {
@@ -181,6 +249,30 @@ fn mat(n: u8, name: &str) -> Option<MethodSig> {
             // `v * m` in WGSL: the dot of each column with `v`.
             sig(vec![v.clone()], v, |a| format!("({} * {})", a[1], a[0]))
         }
+        "mul_transpose_vec2" | "mul_transpose_vec3" | "mul_transpose_vec4" if name.ends_with(&n.to_string()) => {
+            sig(vec![v.clone()], v, |a| format!("({} * {})", a[1], a[0]))
+        }
+        "mul_diagonal_scale" => sig(vec![v.clone()], t, move |a| {
+            let parts: Vec<String> = (0..n).map(|i| format!("({}[{i}] * {}[{i}])", a[0], a[1])).collect();
+            format!("mat{n}x{n}<f32>({})", parts.join(", "))
+        }),
+        "recip" => sig(vec![], t, move |a| cols(&|c| format!("(vec{n}<f32>(1.0) / {c})"), &a[0])),
+        "abs_diff_eq" => sig(vec![t.clone(), F32], Ty::Scalar(Scalar::Bool), move |a| {
+            let parts: Vec<String> = (0..n)
+                .map(|i| format!("all(abs({0}[{i}] - {1}[{i}]) <= vec{n}<f32>({2}))", a[0], a[1], a[2]))
+                .collect();
+            format!("({})", parts.join(" && "))
+        }),
+        "is_finite" => sig(vec![], Ty::Scalar(Scalar::Bool), move |a| {
+            let parts: Vec<String> = (0..n)
+                .map(|i| format!("all(abs({}[{i}]) <= vec{n}<f32>({}))", a[0], super::f32_literal(f32::MAX)))
+                .collect();
+            format!("({})", parts.join(" && "))
+        }),
+        "is_nan" => sig(vec![], Ty::Scalar(Scalar::Bool), move |a| {
+            let parts: Vec<String> = (0..n).map(|i| format!("any({0}[{i}] != {0}[{i}])", a[0])).collect();
+            format!("({})", parts.join(" || "))
+        }),
         "mul_vec2" if n == 2 => sig(vec![v.clone()], v, |a| format!("({} * {})", a[0], a[1])),
         "mul_mat2" if n == 2 => sig(vec![t.clone()], t, |a| format!("({} * {})", a[0], a[1])),
         "transform_point2" if n == 3 => {
@@ -295,6 +387,53 @@ fn float_vec(n: u8, recv: &Ty, name: &str) -> Option<MethodSig> {
             format!("vec2<f32>({0}.x * {1}.x - {0}.y * {1}.y, {0}.y * {1}.x + {0}.x * {1}.y)", a[0], a[1])
         }),
         "to_angle" if n == 2 => sig(vec![], F32, |a| format!("atan2({0}.y, {0}.x)", a[0])),
+        "reflect" if n != 3 => sig(vec![t.clone()], t, |a| format!("reflect({}, {})", a[0], a[1])),
+        "refract" if n != 3 => sig(vec![t.clone(), F32], t, |a| format!("refract({}, {}, {})", a[0], a[1], a[2])),
+        "lerp_monotonic" => sig(vec![t.clone(), F32], t, |a| format!("({0} + ({1} - {0}) * {2})", a[0], a[1], a[2])),
+        "normalize_or" => {
+            let i = n as usize - 2;
+            let f: &'static str = ["rt_normalize_or2", "rt_normalize_or3", "rt_normalize_or4"][i];
+            with_support(sig(vec![t.clone()], t, move |a| format!("{f}({}, {})", a[0], a[1])), f, NORMALIZE_OR[i])
+        }
+        "normalize_and_length" => {
+            let i = n as usize - 2;
+            let f: &'static str =
+                ["rt_normalize_and_length2", "rt_normalize_and_length3", "rt_normalize_and_length4"][i];
+            let ret = Ty::Tuple(vec![t.clone(), F32]);
+            with_support(sig(vec![], ret, move |a| format!("{f}({})", a[0])), f, NORMALIZE_AND_LENGTH[i])
+        }
+        "sin_cos" => {
+            let pair = Ty::Tuple(vec![t.clone(), t]);
+            let name = pair.wgsl();
+            sig(vec![], pair, move |a| format!("{name}(sin({0}), cos({0}))", a[0]))
+        }
+        "rem_euclid" | "div_euclid" => {
+            let f = if name == "rem_euclid" { "rt_rem_euclid" } else { "rt_div_euclid" };
+            let text = if name == "rem_euclid" { REM_EUCLID } else { DIV_EUCLID };
+            let w = t.wgsl();
+            with_fmod(with_support(
+                sig(vec![t.clone()], t, move |a| {
+                    let parts: Vec<String> = (0..n as usize)
+                        .map(|k| format!("{f}({}.{c}, {}.{c})", a[0], a[1], c = &"xyzw"[k..k + 1]))
+                        .collect();
+                    format!("{w}({})", parts.join(", "))
+                }),
+                f,
+                text,
+            ))
+        }
+        "min_position" => sig(vec![], Ty::Scalar(Scalar::Usize), move |a| super::glam_ints::position(n, &a[0], true)),
+        "max_position" => sig(vec![], Ty::Scalar(Scalar::Usize), move |a| super::glam_ints::position(n, &a[0], false)),
+        "is_negative_bitmask" => {
+            sig(vec![], Ty::Scalar(Scalar::U32), move |a| super::glam_ints::negative_bitmask(n, &a[0]))
+        }
+        // As the scalar `is_finite`/`is_nan`, per component.
+        "is_finite" => sig(vec![], Ty::Scalar(Scalar::Bool), move |a| {
+            format!("all(abs({}) <= vec{n}<f32>({}))", a[0], super::f32_literal(f32::MAX))
+        }),
+        "is_nan" => sig(vec![], Ty::Scalar(Scalar::Bool), |a| format!("any({0} != {0})", a[0])),
+        "to_homogeneous" if n == 3 => sig(vec![], Ty::vec(4), |a| format!("vec4<f32>({}, 1.0f)", a[0])),
+        "project" if n == 4 => sig(vec![], Ty::vec(3), |a| format!("({0}.xyz / {0}.w)", a[0])),
         "any_orthonormal_vector" if n == 3 => {
             let f = "rt_any_orthonormal_vector";
             let text = "\

@@ -141,7 +141,22 @@ impl FnLowerer<'_> {
         // `const_int_op`).
         let wraps = matches!(
             name,
-            "wrapping_add" | "wrapping_sub" | "wrapping_mul" | "dot" | "element_sum" | "element_product"
+            "wrapping_add"
+                | "wrapping_sub"
+                | "wrapping_mul"
+                | "dot"
+                | "element_sum"
+                | "element_product"
+                | "saturating_add"
+                | "saturating_sub"
+                | "saturating_mul"
+                | "length_squared"
+                | "distance_squared"
+                | "manhattan_distance"
+                | "chebyshev_distance"
+                | "cross"
+                | "perp_dot"
+                | "rotate"
         );
         if wraps
             && (self.is_int(&rt) || matches!(rt, Ty::Vec(_, s) if s.is_int()))
@@ -159,6 +174,20 @@ impl FnLowerer<'_> {
         let last_repeated = (0..vals.len()).rev().find(|&i| shape.matches(&probe[i]).count() > 1 && vals[i].effects);
         if let Some(last) = last_repeated {
             self.once(&mut vals[..=last]);
+        }
+        // And a repeated operand that is more than a name or a field
+        // (`a.cross(b.cross(c))` would repeat `b.cross(c)`'s text six
+        // times, and nesting multiplies it) into a `let` too: every operand
+        // is valid where the call ends (the loop above spilled them), so
+        // there.
+        if self.in_function {
+            for (i, v) in vals.iter_mut().enumerate() {
+                if shape.matches(&probe[i]).count() > 1 && !is_atom(&v.code) {
+                    let t = self.tmp();
+                    self.emit_let(format!("let {t} = {};", v.code), v);
+                    *v = Val::new(t, v.ty.clone()).with_reads(v.reads);
+                }
+            }
         }
         for (name, text) in sig.support {
             self.m.accessors.borrow_mut().functions.entry(name.to_string()).or_insert_with(|| text.to_string());
@@ -549,4 +578,10 @@ impl FnLowerer<'_> {
             Ok(Val::new(t, sig.ret.clone()))
         }
     }
+}
+
+/// Whether lowered code is a name, a literal or a field of one (markers
+/// aside): cheap to repeat.
+fn is_atom(code: &str) -> bool {
+    code.chars().all(|c| c.is_alphanumeric() || c == '_' || c == '.' || (c as u32) < 8)
 }
