@@ -113,6 +113,18 @@ differential! {
         saturating_u32(a: u32, b: u32) -> [u32; 3] over pairs(&U32_EDGES, &U32_EDGES) => {
             [a.saturating_add(b), a.saturating_sub(b), a.saturating_mul(b)]
         }
+        /// Mixed signs: `i32` with `u32` and back, wrapping and saturating,
+        /// at the edges, on scalars and vectors.
+        mixed_signs(a: i32, b: u32) -> [i32; 8] over pairs(&I32_EDGES, &U32_EDGES) => {
+            let (u, s) = (b, a);
+            let v = ivec2(a, a.wrapping_add(7)).saturating_add_unsigned(uvec2(b, 3));
+            let w = uvec2(b, 1).saturating_add_signed(ivec2(a, -2));
+            [
+                a.wrapping_add_unsigned(b), a.wrapping_sub_unsigned(b), a.saturating_add_unsigned(b), a.saturating_sub_unsigned(b),
+                u.wrapping_add_signed(s) as i32, u.saturating_add_signed(s) as i32, v.x + v.y.wrapping_sub(v.y),
+                (w.x ^ w.y) as i32 ^ ivec2(a, 0).wrapping_sub_unsigned(uvec2(b, b)).x,
+            ]
+        }
         /// Per component on vectors.
         saturating_vectors(a: i32, b: i32) -> [IVec2; 3] over pairs(&I32_EDGES, &I32_EDGES) => {
             let (v, w) = (ivec2(a, b), ivec2(b, a.wrapping_add(1)));
@@ -124,6 +136,17 @@ differential! {
 differential! {
     /// Matrices.
     fn glam_added_matrices {
+        /// `inverse_or_zero`: the inverse of invertible matrices, zero for
+        /// singular ones (a zero column: a determinant exactly 0 on both
+        /// sides, where a nearly singular one would round apart).
+        inverse_or_zero(m: Mat4) -> [Mat4; 2] over one(&mat4s(16, 72)), tol ulp_or_abs(64, 1e-4) => {
+            let near = Mat4::IDENTITY + m * 0.1;
+            let singular = Mat4::from_cols(m.x_axis, Vec4::ZERO, m.z_axis, m.w_axis);
+            let m3 = Mat3::from_cols(m.x_axis.truncate(), m.y_axis.truncate(), Vec3::ZERO).inverse_or_zero();
+            let m2 = Mat2::from_cols(m.x_axis.truncate().truncate(), m.y_axis.truncate().truncate() * 0.0).inverse_or_zero();
+            let small = Mat4::from_cols(m3.x_axis.extend(0.0), m3.y_axis.extend(0.0), m3.z_axis.extend(0.0), m2.x_axis.extend(0.0).extend(1.0));
+            [near.inverse_or_zero(), singular.inverse_or_zero() + small]
+        }
         /// `mul_diagonal_scale`, `recip`, `abs_diff_eq`, `is_finite`,
         /// `is_nan` (`mul_transpose_vecN`, deprecated in glam, lowers as
         /// `transpose_mul_vecN`, tested in `glam_more.rs`).

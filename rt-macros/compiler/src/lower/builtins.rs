@@ -250,7 +250,9 @@ pub fn method_sig(recv: &Ty, name: &str) -> Option<MethodSig> {
             }
         }
         Ty::Scalar(s) if s.is_int() => {
-            if let Some(m) = glam_ints::saturating_method(recv, name) {
+            if let Some(m) =
+                glam_ints::saturating_method(recv, name).or_else(|| glam_ints::mixed_sign_method(recv, name))
+            {
                 return Some(m);
             }
         }

@@ -102,6 +102,69 @@ pub fn saturating_method(recv: &Ty, name: &str) -> Option<MethodSig> {
     sig(vec![t.clone()], t, move |a| saturating(&op, s, &ty, &a[0], &a[1]))
 }
 
+/// The mixed-sign methods of `i32`/`u32` and their vectors:
+/// `wrapping_add_unsigned`/`wrapping_sub_unsigned`,
+/// `saturating_add_unsigned`/`saturating_sub_unsigned` (signed receiver),
+/// `wrapping_add_signed`/`saturating_add_signed` (unsigned receiver), on
+/// the bits.
+pub fn mixed_sign_method(recv: &Ty, name: &str) -> Option<MethodSig> {
+    let s = recv.scalar().filter(|s| s.is_int() && *s != Scalar::Usize)?;
+    let other_s = if s == Scalar::I32 { Scalar::U32 } else { Scalar::I32 };
+    let other = match recv {
+        Ty::Vec(n, _) => Ty::Vec(*n, other_s),
+        _ => Ty::Scalar(other_s),
+    };
+    let t = recv.clone();
+    let w = t.wgsl();
+    let is_vec = matches!(recv, Ty::Vec(..));
+    let splat = move |x: &str| if is_vec { format!("{w}({x})") } else { x.to_string() };
+    let n = match recv {
+        Ty::Vec(n, _) => *n,
+        _ => 1,
+    };
+    let as_other = move |x: &str, to: &str| {
+        let target = if is_vec { format!("vec{n}<{to}>") } else { to.to_string() };
+        format!("bitcast<{target}>({x})")
+    };
+    let lower: Box<dyn Fn(&[String]) -> String> = match (s, name) {
+        (Scalar::I32, "wrapping_add_unsigned") => {
+            Box::new(move |a: &[String]| format!("({} + {})", a[0], as_other(&a[1], "i32")))
+        }
+        (Scalar::I32, "wrapping_sub_unsigned") => {
+            Box::new(move |a: &[String]| format!("({} - {})", a[0], as_other(&a[1], "i32")))
+        }
+        // Overflow iff `b > i32::MAX - a` (as `u32`s): then `i32::MAX`.
+        (Scalar::I32, "saturating_add_unsigned") => Box::new(move |a: &[String]| {
+            let room = as_other(&format!("({} - {})", splat("2147483647i"), a[0]), "u32");
+            format!("select({} + {}, {}, {} > {room})", a[0], as_other(&a[1], "i32"), splat("2147483647i"), a[1])
+        }),
+        // Underflow iff `b > a - i32::MIN` (as `u32`s, `a`'s bits with the
+        // sign flipped): then `i32::MIN`.
+        (Scalar::I32, "saturating_sub_unsigned") => Box::new(move |a: &[String]| {
+            let room = format!("({} ^ {})", as_other(&a[0], "u32"), splat("0x80000000u"));
+            format!("select({} - {}, {}, {} > {room})", a[0], as_other(&a[1], "i32"), splat("i32(-2147483648)"), a[1])
+        }),
+        (Scalar::U32, "wrapping_add_signed") => {
+            Box::new(move |a: &[String]| format!("({} + {})", a[0], as_other(&a[1], "u32")))
+        }
+        // The wrapped sum, or `u32::MAX` past it upward (`b >= 0` and the
+        // sum below `a`), or 0 past it downward.
+        (Scalar::U32, "saturating_add_signed") => Box::new(move |a: &[String]| {
+            let r = format!("({} + {})", a[0], as_other(&a[1], "u32"));
+            let zero_i = if is_vec { format!("vec{n}<i32>(0i)") } else { "0i".to_string() };
+            format!(
+                "select(select({r}, {}, {r} > {a0}), select({r}, {}, {r} < {a0}), {b} >= {zero_i})",
+                splat("0u"),
+                splat("4294967295u"),
+                a0 = a[0],
+                b = a[1]
+            )
+        }),
+        _ => return None,
+    };
+    Some(MethodSig { params: vec![other], ret: t, lower, support: Vec::new() })
+}
+
 /// The methods of this file for an integer vector of `n` components.
 pub fn method(n: u8, s: Scalar, recv: &Ty, name: &str) -> Option<MethodSig> {
     let t = recv.clone();
@@ -141,6 +204,6 @@ pub fn method(n: u8, s: Scalar, recv: &Ty, name: &str) -> Option<MethodSig> {
         "min_position" => sig(vec![], Ty::Scalar(Scalar::Usize), move |a| position(n, &a[0], true)),
         "max_position" => sig(vec![], Ty::Scalar(Scalar::Usize), move |a| position(n, &a[0], false)),
         "is_negative_bitmask" if s == Scalar::I32 => sig(vec![], U32, move |a| negative_bitmask(n, &a[0])),
-        _ => saturating_method(recv, name),
+        _ => saturating_method(recv, name).or_else(|| mixed_sign_method(recv, name)),
     }
 }

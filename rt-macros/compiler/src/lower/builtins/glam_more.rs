@@ -178,6 +178,66 @@ fn rt_normalize_and_length4(v: vec4<f32>) -> rt_tuple_vec4f_f32_ {
 ",
 ];
 
+/// glam's `inverse_or_zero`: the inverse, or zero where it is not finite
+/// (read from the bits, which no implementation may assume away, after a
+/// zero determinant, where the division itself is not defined on every GPU).
+const INVERSE_OR_ZERO: [&str; 3] = [
+    "\
+fn rt_inverse_or_zero2(m: mat2x2<f32>) -> mat2x2<f32> {
+    if determinant(m) == 0.0f {
+        return mat2x2<f32>();
+    }
+    let r = rt_inverse2(m);
+    if any((bitcast<vec2<u32>>(r[0]) & vec2<u32>(0x7f800000u)) == vec2<u32>(0x7f800000u)) {
+        return mat2x2<f32>();
+    }
+    if any((bitcast<vec2<u32>>(r[1]) & vec2<u32>(0x7f800000u)) == vec2<u32>(0x7f800000u)) {
+        return mat2x2<f32>();
+    }
+    return r;
+}
+",
+    "\
+fn rt_inverse_or_zero3(m: mat3x3<f32>) -> mat3x3<f32> {
+    if determinant(m) == 0.0f {
+        return mat3x3<f32>();
+    }
+    let r = rt_inverse3(m);
+    if any((bitcast<vec3<u32>>(r[0]) & vec3<u32>(0x7f800000u)) == vec3<u32>(0x7f800000u)) {
+        return mat3x3<f32>();
+    }
+    if any((bitcast<vec3<u32>>(r[1]) & vec3<u32>(0x7f800000u)) == vec3<u32>(0x7f800000u)) {
+        return mat3x3<f32>();
+    }
+    if any((bitcast<vec3<u32>>(r[2]) & vec3<u32>(0x7f800000u)) == vec3<u32>(0x7f800000u)) {
+        return mat3x3<f32>();
+    }
+    return r;
+}
+",
+    "\
+fn rt_inverse_or_zero4(m: mat4x4<f32>) -> mat4x4<f32> {
+    if determinant(m) == 0.0f {
+        return mat4x4<f32>();
+    }
+    let r = rt_inverse4(m);
+    if any((bitcast<vec4<u32>>(r[0]) & vec4<u32>(0x7f800000u)) == vec4<u32>(0x7f800000u)) {
+        return mat4x4<f32>();
+    }
+    if any((bitcast<vec4<u32>>(r[1]) & vec4<u32>(0x7f800000u)) == vec4<u32>(0x7f800000u)) {
+        return mat4x4<f32>();
+    }
+    if any((bitcast<vec4<u32>>(r[2]) & vec4<u32>(0x7f800000u)) == vec4<u32>(0x7f800000u)) {
+        return mat4x4<f32>();
+    }
+    if any((bitcast<vec4<u32>>(r[3]) & vec4<u32>(0x7f800000u)) == vec4<u32>(0x7f800000u)) {
+        return mat4x4<f32>();
+    }
+    return r;
+}
+",
+];
+
 /// The glam methods of this file for `recv.name(...)`, if it is one.
 pub fn method(recv: &Ty, name: &str) -> Option<MethodSig> {
     match recv {
@@ -188,6 +248,13 @@ pub fn method(recv: &Ty, name: &str) -> Option<MethodSig> {
                 _ => ("rt_inverse4", INVERSE4),
             };
             with_support(sig(vec![], recv.clone(), move |a| format!("{f}({})", a[0])), f, text)
+        }
+        Ty::Mat(n) if name == "inverse_or_zero" => {
+            let i = *n as usize - 2;
+            let (f, text) = [("rt_inverse2", INVERSE2), ("rt_inverse3", INVERSE3), ("rt_inverse4", INVERSE4)][i];
+            let g: &'static str = ["rt_inverse_or_zero2", "rt_inverse_or_zero3", "rt_inverse_or_zero4"][i];
+            let m = with_support(sig(vec![], recv.clone(), move |a| format!("{g}({})", a[0])), f, text);
+            with_support(m, g, INVERSE_OR_ZERO[i])
         }
         Ty::Mat(n) => mat(*n, name),
         Ty::Scalar(Scalar::F32) => float(name),
