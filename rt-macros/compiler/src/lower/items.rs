@@ -348,12 +348,12 @@ pub(super) fn by_kind<'a>(entry: &'a Entry<'_>, deps: &'a [Item]) -> ByKind<'a> 
             }
         }
         Entry::Helper(f) => {
-            if !k.fns.iter().any(|x| x.key == f.sig.ident.to_string()) {
+            if !k.fns.iter().any(|x| f.sig.ident == x.key) {
                 k.fns.push(helper(f));
             }
         }
         Entry::Const(c) => {
-            if !k.consts.iter().any(|x| x.key == c.ident.to_string()) {
+            if !k.consts.iter().any(|x| c.ident == x.key) {
                 k.consts.push(constant(c));
             }
         }

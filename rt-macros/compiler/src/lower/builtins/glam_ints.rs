@@ -126,7 +126,7 @@ pub fn mixed_sign_method(recv: &Ty, name: &str) -> Option<MethodSig> {
         let target = if is_vec { format!("vec{n}<{to}>") } else { to.to_string() };
         format!("bitcast<{target}>({x})")
     };
-    let lower: Box<dyn Fn(&[String]) -> String> = match (s, name) {
+    let lower: super::LowerFn = match (s, name) {
         (Scalar::I32, "wrapping_add_unsigned") => {
             Box::new(move |a: &[String]| format!("({} + {})", a[0], as_other(&a[1], "i32")))
         }
