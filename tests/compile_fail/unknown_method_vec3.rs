@@ -2,8 +2,8 @@
 use rt_std::prelude::*;
 
 #[rt_function]
-pub fn angle(a: Vec3, b: Vec3) -> f32 {
-    a.angle_between(b)
+pub fn halfway(a: Vec3, b: Vec3) -> Vec3 {
+    a.slerp(b, 0.5)
 }
 
 fn main() {}
