@@ -1,9 +1,9 @@
-// A glam method the compiler has no WGSL for.
+// A glam method the compiler has no WGSL for: `map` takes a closure.
 use rt_std::prelude::*;
 
 #[rt_function]
-pub fn halfway(a: Vec3, b: Vec3) -> Vec3 {
-    a.slerp(b, 0.5)
+pub fn rounded(a: Vec3) -> Vec3 {
+    a.map(|x| x.round())
 }
 
 fn main() {}

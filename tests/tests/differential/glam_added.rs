@@ -80,6 +80,10 @@ differential! {
                 u + v * 2.0,
             ]
         }
+        /// `Vec3::slerp`: along the arc, and for (anti)parallel vectors.
+        slerp(a: Vec3, b: Vec3) -> [Vec3; 4] over pairs(&vec3s_nonzero(10, 55), &vec3s_nonzero(6, 56)), tol ulp_or_abs(64, 5e-5) => {
+            [a.slerp(b, 0.3), a.slerp(b, 1.0), a.slerp(a * 2.0, 0.5), a.slerp(-a, 0.25)]
+        }
     }
 }
 

@@ -538,6 +538,9 @@ fn mat_method(n: u8, name: &str) -> Option<MethodSig> {
 /// Extra advice for methods users reach for that have no WGSL equivalent.
 pub fn method_hint(recv: &Ty, name: &str) -> String {
     match (recv, name) {
+        (Ty::Vec(..), "map") => {
+            ": it takes a closure, which ray programs cannot have; write the components out (`Vec3::new(a.x.round(), ..)`) or use a method of the whole vector".into()
+        }
         (_, "iter" | "into_iter" | "map" | "for_each") => {
             ": iterators are not supported; loop over an index range".into()
         }

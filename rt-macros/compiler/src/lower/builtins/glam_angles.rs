@@ -1,7 +1,8 @@
 //! glam's angles and rotations of float vectors, written out after its
 //! formulas (glam 0.34, scalar paths): `angle_to`, `angle_between` (through
 //! glam's `acos_approx`, not WGSL's `acos`), the axis rotations,
-//! `rotate_axis` and `rotate_towards` (glam's quaternion product, expanded),
+//! `rotate_axis`, `rotate_towards` and `slerp` (glam's quaternion product,
+//! expanded),
 //! `move_towards`, `any_orthogonal_vector` and `any_orthonormal_pair`. As in
 //! the rest of [`super::glam_more`], operation for operation, so the
 //! backends differ only by WGSL's rounding.
@@ -97,6 +98,30 @@ fn rt_any_orthonormal_pair(v: vec3<f32>) -> rt_tuple_vec3f_vec3f_ {
 }
 ";
 
+/// glam's `Vec3::slerp`: along the great arc, lengths interpolated
+/// monotonically; about any orthogonal axis for nearly opposite vectors;
+/// a plain `lerp` for nearly equal ones.
+const SLERP: &str = "\
+fn rt_slerp3(v: vec3<f32>, rhs: vec3<f32>, s: f32) -> vec3<f32> {
+    let self_length = length(v);
+    let rhs_length = length(rhs);
+    let d = dot(v, rhs) / (self_length * rhs_length);
+    let result_length = self_length + (rhs_length - self_length) * s;
+    if abs(d) < 1.0f - 3e-7f {
+        let theta = rt_acos_approx(d);
+        let sin_theta = sin(theta);
+        let t1 = sin(theta * (1.0f - s));
+        let t2 = sin(theta * s);
+        return (v * (result_length / self_length) * t1 + rhs * (result_length / rhs_length) * t2) * (1.0f / sin_theta);
+    }
+    if d < 0.0f {
+        let axis = normalize(select(vec3<f32>(0.0f, v.z, -v.y), vec3<f32>(-v.z, 0.0f, v.x), abs(v.x) > abs(v.y)));
+        return rt_rotate_axis(v, axis, 3.1415927f * s) * (result_length / self_length);
+    }
+    return v * (1.0f - s) + rhs * s;
+}
+";
+
 /// glam's `move_towards`, per size.
 const MOVE_TOWARDS: [&str; 3] = [
     "\
@@ -187,6 +212,10 @@ pub fn method(n: u8, recv: &Ty, name: &str) -> Option<MethodSig> {
         (3, "rotate_towards") => with(
             sig(vec![t.clone(), F32], t, |a| format!("rt_rotate_towards3({}, {}, {})", a[0], a[1], a[2])),
             &[acos, ("rt_rotate_axis", ROTATE_AXIS), ("rt_rotate_towards3", ROTATE_TOWARDS3)],
+        ),
+        (3, "slerp") => with(
+            sig(vec![t.clone(), F32], t, |a| format!("rt_slerp3({}, {}, {})", a[0], a[1], a[2])),
+            &[acos, ("rt_rotate_axis", ROTATE_AXIS), ("rt_slerp3", SLERP)],
         ),
         (3, "any_orthogonal_vector") => sig(vec![], t, |a| any_orthogonal(&a[0])),
         (3, "any_orthonormal_pair") => with(
