@@ -44,6 +44,14 @@ pub fn rt_enum(attr: TokenStream, item: TokenStream) -> TokenStream {
     rt_compiler::expand::rt_enum(attr.into(), item.into()).into()
 }
 
+/// Declares the methods, associated functions and associated constants of
+/// a `#[rt_struct(impl)]` (or `#[rt_payload(impl)]`, `#[rt_attributes(impl)]`)
+/// type, callable from programs and helpers.
+#[proc_macro_attribute]
+pub fn rt_impl(attr: TokenStream, item: TokenStream) -> TokenStream {
+    rt_compiler::expand::rt_impl(attr.into(), item.into()).into()
+}
+
 /// Declares a constant programs may use.
 #[proc_macro_attribute]
 pub fn rt_const(attr: TokenStream, item: TokenStream) -> TokenStream {

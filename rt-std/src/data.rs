@@ -267,6 +267,91 @@ pub fn __require_payload<T: DeclaredPayload + ?Sized>() {}
 #[inline(always)]
 pub fn __require_attributes<T: DeclaredAttributes + ?Sized>() {}
 
+/// Implemented by `#[rt_impl]` for its type: `#[rt_struct(impl)]` requires
+/// it, so a struct that says it has an impl block and has none is told so.
+#[doc(hidden)]
+#[diagnostic::on_unimplemented(
+    message = "`{Self}` is declared with `(impl)` but has no #[rt_impl] block",
+    label = "write `#[rt_impl] impl {Self} {{ .. }}` beside it, or drop `(impl)`"
+)]
+pub trait __RtImplBlock {}
+#[diagnostic::do_not_recommend]
+impl<T: __HasRtImplBlock + ?Sized> __RtImplBlock for T {}
+
+/// What `#[rt_impl]` implements; `__RtImplBlock` is asked of it through a
+/// blanket impl, so an error lists no implementing types (that list would
+/// change with every impl in the workspace).
+#[doc(hidden)]
+pub trait __HasRtImplBlock {}
+
+/// Implemented by `#[rt_struct(impl)]` (and `#[rt_payload(impl)]`,
+/// `#[rt_attributes(impl)]`): `#[rt_impl]` requires it, because the
+/// struct's link in the macro chain is what carries the impl to programs.
+#[doc(hidden)]
+#[diagnostic::on_unimplemented(
+    message = "`{Self}` has an #[rt_impl] block, but its declaration does not say so",
+    label = "declare `{Self}` with #[rt_struct(impl)] (or #[rt_payload(impl)], #[rt_attributes(impl)])"
+)]
+pub trait __RtImplDeclared {}
+#[diagnostic::do_not_recommend]
+impl<T: __DeclaresRtImpl + ?Sized> __RtImplDeclared for T {}
+
+/// What `#[rt_struct(impl)]` implements (see `__HasRtImplBlock`).
+#[doc(hidden)]
+pub trait __DeclaresRtImpl {}
+
+/// Requires that `T` has an `#[rt_impl]` block.
+#[doc(hidden)]
+#[inline(always)]
+pub fn __require_impl_block<T: __RtImplBlock + ?Sized>() {}
+
+/// Requires that `T` was declared with `(impl)`.
+#[doc(hidden)]
+#[inline(always)]
+pub fn __require_impl_declared<T: __RtImplDeclared + ?Sized>() {}
+
+/// Asked of the name of a constant a program names: `#[rt_const]`
+/// declares a marker of that name implementing it (see
+/// `rt_compiler::declared`); a plain `const` has none.
+#[doc(hidden)]
+#[diagnostic::on_unimplemented(
+    message = "this constant is not declared for ray programs",
+    label = "declare it with #[rt_const]: a plain `const` is not seen by the macros that compile programs"
+)]
+pub trait __RtConstDeclared {}
+#[diagnostic::do_not_recommend]
+impl<T: __RtConstMarker + ?Sized> __RtConstDeclared for T {}
+
+/// What `#[rt_const]` implements for its marker.
+#[doc(hidden)]
+pub trait __RtConstMarker {}
+
+/// Asked of the name of a function a program calls: `#[rt_function]`
+/// declares a marker of that name implementing it; a plain `fn` has none.
+#[doc(hidden)]
+#[diagnostic::on_unimplemented(
+    message = "this function is not declared for ray programs",
+    label = "declare it with #[rt_function]: a plain `fn` is not seen by the macros that compile programs"
+)]
+pub trait __RtFunctionDeclared {}
+#[diagnostic::do_not_recommend]
+impl<T: __RtFunctionMarker + ?Sized> __RtFunctionDeclared for T {}
+
+/// What `#[rt_function]` implements for its marker.
+#[doc(hidden)]
+pub trait __RtFunctionMarker {}
+
+/// Requires that the constant of this name was declared with `#[rt_const]`.
+#[doc(hidden)]
+#[inline(always)]
+pub fn __require_rt_const<T: __RtConstDeclared + ?Sized>() {}
+
+/// Requires that the function of this name was declared with
+/// `#[rt_function]`.
+#[doc(hidden)]
+#[inline(always)]
+pub fn __require_rt_function<T: __RtFunctionDeclared + ?Sized>() {}
+
 /// The value of `T` whose words are all zero (what out-of-bounds loads read,
 /// and the fields of attributes no triangle hit fills).
 #[doc(hidden)]

@@ -5,8 +5,8 @@
 //! and that you can step through in a debugger, and by the `rt-macros`
 //! compiler, to WGSL that the runtime links into one megakernel. This crate
 //! is everything such a function may name besides its own helpers
-//! (`#[rt_function]`) and types (`#[rt_struct]`, `#[rt_payload]`,
-//! `#[rt_attributes]`): glam's vectors and matrices, shading math
+//! (`#[rt_function]`), types (`#[rt_struct]`, `#[rt_payload]`,
+//! `#[rt_attributes]`, `#[rt_enum]`) and their methods (`#[rt_impl]`): glam's vectors and matrices, shading math
 //! ([`reflect`], [`refract`], [`mix`], ...), [`Ray`] and [`Aabb`], handles to
 //! buffers, textures and scene nodes, and the intrinsics that read semantic
 //! values and talk to the ray tracer ([`rt_trace`],
@@ -146,6 +146,8 @@ pub use geometry::Aabb;
 pub use intrinsics::*;
 pub use math::{faceforward, mix, reflect, refract, saturate, smoothstep, step};
 pub use ray::*;
-pub use rt_macros::{__rt_collect, rt_attributes, rt_const, rt_enum, rt_function, rt_payload, rt_program, rt_struct};
+pub use rt_macros::{
+    __rt_collect, rt_attributes, rt_const, rt_enum, rt_function, rt_impl, rt_payload, rt_program, rt_struct,
+};
 pub use scene::{Object, TransformKind};
 pub use texture::{FilterMode, Sampler2d, WrapMode};

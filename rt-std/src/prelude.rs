@@ -14,7 +14,7 @@ pub use glam::{
     uvec4, vec2, vec3, vec4,
 };
 
-pub use rt_macros::{rt_attributes, rt_const, rt_enum, rt_function, rt_payload, rt_program, rt_struct};
+pub use rt_macros::{rt_attributes, rt_const, rt_enum, rt_function, rt_impl, rt_payload, rt_program, rt_struct};
 
 pub use crate::rt_printf;
 

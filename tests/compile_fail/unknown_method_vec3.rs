@@ -1,9 +1,9 @@
-// A glam method the compiler has no WGSL for.
+// A glam method the compiler has no WGSL for: `map` takes a closure.
 use rt_std::prelude::*;
 
 #[rt_function]
-pub fn angle(a: Vec3, b: Vec3) -> f32 {
-    a.angle_between(b)
+pub fn rounded(a: Vec3) -> Vec3 {
+    a.map(|x| x.round())
 }
 
 fn main() {}

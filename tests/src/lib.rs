@@ -26,6 +26,8 @@ pub mod enums;
 pub mod exceptions;
 #[path = "../snapshots/in/fuzz_regressions.rs"]
 pub mod fuzz_regressions;
+#[path = "../snapshots/in/glam_added.rs"]
+pub mod glam_added;
 #[path = "../snapshots/in/glam_more.rs"]
 pub mod glam_more;
 #[path = "../snapshots/in/helpers_refs.rs"]
@@ -42,6 +44,8 @@ pub mod match_int;
 pub mod math_helpers;
 #[path = "../snapshots/in/matrices.rs"]
 pub mod matrices;
+#[path = "../snapshots/in/methods.rs"]
+pub mod methods;
 #[path = "../snapshots/in/ops_arith.rs"]
 pub mod ops_arith;
 #[path = "../snapshots/in/ops_bits.rs"]

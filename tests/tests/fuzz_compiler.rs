@@ -29,17 +29,38 @@ fn generated_programs_agree_on_cpu_and_gpu() {
 /// `.0`/`.1` and values through an `#[rt_enum]` (`FuzzKind`, matched
 /// exhaustively), in a fair share of its programs.
 #[test]
-fn the_fixed_seed_generates_tuples_and_enums() {
+fn the_fixed_seed_generates_tuples_enums_and_methods() {
     let cfg = fuzz::Config::from_env(0x5eed, 300);
-    let (tuples, enums) = fuzz::on_big_stack(move || {
-        let sources: Vec<String> =
-            (cfg.first..cfg.first + cfg.programs).map(|id| fuzz::generate::program(cfg.seed, id).source()).collect();
+    let (tuples, enums, methods, mut_self) = fuzz::on_big_stack(move || {
+        let programs: Vec<fuzz::ast::Program> =
+            (cfg.first..cfg.first + cfg.programs).map(|id| fuzz::generate::program(cfg.seed, id)).collect();
+        let sources: Vec<String> = programs.iter().map(|p| p.source()).collect();
         let tuples = sources.iter().filter(|s| s.contains(",).0") || s.contains(",).1")).count();
         let enums = sources.iter().filter(|s| s.contains("FuzzKind::Alpha => 10u32")).count();
-        (tuples, enums)
+        // Programs that declare a method and call it.
+        let called = |p: &fuzz::ast::Program, h: &fuzz::ast::Helper| {
+            let call = format!(".{}(", h.name);
+            let ufcs = format!("::{}(", h.name);
+            let s = p.source();
+            s.contains(&call) || s.contains(&ufcs)
+        };
+        let methods = programs.iter().filter(|p| p.helpers.iter().any(|h| h.method.is_some() && called(p, h))).count();
+        let mut_self = programs
+            .iter()
+            .filter(|p| {
+                p.helpers
+                    .iter()
+                    .any(|h| h.method.is_some_and(|m| m.receiver == fuzz::ast::Receiver::MutRef) && called(p, h))
+            })
+            .count();
+        (tuples, enums, methods, mut_self)
     });
-    eprintln!("of 300 programs, {tuples} build tuples and {enums} match a FuzzKind");
-    assert!(tuples >= 30 && enums >= 30, "of 300 programs, {tuples} build tuples and {enums} match a FuzzKind");
+    let what = format!(
+        "of 300 programs, {tuples} build tuples, {enums} match a FuzzKind, {methods} call #[rt_impl] methods \
+         ({mut_self} a `&mut self` one)"
+    );
+    eprintln!("{what}");
+    assert!(tuples >= 30 && enums >= 30 && methods >= 30 && mut_self >= 5, "{what}");
 }
 
 /// The interpreter against rustc: the generated programs built natively
@@ -81,7 +102,7 @@ fn regressions_agree_on_cpu_and_gpu() {
     use rt_tests::fuzz_regressions as r;
     type Program = fn(u32, i32, f32, RwBuffer<u32>, RwBuffer<f32>);
     // (`fuzz_shift_amounts` overflows in a debug build: compiled only.)
-    let programs: [(&str, Program); 7] = [
+    let programs: [(&str, Program); 8] = [
         ("fuzz_eval_order", r::fuzz_eval_order),
         ("fuzz_assign_order", r::fuzz_assign_order),
         ("fuzz_match_break", r::fuzz_match_break),
@@ -89,6 +110,7 @@ fn regressions_agree_on_cpu_and_gpu() {
         ("fuzz_int_bool_ops", r::fuzz_int_bool_ops),
         ("fuzz_float_formulas", r::fuzz_float_formulas),
         ("fuzz_zero_vectors", r::fuzz_zero_vectors),
+        ("fuzz_bitwise_compound", r::fuzz_bitwise_compound),
     ];
     let source = include_str!("../snapshots/in/fuzz_regressions.rs");
     let gpu = Gpu::new().expect("a wgpu adapter (lavapipe without a GPU)");

@@ -58,6 +58,10 @@ struct GlamMethod {
     name: String,
     params: Vec<String>,
     ret: String,
+    /// Takes `&mut self` (changes the value in place).
+    mut_self: bool,
+    /// Has type parameters (`map<F: Fn..>`).
+    generic: bool,
 }
 
 fn spell(ty: &syn::Type, owner: &str) -> String {
@@ -66,7 +70,19 @@ fn spell(ty: &syn::Type, owner: &str) -> String {
         t => t,
     };
     let s = quote::ToTokens::to_token_stream(t).to_string().replace(' ', "").replace("crate::", "");
-    if s == "Self" { owner.to_string() } else { s }
+    // `Self` alone or inside a tuple (`(Self,f32)`), as the owner's name.
+    let mut out = String::new();
+    let mut rest = s.as_str();
+    while let Some(i) = rest.find("Self") {
+        let before = rest[..i].chars().next_back();
+        let after = rest[i + 4..].chars().next();
+        let ident = |c: Option<char>| c.is_some_and(|c| c.is_alphanumeric() || c == '_');
+        out.push_str(&rest[..i]);
+        out.push_str(if ident(before) || ident(after) { "Self" } else { owner });
+        rest = &rest[i + 4..];
+    }
+    out.push_str(rest);
+    out
 }
 
 fn glam_methods(owner: &str, file: &Path) -> Vec<GlamMethod> {
@@ -97,7 +113,9 @@ fn glam_methods(owner: &str, file: &Path) -> Vec<GlamMethod> {
                 syn::ReturnType::Default => "()".to_string(),
                 syn::ReturnType::Type(_, t) => spell(t, owner),
             };
-            out.push(GlamMethod { name: f.sig.ident.to_string(), params, ret });
+            let mut_self = f.sig.receiver().is_some_and(|r| r.reference.is_some() && r.mutability.is_some());
+            let generic = !f.sig.generics.params.is_empty();
+            out.push(GlamMethod { name: f.sig.ident.to_string(), params, ret, mut_self, generic });
         }
     }
     out
@@ -123,8 +141,16 @@ fn reason(m: &GlamMethod) -> &'static str {
         "arrays and slices"
     } else if any(&|t| t.contains("Quat") || t.contains("Affine") || t.contains("Vec3A") || t.contains("Mat3A")) {
         "Quat, Affine and SIMD types are not in the subset"
-    } else if any(&|t| t.contains("impl") || t.contains("Fn")) {
+    } else if m.generic || any(&|t| t.contains("impl") || t.contains("Fn")) {
         "takes a closure"
+    } else if m.mut_self || m.ret.starts_with("&mut") {
+        "changes the value in place (`&mut self`); assign a new value instead"
+    } else if any(&|t| t.contains("SizeVec")) {
+        "isize/usize vectors"
+    } else if any(&|t| t.contains("EulerRot")) {
+        "takes `EulerRot`, not in the subset"
+    } else if m.name.contains("div") || m.name.contains("rem_euclid") {
+        "divides integers: Rust panics at a zero divisor where WGSL answers, and the CPU copy runs glam's"
     } else {
         "not written out yet"
     }

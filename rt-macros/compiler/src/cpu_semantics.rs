@@ -13,7 +13,9 @@
 //! `arith::at_mut`), and the methods whose Rust versions panic where WGSL
 //! answers: `.abs()` (of `i32::MIN`) and `.clamp(lo, hi)` (with `lo > hi`).
 //! Bitwise operators, comparisons and casts already agree and are left as
-//! written, as is everything inside macro invocations and `const` items.
+//! written (a bitwise compound assignment only has its right side
+//! evaluated first, as the arithmetic ones: its place may be an `at_mut`
+//! borrow), as is everything inside macro invocations and `const` items.
 
 use proc_macro2::Span;
 use syn::spanned::Spanned;
@@ -116,9 +118,15 @@ impl VisitMut for Rewriter {
                 *e = syn::parse_quote_spanned!(span=> #f(#x));
             }
             Expr::Binary(b) if is_assign(&b.op) => {
-                // `&=`, `|=`, `^=`: the left side is a place all the same.
+                // `&=`, `|=`, `^=`: the left side is a place all the same,
+                // and, as for the arithmetic ones, the right side is
+                // evaluated first: `a[0] &= a[1]` would otherwise borrow
+                // `a` through `at_mut` while the right side reads it.
                 self.place(&mut b.left);
                 self.visit_expr_mut(&mut b.right);
+                let span = b.op.span();
+                let (l, op, r) = (&b.left, &b.op, &b.right);
+                *e = syn::parse_quote_spanned!(span=> { let __rt_rhs = #r; #l #op __rt_rhs });
             }
             Expr::Reference(r) if r.mutability.is_some() => self.place(&mut r.expr),
             Expr::Index(i) => {
@@ -192,6 +200,17 @@ mod tests {
              (* :: rt_std :: arith :: at_mut (& mut arr , k as usize)) = :: rt_std :: arith :: neg (x) ; \
              { let __rt_rhs = (* :: rt_std :: arith :: at (& arr , 1)) ; :: rt_std :: arith :: sub_assign (& mut y , __rt_rhs) } ; \
              let n = - 1i32 ; }"
+        );
+    }
+
+    #[test]
+    fn bitwise_compound_assignments_evaluate_the_right_side_first() {
+        let got = rewritten("fn f() { a[0] &= a[1]; x |= 3; }");
+        assert_eq!(
+            got,
+            "{ { let __rt_rhs = (* :: rt_std :: arith :: at (& a , 1)) ; \
+             (* :: rt_std :: arith :: at_mut (& mut a , 0)) &= __rt_rhs } ; \
+             { let __rt_rhs = 3 ; x |= __rt_rhs } ; }"
         );
     }
 

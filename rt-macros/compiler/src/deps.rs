@@ -139,11 +139,13 @@ impl<'ast> Visit<'ast> for Deps {
             }
         } else {
             let owner = &segs[segs.len() - 2];
-            if is_const_like(&last) && !is_builtin_type_name(owner) && owner != "consts" && owner != "TransformKind" {
+            let of_type = is_type_like(owner) && !is_builtin_type_name(owner) && owner != "TransformKind";
+            if is_const_like(&last) && !of_type && !is_builtin_type_name(owner) && owner != "consts" {
                 self.add(&p.path);
-            } else if is_type_like(owner) && is_type_like(&last) && !is_builtin_type_name(owner) {
+            } else if of_type && (is_type_like(&last) || is_const_like(&last)) {
                 // `Kind::Metal`, in an expression or a pattern: an
-                // `#[rt_enum]`'s variant; the enum is the dependency.
+                // `#[rt_enum]`'s variant; `Sphere::UNIT`: an `#[rt_impl]`'s
+                // associated constant. The type is the dependency.
                 let mut owner_path = p.path.clone();
                 owner_path.segments.pop();
                 let owner_path = syn::Path {
@@ -203,6 +205,34 @@ pub fn of_fn(f: &syn::ItemFn) -> Vec<syn::Path> {
 pub fn of_struct(s: &syn::ItemStruct) -> Vec<syn::Path> {
     let mut d = Deps { self_name: s.ident.to_string(), ..Deps::default() };
     d.visit_fields(&s.fields);
+    d.paths
+}
+
+/// Dependencies of an `#[rt_impl]` block: what its methods and constants
+/// name, but not its own type (whose chain collects the impl; see
+/// `methods`).
+pub fn of_impl(i: &syn::ItemImpl) -> Vec<syn::Path> {
+    let self_name = crate::methods::self_name(i).unwrap_or_default();
+    let mut d = Deps { self_name: self_name.clone(), ..Deps::default() };
+    for item in &i.items {
+        match item {
+            syn::ImplItem::Fn(f) => {
+                // As `of_fn`: the function's local constants first.
+                let mut locals = Deps::default();
+                locals.visit_block(&f.block);
+                d.locals = locals.locals;
+                d.locals.extend(f.sig.generics.type_params().map(|t| t.ident.to_string()));
+                d.visit_signature(&f.sig);
+                d.visit_block(&f.block);
+            }
+            syn::ImplItem::Const(c) => {
+                d.locals.clear();
+                d.visit_type(&c.ty);
+                d.visit_expr(&c.expr);
+            }
+            _ => {}
+        }
+    }
     d.paths
 }
 

@@ -14,6 +14,10 @@
 //! the entry. Because each item collects its own dependencies where it is
 //! declared, paths always resolve in the module that wrote them.
 //!
+//! `#[rt_impl] impl S` is a link too, `__rt_impl_S`, and `#[rt_struct(impl)]`
+//! puts it among the struct's dependencies, so `S!` hands out the impl with
+//! the struct (see [`crate::methods`]).
+//!
 //! Programs expand inside `mod <program name> { use super::*; ... }` (a
 //! module and a function may share a name), which holds the CPU thunk and
 //! `pub static PROGRAM: ProgramDescriptor = <chain>;`: a program's chain runs
@@ -23,6 +27,7 @@
 //! nothing more), and each error is reported once: errors inside a
 //! dependency are its own macro's to report ([`lower::lower_own`]).
 
+use crate::declared::{declared_checks, reroot, reroot_type};
 use crate::error::{Error, Errors};
 use crate::kinds::Kind;
 use crate::lower::text::Site;
@@ -144,9 +149,10 @@ pub fn rt_function(attr: TokenStream, item: TokenStream) -> TokenStream {
     let deps = deps::of_fn(&f);
     let declared = declared_checks(&deps, &[]);
     let body = start_chain(quote!(function { #item }), deps);
+    let marker = crate::declared::marker(&f.vis, &f.sig.ident, true);
     let mut cpu = f;
     crate::cpu_semantics::rewrite_fn(&mut cpu);
-    quote!(#cpu const _: () = { #declared }; #body)
+    quote!(#cpu #marker const _: () = { #declared }; #body)
 }
 
 /// `#[rt_struct]`, `#[rt_payload]`, `#[rt_attributes]`.
@@ -162,14 +168,93 @@ pub fn rt_struct(attr: TokenStream, item: TokenStream, role: StructRole) -> Toke
             return quote!(#err #item);
         }
     };
-    if !attr.is_empty() {
-        return with_errors(Error::new(attr.span(), "this attribute takes no arguments").into(), item);
-    }
+    let with_impl = match struct_args(attr) {
+        Ok(w) => w,
+        Err(e) => return with_errors(e.into(), item),
+    };
     let decorated = decorate_struct(&s);
     let data_impl = rt_data_impl(&s, role);
     let role_kw = format_ident!("{}", role.keyword());
-    let body = start_chain(quote!(struct #role_kw { #item }), deps::of_struct(&s));
-    quote!(#decorated #data_impl #body)
+    let mut deps = deps::of_struct(&s);
+    let mut impl_checks = TokenStream::new();
+    if let Some(span) = with_impl {
+        // The impl's link: its macro where the struct is (see `methods`),
+        // at `impl`, so a missing block is reported there.
+        let mac = syn::Ident::new(&crate::methods::macro_ident(&s.ident).to_string(), span);
+        deps.push(syn::Path::from(mac));
+        let name = &s.ident;
+        impl_checks = quote_spanned! {span=>
+            impl ::rt_std::data::__DeclaresRtImpl for #name {}
+            const _: () = {
+                #[allow(dead_code)]
+                fn __rt_impl_block() { ::rt_std::data::__require_impl_block::<#name>(); }
+            };
+        };
+    }
+    let body = start_chain(quote!(struct #role_kw { #item }), deps);
+    quote!(#decorated #data_impl #impl_checks #body)
+}
+
+/// A struct attribute's arguments: none, or `impl` (its span), which says
+/// the type has an `#[rt_impl]` block.
+fn struct_args(attr: TokenStream) -> Result<Option<Span>, Error> {
+    let mut it = attr.clone().into_iter();
+    match (it.next(), it.next()) {
+        (None, _) => Ok(None),
+        (Some(TokenTree::Ident(i)), None) if i == "impl" => Ok(Some(i.span())),
+        _ => Err(Error::new(
+            attr.span(),
+            "this attribute takes no arguments, or `impl` for a type with an #[rt_impl] block",
+        )),
+    }
+}
+
+/// `#[rt_impl]`: the impl as the CPU compiles it, the marker that says the
+/// type has one, and its link in the chain, `__rt_impl_<Type>` (what its
+/// methods name, collected here; see `methods`). Its bodies are checked
+/// where the struct's chain ends, which has the struct.
+pub fn rt_impl(attr: TokenStream, item: TokenStream) -> TokenStream {
+    let i: syn::ItemImpl = match syn::parse2(item.clone()) {
+        Ok(i) => i,
+        Err(_) => {
+            let span = syn::parse2::<syn::Item>(item.clone()).map(|i| i.span()).unwrap_or_else(|_| Span::call_site());
+            return with_errors(Error::new(span, "`#[rt_impl]` goes on an `impl` block").into(), item);
+        }
+    };
+    if !attr.is_empty() {
+        return with_errors(Error::new(attr.span(), "`#[rt_impl]` takes no arguments").into(), item);
+    }
+    let ty_ident = match &*i.self_ty {
+        syn::Type::Path(p) if p.qself.is_none() && !p.path.segments.is_empty() => {
+            p.path.segments.last().unwrap().ident.clone()
+        }
+        _ => {
+            let errs = crate::methods::check_impl(&i).err().unwrap_or_default();
+            return with_errors(errs, item);
+        }
+    };
+    let mac = crate::methods::macro_ident(&ty_ident);
+    let self_ty = &i.self_ty;
+    let span = crate::methods::span(&i);
+    let markers = quote_spanned! {span=>
+        impl ::rt_std::data::__HasRtImplBlock for #self_ty {}
+        const _: () = {
+            #[allow(dead_code)]
+            fn __rt_impl_declared() { ::rt_std::data::__require_impl_declared::<#self_ty>(); }
+        };
+    };
+    if let Err(e) = crate::methods::check_impl(&i) {
+        // Exported all the same, so the struct's chain closes and says
+        // nothing more; the lowering leaves a rejected impl out.
+        let errs = e.to_compile_errors();
+        let export = export_macro(&mac, quote!(impl { #item }));
+        return quote!(#errs #item #markers #export);
+    }
+    let deps = deps::of_impl(&i);
+    let declared = declared_checks(&deps, &[]);
+    let cpu = crate::methods::cpu_impl(&i);
+    let body = start_chain(quote!(impl { #item }), deps);
+    quote!(#cpu const _: () = { #declared }; #markers #body)
 }
 
 /// `#[rt_enum]`: the enum with its `RtData`, and its link in the chain
@@ -216,8 +301,11 @@ pub fn rt_const(attr: TokenStream, item: TokenStream) -> TokenStream {
     if !attr.is_empty() {
         return with_errors(Error::new(attr.span(), "`#[rt_const]` takes no arguments").into(), item);
     }
-    let body = start_chain(quote!(constant { #item }), deps::of_const(&c));
-    quote!(#item #body)
+    let deps = deps::of_const(&c);
+    let declared = declared_checks(&deps, &[]);
+    let marker = crate::declared::marker(&c.vis, &c.ident, false);
+    let body = start_chain(quote!(constant { #item }), deps);
+    quote!(#item #marker const _: () = { #declared }; #body)
 }
 
 fn with_errors(e: Errors, item: TokenStream) -> TokenStream {
@@ -240,64 +328,6 @@ fn error_expr(e: &Errors) -> TokenStream {
         Some((last, rest)) => quote!({ #(#rest;)* #last }),
         None => quote!(::core::compile_error!("rt_program failed")),
     }
-}
-
-/// A function that does nothing but require, at each use's span, that the
-/// types the item names were declared with an rt attribute: a type that was
-/// not is rustc's "cannot find macro" in the chain, and this adds the
-/// message of `RtData`, `Payload` or `Attributes`
-/// (`#[diagnostic::on_unimplemented]`), which says which attribute to add.
-fn declared_checks(deps: &[syn::Path], params: &[signature::Param]) -> TokenStream {
-    let mut checks = Vec::new();
-    let mut roles = Vec::new();
-    for p in params {
-        let check = match p.role {
-            Role::Payload { .. } => quote!(__require_payload),
-            Role::Attributes { .. } => quote!(__require_attributes),
-            _ => continue,
-        };
-        let ty = reroot_type(&p.ty);
-        roles.push(quote!(#ty).to_string());
-        let span = p.ty.span();
-        checks.push(quote_spanned!(span=> ::rt_std::data::#check::<#ty>();));
-    }
-    for d in deps {
-        let Some(last) = d.segments.last() else { continue };
-        let name = last.ident.to_string();
-        let type_like =
-            name.chars().next().is_some_and(|c| c.is_ascii_uppercase()) && name.chars().any(|c| c.is_ascii_lowercase());
-        if !type_like || roles.contains(&quote!(#d).to_string()) {
-            continue;
-        }
-        let span = last.ident.span();
-        checks.push(quote_spanned!(span=> ::rt_std::data::__require_declared::<#d>();));
-    }
-    if checks.is_empty() {
-        return TokenStream::new();
-    }
-    quote! {
-        #[allow(dead_code)]
-        fn __rt_declared() {
-            #(#checks)*
-        }
-    }
-}
-
-/// Inside the program's module, paths relative to the parent need one more
-/// `super`.
-fn reroot(p: &syn::Path) -> syn::Path {
-    let mut p = p.clone();
-    if p.leading_colon.is_none()
-        && let Some(first) = p.segments.first()
-    {
-        let f = first.ident.to_string();
-        if f == "super" {
-            p.segments.insert(0, syn::PathSegment::from(syn::Ident::new("super", first.ident.span())));
-        } else if f == "self" {
-            p.segments[0].ident = syn::Ident::new("super", first.ident.span());
-        }
-    }
-    p
 }
 
 /// Starts the chain for `entry` with dependency paths `deps`; with none, lowers
@@ -379,6 +409,7 @@ pub fn parse_defs(tokens: TokenStream) -> syn::Result<Vec<Item>> {
             ("function", _) => Item::Function(syn::parse2(g.stream())?),
             ("constant", _) => Item::Const(syn::parse2(g.stream())?),
             ("enum", _) => Item::Enum(syn::parse2(g.stream())?),
+            ("impl", _) => Item::Impl(syn::parse2(g.stream())?),
             _ => return Err(syn::Error::new(g.span(), "malformed definition")),
         };
         if !items.iter().any(|i: &Item| i.name() == item.name()) {
@@ -414,6 +445,22 @@ fn finish(entry: &TokenStream, done: TokenStream) -> TokenStream {
             };
             let lowered = lower::lower_own(Entry::Program(kind, &f), &deps);
             program_output(kind, &f, lowered)
+        }
+        "impl" => {
+            // Checked where the struct's chain ends (see `rt_impl`).
+            let Some(TokenTree::Group(g)) = it.next() else { return quote!(compile_error!("malformed rt entry");) };
+            let item_tokens = g.stream();
+            let i: syn::ItemImpl = match syn::parse2(item_tokens.clone()) {
+                Ok(i) => i,
+                Err(e) => return e.to_compile_error(),
+            };
+            let Some(ty) = (match &*i.self_ty {
+                syn::Type::Path(p) => p.path.segments.last().map(|s| s.ident.clone()),
+                _ => None,
+            }) else {
+                return quote!(compile_error!("malformed rt entry"););
+            };
+            export_macro(&crate::methods::macro_ident(&ty), quote!(impl { #item_tokens } #done))
         }
         "function" | "constant" | "struct" => {
             let role = if kw == "struct" {
@@ -623,20 +670,6 @@ fn program_output(kind: Kind, f: &syn::ItemFn, lowered: Result<Lowered, Errors>)
         }
         }
     }
-}
-
-/// Rewrites `super::` paths in a type for use one module deeper.
-fn reroot_type(ty: &syn::Type) -> syn::Type {
-    struct R;
-    impl syn::visit_mut::VisitMut for R {
-        fn visit_path_mut(&mut self, p: &mut syn::Path) {
-            *p = reroot(p);
-            syn::visit_mut::visit_path_mut(self, p);
-        }
-    }
-    let mut t = ty.clone();
-    syn::visit_mut::VisitMut::visit_type_mut(&mut R, &mut t);
-    t
 }
 
 /// In the CPU copy of an intersection program, `rt_report_intersection(m)`

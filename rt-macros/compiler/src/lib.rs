@@ -38,6 +38,7 @@
 //!   name.
 
 pub mod cpu_semantics;
+pub mod declared;
 pub mod deps;
 pub mod enums;
 pub mod error;
@@ -45,6 +46,7 @@ pub mod expand;
 pub mod intrinsic;
 pub mod kinds;
 pub mod lower;
+pub mod methods;
 pub mod signature;
 pub mod types;
 pub mod validate;
@@ -93,6 +95,9 @@ pub enum Item {
     Const(syn::ItemConst),
     /// `#[rt_enum]`: a C-like enum.
     Enum(syn::ItemEnum),
+    /// `#[rt_impl]`: the methods, associated functions and constants of
+    /// a struct (see [`methods`]).
+    Impl(syn::ItemImpl),
 }
 
 impl Item {
@@ -102,6 +107,8 @@ impl Item {
             Item::Function(f) => f.sig.ident.to_string(),
             Item::Const(c) => c.ident.to_string(),
             Item::Enum(e) => e.ident.to_string(),
+            // Not a name Rust code can spell: an impl never shadows an item.
+            Item::Impl(i) => methods::impl_key(&methods::self_name(i).unwrap_or_default()),
         }
     }
 }
@@ -119,6 +126,7 @@ pub fn declared(item: &syn::Item) -> Option<Result<Declared, Error>> {
         syn::Item::Struct(s) => &s.attrs,
         syn::Item::Const(c) => &c.attrs,
         syn::Item::Enum(e) => &e.attrs,
+        syn::Item::Impl(i) => &i.attrs,
         _ => return None,
     };
     let attr = attrs.iter().find(|a| {
@@ -126,7 +134,14 @@ pub fn declared(item: &syn::Item) -> Option<Result<Declared, Error>> {
         p.segments.last().is_some_and(|s| {
             matches!(
                 s.ident.to_string().as_str(),
-                "rt_program" | "rt_function" | "rt_struct" | "rt_payload" | "rt_attributes" | "rt_const" | "rt_enum"
+                "rt_program"
+                    | "rt_function"
+                    | "rt_struct"
+                    | "rt_payload"
+                    | "rt_attributes"
+                    | "rt_const"
+                    | "rt_enum"
+                    | "rt_impl"
             )
         })
     })?;
@@ -146,6 +161,13 @@ pub fn declared(item: &syn::Item) -> Option<Result<Declared, Error>> {
             ("rt_enum", syn::Item::Enum(e)) => {
                 enums::check(e)?;
                 Declared::Item(Item::Enum(e.clone()))
+            }
+            ("rt_impl", syn::Item::Impl(i)) => {
+                // The first of its shape errors (the attribute reports all).
+                if let Err(e) = methods::check_impl(i) {
+                    return Err(e.0.into_iter().next().expect("an error"));
+                }
+                Declared::Item(Item::Impl(i.clone()))
             }
             (n, _) => {
                 return Err(Error::new(

@@ -255,3 +255,28 @@ pub fn fuzz_zero_vectors(
     out_f.store(slot, n.x + n.y + x);
     out_u.store(slot + 1, Vec3::default().extend(x).w as u32 + a);
 }
+
+/// `v[0] &= v[1]` did not build for the CPU: the place became an
+/// `arith::at_mut(&mut v, 0)` borrow while the right side read `v` (the
+/// arithmetic compound assignments already took their right side first).
+/// Found once the fuzzer printed methods (the first program with such a
+/// statement that rustc saw); the bitwise ones now take it first too.
+#[rt_program(ray_generation)]
+pub fn fuzz_bitwise_compound(
+    #[var] a: u32,
+    #[var] b: i32,
+    #[var] x: f32,
+    #[var] out_u: RwBuffer<u32>,
+    #[var] out_f: RwBuffer<f32>,
+) {
+    let slot = launch_index().x * SLOTS;
+    let mut v = [uvec2(a, 7), uvec2(3, a ^ 5)];
+    v[0] &= v[1] | UVec2::splat(b as u32);
+    v[1] ^= v[0];
+    let mut m = [a, a + 1];
+    m[1] |= m[0] << 2;
+    out_u.store(slot, v[0].x + v[0].y);
+    out_u.store(slot + 1, v[1].x ^ v[1].y);
+    out_u.store(slot + 2, m[1]);
+    out_f.store(slot, x);
+}

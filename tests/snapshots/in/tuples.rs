@@ -41,3 +41,20 @@ pub fn tuples(#[var] samples: Buffer<PolarSample>, #[var] mut out: RwBuffer<Vec3
     let q = quadrant((n as i32 % 3, i as i32 % 2));
     out[i] = Vec3::new(a, (pair.1).0, (q + n) as f32);
 }
+
+/// Integers in tuple literals inferred from later uses, as in Rust: `t.0`
+/// read as a `u32`, a destructured element added to a `u32`, a nested
+/// tuple's element, and one nothing decides (`i32`).
+#[rt_program(ray_generation)]
+pub fn tuples_inferred(#[var] mut out: RwBuffer<u32>) {
+    let i = launch_index().x;
+    let t = (5, 2.0);
+    let x: u32 = t.0 + i;
+    let (a, b) = (7, 1);
+    let y = a + i;
+    let n = ((1, 4294967295), 3);
+    let z: u32 = (n.0).1;
+    let mut m = (3, 0.5);
+    m.0 += i;
+    out[i] = x + y + z + m.0 + (b + n.1 + (n.0).0) as u32 + t.1 as u32;
+}

@@ -26,7 +26,8 @@ fn rtp_consts(prd: ptr<function, Radiance>) {
     let FAR: f32 = rt_f32_from_bits(0x7f800000u);
     let d: vec3<f32> = rt_current_ray().direction;
     let t: f32 = max(d.y, 0.0f);
-    let sky: vec3<f32> = (HORIZON * (1.0 - pow(t, GAMMA)) + ZENITH * pow(t, GAMMA));
+    let tmp = pow(t, GAMMA);
+    let sky: vec3<f32> = (HORIZON * (1.0 - tmp) + ZENITH * tmp);
     let cell: u32 = (u32((((*prd).depth + BIAS) + STEPS)) % CELLS);
     var stops: array<f32, 3> = STOPS;
     let exposure: f32 = (stops[((cell % STRATA) % 3u)] + STOPS[(cell % 3u)]);

@@ -42,7 +42,8 @@ fn rtp_fuzz_zero_vectors(a: u32, b: i32, x: f32, out_u: RtBuffer, out_f: RtBuffe
     let slot: u32 = (rt_launch_index().x * SLOTS);
     let v: vec3<i32> = vec3<i32>(vec2<i32>(0i), b);
     rt_bufstore_u32(out_u, slot, u32(((v.x + v.y) + v.z)));
-    let n: vec2<f32> = select(vec2<f32>(), clamp(vec2<f32>(0.001f, 4.0f), vec2<f32>(-0.5f), vec2<f32>(0.0f)) * inverseSqrt(select(1.0, dot(clamp(vec2<f32>(0.001f, 4.0f), vec2<f32>(-0.5f), vec2<f32>(0.0f)), clamp(vec2<f32>(0.001f, 4.0f), vec2<f32>(-0.5f), vec2<f32>(0.0f))), dot(clamp(vec2<f32>(0.001f, 4.0f), vec2<f32>(-0.5f), vec2<f32>(0.0f)), clamp(vec2<f32>(0.001f, 4.0f), vec2<f32>(-0.5f), vec2<f32>(0.0f))) > 0.0)), dot(clamp(vec2<f32>(0.001f, 4.0f), vec2<f32>(-0.5f), vec2<f32>(0.0f)), clamp(vec2<f32>(0.001f, 4.0f), vec2<f32>(-0.5f), vec2<f32>(0.0f))) > 0.0);
+    let tmp = clamp(vec2<f32>(0.001f, 4.0f), vec2<f32>(-0.5f), vec2<f32>(0.0f));
+    let n: vec2<f32> = select(vec2<f32>(), tmp * inverseSqrt(select(1.0, dot(tmp, tmp), dot(tmp, tmp) > 0.0)), dot(tmp, tmp) > 0.0);
     rt_bufstore_f32(out_f, slot, ((n.x + n.y) + x));
     rt_bufstore_u32(out_u, (slot + 1u), (rt_f2u(vec4<f32>(vec3<f32>(0.0), x).w) + a));
 }

@@ -178,9 +178,12 @@ fn rtp_glam_more(to_world: mat4x4<f32>, normals: RtBuffer, out: RtBuffer) {
     let n: vec3<f32> = normalize(rt_bufload_vec3f(normals, i));
     var to_object: mat4x4<f32> = rt_inverse4(to_world);
     let tangent: vec3<f32> = rt_any_orthonormal_vector(n);
-    let d: vec3<f32> = (select((vec3<f32>(1.0f, 2.0f, 3.0f) - n * (dot(vec3<f32>(1.0f, 2.0f, 3.0f), n) / dot(n, n))), (1.0f * ((vec3<f32>(1.0f, 2.0f, 3.0f) - n * (dot(vec3<f32>(1.0f, 2.0f, 3.0f), n) / dot(n, n))) / sqrt(dot((vec3<f32>(1.0f, 2.0f, 3.0f) - n * (dot(vec3<f32>(1.0f, 2.0f, 3.0f), n) / dot(n, n))), (vec3<f32>(1.0f, 2.0f, 3.0f) - n * (dot(vec3<f32>(1.0f, 2.0f, 3.0f), n) / dot(n, n))))))), dot((vec3<f32>(1.0f, 2.0f, 3.0f) - n * (dot(vec3<f32>(1.0f, 2.0f, 3.0f), n) / dot(n, n))), (vec3<f32>(1.0f, 2.0f, 3.0f) - n * (dot(vec3<f32>(1.0f, 2.0f, 3.0f), n) / dot(n, n)))) > 1.0f * 1.0f) + (tangent * (dot(vec3<f32>(1.0, 0.0, 0.0), tangent) / dot(tangent, tangent))));
-    let p: vec3<f32> = ((to_object * vec4<f32>(d, 1.0)).xyz + vec3<f32>(rt_inverse3(mat3x3<f32>(n, tangent, cross(n, tangent)))[0][0u], rt_inverse3(mat3x3<f32>(n, tangent, cross(n, tangent)))[1][0u], rt_inverse3(mat3x3<f32>(n, tangent, cross(n, tangent)))[2][0u]));
+    let tmp = vec3<f32>(1.0f, 2.0f, 3.0f);
+    let tmp_1 = (tmp - n * (dot(tmp, n) / dot(n, n)));
+    let d: vec3<f32> = (select(tmp_1, (1.0f * (tmp_1 / sqrt(dot(tmp_1, tmp_1)))), dot(tmp_1, tmp_1) > 1.0f * 1.0f) + (tangent * (dot(vec3<f32>(1.0, 0.0, 0.0), tangent) / dot(tangent, tangent))));
+    let tmp_2 = rt_inverse3(mat3x3<f32>(n, tangent, cross(n, tangent)));
+    let p: vec3<f32> = ((to_object * vec4<f32>(d, 1.0)).xyz + vec3<f32>(tmp_2[0][0u], tmp_2[1][0u], tmp_2[2][0u]));
     let phase: f32 = (rt_rem_euclid((p.x * 3.0f), 1.0f) + (log2((abs(p.y) + 1.0f)) * 0.30102999566f));
-    let tmp = i;
-    rt_bufstore_vec4f(out_1, tmp, vec4<f32>(p, (phase + f32(((i << (7u & 31u)) | (i >> ((32u - (7u & 31u)) & 31u)))))));
+    let tmp_3 = i;
+    rt_bufstore_vec4f(out_1, tmp_3, vec4<f32>(p, (phase + f32(((i << (7u & 31u)) | (i >> ((32u - (7u & 31u)) & 31u)))))));
 }

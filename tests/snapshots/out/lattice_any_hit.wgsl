@@ -18,7 +18,8 @@ fn rtp_lattice_any_hit(prd: ptr<function, Shadow>, transmission: vec3<f32>) {
         return;
     }
     (*prd).attenuation *= transmission;
-    if (max(max((*prd).attenuation.x, (*prd).attenuation.y), (*prd).attenuation.z) < 0.01f) {
+    let tmp = (*prd).attenuation;
+    if (max(max(tmp.x, tmp.y), tmp.z) < 0.01f) {
         rt_terminate_ray();
     }
 }

@@ -83,9 +83,10 @@ fn rtp_path_camera(eye: vec3<f32>, camera: mat3x3<f32>, frame: u32, spp: u32, ma
     }
     let sample: vec3<f32> = (color / f32(max(spp, 1u)));
     let prev: vec4<f32> = rt_bufload2_vec4f(accum_1, idx);
-    let blended: vec3<f32> = (prev.xyz * (1.0 - (1.0f / f32((frame + 1u)))) + sample * (1.0f / f32((frame + 1u))));
-    let tmp = idx;
-    rt_bufstore2_vec4f(accum_1, tmp, vec4<f32>(blended, 1.0f));
+    let tmp = (1.0f / f32((frame + 1u)));
+    let blended: vec3<f32> = (prev.xyz * (1.0 - tmp) + sample * tmp);
+    let tmp_1 = idx;
+    rt_bufstore2_vec4f(accum_1, tmp_1, vec4<f32>(blended, 1.0f));
 }
 
 // ---- resumable form ----
@@ -219,8 +220,9 @@ fn rtp_path_camera(eye: vec3<f32>, camera: mat3x3<f32>, frame: u32, spp: u32, ma
     if rt_site == 0u {
         sample = (color / f32(max(spp, 1u)));
         prev = rt_bufload2_vec4f(accum_1, idx);
-        blended = (prev.xyz * (1.0 - (1.0f / f32((frame + 1u)))) + sample * (1.0f / f32((frame + 1u))));
-        let tmp = idx;
-        rt_bufstore2_vec4f(accum_1, tmp, vec4<f32>(blended, 1.0f));
+        let tmp = (1.0f / f32((frame + 1u)));
+        blended = (prev.xyz * (1.0 - tmp) + sample * tmp);
+        let tmp_1 = idx;
+        rt_bufstore2_vec4f(accum_1, tmp_1, vec4<f32>(blended, 1.0f));
     }
 }

@@ -57,23 +57,24 @@ fn rtp_path_diffuse(prd: ptr<function, PathState>, attr: Normals, albedo: vec3<f
     let n_1: vec3<f32> = tmp;
     (*prd).radiance += ((*prd).throughput * emission);
     (*prd).throughput *= albedo;
-    let p: f32 = max(max((*prd).throughput.x, (*prd).throughput.y), (*prd).throughput.z);
-    var tmp_1: u32 = (*prd).seed;
-    let tmp_2 = rtf_lcg_next(&tmp_1);
-    (*prd).seed = tmp_1;
-    if (tmp_2 > p) {
+    let tmp_1 = (*prd).throughput;
+    let p: f32 = max(max(tmp_1.x, tmp_1.y), tmp_1.z);
+    var tmp_2: u32 = (*prd).seed;
+    let tmp_3 = rtf_lcg_next(&tmp_2);
+    (*prd).seed = tmp_2;
+    if (tmp_3 > p) {
         (*prd).done = true;
         return;
     }
     (*prd).throughput /= p;
-    var tmp_3: u32 = (*prd).seed;
-    let tmp_4 = rtf_lcg_next(&tmp_3);
-    (*prd).seed = tmp_3;
-    let u1: f32 = tmp_4;
-    var tmp_5: u32 = (*prd).seed;
-    let tmp_6 = rtf_lcg_next(&tmp_5);
-    (*prd).seed = tmp_5;
-    let u2: f32 = tmp_6;
+    var tmp_4: u32 = (*prd).seed;
+    let tmp_5 = rtf_lcg_next(&tmp_4);
+    (*prd).seed = tmp_4;
+    let u1: f32 = tmp_5;
+    var tmp_6: u32 = (*prd).seed;
+    let tmp_7 = rtf_lcg_next(&tmp_6);
+    (*prd).seed = tmp_6;
+    let u2: f32 = tmp_7;
     (*prd).origin = (ray.origin + (rt_t_hit() * ray.direction));
     (*prd).direction = rtf_cosine_sample_hemisphere(n_1, u1, u2);
 }

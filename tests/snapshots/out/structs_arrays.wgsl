@@ -64,7 +64,8 @@ fn rtp_structs_arrays(prd: ptr<function, RampSample>, ramp: Ramp) {
         let lo: RampStop = ramp.stops[(i - 1u)];
         let hi: RampStop = ramp.stops[i];
         if ((t >= lo.at) && (t < hi.at)) {
-            color = (lo.color * (1.0 - ((t - lo.at) / (hi.at - lo.at))) + hi.color * ((t - lo.at) / (hi.at - lo.at)));
+            let tmp = ((t - lo.at) / (hi.at - lo.at));
+            color = (lo.color * (1.0 - tmp) + hi.color * tmp);
         }
     }
     var weights: array<f32, 4> = array<f32, 4>(0.0f, 0.0f, 0.0f, 0.0f);

@@ -76,7 +76,8 @@ fn rt_store_vec3f(w: u32, v: vec3<f32>) {
 }
 
 fn rtf_disk(u: f32, v: f32) -> rt_tuple_f32_f32_ {
-    let tuple: rt_tuple_f32_f32_ = rt_tuple_f32_f32_(sin((u * 3.1415927f)), cos((u * 3.1415927f)));
+    let tmp = (u * 3.1415927f);
+    let tuple: rt_tuple_f32_f32_ = rt_tuple_f32_f32_(sin(tmp), cos(tmp));
     let s: f32 = tuple.f0;
     let c: f32 = tuple.f1;
     return rt_tuple_f32_f32_((s * v), (c * v));

@@ -83,7 +83,8 @@ fn rtp_vectors(prd: ptr<function, Radiance>, a: vec3<f32>, b: vec3<f32>, t: f32)
     let cos_: f32 = dot(d, n);
     let len: f32 = ((length(a) + dot(b, b)) + inverseSqrt(dot(a, a)));
     let dist: f32 = (distance(a, b) + dot(a - b, a - b));
-    let safe: vec3<f32> = select(vec3<f32>(), (a - b) * inverseSqrt(select(1.0, dot((a - b), (a - b)), dot((a - b), (a - b)) > 0.0)), dot((a - b), (a - b)) > 0.0);
+    let tmp = (a - b);
+    let safe: vec3<f32> = select(vec3<f32>(), tmp * inverseSqrt(select(1.0, dot(tmp, tmp), dot(tmp, tmp) > 0.0)), dot(tmp, tmp) > 0.0);
     let per: vec3<f32> = clamp(max(min(abs(a), b), vec3<f32>(0.1f)), vec3<f32>(0.0), vec3<f32>(1.0));
     let blend: vec3<f32> = (a * (1.0 - t) + b * t);
     let curve: vec3<f32> = (((((pow(abs(a), vec3<f32>(2.2f)) + sqrt(abs(b))) + exp(a)) + log(abs(b))) + exp2(a)) + log2(abs(b)));

@@ -307,6 +307,31 @@ pub struct Helper {
     pub params: Vec<Param>,
     pub ret: Option<Ty>,
     pub body: Block,
+    /// Printed as a method of a struct rather than a free function.
+    pub method: Option<Method>,
+}
+
+/// A helper printed as a method in the `#[rt_impl]` block of struct `of`:
+/// its first parameter (of that struct's type) is the receiver, named
+/// `self` in the printed body. The interpreter calls it as the helper it
+/// is.
+#[derive(Clone, Copy, Debug)]
+pub struct Method {
+    pub of: usize,
+    pub receiver: Receiver,
+    /// Calls are printed `Struct::name(receiver, ..)` rather than
+    /// `receiver.name(..)`.
+    pub ufcs: bool,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Receiver {
+    /// `self`, from a value parameter.
+    Value,
+    /// `&self`, from a value parameter (read as `(*self)`).
+    Ref,
+    /// `&mut self`, from the `&mut` parameter.
+    MutRef,
 }
 
 #[derive(Clone, Debug)]
@@ -345,8 +370,9 @@ impl Program {
     pub fn source(&self) -> String {
         let mut s = String::from("use rt_std::prelude::*;\n");
         s.push_str("\n#[rt_enum]\npub enum FuzzKind {\n    Alpha,\n    Beta = 5,\n    Gamma,\n}\n");
-        for d in &self.structs {
-            s.push_str("\n#[rt_struct]\npub struct ");
+        for (i, d) in self.structs.iter().enumerate() {
+            let has_impl = self.helpers.iter().any(|h| h.method.is_some_and(|m| m.of == i));
+            s.push_str(if has_impl { "\n#[rt_struct(impl)]\npub struct " } else { "\n#[rt_struct]\npub struct " });
             s.push_str(&d.name);
             s.push_str(" {\n");
             for (n, t) in &d.fields {
@@ -354,19 +380,46 @@ impl Program {
             }
             s.push_str("}\n");
         }
-        for h in &self.helpers {
-            let params: Vec<String> = h
-                .params
+        let params = |h: &Helper| -> Vec<String> {
+            h.params
                 .iter()
                 .map(|p| match p {
                     Param::Val(n, t) => format!("{n}: {}", t.rust(self)),
                     Param::MutRef(n, t) => format!("{n}: &mut {}", t.rust(self)),
                 })
-                .collect();
+                .collect()
+        };
+        for h in self.helpers.iter().filter(|h| h.method.is_none()) {
             let ret = h.ret.as_ref().map(|t| format!(" -> {}", t.rust(self))).unwrap_or_default();
-            let _ = write!(s, "\n#[rt_function]\npub fn {}({}){ret} ", h.name, params.join(", "));
+            let _ = write!(s, "\n#[rt_function]\npub fn {}({}){ret} ", h.name, params(h).join(", "));
             self.block(&mut s, &h.body, 0);
             s.push('\n');
+        }
+        for (i, d) in self.structs.iter().enumerate() {
+            let methods: Vec<&Helper> = self.helpers.iter().filter(|h| h.method.is_some_and(|m| m.of == i)).collect();
+            if methods.is_empty() {
+                continue;
+            }
+            let _ = writeln!(s, "\n#[rt_impl]\nimpl {} {{", d.name);
+            for h in methods {
+                let m = h.method.unwrap();
+                let mut ps = params(h);
+                let (first, body) = match &h.params[0] {
+                    Param::Val(n, _) | Param::MutRef(n, _) => (n.clone(), h.body.clone()),
+                };
+                ps[0] = match m.receiver {
+                    Receiver::Value => "self".into(),
+                    Receiver::Ref => "&self".into(),
+                    Receiver::MutRef => "&mut self".into(),
+                };
+                let mut body = body;
+                rename::block(&mut body, &first, m.receiver == Receiver::Ref);
+                let ret = h.ret.as_ref().map(|t| format!(" -> {}", t.rust(self))).unwrap_or_default();
+                let _ = write!(s, "    pub fn {}({}){ret} ", h.name, ps.join(", "));
+                self.block(&mut s, &body, 1);
+                s.push('\n');
+            }
+            s.push_str("}\n");
         }
         let mut params: Vec<String> =
             self.inputs.iter().map(|(n, t)| format!("#[var] {n}: {}", t.rust(self))).collect();
@@ -524,8 +577,28 @@ impl Program {
                         Arg::MutRef(n) => format!("&mut {n}"),
                     })
                     .collect();
-                let name = self.helpers.get(*h).map_or("missing_helper", |h| h.name.as_str());
-                format!("{name}({})", a.join(", "))
+                let Some(helper) = self.helpers.get(*h) else { return format!("missing_helper({})", a.join(", ")) };
+                match helper.method {
+                    None => format!("{}({})", helper.name, a.join(", ")),
+                    Some(m) => {
+                        let ty = &self.structs[m.of].name;
+                        let (recv, rest) = (a[0].clone(), &a[1..]);
+                        if m.ufcs {
+                            let recv = match (m.receiver, &args[0]) {
+                                (Receiver::Ref, Arg::Val(e)) => format!("&{}", self.receiver(e)),
+                                _ => recv,
+                            };
+                            let all: Vec<String> = std::iter::once(recv).chain(rest.iter().cloned()).collect();
+                            format!("{ty}::{}({})", helper.name, all.join(", "))
+                        } else {
+                            let recv = match &args[0] {
+                                Arg::Val(e) => self.receiver(e),
+                                Arg::MutRef(n) => n.clone(),
+                            };
+                            format!("{recv}.{}({})", helper.name, rest.join(", "))
+                        }
+                    }
+                }
             }
             Expr::StructLit(i, fields) => {
                 let d = &self.structs[*i];
@@ -560,9 +633,10 @@ impl Program {
         }
     }
 
-    /// `&mut` parameters are named `state*` (see the generator).
+    /// `&mut` parameters are named `state*` (see the generator), or are a
+    /// method's `&mut self`.
     fn is_ref_param(&self, n: &str) -> bool {
-        n.starts_with("state")
+        n.starts_with("state") || n == "self"
     }
 
     /// An expression in receiver position (`x.f()`, `x.y`, `x[i]`, `-x`):
@@ -744,6 +818,115 @@ impl Block {
         }
         if let Some(t) = &self.tail {
             t.visit(f);
+        }
+    }
+}
+
+/// A method's body as printed: its receiver parameter renamed `self`
+/// (read through `(*self)` for `&self`).
+mod rename {
+    use super::*;
+
+    pub fn block(b: &mut Block, from: &str, by_ref: bool) {
+        for s in &mut b.stmts {
+            stmt(s, from, by_ref);
+        }
+        if let Some(t) = &mut b.tail {
+            expr(t, from, by_ref);
+        }
+    }
+
+    fn name(n: &mut String, from: &str) {
+        if n == from {
+            *n = "self".into();
+        }
+    }
+
+    fn stmt(s: &mut Stmt, from: &str, by_ref: bool) {
+        match s {
+            Stmt::Let { init, .. } => expr(init, from, by_ref),
+            Stmt::Assign(p, _, v) => {
+                place(p, from, by_ref);
+                expr(v, from, by_ref);
+            }
+            Stmt::If(c, t, e) => {
+                expr(c, from, by_ref);
+                block(t, from, by_ref);
+                if let Some(e) = e {
+                    block(e, from, by_ref);
+                }
+            }
+            Stmt::For { end, body, .. } => {
+                expr(end, from, by_ref);
+                block(body, from, by_ref);
+            }
+            Stmt::While(c, body) => {
+                expr(c, from, by_ref);
+                block(body, from, by_ref);
+            }
+            Stmt::Loop(body) => block(body, from, by_ref),
+            Stmt::Match(e, arms) => {
+                expr(e, from, by_ref);
+                arms.iter_mut().for_each(|a| block(&mut a.body, from, by_ref));
+            }
+            Stmt::Store { index, value, .. } => {
+                expr(index, from, by_ref);
+                expr(value, from, by_ref);
+            }
+            Stmt::Expr(e) | Stmt::Return(Some(e)) => expr(e, from, by_ref),
+            Stmt::Break | Stmt::Continue | Stmt::Return(None) => {}
+        }
+    }
+
+    fn place(p: &mut Place, from: &str, by_ref: bool) {
+        match p {
+            Place::Var(n) | Place::Deref(n) => name(n, from),
+            Place::Field(b, ..) => place(b, from, by_ref),
+            Place::Index(b, i) => {
+                place(b, from, by_ref);
+                expr(i, from, by_ref);
+            }
+        }
+    }
+
+    fn expr(e: &mut Expr, from: &str, by_ref: bool) {
+        match e {
+            Expr::Var(n) if n == from => {
+                *e = if by_ref { Expr::Deref("self".into()) } else { Expr::Var("self".into()) };
+            }
+            Expr::Deref(n) => name(n, from),
+            Expr::Lit(_) | Expr::Var(_) | Expr::LaunchX | Expr::Const(..) => {}
+            Expr::Field(b, ..)
+            | Expr::Unary(_, b)
+            | Expr::Cast(b, _)
+            | Expr::ArrayRepeat(b, _)
+            | Expr::EnumRound(b) => expr(b, from, by_ref),
+            Expr::Index(a, b) | Expr::Bin(_, a, b) => {
+                expr(a, from, by_ref);
+                expr(b, from, by_ref);
+            }
+            Expr::Method(r, _, args) => {
+                expr(r, from, by_ref);
+                args.iter_mut().for_each(|a| expr(a, from, by_ref));
+            }
+            Expr::Path(_, _, xs) | Expr::Free(_, xs) | Expr::ArrayLit(xs) | Expr::TupleField(xs, _) => {
+                xs.iter_mut().for_each(|a| expr(a, from, by_ref))
+            }
+            Expr::Call(_, args) => args.iter_mut().for_each(|a| match a {
+                Arg::Val(e) => expr(e, from, by_ref),
+                Arg::MutRef(n) => name(n, from),
+            }),
+            Expr::StructLit(_, fields) => fields.iter_mut().for_each(|(_, v)| expr(v, from, by_ref)),
+            Expr::If(c, t, f) => {
+                expr(c, from, by_ref);
+                block(t, from, by_ref);
+                block(f, from, by_ref);
+            }
+            Expr::Match(x, arms) => {
+                expr(x, from, by_ref);
+                arms.iter_mut().for_each(|a| block(&mut a.body, from, by_ref));
+            }
+            Expr::BufLoad(_, i, _) => expr(i, from, by_ref),
         }
     }
 }

@@ -9,7 +9,10 @@
 //!    nested `if`/`match`/loops, helpers (one taking `&mut u32`), buffer
 //!    loads and stores, tuple literals read by `.0`/`.1`, and integers
 //!    through an `#[rt_enum]` every program declares (`FuzzKind`, matched
-//!    exhaustively). The AST prints as the Rust source of an
+//!    exhaustively); helpers whose first parameter is the last struct are
+//!    often printed as its `#[rt_impl]` methods (`self`, `&self` or `&mut
+//!    self`), called as `x.name(..)` or `Struct::name(x, ..)` (see
+//!    `ast::Method`). The AST prints as the Rust source of an
 //!    `#[rt_program(ray_generation)]` with its `#[rt_struct]`s and
 //!    `#[rt_function]`s.
 //! 2. The CPU side is [`interp`], an interpreter of that AST with Rust's

@@ -523,9 +523,11 @@ macro_rules! differential {
 mod control_flow;
 mod edge_cases;
 mod enums;
+mod glam_added;
 mod glam_more;
 mod grids;
 mod math;
+mod methods;
 mod scalars;
 mod structs_arrays;
 mod tuples;

@@ -47,6 +47,20 @@ differential! {
         matched(a: i32, b: i32) -> [i32; 1] over pairs(&[-2, -1, 0, 1, 2, 3], &[-1, 0, 1, 4]) => {
             [classify((a, b))]
         }
+        /// Integers of tuple literals inferred from later uses (`u32` from a
+        /// read, a destructured element, a nested element; `i32` where
+        /// nothing decides).
+        inferred(a: u32) -> [u32; 4] over one(&[0, 1, 7, 1000, 1 << 31, u32::MAX - 9]) => {
+            let t = (5, 2.5);
+            let x: u32 = t.0 + (a & 0xffff);
+            let (p, q) = (4000000000, 3);
+            let y = p ^ a;
+            let n = ((1, 4294967295), 3);
+            let z: u32 = (n.0).1 - (a & 0xff);
+            let mut m = (3, 0.5);
+            m.0 += a >> 4;
+            [x, y, z, m.0 + (q * n.1 - (n.0).0) as u32 + t.1 as u32]
+        }
         /// `sin_cos` and a struct field of a tuple type.
         tuple_sin_cos(x: f32) -> [f32; 3] over one(&spread(32, -3.0, 3.0)), tol ulp_or_abs(0, 2.0f32.powi(-11)) => {
             let (s, c) = x.sin_cos();

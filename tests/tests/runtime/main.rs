@@ -17,10 +17,21 @@ use device::*;
 use shading::*;
 use tracing::*;
 
-#[rt_payload]
+#[rt_payload(impl)]
 pub struct Radiance {
     pub result: Vec3,
     pub depth: i32,
+}
+
+#[rt_impl]
+impl Radiance {
+    /// The payload's result set through `&mut self`.
+    pub fn shade(&mut self, color: Vec3) {
+        self.result = color;
+        self.depth += Self::SHADED;
+    }
+
+    pub const SHADED: i32 = 1;
 }
 
 #[rt_payload]
@@ -28,10 +39,18 @@ pub struct ShadowPrd {
     pub attenuation: f32,
 }
 
-#[rt_attributes]
+#[rt_attributes(impl)]
 pub struct Hit {
     pub geometric_normal: Vec3,
     pub shading_normal: Vec3,
+}
+
+#[rt_impl]
+impl Hit {
+    /// The world-space shading normal mapped into `[0, 1]`.
+    pub fn normal_color(&self) -> Vec3 {
+        rt_transform_normal(ObjectToWorld, self.shading_normal).normalize() * 0.5 + 0.5
+    }
 }
 
 /// Orthographic camera looking down -z over `[-extent, extent]^2`.
@@ -63,6 +82,12 @@ pub fn shadow_miss(prd: &mut ShadowPrd) {
 #[rt_program(closest_hit)]
 pub fn normal_shader(prd: &mut Radiance, attr: &Hit) {
     prd.result = rt_transform_normal(ObjectToWorld, attr.shading_normal).normalize() * 0.5 + 0.5;
+}
+
+/// `normal_shader` through methods of the payload and the attributes.
+#[rt_program(closest_hit)]
+pub fn normal_shader_by_methods(prd: &mut Radiance, attr: &Hit) {
+    prd.shade(attr.normal_color());
 }
 
 #[rt_program(closest_hit)]
@@ -458,6 +483,7 @@ on_backends!(
     a_refit_mesh_renders_as_one_built_for_its_new_shape,
     textures_sample_with_wrap_and_filter,
     sphere_silhouette_and_normals,
+    methods_of_the_payload_and_attributes_shade_as_the_fields_do,
     triangle_attributes_reach_closest_hit_through_a_transform,
     rt_get_transform_reads_the_instance_transform_and_its_inverse,
     any_hit_terminate_casts_a_shadow_with_a_sharp_edge,

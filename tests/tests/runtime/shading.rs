@@ -30,6 +30,25 @@ pub(crate) fn sphere_silhouette_and_normals(backend: On) {
     assert_eq!(report.rays, (W * W) as u64);
 }
 
+/// A closest-hit program calling `#[rt_impl]` methods (`rt_transform_normal`
+/// inside an attribute method, `&mut self` on the payload) renders the
+/// image `normal_shader` renders.
+pub(crate) fn methods_of_the_payload_and_attributes_shade_as_the_fields_do(backend: On) {
+    let extent = 2.0;
+    let render = |shader: &'static rt_std::program::ProgramDescriptor| {
+        let (mut ctx, out) = camera(extent, backend);
+        sphere_scene(&mut ctx, shader, Vec3::new(0.25, -0.5, 0.0), 1.0);
+        let report = ctx.launch(0, W, W).unwrap();
+        assert!(report.exceptions.is_empty(), "{:?}", report.exceptions);
+        ctx.read_buffer::<Vec4>(out).unwrap()
+    };
+    let fields = render(&normal_shader::PROGRAM);
+    let methods = render(&normal_shader_by_methods::PROGRAM);
+    let hits = fields.iter().filter(|c| c.truncate() != BG).count();
+    assert!(hits > 100, "the sphere covers {hits} pixels");
+    assert_eq!(fields, methods);
+}
+
 pub(crate) fn quad(z: f32, half: f32) -> TriangleMesh {
     TriangleMesh {
         positions: vec![

@@ -4,6 +4,8 @@
 //! half away from zero, `fract` is `x - trunc(x)`, `signum(0.0)` is 1) the
 //! lowering spells Rust's definition out.
 
+mod glam_angles;
+mod glam_ints;
 mod glam_more;
 
 use super::value::{Val, f32_literal};
@@ -235,6 +237,26 @@ pub fn method_sig(recv: &Ty, name: &str) -> Option<MethodSig> {
     }
     if let Some(m) = glam_more::method(recv, name) {
         return Some(m);
+    }
+    match recv {
+        Ty::Vec(n, Scalar::F32) => {
+            if let Some(m) = glam_angles::method(*n, recv, name) {
+                return Some(m);
+            }
+        }
+        Ty::Vec(n, s) if s.is_int() => {
+            if let Some(m) = glam_ints::method(*n, *s, recv, name) {
+                return Some(m);
+            }
+        }
+        Ty::Scalar(s) if s.is_int() => {
+            if let Some(m) =
+                glam_ints::saturating_method(recv, name).or_else(|| glam_ints::mixed_sign_method(recv, name))
+            {
+                return Some(m);
+            }
+        }
+        _ => {}
     }
     if let Ty::Mat(m) = recv {
         return mat_method(*m, name);
@@ -516,6 +538,9 @@ fn mat_method(n: u8, name: &str) -> Option<MethodSig> {
 /// Extra advice for methods users reach for that have no WGSL equivalent.
 pub fn method_hint(recv: &Ty, name: &str) -> String {
     match (recv, name) {
+        (Ty::Vec(..), "map") => {
+            ": it takes a closure, which ray programs cannot have; write the components out (`Vec3::new(a.x.round(), ..)`) or use a method of the whole vector".into()
+        }
         (_, "iter" | "into_iter" | "map" | "for_each") => {
             ": iterators are not supported; loop over an index range".into()
         }
@@ -575,6 +600,12 @@ pub fn assoc_const(owner: &str, name: &str) -> Option<Val> {
                 "NEG_Y" => axis(1, neg?),
                 "NEG_Z" if *n >= 3 => axis(2, neg?),
                 "NEG_W" if *n >= 4 => axis(3, neg?),
+                // glam's `MIN`/`MAX`: the element type's, splatted
+                // (`f32::MIN`/`MAX` are finite, spelled as hex floats).
+                "MIN" | "MAX" => {
+                    let v = assoc_const(s.rust(), name)?;
+                    format!("{w}({})", v.code)
+                }
                 _ => return None,
             };
             Some(Val::new(code, ty))

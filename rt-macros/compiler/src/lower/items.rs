@@ -20,7 +20,12 @@ pub(super) fn reachable(entry: &Entry<'_>, deps: &[Item]) -> Vec<Item> {
     };
     let mut todo = match entry {
         Entry::Program(_, f) | Entry::Helper(f) => names_of(crate::deps::of_fn(f)),
-        Entry::Struct(s) => names_of(crate::deps::of_struct(s)),
+        // A struct's chain carries its impl (see `methods`).
+        Entry::Struct(s) => {
+            let mut names = names_of(crate::deps::of_struct(s));
+            names.push(crate::methods::impl_key(&s.ident.to_string()));
+            names
+        }
         Entry::Const(c) => names_of(crate::deps::of_const(c)),
     };
     let mut seen: HashSet<String> = HashSet::new();
@@ -30,11 +35,15 @@ pub(super) fn reachable(entry: &Entry<'_>, deps: &[Item]) -> Vec<Item> {
             continue;
         }
         if let Some(item) = deps.iter().find(|d| d.name() == n) {
+            if let Item::Struct(s, _) = item {
+                todo.push(crate::methods::impl_key(&s.ident.to_string()));
+            }
             todo.extend(names_of(match item {
                 Item::Struct(s, _) => crate::deps::of_struct(s),
                 Item::Function(f) => crate::deps::of_fn(f),
                 Item::Const(c) => crate::deps::of_const(c),
                 Item::Enum(_) => Vec::new(),
+                Item::Impl(i) => crate::deps::of_impl(i),
             }));
             out.push(item.clone());
         }
@@ -86,22 +95,63 @@ pub(super) fn lparams(f: &syn::ItemFn, tys: &[Ty]) -> Vec<LParam> {
         .collect()
 }
 
+/// A function the unit lowers as a helper: a `#[rt_function]`, or a
+/// method or associated function of an `#[rt_impl]` (see `methods`).
+#[derive(Clone)]
+pub(super) struct FnDef {
+    /// What calls name it by: the helper's name, or `Type::name`.
+    pub key: String,
+    pub wgsl_name: String,
+    /// A method (callable as `value.name(..)`), its receiver the first
+    /// parameter.
+    pub has_receiver: bool,
+    pub f: syn::ItemFn,
+}
+
+/// A constant the unit lowers: a `#[rt_const]`, or an associated constant.
+#[derive(Clone)]
+pub(super) struct ConstDef {
+    /// What uses name it by: the constant's name, or `Type::NAME`.
+    pub key: String,
+    pub wgsl_name: String,
+    pub c: syn::ItemConst,
+}
+
+/// The keys of the constants an expression names: `NAME`, or `Type::NAME`
+/// for an associated constant.
+fn const_refs(e: &syn::Expr) -> Vec<String> {
+    struct V(Vec<String>);
+    impl<'ast> syn::visit::Visit<'ast> for V {
+        fn visit_expr_path(&mut self, p: &'ast syn::ExprPath) {
+            let segs: Vec<String> = p.path.segments.iter().map(|s| s.ident.to_string()).collect();
+            if let Some(last) = segs.last() {
+                self.0.push(last.clone());
+                if segs.len() >= 2 {
+                    self.0.push(crate::methods::member_key(&segs[segs.len() - 2], last));
+                }
+            }
+        }
+    }
+    let mut v = V(Vec::new());
+    syn::visit::Visit::visit_expr(&mut v, e);
+    v.0
+}
+
 /// Constants in dependency order: a constant's value may name others, and
 /// the macro chain collects them in the order uses were first seen. A
 /// cycle is not an error here: lowering the values reports it.
-pub(super) fn const_order<'a>(consts: &[&'a syn::ItemConst]) -> Vec<&'a syn::ItemConst> {
-    struct Consts<'c, 'a>(&'c [&'a syn::ItemConst]);
-    impl Graph for Consts<'_, '_> {
+pub(super) fn const_order(consts: &[ConstDef]) -> Vec<ConstDef> {
+    struct Consts<'c>(&'c [ConstDef]);
+    impl Graph for Consts<'_> {
         type Node = String;
         type Edge = ();
         type Error = std::convert::Infallible;
         fn deps(&mut self, n: &String) -> std::result::Result<Vec<(String, ())>, Self::Error> {
-            let c = self.0.iter().find(|c| c.ident == n).unwrap();
-            Ok(crate::deps::of_const(c)
-                .iter()
-                .filter_map(|p| p.segments.last())
-                .filter_map(|last| self.0.iter().find(|d| d.ident == last.ident))
-                .map(|d| (d.ident.to_string(), ()))
+            let c = self.0.iter().find(|c| c.key == *n).unwrap();
+            Ok(const_refs(&c.c.expr)
+                .into_iter()
+                .filter(|k| self.0.iter().any(|d| d.key == *k))
+                .map(|k| (k, ()))
                 .collect())
         }
         fn cycle(&mut self, _: &String, _: &String, _: &()) -> Option<Self::Error> {
@@ -110,9 +160,9 @@ pub(super) fn const_order<'a>(consts: &[&'a syn::ItemConst]) -> Vec<&'a syn::Ite
     }
     let mut order = Order::new();
     for c in consts {
-        let Ok(()) = order.visit(&mut Consts(consts), &c.ident.to_string());
+        let Ok(()) = order.visit(&mut Consts(consts), &c.key);
     }
-    order.nodes.iter().map(|n| *consts.iter().find(|c| c.ident == n).unwrap()).collect()
+    order.nodes.iter().map(|n| consts.iter().find(|c| c.key == *n).unwrap().clone()).collect()
 }
 
 /// A struct, or one of its fields (resolved once the field's own struct
@@ -255,57 +305,95 @@ pub(super) fn enums(deps: &[Item]) -> (HashMap<String, Rc<EnumDef>>, HashSet<Str
     (defs, failed)
 }
 
-/// The dependencies by kind, with the entry among them if it is an item:
-/// `(structs, helpers, constants)`.
-#[allow(clippy::type_complexity)]
-pub(super) fn by_kind<'a>(
-    entry: &'a Entry<'_>,
-    deps: &'a [Item],
-) -> (Vec<(&'a syn::ItemStruct, StructRole)>, Vec<&'a syn::ItemFn>, Vec<&'a syn::ItemConst>) {
-    let mut structs_raw: Vec<(&syn::ItemStruct, StructRole)> = Vec::new();
-    let mut helpers_raw: Vec<&syn::ItemFn> = Vec::new();
-    let mut consts_raw: Vec<&syn::ItemConst> = Vec::new();
+/// The dependencies by kind, with the entry among them if it is an item.
+pub(super) struct ByKind<'a> {
+    pub structs: Vec<(&'a syn::ItemStruct, StructRole)>,
+    /// Helpers, then the impls' methods and associated functions.
+    pub fns: Vec<FnDef>,
+    /// `#[rt_const]`s, then the impls' associated constants.
+    pub consts: Vec<ConstDef>,
+    /// Members of impls whose shape was rejected (their attribute said
+    /// why): uses of them are silent errors.
+    pub failed: Vec<String>,
+}
+
+pub(super) fn by_kind<'a>(entry: &'a Entry<'_>, deps: &'a [Item]) -> ByKind<'a> {
+    let mut k = ByKind { structs: Vec::new(), fns: Vec::new(), consts: Vec::new(), failed: Vec::new() };
+    let helper = |f: &syn::ItemFn| FnDef {
+        key: f.sig.ident.to_string(),
+        wgsl_name: format!("rtf_{}", f.sig.ident),
+        has_receiver: false,
+        f: f.clone(),
+    };
+    let constant = |c: &syn::ItemConst| ConstDef {
+        key: c.ident.to_string(),
+        wgsl_name: wgsl_ident(&c.ident.to_string()),
+        c: c.clone(),
+    };
+    let mut impls = Vec::new();
     for d in deps {
         match d {
-            Item::Struct(s, r) => structs_raw.push((s, *r)),
-            Item::Function(f) => helpers_raw.push(f),
-            Item::Const(c) => consts_raw.push(c),
+            Item::Struct(s, r) => k.structs.push((s, *r)),
+            Item::Function(f) => k.fns.push(helper(f)),
+            Item::Const(c) => k.consts.push(constant(c)),
             // Built before the structs (`ModuleCtx::enums`).
             Item::Enum(_) => {}
+            Item::Impl(i) => impls.push(i),
         }
     }
     match &entry {
         Entry::Struct(s) => {
-            if !structs_raw.iter().any(|(x, _)| x.ident == s.ident) {
-                structs_raw.push((s, StructRole::Data));
+            if !k.structs.iter().any(|(x, _)| x.ident == s.ident) {
+                k.structs.push((s, StructRole::Data));
             }
         }
         Entry::Helper(f) => {
-            if !helpers_raw.iter().any(|x| x.sig.ident == f.sig.ident) {
-                helpers_raw.push(f);
+            if !k.fns.iter().any(|x| f.sig.ident == x.key) {
+                k.fns.push(helper(f));
             }
         }
         Entry::Const(c) => {
-            if !consts_raw.iter().any(|x| x.ident == c.ident) {
-                consts_raw.push(c);
+            if !k.consts.iter().any(|x| c.ident == x.key) {
+                k.consts.push(constant(c));
             }
         }
         Entry::Program(..) => {}
     }
-    (structs_raw, helpers_raw, consts_raw)
+    for i in impls {
+        let (fns, consts, failed) = crate::methods::lowerable(i);
+        k.fns.extend(fns.into_iter().map(|m| FnDef {
+            key: m.key,
+            wgsl_name: m.wgsl_name,
+            has_receiver: m.has_receiver,
+            f: m.f,
+        }));
+        k.consts.extend(consts.into_iter().map(|c| ConstDef {
+            key: c.key,
+            wgsl_name: wgsl_ident(&c.wgsl_name),
+            c: c.c,
+        }));
+        k.failed.extend(failed);
+    }
+    k
 }
 
 /// Orders helpers callees-first; a cycle is recursion, which WGSL lacks (the
-/// error comes with the helper whose call closes the cycle).
-pub(super) fn helper_order(items: &HashMap<String, &syn::ItemFn>) -> std::result::Result<Vec<String>, (String, Error)> {
-    struct Calls<'i, 'a>(&'i HashMap<String, &'a syn::ItemFn>);
-    impl Graph for Calls<'_, '_> {
+/// error comes with the helper whose call closes the cycle). Calls by path
+/// are read from the bodies; method calls (`value.name(..)`, which only
+/// the receiver's type resolves) are given in `method_calls`, by caller.
+pub(super) fn helper_order(
+    items: &HashMap<String, FnDef>,
+    method_calls: &HashMap<String, Vec<(String, Span)>>,
+) -> std::result::Result<Vec<String>, (String, Error)> {
+    struct Calls<'i>(&'i HashMap<String, FnDef>, &'i HashMap<String, Vec<(String, Span)>>);
+    impl Graph for Calls<'_> {
         type Node = String;
         type Edge = Span;
         type Error = (String, Error);
         fn deps(&mut self, n: &String) -> std::result::Result<Vec<(String, Span)>, Self::Error> {
             let mut found = Vec::new();
-            collect_calls(&self.0[n].block, &mut found);
+            collect_calls(&self.0[n].f.block, &mut found);
+            found.extend(self.1.get(n).into_iter().flatten().cloned());
             Ok(found.into_iter().filter(|(c, _)| self.0.contains_key(c)).collect())
         }
         fn cycle(&mut self, n: &String, c: &String, span: &Span) -> Option<Self::Error> {
@@ -321,12 +409,14 @@ pub(super) fn helper_order(items: &HashMap<String, &syn::ItemFn>) -> std::result
     names.sort();
     let mut order = Order::new();
     for n in names {
-        order.visit(&mut Calls(items), n)?;
+        order.visit(&mut Calls(items, method_calls), n)?;
     }
     Ok(order.nodes)
 }
 
-/// Names of functions called in a block, with the call span.
+/// Names of functions called in a block, with the call span: a path's
+/// last segment, and for `Type::name(..)` also the associated function's
+/// key (`Type::name`).
 pub fn collect_calls(block: &syn::Block, out: &mut Vec<(String, Span)>) {
     struct V<'a>(&'a mut Vec<(String, Span)>);
     impl<'ast> syn::visit::Visit<'ast> for V<'_> {
@@ -335,6 +425,10 @@ pub fn collect_calls(block: &syn::Block, out: &mut Vec<(String, Span)>) {
                 && let Some(seg) = p.path.segments.last()
             {
                 self.0.push((seg.ident.to_string(), c.span()));
+                if p.path.segments.len() >= 2 {
+                    let owner = &p.path.segments[p.path.segments.len() - 2].ident;
+                    self.0.push((crate::methods::member_key(&owner.to_string(), &seg.ident.to_string()), c.span()));
+                }
             }
             syn::visit::visit_expr_call(self, c);
         }

@@ -4,8 +4,10 @@
 //! The module is laid out as four sections the runtime's linker relies on:
 //! a *prelude* of runtime stubs (replaced at link time by the real runtime),
 //! the *types*, the *functions* (accessors, constants and helpers) and the
-//! *program*. Names: programs are `rtp_<name>`, helpers `rtf_<name>`, runtime
-//! items `rt_*`/`Rt*`; user structs and constants keep their names.
+//! *program*. Names: programs are `rtp_<name>`, helpers `rtf_<name>`, the
+//! methods and associated functions of an `#[rt_impl]` `rtm_<Type>__<name>`
+//! and its constants `<Type>__<NAME>`, runtime items `rt_*`/`Rt*`; user
+//! structs and constants keep their names.
 //!
 //! [`lower`] runs the phases of [`unit`] in order: the items the entry
 //! reaches ([`items`]), sorted by dependency ([`order`]); constants; helper
@@ -51,6 +53,9 @@ pub struct HelperSig {
     pub traced: Vec<Ty>,
     /// A helper that traces has a resumable form (`<wgsl_name>_rs`).
     pub resumable: bool,
+    /// A method of an `#[rt_impl]` (see `methods`): its first parameter is
+    /// the receiver, and `value.name(..)` calls it.
+    pub has_receiver: bool,
 }
 
 #[derive(Clone, Debug)]
@@ -200,13 +205,15 @@ pub fn lower_own(entry: Entry<'_>, deps: &[Item]) -> std::result::Result<Lowered
 fn lower_impl(entry: Entry<'_>, deps: &[Item], report_deps: bool) -> std::result::Result<Lowered, Errors> {
     let mut unit = unit::Unit::new(&entry);
     let deps = items::reachable(&entry, deps);
-    let (structs_raw, helpers_raw, consts_raw) = items::by_kind(&entry, &deps);
+    let items::ByKind { structs: structs_raw, fns: helpers_raw, consts: consts_raw, failed: failed_members } =
+        items::by_kind(&entry, &deps);
     let consts_raw = items::const_order(&consts_raw);
     let (enums, failed_enums) = items::enums(&deps);
     let (structs, struct_order) = unit.build_structs(&structs_raw, &enums);
     let mut failed_structs: HashSet<String> =
         structs_raw.iter().map(|(s, _)| s.ident.to_string()).filter(|n| !structs.contains_key(n)).collect();
     failed_structs.extend(failed_enums);
+    failed_structs.extend(failed_members);
     let mut m = ModuleCtx {
         structs,
         enums,

@@ -4,13 +4,14 @@
 //! dependencies can be silenced (see `lower_own`).
 
 use super::func::{FnLowerer, FnRole};
-use super::items::{StructGraph, StructNode, check_fn_shape, helper_order, lparams};
+use super::items::{ConstDef, FnDef, StructGraph, StructNode, check_fn_shape, helper_order, lparams};
 use super::order::Order;
 use super::program::program_unit;
-use super::{ConstInfo, Entry, HelperSig, Lowered, ModuleCtx, text, wgsl_ident};
+use super::{ConstInfo, Entry, HelperSig, Lowered, ModuleCtx, text};
 use crate::StructRole;
 use crate::error::{Error, Errors};
 use crate::types::{EnumDef, Scalar, StructDef, Ty};
+use proc_macro2::Span;
 use std::collections::HashMap;
 use std::ops::Range;
 use std::rc::Rc;
@@ -50,11 +51,12 @@ impl<'e, 'a> Unit<'e, 'a> {
         }
     }
 
-    /// Whether an item is the entry itself.
+    /// Whether an item is the entry itself (a struct's impl is the
+    /// struct's: its chain reports the impl's errors; see `methods`).
     fn owns(&self, name: &str) -> bool {
         match self.entry {
             Entry::Helper(f) => f.sig.ident == name,
-            Entry::Struct(s) => s.ident == name,
+            Entry::Struct(s) => s.ident == name || name.starts_with(&format!("{}::", s.ident)),
             Entry::Const(c) => c.ident == name,
             Entry::Program(..) => false,
         }
@@ -102,11 +104,12 @@ impl<'e, 'a> Unit<'e, 'a> {
     }
 
     /// Lowers the constants, in dependency order.
-    pub fn lower_consts(&mut self, m: &mut ModuleCtx, consts: &[&syn::ItemConst]) {
-        for c in consts {
-            let name = c.ident.to_string();
+    pub fn lower_consts(&mut self, m: &mut ModuleCtx, consts: &[ConstDef]) {
+        for def in consts {
+            let c = &def.c;
+            let name = def.key.clone();
             self.own(&name);
-            let wname = wgsl_ident(&name);
+            let wname = def.wgsl_name.clone();
             m.global_names.insert(wname.clone());
             let ty = match m.resolve_type(&c.ty) {
                 Ok(t) => t,
@@ -154,28 +157,25 @@ impl<'e, 'a> Unit<'e, 'a> {
         }
 
         for c in consts {
-            if !m.consts.contains_key(&c.ident.to_string()) {
-                m.failed.insert(c.ident.to_string());
+            if !m.consts.contains_key(&c.key) {
+                m.failed.insert(c.key.clone());
             }
         }
     }
 
     /// Checks the helpers' signatures; returns the helpers that have one.
-    pub fn helper_signatures<'f>(
-        &mut self,
-        m: &mut ModuleCtx,
-        helpers_raw: &[&'f syn::ItemFn],
-    ) -> HashMap<String, &'f syn::ItemFn> {
-        let mut helper_items: HashMap<String, &syn::ItemFn> = HashMap::new();
-        for f in helpers_raw {
-            let name = f.sig.ident.to_string();
+    pub fn helper_signatures(&mut self, m: &mut ModuleCtx, helpers_raw: &[FnDef]) -> HashMap<String, FnDef> {
+        let mut helper_items: HashMap<String, FnDef> = HashMap::new();
+        for def in helpers_raw {
+            let f = &def.f;
+            let name = def.key.clone();
             self.own(&name);
             if let Err(e) = check_fn_shape(f) {
                 self.errors.0.extend(e.0);
                 continue;
             }
             let Some((params, ret)) = helper_signature(m, f, &mut self.errors) else { continue };
-            let wgsl_name = format!("rtf_{name}");
+            let wgsl_name = def.wgsl_name.clone();
             m.global_names.insert(wgsl_name.clone());
             m.helpers.insert(
                 name.clone(),
@@ -187,23 +187,44 @@ impl<'e, 'a> Unit<'e, 'a> {
                     intrinsics: Vec::new(),
                     traced: Vec::new(),
                     resumable: false,
+                    has_receiver: def.has_receiver,
                 },
             );
-            helper_items.insert(name, f);
+            helper_items.insert(name, def.clone());
         }
 
         for f in helpers_raw {
-            if !m.helpers.contains_key(&f.sig.ident.to_string()) {
-                m.failed.insert(f.sig.ident.to_string());
+            if !m.helpers.contains_key(&f.key) {
+                m.failed.insert(f.key.clone());
             }
         }
         helper_items
     }
 
+    /// The method calls each function makes, by caller: only the
+    /// receiver's type says which method `value.name(..)` calls, so the
+    /// bodies are lowered once for their types (the result is dropped)
+    /// before the order is known. Not needed without methods.
+    fn method_calls(m: &ModuleCtx, helper_items: &HashMap<String, FnDef>) -> HashMap<String, Vec<(String, Span)>> {
+        let mut calls = HashMap::new();
+        if !helper_items.values().any(|d| d.has_receiver) {
+            return calls;
+        }
+        for (name, def) in helper_items {
+            let sig = &m.helpers[name];
+            let params = lparams(&def.f, &sig.params);
+            let mut l = FnLowerer::new(m, FnRole::Helper, name, sig.ret.clone());
+            let _ = l.function(&sig.wgsl_name, &params, &def.f.block);
+            calls.insert(name.clone(), l.method_calls);
+        }
+        calls
+    }
+
     /// Lowers the helpers' bodies, callees first; helpers that trace also
     /// in their resumable form.
-    pub fn lower_helpers(&mut self, m: &mut ModuleCtx, helper_items: &HashMap<String, &syn::ItemFn>) {
-        let order = match helper_order(helper_items) {
+    pub fn lower_helpers(&mut self, m: &mut ModuleCtx, helper_items: &HashMap<String, FnDef>) {
+        let method_calls = Self::method_calls(m, helper_items);
+        let order = match helper_order(helper_items, &method_calls) {
             Ok(o) => o,
             Err((name, e)) => {
                 self.own(&name);
@@ -213,7 +234,7 @@ impl<'e, 'a> Unit<'e, 'a> {
         };
         for name in order {
             self.own(&name);
-            let f = helper_items[&name];
+            let f = &helper_items[&name].f;
             let sig = m.helpers[&name].clone();
             let params = lparams(f, &sig.params);
             let mut l = FnLowerer::new(m, FnRole::Helper, &name, sig.ret.clone());

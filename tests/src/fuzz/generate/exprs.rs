@@ -250,18 +250,23 @@ impl Gen {
         (0..self.callable).find(|i| self.p.helpers[*i].params.iter().any(|p| matches!(p, Param::MutRef(..))))
     }
 
-    /// A call of the `&mut u32` helper on a `u32` local (or on this
-    /// helper's own `&mut` parameter), if its result type is `t`.
+    /// A call of the `&mut` helper (of a `u32` or the last struct) on a
+    /// local of that type (or on this helper's own `&mut` parameter), if
+    /// its result type is `t`.
     pub(super) fn mut_call(&mut self, t: Option<&Ty>) -> Option<Expr> {
         let h = self.mut_helper()?;
         let helper = self.p.helpers[h].clone();
         if t.is_some_and(|t| helper.ret.as_ref() != Some(t)) {
             return None;
         }
+        let target_ty = helper.params.iter().find_map(|p| match p {
+            Param::MutRef(_, t) => Some(t.clone()),
+            Param::Val(..) => None,
+        })?;
         let targets: Vec<Var> = self
             .vars()
             .filter(|v| {
-                v.ty == U32
+                v.ty == target_ty
                     && v.mutable
                     && matches!(v.kind, Kind::Local | Kind::RefParam)
                     && !self.no_mut.contains(&v.name)

@@ -126,13 +126,23 @@ impl Gen {
         let name = format!("{}_h{i}", self.p.name);
         self.scopes = vec![Vec::new()];
         let mut params = Vec::new();
+        // The last struct may get methods (see `method_form`): give some
+        // helpers it as their first parameter.
+        let last_struct = self.p.structs.len().checked_sub(1).map(Ty::Struct);
+        let mut_ty = match &last_struct {
+            Some(t) if self.r.chance(60) => t.clone(),
+            _ => U32,
+        };
         if takes_mut {
             let n = format!("state{i}");
-            self.bind(&n, U32, true, Kind::RefParam);
-            params.push(Param::MutRef(n, U32));
+            self.bind(&n, mut_ty.clone(), true, Kind::RefParam);
+            params.push(Param::MutRef(n, mut_ty.clone()));
         }
         for k in 0..self.r.range(if takes_mut { 0 } else { 1 }, 3) {
-            let t = self.var_ty();
+            let t = match &last_struct {
+                Some(t) if k == 0 && !takes_mut && self.r.chance(70) => t.clone(),
+                _ => self.var_ty(),
+            };
             let n = format!("p{i}_{k}");
             self.bind(&n, t.clone(), false, Kind::ReadOnly);
             params.push(Param::Val(n, t));
@@ -147,12 +157,49 @@ impl Gen {
         }
         if takes_mut {
             // At least one write through the reference.
-            let v = self.expr(&U32, DEPTH, true);
-            let op = self.r.pick(&[None, Some(BinOp::Add), Some(BinOp::BitXor), Some(BinOp::Mul)]);
+            let v = self.expr(&mut_ty, DEPTH, true);
+            let op = if mut_ty == U32 {
+                self.r.pick(&[None, Some(BinOp::Add), Some(BinOp::BitXor), Some(BinOp::Mul)])
+            } else {
+                None
+            };
             stmts.push(Stmt::Assign(Place::Deref(format!("state{i}")), op, v));
         }
         let tail = self.expr(&ret, DEPTH, true);
         self.ret = None;
-        Helper { name, params, ret: Some(ret), body: Block { stmts, tail: Some(tail) } }
+        let body = Block { stmts, tail: Some(tail) };
+        let method = self.method_form(&params, &body);
+        Helper { name, params, ret: Some(ret), body, method }
+    }
+
+    /// Whether a helper is printed as a method (and how), with its first
+    /// parameter as the receiver: only of the last struct, which no other
+    /// struct contains, and only if the body calls no helper but the
+    /// struct's own methods. So the method's impl never names an item
+    /// whose own link in the macro chain names the struct back, a cycle
+    /// the chain cannot close (see `rt_compiler::methods`).
+    fn method_form(&mut self, params: &[Param], body: &Block) -> Option<Method> {
+        let of = self.p.structs.len().checked_sub(1)?;
+        let receiver = match params.first()? {
+            Param::MutRef(_, Ty::Struct(k)) if *k == of => Receiver::MutRef,
+            Param::Val(_, Ty::Struct(k)) if *k == of => {
+                if self.r.chance(50) {
+                    Receiver::Value
+                } else {
+                    Receiver::Ref
+                }
+            }
+            _ => return None,
+        };
+        let mut own_calls_only = true;
+        body.visit(&mut |e| {
+            if let Expr::Call(h, _) = e {
+                own_calls_only &= self.p.helpers[*h].method.is_some_and(|m| m.of == of);
+            }
+        });
+        if !own_calls_only || !self.r.chance(90) {
+            return None;
+        }
+        Some(Method { of, receiver, ufcs: self.r.chance(30) })
     }
 }

@@ -111,11 +111,21 @@ impl Gen {
             };
             (Ty::Arr(b_ty(et), n), init)
         } else {
-            let ty = self.var_ty();
+            // Locals a `&mut` struct helper (a `&mut self` method) can take.
+            let mut_struct = self.mut_helper().and_then(|h| {
+                self.p.helpers[h].params.iter().find_map(|p| match p {
+                    Param::MutRef(_, t @ Ty::Struct(_)) => Some(t.clone()),
+                    _ => None,
+                })
+            });
+            let ty = match mut_struct {
+                Some(t) if self.r.chance(35) => t,
+                _ => self.var_ty(),
+            };
             let init = self.expr(&ty, DEPTH, annotate);
             (ty, init)
         };
-        let mutable = matches!(ty, Ty::Arr(..)) || self.r.chance(55);
+        let mutable = matches!(ty, Ty::Arr(..) | Ty::Struct(_)) || self.r.chance(55);
         let konst = self.is_const(&init);
         out.push(Stmt::Let { name: name.clone(), mutable, ty: ty.clone(), annotate, init });
         self.bind(&name, ty, mutable, Kind::Local);

@@ -110,6 +110,134 @@ fn rt_div_euclid(a: f32, b: f32) -> f32 {
 }
 ";
 
+/// glam's `normalize_or`: `self * (1 / length)` where that factor is
+/// finite and positive, else the fallback; a function, so that a constant
+/// zero vector's infinite factor is never a constant expression.
+const NORMALIZE_OR: [&str; 3] = [
+    "\
+fn rt_normalize_or2(v: vec2<f32>, fallback: vec2<f32>) -> vec2<f32> {
+    let rcp = 1.0f / length(v);
+    if abs(rcp) <= 0x1.fffffep+127f && rcp > 0.0f {
+        return v * rcp;
+    }
+    return fallback;
+}
+",
+    "\
+fn rt_normalize_or3(v: vec3<f32>, fallback: vec3<f32>) -> vec3<f32> {
+    let rcp = 1.0f / length(v);
+    if abs(rcp) <= 0x1.fffffep+127f && rcp > 0.0f {
+        return v * rcp;
+    }
+    return fallback;
+}
+",
+    "\
+fn rt_normalize_or4(v: vec4<f32>, fallback: vec4<f32>) -> vec4<f32> {
+    let rcp = 1.0f / length(v);
+    if abs(rcp) <= 0x1.fffffep+127f && rcp > 0.0f {
+        return v * rcp;
+    }
+    return fallback;
+}
+",
+];
+
+/// glam's `normalize_and_length`: as `normalize_or`, with the length (or
+/// `(X, 0.0)`).
+const NORMALIZE_AND_LENGTH: [&str; 3] = [
+    "\
+fn rt_normalize_and_length2(v: vec2<f32>) -> rt_tuple_vec2f_f32_ {
+    let length = length(v);
+    let rcp = 1.0f / length;
+    if abs(rcp) <= 0x1.fffffep+127f && rcp > 0.0f {
+        return rt_tuple_vec2f_f32_(v * rcp, length);
+    }
+    return rt_tuple_vec2f_f32_(vec2<f32>(1.0f, 0.0f), 0.0f);
+}
+",
+    "\
+fn rt_normalize_and_length3(v: vec3<f32>) -> rt_tuple_vec3f_f32_ {
+    let length = length(v);
+    let rcp = 1.0f / length;
+    if abs(rcp) <= 0x1.fffffep+127f && rcp > 0.0f {
+        return rt_tuple_vec3f_f32_(v * rcp, length);
+    }
+    return rt_tuple_vec3f_f32_(vec3<f32>(1.0f, 0.0f, 0.0f), 0.0f);
+}
+",
+    "\
+fn rt_normalize_and_length4(v: vec4<f32>) -> rt_tuple_vec4f_f32_ {
+    let length = length(v);
+    let rcp = 1.0f / length;
+    if abs(rcp) <= 0x1.fffffep+127f && rcp > 0.0f {
+        return rt_tuple_vec4f_f32_(v * rcp, length);
+    }
+    return rt_tuple_vec4f_f32_(vec4<f32>(1.0f, 0.0f, 0.0f, 0.0f), 0.0f);
+}
+",
+];
+
+/// glam's `inverse_or_zero`: the inverse, or zero where it is not finite
+/// (read from the bits, which no implementation may assume away, after a
+/// zero determinant, where the division itself is not defined on every GPU).
+const INVERSE_OR_ZERO: [&str; 3] = [
+    "\
+fn rt_inverse_or_zero2(m: mat2x2<f32>) -> mat2x2<f32> {
+    if determinant(m) == 0.0f {
+        return mat2x2<f32>();
+    }
+    let r = rt_inverse2(m);
+    if any((bitcast<vec2<u32>>(r[0]) & vec2<u32>(0x7f800000u)) == vec2<u32>(0x7f800000u)) {
+        return mat2x2<f32>();
+    }
+    if any((bitcast<vec2<u32>>(r[1]) & vec2<u32>(0x7f800000u)) == vec2<u32>(0x7f800000u)) {
+        return mat2x2<f32>();
+    }
+    return r;
+}
+",
+    "\
+fn rt_inverse_or_zero3(m: mat3x3<f32>) -> mat3x3<f32> {
+    if determinant(m) == 0.0f {
+        return mat3x3<f32>();
+    }
+    let r = rt_inverse3(m);
+    if any((bitcast<vec3<u32>>(r[0]) & vec3<u32>(0x7f800000u)) == vec3<u32>(0x7f800000u)) {
+        return mat3x3<f32>();
+    }
+    if any((bitcast<vec3<u32>>(r[1]) & vec3<u32>(0x7f800000u)) == vec3<u32>(0x7f800000u)) {
+        return mat3x3<f32>();
+    }
+    if any((bitcast<vec3<u32>>(r[2]) & vec3<u32>(0x7f800000u)) == vec3<u32>(0x7f800000u)) {
+        return mat3x3<f32>();
+    }
+    return r;
+}
+",
+    "\
+fn rt_inverse_or_zero4(m: mat4x4<f32>) -> mat4x4<f32> {
+    if determinant(m) == 0.0f {
+        return mat4x4<f32>();
+    }
+    let r = rt_inverse4(m);
+    if any((bitcast<vec4<u32>>(r[0]) & vec4<u32>(0x7f800000u)) == vec4<u32>(0x7f800000u)) {
+        return mat4x4<f32>();
+    }
+    if any((bitcast<vec4<u32>>(r[1]) & vec4<u32>(0x7f800000u)) == vec4<u32>(0x7f800000u)) {
+        return mat4x4<f32>();
+    }
+    if any((bitcast<vec4<u32>>(r[2]) & vec4<u32>(0x7f800000u)) == vec4<u32>(0x7f800000u)) {
+        return mat4x4<f32>();
+    }
+    if any((bitcast<vec4<u32>>(r[3]) & vec4<u32>(0x7f800000u)) == vec4<u32>(0x7f800000u)) {
+        return mat4x4<f32>();
+    }
+    return r;
+}
+",
+];
+
 /// The glam methods of this file for `recv.name(...)`, if it is one.
 pub fn method(recv: &Ty, name: &str) -> Option<MethodSig> {
     match recv {
@@ -120,6 +248,13 @@ pub fn method(recv: &Ty, name: &str) -> Option<MethodSig> {
                 _ => ("rt_inverse4", INVERSE4),
             };
             with_support(sig(vec![], recv.clone(), move |a| format!("{f}({})", a[0])), f, text)
+        }
+        Ty::Mat(n) if name == "inverse_or_zero" => {
+            let i = *n as usize - 2;
+            let (f, text) = [("rt_inverse2", INVERSE2), ("rt_inverse3", INVERSE3), ("rt_inverse4", INVERSE4)][i];
+            let g: &'static str = ["rt_inverse_or_zero2", "rt_inverse_or_zero3", "rt_inverse_or_zero4"][i];
+            let m = with_support(sig(vec![], recv.clone(), move |a| format!("{g}({})", a[0])), f, text);
+            with_support(m, g, INVERSE_OR_ZERO[i])
         }
         Ty::Mat(n) => mat(*n, name),
         Ty::Scalar(Scalar::F32) => float(name),
@@ -181,6 +316,30 @@ fn mat(n: u8, name: &str) -> Option<MethodSig> {
             // `v * m` in WGSL: the dot of each column with `v`.
             sig(vec![v.clone()], v, |a| format!("({} * {})", a[1], a[0]))
         }
+        "mul_transpose_vec2" | "mul_transpose_vec3" | "mul_transpose_vec4" if name.ends_with(&n.to_string()) => {
+            sig(vec![v.clone()], v, |a| format!("({} * {})", a[1], a[0]))
+        }
+        "mul_diagonal_scale" => sig(vec![v.clone()], t, move |a| {
+            let parts: Vec<String> = (0..n).map(|i| format!("({}[{i}] * {}[{i}])", a[0], a[1])).collect();
+            format!("mat{n}x{n}<f32>({})", parts.join(", "))
+        }),
+        "recip" => sig(vec![], t, move |a| cols(&|c| format!("(vec{n}<f32>(1.0) / {c})"), &a[0])),
+        "abs_diff_eq" => sig(vec![t.clone(), F32], Ty::Scalar(Scalar::Bool), move |a| {
+            let parts: Vec<String> = (0..n)
+                .map(|i| format!("all(abs({0}[{i}] - {1}[{i}]) <= vec{n}<f32>({2}))", a[0], a[1], a[2]))
+                .collect();
+            format!("({})", parts.join(" && "))
+        }),
+        "is_finite" => sig(vec![], Ty::Scalar(Scalar::Bool), move |a| {
+            let parts: Vec<String> = (0..n)
+                .map(|i| format!("all(abs({}[{i}]) <= vec{n}<f32>({}))", a[0], super::f32_literal(f32::MAX)))
+                .collect();
+            format!("({})", parts.join(" && "))
+        }),
+        "is_nan" => sig(vec![], Ty::Scalar(Scalar::Bool), move |a| {
+            let parts: Vec<String> = (0..n).map(|i| format!("any({0}[{i}] != {0}[{i}])", a[0])).collect();
+            format!("({})", parts.join(" || "))
+        }),
         "mul_vec2" if n == 2 => sig(vec![v.clone()], v, |a| format!("({} * {})", a[0], a[1])),
         "mul_mat2" if n == 2 => sig(vec![t.clone()], t, |a| format!("({} * {})", a[0], a[1])),
         "transform_point2" if n == 3 => {
@@ -295,6 +454,53 @@ fn float_vec(n: u8, recv: &Ty, name: &str) -> Option<MethodSig> {
             format!("vec2<f32>({0}.x * {1}.x - {0}.y * {1}.y, {0}.y * {1}.x + {0}.x * {1}.y)", a[0], a[1])
         }),
         "to_angle" if n == 2 => sig(vec![], F32, |a| format!("atan2({0}.y, {0}.x)", a[0])),
+        "reflect" if n != 3 => sig(vec![t.clone()], t, |a| format!("reflect({}, {})", a[0], a[1])),
+        "refract" if n != 3 => sig(vec![t.clone(), F32], t, |a| format!("refract({}, {}, {})", a[0], a[1], a[2])),
+        "lerp_monotonic" => sig(vec![t.clone(), F32], t, |a| format!("({0} + ({1} - {0}) * {2})", a[0], a[1], a[2])),
+        "normalize_or" => {
+            let i = n as usize - 2;
+            let f: &'static str = ["rt_normalize_or2", "rt_normalize_or3", "rt_normalize_or4"][i];
+            with_support(sig(vec![t.clone()], t, move |a| format!("{f}({}, {})", a[0], a[1])), f, NORMALIZE_OR[i])
+        }
+        "normalize_and_length" => {
+            let i = n as usize - 2;
+            let f: &'static str =
+                ["rt_normalize_and_length2", "rt_normalize_and_length3", "rt_normalize_and_length4"][i];
+            let ret = Ty::Tuple(vec![t.clone(), F32]);
+            with_support(sig(vec![], ret, move |a| format!("{f}({})", a[0])), f, NORMALIZE_AND_LENGTH[i])
+        }
+        "sin_cos" => {
+            let pair = Ty::Tuple(vec![t.clone(), t]);
+            let name = pair.wgsl();
+            sig(vec![], pair, move |a| format!("{name}(sin({0}), cos({0}))", a[0]))
+        }
+        "rem_euclid" | "div_euclid" => {
+            let f = if name == "rem_euclid" { "rt_rem_euclid" } else { "rt_div_euclid" };
+            let text = if name == "rem_euclid" { REM_EUCLID } else { DIV_EUCLID };
+            let w = t.wgsl();
+            with_fmod(with_support(
+                sig(vec![t.clone()], t, move |a| {
+                    let parts: Vec<String> = (0..n as usize)
+                        .map(|k| format!("{f}({}.{c}, {}.{c})", a[0], a[1], c = &"xyzw"[k..k + 1]))
+                        .collect();
+                    format!("{w}({})", parts.join(", "))
+                }),
+                f,
+                text,
+            ))
+        }
+        "min_position" => sig(vec![], Ty::Scalar(Scalar::Usize), move |a| super::glam_ints::position(n, &a[0], true)),
+        "max_position" => sig(vec![], Ty::Scalar(Scalar::Usize), move |a| super::glam_ints::position(n, &a[0], false)),
+        "is_negative_bitmask" => {
+            sig(vec![], Ty::Scalar(Scalar::U32), move |a| super::glam_ints::negative_bitmask(n, &a[0]))
+        }
+        // As the scalar `is_finite`/`is_nan`, per component.
+        "is_finite" => sig(vec![], Ty::Scalar(Scalar::Bool), move |a| {
+            format!("all(abs({}) <= vec{n}<f32>({}))", a[0], super::f32_literal(f32::MAX))
+        }),
+        "is_nan" => sig(vec![], Ty::Scalar(Scalar::Bool), |a| format!("any({0} != {0})", a[0])),
+        "to_homogeneous" if n == 3 => sig(vec![], Ty::vec(4), |a| format!("vec4<f32>({}, 1.0f)", a[0])),
+        "project" if n == 4 => sig(vec![], Ty::vec(3), |a| format!("({0}.xyz / {0}.w)", a[0])),
         "any_orthonormal_vector" if n == 3 => {
             let f = "rt_any_orthonormal_vector";
             let text = "\

@@ -1,6 +1,8 @@
 //! Calls: methods of builtin types (rows of `builtins`), `Type::f(...)`
-//! constructors and UFCS, glam's free functions, and `#[rt_function]`
-//! helpers (their intrinsics, traces and `&mut` writebacks).
+//! constructors and UFCS, glam's free functions, `#[rt_function]`
+//! helpers (their intrinsics, traces and `&mut` writebacks), and the
+//! methods and associated functions of `#[rt_impl]`s, which are helpers
+//! whose first parameter is the receiver (see `methods`).
 
 use super::*;
 
@@ -9,11 +11,77 @@ impl FnLowerer<'_> {
         if let Some(t) = &m.turbofish {
             return Err(Error::unsupported(t.span(), "generic arguments", "ray programs are not generic"));
         }
-        let recv = self.expr(&m.receiver, None)?;
-        let recv = self.deref(recv);
         let name = m.method.to_string();
         let args: Vec<&Expr> = m.args.iter().collect();
+        if let Some(sig) = self.user_method(&m.receiver, &name)? {
+            return self.user_method_call(&sig, &m.receiver, &args, m.span());
+        }
+        let recv = self.expr(&m.receiver, None)?;
+        let recv = self.deref(recv);
         self.method(recv, &name, &args, m.method.span(), m.span())
+    }
+
+    /// The `#[rt_impl]` method `recv.name(..)` calls, if the receiver is a
+    /// user type with one of that name. The receiver's type is probed
+    /// first only where some method has that name.
+    fn user_method(&mut self, recv: &Expr, name: &str) -> Result<Option<HelperSig>> {
+        let suffix = format!("::{name}");
+        let named = |k: &String| k.ends_with(&suffix);
+        if !self.m.helpers.keys().any(named) && !self.m.failed.iter().any(named) {
+            return Ok(None);
+        }
+        let ty = match self.peek_type(recv)? {
+            Some(t) => self.resolved(&t),
+            None => return Ok(None),
+        };
+        let owner = match &ty {
+            Ty::Struct(d) => d.name.clone(),
+            Ty::Enum(e) => e.name.clone(),
+            _ => return Ok(None),
+        };
+        let key = crate::methods::member_key(&owner, name);
+        if self.m.failed.contains(&key) {
+            return Err(Error::silent(recv.span()));
+        }
+        Ok(self.m.helpers.get(&key).cloned())
+    }
+
+    /// `recv.name(args)` of an `#[rt_impl]` method: a helper call with the
+    /// receiver first, borrowed as the method takes it (`&mut self` a
+    /// pointer to the place, or to a temporary holding a value that is not
+    /// one).
+    fn user_method_call(&mut self, sig: &HelperSig, recv: &Expr, args: &[&Expr], span: Span) -> Result<Val> {
+        if !sig.has_receiver {
+            let (ty, name) = sig.name.split_once("::").unwrap_or(("", &sig.name));
+            return Err(Error::new(
+                span,
+                format!("`{name}` is an associated function of `{ty}`, not a method: call it as `{ty}::{name}(..)`"),
+            ));
+        }
+        self.method_calls.push((sig.name.clone(), span));
+        let receiver: Expr = match sig.params.first() {
+            Some(Ty::Ref(true, _)) => {
+                let place = match strip_parens(recv) {
+                    Expr::Path(_) | Expr::Field(_) | Expr::Index(_) | Expr::Unary(_) => recv.clone(),
+                    other => {
+                        // `Sphere::new(..).grow(2.0)`: a temporary, as in Rust.
+                        let v = self.expr(other, None)?;
+                        let v = self.deref(v);
+                        let t = self.fresh("recv");
+                        self.emit(format!("var {t} = {};", v.code));
+                        let rust = format!("__rt_recv_{t}");
+                        self.bind(&rust, Local { wgsl: t, ty: v.ty, var: true });
+                        let ident = syn::Ident::new(&rust, other.span());
+                        syn::parse_quote_spanned!(other.span()=> #ident)
+                    }
+                };
+                syn::parse_quote_spanned!(recv.span()=> &mut #place)
+            }
+            _ => recv.clone(),
+        };
+        let mut all: Vec<&Expr> = vec![&receiver];
+        all.extend_from_slice(args);
+        self.helper_call(sig, &all, span)
     }
 
     /// Lowers `recv.name(args)`.
@@ -35,7 +103,13 @@ impl FnLowerer<'_> {
             _ => {}
         }
         let sig = builtins::method_sig(&rt, name).ok_or_else(|| {
-            let hint = builtins::method_hint(&rt, name);
+            let hint = match &rt {
+                Ty::Struct(_) | Ty::Enum(_) => format!(
+                    ": the methods programs call are declared in an `#[rt_impl] impl {rt}` block, \
+                     with the type declared `(impl)` (as in `#[rt_struct(impl)]`)"
+                ),
+                _ => builtins::method_hint(&rt, name),
+            };
             Error::new(name_span, format!("no method `{name}` on `{rt}` in ray programs{hint}"))
         })?;
         if args.len() != sig.params.len() {
@@ -67,7 +141,22 @@ impl FnLowerer<'_> {
         // `const_int_op`).
         let wraps = matches!(
             name,
-            "wrapping_add" | "wrapping_sub" | "wrapping_mul" | "dot" | "element_sum" | "element_product"
+            "wrapping_add"
+                | "wrapping_sub"
+                | "wrapping_mul"
+                | "dot"
+                | "element_sum"
+                | "element_product"
+                | "saturating_add"
+                | "saturating_sub"
+                | "saturating_mul"
+                | "length_squared"
+                | "distance_squared"
+                | "manhattan_distance"
+                | "chebyshev_distance"
+                | "cross"
+                | "perp_dot"
+                | "rotate"
         );
         if wraps
             && (self.is_int(&rt) || matches!(rt, Ty::Vec(_, s) if s.is_int()))
@@ -85,6 +174,20 @@ impl FnLowerer<'_> {
         let last_repeated = (0..vals.len()).rev().find(|&i| shape.matches(&probe[i]).count() > 1 && vals[i].effects);
         if let Some(last) = last_repeated {
             self.once(&mut vals[..=last]);
+        }
+        // And a repeated operand that is more than a name or a field
+        // (`a.cross(b.cross(c))` would repeat `b.cross(c)`'s text six
+        // times, and nesting multiplies it) into a `let` too: every operand
+        // is valid where the call ends (the loop above spilled them), so
+        // there.
+        if self.in_function {
+            for (i, v) in vals.iter_mut().enumerate() {
+                if shape.matches(&probe[i]).count() > 1 && !is_atom(&v.code) {
+                    let t = self.tmp();
+                    self.emit_let(format!("let {t} = {};", v.code), v);
+                    *v = Val::new(t, v.ty.clone()).with_reads(v.reads);
+                }
+            }
         }
         for (name, text) in sig.support {
             self.m.accessors.borrow_mut().functions.entry(name.to_string()).or_insert_with(|| text.to_string());
@@ -156,12 +259,31 @@ impl FnLowerer<'_> {
                     return self.method(recv, &name, rest, name_span, span);
                 }
             }
+            // `Sphere::new(..)`, `Sphere::area(&s)`: an `#[rt_impl]`'s.
+            let key = crate::methods::member_key(owner, &name);
+            if let Some(sig) = self.m.helpers.get(&key) {
+                let sig = sig.clone();
+                return self.helper_call(&sig, &args, span);
+            }
+            if self.m.failed.contains(&key) {
+                return Err(Error::silent(path.span()));
+            }
             if let Some(d) = self.m.structs.get(owner)
                 && name == "default"
                 && args.is_empty()
             {
                 let ty = Ty::Struct(d.clone());
                 return Ok(Val::new(format!("{}()", ty.wgsl()), ty));
+            }
+            if self.m.structs.contains_key(owner) {
+                let at = path.segments.last().map_or(path.span(), |s| s.ident.span());
+                return Err(Error::new(
+                    at,
+                    format!(
+                        "no associated function `{name}` on `{owner}` in ray programs: declare it in an \
+                         `#[rt_impl] impl {owner}` block (and the struct with `(impl)`)"
+                    ),
+                ));
             }
         }
         if let Some(v) = self.free_builtin(&name, &args, span, want)? {
@@ -456,4 +578,10 @@ impl FnLowerer<'_> {
             Ok(Val::new(t, sig.ret.clone()))
         }
     }
+}
+
+/// Whether lowered code is a name, a literal or a field of one (markers
+/// aside): cheap to repeat.
+fn is_atom(code: &str) -> bool {
+    code.chars().all(|c| c.is_alphanumeric() || c == '_' || c == '.' || (c as u32) < 8)
 }

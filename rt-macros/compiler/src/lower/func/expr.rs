@@ -188,8 +188,23 @@ impl FnLowerer<'_> {
                     }
                 };
             }
-            if self.m.failed.contains(owner) {
+            // `Sphere::UNIT`: an `#[rt_impl]`'s associated constant.
+            let key = crate::methods::member_key(owner, last);
+            if let Some(c) = self.m.consts.get(&key) {
+                return Ok(Val::new(c.wgsl_name.clone(), c.ty.clone()));
+            }
+            if self.m.failed.contains(owner) || self.m.failed.contains(&key) {
                 return Err(Error::silent(p.span()));
+            }
+            if self.m.structs.contains_key(owner) {
+                let at = p.path.segments.last().map_or(p.span(), |s| s.ident.span());
+                return Err(Error::new(
+                    at,
+                    format!(
+                        "no associated constant `{last}` on `{owner}` in ray programs: declare it in an \
+                         `#[rt_impl] impl {owner}` block (and the struct with `(impl)`)"
+                    ),
+                ));
             }
         }
         if (segs.len() == 1 || segs[segs.len() - 2] == "consts")
@@ -439,7 +454,7 @@ impl FnLowerer<'_> {
     }
 }
 
-fn strip_parens(e: &Expr) -> &Expr {
+pub(super) fn strip_parens(e: &Expr) -> &Expr {
     match e {
         Expr::Paren(p) => strip_parens(&p.expr),
         Expr::Group(g) => strip_parens(&g.expr),

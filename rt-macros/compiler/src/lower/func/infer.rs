@@ -32,7 +32,20 @@ impl FnLowerer<'_> {
             }
             Ty::Array(e, n) => Ty::Array(Box::new(self.resolved(e)), *n),
             Ty::Ref(m, e) => Ty::Ref(*m, Box::new(self.resolved(e))),
+            Ty::Tuple(ts) => Ty::Tuple(ts.iter().map(|t| self.resolved(t)).collect()),
             other => other.clone(),
+        }
+    }
+
+    /// The type as the finished function has it: every inference variable
+    /// resolved, `i32` where nothing decided (Rust's default).
+    pub(super) fn settled(&self, t: &Ty) -> Ty {
+        match self.resolved(t) {
+            Ty::IntVar(v) => Ty::Scalar(self.resolve_var(v)),
+            Ty::Array(e, n) => Ty::Array(Box::new(self.settled(&e)), n),
+            Ty::Ref(m, e) => Ty::Ref(m, Box::new(self.settled(&e))),
+            Ty::Tuple(ts) => Ty::Tuple(ts.iter().map(|t| self.settled(t)).collect()),
+            other => other,
         }
     }
 
@@ -50,6 +63,10 @@ impl FnLowerer<'_> {
                 true
             }
             (Ty::Array(x, n), Ty::Array(y, m)) => n == m && self.unify(x, y),
+            // Element by element (a tuple literal's integers may still be
+            // open); a mismatch may leave earlier elements unified, which
+            // only matters for the error that follows.
+            (Ty::Tuple(xs), Ty::Tuple(ys)) => xs.len() == ys.len() && xs.iter().zip(ys).all(|(x, y)| self.unify(x, y)),
             _ => a == b,
         }
     }
@@ -91,7 +108,9 @@ impl FnLowerer<'_> {
         let saved_calls = self.calls.len();
         let saved_ivars = self.ivars.clone();
         let saved_errors = self.errors.0.len();
+        let saved_tuples = self.pending_tuples.len();
         let r = self.expr(e, None);
+        self.pending_tuples.truncate(saved_tuples);
         self.blocks.truncate(saved_blocks);
         self.intrinsics.truncate(saved_intr);
         self.calls.truncate(saved_calls);

@@ -48,6 +48,7 @@ mod stmt;
 mod tuples;
 
 use eval::int_literal_value;
+use expr::strip_parens;
 use ops::{compound_base, is_compound, op_symbol};
 pub use stmt::count_placeholders;
 
@@ -92,6 +93,9 @@ pub struct FnLowerer<'m> {
     pub intrinsics: Vec<(&'static str, Span)>,
     /// Helpers called.
     pub calls: Vec<String>,
+    /// Methods called as `value.name(..)`, by key (`Type::name`), with the
+    /// call's span: the helper order needs them (see `Unit::method_calls`).
+    pub method_calls: Vec<(String, Span)>,
     /// Payload types passed to `rt_trace`.
     pub traced: Vec<Ty>,
     pub errors: Errors,
@@ -105,6 +109,9 @@ pub struct FnLowerer<'m> {
     hoist: bool,
     /// Calls taken out of expressions by the resumable form so far.
     hoisted_calls: usize,
+    /// Tuple types whose integer elements were not inferred yet when they
+    /// were built: declared by [`FnLowerer::finish`].
+    pending_tuples: Vec<Ty>,
 }
 
 /// The statements emitted into one block so far, each with whether it
@@ -169,12 +176,14 @@ impl<'m> FnLowerer<'m> {
             local_consts: HashSet::new(),
             intrinsics: Vec::new(),
             calls: Vec::new(),
+            method_calls: Vec::new(),
             traced: Vec::new(),
             errors: Errors::default(),
             writebacks: Vec::new(),
             resume: None,
             hoist: false,
             hoisted_calls: 0,
+            pending_tuples: Vec::new(),
         }
     }
 
@@ -245,7 +254,11 @@ impl<'m> FnLowerer<'m> {
 
     /// Resolves the placeholders of `text` with this function's inference
     /// variables and strips its markers (see [`text::finish`]).
+    /// The tuple types still waiting for their integers are declared now.
     pub fn finish(&self, text: &str) -> text::Finished {
+        for t in &self.pending_tuples {
+            self.m.note_tuples(&self.settled(t));
+        }
         text::finish(text, &|v| self.resolve_var(v) == Scalar::I32)
     }
 

@@ -8,8 +8,11 @@ use super::*;
 
 impl FnLowerer<'_> {
     /// `(a, b, ...)`: the elements in Rust's order, then the constructor.
-    /// An element that is still an unsuffixed integer becomes `i32` here
-    /// (the tuple's WGSL type needs it), as Rust's default would make it.
+    /// An element that is still an unsuffixed integer stays open to
+    /// inference, as in Rust (`let t = (5, 2.0); let x: u32 = t.0;`): the
+    /// tuple's WGSL name spells it as a placeholder, resolved with the rest
+    /// of the function's text, and the struct is declared once the function
+    /// is lowered ([`FnLowerer::finish`]).
     pub(super) fn tuple_lit(&mut self, t: &syn::ExprTuple, want: Option<&Ty>) -> Result<Val> {
         let want_elems = match want.map(|w| self.resolved(w)) {
             Some(Ty::Tuple(e)) if e.len() == t.elems.len() => Some(e),
@@ -30,17 +33,27 @@ impl FnLowerer<'_> {
         }
         let mut elems = Vec::new();
         for (v, e) in vals.iter().zip(&t.elems) {
-            if matches!(self.resolved(&v.ty), Ty::IntVar(_)) {
-                self.unify(&v.ty, &I32);
-            }
             let ty = self.resolved(&v.ty);
-            crate::lower::resolve::check_tuple_element(&ty, e.span())?;
+            if !matches!(ty, Ty::IntVar(_)) {
+                crate::lower::resolve::check_tuple_element(&ty, e.span())?;
+            }
             elems.push(ty);
         }
-        let ty = self.m.tuple(elems);
+        let ty = Ty::Tuple(elems);
+        self.note_tuple(&ty);
         let effects = any_effects(&vals);
         let reads = any_reads(&vals);
         Ok(Val::new(format!("{}({})", ty.wgsl(), codes(&vals).join(", ")), ty).with_effects(effects).with_reads(reads))
+    }
+
+    /// Declares the tuple type `ty` in the module, or, while an element is
+    /// an integer not yet inferred, once the function is lowered.
+    pub(super) fn note_tuple(&mut self, ty: &Ty) {
+        if has_int_var(&self.resolved(ty)) {
+            self.pending_tuples.push(ty.clone());
+        } else {
+            self.m.note_tuples(&self.resolved(ty));
+        }
     }
 
     /// `(a, b).k`: every element evaluated, in order, and element `k` the
@@ -272,5 +285,15 @@ impl FnLowerer<'_> {
                 Ok(())
             }
         }
+    }
+}
+
+/// Whether a type still holds an integer inference variable.
+pub(super) fn has_int_var(t: &Ty) -> bool {
+    match t {
+        Ty::IntVar(_) => true,
+        Ty::Tuple(ts) => ts.iter().any(has_int_var),
+        Ty::Array(t, _) | Ty::Ref(_, t) => has_int_var(t),
+        _ => false,
     }
 }

@@ -1,0 +1,327 @@
+//! `#[rt_impl]`: methods, associated functions and associated constants of
+//! a `#[rt_struct]`, `#[rt_payload]` or `#[rt_attributes]` type.
+//!
+//! ## How they reach a program
+//! A method call `s.area()` names no item, so the program's own
+//! dependencies cannot find the impl block. The struct's can: a program
+//! that has a `Sphere` value names `Sphere` somewhere (a parameter, a
+//! literal, a helper's signature, a field), so the struct's link in the
+//! chain carries its impl. `#[rt_impl] impl Sphere { .. }` exports the
+//! macro `__rt_impl_Sphere` (the impl's tokens and everything its methods
+//! name, collected where the impl is written), and `#[rt_struct(impl)]`
+//! makes the struct's chain collect that macro too, so `Sphere!` hands out
+//! the struct, its impl and their dependencies. The struct says `(impl)`
+//! because a macro cannot ask whether another exists; rt-std's marker
+//! traits turn either half missing into an error naming the other
+//! (`__require_impl_block`, `__require_impl_declared`). Rust resolves the
+//! names; the lowering resolves a call by the receiver's type, as rustc
+//! does.
+//!
+//! One `#[rt_impl]` block per type. The impl's own dependencies leave out
+//! its type (the struct's chain is collecting it); a method that names a
+//! helper or another type whose own chain names this type back is a cycle
+//! the chain cannot close (rustc then cannot find one of the macros):
+//! write such a helper as an associated function of the type instead.
+//!
+//! ## How they lower
+//! Each method or associated function is a helper named
+//! `rtm_<Type>__<name>`, its receiver the first parameter: `&self` by value
+//! (as any `&T` parameter), `&mut self` a `ptr<function, T>` (as any
+//! `&mut T`), `self` by value (every declared type is `Copy`). An
+//! associated constant `Type::NAME` is the module constant `Type__NAME`.
+//! Inside the impl `Self` is the type's name. The CPU keeps the impl as
+//! written, each body rewritten to the GPU's integer semantics
+//! ([`crate::cpu_semantics`]).
+
+use crate::error::{Error, Errors};
+use proc_macro2::Span;
+use syn::spanned::Spanned;
+use syn::visit_mut::VisitMut;
+
+/// The name of the type an impl block is for, if it is a plain path.
+pub fn self_name(i: &syn::ItemImpl) -> Option<String> {
+    match &*i.self_ty {
+        syn::Type::Path(p) if p.qself.is_none() => p.path.segments.last().map(|s| s.ident.to_string()),
+        _ => None,
+    }
+}
+
+/// The item name (`Item::name`) of `ty`'s impl block: no Rust item can be
+/// called this.
+pub fn impl_key(ty: &str) -> String {
+    format!("impl {ty}")
+}
+
+/// The macro `#[rt_impl]` exports for `ty`, which `#[rt_struct(impl)]`
+/// collects.
+pub fn macro_ident(ty: &syn::Ident) -> syn::Ident {
+    syn::Ident::new(&format!("__rt_impl_{ty}"), ty.span())
+}
+
+/// How the lowering keys a method, associated function or constant:
+/// `Type::name`, which no free item's name can be.
+pub fn member_key(ty: &str, name: &str) -> String {
+    format!("{ty}::{name}")
+}
+
+/// The WGSL function of a method or associated function.
+pub fn fn_wgsl_name(ty: &str, name: &str) -> String {
+    format!("rtm_{ty}__{name}")
+}
+
+/// The WGSL constant of an associated constant (before the lowering's
+/// renaming of names WGSL reserves).
+pub fn const_wgsl_name(ty: &str, name: &str) -> String {
+    format!("{ty}__{name}")
+}
+
+/// Rejects impl blocks the subset has no meaning for, at the part at
+/// fault. The methods' bodies are checked where they are lowered.
+pub fn check_impl(i: &syn::ItemImpl) -> Result<(), Errors> {
+    let mut errors = Errors::default();
+    if let Some((_, path, _)) = &i.trait_ {
+        errors.push(Error::unsupported(
+            path.span(),
+            "a trait impl",
+            "ray programs have no traits: write the methods in an inherent `impl` block",
+        ));
+    }
+    if !i.generics.params.is_empty() {
+        errors.push(Error::unsupported(i.generics.span(), "a generic impl", "write the impl for one concrete type"));
+    }
+    if let Some(u) = &i.unsafety {
+        errors.push(Error::unsupported(u.span(), "an `unsafe impl`", "ray programs are safe code"));
+    }
+    match &*i.self_ty {
+        syn::Type::Path(p) if p.qself.is_none() && p.path.segments.last().is_some_and(|s| s.arguments.is_none()) => {}
+        other => errors.push(Error::unsupported(
+            other.span(),
+            "an impl for this type",
+            "#[rt_impl] takes an impl of a #[rt_struct], #[rt_payload] or #[rt_attributes] type, by its name",
+        )),
+    }
+    for item in &i.items {
+        match item {
+            syn::ImplItem::Fn(f) => check_method(f, &mut errors),
+            syn::ImplItem::Const(c) => {
+                if !c.generics.params.is_empty() {
+                    errors.push(Error::unsupported(c.generics.span(), "a generic constant", "use a concrete type"));
+                }
+            }
+            syn::ImplItem::Type(t) => {
+                errors.push(Error::unsupported(t.span(), "an associated type", "name the type itself where it is used"))
+            }
+            other => errors.push(Error::unsupported(
+                other.span(),
+                "this item in an #[rt_impl] block",
+                "write methods, associated functions and associated constants",
+            )),
+        }
+    }
+    if errors.is_empty() { Ok(()) } else { Err(errors) }
+}
+
+fn check_method(f: &syn::ImplItemFn, errors: &mut Errors) {
+    let sig = &f.sig;
+    if !sig.generics.params.is_empty() {
+        errors.push(Error::unsupported(sig.generics.span(), "a generic method", "write one method per type"));
+    }
+    if let Some(a) = &sig.asyncness {
+        errors.push(Error::unsupported(a.span(), "an `async` method", "ray programs are synchronous"));
+    }
+    if let Some(u) = &sig.unsafety {
+        errors.push(Error::unsupported(u.span(), "an `unsafe` method", "ray programs are safe code"));
+    }
+    if let Some(c) = &sig.constness {
+        errors.push(Error::unsupported(
+            c.span(),
+            "a `const fn`",
+            "drop `const`: WGSL evaluates the call at run time (an associated `const` is a constant)",
+        ));
+    }
+    if let Some(v) = &sig.variadic {
+        errors.push(Error::unsupported(v.span(), "a variadic method", "take a fixed list of parameters"));
+    }
+    if let Some(r) = receiver(sig)
+        && r.colon_token.is_some()
+    {
+        let plain = matches!(&*r.ty, syn::Type::Path(p) if p.path.is_ident("Self"))
+            || matches!(&*r.ty, syn::Type::Reference(t) if matches!(&*t.elem, syn::Type::Path(p) if p.path.is_ident("Self")));
+        if !plain {
+            errors.push(Error::unsupported(r.ty.span(), "this `self` type", "take `self`, `&self` or `&mut self`"));
+        }
+    }
+    // The CPU copy turns `.abs()` and `.clamp(lo, hi)` into calls of
+    // `rt_std::arith` (see `cpu_semantics`), which would not reach a user
+    // method of those names.
+    let args = sig.inputs.iter().filter(|i| matches!(i, syn::FnArg::Typed(_))).count();
+    let taken = match sig.ident.to_string().as_str() {
+        "abs" => receiver(sig).is_some() && args == 0,
+        "clamp" => receiver(sig).is_some() && args == 2,
+        _ => false,
+    };
+    if taken {
+        errors.push(Error::new(
+            sig.ident.span(),
+            format!(
+                "a method named `{}` with this signature is not supported: the CPU copy of ray programs \
+                 calls rt_std's integer-safe `{}` for it; rename the method",
+                sig.ident, sig.ident
+            ),
+        ));
+    }
+}
+
+fn receiver(sig: &syn::Signature) -> Option<&syn::Receiver> {
+    sig.inputs.iter().find_map(|i| match i {
+        syn::FnArg::Receiver(r) => Some(r),
+        _ => None,
+    })
+}
+
+/// A method or associated function as the lowering takes it: a helper.
+pub struct MethodFn {
+    /// `Type::name` ([`member_key`]).
+    pub key: String,
+    pub wgsl_name: String,
+    /// Takes `self` in some form (callable as `value.name(..)`).
+    pub has_receiver: bool,
+    /// The function with `Self` spelled as the type and the receiver a
+    /// parameter named `self`.
+    pub f: syn::ItemFn,
+}
+
+/// An associated constant as the lowering takes it.
+pub struct MethodConst {
+    pub key: String,
+    pub wgsl_name: String,
+    pub c: syn::ItemConst,
+}
+
+/// The impl's functions and constants, ready to lower like helpers and
+/// `#[rt_const]`s. An impl that [`check_impl`] rejects has none (its
+/// attribute reported why): the keys it would have are returned as the
+/// third element, so that uses of them stay silent.
+pub fn lowerable(i: &syn::ItemImpl) -> (Vec<MethodFn>, Vec<MethodConst>, Vec<String>) {
+    let Some(ty) = self_name(i) else { return (Vec::new(), Vec::new(), Vec::new()) };
+    if check_impl(i).is_err() {
+        let keys = i
+            .items
+            .iter()
+            .filter_map(|it| match it {
+                syn::ImplItem::Fn(f) => Some(member_key(&ty, &f.sig.ident.to_string())),
+                syn::ImplItem::Const(c) => Some(member_key(&ty, &c.ident.to_string())),
+                _ => None,
+            })
+            .collect();
+        return (Vec::new(), Vec::new(), keys);
+    }
+    let mut i = i.clone();
+    let ty_ident = match &*i.self_ty {
+        syn::Type::Path(p) => p.path.segments.last().unwrap().ident.clone(),
+        _ => unreachable!("checked by check_impl"),
+    };
+    SelfToType(ty_ident).visit_item_impl_mut(&mut i);
+    let mut fns = Vec::new();
+    let mut consts = Vec::new();
+    for item in i.items {
+        match item {
+            syn::ImplItem::Fn(f) => {
+                let name = f.sig.ident.to_string();
+                let mut sig = f.sig;
+                let mut has_receiver = false;
+                for input in sig.inputs.iter_mut() {
+                    if let syn::FnArg::Receiver(r) = input {
+                        has_receiver = true;
+                        *input = syn::FnArg::Typed(receiver_param(r));
+                    }
+                }
+                fns.push(MethodFn {
+                    key: member_key(&ty, &name),
+                    wgsl_name: fn_wgsl_name(&ty, &name),
+                    has_receiver,
+                    f: syn::ItemFn { attrs: f.attrs, vis: f.vis, sig, block: Box::new(f.block) },
+                });
+            }
+            syn::ImplItem::Const(c) => {
+                let name = c.ident.to_string();
+                consts.push(MethodConst {
+                    key: member_key(&ty, &name),
+                    wgsl_name: const_wgsl_name(&ty, &name),
+                    c: syn::ItemConst {
+                        attrs: c.attrs,
+                        vis: c.vis,
+                        const_token: c.const_token,
+                        ident: c.ident,
+                        generics: c.generics,
+                        colon_token: c.colon_token,
+                        ty: Box::new(c.ty),
+                        eq_token: c.eq_token,
+                        expr: Box::new(c.expr),
+                        semi_token: c.semi_token,
+                    },
+                });
+            }
+            _ => unreachable!("checked by check_impl"),
+        }
+    }
+    (fns, consts, Vec::new())
+}
+
+/// `self`, `&self`, `&mut self` (`Self` already the type's name) as the
+/// parameter `self: T`, `self: &T`, `self: &mut T`.
+fn receiver_param(r: &syn::Receiver) -> syn::PatType {
+    let span = r.self_token.span;
+    let mutability = if r.reference.is_none() { r.mutability } else { None };
+    syn::PatType {
+        attrs: Vec::new(),
+        pat: Box::new(syn::Pat::Ident(syn::PatIdent {
+            attrs: Vec::new(),
+            by_ref: None,
+            mutability,
+            ident: syn::Ident::new("self", span),
+            subpat: None,
+        })),
+        colon_token: syn::Token![:](span),
+        ty: r.ty.clone(),
+    }
+}
+
+/// Spells `Self` as the type's name, at `Self`'s span.
+struct SelfToType(syn::Ident);
+
+impl VisitMut for SelfToType {
+    fn visit_path_mut(&mut self, p: &mut syn::Path) {
+        if let Some(first) = p.segments.first_mut()
+            && first.ident == "Self"
+        {
+            first.ident = syn::Ident::new(&self.0.to_string(), first.ident.span());
+        }
+        syn::visit_mut::visit_path_mut(self, p);
+    }
+}
+
+/// The impl as the CPU compiles it: the user's, each body rewritten to
+/// the GPU's integer semantics.
+pub fn cpu_impl(i: &syn::ItemImpl) -> syn::ItemImpl {
+    let mut i = i.clone();
+    for item in i.items.iter_mut() {
+        if let syn::ImplItem::Fn(m) = item {
+            let mut f = syn::ItemFn {
+                attrs: std::mem::take(&mut m.attrs),
+                vis: m.vis.clone(),
+                sig: m.sig.clone(),
+                block: Box::new(m.block.clone()),
+            };
+            crate::cpu_semantics::rewrite_fn(&mut f);
+            m.attrs = f.attrs;
+            m.block = *f.block;
+        }
+    }
+    i
+}
+
+/// Where an error about the impl as a whole points: its type.
+pub fn span(i: &syn::ItemImpl) -> Span {
+    i.self_ty.span()
+}

@@ -1,0 +1,171 @@
+//! The glam methods added in `glam_angles.rs` and `glam_ints.rs` and the
+//! later additions to `glam_more.rs`: angles and rotations, normalizing
+//! with a fallback, tuple results, Euclidean division of vectors,
+//! positions and sign masks, integer-vector geometry, saturating
+//! arithmetic and matrix extras, on both backends.
+
+use super::*;
+
+differential! {
+    /// Float vectors.
+    fn glam_added_float_vectors {
+        /// `reflect`/`refract` of `Vec2`/`Vec4` (WGSL's builtins),
+        /// `lerp_monotonic`, `normalize_or` (a zero vector gets the
+        /// fallback), `to_homogeneous`, `project`.
+        vec_extras(a: Vec3, b: Vec3) -> [Vec4; 6] over pairs(&vec3s_nonzero(8, 41), &vec3s(6, 2.0, 42)), tol ulp_or_abs(16, 1e-5) => {
+            let n2 = a.truncate().normalize();
+            let n4 = a.extend(0.5).normalize();
+            let i2 = b.truncate().normalize_or(Vec2::Y);
+            [
+                i2.reflect(n2).extend(0.0).extend(0.0),
+                i2.refract(n2, 0.7).extend(i2.refract(n2, 1.6).x).extend(0.0),
+                b.extend(1.0).normalize_or(Vec4::W).reflect(n4),
+                b.extend(-1.0).normalize_or(Vec4::X).refract(n4, 0.9),
+                a.lerp_monotonic(b, 0.25).to_homogeneous(),
+                (b * 0.0).normalize_or(Vec3::Z).extend(b.extend(2.0).project().x),
+            ]
+        }
+        /// Tuple results: `sin_cos` (WGSL's `sin`/`cos` accuracy on
+        /// `[-pi, pi]`), `normalize_and_length` (and its zero case).
+        tuple_results(a: Vec3, s: f32) -> [Vec4; 4] over pairs(&vec3s(10, 3.0, 43), &[0.0, 1.0]), tol ulp_or_abs(16, 2e-6) => {
+            let (sn, cs) = a.sin_cos();
+            let (n, len) = (a * s).normalize_and_length();
+            let (n2, len2) = (a.truncate() * s).normalize_and_length();
+            let (s4, c4) = a.extend(-0.5).sin_cos();
+            [sn.extend(cs.x), n.extend(len), n2.extend(len2).extend(0.0), s4 + c4]
+        }
+        /// `rem_euclid`/`div_euclid` per component (exact),
+        /// `min_position`/`max_position`, `is_negative_bitmask`,
+        /// `is_finite`/`is_nan` (of finite values).
+        positions(a: Vec3, b: Vec3) -> [Vec4; 4] over pairs(&vec3s(10, 6.0, 44), &vec3s_nonzero(6, 45)), tol ulp_or_abs(0, 1e-6) => {
+            let p = a.truncate();
+            [
+                a.rem_euclid(b).extend(a.extend(1.0).div_euclid(b.extend(-2.0)).w),
+                a.div_euclid(b).extend(p.rem_euclid(b.truncate()).y),
+                vec4(a.min_position() as f32, a.max_position() as f32, p.min_position() as f32, a.extend(-b.x).max_position() as f32),
+                vec4(a.is_negative_bitmask() as f32, a.extend(b.y).is_negative_bitmask() as f32, (a.is_finite()) as u32 as f32, (b.extend(1.0).is_nan()) as u32 as f32),
+            ]
+        }
+    }
+}
+
+differential! {
+    /// Angles and rotations.
+    fn glam_added_angles {
+        /// `Vec2::angle_to`, `rotate_angle`, `rotate_towards` (glam's
+        /// `acos_approx`), `move_towards`.
+        angles_2d(a: Vec3, b: Vec3) -> [Vec4; 4] over pairs(&vec3s_nonzero(10, 51), &vec3s_nonzero(6, 52)), tol ulp_or_abs(64, 1e-5) => {
+            let (p, q) = (a.truncate(), b.truncate());
+            [
+                vec4(p.angle_to(q), q.angle_to(p), p.angle_to(p * 2.0), 0.0),
+                p.rotate_angle(b.z).extend(0.0).extend(0.0),
+                p.rotate_towards(q, 0.25).extend(p.rotate_towards(q, -0.5).x).extend(p.rotate_towards(q, 10.0).y),
+                p.move_towards(q, 0.5).extend(a.move_towards(b, 100.0).x).extend(a.extend(1.0).move_towards(b.extend(0.0), 0.1).w),
+            ]
+        }
+        /// `Vec3::angle_between`, `angle_to`, the axis rotations,
+        /// `rotate_axis`, `rotate_towards`, `any_orthogonal_vector`,
+        /// `any_orthonormal_pair`.
+        angles_3d(a: Vec3, b: Vec3) -> [Vec3; 8] over pairs(&vec3s_nonzero(10, 53), &vec3s_nonzero(6, 54)), tol ulp_or_abs(64, 2e-5) => {
+            let axis = b.normalize();
+            let (u, v) = axis.any_orthonormal_pair();
+            [
+                vec3(a.angle_between(b), a.angle_to(b, Vec3::Z), a.angle_between(a)),
+                a.rotate_x(b.x),
+                a.rotate_y(b.y),
+                a.rotate_z(b.z),
+                a.rotate_axis(axis, 0.7),
+                a.rotate_towards(b, 0.3) + a.rotate_towards(a * 3.0, 0.1),
+                a.any_orthogonal_vector() + a.yxz().any_orthogonal_vector(),
+                u + v * 2.0,
+            ]
+        }
+        /// `Vec3::slerp`: along the arc, and for (anti)parallel vectors.
+        slerp(a: Vec3, b: Vec3) -> [Vec3; 4] over pairs(&vec3s_nonzero(10, 55), &vec3s_nonzero(6, 56)), tol ulp_or_abs(64, 5e-5) => {
+            [a.slerp(b, 0.3), a.slerp(b, 1.0), a.slerp(a * 2.0, 0.5), a.slerp(-a, 0.25)]
+        }
+    }
+}
+
+/// `IVec3`s and `UVec3`s small enough that squared lengths do not
+/// overflow (Rust's would panic).
+fn small_ivec3s() -> Vec<IVec3> {
+    ivec3s(12, 1000, 61)
+}
+
+differential! {
+    /// Integer vectors and saturating arithmetic.
+    fn glam_added_integers {
+        /// Squared lengths and distances, `cross`, Manhattan and Chebyshev
+        /// distances, `IVec2`'s `perp`/`perp_dot`/`rotate`, positions and
+        /// sign masks.
+        int_vectors(a: IVec3, b: IVec3) -> [IVec4; 5] over pairs(&small_ivec3s(), &ivec3s(5, 1000, 62)) => {
+            let (p, q) = (a.truncate(), b.truncate());
+            let (ua, ub) = (a.abs().as_uvec3(), b.abs().as_uvec3());
+            [
+                ivec4(a.length_squared(), a.distance_squared(b), p.length_squared(), a.extend(3).distance_squared(b.extend(-4))),
+                a.cross(b).extend(0),
+                ivec4(a.manhattan_distance(b) as i32, a.chebyshev_distance(b) as i32, ua.manhattan_distance(ub) as i32, ua.extend(9).chebyshev_distance(ub.extend(1)) as i32),
+                p.perp().extend(p.perp_dot(q)).extend(0) + p.rotate(q).extend(0).extend(0),
+                ivec4(a.min_position() as i32, a.max_position() as i32, ua.min_position() as i32, a.is_negative_bitmask() as i32),
+            ]
+        }
+        /// `saturating_add`/`_sub`/`_mul` of `i32` and `u32`, at the edges.
+        saturating_i32(a: i32, b: i32) -> [i32; 3] over pairs(&I32_EDGES, &I32_EDGES) => {
+            [a.saturating_add(b), a.saturating_sub(b), a.saturating_mul(b)]
+        }
+        saturating_u32(a: u32, b: u32) -> [u32; 3] over pairs(&U32_EDGES, &U32_EDGES) => {
+            [a.saturating_add(b), a.saturating_sub(b), a.saturating_mul(b)]
+        }
+        /// Mixed signs: `i32` with `u32` and back, wrapping and saturating,
+        /// at the edges, on scalars and vectors.
+        mixed_signs(a: i32, b: u32) -> [i32; 8] over pairs(&I32_EDGES, &U32_EDGES) => {
+            let (u, s) = (b, a);
+            let v = ivec2(a, a.wrapping_add(7)).saturating_add_unsigned(uvec2(b, 3));
+            let w = uvec2(b, 1).saturating_add_signed(ivec2(a, -2));
+            [
+                a.wrapping_add_unsigned(b), a.wrapping_sub_unsigned(b), a.saturating_add_unsigned(b), a.saturating_sub_unsigned(b),
+                u.wrapping_add_signed(s) as i32, u.saturating_add_signed(s) as i32, v.x + v.y.wrapping_sub(v.y),
+                (w.x ^ w.y) as i32 ^ ivec2(a, 0).wrapping_sub_unsigned(uvec2(b, b)).x,
+            ]
+        }
+        /// Per component on vectors.
+        saturating_vectors(a: i32, b: i32) -> [IVec2; 3] over pairs(&I32_EDGES, &I32_EDGES) => {
+            let (v, w) = (ivec2(a, b), ivec2(b, a.wrapping_add(1)));
+            [v.saturating_add(w), v.saturating_sub(w), v.saturating_mul(w)]
+        }
+    }
+}
+
+differential! {
+    /// Matrices.
+    fn glam_added_matrices {
+        /// `inverse_or_zero`: the inverse of invertible matrices, zero for
+        /// singular ones (a zero column: a determinant exactly 0 on both
+        /// sides, where a nearly singular one would round apart).
+        inverse_or_zero(m: Mat4) -> [Mat4; 2] over one(&mat4s(16, 72)), tol ulp_or_abs(64, 1e-4) => {
+            let near = Mat4::IDENTITY + m * 0.1;
+            let singular = Mat4::from_cols(m.x_axis, Vec4::ZERO, m.z_axis, m.w_axis);
+            let m3 = Mat3::from_cols(m.x_axis.truncate(), m.y_axis.truncate(), Vec3::ZERO).inverse_or_zero();
+            let m2 = Mat2::from_cols(m.x_axis.truncate().truncate(), m.y_axis.truncate().truncate() * 0.0).inverse_or_zero();
+            let small = Mat4::from_cols(m3.x_axis.extend(0.0), m3.y_axis.extend(0.0), m3.z_axis.extend(0.0), m2.x_axis.extend(0.0).extend(1.0));
+            [near.inverse_or_zero(), singular.inverse_or_zero() + small]
+        }
+        /// `mul_diagonal_scale`, `recip`, `abs_diff_eq`, `is_finite`,
+        /// `is_nan` (`mul_transpose_vecN`, deprecated in glam, lowers as
+        /// `transpose_mul_vecN`, tested in `glam_more.rs`).
+        matrix_extras(m: Mat4) -> [Vec4; 6] over one(&mat4s(24, 71)), tol ulp_or_abs(4, 1e-6) => {
+            let m3 = Mat3::from_cols(m.x_axis.truncate(), m.y_axis.truncate(), m.z_axis.truncate());
+            let m2 = Mat2::from_cols(m3.x_axis.truncate(), m3.y_axis.truncate());
+            let r = (m + Mat4::from_diagonal(Vec4::splat(3.0))).recip();
+            [
+                m.mul_diagonal_scale(vec4(1.0, -2.0, 0.5, 1.0)).row(2),
+                m3.mul_diagonal_scale(vec3(0.5, 1.0, -1.0)).row(0).extend(m2.mul_diagonal_scale(vec2(2.0, 1.0)).row(1).y),
+                m.mul_diagonal_scale(vec4(2.0, -1.0, 0.5, 0.0)).col(1),
+                r.col(0) + r.col(3),
+                vec4((m.abs_diff_eq(m * 1.0001, 1e-3)) as u32 as f32, (m3.abs_diff_eq(Mat3::IDENTITY, 0.5)) as u32 as f32, (m.is_finite()) as u32 as f32, (m2.is_nan()) as u32 as f32),
+                m3.mul_diagonal_scale(vec3(1.0, 2.0, 3.0)).recip().col(2).extend((m3.is_finite()) as u32 as f32),
+            ]
+        }
+    }
+}
