@@ -22,13 +22,36 @@ pub struct AoRun {
     pub ao_hit: Vec<bool>,
 }
 
+/// The primary rays' `tmin`, as the bench's `pinhole` program sets it.
+const PRIMARY_TMIN: f32 = 1e-4;
+
+/// The primary ray's direction through pixel `(x, y)`, as `pinhole`
+/// computes it.
+fn primary_direction((_, u, v, w): Camera, x: u32, y: u32, width: u32, height: u32) -> Vec3 {
+    let d = (Vec2::new(x as f32, y as f32) + 0.5) / Vec2::new(width as f32, height as f32) * 2.0 - 1.0;
+    (d.x * u + d.y * v + w).normalize()
+}
+
+/// The AO ray (origin, direction) of a primary hit at `t` along `dir`
+/// with triangle `prim`, for the pixel of linear index `pixel`, as the
+/// bench's `ambient_occlusion` program computes it.
+fn ao_ray(tris: &[Triangle], eye: Vec3, dir: Vec3, t: f32, prim: u32, pixel: u32) -> (Vec3, Vec3) {
+    let p = eye + t * dir;
+    let n = Vec3::from(tris[prim as usize].compute_normal()).normalize();
+    let n = faceforward(n, dir, n);
+    let h1 = crate::hash(pixel);
+    let h2 = crate::hash(h1);
+    let ao = crate::cosine_direction(n, (h1 >> 8) as f32 / 16777216.0, (h2 >> 8) as f32 / 16777216.0);
+    (p + n * 1e-4, ao)
+}
+
 /// Traces the workload with `closest(origin, direction, tmin)`, which
 /// returns the closest hit's distance and triangle index (into `tris`).
 pub fn trace_ao<F>(tris: &[Triangle], cam: Camera, width: u32, height: u32, closest: F) -> AoRun
 where
     F: Fn(Vec3, Vec3, f32) -> Option<(f32, u32)> + Sync,
 {
-    let (eye, u, v, w) = cam;
+    let eye = cam.0;
     let pixels = (width * height) as usize;
     let mut primary_t = vec![f32::INFINITY; pixels];
     let mut ao_hit = vec![false; pixels];
@@ -41,19 +64,13 @@ where
             let y = y as u32;
             let mut rays = 0u64;
             for x in 0..width {
-                let d = (Vec2::new(x as f32, y as f32) + 0.5) / Vec2::new(width as f32, height as f32) * 2.0 - 1.0;
-                let dir = (d.x * u + d.y * v + w).normalize();
+                let dir = primary_direction(cam, x, y, width, height);
                 rays += 1;
-                if let Some((t, prim)) = closest(eye, dir, 1e-4) {
+                if let Some((t, prim)) = closest(eye, dir, PRIMARY_TMIN) {
                     ts[x as usize] = t;
-                    let p = eye + t * dir;
-                    let n = Vec3::from(tris[prim as usize].compute_normal()).normalize();
-                    let n = faceforward(n, dir, n);
-                    let h1 = crate::hash(x + y * width);
-                    let h2 = crate::hash(h1);
-                    let ao = crate::cosine_direction(n, (h1 >> 8) as f32 / 16777216.0, (h2 >> 8) as f32 / 16777216.0);
+                    let (o, d) = ao_ray(tris, eye, dir, t, prim, x + y * width);
                     rays += 1;
-                    aos[x as usize] = closest(p + n * 1e-4, ao, 0.0).is_some();
+                    aos[x as usize] = closest(o, d, 0.0).is_some();
                 }
             }
             rays
@@ -69,7 +86,7 @@ pub fn trace_ao16<F>(tris: &[Triangle], cam: Camera, width: u32, height: u32, cl
 where
     F: Fn(&[(Vec3, Vec3, f32)], bool, &mut [Option<(f32, u32)>]) + Sync,
 {
-    let (eye, u, v, w) = cam;
+    let eye = cam.0;
     let pixels = (width * height) as usize;
     let mut primary_t = vec![f32::INFINITY; pixels];
     let mut ao_hit = vec![false; pixels];
@@ -87,9 +104,8 @@ where
             let mut rays = Vec::with_capacity(16);
             for y in ty..(ty + 4).min(height) {
                 for x in tx..(tx + 4).min(width) {
-                    let d = (Vec2::new(x as f32, y as f32) + 0.5) / Vec2::new(width as f32, height as f32) * 2.0 - 1.0;
                     pixels.push((x, y));
-                    rays.push((eye, (d.x * u + d.y * v + w).normalize(), 1e-4));
+                    rays.push((eye, primary_direction(cam, x, y, width, height), PRIMARY_TMIN));
                 }
             }
             let mut hits = [None; 16];
@@ -103,14 +119,8 @@ where
                     out.push((i, f32::INFINITY, false));
                     continue;
                 };
-                let dir = rays[k].1;
-                let p = eye + t * dir;
-                let n = Vec3::from(tris[prim as usize].compute_normal()).normalize();
-                let n = faceforward(n, dir, n);
-                let h1 = crate::hash(x + y * width);
-                let h2 = crate::hash(h1);
-                let ao = crate::cosine_direction(n, (h1 >> 8) as f32 / 16777216.0, (h2 >> 8) as f32 / 16777216.0);
-                ao_rays.push((p + n * 1e-4, ao, 0.0));
+                let (o, d) = ao_ray(tris, eye, rays[k].1, t, prim, x + y * width);
+                ao_rays.push((o, d, 0.0));
                 ao_of.push(out.len());
                 out.push((i, t, false));
             }

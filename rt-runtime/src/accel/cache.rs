@@ -59,7 +59,8 @@ pub(crate) enum NodeAccel {
     Prims {
         bvh: Bvh,
         /// The same tree converted to obvhs's 8-wide compressed BVH, which
-        /// the CPU backend traverses (None for `NoAccel`'s single leaf).
+        /// the wgpu backend's compute kernel walks (None until it launches,
+        /// and for `NoAccel`'s single leaf).
         wide: Option<obvhs::cwbvh::CwBvh>,
         /// The same tree in the CPU backend's SIMD layout, with the
         /// triangles' vertices in its leaves when all primitives are
