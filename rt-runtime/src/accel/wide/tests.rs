@@ -5,17 +5,16 @@ use super::isa::Isa;
 use super::testing::Triangles;
 use glam::Vec3;
 
-/// A small deterministic generator (xorshift), uniform in `[-r, r]` (also
-/// the one-triangle test's).
-pub(super) struct Rng(pub(super) u64);
+/// A small deterministic generator (xorshift), uniform in `[-r, r]`.
+struct Rng(u64);
 impl Rng {
-    pub(super) fn f(&mut self, r: f32) -> f32 {
+    fn f(&mut self, r: f32) -> f32 {
         self.0 ^= self.0 << 13;
         self.0 ^= self.0 >> 7;
         self.0 ^= self.0 << 17;
         ((self.0 >> 40) as f32 / (1u64 << 24) as f32 * 2.0 - 1.0) * r
     }
-    pub(super) fn v(&mut self, r: f32) -> Vec3 {
+    fn v(&mut self, r: f32) -> Vec3 {
         Vec3::new(self.f(r), self.f(r), self.f(r))
     }
 }

@@ -116,7 +116,6 @@ impl WatertightRay {
 #[cfg(test)]
 mod tests {
     use super::WatertightRay;
-    use crate::accel::wide::tests::Rng;
     use glam::Vec3;
 
     /// Woop, Benthin and Wald's test as the paper writes it: components by
@@ -159,6 +158,20 @@ mod tests {
         }
         let t = (u * (sz * pa[kz]) + v * (sz * pb[kz]) + w * (sz * pc[kz])) / det;
         (t > tmin && t < tmax && t.is_finite()).then_some((t, v / det, w / det))
+    }
+
+    /// A small deterministic generator (xorshift), uniform in `[-r, r]`.
+    struct Rng(u64);
+    impl Rng {
+        fn f(&mut self, r: f32) -> f32 {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 7;
+            self.0 ^= self.0 << 17;
+            ((self.0 >> 40) as f32 / (1u64 << 24) as f32 * 2.0 - 1.0) * r
+        }
+        fn v(&mut self, r: f32) -> Vec3 {
+            Vec3::new(self.f(r), self.f(r), self.f(r))
+        }
     }
 
     /// The shear as one matrix product, without the paper's swap, gives the
