@@ -27,7 +27,7 @@
 //!
 //! ```no_run
 //! let mut scene = examples::normal::scene(&examples::Settings::new(320, 240))?;
-//! let rendered = scene.render(&mut |_, _| {})?;
+//! let rendered = scene.render(&mut |_| {})?;
 //! rendered.image.save_png(std::path::Path::new("normal.png"))?;
 //! # Ok::<(), examples::Error>(())
 //! ```
@@ -51,6 +51,7 @@ pub mod model;
 pub use rt_scene::obj as mesh;
 pub mod normal;
 pub mod phong;
+pub mod progress_bar;
 pub mod reflections;
 pub mod scene;
 pub mod shadows;

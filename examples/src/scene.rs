@@ -3,7 +3,9 @@
 //! small meshes made in code.
 
 use glam::{Vec3, Vec4};
-use rt_runtime::{Backend, BufferId, BufferType, Context, ExceptionRecord, RtError, Scope, Traversal, TriangleMesh};
+use rt_runtime::{
+    Backend, BufferId, BufferType, Context, ExceptionRecord, LaunchControl, RtError, Scope, Traversal, TriangleMesh,
+};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -339,23 +341,48 @@ impl Scene {
         Scene { ctx, output, width: settings.width, height: settings.height, frames: 1 }
     }
 
-    /// Launches entry point 0 `frames` times, calling `progress(done,
-    /// total)` after each, and reads the output back.
-    pub fn render(&mut self, progress: &mut dyn FnMut(u32, u32)) -> Result<Rendered, Error> {
+    /// Launches entry point 0 `frames` times, calling `progress` after
+    /// each tile of each launch (the context cuts launches into tiles,
+    /// [`Context::set_tile_budget`]), and reads the output back.
+    pub fn render(&mut self, progress: &mut dyn FnMut(Progress)) -> Result<Rendered, Error> {
         let mut rays = 0;
         let mut exceptions = Vec::new();
         let start = Instant::now();
-        for frame in 0..self.frames {
+        let frames = self.frames;
+        for frame in 0..frames {
             self.ctx.set_var(Scope::Context, "frame", frame)?;
-            let report = self.ctx.launch(0, self.width, self.height)?;
+            let report = self.ctx.launch_with_progress(0, self.width, self.height, |p| {
+                progress(Progress { frame, frames, within: p.fraction() });
+                LaunchControl::Continue
+            })?;
             rays += report.rays;
             exceptions.extend(report.exceptions);
-            progress(frame + 1, self.frames);
         }
         let seconds = start.elapsed().as_secs_f64();
         let pixels = self.ctx.read_buffer::<Vec4>(self.output)?;
         let image = Image { width: self.width, height: self.height, pixels };
         Ok(Rendered { image, rays, seconds, launches: self.frames, exceptions })
+    }
+}
+
+/// Where [`Scene::render`] stands: in launch `frame` of `frames`, the
+/// fraction `within` of it done.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Progress {
+    pub frame: u32,
+    pub frames: u32,
+    pub within: f64,
+}
+
+impl Progress {
+    /// Launches finished.
+    pub fn frames_done(&self) -> u32 {
+        if self.within >= 1.0 { self.frame + 1 } else { self.frame }
+    }
+
+    /// The whole render's fraction done, from 0 to 1.
+    pub fn fraction(&self) -> f64 {
+        (self.frame as f64 + self.within) / self.frames.max(1) as f64
     }
 }
 

@@ -199,8 +199,7 @@ mod tests {
         }
         assert_eq!(view.samples(), 3);
         let settings = Settings::new(24, 18).with_spp(3);
-        let rendered =
-            bunny::mesh_scene(&loaded, &settings, MeshView::default()).unwrap().render(&mut |_, _| {}).unwrap();
+        let rendered = bunny::mesh_scene(&loaded, &settings, MeshView::default()).unwrap().render(&mut |_| {}).unwrap();
         assert_eq!(last.unwrap().image, rendered.image);
     }
 
@@ -232,7 +231,7 @@ mod tests {
             let frame = view.refine().unwrap();
             let settings = Settings::new(w, h).with_spp(2);
             let fresh =
-                bunny::mesh_scene(&loaded, &settings, MeshView::default()).unwrap().render(&mut |_, _| {}).unwrap();
+                bunny::mesh_scene(&loaded, &settings, MeshView::default()).unwrap().render(&mut |_| {}).unwrap();
             assert_eq!(frame.image, fresh.image, "{w}x{h}");
             assert!(frame.rays >= (w * h) as u64);
         }

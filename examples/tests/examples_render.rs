@@ -18,7 +18,7 @@ fn settings() -> Settings {
 fn render(name: &str) -> Rendered {
     let example = examples::example(name).unwrap_or_else(|| panic!("no example {name}"));
     let mut scene = (example.build)(&settings()).unwrap_or_else(|e| panic!("{name}: {e}"));
-    let rendered = scene.render(&mut |_, _| {}).unwrap_or_else(|e| panic!("{name}: {e}"));
+    let rendered = scene.render(&mut |_| {}).unwrap_or_else(|e| panic!("{name}: {e}"));
     assert!(
         rendered.exceptions.is_empty(),
         "{name} raised {:?}",

@@ -32,7 +32,7 @@ fn convert(obj: &Path, dir: &Path) -> PathBuf {
 fn render(path: &Path, options: CameraOptions) -> Image {
     let settings = Settings { spp: 2, backend: Backend::Cpu, ..Settings::new(W, H) };
     let mut model = model_scene(path, &settings, options).unwrap_or_else(|e| panic!("{e}"));
-    let rendered = model.scene.render(&mut |_, _| {}).unwrap();
+    let rendered = model.scene.render(&mut |_| {}).unwrap();
     assert!(rendered.exceptions.is_empty(), "{}: {:?}", path.display(), rendered.exceptions);
     rendered.image
 }

@@ -103,7 +103,7 @@ fn render(name: &str, backend: Target) -> Image {
     let settings = Settings { spp: SPP, backend: backend.0, traversal: backend.1, ..Settings::new(W, H) };
     let start = Instant::now();
     let mut scene = (example.build)(&settings).unwrap_or_else(|e| panic!("{name}: {e}"));
-    let rendered = scene.render(&mut |_, _| {}).unwrap_or_else(|e| panic!("{name} on {}: {e}", backend.name()));
+    let rendered = scene.render(&mut |_| {}).unwrap_or_else(|e| panic!("{name} on {}: {e}", backend.name()));
     eprintln!(
         "golden: {name} on {}: {} launches in {:.2} s ({:.2} s with the scene build)",
         backend.name(),

@@ -2,8 +2,9 @@
 
 use crate::accel::Acceleration;
 use crate::accel::cache::AccelCache;
+use crate::backend::tiles::{LaunchControl, LaunchProgress, Pace, TileBudget};
 use crate::backend::wgpu::{Gpu, WgpuBackend};
-use crate::backend::{self, Backend, LaunchBackend, LaunchReport, Settings};
+use crate::backend::{self, Backend, LaunchBackend, LaunchReport, Pacing, Settings};
 use crate::buffer::{BufferRec, BufferType, SamplerRec, Typed};
 use crate::error::{Result, RtError};
 use crate::scene::*;
@@ -36,6 +37,8 @@ pub struct Context {
     pub(crate) accels: AccelCache,
     backend: Box<dyn LaunchBackend>,
     parked: Vec<Box<dyn LaunchBackend>>,
+    /// How long an index of each entry point took, for sizing tiles.
+    pace: Pace,
 }
 
 impl Default for Context {
@@ -54,6 +57,7 @@ impl Context {
             accels: Default::default(),
             backend: Backend::Cpu.create(),
             parked: Vec::new(),
+            pace: Pace::default(),
         }
     }
 
@@ -632,9 +636,47 @@ impl Context {
 
     // ---- launching ----
 
-    /// Runs entry point `entry` over `width` x `height` launch indices.
+    /// Runs entry point `entry` over `width` x `height` launch indices, as
+    /// tiles under the context's budget ([`Context::set_tile_budget`]).
     pub fn launch(&mut self, entry: u32, width: u32, height: u32) -> Result<LaunchReport> {
-        backend::launch(&mut *self.backend, &mut self.scene, &self.settings, &mut self.accels, entry, width, height)
+        let pacing = Pacing { pace: &mut self.pace, progress: None };
+        let (scene, settings, accels) = (&mut self.scene, &self.settings, &mut self.accels);
+        backend::launch(&mut *self.backend, scene, settings, accels, (entry, width, height), pacing)
+    }
+
+    /// [`Context::launch`], calling `progress` after every tile with where
+    /// the launch stands. Its answer may cancel the launch before the next
+    /// tile ([`LaunchControl::Cancel`]): the launch then fails with
+    /// [`RtError::LaunchCancelled`] and every buffer is as it was before
+    /// it. A cancel after the last tile changes nothing: the launch is
+    /// done. OptiX 6's `rtContextSetTimeoutCallback` asks the same
+    /// question between the pieces of a launch.
+    #[doc(alias = "rtContextSetTimeoutCallback")]
+    pub fn launch_with_progress(
+        &mut self,
+        entry: u32,
+        width: u32,
+        height: u32,
+        mut progress: impl FnMut(LaunchProgress) -> LaunchControl,
+    ) -> Result<LaunchReport> {
+        let pacing = Pacing { pace: &mut self.pace, progress: Some(&mut progress) };
+        let (scene, settings, accels) = (&mut self.scene, &self.settings, &mut self.accels);
+        backend::launch(&mut *self.backend, scene, settings, accels, (entry, width, height), pacing)
+    }
+
+    /// How launches are cut into tiles, each one submission (see
+    /// [`crate::backend::tiles`]): by default tiles sized to run in about a
+    /// quarter second each ([`TileBudget::Time`] of
+    /// [`DEFAULT_TILE_BUDGET`](crate::backend::tiles::DEFAULT_TILE_BUDGET)),
+    /// well inside the two seconds after which desktop drivers reset a
+    /// GPU. Results are the same whatever the cut.
+    pub fn set_tile_budget(&mut self, budget: TileBudget) {
+        self.settings.tile_budget = budget;
+    }
+
+    /// The budget set by [`Context::set_tile_budget`].
+    pub fn tile_budget(&self) -> TileBudget {
+        self.settings.tile_budget
     }
 
     /// A 1D launch of `width` indices.

@@ -126,6 +126,10 @@ pub enum RtError {
         "the {backend} backend panicked during the launch ({at}): {message}; this is a bug in rt-runtime; the launch wrote none of its outputs and the next launch starts afresh"
     )]
     RuntimePanicked { backend: &'static str, message: String, at: String },
+    #[error(
+        "the launch of entry point {entry} was cancelled by its progress callback after {done} of {total} launch indices; its buffers are as they were before it"
+    )]
+    LaunchCancelled { entry: u32, done: u64, total: u64 },
     #[error("writing {path}: {problem}")]
     Image { path: String, problem: String },
 }

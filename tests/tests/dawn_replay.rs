@@ -69,7 +69,7 @@ fn every_tour_example_replayed_on_dawn_agrees_with_wgpu() {
         let dir = root.join(example.name);
         let mut scene = (example.build)(&settings).unwrap_or_else(|e| panic!("{}: {e}", example.name));
         rt_runtime::backend::wgpu::capture_launches_to(Some(dir.clone()));
-        let rendered = scene.render(&mut |_, _| {});
+        let rendered = scene.render(&mut |_| {});
         rt_runtime::backend::wgpu::capture_launches_to(None);
         let rendered = rendered.unwrap_or_else(|e| panic!("{} on wgpu: {e}", example.name));
         assert!(rendered.exceptions.is_empty(), "{} raised {:?} on wgpu", example.name, rendered.exceptions);

@@ -128,7 +128,7 @@ fn start(backend: Backend, camera: &Camera) -> (Context, rt_runtime::BufferId, r
 fn render(ctx: Context, output: rt_runtime::BufferId, backend: Backend) -> Vec<Vec4> {
     let settings = Settings { spp: 1, backend, ..Settings::new(W, H) };
     let mut scene = Scene::new(ctx, output, &settings);
-    let rendered = scene.render(&mut |_, _| {}).unwrap_or_else(|e| panic!("{}: {e}", backend.name()));
+    let rendered = scene.render(&mut |_| {}).unwrap_or_else(|e| panic!("{}: {e}", backend.name()));
     assert!(rendered.exceptions.is_empty(), "{:?}", rendered.exceptions);
     rendered.image.pixels
 }

@@ -29,7 +29,7 @@ fn tour_kernels() -> Vec<(String, String)> {
         .iter()
         .map(|example| {
             let mut scene = (example.build)(&settings).unwrap_or_else(|e| panic!("{}: {e}", example.name));
-            scene.render(&mut |_, _| {}).unwrap_or_else(|e| panic!("{} on wgpu: {e}", example.name));
+            scene.render(&mut |_| {}).unwrap_or_else(|e| panic!("{} on wgpu: {e}", example.name));
             let wgsl = scene.ctx.linked_wgsl().unwrap_or_else(|| panic!("{}: no linked WGSL", example.name));
             (example.name.to_string(), wgsl.to_string())
         })

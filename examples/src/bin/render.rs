@@ -12,8 +12,7 @@
 
 use clap::Parser;
 use examples::model::{self, CameraOptions, UpAxis};
-use examples::{BackendChoice, Error, Settings};
-use indicatif::{ProgressBar, ProgressStyle};
+use examples::{BackendChoice, Error, Settings, progress_bar};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -85,13 +84,8 @@ fn run(args: &Args) -> Result<(), Error> {
     for warning in &loaded.warnings {
         eprintln!("render: warning: {warning}");
     }
-    let bar = ProgressBar::new(loaded.scene.frames as u64);
-    bar.set_style(
-        ProgressStyle::with_template("render [{bar:30}] {pos}/{len} spp, {elapsed} (eta {eta})")
-            .expect("a valid template")
-            .progress_chars("=> "),
-    );
-    let rendered = loaded.scene.render(&mut |done, _| bar.set_position(done as u64))?;
+    let bar = progress_bar::spp_bar("render", loaded.scene.frames);
+    let rendered = loaded.scene.render(&mut |p| progress_bar::show(&bar, p))?;
     bar.finish_and_clear();
     let exr = args.out.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr"));
     if exr {

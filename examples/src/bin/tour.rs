@@ -4,8 +4,7 @@
 //!     cargo run --release -p examples --bin tour -- --out out
 
 use clap::Parser;
-use examples::{BackendChoice, EXAMPLES, Settings};
-use indicatif::{ProgressBar, ProgressStyle};
+use examples::{BackendChoice, EXAMPLES, Settings, progress_bar};
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
@@ -63,22 +62,11 @@ fn run(args: &Args) -> Result<(), String> {
         let built = Instant::now();
         let mut scene = (example.build)(&settings).map_err(|e| format!("{}: {e}", example.name))?;
         let build_seconds = built.elapsed().as_secs_f64();
-        let bar = if example.progressive && scene.frames > 1 {
-            let bar = ProgressBar::new(scene.frames as u64);
-            bar.set_style(
-                ProgressStyle::with_template("{prefix:>12} [{bar:30}] {pos}/{len} spp, {elapsed} (eta {eta})")
-                    .expect("a valid template")
-                    .progress_chars("=> "),
-            );
-            bar.set_prefix(example.name);
-            Some(bar)
-        } else {
-            None
-        };
+        let bar = (example.progressive && scene.frames > 1).then(|| progress_bar::spp_bar(example.name, scene.frames));
         let rendered = scene
-            .render(&mut |done, _| {
+            .render(&mut |p| {
                 if let Some(bar) = &bar {
-                    bar.set_position(done as u64);
+                    progress_bar::show(bar, p);
                 }
             })
             .map_err(|e| format!("{}: {e}", example.name))?;

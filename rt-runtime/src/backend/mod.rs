@@ -6,7 +6,8 @@
 //! ([`LaunchBackend::launch`]), hands what programs wrote to the host's
 //! buffers ([`LaunchBackend::read_back_outputs`]) and counts what it did
 //! ([`LaunchBackend::stats`]). What every launch does around that (the
-//! size check, the acceleration structures' build) is written once, in
+//! size check, the acceleration structures' build, the cut into tiles
+//! that each stay under a time budget, [`tiles`]) is written once, in
 //! [`launch`]. The link step (variable resolution by scope, payload and
 //! attribute agreement) is shared too: [`crate::link`].
 //!
@@ -15,6 +16,7 @@
 
 #[cfg(not(target_arch = "wasm32"))]
 pub mod cpu;
+pub mod tiles;
 pub mod wgpu;
 
 use crate::accel::cache::{AccelCache, Trees, build_accels};
@@ -23,6 +25,7 @@ use crate::error::{Result, RtError};
 use crate::scene::Scene;
 use glam::UVec2;
 use std::any::Any;
+use tiles::{LaunchControl, LaunchProgress, Pace, Tile, TileBudget, Tiler};
 
 /// Where a context's launches run.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -110,6 +113,9 @@ pub struct LaunchReport {
     pub prints: Vec<(UVec2, String)>,
     /// Rays traced (calls of `rt_trace` that reached traversal).
     pub rays: u64,
+    /// The tiles the launch ran as, one submission each
+    /// ([`Context::set_tile_budget`](crate::Context::set_tile_budget)).
+    pub tiles: u32,
     /// Where the launch's time went.
     pub timings: Timings,
 }
@@ -148,6 +154,8 @@ pub(crate) struct Settings {
     pub integer_exceptions: bool,
     /// How the wgpu backend walks the scene.
     pub traversal: wgpu::Traversal,
+    /// How launches are cut into tiles.
+    pub tile_budget: TileBudget,
 }
 
 impl Default for Settings {
@@ -158,13 +166,16 @@ impl Default for Settings {
             print_launch_index: None,
             integer_exceptions: false,
             traversal: wgpu::Traversal::Auto,
+            tile_budget: TileBudget::default(),
         }
     }
 }
 
 /// One launch, as a backend receives it: the scene, the settings, the
 /// acceleration structures built for it ([`LaunchBackend::trees`]), the
-/// entry point and the launch's size (at least 1 x 1).
+/// entry point, the launch's size (at least 1 x 1) and the tile of it to
+/// run now (the launch indices a backend runs; every program still sees
+/// the whole size as its launch dimensions).
 pub(crate) struct Launch<'a> {
     pub scene: &'a Scene,
     pub settings: &'a Settings,
@@ -172,6 +183,7 @@ pub(crate) struct Launch<'a> {
     pub entry: u32,
     pub width: u32,
     pub height: u32,
+    pub tile: Tile,
 }
 
 /// What a backend counts (zero where it does not apply: the CPU backend
@@ -206,7 +218,8 @@ pub(crate) trait LaunchBackend: Any + Send + Sync {
     /// The trees this backend walks, which the acceleration builder builds
     /// for it.
     fn trees(&self, scene: &Scene) -> Trees;
-    /// Runs a launch. Outputs wait for [`LaunchBackend::read_back_outputs`].
+    /// Runs a launch's tile. Outputs wait for
+    /// [`LaunchBackend::read_back_outputs`].
     fn launch(&mut self, launch: &Launch) -> Result<LaunchReport>;
     /// Writes what the last launch's programs wrote into the host's
     /// buffers (called after every launch, failed or not; a backend writes
@@ -216,7 +229,9 @@ pub(crate) trait LaunchBackend: Any + Send + Sync {
     fn stats(&self) -> BackendStats<'_>;
     /// Whether programs write the host's buffers in place during
     /// [`LaunchBackend::launch`] (the CPU backend): the launch keeps a copy
-    /// of the writable buffers to put back if it panics.
+    /// of the writable buffers to put back if it fails. (A launch of
+    /// several tiles keeps one on every backend: each tile's outputs reach
+    /// the host's buffers before the next tile runs.)
     fn writes_host_buffers(&self) -> bool {
         false
     }
@@ -284,18 +299,25 @@ fn put_back(buffers: &mut [BufferRec], kept: Vec<(usize, Vec<u32>)>) {
     }
 }
 
+/// How a launch is cut and watched: its budget, the pace earlier tiles
+/// measured (updated by the launch), and the callback between tiles.
+pub(crate) struct Pacing<'a> {
+    pub pace: &'a mut Pace,
+    pub progress: Option<&'a mut dyn FnMut(LaunchProgress) -> LaunchControl>,
+}
+
 /// Runs entry point `entry` over `width` x `height` launch indices on
 /// `backend`: checks the size, gets the backend ready, builds or refits the
-/// acceleration structures in the forms it walks, runs it and takes its
-/// outputs.
+/// acceleration structures in the forms it walks, runs it tile by tile
+/// ([`tiles`]) and takes each tile's outputs. A failed or cancelled launch
+/// leaves every buffer programs may write as it was.
 pub(crate) fn launch(
     backend: &mut dyn LaunchBackend,
     scene: &mut Scene,
     settings: &Settings,
     accels: &mut AccelCache,
-    entry: u32,
-    width: u32,
-    height: u32,
+    (entry, width, height): (u32, u32, u32),
+    pacing: Pacing,
 ) -> Result<LaunchReport> {
     if width == 0 || height == 0 {
         return Err(RtError::BadLaunch {
@@ -308,23 +330,77 @@ pub(crate) fn launch(
     let t0 = std::time::Instant::now();
     build_accels(scene, accels, backend.trees(scene))?;
     let build = t0.elapsed();
-    let kept = backend.writes_host_buffers().then(|| keep_writable(&scene.buffers));
-    let result = {
-        let launch = Launch { scene, settings, accels, entry, width, height };
-        crate::panics::catching(|| backend.launch(&launch)).unwrap_or_else(|caught| {
-            Err(RtError::RuntimePanicked { backend: backend.kind().name(), message: caught.message, at: caught.at })
-        })
+    let Pacing { pace, mut progress } = pacing;
+    let budget = settings.tile_budget;
+    let total = width as u64 * height as u64;
+    let mut tiler = Tiler::new(width, height);
+    let first = pace.next_size(budget, entry, None);
+    let kept = (backend.writes_host_buffers() || first < total).then(|| keep_writable(&scene.buffers));
+    let mut report = LaunchReport::default();
+    let (mut last, mut done) = (None, 0);
+    let result = loop {
+        let size = if last.is_none() { first } else { pace.next_size(budget, entry, last) };
+        let Some(tile) = tiler.next_tile(size) else { break Ok(()) };
+        let launch = Launch { scene, settings, accels, entry, width, height, tile };
+        let ran = run_tile(backend, &launch);
+        backend.read_back_outputs(&mut scene.buffers);
+        let ran = match ran {
+            Ok(ran) => ran,
+            Err(e) => break Err(e),
+        };
+        let t = &ran.timings;
+        pace.record(entry, tile.count(), t.kernel.unwrap_or(t.run.saturating_sub(t.accel)));
+        merge(&mut report, ran);
+        last = Some(tile.count());
+        done += tile.count();
+        if let Some(progress) = progress.as_deref_mut() {
+            let at = LaunchProgress { entry, done, total, tiles: report.tiles, elapsed: t0.elapsed() };
+            if progress(at) == LaunchControl::Cancel && !tiler.finished() {
+                break Err(RtError::LaunchCancelled { entry, done, total });
+            }
+        }
     };
+    if let Err(e) = result {
+        if let Some(kept) = kept {
+            put_back(&mut scene.buffers, kept);
+        }
+        return Err(e);
+    }
+    if report.tiles > 1 {
+        // Each tile's records are in index order; the tiles' are not.
+        report.exceptions.sort_by_key(|e| (e.launch_index.y, e.launch_index.x));
+        report.prints.sort_by_key(|(at, _)| (at.y, at.x));
+    }
+    report.timings.build = build;
+    Ok(report)
+}
+
+/// Runs one tile on `backend`, catching a panic in the runtime (a panic in
+/// a program the backend reports itself, naming it).
+fn run_tile(backend: &mut dyn LaunchBackend, launch: &Launch) -> Result<LaunchReport> {
+    let result = crate::panics::catching(|| backend.launch(launch)).unwrap_or_else(|caught| {
+        Err(RtError::RuntimePanicked { backend: backend.kind().name(), message: caught.message, at: caught.at })
+    });
     if matches!(result, Err(RtError::RuntimePanicked { .. })) {
         backend.after_panic();
     }
-    if result.is_err()
-        && let Some(kept) = kept
-    {
-        put_back(&mut scene.buffers, kept);
-    }
-    backend.read_back_outputs(&mut scene.buffers);
-    let mut report = result?;
-    report.timings.build = build;
-    Ok(report)
+    result
+}
+
+/// Adds a tile's report to the launch's.
+fn merge(report: &mut LaunchReport, tile: LaunchReport) {
+    report.exceptions.extend(tile.exceptions);
+    report.prints.extend(tile.prints);
+    report.rays += tile.rays;
+    report.tiles += 1;
+    let (a, b) = (&mut report.timings, tile.timings);
+    a.encode += b.encode;
+    a.link += b.link;
+    a.run += b.run;
+    a.accel += b.accel;
+    a.kernel = match (report.tiles, a.kernel, b.kernel) {
+        (1, _, k) => k,
+        (_, Some(x), Some(y)) => Some(x + y),
+        _ => None,
+    };
 }

@@ -100,16 +100,16 @@ fn panicked(
     }
 }
 
-/// Runs a launch over its launch indices.
+/// Runs a launch over its tile's launch indices.
 fn run(launch: &Launch) -> Result<LaunchReport> {
-    let &Launch { scene, settings, accels, entry, width, height } = launch;
+    let &Launch { scene, settings, accels, entry, width, height, tile } = launch;
     let t1 = std::time::Instant::now();
     let calls = link_all(scene, settings, &accels.nodes, entry, UVec2::new(width, height))?;
     let linked = calls.bind()?;
     let t2 = std::time::Instant::now();
     // Chunks of launch indices in row-major order (not rows: a 1D launch
     // spreads over all cores too); reports are merged in index order.
-    let total = width as u64 * height as u64;
+    let total = tile.count();
     let chunk = (total / (rayon::current_num_threads() as u64 * 8)).clamp(64, 16384);
     // A panic stops its chunk, and the others at their next index.
     let stop = AtomicBool::new(false);
@@ -125,7 +125,7 @@ fn run(launch: &Launch) -> Result<LaunchReport> {
                         if stop.load(Ordering::Relaxed) {
                             break;
                         }
-                        let index = UVec2::new((i % width as u64) as u32, (i / width as u64) as u32);
+                        let index = tile.index(i);
                         if let Err(caught) = panics::catching(|| lane.run_index(index, &mut report)) {
                             stop.store(true, Ordering::Relaxed);
                             return Err(panicked(lane.program.get(), index, caught));

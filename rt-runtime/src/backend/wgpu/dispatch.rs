@@ -13,15 +13,17 @@ use rt_abi::records::LaunchUniform;
 /// A tile: its launch uniform and its workgroups in x and y.
 pub(crate) type Tile = ([u32; LaunchUniform::WORDS], u32, u32);
 
-/// The tiles of launch `l`: launches over the dispatch limit run as
-/// several, each with its uniform (`[case, record]` of the ray-generation
-/// and exception programs).
+/// The dispatches of launch `l`'s tile (`l.tile`, whose origin is on the
+/// 8 x 8 grid): a tile over the dispatch limit runs as several, each with
+/// its uniform (`[case, record]` of the ray-generation and exception
+/// programs).
 pub(crate) fn tiles(l: &Launch, limits: &wgpu::Limits, ray_generation: [u32; 2], exception: [u32; 2]) -> Vec<Tile> {
     let (width, height) = (l.width, l.height);
+    let (base, size) = (l.tile.origin, l.tile.size);
     let print_filter = l.settings.print_launch_index.unwrap_or(UVec2::splat(u32::MAX));
     let print_enabled = l.settings.print_enabled as u32;
-    let tiles_x = width.div_ceil(8);
-    let tiles_y = height.div_ceil(8);
+    let tiles_x = size.x.div_ceil(8);
+    let tiles_y = size.y.div_ceil(8);
     let max_groups = limits.max_compute_workgroups_per_dimension.max(1);
     let mut tiles: Vec<Tile> = Vec::new();
     let mut y0 = 0;
@@ -32,7 +34,7 @@ pub(crate) fn tiles(l: &Launch, limits: &wgpu::Limits, ray_generation: [u32; 2],
             let gx = (tiles_x - x0).min(max_groups);
             let uniform = LaunchUniform {
                 dim: [width, height],
-                origin: [x0 * 8, y0 * 8],
+                origin: [base.x + x0 * 8, base.y + y0 * 8],
                 ray_generation,
                 exception,
                 log_capacity: LOG_EXCEPTIONS,

@@ -40,8 +40,9 @@
 //! where the adapter has them), [`resident`] (buffers
 //! kept on the device, uploads of changed pages), [`heap`] (variables'
 //! records, buffers, textures), [`kernel`] (the megakernel's WGSL),
-//! [`pipeline`] (pipelines by WGSL), [`dispatch`] (tiles, uniforms, bind
-//! groups, the compute pass), [`readback`] (results and the log back to the
+//! [`pipeline`] (pipelines by WGSL), [`dispatch`] (a tile's dispatches,
+//! uniforms, bind groups, the compute pass), [`chain`] (transform chains
+//! composed and inverted in f64), [`readback`] (results and the log back to the
 //! host, `rt_printf!` formatting); this file runs a launch through them
 //! ([`launch_on_device`]).
 //!
@@ -73,6 +74,7 @@
 //! check every kept word against a fresh encoding.
 
 pub mod capture;
+pub(crate) mod chain;
 pub(crate) mod compute;
 pub(crate) mod device;
 pub(crate) mod dispatch;

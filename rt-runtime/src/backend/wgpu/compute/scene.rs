@@ -8,6 +8,7 @@ use super::super::heap::{Records, encode_heap};
 use super::super::kernel::{self, KernelProgram, KernelSpec, SCENE_HEADER_BASES, SCENE_SECTIONS};
 use super::geometry::{GeometryKey, GeometryLayout, GroupWords, SCENE_HEADER, encode_geometry, f, push_bvh};
 use crate::accel::cache::{AccelCache, NodeAccel};
+use crate::backend::wgpu::chain::Chain;
 use crate::error::{Result, RtError};
 use crate::link::{self, Record};
 use crate::scene::{GeometryKind, NodeId, NodeKind, ProgramId, Scene};
@@ -167,8 +168,8 @@ pub(crate) fn kept_masks(masks: &[u8]) -> Vec<u8> {
 
 /// Follows transforms down to a geometry group: (group, object-to-world,
 /// visibility word).
-pub(crate) fn instance_of(scene: &Scene, node: NodeId) -> Result<Option<(NodeId, Mat4, u32)>> {
-    let mut m = Mat4::IDENTITY;
+pub(crate) fn instance_of(scene: &Scene, node: NodeId) -> Result<Option<Instance>> {
+    let mut m = Chain::IDENTITY;
     let mut masks = Vec::new();
     let mut n = node;
     for _ in 0..=scene.nodes.len() {
@@ -177,7 +178,7 @@ pub(crate) fn instance_of(scene: &Scene, node: NodeId) -> Result<Option<(NodeId,
         match &rec.kind {
             NodeKind::GeometryGroup { .. } => return Ok(Some((n, m, visibility(&masks, node)?))),
             NodeKind::Transform { matrix, child, .. } => {
-                m *= *matrix;
+                m = m.then(*matrix);
                 n = *child;
             }
             NodeKind::Group { .. } | NodeKind::Selector { .. } => return Ok(None),
@@ -209,8 +210,8 @@ struct Groups {
     deepest: Option<u32>,
 }
 
-/// An instance: a geometry group, its object-to-world matrix and mask.
-pub(crate) type Instance = (NodeId, Mat4, u32);
+/// An instance: a geometry group, its transform chain and mask.
+pub(crate) type Instance = (NodeId, Chain, u32);
 
 impl Encoder<'_> {
     /// Program `p`'s case in the kernel's dispatch, added to the kernel's
@@ -264,8 +265,8 @@ impl Encoder<'_> {
         for (gg, o2w, mask) in instances {
             let w = geometry.gg_bvh.get(&gg.index()).copied().unwrap_or(GroupWords { bvh: 0, table: 0, tri_slots: 0 });
             let record = InstanceRecord {
-                object_to_world: o2w.to_cols_array(),
-                world_to_object: o2w.inverse().to_cols_array(),
+                object_to_world: o2w.object_to_world().to_cols_array(),
+                world_to_object: o2w.world_to_object().to_cols_array(),
                 bvh: w.bvh,
                 primitives: w.table,
                 mask: *mask,
@@ -304,16 +305,16 @@ impl Encoder<'_> {
                 }
                 NodeKind::Transform { .. } => {
                     // A chain of transforms down to a group or selector.
-                    let (mut m, mut masks, mut below) = (Mat4::IDENTITY, Vec::new(), n);
+                    let (mut m, mut masks, mut below) = (Chain::IDENTITY, Vec::new(), n);
                     while let NodeKind::Transform { matrix, child, .. } = &scene.nodes[below.index() as usize].kind {
-                        m *= *matrix;
+                        m = m.then(*matrix);
                         masks.push(scene.nodes[below.index() as usize].visibility_mask);
                         below = *child;
                     }
                     let mask = visibility(&masks, n)?;
                     let at = self.tables.at();
-                    push_mat(&mut self.tables.words, m);
-                    push_mat(&mut self.tables.words, m.inverse());
+                    push_mat(&mut self.tables.words, m.object_to_world());
+                    push_mat(&mut self.tables.words, m.world_to_object());
                     node_entries[i] = [NodeEntry::Transform as u32, at, below.index(), mask];
                     levels[i] = 1 + levels[below.index() as usize];
                     graph = true;

@@ -7,6 +7,7 @@
 //! cannot be flattened: such scenes keep the compute traversal
 //! ([`Unsupported`] says which node and why).
 
+use crate::backend::wgpu::chain::Chain;
 use crate::backend::wgpu::compute::scene::{instances, kept_masks};
 use crate::error::Result;
 use crate::scene::{GeometryKind, NodeId, NodeKind, Scene};
@@ -99,7 +100,7 @@ pub(crate) fn flatten(scene: &Scene) -> Result<std::result::Result<Flat, Unsuppo
     let mut flat = Flat { roots: Vec::new(), records: records.len() as u32 };
     for root in roots {
         let mut out = Vec::new();
-        let mut stack: Vec<(NodeId, Mat4, Vec<u8>)> = vec![(root, Mat4::IDENTITY, Vec::new())];
+        let mut stack: Vec<(NodeId, Chain, Vec<u8>)> = vec![(root, Chain::IDENTITY, Vec::new())];
         // Depth is bounded: the acceleration build refused cycles.
         while let Some((n, m, mut masks)) = stack.pop() {
             let rec = &scene.nodes[n.index() as usize];
@@ -113,13 +114,13 @@ pub(crate) fn flatten(scene: &Scene) -> Result<std::result::Result<Flat, Unsuppo
                         return Ok(Err(Unsupported::Masks { node: n, masks }));
                     };
                     let record = instance_of_node[n.index() as usize].expect("a geometry group is an instance");
-                    out.push(FlatInstance { group: n, record, object_to_world: m, mask });
+                    out.push(FlatInstance { group: n, record, object_to_world: m.object_to_world(), mask });
                 }
                 NodeKind::Group { children, .. } => {
                     // Reversed, so that instances come out in child order.
                     stack.extend(children.iter().rev().map(|c| (*c, m, masks.clone())));
                 }
-                NodeKind::Transform { matrix, child, .. } => stack.push((*child, m * *matrix, masks)),
+                NodeKind::Transform { matrix, child, .. } => stack.push((*child, m.then(*matrix), masks)),
                 NodeKind::Selector { .. } => return Ok(Err(Unsupported::Selector(n))),
             }
         }
