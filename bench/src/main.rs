@@ -320,6 +320,47 @@ fn measure_launches(ctx: &mut Context, width: u32, height: u32, reps: usize) -> 
     Ok((first, repeat_launches(ctx, width, height, reps, |_, _| Ok(Duration::ZERO))?))
 }
 
+/// What cutting launches into tiles costs: `reps` launches as tiles (the
+/// default budget) alternating with `reps` whole ones, the medians of
+/// their whole times (build, encode, link and run) and the tiles of a
+/// tiled launch.
+fn tiled_and_whole(ctx: &mut Context, width: u32, height: u32, reps: usize) -> Result<(Duration, Duration, u32)> {
+    let (mut tiled, mut whole, mut tiles) = (Vec::new(), Vec::new(), 0);
+    for _ in 0..reps {
+        for budget in [TileBudget::default(), TileBudget::Whole] {
+            ctx.set_tile_budget(budget);
+            let r = ctx.launch(0, width, height)?;
+            let t = r.timings.build + r.timings.encode + r.timings.link + r.timings.run;
+            if budget == TileBudget::Whole {
+                whole.push(t);
+            } else {
+                tiled.push(t);
+                tiles = r.tiles;
+            }
+        }
+    }
+    ctx.set_tile_budget(TileBudget::default());
+    Ok((median(tiled), median(whole), tiles))
+}
+
+/// [`tiled_and_whole`] into `j` (as `tiled_vs_whole`), and the throughput
+/// ratio of tiled launches over whole ones (below 1: tiles cost time).
+fn record_tiled_and_whole(j: &mut json::Json, measured: Result<(Duration, Duration, u32)>) -> Option<f64> {
+    match measured {
+        Ok((tiled, whole, tiles)) => {
+            let o = j.child("tiled_vs_whole");
+            o.set("tiles", tiles);
+            o.set("tiled_ms", ms(tiled));
+            o.set("whole_ms", ms(whole));
+            Some(whole.as_secs_f64() / tiled.as_secs_f64())
+        }
+        Err(e) => {
+            eprintln!("tiled against whole launches: {e}");
+            None
+        }
+    }
+}
+
 /// Primary rays (normal shader) on the bunny per backend, and the build
 /// against obvhs's: the figures the bench reported before issue #6.
 fn bunny_primary(args: &Args, bunny: &scenes::BenchScene, width: u32, height: u32, reps: usize, json: &mut json::Json) {
@@ -458,6 +499,10 @@ struct SceneFigures {
     rayquery_kernel: Option<f64>,
     rayquery_handwritten: Option<f64>,
     rayquery_handwritten_kernel: Option<f64>,
+    /// Throughput of launches cut into tiles (the default) over whole
+    /// ones, per backend.
+    cpu_tiled_vs_whole: Option<f64>,
+    wgpu_tiled_vs_whole: Option<f64>,
 }
 
 /// The AO workload on one scene: every backend and peer.
@@ -617,6 +662,10 @@ fn measure_scene(
             Err(e) => eprintln!("cpu under a transform: {e}"),
         }
     }
+    if let Some(ctx) = cpu_ctx.as_mut() {
+        let measured = tiled_and_whole(ctx, width, height, reps);
+        fig.cpu_tiled_vs_whole = record_tiled_and_whole(j.child("cpu"), measured);
+    }
     drop(cpu_ctx);
     drop(embree_scene);
 
@@ -646,7 +695,7 @@ fn measure_gpu(
         j.child("skipped").set("wgpu", why.as_str());
         j.child("skipped").set("handwritten_wgsl", why.as_str());
     } else {
-        let run = || -> Result<(Json, Repeated, String)> {
+        let run = || -> Result<(Json, Repeated, String, Option<f64>)> {
             let (mut ctx, _, gg, g) = scene_with(&scene.mesh, cam, Backend::Wgpu, width, height, Workload::Ao)?;
             ctx.set_traversal(rt_runtime::Traversal::Compute);
             let device = ctx.open_wgpu()?;
@@ -676,10 +725,12 @@ fn measure_gpu(
                 o.set("kernel", r.kernel.map(ms));
             }
             w.child("moving_vertices_launch_ms").set("set_positions", ms(vertices.change));
-            Ok((w, l, device))
+            let tiled = record_tiled_and_whole(&mut w, tiled_and_whole(&mut ctx, width, height, reps));
+            Ok((w, l, device, tiled))
         };
         match run() {
-            Ok((w, l, device)) => {
+            Ok((w, l, device, tiled)) => {
+                fig.wgpu_tiled_vs_whole = tiled;
                 j.set("wgpu_first_launch", w);
                 j.set("wgpu_device", device);
                 fig.wgpu = Some(mrays(l.rays, l.run));
@@ -869,7 +920,7 @@ fn main() {
     // The headline ratios on the bunny (as before issue #6), and their
     // geometric means over the scenes where both sides were measured.
     let pick = |name: &str| figures.iter().find(|(n, _)| *n == name).map(|(_, f)| f);
-    let ratios: [(&str, RatioOf); 12] = [
+    let ratios: [(&str, RatioOf); 14] = [
         ("cpu_vs_obvhs", |f| ratio(f.cpu, f.obvhs)),
         // Against Embree's best mode (the faster of rtcIntersect1 and
         // rtcIntersect16), and against its single rays alone (the key of
@@ -895,6 +946,10 @@ fn main() {
         ("rayquery_vs_compute_kernel", |f| ratio(f.rayquery_kernel, f.wgpu_kernel)),
         ("megakernel_rayquery_vs_handwritten", |f| ratio(f.rayquery, f.rayquery_handwritten)),
         ("megakernel_rayquery_vs_handwritten_kernel", |f| ratio(f.rayquery_kernel, f.rayquery_handwritten_kernel)),
+        // Launches cut into tiles (the default budget) against whole ones
+        // (above 1: tiles are faster).
+        ("cpu_tiled_vs_whole_launch", |f| f.cpu_tiled_vs_whole),
+        ("wgpu_tiled_vs_whole_launch", |f| f.wgpu_tiled_vs_whole),
     ];
     for (key, r) in ratios {
         json.set(key, pick("bunny").and_then(r));

@@ -50,6 +50,7 @@ pub mod model;
 /// old name.
 pub use rt_scene::obj as mesh;
 pub mod normal;
+pub mod parts;
 pub mod phong;
 pub mod progress_bar;
 pub mod reflections;

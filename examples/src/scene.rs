@@ -2,9 +2,10 @@
 //! [`Scene`] and how it renders into an in-memory [`Image`], the errors, and
 //! small meshes made in code.
 
-use glam::{Vec3, Vec4};
+use glam::{UVec2, Vec3, Vec4};
 use rt_runtime::{
-    Backend, BufferId, BufferType, Context, ExceptionRecord, LaunchControl, RtError, Scope, Traversal, TriangleMesh,
+    Backend, BufferId, BufferType, Context, ExceptionRecord, LaunchControl, RtError, Scope, Tile, Traversal,
+    TriangleMesh,
 };
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -140,6 +141,9 @@ pub enum Error {
     Settings(String),
     #[error("{path}: {problem}")]
     Io { path: String, problem: String },
+    /// A part file of a picture rendered in parts that cannot be used.
+    #[error("{path}: {problem}")]
+    Part { path: String, problem: String },
 }
 
 impl Error {
@@ -147,7 +151,7 @@ impl Error {
     /// that is not there): the binaries exit 2 for these.
     pub fn is_bad_input(&self) -> bool {
         match self {
-            Error::Mesh(_) | Error::BackendUnavailable { .. } | Error::Settings(_) => true,
+            Error::Mesh(_) | Error::BackendUnavailable { .. } | Error::Settings(_) | Error::Part { .. } => true,
             Error::Scene(e) => e.is_bad_input(),
             Error::Runtime(_) | Error::Io { .. } => false,
         }
@@ -345,13 +349,26 @@ impl Scene {
     /// each tile of each launch (the context cuts launches into tiles,
     /// [`Context::set_tile_budget`]), and reads the output back.
     pub fn render(&mut self, progress: &mut dyn FnMut(Progress)) -> Result<Rendered, Error> {
+        self.render_rows(0..self.height, progress)
+    }
+
+    /// [`Scene::render`] of the rows `rows` only (on the launch's 8-row
+    /// grid, [`crate::parts::band`]): every program sees the whole picture,
+    /// so these rows are what a whole render gives them; the image's other
+    /// rows are not rendered.
+    pub fn render_rows(
+        &mut self,
+        rows: std::ops::Range<u32>,
+        progress: &mut dyn FnMut(Progress),
+    ) -> Result<Rendered, Error> {
+        let part = Tile { origin: UVec2::new(0, rows.start), size: UVec2::new(self.width, rows.len() as u32) };
         let mut rays = 0;
         let mut exceptions = Vec::new();
         let start = Instant::now();
         let frames = self.frames;
         for frame in 0..frames {
             self.ctx.set_var(Scope::Context, "frame", frame)?;
-            let report = self.ctx.launch_with_progress(0, self.width, self.height, |p| {
+            let report = self.ctx.launch_part(0, self.width, self.height, part, |p| {
                 progress(Progress { frame, frames, within: p.fraction() });
                 LaunchControl::Continue
             })?;
@@ -426,7 +443,7 @@ impl Image {
 }
 
 /// `bytes` written beside `path` and renamed over it.
-fn write_whole(path: &Path, bytes: Vec<u8>) -> Result<(), Error> {
+pub(crate) fn write_whole(path: &Path, bytes: Vec<u8>) -> Result<(), Error> {
     let io = |e: std::io::Error| Error::Io { path: path.display().to_string(), problem: e.to_string() };
     let mut tmp = PathBuf::from(path);
     tmp.set_file_name(format!(

@@ -2,7 +2,7 @@
 
 use crate::accel::Acceleration;
 use crate::accel::cache::AccelCache;
-use crate::backend::tiles::{LaunchControl, LaunchProgress, Pace, TileBudget};
+use crate::backend::tiles::{LaunchControl, LaunchProgress, Pace, Tile, TileBudget};
 use crate::backend::wgpu::{Gpu, WgpuBackend};
 use crate::backend::{self, Backend, LaunchBackend, LaunchReport, Pacing, Settings};
 use crate::buffer::{BufferRec, BufferType, SamplerRec, Typed};
@@ -639,7 +639,7 @@ impl Context {
     /// Runs entry point `entry` over `width` x `height` launch indices, as
     /// tiles under the context's budget ([`Context::set_tile_budget`]).
     pub fn launch(&mut self, entry: u32, width: u32, height: u32) -> Result<LaunchReport> {
-        let pacing = Pacing { pace: &mut self.pace, progress: None };
+        let pacing = Pacing { part: None, pace: &mut self.pace, progress: None };
         let (scene, settings, accels) = (&mut self.scene, &self.settings, &mut self.accels);
         backend::launch(&mut *self.backend, scene, settings, accels, (entry, width, height), pacing)
     }
@@ -659,7 +659,29 @@ impl Context {
         height: u32,
         mut progress: impl FnMut(LaunchProgress) -> LaunchControl,
     ) -> Result<LaunchReport> {
-        let pacing = Pacing { pace: &mut self.pace, progress: Some(&mut progress) };
+        let pacing = Pacing { part: None, pace: &mut self.pace, progress: Some(&mut progress) };
+        let (scene, settings, accels) = (&mut self.scene, &self.settings, &mut self.accels);
+        backend::launch(&mut *self.backend, scene, settings, accels, (entry, width, height), pacing)
+    }
+
+    /// Runs only `part` of a `width` x `height` launch of entry point
+    /// `entry`: programs see the whole size as their launch dimensions and
+    /// their own place in it as their launch index, so parts launched
+    /// apart (on several machines: `render --tile K/N`) give, put
+    /// together, what one launch gives. Indices outside the part do not
+    /// run. The part must lie on the 8 x 8 grid of launch indices (its
+    /// origin, and its far edges unless they are the launch's, multiples
+    /// of 8); else the launch fails with [`RtError::BadLaunch`]. Tiles and
+    /// progress are as [`Context::launch_with_progress`]'s, within the part.
+    pub fn launch_part(
+        &mut self,
+        entry: u32,
+        width: u32,
+        height: u32,
+        part: Tile,
+        mut progress: impl FnMut(LaunchProgress) -> LaunchControl,
+    ) -> Result<LaunchReport> {
+        let pacing = Pacing { part: Some(part), pace: &mut self.pace, progress: Some(&mut progress) };
         let (scene, settings, accels) = (&mut self.scene, &self.settings, &mut self.accels);
         backend::launch(&mut *self.backend, scene, settings, accels, (entry, width, height), pacing)
     }

@@ -41,7 +41,7 @@ pub mod scene;
 pub mod vars;
 
 pub use accel::{Acceleration, Builder};
-pub use backend::tiles::{DEFAULT_TILE_BUDGET, LaunchControl, LaunchProgress, TileBudget};
+pub use backend::tiles::{DEFAULT_TILE_BUDGET, LaunchControl, LaunchProgress, Tile, TileBudget};
 pub use backend::wgpu::Traversal;
 pub use backend::{Backend, ExceptionRecord, LaunchReport, Timings};
 pub use buffer::BufferType;

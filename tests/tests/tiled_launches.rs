@@ -257,3 +257,57 @@ fn a_panic_in_a_later_tile_leaves_the_buffers_as_they_were() {
     assert_eq!(bits(&s.ctx.read_buffer::<Vec4>(s.out).unwrap()), bits(&before));
     assert!(s.ctx.read_buffer::<u32>(s.runs).unwrap().iter().all(|&r| r == 0));
 }
+
+#[test]
+fn a_part_of_a_launch_runs_only_its_indices_and_sees_the_whole_size() {
+    for on in On::ALL.into_iter().filter(|on| on.available()) {
+        let mut whole = scene(on, W, H);
+        whole.ctx.launch(0, W, H).unwrap();
+        let all = whole.ctx.read_buffer::<Vec4>(whole.out).unwrap();
+        let mut s = scene(on, W, H);
+        let before = s.ctx.read_buffer::<Vec4>(s.out).unwrap();
+        // Rows 64..201 from column 40 to the right edge, tiles of 1,000.
+        s.ctx.set_tile_budget(TileBudget::Indices(1000));
+        let part = Tile { origin: UVec2::new(40, 64), size: UVec2::new(W - 40, H - 64) };
+        let mut last = None;
+        let report = s
+            .ctx
+            .launch_part(0, W, H, part, |p| {
+                last = Some(p);
+                LaunchControl::Continue
+            })
+            .unwrap();
+        assert!(report.tiles > 1);
+        assert_eq!(last.unwrap().total, part.count());
+        let got = s.ctx.read_buffer::<Vec4>(s.out).unwrap();
+        let runs = s.ctx.read_buffer::<u32>(s.runs).unwrap();
+        for y in 0..H {
+            for x in 0..W {
+                let i = (y * W + x) as usize;
+                let inside = x >= 40 && y >= 64;
+                let want = if inside { all[i] } else { before[i] };
+                assert_eq!(
+                    got[i].to_array().map(f32::to_bits),
+                    want.to_array().map(f32::to_bits),
+                    "{} ({x}, {y})",
+                    on.name()
+                );
+                assert_eq!(runs[i], inside as u32, "{} ({x}, {y})", on.name());
+            }
+        }
+        let inside = |e: &ExceptionRecord| e.launch_index.x >= 40 && e.launch_index.y >= 64;
+        let mut whole_exceptions = whole.ctx.launch(0, W, H).unwrap().exceptions;
+        whole_exceptions.retain(inside);
+        assert_eq!(report.exceptions, whole_exceptions, "{}", on.name());
+        // Off the 8 x 8 grid, or past the edge: refused by name.
+        for (bad, problem) in [
+            (Tile { origin: UVec2::new(4, 0), size: UVec2::new(8, 8) }, "is not on the 8 x 8 grid"),
+            (Tile { origin: UVec2::new(0, 0), size: UVec2::new(12, 8) }, "is not on the 8 x 8 grid"),
+            (Tile { origin: UVec2::new(296, 0), size: UVec2::new(8, 8) }, "reaches past the launch's edge"),
+            (Tile { origin: UVec2::new(0, 0), size: UVec2::new(0, 8) }, "is empty"),
+        ] {
+            let err = s.ctx.launch_part(0, W, H, bad, |_| LaunchControl::Continue).unwrap_err();
+            assert!(matches!(err, RtError::BadLaunch { .. }) && err.to_string().contains(problem), "{err}");
+        }
+    }
+}

@@ -5,6 +5,10 @@
 //!
 //!     cargo run --release -p examples --bin render -- MODEL.{obj,gltf,glb} --out OUT.{png,exr}
 //!
+//! In parts, on several machines (`examples::parts`): `--tile K/N` renders
+//! band K (from 0) of N bands of rows into a part file, and `render
+//! --merge PART... --out OUT.png` puts the parts together bit for bit.
+//!
 //! Exit status: 0 with the image written; 2 for bad input (the model: one
 //! line naming the file, the line or glTF object when known and the
 //! problem; or arguments, such as a backend with no adapter), and no
@@ -12,8 +16,9 @@
 
 use clap::Parser;
 use examples::model::{self, CameraOptions, UpAxis};
-use examples::{BackendChoice, Error, Settings, progress_bar};
-use std::path::PathBuf;
+use examples::scene::Image;
+use examples::{BackendChoice, Error, Settings, parts, progress_bar};
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 /// Render an OBJ or glTF model to a PNG or an OpenEXR image.
@@ -22,11 +27,22 @@ use std::process::ExitCode;
 struct Args {
     /// The model: OBJ (triangles or polygons; `.mtl` colours are used),
     /// glTF (`.gltf`) or binary glTF (`.glb`).
-    mesh: PathBuf,
+    #[arg(required_unless_present = "merge")]
+    mesh: Option<PathBuf>,
     /// Where to write the image: `.exr` writes float RGBA (OpenEXR), any
-    /// other name a PNG.
+    /// other name a PNG; with `--tile`, the part file.
     #[arg(long)]
     out: PathBuf,
+    /// Render only part K (from 0) of N: a band of the picture's rows,
+    /// written to `--out` as a part file for `--merge`. Every part sees the
+    /// whole picture (its seeds and rays), so the parts put together are
+    /// the whole render's image, bit for bit, on one backend.
+    #[arg(long, value_name = "K/N", conflicts_with = "merge")]
+    tile: Option<String>,
+    /// Put part files (from `--tile`) together into `--out`, checking that
+    /// they are every part of one render once.
+    #[arg(long, value_name = "PART", num_args = 1.., conflicts_with = "mesh")]
+    merge: Vec<PathBuf>,
     #[arg(long, default_value_t = Settings::DEFAULT_WIDTH)]
     width: u32,
     #[arg(long, default_value_t = Settings::DEFAULT_HEIGHT)]
@@ -68,8 +84,57 @@ fn main() -> ExitCode {
     }
 }
 
+/// Writes `image` to `out`: OpenEXR for `.exr`, else PNG.
+fn save(image: &Image, out: &Path) -> Result<(), Error> {
+    if out.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr")) {
+        image.save_exr(out)
+    } else {
+        image.save_png(out)
+    }
+}
+
+/// `--merge`: the parts, checked and put together, into `--out`.
+fn merge(args: &Args) -> Result<(), Error> {
+    let parts = args.merge.iter().map(|p| Ok((p.clone(), parts::Part::load(p)?))).collect::<Result<Vec<_>, Error>>()?;
+    let image = parts::merge(&parts)?;
+    save(&image, &args.out)?;
+    println!("{}: {} parts, {}x{}", args.out.display(), parts.len(), image.width, image.height);
+    Ok(())
+}
+
+/// What decides a render's pixels, for a part file: parts merge only with
+/// parts of the same settings (the model file by its length and hash).
+fn settings_line(args: &Args, model: &Path, backend: &str) -> Result<String, Error> {
+    let bytes =
+        std::fs::read(model).map_err(|e| Error::Io { path: model.display().to_string(), problem: e.to_string() })?;
+    Ok(format!(
+        "model {} ({} bytes, fnv1a {:016x}) {}x{} spp {} backend {backend} up {:?} azimuth {:?} elevation {:?} distance {:?} fov {:?} file-camera {}",
+        model.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default(),
+        bytes.len(),
+        parts::fnv1a(&bytes),
+        args.width,
+        args.height,
+        args.spp,
+        args.up,
+        args.azimuth,
+        args.elevation,
+        args.distance,
+        args.fov,
+        !args.no_file_camera,
+    ))
+}
+
 fn run(args: &Args) -> Result<(), Error> {
+    if !args.merge.is_empty() {
+        return merge(args);
+    }
+    let mesh = args.mesh.as_deref().expect("clap requires a model without --merge");
     check_camera_args(args)?;
+    let tile = args.tile.as_deref().map(parts::parse_tile).transpose()?;
+    let rows = match tile {
+        Some((k, n)) => parts::band(args.height, k, n)?,
+        None => 0..args.height,
+    };
     let (backend, what) = BackendChoice::open_or_choose(args.backend)?;
     let settings = Settings { spp: args.spp, backend, ..Settings::new(args.width, args.height) };
     let options = CameraOptions {
@@ -80,21 +145,23 @@ fn run(args: &Args) -> Result<(), Error> {
         fov: args.fov,
         ignore_file_camera: args.no_file_camera,
     };
-    let mut loaded = model::model_scene(&args.mesh, &settings, options)?;
+    let mut loaded = model::model_scene(mesh, &settings, options)?;
     for warning in &loaded.warnings {
         eprintln!("render: warning: {warning}");
     }
     let bar = progress_bar::spp_bar("render", loaded.scene.frames);
-    let rendered = loaded.scene.render(&mut |p| progress_bar::show(&bar, p))?;
+    let rendered = loaded.scene.render_rows(rows.clone(), &mut |p| progress_bar::show(&bar, p))?;
     bar.finish_and_clear();
-    let exr = args.out.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr"));
-    if exr {
-        rendered.image.save_exr(&args.out)?;
-    } else {
-        rendered.image.save_png(&args.out)?;
+    match tile {
+        Some(tile) => {
+            let line = settings_line(args, mesh, settings.backend.name())?;
+            parts::Part::of(&rendered.image, tile, &line)?.save(&args.out)?;
+        }
+        None => save(&rendered.image, &args.out)?,
     }
+    let part = tile.map_or(String::new(), |(k, n)| format!(" (part {k} of {n}: rows {}..{})", rows.start, rows.end));
     println!(
-        "{}: {} triangles, {}x{}, {} spp with {what}{}: {:.2} s, {:.2} Mrays/s",
+        "{}{part}: {} triangles, {}x{}, {} spp with {what}{}: {:.2} s, {:.2} Mrays/s",
         args.out.display(),
         loaded.triangles,
         settings.width,

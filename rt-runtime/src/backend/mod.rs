@@ -299,9 +299,11 @@ fn put_back(buffers: &mut [BufferRec], kept: Vec<(usize, Vec<u32>)>) {
     }
 }
 
-/// How a launch is cut and watched: its budget, the pace earlier tiles
-/// measured (updated by the launch), and the callback between tiles.
+/// How a launch is cut and watched: the part of it to run (`None`: all),
+/// the pace earlier tiles measured (updated by the launch), and the
+/// callback between tiles.
 pub(crate) struct Pacing<'a> {
+    pub part: Option<Tile>,
     pub pace: &'a mut Pace,
     pub progress: Option<&'a mut dyn FnMut(LaunchProgress) -> LaunchControl>,
 }
@@ -326,14 +328,18 @@ pub(crate) fn launch(
             problem: "a launch needs at least one index in each dimension".into(),
         });
     }
+    let Pacing { part, pace, mut progress } = pacing;
+    let part = part.unwrap_or(Tile::whole(width, height));
+    if let Some(problem) = tiles::part_problem(width, height, part) {
+        return Err(RtError::BadLaunch { width, height, problem });
+    }
     backend.prepare()?;
     let t0 = std::time::Instant::now();
     build_accels(scene, accels, backend.trees(scene))?;
     let build = t0.elapsed();
-    let Pacing { pace, mut progress } = pacing;
     let budget = settings.tile_budget;
-    let total = width as u64 * height as u64;
-    let mut tiler = Tiler::new(width, height);
+    let total = part.count();
+    let mut tiler = Tiler::new(part);
     let first = pace.next_size(budget, entry, None);
     let kept = (backend.writes_host_buffers() || first < total).then(|| keep_writable(&scene.buffers));
     let mut report = LaunchReport::default();

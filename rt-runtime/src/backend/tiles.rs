@@ -116,24 +116,27 @@ impl Tile {
 /// Side of the square blocks a launch is cut along.
 const BLOCK: u32 = 8;
 
-/// Cuts a launch into tiles of whole blocks, in row-major order of blocks:
-/// a tile of at least a band's blocks is whole bands (rows of blocks), a
-/// smaller one is a run of blocks along one band.
+/// Cuts a launch (or a part of it on the block grid) into tiles of whole
+/// blocks, in row-major order of blocks: a tile of at least a band's
+/// blocks is whole bands (rows of blocks), a smaller one is a run of blocks
+/// along one band.
 #[derive(Clone, Debug)]
 pub(crate) struct Tiler {
-    width: u32,
-    height: u32,
-    /// The next block, in block units.
+    /// What is cut: its origin on the block grid.
+    part: Tile,
+    /// The next block, in block units from the part's origin.
     next: UVec2,
 }
 
 impl Tiler {
-    pub fn new(width: u32, height: u32) -> Tiler {
-        Tiler { width, height, next: UVec2::ZERO }
+    /// Cuts `part`, whose origin is on the block grid.
+    pub fn new(part: Tile) -> Tiler {
+        debug_assert_eq!(part.origin % BLOCK, UVec2::ZERO);
+        Tiler { part, next: UVec2::ZERO }
     }
 
     fn blocks(&self) -> UVec2 {
-        UVec2::new(self.width.div_ceil(BLOCK), self.height.div_ceil(BLOCK))
+        UVec2::new(self.part.size.x.div_ceil(BLOCK), self.part.size.y.div_ceil(BLOCK))
     }
 
     /// Whether every index has been handed out.
@@ -148,28 +151,51 @@ impl Tiler {
         if self.finished() {
             return None;
         }
-        let blocks = self.blocks();
+        let (blocks, size) = (self.blocks(), self.part.size);
         // The indices a block holds on this band (fewer on the last band of
-        // a launch whose height is not a multiple of 8, or a 1D launch).
-        let band_rows = (self.height - self.next.y * BLOCK).min(BLOCK);
+        // a part whose height is not a multiple of 8, or a 1D launch).
+        let band_rows = (size.y - self.next.y * BLOCK).min(BLOCK);
         let per_block = (BLOCK * band_rows) as u64;
         let want = (indices / per_block).max(1);
-        let origin = self.next * BLOCK;
+        let at = self.next * BLOCK;
+        let origin = self.part.origin + at;
         if self.next.x == 0 && want >= blocks.x as u64 {
             let bands = (indices / (blocks.x as u64 * (BLOCK * BLOCK) as u64)).max(1);
             let bands = bands.min((blocks.y - self.next.y) as u64) as u32;
             self.next.y += bands;
-            let rows = (bands * BLOCK).min(self.height - origin.y);
-            return Some(Tile { origin, size: UVec2::new(self.width, rows) });
+            let rows = (bands * BLOCK).min(size.y - at.y);
+            return Some(Tile { origin, size: UVec2::new(size.x, rows) });
         }
         let run = want.min((blocks.x - self.next.x) as u64) as u32;
         self.next.x += run;
         if self.next.x == blocks.x {
             self.next = UVec2::new(0, self.next.y + 1);
         }
-        let cols = (run * BLOCK).min(self.width - origin.x);
+        let cols = (run * BLOCK).min(size.x - at.x);
         Some(Tile { origin, size: UVec2::new(cols, band_rows) })
     }
+}
+
+/// Why `part` cannot be launched as a part of a `width` x `height` launch
+/// ([`Context::launch_part`](crate::Context::launch_part)): it must be
+/// non-empty, inside the launch, and on the 8 x 8 block grid (its origin,
+/// and its far edges unless they are the launch's).
+pub(crate) fn part_problem(width: u32, height: u32, part: Tile) -> Option<String> {
+    let (o, s) = (part.origin, part.size);
+    let end = o.as_u64vec2() + s.as_u64vec2();
+    if s.x == 0 || s.y == 0 {
+        return Some(format!("the part at {o} of size {s} is empty"));
+    }
+    if end.x > width as u64 || end.y > height as u64 {
+        return Some(format!("the part at {o} of size {s} reaches past the launch's edge"));
+    }
+    let on_grid = |v: u64, edge: u32| v.is_multiple_of(BLOCK as u64) || v == edge as u64;
+    if o % BLOCK != UVec2::ZERO || !on_grid(end.x, width) || !on_grid(end.y, height) {
+        return Some(format!(
+            "the part at {o} of size {s} is not on the 8 x 8 grid of launch indices (its origin, and its far edges unless they are the launch's, must be multiples of 8)"
+        ));
+    }
+    None
 }
 
 /// Seconds per launch index, per entry point, as the last tiles measured.
@@ -218,7 +244,7 @@ mod tests {
         for (w, h) in [(1, 1), (7, 3), (8, 8), (13, 1), (100, 37), (512, 256), (1000, 1)] {
             for n in [1, 64, 100, 640, 5000, 1 << 20] {
                 let mut seen = vec![0u8; (w * h) as usize];
-                let mut tiler = Tiler::new(w, h);
+                let mut tiler = Tiler::new(Tile::whole(w, h));
                 let mut tiles = 0;
                 while let Some(t) = tiler.next_tile(n) {
                     assert_eq!(t.origin % BLOCK, UVec2::ZERO, "{w}x{h} n={n}: {t:?}");
@@ -237,10 +263,10 @@ mod tests {
 
     #[test]
     fn a_large_budget_is_whole_bands_and_a_small_one_pieces_of_a_band() {
-        let mut t = Tiler::new(100, 37);
+        let mut t = Tiler::new(Tile::whole(100, 37));
         assert_eq!(t.next_tile(u64::MAX), Some(Tile::whole(100, 37)));
         assert_eq!(t.next_tile(u64::MAX), None);
-        let mut t = Tiler::new(100, 37);
+        let mut t = Tiler::new(Tile::whole(100, 37));
         // 13 blocks a band: 2000 indices are two bands.
         assert_eq!(t.next_tile(2000), Some(Tile { origin: UVec2::ZERO, size: UVec2::new(100, 16) }));
         // 200 indices: three blocks of the third band.
@@ -253,10 +279,30 @@ mod tests {
 
     #[test]
     fn a_1d_launch_is_cut_along_its_row() {
-        let mut t = Tiler::new(1000, 1);
+        let mut t = Tiler::new(Tile::whole(1000, 1));
         assert_eq!(t.next_tile(300), Some(Tile { origin: UVec2::ZERO, size: UVec2::new(296, 1) }));
         assert_eq!(t.next_tile(1 << 20), Some(Tile { origin: UVec2::new(296, 0), size: UVec2::new(704, 1) }));
         assert_eq!(t.next_tile(1), None);
+    }
+
+    #[test]
+    fn a_part_is_cut_from_its_origin() {
+        let part = Tile { origin: UVec2::new(16, 8), size: UVec2::new(20, 11) };
+        let mut t = Tiler::new(part);
+        assert_eq!(t.next_tile(64), Some(Tile { origin: UVec2::new(16, 8), size: UVec2::new(8, 8) }));
+        assert_eq!(t.next_tile(1 << 20), Some(Tile { origin: UVec2::new(24, 8), size: UVec2::new(12, 8) }));
+        assert_eq!(t.next_tile(1 << 20), Some(Tile { origin: UVec2::new(16, 16), size: UVec2::new(20, 3) }));
+        assert!(t.finished());
+        assert_eq!(part_problem(36, 19, part), None);
+        assert_eq!(part_problem(40, 40, Tile { origin: UVec2::new(16, 8), size: UVec2::new(24, 32) }), None);
+        for bad in [
+            Tile { origin: UVec2::new(16, 8), size: UVec2::new(20, 11) },
+            Tile { origin: UVec2::new(4, 0), size: UVec2::new(8, 8) },
+            Tile { origin: UVec2::ZERO, size: UVec2::new(0, 8) },
+            Tile { origin: UVec2::new(32, 0), size: UVec2::new(16, 8) },
+        ] {
+            assert!(part_problem(40, 40, bad).is_some(), "{bad:?}");
+        }
     }
 
     #[test]
