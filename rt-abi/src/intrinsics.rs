@@ -106,6 +106,8 @@ const HITS: &[Kind] = &[ClosestHit, AnyHit];
 const TRACERS: &[Kind] = &[RayGeneration, ClosestHit, Miss];
 const THROWERS: &[Kind] = &[RayGeneration, ClosestHit, AnyHit, Miss, Intersection, Visit];
 const TRANSFORMERS: &[Kind] = &[ClosestHit, AnyHit, Intersection];
+/// Kinds that run for one traced ray, whose flags and mask they may read.
+const RAY_STATE: &[Kind] = &[ClosestHit, AnyHit, Miss, Intersection];
 
 use AbiTy::*;
 
@@ -212,6 +214,27 @@ pub const INTRINSICS: &[Intrinsic] = &[
         &[("kind", TransformKind)],
         Mat4,
     ),
+    row("is_triangle_hit", "rtIsTriangleHit", HITS, Form::Value, "rt_is_triangle_hit", &[], Bool),
+    row(
+        "is_triangle_hit_front_face",
+        "rtIsTriangleHitFrontFace",
+        HITS,
+        Form::Value,
+        "rt_is_triangle_hit_front_face",
+        &[],
+        Bool,
+    ),
+    row(
+        "is_triangle_hit_back_face",
+        "rtIsTriangleHitBackFace",
+        HITS,
+        Form::Value,
+        "rt_is_triangle_hit_back_face",
+        &[],
+        Bool,
+    ),
+    row("ray_flags", "rtGetRayFlags", RAY_STATE, Form::Value, "rt_ray_flags", &[], U32),
+    row("ray_mask", "rtGetRayMask", RAY_STATE, Form::Value, "rt_ray_mask", &[], U32),
     Intrinsic { name: "rt_printf", optix: "rtPrintf", callers: Callers::All, form: Form::Special, wgsl: None },
 ];
 

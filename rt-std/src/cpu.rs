@@ -242,6 +242,15 @@ use glam::{Mat4, UVec2};
 use crate::ray::Ray;
 use crate::scene::Object;
 
+/// [`ExecutionContext::hit_kind`]: no hit (a miss, or outside hit programs).
+pub const HIT_NONE: u32 = 0;
+/// A triangle, met on its counter-clockwise side.
+pub const HIT_TRIANGLE_FRONT: u32 = 1;
+/// A triangle, met on its clockwise side.
+pub const HIT_TRIANGLE_BACK: u32 = 2;
+/// A custom primitive (reported by an intersection program).
+pub const HIT_CUSTOM: u32 = 3;
+
 /// The state of the program invocation running on this thread: what the
 /// semantic values return and where the hit protocol's flags land.
 ///
@@ -269,6 +278,15 @@ pub struct ExecutionContext {
     /// The exception being handled, in exception programs
     /// ([`exception_code`](crate::exception_code)).
     pub exception_code: u32,
+    /// What the candidate (any hit) or committed (closest hit) hit is: one
+    /// of the `HIT_*` values ([`is_triangle_hit`](crate::is_triangle_hit)).
+    pub hit_kind: u32,
+    /// The `RAY_FLAG_*` bits the current ray was traced with
+    /// ([`ray_flags`](crate::ray_flags)).
+    pub ray_flags: u32,
+    /// The current ray's visibility mask, 8 bits
+    /// ([`ray_mask`](crate::ray_mask)).
+    pub ray_mask: u32,
     /// Object-to-world transform of the current geometry instance.
     pub object_to_world: Mat4,
     /// World-to-object transform of the current geometry instance (the
@@ -310,6 +328,9 @@ impl ExecutionContext {
         t_hit: 0.0,
         primitive_index: 0,
         exception_code: 0,
+        hit_kind: HIT_NONE,
+        ray_flags: 0,
+        ray_mask: 0xff,
         object_to_world: Mat4::IDENTITY,
         world_to_object: Mat4::IDENTITY,
         ignored: false,

@@ -100,6 +100,48 @@ pub fn exception_code() -> u32 {
     crate::cpu::read(|c| c.exception_code)
 }
 
+/// Whether the hit being considered (any hit) or committed (closest hit)
+/// is a triangle's, not a custom primitive's.
+#[rt_macros::rt_intrinsic]
+#[inline]
+pub fn is_triangle_hit() -> bool {
+    crate::cpu::read(|c| matches!(c.hit_kind, cpu::HIT_TRIANGLE_FRONT | cpu::HIT_TRIANGLE_BACK))
+}
+
+/// Whether the hit is a triangle's met on its front: the side from which
+/// its vertices run counter-clockwise, in object space (the side that
+/// [`RAY_FLAG_CULL_FRONT_FACING`](crate::RAY_FLAG_CULL_FRONT_FACING)
+/// culls). False for custom primitives.
+#[rt_macros::rt_intrinsic]
+#[inline]
+pub fn is_triangle_hit_front_face() -> bool {
+    crate::cpu::read(|c| c.hit_kind == cpu::HIT_TRIANGLE_FRONT)
+}
+
+/// Whether the hit is a triangle's met on its back (see
+/// [`is_triangle_hit_front_face`]). False for custom primitives.
+#[rt_macros::rt_intrinsic]
+#[inline]
+pub fn is_triangle_hit_back_face() -> bool {
+    crate::cpu::read(|c| c.hit_kind == cpu::HIT_TRIANGLE_BACK)
+}
+
+/// The `RAY_FLAG_*` bits the current ray was traced with
+/// ([`rt_trace_with`]; [`RAY_FLAG_NONE`] for [`rt_trace`]).
+#[rt_macros::rt_intrinsic]
+#[inline]
+pub fn ray_flags() -> u32 {
+    crate::cpu::read(|c| c.ray_flags)
+}
+
+/// The current ray's visibility mask: the low 8 bits of the mask it was
+/// traced with ([`RAY_MASK_ALL`] for [`rt_trace`]).
+#[rt_macros::rt_intrinsic]
+#[inline]
+pub fn ray_mask() -> u32 {
+    crate::cpu::read(|c| c.ray_mask)
+}
+
 /// Traces `ray` against `object` with payload `prd`: runs the intersection,
 /// any-hit and closest-hit programs of what it hits, or the miss program of
 /// its ray type, which update `prd`. Same as [`rt_trace_with`] with

@@ -74,6 +74,8 @@ pub mod seed_normal;
 pub mod seed_phong;
 #[path = "../snapshots/in/seed_reflections.rs"]
 pub mod seed_reflections;
+#[path = "../snapshots/in/semantic_values.rs"]
+pub mod semantic_values;
 #[path = "../snapshots/in/structs_arrays.rs"]
 pub mod structs_arrays;
 #[path = "../snapshots/in/textures.rs"]

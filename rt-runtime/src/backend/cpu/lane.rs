@@ -14,7 +14,10 @@ use crate::accel::wide::{PACKET, leaf_of};
 use crate::link;
 use crate::scene::{NodeId, NodeKind, TriangleMesh};
 use glam::{Mat4, UVec2, Vec2, Vec3};
-use rt_std::cpu::{AnyAttributes, CpuArgs, CpuResult, ExecutionContext, Tracer, TriangleBuiltins};
+use rt_std::cpu::{
+    AnyAttributes, CpuArgs, CpuResult, ExecutionContext, HIT_CUSTOM, HIT_TRIANGLE_BACK, HIT_TRIANGLE_FRONT, Tracer,
+    TriangleBuiltins,
+};
 use rt_std::program::TypeLayout;
 use rt_std::*;
 use std::any::{Any, TypeId};
@@ -86,6 +89,8 @@ pub(crate) struct Candidate {
 pub(crate) struct Search<'r> {
     pub(crate) ray_type: u32,
     pub(crate) flags: u32,
+    /// The ray's visibility mask (8 bits).
+    pub(crate) mask: u32,
     /// The traced ray, where the tracing program built it (read field by
     /// field: see [`Tracer::trace`]).
     pub(crate) world_ray: &'r Ray,
@@ -443,8 +448,9 @@ impl<'a> Lane<'a> {
         xf: Option<&Xf>,
     ) {
         let flags = s.flags;
+        let front = || ray.direction.dot((b - a).cross(c - a)) < 0.0;
         if flags & (RAY_FLAG_CULL_FRONT_FACING | RAY_FLAG_CULL_BACK_FACING) != 0 {
-            let front = ray.direction.dot((b - a).cross(c - a)) < 0.0;
+            let front = front();
             if (front && flags & RAY_FLAG_CULL_FRONT_FACING != 0) || (!front && flags & RAY_FLAG_CULL_BACK_FACING != 0)
             {
                 return;
@@ -464,7 +470,8 @@ impl<'a> Lane<'a> {
                 let hit = triangle_builtins(mesh, prim, &[a, b, c], u, v);
                 self.attributes_of(ty, Some(&hit))
             });
-            match self.any_hit(s, ah, t, prim, xf, attributes) {
+            let kind = if front() { HIT_TRIANGLE_FRONT } else { HIT_TRIANGLE_BACK };
+            match self.any_hit(s, ah, (t, kind), prim, xf, attributes) {
                 None => return,
                 Some(terminated) => terminate |= terminated,
             }
@@ -497,14 +504,15 @@ impl<'a> Lane<'a> {
         }));
     }
 
-    /// Runs any hit `ah` for a candidate at `t`; None if it ignored the
-    /// candidate, else whether it terminated the ray.
+    /// Runs any hit `ah` for a candidate at `t` (of kind `hit_kind`, one
+    /// of rt-std's `HIT_*`); None if it ignored the candidate, else whether
+    /// it terminated the ray.
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn any_hit(
         &self,
         s: &Search,
         ah: &Program<'_>,
-        t: f32,
+        (t, hit_kind): (f32, u32),
         prim: u32,
         xf: Option<&Xf>,
         mut attributes: Option<Box<dyn AnyAttributes>>,
@@ -513,6 +521,9 @@ impl<'a> Lane<'a> {
             current_ray: Ray { tmax: t, ..*s.world_ray },
             t_hit: t,
             primitive_index: prim,
+            hit_kind,
+            ray_flags: s.flags,
+            ray_mask: s.mask,
             ..self.base_context()
         };
         Xf::set(&mut ctx, xf);
@@ -532,6 +543,8 @@ impl<'a> Lane<'a> {
         let mut ctx = ExecutionContext {
             current_ray: Ray { tmax: s.tmax.get(), ..*object_ray },
             primitive_index: prim,
+            ray_flags: s.flags,
+            ray_mask: s.mask,
             ..self.base_context()
         };
         Xf::set(&mut ctx, xf);
@@ -565,6 +578,7 @@ impl Tracer for Lane<'_> {
         let mut search = Search {
             ray_type: ray.ray_type,
             flags,
+            mask: mask & 0xff,
             world_ray: ray,
             payload: payload as *mut dyn Any,
             tmax: Cell::new(ray.tmax),
@@ -593,15 +607,25 @@ impl Tracer for Lane<'_> {
                         let values = triangle_builtins(mesh, hit.primitive, &hit.vertices, u, v);
                         attributes = Some(self.attributes_of(ty, Some(&values)));
                     }
-                    let mut ctx =
-                        ExecutionContext { t_hit: hit.t, primitive_index: hit.primitive, ..self.base_context() };
+                    let hit_kind = match l.meshes[hit.instance as usize] {
+                        Some(_) => front_or_back(hit, ray.direction),
+                        None => HIT_CUSTOM,
+                    };
+                    let mut ctx = ExecutionContext {
+                        t_hit: hit.t,
+                        primitive_index: hit.primitive,
+                        hit_kind,
+                        ray_flags: flags,
+                        ray_mask: mask & 0xff,
+                        ..self.base_context()
+                    };
                     Xf::set(&mut ctx, hit.xf.as_ref());
                     set_current_ray(&mut ctx, ray, hit.t);
                     self.invoke(ch, &mut ctx, Some(payload), attributes.as_mut());
                 }
             }
             None => {
-                let mut ctx = self.base_context();
+                let mut ctx = ExecutionContext { ray_flags: flags, ray_mask: mask & 0xff, ..self.base_context() };
                 set_current_ray(&mut ctx, ray, ray.tmax);
                 self.invoke(&l.miss[ray.ray_type as usize], &mut ctx, Some(payload), None);
             }
@@ -646,7 +670,7 @@ impl Tracer for Lane<'_> {
             && s.flags & RAY_FLAG_DISABLE_ANYHIT == 0
         {
             let copy = self.copy_of(attributes);
-            match self.any_hit(s, ah, t, c.primitive, c.xf.as_ref(), Some(copy)) {
+            match self.any_hit(s, ah, (t, HIT_CUSTOM), c.primitive, c.xf.as_ref(), Some(copy)) {
                 None => return false,
                 Some(terminated) => terminate |= terminated,
             }
@@ -678,6 +702,15 @@ impl Tracer for Lane<'_> {
             self.prints.borrow_mut().push(text.to_string());
         }
     }
+}
+
+/// The side of its triangle a committed triangle hit is on, for a ray
+/// along world direction `d`: as the wgpu kernel's `rt_hit_kind` says, in
+/// the instance's object space.
+fn front_or_back(hit: &Hit, d: Vec3) -> u32 {
+    let d = hit.xf.map_or(d, |x| (x.world_to_object * d.extend(0.0)).truncate());
+    let [a, b, c] = hit.vertices;
+    if d.dot((b - a).cross(c - a)) < 0.0 { HIT_TRIANGLE_FRONT } else { HIT_TRIANGLE_BACK }
 }
 
 /// Attributes of an intersection program that declares none.

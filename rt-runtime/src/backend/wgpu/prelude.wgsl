@@ -49,6 +49,11 @@ var<private> rt_h_bary: vec2<f32>;
 var<private> rt_c_bary: vec2<f32>;
 var<private> rt_c_custom: bool;
 var<private> rt_print_on: bool;
+// The current ray's hit kind (0 none, 1 a triangle's front, 2 its back,
+// 3 a custom primitive; rt-std's HIT_*), flags and mask.
+var<private> rt_hk: u32;
+var<private> rt_rflags: u32;
+var<private> rt_rmask: u32;
 // Rays this invocation traced (added to rt_log[2] at the end).
 var<private> rt_rays: u32;
 
@@ -88,6 +93,11 @@ fn rt_current_ray() -> RtRay { return rt_ray; }
 fn rt_t_hit() -> f32 { return rt_t; }
 fn rt_primitive_index() -> u32 { return rt_prim; }
 fn rt_exception_code() -> u32 { return rt_exc; }
+fn rt_is_triangle_hit() -> bool { return rt_hk == 1u || rt_hk == 2u; }
+fn rt_is_triangle_hit_front_face() -> bool { return rt_hk == 1u; }
+fn rt_is_triangle_hit_back_face() -> bool { return rt_hk == 2u; }
+fn rt_ray_flags() -> u32 { return rt_rflags; }
+fn rt_ray_mask() -> u32 { return rt_rmask; }
 fn rt_ignore_intersection() { rt_ignored = true; }
 fn rt_terminate_ray() { rt_terminated = true; }
 fn rt_throw(code: u32) { rt_raise(code); }
@@ -332,6 +342,21 @@ fn rt_triangle(a: vec3<f32>, b: vec3<f32>, c: vec3<f32>, r: RtRay, tmax: f32) ->
     rt_c_bary = bary;
     rt_tri_front = rt_front(a, b, c, r.direction);
     return t;
+}
+
+// The hit kind (rt_hk) of a hit on primitive prim of geometry instance gi
+// by a ray along world direction d, w2o the instance's world to object: a
+// triangle's side as rt_front says in object space, or 3 for custom ones.
+fn rt_hit_kind(custom: bool, gi: u32, prim: u32, w2o: mat4x4<f32>, d: vec3<f32>) -> u32 {
+    if custom { return 3u; }
+    let g = rt_scene[2] + gi * 8u;
+    let ib = rt_scene[g + 2u] + prim * 3u;
+    let pb = rt_scene[g + 1u];
+    let a = rt_v3(pb + rt_scene[ib] * 3u);
+    let b = rt_v3(pb + rt_scene[ib + 1u] * 3u);
+    let c = rt_v3(pb + rt_scene[ib + 2u] * 3u);
+    if rt_front(a, b, c, (w2o * vec4<f32>(d, 0.0)).xyz) { return 1u; }
+    return 2u;
 }
 
 fn rt_load_object(w: u32) -> u32 { return rt_heap[w]; }

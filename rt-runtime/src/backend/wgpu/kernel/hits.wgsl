@@ -23,16 +23,19 @@ fn rt_report(m: u32) -> bool {
         let saved_ray = rt_ray;
         let saved_t = rt_t;
         let saved_prim = rt_prim;
+        let saved_hk = rt_hk;
         rt_ray = rt_s_wray;
         rt_ray.tmax = rt_c_t;
         rt_t = rt_c_t;
         rt_prim = rt_c_prim;
+        rt_hk = rt_hit_kind(rt_c_custom, gi, rt_c_prim, rt_w2o, rt_s_wray.direction);
         rt_ignored = false;
         rt_terminated = false;
         rt_anyhit_dispatch(ah, rt_scene[rec + 3u]);
         rt_ray = saved_ray;
         rt_t = saved_t;
         rt_prim = saved_prim;
+        rt_hk = saved_hk;
         if rt_ignored {
             return false;
         }
@@ -109,6 +112,7 @@ fn rt_enter_hit(ray: RtRay, flags: u32) -> u32 {
     rt_t = rt_h_t;
     rt_prim = rt_h_prim;
     rt_hit_xform();
+    rt_hk = rt_hit_kind(rt_h_custom, rt_h_gi, rt_h_prim, rt_w2o, ray.direction);
     return rec;
 }
 

@@ -464,6 +464,8 @@ var<private> rt_st_t: array<f32, RT_DEPTHS>;
 var<private> rt_st_prim: array<u32, RT_DEPTHS>;
 var<private> rt_st_o2w: array<mat4x4<f32>, RT_DEPTHS>;
 var<private> rt_st_w2o: array<mat4x4<f32>, RT_DEPTHS>;
+// The caller's rt_hk, rt_rflags and rt_rmask.
+var<private> rt_st_rs: array<vec3<u32>, RT_DEPTHS>;
 ",
         spec.max_depth + 1
     ));
@@ -611,6 +613,9 @@ fn rt_begin_trace(d: u32) -> bool {{
     rt_st_prim[e] = rt_prim;
     rt_st_o2w[e] = rt_o2w;
     rt_st_w2o[e] = rt_w2o;
+    rt_st_rs[e] = vec3<u32>(rt_hk, rt_rflags, rt_rmask);
+    rt_rflags = flags;
+    rt_rmask = mask & 0xffu;
     rt_rays = rt_rays + 1u;{note_payload}
     switch ty {{
 {take_request}        default: {{}}
@@ -630,6 +635,7 @@ fn rt_begin_trace(d: u32) -> bool {{
     }} else {{
         let mr = rt_scene[5] + ray.ray_type * 2u;
         rt_ray = ray;
+        rt_hk = 0u;
         rt_st_case[e] = rt_scene[mr];
         rt_st_vars[e] = rt_scene[mr + 1u];
         run = true;
@@ -650,6 +656,9 @@ fn rt_end_trace(d: u32) {{
     rt_prim = rt_st_prim[d];
     rt_o2w = rt_st_o2w[d];
     rt_w2o = rt_st_w2o[d];
+    rt_hk = rt_st_rs[d].x;
+    rt_rflags = rt_st_rs[d].y;
+    rt_rmask = rt_st_rs[d].z;
 }}
 
 fn rt_run() {{
@@ -856,6 +865,9 @@ fn trace_function(w: &str, d: u32, note_payload: &str) -> String {
     let saved_prim = rt_prim;
     let saved_o2w = rt_o2w;
     let saved_w2o = rt_w2o;
+    let saved_rs = vec3<u32>(rt_hk, rt_rflags, rt_rmask);
+    rt_rflags = flags;
+    rt_rmask = mask & 0xffu;
     rt_rays = rt_rays + 1u;{note_payload}
     rt_prd_{w} = *prd;
     rt_search(object, ray, flags, mask);
@@ -868,6 +880,7 @@ fn trace_function(w: &str, d: u32, note_payload: &str) -> String {
     }} else {{
         let mr = rt_scene[5] + ray.ray_type * 2u;
         rt_ray = ray;
+        rt_hk = 0u;
         rt_miss_{w}_d{d}(rt_scene[mr], rt_scene[mr + 1u], prd);
     }}
     rt_ray = saved_ray;
@@ -875,6 +888,9 @@ fn trace_function(w: &str, d: u32, note_payload: &str) -> String {
     rt_prim = saved_prim;
     rt_o2w = saved_o2w;
     rt_w2o = saved_w2o;
+    rt_hk = saved_rs.x;
+    rt_rflags = saved_rs.y;
+    rt_rmask = saved_rs.z;
 }}
 "
     )
