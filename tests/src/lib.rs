@@ -5,6 +5,7 @@
 #![allow(dead_code, clippy::too_many_arguments)]
 
 pub mod fuzz;
+pub mod meshes;
 pub mod scene_fuzz;
 pub mod targets;
 

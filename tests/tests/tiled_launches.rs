@@ -5,9 +5,10 @@
 //! tile, and cancelling between tiles leaves every buffer as it was; a
 //! panic in a later tile does too.
 
-use glam::{UVec2, Vec3, Vec4};
+use glam::{UVec2, Vec4};
 use rt_runtime::*;
 use rt_std::prelude::*;
+use rt_tests::meshes::bumpy_grid;
 use rt_tests::targets::On;
 
 #[rt_payload]
@@ -57,25 +58,6 @@ pub fn mark(#[var] mut out: RwBuffer2d<Vec4>) {
     out[launch_index()] = vec4(-7.0, exception_code() as f32, 0.0, 0.0);
 }
 
-/// A bumpy `n` x `n` grid over [-1, 1]^2.
-fn grid(n: u32) -> TriangleMesh {
-    let mut mesh = TriangleMesh::default();
-    for y in 0..=n {
-        for x in 0..=n {
-            let (u, v) = (x as f32 / n as f32 * 2.0 - 1.0, y as f32 / n as f32 * 2.0 - 1.0);
-            mesh.positions.push(Vec3::new(u, v, 0.2 * (5.0 * u).sin() * (4.0 * v).cos()));
-        }
-    }
-    for y in 0..n {
-        for x in 0..n {
-            let i = y * (n + 1) + x;
-            mesh.indices.push([i, i + 1, i + n + 2]);
-            mesh.indices.push([i, i + n + 2, i + n + 1]);
-        }
-    }
-    mesh
-}
-
 struct Scene {
     ctx: Context,
     out: BufferId,
@@ -86,7 +68,7 @@ struct Scene {
 /// a pattern (so that "as it was" is more than zeros).
 fn scene(on: On, w: u32, h: u32) -> Scene {
     let mut ctx = on.context();
-    let g = ctx.create_triangles(grid(24)).unwrap();
+    let g = ctx.create_triangles(bumpy_grid(24)).unwrap();
     let mat = ctx.create_material();
     let ch = ctx.create_program(&record_hit::PROGRAM);
     ctx.set_closest_hit_program(mat, 0, ch).unwrap();

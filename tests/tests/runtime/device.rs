@@ -306,24 +306,7 @@ pub(crate) fn device_with(
     (device, queue, adapter.get_info())
 }
 
-/// A bumpy `n` x `n` grid of quads over [-1, 1]^2 (2 n^2 triangles).
-pub(crate) fn bumpy_grid(n: u32) -> TriangleMesh {
-    let mut mesh = TriangleMesh::default();
-    for y in 0..=n {
-        for x in 0..=n {
-            let (u, v) = (x as f32 / n as f32 * 2.0 - 1.0, y as f32 / n as f32 * 2.0 - 1.0);
-            mesh.positions.push(Vec3::new(u, v, 0.2 * (5.0 * u).sin() * (4.0 * v).cos()));
-        }
-    }
-    for y in 0..n {
-        for x in 0..n {
-            let i = y * (n + 1) + x;
-            mesh.indices.push([i, i + 1, i + n + 2]);
-            mesh.indices.push([i, i + n + 2, i + n + 1]);
-        }
-    }
-    mesh
-}
+pub(crate) use rt_tests::meshes::bumpy_grid;
 
 /// A geometry group over the `n` x `n` bumpy grid under the normal shader.
 pub(crate) fn grid_group(ctx: &mut Context, n: u32) -> NodeId {

@@ -1,0 +1,24 @@
+//! Meshes the tests share.
+
+use rt_runtime::TriangleMesh;
+use rt_std::prelude::Vec3;
+
+/// A bumpy `n` x `n` grid of quads over [-1, 1]^2 (2 n^2 triangles), its
+/// height `0.2 sin(5u) cos(4v)`.
+pub fn bumpy_grid(n: u32) -> TriangleMesh {
+    let mut mesh = TriangleMesh::default();
+    for y in 0..=n {
+        for x in 0..=n {
+            let (u, v) = (x as f32 / n as f32 * 2.0 - 1.0, y as f32 / n as f32 * 2.0 - 1.0);
+            mesh.positions.push(Vec3::new(u, v, 0.2 * (5.0 * u).sin() * (4.0 * v).cos()));
+        }
+    }
+    for y in 0..n {
+        for x in 0..n {
+            let i = y * (n + 1) + x;
+            mesh.indices.push([i, i + 1, i + n + 2]);
+            mesh.indices.push([i, i + n + 2, i + n + 1]);
+        }
+    }
+    mesh
+}
