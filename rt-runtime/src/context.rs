@@ -8,6 +8,7 @@ use crate::backend::{self, Backend, LaunchBackend, LaunchReport, Pacing, Setting
 use crate::buffer::{BufferRec, BufferType, SamplerRec, Typed};
 use crate::error::{Result, RtError};
 use crate::scene::*;
+use crate::usage::UsageReport;
 use crate::vars::{IntoVariable, VarScope};
 use std::any::Any;
 
@@ -39,7 +40,12 @@ pub struct Context {
     parked: Vec<Box<dyn LaunchBackend>>,
     /// How long an index of each entry point took, for sizing tiles.
     pace: Pace,
+    /// Called after every launch ([`Context::set_usage_report`]).
+    usage_report: Option<UsageCallback>,
 }
+
+/// What [`Context::set_usage_report`] calls.
+pub type UsageCallback = Box<dyn FnMut(&UsageReport) + Send + Sync>;
 
 impl Default for Context {
     fn default() -> Self {
@@ -58,6 +64,7 @@ impl Context {
             backend: Backend::Cpu.create(),
             parked: Vec::new(),
             pace: Pace::default(),
+            usage_report: None,
         }
     }
 
@@ -639,9 +646,7 @@ impl Context {
     /// Runs entry point `entry` over `width` x `height` launch indices, as
     /// tiles under the context's budget ([`Context::set_tile_budget`]).
     pub fn launch(&mut self, entry: u32, width: u32, height: u32) -> Result<LaunchReport> {
-        let pacing = Pacing { part: None, pace: &mut self.pace, progress: None };
-        let (scene, settings, accels) = (&mut self.scene, &self.settings, &mut self.accels);
-        backend::launch(&mut *self.backend, scene, settings, accels, (entry, width, height), pacing)
+        self.run_launch((entry, width, height), None, None)
     }
 
     /// [`Context::launch`], calling `progress` after every tile with where
@@ -659,9 +664,7 @@ impl Context {
         height: u32,
         mut progress: impl FnMut(LaunchProgress) -> LaunchControl,
     ) -> Result<LaunchReport> {
-        let pacing = Pacing { part: None, pace: &mut self.pace, progress: Some(&mut progress) };
-        let (scene, settings, accels) = (&mut self.scene, &self.settings, &mut self.accels);
-        backend::launch(&mut *self.backend, scene, settings, accels, (entry, width, height), pacing)
+        self.run_launch((entry, width, height), None, Some(&mut progress))
     }
 
     /// Runs only `part` of a `width` x `height` launch of entry point
@@ -681,9 +684,63 @@ impl Context {
         part: Tile,
         mut progress: impl FnMut(LaunchProgress) -> LaunchControl,
     ) -> Result<LaunchReport> {
-        let pacing = Pacing { part: Some(part), pace: &mut self.pace, progress: Some(&mut progress) };
+        self.run_launch((entry, width, height), Some(part), Some(&mut progress))
+    }
+
+    /// Calls `report` after every launch, failed or not, with what it did:
+    /// acceleration builds and refits, encodes, pipelines linked, bytes
+    /// uploaded and the time of each phase ([`UsageReport`], whose
+    /// `Display` is one line of text). `None` stops the reports.
+    #[doc(alias = "rtContextSetUsageReportCallback")]
+    pub fn set_usage_report(&mut self, report: Option<UsageCallback>) {
+        self.usage_report = report;
+    }
+
+    /// Every launch: the backend's run, then the usage report.
+    fn run_launch(
+        &mut self,
+        (entry, width, height): (u32, u32, u32),
+        part: Option<Tile>,
+        progress: Option<&mut dyn FnMut(LaunchProgress) -> LaunchControl>,
+    ) -> Result<LaunchReport> {
+        let before = self.usage_counters();
+        let pacing = Pacing { part, pace: &mut self.pace, progress };
         let (scene, settings, accels) = (&mut self.scene, &self.settings, &mut self.accels);
-        backend::launch(&mut *self.backend, scene, settings, accels, (entry, width, height), pacing)
+        let result = backend::launch(&mut *self.backend, scene, settings, accels, (entry, width, height), pacing);
+        if let Some(mut callback) = self.usage_report.take() {
+            let after = self.usage_counters();
+            let stats = self.backend.stats();
+            let report = UsageReport {
+                entry,
+                size: glam::UVec2::new(width, height),
+                backend: self.backend.kind(),
+                outcome: result.as_ref(),
+                acceleration_builds: after[0] - before[0],
+                acceleration_refits: after[1] - before[1],
+                scene_encoded: after[2] > before[2],
+                geometry_encoded: after[3] > before[3],
+                pipelines_created: after[4] - before[4],
+                upload_bytes: if self.backend.kind() == Backend::Wgpu && result.is_ok() { after[5] } else { 0 },
+                traversal: stats.traversal.filter(|_| self.backend.kind() == Backend::Wgpu),
+            };
+            callback(&report);
+            self.usage_report = Some(callback);
+        }
+        result
+    }
+
+    /// The counters a usage report takes the difference of: builds,
+    /// refits, scene and geometry encodes, pipelines, the last upload.
+    fn usage_counters(&self) -> [u64; 6] {
+        let (builds, refits) = self.acceleration_builds();
+        [
+            builds,
+            refits,
+            self.scene_encodes(),
+            self.geometry_encodes(),
+            self.pipelines_created(),
+            self.last_upload_bytes(),
+        ]
     }
 
     /// How launches are cut into tiles, each one submission (see

@@ -38,6 +38,7 @@ pub mod image_out;
 pub(crate) mod link;
 mod panics;
 pub mod scene;
+pub mod usage;
 pub mod vars;
 
 pub use accel::{Acceleration, Builder};
@@ -45,9 +46,10 @@ pub use backend::tiles::{DEFAULT_TILE_BUDGET, LaunchControl, LaunchProgress, Til
 pub use backend::wgpu::Traversal;
 pub use backend::{Backend, ExceptionRecord, LaunchReport, Timings};
 pub use buffer::BufferType;
-pub use context::{Context, Scope};
+pub use context::{Context, Scope, UsageCallback};
 pub use error::{Result, RtError};
 pub use scene::{
     BufferId, GeometryId, GeometryInstanceId, GeometryKind, MaterialId, NodeId, ProgramId, SamplerId, TriangleMesh,
 };
+pub use usage::UsageReport;
 pub use vars::{IntoVariable, VarValue};

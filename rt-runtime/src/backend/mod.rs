@@ -302,10 +302,10 @@ fn put_back(buffers: &mut [BufferRec], kept: Vec<(usize, Vec<u32>)>) {
 /// How a launch is cut and watched: the part of it to run (`None`: all),
 /// the pace earlier tiles measured (updated by the launch), and the
 /// callback between tiles.
-pub(crate) struct Pacing<'a> {
+pub(crate) struct Pacing<'a, 'p> {
     pub part: Option<Tile>,
     pub pace: &'a mut Pace,
-    pub progress: Option<&'a mut dyn FnMut(LaunchProgress) -> LaunchControl>,
+    pub progress: Option<&'p mut dyn FnMut(LaunchProgress) -> LaunchControl>,
 }
 
 /// Runs entry point `entry` over `width` x `height` launch indices on
@@ -319,7 +319,7 @@ pub(crate) fn launch(
     settings: &Settings,
     accels: &mut AccelCache,
     (entry, width, height): (u32, u32, u32),
-    pacing: Pacing,
+    pacing: Pacing<'_, '_>,
 ) -> Result<LaunchReport> {
     if width == 0 || height == 0 {
         return Err(RtError::BadLaunch {
