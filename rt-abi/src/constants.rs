@@ -33,6 +33,23 @@ pub const EXCEPTION_INTEGER_DIVIDE_BY_ZERO: u32 = 0x3F2;
 /// The first code free for programs' own `rt_throw` codes.
 pub const EXCEPTION_USER: u32 = 0x400;
 
+/// The bit of exception `code`'s kind in a mask of enabled kinds (the
+/// launch uniform's `exceptions`; `Context::set_exception_enabled`): one
+/// per built-in code, and one for every other code (`rt_throw`'s).
+pub const fn exception_kind_bit(code: u32) -> u32 {
+    match code {
+        EXCEPTION_TRACE_DEPTH_EXCEEDED => 1,
+        EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS => 2,
+        EXCEPTION_INVALID_RAY => 4,
+        EXCEPTION_INTEGER_OVERFLOW => 8,
+        EXCEPTION_INTEGER_DIVIDE_BY_ZERO => 16,
+        _ => 32,
+    }
+}
+
+/// Every exception kind enabled.
+pub const ALL_EXCEPTION_KINDS: u32 = 63;
+
 /// Every constant above that programs may name, by its rt-std name.
 pub const CONSTANTS: &[(&str, u32)] = &[
     ("RAY_FLAG_NONE", RAY_FLAG_NONE),

@@ -31,11 +31,15 @@ pub struct LaunchUniform {
     pub print_enabled: u32,
     /// The launch index printing is limited to (`u32::MAX` for any).
     pub print_filter: [u32; 2],
+    /// The exception kinds raised, as [`exception_kind_bit`](crate::constants::exception_kind_bit)s:
+    /// a disabled kind's check still guards the operation (an index out of
+    /// bounds still reads nothing), but raises nothing.
+    pub exceptions: u32,
 }
 
 impl LaunchUniform {
     /// Its size in 32-bit words.
-    pub const WORDS: usize = 12;
+    pub const WORDS: usize = 14;
 
     /// Its fields in order, as WGSL declares them.
     pub const FIELDS: &'static [Field] = &[
@@ -46,6 +50,9 @@ impl LaunchUniform {
         Field { name: "log_capacity", wgsl: "u32", word: 8 },
         Field { name: "print_enabled", wgsl: "u32", word: 9 },
         Field { name: "print_filter", wgsl: "vec2<u32>", word: 10 },
+        Field { name: "exceptions", wgsl: "u32", word: 12 },
+        // Keeps the struct a whole number of its 8-byte alignment.
+        Field { name: "reserved", wgsl: "u32", word: 13 },
     ];
 
     /// The words the uniform buffer holds.
@@ -55,7 +62,7 @@ impl LaunchUniform {
         let [rc, rv] = self.ray_generation;
         let [ec, ev] = self.exception;
         let [fx, fy] = self.print_filter;
-        [dx, dy, ox, oy, rc, rv, ec, ev, self.log_capacity, self.print_enabled, fx, fy]
+        [dx, dy, ox, oy, rc, rv, ec, ev, self.log_capacity, self.print_enabled, fx, fy, self.exceptions, 0]
     }
 
     /// The WGSL declaration, `struct RtLaunch { ... }`.
@@ -215,9 +222,10 @@ mod tests {
             log_capacity: 9,
             print_enabled: 10,
             print_filter: [11, 12],
+            exceptions: 13,
         };
         let w = u.words();
-        let first = [1, 3, 5, 7, 9, 10, 11];
+        let first = [1, 3, 5, 7, 9, 10, 11, 13, 0];
         for (f, v) in LaunchUniform::FIELDS.iter().zip(first) {
             assert_eq!(w[f.word as usize], v, "`{}`", f.name);
         }

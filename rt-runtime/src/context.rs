@@ -44,6 +44,42 @@ pub struct Context {
     usage_report: Option<UsageCallback>,
 }
 
+/// A kind of exception whose checks [`Context::set_exception_enabled`]
+/// turns on or off (OptiX 6's `RT_EXCEPTION_*`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ExceptionKind {
+    /// `rt_trace` at the maximum trace depth (`EXCEPTION_TRACE_DEPTH_EXCEEDED`).
+    TraceDepthExceeded,
+    /// A buffer index out of bounds (`EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS`).
+    BufferIndexOutOfBounds,
+    /// A NaN or infinite ray, or a payload its ray type's programs do not
+    /// take (`EXCEPTION_INVALID_RAY`).
+    InvalidRay,
+    /// Integer overflow (CPU backend, with integer exceptions on).
+    IntegerOverflow,
+    /// Integer division by zero (CPU backend, with integer exceptions on).
+    IntegerDivideByZero,
+    /// `rt_throw`'s codes.
+    User,
+    /// Every kind.
+    All,
+}
+
+impl ExceptionKind {
+    fn bits(self) -> u32 {
+        use rt_abi::constants::*;
+        match self {
+            ExceptionKind::TraceDepthExceeded => exception_kind_bit(EXCEPTION_TRACE_DEPTH_EXCEEDED),
+            ExceptionKind::BufferIndexOutOfBounds => exception_kind_bit(EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS),
+            ExceptionKind::InvalidRay => exception_kind_bit(EXCEPTION_INVALID_RAY),
+            ExceptionKind::IntegerOverflow => exception_kind_bit(EXCEPTION_INTEGER_OVERFLOW),
+            ExceptionKind::IntegerDivideByZero => exception_kind_bit(EXCEPTION_INTEGER_DIVIDE_BY_ZERO),
+            ExceptionKind::User => exception_kind_bit(EXCEPTION_USER),
+            ExceptionKind::All => ALL_EXCEPTION_KINDS,
+        }
+    }
+}
+
 /// What [`Context::set_usage_report`] calls.
 pub type UsageCallback = Box<dyn FnMut(&UsageReport) + Send + Sync>;
 
@@ -245,6 +281,29 @@ impl Context {
     /// nothing (off, both backends agree, as with Rust's release builds).
     pub fn set_integer_exceptions(&mut self, on: bool) {
         self.settings.integer_exceptions = on;
+    }
+
+    /// Turns the checks of exception kind `kind` on or off (all are on by
+    /// default; OptiX 6's `rtContextSetExceptionEnabled`). A check that is
+    /// off still guards its operation (a buffer index out of bounds still
+    /// reads a default value and writes nothing; an invalid ray, or one past
+    /// the trace depth, is still not traced: `tests/tests/exception_kinds.rs`
+    /// asserts it on every backend) but raises nothing: the exception
+    /// program does not run and the launch reports no record. The integer
+    /// kinds also need [`Context::set_integer_exceptions`].
+    #[doc(alias = "rtContextSetExceptionEnabled")]
+    pub fn set_exception_enabled(&mut self, kind: ExceptionKind, on: bool) {
+        let bits = kind.bits();
+        if on {
+            self.settings.exceptions |= bits;
+        } else {
+            self.settings.exceptions &= !bits;
+        }
+    }
+
+    /// Whether every check of `kind` is on ([`Context::set_exception_enabled`]).
+    pub fn exception_enabled(&self, kind: ExceptionKind) -> bool {
+        self.settings.exceptions & kind.bits() == kind.bits()
     }
 
     /// Turns `rt_printf!` output on or off, and optionally limits it to one

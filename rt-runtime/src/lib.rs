@@ -46,7 +46,7 @@ pub use backend::tiles::{DEFAULT_TILE_BUDGET, LaunchControl, LaunchProgress, Til
 pub use backend::wgpu::Traversal;
 pub use backend::{Backend, ExceptionRecord, LaunchReport, Timings};
 pub use buffer::BufferType;
-pub use context::{Context, Scope, UsageCallback};
+pub use context::{Context, ExceptionKind, Scope, UsageCallback};
 pub use error::{Result, RtError};
 pub use scene::{
     BufferId, GeometryId, GeometryInstanceId, GeometryKind, MaterialId, NodeId, ProgramId, SamplerId, TriangleMesh,

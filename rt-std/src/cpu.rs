@@ -287,6 +287,9 @@ pub struct ExecutionContext {
     /// The current ray's visibility mask, 8 bits
     /// ([`ray_mask`](crate::ray_mask)).
     pub ray_mask: u32,
+    /// The exception kinds [`raise`](Self::raise) records, as
+    /// `rt_abi::constants::exception_kind_bit`s; the others it drops.
+    pub exceptions_enabled: u32,
     /// Object-to-world transform of the current geometry instance.
     pub object_to_world: Mat4,
     /// World-to-object transform of the current geometry instance (the
@@ -331,6 +334,7 @@ impl ExecutionContext {
         hit_kind: HIT_NONE,
         ray_flags: 0,
         ray_mask: 0xff,
+        exceptions_enabled: rt_abi::constants::ALL_EXCEPTION_KINDS,
         object_to_world: Mat4::IDENTITY,
         world_to_object: Mat4::IDENTITY,
         ignored: false,
@@ -343,14 +347,18 @@ impl ExecutionContext {
     /// the first exception of an invocation is the one the exception program
     /// sees, as on the GPU.
     pub fn raise(&mut self, code: u32) {
-        if self.pending_exception.is_none() {
+        if self.pending_exception.is_none()
+            && self.exceptions_enabled & rt_abi::constants::exception_kind_bit(code) != 0
+        {
             self.pending_exception = Some(code);
         }
     }
 
     /// [`raise`](Self::raise), remembering where.
     pub fn raise_at(&mut self, code: u32, at: &'static core::panic::Location<'static>) {
-        if self.pending_exception.is_none() {
+        if self.pending_exception.is_none()
+            && self.exceptions_enabled & rt_abi::constants::exception_kind_bit(code) != 0
+        {
             self.pending_exception = Some(code);
             self.pending_location = Some(at);
         }

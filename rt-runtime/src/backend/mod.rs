@@ -152,6 +152,8 @@ pub(crate) struct Settings {
     pub print_launch_index: Option<UVec2>,
     /// Integer overflow and division by zero raise exceptions (CPU backend).
     pub integer_exceptions: bool,
+    /// The exception kinds raised (`rt_abi::constants::exception_kind_bit`s).
+    pub exceptions: u32,
     /// How the wgpu backend walks the scene.
     pub traversal: wgpu::Traversal,
     /// How launches are cut into tiles.
@@ -165,6 +167,7 @@ impl Default for Settings {
             print_enabled: true,
             print_launch_index: None,
             integer_exceptions: false,
+            exceptions: rt_abi::constants::ALL_EXCEPTION_KINDS,
             traversal: wgpu::Traversal::Auto,
             tile_budget: TileBudget::default(),
         }

@@ -184,7 +184,12 @@ impl<'a> Lane<'a> {
         let index = self.index.get();
         let bits = std::hint::black_box(index.x as u64 | (index.y as u64) << 32);
         let launch_index = UVec2::new(bits as u32, (bits >> 32) as u32);
-        ExecutionContext { launch_index, launch_dim: self.l.launch_dim, ..ExecutionContext::DEFAULT }
+        ExecutionContext {
+            launch_index,
+            launch_dim: self.l.launch_dim,
+            exceptions_enabled: self.l.settings.exceptions,
+            ..ExecutionContext::DEFAULT
+        }
     }
 
     /// The search in progress. Only called inside one (during `traverse`).

@@ -40,6 +40,7 @@ pub(crate) fn tiles(l: &Launch, limits: &wgpu::Limits, ray_generation: [u32; 2],
                 log_capacity: LOG_EXCEPTIONS,
                 print_enabled,
                 print_filter: print_filter.to_array(),
+                exceptions: l.settings.exceptions,
             }
             .words();
             tiles.push((uniform, gx, gy));
@@ -105,7 +106,7 @@ pub(crate) fn record(
                 resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
                     buffer: uniforms,
                     offset: slot * stride,
-                    size: std::num::NonZeroU64::new(48),
+                    size: std::num::NonZeroU64::new(uniform_bytes as u64),
                 }),
             },
         ];
