@@ -162,10 +162,20 @@ fn count(x: f64) -> String {
     }
 }
 
+/// A figure as the bars' labels show it: two decimals under 1, one under
+/// 10, none above.
+fn figure(x: f64) -> String {
+    match x {
+        x if x < 1.0 => format!("{x:.2}"),
+        x if x < 10.0 => format!("{x:.1}"),
+        x => format!("{x:.0}"),
+    }
+}
+
 /// The highest figure plotted, with headroom, for the y axis.
 fn y_top(fig: &Figures) -> f64 {
     let max = fig.series.iter().flat_map(|s| s.mrays.iter().flatten()).fold(0.0f64, |a, &b| a.max(b));
-    max * 1.12
+    max * 1.15
 }
 
 /// A part of an SVG canvas, in pixels.
@@ -256,6 +266,12 @@ fn by_scene(fig: &Figures, path: &Path) -> Result<(), String> {
             let x0 = i as f64 + 0.1 + k as f64 * width;
             let bar = Rectangle::new([(x0, 0.0), (x0 + width * 0.92, *m)], s.colour.filled());
             chart.draw_series(std::iter::once(bar)).map_err(|e| e.to_string())?;
+            // The figure above its bar, upright, so a bar too short to see
+            // still reads.
+            let upright = TextStyle::from((FONT, 12).into_font().transform(FontTransform::Rotate270))
+                .pos(Pos::new(HPos::Left, VPos::Center));
+            let value = EmptyElement::at((x0 + width * 0.46, *m)) + Text::new(figure(*m), (0, -4), upright);
+            chart.plotting_area().draw(&value).map_err(|e| e.to_string())?;
         }
     }
     legend(&legend_area, fig, false)?;
@@ -306,11 +322,12 @@ fn vs_triangles(fig: &Figures, path: &Path) -> Result<(), String> {
             .draw_series(points.into_iter().map(|p| Circle::new(p, 4, s.colour.filled())))
             .map_err(|e| e.to_string())?;
     }
-    // The scenes' names at their triangle counts, along the bottom.
-    let centred = (FONT, 13).into_font().color(&BLACK).pos(Pos::new(HPos::Center, VPos::Bottom));
+    // The scenes' names at their triangle counts, along the top (the
+    // headroom above the highest figure).
+    let centred = (FONT, 13).into_font().color(&BLACK).pos(Pos::new(HPos::Center, VPos::Top));
     for scene in &fig.scenes {
         if let Some(t) = scene.triangles.filter(|t| *t > 0.0) {
-            let name = Text::new(scene.name.as_str(), (t, y_top(fig) * 0.01), centred.clone());
+            let name = Text::new(scene.name.as_str(), (t, y_top(fig) * 0.985), centred.clone());
             chart.plotting_area().draw(&name).map_err(|e| e.to_string())?;
         }
     }
