@@ -1,7 +1,9 @@
 //! `rt-bench`: issue #6's workload in the style of tray_racing, on every
 //! backend and against peers measured in the same run.
 //!
-//! `cargo run --release -p rt-bench -- [--quick] [--json]`
+//! `cargo run --release -p rt-bench -- [--quick] [--json] [--plot DIR]`, or
+//! `-- --from FILE.json --plot DIR` to chart an earlier `--json` run
+//! without measuring (`plot.rs`).
 //!
 //! - Scenes: the bunny, the teapot and the Cornell box from
 //!   `../shared/scenes`, and a generated wall of 30 bunnies (2,083,530
@@ -29,6 +31,7 @@ mod handwritten_rayquery;
 mod json;
 mod lowering;
 mod peers;
+mod plot;
 mod rayquery;
 mod scenes;
 mod tour;
@@ -178,6 +181,14 @@ struct Args {
     /// Mesa a fresh one, so each kernel's first compile is cold).
     #[arg(long)]
     warm_shader_cache: bool,
+    /// Write SVG charts of the Mrays/s figures into this directory
+    /// (mrays_by_scene.svg, mrays_vs_triangles.svg).
+    #[arg(long, value_name = "DIR")]
+    plot: Option<std::path::PathBuf>,
+    /// Measure nothing: chart the JSON an earlier --json run printed
+    /// (needs --plot).
+    #[arg(long, value_name = "FILE.json", requires = "plot")]
+    from: Option<std::path::PathBuf>,
 }
 
 /// The workload: primary rays only, or primary plus one AO ray per hit.
@@ -835,9 +846,25 @@ fn geomean(rs: &[Option<f64>]) -> Option<f64> {
     (!v.is_empty()).then(|| (v.iter().map(|x| x.ln()).sum::<f64>() / v.len() as f64).exp())
 }
 
+/// Writes the charts of `figures` into `dir`, or says why not and exits
+/// with status 2.
+fn plot_or_exit(figures: std::result::Result<plot::Figures, String>, dir: &std::path::Path) {
+    match figures.and_then(|f| plot::write(&f, dir)) {
+        Ok(paths) => paths.iter().for_each(|p| eprintln!("plot: {}", p.display())),
+        Err(e) => {
+            eprintln!("rt-bench: {e}");
+            std::process::exit(2);
+        }
+    }
+}
+
 fn main() {
     use json::Json;
     let args = Args::parse();
+    if let (Some(file), Some(dir)) = (&args.from, &args.plot) {
+        plot_or_exit(plot::read(file), dir);
+        return;
+    }
     if let Some(b) = args.backends.iter().find(|b| *b != "cpu" && *b != "wgpu") {
         eprintln!("unknown backend `{b}` (cpu or wgpu)");
         std::process::exit(2);
@@ -993,5 +1020,21 @@ fn main() {
     eprintln!("\ndone in {:.1} s", start.elapsed().as_secs_f64());
     if args.json {
         println!("{json}");
+    }
+    if let Some(dir) = &args.plot {
+        let run = serde_json::from_str(&json.to_string()).expect("the bench's JSON reads back");
+        plot_or_exit(plot::figures(&run), dir);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn from_without_plot_is_an_argument_error() {
+        let e = Args::try_parse_from(["rt-bench", "--from", "run.json"]).err().expect("--from needs --plot");
+        assert_eq!(e.kind(), clap::error::ErrorKind::MissingRequiredArgument);
+        assert!(Args::try_parse_from(["rt-bench", "--from", "run.json", "--plot", "plots"]).is_ok());
     }
 }
