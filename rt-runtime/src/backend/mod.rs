@@ -187,6 +187,9 @@ pub(crate) struct Launch<'a> {
     pub width: u32,
     pub height: u32,
     pub tile: Tile,
+    /// Whether this is the launch's last tile: the wgpu backend reads the
+    /// outputs back after it only, keeping them on the device in between.
+    pub last_tile: bool,
 }
 
 /// What a backend counts (zero where it does not apply: the CPU backend
@@ -241,6 +244,10 @@ pub(crate) trait LaunchBackend: Any + Send + Sync {
     /// Forgets what a launch that panicked may have left half done (the
     /// wgpu backend drops its device; the next launch opens one).
     fn after_panic(&mut self) {}
+    /// Forgets what the tiles of a launch that failed or was cancelled
+    /// wrote and did not read back (the wgpu backend uploads its heap
+    /// whole at the next launch).
+    fn discard_unread_outputs(&mut self) {}
 }
 
 impl Backend {
@@ -350,7 +357,8 @@ pub(crate) fn launch(
     let result = loop {
         let size = if last.is_none() { first } else { pace.next_size(budget, entry, last) };
         let Some(tile) = tiler.next_tile(size) else { break Ok(()) };
-        let launch = Launch { scene, settings, accels, entry, width, height, tile };
+        let last_tile = tiler.finished();
+        let launch = Launch { scene, settings, accels, entry, width, height, tile, last_tile };
         let ran = run_tile(backend, &launch);
         backend.read_back_outputs(&mut scene.buffers);
         let ran = match ran {
@@ -370,6 +378,9 @@ pub(crate) fn launch(
         }
     };
     if let Err(e) = result {
+        if last.is_some() {
+            backend.discard_unread_outputs();
+        }
         if let Some(kept) = kept {
             put_back(&mut scene.buffers, kept);
         }

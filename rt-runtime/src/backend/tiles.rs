@@ -216,11 +216,11 @@ impl Pace {
                     return last.map_or(PROBE_INDICES, |l| l.saturating_mul(MAX_GROWTH));
                 };
                 let fit = (t.as_secs_f64() / 2.0 / s).clamp(1.0, u64::MAX as f64 / 2.0) as u64;
+                // A launch's first tile trusts the last launch's pace (the
+                // budget keeps a margin of 8 below a driver's reset).
                 match last {
                     Some(l) => fit.min(l.saturating_mul(MAX_GROWTH)),
-                    // A launch's first tile: at most the probe's growth over
-                    // a probe, should the pace have changed with the scene.
-                    None => fit.min(PROBE_INDICES * MAX_GROWTH * MAX_GROWTH),
+                    None => fit,
                 }
             }
         }

@@ -102,7 +102,7 @@ fn panicked(
 
 /// Runs a launch over its tile's launch indices.
 fn run(launch: &Launch) -> Result<LaunchReport> {
-    let &Launch { scene, settings, accels, entry, width, height, tile } = launch;
+    let &Launch { scene, settings, accels, entry, width, height, tile, .. } = launch;
     let t1 = std::time::Instant::now();
     let calls = link_all(scene, settings, &accels.nodes, entry, UVec2::new(width, height))?;
     let linked = calls.bind()?;

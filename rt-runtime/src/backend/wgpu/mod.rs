@@ -153,6 +153,15 @@ impl LaunchBackend for WgpuBackend {
         self.pending = None;
     }
 
+    /// The device's heap holds outputs no mirror knows of: a new heap
+    /// buffer, uploaded whole, at the next launch.
+    fn discard_unread_outputs(&mut self) {
+        if let Some(gpu) = self.gpu.as_mut() {
+            gpu.resident.heap = None;
+        }
+        self.pending = None;
+    }
+
     fn prepare(&mut self) -> Result<()> {
         if self.gpu.as_ref().is_some_and(|g| g.health.lost_reason().is_some()) {
             self.gpu = None;
@@ -270,13 +279,16 @@ fn launch_on_device(
     let tiles = dispatch::tiles(l, &gpu.limits, [rg_case, rg_vars], [ex_case, ex_vars]);
     let capture = capture::folder().map(|folder| capture_before(folder, &wgsl, &gpu.resident, log_words, &tiles));
     let encoder = dispatch::record(gpu, &wgsl, slots, &tiles, replaced);
-    let results = readback::results(gpu, encoder, &outputs, lose)?;
+    // Outputs stay on the device until the launch's last tile (the mirror
+    // still holds what the host does, so no tile uploads them again).
+    let read = if l.last_tile { outputs } else { Vec::new() };
+    let results = readback::results(gpu, encoder, &read, lose)?;
     let (header, kernel) = (results.header, results.kernel);
     if let Some(before) = &capture {
-        capture::write(before, &outputs, &results.words, header[2]);
+        capture::write(before, &read, &results.words, header[2]);
     }
     // The outputs go to the host's buffers now, whatever happens next.
-    *pending = Some(ReadOutputs { words: results.words, outputs });
+    *pending = Some(ReadOutputs { words: results.words, outputs: read });
     let (exception_words, print_words) = readback::log(gpu, header)?;
     let mut report = LaunchReport::default();
     for w in exception_words.chunks_exact(3) {
