@@ -359,6 +359,12 @@ fn tiled_and_whole(ctx: &mut Context, width: u32, height: u32, reps: usize) -> R
 fn record_tiled_and_whole(j: &mut json::Json, measured: Result<(Duration, Duration, u32)>) -> Option<f64> {
     match measured {
         Ok((tiled, whole, tiles)) => {
+            eprintln!(
+                "tiled launches ({tiles} tiles) {:.1} ms, whole launches {:.1} ms: tiled_vs_whole {:.3}",
+                ms(tiled),
+                ms(whole),
+                whole.as_secs_f64() / tiled.as_secs_f64()
+            );
             let o = j.child("tiled_vs_whole");
             o.set("tiles", tiles);
             o.set("tiled_ms", ms(tiled));
