@@ -1,7 +1,8 @@
 //! # The worked examples
 //!
 //! The seed lecture's seven examples, each building on the one before, and
-//! three more that put the framework to work on real meshes:
+//! four more that put the framework to work on real meshes and on a
+//! non-graphics use:
 //!
 //! | module | shows |
 //! | --- | --- |
@@ -15,6 +16,7 @@
 //! | [`cornell`] | a progressive path tracer over the Cornell box OBJ and its area light |
 //! | [`bunny`] | the Stanford bunny with a key light, shadows and ambient occlusion |
 //! | [`instances`] | a hundred transformed instances of one teapot sharing one BVH |
+//! | [`receiver_grid`] | a sound source's rays counted per cell of a receiver grid with atomic adds, direct and reflected |
 //!
 //! [`common`] holds what the Whitted-style examples share on the device side
 //! (payloads, attributes, lights, the camera), [`tutorial`] the scene of
@@ -53,6 +55,7 @@ pub mod normal;
 pub mod parts;
 pub mod phong;
 pub mod progress_bar;
+pub mod receiver_grid;
 pub mod reflections;
 pub mod scene;
 pub mod shadows;
@@ -72,7 +75,7 @@ pub struct Example {
 }
 
 /// Every example, in the tour's order.
-pub const EXAMPLES: [Example; 10] = [
+pub const EXAMPLES: [Example; 11] = [
     Example { name: "normal", summary: "normal shader", build: normal::scene, progressive: false },
     Example { name: "diffuse", summary: "ambient + Lambert", build: diffuse::scene, progressive: false },
     Example { name: "phong", summary: "Blinn-Phong", build: phong::scene, progressive: false },
@@ -88,6 +91,12 @@ pub const EXAMPLES: [Example; 10] = [
     Example { name: "cornell", summary: "path-traced Cornell box", build: cornell::scene, progressive: true },
     Example { name: "bunny", summary: "bunny, shadows and ambient occlusion", build: bunny::scene, progressive: true },
     Example { name: "instances", summary: "100 instances of one BVH", build: instances::scene, progressive: false },
+    Example {
+        name: "receiver_grid",
+        summary: "rays reaching a receiver grid, counted atomically",
+        build: receiver_grid::scene,
+        progressive: true,
+    },
 ];
 
 /// The example called `name`.

@@ -300,6 +300,11 @@ pub struct Scene {
     /// frame; before each, the context variable `frame` is set to its number
     /// (from 0).
     pub frames: u32,
+    /// A launch of another entry point, at its own size, before entry 0 in
+    /// every frame (after `frame` is set): whole, whatever rows are
+    /// rendered, so entry 0 sees what a whole render gives it (the
+    /// receiver grid's rays, which entry 0 shows).
+    pub pre_launch: Option<(u32, UVec2)>,
 }
 
 /// One rendered picture and what it cost.
@@ -342,7 +347,7 @@ impl Scene {
 
     /// A one-launch scene.
     pub fn new(ctx: Context, output: BufferId, settings: &Settings) -> Scene {
-        Scene { ctx, output, width: settings.width, height: settings.height, frames: 1 }
+        Scene { ctx, output, width: settings.width, height: settings.height, frames: 1, pre_launch: None }
     }
 
     /// Launches entry point 0 `frames` times, calling `progress` after
@@ -368,6 +373,11 @@ impl Scene {
         let frames = self.frames;
         for frame in 0..frames {
             self.ctx.set_var(Scope::Context, "frame", frame)?;
+            if let Some((entry, size)) = self.pre_launch {
+                let report = self.ctx.launch(entry, size.x, size.y)?;
+                rays += report.rays;
+                exceptions.extend(report.exceptions);
+            }
             let report = self.ctx.launch_part(0, self.width, self.height, part, |p| {
                 progress(Progress { frame, frames, within: p.fraction() });
                 LaunchControl::Continue

@@ -285,6 +285,6 @@ macro_rules! wgpu_goldens {
 }
 
 wgpu_goldens! {
-    checked: [normal, diffuse, phong, shadows, reflections, envmap, convex_hull, cornell, bunny, instances],
+    checked: [normal, diffuse, phong, shadows, reflections, envmap, convex_hull, cornell, bunny, instances, receiver_grid],
     skipped: [],
 }

@@ -81,8 +81,32 @@ pub fn floats() -> String {
     )
 }
 
-/// The heap binding every lowered program reads buffers through.
-pub const HEAP: &str = "@group(0) @binding(0) var<storage, read_write> rt_heap: array<u32>;\n";
+/// The heap binding every lowered program reads buffers through, and the
+/// two word accessors all its reads and writes go through (`rt_hw`,
+/// `rt_hw_set`): lowered code never indexes `rt_heap` itself, so the same
+/// code runs over [`ATOMIC_HEAP`].
+pub const HEAP: &str = "@group(0) @binding(0) var<storage, read_write> rt_heap: array<u32>;
+fn rt_hw(w: u32) -> u32 { return rt_heap[w]; }
+fn rt_hw_set(w: u32, v: u32) { rt_heap[w] = v; }
+";
+
+/// The heap of a module or megakernel where some program updates buffer
+/// elements atomically ([`ATOMIC_PREFIX`]): the same binding, of atomic
+/// words, read and written with relaxed atomic loads and stores.
+pub const ATOMIC_HEAP: &str = "@group(0) @binding(0) var<storage, read_write> rt_heap: array<atomic<u32>>;
+fn rt_hw(w: u32) -> u32 { return atomicLoad(&rt_heap[w]); }
+fn rt_hw_set(w: u32, v: u32) { atomicStore(&rt_heap[w], v); }
+";
+
+/// The name prefix of the compiler's atomic buffer accessors
+/// (`rt_atomic_add_u32`, ...): a program whose functions include one needs
+/// [`ATOMIC_HEAP`], and so does every megakernel that links it.
+pub const ATOMIC_PREFIX: &str = "rt_atomic";
+
+/// [`ATOMIC_HEAP`] or [`HEAP`].
+pub fn heap(atomic: bool) -> &'static str {
+    if atomic { ATOMIC_HEAP } else { HEAP }
+}
 
 /// The runtime's exception codes (`RT_EXC_*`) and the ray flags
 /// (`RT_RAY_FLAG_*`) as WGSL constants.
@@ -133,9 +157,10 @@ pub fn stub(f: &WgslFn) -> String {
 
 /// The fixed part of the compiler's stub prelude: the records, the heap and
 /// a stub for every function of the contract.
-pub fn stub_prelude() -> String {
+/// The heap is [`heap`]`(atomic)`.
+pub fn stub_prelude(atomic: bool) -> String {
     let mut s = String::from(RECORDS);
-    s.push_str(HEAP);
+    s.push_str(heap(atomic));
     s.push_str(&floats());
     for f in wgsl_functions() {
         s.push_str(&stub(f));
@@ -154,7 +179,7 @@ mod tests {
         assert_eq!(stub(&f), "fn rt_transform_point(kind: u32, p: vec3<f32>) -> vec3<f32> { return vec3<f32>(); }");
         let t = crate::intrinsic("rt_terminate_ray").unwrap().wgsl.unwrap();
         assert_eq!(stub(&t), "fn rt_terminate_ray() {}");
-        assert!(stub_prelude().starts_with(RECORDS));
+        assert!(stub_prelude(false).starts_with(RECORDS));
     }
 
     #[test]
@@ -170,6 +195,6 @@ mod tests {
         assert_eq!(f32_wgsl(f32::NEG_INFINITY), "rt_f32_from_bits(0xff800000u)");
         assert_eq!(f32_wgsl(f32::NAN), "rt_f32_from_bits(0x7fc00000u)");
         assert!(floats().contains("const RT_F32_MAX: f32 = 0x1.fffffep+127f;"));
-        assert!(stub_prelude().contains(&floats()));
+        assert!(stub_prelude(false).contains(&floats()));
     }
 }

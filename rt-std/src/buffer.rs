@@ -23,7 +23,9 @@
 //! accesses through `Index`/`IndexMut`, which share the sink. A reference from
 //! `Index`/`IndexMut` must not be held while another copy of the handle
 //! writes the same element (programs cannot: the subset has no reference
-//! locals).
+//! locals). Elements that several launch indices update go through the
+//! atomic updates of [`crate::atomic`] (`atomic_add`, ...), which may race
+//! with each other but not with plain accesses.
 
 use core::fmt;
 use core::marker::PhantomData;
@@ -262,6 +264,12 @@ impl<T: RtData> RwBuffer<T> {
     pub fn store(&self, i: u32, v: T) {
         self.elements.store(index_1d(i, self.len), v)
     }
+
+    /// The element at `i`, or `None` after raising the exception (for the
+    /// atomic updates, see [`crate::atomic`]).
+    pub(crate) fn element(&self, i: u32) -> Option<*mut T> {
+        self.elements.element(index_1d(i, self.len))
+    }
 }
 
 impl<T: RtData> Index<u32> for RwBuffer<T> {
@@ -401,6 +409,11 @@ impl<T: RtData> RwBuffer2d<T> {
     /// Program kinds: all.
     pub fn store(&self, idx: UVec2, v: T) {
         self.elements.store(index_2d(idx, self.size), v)
+    }
+
+    /// The element at `idx`, or `None` after raising the exception.
+    pub(crate) fn element(&self, idx: UVec2) -> Option<*mut T> {
+        self.elements.element(index_2d(idx, self.size))
     }
 }
 

@@ -128,6 +128,7 @@
 #![warn(missing_docs)]
 
 pub mod arith;
+pub mod atomic;
 pub mod buffer;
 pub mod cpu;
 pub mod data;
@@ -140,6 +141,7 @@ pub mod ray;
 pub mod scene;
 pub mod texture;
 
+pub use atomic::{AtomicElement, AtomicInteger};
 pub use buffer::{Buffer, Buffer2d, RwBuffer, RwBuffer2d};
 pub use data::{Attributes, Payload, RtData};
 pub use geometry::Aabb;

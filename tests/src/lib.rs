@@ -9,6 +9,8 @@ pub mod meshes;
 pub mod scene_fuzz;
 pub mod targets;
 
+#[path = "../snapshots/in/atomics.rs"]
+pub mod atomics;
 #[path = "../snapshots/in/buffers.rs"]
 pub mod buffers;
 #[path = "../snapshots/in/buffers_2d.rs"]

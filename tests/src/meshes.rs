@@ -22,3 +22,18 @@ pub fn bumpy_grid(n: u32) -> TriangleMesh {
     }
     mesh
 }
+
+/// The quad [-1, 1]^2 at z = 0, counter-clockwise seen from +z (its front),
+/// split along its diagonal from (-1, -1) to (1, 1) into two triangles.
+pub fn unit_quad() -> TriangleMesh {
+    TriangleMesh {
+        positions: vec![
+            Vec3::new(-1.0, -1.0, 0.0),
+            Vec3::new(1.0, -1.0, 0.0),
+            Vec3::new(1.0, 1.0, 0.0),
+            Vec3::new(-1.0, 1.0, 0.0),
+        ],
+        indices: vec![[0, 1, 2], [0, 2, 3]],
+        ..TriangleMesh::default()
+    }
+}

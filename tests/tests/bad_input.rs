@@ -7,6 +7,7 @@ use examples::mesh::parse_obj;
 use glam::{Mat4, Vec3, Vec4};
 use rt_runtime::*;
 use rt_std::prelude::*;
+use rt_tests::meshes::unit_quad;
 
 #[rt_payload]
 pub struct Prd {
@@ -34,19 +35,6 @@ pub fn black(prd: &mut Prd) {
 
 fn mesh_error(text: &str) -> String {
     parse_obj(text, "bad.obj", None).map(|_| ()).expect_err("must be refused").to_string()
-}
-
-fn quad() -> TriangleMesh {
-    TriangleMesh {
-        positions: vec![
-            Vec3::new(-1.0, -1.0, 0.0),
-            Vec3::new(1.0, -1.0, 0.0),
-            Vec3::new(1.0, 1.0, 0.0),
-            Vec3::new(-1.0, 1.0, 0.0),
-        ],
-        indices: vec![[0, 1, 2], [0, 2, 3]],
-        ..TriangleMesh::default()
-    }
 }
 
 fn scene(backend: Backend, mesh: TriangleMesh) -> (Context, BufferId) {
@@ -171,14 +159,14 @@ fn triangles_empty() {
 
 #[test]
 fn triangles_index_out_of_range() {
-    let mut m = quad();
+    let mut m = unit_quad();
     m.indices[1] = [0, 2, 4];
     assert_eq!(geometry_error(m), "geometry 0: triangle 1 uses vertex 4, but there are 4 vertices");
 }
 
 #[test]
 fn triangles_nan_position() {
-    let mut m = quad();
+    let mut m = unit_quad();
     m.positions[2].y = f32::NAN;
     assert!(geometry_error(m).starts_with("geometry 0: vertex 2 has a non-finite position"));
 }
@@ -186,10 +174,10 @@ fn triangles_nan_position() {
 #[test]
 fn moving_vertices_to_bad_positions_is_refused_and_loses_nothing() {
     for backend in [Backend::Cpu, Backend::Wgpu] {
-        let (mut ctx, out, g) = scene_of(backend, quad());
+        let (mut ctx, out, g) = scene_of(backend, unit_quad());
         ctx.launch(0, 8, 8).unwrap();
         let before = ctx.read_buffer::<Vec4>(out).unwrap();
-        let mut moved = quad().positions;
+        let mut moved = unit_quad().positions;
         moved[3].x = f32::INFINITY;
         let err = ctx.set_triangle_positions(g, moved).unwrap_err().to_string();
         assert!(err.starts_with("geometry 0: vertex 3 has a non-finite position"), "{err}");
@@ -204,14 +192,14 @@ fn moving_vertices_to_bad_positions_is_refused_and_loses_nothing() {
 
 #[test]
 fn triangles_normal_count() {
-    let mut m = quad();
+    let mut m = unit_quad();
     m.normals = Some(vec![Vec3::Z; 3]);
     assert_eq!(geometry_error(m), "geometry 0: 3 normals for 4 vertices");
 }
 
 #[test]
 fn triangles_material_index_count() {
-    let mut m = quad();
+    let mut m = unit_quad();
     m.material_indices = Some(vec![0]);
     assert_eq!(geometry_error(m), "geometry 0: 1 material indices for 2 triangles");
 }
@@ -219,7 +207,7 @@ fn triangles_material_index_count() {
 #[test]
 fn degenerate_triangles_are_accepted_and_never_hit() {
     for backend in [Backend::Cpu, Backend::Wgpu] {
-        let mut m = quad();
+        let mut m = unit_quad();
         // A zero-area sliver and a triangle with repeated vertices, covering
         // the whole view.
         m.positions.extend([Vec3::new(-9.0, -9.0, 1.0), Vec3::new(9.0, 9.0, 1.0), Vec3::new(0.0, 0.0, 1.0)]);
@@ -234,7 +222,7 @@ fn degenerate_triangles_are_accepted_and_never_hit() {
 #[test]
 fn singular_transform() {
     let mut ctx = Context::new();
-    let g = ctx.create_triangles(quad()).unwrap();
+    let g = ctx.create_triangles(unit_quad()).unwrap();
     let m = ctx.create_material();
     let gi = ctx.create_geometry_instance(g, &[m]).unwrap();
     let gg = ctx.create_geometry_group(&[gi], Acceleration::default()).unwrap();
@@ -245,7 +233,7 @@ fn singular_transform() {
 #[test]
 fn geometry_instance_without_materials() {
     let mut ctx = Context::new();
-    let g = ctx.create_triangles(quad()).unwrap();
+    let g = ctx.create_triangles(unit_quad()).unwrap();
     assert_eq!(
         ctx.create_geometry_instance(g, &[]).unwrap_err().to_string(),
         "geometry 0: a geometry instance needs at least one material"
@@ -254,8 +242,8 @@ fn geometry_instance_without_materials() {
 
 #[test]
 fn kd_tree_builder_is_refused_by_name() {
-    let (mut ctx, _) = scene(Backend::Cpu, quad());
-    let g = ctx.create_triangles(quad()).unwrap();
+    let (mut ctx, _) = scene(Backend::Cpu, unit_quad());
+    let g = ctx.create_triangles(unit_quad()).unwrap();
     let m = ctx.create_material();
     let gi = ctx.create_geometry_instance(g, &[m]).unwrap();
     let gg = ctx.create_geometry_group(&[gi], Acceleration::new(Builder::TriangleKdTree)).unwrap();
@@ -269,7 +257,7 @@ fn kd_tree_builder_is_refused_by_name() {
 #[test]
 fn zero_size_launch() {
     for backend in [Backend::Cpu, Backend::Wgpu] {
-        let (mut ctx, _) = scene(backend, quad());
+        let (mut ctx, _) = scene(backend, unit_quad());
         let e = ctx.launch(0, 0, 8).unwrap_err();
         assert_eq!(e.to_string(), "launch of 0x8: a launch needs at least one index in each dimension");
     }
@@ -287,7 +275,7 @@ fn launching_before_programs_are_set() {
 
 #[test]
 fn variable_set_with_the_wrong_type() {
-    let (mut ctx, _) = scene(Backend::Cpu, quad());
+    let (mut ctx, _) = scene(Backend::Cpu, unit_quad());
     ctx.set_var(Scope::Context, "gain", Vec3::ONE).unwrap();
     let e = ctx.launch(0, 8, 8).unwrap_err().to_string();
     assert!(
@@ -299,7 +287,7 @@ fn variable_set_with_the_wrong_type() {
 
 #[test]
 fn buffer_of_the_wrong_element_type_for_a_variable() {
-    let (mut ctx, _) = scene(Backend::Cpu, quad());
+    let (mut ctx, _) = scene(Backend::Cpu, unit_quad());
     let wrong = ctx.create_buffer_2d::<f32>(BufferType::Output, 8, 8).unwrap();
     ctx.set_var(Scope::Context, "out", wrong).unwrap();
     let e = ctx.launch(0, 8, 8).unwrap_err().to_string();
@@ -313,7 +301,7 @@ fn buffer_of_the_wrong_element_type_for_a_variable() {
 
 #[test]
 fn input_buffer_where_the_program_writes() {
-    let (mut ctx, _) = scene(Backend::Cpu, quad());
+    let (mut ctx, _) = scene(Backend::Cpu, unit_quad());
     let input = ctx.create_buffer_2d::<Vec4>(BufferType::Input, 8, 8).unwrap();
     ctx.set_var(Scope::Context, "out", input).unwrap();
     let e = ctx.launch(0, 8, 8).unwrap_err().to_string();
@@ -350,7 +338,7 @@ fn handle_from_another_context() {
     }
     let foreign = other.create_material();
     let mut ctx = Context::new();
-    let g = ctx.create_triangles(quad()).unwrap();
+    let g = ctx.create_triangles(unit_quad()).unwrap();
     assert_eq!(
         ctx.create_geometry_instance(g, &[foreign]).unwrap_err().to_string(),
         "MaterialId(5) is not a valid handle of this context"
@@ -414,7 +402,7 @@ fn textures_of_unsupported_formats_and_bad_files() {
 
 #[test]
 fn device_lost_mid_launch_loses_nothing() {
-    let (mut ctx, out) = scene(Backend::Wgpu, quad());
+    let (mut ctx, out) = scene(Backend::Wgpu, unit_quad());
     ctx.launch(0, 8, 8).unwrap();
     let before: Vec<Vec4> = ctx.read_buffer(out).unwrap();
     assert!(before.iter().any(|p| p.x == 1.0), "the quad is hit");
@@ -436,7 +424,7 @@ fn device_lost_mid_launch_loses_nothing() {
     // The next launch runs on a new device and matches the CPU backend.
     ctx.launch(0, 8, 8).unwrap();
     let after: Vec<Vec4> = ctx.read_buffer(out).unwrap();
-    let (mut cpu, cpu_out) = scene(Backend::Cpu, quad());
+    let (mut cpu, cpu_out) = scene(Backend::Cpu, unit_quad());
     cpu.set_var(Scope::Context, "gain", 0.5f32).unwrap();
     cpu.launch(0, 8, 8).unwrap();
     assert_eq!(after, cpu.read_buffer::<Vec4>(cpu_out).unwrap());
@@ -492,7 +480,7 @@ fn mutated_obj_files_never_panic() {
         let Ok(text) = String::from_utf8(text) else { continue };
         if let Ok(loaded) = parse_obj(&text, "fuzz.obj", None) {
             // Whatever loads must build and launch cleanly.
-            let (mut ctx, _) = scene(Backend::Cpu, quad());
+            let (mut ctx, _) = scene(Backend::Cpu, unit_quad());
             if let Ok(g) = ctx.create_triangles(loaded.mesh) {
                 let m = ctx.create_material();
                 let gi = ctx.create_geometry_instance(g, &[m]).unwrap();
@@ -527,7 +515,7 @@ pub fn never_hits(prim: u32) {
 fn a_bounding_box_program_returning_no_box_is_an_error_naming_it() {
     use rt_tests::targets::On;
     for on in On::ALL.into_iter().filter(|on| on.available()) {
-        let (mut ctx, _) = scene(on.backend, quad());
+        let (mut ctx, _) = scene(on.backend, unit_quad());
         ctx.set_traversal(on.traversal);
         let isect = ctx.create_program(&never_hits::PROGRAM);
         let bounds = ctx.create_program(&given_box::PROGRAM);

@@ -4,7 +4,6 @@
 //! raised, the exception program does not run and the launch reports no
 //! record; each kind alone, and all. The same on every target.
 
-use glam::Vec3;
 use rt_runtime::*;
 use rt_std::prelude::*;
 use rt_tests::targets::On;
@@ -66,16 +65,7 @@ fn run(on: On, off: &[ExceptionKind]) -> (Vec<u32>, Vec<(u32, u32)>) {
         ctx.set_exception_enabled(*kind, false);
         assert!(!ctx.exception_enabled(*kind));
     }
-    let quad = TriangleMesh {
-        positions: vec![
-            Vec3::new(-1.0, -1.0, 0.0),
-            Vec3::new(1.0, -1.0, 0.0),
-            Vec3::new(1.0, 1.0, 0.0),
-            Vec3::new(-1.0, 1.0, 0.0),
-        ],
-        indices: vec![[0, 1, 2], [0, 2, 3]],
-        ..TriangleMesh::default()
-    };
+    let quad = rt_tests::meshes::unit_quad();
     let g = ctx.create_triangles(quad).unwrap();
     let m = ctx.create_material();
     let ch = ctx.create_program(&again::PROGRAM);

@@ -144,16 +144,7 @@ fn run(on: On) -> Vec<[u32; 5]> {
     let mut ctx = on.context();
     ctx.set_ray_type_count(1);
     // A quad at z = 0, counter-clockwise seen from +z (its front).
-    let quad = TriangleMesh {
-        positions: vec![
-            Vec3::new(-1.0, -1.0, 0.0),
-            Vec3::new(1.0, -1.0, 0.0),
-            Vec3::new(1.0, 1.0, 0.0),
-            Vec3::new(-1.0, 1.0, 0.0),
-        ],
-        indices: vec![[0, 1, 2], [0, 2, 3]],
-        ..TriangleMesh::default()
-    };
+    let quad = rt_tests::meshes::unit_quad();
     let g = ctx.create_triangles(quad).unwrap();
     let m = ctx.create_material();
     let ch = ctx.create_program(&seen_triangle::PROGRAM);

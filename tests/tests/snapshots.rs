@@ -40,10 +40,17 @@ use snapshot_modules::RESUMABLE;
 
 /// The snapshot text: the module without the fixed runtime prelude, then a
 /// tracing program's resumable form (with the resumable forms of the
-/// helpers it calls) or why it has none.
+/// helpers it calls) or why it has none. A module over the atomic heap says
+/// so in its first line.
 fn snapshot_text(l: &rt_compiler::Lowered) -> String {
-    let body = l.wgsl.strip_prefix(rt_compiler::lower::PRELUDE.as_str()).expect("module starts with the prelude");
-    let mut text = format!("// {} program `{}`\n{}", l.kind.unwrap().name(), l.name, body);
+    let (body, heap) = match l.wgsl.strip_prefix(rt_compiler::lower::PRELUDE.as_str()) {
+        Some(body) => (body, ""),
+        None => (
+            l.wgsl.strip_prefix(rt_compiler::lower::ATOMIC_PRELUDE.as_str()).expect("module starts with a prelude"),
+            " (atomic heap)",
+        ),
+    };
+    let mut text = format!("// {} program `{}`{heap}\n{}", l.kind.unwrap().name(), l.name, body);
     if let Some(r) = &l.resumable {
         text.push_str(RESUMABLE);
         for (_, f) in &l.resumable_functions {

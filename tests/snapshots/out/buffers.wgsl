@@ -57,11 +57,11 @@ fn rt_load_Bin(w: u32) -> Bin {
 }
 
 fn rt_load_f32(w: u32) -> f32 {
-    return bitcast<f32>(rt_heap[w]);
+    return bitcast<f32>(rt_hw(w));
 }
 
 fn rt_load_u32(w: u32) -> u32 {
-    return rt_heap[w];
+    return rt_hw(w);
 }
 
 fn rt_load_vec3f(w: u32) -> vec3<f32> {
@@ -75,11 +75,11 @@ fn rt_store_Bin(w: u32, v: Bin) {
 }
 
 fn rt_store_f32(w: u32, v: f32) {
-    rt_heap[w] = bitcast<u32>(v);
+    rt_hw_set(w, bitcast<u32>(v));
 }
 
 fn rt_store_u32(w: u32, v: u32) {
-    rt_heap[w] = v;
+    rt_hw_set(w, v);
 }
 
 fn rt_store_vec3f(w: u32, v: vec3<f32>) {

@@ -27,11 +27,11 @@ fn rt_bufstore2_vec4f(b: RtBuffer, i: vec2<u32>, v: vec4<f32>) {
 }
 
 fn rt_load_f32(w: u32) -> f32 {
-    return bitcast<f32>(rt_heap[w]);
+    return bitcast<f32>(rt_hw(w));
 }
 
 fn rt_load_u32(w: u32) -> u32 {
-    return rt_heap[w];
+    return rt_hw(w);
 }
 
 fn rt_load_vec4f(w: u32) -> vec4<f32> {
@@ -39,11 +39,11 @@ fn rt_load_vec4f(w: u32) -> vec4<f32> {
 }
 
 fn rt_store_f32(w: u32, v: f32) {
-    rt_heap[w] = bitcast<u32>(v);
+    rt_hw_set(w, bitcast<u32>(v));
 }
 
 fn rt_store_u32(w: u32, v: u32) {
-    rt_heap[w] = v;
+    rt_hw_set(w, v);
 }
 
 fn rt_store_vec4f(w: u32, v: vec4<f32>) {

@@ -14,11 +14,11 @@ fn rt_bufstore_f32(b: RtBuffer, i: u32, v: f32) {
 }
 
 fn rt_load_f32(w: u32) -> f32 {
-    return bitcast<f32>(rt_heap[w]);
+    return bitcast<f32>(rt_hw(w));
 }
 
 fn rt_store_f32(w: u32, v: f32) {
-    rt_heap[w] = bitcast<u32>(v);
+    rt_hw_set(w, bitcast<u32>(v));
 }
 
 const ERR_BAD_SCALE: u32 = (1024u + 1u);

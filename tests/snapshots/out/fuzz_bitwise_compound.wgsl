@@ -13,23 +13,23 @@ fn rt_bufstore_u32(b: RtBuffer, i: u32, v: u32) {
 }
 
 fn rt_load_f32(w: u32) -> f32 {
-    return bitcast<f32>(rt_heap[w]);
+    return bitcast<f32>(rt_hw(w));
 }
 
 fn rt_load_i32(w: u32) -> i32 {
-    return bitcast<i32>(rt_heap[w]);
+    return bitcast<i32>(rt_hw(w));
 }
 
 fn rt_load_u32(w: u32) -> u32 {
-    return rt_heap[w];
+    return rt_hw(w);
 }
 
 fn rt_store_f32(w: u32, v: f32) {
-    rt_heap[w] = bitcast<u32>(v);
+    rt_hw_set(w, bitcast<u32>(v));
 }
 
 fn rt_store_u32(w: u32, v: u32) {
-    rt_heap[w] = v;
+    rt_hw_set(w, v);
 }
 
 const SLOTS: u32 = 8u;

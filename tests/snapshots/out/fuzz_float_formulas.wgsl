@@ -76,15 +76,15 @@ fn rt_fmod3(x: vec3<f32>, y: vec3<f32>) -> vec3<f32> {
 }
 
 fn rt_load_f32(w: u32) -> f32 {
-    return bitcast<f32>(rt_heap[w]);
+    return bitcast<f32>(rt_hw(w));
 }
 
 fn rt_load_i32(w: u32) -> i32 {
-    return bitcast<i32>(rt_heap[w]);
+    return bitcast<i32>(rt_hw(w));
 }
 
 fn rt_load_u32(w: u32) -> u32 {
-    return rt_heap[w];
+    return rt_hw(w);
 }
 
 fn rt_rem_vec4(x: vec4<f32>, y: vec4<f32>) -> vec4<f32> {
@@ -92,11 +92,11 @@ fn rt_rem_vec4(x: vec4<f32>, y: vec4<f32>) -> vec4<f32> {
 }
 
 fn rt_store_f32(w: u32, v: f32) {
-    rt_heap[w] = bitcast<u32>(v);
+    rt_hw_set(w, bitcast<u32>(v));
 }
 
 fn rt_store_u32(w: u32, v: u32) {
-    rt_heap[w] = v;
+    rt_hw_set(w, v);
 }
 
 const SLOTS: u32 = 8u;

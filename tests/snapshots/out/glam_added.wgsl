@@ -112,11 +112,11 @@ fn rt_fmod(x: f32, y: f32) -> f32 {
 }
 
 fn rt_load_f32(w: u32) -> f32 {
-    return bitcast<f32>(rt_heap[w]);
+    return bitcast<f32>(rt_hw(w));
 }
 
 fn rt_load_i32(w: u32) -> i32 {
-    return bitcast<i32>(rt_heap[w]);
+    return bitcast<i32>(rt_hw(w));
 }
 
 fn rt_load_vec3f(w: u32) -> vec3<f32> {
@@ -179,7 +179,7 @@ fn rt_rotate_towards3(v: vec3<f32>, rhs: vec3<f32>, max_angle: f32) -> vec3<f32>
 }
 
 fn rt_store_f32(w: u32, v: f32) {
-    rt_heap[w] = bitcast<u32>(v);
+    rt_hw_set(w, bitcast<u32>(v));
 }
 
 fn rt_store_vec4f(w: u32, v: vec4<f32>) {

@@ -141,7 +141,7 @@ fn rt_inverse4(m: mat4x4<f32>) -> mat4x4<f32> {
 }
 
 fn rt_load_f32(w: u32) -> f32 {
-    return bitcast<f32>(rt_heap[w]);
+    return bitcast<f32>(rt_hw(w));
 }
 
 fn rt_load_mat4(w: u32) -> mat4x4<f32> {
@@ -162,7 +162,7 @@ fn rt_rem_euclid(a: f32, b: f32) -> f32 {
 }
 
 fn rt_store_f32(w: u32, v: f32) {
-    rt_heap[w] = bitcast<u32>(v);
+    rt_hw_set(w, bitcast<u32>(v));
 }
 
 fn rt_store_vec4f(w: u32, v: vec4<f32>) {

@@ -23,7 +23,7 @@ fn rt_f2i3(x: vec3<f32>) -> vec3<i32> {
 }
 
 fn rt_load_f32(w: u32) -> f32 {
-    return bitcast<f32>(rt_heap[w]);
+    return bitcast<f32>(rt_hw(w));
 }
 
 fn rt_load_vec3f(w: u32) -> vec3<f32> {

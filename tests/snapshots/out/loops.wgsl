@@ -7,11 +7,11 @@ fn rt_bufstore_f32(b: RtBuffer, i: u32, v: f32) {
 }
 
 fn rt_load_u32(w: u32) -> u32 {
-    return rt_heap[w];
+    return rt_hw(w);
 }
 
 fn rt_store_f32(w: u32, v: f32) {
-    rt_heap[w] = bitcast<u32>(v);
+    rt_hw_set(w, bitcast<u32>(v));
 }
 
 fn rtf_pop_bit(mask: ptr<function, u32>, bit: ptr<function, u32>) -> bool {

@@ -27,11 +27,11 @@ fn rt_bufstore2_vec4f(b: RtBuffer, i: vec2<u32>, v: vec4<f32>) {
 }
 
 fn rt_load_f32(w: u32) -> f32 {
-    return bitcast<f32>(rt_heap[w]);
+    return bitcast<f32>(rt_hw(w));
 }
 
 fn rt_load_i32(w: u32) -> i32 {
-    return bitcast<i32>(rt_heap[w]);
+    return bitcast<i32>(rt_hw(w));
 }
 
 fn rt_load_vec4f(w: u32) -> vec4<f32> {
@@ -39,7 +39,7 @@ fn rt_load_vec4f(w: u32) -> vec4<f32> {
 }
 
 fn rt_store_f32(w: u32, v: f32) {
-    rt_heap[w] = bitcast<u32>(v);
+    rt_hw_set(w, bitcast<u32>(v));
 }
 
 fn rt_store_vec4f(w: u32, v: vec4<f32>) {

@@ -12,7 +12,7 @@ struct Radiance {
 }
 
 fn rt_load_u32(w: u32) -> u32 {
-    return rt_heap[w];
+    return rt_hw(w);
 }
 
 fn rtf_material_albedo(id: u32) -> vec3<f32> {

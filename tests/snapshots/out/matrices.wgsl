@@ -12,7 +12,7 @@ struct Radiance {
 }
 
 fn rt_load_f32(w: u32) -> f32 {
-    return bitcast<f32>(rt_heap[w]);
+    return bitcast<f32>(rt_hw(w));
 }
 
 fn rt_load_mat3(w: u32) -> mat3x3<f32> {

@@ -15,7 +15,7 @@ struct PathState {
 }
 
 fn rt_load_f32(w: u32) -> f32 {
-    return bitcast<f32>(rt_heap[w]);
+    return bitcast<f32>(rt_hw(w));
 }
 
 fn rt_load_vec3f(w: u32) -> vec3<f32> {

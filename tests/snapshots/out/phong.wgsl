@@ -34,11 +34,11 @@ fn rt_load_BasicLight(w: u32) -> BasicLight {
 }
 
 fn rt_load_f32(w: u32) -> f32 {
-    return bitcast<f32>(rt_heap[w]);
+    return bitcast<f32>(rt_hw(w));
 }
 
 fn rt_load_i32(w: u32) -> i32 {
-    return bitcast<i32>(rt_heap[w]);
+    return bitcast<i32>(rt_hw(w));
 }
 
 fn rt_load_vec3f(w: u32) -> vec3<f32> {

@@ -7,7 +7,7 @@ struct Radiance {
 }
 
 fn rt_load_bool(w: u32) -> bool {
-    return rt_heap[w] != 0u;
+    return rt_hw(w) != 0u;
 }
 
 fn rtf_log_ray(tag: u32, ray: RtRay) {

@@ -18,11 +18,11 @@ struct Shadow {
 }
 
 fn rt_load_bool(w: u32) -> bool {
-    return rt_heap[w] != 0u;
+    return rt_hw(w) != 0u;
 }
 
 fn rt_load_f32(w: u32) -> f32 {
-    return bitcast<f32>(rt_heap[w]);
+    return bitcast<f32>(rt_hw(w));
 }
 
 fn rt_load_vec3f(w: u32) -> vec3<f32> {

@@ -7,7 +7,7 @@ fn rt_bufstore_f32(b: RtBuffer, i: u32, v: f32) {
 }
 
 fn rt_load_f32(w: u32) -> f32 {
-    return bitcast<f32>(rt_heap[w]);
+    return bitcast<f32>(rt_hw(w));
 }
 
 fn rt_powi(x: f32, n: i32) -> f32 {
@@ -28,7 +28,7 @@ fn rt_powi(x: f32, n: i32) -> f32 {
 }
 
 fn rt_store_f32(w: u32, v: f32) {
-    rt_heap[w] = bitcast<u32>(v);
+    rt_hw_set(w, bitcast<u32>(v));
 }
 
 fn rtp_scalar_math(x: f32, y: f32, out: RtBuffer) {

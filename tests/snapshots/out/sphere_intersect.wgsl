@@ -14,7 +14,7 @@ fn rt_bufload_vec4f(b: RtBuffer, i: u32) -> vec4<f32> {
 }
 
 fn rt_load_f32(w: u32) -> f32 {
-    return bitcast<f32>(rt_heap[w]);
+    return bitcast<f32>(rt_hw(w));
 }
 
 fn rt_load_vec4f(w: u32) -> vec4<f32> {

@@ -46,11 +46,11 @@ fn rt_load_arr4_f32(w: u32) -> array<f32, 4> {
 }
 
 fn rt_load_f32(w: u32) -> f32 {
-    return bitcast<f32>(rt_heap[w]);
+    return bitcast<f32>(rt_hw(w));
 }
 
 fn rt_load_u32(w: u32) -> u32 {
-    return rt_heap[w];
+    return rt_hw(w);
 }
 
 fn rt_load_vec3f(w: u32) -> vec3<f32> {

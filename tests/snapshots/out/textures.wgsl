@@ -16,7 +16,7 @@ fn rt_f2u2(x: vec2<f32>) -> vec2<u32> {
 }
 
 fn rt_load_f32(w: u32) -> f32 {
-    return bitcast<f32>(rt_heap[w]);
+    return bitcast<f32>(rt_hw(w));
 }
 
 fn rtp_textures(prd: ptr<function, Radiance>, attr: MeshHit, albedo: RtSampler, normal_map: RtSampler, palette: RtSampler, tiling: f32) {

@@ -50,7 +50,7 @@ fn rt_load_PolarSample(w: u32) -> PolarSample {
 }
 
 fn rt_load_f32(w: u32) -> f32 {
-    return bitcast<f32>(rt_heap[w]);
+    return bitcast<f32>(rt_hw(w));
 }
 
 fn rt_load_rt_tuple_f32_f32_(w: u32) -> rt_tuple_f32_f32_ {
@@ -58,7 +58,7 @@ fn rt_load_rt_tuple_f32_f32_(w: u32) -> rt_tuple_f32_f32_ {
 }
 
 fn rt_load_u32(w: u32) -> u32 {
-    return rt_heap[w];
+    return rt_hw(w);
 }
 
 fn rt_load_vec3f(w: u32) -> vec3<f32> {
@@ -66,7 +66,7 @@ fn rt_load_vec3f(w: u32) -> vec3<f32> {
 }
 
 fn rt_store_f32(w: u32, v: f32) {
-    rt_heap[w] = bitcast<u32>(v);
+    rt_hw_set(w, bitcast<u32>(v));
 }
 
 fn rt_store_vec3f(w: u32, v: vec3<f32>) {

@@ -38,11 +38,11 @@ fn rt_f2u(x: f32) -> u32 {
 }
 
 fn rt_load_u32(w: u32) -> u32 {
-    return rt_heap[w];
+    return rt_hw(w);
 }
 
 fn rt_store_u32(w: u32, v: u32) {
-    rt_heap[w] = v;
+    rt_hw_set(w, v);
 }
 
 fn rtp_tuples_inferred(out: RtBuffer) {

@@ -26,15 +26,15 @@ fn rt_f2u3(x: vec3<f32>) -> vec3<u32> {
 }
 
 fn rt_load_f32(w: u32) -> f32 {
-    return bitcast<f32>(rt_heap[w]);
+    return bitcast<f32>(rt_hw(w));
 }
 
 fn rt_load_i32(w: u32) -> i32 {
-    return bitcast<i32>(rt_heap[w]);
+    return bitcast<i32>(rt_hw(w));
 }
 
 fn rt_load_u32(w: u32) -> u32 {
-    return rt_heap[w];
+    return rt_hw(w);
 }
 
 fn rt_load_vec2i(w: u32) -> vec2<i32> {
@@ -50,7 +50,7 @@ fn rt_load_vec4f(w: u32) -> vec4<f32> {
 }
 
 fn rt_store_f32(w: u32, v: f32) {
-    rt_heap[w] = bitcast<u32>(v);
+    rt_hw_set(w, bitcast<u32>(v));
 }
 
 fn rt_store_vec4f(w: u32, v: vec4<f32>) {

@@ -33,6 +33,9 @@ pub fn modules() -> Vec<(PathBuf, String)> {
 }
 
 fn module_of(path: &Path, text: &str) -> String {
+    // A module over the atomic heap says so in its first line.
+    let atomic = text.lines().next().is_some_and(|l| l.ends_with(" (atomic heap)"));
+    let prelude = if atomic { &*rt_compiler::lower::ATOMIC_PRELUDE } else { &*rt_compiler::lower::PRELUDE };
     match text.split_once(RESUMABLE) {
         // The resumable form replaces the plain program, with stubs for
         // what the linker gives it.
@@ -49,8 +52,8 @@ fn module_of(path: &Path, text: &str) -> String {
                     "fn rt_request_{p}(object: u32, ray: RtRay, prd: {p}, flags: u32, mask: u32) {{}}\nfn rt_result_{p}() -> {p} {{\n    var p: {p};\n    return p;\n}}\n"
                 ));
             }
-            format!("{}{}{stubs}{resumable}", *rt_compiler::lower::PRELUDE, &plain[..program])
+            format!("{prelude}{}{stubs}{resumable}", &plain[..program])
         }
-        None => format!("{}{}", *rt_compiler::lower::PRELUDE, text),
+        None => format!("{prelude}{text}"),
     }
 }

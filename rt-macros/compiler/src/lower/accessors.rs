@@ -1,6 +1,7 @@
 //! Generated WGSL accessors: reading and writing typed values in the
-//! runtime's heap (`rt_heap: array<u32>`, packed words, see `types`), and
-//! bounds-checked buffer element access on top of them.
+//! runtime's heap (packed words, see `types`, through the heap's `rt_hw` and
+//! `rt_hw_set`), bounds-checked buffer element access on top of them, and
+//! atomic updates of 32-bit buffer elements (over the atomic heap).
 
 use crate::types::{Scalar, Ty};
 use std::collections::BTreeMap;
@@ -20,12 +21,12 @@ impl Accessors {
         }
         let t = ty.wgsl();
         let body = match ty {
-            Ty::Scalar(Scalar::F32) => "return bitcast<f32>(rt_heap[w]);".to_string(),
-            Ty::Scalar(Scalar::I32) => "return bitcast<i32>(rt_heap[w]);".to_string(),
+            Ty::Scalar(Scalar::F32) => "return bitcast<f32>(rt_hw(w));".to_string(),
+            Ty::Scalar(Scalar::I32) => "return bitcast<i32>(rt_hw(w));".to_string(),
             Ty::Scalar(Scalar::U32) | Ty::Scalar(Scalar::Usize) | Ty::Object | Ty::TransformKind | Ty::Enum(_) => {
-                "return rt_heap[w];".to_string()
+                "return rt_hw(w);".to_string()
             }
-            Ty::Scalar(Scalar::Bool) => "return rt_heap[w] != 0u;".to_string(),
+            Ty::Scalar(Scalar::Bool) => "return rt_hw(w) != 0u;".to_string(),
             Ty::Vec(n, s) => {
                 let f = self.load(&Ty::Scalar(*s));
                 let parts: Vec<String> = (0..*n).map(|i| format!("{f}(w + {i}u)")).collect();
@@ -66,11 +67,11 @@ impl Accessors {
         }
         let t = ty.wgsl();
         let body = match ty {
-            Ty::Scalar(Scalar::F32) | Ty::Scalar(Scalar::I32) => "rt_heap[w] = bitcast<u32>(v);".to_string(),
+            Ty::Scalar(Scalar::F32) | Ty::Scalar(Scalar::I32) => "rt_hw_set(w, bitcast<u32>(v));".to_string(),
             Ty::Scalar(Scalar::U32) | Ty::Scalar(Scalar::Usize) | Ty::Object | Ty::TransformKind | Ty::Enum(_) => {
-                "rt_heap[w] = v;".to_string()
+                "rt_hw_set(w, v);".to_string()
             }
-            Ty::Scalar(Scalar::Bool) => "rt_heap[w] = select(0u, 1u, v);".to_string(),
+            Ty::Scalar(Scalar::Bool) => "rt_hw_set(w, select(0u, 1u, v));".to_string(),
             Ty::Vec(n, s) => {
                 let f = self.store(&Ty::Scalar(*s));
                 (0..*n).map(|i| format!("{f}(w + {i}u, v[{i}]);")).collect::<Vec<_>>().join("\n    ")
@@ -133,6 +134,148 @@ impl Accessors {
             name.clone(),
             format!(
                 "fn {name}(b: RtBuffer, i: {idx_ty}, v: {t}) {{\n    if {check} {{\n        {store}(b.offset + {offset} * {words}u, v);\n    }}\n}}\n"
+            ),
+        );
+        name
+    }
+}
+
+/// An atomic update of a 32-bit buffer element, as `RwBuffer::atomic_*`
+/// names it. Each returns the element's old value.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AtomicOp {
+    Add,
+    Sub,
+    Min,
+    Max,
+    And,
+    Or,
+    Xor,
+    Exchange,
+    CompareExchange,
+}
+
+impl AtomicOp {
+    /// The op of method `name` (`atomic_add`, ...).
+    pub fn of_method(name: &str) -> Option<AtomicOp> {
+        Some(match name.strip_prefix("atomic_")? {
+            "add" => AtomicOp::Add,
+            "sub" => AtomicOp::Sub,
+            "min" => AtomicOp::Min,
+            "max" => AtomicOp::Max,
+            "and" => AtomicOp::And,
+            "or" => AtomicOp::Or,
+            "xor" => AtomicOp::Xor,
+            "exchange" => AtomicOp::Exchange,
+            "compare_exchange" => AtomicOp::CompareExchange,
+            _ => return None,
+        })
+    }
+
+    fn name(self) -> &'static str {
+        match self {
+            AtomicOp::Add => "add",
+            AtomicOp::Sub => "sub",
+            AtomicOp::Min => "min",
+            AtomicOp::Max => "max",
+            AtomicOp::And => "and",
+            AtomicOp::Or => "or",
+            AtomicOp::Xor => "xor",
+            AtomicOp::Exchange => "exchange",
+            AtomicOp::CompareExchange => "compare_exchange",
+        }
+    }
+
+    /// Whether the op takes only integers (bitwise ops and `sub`).
+    pub fn integer_only(self) -> bool {
+        matches!(self, AtomicOp::Sub | AtomicOp::And | AtomicOp::Or | AtomicOp::Xor)
+    }
+}
+
+impl Accessors {
+    /// Whether the module updates buffer elements atomically (and so needs
+    /// the atomic heap).
+    pub fn atomic(&self) -> bool {
+        self.functions.keys().any(|n| n.starts_with(rt_abi::wgsl::ATOMIC_PREFIX))
+    }
+
+    /// `rt_atomic[2]_<op>_<T>(b, i, v[, new]) -> T`: a bounds-checked atomic
+    /// update of element `i` of a buffer of `u32`, `i32` or `f32` (`scalar`),
+    /// returning the old value (zero out of bounds, after the exception).
+    /// WGSL's atomics work on the heap's `u32` words: `i32` add, sub and the
+    /// bitwise ops are the same bits; `i32` min and max and every `f32`
+    /// arithmetic op are a compare-exchange loop on the computed word;
+    /// `compare_exchange` compares bits, retrying a weak failure until the
+    /// word differs or the exchange happens (a strong compare-exchange).
+    pub fn buffer_atomic(&mut self, dims: u8, op: AtomicOp, scalar: Scalar) -> String {
+        let t = Ty::Scalar(scalar).wgsl();
+        let name = format!("{}{}_{}_{t}", rt_abi::wgsl::ATOMIC_PREFIX, if dims == 2 { "2" } else { "" }, op.name());
+        if self.functions.contains_key(&name) {
+            return name;
+        }
+        let (idx_ty, check, offset) = index_parts(dims);
+        let (to_word, from_word) = match scalar {
+            Scalar::U32 => ("v", "old".to_string()),
+            _ => ("bitcast<u32>(v)", format!("bitcast<{t}>(old)")),
+        };
+        let native = |f: &str| {
+            format!(
+                "let old = {f}(p, {to_word});
+        return {from_word};"
+            )
+        };
+        let cas = |new: &str| {
+            format!(
+                "var old = atomicLoad(p);
+        loop {{
+            let r = atomicCompareExchangeWeak(p, old, {new});
+            if r.exchanged {{
+                return {from_word};
+            }}
+            old = r.old_value;
+        }}"
+            )
+        };
+        let cur = from_word.clone();
+        let update = match (op, scalar) {
+            (AtomicOp::Add, Scalar::F32) => cas(&format!("bitcast<u32>({cur} + v)")),
+            (AtomicOp::Min | AtomicOp::Max, Scalar::F32 | Scalar::I32) => {
+                let cmp = if op == AtomicOp::Min { "<" } else { ">" };
+                cas(&format!("bitcast<u32>(select({cur}, v, v {cmp} {cur}))"))
+            }
+            (AtomicOp::Add, _) => native("atomicAdd"),
+            (AtomicOp::Sub, _) => native("atomicSub"),
+            (AtomicOp::Min, _) => native("atomicMin"),
+            (AtomicOp::Max, _) => native("atomicMax"),
+            (AtomicOp::And, _) => native("atomicAnd"),
+            (AtomicOp::Or, _) => native("atomicOr"),
+            (AtomicOp::Xor, _) => native("atomicXor"),
+            (AtomicOp::Exchange, _) => native("atomicExchange"),
+            (AtomicOp::CompareExchange, _) => {
+                let cur_word = if scalar == Scalar::U32 { "current" } else { "bitcast<u32>(current)" };
+                format!(
+                    "loop {{
+            let r = atomicCompareExchangeWeak(p, {cur_word}, {to_word});
+            if r.exchanged || r.old_value != {cur_word} {{
+                let old = r.old_value;
+                return {from_word};
+            }}
+        }}"
+                )
+            }
+        };
+        let params = if op == AtomicOp::CompareExchange { format!("current: {t}, v: {t}") } else { format!("v: {t}") };
+        self.functions.insert(
+            name.clone(),
+            format!(
+                "fn {name}(b: RtBuffer, i: {idx_ty}, {params}) -> {t} {{
+    if {check} {{
+        let p = &rt_heap[b.offset + {offset}];
+        {update}
+    }}
+    return {t}();
+}}
+"
             ),
         );
         name

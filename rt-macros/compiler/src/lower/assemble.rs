@@ -99,7 +99,7 @@ pub(super) fn assemble(
 /// Stubs for everything the runtime provides. They only need the right
 /// signatures: the linker replaces this whole section.
 fn prelude(m: &ModuleCtx) -> String {
-    let mut s = PRELUDE.clone();
+    let mut s = if m.accessors.borrow().atomic() { ATOMIC_PRELUDE.clone() } else { PRELUDE.clone() };
     for ty in m.trace_types.borrow().values() {
         s.push_str(&format!(
             "fn rt_trace_{}(object: u32, ray: RtRay, prd: ptr<function, {}>, flags: u32, mask: u32) {{}}\n",
@@ -131,4 +131,8 @@ pub fn resumable_stubs(m: &ModuleCtx) -> String {
 
 /// The fixed part of the stub prelude: the contract's records and a stub
 /// of every runtime function (`rt_abi::wgsl::stub_prelude`).
-pub static PRELUDE: std::sync::LazyLock<String> = std::sync::LazyLock::new(rt_abi::wgsl::stub_prelude);
+pub static PRELUDE: std::sync::LazyLock<String> = std::sync::LazyLock::new(|| rt_abi::wgsl::stub_prelude(false));
+
+/// [`PRELUDE`] over the atomic heap, for modules that update buffer
+/// elements atomically.
+pub static ATOMIC_PRELUDE: std::sync::LazyLock<String> = std::sync::LazyLock::new(|| rt_abi::wgsl::stub_prelude(true));

@@ -37,7 +37,7 @@ use std::cell::RefCell;
 use std::collections::{BTreeMap, HashMap, HashSet};
 use std::rc::Rc;
 
-pub use assemble::{PRELUDE, resumable_stubs};
+pub use assemble::{ATOMIC_PRELUDE, PRELUDE, resumable_stubs};
 pub use items::collect_calls;
 pub use resolve::{is_reserved, resolve_type, wgsl_ident};
 

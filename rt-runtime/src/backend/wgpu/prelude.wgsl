@@ -82,8 +82,8 @@ fn rt_m4(w: u32) -> mat4x4<f32> {
         vec4<f32>(rt_f(w + 12u), rt_f(w + 13u), rt_f(w + 14u), rt_f(w + 15u)));
 }
 
-fn rt_load_RtBuffer(w: u32) -> RtBuffer { return RtBuffer(rt_heap[w], rt_heap[w + 1u], rt_heap[w + 2u], rt_heap[w + 3u]); }
-fn rt_load_RtSampler(w: u32) -> RtSampler { return RtSampler(rt_heap[w], rt_heap[w + 1u], rt_heap[w + 2u], rt_heap[w + 3u]); }
+fn rt_load_RtBuffer(w: u32) -> RtBuffer { return RtBuffer(rt_hw(w), rt_hw(w + 1u), rt_hw(w + 2u), rt_hw(w + 3u)); }
+fn rt_load_RtSampler(w: u32) -> RtSampler { return RtSampler(rt_hw(w), rt_hw(w + 1u), rt_hw(w + 2u), rt_hw(w + 3u)); }
 
 fn rt_buf_check(b: RtBuffer, i: u32) -> bool {
     if i < b.len { return true; }
@@ -153,7 +153,7 @@ fn rt_tex_wrap(i: i32, n: i32, mode: u32) -> u32 {
 }
 fn rt_texel(s: RtSampler, x: u32, y: u32) -> vec4<f32> {
     let w = s.offset + (y * s.width + x) * 4u;
-    return vec4<f32>(bitcast<f32>(rt_heap[w]), bitcast<f32>(rt_heap[w + 1u]), bitcast<f32>(rt_heap[w + 2u]), bitcast<f32>(rt_heap[w + 3u]));
+    return vec4<f32>(bitcast<f32>(rt_hw(w)), bitcast<f32>(rt_hw(w + 1u)), bitcast<f32>(rt_hw(w + 2u)), bitcast<f32>(rt_hw(w + 3u)));
 }
 fn rt_tex_fetch(s: RtSampler, texel: vec2<u32>) -> vec4<f32> {
     if s.width == 0u || s.height == 0u { return vec4<f32>(); }
@@ -224,10 +224,10 @@ fn rt_log_exception() {
 fn rt_default_exception(b: RtBuffer) {
     if rt_idx.x < b.width && rt_idx.y < b.height {
         let w = b.offset + (rt_idx.y * b.width + rt_idx.x) * 4u;
-        rt_heap[w] = bitcast<u32>(1.0);
-        rt_heap[w + 1u] = 0u;
-        rt_heap[w + 2u] = bitcast<u32>(1.0);
-        rt_heap[w + 3u] = bitcast<u32>(1.0);
+        rt_hw_set(w, bitcast<u32>(1.0));
+        rt_hw_set(w + 1u, 0u);
+        rt_hw_set(w + 2u, bitcast<u32>(1.0));
+        rt_hw_set(w + 3u, bitcast<u32>(1.0));
     }
 }
 
@@ -368,4 +368,4 @@ fn rt_hit_kind(custom: bool, gi: u32, prim: u32, w2o: mat4x4<f32>, d: vec3<f32>)
     return 2u;
 }
 
-fn rt_load_object(w: u32) -> u32 { return rt_heap[w]; }
+fn rt_load_object(w: u32) -> u32 { return rt_hw(w); }

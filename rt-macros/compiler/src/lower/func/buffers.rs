@@ -2,6 +2,7 @@
 //! methods through the heap accessors, and `Sampler2d`'s methods.
 
 use super::*;
+use crate::lower::accessors::AtomicOp;
 
 impl FnLowerer<'_> {
     pub(super) fn buffer_index(&mut self, kind: BufferKind, e: &Expr) -> Result<Val> {
@@ -79,15 +80,88 @@ impl FnLowerer<'_> {
                 self.emit(line);
                 Ok(Val::new("", Ty::Unit))
             }
+            (name, _) if AtomicOp::of_method(name).is_some() => {
+                let op = AtomicOp::of_method(name).expect("matched");
+                self.buffer_atomic(recv, kind, elem, op, name, args, name_span, span)
+            }
             _ => Err(Error::new(
                 name_span,
                 format!(
-                    "no method `{name}` on `{}<{elem}>` (it has load, store, {})",
+                    "no method `{name}` on `{}<{elem}>` (it has load, store, {}, and the atomic_* updates on `RwBuffer`s of `u32`, `i32` and `f32`)",
                     kind.rust_name(),
                     if kind.dims == 2 { "size" } else { "len, is_empty" }
                 ),
             )),
         }
+    }
+
+    /// `buffer.atomic_<op>(index, value)` (`atomic_compare_exchange(index,
+    /// current, new)`): the old value, through a `let` so the update happens
+    /// once, in Rust's order.
+    #[allow(clippy::too_many_arguments)]
+    fn buffer_atomic(
+        &mut self,
+        recv: Val,
+        kind: BufferKind,
+        elem: &Ty,
+        op: AtomicOp,
+        name: &str,
+        args: &[&Expr],
+        name_span: Span,
+        span: Span,
+    ) -> Result<Val> {
+        let ty_name = format!("{}<{elem}>", kind.rust_name());
+        if !kind.writable {
+            return Err(Error::new(
+                name_span,
+                format!(
+                    "cannot update a read-only `{ty_name}` atomically: declare the variable as `RwBuffer`/`RwBuffer2d`"
+                ),
+            ));
+        }
+        let scalar = match elem {
+            Ty::Scalar(s @ (Scalar::U32 | Scalar::I32)) => *s,
+            Ty::Scalar(Scalar::F32) if !op.integer_only() => Scalar::F32,
+            Ty::Scalar(Scalar::F32) => {
+                return Err(Error::new(
+                    name_span,
+                    format!("`{name}` needs integer elements (`u32` or `i32`), found `{ty_name}`"),
+                ));
+            }
+            _ => {
+                return Err(Error::new(
+                    name_span,
+                    format!(
+                        "`{name}` updates one 32-bit element: it needs a buffer of `u32`, `i32` or `f32`, found `{ty_name}`"
+                    ),
+                ));
+            }
+        };
+        let n = if op == AtomicOp::CompareExchange { 3 } else { 2 };
+        if args.len() != n {
+            return Err(Error::new(
+                name_span,
+                format!("`{}::{name}` takes {n} argument(s), found {}", kind.rust_name(), args.len()),
+            ));
+        }
+        let mut idx = self.buffer_index(kind, args[0])?;
+        let mut vals: Vec<Val> = Vec::new();
+        for a in &args[1..] {
+            let at = self.here();
+            let v = self.expr(a, Some(elem))?;
+            let v = self.deref(v);
+            let v = self.coerce(v, elem, a.span())?;
+            let mut earlier: Vec<&mut Val> = vec![&mut idx];
+            earlier.extend(vals.iter_mut());
+            self.spill(at, &mut earlier);
+            vals.push(v);
+        }
+        let f = self.m.accessors.borrow_mut().buffer_atomic(kind.dims, op, scalar);
+        let t = self.tmp();
+        let codes: Vec<String> = vals.iter().map(|v| v.code.clone()).collect();
+        let line = self.mark(span, &format!("let {t} = {f}({}, {}, {});", recv.code, idx.code, codes.join(", ")));
+        self.emit(line);
+        Ok(Val::new(t, elem.clone()))
     }
 
     pub(super) fn sampler_method(

@@ -32,13 +32,14 @@ const TRAVERSE: &str = include_str!("../compute/traverse.wgsl");
 const GRAPH: &str = include_str!("../compute/graph.wgsl");
 
 /// The start of every module: the records and heap binding the programs
-/// were validated against (rt-abi's, not a copy), the exception codes and
-/// ray flags, the launch uniform, the instance record's and node table's
-/// constants, then the runtime's implementations of the contract's
-/// functions.
-pub fn prelude() -> String {
+/// were validated against (rt-abi's, not a copy; of atomic words when
+/// `atomic`: some linked program updates buffer elements atomically), the
+/// exception codes and ray flags, the launch uniform, the instance record's
+/// and node table's constants, then the runtime's implementations of the
+/// contract's functions.
+pub fn prelude(atomic: bool) -> String {
     let mut out = String::from(rt_abi::wgsl::RECORDS);
-    out.push_str(rt_abi::wgsl::HEAP);
+    out.push_str(rt_abi::wgsl::heap(atomic));
     out.push_str(&rt_abi::wgsl::floats());
     out.push_str(&rt_abi::wgsl::constants());
     out.push_str(&rt_abi::records::LaunchUniform::wgsl());
@@ -239,7 +240,10 @@ pub fn generate(spec: &KernelSpec) -> Result<Generated> {
 
     // Ray queries are a WGSL extension, enabled before anything else.
     let mut out = if spec.ray_query_slots > 0 { String::from("enable wgpu_ray_query;\n") } else { String::new() };
-    out.push_str(&prelude());
+    // One program's atomic update makes the whole heap atomic words: the
+    // binding has one type, and the same buffer may be another program's.
+    let atomic = functions.iter().any(|(name, _)| name.starts_with(rt_abi::wgsl::ATOMIC_PREFIX));
+    out.push_str(&prelude(atomic));
     out.push_str(&scene_access(spec.scene_bindings));
     out.push_str(&format!(
         "\nconst RT_BVH_STACK: u32 = {}u;\nconst RT_TLAS_STACK: u32 = {}u;\nconst RT_GROUPS: bool = {};\nconst RT_TRIANGLES_ONLY: bool = {};\nconst RT_CWBVH: bool = {};\nconst RT_CW_STACK: u32 = {}u;\n",
