@@ -5,7 +5,7 @@
 //! bunny's shadow side is darker than its lit side.
 
 use examples::bunny::{self, MeshView};
-use examples::{EXAMPLES, Image, Rendered, Settings, cornell, envmap, instances, mesh, tutorial};
+use examples::{EXAMPLES, Image, Rendered, Settings, cornell, envmap, instances, mesh, receiver_grid, tutorial};
 use glam::{Vec3, Vec4};
 
 const W: u32 = 64;
@@ -200,4 +200,45 @@ fn instances_share_one_mesh_but_not_one_colour() {
     }
     assert_eq!(instances::transforms().len(), 100);
     assert!(hues.len() >= 4, "only {} colours among the instances: {hues:?}", hues.len());
+}
+
+/// The receiver grid's pixel over floor point `(x, z)`.
+fn grid_pixel(image: &Image, x: f32, z: f32) -> (u32, u32) {
+    let half = glam::Vec2::new(2.0 * W as f32 / H as f32, 2.0);
+    let u = (x / half.x * 0.5 + 0.5) * W as f32;
+    let v = (z / half.y * 0.5 + 0.5) * H as f32;
+    assert!(
+        u >= 0.0 && v >= 0.0 && (u as u32) < image.width && (v as u32) < image.height,
+        "({x}, {z}) is off the grid"
+    );
+    (u as u32, v as u32)
+}
+
+#[test]
+fn the_receiver_grid_counts_the_inverse_square_law_and_the_walls_shadow() {
+    let image = render("receiver_grid").image;
+    let s = receiver_grid::SOURCE;
+    // A source emitting uniformly over its lower hemisphere puts N / (2 pi h^2)
+    // rays per unit area at its foot; a uniform spread over the floor
+    // (2w x 2d) would put N / (4 w d). The picture shows their ratio a as
+    // 1 - exp(-1.2 a) in red (plus a little of the reflected field's).
+    let floor_area = 4.0 * (2.0 * W as f32 / H as f32) * 2.0;
+    let a = floor_area / (std::f32::consts::TAU * s.y * s.y);
+    let want = 1.0 - (-1.2 * a).exp();
+    let (px, py) = grid_pixel(&image, s.x, s.z);
+    let mut red = 0.0;
+    for dy in 0..5 {
+        for dx in 0..5 {
+            red += image.at(px + dx - 2, py + dy - 2).x / 25.0;
+        }
+    }
+    assert!((red - want).abs() < 0.06, "red {red} at the source's foot, want {want} (a = {a})");
+    // Behind the long wall (z from -1.5 to -1.3, 1.2 high), seen from the
+    // source 1.8 high: no direct ray reaches the floor to the far edge, so
+    // red is only the reflected field's share (0.15 of its blue).
+    let shadow = image.at(grid_pixel(&image, 0.5, -1.8).0, grid_pixel(&image, 0.5, -1.8).1);
+    assert!(shadow.x <= 0.15 * shadow.z + 0.02, "direct sound behind the wall: {shadow}");
+    // The obstacles' tops are grey.
+    let top = image.at(grid_pixel(&image, -1.3, -0.25).0, grid_pixel(&image, -1.3, -0.25).1);
+    assert!((top.x - top.y).abs() < 1e-6 && (top.y - top.z).abs() < 1e-6 && top.x > 0.3, "box top: {top}");
 }

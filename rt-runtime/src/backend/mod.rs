@@ -355,7 +355,7 @@ pub(crate) fn launch(
     let mut report = LaunchReport::default();
     let (mut last, mut done) = (None, 0);
     let result = loop {
-        let size = if last.is_none() { first } else { pace.next_size(budget, entry, last) };
+        let size = pace.next_size(budget, entry, last);
         let Some(tile) = tiler.next_tile(size) else { break Ok(()) };
         let last_tile = tiler.finished();
         let launch = Launch { scene, settings, accels, entry, width, height, tile, last_tile };
