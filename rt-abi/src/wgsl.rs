@@ -103,6 +103,13 @@ fn rt_hw_set(w: u32, v: u32) { atomicStore(&rt_heap[w], v); }
 /// [`ATOMIC_HEAP`], and so does every megakernel that links it.
 pub const ATOMIC_PREFIX: &str = "rt_atomic";
 
+/// Whether a module whose functions are named `names` needs
+/// [`ATOMIC_HEAP`]: one of them is an atomic accessor. The compiler asks it
+/// of a program's module, the runtime of a megakernel's linked functions.
+pub fn needs_atomic_heap<'a>(mut names: impl Iterator<Item = &'a str>) -> bool {
+    names.any(|n| n.starts_with(ATOMIC_PREFIX))
+}
+
 /// [`ATOMIC_HEAP`] or [`HEAP`].
 pub fn heap(atomic: bool) -> &'static str {
     if atomic { ATOMIC_HEAP } else { HEAP }

@@ -155,35 +155,28 @@ pub enum AtomicOp {
     CompareExchange,
 }
 
+/// Each op with the name its method and accessor carry (`atomic_<name>`).
+const ATOMIC_OPS: [(AtomicOp, &str); 9] = [
+    (AtomicOp::Add, "add"),
+    (AtomicOp::Sub, "sub"),
+    (AtomicOp::Min, "min"),
+    (AtomicOp::Max, "max"),
+    (AtomicOp::And, "and"),
+    (AtomicOp::Or, "or"),
+    (AtomicOp::Xor, "xor"),
+    (AtomicOp::Exchange, "exchange"),
+    (AtomicOp::CompareExchange, "compare_exchange"),
+];
+
 impl AtomicOp {
     /// The op of method `name` (`atomic_add`, ...).
     pub fn of_method(name: &str) -> Option<AtomicOp> {
-        Some(match name.strip_prefix("atomic_")? {
-            "add" => AtomicOp::Add,
-            "sub" => AtomicOp::Sub,
-            "min" => AtomicOp::Min,
-            "max" => AtomicOp::Max,
-            "and" => AtomicOp::And,
-            "or" => AtomicOp::Or,
-            "xor" => AtomicOp::Xor,
-            "exchange" => AtomicOp::Exchange,
-            "compare_exchange" => AtomicOp::CompareExchange,
-            _ => return None,
-        })
+        let name = name.strip_prefix("atomic_")?;
+        ATOMIC_OPS.iter().find(|(_, n)| *n == name).map(|(op, _)| *op)
     }
 
     fn name(self) -> &'static str {
-        match self {
-            AtomicOp::Add => "add",
-            AtomicOp::Sub => "sub",
-            AtomicOp::Min => "min",
-            AtomicOp::Max => "max",
-            AtomicOp::And => "and",
-            AtomicOp::Or => "or",
-            AtomicOp::Xor => "xor",
-            AtomicOp::Exchange => "exchange",
-            AtomicOp::CompareExchange => "compare_exchange",
-        }
+        ATOMIC_OPS.iter().find(|(op, _)| *op == self).map(|(_, n)| *n).expect("every op is in ATOMIC_OPS")
     }
 
     /// Whether the op takes only integers (bitwise ops and `sub`).
@@ -196,7 +189,7 @@ impl Accessors {
     /// Whether the module updates buffer elements atomically (and so needs
     /// the atomic heap).
     pub fn atomic(&self) -> bool {
-        self.functions.keys().any(|n| n.starts_with(rt_abi::wgsl::ATOMIC_PREFIX))
+        rt_abi::wgsl::needs_atomic_heap(self.functions.keys().map(String::as_str))
     }
 
     /// `rt_atomic[2]_<op>_<T>(b, i, v[, new]) -> T`: a bounds-checked atomic
@@ -236,12 +229,11 @@ impl Accessors {
         }}"
             )
         };
-        let cur = from_word.clone();
         let update = match (op, scalar) {
-            (AtomicOp::Add, Scalar::F32) => cas(&format!("bitcast<u32>({cur} + v)")),
+            (AtomicOp::Add, Scalar::F32) => cas(&format!("bitcast<u32>({from_word} + v)")),
             (AtomicOp::Min | AtomicOp::Max, Scalar::F32 | Scalar::I32) => {
                 let cmp = if op == AtomicOp::Min { "<" } else { ">" };
-                cas(&format!("bitcast<u32>(select({cur}, v, v {cmp} {cur}))"))
+                cas(&format!("bitcast<u32>(select({from_word}, v, v {cmp} {from_word}))"))
             }
             (AtomicOp::Add, _) => native("atomicAdd"),
             (AtomicOp::Sub, _) => native("atomicSub"),

@@ -33,6 +33,9 @@ impl FnLowerer<'_> {
                 Ok(())
             }
         };
+        if let Some(op) = AtomicOp::of_method(name) {
+            return self.buffer_atomic(recv, kind, elem, op, name, args, name_span, span);
+        }
         match (name, kind.dims) {
             ("len", 1) => {
                 want_args(0)?;
@@ -79,10 +82,6 @@ impl FnLowerer<'_> {
                 let line = self.mark(span, &format!("{f}({}, {}, {});", recv.code, idx.code, v.code));
                 self.emit(line);
                 Ok(Val::new("", Ty::Unit))
-            }
-            (name, _) if AtomicOp::of_method(name).is_some() => {
-                let op = AtomicOp::of_method(name).expect("matched");
-                self.buffer_atomic(recv, kind, elem, op, name, args, name_span, span)
             }
             _ => Err(Error::new(
                 name_span,

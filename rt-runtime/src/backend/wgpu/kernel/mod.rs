@@ -242,7 +242,7 @@ pub fn generate(spec: &KernelSpec) -> Result<Generated> {
     let mut out = if spec.ray_query_slots > 0 { String::from("enable wgpu_ray_query;\n") } else { String::new() };
     // One program's atomic update makes the whole heap atomic words: the
     // binding has one type, and the same buffer may be another program's.
-    let atomic = functions.iter().any(|(name, _)| name.starts_with(rt_abi::wgsl::ATOMIC_PREFIX));
+    let atomic = rt_abi::wgsl::needs_atomic_heap(functions.keys().copied());
     out.push_str(&prelude(atomic));
     out.push_str(&scene_access(spec.scene_bindings));
     out.push_str(&format!(
