@@ -163,6 +163,7 @@ pub fn mesh_scene_from(
     ctx.set_var(Scope::Context, "top_shadower", top)?;
     let mut scene = Scene::new(ctx, output, settings);
     scene.frames = settings.spp;
+    scene.accumulation = Some(lit.accumulation);
     Ok(scene)
 }
 
@@ -171,6 +172,8 @@ pub fn mesh_scene_from(
 pub struct Lit {
     shade: rt_runtime::ProgramId,
     block: rt_runtime::ProgramId,
+    /// The accumulation buffer.
+    pub accumulation: rt_runtime::BufferId,
 }
 
 impl Lit {
@@ -225,7 +228,7 @@ pub fn light_and_frame(
     ctx.set_var(Scope::Context, "phong_exp", 40.0f32)?;
     let shade = ctx.create_program(&occluded_shade::PROGRAM);
     let block = ctx.create_program(&any_hit_shadow::PROGRAM);
-    Ok(Lit { shade, block })
+    Ok(Lit { shade, block, accumulation: accum })
 }
 
 /// The floor under `[min, max]`: a square 80 radii wide at `min.y`.

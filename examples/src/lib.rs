@@ -23,7 +23,7 @@
 //! examples 1 to 7, [`scene`] the host side of every example (settings,
 //! camera, rendering to an [`Image`]), and [`mesh`] OBJ loading with
 //! line-precise errors; [`viewer`] is the live viewer's progressive
-//! rendering, and [`model`] a user's OBJ or glTF file framed by the
+//! rendering, [`present`] its way to a window from the GPU, and [`model`] a user's OBJ or glTF file framed by the
 //! camera they ask for. Each module builds its scene with the public API of
 //! `rt-runtime` only.
 //!
@@ -54,6 +54,7 @@ pub use rt_scene::obj as mesh;
 pub mod normal;
 pub mod parts;
 pub mod phong;
+pub mod present;
 pub mod progress_bar;
 pub mod receiver_grid;
 pub mod reflections;

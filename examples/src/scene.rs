@@ -294,6 +294,8 @@ pub struct Scene {
     pub ctx: Context,
     /// A `width` x `height` `Vec4` buffer, launch index (0, 0) bottom-left.
     pub output: BufferId,
+    /// The buffer a progressive scene accumulates its samples in, if any.
+    pub accumulation: Option<BufferId>,
     pub width: u32,
     pub height: u32,
     /// Launches per picture: progressive scenes accumulate one launch per
@@ -347,7 +349,15 @@ impl Scene {
 
     /// A one-launch scene.
     pub fn new(ctx: Context, output: BufferId, settings: &Settings) -> Scene {
-        Scene { ctx, output, width: settings.width, height: settings.height, frames: 1, pre_launch: None }
+        Scene {
+            ctx,
+            output,
+            accumulation: None,
+            width: settings.width,
+            height: settings.height,
+            frames: 1,
+            pre_launch: None,
+        }
     }
 
     /// Launches entry point 0 `frames` times, calling `progress` after

@@ -41,12 +41,27 @@ pub struct Frame {
     /// The running mean over [`Progressive::samples`] samples, gamma
     /// corrected, launch-index order (row 0 at the bottom).
     pub image: Image,
+    pub sample: Sample,
+}
+
+/// What one sample's launch cost.
+#[derive(Clone, Copy, Debug)]
+pub struct Sample {
     /// Rays this launch traced.
     pub rays: u64,
     /// Wall time of the launch and the read-back.
     pub seconds: f64,
     /// Pixels that raised an exception (painted magenta).
     pub exceptions: usize,
+}
+
+/// The buffer a window shows: the output buffer, its rows' length, and
+/// the part of it the picture takes.
+#[derive(Clone, Copy, Debug)]
+pub struct Output {
+    pub buffer: rt_runtime::BufferId,
+    pub stride: u32,
+    pub size: (u32, u32),
 }
 
 /// A mesh scene refined one sample per launch while nothing changes.
@@ -58,6 +73,8 @@ pub struct Progressive {
     samples: u32,
     view: MeshView,
     bounds: (Vec3, Vec3),
+    /// Whether the output and accumulation buffers stay on the device.
+    device_local: bool,
 }
 
 impl Progressive {
@@ -73,6 +90,7 @@ impl Progressive {
             view,
             bounds: (loaded.min, loaded.max),
             scene,
+            device_local: false,
         })
     }
 
@@ -110,6 +128,29 @@ impl Progressive {
         &self.scene.ctx
     }
 
+    /// The runtime context, to open its device for a window
+    /// ([`crate::present::GpuPresenter::open`]).
+    pub fn context_mut(&mut self) -> &mut rt_runtime::Context {
+        &mut self.scene.ctx
+    }
+
+    /// Keeps the output and accumulation buffers on the wgpu device
+    /// (`Context::set_buffer_device_local`): launches read nothing back,
+    /// and [`Progressive::output`] says where a window finds the picture.
+    pub fn keep_on_device(&mut self, on: bool) -> Result<(), Error> {
+        self.device_local = on;
+        let ctx = &mut self.scene.ctx;
+        ctx.set_buffer_device_local(self.scene.output, on)?;
+        let accumulation = self.scene.accumulation.expect("mesh_scene accumulates");
+        ctx.set_buffer_device_local(accumulation, on)?;
+        Ok(())
+    }
+
+    /// The buffer the picture is in.
+    pub fn output(&self) -> Output {
+        Output { buffer: self.scene.output, stride: self.capacity.0, size: (self.scene.width, self.scene.height) }
+    }
+
     /// Looks through `camera` from the next refinement on; a different
     /// camera starts the picture again.
     pub fn set_camera(&mut self, camera: Camera) {
@@ -139,7 +180,9 @@ impl Progressive {
             ctx.set_var(Scope::Context, "output_buffer", output)?;
             ctx.set_var(Scope::Context, "accum_buffer", accum)?;
             self.scene.output = output;
+            self.scene.accumulation = Some(accum);
             self.capacity = capacity;
+            self.keep_on_device(self.device_local)?;
         }
         self.scene.width = width;
         self.scene.height = height;
@@ -150,6 +193,17 @@ impl Progressive {
     /// Adds one sample to every pixel (or starts again after a change) and
     /// returns the picture so far.
     pub fn refine(&mut self) -> Result<Frame, Error> {
+        let start = Instant::now();
+        let mut sample = self.sample()?;
+        let image = self.picture()?;
+        sample.seconds = start.elapsed().as_secs_f64();
+        Ok(Frame { image, sample })
+    }
+
+    /// [`Progressive::refine`] without reading the picture back: it stays
+    /// in [`Progressive::output`] (on the device, with
+    /// [`Progressive::keep_on_device`]).
+    pub fn sample(&mut self) -> Result<Sample, Error> {
         let (width, height) = (self.scene.width, self.scene.height);
         let start = Instant::now();
         let ctx = &mut self.scene.ctx;
@@ -158,17 +212,18 @@ impl Progressive {
         }
         ctx.set_var(Scope::Context, "frame", self.samples)?;
         let report = ctx.launch(0, width, height)?;
-        let all = ctx.read_buffer::<Vec4>(self.scene.output)?;
+        self.samples += 1;
+        Ok(Sample { rays: report.rays, seconds: start.elapsed().as_secs_f64(), exceptions: report.exceptions.len() })
+    }
+
+    /// The picture so far, read from the output buffer.
+    pub fn picture(&self) -> Result<Image, Error> {
+        let (width, height) = (self.scene.width, self.scene.height);
+        let all = self.scene.ctx.read_buffer::<Vec4>(self.scene.output)?;
         let stride = self.capacity.0 as usize;
         let pixels =
             (0..height as usize).flat_map(|y| &all[y * stride..y * stride + width as usize]).copied().collect();
-        self.samples += 1;
-        Ok(Frame {
-            image: Image { width, height, pixels },
-            rays: report.rays,
-            seconds: start.elapsed().as_secs_f64(),
-            exceptions: report.exceptions.len(),
-        })
+        Ok(Image { width, height, pixels })
     }
 }
 
@@ -233,7 +288,7 @@ mod tests {
             let fresh =
                 bunny::mesh_scene(&loaded, &settings, MeshView::default()).unwrap().render(&mut |_| {}).unwrap();
             assert_eq!(frame.image, fresh.image, "{w}x{h}");
-            assert!(frame.rays >= (w * h) as u64);
+            assert!(frame.sample.rays >= (w * h) as u64);
         }
     }
 

@@ -218,22 +218,76 @@ fn viewer_under_xvfb_shows_what_render_draws() {
     assert!(mean > 2.0, "turning the camera changed little: mean difference {mean}");
     let summary = std::fs::read_to_string(dir.join("stdout.txt")).unwrap();
     // The third turn's frame is the first sample of the still view.
-    assert!(summary.trim_end().ends_with(", 3 samples accumulated"), "{summary}");
+    assert!(summary.contains(", 3 samples accumulated"), "{summary}");
+    assert!(summary.contains("shown through the host (softbuffer)"), "{summary}");
 }
 
-/// On the wgpu backend (lavapipe without a GPU) the window shows the same
-/// picture, within the backends' rounding.
+/// The bytes the summary says the last launch read back from the device.
+fn read_back(summary: &str) -> u64 {
+    let (before, _) = summary.rsplit_once(" bytes read back from the device by the last launch").expect(summary);
+    before.rsplit(' ').next().unwrap().parse().unwrap()
+}
+
+/// On the wgpu backend (lavapipe without a GPU) frames go from the
+/// launch's buffer to the window on the device: the launches read back
+/// only their log, the window (read back from the X server; any other
+/// picture is a warning on stderr, which `screenshot` refuses) holds
+/// exactly the device's picture in `render`'s 8-bit colours, and that
+/// picture is the CPU backend's within the backends' rounding. Turning the
+/// camera starts the refinement again there too.
 #[test]
-fn viewer_under_xvfb_runs_on_the_wgpu_backend() {
-    let Some(xvfb) = start_xvfb("viewer_under_xvfb_runs_on_the_wgpu_backend") else { return };
+fn viewer_under_xvfb_shows_frames_from_the_gpu() {
+    let Some(xvfb) = start_xvfb("viewer_under_xvfb_shows_frames_from_the_gpu") else { return };
     let dir = temp_dir("wgpu");
     let teapot = shared_scene("teapot.obj");
     let shot = screenshot(&xvfb.display, &dir, "teapot", SIZE, 4, &[teapot.to_str().unwrap(), "--backend", "wgpu"]);
     let summary = std::fs::read_to_string(dir.join("stdout.txt")).unwrap();
     assert!(summary.contains("with the wgpu backend on "), "{summary}");
+    assert!(summary.contains("shown from the GPU (a wgpu surface on the launch's device)"), "{summary}");
+    // The log's header and the timestamps; a picture would be 96 x 72 x 16 bytes.
+    assert!(read_back(&summary) <= 64, "{summary}");
     assert_shows_a_mesh(&shot, "teapot");
     let (max, mean) = difference(&shot, &rendered(&dir, &teapot, SIZE, 4));
     assert!(max <= 16 && mean < 0.5, "wgpu differs from the CPU backend: max {max}, mean {mean}");
+
+    let turned = screenshot(
+        &xvfb.display,
+        &dir,
+        "turned",
+        SIZE,
+        5,
+        &[teapot.to_str().unwrap(), "--backend", "wgpu", "--spin", "3"],
+    );
+    assert_shows_a_mesh(&turned, "turned");
+    assert!(difference(&shot, &turned).1 > 2.0, "turning the camera changed little");
+    let summary = std::fs::read_to_string(dir.join("stdout.txt")).unwrap();
+    assert!(summary.contains(", 3 samples accumulated"), "{summary}");
+}
+
+/// `--present host` on the wgpu backend: every frame is read back (the
+/// output and accumulation buffers) and copied into the window, which
+/// shows what `--present gpu` shows. `--present gpu` on the CPU backend is
+/// refused in one line.
+#[test]
+fn viewer_can_show_wgpu_frames_through_the_host() {
+    let Some(xvfb) = start_xvfb("viewer_can_show_wgpu_frames_through_the_host") else { return };
+    let dir = temp_dir("wgpu-host");
+    let teapot = shared_scene("teapot.obj");
+    let mesh = teapot.to_str().unwrap();
+    let host = screenshot(&xvfb.display, &dir, "host", SIZE, 2, &[mesh, "--backend", "wgpu", "--present", "host"]);
+    let summary = std::fs::read_to_string(dir.join("stdout.txt")).unwrap();
+    assert!(summary.contains("shown through the host (softbuffer)"), "{summary}");
+    let picture = (SIZE.0 * SIZE.1 * 16) as u64;
+    assert!(read_back(&summary) >= 2 * picture, "{summary}");
+    let gpu = screenshot(&xvfb.display, &dir, "gpu", SIZE, 2, &[mesh, "--backend", "wgpu", "--present", "gpu"]);
+    assert_eq!(difference(&host, &gpu), (0, 0.0), "the two ways to the window differ");
+
+    let run = viewer(Some(&xvfb.display), &[mesh, "--backend", "cpu", "--present", "gpu", "--frames", "1"], &dir);
+    assert_eq!(run.status.code(), Some(2), "{}", run.stderr);
+    assert_eq!(
+        run.stderr.trim_end(),
+        "viewer: `--present gpu` needs the wgpu backend; the cpu backend renders on the host"
+    );
 }
 
 /// Bad input is one line and exit status 2, before any window opens (so

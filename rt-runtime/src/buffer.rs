@@ -135,9 +135,19 @@ pub(crate) struct BufferRec {
     pub width: u32,
     pub height: u32,
     pub dims: u32,
+    /// Whether launches leave what programs write on the device instead of
+    /// reading it back ([`Context::set_buffer_device_local`](crate::Context::set_buffer_device_local)).
+    pub device_local: bool,
+    /// Bumped by every host write of the elements, so a backend holding
+    /// newer words on its device knows when the host's replace them.
+    pub host_version: u64,
 }
 
 impl BufferRec {
+    pub fn new(storage: Box<dyn Storage>, ty: BufferType, (width, height): (u32, u32), dims: u32) -> BufferRec {
+        BufferRec { storage, ty, width, height, dims, device_local: false, host_version: 0 }
+    }
+
     pub fn type_name(&self) -> String {
         let base = match (self.dims, self.ty.writable_by_programs()) {
             (2, true) => "RwBuffer2d",

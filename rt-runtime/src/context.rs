@@ -17,6 +17,9 @@ use glam::{Mat4, Vec4};
 use rt_std::program::{ProgramDescriptor, ProgramKind};
 use rt_std::{FilterMode, RtData, WrapMode};
 
+mod device_buffers;
+pub use device_buffers::{DeviceBuffer, WgpuDevice};
+
 /// A ray-tracing context: the root of everything, as in OptiX.
 ///
 /// It holds the scene it edits ([`Scene`]), the launch settings, the
@@ -149,6 +152,7 @@ impl Context {
 
     /// Runs launches on a wgpu device the application already has.
     pub fn use_wgpu_device(&mut self, device: wgpu::Device, queue: wgpu::Queue, info: wgpu::AdapterInfo) {
+        let _ = self.settle_device_buffers(None);
         self.wgpu_backend().use_device(Gpu::from_device(device, queue, info));
         self.run_on(Backend::Wgpu);
     }
@@ -198,6 +202,13 @@ impl Context {
     /// any wgpu launch).
     pub fn last_upload_bytes(&self) -> u64 {
         self.backends().map(|b| b.stats().last_upload_bytes).sum()
+    }
+
+    /// Bytes the last wgpu launch read back from its device: the output
+    /// buffers (not the device-local ones, [`Context::set_buffer_device_local`]),
+    /// the log's header and what it counted, and the timestamps.
+    pub fn last_read_back_bytes(&self) -> u64 {
+        self.backends().map(|b| b.stats().last_read_back_bytes).sum()
     }
 
     /// The megakernel WGSL of the last wgpu launch (`RT_DUMP_WGSL=1` also
@@ -577,7 +588,7 @@ impl Context {
     /// A 1D buffer holding `data`.
     pub fn create_buffer<T: RtData + Send + Sync>(&mut self, ty: BufferType, data: Vec<T>) -> BufferId {
         let len = data.len() as u32;
-        self.scene.buffers.push(BufferRec { storage: Box::new(Typed::new(data)), ty, width: len, height: 1, dims: 1 });
+        self.scene.buffers.push(BufferRec::new(Box::new(Typed::new(data)), ty, (len, 1), 1));
         BufferId(self.scene.buffers.len() as u32 - 1)
     }
 
@@ -596,13 +607,7 @@ impl Context {
             });
         }
         let zero = T::read_words(&vec![0u32; T::LAYOUT.words as usize]);
-        self.scene.buffers.push(BufferRec {
-            storage: Box::new(Typed::new(vec![zero; n as usize])),
-            ty,
-            width,
-            height,
-            dims: 2,
-        });
+        self.scene.buffers.push(BufferRec::new(Box::new(Typed::new(vec![zero; n as usize])), ty, (width, height), 2));
         Ok(BufferId(self.scene.buffers.len() as u32 - 1))
     }
 
@@ -614,9 +619,18 @@ impl Context {
         })
     }
 
-    /// Reads a buffer's elements back (row-major for 2D buffers).
+    /// Reads a buffer's elements back (row-major for 2D buffers). A
+    /// device-local buffer ([`Context::set_buffer_device_local`]) that a
+    /// wgpu launch wrote is read from the device.
     pub fn read_buffer<T: RtData + Send + Sync>(&self, b: BufferId) -> Result<Vec<T>> {
-        Ok(self.typed::<T>(b)?.to_vec())
+        let typed = self.typed::<T>(b)?;
+        match self.device_words(b) {
+            Some(words) => {
+                let w = T::LAYOUT.words as usize;
+                Ok(words?.chunks_exact(w).take(typed.len()).map(T::read_words).collect())
+            }
+            None => Ok(typed.to_vec()),
+        }
     }
 
     /// Overwrites a buffer's elements (same count). Never relinks.
@@ -630,6 +644,7 @@ impl Context {
         }
         let rec = &mut self.scene.buffers[b.0 as usize];
         rec.storage.as_any_mut().downcast_mut::<Typed<T>>().expect("checked above").write(data);
+        rec.host_version += 1;
         Ok(())
     }
 
@@ -763,9 +778,13 @@ impl Context {
         progress: Option<&mut dyn FnMut(LaunchProgress) -> LaunchControl>,
     ) -> Result<LaunchReport> {
         let before = self.usage_counters();
+        // Device-local buffers another backend holds come to the host first.
+        let settled = self.settle_device_buffers(Some(self.backend.kind()));
         let pacing = Pacing { part, pace: &mut self.pace, progress };
         let (scene, settings, accels) = (&mut self.scene, &self.settings, &mut self.accels);
-        let result = backend::launch(&mut *self.backend, scene, settings, accels, (entry, width, height), pacing);
+        let result = settled.and_then(|()| {
+            backend::launch(&mut *self.backend, scene, settings, accels, (entry, width, height), pacing)
+        });
         if let Some(mut callback) = self.usage_report.take() {
             let after = self.usage_counters();
             let stats = self.backend.stats();

@@ -19,13 +19,14 @@
 //! adapter); 1 if the window could not be opened or rendering failed.
 
 use clap::Parser;
+use examples::present::GpuPresenter;
 use examples::viewer::{self, Progressive};
 use examples::{BackendChoice, Camera, Error, Image, Settings, scene};
 use std::collections::HashSet;
 use std::num::NonZeroU32;
 use std::path::PathBuf;
 use std::process::ExitCode;
-use std::rc::Rc;
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 use winit::application::ApplicationHandler;
 use winit::dpi::{PhysicalPosition, PhysicalSize};
@@ -62,9 +63,22 @@ struct Args {
     /// again).
     #[arg(long, default_value_t = 0)]
     spin: u32,
+    /// How frames reach the window: from the GPU (the wgpu backend's
+    /// frames drawn on its device), through the host (read back, copied by
+    /// softbuffer), or the first that works (auto: from the GPU on the
+    /// wgpu backend).
+    #[arg(long, value_enum, default_value_t = Present::Auto)]
+    present: Present,
     /// Stop refining at this many samples per pixel.
     #[arg(long, default_value_t = 4096, value_parser = clap::value_parser!(u32).range(1..))]
     max_spp: u32,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum Present {
+    Auto,
+    Gpu,
+    Host,
 }
 
 fn parse_size(s: &str) -> Result<(u32, u32), String> {
@@ -125,6 +139,12 @@ fn run(args: &Args) -> Result<(), Failure> {
         eprintln!("viewer: warning: {warning}");
     }
     let (backend, what) = BackendChoice::open_or_choose(args.backend)?;
+    if args.present == Present::Gpu && backend != rt_runtime::Backend::Wgpu {
+        return Err(Failure::Input(Error::Settings(format!(
+            "`--present gpu` needs the wgpu backend; the {} backend renders on the host",
+            backend.name()
+        ))));
+    }
     let (width, height) = args.size;
     let view = Progressive::new(&loaded, &Settings { spp: 1, backend, ..Settings::new(width, height) })?;
     let name = path.file_name().map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned());
@@ -141,14 +161,16 @@ fn run(args: &Args) -> Result<(), Failure> {
     if args.frames.is_some() {
         let totals = &app.totals;
         println!(
-            "viewer: {} frames of {}x{} in {:.2} s with {what}: {:.1} FPS, {:.2} Mrays/s, {} samples accumulated",
+            "viewer: {} frames of {}x{} in {:.2} s with {what}, {}: {:.1} FPS, {:.2} Mrays/s, {} samples accumulated, {} bytes read back from the device by the last launch",
             totals.frames,
             app.view.width(),
             app.view.height(),
             totals.wall.as_secs_f64(),
+            app.shown_window.as_ref().map_or("never shown", |s| s.screen.how()),
             totals.fps(),
             totals.mrays_per_second(),
-            app.view.samples()
+            app.view.samples(),
+            app.view.context().last_read_back_bytes()
         );
     }
     Ok(())
@@ -185,10 +207,30 @@ impl Tally {
     }
 }
 
-/// The window and what it shows.
+/// The window and how it is filled.
 struct Shown {
-    window: Rc<Window>,
-    surface: softbuffer::Surface<Rc<Window>, Rc<Window>>,
+    window: Arc<Window>,
+    screen: Screen,
+}
+
+/// How frames reach the window.
+enum Screen {
+    /// Through the host: each frame read back and copied into the window
+    /// (softbuffer), as the CPU backend renders it.
+    Host(softbuffer::Surface<Arc<Window>, Arc<Window>>),
+    /// From the GPU: the launch's output, left on the device, drawn through
+    /// a wgpu surface on the same device.
+    Gpu(Box<GpuPresenter>),
+}
+
+impl Screen {
+    /// How it shows frames, for the summary line.
+    fn how(&self) -> &'static str {
+        match self {
+            Screen::Host(_) => "shown through the host (softbuffer)",
+            Screen::Gpu(_) => "shown from the GPU (a wgpu surface on the launch's device)",
+        }
+    }
 }
 
 struct App {
@@ -196,6 +238,7 @@ struct App {
     name: String,
     backend: &'static str,
     shown_window: Option<Shown>,
+    present: Present,
     /// The last picture presented, and its `0x00RRGGBB` words (shown again
     /// when the window needs it but the picture is as refined as it gets).
     shown: Option<Image>,
@@ -227,6 +270,7 @@ impl App {
             name,
             backend,
             shown_window: None,
+            present: args.present,
             shown: None,
             shown_words: Vec::new(),
             want_screenshot: args.screenshot.is_some(),
@@ -287,48 +331,54 @@ impl App {
         };
         self.view.resize(width, height)?;
         self.view.set_camera(self.camera);
-        let window_failure = |e: softbuffer::SoftBufferError| Failure::Other(format!("cannot draw in the window: {e}"));
-        if self.converged() && self.shown.is_some() {
-            // Nothing new to draw: show the last picture again (the window
-            // may have been uncovered).
-            let shown = self.shown_window.as_mut().expect("checked above");
-            let mut buffer = shown.surface.buffer_mut().map_err(window_failure)?;
-            if buffer.len() == self.shown_words.len() {
-                buffer.copy_from_slice(&self.shown_words);
-                buffer.present().map_err(window_failure)?;
-            }
-            return Ok(());
-        }
-        let frame = self.view.refine()?;
-        self.shown_words = viewer::to_xrgb(&frame.image);
-        let shown = self.shown_window.as_mut().expect("checked above");
-        shown.surface.resize(w, h).map_err(window_failure)?;
-        let mut buffer = shown.surface.buffer_mut().map_err(window_failure)?;
-        buffer.copy_from_slice(&self.shown_words);
-        buffer.present().map_err(window_failure)?;
-        self.shown = Some(frame.image);
         let last = self.frames_to_run.is_some_and(|n| self.totals.frames + 1 >= n);
-        if last && self.want_screenshot {
-            // The screenshot is the picture sent; reading the window back
-            // checks the whole way to the screen (a covered or off-screen
-            // window reads back wrong, or not at all).
-            match shown.surface.fetch() {
-                Ok(words)
-                    if words.len() == self.shown_words.len()
-                        && words.iter().zip(&self.shown_words).all(|(a, b)| a & 0x00ff_ffff == *b) => {}
-                Ok(_) => eprintln!(
-                    "viewer: warning: the window reads back different from the picture sent to it (covered?); the screenshot is the picture sent"
-                ),
-                Err(e) => eprintln!(
-                    "viewer: warning: cannot read the window back ({e}); the screenshot is the picture sent to it"
-                ),
+        let again = self.converged() && self.totals.frames > 0;
+        let want_screenshot = last && self.want_screenshot;
+        let shown = self.shown_window.as_mut().expect("checked above");
+        let sample = match &mut shown.screen {
+            Screen::Host(surface) => {
+                if again {
+                    // Nothing new to draw: show the last picture again
+                    // (the window may have been uncovered).
+                    return show_words(surface, &self.shown_words);
+                }
+                let frame = self.view.refine()?;
+                self.shown_words = viewer::to_xrgb(&frame.image);
+                surface.resize(w, h).map_err(window_failure)?;
+                show_words(surface, &self.shown_words)?;
+                self.shown = Some(frame.image);
+                if want_screenshot {
+                    // The screenshot is the picture sent; reading the
+                    // window back checks the whole way to the screen (a
+                    // covered or off-screen window reads back wrong, or
+                    // not at all).
+                    check_window(|| surface.fetch().map_err(|e| e.to_string()), &self.shown_words, 1);
+                }
+                frame.sample
             }
-        }
-
+            Screen::Gpu(presenter) => {
+                if again {
+                    return presenter.redraw((width, height)).map_err(Failure::Other);
+                }
+                let sample = self.view.sample()?;
+                let out = self.view.output();
+                presenter.present(self.view.context(), out.buffer, out.stride, out.size).map_err(Failure::Other)?;
+                if want_screenshot {
+                    // The picture the device holds, read back once, and
+                    // the window as the X server has it (the presentation
+                    // may reach it a little later).
+                    let image = self.view.picture()?;
+                    let words = viewer::to_xrgb(&image);
+                    check_window(fetch_window(&shown.window, (w, h)), &words, 50);
+                    self.shown = Some(image);
+                }
+                sample
+            }
+        };
         for tally in [&mut self.totals, &mut self.readout] {
             tally.frames += 1;
-            tally.rays += frame.rays;
-            tally.launch_seconds += frame.seconds;
+            tally.rays += sample.rays;
+            tally.launch_seconds += sample.seconds;
         }
         self.totals.wall = self.started.elapsed();
         self.readout.wall = self.readout_since.elapsed();
@@ -340,7 +390,7 @@ impl App {
                 self.readout.mrays_per_second(),
                 self.view.samples(),
                 self.backend,
-                if frame.exceptions > 0 { format!(", {} exceptions", frame.exceptions) } else { String::new() }
+                if sample.exceptions > 0 { format!(", {} exceptions", sample.exceptions) } else { String::new() }
             ));
             self.readout = Tally::default();
             self.readout_since = Instant::now();
@@ -348,18 +398,87 @@ impl App {
         Ok(())
     }
 
+    /// Opens the window, and on the wgpu backend a surface on the
+    /// context's device (the device opened for it), falling back to the
+    /// host's way with a warning when there is none.
     fn open(&mut self, event_loop: &ActiveEventLoop) -> Result<(), String> {
         let attributes = Window::default_attributes()
             .with_title(format!("{} - {} backend", self.name, self.backend))
             .with_inner_size(PhysicalSize::new(self.size.0, self.size.1));
-        let window = Rc::new(event_loop.create_window(attributes).map_err(|e| e.to_string())?);
-        let context = softbuffer::Context::new(window.clone()).map_err(|e| e.to_string())?;
-        let surface = softbuffer::Surface::new(&context, window.clone()).map_err(|e| e.to_string())?;
+        let window = Arc::new(event_loop.create_window(attributes).map_err(|e| e.to_string())?);
         let size = window.inner_size();
         self.size = (size.width, size.height);
+        let mut screen = None;
+        if self.view.context().backend() == rt_runtime::Backend::Wgpu && self.present != Present::Host {
+            match GpuPresenter::open(self.view.context_mut(), window.clone(), self.size) {
+                Ok(presenter) => {
+                    self.view.keep_on_device(true).map_err(|e| e.to_string())?;
+                    screen = Some(Screen::Gpu(Box::new(presenter)));
+                }
+                Err(e) if self.present == Present::Gpu => return Err(format!("cannot show frames from the GPU: {e}")),
+                Err(e) => eprintln!("viewer: warning: cannot show frames from the GPU ({e}); they go through the host"),
+            }
+        }
+        let screen = match screen {
+            Some(screen) => screen,
+            None => {
+                let context = softbuffer::Context::new(window.clone()).map_err(|e| e.to_string())?;
+                Screen::Host(softbuffer::Surface::new(&context, window.clone()).map_err(|e| e.to_string())?)
+            }
+        };
         window.request_redraw();
-        self.shown_window = Some(Shown { window, surface });
+        self.shown_window = Some(Shown { window, screen });
         Ok(())
+    }
+}
+
+fn window_failure(e: softbuffer::SoftBufferError) -> Failure {
+    Failure::Other(format!("cannot draw in the window: {e}"))
+}
+
+/// Copies `words` into the window and presents them (unless the window's
+/// size changed since they were made).
+fn show_words(surface: &mut softbuffer::Surface<Arc<Window>, Arc<Window>>, words: &[u32]) -> Result<(), Failure> {
+    let mut buffer = surface.buffer_mut().map_err(window_failure)?;
+    if buffer.len() == words.len() {
+        buffer.copy_from_slice(words);
+        buffer.present().map_err(window_failure)?;
+    }
+    Ok(())
+}
+
+/// The window's pixels as the X server has them, read through softbuffer
+/// (whatever drew them).
+fn fetch_window(window: &Arc<Window>, (w, h): (NonZeroU32, NonZeroU32)) -> impl FnMut() -> Result<Vec<u32>, String> {
+    let surface = softbuffer::Context::new(window.clone())
+        .and_then(|context| softbuffer::Surface::new(&context, window.clone()))
+        .and_then(|mut surface| surface.resize(w, h).map(|()| surface));
+    let mut surface = surface.map_err(|e| e.to_string());
+    move || match &mut surface {
+        Ok(surface) => surface.fetch().map_err(|e| e.to_string()),
+        Err(e) => Err(e.clone()),
+    }
+}
+
+/// Warns unless the window reads back as `sent` (`0x00RRGGBB` words),
+/// asking `fetch` up to `tries` times, 20 ms apart.
+fn check_window(mut fetch: impl FnMut() -> Result<Vec<u32>, String>, sent: &[u32], tries: u32) {
+    for attempt in 1..=tries {
+        match fetch() {
+            Ok(words) if words.len() == sent.len() && words.iter().zip(sent).all(|(a, b)| a & 0x00ff_ffff == *b) => {
+                return;
+            }
+            Ok(_) if attempt < tries => std::thread::sleep(Duration::from_millis(20)),
+            Ok(_) => eprintln!(
+                "viewer: warning: the window reads back different from the picture sent to it (covered?); the screenshot is the picture sent"
+            ),
+            Err(e) => {
+                eprintln!(
+                    "viewer: warning: cannot read the window back ({e}); the screenshot is the picture sent to it"
+                );
+                return;
+            }
+        }
     }
 }
 
@@ -435,7 +554,7 @@ impl ApplicationHandler for App {
 
     fn about_to_wait(&mut self, _: &ActiveEventLoop) {
         if let Some(shown) = &self.shown_window
-            && (self.busy() || self.shown.is_none())
+            && (self.busy() || self.totals.frames == 0)
         {
             shown.window.request_redraw();
         }

@@ -187,8 +187,10 @@ pub(crate) struct Launch<'a> {
     pub width: u32,
     pub height: u32,
     pub tile: Tile,
-    /// Whether this is the launch's last tile: the wgpu backend reads the
-    /// outputs back after it only, keeping them on the device in between.
+    /// Whether this is the launch's first tile, and its last: the wgpu
+    /// backend reads the outputs back after the last only, keeping them on
+    /// the device in between.
+    pub first_tile: bool,
     pub last_tile: bool,
 }
 
@@ -204,6 +206,8 @@ pub(crate) struct BackendStats<'a> {
     pub pipelines_created: u64,
     /// Bytes the last launch wrote to a device.
     pub last_upload_bytes: u64,
+    /// Bytes the last launch read back from the device (wgpu).
+    pub last_read_back_bytes: u64,
     /// The last launch's linked kernel source.
     pub linked_wgsl: Option<&'a str>,
     /// The wgpu backend's last traversal and why.
@@ -246,8 +250,19 @@ pub(crate) trait LaunchBackend: Any + Send + Sync {
     fn after_panic(&mut self) {}
     /// Forgets what the tiles of a launch that failed or was cancelled
     /// wrote and did not read back (the wgpu backend uploads its heap
-    /// whole at the next launch).
-    fn discard_unread_outputs(&mut self) {}
+    /// whole at the next launch, after putting the words its device-local
+    /// buffers had before the launch into `buffers`).
+    fn discard_unread_outputs(&mut self, _buffers: &mut [BufferRec]) {}
+    /// Writes the words of the device-local buffers this backend holds
+    /// newer than the host into `buffers`, and holds them no longer.
+    fn settle(&mut self, _buffers: &mut [BufferRec]) -> Result<()> {
+        Ok(())
+    }
+    /// The words of buffer `buffer` where this backend holds them newer
+    /// than the host, whose copy is at `host_version`.
+    fn device_words(&self, _buffer: usize, _host_version: u64) -> Option<Result<Vec<u32>>> {
+        None
+    }
 }
 
 impl Backend {
@@ -357,8 +372,8 @@ pub(crate) fn launch(
     let result = loop {
         let size = pace.next_size(budget, entry, last);
         let Some(tile) = tiler.next_tile(size) else { break Ok(()) };
-        let last_tile = tiler.finished();
-        let launch = Launch { scene, settings, accels, entry, width, height, tile, last_tile };
+        let (first_tile, last_tile) = (last.is_none(), tiler.finished());
+        let launch = Launch { scene, settings, accels, entry, width, height, tile, first_tile, last_tile };
         let ran = run_tile(backend, &launch);
         backend.read_back_outputs(&mut scene.buffers);
         let ran = match ran {
@@ -378,11 +393,11 @@ pub(crate) fn launch(
         }
     };
     if let Err(e) = result {
-        if last.is_some() {
-            backend.discard_unread_outputs();
-        }
         if let Some(kept) = kept {
             put_back(&mut scene.buffers, kept);
+        }
+        if last.is_some() {
+            backend.discard_unread_outputs(&mut scene.buffers);
         }
         return Err(e);
     }

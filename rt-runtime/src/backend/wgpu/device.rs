@@ -11,6 +11,8 @@ use std::sync::{Arc, Mutex};
 
 /// A wgpu device and what the backend keeps on it between launches.
 pub struct Gpu {
+    /// The adapter, when the runtime opened the device.
+    pub(crate) adapter: Option<wgpu::Adapter>,
     pub(crate) device: wgpu::Device,
     pub(crate) queue: wgpu::Queue,
     pub(crate) info: wgpu::AdapterInfo,
@@ -79,9 +81,15 @@ impl Health {
 impl Gpu {
     /// Opens the first adapter wgpu finds (a GPU, else lavapipe).
     pub fn new() -> Result<Gpu> {
-        let instance = instance();
+        Gpu::open(&instance(), None)
+    }
+
+    /// Opens the first adapter of `instance` (that can present to
+    /// `surface`, if given) with the runtime's features and limits.
+    pub fn open(instance: &wgpu::Instance, surface: Option<&wgpu::Surface<'_>>) -> Result<Gpu> {
         let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
             power_preference: wgpu::PowerPreference::HighPerformance,
+            compatible_surface: surface,
             ..Default::default()
         }))
         .map_err(|e| {
@@ -138,7 +146,9 @@ impl Gpu {
             ..Default::default()
         }))
         .map_err(|e| RtError::Gpu(format!("cannot open a device on {}: {e}", adapter.get_info().name)))?;
-        Ok(Gpu::from_parts(device, queue, adapter.get_info(), limits))
+        let mut gpu = Gpu::from_parts(device, queue, adapter.get_info(), limits);
+        gpu.adapter = Some(adapter);
+        Ok(gpu)
     }
 
     /// Uses a device the application already has.
@@ -175,6 +185,7 @@ impl Gpu {
         }));
         let ray_query = device.features().contains(wgpu::Features::EXPERIMENTAL_RAY_QUERY);
         Gpu {
+            adapter: None,
             device,
             queue,
             info,

@@ -31,19 +31,20 @@ impl Records {
 /// The heap of a launch: the values of `records` (resolved now, so a
 /// changed variable takes effect), then the buffers' words, then sampler
 /// texels. Also returns the `(buffer index, heap offset, words)` of the
-/// buffers programs may write.
-#[allow(clippy::type_complexity)]
-pub(crate) fn encode_heap(scene: &Scene, records: &Records) -> Result<(Vec<u32>, Vec<(usize, usize, usize)>)> {
+/// buffers programs may write, and every buffer's `(heap offset, words)`.
+pub(crate) fn encode_heap(scene: &Scene, records: &Records) -> Result<EncodedHeap> {
     let base = records.words as usize;
     let mut heap: Vec<u32> = Vec::with_capacity(base);
     // Data follows the records: buffers, then sampler texels.
     let mut data: Vec<u32> = Vec::new();
     let mut buffer_offsets = Vec::with_capacity(scene.buffers.len());
     let mut outputs = Vec::new();
+    let mut placed = Vec::with_capacity(scene.buffers.len());
     for (i, b) in scene.buffers.iter().enumerate() {
         let start = data.len();
         b.storage.to_words(&mut data);
         buffer_offsets.push(base + start);
+        placed.push((base + start, data.len() - start));
         if b.ty.writable_by_programs() {
             outputs.push((i, base + start, data.len() - start));
         }
@@ -106,5 +107,14 @@ pub(crate) fn encode_heap(scene: &Scene, records: &Records) -> Result<(Vec<u32>,
     if heap.is_empty() {
         heap.push(0);
     }
-    Ok((heap, outputs))
+    Ok(EncodedHeap { words: heap, outputs, placed })
+}
+
+/// A launch's heap: its words, the `(buffer index, heap offset, words)` of
+/// the buffers programs may write, and every buffer's `(heap offset,
+/// words)`.
+pub(crate) struct EncodedHeap {
+    pub(crate) words: Vec<u32>,
+    pub(crate) outputs: Vec<(usize, usize, usize)>,
+    pub(crate) placed: Vec<(usize, usize)>,
 }

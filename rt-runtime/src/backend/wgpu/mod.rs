@@ -77,6 +77,7 @@ pub mod capture;
 pub(crate) mod chain;
 pub(crate) mod compute;
 pub(crate) mod device;
+pub(crate) mod device_local;
 pub(crate) mod dispatch;
 pub(crate) mod heap;
 pub mod kernel;
@@ -97,6 +98,7 @@ use crate::buffer::BufferRec;
 use crate::error::{Result, RtError};
 use crate::scene::Scene;
 use compute::scene::{Encoding, SceneKey};
+use device_local::DeviceLocal;
 use glam::UVec2;
 use readback::{LOG_EXCEPTIONS, LOG_PRINT_WORDS};
 
@@ -127,6 +129,22 @@ impl WgpuBackend {
         self.gpu = Some(gpu);
     }
 
+    /// Where `buffer` lies on the device, after a launch placed it.
+    pub(crate) fn placed(&self, buffer: usize) -> Option<crate::context::DeviceBuffer> {
+        DeviceLocal::placed(self.gpu.as_ref()?, buffer)
+    }
+
+    /// The open device's handles.
+    pub(crate) fn handles(&self) -> Option<crate::context::WgpuDevice> {
+        let gpu = self.gpu.as_ref()?;
+        Some(crate::context::WgpuDevice {
+            adapter: gpu.adapter.clone(),
+            device: gpu.device.clone(),
+            queue: gpu.queue.clone(),
+            info: gpu.info.clone(),
+        })
+    }
+
     /// Opens the device now, unless it is open; describes its adapter.
     pub(crate) fn open(&mut self) -> Result<String> {
         if self.gpu.is_none() {
@@ -154,12 +172,25 @@ impl LaunchBackend for WgpuBackend {
     }
 
     /// The device's heap holds outputs no mirror knows of: a new heap
-    /// buffer, uploaded whole, at the next launch.
-    fn discard_unread_outputs(&mut self) {
+    /// buffer, uploaded whole, at the next launch (device-local buffers'
+    /// words from before the launch go to the host first).
+    fn discard_unread_outputs(&mut self, buffers: &mut [BufferRec]) {
         if let Some(gpu) = self.gpu.as_mut() {
+            DeviceLocal::restore(gpu, buffers);
             gpu.resident.heap = None;
         }
         self.pending = None;
+    }
+
+    fn settle(&mut self, buffers: &mut [BufferRec]) -> Result<()> {
+        match self.gpu.as_mut() {
+            Some(gpu) => DeviceLocal::settle(gpu, buffers),
+            None => Ok(()),
+        }
+    }
+
+    fn device_words(&self, buffer: usize, host_version: u64) -> Option<Result<Vec<u32>>> {
+        DeviceLocal::words(self.gpu.as_ref()?, buffer, host_version)
     }
 
     fn prepare(&mut self) -> Result<()> {
@@ -208,6 +239,7 @@ impl LaunchBackend for WgpuBackend {
             geometry_encodes: gpu.map_or(0, |g| g.geometry_encodes),
             pipelines_created: gpu.map_or(0, |g| g.pipelines_created),
             last_upload_bytes: gpu.map_or(0, |g| g.last_upload_bytes()),
+            last_read_back_bytes: gpu.map_or(0, |g| g.resident.downloaded),
             linked_wgsl: self.last_wgsl.as_deref(),
             traversal: self.last_traversal.as_ref().map(|(t, why)| (*t, why.as_str())),
             blas_builds: gpu.map_or(0, |g| g.ray_query_accels.blas_builds),
@@ -248,7 +280,7 @@ fn launch_on_device(
     let t2 = std::time::Instant::now();
     let (wgsl, warning) = link_kernel(l.entry, &encoding)?;
     *last_wgsl = Some(wgsl.clone());
-    let Encoding { fresh, heap, outputs, rg_vars, ex_vars, .. } = encoding;
+    let Encoding { fresh, heap, outputs, placed, rg_vars, ex_vars, .. } = encoding;
     gpu.scene_encodes += fresh.is_some() as u64;
     gpu.geometry_encodes += fresh.as_ref().is_some_and(|e| e.geometry_words.is_some()) as u64;
     // The scene's bindings: the sections with one of their own, the others
@@ -261,7 +293,13 @@ fn launch_on_device(
     let t3 = std::time::Instant::now();
     let lose = std::mem::take(lose_device);
     let log_words = 4 + LOG_EXCEPTIONS * 3 + LOG_PRINT_WORDS;
-    let mut replaced = resident::upload(&gpu.device, &gpu.queue, &mut gpu.resident, heap, fresh, log_words);
+    let moves = match l.first_tile {
+        true => DeviceLocal::before_upload(gpu, l.scene, placed, &heap, !l.last_tile),
+        false => Vec::new(),
+    };
+    let kept = gpu.resident.device_local.held_ranges();
+    let mut replaced = resident::upload(&gpu.device, &gpu.queue, &mut gpu.resident, (heap, &kept), fresh, log_words);
+    DeviceLocal::after_upload(gpu, &moves);
     let mut accel = std::time::Duration::ZERO;
     if let rayquery::Plan::RayQuery(flat) = &plan {
         let t = std::time::Instant::now();
@@ -280,8 +318,12 @@ fn launch_on_device(
     let capture = capture::folder().map(|folder| capture_before(folder, &wgsl, &gpu.resident, log_words, &tiles));
     let encoder = dispatch::record(gpu, &wgsl, slots, &tiles, replaced);
     // Outputs stay on the device until the launch's last tile (the mirror
-    // still holds what the host does, so no tile uploads them again).
-    let read = if l.last_tile { outputs } else { Vec::new() };
+    // still holds what the host does, so no tile uploads them again), and
+    // device-local ones after it too.
+    let read: Vec<_> = match l.last_tile {
+        true => outputs.iter().copied().filter(|&(i, ..)| !l.scene.buffers[i].device_local).collect(),
+        false => Vec::new(),
+    };
     let results = readback::results(gpu, encoder, &read, lose)?;
     let (header, kernel) = (results.header, results.kernel);
     if let Some(before) = &capture {
@@ -289,6 +331,9 @@ fn launch_on_device(
     }
     // The outputs go to the host's buffers now, whatever happens next.
     *pending = Some(ReadOutputs { words: results.words, outputs: read });
+    if l.last_tile {
+        gpu.resident.device_local.after_launch(l.scene, &outputs);
+    }
     let (exception_words, print_words) = readback::log(gpu, header)?;
     let mut report = LaunchReport::default();
     for w in exception_words.chunks_exact(3) {

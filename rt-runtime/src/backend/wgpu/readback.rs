@@ -171,6 +171,7 @@ pub(crate) fn results(
         encoder.resolve_query_set(set, 0..2, resolved, 0);
         copies.push((resolved, 0, 16));
     }
+    res.downloaded = copies.iter().map(|c| c.2).sum();
     let words = read_back(device, queue, &mut res.readback, encoder, &copies, lose)
         .map_err(|what| health.failure(adapter.clone(), what))?;
     if let Some(errors) = health.take_errors() {
@@ -208,6 +209,7 @@ pub(crate) fn log(gpu: &mut Gpu, header: [u32; 4]) -> Result<(Vec<u32>, Vec<u32>
     let print_base = (4 + LOG_EXCEPTIONS * 3) as u64 * 4;
     let mut copies = vec![(log, 16, exceptions * 12)];
     copies.push((log, print_base, print_used * 4));
+    res.downloaded += copies.iter().map(|c| c.2).sum::<u64>();
     let mut words = read_back(device, queue, &mut res.readback, encoder, &copies, false)
         .map_err(|what| health.failure(adapter.clone(), what))?;
     let prints = words.split_off(exceptions as usize * 3);

@@ -2,7 +2,9 @@
 //! mirrored on the host so a launch uploads only the pages that changed.
 
 use super::compute::scene::{NewScene, ResidentScene};
+use super::device_local::DeviceLocal;
 use super::kernel::SCENE_SECTIONS;
+use std::ops::Range;
 use wgpu::util::DeviceExt;
 
 /// The buffers a context keeps on its device between launches.
@@ -37,6 +39,11 @@ pub(crate) struct Resident {
     pub(crate) bind_slots: u32,
     /// Bytes written to the device by the last launch (for tests).
     pub(crate) uploaded: u64,
+    /// Bytes the last launch read back (outputs, the log, timestamps).
+    pub(crate) downloaded: u64,
+    /// Device-local buffers the device holds newer than the host, and
+    /// where every buffer lies in the heap.
+    pub(crate) device_local: DeviceLocal,
 }
 
 /// A device storage buffer and the words it holds.
@@ -49,20 +56,21 @@ pub(crate) struct Mirrored {
 pub(crate) const PAGE_WORDS: usize = 1024;
 
 impl Resident {
-    /// Makes `slot`'s device buffer hold `words`; returns true if it had to
+    /// Makes `slot`'s device buffer hold `words`, but for the word ranges
+    /// `except` (sorted) when it keeps its size; returns true if it had to
     /// be replaced (a new size).
     pub(crate) fn sync(
         device: &wgpu::Device,
         queue: &wgpu::Queue,
         slot: &mut Option<Mirrored>,
-        words: Vec<u32>,
+        (words, except): (Vec<u32>, &[Range<usize>]),
         label: &str,
         uploaded: &mut u64,
     ) -> bool {
         if let Some(m) = slot
             && m.words.len() == words.len()
         {
-            write_changed(queue, &m.buffer, &mut m.words, &words, 0, uploaded);
+            write_changed(queue, &m.buffer, (&mut m.words, &words, except), 0, uploaded);
             return false;
         }
         let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -94,8 +102,8 @@ impl Resident {
             unreachable!("a section kept on the device is mirrored")
         };
         if m.words.len() == keep_end + tail.len() {
-            write_changed(queue, &m.buffer, &mut m.words[..head.len()], head, 0, uploaded);
-            write_changed(queue, &m.buffer, &mut m.words[keep_end..], &tail, keep_end, uploaded);
+            write_changed(queue, &m.buffer, (&mut m.words[..head.len()], head, &[]), 0, uploaded);
+            write_changed(queue, &m.buffer, (&mut m.words[keep_end..], &tail, &[]), keep_end, uploaded);
             return false;
         }
         let mut words = std::mem::take(&mut m.words);
@@ -103,18 +111,19 @@ impl Resident {
         words.truncate(keep_end);
         words.extend(tail);
         *slot = None;
-        Resident::sync(device, queue, slot, words, label, uploaded)
+        Resident::sync(device, queue, slot, (words, &[]), label, uploaded)
     }
 }
 
 /// Writes the pages of `new` that differ from `old` (the device's words
 /// from word `at` of `buffer` on, same length) into the buffer, a run of
-/// changed pages at a time, and copies them into `old`.
+/// changed pages at a time but for the word ranges `except` (sorted, of
+/// `new`: words the device holds newer, see [`super::device_local`]), and
+/// copies them into `old`.
 pub(crate) fn write_changed(
     queue: &wgpu::Queue,
     buffer: &wgpu::Buffer,
-    old: &mut [u32],
-    new: &[u32],
+    (old, new, except): (&mut [u32], &[u32], &[Range<usize>]),
     at: usize,
     uploaded: &mut u64,
 ) {
@@ -132,10 +141,30 @@ pub(crate) fn write_changed(
             last += 1;
         }
         let run = start..end(last);
-        queue.write_buffer(buffer, ((at + start) * 4) as u64, words_to_bytes(&new[run.clone()]));
-        *uploaded += (run.len() * 4) as u64;
+        let mut from = run.start;
+        for kept in except.iter().filter(|k| k.end > run.start && k.start < run.end) {
+            write_words(queue, buffer, at, new, from..kept.start.max(from), uploaded);
+            from = kept.end.max(from);
+        }
+        write_words(queue, buffer, at, new, from..run.end.max(from), uploaded);
         old[run.clone()].copy_from_slice(&new[run]);
         page = last;
+    }
+}
+
+/// Writes `new[words]` at word `at + words.start` of `buffer` (nothing when
+/// empty).
+fn write_words(
+    queue: &wgpu::Queue,
+    buffer: &wgpu::Buffer,
+    at: usize,
+    new: &[u32],
+    words: Range<usize>,
+    uploaded: &mut u64,
+) {
+    if !words.is_empty() {
+        queue.write_buffer(buffer, ((at + words.start) * 4) as u64, words_to_bytes(&new[words.clone()]));
+        *uploaded += (words.len() * 4) as u64;
     }
 }
 
@@ -144,8 +173,8 @@ pub(crate) fn words_to_bytes(w: &[u32]) -> &[u8] {
     unsafe { std::slice::from_raw_parts(w.as_ptr() as *const u8, std::mem::size_of_val(w)) }
 }
 
-/// Makes the device hold the launch's `heap`, its new scene when there is
-/// one (`fresh`: the sections and the scene they then hold) and a log of
+/// Makes the device hold the launch's `heap` (but for the word ranges
+/// `kept`, which it holds newer), its new scene when there is one (`fresh`: the sections and the scene they then hold) and a log of
 /// `log_words` with its counters reset. Counts the bytes written in
 /// `res.uploaded`; returns true if a buffer was replaced (the bind groups
 /// over it are stale).
@@ -153,12 +182,12 @@ pub(crate) fn upload(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
     res: &mut Resident,
-    heap: Vec<u32>,
+    (heap, kept): (Vec<u32>, &[Range<usize>]),
     fresh: Option<(NewScene, ResidentScene)>,
     log_words: u32,
 ) -> bool {
     res.uploaded = 0;
-    let mut replaced = Resident::sync(device, queue, &mut res.heap, heap, "rt_heap", &mut res.uploaded);
+    let mut replaced = Resident::sync(device, queue, &mut res.heap, (heap, kept), "rt_heap", &mut res.uploaded);
     if let Some((sections, held)) = fresh {
         res.held = None;
         match sections {
@@ -166,7 +195,8 @@ pub(crate) fn upload(
                 res.scene.resize_with(sections.len(), || None);
                 for (s, words) in sections.into_iter().enumerate() {
                     let label = SCENE_SECTIONS[s].binding;
-                    replaced |= Resident::sync(device, queue, &mut res.scene[s], words, label, &mut res.uploaded);
+                    replaced |=
+                        Resident::sync(device, queue, &mut res.scene[s], (words, &[]), label, &mut res.uploaded);
                 }
             }
             NewScene::AroundGeometry { header, tails } => {

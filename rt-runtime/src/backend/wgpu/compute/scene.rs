@@ -605,6 +605,8 @@ pub(crate) struct Encoding {
     pub held_wgsl: Option<String>,
     pub heap: Vec<u32>,
     pub outputs: Vec<(usize, usize, usize)>,
+    /// Every buffer's `(heap offset, words)`.
+    pub placed: Vec<(usize, usize)>,
     pub rg_vars: u32,
     pub ex_vars: u32,
 }
@@ -647,9 +649,9 @@ pub(crate) fn encode_launch(
         (None, Some(h)) => (&h.records, h.rg_vars, h.ex_vars),
         (None, None) => unreachable!("encoded when none is held"),
     };
-    let (heap, outputs) = encode_heap(l.scene, records)?;
+    let heap = encode_heap(l.scene, records)?;
     let held_wgsl = if fresh.is_some() { None } else { held.map(|h| h.wgsl.clone()) };
-    Ok(Encoding { fresh, held_wgsl, heap, outputs, rg_vars, ex_vars })
+    Ok(Encoding { fresh, held_wgsl, heap: heap.words, outputs: heap.outputs, placed: heap.placed, rg_vars, ex_vars })
 }
 
 /// A freshly encoded scene placed in the device's bindings: whole
