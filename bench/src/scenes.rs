@@ -77,17 +77,12 @@ pub fn scenes_dir() -> Result<PathBuf, String> {
         })
 }
 
-/// Every triangle of every object in an OBJ file, quads triangulated.
+/// Every triangle of every object in an OBJ file, quads triangulated, as
+/// the examples load it (`rt_scene::obj`); the peers take flat triangles,
+/// so only positions and indices are kept.
 pub fn load_obj(path: &Path) -> Result<TriangleMesh, String> {
-    let (models, _) =
-        tobj::load_obj(path, &tobj::LoadOptions { triangulate: true, single_index: true, ..Default::default() })
-            .map_err(|e| format!("{}: {e}", path.display()))?;
-    let mut mesh = TriangleMesh::default();
-    for m in &models {
-        let base = mesh.positions.len() as u32;
-        mesh.positions.extend(m.mesh.positions.chunks_exact(3).map(|p| Vec3::new(p[0], p[1], p[2])));
-        mesh.indices.extend(m.mesh.indices.chunks_exact(3).map(|t| [base + t[0], base + t[1], base + t[2]]));
-    }
+    let loaded = rt_scene::obj::load_obj(path).map_err(|e| e.to_string())?;
+    let mesh = TriangleMesh { positions: loaded.mesh.positions, indices: loaded.mesh.indices, ..Default::default() };
     if mesh.indices.is_empty() {
         return Err(format!("{}: no triangles", path.display()));
     }
@@ -147,4 +142,23 @@ pub fn load_all(dir: &Path) -> Result<Vec<BenchScene>, String> {
             ),
         },
     ])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The shared meshes load as every face of the files, fans of triangles
+    /// (what tobj, which the bench used before, gave).
+    #[test]
+    fn the_shared_meshes_load_whole() {
+        let dir = scenes_dir().unwrap();
+        for (file, triangles) in [("stanford-bunny.obj", 69_451), ("teapot.obj", 6_320), ("cornell_box.obj", 34)] {
+            let mesh = load_obj(&dir.join(file)).unwrap();
+            assert_eq!(mesh.indices.len(), triangles, "{file}");
+            assert!(mesh.normals.is_none() && mesh.material_indices.is_none(), "{file}: flat triangles only");
+        }
+        let missing = load_obj(&dir.join("no-such.obj")).unwrap_err();
+        assert!(missing.ends_with("no-such.obj: cannot read the file: no such file"), "{missing}");
+    }
 }

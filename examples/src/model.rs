@@ -57,9 +57,65 @@ pub struct CameraOptions {
     pub ignore_file_camera: bool,
 }
 
+/// The camera flags `render` and `viewer` take, as one clap group.
+#[derive(Clone, Copy, Debug, Default, PartialEq, clap::Args)]
+pub struct CameraArgs {
+    /// The model's up axis (glTF's is y; scans are often z).
+    #[arg(long, value_enum, default_value_t = UpAxis::Y)]
+    pub up: UpAxis,
+    /// Camera azimuth in degrees about the up axis (0: from +Z, 90: from +X).
+    #[arg(long, allow_negative_numbers = true)]
+    pub azimuth: Option<f32>,
+    /// Camera elevation in degrees above the horizon.
+    #[arg(long, allow_negative_numbers = true)]
+    pub elevation: Option<f32>,
+    /// Camera distance from the model's centre (default: what frames it).
+    #[arg(long)]
+    pub distance: Option<f32>,
+    /// Vertical field of view in degrees (default 30, or the file camera's).
+    #[arg(long)]
+    pub fov: Option<f32>,
+    /// Frame the model even when the glTF file has a camera.
+    #[arg(long)]
+    pub no_file_camera: bool,
+}
+
+impl CameraArgs {
+    /// The options, or the first flag no picture can be taken with, by
+    /// name ([`Error::Settings`]: exit status 2).
+    pub fn options(&self) -> Result<CameraOptions, Error> {
+        if let Some(fov) = self.fov
+            && !(fov > 0.0 && fov < 180.0)
+        {
+            return Err(Error::Settings(format!("--fov {fov} is outside (0, 180) degrees")));
+        }
+        if let Some(d) = self.distance
+            && !(d > 0.0 && d.is_finite())
+        {
+            return Err(Error::Settings(format!("--distance {d} must be positive")));
+        }
+        if let Some(e) = self.elevation
+            && !(-89.0..=89.0).contains(&e)
+        {
+            return Err(Error::Settings(format!("--elevation {e} is outside -89..=89 degrees")));
+        }
+        if self.azimuth.is_some_and(|a| !a.is_finite()) {
+            return Err(Error::Settings("--azimuth must be a finite number of degrees".into()));
+        }
+        Ok(CameraOptions {
+            up: self.up,
+            azimuth: self.azimuth,
+            elevation: self.elevation,
+            distance: self.distance,
+            fov: self.fov,
+            ignore_file_camera: self.no_file_camera,
+        })
+    }
+}
+
 impl CameraOptions {
     /// Whether a position was asked for (which overrides a file's camera).
-    fn places_camera(&self) -> bool {
+    pub fn places_camera(&self) -> bool {
         self.azimuth.is_some() || self.elevation.is_some() || self.distance.is_some()
     }
 

@@ -29,11 +29,13 @@
 //! # Ok::<(), examples::Error>(())
 //! ```
 
-use crate::bunny::{self, MeshView};
+use crate::bunny;
 use crate::mesh::LoadedMesh;
+use crate::model::CameraOptions;
 use crate::scene::{Camera, Error, Image, Scene, Settings};
 use glam::{Vec3, Vec4};
 use rt_runtime::{BufferType, Scope};
+use rt_scene::SceneCamera;
 use std::time::Instant;
 
 /// One refinement: the picture so far and what the launch cost.
@@ -71,7 +73,9 @@ pub struct Progressive {
     capacity: (u32, u32),
     camera: Camera,
     samples: u32,
-    view: MeshView,
+    /// How the camera was asked for, and the file's own.
+    options: CameraOptions,
+    file_camera: Option<SceneCamera>,
     bounds: (Vec3, Vec3),
     /// Whether the output and accumulation buffers stay on the device.
     device_local: bool,
@@ -81,14 +85,29 @@ impl Progressive {
     /// `loaded` on a floor, framed as [`bunny::mesh_scene`] frames it, at
     /// `settings`' size on `settings.backend` (`settings.spp` is unused).
     pub fn new(loaded: &LoadedMesh, settings: &Settings) -> Result<Progressive, Error> {
-        let view = MeshView::default();
-        let scene = bunny::mesh_scene(loaded, settings, view)?;
+        Progressive::framed(loaded, settings, CameraOptions::default(), None)
+    }
+
+    /// [`Progressive::new`] seen as `options` ask (`render`'s camera
+    /// flags), or by the file's `file_camera` (`loaded` is already turned
+    /// by `options.up`; the file's camera is turned here).
+    pub fn framed(
+        loaded: &LoadedMesh,
+        settings: &Settings,
+        options: CameraOptions,
+        file_camera: Option<SceneCamera>,
+    ) -> Result<Progressive, Error> {
+        let view = options.view();
+        let bounds = (loaded.min, loaded.max);
+        let camera = options.camera(bounds, file_camera, options.up.to_y_up(), settings.aspect());
+        let scene = bunny::mesh_scene_from(loaded, settings, view, camera)?;
         Ok(Progressive {
             capacity: (scene.width, scene.height),
-            camera: bunny::camera(loaded, view, settings.aspect()),
+            camera,
             samples: 0,
-            view,
-            bounds: (loaded.min, loaded.max),
+            options,
+            file_camera,
+            bounds,
             scene,
             device_local: false,
         })
@@ -98,7 +117,7 @@ impl Progressive {
     /// size (what the viewer's reset key returns to).
     pub fn home_camera(&self) -> Camera {
         let aspect = self.width() as f32 / self.height() as f32;
-        Camera::framing(self.bounds.0, self.bounds.1, self.view.view_direction, self.view.vfov_degrees, aspect)
+        self.options.camera(self.bounds, self.file_camera, self.options.up.to_y_up(), aspect)
     }
 
     /// Half the diagonal of the mesh's bounds: how big it is.
@@ -237,6 +256,7 @@ pub fn to_xrgb(image: &Image) -> Vec<u32> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::bunny::MeshView;
     use crate::mesh;
 
     fn teapot(width: u32, height: u32) -> (LoadedMesh, Progressive) {

@@ -160,12 +160,18 @@ fn screenshot(display: &str, dir: &Path, name: &str, size: (u32, u32), frames: u
 
 /// `render`'s picture of the same mesh at the same size and samples.
 fn rendered(dir: &Path, mesh: &Path, size: (u32, u32), spp: u32) -> image::RgbImage {
+    rendered_with(dir, mesh, size, spp, &[])
+}
+
+/// [`rendered`] with more of `render`'s flags.
+fn rendered_with(dir: &Path, mesh: &Path, size: (u32, u32), spp: u32, extra: &[&str]) -> image::RgbImage {
     let png = dir.join("render.png");
     let (w, h, spp) = (size.0.to_string(), size.1.to_string(), spp.to_string());
     let args = [mesh.to_str().unwrap(), "--out", png.to_str().unwrap(), "--width", &w, "--height", &h];
     let out = Command::new(env!("CARGO_BIN_EXE_render"))
         .args(args)
         .args(["--spp", &spp, "--backend", "cpu"])
+        .args(extra)
         .output()
         .unwrap();
     assert!(out.status.success(), "render: {}", String::from_utf8_lossy(&out.stderr));
@@ -220,6 +226,26 @@ fn viewer_under_xvfb_shows_what_render_draws() {
     // The third turn's frame is the first sample of the still view.
     assert!(summary.contains(", 3 samples accumulated"), "{summary}");
     assert!(summary.contains("shown through the host (softbuffer)"), "{summary}");
+}
+
+/// The camera flags are `render`'s, with its meaning: the same picture to
+/// the byte.
+#[test]
+fn viewer_takes_renders_camera_flags() {
+    let Some(xvfb) = start_xvfb("viewer_takes_renders_camera_flags") else { return };
+    let dir = temp_dir("camera");
+    let teapot = shared_scene("teapot.obj");
+    let flags = ["--up", "z", "--azimuth", "90", "--elevation", "30", "--distance", "9", "--fov", "50"];
+    let mut args = vec![teapot.to_str().unwrap(), "--backend", "cpu"];
+    args.extend(flags);
+    let shot = screenshot(&xvfb.display, &dir, "side", SIZE, 3, &args);
+    assert_shows_a_mesh(&shot, "side");
+    assert_eq!(difference(&shot, &rendered_with(&dir, &teapot, SIZE, 3, &flags)), (0, 0.0));
+    let default = rendered(&dir, &teapot, SIZE, 3);
+    assert!(difference(&shot, &default).1 > 2.0, "the flags changed little");
+    let run = viewer(None, &["--elevation", "95", "--frames", "1"], &dir);
+    assert_eq!(run.status.code(), Some(2), "{}", run.stderr);
+    assert_eq!(run.stderr.trim_end(), "viewer: --elevation 95 is outside -89..=89 degrees");
 }
 
 /// The bytes the summary says the last launch read back from the device.

@@ -15,7 +15,7 @@
 //! image; 1 if rendering or writing failed.
 
 use clap::Parser;
-use examples::model::{self, CameraOptions, UpAxis};
+use examples::model::{self, CameraArgs};
 use examples::scene::Image;
 use examples::{BackendChoice, Error, Settings, parts, progress_bar};
 use std::path::{Path, PathBuf};
@@ -53,24 +53,8 @@ struct Args {
     /// Samples per pixel (one launch each).
     #[arg(long, default_value_t = Settings::DEFAULT_SPP)]
     spp: u32,
-    /// The model's up axis (glTF's is y; scans are often z).
-    #[arg(long, value_enum, default_value_t = UpAxis::Y)]
-    up: UpAxis,
-    /// Camera azimuth in degrees about the up axis (0: from +Z, 90: from +X).
-    #[arg(long, allow_negative_numbers = true)]
-    azimuth: Option<f32>,
-    /// Camera elevation in degrees above the horizon.
-    #[arg(long, allow_negative_numbers = true)]
-    elevation: Option<f32>,
-    /// Camera distance from the model's centre (default: what frames it).
-    #[arg(long)]
-    distance: Option<f32>,
-    /// Vertical field of view in degrees (default 30, or the file camera's).
-    #[arg(long)]
-    fov: Option<f32>,
-    /// Frame the model even when the glTF file has a camera.
-    #[arg(long)]
-    no_file_camera: bool,
+    #[command(flatten)]
+    camera: CameraArgs,
 }
 
 fn main() -> ExitCode {
@@ -115,12 +99,12 @@ fn settings_line(args: &Args, model: &Path, backend: &str) -> Result<String, Err
         args.width,
         args.height,
         args.spp,
-        args.up,
-        args.azimuth,
-        args.elevation,
-        args.distance,
-        args.fov,
-        !args.no_file_camera,
+        args.camera.up,
+        args.camera.azimuth,
+        args.camera.elevation,
+        args.camera.distance,
+        args.camera.fov,
+        !args.camera.no_file_camera,
     ))
 }
 
@@ -129,7 +113,7 @@ fn run(args: &Args) -> Result<(), Error> {
         return merge(args);
     }
     let mesh = args.mesh.as_deref().expect("clap requires a model without --merge");
-    check_camera_args(args)?;
+    let options = args.camera.options()?;
     let tile = args.tile.as_deref().map(parts::parse_tile).transpose()?;
     let rows = match tile {
         Some((k, n)) => parts::band(args.height, k, n)?,
@@ -137,14 +121,6 @@ fn run(args: &Args) -> Result<(), Error> {
     };
     let (backend, what) = BackendChoice::open_or_choose(args.backend)?;
     let settings = Settings { spp: args.spp, backend, ..Settings::new(args.width, args.height) };
-    let options = CameraOptions {
-        up: args.up,
-        azimuth: args.azimuth,
-        elevation: args.elevation,
-        distance: args.distance,
-        fov: args.fov,
-        ignore_file_camera: args.no_file_camera,
-    };
     let mut loaded = model::model_scene(mesh, &settings, options)?;
     for warning in &loaded.warnings {
         eprintln!("render: warning: {warning}");
@@ -173,29 +149,6 @@ fn run(args: &Args) -> Result<(), Error> {
     );
     if !rendered.exceptions.is_empty() {
         eprintln!("render: warning: {} pixels raised exceptions (painted magenta)", rendered.exceptions.len());
-    }
-    Ok(())
-}
-
-/// Camera values a picture cannot be taken with, refused by name.
-fn check_camera_args(args: &Args) -> Result<(), Error> {
-    if let Some(fov) = args.fov
-        && !(fov > 0.0 && fov < 180.0)
-    {
-        return Err(Error::Settings(format!("--fov {fov} is outside (0, 180) degrees")));
-    }
-    if let Some(d) = args.distance
-        && !(d > 0.0 && d.is_finite())
-    {
-        return Err(Error::Settings(format!("--distance {d} must be positive")));
-    }
-    if let Some(e) = args.elevation
-        && !(-89.0..=89.0).contains(&e)
-    {
-        return Err(Error::Settings(format!("--elevation {e} is outside -89..=89 degrees")));
-    }
-    if args.azimuth.is_some_and(|a| !a.is_finite()) {
-        return Err(Error::Settings("--azimuth must be a finite number of degrees".into()));
     }
     Ok(())
 }

@@ -3,10 +3,20 @@
 //! still.
 //!
 //!     cargo run --release -p examples --bin viewer -- [MODEL.{obj,gltf,glb}] [--up z]
+//!         [--azimuth D] [--elevation D] [--distance L] [--fov D] [--no-file-camera]
 //!
-//! Left-drag orbits, the wheel zooms, W/A/S/D walk, Q/E go down and up, R
-//! resets the camera, Esc quits. The title says the frame rate, the rays
-//! per second, the samples so far and the backend.
+//! The camera flags are `render`'s (a glTF file's own camera is used when
+//! it has one and no position is asked for). Left-drag orbits, the wheel
+//! zooms, W/A/S/D walk, Q/E go down and up, R resets the camera, Esc quits.
+//! The title says the frame rate, the rays per second, the samples so far
+//! and the backend.
+//!
+//! On the wgpu backend frames go from the GPU to the window: the picture
+//! stays on the device (`Context::set_buffer_device_local`) and is drawn
+//! through a wgpu surface on the launch's own device
+//! ([`examples::present`]); nothing is read back but the launch's log. On
+//! the CPU backend, or with `--present host`, each frame is copied into the
+//! window through softbuffer.
 //!
 //! For automation, `--frames N --screenshot OUT.png` closes the window
 //! after N frames and writes the last one shown (after reading the window
@@ -42,9 +52,8 @@ struct Args {
     /// The OBJ, glTF or GLB file (default: the Stanford bunny of the shared
     /// scenes); a glTF scene is shown as one mesh, its instances baked.
     mesh: Option<PathBuf>,
-    /// The model's up axis (glTF's is y; scans are often z).
-    #[arg(long, value_enum, default_value_t = examples::model::UpAxis::Y)]
-    up: examples::model::UpAxis,
+    #[command(flatten)]
+    camera: examples::model::CameraArgs,
     /// The window's inner size in pixels.
     #[arg(long, value_parser = parse_size, default_value = "512x384")]
     size: (u32, u32),
@@ -130,11 +139,12 @@ fn run(args: &Args) -> Result<(), Failure> {
     let path = args.mesh.clone().unwrap_or_else(|| scene::shared_scene("stanford-bunny.obj"));
     // glTF scenes are shown flattened into one world-space mesh (the
     // viewer's scene is `bunny::mesh_scene`'s).
-    let (mut loaded, _) = rt_scene::load_flat(&path).map_err(|e| match e {
+    let options = args.camera.options()?;
+    let (mut loaded, file_camera) = rt_scene::load_flat(&path).map_err(|e| match e {
         rt_scene::SceneError::Obj(e) => Error::Mesh(e),
         e => Error::Scene(e),
     })?;
-    examples::model::turn(&mut loaded, args.up.to_y_up());
+    examples::model::turn(&mut loaded, options.up.to_y_up());
     for warning in &loaded.warnings {
         eprintln!("viewer: warning: {warning}");
     }
@@ -146,7 +156,8 @@ fn run(args: &Args) -> Result<(), Failure> {
         ))));
     }
     let (width, height) = args.size;
-    let view = Progressive::new(&loaded, &Settings { spp: 1, backend, ..Settings::new(width, height) })?;
+    let settings = Settings { spp: 1, backend, ..Settings::new(width, height) };
+    let view = Progressive::framed(&loaded, &settings, options, file_camera)?;
     let name = path.file_name().map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned());
     let event_loop =
         EventLoop::new().map_err(|e| Failure::Other(format!("cannot open a window: {}", without_location(&e))))?;
