@@ -210,6 +210,7 @@ fn gltf_scene(path: &Path, settings: &Settings, options: CameraOptions) -> Resul
     ctx.set_var(Scope::Context, "top_shadower", top)?;
     let mut scene = Scene::new(ctx, output, settings);
     scene.frames = settings.spp;
+    scene.accumulation = Some(lit.accumulation);
     Ok(Model { scene, triangles: info.triangles, warnings: info.warnings.clone(), file_camera })
 }
 

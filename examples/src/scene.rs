@@ -311,7 +311,12 @@ pub struct Scene {
 
 /// One rendered picture and what it cost.
 pub struct Rendered {
+    /// What the camera program wrote: for display, gamma corrected.
     pub image: Image,
+    /// The mean radiance of every pixel, linear (what an EXR holds), where
+    /// the scene accumulates its samples ([`Scene::accumulation`]); alpha
+    /// is 1 where the pixel was rendered, 0 where not.
+    pub radiance: Option<Image>,
     /// Rays traced, over every launch.
     pub rays: u64,
     /// Wall time of the launches (the scene build is not counted).
@@ -398,7 +403,15 @@ impl Scene {
         let seconds = start.elapsed().as_secs_f64();
         let pixels = self.ctx.read_buffer::<Vec4>(self.output)?;
         let image = Image { width: self.width, height: self.height, pixels };
-        Ok(Rendered { image, rays, seconds, launches: self.frames, exceptions })
+        let radiance = match self.accumulation {
+            Some(sums) => {
+                let mean = |s: Vec4| if s.w > 0.0 { (s.truncate() / s.w).extend(1.0) } else { Vec4::ZERO };
+                let pixels = self.ctx.read_buffer::<Vec4>(sums)?.into_iter().map(mean).collect();
+                Some(Image { width: self.width, height: self.height, pixels })
+            }
+            None => None,
+        };
+        Ok(Rendered { image, radiance, rays, seconds, launches: self.frames, exceptions })
     }
 }
 
@@ -432,6 +445,14 @@ pub struct Image {
 }
 
 impl Image {
+    /// The picture for display from linear radiance: clamped at 0, gamma
+    /// 2.2, alpha 1 (as the progressive cameras write their output, to the
+    /// bit on the CPU backend).
+    pub fn to_display(&self) -> Image {
+        let pixels = self.pixels.iter().map(|p| p.truncate().max(Vec3::ZERO).powf(1.0 / 2.2).extend(1.0)).collect();
+        Image { width: self.width, height: self.height, pixels }
+    }
+
     /// The pixel at launch index `(x, y)` (y up from the bottom).
     pub fn at(&self, x: u32, y: u32) -> Vec4 {
         self.pixels[(y * self.width + x) as usize]

@@ -128,3 +128,42 @@ fn a_tile_that_does_not_fit_is_refused() {
         refused(out, text, &part);
     }
 }
+
+/// An EXR holds the mean radiance, linear; the PNG of the same render is
+/// it gamma corrected, the 8-bit colours `to_rgba8` gives (to the bit on
+/// the CPU backend); and parts merged to a PNG are the whole PNG.
+#[test]
+fn an_exr_holds_linear_radiance_and_the_png_its_display_colours() {
+    let dir = temp_dir("linear");
+    let teapot = examples::scene::shared_scene("teapot.obj");
+    let args = teapot_args(teapot.to_str().unwrap(), "cpu", "2");
+    let (exr, png) = (dir.join("whole.exr"), dir.join("whole.png"));
+    ok(render(&[&args[..], &["--out", exr.to_str().unwrap()]].concat()));
+    ok(render(&[&args[..], &["--out", png.to_str().unwrap()]].concat()));
+    let linear = image::open(&exr).unwrap().to_rgba32f();
+    let display = image::open(&png).unwrap().to_rgba8();
+    let mut darker = 0;
+    for (l, d) in linear.pixels().zip(display.pixels()) {
+        assert_eq!(l[3], 1.0);
+        for c in 0..3 {
+            let q = (l[c].max(0.0).powf(1.0 / 2.2).clamp(0.0, 1.0) * 255.0 + 0.5) as u8;
+            assert_eq!(q, d[c], "the PNG is the EXR gamma corrected");
+            darker += (l[c] > 0.01 && l[c] < 0.99 && l[c] * 255.0 + 1.0 < d[c] as f32) as usize;
+        }
+    }
+    assert!(darker > 1000, "only {darker} channels are darker in linear than on display: not linear");
+
+    let mut parts = Vec::new();
+    for k in 0..3 {
+        let part = dir.join(format!("p{k}.rtpart"));
+        let tile = format!("{k}/3");
+        ok(render(&[&args[..], &["--tile", &tile, "--out", part.to_str().unwrap()]].concat()));
+        parts.push(part.to_str().unwrap().to_string());
+    }
+    let merged = dir.join("merged.png");
+    let mut merge = vec!["--merge"];
+    merge.extend(parts.iter().map(String::as_str));
+    merge.extend(["--out", merged.to_str().unwrap()]);
+    ok(render(&merge));
+    assert_eq!(image::open(&merged).unwrap().to_rgba8(), display, "merged parts are the whole PNG");
+}

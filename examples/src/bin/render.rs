@@ -69,11 +69,12 @@ fn main() -> ExitCode {
 }
 
 /// Writes `image` to `out`: OpenEXR for `.exr`, else PNG.
-fn save(image: &Image, out: &Path) -> Result<(), Error> {
+/// Writes the mean radiance: as it is to an EXR, gamma corrected to a PNG.
+fn save(radiance: &Image, out: &Path) -> Result<(), Error> {
     if out.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr")) {
-        image.save_exr(out)
+        radiance.save_exr(out)
     } else {
-        image.save_png(out)
+        radiance.to_display().save_png(out)
     }
 }
 
@@ -128,12 +129,18 @@ fn run(args: &Args) -> Result<(), Error> {
     let bar = progress_bar::spp_bar("render", loaded.scene.frames);
     let rendered = loaded.scene.render_rows(rows.clone(), &mut |p| progress_bar::show(&bar, p))?;
     bar.finish_and_clear();
+    // Every model scene accumulates its samples (the radiance the files
+    // hold); a display picture is only what a scene without would give.
+    let radiance = rendered
+        .radiance
+        .as_ref()
+        .ok_or_else(|| Error::Settings(format!("{}: the scene keeps no radiance to write", mesh.display())))?;
     match tile {
         Some(tile) => {
             let line = settings_line(args, mesh, settings.backend.name())?;
-            parts::Part::of(&rendered.image, tile, &line)?.save(&args.out)?;
+            parts::Part::of(radiance, tile, &line)?.save(&args.out)?;
         }
-        None => save(&rendered.image, &args.out)?,
+        None => save(radiance, &args.out)?,
     }
     let part = tile.map_or(String::new(), |(k, n)| format!(" (part {k} of {n}: rows {}..{})", rows.start, rows.end));
     println!(
