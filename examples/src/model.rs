@@ -166,6 +166,9 @@ pub struct Model {
     pub warnings: Vec<String>,
     /// Whether the file's own camera is the one used.
     pub file_camera: bool,
+    /// The glTF file's node animation, if it has one (pose the scene with
+    /// it before rendering a time).
+    pub animation: Option<rt_scene::Animation>,
 }
 
 /// The file at `path` lit and framed as the `render` binary shows it.
@@ -177,7 +180,13 @@ pub fn model_scene(path: &Path, settings: &Settings, options: CameraOptions) -> 
             turn(&mut loaded, to_y_up);
             let camera = options.camera((loaded.min, loaded.max), None, to_y_up, settings.aspect());
             let scene = bunny::mesh_scene_from(&loaded, settings, options.view(), camera)?;
-            Ok(Model { scene, triangles: loaded.mesh.indices.len(), warnings: loaded.warnings, file_camera: false })
+            Ok(Model {
+                scene,
+                triangles: loaded.mesh.indices.len(),
+                warnings: loaded.warnings,
+                file_camera: false,
+                animation: None,
+            })
         }
         Some(Format::Gltf) => gltf_scene(path, settings, options),
         None => Err(rt_scene::SceneError::UnknownFormat { file: path.display().to_string() }.into()),
@@ -211,7 +220,13 @@ fn gltf_scene(path: &Path, settings: &Settings, options: CameraOptions) -> Resul
     let mut scene = Scene::new(ctx, output, settings);
     scene.frames = settings.spp;
     scene.accumulation = Some(lit.accumulation);
-    Ok(Model { scene, triangles: info.triangles, warnings: info.warnings.clone(), file_camera })
+    Ok(Model {
+        scene,
+        triangles: info.triangles,
+        warnings: info.warnings.clone(),
+        file_camera,
+        animation: loaded.animation,
+    })
 }
 
 /// Turns a loaded mesh by a quarter-turn rotation (positions, normals and

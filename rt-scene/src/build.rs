@@ -12,7 +12,7 @@
 use crate::error::SceneError;
 use crate::gltf::Asset;
 use crate::obj::LoadedMesh;
-use crate::{Loaded, MaterialInfo, SceneInfo, Texture};
+use crate::{Animation, Loaded, MaterialInfo, SceneInfo, Texture};
 use glam::{Mat4, Vec3, Vec4};
 use rt_runtime::{Acceleration, Builder, Context, MaterialId, RtError, SamplerId};
 use rt_std::{FilterMode, WrapMode};
@@ -31,7 +31,11 @@ pub fn build_gltf(ctx: &mut Context, asset: Asset, file: &str) -> Result<Loaded,
         groups.push(ctx.create_geometry_group(&[instance], Acceleration::new(Builder::Bvh)).map_err(rt)?);
     }
     let mut children = Vec::new();
-    for &(mesh, world) in &asset.instances {
+    // Instances under animated nodes get a transform the animation moves.
+    let moved: Vec<bool> =
+        asset.rig.paths.iter().map(|p| asset.rig.channels.iter().any(|c| p.contains(&c.node))).collect();
+    let mut transforms = Vec::new();
+    for (i, &(mesh, world)) in asset.instances.iter().enumerate() {
         let data = &asset.meshes[mesh];
         triangles += data.mesh.indices.len();
         for p in &data.mesh.positions {
@@ -39,14 +43,22 @@ pub fn build_gltf(ctx: &mut Context, asset: Asset, file: &str) -> Result<Loaded,
             min = min.min(q);
             max = max.max(q);
         }
-        let node = if world == Mat4::IDENTITY {
+        let node = if world == Mat4::IDENTITY && !moved[i] {
             groups[mesh]
         } else {
             ctx.create_transform(world, groups[mesh])
                 .map_err(|e| SceneError::Runtime { file: file.to_string(), error: Box::new(e) })?
         };
+        transforms.push(moved[i].then_some(node));
         children.push(node);
     }
+    let animation = asset.rig.time_range().filter(|_| moved.contains(&true)).map(|(start, end)| Animation {
+        rig: asset.rig.clone(),
+        transforms,
+        start,
+        end,
+        file: file.to_string(),
+    });
     let top = ctx.create_group(&children, Acceleration::new(Builder::Bvh)).map_err(rt)?;
     let info = SceneInfo {
         meshes: asset.meshes.len(),
@@ -59,7 +71,7 @@ pub fn build_gltf(ctx: &mut Context, asset: Asset, file: &str) -> Result<Loaded,
         lights: asset.lights,
         warnings: asset.warnings,
     };
-    Ok(Loaded { top, materials: materials.done(), info })
+    Ok(Loaded { top, materials: materials.done(), info, animation })
 }
 
 /// Adds a loaded OBJ to `ctx`: one geometry group, no transform.
@@ -83,7 +95,7 @@ pub fn build_obj(ctx: &mut Context, loaded: LoadedMesh, file: &str) -> Result<Lo
         lights: Vec::new(),
         warnings: loaded.warnings,
     };
-    Ok(Loaded { top, materials: materials.done(), info })
+    Ok(Loaded { top, materials: materials.done(), info, animation: None })
 }
 
 /// The context's materials, made on first use, with the standard

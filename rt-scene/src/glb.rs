@@ -2,12 +2,12 @@
 //! textures), nodes and a camera, written as `.glb` or as `.gltf` with its
 //! buffer embedded as a `data:` URI. It is what converts the shared OBJ
 //! scenes to glTF for the tests and for `rt-scene`'s `obj2glb` binary; it
-//! writes what the loader reads, nothing more (no animations, skins,
-//! extensions).
+//! writes what the loader reads, nothing more (node animations, but no
+//! skins, morph targets or extensions).
 
 use crate::MaterialInfo;
 use crate::obj::LoadedMesh;
-use glam::{Mat4, Vec3};
+use glam::{Mat4, Quat, Vec3, Vec4};
 use rt_runtime::TriangleMesh;
 use std::fmt::Write;
 
@@ -22,6 +22,9 @@ pub struct GltfBuilder {
     images: Vec<String>,
     nodes: Vec<String>,
     cameras: Vec<String>,
+    /// Animation channels and their samplers, all in one animation.
+    channels: Vec<String>,
+    samplers: Vec<String>,
 }
 
 impl GltfBuilder {
@@ -101,6 +104,42 @@ impl GltfBuilder {
         self.nodes.len() - 1
     }
 
+    /// A root node showing `mesh` at translation `t`, rotation `r` and
+    /// scale `s` (a node animations may move). Returns its index.
+    pub fn trs_node(&mut self, mesh: usize, t: Vec3, r: Quat, s: Vec3) -> usize {
+        self.nodes.push(format!(
+            "{{\"mesh\":{mesh},\"translation\":[{},{},{}],\"rotation\":[{},{},{},{}],\"scale\":[{},{},{}]}}",
+            t.x, t.y, t.z, r.x, r.y, r.z, r.w, s.x, s.y, s.z
+        ));
+        self.nodes.len() - 1
+    }
+
+    /// Animates `node`'s `target` (`"translation"`, `"rotation"` or
+    /// `"scale"`) through `values` (xyz, or quaternions' xyzw; three per key
+    /// for `"CUBICSPLINE"`) at key `times`, interpolated as `interpolation`
+    /// says (`"LINEAR"`, `"STEP"`, `"CUBICSPLINE"`). Writes what it is
+    /// given, for the loader's checks to judge.
+    pub fn animate(&mut self, node: usize, target: &str, interpolation: &str, times: &[f32], values: &[Vec4]) {
+        let bytes: Vec<u8> = times.iter().flat_map(|t| t.to_le_bytes()).collect();
+        let view = self.view(&bytes, None);
+        let (lo, hi) = times.iter().fold((f32::INFINITY, f32::NEG_INFINITY), |(a, b), t| (a.min(*t), b.max(*t)));
+        let input = self.accessor(view, 5126, times.len(), "SCALAR", &format!(",\"min\":[{lo}],\"max\":[{hi}]"));
+        let (ty, width) = if target == "rotation" { ("VEC4", 4) } else { ("VEC3", 3) };
+        let bytes: Vec<u8> =
+            values.iter().flat_map(|v| v.to_array().into_iter().take(width)).flat_map(f32::to_le_bytes).collect();
+        let view = self.view(&bytes, None);
+        let output = self.accessor(view, 5126, values.len(), ty, "");
+        self.samplers.push(format!(
+            "{{\"input\":{input},\"output\":{output},\"interpolation\":{}}}",
+            json_string(interpolation)
+        ));
+        self.channels.push(format!(
+            "{{\"sampler\":{},\"target\":{{\"node\":{node},\"path\":{}}}}}",
+            self.samplers.len() - 1,
+            json_string(target)
+        ));
+    }
+
     /// A root node with a perspective camera at `eye` looking at `target`
     /// (`up` roughly up), `yfov_degrees` vertical field of view.
     pub fn camera(&mut self, eye: Vec3, target: Vec3, up: Vec3, yfov_degrees: f32) -> usize {
@@ -177,6 +216,14 @@ impl GltfBuilder {
             if !items.is_empty() {
                 let _ = write!(s, ",\"{key}\":[{}]", items.join(","));
             }
+        }
+        if !self.channels.is_empty() {
+            let _ = write!(
+                s,
+                ",\"animations\":[{{\"channels\":[{}],\"samplers\":[{}]}}]",
+                self.channels.join(","),
+                self.samplers.join(",")
+            );
         }
         if !self.images.is_empty() {
             let textures: Vec<String> = (0..self.images.len()).map(|i| format!("{{\"source\":{i}}}")).collect();

@@ -71,6 +71,47 @@ pub struct Loaded {
     /// The materials made, each with the variables of the table above.
     pub materials: Vec<Material>,
     pub info: SceneInfo,
+    /// The file's node animation, bound to the transforms it moves (glTF
+    /// files with animations of the nodes meshes hang from).
+    pub animation: Option<Animation>,
+}
+
+/// A loaded scene's node animation: every instance under an animated node
+/// has a `Transform` of its own, which [`Animation::pose`] sets for a time.
+#[derive(Clone, Debug)]
+pub struct Animation {
+    rig: gltf::Rig,
+    /// Per instance, the transform the animation moves (`None`: it does not
+    /// move).
+    transforms: Vec<Option<NodeId>>,
+    /// The first and last key times, seconds.
+    pub start: f32,
+    pub end: f32,
+    file: String,
+}
+
+impl Animation {
+    /// Sets every moved instance's transform to its pose at `time`
+    /// (seconds; before the first key and after the last the poses hold).
+    /// A pose the context refuses (a key that scales to zero: a singular
+    /// matrix) is an error naming the file.
+    pub fn pose(&self, ctx: &mut Context, time: f32) -> Result<(), SceneError> {
+        for (matrix, node) in self.rig.instance_matrices(time).into_iter().zip(&self.transforms) {
+            if let Some(node) = node {
+                ctx.set_transform(*node, matrix).map_err(|e| SceneError::Runtime {
+                    file: format!("{} at {time} s", self.file),
+                    error: Box::new(e),
+                })?;
+            }
+        }
+        Ok(())
+    }
+
+    /// The world matrix of every instance at `time`, as [`Animation::pose`]
+    /// sets them (for tests and other uses of the poses).
+    pub fn instance_matrices(&self, time: f32) -> Vec<glam::Mat4> {
+        self.rig.instance_matrices(time)
+    }
 }
 
 /// One material of a loaded scene: its context handle and what it was made

@@ -9,6 +9,12 @@
 //! band K (from 0) of N bands of rows into a part file, and `render
 //! --merge PART... --out OUT.png` puts the parts together bit for bit.
 //!
+//! A glTF file's node animation: `--time T` renders the scene posed at T
+//! seconds (default 0), and `--frames A..B --fps F` renders frames A to B-1
+//! at T = frame / F, each to `--out` with its `#`s replaced by the frame
+//! number (`frame_####.png` → `frame_0007.png`), so a job array can give
+//! each machine its range (with `--tile`, each frame's part).
+//!
 //! Exit status: 0 with the image written; 2 for bad input (the model: one
 //! line naming the file, the line or glTF object when known and the
 //! problem; or arguments, such as a backend with no adapter), and no
@@ -55,6 +61,16 @@ struct Args {
     spp: u32,
     #[command(flatten)]
     camera: CameraArgs,
+    /// Seconds into the file's animation to pose the scene at.
+    #[arg(long, allow_negative_numbers = true, conflicts_with = "frames")]
+    time: Option<f32>,
+    /// Frames A to B-1 of the file's animation (`A..B`), one image each:
+    /// `--out` names them with its `#`s replaced by the frame number.
+    #[arg(long, value_name = "A..B")]
+    frames: Option<String>,
+    /// Frames per second of `--frames`.
+    #[arg(long, default_value_t = 24.0)]
+    fps: f32,
 }
 
 fn main() -> ExitCode {
@@ -122,10 +138,79 @@ fn run(args: &Args) -> Result<(), Error> {
     };
     let (backend, what) = BackendChoice::open_or_choose(args.backend)?;
     let settings = Settings { spp: args.spp, backend, ..Settings::new(args.width, args.height) };
+    let frames = args.frames.as_deref().map(|f| parse_frames(f, args.fps, &args.out)).transpose()?;
     let mut loaded = model::model_scene(mesh, &settings, options)?;
     for warning in &loaded.warnings {
         eprintln!("render: warning: {warning}");
     }
+    let no_animation =
+        || Error::Settings(format!("{}: has no node animation to pose (--time and --frames need one)", mesh.display()));
+    match (frames, loaded.animation.take()) {
+        (None, animation) => {
+            let time = match (args.time, animation) {
+                (Some(time), Some(animation)) => {
+                    animation.pose(&mut loaded.scene.ctx, time)?;
+                    Some(time)
+                }
+                (Some(_), None) => return Err(no_animation()),
+                (None, _) => None,
+            };
+            render_one(args, (mesh, &what, time), &mut loaded, (tile, rows), &args.out)
+        }
+        (Some(frames), Some(animation)) => {
+            for frame in frames {
+                let time = frame as f32 / args.fps;
+                animation.pose(&mut loaded.scene.ctx, time)?;
+                let out = frame_path(&args.out, frame);
+                render_one(args, (mesh, &what, Some(time)), &mut loaded, (tile, rows.clone()), &out)?;
+            }
+            Ok(())
+        }
+        (Some(_), None) => Err(no_animation()),
+    }
+}
+
+/// `A..B` as the frames A to B-1 (`--out` must say where their numbers go).
+fn parse_frames(text: &str, fps: f32, out: &Path) -> Result<std::ops::Range<u32>, Error> {
+    let bad = || Error::Settings(format!("--frames {text}: expected A..B, frames A to B-1 (e.g. 0..48)"));
+    let (a, b) = text.split_once("..").ok_or_else(bad)?;
+    let (a, b) = (a.trim().parse::<u32>().map_err(|_| bad())?, b.trim().parse::<u32>().map_err(|_| bad())?);
+    if a >= b {
+        return Err(Error::Settings(format!("--frames {text} holds no frame (B must exceed A)")));
+    }
+    if !(fps > 0.0 && fps.is_finite()) {
+        return Err(Error::Settings(format!("--fps {fps} must be positive")));
+    }
+    if !out.to_string_lossy().contains('#') {
+        return Err(Error::Settings(format!(
+            "--out {} has no `#` for the frame number (with --frames, e.g. frame_####.png)",
+            out.display()
+        )));
+    }
+    Ok(a..b)
+}
+
+/// `out` with its last run of `#`s replaced by `frame`, zero-padded to the
+/// run's length.
+fn frame_path(out: &Path, frame: u32) -> PathBuf {
+    let text = out.to_string_lossy();
+    let Some(last) = text.rfind('#') else { return out.to_path_buf() };
+    let end = last + 1;
+    let start = text[..end].trim_end_matches('#').len();
+    PathBuf::from(format!("{}{frame:0width$}{}", &text[..start], &text[end..], width = end - start))
+}
+
+/// Renders the scene as it is posed to `out` (the whole picture, or the
+/// part `tile` of it: its `rows`).
+fn render_one(
+    args: &Args,
+    (mesh, what, time): (&Path, &str, Option<f32>),
+    loaded: &mut model::Model,
+    (tile, rows): (Option<(u32, u32)>, std::ops::Range<u32>),
+    out: &Path,
+) -> Result<(), Error> {
+    let settings = &loaded.scene;
+    let (width, height, spp) = (settings.width, settings.height, settings.frames);
     let bar = progress_bar::spp_bar("render", loaded.scene.frames);
     let rendered = loaded.scene.render_rows(rows.clone(), &mut |p| progress_bar::show(&bar, p))?;
     bar.finish_and_clear();
@@ -137,19 +222,23 @@ fn run(args: &Args) -> Result<(), Error> {
         .ok_or_else(|| Error::Settings(format!("{}: the scene keeps no radiance to write", mesh.display())))?;
     match tile {
         Some(tile) => {
-            let line = settings_line(args, mesh, settings.backend.name())?;
-            parts::Part::of(radiance, tile, &line)?.save(&args.out)?;
+            let mut line = settings_line(args, mesh, loaded.scene.ctx.backend().name())?;
+            if let Some(time) = time {
+                line.push_str(&format!(" time {time}"));
+            }
+            parts::Part::of(radiance, tile, &line)?.save(out)?;
         }
-        None => save(radiance, &args.out)?,
+        None => save(radiance, out)?,
     }
     let part = tile.map_or(String::new(), |(k, n)| format!(" (part {k} of {n}: rows {}..{})", rows.start, rows.end));
     println!(
-        "{}{part}: {} triangles, {}x{}, {} spp with {what}{}: {:.2} s, {:.2} Mrays/s",
-        args.out.display(),
+        "{}{part}: {} triangles, {}x{}, {} spp{} with {what}{}: {:.2} s, {:.2} Mrays/s",
+        out.display(),
         loaded.triangles,
-        settings.width,
-        settings.height,
-        settings.spp,
+        width,
+        height,
+        spp,
+        time.map_or(String::new(), |t| format!(" at {t} s of the animation")),
         if loaded.file_camera { ", the file's camera" } else { "" },
         rendered.seconds,
         rendered.mrays_per_second()

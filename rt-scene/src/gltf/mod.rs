@@ -8,17 +8,22 @@
 //! its primitives ([`mesh`]); materials' base colour factor and texture,
 //! metallic and roughness factors and emissive factor; the first
 //! perspective camera met in the hierarchy; `KHR_lights_punctual` lights.
-//! What is ignored is listed in [`Asset::warnings`]: skins, morph targets,
-//! animations, orthographic cameras, texture sets other than 0, textures in
-//! formats this build does not decode (only PNG is enabled).
+//! Node animations ([`animation`]) are read into [`Asset::rig`], so a
+//! loaded scene can be posed at any time.
+//! What is ignored is listed in [`Asset::warnings`]: skins, morph targets
+//! (and their weights' animation), animated cameras and lights,
+//! orthographic cameras, texture sets other than 0, textures in formats
+//! this build does not decode (only PNG is enabled).
 //!
 //! Problems are [`GltfError`]s naming the file and the object, never
 //! panics: the GLB header and every accessor's byte range are checked
 //! ([`buffers`]) before the `gltf` crate reads anything.
 
+pub mod animation;
 pub(crate) mod buffers;
 mod mesh;
 
+pub use animation::Rig;
 pub use mesh::MeshData;
 
 use crate::error::GltfError;
@@ -38,6 +43,9 @@ pub struct Asset {
     pub materials: Vec<MaterialInfo>,
     pub camera: Option<SceneCamera>,
     pub lights: Vec<Light>,
+    /// The nodes the instances hang from and the animations that move
+    /// them.
+    pub rig: Rig,
     /// What was in the file but is not used, one line each.
     pub warnings: Vec<String>,
 }
@@ -90,6 +98,7 @@ fn read_bytes(r: &Reader, bytes: &[u8], dir: Option<&Path>) -> Result<Asset, Glt
         materials: Vec::new(),
         camera: None,
         lights: Vec::new(),
+        rig: Rig { locals: doc.nodes().map(|n| animation::Local::of(&n)).collect(), ..Rig::default() },
         warnings: Vec::new(),
     };
     for material in doc.materials() {
@@ -104,8 +113,11 @@ fn read_bytes(r: &Reader, bytes: &[u8], dir: Option<&Path>) -> Result<Asset, Glt
         }
     };
     let mut mesh_slot = vec![None; doc.meshes().len()];
-    let mut stack: Vec<(gltf::Node, Mat4, usize)> = roots.into_iter().rev().map(|n| (n, Mat4::IDENTITY, 0)).collect();
-    while let Some((node, parent, depth)) = stack.pop() {
+    let mut stack: Vec<(gltf::Node, Mat4, Vec<usize>)> =
+        roots.into_iter().rev().map(|n| (n, Mat4::IDENTITY, Vec::new())).collect();
+    while let Some((node, parent, mut path)) = stack.pop() {
+        let depth = path.len();
+        path.push(node.index());
         let object = format!("nodes[{}]", node.index());
         if depth > MAX_DEPTH {
             return Err(r.error(&object, format!("the node hierarchy is deeper than {MAX_DEPTH} (a cycle?)")));
@@ -127,6 +139,7 @@ fn read_bytes(r: &Reader, bytes: &[u8], dir: Option<&Path>) -> Result<Asset, Glt
                 }
             };
             asset.instances.push((slot, world));
+            asset.rig.paths.push(path.clone());
         }
         if node.skin().is_some() {
             asset.warnings.push(format!("{object}: skin ignored (the mesh is shown in its bind pose)"));
@@ -138,11 +151,18 @@ fn read_bytes(r: &Reader, bytes: &[u8], dir: Option<&Path>) -> Result<Asset, Glt
             asset.lights.push(read_light(&light, world));
         }
         for child in node.children().collect::<Vec<_>>().into_iter().rev() {
-            stack.push((child, world, depth + 1));
+            stack.push((child, world, path.clone()));
         }
     }
-    if doc.animations().next().is_some() {
-        asset.warnings.push(format!("{} animations ignored", doc.animations().count()));
+    asset.rig.channels = animation::read_channels(r, doc, &buffers, &mut asset.warnings)?;
+    let unshown: std::collections::BTreeSet<usize> = (asset.rig.channels.iter())
+        .map(|c| c.node)
+        .filter(|n| !asset.rig.paths.iter().any(|p| p.contains(n)))
+        .collect();
+    for node in unshown {
+        asset.warnings.push(format!(
+            "nodes[{node}]: animated, but no shown mesh hangs from it (cameras and lights are not animated)"
+        ));
     }
     if asset.instances.is_empty() {
         return Err(r.file_error("the scene shows no meshes".into()));

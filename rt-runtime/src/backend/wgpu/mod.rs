@@ -38,7 +38,8 @@
 //!
 //! Files: [`device`] (the device and its health, ray queries requested
 //! where the adapter has them), [`resident`] (buffers
-//! kept on the device, uploads of changed pages), [`heap`] (variables'
+//! kept on the device, uploads of changed pages), [`device_local`] (buffers
+//! whose words stay on the device, never read back), [`heap`] (variables'
 //! records, buffers, textures), [`kernel`] (the megakernel's WGSL),
 //! [`pipeline`] (pipelines by WGSL), [`dispatch`] (a tile's dispatches,
 //! uniforms, bind groups, the compute pass), [`chain`] (transform chains
