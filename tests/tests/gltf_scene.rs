@@ -1,5 +1,6 @@
-//! A glTF file written here (two nodes instancing one textured quad under
-//! different transforms, and a camera) loaded by `rt-scene` and rendered on
+//! A glTF file written here with the `gltf` crate's JSON types (two nodes
+//! instancing one textured quad under different transforms, and a camera)
+//! loaded by `rt-scene` and rendered on
 //! both backends, against the same scene built by hand through the
 //! runtime's API: the same image, bit for bit, and the texture's colours
 //! where they belong. Also the EXR round trip: `Context::save_exr` read
@@ -8,8 +9,6 @@
 use examples::{Camera, Scene, Settings};
 use glam::{Mat4, Vec2, Vec3, Vec4};
 use rt_runtime::{Acceleration, Backend, BufferType, Builder, Context, Scope, TriangleMesh};
-use rt_scene::MaterialInfo;
-use rt_scene::glb::GltfBuilder;
 use rt_std::prelude::*;
 use std::path::{Path, PathBuf};
 
@@ -89,24 +88,161 @@ fn png() -> Vec<u8> {
     bytes.into_inner()
 }
 
+/// The file, written with the `gltf` crate's own JSON types (not
+/// `rt_scene::glb`, so the loader is checked against a writer of its own)
+/// as a `.glb`: one textured quad mesh, two nodes showing it (the second
+/// under [`second`]), a camera node.
 fn write_file(dir: &Path) -> PathBuf {
-    let mut b = GltfBuilder::new();
-    let info = MaterialInfo {
-        name: "textured".into(),
-        base_color: BASE.extend(1.0),
-        base_color_texture: None,
-        metallic: 0.0,
-        roughness: 1.0,
-        emissive: Vec3::ZERO,
+    use gltf::json::{self, validation::Checked::Valid, validation::USize64};
+    let mut root = json::Root::default();
+    let mut bin: Vec<u8> = Vec::new();
+    let mut view = |root: &mut json::Root, bytes: &[u8]| {
+        while !bin.len().is_multiple_of(4) {
+            bin.push(0);
+        }
+        let v = json::buffer::View {
+            buffer: json::Index::new(0),
+            byte_length: USize64::from(bytes.len()),
+            byte_offset: Some(USize64::from(bin.len())),
+            byte_stride: None,
+            name: None,
+            target: None,
+            extensions: None,
+            extras: Default::default(),
+        };
+        bin.extend_from_slice(bytes);
+        root.push(v)
     };
-    let material = b.material(&info, Some(&png()));
-    let mesh = b.mesh("quad", &quad(), &[material]);
-    b.node(mesh, Mat4::IDENTITY);
-    b.node(mesh, second());
+    let accessor = |root: &mut json::Root, view, count: usize, component, type_, bounds: Option<(Vec3, Vec3)>| {
+        root.push(json::Accessor {
+            buffer_view: Some(view),
+            byte_offset: None,
+            count: USize64::from(count),
+            component_type: Valid(json::accessor::GenericComponentType(component)),
+            extensions: None,
+            extras: Default::default(),
+            type_: Valid(type_),
+            min: bounds.map(|(lo, _)| json::Value::from(lo.to_array().to_vec())),
+            max: bounds.map(|(_, hi)| json::Value::from(hi.to_array().to_vec())),
+            name: None,
+            normalized: false,
+            sparse: None,
+        })
+    };
+    let floats = |v: &[f32]| v.iter().flat_map(|f| f.to_le_bytes()).collect::<Vec<u8>>();
+    let mesh = quad();
+    let positions: Vec<f32> = mesh.positions.iter().flat_map(|p| p.to_array()).collect();
+    let normals: Vec<f32> = mesh.normals.as_ref().unwrap().iter().flat_map(|n| n.to_array()).collect();
+    let texcoords: Vec<f32> = mesh.texcoords.as_ref().unwrap().iter().flat_map(|t| t.to_array()).collect();
+    let indices: Vec<u8> = mesh.indices.iter().flatten().flat_map(|i| (*i as u16).to_le_bytes()).collect();
+    use json::accessor::{ComponentType, Type};
+    let v = view(&mut root, &floats(&positions));
+    let position =
+        accessor(&mut root, v, 4, ComponentType::F32, Type::Vec3, Some((Vec3::ZERO, Vec3::new(1.0, 1.0, 0.0))));
+    let v = view(&mut root, &floats(&normals));
+    let normal = accessor(&mut root, v, 4, ComponentType::F32, Type::Vec3, None);
+    let v = view(&mut root, &floats(&texcoords));
+    let texcoord = accessor(&mut root, v, 4, ComponentType::F32, Type::Vec2, None);
+    let v = view(&mut root, &indices);
+    let index = accessor(&mut root, v, 6, ComponentType::U16, Type::Scalar, None);
+    let v = view(&mut root, &png());
+    let image = root.push(json::Image {
+        buffer_view: Some(v),
+        mime_type: Some(json::image::MimeType("image/png".into())),
+        name: None,
+        uri: None,
+        extensions: None,
+        extras: Default::default(),
+    });
+    let texture = root.push(json::Texture {
+        name: None,
+        sampler: None,
+        source: image,
+        extensions: None,
+        extras: Default::default(),
+    });
+    let material = root.push(json::Material {
+        name: Some("textured".into()),
+        pbr_metallic_roughness: json::material::PbrMetallicRoughness {
+            base_color_factor: json::material::PbrBaseColorFactor(BASE.extend(1.0).to_array()),
+            base_color_texture: Some(json::texture::Info {
+                index: texture,
+                tex_coord: 0,
+                extensions: None,
+                extras: Default::default(),
+            }),
+            metallic_factor: json::material::StrengthFactor(0.0),
+            ..Default::default()
+        },
+        ..Default::default()
+    });
+    let attributes = [
+        (json::mesh::Semantic::Positions, position),
+        (json::mesh::Semantic::Normals, normal),
+        (json::mesh::Semantic::TexCoords(0), texcoord),
+    ];
+    let quad_mesh = root.push(json::Mesh {
+        extensions: None,
+        extras: Default::default(),
+        name: Some("quad".into()),
+        primitives: vec![json::mesh::Primitive {
+            attributes: attributes.into_iter().map(|(s, a)| (Valid(s), a)).collect(),
+            extensions: None,
+            extras: Default::default(),
+            indices: Some(index),
+            material: Some(material),
+            mode: Valid(json::mesh::Mode::Triangles),
+            targets: None,
+        }],
+        weights: None,
+    });
+    let first = root.push(json::Node { mesh: Some(quad_mesh), ..Default::default() });
+    let moved =
+        root.push(json::Node { mesh: Some(quad_mesh), matrix: Some(second().to_cols_array()), ..Default::default() });
     let c = camera();
-    b.camera(c.eye, c.look_at, c.up, c.vfov_degrees);
+    let lens = root.push(json::Camera {
+        name: None,
+        orthographic: None,
+        perspective: Some(json::camera::Perspective {
+            aspect_ratio: None,
+            yfov: c.vfov_degrees.to_radians(),
+            zfar: None,
+            znear: 0.01,
+            extensions: None,
+            extras: Default::default(),
+        }),
+        type_: Valid(json::camera::Type::Perspective),
+        extensions: None,
+        extras: Default::default(),
+    });
+    // The camera looks down its -z: from the eye towards the quads, +y up.
+    let viewer =
+        root.push(json::Node { camera: Some(lens), translation: Some(c.eye.to_array()), ..Default::default() });
+    let scene = root.push(json::Scene {
+        extensions: None,
+        extras: Default::default(),
+        name: None,
+        nodes: vec![first, moved, viewer],
+    });
+    root.scene = Some(scene);
+    while !bin.len().is_multiple_of(4) {
+        bin.push(0);
+    }
+    root.push(json::Buffer {
+        byte_length: USize64::from(bin.len()),
+        name: None,
+        uri: None,
+        extensions: None,
+        extras: Default::default(),
+    });
+    let json = root.to_vec().expect("the document serialises");
+    let glb = gltf::binary::Glb {
+        header: gltf::binary::Header { magic: *b"glTF", version: 2, length: 0 },
+        json: json.into(),
+        bin: Some(bin.into()),
+    };
     let path = dir.join("instanced.glb");
-    std::fs::write(&path, b.to_glb()).unwrap();
+    std::fs::write(&path, glb.to_vec().expect("the GLB assembles")).unwrap();
     path
 }
 
