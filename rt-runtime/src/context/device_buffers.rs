@@ -5,36 +5,11 @@
 
 use super::Context;
 use crate::backend::Backend;
+pub use crate::backend::wgpu::{DeviceBuffer, WgpuDevice};
 use crate::backend::wgpu::{Gpu, WgpuBackend};
 use crate::error::{Result, RtError};
 use crate::scene::BufferId;
 use std::any::Any;
-
-/// Where a buffer's elements lie on the wgpu device: `size` bytes from
-/// byte `offset` of `buffer` (the heap every buffer of the context shares),
-/// as the last wgpu launch left them. Valid until the next launch, which
-/// may move the buffer or replace the heap.
-#[derive(Clone, Debug)]
-pub struct DeviceBuffer {
-    pub buffer: wgpu::Buffer,
-    /// A multiple of 4 (one word), not of the adapter's storage-binding
-    /// alignment: copy the range (`copy_buffer_to_buffer`) or pass the
-    /// offset to a shader that binds the whole buffer.
-    pub offset: u64,
-    pub size: u64,
-}
-
-/// The wgpu device a context launches on, for an application that draws
-/// with it too.
-#[derive(Clone, Debug)]
-pub struct WgpuDevice {
-    /// The adapter, when the context opened the device itself (`None` for
-    /// a device from [`Context::use_wgpu_device`]).
-    pub adapter: Option<wgpu::Adapter>,
-    pub device: wgpu::Device,
-    pub queue: wgpu::Queue,
-    pub info: wgpu::AdapterInfo,
-}
 
 impl Context {
     /// Keeps what programs write to buffer `b` on the device: a wgpu

@@ -43,6 +43,18 @@ pub struct Gpu {
     pub(crate) ray_query_layouts: HashMap<u32, wgpu::BindGroupLayout>,
 }
 
+/// The wgpu device a context launches on, for an application that draws
+/// with it too (`Context::wgpu_device`).
+#[derive(Clone, Debug)]
+pub struct WgpuDevice {
+    /// The adapter, when the context opened the device itself (`None` for
+    /// a device from `Context::use_wgpu_device`).
+    pub adapter: Option<wgpu::Adapter>,
+    pub device: wgpu::Device,
+    pub queue: wgpu::Queue,
+    pub info: wgpu::AdapterInfo,
+}
+
 /// What the device's callbacks report.
 #[derive(Default)]
 pub(crate) struct Health {

@@ -21,33 +21,23 @@
 
 use super::device::Gpu;
 use super::readback::read_back;
+use super::resident::{DeviceLocal, Held};
 use crate::buffer::BufferRec;
-use crate::context::DeviceBuffer;
 use crate::error::Result;
 use crate::scene::Scene;
 
-/// A buffer whose words the device holds newer than the host.
-#[derive(Clone, Copy, Debug)]
-struct Held {
-    buffer: usize,
-    /// Word offset in the heap, and length.
-    offset: usize,
-    words: usize,
-    /// The host's version of the buffer when the device took it over.
-    version: u64,
-}
-
-/// What the device holds of device-local buffers, and where every buffer
-/// lies in its heap.
-#[derive(Default)]
-pub(crate) struct DeviceLocal {
-    held: Vec<Held>,
-    /// `(word offset, words)` of every buffer in the heap the device holds.
-    placed: Vec<(usize, usize)>,
-    /// The held words from before the launch running now, and where each
-    /// buffer's start in it (bytes), with its place in the new heap.
-    saved: Option<wgpu::Buffer>,
-    saved_for: Vec<(Held, u64)>,
+/// Where a buffer's elements lie on the wgpu device: `size` bytes from
+/// byte `offset` of `buffer` (the heap every buffer of the context shares),
+/// as the last wgpu launch left them. Valid until the next launch, which
+/// may move the buffer or replace the heap.
+#[derive(Clone, Debug)]
+pub struct DeviceBuffer {
+    pub buffer: wgpu::Buffer,
+    /// A multiple of 4 (one word), not of the adapter's storage-binding
+    /// alignment: copy the range (`copy_buffer_to_buffer`) or pass the
+    /// offset to a shader that binds the whole buffer.
+    pub offset: u64,
+    pub size: u64,
 }
 
 impl DeviceLocal {

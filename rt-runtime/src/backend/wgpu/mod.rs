@@ -89,7 +89,8 @@ pub(crate) mod resident;
 
 pub use capture::capture_launches_to;
 pub use compute::geometry::cwbvh_node_words;
-pub use device::{Gpu, instance, probe, probe_ray_queries};
+pub use device::{Gpu, WgpuDevice, instance, probe, probe_ray_queries};
+pub use device_local::DeviceBuffer;
 pub use rayquery::Traversal;
 
 use super::{BackendStats, ExceptionRecord, Launch, LaunchBackend, LaunchReport};
@@ -99,9 +100,9 @@ use crate::buffer::BufferRec;
 use crate::error::{Result, RtError};
 use crate::scene::Scene;
 use compute::scene::{Encoding, SceneKey};
-use device_local::DeviceLocal;
 use glam::UVec2;
 use readback::{LOG_EXCEPTIONS, LOG_PRINT_WORDS};
+use resident::DeviceLocal;
 
 /// The wgpu backend: its device (opened at the first launch, dropped when
 /// lost), the last launch's kernel and the outputs it read back.
@@ -131,14 +132,14 @@ impl WgpuBackend {
     }
 
     /// Where `buffer` lies on the device, after a launch placed it.
-    pub(crate) fn placed(&self, buffer: usize) -> Option<crate::context::DeviceBuffer> {
+    pub(crate) fn placed(&self, buffer: usize) -> Option<DeviceBuffer> {
         DeviceLocal::placed(self.gpu.as_ref()?, buffer)
     }
 
     /// The open device's handles.
-    pub(crate) fn handles(&self) -> Option<crate::context::WgpuDevice> {
+    pub(crate) fn handles(&self) -> Option<WgpuDevice> {
         let gpu = self.gpu.as_ref()?;
-        Some(crate::context::WgpuDevice {
+        Some(WgpuDevice {
             adapter: gpu.adapter.clone(),
             device: gpu.device.clone(),
             queue: gpu.queue.clone(),

@@ -2,7 +2,6 @@
 //! mirrored on the host so a launch uploads only the pages that changed.
 
 use super::compute::scene::{NewScene, ResidentScene};
-use super::device_local::DeviceLocal;
 use super::kernel::SCENE_SECTIONS;
 use std::ops::Range;
 use wgpu::util::DeviceExt;
@@ -232,4 +231,28 @@ pub(crate) fn upload(
     queue.write_buffer(log, 0, words_to_bytes(&[0u32; 4]));
     res.uploaded += 16;
     replaced
+}
+
+/// A buffer whose words the device holds newer than the host.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Held {
+    pub(crate) buffer: usize,
+    /// Word offset in the heap, and length.
+    pub(crate) offset: usize,
+    pub(crate) words: usize,
+    /// The host's version of the buffer when the device took it over.
+    pub(crate) version: u64,
+}
+
+/// What the device holds of device-local buffers, and where every buffer
+/// lies in its heap (the functions are in [`super::device_local`]).
+#[derive(Default)]
+pub(crate) struct DeviceLocal {
+    pub(crate) held: Vec<Held>,
+    /// `(word offset, words)` of every buffer in the heap the device holds.
+    pub(crate) placed: Vec<(usize, usize)>,
+    /// The held words from before the launch running now, and where each
+    /// buffer's start in it (bytes), with its place in the new heap.
+    pub(crate) saved: Option<wgpu::Buffer>,
+    pub(crate) saved_for: Vec<(Held, u64)>,
 }
