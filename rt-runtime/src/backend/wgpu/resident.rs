@@ -173,7 +173,8 @@ pub(crate) fn words_to_bytes(w: &[u32]) -> &[u8] {
 }
 
 /// Makes the device hold the launch's `heap` (but for the word ranges
-/// `kept`, which it holds newer), its new scene when there is one (`fresh`: the sections and the scene they then hold) and a log of
+/// `kept`, which it holds newer), its new scene when there is one
+/// (`fresh`: the sections and the scene they then hold) and a log of
 /// `log_words` with its counters reset. Counts the bytes written in
 /// `res.uploaded`; returns true if a buffer was replaced (the bind groups
 /// over it are stale).
