@@ -30,6 +30,10 @@ pub const EXCEPTION_INTEGER_OVERFLOW: u32 = 0x3F1;
 /// Integer division or remainder by zero: as
 /// [`EXCEPTION_INTEGER_OVERFLOW`], on request, on the CPU backend.
 pub const EXCEPTION_INTEGER_DIVIDE_BY_ZERO: u32 = 0x3F2;
+/// A callable program called through an id that names no callable program
+/// of the call's signature (zero, a stale id, or a callable of another
+/// signature): the call returns the zero value of its result.
+pub const EXCEPTION_PROGRAM_ID_INVALID: u32 = 0x3EE;
 /// The first code free for programs' own `rt_throw` codes.
 pub const EXCEPTION_USER: u32 = 0x400;
 
@@ -43,12 +47,13 @@ pub const fn exception_kind_bit(code: u32) -> u32 {
         EXCEPTION_INVALID_RAY => 4,
         EXCEPTION_INTEGER_OVERFLOW => 8,
         EXCEPTION_INTEGER_DIVIDE_BY_ZERO => 16,
+        EXCEPTION_PROGRAM_ID_INVALID => 64,
         _ => 32,
     }
 }
 
 /// Every exception kind enabled.
-pub const ALL_EXCEPTION_KINDS: u32 = 63;
+pub const ALL_EXCEPTION_KINDS: u32 = 127;
 
 /// Every constant above that programs may name, by its rt-std name.
 pub const CONSTANTS: &[(&str, u32)] = &[
@@ -64,6 +69,7 @@ pub const CONSTANTS: &[(&str, u32)] = &[
     ("EXCEPTION_INVALID_RAY", EXCEPTION_INVALID_RAY),
     ("EXCEPTION_INTEGER_OVERFLOW", EXCEPTION_INTEGER_OVERFLOW),
     ("EXCEPTION_INTEGER_DIVIDE_BY_ZERO", EXCEPTION_INTEGER_DIVIDE_BY_ZERO),
+    ("EXCEPTION_PROGRAM_ID_INVALID", EXCEPTION_PROGRAM_ID_INVALID),
     ("EXCEPTION_USER", EXCEPTION_USER),
 ];
 

@@ -100,11 +100,11 @@ pub struct Intrinsic {
     pub wgsl: Option<WgslFn>,
 }
 
-const NOT_BOUNDS: &[Kind] = &[RayGeneration, Exception, ClosestHit, AnyHit, Miss, Intersection, Visit];
+const NOT_BOUNDS: &[Kind] = &[RayGeneration, Exception, ClosestHit, AnyHit, Miss, Intersection, Visit, Callable];
 const RAY_KINDS: &[Kind] = &[ClosestHit, AnyHit, Miss, Intersection, Visit];
 const HITS: &[Kind] = &[ClosestHit, AnyHit];
 const TRACERS: &[Kind] = &[RayGeneration, ClosestHit, Miss];
-const THROWERS: &[Kind] = &[RayGeneration, ClosestHit, AnyHit, Miss, Intersection, Visit];
+const THROWERS: &[Kind] = &[RayGeneration, ClosestHit, AnyHit, Miss, Intersection, Visit, Callable];
 const TRANSFORMERS: &[Kind] = &[ClosestHit, AnyHit, Intersection];
 /// Kinds that run for one traced ray, whose flags and mask they may read.
 const RAY_STATE: &[Kind] = &[ClosestHit, AnyHit, Miss, Intersection];

@@ -1,7 +1,7 @@
 //! Program kinds: the `#[rt_program(kind)]` spellings and what each kind
 //! may take and call.
 
-/// The eight kinds of ray program, as in OptiX, written
+/// The nine kinds of ray program, as in OptiX, written
 /// `#[rt_program(kind)]` (rt-std calls it `ProgramKind`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Kind {
@@ -21,12 +21,16 @@ pub enum Kind {
     BoundingBox,
     /// Chooses which child of a selector a ray enters.
     Visit,
+    /// A function called through an id held in a value (OptiX bindless
+    /// callable programs, OptiX 7 direct callables).
+    Callable,
 }
 
 use Kind::*;
 
 /// Every kind, in OptiX's order.
-pub const ALL_KINDS: [Kind; 8] = [RayGeneration, Exception, ClosestHit, AnyHit, Miss, Intersection, BoundingBox, Visit];
+pub const ALL_KINDS: [Kind; 9] =
+    [RayGeneration, Exception, ClosestHit, AnyHit, Miss, Intersection, BoundingBox, Visit, Callable];
 
 impl Kind {
     /// The `#[rt_program(...)]` spelling.
@@ -40,6 +44,7 @@ impl Kind {
             Intersection => "intersection",
             BoundingBox => "bounding_box",
             Visit => "visit",
+            Callable => "callable",
         }
     }
 
@@ -54,6 +59,7 @@ impl Kind {
             Intersection => "Intersection",
             BoundingBox => "BoundingBox",
             Visit => "Visit",
+            Callable => "Callable",
         }
     }
 
@@ -76,6 +82,7 @@ impl Kind {
             Intersection => "`prim: u32`, `attr: &mut Attributes` and `#[var]` parameters",
             BoundingBox => "`prim: u32` and `#[var]` parameters, returning `Aabb`",
             Visit => "`prd: &Payload` and `#[var]` parameters, returning the child index as `u32`",
+            Callable => "arguments by value of the subset's types, returning a value or nothing",
         }
     }
 }

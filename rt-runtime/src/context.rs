@@ -62,6 +62,9 @@ pub enum ExceptionKind {
     IntegerOverflow,
     /// Integer division by zero (CPU backend, with integer exceptions on).
     IntegerDivideByZero,
+    /// A callable program called through an id that names none of its
+    /// signature (OptiX `RT_EXCEPTION_PROGRAM_ID_INVALID`).
+    ProgramIdInvalid,
     /// `rt_throw`'s codes.
     User,
     /// Every kind.
@@ -77,6 +80,7 @@ impl ExceptionKind {
             ExceptionKind::InvalidRay => exception_kind_bit(EXCEPTION_INVALID_RAY),
             ExceptionKind::IntegerOverflow => exception_kind_bit(EXCEPTION_INTEGER_OVERFLOW),
             ExceptionKind::IntegerDivideByZero => exception_kind_bit(EXCEPTION_INTEGER_DIVIDE_BY_ZERO),
+            ExceptionKind::ProgramIdInvalid => exception_kind_bit(EXCEPTION_PROGRAM_ID_INVALID),
             ExceptionKind::User => exception_kind_bit(EXCEPTION_USER),
             ExceptionKind::All => ALL_EXCEPTION_KINDS,
         }

@@ -400,6 +400,14 @@ pub trait Tracer {
     fn report_intersection(&self, material: u32, attributes: Option<&dyn AnyAttributes>) -> bool;
     /// [`rt_printf!`](crate::rt_printf) output.
     fn print(&self, text: &str);
+    /// The Rust function of the callable program of id `id` (a
+    /// `fn(A, ..) -> R` behind `Any`), for
+    /// [`Callable::call`](crate::Callable::call); `None` when the id names
+    /// no callable program of this launch.
+    fn callable(&self, id: u32) -> Option<&'static (dyn core::any::Any + Send + Sync)> {
+        let _ = id;
+        None
+    }
 }
 
 thread_local! {
@@ -634,6 +642,12 @@ pub fn __report_intersection<A: crate::Attributes + Send>(material: u32, attribu
         Some(t) => unsafe { (*t).report_intersection(material, Some(attributes)) },
         None => true,
     }
+}
+
+/// The Rust function of callable `id` as the installed tracer has it (none
+/// without a tracer).
+pub(crate) fn callable(id: u32) -> Option<&'static (dyn core::any::Any + Send + Sync)> {
+    with_installed_tracer(|tracer| tracer.callable(id), || None)
 }
 
 /// Sends `rt_printf!` text to the tracer or stdout.

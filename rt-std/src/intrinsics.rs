@@ -46,6 +46,12 @@ pub const EXCEPTION_INTEGER_OVERFLOW: u32 = rt_abi::EXCEPTION_INTEGER_OVERFLOW;
 /// [`EXCEPTION_INTEGER_OVERFLOW`] is (`x / 0` is `x` and `x % 0` is 0
 /// either way).
 pub const EXCEPTION_INTEGER_DIVIDE_BY_ZERO: u32 = rt_abi::EXCEPTION_INTEGER_DIVIDE_BY_ZERO;
+/// Exception code: a callable program was called through an id that names
+/// no callable program of the call's signature (zero, an id the context did
+/// not give, or a callable of another signature); the call returned the
+/// zero value of its result type.
+#[doc(alias = "RT_EXCEPTION_PROGRAM_ID_INVALID")]
+pub const EXCEPTION_PROGRAM_ID_INVALID: u32 = rt_abi::EXCEPTION_PROGRAM_ID_INVALID;
 /// The first exception code free for programs' own [`rt_throw`] codes; the
 /// codes below are reserved for the runtime's exceptions.
 #[doc(alias = "RT_EXCEPTION_USER")]

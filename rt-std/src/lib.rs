@@ -43,6 +43,7 @@
 //! | intersection | `intersection` | per custom primitive a ray reaches | primitive index, `&mut` attributes |
 //! | bounding box | `bounding_box` | per custom primitive, at build time | primitive index; returns [`Aabb`] |
 //! | visit | `visit` | at a selector node | returns the chosen child (`u32`) |
+//! | callable | `callable` | when a program calls its id ([`Callable`]) | arguments by value; returns a value |
 //!
 //! What a program reads is visible in its signature: the payload, the
 //! attributes, and `#[var]` parameters resolved by OptiX's scope rules.
@@ -130,6 +131,7 @@
 pub mod arith;
 pub mod atomic;
 pub mod buffer;
+pub mod callable;
 pub mod cpu;
 pub mod data;
 pub mod geometry;
@@ -143,6 +145,7 @@ pub mod texture;
 
 pub use atomic::{AtomicElement, AtomicInteger};
 pub use buffer::{Buffer, Buffer2d, RwBuffer, RwBuffer2d};
+pub use callable::Callable;
 pub use data::{Attributes, Payload, RtData};
 pub use geometry::Aabb;
 pub use intrinsics::*;

@@ -6,7 +6,7 @@
 
 use crate::cpu::{CpuArgs, CpuResult};
 
-/// The eight kinds of ray program, as in OptiX: the contract's
+/// The nine kinds of ray program, as in OptiX: the contract's
 /// [`rt_abi::Kind`], whose `name()` is the `#[rt_program(...)]` spelling.
 pub use rt_abi::Kind as ProgramKind;
 
@@ -159,6 +159,32 @@ impl WgslSite {
     }
 }
 
+/// The signature of a callable program, or of a call through a
+/// [`Callable`](crate::Callable) id: the megakernel has one dispatch
+/// function per signature, `switch`ing over the callables of it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct CallableSignature {
+    /// The Rust spelling, `fn(Vec3, Vec3) -> Vec3` (`fn(u32)` for no result).
+    pub rust: &'static str,
+    /// The WGSL dispatch function a call lowers to,
+    /// `rt_call_<parameters>__<result>`.
+    pub dispatch: &'static str,
+    /// The WGSL parameter types, in order.
+    pub params: &'static [&'static str],
+    /// The WGSL result type; `None` for no result.
+    pub ret: Option<&'static str>,
+}
+
+/// What a callable program's descriptor adds.
+#[derive(Clone, Copy, Debug)]
+pub struct CallableDescriptor {
+    /// Its signature.
+    pub signature: CallableSignature,
+    /// The Rust function, a `fn(A, ..) -> R` behind `Any` (the CPU
+    /// backend's call; the host checks a requested signature against it).
+    pub cpu: &'static (dyn core::any::Any + Send + Sync),
+}
+
 /// A format string of an `rt_printf!` call, with the types of its arguments.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct PrintfFormat {
@@ -228,6 +254,10 @@ pub struct ProgramDescriptor {
     pub traced_payloads: &'static [TypeLayout],
     /// `rt_printf!` formats the program (and its helpers) use.
     pub printf: &'static [PrintfFormat],
+    /// The signatures of the callables the program (and its helpers) call.
+    pub calls: &'static [CallableSignature],
+    /// For callable programs: the signature and the Rust function.
+    pub callable: Option<CallableDescriptor>,
     /// Rust source file of the program.
     pub file: &'static str,
     /// Line of the program's `fn` in that file.

@@ -42,6 +42,7 @@ fn is_builtin_type_name(name: &str) -> bool {
         || types::buffer_kind(name).is_some()
         || types::unsupported_type_advice(name).is_some()
         || name == "Self"
+        || name == "Callable"
 }
 
 fn is_builtin_fn(name: &str) -> bool {

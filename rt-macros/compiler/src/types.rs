@@ -107,6 +107,40 @@ impl EnumDef {
     }
 }
 
+/// The signature of a callable program or of a [`Ty::Callable`] id.
+#[derive(Debug, PartialEq)]
+pub struct CallSig {
+    pub params: Vec<Ty>,
+    pub ret: Ty,
+}
+
+impl CallSig {
+    /// `fn(Vec3, Vec3) -> Vec3`, `fn(u32)`: as the descriptors and messages
+    /// spell it.
+    pub fn rust(&self) -> String {
+        let params: Vec<String> = self.params.iter().map(Ty::to_string).collect();
+        match self.ret {
+            Ty::Unit => format!("fn({})", params.join(", ")),
+            ref r => format!("fn({}) -> {r}", params.join(", ")),
+        }
+    }
+
+    /// The WGSL dispatch function of the signature,
+    /// `rt_call_<parameters>__<result>_`: one per signature in a megakernel.
+    pub fn dispatch(&self) -> String {
+        let key = |t: &Ty| match t {
+            // Enums and ids are `u32`s in WGSL; their names keep the
+            // signatures apart.
+            Ty::Enum(e) => format!("e{}", e.name),
+            Ty::Callable(c) => format!("c{}", c.dispatch()),
+            Ty::Unit => "void".into(),
+            t => t.mangle(),
+        };
+        let params: Vec<String> = self.params.iter().map(key).collect();
+        format!("rt_call_{}__{}_", params.join("_"), key(&self.ret))
+    }
+}
+
 /// A type in the subset.
 #[derive(Clone, Debug)]
 pub enum Ty {
@@ -121,6 +155,8 @@ pub enum Ty {
     Struct(Rc<StructDef>),
     /// A `#[rt_enum]`.
     Enum(Rc<EnumDef>),
+    /// `Callable<fn(A, ..) -> R>`: the id of a callable program, a `u32`.
+    Callable(Rc<CallSig>),
     /// `(A, B, ...)`, at least one element: a WGSL struct with fields `f0`,
     /// `f1`, ... (see [`Ty::wgsl`]).
     Tuple(Vec<Ty>),
@@ -149,6 +185,7 @@ impl PartialEq for Ty {
             (Mat(n), Mat(m)) => n == m,
             (Struct(a), Struct(b)) => a.name == b.name,
             (Enum(a), Enum(b)) => a.name == b.name,
+            (Callable(a), Callable(b)) => a == b,
             (Tuple(a), Tuple(b)) => a == b,
             (Array(a, n), Array(b, m)) => n == m && a == b,
             (Buffer(k, a), Buffer(l, b)) => k == l && a == b,
@@ -187,7 +224,7 @@ impl Ty {
         match self {
             Ty::Scalar(s) => *s != Scalar::Usize,
             Ty::Vec(_, s) => *s != Scalar::Bool,
-            Ty::Mat(_) | Ty::Struct(_) | Ty::Enum(_) | Ty::Ray | Ty::Aabb => true,
+            Ty::Mat(_) | Ty::Struct(_) | Ty::Enum(_) | Ty::Callable(_) | Ty::Ray | Ty::Aabb => true,
             Ty::Array(t, _) => t.is_plain_data(),
             Ty::Tuple(ts) => ts.iter().all(Ty::is_plain_data),
             _ => false,
@@ -216,7 +253,7 @@ impl Ty {
             Ty::Tuple(ts) => format!("rt_tuple_{}_", ts.iter().map(Ty::mangle).collect::<Vec<_>>().join("_")),
             Ty::Ray => "RtRay".into(),
             Ty::Aabb => "RtAabb".into(),
-            Ty::Object | Ty::TransformKind | Ty::Enum(_) => "u32".into(),
+            Ty::Object | Ty::TransformKind | Ty::Enum(_) | Ty::Callable(_) => "u32".into(),
             Ty::Buffer(..) => "RtBuffer".into(),
             Ty::Sampler => "RtSampler".into(),
             Ty::Ref(true, t) => format!("ptr<function, {}>", t.wgsl()),
@@ -242,7 +279,7 @@ impl Ty {
     /// Size in 32-bit words when stored in the heap.
     pub fn words(&self) -> u32 {
         match self {
-            Ty::Scalar(_) | Ty::IntVar(_) | Ty::Object | Ty::TransformKind | Ty::Enum(_) => 1,
+            Ty::Scalar(_) | Ty::IntVar(_) | Ty::Object | Ty::TransformKind | Ty::Enum(_) | Ty::Callable(_) => 1,
             Ty::Vec(n, _) => *n as u32,
             Ty::Mat(n) => (*n as u32) * (*n as u32),
             Ty::Struct(s) => s.fields.iter().map(|(_, t)| t.words()).sum(),
@@ -284,6 +321,7 @@ impl fmt::Display for Ty {
             Ty::Mat(n) => write!(f, "Mat{n}"),
             Ty::Struct(s) => write!(f, "{}", s.name),
             Ty::Enum(e) => write!(f, "{}", e.name),
+            Ty::Callable(c) => write!(f, "Callable<{}>", c.rust()),
             Ty::Tuple(ts) => {
                 let parts: Vec<String> = ts.iter().map(Ty::to_string).collect();
                 if parts.len() == 1 { write!(f, "({},)", parts[0]) } else { write!(f, "({})", parts.join(", ")) }

@@ -30,6 +30,9 @@ pub fn resolve_type(ty: &syn::Type, user: &dyn Fn(&str) -> Option<Ty>) -> Result
                 }
                 return Ok(Ty::Buffer(kind, Box::new(elem)));
             }
+            if name == "Callable" {
+                return resolve_callable(seg, user);
+            }
             // Before the generic arguments: `Vec<f32>` is a heap type.
             if let Some(advice) = types::unsupported_type_advice(&name) {
                 return Err(Error::unsupported(seg.ident.span(), &format!("the type `{name}`"), advice));
@@ -91,6 +94,51 @@ pub fn resolve_type(ty: &syn::Type, user: &dyn Fn(&str) -> Option<Ty>) -> Result
             Err(Error::unsupported(other.span(), "this type", "use scalars, glam types, arrays and #[rt_struct]s"))
         }
     }
+}
+
+/// `Callable<fn(A, ..) -> R>`: arguments and result of plain values.
+fn resolve_callable(seg: &syn::PathSegment, user: &dyn Fn(&str) -> Option<Ty>) -> Result<Ty> {
+    let shape = "`Callable` takes a function type: `Callable<fn(Vec3, Vec3) -> Vec3>`";
+    let f = match &seg.arguments {
+        syn::PathArguments::AngleBracketed(a) if a.args.len() == 1 => match &a.args[0] {
+            syn::GenericArgument::Type(syn::Type::BareFn(f)) => f,
+            other => return Err(Error::new(other.span(), shape)),
+        },
+        _ => return Err(Error::new(seg.span(), shape)),
+    };
+    if let Some(v) = &f.variadic {
+        return Err(Error::unsupported(v.span(), "a variadic callable", "list the arguments"));
+    }
+    let mut params = Vec::new();
+    for a in &f.inputs {
+        let ty = resolve_type(&a.ty, user)?;
+        check_callable_value(&ty, a.ty.span(), "an argument")?;
+        params.push(ty);
+    }
+    let ret = match &f.output {
+        syn::ReturnType::Default => Ty::Unit,
+        syn::ReturnType::Type(_, t) => {
+            let ty = resolve_type(t, user)?;
+            if ty != Ty::Unit {
+                check_callable_value(&ty, t.span(), "a result")?;
+            }
+            ty
+        }
+    };
+    Ok(Ty::Callable(std::rc::Rc::new(types::CallSig { params, ret })))
+}
+
+/// What a callable program takes and returns: plain values (scalars,
+/// vectors, matrices, arrays, structs, enums, tuples, callable ids).
+pub fn check_callable_value(ty: &Ty, span: proc_macro2::Span, what: &str) -> Result<()> {
+    if matches!(ty, Ty::Scalar(_)) || ty.is_plain_data() {
+        return Ok(());
+    }
+    let advice = match ty {
+        Ty::Ref(..) => "callables take their arguments by value and return results; pass the value and use what it returns",
+        _ => "callables take and return plain values (scalars, vectors, matrices, arrays, structs, enums, tuples); read handles in the caller",
+    };
+    Err(Error::unsupported(span, &format!("`{ty}` as {what} of a callable"), advice))
 }
 
 /// A tuple holds plain values (scalars, vectors, matrices, arrays,

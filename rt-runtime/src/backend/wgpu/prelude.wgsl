@@ -63,6 +63,7 @@ fn rt_exc_bit(code: u32) -> u32 {
     if code == RT_EXC_TRACE_DEPTH { return 1u; }
     if code == RT_EXC_BUFFER_INDEX { return 2u; }
     if code == RT_EXC_INVALID_RAY { return 4u; }
+    if code == RT_EXC_PROGRAM_ID { return 64u; }
     return 32u;
 }
 
