@@ -337,6 +337,34 @@ impl Context {
         ProgramId(self.scene.programs.len() as u32 - 1)
     }
 
+    /// The id programs call callable program `p` through, as a
+    /// [`Callable<F>`](rt_std::Callable) of the signature `F` the program
+    /// was declared with (`fn(Vec3, Vec3) -> Vec3`): set it as a variable,
+    /// or store it in a buffer, payload or struct. Errors if `p` is not a
+    /// callable program or its signature is not `F`, naming the program.
+    #[doc(alias = "rtProgramGetId")]
+    pub fn callable_id<F: 'static>(&self, p: ProgramId) -> Result<rt_std::Callable<F>> {
+        let desc = self.scene.program(p)?.desc;
+        let Some(callable) = desc.callable else {
+            return Err(RtError::WrongProgramKind {
+                program: desc.name,
+                location: desc.location(),
+                found: desc.kind,
+                expected: ProgramKind::Callable,
+                slot: "a callable id".into(),
+            });
+        };
+        if !callable.cpu.is::<F>() {
+            return Err(RtError::CallableSignature {
+                program: desc.name,
+                location: desc.location(),
+                signature: callable.signature.rust,
+                asked: short_type_name(std::any::type_name::<F>()),
+            });
+        }
+        Ok(rt_std::Callable::from_id(p.0 + 1))
+    }
+
     fn expect_kind(&self, p: ProgramId, expected: ProgramKind, slot: String) -> Result<()> {
         let desc = self.scene.program(p)?.desc;
         if desc.kind != expected {
@@ -852,4 +880,21 @@ fn checked_inverse(m: Mat4) -> Result<Mat4> {
         return Err(RtError::BadTransform { problem: format!("the matrix is singular or not finite: {m:?}") });
     }
     Ok(m.inverse())
+}
+
+/// `fn(glam::f32::vec3::Vec3) -> glam::f32::vec3::Vec3` as
+/// `fn(Vec3) -> Vec3`: every path cut to its last segment.
+fn short_type_name(full: &str) -> String {
+    let mut out = String::new();
+    let mut word = String::new();
+    for c in full.chars().chain(std::iter::once(' ')) {
+        if c.is_alphanumeric() || c == '_' || c == ':' {
+            word.push(c);
+        } else {
+            out.push_str(word.rsplit("::").next().unwrap_or(&word));
+            word.clear();
+            out.push(c);
+        }
+    }
+    out.trim_end().to_string()
 }

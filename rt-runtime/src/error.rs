@@ -15,6 +15,19 @@ pub enum RtError {
         expected: ProgramKind,
         slot: String,
     },
+    #[error("`{program}` ({location}) is a callable program of signature `{signature}`, not `{asked}`")]
+    CallableSignature { program: &'static str, location: String, signature: &'static str, asked: String },
+    #[error(
+        "variable `{variable}` of program `{program}` ({location}) is declared `{declared}`, but the {scope} scope sets it to {found}"
+    )]
+    CallableVariable {
+        program: &'static str,
+        location: String,
+        variable: String,
+        declared: String,
+        scope: String,
+        found: String,
+    },
     #[error(
         "variable `{variable}` of {kind:?} program `{program}` ({location}) is set in no scope (searched, innermost first: {searched})"
     )]

@@ -109,11 +109,21 @@ pub fn resolve_values(scene: &Scene, p: ProgramId, record: Record) -> Result<Vec
             found,
         };
         let ok = match (value, v.kind) {
+            (VarValue::Data { layout, words, .. }, VariableKind::Value) if v.ty.rust.starts_with("Callable<") => {
+                if layout.rust != rt_std::callable::CALLABLE_LAYOUT.rust {
+                    false
+                } else {
+                    check_callable_id(scene, desc, v, &scope_name(scope), words[0])?;
+                    true
+                }
+            }
             (VarValue::Data { layout, .. }, VariableKind::Value) => layout.rust == v.ty.rust,
             (VarValue::Buffer(b), VariableKind::Buffer { element, dimensions, writable }) => {
                 let rec =
                     scene.buffers.get(b.index() as usize).ok_or_else(|| RtError::InvalidHandle(format!("{b:?}")))?;
-                rec.storage.layout().rust == element.rust
+                let held = rec.storage.layout().rust;
+                (held == element.rust
+                    || (held == rt_std::callable::CALLABLE_LAYOUT.rust && element.rust.starts_with("Callable<")))
                     && rec.dims == dimensions
                     && (!writable || rec.ty.writable_by_programs())
             }
@@ -291,5 +301,41 @@ pub fn bind_error(call: &Call, e: rt_std::cpu::VariableMismatch) -> RtError {
         declared: e.expected.to_string(),
         scope: "bound".to_string(),
         found: "a value of another Rust type".to_string(),
+    }
+}
+
+/// A `Callable<F>` variable's id against the program it names: zero (none)
+/// or a callable program of signature `F` (its descriptor's spelling).
+fn check_callable_id(
+    scene: &Scene,
+    desc: &'static ProgramDescriptor,
+    v: &rt_std::program::VariableDescriptor,
+    scope: &str,
+    id: u32,
+) -> Result<()> {
+    if id == 0 {
+        return Ok(());
+    }
+    let declared = v.ty.rust.strip_prefix("Callable<").and_then(|s| s.strip_suffix('>')).unwrap_or(v.ty.rust);
+    let error = |found: String| RtError::CallableVariable {
+        program: desc.name,
+        location: desc.location(),
+        variable: v.name.to_string(),
+        declared: v.ty.rust.to_string(),
+        scope: scope.to_string(),
+        found,
+    };
+    let Some(target) = scene.programs.get(id as usize - 1).map(|r| r.desc) else {
+        return Err(error(format!("id {id}, which names no program of this context")));
+    };
+    match target.callable {
+        Some(c) if c.signature.rust == declared => Ok(()),
+        Some(c) => Err(error(format!(
+            "the id of `{}` ({}), a callable of signature `{}`",
+            target.name,
+            target.location(),
+            c.signature.rust
+        ))),
+        None => Err(error(format!("the id of `{}` ({}), a {:?} program", target.name, target.location(), target.kind))),
     }
 }

@@ -564,6 +564,22 @@ fn wgsl_items(items: &[(String, String)], sites: &BTreeMap<String, Vec<(Site, us
     quote!(&[#(#items),*])
 }
 
+/// `CallableSignature` tokens.
+fn signature_tokens(sig: &crate::types::CallSig) -> TokenStream {
+    let rust = sig.rust();
+    let dispatch = sig.dispatch();
+    let params: Vec<String> = sig.params.iter().map(Ty::wgsl).collect();
+    let params = str_slice(&params);
+    let ret = match &sig.ret {
+        Ty::Unit => quote!(None),
+        r => {
+            let w = r.wgsl();
+            quote!(Some(#w))
+        }
+    };
+    quote!(::rt_std::program::CallableSignature { rust: #rust, dispatch: #dispatch, params: #params, ret: #ret })
+}
+
 /// `WgslSite` tokens.
 fn wgsl_sites(sites: &[(Site, usize)]) -> TokenStream {
     let sites = sites.iter().map(|(s, end)| {
@@ -637,6 +653,14 @@ fn program_output(kind: Kind, f: &syn::ItemFn, lowered: Result<Lowered, Errors>)
             && (kind == Kind::Intersection || matches!(&*pt.ty, syn::Type::Reference(r) if r.mutability.is_none())))
     });
     let cpu_attributes = if has_attributes { quote!(Some(attributes_from_words)) } else { quote!(None) };
+    let calls = l.calls.values().map(|s| signature_tokens(s));
+    let callable = match &l.callable {
+        Some(sig) => {
+            let sig = signature_tokens(sig);
+            quote!(Some(::rt_std::program::CallableDescriptor { signature: #sig, cpu: &CALLABLE }))
+        }
+        None => quote!(None),
+    };
     let span = f.sig.ident.span();
     let file = quote_spanned!(span=> file!());
     let line = quote_spanned!(span=> line!());
@@ -662,6 +686,8 @@ fn program_output(kind: Kind, f: &syn::ItemFn, lowered: Result<Lowered, Errors>)
             intrinsics: #intrinsics,
             traced_payloads: &[#(#traced),*],
             printf: &[#(#printf),*],
+            calls: &[#(#calls),*],
+            callable: #callable,
             file: #file,
             line: #line,
             cpu: cpu,
@@ -702,6 +728,9 @@ fn pass_attributes_to_reports(f: &mut syn::ItemFn, params: &[signature::Param]) 
 /// The CPU entry: unpacks `CpuArgs` and calls the original function.
 fn cpu_thunk(kind: Kind, f: &syn::ItemFn, params: &[signature::Param]) -> TokenStream {
     let name = &f.sig.ident;
+    if kind == Kind::Callable {
+        return callable_thunk(f, params);
+    }
     let mut var_types = Vec::new();
     let mut var_locals = Vec::new();
     let mut bindings = Vec::new();
@@ -715,6 +744,7 @@ fn cpu_thunk(kind: Kind, f: &syn::ItemFn, params: &[signature::Param]) -> TokenS
                 Role::Payload { .. } => quote!(payload),
                 Role::Attributes { .. } => quote!(attributes),
                 Role::Primitive => return quote!(*primitive),
+                Role::Argument => unreachable!("callables have their own thunk"),
                 Role::Variable => {
                     var_types.push(quote!(::rt_std::cpu::Var<#ty>));
                     var_locals.push(quote!(::rt_std::cpu::Var(#local)));
@@ -764,6 +794,35 @@ fn cpu_thunk(kind: Kind, f: &syn::ItemFn, params: &[signature::Param]) -> TokenS
             #read_variables
             #(#bindings)*
             ::rt_std::cpu::CpuResult::from(super::#name(#(#args),*))
+        }
+    }
+}
+
+/// A callable program's CPU side: its Rust function as a `fn` pointer (what
+/// `Callable::call` downcasts to), and the entries every descriptor has,
+/// which the backends never call for a callable.
+fn callable_thunk(f: &syn::ItemFn, params: &[signature::Param]) -> TokenStream {
+    let name = &f.sig.ident;
+    let tys = params.iter().map(|p| reroot_type(&p.ty));
+    let ret = match &f.sig.output {
+        syn::ReturnType::Default => quote!(),
+        syn::ReturnType::Type(_, t) => {
+            let t = reroot_type(t);
+            quote!(-> #t)
+        }
+    };
+    quote! {
+        /// The callable's Rust function, as `Callable::call` finds it.
+        pub static CALLABLE: fn(#(#tys),*) #ret = super::#name;
+        /// Binds nothing: a callable reads no variables.
+        pub fn cpu_bind<'a>(
+            values: &[&'a (dyn ::core::any::Any + ::core::marker::Send + ::core::marker::Sync)],
+        ) -> ::core::result::Result<::rt_std::cpu::BoundVariables<'a>, ::rt_std::cpu::VariableMismatch> {
+            ::rt_std::cpu::BoundVariables::bind::<()>(values)
+        }
+        /// Never called: a callable runs through `Callable::call`.
+        pub fn cpu(_: &mut ::rt_std::cpu::CpuArgs<'_>) -> ::rt_std::cpu::CpuResult {
+            ::rt_std::cpu::CpuResult::Unit
         }
     }
 }

@@ -17,6 +17,8 @@ pub enum Role {
     Primitive,
     /// `#[var] name: T`.
     Variable,
+    /// An argument of a callable program, by value.
+    Argument,
 }
 
 #[derive(Clone, Debug)]
@@ -53,6 +55,19 @@ pub fn program_params(kind: Kind, f: &syn::ItemFn) -> Result<Vec<Param>, Errors>
             }
         };
         let span = pt.span();
+        if kind == Kind::Callable {
+            if pt.attrs.iter().any(is_var_attr) {
+                errors.push(Error::new(
+                    span,
+                    format!(
+                        "a callable program reads no `#[var]` variables: take `{name}` as an argument and pass it from the caller"
+                    ),
+                ));
+            } else {
+                params.push(Param { name, role: Role::Argument, ty: (*pt.ty).clone(), span });
+            }
+            continue;
+        }
         if pt.attrs.iter().any(is_var_attr) {
             if let syn::Type::Reference(r) = &*pt.ty {
                 errors.push(Error::new(

@@ -108,7 +108,7 @@ impl EnumDef {
 }
 
 /// The signature of a callable program or of a [`Ty::Callable`] id.
-#[derive(Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct CallSig {
     pub params: Vec<Ty>,
     pub ret: Ty,

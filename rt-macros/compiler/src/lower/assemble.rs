@@ -48,6 +48,7 @@ pub(super) fn assemble(
     {
         why.push_str(&format!(" ({})", unit.not_resumable_helpers.join("; ")));
     }
+    out.calls = m.call_types.borrow().clone();
     out.printf = m.printf.borrow().iter().map(|(id, (f, t))| (*id, f.clone(), t.clone())).collect();
 
     let mut wgsl = out.prelude.clone();
@@ -114,7 +115,19 @@ fn prelude(m: &ModuleCtx) -> String {
             ty.wgsl()
         ));
     }
+    for (name, sig) in m.call_types.borrow().iter() {
+        s.push_str(&call_stub(name, sig));
+    }
     s
+}
+
+/// A dispatch function's stub: the signature, a zero result.
+fn call_stub(name: &str, sig: &crate::types::CallSig) -> String {
+    let params: String = sig.params.iter().enumerate().map(|(i, t)| format!(", a{i}: {}", t.wgsl())).collect();
+    match &sig.ret {
+        crate::types::Ty::Unit => format!("fn {name}(id: u32{params}) {{}}\n"),
+        r => format!("fn {name}(id: u32{params}) -> {0} {{\n    var r: {0};\n    return r;\n}}\n", r.wgsl()),
+    }
 }
 
 /// Stubs for what the linker provides to resumable programs.

@@ -78,6 +78,9 @@ pub struct ModuleCtx {
     pub accessors: RefCell<Accessors>,
     pub trace_types: RefCell<BTreeMap<String, Ty>>,
     pub report_types: RefCell<BTreeMap<String, Ty>>,
+    /// The signatures called through `Callable` ids, by dispatch name: each
+    /// has a stub in the prelude, the linker's `switch` in a megakernel.
+    pub call_types: RefCell<BTreeMap<String, Rc<crate::types::CallSig>>>,
     /// Dependencies that failed to lower: using them is a silent error.
     pub failed: HashSet<String>,
     printf: RefCell<BTreeMap<u32, (String, Vec<String>)>>,
@@ -167,6 +170,12 @@ pub struct Lowered {
     pub traced: Vec<Ty>,
     /// `(id, format, argument WGSL types)`.
     pub printf: Vec<(u32, String, Vec<String>)>,
+    /// A callable program's argument types, in order.
+    pub arguments: Vec<Ty>,
+    /// A callable program's signature.
+    pub callable: Option<crate::types::CallSig>,
+    /// The signatures of the callables the module calls, by dispatch name.
+    pub calls: BTreeMap<String, std::rc::Rc<crate::types::CallSig>>,
     /// A tracing program's resumable form (frame declarations and the
     /// function; see `func/resume.rs`), validated like the plain form.
     pub resumable: Option<String>,
@@ -226,6 +235,7 @@ fn lower_impl(entry: Entry<'_>, deps: &[Item], report_deps: bool) -> std::result
         trace_types: RefCell::new(BTreeMap::new()),
         failed: failed_structs,
         report_types: RefCell::new(BTreeMap::new()),
+        call_types: RefCell::new(BTreeMap::new()),
         printf: RefCell::new(BTreeMap::new()),
     };
     for (name, d) in &m.structs {

@@ -26,6 +26,9 @@ pub(super) fn program_unit(
     let mut errors = Errors::default();
     let lps = program_lparams(m, kind, f, &params, out, &mut errors);
     let ret = program_ret(m, kind, f, &mut errors);
+    if kind == Kind::Callable {
+        out.callable = Some(crate::types::CallSig { params: out.arguments.clone(), ret: ret.clone() });
+    }
     if !errors.is_empty() {
         return Err(errors);
     }
@@ -37,6 +40,8 @@ pub(super) fn program_unit(
         Role::Attributes { .. } => 1,
         Role::Primitive => 2,
         Role::Variable => 3,
+        // A callable's arguments keep the Rust order.
+        Role::Argument => 4,
     };
     let mut order: Vec<usize> = (0..lps.len()).collect();
     order.sort_by_key(|i| rank(&params[*i]));
@@ -116,6 +121,13 @@ fn program_lparams(
                 if mutable { Ty::Ref(true, Box::new(ty)) } else { Ty::Ref(false, Box::new(ty)) }
             }
             Role::Primitive => ty,
+            Role::Argument => {
+                if let Err(e) = super::resolve::check_callable_value(&ty, p.ty.span(), "an argument") {
+                    errors.push(e);
+                }
+                out.arguments.push(ty.clone());
+                ty
+            }
             Role::Variable => {
                 let ok = ty.is_plain_data() || matches!(ty, Ty::Buffer(..) | Ty::Sampler | Ty::Object);
                 if !ok {
@@ -159,6 +171,19 @@ fn program_ret(m: &ModuleCtx, kind: Kind, f: &syn::ItemFn, errors: &mut Errors) 
             Ty::Unit
         }
         (syn::ReturnType::Default, _) => Ty::Unit,
+        (syn::ReturnType::Type(_, t), Kind::Callable) => match m.resolve_type(t) {
+            Ok(Ty::Unit) => Ty::Unit,
+            Ok(got) => {
+                if let Err(e) = super::resolve::check_callable_value(&got, t.span(), "a result") {
+                    errors.push(e);
+                }
+                got
+            }
+            Err(e) => {
+                errors.push(e);
+                Ty::Unit
+            }
+        },
         (syn::ReturnType::Type(_, t), k) => {
             let want = match k {
                 Kind::BoundingBox => Ty::Aabb,

@@ -701,6 +701,12 @@ impl Tracer for Lane<'_> {
         true
     }
 
+    fn callable(&self, id: u32) -> Option<&'static (dyn std::any::Any + Send + Sync)> {
+        // Ids are program handles plus one (`Context::callable_id`).
+        let rec = self.l.scene.programs.get(id.checked_sub(1)? as usize)?;
+        rec.desc.callable.map(|c| c.cpu)
+    }
+
     fn print(&self, text: &str) {
         let settings = self.l.settings;
         if settings.print_enabled && settings.print_launch_index.is_none_or(|i| i == self.index.get()) {

@@ -100,6 +100,7 @@ impl FnLowerer<'_> {
         match &rt {
             Ty::Buffer(kind, elem) => return self.buffer_method(recv, *kind, elem, name, args, name_span, span),
             Ty::Sampler => return self.sampler_method(recv, name, args, name_span, span),
+            Ty::Callable(sig) => return self.callable_call(recv, sig, name, args, name_span, span),
             _ => {}
         }
         let sig = builtins::method_sig(&rt, name).ok_or_else(|| {

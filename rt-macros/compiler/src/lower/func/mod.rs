@@ -35,6 +35,7 @@ use syn::spanned::Spanned;
 use syn::{BinOp, Expr, Stmt, UnOp};
 
 mod buffers;
+mod callables;
 mod calls;
 mod control;
 mod eval;

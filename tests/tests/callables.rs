@@ -1,0 +1,144 @@
+//! Callable programs (`#[rt_program(callable)]`, OptiX bindless callables):
+//! ids held in a variable, a buffer and a struct, called from a ray
+//! generation program and a helper, with exact results on every target;
+//! an invalid id raises `EXCEPTION_PROGRAM_ID_INVALID` and returns zero.
+
+use rt_runtime::*;
+use rt_std::prelude::*;
+use rt_tests::targets::On;
+
+#[rt_program(callable)]
+pub fn double(x: u32) -> u32 {
+    x * 2
+}
+
+#[rt_program(callable)]
+pub fn square(x: u32) -> u32 {
+    x * x
+}
+
+#[rt_program(callable)]
+pub fn scale(v: Vec3, s: f32) -> Vec3 {
+    v * s
+}
+
+#[rt_struct]
+pub struct Op {
+    pub f: Callable<fn(u32) -> u32>,
+    pub bias: u32,
+}
+
+/// Calls through an id from a helper.
+#[rt_function]
+pub fn apply(op: Op, x: u32) -> u32 {
+    op.f.call(x) + op.bias
+}
+
+#[rt_program(ray_generation)]
+pub fn run_calls(
+    #[var] first: Callable<fn(u32) -> u32>,
+    #[var] ops: Buffer<Callable<fn(u32) -> u32>>,
+    #[var] op: Op,
+    #[var] scaler: Callable<fn(Vec3, f32) -> Vec3>,
+    #[var] mut out: RwBuffer<u32>,
+    #[var] mut vecs: RwBuffer<Vec3>,
+) {
+    let i = launch_index().x;
+    let by_var = first.call(i);
+    let by_buffer = ops[i % 3].call(i + 1);
+    out[i * 3] = by_var;
+    out[i * 3 + 1] = by_buffer;
+    out[i * 3 + 2] = apply(op, i);
+    vecs[i] = scaler.call(vec3(1.0, 2.0, 3.0), i as f32);
+}
+
+struct Outcome {
+    out: Vec<u32>,
+    vecs: Vec<Vec3>,
+    exceptions: Vec<(u32, u32)>,
+}
+
+const N: u32 = 12;
+
+fn run(on: On) -> Outcome {
+    let mut ctx = on.context();
+    ctx.set_ray_type_count(0);
+    let d = ctx.create_program(&double::PROGRAM);
+    let s = ctx.create_program(&square::PROGRAM);
+    let sc = ctx.create_program(&scale::PROGRAM);
+    let d_id = ctx.callable_id::<fn(u32) -> u32>(d).unwrap();
+    let s_id = ctx.callable_id::<fn(u32) -> u32>(s).unwrap();
+    let sc_id = ctx.callable_id::<fn(Vec3, f32) -> Vec3>(sc).unwrap();
+    // The third entry names the callable of another signature: calls through
+    // it raise and return zero.
+    let wrong = Callable::<fn(u32) -> u32>::from_id(sc_id.id());
+    let ops = ctx.create_buffer(BufferType::Input, vec![s_id, d_id, wrong]);
+    let out = ctx.create_buffer::<u32>(BufferType::Output, vec![0; 3 * N as usize]);
+    let vecs = ctx.create_buffer::<Vec3>(BufferType::Output, vec![Vec3::ZERO; N as usize]);
+    ctx.set_var(Scope::Context, "first", d_id).unwrap();
+    ctx.set_var(Scope::Context, "ops", ops).unwrap();
+    ctx.set_var(Scope::Context, "op", Op { f: s_id, bias: 7 }).unwrap();
+    ctx.set_var(Scope::Context, "scaler", sc_id).unwrap();
+    ctx.set_var(Scope::Context, "out", out).unwrap();
+    ctx.set_var(Scope::Context, "vecs", vecs).unwrap();
+    let rg = ctx.create_program(&run_calls::PROGRAM);
+    ctx.set_ray_generation_program(0, rg).unwrap();
+    let report = ctx.launch_1d(0, N).unwrap();
+    let mut exceptions: Vec<(u32, u32)> = report.exceptions.iter().map(|e| (e.launch_index.x, e.code)).collect();
+    exceptions.sort();
+    Outcome { out: ctx.read_buffer(out).unwrap(), vecs: ctx.read_buffer(vecs).unwrap(), exceptions }
+}
+
+#[test]
+fn callables_called_through_variables_buffers_and_structs_agree_on_every_target() {
+    let mut want = Vec::new();
+    let mut raised = Vec::new();
+    for i in 0..N {
+        let by_buffer = match i % 3 {
+            0 => (i + 1) * (i + 1),
+            1 => (i + 1) * 2,
+            _ => {
+                raised.push((i, EXCEPTION_PROGRAM_ID_INVALID));
+                0
+            }
+        };
+        want.extend([i * 2, by_buffer, i * i + 7]);
+    }
+    let want_vecs: Vec<Vec3> = (0..N).map(|i| vec3(1.0, 2.0, 3.0) * i as f32).collect();
+    for on in On::ALL.into_iter().filter(|on| on.available()) {
+        let got = run(on);
+        assert_eq!(got.out, want, "{}", on.name());
+        assert_eq!(got.vecs, want_vecs, "{}", on.name());
+        assert_eq!(got.exceptions, raised, "{}", on.name());
+    }
+}
+
+#[test]
+fn a_callable_id_of_another_signature_is_refused_naming_both_programs() {
+    let mut ctx = Context::new();
+    let sc = ctx.create_program(&scale::PROGRAM);
+    let e = ctx.callable_id::<fn(u32) -> u32>(sc).unwrap_err().to_string();
+    assert!(e.starts_with("`scale` (tests/tests/callables.rs:"), "{e}");
+    assert!(e.ends_with("is a callable program of signature `fn(Vec3, f32) -> Vec3`, not `fn(u32) -> u32`"), "{e}");
+
+    ctx.set_ray_type_count(0);
+    let out = ctx.create_buffer::<u32>(BufferType::Output, vec![0; 3]);
+    let vecs = ctx.create_buffer::<Vec3>(BufferType::Output, vec![Vec3::ZERO; 1]);
+    let sc_id = ctx.callable_id::<fn(Vec3, f32) -> Vec3>(sc).unwrap();
+    let ops = ctx.create_buffer(BufferType::Input, vec![Callable::<fn(u32) -> u32>::NONE]);
+    ctx.set_var(Scope::Context, "first", Callable::<fn(u32) -> u32>::from_id(sc_id.id())).unwrap();
+    ctx.set_var(Scope::Context, "ops", ops).unwrap();
+    ctx.set_var(Scope::Context, "op", Op { f: Callable::NONE, bias: 0 }).unwrap();
+    ctx.set_var(Scope::Context, "scaler", sc_id).unwrap();
+    ctx.set_var(Scope::Context, "out", out).unwrap();
+    ctx.set_var(Scope::Context, "vecs", vecs).unwrap();
+    let rg = ctx.create_program(&run_calls::PROGRAM);
+    ctx.set_ray_generation_program(0, rg).unwrap();
+    let e = ctx.launch_1d(0, 1).unwrap_err().to_string();
+    assert!(e.starts_with("variable `first` of program `run_calls` (tests/tests/callables.rs:"), "{e}");
+    assert!(
+        e.contains("is declared `Callable<fn(u32) -> u32>`, but the context scope sets it to the id of `scale` (tests/tests/callables.rs:"),
+        "{e}"
+    );
+    assert!(e.ends_with("a callable of signature `fn(Vec3, f32) -> Vec3`"), "{e}");
+}
