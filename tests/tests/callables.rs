@@ -42,8 +42,14 @@ pub fn run_calls(
     #[var] scaler: Callable<fn(Vec3, f32) -> Vec3>,
     #[var] mut out: RwBuffer<u32>,
     #[var] mut vecs: RwBuffer<Vec3>,
+    #[var] mut echoed: RwBuffer<Callable<fn(u32) -> u32>>,
 ) {
     let i = launch_index().x;
+    // Ids are values: stored, compared.
+    echoed[i] = ops[i % 3];
+    if ops[i % 3] == first {
+        echoed[i] = op.f;
+    }
     let by_var = first.call(i);
     let by_buffer = ops[i % 3].call(i + 1);
     out[i * 3] = by_var;
@@ -54,6 +60,7 @@ pub fn run_calls(
 
 struct Outcome {
     out: Vec<u32>,
+    echoed: Vec<u32>,
     vecs: Vec<Vec3>,
     exceptions: Vec<(u32, u32)>,
 }
@@ -75,6 +82,8 @@ fn run(on: On) -> Outcome {
     let ops = ctx.create_buffer(BufferType::Input, vec![s_id, d_id, wrong]);
     let out = ctx.create_buffer::<u32>(BufferType::Output, vec![0; 3 * N as usize]);
     let vecs = ctx.create_buffer::<Vec3>(BufferType::Output, vec![Vec3::ZERO; N as usize]);
+    let echoed = ctx.create_buffer(BufferType::Output, vec![Callable::<fn(u32) -> u32>::from_id(99); N as usize]);
+    ctx.set_var(Scope::Context, "echoed", echoed).unwrap();
     ctx.set_var(Scope::Context, "first", d_id).unwrap();
     ctx.set_var(Scope::Context, "ops", ops).unwrap();
     ctx.set_var(Scope::Context, "op", Op { f: s_id, bias: 7 }).unwrap();
@@ -86,7 +95,8 @@ fn run(on: On) -> Outcome {
     let report = ctx.launch_1d(0, N).unwrap();
     let mut exceptions: Vec<(u32, u32)> = report.exceptions.iter().map(|e| (e.launch_index.x, e.code)).collect();
     exceptions.sort();
-    Outcome { out: ctx.read_buffer(out).unwrap(), vecs: ctx.read_buffer(vecs).unwrap(), exceptions }
+    let echoed = ctx.read_buffer::<Callable<fn(u32) -> u32>>(echoed).unwrap().iter().map(|c| c.id()).collect();
+    Outcome { out: ctx.read_buffer(out).unwrap(), echoed, vecs: ctx.read_buffer(vecs).unwrap(), exceptions }
 }
 
 #[test]
@@ -104,11 +114,15 @@ fn callables_called_through_variables_buffers_and_structs_agree_on_every_target(
         };
         want.extend([i * 2, by_buffer, i * i + 7]);
     }
+    // ops holds square (id 2), double (id 1, the same as `first`: replaced by `op.f`, square)
+    // and scale (id 3).
+    let want_echoed: Vec<u32> = (0..N).map(|i| [2, 2, 3][i as usize % 3]).collect();
     let want_vecs: Vec<Vec3> = (0..N).map(|i| vec3(1.0, 2.0, 3.0) * i as f32).collect();
     for on in On::ALL.into_iter().filter(|on| on.available()) {
         let got = run(on);
         assert_eq!(got.out, want, "{}", on.name());
         assert_eq!(got.vecs, want_vecs, "{}", on.name());
+        assert_eq!(got.echoed, want_echoed, "{}", on.name());
         assert_eq!(got.exceptions, raised, "{}", on.name());
     }
 }
@@ -132,6 +146,8 @@ fn a_callable_id_of_another_signature_is_refused_naming_both_programs() {
     ctx.set_var(Scope::Context, "scaler", sc_id).unwrap();
     ctx.set_var(Scope::Context, "out", out).unwrap();
     ctx.set_var(Scope::Context, "vecs", vecs).unwrap();
+    let echoed = ctx.create_buffer(BufferType::Output, vec![Callable::<fn(u32) -> u32>::NONE; 1]);
+    ctx.set_var(Scope::Context, "echoed", echoed).unwrap();
     let rg = ctx.create_program(&run_calls::PROGRAM);
     ctx.set_ray_generation_program(0, rg).unwrap();
     let e = ctx.launch_1d(0, 1).unwrap_err().to_string();
@@ -142,3 +158,4 @@ fn a_callable_id_of_another_signature_is_refused_naming_both_programs() {
     );
     assert!(e.ends_with("a callable of signature `fn(Vec3, f32) -> Vec3`"), "{e}");
 }
+

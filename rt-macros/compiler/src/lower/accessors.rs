@@ -23,7 +23,12 @@ impl Accessors {
         let body = match ty {
             Ty::Scalar(Scalar::F32) => "return bitcast<f32>(rt_hw(w));".to_string(),
             Ty::Scalar(Scalar::I32) => "return bitcast<i32>(rt_hw(w));".to_string(),
-            Ty::Scalar(Scalar::U32) | Ty::Scalar(Scalar::Usize) | Ty::Object | Ty::TransformKind | Ty::Enum(_) => {
+            Ty::Scalar(Scalar::U32)
+            | Ty::Scalar(Scalar::Usize)
+            | Ty::Object
+            | Ty::TransformKind
+            | Ty::Enum(_)
+            | Ty::Callable(_) => {
                 "return rt_hw(w);".to_string()
             }
             Ty::Scalar(Scalar::Bool) => "return rt_hw(w) != 0u;".to_string(),
@@ -68,7 +73,12 @@ impl Accessors {
         let t = ty.wgsl();
         let body = match ty {
             Ty::Scalar(Scalar::F32) | Ty::Scalar(Scalar::I32) => "rt_hw_set(w, bitcast<u32>(v));".to_string(),
-            Ty::Scalar(Scalar::U32) | Ty::Scalar(Scalar::Usize) | Ty::Object | Ty::TransformKind | Ty::Enum(_) => {
+            Ty::Scalar(Scalar::U32)
+            | Ty::Scalar(Scalar::Usize)
+            | Ty::Object
+            | Ty::TransformKind
+            | Ty::Enum(_)
+            | Ty::Callable(_) => {
                 "rt_hw_set(w, v);".to_string()
             }
             Ty::Scalar(Scalar::Bool) => "rt_hw_set(w, select(0u, 1u, v));".to_string(),

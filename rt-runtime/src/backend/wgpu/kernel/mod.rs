@@ -17,6 +17,7 @@
 //! its scope record in the heap (offset passed at dispatch), so changing a
 //! value never relinks.
 
+mod callables;
 mod clones;
 
 use crate::error::{Result, RtError};
@@ -126,6 +127,8 @@ pub struct KernelSpec {
     /// TLASes the ray-query traversal binds (0: the compute traversal is
     /// linked instead; see `rayquery/`).
     pub ray_query_slots: u32,
+    /// The context's callable programs, each with its id as its case.
+    pub callables: Vec<KernelProgram>,
 }
 
 /// The scene's sections, each its own read-only storage binding where the
@@ -220,8 +223,11 @@ pub fn generate(spec: &KernelSpec) -> Result<Generated> {
     all.extend(spec.exception);
     all.extend(spec.programs.iter().copied());
 
+    // The callables some linked program calls, and their signatures.
+    let (called, callables) = callables::linked(&all, &spec.callables)?;
     // Types and shared functions, deduplicated by name.
-    let (types, functions) = linked_items(&all)?;
+    let with_callables: Vec<KernelProgram> = all.iter().chain(&callables).copied().collect();
+    let (types, functions) = linked_items(&with_callables)?;
     let tracing_helpers = helpers_that_trace(&functions);
 
     let mut payloads: BTreeMap<&str, TypeLayout> = BTreeMap::new();
@@ -309,6 +315,13 @@ pub fn generate(spec: &KernelSpec) -> Result<Generated> {
     out.push_str(&payload_and_attribute_state(&payloads, &attributes));
 
     let payload_ids: BTreeMap<&str, u32> = payloads.keys().enumerate().map(|(i, w)| (*w, i as u32)).collect();
+    if !called.is_empty() {
+        out.push_str("\n// ---- callables ----\n");
+        for c in &callables {
+            out.push_str(c.desc.wgsl_program);
+        }
+        out.push_str(&callables::dispatch(&called, &callables));
+    }
     out.push_str("\n// ---- dispatch ----\n");
     out.push_str(&dispatch_intersection(&spec.programs));
     out.push_str(&dispatch_any_hit(&spec.programs));
