@@ -133,6 +133,7 @@ macro_rules! call_arity {
             ///
             /// Program kinds: all but bounding_box.
             #[doc(alias = "optixDirectCall")]
+            #[allow(clippy::too_many_arguments)]
             #[inline]
             pub fn call(self, $($a: $t),*) -> R {
                 match target::<fn($($t),*) -> R>(self.id) {

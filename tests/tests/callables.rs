@@ -34,6 +34,7 @@ pub fn apply(op: Op, x: u32) -> u32 {
     op.f.call(x) + op.bias
 }
 
+#[allow(clippy::type_complexity)]
 #[rt_program(ray_generation)]
 pub fn run_calls(
     #[var] first: Callable<fn(u32) -> u32>,
@@ -158,4 +159,3 @@ fn a_callable_id_of_another_signature_is_refused_naming_both_programs() {
     );
     assert!(e.ends_with("a callable of signature `fn(Vec3, f32) -> Vec3`"), "{e}");
 }
-

@@ -28,9 +28,7 @@ impl Accessors {
             | Ty::Object
             | Ty::TransformKind
             | Ty::Enum(_)
-            | Ty::Callable(_) => {
-                "return rt_hw(w);".to_string()
-            }
+            | Ty::Callable(_) => "return rt_hw(w);".to_string(),
             Ty::Scalar(Scalar::Bool) => "return rt_hw(w) != 0u;".to_string(),
             Ty::Vec(n, s) => {
                 let f = self.load(&Ty::Scalar(*s));
@@ -78,9 +76,7 @@ impl Accessors {
             | Ty::Object
             | Ty::TransformKind
             | Ty::Enum(_)
-            | Ty::Callable(_) => {
-                "rt_hw_set(w, v);".to_string()
-            }
+            | Ty::Callable(_) => "rt_hw_set(w, v);".to_string(),
             Ty::Scalar(Scalar::Bool) => "rt_hw_set(w, select(0u, 1u, v));".to_string(),
             Ty::Vec(n, s) => {
                 let f = self.store(&Ty::Scalar(*s));

@@ -135,8 +135,12 @@ pub fn check_callable_value(ty: &Ty, span: proc_macro2::Span, what: &str) -> Res
         return Ok(());
     }
     let advice = match ty {
-        Ty::Ref(..) => "callables take their arguments by value and return results; pass the value and use what it returns",
-        _ => "callables take and return plain values (scalars, vectors, matrices, arrays, structs, enums, tuples); read handles in the caller",
+        Ty::Ref(..) => {
+            "callables take their arguments by value and return results; pass the value and use what it returns"
+        }
+        _ => {
+            "callables take and return plain values (scalars, vectors, matrices, arrays, structs, enums, tuples); read handles in the caller"
+        }
     };
     Err(Error::unsupported(span, &format!("`{ty}` as {what} of a callable"), advice))
 }
