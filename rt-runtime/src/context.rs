@@ -255,6 +255,15 @@ impl Context {
         self.backends().fold((0, 0), |(b, t), s| (b + s.stats().blas_builds, t + s.stats().tlas_builds))
     }
 
+    /// Per ray type, whether the last launch's ray-query traces of that type
+    /// took the opaque path (the query forced opaque: no traced geometry
+    /// has an any-hit program for the type, every material index is in
+    /// range, so triangles commit without reaching the kernel); `None`
+    /// unless the last launch used the ray-query traversal.
+    pub fn ray_query_opaque_ray_types(&self) -> Option<Vec<bool>> {
+        self.backends().find_map(|s| s.stats().opaque_ray_types.map(<[bool]>::to_vec))
+    }
+
     pub fn set_entry_point_count(&mut self, n: u32) {
         self.scene.structure_version += 1;
         self.scene.entry_points.resize(n as usize, EntryPoint::default());

@@ -86,6 +86,25 @@ pub fn first_child(prd: &Probe) -> u32 {
     0
 }
 
+/// Like `down` over `[-1, 1]^2` from height 5, tracing rays of type
+/// `ray_type`.
+#[rt_program(ray_generation)]
+pub fn down_typed(#[var] top: Object, #[var] mut out: RwBuffer2d<Vec4>, #[var] ray_type: u32) {
+    let idx = launch_index();
+    let p = (idx.as_vec2() + 0.5) / launch_dim().as_vec2() * 2.0 - 1.0;
+    let ray = Ray::new(vec3(p.x, p.y, 5.0), vec3(0.0, 0.0, -1.0), ray_type, 0.0, f32::INFINITY);
+    let mut prd = Probe { t: -1.0, color: Vec3::ZERO };
+    rt_trace(top, ray, &mut prd);
+    out[idx] = prd.color.extend(prd.t);
+}
+
+/// Lets every candidate through.
+#[rt_program(any_hit)]
+pub fn see_through(prd: &mut Probe) {
+    let _ = prd.t;
+    rt_ignore_intersection();
+}
+
 const W: u32 = 16;
 
 /// A context on `on` with the camera at height `z` over `[-extent,
@@ -405,4 +424,127 @@ fn a_scene_over_the_devices_tlas_limit_is_an_error_naming_the_root() {
     ctx.set_traversal(Traversal::Compute);
     let img = image(&mut ctx, out);
     assert!(img.iter().any(|p| p.w == 5.0));
+}
+
+/// Which ray types take the opaque path follows the materials: a ray type
+/// without any-hit programs commits triangles in the hardware (the query
+/// forced opaque), one with them sees its candidates; an any-hit program
+/// set after a launch runs at the next (the BLAS's opacity follows), and a
+/// material index out of range keeps every ray type on candidates, so that
+/// its triangle is never hit. The hits agree on every target.
+#[test]
+fn any_hit_programs_decide_which_ray_types_take_the_opaque_path() {
+    if !On::RAY_QUERY.available() {
+        return;
+    }
+    for on in On::ALL {
+        let name = on.name();
+        let (mut ctx, out) = typed_camera(on, 2);
+        let ch = ctx.create_program(&where_hit::PROGRAM);
+        let through = ctx.create_program(&see_through::PROGRAM);
+        let [solid, glass] = [(); 2].map(|_| {
+            let m = ctx.create_material();
+            for ray_type in 0..2 {
+                ctx.set_closest_hit_program(m, ray_type, ch).unwrap();
+            }
+            m
+        });
+        let below = quad_of(&mut ctx, None, solid);
+        let above = quad_of(&mut ctx, None, glass);
+        let above = ctx.create_transform(Mat4::from_translation(Vec3::new(0.0, 0.0, 1.0)), above).unwrap();
+        let top = ctx.create_group(&[below, above], Acceleration::default()).unwrap();
+        ctx.set_var(Scope::Context, "top", top).unwrap();
+        // No any-hit program: both types hit the upper quad, in the hardware.
+        assert_eq!(centre_t(&mut ctx, out, 0), 4.0, "{name}");
+        assert_eq!(centre_t(&mut ctx, out, 1), 4.0, "{name}");
+        if on == On::RAY_QUERY {
+            assert_ray_queries_ran(&ctx);
+            assert_eq!(ctx.ray_query_opaque_ray_types(), Some(vec![true, true]), "{name}");
+        }
+        // An any-hit program for type 1, set after launches: type 1 sees
+        // through the glass quad to the one below; type 0 still hits it.
+        ctx.set_any_hit_program(glass, 1, through).unwrap();
+        assert_eq!(centre_t(&mut ctx, out, 0), 4.0, "{name}");
+        assert_eq!(centre_t(&mut ctx, out, 1), 5.0, "{name}");
+        if on == On::RAY_QUERY {
+            assert_eq!(ctx.ray_query_opaque_ray_types(), Some(vec![true, false]), "{name}");
+        }
+        // An any-hit program for type 0 too, set after launches: both see
+        // through.
+        ctx.set_any_hit_program(glass, 0, through).unwrap();
+        assert_eq!(centre_t(&mut ctx, out, 0), 5.0, "{name}");
+        assert_eq!(centre_t(&mut ctx, out, 1), 5.0, "{name}");
+        if on == On::RAY_QUERY {
+            assert_eq!(ctx.ray_query_opaque_ray_types(), Some(vec![false, false]), "{name}");
+        }
+
+        // No any-hit program anywhere, and a quad whose second triangle
+        // ([0, 2, 3], above the diagonal) has a material index past its
+        // one material: that triangle is never hit.
+        let (mut ctx, out) = typed_camera(on, 1);
+        let solid = ctx.create_material();
+        let ch = ctx.create_program(&where_hit::PROGRAM);
+        ctx.set_closest_hit_program(solid, 0, ch).unwrap();
+        let gg = quad_of(&mut ctx, Some(vec![0, 1]), solid);
+        ctx.set_var(Scope::Context, "top", gg).unwrap();
+        ctx.set_var(Scope::Context, "ray_type", 0u32).unwrap();
+        let img = image(&mut ctx, out);
+        for y in 0..W {
+            for x in 0..W {
+                if x == y {
+                    // On the edge the two triangles share.
+                    continue;
+                }
+                let (wx, wy) = world(x, y, 1.0);
+                let inside = wx.abs() < 0.5 && wy.abs() < 0.5;
+                let expected = if inside && wy < wx { 5.0 } else { -1.0 };
+                assert_eq!(img[(y * W + x) as usize].w, expected, "{name} pixel {x},{y}");
+            }
+        }
+        if on == On::RAY_QUERY {
+            assert_eq!(ctx.ray_query_opaque_ray_types(), Some(vec![false]), "{name}");
+        }
+    }
+}
+
+/// A context on `on` with `ray_types` ray types, `down_typed` as its ray
+/// generation program, a miss program for each type and the output
+/// buffer.
+fn typed_camera(on: On, ray_types: u32) -> (Context, BufferId) {
+    let mut ctx = on.context();
+    ctx.set_ray_type_count(ray_types);
+    let rg = ctx.create_program(&down_typed::PROGRAM);
+    ctx.set_ray_generation_program(0, rg).unwrap();
+    let miss = ctx.create_program(&nothing::PROGRAM);
+    for ray_type in 0..ray_types {
+        ctx.set_miss_program(ray_type, miss).unwrap();
+    }
+    let out = ctx.create_buffer_2d::<Vec4>(BufferType::Output, W, W).unwrap();
+    ctx.set_var(Scope::Context, "out", out).unwrap();
+    (ctx, out)
+}
+
+/// A quad over [-0.5, 0.5]^2 in z = 0 with material `mat` (and material
+/// indices `indices`), as a geometry group.
+fn quad_of(ctx: &mut Context, indices: Option<Vec<u32>>, mat: MaterialId) -> NodeId {
+    let mesh = TriangleMesh {
+        positions: vec![
+            Vec3::new(-0.5, -0.5, 0.0),
+            Vec3::new(0.5, -0.5, 0.0),
+            Vec3::new(0.5, 0.5, 0.0),
+            Vec3::new(-0.5, 0.5, 0.0),
+        ],
+        indices: vec![[0, 1, 2], [0, 2, 3]],
+        material_indices: indices,
+        ..Default::default()
+    };
+    let geom = ctx.create_triangles(mesh).unwrap();
+    let gi = ctx.create_geometry_instance(geom, &[mat]).unwrap();
+    ctx.create_geometry_group(&[gi], Acceleration::default()).unwrap()
+}
+
+/// The t the centre pixel's ray of type `ray_type` reports.
+fn centre_t(ctx: &mut Context, out: BufferId, ray_type: u32) -> f32 {
+    ctx.set_var(Scope::Context, "ray_type", ray_type).unwrap();
+    image(ctx, out)[(W / 2 * W + W / 2) as usize].w
 }

@@ -215,6 +215,9 @@ pub(crate) struct BackendStats<'a> {
     /// BLASes and TLASes the ray-query traversal built.
     pub blas_builds: u64,
     pub tlas_builds: u64,
+    /// Per ray type, whether the last ray-query launch forced its traces
+    /// opaque (none when it took the compute traversal).
+    pub opaque_ray_types: Option<&'a [bool]>,
 }
 
 /// Where launches run: implemented by the CPU backend and the wgpu

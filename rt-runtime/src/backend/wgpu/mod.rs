@@ -246,6 +246,9 @@ impl LaunchBackend for WgpuBackend {
             traversal: self.last_traversal.as_ref().map(|(t, why)| (*t, why.as_str())),
             blas_builds: gpu.map_or(0, |g| g.ray_query_accels.blas_builds),
             tlas_builds: gpu.map_or(0, |g| g.ray_query_accels.tlas_builds),
+            opaque_ray_types: gpu
+                .filter(|_| matches!(self.last_traversal, Some((Traversal::RayQuery, _))))
+                .map(|g| &g.ray_query_accels.opaque_ray_types[..]),
         }
     }
 }

@@ -8,6 +8,15 @@
 //! rebuilds only TLASes. Also the kernel's side table (`rt_query_side`, see
 //! search.wgsl).
 //!
+//! Opacity: a triangle geometry is built `OPAQUE` (its triangles commit in
+//! the hardware, no candidate reaches the kernel) when no material of its
+//! instance has an any-hit program for any ray type and every material
+//! index is in range; a BLAS is rebuilt when that changes (an any-hit
+//! program set after a launch). Per ray type, the side table says whether
+//! no traced geometry needs a candidate for that type: its traces force the
+//! query opaque, so a ray type without any-hit programs takes the fast
+//! path on geometry that another type's any-hit programs keep non-opaque.
+//!
 //! OptiX's builder names: `Sbvh`, `Bvh` and `MedianBvh` ask the driver for
 //! fast traces (`PREFER_FAST_TRACE`), `Lbvh` and `NoAccel` for fast builds
 //! (`PREFER_FAST_BUILD`); `TriangleKdTree` is refused as everywhere.
@@ -25,11 +34,26 @@ use wgpu::util::DeviceExt;
 /// group has none of that kind.
 struct GroupBlas {
     stamp: u64,
+    /// Which build this is (TLASes over an older one are rebuilt).
+    build: u64,
     parts: [Option<wgpu::Blas>; 2],
+    /// Per triangle geometry instance (part 0, in order): whether its
+    /// material indices are all in range (fixed while the stamp is), and
+    /// whether it was built opaque.
+    triangles: Vec<Opacity>,
+}
+
+/// What decides whether a triangle geometry instance is opaque.
+#[derive(Clone, Copy, PartialEq, Eq)]
+struct Opacity {
+    gi: u32,
+    in_range: bool,
+    opaque: bool,
 }
 
 /// What a TLAS instance is built from, to tell whether a TLAS changed:
-/// `(group, part, group stamp, transform bits, custom data, mask)`.
+/// `(group, part, the group's BLAS build, transform bits, custom data,
+/// mask)`.
 type InstanceKey = (u32, u32, u64, [u32; 12], u32, u8);
 
 /// The device's acceleration structures and side table.
@@ -39,6 +63,9 @@ pub(crate) struct RayQueryAccels {
     /// One per root slot.
     tlas: Vec<(Vec<InstanceKey>, wgpu::Tlas)>,
     side: Option<(Vec<u32>, wgpu::Buffer)>,
+    /// Per ray type, whether its traces force the query opaque (the side
+    /// table's words, for tests).
+    pub opaque_ray_types: Vec<bool>,
     /// BLASes built, TLASes built (for tests and the benchmark).
     pub blas_builds: u64,
     pub tlas_builds: u64,
@@ -77,18 +104,51 @@ fn rows(m: glam::Mat4) -> [f32; 12] {
     [a.x, a.y, a.z, a.w, b.x, b.y, b.z, b.w, c.x, c.y, c.z, c.w]
 }
 
-/// Whether geometry instance `gi`'s triangles may all commit without a
-/// program: no any-hit program for any ray type, and every material index
-/// in range (an index past the materials is never hit, as in the compute
-/// traversal, which only a candidate can say).
-fn opaque(scene: &Scene, gi: u32) -> bool {
+/// Whether geometry instance `gi`'s material indices are all in range (an
+/// index past the materials is never hit, as in the compute traversal,
+/// which only a candidate can say).
+fn materials_in_range(scene: &Scene, gi: u32) -> bool {
     let rec = &scene.instances[gi as usize];
-    let any_hit = rec.materials.iter().any(|m| scene.materials[m.index() as usize].any_hit.iter().any(Option::is_some));
-    let in_range = match instance_mesh(scene, gi).and_then(|mesh| mesh.material_indices.as_ref()) {
+    match instance_mesh(scene, gi).and_then(|mesh| mesh.material_indices.as_ref()) {
         Some(indices) => indices.iter().all(|&m| (m as usize) < rec.materials.len()),
         None => !rec.materials.is_empty(),
-    };
-    !any_hit && in_range
+    }
+}
+
+/// Whether a material of geometry instance `gi` has an any-hit program for
+/// ray type `ray_type` (for any ray type: `None`).
+fn has_any_hit(scene: &Scene, gi: u32, ray_type: Option<usize>) -> bool {
+    scene.instances[gi as usize].materials.iter().any(|m| {
+        let any_hit = &scene.materials[m.index() as usize].any_hit;
+        match ray_type {
+            Some(r) => any_hit.get(r).is_some_and(Option::is_some),
+            None => any_hit.iter().any(Option::is_some),
+        }
+    })
+}
+
+/// The opacity of triangle geometry instances `gis`, reusing what `known`
+/// says of their material ranges (unchanged while the group's tree is).
+fn opacity(scene: &Scene, gis: &[u32], known: Option<&[Opacity]>) -> Vec<Opacity> {
+    gis.iter()
+        .enumerate()
+        .map(|(i, &gi)| {
+            let in_range = match known.and_then(|k| k.get(i)).filter(|o| o.gi == gi) {
+                Some(o) => o.in_range,
+                None => materials_in_range(scene, gi),
+            };
+            Opacity { gi, in_range, opaque: in_range && !has_any_hit(scene, gi, None) }
+        })
+        .collect()
+}
+
+/// Per ray type, whether no triangle geometry of `groups` needs a candidate
+/// for it: no any-hit program of that type, every material index in range.
+fn opaque_ray_types(scene: &Scene, groups: &HashMap<u32, GroupBlas>) -> Vec<bool> {
+    let triangles: Vec<&Opacity> = groups.values().flat_map(|g| &g.triangles).collect();
+    (0..scene.ray_type_count() as usize)
+        .map(|r| triangles.iter().all(|o| o.in_range && !has_any_hit(scene, o.gi, Some(r))))
+        .collect()
 }
 
 fn bytes<T: Copy>(v: &[T]) -> &[u8] {
@@ -131,15 +191,18 @@ pub(crate) fn sync(
     let mut new_groups: Vec<(u32, GroupBlas)> = Vec::new();
     for &g in &used {
         let stamp = stamp_of(g);
-        if rq.groups.get(&g.index()).is_some_and(|b| b.stamp == stamp) {
+        let [tris, boxes] = parts(scene, g);
+        let kept = rq.groups.get(&g.index()).filter(|b| b.stamp == stamp);
+        let triangles = opacity(scene, &tris, kept.map(|b| &b.triangles[..]));
+        if kept.is_some_and(|b| b.triangles == triangles) {
             continue;
         }
         let NodeKind::GeometryGroup { accel, .. } = &scene.nodes[g.index() as usize].kind else { continue };
         let flags = build_flags(accel.builder);
-        let [tris, boxes] = parts(scene, g);
-        let mut group = GroupBlas { stamp, parts: [None, None] };
+        let build = rq.blas_builds + builds.len() as u64;
+        let mut group = GroupBlas { stamp, build, parts: [None, None], triangles };
         if !tris.is_empty() {
-            let (blas, input) = triangle_blas(device, scene, g, &tris, flags, limits, &adapter)?;
+            let (blas, input) = triangle_blas(device, scene, g, &group.triangles, flags, limits, &adapter)?;
             group.parts[0] = Some(blas.clone());
             builds.push((blas, input));
         }
@@ -168,7 +231,7 @@ pub(crate) fn sync(
                     keys.push((
                         group.index(),
                         part,
-                        blas.stamp,
+                        blas.build,
                         rows(*object_to_world).map(f32::to_bits),
                         custom,
                         *mask,
@@ -234,7 +297,8 @@ pub(crate) fn sync(
     }
 
     // The side table.
-    let words = side_table(scene, flat, &rq.groups);
+    rq.opaque_ray_types = opaque_ray_types(scene, &rq.groups);
+    let words = side_table(scene, flat, &rq.groups, &rq.opaque_ray_types);
     if rq.side.as_ref().is_none_or(|(w, _)| *w != words) {
         let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("rt_query_side"),
@@ -306,7 +370,7 @@ fn triangle_blas(
     device: &wgpu::Device,
     scene: &Scene,
     g: NodeId,
-    gis: &[u32],
+    gis: &[Opacity],
     flags: wgpu::AccelerationStructureFlags,
     limits: &wgpu::Limits,
     adapter: &str,
@@ -314,10 +378,10 @@ fn triangle_blas(
     let mut sizes = Vec::new();
     let mut buffers = Vec::new();
     let mut primitives = 0u64;
-    for &gi in gis {
+    for &Opacity { gi, opaque, .. } in gis {
         let Some(mesh) = instance_mesh(scene, gi) else { continue };
         primitives += mesh.indices.len() as u64;
-        let geometry_flags = if opaque(scene, gi) {
+        let geometry_flags = if opaque {
             wgpu::AccelerationStructureGeometryFlags::OPAQUE
         } else {
             wgpu::AccelerationStructureGeometryFlags::NO_DUPLICATE_ANY_HIT_INVOCATION
@@ -409,16 +473,22 @@ fn box_blas(
     Ok(Some((blas, BlasInput::Boxes { sizes, buffers })))
 }
 
-/// The kernel's side table (search.wgsl): node slots, then two words per
-/// instance record (where its parts' geometry instances start), then those
-/// lists.
-fn side_table(scene: &Scene, flat: &Flat, groups: &HashMap<u32, GroupBlas>) -> Vec<u32> {
+/// The kernel's side table (search.wgsl): the node and ray type counts,
+/// whether each ray type's traces are forced opaque, node slots, then two
+/// words per instance record (where its parts' geometry instances start),
+/// then those lists.
+fn side_table(scene: &Scene, flat: &Flat, groups: &HashMap<u32, GroupBlas>, opaque_ray_types: &[bool]) -> Vec<u32> {
     let n = scene.nodes.len();
-    let base = 1 + n;
+    let nodes = 2 + opaque_ray_types.len();
+    let base = nodes + n;
     let mut words = vec![u32::MAX; base + flat.records as usize * 2];
     words[0] = n as u32;
+    words[1] = opaque_ray_types.len() as u32;
+    for (r, &opaque) in opaque_ray_types.iter().enumerate() {
+        words[2 + r] = opaque as u32;
+    }
     for (slot, (root, _)) in flat.roots.iter().enumerate() {
-        words[1 + root.index() as usize] = slot as u32;
+        words[nodes + root.index() as usize] = slot as u32;
     }
     let mut listed = vec![false; flat.records as usize];
     for (_, instances) in &flat.roots {

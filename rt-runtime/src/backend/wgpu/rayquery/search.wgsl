@@ -13,9 +13,12 @@
 // the hardware without a candidate. Afterwards a committed triangle fills
 // the hit state from the query; a generated one filled it when reported.
 //
-// Side table rt_query_side: [0] the node count n; [1 + node] the node's TLAS slot
-// (RT_NONE: not a root); [1 + n + custom] (custom = instance record * 2 +
-// part, the TLAS instance's custom data) where the part's geometry
+// Side table rt_query_side: [0] the node count n; [1] the ray type count r;
+// [2 + ray type] 1 where no traced geometry needs a candidate for that ray
+// type (no any-hit program of the type, every material index in range):
+// its traces force the query opaque; [2 + r + node] the node's TLAS slot
+// (RT_NONE: not a root); [2 + r + n + custom] (custom = instance record * 2
+// + part, the TLAS instance's custom data) where the part's geometry
 // instances start, one word per BLAS geometry index.
 
 // The committed hit's transforms are kept (KEPT_XFORM in kernel/mod.rs):
@@ -25,10 +28,23 @@ fn rt_query_m43(m: mat4x3<f32>) -> mat4x4<f32> {
     return mat4x4<f32>(vec4<f32>(m[0], 0.0), vec4<f32>(m[1], 0.0), vec4<f32>(m[2], 0.0), vec4<f32>(m[3], 1.0));
 }
 
+// Where the side table's node slots start.
+fn rt_query_nodes() -> u32 {
+    return 2u + rt_query_side[1];
+}
+
+// The TLAS slot of node `object` (RT_NONE: not a root).
+fn rt_query_slot(object: u32) -> u32 {
+    if object >= rt_query_side[0] {
+        return RT_NONE;
+    }
+    return rt_query_side[rt_query_nodes() + object];
+}
+
 // The geometry instance of BLAS geometry `geometry` of the TLAS instance
 // with custom data `custom`.
 fn rt_query_gi(custom: u32, geometry: u32) -> u32 {
-    return rt_query_side[rt_query_side[1u + rt_query_side[0] + custom] + geometry];
+    return rt_query_side[rt_query_side[rt_query_nodes() + rt_query_side[0] + custom] + geometry];
 }
 
 // Triangle `prim`'s material index in geometry instance `gi`.
@@ -40,10 +56,12 @@ fn rt_query_material(gi: u32, prim: u32) -> u32 {
     return rt_scene[rt_scene[g + 5u] + prim];
 }
 
-// The query's flags for the ray's RT_RAY_FLAG_* flags.
-fn rt_query_flags(flags: u32) -> u32 {
+// The query's flags for a ray of type `ray_type` with RT_RAY_FLAG_* flags
+// `flags`.
+fn rt_query_flags(flags: u32, ray_type: u32) -> u32 {
     var q = RAY_FLAG_NONE;
-    if (flags & RT_RAY_FLAG_DISABLE_ANYHIT) != 0u {
+    let opaque_type = ray_type < rt_query_side[1] && rt_query_side[2u + ray_type] != 0u;
+    if (flags & RT_RAY_FLAG_DISABLE_ANYHIT) != 0u || opaque_type {
         q = q | RAY_FLAG_FORCE_OPAQUE;
     }
     if (flags & RT_RAY_FLAG_TERMINATE_ON_FIRST_HIT) != 0u {
@@ -60,7 +78,7 @@ fn rt_query_flags(flags: u32) -> u32 {
 
 fn rt_query_search(acs: acceleration_structure, ray: RtRay, flags: u32, mask: u32) {
     var rq: ray_query;
-    rayQueryInitialize(&rq, acs, RayDesc(rt_query_flags(flags), mask & 0xffu, ray.tmin, ray.tmax, ray.origin, ray.direction));
+    rayQueryInitialize(&rq, acs, RayDesc(rt_query_flags(flags, ray.ray_type), mask & 0xffu, ray.tmin, ray.tmax, ray.origin, ray.direction));
     // The t of the last generated intersection (the closest: each is
     // generated only nearer than what is committed). Lavapipe does not
     // report a committed generated intersection as one (its kind and t read

@@ -27,7 +27,7 @@ pub(crate) fn search_wgsl(slots: u32) -> String {
         "
 fn rt_search(object: u32, ray: RtRay, flags: u32, mask: u32) {{
     rt_query_begin(ray, flags);
-    switch rt_query_side[1u + object] {{
+    switch rt_query_slot(object) {{
 {cases}        default: {{
             // Not a root the launch found in a variable.
             rt_raise(RT_EXC_INVALID_RAY);
