@@ -29,7 +29,9 @@ fn rt_search(object: u32, ray: RtRay, flags: u32, mask: u32) {{
     rt_query_begin(ray, flags);
     switch rt_query_slot(object) {{
 {cases}        default: {{
-            // Not a root the launch found in a variable.
+            // Not a root the launch found in a variable. (Every node a
+            // program traces comes from an `Object` variable: an Object
+            // is no buffer element or field, nor made in a program.)
             rt_raise(RT_EXC_INVALID_RAY);
         }}
     }}
