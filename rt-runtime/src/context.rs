@@ -764,6 +764,23 @@ impl Context {
         self.run_launch((entry, width, height), None, None)
     }
 
+    /// [`Context::launch`] for a caller that must not block: a browser
+    /// page (wasm32 over WebGPU), whose one thread cannot wait for the GPU,
+    /// awaits it, and its device opens asynchronously too. Natively it is
+    /// the same launch, and awaiting it (with any executor) blocks as
+    /// [`Context::launch`] does. The blocking calls in a browser fail,
+    /// saying to use this instead, where they would wait for the GPU.
+    ///
+    /// ```no_run
+    /// # async fn f(ctx: &mut rt_runtime::Context, out: rt_runtime::BufferId) -> rt_runtime::Result<()> {
+    /// let report = ctx.launch_async(0, 640, 480).await?;
+    /// let pixels = ctx.read_buffer::<glam::Vec4>(out)?;
+    /// # Ok(()) }
+    /// ```
+    pub async fn launch_async(&mut self, entry: u32, width: u32, height: u32) -> Result<LaunchReport> {
+        self.run_launch_async((entry, width, height), None, None).await
+    }
+
     /// [`Context::launch`], calling `progress` after every tile with where
     /// the launch stands. Its answer may cancel the launch before the next
     /// tile ([`LaunchControl::Cancel`]): the launch then fails with
@@ -811,8 +828,19 @@ impl Context {
         self.usage_report = report;
     }
 
-    /// Every launch: the backend's run, then the usage report.
+    /// Every blocking launch: [`Context::run_launch_async`] run to its end.
     fn run_launch(
+        &mut self,
+        size: (u32, u32, u32),
+        part: Option<Tile>,
+        progress: Option<&mut dyn FnMut(LaunchProgress) -> LaunchControl>,
+    ) -> Result<LaunchReport> {
+        backend::waiting::now(self.run_launch_async(size, part, progress))
+            .unwrap_or_else(|| Err(RtError::Gpu(backend::waiting::WOULD_BLOCK.into())))
+    }
+
+    /// Every launch: the backend's run, then the usage report.
+    async fn run_launch_async(
         &mut self,
         (entry, width, height): (u32, u32, u32),
         part: Option<Tile>,
@@ -823,9 +851,12 @@ impl Context {
         let settled = self.settle_device_buffers(Some(self.backend.kind()));
         let pacing = Pacing { part, pace: &mut self.pace, progress };
         let (scene, settings, accels) = (&mut self.scene, &self.settings, &mut self.accels);
-        let result = settled.and_then(|()| {
-            backend::launch(&mut *self.backend, scene, settings, accels, (entry, width, height), pacing)
-        });
+        let result = match settled {
+            Ok(()) => {
+                backend::launch(&mut *self.backend, scene, settings, accels, (entry, width, height), pacing).await
+            }
+            Err(e) => Err(e),
+        };
         if let Some(mut callback) = self.usage_report.take() {
             let after = self.usage_counters();
             let stats = self.backend.stats();

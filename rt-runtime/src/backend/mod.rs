@@ -17,6 +17,7 @@
 #[cfg(not(target_arch = "wasm32"))]
 pub mod cpu;
 pub mod tiles;
+pub(crate) mod waiting;
 pub mod wgpu;
 
 use crate::accel::cache::{AccelCache, Trees, build_accels};
@@ -26,6 +27,8 @@ use crate::scene::Scene;
 use glam::UVec2;
 use std::any::Any;
 use tiles::{LaunchControl, LaunchProgress, Pace, Tile, TileBudget, Tiler};
+use waiting::{Catching, LocalBoxFuture};
+use web_time::Instant;
 
 /// Where a context's launches run.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -234,6 +237,17 @@ pub(crate) trait LaunchBackend: Any + Send + Sync {
     /// Runs a launch's tile. Outputs wait for
     /// [`LaunchBackend::read_back_outputs`].
     fn launch(&mut self, launch: &Launch) -> Result<LaunchReport>;
+    /// [`LaunchBackend::prepare`] for a caller that awaits rather than
+    /// blocks (a browser page): the wgpu backend opens its device so.
+    fn prepare_async(&mut self) -> LocalBoxFuture<'_, Result<()>> {
+        Box::pin(std::future::ready(self.prepare()))
+    }
+    /// [`LaunchBackend::launch`] for a caller that awaits rather than
+    /// blocks: the wgpu backend waits for its read-backs so; the others
+    /// run the blocking launch.
+    fn launch_async<'a>(&'a mut self, launch: &'a Launch<'a>) -> LocalBoxFuture<'a, Result<LaunchReport>> {
+        Box::pin(std::future::ready(self.launch(launch)))
+    }
     /// Writes what the last launch's programs wrote into the host's
     /// buffers (called after every launch, failed or not; a backend writes
     /// only what it read back whole).
@@ -340,8 +354,9 @@ pub(crate) struct Pacing<'a, 'p> {
 /// `backend`: checks the size, gets the backend ready, builds or refits the
 /// acceleration structures in the forms it walks, runs it tile by tile
 /// ([`tiles`]) and takes each tile's outputs. A failed or cancelled launch
-/// leaves every buffer programs may write as it was.
-pub(crate) fn launch(
+/// leaves every buffer programs may write as it was. (A future: a browser
+/// page awaits it; the blocking launch runs it to the end.)
+pub(crate) async fn launch(
     backend: &mut dyn LaunchBackend,
     scene: &mut Scene,
     settings: &Settings,
@@ -361,8 +376,8 @@ pub(crate) fn launch(
     if let Some(problem) = tiles::part_problem(width, height, part) {
         return Err(RtError::BadLaunch { width, height, problem });
     }
-    backend.prepare()?;
-    let t0 = std::time::Instant::now();
+    backend.prepare_async().await?;
+    let t0 = Instant::now();
     build_accels(scene, accels, backend.trees(scene))?;
     let build = t0.elapsed();
     let budget = settings.tile_budget;
@@ -377,7 +392,7 @@ pub(crate) fn launch(
         let Some(tile) = tiler.next_tile(size) else { break Ok(()) };
         let (first_tile, last_tile) = (last.is_none(), tiler.finished());
         let launch = Launch { scene, settings, accels, entry, width, height, tile, first_tile, last_tile };
-        let ran = run_tile(backend, &launch);
+        let ran = run_tile(backend, &launch).await;
         backend.read_back_outputs(&mut scene.buffers);
         let ran = match ran {
             Ok(ran) => ran,
@@ -415,9 +430,10 @@ pub(crate) fn launch(
 
 /// Runs one tile on `backend`, catching a panic in the runtime (a panic in
 /// a program the backend reports itself, naming it).
-fn run_tile(backend: &mut dyn LaunchBackend, launch: &Launch) -> Result<LaunchReport> {
-    let result = crate::panics::catching(|| backend.launch(launch)).unwrap_or_else(|caught| {
-        Err(RtError::RuntimePanicked { backend: backend.kind().name(), message: caught.message, at: caught.at })
+async fn run_tile(backend: &mut dyn LaunchBackend, launch: &Launch<'_>) -> Result<LaunchReport> {
+    let name = backend.kind().name();
+    let result = Catching(backend.launch_async(launch)).await.unwrap_or_else(|caught| {
+        Err(RtError::RuntimePanicked { backend: name, message: caught.message, at: caught.at })
     });
     if matches!(result, Err(RtError::RuntimePanicked { .. })) {
         backend.after_panic();

@@ -99,12 +99,21 @@ impl Gpu {
     /// Opens the first adapter of `instance` (that can present to
     /// `surface`, if given) with the runtime's features and limits.
     pub fn open(instance: &wgpu::Instance, surface: Option<&wgpu::Surface<'_>>) -> Result<Gpu> {
-        let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
-            power_preference: wgpu::PowerPreference::HighPerformance,
-            compatible_surface: surface,
-            ..Default::default()
-        }))
-        .map_err(|e| {
+        super::waiting::now(Gpu::open_async(instance, surface))
+            .unwrap_or_else(|| Err(RtError::Gpu(super::waiting::WOULD_BLOCK.into())))
+    }
+
+    /// [`Gpu::open`], awaiting the adapter and the device (a browser page
+    /// cannot block on them).
+    pub async fn open_async(instance: &wgpu::Instance, surface: Option<&wgpu::Surface<'_>>) -> Result<Gpu> {
+        let adapter = instance
+            .request_adapter(&wgpu::RequestAdapterOptions {
+                power_preference: wgpu::PowerPreference::HighPerformance,
+                compatible_surface: surface,
+                ..Default::default()
+            })
+            .await
+            .map_err(|e| {
             RtError::Gpu(format!(
                 "no wgpu adapter ({e}); on a machine without a GPU install Mesa's lavapipe (`apt-get install mesa-vulkan-drivers`)"
             ))
@@ -150,14 +159,16 @@ impl Gpu {
                 ..limits
             };
         }
-        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
-            label: Some("rt-runtime"),
-            required_limits: limits.clone(),
-            required_features,
-            experimental_features,
-            ..Default::default()
-        }))
-        .map_err(|e| RtError::Gpu(format!("cannot open a device on {}: {e}", adapter.get_info().name)))?;
+        let (device, queue) = adapter
+            .request_device(&wgpu::DeviceDescriptor {
+                label: Some("rt-runtime"),
+                required_limits: limits.clone(),
+                required_features,
+                experimental_features,
+                ..Default::default()
+            })
+            .await
+            .map_err(|e| RtError::Gpu(format!("cannot open a device on {}: {e}", adapter.get_info().name)))?;
         let mut gpu = Gpu::from_parts(device, queue, adapter.get_info(), limits);
         gpu.adapter = Some(adapter);
         Ok(gpu)

@@ -22,6 +22,7 @@
 use super::device::Gpu;
 use super::readback::read_back;
 use super::resident::{DeviceLocal, Held};
+use crate::backend::waiting;
 use crate::buffer::BufferRec;
 use crate::error::Result;
 use crate::scene::Scene;
@@ -158,7 +159,8 @@ impl DeviceLocal {
         let copies: Vec<_> = saved_for.iter().map(|(h, at)| (saved, *at, h.words as u64 * 4)).collect();
         // A device that cannot even give these back is lost: the host's
         // copies are what is left.
-        if let Ok(words) = read_back(device, queue, &mut None, encoder, &copies, false) {
+        let read = waiting::now(read_back(device, queue, &mut None, encoder, &copies, false));
+        if let Some(Ok(words)) = read {
             let mut at = 0;
             for (h, _) in &saved_for {
                 buffers[h.buffer].storage.read_words(&words[at..at + h.words]);
@@ -203,6 +205,7 @@ fn read_held(gpu: &Gpu, held: &[Held]) -> Result<Vec<u32>> {
     let heap = &gpu.resident.heap.as_ref().expect("held words live in a heap").buffer;
     let encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("rt read held") });
     let copies: Vec<_> = held.iter().map(|h| (heap, h.offset as u64 * 4, h.words as u64 * 4)).collect();
-    read_back(&gpu.device, &gpu.queue, &mut None, encoder, &copies, false)
+    waiting::now(read_back(&gpu.device, &gpu.queue, &mut None, encoder, &copies, false))
+        .unwrap_or_else(|| Err(waiting::WOULD_BLOCK.into()))
         .map_err(|what| gpu.health.failure(gpu.describe(), format!("reading a device-local buffer: {what}")))
 }

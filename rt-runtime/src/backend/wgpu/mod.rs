@@ -93,6 +93,7 @@ pub use device::{Gpu, WgpuDevice, instance, probe, probe_ray_queries};
 pub use device_local::DeviceBuffer;
 pub use rayquery::Traversal;
 
+use super::waiting::{self, LocalBoxFuture};
 use super::{BackendStats, ExceptionRecord, Launch, LaunchBackend, LaunchReport};
 use crate::accel::bvh::TreeForm;
 use crate::accel::cache::Trees;
@@ -196,13 +197,19 @@ impl LaunchBackend for WgpuBackend {
     }
 
     fn prepare(&mut self) -> Result<()> {
-        if self.gpu.as_ref().is_some_and(|g| g.health.lost_reason().is_some()) {
-            self.gpu = None;
-        }
-        if self.gpu.is_none() {
-            self.gpu = Some(Gpu::new()?);
-        }
-        Ok(())
+        waiting::now(self.prepare_async()).unwrap_or_else(|| Err(RtError::Gpu(waiting::WOULD_BLOCK.into())))
+    }
+
+    fn prepare_async(&mut self) -> LocalBoxFuture<'_, Result<()>> {
+        Box::pin(async move {
+            if self.gpu.as_ref().is_some_and(|g| g.health.lost_reason().is_some()) {
+                self.gpu = None;
+            }
+            if self.gpu.is_none() {
+                self.gpu = Some(Gpu::open_async(&instance(), None).await?);
+            }
+            Ok(())
+        })
     }
 
     /// Groups' BVH2s as they are walked; geometry groups' CWBVHs where the
@@ -215,14 +222,21 @@ impl LaunchBackend for WgpuBackend {
     /// (see [`LaunchBackend::prepare`]); the host's copies of buffers are
     /// only written from a read-back that completed.
     fn launch(&mut self, l: &Launch) -> Result<LaunchReport> {
-        self.pending = None;
-        let WgpuBackend { gpu, last_wgsl, last_traversal, lose_device_in_next_launch, pending } = self;
-        let device = gpu.as_mut().expect("opened by prepare");
-        let result = launch_on_device(device, last_wgsl, last_traversal, lose_device_in_next_launch, pending, l);
-        if matches!(result, Err(RtError::DeviceLost { .. })) {
-            self.gpu = None;
-        }
-        result
+        waiting::now(self.launch_async(l)).unwrap_or_else(|| Err(RtError::Gpu(waiting::WOULD_BLOCK.into())))
+    }
+
+    fn launch_async<'a>(&'a mut self, l: &'a Launch<'a>) -> LocalBoxFuture<'a, Result<LaunchReport>> {
+        Box::pin(async move {
+            self.pending = None;
+            let WgpuBackend { gpu, last_wgsl, last_traversal, lose_device_in_next_launch, pending } = self;
+            let device = gpu.as_mut().expect("opened by prepare");
+            let result =
+                launch_on_device(device, last_wgsl, last_traversal, lose_device_in_next_launch, pending, l).await;
+            if matches!(result, Err(RtError::DeviceLost { .. })) {
+                self.gpu = None;
+            }
+            result
+        })
     }
 
     fn read_back_outputs(&mut self, buffers: &mut [BufferRec]) {
@@ -257,15 +271,15 @@ impl LaunchBackend for WgpuBackend {
 /// device holds it, and the heap), link (the megakernel's WGSL and its
 /// pipeline), upload (the pages that changed), dispatch, read back. The
 /// outputs' words are left in `pending` once read back whole.
-fn launch_on_device(
+async fn launch_on_device(
     gpu: &mut Gpu,
     last_wgsl: &mut Option<String>,
     last_traversal: &mut Option<(Traversal, String)>,
     lose_device: &mut bool,
     pending: &mut Option<ReadOutputs>,
-    l: &Launch,
+    l: &Launch<'_>,
 ) -> Result<LaunchReport> {
-    let t1 = std::time::Instant::now();
+    let t1 = web_time::Instant::now();
     let scene_bindings = gpu.scene_bindings;
     // The scene, unless the device holds this one already (same structure,
     // same acceleration structures): then only the heap is encoded.
@@ -282,7 +296,7 @@ fn launch_on_device(
     let device_sections: Vec<Option<&[u32]>> =
         gpu.resident.scene.iter().map(|m| m.as_ref().map(|m| &m.words[..])).collect();
     let encoding = compute::scene::encode_launch(l, key, gpu.resident.held.as_ref(), &device_sections)?;
-    let t2 = std::time::Instant::now();
+    let t2 = web_time::Instant::now();
     let (wgsl, warning) = link_kernel(l.entry, &encoding)?;
     *last_wgsl = Some(wgsl.clone());
     let Encoding { fresh, heap, outputs, placed, rg_vars, ex_vars, .. } = encoding;
@@ -294,8 +308,8 @@ fn launch_on_device(
     let max_buffers = gpu.limits.max_storage_buffers_per_shader_stage;
     let fresh = fresh.map(|e| compute::scene::place_scene(e, key, &wgsl, scene_bindings, max_buffers, &mut parts));
     check_bindings(gpu, &parts)?;
-    pipeline::ensure(gpu, &wgsl, slots, warning.as_deref())?;
-    let t3 = std::time::Instant::now();
+    pipeline::ensure(gpu, &wgsl, slots, warning.as_deref()).await?;
+    let t3 = web_time::Instant::now();
     let lose = std::mem::take(lose_device);
     let log_words = 4 + LOG_EXCEPTIONS * 3 + LOG_PRINT_WORDS;
     let moves = match l.first_tile {
@@ -307,7 +321,7 @@ fn launch_on_device(
     DeviceLocal::after_upload(gpu, &moves);
     let mut accel = std::time::Duration::ZERO;
     if let rayquery::Plan::RayQuery(flat) = &plan {
-        let t = std::time::Instant::now();
+        let t = web_time::Instant::now();
         let adapter = gpu.describe();
         let Gpu { device, queue, limits, ray_query_accels, .. } = gpu;
         let (new_bindings, built) =
@@ -329,7 +343,7 @@ fn launch_on_device(
         true => outputs.iter().copied().filter(|&(i, ..)| !l.scene.buffers[i].device_local).collect(),
         false => Vec::new(),
     };
-    let results = readback::results(gpu, encoder, &read, lose)?;
+    let results = readback::results(gpu, encoder, &read, lose).await?;
     let (header, kernel) = (results.header, results.kernel);
     if let Some(before) = &capture {
         capture::write(before, &read, &results.words, header[2]);
@@ -339,7 +353,7 @@ fn launch_on_device(
     if l.last_tile {
         gpu.resident.device_local.after_launch(l.scene, &outputs);
     }
-    let (exception_words, print_words) = readback::log(gpu, header)?;
+    let (exception_words, print_words) = readback::log(gpu, header).await?;
     let mut report = LaunchReport::default();
     for w in exception_words.chunks_exact(3) {
         report.exceptions.push(ExceptionRecord { launch_index: UVec2::new(w[0], w[1]), code: w[2], location: None });

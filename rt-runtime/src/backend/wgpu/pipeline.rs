@@ -8,7 +8,7 @@ use crate::error::{Result, RtError};
 /// Makes `gpu` hold a pipeline for `wgsl` (printing the generator's
 /// `warning` when it creates one); a kernel that does not compile is an
 /// error naming `RT_DUMP_WGSL`.
-pub(crate) fn ensure(gpu: &mut Gpu, wgsl: &str, slots: u32, warning: Option<&str>) -> Result<()> {
+pub(crate) async fn ensure(gpu: &mut Gpu, wgsl: &str, slots: u32, warning: Option<&str>) -> Result<()> {
     if gpu.pipelines.contains_key(wgsl) {
         return Ok(());
     }
@@ -34,7 +34,7 @@ pub(crate) fn ensure(gpu: &mut Gpu, wgsl: &str, slots: u32, warning: Option<&str
         compilation_options: Default::default(),
         cache: None,
     });
-    if let Some(e) = pollster::block_on(scope.pop()) {
+    if let Some(e) = scope.pop().await {
         return Err(RtError::Gpu(format!(
             "the linked megakernel does not compile (set RT_DUMP_WGSL=1 to see it): {e}"
         )));

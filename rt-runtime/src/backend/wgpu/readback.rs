@@ -2,11 +2,11 @@
 //! launch's log (exceptions and `rt_printf!` records) decoded.
 
 use super::device::Gpu;
+use crate::backend::waiting::Delivery;
 use crate::error::{Result, RtError};
 use crate::scene::Scene;
 use glam::UVec2;
 use std::collections::HashMap;
-use std::sync::{Arc, Mutex};
 
 /// Capacity of the exception log (records past it are counted, not kept).
 pub(crate) const LOG_EXCEPTIONS: u32 = 4096;
@@ -19,7 +19,7 @@ pub(crate) const LOG_PRINT_WORDS: u32 = 1 << 16;
 /// buffer is kept and grown as needed. `lose` destroys the device once the
 /// work is submitted (a simulated device loss, for tests). Errors are
 /// described for [`Health::failure`].
-pub(crate) fn read_back(
+pub(crate) async fn read_back(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
     staging: &mut Option<wgpu::Buffer>,
@@ -52,14 +52,18 @@ pub(crate) fn read_back(
         return Ok(Vec::new());
     }
     let slice = dst.slice(..total);
-    let mapped = Arc::new(Mutex::new(None));
-    let on_mapped = Arc::clone(&mapped);
-    slice.map_async(wgpu::MapMode::Read, move |r| *on_mapped.lock().unwrap_or_else(|e| e.into_inner()) = Some(r));
+    let (mapped, deliver) = Delivery::new();
+    slice.map_async(wgpu::MapMode::Read, deliver);
+    // Natively the mapping is done once the device is idle; in a browser
+    // the page's event loop delivers it, awaited below.
     device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| format!("waiting for the launch: {e}"))?;
-    match mapped.lock().unwrap_or_else(|e| e.into_inner()).take() {
-        Some(Ok(())) => {}
-        Some(Err(e)) => return Err(format!("reading results back: {e}")),
+    let done = match mapped.take() {
+        Some(done) => done,
+        None if cfg!(target_arch = "wasm32") => mapped.await,
         None => return Err("reading results back: the device never finished the launch".into()),
+    };
+    if let Err(e) = done {
+        return Err(format!("reading results back: {e}"));
     }
     let bytes = slice.get_mapped_range().map_err(|e| format!("reading results back: {e}"))?;
     let words = bytes.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
@@ -152,7 +156,7 @@ pub(crate) struct Results {
 /// heap offset, words)`), the log's header and the timestamps, and reads
 /// them back; the heap's mirror takes the outputs' new words. A device
 /// lost or an error wgpu reported fails the launch.
-pub(crate) fn results(
+pub(crate) async fn results(
     gpu: &mut Gpu,
     mut encoder: wgpu::CommandEncoder,
     outputs: &[(usize, usize, usize)],
@@ -173,6 +177,7 @@ pub(crate) fn results(
     }
     res.downloaded = copies.iter().map(|c| c.2).sum();
     let words = read_back(device, queue, &mut res.readback, encoder, &copies, lose)
+        .await
         .map_err(|what| health.failure(adapter.clone(), what))?;
     if let Some(errors) = health.take_errors() {
         // wgpu refused part of the launch: its results cannot be trusted.
@@ -196,7 +201,7 @@ pub(crate) fn results(
 
 /// The log's exception records and print words, when the launch (its log
 /// `header`) counted any: a second, small read.
-pub(crate) fn log(gpu: &mut Gpu, header: [u32; 4]) -> Result<(Vec<u32>, Vec<u32>)> {
+pub(crate) async fn log(gpu: &mut Gpu, header: [u32; 4]) -> Result<(Vec<u32>, Vec<u32>)> {
     let exceptions = header[0].min(LOG_EXCEPTIONS) as u64;
     let print_used = (header[1] as u64).min(LOG_PRINT_WORDS as u64);
     if exceptions + print_used == 0 {
@@ -211,6 +216,7 @@ pub(crate) fn log(gpu: &mut Gpu, header: [u32; 4]) -> Result<(Vec<u32>, Vec<u32>
     copies.push((log, print_base, print_used * 4));
     res.downloaded += copies.iter().map(|c| c.2).sum::<u64>();
     let mut words = read_back(device, queue, &mut res.readback, encoder, &copies, false)
+        .await
         .map_err(|what| health.failure(adapter.clone(), what))?;
     let prints = words.split_off(exceptions as usize * 3);
     Ok((words, prints))
