@@ -80,12 +80,11 @@ fn first_poll<F: Future>(f: F) -> Poll<F::Output> {
     f.as_mut().poll(&mut TaskContext::from_waker(Waker::noop()))
 }
 
-/// What a launch gave: the outputs and the report without its timings.
-fn outcome(
-    ctx: &Context,
-    out: BufferId,
-    report: LaunchReport,
-) -> (Vec<Vec4>, Vec<ExceptionRecord>, Vec<(UVec2, String)>, u64, u32) {
+/// What a launch gave: the outputs, and the report's exceptions, prints,
+/// rays and tiles (not its timings).
+type Outcome = (Vec<Vec4>, Vec<ExceptionRecord>, Vec<(UVec2, String)>, u64, u32);
+
+fn outcome(ctx: &Context, out: BufferId, report: LaunchReport) -> Outcome {
     (ctx.read_buffer::<Vec4>(out).unwrap(), report.exceptions, report.prints, report.rays, report.tiles)
 }
 
