@@ -6,7 +6,8 @@
 # lavapipe, installed here when missing or too old for ray queries (as
 # root: Mesa 25 from bookworm-backports). A missing adapter fails those
 # tests; it is never skipped. The viewer's tests need Xvfb, installed
-# here too. Node and Dawn's npm package run the Tint check (tint.rs).
+# here too. Node and Dawn's npm package run the Tint check (tint.rs);
+# Chromium and the page scripts/web.sh builds, the browser test.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # The ray-query traversal's tests need lavapipe with VK_KHR_ray_query:
@@ -45,10 +46,16 @@ if command -v npm >/dev/null && [ ! -e scripts/tint/node_modules/webgpu/package.
     echo "scripts/test.sh: npm ci in scripts/tint (Dawn for Node, the package \`webgpu\`)"
     npm ci --prefix scripts/tint --no-audit --no-fund --loglevel=error
 fi
-# rt-runtime's wgpu backend also builds for the browser (wasm32, WebGPU).
-if command -v rustup >/dev/null && ! rustup target list --installed | grep -qx wasm32-unknown-unknown; then
-    echo "scripts/test.sh: rustup target add wasm32-unknown-unknown"
-    rustup target add wasm32-unknown-unknown
+# The megakernel in a browser (web/, examples/tests/browser.rs): headless
+# Chromium, whose WebGPU adapter is SwiftShader's on a machine without a
+# GPU.
+if ! command -v chromium >/dev/null; then
+    if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null; then
+        echo "scripts/test.sh: installing chromium for the browser test"
+        apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium >/dev/null
+    else
+        echo "scripts/test.sh: no chromium found; the browser test (examples/tests/browser.rs) will fail (apt-get install chromium)" >&2
+    fi
 fi
 export RT_TINT=require
 # rt-runtime keeps every kernel the suite links here, for the Tint check.
@@ -60,8 +67,12 @@ start=$(date +%s)
 echo "scripts/test.sh: cargo fmt --check and cargo clippy (-D warnings)"
 cargo fmt --all --check
 cargo clippy --workspace --all-targets -j"$CARGO_BUILD_JOBS" -- -D warnings
-echo "scripts/test.sh: cargo build --target wasm32-unknown-unknown -p rt-runtime"
-cargo build --target wasm32-unknown-unknown -p rt-runtime -j"$CARGO_BUILD_JOBS"
+# rt-runtime's wgpu backend builds for the browser (wasm32, WebGPU): the
+# page of web/ (rt-web, over rt-runtime and the examples), which the
+# browser test serves to Chromium.
+echo "scripts/test.sh: scripts/web.sh (rt-web and rt-runtime for wasm32-unknown-unknown, the page)"
+bash scripts/web.sh
+export RT_REQUIRE_BROWSER=1
 log=$(mktemp)
 trap 'rm -f "$log"' EXIT
 # The Tint check reads the kernels the rest of the suite linked: it runs

@@ -181,8 +181,22 @@ pub fn scene(settings: &Settings) -> Result<Scene, Error> {
     let loaded = mesh::load_obj(&path)?;
     let text = std::fs::read_to_string(&path)
         .map_err(|e| Error::Io { path: path.display().to_string(), problem: e.to_string() })?;
-    let quad = mesh::object_vertices(&text, "light");
-    let file = path.display().to_string();
+    build(settings, loaded, &text, path.display().to_string())
+}
+
+/// [`scene`] from the text of the Cornell box's OBJ and MTL files
+/// (`shared/scenes/cornell_box.obj` and `.mtl`): where there are no files
+/// to read, as in a browser page.
+pub fn scene_from_text(settings: &Settings, obj: &str, mtl: &str) -> Result<Scene, Error> {
+    let file = "cornell_box.obj";
+    let loaded = mesh::parse_obj_with_mtl(obj, file, &|_| Ok(mtl.to_string()))?;
+    build(settings, loaded, obj, file.to_string())
+}
+
+/// The scene over the loaded box, whose OBJ text `text` (file `file`)
+/// names the light's quad.
+fn build(settings: &Settings, loaded: mesh::LoadedMesh, text: &str, file: String) -> Result<Scene, Error> {
+    let quad = mesh::object_vertices(text, "light");
     let [p0, p1, _, p3] = quad[..] else {
         return Err(MeshError {
             file,

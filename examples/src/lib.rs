@@ -47,6 +47,7 @@ pub mod cornell;
 pub mod diffuse;
 pub mod envmap;
 pub mod instances;
+#[cfg(not(target_arch = "wasm32"))]
 pub mod model;
 /// OBJ loading, moved to `rt-scene` ([`rt_scene::obj`]); kept here by its
 /// old name.
@@ -54,13 +55,16 @@ pub use rt_scene::obj as mesh;
 pub mod normal;
 pub mod parts;
 pub mod phong;
+#[cfg(not(target_arch = "wasm32"))]
 pub mod present;
+#[cfg(not(target_arch = "wasm32"))]
 pub mod progress_bar;
 pub mod receiver_grid;
 pub mod reflections;
 pub mod scene;
 pub mod shadows;
 pub mod tutorial;
+#[cfg(not(target_arch = "wasm32"))]
 pub mod viewer;
 
 pub use scene::{BackendChoice, Camera, Error, Image, Rendered, Scene, Settings};

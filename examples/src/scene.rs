@@ -8,10 +8,11 @@ use rt_runtime::{
     TriangleMesh,
 };
 use std::path::{Path, PathBuf};
-use std::time::Instant;
+use web_time::Instant;
 
 /// Which backend renders, as the binaries' `--backend` names it.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(not(target_arch = "wasm32"), derive(clap::ValueEnum))]
 pub enum BackendChoice {
     /// Programs run natively as Rust on every core.
     Cpu,
@@ -370,6 +371,29 @@ impl Scene {
     /// [`Context::set_tile_budget`]), and reads the output back.
     pub fn render(&mut self, progress: &mut dyn FnMut(Progress)) -> Result<Rendered, Error> {
         self.render_rows(0..self.height, progress)
+    }
+
+    /// [`Scene::render`] awaiting each launch
+    /// ([`Context::launch_async`]), as a browser page must: the same
+    /// launches, whole (no progress between tiles).
+    pub async fn render_async(&mut self) -> Result<Rendered, Error> {
+        let (mut rays, mut exceptions) = (0, Vec::new());
+        let start = Instant::now();
+        for frame in 0..self.frames {
+            self.ctx.set_var(Scope::Context, "frame", frame)?;
+            if let Some((entry, size)) = self.pre_launch {
+                let report = self.ctx.launch_async(entry, size.x, size.y).await?;
+                rays += report.rays;
+                exceptions.extend(report.exceptions);
+            }
+            let report = self.ctx.launch_async(0, self.width, self.height).await?;
+            rays += report.rays;
+            exceptions.extend(report.exceptions);
+        }
+        let seconds = start.elapsed().as_secs_f64();
+        let pixels = self.ctx.read_buffer::<Vec4>(self.output)?;
+        let image = Image { width: self.width, height: self.height, pixels };
+        Ok(Rendered { image, radiance: None, rays, seconds, launches: self.frames, exceptions })
     }
 
     /// [`Scene::render`] of the rows `rows` only (on the launch's 8-row

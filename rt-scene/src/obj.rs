@@ -93,6 +93,21 @@ fn io_reason(e: &std::io::Error) -> String {
 /// Loads OBJ text; `file` names it in messages, `.mtl` files are looked up
 /// in `dir`.
 pub fn parse_obj(text: &str, file: &str, dir: Option<&Path>) -> Result<LoadedMesh, MeshError> {
+    let read = |mtl: &Path| {
+        let path = dir.map_or_else(|| mtl.to_path_buf(), |d| d.join(mtl));
+        std::fs::read_to_string(&path).map_err(|e| format!("{}: {}", path.display(), io_reason(&e)))
+    };
+    parse_obj_with_mtl(text, file, &read)
+}
+
+/// [`parse_obj`] with each `.mtl` file's text from `mtl`, given the name
+/// the OBJ's `mtllib` line says (or why it has none): where there are no
+/// files to read, as in a browser page.
+pub fn parse_obj_with_mtl(
+    text: &str,
+    file: &str,
+    mtl: &dyn Fn(&Path) -> Result<String, String>,
+) -> Result<LoadedMesh, MeshError> {
     let err = |line: Option<usize>, problem: String| MeshError { file: file.to_string(), line, problem };
     check_obj(text).map_err(|(line, problem)| err(Some(line), problem))?;
 
@@ -108,13 +123,15 @@ pub fn parse_obj(text: &str, file: &str, dir: Option<&Path>) -> Result<LoadedMes
     };
     let mut warnings = Vec::new();
     let mtl_problems = std::cell::RefCell::new(Vec::new());
-    let (models, materials) = tobj::load_obj_buf(&mut text.as_bytes(), &options, |mtl| {
-        let p = dir.map_or_else(|| mtl.to_path_buf(), |d| d.join(mtl));
-        let result = tobj::load_mtl(&p);
-        if let Err(e) = &result {
-            mtl_problems.borrow_mut().push(format!("{}: {e}; using default grey", p.display()));
-        }
-        result
+    let (models, materials) = tobj::load_obj_buf(&mut text.as_bytes(), &options, |name| {
+        let result = match mtl(name) {
+            Ok(text) => tobj::load_mtl_buf(&mut text.as_bytes()).map_err(|e| format!("{}: {e}", name.display())),
+            Err(why) => Err(why),
+        };
+        result.map_err(|why| {
+            mtl_problems.borrow_mut().push(format!("{why}; using default grey"));
+            tobj::LoadError::OpenFileFailed
+        })
     })
     .map_err(|e| err(None, format!("not a valid OBJ file ({e})")))?;
     warnings.extend(mtl_problems.into_inner());

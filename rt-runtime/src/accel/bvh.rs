@@ -57,7 +57,6 @@ pub(crate) fn build(
     triangles: Option<&[obvhs::triangle::Triangle]>,
     form: TreeForm,
 ) -> Result<Bvh, crate::error::RtError> {
-    let mut t = std::time::Duration::ZERO;
     let bvh = match builder {
         Builder::TriangleKdTree => {
             return Err(crate::error::RtError::UnsupportedBuilder {
@@ -76,9 +75,7 @@ pub(crate) fn build(
             bvh
         }
         Builder::Sbvh => match triangles {
-            Some(tris) => {
-                obvhs::bvh2::builder::build_bvh2_from_tris(tris, params(BvhBuildParams::slow_build(), form), &mut t)
-            }
+            Some(tris) => ploc(bounds, Some(tris), params(BvhBuildParams::slow_build(), form)),
             None => {
                 return Err(crate::error::RtError::UnsupportedBuilder {
                     builder: "Sbvh",
@@ -86,15 +83,55 @@ pub(crate) fn build(
                 });
             }
         },
-        Builder::Bvh => obvhs::bvh2::builder::build_bvh2(bounds, params(BvhBuildParams::medium_build(), form), &mut t),
-        Builder::MedianBvh => {
-            obvhs::bvh2::builder::build_bvh2(bounds, params(BvhBuildParams::fast_build(), form), &mut t)
-        }
-        Builder::Lbvh => {
-            obvhs::bvh2::builder::build_bvh2(bounds, params(BvhBuildParams::fastest_build(), form), &mut t)
-        }
+        Builder::Bvh => ploc(bounds, None, params(BvhBuildParams::medium_build(), form)),
+        Builder::MedianBvh => ploc(bounds, None, params(BvhBuildParams::fast_build(), form)),
+        Builder::Lbvh => ploc(bounds, None, params(BvhBuildParams::fastest_build(), form)),
     };
     Ok(Bvh { bvh })
+}
+
+/// obvhs's BVH2 build as its `build_bvh2` and `build_bvh2_from_tris`
+/// helpers do it (PLOC over the bounds, with spatial pre-splits when
+/// `triangles` are given and `config` asks; reinsertion, leaf collapse and
+/// a second reinsertion pass), step by step through its public API: the
+/// helpers time themselves with `std::time::Instant`, which panics in a
+/// browser (wasm32).
+fn ploc(bounds: &[OAabb], triangles: Option<&[obvhs::triangle::Triangle]>, config: BvhBuildParams) -> Bvh2 {
+    let ploc = |aabbs: &[OAabb], indices: Vec<u32>| {
+        obvhs::ploc::PlocBuilder::with_capacity(aabbs.len()).build(
+            config.ploc_search_distance,
+            aabbs,
+            indices,
+            config.sort_precision,
+            config.search_depth_threshold,
+        )
+    };
+    let mut bvh2 = match triangles.filter(|_| config.pre_split) {
+        Some(tris) => {
+            let mut aabbs: Vec<OAabb> = tris.iter().map(|t| t.aabb()).collect();
+            let largest_half_area = aabbs.iter().map(|a| a.half_area()).fold(0.0, f32::max);
+            let avg_area = aabbs.iter().map(|a| a.half_area()).sum::<f32>() / tris.len() as f32;
+            let mut indices = (0..tris.len() as u32).collect();
+            obvhs::splits::split_aabbs_preset(&mut aabbs, &mut indices, tris, avg_area, largest_half_area);
+            let mut bvh2 = ploc(&aabbs, indices);
+            bvh2.uses_spatial_splits = true;
+            bvh2
+        }
+        None => ploc(bounds, (0..bounds.len() as u32).collect()),
+    };
+    let mut reinsertion = obvhs::bvh2::reinsertion::ReinsertionOptimizer::default();
+    reinsertion.run(&mut bvh2, config.reinsertion_batch_ratio, None);
+    obvhs::bvh2::leaf_collapser::collapse(
+        &mut bvh2,
+        config.max_prims_per_leaf.clamp(1, 255),
+        config.collapse_traversal_cost,
+    );
+    reinsertion.run(
+        &mut bvh2,
+        config.reinsertion_batch_ratio * config.post_collapse_reinsertion_batch_ratio_multiplier,
+        None,
+    );
+    bvh2
 }
 
 impl Bvh {

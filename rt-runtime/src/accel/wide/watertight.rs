@@ -15,6 +15,8 @@ use glam::{Vec3, Vec3A, Vec3Swizzles};
 /// p[kz])`, three products and two differences, as the paper writes it.
 pub(crate) struct WatertightRay {
     pub(crate) origin: Vec3A,
+    // (Read by the CPU backend, which a browser build leaves out.)
+    #[cfg_attr(target_arch = "wasm32", allow(dead_code))]
     pub(crate) direction: Vec3,
     pub(crate) tmin: f32,
     /// `kz`, 0 to 2 (`kx` is `kz + 1`, `ky` is `kz + 2`, modulo 3).
@@ -66,6 +68,7 @@ impl WatertightRay {
 
     /// The rows of [`crate::accel::wide::Packet`] (and axes) holding a
     /// vertex's `kx`, `ky` and `kz` coordinates.
+    #[cfg_attr(target_arch = "wasm32", allow(dead_code))]
     pub(crate) fn axes(&self) -> [usize; 3] {
         [(self.kz + 1) % 3, (self.kz + 2) % 3, self.kz]
     }

@@ -306,6 +306,8 @@ fn base_entries(scene_bindings: usize) -> Vec<wgpu::BindGroupLayoutEntry> {
 /// its first instance. A user's own setting of either variable wins.
 pub fn instance() -> wgpu::Instance {
     static QUIET: std::sync::Once = std::sync::Once::new();
+    // (A browser has no environment to set, nor Mesa.)
+    #[cfg(not(target_arch = "wasm32"))]
     QUIET.call_once(|| {
         if std::env::var_os("XDG_RUNTIME_DIR").is_none() && std::env::var_os("NODEVICE_SELECT").is_none() {
             // SAFETY: runs once, before the runtime has created any Vulkan
@@ -328,11 +330,13 @@ pub fn probe_ray_queries() -> bool {
     probe_adapter().is_some_and(|a| a.features().contains(wgpu::Features::EXPERIMENTAL_RAY_QUERY))
 }
 
+/// The adapter wgpu would pick (in a browser, none: the page's adapter
+/// comes only asynchronously, and a probe may not block).
 fn probe_adapter() -> Option<wgpu::Adapter> {
     let instance = instance();
-    pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
+    super::waiting::now(instance.request_adapter(&wgpu::RequestAdapterOptions {
         power_preference: wgpu::PowerPreference::HighPerformance,
         ..Default::default()
-    }))
+    }))?
     .ok()
 }
