@@ -305,8 +305,9 @@ fn base_entries(scene_bindings: usize) -> Vec<wgpu::BindGroupLayoutEntry> {
 /// way its manifest offers (`NODEVICE_SELECT=1`), once, before it creates
 /// its first instance. A user's own setting of either variable wins.
 pub fn instance() -> wgpu::Instance {
-    static QUIET: std::sync::Once = std::sync::Once::new();
     // (A browser has no environment to set, nor Mesa.)
+    #[cfg(not(target_arch = "wasm32"))]
+    static QUIET: std::sync::Once = std::sync::Once::new();
     #[cfg(not(target_arch = "wasm32"))]
     QUIET.call_once(|| {
         if std::env::var_os("XDG_RUNTIME_DIR").is_none() && std::env::var_os("NODEVICE_SELECT").is_none() {
