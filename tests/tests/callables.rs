@@ -159,3 +159,67 @@ fn a_callable_id_of_another_signature_is_refused_naming_both_programs() {
     );
     assert!(e.ends_with("a callable of signature `fn(Vec3, f32) -> Vec3`"), "{e}");
 }
+
+/// Ids made in a program: from a `u32` (`from_id`, its signature by the
+/// turbofish or the place it goes), `NONE` and `default()`.
+#[allow(clippy::type_complexity)]
+#[rt_program(ray_generation)]
+pub fn make_ids(#[var] base: u32, #[var] mut out: RwBuffer<u32>, #[var] mut made: RwBuffer<Callable<fn(u32) -> u32>>) {
+    let i = launch_index().x;
+    let f = Callable::<fn(u32) -> u32>::from_id(base + i % 3);
+    let none: Callable<fn(u32) -> u32> = Callable::NONE;
+    let back: Callable<fn(u32) -> u32> = Callable::from_id(base);
+    let mut got = f.call(i);
+    if f == Callable::<fn(u32) -> u32>::default() || f == none {
+        got = 1000;
+    }
+    made[i] = none;
+    if i % 3 == 0 {
+        made[i] = f;
+    } else if i % 3 == 1 {
+        made[i] = back;
+    }
+    out[i] = got;
+}
+
+#[test]
+fn ids_made_in_a_program_call_the_same_callables_on_every_target() {
+    let mut want_out = Vec::new();
+    let mut want_made = Vec::new();
+    let mut raised = Vec::new();
+    for i in 0..N {
+        // base is double's id, base + 1 square's, base + 2 `make_ids`'s own (no callable).
+        want_out.push(match i % 3 {
+            0 => i * 2,
+            1 => i * i,
+            _ => {
+                raised.push((i, EXCEPTION_PROGRAM_ID_INVALID));
+                0
+            }
+        });
+        want_made.push(if i % 3 == 2 { 0 } else { 1 });
+    }
+    for on in On::ALL.into_iter().filter(|on| on.available()) {
+        let mut ctx = on.context();
+        ctx.set_ray_type_count(0);
+        let d = ctx.create_program(&double::PROGRAM);
+        ctx.create_program(&square::PROGRAM);
+        let rg = ctx.create_program(&make_ids::PROGRAM);
+        let base = ctx.callable_id::<fn(u32) -> u32>(d).unwrap().id();
+        assert_eq!(base, 1, "{}", on.name());
+        let out = ctx.create_buffer::<u32>(BufferType::Output, vec![0; N as usize]);
+        let made = ctx.create_buffer(BufferType::Output, vec![Callable::<fn(u32) -> u32>::from_id(99); N as usize]);
+        ctx.set_var(Scope::Context, "base", base).unwrap();
+        ctx.set_var(Scope::Context, "out", out).unwrap();
+        ctx.set_var(Scope::Context, "made", made).unwrap();
+        ctx.set_ray_generation_program(0, rg).unwrap();
+        let report = ctx.launch_1d(0, N).unwrap();
+        let mut exceptions: Vec<(u32, u32)> = report.exceptions.iter().map(|e| (e.launch_index.x, e.code)).collect();
+        exceptions.sort();
+        assert_eq!(ctx.read_buffer::<u32>(out).unwrap(), want_out, "{}", on.name());
+        let made: Vec<u32> =
+            ctx.read_buffer::<Callable<fn(u32) -> u32>>(made).unwrap().iter().map(|c| c.id()).collect();
+        assert_eq!(made, want_made, "{}", on.name());
+        assert_eq!(exceptions, raised, "{}", on.name());
+    }
+}
