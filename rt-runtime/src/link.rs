@@ -5,7 +5,10 @@
 //! on the payload type, and every traced payload type is some ray type's;
 //! intersection programs report the attribute type their hit programs take;
 //! each variable is set in some scope of the program's lookup order
-//! ([`crate::vars::lookup_order`]) with the declared type.
+//! ([`crate::vars::lookup_order`]) with the declared type; callable
+//! programs call each other in no cycle ([`callables`]).
+
+pub mod callables;
 
 use crate::error::{Result, RtError};
 use crate::scene::{GeometryKind, NodeId, NodeKind, ProgramId};

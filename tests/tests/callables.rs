@@ -160,6 +160,55 @@ fn a_callable_id_of_another_signature_is_refused_naming_both_programs() {
     assert!(e.ends_with("a callable of signature `fn(Vec3, f32) -> Vec3`"), "{e}");
 }
 
+/// Counts down through `pong`, with both ids as plain `u32`s
+/// (`ids.x` is `ping`'s, `ids.y` is `pong`'s): `ping` calls `pong` calls
+/// `ping`, a cycle. It ends, but WGSL cannot run it, so no backend does.
+#[rt_program(callable)]
+pub fn ping(x: u32, ids: UVec2) -> u32 {
+    Callable::<fn(i32, UVec2) -> u32>::from_id(ids.y).call(x as i32, ids)
+}
+
+#[rt_program(callable)]
+pub fn pong(x: i32, ids: UVec2) -> u32 {
+    if x <= 0 { 0 } else { 1 + Callable::<fn(u32, UVec2) -> u32>::from_id(ids.x).call((x - 1) as u32, ids) }
+}
+
+#[rt_program(ray_generation)]
+pub fn run_ping(#[var] ids: UVec2, #[var] mut out: RwBuffer<u32>) {
+    let i = launch_index().x;
+    out[i] = Callable::<fn(u32, UVec2) -> u32>::from_id(ids.x).call(i, ids);
+}
+
+#[test]
+fn callables_calling_each_other_in_a_cycle_are_refused_at_launch_on_every_target() {
+    for on in On::ALL.into_iter().filter(|on| on.available()) {
+        let mut ctx = on.context();
+        ctx.set_ray_type_count(0);
+        let ping_id = ctx.create_program(&ping::PROGRAM);
+        let pong_id = ctx.create_program(&pong::PROGRAM);
+        let ids = UVec2::new(
+            ctx.callable_id::<fn(u32, UVec2) -> u32>(ping_id).unwrap().id(),
+            ctx.callable_id::<fn(i32, UVec2) -> u32>(pong_id).unwrap().id(),
+        );
+        let out = ctx.create_buffer::<u32>(BufferType::Output, vec![7; 4]);
+        ctx.set_var(Scope::Context, "ids", ids).unwrap();
+        ctx.set_var(Scope::Context, "out", out).unwrap();
+        let rg = ctx.create_program(&run_ping::PROGRAM);
+        ctx.set_ray_generation_program(0, rg).unwrap();
+        let e = ctx.launch_1d(0, 4).unwrap_err().to_string();
+        assert_eq!(
+            e,
+            "callable programs call each other in a cycle, which no backend runs (WGSL has no recursion): \
+             `ping` (tests/tests/callables.rs:167) calls `pong` (tests/tests/callables.rs:172) calls `ping` \
+             (tests/tests/callables.rs:167)",
+            "{}",
+            on.name()
+        );
+        // The failed launch wrote nothing and left the context usable.
+        assert_eq!(ctx.read_buffer::<u32>(out).unwrap(), vec![7; 4], "{}", on.name());
+    }
+}
+
 /// Ids made in a program: from a `u32` (`from_id`, its signature by the
 /// turbofish or the place it goes), `NONE` and `default()`.
 #[allow(clippy::type_complexity)]

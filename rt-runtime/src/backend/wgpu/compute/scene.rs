@@ -528,14 +528,7 @@ fn kernel_spec(
         default_exception,
         scene_bindings,
         ray_query_slots: 0,
-        callables: l
-            .scene
-            .programs
-            .iter()
-            .enumerate()
-            .filter(|(_, r)| r.desc.callable.is_some())
-            .map(|(i, r)| KernelProgram { case: case(ProgramId(i as u32)), desc: r.desc })
-            .collect(),
+        callables: link::callables::scene_callables(l.scene),
         cwbvh_stack: if geometry.cwbvh { (geometry.deepest_cwbvh + 2).max(32).next_power_of_two() } else { 0 },
     })
 }
