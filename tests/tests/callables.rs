@@ -272,3 +272,48 @@ fn ids_made_in_a_program_call_the_same_callables_on_every_target() {
         assert_eq!(exceptions, raised, "{}", on.name());
     }
 }
+
+/// Prints its argument and a vector it makes, from inside a callable.
+#[rt_program(callable)]
+pub fn loud_double(x: u32) -> u32 {
+    rt_printf!("double {} at {}", x, vec2(x as f32, 0.5));
+    x * 2
+}
+
+#[rt_program(ray_generation)]
+pub fn run_loud(#[var] f: Callable<fn(u32) -> u32>, #[var] mut out: RwBuffer<u32>) {
+    let i = launch_index().x;
+    out[i] = f.call(i + 10);
+    rt_printf!("index {} got {}", i, out[i]);
+}
+
+#[test]
+fn rt_printf_inside_a_callable_prints_on_every_target() {
+    for on in On::ALL.into_iter().filter(|on| on.available()) {
+        let mut ctx = on.context();
+        ctx.set_ray_type_count(0);
+        let d = ctx.create_program(&loud_double::PROGRAM);
+        let d_id = ctx.callable_id::<fn(u32) -> u32>(d).unwrap();
+        let out = ctx.create_buffer::<u32>(BufferType::Output, vec![0; 3]);
+        ctx.set_var(Scope::Context, "f", d_id).unwrap();
+        ctx.set_var(Scope::Context, "out", out).unwrap();
+        let rg = ctx.create_program(&run_loud::PROGRAM);
+        ctx.set_ray_generation_program(0, rg).unwrap();
+        ctx.set_print(true, None);
+        let report = ctx.launch_1d(0, 3).unwrap();
+        let want: Vec<(UVec2, String)> = (0..3u32)
+            .flat_map(|i| {
+                [
+                    (UVec2::new(i, 0), format!("double {} at [{}, 0.5]", i + 10, i + 10)),
+                    (UVec2::new(i, 0), format!("index {i} got {}", 2 * (i + 10))),
+                ]
+            })
+            .collect();
+        assert_eq!(report.prints, want, "{}", on.name());
+        assert_eq!(ctx.read_buffer::<u32>(out).unwrap(), vec![20, 22, 24], "{}", on.name());
+        // Filtered to one launch index, the callable's line goes with it.
+        ctx.set_print(true, Some(UVec2::new(1, 0)));
+        let report = ctx.launch_1d(0, 3).unwrap();
+        assert_eq!(report.prints, want[2..4].to_vec(), "{}", on.name());
+    }
+}
