@@ -1,11 +1,11 @@
-//! Callable programs in the megakernel: which callables a kernel links (those
-//! of a signature some linked program calls, and so on through the
-//! callables' own calls), and one dispatch function per signature,
-//! `rt_call_<signature>(id, args..)`, a `switch` over the ids of the
-//! callables of that signature whose default raises
-//! `EXCEPTION_PROGRAM_ID_INVALID` and returns zero. Which callables are
-//! linked, and the refusal of cycles (WGSL has no recursion), are the
-//! link's, for every backend (`crate::link::callables`).
+//! Callable programs in the megakernel: one dispatch function per
+//! signature, `rt_call_<signature>(id, args..)`, a `switch` over the ids of
+//! the linked callables of that signature whose default raises
+//! `EXCEPTION_PROGRAM_ID_INVALID` and returns zero. Which callables a kernel
+//! links (those of a signature some linked program calls, and so on through
+//! the callables' own calls) and the refusal of cycles (WGSL has no
+//! recursion) are the link's, the same for every backend
+//! (`crate::link::callables`).
 
 use crate::link::callables::{LinkedCallable, of_signature};
 use rt_std::program::CallableSignature;
