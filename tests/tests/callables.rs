@@ -317,3 +317,45 @@ fn rt_printf_inside_a_callable_prints_on_every_target() {
         assert_eq!(report.prints, want[2..4].to_vec(), "{}", on.name());
     }
 }
+
+/// A struct whose callable field's signature names a struct declared after
+/// it: the struct it names is built first.
+#[rt_struct]
+pub struct Lit {
+    pub shade: Callable<fn(Lamp) -> Vec3>,
+    pub gain: f32,
+}
+
+#[rt_struct]
+pub struct Lamp {
+    pub color: Vec3,
+}
+
+#[rt_program(callable)]
+pub fn halve(lamp: Lamp) -> Vec3 {
+    lamp.color * 0.5
+}
+
+#[rt_program(ray_generation)]
+pub fn run_lit(#[var] lit: Lit, #[var] mut out: RwBuffer<Vec3>) {
+    let i = launch_index().x;
+    out[i] = lit.shade.call(Lamp { color: Vec3::splat(i as f32) }) * lit.gain;
+}
+
+#[test]
+fn a_callable_field_may_name_a_struct_declared_after_its_own() {
+    for on in On::ALL.into_iter().filter(|on| on.available()) {
+        let mut ctx = on.context();
+        ctx.set_ray_type_count(0);
+        let h = ctx.create_program(&halve::PROGRAM);
+        let shade = ctx.callable_id::<fn(Lamp) -> Vec3>(h).unwrap();
+        let out = ctx.create_buffer::<Vec3>(BufferType::Output, vec![Vec3::ZERO; 3]);
+        ctx.set_var(Scope::Context, "lit", Lit { shade, gain: 4.0 }).unwrap();
+        ctx.set_var(Scope::Context, "out", out).unwrap();
+        let rg = ctx.create_program(&run_lit::PROGRAM);
+        ctx.set_ray_generation_program(0, rg).unwrap();
+        ctx.launch_1d(0, 3).unwrap();
+        let want = vec![Vec3::ZERO, Vec3::splat(2.0), Vec3::splat(4.0)];
+        assert_eq!(ctx.read_buffer::<Vec3>(out).unwrap(), want, "{}", on.name());
+    }
+}
