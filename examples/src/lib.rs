@@ -1,8 +1,8 @@
 //! # The worked examples
 //!
 //! The seed lecture's seven examples, each building on the one before, and
-//! four more that put the framework to work on real meshes and on a
-//! non-graphics use:
+//! five more that put the framework to work on real meshes, on a
+//! non-graphics use and on callable programs:
 //!
 //! | module | shows |
 //! | --- | --- |
@@ -17,6 +17,7 @@
 //! | [`bunny`] | the Stanford bunny with a key light, shadows and ambient occlusion |
 //! | [`instances`] | a hundred transformed instances of one teapot sharing one BVH |
 //! | [`receiver_grid`] | a sound source's rays counted per cell of a receiver grid with atomic adds, direct and reflected |
+//! | [`callable_brdfs`] | the tutorial's objects each shaded by its own BRDF, a callable program chosen per material from a buffer of ids |
 //!
 //! [`common`] holds what the Whitted-style examples share on the device side
 //! (payloads, attributes, lights, the camera), [`tutorial`] the scene of
@@ -41,6 +42,7 @@
 #![allow(clippy::too_many_arguments)]
 
 pub mod bunny;
+pub mod callable_brdfs;
 pub mod common;
 pub mod convex_hull;
 pub mod cornell;
@@ -80,7 +82,7 @@ pub struct Example {
 }
 
 /// Every example, in the tour's order.
-pub const EXAMPLES: [Example; 11] = [
+pub const EXAMPLES: [Example; 12] = [
     Example { name: "normal", summary: "normal shader", build: normal::scene, progressive: false },
     Example { name: "diffuse", summary: "ambient + Lambert", build: diffuse::scene, progressive: false },
     Example { name: "phong", summary: "Blinn-Phong", build: phong::scene, progressive: false },
@@ -101,6 +103,12 @@ pub const EXAMPLES: [Example; 11] = [
         summary: "rays reaching a receiver grid, counted atomically",
         build: receiver_grid::scene,
         progressive: true,
+    },
+    Example {
+        name: "callable_brdfs",
+        summary: "a BRDF per material, a callable from a buffer",
+        build: callable_brdfs::scene,
+        progressive: false,
     },
 ];
 

@@ -2,10 +2,14 @@
 //! is known from the scene are checked: background pixels are `bg_color`,
 //! the environment map shows the sky in the right direction, shadows darken
 //! what they fall on, the Cornell box's walls have their `.mtl` colours, the
-//! bunny's shadow side is darker than its lit side.
+//! bunny's shadow side is darker than its lit side, each callable BRDF
+//! shades its own object.
 
 use examples::bunny::{self, MeshView};
-use examples::{EXAMPLES, Image, Rendered, Settings, cornell, envmap, instances, mesh, receiver_grid, tutorial};
+use examples::{
+    EXAMPLES, Image, Rendered, Settings, callable_brdfs, cornell, diffuse, envmap, instances, mesh, receiver_grid,
+    tutorial,
+};
 use glam::{Vec3, Vec4};
 
 const W: u32 = 64;
@@ -241,4 +245,49 @@ fn the_receiver_grid_counts_the_inverse_square_law_and_the_walls_shadow() {
     // The obstacles' tops are grey.
     let top = image.at(grid_pixel(&image, -1.3, -0.25).0, grid_pixel(&image, -1.3, -0.25).1);
     assert!((top.x - top.y).abs() < 1e-6 && (top.y - top.z).abs() < 1e-6 && top.x > 0.3, "box top: {top}");
+}
+
+#[test]
+fn each_callable_brdf_shades_its_own_object() {
+    let brdfs = render("callable_brdfs").image;
+    let plain = render("diffuse").image;
+    let eye = tutorial::camera().eye;
+    let lights = tutorial::lights();
+    // The floor's BRDF is Lambert: the diffuse example's floor.
+    let floor = Vec3::new(1.0, 0.0, 3.0);
+    let (a, b) = (tutorial_pixel(&brdfs, floor), tutorial_pixel(&plain, floor));
+    assert!((a - b).abs().max_element() < 1e-5, "floor: {a} with the callable, {b} diffuse");
+    // The sphere's is the toon shade: where it faces the eye (no highlight
+    // there), `kd` times the ambient light plus each light's colour times
+    // one of the bands; where its normal is the half vector of the key
+    // light and the eye, the hard white highlight.
+    let c = tutorial::SPHERE.truncate();
+    let facing = c + (eye - c).normalize();
+    let got = tutorial_pixel(&brdfs, facing).truncate();
+    let bands = callable_brdfs::TOON_BANDS;
+    let banded = bands.iter().flat_map(|k| bands.iter().map(move |f| (*k, *f))).find(|(k, f)| {
+        let want = diffuse::SPHERE_KD * (diffuse::AMBIENT + lights[0].color * *k + lights[1].color * *f);
+        (want - got).abs().max_element() < 1e-4
+    });
+    assert!(banded.is_some(), "sphere facing the eye: {got} is no band of the toon shade");
+    let h = ((lights[0].pos - c).normalize() + (eye - c).normalize()).normalize();
+    let (a, b) = (tutorial_pixel(&brdfs, c + h), tutorial_pixel(&plain, c + h));
+    assert!(luminance(a) > luminance(b) + 0.2, "sphere highlight: {a} with the callable, {b} diffuse");
+    // The box's is Blinn-Phong: the diffuse example's box plus each light's
+    // highlight (the front face's middle, where the pixel's ray hits within
+    // half a pixel).
+    let center = (tutorial::BOX_MIN + tutorial::BOX_MAX) * 0.5;
+    let n = glam::Quat::from_rotation_y(tutorial::BOX_YAW) * Vec3::Z;
+    let front = center + n;
+    let v = (eye - front).normalize();
+    let highlight: Vec3 = lights
+        .iter()
+        .map(|light| {
+            let h = ((light.pos - front).normalize() + v).normalize();
+            light.color * callable_brdfs::BLINN_KS * n.dot(h).max(0.0).powf(callable_brdfs::BLINN_EXP)
+        })
+        .sum();
+    let got = (tutorial_pixel(&brdfs, front) - tutorial_pixel(&plain, front)).truncate();
+    assert!(highlight.min_element() > 0.01, "the front face has a highlight to see: {highlight}");
+    assert!((got - highlight).abs().max_element() < 0.004, "box front: {got} over diffuse, want {highlight}");
 }

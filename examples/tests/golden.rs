@@ -285,6 +285,9 @@ macro_rules! wgpu_goldens {
 }
 
 wgpu_goldens! {
-    checked: [normal, diffuse, phong, shadows, reflections, envmap, convex_hull, cornell, bunny, instances, receiver_grid],
+    checked: [
+        normal, diffuse, phong, shadows, reflections, envmap, convex_hull, cornell, bunny, instances, receiver_grid,
+        callable_brdfs,
+    ],
     skipped: [],
 }

@@ -371,7 +371,7 @@ impl Context {
                 asked: short_type_name(std::any::type_name::<F>()),
             });
         }
-        Ok(rt_std::Callable::from_id(p.0 + 1))
+        Ok(rt_std::Callable::from_id(p.callable_id()))
     }
 
     fn expect_kind(&self, p: ProgramId, expected: ProgramKind, slot: String) -> Result<()> {

@@ -15,7 +15,7 @@ pub enum RtError {
         expected: ProgramKind,
         slot: String,
     },
-    #[error("callable programs call each other in a cycle, which WGSL cannot run (it has no recursion): {cycle}")]
+    #[error("callable programs call each other in a cycle, which no backend runs (WGSL has no recursion): {cycle}")]
     CallableCycle { cycle: String },
     #[error("`{program}` ({location}) is a callable program of signature `{signature}`, not `{asked}`")]
     CallableSignature { program: &'static str, location: String, signature: &'static str, asked: String },

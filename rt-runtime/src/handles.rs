@@ -45,6 +45,20 @@ handle!(
     SamplerId
 );
 
+/// Callable ids (`rt_std::Callable`) are program handles plus one, so that
+/// zero is `Callable::NONE`, the id of no program.
+impl ProgramId {
+    /// The id programs call this program through.
+    pub(crate) fn callable_id(self) -> u32 {
+        self.0 + 1
+    }
+
+    /// The program callable id `id` names, if any (zero names none).
+    pub(crate) fn from_callable_id(id: u32) -> Option<ProgramId> {
+        id.checked_sub(1).map(ProgramId)
+    }
+}
+
 impl NodeId {
     /// The handle programs receive for this node.
     pub fn object(self) -> rt_std::Object {

@@ -5,12 +5,16 @@
 //! on the payload type, and every traced payload type is some ray type's;
 //! intersection programs report the attribute type their hit programs take;
 //! each variable is set in some scope of the program's lookup order
-//! ([`crate::vars::lookup_order`]) with the declared type.
+//! ([`crate::vars::lookup_order`]) with the declared type; callable
+//! programs call each other in no cycle ([`callables`]).
+
+pub mod callables;
 
 use crate::error::{Result, RtError};
 use crate::scene::{GeometryKind, NodeId, NodeKind, ProgramId};
 use crate::scene::{Scene, Scope};
 use crate::vars::{ScopeKind, VarValue, lookup_order};
+use rt_std::callable::CALLABLE_LAYOUT;
 use rt_std::program::{ProgramDescriptor, TypeLayout, VariableKind};
 use std::any::Any;
 use std::sync::Arc;
@@ -109,21 +113,18 @@ pub fn resolve_values(scene: &Scene, p: ProgramId, record: Record) -> Result<Vec
             found,
         };
         let ok = match (value, v.kind) {
-            (VarValue::Data { layout, words, .. }, VariableKind::Value) if v.ty.rust.starts_with("Callable<") => {
-                if layout.rust != rt_std::callable::CALLABLE_LAYOUT.rust {
-                    false
-                } else {
+            (VarValue::Data { layout, words, .. }, VariableKind::Value) => {
+                let ok = layout_compatible(layout.rust, v.ty.rust);
+                if ok && layout.rust == CALLABLE_LAYOUT.rust {
                     check_callable_id(scene, desc, v, &scope_name(scope), words[0])?;
-                    true
                 }
+                ok
             }
-            (VarValue::Data { layout, .. }, VariableKind::Value) => layout.rust == v.ty.rust,
             (VarValue::Buffer(b), VariableKind::Buffer { element, dimensions, writable }) => {
                 let rec =
                     scene.buffers.get(b.index() as usize).ok_or_else(|| RtError::InvalidHandle(format!("{b:?}")))?;
                 let held = rec.storage.layout().rust;
-                (held == element.rust
-                    || (held == rt_std::callable::CALLABLE_LAYOUT.rust && element.rust.starts_with("Callable<")))
+                layout_compatible(held, element.rust)
                     && rec.dims == dimensions
                     && (!writable || rec.ty.writable_by_programs())
             }
@@ -304,6 +305,14 @@ pub fn bind_error(call: &Call, e: rt_std::cpu::VariableMismatch) -> RtError {
     }
 }
 
+/// Whether a value of Rust type `held` (a layout's name) may be read as the
+/// declared type `declared`: the same type, or an id of any callable
+/// signature for a `Callable<F>` (its layout does not spell `F`; the id's
+/// program is checked against `F` by `check_callable_id`).
+fn layout_compatible(held: &str, declared: &str) -> bool {
+    held == declared || (held == CALLABLE_LAYOUT.rust && declared.starts_with("Callable<"))
+}
+
 /// A `Callable<F>` variable's id against the program it names: zero (none)
 /// or a callable program of signature `F` (its descriptor's spelling).
 fn check_callable_id(
@@ -313,9 +322,9 @@ fn check_callable_id(
     scope: &str,
     id: u32,
 ) -> Result<()> {
-    if id == 0 {
+    let Some(named) = ProgramId::from_callable_id(id) else {
         return Ok(());
-    }
+    };
     let declared = v.ty.rust.strip_prefix("Callable<").and_then(|s| s.strip_suffix('>')).unwrap_or(v.ty.rust);
     let error = |found: String| RtError::CallableVariable {
         program: desc.name,
@@ -325,7 +334,7 @@ fn check_callable_id(
         scope: scope.to_string(),
         found,
     };
-    let Some(target) = scene.programs.get(id as usize - 1).map(|r| r.desc) else {
+    let Some(target) = scene.programs.get(named.index() as usize).map(|r| r.desc) else {
         return Err(error(format!("id {id}, which names no program of this context")));
     };
     match target.callable {

@@ -17,7 +17,11 @@
 //! [`call`](Callable::call): `shade.call(n, l)`. The host gets the id of a
 //! created callable program with `Context::callable_id`, which checks the
 //! signature, and sets it like any value; a launch checks every
-//! `Callable` variable against the program its id names.
+//! `Callable` variable against the program its id names. A program may
+//! also make ids: [`Callable::NONE`], [`Callable::default()`] and
+//! [`Callable::from_id`] (an id kept as a `u32`), with the signature named
+//! (`Callable::<fn(u32) -> u32>::from_id(id)`) or known from a `let`'s type
+//! or a parameter's.
 //!
 //! On the GPU each signature is one `switch` over the context's callables
 //! of that signature; on the CPU the call is a direct call of the Rust

@@ -159,3 +159,203 @@ fn a_callable_id_of_another_signature_is_refused_naming_both_programs() {
     );
     assert!(e.ends_with("a callable of signature `fn(Vec3, f32) -> Vec3`"), "{e}");
 }
+
+/// Counts down through `pong`, with both ids as plain `u32`s
+/// (`ids.x` is `ping`'s, `ids.y` is `pong`'s): `ping` calls `pong` calls
+/// `ping`, a cycle. It ends, but WGSL cannot run it, so no backend does.
+#[rt_program(callable)]
+pub fn ping(x: u32, ids: UVec2) -> u32 {
+    Callable::<fn(i32, UVec2) -> u32>::from_id(ids.y).call(x as i32, ids)
+}
+
+#[rt_program(callable)]
+pub fn pong(x: i32, ids: UVec2) -> u32 {
+    if x <= 0 { 0 } else { 1 + Callable::<fn(u32, UVec2) -> u32>::from_id(ids.x).call((x - 1) as u32, ids) }
+}
+
+#[rt_program(ray_generation)]
+pub fn run_ping(#[var] ids: UVec2, #[var] mut out: RwBuffer<u32>) {
+    let i = launch_index().x;
+    out[i] = Callable::<fn(u32, UVec2) -> u32>::from_id(ids.x).call(i, ids);
+}
+
+#[test]
+fn callables_calling_each_other_in_a_cycle_are_refused_at_launch_on_every_target() {
+    for on in On::ALL.into_iter().filter(|on| on.available()) {
+        let mut ctx = on.context();
+        ctx.set_ray_type_count(0);
+        let ping_id = ctx.create_program(&ping::PROGRAM);
+        let pong_id = ctx.create_program(&pong::PROGRAM);
+        let ids = UVec2::new(
+            ctx.callable_id::<fn(u32, UVec2) -> u32>(ping_id).unwrap().id(),
+            ctx.callable_id::<fn(i32, UVec2) -> u32>(pong_id).unwrap().id(),
+        );
+        let out = ctx.create_buffer::<u32>(BufferType::Output, vec![7; 4]);
+        ctx.set_var(Scope::Context, "ids", ids).unwrap();
+        ctx.set_var(Scope::Context, "out", out).unwrap();
+        let rg = ctx.create_program(&run_ping::PROGRAM);
+        ctx.set_ray_generation_program(0, rg).unwrap();
+        let e = ctx.launch_1d(0, 4).unwrap_err().to_string();
+        assert_eq!(
+            e,
+            "callable programs call each other in a cycle, which no backend runs (WGSL has no recursion): \
+             `ping` (tests/tests/callables.rs:167) calls `pong` (tests/tests/callables.rs:172) calls `ping` \
+             (tests/tests/callables.rs:167)",
+            "{}",
+            on.name()
+        );
+        // The failed launch wrote nothing and left the context usable.
+        assert_eq!(ctx.read_buffer::<u32>(out).unwrap(), vec![7; 4], "{}", on.name());
+    }
+}
+
+/// Ids made in a program: from a `u32` (`from_id`, its signature by the
+/// turbofish or the place it goes), `NONE` and `default()`.
+#[allow(clippy::type_complexity)]
+#[rt_program(ray_generation)]
+pub fn make_ids(#[var] base: u32, #[var] mut out: RwBuffer<u32>, #[var] mut made: RwBuffer<Callable<fn(u32) -> u32>>) {
+    let i = launch_index().x;
+    let f = Callable::<fn(u32) -> u32>::from_id(base + i % 3);
+    let none: Callable<fn(u32) -> u32> = Callable::NONE;
+    let back: Callable<fn(u32) -> u32> = Callable::from_id(base);
+    let mut got = f.call(i);
+    if f == Callable::<fn(u32) -> u32>::default() || f == none {
+        got = 1000;
+    }
+    made[i] = none;
+    if i % 3 == 0 {
+        made[i] = f;
+    } else if i % 3 == 1 {
+        made[i] = back;
+    }
+    out[i] = got;
+}
+
+#[test]
+fn ids_made_in_a_program_call_the_same_callables_on_every_target() {
+    let mut want_out = Vec::new();
+    let mut want_made = Vec::new();
+    let mut raised = Vec::new();
+    for i in 0..N {
+        // base is double's id, base + 1 square's, base + 2 `make_ids`'s own (no callable).
+        want_out.push(match i % 3 {
+            0 => i * 2,
+            1 => i * i,
+            _ => {
+                raised.push((i, EXCEPTION_PROGRAM_ID_INVALID));
+                0
+            }
+        });
+        want_made.push(if i % 3 == 2 { 0 } else { 1 });
+    }
+    for on in On::ALL.into_iter().filter(|on| on.available()) {
+        let mut ctx = on.context();
+        ctx.set_ray_type_count(0);
+        let d = ctx.create_program(&double::PROGRAM);
+        ctx.create_program(&square::PROGRAM);
+        let rg = ctx.create_program(&make_ids::PROGRAM);
+        let base = ctx.callable_id::<fn(u32) -> u32>(d).unwrap().id();
+        assert_eq!(base, 1, "{}", on.name());
+        let out = ctx.create_buffer::<u32>(BufferType::Output, vec![0; N as usize]);
+        let made = ctx.create_buffer(BufferType::Output, vec![Callable::<fn(u32) -> u32>::from_id(99); N as usize]);
+        ctx.set_var(Scope::Context, "base", base).unwrap();
+        ctx.set_var(Scope::Context, "out", out).unwrap();
+        ctx.set_var(Scope::Context, "made", made).unwrap();
+        ctx.set_ray_generation_program(0, rg).unwrap();
+        let report = ctx.launch_1d(0, N).unwrap();
+        let mut exceptions: Vec<(u32, u32)> = report.exceptions.iter().map(|e| (e.launch_index.x, e.code)).collect();
+        exceptions.sort();
+        assert_eq!(ctx.read_buffer::<u32>(out).unwrap(), want_out, "{}", on.name());
+        let made: Vec<u32> =
+            ctx.read_buffer::<Callable<fn(u32) -> u32>>(made).unwrap().iter().map(|c| c.id()).collect();
+        assert_eq!(made, want_made, "{}", on.name());
+        assert_eq!(exceptions, raised, "{}", on.name());
+    }
+}
+
+/// Prints its argument and a vector it makes, from inside a callable.
+#[rt_program(callable)]
+pub fn loud_double(x: u32) -> u32 {
+    rt_printf!("double {} at {}", x, vec2(x as f32, 0.5));
+    x * 2
+}
+
+#[rt_program(ray_generation)]
+pub fn run_loud(#[var] f: Callable<fn(u32) -> u32>, #[var] mut out: RwBuffer<u32>) {
+    let i = launch_index().x;
+    out[i] = f.call(i + 10);
+    rt_printf!("index {} got {}", i, out[i]);
+}
+
+#[test]
+fn rt_printf_inside_a_callable_prints_on_every_target() {
+    for on in On::ALL.into_iter().filter(|on| on.available()) {
+        let mut ctx = on.context();
+        ctx.set_ray_type_count(0);
+        let d = ctx.create_program(&loud_double::PROGRAM);
+        let d_id = ctx.callable_id::<fn(u32) -> u32>(d).unwrap();
+        let out = ctx.create_buffer::<u32>(BufferType::Output, vec![0; 3]);
+        ctx.set_var(Scope::Context, "f", d_id).unwrap();
+        ctx.set_var(Scope::Context, "out", out).unwrap();
+        let rg = ctx.create_program(&run_loud::PROGRAM);
+        ctx.set_ray_generation_program(0, rg).unwrap();
+        ctx.set_print(true, None);
+        let report = ctx.launch_1d(0, 3).unwrap();
+        let want: Vec<(UVec2, String)> = (0..3u32)
+            .flat_map(|i| {
+                [
+                    (UVec2::new(i, 0), format!("double {} at [{}, 0.5]", i + 10, i + 10)),
+                    (UVec2::new(i, 0), format!("index {i} got {}", 2 * (i + 10))),
+                ]
+            })
+            .collect();
+        assert_eq!(report.prints, want, "{}", on.name());
+        assert_eq!(ctx.read_buffer::<u32>(out).unwrap(), vec![20, 22, 24], "{}", on.name());
+        // Filtered to one launch index, the callable's line goes with it.
+        ctx.set_print(true, Some(UVec2::new(1, 0)));
+        let report = ctx.launch_1d(0, 3).unwrap();
+        assert_eq!(report.prints, want[2..4].to_vec(), "{}", on.name());
+    }
+}
+
+/// A struct whose callable field's signature names a struct declared after
+/// it: the struct it names is built first.
+#[rt_struct]
+pub struct Lit {
+    pub shade: Callable<fn(Lamp) -> Vec3>,
+    pub gain: f32,
+}
+
+#[rt_struct]
+pub struct Lamp {
+    pub color: Vec3,
+}
+
+#[rt_program(callable)]
+pub fn halve(lamp: Lamp) -> Vec3 {
+    lamp.color * 0.5
+}
+
+#[rt_program(ray_generation)]
+pub fn run_lit(#[var] lit: Lit, #[var] mut out: RwBuffer<Vec3>) {
+    let i = launch_index().x;
+    out[i] = lit.shade.call(Lamp { color: Vec3::splat(i as f32) }) * lit.gain;
+}
+
+#[test]
+fn a_callable_field_may_name_a_struct_declared_after_its_own() {
+    for on in On::ALL.into_iter().filter(|on| on.available()) {
+        let mut ctx = on.context();
+        ctx.set_ray_type_count(0);
+        let h = ctx.create_program(&halve::PROGRAM);
+        let shade = ctx.callable_id::<fn(Lamp) -> Vec3>(h).unwrap();
+        let out = ctx.create_buffer::<Vec3>(BufferType::Output, vec![Vec3::ZERO; 3]);
+        ctx.set_var(Scope::Context, "lit", Lit { shade, gain: 4.0 }).unwrap();
+        ctx.set_var(Scope::Context, "out", out).unwrap();
+        let rg = ctx.create_program(&run_lit::PROGRAM);
+        ctx.set_ray_generation_program(0, rg).unwrap();
+        ctx.launch_1d(0, 3).unwrap();
+        let want = vec![Vec3::ZERO, Vec3::splat(2.0), Vec3::splat(4.0)];
+        assert_eq!(ctx.read_buffer::<Vec3>(out).unwrap(), want, "{}", on.name());
+    }
+}

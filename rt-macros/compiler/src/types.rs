@@ -231,6 +231,13 @@ impl Ty {
         }
     }
 
+    /// Whether WGSL spells this type `u32` though it is no integer to the
+    /// program: a node handle, a transform kind, an enum, a callable id. One
+    /// heap word, compared with `==`, loaded and stored as the word itself.
+    pub fn is_u32_word(&self) -> bool {
+        matches!(self, Ty::Object | Ty::TransformKind | Ty::Enum(_) | Ty::Callable(_))
+    }
+
     /// Rust spelling, for messages and descriptors.
     pub fn rust(&self) -> String {
         self.to_string()

@@ -23,12 +23,9 @@ impl Accessors {
         let body = match ty {
             Ty::Scalar(Scalar::F32) => "return bitcast<f32>(rt_hw(w));".to_string(),
             Ty::Scalar(Scalar::I32) => "return bitcast<i32>(rt_hw(w));".to_string(),
-            Ty::Scalar(Scalar::U32)
-            | Ty::Scalar(Scalar::Usize)
-            | Ty::Object
-            | Ty::TransformKind
-            | Ty::Enum(_)
-            | Ty::Callable(_) => "return rt_hw(w);".to_string(),
+            _ if matches!(ty, Ty::Scalar(Scalar::U32 | Scalar::Usize)) || ty.is_u32_word() => {
+                "return rt_hw(w);".to_string()
+            }
             Ty::Scalar(Scalar::Bool) => "return rt_hw(w) != 0u;".to_string(),
             Ty::Vec(n, s) => {
                 let f = self.load(&Ty::Scalar(*s));
@@ -71,12 +68,9 @@ impl Accessors {
         let t = ty.wgsl();
         let body = match ty {
             Ty::Scalar(Scalar::F32) | Ty::Scalar(Scalar::I32) => "rt_hw_set(w, bitcast<u32>(v));".to_string(),
-            Ty::Scalar(Scalar::U32)
-            | Ty::Scalar(Scalar::Usize)
-            | Ty::Object
-            | Ty::TransformKind
-            | Ty::Enum(_)
-            | Ty::Callable(_) => "rt_hw_set(w, v);".to_string(),
+            _ if matches!(ty, Ty::Scalar(Scalar::U32 | Scalar::Usize)) || ty.is_u32_word() => {
+                "rt_hw_set(w, v);".to_string()
+            }
             Ty::Scalar(Scalar::Bool) => "rt_hw_set(w, select(0u, 1u, v));".to_string(),
             Ty::Vec(n, s) => {
                 let f = self.store(&Ty::Scalar(*s));

@@ -202,12 +202,24 @@ impl<'r, 'a> StructGraph<'r, 'a> {
     }
 }
 
+/// The identifiers in `tokens`, in order.
+fn idents(tokens: proc_macro2::TokenStream, out: &mut Vec<String>) {
+    for t in tokens {
+        match t {
+            proc_macro2::TokenTree::Ident(i) => out.push(i.to_string()),
+            proc_macro2::TokenTree::Group(g) => idents(g.stream(), out),
+            _ => {}
+        }
+    }
+}
+
 impl Graph for StructGraph<'_, '_> {
     type Node = StructNode;
-    type Edge = ();
+    /// Whether the field names the struct in a callable's signature.
+    type Edge = bool;
     type Error = Error;
 
-    fn deps(&mut self, n: &StructNode) -> Result<Vec<(StructNode, ())>> {
+    fn deps(&mut self, n: &StructNode) -> Result<Vec<(StructNode, bool)>> {
         match n {
             StructNode::Struct(name) => {
                 let (s, _) = self.raw(name).unwrap();
@@ -223,21 +235,24 @@ impl Graph for StructGraph<'_, '_> {
                         return Err(Error::unsupported(s.ident.span(), "a unit struct", "give it at least one field"));
                     }
                 };
-                Ok((0..fields_named.named.len()).map(|i| (StructNode::Field(name.clone(), i), ())).collect())
+                Ok((0..fields_named.named.len()).map(|i| (StructNode::Field(name.clone(), i), false)).collect())
             }
             StructNode::Field(name, i) => {
-                // Nested structs first, so they are built when the field's
-                // type is resolved.
-                let f = &self.named_fields(name).named[*i];
-                let elem = match &f.ty {
-                    syn::Type::Array(a) => &*a.elem,
-                    t => t,
-                };
-                let dep = match elem {
-                    syn::Type::Path(p) => p.path.segments.last().map(|seg| seg.ident.to_string()),
-                    _ => None,
-                };
-                Ok(dep.filter(|d| self.raw(d).is_some()).map(|d| (StructNode::Struct(d), ())).into_iter().collect())
+                // Every struct the field's type names (nested, an array's or
+                // a tuple's element, in a callable's signature) first, so
+                // they are built when the field's type is resolved.
+                let ty = &self.named_fields(name).named[*i].ty;
+                let mut named = Vec::new();
+                idents(quote::quote!(#ty), &mut named);
+                let through_callable = named.iter().any(|n| n == "Callable");
+                let mut deps: Vec<(StructNode, bool)> = Vec::new();
+                for n in named {
+                    let node = StructNode::Struct(n.clone());
+                    if self.raw(&n).is_some() && !deps.iter().any(|(d, _)| *d == node) {
+                        deps.push((node, through_callable));
+                    }
+                }
+                Ok(deps)
             }
         }
     }
@@ -278,9 +293,25 @@ impl Graph for StructGraph<'_, '_> {
         Ok(())
     }
 
-    fn cycle(&mut self, _: &StructNode, to: &StructNode, _: &()) -> Option<Error> {
+    fn cycle(&mut self, from: &StructNode, to: &StructNode, through_callable: &bool) -> Option<Error> {
         let StructNode::Struct(name) = to else { unreachable!("a field is entered from its struct only") };
         let (s, _) = self.raw(name).unwrap();
+        if let (StructNode::Field(holder, i), true) = (from, through_callable) {
+            // Legal Rust (an id is one word whatever its signature), but the
+            // signature's types are resolved before the struct is built.
+            let f = &self.named_fields(holder).named[*i];
+            let construct = if holder == name {
+                format!("a `Callable` field whose signature names its own struct (`{name}`)")
+            } else {
+                format!("a `Callable` field of `{holder}` whose signature names `{name}`, a struct holding `{holder}`")
+            };
+            return Some(Error::unsupported(
+                f.ty.span(),
+                &construct,
+                "pass the ids in a struct the signature does not name, or as `u32`s called through \
+                 `Callable::<fn(..) -> R>::from_id(id)`",
+            ));
+        }
         Some(Error::new(s.ident.span(), format!("struct `{name}` contains itself")))
     }
 }

@@ -113,6 +113,16 @@ pub(crate) fn link_all<'a>(
             _ => Ok(None),
         })
         .collect::<Result<Vec<_>>>()?;
+    // The callables these programs may call, refused in a cycle as the wgpu
+    // kernel refuses them (a direct call would recurse, maybe forever).
+    let callers = std::iter::once(&ray_generation)
+        .chain(&exception)
+        .chain(&miss)
+        .chain(hits.iter().flatten().flatten().flat_map(|(ch, ah)| ch.iter().chain(ah)))
+        .chain(intersection.iter().flatten())
+        .chain(visit.iter().flatten())
+        .map(|c| c.desc);
+    link::callables::linked(callers, &link::callables::scene_callables(scene))?;
     Ok(Linked {
         scene,
         settings,

@@ -12,7 +12,7 @@ use crate::accel::wide::kernels::WalkRay;
 use crate::accel::wide::watertight::WatertightRay;
 use crate::accel::wide::{PACKET, leaf_of};
 use crate::link;
-use crate::scene::{NodeId, NodeKind, TriangleMesh};
+use crate::scene::{NodeId, NodeKind, ProgramId, TriangleMesh};
 use glam::{Mat4, UVec2, Vec2, Vec3};
 use rt_std::cpu::{
     AnyAttributes, CpuArgs, CpuResult, ExecutionContext, HIT_CUSTOM, HIT_TRIANGLE_BACK, HIT_TRIANGLE_FRONT, Tracer,
@@ -702,8 +702,7 @@ impl Tracer for Lane<'_> {
     }
 
     fn callable(&self, id: u32) -> Option<&'static (dyn std::any::Any + Send + Sync)> {
-        // Ids are program handles plus one (`Context::callable_id`).
-        let rec = self.l.scene.programs.get(id.checked_sub(1)? as usize)?;
+        let rec = self.l.scene.programs.get(ProgramId::from_callable_id(id)?.index() as usize)?;
         rec.desc.callable.map(|c| c.cpu)
     }
 

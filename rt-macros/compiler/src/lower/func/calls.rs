@@ -217,12 +217,15 @@ impl FnLowerer<'_> {
                 return Err(Error::unsupported(other.span(), "calling this expression", "call a function by name"));
             }
         };
+        let args: Vec<&Expr> = c.args.iter().collect();
+        if callables::is_callable_item(path) {
+            return self.callable_item(path, Some(&args), want, c.span());
+        }
         if let Some(seg) = path.segments.iter().find(|s| !s.arguments.is_none()) {
             return Err(Error::unsupported(seg.arguments.span(), "generic arguments", "ray programs are not generic"));
         }
         let segs: Vec<String> = path.segments.iter().map(|s| s.ident.to_string()).collect();
         let name = segs.last().unwrap().clone();
-        let args: Vec<&Expr> = c.args.iter().collect();
         let span = c.span();
         let name_span = path.segments.last().unwrap().ident.span();
 

@@ -25,6 +25,9 @@ impl FnLowerer<'_> {
                 }
             }
             Expr::Group(g) => self.expr_inner(&g.expr, want),
+            Expr::Path(p) if p.qself.is_none() && callables::is_callable_item(&p.path) => {
+                self.callable_item(&p.path, None, want, p.span())
+            }
             Expr::Path(p) => self.path_expr(p),
             Expr::Unary(u) => self.unary(u, want),
             Expr::Binary(b) => self.binary(b, want),

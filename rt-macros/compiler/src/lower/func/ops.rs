@@ -208,7 +208,7 @@ impl FnLowerer<'_> {
                             .with_effects(effects)
                             .with_reads(reads)
                     }
-                    Ty::Scalar(_) | Ty::IntVar(_) | Ty::Object | Ty::TransformKind | Ty::Enum(_) | Ty::Callable(_) => {
+                    t if matches!(t, Ty::Scalar(_) | Ty::IntVar(_)) || t.is_u32_word() => {
                         Val::new(format!("({} {sym} {})", l.code, r.code), BOOL).with_effects(effects).with_reads(reads)
                     }
                     other => {

@@ -393,9 +393,10 @@ impl Encoder<'_> {
     }
 }
 
-/// Program `p`'s case in the kernel's dispatch (0 is none).
+/// Program `p`'s case in the kernel's dispatch (0 is none): its callable id,
+/// so that a callable's case is the id programs call it through.
 fn case(p: ProgramId) -> u32 {
-    p.index() + 1
+    p.callable_id()
 }
 
 /// Instances: one per geometry group and per transform chain; and each
@@ -527,14 +528,7 @@ fn kernel_spec(
         default_exception,
         scene_bindings,
         ray_query_slots: 0,
-        callables: l
-            .scene
-            .programs
-            .iter()
-            .enumerate()
-            .filter(|(_, r)| r.desc.callable.is_some())
-            .map(|(i, r)| KernelProgram { case: i as u32 + 1, desc: r.desc })
-            .collect(),
+        callables: link::callables::scene_callables(l.scene),
         cwbvh_stack: if geometry.cwbvh { (geometry.deepest_cwbvh + 2).max(32).next_power_of_two() } else { 0 },
     })
 }

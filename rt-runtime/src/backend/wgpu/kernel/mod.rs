@@ -21,6 +21,7 @@ mod callables;
 mod clones;
 
 use crate::error::{Result, RtError};
+use crate::link::{self, callables::LinkedCallable};
 use clones::{Linked, at_depth, clone_estimate, helpers_that_trace, per_depth_clones};
 use rt_std::program::{ProgramDescriptor, ProgramKind, TriangleBuiltin, TypeLayout, VariableKind};
 use std::collections::{BTreeMap, BTreeSet};
@@ -127,8 +128,8 @@ pub struct KernelSpec {
     /// TLASes the ray-query traversal binds (0: the compute traversal is
     /// linked instead; see `rayquery/`).
     pub ray_query_slots: u32,
-    /// The context's callable programs, each with its id as its case.
-    pub callables: Vec<KernelProgram>,
+    /// The context's callable programs.
+    pub callables: Vec<LinkedCallable>,
 }
 
 /// The scene's sections, each its own read-only storage binding where the
@@ -224,9 +225,10 @@ pub fn generate(spec: &KernelSpec) -> Result<Generated> {
     all.extend(spec.programs.iter().copied());
 
     // The callables some linked program calls, and their signatures.
-    let (called, callables) = callables::linked(&all, &spec.callables)?;
+    let (called, callables) = link::callables::linked(all.iter().map(|p| p.desc), &spec.callables)?;
     // Types and shared functions, deduplicated by name.
-    let with_callables: Vec<KernelProgram> = all.iter().chain(&callables).copied().collect();
+    let with_callables: Vec<KernelProgram> =
+        all.iter().copied().chain(callables.iter().map(|c| KernelProgram { case: c.id, desc: c.desc })).collect();
     let (types, functions) = linked_items(&with_callables)?;
     let tracing_helpers = helpers_that_trace(&functions);
 
