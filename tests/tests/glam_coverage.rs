@@ -149,8 +149,6 @@ fn reason(m: &GlamMethod) -> &'static str {
         "isize/usize vectors"
     } else if any(&|t| t.contains("EulerRot")) {
         "takes `EulerRot`, not in the subset"
-    } else if m.name.contains("div") || m.name.contains("rem_euclid") {
-        "divides integers: Rust panics at a zero divisor where WGSL answers, and the CPU copy runs glam's"
     } else {
         "not written out yet"
     }

@@ -526,6 +526,7 @@ mod enums;
 mod glam_added;
 mod glam_more;
 mod grids;
+mod int_division;
 mod math;
 mod methods;
 mod scalars;

@@ -7,6 +7,7 @@
 mod glam_angles;
 mod glam_ints;
 mod glam_more;
+mod int_division;
 
 use super::value::{Val, f32_literal};
 use crate::types::{F32, Scalar, Ty, U32};
@@ -236,6 +237,9 @@ pub fn method_sig(recv: &Ty, name: &str) -> Option<MethodSig> {
         return sig(vec![], t, |a| a[0].clone());
     }
     if let Some(m) = glam_more::method(recv, name) {
+        return Some(m);
+    }
+    if is_int && let Some(m) = int_division::method(recv, name) {
         return Some(m);
     }
     match recv {
