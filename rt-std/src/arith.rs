@@ -15,6 +15,8 @@
 //! | `a % 0` | `0` |
 //! | `i32::MIN / -1` | `i32::MIN` |
 //! | `i32::MIN % -1` | `0` |
+//! | `a.div_euclid(0)`, `a.wrapping_div(0)`, `a.saturating_div(0)`; `a.rem_euclid(0)` | `a`; `0` (the divisor read as one: [`div_euclid`] and its siblings) |
+//! | `i32::MIN.div_euclid(-1)`, `.wrapping_div(-1)`; `.saturating_div(-1)` | `i32::MIN`; `i32::MAX` |
 //! | `a << n`, `a >> n` with `n >= 32` | shifts by `n % 32` (`>>` on `i32` is arithmetic) |
 //! | `x as i32`, `x as u32` for `f32` NaN | `0` |
 //! | `x as i32`, `x as u32` for `f32` out of range | the nearest representable value (saturating) |
@@ -26,6 +28,9 @@
 //!
 //! The functions are `#[doc(hidden)]` plumbing for the macro: programs write
 //! the operators.
+
+mod division;
+pub use division::{RtDivide, div_euclid, rem_euclid, saturating_div, wrapping_div};
 
 use glam::{IVec2, IVec3, IVec4, Mat2, Mat3, Mat4, Quat, UVec2, UVec3, UVec4, Vec2, Vec3, Vec4};
 

@@ -10,8 +10,8 @@ pub use core::f32::consts::{E, FRAC_1_PI, FRAC_PI_2, FRAC_PI_4, LN_2, PI, SQRT_2
 
 pub use glam::swizzles::*;
 pub use glam::{
-    IVec2, IVec3, IVec4, Mat2, Mat3, Mat4, UVec2, UVec3, UVec4, Vec2, Vec3, Vec4, ivec2, ivec3, ivec4, uvec2, uvec3,
-    uvec4, vec2, vec3, vec4,
+    BVec2, BVec3, BVec4, BVec4A, IVec2, IVec3, IVec4, Mat2, Mat3, Mat4, UVec2, UVec3, UVec4, Vec2, Vec3, Vec4, bvec2,
+    bvec3, bvec4, ivec2, ivec3, ivec4, uvec2, uvec3, uvec4, vec2, vec3, vec4,
 };
 
 pub use rt_macros::{rt_attributes, rt_const, rt_enum, rt_function, rt_impl, rt_payload, rt_program, rt_struct};

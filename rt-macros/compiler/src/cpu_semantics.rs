@@ -11,7 +11,10 @@
 //! (but not of a literal: `-2147483648i32` stays a literal), indexing
 //! (`a[i]` reads through `arith::at`, a written place through
 //! `arith::at_mut`), and the methods whose Rust versions panic where WGSL
-//! answers: `.abs()` (of `i32::MIN`) and `.clamp(lo, hi)` (with `lo > hi`).
+//! answers: `.abs()` (of `i32::MIN`), `.clamp(lo, hi)` (with `lo > hi`),
+//! and the dividing methods `.div_euclid(b)`, `.rem_euclid(b)`,
+//! `.wrapping_div(b)`, `.saturating_div(b)` (a zero divisor), also called
+//! as `T::div_euclid(a, b)` (the type kept: `arith::div_euclid::<T>`).
 //! Bitwise operators, comparisons and casts already agree and are left as
 //! written (a bitwise compound assignment only has its right side
 //! evaluated first, as the arithmetic ones: its place may be an `at_mut`
@@ -52,6 +55,28 @@ fn arith_fn(op: &BinOp) -> Option<(&'static str, bool)> {
         BinOp::ShrAssign(_) => ("shr_assign", true),
         _ => return None,
     })
+}
+
+/// The integer methods that divide, whose Rust versions panic at a zero
+/// divisor: `rt_std::arith` has one function of each name.
+fn dividing_method(name: &str) -> bool {
+    matches!(name, "div_euclid" | "rem_euclid" | "wrapping_div" | "saturating_div")
+}
+
+/// `T::div_euclid` (a path of at least two segments ending in a dividing
+/// method): the type's path and the method's name.
+fn ufcs_dividing(func: &Expr) -> Option<(syn::Path, syn::Ident)> {
+    let Expr::Path(p) = func else { return None };
+    let n = p.path.segments.len();
+    let last = p.path.segments.last()?;
+    if p.qself.is_some() || n < 2 || !dividing_method(&last.ident.to_string()) {
+        return None;
+    }
+    let mut owner = p.path.clone();
+    owner.segments.pop();
+    // (`pop` leaves the trailing `::` punctuation.)
+    owner.segments.pop_punct();
+    Some((owner, last.ident.clone()))
 }
 
 fn is_assign(op: &BinOp) -> bool {
@@ -147,6 +172,22 @@ impl VisitMut for Rewriter {
                 let args = &m.args;
                 *e = syn::parse_quote_spanned!(span=> #f(#recv, #args));
             }
+            Expr::MethodCall(m) if m.args.len() == 1 && dividing_method(&m.method.to_string()) => {
+                visit_mut::visit_expr_method_call_mut(self, m);
+                let span = m.method.span();
+                let f = path(&m.method.to_string(), span);
+                let recv = &m.receiver;
+                let args = &m.args;
+                *e = syn::parse_quote_spanned!(span=> #f(#recv, #args));
+            }
+            Expr::Call(c) if c.args.len() == 2 && ufcs_dividing(&c.func).is_some() => {
+                visit_mut::visit_expr_call_mut(self, c);
+                let (owner, name) = ufcs_dividing(&c.func).unwrap();
+                let span = name.span();
+                let f = path(&name.to_string(), span);
+                let args = &c.args;
+                *e = syn::parse_quote_spanned!(span=> #f::<#owner>(#args));
+            }
             _ => visit_mut::visit_expr_mut(self, e),
         }
     }
@@ -211,6 +252,19 @@ mod tests {
             "{ { let __rt_rhs = (* :: rt_std :: arith :: at (& a , 1)) ; \
              (* :: rt_std :: arith :: at_mut (& mut a , 0)) &= __rt_rhs } ; \
              { let __rt_rhs = 3 ; x |= __rt_rhs } ; }"
+        );
+    }
+
+    #[test]
+    fn dividing_methods_become_arith_calls_keeping_the_type() {
+        let got = rewritten(
+            "fn f() { let a = x.div_euclid(y); let b = i32::rem_euclid(7, 0); let c = v.saturating_div(w); }",
+        );
+        assert_eq!(
+            got,
+            "{ let a = :: rt_std :: arith :: div_euclid (x , y) ; \
+             let b = :: rt_std :: arith :: rem_euclid :: < i32 > (7 , 0) ; \
+             let c = :: rt_std :: arith :: saturating_div (v , w) ; }"
         );
     }
 

@@ -363,6 +363,11 @@ pub fn builtin_type(name: &str) -> Option<Ty> {
         "UVec2" => Ty::Vec(2, Scalar::U32),
         "UVec3" => Ty::Vec(3, Scalar::U32),
         "UVec4" => Ty::Vec(4, Scalar::U32),
+        // `BVec4A` is what `Vec4`'s comparisons return where glam's `Vec4`
+        // is SIMD (x86_64, aarch64, wasm32): in WGSL a `vec4<bool>` alike.
+        "BVec2" => Ty::Vec(2, Scalar::Bool),
+        "BVec3" => Ty::Vec(3, Scalar::Bool),
+        "BVec4" | "BVec4A" => Ty::Vec(4, Scalar::Bool),
         "Mat2" => Ty::Mat(2),
         "Mat3" => Ty::Mat(3),
         "Mat4" => Ty::Mat(4),
@@ -402,7 +407,6 @@ pub fn unsupported_type_advice(name: &str) -> Option<&'static str> {
         "DVec2" | "DVec3" | "DVec4" | "DMat3" | "DMat4" => "the GPU computes in f32; use Vec2/Vec3/Vec4 and Mat3/Mat4",
         "Vec3A" => "use Vec3",
         "Quat" => "use Mat3/Mat4",
-        "BVec2" | "BVec3" | "BVec4" => "compare the components as bools",
         _ => return None,
     })
 }

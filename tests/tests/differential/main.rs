@@ -520,12 +520,15 @@ macro_rules! differential {
 // The programs and their tests, by theme (after the macros above, which
 // they use).
 
+mod bool_vectors;
 mod control_flow;
 mod edge_cases;
 mod enums;
 mod glam_added;
+mod glam_arrays;
 mod glam_more;
 mod grids;
+mod int_division;
 mod math;
 mod methods;
 mod scalars;

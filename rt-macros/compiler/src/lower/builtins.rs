@@ -6,7 +6,9 @@
 
 mod glam_angles;
 mod glam_ints;
+mod glam_masks;
 mod glam_more;
+mod int_division;
 
 use super::value::{Val, f32_literal};
 use crate::types::{F32, Scalar, Ty, U32};
@@ -237,6 +239,14 @@ pub fn method_sig(recv: &Ty, name: &str) -> Option<MethodSig> {
     }
     if let Some(m) = glam_more::method(recv, name) {
         return Some(m);
+    }
+    if is_int && let Some(m) = int_division::method(recv, name) {
+        return Some(m);
+    }
+    match recv {
+        Ty::Vec(n, Scalar::Bool) => return glam_masks::bool_method(*n, name),
+        Ty::Vec(n, s) if let Some(m) = glam_masks::numeric_method(*n, *s, recv, name) => return Some(m),
+        _ => {}
     }
     match recv {
         Ty::Vec(n, Scalar::F32) => {
@@ -480,6 +490,15 @@ fn vec_method(recv: &Ty, name: &str) -> Option<MethodSig> {
         "element_product" => return sig(vec![], Ty::Scalar(s), comps("*")),
         "min_element" => return sig(vec![], Ty::Scalar(s), comps("min")),
         "max_element" => return sig(vec![], Ty::Scalar(s), comps("max")),
+        "to_array" => {
+            let parts: Vec<&'static str> = ["x", "y", "z", "w"][..n as usize].to_vec();
+            let out = Ty::Array(Box::new(Ty::Scalar(s)), n as u32);
+            let w = out.wgsl();
+            return sig(vec![], out, move |a| {
+                let comps: Vec<String> = parts.iter().map(|c| format!("{}.{c}", a[0])).collect();
+                format!("{w}({})", comps.join(", "))
+            });
+        }
         "extend" if n < 4 => {
             let out = Ty::Vec(n + 1, s);
             let w = out.wgsl();
@@ -519,6 +538,37 @@ fn mat_method(n: u8, name: &str) -> Option<MethodSig> {
     let v = Ty::vec(n);
     match name {
         "transpose" => sig(vec![], t, wgsl_fn("transpose")),
+        // Column-major (glam's storage order) or row-major; `_2d` is an
+        // array of the columns as arrays.
+        "to_cols_array" | "to_rows_array" => {
+            let rows = name == "to_rows_array";
+            let out = Ty::Array(Box::new(F32), (n * n) as u32);
+            let w = out.wgsl();
+            sig(vec![], out, move |a| {
+                let comps: Vec<String> = (0..n * n)
+                    .map(|k| {
+                        let (outer, inner) = (k / n, k % n);
+                        let (c, r) = if rows { (inner, outer) } else { (outer, inner) };
+                        format!("{}[{c}][{r}]", a[0])
+                    })
+                    .collect();
+                format!("{w}({})", comps.join(", "))
+            })
+        }
+        "to_cols_array_2d" => {
+            let col = Ty::Array(Box::new(F32), n as u32);
+            let out = Ty::Array(Box::new(col.clone()), n as u32);
+            let (w, cw) = (out.wgsl(), col.wgsl());
+            sig(vec![], out, move |a| {
+                let cols: Vec<String> = (0..n)
+                    .map(|c| {
+                        let comps: Vec<String> = (0..n).map(|r| format!("{}[{c}][{r}]", a[0])).collect();
+                        format!("{cw}({})", comps.join(", "))
+                    })
+                    .collect();
+                format!("{w}({})", cols.join(", "))
+            })
+        }
         "determinant" => sig(vec![], F32, wgsl_fn("determinant")),
         "col" => sig(vec![Ty::Scalar(Scalar::Usize)], v, |a| format!("{}[{}]", a[0], a[1])),
         "mul_vec3" if n == 3 => sig(vec![v.clone()], v, |a| format!("({} * {})", a[0], a[1])),

@@ -271,7 +271,10 @@ impl Graph for StructGraph<'_, '_> {
                 if !ty.is_plain_data() {
                     return Err(Error::new(
                         f.ty.span(),
-                        format!("a struct field cannot be a `{ty}`: fields are plain data"),
+                        format!(
+                            "a struct field cannot be a `{ty}`: fields are plain data{}",
+                            super::resolve::store_advice(&ty)
+                        ),
                     ));
                 }
                 self.fields.insert((name.clone(), *i), (fname, ty));

@@ -131,7 +131,10 @@ fn program_lparams(
             Role::Variable => {
                 let ok = ty.is_plain_data() || matches!(ty, Ty::Buffer(..) | Ty::Sampler | Ty::Object);
                 if !ok {
-                    errors.push(Error::new(p.ty.span(), format!("a variable cannot have type `{ty}`")));
+                    errors.push(Error::new(
+                        p.ty.span(),
+                        format!("a variable cannot have type `{ty}`{}", super::resolve::store_advice(&ty)),
+                    ));
                 }
                 // The linker loads variable records from the heap: make sure
                 // the loader of every plain-data variable type is in the module.

@@ -26,7 +26,10 @@ pub fn resolve_type(ty: &syn::Type, user: &dyn Fn(&str) -> Option<Ty>) -> Result
                 };
                 let elem = resolve_type(arg, user)?;
                 if !elem.is_plain_data() {
-                    return Err(Error::new(arg.span(), format!("`{elem}` cannot be a buffer element")));
+                    return Err(Error::new(
+                        arg.span(),
+                        format!("`{elem}` cannot be a buffer element{}", store_advice(&elem)),
+                    ));
                 }
                 return Ok(Ty::Buffer(kind, Box::new(elem)));
             }
@@ -93,6 +96,20 @@ pub fn resolve_type(ty: &syn::Type, user: &dyn Fn(&str) -> Option<Ty>) -> Result
         other => {
             Err(Error::unsupported(other.span(), "this type", "use scalars, glam types, arrays and #[rt_struct]s"))
         }
+    }
+}
+
+/// What to store instead of a value that cannot be stored, where there is
+/// one: a bool vector's bits (WGSL's bools have no layout in memory the
+/// host shares).
+pub fn store_advice(ty: &Ty) -> String {
+    match ty {
+        Ty::Vec(_, types::Scalar::Bool) => {
+            format!(
+                ": a bool vector has no memory layout the host shares; store `mask.bitmask()` (a `u32`) and rebuild it with `{ty}::new(bits & 1 != 0, ..)`"
+            )
+        }
+        _ => String::new(),
     }
 }
 

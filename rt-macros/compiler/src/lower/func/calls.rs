@@ -352,6 +352,17 @@ impl FnLowerer<'_> {
                         .with_reads(a[0].reads),
                 ))
             }
+            // glam's `select(mask, if_true, if_false)` is WGSL's
+            // `select(if_false, if_true, mask)`.
+            (Ty::Vec(n, s), "select") if *s != Scalar::Bool => {
+                let params = [Ty::Vec(*n, Scalar::Bool), ty.clone(), ty.clone()];
+                let a = self.args_typed(args, &params, span, &format!("{ty}::select"))?;
+                Ok(Some(
+                    Val::new(format!("select({}, {}, {})", a[2].code, a[1].code, a[0].code), ty.clone())
+                        .with_effects(any_effects(&a))
+                        .with_reads(any_reads(&a)),
+                ))
+            }
             (Ty::Mat(n), "from_cols") => {
                 let params = vec![Ty::vec(*n); *n as usize];
                 let a = self.args_typed(args, &params, span, &format!("{ty}::from_cols"))?;
@@ -413,6 +424,9 @@ impl FnLowerer<'_> {
             "uvec2" => Some(Ty::Vec(2, Scalar::U32)),
             "uvec3" => Some(Ty::Vec(3, Scalar::U32)),
             "uvec4" => Some(Ty::Vec(4, Scalar::U32)),
+            "bvec2" => Some(Ty::Vec(2, Scalar::Bool)),
+            "bvec3" => Some(Ty::Vec(3, Scalar::Bool)),
+            "bvec4" => Some(Ty::Vec(4, Scalar::Bool)),
             _ => None,
         };
         if let Some(ty) = ctor {

@@ -42,8 +42,8 @@ impl FnLowerer<'_> {
                 let v = self.expr(&u.expr, want)?;
                 let v = self.deref(v);
                 let t = self.resolved(&v.ty);
-                if t == BOOL {
-                    Ok(Val::new(format!("!{}", v.code), BOOL).with_effects(v.effects).with_reads(v.reads))
+                if t == BOOL || matches!(t, Ty::Vec(_, Scalar::Bool)) {
+                    Ok(Val::new(format!("!{}", v.code), t).with_effects(v.effects).with_reads(v.reads))
                 } else if self.is_int(&t) || matches!(t, Ty::Vec(_, s) if s.is_int()) {
                     Ok(Val::new(format!("~{}", v.code), v.ty).with_effects(v.effects).with_reads(v.reads))
                 } else {
@@ -148,6 +148,15 @@ impl FnLowerer<'_> {
                             .with_reads(reads));
                     }
                     BOOL
+                } else if matches!(lt, Ty::Vec(_, Scalar::Bool)) && lt == rt {
+                    // glam's `BVec` operators, per component (WGSL's `&`,
+                    // `|` on bool vectors; `^` is `!=`).
+                    if matches!(op, BinOp::BitXor(_)) {
+                        return Ok(Val::new(format!("({} != {})", l.code, r.code), lt)
+                            .with_effects(effects)
+                            .with_reads(reads));
+                    }
+                    lt.clone()
                 } else if self.is_int(&lt) && self.unify(&lt, &rt) {
                     self.resolved(&lt)
                 } else if matches!(lt, Ty::Vec(_, s) if s.is_int()) && lt == rt {

@@ -169,9 +169,9 @@ impl FnLowerer<'_> {
         };
         // Float `%=` has no WGSL compound form with Rust's meaning: assign
         // `rt_fmod(place, value)` (see `binary_op`). Nor has `bool ^=`
-        // (WGSL has no `^` on bool): assign `place != value`.
+        // (WGSL has no `^` on bools or bool vectors): assign `place != value`.
         let float_rem = matches!(op, Some(BinOp::RemAssign(_))) && self.resolved(&pty).scalar() == Some(Scalar::F32);
-        let bool_xor = matches!(op, Some(BinOp::BitXorAssign(_))) && self.resolved(&pty) == BOOL;
+        let bool_xor = matches!(op, Some(BinOp::BitXorAssign(_))) && self.resolved(&pty).scalar() == Some(Scalar::Bool);
         let mut sym = op.map(op_symbol).unwrap_or("=");
         let mut value = value;
         // The local a buffer element is read into, changed in and stored
