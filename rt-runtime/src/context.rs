@@ -674,6 +674,21 @@ impl Context {
         }
     }
 
+    /// [`Context::read_buffer`] for a caller that must not block (a
+    /// browser page): a device-local buffer
+    /// ([`Context::set_buffer_device_local`]) is read from the device,
+    /// awaited; any other buffer is the host's copy, as always.
+    pub async fn read_buffer_async<T: RtData + Send + Sync>(&self, b: BufferId) -> Result<Vec<T>> {
+        let typed = self.typed::<T>(b)?;
+        match self.device_words_async(b).await {
+            Some(words) => {
+                let w = T::LAYOUT.words as usize;
+                Ok(words?.chunks_exact(w).take(typed.len()).map(T::read_words).collect())
+            }
+            None => Ok(typed.to_vec()),
+        }
+    }
+
     /// Overwrites a buffer's elements (same count). Never relinks.
     pub fn write_buffer<T: RtData + Send + Sync>(&mut self, b: BufferId, data: &[T]) -> Result<()> {
         let len = self.typed::<T>(b)?.len();

@@ -130,3 +130,26 @@ fn an_awaited_launch_refuses_what_the_blocking_one_refuses() {
         assert_eq!(report.unwrap().rays, 24 * 16, "{}", on.name());
     }
 }
+
+/// A device-local output (`Context::set_buffer_device_local`) stays on the
+/// device after the launch: `read_buffer_async` awaits its words there and
+/// gives what `read_buffer` gives, ready at its first poll natively.
+#[test]
+fn a_device_local_buffer_is_read_awaited() {
+    let on = On::COMPUTE;
+    if !on.available() {
+        return;
+    }
+    let (mut ctx, out) = scene(on, TileBudget::Whole);
+    ctx.set_buffer_device_local(out, true).unwrap();
+    let Poll::Ready(report) = first_poll(ctx.launch_async(0, 24, 16)) else { panic!("the launch was not ready") };
+    report.unwrap();
+    // The log's header, its exception and its print: not the 6144 bytes
+    // of the output, which stayed on the device.
+    assert!(ctx.last_read_back_bytes() < 200, "{} bytes read back", ctx.last_read_back_bytes());
+    let blocking = ctx.read_buffer::<Vec4>(out).unwrap();
+    let Poll::Ready(awaited) = first_poll(ctx.read_buffer_async::<Vec4>(out)) else { panic!("the read was not ready") };
+    let awaited = awaited.unwrap();
+    assert_eq!(awaited, blocking);
+    assert!(awaited.iter().all(|p| p.y == 1.0 && (p.x - 3.0).abs() < 0.5));
+}

@@ -95,6 +95,14 @@ impl Context {
         self.backends().find_map(|backend| backend.device_words(b.index() as usize, rec.host_version))
     }
 
+    /// [`Context::device_words`], awaiting the device's read-back.
+    pub(super) async fn device_words_async(&self, b: BufferId) -> Option<Result<Vec<u32>>> {
+        let rec = self.scene.buffers.get(b.index() as usize)?;
+        let read =
+            self.backends().find_map(|backend| backend.device_words_async(b.index() as usize, rec.host_version))?;
+        Some(read.await)
+    }
+
     /// Brings the words of device-local buffers that backends other than
     /// `except` hold newer than the host into the host's buffers.
     pub(super) fn settle_device_buffers(&mut self, except: Option<Backend>) -> Result<()> {

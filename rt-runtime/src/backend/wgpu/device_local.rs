@@ -24,7 +24,7 @@ use super::readback::read_back;
 use super::resident::{DeviceLocal, Held};
 use crate::backend::waiting;
 use crate::buffer::BufferRec;
-use crate::error::Result;
+use crate::error::{Result, RtError};
 use crate::scene::Scene;
 
 /// Where a buffer's elements lie on the wgpu device: `size` bytes from
@@ -186,9 +186,13 @@ impl DeviceLocal {
 
     /// The device's words of `buffer`, if it holds them newer than the
     /// host's copy at `host_version`.
-    pub(crate) fn words(gpu: &Gpu, buffer: usize, host_version: u64) -> Option<Result<Vec<u32>>> {
+    pub(crate) fn words(
+        gpu: &Gpu,
+        buffer: usize,
+        host_version: u64,
+    ) -> Option<waiting::LocalBoxFuture<'_, Result<Vec<u32>>>> {
         let h = *gpu.resident.device_local.held.iter().find(|h| h.buffer == buffer && h.version == host_version)?;
-        Some(read_held(gpu, &[h]))
+        Some(Box::pin(async move { read_held_async(gpu, &[h]).await }))
     }
 
     /// Where `buffer` lies in the device's heap.
@@ -202,10 +206,15 @@ impl DeviceLocal {
 /// The heap words of `held`, concatenated, read with a staging buffer of
 /// their own (the host may ask through `&Context`).
 fn read_held(gpu: &Gpu, held: &[Held]) -> Result<Vec<u32>> {
+    waiting::now(read_held_async(gpu, held)).unwrap_or_else(|| Err(RtError::Gpu(waiting::WOULD_BLOCK.into())))
+}
+
+/// [`read_held`], awaiting the read-back.
+async fn read_held_async(gpu: &Gpu, held: &[Held]) -> Result<Vec<u32>> {
     let heap = &gpu.resident.heap.as_ref().expect("held words live in a heap").buffer;
     let encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("rt read held") });
     let copies: Vec<_> = held.iter().map(|h| (heap, h.offset as u64 * 4, h.words as u64 * 4)).collect();
-    waiting::now(read_back(&gpu.device, &gpu.queue, &mut None, encoder, &copies, false))
-        .unwrap_or_else(|| Err(waiting::WOULD_BLOCK.into()))
+    read_back(&gpu.device, &gpu.queue, &mut None, encoder, &copies, false)
+        .await
         .map_err(|what| gpu.health.failure(gpu.describe(), format!("reading a device-local buffer: {what}")))
 }

@@ -193,6 +193,11 @@ impl LaunchBackend for WgpuBackend {
     }
 
     fn device_words(&self, buffer: usize, host_version: u64) -> Option<Result<Vec<u32>>> {
+        let read = self.device_words_async(buffer, host_version)?;
+        Some(waiting::now(read).unwrap_or_else(|| Err(RtError::Gpu(waiting::WOULD_BLOCK.into()))))
+    }
+
+    fn device_words_async(&self, buffer: usize, host_version: u64) -> Option<LocalBoxFuture<'_, Result<Vec<u32>>>> {
         DeviceLocal::words(self.gpu.as_ref()?, buffer, host_version)
     }
 
