@@ -244,9 +244,10 @@ pub(crate) trait LaunchBackend: Any + Send + Sync {
     }
     /// [`LaunchBackend::launch`] for a caller that awaits rather than
     /// blocks: the wgpu backend waits for its read-backs so; the others
-    /// run the blocking launch.
+    /// run the blocking launch when first polled (inside the poll that
+    /// catches a panic, [`waiting::Catching`]).
     fn launch_async<'a>(&'a mut self, launch: &'a Launch<'a>) -> LocalBoxFuture<'a, Result<LaunchReport>> {
-        Box::pin(std::future::ready(self.launch(launch)))
+        Box::pin(async move { self.launch(launch) })
     }
     /// Writes what the last launch's programs wrote into the host's
     /// buffers (called after every launch, failed or not; a backend writes
@@ -463,4 +464,53 @@ fn merge(report: &mut LaunchReport, tile: LaunchReport) {
         (_, Some(x), Some(y)) => Some(x + y),
         _ => None,
     };
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A backend whose launch panics, as a bug in the runtime would.
+    struct Panicking;
+
+    impl LaunchBackend for Panicking {
+        fn kind(&self) -> Backend {
+            Backend::Cpu
+        }
+        fn prepare(&mut self) -> Result<()> {
+            Ok(())
+        }
+        fn trees(&self, _: &Scene) -> Trees {
+            Trees { groups: crate::accel::bvh::TreeForm::Binary, cwbvh: false, simd: false }
+        }
+        fn launch(&mut self, _: &Launch) -> Result<LaunchReport> {
+            panic!("a bug in a backend")
+        }
+        fn read_back_outputs(&mut self, _: &mut [BufferRec]) {}
+        fn stats(&self) -> BackendStats<'_> {
+            BackendStats::default()
+        }
+    }
+
+    #[test]
+    fn a_panic_in_a_backends_blocking_launch_is_caught_through_the_async_path() {
+        let (scene, settings, accels) = (Scene::default(), Settings::default(), AccelCache::default());
+        let tile = Tile::whole(4, 4);
+        let launch = Launch {
+            scene: &scene,
+            settings: &settings,
+            accels: &accels,
+            entry: 0,
+            width: 4,
+            height: 4,
+            tile,
+            first_tile: true,
+            last_tile: true,
+        };
+        let result = waiting::now(run_tile(&mut Panicking, &launch)).expect("ready natively");
+        match result {
+            Err(RtError::RuntimePanicked { backend: "cpu", message, .. }) => assert_eq!(message, "a bug in a backend"),
+            other => panic!("{other:?}"),
+        }
+    }
 }
