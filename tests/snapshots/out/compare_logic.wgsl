@@ -38,7 +38,7 @@ fn rtp_compare_logic(x: f32, y: f32, n: i32, m: u32, a: vec3<f32>, b: vec3<f32>,
     let ge: bool = (m >= 10u);
     let eq: bool = ((n == 4i) || (m != 2u));
     let same: bool = all(a == b);
-    let differ: bool = any(a.xy != b.xy);
+    let differ: bool = !all(a.xy == b.xy);
     var calls: u32 = 0u;
     let both: bool = (lt && rtf_counted_above(&calls, y, 0.5f));
     let either: bool = (ge || rtf_counted_above(&calls, x, -0.5f));

@@ -113,3 +113,19 @@ differential! {
         }
     }
 }
+
+differential! {
+    /// `==` and `!=` on floats where a NaN is: Rust's `!=` is true
+    /// (unordered), its `==` false, on scalars, on whole vectors and on a
+    /// value against itself.
+    fn float_equality_with_nan {
+        equality(a: Vec4, b: Vec4) -> [u32; 4] over pairs(&specials(), &specials()) => {
+            [
+                (a.x != b.x) as u32 | ((a.y != b.y) as u32) << 1 | ((a.z != b.z) as u32) << 2 | ((a.w != b.w) as u32) << 3,
+                (a.x == b.x) as u32 | ((a.y == b.y) as u32) << 1 | ((a.z == b.z) as u32) << 2 | ((a.w == b.w) as u32) << 3,
+                (a != b) as u32 | ((a == b) as u32) << 1 | ((a.truncate() != b.truncate()) as u32) << 2 | ((a.truncate() == b.truncate()) as u32) << 3,
+                (a.z != a.z) as u32 | ((a.x != a.x) as u32) << 1 | ((a != a) as u32) << 2 | ((a == a) as u32) << 3,
+            ]
+        }
+    }
+}

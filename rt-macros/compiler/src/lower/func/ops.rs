@@ -210,6 +210,15 @@ impl FnLowerer<'_> {
                 if !self.unify(&lt, &rt) || !lt.is_value() {
                     return Err(mismatch(&lt, &rt));
                 }
+                // Rust's float `!=` is true where a NaN is (unordered); WGSL
+                // implementations compare ordered: `!(a == b)` is Rust's.
+                if matches!(op, BinOp::Ne(_)) && lt.scalar() == Some(Scalar::F32) {
+                    let eq = match lt {
+                        Ty::Vec(..) => format!("all({} == {})", l.code, r.code),
+                        _ => format!("({} == {})", l.code, r.code),
+                    };
+                    return Ok(Val::new(format!("!{eq}"), BOOL).with_effects(effects).with_reads(reads));
+                }
                 return Ok(match lt {
                     Ty::Vec(..) => {
                         let f = if matches!(op, BinOp::Eq(_)) { "all" } else { "any" };
