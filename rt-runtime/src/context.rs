@@ -664,14 +664,7 @@ impl Context {
     /// device-local buffer ([`Context::set_buffer_device_local`]) that a
     /// wgpu launch wrote is read from the device.
     pub fn read_buffer<T: RtData + Send + Sync>(&self, b: BufferId) -> Result<Vec<T>> {
-        let typed = self.typed::<T>(b)?;
-        match self.device_words(b) {
-            Some(words) => {
-                let w = T::LAYOUT.words as usize;
-                Ok(words?.chunks_exact(w).take(typed.len()).map(T::read_words).collect())
-            }
-            None => Ok(typed.to_vec()),
-        }
+        backend::waiting::block(self.read_buffer_async(b))
     }
 
     /// [`Context::read_buffer`] for a caller that must not block (a
@@ -850,8 +843,7 @@ impl Context {
         part: Option<Tile>,
         progress: Option<&mut dyn FnMut(LaunchProgress) -> LaunchControl>,
     ) -> Result<LaunchReport> {
-        backend::waiting::now(self.run_launch_async(size, part, progress))
-            .unwrap_or_else(|| Err(RtError::Gpu(backend::waiting::WOULD_BLOCK.into())))
+        backend::waiting::block(self.run_launch_async(size, part, progress))
     }
 
     /// Every launch: the backend's run, then the usage report.

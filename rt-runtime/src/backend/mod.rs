@@ -277,15 +277,10 @@ pub(crate) trait LaunchBackend: Any + Send + Sync {
         Ok(())
     }
     /// The words of buffer `buffer` where this backend holds them newer
-    /// than the host, whose copy is at `host_version`.
-    fn device_words(&self, _buffer: usize, _host_version: u64) -> Option<Result<Vec<u32>>> {
+    /// than the host, whose copy is at `host_version`: a read of the
+    /// device to await (a blocking caller runs it to the end).
+    fn device_words_async(&self, _buffer: usize, _host_version: u64) -> Option<LocalBoxFuture<'_, Result<Vec<u32>>>> {
         None
-    }
-    /// [`LaunchBackend::device_words`] for a caller that awaits rather
-    /// than blocks (a browser page).
-    fn device_words_async(&self, buffer: usize, host_version: u64) -> Option<LocalBoxFuture<'_, Result<Vec<u32>>>> {
-        let words = self.device_words(buffer, host_version)?;
-        Some(Box::pin(std::future::ready(words)))
     }
 }
 

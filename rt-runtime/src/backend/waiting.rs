@@ -32,9 +32,15 @@ pub(crate) fn now<F: Future>(f: F) -> Option<F::Output> {
     }
 }
 
+/// A blocking call of a fallible future: [`now`], failing in a browser
+/// with [`WOULD_BLOCK`] where it would have to wait for the device.
+pub(crate) fn block<T>(f: impl Future<Output = crate::error::Result<T>>) -> crate::error::Result<T> {
+    now(f).unwrap_or_else(|| Err(crate::error::RtError::Gpu(WOULD_BLOCK.into())))
+}
+
 /// What a blocking call says in a browser when it would have to wait for
 /// the device.
-pub(crate) const WOULD_BLOCK: &str =
+const WOULD_BLOCK: &str =
     "this call waits for the GPU, which a browser page cannot do in a blocking call: use Context::launch_async";
 
 /// A value a callback delivers once (a buffer's mapping), to be awaited.

@@ -89,13 +89,7 @@ impl Context {
     }
 
     /// The device's words of buffer `b` where a backend holds them newer
-    /// than the host does.
-    pub(super) fn device_words(&self, b: BufferId) -> Option<Result<Vec<u32>>> {
-        let rec = self.scene.buffers.get(b.index() as usize)?;
-        self.backends().find_map(|backend| backend.device_words(b.index() as usize, rec.host_version))
-    }
-
-    /// [`Context::device_words`], awaiting the device's read-back.
+    /// than the host does, awaiting the device's read-back.
     pub(super) async fn device_words_async(&self, b: BufferId) -> Option<Result<Vec<u32>>> {
         let rec = self.scene.buffers.get(b.index() as usize)?;
         let read =

@@ -99,8 +99,7 @@ impl Gpu {
     /// Opens the first adapter of `instance` (that can present to
     /// `surface`, if given) with the runtime's features and limits.
     pub fn open(instance: &wgpu::Instance, surface: Option<&wgpu::Surface<'_>>) -> Result<Gpu> {
-        super::waiting::now(Gpu::open_async(instance, surface))
-            .unwrap_or_else(|| Err(RtError::Gpu(super::waiting::WOULD_BLOCK.into())))
+        super::waiting::block(Gpu::open_async(instance, surface))
     }
 
     /// [`Gpu::open`], awaiting the adapter and the device (a browser page

@@ -24,7 +24,7 @@ use super::readback::read_back;
 use super::resident::{DeviceLocal, Held};
 use crate::backend::waiting;
 use crate::buffer::BufferRec;
-use crate::error::{Result, RtError};
+use crate::error::Result;
 use crate::scene::Scene;
 
 /// Where a buffer's elements lie on the wgpu device: `size` bytes from
@@ -206,7 +206,7 @@ impl DeviceLocal {
 /// The heap words of `held`, concatenated, read with a staging buffer of
 /// their own (the host may ask through `&Context`).
 fn read_held(gpu: &Gpu, held: &[Held]) -> Result<Vec<u32>> {
-    waiting::now(read_held_async(gpu, held)).unwrap_or_else(|| Err(RtError::Gpu(waiting::WOULD_BLOCK.into())))
+    waiting::block(read_held_async(gpu, held))
 }
 
 /// [`read_held`], awaiting the read-back.

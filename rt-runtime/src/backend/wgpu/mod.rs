@@ -192,17 +192,12 @@ impl LaunchBackend for WgpuBackend {
         }
     }
 
-    fn device_words(&self, buffer: usize, host_version: u64) -> Option<Result<Vec<u32>>> {
-        let read = self.device_words_async(buffer, host_version)?;
-        Some(waiting::now(read).unwrap_or_else(|| Err(RtError::Gpu(waiting::WOULD_BLOCK.into()))))
-    }
-
     fn device_words_async(&self, buffer: usize, host_version: u64) -> Option<LocalBoxFuture<'_, Result<Vec<u32>>>> {
         DeviceLocal::words(self.gpu.as_ref()?, buffer, host_version)
     }
 
     fn prepare(&mut self) -> Result<()> {
-        waiting::now(self.prepare_async()).unwrap_or_else(|| Err(RtError::Gpu(waiting::WOULD_BLOCK.into())))
+        waiting::block(self.prepare_async())
     }
 
     fn prepare_async(&mut self) -> LocalBoxFuture<'_, Result<()>> {
@@ -227,7 +222,7 @@ impl LaunchBackend for WgpuBackend {
     /// (see [`LaunchBackend::prepare`]); the host's copies of buffers are
     /// only written from a read-back that completed.
     fn launch(&mut self, l: &Launch) -> Result<LaunchReport> {
-        waiting::now(self.launch_async(l)).unwrap_or_else(|| Err(RtError::Gpu(waiting::WOULD_BLOCK.into())))
+        waiting::block(self.launch_async(l))
     }
 
     fn launch_async<'a>(&'a mut self, l: &'a Launch<'a>) -> LocalBoxFuture<'a, Result<LaunchReport>> {
