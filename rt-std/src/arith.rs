@@ -30,7 +30,9 @@
 //! the operators.
 
 mod division;
-pub use division::{RtDivide, div_euclid, rem_euclid, saturating_div, wrapping_div};
+mod methods;
+use division::RtDivide;
+pub use methods::Gpu;
 
 use glam::{IVec2, IVec3, IVec4, Mat2, Mat3, Mat4, Quat, UVec2, UVec3, UVec4, Vec2, Vec3, Vec4};
 
@@ -527,7 +529,7 @@ pub fn neg<A: RtNeg>(a: A) -> A::Output {
 
 /// `x.abs()`: `i32::MIN.abs()` is `i32::MIN`, as on the GPU.
 #[doc(hidden)]
-pub trait RtAbs {
+trait RtAbs {
     fn rt_abs(self) -> Self;
 }
 impl RtAbs for i32 {
@@ -578,17 +580,10 @@ macro_rules! abs_ivec {
 }
 abs_ivec!(IVec2, IVec3, IVec4);
 
-#[doc(hidden)]
-#[track_caller]
-#[inline(always)]
-pub fn abs<A: RtAbs>(a: A) -> A {
-    a.rt_abs()
-}
-
 /// `x.clamp(lo, hi)`: WGSL's `min(max(x, lo), hi)` where Rust would panic
 /// (`lo > hi`, or a NaN bound); Rust's `clamp` otherwise.
 #[doc(hidden)]
-pub trait RtClamp: Sized {
+trait RtClamp: Sized {
     fn rt_clamp(self, lo: Self, hi: Self) -> Self;
 }
 macro_rules! clamp_scalar {
@@ -620,13 +615,6 @@ macro_rules! clamp_vector {
     )*};
 }
 clamp_vector!(Vec2, Vec3, Vec4, UVec2, UVec3, UVec4, IVec2, IVec3, IVec4);
-
-#[doc(hidden)]
-#[track_caller]
-#[inline(always)]
-pub fn clamp<A: RtClamp>(x: A, lo: A, hi: A) -> A {
-    x.rt_clamp(lo, hi)
-}
 
 /// `a op= b`: `b` is evaluated by the caller before `a` is borrowed, as for
 /// Rust's primitive types.
@@ -820,12 +808,12 @@ mod tests {
         assert_eq!(mul(2u32, UVec2::new(u32::MAX, 3)), UVec2::new(u32::MAX - 1, 6));
         assert_eq!(neg(IVec2::new(i32::MIN, 1)), IVec2::new(i32::MIN, -1));
         assert_eq!(shl(UVec2::new(1, 1), UVec2::new(33, 2)), UVec2::new(2, 4));
-        assert_eq!(abs(i32::MIN), i32::MIN);
-        assert_eq!(abs(IVec2::new(i32::MIN, -3)), IVec2::new(i32::MIN, 3));
-        assert_eq!(clamp(5u32, 7, 3), 3, "min(max(5, 7), 3)");
-        assert_eq!(clamp(5i32, 1, 9), 5);
-        assert_eq!(clamp(Vec2::new(0.5, 2.0), Vec2::ZERO, Vec2::ONE), Vec2::new(0.5, 1.0));
-        assert_eq!(clamp(0.5f32, f32::NAN, 1.0), 0.5);
+        assert_eq!(Gpu(i32::MIN).abs(), i32::MIN);
+        assert_eq!(Gpu(IVec2::new(i32::MIN, -3)).abs(), IVec2::new(i32::MIN, 3));
+        assert_eq!(Gpu(5u32).clamp(7, 3), 3, "min(max(5, 7), 3)");
+        assert_eq!(Gpu(5i32).clamp(1, 9), 5);
+        assert_eq!(Gpu(Vec2::new(0.5, 2.0)).clamp(Vec2::ZERO, Vec2::ONE), Vec2::new(0.5, 1.0));
+        assert_eq!(Gpu(0.5f32).clamp(f32::NAN, 1.0), 0.5);
     }
 
     #[test]

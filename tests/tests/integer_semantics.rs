@@ -66,6 +66,22 @@ pub fn edge_cases(
     out[27] = v.y;
     out[28] = v.z;
     out[29] = (min - 1) as u32;
+    // glam's sums and products of integer vectors, and path forms.
+    let big = IVec3::splat(min - 1);
+    out[30] = big.element_sum() as u32;
+    out[31] = big.element_product() as u32;
+    out[32] = big.dot(IVec3::splat(2)) as u32;
+    out[33] = big.length_squared() as u32;
+    out[34] = IVec3::dot(big, big) as u32;
+    out[35] = i32::abs(min) as u32;
+    out[36] = uvec3(a, a, a).element_sum();
+    out[37] = UVec3::cross(uvec3(0, 1, 0), uvec3(1, 0, 0)).z;
+    out[38] = ivec2(min - 1, 2).perp_dot(ivec2(3, 1)) as u32;
+    out[39] = big.manhattan_distance(IVec3::splat(min));
+    out[40] = IVec2::splat(min - 1).rotate(ivec2(2, 0)).x as u32;
+    out[41] = ivec2(a as i32, 0).distance_squared(ivec2(0, a as i32)) as u32;
+    out[42] = i32::clamp(5, k as i32, 0) as u32;
+    out[43] = big.dot_into_vec(IVec3::ONE).y as u32;
 }
 
 /// `(index, value, what)`: the defined results.
@@ -104,6 +120,20 @@ fn expected() -> Vec<(usize, u32, &'static str)> {
         (27, a.wrapping_mul(5) / 2, "vector division"),
         (28, 35, "7 * 5 / 0"),
         (29, i32::MAX as u32, "MIN - 1 wraps to MAX"),
+        (30, i32::MAX.wrapping_mul(3) as u32, "IVec3::splat(MAX).element_sum() wraps"),
+        (31, i32::MAX as u32, "element_product: MAX^3 wraps to MAX"),
+        (32, i32::MAX.wrapping_mul(6) as u32, "dot wraps"),
+        (33, 3, "length_squared: 3 MAX^2 wraps to 3"),
+        (34, 3, "IVec3::dot(big, big), the path form"),
+        (35, i32::MIN as u32, "i32::abs(MIN), the path form, is MIN"),
+        (36, a.wrapping_mul(3), "uvec3 element_sum wraps"),
+        (37, u32::MAX, "UVec3::cross(Y, X).z is 0 - 1"),
+        (38, i32::MAX.wrapping_sub(6) as u32, "perp_dot wraps"),
+        (39, u32::MAX.wrapping_mul(3), "manhattan_distance wraps"),
+        (40, -2i32 as u32, "IVec2 rotate wraps"),
+        (41, a.wrapping_mul(a).wrapping_mul(2), "distance_squared wraps"),
+        (42, 0, "i32::clamp(5, 33, 0), the path form, is min(max(5, 33), 0)"),
+        (43, i32::MAX.wrapping_mul(3) as u32, "dot_into_vec wraps"),
     ]
 }
 
@@ -111,7 +141,7 @@ fn run(backend: Backend) -> Vec<u32> {
     let mut ctx = Context::new();
     ctx.set_backend(backend);
     ctx.set_ray_type_count(0);
-    let out = ctx.create_buffer::<u32>(BufferType::InputOutput, vec![0xdead; 32]);
+    let out = ctx.create_buffer::<u32>(BufferType::InputOutput, vec![0xdead; 44]);
     let p = ctx.create_program(&edge_cases::PROGRAM);
     ctx.set_ray_generation_program(0, p).unwrap();
     ctx.set_var(Scope::Context, "out", out).unwrap();
@@ -164,7 +194,7 @@ fn context_for(program: &'static rt_std::program::ProgramDescriptor, backend: Ba
     ctx.set_backend(backend);
     ctx.set_ray_type_count(0);
     ctx.set_integer_exceptions(true);
-    let out = ctx.create_buffer::<u32>(BufferType::InputOutput, vec![0xdead; 32]);
+    let out = ctx.create_buffer::<u32>(BufferType::InputOutput, vec![0xdead; 44]);
     let p = ctx.create_program(program);
     ctx.set_ray_generation_program(0, p).unwrap();
     let ex = ctx.create_program(&record_code::PROGRAM);
@@ -185,7 +215,7 @@ fn integer_exceptions_on_the_cpu_name_the_operator_and_reach_the_exception_progr
     assert_eq!((e.launch_index, e.code), (glam::UVec2::ZERO, EXCEPTION_INTEGER_DIVIDE_BY_ZERO));
     let at = e.location.expect("the operator's place");
     assert!(at.file().ends_with("integer_semantics.rs"), "{at}");
-    assert_eq!((at.line(), at.column()), (153, 16), "the `/` of `a / zero`");
+    assert_eq!((at.line(), at.column()), (183, 16), "the `/` of `a / zero`");
     let got = ctx.read_buffer::<u32>(out).unwrap();
     // The program went on with the defined values; the exception program
     // saw the code.

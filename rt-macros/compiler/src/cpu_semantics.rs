@@ -10,11 +10,16 @@
 //! Rewritten: `+ - * / % << >>` and their compound assignments, unary `-`
 //! (but not of a literal: `-2147483648i32` stays a literal), indexing
 //! (`a[i]` reads through `arith::at`, a written place through
-//! `arith::at_mut`), and the methods whose Rust versions panic where WGSL
-//! answers: `.abs()` (of `i32::MIN`), `.clamp(lo, hi)` (with `lo > hi`),
-//! and the dividing methods `.div_euclid(b)`, `.rem_euclid(b)`,
-//! `.wrapping_div(b)`, `.saturating_div(b)` (a zero divisor), also called
-//! as `T::div_euclid(a, b)` (the type kept: `arith::div_euclid::<T>`).
+//! `arith::at_mut`), and the methods whose Rust (std or glam) versions
+//! panic where WGSL answers ([`gpu_method`]): `abs` (of `i32::MIN`),
+//! `clamp` (with `lo > hi`), the dividing methods (a zero divisor) and the
+//! sums and products of integer vectors (`dot`, `element_sum`, `cross`,
+//! ..., which overflow). A method call `x.dot(y)` becomes
+//! `arith::Gpu(x).dot(y)`, its path form `IVec3::dot(a, b)` becomes
+//! `arith::Gpu::<IVec3>(a).dot(b)`: the macro does not know `x`'s type,
+//! so Rust's method lookup picks `Gpu`'s own method where the type is an
+//! integer one and the value's own method (through `Deref`) for any other
+//! type, a user's struct included.
 //! Bitwise operators, comparisons and casts already agree and are left as
 //! written (a bitwise compound assignment only has its right side
 //! evaluated first, as the arithmetic ones: its place may be an `at_mut`
@@ -57,26 +62,49 @@ fn arith_fn(op: &BinOp) -> Option<(&'static str, bool)> {
     })
 }
 
-/// The integer methods that divide, whose Rust versions panic at a zero
-/// divisor: `rt_std::arith` has one function of each name.
-fn dividing_method(name: &str) -> bool {
-    matches!(name, "div_euclid" | "rem_euclid" | "wrapping_div" | "saturating_div")
+/// A method called with `args` arguments (after the receiver) whose Rust
+/// version panics where the GPU answers: `rt_std::arith::Gpu` has it for
+/// the integer types (and the clamps of floats).
+fn gpu_method(name: &str, args: usize) -> bool {
+    matches!(
+        (name, args),
+        ("abs" | "element_sum" | "element_product" | "length_squared", 0)
+            | ("clamp", 2)
+            | (
+                "div_euclid"
+                    | "rem_euclid"
+                    | "wrapping_div"
+                    | "saturating_div"
+                    | "dot"
+                    | "dot_into_vec"
+                    | "cross"
+                    | "distance_squared"
+                    | "manhattan_distance"
+                    | "perp_dot"
+                    | "rotate",
+                1
+            )
+    )
 }
 
-/// `T::div_euclid` (a path of at least two segments ending in a dividing
-/// method): the type's path and the method's name.
-fn ufcs_dividing(func: &Expr) -> Option<(syn::Path, syn::Ident)> {
+/// `T::dot` called with `args` arguments (the receiver first), `T` a type
+/// (a capitalised name or a primitive, not a module: `math::dot` is a
+/// function): the type's path and the method's name.
+fn path_gpu_method(func: &Expr, args: usize) -> Option<(syn::Path, syn::Ident)> {
     let Expr::Path(p) = func else { return None };
     let n = p.path.segments.len();
     let last = p.path.segments.last()?;
-    if p.qself.is_some() || n < 2 || !dividing_method(&last.ident.to_string()) {
+    if p.qself.is_some() || n < 2 || args == 0 || !gpu_method(&last.ident.to_string(), args - 1) {
         return None;
     }
     let mut owner = p.path.clone();
     owner.segments.pop();
     // (`pop` leaves the trailing `::` punctuation.)
     owner.segments.pop_punct();
-    Some((owner, last.ident.clone()))
+    let ty = owner.segments.last()?.ident.to_string();
+    let is_type =
+        ty.starts_with(|c: char| c.is_ascii_uppercase()) || matches!(ty.as_str(), "i32" | "u32" | "f32" | "usize");
+    is_type.then(|| (owner, last.ident.clone()))
 }
 
 fn is_assign(op: &BinOp) -> bool {
@@ -162,31 +190,30 @@ impl VisitMut for Rewriter {
                 let f = path("at", span);
                 *e = syn::parse_quote_spanned!(span=> (*#f(&#base, #index)));
             }
-            Expr::MethodCall(m)
-                if (m.method == "abs" && m.args.is_empty()) || (m.method == "clamp" && m.args.len() == 2) =>
-            {
+            Expr::MethodCall(m) if gpu_method(&m.method.to_string(), m.args.len()) => {
                 visit_mut::visit_expr_method_call_mut(self, m);
                 let span = m.method.span();
-                let f = path(if m.method == "abs" { "abs" } else { "clamp" }, span);
-                let recv = &m.receiver;
-                let args = &m.args;
-                *e = syn::parse_quote_spanned!(span=> #f(#recv, #args));
+                let gpu = path("Gpu", span);
+                let (recv, method, turbofish, args) = (&m.receiver, &m.method, &m.turbofish, &m.args);
+                *e = syn::parse_quote_spanned!(span=> #gpu(#recv).#method #turbofish(#args));
             }
-            Expr::MethodCall(m) if m.args.len() == 1 && dividing_method(&m.method.to_string()) => {
-                visit_mut::visit_expr_method_call_mut(self, m);
-                let span = m.method.span();
-                let f = path(&m.method.to_string(), span);
-                let recv = &m.receiver;
-                let args = &m.args;
-                *e = syn::parse_quote_spanned!(span=> #f(#recv, #args));
-            }
-            Expr::Call(c) if c.args.len() == 2 && ufcs_dividing(&c.func).is_some() => {
+            Expr::Call(c) if path_gpu_method(&c.func, c.args.len()).is_some() => {
                 visit_mut::visit_expr_call_mut(self, c);
-                let (owner, name) = ufcs_dividing(&c.func).unwrap();
+                let (owner, name) = path_gpu_method(&c.func, c.args.len()).unwrap();
                 let span = name.span();
-                let f = path(&name.to_string(), span);
-                let args = &c.args;
-                *e = syn::parse_quote_spanned!(span=> #f::<#owner>(#args));
+                let gpu = path("Gpu", span);
+                let mut args = c.args.clone().into_iter();
+                let Some(first) = args.next() else { return };
+                // `Mat3::abs(&m)`: the receiver by value (lookup borrows it
+                // again); a `&mut` receiver is a method that writes, which
+                // no `Gpu` method is.
+                let first = match first {
+                    Expr::Reference(r) if r.mutability.is_none() => *r.expr,
+                    Expr::Reference(_) => return,
+                    f => f,
+                };
+                let rest: syn::punctuated::Punctuated<Expr, syn::Token![,]> = args.collect();
+                *e = syn::parse_quote_spanned!(span=> #gpu::<#owner>(#first).#name(#rest));
             }
             _ => visit_mut::visit_expr_mut(self, e),
         }
@@ -256,15 +283,19 @@ mod tests {
     }
 
     #[test]
-    fn dividing_methods_become_arith_calls_keeping_the_type() {
+    fn panicking_methods_are_called_through_gpu_keeping_the_type() {
         let got = rewritten(
-            "fn f() { let a = x.div_euclid(y); let b = i32::rem_euclid(7, 0); let c = v.saturating_div(w); }",
+            "fn f() { let a = x.div_euclid(y); let b = i32::rem_euclid(7, 0); let c = v.element_sum(); \
+             let d = Mat3::abs(&m); let e = math::dot(p, q); let f = u.dot(w, z); let g = s.clamp(lo, hi); }",
         );
         assert_eq!(
             got,
-            "{ let a = :: rt_std :: arith :: div_euclid (x , y) ; \
-             let b = :: rt_std :: arith :: rem_euclid :: < i32 > (7 , 0) ; \
-             let c = :: rt_std :: arith :: saturating_div (v , w) ; }"
+            "{ let a = :: rt_std :: arith :: Gpu (x) . div_euclid (y) ; \
+             let b = :: rt_std :: arith :: Gpu :: < i32 > (7) . rem_euclid (0) ; \
+             let c = :: rt_std :: arith :: Gpu (v) . element_sum () ; \
+             let d = :: rt_std :: arith :: Gpu :: < Mat3 > (m) . abs () ; \
+             let e = math :: dot (p , q) ; let f = u . dot (w , z) ; \
+             let g = :: rt_std :: arith :: Gpu (s) . clamp (lo , hi) ; }"
         );
     }
 

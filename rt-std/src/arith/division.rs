@@ -12,14 +12,11 @@
 //! `rem_euclid` exist for them).
 
 use super::{overflowed, trap};
-use glam::{IVec2, IVec3, IVec4, UVec2, UVec3, UVec4, Vec2, Vec3, Vec4};
+use glam::{IVec2, IVec3, IVec4, UVec2, UVec3, UVec4};
 
 /// The dividing methods, per type.
 #[doc(hidden)]
-#[diagnostic::on_unimplemented(
-    message = "`{Self}` has no dividing method `div_euclid`, `rem_euclid`, `wrapping_div` or `saturating_div` in ray programs"
-)]
-pub trait RtDivide: Sized {
+pub(super) trait RtDivide: Sized {
     fn rt_div_euclid(self, b: Self) -> Self;
     fn rt_rem_euclid(self, b: Self) -> Self;
     fn rt_wrapping_div(self, b: Self) -> Self;
@@ -137,65 +134,22 @@ macro_rules! components {
 
 components!(IVec2, i32, 2; IVec3, i32, 3; IVec4, i32, 4; UVec2, u32, 2; UVec3, u32, 3; UVec4, u32, 4);
 
-/// Floats: Rust's (glam's) own, which never panic. (`wrapping_div` and
-/// `saturating_div` do not exist for them; the rewrite never reaches these
-/// two for a float receiver that compiles.)
-macro_rules! float {
-    ($($t:ty),*) => {$(
-        impl RtDivide for $t {
-            #[inline(always)]
-            fn rt_div_euclid(self, b: $t) -> $t {
-                <$t>::div_euclid(self, b)
-            }
-            #[inline(always)]
-            fn rt_rem_euclid(self, b: $t) -> $t {
-                <$t>::rem_euclid(self, b)
-            }
-            #[inline(always)]
-            fn rt_wrapping_div(self, b: $t) -> $t {
-                self / b
-            }
-            #[inline(always)]
-            fn rt_saturating_div(self, b: $t) -> $t {
-                self / b
-            }
-        }
-    )*};
-}
-
-float!(f32, Vec2, Vec3, Vec4);
-
-#[doc(hidden)]
-#[track_caller]
-#[inline(always)]
-pub fn div_euclid<A: RtDivide>(a: A, b: A) -> A {
-    a.rt_div_euclid(b)
-}
-
-#[doc(hidden)]
-#[track_caller]
-#[inline(always)]
-pub fn rem_euclid<A: RtDivide>(a: A, b: A) -> A {
-    a.rt_rem_euclid(b)
-}
-
-#[doc(hidden)]
-#[track_caller]
-#[inline(always)]
-pub fn wrapping_div<A: RtDivide>(a: A, b: A) -> A {
-    a.rt_wrapping_div(b)
-}
-
-#[doc(hidden)]
-#[track_caller]
-#[inline(always)]
-pub fn saturating_div<A: RtDivide>(a: A, b: A) -> A {
-    a.rt_saturating_div(b)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn div_euclid<A: RtDivide>(a: A, b: A) -> A {
+        a.rt_div_euclid(b)
+    }
+    fn rem_euclid<A: RtDivide>(a: A, b: A) -> A {
+        a.rt_rem_euclid(b)
+    }
+    fn wrapping_div<A: RtDivide>(a: A, b: A) -> A {
+        a.rt_wrapping_div(b)
+    }
+    fn saturating_div<A: RtDivide>(a: A, b: A) -> A {
+        a.rt_saturating_div(b)
+    }
 
     #[test]
     fn zero_divisors_and_the_overflowing_quotient_answer_as_the_gpu_does() {
@@ -215,6 +169,5 @@ mod tests {
         assert_eq!(rem_euclid(9u32, 0), 0);
         assert_eq!(div_euclid(IVec3::new(-7, 5, 3), IVec3::new(2, 0, -1)), IVec3::new(-4, 5, -3));
         assert_eq!(rem_euclid(UVec2::new(9, 9), UVec2::new(4, 0)), UVec2::new(1, 0));
-        assert_eq!(rem_euclid(-1.5f32, 1.0), 0.5);
     }
 }
