@@ -32,7 +32,7 @@
 mod division;
 mod methods;
 use division::RtDivide;
-pub use methods::Gpu;
+pub use methods::{Gpu, GpuMut};
 
 use glam::{IVec2, IVec3, IVec4, Mat2, Mat3, Mat4, Quat, UVec2, UVec3, UVec4, Vec2, Vec3, Vec4};
 

@@ -63,6 +63,36 @@ fn the_fixed_seed_generates_tuples_enums_and_methods() {
     assert!(tuples >= 30 && enums >= 30 && methods >= 30 && mut_self >= 5, "{what}");
 }
 
+/// The run above also includes the forms added later in issue 19: bool
+/// vectors (`cmp*`, consumed by `any`/`all`/`bitmask`/`select`), the
+/// dividing methods with any divisor (method and path forms), integer
+/// vectors' `cross`/`manhattan_distance`, and NaN operands of comparisons.
+#[test]
+fn the_fixed_seed_generates_bool_vectors_dividing_methods_and_nan_operands() {
+    let cfg = fuzz::Config::from_env(0x5eed, 300);
+    let sources = fuzz::on_big_stack(move || {
+        (cfg.first..cfg.first + cfg.programs)
+            .map(|id| fuzz::generate::program(cfg.seed, id).source())
+            .collect::<Vec<_>>()
+    });
+    let count = |forms: &[&str]| sources.iter().filter(|s| forms.iter().any(|f| s.contains(f))).count();
+    let masks = count(&[".cmpeq(", ".cmpne(", ".cmplt(", ".cmple(", ".cmpgt(", ".cmpge("]);
+    let consumed = count(&[".any()", ".all()", ".bitmask()", "::select("]);
+    let dividing = count(&[".div_euclid(", ".rem_euclid(", ".wrapping_div(", ".saturating_div("]);
+    let dividing_paths = count(&["::div_euclid(", "::rem_euclid(", "::wrapping_div(", "::saturating_div("]);
+    let int_geometry = count(&[".manhattan_distance("]);
+    let nan = count(&["f32::NAN"]);
+    let what = format!(
+        "of 300 programs, {masks} compare vectors into masks, {consumed} consume masks, {dividing} call dividing \
+         methods ({dividing_paths} as paths), {int_geometry} measure integer distances, {nan} compare with NaN"
+    );
+    eprintln!("{what}");
+    assert!(
+        masks >= 30 && consumed >= 30 && dividing >= 30 && dividing_paths >= 10 && int_geometry >= 10 && nan >= 10,
+        "{what}"
+    );
+}
+
 /// The interpreter against rustc: the generated programs built natively
 /// (through the real macros, overflow checks off) and run with the same
 /// inputs must give the interpreter's outputs. Builds a Cargo project of

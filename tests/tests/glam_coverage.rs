@@ -58,8 +58,6 @@ struct GlamMethod {
     name: String,
     params: Vec<String>,
     ret: String,
-    /// Takes `&mut self` (changes the value in place).
-    mut_self: bool,
     /// Has type parameters (`map<F: Fn..>`).
     generic: bool,
 }
@@ -113,9 +111,8 @@ fn glam_methods(owner: &str, file: &Path) -> Vec<GlamMethod> {
                 syn::ReturnType::Default => "()".to_string(),
                 syn::ReturnType::Type(_, t) => spell(t, owner),
             };
-            let mut_self = f.sig.receiver().is_some_and(|r| r.reference.is_some() && r.mutability.is_some());
             let generic = !f.sig.generics.params.is_empty();
-            out.push(GlamMethod { name: f.sig.ident.to_string(), params, ret, mut_self, generic });
+            out.push(GlamMethod { name: f.sig.ident.to_string(), params, ret, generic });
         }
     }
     out
@@ -145,10 +142,6 @@ fn reason(m: &GlamMethod) -> &'static str {
         "Quat, Affine and SIMD types are not in the subset"
     } else if m.generic || any(&|t| t.contains("impl") || t.contains("Fn")) {
         "takes a closure"
-    } else if m.ret.starts_with("&mut") {
-        "returns a reference into the value (`&mut`), which ray programs cannot hold; assign a new column with `Mat*::from_cols`"
-    } else if m.mut_self {
-        "changes the value in place (`&mut self`): the method table lowers expressions, not writes to a place, so not yet; assign a new value instead"
     } else if any(&|t| t.contains("SizeVec")) {
         "isize/usize vectors"
     } else if any(&|t| t.contains("EulerRot")) {
@@ -194,11 +187,21 @@ fn supported_glam_methods_have_glam_signatures_and_the_table_is_current() {
         let mut yes = Vec::new();
         let mut no = Vec::new();
         for m in &methods {
-            match rt_compiler::lower::builtins::method_sig(&ty, &m.name) {
-                Some(sig) => {
+            // The expression methods, then those that change the value in
+            // place (`set_row`, `col_mut`: a `&mut` result is spelled as
+            // its target, as glam's is here).
+            let builtins = &rt_compiler::lower::builtins::method_sig;
+            let found = builtins(&ty, &m.name).map(|sig| (sig.params, sig.ret)).or_else(|| {
+                rt_compiler::lower::builtins::in_place_method(&ty, &m.name).map(|(params, ret)| match ret {
+                    Ty::Ref(_, t) => (params, *t),
+                    t => (params, t),
+                })
+            });
+            match found {
+                Some((params, sig_ret)) => {
                     // (glam's spelling has no spaces: `[f32;3]`.)
-                    let ours: Vec<String> = sig.params.iter().map(|t| t.to_string().replace(' ', "")).collect();
-                    let ret = match &sig.ret {
+                    let ours: Vec<String> = params.iter().map(|t| t.to_string().replace(' ', "")).collect();
+                    let ret = match &sig_ret {
                         Ty::Tuple(ts) => format!("({})", ts.iter().map(Ty::to_string).collect::<Vec<_>>().join(",")),
                         t => t.to_string().replace(' ', ""),
                     };

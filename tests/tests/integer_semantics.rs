@@ -82,6 +82,17 @@ pub fn edge_cases(
     out[41] = ivec2(a as i32, 0).distance_squared(ivec2(0, a as i32)) as u32;
     out[42] = i32::clamp(5, k as i32, 0) as u32;
     out[43] = big.dot_into_vec(IVec3::ONE).y as u32;
+    // glam's in-place methods past the end: the last row or component.
+    let mut m = Mat3::IDENTITY;
+    m.set_row(k as usize, vec3(4.0, 5.0, 6.0));
+    out[44] = (m.x_axis.z + 10.0 * m.y_axis.z + 100.0 * m.z_axis.z + 1000.0 * m.x_axis.x) as u32;
+    let mut mask = BVec3::splat(false);
+    mask.set(k as usize, true);
+    out[45] = mask.bitmask();
+    out[46] = mask.test(k as usize) as u32 + 2 * mask.test(0) as u32;
+    *m.col_mut(k as usize) = vec3(7.0, 8.0, 9.0);
+    m.col_mut(k as usize).x += 1.0;
+    out[47] = (m.z_axis.x + 10.0 * m.z_axis.y + 100.0 * m.z_axis.z) as u32;
 }
 
 /// `(index, value, what)`: the defined results.
@@ -134,6 +145,10 @@ fn expected() -> Vec<(usize, u32, &'static str)> {
         (41, a.wrapping_mul(a).wrapping_mul(2), "distance_squared wraps"),
         (42, 0, "i32::clamp(5, 33, 0), the path form, is min(max(5, 33), 0)"),
         (43, i32::MAX.wrapping_mul(3) as u32, "dot_into_vec wraps"),
+        (44, 1654, "m.set_row(33, ..) sets the last row"),
+        (45, 4, "mask.set(33, true) sets the last component"),
+        (46, 1, "mask.test(33) reads the last component"),
+        (47, 988, "m.col_mut(33) is the last column"),
     ]
 }
 
@@ -141,7 +156,7 @@ fn run(backend: Backend) -> Vec<u32> {
     let mut ctx = Context::new();
     ctx.set_backend(backend);
     ctx.set_ray_type_count(0);
-    let out = ctx.create_buffer::<u32>(BufferType::InputOutput, vec![0xdead; 44]);
+    let out = ctx.create_buffer::<u32>(BufferType::InputOutput, vec![0xdead; 52]);
     let p = ctx.create_program(&edge_cases::PROGRAM);
     ctx.set_ray_generation_program(0, p).unwrap();
     ctx.set_var(Scope::Context, "out", out).unwrap();
@@ -194,7 +209,7 @@ fn context_for(program: &'static rt_std::program::ProgramDescriptor, backend: Ba
     ctx.set_backend(backend);
     ctx.set_ray_type_count(0);
     ctx.set_integer_exceptions(true);
-    let out = ctx.create_buffer::<u32>(BufferType::InputOutput, vec![0xdead; 44]);
+    let out = ctx.create_buffer::<u32>(BufferType::InputOutput, vec![0xdead; 52]);
     let p = ctx.create_program(program);
     ctx.set_ray_generation_program(0, p).unwrap();
     let ex = ctx.create_program(&record_code::PROGRAM);
@@ -215,7 +230,8 @@ fn integer_exceptions_on_the_cpu_name_the_operator_and_reach_the_exception_progr
     assert_eq!((e.launch_index, e.code), (glam::UVec2::ZERO, EXCEPTION_INTEGER_DIVIDE_BY_ZERO));
     let at = e.location.expect("the operator's place");
     assert!(at.file().ends_with("integer_semantics.rs"), "{at}");
-    assert_eq!((at.line(), at.column()), (183, 16), "the `/` of `a / zero`");
+    let line = include_str!("integer_semantics.rs").lines().position(|l| l == "    out[0] = a / zero;").unwrap() + 1;
+    assert_eq!((at.line(), at.column()), (line as u32, 16), "the `/` of `a / zero`");
     let got = ctx.read_buffer::<u32>(out).unwrap();
     // The program went on with the defined values; the exception program
     // saw the code.

@@ -32,13 +32,30 @@ use syn::{BinOp, Expr, UnOp};
 
 /// Rewrites `f`'s body in place.
 pub fn rewrite_fn(f: &mut syn::ItemFn) {
-    Rewriter.visit_block_mut(&mut f.block);
+    // `&mut` parameters (`m: &mut Mat3`, `&mut self`): an in-place method's
+    // receiver is reborrowed through them (`&mut *m`), not borrowed again.
+    let ref_params = f
+        .sig
+        .inputs
+        .iter()
+        .filter_map(|a| match a {
+            syn::FnArg::Typed(pt) => match (&*pt.pat, &*pt.ty) {
+                (syn::Pat::Ident(i), syn::Type::Reference(r)) if r.mutability.is_some() => Some(i.ident.to_string()),
+                _ => None,
+            },
+            syn::FnArg::Receiver(r) if r.reference.is_some() && r.mutability.is_some() => Some("self".to_string()),
+            _ => None,
+        })
+        .collect();
+    Rewriter { ref_params }.visit_block_mut(&mut f.block);
     // The rewrite wraps index reads in parentheses and keeps the user's own
     // around what became call arguments.
     f.attrs.push(syn::parse_quote!(#[allow(unused_parens)]));
 }
 
-struct Rewriter;
+struct Rewriter {
+    ref_params: Vec<String>,
+}
 
 /// The `rt_std::arith` function for a binary operator, and whether it is
 /// the compound-assignment form.
@@ -70,6 +87,7 @@ fn gpu_method(name: &str, args: usize) -> bool {
         (name, args),
         ("abs" | "element_sum" | "element_product" | "length_squared", 0)
             | ("clamp", 2)
+            | ("test", 1)
             | (
                 "div_euclid"
                     | "rem_euclid"
@@ -85,6 +103,13 @@ fn gpu_method(name: &str, args: usize) -> bool {
                 1
             )
     )
+}
+
+/// A method that changes its receiver in place (`&mut self`; `col_mut`
+/// gives a place) and panics
+/// where the GPU clamps: `rt_std::arith::GpuMut` has it for glam's types.
+fn gpu_mut_method(name: &str, args: usize) -> bool {
+    matches!((name, args), ("set_row" | "set", 2) | ("col_mut", 1))
 }
 
 /// `T::dot` called with `args` arguments (the receiver first), `T` a type
@@ -189,6 +214,24 @@ impl VisitMut for Rewriter {
                 let (base, index) = (&i.expr, &i.index);
                 let f = path("at", span);
                 *e = syn::parse_quote_spanned!(span=> (*#f(&#base, #index)));
+            }
+            Expr::MethodCall(m) if gpu_mut_method(&m.method.to_string(), m.args.len()) => {
+                // The receiver is a place written through (`ms[i].set_row(..)`
+                // indexes with `at_mut`).
+                self.place(&mut m.receiver);
+                for a in m.args.iter_mut() {
+                    self.visit_expr_mut(a);
+                }
+                let span = m.method.span();
+                let gpu = path("GpuMut", span);
+                let (method, turbofish, args) = (&m.method, &m.turbofish, &m.args);
+                let recv = match &*m.receiver {
+                    Expr::Path(p) if p.path.get_ident().is_some_and(|i| self.ref_params.contains(&i.to_string())) => {
+                        quote::quote!(&mut *#p)
+                    }
+                    r => quote::quote!(&mut #r),
+                };
+                *e = syn::parse_quote_spanned!(span=> #gpu(#recv).#method #turbofish(#args));
             }
             Expr::MethodCall(m) if gpu_method(&m.method.to_string(), m.args.len()) => {
                 visit_mut::visit_expr_method_call_mut(self, m);
@@ -296,6 +339,21 @@ mod tests {
              let d = :: rt_std :: arith :: Gpu :: < Mat3 > (m) . abs () ; \
              let e = math :: dot (p , q) ; let f = u . dot (w , z) ; \
              let g = :: rt_std :: arith :: Gpu (s) . clamp (lo , hi) ; }"
+        );
+    }
+
+    #[test]
+    fn in_place_methods_are_called_through_gpu_mut() {
+        let got = rewritten(
+            "fn f(r: &mut Mat3, v: Vec3) { m.set_row(1, v); r.set_row(0, v); p.mask.set(2, true); ms[k].set_row(0, v); *m.col_mut(1) = v; }",
+        );
+        assert_eq!(
+            got,
+            "{ :: rt_std :: arith :: GpuMut (& mut m) . set_row (1 , v) ; \
+             :: rt_std :: arith :: GpuMut (& mut * r) . set_row (0 , v) ; \
+             :: rt_std :: arith :: GpuMut (& mut p . mask) . set (2 , true) ; \
+             :: rt_std :: arith :: GpuMut (& mut (* :: rt_std :: arith :: at_mut (& mut ms , k))) . set_row (0 , v) ; \
+             * :: rt_std :: arith :: GpuMut (& mut m) . col_mut (1) = v ; }"
         );
     }
 

@@ -16,7 +16,7 @@
 //! operators do.
 
 use super::{Int, RtAbs, RtClamp, RtDivide};
-use glam::{IVec2, IVec3, IVec4, UVec2, UVec3, UVec4, Vec2, Vec3, Vec4};
+use glam::{BVec2, BVec3, BVec4, IVec2, IVec3, IVec4, Mat2, Mat3, Mat4, UVec2, UVec3, UVec4, Vec2, Vec3, Vec4};
 
 /// A value whose method is called with the GPU's meaning (see the module).
 #[doc(hidden)]
@@ -30,6 +30,64 @@ impl<T> core::ops::Deref for Gpu<T> {
         &self.0
     }
 }
+
+/// A place whose in-place method (`m.set_row(i, v)`, `m.col_mut(i)`,
+/// `mask.set(i, b)`) is
+/// called with the GPU's meaning: the index clamped to the last row or
+/// component, as indexing is, where glam panics. The macro writes
+/// `GpuMut(&mut m).set_row(i, v)` (`&mut *m` for a `&mut` parameter `m`);
+/// any other type reaches its own method through `DerefMut`.
+#[doc(hidden)]
+pub struct GpuMut<'a, T>(pub &'a mut T);
+
+impl<T> core::ops::Deref for GpuMut<'_, T> {
+    type Target = T;
+    #[inline(always)]
+    fn deref(&self) -> &T {
+        self.0
+    }
+}
+
+impl<T> core::ops::DerefMut for GpuMut<'_, T> {
+    #[inline(always)]
+    fn deref_mut(&mut self) -> &mut T {
+        self.0
+    }
+}
+
+macro_rules! set_row {
+    ($($m:ty: $v:ty, $n:literal);*) => {$(
+        impl<'a> GpuMut<'a, $m> {
+            #[inline(always)]
+            pub fn set_row(self, index: usize, value: $v) {
+                self.0.set_row(index.min($n - 1), value)
+            }
+            #[inline(always)]
+            pub fn col_mut(self, index: usize) -> &'a mut $v {
+                self.0.col_mut(index.min($n - 1))
+            }
+        }
+    )*};
+}
+set_row!(Mat2: Vec2, 2; Mat3: Vec3, 3; Mat4: Vec4, 4);
+
+macro_rules! bool_vector {
+    ($($b:ty, $n:literal);*) => {$(
+        impl GpuMut<'_, $b> {
+            #[inline(always)]
+            pub fn set(self, index: usize, value: bool) {
+                self.0.set(index.min($n - 1), value)
+            }
+        }
+        impl Gpu<$b> {
+            #[inline(always)]
+            pub fn test(self, index: usize) -> bool {
+                self.0.test(index.min($n - 1))
+            }
+        }
+    )*};
+}
+bool_vector!(BVec2, 2; BVec3, 3; BVec4, 4);
 
 /// The dividing methods and `clamp`, for every integer type and vector.
 macro_rules! dividing_and_clamp {
@@ -266,6 +324,30 @@ mod tests {
         assert_eq!(Gpu(5u32).clamp(7, 2), 2);
         assert_eq!(Gpu(1.5f32).clamp(2.0, 1.0), 1.0);
         assert_eq!(Gpu(7i32).div_euclid(0), 7);
+    }
+
+    #[test]
+    fn in_place_methods_clamp_the_index() {
+        let mut m = Mat3::IDENTITY;
+        GpuMut(&mut m).set_row(7, Vec3::new(4.0, 5.0, 6.0));
+        assert_eq!(m.row(2), Vec3::new(4.0, 5.0, 6.0));
+        *GpuMut(&mut m).col_mut(5) = Vec3::ONE;
+        assert_eq!(m.z_axis, Vec3::ONE);
+        let mut b = BVec3::FALSE;
+        GpuMut(&mut b).set(9, true);
+        assert_eq!(b, BVec3::new(false, false, true));
+        assert!(Gpu(b).test(3));
+        assert!(!Gpu(b).test(0));
+        // Another type's own method, through `DerefMut`.
+        struct Mine(u32);
+        impl Mine {
+            fn set(&mut self, i: usize, v: bool) {
+                self.0 = i as u32 + v as u32;
+            }
+        }
+        let mut mine = Mine(0);
+        GpuMut(&mut mine).set(4, true);
+        assert_eq!(mine.0, 5);
     }
 
     #[test]

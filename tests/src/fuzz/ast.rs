@@ -80,6 +80,8 @@ impl Ty {
                 let (s, rest) = match name.as_bytes().first()? {
                     b'I' => (Scalar::I32, &name[1..]),
                     b'U' => (Scalar::U32, &name[1..]),
+                    // (`BVec4A`: `Vec4`'s mask, four bools all the same.)
+                    b'B' => (Scalar::Bool, name[1..].trim_end_matches('A')),
                     _ => (Scalar::F32, name),
                 };
                 let n: u8 = rest.strip_prefix("Vec")?.parse().ok()?;

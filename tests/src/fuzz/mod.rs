@@ -5,7 +5,10 @@
 //! ## Design
 //! 1. [`generate`] builds a random, well-typed program from a seed as an AST
 //!    ([`ast`]): scalars, glam vectors, a struct or two, arithmetic, bit
-//!    operations, comparisons, casts, vector methods and rt-std's math,
+//!    operations, comparisons (now and then with a `f32::NAN` operand),
+//!    casts, vector methods (the dividing ones with any divisor, in method
+//!    and path form), bool vectors (`cmp*` masks, `!`, `& | ^`, consumed by
+//!    `any`/`all`/`bitmask`/`VecN::select`) and rt-std's math,
 //!    nested `if`/`match`/loops, helpers (one taking `&mut u32`), buffer
 //!    loads and stores, tuple literals read by `.0`/`.1`, and integers
 //!    through an `#[rt_enum]` every program declares (`FuzzKind`, matched

@@ -169,3 +169,64 @@ differential! {
         }
     }
 }
+
+/// `set_row` through a `&mut` helper parameter.
+#[rt_function]
+pub fn put_row(m: &mut Mat3, i: u32, v: Vec3) {
+    m.set_row(i as usize, v);
+}
+
+/// `col_mut` through a `&mut` helper parameter.
+#[rt_function]
+pub fn put_col(m: &mut Mat3, i: u32, x: f32) {
+    m.col_mut(i as usize).z -= x;
+}
+
+differential! {
+    /// glam's in-place methods: `Mat2/3/4::set_row` and `col_mut` (on a
+    /// local and through a `&mut` parameter), `BVecN::set` and
+    /// `BVecN::test`.
+    /// (`tests/integer_semantics.rs` has their indices past the end.)
+    fn glam_in_place {
+        set_rows(a: Vec4, i: u32) -> [Vec4; 9] over pairs(&vec4s(4, 2.0, 71), &[0, 1, 2]) => {
+            let mut m2 = Mat2::IDENTITY;
+            m2.set_row(i as usize % 2, a.truncate().truncate());
+            let mut m3 = Mat3::from_diagonal(Vec3::splat(2.0));
+            m3.set_row(i as usize, a.truncate());
+            let mut m4 = Mat4::IDENTITY;
+            m4.set_row(i as usize + 1, a);
+            let mut p = Mat3::ZERO;
+            put_row(&mut p, 2 - i, a.truncate() * 2.0);
+            *m4.col_mut(3 - i as usize) += a * 0.5;
+            m3.col_mut(i as usize).y = a.w;
+            put_col(&mut p, i, a.x);
+            [
+                m2.x_axis.extend(m2.y_axis.x).extend(m2.y_axis.y),
+                m3.x_axis.extend(0.0),
+                m3.y_axis.extend(m3.z_axis.x),
+                m3.z_axis.extend(0.0),
+                m4.x_axis,
+                m4.y_axis,
+                m4.z_axis + m4.w_axis,
+                p.x_axis.extend(p.y_axis.x),
+                p.y_axis.extend(p.z_axis.z),
+            ]
+        }
+        mask_set_test(a: u32, i: u32) -> [u32; 3] over pairs(&U16, &[0, 1, 2]) => {
+            let mut m4 = bvec4(a & 1 != 0, a & 2 != 0, a & 4 != 0, a & 8 != 0);
+            m4.set(i as usize + 1, a & 16 == 0);
+            let mut m3 = BVec3::splat(a & 1 != 0);
+            m3.set(i as usize, a & 2 != 0);
+            let mut m2 = BVec2::new(a & 4 != 0, false);
+            m2.set(i as usize % 2, true);
+            let mut f = Vec4::splat(a as f32).cmpgt(Vec4::splat(7.0));
+            f.set(i as usize, false);
+            [
+                m4.bitmask() | (m3.bitmask() << 4) | (m2.bitmask() << 8) | (f.bitmask() << 12),
+                m4.test(i as usize) as u32 | ((m3.test(i as usize) as u32) << 1) | ((m2.test(1) as u32) << 2)
+                    | ((f.test(3) as u32) << 3),
+                m4.test(3) as u32 | ((m3.test(2 - i as usize) as u32) << 1),
+            ]
+        }
+    }
+}

@@ -585,6 +585,22 @@ fn mat_method(n: u8, name: &str) -> Option<MethodSig> {
     }
 }
 
+/// glam's methods that change the receiver in place (`&mut self`): their
+/// parameters and result. `set_row` and `BVecN::set` are assignments to the
+/// receiver's place; `col_mut` is a place itself (`*m.col_mut(i) = v`,
+/// `m.col_mut(i).x += 1.0`), its `&mut Vec` result spelled `&mut VecN`.
+/// The index is clamped to the last row, column or component, as indexing
+/// is (lowered in `func/places.rs`).
+pub fn in_place_method(recv: &Ty, name: &str) -> Option<(Vec<Ty>, Ty)> {
+    let usize_ = Ty::Scalar(Scalar::Usize);
+    match (recv, name) {
+        (Ty::Mat(n), "set_row") => Some((vec![usize_, Ty::vec(*n)], Ty::Unit)),
+        (Ty::Mat(n), "col_mut") => Some((vec![usize_], Ty::Ref(true, Box::new(Ty::vec(*n))))),
+        (Ty::Vec(_, Scalar::Bool), "set") => Some((vec![usize_, Ty::Scalar(Scalar::Bool)], Ty::Unit)),
+        _ => None,
+    }
+}
+
 /// Extra advice for methods users reach for that have no WGSL equivalent.
 pub fn method_hint(recv: &Ty, name: &str) -> String {
     match (recv, name) {

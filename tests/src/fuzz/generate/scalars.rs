@@ -166,9 +166,20 @@ impl Gen {
                 }
             }
             25..=29 => {
-                let m = self.r.pick(&["wrapping_add", "wrapping_sub", "wrapping_mul"]);
+                // The dividing methods take any divisor: a zero one is read
+                // as one, `MIN / -1` wraps (saturates for `saturating_div`).
+                let m = self.r.pick(&[
+                    "wrapping_add",
+                    "wrapping_sub",
+                    "wrapping_mul",
+                    "div_euclid",
+                    "rem_euclid",
+                    "wrapping_div",
+                    "saturating_div",
+                ]);
                 let x = self.expr(&t, d1, false);
-                method(x, m, vec![self.expr(&t, d1, true)])
+                let y = self.expr(&t, d1, true);
+                if self.r.chance(25) { Expr::Path(s.rust(), m, vec![x, y]) } else { method(x, m, vec![y]) }
             }
             30..=44 => {
                 let op = self.r.pick(&[BinOp::BitAnd, BinOp::BitOr, BinOp::BitXor]);
@@ -223,7 +234,7 @@ impl Gen {
                 let vt = self.ivec(s);
                 let Ty::V(n, _) = vt else { unreachable!() };
                 let v = self.expr(&vt, d1, false);
-                match self.r.below(5) {
+                match self.r.below(8) {
                     0 => method(v, "dot", vec![self.expr(&vt, d1, true)]),
                     1 => method(
                         v,
@@ -233,6 +244,18 @@ impl Gen {
                     2 => {
                         let idx = self.index_expr(n as u32);
                         Expr::Index(b(v), b(idx))
+                    }
+                    3 => method(v, "length_squared", vec![]),
+                    4 if s == Scalar::I32 => method(v, "distance_squared", vec![self.expr(&vt, d1, true)]),
+                    5 => {
+                        let m = method(v, "manhattan_distance", vec![self.expr(&vt, d1, true)]);
+                        if s == Scalar::U32 { m } else { Expr::Cast(b(m), s) }
+                    }
+                    6 => {
+                        let float = self.r.chance(50);
+                        let m = self.mask_expr(n, d1, float);
+                        let bits = method(m, "bitmask", vec![]);
+                        if s == Scalar::U32 { bits } else { Expr::Cast(b(bits), s) }
                     }
                     _ => {
                         let i = self.r.below(n as u64) as usize;
@@ -261,7 +284,13 @@ impl Gen {
             0..=27 => {
                 let op = self.r.pick(&[BinOp::Lt, BinOp::Le, BinOp::Gt, BinOp::Ge, BinOp::Eq, BinOp::Ne]);
                 let (a, c) = self.operands(&F32, &F32, d, false);
-                bin(op, a, c)
+                // A NaN operand: every comparison but `!=` is false (Rust's
+                // unordered meaning, which the GPU must keep).
+                match self.r.below(12) {
+                    0 => bin(op, Expr::Const("f32", "NAN"), c),
+                    1 => bin(op, a, Expr::Const("f32", "NAN")),
+                    _ => bin(op, a, c),
+                }
             }
             28..=47 => {
                 let op = self.r.pick(&[BinOp::Lt, BinOp::Le, BinOp::Gt, BinOp::Ge, BinOp::Eq, BinOp::Ne]);
@@ -287,6 +316,12 @@ impl Gen {
             84..=89 => {
                 let x = self.expr(&U32, d1, false);
                 method(x, "is_multiple_of", vec![self.expr(&U32, d1, true)])
+            }
+            90..=95 => {
+                let n = self.r.range(2, 4) as u8;
+                let float = self.r.chance(50);
+                let m = self.mask_expr(n, d1, float);
+                method(m, self.r.pick(&["any", "all"]), vec![])
             }
             _ => self.leaf(&BOOL, false),
         }

@@ -149,6 +149,10 @@ impl Gen {
                     }
                     2 => method(x, "lerp", vec![self.expr(&t, d1, true), self.expr(&F32, d1, true)]),
                     _ if n == 3 => method(x, "cross", vec![self.expr(&t, d1, true)]),
+                    _ if self.r.chance(50) => {
+                        let m = self.mask_expr(n, d1, true);
+                        Expr::Path(name, "select", vec![m, x, self.expr(&t, d1, true)])
+                    }
                     _ => method(x, "lerp", vec![self.expr(&t, d1, true), self.expr(&F32, d1, true)]),
                 }
             }
@@ -199,6 +203,48 @@ impl Gen {
         }
     }
 
+    /// A bool vector of `n` components (`BVecN`, which is never stored:
+    /// built and consumed in one expression): comparisons of two vectors
+    /// (a float one now and then against `NaN`s, where every comparison
+    /// but `cmpne` is false), `!`, `& | ^`, `new` and `splat`. Four
+    /// components come in glam's two types: `BVec4A` (`float`: what `Vec4`'s
+    /// comparisons give and its `select` takes) and `BVec4` (the integer
+    /// vectors'), which Rust does not mix.
+    pub(super) fn mask_expr(&mut self, n: u8, d: u32, float: bool) -> Expr {
+        let d1 = d.saturating_sub(1);
+        let bvec = match n {
+            2 => "BVec2",
+            3 => "BVec3",
+            _ if float => "BVec4A",
+            _ => "BVec4",
+        };
+        match self.r.below(10) {
+            6 if d1 > 0 => Expr::Unary(UnOp::Not, b(self.mask_expr(n, d1, float))),
+            7 if d1 > 0 => {
+                let op = self.r.pick(&[BinOp::BitAnd, BinOp::BitOr, BinOp::BitXor]);
+                bin(op, self.mask_expr(n, d1, float), self.mask_expr(n, d1, float))
+            }
+            8 => Expr::Path(bvec, "splat", vec![self.expr(&BOOL, d1, true)]),
+            9 => Expr::Path(bvec, "new", (0..n).map(|_| self.expr(&BOOL, d1, true)).collect()),
+            _ => {
+                let s = match n {
+                    4 if float => Scalar::F32,
+                    4 => self.r.pick(&[Scalar::I32, Scalar::U32]),
+                    _ => self.r.pick(&[Scalar::F32, Scalar::F32, Scalar::I32, Scalar::U32]),
+                };
+                let t = Ty::V(n, s);
+                let m = self.r.pick(&["cmpeq", "cmpne", "cmplt", "cmple", "cmpgt", "cmpge"]);
+                let (a, c) = (self.expr(&t, d1, false), self.expr(&t, d1, true));
+                if s == Scalar::F32 && self.r.chance(20) {
+                    let nan = Expr::Path(vec_name(n, s), "splat", vec![Expr::Const("f32", "NAN")]);
+                    if self.r.chance(50) { method(nan, m, vec![c]) } else { method(a, m, vec![nan]) }
+                } else {
+                    method(a, m, vec![c])
+                }
+            }
+        }
+    }
+
     pub(super) fn ivec_expr(&mut self, n: u8, s: Scalar, d: u32, typed: bool) -> Expr {
         let t = Ty::V(n, s);
         let d1 = d - 1;
@@ -223,8 +269,22 @@ impl Gen {
                 }
             }
             25..=29 => {
-                let m = self.r.pick(&["wrapping_add", "wrapping_sub", "wrapping_mul"]);
-                method(self.expr(&t, d1, false), m, vec![self.expr(&t, d1, true)])
+                // (glam's unsigned vectors have no `div_euclid`/`rem_euclid`.)
+                let m = if s == Scalar::I32 {
+                    self.r.pick(&[
+                        "wrapping_add",
+                        "wrapping_sub",
+                        "wrapping_mul",
+                        "div_euclid",
+                        "rem_euclid",
+                        "wrapping_div",
+                        "saturating_div",
+                    ])
+                } else {
+                    self.r.pick(&["wrapping_add", "wrapping_sub", "wrapping_mul", "wrapping_div", "saturating_div"])
+                };
+                let (x, y) = (self.expr(&t, d1, false), self.expr(&t, d1, true));
+                if self.r.chance(25) { Expr::Path(name, m, vec![x, y]) } else { method(x, m, vec![y]) }
             }
             30..=36 => {
                 let op = self.r.pick(&[BinOp::Div, BinOp::Rem]);
@@ -254,8 +314,13 @@ impl Gen {
             }
             63..=72 => {
                 let x = self.expr(&t, d1, false);
-                match self.r.below(4) {
+                match self.r.below(5) {
                     0 if s == Scalar::I32 => method(x, self.r.pick(&["abs", "signum"]), vec![]),
+                    2 if n == 3 => method(x, "cross", vec![self.expr(&t, d1, true)]),
+                    3 => {
+                        let m = self.mask_expr(n, d1, false);
+                        Expr::Path(name, "select", vec![m, x, self.expr(&t, d1, true)])
+                    }
                     1 => {
                         let lo = if s == Scalar::I32 { self.r.range(-20, 5) } else { self.r.range(0, 5) };
                         let hi = lo + self.r.range(0, 30);

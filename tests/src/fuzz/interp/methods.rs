@@ -42,6 +42,8 @@ pub(super) fn constant(t: &str, n: &str) -> V {
         ("", "SQRT_2") => f(std::f32::consts::SQRT_2),
         ("f32", "EPSILON") => f(f32::EPSILON),
         ("f32", "MIN_POSITIVE") => f(f32::MIN_POSITIVE),
+        // Only ever an operand of a comparison (see `generate`).
+        ("f32", "NAN") => f(f32::NAN),
         ("i32", "MAX") => V::I(i32::MAX, false),
         ("i32", "MIN") => V::I(i32::MIN, false),
         ("u32", "MAX") => V::U(u32::MAX, false),
@@ -139,6 +141,75 @@ pub(super) fn method(r: &V, m: &str, a: &[V]) -> R<V> {
             return Ok(V::Vec(c));
         }
         (V::Vec(c), "truncate") => return Ok(V::Vec(c[..c.len() - 1].to_vec())),
+        (V::Vec(c), "cross") if !matches!(c[0], V::F(..)) => {
+            let b = a[0].comps();
+            let m2 = |i: usize, j: usize| -> R<V> {
+                scalar_bin(BinOp::Sub, &scalar_bin(BinOp::Mul, &c[i], &b[j])?, &scalar_bin(BinOp::Mul, &b[i], &c[j])?)
+            };
+            return Ok(V::Vec(vec![m2(1, 2)?, m2(2, 0)?, m2(0, 1)?]));
+        }
+        (V::Vec(c), "manhattan_distance") => {
+            let mut acc = V::U(0, false);
+            for (x, y) in c.iter().zip(a[0].comps()) {
+                let d = match (x, y) {
+                    (V::I(p, pu), V::I(q, qu)) => V::U(p.abs_diff(*q), *pu || *qu),
+                    (V::U(p, pu), V::U(q, qu)) => V::U(p.abs_diff(*q), *pu || *qu),
+                    _ => panic!("manhattan_distance of {x:?}"),
+                };
+                acc = scalar_bin(BinOp::Add, &acc, &d)?;
+            }
+            return Ok(acc);
+        }
+        // ---- bool vectors ----
+        (V::Vec(c), "any" | "all") => {
+            let want = m == "any";
+            // A certain component equal to `want` decides; else an
+            // uncertain one leaves it open.
+            let decided = c.iter().any(|x| matches!(x, V::B(v, false) if *v == want));
+            let unc = !decided && c.iter().any(|x| matches!(x, V::B(_, true)));
+            return Ok(V::B(if decided { want } else { !want }, unc));
+        }
+        (V::Vec(c), "bitmask") => {
+            let mut bits = 0u32;
+            let mut unc = false;
+            for (i, x) in c.iter().enumerate() {
+                let V::B(v, u) = x else { panic!("bitmask of {x:?}") };
+                bits |= (*v as u32) << i;
+                unc |= *u;
+            }
+            return Ok(V::U(bits, unc));
+        }
+        (V::Vec(_), "cmpeq" | "cmpne" | "cmplt" | "cmple" | "cmpgt" | "cmpge") => {
+            let op = match m {
+                "cmpeq" => BinOp::Eq,
+                "cmpne" => BinOp::Ne,
+                "cmplt" => BinOp::Lt,
+                "cmple" => BinOp::Le,
+                "cmpgt" => BinOp::Gt,
+                _ => BinOp::Ge,
+            };
+            return zip(r, &a[0], &mut |x, y| scalar_bin(op, x, y));
+        }
+        // `VecN::select(mask, if_true, if_false)`, the mask first.
+        (V::Vec(mask), "select") => {
+            let (t, f) = (a[0].comps(), a[1].comps());
+            let picked = mask.iter().zip(t.iter().zip(f)).map(|(k, (x, y))| {
+                let V::B(k, unc) = k else { panic!("select by {k:?}") };
+                let v = if *k { x.clone() } else { y.clone() };
+                match (v, unc) {
+                    (v, false) => v,
+                    // Either may be picked: uncertain by their difference.
+                    (V::F(v, e), true) => {
+                        let (V::F(p, pe), V::F(q, qe)) = (x, y) else { unreachable!() };
+                        V::F(v, e.max(*pe).max(*qe) + (*p as f64 - *q as f64).abs())
+                    }
+                    (V::I(v, _), true) => V::I(v, true),
+                    (V::U(v, _), true) => V::U(v, true),
+                    (v, true) => panic!("select of {v:?}"),
+                }
+            });
+            return Ok(V::Vec(picked.collect()));
+        }
         (V::Vec(c), "cross") => {
             let b = a[0].comps();
             let m2 = |i: usize, j: usize| -> R<F> {
@@ -184,6 +255,7 @@ pub(super) fn method(r: &V, m: &str, a: &[V]) -> R<V> {
         "wrapping_add" => two(&mut |x, y| scalar_bin(BinOp::Add, x, y)),
         "wrapping_sub" => two(&mut |x, y| scalar_bin(BinOp::Sub, x, y)),
         "wrapping_mul" => two(&mut |x, y| scalar_bin(BinOp::Mul, x, y)),
+        "div_euclid" | "rem_euclid" | "wrapping_div" | "saturating_div" => two(&mut |x, y| Ok(dividing(m, x, y))),
         "is_multiple_of" => {
             let (V::U(x, xu), V::U(y, yu)) = (r, &a[0]) else { panic!("is_multiple_of") };
             Ok(V::B(x.is_multiple_of(*y), *xu || *yu))
@@ -224,6 +296,33 @@ pub(super) fn method(r: &V, m: &str, a: &[V]) -> R<V> {
             fv(fin(r, s.1 + ulp(p.0 as f64)))
         }),
         _ => comp_wise(&mut |s| unary(s, m)),
+    }
+}
+
+/// The dividing methods as the GPU (and `rt_std::arith`) computes them: a
+/// zero divisor is read as one; `MIN / -1` wraps, `saturating_div`
+/// saturates.
+fn dividing(m: &str, x: &V, y: &V) -> V {
+    match (x, y) {
+        (V::I(x, xu), V::I(y, yu)) => {
+            let y = if *y == 0 { 1 } else { *y };
+            let r = match m {
+                "div_euclid" => x.wrapping_div_euclid(y),
+                "rem_euclid" => x.wrapping_rem_euclid(y),
+                "wrapping_div" => x.wrapping_div(y),
+                _ => x.saturating_div(y),
+            };
+            V::I(r, *xu || *yu)
+        }
+        (V::U(x, xu), V::U(y, yu)) => {
+            let y = if *y == 0 { 1 } else { *y };
+            let r = match m {
+                "div_euclid" | "wrapping_div" | "saturating_div" => x / y,
+                _ => x % y,
+            };
+            V::U(r, *xu || *yu)
+        }
+        _ => panic!("{m} of {x:?} and {y:?}"),
     }
 }
 

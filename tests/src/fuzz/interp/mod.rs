@@ -18,10 +18,12 @@
 //!   off, as in release builds; WGSL's integer arithmetic wraps);
 //! - shift amounts are taken **modulo 32** (Rust's release behaviour,
 //!   `wrapping_shl`; WGSL's rule for shifts);
-//! - integer division or remainder by zero and `i32::MIN / -1` panic in
-//!   Rust whatever the build: the generator never produces them (divisors
-//!   are built to be non-zero and not -1, see `generate`) and the
-//!   interpreter panics if one occurs, as a generator bug;
+//! - integer division or remainder by zero and `i32::MIN / -1` have the
+//!   meaning `rt_std::arith` gives them on every backend (`x / 0` is `x`,
+//!   `x % 0` is 0, `MIN / -1` wraps); the operators' divisors are still
+//!   mostly built non-zero (see `generate`), the dividing methods
+//!   (`div_euclid`, `rem_euclid`, `wrapping_div`, `saturating_div`) take
+//!   any divisor, a zero one read as one;
 //! - float-to-integer `as` saturates and truncates (Rust; the compiler
 //!   lowers it so). NaN never reaches a cast: see below.
 //!

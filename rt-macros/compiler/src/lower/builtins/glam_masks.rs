@@ -59,6 +59,11 @@ pub fn bool_method(n: u8, name: &str) -> Option<MethodSig> {
             let bits = ["1u", "2u", "4u", "8u"][..n as usize].join(", ");
             format!("dot(select(vec{n}<u32>(0u), vec{n}<u32>({bits}), {}), vec{n}<u32>(1u))", a[0])
         }),
+        // The index clamped to the last component, as indexing is (glam
+        // panics past it; the CPU copy clamps through `rt_std::arith::Gpu`).
+        "test" => sig(vec![Ty::Scalar(Scalar::Usize)], Ty::Scalar(Scalar::Bool), move |a| {
+            format!("{}[min(u32({}), {}u)]", a[0], a[1], n - 1)
+        }),
         _ => None,
     }
 }

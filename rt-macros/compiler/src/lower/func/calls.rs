@@ -16,6 +16,9 @@ impl FnLowerer<'_> {
         if let Some(sig) = self.user_method(&m.receiver, &name)? {
             return self.user_method_call(&sig, &m.receiver, &args, m.span());
         }
+        if let Some(v) = self.in_place_method(m, &name)? {
+            return Ok(v);
+        }
         let recv = self.expr(&m.receiver, None)?;
         let recv = self.deref(recv);
         self.method(recv, &name, &args, m.method.span(), m.span())

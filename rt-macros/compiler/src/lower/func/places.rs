@@ -22,6 +22,16 @@ impl FnLowerer<'_> {
                     None => Err(Error::new(p.span(), format!("cannot find variable `{name}`"))),
                 }
             }
+            Expr::MethodCall(m) if m.method == "col_mut" => match self.col_mut_place(m)? {
+                Some(p) => Ok(p),
+                None => Err(Error::new(m.span(), "cannot assign to this expression")),
+            },
+            Expr::Unary(u)
+                if matches!(u.op, UnOp::Deref(_))
+                    && matches!(strip_parens(&u.expr), Expr::MethodCall(m) if m.method == "col_mut") =>
+            {
+                self.place(&u.expr)
+            }
             Expr::Unary(u) if matches!(u.op, UnOp::Deref(_)) => {
                 let v = self.expr(&u.expr, None)?;
                 match v.ty {
@@ -92,6 +102,108 @@ impl FnLowerer<'_> {
                 }
             }
             other => Err(Error::new(other.span(), "cannot assign to this expression")),
+        }
+    }
+
+    /// glam's methods that change a matrix or a bool vector in place and
+    /// return nothing (`builtins::in_place_method`), `m.set_row(i, v)` and
+    /// `mask.set(i, b)`: assignments to the receiver's place, the index and
+    /// the value evaluated once, the index clamped to the last row or
+    /// component as indexing is (glam panics there; the CPU copy clamps
+    /// through `rt_std::arith::GpuMut`). `None` where the call is not one
+    /// of them; `col_mut`, a place, is lowered by [`Self::place`].
+    pub(super) fn in_place_method(&mut self, m: &syn::ExprMethodCall, name: &str) -> Result<Option<Val>> {
+        let Some(t) = self.in_place_receiver(&m.receiver, name)? else { return Ok(None) };
+        let Some((params, ret)) = builtins::in_place_method(&t, name) else { return Ok(None) };
+        let span = m.method.span();
+        if ret != Ty::Unit {
+            return Err(Error::new(
+                span,
+                format!("`{t}::{name}` gives a place to write: `*m.{name}(i) = v` (read a column with `m.col(i)`)"),
+            ));
+        }
+        if m.args.len() != params.len() {
+            return Err(Error::new(
+                span,
+                format!("`{t}::{name}` takes {} arguments, found {}", params.len(), m.args.len()),
+            ));
+        }
+        let n = match &t {
+            Ty::Mat(n) | Ty::Vec(n, _) => *n,
+            _ => unreachable!("in_place_method's receivers"),
+        };
+        let value_ty = params[1].clone();
+        let idx = self.int_index(&m.args[0])?;
+        let value = self.expr(&m.args[1], Some(&value_ty))?;
+        let value = self.deref(value);
+        let value = self.coerce(value, &value_ty, m.args[1].span())?;
+        let (i, v) = (self.fresh("row"), self.fresh("value"));
+        self.emit(format!("let {i} = min(u32({}), {}u);", idx.code, n - 1));
+        self.emit(format!("let {v} = {};", value.code));
+        let (ri, rv) = (format!("__rt_index_{i}"), format!("__rt_value_{v}"));
+        self.bind(&ri, Local { wgsl: i, ty: Ty::Scalar(Scalar::Usize), var: false });
+        self.bind(&rv, Local { wgsl: v.clone(), ty: value_ty, var: false });
+        let recv = &m.receiver;
+        let index = syn::Ident::new(&ri, span);
+        if name == "set" {
+            let left: Expr = syn::parse_quote_spanned!(span=> #recv[#index]);
+            self.assign(&left, None, Val::new(v, Ty::Scalar(Scalar::Bool)), span)?;
+        } else {
+            for (c, axis) in ["x_axis", "y_axis", "z_axis", "w_axis"].iter().take(n as usize).enumerate() {
+                let axis = syn::Ident::new(axis, span);
+                let left: Expr = syn::parse_quote_spanned!(span=> #recv.#axis[#index]);
+                let part = Val::new(format!("{v}.{}", ["x", "y", "z", "w"][c]), Ty::Scalar(Scalar::F32));
+                self.assign(&left, None, part, span)?;
+            }
+        }
+        Ok(Some(Val::new("", Ty::Unit)))
+    }
+
+    /// The receiver's type (through a `&mut` parameter) where some glam
+    /// type has an in-place method `name`.
+    fn in_place_receiver(&mut self, recv: &Expr, name: &str) -> Result<Option<Ty>> {
+        if !matches!(name, "set_row" | "set" | "col_mut") {
+            return Ok(None);
+        }
+        let Some(t) = self.peek_type(recv)? else { return Ok(None) };
+        Ok(Some(match self.resolved(&t) {
+            Ty::Ref(_, t) => self.resolved(&t),
+            t => t,
+        }))
+    }
+
+    /// `m.col_mut(i)` as a place: the column, `i` clamped to the last one.
+    fn col_mut_place(&mut self, m: &syn::ExprMethodCall) -> Result<Option<Place>> {
+        let Some(t @ Ty::Mat(n)) = self.in_place_receiver(&m.receiver, "col_mut")? else { return Ok(None) };
+        if m.method != "col_mut" {
+            return Ok(None);
+        }
+        if m.args.len() != 1 {
+            return Err(Error::new(
+                m.method.span(),
+                format!("`{t}::col_mut` takes 1 argument, found {}", m.args.len()),
+            ));
+        }
+        let base = match self.ref_base(&m.receiver) {
+            Some((code, ty)) => Place::Wgsl(Val::new(code, ty)),
+            None => self.place(&m.receiver)?,
+        };
+        let idx = self.int_index(&m.args[0])?;
+        let col = format!("min(u32({}), {}u)", idx.code, n - 1);
+        match base {
+            Place::Wgsl(v) => {
+                let effects = v.effects || idx.effects;
+                Ok(Some(Place::Wgsl(Val::new(format!("{}[{col}]", v.code), Ty::vec(n)).with_effects(effects))))
+            }
+            Place::Buffer { buf, kind, elem, index, path, effects, .. } => Ok(Some(Place::Buffer {
+                buf,
+                kind,
+                elem,
+                index,
+                path: format!("{path}[{col}]"),
+                ty: Ty::vec(n),
+                effects: effects || idx.effects,
+            })),
         }
     }
 
