@@ -66,7 +66,8 @@ fn the_fixed_seed_generates_tuples_enums_and_methods() {
 /// The run above also includes the forms added later in issue 19: bool
 /// vectors (`cmp*`, consumed by `any`/`all`/`bitmask`/`select`), the
 /// dividing methods with any divisor (method and path forms), integer
-/// vectors' `cross`/`manhattan_distance`, and NaN operands of comparisons.
+/// vectors' `cross`/`manhattan_distance`, NaN operands of comparisons and
+/// the vectors' `from_array`.
 #[test]
 fn the_fixed_seed_generates_bool_vectors_dividing_methods_and_nan_operands() {
     let cfg = fuzz::Config::from_env(0x5eed, 300);
@@ -82,13 +83,21 @@ fn the_fixed_seed_generates_bool_vectors_dividing_methods_and_nan_operands() {
     let dividing_paths = count(&["::div_euclid(", "::rem_euclid(", "::wrapping_div(", "::saturating_div("]);
     let int_geometry = count(&[".manhattan_distance("]);
     let nan = count(&["f32::NAN"]);
+    let from_array = count(&["::from_array(["]);
     let what = format!(
         "of 300 programs, {masks} compare vectors into masks, {consumed} consume masks, {dividing} call dividing \
-         methods ({dividing_paths} as paths), {int_geometry} measure integer distances, {nan} compare with NaN"
+         methods ({dividing_paths} as paths), {int_geometry} measure integer distances, {nan} compare with NaN, \
+         {from_array} build vectors with `from_array`"
     );
     eprintln!("{what}");
     assert!(
-        masks >= 30 && consumed >= 30 && dividing >= 30 && dividing_paths >= 10 && int_geometry >= 10 && nan >= 10,
+        masks >= 30
+            && consumed >= 30
+            && dividing >= 30
+            && dividing_paths >= 10
+            && int_geometry >= 10
+            && nan >= 10
+            && from_array >= 30,
         "{what}"
     );
 }

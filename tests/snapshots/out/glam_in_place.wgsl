@@ -48,6 +48,8 @@ fn rtp_glam_in_place(v: vec4<f32>, k: u32, out: RtBuffer) {
     m[3][row] = value.w;
     var n: mat3x3<f32> = mat3x3<f32>();
     rtf_put_row(&n, (k + 1u), v.xyz);
+    m[min(u32(k), 3u)] += v;
+    n[min(u32(2u), 2u)].y = v.x;
     var mask: vec4<bool> = (v > vec4<f32>(0.0));
     let row_1 = min(u32(k), 3u);
     let value_1 = false;

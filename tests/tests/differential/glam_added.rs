@@ -230,3 +230,69 @@ differential! {
         }
     }
 }
+
+differential! {
+    /// glam's associated functions (`builtins/glam_assoc.rs`).
+    fn glam_assoc {
+        /// Without trigonometry: from arrays, rows, other matrices,
+        /// translations and scales (exact but for the products' rounding).
+        exact(a: Vec4, b: Vec4) -> [Vec4; 10] over pairs(&vec4s(6, 2.0, 81), &vec4s(4, 2.0, 82)), tol CHAINED => {
+            let arr = a.to_array();
+            let m2 = Mat2::from_cols_array(&arr) + Mat2::from_rows_array(&[b.w, b.z, b.y, b.x]);
+            let m2d = Mat2::from_cols_array_2d(&[[a.x, b.y], [a.z, b.w]]);
+            let m3 = Mat3::from_rows(a.truncate(), b.truncate(), a.wxy()) + Mat3::from_cols_array(&[a.x, a.y, a.z, a.w, b.x, b.y, b.z, b.w, 1.0]);
+            let m3b = Mat3::from_cols_array_2d(&[[a.x, a.y, a.z], [b.x, b.y, b.z], [a.w, b.w, 0.5]]) + Mat3::from_rows_array(&[b.x, b.y, b.z, b.w, a.x, a.y, a.z, a.w, 2.0]);
+            let m4 = Mat4::from_rows(a, b, a.wzyx(), b.yxwz()) + Mat4::from_cols_array_2d(&[[a.x, a.y, a.z, a.w], [b.x, b.y, b.z, b.w], [1.0, 2.0, 3.0, 4.0], [b.w, a.w, b.z, a.z]]);
+            let affine = Mat3::from_translation(a.xy()) * Mat3::from_scale(b.xy()) * Mat3::from_mat2(m2d);
+            let big = Mat4::from_translation(a.truncate()) * Mat4::from_scale(b.truncate()) * Mat4::from_mat3(m3);
+            let placed = Mat4::from_mat3_translation(m3b, b.truncate());
+            let back = Mat3::from_mat4(m4) + Mat3::from_cols(a.truncate(), b.truncate(), Vec3::ONE);
+            let small = Mat2::from_mat3(m3) + Mat2::from_rows(a.xy(), b.xy()) + Mat2::from_diagonal(a.zw());
+            [
+                m2.x_axis.extend(m2.y_axis.x).extend(m2.y_axis.y),
+                m3.x_axis.extend(m3.y_axis.y),
+                m3b.z_axis.extend(m3b.y_axis.x),
+                m4.x_axis + m4.w_axis,
+                m4.y_axis - m4.z_axis,
+                affine.z_axis.extend(affine.x_axis.x),
+                big.w_axis,
+                big.y_axis + placed.w_axis,
+                back.x_axis.extend(back.z_axis.y),
+                small.x_axis.extend(small.y_axis.x).extend(small.y_axis.y),
+            ]
+        }
+        /// With trigonometry (WGSL's `sin`/`cos`: 2^-11 absolute on
+        /// `[-pi, pi]`, through products of up to three matrices).
+        rotations(a: Vec4, t: f32) -> [Vec4; 8] over pairs(&vec4s(6, 1.0, 83), &[-3.0, -1.25, 0.0, 0.5, 2.75]), tol ulp_or_abs(16, 4e-3) => {
+            let axis = a.truncate().normalize_or(Vec3::Y);
+            let m3 = Mat3::from_axis_angle(axis, t);
+            let m4 = Mat4::from_axis_angle(axis, t);
+            let r3 = Mat3::from_rotation_x(t) * Mat3::from_rotation_y(t * 0.5) * Mat3::from_rotation_z(-t);
+            let r4 = Mat4::from_rotation_x(t) * Mat4::from_rotation_y(0.25) * Mat4::from_rotation_z(t);
+            let m2 = Mat2::from_angle(t) + Mat2::from_scale_angle(a.xy(), -t);
+            let s = Mat3::from_scale_angle_translation(a.zw(), t, a.xy()) * Mat3::from_angle(t * 0.5);
+            [
+                m3.x_axis.extend(m3.y_axis.x),
+                m3.z_axis.extend(m4.w_axis.w),
+                m4.x_axis + m4.z_axis,
+                r3.x_axis.extend(r3.y_axis.z),
+                r4.y_axis + r4.w_axis,
+                m2.x_axis.extend(m2.y_axis.x).extend(m2.y_axis.y),
+                s.z_axis.extend(s.x_axis.x),
+                Vec2::from_angle(t).extend(s.y_axis.y).extend(m3.z_axis.x),
+            ]
+        }
+        /// The vectors' and masks' `from_array`, `Vec3::from_homogeneous`.
+        vectors(a: Vec4, k: i32) -> [Vec4; 3] over pairs(&vec4s(6, 2.0, 84), &I32_EDGES), tol CHAINED => {
+            let v = Vec3::from_array([a.x, a.y, a.z]) + Vec3::from_homogeneous(a.with_w(a.w.abs() + 0.5));
+            let i = IVec2::from_array([k, k / 3]);
+            let u = UVec4::from_array([k as u32, 7, k as u32 >> 3, 1]);
+            let m = BVec3::from_array([k > 0, a.x > a.y, k % 2 == 0]);
+            [
+                v.extend(Vec4::from_array(a.to_array()).w),
+                vec4(i.x as f32, i.y as f32, (u.x >> 8) as f32, u.z as f32),
+                Vec2::from_array([a.w, a.z]).extend(m.bitmask() as f32).extend(IVec3::from_array([1, k, 2]).y as f32),
+            ]
+        }
+    }
+}

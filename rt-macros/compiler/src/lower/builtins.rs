@@ -5,10 +5,13 @@
 //! lowering spells Rust's definition out.
 
 mod glam_angles;
+mod glam_assoc;
 mod glam_ints;
 mod glam_masks;
 mod glam_more;
 mod int_division;
+
+pub use glam_assoc::assoc_fn;
 
 use super::value::{Val, f32_literal};
 use crate::types::{F32, Scalar, Ty, U32};

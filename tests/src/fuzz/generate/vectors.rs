@@ -76,9 +76,10 @@ impl Gen {
         match self.r.below(100) {
             0..=9 => {
                 let args: Vec<Expr> = (0..n).map(|_| self.expr(&F32, d1, true)).collect();
-                match self.r.below(3) {
+                match self.r.below(4) {
                     0 => Expr::Path(name, "new", args),
                     1 => Expr::Path(name, "splat", vec![self.expr(&F32, d1, true)]),
+                    2 => Expr::Path(name, "from_array", vec![Expr::ArrayLit(args)]),
                     _ => Expr::Free(vec_fn(n, Scalar::F32), args),
                 }
             }
@@ -252,9 +253,10 @@ impl Gen {
         match self.r.below(100) {
             0..=9 => {
                 let args: Vec<Expr> = (0..n).map(|_| self.expr(&Ty::S(s), d1, true)).collect();
-                match self.r.below(3) {
+                match self.r.below(4) {
                     0 => Expr::Path(name, "new", args),
                     1 => Expr::Path(name, "splat", vec![self.expr(&Ty::S(s), d1, true)]),
+                    2 => Expr::Path(name, "from_array", vec![Expr::ArrayLit(args)]),
                     _ => Expr::Free(vec_fn(n, s), args),
                 }
             }

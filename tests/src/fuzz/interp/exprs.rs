@@ -77,6 +77,10 @@ impl Interp<'_> {
                 let args = self.exprs(args)?;
                 match *f {
                     "new" => V::Vec(args),
+                    "from_array" => match &args[0] {
+                        V::Arr(items) => V::Vec(items.clone()),
+                        other => panic!("{t}::from_array of {other:?}"),
+                    },
                     "splat" => {
                         let Some(Ty::V(n, _)) = Ty::from_name(t) else { panic!("{t}::splat") };
                         V::Vec(vec![args[0].clone(); n as usize])

@@ -127,12 +127,26 @@ impl FnLowerer<'_> {
             };
             return Err(Error::new(name_span, format!("`{rt}::{name}` takes {want}, found {}", args.len())));
         }
-        let mut vals = vec![recv.clone()];
-        for (a, p) in args.iter().zip(&sig.params) {
+        self.builtin_call(&rt, name, sig, vec![recv], args)
+    }
+
+    /// A row of `builtins` applied: `vals` the operands already lowered
+    /// (a method's receiver, none for an associated function), then
+    /// `args` for the rest of `sig.params`.
+    fn builtin_call(
+        &mut self,
+        rt: &Ty,
+        name: &str,
+        sig: builtins::MethodSig,
+        mut vals: Vec<Val>,
+        args: &[&Expr],
+    ) -> Result<Val> {
+        let params = &sig.params[sig.params.len() - args.len()..];
+        for (&a, p) in args.iter().zip(params) {
             // glam takes some operands by reference: `m.mul_mat3(&n)`.
             let a = match a {
                 Expr::Reference(r) if r.mutability.is_none() => &*r.expr,
-                a => *a,
+                a => a,
             };
             let at = self.here();
             let v = self.expr(a, Some(p))?;
@@ -163,7 +177,8 @@ impl FnLowerer<'_> {
                 | "rotate"
         );
         if wraps
-            && (self.is_int(&rt) || matches!(rt, Ty::Vec(_, s) if s.is_int()))
+            && !vals.is_empty()
+            && (self.is_int(rt) || matches!(rt, Ty::Vec(_, s) if s.is_int()))
             && vals.iter().all(|v| self.is_const_code(&v.code))
         {
             vals[0] = self.at_run_time(vals[0].clone());
@@ -336,58 +351,17 @@ impl FnLowerer<'_> {
     }
 
     pub(super) fn constructor(&mut self, ty: &Ty, name: &str, args: &[&Expr], span: Span) -> Result<Option<Val>> {
-        let w = ty.wgsl();
+        if let Some(sig) = builtins::assoc_fn(ty, name) {
+            if args.len() != sig.params.len() {
+                let n = sig.params.len();
+                return Err(Error::new(
+                    span,
+                    format!("`{ty}::{name}` takes {n} argument{}, found {}", if n == 1 { "" } else { "s" }, args.len()),
+                ));
+            }
+            return self.builtin_call(ty, name, sig, Vec::new(), args).map(Some);
+        }
         match (ty, name) {
-            (Ty::Vec(n, s), "new") => {
-                let params = vec![Ty::Scalar(*s); *n as usize];
-                let a = self.args_typed(args, &params, span, &format!("{ty}::new"))?;
-                Ok(Some(
-                    Val::new(format!("{w}({})", codes(&a).join(", ")), ty.clone())
-                        .with_effects(any_effects(&a))
-                        .with_reads(any_reads(&a)),
-                ))
-            }
-            (Ty::Vec(_, s), "splat") => {
-                let a = self.args_typed(args, &[Ty::Scalar(*s)], span, &format!("{ty}::splat"))?;
-                Ok(Some(
-                    Val::new(format!("{w}({})", a[0].code), ty.clone())
-                        .with_effects(a[0].effects)
-                        .with_reads(a[0].reads),
-                ))
-            }
-            // glam's `select(mask, if_true, if_false)` is WGSL's
-            // `select(if_false, if_true, mask)`.
-            (Ty::Vec(n, s), "select") if *s != Scalar::Bool => {
-                let params = [Ty::Vec(*n, Scalar::Bool), ty.clone(), ty.clone()];
-                let a = self.args_typed(args, &params, span, &format!("{ty}::select"))?;
-                Ok(Some(
-                    Val::new(format!("select({}, {}, {})", a[2].code, a[1].code, a[0].code), ty.clone())
-                        .with_effects(any_effects(&a))
-                        .with_reads(any_reads(&a)),
-                ))
-            }
-            (Ty::Mat(n), "from_cols") => {
-                let params = vec![Ty::vec(*n); *n as usize];
-                let a = self.args_typed(args, &params, span, &format!("{ty}::from_cols"))?;
-                Ok(Some(
-                    Val::new(format!("{w}({})", codes(&a).join(", ")), ty.clone())
-                        .with_effects(any_effects(&a))
-                        .with_reads(any_reads(&a)),
-                ))
-            }
-            (Ty::Mat(n), "from_diagonal") => {
-                let a = self.args_typed(args, &[Ty::vec(*n)], span, &format!("{ty}::from_diagonal"))?;
-                let t = self.tmp();
-                self.emit_let(format!("let {t} = {};", a[0].code), &a[0]);
-                let cols: Vec<String> = (0..*n)
-                    .map(|i| {
-                        let comps: Vec<String> =
-                            (0..*n).map(|j| if i == j { format!("{t}[{i}]") } else { "0.0".into() }).collect();
-                        format!("vec{n}<f32>({})", comps.join(", "))
-                    })
-                    .collect();
-                Ok(Some(Val::new(format!("{w}({})", cols.join(", ")), ty.clone())))
-            }
             (Ty::Ray, "new") => {
                 let params = [Ty::vec(3), Ty::vec(3), U32, F32, F32];
                 let a = self.args_typed(args, &params, span, "Ray::new")?;
