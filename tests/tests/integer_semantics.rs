@@ -14,7 +14,7 @@ fn bump(x: &mut u32, by: u32) {
 }
 
 #[rt_program(ray_generation)]
-#[allow(clippy::too_many_arguments)]
+#[allow(clippy::too_many_arguments, clippy::cast_abs_to_unsigned)]
 pub fn edge_cases(
     #[var] mut out: RwBuffer<u32>,
     #[var] a: u32,
