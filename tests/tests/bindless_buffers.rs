@@ -347,3 +347,38 @@ fn ids_of_another_element_type_or_of_no_buffer_are_refused_naming_the_buffer_and
         "{e}"
     );
 }
+
+/// Launch index `i` writes element `i / 2` through entry `i % 2` of
+/// `targets` the value read at `i` through `grid`, a 2D buffer's id.
+#[rt_program(ray_generation)]
+pub fn write_through_ids(#[var] targets: Buffer<RwBindlessBuffer<u32>>, #[var] grid: BindlessBuffer<u32>) {
+    let i = launch_index().x;
+    targets[i % 2].store(i / 2, grid[i] + 1);
+}
+
+#[test]
+fn a_writable_id_of_an_input_buffer_writes_nothing_and_raises_on_every_target() {
+    for on in On::ALL.into_iter().filter(|on| on.available()) {
+        let mut ctx = on.context();
+        ctx.set_ray_type_count(0);
+        let out = ctx.create_buffer::<u32>(BufferType::Output, vec![0; 3]);
+        let input = ctx.create_buffer::<u32>(BufferType::Input, vec![5; 3]);
+        // 3 x 2, element (x, y) = x + 10 y, read row by row through the id.
+        let grid = ctx.create_buffer_2d::<u32>(BufferType::Input, 3, 2).unwrap();
+        ctx.write_buffer(grid, &[0u32, 1, 2, 10, 11, 12]).unwrap();
+        // The second names the input buffer: no host call gives such an id.
+        let targets = vec![ctx.rw_buffer_id::<u32>(out).unwrap(), RwBindlessBuffer::from_id(input.index() + 1)];
+        let targets = ctx.create_buffer(BufferType::Input, targets);
+        ctx.set_var(Scope::Context, "targets", targets).unwrap();
+        ctx.set_var(Scope::Context, "grid", ctx.buffer_id::<u32>(grid).unwrap()).unwrap();
+        let rg = ctx.create_program(&write_through_ids::PROGRAM);
+        ctx.set_ray_generation_program(0, rg).unwrap();
+        let report = ctx.launch_1d(0, 6).unwrap();
+        let mut exceptions: Vec<(u32, u32)> = report.exceptions.iter().map(|e| (e.launch_index.x, e.code)).collect();
+        exceptions.sort();
+        assert_eq!(ctx.read_buffer::<u32>(out).unwrap(), vec![1, 3, 12], "{}", on.name());
+        assert_eq!(ctx.read_buffer::<u32>(input).unwrap(), vec![5; 3], "{}", on.name());
+        let raised: Vec<(u32, u32)> = [1, 3, 5].into_iter().map(|i| (i, EXCEPTION_BUFFER_ID_INVALID)).collect();
+        assert_eq!(exceptions, raised, "{}", on.name());
+    }
+}
