@@ -25,7 +25,9 @@
 //! [`EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS`](crate::EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS)
 //! as through a bound buffer. Ids are the context's buffer handles plus
 //! one, so zero is none; a two-dimensional buffer reads as its
-//! `width * height` elements row by row.
+//! `width * height` elements row by row. A bounding-box program runs at
+//! build time, outside any launch, and reads no buffer through an id (the
+//! compiler refuses it).
 
 use core::fmt;
 use core::marker::PhantomData;
@@ -132,7 +134,7 @@ macro_rules! id_common {
 /// through it as through a [`Buffer<T>`](crate::Buffer); see the [module
 /// docs](self).
 ///
-/// Program kinds: all.
+/// Program kinds: all but bounding_box.
 #[doc(alias = "rtBufferId")]
 #[repr(transparent)]
 pub struct BindlessBuffer<T> {
@@ -155,14 +157,14 @@ impl<T: RtData> BindlessBuffer<T> {
 
     /// Number of elements; 0 through an invalid id (after the exception).
     ///
-    /// Program kinds: all.
+    /// Program kinds: all but bounding_box.
     pub fn len(self) -> u32 {
         self.buffer().map_or(0, |b| b.len())
     }
 
     /// Whether the buffer has no elements (true through an invalid id).
     ///
-    /// Program kinds: all.
+    /// Program kinds: all but bounding_box.
     pub fn is_empty(self) -> bool {
         self.len() == 0
     }
@@ -173,7 +175,7 @@ impl<T: RtData> BindlessBuffer<T> {
     /// [`EXCEPTION_BUFFER_ID_INVALID`](crate::EXCEPTION_BUFFER_ID_INVALID);
     /// either way returns all-zero words.
     ///
-    /// Program kinds: all.
+    /// Program kinds: all but bounding_box.
     pub fn load(self, i: u32) -> T {
         self.buffer().map_or_else(zeroed, |b| b.load(i))
     }
@@ -184,7 +186,7 @@ impl<T: RtData + Send + Sync> Index<u32> for BindlessBuffer<T> {
 
     /// `ids[i]`: as [`load`](BindlessBuffer::load).
     ///
-    /// Program kinds: all.
+    /// Program kinds: all but bounding_box.
     fn index(&self, i: u32) -> &T {
         match self.buffer() {
             Some(b) => b.element_ref(i),
@@ -198,7 +200,7 @@ impl<T: RtData + Send + Sync> Index<u32> for BindlessBuffer<T> {
 /// it as through an [`RwBuffer<T>`](crate::RwBuffer); see the [module
 /// docs](self).
 ///
-/// Program kinds: all.
+/// Program kinds: all but bounding_box.
 #[doc(alias = "rtBufferId")]
 #[repr(transparent)]
 pub struct RwBindlessBuffer<T> {
@@ -221,21 +223,21 @@ impl<T: RtData> RwBindlessBuffer<T> {
 
     /// Number of elements; 0 through an invalid id (after the exception).
     ///
-    /// Program kinds: all.
+    /// Program kinds: all but bounding_box.
     pub fn len(self) -> u32 {
         self.buffer().map_or(0, |b| b.len())
     }
 
     /// Whether the buffer has no elements (true through an invalid id).
     ///
-    /// Program kinds: all.
+    /// Program kinds: all but bounding_box.
     pub fn is_empty(self) -> bool {
         self.len() == 0
     }
 
     /// The element at `i`, as [`BindlessBuffer::load`].
     ///
-    /// Program kinds: all.
+    /// Program kinds: all but bounding_box.
     pub fn load(self, i: u32) -> T {
         self.buffer().map_or_else(zeroed, |b| b.load(i))
     }
@@ -246,7 +248,7 @@ impl<T: RtData> RwBindlessBuffer<T> {
     /// [`EXCEPTION_BUFFER_ID_INVALID`](crate::EXCEPTION_BUFFER_ID_INVALID);
     /// either way writes nothing.
     ///
-    /// Program kinds: all.
+    /// Program kinds: all but bounding_box.
     pub fn store(self, i: u32, v: T) {
         if let Some(b) = self.buffer() {
             b.store(i, v)
@@ -255,7 +257,7 @@ impl<T: RtData> RwBindlessBuffer<T> {
 
     /// The same buffer, read-only (an id of the same buffer).
     ///
-    /// Program kinds: all.
+    /// Program kinds: all but bounding_box.
     pub const fn read_only(self) -> BindlessBuffer<T> {
         BindlessBuffer::from_id(self.id)
     }
@@ -267,7 +269,7 @@ impl<T: RtData + Send + Sync> Index<u32> for RwBindlessBuffer<T> {
     /// `ids[i]`: as [`load`](RwBindlessBuffer::load). Writes go through
     /// [`store`](RwBindlessBuffer::store).
     ///
-    /// Program kinds: all.
+    /// Program kinds: all but bounding_box.
     fn index(&self, i: u32) -> &T {
         match self.buffer() {
             Some(b) => b.element_ref(i),

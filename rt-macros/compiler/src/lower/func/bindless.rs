@@ -23,6 +23,9 @@ impl FnLowerer<'_> {
         span: Span,
     ) -> Result<Val> {
         let ty = Ty::BufferId(writable, Box::new(elem.clone()));
+        if name != "id" && name != "read_only" {
+            self.check_bindless_caller(name_span)?;
+        }
         let want_args = |n: usize| -> Result<()> {
             if args.len() != n {
                 Err(Error::new(name_span, format!("`{ty}::{name}` takes {n} argument(s), found {}", args.len())))
@@ -81,8 +84,22 @@ impl FnLowerer<'_> {
         }
     }
 
+    /// A bounding-box program runs at build time, outside any launch and
+    /// its buffer table: it reads no buffer through an id.
+    fn check_bindless_caller(&self, span: Span) -> Result<()> {
+        if self.kind() == Some(Kind::BoundingBox) {
+            return Err(Error::new(
+                span,
+                "a bounding_box program cannot read buffers through bindless ids: it runs at build time, \
+                 outside any launch; take the buffer as a `Buffer<T>` variable",
+            ));
+        }
+        Ok(())
+    }
+
     /// `ids.load(i)` and `ids[i]`.
     pub(super) fn bindless_load(&mut self, recv: Val, writable: bool, elem: &Ty, index: &Expr) -> Result<Val> {
+        self.check_bindless_caller(index.span())?;
         let idx = self.buffer_index(BufferKind { dims: 1, writable }, index)?;
         let f = self.m.accessors.borrow_mut().bindless_load(writable, elem);
         let effects = recv.effects || idx.effects;
