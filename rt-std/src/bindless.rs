@@ -277,3 +277,78 @@ impl<T: RtData + Send + Sync> Index<u32> for RwBindlessBuffer<T> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::cpu::{AnyAttributes, ExecutionContext, Tracer, with_context, with_tracer};
+    use crate::{EXCEPTION_BUFFER_ID_INVALID, EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS, Object, Ray};
+    use std::any::Any;
+
+    /// Id 1 names `read` (and `write`, if any): as the CPU backend's lane.
+    struct OneBuffer {
+        read: Box<dyn Any + Send + Sync>,
+        write: Option<Box<dyn Any + Send + Sync>>,
+    }
+
+    impl Tracer for OneBuffer {
+        fn trace(&self, _: Object, _: &Ray, _: &mut dyn Any, _: u32, _: u32) {}
+        fn potential_intersection(&self, _: f32) -> bool {
+            false
+        }
+        fn report_intersection(&self, _: u32, _: Option<&dyn AnyAttributes>) -> bool {
+            false
+        }
+        fn print(&self, _: &str) {}
+        fn buffer(&self, id: u32, writable: bool) -> Option<&(dyn Any + Send + Sync)> {
+            match (id, writable) {
+                (1, false) => Some(&*self.read),
+                (1, true) => self.write.as_deref(),
+                _ => None,
+            }
+        }
+    }
+
+    #[test]
+    fn reads_and_writes_go_through_the_tracers_handles() {
+        // Three elements and the sink.
+        let mut storage = vec![4u32, 5, 6, 99];
+        let ptr = storage.as_mut_ptr();
+        // SAFETY: four elements, the last the sink; they outlive the tracer.
+        let tracer = unsafe {
+            OneBuffer {
+                read: Box::new(Buffer::from_raw_parts(ptr.cast_const(), 3)),
+                write: Some(Box::new(RwBuffer::from_raw_parts(ptr, 3))),
+            }
+        };
+        let (got, ctx) = with_tracer(ExecutionContext::default(), &tracer, || {
+            let b = BindlessBuffer::<u32>::from_id(1);
+            let w = RwBindlessBuffer::<u32>::from_id(1);
+            w.store(0, 40);
+            (b.len(), b.load(0), b[2], w.read_only() == b)
+        });
+        assert_eq!(got, (3, 40, 6, true));
+        assert_eq!(ctx.pending_exception, None);
+        let (got, ctx) =
+            with_tracer(ExecutionContext::default(), &tracer, || BindlessBuffer::<u32>::from_id(1).load(3));
+        assert_eq!((got, ctx.pending_exception), (0, Some(EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS)));
+        // Another element type, another id, none: invalid.
+        for read in [
+            || BindlessBuffer::<f32>::from_id(1).load(0).to_bits(),
+            || BindlessBuffer::<u32>::from_id(2)[0],
+            || BindlessBuffer::<u32>::NONE.len(),
+        ] {
+            let (got, ctx) = with_tracer(ExecutionContext::default(), &tracer, read);
+            assert_eq!((got, ctx.pending_exception), (0, Some(EXCEPTION_BUFFER_ID_INVALID)));
+        }
+        // Without a tracer (no launch), every id is invalid.
+        let (got, ctx) = with_context(ExecutionContext::default(), || BindlessBuffer::<u32>::from_id(1).load(0));
+        assert_eq!((got, ctx.pending_exception), (0, Some(EXCEPTION_BUFFER_ID_INVALID)));
+        // A writable id of a buffer programs may not write: the store is dropped.
+        let read_only = OneBuffer { read: tracer.read, write: None };
+        let ((), ctx) =
+            with_tracer(ExecutionContext::default(), &read_only, || RwBindlessBuffer::<u32>::from_id(1).store(1, 7));
+        assert_eq!(ctx.pending_exception, Some(EXCEPTION_BUFFER_ID_INVALID));
+        assert_eq!(storage, vec![40, 5, 6, 99]);
+    }
+}
