@@ -382,3 +382,41 @@ fn a_writable_id_of_an_input_buffer_writes_nothing_and_raises_on_every_target() 
         assert_eq!(exceptions, raised, "{}", on.name());
     }
 }
+
+/// A callable reading through the id it is given.
+#[rt_program(callable)]
+pub fn pick(data: BindlessBuffer<f32>, i: u32) -> f32 {
+    data[i] * 10.0 + data.len() as f32
+}
+
+#[rt_program(ray_generation)]
+pub fn call_with_ids(
+    #[var] f: Callable<fn(BindlessBuffer<f32>, u32) -> f32>,
+    #[var] data: BindlessBuffer<f32>,
+    #[var] mut out: RwBuffer<f32>,
+) {
+    let i = launch_index().x;
+    out[i] = f.call(data, i);
+}
+
+#[test]
+fn an_id_passed_to_a_callable_reads_the_same_on_every_target() {
+    for on in On::ALL.into_iter().filter(|on| on.available()) {
+        let mut ctx = on.context();
+        ctx.set_ray_type_count(0);
+        let data = ctx.create_buffer::<f32>(BufferType::Input, vec![0.5, 1.5]);
+        let out = ctx.create_buffer::<f32>(BufferType::Output, vec![-1.0; 3]);
+        let p = ctx.create_program(&pick::PROGRAM);
+        let f = ctx.callable_id::<fn(BindlessBuffer<f32>, u32) -> f32>(p).unwrap();
+        ctx.set_var(Scope::Context, "f", f).unwrap();
+        ctx.set_var(Scope::Context, "data", ctx.buffer_id::<f32>(data).unwrap()).unwrap();
+        ctx.set_var(Scope::Context, "out", out).unwrap();
+        let rg = ctx.create_program(&call_with_ids::PROGRAM);
+        ctx.set_ray_generation_program(0, rg).unwrap();
+        let report = ctx.launch_1d(0, 3).unwrap();
+        let exceptions: Vec<(u32, u32)> = report.exceptions.iter().map(|e| (e.launch_index.x, e.code)).collect();
+        // Index 2 is past the end: zero, and the length.
+        assert_eq!(ctx.read_buffer::<f32>(out).unwrap(), vec![7.0, 17.0, 2.0], "{}", on.name());
+        assert_eq!(exceptions, vec![(2, EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS)], "{}", on.name());
+    }
+}
