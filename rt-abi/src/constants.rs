@@ -34,6 +34,11 @@ pub const EXCEPTION_INTEGER_DIVIDE_BY_ZERO: u32 = 0x3F2;
 /// of the call's signature (zero, a stale id, or a callable of another
 /// signature): the call returns the zero value of its result.
 pub const EXCEPTION_PROGRAM_ID_INVALID: u32 = 0x3EE;
+/// A buffer read or written through a bindless buffer id that names no
+/// buffer of the launch (zero, an id the context did not give), a buffer of
+/// another element type, or, for a writable id, a buffer programs may not
+/// write: a load returns zero, a store is dropped.
+pub const EXCEPTION_BUFFER_ID_INVALID: u32 = 0x3EA;
 /// The first code free for programs' own `rt_throw` codes.
 pub const EXCEPTION_USER: u32 = 0x400;
 
@@ -48,12 +53,13 @@ pub const fn exception_kind_bit(code: u32) -> u32 {
         EXCEPTION_INTEGER_OVERFLOW => 8,
         EXCEPTION_INTEGER_DIVIDE_BY_ZERO => 16,
         EXCEPTION_PROGRAM_ID_INVALID => 64,
+        EXCEPTION_BUFFER_ID_INVALID => 128,
         _ => 32,
     }
 }
 
 /// Every exception kind enabled.
-pub const ALL_EXCEPTION_KINDS: u32 = 127;
+pub const ALL_EXCEPTION_KINDS: u32 = 255;
 
 /// Every constant above that programs may name, by its rt-std name.
 pub const CONSTANTS: &[(&str, u32)] = &[
@@ -70,6 +76,7 @@ pub const CONSTANTS: &[(&str, u32)] = &[
     ("EXCEPTION_INTEGER_OVERFLOW", EXCEPTION_INTEGER_OVERFLOW),
     ("EXCEPTION_INTEGER_DIVIDE_BY_ZERO", EXCEPTION_INTEGER_DIVIDE_BY_ZERO),
     ("EXCEPTION_PROGRAM_ID_INVALID", EXCEPTION_PROGRAM_ID_INVALID),
+    ("EXCEPTION_BUFFER_ID_INVALID", EXCEPTION_BUFFER_ID_INVALID),
     ("EXCEPTION_USER", EXCEPTION_USER),
 ];
 

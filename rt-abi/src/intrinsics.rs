@@ -243,6 +243,11 @@ pub const INTRINSICS: &[Intrinsic] = &[
 pub const RUNTIME_FUNCTIONS: &[WgslFn] = &[
     WgslFn { name: "rt_buf_check", params: &[("b", Buffer), ("i", U32)], ret: Bool },
     WgslFn { name: "rt_buf_check2", params: &[("b", Buffer), ("i", UVec2)], ret: Bool },
+    // Bindless ids (`BindlessBuffer<T>`): whether `id` names a buffer of
+    // element tag `tag` (and writable, if asked), raising the invalid-id
+    // exception if not; the buffer of an id that passed.
+    WgslFn { name: "rt_bufid_ok", params: &[("id", U32), ("tag", U32), ("writable", Bool)], ret: Bool },
+    WgslFn { name: "rt_bufid", params: &[("id", U32)], ret: Buffer },
     WgslFn { name: "rt_tex_sample", params: &[("s", Sampler), ("uv", Vec2)], ret: Vec4 },
     WgslFn { name: "rt_tex_fetch", params: &[("s", Sampler), ("texel", UVec2)], ret: Vec4 },
     WgslFn { name: "rt_printf_begin", params: &[("format", U32), ("words", U32)], ret: Bool },

@@ -35,6 +35,8 @@ pub struct LaunchUniform {
     /// a disabled kind's check still guards the operation (an index out of
     /// bounds still reads nothing), but raises nothing.
     pub exceptions: u32,
+    /// The heap word of the bindless buffer table ([`BufferTable`]).
+    pub buffer_table: u32,
 }
 
 impl LaunchUniform {
@@ -51,8 +53,7 @@ impl LaunchUniform {
         Field { name: "print_enabled", wgsl: "u32", word: 9 },
         Field { name: "print_filter", wgsl: "vec2<u32>", word: 10 },
         Field { name: "exceptions", wgsl: "u32", word: 12 },
-        // Keeps the struct a whole number of its 8-byte alignment.
-        Field { name: "reserved", wgsl: "u32", word: 13 },
+        Field { name: "buffer_table", wgsl: "u32", word: 13 },
     ];
 
     /// The words the uniform buffer holds.
@@ -62,13 +63,93 @@ impl LaunchUniform {
         let [rc, rv] = self.ray_generation;
         let [ec, ev] = self.exception;
         let [fx, fy] = self.print_filter;
-        [dx, dy, ox, oy, rc, rv, ec, ev, self.log_capacity, self.print_enabled, fx, fy, self.exceptions, 0]
+        [
+            dx,
+            dy,
+            ox,
+            oy,
+            rc,
+            rv,
+            ec,
+            ev,
+            self.log_capacity,
+            self.print_enabled,
+            fx,
+            fy,
+            self.exceptions,
+            self.buffer_table,
+        ]
     }
 
     /// The WGSL declaration, `struct RtLaunch { ... }`.
     pub fn wgsl() -> String {
         record_wgsl("RtLaunch", Self::FIELDS)
     }
+}
+
+/// The bindless buffer table in the heap, at the launch uniform's
+/// `buffer_table` word: the number of buffers, then one entry of
+/// [`WORDS`](Self::WORDS) per buffer, the entry of bindless id `id`
+/// (`rt_std::BindlessBuffer`; the context's buffer index plus one, zero for
+/// none) at `buffer_table + 1 + (id - 1) * WORDS`. The megakernel's
+/// `rt_bufid_ok` checks an id against it, `rt_bufid` reads the buffer.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct BufferTable {
+    /// The heap word of the buffer's first element.
+    pub offset: u32,
+    /// Its elements (`width * height` for a 2D buffer).
+    pub len: u32,
+    /// [`layout_tag`] of its element type's name.
+    pub tag: u32,
+    /// Whether programs may write it (1) or not (0).
+    pub writable: u32,
+}
+
+impl BufferTable {
+    /// An entry's size in 32-bit words.
+    pub const WORDS: u32 = 4;
+    pub const OFFSET: u32 = 0;
+    pub const LEN: u32 = 1;
+    pub const TAG: u32 = 2;
+    pub const WRITABLE: u32 = 3;
+
+    /// The entry's words.
+    pub fn words(&self) -> [u32; Self::WORDS as usize] {
+        let mut w = [0u32; Self::WORDS as usize];
+        w[Self::OFFSET as usize] = self.offset;
+        w[Self::LEN as usize] = self.len;
+        w[Self::TAG as usize] = self.tag;
+        w[Self::WRITABLE as usize] = self.writable;
+        w
+    }
+
+    /// The WGSL constants the megakernel reads an entry by.
+    pub fn wgsl_constants() -> String {
+        u32_constants(&[
+            ("RT_BUFID_WORDS", Self::WORDS),
+            ("RT_BUFID_OFFSET", Self::OFFSET),
+            ("RT_BUFID_LEN", Self::LEN),
+            ("RT_BUFID_TAG", Self::TAG),
+            ("RT_BUFID_WRITABLE", Self::WRITABLE),
+        ])
+    }
+}
+
+/// The tag of an element type, by its Rust name as its layout spells it
+/// (`Vec3`, `Radiance`, `BindlessBuffer`): 32-bit FNV-1a. The compiler
+/// writes the tag of a bindless id's element type into its accessors and
+/// the runtime the tag of each buffer's into the [`BufferTable`], so that
+/// an id read as a buffer of another element type is refused.
+pub const fn layout_tag(name: &str) -> u32 {
+    let bytes = name.as_bytes();
+    let mut h: u32 = 0x811c_9dc5;
+    let mut i = 0;
+    while i < bytes.len() {
+        h ^= bytes[i] as u32;
+        h = h.wrapping_mul(0x0100_0193);
+        i += 1;
+    }
+    h
 }
 
 /// One instance of the two-level scene (a geometry group, or a chain of
@@ -223,9 +304,10 @@ mod tests {
             print_enabled: 10,
             print_filter: [11, 12],
             exceptions: 13,
+            buffer_table: 14,
         };
         let w = u.words();
-        let first = [1, 3, 5, 7, 9, 10, 11, 13, 0];
+        let first = [1, 3, 5, 7, 9, 10, 11, 13, 14];
         for (f, v) in LaunchUniform::FIELDS.iter().zip(first) {
             assert_eq!(w[f.word as usize], v, "`{}`", f.name);
         }

@@ -123,6 +123,7 @@ pub fn constants() -> String {
         ("RT_EXC_BUFFER_INDEX", constants::EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS),
         ("RT_EXC_INVALID_RAY", constants::EXCEPTION_INVALID_RAY),
         ("RT_EXC_PROGRAM_ID", constants::EXCEPTION_PROGRAM_ID_INVALID),
+        ("RT_EXC_BUFFER_ID", constants::EXCEPTION_BUFFER_ID_INVALID),
     ]);
     for (name, value) in constants::CONSTANTS.iter().filter(|(n, _)| n.starts_with("RAY_FLAG_")) {
         s.push_str(&u32_constants(&[(&format!("RT_{name}"), *value)]));

@@ -65,6 +65,9 @@ pub enum ExceptionKind {
     /// A callable program called through an id that names none of its
     /// signature (OptiX `RT_EXCEPTION_PROGRAM_ID_INVALID`).
     ProgramIdInvalid,
+    /// A buffer read or written through a bindless id that names no buffer
+    /// of its element type (OptiX `RT_EXCEPTION_BUFFER_ID_INVALID`).
+    BufferIdInvalid,
     /// `rt_throw`'s codes.
     User,
     /// Every kind.
@@ -81,6 +84,7 @@ impl ExceptionKind {
             ExceptionKind::IntegerOverflow => exception_kind_bit(EXCEPTION_INTEGER_OVERFLOW),
             ExceptionKind::IntegerDivideByZero => exception_kind_bit(EXCEPTION_INTEGER_DIVIDE_BY_ZERO),
             ExceptionKind::ProgramIdInvalid => exception_kind_bit(EXCEPTION_PROGRAM_ID_INVALID),
+            ExceptionKind::BufferIdInvalid => exception_kind_bit(EXCEPTION_BUFFER_ID_INVALID),
             ExceptionKind::User => exception_kind_bit(EXCEPTION_USER),
             ExceptionKind::All => ALL_EXCEPTION_KINDS,
         }
@@ -372,6 +376,54 @@ impl Context {
             });
         }
         Ok(rt_std::Callable::from_id(p.callable_id()))
+    }
+
+    /// The bindless id of buffer `b` (OptiX `rtBufferGetId`): a
+    /// [`BindlessBuffer<T>`](rt_std::BindlessBuffer) programs read the
+    /// buffer through, set as a variable or stored in a buffer, payload or
+    /// struct. Errors if the buffer's elements are not `T`, naming the
+    /// buffer and both types. A two-dimensional buffer reads as its
+    /// `width * height` elements, row by row.
+    #[doc(alias = "rtBufferGetId")]
+    pub fn buffer_id<T: RtData>(&self, b: BufferId) -> Result<rt_std::BindlessBuffer<T>> {
+        self.check_bindless::<T>(b, false)?;
+        Ok(rt_std::BindlessBuffer::from_id(b.bindless_id()))
+    }
+
+    /// The writable bindless id of buffer `b`, an
+    /// [`RwBindlessBuffer<T>`](rt_std::RwBindlessBuffer): as
+    /// [`buffer_id`](Self::buffer_id), and the buffer must be one programs
+    /// may write (`Output` or `InputOutput`).
+    #[doc(alias = "rtBufferGetId")]
+    pub fn rw_buffer_id<T: RtData>(&self, b: BufferId) -> Result<rt_std::RwBindlessBuffer<T>> {
+        self.check_bindless::<T>(b, true)?;
+        Ok(rt_std::RwBindlessBuffer::from_id(b.bindless_id()))
+    }
+
+    fn check_bindless<T: RtData>(&self, b: BufferId, writable: bool) -> Result<()> {
+        let rec = self.scene.buffers.get(b.index() as usize).ok_or_else(|| RtError::InvalidHandle(format!("{b:?}")))?;
+        let held = rec.storage.layout().rust;
+        if held != T::LAYOUT.rust {
+            return Err(RtError::BadBuffer {
+                buffer: b.index(),
+                problem: format!(
+                    "asked for a bindless id of `{}` elements, but the buffer holds `{held}` ({})",
+                    T::LAYOUT.rust,
+                    rec.type_name()
+                ),
+            });
+        }
+        if writable && !rec.ty.writable_by_programs() {
+            return Err(RtError::BadBuffer {
+                buffer: b.index(),
+                problem: format!(
+                    "asked for a writable bindless id, but programs may not write an {:?} buffer ({}); ask `buffer_id` for a read-only one",
+                    rec.ty,
+                    rec.type_name()
+                ),
+            });
+        }
+        Ok(())
     }
 
     fn expect_kind(&self, p: ProgramId, expected: ProgramKind, slot: String) -> Result<()> {

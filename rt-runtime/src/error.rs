@@ -31,6 +31,17 @@ pub enum RtError {
         found: String,
     },
     #[error(
+        "variable `{variable}` of program `{program}` ({location}) is declared `{declared}`, but the {scope} scope sets it to {found}"
+    )]
+    BindlessVariable {
+        program: &'static str,
+        location: String,
+        variable: String,
+        declared: String,
+        scope: String,
+        found: String,
+    },
+    #[error(
         "variable `{variable}` of {kind:?} program `{program}` ({location}) is set in no scope (searched, innermost first: {searched})"
     )]
     VariableNotFound { program: &'static str, location: String, kind: ProgramKind, variable: String, searched: String },

@@ -59,6 +59,20 @@ impl ProgramId {
     }
 }
 
+/// Bindless buffer ids (`rt_std::BindlessBuffer`) are buffer handles plus
+/// one, so that zero is `BindlessBuffer::NONE`, the id of no buffer.
+impl BufferId {
+    /// The id programs read this buffer through.
+    pub(crate) fn bindless_id(self) -> u32 {
+        self.0 + 1
+    }
+
+    /// The buffer bindless id `id` names, if any (zero names none).
+    pub(crate) fn from_bindless_id(id: u32) -> Option<BufferId> {
+        id.checked_sub(1).map(BufferId)
+    }
+}
+
 impl NodeId {
     /// The handle programs receive for this node.
     pub fn object(self) -> rt_std::Object {

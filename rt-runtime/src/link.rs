@@ -14,6 +14,7 @@ use crate::error::{Result, RtError};
 use crate::scene::{GeometryKind, NodeId, NodeKind, ProgramId};
 use crate::scene::{Scene, Scope};
 use crate::vars::{ScopeKind, VarValue, lookup_order};
+use rt_std::bindless::{BINDLESS_LAYOUT, RW_BINDLESS_LAYOUT};
 use rt_std::callable::CALLABLE_LAYOUT;
 use rt_std::program::{ProgramDescriptor, TypeLayout, VariableKind};
 use std::any::Any;
@@ -117,6 +118,9 @@ pub fn resolve_values(scene: &Scene, p: ProgramId, record: Record) -> Result<Vec
                 let ok = layout_compatible(layout.rust, v.ty.rust);
                 if ok && layout.rust == CALLABLE_LAYOUT.rust {
                     check_callable_id(scene, desc, v, &scope_name(scope), words[0])?;
+                }
+                if ok && (layout.rust == BINDLESS_LAYOUT.rust || layout.rust == RW_BINDLESS_LAYOUT.rust) {
+                    check_bindless_id(scene, desc, v, &scope_name(scope), words[0])?;
                 }
                 ok
             }
@@ -308,9 +312,54 @@ pub fn bind_error(call: &Call, e: rt_std::cpu::VariableMismatch) -> RtError {
 /// Whether a value of Rust type `held` (a layout's name) may be read as the
 /// declared type `declared`: the same type, or an id of any callable
 /// signature for a `Callable<F>` (its layout does not spell `F`; the id's
-/// program is checked against `F` by `check_callable_id`).
+/// program is checked against `F` by `check_callable_id`), a bindless id
+/// of any element type for a `BindlessBuffer<T>` (the id's buffer is
+/// checked against `T` by `check_bindless_id`, and at each access).
 fn layout_compatible(held: &str, declared: &str) -> bool {
-    held == declared || (held == CALLABLE_LAYOUT.rust && declared.starts_with("Callable<"))
+    let generic = |layout: &TypeLayout| {
+        held == layout.rust && declared.strip_prefix(layout.rust).is_some_and(|rest| rest.starts_with('<'))
+    };
+    held == declared || [CALLABLE_LAYOUT, BINDLESS_LAYOUT, RW_BINDLESS_LAYOUT].iter().any(generic)
+}
+
+/// A `BindlessBuffer<T>` (`RwBindlessBuffer<T>`) variable's id against the
+/// buffer it names: zero (none) or a buffer of elements `T` (one programs
+/// may write, for a writable id).
+fn check_bindless_id(
+    scene: &Scene,
+    desc: &'static ProgramDescriptor,
+    v: &rt_std::program::VariableDescriptor,
+    scope: &str,
+    id: u32,
+) -> Result<()> {
+    let Some(named) = crate::handles::BufferId::from_bindless_id(id) else {
+        return Ok(());
+    };
+    let writable = v.ty.rust.starts_with(RW_BINDLESS_LAYOUT.rust);
+    let element = v.ty.rust.split_once('<').and_then(|(_, e)| e.strip_suffix('>')).unwrap_or(v.ty.rust);
+    let error = |found: String| RtError::BindlessVariable {
+        program: desc.name,
+        location: desc.location(),
+        variable: v.name.to_string(),
+        declared: v.ty.rust.to_string(),
+        scope: scope.to_string(),
+        found,
+    };
+    let Some(rec) = scene.buffers.get(named.index() as usize) else {
+        return Err(error(format!("id {id}, which names no buffer of this context")));
+    };
+    let held = rec.storage.layout().rust;
+    if held != element {
+        return Err(error(format!("the id of buffer {} of `{held}` elements", named.index())));
+    }
+    if writable && !rec.ty.writable_by_programs() {
+        return Err(error(format!(
+            "the id of buffer {}, an {:?} buffer programs may not write (use a `BindlessBuffer<{element}>`)",
+            named.index(),
+            rec.ty
+        )));
+    }
+    Ok(())
 }
 
 /// A `Callable<F>` variable's id against the program it names: zero (none)

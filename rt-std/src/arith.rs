@@ -740,6 +740,21 @@ buffer_index!(RwBuffer, u32, mut);
 buffer_index!(Buffer2d, UVec2);
 buffer_index!(RwBuffer2d, UVec2, mut);
 
+macro_rules! bindless_index {
+    ($b:ident) => {
+        impl<T: crate::RtData + Send + Sync> RtIndex<u32> for crate::bindless::$b<T> {
+            type Output = T;
+            #[track_caller]
+            #[inline(always)]
+            fn at(&self, i: u32) -> &T {
+                &self[i]
+            }
+        }
+    };
+}
+bindless_index!(BindlessBuffer);
+bindless_index!(RwBindlessBuffer);
+
 #[diagnostic::do_not_recommend]
 impl<C: RtIndex<I> + ?Sized, I> RtIndex<I> for &C {
     type Output = C::Output;

@@ -189,6 +189,14 @@ impl<T: RtData> Buffer<T> {
     pub fn load(&self, i: u32) -> T {
         self.elements.load(index_1d(i, self.len))
     }
+
+    /// `self[i]`, borrowed for as long as the storage lives rather than the
+    /// handle (a bindless id's handle is a copy; the storage outlives the
+    /// launch, by the `from_raw_parts` contract).
+    pub(crate) fn element_ref<'s>(self, i: u32) -> &'s T {
+        // SAFETY: a live element or the sink, as in `Elements::get`.
+        unsafe { &*self.elements.element_or_sink(index_1d(i, self.len)) }
+    }
 }
 
 impl<T: RtData> Index<u32> for Buffer<T> {
@@ -269,6 +277,13 @@ impl<T: RtData> RwBuffer<T> {
     /// atomic updates, see [`crate::atomic`]).
     pub(crate) fn element(&self, i: u32) -> Option<*mut T> {
         self.elements.element(index_1d(i, self.len))
+    }
+
+    /// `self[i]` for as long as the storage lives, as
+    /// [`Buffer::element_ref`].
+    pub(crate) fn element_ref<'s>(self, i: u32) -> &'s T {
+        // SAFETY: a live element or the sink, as in `Elements::get`.
+        unsafe { &*self.elements.element_or_sink(index_1d(i, self.len)) }
     }
 }
 

@@ -408,6 +408,16 @@ pub trait Tracer {
         let _ = id;
         None
     }
+    /// The buffer of bindless id `id`, for
+    /// [`BindlessBuffer`](crate::BindlessBuffer): a one-dimensional
+    /// [`Buffer<T>`](crate::Buffer) of its elements behind `Any` (an
+    /// [`RwBuffer<T>`](crate::RwBuffer) when `writable`); `None` when the id
+    /// names no buffer of this launch (or, `writable`, none programs may
+    /// write).
+    fn buffer(&self, id: u32, writable: bool) -> Option<&(dyn core::any::Any + Send + Sync)> {
+        let _ = (id, writable);
+        None
+    }
 }
 
 thread_local! {
@@ -648,6 +658,13 @@ pub fn __report_intersection<A: crate::Attributes + Send>(material: u32, attribu
 /// without a tracer).
 pub(crate) fn callable(id: u32) -> Option<&'static (dyn core::any::Any + Send + Sync)> {
     with_installed_tracer(|tracer| tracer.callable(id), || None)
+}
+
+/// The handle `H` (`Buffer<T>` or `RwBuffer<T>`) of bindless id `id` as
+/// the installed tracer has it: `None` without a tracer, for an id of no
+/// buffer, or of a buffer of another element type.
+pub(crate) fn bindless_buffer<H: Copy + 'static>(id: u32, writable: bool) -> Option<H> {
+    with_installed_tracer(|tracer| tracer.buffer(id, writable).and_then(|h| h.downcast_ref::<H>().copied()), || None)
 }
 
 /// Sends `rt_printf!` text to the tracer or stdout.

@@ -52,6 +52,14 @@ pub const EXCEPTION_INTEGER_DIVIDE_BY_ZERO: u32 = rt_abi::EXCEPTION_INTEGER_DIVI
 /// zero value of its result type.
 #[doc(alias = "RT_EXCEPTION_PROGRAM_ID_INVALID")]
 pub const EXCEPTION_PROGRAM_ID_INVALID: u32 = rt_abi::EXCEPTION_PROGRAM_ID_INVALID;
+/// Exception code: a buffer was read or written through a bindless id
+/// ([`BindlessBuffer`](crate::BindlessBuffer)) that names no buffer of the
+/// launch (zero, an id the context did not give), a buffer of another
+/// element type, or, for an [`RwBindlessBuffer`](crate::RwBindlessBuffer),
+/// a buffer programs may not write; the load returned zero, the store was
+/// dropped.
+#[doc(alias = "RT_EXCEPTION_BUFFER_ID_INVALID")]
+pub const EXCEPTION_BUFFER_ID_INVALID: u32 = rt_abi::EXCEPTION_BUFFER_ID_INVALID;
 /// The first exception code free for programs' own [`rt_throw`] codes; the
 /// codes below are reserved for the runtime's exceptions.
 #[doc(alias = "RT_EXCEPTION_USER")]

@@ -130,6 +130,7 @@
 
 pub mod arith;
 pub mod atomic;
+pub mod bindless;
 pub mod buffer;
 pub mod callable;
 pub mod cpu;
@@ -144,6 +145,7 @@ pub mod scene;
 pub mod texture;
 
 pub use atomic::{AtomicElement, AtomicInteger};
+pub use bindless::{BindlessBuffer, RwBindlessBuffer};
 pub use buffer::{Buffer, Buffer2d, RwBuffer, RwBuffer2d};
 pub use callable::Callable;
 pub use data::{Attributes, Payload, RtData};

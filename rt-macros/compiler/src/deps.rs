@@ -43,6 +43,7 @@ fn is_builtin_type_name(name: &str) -> bool {
         || types::unsupported_type_advice(name).is_some()
         || name == "Self"
         || name == "Callable"
+        || types::bindless_kind(name).is_some()
 }
 
 fn is_builtin_fn(name: &str) -> bool {

@@ -133,6 +133,7 @@ impl CallSig {
             // signatures apart.
             Ty::Enum(e) => format!("e{}", e.name),
             Ty::Callable(c) => format!("c{}", c.dispatch()),
+            Ty::BufferId(w, e) => format!("b{}{}", if *w { "w" } else { "" }, e.mangle()),
             Ty::Unit => "void".into(),
             t => t.mangle(),
         };
@@ -157,6 +158,9 @@ pub enum Ty {
     Enum(Rc<EnumDef>),
     /// `Callable<fn(A, ..) -> R>`: the id of a callable program, a `u32`.
     Callable(Rc<CallSig>),
+    /// `BindlessBuffer<T>` (`RwBindlessBuffer<T>` when `true`): the id of a
+    /// buffer of `T`, a `u32`.
+    BufferId(bool, Box<Ty>),
     /// `(A, B, ...)`, at least one element: a WGSL struct with fields `f0`,
     /// `f1`, ... (see [`Ty::wgsl`]).
     Tuple(Vec<Ty>),
@@ -186,6 +190,7 @@ impl PartialEq for Ty {
             (Struct(a), Struct(b)) => a.name == b.name,
             (Enum(a), Enum(b)) => a.name == b.name,
             (Callable(a), Callable(b)) => a == b,
+            (BufferId(v, a), BufferId(w, b)) => v == w && a == b,
             (Tuple(a), Tuple(b)) => a == b,
             (Array(a, n), Array(b, m)) => n == m && a == b,
             (Buffer(k, a), Buffer(l, b)) => k == l && a == b,
@@ -224,7 +229,7 @@ impl Ty {
         match self {
             Ty::Scalar(s) => *s != Scalar::Usize,
             Ty::Vec(_, s) => *s != Scalar::Bool,
-            Ty::Mat(_) | Ty::Struct(_) | Ty::Enum(_) | Ty::Callable(_) | Ty::Ray | Ty::Aabb => true,
+            Ty::Mat(_) | Ty::Struct(_) | Ty::Enum(_) | Ty::Callable(_) | Ty::BufferId(..) | Ty::Ray | Ty::Aabb => true,
             Ty::Array(t, _) => t.is_plain_data(),
             Ty::Tuple(ts) => ts.iter().all(Ty::is_plain_data),
             _ => false,
@@ -232,10 +237,23 @@ impl Ty {
     }
 
     /// Whether WGSL spells this type `u32` though it is no integer to the
-    /// program: a node handle, a transform kind, an enum, a callable id. One
-    /// heap word, compared with `==`, loaded and stored as the word itself.
+    /// program: a node handle, a transform kind, an enum, a callable id, a
+    /// bindless buffer id. One heap word, compared with `==`, loaded and
+    /// stored as the word itself.
     pub fn is_u32_word(&self) -> bool {
-        matches!(self, Ty::Object | Ty::TransformKind | Ty::Enum(_) | Ty::Callable(_))
+        matches!(self, Ty::Object | Ty::TransformKind | Ty::Enum(_) | Ty::Callable(_) | Ty::BufferId(..))
+    }
+
+    /// The Rust name of the type as its `RtData` layout spells it (rt-std's
+    /// `TypeLayout::rust`), whose `rt_abi::records::layout_tag` the runtime
+    /// writes for each buffer: ids share one layout whatever they name.
+    pub fn layout_name(&self) -> String {
+        match self {
+            Ty::Callable(_) => "Callable".into(),
+            Ty::BufferId(false, _) => "BindlessBuffer".into(),
+            Ty::BufferId(true, _) => "RwBindlessBuffer".into(),
+            t => t.to_string(),
+        }
     }
 
     /// Rust spelling, for messages and descriptors.
@@ -260,7 +278,7 @@ impl Ty {
             Ty::Tuple(ts) => format!("rt_tuple_{}_", ts.iter().map(Ty::mangle).collect::<Vec<_>>().join("_")),
             Ty::Ray => "RtRay".into(),
             Ty::Aabb => "RtAabb".into(),
-            Ty::Object | Ty::TransformKind | Ty::Enum(_) | Ty::Callable(_) => "u32".into(),
+            Ty::Object | Ty::TransformKind | Ty::Enum(_) | Ty::Callable(_) | Ty::BufferId(..) => "u32".into(),
             Ty::Buffer(..) => "RtBuffer".into(),
             Ty::Sampler => "RtSampler".into(),
             Ty::Ref(true, t) => format!("ptr<function, {}>", t.wgsl()),
@@ -286,7 +304,8 @@ impl Ty {
     /// Size in 32-bit words when stored in the heap.
     pub fn words(&self) -> u32 {
         match self {
-            Ty::Scalar(_) | Ty::IntVar(_) | Ty::Object | Ty::TransformKind | Ty::Enum(_) | Ty::Callable(_) => 1,
+            Ty::Scalar(_) | Ty::IntVar(_) => 1,
+            Ty::Object | Ty::TransformKind | Ty::Enum(_) | Ty::Callable(_) | Ty::BufferId(..) => 1,
             Ty::Vec(n, _) => *n as u32,
             Ty::Mat(n) => (*n as u32) * (*n as u32),
             Ty::Struct(s) => s.fields.iter().map(|(_, t)| t.words()).sum(),
@@ -329,6 +348,7 @@ impl fmt::Display for Ty {
             Ty::Struct(s) => write!(f, "{}", s.name),
             Ty::Enum(e) => write!(f, "{}", e.name),
             Ty::Callable(c) => write!(f, "Callable<{}>", c.rust()),
+            Ty::BufferId(w, t) => write!(f, "{}<{t}>", bindless_name(*w)),
             Ty::Tuple(ts) => {
                 let parts: Vec<String> = ts.iter().map(Ty::to_string).collect();
                 if parts.len() == 1 { write!(f, "({},)", parts[0]) } else { write!(f, "({})", parts.join(", ")) }
@@ -378,6 +398,21 @@ pub fn builtin_type(name: &str) -> Option<Ty> {
         "Sampler2d" => Ty::Sampler,
         _ => return None,
     })
+}
+
+/// The type name of a bindless buffer id, read-only or writable.
+pub fn bindless_name(writable: bool) -> &'static str {
+    if writable { "RwBindlessBuffer" } else { "BindlessBuffer" }
+}
+
+/// Whether `name` is a bindless buffer id's type name, and if so whether
+/// writable.
+pub fn bindless_kind(name: &str) -> Option<bool> {
+    match name {
+        "BindlessBuffer" => Some(false),
+        "RwBindlessBuffer" => Some(true),
+        _ => None,
+    }
 }
 
 /// Buffer handle type names.

@@ -1,7 +1,7 @@
 //! Generated WGSL accessors: reading and writing typed values in the
 //! runtime's heap (packed words, see `types`, through the heap's `rt_hw` and
-//! `rt_hw_set`), bounds-checked buffer element access on top of them, and
-//! atomic updates of 32-bit buffer elements (over the atomic heap).
+//! `rt_hw_set`), bounds-checked buffer element access on top of them (also
+//! through bindless ids), and atomic updates of 32-bit buffer elements (over the atomic heap).
 
 use crate::types::{Scalar, Ty};
 use std::collections::BTreeMap;
@@ -138,6 +138,73 @@ impl Accessors {
         );
         name
     }
+}
+
+/// The accessors of a bindless buffer id (`BindlessBuffer<T>`,
+/// `RwBindlessBuffer<T>`): the id checked against the launch's buffer table
+/// (`rt_bufid_ok`: it names a buffer of `T`'s tag, one programs may write
+/// for a writable id; raising the invalid-id exception if not), then the
+/// bounds-checked element access of the buffer it names. Through an
+/// invalid id a load yields zero, a store writes nothing, `len` is 0.
+impl Accessors {
+    /// `rt_idload[w]_<T>(id, i) -> T`.
+    pub fn bindless_load(&mut self, writable: bool, ty: &Ty) -> String {
+        let name = format!("rt_idload{}_{}", if writable { "w" } else { "" }, ty.mangle());
+        if self.functions.contains_key(&name) {
+            return name;
+        }
+        let load = self.buffer_load(1, ty);
+        let t = ty.wgsl();
+        let ok = id_check(writable, ty);
+        self.functions.insert(
+            name.clone(),
+            format!(
+                "fn {name}(id: u32, i: u32) -> {t} {{\n    if {ok} {{\n        return {load}(rt_bufid(id), i);\n    }}\n    return {t}();\n}}\n"
+            ),
+        );
+        name
+    }
+
+    /// `rt_idstore_<T>(id, i, v)`, through a writable id.
+    pub fn bindless_store(&mut self, ty: &Ty) -> String {
+        let name = format!("rt_idstore_{}", ty.mangle());
+        if self.functions.contains_key(&name) {
+            return name;
+        }
+        let store = self.buffer_store(1, ty);
+        let t = ty.wgsl();
+        let ok = id_check(true, ty);
+        self.functions.insert(
+            name.clone(),
+            format!(
+                "fn {name}(id: u32, i: u32, v: {t}) {{\n    if {ok} {{\n        {store}(rt_bufid(id), i, v);\n    }}\n}}\n"
+            ),
+        );
+        name
+    }
+
+    /// `rt_idlen[w]_<T>(id) -> u32`.
+    pub fn bindless_len(&mut self, writable: bool, ty: &Ty) -> String {
+        let name = format!("rt_idlen{}_{}", if writable { "w" } else { "" }, ty.mangle());
+        if self.functions.contains_key(&name) {
+            return name;
+        }
+        let ok = id_check(writable, ty);
+        self.functions.insert(
+            name.clone(),
+            format!(
+                "fn {name}(id: u32) -> u32 {{\n    if {ok} {{\n        return rt_bufid(id).len;\n    }}\n    return 0u;\n}}\n"
+            ),
+        );
+        name
+    }
+}
+
+/// `rt_bufid_ok(id, <tag of T>, writable)`: the tag of the element type's
+/// layout name, as the runtime writes it for each buffer.
+fn id_check(writable: bool, ty: &Ty) -> String {
+    let tag = rt_abi::records::layout_tag(&ty.layout_name());
+    format!("rt_bufid_ok(id, {tag}u, {writable})")
 }
 
 /// An atomic update of a 32-bit buffer element, as `RwBuffer::atomic_*`

@@ -244,7 +244,8 @@ impl Graph for StructGraph<'_, '_> {
                 let ty = &self.named_fields(name).named[*i].ty;
                 let mut named = Vec::new();
                 idents(quote::quote!(#ty), &mut named);
-                let through_callable = named.iter().any(|n| n == "Callable");
+                let through_callable =
+                    named.iter().any(|n| n == "Callable" || crate::types::bindless_kind(n).is_some());
                 let mut deps: Vec<(StructNode, bool)> = Vec::new();
                 for n in named {
                     let node = StructNode::Struct(n.clone());
@@ -303,6 +304,24 @@ impl Graph for StructGraph<'_, '_> {
             // Legal Rust (an id is one word whatever its signature), but the
             // signature's types are resolved before the struct is built.
             let f = &self.named_fields(holder).named[*i];
+            let mut named = Vec::new();
+            let ty = &f.ty;
+            idents(quote::quote!(#ty), &mut named);
+            if let Some(id) = named.iter().find(|n| crate::types::bindless_kind(n).is_some()) {
+                // The same for a bindless id's element type.
+                let construct = if holder == name {
+                    format!("a `{id}` field whose element type is its own struct (`{name}`)")
+                } else {
+                    format!(
+                        "a `{id}` field of `{holder}` whose element type names `{name}`, a struct holding `{holder}`"
+                    )
+                };
+                return Some(Error::unsupported(
+                    f.ty.span(),
+                    &construct,
+                    &format!("keep the id as a `u32` and read through `{id}::<{name}>::from_id(id)`"),
+                ));
+            }
             let construct = if holder == name {
                 format!("a `Callable` field whose signature names its own struct (`{name}`)")
             } else {

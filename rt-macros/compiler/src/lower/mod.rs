@@ -121,7 +121,7 @@ impl ModuleCtx {
                 }
                 self.tuples.borrow_mut().entry(ty.wgsl()).or_insert_with(|| ty.clone());
             }
-            Ty::Array(t, _) | Ty::Ref(_, t) | Ty::Buffer(_, t) => self.note_tuples(t),
+            Ty::Array(t, _) | Ty::Ref(_, t) | Ty::Buffer(_, t) | Ty::BufferId(_, t) => self.note_tuples(t),
             _ => {}
         }
     }

@@ -16,7 +16,9 @@ pub fn resolve_type(ty: &syn::Type, user: &dyn Fn(&str) -> Option<Ty>) -> Result
             }
             let seg = p.path.segments.last().unwrap();
             let name = seg.ident.to_string();
-            if let Some(kind) = types::buffer_kind(&name) {
+            let bindless = types::bindless_kind(&name);
+            let buffer = types::buffer_kind(&name);
+            if bindless.is_some() || buffer.is_some() {
                 let arg = match &seg.arguments {
                     syn::PathArguments::AngleBracketed(a) if a.args.len() == 1 => match &a.args[0] {
                         syn::GenericArgument::Type(t) => t,
@@ -31,7 +33,10 @@ pub fn resolve_type(ty: &syn::Type, user: &dyn Fn(&str) -> Option<Ty>) -> Result
                         format!("`{elem}` cannot be a buffer element{}", store_advice(&elem)),
                     ));
                 }
-                return Ok(Ty::Buffer(kind, Box::new(elem)));
+                return Ok(match (buffer, bindless) {
+                    (Some(kind), _) => Ty::Buffer(kind, Box::new(elem)),
+                    (None, writable) => Ty::BufferId(writable == Some(true), Box::new(elem)),
+                });
             }
             if name == "Callable" {
                 return resolve_callable(seg, user);

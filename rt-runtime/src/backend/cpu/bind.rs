@@ -12,6 +12,7 @@ use glam::UVec2;
 use rt_std::cpu::BoundVariables;
 use rt_std::program::{AttributesFromWords, ProgramDescriptor, TypeLayout};
 use std::any::{Any, TypeId};
+use std::sync::Arc;
 
 /// Closest hit and any hit of one (instance, material, ray type).
 pub(crate) type HitPrograms<P> = (Option<P>, Option<P>);
@@ -38,6 +39,33 @@ pub(crate) struct Linked<'a, P> {
     /// Visit program per node (selectors only).
     pub(crate) visit: Vec<Option<P>>,
     pub(crate) launch_dim: UVec2,
+    /// The handles bindless ids read through, by buffer index.
+    pub(crate) bindless: Arc<[BindlessHandles]>,
+}
+
+/// One buffer's handles for bindless ids (`rt_std::BindlessBuffer<T>`):
+/// a one-dimensional `Buffer<T>` over its elements, and an `RwBuffer<T>`
+/// when programs may write it.
+pub(crate) struct BindlessHandles {
+    pub(crate) read: Box<dyn Any + Send + Sync>,
+    pub(crate) write: Option<Box<dyn Any + Send + Sync>>,
+}
+
+impl BindlessHandles {
+    /// The handles of every buffer of `scene`.
+    fn of(scene: &Scene) -> Arc<[BindlessHandles]> {
+        scene
+            .buffers
+            .iter()
+            .map(|b| {
+                let (w, h) = (b.width * b.height, 1);
+                BindlessHandles {
+                    read: b.storage.handle(1, false, w, h),
+                    write: b.ty.writable_by_programs().then(|| b.storage.handle(1, true, w, h)),
+                }
+            })
+            .collect()
+    }
 }
 
 pub(crate) fn link_all<'a>(
@@ -136,6 +164,7 @@ pub(crate) fn link_all<'a>(
         intersection,
         visit,
         launch_dim: dim,
+        bindless: BindlessHandles::of(scene),
     })
 }
 
@@ -163,6 +192,7 @@ impl<'a> Linked<'a, Call> {
             intersection: self.intersection.iter().map(opt).collect::<Result<_>>()?,
             visit: self.visit.iter().map(opt).collect::<Result<_>>()?,
             launch_dim: self.launch_dim,
+            bindless: self.bindless.clone(),
         })
     }
 }

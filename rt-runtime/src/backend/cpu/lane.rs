@@ -11,6 +11,7 @@ use crate::accel::wide::isa::{Isa, walk_on};
 use crate::accel::wide::kernels::WalkRay;
 use crate::accel::wide::watertight::WatertightRay;
 use crate::accel::wide::{PACKET, leaf_of};
+use crate::handles::BufferId;
 use crate::link;
 use crate::scene::{NodeId, NodeKind, ProgramId, TriangleMesh};
 use glam::{Mat4, UVec2, Vec2, Vec3};
@@ -704,6 +705,14 @@ impl Tracer for Lane<'_> {
     fn callable(&self, id: u32) -> Option<&'static (dyn std::any::Any + Send + Sync)> {
         let rec = self.l.scene.programs.get(ProgramId::from_callable_id(id)?.index() as usize)?;
         rec.desc.callable.map(|c| c.cpu)
+    }
+
+    fn buffer(&self, id: u32, writable: bool) -> Option<&(dyn std::any::Any + Send + Sync)> {
+        let handles = self.l.bindless.get(BufferId::from_bindless_id(id)?.index() as usize)?;
+        match writable {
+            false => Some(&*handles.read),
+            true => handles.write.as_deref(),
+        }
     }
 
     fn print(&self, text: &str) {

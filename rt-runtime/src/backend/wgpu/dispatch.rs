@@ -16,8 +16,14 @@ pub(crate) type Tile = ([u32; LaunchUniform::WORDS], u32, u32);
 /// The dispatches of launch `l`'s tile (`l.tile`, whose origin is on the
 /// 8 x 8 grid): a tile over the dispatch limit runs as several, each with
 /// its uniform (`[case, record]` of the ray-generation and exception
-/// programs).
-pub(crate) fn tiles(l: &Launch, limits: &wgpu::Limits, ray_generation: [u32; 2], exception: [u32; 2]) -> Vec<Tile> {
+/// programs; the heap word of the bindless buffer table).
+pub(crate) fn tiles(
+    l: &Launch,
+    limits: &wgpu::Limits,
+    ray_generation: [u32; 2],
+    exception: [u32; 2],
+    buffer_table: u32,
+) -> Vec<Tile> {
     let (width, height) = (l.width, l.height);
     let (base, size) = (l.tile.origin, l.tile.size);
     let print_filter = l.settings.print_launch_index.unwrap_or(UVec2::splat(u32::MAX));
@@ -41,6 +47,7 @@ pub(crate) fn tiles(l: &Launch, limits: &wgpu::Limits, ray_generation: [u32; 2],
                 print_enabled,
                 print_filter: print_filter.to_array(),
                 exceptions: l.settings.exceptions,
+                buffer_table,
             }
             .words();
             tiles.push((uniform, gx, gy));

@@ -7,6 +7,7 @@ use crate::error::{Result, RtError};
 use crate::link::{self, Record};
 use crate::scene::{ProgramId, Scene};
 use crate::vars::VarValue;
+use rt_abi::records::{BufferTable, layout_tag};
 use rt_std::program::VariableKind;
 
 /// The records of a launch's program uses, laid out before their values
@@ -30,7 +31,7 @@ impl Records {
 
 /// The heap of a launch: the values of `records` (resolved now, so a
 /// changed variable takes effect), then the buffers' words, then sampler
-/// texels. Also returns the `(buffer index, heap offset, words)` of the
+/// texels, then the bindless buffer table. Also returns the `(buffer index, heap offset, words)` of the
 /// buffers programs may write, and every buffer's `(heap offset, words)`.
 pub(crate) fn encode_heap(scene: &Scene, records: &Records) -> Result<EncodedHeap> {
     let base = records.words as usize;
@@ -40,6 +41,8 @@ pub(crate) fn encode_heap(scene: &Scene, records: &Records) -> Result<EncodedHea
     let mut buffer_offsets = Vec::with_capacity(scene.buffers.len());
     let mut outputs = Vec::new();
     let mut placed = Vec::with_capacity(scene.buffers.len());
+    let mut table = Vec::with_capacity(1 + scene.buffers.len() * BufferTable::WORDS as usize);
+    table.push(scene.buffers.len() as u32);
     for (i, b) in scene.buffers.iter().enumerate() {
         let start = data.len();
         b.storage.to_words(&mut data);
@@ -48,6 +51,14 @@ pub(crate) fn encode_heap(scene: &Scene, records: &Records) -> Result<EncodedHea
         if b.ty.writable_by_programs() {
             outputs.push((i, base + start, data.len() - start));
         }
+        let layout = b.storage.layout();
+        let entry = BufferTable {
+            offset: (base + start) as u32,
+            len: b.width * b.height,
+            tag: layout_tag(layout.rust),
+            writable: b.ty.writable_by_programs() as u32,
+        };
+        table.extend(entry.words());
     }
     let mut sampler_offsets = Vec::with_capacity(scene.samplers.len());
     for s in &scene.samplers {
@@ -104,10 +115,10 @@ pub(crate) fn encode_heap(scene: &Scene, records: &Records) -> Result<EncodedHea
         )));
     }
     heap.extend(data);
-    if heap.is_empty() {
-        heap.push(0);
-    }
-    Ok(EncodedHeap { words: heap, outputs, placed })
+    // The bindless buffer table last: never empty, so the heap is not.
+    let buffer_table = heap.len() as u32;
+    heap.extend(table);
+    Ok(EncodedHeap { words: heap, outputs, placed, buffer_table })
 }
 
 /// A launch's heap: its words, the `(buffer index, heap offset, words)` of
@@ -117,4 +128,6 @@ pub(crate) struct EncodedHeap {
     pub(crate) words: Vec<u32>,
     pub(crate) outputs: Vec<(usize, usize, usize)>,
     pub(crate) placed: Vec<(usize, usize)>,
+    /// The heap word of the bindless buffer table ([`BufferTable`]).
+    pub(crate) buffer_table: u32,
 }

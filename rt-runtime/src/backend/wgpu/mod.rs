@@ -299,7 +299,7 @@ async fn launch_on_device(
     let t2 = web_time::Instant::now();
     let (wgsl, warning) = link_kernel(l.entry, &encoding)?;
     *last_wgsl = Some(wgsl.clone());
-    let Encoding { fresh, heap, outputs, placed, rg_vars, ex_vars, .. } = encoding;
+    let Encoding { fresh, heap, outputs, placed, buffer_table, rg_vars, ex_vars, .. } = encoding;
     gpu.scene_encodes += fresh.is_some() as u64;
     gpu.geometry_encodes += fresh.as_ref().is_some_and(|e| e.geometry_words.is_some()) as u64;
     // The scene's bindings: the sections with one of their own, the others
@@ -333,7 +333,7 @@ async fn launch_on_device(
     }
     let held = gpu.resident.held.as_ref().expect("held or synced above");
     let (rg_case, ex_case) = (held.spec.ray_generation.case, held.spec.exception.map_or(0, |e| e.case));
-    let tiles = dispatch::tiles(l, &gpu.limits, [rg_case, rg_vars], [ex_case, ex_vars]);
+    let tiles = dispatch::tiles(l, &gpu.limits, [rg_case, rg_vars], [ex_case, ex_vars], buffer_table);
     let capture = capture::folder().map(|folder| capture_before(folder, &wgsl, &gpu.resident, log_words, &tiles));
     let encoder = dispatch::record(gpu, &wgsl, slots, &tiles, replaced);
     // Outputs stay on the device until the launch's last tile (the mirror

@@ -64,6 +64,7 @@ fn rt_exc_bit(code: u32) -> u32 {
     if code == RT_EXC_BUFFER_INDEX { return 2u; }
     if code == RT_EXC_INVALID_RAY { return 4u; }
     if code == RT_EXC_PROGRAM_ID { return 64u; }
+    if code == RT_EXC_BUFFER_ID { return 128u; }
     return 32u;
 }
 
@@ -95,6 +96,25 @@ fn rt_buf_check2(b: RtBuffer, i: vec2<u32>) -> bool {
     if i.x < b.width && i.y < b.height { return true; }
     rt_raise(RT_EXC_BUFFER_INDEX);
     return false;
+}
+
+// Bindless buffer ids through the launch's buffer table
+// (rt_abi::records::BufferTable): id k names the entry k - 1, 0 none.
+fn rt_bufid_ok(id: u32, tag: u32, writable: bool) -> bool {
+    let t = rt_launch.buffer_table;
+    if id != 0u && id <= rt_hw(t) {
+        let e = t + 1u + (id - 1u) * RT_BUFID_WORDS;
+        if rt_hw(e + RT_BUFID_TAG) == tag && (!writable || rt_hw(e + RT_BUFID_WRITABLE) != 0u) {
+            return true;
+        }
+    }
+    rt_raise(RT_EXC_BUFFER_ID);
+    return false;
+}
+fn rt_bufid(id: u32) -> RtBuffer {
+    let e = rt_launch.buffer_table + 1u + (id - 1u) * RT_BUFID_WORDS;
+    let len = rt_hw(e + RT_BUFID_LEN);
+    return RtBuffer(rt_hw(e + RT_BUFID_OFFSET), len, len, 1u);
 }
 
 fn rt_launch_index() -> vec2<u32> { return rt_idx; }

@@ -104,6 +104,7 @@ impl FnLowerer<'_> {
             Ty::Buffer(kind, elem) => return self.buffer_method(recv, *kind, elem, name, args, name_span, span),
             Ty::Sampler => return self.sampler_method(recv, name, args, name_span, span),
             Ty::Callable(sig) => return self.callable_call(recv, sig, name, args, name_span, span),
+            Ty::BufferId(w, elem) => return self.bindless_method(recv, *w, elem, name, args, name_span, span),
             _ => {}
         }
         let sig = builtins::method_sig(&rt, name).ok_or_else(|| {
@@ -238,6 +239,9 @@ impl FnLowerer<'_> {
         let args: Vec<&Expr> = c.args.iter().collect();
         if callables::is_callable_item(path) {
             return self.callable_item(path, Some(&args), want, c.span());
+        }
+        if bindless::is_bindless_item(path) {
+            return self.bindless_item(path, Some(&args), want, c.span());
         }
         if let Some(seg) = path.segments.iter().find(|s| !s.arguments.is_none()) {
             return Err(Error::unsupported(seg.arguments.span(), "generic arguments", "ray programs are not generic"));

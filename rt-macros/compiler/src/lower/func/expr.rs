@@ -28,6 +28,9 @@ impl FnLowerer<'_> {
             Expr::Path(p) if p.qself.is_none() && callables::is_callable_item(&p.path) => {
                 self.callable_item(&p.path, None, want, p.span())
             }
+            Expr::Path(p) if p.qself.is_none() && bindless::is_bindless_item(&p.path) => {
+                self.bindless_item(&p.path, None, want, p.span())
+            }
             Expr::Path(p) => self.path_expr(p),
             Expr::Unary(u) => self.unary(u, want),
             Expr::Binary(b) => self.binary(b, want),
@@ -299,6 +302,7 @@ impl FnLowerer<'_> {
                 let effects = base.effects || idx.effects;
                 Ok(Val::new(format!("{f}({}, {})", base.code, idx.code), *elem).with_effects(effects).with_reads(true))
             }
+            Ty::BufferId(writable, elem) => self.bindless_load(base, writable, &elem, &i.index),
             Ty::Array(elem, _) => {
                 let idx = self.int_index(&i.index)?;
                 self.spill(at, &mut [&mut base]);

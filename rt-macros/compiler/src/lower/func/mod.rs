@@ -34,6 +34,7 @@ use std::collections::HashSet;
 use syn::spanned::Spanned;
 use syn::{BinOp, Expr, Stmt, UnOp};
 
+mod bindless;
 mod buffers;
 mod callables;
 mod calls;

@@ -82,6 +82,9 @@ impl FnLowerer<'_> {
         let rw = match (&b.op, self.resolved(&l.ty)) {
             (BinOp::Shl(_) | BinOp::Shr(_), _) => None,
             (_, t @ (Ty::Scalar(_) | Ty::IntVar(_))) => Some(t),
+            // `id == Callable::NONE`, `b == BindlessBuffer::default()`: the
+            // id's type from the left.
+            (BinOp::Eq(_) | BinOp::Ne(_), t @ (Ty::Callable(_) | Ty::BufferId(..))) => Some(t),
             _ => None,
         };
         let at = self.here();

@@ -84,6 +84,18 @@ impl FnLowerer<'_> {
                         effects: false,
                     });
                 }
+                if let Ty::BufferId(writable, elem) = self.resolved(&self.deref(base_val.clone()).ty) {
+                    let ty = Ty::BufferId(writable, elem.clone());
+                    let how = if writable {
+                        "write the element with `.store(i, v)`".to_string()
+                    } else {
+                        format!("it is read-only; write through an `RwBindlessBuffer<{elem}>` with `.store(i, v)`")
+                    };
+                    return Err(Error::new(
+                        i.expr.span(),
+                        format!("cannot assign to an element through `{ty}`: {how}"),
+                    ));
+                }
                 let base = self.place(&i.expr)?;
                 let idx = self.int_index(&i.index)?;
                 let element = |code: String, ty: Ty, effects: bool| {

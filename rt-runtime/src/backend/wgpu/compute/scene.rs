@@ -609,6 +609,8 @@ pub(crate) struct Encoding {
     pub outputs: Vec<(usize, usize, usize)>,
     /// Every buffer's `(heap offset, words)`.
     pub placed: Vec<(usize, usize)>,
+    /// The heap word of the bindless buffer table.
+    pub buffer_table: u32,
     pub rg_vars: u32,
     pub ex_vars: u32,
 }
@@ -653,7 +655,16 @@ pub(crate) fn encode_launch(
     };
     let heap = encode_heap(l.scene, records)?;
     let held_wgsl = if fresh.is_some() { None } else { held.map(|h| h.wgsl.clone()) };
-    Ok(Encoding { fresh, held_wgsl, heap: heap.words, outputs: heap.outputs, placed: heap.placed, rg_vars, ex_vars })
+    Ok(Encoding {
+        fresh,
+        held_wgsl,
+        heap: heap.words,
+        outputs: heap.outputs,
+        placed: heap.placed,
+        buffer_table: heap.buffer_table,
+        rg_vars,
+        ex_vars,
+    })
 }
 
 /// A freshly encoded scene placed in the device's bindings: whole
