@@ -11,10 +11,16 @@ pub mod targets;
 
 #[path = "../snapshots/in/atomics.rs"]
 pub mod atomics;
+#[path = "../snapshots/in/bindless.rs"]
+pub mod bindless;
+#[path = "../snapshots/in/bool_vectors.rs"]
+pub mod bool_vectors;
 #[path = "../snapshots/in/buffers.rs"]
 pub mod buffers;
 #[path = "../snapshots/in/buffers_2d.rs"]
 pub mod buffers_2d;
+#[path = "../snapshots/in/callables.rs"]
+pub mod callables;
 #[path = "../snapshots/in/casts.rs"]
 pub mod casts;
 #[path = "../snapshots/in/compare_logic.rs"]
@@ -31,12 +37,20 @@ pub mod exceptions;
 pub mod fuzz_regressions;
 #[path = "../snapshots/in/glam_added.rs"]
 pub mod glam_added;
+#[path = "../snapshots/in/glam_arrays.rs"]
+pub mod glam_arrays;
+#[path = "../snapshots/in/glam_assoc.rs"]
+pub mod glam_assoc;
+#[path = "../snapshots/in/glam_in_place.rs"]
+pub mod glam_in_place;
 #[path = "../snapshots/in/glam_more.rs"]
 pub mod glam_more;
 #[path = "../snapshots/in/helpers_refs.rs"]
 pub mod helpers_refs;
 #[path = "../snapshots/in/instancing.rs"]
 pub mod instancing;
+#[path = "../snapshots/in/int_division.rs"]
+pub mod int_division;
 #[path = "../snapshots/in/intersection_sphere.rs"]
 pub mod intersection_sphere;
 #[path = "../snapshots/in/loops.rs"]
@@ -83,6 +97,8 @@ pub mod semantic_values;
 pub mod structs_arrays;
 #[path = "../snapshots/in/textures.rs"]
 pub mod textures;
+#[path = "../snapshots/in/trace_in_match.rs"]
+pub mod trace_in_match;
 #[path = "../snapshots/in/tuples.rs"]
 pub mod tuples;
 #[path = "../snapshots/in/vectors.rs"]

@@ -93,6 +93,13 @@ pub fn edge_cases(
     *m.col_mut(k as usize) = vec3(7.0, 8.0, 9.0);
     m.col_mut(k as usize).x += 1.0;
     out[47] = (m.z_axis.x + 10.0 * m.z_axis.y + 100.0 * m.z_axis.z) as u32;
+    // std's integer methods where std panics.
+    out[48] = (min + 3).pow(k) as u32;
+    out[49] = a.wrapping_rem(zero) + (min.wrapping_div_euclid(zero as i32) as u32);
+    out[50] = zero.ilog2() + (min.ilog10() << 8) + (a.ilog(1) << 16) + ((min.isqrt() as u32) << 24);
+    out[51] = a.div_ceil(zero);
+    out[52] = a.next_multiple_of(zero);
+    out[53] = (a | 0x8000_0000).next_power_of_two() + 2 * u32::pow(a, 2);
 }
 
 /// `(index, value, what)`: the defined results.
@@ -149,6 +156,12 @@ fn expected() -> Vec<(usize, u32, &'static str)> {
         (45, 4, "mask.set(33, true) sets the last component"),
         (46, 1, "mask.test(33) reads the last component"),
         (47, 988, "m.col_mut(33) is the last column"),
+        (48, (i32::MIN + 3).wrapping_pow(33) as u32, "i32 pow wraps"),
+        (49, (i32::MIN as u32), "wrapping_rem(0) is 0, wrapping_div_euclid(0) is the dividend"),
+        (50, 0, "ilog2(0), ilog10 of a negative, ilog to base 1, isqrt of a negative: 0"),
+        (51, a, "div_ceil(0) reads the divisor as one"),
+        (52, a, "next_multiple_of(0) reads the divisor as one"),
+        (53, a.wrapping_mul(a).wrapping_mul(2), "next_power_of_two past 2^31 is 0; u32::pow wraps"),
     ]
 }
 
@@ -156,7 +169,7 @@ fn run(backend: Backend) -> Vec<u32> {
     let mut ctx = Context::new();
     ctx.set_backend(backend);
     ctx.set_ray_type_count(0);
-    let out = ctx.create_buffer::<u32>(BufferType::InputOutput, vec![0xdead; 52]);
+    let out = ctx.create_buffer::<u32>(BufferType::InputOutput, vec![0xdead; 56]);
     let p = ctx.create_program(&edge_cases::PROGRAM);
     ctx.set_ray_generation_program(0, p).unwrap();
     ctx.set_var(Scope::Context, "out", out).unwrap();
@@ -209,7 +222,7 @@ fn context_for(program: &'static rt_std::program::ProgramDescriptor, backend: Ba
     ctx.set_backend(backend);
     ctx.set_ray_type_count(0);
     ctx.set_integer_exceptions(true);
-    let out = ctx.create_buffer::<u32>(BufferType::InputOutput, vec![0xdead; 52]);
+    let out = ctx.create_buffer::<u32>(BufferType::InputOutput, vec![0xdead; 56]);
     let p = ctx.create_program(program);
     ctx.set_ray_generation_program(0, p).unwrap();
     let ex = ctx.create_program(&record_code::PROGRAM);

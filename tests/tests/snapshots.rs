@@ -112,3 +112,17 @@ fn every_checked_in_snapshot_validates_with_naga() {
     }
     assert!(modules.len() >= 25, "only {} snapshots", modules.len());
 }
+
+/// Every corpus file is also a module of the `rt-tests` library, so rustc
+/// compiles it through the real macros (the snapshot is of a program that
+/// is Rust, and its CPU copy builds).
+#[test]
+fn every_corpus_file_is_compiled_by_rustc() {
+    let lib = std::fs::read_to_string(corpus_dir().join("../src/lib.rs")).unwrap();
+    let missing: Vec<String> = std::fs::read_dir(corpus_dir().join("in"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".rs") && !lib.contains(&format!("\"../snapshots/in/{n}\"")))
+        .collect();
+    assert!(missing.is_empty(), "snapshots/in files not in src/lib.rs (add a #[path] module): {missing:?}");
+}

@@ -85,8 +85,17 @@ fn arith_fn(op: &BinOp) -> Option<(&'static str, bool)> {
 fn gpu_method(name: &str, args: usize) -> bool {
     matches!(
         (name, args),
-        ("abs" | "element_sum" | "element_product" | "length_squared", 0)
-            | ("clamp", 2)
+        (
+            "abs"
+                | "element_sum"
+                | "element_product"
+                | "length_squared"
+                | "isqrt"
+                | "ilog2"
+                | "ilog10"
+                | "next_power_of_two",
+            0
+        ) | ("clamp", 2)
             | ("test", 1)
             | (
                 "div_euclid"
@@ -99,7 +108,14 @@ fn gpu_method(name: &str, args: usize) -> bool {
                     | "distance_squared"
                     | "manhattan_distance"
                     | "perp_dot"
-                    | "rotate",
+                    | "rotate"
+                    | "pow"
+                    | "ilog"
+                    | "div_ceil"
+                    | "next_multiple_of"
+                    | "wrapping_rem"
+                    | "wrapping_div_euclid"
+                    | "wrapping_rem_euclid",
                 1
             )
     )

@@ -15,7 +15,7 @@
 //! `EXCEPTION_INTEGER_OVERFLOW` where integer exceptions are on, as the
 //! operators do.
 
-use super::{Int, RtAbs, RtClamp, RtDivide};
+use super::{Int, RtAbs, RtClamp, RtDivide, overflowed, trap};
 use glam::{BVec2, BVec3, BVec4, IVec2, IVec3, IVec4, Mat2, Mat3, Mat4, UVec2, UVec3, UVec4, Vec2, Vec3, Vec4};
 
 /// A value whose method is called with the GPU's meaning (see the module).
@@ -137,6 +137,99 @@ macro_rules! float_clamp {
     )*};
 }
 float_clamp!(f32, Vec2, Vec3, Vec4);
+
+/// A zero divisor of std's integer methods: raises where integer
+/// exceptions are on, and reads as one.
+#[track_caller]
+#[inline(always)]
+fn divisor<T: PartialEq + From<u8>>(b: T) -> T {
+    if b == T::from(0) {
+        trap(crate::EXCEPTION_INTEGER_DIVIDE_BY_ZERO);
+        T::from(1)
+    } else {
+        b
+    }
+}
+
+/// std's integer methods that panic (`rt-compiler`'s
+/// `lower/builtins/std_scalars.rs` gives their GPU meaning): `pow` wraps,
+/// a zero divisor reads as one, a logarithm or root with no answer is 0.
+macro_rules! std_int {
+    ($($t:ty),*) => {$(
+        impl Gpu<$t> {
+            #[track_caller]
+            #[inline(always)]
+            pub fn pow(self, exp: u32) -> $t {
+                overflowed(self.0.overflowing_pow(exp))
+            }
+            #[track_caller]
+            #[inline(always)]
+            pub fn wrapping_rem(self, b: $t) -> $t {
+                self.0.wrapping_rem(divisor(b))
+            }
+            #[track_caller]
+            #[inline(always)]
+            pub fn wrapping_div_euclid(self, b: $t) -> $t {
+                self.0.wrapping_div_euclid(divisor(b))
+            }
+            #[track_caller]
+            #[inline(always)]
+            pub fn wrapping_rem_euclid(self, b: $t) -> $t {
+                self.0.wrapping_rem_euclid(divisor(b))
+            }
+            #[inline(always)]
+            pub fn ilog2(self) -> u32 {
+                self.0.checked_ilog2().unwrap_or(0)
+            }
+            #[inline(always)]
+            pub fn ilog10(self) -> u32 {
+                self.0.checked_ilog10().unwrap_or(0)
+            }
+            #[inline(always)]
+            pub fn ilog(self, base: $t) -> u32 {
+                if base < 2 { 0 } else { self.0.checked_ilog(base).unwrap_or(0) }
+            }
+        }
+    )*};
+}
+std_int!(i32, u32);
+
+impl Gpu<i32> {
+    #[inline(always)]
+    pub fn isqrt(self) -> i32 {
+        self.0.checked_isqrt().unwrap_or(0)
+    }
+}
+
+impl Gpu<u32> {
+    #[track_caller]
+    #[inline(always)]
+    pub fn div_ceil(self, b: u32) -> u32 {
+        self.0.div_ceil(divisor(b))
+    }
+
+    #[track_caller]
+    #[inline(always)]
+    pub fn next_multiple_of(self, b: u32) -> u32 {
+        let b = divisor(b);
+        match self.0 % b {
+            0 => self.0,
+            r => overflowed(self.0.overflowing_add(b - r)),
+        }
+    }
+
+    #[track_caller]
+    #[inline(always)]
+    pub fn next_power_of_two(self) -> u32 {
+        match self.0.checked_next_power_of_two() {
+            Some(p) => p,
+            None => {
+                trap(crate::EXCEPTION_INTEGER_OVERFLOW);
+                0
+            }
+        }
+    }
+}
 
 /// `abs` of `i32::MIN` is `i32::MIN`.
 macro_rules! signed_abs {
@@ -324,6 +417,28 @@ mod tests {
         assert_eq!(Gpu(5u32).clamp(7, 2), 2);
         assert_eq!(Gpu(1.5f32).clamp(2.0, 1.0), 1.0);
         assert_eq!(Gpu(7i32).div_euclid(0), 7);
+        assert_eq!(Gpu(3i32).pow(31), 3i32.wrapping_pow(31));
+        assert_eq!(
+            (Gpu(7u32).wrapping_rem(0), Gpu(-7i32).wrapping_rem_euclid(0), Gpu(i32::MIN).wrapping_div_euclid(-1)),
+            (0, 0, i32::MIN)
+        );
+        assert_eq!(
+            (Gpu(0u32).ilog2(), Gpu(-5i32).ilog10(), Gpu(100u32).ilog(1), Gpu(100u32).ilog(10), Gpu(-4i32).isqrt()),
+            (0, 0, 0, 2, 0)
+        );
+        assert_eq!(
+            (
+                Gpu(7u32).div_ceil(0),
+                Gpu(7u32).div_ceil(2),
+                Gpu(7u32).next_multiple_of(0),
+                Gpu(u32::MAX).next_multiple_of(2)
+            ),
+            (7, 4, 7, 0)
+        );
+        assert_eq!(
+            (Gpu(0u32).next_power_of_two(), Gpu(5u32).next_power_of_two(), Gpu(u32::MAX).next_power_of_two()),
+            (1, 8, 0)
+        );
     }
 
     #[test]

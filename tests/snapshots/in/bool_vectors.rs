@@ -17,7 +17,8 @@ pub fn bool_vectors(#[var] p: Vec3, #[var] q: Vec4, #[var] i: IVec2, #[var] mut 
     m &= !p.is_nan_mask() & p.is_finite_mask();
     let signs = q.is_negative_mask() | q.cmpeq(Vec4::ZERO) & !BVec4A::splat(false);
     let c = Vec3::select(m, p, -p);
-    let k = IVec2::select(i.cmpge(IVec2::ZERO) & bvec2(true, true), i, i.is_negative_mask().bitmask() as i32 * IVec2::ONE);
+    let k =
+        IVec2::select(i.cmpge(IVec2::ZERO) & bvec2(true, true), i, i.is_negative_mask().bitmask() as i32 * IVec2::ONE);
     let u = UVec4::splat(3).cmpne(uvec4(1, 3, 5, 3)) == bvec4(true, false, true, false);
     out[0] = uvec4(
         m.bitmask() | (signs.bitmask() << 3),

@@ -5,7 +5,8 @@ use rt_std::prelude::*;
 
 #[rt_program(ray_generation)]
 pub fn glam_assoc(#[var] a: Vec4, #[var] t: f32, #[var] mut out: RwBuffer<f32>) {
-    let m3 = Mat3::from_axis_angle(a.truncate(), t) * Mat3::from_rotation_y(t) * Mat3::from_rows(a.xyz(), a.yzw(), a.zwx());
+    let m3 =
+        Mat3::from_axis_angle(a.truncate(), t) * Mat3::from_rotation_y(t) * Mat3::from_rows(a.xyz(), a.yzw(), a.zwx());
     let m4 = Mat4::from_rotation_x(t) * Mat4::from_translation(a.truncate()) * Mat4::from_mat3(m3);
     let m2 = Mat2::from_scale_angle(a.xy(), t) + Mat2::from_cols_array(&a.to_array());
     let s = Mat3::from_scale_angle_translation(a.zw(), t, a.xy());

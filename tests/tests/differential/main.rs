@@ -532,6 +532,7 @@ mod int_division;
 mod math;
 mod methods;
 mod scalars;
+mod std_scalars;
 mod structs_arrays;
 mod tuples;
 mod vectors;

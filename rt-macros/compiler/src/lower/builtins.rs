@@ -10,6 +10,7 @@ mod glam_ints;
 mod glam_masks;
 mod glam_more;
 mod int_division;
+mod std_scalars;
 
 pub use glam_assoc::assoc_fn;
 
@@ -241,6 +242,9 @@ pub fn method_sig(recv: &Ty, name: &str) -> Option<MethodSig> {
         return sig(vec![], t, |a| a[0].clone());
     }
     if let Some(m) = glam_more::method(recv, name) {
+        return Some(m);
+    }
+    if let Some(m) = std_scalars::method(recv, name) {
         return Some(m);
     }
     if is_int && let Some(m) = int_division::method(recv, name) {

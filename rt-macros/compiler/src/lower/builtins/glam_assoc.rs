@@ -80,6 +80,20 @@ pub fn assoc_fn(ty: &Ty, name: &str) -> Option<MethodSig> {
     match ty {
         Ty::Vec(n, s) => vector(*n, *s, t, w, name),
         Ty::Mat(n) => matrix(*n, t, w, name),
+        Ty::Scalar(s) => scalar(*s, t, name),
+        _ => None,
+    }
+}
+
+/// std's associated functions of the scalars: `f32::from_bits`, the
+/// integers' `from_be`/`from_le` (little-endian targets).
+fn scalar(s: Scalar, t: Ty, name: &str) -> Option<MethodSig> {
+    match (s, name) {
+        (Scalar::F32, "from_bits") => sig(vec![crate::types::U32], t, |a| format!("bitcast<f32>({})", a[0])),
+        (Scalar::I32 | Scalar::U32, "from_be") => {
+            sig(vec![t.clone()], t, move |a| super::std_scalars::byte_swap(s, &a[0]))
+        }
+        (Scalar::I32 | Scalar::U32, "from_le") => sig(vec![t.clone()], t, |a| a[0].clone()),
         _ => None,
     }
 }
