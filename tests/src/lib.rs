@@ -2,7 +2,7 @@
 //! (`snapshots/in/*.rs`) through the real `#[rt_program]` macros, so every
 //! snapshot program is also checked by rustc and runs as Rust; the tests in
 //! `tests/` compare its WGSL with the checked-in snapshots.
-#![allow(dead_code, clippy::too_many_arguments)]
+#![allow(dead_code, clippy::too_many_arguments, clippy::type_complexity)]
 
 pub mod fuzz;
 pub mod meshes;
