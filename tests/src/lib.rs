@@ -7,6 +7,7 @@
 pub mod fuzz;
 pub mod meshes;
 pub mod scene_fuzz;
+pub mod std_signatures;
 pub mod targets;
 
 #[path = "../snapshots/in/atomics.rs"]

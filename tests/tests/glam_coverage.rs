@@ -272,3 +272,321 @@ fn supported_glam_methods_have_glam_signatures_and_the_table_is_current() {
     let current = std::fs::read_to_string(&path).unwrap_or_default();
     assert!(current == doc, "docs/glam_methods.md is out of date (RT_BLESS=1 to rewrite it)");
 }
+
+/// std's methods and associated functions of the scalar types, as listed
+/// in std's documentation for the toolchain this builds with (std's source
+/// is not in cargo's registry to be read as glam's is): every stable
+/// inherent function, `(name, why it is left out)` where it has no WGSL
+/// meaning in the subset. A supported one's signature is checked by rustc:
+/// `tests/src/std_signatures.rs`, generated here from the compiler's table,
+/// is compiled with the tests (`RT_BLESS=1` rewrites it).
+/// A scalar type: its name, the functions counted, and those left out with
+/// why.
+type StdType = (&'static str, &'static [&'static str], &'static [(&'static str, &'static str)]);
+
+const STD: &[StdType] = &[
+    (
+        "f32",
+        &[
+            "abs",
+            "signum",
+            "copysign",
+            "floor",
+            "ceil",
+            "round",
+            "round_ties_even",
+            "trunc",
+            "fract",
+            "mul_add",
+            "div_euclid",
+            "rem_euclid",
+            "powi",
+            "powf",
+            "sqrt",
+            "exp",
+            "exp2",
+            "exp_m1",
+            "ln",
+            "log",
+            "log2",
+            "log10",
+            "ln_1p",
+            "cbrt",
+            "hypot",
+            "sin",
+            "cos",
+            "tan",
+            "asin",
+            "acos",
+            "atan",
+            "atan2",
+            "sin_cos",
+            "sinh",
+            "cosh",
+            "tanh",
+            "asinh",
+            "acosh",
+            "atanh",
+            "is_nan",
+            "is_infinite",
+            "is_finite",
+            "is_subnormal",
+            "is_normal",
+            "is_sign_positive",
+            "is_sign_negative",
+            "next_up",
+            "next_down",
+            "recip",
+            "to_degrees",
+            "to_radians",
+            "max",
+            "min",
+            "midpoint",
+            "to_bits",
+            "clamp",
+            "from_bits",
+        ],
+        &[
+            ("classify", "returns `FpCategory`"),
+            ("total_cmp", "returns `Ordering`"),
+            ("to_int_unchecked", "unsafe"),
+            ("to_be_bytes", "byte arrays (`[u8; 4]`)"),
+            ("to_le_bytes", "byte arrays (`[u8; 4]`)"),
+            ("to_ne_bytes", "byte arrays (`[u8; 4]`)"),
+            ("from_be_bytes", "byte arrays (`[u8; 4]`)"),
+            ("from_le_bytes", "byte arrays (`[u8; 4]`)"),
+            ("from_ne_bytes", "byte arrays (`[u8; 4]`)"),
+            ("abs_sub", "deprecated in std"),
+        ],
+    ),
+    (
+        "i32",
+        &[
+            "count_ones",
+            "count_zeros",
+            "leading_zeros",
+            "trailing_zeros",
+            "leading_ones",
+            "trailing_ones",
+            "cast_unsigned",
+            "rotate_left",
+            "rotate_right",
+            "swap_bytes",
+            "reverse_bits",
+            "to_be",
+            "to_le",
+            "from_be",
+            "from_le",
+            "saturating_add",
+            "saturating_add_unsigned",
+            "saturating_sub",
+            "saturating_sub_unsigned",
+            "saturating_neg",
+            "saturating_abs",
+            "saturating_mul",
+            "saturating_div",
+            "saturating_pow",
+            "wrapping_add",
+            "wrapping_add_unsigned",
+            "wrapping_sub",
+            "wrapping_sub_unsigned",
+            "wrapping_mul",
+            "wrapping_div",
+            "wrapping_div_euclid",
+            "wrapping_rem",
+            "wrapping_rem_euclid",
+            "wrapping_neg",
+            "wrapping_shl",
+            "wrapping_shr",
+            "wrapping_abs",
+            "unsigned_abs",
+            "wrapping_pow",
+            "overflowing_add",
+            "overflowing_sub",
+            "overflowing_mul",
+            "overflowing_neg",
+            "overflowing_shl",
+            "overflowing_shr",
+            "overflowing_abs",
+            "overflowing_pow",
+            "overflowing_add_unsigned",
+            "overflowing_sub_unsigned",
+            "overflowing_div",
+            "overflowing_div_euclid",
+            "overflowing_rem",
+            "overflowing_rem_euclid",
+            "pow",
+            "isqrt",
+            "div_euclid",
+            "rem_euclid",
+            "abs",
+            "abs_diff",
+            "signum",
+            "is_positive",
+            "is_negative",
+            "midpoint",
+            "ilog",
+            "ilog2",
+            "ilog10",
+            "unbounded_shl",
+            "unbounded_shr",
+            "min",
+            "max",
+            "clamp",
+        ],
+        &[
+            ("checked_*", "returns `Option`"),
+            ("unchecked_*", "unsafe"),
+            ("to_be_bytes, to_le_bytes, to_ne_bytes, from_*_bytes", "byte arrays (`[u8; 4]`)"),
+            ("from_str_radix", "strings"),
+        ],
+    ),
+    (
+        "u32",
+        &[
+            "count_ones",
+            "count_zeros",
+            "leading_zeros",
+            "trailing_zeros",
+            "leading_ones",
+            "trailing_ones",
+            "cast_signed",
+            "rotate_left",
+            "rotate_right",
+            "swap_bytes",
+            "reverse_bits",
+            "to_be",
+            "to_le",
+            "from_be",
+            "from_le",
+            "saturating_add",
+            "saturating_add_signed",
+            "saturating_sub",
+            "saturating_mul",
+            "saturating_div",
+            "saturating_pow",
+            "wrapping_add",
+            "wrapping_add_signed",
+            "wrapping_sub",
+            "wrapping_mul",
+            "wrapping_div",
+            "wrapping_div_euclid",
+            "wrapping_rem",
+            "wrapping_rem_euclid",
+            "wrapping_neg",
+            "wrapping_shl",
+            "wrapping_shr",
+            "wrapping_pow",
+            "overflowing_add",
+            "overflowing_add_signed",
+            "overflowing_sub",
+            "overflowing_mul",
+            "overflowing_neg",
+            "overflowing_shl",
+            "overflowing_shr",
+            "overflowing_pow",
+            "overflowing_div",
+            "overflowing_div_euclid",
+            "overflowing_rem",
+            "overflowing_rem_euclid",
+            "pow",
+            "isqrt",
+            "div_euclid",
+            "rem_euclid",
+            "div_ceil",
+            "next_multiple_of",
+            "is_multiple_of",
+            "is_power_of_two",
+            "next_power_of_two",
+            "abs_diff",
+            "midpoint",
+            "ilog",
+            "ilog2",
+            "ilog10",
+            "unbounded_shl",
+            "unbounded_shr",
+            "min",
+            "max",
+            "clamp",
+        ],
+        &[
+            ("checked_*", "returns `Option`"),
+            ("unchecked_*", "unsafe"),
+            ("to_be_bytes, to_le_bytes, to_ne_bytes, from_*_bytes", "byte arrays (`[u8; 4]`)"),
+            ("from_str_radix", "strings"),
+        ],
+    ),
+    ("bool", &[], &[("then_some", "returns `Option`"), ("then", "takes a closure")]),
+];
+
+/// `fn(A, ..) -> R` of a supported std function, in Rust.
+fn rust_fn_type(params: &[Ty], ret: &Ty) -> String {
+    let ps: Vec<String> = params.iter().map(Ty::to_string).collect();
+    match ret {
+        Ty::Unit => format!("fn({})", ps.join(", ")),
+        r => format!("fn({}) -> {r}", ps.join(", ")),
+    }
+}
+
+#[test]
+fn supported_std_scalar_functions_have_std_signatures_and_the_table_is_current() {
+    use rt_compiler::lower::builtins::{assoc_fn, method_sig};
+    let mut doc = String::from(
+        "# std's scalar methods in ray programs\n\n\
+         Generated by `tests/tests/glam_coverage.rs` from the compiler's tables and a list of std's stable \
+         inherent functions of `f32`, `i32`, `u32` and `bool` (`RT_BLESS=1 cargo test -p rt-tests --test \
+         glam_coverage` rewrites it). Each supported function's signature is checked by rustc \
+         (`tests/src/std_signatures.rs`, generated by the same test). Where std panics (an overflowing \
+         `pow` in a debug build, a zero divisor, the logarithm of 0), programs get the GPU's meaning on \
+         both backends: see `rt_std::arith`.\n\n",
+    );
+    let mut checks = String::from(
+        "//! Generated by `tests/tests/glam_coverage.rs` (`RT_BLESS=1` rewrites it): every std function of the\n\
+         //! scalars that ray programs may call, with the signature the compiler's table gives it. rustc\n\
+         //! compiles this file with the tests, so a signature that differs from std's fails the build.\n\n\
+         pub fn signatures() {\n",
+    );
+    let (mut yes_all, mut all) = (0, 0);
+    for (owner, names, left_out) in STD {
+        let ty = rt_compiler::types::builtin_type(owner).expect("a scalar type");
+        let mut yes = Vec::new();
+        let mut no: Vec<String> = Vec::new();
+        for name in names.iter() {
+            let found = method_sig(&ty, name).map(|s| {
+                let mut params = vec![ty.clone()];
+                params.extend(s.params);
+                (params, s.ret)
+            });
+            let found = found.or_else(|| assoc_fn(&ty, name).map(|s| (s.params, s.ret)));
+            match found {
+                Some((params, ret)) => {
+                    checks.push_str(&format!("    let _: {} = {owner}::{name};\n", rust_fn_type(&params, &ret)));
+                    yes.push(format!("`{name}`"));
+                }
+                None => no.push(format!("`{name}` (not written out yet)")),
+            }
+        }
+        no.extend(left_out.iter().map(|(n, why)| format!("`{n}` ({why})")));
+        yes_all += yes.len();
+        all += yes.len() + no.len();
+        doc.push_str(&format!(
+            "## {owner}: {} of {}\n\nSupported: {}\n\nLeft out: {}\n\n",
+            yes.len(),
+            yes.len() + no.len(),
+            if yes.is_empty() { "none".to_string() } else { yes.join(", ") },
+            if no.is_empty() { "none".to_string() } else { no.join(", ") }
+        ));
+    }
+    checks.push_str("}\n");
+    let doc =
+        doc.replacen("\n\n## ", &format!("\n\n**{yes_all} of {all} supported** (a `*` entry counts once).\n\n## "), 1);
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let files = [(root.join("../docs/std_methods.md"), doc), (root.join("src/std_signatures.rs"), checks)];
+    for (path, text) in &files {
+        if std::env::var_os("RT_BLESS").is_some() {
+            std::fs::write(path, text).unwrap();
+        }
+        let current = std::fs::read_to_string(path).unwrap_or_default();
+        assert!(&current == text, "{} is out of date (RT_BLESS=1 to rewrite it)", path.display());
+    }
+}

@@ -100,6 +100,9 @@ pub fn edge_cases(
     out[51] = a.div_ceil(zero);
     out[52] = a.next_multiple_of(zero);
     out[53] = (a | 0x8000_0000).next_power_of_two() + 2 * u32::pow(a, 2);
+    let (q, over) = min.overflowing_div(zero as i32);
+    let (r, over_r) = a.overflowing_rem_euclid(zero);
+    out[54] = q as u32 + r + over as u32 + 2 * over_r as u32;
 }
 
 /// `(index, value, what)`: the defined results.
@@ -162,6 +165,7 @@ fn expected() -> Vec<(usize, u32, &'static str)> {
         (51, a, "div_ceil(0) reads the divisor as one"),
         (52, a, "next_multiple_of(0) reads the divisor as one"),
         (53, a.wrapping_mul(a).wrapping_mul(2), "next_power_of_two past 2^31 is 0; u32::pow wraps"),
+        (54, i32::MIN as u32, "overflowing_div(0) and overflowing_rem_euclid(0) read the divisor as one"),
     ]
 }
 
@@ -169,7 +173,7 @@ fn run(backend: Backend) -> Vec<u32> {
     let mut ctx = Context::new();
     ctx.set_backend(backend);
     ctx.set_ray_type_count(0);
-    let out = ctx.create_buffer::<u32>(BufferType::InputOutput, vec![0xdead; 56]);
+    let out = ctx.create_buffer::<u32>(BufferType::InputOutput, vec![0xdead; 60]);
     let p = ctx.create_program(&edge_cases::PROGRAM);
     ctx.set_ray_generation_program(0, p).unwrap();
     ctx.set_var(Scope::Context, "out", out).unwrap();
@@ -222,7 +226,7 @@ fn context_for(program: &'static rt_std::program::ProgramDescriptor, backend: Ba
     ctx.set_backend(backend);
     ctx.set_ray_type_count(0);
     ctx.set_integer_exceptions(true);
-    let out = ctx.create_buffer::<u32>(BufferType::InputOutput, vec![0xdead; 56]);
+    let out = ctx.create_buffer::<u32>(BufferType::InputOutput, vec![0xdead; 60]);
     let p = ctx.create_program(program);
     ctx.set_ray_generation_program(0, p).unwrap();
     let ex = ctx.create_program(&record_code::PROGRAM);

@@ -115,7 +115,11 @@ fn gpu_method(name: &str, args: usize) -> bool {
                     | "next_multiple_of"
                     | "wrapping_rem"
                     | "wrapping_div_euclid"
-                    | "wrapping_rem_euclid",
+                    | "wrapping_rem_euclid"
+                    | "overflowing_div"
+                    | "overflowing_rem"
+                    | "overflowing_div_euclid"
+                    | "overflowing_rem_euclid",
                 1
             )
     )

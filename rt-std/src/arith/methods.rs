@@ -177,6 +177,26 @@ macro_rules! std_int {
             pub fn wrapping_rem_euclid(self, b: $t) -> $t {
                 self.0.wrapping_rem_euclid(divisor(b))
             }
+            #[track_caller]
+            #[inline(always)]
+            pub fn overflowing_div(self, b: $t) -> ($t, bool) {
+                self.0.overflowing_div(divisor(b))
+            }
+            #[track_caller]
+            #[inline(always)]
+            pub fn overflowing_rem(self, b: $t) -> ($t, bool) {
+                self.0.overflowing_rem(divisor(b))
+            }
+            #[track_caller]
+            #[inline(always)]
+            pub fn overflowing_div_euclid(self, b: $t) -> ($t, bool) {
+                self.0.overflowing_div_euclid(divisor(b))
+            }
+            #[track_caller]
+            #[inline(always)]
+            pub fn overflowing_rem_euclid(self, b: $t) -> ($t, bool) {
+                self.0.overflowing_rem_euclid(divisor(b))
+            }
             #[inline(always)]
             pub fn ilog2(self) -> u32 {
                 self.0.checked_ilog2().unwrap_or(0)

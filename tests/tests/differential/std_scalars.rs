@@ -35,7 +35,7 @@ differential! {
         /// Differences, means, remainders (non-zero divisors), products
         /// with their overflow, `div_ceil`, `next_multiple_of`, signed
         /// addition to a `u32`.
-        arithmetic(a: i32, b: i32) -> [u32; 10] over pairs(&I32_EDGES, &I32_EDGES) => {
+        arithmetic(a: i32, b: i32) -> [u32; 14] over pairs(&I32_EDGES, &I32_EDGES) => {
             let (u, v) = (a as u32, b as u32);
             [
                 a.abs_diff(b) ^ u.abs_diff(v).rotate_left(11),
@@ -48,6 +48,15 @@ differential! {
                 u.overflowing_mul(v).0,
                 u.div_ceil(v | 1) ^ (u >> 1).next_multiple_of((v >> 16) | 1).rotate_left(5),
                 u.overflowing_add_signed(b).0 ^ (u.overflowing_add_signed(b).1 as u32).rotate_left(13),
+                a.overflowing_add_unsigned(v).0 as u32 ^ ((a.overflowing_add_unsigned(v).1 as u32) << 31)
+                    ^ ((a.overflowing_sub_unsigned(v).1 as u32) << 30) ^ (a.overflowing_sub_unsigned(v).0 as u32).rotate_left(7),
+                a.overflowing_div(b | 1).0 as u32 ^ ((a.overflowing_div(b | 1).1 as u32) << 31)
+                    ^ (a.overflowing_rem(b | 1).0 as u32).rotate_left(5) ^ ((a.overflowing_rem(b | 1).1 as u32) << 30),
+                a.overflowing_div_euclid(b | 1).0 as u32 ^ ((a.overflowing_div_euclid(b | 1).1 as u32) << 31)
+                    ^ (a.overflowing_rem_euclid(b | 1).0 as u32).rotate_left(5) ^ ((a.overflowing_rem_euclid(b | 1).1 as u32) << 30),
+                u.overflowing_div(v | 1).0 ^ u.overflowing_rem(v | 1).0.rotate_left(3) ^ u.overflowing_div_euclid(v | 1).0.rotate_left(6)
+                    ^ u.overflowing_rem_euclid(v | 1).0.rotate_left(9)
+                    ^ ((u.overflowing_div(v | 1).1 | u.overflowing_rem_euclid(v | 1).1) as u32),
             ]
         }
         /// Powers (wrapping, overflowing, saturating), integer roots and

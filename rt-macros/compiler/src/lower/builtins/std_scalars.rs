@@ -159,6 +159,41 @@ fn int(s: Scalar, name: &str) -> Option<MethodSig> {
         "wrapping_rem" => sig(vec![t.clone()], t, |a| format!("({} % {})", a[0], a[1])),
         "wrapping_div_euclid" => super::int_division::method(&t, "div_euclid"),
         "wrapping_rem_euclid" => super::int_division::method(&t, "rem_euclid"),
+        // A zero divisor reads as one (std panics); `MIN / -1` and its
+        // remainder overflow (the quotient wraps to `MIN`, the remainder
+        // is 0).
+        "overflowing_div" | "overflowing_rem" => {
+            let op = if name.ends_with("div") { "/" } else { "%" };
+            sig(vec![t.clone()], pair(t), move |a| {
+                let d = format!("select({0}, {1}, {0} == {zero})", a[1], if signed { "1i" } else { "1u" });
+                format!("{pair_w}(({} {op} {d}), {})", a[0], min_by_minus_one(signed, &a[0], &a[1]))
+            })
+        }
+        "overflowing_div_euclid" | "overflowing_rem_euclid" => {
+            let inner = super::int_division::method(&t, &name["overflowing_".len()..])?;
+            let lower = inner.lower;
+            Some(MethodSig {
+                params: inner.params,
+                ret: pair(t),
+                lower: Box::new(move |a| format!("{pair_w}({}, {})", lower(a), min_by_minus_one(signed, &a[0], &a[1]))),
+                support: inner.support,
+            })
+        }
+        "overflowing_add_unsigned" | "overflowing_sub_unsigned" if signed => {
+            let add = name == "overflowing_add_unsigned";
+            sig(vec![U32], pair(t), move |a| {
+                // std: the signed operation's overflow, flipped where the
+                // operand read as `i32` is negative.
+                let (x, y) = (&a[0], format!("bitcast<i32>({})", a[1]));
+                let r = if add { format!("({x} + {y})") } else { format!("({x} - {y})") };
+                let over = if add {
+                    format!("((({x} ^ {r}) & ({y} ^ {r})) < 0i)")
+                } else {
+                    format!("((({x} ^ {y}) & ({x} ^ {r})) < 0i)")
+                };
+                format!("{pair_w}({r}, {over} != ({y} < 0i))")
+            })
+        }
         "overflowing_mul" => with(
             sig(vec![t.clone()], pair(t), move |a| {
                 let f = if signed { "rt_mul_over_i32" } else { "rt_mul_over_u32" };
@@ -276,6 +311,11 @@ fn int(s: Scalar, name: &str) -> Option<MethodSig> {
         }),
         _ => None,
     }
+}
+
+/// Whether `a / b` overflows: `i32::MIN / -1` (never for `u32`).
+fn min_by_minus_one(signed: bool, a: &str, b: &str) -> String {
+    if signed { format!("({a} == i32(-2147483648) && {b} == -1i)") } else { "false".into() }
 }
 
 /// The bytes of an `i32` or `u32` in the other order.
