@@ -67,7 +67,8 @@ fn the_fixed_seed_generates_tuples_enums_and_methods() {
 /// vectors (`cmp*`, consumed by `any`/`all`/`bitmask`/`select`), the
 /// dividing methods with any divisor (method and path forms), integer
 /// vectors' `cross`/`manhattan_distance`, NaN operands of comparisons and
-/// the vectors' `from_array`.
+/// the vectors' `from_array`, std's integer methods (`pow`, `isqrt`,
+/// `ilog2`, `abs_diff`, `midpoint`, ...).
 #[test]
 fn the_fixed_seed_generates_bool_vectors_dividing_methods_and_nan_operands() {
     let cfg = fuzz::Config::from_env(0x5eed, 300);
@@ -84,10 +85,12 @@ fn the_fixed_seed_generates_bool_vectors_dividing_methods_and_nan_operands() {
     let int_geometry = count(&[".manhattan_distance("]);
     let nan = count(&["f32::NAN"]);
     let from_array = count(&["::from_array(["]);
+    let std_ints =
+        count(&[".isqrt()", ".ilog2()", ".ilog10()", ".abs_diff(", ".midpoint(", ".pow(", "_pow(", ".wrapping_neg()"]);
     let what = format!(
         "of 300 programs, {masks} compare vectors into masks, {consumed} consume masks, {dividing} call dividing \
          methods ({dividing_paths} as paths), {int_geometry} measure integer distances, {nan} compare with NaN, \
-         {from_array} build vectors with `from_array`"
+         {from_array} build vectors with `from_array`, {std_ints} call std's integer methods"
     );
     eprintln!("{what}");
     assert!(
@@ -97,7 +100,8 @@ fn the_fixed_seed_generates_bool_vectors_dividing_methods_and_nan_operands() {
             && dividing_paths >= 10
             && int_geometry >= 10
             && nan >= 10
-            && from_array >= 30,
+            && from_array >= 30
+            && std_ints >= 30,
         "{what}"
     );
 }

@@ -103,6 +103,12 @@ pub fn edge_cases(
     let (q, over) = min.overflowing_div(zero as i32);
     let (r, over_r) = a.overflowing_rem_euclid(zero);
     out[54] = q as u32 + r + over as u32 + 2 * over_r as u32;
+    // glam's minors past the last row and column: the last ones left out.
+    let big =
+        Mat4::from_cols_array(&[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0, 10.0, 11.0, 12.0, 13.0, 14.0, 15.0, 16.0]);
+    let minor = Mat3::from_mat4_minor(big, k as usize, 9);
+    let small = Mat2::from_mat3_minor(minor, 0, k as usize);
+    out[55] = (minor.z_axis.z + 100.0 * small.x_axis.y + 10000.0 * small.y_axis.y) as u32;
 }
 
 /// `(index, value, what)`: the defined results.
@@ -166,6 +172,7 @@ fn expected() -> Vec<(usize, u32, &'static str)> {
         (52, a, "next_multiple_of(0) reads the divisor as one"),
         (53, a.wrapping_mul(a).wrapping_mul(2), "next_power_of_two past 2^31 is 0; u32::pow wraps"),
         (54, i32::MIN as u32, "overflowing_div(0) and overflowing_rem_euclid(0) read the divisor as one"),
+        (55, 100_611, "from_mat4_minor(m, 33, 9) and from_mat3_minor(.., 0, 33) leave out the last column and row"),
     ]
 }
 

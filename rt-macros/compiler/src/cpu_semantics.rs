@@ -132,6 +132,23 @@ fn gpu_mut_method(name: &str, args: usize) -> bool {
     matches!((name, args), ("set_row" | "set", 2) | ("col_mut", 1))
 }
 
+/// `Mat2::from_mat3_minor`, `Mat3::from_mat4_minor`: the type's path and
+/// the function's name.
+fn gpu_assoc_fn(func: &Expr) -> Option<(syn::Path, syn::Ident)> {
+    let Expr::Path(p) = func else { return None };
+    let last = p.path.segments.last()?;
+    if p.qself.is_some()
+        || p.path.segments.len() < 2
+        || !matches!(last.ident.to_string().as_str(), "from_mat3_minor" | "from_mat4_minor")
+    {
+        return None;
+    }
+    let mut owner = p.path.clone();
+    owner.segments.pop();
+    owner.segments.pop_punct();
+    Some((owner, last.ident.clone()))
+}
+
 /// `T::dot` called with `args` arguments (the receiver first), `T` a type
 /// (a capitalised name or a primitive, not a module: `math::dot` is a
 /// function): the type's path and the method's name.
@@ -259,6 +276,16 @@ impl VisitMut for Rewriter {
                 let gpu = path("Gpu", span);
                 let (recv, method, turbofish, args) = (&m.receiver, &m.method, &m.turbofish, &m.args);
                 *e = syn::parse_quote_spanned!(span=> #gpu(#recv).#method #turbofish(#args));
+            }
+            // `Mat2::from_mat3_minor(m, i, j)`: glam's associated function
+            // that panics past the last row or column, through `Gpu`'s.
+            Expr::Call(c) if gpu_assoc_fn(&c.func).is_some() => {
+                visit_mut::visit_expr_call_mut(self, c);
+                let (owner, name) = gpu_assoc_fn(&c.func).unwrap();
+                let span = name.span();
+                let gpu = path("Gpu", span);
+                let args = &c.args;
+                *e = syn::parse_quote_spanned!(span=> #gpu::<#owner>::#name(#args));
             }
             Expr::Call(c) if path_gpu_method(&c.func, c.args.len()).is_some() => {
                 visit_mut::visit_expr_call_mut(self, c);

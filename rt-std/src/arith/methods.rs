@@ -89,6 +89,23 @@ macro_rules! bool_vector {
 }
 bool_vector!(BVec2, 2; BVec3, 3; BVec4, 4);
 
+/// glam's minors, the column and row left out clamped to the last (glam
+/// panics past it): the macro writes `Gpu::<Mat2>::from_mat3_minor(..)`
+/// for `Mat2::from_mat3_minor(..)`.
+impl Gpu<Mat2> {
+    #[inline(always)]
+    pub fn from_mat3_minor(m: Mat3, i: usize, j: usize) -> Mat2 {
+        Mat2::from_mat3_minor(m, i.min(2), j.min(2))
+    }
+}
+
+impl Gpu<Mat3> {
+    #[inline(always)]
+    pub fn from_mat4_minor(m: Mat4, i: usize, j: usize) -> Mat3 {
+        Mat3::from_mat4_minor(m, i.min(3), j.min(3))
+    }
+}
+
 /// The dividing methods and `clamp`, for every integer type and vector.
 macro_rules! dividing_and_clamp {
     ($($t:ty),*) => {$(

@@ -12,5 +12,6 @@ pub fn glam_assoc(#[var] a: Vec4, #[var] t: f32, #[var] mut out: RwBuffer<f32>) 
     let s = Mat3::from_scale_angle_translation(a.zw(), t, a.xy());
     let v = Vec3::from_homogeneous(a) + Vec3::from_array([t, t, 1.0]);
     let m = BVec2::from_array([t > 0.0, a.x > 0.0]);
-    out[0] = m4.w_axis.x + m2.y_axis.y + s.z_axis.x + v.y + m.bitmask() as f32 + Vec2::from_angle(t).x;
+    let minor = Mat2::from_mat3_minor(Mat3::from_mat4_minor(m4, 1, 2), 0, 1);
+    out[0] = m4.w_axis.x + m2.y_axis.y + s.z_axis.x + v.y + m.bitmask() as f32 + Vec2::from_angle(t).x + minor.y_axis.x;
 }

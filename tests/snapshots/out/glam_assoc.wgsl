@@ -62,6 +62,31 @@ fn rt_mat4_of_mat3(m: mat3x3<f32>) -> mat4x4<f32> {
     return mat4x4<f32>(vec4<f32>(m[0], 0.0f), vec4<f32>(m[1], 0.0f), vec4<f32>(m[2], 0.0f), vec4<f32>(0.0f, 0.0f, 0.0f, 1.0f));
 }
 
+fn rt_minor3(m: mat3x3<f32>, i0: u32, j0: u32) -> mat2x2<f32> {
+    let i = min(i0, 2u);
+    let j = min(j0, 2u);
+    var mm = m;
+    var out: mat2x2<f32>;
+    for (var k = 0u; k < 2u; k = k + 1u) {
+        for (var l = 0u; l < 2u; l = l + 1u) {
+            out[k][l] = mm[k + select(0u, 1u, k >= i)][l + select(0u, 1u, l >= j)];
+        }
+    }
+    return out;
+}
+fn rt_minor4(m: mat4x4<f32>, i0: u32, j0: u32) -> mat3x3<f32> {
+    let i = min(i0, 3u);
+    let j = min(j0, 3u);
+    var mm = m;
+    var out: mat3x3<f32>;
+    for (var k = 0u; k < 3u; k = k + 1u) {
+        for (var l = 0u; l < 3u; l = l + 1u) {
+            out[k][l] = mm[k + select(0u, 1u, k >= i)][l + select(0u, 1u, l >= j)];
+        }
+    }
+    return out;
+}
+
 fn rt_store_f32(w: u32, v: f32) {
     rt_hw_set(w, bitcast<u32>(v));
 }
@@ -77,6 +102,7 @@ fn rtp_glam_assoc(a: vec4<f32>, t: f32, out: RtBuffer) {
     let v: vec3<f32> = ((a.xyz / a.w) + vec3<f32>(tmp_1[0], tmp_1[1], tmp_1[2]));
     let tmp_2 = array<bool, 2>((t > 0.0f), (a.x > 0.0f));
     let m: vec2<bool> = vec2<bool>(tmp_2[0], tmp_2[1]);
+    var minor: mat2x2<f32> = rt_minor3(rt_minor4(m4, u32(1u), u32(2u)), u32(0u), u32(1u));
     let tmp_3 = 0u;
-    rt_bufstore_f32(out_1, tmp_3, (((((m4[3].x + m2[1].y) + s[2].x) + v.y) + f32(dot(select(vec2<u32>(0u), vec2<u32>(1u, 2u), m), vec2<u32>(1u)))) + vec2<f32>(cos(t), sin(t)).x));
+    rt_bufstore_f32(out_1, tmp_3, ((((((m4[3].x + m2[1].y) + s[2].x) + v.y) + f32(dot(select(vec2<u32>(0u), vec2<u32>(1u, 2u), m), vec2<u32>(1u)))) + vec2<f32>(cos(t), sin(t)).x) + minor[1].x));
 }

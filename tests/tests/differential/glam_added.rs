@@ -282,6 +282,14 @@ differential! {
                 Vec2::from_angle(t).extend(s.y_axis.y).extend(m3.z_axis.x),
             ]
         }
+        /// `Mat3::from_mat4_minor` and `Mat2::from_mat3_minor` over every
+        /// column and row left out.
+        minors(a: Vec4, k: u32) -> [Vec4; 3] over pairs(&vec4s(4, 2.0, 85), &[0, 1, 2, 3]), tol EXACT => {
+            let m4 = Mat4::from_cols(a, a.wzyx() + Vec4::ONE, a * 2.0, Vec4::new(1.0, 2.0, 3.0, 4.0));
+            let m3 = Mat3::from_mat4_minor(m4, k as usize, 3 - k as usize);
+            let m2 = Mat2::from_mat3_minor(m3, (k % 3) as usize, (2 - k % 3) as usize);
+            [m3.x_axis.extend(m3.y_axis.x), m3.z_axis.extend(m3.y_axis.z), m2.x_axis.extend(m2.y_axis.x).extend(m2.y_axis.y)]
+        }
         /// The vectors' and masks' `from_array`, `Vec3::from_homogeneous`.
         vectors(a: Vec4, k: i32) -> [Vec4; 3] over pairs(&vec4s(6, 2.0, 84), &I32_EDGES), tol CHAINED => {
             let v = Vec3::from_array([a.x, a.y, a.z]) + Vec3::from_homogeneous(a.with_w(a.w.abs() + 0.5));

@@ -220,7 +220,15 @@ impl Gen {
             65..=69 => {
                 let src = self.r.pick(&[s, other]);
                 let x = self.expr(&Ty::S(src), d1, false);
-                let m = self.r.pick(&["count_ones", "leading_zeros", "trailing_zeros", "reverse_bits"]);
+                let m = self.r.pick(&[
+                    "count_ones",
+                    "leading_zeros",
+                    "trailing_zeros",
+                    "reverse_bits",
+                    "count_zeros",
+                    "leading_ones",
+                    "trailing_ones",
+                ]);
                 let e = method(x, m, vec![]);
                 let result = if m == "reverse_bits" { src } else { Scalar::U32 };
                 if result == s { e } else { Expr::Cast(b(e), s) }
@@ -268,11 +276,30 @@ impl Gen {
                 let load = Expr::BufLoad(0, b(i), self.r.chance(50));
                 if s == Scalar::U32 { load } else { Expr::Cast(b(load), s) }
             }
-            92..=94 => {
+            92..=94 if self.r.chance(40) => {
                 let x = self.expr(&U32, d1, false);
                 let y = self.expr(&U32, d1, true);
                 let c = method(x, "is_multiple_of", vec![y]);
                 Expr::Cast(b(c), s)
+            }
+            92..=94 => {
+                // std's methods with the GPU's meaning where std panics
+                // (`pow` wraps, `isqrt`/`ilog2` of a negative or zero
+                // are 0).
+                let x = self.expr(&t, d1, false);
+                let (e, result) = match self.r.below(7) {
+                    0 => (method(x, "wrapping_neg", vec![]), s),
+                    1 => (method(x, "isqrt", vec![]), s),
+                    2 => (method(x, self.r.pick(&["ilog2", "ilog10"]), vec![]), Scalar::U32),
+                    3 => (method(x, "abs_diff", vec![self.expr(&t, d1, true)]), Scalar::U32),
+                    4 => (method(x, "midpoint", vec![self.expr(&t, d1, true)]), s),
+                    5 => {
+                        let k = lit(LitV::U32(self.r.range(0, 40) as u32), false);
+                        (method(x, self.r.pick(&["pow", "wrapping_pow"]), vec![k]), s)
+                    }
+                    _ => (method(x, "saturating_pow", vec![lit(LitV::U32(self.r.range(0, 12) as u32), false)]), s),
+                };
+                if result == s { e } else { Expr::Cast(b(e), s) }
             }
             _ => self.leaf(&t, typed),
         }

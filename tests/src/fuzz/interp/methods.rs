@@ -256,6 +256,27 @@ pub(super) fn method(r: &V, m: &str, a: &[V]) -> R<V> {
         "wrapping_sub" => two(&mut |x, y| scalar_bin(BinOp::Sub, x, y)),
         "wrapping_mul" => two(&mut |x, y| scalar_bin(BinOp::Mul, x, y)),
         "div_euclid" | "rem_euclid" | "wrapping_div" | "saturating_div" => two(&mut |x, y| Ok(dividing(m, x, y))),
+        "abs_diff" => Ok(match (r, &a[0]) {
+            (V::I(x, xu), V::I(y, yu)) => V::U(x.abs_diff(*y), *xu || *yu),
+            (V::U(x, xu), V::U(y, yu)) => V::U(x.abs_diff(*y), *xu || *yu),
+            _ => panic!("abs_diff of {r:?}"),
+        }),
+        "midpoint" => Ok(match (r, &a[0]) {
+            (V::I(x, xu), V::I(y, yu)) => V::I(x.midpoint(*y), *xu || *yu),
+            (V::U(x, xu), V::U(y, yu)) => V::U(x.midpoint(*y), *xu || *yu),
+            _ => panic!("midpoint of {r:?}"),
+        }),
+        // `pow` wraps (the GPU's meaning, where std panics in a debug build).
+        "pow" | "wrapping_pow" | "saturating_pow" => {
+            let V::U(e, eu) = a[0] else { panic!("{m} by {:?}", a[0]) };
+            Ok(match r {
+                V::I(x, u) if m == "saturating_pow" => V::I(x.saturating_pow(e), *u || eu),
+                V::U(x, u) if m == "saturating_pow" => V::U(x.saturating_pow(e), *u || eu),
+                V::I(x, u) => V::I(x.wrapping_pow(e), *u || eu),
+                V::U(x, u) => V::U(x.wrapping_pow(e), *u || eu),
+                _ => panic!("{m} of {r:?}"),
+            })
+        }
         "is_multiple_of" => {
             let (V::U(x, xu), V::U(y, yu)) = (r, &a[0]) else { panic!("is_multiple_of") };
             Ok(V::B(x.is_multiple_of(*y), *xu || *yu))
@@ -403,6 +424,14 @@ pub(super) fn unary(s: &V, m: &str) -> R<V> {
             }
         }
         V::I(x, u) => match m {
+            "wrapping_neg" => V::I(x.wrapping_neg(), *u),
+            // 0 where std has no answer (the GPU's meaning).
+            "isqrt" => V::I(x.checked_isqrt().unwrap_or(0), *u),
+            "ilog2" => V::U(x.checked_ilog2().unwrap_or(0), *u),
+            "ilog10" => V::U(x.checked_ilog10().unwrap_or(0), *u),
+            "count_zeros" => V::U(x.count_zeros(), *u),
+            "leading_ones" => V::U(x.leading_ones(), *u),
+            "trailing_ones" => V::U(x.trailing_ones(), *u),
             "abs" => V::I(x.wrapping_abs(), *u),
             "signum" => V::I(x.signum(), *u),
             "count_ones" => V::U(x.count_ones(), *u),
@@ -412,6 +441,13 @@ pub(super) fn unary(s: &V, m: &str) -> R<V> {
             _ => panic!("i32::{m}"),
         },
         V::U(x, u) => match m {
+            "wrapping_neg" => V::U(x.wrapping_neg(), *u),
+            "isqrt" => V::U(x.isqrt(), *u),
+            "ilog2" => V::U(x.checked_ilog2().unwrap_or(0), *u),
+            "ilog10" => V::U(x.checked_ilog10().unwrap_or(0), *u),
+            "count_zeros" => V::U(x.count_zeros(), *u),
+            "leading_ones" => V::U(x.leading_ones(), *u),
+            "trailing_ones" => V::U(x.trailing_ones(), *u),
             "count_ones" => V::U(x.count_ones(), *u),
             "leading_zeros" => V::U(x.leading_zeros(), *u),
             "trailing_zeros" => V::U(x.trailing_zeros(), *u),

@@ -68,6 +68,36 @@ fn rt_mat3_from_scale_angle_translation(scale: vec2<f32>, angle: f32, t: vec2<f3
 }
 ";
 
+/// glam's `Mat2::from_mat3_minor` and `Mat3::from_mat4_minor`: column `i`
+/// and row `j` left out, each clamped to the last (glam panics past it; the
+/// CPU copy clamps through `rt_std::arith::Gpu`).
+const MINOR: &str = "\
+fn rt_minor3(m: mat3x3<f32>, i0: u32, j0: u32) -> mat2x2<f32> {
+    let i = min(i0, 2u);
+    let j = min(j0, 2u);
+    var mm = m;
+    var out: mat2x2<f32>;
+    for (var k = 0u; k < 2u; k = k + 1u) {
+        for (var l = 0u; l < 2u; l = l + 1u) {
+            out[k][l] = mm[k + select(0u, 1u, k >= i)][l + select(0u, 1u, l >= j)];
+        }
+    }
+    return out;
+}
+fn rt_minor4(m: mat4x4<f32>, i0: u32, j0: u32) -> mat3x3<f32> {
+    let i = min(i0, 3u);
+    let j = min(j0, 3u);
+    var mm = m;
+    var out: mat3x3<f32>;
+    for (var k = 0u; k < 3u; k = k + 1u) {
+        for (var l = 0u; l < 3u; l = l + 1u) {
+            out[k][l] = mm[k + select(0u, 1u, k >= i)][l + select(0u, 1u, l >= j)];
+        }
+    }
+    return out;
+}
+";
+
 /// `m[i]` for `i` in `0..n` of an array or matrix operand.
 fn parts(a: &str, n: usize) -> Vec<String> {
     (0..n).map(|i| format!("{a}[{i}]")).collect()
@@ -170,6 +200,18 @@ fn matrix(n: u8, t: Ty, w: String, name: &str) -> Option<MethodSig> {
         "from_scale_angle" if n == 2 => with(
             sig(vec![Ty::vec(2), F32], t, |a| format!("rt_mat2_from_scale_angle({}, {})", a[0], a[1])),
             MAT2_SCALE_ANGLE,
+        ),
+        "from_mat3_minor" if n == 2 => with(
+            sig(vec![Ty::Mat(3), Ty::Scalar(Scalar::Usize), Ty::Scalar(Scalar::Usize)], t, |a| {
+                format!("rt_minor3({}, u32({}), u32({}))", a[0], a[1], a[2])
+            }),
+            MINOR,
+        ),
+        "from_mat4_minor" if n == 3 => with(
+            sig(vec![Ty::Mat(4), Ty::Scalar(Scalar::Usize), Ty::Scalar(Scalar::Usize)], t, |a| {
+                format!("rt_minor4({}, u32({}), u32({}))", a[0], a[1], a[2])
+            }),
+            MINOR,
         ),
         "from_mat3" if n == 2 => sig(vec![Ty::Mat(3)], t, |a| format!("mat2x2<f32>({0}[0].xy, {0}[1].xy)", a[0])),
         "from_mat4" if n == 3 => {
