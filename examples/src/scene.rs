@@ -4,8 +4,8 @@
 
 use glam::{UVec2, Vec3, Vec4};
 use rt_runtime::{
-    Backend, BufferId, BufferType, Context, ExceptionRecord, LaunchControl, RtError, Scope, Tile, Traversal,
-    TriangleMesh,
+    Backend, BufferId, BufferType, Context, ExceptionRecord, LaunchControl, LaunchReport, RtError, Scope, Tile,
+    Traversal, TriangleMesh,
 };
 use std::path::{Path, PathBuf};
 use web_time::Instant;
@@ -377,23 +377,15 @@ impl Scene {
     /// ([`Context::launch_async`]), as a browser page must: the same
     /// launches, whole (no progress between tiles).
     pub async fn render_async(&mut self) -> Result<Rendered, Error> {
-        let (mut rays, mut exceptions) = (0, Vec::new());
-        let start = Instant::now();
+        let mut tally = Tally::new();
         for frame in 0..self.frames {
             self.ctx.set_var(Scope::Context, "frame", frame)?;
             if let Some((entry, size)) = self.pre_launch {
-                let report = self.ctx.launch_async(entry, size.x, size.y).await?;
-                rays += report.rays;
-                exceptions.extend(report.exceptions);
+                tally.add(self.ctx.launch_async(entry, size.x, size.y).await?);
             }
-            let report = self.ctx.launch_async(0, self.width, self.height).await?;
-            rays += report.rays;
-            exceptions.extend(report.exceptions);
+            tally.add(self.ctx.launch_async(0, self.width, self.height).await?);
         }
-        let seconds = start.elapsed().as_secs_f64();
-        let pixels = self.ctx.read_buffer::<Vec4>(self.output)?;
-        let image = Image { width: self.width, height: self.height, pixels };
-        Ok(Rendered { image, radiance: None, rays, seconds, launches: self.frames, exceptions })
+        self.finish(tally)
     }
 
     /// [`Scene::render`] of the rows `rows` only (on the launch's 8-row
@@ -406,25 +398,25 @@ impl Scene {
         progress: &mut dyn FnMut(Progress),
     ) -> Result<Rendered, Error> {
         let part = Tile { origin: UVec2::new(0, rows.start), size: UVec2::new(self.width, rows.len() as u32) };
-        let mut rays = 0;
-        let mut exceptions = Vec::new();
-        let start = Instant::now();
+        let mut tally = Tally::new();
         let frames = self.frames;
         for frame in 0..frames {
             self.ctx.set_var(Scope::Context, "frame", frame)?;
             if let Some((entry, size)) = self.pre_launch {
-                let report = self.ctx.launch(entry, size.x, size.y)?;
-                rays += report.rays;
-                exceptions.extend(report.exceptions);
+                tally.add(self.ctx.launch(entry, size.x, size.y)?);
             }
-            let report = self.ctx.launch_part(0, self.width, self.height, part, |p| {
+            tally.add(self.ctx.launch_part(0, self.width, self.height, part, |p| {
                 progress(Progress { frame, frames, within: p.fraction() });
                 LaunchControl::Continue
-            })?;
-            rays += report.rays;
-            exceptions.extend(report.exceptions);
+            })?);
         }
-        let seconds = start.elapsed().as_secs_f64();
+        self.finish(tally)
+    }
+
+    /// What a render gives once its launches ran: the output read back, and
+    /// the mean radiance where the scene accumulates.
+    fn finish(&mut self, tally: Tally) -> Result<Rendered, Error> {
+        let seconds = tally.start.elapsed().as_secs_f64();
         let pixels = self.ctx.read_buffer::<Vec4>(self.output)?;
         let image = Image { width: self.width, height: self.height, pixels };
         let radiance = match self.accumulation {
@@ -435,7 +427,26 @@ impl Scene {
             }
             None => None,
         };
+        let Tally { rays, exceptions, .. } = tally;
         Ok(Rendered { image, radiance, rays, seconds, launches: self.frames, exceptions })
+    }
+}
+
+/// A render's launches so far: rays, exceptions, when it started.
+struct Tally {
+    rays: u64,
+    exceptions: Vec<ExceptionRecord>,
+    start: Instant,
+}
+
+impl Tally {
+    fn new() -> Tally {
+        Tally { rays: 0, exceptions: Vec::new(), start: Instant::now() }
+    }
+
+    fn add(&mut self, report: LaunchReport) {
+        self.rays += report.rays;
+        self.exceptions.extend(report.exceptions);
     }
 }
 

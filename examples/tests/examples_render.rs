@@ -291,3 +291,19 @@ fn each_callable_brdf_shades_its_own_object() {
     assert!(highlight.min_element() > 0.01, "the front face has a highlight to see: {highlight}");
     assert!((got - highlight).abs().max_element() < 0.004, "box front: {got} over diffuse, want {highlight}");
 }
+
+/// `Scene::render_async` (the browser page's) gives what `Scene::render`
+/// gives: the same picture and, for a scene that accumulates, the same
+/// radiance.
+#[test]
+fn render_async_gives_what_render_gives() {
+    let example = examples::example("bunny").unwrap();
+    let mut scene = (example.build)(&settings()).unwrap();
+    let blocking = scene.render(&mut |_| {}).unwrap();
+    let mut scene = (example.build)(&settings()).unwrap();
+    let awaited = pollster::block_on(scene.render_async()).unwrap();
+    assert_eq!(awaited.image, blocking.image);
+    assert!(blocking.radiance.is_some(), "the bunny accumulates");
+    assert_eq!(awaited.radiance, blocking.radiance);
+    assert_eq!((awaited.rays, awaited.launches, awaited.exceptions.len()), (blocking.rays, blocking.launches, 0));
+}
