@@ -15,7 +15,11 @@
 //! | `a % 0` | `0` |
 //! | `i32::MIN / -1` | `i32::MIN` |
 //! | `i32::MIN % -1` | `0` |
-//! | `a.div_euclid(0)`, `a.wrapping_div(0)`, `a.saturating_div(0)`; `a.rem_euclid(0)` | `a`; `0` (the divisor read as one: [`div_euclid`] and its siblings) |
+//! | `a.div_euclid(0)`, `a.wrapping_div(0)`, `a.saturating_div(0)`, `a.div_ceil(0)`, `a.next_multiple_of(0)`; `a.rem_euclid(0)`, `a.wrapping_rem(0)` | `a`; `0` (the divisor read as one, [`Gpu`]'s methods) |
+//! | `a.pow(n)` past the range; `dot`, `element_sum`, `element_product`, `cross`, `length_squared`, `manhattan_distance`... of integer vectors | wraps, as `*` and `+` do |
+//! | `a.ilog2()`, `a.ilog10()`, `a.ilog(b)`, `a.isqrt()` where std has no answer (`a <= 0`, `b < 2`) | `0` |
+//! | `a.next_power_of_two()` past `2^31` | `0` |
+//! | `m.set_row(i, ..)`, `m.col_mut(i)`, `mask.set(i, ..)`, `mask.test(i)`, `Mat3::from_mat4_minor(m, i, j)` past the end | the last row, column or component ([`GpuMut`], [`Gpu`]) |
 //! | `i32::MIN.div_euclid(-1)`, `.wrapping_div(-1)`; `.saturating_div(-1)` | `i32::MIN`; `i32::MAX` |
 //! | `a << n`, `a >> n` with `n >= 32` | shifts by `n % 32` (`>>` on `i32` is arithmetic) |
 //! | `x as i32`, `x as u32` for `f32` NaN | `0` |

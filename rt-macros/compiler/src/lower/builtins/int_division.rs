@@ -4,7 +4,7 @@
 //! the CPU copy: a zero divisor divides by one (`a / 0` is `a`, `a % 0`
 //! is 0) and `i32::MIN / -1` is `i32::MIN` (`wrapping_div`,
 //! `div_euclid`) or `i32::MAX` (`saturating_div`). Rust panics in both
-//! cases; the CPU copy calls `rt_std::arith::div_euclid` and its siblings
+//! cases; the CPU copy calls `rt_std::arith::Gpu`'s methods of those names
 //! instead (`cpu_semantics.rs`).
 //!
 //! Each is a WGSL function of the module, not an expression: its operands
