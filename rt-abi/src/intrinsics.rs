@@ -233,6 +233,8 @@ pub const INTRINSICS: &[Intrinsic] = &[
         &[],
         Bool,
     ),
+    row("instance_index", "optixGetInstanceIndex", TRANSFORMERS, Form::Value, "rt_instance_index", &[], U32),
+    row("instance_id", "optixGetInstanceId", TRANSFORMERS, Form::Value, "rt_instance_id", &[], U32),
     row("ray_flags", "rtGetRayFlags", RAY_STATE, Form::Value, "rt_ray_flags", &[], U32),
     row("ray_mask", "rtGetRayMask", RAY_STATE, Form::Value, "rt_ray_mask", &[], U32),
     Intrinsic { name: "rt_printf", optix: "rtPrintf", callers: Callers::All, form: Form::Special, wgsl: None },

@@ -93,10 +93,17 @@ pub struct InstanceRecord {
     pub geometry_group: u32,
     /// Scene word of its triangle slots.
     pub triangles: u32,
+    /// Scene word of its geometry group's geometry instances: `[count,
+    /// geometry instance.., their instance ids..]` (for `instance_index`
+    /// and `instance_id`).
+    pub geometry_instances: u32,
+    /// The instance id of the chain of transforms the record stands for
+    /// (its innermost transform with one), or `u32::MAX`.
+    pub instance_id: u32,
 }
 
 impl InstanceRecord {
-    /// Its size in 32-bit words (three words of padding at the end).
+    /// Its size in 32-bit words (one word of padding at the end).
     pub const WORDS: u32 = 40;
     pub const OBJECT_TO_WORLD: u32 = 0;
     pub const WORLD_TO_OBJECT: u32 = 16;
@@ -105,6 +112,8 @@ impl InstanceRecord {
     pub const MASK: u32 = 34;
     pub const GEOMETRY_GROUP: u32 = 35;
     pub const TRIANGLES: u32 = 36;
+    pub const GEOMETRY_INSTANCES: u32 = 37;
+    pub const INSTANCE_ID: u32 = 38;
 
     /// The record's words, floats as their bits.
     pub fn words(&self) -> [u32; Self::WORDS as usize] {
@@ -121,6 +130,8 @@ impl InstanceRecord {
         w[at(Self::MASK)] = self.mask;
         w[at(Self::GEOMETRY_GROUP)] = self.geometry_group;
         w[at(Self::TRIANGLES)] = self.triangles;
+        w[at(Self::GEOMETRY_INSTANCES)] = self.geometry_instances;
+        w[at(Self::INSTANCE_ID)] = self.instance_id;
         w
     }
 
@@ -135,6 +146,8 @@ impl InstanceRecord {
             ("RT_INST_MASK", Self::MASK),
             ("RT_INST_GG", Self::GEOMETRY_GROUP),
             ("RT_INST_TRIS", Self::TRIANGLES),
+            ("RT_INST_GIS", Self::GEOMETRY_INSTANCES),
+            ("RT_INST_ID", Self::INSTANCE_ID),
         ])
     }
 }
@@ -150,16 +163,20 @@ pub enum NodeEntry {
     /// instance.
     Instance = 0,
     /// A group whose children are all instances: `a` is its BVH, `b` its
-    /// leaf table of instance indices.
+    /// leaf table: two words a leaf, its instance index and the instance
+    /// index (`instance_index`) of the child's first geometry instance
+    /// counted from the group's.
     InstanceGroup = 1,
-    /// A group with other children: leaves are instance indices, or node
-    /// indices with the node bit set.
+    /// A group with other children: leaves (two words, as above) are
+    /// instance indices, or node indices with the node bit set.
     Group = 2,
     /// A transform chain above a group or selector: `a` is the scene word of
-    /// `[object-to-world, world-to-object]`, `b` the node below.
+    /// `[object-to-world, world-to-object, instance id]` (the chain's
+    /// innermost id, or `u32::MAX`), `b` the node below.
     Transform = 3,
     /// A selector: `a` is the scene word of `[visit case, visit record,
-    /// child count, child nodes...]`.
+    /// child count, child nodes..., the children's instance index
+    /// offsets...]`.
     Selector = 4,
 }
 
@@ -248,6 +265,8 @@ mod tests {
             mask: 0x7f,
             geometry_group: 104,
             triangles: 105,
+            geometry_instances: 106,
+            instance_id: 107,
         };
         let w = r.words();
         assert_eq!(f32::from_bits(w[InstanceRecord::OBJECT_TO_WORLD as usize + 5]), 6.0);
@@ -258,11 +277,13 @@ mod tests {
             (InstanceRecord::MASK, 0x7f),
             (InstanceRecord::GEOMETRY_GROUP, 104),
             (InstanceRecord::TRIANGLES, 105),
+            (InstanceRecord::GEOMETRY_INSTANCES, 106),
+            (InstanceRecord::INSTANCE_ID, 107),
         ];
         for (at, v) in fields {
             assert_eq!(w[at as usize], v);
         }
-        assert!(w[37..].iter().all(|&p| p == 0));
+        assert!(w[39..].iter().all(|&p| p == 0));
         assert!(InstanceRecord::wgsl_constants().contains("const RT_INST_MASK: u32 = 34u;\n"));
     }
 }

@@ -541,13 +541,19 @@ impl Context {
             geometry: g,
             materials: materials.to_vec(),
             vars: VarScope::default(),
+            instance_id: rt_abi::INSTANCE_ID_NONE,
         });
         Ok(GeometryInstanceId(self.scene.instances.len() as u32 - 1))
     }
 
     fn push_node(&mut self, kind: NodeKind) -> NodeId {
         self.scene.structure_version += 1;
-        self.scene.nodes.push(NodeRec { kind, visibility_mask: 0xff, vars: VarScope::default() });
+        self.scene.nodes.push(NodeRec {
+            kind,
+            visibility_mask: 0xff,
+            vars: VarScope::default(),
+            instance_id: rt_abi::INSTANCE_ID_NONE,
+        });
         NodeId(self.scene.nodes.len() as u32 - 1)
     }
 
@@ -606,6 +612,51 @@ impl Context {
         let n = self.scene.nodes.get_mut(node.0 as usize).ok_or_else(|| RtError::InvalidHandle(format!("{node:?}")))?;
         n.visibility_mask = mask;
         Ok(())
+    }
+
+    /// Gives the instances below `target` the id `instance_id()` returns
+    /// on their hits (OptiX 7's `OptixInstance::instanceId`): `target` is a
+    /// geometry instance, or a transform (every geometry instance below it).
+    /// A hit's id is its geometry instance's own, else that of the
+    /// innermost transform with one on the traced path, else
+    /// [`INSTANCE_ID_NONE`](rt_std::INSTANCE_ID_NONE), which also clears an
+    /// id. See [`rt_std::instance_index`] for what an instance is.
+    #[doc(alias = "instanceId")]
+    pub fn set_instance_id(&mut self, target: impl Into<Scope>, id: u32) -> Result<()> {
+        let target = target.into();
+        let slot = match target {
+            Scope::GeometryInstance(gi) => self.scene.instances.get_mut(gi.0 as usize).map(|g| &mut g.instance_id),
+            Scope::Node(n) => match self.scene.nodes.get_mut(n.0 as usize) {
+                Some(rec @ NodeRec { kind: NodeKind::Transform { .. }, .. }) => Some(&mut rec.instance_id),
+                Some(_) => {
+                    return Err(RtError::InvalidHandle(format!(
+                        "{n:?} (not a transform: instance ids are set on geometry instances and transforms)"
+                    )));
+                }
+                None => None,
+            },
+            _ => {
+                return Err(RtError::InvalidHandle(format!(
+                    "{target:?} (instance ids are set on geometry instances and transforms)"
+                )));
+            }
+        };
+        *slot.ok_or_else(|| RtError::InvalidHandle(format!("{target:?}")))? = id;
+        self.scene.structure_version += 1;
+        Ok(())
+    }
+
+    /// The id set on a geometry instance or transform
+    /// ([`set_instance_id`](Self::set_instance_id);
+    /// [`INSTANCE_ID_NONE`](rt_std::INSTANCE_ID_NONE) when none is).
+    pub fn instance_id(&self, target: impl Into<Scope>) -> Result<u32> {
+        let target = target.into();
+        let id = match target {
+            Scope::GeometryInstance(gi) => self.scene.instances.get(gi.0 as usize).map(|g| g.instance_id),
+            Scope::Node(n) => self.scene.nodes.get(n.0 as usize).map(|r| r.instance_id),
+            _ => None,
+        };
+        id.ok_or_else(|| RtError::InvalidHandle(format!("{target:?}")))
     }
 
     // ---- variables ----

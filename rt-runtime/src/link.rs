@@ -9,6 +9,7 @@
 //! programs call each other in no cycle ([`callables`]).
 
 pub mod callables;
+pub(crate) mod instances;
 
 use crate::error::{Result, RtError};
 use crate::scene::{GeometryKind, NodeId, NodeKind, ProgramId};

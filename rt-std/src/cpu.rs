@@ -287,6 +287,11 @@ pub struct ExecutionContext {
     /// The current ray's visibility mask, 8 bits
     /// ([`ray_mask`](crate::ray_mask)).
     pub ray_mask: u32,
+    /// The instance of the candidate (any hit, intersection) or committed
+    /// (closest hit) hit ([`instance_index`](crate::instance_index)).
+    pub instance_index: u32,
+    /// Its id ([`instance_id`](crate::instance_id)).
+    pub instance_id: u32,
     /// The exception kinds [`raise`](Self::raise) records, as
     /// `rt_abi::constants::exception_kind_bit`s; the others it drops.
     pub exceptions_enabled: u32,
@@ -334,6 +339,8 @@ impl ExecutionContext {
         hit_kind: HIT_NONE,
         ray_flags: 0,
         ray_mask: 0xff,
+        instance_index: 0,
+        instance_id: rt_abi::constants::INSTANCE_ID_NONE,
         exceptions_enabled: rt_abi::constants::ALL_EXCEPTION_KINDS,
         object_to_world: Mat4::IDENTITY,
         world_to_object: Mat4::IDENTITY,

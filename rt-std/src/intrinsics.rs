@@ -132,6 +132,40 @@ pub fn is_triangle_hit_back_face() -> bool {
     crate::cpu::read(|c| c.hit_kind == cpu::HIT_TRIANGLE_BACK)
 }
 
+/// The instance the hit being considered (any hit, intersection) or
+/// committed (closest hit) is on: its place among the geometry instances
+/// the traced node reaches, counted depth first in child order, a geometry
+/// instance once for every path down to it. Tracing a group over the same
+/// geometry under two transforms therefore gives two indices. Through a
+/// geometry group's children in order, a group's or selector's children in
+/// order (a selector's every child counts, chosen or not), a transform's
+/// child: so the index depends only on the graph below the traced node, the
+/// same on every backend and across launches. (OptiX 7's instance index
+/// counts the instances of the innermost instance acceleration structure;
+/// here every geometry instance reached counts, and nested groups are
+/// numbered as one list.) A graph reaching more than `u32::MAX` instances
+/// wraps.
+#[rt_macros::rt_intrinsic]
+#[inline]
+pub fn instance_index() -> u32 {
+    crate::cpu::read(|c| c.instance_index)
+}
+
+/// The id the host gave the instance of the hit
+/// ([`instance_index`]) with `Context::set_instance_id`: the geometry
+/// instance's own id if it has one, else that of the innermost transform
+/// above it on the traced path that has one, else [`INSTANCE_ID_NONE`].
+#[rt_macros::rt_intrinsic]
+#[inline]
+pub fn instance_id() -> u32 {
+    crate::cpu::read(|c| c.instance_id)
+}
+
+/// What [`instance_id`] returns when no id was set on the instance's
+/// geometry instance or on a transform above it (`u32::MAX`); setting it
+/// clears an id.
+pub const INSTANCE_ID_NONE: u32 = rt_abi::INSTANCE_ID_NONE;
+
 /// The `RAY_FLAG_*` bits the current ray was traced with
 /// ([`rt_trace_with`]; [`RAY_FLAG_NONE`] for [`rt_trace`]).
 #[rt_macros::rt_intrinsic]

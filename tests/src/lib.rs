@@ -35,6 +35,8 @@ pub mod glam_added;
 pub mod glam_more;
 #[path = "../snapshots/in/helpers_refs.rs"]
 pub mod helpers_refs;
+#[path = "../snapshots/in/instance_values.rs"]
+pub mod instance_values;
 #[path = "../snapshots/in/instancing.rs"]
 pub mod instancing;
 #[path = "../snapshots/in/intersection_sphere.rs"]

@@ -37,6 +37,9 @@ pub(crate) struct Linked<'a, P> {
     pub(crate) intersection: Vec<Option<P>>,
     /// Visit program per node (selectors only).
     pub(crate) visit: Vec<Option<P>>,
+    /// Per node, where its children's instances start, counted from its
+    /// own first (groups and selectors; see [`link::instances`]).
+    pub(crate) instance_offsets: Vec<Vec<u32>>,
     pub(crate) launch_dim: UVec2,
 }
 
@@ -123,6 +126,15 @@ pub(crate) fn link_all<'a>(
         .chain(visit.iter().flatten())
         .map(|c| c.desc);
     link::callables::linked(callers, &link::callables::scene_callables(scene))?;
+    let numbering = link::instances::Numbering::of(scene)?;
+    let instance_offsets = scene
+        .nodes
+        .iter()
+        .map(|rec| match &rec.kind {
+            NodeKind::Group { children, .. } | NodeKind::Selector { children, .. } => numbering.offsets(children),
+            _ => Vec::new(),
+        })
+        .collect();
     Ok(Linked {
         scene,
         settings,
@@ -135,6 +147,7 @@ pub(crate) fn link_all<'a>(
         meshes,
         intersection,
         visit,
+        instance_offsets,
         launch_dim: dim,
     })
 }
@@ -162,6 +175,7 @@ impl<'a> Linked<'a, Call> {
             meshes: self.meshes.clone(),
             intersection: self.intersection.iter().map(opt).collect::<Result<_>>()?,
             visit: self.visit.iter().map(opt).collect::<Result<_>>()?,
+            instance_offsets: self.instance_offsets.clone(),
             launch_dim: self.launch_dim,
         })
     }
