@@ -680,7 +680,7 @@ impl Context {
     /// A 1D buffer holding `data`.
     pub fn create_buffer<T: RtData + Send + Sync>(&mut self, ty: BufferType, data: Vec<T>) -> BufferId {
         let len = data.len() as u32;
-        self.scene.buffers.push(BufferRec::new(Box::new(Typed::new(data)), ty, (len, 1), 1));
+        self.scene.buffers.push(BufferRec::new(Box::new(Typed::new(data)), ty, [len, 1, 1], 1));
         BufferId(self.scene.buffers.len() as u32 - 1)
     }
 
@@ -699,7 +699,38 @@ impl Context {
             });
         }
         let zero = T::read_words(&vec![0u32; T::LAYOUT.words as usize]);
-        self.scene.buffers.push(BufferRec::new(Box::new(Typed::new(vec![zero; n as usize])), ty, (width, height), 2));
+        self.scene.buffers.push(BufferRec::new(
+            Box::new(Typed::new(vec![zero; n as usize])),
+            ty,
+            [width, height, 1],
+            2,
+        ));
+        Ok(BufferId(self.scene.buffers.len() as u32 - 1))
+    }
+
+    /// A 3D buffer (OptiX's `rtBuffer<T, 3>`, programs' `Buffer3d<T>` and
+    /// `RwBuffer3d<T>`) of `width` x `height` x `depth` zeroed elements,
+    /// stored as `depth` slices of `height` rows: element `(x, y, z)` is
+    /// element `x + (y + z * height) * width` of [`read_buffer`](Self::read_buffer)
+    /// and [`write_buffer`](Self::write_buffer).
+    #[doc(alias = "rtBufferSetSize3D")]
+    pub fn create_buffer_3d<T: RtData + Send + Sync>(
+        &mut self,
+        ty: BufferType,
+        width: u32,
+        height: u32,
+        depth: u32,
+    ) -> Result<BufferId> {
+        let n = (width as u64) * (height as u64) * (depth as u64);
+        if n > (u32::MAX as u64) {
+            return Err(RtError::BadBuffer {
+                buffer: self.scene.buffers.len() as u32,
+                problem: format!("{width}x{height}x{depth} elements do not fit in 32-bit indices"),
+            });
+        }
+        let zero = T::read_words(&vec![0u32; T::LAYOUT.words as usize]);
+        let storage = Box::new(Typed::new(vec![zero; n as usize]));
+        self.scene.buffers.push(BufferRec::new(storage, ty, [width, height, depth], 3));
         Ok(BufferId(self.scene.buffers.len() as u32 - 1))
     }
 
@@ -748,10 +779,18 @@ impl Context {
         Ok(())
     }
 
-    /// `(width, height)` of a buffer (height 1 for 1D buffers).
+    /// `(width, height)` of a buffer (height 1 for 1D buffers; a 3D
+    /// buffer's depth: [`buffer_size_3d`](Self::buffer_size_3d)).
     pub fn buffer_size(&self, b: BufferId) -> Result<(u32, u32)> {
         let rec = self.scene.buffers.get(b.0 as usize).ok_or_else(|| RtError::InvalidHandle(format!("{b:?}")))?;
         Ok((rec.width, rec.height))
+    }
+
+    /// `(width, height, depth)` of a buffer (depth 1 for 1D and 2D
+    /// buffers).
+    pub fn buffer_size_3d(&self, b: BufferId) -> Result<(u32, u32, u32)> {
+        let rec = self.scene.buffers.get(b.0 as usize).ok_or_else(|| RtError::InvalidHandle(format!("{b:?}")))?;
+        Ok((rec.width, rec.height, rec.depth))
     }
 
     /// A sampler over RGBA texels (row-major, `width * height` of them).

@@ -164,7 +164,7 @@ pub fn resolve(scene: &Scene, p: ProgramId, record: Record) -> Result<Call> {
                 (VarValue::Data { value, .. }, _) => value.clone(),
                 (VarValue::Buffer(b), VariableKind::Buffer { dimensions, writable, .. }) => {
                     let rec = &scene.buffers[b.index() as usize];
-                    Arc::from(rec.storage.handle(dimensions, writable, rec.width, rec.height))
+                    Arc::from(rec.storage.handle(dimensions, writable, [rec.width, rec.height, rec.depth]))
                 }
                 (VarValue::Sampler(s), _) => Arc::new(scene.samplers[s.index() as usize].handle()),
                 (VarValue::Object(n), _) => Arc::new(n.object()),

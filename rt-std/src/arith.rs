@@ -751,6 +751,8 @@ buffer_index!(Buffer, u32);
 buffer_index!(RwBuffer, u32, mut);
 buffer_index!(Buffer2d, UVec2);
 buffer_index!(RwBuffer2d, UVec2, mut);
+buffer_index!(Buffer3d, UVec3);
+buffer_index!(RwBuffer3d, UVec3, mut);
 
 #[diagnostic::do_not_recommend]
 impl<C: RtIndex<I> + ?Sized, I> RtIndex<I> for &C {

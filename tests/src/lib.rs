@@ -15,6 +15,8 @@ pub mod atomics;
 pub mod buffers;
 #[path = "../snapshots/in/buffers_2d.rs"]
 pub mod buffers_2d;
+#[path = "../snapshots/in/buffers_3d.rs"]
+pub mod buffers_3d;
 #[path = "../snapshots/in/casts.rs"]
 pub mod casts;
 #[path = "../snapshots/in/compare_logic.rs"]

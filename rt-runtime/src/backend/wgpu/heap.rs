@@ -64,12 +64,7 @@ pub(crate) fn encode_heap(scene: &Scene, records: &Records) -> Result<EncodedHea
                 (VarValue::Data { words, .. }, _) => heap.extend(words),
                 (VarValue::Buffer(b), VariableKind::Buffer { .. }) => {
                     let rec = &scene.buffers[b.index() as usize];
-                    heap.extend([
-                        buffer_offsets[b.index() as usize] as u32,
-                        rec.width * rec.height,
-                        rec.width,
-                        rec.height,
-                    ]);
+                    heap.extend([buffer_offsets[b.index() as usize] as u32, rec.len(), rec.width, rec.height]);
                 }
                 (VarValue::Sampler(s), _) => {
                     let rec = &scene.samplers[s.index() as usize];

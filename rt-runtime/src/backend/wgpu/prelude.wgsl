@@ -105,6 +105,20 @@ fn rt_buf_check2(b: RtBuffer, i: vec2<u32>) -> bool {
     rt_raise(RT_EXC_BUFFER_INDEX);
     return false;
 }
+// A 3D buffer's size: its depth is what its length leaves (width * height
+// fits: the host checked width * height * depth).
+fn rt_buf_size3(b: RtBuffer) -> vec3<u32> {
+    var d = 0u;
+    if b.width != 0u && b.height != 0u {
+        d = b.len / (b.width * b.height);
+    }
+    return vec3<u32>(b.width, b.height, d);
+}
+fn rt_buf_check3(b: RtBuffer, i: vec3<u32>) -> bool {
+    if all(i < rt_buf_size3(b)) { return true; }
+    rt_raise(RT_EXC_BUFFER_INDEX);
+    return false;
+}
 
 fn rt_launch_index() -> vec2<u32> { return rt_idx; }
 fn rt_launch_dim() -> vec2<u32> { return rt_launch.dim; }

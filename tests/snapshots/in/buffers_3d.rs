@@ -1,0 +1,19 @@
+//! 3D buffers: a volume sampled along a ray by its cell (reads checked in
+//! every axis), a counter of cells written per slice, and the volume's
+//! size.
+use rt_std::prelude::*;
+
+#[rt_program(ray_generation)]
+pub fn march_volume(#[var] density: Buffer3d<f32>, #[var] mut out: RwBuffer2d<f32>, #[var] mut seen: RwBuffer3d<u32>) {
+    let l = launch_index();
+    let size = density.size();
+    let mut sum = 0.0f32;
+    let mut z = 0u32;
+    while z < size.z {
+        let cell = uvec3(l.x, l.y, z);
+        sum += density[cell];
+        seen[cell] = seen.load(cell) + 1;
+        z += 1;
+    }
+    out[l] = sum / size.z as f32;
+}
