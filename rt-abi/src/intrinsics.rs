@@ -132,6 +132,8 @@ const fn row(
 pub const INTRINSICS: &[Intrinsic] = &[
     row("launch_index", "rtLaunchIndex", NOT_BOUNDS, Form::Value, "rt_launch_index", &[], UVec2),
     row("launch_dim", "rtLaunchDim", NOT_BOUNDS, Form::Value, "rt_launch_dim", &[], UVec2),
+    row("launch_index_3d", "rtLaunchIndex", NOT_BOUNDS, Form::Value, "rt_launch_index_3d", &[], UVec3),
+    row("launch_dim_3d", "rtLaunchDim", NOT_BOUNDS, Form::Value, "rt_launch_dim_3d", &[], UVec3),
     row("current_ray", "rtCurrentRay", RAY_KINDS, Form::Value, "rt_current_ray", &[], Ray),
     row("t_hit", "rtIntersectionDistance", HITS, Form::Value, "rt_t_hit", &[], F32),
     row(

@@ -16,7 +16,8 @@ pub struct Field {
 /// of a launch.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct LaunchUniform {
-    /// The launch's size.
+    /// The launch's grid: its width, and its height times its depth (a 3D
+    /// launch runs as slices of rows; programs see `dim.y / depth` rows).
     pub dim: [u32; 2],
     /// The tile's first launch index.
     pub origin: [u32; 2],
@@ -35,6 +36,8 @@ pub struct LaunchUniform {
     /// a disabled kind's check still guards the operation (an index out of
     /// bounds still reads nothing), but raises nothing.
     pub exceptions: u32,
+    /// The launch's depth: 1 but for 3D launches.
+    pub depth: u32,
 }
 
 impl LaunchUniform {
@@ -51,8 +54,7 @@ impl LaunchUniform {
         Field { name: "print_enabled", wgsl: "u32", word: 9 },
         Field { name: "print_filter", wgsl: "vec2<u32>", word: 10 },
         Field { name: "exceptions", wgsl: "u32", word: 12 },
-        // Keeps the struct a whole number of its 8-byte alignment.
-        Field { name: "reserved", wgsl: "u32", word: 13 },
+        Field { name: "depth", wgsl: "u32", word: 13 },
     ];
 
     /// The words the uniform buffer holds.
@@ -62,7 +64,7 @@ impl LaunchUniform {
         let [rc, rv] = self.ray_generation;
         let [ec, ev] = self.exception;
         let [fx, fy] = self.print_filter;
-        [dx, dy, ox, oy, rc, rv, ec, ev, self.log_capacity, self.print_enabled, fx, fy, self.exceptions, 0]
+        [dx, dy, ox, oy, rc, rv, ec, ev, self.log_capacity, self.print_enabled, fx, fy, self.exceptions, self.depth]
     }
 
     /// The WGSL declaration, `struct RtLaunch { ... }`.
@@ -240,9 +242,10 @@ mod tests {
             print_enabled: 10,
             print_filter: [11, 12],
             exceptions: 13,
+            depth: 14,
         };
         let w = u.words();
-        let first = [1, 3, 5, 7, 9, 10, 11, 13, 0];
+        let first = [1, 3, 5, 7, 9, 10, 11, 13, 14];
         for (f, v) in LaunchUniform::FIELDS.iter().zip(first) {
             assert_eq!(w[f.word as usize], v, "`{}`", f.name);
         }

@@ -859,7 +859,7 @@ impl Context {
     /// Runs entry point `entry` over `width` x `height` launch indices, as
     /// tiles under the context's budget ([`Context::set_tile_budget`]).
     pub fn launch(&mut self, entry: u32, width: u32, height: u32) -> Result<LaunchReport> {
-        self.run_launch((entry, width, height), None, None)
+        self.run_launch((entry, width, height, 1), None, None)
     }
 
     /// [`Context::launch`] for a caller that must not block: a browser
@@ -876,7 +876,7 @@ impl Context {
     /// # Ok(()) }
     /// ```
     pub async fn launch_async(&mut self, entry: u32, width: u32, height: u32) -> Result<LaunchReport> {
-        self.run_launch_async((entry, width, height), None, None).await
+        self.run_launch_async((entry, width, height, 1), None, None).await
     }
 
     /// [`Context::launch`], calling `progress` after every tile with where
@@ -894,7 +894,7 @@ impl Context {
         height: u32,
         mut progress: impl FnMut(LaunchProgress) -> LaunchControl,
     ) -> Result<LaunchReport> {
-        self.run_launch((entry, width, height), None, Some(&mut progress))
+        self.run_launch((entry, width, height, 1), None, Some(&mut progress))
     }
 
     /// Runs only `part` of a `width` x `height` launch of entry point
@@ -914,7 +914,7 @@ impl Context {
         part: Tile,
         mut progress: impl FnMut(LaunchProgress) -> LaunchControl,
     ) -> Result<LaunchReport> {
-        self.run_launch((entry, width, height), Some(part), Some(&mut progress))
+        self.run_launch((entry, width, height, 1), Some(part), Some(&mut progress))
     }
 
     /// Calls `report` after every launch, failed or not, with what it did:
@@ -929,7 +929,7 @@ impl Context {
     /// Every blocking launch: [`Context::run_launch_async`] run to its end.
     fn run_launch(
         &mut self,
-        size: (u32, u32, u32),
+        size: (u32, u32, u32, u32),
         part: Option<Tile>,
         progress: Option<&mut dyn FnMut(LaunchProgress) -> LaunchControl>,
     ) -> Result<LaunchReport> {
@@ -939,7 +939,7 @@ impl Context {
     /// Every launch: the backend's run, then the usage report.
     async fn run_launch_async(
         &mut self,
-        (entry, width, height): (u32, u32, u32),
+        (entry, width, height, depth): (u32, u32, u32, u32),
         part: Option<Tile>,
         progress: Option<&mut dyn FnMut(LaunchProgress) -> LaunchControl>,
     ) -> Result<LaunchReport> {
@@ -950,7 +950,8 @@ impl Context {
         let (scene, settings, accels) = (&mut self.scene, &self.settings, &mut self.accels);
         let result = match settled {
             Ok(()) => {
-                backend::launch(&mut *self.backend, scene, settings, accels, (entry, width, height), pacing).await
+                let size = (entry, width, height, depth);
+                backend::launch(&mut *self.backend, scene, settings, accels, size, pacing).await
             }
             Err(e) => Err(e),
         };
@@ -959,7 +960,7 @@ impl Context {
             let stats = self.backend.stats();
             let report = UsageReport {
                 entry,
-                size: glam::UVec2::new(width, height),
+                size: glam::UVec2::new(width, height.saturating_mul(depth)),
                 backend: self.backend.kind(),
                 outcome: result.as_ref(),
                 acceleration_builds: after[0] - before[0],
@@ -1008,6 +1009,19 @@ impl Context {
     /// A 1D launch of `width` indices.
     pub fn launch_1d(&mut self, entry: u32, width: u32) -> Result<LaunchReport> {
         self.launch(entry, width, 1)
+    }
+
+    /// A 3D launch of `width` x `height` x `depth` indices (OptiX's
+    /// `rtContextLaunch3D`): programs read their index with
+    /// `launch_index_3d()` and the size with `launch_dim_3d()`
+    /// (`launch_index()` and `launch_dim()` give the first two axes). It
+    /// runs as a 2D launch of `width` x `height * depth` indices, the
+    /// slices' rows in turn, tiled as any launch; exception records, prints
+    /// and the print filter ([`set_print`](Self::set_print)) name indices
+    /// of that grid: `(x, y + z * height)`.
+    #[doc(alias = "rtContextLaunch3D")]
+    pub fn launch_3d(&mut self, entry: u32, width: u32, height: u32, depth: u32) -> Result<LaunchReport> {
+        self.run_launch((entry, width, height, depth), None, None)
     }
 }
 

@@ -265,6 +265,13 @@ pub struct ExecutionContext {
     pub launch_index: UVec2,
     /// The launch size ([`launch_dim`](crate::launch_dim)).
     pub launch_dim: UVec2,
+    /// The slice of a 3D launch being computed
+    /// ([`launch_index_3d`](crate::launch_index_3d); 0 in 1D and 2D
+    /// launches).
+    pub launch_z: u32,
+    /// The launch's depth ([`launch_dim_3d`](crate::launch_dim_3d); 1 in
+    /// 1D and 2D launches).
+    pub launch_depth: u32,
     /// The ray being traced, in the space of the current object: world space
     /// in miss programs, object space in intersection programs
     /// ([`current_ray`](crate::current_ray)).
@@ -326,6 +333,8 @@ impl ExecutionContext {
     pub const DEFAULT: ExecutionContext = ExecutionContext {
         launch_index: UVec2::ZERO,
         launch_dim: UVec2::ONE,
+        launch_z: 0,
+        launch_depth: 1,
         current_ray: Ray {
             origin: glam::Vec3::ZERO,
             direction: glam::Vec3::Z,

@@ -14,7 +14,7 @@
 //! effect when the program returns, and the code after them still runs, on
 //! the GPU too. Write `return` after them to stop there.
 
-use glam::{Mat4, UVec2, Vec3};
+use glam::{Mat4, UVec2, UVec3, Vec3};
 
 use crate::cpu::{self, update, with_installed_tracer};
 use crate::data::Payload;
@@ -69,6 +69,25 @@ pub fn launch_index() -> UVec2 {
 #[inline]
 pub fn launch_dim() -> UVec2 {
     crate::cpu::read(|c| c.launch_dim)
+}
+
+/// The launch index of a 3D launch (`Context::launch_3d`): `x` and `y` as
+/// [`launch_index`] gives them, `z` the slice, in `[0, launch_dim_3d())`;
+/// `z` is 0 in 1D and 2D launches. (OptiX declares `rtLaunchIndex` as a
+/// `uint3` for this; here `launch_index()` keeps its `UVec2`, the first two
+/// axes of every launch, and this function adds the third.)
+#[rt_macros::rt_intrinsic]
+#[inline]
+pub fn launch_index_3d() -> UVec3 {
+    crate::cpu::read(|c| c.launch_index.extend(c.launch_z))
+}
+
+/// The size of a 3D launch: width, height and depth ([`launch_dim`] and
+/// the depth; 1 in 1D and 2D launches).
+#[rt_macros::rt_intrinsic]
+#[inline]
+pub fn launch_dim_3d() -> UVec3 {
+    crate::cpu::read(|c| c.launch_dim.extend(c.launch_depth))
 }
 
 /// The ray being traced, as passed to `rt_trace` but with `tmax` the

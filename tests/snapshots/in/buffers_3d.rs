@@ -1,6 +1,6 @@
-//! 3D buffers: a volume sampled along a ray by its cell (reads checked in
-//! every axis), a counter of cells written per slice, and the volume's
-//! size.
+//! 3D buffers and launches: a volume sampled along a ray by its cell
+//! (reads checked in every axis), a counter of cells written per slice,
+//! the volume's size; a 3D launch filling a volume cell by cell.
 use rt_std::prelude::*;
 
 #[rt_program(ray_generation)]
@@ -16,4 +16,12 @@ pub fn march_volume(#[var] density: Buffer3d<f32>, #[var] mut out: RwBuffer2d<f3
         z += 1;
     }
     out[l] = sum / size.z as f32;
+}
+
+/// A 3D launch filling a volume: each launch index its own cell.
+#[rt_program(ray_generation)]
+pub fn fill_volume(#[var] mut volume: RwBuffer3d<Vec4>) {
+    let i = launch_index_3d();
+    let d = launch_dim_3d();
+    volume[i] = (i.as_vec3() + Vec3::splat(0.5)).extend(1.0) / d.as_vec3().extend(1.0);
 }

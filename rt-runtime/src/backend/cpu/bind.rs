@@ -40,7 +40,11 @@ pub(crate) struct Linked<'a, P> {
     /// Per node, where its children's instances start, counted from its
     /// own first (groups and selectors; see [`link::instances`]).
     pub(crate) instance_offsets: Vec<Vec<u32>>,
+    /// The launch's size as programs see it: width and height (of a 3D
+    /// launch's slice), and depth (1 but for 3D launches, whose grid
+    /// indices run over the slices' rows in turn).
     pub(crate) launch_dim: UVec2,
+    pub(crate) launch_depth: u32,
 }
 
 pub(crate) fn link_all<'a>(
@@ -48,7 +52,7 @@ pub(crate) fn link_all<'a>(
     settings: &'a Settings,
     accels: &'a [Option<NodeAccel>],
     entry: u32,
-    dim: UVec2,
+    (dim, depth): (UVec2, u32),
 ) -> Result<Linked<'a, Call>> {
     let count = scene.entry_points.len() as u32;
     let ep = scene.entry_points.get(entry as usize).ok_or(RtError::NoSuchEntryPoint { entry, count })?;
@@ -149,6 +153,7 @@ pub(crate) fn link_all<'a>(
         visit,
         instance_offsets,
         launch_dim: dim,
+        launch_depth: depth,
     })
 }
 
@@ -177,6 +182,7 @@ impl<'a> Linked<'a, Call> {
             visit: self.visit.iter().map(opt).collect::<Result<_>>()?,
             instance_offsets: self.instance_offsets.clone(),
             launch_dim: self.launch_dim,
+            launch_depth: self.launch_depth,
         })
     }
 }

@@ -187,12 +187,20 @@ impl<'a> Lane<'a> {
         // pending stores: it stalls until they reach the cache (about 4% of
         // a primary + AO launch on the bunny). `black_box` keeps the packed
         // value whole.
-        let index = self.index.get();
+        let mut index = self.index.get();
+        let (mut launch_z, launch_depth) = (0, self.l.launch_depth);
+        if launch_depth > 1 {
+            // A 3D launch's grid runs over its slices' rows in turn.
+            let h = self.l.launch_dim.y;
+            (index.y, launch_z) = (index.y % h, index.y / h);
+        }
         let bits = std::hint::black_box(index.x as u64 | (index.y as u64) << 32);
         let launch_index = UVec2::new(bits as u32, (bits >> 32) as u32);
         ExecutionContext {
             launch_index,
             launch_dim: self.l.launch_dim,
+            launch_z,
+            launch_depth,
             exceptions_enabled: self.l.settings.exceptions,
             ..ExecutionContext::DEFAULT
         }

@@ -41,6 +41,7 @@ pub(crate) fn tiles(l: &Launch, limits: &wgpu::Limits, ray_generation: [u32; 2],
                 print_enabled,
                 print_filter: print_filter.to_array(),
                 exceptions: l.settings.exceptions,
+                depth: l.depth,
             }
             .words();
             tiles.push((uniform, gx, gy));

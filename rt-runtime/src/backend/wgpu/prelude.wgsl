@@ -120,8 +120,18 @@ fn rt_buf_check3(b: RtBuffer, i: vec3<u32>) -> bool {
     return false;
 }
 
-fn rt_launch_index() -> vec2<u32> { return rt_idx; }
-fn rt_launch_dim() -> vec2<u32> { return rt_launch.dim; }
+// rt_idx is the index in the launch's grid, whose rows are a 3D launch's
+// rows of every slice in turn (rt_launch.depth slices).
+fn rt_launch_index() -> vec2<u32> {
+    if rt_launch.depth <= 1u { return rt_idx; }
+    return vec2<u32>(rt_idx.x, rt_idx.y % (rt_launch.dim.y / rt_launch.depth));
+}
+fn rt_launch_dim() -> vec2<u32> { return vec2<u32>(rt_launch.dim.x, rt_launch.dim.y / max(rt_launch.depth, 1u)); }
+fn rt_launch_index_3d() -> vec3<u32> {
+    let h = rt_launch.dim.y / max(rt_launch.depth, 1u);
+    return vec3<u32>(rt_idx.x, rt_idx.y % h, rt_idx.y / h);
+}
+fn rt_launch_dim_3d() -> vec3<u32> { return vec3<u32>(rt_launch_dim(), max(rt_launch.depth, 1u)); }
 fn rt_current_ray() -> RtRay { return rt_ray; }
 fn rt_t_hit() -> f32 { return rt_t; }
 fn rt_primitive_index() -> u32 { return rt_prim; }
