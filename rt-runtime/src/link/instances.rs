@@ -107,7 +107,9 @@ pub(crate) fn chain_id(scene: &Scene, top: NodeId) -> (u32, NodeId) {
 
 /// The instance index and id of geometry instance `gi` of geometry group
 /// `group` reached by `path` (its first place in the group, where it is
-/// listed twice).
+/// listed twice). (The CPU backend's, not built for wasm32; the kernels
+/// resolve it in WGSL, `rt_instance_of`.)
+#[cfg(not(target_arch = "wasm32"))]
 pub(crate) fn resolve(scene: &Scene, path: InstancePath, group: NodeId, gi: u32) -> (u32, u32) {
     let children = match &scene.nodes[group.index() as usize].kind {
         NodeKind::GeometryGroup { children, .. } => &children[..],
