@@ -16,6 +16,10 @@ pub const RAY_FLAG_CULL_BACK_FACING: u32 = 8;
 pub const RAY_FLAG_CULL_FRONT_FACING: u32 = 16;
 /// Every bit of an instance's 8-bit visibility mask.
 pub const RAY_MASK_ALL: u32 = 0xFF;
+/// The instance id of an instance no id was set on
+/// (`Context::set_instance_id`): what `instance_id()` returns then, and the
+/// value that clears an id.
+pub const INSTANCE_ID_NONE: u32 = u32::MAX;
 
 /// `rt_trace` at the context's maximum trace depth.
 pub const EXCEPTION_TRACE_DEPTH_EXCEEDED: u32 = 0x3FC;
@@ -70,6 +74,7 @@ pub const CONSTANTS: &[(&str, u32)] = &[
     ("RAY_FLAG_CULL_BACK_FACING", RAY_FLAG_CULL_BACK_FACING),
     ("RAY_FLAG_CULL_FRONT_FACING", RAY_FLAG_CULL_FRONT_FACING),
     ("RAY_MASK_ALL", RAY_MASK_ALL),
+    ("INSTANCE_ID_NONE", INSTANCE_ID_NONE),
     ("EXCEPTION_TRACE_DEPTH_EXCEEDED", EXCEPTION_TRACE_DEPTH_EXCEEDED),
     ("EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS", EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS),
     ("EXCEPTION_INVALID_RAY", EXCEPTION_INVALID_RAY),

@@ -16,7 +16,8 @@ pub struct Field {
 /// of a launch.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct LaunchUniform {
-    /// The launch's size.
+    /// The launch's grid: its width, and its height times its depth (a 3D
+    /// launch runs as slices of rows; programs see `dim.y / depth` rows).
     pub dim: [u32; 2],
     /// The tile's first launch index.
     pub origin: [u32; 2],
@@ -37,11 +38,15 @@ pub struct LaunchUniform {
     pub exceptions: u32,
     /// The heap word of the bindless buffer table ([`BufferTable`]).
     pub buffer_table: u32,
+    /// The launch's depth: 1 but for 3D launches.
+    pub depth: u32,
+    /// Zero: WGSL rounds the struct to its 8-byte alignment.
+    pub reserved: u32,
 }
 
 impl LaunchUniform {
     /// Its size in 32-bit words.
-    pub const WORDS: usize = 14;
+    pub const WORDS: usize = 16;
 
     /// Its fields in order, as WGSL declares them.
     pub const FIELDS: &'static [Field] = &[
@@ -54,6 +59,8 @@ impl LaunchUniform {
         Field { name: "print_filter", wgsl: "vec2<u32>", word: 10 },
         Field { name: "exceptions", wgsl: "u32", word: 12 },
         Field { name: "buffer_table", wgsl: "u32", word: 13 },
+        Field { name: "depth", wgsl: "u32", word: 14 },
+        Field { name: "reserved", wgsl: "u32", word: 15 },
     ];
 
     /// The words the uniform buffer holds.
@@ -78,6 +85,8 @@ impl LaunchUniform {
             fy,
             self.exceptions,
             self.buffer_table,
+            self.depth,
+            self.reserved,
         ]
     }
 
@@ -174,10 +183,17 @@ pub struct InstanceRecord {
     pub geometry_group: u32,
     /// Scene word of its triangle slots.
     pub triangles: u32,
+    /// Scene word of its geometry group's geometry instances: `[count,
+    /// geometry instance.., their instance ids..]` (for `instance_index`
+    /// and `instance_id`).
+    pub geometry_instances: u32,
+    /// The instance id of the chain of transforms the record stands for
+    /// (its innermost transform with one), or `u32::MAX`.
+    pub instance_id: u32,
 }
 
 impl InstanceRecord {
-    /// Its size in 32-bit words (three words of padding at the end).
+    /// Its size in 32-bit words (one word of padding at the end).
     pub const WORDS: u32 = 40;
     pub const OBJECT_TO_WORLD: u32 = 0;
     pub const WORLD_TO_OBJECT: u32 = 16;
@@ -186,6 +202,8 @@ impl InstanceRecord {
     pub const MASK: u32 = 34;
     pub const GEOMETRY_GROUP: u32 = 35;
     pub const TRIANGLES: u32 = 36;
+    pub const GEOMETRY_INSTANCES: u32 = 37;
+    pub const INSTANCE_ID: u32 = 38;
 
     /// The record's words, floats as their bits.
     pub fn words(&self) -> [u32; Self::WORDS as usize] {
@@ -202,6 +220,8 @@ impl InstanceRecord {
         w[at(Self::MASK)] = self.mask;
         w[at(Self::GEOMETRY_GROUP)] = self.geometry_group;
         w[at(Self::TRIANGLES)] = self.triangles;
+        w[at(Self::GEOMETRY_INSTANCES)] = self.geometry_instances;
+        w[at(Self::INSTANCE_ID)] = self.instance_id;
         w
     }
 
@@ -216,6 +236,8 @@ impl InstanceRecord {
             ("RT_INST_MASK", Self::MASK),
             ("RT_INST_GG", Self::GEOMETRY_GROUP),
             ("RT_INST_TRIS", Self::TRIANGLES),
+            ("RT_INST_GIS", Self::GEOMETRY_INSTANCES),
+            ("RT_INST_ID", Self::INSTANCE_ID),
         ])
     }
 }
@@ -231,16 +253,20 @@ pub enum NodeEntry {
     /// instance.
     Instance = 0,
     /// A group whose children are all instances: `a` is its BVH, `b` its
-    /// leaf table of instance indices.
+    /// leaf table: two words a leaf, its instance index and the instance
+    /// index (`instance_index`) of the child's first geometry instance
+    /// counted from the group's.
     InstanceGroup = 1,
-    /// A group with other children: leaves are instance indices, or node
-    /// indices with the node bit set.
+    /// A group with other children: leaves (two words, as above) are
+    /// instance indices, or node indices with the node bit set.
     Group = 2,
     /// A transform chain above a group or selector: `a` is the scene word of
-    /// `[object-to-world, world-to-object]`, `b` the node below.
+    /// `[object-to-world, world-to-object, instance id]` (the chain's
+    /// innermost id, or `u32::MAX`), `b` the node below.
     Transform = 3,
     /// A selector: `a` is the scene word of `[visit case, visit record,
-    /// child count, child nodes...]`.
+    /// child count, child nodes..., the children's instance index
+    /// offsets...]`.
     Selector = 4,
 }
 
@@ -305,9 +331,11 @@ mod tests {
             print_filter: [11, 12],
             exceptions: 13,
             buffer_table: 14,
+            depth: 15,
+            reserved: 16,
         };
         let w = u.words();
-        let first = [1, 3, 5, 7, 9, 10, 11, 13, 14];
+        let first = [1, 3, 5, 7, 9, 10, 11, 13, 14, 15, 16];
         for (f, v) in LaunchUniform::FIELDS.iter().zip(first) {
             assert_eq!(w[f.word as usize], v, "`{}`", f.name);
         }
@@ -330,6 +358,8 @@ mod tests {
             mask: 0x7f,
             geometry_group: 104,
             triangles: 105,
+            geometry_instances: 106,
+            instance_id: 107,
         };
         let w = r.words();
         assert_eq!(f32::from_bits(w[InstanceRecord::OBJECT_TO_WORLD as usize + 5]), 6.0);
@@ -340,11 +370,13 @@ mod tests {
             (InstanceRecord::MASK, 0x7f),
             (InstanceRecord::GEOMETRY_GROUP, 104),
             (InstanceRecord::TRIANGLES, 105),
+            (InstanceRecord::GEOMETRY_INSTANCES, 106),
+            (InstanceRecord::INSTANCE_ID, 107),
         ];
         for (at, v) in fields {
             assert_eq!(w[at as usize], v);
         }
-        assert!(w[37..].iter().all(|&p| p == 0));
+        assert!(w[39..].iter().all(|&p| p == 0));
         assert!(InstanceRecord::wgsl_constants().contains("const RT_INST_MASK: u32 = 34u;\n"));
     }
 }

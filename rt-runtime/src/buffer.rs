@@ -8,7 +8,7 @@
 
 use glam::Vec4;
 use rt_std::program::TypeLayout;
-use rt_std::{Buffer, Buffer2d, FilterMode, RtData, RwBuffer, RwBuffer2d, Sampler2d, WrapMode};
+use rt_std::{Buffer, Buffer2d, Buffer3d, FilterMode, RtData, RwBuffer, RwBuffer2d, RwBuffer3d, Sampler2d, WrapMode};
 use std::any::Any;
 use std::cell::UnsafeCell;
 
@@ -33,8 +33,9 @@ impl BufferType {
 pub(crate) trait Storage: Send + Sync {
     fn layout(&self) -> TypeLayout;
     /// A handle of the element type for a program variable (`Buffer<T>`,
-    /// `RwBuffer<T>`, `Buffer2d<T>` or `RwBuffer2d<T>`).
-    fn handle(&self, dims: u32, writable: bool, width: u32, height: u32) -> Box<dyn Any + Send + Sync>;
+    /// `RwBuffer<T>`, `Buffer2d<T>`, `RwBuffer2d<T>`, `Buffer3d<T>` or
+    /// `RwBuffer3d<T>`) over `size` (width, height, depth).
+    fn handle(&self, dims: u32, writable: bool, size: [u32; 3]) -> Box<dyn Any + Send + Sync>;
     fn as_any(&self) -> &dyn Any;
     fn as_any_mut(&mut self) -> &mut dyn Any;
     /// Heap words of all elements (uploaded by the wgpu backend).
@@ -86,12 +87,14 @@ impl<T: RtData + Send + Sync> Storage for Typed<T> {
         T::LAYOUT
     }
 
-    fn handle(&self, dims: u32, writable: bool, width: u32, height: u32) -> Box<dyn Any + Send + Sync> {
+    fn handle(&self, dims: u32, writable: bool, [width, height, depth]: [u32; 3]) -> Box<dyn Any + Send + Sync> {
         let len = self.len() as u32;
         // SAFETY: the storage holds `len + 1` elements (the sink) and outlives
         // the launch that uses the handle (the context is borrowed for it).
         unsafe {
             match (dims, writable) {
+                (3, true) => Box::new(RwBuffer3d::from_raw_parts(self.ptr(), width, height, depth)),
+                (3, false) => Box::new(Buffer3d::from_raw_parts(self.ptr(), width, height, depth)),
                 (2, true) => Box::new(RwBuffer2d::from_raw_parts(self.ptr(), width, height)),
                 (2, false) => Box::new(Buffer2d::from_raw_parts(self.ptr(), width, height)),
                 (_, true) => Box::new(RwBuffer::from_raw_parts(self.ptr(), len)),
@@ -134,6 +137,8 @@ pub(crate) struct BufferRec {
     pub ty: BufferType,
     pub width: u32,
     pub height: u32,
+    /// 1 for 1D and 2D buffers.
+    pub depth: u32,
     pub dims: u32,
     /// Whether launches leave what programs write on the device instead of
     /// reading it back ([`Context::set_buffer_device_local`](crate::Context::set_buffer_device_local)).
@@ -144,12 +149,20 @@ pub(crate) struct BufferRec {
 }
 
 impl BufferRec {
-    pub fn new(storage: Box<dyn Storage>, ty: BufferType, (width, height): (u32, u32), dims: u32) -> BufferRec {
-        BufferRec { storage, ty, width, height, dims, device_local: false, host_version: 0 }
+    pub fn new(storage: Box<dyn Storage>, ty: BufferType, [width, height, depth]: [u32; 3], dims: u32) -> BufferRec {
+        BufferRec { storage, ty, width, height, depth, dims, device_local: false, host_version: 0 }
+    }
+
+    /// Its elements: width * height * depth (checked to fit a `u32` when
+    /// it was created).
+    pub fn len(&self) -> u32 {
+        self.width * self.height * self.depth
     }
 
     pub fn type_name(&self) -> String {
         let base = match (self.dims, self.ty.writable_by_programs()) {
+            (3, true) => "RwBuffer3d",
+            (3, false) => "Buffer3d",
             (2, true) => "RwBuffer2d",
             (2, false) => "Buffer2d",
             (_, true) => "RwBuffer",

@@ -593,13 +593,19 @@ impl Context {
             geometry: g,
             materials: materials.to_vec(),
             vars: VarScope::default(),
+            instance_id: rt_abi::INSTANCE_ID_NONE,
         });
         Ok(GeometryInstanceId(self.scene.instances.len() as u32 - 1))
     }
 
     fn push_node(&mut self, kind: NodeKind) -> NodeId {
         self.scene.structure_version += 1;
-        self.scene.nodes.push(NodeRec { kind, visibility_mask: 0xff, vars: VarScope::default() });
+        self.scene.nodes.push(NodeRec {
+            kind,
+            visibility_mask: 0xff,
+            vars: VarScope::default(),
+            instance_id: rt_abi::INSTANCE_ID_NONE,
+        });
         NodeId(self.scene.nodes.len() as u32 - 1)
     }
 
@@ -660,6 +666,51 @@ impl Context {
         Ok(())
     }
 
+    /// Gives the instances below `target` the id `instance_id()` returns
+    /// on their hits (OptiX 7's `OptixInstance::instanceId`): `target` is a
+    /// geometry instance, or a transform (every geometry instance below it).
+    /// A hit's id is its geometry instance's own, else that of the
+    /// innermost transform with one on the traced path, else
+    /// [`INSTANCE_ID_NONE`](rt_std::INSTANCE_ID_NONE), which also clears an
+    /// id. See [`rt_std::instance_index`] for what an instance is.
+    #[doc(alias = "instanceId")]
+    pub fn set_instance_id(&mut self, target: impl Into<Scope>, id: u32) -> Result<()> {
+        let target = target.into();
+        let slot = match target {
+            Scope::GeometryInstance(gi) => self.scene.instances.get_mut(gi.0 as usize).map(|g| &mut g.instance_id),
+            Scope::Node(n) => match self.scene.nodes.get_mut(n.0 as usize) {
+                Some(rec @ NodeRec { kind: NodeKind::Transform { .. }, .. }) => Some(&mut rec.instance_id),
+                Some(_) => {
+                    return Err(RtError::InvalidHandle(format!(
+                        "{n:?} (not a transform: instance ids are set on geometry instances and transforms)"
+                    )));
+                }
+                None => None,
+            },
+            _ => {
+                return Err(RtError::InvalidHandle(format!(
+                    "{target:?} (instance ids are set on geometry instances and transforms)"
+                )));
+            }
+        };
+        *slot.ok_or_else(|| RtError::InvalidHandle(format!("{target:?}")))? = id;
+        self.scene.structure_version += 1;
+        Ok(())
+    }
+
+    /// The id set on a geometry instance or transform
+    /// ([`set_instance_id`](Self::set_instance_id);
+    /// [`INSTANCE_ID_NONE`](rt_std::INSTANCE_ID_NONE) when none is).
+    pub fn instance_id(&self, target: impl Into<Scope>) -> Result<u32> {
+        let target = target.into();
+        let id = match target {
+            Scope::GeometryInstance(gi) => self.scene.instances.get(gi.0 as usize).map(|g| g.instance_id),
+            Scope::Node(n) => self.scene.nodes.get(n.0 as usize).map(|r| r.instance_id),
+            _ => None,
+        };
+        id.ok_or_else(|| RtError::InvalidHandle(format!("{target:?}")))
+    }
+
     // ---- variables ----
 
     /// Sets variable `name` on `scope`. Values are plain data (`f32`,
@@ -681,7 +732,7 @@ impl Context {
     /// A 1D buffer holding `data`.
     pub fn create_buffer<T: RtData + Send + Sync>(&mut self, ty: BufferType, data: Vec<T>) -> BufferId {
         let len = data.len() as u32;
-        self.scene.buffers.push(BufferRec::new(Box::new(Typed::new(data)), ty, (len, 1), 1));
+        self.scene.buffers.push(BufferRec::new(Box::new(Typed::new(data)), ty, [len, 1, 1], 1));
         BufferId(self.scene.buffers.len() as u32 - 1)
     }
 
@@ -700,7 +751,38 @@ impl Context {
             });
         }
         let zero = T::read_words(&vec![0u32; T::LAYOUT.words as usize]);
-        self.scene.buffers.push(BufferRec::new(Box::new(Typed::new(vec![zero; n as usize])), ty, (width, height), 2));
+        self.scene.buffers.push(BufferRec::new(
+            Box::new(Typed::new(vec![zero; n as usize])),
+            ty,
+            [width, height, 1],
+            2,
+        ));
+        Ok(BufferId(self.scene.buffers.len() as u32 - 1))
+    }
+
+    /// A 3D buffer (OptiX's `rtBuffer<T, 3>`, programs' `Buffer3d<T>` and
+    /// `RwBuffer3d<T>`) of `width` x `height` x `depth` zeroed elements,
+    /// stored as `depth` slices of `height` rows: element `(x, y, z)` is
+    /// element `x + (y + z * height) * width` of [`read_buffer`](Self::read_buffer)
+    /// and [`write_buffer`](Self::write_buffer).
+    #[doc(alias = "rtBufferSetSize3D")]
+    pub fn create_buffer_3d<T: RtData + Send + Sync>(
+        &mut self,
+        ty: BufferType,
+        width: u32,
+        height: u32,
+        depth: u32,
+    ) -> Result<BufferId> {
+        let n = (width as u64) * (height as u64) * (depth as u64);
+        if n > (u32::MAX as u64) {
+            return Err(RtError::BadBuffer {
+                buffer: self.scene.buffers.len() as u32,
+                problem: format!("{width}x{height}x{depth} elements do not fit in 32-bit indices"),
+            });
+        }
+        let zero = T::read_words(&vec![0u32; T::LAYOUT.words as usize]);
+        let storage = Box::new(Typed::new(vec![zero; n as usize]));
+        self.scene.buffers.push(BufferRec::new(storage, ty, [width, height, depth], 3));
         Ok(BufferId(self.scene.buffers.len() as u32 - 1))
     }
 
@@ -749,10 +831,18 @@ impl Context {
         Ok(())
     }
 
-    /// `(width, height)` of a buffer (height 1 for 1D buffers).
+    /// `(width, height)` of a buffer (height 1 for 1D buffers; a 3D
+    /// buffer's depth: [`buffer_size_3d`](Self::buffer_size_3d)).
     pub fn buffer_size(&self, b: BufferId) -> Result<(u32, u32)> {
         let rec = self.scene.buffers.get(b.0 as usize).ok_or_else(|| RtError::InvalidHandle(format!("{b:?}")))?;
         Ok((rec.width, rec.height))
+    }
+
+    /// `(width, height, depth)` of a buffer (depth 1 for 1D and 2D
+    /// buffers).
+    pub fn buffer_size_3d(&self, b: BufferId) -> Result<(u32, u32, u32)> {
+        let rec = self.scene.buffers.get(b.0 as usize).ok_or_else(|| RtError::InvalidHandle(format!("{b:?}")))?;
+        Ok((rec.width, rec.height, rec.depth))
     }
 
     /// A sampler over RGBA texels (row-major, `width * height` of them).
@@ -821,7 +911,7 @@ impl Context {
     /// Runs entry point `entry` over `width` x `height` launch indices, as
     /// tiles under the context's budget ([`Context::set_tile_budget`]).
     pub fn launch(&mut self, entry: u32, width: u32, height: u32) -> Result<LaunchReport> {
-        self.run_launch((entry, width, height), None, None)
+        self.run_launch((entry, width, height, 1), None, None)
     }
 
     /// [`Context::launch`] for a caller that must not block: a browser
@@ -838,7 +928,7 @@ impl Context {
     /// # Ok(()) }
     /// ```
     pub async fn launch_async(&mut self, entry: u32, width: u32, height: u32) -> Result<LaunchReport> {
-        self.run_launch_async((entry, width, height), None, None).await
+        self.run_launch_async((entry, width, height, 1), None, None).await
     }
 
     /// [`Context::launch`], calling `progress` after every tile with where
@@ -856,7 +946,7 @@ impl Context {
         height: u32,
         mut progress: impl FnMut(LaunchProgress) -> LaunchControl,
     ) -> Result<LaunchReport> {
-        self.run_launch((entry, width, height), None, Some(&mut progress))
+        self.run_launch((entry, width, height, 1), None, Some(&mut progress))
     }
 
     /// Runs only `part` of a `width` x `height` launch of entry point
@@ -876,7 +966,7 @@ impl Context {
         part: Tile,
         mut progress: impl FnMut(LaunchProgress) -> LaunchControl,
     ) -> Result<LaunchReport> {
-        self.run_launch((entry, width, height), Some(part), Some(&mut progress))
+        self.run_launch((entry, width, height, 1), Some(part), Some(&mut progress))
     }
 
     /// Calls `report` after every launch, failed or not, with what it did:
@@ -891,7 +981,7 @@ impl Context {
     /// Every blocking launch: [`Context::run_launch_async`] run to its end.
     fn run_launch(
         &mut self,
-        size: (u32, u32, u32),
+        size: (u32, u32, u32, u32),
         part: Option<Tile>,
         progress: Option<&mut dyn FnMut(LaunchProgress) -> LaunchControl>,
     ) -> Result<LaunchReport> {
@@ -901,7 +991,7 @@ impl Context {
     /// Every launch: the backend's run, then the usage report.
     async fn run_launch_async(
         &mut self,
-        (entry, width, height): (u32, u32, u32),
+        (entry, width, height, depth): (u32, u32, u32, u32),
         part: Option<Tile>,
         progress: Option<&mut dyn FnMut(LaunchProgress) -> LaunchControl>,
     ) -> Result<LaunchReport> {
@@ -912,7 +1002,8 @@ impl Context {
         let (scene, settings, accels) = (&mut self.scene, &self.settings, &mut self.accels);
         let result = match settled {
             Ok(()) => {
-                backend::launch(&mut *self.backend, scene, settings, accels, (entry, width, height), pacing).await
+                let size = (entry, width, height, depth);
+                backend::launch(&mut *self.backend, scene, settings, accels, size, pacing).await
             }
             Err(e) => Err(e),
         };
@@ -921,7 +1012,7 @@ impl Context {
             let stats = self.backend.stats();
             let report = UsageReport {
                 entry,
-                size: glam::UVec2::new(width, height),
+                size: glam::UVec2::new(width, height.saturating_mul(depth)),
                 backend: self.backend.kind(),
                 outcome: result.as_ref(),
                 acceleration_builds: after[0] - before[0],
@@ -970,6 +1061,19 @@ impl Context {
     /// A 1D launch of `width` indices.
     pub fn launch_1d(&mut self, entry: u32, width: u32) -> Result<LaunchReport> {
         self.launch(entry, width, 1)
+    }
+
+    /// A 3D launch of `width` x `height` x `depth` indices (OptiX's
+    /// `rtContextLaunch3D`): programs read their index with
+    /// `launch_index_3d()` and the size with `launch_dim_3d()`
+    /// (`launch_index()` and `launch_dim()` give the first two axes). It
+    /// runs as a 2D launch of `width` x `height * depth` indices, the
+    /// slices' rows in turn, tiled as any launch; exception records, prints
+    /// and the print filter ([`set_print`](Self::set_print)) name indices
+    /// of that grid: `(x, y + z * height)`.
+    #[doc(alias = "rtContextLaunch3D")]
+    pub fn launch_3d(&mut self, entry: u32, width: u32, height: u32, depth: u32) -> Result<LaunchReport> {
+        self.run_launch((entry, width, height, depth), None, None)
     }
 }
 

@@ -9,6 +9,7 @@
 //! programs call each other in no cycle ([`callables`]).
 
 pub mod callables;
+pub(crate) mod instances;
 
 use crate::error::{Result, RtError};
 use crate::scene::{GeometryKind, NodeId, NodeKind, ProgramId};
@@ -167,7 +168,7 @@ pub fn resolve(scene: &Scene, p: ProgramId, record: Record) -> Result<Call> {
                 (VarValue::Data { value, .. }, _) => value.clone(),
                 (VarValue::Buffer(b), VariableKind::Buffer { dimensions, writable, .. }) => {
                     let rec = &scene.buffers[b.index() as usize];
-                    Arc::from(rec.storage.handle(dimensions, writable, rec.width, rec.height))
+                    Arc::from(rec.storage.handle(dimensions, writable, [rec.width, rec.height, rec.depth]))
                 }
                 (VarValue::Sampler(s), _) => Arc::new(scene.samplers[s.index() as usize].handle()),
                 (VarValue::Object(n), _) => Arc::new(n.object()),

@@ -100,6 +100,9 @@ pub(crate) struct GeometryInstanceRec {
     pub geometry: GeometryId,
     pub materials: Vec<MaterialId>,
     pub vars: VarScope,
+    /// What `instance_id()` returns on its hits (`INSTANCE_ID_NONE`: none
+    /// set; see [`crate::link::instances`]).
+    pub instance_id: u32,
 }
 
 pub(crate) enum NodeKind {
@@ -114,6 +117,9 @@ pub(crate) struct NodeRec {
     /// Rays whose mask shares no bit with this are not traced into it.
     pub visibility_mask: u8,
     pub vars: VarScope,
+    /// The instance id of the geometry below (transforms only;
+    /// `INSTANCE_ID_NONE`: none set).
+    pub instance_id: u32,
 }
 
 pub(crate) struct ProgramRec {

@@ -14,6 +14,8 @@ use std::time::Duration;
 #[derive(Debug)]
 pub struct UsageReport<'a> {
     pub entry: u32,
+    /// The launch's grid: width and height (a 3D launch's height times its
+    /// depth).
     pub size: UVec2,
     pub backend: Backend,
     /// The launch's report, or why it failed.

@@ -743,6 +743,8 @@ buffer_index!(Buffer, u32);
 buffer_index!(RwBuffer, u32, mut);
 buffer_index!(Buffer2d, UVec2);
 buffer_index!(RwBuffer2d, UVec2, mut);
+buffer_index!(Buffer3d, UVec3);
+buffer_index!(RwBuffer3d, UVec3, mut);
 
 macro_rules! bindless_index {
     ($b:ident) => {

@@ -1,4 +1,5 @@
-//! Buffer handles: [`Buffer`], [`RwBuffer`], [`Buffer2d`], [`RwBuffer2d`].
+//! Buffer handles: [`Buffer`], [`RwBuffer`], [`Buffer2d`], [`RwBuffer2d`],
+//! [`Buffer3d`], [`RwBuffer3d`].
 //!
 //! A handle is a `Copy` view of element storage that the runtime owns. On the
 //! GPU the elements live in the runtime's buffer heap in the packed layout of
@@ -31,7 +32,7 @@ use core::fmt;
 use core::marker::PhantomData;
 use core::ops::{Index, IndexMut};
 
-use glam::UVec2;
+use glam::{UVec2, UVec3};
 
 use crate::cpu;
 use crate::data::{RtData, zeroed};
@@ -120,6 +121,13 @@ fn index_1d(i: u32, len: u32) -> Option<usize> {
 /// The row-major linear index `x + y * width` of `idx`, if in bounds.
 fn index_2d(idx: UVec2, size: UVec2) -> Option<usize> {
     (idx.x < size.x && idx.y < size.y).then(|| idx.x as usize + idx.y as usize * size.x as usize)
+}
+
+/// Element `(x, y, z)` of a row-major 3D buffer: `x + (y + z * height) *
+/// width`, if inside.
+fn index_3d(idx: UVec3, size: UVec3) -> Option<usize> {
+    (idx.x < size.x && idx.y < size.y && idx.z < size.z)
+        .then(|| idx.x as usize + (idx.y as usize + idx.z as usize * size.y as usize) * size.x as usize)
 }
 
 macro_rules! handle_traits {
@@ -458,6 +466,146 @@ impl<T: RtData> IndexMut<UVec2> for RwBuffer2d<T> {
 impl<T: RtData> fmt::Debug for RwBuffer2d<T> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.debug_struct("RwBuffer2d").field("element", &T::LAYOUT.rust).field("size", &self.size).finish()
+    }
+}
+
+/// A read-only 3D buffer of `T` (OptiX's `rtBuffer<T, 3>`), indexed by
+/// `UVec3`: element `(x, y, z)` is stored at `x + (y + z * height) * width`
+/// (slices of rows).
+///
+/// See the [module docs](self) for bounds checks and concurrency.
+#[doc(alias = "rtBuffer")]
+pub struct Buffer3d<T: RtData> {
+    elements: Elements<T>,
+    size: UVec3,
+}
+
+handle_traits!(Buffer3d);
+
+impl<T: RtData> Buffer3d<T> {
+    /// A handle to the `width * height * depth` elements at `ptr`. Host
+    /// side only: the runtime creates handles, programs receive them as
+    /// variables.
+    ///
+    /// # Safety
+    /// As [`Buffer::from_raw_parts`] with `len = width * height * depth`:
+    /// `ptr` points to that many elements and the sink after them.
+    pub unsafe fn from_raw_parts(ptr: *const T, width: u32, height: u32, depth: u32) -> Self {
+        let count = width as usize * height as usize * depth as usize;
+        // SAFETY: forwarded to the caller.
+        Buffer3d { elements: unsafe { Elements::new(ptr.cast_mut(), count) }, size: UVec3::new(width, height, depth) }
+    }
+
+    /// Width, height and depth in elements.
+    ///
+    /// Program kinds: all.
+    pub fn size(&self) -> UVec3 {
+        self.size
+    }
+
+    /// The element at `idx`; out of bounds (in any axis), raises
+    /// [`EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS`] and returns all-zero words.
+    ///
+    /// Program kinds: all.
+    pub fn load(&self, idx: UVec3) -> T {
+        self.elements.load(index_3d(idx, self.size))
+    }
+}
+
+impl<T: RtData> Index<UVec3> for Buffer3d<T> {
+    type Output = T;
+
+    /// `buffer[idx]`: the element at `idx`; out of bounds, raises
+    /// [`EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS`] and returns the zeroed sink.
+    ///
+    /// Program kinds: all.
+    fn index(&self, idx: UVec3) -> &T {
+        self.elements.get(index_3d(idx, self.size))
+    }
+}
+
+impl<T: RtData> fmt::Debug for Buffer3d<T> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Buffer3d").field("element", &T::LAYOUT.rust).field("size", &self.size).finish()
+    }
+}
+
+/// A read-write 3D buffer of `T` (OptiX's `rtBuffer<T, 3>`), indexed by
+/// `UVec3` as [`Buffer3d`].
+///
+/// See the [module docs](self) for bounds checks and concurrency.
+#[doc(alias = "rtBuffer")]
+pub struct RwBuffer3d<T: RtData> {
+    elements: Elements<T>,
+    size: UVec3,
+}
+
+handle_traits!(RwBuffer3d);
+
+impl<T: RtData> RwBuffer3d<T> {
+    /// A handle to the `width * height * depth` elements at `ptr`. Host
+    /// side only: the runtime creates handles, programs receive them as
+    /// variables.
+    ///
+    /// # Safety
+    /// As [`RwBuffer::from_raw_parts`] with `len = width * height * depth`:
+    /// `ptr` points to that many elements and the sink after them.
+    pub unsafe fn from_raw_parts(ptr: *mut T, width: u32, height: u32, depth: u32) -> Self {
+        let count = width as usize * height as usize * depth as usize;
+        // SAFETY: forwarded to the caller.
+        RwBuffer3d { elements: unsafe { Elements::new(ptr, count) }, size: UVec3::new(width, height, depth) }
+    }
+
+    /// Width, height and depth in elements.
+    ///
+    /// Program kinds: all.
+    pub fn size(&self) -> UVec3 {
+        self.size
+    }
+
+    /// The element at `idx`; out of bounds (in any axis), raises
+    /// [`EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS`] and returns all-zero words.
+    ///
+    /// Program kinds: all.
+    pub fn load(&self, idx: UVec3) -> T {
+        self.elements.load(index_3d(idx, self.size))
+    }
+
+    /// Writes `v` at `idx`; out of bounds (in any axis), raises
+    /// [`EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS`] and writes nothing.
+    ///
+    /// Program kinds: all.
+    pub fn store(&self, idx: UVec3, v: T) {
+        self.elements.store(index_3d(idx, self.size), v)
+    }
+}
+
+impl<T: RtData> Index<UVec3> for RwBuffer3d<T> {
+    type Output = T;
+
+    /// `buffer[idx]`: the element at `idx`; out of bounds, raises
+    /// [`EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS`] and returns the zeroed sink.
+    ///
+    /// Program kinds: all.
+    fn index(&self, idx: UVec3) -> &T {
+        self.elements.get(index_3d(idx, self.size))
+    }
+}
+
+impl<T: RtData> IndexMut<UVec3> for RwBuffer3d<T> {
+    /// `buffer[idx] = v`: the element at `idx`; out of bounds, raises
+    /// [`EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS`] and returns the zeroed sink,
+    /// so the write is lost.
+    ///
+    /// Program kinds: all.
+    fn index_mut(&mut self, idx: UVec3) -> &mut T {
+        self.elements.get_mut(index_3d(idx, self.size))
+    }
+}
+
+impl<T: RtData> fmt::Debug for RwBuffer3d<T> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("RwBuffer3d").field("element", &T::LAYOUT.rust).field("size", &self.size).finish()
     }
 }
 

@@ -265,6 +265,13 @@ pub struct ExecutionContext {
     pub launch_index: UVec2,
     /// The launch size ([`launch_dim`](crate::launch_dim)).
     pub launch_dim: UVec2,
+    /// The slice of a 3D launch being computed
+    /// ([`launch_index_3d`](crate::launch_index_3d); 0 in 1D and 2D
+    /// launches).
+    pub launch_z: u32,
+    /// The launch's depth ([`launch_dim_3d`](crate::launch_dim_3d); 1 in
+    /// 1D and 2D launches).
+    pub launch_depth: u32,
     /// The ray being traced, in the space of the current object: world space
     /// in miss programs, object space in intersection programs
     /// ([`current_ray`](crate::current_ray)).
@@ -287,6 +294,11 @@ pub struct ExecutionContext {
     /// The current ray's visibility mask, 8 bits
     /// ([`ray_mask`](crate::ray_mask)).
     pub ray_mask: u32,
+    /// The instance of the candidate (any hit, intersection) or committed
+    /// (closest hit) hit ([`instance_index`](crate::instance_index)).
+    pub instance_index: u32,
+    /// Its id ([`instance_id`](crate::instance_id)).
+    pub instance_id: u32,
     /// The exception kinds [`raise`](Self::raise) records, as
     /// `rt_abi::constants::exception_kind_bit`s; the others it drops.
     pub exceptions_enabled: u32,
@@ -321,6 +333,8 @@ impl ExecutionContext {
     pub const DEFAULT: ExecutionContext = ExecutionContext {
         launch_index: UVec2::ZERO,
         launch_dim: UVec2::ONE,
+        launch_z: 0,
+        launch_depth: 1,
         current_ray: Ray {
             origin: glam::Vec3::ZERO,
             direction: glam::Vec3::Z,
@@ -334,6 +348,8 @@ impl ExecutionContext {
         hit_kind: HIT_NONE,
         ray_flags: 0,
         ray_mask: 0xff,
+        instance_index: 0,
+        instance_id: rt_abi::constants::INSTANCE_ID_NONE,
         exceptions_enabled: rt_abi::constants::ALL_EXCEPTION_KINDS,
         object_to_world: Mat4::IDENTITY,
         world_to_object: Mat4::IDENTITY,

@@ -14,7 +14,7 @@
 //! effect when the program returns, and the code after them still runs, on
 //! the GPU too. Write `return` after them to stop there.
 
-use glam::{Mat4, UVec2, Vec3};
+use glam::{Mat4, UVec2, UVec3, Vec3};
 
 use crate::cpu::{self, update, with_installed_tracer};
 use crate::data::Payload;
@@ -79,6 +79,25 @@ pub fn launch_dim() -> UVec2 {
     crate::cpu::read(|c| c.launch_dim)
 }
 
+/// The launch index of a 3D launch (`Context::launch_3d`): `x` and `y` as
+/// [`launch_index`] gives them, `z` the slice, in `[0, launch_dim_3d())`;
+/// `z` is 0 in 1D and 2D launches. (OptiX declares `rtLaunchIndex` as a
+/// `uint3` for this; here `launch_index()` keeps its `UVec2`, the first two
+/// axes of every launch, and this function adds the third.)
+#[rt_macros::rt_intrinsic]
+#[inline]
+pub fn launch_index_3d() -> UVec3 {
+    crate::cpu::read(|c| c.launch_index.extend(c.launch_z))
+}
+
+/// The size of a 3D launch: width, height and depth ([`launch_dim`] and
+/// the depth; 1 in 1D and 2D launches).
+#[rt_macros::rt_intrinsic]
+#[inline]
+pub fn launch_dim_3d() -> UVec3 {
+    crate::cpu::read(|c| c.launch_dim.extend(c.launch_depth))
+}
+
 /// The ray being traced, as passed to `rt_trace` but with `tmax` the
 /// distance of the closest hit committed so far. In intersection programs
 /// (and their any-hit and closest-hit programs) it is in the object space of
@@ -139,6 +158,40 @@ pub fn is_triangle_hit_front_face() -> bool {
 pub fn is_triangle_hit_back_face() -> bool {
     crate::cpu::read(|c| c.hit_kind == cpu::HIT_TRIANGLE_BACK)
 }
+
+/// The instance the hit being considered (any hit, intersection) or
+/// committed (closest hit) is on: its place among the geometry instances
+/// the traced node reaches, counted depth first in child order, a geometry
+/// instance once for every path down to it. Tracing a group over the same
+/// geometry under two transforms therefore gives two indices. Through a
+/// geometry group's children in order, a group's or selector's children in
+/// order (a selector's every child counts, chosen or not), a transform's
+/// child: so the index depends only on the graph below the traced node, the
+/// same on every backend and across launches. (OptiX 7's instance index
+/// counts the instances of the innermost instance acceleration structure;
+/// here every geometry instance reached counts, and nested groups are
+/// numbered as one list.) A graph reaching more than `u32::MAX` instances
+/// wraps.
+#[rt_macros::rt_intrinsic]
+#[inline]
+pub fn instance_index() -> u32 {
+    crate::cpu::read(|c| c.instance_index)
+}
+
+/// The id the host gave the instance of the hit
+/// ([`instance_index`]) with `Context::set_instance_id`: the geometry
+/// instance's own id if it has one, else that of the innermost transform
+/// above it on the traced path that has one, else [`INSTANCE_ID_NONE`].
+#[rt_macros::rt_intrinsic]
+#[inline]
+pub fn instance_id() -> u32 {
+    crate::cpu::read(|c| c.instance_id)
+}
+
+/// What [`instance_id`] returns when no id was set on the instance's
+/// geometry instance or on a transform above it (`u32::MAX`); setting it
+/// clears an id.
+pub const INSTANCE_ID_NONE: u32 = rt_abi::INSTANCE_ID_NONE;
 
 /// The `RAY_FLAG_*` bits the current ray was traced with
 /// ([`rt_trace_with`]; [`RAY_FLAG_NONE`] for [`rt_trace`]).

@@ -146,7 +146,7 @@ pub mod texture;
 
 pub use atomic::{AtomicElement, AtomicInteger};
 pub use bindless::{BindlessBuffer, RwBindlessBuffer};
-pub use buffer::{Buffer, Buffer2d, RwBuffer, RwBuffer2d};
+pub use buffer::{Buffer, Buffer2d, Buffer3d, RwBuffer, RwBuffer2d, RwBuffer3d};
 pub use callable::Callable;
 pub use data::{Attributes, Payload, RtData};
 pub use geometry::Aabb;

@@ -19,7 +19,7 @@ pub use rt_macros::{rt_attributes, rt_const, rt_enum, rt_function, rt_impl, rt_p
 pub use crate::rt_printf;
 
 pub use crate::bindless::{BindlessBuffer, RwBindlessBuffer};
-pub use crate::buffer::{Buffer, Buffer2d, RwBuffer, RwBuffer2d};
+pub use crate::buffer::{Buffer, Buffer2d, Buffer3d, RwBuffer, RwBuffer2d, RwBuffer3d};
 pub use crate::callable::Callable;
 pub use crate::data::{Attributes, Payload, RtData};
 pub use crate::geometry::Aabb;

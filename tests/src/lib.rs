@@ -20,6 +20,8 @@ pub mod bool_vectors;
 pub mod buffers;
 #[path = "../snapshots/in/buffers_2d.rs"]
 pub mod buffers_2d;
+#[path = "../snapshots/in/buffers_3d.rs"]
+pub mod buffers_3d;
 #[path = "../snapshots/in/callables.rs"]
 pub mod callables;
 #[path = "../snapshots/in/casts.rs"]
@@ -48,6 +50,8 @@ pub mod glam_in_place;
 pub mod glam_more;
 #[path = "../snapshots/in/helpers_refs.rs"]
 pub mod helpers_refs;
+#[path = "../snapshots/in/instance_values.rs"]
+pub mod instance_values;
 #[path = "../snapshots/in/instancing.rs"]
 pub mod instancing;
 #[path = "../snapshots/in/int_division.rs"]

@@ -68,8 +68,18 @@ impl BufferKind {
         match (self.dims, self.writable) {
             (1, false) => "Buffer",
             (1, true) => "RwBuffer",
-            (_, false) => "Buffer2d",
-            (_, true) => "RwBuffer2d",
+            (2, false) => "Buffer2d",
+            (2, true) => "RwBuffer2d",
+            (_, false) => "Buffer3d",
+            (_, true) => "RwBuffer3d",
+        }
+    }
+
+    /// The type of its indices: `u32`, `UVec2` or `UVec3`.
+    pub fn index_ty(self) -> Ty {
+        match self.dims {
+            1 => Ty::Scalar(Scalar::U32),
+            d => Ty::Vec(d, Scalar::U32),
         }
     }
 }
@@ -422,6 +432,8 @@ pub fn buffer_kind(name: &str) -> Option<BufferKind> {
         "RwBuffer" => BufferKind { dims: 1, writable: true },
         "Buffer2d" => BufferKind { dims: 2, writable: false },
         "RwBuffer2d" => BufferKind { dims: 2, writable: true },
+        "Buffer3d" => BufferKind { dims: 3, writable: false },
+        "RwBuffer3d" => BufferKind { dims: 3, writable: true },
         _ => return None,
     })
 }

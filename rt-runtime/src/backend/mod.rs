@@ -187,8 +187,12 @@ pub(crate) struct Launch<'a> {
     pub settings: &'a Settings,
     pub accels: &'a AccelCache,
     pub entry: u32,
+    /// The launch grid's width and height: a 3D launch's grid has `height *
+    /// depth` rows, each slice's in turn (programs see `height / depth`).
     pub width: u32,
     pub height: u32,
+    /// 1 but for 3D launches.
+    pub depth: u32,
     pub tile: Tile,
     /// Whether this is the launch's first tile, and its last: the wgpu
     /// backend reads the outputs back after the last only, keeping them on
@@ -363,16 +367,18 @@ pub(crate) async fn launch(
     scene: &mut Scene,
     settings: &Settings,
     accels: &mut AccelCache,
-    (entry, width, height): (u32, u32, u32),
+    (entry, width, height, depth): (u32, u32, u32, u32),
     pacing: Pacing<'_, '_>,
 ) -> Result<LaunchReport> {
-    if width == 0 || height == 0 {
-        return Err(RtError::BadLaunch {
-            width,
-            height,
-            problem: "a launch needs at least one index in each dimension".into(),
-        });
+    if width == 0 || height == 0 || depth == 0 {
+        let problem = "a launch needs at least one index in each dimension".into();
+        return Err(RtError::BadLaunch { width, height, problem });
     }
+    // A 3D launch runs as a 2D grid of its slices' rows.
+    let Some(height) = height.checked_mul(depth) else {
+        let problem = format!("a depth of {depth} slices of {height} rows: more rows than 32-bit indices number");
+        return Err(RtError::BadLaunch { width, height, problem });
+    };
     let Pacing { part, pace, mut progress } = pacing;
     let part = part.unwrap_or(Tile::whole(width, height));
     if let Some(problem) = tiles::part_problem(width, height, part) {
@@ -393,7 +399,7 @@ pub(crate) async fn launch(
         let size = pace.next_size(budget, entry, last);
         let Some(tile) = tiler.next_tile(size) else { break Ok(()) };
         let (first_tile, last_tile) = (last.is_none(), tiler.finished());
-        let launch = Launch { scene, settings, accels, entry, width, height, tile, first_tile, last_tile };
+        let launch = Launch { scene, settings, accels, entry, width, height, depth, tile, first_tile, last_tile };
         let ran = run_tile(backend, &launch).await;
         backend.read_back_outputs(&mut scene.buffers);
         let ran = match ran {
@@ -498,6 +504,7 @@ mod tests {
             entry: 0,
             width: 4,
             height: 4,
+            depth: 1,
             tile,
             first_tile: true,
             last_tile: true,

@@ -103,7 +103,7 @@ impl Accessors {
     /// `rt_bufload2_<T>` (2D, `vec2<u32>` index). Out of bounds raises the
     /// buffer-index exception (in `rt_buf_check`) and yields the zero value.
     pub fn buffer_load(&mut self, dims: u8, ty: &Ty) -> String {
-        let name = format!("rt_bufload{}_{}", if dims == 2 { "2" } else { "" }, ty.mangle());
+        let name = format!("rt_bufload{}_{}", dims_suffix(dims), ty.mangle());
         if self.functions.contains_key(&name) {
             return name;
         }
@@ -122,7 +122,7 @@ impl Accessors {
 
     /// Bounds-checked element store (`rt_bufstore_<T>` / `rt_bufstore2_<T>`).
     pub fn buffer_store(&mut self, dims: u8, ty: &Ty) -> String {
-        let name = format!("rt_bufstore{}_{}", if dims == 2 { "2" } else { "" }, ty.mangle());
+        let name = format!("rt_bufstore{}_{}", dims_suffix(dims), ty.mangle());
         if self.functions.contains_key(&name) {
             return name;
         }
@@ -269,7 +269,7 @@ impl Accessors {
     /// word differs or the exchange happens (a strong compare-exchange).
     pub fn buffer_atomic(&mut self, dims: u8, op: AtomicOp, scalar: Scalar) -> String {
         let t = Ty::Scalar(scalar).wgsl();
-        let name = format!("{}{}_{}_{t}", rt_abi::wgsl::ATOMIC_PREFIX, if dims == 2 { "2" } else { "" }, op.name());
+        let name = format!("{}{}_{}_{t}", rt_abi::wgsl::ATOMIC_PREFIX, dims_suffix(dims), op.name());
         if self.functions.contains_key(&name) {
             return name;
         }
@@ -342,9 +342,20 @@ impl Accessors {
 }
 
 fn index_parts(dims: u8) -> (&'static str, &'static str, &'static str) {
-    if dims == 2 {
-        ("vec2<u32>", "rt_buf_check2(b, i)", "(i.y * b.width + i.x)")
-    } else {
-        ("u32", "rt_buf_check(b, i)", "i")
+    match dims {
+        2 => ("vec2<u32>", "rt_buf_check2(b, i)", "(i.y * b.width + i.x)"),
+        // Row-major slices: x fastest, then y, then z (`rt_buf_check3`
+        // keeps the product in range).
+        3 => ("vec3<u32>", "rt_buf_check3(b, i)", "((i.z * b.height + i.y) * b.width + i.x)"),
+        _ => ("u32", "rt_buf_check(b, i)", "i"),
+    }
+}
+
+/// What an accessor's name says of its buffer's dimensions.
+fn dims_suffix(dims: u8) -> &'static str {
+    match dims {
+        2 => "2",
+        3 => "3",
+        _ => "",
     }
 }

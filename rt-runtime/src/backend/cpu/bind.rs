@@ -38,9 +38,17 @@ pub(crate) struct Linked<'a, P> {
     pub(crate) intersection: Vec<Option<P>>,
     /// Visit program per node (selectors only).
     pub(crate) visit: Vec<Option<P>>,
+    /// Per node, where its children's instances start, counted from its
+    /// own first (groups and selectors; see [`link::instances`]).
+    pub(crate) instance_offsets: Vec<Vec<u32>>,
+    /// The launch's size as programs see it: width and height (of a 3D
+    /// launch's slice), and depth (1 but for 3D launches, whose grid
+    /// indices run over the slices' rows in turn).
     pub(crate) launch_dim: UVec2,
     /// The handles bindless ids read through, by buffer index.
     pub(crate) bindless: Arc<[BindlessHandles]>,
+    /// The launch's depth (see `launch_dim`).
+    pub(crate) launch_depth: u32,
 }
 
 /// One buffer's handles for bindless ids (`rt_std::BindlessBuffer<T>`):
@@ -58,10 +66,10 @@ impl BindlessHandles {
             .buffers
             .iter()
             .map(|b| {
-                let (w, h) = (b.width * b.height, 1);
+                let size = [b.len(), 1, 1];
                 BindlessHandles {
-                    read: b.storage.handle(1, false, w, h),
-                    write: b.ty.writable_by_programs().then(|| b.storage.handle(1, true, w, h)),
+                    read: b.storage.handle(1, false, size),
+                    write: b.ty.writable_by_programs().then(|| b.storage.handle(1, true, size)),
                 }
             })
             .collect()
@@ -73,7 +81,7 @@ pub(crate) fn link_all<'a>(
     settings: &'a Settings,
     accels: &'a [Option<NodeAccel>],
     entry: u32,
-    dim: UVec2,
+    (dim, depth): (UVec2, u32),
 ) -> Result<Linked<'a, Call>> {
     let count = scene.entry_points.len() as u32;
     let ep = scene.entry_points.get(entry as usize).ok_or(RtError::NoSuchEntryPoint { entry, count })?;
@@ -151,6 +159,15 @@ pub(crate) fn link_all<'a>(
         .chain(visit.iter().flatten())
         .map(|c| c.desc);
     link::callables::linked(callers, &link::callables::scene_callables(scene))?;
+    let numbering = link::instances::Numbering::of(scene)?;
+    let instance_offsets = scene
+        .nodes
+        .iter()
+        .map(|rec| match &rec.kind {
+            NodeKind::Group { children, .. } | NodeKind::Selector { children, .. } => numbering.offsets(children),
+            _ => Vec::new(),
+        })
+        .collect();
     Ok(Linked {
         scene,
         settings,
@@ -163,8 +180,10 @@ pub(crate) fn link_all<'a>(
         meshes,
         intersection,
         visit,
+        instance_offsets,
         launch_dim: dim,
         bindless: BindlessHandles::of(scene),
+        launch_depth: depth,
     })
 }
 
@@ -191,8 +210,10 @@ impl<'a> Linked<'a, Call> {
             meshes: self.meshes.clone(),
             intersection: self.intersection.iter().map(opt).collect::<Result<_>>()?,
             visit: self.visit.iter().map(opt).collect::<Result<_>>()?,
+            instance_offsets: self.instance_offsets.clone(),
             launch_dim: self.launch_dim,
             bindless: self.bindless.clone(),
+            launch_depth: self.launch_depth,
         })
     }
 }

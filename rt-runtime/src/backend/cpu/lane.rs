@@ -13,6 +13,7 @@ use crate::accel::wide::watertight::WatertightRay;
 use crate::accel::wide::{PACKET, leaf_of};
 use crate::handles::BufferId;
 use crate::link;
+use crate::link::instances::{self, InstancePath};
 use crate::scene::{NodeId, NodeKind, ProgramId, TriangleMesh};
 use glam::{Mat4, UVec2, Vec2, Vec3};
 use rt_std::cpu::{
@@ -53,6 +54,9 @@ pub(crate) struct Hit {
     pub(crate) vertices: [Vec3; 3],
     /// The instance's transforms (None: identity).
     pub(crate) xf: Option<Xf>,
+    /// The path the search reached the hit's geometry group by, and the
+    /// group ([`instances::resolve`]).
+    pub(crate) path: (InstancePath, NodeId),
 }
 
 /// The transforms of a node being traversed: the product of the transform
@@ -105,6 +109,8 @@ pub(crate) struct Search<'r> {
     pub(crate) candidate: Cell<Option<Candidate>>,
     /// The distance `rt_potential_intersection` accepted for the candidate.
     pub(crate) candidate_t: Cell<Option<f32>>,
+    /// The geometry group being searched and the path to it.
+    pub(crate) group: Cell<(InstancePath, NodeId)>,
 }
 
 /// One worker's state over a chunk of launch indices; also rt-std's
@@ -182,12 +188,20 @@ impl<'a> Lane<'a> {
         // pending stores: it stalls until they reach the cache (about 4% of
         // a primary + AO launch on the bunny). `black_box` keeps the packed
         // value whole.
-        let index = self.index.get();
+        let mut index = self.index.get();
+        let (mut launch_z, launch_depth) = (0, self.l.launch_depth);
+        if launch_depth > 1 {
+            // A 3D launch's grid runs over its slices' rows in turn.
+            let h = self.l.launch_dim.y;
+            (index.y, launch_z) = (index.y % h, index.y / h);
+        }
         let bits = std::hint::black_box(index.x as u64 | (index.y as u64) << 32);
         let launch_index = UVec2::new(bits as u32, (bits >> 32) as u32);
         ExecutionContext {
             launch_index,
             launch_dim: self.l.launch_dim,
+            launch_z,
+            launch_depth,
             exceptions_enabled: self.l.settings.exceptions,
             ..ExecutionContext::DEFAULT
         }
@@ -264,7 +278,14 @@ impl<'a> Lane<'a> {
         a
     }
 
-    pub(crate) fn traverse(&self, s: &Search, node: NodeId, xf: Option<&Xf>, mask: u32) {
+    /// The instance index and id of geometry instance `gi` in the geometry
+    /// group being searched.
+    fn instance_of(&self, s: &Search, gi: u32) -> (u32, u32) {
+        let (path, group) = s.group.get();
+        instances::resolve(self.l.scene, path, group, gi)
+    }
+
+    pub(crate) fn traverse(&self, s: &Search, node: NodeId, xf: Option<&Xf>, mask: u32, path: InstancePath) {
         let l = self.l;
         let rec = &l.scene.nodes[node.index() as usize];
         if (rec.visibility_mask as u32) & mask == 0 || s.done.get() {
@@ -289,17 +310,18 @@ impl<'a> Lane<'a> {
                         world_to_object: *inverse * x.world_to_object,
                     },
                 };
-                self.traverse(s, *child, Some(&composed), mask)
+                self.traverse(s, *child, Some(&composed), mask, path.through(rec.instance_id))
             }
             // One child (a scene's usual top group): its own tree tests the
             // ray first thing, so the group's box test would be repeated.
-            NodeKind::Group { children, .. } if children.len() == 1 => self.traverse(s, children[0], xf, mask),
+            NodeKind::Group { children, .. } if children.len() == 1 => self.traverse(s, children[0], xf, mask, path),
             NodeKind::Group { children, .. } => {
                 let Some(Some(NodeAccel::Children { bvh, .. })) = l.accels.get(node.index() as usize) else {
                     return;
                 };
+                let offsets = &l.instance_offsets[node.index() as usize];
                 bvh.traverse(origin, direction.recip(), world_ray.tmin, &|| s.tmax.get(), &mut |c| {
-                    self.traverse(s, children[c as usize], xf, mask);
+                    self.traverse(s, children[c as usize], xf, mask, path.child(offsets[c as usize]));
                     !s.done.get()
                 });
             }
@@ -317,13 +339,15 @@ impl<'a> Lane<'a> {
                 if let CpuResult::Child(c) = r
                     && let Some(child) = children.get(c as usize)
                 {
-                    self.traverse(s, *child, xf, mask);
+                    let offset = l.instance_offsets[node.index() as usize][c as usize];
+                    self.traverse(s, *child, xf, mask, path.child(offset));
                 }
             }
             NodeKind::GeometryGroup { .. } => {
                 let Some(Some(NodeAccel::Prims { bvh, simd, prims, .. })) = l.accels.get(node.index() as usize) else {
                     return;
                 };
+                s.group.set((path, node));
                 // The world ray's `tmax` is not read here (the search's is):
                 // copying the whole ray loads `tmin` and `tmax` as one 8-byte
                 // word, which stalls when the tracing program stored them
@@ -477,7 +501,7 @@ impl<'a> Lane<'a> {
                 self.attributes_of(ty, Some(&hit))
             });
             let kind = if front() { HIT_TRIANGLE_FRONT } else { HIT_TRIANGLE_BACK };
-            match self.any_hit(s, ah, (t, kind), prim, xf, attributes) {
+            match self.any_hit(s, ah, (t, kind), (gi, prim), xf, attributes) {
                 None => return,
                 Some(terminated) => terminate |= terminated,
             }
@@ -507,6 +531,7 @@ impl<'a> Lane<'a> {
             barycentrics: Vec2::new(u, v),
             vertices,
             xf: xf.copied(),
+            path: s.group.get(),
         }));
     }
 
@@ -519,10 +544,11 @@ impl<'a> Lane<'a> {
         s: &Search,
         ah: &Program<'_>,
         (t, hit_kind): (f32, u32),
-        prim: u32,
+        (gi, prim): (u32, u32),
         xf: Option<&Xf>,
         mut attributes: Option<Box<dyn AnyAttributes>>,
     ) -> Option<bool> {
+        let (instance_index, instance_id) = self.instance_of(s, gi);
         let mut ctx = ExecutionContext {
             current_ray: Ray { tmax: t, ..*s.world_ray },
             t_hit: t,
@@ -530,6 +556,8 @@ impl<'a> Lane<'a> {
             hit_kind,
             ray_flags: s.flags,
             ray_mask: s.mask,
+            instance_index,
+            instance_id,
             ..self.base_context()
         };
         Xf::set(&mut ctx, xf);
@@ -546,11 +574,14 @@ impl<'a> Lane<'a> {
         let Some(call) = &self.l.intersection[gi as usize] else { return };
         s.candidate.set(Some(Candidate { instance: gi, primitive: prim, object_ray: *object_ray, xf: xf.copied() }));
         s.candidate_t.set(None);
+        let (instance_index, instance_id) = self.instance_of(s, gi);
         let mut ctx = ExecutionContext {
             current_ray: Ray { tmax: s.tmax.get(), ..*object_ray },
             primitive_index: prim,
             ray_flags: s.flags,
             ray_mask: s.mask,
+            instance_index,
+            instance_id,
             ..self.base_context()
         };
         Xf::set(&mut ctx, xf);
@@ -593,11 +624,12 @@ impl Tracer for Lane<'_> {
             attributes: RefCell::new(None),
             candidate: Cell::new(None),
             candidate_t: Cell::new(None),
+            group: Cell::new((InstancePath::ROOT, node)),
         };
         // The pointer's lifetime is erased; it is restored below, before
         // `search` (and the ray it borrows) go away.
         let outer = self.search.replace((&search as *const Search<'_>).cast());
-        self.traverse(&search, node, None, mask & 0xff);
+        self.traverse(&search, node, None, mask & 0xff, InstancePath::ROOT);
         self.search.set(outer);
         let mut attributes = search.attributes.take();
         // Read in place: a copy of the hit would load the fields its last
@@ -617,12 +649,16 @@ impl Tracer for Lane<'_> {
                         Some(_) => front_or_back(hit, ray.direction),
                         None => HIT_CUSTOM,
                     };
+                    let (path, group) = hit.path;
+                    let (instance_index, instance_id) = instances::resolve(l.scene, path, group, hit.instance);
                     let mut ctx = ExecutionContext {
                         t_hit: hit.t,
                         primitive_index: hit.primitive,
                         hit_kind,
                         ray_flags: flags,
                         ray_mask: mask & 0xff,
+                        instance_index,
+                        instance_id,
                         ..self.base_context()
                     };
                     Xf::set(&mut ctx, hit.xf.as_ref());
@@ -676,7 +712,7 @@ impl Tracer for Lane<'_> {
             && s.flags & RAY_FLAG_DISABLE_ANYHIT == 0
         {
             let copy = self.copy_of(attributes);
-            match self.any_hit(s, ah, (t, HIT_CUSTOM), c.primitive, c.xf.as_ref(), Some(copy)) {
+            match self.any_hit(s, ah, (t, HIT_CUSTOM), (gi, c.primitive), c.xf.as_ref(), Some(copy)) {
                 None => return false,
                 Some(terminated) => terminate |= terminated,
             }
@@ -697,6 +733,7 @@ impl Tracer for Lane<'_> {
             barycentrics: Vec2::ZERO,
             vertices: [Vec3::ZERO; 3],
             xf: c.xf,
+            path: s.group.get(),
         }));
         s.done.set(s.done.get() | terminate);
         true

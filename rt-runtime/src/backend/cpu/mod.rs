@@ -102,9 +102,9 @@ fn panicked(
 
 /// Runs a launch over its tile's launch indices.
 fn run(launch: &Launch) -> Result<LaunchReport> {
-    let &Launch { scene, settings, accels, entry, width, height, tile, .. } = launch;
+    let &Launch { scene, settings, accels, entry, width, height, depth, tile, .. } = launch;
     let t1 = web_time::Instant::now();
-    let calls = link_all(scene, settings, &accels.nodes, entry, UVec2::new(width, height))?;
+    let calls = link_all(scene, settings, &accels.nodes, entry, (UVec2::new(width, height / depth), depth))?;
     let linked = calls.bind()?;
     let t2 = web_time::Instant::now();
     // Chunks of launch indices in row-major order (not rows: a 1D launch

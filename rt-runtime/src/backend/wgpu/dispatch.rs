@@ -48,6 +48,8 @@ pub(crate) fn tiles(
                 print_filter: print_filter.to_array(),
                 exceptions: l.settings.exceptions,
                 buffer_table,
+                depth: l.depth,
+                reserved: 0,
             }
             .words();
             tiles.push((uniform, gx, gy));

@@ -54,7 +54,7 @@ pub(crate) fn encode_heap(scene: &Scene, records: &Records) -> Result<EncodedHea
         let layout = b.storage.layout();
         let entry = BufferTable {
             offset: (base + start) as u32,
-            len: b.width * b.height,
+            len: b.len(),
             tag: layout_tag(layout.rust),
             writable: b.ty.writable_by_programs() as u32,
         };
@@ -75,12 +75,7 @@ pub(crate) fn encode_heap(scene: &Scene, records: &Records) -> Result<EncodedHea
                 (VarValue::Data { words, .. }, _) => heap.extend(words),
                 (VarValue::Buffer(b), VariableKind::Buffer { .. }) => {
                     let rec = &scene.buffers[b.index() as usize];
-                    heap.extend([
-                        buffer_offsets[b.index() as usize] as u32,
-                        rec.width * rec.height,
-                        rec.width,
-                        rec.height,
-                    ]);
+                    heap.extend([buffer_offsets[b.index() as usize] as u32, rec.len(), rec.width, rec.height]);
                 }
                 (VarValue::Sampler(s), _) => {
                     let rec = &scene.samplers[s.index() as usize];

@@ -54,6 +54,15 @@ var<private> rt_print_on: bool;
 var<private> rt_hk: u32;
 var<private> rt_rflags: u32;
 var<private> rt_rmask: u32;
+// Instances (rt-std's instance_index, instance_id): the path a search
+// reached the instance it searches by (rt_s_ipath) and the committed hit's
+// (rt_h_ipath), each (the instance index of its geometry group's first
+// geometry instance, the innermost instance id above it or RT_NONE); the
+// current hit's (rt_icur: path, instance record, geometry instance),
+// resolved only when a program asks (rt_instance_of).
+var<private> rt_s_ipath: vec2<u32>;
+var<private> rt_h_ipath: vec2<u32>;
+var<private> rt_icur: vec4<u32>;
 // Rays this invocation traced (added to rt_log[2] at the end).
 var<private> rt_rays: u32;
 
@@ -97,6 +106,20 @@ fn rt_buf_check2(b: RtBuffer, i: vec2<u32>) -> bool {
     rt_raise(RT_EXC_BUFFER_INDEX);
     return false;
 }
+// A 3D buffer's size: its depth is what its length leaves (width * height
+// fits: the host checked width * height * depth).
+fn rt_buf_size3(b: RtBuffer) -> vec3<u32> {
+    var d = 0u;
+    if b.width != 0u && b.height != 0u {
+        d = b.len / (b.width * b.height);
+    }
+    return vec3<u32>(b.width, b.height, d);
+}
+fn rt_buf_check3(b: RtBuffer, i: vec3<u32>) -> bool {
+    if all(i < rt_buf_size3(b)) { return true; }
+    rt_raise(RT_EXC_BUFFER_INDEX);
+    return false;
+}
 
 // Bindless buffer ids through the launch's buffer table
 // (rt_abi::records::BufferTable): id k names the entry k - 1, 0 none.
@@ -117,8 +140,18 @@ fn rt_bufid(id: u32) -> RtBuffer {
     return RtBuffer(rt_hw(e + RT_BUFID_OFFSET), len, len, 1u);
 }
 
-fn rt_launch_index() -> vec2<u32> { return rt_idx; }
-fn rt_launch_dim() -> vec2<u32> { return rt_launch.dim; }
+// rt_idx is the index in the launch's grid, whose rows are a 3D launch's
+// rows of every slice in turn (rt_launch.depth slices).
+fn rt_launch_index() -> vec2<u32> {
+    if rt_launch.depth <= 1u { return rt_idx; }
+    return vec2<u32>(rt_idx.x, rt_idx.y % (rt_launch.dim.y / rt_launch.depth));
+}
+fn rt_launch_dim() -> vec2<u32> { return vec2<u32>(rt_launch.dim.x, rt_launch.dim.y / max(rt_launch.depth, 1u)); }
+fn rt_launch_index_3d() -> vec3<u32> {
+    let h = rt_launch.dim.y / max(rt_launch.depth, 1u);
+    return vec3<u32>(rt_idx.x, rt_idx.y % h, rt_idx.y / h);
+}
+fn rt_launch_dim_3d() -> vec3<u32> { return vec3<u32>(rt_launch_dim(), max(rt_launch.depth, 1u)); }
 fn rt_current_ray() -> RtRay { return rt_ray; }
 fn rt_t_hit() -> f32 { return rt_t; }
 fn rt_primitive_index() -> u32 { return rt_prim; }
@@ -128,6 +161,32 @@ fn rt_is_triangle_hit_front_face() -> bool { return rt_hk == 1u; }
 fn rt_is_triangle_hit_back_face() -> bool { return rt_hk == 2u; }
 fn rt_ray_flags() -> u32 { return rt_rflags; }
 fn rt_ray_mask() -> u32 { return rt_rmask; }
+fn rt_instance_index() -> u32 { return rt_instance_of(rt_icur).x; }
+fn rt_instance_id() -> u32 { return rt_instance_of(rt_icur).y; }
+
+// The instance index and id of geometry instance c.w reached through
+// instance record c.z on path c.xy (see rt_icur): the path's index plus the
+// geometry instance's place in its geometry group; the id of the geometry
+// instance, else of the record's chain of transforms, else the path's.
+// The record's RT_INST_GIS table is [count, geometry instances.., their
+// ids..] of its geometry group (rt-runtime's link::instances).
+fn rt_instance_of(c: vec4<u32>) -> vec2<u32> {
+    let ib = rt_scene[1] + c.z * RT_INST_WORDS;
+    let t = rt_scene[ib + RT_INST_GIS];
+    let n = rt_scene[t];
+    var k = 0u;
+    while k < n && rt_scene[t + 1u + k] != c.w {
+        k = k + 1u;
+    }
+    var id = c.y;
+    if rt_scene[ib + RT_INST_ID] != RT_NONE {
+        id = rt_scene[ib + RT_INST_ID];
+    }
+    if k < n && rt_scene[t + 1u + n + k] != RT_NONE {
+        id = rt_scene[t + 1u + n + k];
+    }
+    return vec2<u32>(c.x + k, id);
+}
 fn rt_ignore_intersection() { rt_ignored = true; }
 fn rt_terminate_ray() { rt_terminated = true; }
 fn rt_throw(code: u32) { rt_raise(code); }

@@ -1,4 +1,4 @@
-//! Buffers and samplers: `Buffer`/`RwBuffer` (1D and 2D) indexing and
+//! Buffers and samplers: `Buffer`/`RwBuffer` (1D, 2D and 3D) indexing and
 //! methods through the heap accessors, and `Sampler2d`'s methods.
 
 use super::*;
@@ -6,7 +6,7 @@ use crate::lower::accessors::AtomicOp;
 
 impl FnLowerer<'_> {
     pub(super) fn buffer_index(&mut self, kind: BufferKind, e: &Expr) -> Result<Val> {
-        let want = if kind.dims == 2 { Ty::Vec(2, Scalar::U32) } else { U32 };
+        let want = kind.index_ty();
         let v = self.expr(e, Some(&want))?;
         let v = self.deref(v);
         self.coerce(v, &want, e.span())
@@ -52,6 +52,11 @@ impl FnLowerer<'_> {
                 let size = format!("vec2<u32>({0}.width, {0}.height)", recv.code);
                 Ok(Val::new(size, Ty::Vec(2, Scalar::U32)).with_effects(recv.effects).with_reads(recv.reads))
             }
+            ("size", 3) => {
+                want_args(0)?;
+                let size = format!("rt_buf_size3({})", recv.code);
+                Ok(Val::new(size, Ty::Vec(3, Scalar::U32)).with_effects(recv.effects).with_reads(recv.reads))
+            }
             ("load", _) => {
                 want_args(1)?;
                 let idx = self.buffer_index(kind, args[0])?;
@@ -67,8 +72,9 @@ impl FnLowerer<'_> {
                     return Err(Error::new(
                         name_span,
                         format!(
-                            "cannot store into a read-only `{}`: declare the variable as `RwBuffer`/`RwBuffer2d`",
-                            kind.rust_name()
+                            "cannot store into a read-only `{}`: declare the variable as `{}`",
+                            kind.rust_name(),
+                            BufferKind { writable: true, ..kind }.rust_name()
                         ),
                     ));
                 }
@@ -88,7 +94,7 @@ impl FnLowerer<'_> {
                 format!(
                     "no method `{name}` on `{}<{elem}>` (it has load, store, {}, and the atomic_* updates on `RwBuffer`s of `u32`, `i32` and `f32`)",
                     kind.rust_name(),
-                    if kind.dims == 2 { "size" } else { "len, is_empty" }
+                    if kind.dims == 1 { "len, is_empty" } else { "size" }
                 ),
             )),
         }
@@ -110,11 +116,18 @@ impl FnLowerer<'_> {
         span: Span,
     ) -> Result<Val> {
         let ty_name = format!("{}<{elem}>", kind.rust_name());
+        if kind.dims == 3 {
+            return Err(Error::new(
+                name_span,
+                format!("`{name}` on a 3D buffer is not supported yet: atomics are on `RwBuffer`s and `RwBuffer2d`s"),
+            ));
+        }
         if !kind.writable {
             return Err(Error::new(
                 name_span,
                 format!(
-                    "cannot update a read-only `{ty_name}` atomically: declare the variable as `RwBuffer`/`RwBuffer2d`"
+                    "cannot update a read-only `{ty_name}` atomically: declare the variable as `{}`",
+                    BufferKind { writable: true, ..kind }.rust_name()
                 ),
             ));
         }

@@ -130,6 +130,7 @@ fn abi_ty(t: kinds::AbiTy) -> Option<Ty> {
         A::U32 => U32,
         A::F32 => F32,
         A::UVec2 => Ty::Vec(2, Scalar::U32),
+        A::UVec3 => Ty::Vec(3, Scalar::U32),
         A::Vec2 => Ty::vec(2),
         A::Vec3 => Ty::vec(3),
         A::Vec4 => Ty::vec(4),

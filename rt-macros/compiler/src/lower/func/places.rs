@@ -65,8 +65,9 @@ impl FnLowerer<'_> {
                         return Err(Error::new(
                             i.expr.span(),
                             format!(
-                                "cannot write to a read-only `{}`: declare the variable as `RwBuffer`/`RwBuffer2d`",
-                                kind.rust_name()
+                                "cannot write to a read-only `{}`: declare the variable as `{}`",
+                                kind.rust_name(),
+                                BufferKind { writable: true, ..kind }.rust_name()
                             ),
                         ));
                     }

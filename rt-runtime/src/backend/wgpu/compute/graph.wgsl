@@ -4,7 +4,7 @@
 // defines RT_LEVELS, 1 + the deepest nesting of transform entries) ----
 //
 // One explicit stack of entries vec4(node, BVH node or RT_NONE, entry t,
-// level) walks the graph depth first without recursion: RT_NONE entries
+// level), each with its instance path (rt_s_ipath's form), walks the graph depth first without recursion: RT_NONE entries
 // enter a graph node (never pruned by distance: like the CPU backend,
 // every child in a leaf the ray reaches is entered), others are BVH nodes
 // of group `node`. `level` names
@@ -34,12 +34,13 @@ fn rt_enter_level(level: u32, o2w: mat4x4<f32>, w2o: mat4x4<f32>) {
     rt_g_inv[level] = rt_safe_inv(d);
 }
 
-// Instance `inst` seen from transform level `level`.
-fn rt_graph_instance(inst: u32, level: u32, mask: u32) {
+// Instance `inst` seen from transform level `level`, reached by `path`.
+fn rt_graph_instance(inst: u32, level: u32, mask: u32, path: vec2<u32>) {
     let ib = rt_scene[1] + inst * RT_INST_WORDS;
     if !rt_visible(rt_scene[ib + RT_INST_MASK], mask) {
         return;
     }
+    rt_s_ipath = path;
     rt_o2w = rt_g_o2w[level] * rt_m4(ib);
     rt_w2o = rt_m4(ib + RT_INST_W2O) * rt_g_w2o[level];
     rt_blas_in(inst);
@@ -62,11 +63,14 @@ fn rt_search_graph(object: u32, mask: u32) {
     let identity = mat4x4<f32>(vec4<f32>(1.0, 0.0, 0.0, 0.0), vec4<f32>(0.0, 1.0, 0.0, 0.0), vec4<f32>(0.0, 0.0, 1.0, 0.0), vec4<f32>(0.0, 0.0, 0.0, 1.0));
     rt_enter_level(0u, identity, identity);
     var stack: array<vec4<u32>, RT_GRAPH_STACK>;
+    var paths: array<vec2<u32>, RT_GRAPH_STACK>;
     stack[0] = vec4<u32>(object, RT_NONE, 0u, 0u);
+    paths[0] = vec2<u32>(0u, RT_NONE);
     var sp = 1u;
     while sp > 0u && !rt_s_done {
         sp = sp - 1u;
         let e = stack[sp];
+        let path = paths[sp];
         if e.y != RT_NONE && bitcast<f32>(e.z) > rt_s_tmax {
             continue;
         }
@@ -82,12 +86,13 @@ fn rt_search_graph(object: u32, mask: u32) {
             }
             switch kind {
                 case RT_NODE_INSTANCE: {
-                    rt_graph_instance(rt_scene[node + 1u], level, mask);
+                    rt_graph_instance(rt_scene[node + 1u], level, mask, path);
                 }
                 case RT_NODE_INSTANCE_GROUP, RT_NODE_GROUP: {
                     let t = rt_aabb_hit(rt_scene[node + 1u], org, inv, rt_s_wray.tmin, rt_s_tmax);
                     if t != RT_FAR && sp < RT_GRAPH_STACK {
                         stack[sp] = vec4<u32>(e.x, 0u, bitcast<u32>(t), level);
+                        paths[sp] = path;
                         sp = sp + 1u;
                     }
                 }
@@ -96,14 +101,22 @@ fn rt_search_graph(object: u32, mask: u32) {
                         let m = rt_scene[node + 1u];
                         rt_enter_level(level + 1u, rt_g_o2w[level] * rt_m4(m), rt_m4(m + 16u) * rt_g_w2o[level]);
                         stack[sp] = vec4<u32>(rt_scene[node + 2u], RT_NONE, 0u, level + 1u);
+                        // The chain's instance id, after its matrices.
+                        paths[sp] = path;
+                        if rt_scene[m + 32u] != RT_NONE {
+                            paths[sp].y = rt_scene[m + 32u];
+                        }
                         sp = sp + 1u;
                     }
                 }
                 case RT_NODE_SELECTOR: {
                     let sel = rt_scene[node + 1u];
                     let child = rt_visit(sel, level);
-                    if child < rt_scene[sel + 2u] && sp < RT_GRAPH_STACK {
+                    let count = rt_scene[sel + 2u];
+                    if child < count && sp < RT_GRAPH_STACK {
                         stack[sp] = vec4<u32>(rt_scene[sel + 3u + child], RT_NONE, 0u, level);
+                        // The children's instance offsets follow them.
+                        paths[sp] = vec2<u32>(path.x + rt_scene[sel + 3u + count + child], path.y);
                         sp = sp + 1u;
                     }
                 }
@@ -119,15 +132,18 @@ fn rt_search_graph(object: u32, mask: u32) {
         let first = rt_node_word(n + 7u);
         if count > 0u {
             // Instances now; other children pushed, visited in leaf order.
+            // Leaves are [instance or node, its first instance index].
             for (var i = first + count; i > first; i--) {
-                let leaf = rt_scene[leaves + i - 1u];
+                let leaf = rt_scene[leaves + (i - 1u) * 2u];
+                let below = vec2<u32>(path.x + rt_scene[leaves + (i - 1u) * 2u + 1u], path.y);
                 if (leaf & RT_NODE_BIT) == 0u {
-                    rt_graph_instance(leaf, level, mask);
+                    rt_graph_instance(leaf, level, mask, below);
                     if rt_s_done {
                         break;
                     }
                 } else if sp < RT_GRAPH_STACK {
                     stack[sp] = vec4<u32>(leaf & ~RT_NODE_BIT, RT_NONE, 0u, level);
+                    paths[sp] = below;
                     sp = sp + 1u;
                 }
             }
@@ -144,10 +160,12 @@ fn rt_search_graph(object: u32, mask: u32) {
         }
         if bitcast<f32>(far.z) != RT_FAR && sp < RT_GRAPH_STACK {
             stack[sp] = far;
+            paths[sp] = path;
             sp = sp + 1u;
         }
         if bitcast<f32>(near.z) != RT_FAR && sp < RT_GRAPH_STACK {
             stack[sp] = near;
+            paths[sp] = path;
             sp = sp + 1u;
         }
     }

@@ -10,6 +10,7 @@ use super::geometry::{GeometryKey, GeometryLayout, GroupWords, SCENE_HEADER, enc
 use crate::accel::cache::{AccelCache, NodeAccel};
 use crate::backend::wgpu::chain::Chain;
 use crate::error::{Result, RtError};
+use crate::link::instances::{Numbering, chain_id, group_words};
 use crate::link::{self, Record};
 use crate::scene::{GeometryKind, NodeId, NodeKind, ProgramId, Scene};
 use glam::Mat4;
@@ -176,7 +177,9 @@ pub(crate) fn instance_of(scene: &Scene, node: NodeId) -> Result<Option<Instance
         let rec = &scene.nodes[n.index() as usize];
         masks.push(rec.visibility_mask);
         match &rec.kind {
-            NodeKind::GeometryGroup { .. } => return Ok(Some((n, m, visibility(&masks, node)?))),
+            NodeKind::GeometryGroup { .. } => {
+                return Ok(Some((n, m, visibility(&masks, node)?, chain_id(scene, node).0)));
+            }
             NodeKind::Transform { matrix, child, .. } => {
                 m = m.then(*matrix);
                 n = *child;
@@ -210,8 +213,9 @@ struct Groups {
     deepest: Option<u32>,
 }
 
-/// An instance: a geometry group, its transform chain and mask.
-pub(crate) type Instance = (NodeId, Chain, u32);
+/// An instance: a geometry group, its transform chain, mask and instance
+/// id (the chain's innermost, or `INSTANCE_ID_NONE`).
+pub(crate) type Instance = (NodeId, Chain, u32, u32);
 
 impl Encoder<'_> {
     /// Program `p`'s case in the kernel's dispatch, added to the kernel's
@@ -231,7 +235,13 @@ impl Encoder<'_> {
 
     /// BVHs of groups, and their leaf tables: instances, or other nodes
     /// with `NODE_BIT`. Raises `deepest_bvh` to theirs.
-    fn groups(&mut self, accels: &AccelCache, instance_of_node: &[Option<u32>], deepest_bvh: &mut u32) -> Groups {
+    fn groups(
+        &mut self,
+        accels: &AccelCache,
+        instance_of_node: &[Option<u32>],
+        numbering: &Numbering,
+        deepest_bvh: &mut u32,
+    ) -> Groups {
         let mut groups = Groups { bvh: HashMap::new(), widest_leaf: 1, deepest: None };
         for (n, rec) in self.scene.nodes.iter().enumerate() {
             if let (NodeKind::Group { children, .. }, Some(NodeAccel::Children { bvh, .. })) =
@@ -243,6 +253,7 @@ impl Encoder<'_> {
                 groups.deepest = Some(groups.deepest.unwrap_or(1).max(depth));
                 let table = self.tables.at();
                 let mut instances_only = true;
+                let offsets = numbering.offsets(children);
                 for slot in &bvh.bvh.primitive_indices {
                     let child = children[*slot as usize];
                     match instance_of_node[child.index() as usize] {
@@ -252,6 +263,7 @@ impl Encoder<'_> {
                             self.tables.words.push(child.index() | NODE_BIT);
                         }
                     }
+                    self.tables.words.push(offsets[*slot as usize]);
                 }
                 groups.bvh.insert(n as u32, (at, table, instances_only));
             }
@@ -261,8 +273,16 @@ impl Encoder<'_> {
 
     /// The instance records.
     fn instances(&mut self, instances: &[Instance], geometry: &GeometryLayout) {
+        // Each geometry group's geometry instances, once.
+        let mut gis: HashMap<u32, u32> = HashMap::new();
+        for (gg, ..) in instances {
+            if let std::collections::hash_map::Entry::Vacant(slot) = gis.entry(gg.index()) {
+                slot.insert(self.tables.at());
+                self.tables.words.extend(group_words(self.scene, *gg));
+            }
+        }
         self.header[1] = self.tables.at();
-        for (gg, o2w, mask) in instances {
+        for (gg, o2w, mask, id) in instances {
             let w = geometry.gg_bvh.get(&gg.index()).copied().unwrap_or(GroupWords { bvh: 0, table: 0, tri_slots: 0 });
             let record = InstanceRecord {
                 object_to_world: o2w.object_to_world().to_cols_array(),
@@ -272,6 +292,8 @@ impl Encoder<'_> {
                 mask: *mask,
                 geometry_group: gg.index(),
                 triangles: w.tri_slots,
+                geometry_instances: gis[&gg.index()],
+                instance_id: *id,
             };
             self.tables.words.extend(record.words());
         }
@@ -280,7 +302,13 @@ impl Encoder<'_> {
     /// The node table (after the side data of transforms and selectors);
     /// returns how many transform levels the graph traversal keeps (0: the
     /// scene needs no graph traversal).
-    fn node_table(&mut self, instance_of_node: &[Option<u32>], instances: &[Instance], groups: &Groups) -> Result<u32> {
+    fn node_table(
+        &mut self,
+        instance_of_node: &[Option<u32>],
+        instances: &[Instance],
+        groups: &Groups,
+        numbering: &Numbering,
+    ) -> Result<u32> {
         let scene = self.scene;
         let mut node_entries: Vec<[u32; 4]> = vec![[0; 4]; scene.nodes.len()];
         // How deep transforms above groups and selectors nest (in post
@@ -315,6 +343,7 @@ impl Encoder<'_> {
                     let at = self.tables.at();
                     push_mat(&mut self.tables.words, m.object_to_world());
                     push_mat(&mut self.tables.words, m.world_to_object());
+                    self.tables.words.push(chain_id(scene, n).0);
                     node_entries[i] = [NodeEntry::Transform as u32, at, below.index(), mask];
                     levels[i] = 1 + levels[below.index() as usize];
                     graph = true;
@@ -325,6 +354,7 @@ impl Encoder<'_> {
                     let at = self.tables.at();
                     self.tables.words.extend([kp.case, vars, children.len() as u32]);
                     self.tables.words.extend(children.iter().map(|c| c.index()));
+                    self.tables.words.extend(numbering.offsets(children));
                     node_entries[i] = [NodeEntry::Selector as u32, at, 0, mask];
                     levels[i] = children.iter().map(|c| levels[c.index() as usize]).max().unwrap_or(0);
                     graph = true;
@@ -453,9 +483,10 @@ pub(crate) fn encode(l: &Launch, scene_bindings: usize, held_geometry: Option<&G
         programs: Vec::new(),
     };
     let (instance_of_node, instances) = instances(scene)?;
-    let groups = e.groups(l.accels, &instance_of_node, &mut deepest_bvh);
+    let numbering = Numbering::of(scene)?;
+    let groups = e.groups(l.accels, &instance_of_node, &numbering, &mut deepest_bvh);
     e.instances(&instances, &geometry);
-    let graph_levels = e.node_table(&instance_of_node, &instances, &groups)?;
+    let graph_levels = e.node_table(&instance_of_node, &instances, &groups, &numbering)?;
     e.geometry_instances(&geometry)?;
     let Encoder { header, tables, nodes, records, programs, .. } = e;
     let shape = Shape { deepest_bvh, groups: &groups, graph_levels, geometry: &geometry, scene_bindings };

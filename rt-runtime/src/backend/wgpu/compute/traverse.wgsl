@@ -92,9 +92,11 @@ fn rt_blas_in(inst: u32) {
     }
 }
 
-// Marks a search stack entry that is an instance to search, not a node of
-// the group's BVH.
+// Marks a search stack entry that is an instance to search (its leaf in the
+// group's leaf table, or RT_ROOT_LEAF: the traced node's own instance), not
+// a node of the group's BVH.
 const RT_INST_BIT: u32 = 0x80000000u;
+const RT_ROOT_LEAF: u32 = 0x7fffffffu;
 
 // One loop for a geometry group (one instance on the stack) and a group of
 // instances (its BVH; a leaf pushes its instances, popped in leaf order):
@@ -122,6 +124,7 @@ fn rt_search(object: u32, ray: RtRay, flags: u32, mask: u32) {
         // No group of instances in the scene (the linker's RT_GROUPS): the
         // object is one instance, searched without the loop below (its
         // stack and control flow cost llvmpipe a fifth of a search).
+        rt_s_ipath = vec2<u32>(0u, RT_NONE);
         rt_blas(rt_scene[node + 1u]);
         return;
     }
@@ -131,7 +134,7 @@ fn rt_search(object: u32, ray: RtRay, flags: u32, mask: u32) {
     var stack: array<vec2<u32>, RT_TLAS_STACK>;
     var sp = 0u;
     if kind == RT_NODE_INSTANCE {
-        stack[0] = vec2<u32>(rt_scene[node + 1u] | RT_INST_BIT, 0u);
+        stack[0] = vec2<u32>(RT_ROOT_LEAF | RT_INST_BIT, 0u);
         sp = 1u;
     } else if rt_aabb_hit(bvh, ray.origin, inv, ray.tmin, rt_s_tmax) != RT_FAR {
         stack[0] = vec2<u32>(0u, 0u);
@@ -144,7 +147,15 @@ fn rt_search(object: u32, ray: RtRay, flags: u32, mask: u32) {
             continue;
         }
         if (e.x & RT_INST_BIT) != 0u {
-            rt_blas(e.x & ~RT_INST_BIT);
+            // Leaves are [instance, its first instance index].
+            let leaf = e.x & ~RT_INST_BIT;
+            var inst = rt_scene[node + 1u];
+            rt_s_ipath = vec2<u32>(0u, RT_NONE);
+            if leaf != RT_ROOT_LEAF {
+                inst = rt_scene[leaves + leaf * 2u];
+                rt_s_ipath.x = rt_scene[leaves + leaf * 2u + 1u];
+            }
+            rt_blas(inst);
             continue;
         }
         let n = bvh + e.x * 8u;
@@ -154,9 +165,9 @@ fn rt_search(object: u32, ray: RtRay, flags: u32, mask: u32) {
             // The leaf's instances, last first: popped in leaf order, each
             // at the leaf's entry distance (its bounds hold theirs).
             for (var i = first + count; i > first; i--) {
-                let inst = rt_scene[leaves + i - 1u];
+                let inst = rt_scene[leaves + (i - 1u) * 2u];
                 if rt_visible(rt_scene[rt_scene[1] + inst * RT_INST_WORDS + RT_INST_MASK], mask) && sp < RT_TLAS_STACK {
-                    stack[sp] = vec2<u32>(inst | RT_INST_BIT, e.y);
+                    stack[sp] = vec2<u32>((i - 1u) | RT_INST_BIT, e.y);
                     sp = sp + 1u;
                 }
             }
@@ -226,6 +237,7 @@ fn rt_commit_slot(inst: u32, slot: u32, t: f32, bary: vec2<f32>, done: bool) {
     let ib = rt_scene[1] + inst * RT_INST_WORDS;
     let p = rt_scene[ib + RT_INST_PRIMS] + slot * 2u;
     rt_s_inst = inst;
+    rt_h_ipath = rt_s_ipath;
     rt_s_tmax = t;
     rt_h_found = true;
     rt_h_t = t;

@@ -24,11 +24,13 @@ fn rt_report(m: u32) -> bool {
         let saved_t = rt_t;
         let saved_prim = rt_prim;
         let saved_hk = rt_hk;
+        let saved_ic = rt_icur;
         rt_ray = rt_s_wray;
         rt_ray.tmax = rt_c_t;
         rt_t = rt_c_t;
         rt_prim = rt_c_prim;
         rt_hk = rt_hit_kind(rt_c_custom, gi, rt_c_prim, rt_w2o, rt_s_wray.direction);
+        rt_icur = vec4<u32>(rt_s_ipath, rt_s_inst, gi);
         rt_ignored = false;
         rt_terminated = false;
         rt_anyhit_dispatch(ah, rt_scene[rec + 3u]);
@@ -36,6 +38,7 @@ fn rt_report(m: u32) -> bool {
         rt_t = saved_t;
         rt_prim = saved_prim;
         rt_hk = saved_hk;
+        rt_icur = saved_ic;
         if rt_ignored {
             return false;
         }
@@ -48,6 +51,7 @@ fn rt_report(m: u32) -> bool {
     rt_h_prim = rt_c_prim;
     rt_h_mat = m;
     rt_h_inst = rt_s_inst;
+    rt_h_ipath = rt_s_ipath;
     rt_h_custom = rt_c_custom;
     rt_h_bary = rt_c_bary;
     rt_commit_xform();
@@ -93,6 +97,7 @@ fn rt_intersect_prim(gi: u32, prim: u32) {
         rt_ray = rt_s_oray;
         rt_ray.tmax = rt_s_tmax;
         rt_prim = prim;
+        rt_icur = vec4<u32>(rt_s_ipath, rt_s_inst, gi);
         rt_isect_dispatch(rt_scene[rec], rt_scene[rec + 1u], prim);
         rt_ray = saved_ray;
     }
@@ -113,6 +118,7 @@ fn rt_enter_hit(ray: RtRay, flags: u32) -> u32 {
     rt_prim = rt_h_prim;
     rt_hit_xform();
     rt_hk = rt_hit_kind(rt_h_custom, rt_h_gi, rt_h_prim, rt_w2o, ray.direction);
+    rt_icur = vec4<u32>(rt_h_ipath, rt_h_inst, rt_h_gi);
     return rec;
 }
 

@@ -486,6 +486,8 @@ var<private> rt_st_o2w: array<mat4x4<f32>, RT_DEPTHS>;
 var<private> rt_st_w2o: array<mat4x4<f32>, RT_DEPTHS>;
 // The caller's rt_hk, rt_rflags and rt_rmask.
 var<private> rt_st_rs: array<vec3<u32>, RT_DEPTHS>;
+// The caller's rt_icur.
+var<private> rt_st_ic: array<vec4<u32>, RT_DEPTHS>;
 ",
         spec.max_depth + 1
     ));
@@ -634,6 +636,7 @@ fn rt_begin_trace(d: u32) -> bool {{
     rt_st_o2w[e] = rt_o2w;
     rt_st_w2o[e] = rt_w2o;
     rt_st_rs[e] = vec3<u32>(rt_hk, rt_rflags, rt_rmask);
+    rt_st_ic[e] = rt_icur;
     rt_rflags = flags;
     rt_rmask = mask & 0xffu;
     rt_rays = rt_rays + 1u;{note_payload}
@@ -679,6 +682,7 @@ fn rt_end_trace(d: u32) {{
     rt_hk = rt_st_rs[d].x;
     rt_rflags = rt_st_rs[d].y;
     rt_rmask = rt_st_rs[d].z;
+    rt_icur = rt_st_ic[d];
 }}
 
 fn rt_run() {{
@@ -886,6 +890,7 @@ fn trace_function(w: &str, d: u32, note_payload: &str) -> String {
     let saved_o2w = rt_o2w;
     let saved_w2o = rt_w2o;
     let saved_rs = vec3<u32>(rt_hk, rt_rflags, rt_rmask);
+    let saved_ic = rt_icur;
     rt_rflags = flags;
     rt_rmask = mask & 0xffu;
     rt_rays = rt_rays + 1u;{note_payload}
@@ -911,6 +916,7 @@ fn trace_function(w: &str, d: u32, note_payload: &str) -> String {
     rt_hk = saved_rs.x;
     rt_rflags = saved_rs.y;
     rt_rmask = saved_rs.z;
+    rt_icur = saved_ic;
 }}
 "
     )

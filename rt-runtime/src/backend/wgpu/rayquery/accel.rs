@@ -223,7 +223,7 @@ pub(crate) fn sync(
     rq.tlas.truncate(flat.roots.len());
     for (slot, (root, instances)) in flat.roots.iter().enumerate() {
         let mut keys: Vec<InstanceKey> = Vec::new();
-        for FlatInstance { group, record, object_to_world, mask } in instances {
+        for FlatInstance { group, record, object_to_world, mask, .. } in instances {
             let Some(blas) = rq.groups.get(&group.index()) else { continue };
             for part in 0..2u32 {
                 if blas.parts[part as usize].is_some() {
@@ -474,13 +474,15 @@ fn box_blas(
 }
 
 /// The kernel's side table (search.wgsl): the node and ray type counts,
-/// whether each ray type's traces are forced opaque, node slots, then two
-/// words per instance record (where its parts' geometry instances start),
-/// then those lists.
+/// whether each ray type's traces are forced opaque, two words per node
+/// (its TLAS slot, where its TLAS instances' paths are), then two words per
+/// instance record (where its parts' geometry instances start), then those
+/// lists, and each root's paths: two words per TLAS instance, in the
+/// TLAS's order (its instance index and id, `instance_index()`).
 fn side_table(scene: &Scene, flat: &Flat, groups: &HashMap<u32, GroupBlas>, opaque_ray_types: &[bool]) -> Vec<u32> {
     let n = scene.nodes.len();
     let nodes = 2 + opaque_ray_types.len();
-    let base = nodes + n;
+    let base = nodes + 2 * n;
     let mut words = vec![u32::MAX; base + flat.records as usize * 2];
     words[0] = n as u32;
     words[1] = opaque_ray_types.len() as u32;
@@ -488,7 +490,7 @@ fn side_table(scene: &Scene, flat: &Flat, groups: &HashMap<u32, GroupBlas>, opaq
         words[2 + r] = opaque as u32;
     }
     for (slot, (root, _)) in flat.roots.iter().enumerate() {
-        words[nodes + root.index() as usize] = slot as u32;
+        words[nodes + 2 * root.index() as usize] = slot as u32;
     }
     let mut listed = vec![false; flat.records as usize];
     for (_, instances) in &flat.roots {
@@ -503,6 +505,18 @@ fn side_table(scene: &Scene, flat: &Flat, groups: &HashMap<u32, GroupBlas>, opaq
                 }
                 words[base + inst.record as usize * 2 + part] = words.len() as u32;
                 words.extend(gis);
+            }
+        }
+    }
+    // The paths, as `sync` lists the TLAS instances: a part each.
+    for (root, instances) in &flat.roots {
+        words[nodes + 2 * root.index() as usize + 1] = words.len() as u32;
+        for inst in instances {
+            let Some(blas) = groups.get(&inst.group.index()) else { continue };
+            for part in &blas.parts {
+                if part.is_some() {
+                    words.extend([inst.path.base, inst.path.id]);
+                }
             }
         }
     }

@@ -10,6 +10,7 @@
 use crate::backend::wgpu::chain::Chain;
 use crate::backend::wgpu::compute::scene::{instances, kept_masks};
 use crate::error::Result;
+use crate::link::instances::{InstancePath, Numbering};
 use crate::scene::{GeometryKind, NodeId, NodeKind, Scene};
 use crate::vars::{VarScope, VarValue};
 use glam::Mat4;
@@ -27,6 +28,8 @@ pub(crate) struct FlatInstance {
     pub object_to_world: Mat4,
     /// The one mask a ray's mask must share a bit with.
     pub mask: u8,
+    /// The path's instance index and id (`instance_index()`).
+    pub path: InstancePath,
 }
 
 /// Why a scene keeps the compute traversal.
@@ -97,12 +100,14 @@ pub(crate) fn flatten(scene: &Scene) -> Result<std::result::Result<Flat, Unsuppo
     if roots.is_empty() {
         return Ok(Err(Unsupported::NoRoots));
     }
+    let numbering = Numbering::of(scene)?;
     let mut flat = Flat { roots: Vec::new(), records: records.len() as u32 };
     for root in roots {
         let mut out = Vec::new();
-        let mut stack: Vec<(NodeId, Chain, Vec<u8>)> = vec![(root, Chain::IDENTITY, Vec::new())];
+        let mut stack: Vec<(NodeId, Chain, Vec<u8>, InstancePath)> =
+            vec![(root, Chain::IDENTITY, Vec::new(), InstancePath::ROOT)];
         // Depth is bounded: the acceleration build refused cycles.
-        while let Some((n, m, mut masks)) = stack.pop() {
+        while let Some((n, m, mut masks, path)) = stack.pop() {
             let rec = &scene.nodes[n.index() as usize];
             masks.push(rec.visibility_mask);
             match &rec.kind {
@@ -114,13 +119,17 @@ pub(crate) fn flatten(scene: &Scene) -> Result<std::result::Result<Flat, Unsuppo
                         return Ok(Err(Unsupported::Masks { node: n, masks }));
                     };
                     let record = instance_of_node[n.index() as usize].expect("a geometry group is an instance");
-                    out.push(FlatInstance { group: n, record, object_to_world: m.object_to_world(), mask });
+                    out.push(FlatInstance { group: n, record, object_to_world: m.object_to_world(), mask, path });
                 }
                 NodeKind::Group { children, .. } => {
                     // Reversed, so that instances come out in child order.
-                    stack.extend(children.iter().rev().map(|c| (*c, m, masks.clone())));
+                    let offsets = numbering.offsets(children);
+                    stack
+                        .extend(children.iter().zip(offsets).rev().map(|(c, o)| (*c, m, masks.clone(), path.child(o))));
                 }
-                NodeKind::Transform { matrix, child, .. } => stack.push((*child, m.then(*matrix), masks)),
+                NodeKind::Transform { matrix, child, .. } => {
+                    stack.push((*child, m.then(*matrix), masks, path.through(rec.instance_id)))
+                }
                 NodeKind::Selector { .. } => return Ok(Err(Unsupported::Selector(n))),
             }
         }

@@ -16,10 +16,15 @@
 // Side table rt_query_side: [0] the node count n; [1] the ray type count r;
 // [2 + ray type] 1 where no traced geometry needs a candidate for that ray
 // type (no any-hit program of the type, every material index in range):
-// its traces force the query opaque; [2 + r + node] the node's TLAS slot
-// (RT_NONE: not a root); [2 + r + n + custom] (custom = instance record * 2
-// + part, the TLAS instance's custom data) where the part's geometry
-// instances start, one word per BLAS geometry index.
+// its traces force the query opaque; [2 + r + 2 node] the node's TLAS slot
+// (RT_NONE: not a root) and [+ 1] where its TLAS instances' paths are (two
+// words per TLAS instance index, rt_s_ipath's form); [2 + r + 2 n + custom]
+// (custom = instance record * 2 + part, the TLAS instance's custom data)
+// where the part's geometry instances start, one word per BLAS geometry
+// index.
+
+// Where the traced root's paths are in the side table.
+var<private> rt_q_paths: u32;
 
 // The committed hit's transforms are kept (KEPT_XFORM in kernel/mod.rs):
 // a triangle's come from the committed intersection.
@@ -38,13 +43,18 @@ fn rt_query_slot(object: u32) -> u32 {
     if object >= rt_query_side[0] {
         return RT_NONE;
     }
-    return rt_query_side[rt_query_nodes() + object];
+    return rt_query_side[rt_query_nodes() + object * 2u];
+}
+
+// The path (rt_s_ipath) of TLAS instance `i` of the traced root.
+fn rt_query_path(i: u32) -> vec2<u32> {
+    return vec2<u32>(rt_query_side[rt_q_paths + i * 2u], rt_query_side[rt_q_paths + i * 2u + 1u]);
 }
 
 // The geometry instance of BLAS geometry `geometry` of the TLAS instance
 // with custom data `custom`.
 fn rt_query_gi(custom: u32, geometry: u32) -> u32 {
-    return rt_query_side[rt_query_side[rt_query_nodes() + rt_query_side[0] + custom] + geometry];
+    return rt_query_side[rt_query_side[rt_query_nodes() + rt_query_side[0] * 2u + custom] + geometry];
 }
 
 // Triangle `prim`'s material index in geometry instance `gi`.
@@ -93,6 +103,7 @@ fn rt_query_search(acs: acceleration_structure, ray: RtRay, flags: u32, mask: u3
             rt_s_tmax = min(committed.t, generated);
         }
         rt_s_inst = c.instance_custom_data >> 1u;
+        rt_s_ipath = rt_query_path(c.instance_index);
         rt_o2w = rt_query_m43(c.object_to_world);
         rt_w2o = rt_query_m43(c.world_to_object);
         let gi = rt_query_gi(c.instance_custom_data, c.geometry_index);
@@ -137,6 +148,7 @@ fn rt_query_search(acs: acceleration_structure, ray: RtRay, flags: u32, mask: u3
         rt_h_prim = h.primitive_index;
         rt_h_mat = rt_query_material(gi, h.primitive_index);
         rt_h_inst = h.instance_custom_data >> 1u;
+        rt_h_ipath = rt_query_path(h.instance_index);
         rt_h_custom = false;
         rt_h_bary = h.barycentrics;
         rt_h_o2w = rt_query_m43(h.object_to_world);

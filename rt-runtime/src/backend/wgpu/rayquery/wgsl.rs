@@ -27,7 +27,11 @@ pub(crate) fn search_wgsl(slots: u32) -> String {
         "
 fn rt_search(object: u32, ray: RtRay, flags: u32, mask: u32) {{
     rt_query_begin(ray, flags);
-    switch rt_query_slot(object) {{
+    let slot = rt_query_slot(object);
+    if slot != RT_NONE {{
+        rt_q_paths = rt_query_side[rt_query_nodes() + object * 2u + 1u];
+    }}
+    switch slot {{
 {cases}        default: {{
             // Not a root the launch found in a variable. (Every node a
             // program traces comes from an `Object` variable: an Object
