@@ -250,6 +250,12 @@ pub const RUNTIME_FUNCTIONS: &[WgslFn] = &[
     WgslFn { name: "rt_bufid", params: &[("id", U32)], ret: Buffer },
     WgslFn { name: "rt_tex_sample", params: &[("s", Sampler), ("uv", Vec2)], ret: Vec4 },
     WgslFn { name: "rt_tex_fetch", params: &[("s", Sampler), ("texel", UVec2)], ret: Vec4 },
+    WgslFn { name: "rt_tex_sample_lod", params: &[("s", Sampler), ("uv", Vec2), ("lod", F32)], ret: Vec4 },
+    WgslFn {
+        name: "rt_tex_sample_grad",
+        params: &[("s", Sampler), ("uv", Vec2), ("dx", Vec2), ("dy", Vec2)],
+        ret: Vec4,
+    },
     WgslFn { name: "rt_printf_begin", params: &[("format", U32), ("words", U32)], ret: Bool },
     WgslFn { name: "rt_printf_word", params: &[("word", U32)], ret: Unit },
 ];

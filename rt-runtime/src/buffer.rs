@@ -8,7 +8,7 @@
 
 use glam::Vec4;
 use rt_std::program::TypeLayout;
-use rt_std::{Buffer, Buffer2d, FilterMode, RtData, RwBuffer, RwBuffer2d, Sampler2d, WrapMode};
+use rt_std::{Buffer, Buffer2d, FilterMode, MipFilter, RtData, RwBuffer, RwBuffer2d, Sampler2d, WrapMode};
 use std::any::Any;
 use std::cell::UnsafeCell;
 
@@ -159,18 +159,62 @@ impl BufferRec {
     }
 }
 
-/// A texture sampler of the context: RGBA f32 texels with wrap and filter.
+/// A texture sampler of the context: RGBA f32 texels with wrap and filter,
+/// its mip levels one after the other from level 0.
 pub(crate) struct SamplerRec {
     pub texels: Box<[Vec4]>,
     pub width: u32,
     pub height: u32,
+    pub levels: u32,
     pub wrap: WrapMode,
     pub filter: FilterMode,
+    pub mip: MipFilter,
 }
 
 impl SamplerRec {
     pub fn handle(&self) -> Sampler2d {
-        // SAFETY: `texels` holds width * height texels and outlives the launch.
-        unsafe { Sampler2d::from_raw_parts(self.texels.as_ptr(), self.width, self.height, self.wrap, self.filter) }
+        // SAFETY: `texels` holds the `levels` levels of a width x height
+        // texture (checked by the context) and outlives the launch.
+        unsafe {
+            Sampler2d::from_raw_mip_parts(
+                self.texels.as_ptr(),
+                self.width,
+                self.height,
+                self.levels,
+                self.wrap,
+                self.filter,
+                self.mip,
+            )
+        }
     }
+}
+
+/// A full mip chain of the `width x height` texels (row-major): level 0 is
+/// `texels`, every next level ([`rt_std::mip_level_size`]) a box filter of
+/// the one before, texel `(x, y)` being the mean of texels `(2x, 2y)`,
+/// `(2x + 1, 2y)`, `(2x, 2y + 1)` and `(2x + 1, 2y + 1)`, `(a + b + c + d) /
+/// 4`, each coordinate clamped to the level (so an axis of one texel
+/// averages it with itself, and of an odd size the last row or column is
+/// left out), down to 1x1. Empty for texels of another count than
+/// `width * height` or an empty texture.
+pub fn generate_mip_levels(texels: &[Vec4], width: u32, height: u32) -> Vec<Vec<Vec4>> {
+    if texels.is_empty() || texels.len() != width as usize * height as usize {
+        return Vec::new();
+    }
+    let mut levels = vec![texels.to_vec()];
+    let (mut w, mut h) = (width as usize, height as usize);
+    while w > 1 || h > 1 {
+        let (nw, nh) = ((w / 2).max(1), (h / 2).max(1));
+        let above = levels.last().expect("level 0 is there");
+        let at = |x: usize, y: usize| above[x.min(w - 1) + y.min(h - 1) * w];
+        let next = (0..nw * nh)
+            .map(|i| {
+                let (x, y) = (2 * (i % nw), 2 * (i / nw));
+                (at(x, y) + at(x + 1, y) + at(x, y + 1) + at(x + 1, y + 1)) * 0.25
+            })
+            .collect();
+        levels.push(next);
+        (w, h) = (nw, nh);
+    }
+    levels
 }

@@ -15,7 +15,7 @@ use std::any::Any;
 pub use crate::scene::Scope;
 use glam::{Mat4, Vec4};
 use rt_std::program::{ProgramDescriptor, ProgramKind};
-use rt_std::{FilterMode, RtData, WrapMode};
+use rt_std::{FilterMode, MipFilter, RtData, WrapMode};
 
 mod device_buffers;
 pub use device_buffers::{DeviceBuffer, WgpuDevice};
@@ -770,8 +770,87 @@ impl Context {
                 problem: format!("{} texels for a {width}x{height} texture", texels.len()),
             });
         }
-        self.scene.samplers.push(SamplerRec { texels: texels.into_boxed_slice(), width, height, wrap, filter });
+        let rec = SamplerRec {
+            texels: texels.into_boxed_slice(),
+            width,
+            height,
+            levels: 1,
+            wrap,
+            filter,
+            mip: MipFilter::Linear,
+        };
+        self.scene.samplers.push(rec);
         Ok(SamplerId(self.scene.samplers.len() as u32 - 1))
+    }
+
+    /// A mipmapped sampler (OptiX's mip levels of an `RTtexturesampler`):
+    /// `levels[0]` holds the `width * height` texels of level 0 (row-major),
+    /// `levels[l]` those of level `l`, `max(1, width >> l) x max(1, height
+    /// >> l)` texels ([`rt_std::mip_level_size`]); any number of levels
+    /// from 1 to the full chain ([`rt_std::mip_level_count`], down to 1x1).
+    /// `mip` says how [`Sampler2d::sample_lod`](rt_std::Sampler2d) and
+    /// `sample_grad` combine levels. A level of the wrong texel count, or
+    /// more levels than the chain has, is refused naming the sampler and
+    /// the level.
+    pub fn create_sampler_mipmapped(
+        &mut self,
+        levels: Vec<Vec<Vec4>>,
+        width: u32,
+        height: u32,
+        wrap: WrapMode,
+        filter: FilterMode,
+        mip: MipFilter,
+    ) -> Result<SamplerId> {
+        let fail = |problem: String| RtError::BadSampler { sampler: self.scene.samplers.len() as u32, problem };
+        let chain = rt_std::mip_level_count(width, height);
+        if levels.is_empty() {
+            return Err(fail(format!("no mip levels for a {width}x{height} texture (level 0 is needed)")));
+        }
+        if levels.len() > chain as usize {
+            return Err(fail(format!(
+                "{} mip levels for a {width}x{height} texture, whose full chain has {chain} (down to 1x1)",
+                levels.len()
+            )));
+        }
+        for (l, level) in levels.iter().enumerate() {
+            let size = rt_std::mip_level_size(glam::UVec2::new(width, height), l as u32);
+            if level.len() != size.x as usize * size.y as usize {
+                return Err(fail(format!(
+                    "mip level {l} has {} texels; level {l} of a {width}x{height} texture is {}x{} ({} texels)",
+                    level.len(),
+                    size.x,
+                    size.y,
+                    size.x as usize * size.y as usize
+                )));
+            }
+        }
+        let count = levels.len() as u32;
+        let rec =
+            SamplerRec { texels: levels.concat().into_boxed_slice(), width, height, levels: count, wrap, filter, mip };
+        self.scene.samplers.push(rec);
+        Ok(SamplerId(self.scene.samplers.len() as u32 - 1))
+    }
+
+    /// A mipmapped sampler whose levels are generated on the host: the full
+    /// chain of [`generate_mip_levels`](crate::generate_mip_levels) (a 2x2
+    /// box filter, down to 1x1) over level 0's `width * height` texels.
+    pub fn create_sampler_with_mips(
+        &mut self,
+        texels: Vec<Vec4>,
+        width: u32,
+        height: u32,
+        wrap: WrapMode,
+        filter: FilterMode,
+        mip: MipFilter,
+    ) -> Result<SamplerId> {
+        if texels.len() != width as usize * height as usize || texels.is_empty() {
+            return Err(RtError::BadSampler {
+                sampler: self.scene.samplers.len() as u32,
+                problem: format!("{} texels for a {width}x{height} texture", texels.len()),
+            });
+        }
+        let levels = crate::buffer::generate_mip_levels(&texels, width, height);
+        self.create_sampler_mipmapped(levels, width, height, wrap, filter, mip)
     }
 
     /// A sampler from an image (8-bit channels map to `[0, 1]`, float

@@ -157,4 +157,4 @@ pub use rt_macros::{
     __rt_collect, rt_attributes, rt_const, rt_enum, rt_function, rt_impl, rt_payload, rt_program, rt_struct,
 };
 pub use scene::{Object, TransformKind};
-pub use texture::{FilterMode, Sampler2d, WrapMode};
+pub use texture::{FilterMode, MipFilter, Sampler2d, WrapMode, mip_level_count, mip_level_size};

@@ -15,6 +15,35 @@
 //!   its own), and blends them with `f = p - floor(p)`: first along x, then
 //!   along y, each blend being [`mix`]'s `a * (1 - f) + b * f`.
 //!
+//! Mip levels (OptiX `tex2DLod`, `tex2DGrad`): level `l` of a `w x h`
+//! texture is `max(1, w >> l) x max(1, h >> l)` texels, and a texture has
+//! at most `floor(log2(max(w, h))) + 1` levels ([`mip_level_count`]). Level
+//! selection follows Vulkan's "Level-of-Detail Operation" with no bias and
+//! no LOD clamps beyond the levels there are:
+//!
+//! - [`Sampler2d::sample_lod`] takes the LOD `λ` as given;
+//!   [`Sampler2d::sample_grad`] computes it from the derivatives of `uv`
+//!   along the screen's x and y: with `ρx = |dx * size|` and
+//!   `ρy = |dy * size|` (the footprint's lengths in level-0 texels),
+//!   `λ = log2(max(ρx, ρy))`. A footprint of 1, 2 or 4 texels is LOD 0, 1
+//!   or 2.
+//! - `d = clamp(λ, 0, levels - 1)`; a NaN LOD counts as 0 (`λ = -∞`, a
+//!   zero footprint, is level 0, `+∞` the last level).
+//! - [`MipFilter::Nearest`] samples level `ceil(d + 0.5) - 1` (the nearest
+//!   level, a half rounding down, Vulkan's preferred rule);
+//!   [`MipFilter::Linear`] samples levels `floor(d)` and
+//!   `min(floor(d) + 1, levels - 1)` and blends them with
+//!   `δ = d - floor(d)` as [`mix`] does (at `δ = 0`, level `floor(d)`
+//!   alone). Each level is sampled with the sampler's [`FilterMode`] and
+//!   [`WrapMode`] at its own size: linear filter and linear mip filter are
+//!   trilinear filtering.
+//!
+//! [`Sampler2d::sample`] reads level 0 only: programs run in compute shaders,
+//! which have no screen-space derivatives to choose a level from (WGSL's
+//! `textureSample` is for fragment shaders only), so a program that wants
+//! filtering across levels says which level (`sample_lod`) or gives the
+//! footprint (`sample_grad`), e.g. from a ray differential.
+//!
 //! GPUs filter with a few bits of sub-texel precision (8 in Vulkan's
 //! minimum), so compare GPU results with a tolerance, not bit for bit.
 
@@ -64,17 +93,46 @@ pub enum FilterMode {
     Linear,
 }
 
-/// A 2D texture of RGBA `f32` texels with its wrap and filter modes, as a
-/// variable gives it to a program. Texel `(x, y)` is stored at
-/// `x + y * width`. See the [module docs](self) for the sampling rules.
+/// How [`Sampler2d::sample_lod`] and [`Sampler2d::sample_grad`] combine
+/// mip levels (OptiX's mipmap filter mode, Vulkan's `mipmapMode`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum MipFilter {
+    /// The level nearest to the LOD.
+    Nearest,
+    /// A blend of the two levels around the LOD (trilinear filtering with
+    /// [`FilterMode::Linear`]).
+    #[default]
+    Linear,
+}
+
+/// How many levels a full mip chain of a `width x height` texture has:
+/// `floor(log2(max(width, height))) + 1`, the last level being 1x1 (0 for
+/// an empty texture).
+pub fn mip_level_count(width: u32, height: u32) -> u32 {
+    32 - width.max(height).leading_zeros()
+}
+
+/// The size of level `level` of a texture of level-0 size `size`:
+/// `max(1, size >> level)` per axis (a level past the chain is 1x1).
+pub fn mip_level_size(size: UVec2, level: u32) -> UVec2 {
+    UVec2::new(size.x.checked_shr(level).unwrap_or(0), size.y.checked_shr(level).unwrap_or(0)).max(UVec2::ONE)
+}
+
+/// A 2D texture of RGBA `f32` texels with its wrap and filter modes and its
+/// mip levels, as a variable gives it to a program. Texel `(x, y)` of a
+/// level is stored at `x + y * width` of that level, the levels one after
+/// the other from level 0. See the [module docs](self) for the sampling
+/// rules.
 #[doc(alias = "rtTextureSampler")]
 #[doc(alias = "tex2D")]
 #[derive(Clone, Copy)]
 pub struct Sampler2d {
     texels: *const Vec4,
     size: UVec2,
+    levels: u32,
     wrap: WrapMode,
     filter: FilterMode,
+    mip: MipFilter,
 }
 
 // SAFETY: a sampler only reads its texels, which the `from_raw_parts`
@@ -99,7 +157,28 @@ impl Sampler2d {
         wrap: WrapMode,
         filter: FilterMode,
     ) -> Self {
-        Sampler2d { texels, size: UVec2::new(width, height), wrap, filter }
+        Sampler2d { texels, size: UVec2::new(width, height), levels: 1, wrap, filter, mip: MipFilter::Linear }
+    }
+
+    /// A sampler over a mip chain of `levels` levels at `texels`: level 0
+    /// (`width * height` texels, row-major), then each next level of
+    /// [`mip_level_size`]. Host side only, as [`Sampler2d::from_raw_parts`].
+    /// `levels` is clamped to `1..=mip_level_count(width, height)`.
+    ///
+    /// # Safety
+    /// `texels` points to the texels of those levels, initialised, valid
+    /// and unchanged while any copy of the handle is used.
+    pub unsafe fn from_raw_mip_parts(
+        texels: *const Vec4,
+        width: u32,
+        height: u32,
+        levels: u32,
+        wrap: WrapMode,
+        filter: FilterMode,
+        mip: MipFilter,
+    ) -> Self {
+        let levels = levels.clamp(1, mip_level_count(width, height).max(1));
+        Sampler2d { texels, size: UVec2::new(width, height), levels, wrap, filter, mip }
     }
 
     /// Width and height in texels.
@@ -109,9 +188,19 @@ impl Sampler2d {
         self.size
     }
 
-    /// The texture at normalised coordinates `uv`, filtered and wrapped by
-    /// the sampler's modes (see the [module docs](self)). A NaN or infinite
-    /// coordinate counts as 0.
+    /// How many mip levels the sampler has (1 without mips).
+    ///
+    /// Program kinds: all.
+    pub fn levels(&self) -> u32 {
+        self.levels
+    }
+
+    /// Level 0 of the texture at normalised coordinates `uv`, filtered and
+    /// wrapped by the sampler's modes (see the [module docs](self)). A NaN
+    /// or infinite coordinate counts as 0. Programs run in compute shaders,
+    /// which have no derivatives to pick a mip level from: use
+    /// [`Sampler2d::sample_lod`] or [`Sampler2d::sample_grad`] for the
+    /// others.
     ///
     /// Program kinds: all.
     #[doc(alias = "tex2D")]
@@ -119,12 +208,64 @@ impl Sampler2d {
         if self.is_degenerate() {
             return Vec4::ZERO;
         }
+        self.sample_level(uv, 0)
+    }
+
+    /// The texture at `uv` at level of detail `lod` (0 is level 0, 1 level
+    /// 1, a fraction between them with [`MipFilter::Linear`]), clamped to
+    /// the levels there are; a NaN LOD counts as 0. See the
+    /// [module docs](self).
+    ///
+    /// Program kinds: all.
+    #[doc(alias = "tex2DLod")]
+    pub fn sample_lod(&self, uv: Vec2, lod: f32) -> Vec4 {
+        if self.is_degenerate() {
+            return Vec4::ZERO;
+        }
+        let last = (self.levels - 1) as f32;
+        let d = if lod.is_nan() { 0.0 } else { lod.clamp(0.0, last) };
+        match self.mip {
+            MipFilter::Nearest => self.sample_level(uv, ((d + 0.5).ceil() - 1.0) as u32),
+            MipFilter::Linear => {
+                let hi = d.floor();
+                let delta = d - hi;
+                let a = self.sample_level(uv, hi as u32);
+                if delta == 0.0 {
+                    return a;
+                }
+                let b = self.sample_level(uv, (hi + 1.0).min(last) as u32);
+                mix(a, b, delta)
+            }
+        }
+    }
+
+    /// The texture at `uv` at the level of detail of a footprint whose
+    /// sides are `dx` and `dy` in normalised coordinates (the derivatives
+    /// of `uv` along the screen's x and y): `log2` of the longer side in
+    /// level-0 texels, as OpenGL and Vulkan define it, then as
+    /// [`Sampler2d::sample_lod`].
+    ///
+    /// Program kinds: all.
+    #[doc(alias = "tex2DGrad")]
+    pub fn sample_grad(&self, uv: Vec2, dx: Vec2, dy: Vec2) -> Vec4 {
+        let size = self.size.as_vec2();
+        let rho = (dx * size).length().max((dy * size).length());
+        self.sample_lod(uv, rho.log2())
+    }
+
+    /// Level `level` (< `levels`) at `uv`; the sampler is not degenerate.
+    fn sample_level(&self, uv: Vec2, level: u32) -> Vec4 {
+        let (start, size) = self.level(level);
         let uv = Vec2::select(uv.is_finite_mask(), uv, Vec2::ZERO);
-        let p = uv * self.size.as_vec2();
+        let p = uv * size.as_vec2();
+        let wrapped = |x: i64, y: i64| {
+            let (x, y) = (self.wrap.apply(x, size.x), self.wrap.apply(y, size.y));
+            self.texel(start + x + y * size.x as usize)
+        };
         match self.filter {
             FilterMode::Nearest => {
                 let i = p.floor();
-                self.wrapped(i.x as i64, i.y as i64)
+                wrapped(i.x as i64, i.y as i64)
             }
             FilterMode::Linear => {
                 let p = p - 0.5;
@@ -134,8 +275,8 @@ impl Sampler2d {
                 // neither can the `+ 1` below.
                 let (x0, y0) = (i0.x as i64, i0.y as i64);
                 let (x1, y1) = (x0.saturating_add(1), y0.saturating_add(1));
-                let top = mix(self.wrapped(x0, y0), self.wrapped(x1, y0), f.x);
-                let bottom = mix(self.wrapped(x0, y1), self.wrapped(x1, y1), f.x);
+                let top = mix(wrapped(x0, y0), wrapped(x1, y0), f.x);
+                let bottom = mix(wrapped(x0, y1), wrapped(x1, y1), f.x);
                 mix(top, bottom, f.y)
             }
         }
@@ -149,22 +290,28 @@ impl Sampler2d {
             return Vec4::ZERO;
         }
         let t = texel.min(self.size - 1);
-        self.texel(t.x as usize, t.y as usize)
+        self.texel(t.x as usize + t.y as usize * self.size.x as usize)
     }
 
     fn is_degenerate(&self) -> bool {
         self.size.x == 0 || self.size.y == 0
     }
 
-    fn wrapped(&self, x: i64, y: i64) -> Vec4 {
-        self.texel(self.wrap.apply(x, self.size.x), self.wrap.apply(y, self.size.y))
+    /// The index of level `level`'s first texel, and the level's size.
+    fn level(&self, level: u32) -> (usize, UVec2) {
+        let mut start = 0;
+        for l in 0..level {
+            let s = mip_level_size(self.size, l);
+            start += s.x as usize * s.y as usize;
+        }
+        (start, mip_level_size(self.size, level))
     }
 
-    fn texel(&self, x: usize, y: usize) -> Vec4 {
-        debug_assert!(x < self.size.x as usize && y < self.size.y as usize);
-        // SAFETY: `x`, `y` are in range, so the offset is inside the
-        // `width * height` texels of the `from_raw_parts` contract.
-        unsafe { *self.texels.add(x + y * self.size.x as usize) }
+    fn texel(&self, i: usize) -> Vec4 {
+        debug_assert!(i < self.level(self.levels).0);
+        // SAFETY: `i` is inside the levels' texels (callers index a level
+        // below `levels` within its size) of the `from_raw_parts` contract.
+        unsafe { *self.texels.add(i) }
     }
 }
 
@@ -174,6 +321,8 @@ impl fmt::Debug for Sampler2d {
             .field("size", &self.size)
             .field("wrap", &self.wrap)
             .field("filter", &self.filter)
+            .field("levels", &self.levels)
+            .field("mip", &self.mip)
             .finish()
     }
 }
@@ -292,5 +441,71 @@ mod tests {
         let empty = unsafe { Sampler2d::from_raw_parts(core::ptr::null(), 0, 3, Repeat, Linear) };
         assert_eq!(empty.sample(Vec2::splat(0.5)), Vec4::ZERO);
         assert_eq!(empty.fetch(UVec2::ZERO), Vec4::ZERO);
+    }
+
+    /// A 4x2 texture with three levels (4x2, 2x1, 1x1), each of one colour:
+    /// level l is `texel(10^l)`.
+    fn mipped(filter: FilterMode, mip: MipFilter) -> (Vec<Vec4>, Sampler2d) {
+        let texels: Vec<Vec4> = [vec![texel(1.0); 8], vec![texel(10.0); 2], vec![texel(100.0)]].concat();
+        let s = unsafe { Sampler2d::from_raw_mip_parts(texels.as_ptr(), 4, 2, 3, Repeat, filter, mip) };
+        (texels, s)
+    }
+
+    #[test]
+    fn mip_chain_sizes() {
+        assert_eq!(mip_level_count(4, 2), 3);
+        assert_eq!(mip_level_count(5, 1), 3);
+        assert_eq!(mip_level_count(1, 1), 1);
+        assert_eq!(mip_level_count(0, 0), 0);
+        assert_eq!(mip_level_size(UVec2::new(5, 2), 1), UVec2::new(2, 1));
+        assert_eq!(mip_level_size(UVec2::new(5, 2), 40), UVec2::ONE);
+    }
+
+    #[test]
+    fn sample_lod_picks_and_blends_levels() {
+        for filter in [Nearest, Linear] {
+            let (_t, s) = mipped(filter, MipFilter::Linear);
+            let at = |lod: f32| s.sample_lod(Vec2::new(0.3, 0.7), lod);
+            assert_eq!(s.levels(), 3);
+            assert_eq!(at(0.0), texel(1.0));
+            assert_eq!(at(1.0), texel(10.0));
+            assert_eq!(at(2.0), texel(100.0));
+            assert_eq!(at(0.5), texel(5.5));
+            assert_eq!(at(1.25), texel(32.5));
+            assert_eq!(at(7.0), texel(100.0));
+            assert_eq!(at(f32::INFINITY), texel(100.0));
+            assert_eq!(at(-3.0), texel(1.0));
+            assert_eq!(at(f32::NEG_INFINITY), texel(1.0));
+            assert_eq!(at(f32::NAN), texel(1.0));
+            assert_eq!(s.sample(Vec2::new(0.3, 0.7)), texel(1.0));
+            let (_t, n) = mipped(filter, MipFilter::Nearest);
+            let at = |lod: f32| n.sample_lod(Vec2::new(0.3, 0.7), lod);
+            assert_eq!(at(0.5), texel(1.0));
+            assert_eq!(at(0.51), texel(10.0));
+            assert_eq!(at(1.5), texel(10.0));
+            assert_eq!(at(1.6), texel(100.0));
+        }
+    }
+
+    #[test]
+    fn sample_grad_takes_log2_of_the_longer_footprint() {
+        let (_t, s) = mipped(Linear, MipFilter::Linear);
+        let uv = Vec2::new(0.6, 0.2);
+        // One texel of level 0 is 1/4 in u and 1/2 in v.
+        let du = Vec2::new(0.25, 0.0);
+        assert_eq!(s.sample_grad(uv, du, Vec2::ZERO), texel(1.0));
+        assert_eq!(s.sample_grad(uv, du * 2.0, Vec2::new(0.0, 0.5)), texel(10.0));
+        assert_eq!(s.sample_grad(uv, Vec2::ZERO, Vec2::new(0.0, 2.0)), texel(100.0));
+        assert_eq!(s.sample_grad(uv, Vec2::ZERO, Vec2::ZERO), texel(1.0));
+        assert_eq!(s.sample_grad(uv, Vec2::NAN, Vec2::ZERO), texel(1.0));
+        assert_eq!(s.sample_grad(uv, Vec2::INFINITY, Vec2::ZERO), texel(100.0));
+    }
+
+    #[test]
+    fn levels_clamp_to_the_chain() {
+        let texels = [texel(1.0), texel(2.0)];
+        let s = unsafe { Sampler2d::from_raw_mip_parts(texels.as_ptr(), 1, 1, 9, Clamp, Nearest, MipFilter::Linear) };
+        assert_eq!(s.levels(), 1);
+        assert_eq!(s.sample_lod(Vec2::ZERO, 5.0), texel(1.0));
     }
 }

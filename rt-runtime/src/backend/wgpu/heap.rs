@@ -93,11 +93,17 @@ pub(crate) fn encode_heap(scene: &Scene, records: &Records) -> Result<EncodedHea
                         rt_std::FilterMode::Nearest => 0,
                         rt_std::FilterMode::Linear => 1,
                     };
+                    let mip = match rec.mip {
+                        rt_std::MipFilter::Nearest => 0,
+                        rt_std::MipFilter::Linear => 1,
+                    };
+                    // prelude.wgsl's RtSampler.mode: wrap, filter, mip
+                    // filter and level count, a byte each.
                     heap.extend([
                         sampler_offsets[s.index() as usize] as u32,
                         rec.width,
                         rec.height,
-                        wrap | (filter << 8),
+                        wrap | (filter << 8) | (mip << 16) | (rec.levels << 24),
                     ]);
                 }
                 (VarValue::Object(n), _) => heap.push(n.index()),

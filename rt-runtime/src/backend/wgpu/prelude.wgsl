@@ -159,6 +159,9 @@ fn rt_potential_intersection(t: f32) -> bool {
 
 // ---- textures: RGBA f32 texels in the heap, sampled as rt-std's CPU
 // sampler does (texel centres at (i + 0.5) / size, wrap on texel indices).
+// RtSampler.mode: wrap (bits 0-7), filter (8-15: 1 linear), mip filter
+// (16-23: 1 linear), level count (24-31); the levels follow each other
+// from level 0, level l being max(1, size >> l).
 fn rt_tex_wrap(i: i32, n: i32, mode: u32) -> u32 {
     if mode == 1u { return u32(clamp(i, 0, n - 1)); }
     if mode == 2u {
@@ -172,25 +175,38 @@ fn rt_tex_wrap(i: i32, n: i32, mode: u32) -> u32 {
     if m < 0 { m = m + n; }
     return u32(m);
 }
-fn rt_texel(s: RtSampler, x: u32, y: u32) -> vec4<f32> {
-    let w = s.offset + (y * s.width + x) * 4u;
+// Level l's first texel word and its size; l < the level count.
+struct RtTexLevel {
+    offset: u32,
+    size: vec2<u32>,
+}
+fn rt_tex_level(s: RtSampler, l: u32) -> RtTexLevel {
+    var offset = s.offset;
+    var size = vec2<u32>(s.width, s.height);
+    for (var k = 0u; k < l; k = k + 1u) {
+        offset = offset + size.x * size.y * 4u;
+        size = max(size >> vec2<u32>(1u), vec2<u32>(1u));
+    }
+    return RtTexLevel(offset, size);
+}
+fn rt_texel(lv: RtTexLevel, x: u32, y: u32) -> vec4<f32> {
+    let w = lv.offset + (y * lv.size.x + x) * 4u;
     return vec4<f32>(bitcast<f32>(rt_hw(w)), bitcast<f32>(rt_hw(w + 1u)), bitcast<f32>(rt_hw(w + 2u)), bitcast<f32>(rt_hw(w + 3u)));
 }
 fn rt_tex_fetch(s: RtSampler, texel: vec2<u32>) -> vec4<f32> {
     if s.width == 0u || s.height == 0u { return vec4<f32>(); }
-    return rt_texel(s, min(texel.x, s.width - 1u), min(texel.y, s.height - 1u));
+    return rt_texel(rt_tex_level(s, 0u), min(texel.x, s.width - 1u), min(texel.y, s.height - 1u));
 }
-fn rt_tex_sample(s: RtSampler, uv_in: vec2<f32>) -> vec4<f32> {
-    if s.width == 0u || s.height == 0u { return vec4<f32>(); }
+fn rt_tex_sample_level(s: RtSampler, lv: RtTexLevel, uv_in: vec2<f32>) -> vec4<f32> {
     let finite = abs(uv_in) <= vec2<f32>(RT_F32_MAX);
     let uv = select(vec2<f32>(0.0), uv_in, finite);
     let wrap = s.mode & 0xffu;
-    let linear = (s.mode >> 8u) != 0u;
-    let size = vec2<f32>(f32(s.width), f32(s.height));
-    let n = vec2<i32>(i32(s.width), i32(s.height));
+    let linear = ((s.mode >> 8u) & 0xffu) != 0u;
+    let size = vec2<f32>(lv.size);
+    let n = vec2<i32>(lv.size);
     if !linear {
         let i = vec2<i32>(floor(uv * size));
-        return rt_texel(s, rt_tex_wrap(i.x, n.x, wrap), rt_tex_wrap(i.y, n.y, wrap));
+        return rt_texel(lv, rt_tex_wrap(i.x, n.x, wrap), rt_tex_wrap(i.y, n.y, wrap));
     }
     let p = uv * size - 0.5;
     let f = floor(p);
@@ -200,9 +216,47 @@ fn rt_tex_sample(s: RtSampler, uv_in: vec2<f32>) -> vec4<f32> {
     let x1 = rt_tex_wrap(i.x + 1, n.x, wrap);
     let y0 = rt_tex_wrap(i.y, n.y, wrap);
     let y1 = rt_tex_wrap(i.y + 1, n.y, wrap);
-    let top = rt_texel(s, x0, y0) * (1.0 - a.x) + rt_texel(s, x1, y0) * a.x;
-    let bottom = rt_texel(s, x0, y1) * (1.0 - a.x) + rt_texel(s, x1, y1) * a.x;
+    let top = rt_texel(lv, x0, y0) * (1.0 - a.x) + rt_texel(lv, x1, y0) * a.x;
+    let bottom = rt_texel(lv, x0, y1) * (1.0 - a.x) + rt_texel(lv, x1, y1) * a.x;
     return top * (1.0 - a.y) + bottom * a.y;
+}
+fn rt_tex_sample(s: RtSampler, uv: vec2<f32>) -> vec4<f32> {
+    if s.width == 0u || s.height == 0u { return vec4<f32>(); }
+    return rt_tex_sample_level(s, rt_tex_level(s, 0u), uv);
+}
+// Vulkan's level selection (rt-std's texture docs): d = clamp(lod, 0,
+// levels - 1), NaN as 0; the nearest level rounds a half down, the linear
+// mip filter blends floor(d) and the next level by the fraction.
+fn rt_tex_sample_lod(s: RtSampler, uv: vec2<f32>, lod: f32) -> vec4<f32> {
+    if s.width == 0u || s.height == 0u { return vec4<f32>(); }
+    let levels = max(s.mode >> 24u, 1u);
+    let last = f32(levels - 1u);
+    var d = 0.0;
+    // By the bits: a NaN compares unordered, which compilers may assume away.
+    if (bitcast<u32>(lod) & 0x7fffffffu) <= 0x7f800000u { d = clamp(lod, 0.0, last); }
+    if ((s.mode >> 16u) & 0xffu) == 0u {
+        return rt_tex_sample_level(s, rt_tex_level(s, u32(ceil(d + 0.5) - 1.0)), uv);
+    }
+    let hi = floor(d);
+    let delta = d - hi;
+    let l = u32(hi);
+    let a = rt_tex_sample_level(s, rt_tex_level(s, l), uv);
+    if delta == 0.0 { return a; }
+    let b = rt_tex_sample_level(s, rt_tex_level(s, min(l + 1u, levels - 1u)), uv);
+    return a * (1.0 - delta) + b * delta;
+}
+// The LOD of a footprint dx, dy (in normalised coordinates): log2 of its
+// longer side in level-0 texels, as OpenGL and Vulkan define it. A NaN side
+// counts as 0, as f32::max on the CPU ignores a NaN (WGSL's max may not).
+fn rt_tex_side(v: vec2<f32>) -> f32 {
+    let l = length(v);
+    if (bitcast<u32>(l) & 0x7fffffffu) <= 0x7f800000u { return l; }
+    return 0.0;
+}
+fn rt_tex_sample_grad(s: RtSampler, uv: vec2<f32>, dx: vec2<f32>, dy: vec2<f32>) -> vec4<f32> {
+    let size = vec2<f32>(f32(s.width), f32(s.height));
+    let rho = max(rt_tex_side(dx * size), rt_tex_side(dy * size));
+    return rt_tex_sample_lod(s, uv, log2(rho));
 }
 
 // ---- rt_printf!: records of (format id, launch index, word count, words)
