@@ -198,7 +198,7 @@ impl FnLowerer<'_> {
             }
         };
         if args.len() != arg_tys.len() {
-            let params: Vec<&str> = arg_tys.iter().map(|(p, _)| *p).collect();
+            let params: Vec<String> = arg_tys.iter().map(|(p, ty)| format!("`{p}: {ty}`")).collect();
             return Err(Error::new(
                 name_span,
                 format!(
