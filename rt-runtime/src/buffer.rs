@@ -8,7 +8,7 @@
 
 use glam::Vec4;
 use rt_std::program::TypeLayout;
-use rt_std::{Buffer, Buffer2d, FilterMode, MipFilter, RtData, RwBuffer, RwBuffer2d, Sampler2d, WrapMode};
+use rt_std::{Buffer, Buffer2d, RtData, RwBuffer, RwBuffer2d, Sampler2d, SamplerModes};
 use std::any::Any;
 use std::cell::UnsafeCell;
 
@@ -166,26 +166,14 @@ pub(crate) struct SamplerRec {
     pub width: u32,
     pub height: u32,
     pub levels: u32,
-    pub wrap: WrapMode,
-    pub filter: FilterMode,
-    pub mip: MipFilter,
+    pub modes: SamplerModes,
 }
 
 impl SamplerRec {
     pub fn handle(&self) -> Sampler2d {
         // SAFETY: `texels` holds the `levels` levels of a width x height
         // texture (checked by the context) and outlives the launch.
-        unsafe {
-            Sampler2d::from_raw_mip_parts(
-                self.texels.as_ptr(),
-                self.width,
-                self.height,
-                self.levels,
-                self.wrap,
-                self.filter,
-                self.mip,
-            )
-        }
+        unsafe { Sampler2d::from_raw_mip_parts(self.texels.as_ptr(), self.width, self.height, self.levels, self.modes) }
     }
 }
 

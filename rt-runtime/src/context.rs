@@ -15,7 +15,7 @@ use std::any::Any;
 pub use crate::scene::Scope;
 use glam::{Mat4, Vec4};
 use rt_std::program::{ProgramDescriptor, ProgramKind};
-use rt_std::{FilterMode, MipFilter, RtData, WrapMode};
+use rt_std::{FilterMode, IndexMode, MipFilter, RtData, SamplerModes, WrapMode};
 
 mod device_buffers;
 pub use device_buffers::{DeviceBuffer, WgpuDevice};
@@ -775,9 +775,7 @@ impl Context {
             width,
             height,
             levels: 1,
-            wrap,
-            filter,
-            mip: MipFilter::Linear,
+            modes: SamplerModes { wrap, filter, ..SamplerModes::default() },
         };
         self.scene.samplers.push(rec);
         Ok(SamplerId(self.scene.samplers.len() as u32 - 1))
@@ -825,8 +823,57 @@ impl Context {
             }
         }
         let count = levels.len() as u32;
-        let rec =
-            SamplerRec { texels: levels.concat().into_boxed_slice(), width, height, levels: count, wrap, filter, mip };
+        let rec = SamplerRec {
+            texels: levels.concat().into_boxed_slice(),
+            width,
+            height,
+            levels: count,
+            modes: SamplerModes { wrap, filter, mip, index: IndexMode::NormalizedCoordinates },
+        };
+        self.scene.samplers.push(rec);
+        Ok(SamplerId(self.scene.samplers.len() as u32 - 1))
+    }
+
+    /// A sampler over texels of any supported format (OptiX's buffer
+    /// formats, read and index modes): the host decodes them to RGBA `f32`
+    /// on upload as [`TexelData::decode`](crate::TexelData::decode) says
+    /// (the texture takes 16 bytes a texel), `width * height` of them,
+    /// row-major, one level. With [`IndexMode::ArrayIndex`] coordinates are
+    /// in texels and, as GPUs' unnormalised coordinates, clamp to the edge:
+    /// another wrap mode is refused. Errors name the sampler.
+    pub fn create_sampler_from_texels(
+        &mut self,
+        texels: crate::TexelData,
+        width: u32,
+        height: u32,
+        options: crate::SamplerOptions,
+    ) -> Result<SamplerId> {
+        let fail = |problem: String| RtError::BadSampler { sampler: self.scene.samplers.len() as u32, problem };
+        if texels.len() != width as usize * height as usize || texels.is_empty() {
+            return Err(fail(format!(
+                "{} {} texels for a {width}x{height} texture",
+                texels.len(),
+                texels.format_name()
+            )));
+        }
+        if options.index == IndexMode::ArrayIndex && options.wrap != WrapMode::Clamp {
+            return Err(fail(format!(
+                "array-index coordinates (RT_TEXTURE_INDEX_ARRAY_INDEX) clamp to the edge, as GPUs' unnormalised coordinates do: use WrapMode::Clamp, not {:?}",
+                options.wrap
+            )));
+        }
+        let rec = SamplerRec {
+            texels: texels.decode(options.read).into_boxed_slice(),
+            width,
+            height,
+            levels: 1,
+            modes: SamplerModes {
+                wrap: options.wrap,
+                filter: options.filter,
+                mip: MipFilter::Linear,
+                index: options.index,
+            },
+        };
         self.scene.samplers.push(rec);
         Ok(SamplerId(self.scene.samplers.len() as u32 - 1))
     }

@@ -38,6 +38,7 @@ pub mod image_out;
 pub(crate) mod link;
 mod panics;
 pub mod scene;
+pub mod texels;
 pub mod usage;
 pub mod vars;
 
@@ -51,5 +52,6 @@ pub use error::{Result, RtError};
 pub use scene::{
     BufferId, GeometryId, GeometryInstanceId, GeometryKind, MaterialId, NodeId, ProgramId, SamplerId, TriangleMesh,
 };
+pub use texels::{ReadMode, SamplerOptions, TexelData};
 pub use usage::UsageReport;
 pub use vars::{IntoVariable, VarValue};

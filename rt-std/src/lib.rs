@@ -157,4 +157,6 @@ pub use rt_macros::{
     __rt_collect, rt_attributes, rt_const, rt_enum, rt_function, rt_impl, rt_payload, rt_program, rt_struct,
 };
 pub use scene::{Object, TransformKind};
-pub use texture::{FilterMode, MipFilter, Sampler2d, WrapMode, mip_level_count, mip_level_size};
+pub use texture::{
+    FilterMode, IndexMode, MipFilter, Sampler2d, SamplerModes, WrapMode, mip_level_count, mip_level_size,
+};

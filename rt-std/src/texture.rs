@@ -105,6 +105,34 @@ pub enum MipFilter {
     Linear,
 }
 
+/// How a sampler reads its coordinates (OptiX's
+/// `rtTextureSamplerSetIndexingMode`, Vulkan's `unnormalizedCoordinates`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum IndexMode {
+    /// `uv` in `[0, 1]` spans the texture (`RT_TEXTURE_INDEX_NORMALIZED_COORDINATES`).
+    #[default]
+    NormalizedCoordinates,
+    /// `uv` in texels: `[0, width] x [0, height]` spans the texture, texel
+    /// `(i, j)` has its centre at `(i + 0.5, j + 0.5)`
+    /// (`RT_TEXTURE_INDEX_ARRAY_INDEX`, CUDA's unnormalised coordinates).
+    /// As on GPUs, such a sampler has one level and clamps to the edge
+    /// (the host refuses other wrap modes).
+    ArrayIndex,
+}
+
+/// A sampler's modes: wrap, filter, mip filter and index mode.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub struct SamplerModes {
+    /// Where coordinates outside the texture read.
+    pub wrap: WrapMode,
+    /// How a level's texels are filtered.
+    pub filter: FilterMode,
+    /// How levels are combined.
+    pub mip: MipFilter,
+    /// Whether coordinates are normalised or in texels.
+    pub index: IndexMode,
+}
+
 /// How many levels a full mip chain of a `width x height` texture has:
 /// `floor(log2(max(width, height))) + 1`, the last level being 1x1 (0 for
 /// an empty texture).
@@ -133,6 +161,7 @@ pub struct Sampler2d {
     wrap: WrapMode,
     filter: FilterMode,
     mip: MipFilter,
+    index: IndexMode,
 }
 
 // SAFETY: a sampler only reads its texels, which the `from_raw_parts`
@@ -157,13 +186,16 @@ impl Sampler2d {
         wrap: WrapMode,
         filter: FilterMode,
     ) -> Self {
-        Sampler2d { texels, size: UVec2::new(width, height), levels: 1, wrap, filter, mip: MipFilter::Linear }
+        let modes = SamplerModes { wrap, filter, ..SamplerModes::default() };
+        // SAFETY: one level, as the caller promises.
+        unsafe { Sampler2d::from_raw_mip_parts(texels, width, height, 1, modes) }
     }
 
     /// A sampler over a mip chain of `levels` levels at `texels`: level 0
     /// (`width * height` texels, row-major), then each next level of
     /// [`mip_level_size`]. Host side only, as [`Sampler2d::from_raw_parts`].
-    /// `levels` is clamped to `1..=mip_level_count(width, height)`.
+    /// `levels` is clamped to `1..=mip_level_count(width, height)` (to 1
+    /// with [`IndexMode::ArrayIndex`]).
     ///
     /// # Safety
     /// `texels` points to the texels of those levels, initialised, valid
@@ -173,12 +205,11 @@ impl Sampler2d {
         width: u32,
         height: u32,
         levels: u32,
-        wrap: WrapMode,
-        filter: FilterMode,
-        mip: MipFilter,
+        modes: SamplerModes,
     ) -> Self {
-        let levels = levels.clamp(1, mip_level_count(width, height).max(1));
-        Sampler2d { texels, size: UVec2::new(width, height), levels, wrap, filter, mip }
+        let chain = if modes.index == IndexMode::ArrayIndex { 1 } else { mip_level_count(width, height).max(1) };
+        let SamplerModes { wrap, filter, mip, index } = modes;
+        Sampler2d { texels, size: UVec2::new(width, height), levels: levels.clamp(1, chain), wrap, filter, mip, index }
     }
 
     /// Width and height in texels.
@@ -257,7 +288,10 @@ impl Sampler2d {
     fn sample_level(&self, uv: Vec2, level: u32) -> Vec4 {
         let (start, size) = self.level(level);
         let uv = Vec2::select(uv.is_finite_mask(), uv, Vec2::ZERO);
-        let p = uv * size.as_vec2();
+        let p = match self.index {
+            IndexMode::NormalizedCoordinates => uv * size.as_vec2(),
+            IndexMode::ArrayIndex => uv,
+        };
         let wrapped = |x: i64, y: i64| {
             let (x, y) = (self.wrap.apply(x, size.x), self.wrap.apply(y, size.y));
             self.texel(start + x + y * size.x as usize)
@@ -323,6 +357,7 @@ impl fmt::Debug for Sampler2d {
             .field("filter", &self.filter)
             .field("levels", &self.levels)
             .field("mip", &self.mip)
+            .field("index", &self.index)
             .finish()
     }
 }
@@ -445,10 +480,11 @@ mod tests {
 
     /// A 4x2 texture with three levels (4x2, 2x1, 1x1), each of one colour:
     /// level l is `texel(10^l)`.
-    fn mipped(filter: FilterMode, mip: MipFilter) -> (Vec<Vec4>, Sampler2d) {
+    fn mipped(filter: FilterMode, mip: MipFilter) -> (Sampler2d, Vec<Vec4>) {
         let texels: Vec<Vec4> = [vec![texel(1.0); 8], vec![texel(10.0); 2], vec![texel(100.0)]].concat();
-        let s = unsafe { Sampler2d::from_raw_mip_parts(texels.as_ptr(), 4, 2, 3, Repeat, filter, mip) };
-        (texels, s)
+        let modes = SamplerModes { wrap: Repeat, filter, mip, ..SamplerModes::default() };
+        let s = unsafe { Sampler2d::from_raw_mip_parts(texels.as_ptr(), 4, 2, 3, modes) };
+        (s, texels)
     }
 
     #[test]
@@ -464,7 +500,7 @@ mod tests {
     #[test]
     fn sample_lod_picks_and_blends_levels() {
         for filter in [Nearest, Linear] {
-            let (_t, s) = mipped(filter, MipFilter::Linear);
+            let (s, _t) = mipped(filter, MipFilter::Linear);
             let at = |lod: f32| s.sample_lod(Vec2::new(0.3, 0.7), lod);
             assert_eq!(s.levels(), 3);
             assert_eq!(at(0.0), texel(1.0));
@@ -478,7 +514,7 @@ mod tests {
             assert_eq!(at(f32::NEG_INFINITY), texel(1.0));
             assert_eq!(at(f32::NAN), texel(1.0));
             assert_eq!(s.sample(Vec2::new(0.3, 0.7)), texel(1.0));
-            let (_t, n) = mipped(filter, MipFilter::Nearest);
+            let (n, _t) = mipped(filter, MipFilter::Nearest);
             let at = |lod: f32| n.sample_lod(Vec2::new(0.3, 0.7), lod);
             assert_eq!(at(0.5), texel(1.0));
             assert_eq!(at(0.51), texel(10.0));
@@ -489,7 +525,7 @@ mod tests {
 
     #[test]
     fn sample_grad_takes_log2_of_the_longer_footprint() {
-        let (_t, s) = mipped(Linear, MipFilter::Linear);
+        let (s, _t) = mipped(Linear, MipFilter::Linear);
         let uv = Vec2::new(0.6, 0.2);
         // One texel of level 0 is 1/4 in u and 1/2 in v.
         let du = Vec2::new(0.25, 0.0);
@@ -504,8 +540,28 @@ mod tests {
     #[test]
     fn levels_clamp_to_the_chain() {
         let texels = [texel(1.0), texel(2.0)];
-        let s = unsafe { Sampler2d::from_raw_mip_parts(texels.as_ptr(), 1, 1, 9, Clamp, Nearest, MipFilter::Linear) };
+        let modes = SamplerModes { wrap: Clamp, filter: Nearest, ..SamplerModes::default() };
+        let s = unsafe { Sampler2d::from_raw_mip_parts(texels.as_ptr(), 1, 1, 9, modes) };
         assert_eq!(s.levels(), 1);
         assert_eq!(s.sample_lod(Vec2::ZERO, 5.0), texel(1.0));
+        // Array-index samplers have one level.
+        let (_s, mips) = mipped(Nearest, MipFilter::Linear);
+        let modes = SamplerModes { index: IndexMode::ArrayIndex, ..SamplerModes::default() };
+        let s = unsafe { Sampler2d::from_raw_mip_parts(mips.as_ptr(), 4, 2, 3, modes) };
+        assert_eq!(s.levels(), 1);
+    }
+
+    #[test]
+    fn array_index_coordinates_are_in_texels() {
+        for filter in [Nearest, Linear] {
+            let modes = SamplerModes { wrap: Clamp, filter, index: IndexMode::ArrayIndex, ..SamplerModes::default() };
+            let s = unsafe { Sampler2d::from_raw_mip_parts(TEXELS.as_ptr(), 2, 2, 1, modes) };
+            assert_eq!(s.sample(Vec2::new(1.5, 0.5)).x, 1.0);
+            assert_eq!(s.sample(Vec2::new(0.5, 1.5)).x, 2.0);
+            assert_eq!(s.sample(Vec2::new(9.0, 9.0)).x, 4.0);
+        }
+        let modes = SamplerModes { wrap: Clamp, filter: Linear, index: IndexMode::ArrayIndex, ..Default::default() };
+        let s = unsafe { Sampler2d::from_raw_mip_parts(TEXELS.as_ptr(), 2, 2, 1, modes) };
+        assert_eq!(s.sample(Vec2::new(1.0, 0.5)).x, 0.5);
     }
 }

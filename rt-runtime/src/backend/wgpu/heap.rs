@@ -84,26 +84,31 @@ pub(crate) fn encode_heap(scene: &Scene, records: &Records) -> Result<EncodedHea
                 }
                 (VarValue::Sampler(s), _) => {
                     let rec = &scene.samplers[s.index() as usize];
-                    let wrap = match rec.wrap {
+                    let modes = rec.modes;
+                    let wrap = match modes.wrap {
                         rt_std::WrapMode::Repeat => 0,
                         rt_std::WrapMode::Clamp => 1,
                         rt_std::WrapMode::Mirror => 2,
                     };
-                    let filter = match rec.filter {
+                    let filter = match modes.filter {
                         rt_std::FilterMode::Nearest => 0,
                         rt_std::FilterMode::Linear => 1,
                     };
-                    let mip = match rec.mip {
+                    let array = match modes.index {
+                        rt_std::IndexMode::NormalizedCoordinates => 0,
+                        rt_std::IndexMode::ArrayIndex => 1,
+                    };
+                    let mip = match modes.mip {
                         rt_std::MipFilter::Nearest => 0,
                         rt_std::MipFilter::Linear => 1,
                     };
-                    // prelude.wgsl's RtSampler.mode: wrap, filter, mip
-                    // filter and level count, a byte each.
+                    // prelude.wgsl's RtSampler.mode: wrap, filter and
+                    // index mode, mip filter and level count, a byte each.
                     heap.extend([
                         sampler_offsets[s.index() as usize] as u32,
                         rec.width,
                         rec.height,
-                        wrap | (filter << 8) | (mip << 16) | (rec.levels << 24),
+                        wrap | (filter << 8) | (array << 9) | (mip << 16) | (rec.levels << 24),
                     ]);
                 }
                 (VarValue::Object(n), _) => heap.push(n.index()),

@@ -159,9 +159,10 @@ fn rt_potential_intersection(t: f32) -> bool {
 
 // ---- textures: RGBA f32 texels in the heap, sampled as rt-std's CPU
 // sampler does (texel centres at (i + 0.5) / size, wrap on texel indices).
-// RtSampler.mode: wrap (bits 0-7), filter (8-15: 1 linear), mip filter
-// (16-23: 1 linear), level count (24-31); the levels follow each other
-// from level 0, level l being max(1, size >> l).
+// RtSampler.mode: wrap (bits 0-7), filter (bit 8: linear) and index mode
+// (bit 9: coordinates in texels), mip filter (16-23: 1 linear), level count
+// (24-31); the levels follow each other from level 0, level l being
+// max(1, size >> l).
 fn rt_tex_wrap(i: i32, n: i32, mode: u32) -> u32 {
     if mode == 1u { return u32(clamp(i, 0, n - 1)); }
     if mode == 2u {
@@ -201,16 +202,17 @@ fn rt_tex_sample_level(s: RtSampler, lv: RtTexLevel, uv_in: vec2<f32>) -> vec4<f
     let finite = abs(uv_in) <= vec2<f32>(RT_F32_MAX);
     let uv = select(vec2<f32>(0.0), uv_in, finite);
     let wrap = s.mode & 0xffu;
-    let linear = ((s.mode >> 8u) & 0xffu) != 0u;
-    let size = vec2<f32>(lv.size);
+    let linear = ((s.mode >> 8u) & 1u) != 0u;
     let n = vec2<i32>(lv.size);
+    var p = uv * vec2<f32>(lv.size);
+    if ((s.mode >> 9u) & 1u) != 0u { p = uv; }
     if !linear {
-        let i = vec2<i32>(floor(uv * size));
+        let i = vec2<i32>(floor(p));
         return rt_texel(lv, rt_tex_wrap(i.x, n.x, wrap), rt_tex_wrap(i.y, n.y, wrap));
     }
-    let p = uv * size - 0.5;
-    let f = floor(p);
-    let a = p - f;
+    let q = p - 0.5;
+    let f = floor(q);
+    let a = q - f;
     let i = vec2<i32>(f);
     let x0 = rt_tex_wrap(i.x, n.x, wrap);
     let x1 = rt_tex_wrap(i.x + 1, n.x, wrap);
