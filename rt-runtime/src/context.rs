@@ -783,8 +783,8 @@ impl Context {
 
     /// A mipmapped sampler (OptiX's mip levels of an `RTtexturesampler`):
     /// `levels[0]` holds the `width * height` texels of level 0 (row-major),
-    /// `levels[l]` those of level `l`, `max(1, width >> l) x max(1, height
-    /// >> l)` texels ([`rt_std::mip_level_size`]); any number of levels
+    /// `levels[l]` those of level `l`, `max(1, width >> l)` by
+    /// `max(1, height >> l)` texels ([`rt_std::mip_level_size`]); any number of levels
     /// from 1 to the full chain ([`rt_std::mip_level_count`], down to 1x1).
     /// `mip` says how [`Sampler2d::sample_lod`](rt_std::Sampler2d) and
     /// `sample_grad` combine levels. A level of the wrong texel count, or

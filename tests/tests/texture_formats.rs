@@ -48,7 +48,7 @@ const C128: f32 = 0.501_960_8;
 /// The sRGB formula at code 128: ((128/255 + 0.055) / 1.055)^2.4.
 const SRGB128: f32 = 0.215_860_5;
 /// At code 10 (below the knee): 10 / 255 / 12.92.
-const SRGB10: f32 = 0.003_035_269_9;
+const SRGB10: f32 = 0.003_035_27;
 
 fn cases() -> Vec<(&'static str, TexelData, ReadMode, Vec<Vec4>)> {
     use ReadMode::*;

@@ -43,7 +43,7 @@ fn colour(l: u32) -> Vec4 {
 
 /// An 8x4 texture of 4 levels (8x4, 4x2, 2x1, 1x1), each one colour.
 fn constant_levels() -> Vec<Vec<Vec4>> {
-    (0..4).map(|l| vec![colour(l); ((8 >> l) * (4usize >> l).max(1)) as usize]).collect()
+    (0..4).map(|l| vec![colour(l); (8usize >> l) * (4usize >> l).max(1)]).collect()
 }
 
 const LODS: [f32; 12] = [0.0, 1.0, 2.0, 3.0, 0.5, 1.25, 2.75, 7.0, -1.0, f32::INFINITY, f32::NEG_INFINITY, f32::NAN];
