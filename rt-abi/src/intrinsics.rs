@@ -11,6 +11,7 @@ pub enum AbiTy {
     U32,
     F32,
     UVec2,
+    UVec3,
     Vec2,
     Vec3,
     Vec4,
@@ -24,6 +25,8 @@ pub enum AbiTy {
     Buffer,
     /// A sampler handle, WGSL `RtSampler`.
     Sampler,
+    /// A 3D sampler handle, WGSL `RtSampler3d`.
+    Sampler3d,
 }
 
 impl AbiTy {
@@ -35,6 +38,7 @@ impl AbiTy {
             AbiTy::U32 | AbiTy::TransformKind => "u32",
             AbiTy::F32 => "f32",
             AbiTy::UVec2 => "vec2<u32>",
+            AbiTy::UVec3 => "vec3<u32>",
             AbiTy::Vec2 => "vec2<f32>",
             AbiTy::Vec3 => "vec3<f32>",
             AbiTy::Vec4 => "vec4<f32>",
@@ -42,6 +46,7 @@ impl AbiTy {
             AbiTy::Ray => "RtRay",
             AbiTy::Buffer => "RtBuffer",
             AbiTy::Sampler => "RtSampler",
+            AbiTy::Sampler3d => "RtSampler3d",
         }
     }
 
@@ -53,6 +58,7 @@ impl AbiTy {
             AbiTy::U32 => "u32",
             AbiTy::F32 => "f32",
             AbiTy::UVec2 => "UVec2",
+            AbiTy::UVec3 => "UVec3",
             AbiTy::Vec2 => "Vec2",
             AbiTy::Vec3 => "Vec3",
             AbiTy::Vec4 => "Vec4",
@@ -61,6 +67,7 @@ impl AbiTy {
             AbiTy::TransformKind => "TransformKind",
             AbiTy::Buffer => "RtBuffer",
             AbiTy::Sampler => "Sampler2d",
+            AbiTy::Sampler3d => "Sampler3d",
         }
     }
 }
@@ -256,6 +263,8 @@ pub const RUNTIME_FUNCTIONS: &[WgslFn] = &[
         params: &[("s", Sampler), ("uv", Vec2), ("dx", Vec2), ("dy", Vec2)],
         ret: Vec4,
     },
+    WgslFn { name: "rt_tex3_sample", params: &[("s", Sampler3d), ("uvw", Vec3)], ret: Vec4 },
+    WgslFn { name: "rt_tex3_fetch", params: &[("s", Sampler3d), ("texel", UVec3)], ret: Vec4 },
     WgslFn { name: "rt_printf_begin", params: &[("format", U32), ("words", U32)], ret: Bool },
     WgslFn { name: "rt_printf_word", params: &[("word", U32)], ret: Unit },
 ];

@@ -8,7 +8,7 @@
 
 use glam::Vec4;
 use rt_std::program::TypeLayout;
-use rt_std::{Buffer, Buffer2d, RtData, RwBuffer, RwBuffer2d, Sampler2d, SamplerModes};
+use rt_std::{Buffer, Buffer2d, RtData, RwBuffer, RwBuffer2d, Sampler2d, Sampler3d, SamplerModes};
 use std::any::Any;
 use std::cell::UnsafeCell;
 
@@ -167,6 +167,8 @@ pub(crate) struct SamplerRec {
     pub height: u32,
     pub levels: u32,
     pub modes: SamplerModes,
+    /// A 3D texture's depth (`Sampler3d`), `None` for a 2D one.
+    pub depth: Option<u32>,
 }
 
 impl SamplerRec {
@@ -174,6 +176,18 @@ impl SamplerRec {
         // SAFETY: `texels` holds the `levels` levels of a width x height
         // texture (checked by the context) and outlives the launch.
         unsafe { Sampler2d::from_raw_mip_parts(self.texels.as_ptr(), self.width, self.height, self.levels, self.modes) }
+    }
+
+    pub fn handle_3d(&self) -> Sampler3d {
+        let size = glam::UVec3::new(self.width, self.height, self.depth.unwrap_or(1));
+        // SAFETY: `texels` holds width * height * depth texels (checked by
+        // the context) and outlives the launch.
+        unsafe { Sampler3d::from_raw_parts(self.texels.as_ptr(), size, self.modes.wrap, self.modes.filter) }
+    }
+
+    /// The program type a variable of this sampler must have.
+    pub fn type_name(&self) -> &'static str {
+        if self.depth.is_some() { "Sampler3d" } else { "Sampler2d" }
     }
 }
 

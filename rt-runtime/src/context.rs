@@ -776,6 +776,7 @@ impl Context {
             height,
             levels: 1,
             modes: SamplerModes { wrap, filter, ..SamplerModes::default() },
+            depth: None,
         };
         self.scene.samplers.push(rec);
         Ok(SamplerId(self.scene.samplers.len() as u32 - 1))
@@ -829,6 +830,7 @@ impl Context {
             height,
             levels: count,
             modes: SamplerModes { wrap, filter, mip, index: IndexMode::NormalizedCoordinates },
+            depth: None,
         };
         self.scene.samplers.push(rec);
         Ok(SamplerId(self.scene.samplers.len() as u32 - 1))
@@ -873,6 +875,37 @@ impl Context {
                 mip: MipFilter::Linear,
                 index: options.index,
             },
+            depth: None,
+        };
+        self.scene.samplers.push(rec);
+        Ok(SamplerId(self.scene.samplers.len() as u32 - 1))
+    }
+
+    /// A 3D sampler (OptiX `rtTextureSampler<float4, 3>`, read by a
+    /// program's `Sampler3d` variable) over `width * height * depth` RGBA
+    /// texels, texel `(x, y, z)` at `x + y * width + z * width * height`;
+    /// one level. The wrong texel count is refused naming the sampler.
+    pub fn create_sampler_3d(
+        &mut self,
+        texels: Vec<Vec4>,
+        size: glam::UVec3,
+        wrap: WrapMode,
+        filter: FilterMode,
+    ) -> Result<SamplerId> {
+        let count = size.x as u64 * size.y as u64 * size.z as u64;
+        if texels.len() as u64 != count || texels.is_empty() {
+            return Err(RtError::BadSampler {
+                sampler: self.scene.samplers.len() as u32,
+                problem: format!("{} texels for a {}x{}x{} texture", texels.len(), size.x, size.y, size.z),
+            });
+        }
+        let rec = SamplerRec {
+            texels: texels.into_boxed_slice(),
+            width: size.x,
+            height: size.y,
+            levels: 1,
+            modes: SamplerModes { wrap, filter, ..SamplerModes::default() },
+            depth: Some(size.z),
         };
         self.scene.samplers.push(rec);
         Ok(SamplerId(self.scene.samplers.len() as u32 - 1))

@@ -132,8 +132,12 @@ pub fn resolve_values(scene: &Scene, p: ProgramId, record: Record) -> Result<Vec
                     && rec.dims == dimensions
                     && (!writable || rec.ty.writable_by_programs())
             }
-            (VarValue::Sampler(s), VariableKind::Sampler) => {
-                scene.samplers.get(s.index() as usize).ok_or_else(|| RtError::InvalidHandle(format!("{s:?}")))?;
+            (VarValue::Sampler(s), VariableKind::Sampler | VariableKind::Sampler3d) => {
+                let rec =
+                    scene.samplers.get(s.index() as usize).ok_or_else(|| RtError::InvalidHandle(format!("{s:?}")))?;
+                if rec.depth.is_some() != (v.kind == VariableKind::Sampler3d) {
+                    return Err(mismatch(format!("{} ({s:?})", rec.type_name())));
+                }
                 true
             }
             (VarValue::Object(n), VariableKind::Object) => {
@@ -168,6 +172,9 @@ pub fn resolve(scene: &Scene, p: ProgramId, record: Record) -> Result<Call> {
                 (VarValue::Buffer(b), VariableKind::Buffer { dimensions, writable, .. }) => {
                     let rec = &scene.buffers[b.index() as usize];
                     Arc::from(rec.storage.handle(dimensions, writable, rec.width, rec.height))
+                }
+                (VarValue::Sampler(s), VariableKind::Sampler3d) => {
+                    Arc::new(scene.samplers[s.index() as usize].handle_3d())
                 }
                 (VarValue::Sampler(s), _) => Arc::new(scene.samplers[s.index() as usize].handle()),
                 (VarValue::Object(n), _) => Arc::new(n.object()),

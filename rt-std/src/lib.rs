@@ -158,5 +158,5 @@ pub use rt_macros::{
 };
 pub use scene::{Object, TransformKind};
 pub use texture::{
-    FilterMode, IndexMode, MipFilter, Sampler2d, SamplerModes, WrapMode, mip_level_count, mip_level_size,
+    FilterMode, IndexMode, MipFilter, Sampler2d, Sampler3d, SamplerModes, WrapMode, mip_level_count, mip_level_size,
 };

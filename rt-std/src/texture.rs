@@ -49,7 +49,7 @@
 
 use core::fmt;
 
-use glam::{UVec2, Vec2, Vec4};
+use glam::{UVec2, UVec3, Vec2, Vec3, Vec4};
 
 use crate::math::mix;
 
@@ -362,6 +362,114 @@ impl fmt::Debug for Sampler2d {
     }
 }
 
+/// A 3D texture of RGBA `f32` texels with its wrap and filter modes, as a
+/// variable gives it to a program (OptiX `rtTextureSampler<float4, 3>`).
+/// Texel `(x, y, z)` is stored at `x + y * width + z * width * height`;
+/// `uvw = (0, 0, 0)` is the start of the first texel, `(1, 1, 1)` the end of
+/// the last, and the rules are [`Sampler2d`]'s with a third axis: the
+/// [`WrapMode`] per axis on texel indices, [`FilterMode::Nearest`] reads
+/// texel `floor(uvw * size)`, [`FilterMode::Linear`] blends the eight
+/// texels around `uvw * size - 0.5` along x, then y, then z (trilinear).
+/// One level; a NaN or infinite coordinate counts as 0.
+#[doc(alias = "tex3D")]
+#[derive(Clone, Copy)]
+pub struct Sampler3d {
+    texels: *const Vec4,
+    size: UVec3,
+    wrap: WrapMode,
+    filter: FilterMode,
+}
+
+// SAFETY: as for `Sampler2d`.
+unsafe impl Send for Sampler3d {}
+// SAFETY: as for `Sampler2d`.
+unsafe impl Sync for Sampler3d {}
+
+impl Sampler3d {
+    /// A sampler over the `width * height * depth` texels at `texels`.
+    /// Host side only.
+    ///
+    /// # Safety
+    /// `texels` points to `width * height * depth` initialised `Vec4`s that
+    /// stay valid and unchanged while any copy of the handle is used (an
+    /// empty size reads nothing and samples to zero).
+    pub unsafe fn from_raw_parts(texels: *const Vec4, size: UVec3, wrap: WrapMode, filter: FilterMode) -> Self {
+        Sampler3d { texels, size, wrap, filter }
+    }
+
+    /// Width, height and depth in texels.
+    ///
+    /// Program kinds: all.
+    pub fn size(&self) -> UVec3 {
+        self.size
+    }
+
+    /// The texture at normalised coordinates `uvw`, filtered and wrapped by
+    /// the sampler's modes.
+    ///
+    /// Program kinds: all.
+    #[doc(alias = "tex3D")]
+    pub fn sample(&self, uvw: Vec3) -> Vec4 {
+        if self.size.min_element() == 0 {
+            return Vec4::ZERO;
+        }
+        let uvw = Vec3::select(uvw.is_finite_mask(), uvw, Vec3::ZERO);
+        let p = uvw * self.size.as_vec3();
+        let wrapped = |x: i64, y: i64, z: i64| {
+            let (x, y, z) =
+                (self.wrap.apply(x, self.size.x), self.wrap.apply(y, self.size.y), self.wrap.apply(z, self.size.z));
+            self.texel(x, y, z)
+        };
+        match self.filter {
+            FilterMode::Nearest => {
+                let i = p.floor();
+                wrapped(i.x as i64, i.y as i64, i.z as i64)
+            }
+            FilterMode::Linear => {
+                let p = p - 0.5;
+                let i0 = p.floor();
+                let f = p - i0;
+                let (x0, y0, z0) = (i0.x as i64, i0.y as i64, i0.z as i64);
+                let (x1, y1, z1) = (x0.saturating_add(1), y0.saturating_add(1), z0.saturating_add(1));
+                let plane = |z: i64| {
+                    let top = mix(wrapped(x0, y0, z), wrapped(x1, y0, z), f.x);
+                    let bottom = mix(wrapped(x0, y1, z), wrapped(x1, y1, z), f.x);
+                    mix(top, bottom, f.y)
+                };
+                mix(plane(z0), plane(z1), f.z)
+            }
+        }
+    }
+
+    /// Texel `texel`, unfiltered, each coordinate clamped to the last texel.
+    ///
+    /// Program kinds: all.
+    pub fn fetch(&self, texel: UVec3) -> Vec4 {
+        if self.size.min_element() == 0 {
+            return Vec4::ZERO;
+        }
+        let t = texel.min(self.size - 1);
+        self.texel(t.x as usize, t.y as usize, t.z as usize)
+    }
+
+    fn texel(&self, x: usize, y: usize, z: usize) -> Vec4 {
+        let (w, h) = (self.size.x as usize, self.size.y as usize);
+        debug_assert!(x < w && y < h && z < self.size.z as usize);
+        // SAFETY: in range, so inside the texels of the contract.
+        unsafe { *self.texels.add(x + y * w + z * w * h) }
+    }
+}
+
+impl fmt::Debug for Sampler3d {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Sampler3d")
+            .field("size", &self.size)
+            .field("wrap", &self.wrap)
+            .field("filter", &self.filter)
+            .finish()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -563,5 +671,29 @@ mod tests {
         let modes = SamplerModes { wrap: Clamp, filter: Linear, index: IndexMode::ArrayIndex, ..Default::default() };
         let s = unsafe { Sampler2d::from_raw_mip_parts(TEXELS.as_ptr(), 2, 2, 1, modes) };
         assert_eq!(s.sample(Vec2::new(1.0, 0.5)).x, 0.5);
+    }
+
+    #[test]
+    fn sampler_3d_reads_and_blends_eight_texels() {
+        // A 2x2x2 cube: texel (x, y, z) is texel(x + 2y + 4z).
+        let texels: Vec<Vec4> = (0..8).map(|i| texel(i as f32)).collect();
+        for wrap in [Repeat, Clamp, Mirror] {
+            let n = unsafe { Sampler3d::from_raw_parts(texels.as_ptr(), UVec3::splat(2), wrap, Nearest) };
+            assert_eq!(n.sample(Vec3::new(0.75, 0.25, 0.75)), texel(5.0));
+            assert_eq!(n.fetch(UVec3::new(1, 1, 9)), texel(7.0));
+            let l = unsafe { Sampler3d::from_raw_parts(texels.as_ptr(), UVec3::splat(2), wrap, Linear) };
+            assert_eq!(l.sample(Vec3::new(0.25, 0.75, 0.25)), texel(2.0));
+            // The centre: the mean of all eight, 3.5.
+            assert_eq!(l.sample(Vec3::splat(0.5)), texel(3.5));
+        }
+        // Past the far z face: repeat wraps to z = 0, clamp stays at 1.
+        let r = unsafe { Sampler3d::from_raw_parts(texels.as_ptr(), UVec3::splat(2), Repeat, Nearest) };
+        assert_eq!(r.sample(Vec3::new(0.25, 0.25, 1.25)), texel(0.0));
+        let c = unsafe { Sampler3d::from_raw_parts(texels.as_ptr(), UVec3::splat(2), Clamp, Nearest) };
+        assert_eq!(c.sample(Vec3::new(0.25, 0.25, 1.25)), texel(4.0));
+        assert_eq!(c.sample(Vec3::new(f32::NAN, 0.25, 0.75)), texel(4.0));
+        let empty = unsafe { Sampler3d::from_raw_parts(core::ptr::null(), UVec3::new(2, 0, 2), Clamp, Linear) };
+        assert_eq!(empty.sample(Vec3::ONE), Vec4::ZERO);
+        assert_eq!(empty.fetch(UVec3::ONE), Vec4::ZERO);
     }
 }

@@ -171,6 +171,7 @@ pub enum Ty {
     TransformKind,
     Buffer(BufferKind, Box<Ty>),
     Sampler,
+    Sampler3d,
     /// `&T` / `&mut T`: only parameters and arguments.
     Ref(bool, Box<Ty>),
     /// The type of `return`, `break`, `continue`.
@@ -182,6 +183,7 @@ impl PartialEq for Ty {
         use Ty::*;
         match (self, other) {
             (Unit, Unit) | (Ray, Ray) | (Aabb, Aabb) | (Object, Object) | (Sampler, Sampler) => true,
+            (Sampler3d, Sampler3d) => true,
             (TransformKind, TransformKind) | (Never, Never) => true,
             (Scalar(a), Scalar(b)) => a == b,
             (IntVar(a), IntVar(b)) => a == b,
@@ -281,6 +283,7 @@ impl Ty {
             Ty::Object | Ty::TransformKind | Ty::Enum(_) | Ty::Callable(_) | Ty::BufferId(..) => "u32".into(),
             Ty::Buffer(..) => "RtBuffer".into(),
             Ty::Sampler => "RtSampler".into(),
+            Ty::Sampler3d => "RtSampler3d".into(),
             Ty::Ref(true, t) => format!("ptr<function, {}>", t.wgsl()),
             Ty::Ref(false, t) => t.wgsl(),
         }
@@ -314,6 +317,7 @@ impl Ty {
             Ty::Ray => 9,
             Ty::Aabb => 6,
             Ty::Buffer(..) | Ty::Sampler => 4,
+            Ty::Sampler3d => 5,
             Ty::Unit | Ty::Never | Ty::Ref(..) => 0,
         }
     }
@@ -360,6 +364,7 @@ impl fmt::Display for Ty {
             Ty::TransformKind => write!(f, "TransformKind"),
             Ty::Buffer(k, t) => write!(f, "{}<{t}>", k.rust_name()),
             Ty::Sampler => write!(f, "Sampler2d"),
+            Ty::Sampler3d => write!(f, "Sampler3d"),
             Ty::Ref(true, t) => write!(f, "&mut {t}"),
             Ty::Ref(false, t) => write!(f, "&{t}"),
         }
@@ -396,6 +401,7 @@ pub fn builtin_type(name: &str) -> Option<Ty> {
         "Object" => Ty::Object,
         "TransformKind" => Ty::TransformKind,
         "Sampler2d" => Ty::Sampler,
+        "Sampler3d" => Ty::Sampler3d,
         _ => return None,
     })
 }

@@ -104,12 +104,13 @@ pub(crate) fn encode_heap(scene: &Scene, records: &Records) -> Result<EncodedHea
                     };
                     // prelude.wgsl's RtSampler.mode: wrap, filter and
                     // index mode, mip filter and level count, a byte each.
-                    heap.extend([
-                        sampler_offsets[s.index() as usize] as u32,
-                        rec.width,
-                        rec.height,
-                        wrap | (filter << 8) | (array << 9) | (mip << 16) | (rec.levels << 24),
-                    ]);
+                    let mode = wrap | (filter << 8) | (array << 9) | (mip << 16) | (rec.levels << 24);
+                    let offset = sampler_offsets[s.index() as usize] as u32;
+                    // RtSampler, or RtSampler3d with its depth.
+                    match rec.depth {
+                        None => heap.extend([offset, rec.width, rec.height, mode]),
+                        Some(depth) => heap.extend([offset, rec.width, rec.height, depth, mode]),
+                    }
                 }
                 (VarValue::Object(n), _) => heap.push(n.index()),
                 (VarValue::Buffer(_), _) => unreachable!("checked by resolve_values"),

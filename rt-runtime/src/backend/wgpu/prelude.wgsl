@@ -86,6 +86,7 @@ fn rt_m4(w: u32) -> mat4x4<f32> {
 
 fn rt_load_RtBuffer(w: u32) -> RtBuffer { return RtBuffer(rt_hw(w), rt_hw(w + 1u), rt_hw(w + 2u), rt_hw(w + 3u)); }
 fn rt_load_RtSampler(w: u32) -> RtSampler { return RtSampler(rt_hw(w), rt_hw(w + 1u), rt_hw(w + 2u), rt_hw(w + 3u)); }
+fn rt_load_RtSampler3d(w: u32) -> RtSampler3d { return RtSampler3d(rt_hw(w), rt_hw(w + 1u), rt_hw(w + 2u), rt_hw(w + 3u), rt_hw(w + 4u)); }
 
 fn rt_buf_check(b: RtBuffer, i: u32) -> bool {
     if i < b.len { return true; }
@@ -259,6 +260,47 @@ fn rt_tex_sample_grad(s: RtSampler, uv: vec2<f32>, dx: vec2<f32>, dy: vec2<f32>)
     let size = vec2<f32>(f32(s.width), f32(s.height));
     let rho = max(rt_tex_side(dx * size), rt_tex_side(dy * size));
     return rt_tex_sample_lod(s, uv, log2(rho));
+}
+
+// 3D textures (rt-std's Sampler3d): one level, texel (x, y, z) at
+// x + y * width + z * width * height; the 2D rules with a third axis.
+fn rt_texel3(s: RtSampler3d, x: u32, y: u32, z: u32) -> vec4<f32> {
+    let w = s.offset + ((z * s.height + y) * s.width + x) * 4u;
+    return vec4<f32>(bitcast<f32>(rt_hw(w)), bitcast<f32>(rt_hw(w + 1u)), bitcast<f32>(rt_hw(w + 2u)), bitcast<f32>(rt_hw(w + 3u)));
+}
+fn rt_tex3_fetch(s: RtSampler3d, texel: vec3<u32>) -> vec4<f32> {
+    if s.width == 0u || s.height == 0u || s.depth == 0u { return vec4<f32>(); }
+    let t = min(texel, vec3<u32>(s.width, s.height, s.depth) - 1u);
+    return rt_texel3(s, t.x, t.y, t.z);
+}
+fn rt_tex3_sample(s: RtSampler3d, uvw_in: vec3<f32>) -> vec4<f32> {
+    if s.width == 0u || s.height == 0u || s.depth == 0u { return vec4<f32>(); }
+    let finite = abs(uvw_in) <= vec3<f32>(RT_F32_MAX);
+    let uvw = select(vec3<f32>(0.0), uvw_in, finite);
+    let wrap = s.mode & 0xffu;
+    let n = vec3<i32>(i32(s.width), i32(s.height), i32(s.depth));
+    let p = uvw * vec3<f32>(n);
+    if ((s.mode >> 8u) & 1u) == 0u {
+        let i = vec3<i32>(floor(p));
+        return rt_texel3(s, rt_tex_wrap(i.x, n.x, wrap), rt_tex_wrap(i.y, n.y, wrap), rt_tex_wrap(i.z, n.z, wrap));
+    }
+    let q = p - 0.5;
+    let f = floor(q);
+    let a = q - f;
+    let i = vec3<i32>(f);
+    let x0 = rt_tex_wrap(i.x, n.x, wrap);
+    let x1 = rt_tex_wrap(i.x + 1, n.x, wrap);
+    let y0 = rt_tex_wrap(i.y, n.y, wrap);
+    let y1 = rt_tex_wrap(i.y + 1, n.y, wrap);
+    let z0 = rt_tex_wrap(i.z, n.z, wrap);
+    let z1 = rt_tex_wrap(i.z + 1, n.z, wrap);
+    let top0 = rt_texel3(s, x0, y0, z0) * (1.0 - a.x) + rt_texel3(s, x1, y0, z0) * a.x;
+    let bottom0 = rt_texel3(s, x0, y1, z0) * (1.0 - a.x) + rt_texel3(s, x1, y1, z0) * a.x;
+    let top1 = rt_texel3(s, x0, y0, z1) * (1.0 - a.x) + rt_texel3(s, x1, y0, z1) * a.x;
+    let bottom1 = rt_texel3(s, x0, y1, z1) * (1.0 - a.x) + rt_texel3(s, x1, y1, z1) * a.x;
+    let near = top0 * (1.0 - a.y) + bottom0 * a.y;
+    let far = top1 * (1.0 - a.y) + bottom1 * a.y;
+    return near * (1.0 - a.z) + far * a.z;
 }
 
 // ---- rt_printf!: records of (format id, launch index, word count, words)

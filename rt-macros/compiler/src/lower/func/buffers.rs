@@ -163,6 +163,39 @@ impl FnLowerer<'_> {
         Ok(Val::new(t, elem.clone()))
     }
 
+    /// `Sampler3d`'s methods: `sample(uvw)`, `fetch(texel)`, `size()`.
+    pub(super) fn sampler3d_method(&mut self, recv: Val, name: &str, args: &[&Expr], name_span: Span) -> Result<Val> {
+        let (f, arg, ty) = match name {
+            "sample" => ("rt_tex3_sample", "uvw", Ty::vec(3)),
+            "fetch" => ("rt_tex3_fetch", "texel", Ty::Vec(3, Scalar::U32)),
+            "size" => {
+                if !args.is_empty() {
+                    return Err(Error::new(name_span, "`Sampler3d::size` takes no arguments"));
+                }
+                let size = format!("vec3<u32>({0}.width, {0}.height, {0}.depth)", recv.code);
+                return Ok(Val::new(size, Ty::Vec(3, Scalar::U32)).with_effects(recv.effects).with_reads(recv.reads));
+            }
+            _ => {
+                return Err(Error::new(
+                    name_span,
+                    format!("no method `{name}` on `Sampler3d` (it has sample, fetch, size)"),
+                ));
+            }
+        };
+        if args.len() != 1 {
+            return Err(Error::new(
+                name_span,
+                format!("`Sampler3d::{name}` takes 1 argument (`{arg}: {ty}`), found {}", args.len()),
+            ));
+        }
+        let v = self.expr(args[0], Some(&ty))?;
+        let v = self.deref(v);
+        let v = self.coerce(v, &ty, args[0].span())?;
+        Ok(Val::new(format!("{f}({}, {})", recv.code, v.code), Ty::vec(4))
+            .with_effects(recv.effects || v.effects)
+            .with_reads(recv.reads || v.reads))
+    }
+
     pub(super) fn sampler_method(
         &mut self,
         recv: Val,
