@@ -265,6 +265,8 @@ pub const RUNTIME_FUNCTIONS: &[WgslFn] = &[
     },
     WgslFn { name: "rt_tex3_sample", params: &[("s", Sampler3d), ("uvw", Vec3)], ret: Vec4 },
     WgslFn { name: "rt_tex3_fetch", params: &[("s", Sampler3d), ("texel", UVec3)], ret: Vec4 },
+    // A cube map (`SamplerCube`) is an `RtSampler` of six square faces.
+    WgslFn { name: "rt_texcube_sample", params: &[("s", Sampler), ("dir", Vec3)], ret: Vec4 },
     WgslFn { name: "rt_printf_begin", params: &[("format", U32), ("words", U32)], ret: Bool },
     WgslFn { name: "rt_printf_word", params: &[("word", U32)], ret: Unit },
 ];

@@ -8,7 +8,7 @@
 
 use glam::Vec4;
 use rt_std::program::TypeLayout;
-use rt_std::{Buffer, Buffer2d, RtData, RwBuffer, RwBuffer2d, Sampler2d, Sampler3d, SamplerModes};
+use rt_std::{Buffer, Buffer2d, RtData, RwBuffer, RwBuffer2d, Sampler2d, Sampler3d, SamplerCube, SamplerModes};
 use std::any::Any;
 use std::cell::UnsafeCell;
 
@@ -167,8 +167,19 @@ pub(crate) struct SamplerRec {
     pub height: u32,
     pub levels: u32,
     pub modes: SamplerModes,
-    /// A 3D texture's depth (`Sampler3d`), `None` for a 2D one.
-    pub depth: Option<u32>,
+    /// What programs read it as.
+    pub shape: SamplerShape,
+}
+
+/// A sampler's shape: the program type that reads it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum SamplerShape {
+    /// `Sampler2d`: the mip levels one after the other.
+    Flat,
+    /// `Sampler3d` of this depth: one level, slice after slice.
+    Volume(u32),
+    /// `SamplerCube`: six `width x width` faces (+x, -x, +y, -y, +z, -z).
+    Cube,
 }
 
 impl SamplerRec {
@@ -179,15 +190,29 @@ impl SamplerRec {
     }
 
     pub fn handle_3d(&self) -> Sampler3d {
-        let size = glam::UVec3::new(self.width, self.height, self.depth.unwrap_or(1));
+        let depth = match self.shape {
+            SamplerShape::Volume(d) => d,
+            _ => 1,
+        };
+        let size = glam::UVec3::new(self.width, self.height, depth);
         // SAFETY: `texels` holds width * height * depth texels (checked by
         // the context) and outlives the launch.
         unsafe { Sampler3d::from_raw_parts(self.texels.as_ptr(), size, self.modes.wrap, self.modes.filter) }
     }
 
+    pub fn handle_cube(&self) -> SamplerCube {
+        // SAFETY: `texels` holds six width x width faces (checked by the
+        // context) and outlives the launch.
+        unsafe { SamplerCube::from_raw_parts(self.texels.as_ptr(), self.width, self.modes.filter) }
+    }
+
     /// The program type a variable of this sampler must have.
     pub fn type_name(&self) -> &'static str {
-        if self.depth.is_some() { "Sampler3d" } else { "Sampler2d" }
+        match self.shape {
+            SamplerShape::Flat => "Sampler2d",
+            SamplerShape::Volume(_) => "Sampler3d",
+            SamplerShape::Cube => "SamplerCube",
+        }
     }
 }
 

@@ -5,7 +5,7 @@ use crate::accel::cache::AccelCache;
 use crate::backend::tiles::{LaunchControl, LaunchProgress, Pace, Tile, TileBudget};
 use crate::backend::wgpu::{Gpu, WgpuBackend};
 use crate::backend::{self, Backend, LaunchBackend, LaunchReport, Pacing, Settings};
-use crate::buffer::{BufferRec, BufferType, SamplerRec, Typed};
+use crate::buffer::{BufferRec, BufferType, SamplerRec, SamplerShape, Typed};
 use crate::error::{Result, RtError};
 use crate::scene::*;
 use crate::usage::UsageReport;
@@ -776,7 +776,7 @@ impl Context {
             height,
             levels: 1,
             modes: SamplerModes { wrap, filter, ..SamplerModes::default() },
-            depth: None,
+            shape: SamplerShape::Flat,
         };
         self.scene.samplers.push(rec);
         Ok(SamplerId(self.scene.samplers.len() as u32 - 1))
@@ -830,7 +830,7 @@ impl Context {
             height,
             levels: count,
             modes: SamplerModes { wrap, filter, mip, index: IndexMode::NormalizedCoordinates },
-            depth: None,
+            shape: SamplerShape::Flat,
         };
         self.scene.samplers.push(rec);
         Ok(SamplerId(self.scene.samplers.len() as u32 - 1))
@@ -875,7 +875,7 @@ impl Context {
                 mip: MipFilter::Linear,
                 index: options.index,
             },
-            depth: None,
+            shape: SamplerShape::Flat,
         };
         self.scene.samplers.push(rec);
         Ok(SamplerId(self.scene.samplers.len() as u32 - 1))
@@ -905,7 +905,37 @@ impl Context {
             height: size.y,
             levels: 1,
             modes: SamplerModes { wrap, filter, ..SamplerModes::default() },
-            depth: Some(size.z),
+            shape: SamplerShape::Volume(size.z),
+        };
+        self.scene.samplers.push(rec);
+        Ok(SamplerId(self.scene.samplers.len() as u32 - 1))
+    }
+
+    /// A cube map (OptiX's cube-map textures, read by a program's
+    /// `SamplerCube` variable with `sample_dir`): six `size x size` faces
+    /// of RGBA texels, `faces[0..6]` being +x, -x, +y, -y, +z, -z (Vulkan's
+    /// layer order), each row-major as Vulkan lays a face out (`s` along a
+    /// row, `t` down the rows; see `SamplerCube::face_coordinates`). Faces
+    /// clamp to their edges. A face of the wrong texel count is refused
+    /// naming the sampler and the face.
+    pub fn create_sampler_cube(&mut self, faces: [Vec<Vec4>; 6], size: u32, filter: FilterMode) -> Result<SamplerId> {
+        const NAMES: [&str; 6] = ["+x", "-x", "+y", "-y", "+z", "-z"];
+        let n = size as usize * size as usize;
+        for (face, name) in faces.iter().zip(NAMES) {
+            if face.len() != n || n == 0 {
+                return Err(RtError::BadSampler {
+                    sampler: self.scene.samplers.len() as u32,
+                    problem: format!("cube face {name} has {} texels for a {size}x{size} face", face.len()),
+                });
+            }
+        }
+        let rec = SamplerRec {
+            texels: faces.concat().into_boxed_slice(),
+            width: size,
+            height: size,
+            levels: 1,
+            modes: SamplerModes { wrap: WrapMode::Clamp, filter, ..SamplerModes::default() },
+            shape: SamplerShape::Cube,
         };
         self.scene.samplers.push(rec);
         Ok(SamplerId(self.scene.samplers.len() as u32 - 1))

@@ -10,6 +10,7 @@
 
 pub mod callables;
 
+use crate::buffer::SamplerShape;
 use crate::error::{Result, RtError};
 use crate::scene::{GeometryKind, NodeId, NodeKind, ProgramId};
 use crate::scene::{Scene, Scope};
@@ -132,10 +133,15 @@ pub fn resolve_values(scene: &Scene, p: ProgramId, record: Record) -> Result<Vec
                     && rec.dims == dimensions
                     && (!writable || rec.ty.writable_by_programs())
             }
-            (VarValue::Sampler(s), VariableKind::Sampler | VariableKind::Sampler3d) => {
+            (VarValue::Sampler(s), VariableKind::Sampler | VariableKind::Sampler3d | VariableKind::SamplerCube) => {
                 let rec =
                     scene.samplers.get(s.index() as usize).ok_or_else(|| RtError::InvalidHandle(format!("{s:?}")))?;
-                if rec.depth.is_some() != (v.kind == VariableKind::Sampler3d) {
+                let fits = match rec.shape {
+                    SamplerShape::Flat => v.kind == VariableKind::Sampler,
+                    SamplerShape::Volume(_) => v.kind == VariableKind::Sampler3d,
+                    SamplerShape::Cube => v.kind == VariableKind::SamplerCube,
+                };
+                if !fits {
                     return Err(mismatch(format!("{} ({s:?})", rec.type_name())));
                 }
                 true
@@ -175,6 +181,9 @@ pub fn resolve(scene: &Scene, p: ProgramId, record: Record) -> Result<Call> {
                 }
                 (VarValue::Sampler(s), VariableKind::Sampler3d) => {
                     Arc::new(scene.samplers[s.index() as usize].handle_3d())
+                }
+                (VarValue::Sampler(s), VariableKind::SamplerCube) => {
+                    Arc::new(scene.samplers[s.index() as usize].handle_cube())
                 }
                 (VarValue::Sampler(s), _) => Arc::new(scene.samplers[s.index() as usize].handle()),
                 (VarValue::Object(n), _) => Arc::new(n.object()),

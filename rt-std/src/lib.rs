@@ -158,5 +158,6 @@ pub use rt_macros::{
 };
 pub use scene::{Object, TransformKind};
 pub use texture::{
-    FilterMode, IndexMode, MipFilter, Sampler2d, Sampler3d, SamplerModes, WrapMode, mip_level_count, mip_level_size,
+    FilterMode, IndexMode, MipFilter, Sampler2d, Sampler3d, SamplerCube, SamplerModes, WrapMode, mip_level_count,
+    mip_level_size,
 };

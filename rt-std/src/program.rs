@@ -84,6 +84,8 @@ pub enum VariableKind {
     Sampler,
     /// A 3D texture sampler handle.
     Sampler3d,
+    /// A cube map sampler handle.
+    SamplerCube,
     /// A node of the scene graph to trace against.
     Object,
 }

@@ -3,6 +3,7 @@
 //! word offset in the one read-write binding `rt_heap`.
 
 use super::kernel;
+use crate::buffer::SamplerShape;
 use crate::error::{Result, RtError};
 use crate::link::{self, Record};
 use crate::scene::{ProgramId, Scene};
@@ -106,10 +107,11 @@ pub(crate) fn encode_heap(scene: &Scene, records: &Records) -> Result<EncodedHea
                     // index mode, mip filter and level count, a byte each.
                     let mode = wrap | (filter << 8) | (array << 9) | (mip << 16) | (rec.levels << 24);
                     let offset = sampler_offsets[s.index() as usize] as u32;
-                    // RtSampler, or RtSampler3d with its depth.
-                    match rec.depth {
-                        None => heap.extend([offset, rec.width, rec.height, mode]),
-                        Some(depth) => heap.extend([offset, rec.width, rec.height, depth, mode]),
+                    // RtSampler (a cube map's too), or RtSampler3d with its
+                    // depth.
+                    match rec.shape {
+                        SamplerShape::Volume(depth) => heap.extend([offset, rec.width, rec.height, depth, mode]),
+                        _ => heap.extend([offset, rec.width, rec.height, mode]),
                     }
                 }
                 (VarValue::Object(n), _) => heap.push(n.index()),

@@ -303,6 +303,38 @@ fn rt_tex3_sample(s: RtSampler3d, uvw_in: vec3<f32>) -> vec4<f32> {
     return near * (1.0 - a.z) + far * a.z;
 }
 
+// Cube maps (rt-std's SamplerCube): an RtSampler of six square faces, +x,
+// -x, +y, -y, +z, -z; the face and its coordinates by Vulkan's table (ties
+// to z, then y, then x; a non-finite component as 0, the zero direction at
+// face +z's centre), sampled on the face clamped to its edges.
+fn rt_texcube_sample(s: RtSampler, dir: vec3<f32>) -> vec4<f32> {
+    if s.width == 0u { return vec4<f32>(); }
+    let finite = abs(dir) <= vec3<f32>(RT_F32_MAX);
+    let d = select(vec3<f32>(0.0), dir, finite);
+    let a = abs(d);
+    var face = 0u;
+    var sc = 0.0;
+    var tc = 0.0;
+    var rc = 0.0;
+    if a.z >= a.x && a.z >= a.y {
+        rc = a.z;
+        tc = -d.y;
+        if d.z >= 0.0 { face = 4u; sc = d.x; } else { face = 5u; sc = -d.x; }
+    } else if a.y >= a.x {
+        rc = a.y;
+        sc = d.x;
+        if d.y >= 0.0 { face = 2u; tc = d.z; } else { face = 3u; tc = -d.z; }
+    } else {
+        rc = a.x;
+        tc = -d.y;
+        if d.x >= 0.0 { face = 0u; sc = -d.z; } else { face = 1u; sc = d.z; }
+    }
+    var st = vec2<f32>(0.5);
+    if rc != 0.0 { st = vec2<f32>(0.5 * (sc / rc) + 0.5, 0.5 * (tc / rc) + 0.5); }
+    let lv = RtTexLevel(s.offset + face * s.width * s.width * 4u, vec2<u32>(s.width, s.width));
+    return rt_tex_sample_level(s, lv, st);
+}
+
 // ---- rt_printf!: records of (format id, launch index, word count, words)
 // after the exception records in rt_log. rt_log: [0] exceptions, [1] print
 // words used, [2] rays traced, [3] unused, then exceptions, then prints.

@@ -196,6 +196,41 @@ impl FnLowerer<'_> {
             .with_reads(recv.reads || v.reads))
     }
 
+    /// `SamplerCube`'s methods: `sample_dir(dir)`, `size()`.
+    pub(super) fn sampler_cube_method(
+        &mut self,
+        recv: Val,
+        name: &str,
+        args: &[&Expr],
+        name_span: Span,
+    ) -> Result<Val> {
+        match name {
+            "size" => {
+                if !args.is_empty() {
+                    return Err(Error::new(name_span, "`SamplerCube::size` takes no arguments"));
+                }
+                let size = format!("{}.width", recv.code);
+                Ok(Val::new(size, Ty::Scalar(Scalar::U32)).with_effects(recv.effects).with_reads(recv.reads))
+            }
+            "sample_dir" => {
+                if args.len() != 1 {
+                    return Err(Error::new(
+                        name_span,
+                        format!("`SamplerCube::sample_dir` takes 1 argument (`dir: Vec3`), found {}", args.len()),
+                    ));
+                }
+                let ty = Ty::vec(3);
+                let v = self.expr(args[0], Some(&ty))?;
+                let v = self.deref(v);
+                let v = self.coerce(v, &ty, args[0].span())?;
+                Ok(Val::new(format!("rt_texcube_sample({}, {})", recv.code, v.code), Ty::vec(4))
+                    .with_effects(recv.effects || v.effects)
+                    .with_reads(recv.reads || v.reads))
+            }
+            _ => Err(Error::new(name_span, format!("no method `{name}` on `SamplerCube` (it has sample_dir, size)"))),
+        }
+    }
+
     pub(super) fn sampler_method(
         &mut self,
         recv: Val,
