@@ -66,8 +66,8 @@
 //! `buffer[i]` can return a reference); the words are the exchange format.
 //!
 //! ## Handles
-//! [`Buffer`], [`RwBuffer`], [`Buffer2d`], [`RwBuffer2d`], [`Sampler2d`] and
-//! [`Object`] are small `Copy` values that a program receives as variables.
+//! [`Buffer`], [`RwBuffer`], [`Buffer2d`], [`RwBuffer2d`], [`Sampler2d`],
+//! [`Sampler3d`], [`SamplerCube`] and [`Object`] are small `Copy` values that a program receives as variables.
 //! The runtime owns the storage behind them and creates them with `unsafe`
 //! `from_raw_parts` constructors whose contracts say what it must keep
 //! valid. Buffer accesses are bounds-checked: out of bounds, a load reads

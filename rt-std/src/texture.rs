@@ -1,4 +1,6 @@
-//! [`Sampler2d`]: filtered reads of RGBA `f32` textures.
+//! [`Sampler2d`] (with mip levels), [`Sampler3d`] and [`SamplerCube`]:
+//! filtered reads of RGBA `f32` textures. (Texel formats are decoded to
+//! RGBA `f32` by the host when it creates a sampler.)
 //!
 //! The CPU implementation here is the reference for the GPU one, written to
 //! the rules of WebGPU/Vulkan sampling with explicit level 0:
