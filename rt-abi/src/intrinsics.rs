@@ -25,6 +25,8 @@ pub enum AbiTy {
     Buffer,
     /// A sampler handle, WGSL `RtSampler`.
     Sampler,
+    /// A 3D sampler handle, WGSL `RtSampler3d`.
+    Sampler3d,
 }
 
 impl AbiTy {
@@ -44,6 +46,7 @@ impl AbiTy {
             AbiTy::Ray => "RtRay",
             AbiTy::Buffer => "RtBuffer",
             AbiTy::Sampler => "RtSampler",
+            AbiTy::Sampler3d => "RtSampler3d",
         }
     }
 
@@ -64,6 +67,7 @@ impl AbiTy {
             AbiTy::TransformKind => "TransformKind",
             AbiTy::Buffer => "RtBuffer",
             AbiTy::Sampler => "Sampler2d",
+            AbiTy::Sampler3d => "Sampler3d",
         }
     }
 }
@@ -259,6 +263,16 @@ pub const RUNTIME_FUNCTIONS: &[WgslFn] = &[
     WgslFn { name: "rt_buf_size3", params: &[("b", Buffer)], ret: UVec3 },
     WgslFn { name: "rt_tex_sample", params: &[("s", Sampler), ("uv", Vec2)], ret: Vec4 },
     WgslFn { name: "rt_tex_fetch", params: &[("s", Sampler), ("texel", UVec2)], ret: Vec4 },
+    WgslFn { name: "rt_tex_sample_lod", params: &[("s", Sampler), ("uv", Vec2), ("lod", F32)], ret: Vec4 },
+    WgslFn {
+        name: "rt_tex_sample_grad",
+        params: &[("s", Sampler), ("uv", Vec2), ("dx", Vec2), ("dy", Vec2)],
+        ret: Vec4,
+    },
+    WgslFn { name: "rt_tex3_sample", params: &[("s", Sampler3d), ("uvw", Vec3)], ret: Vec4 },
+    WgslFn { name: "rt_tex3_fetch", params: &[("s", Sampler3d), ("texel", UVec3)], ret: Vec4 },
+    // A cube map (`SamplerCube`) is an `RtSampler` of six square faces.
+    WgslFn { name: "rt_texcube_sample", params: &[("s", Sampler), ("dir", Vec3)], ret: Vec4 },
     WgslFn { name: "rt_printf_begin", params: &[("format", U32), ("words", U32)], ret: Bool },
     WgslFn { name: "rt_printf_word", params: &[("word", U32)], ret: Unit },
 ];

@@ -32,6 +32,13 @@ struct RtSampler {
     height: u32,
     mode: u32,
 }
+struct RtSampler3d {
+    offset: u32,
+    width: u32,
+    height: u32,
+    depth: u32,
+    mode: u32,
+}
 ";
 
 /// An f32 as WGSL text every conformant compiler accepts: the shortest

@@ -8,7 +8,10 @@
 
 use glam::Vec4;
 use rt_std::program::TypeLayout;
-use rt_std::{Buffer, Buffer2d, Buffer3d, FilterMode, RtData, RwBuffer, RwBuffer2d, RwBuffer3d, Sampler2d, WrapMode};
+use rt_std::{
+    Buffer, Buffer2d, Buffer3d, RtData, RwBuffer, RwBuffer2d, RwBuffer3d, Sampler2d, Sampler3d, SamplerCube,
+    SamplerModes,
+};
 use std::any::Any;
 use std::cell::UnsafeCell;
 
@@ -172,18 +175,89 @@ impl BufferRec {
     }
 }
 
-/// A texture sampler of the context: RGBA f32 texels with wrap and filter.
+/// A texture sampler of the context: RGBA f32 texels with wrap and filter,
+/// its mip levels one after the other from level 0.
 pub(crate) struct SamplerRec {
     pub texels: Box<[Vec4]>,
     pub width: u32,
     pub height: u32,
-    pub wrap: WrapMode,
-    pub filter: FilterMode,
+    pub levels: u32,
+    pub modes: SamplerModes,
+    /// What programs read it as.
+    pub shape: SamplerShape,
+}
+
+/// A sampler's shape: the program type that reads it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum SamplerShape {
+    /// `Sampler2d`: the mip levels one after the other.
+    Flat,
+    /// `Sampler3d` of this depth: one level, slice after slice.
+    Volume(u32),
+    /// `SamplerCube`: six `width x width` faces (+x, -x, +y, -y, +z, -z).
+    Cube,
 }
 
 impl SamplerRec {
     pub fn handle(&self) -> Sampler2d {
-        // SAFETY: `texels` holds width * height texels and outlives the launch.
-        unsafe { Sampler2d::from_raw_parts(self.texels.as_ptr(), self.width, self.height, self.wrap, self.filter) }
+        // SAFETY: `texels` holds the `levels` levels of a width x height
+        // texture (checked by the context) and outlives the launch.
+        unsafe { Sampler2d::from_raw_mip_parts(self.texels.as_ptr(), self.width, self.height, self.levels, self.modes) }
     }
+
+    pub fn handle_3d(&self) -> Sampler3d {
+        let depth = match self.shape {
+            SamplerShape::Volume(d) => d,
+            _ => 1,
+        };
+        let size = glam::UVec3::new(self.width, self.height, depth);
+        // SAFETY: `texels` holds width * height * depth texels (checked by
+        // the context) and outlives the launch.
+        unsafe { Sampler3d::from_raw_parts(self.texels.as_ptr(), size, self.modes.wrap, self.modes.filter) }
+    }
+
+    pub fn handle_cube(&self) -> SamplerCube {
+        // SAFETY: `texels` holds six width x width faces (checked by the
+        // context) and outlives the launch.
+        unsafe { SamplerCube::from_raw_parts(self.texels.as_ptr(), self.width, self.modes.filter) }
+    }
+
+    /// The program type a variable of this sampler must have.
+    pub fn type_name(&self) -> &'static str {
+        match self.shape {
+            SamplerShape::Flat => "Sampler2d",
+            SamplerShape::Volume(_) => "Sampler3d",
+            SamplerShape::Cube => "SamplerCube",
+        }
+    }
+}
+
+/// A full mip chain of the `width x height` texels (row-major): level 0 is
+/// `texels`, every next level ([`rt_std::mip_level_size`]) a box filter of
+/// the one before, texel `(x, y)` being the mean of texels `(2x, 2y)`,
+/// `(2x + 1, 2y)`, `(2x, 2y + 1)` and `(2x + 1, 2y + 1)`, `(a + b + c + d) /
+/// 4`, each coordinate clamped to the level (so an axis of one texel
+/// averages it with itself, and of an odd size the last row or column is
+/// left out), down to 1x1. Empty for texels of another count than
+/// `width * height` or an empty texture.
+pub fn generate_mip_levels(texels: &[Vec4], width: u32, height: u32) -> Vec<Vec<Vec4>> {
+    if texels.is_empty() || texels.len() != width as usize * height as usize {
+        return Vec::new();
+    }
+    let mut levels = vec![texels.to_vec()];
+    let (mut w, mut h) = (width as usize, height as usize);
+    while w > 1 || h > 1 {
+        let (nw, nh) = ((w / 2).max(1), (h / 2).max(1));
+        let above = levels.last().expect("level 0 is there");
+        let at = |x: usize, y: usize| above[x.min(w - 1) + y.min(h - 1) * w];
+        let next = (0..nw * nh)
+            .map(|i| {
+                let (x, y) = (2 * (i % nw), 2 * (i / nw));
+                (at(x, y) + at(x + 1, y) + at(x, y + 1) + at(x + 1, y + 1)) * 0.25
+            })
+            .collect();
+        levels.push(next);
+        (w, h) = (nw, nh);
+    }
+    levels
 }

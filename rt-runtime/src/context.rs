@@ -5,7 +5,7 @@ use crate::accel::cache::AccelCache;
 use crate::backend::tiles::{LaunchControl, LaunchProgress, Pace, Tile, TileBudget};
 use crate::backend::wgpu::{Gpu, WgpuBackend};
 use crate::backend::{self, Backend, LaunchBackend, LaunchReport, Pacing, Settings};
-use crate::buffer::{BufferRec, BufferType, SamplerRec, Typed};
+use crate::buffer::{BufferRec, BufferType, SamplerRec, SamplerShape, Typed};
 use crate::error::{Result, RtError};
 use crate::scene::*;
 use crate::usage::UsageReport;
@@ -15,7 +15,7 @@ use std::any::Any;
 pub use crate::scene::Scope;
 use glam::{Mat4, Vec4};
 use rt_std::program::{ProgramDescriptor, ProgramKind};
-use rt_std::{FilterMode, RtData, WrapMode};
+use rt_std::{FilterMode, IndexMode, MipFilter, RtData, SamplerModes, WrapMode};
 
 mod device_buffers;
 pub use device_buffers::{DeviceBuffer, WgpuDevice};
@@ -860,8 +860,197 @@ impl Context {
                 problem: format!("{} texels for a {width}x{height} texture", texels.len()),
             });
         }
-        self.scene.samplers.push(SamplerRec { texels: texels.into_boxed_slice(), width, height, wrap, filter });
+        let rec = SamplerRec {
+            texels: texels.into_boxed_slice(),
+            width,
+            height,
+            levels: 1,
+            modes: SamplerModes { wrap, filter, ..SamplerModes::default() },
+            shape: SamplerShape::Flat,
+        };
+        self.scene.samplers.push(rec);
         Ok(SamplerId(self.scene.samplers.len() as u32 - 1))
+    }
+
+    /// A mipmapped sampler (OptiX's mip levels of an `RTtexturesampler`):
+    /// `levels[0]` holds the `width * height` texels of level 0 (row-major),
+    /// `levels[l]` those of level `l`, `max(1, width >> l)` by
+    /// `max(1, height >> l)` texels ([`rt_std::mip_level_size`]); any number of levels
+    /// from 1 to the full chain ([`rt_std::mip_level_count`], down to 1x1).
+    /// `mip` says how [`Sampler2d::sample_lod`](rt_std::Sampler2d) and
+    /// `sample_grad` combine levels. A level of the wrong texel count, or
+    /// more levels than the chain has, is refused naming the sampler and
+    /// the level.
+    pub fn create_sampler_mipmapped(
+        &mut self,
+        levels: Vec<Vec<Vec4>>,
+        width: u32,
+        height: u32,
+        wrap: WrapMode,
+        filter: FilterMode,
+        mip: MipFilter,
+    ) -> Result<SamplerId> {
+        let fail = |problem: String| RtError::BadSampler { sampler: self.scene.samplers.len() as u32, problem };
+        let chain = rt_std::mip_level_count(width, height);
+        if levels.is_empty() {
+            return Err(fail(format!("no mip levels for a {width}x{height} texture (level 0 is needed)")));
+        }
+        if levels.len() > chain as usize {
+            return Err(fail(format!(
+                "{} mip levels for a {width}x{height} texture, whose full chain has {chain} (down to 1x1)",
+                levels.len()
+            )));
+        }
+        for (l, level) in levels.iter().enumerate() {
+            let size = rt_std::mip_level_size(glam::UVec2::new(width, height), l as u32);
+            if level.len() != size.x as usize * size.y as usize {
+                return Err(fail(format!(
+                    "mip level {l} has {} texels; level {l} of a {width}x{height} texture is {}x{} ({} texels)",
+                    level.len(),
+                    size.x,
+                    size.y,
+                    size.x as usize * size.y as usize
+                )));
+            }
+        }
+        let count = levels.len() as u32;
+        let rec = SamplerRec {
+            texels: levels.concat().into_boxed_slice(),
+            width,
+            height,
+            levels: count,
+            modes: SamplerModes { wrap, filter, mip, index: IndexMode::NormalizedCoordinates },
+            shape: SamplerShape::Flat,
+        };
+        self.scene.samplers.push(rec);
+        Ok(SamplerId(self.scene.samplers.len() as u32 - 1))
+    }
+
+    /// A sampler over texels of any supported format (OptiX's buffer
+    /// formats, read and index modes): the host decodes them to RGBA `f32`
+    /// on upload as [`TexelData::decode`](crate::TexelData::decode) says
+    /// (the texture takes 16 bytes a texel), `width * height` of them,
+    /// row-major, one level. With [`IndexMode::ArrayIndex`] coordinates are
+    /// in texels and, as GPUs' unnormalised coordinates, clamp to the edge:
+    /// another wrap mode is refused. Errors name the sampler.
+    pub fn create_sampler_from_texels(
+        &mut self,
+        texels: crate::TexelData,
+        width: u32,
+        height: u32,
+        options: crate::SamplerOptions,
+    ) -> Result<SamplerId> {
+        let fail = |problem: String| RtError::BadSampler { sampler: self.scene.samplers.len() as u32, problem };
+        if texels.len() != width as usize * height as usize || texels.is_empty() {
+            return Err(fail(format!(
+                "{} {} texels for a {width}x{height} texture",
+                texels.len(),
+                texels.format_name()
+            )));
+        }
+        if options.index == IndexMode::ArrayIndex && options.wrap != WrapMode::Clamp {
+            return Err(fail(format!(
+                "array-index coordinates (RT_TEXTURE_INDEX_ARRAY_INDEX) clamp to the edge, as GPUs' unnormalised coordinates do: use WrapMode::Clamp, not {:?}",
+                options.wrap
+            )));
+        }
+        let rec = SamplerRec {
+            texels: texels.decode(options.read).into_boxed_slice(),
+            width,
+            height,
+            levels: 1,
+            modes: SamplerModes {
+                wrap: options.wrap,
+                filter: options.filter,
+                mip: MipFilter::Linear,
+                index: options.index,
+            },
+            shape: SamplerShape::Flat,
+        };
+        self.scene.samplers.push(rec);
+        Ok(SamplerId(self.scene.samplers.len() as u32 - 1))
+    }
+
+    /// A 3D sampler (OptiX `rtTextureSampler<float4, 3>`, read by a
+    /// program's `Sampler3d` variable) over `width * height * depth` RGBA
+    /// texels, texel `(x, y, z)` at `x + y * width + z * width * height`;
+    /// one level. The wrong texel count is refused naming the sampler.
+    pub fn create_sampler_3d(
+        &mut self,
+        texels: Vec<Vec4>,
+        size: glam::UVec3,
+        wrap: WrapMode,
+        filter: FilterMode,
+    ) -> Result<SamplerId> {
+        let count = size.x as u64 * size.y as u64 * size.z as u64;
+        if texels.len() as u64 != count || texels.is_empty() {
+            return Err(RtError::BadSampler {
+                sampler: self.scene.samplers.len() as u32,
+                problem: format!("{} texels for a {}x{}x{} texture", texels.len(), size.x, size.y, size.z),
+            });
+        }
+        let rec = SamplerRec {
+            texels: texels.into_boxed_slice(),
+            width: size.x,
+            height: size.y,
+            levels: 1,
+            modes: SamplerModes { wrap, filter, ..SamplerModes::default() },
+            shape: SamplerShape::Volume(size.z),
+        };
+        self.scene.samplers.push(rec);
+        Ok(SamplerId(self.scene.samplers.len() as u32 - 1))
+    }
+
+    /// A cube map (OptiX's cube-map textures, read by a program's
+    /// `SamplerCube` variable with `sample_dir`): six `size x size` faces
+    /// of RGBA texels, `faces[0..6]` being +x, -x, +y, -y, +z, -z (Vulkan's
+    /// layer order), each row-major as Vulkan lays a face out (`s` along a
+    /// row, `t` down the rows; see `SamplerCube::face_coordinates`). Faces
+    /// clamp to their edges. A face of the wrong texel count is refused
+    /// naming the sampler and the face.
+    pub fn create_sampler_cube(&mut self, faces: [Vec<Vec4>; 6], size: u32, filter: FilterMode) -> Result<SamplerId> {
+        const NAMES: [&str; 6] = ["+x", "-x", "+y", "-y", "+z", "-z"];
+        let n = size as usize * size as usize;
+        for (face, name) in faces.iter().zip(NAMES) {
+            if face.len() != n || n == 0 {
+                return Err(RtError::BadSampler {
+                    sampler: self.scene.samplers.len() as u32,
+                    problem: format!("cube face {name} has {} texels for a {size}x{size} face", face.len()),
+                });
+            }
+        }
+        let rec = SamplerRec {
+            texels: faces.concat().into_boxed_slice(),
+            width: size,
+            height: size,
+            levels: 1,
+            modes: SamplerModes { wrap: WrapMode::Clamp, filter, ..SamplerModes::default() },
+            shape: SamplerShape::Cube,
+        };
+        self.scene.samplers.push(rec);
+        Ok(SamplerId(self.scene.samplers.len() as u32 - 1))
+    }
+
+    /// A mipmapped sampler whose levels are generated on the host: the full
+    /// chain of [`generate_mip_levels`](crate::generate_mip_levels) (a 2x2
+    /// box filter, down to 1x1) over level 0's `width * height` texels.
+    pub fn create_sampler_with_mips(
+        &mut self,
+        texels: Vec<Vec4>,
+        width: u32,
+        height: u32,
+        wrap: WrapMode,
+        filter: FilterMode,
+        mip: MipFilter,
+    ) -> Result<SamplerId> {
+        if texels.len() != width as usize * height as usize || texels.is_empty() {
+            return Err(RtError::BadSampler {
+                sampler: self.scene.samplers.len() as u32,
+                problem: format!("{} texels for a {width}x{height} texture", texels.len()),
+            });
+        }
+        let levels = crate::buffer::generate_mip_levels(&texels, width, height);
+        self.create_sampler_mipmapped(levels, width, height, wrap, filter, mip)
     }
 
     /// A sampler from an image (8-bit channels map to `[0, 1]`, float

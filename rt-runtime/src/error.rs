@@ -111,6 +111,8 @@ pub enum RtError {
     BadTransform { problem: String },
     #[error("buffer {buffer}: {problem}")]
     BadBuffer { buffer: u32, problem: String },
+    #[error("sampler {sampler}: {problem}")]
+    BadSampler { sampler: u32, problem: String },
     #[error("launch of {width}x{height}: {problem}")]
     BadLaunch { width: u32, height: u32, problem: String },
     #[error("program `{program}` ({location}) declares {count} variables; at most {max} are supported")]

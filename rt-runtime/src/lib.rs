@@ -38,6 +38,7 @@ pub mod image_out;
 pub(crate) mod link;
 mod panics;
 pub mod scene;
+pub mod texels;
 pub mod usage;
 pub mod vars;
 
@@ -45,11 +46,12 @@ pub use accel::{Acceleration, Builder};
 pub use backend::tiles::{DEFAULT_TILE_BUDGET, LaunchControl, LaunchProgress, Tile, TileBudget};
 pub use backend::wgpu::Traversal;
 pub use backend::{Backend, ExceptionRecord, LaunchReport, Timings};
-pub use buffer::BufferType;
+pub use buffer::{BufferType, generate_mip_levels};
 pub use context::{Context, ExceptionKind, Scope, UsageCallback};
 pub use error::{Result, RtError};
 pub use scene::{
     BufferId, GeometryId, GeometryInstanceId, GeometryKind, MaterialId, NodeId, ProgramId, SamplerId, TriangleMesh,
 };
+pub use texels::{ReadMode, SamplerOptions, TexelData};
 pub use usage::UsageReport;
 pub use vars::{IntoVariable, VarValue};

@@ -11,6 +11,7 @@
 pub mod callables;
 pub(crate) mod instances;
 
+use crate::buffer::SamplerShape;
 use crate::error::{Result, RtError};
 use crate::scene::{GeometryKind, NodeId, NodeKind, ProgramId};
 use crate::scene::{Scene, Scope};
@@ -133,8 +134,17 @@ pub fn resolve_values(scene: &Scene, p: ProgramId, record: Record) -> Result<Vec
                     && rec.dims == dimensions
                     && (!writable || rec.ty.writable_by_programs())
             }
-            (VarValue::Sampler(s), VariableKind::Sampler) => {
-                scene.samplers.get(s.index() as usize).ok_or_else(|| RtError::InvalidHandle(format!("{s:?}")))?;
+            (VarValue::Sampler(s), VariableKind::Sampler | VariableKind::Sampler3d | VariableKind::SamplerCube) => {
+                let rec =
+                    scene.samplers.get(s.index() as usize).ok_or_else(|| RtError::InvalidHandle(format!("{s:?}")))?;
+                let fits = match rec.shape {
+                    SamplerShape::Flat => v.kind == VariableKind::Sampler,
+                    SamplerShape::Volume(_) => v.kind == VariableKind::Sampler3d,
+                    SamplerShape::Cube => v.kind == VariableKind::SamplerCube,
+                };
+                if !fits {
+                    return Err(mismatch(format!("{} ({s:?})", rec.type_name())));
+                }
                 true
             }
             (VarValue::Object(n), VariableKind::Object) => {
@@ -169,6 +179,12 @@ pub fn resolve(scene: &Scene, p: ProgramId, record: Record) -> Result<Call> {
                 (VarValue::Buffer(b), VariableKind::Buffer { dimensions, writable, .. }) => {
                     let rec = &scene.buffers[b.index() as usize];
                     Arc::from(rec.storage.handle(dimensions, writable, [rec.width, rec.height, rec.depth]))
+                }
+                (VarValue::Sampler(s), VariableKind::Sampler3d) => {
+                    Arc::new(scene.samplers[s.index() as usize].handle_3d())
+                }
+                (VarValue::Sampler(s), VariableKind::SamplerCube) => {
+                    Arc::new(scene.samplers[s.index() as usize].handle_cube())
                 }
                 (VarValue::Sampler(s), _) => Arc::new(scene.samplers[s.index() as usize].handle()),
                 (VarValue::Object(n), _) => Arc::new(n.object()),

@@ -66,8 +66,8 @@
 //! `buffer[i]` can return a reference); the words are the exchange format.
 //!
 //! ## Handles
-//! [`Buffer`], [`RwBuffer`], [`Buffer2d`], [`RwBuffer2d`], [`Sampler2d`] and
-//! [`Object`] are small `Copy` values that a program receives as variables.
+//! [`Buffer`], [`RwBuffer`], [`Buffer2d`], [`RwBuffer2d`], [`Sampler2d`],
+//! [`Sampler3d`], [`SamplerCube`] and [`Object`] are small `Copy` values that a program receives as variables.
 //! The runtime owns the storage behind them and creates them with `unsafe`
 //! `from_raw_parts` constructors whose contracts say what it must keep
 //! valid. Buffer accesses are bounds-checked: out of bounds, a load reads
@@ -157,4 +157,7 @@ pub use rt_macros::{
     __rt_collect, rt_attributes, rt_const, rt_enum, rt_function, rt_impl, rt_payload, rt_program, rt_struct,
 };
 pub use scene::{Object, TransformKind};
-pub use texture::{FilterMode, Sampler2d, WrapMode};
+pub use texture::{
+    FilterMode, IndexMode, MipFilter, Sampler2d, Sampler3d, SamplerCube, SamplerModes, WrapMode, mip_level_count,
+    mip_level_size,
+};

@@ -31,4 +31,4 @@ pub use crate::ray::{
 };
 pub use crate::scene::Object;
 pub use crate::scene::TransformKind::{self, *};
-pub use crate::texture::{FilterMode, Sampler2d, WrapMode};
+pub use crate::texture::{FilterMode, IndexMode, MipFilter, Sampler2d, Sampler3d, SamplerCube, WrapMode};

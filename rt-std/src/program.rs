@@ -82,6 +82,10 @@ pub enum VariableKind {
     },
     /// A 2D texture sampler handle.
     Sampler,
+    /// A 3D texture sampler handle.
+    Sampler3d,
+    /// A cube map sampler handle.
+    SamplerCube,
     /// A node of the scene graph to trace against.
     Object,
 }

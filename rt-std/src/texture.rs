@@ -1,4 +1,6 @@
-//! [`Sampler2d`]: filtered reads of RGBA `f32` textures.
+//! [`Sampler2d`] (with mip levels), [`Sampler3d`] and [`SamplerCube`]:
+//! filtered reads of RGBA `f32` textures. (Texel formats are decoded to
+//! RGBA `f32` by the host when it creates a sampler.)
 //!
 //! The CPU implementation here is the reference for the GPU one, written to
 //! the rules of WebGPU/Vulkan sampling with explicit level 0:
@@ -15,12 +17,41 @@
 //!   its own), and blends them with `f = p - floor(p)`: first along x, then
 //!   along y, each blend being [`mix`]'s `a * (1 - f) + b * f`.
 //!
+//! Mip levels (OptiX `tex2DLod`, `tex2DGrad`): level `l` of a `w x h`
+//! texture is `max(1, w >> l) x max(1, h >> l)` texels, and a texture has
+//! at most `floor(log2(max(w, h))) + 1` levels ([`mip_level_count`]). Level
+//! selection follows Vulkan's "Level-of-Detail Operation" with no bias and
+//! no LOD clamps beyond the levels there are:
+//!
+//! - [`Sampler2d::sample_lod`] takes the LOD `λ` as given;
+//!   [`Sampler2d::sample_grad`] computes it from the derivatives of `uv`
+//!   along the screen's x and y: with `ρx = |dx * size|` and
+//!   `ρy = |dy * size|` (the footprint's lengths in level-0 texels),
+//!   `λ = log2(max(ρx, ρy))`. A footprint of 1, 2 or 4 texels is LOD 0, 1
+//!   or 2.
+//! - `d = clamp(λ, 0, levels - 1)`; a NaN LOD counts as 0 (`λ = -∞`, a
+//!   zero footprint, is level 0, `+∞` the last level).
+//! - [`MipFilter::Nearest`] samples level `ceil(d + 0.5) - 1` (the nearest
+//!   level, a half rounding down, Vulkan's preferred rule);
+//!   [`MipFilter::Linear`] samples levels `floor(d)` and
+//!   `min(floor(d) + 1, levels - 1)` and blends them with
+//!   `δ = d - floor(d)` as [`mix`] does (at `δ = 0`, level `floor(d)`
+//!   alone). Each level is sampled with the sampler's [`FilterMode`] and
+//!   [`WrapMode`] at its own size: linear filter and linear mip filter are
+//!   trilinear filtering.
+//!
+//! [`Sampler2d::sample`] reads level 0 only: programs run in compute shaders,
+//! which have no screen-space derivatives to choose a level from (WGSL's
+//! `textureSample` is for fragment shaders only), so a program that wants
+//! filtering across levels says which level (`sample_lod`) or gives the
+//! footprint (`sample_grad`), e.g. from a ray differential.
+//!
 //! GPUs filter with a few bits of sub-texel precision (8 in Vulkan's
 //! minimum), so compare GPU results with a tolerance, not bit for bit.
 
 use core::fmt;
 
-use glam::{UVec2, Vec2, Vec4};
+use glam::{UVec2, UVec3, Vec2, Vec3, Vec4};
 
 use crate::math::mix;
 
@@ -64,17 +95,75 @@ pub enum FilterMode {
     Linear,
 }
 
-/// A 2D texture of RGBA `f32` texels with its wrap and filter modes, as a
-/// variable gives it to a program. Texel `(x, y)` is stored at
-/// `x + y * width`. See the [module docs](self) for the sampling rules.
+/// How [`Sampler2d::sample_lod`] and [`Sampler2d::sample_grad`] combine
+/// mip levels (OptiX's mipmap filter mode, Vulkan's `mipmapMode`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum MipFilter {
+    /// The level nearest to the LOD.
+    Nearest,
+    /// A blend of the two levels around the LOD (trilinear filtering with
+    /// [`FilterMode::Linear`]).
+    #[default]
+    Linear,
+}
+
+/// How a sampler reads its coordinates (OptiX's
+/// `rtTextureSamplerSetIndexingMode`, Vulkan's `unnormalizedCoordinates`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum IndexMode {
+    /// `uv` in `[0, 1]` spans the texture (`RT_TEXTURE_INDEX_NORMALIZED_COORDINATES`).
+    #[default]
+    NormalizedCoordinates,
+    /// `uv` in texels: `[0, width] x [0, height]` spans the texture, texel
+    /// `(i, j)` has its centre at `(i + 0.5, j + 0.5)`
+    /// (`RT_TEXTURE_INDEX_ARRAY_INDEX`, CUDA's unnormalised coordinates).
+    /// As on GPUs, such a sampler has one level and clamps to the edge
+    /// (the host refuses other wrap modes).
+    ArrayIndex,
+}
+
+/// A sampler's modes: wrap, filter, mip filter and index mode.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub struct SamplerModes {
+    /// Where coordinates outside the texture read.
+    pub wrap: WrapMode,
+    /// How a level's texels are filtered.
+    pub filter: FilterMode,
+    /// How levels are combined.
+    pub mip: MipFilter,
+    /// Whether coordinates are normalised or in texels.
+    pub index: IndexMode,
+}
+
+/// How many levels a full mip chain of a `width x height` texture has:
+/// `floor(log2(max(width, height))) + 1`, the last level being 1x1 (0 for
+/// an empty texture).
+pub fn mip_level_count(width: u32, height: u32) -> u32 {
+    32 - width.max(height).leading_zeros()
+}
+
+/// The size of level `level` of a texture of level-0 size `size`:
+/// `max(1, size >> level)` per axis (a level past the chain is 1x1).
+pub fn mip_level_size(size: UVec2, level: u32) -> UVec2 {
+    UVec2::new(size.x.checked_shr(level).unwrap_or(0), size.y.checked_shr(level).unwrap_or(0)).max(UVec2::ONE)
+}
+
+/// A 2D texture of RGBA `f32` texels with its wrap and filter modes and its
+/// mip levels, as a variable gives it to a program. Texel `(x, y)` of a
+/// level is stored at `x + y * width` of that level, the levels one after
+/// the other from level 0. See the [module docs](self) for the sampling
+/// rules.
 #[doc(alias = "rtTextureSampler")]
 #[doc(alias = "tex2D")]
 #[derive(Clone, Copy)]
 pub struct Sampler2d {
     texels: *const Vec4,
     size: UVec2,
+    levels: u32,
     wrap: WrapMode,
     filter: FilterMode,
+    mip: MipFilter,
+    index: IndexMode,
 }
 
 // SAFETY: a sampler only reads its texels, which the `from_raw_parts`
@@ -99,7 +188,30 @@ impl Sampler2d {
         wrap: WrapMode,
         filter: FilterMode,
     ) -> Self {
-        Sampler2d { texels, size: UVec2::new(width, height), wrap, filter }
+        let modes = SamplerModes { wrap, filter, ..SamplerModes::default() };
+        // SAFETY: one level, as the caller promises.
+        unsafe { Sampler2d::from_raw_mip_parts(texels, width, height, 1, modes) }
+    }
+
+    /// A sampler over a mip chain of `levels` levels at `texels`: level 0
+    /// (`width * height` texels, row-major), then each next level of
+    /// [`mip_level_size`]. Host side only, as [`Sampler2d::from_raw_parts`].
+    /// `levels` is clamped to `1..=mip_level_count(width, height)` (to 1
+    /// with [`IndexMode::ArrayIndex`]).
+    ///
+    /// # Safety
+    /// `texels` points to the texels of those levels, initialised, valid
+    /// and unchanged while any copy of the handle is used.
+    pub unsafe fn from_raw_mip_parts(
+        texels: *const Vec4,
+        width: u32,
+        height: u32,
+        levels: u32,
+        modes: SamplerModes,
+    ) -> Self {
+        let chain = if modes.index == IndexMode::ArrayIndex { 1 } else { mip_level_count(width, height).max(1) };
+        let SamplerModes { wrap, filter, mip, index } = modes;
+        Sampler2d { texels, size: UVec2::new(width, height), levels: levels.clamp(1, chain), wrap, filter, mip, index }
     }
 
     /// Width and height in texels.
@@ -109,9 +221,19 @@ impl Sampler2d {
         self.size
     }
 
-    /// The texture at normalised coordinates `uv`, filtered and wrapped by
-    /// the sampler's modes (see the [module docs](self)). A NaN or infinite
-    /// coordinate counts as 0.
+    /// How many mip levels the sampler has (1 without mips).
+    ///
+    /// Program kinds: all.
+    pub fn levels(&self) -> u32 {
+        self.levels
+    }
+
+    /// Level 0 of the texture at normalised coordinates `uv`, filtered and
+    /// wrapped by the sampler's modes (see the [module docs](self)). A NaN
+    /// or infinite coordinate counts as 0. Programs run in compute shaders,
+    /// which have no derivatives to pick a mip level from: use
+    /// [`Sampler2d::sample_lod`] or [`Sampler2d::sample_grad`] for the
+    /// others.
     ///
     /// Program kinds: all.
     #[doc(alias = "tex2D")]
@@ -119,12 +241,67 @@ impl Sampler2d {
         if self.is_degenerate() {
             return Vec4::ZERO;
         }
+        self.sample_level(uv, 0)
+    }
+
+    /// The texture at `uv` at level of detail `lod` (0 is level 0, 1 level
+    /// 1, a fraction between them with [`MipFilter::Linear`]), clamped to
+    /// the levels there are; a NaN LOD counts as 0. See the
+    /// [module docs](self).
+    ///
+    /// Program kinds: all.
+    #[doc(alias = "tex2DLod")]
+    pub fn sample_lod(&self, uv: Vec2, lod: f32) -> Vec4 {
+        if self.is_degenerate() {
+            return Vec4::ZERO;
+        }
+        let last = (self.levels - 1) as f32;
+        let d = if lod.is_nan() { 0.0 } else { lod.clamp(0.0, last) };
+        match self.mip {
+            MipFilter::Nearest => self.sample_level(uv, ((d + 0.5).ceil() - 1.0) as u32),
+            MipFilter::Linear => {
+                let hi = d.floor();
+                let delta = d - hi;
+                let a = self.sample_level(uv, hi as u32);
+                if delta == 0.0 {
+                    return a;
+                }
+                let b = self.sample_level(uv, (hi + 1.0).min(last) as u32);
+                mix(a, b, delta)
+            }
+        }
+    }
+
+    /// The texture at `uv` at the level of detail of a footprint whose
+    /// sides are `dx` and `dy` in normalised coordinates (the derivatives
+    /// of `uv` along the screen's x and y): `log2` of the longer side in
+    /// level-0 texels, as OpenGL and Vulkan define it, then as
+    /// [`Sampler2d::sample_lod`].
+    ///
+    /// Program kinds: all.
+    #[doc(alias = "tex2DGrad")]
+    pub fn sample_grad(&self, uv: Vec2, dx: Vec2, dy: Vec2) -> Vec4 {
+        let size = self.size.as_vec2();
+        let rho = (dx * size).length().max((dy * size).length());
+        self.sample_lod(uv, rho.log2())
+    }
+
+    /// Level `level` (< `levels`) at `uv`; the sampler is not degenerate.
+    fn sample_level(&self, uv: Vec2, level: u32) -> Vec4 {
+        let (start, size) = self.level(level);
         let uv = Vec2::select(uv.is_finite_mask(), uv, Vec2::ZERO);
-        let p = uv * self.size.as_vec2();
+        let p = match self.index {
+            IndexMode::NormalizedCoordinates => uv * size.as_vec2(),
+            IndexMode::ArrayIndex => uv,
+        };
+        let wrapped = |x: i64, y: i64| {
+            let (x, y) = (self.wrap.apply(x, size.x), self.wrap.apply(y, size.y));
+            self.texel(start + x + y * size.x as usize)
+        };
         match self.filter {
             FilterMode::Nearest => {
                 let i = p.floor();
-                self.wrapped(i.x as i64, i.y as i64)
+                wrapped(i.x as i64, i.y as i64)
             }
             FilterMode::Linear => {
                 let p = p - 0.5;
@@ -134,8 +311,8 @@ impl Sampler2d {
                 // neither can the `+ 1` below.
                 let (x0, y0) = (i0.x as i64, i0.y as i64);
                 let (x1, y1) = (x0.saturating_add(1), y0.saturating_add(1));
-                let top = mix(self.wrapped(x0, y0), self.wrapped(x1, y0), f.x);
-                let bottom = mix(self.wrapped(x0, y1), self.wrapped(x1, y1), f.x);
+                let top = mix(wrapped(x0, y0), wrapped(x1, y0), f.x);
+                let bottom = mix(wrapped(x0, y1), wrapped(x1, y1), f.x);
                 mix(top, bottom, f.y)
             }
         }
@@ -149,22 +326,28 @@ impl Sampler2d {
             return Vec4::ZERO;
         }
         let t = texel.min(self.size - 1);
-        self.texel(t.x as usize, t.y as usize)
+        self.texel(t.x as usize + t.y as usize * self.size.x as usize)
     }
 
     fn is_degenerate(&self) -> bool {
         self.size.x == 0 || self.size.y == 0
     }
 
-    fn wrapped(&self, x: i64, y: i64) -> Vec4 {
-        self.texel(self.wrap.apply(x, self.size.x), self.wrap.apply(y, self.size.y))
+    /// The index of level `level`'s first texel, and the level's size.
+    fn level(&self, level: u32) -> (usize, UVec2) {
+        let mut start = 0;
+        for l in 0..level {
+            let s = mip_level_size(self.size, l);
+            start += s.x as usize * s.y as usize;
+        }
+        (start, mip_level_size(self.size, level))
     }
 
-    fn texel(&self, x: usize, y: usize) -> Vec4 {
-        debug_assert!(x < self.size.x as usize && y < self.size.y as usize);
-        // SAFETY: `x`, `y` are in range, so the offset is inside the
-        // `width * height` texels of the `from_raw_parts` contract.
-        unsafe { *self.texels.add(x + y * self.size.x as usize) }
+    fn texel(&self, i: usize) -> Vec4 {
+        debug_assert!(i < self.level(self.levels).0);
+        // SAFETY: `i` is inside the levels' texels (callers index a level
+        // below `levels` within its size) of the `from_raw_parts` contract.
+        unsafe { *self.texels.add(i) }
     }
 }
 
@@ -174,7 +357,206 @@ impl fmt::Debug for Sampler2d {
             .field("size", &self.size)
             .field("wrap", &self.wrap)
             .field("filter", &self.filter)
+            .field("levels", &self.levels)
+            .field("mip", &self.mip)
+            .field("index", &self.index)
             .finish()
+    }
+}
+
+/// A 3D texture of RGBA `f32` texels with its wrap and filter modes, as a
+/// variable gives it to a program (OptiX `rtTextureSampler<float4, 3>`).
+/// Texel `(x, y, z)` is stored at `x + y * width + z * width * height`;
+/// `uvw = (0, 0, 0)` is the start of the first texel, `(1, 1, 1)` the end of
+/// the last, and the rules are [`Sampler2d`]'s with a third axis: the
+/// [`WrapMode`] per axis on texel indices, [`FilterMode::Nearest`] reads
+/// texel `floor(uvw * size)`, [`FilterMode::Linear`] blends the eight
+/// texels around `uvw * size - 0.5` along x, then y, then z (trilinear).
+/// One level; a NaN or infinite coordinate counts as 0.
+#[doc(alias = "tex3D")]
+#[derive(Clone, Copy)]
+pub struct Sampler3d {
+    texels: *const Vec4,
+    size: UVec3,
+    wrap: WrapMode,
+    filter: FilterMode,
+}
+
+// SAFETY: as for `Sampler2d`.
+unsafe impl Send for Sampler3d {}
+// SAFETY: as for `Sampler2d`.
+unsafe impl Sync for Sampler3d {}
+
+impl Sampler3d {
+    /// A sampler over the `width * height * depth` texels at `texels`.
+    /// Host side only.
+    ///
+    /// # Safety
+    /// `texels` points to `width * height * depth` initialised `Vec4`s that
+    /// stay valid and unchanged while any copy of the handle is used (an
+    /// empty size reads nothing and samples to zero).
+    pub unsafe fn from_raw_parts(texels: *const Vec4, size: UVec3, wrap: WrapMode, filter: FilterMode) -> Self {
+        Sampler3d { texels, size, wrap, filter }
+    }
+
+    /// Width, height and depth in texels.
+    ///
+    /// Program kinds: all.
+    pub fn size(&self) -> UVec3 {
+        self.size
+    }
+
+    /// The texture at normalised coordinates `uvw`, filtered and wrapped by
+    /// the sampler's modes.
+    ///
+    /// Program kinds: all.
+    #[doc(alias = "tex3D")]
+    pub fn sample(&self, uvw: Vec3) -> Vec4 {
+        if self.size.min_element() == 0 {
+            return Vec4::ZERO;
+        }
+        let uvw = Vec3::select(uvw.is_finite_mask(), uvw, Vec3::ZERO);
+        let p = uvw * self.size.as_vec3();
+        let wrapped = |x: i64, y: i64, z: i64| {
+            let (x, y, z) =
+                (self.wrap.apply(x, self.size.x), self.wrap.apply(y, self.size.y), self.wrap.apply(z, self.size.z));
+            self.texel(x, y, z)
+        };
+        match self.filter {
+            FilterMode::Nearest => {
+                let i = p.floor();
+                wrapped(i.x as i64, i.y as i64, i.z as i64)
+            }
+            FilterMode::Linear => {
+                let p = p - 0.5;
+                let i0 = p.floor();
+                let f = p - i0;
+                let (x0, y0, z0) = (i0.x as i64, i0.y as i64, i0.z as i64);
+                let (x1, y1, z1) = (x0.saturating_add(1), y0.saturating_add(1), z0.saturating_add(1));
+                let plane = |z: i64| {
+                    let top = mix(wrapped(x0, y0, z), wrapped(x1, y0, z), f.x);
+                    let bottom = mix(wrapped(x0, y1, z), wrapped(x1, y1, z), f.x);
+                    mix(top, bottom, f.y)
+                };
+                mix(plane(z0), plane(z1), f.z)
+            }
+        }
+    }
+
+    /// Texel `texel`, unfiltered, each coordinate clamped to the last texel.
+    ///
+    /// Program kinds: all.
+    pub fn fetch(&self, texel: UVec3) -> Vec4 {
+        if self.size.min_element() == 0 {
+            return Vec4::ZERO;
+        }
+        let t = texel.min(self.size - 1);
+        self.texel(t.x as usize, t.y as usize, t.z as usize)
+    }
+
+    fn texel(&self, x: usize, y: usize, z: usize) -> Vec4 {
+        let (w, h) = (self.size.x as usize, self.size.y as usize);
+        debug_assert!(x < w && y < h && z < self.size.z as usize);
+        // SAFETY: in range, so inside the texels of the contract.
+        unsafe { *self.texels.add(x + y * w + z * w * h) }
+    }
+}
+
+impl fmt::Debug for Sampler3d {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Sampler3d")
+            .field("size", &self.size)
+            .field("wrap", &self.wrap)
+            .field("filter", &self.filter)
+            .finish()
+    }
+}
+
+/// A cube map: six square faces of RGBA `f32` texels, read by direction
+/// (OptiX `texCubemap`, a layered texture of six faces). Faces are stored in
+/// Vulkan's layer order, +x, -x, +y, -y, +z, -z, each `size x size` texels
+/// row-major. See [`SamplerCube::sample_dir`] for the face selection.
+#[doc(alias = "texCubemap")]
+#[derive(Clone, Copy)]
+pub struct SamplerCube {
+    texels: *const Vec4,
+    size: u32,
+    filter: FilterMode,
+}
+
+// SAFETY: as for `Sampler2d`.
+unsafe impl Send for SamplerCube {}
+// SAFETY: as for `Sampler2d`.
+unsafe impl Sync for SamplerCube {}
+
+impl SamplerCube {
+    /// A cube map over the `6 * size * size` texels at `texels`. Host side
+    /// only.
+    ///
+    /// # Safety
+    /// `texels` points to `6 * size * size` initialised `Vec4`s that stay
+    /// valid and unchanged while any copy of the handle is used.
+    pub unsafe fn from_raw_parts(texels: *const Vec4, size: u32, filter: FilterMode) -> Self {
+        SamplerCube { texels, size, filter }
+    }
+
+    /// The side of a face in texels.
+    ///
+    /// Program kinds: all.
+    pub fn size(&self) -> u32 {
+        self.size
+    }
+
+    /// The face (0 to 5: +x, -x, +y, -y, +z, -z) and the face coordinates
+    /// `(s, t)` direction `dir` reads, as Vulkan's "Cube Map Face
+    /// Selection" table says: the major axis is the component of largest
+    /// magnitude (ties go to z, then y, then x), and with `(sc, tc, rc)`
+    /// from the table, `s = 0.5 sc / |rc| + 0.5`, `t = 0.5 tc / |rc| + 0.5`.
+    /// A NaN or infinite component counts as 0; the zero direction reads
+    /// the centre of face +z.
+    pub fn face_coordinates(dir: Vec3) -> (u32, Vec2) {
+        let d = Vec3::select(dir.is_finite_mask(), dir, Vec3::ZERO);
+        let a = d.abs();
+        let (face, sc, tc, rc) = if a.z >= a.x && a.z >= a.y {
+            if d.z >= 0.0 { (4, d.x, -d.y, a.z) } else { (5, -d.x, -d.y, a.z) }
+        } else if a.y >= a.x {
+            if d.y >= 0.0 { (2, d.x, d.z, a.y) } else { (3, d.x, -d.z, a.y) }
+        } else if d.x >= 0.0 {
+            (0, -d.z, -d.y, a.x)
+        } else {
+            (1, d.z, -d.y, a.x)
+        };
+        if rc == 0.0 {
+            return (face, Vec2::splat(0.5));
+        }
+        (face, Vec2::new(0.5 * (sc / rc) + 0.5, 0.5 * (tc / rc) + 0.5))
+    }
+
+    /// The cube map in direction `dir` (any length): the face and
+    /// coordinates of [`SamplerCube::face_coordinates`], sampled on that
+    /// face with the sampler's filter, clamped to the face's edge (filtering
+    /// does not reach across to the next face, unlike Vulkan's seamless cube
+    /// maps: a linear sample within half a texel of an edge differs).
+    ///
+    /// Program kinds: all.
+    #[doc(alias = "texCubemap")]
+    pub fn sample_dir(&self, dir: Vec3) -> Vec4 {
+        if self.size == 0 {
+            return Vec4::ZERO;
+        }
+        let (face, st) = Self::face_coordinates(dir);
+        let n = self.size as usize;
+        // SAFETY: face `face` (< 6) is inside the 6 * size * size texels.
+        let start = unsafe { self.texels.add(face as usize * n * n) };
+        // SAFETY: size * size texels from `start`, as the contract says.
+        let face = unsafe { Sampler2d::from_raw_parts(start, self.size, self.size, WrapMode::Clamp, self.filter) };
+        face.sample(st)
+    }
+}
+
+impl fmt::Debug for SamplerCube {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("SamplerCube").field("size", &self.size).field("filter", &self.filter).finish()
     }
 }
 
@@ -292,5 +674,150 @@ mod tests {
         let empty = unsafe { Sampler2d::from_raw_parts(core::ptr::null(), 0, 3, Repeat, Linear) };
         assert_eq!(empty.sample(Vec2::splat(0.5)), Vec4::ZERO);
         assert_eq!(empty.fetch(UVec2::ZERO), Vec4::ZERO);
+    }
+
+    /// A 4x2 texture with three levels (4x2, 2x1, 1x1), each of one colour:
+    /// level l is `texel(10^l)`.
+    fn mipped(filter: FilterMode, mip: MipFilter) -> (Sampler2d, Vec<Vec4>) {
+        let texels: Vec<Vec4> = [vec![texel(1.0); 8], vec![texel(10.0); 2], vec![texel(100.0)]].concat();
+        let modes = SamplerModes { wrap: Repeat, filter, mip, ..SamplerModes::default() };
+        let s = unsafe { Sampler2d::from_raw_mip_parts(texels.as_ptr(), 4, 2, 3, modes) };
+        (s, texels)
+    }
+
+    #[test]
+    fn mip_chain_sizes() {
+        assert_eq!(mip_level_count(4, 2), 3);
+        assert_eq!(mip_level_count(5, 1), 3);
+        assert_eq!(mip_level_count(1, 1), 1);
+        assert_eq!(mip_level_count(0, 0), 0);
+        assert_eq!(mip_level_size(UVec2::new(5, 2), 1), UVec2::new(2, 1));
+        assert_eq!(mip_level_size(UVec2::new(5, 2), 40), UVec2::ONE);
+    }
+
+    #[test]
+    fn sample_lod_picks_and_blends_levels() {
+        for filter in [Nearest, Linear] {
+            let (s, _t) = mipped(filter, MipFilter::Linear);
+            let at = |lod: f32| s.sample_lod(Vec2::new(0.3, 0.7), lod);
+            assert_eq!(s.levels(), 3);
+            assert_eq!(at(0.0), texel(1.0));
+            assert_eq!(at(1.0), texel(10.0));
+            assert_eq!(at(2.0), texel(100.0));
+            assert_eq!(at(0.5), texel(5.5));
+            assert_eq!(at(1.25), texel(32.5));
+            assert_eq!(at(7.0), texel(100.0));
+            assert_eq!(at(f32::INFINITY), texel(100.0));
+            assert_eq!(at(-3.0), texel(1.0));
+            assert_eq!(at(f32::NEG_INFINITY), texel(1.0));
+            assert_eq!(at(f32::NAN), texel(1.0));
+            assert_eq!(s.sample(Vec2::new(0.3, 0.7)), texel(1.0));
+            let (n, _t) = mipped(filter, MipFilter::Nearest);
+            let at = |lod: f32| n.sample_lod(Vec2::new(0.3, 0.7), lod);
+            assert_eq!(at(0.5), texel(1.0));
+            assert_eq!(at(0.51), texel(10.0));
+            assert_eq!(at(1.5), texel(10.0));
+            assert_eq!(at(1.6), texel(100.0));
+        }
+    }
+
+    #[test]
+    fn sample_grad_takes_log2_of_the_longer_footprint() {
+        let (s, _t) = mipped(Linear, MipFilter::Linear);
+        let uv = Vec2::new(0.6, 0.2);
+        // One texel of level 0 is 1/4 in u and 1/2 in v.
+        let du = Vec2::new(0.25, 0.0);
+        assert_eq!(s.sample_grad(uv, du, Vec2::ZERO), texel(1.0));
+        assert_eq!(s.sample_grad(uv, du * 2.0, Vec2::new(0.0, 0.5)), texel(10.0));
+        assert_eq!(s.sample_grad(uv, Vec2::ZERO, Vec2::new(0.0, 2.0)), texel(100.0));
+        assert_eq!(s.sample_grad(uv, Vec2::ZERO, Vec2::ZERO), texel(1.0));
+        assert_eq!(s.sample_grad(uv, Vec2::NAN, Vec2::ZERO), texel(1.0));
+        assert_eq!(s.sample_grad(uv, Vec2::INFINITY, Vec2::ZERO), texel(100.0));
+    }
+
+    #[test]
+    fn levels_clamp_to_the_chain() {
+        let texels = [texel(1.0), texel(2.0)];
+        let modes = SamplerModes { wrap: Clamp, filter: Nearest, ..SamplerModes::default() };
+        let s = unsafe { Sampler2d::from_raw_mip_parts(texels.as_ptr(), 1, 1, 9, modes) };
+        assert_eq!(s.levels(), 1);
+        assert_eq!(s.sample_lod(Vec2::ZERO, 5.0), texel(1.0));
+        // Array-index samplers have one level.
+        let (_s, mips) = mipped(Nearest, MipFilter::Linear);
+        let modes = SamplerModes { index: IndexMode::ArrayIndex, ..SamplerModes::default() };
+        let s = unsafe { Sampler2d::from_raw_mip_parts(mips.as_ptr(), 4, 2, 3, modes) };
+        assert_eq!(s.levels(), 1);
+    }
+
+    #[test]
+    fn array_index_coordinates_are_in_texels() {
+        for filter in [Nearest, Linear] {
+            let modes = SamplerModes { wrap: Clamp, filter, index: IndexMode::ArrayIndex, ..SamplerModes::default() };
+            let s = unsafe { Sampler2d::from_raw_mip_parts(TEXELS.as_ptr(), 2, 2, 1, modes) };
+            assert_eq!(s.sample(Vec2::new(1.5, 0.5)).x, 1.0);
+            assert_eq!(s.sample(Vec2::new(0.5, 1.5)).x, 2.0);
+            assert_eq!(s.sample(Vec2::new(9.0, 9.0)).x, 4.0);
+        }
+        let modes = SamplerModes { wrap: Clamp, filter: Linear, index: IndexMode::ArrayIndex, ..Default::default() };
+        let s = unsafe { Sampler2d::from_raw_mip_parts(TEXELS.as_ptr(), 2, 2, 1, modes) };
+        assert_eq!(s.sample(Vec2::new(1.0, 0.5)).x, 0.5);
+    }
+
+    #[test]
+    fn sampler_3d_reads_and_blends_eight_texels() {
+        // A 2x2x2 cube: texel (x, y, z) is texel(x + 2y + 4z).
+        let texels: Vec<Vec4> = (0..8).map(|i| texel(i as f32)).collect();
+        for wrap in [Repeat, Clamp, Mirror] {
+            let n = unsafe { Sampler3d::from_raw_parts(texels.as_ptr(), UVec3::splat(2), wrap, Nearest) };
+            assert_eq!(n.sample(Vec3::new(0.75, 0.25, 0.75)), texel(5.0));
+            assert_eq!(n.fetch(UVec3::new(1, 1, 9)), texel(7.0));
+            let l = unsafe { Sampler3d::from_raw_parts(texels.as_ptr(), UVec3::splat(2), wrap, Linear) };
+            assert_eq!(l.sample(Vec3::new(0.25, 0.75, 0.25)), texel(2.0));
+            // The centre: the mean of all eight, 3.5.
+            assert_eq!(l.sample(Vec3::splat(0.5)), texel(3.5));
+        }
+        // Past the far z face: repeat wraps to z = 0, clamp stays at 1.
+        let r = unsafe { Sampler3d::from_raw_parts(texels.as_ptr(), UVec3::splat(2), Repeat, Nearest) };
+        assert_eq!(r.sample(Vec3::new(0.25, 0.25, 1.25)), texel(0.0));
+        let c = unsafe { Sampler3d::from_raw_parts(texels.as_ptr(), UVec3::splat(2), Clamp, Nearest) };
+        assert_eq!(c.sample(Vec3::new(0.25, 0.25, 1.25)), texel(4.0));
+        assert_eq!(c.sample(Vec3::new(f32::NAN, 0.25, 0.75)), texel(4.0));
+        let empty = unsafe { Sampler3d::from_raw_parts(core::ptr::null(), UVec3::new(2, 0, 2), Clamp, Linear) };
+        assert_eq!(empty.sample(Vec3::ONE), Vec4::ZERO);
+        assert_eq!(empty.fetch(UVec3::ONE), Vec4::ZERO);
+    }
+
+    #[test]
+    fn cube_faces_follow_vulkans_table() {
+        let f = SamplerCube::face_coordinates;
+        assert_eq!(f(Vec3::X), (0, Vec2::splat(0.5)));
+        assert_eq!(f(-Vec3::X), (1, Vec2::splat(0.5)));
+        assert_eq!(f(Vec3::Y), (2, Vec2::splat(0.5)));
+        assert_eq!(f(-Vec3::Y), (3, Vec2::splat(0.5)));
+        assert_eq!(f(Vec3::Z), (4, Vec2::splat(0.5)));
+        assert_eq!(f(-Vec3::Z), (5, Vec2::splat(0.5)));
+        // +x: sc = -rz, tc = -ry.
+        assert_eq!(f(Vec3::new(2.0, 1.0, -1.0)), (0, Vec2::new(0.75, 0.25)));
+        // -y: sc = rx, tc = -rz.
+        assert_eq!(f(Vec3::new(0.5, -2.0, 1.0)), (3, Vec2::new(0.625, 0.25)));
+        // Ties: z over y over x.
+        assert_eq!(f(Vec3::new(1.0, 1.0, 1.0)).0, 4);
+        assert_eq!(f(Vec3::new(1.0, -1.0, 0.5)).0, 3);
+        assert_eq!(f(Vec3::ZERO), (4, Vec2::splat(0.5)));
+        assert_eq!(f(Vec3::new(f32::NAN, f32::INFINITY, -1.0)), (5, Vec2::splat(0.5)));
+    }
+
+    #[test]
+    fn cube_samples_the_selected_face() {
+        // 2x2 faces; face k's texel i is texel(10k + i).
+        let texels: Vec<Vec4> = (0..24).map(|i| texel((10 * (i / 4) + i % 4) as f32)).collect();
+        let c = unsafe { SamplerCube::from_raw_parts(texels.as_ptr(), 2, Nearest) };
+        assert_eq!(c.sample_dir(Vec3::new(2.0, 1.0, -1.0)), texel(1.0));
+        assert_eq!(c.sample_dir(Vec3::new(-0.5, -0.5, -1.0)), texel(53.0));
+        let l = unsafe { SamplerCube::from_raw_parts(texels.as_ptr(), 2, Linear) };
+        // A face's centre: the mean of its four texels.
+        assert_eq!(l.sample_dir(Vec3::Y), texel(21.5));
+        let empty = unsafe { SamplerCube::from_raw_parts(core::ptr::null(), 0, Linear) };
+        assert_eq!(empty.sample_dir(Vec3::X), Vec4::ZERO);
     }
 }

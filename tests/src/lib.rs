@@ -100,6 +100,12 @@ pub mod seed_reflections;
 pub mod semantic_values;
 #[path = "../snapshots/in/structs_arrays.rs"]
 pub mod structs_arrays;
+#[path = "../snapshots/in/texture_3d.rs"]
+pub mod texture_3d;
+#[path = "../snapshots/in/texture_cube.rs"]
+pub mod texture_cube;
+#[path = "../snapshots/in/texture_mips.rs"]
+pub mod texture_mips;
 #[path = "../snapshots/in/textures.rs"]
 pub mod textures;
 #[path = "../snapshots/in/trace_in_match.rs"]

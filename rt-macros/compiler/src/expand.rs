@@ -630,12 +630,15 @@ fn program_output(kind: Kind, f: &syn::ItemFn, lowered: Result<Lowered, Errors>)
                 quote!(::rt_std::program::VariableKind::Buffer { element: #el, dimensions: #dims, writable: #w })
             }
             Ty::Sampler => quote!(::rt_std::program::VariableKind::Sampler),
+            Ty::Sampler3d => quote!(::rt_std::program::VariableKind::Sampler3d),
+            Ty::SamplerCube => quote!(::rt_std::program::VariableKind::SamplerCube),
             Ty::Object => quote!(::rt_std::program::VariableKind::Object),
             _ => quote!(::rt_std::program::VariableKind::Value),
         };
         let loader = match t {
             Ty::Buffer(..) => "rt_load_RtBuffer".to_string(),
-            Ty::Sampler => "rt_load_RtSampler".to_string(),
+            Ty::Sampler | Ty::SamplerCube => "rt_load_RtSampler".to_string(),
+            Ty::Sampler3d => "rt_load_RtSampler3d".to_string(),
             Ty::Object => "rt_load_object".to_string(),
             other => format!("rt_load_{}", other.mangle()),
         };

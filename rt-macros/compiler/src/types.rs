@@ -181,6 +181,9 @@ pub enum Ty {
     TransformKind,
     Buffer(BufferKind, Box<Ty>),
     Sampler,
+    Sampler3d,
+    /// A cube map: WGSL `RtSampler` (six square faces), 4 words.
+    SamplerCube,
     /// `&T` / `&mut T`: only parameters and arguments.
     Ref(bool, Box<Ty>),
     /// The type of `return`, `break`, `continue`.
@@ -192,6 +195,7 @@ impl PartialEq for Ty {
         use Ty::*;
         match (self, other) {
             (Unit, Unit) | (Ray, Ray) | (Aabb, Aabb) | (Object, Object) | (Sampler, Sampler) => true,
+            (Sampler3d, Sampler3d) | (SamplerCube, SamplerCube) => true,
             (TransformKind, TransformKind) | (Never, Never) => true,
             (Scalar(a), Scalar(b)) => a == b,
             (IntVar(a), IntVar(b)) => a == b,
@@ -290,7 +294,8 @@ impl Ty {
             Ty::Aabb => "RtAabb".into(),
             Ty::Object | Ty::TransformKind | Ty::Enum(_) | Ty::Callable(_) | Ty::BufferId(..) => "u32".into(),
             Ty::Buffer(..) => "RtBuffer".into(),
-            Ty::Sampler => "RtSampler".into(),
+            Ty::Sampler | Ty::SamplerCube => "RtSampler".into(),
+            Ty::Sampler3d => "RtSampler3d".into(),
             Ty::Ref(true, t) => format!("ptr<function, {}>", t.wgsl()),
             Ty::Ref(false, t) => t.wgsl(),
         }
@@ -323,7 +328,8 @@ impl Ty {
             Ty::Tuple(ts) => ts.iter().map(Ty::words).sum(),
             Ty::Ray => 9,
             Ty::Aabb => 6,
-            Ty::Buffer(..) | Ty::Sampler => 4,
+            Ty::Buffer(..) | Ty::Sampler | Ty::SamplerCube => 4,
+            Ty::Sampler3d => 5,
             Ty::Unit | Ty::Never | Ty::Ref(..) => 0,
         }
     }
@@ -370,6 +376,8 @@ impl fmt::Display for Ty {
             Ty::TransformKind => write!(f, "TransformKind"),
             Ty::Buffer(k, t) => write!(f, "{}<{t}>", k.rust_name()),
             Ty::Sampler => write!(f, "Sampler2d"),
+            Ty::Sampler3d => write!(f, "Sampler3d"),
+            Ty::SamplerCube => write!(f, "SamplerCube"),
             Ty::Ref(true, t) => write!(f, "&mut {t}"),
             Ty::Ref(false, t) => write!(f, "&{t}"),
         }
@@ -406,6 +414,8 @@ pub fn builtin_type(name: &str) -> Option<Ty> {
         "Object" => Ty::Object,
         "TransformKind" => Ty::TransformKind,
         "Sampler2d" => Ty::Sampler,
+        "Sampler3d" => Ty::Sampler3d,
+        "SamplerCube" => Ty::SamplerCube,
         _ => return None,
     })
 }

@@ -129,7 +129,8 @@ fn program_lparams(
                 ty
             }
             Role::Variable => {
-                let ok = ty.is_plain_data() || matches!(ty, Ty::Buffer(..) | Ty::Sampler | Ty::Object);
+                let ok = ty.is_plain_data()
+                    || matches!(ty, Ty::Buffer(..) | Ty::Sampler | Ty::Sampler3d | Ty::SamplerCube | Ty::Object);
                 if !ok {
                     errors.push(Error::new(
                         p.ty.span(),

@@ -3,6 +3,7 @@
 //! word offset in the one read-write binding `rt_heap`.
 
 use super::kernel;
+use crate::buffer::SamplerShape;
 use crate::error::{Result, RtError};
 use crate::link::{self, Record};
 use crate::scene::{ProgramId, Scene};
@@ -79,21 +80,34 @@ pub(crate) fn encode_heap(scene: &Scene, records: &Records) -> Result<EncodedHea
                 }
                 (VarValue::Sampler(s), _) => {
                     let rec = &scene.samplers[s.index() as usize];
-                    let wrap = match rec.wrap {
+                    let modes = rec.modes;
+                    let wrap = match modes.wrap {
                         rt_std::WrapMode::Repeat => 0,
                         rt_std::WrapMode::Clamp => 1,
                         rt_std::WrapMode::Mirror => 2,
                     };
-                    let filter = match rec.filter {
+                    let filter = match modes.filter {
                         rt_std::FilterMode::Nearest => 0,
                         rt_std::FilterMode::Linear => 1,
                     };
-                    heap.extend([
-                        sampler_offsets[s.index() as usize] as u32,
-                        rec.width,
-                        rec.height,
-                        wrap | (filter << 8),
-                    ]);
+                    let array = match modes.index {
+                        rt_std::IndexMode::NormalizedCoordinates => 0,
+                        rt_std::IndexMode::ArrayIndex => 1,
+                    };
+                    let mip = match modes.mip {
+                        rt_std::MipFilter::Nearest => 0,
+                        rt_std::MipFilter::Linear => 1,
+                    };
+                    // prelude.wgsl's RtSampler.mode: wrap, filter and
+                    // index mode, mip filter and level count, a byte each.
+                    let mode = wrap | (filter << 8) | (array << 9) | (mip << 16) | (rec.levels << 24);
+                    let offset = sampler_offsets[s.index() as usize] as u32;
+                    // RtSampler (a cube map's too), or RtSampler3d with its
+                    // depth.
+                    match rec.shape {
+                        SamplerShape::Volume(depth) => heap.extend([offset, rec.width, rec.height, depth, mode]),
+                        _ => heap.extend([offset, rec.width, rec.height, mode]),
+                    }
                 }
                 (VarValue::Object(n), _) => heap.push(n.index()),
                 (VarValue::Buffer(_), _) => unreachable!("checked by resolve_values"),

@@ -95,6 +95,7 @@ fn rt_m4(w: u32) -> mat4x4<f32> {
 
 fn rt_load_RtBuffer(w: u32) -> RtBuffer { return RtBuffer(rt_hw(w), rt_hw(w + 1u), rt_hw(w + 2u), rt_hw(w + 3u)); }
 fn rt_load_RtSampler(w: u32) -> RtSampler { return RtSampler(rt_hw(w), rt_hw(w + 1u), rt_hw(w + 2u), rt_hw(w + 3u)); }
+fn rt_load_RtSampler3d(w: u32) -> RtSampler3d { return RtSampler3d(rt_hw(w), rt_hw(w + 1u), rt_hw(w + 2u), rt_hw(w + 3u), rt_hw(w + 4u)); }
 
 fn rt_buf_check(b: RtBuffer, i: u32) -> bool {
     if i < b.len { return true; }
@@ -218,6 +219,10 @@ fn rt_potential_intersection(t: f32) -> bool {
 
 // ---- textures: RGBA f32 texels in the heap, sampled as rt-std's CPU
 // sampler does (texel centres at (i + 0.5) / size, wrap on texel indices).
+// RtSampler.mode: wrap (bits 0-7), filter (bit 8: linear) and index mode
+// (bit 9: coordinates in texels), mip filter (16-23: 1 linear), level count
+// (24-31); the levels follow each other from level 0, level l being
+// max(1, size >> l).
 fn rt_tex_wrap(i: i32, n: i32, mode: u32) -> u32 {
     if mode == 1u { return u32(clamp(i, 0, n - 1)); }
     if mode == 2u {
@@ -231,37 +236,162 @@ fn rt_tex_wrap(i: i32, n: i32, mode: u32) -> u32 {
     if m < 0 { m = m + n; }
     return u32(m);
 }
-fn rt_texel(s: RtSampler, x: u32, y: u32) -> vec4<f32> {
-    let w = s.offset + (y * s.width + x) * 4u;
+// Level l's first texel word and its size; l < the level count.
+struct RtTexLevel {
+    offset: u32,
+    size: vec2<u32>,
+}
+fn rt_tex_level(s: RtSampler, l: u32) -> RtTexLevel {
+    var offset = s.offset;
+    var size = vec2<u32>(s.width, s.height);
+    for (var k = 0u; k < l; k = k + 1u) {
+        offset = offset + size.x * size.y * 4u;
+        size = max(size >> vec2<u32>(1u), vec2<u32>(1u));
+    }
+    return RtTexLevel(offset, size);
+}
+fn rt_texel(lv: RtTexLevel, x: u32, y: u32) -> vec4<f32> {
+    let w = lv.offset + (y * lv.size.x + x) * 4u;
     return vec4<f32>(bitcast<f32>(rt_hw(w)), bitcast<f32>(rt_hw(w + 1u)), bitcast<f32>(rt_hw(w + 2u)), bitcast<f32>(rt_hw(w + 3u)));
 }
 fn rt_tex_fetch(s: RtSampler, texel: vec2<u32>) -> vec4<f32> {
     if s.width == 0u || s.height == 0u { return vec4<f32>(); }
-    return rt_texel(s, min(texel.x, s.width - 1u), min(texel.y, s.height - 1u));
+    return rt_texel(rt_tex_level(s, 0u), min(texel.x, s.width - 1u), min(texel.y, s.height - 1u));
 }
-fn rt_tex_sample(s: RtSampler, uv_in: vec2<f32>) -> vec4<f32> {
-    if s.width == 0u || s.height == 0u { return vec4<f32>(); }
+fn rt_tex_sample_level(s: RtSampler, lv: RtTexLevel, uv_in: vec2<f32>) -> vec4<f32> {
     let finite = abs(uv_in) <= vec2<f32>(RT_F32_MAX);
     let uv = select(vec2<f32>(0.0), uv_in, finite);
     let wrap = s.mode & 0xffu;
-    let linear = (s.mode >> 8u) != 0u;
-    let size = vec2<f32>(f32(s.width), f32(s.height));
-    let n = vec2<i32>(i32(s.width), i32(s.height));
+    let linear = ((s.mode >> 8u) & 1u) != 0u;
+    let n = vec2<i32>(lv.size);
+    var p = uv * vec2<f32>(lv.size);
+    if ((s.mode >> 9u) & 1u) != 0u { p = uv; }
     if !linear {
-        let i = vec2<i32>(floor(uv * size));
-        return rt_texel(s, rt_tex_wrap(i.x, n.x, wrap), rt_tex_wrap(i.y, n.y, wrap));
+        let i = vec2<i32>(floor(p));
+        return rt_texel(lv, rt_tex_wrap(i.x, n.x, wrap), rt_tex_wrap(i.y, n.y, wrap));
     }
-    let p = uv * size - 0.5;
-    let f = floor(p);
-    let a = p - f;
+    let q = p - 0.5;
+    let f = floor(q);
+    let a = q - f;
     let i = vec2<i32>(f);
     let x0 = rt_tex_wrap(i.x, n.x, wrap);
     let x1 = rt_tex_wrap(i.x + 1, n.x, wrap);
     let y0 = rt_tex_wrap(i.y, n.y, wrap);
     let y1 = rt_tex_wrap(i.y + 1, n.y, wrap);
-    let top = rt_texel(s, x0, y0) * (1.0 - a.x) + rt_texel(s, x1, y0) * a.x;
-    let bottom = rt_texel(s, x0, y1) * (1.0 - a.x) + rt_texel(s, x1, y1) * a.x;
+    let top = rt_texel(lv, x0, y0) * (1.0 - a.x) + rt_texel(lv, x1, y0) * a.x;
+    let bottom = rt_texel(lv, x0, y1) * (1.0 - a.x) + rt_texel(lv, x1, y1) * a.x;
     return top * (1.0 - a.y) + bottom * a.y;
+}
+fn rt_tex_sample(s: RtSampler, uv: vec2<f32>) -> vec4<f32> {
+    if s.width == 0u || s.height == 0u { return vec4<f32>(); }
+    return rt_tex_sample_level(s, rt_tex_level(s, 0u), uv);
+}
+// Vulkan's level selection (rt-std's texture docs): d = clamp(lod, 0,
+// levels - 1), NaN as 0; the nearest level rounds a half down, the linear
+// mip filter blends floor(d) and the next level by the fraction.
+fn rt_tex_sample_lod(s: RtSampler, uv: vec2<f32>, lod: f32) -> vec4<f32> {
+    if s.width == 0u || s.height == 0u { return vec4<f32>(); }
+    let levels = max(s.mode >> 24u, 1u);
+    let last = f32(levels - 1u);
+    var d = 0.0;
+    // By the bits: a NaN compares unordered, which compilers may assume away.
+    if (bitcast<u32>(lod) & 0x7fffffffu) <= 0x7f800000u { d = clamp(lod, 0.0, last); }
+    if ((s.mode >> 16u) & 0xffu) == 0u {
+        return rt_tex_sample_level(s, rt_tex_level(s, u32(ceil(d + 0.5) - 1.0)), uv);
+    }
+    let hi = floor(d);
+    let delta = d - hi;
+    let l = u32(hi);
+    let a = rt_tex_sample_level(s, rt_tex_level(s, l), uv);
+    if delta == 0.0 { return a; }
+    let b = rt_tex_sample_level(s, rt_tex_level(s, min(l + 1u, levels - 1u)), uv);
+    return a * (1.0 - delta) + b * delta;
+}
+// The LOD of a footprint dx, dy (in normalised coordinates): log2 of its
+// longer side in level-0 texels, as OpenGL and Vulkan define it. A NaN side
+// counts as 0, as f32::max on the CPU ignores a NaN (WGSL's max may not).
+fn rt_tex_side(v: vec2<f32>) -> f32 {
+    let l = length(v);
+    if (bitcast<u32>(l) & 0x7fffffffu) <= 0x7f800000u { return l; }
+    return 0.0;
+}
+fn rt_tex_sample_grad(s: RtSampler, uv: vec2<f32>, dx: vec2<f32>, dy: vec2<f32>) -> vec4<f32> {
+    let size = vec2<f32>(f32(s.width), f32(s.height));
+    let rho = max(rt_tex_side(dx * size), rt_tex_side(dy * size));
+    return rt_tex_sample_lod(s, uv, log2(rho));
+}
+
+// 3D textures (rt-std's Sampler3d): one level, texel (x, y, z) at
+// x + y * width + z * width * height; the 2D rules with a third axis.
+fn rt_texel3(s: RtSampler3d, x: u32, y: u32, z: u32) -> vec4<f32> {
+    let w = s.offset + ((z * s.height + y) * s.width + x) * 4u;
+    return vec4<f32>(bitcast<f32>(rt_hw(w)), bitcast<f32>(rt_hw(w + 1u)), bitcast<f32>(rt_hw(w + 2u)), bitcast<f32>(rt_hw(w + 3u)));
+}
+fn rt_tex3_fetch(s: RtSampler3d, texel: vec3<u32>) -> vec4<f32> {
+    if s.width == 0u || s.height == 0u || s.depth == 0u { return vec4<f32>(); }
+    let t = min(texel, vec3<u32>(s.width, s.height, s.depth) - 1u);
+    return rt_texel3(s, t.x, t.y, t.z);
+}
+fn rt_tex3_sample(s: RtSampler3d, uvw_in: vec3<f32>) -> vec4<f32> {
+    if s.width == 0u || s.height == 0u || s.depth == 0u { return vec4<f32>(); }
+    let finite = abs(uvw_in) <= vec3<f32>(RT_F32_MAX);
+    let uvw = select(vec3<f32>(0.0), uvw_in, finite);
+    let wrap = s.mode & 0xffu;
+    let n = vec3<i32>(i32(s.width), i32(s.height), i32(s.depth));
+    let p = uvw * vec3<f32>(n);
+    if ((s.mode >> 8u) & 1u) == 0u {
+        let i = vec3<i32>(floor(p));
+        return rt_texel3(s, rt_tex_wrap(i.x, n.x, wrap), rt_tex_wrap(i.y, n.y, wrap), rt_tex_wrap(i.z, n.z, wrap));
+    }
+    let q = p - 0.5;
+    let f = floor(q);
+    let a = q - f;
+    let i = vec3<i32>(f);
+    let x0 = rt_tex_wrap(i.x, n.x, wrap);
+    let x1 = rt_tex_wrap(i.x + 1, n.x, wrap);
+    let y0 = rt_tex_wrap(i.y, n.y, wrap);
+    let y1 = rt_tex_wrap(i.y + 1, n.y, wrap);
+    let z0 = rt_tex_wrap(i.z, n.z, wrap);
+    let z1 = rt_tex_wrap(i.z + 1, n.z, wrap);
+    let top0 = rt_texel3(s, x0, y0, z0) * (1.0 - a.x) + rt_texel3(s, x1, y0, z0) * a.x;
+    let bottom0 = rt_texel3(s, x0, y1, z0) * (1.0 - a.x) + rt_texel3(s, x1, y1, z0) * a.x;
+    let top1 = rt_texel3(s, x0, y0, z1) * (1.0 - a.x) + rt_texel3(s, x1, y0, z1) * a.x;
+    let bottom1 = rt_texel3(s, x0, y1, z1) * (1.0 - a.x) + rt_texel3(s, x1, y1, z1) * a.x;
+    let near = top0 * (1.0 - a.y) + bottom0 * a.y;
+    let far = top1 * (1.0 - a.y) + bottom1 * a.y;
+    return near * (1.0 - a.z) + far * a.z;
+}
+
+// Cube maps (rt-std's SamplerCube): an RtSampler of six square faces, +x,
+// -x, +y, -y, +z, -z; the face and its coordinates by Vulkan's table (ties
+// to z, then y, then x; a non-finite component as 0, the zero direction at
+// face +z's centre), sampled on the face clamped to its edges.
+fn rt_texcube_sample(s: RtSampler, dir: vec3<f32>) -> vec4<f32> {
+    if s.width == 0u { return vec4<f32>(); }
+    let finite = abs(dir) <= vec3<f32>(RT_F32_MAX);
+    let d = select(vec3<f32>(0.0), dir, finite);
+    let a = abs(d);
+    var face = 0u;
+    var sc = 0.0;
+    var tc = 0.0;
+    var rc = 0.0;
+    if a.z >= a.x && a.z >= a.y {
+        rc = a.z;
+        tc = -d.y;
+        if d.z >= 0.0 { face = 4u; sc = d.x; } else { face = 5u; sc = -d.x; }
+    } else if a.y >= a.x {
+        rc = a.y;
+        sc = d.x;
+        if d.y >= 0.0 { face = 2u; tc = d.z; } else { face = 3u; tc = -d.z; }
+    } else {
+        rc = a.x;
+        tc = -d.y;
+        if d.x >= 0.0 { face = 0u; sc = -d.z; } else { face = 1u; sc = d.z; }
+    }
+    var st = vec2<f32>(0.5);
+    if rc != 0.0 { st = vec2<f32>(0.5 * (sc / rc) + 0.5, 0.5 * (tc / rc) + 0.5); }
+    let lv = RtTexLevel(s.offset + face * s.width * s.width * 4u, vec2<u32>(s.width, s.width));
+    return rt_tex_sample_level(s, lv, st);
 }
 
 // ---- rt_printf!: records of (format id, launch index, word count, words)

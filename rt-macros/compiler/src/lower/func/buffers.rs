@@ -176,6 +176,74 @@ impl FnLowerer<'_> {
         Ok(Val::new(t, elem.clone()))
     }
 
+    /// `Sampler3d`'s methods: `sample(uvw)`, `fetch(texel)`, `size()`.
+    pub(super) fn sampler3d_method(&mut self, recv: Val, name: &str, args: &[&Expr], name_span: Span) -> Result<Val> {
+        let (f, arg, ty) = match name {
+            "sample" => ("rt_tex3_sample", "uvw", Ty::vec(3)),
+            "fetch" => ("rt_tex3_fetch", "texel", Ty::Vec(3, Scalar::U32)),
+            "size" => {
+                if !args.is_empty() {
+                    return Err(Error::new(name_span, "`Sampler3d::size` takes no arguments"));
+                }
+                let size = format!("vec3<u32>({0}.width, {0}.height, {0}.depth)", recv.code);
+                return Ok(Val::new(size, Ty::Vec(3, Scalar::U32)).with_effects(recv.effects).with_reads(recv.reads));
+            }
+            _ => {
+                return Err(Error::new(
+                    name_span,
+                    format!("no method `{name}` on `Sampler3d` (it has sample, fetch, size)"),
+                ));
+            }
+        };
+        if args.len() != 1 {
+            return Err(Error::new(
+                name_span,
+                format!("`Sampler3d::{name}` takes 1 argument (`{arg}: {ty}`), found {}", args.len()),
+            ));
+        }
+        let v = self.expr(args[0], Some(&ty))?;
+        let v = self.deref(v);
+        let v = self.coerce(v, &ty, args[0].span())?;
+        Ok(Val::new(format!("{f}({}, {})", recv.code, v.code), Ty::vec(4))
+            .with_effects(recv.effects || v.effects)
+            .with_reads(recv.reads || v.reads))
+    }
+
+    /// `SamplerCube`'s methods: `sample_dir(dir)`, `size()`.
+    pub(super) fn sampler_cube_method(
+        &mut self,
+        recv: Val,
+        name: &str,
+        args: &[&Expr],
+        name_span: Span,
+    ) -> Result<Val> {
+        match name {
+            "size" => {
+                if !args.is_empty() {
+                    return Err(Error::new(name_span, "`SamplerCube::size` takes no arguments"));
+                }
+                let size = format!("{}.width", recv.code);
+                Ok(Val::new(size, Ty::Scalar(Scalar::U32)).with_effects(recv.effects).with_reads(recv.reads))
+            }
+            "sample_dir" => {
+                if args.len() != 1 {
+                    return Err(Error::new(
+                        name_span,
+                        format!("`SamplerCube::sample_dir` takes 1 argument (`dir: Vec3`), found {}", args.len()),
+                    ));
+                }
+                let ty = Ty::vec(3);
+                let v = self.expr(args[0], Some(&ty))?;
+                let v = self.deref(v);
+                let v = self.coerce(v, &ty, args[0].span())?;
+                Ok(Val::new(format!("rt_texcube_sample({}, {})", recv.code, v.code), Ty::vec(4))
+                    .with_effects(recv.effects || v.effects)
+                    .with_reads(recv.reads || v.reads))
+            }
+            _ => Err(Error::new(name_span, format!("no method `{name}` on `SamplerCube` (it has sample_dir, size)"))),
+        }
+    }
+
     pub(super) fn sampler_method(
         &mut self,
         recv: Val,
@@ -184,31 +252,60 @@ impl FnLowerer<'_> {
         name_span: Span,
         _span: Span,
     ) -> Result<Val> {
-        let (f, arg_ty, ret) = match name {
-            "sample" => ("rt_tex_sample", Ty::vec(2), Ty::vec(4)),
-            "fetch" => ("rt_tex_fetch", Ty::Vec(2, Scalar::U32), Ty::vec(4)),
-            "size" => {
+        let (f, arg_tys): (&str, &[(&str, Ty)]) = match name {
+            "sample" => ("rt_tex_sample", &[("uv", Ty::vec(2))]),
+            "sample_lod" => ("rt_tex_sample_lod", &[("uv", Ty::vec(2)), ("lod", Ty::Scalar(Scalar::F32))]),
+            "sample_grad" => ("rt_tex_sample_grad", &[("uv", Ty::vec(2)), ("dx", Ty::vec(2)), ("dy", Ty::vec(2))]),
+            "fetch" => ("rt_tex_fetch", &[("texel", Ty::Vec(2, Scalar::U32))]),
+            "size" | "levels" => {
                 if !args.is_empty() {
-                    return Err(Error::new(name_span, "`Sampler2d::size` takes no arguments"));
+                    return Err(Error::new(name_span, format!("`Sampler2d::{name}` takes no arguments")));
                 }
-                let size = format!("vec2<u32>({0}.width, {0}.height)", recv.code);
-                return Ok(Val::new(size, Ty::Vec(2, Scalar::U32)).with_effects(recv.effects).with_reads(recv.reads));
+                let (code, ty) = if name == "size" {
+                    (format!("vec2<u32>({0}.width, {0}.height)", recv.code), Ty::Vec(2, Scalar::U32))
+                } else {
+                    // prelude.wgsl's RtSampler.mode: the level count's byte.
+                    (format!("max({}.mode >> 24u, 1u)", recv.code), Ty::Scalar(Scalar::U32))
+                };
+                return Ok(Val::new(code, ty).with_effects(recv.effects).with_reads(recv.reads));
             }
             _ => {
                 return Err(Error::new(
                     name_span,
-                    format!("no method `{name}` on `Sampler2d` (it has sample, fetch, size)"),
+                    format!(
+                        "no method `{name}` on `Sampler2d` (it has sample, sample_lod, sample_grad, fetch, size, levels)"
+                    ),
                 ));
             }
         };
-        if args.len() != 1 {
-            return Err(Error::new(name_span, format!("`Sampler2d::{name}` takes 1 argument, found {}", args.len())));
+        if args.len() != arg_tys.len() {
+            let params: Vec<String> = arg_tys.iter().map(|(p, ty)| format!("`{p}: {ty}`")).collect();
+            return Err(Error::new(
+                name_span,
+                format!(
+                    "`Sampler2d::{name}` takes {} argument{} ({}), found {}",
+                    arg_tys.len(),
+                    if arg_tys.len() == 1 { "" } else { "s" },
+                    params.join(", "),
+                    args.len()
+                ),
+            ));
         }
-        let v = self.expr(args[0], Some(&arg_ty))?;
-        let v = self.deref(v);
-        let v = self.coerce(v, &arg_ty, args[0].span())?;
-        Ok(Val::new(format!("{f}({}, {})", recv.code, v.code), ret)
-            .with_effects(recv.effects || v.effects)
-            .with_reads(recv.reads || v.reads))
+        let mut vals: Vec<Val> = Vec::with_capacity(args.len());
+        for (a, (_, ty)) in args.iter().zip(arg_tys) {
+            let at = self.here();
+            let v = self.expr(a, Some(ty))?;
+            let v = self.deref(v);
+            let v = self.coerce(v, ty, a.span())?;
+            let mut earlier: Vec<&mut Val> = vals.iter_mut().collect();
+            self.spill(at, &mut earlier);
+            vals.push(v);
+        }
+        let effects = recv.effects || vals.iter().any(|v| v.effects);
+        let reads = recv.reads || vals.iter().any(|v| v.reads);
+        let codes: Vec<String> = vals.iter().map(|v| v.code.clone()).collect();
+        Ok(Val::new(format!("{f}({}, {})", recv.code, codes.join(", ")), Ty::vec(4))
+            .with_effects(effects)
+            .with_reads(reads))
     }
 }

@@ -103,6 +103,8 @@ impl FnLowerer<'_> {
         match &rt {
             Ty::Buffer(kind, elem) => return self.buffer_method(recv, *kind, elem, name, args, name_span, span),
             Ty::Sampler => return self.sampler_method(recv, name, args, name_span, span),
+            Ty::Sampler3d => return self.sampler3d_method(recv, name, args, name_span),
+            Ty::SamplerCube => return self.sampler_cube_method(recv, name, args, name_span),
             Ty::Callable(sig) => return self.callable_call(recv, sig, name, args, name_span, span),
             Ty::BufferId(w, elem) => return self.bindless_method(recv, *w, elem, name, args, name_span, span),
             _ => {}

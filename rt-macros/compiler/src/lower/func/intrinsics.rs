@@ -137,6 +137,6 @@ fn abi_ty(t: kinds::AbiTy) -> Option<Ty> {
         A::Mat4 => Ty::Mat(4),
         A::Ray => Ty::Ray,
         A::TransformKind => Ty::TransformKind,
-        A::Buffer | A::Sampler => return None,
+        A::Buffer | A::Sampler | A::Sampler3d => return None,
     })
 }

@@ -179,7 +179,8 @@ pub fn scene_access(bindings: usize) -> String {
 pub fn variable_words(kind: &VariableKind, ty: &TypeLayout) -> u32 {
     match kind {
         VariableKind::Value => ty.words,
-        VariableKind::Buffer { .. } | VariableKind::Sampler => 4,
+        VariableKind::Buffer { .. } | VariableKind::Sampler | VariableKind::SamplerCube => 4,
+        VariableKind::Sampler3d => 5,
         VariableKind::Object => 1,
     }
 }

@@ -1,0 +1,14 @@
+//! Cube maps: `SamplerCube::sample_dir` with the ray's direction and a
+//! reflected one, and `size`, in a miss program (an environment cube).
+use super::seed_common::*;
+use rt_std::prelude::*;
+
+#[rt_program(miss)]
+pub fn cube_miss(prd: &mut Radiance, #[var] sky: SamplerCube, #[var] ground: SamplerCube) {
+    let d = current_ray().direction;
+    let mut c = sky.sample_dir(d).xyz();
+    if d.y < 0.0 {
+        c = c * 0.5 + ground.sample_dir(reflect(d, Vec3::Y)).xyz() / ground.size() as f32;
+    }
+    prd.result = c;
+}

@@ -1,0 +1,183 @@
+//! Texel formats of samplers (`TexelData`: RGBA8 linear and sRGB, RGBA16F,
+//! RGBA32F, R8, R32F) with OptiX's read modes (normalised float, element
+//! type) and index modes (normalised coordinates, array index): each
+//! format's texels read back on every target with exact values written out
+//! here (`c / 255`, the sRGB formula's values, halves' exact values, one
+//! channel as `(r, 0, 0, 1)`), through `fetch` and through `sample` at
+//! texel centres in either index mode; a linear sample between two texels
+//! in texel coordinates; the host's checks name the sampler.
+
+use rt_runtime::*;
+use rt_std::prelude::*;
+use rt_tests::targets::On;
+
+/// Launch index `i` writes texel `i` fetched, sampled at its centre and
+/// sampled at its right edge (the next texel's left edge), in normalised
+/// or texel coordinates as `texel_coords` says.
+#[rt_program(ray_generation)]
+pub fn read_texels(#[var] tex: Sampler2d, #[var] texel_coords: u32, #[var] mut out: RwBuffer<Vec4>) {
+    let i = launch_index().x;
+    let n = tex.size().x as f32;
+    let mut scale = 1.0 / n;
+    if texel_coords == 1 {
+        scale = 1.0;
+    }
+    out[i * 3] = tex.fetch(uvec2(i, 0));
+    out[i * 3 + 1] = tex.sample(vec2((i as f32 + 0.5) * scale, 0.5));
+    out[i * 3 + 2] = tex.sample(vec2((i as f32 + 1.0) * scale, 0.5));
+}
+
+fn run(on: On, data: TexelData, options: SamplerOptions) -> Vec<Vec4> {
+    let mut ctx = on.context();
+    ctx.set_ray_type_count(0);
+    let n = data.len() as u32;
+    let tex = ctx.create_sampler_from_texels(data, n, 1, options).unwrap();
+    let out = ctx.create_buffer(BufferType::Output, vec![Vec4::splat(-7.0); 3 * n as usize]);
+    ctx.set_var(Scope::Context, "tex", tex).unwrap();
+    ctx.set_var(Scope::Context, "texel_coords", u32::from(options.index == IndexMode::ArrayIndex)).unwrap();
+    ctx.set_var(Scope::Context, "out", out).unwrap();
+    let rg = ctx.create_program(&read_texels::PROGRAM);
+    ctx.set_ray_generation_program(0, rg).unwrap();
+    let report = ctx.launch_1d(0, n).unwrap();
+    assert!(report.exceptions.is_empty(), "{on:?}: {:?}", report.exceptions);
+    ctx.read_buffer(out).unwrap()
+}
+
+/// `128 / 255` as the nearest f32.
+const C128: f32 = 0.501_960_8;
+/// The sRGB formula at code 128: ((128/255 + 0.055) / 1.055)^2.4.
+const SRGB128: f32 = 0.215_860_5;
+/// At code 10 (below the knee): 10 / 255 / 12.92.
+const SRGB10: f32 = 0.003_035_27;
+
+fn cases() -> Vec<(&'static str, TexelData, ReadMode, Vec<Vec4>)> {
+    use ReadMode::*;
+    let bytes = vec![[0, 51, 128, 255], [10, 255, 0, 128]];
+    vec![
+        (
+            "rgba8",
+            TexelData::Rgba8(bytes.clone()),
+            NormalizedFloat,
+            vec![Vec4::new(0.0, 0.2, C128, 1.0), Vec4::new(10.0 / 255.0, 1.0, 0.0, C128)],
+        ),
+        (
+            "rgba8 element",
+            TexelData::Rgba8(bytes.clone()),
+            ElementType,
+            vec![Vec4::new(0.0, 51.0, 128.0, 255.0), Vec4::new(10.0, 255.0, 0.0, 128.0)],
+        ),
+        (
+            "rgba8 srgb",
+            TexelData::Rgba8Srgb(bytes.clone()),
+            NormalizedFloat,
+            // sRGB colour, linear alpha.
+            vec![Vec4::new(0.0, 0.033_104_766, SRGB128, 1.0), Vec4::new(SRGB10, 1.0, 0.0, C128)],
+        ),
+        (
+            "rgba8 srgb element",
+            TexelData::Rgba8Srgb(bytes),
+            ElementType,
+            vec![Vec4::new(0.0, 51.0, 128.0, 255.0), Vec4::new(10.0, 255.0, 0.0, 128.0)],
+        ),
+        (
+            "rgba16f",
+            TexelData::Rgba16F(vec![[0x3c00, 0xc000, 0x3555, 0x7bff], [0x0001, 0x8000, 0x3800, 0x4248]]),
+            NormalizedFloat,
+            vec![Vec4::new(1.0, -2.0, 0.333_251_95, 65504.0), Vec4::new(5.960_464_5e-8, -0.0, 0.5, 3.140_625)],
+        ),
+        (
+            "rgba32f",
+            TexelData::Rgba32F(vec![Vec4::new(0.1, -3.5, 1e30, 0.0), Vec4::new(7.0, 0.25, -1e-30, 2.0)]),
+            ElementType,
+            vec![Vec4::new(0.1, -3.5, 1e30, 0.0), Vec4::new(7.0, 0.25, -1e-30, 2.0)],
+        ),
+        (
+            "r8",
+            TexelData::R8(vec![51, 255, 0]),
+            NormalizedFloat,
+            vec![Vec4::new(0.2, 0.0, 0.0, 1.0), Vec4::new(1.0, 0.0, 0.0, 1.0), Vec4::new(0.0, 0.0, 0.0, 1.0)],
+        ),
+        (
+            "r8 element",
+            TexelData::R8(vec![51, 255, 0]),
+            ElementType,
+            vec![Vec4::new(51.0, 0.0, 0.0, 1.0), Vec4::new(255.0, 0.0, 0.0, 1.0), Vec4::new(0.0, 0.0, 0.0, 1.0)],
+        ),
+        (
+            "r32f",
+            TexelData::R32F(vec![0.1, -2.5]),
+            NormalizedFloat,
+            vec![Vec4::new(0.1, 0.0, 0.0, 1.0), Vec4::new(-2.5, 0.0, 0.0, 1.0)],
+        ),
+    ]
+}
+
+#[test]
+fn every_format_decodes_exactly_on_every_target() {
+    for (name, data, read, want) in cases() {
+        assert_eq!(data.decode(read), want, "{name}: the host's decoding");
+        let n = want.len();
+        for index in [IndexMode::NormalizedCoordinates, IndexMode::ArrayIndex] {
+            let options = SamplerOptions { wrap: WrapMode::Clamp, filter: FilterMode::Nearest, read, index };
+            for on in On::ALL.into_iter().filter(|on| on.available()) {
+                let got = run(on, data.clone(), options);
+                for i in 0..n {
+                    let at = format!("{name} {index:?} on {}, texel {i}", on.name());
+                    assert_eq!(
+                        got[3 * i].to_array().map(f32::to_bits),
+                        want[i].to_array().map(f32::to_bits),
+                        "{at}: fetch"
+                    );
+                    assert_eq!(got[3 * i + 1], want[i], "{at}: sample at the centre");
+                    // Nearest at the right edge: the next texel, the last
+                    // one clamped.
+                    assert_eq!(got[3 * i + 2], want[(i + 1).min(n - 1)], "{at}: sample at the right edge");
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn linear_filtering_in_texel_coordinates_blends_the_decoded_texels() {
+    // sRGB decodes before filtering, as GPUs' sRGB formats do: half way
+    // between codes 0 and 128 is half of 128's linear value, not code 64's.
+    // Four texels, so that normalised coordinates are exact too.
+    let data = TexelData::Rgba8Srgb(vec![[0; 4], [128; 4], [255; 4], [255; 4]]);
+    for index in [IndexMode::NormalizedCoordinates, IndexMode::ArrayIndex] {
+        let options = SamplerOptions {
+            wrap: WrapMode::Clamp,
+            filter: FilterMode::Linear,
+            read: ReadMode::NormalizedFloat,
+            index,
+        };
+        for on in On::ALL.into_iter().filter(|on| on.available()) {
+            let got = run(on, data.clone(), options);
+            let (dark, mid, white) = (Vec4::ZERO, Vec4::new(SRGB128, SRGB128, SRGB128, C128), Vec4::ONE);
+            let at = format!("{index:?} on {}", on.name());
+            assert_eq!([got[1], got[4], got[7]], [dark, mid, white], "{at}: centres");
+            assert_eq!(got[2], mid * 0.5, "{at}: between 0 and 128");
+            assert_eq!(got[5], mid * 0.5 + white * 0.5, "{at}: between 128 and 255");
+            assert_eq!(got[8], white, "{at}: between 255 and 255");
+            assert_eq!(got[11], white, "{at}: clamped past the end");
+        }
+    }
+}
+
+#[test]
+fn bad_texels_and_modes_are_refused_naming_the_sampler() {
+    let mut ctx = Context::new();
+    let options = SamplerOptions::default();
+    let e = ctx.create_sampler_from_texels(TexelData::R8(vec![1, 2, 3]), 2, 2, options).unwrap_err().to_string();
+    assert_eq!(e, "sampler 0: 3 R8 texels for a 2x2 texture");
+    let e = ctx.create_sampler_from_texels(TexelData::Rgba16F(Vec::new()), 0, 0, options).unwrap_err().to_string();
+    assert_eq!(e, "sampler 0: 0 Rgba16F texels for a 0x0 texture");
+    let array = SamplerOptions { index: IndexMode::ArrayIndex, wrap: WrapMode::Mirror, ..options };
+    let e = ctx.create_sampler_from_texels(TexelData::R32F(vec![1.0]), 1, 1, array).unwrap_err().to_string();
+    assert_eq!(
+        e,
+        "sampler 0: array-index coordinates (RT_TEXTURE_INDEX_ARRAY_INDEX) clamp to the edge, as GPUs' unnormalised coordinates do: use WrapMode::Clamp, not Mirror"
+    );
+    let ok = SamplerOptions { wrap: WrapMode::Clamp, ..array };
+    ctx.create_sampler_from_texels(TexelData::R32F(vec![1.0]), 1, 1, ok).unwrap();
+}
