@@ -153,7 +153,22 @@ fn run(
     flat: bool,
 ) -> Vec<[u32; 7]> {
     let mut ctx = on.context();
-    let (top, sub) = build(&mut ctx);
+    run_in(&mut ctx, on, build, rays, again, flat)
+}
+
+/// [`run`] in a context the caller holds (and may launch in again).
+fn run_in(
+    ctx: &mut Context,
+    on: On,
+    build: impl Fn(&mut Context) -> (NodeId, NodeId),
+    rays: &[[f32; 3]],
+    again: (u32, f32),
+    flat: bool,
+) -> Vec<[u32; 7]> {
+    let (top, sub) = build(ctx);
+    // A closest hit traces once: two levels, two clones of the traversal
+    // in the compute kernel (the default five take minutes on lavapipe).
+    ctx.set_max_trace_depth(2);
     ctx.set_var(Scope::Context, "top", top).unwrap();
     ctx.set_var(Scope::Context, "sub", sub).unwrap();
     ctx.set_var(Scope::Context, "again", again.0).unwrap();
@@ -208,9 +223,9 @@ fn two_levels(ctx: &mut Context) -> (NodeId, NodeId) {
     (top, t1)
 }
 
-#[test]
-fn instances_of_one_geometry_under_transforms_are_numbered_and_identified_on_every_target() {
-    let rays = [
+/// Rays into [`two_levels`] and what each sees.
+fn two_levels_rays() -> (Vec<[f32; 3]>, Vec<[u32; 7]>) {
+    let rays = vec![
         [0.3, -0.2, 0.0],
         [0.3, 2.8, 0.0],
         [4.3, -0.2, 0.0],
@@ -237,6 +252,12 @@ fn instances_of_one_geometry_under_transforms_are_numbered_and_identified_on_eve
         quad(0, 11),
         quad(1, 100),
     ];
+    (rays, expected)
+}
+
+#[test]
+fn instances_of_one_geometry_under_transforms_are_numbered_and_identified_on_every_target() {
+    let (rays, expected) = two_levels_rays();
     for on in On::ALL.into_iter().filter(|on| on.available()) {
         assert_eq!(run(on, two_levels, &rays, (2, 0.3), true), expected, "{}", on.name());
     }
@@ -257,9 +278,9 @@ fn nested(ctx: &mut Context) -> (NodeId, NodeId) {
     (top, inner)
 }
 
-#[test]
-fn nested_groups_number_every_path_on_every_target() {
-    let rays = [
+/// Rays into [`nested`] and what each sees.
+fn nested_rays() -> (Vec<[f32; 3]>, Vec<[u32; 7]>) {
+    let rays = vec![
         [4.3, -0.2, 0.0],
         [4.3, 2.8, 0.0],
         [0.3, -0.2, 0.0],
@@ -283,8 +304,30 @@ fn nested_groups_number_every_path_on_every_target() {
         quad(7, 100),
         quad(2, NONE),
     ];
+    (rays, expected)
+}
+
+#[test]
+fn nested_groups_number_every_path_on_every_target() {
+    let (rays, expected) = nested_rays();
     for on in On::ALL.into_iter().filter(|on| on.available()) {
         assert_eq!(run(on, nested, &rays, (6, 4.3), true), expected, "{}", on.name());
+    }
+}
+
+/// One context, one graph built and launched after another, the second's
+/// programs created again (each program two cases of the kernel's
+/// switches): each launch sees what its graph alone gives. (The compute
+/// kernel once inlined a tracing closest hit once per case at every depth,
+/// 31 traversals, and lavapipe ran out of memory compiling them.)
+#[test]
+fn a_context_traces_graphs_built_one_after_another_on_every_target() {
+    let (rays_a, expected_a) = two_levels_rays();
+    let (rays_b, expected_b) = nested_rays();
+    for on in On::ALL.into_iter().filter(|on| on.available()) {
+        let mut ctx = on.context();
+        assert_eq!(run_in(&mut ctx, on, two_levels, &rays_a, (2, 0.3), true), expected_a, "{}", on.name());
+        assert_eq!(run_in(&mut ctx, on, nested, &rays_b, (6, 4.3), true), expected_b, "{}", on.name());
     }
 }
 

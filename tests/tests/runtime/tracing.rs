@@ -139,6 +139,27 @@ pub(crate) fn wgpu_kernel_size_does_not_grow_with_the_trace_depth() {
     assert!(!shallow.contains("fn rt_run(") && shallow.contains("fn rtp_mirror_forever_d2("));
 }
 
+/// The same tracing program created twice (two cases of the closest-hit
+/// switch) is called from one arm at each depth: a driver inlines every
+/// call, so with per-depth clones two arms would double the traversal's
+/// copies at every depth (31 at depth 5, more than lavapipe's memory).
+#[test]
+pub(crate) fn wgpu_kernel_calls_a_program_created_twice_from_one_arm() {
+    let (mut ctx, _) = camera(1.0, Backend::Wgpu);
+    ctx.set_max_trace_depth(3);
+    sphere_scene(&mut ctx, &mirror_forever::PROGRAM, Vec3::ZERO, 1.0);
+    sphere_scene(&mut ctx, &mirror_forever::PROGRAM, Vec3::ZERO, 1.0);
+    let report = ctx.launch(0, W, W).unwrap();
+    assert!(report.exceptions.is_empty(), "{:?}", report.exceptions);
+    let wgsl = ctx.linked_wgsl().unwrap();
+    assert!(!wgsl.contains("fn rt_run("), "per-depth clones");
+    // Its definition and one call, from an arm of two cases.
+    assert_eq!(wgsl.matches("rtp_mirror_forever_d2(").count(), 2, "{wgsl}");
+    let arm = wgsl.find("rtp_mirror_forever_d2(prd").map(|at| &wgsl[..at]).unwrap();
+    let case = &arm[arm.rfind("case ").unwrap()..];
+    assert!(case.starts_with("case ") && case.lines().next().unwrap().contains(", "), "{case}");
+}
+
 pub(crate) fn launches_wider_than_the_dispatch_limit_write_every_index(backend: On) {
     // 600,000 indices in 8x8 workgroups are 75,000 groups across: more than
     // wgpu's 65,535 per dimension, so the wgpu backend tiles the launch in x.

@@ -17,11 +17,13 @@
 //! its scope record in the heap (offset passed at dispatch), so changing a
 //! value never relinks.
 
+mod arms;
 mod callables;
 mod clones;
 
 use crate::error::{Result, RtError};
 use crate::link::{self, callables::LinkedCallable};
+use arms::Arms;
 use clones::{Linked, at_depth, clone_estimate, helpers_that_trace, per_depth_clones};
 use rt_std::program::{ProgramDescriptor, ProgramKind, TriangleBuiltin, TypeLayout, VariableKind};
 use std::collections::{BTreeMap, BTreeSet};
@@ -541,7 +543,7 @@ fn rt_result_{w}() -> {w} {{
     }
     out.push_str("\n// ---- programs ----\n");
     let mut emitted: BTreeSet<&str> = BTreeSet::new();
-    let mut cases = String::new();
+    let mut cases = Arms::default();
     for p in all {
         // The same program created twice has two cases and one function.
         if emitted.insert(p.desc.wgsl_entry) {
@@ -553,11 +555,7 @@ fn rt_result_{w}() -> {w} {{
         let call = |args: Vec<String>| format!("{}({});", p.desc.wgsl_entry, args.join(", "));
         match p.desc.kind {
             ProgramKind::RayGeneration => {
-                cases.push_str(&format!(
-                    "        case {}u: {{\n            {}\n        }}\n",
-                    p.case,
-                    call(var_args(p.desc, "vars"))
-                ));
+                cases.add(p.case, format!("            {}\n", call(var_args(p.desc, "vars"))));
             }
             ProgramKind::ClosestHit | ProgramKind::Miss => {
                 let Some(pl) = p.desc.payload else { continue };
@@ -574,27 +572,28 @@ fn rt_result_{w}() -> {w} {{
                     args.push(format!("rt_at_{}[d]", a.wgsl));
                 }
                 args.extend(var_args(p.desc, "vars"));
-                cases.push_str(&format!(
-                    "        case {}u: {{
-            if rt_st_type[d] != {}u {{
+                cases.add(
+                    p.case,
+                    format!(
+                        "            if rt_st_type[d] != {}u {{
                 rt_raise(RT_EXC_INVALID_RAY);
                 return;
             }}
 {attr}            var p = rt_pl_{w}[d];
             {}
             rt_pl_{w}[d] = p;
-        }}
 ",
-                    p.case,
-                    payload_ids[w],
-                    call(args)
-                ));
+                        payload_ids[w],
+                        call(args)
+                    ),
+                );
             }
             _ => {}
         }
     }
 
     let note_payload = if spec.graph_levels > 0 { "\n    rt_s_payload = ty;" } else { "" };
+    let cases = cases.render();
     out.push_str(&format!(
         "
 // ---- the trace loop ----
@@ -768,7 +767,7 @@ fn naga_reserved(name: &str) -> bool {
 }
 
 fn dispatch_intersection(programs: &[KernelProgram]) -> String {
-    let mut cases = String::new();
+    let mut cases = Arms::default();
     for p in programs.iter().filter(|p| p.desc.kind == ProgramKind::Intersection) {
         let mut args = Vec::new();
         let mut decl = String::new();
@@ -778,20 +777,16 @@ fn dispatch_intersection(programs: &[KernelProgram]) -> String {
         }
         args.push("prim".to_string());
         args.extend(var_args(p.desc, "vars"));
-        cases.push_str(&format!(
-            "        case {}u: {{\n            {decl}{}({});\n        }}\n",
-            p.case,
-            p.desc.wgsl_entry,
-            args.join(", ")
-        ));
+        cases.add(p.case, format!("            {decl}{}({});\n", p.desc.wgsl_entry, args.join(", ")));
     }
+    let cases = cases.render();
     format!(
         "fn rt_isect_dispatch(case_id: u32, vars: u32, prim: u32) {{\n    switch case_id {{\n{cases}        default: {{}}\n    }}\n}}\n"
     )
 }
 
 fn dispatch_any_hit(programs: &[KernelProgram]) -> String {
-    let mut cases = String::new();
+    let mut cases = Arms::default();
     for p in programs.iter().filter(|p| p.desc.kind == ProgramKind::AnyHit) {
         let mut args = Vec::new();
         let mut pre = String::new();
@@ -805,13 +800,9 @@ fn dispatch_any_hit(programs: &[KernelProgram]) -> String {
             args.push(format!("rt_cand_attr_{}()", a.wgsl));
         }
         args.extend(var_args(p.desc, "vars"));
-        cases.push_str(&format!(
-            "        case {}u: {{\n            {pre}{}({});{post}\n        }}\n",
-            p.case,
-            p.desc.wgsl_entry,
-            args.join(", ")
-        ));
+        cases.add(p.case, format!("            {pre}{}({});{post}\n", p.desc.wgsl_entry, args.join(", ")));
     }
+    let cases = cases.render();
     format!(
         "fn rt_anyhit_dispatch(case_id: u32, vars: u32) {{\n    switch case_id {{\n{cases}        default: {{}}\n    }}\n}}\n"
     )
@@ -821,7 +812,7 @@ fn dispatch_any_hit(programs: &[KernelProgram]) -> String {
 /// payload type is not the traced ray's raises the invalid-ray exception
 /// (as the CPU backend's argument check does) and chooses nothing.
 fn dispatch_visit(programs: &[KernelProgram], payload_ids: &BTreeMap<&str, u32>) -> String {
-    let mut cases = String::new();
+    let mut cases = Arms::default();
     for p in programs.iter().filter(|p| p.desc.kind == ProgramKind::Visit) {
         let mut args = Vec::new();
         let mut check = String::new();
@@ -833,13 +824,9 @@ fn dispatch_visit(programs: &[KernelProgram], payload_ids: &BTreeMap<&str, u32>)
             args.push(format!("rt_prd_{}", pl.wgsl));
         }
         args.extend(var_args(p.desc, "vars"));
-        cases.push_str(&format!(
-            "        case {}u: {{\n            {check}return {}({});\n        }}\n",
-            p.case,
-            p.desc.wgsl_entry,
-            args.join(", ")
-        ));
+        cases.add(p.case, format!("            {check}return {}({});\n", p.desc.wgsl_entry, args.join(", ")));
     }
+    let cases = cases.render();
     format!(
         "fn rt_visit_dispatch(case_id: u32, vars: u32) -> u32 {{\n    switch case_id {{\n{cases}        default: {{}}\n    }}\n    return RT_NONE;\n}}\n"
     )
@@ -847,8 +834,8 @@ fn dispatch_visit(programs: &[KernelProgram], payload_ids: &BTreeMap<&str, u32>)
 
 /// Closest-hit and miss dispatch for payload `w` at depth `d`.
 fn dispatch_payload(programs: &[KernelProgram], w: &str, d: u32) -> String {
-    let mut ch = String::new();
-    let mut miss = String::new();
+    let mut ch = Arms::default();
+    let mut miss = Arms::default();
     for p in programs {
         if p.desc.payload.map(|l| l.wgsl) != Some(w) {
             continue;
@@ -858,18 +845,14 @@ fn dispatch_payload(programs: &[KernelProgram], w: &str, d: u32) -> String {
             args.push(format!("rt_hit_attr_{}()", a.wgsl));
         }
         args.extend(var_args(p.desc, "vars"));
-        let case = format!(
-            "        case {}u: {{\n            {}_d{d}({});\n        }}\n",
-            p.case,
-            p.desc.wgsl_entry,
-            args.join(", ")
-        );
+        let body = format!("            {}_d{d}({});\n", p.desc.wgsl_entry, args.join(", "));
         match p.desc.kind {
-            ProgramKind::ClosestHit => ch.push_str(&case),
-            ProgramKind::Miss => miss.push_str(&case),
+            ProgramKind::ClosestHit => ch.add(p.case, body),
+            ProgramKind::Miss => miss.add(p.case, body),
             _ => {}
         }
     }
+    let (ch, miss) = (ch.render(), miss.render());
     format!(
         "fn rt_ch_{w}_d{d}(case_id: u32, vars: u32, prd: ptr<function, {w}>) {{\n    switch case_id {{\n{ch}        default: {{\n            rt_raise(RT_EXC_INVALID_RAY);\n        }}\n    }}\n}}\nfn rt_miss_{w}_d{d}(case_id: u32, vars: u32, prd: ptr<function, {w}>) {{\n    switch case_id {{\n{miss}        default: {{\n            rt_raise(RT_EXC_INVALID_RAY);\n        }}\n    }}\n}}\n"
     )
