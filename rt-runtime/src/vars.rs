@@ -33,8 +33,7 @@ pub fn lookup_order(kind: ProgramKind) -> &'static [ScopeKind] {
         ProgramKind::ClosestHit | ProgramKind::AnyHit => &[Program, GeometryInstance, Material, Context],
         ProgramKind::Intersection | ProgramKind::BoundingBox => &[Program, GeometryInstance, Geometry, Context],
         ProgramKind::Visit => &[Program, Node],
-        // OptiX's bindless callables: their program, then the context
-        // (callables declare no variables yet).
+        // OptiX's bindless callables: their program, then the context.
         ProgramKind::Callable => &[Program, Context],
     }
 }

@@ -30,9 +30,15 @@
 //! [`EXCEPTION_PROGRAM_ID_INVALID`](crate::EXCEPTION_PROGRAM_ID_INVALID) and
 //! the call returns the zero value of its result.
 //!
-//! Callables do not trace rays and read no `#[var]` variables (pass what
-//! they need as arguments); they may call helpers, other callables (not in
-//! a cycle: WGSL has no recursion), `launch_index`, `launch_dim`,
+//! A callable may read `#[var]` variables, resolved as OptiX resolves a
+//! bindless callable program's: in the callable program's own scope
+//! (`Context::set_var(program, ..)`), then the context's; never the
+//! caller's geometry instance or material. They are parameters like a
+//! program's and not part of the signature: `fn tint(c: Vec3, #[var]
+//! strength: f32) -> Vec3` is a `Callable<fn(Vec3) -> Vec3>`.
+//!
+//! Callables do not trace rays; they may call helpers, other callables (not
+//! in a cycle: WGSL has no recursion), `launch_index`, `launch_dim`,
 //! `rt_throw` and `rt_printf!`.
 
 use crate::data::RtData;
@@ -141,7 +147,7 @@ macro_rules! call_arity {
             #[inline]
             pub fn call(self, $($a: $t),*) -> R {
                 match target::<fn($($t),*) -> R>(self.id) {
-                    Some(f) => f($($a),*),
+                    Some(f) => crate::cpu::calling(self.id, || f($($a),*)),
                     None => invalid(),
                 }
             }

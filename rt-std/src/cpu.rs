@@ -424,6 +424,14 @@ pub trait Tracer {
         let _ = id;
         None
     }
+    /// The `#[var]` variables of the callable program of id `id`, bound
+    /// to its parameter types once per launch (resolved in the program's
+    /// scope, then the context's); `None` when the id names no callable of
+    /// this launch with variables.
+    fn callable_variables(&self, id: u32) -> Option<&BoundVariables<'_>> {
+        let _ = id;
+        None
+    }
     /// The buffer of bindless id `id`, for
     /// [`BindlessBuffer`](crate::BindlessBuffer): a one-dimensional
     /// [`Buffer<T>`](crate::Buffer) of its elements behind `Any` (an
@@ -449,6 +457,9 @@ thread_local! {
     // Only those store a pointer here, and their guards remove it before the
     // borrow it came from ends, so every pointer read from this cell is live.
     static TRACER: Cell<Option<*const (dyn Tracer + 'static)>> = const { Cell::new(None) };
+    // The id of the callable program `Callable::call` is running (0: none),
+    // whose variables `__callable_variables` reads.
+    static CALLEE: Cell<u32> = const { Cell::new(0) };
 }
 
 /// This thread's current execution context, for in-place access.
@@ -674,6 +685,39 @@ pub fn __report_intersection<A: crate::Attributes + Send>(material: u32, attribu
 /// without a tracer).
 pub(crate) fn callable(id: u32) -> Option<&'static (dyn core::any::Any + Send + Sync)> {
     with_installed_tracer(|tracer| tracer.callable(id), || None)
+}
+
+/// Runs `f`, the Rust function of callable `id`, with `id` as the callee
+/// whose variables it reads (the caller's restored afterwards, also when
+/// `f` unwinds: a callable may call another).
+pub(crate) fn calling<R>(id: u32, f: impl FnOnce() -> R) -> R {
+    struct Restore(u32);
+    impl Drop for Restore {
+        fn drop(&mut self) {
+            CALLEE.with(|c| c.set(self.0));
+        }
+    }
+    let _restore = Restore(CALLEE.with(|c| c.replace(id)));
+    f()
+}
+
+/// Calls `f` with the running callable's `#[var]` variables as the list
+/// `L` (the generated shim of a callable with variables). Without them (no
+/// launch, or a callable called as a plain Rust function through its
+/// `CALLABLE` pointer) it raises
+/// [`EXCEPTION_PROGRAM_ID_INVALID`](crate::EXCEPTION_PROGRAM_ID_INVALID) and
+/// returns zero.
+#[doc(hidden)]
+pub fn __callable_variables<L: VariableList, R: Default>(f: impl FnOnce(L) -> R) -> R {
+    let id = CALLEE.with(Cell::get);
+    let variables = with_installed_tracer(|t| t.callable_variables(id).map(BoundVariables::get::<L>), || None);
+    match variables {
+        Some(v) => f(v),
+        None => {
+            raise(crate::EXCEPTION_PROGRAM_ID_INVALID);
+            R::default()
+        }
+    }
 }
 
 /// The handle `H` (`Buffer<T>` or `RwBuffer<T>`) of bindless id `id` as

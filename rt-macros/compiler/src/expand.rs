@@ -801,12 +801,14 @@ fn cpu_thunk(kind: Kind, f: &syn::ItemFn, params: &[signature::Param]) -> TokenS
     }
 }
 
-/// A callable program's CPU side: its Rust function as a `fn` pointer (what
-/// `Callable::call` downcasts to), and the entries every descriptor has,
-/// which the backends never call for a callable.
+/// A callable program's CPU side: its Rust function as a `fn` pointer of
+/// its arguments (what `Callable::call` downcasts to), and the entries every
+/// descriptor has. A callable with `#[var]` variables is reached through a
+/// shim that reads them from the launch (bound once per launch, as a
+/// program's are, by `cpu_bind`) and calls the function with every
+/// parameter in the Rust order. The backends never call `cpu`.
 fn callable_thunk(f: &syn::ItemFn, params: &[signature::Param]) -> TokenStream {
     let name = &f.sig.ident;
-    let tys = params.iter().map(|p| reroot_type(&p.ty));
     let ret = match &f.sig.output {
         syn::ReturnType::Default => quote!(),
         syn::ReturnType::Type(_, t) => {
@@ -814,14 +816,42 @@ fn callable_thunk(f: &syn::ItemFn, params: &[signature::Param]) -> TokenStream {
             quote!(-> #t)
         }
     };
+    let (mut arg_decls, mut arg_tys, mut var_types, mut var_locals, mut call) =
+        (Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    for (i, p) in params.iter().enumerate() {
+        let ty = reroot_type(&p.ty);
+        let local = format_ident!("__rt_arg{}", i);
+        if matches!(p.role, Role::Variable) {
+            var_types.push(quote!(::rt_std::cpu::Var<#ty>));
+            var_locals.push(quote!(::rt_std::cpu::Var(#local)));
+        } else {
+            arg_decls.push(quote!(#local: #ty));
+            arg_tys.push(ty);
+        }
+        call.push(quote!(#local));
+    }
+    let list = variable_tuple(&var_types);
+    let function = if var_types.is_empty() {
+        quote!(super::#name)
+    } else {
+        let pattern = variable_tuple(&var_locals);
+        quote! {{
+            /// Reads the callable's variables and calls it.
+            fn __rt_with_variables(#(#arg_decls),*) #ret {
+                ::rt_std::cpu::__callable_variables(|#pattern: #list| super::#name(#(#call),*))
+            }
+            __rt_with_variables
+        }}
+    };
     quote! {
         /// The callable's Rust function, as `Callable::call` finds it.
-        pub static CALLABLE: fn(#(#tys),*) #ret = super::#name;
-        /// Binds nothing: a callable reads no variables.
+        pub static CALLABLE: fn(#(#arg_tys),*) #ret = #function;
+        /// Binds variable values to the callable's `#[var]` parameter types
+        /// (the CPU backend, once per launch).
         pub fn cpu_bind<'a>(
             values: &[&'a (dyn ::core::any::Any + ::core::marker::Send + ::core::marker::Sync)],
         ) -> ::core::result::Result<::rt_std::cpu::BoundVariables<'a>, ::rt_std::cpu::VariableMismatch> {
-            ::rt_std::cpu::BoundVariables::bind::<()>(values)
+            ::rt_std::cpu::BoundVariables::bind::<#list>(values)
         }
         /// Never called: a callable runs through `Callable::call`.
         pub fn cpu(_: &mut ::rt_std::cpu::CpuArgs<'_>) -> ::rt_std::cpu::CpuResult {

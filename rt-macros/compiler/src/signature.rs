@@ -55,17 +55,11 @@ pub fn program_params(kind: Kind, f: &syn::ItemFn) -> Result<Vec<Param>, Errors>
             }
         };
         let span = pt.span();
-        if kind == Kind::Callable {
-            if pt.attrs.iter().any(is_var_attr) {
-                errors.push(Error::new(
-                    span,
-                    format!(
-                        "a callable program reads no `#[var]` variables: take `{name}` as an argument and pass it from the caller"
-                    ),
-                ));
-            } else {
-                params.push(Param { name, role: Role::Argument, ty: (*pt.ty).clone(), span });
-            }
+        // A callable's parameters are its arguments, but for its `#[var]`
+        // variables (resolved as OptiX resolves a bindless callable's: the
+        // program's scope, then the context's).
+        if kind == Kind::Callable && !pt.attrs.iter().any(is_var_attr) {
+            params.push(Param { name, role: Role::Argument, ty: (*pt.ty).clone(), span });
             continue;
         }
         if pt.attrs.iter().any(is_var_attr) {

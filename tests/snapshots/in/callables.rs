@@ -40,3 +40,11 @@ pub fn call_through_ids(
     let picked = Callable::<fn(f32) -> f32>::from_id(i + 1).call(0.25);
     out[i] = by_buffer + by_struct + Vec3::splat(exponent.call(0.5) + picked);
 }
+
+/// A tint whose strength and ramp are the callable program's variables
+/// (its own scope, then the context's): in the WGSL they come first, then
+/// its argument.
+#[rt_program(callable)]
+pub fn tinted(c: Vec3, #[var] strength: f32, #[var] ramp: Buffer<f32>) -> Vec3 {
+    c * strength * ramp[0]
+}

@@ -38,6 +38,9 @@ pub(crate) struct Linked<'a, P> {
     pub(crate) intersection: Vec<Option<P>>,
     /// Visit program per node (selectors only).
     pub(crate) visit: Vec<Option<P>>,
+    /// Per program, a linked callable's use, for its `#[var]` variables
+    /// (callables without variables: `None`).
+    pub(crate) callables: Vec<Option<P>>,
     /// Per node, where its children's instances start, counted from its
     /// own first (groups and selectors; see [`link::instances`]).
     pub(crate) instance_offsets: Vec<Vec<u32>>,
@@ -158,7 +161,13 @@ pub(crate) fn link_all<'a>(
         .chain(intersection.iter().flatten())
         .chain(visit.iter().flatten())
         .map(|c| c.desc);
-    link::callables::linked(callers, &link::callables::scene_callables(scene))?;
+    let (_, linked) = link::callables::linked(callers, &link::callables::scene_callables(scene))?;
+    let mut callables: Vec<Option<Call>> = scene.programs.iter().map(|_| None).collect();
+    for c in linked.iter().filter(|c| !c.desc.variables.is_empty()) {
+        if let Some(p) = crate::scene::ProgramId::from_callable_id(c.id) {
+            callables[p.index() as usize] = Some(link::resolve(scene, p, Record::default())?);
+        }
+    }
     let numbering = link::instances::Numbering::of(scene)?;
     let instance_offsets = scene
         .nodes
@@ -180,6 +189,7 @@ pub(crate) fn link_all<'a>(
         meshes,
         intersection,
         visit,
+        callables,
         instance_offsets,
         launch_dim: dim,
         bindless: BindlessHandles::of(scene),
@@ -210,6 +220,7 @@ impl<'a> Linked<'a, Call> {
             meshes: self.meshes.clone(),
             intersection: self.intersection.iter().map(opt).collect::<Result<_>>()?,
             visit: self.visit.iter().map(opt).collect::<Result<_>>()?,
+            callables: self.callables.iter().map(opt).collect::<Result<_>>()?,
             instance_offsets: self.instance_offsets.clone(),
             launch_dim: self.launch_dim,
             bindless: self.bindless.clone(),

@@ -744,6 +744,11 @@ impl Tracer for Lane<'_> {
         rec.desc.callable.map(|c| c.cpu)
     }
 
+    fn callable_variables(&self, id: u32) -> Option<&rt_std::cpu::BoundVariables<'_>> {
+        let p = ProgramId::from_callable_id(id)?;
+        self.l.callables.get(p.index() as usize)?.as_ref().map(|c| &c.vars)
+    }
+
     fn buffer(&self, id: u32, writable: bool) -> Option<&(dyn std::any::Any + Send + Sync)> {
         let handles = self.l.bindless.get(BufferId::from_bindless_id(id)?.index() as usize)?;
         match writable {

@@ -15,7 +15,7 @@ use crate::link::{self, Record};
 use crate::scene::{GeometryKind, NodeId, NodeKind, ProgramId, Scene};
 use glam::Mat4;
 use rt_abi::records::{InstanceRecord, NodeEntry};
-use rt_std::program::ProgramKind;
+use rt_std::program::{ProgramDescriptor, ProgramKind};
 use std::collections::HashMap;
 
 /// Marks a group's leaf that is a node (group, selector, transform above
@@ -228,6 +228,24 @@ impl Encoder<'_> {
         Ok(kp)
     }
 
+    /// The records of the `#[var]` variables of the callables `callers`
+    /// link (resolved in the callable's scope, then the context's), in a
+    /// table by program index that header word 3 locates (0: no callable
+    /// has variables).
+    fn callable_records(&mut self, callers: &[&ProgramDescriptor]) -> Result<()> {
+        let all = link::callables::scene_callables(self.scene);
+        let (_, linked) = link::callables::linked(callers.iter().copied(), &all)?;
+        let mut table = Vec::new();
+        for c in linked.iter().filter(|c| !c.desc.variables.is_empty()) {
+            let Some(p) = ProgramId::from_callable_id(c.id) else { continue };
+            table.resize(self.scene.programs.len(), 0);
+            table[p.index() as usize] = self.record(p, Record::default())?;
+        }
+        self.header[3] = if table.is_empty() { 0 } else { self.tables.at() };
+        self.tables.words.extend(table);
+        Ok(())
+    }
+
     /// A record for `p` used as `r`: its offset in the heap.
     fn record(&mut self, p: ProgramId, r: Record) -> Result<u32> {
         self.records.add(self.scene, p, r)
@@ -407,7 +425,6 @@ impl Encoder<'_> {
                 GeometryKind::Triangles(_) => isect.extend([0, 0]),
             }
         }
-        self.header[3] = 0;
         self.header[4] = scene.ray_type_count();
         self.header[5] = self.tables.at();
         for (r, m) in scene.miss.iter().enumerate() {
@@ -488,6 +505,9 @@ pub(crate) fn encode(l: &Launch, scene_bindings: usize, held_geometry: Option<&G
     e.instances(&instances, &geometry);
     let graph_levels = e.node_table(&instance_of_node, &instances, &groups, &numbering)?;
     e.geometry_instances(&geometry)?;
+    let callers: Vec<&ProgramDescriptor> =
+        std::iter::once(rg_prog).chain(ex_prog).chain(e.programs.iter().copied()).map(|p| p.desc).collect();
+    e.callable_records(&callers)?;
     let Encoder { header, tables, nodes, records, programs, .. } = e;
     let shape = Shape { deepest_bvh, groups: &groups, graph_levels, geometry: &geometry, scene_bindings };
     let spec = kernel_spec(l, rg_prog, ex_prog, programs, shape)?;

@@ -1,7 +1,9 @@
 //! Callable programs in the megakernel: one dispatch function per
 //! signature, `rt_call_<signature>(id, args..)`, a `switch` over the ids of
 //! the linked callables of that signature whose default raises
-//! `EXCEPTION_PROGRAM_ID_INVALID` and returns zero. Which callables a kernel
+//! `EXCEPTION_PROGRAM_ID_INVALID` and returns zero. A callable's `#[var]`
+//! variables come from its record, which the scene's table at header word 3
+//! locates by program index (`compute::scene`). Which callables a kernel
 //! links (those of a signature some linked program calls, and so on through
 //! the callables' own calls) and the refusal of cycles (WGSL has no
 //! recursion) are the link's, the same for every backend
@@ -16,16 +18,23 @@ pub fn dispatch(called: &BTreeMap<&'static str, CallableSignature>, linked: &[Li
     let mut out = String::new();
     for (name, sig) in called {
         let params: String = sig.params.iter().enumerate().map(|(i, t)| format!(", a{i}: {t}")).collect();
-        let args: Vec<String> = (0..sig.params.len()).map(|i| format!("a{i}")).collect();
-        let args = args.join(", ");
         let mut cases = String::new();
         for c in of_signature(linked, name) {
             let f = c.desc.wgsl_entry;
-            let call = match sig.ret {
-                Some(_) => format!("return {f}({args});"),
-                None => format!("{f}({args});"),
+            // Variables first (the compiler's parameter order), from the
+            // callable's record in the scene's table by program index.
+            let mut all = super::var_args(c.desc, "v");
+            all.extend((0..sig.params.len()).map(|i| format!("a{i}")));
+            let all = all.join(", ");
+            let record = match crate::scene::ProgramId::from_callable_id(c.id) {
+                Some(p) if !c.desc.variables.is_empty() => format!("let v = rt_scene[rt_scene[3] + {}u]; ", p.index()),
+                _ => String::new(),
             };
-            cases.push_str(&format!("        case {}u: {{ {call} }}\n", c.id));
+            let call = match sig.ret {
+                Some(_) => format!("return {f}({all});"),
+                None => format!("{f}({all});"),
+            };
+            cases.push_str(&format!("        case {}u: {{ {record}{call} }}\n", c.id));
         }
         let (ret, tail) = match sig.ret {
             Some(r) => (format!(" -> {r}"), format!("    var r: {r};\n    return r;\n")),
