@@ -331,27 +331,66 @@ fn measure_launches(ctx: &mut Context, width: u32, height: u32, reps: usize) -> 
     Ok((first, repeat_launches(ctx, width, height, reps, |_, _| Ok(Duration::ZERO))?))
 }
 
-/// What cutting launches into tiles costs: `reps` launches as tiles (the
-/// default budget) alternating with `reps` whole ones, the medians of
-/// their whole times (build, encode, link and run) and the tiles of a
-/// tiled launch.
-fn tiled_and_whole(ctx: &mut Context, width: u32, height: u32, reps: usize) -> Result<(Duration, Duration, u32)> {
-    let (mut tiled, mut whole, mut tiles) = (Vec::new(), Vec::new(), 0);
+/// Launches alternating between two settings, `set(ctx, false)` then
+/// `set(ctx, true)`, `reps` times each, so both sides see the same machine
+/// state: the medians of their whole times (build, encode, link and run),
+/// false's then true's, and true's last report.
+fn alternating(
+    ctx: &mut Context,
+    width: u32,
+    height: u32,
+    reps: usize,
+    set: impl Fn(&mut Context, bool),
+) -> Result<(Duration, Duration, Option<LaunchReport>)> {
+    let (mut off, mut on, mut last) = (Vec::new(), Vec::new(), None);
     for _ in 0..reps {
-        for budget in [TileBudget::default(), TileBudget::Whole] {
-            ctx.set_tile_budget(budget);
+        for side in [false, true] {
+            set(ctx, side);
             let r = ctx.launch(0, width, height)?;
             let t = r.timings.build + r.timings.encode + r.timings.link + r.timings.run;
-            if budget == TileBudget::Whole {
-                whole.push(t);
+            if side {
+                on.push(t);
+                last = Some(r);
             } else {
-                tiled.push(t);
-                tiles = r.tiles;
+                off.push(t);
             }
         }
     }
+    Ok((median(off), median(on), last))
+}
+
+/// What cutting launches into tiles costs: `reps` launches as tiles (the
+/// default budget) alternating with `reps` whole ones, the medians of
+/// their whole times and the tiles of a tiled launch.
+fn tiled_and_whole(ctx: &mut Context, width: u32, height: u32, reps: usize) -> Result<(Duration, Duration, u32)> {
+    let budget = |tiled| if tiled { TileBudget::default() } else { TileBudget::Whole };
+    let measured = alternating(ctx, width, height, reps, |c, tiled| c.set_tile_budget(budget(tiled)));
     ctx.set_tile_budget(TileBudget::default());
-    Ok((median(tiled), median(whole), tiles))
+    let (whole, tiled, last) = measured?;
+    Ok((tiled, whole, last.map_or(0, |r| r.tiles)))
+}
+
+/// What exception checks cost (OptiX's `rtContextSetExceptionEnabled`):
+/// `reps` launches with every kind on (the default) alternating with `reps`
+/// with every kind off, the ratio of their median times (above 1: turning
+/// them off pays), into `j` as `exceptions_off_vs_on`.
+fn record_exceptions_off(j: &mut json::Json, ctx: &mut Context, width: u32, height: u32, reps: usize) -> Option<f64> {
+    let measured = alternating(ctx, width, height, reps, |c, on| c.set_exception_enabled(ExceptionKind::All, on));
+    ctx.set_exception_enabled(ExceptionKind::All, true);
+    match measured {
+        Ok((off, on, _)) => {
+            let r = on.as_secs_f64() / off.as_secs_f64();
+            eprintln!("exceptions on {:.1} ms, off {:.1} ms: exceptions_off_vs_on {r:.3}", ms(on), ms(off));
+            let o = j.child("exceptions_off_vs_on");
+            o.set("on_ms", ms(on));
+            o.set("off_ms", ms(off));
+            Some(r)
+        }
+        Err(e) => {
+            eprintln!("exceptions on against off: {e}");
+            None
+        }
+    }
 }
 
 /// [`tiled_and_whole`] into `j` (as `tiled_vs_whole`), and the throughput
@@ -520,6 +559,9 @@ struct SceneFigures {
     /// ones, per backend.
     cpu_tiled_vs_whole: Option<f64>,
     wgpu_tiled_vs_whole: Option<f64>,
+    /// Throughput with every exception kind off over every kind on.
+    cpu_exceptions_off_vs_on: Option<f64>,
+    wgpu_exceptions_off_vs_on: Option<f64>,
 }
 
 /// The AO workload on one scene: every backend and peer.
@@ -682,6 +724,7 @@ fn measure_scene(
     if let Some(ctx) = cpu_ctx.as_mut() {
         let measured = tiled_and_whole(ctx, width, height, reps);
         fig.cpu_tiled_vs_whole = record_tiled_and_whole(j.child("cpu"), measured);
+        fig.cpu_exceptions_off_vs_on = record_exceptions_off(j.child("cpu"), ctx, width, height, reps);
     }
     drop(cpu_ctx);
     drop(embree_scene);
@@ -712,7 +755,7 @@ fn measure_gpu(
         j.child("skipped").set("wgpu", why.as_str());
         j.child("skipped").set("handwritten_wgsl", why.as_str());
     } else {
-        let run = || -> Result<(Json, Repeated, String, Option<f64>)> {
+        let run = || -> Result<(Json, Repeated, String, Option<f64>, Option<f64>)> {
             let (mut ctx, _, gg, g) = scene_with(&scene.mesh, cam, Backend::Wgpu, width, height, Workload::Ao)?;
             ctx.set_traversal(rt_runtime::Traversal::Compute);
             let device = ctx.open_wgpu()?;
@@ -743,11 +786,13 @@ fn measure_gpu(
             }
             w.child("moving_vertices_launch_ms").set("set_positions", ms(vertices.change));
             let tiled = record_tiled_and_whole(&mut w, tiled_and_whole(&mut ctx, width, height, reps));
-            Ok((w, l, device, tiled))
+            let exceptions = record_exceptions_off(&mut w, &mut ctx, width, height, reps);
+            Ok((w, l, device, tiled, exceptions))
         };
         match run() {
-            Ok((w, l, device, tiled)) => {
+            Ok((w, l, device, tiled, exceptions)) => {
                 fig.wgpu_tiled_vs_whole = tiled;
+                fig.wgpu_exceptions_off_vs_on = exceptions;
                 j.set("wgpu_first_launch", w);
                 j.set("wgpu_device", device);
                 fig.wgpu = Some(mrays(l.rays, l.run));
@@ -953,7 +998,7 @@ fn main() {
     // The headline ratios on the bunny (as before issue #6), and their
     // geometric means over the scenes where both sides were measured.
     let pick = |name: &str| figures.iter().find(|(n, _)| *n == name).map(|(_, f)| f);
-    let ratios: [(&str, RatioOf); 14] = [
+    let ratios: [(&str, RatioOf); 16] = [
         ("cpu_vs_obvhs", |f| ratio(f.cpu, f.obvhs)),
         // Against Embree's best mode (the faster of rtcIntersect1 and
         // rtcIntersect16), and against its single rays alone (the key of
@@ -983,6 +1028,8 @@ fn main() {
         // (above 1: tiles are faster).
         ("cpu_tiled_vs_whole_launch", |f| f.cpu_tiled_vs_whole),
         ("wgpu_tiled_vs_whole_launch", |f| f.wgpu_tiled_vs_whole),
+        ("cpu_exceptions_off_vs_on", |f| f.cpu_exceptions_off_vs_on),
+        ("wgpu_exceptions_off_vs_on", |f| f.wgpu_exceptions_off_vs_on),
     ];
     for (key, r) in ratios {
         json.set(key, pick("bunny").and_then(r));
