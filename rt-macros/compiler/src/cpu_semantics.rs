@@ -135,38 +135,36 @@ fn gpu_mut_method(name: &str, args: usize) -> bool {
 /// `Mat2::from_mat3_minor`, `Mat3::from_mat4_minor`: the type's path and
 /// the function's name.
 fn gpu_assoc_fn(func: &Expr) -> Option<(syn::Path, syn::Ident)> {
+    let (owner, name) = split_path(func)?;
+    matches!(name.to_string().as_str(), "from_mat3_minor" | "from_mat4_minor").then_some((owner, name))
+}
+
+/// `A::B::f` as a path: `A::B` and `f` (none for a one-segment path or a
+/// qualified `<T as U>::f`).
+fn split_path(func: &Expr) -> Option<(syn::Path, syn::Ident)> {
     let Expr::Path(p) = func else { return None };
-    let last = p.path.segments.last()?;
-    if p.qself.is_some()
-        || p.path.segments.len() < 2
-        || !matches!(last.ident.to_string().as_str(), "from_mat3_minor" | "from_mat4_minor")
-    {
+    if p.qself.is_some() || p.path.segments.len() < 2 {
         return None;
     }
     let mut owner = p.path.clone();
-    owner.segments.pop();
+    let last = owner.segments.pop()?.into_value().ident;
+    // (`pop` leaves the trailing `::` punctuation.)
     owner.segments.pop_punct();
-    Some((owner, last.ident.clone()))
+    Some((owner, last))
 }
 
 /// `T::dot` called with `args` arguments (the receiver first), `T` a type
 /// (a capitalised name or a primitive, not a module: `math::dot` is a
 /// function): the type's path and the method's name.
 fn path_gpu_method(func: &Expr, args: usize) -> Option<(syn::Path, syn::Ident)> {
-    let Expr::Path(p) = func else { return None };
-    let n = p.path.segments.len();
-    let last = p.path.segments.last()?;
-    if p.qself.is_some() || n < 2 || args == 0 || !gpu_method(&last.ident.to_string(), args - 1) {
+    let (owner, name) = split_path(func)?;
+    if args == 0 || !gpu_method(&name.to_string(), args - 1) {
         return None;
     }
-    let mut owner = p.path.clone();
-    owner.segments.pop();
-    // (`pop` leaves the trailing `::` punctuation.)
-    owner.segments.pop_punct();
     let ty = owner.segments.last()?.ident.to_string();
     let is_type =
         ty.starts_with(|c: char| c.is_ascii_uppercase()) || matches!(ty.as_str(), "i32" | "u32" | "f32" | "usize");
-    is_type.then(|| (owner, last.ident.clone()))
+    is_type.then_some((owner, name))
 }
 
 fn is_assign(op: &BinOp) -> bool {
