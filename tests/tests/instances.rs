@@ -140,24 +140,13 @@ fn at(x: f32, y: f32) -> Mat4 {
     Mat4::from_translation(Vec3::new(x, y, 0.0))
 }
 
-/// Runs `rays` (x, y, root: 0 top, 1 sub) into the scene `build` makes
+/// Runs `rays` (x, y, root: 0 top, 1 sub) on `ctx` (on target `on`) into
+/// the scene `build` makes
 /// (returning top and sub), with the closest hit at launch index `again`
 /// tracing again at x `again_at` (`flat`: a scene ray queries walk): what
 /// each ray saw, `[ch index, ch id, ah
 /// index, ah id, intersection index, intersection id, after]`.
 fn run(
-    on: On,
-    build: impl Fn(&mut Context) -> (NodeId, NodeId),
-    rays: &[[f32; 3]],
-    again: (u32, f32),
-    flat: bool,
-) -> Vec<[u32; 7]> {
-    let mut ctx = on.context();
-    run_in(&mut ctx, on, build, rays, again, flat)
-}
-
-/// [`run`] in a context the caller holds (and may launch in again).
-fn run_in(
     ctx: &mut Context,
     on: On,
     build: impl Fn(&mut Context) -> (NodeId, NodeId),
@@ -259,7 +248,7 @@ fn two_levels_rays() -> (Vec<[f32; 3]>, Vec<[u32; 7]>) {
 fn instances_of_one_geometry_under_transforms_are_numbered_and_identified_on_every_target() {
     let (rays, expected) = two_levels_rays();
     for on in On::ALL.into_iter().filter(|on| on.available()) {
-        assert_eq!(run(on, two_levels, &rays, (2, 0.3), true), expected, "{}", on.name());
+        assert_eq!(run(&mut on.context(), on, two_levels, &rays, (2, 0.3), true), expected, "{}", on.name());
     }
 }
 
@@ -311,7 +300,7 @@ fn nested_rays() -> (Vec<[f32; 3]>, Vec<[u32; 7]>) {
 fn nested_groups_number_every_path_on_every_target() {
     let (rays, expected) = nested_rays();
     for on in On::ALL.into_iter().filter(|on| on.available()) {
-        assert_eq!(run(on, nested, &rays, (6, 4.3), true), expected, "{}", on.name());
+        assert_eq!(run(&mut on.context(), on, nested, &rays, (6, 4.3), true), expected, "{}", on.name());
     }
 }
 
@@ -326,8 +315,8 @@ fn a_context_traces_graphs_built_one_after_another_on_every_target() {
     let (rays_b, expected_b) = nested_rays();
     for on in On::ALL.into_iter().filter(|on| on.available()) {
         let mut ctx = on.context();
-        assert_eq!(run_in(&mut ctx, on, two_levels, &rays_a, (2, 0.3), true), expected_a, "{}", on.name());
-        assert_eq!(run_in(&mut ctx, on, nested, &rays_b, (6, 4.3), true), expected_b, "{}", on.name());
+        assert_eq!(run(&mut ctx, on, two_levels, &rays_a, (2, 0.3), true), expected_a, "{}", on.name());
+        assert_eq!(run(&mut ctx, on, nested, &rays_b, (6, 4.3), true), expected_b, "{}", on.name());
     }
 }
 
@@ -351,7 +340,7 @@ fn a_selectors_children_are_all_numbered_on_every_target() {
     let rays = [[0.3, -10.2, 0.0], [-3.7, -0.2, 0.0], [-3.7, 2.8, 0.0], [4.3, -0.2, 0.0], [4.3, 2.8, 0.0]];
     let expected = vec![quad(0, NONE), quad(2, NONE), quad(3, 100), quad(4, 9), quad(5, 100)];
     for on in On::ALL.into_iter().filter(|on| on.available()) {
-        assert_eq!(run(on, selected, &rays, (99, 0.0), false), expected, "{}", on.name());
+        assert_eq!(run(&mut on.context(), on, selected, &rays, (99, 0.0), false), expected, "{}", on.name());
     }
 }
 
