@@ -131,6 +131,7 @@ pub fn constants() -> String {
         ("RT_EXC_INVALID_RAY", constants::EXCEPTION_INVALID_RAY),
         ("RT_EXC_PROGRAM_ID", constants::EXCEPTION_PROGRAM_ID_INVALID),
         ("RT_EXC_BUFFER_ID", constants::EXCEPTION_BUFFER_ID_INVALID),
+        ("RT_EXC_TEXTURE_ID", constants::EXCEPTION_TEXTURE_ID_INVALID),
     ]);
     for (name, value) in constants::CONSTANTS.iter().filter(|(n, _)| n.starts_with("RAY_FLAG_")) {
         s.push_str(&u32_constants(&[(&format!("RT_{name}"), *value)]));

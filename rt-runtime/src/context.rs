@@ -68,6 +68,9 @@ pub enum ExceptionKind {
     /// A buffer read or written through a bindless id that names no buffer
     /// of its element type (OptiX `RT_EXCEPTION_BUFFER_ID_INVALID`).
     BufferIdInvalid,
+    /// A texture sampled through a bindless sampler id that names no
+    /// sampler of its shape (OptiX `RT_EXCEPTION_TEXTURE_ID_INVALID`).
+    TextureIdInvalid,
     /// `rt_throw`'s codes.
     User,
     /// Every kind.
@@ -85,6 +88,7 @@ impl ExceptionKind {
             ExceptionKind::IntegerDivideByZero => exception_kind_bit(EXCEPTION_INTEGER_DIVIDE_BY_ZERO),
             ExceptionKind::ProgramIdInvalid => exception_kind_bit(EXCEPTION_PROGRAM_ID_INVALID),
             ExceptionKind::BufferIdInvalid => exception_kind_bit(EXCEPTION_BUFFER_ID_INVALID),
+            ExceptionKind::TextureIdInvalid => exception_kind_bit(EXCEPTION_TEXTURE_ID_INVALID),
             ExceptionKind::User => exception_kind_bit(EXCEPTION_USER),
             ExceptionKind::All => ALL_EXCEPTION_KINDS,
         }
@@ -398,6 +402,37 @@ impl Context {
     pub fn rw_buffer_id<T: RtData>(&self, b: BufferId) -> Result<rt_std::RwBindlessBuffer<T>> {
         self.check_bindless::<T>(b, true)?;
         Ok(rt_std::RwBindlessBuffer::from_id(b.bindless_id()))
+    }
+
+    /// The bindless id of sampler `s` (OptiX `rtTextureSamplerGetId`): a
+    /// [`BindlessSampler<S>`](rt_std::BindlessSampler) programs sample
+    /// through, set as a variable or stored in a buffer, payload or struct.
+    /// `S` is the sampler's shape, [`Sampler2d`](rt_std::Sampler2d) for
+    /// the 2D forms of `create_sampler*`, [`Sampler3d`](rt_std::Sampler3d)
+    /// for `create_sampler_3d`, [`SamplerCube`](rt_std::SamplerCube) for
+    /// `create_sampler_cube`; errors naming the sampler and both shapes if
+    /// it is another. Ids are not bound to the adapter's sampled-texture
+    /// slots (samplers live in the heap on every backend), so any number
+    /// of samplers may have ids.
+    #[doc(alias = "rtTextureSamplerGetId")]
+    pub fn sampler_id<S: rt_std::bindless_sampler::SamplerShape>(
+        &self,
+        s: SamplerId,
+    ) -> Result<rt_std::BindlessSampler<S>> {
+        let rec =
+            self.scene.samplers.get(s.index() as usize).ok_or_else(|| RtError::InvalidHandle(format!("{s:?}")))?;
+        if rec.type_name() != S::NAME {
+            return Err(RtError::BadSampler {
+                sampler: s.index(),
+                problem: format!(
+                    "asked for a bindless id of a `{}`, but the sampler is a `{}` (ask for a `BindlessSampler<{}>`)",
+                    S::NAME,
+                    rec.type_name(),
+                    rec.type_name()
+                ),
+            });
+        }
+        Ok(rt_std::BindlessSampler::from_id(s.bindless_id()))
     }
 
     fn check_bindless<T: RtData>(&self, b: BufferId, writable: bool) -> Result<()> {

@@ -131,6 +131,7 @@
 pub mod arith;
 pub mod atomic;
 pub mod bindless;
+pub mod bindless_sampler;
 pub mod buffer;
 pub mod callable;
 pub mod cpu;
@@ -146,6 +147,7 @@ pub mod texture;
 
 pub use atomic::{AtomicElement, AtomicInteger};
 pub use bindless::{BindlessBuffer, RwBindlessBuffer};
+pub use bindless_sampler::BindlessSampler;
 pub use buffer::{Buffer, Buffer2d, Buffer3d, RwBuffer, RwBuffer2d, RwBuffer3d};
 pub use callable::Callable;
 pub use data::{Attributes, Payload, RtData};

@@ -74,6 +74,7 @@ fn rt_exc_bit(code: u32) -> u32 {
     if code == RT_EXC_INVALID_RAY { return 4u; }
     if code == RT_EXC_PROGRAM_ID { return 64u; }
     if code == RT_EXC_BUFFER_ID { return 128u; }
+    if code == RT_EXC_TEXTURE_ID { return 256u; }
     return 32u;
 }
 
@@ -392,6 +393,30 @@ fn rt_texcube_sample(s: RtSampler, dir: vec3<f32>) -> vec4<f32> {
     if rc != 0.0 { st = vec2<f32>(0.5 * (sc / rc) + 0.5, 0.5 * (tc / rc) + 0.5); }
     let lv = RtTexLevel(s.offset + face * s.width * s.width * 4u, vec2<u32>(s.width, s.width));
     return rt_tex_sample_level(s, lv, st);
+}
+
+// Bindless sampler ids through the launch's sampler table
+// (rt_abi::records::SamplerTable), right after the buffer table: id k names
+// the entry k - 1, 0 none. An id of no sampler, or of one of another shape,
+// reads as an empty sampler (every sample zero, size 0) after raising.
+fn rt_texid_entry(id: u32, shape: u32) -> u32 {
+    let t = rt_launch.buffer_table + 1u + rt_hw(rt_launch.buffer_table) * RT_BUFID_WORDS;
+    if id != 0u && id <= rt_hw(t) {
+        let e = t + 1u + (id - 1u) * RT_TEXID_WORDS;
+        if rt_hw(e + RT_TEXID_SHAPE) == shape { return e; }
+    }
+    rt_raise(RT_EXC_TEXTURE_ID);
+    return 0u;
+}
+fn rt_texid(id: u32, shape: u32) -> RtSampler {
+    let e = rt_texid_entry(id, shape);
+    if e == 0u { return RtSampler(0u, 0u, 0u, 0u); }
+    return RtSampler(rt_hw(e + RT_TEXID_OFFSET), rt_hw(e + RT_TEXID_WIDTH), rt_hw(e + RT_TEXID_HEIGHT), rt_hw(e + RT_TEXID_MODE));
+}
+fn rt_texid3(id: u32) -> RtSampler3d {
+    let e = rt_texid_entry(id, RT_TEXID_3D);
+    if e == 0u { return RtSampler3d(0u, 0u, 0u, 0u, 0u); }
+    return RtSampler3d(rt_hw(e + RT_TEXID_OFFSET), rt_hw(e + RT_TEXID_WIDTH), rt_hw(e + RT_TEXID_HEIGHT), rt_hw(e + RT_TEXID_DEPTH), rt_hw(e + RT_TEXID_MODE));
 }
 
 // ---- rt_printf!: records of (format id, launch index, word count, words)
