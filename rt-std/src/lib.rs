@@ -74,6 +74,15 @@
 //! zero, a store is dropped, and the exception
 //! [`EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS`] is raised (see [`buffer`]).
 //!
+//! Bindless ids are values rather than handles: [`BindlessBuffer`],
+//! [`RwBindlessBuffer`] (see [`bindless`]), [`BindlessSampler`] (see
+//! [`bindless_sampler`]) and [`Callable`] are one `u32` word that a program
+//! may keep anywhere a value goes (a buffer of ids, a struct or payload
+//! field) and reads through; an id that names nothing of its type raises
+//! its own exception ([`EXCEPTION_BUFFER_ID_INVALID`],
+//! [`EXCEPTION_TEXTURE_ID_INVALID`], [`EXCEPTION_PROGRAM_ID_INVALID`]) and
+//! reads zero.
+//!
 //! ## The CPU execution context
 //! On the GPU, intrinsics read the megakernel's state. On the CPU they read
 //! a thread-local [`cpu::ExecutionContext`]: launch index and size, the

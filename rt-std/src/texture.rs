@@ -2,6 +2,11 @@
 //! filtered reads of RGBA `f32` textures. (Texel formats are decoded to
 //! RGBA `f32` by the host when it creates a sampler.)
 //!
+//! A program may also hold a sampler's id, a
+//! [`BindlessSampler<S>`](crate::BindlessSampler), and sample through it
+//! with the same methods and the same results (OptiX's `rtTex2D<float4>(id,
+//! ..)`; see [`bindless_sampler`](crate::bindless_sampler)).
+//!
 //! The CPU implementation here is the reference for the GPU one, written to
 //! the rules of WebGPU/Vulkan sampling with explicit level 0:
 //!
