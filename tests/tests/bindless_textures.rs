@@ -328,3 +328,76 @@ fn ids_of_another_shape_or_of_no_sampler_are_refused_naming_the_sampler_and_vari
         assert_eq!(codes, vec![EXCEPTION_TEXTURE_ID_INVALID], "{}", on.name());
     }
 }
+
+/// Launch index `i` fetches texel (0, 0) of `ids[i]`.
+#[rt_program(ray_generation)]
+pub fn fetch_each(#[var] ids: Buffer<BindlessSampler<Sampler2d>>, #[var] mut out: RwBuffer<Vec4>) {
+    let i = launch_index().x;
+    out[i] = ids[i].fetch(uvec2(0, 0));
+}
+
+/// Samplers of `sizes` (square, each texel `(k, side, 0, 1)` for sampler
+/// `k`), read through a buffer of their ids: the fetched texels.
+#[allow(clippy::result_large_err)] // rt_runtime::Result, as the context returns it.
+fn fetch_all(ctx: &mut Context, sizes: &[u32]) -> Result<Vec<Vec4>> {
+    ctx.set_ray_type_count(0);
+    let mut ids = Vec::new();
+    for (k, &side) in sizes.iter().enumerate() {
+        let texels = vec![Vec4::new(k as f32, side as f32, 0.0, 1.0); (side * side) as usize];
+        let s = ctx.create_sampler(texels, side, side, WrapMode::Clamp, FilterMode::Nearest)?;
+        ids.push(ctx.sampler_id::<Sampler2d>(s)?);
+    }
+    let ids = ctx.create_buffer(BufferType::Input, ids);
+    let out = ctx.create_buffer(BufferType::Output, vec![Vec4::splat(-1.0); sizes.len()]);
+    ctx.set_var(Scope::Context, "ids", ids)?;
+    ctx.set_var(Scope::Context, "out", out)?;
+    let rg = ctx.create_program(&fetch_each::PROGRAM);
+    ctx.set_ray_generation_program(0, rg)?;
+    let report = ctx.launch_1d(0, sizes.len() as u32)?;
+    assert!(report.exceptions.is_empty(), "{:?}", report.exceptions);
+    ctx.read_buffer(out)
+}
+
+#[test]
+fn more_samplers_than_an_adapter_binds_are_sampled_through_ids_on_every_target() {
+    // 40 samplers: more than WebGPU's default 16 sampled textures a stage;
+    // ids take no binding.
+    let sizes: Vec<u32> = (0..40).map(|k| 1 + k % 3).collect();
+    let want: Vec<Vec4> = sizes.iter().enumerate().map(|(k, &s)| Vec4::new(k as f32, s as f32, 0.0, 1.0)).collect();
+    for on in On::ALL.into_iter().filter(|on| on.available()) {
+        assert_eq!(fetch_all(&mut on.context(), &sizes).unwrap(), want, "{}", on.name());
+    }
+}
+
+#[test]
+fn a_heap_past_one_binding_names_the_sampler_that_crosses_it() {
+    let device = || {
+        let instance = rt_runtime::backend::wgpu::instance();
+        let adapter = pollster::block_on(instance.request_adapter(&Default::default())).expect("an adapter (lavapipe)");
+        let limits = ::wgpu::Limits {
+            max_storage_buffer_binding_size: 1 << 20,
+            max_storage_buffers_per_shader_stage: adapter.limits().max_storage_buffers_per_shader_stage.min(5),
+            ..::wgpu::Limits::downlevel_defaults()
+        };
+        let descriptor = ::wgpu::DeviceDescriptor { required_limits: limits, ..Default::default() };
+        let (device, queue) = pollster::block_on(adapter.request_device(&descriptor)).unwrap();
+        (device, queue, adapter.get_info())
+    };
+    // Two 128 x 128 samplers (256 KiB each) fit a 1 MiB heap; a third of
+    // 256 x 256 (1 MiB) ends past it.
+    let (d, q, info) = device();
+    let mut ctx = Context::new();
+    ctx.use_wgpu_device(d, q, info);
+    let got = fetch_all(&mut ctx, &[128, 128]).unwrap();
+    assert_eq!(got, vec![Vec4::new(0.0, 128.0, 0.0, 1.0), Vec4::new(1.0, 128.0, 0.0, 1.0)]);
+    let (d, q, info) = device();
+    let mut ctx = Context::new();
+    ctx.use_wgpu_device(d, q, info);
+    let e = fetch_all(&mut ctx, &[128, 128, 256]).unwrap_err().to_string();
+    assert!(e.starts_with("sampler 2: its 262144 words of texels end at word"), "{e}");
+    assert!(e.contains("binds at most 1 MiB per storage buffer"), "{e}");
+    // The context stays usable: on the CPU backend, which has no binding.
+    ctx.set_backend(Backend::Cpu);
+    let report = ctx.launch_1d(0, 3).unwrap();
+    assert!(report.exceptions.is_empty());
+}

@@ -62,11 +62,14 @@ pub(crate) fn encode_heap(scene: &Scene, records: &Records) -> Result<EncodedHea
         table.extend(entry.words());
     }
     let mut sampler_offsets = Vec::with_capacity(scene.samplers.len());
+    let mut samplers_placed = Vec::with_capacity(scene.samplers.len());
     for s in &scene.samplers {
-        sampler_offsets.push(base + data.len());
+        let start = data.len();
+        sampler_offsets.push(base + start);
         for t in s.texels.iter() {
             data.extend(t.to_array().map(f32::to_bits));
         }
+        samplers_placed.push((base + start, data.len() - start));
     }
     for &(p, r) in &records.uses {
         let desc = scene.program(p)?.desc;
@@ -126,7 +129,7 @@ pub(crate) fn encode_heap(scene: &Scene, records: &Records) -> Result<EncodedHea
         };
         heap.extend(entry.words());
     }
-    Ok(EncodedHeap { words: heap, outputs, placed, buffer_table })
+    Ok(EncodedHeap { words: heap, outputs, placed, samplers_placed, buffer_table })
 }
 
 /// prelude.wgsl's `RtSampler.mode` of a sampler: wrap, filter and index
@@ -160,6 +163,35 @@ pub(crate) struct EncodedHeap {
     pub(crate) words: Vec<u32>,
     pub(crate) outputs: Vec<(usize, usize, usize)>,
     pub(crate) placed: Vec<(usize, usize)>,
+    /// Every sampler's `(heap offset, words)` of texels.
+    pub(crate) samplers_placed: Vec<(usize, usize)>,
     /// The heap word of the bindless buffer table ([`BufferTable`]).
     pub(crate) buffer_table: u32,
+}
+
+/// The sampler whose texels end first past `max_words` of the heap
+/// (`placed`, `samplers_placed` as [`EncodedHeap`] has them), as the error
+/// that names it; `None` when none does, or a buffer (before the samplers
+/// in the heap) already does: the launch's check of the whole heap says
+/// that (the heap fits, or only the records or the tables cross the
+/// limit). `limit` says how large one binding may be, and on what device.
+pub(crate) fn sampler_past(
+    max_words: usize,
+    placed: &[(usize, usize)],
+    samplers_placed: &[(usize, usize)],
+    limit: impl Fn() -> String,
+) -> Option<RtError> {
+    let problem = |offset: usize, words: usize| {
+        format!(
+            "its {words} words of texels end at word {} of the launch's heap, but {}; the heap holds every \
+             variable, buffer and sampler of the context: make the textures smaller, or fewer",
+            offset + words,
+            limit()
+        )
+    };
+    if placed.iter().any(|(o, w)| o + w > max_words) {
+        return None;
+    }
+    let (i, &(o, w)) = samplers_placed.iter().enumerate().find(|(_, (o, w))| o + w > max_words)?;
+    Some(RtError::BadSampler { sampler: i as u32, problem: problem(o, w) })
 }
