@@ -1066,6 +1066,152 @@ impl Context {
         Ok(SamplerId(self.scene.samplers.len() as u32 - 1))
     }
 
+    /// A mipmapped 3D sampler (OptiX's mip levels of a 3D
+    /// `RTtexturesampler`, read by `Sampler3d::sample_lod`): `levels[0]`
+    /// holds level 0's `size` texels (texel `(x, y, z)` at
+    /// `x + y * width + z * width * height`), `levels[l]` those of level
+    /// `l`, [`rt_std::mip_level_size_3d`]; from 1 level to the full chain
+    /// ([`rt_std::mip_level_count_3d`], down to 1x1x1). A level of the
+    /// wrong texel count, or more levels than the chain has, is refused
+    /// naming the sampler and the level.
+    pub fn create_sampler_3d_mipmapped(
+        &mut self,
+        levels: Vec<Vec<Vec4>>,
+        size: glam::UVec3,
+        wrap: WrapMode,
+        filter: FilterMode,
+        mip: MipFilter,
+    ) -> Result<SamplerId> {
+        let fail = |problem: String| RtError::BadSampler { sampler: self.scene.samplers.len() as u32, problem };
+        let name = format!("{}x{}x{}", size.x, size.y, size.z);
+        let chain = rt_std::mip_level_count_3d(size);
+        if levels.is_empty() || size.min_element() == 0 {
+            return Err(fail(format!("no mip levels for a {name} texture (level 0 is needed, not empty)")));
+        }
+        if levels.len() > chain as usize {
+            return Err(fail(format!(
+                "{} mip levels for a {name} texture, whose full chain has {chain} (down to 1x1x1)",
+                levels.len()
+            )));
+        }
+        for (l, level) in levels.iter().enumerate() {
+            let s = rt_std::mip_level_size_3d(size, l as u32);
+            let n = s.x as usize * s.y as usize * s.z as usize;
+            if level.len() != n {
+                return Err(fail(format!(
+                    "mip level {l} has {} texels; level {l} of a {name} texture is {}x{}x{} ({n} texels)",
+                    level.len(),
+                    s.x,
+                    s.y,
+                    s.z
+                )));
+            }
+        }
+        let rec = SamplerRec {
+            levels: levels.len() as u32,
+            texels: levels.concat().into_boxed_slice(),
+            width: size.x,
+            height: size.y,
+            modes: SamplerModes { wrap, filter, mip, index: IndexMode::NormalizedCoordinates },
+            shape: SamplerShape::Volume(size.z),
+        };
+        self.scene.samplers.push(rec);
+        Ok(SamplerId(self.scene.samplers.len() as u32 - 1))
+    }
+
+    /// A mipmapped 3D sampler whose levels are generated on the host: the
+    /// full chain of [`generate_mip_levels_3d`](crate::generate_mip_levels_3d)
+    /// (a 2x2x2 box filter, down to 1x1x1) over level 0's texels.
+    pub fn create_sampler_3d_with_mips(
+        &mut self,
+        texels: Vec<Vec4>,
+        size: glam::UVec3,
+        wrap: WrapMode,
+        filter: FilterMode,
+        mip: MipFilter,
+    ) -> Result<SamplerId> {
+        let levels = crate::buffer::generate_mip_levels_3d(&texels, size);
+        if levels.is_empty() {
+            return Err(RtError::BadSampler {
+                sampler: self.scene.samplers.len() as u32,
+                problem: format!("{} texels for a {}x{}x{} texture", texels.len(), size.x, size.y, size.z),
+            });
+        }
+        self.create_sampler_3d_mipmapped(levels, size, wrap, filter, mip)
+    }
+
+    /// A mipmapped cube map (read by `SamplerCube::sample_dir_lod`):
+    /// `levels[l]` holds level `l`'s six faces (+x, -x, +y, -y, +z, -z, as
+    /// [`create_sampler_cube`](Self::create_sampler_cube) has them) of side
+    /// `max(1, size >> l)`; from 1 level to the full chain (down to 1x1
+    /// faces). A face of the wrong texel count, or more levels than the
+    /// chain has, is refused naming the sampler, the level and the face.
+    pub fn create_sampler_cube_mipmapped(
+        &mut self,
+        levels: Vec<[Vec<Vec4>; 6]>,
+        size: u32,
+        filter: FilterMode,
+        mip: MipFilter,
+    ) -> Result<SamplerId> {
+        const NAMES: [&str; 6] = ["+x", "-x", "+y", "-y", "+z", "-z"];
+        let fail = |problem: String| RtError::BadSampler { sampler: self.scene.samplers.len() as u32, problem };
+        let chain = rt_std::mip_level_count(size, size);
+        if levels.is_empty() || size == 0 {
+            return Err(fail(format!("no mip levels for a cube map of {size}x{size} faces (level 0 is needed)")));
+        }
+        if levels.len() > chain as usize {
+            return Err(fail(format!(
+                "{} mip levels for a cube map of {size}x{size} faces, whose full chain has {chain} (down to 1x1)",
+                levels.len()
+            )));
+        }
+        for (l, faces) in levels.iter().enumerate() {
+            let side = (size >> l).max(1) as usize;
+            for (face, name) in faces.iter().zip(NAMES) {
+                if face.len() != side * side {
+                    return Err(fail(format!(
+                        "cube face {name} of mip level {l} has {} texels for a {side}x{side} face",
+                        face.len()
+                    )));
+                }
+            }
+        }
+        let rec = SamplerRec {
+            levels: levels.len() as u32,
+            texels: levels.iter().flat_map(|faces| faces.concat()).collect(),
+            width: size,
+            height: size,
+            modes: SamplerModes { wrap: WrapMode::Clamp, filter, mip, ..SamplerModes::default() },
+            shape: SamplerShape::Cube,
+        };
+        self.scene.samplers.push(rec);
+        Ok(SamplerId(self.scene.samplers.len() as u32 - 1))
+    }
+
+    /// A mipmapped cube map whose levels are generated on the host: each
+    /// face's full chain of [`generate_mip_levels`](crate::generate_mip_levels)
+    /// (a 2x2 box filter within the face, down to 1x1).
+    pub fn create_sampler_cube_with_mips(
+        &mut self,
+        faces: [Vec<Vec4>; 6],
+        size: u32,
+        filter: FilterMode,
+        mip: MipFilter,
+    ) -> Result<SamplerId> {
+        let lens = faces.each_ref().map(Vec::len);
+        let chains = faces.map(|f| crate::buffer::generate_mip_levels(&f, size, size));
+        let count = chains.iter().map(Vec::len).min().unwrap_or(0);
+        if count == 0 {
+            return Err(RtError::BadSampler {
+                sampler: self.scene.samplers.len() as u32,
+                problem: format!("cube faces of {lens:?} texels (+x to -z) for {size}x{size} faces"),
+            });
+        }
+        let mut chains = chains.map(Vec::into_iter);
+        let levels = (0..count).map(|_| std::array::from_fn(|f| chains[f].next().unwrap_or_default())).collect();
+        self.create_sampler_cube_mipmapped(levels, size, filter, mip)
+    }
+
     /// A mipmapped sampler whose levels are generated on the host: the full
     /// chain of [`generate_mip_levels`](crate::generate_mip_levels) (a 2x2
     /// box filter, down to 1x1) over level 0's `width * height` texels.

@@ -10,7 +10,8 @@
 //! payload field or a callable's argument, compare it with `==`, and sample
 //! through it with the methods of `S`: `sample`, `sample_lod`,
 //! `sample_grad`, `fetch`, `size` and `levels` for a 2D id, `sample`,
-//! `fetch` and `size` for a 3D one, `sample_dir` and `size` for a cube map.
+//! `sample_lod`, `fetch`, `size` and `levels` for a 3D one, `sample_dir`,
+//! `sample_dir_lod`, `size` and `levels` for a cube map.
 //! The host gets a sampler's id with `Context::sampler_id::<S>(sampler)`,
 //! which checks the sampler's shape, and sets it like any value; a launch
 //! checks every id variable against the sampler it names. A program may
@@ -232,6 +233,21 @@ impl BindlessSampler<Sampler3d> {
         self.sampler().sample(uvw)
     }
 
+    /// [`Sampler3d::sample_lod`] through the id.
+    ///
+    /// Program kinds: all but bounding_box.
+    #[doc(alias = "rtTex3DLod")]
+    pub fn sample_lod(self, uvw: Vec3, lod: f32) -> Vec4 {
+        self.sampler().sample_lod(uvw, lod)
+    }
+
+    /// [`Sampler3d::levels`] through the id (1 through an invalid one).
+    ///
+    /// Program kinds: all but bounding_box.
+    pub fn levels(self) -> u32 {
+        self.sampler().levels()
+    }
+
     /// [`Sampler3d::fetch`] through the id.
     ///
     /// Program kinds: all but bounding_box.
@@ -255,6 +271,21 @@ impl BindlessSampler<SamplerCube> {
     #[doc(alias = "rtTexCubemap")]
     pub fn sample_dir(self, dir: Vec3) -> Vec4 {
         self.sampler().sample_dir(dir)
+    }
+
+    /// [`SamplerCube::sample_dir_lod`] through the id.
+    ///
+    /// Program kinds: all but bounding_box.
+    #[doc(alias = "rtTexCubemapLod")]
+    pub fn sample_dir_lod(self, dir: Vec3, lod: f32) -> Vec4 {
+        self.sampler().sample_dir_lod(dir, lod)
+    }
+
+    /// [`SamplerCube::levels`] through the id (1 through an invalid one).
+    ///
+    /// Program kinds: all but bounding_box.
+    pub fn levels(self) -> u32 {
+        self.sampler().levels()
     }
 
     /// [`SamplerCube::size`] through the id.

@@ -170,5 +170,5 @@ pub use rt_macros::{
 pub use scene::{Object, TransformKind};
 pub use texture::{
     FilterMode, IndexMode, MipFilter, Sampler2d, Sampler3d, SamplerCube, SamplerModes, WrapMode, mip_level_count,
-    mip_level_size,
+    mip_level_count_3d, mip_level_size, mip_level_size_3d,
 };
