@@ -1006,6 +1006,73 @@ impl Context {
         Ok(SamplerId(self.scene.samplers.len() as u32 - 1))
     }
 
+    /// A 3D sampler over texels of any supported format (OptiX's buffer
+    /// formats and read modes behind a 3D sampler): the host decodes them
+    /// to RGBA `f32` on upload as [`TexelData::decode`](crate::TexelData::decode)
+    /// says, `size` of them (texel `(x, y, z)` at
+    /// `x + y * width + z * width * height`), one level (for levels, decode
+    /// them and pass them to
+    /// [`create_sampler_3d_mipmapped`](Self::create_sampler_3d_mipmapped)).
+    /// Coordinates are normalised: [`IndexMode::ArrayIndex`] is refused, as
+    /// are the wrong texel count, naming the sampler.
+    pub fn create_sampler_3d_from_texels(
+        &mut self,
+        texels: crate::TexelData,
+        size: glam::UVec3,
+        options: crate::SamplerOptions,
+    ) -> Result<SamplerId> {
+        let fail = |problem: String| RtError::BadSampler { sampler: self.scene.samplers.len() as u32, problem };
+        let count = size.x as u64 * size.y as u64 * size.z as u64;
+        if texels.len() as u64 != count || texels.is_empty() {
+            return Err(fail(format!(
+                "{} {} texels for a {}x{}x{} texture",
+                texels.len(),
+                texels.format_name(),
+                size.x,
+                size.y,
+                size.z
+            )));
+        }
+        if options.index == IndexMode::ArrayIndex {
+            return Err(fail(
+                "array-index coordinates (RT_TEXTURE_INDEX_ARRAY_INDEX) are for 2D samplers here; a 3D sampler reads normalised coordinates".into(),
+            ));
+        }
+        self.create_sampler_3d(texels.decode(options.read), size, options.wrap, options.filter)
+    }
+
+    /// A cube map over faces of any supported format, decoded to RGBA
+    /// `f32` on upload as [`TexelData::decode`](crate::TexelData::decode)
+    /// says with read mode `read`: `faces[0..6]` (+x, -x, +y, -y, +z, -z)
+    /// of `size * size` texels each, one level (for levels, decode them
+    /// and pass them to
+    /// [`create_sampler_cube_mipmapped`](Self::create_sampler_cube_mipmapped)).
+    /// A face of the wrong texel count is refused naming the sampler, the
+    /// face and its format.
+    pub fn create_sampler_cube_from_texels(
+        &mut self,
+        faces: [crate::TexelData; 6],
+        size: u32,
+        filter: FilterMode,
+        read: crate::ReadMode,
+    ) -> Result<SamplerId> {
+        const NAMES: [&str; 6] = ["+x", "-x", "+y", "-y", "+z", "-z"];
+        let n = size as usize * size as usize;
+        for (face, name) in faces.iter().zip(NAMES) {
+            if face.len() != n || n == 0 {
+                return Err(RtError::BadSampler {
+                    sampler: self.scene.samplers.len() as u32,
+                    problem: format!(
+                        "cube face {name} has {} {} texels for a {size}x{size} face",
+                        face.len(),
+                        face.format_name()
+                    ),
+                });
+            }
+        }
+        self.create_sampler_cube(faces.map(|f| f.decode(read)), size, filter)
+    }
+
     /// A 3D sampler (OptiX `rtTextureSampler<float4, 3>`, read by a
     /// program's `Sampler3d` variable) over `width * height * depth` RGBA
     /// texels, texel `(x, y, z)` at `x + y * width + z * width * height`;
