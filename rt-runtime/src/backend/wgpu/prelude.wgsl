@@ -66,17 +66,9 @@ var<private> rt_icur: vec4<u32>;
 // Rays this invocation traced (added to rt_log[2] at the end).
 var<private> rt_rays: u32;
 
-// rt_abi::constants::exception_kind_bit: the bit of code's kind in the
-// launch's mask of enabled kinds (the integer kinds are the CPU backend's).
-fn rt_exc_bit(code: u32) -> u32 {
-    if code == RT_EXC_TRACE_DEPTH { return 1u; }
-    if code == RT_EXC_BUFFER_INDEX { return 2u; }
-    if code == RT_EXC_INVALID_RAY { return 4u; }
-    if code == RT_EXC_PROGRAM_ID { return 64u; }
-    if code == RT_EXC_BUFFER_ID { return 128u; }
-    if code == RT_EXC_TEXTURE_ID { return 256u; }
-    return 32u;
-}
+// rt_exc_bit(code), the bit of code's kind in the launch's mask of enabled
+// kinds, is generated from rt_abi::constants::exception_kind_bit
+// (rt_abi::wgsl::exception_kind_bits) before this file.
 
 fn rt_raise(code: u32) {
     if rt_exc == 0u && (rt_launch.exceptions & rt_exc_bit(code)) != 0u {
