@@ -43,6 +43,11 @@ pub const EXCEPTION_PROGRAM_ID_INVALID: u32 = 0x3EE;
 /// another element type, or, for a writable id, a buffer programs may not
 /// write: a load returns zero, a store is dropped.
 pub const EXCEPTION_BUFFER_ID_INVALID: u32 = 0x3EA;
+/// A texture sampled through a bindless sampler id that names no sampler
+/// of the launch (zero, an id the context did not give) or a sampler of
+/// another shape (a cube map read as a 2D sampler): the sample is zero, the
+/// size 0. OptiX's code, `RT_EXCEPTION_TEXTURE_ID_INVALID`.
+pub const EXCEPTION_TEXTURE_ID_INVALID: u32 = 0x3EF;
 /// The first code free for programs' own `rt_throw` codes.
 pub const EXCEPTION_USER: u32 = 0x400;
 
@@ -58,12 +63,13 @@ pub const fn exception_kind_bit(code: u32) -> u32 {
         EXCEPTION_INTEGER_DIVIDE_BY_ZERO => 16,
         EXCEPTION_PROGRAM_ID_INVALID => 64,
         EXCEPTION_BUFFER_ID_INVALID => 128,
+        EXCEPTION_TEXTURE_ID_INVALID => 256,
         _ => 32,
     }
 }
 
 /// Every exception kind enabled.
-pub const ALL_EXCEPTION_KINDS: u32 = 255;
+pub const ALL_EXCEPTION_KINDS: u32 = 511;
 
 /// Every constant above that programs may name, by its rt-std name.
 pub const CONSTANTS: &[(&str, u32)] = &[
@@ -82,6 +88,7 @@ pub const CONSTANTS: &[(&str, u32)] = &[
     ("EXCEPTION_INTEGER_DIVIDE_BY_ZERO", EXCEPTION_INTEGER_DIVIDE_BY_ZERO),
     ("EXCEPTION_PROGRAM_ID_INVALID", EXCEPTION_PROGRAM_ID_INVALID),
     ("EXCEPTION_BUFFER_ID_INVALID", EXCEPTION_BUFFER_ID_INVALID),
+    ("EXCEPTION_TEXTURE_ID_INVALID", EXCEPTION_TEXTURE_ID_INVALID),
     ("EXCEPTION_USER", EXCEPTION_USER),
 ];
 

@@ -271,8 +271,16 @@ pub const RUNTIME_FUNCTIONS: &[WgslFn] = &[
     },
     WgslFn { name: "rt_tex3_sample", params: &[("s", Sampler3d), ("uvw", Vec3)], ret: Vec4 },
     WgslFn { name: "rt_tex3_fetch", params: &[("s", Sampler3d), ("texel", UVec3)], ret: Vec4 },
+    WgslFn { name: "rt_tex3_sample_lod", params: &[("s", Sampler3d), ("uvw", Vec3), ("lod", F32)], ret: Vec4 },
     // A cube map (`SamplerCube`) is an `RtSampler` of six square faces.
     WgslFn { name: "rt_texcube_sample", params: &[("s", Sampler), ("dir", Vec3)], ret: Vec4 },
+    WgslFn { name: "rt_texcube_sample_lod", params: &[("s", Sampler), ("dir", Vec3), ("lod", F32)], ret: Vec4 },
+    // Bindless sampler ids (`BindlessSampler<S>`): the sampler `id` names
+    // if it is of shape `shape` (`SamplerTable::SHAPE_*`), else an empty
+    // one (every sample zero) after raising the invalid-texture-id
+    // exception; `rt_texid3` for 3D samplers.
+    WgslFn { name: "rt_texid", params: &[("id", U32), ("shape", U32)], ret: Sampler },
+    WgslFn { name: "rt_texid3", params: &[("id", U32)], ret: Sampler3d },
     WgslFn { name: "rt_printf_begin", params: &[("format", U32), ("words", U32)], ret: Bool },
     WgslFn { name: "rt_printf_word", params: &[("word", U32)], ret: Unit },
 ];

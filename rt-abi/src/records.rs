@@ -144,6 +144,74 @@ impl BufferTable {
     }
 }
 
+/// The bindless sampler table in the heap, right after the
+/// [`BufferTable`] (at `buffer_table + 1 + buffers * BufferTable::WORDS`,
+/// so the launch uniform needs no word of its own): the number of
+/// samplers, then one entry of [`WORDS`](Self::WORDS) per sampler, the
+/// entry of bindless sampler id `id` (`rt_std::BindlessSampler`; the
+/// context's sampler index plus one, zero for none) at
+/// `table + 1 + (id - 1) * WORDS`. The megakernel's `rt_texid` checks an
+/// id's shape against it and reads the sampler's record.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SamplerTable {
+    /// The heap word of the sampler's first texel.
+    pub offset: u32,
+    /// Level 0's width in texels (a cube map's face size).
+    pub width: u32,
+    /// Level 0's height in texels.
+    pub height: u32,
+    /// A 3D sampler's depth in texels (1 for the others).
+    pub depth: u32,
+    /// The modes word, as `RtSampler.mode`.
+    pub mode: u32,
+    /// [`SHAPE_2D`](Self::SHAPE_2D), [`SHAPE_3D`](Self::SHAPE_3D) or
+    /// [`SHAPE_CUBE`](Self::SHAPE_CUBE).
+    pub shape: u32,
+}
+
+impl SamplerTable {
+    /// An entry's size in 32-bit words.
+    pub const WORDS: u32 = 6;
+    pub const OFFSET: u32 = 0;
+    pub const WIDTH: u32 = 1;
+    pub const HEIGHT: u32 = 2;
+    pub const DEPTH: u32 = 3;
+    pub const MODE: u32 = 4;
+    pub const SHAPE: u32 = 5;
+    /// A `Sampler2d`'s shape.
+    pub const SHAPE_2D: u32 = 1;
+    /// A `Sampler3d`'s shape.
+    pub const SHAPE_3D: u32 = 2;
+    /// A `SamplerCube`'s shape.
+    pub const SHAPE_CUBE: u32 = 3;
+
+    /// The entry's words.
+    pub fn words(&self) -> [u32; Self::WORDS as usize] {
+        let mut w = [0u32; Self::WORDS as usize];
+        w[Self::OFFSET as usize] = self.offset;
+        w[Self::WIDTH as usize] = self.width;
+        w[Self::HEIGHT as usize] = self.height;
+        w[Self::DEPTH as usize] = self.depth;
+        w[Self::MODE as usize] = self.mode;
+        w[Self::SHAPE as usize] = self.shape;
+        w
+    }
+
+    /// The WGSL constants the megakernel reads an entry by.
+    pub fn wgsl_constants() -> String {
+        u32_constants(&[
+            ("RT_TEXID_WORDS", Self::WORDS),
+            ("RT_TEXID_OFFSET", Self::OFFSET),
+            ("RT_TEXID_WIDTH", Self::WIDTH),
+            ("RT_TEXID_HEIGHT", Self::HEIGHT),
+            ("RT_TEXID_DEPTH", Self::DEPTH),
+            ("RT_TEXID_MODE", Self::MODE),
+            ("RT_TEXID_SHAPE", Self::SHAPE),
+            ("RT_TEXID_3D", Self::SHAPE_3D),
+        ])
+    }
+}
+
 /// The tag of an element type, by its Rust name as its layout spells it
 /// (`Vec3`, `Radiance`, `BindlessBuffer`): 32-bit FNV-1a. The compiler
 /// writes the tag of a bindless id's element type into its accessors and
@@ -378,5 +446,31 @@ mod tests {
         }
         assert!(w[39..].iter().all(|&p| p == 0));
         assert!(InstanceRecord::wgsl_constants().contains("const RT_INST_MASK: u32 = 34u;\n"));
+    }
+
+    #[test]
+    fn sampler_table_fields_land_at_their_words() {
+        let e = SamplerTable { offset: 11, width: 12, height: 13, depth: 14, mode: 15, shape: SamplerTable::SHAPE_3D };
+        let w = e.words();
+        let fields = [
+            (SamplerTable::OFFSET, 11),
+            (SamplerTable::WIDTH, 12),
+            (SamplerTable::HEIGHT, 13),
+            (SamplerTable::DEPTH, 14),
+            (SamplerTable::MODE, 15),
+            (SamplerTable::SHAPE, 2),
+        ];
+        for (at, v) in fields {
+            assert_eq!(w[at as usize], v);
+        }
+        assert!(SamplerTable::wgsl_constants().contains("const RT_TEXID_SHAPE: u32 = 5u;\n"));
+        // The shapes are distinct and none is 0, an entry's unset word.
+        let shapes = [SamplerTable::SHAPE_2D, SamplerTable::SHAPE_3D, SamplerTable::SHAPE_CUBE];
+        assert!(
+            shapes.iter().all(|&s| s != 0)
+                && shapes[0] != shapes[1]
+                && shapes[1] != shapes[2]
+                && shapes[0] != shapes[2]
+        );
     }
 }

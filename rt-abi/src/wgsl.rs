@@ -131,10 +131,28 @@ pub fn constants() -> String {
         ("RT_EXC_INVALID_RAY", constants::EXCEPTION_INVALID_RAY),
         ("RT_EXC_PROGRAM_ID", constants::EXCEPTION_PROGRAM_ID_INVALID),
         ("RT_EXC_BUFFER_ID", constants::EXCEPTION_BUFFER_ID_INVALID),
+        ("RT_EXC_TEXTURE_ID", constants::EXCEPTION_TEXTURE_ID_INVALID),
     ]);
     for (name, value) in constants::CONSTANTS.iter().filter(|(n, _)| n.starts_with("RAY_FLAG_")) {
         s.push_str(&u32_constants(&[(&format!("RT_{name}"), *value)]));
     }
+    s
+}
+
+/// `fn rt_exc_bit(code: u32) -> u32`: [`constants::exception_kind_bit`] in
+/// WGSL, one test per built-in exception code of [`constants::CONSTANTS`],
+/// so that the megakernel's mask of enabled kinds cannot miss a kind the
+/// contract adds.
+pub fn exception_kind_bits() -> String {
+    let mut s = String::from("fn rt_exc_bit(code: u32) -> u32 {\n");
+    let user = constants::exception_kind_bit(constants::EXCEPTION_USER);
+    for (_, code) in constants::CONSTANTS.iter().filter(|(n, _)| n.starts_with("EXCEPTION_")) {
+        let bit = constants::exception_kind_bit(*code);
+        if bit != user {
+            s.push_str(&format!("    if code == {code}u {{ return {bit}u; }}\n"));
+        }
+    }
+    s.push_str(&format!("    return {user}u;\n}}\n"));
     s
 }
 
@@ -212,5 +230,17 @@ mod tests {
         assert_eq!(f32_wgsl(f32::NAN), "rt_f32_from_bits(0x7fc00000u)");
         assert!(floats().contains("const RT_F32_MAX: f32 = 0x1.fffffep+127f;"));
         assert!(stub_prelude(false).contains(&floats()));
+    }
+
+    #[test]
+    fn exception_kind_bits_cover_every_built_in_code() {
+        let text = exception_kind_bits();
+        for (name, code) in constants::CONSTANTS.iter().filter(|(n, _)| n.starts_with("EXCEPTION_")) {
+            let bit = constants::exception_kind_bit(*code);
+            let line = format!("    if code == {code}u {{ return {bit}u; }}\n");
+            assert_eq!(text.contains(&line), *name != "EXCEPTION_USER", "{name}: {text}");
+        }
+        assert!(text.contains("if code == 1007u { return 256u; }"), "{text}");
+        assert!(text.ends_with("    return 32u;\n}\n"), "{text}");
     }
 }

@@ -211,15 +211,23 @@ impl SamplerRec {
             _ => 1,
         };
         let size = glam::UVec3::new(self.width, self.height, depth);
-        // SAFETY: `texels` holds width * height * depth texels (checked by
-        // the context) and outlives the launch.
-        unsafe { Sampler3d::from_raw_parts(self.texels.as_ptr(), size, self.modes.wrap, self.modes.filter) }
+        // SAFETY: `texels` holds the `levels` levels of a width x height x
+        // depth texture (checked by the context) and outlives the launch.
+        unsafe { Sampler3d::from_raw_mip_parts(self.texels.as_ptr(), size, self.levels, self.modes) }
     }
 
     pub fn handle_cube(&self) -> SamplerCube {
-        // SAFETY: `texels` holds six width x width faces (checked by the
-        // context) and outlives the launch.
-        unsafe { SamplerCube::from_raw_parts(self.texels.as_ptr(), self.width, self.modes.filter) }
+        // SAFETY: `texels` holds the `levels` levels of six width x width
+        // faces (checked by the context) and outlives the launch.
+        unsafe {
+            SamplerCube::from_raw_mip_parts(
+                self.texels.as_ptr(),
+                self.width,
+                self.levels,
+                self.modes.filter,
+                self.modes.mip,
+            )
+        }
     }
 
     /// The program type a variable of this sampler must have.
@@ -230,6 +238,42 @@ impl SamplerRec {
             SamplerShape::Cube => "SamplerCube",
         }
     }
+}
+
+/// A full mip chain of a 3D texture of `size` (texel `(x, y, z)` at
+/// `x + y * width + z * width * height`): level 0 is `texels`, every next
+/// level ([`rt_std::mip_level_size_3d`]) a box filter of the one before,
+/// texel `(x, y, z)` the mean of the eight texels `(2x + i, 2y + j, 2z + k)`
+/// for `i, j, k` in `{0, 1}`, each coordinate clamped to the level (as
+/// [`generate_mip_levels`] does in two dimensions), down to 1x1x1. Empty
+/// for texels of another count than the size's or an empty texture.
+pub fn generate_mip_levels_3d(texels: &[Vec4], size: glam::UVec3) -> Vec<Vec<Vec4>> {
+    let count = size.x as usize * size.y as usize * size.z as usize;
+    if texels.is_empty() || texels.len() != count {
+        return Vec::new();
+    }
+    let mut levels = vec![texels.to_vec()];
+    let (mut w, mut h, mut d) = (size.x as usize, size.y as usize, size.z as usize);
+    while w > 1 || h > 1 || d > 1 {
+        let (nw, nh, nd) = ((w / 2).max(1), (h / 2).max(1), (d / 2).max(1));
+        let above = levels.last().expect("level 0 is there");
+        let at = |x: usize, y: usize, z: usize| above[x.min(w - 1) + (y.min(h - 1) + z.min(d - 1) * h) * w];
+        let next = (0..nw * nh * nd)
+            .map(|i| {
+                let (x, y, z) = (2 * (i % nw), 2 * (i / nw % nh), 2 * (i / (nw * nh)));
+                let mut sum = Vec4::ZERO;
+                for (dx, dy, dz) in
+                    [(0, 0, 0), (1, 0, 0), (0, 1, 0), (1, 1, 0), (0, 0, 1), (1, 0, 1), (0, 1, 1), (1, 1, 1)]
+                {
+                    sum += at(x + dx, y + dy, z + dz);
+                }
+                sum * 0.125
+            })
+            .collect();
+        levels.push(next);
+        (w, h, d) = (nw, nh, nd);
+    }
+    levels
 }
 
 /// A full mip chain of the `width x height` texels (row-major): level 0 is

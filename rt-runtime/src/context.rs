@@ -68,6 +68,9 @@ pub enum ExceptionKind {
     /// A buffer read or written through a bindless id that names no buffer
     /// of its element type (OptiX `RT_EXCEPTION_BUFFER_ID_INVALID`).
     BufferIdInvalid,
+    /// A texture sampled through a bindless sampler id that names no
+    /// sampler of its shape (OptiX `RT_EXCEPTION_TEXTURE_ID_INVALID`).
+    TextureIdInvalid,
     /// `rt_throw`'s codes.
     User,
     /// Every kind.
@@ -85,6 +88,7 @@ impl ExceptionKind {
             ExceptionKind::IntegerDivideByZero => exception_kind_bit(EXCEPTION_INTEGER_DIVIDE_BY_ZERO),
             ExceptionKind::ProgramIdInvalid => exception_kind_bit(EXCEPTION_PROGRAM_ID_INVALID),
             ExceptionKind::BufferIdInvalid => exception_kind_bit(EXCEPTION_BUFFER_ID_INVALID),
+            ExceptionKind::TextureIdInvalid => exception_kind_bit(EXCEPTION_TEXTURE_ID_INVALID),
             ExceptionKind::User => exception_kind_bit(EXCEPTION_USER),
             ExceptionKind::All => ALL_EXCEPTION_KINDS,
         }
@@ -398,6 +402,37 @@ impl Context {
     pub fn rw_buffer_id<T: RtData>(&self, b: BufferId) -> Result<rt_std::RwBindlessBuffer<T>> {
         self.check_bindless::<T>(b, true)?;
         Ok(rt_std::RwBindlessBuffer::from_id(b.bindless_id()))
+    }
+
+    /// The bindless id of sampler `s` (OptiX `rtTextureSamplerGetId`): a
+    /// [`BindlessSampler<S>`](rt_std::BindlessSampler) programs sample
+    /// through, set as a variable or stored in a buffer, payload or struct.
+    /// `S` is the sampler's shape, [`Sampler2d`](rt_std::Sampler2d) for
+    /// the 2D forms of `create_sampler*`, [`Sampler3d`](rt_std::Sampler3d)
+    /// for `create_sampler_3d`, [`SamplerCube`](rt_std::SamplerCube) for
+    /// `create_sampler_cube`; errors naming the sampler and both shapes if
+    /// it is another. Ids are not bound to the adapter's sampled-texture
+    /// slots (samplers live in the heap on every backend), so any number
+    /// of samplers may have ids.
+    #[doc(alias = "rtTextureSamplerGetId")]
+    pub fn sampler_id<S: rt_std::bindless_sampler::SamplerShape>(
+        &self,
+        s: SamplerId,
+    ) -> Result<rt_std::BindlessSampler<S>> {
+        let rec =
+            self.scene.samplers.get(s.index() as usize).ok_or_else(|| RtError::InvalidHandle(format!("{s:?}")))?;
+        if rec.type_name() != S::NAME {
+            return Err(RtError::BadSampler {
+                sampler: s.index(),
+                problem: format!(
+                    "asked for a bindless id of a `{}`, but the sampler is a `{}` (ask for a `BindlessSampler<{}>`)",
+                    S::NAME,
+                    rec.type_name(),
+                    rec.type_name()
+                ),
+            });
+        }
+        Ok(rt_std::BindlessSampler::from_id(s.bindless_id()))
     }
 
     fn check_bindless<T: RtData>(&self, b: BufferId, writable: bool) -> Result<()> {
@@ -971,6 +1006,73 @@ impl Context {
         Ok(SamplerId(self.scene.samplers.len() as u32 - 1))
     }
 
+    /// A 3D sampler over texels of any supported format (OptiX's buffer
+    /// formats and read modes behind a 3D sampler): the host decodes them
+    /// to RGBA `f32` on upload as [`TexelData::decode`](crate::TexelData::decode)
+    /// says, `size` of them (texel `(x, y, z)` at
+    /// `x + y * width + z * width * height`), one level (for levels, decode
+    /// them and pass them to
+    /// [`create_sampler_3d_mipmapped`](Self::create_sampler_3d_mipmapped)).
+    /// Coordinates are normalised: [`IndexMode::ArrayIndex`] is refused, as
+    /// are the wrong texel count, naming the sampler.
+    pub fn create_sampler_3d_from_texels(
+        &mut self,
+        texels: crate::TexelData,
+        size: glam::UVec3,
+        options: crate::SamplerOptions,
+    ) -> Result<SamplerId> {
+        let fail = |problem: String| RtError::BadSampler { sampler: self.scene.samplers.len() as u32, problem };
+        let count = size.x as u64 * size.y as u64 * size.z as u64;
+        if texels.len() as u64 != count || texels.is_empty() {
+            return Err(fail(format!(
+                "{} {} texels for a {}x{}x{} texture",
+                texels.len(),
+                texels.format_name(),
+                size.x,
+                size.y,
+                size.z
+            )));
+        }
+        if options.index == IndexMode::ArrayIndex {
+            return Err(fail(
+                "array-index coordinates (RT_TEXTURE_INDEX_ARRAY_INDEX) are for 2D samplers here; a 3D sampler reads normalised coordinates".into(),
+            ));
+        }
+        self.create_sampler_3d(texels.decode(options.read), size, options.wrap, options.filter)
+    }
+
+    /// A cube map over faces of any supported format, decoded to RGBA
+    /// `f32` on upload as [`TexelData::decode`](crate::TexelData::decode)
+    /// says with read mode `read`: `faces[0..6]` (+x, -x, +y, -y, +z, -z)
+    /// of `size * size` texels each, one level (for levels, decode them
+    /// and pass them to
+    /// [`create_sampler_cube_mipmapped`](Self::create_sampler_cube_mipmapped)).
+    /// A face of the wrong texel count is refused naming the sampler, the
+    /// face and its format.
+    pub fn create_sampler_cube_from_texels(
+        &mut self,
+        faces: [crate::TexelData; 6],
+        size: u32,
+        filter: FilterMode,
+        read: crate::ReadMode,
+    ) -> Result<SamplerId> {
+        const NAMES: [&str; 6] = ["+x", "-x", "+y", "-y", "+z", "-z"];
+        let n = size as usize * size as usize;
+        for (face, name) in faces.iter().zip(NAMES) {
+            if face.len() != n || n == 0 {
+                return Err(RtError::BadSampler {
+                    sampler: self.scene.samplers.len() as u32,
+                    problem: format!(
+                        "cube face {name} has {} {} texels for a {size}x{size} face",
+                        face.len(),
+                        face.format_name()
+                    ),
+                });
+            }
+        }
+        self.create_sampler_cube(faces.map(|f| f.decode(read)), size, filter)
+    }
+
     /// A 3D sampler (OptiX `rtTextureSampler<float4, 3>`, read by a
     /// program's `Sampler3d` variable) over `width * height * depth` RGBA
     /// texels, texel `(x, y, z)` at `x + y * width + z * width * height`;
@@ -1029,6 +1131,152 @@ impl Context {
         };
         self.scene.samplers.push(rec);
         Ok(SamplerId(self.scene.samplers.len() as u32 - 1))
+    }
+
+    /// A mipmapped 3D sampler (OptiX's mip levels of a 3D
+    /// `RTtexturesampler`, read by `Sampler3d::sample_lod`): `levels[0]`
+    /// holds level 0's `size` texels (texel `(x, y, z)` at
+    /// `x + y * width + z * width * height`), `levels[l]` those of level
+    /// `l`, [`rt_std::mip_level_size_3d`]; from 1 level to the full chain
+    /// ([`rt_std::mip_level_count_3d`], down to 1x1x1). A level of the
+    /// wrong texel count, or more levels than the chain has, is refused
+    /// naming the sampler and the level.
+    pub fn create_sampler_3d_mipmapped(
+        &mut self,
+        levels: Vec<Vec<Vec4>>,
+        size: glam::UVec3,
+        wrap: WrapMode,
+        filter: FilterMode,
+        mip: MipFilter,
+    ) -> Result<SamplerId> {
+        let fail = |problem: String| RtError::BadSampler { sampler: self.scene.samplers.len() as u32, problem };
+        let name = format!("{}x{}x{}", size.x, size.y, size.z);
+        let chain = rt_std::mip_level_count_3d(size);
+        if levels.is_empty() || size.min_element() == 0 {
+            return Err(fail(format!("no mip levels for a {name} texture (level 0 is needed, not empty)")));
+        }
+        if levels.len() > chain as usize {
+            return Err(fail(format!(
+                "{} mip levels for a {name} texture, whose full chain has {chain} (down to 1x1x1)",
+                levels.len()
+            )));
+        }
+        for (l, level) in levels.iter().enumerate() {
+            let s = rt_std::mip_level_size_3d(size, l as u32);
+            let n = s.x as usize * s.y as usize * s.z as usize;
+            if level.len() != n {
+                return Err(fail(format!(
+                    "mip level {l} has {} texels; level {l} of a {name} texture is {}x{}x{} ({n} texels)",
+                    level.len(),
+                    s.x,
+                    s.y,
+                    s.z
+                )));
+            }
+        }
+        let rec = SamplerRec {
+            levels: levels.len() as u32,
+            texels: levels.concat().into_boxed_slice(),
+            width: size.x,
+            height: size.y,
+            modes: SamplerModes { wrap, filter, mip, index: IndexMode::NormalizedCoordinates },
+            shape: SamplerShape::Volume(size.z),
+        };
+        self.scene.samplers.push(rec);
+        Ok(SamplerId(self.scene.samplers.len() as u32 - 1))
+    }
+
+    /// A mipmapped 3D sampler whose levels are generated on the host: the
+    /// full chain of [`generate_mip_levels_3d`](crate::generate_mip_levels_3d)
+    /// (a 2x2x2 box filter, down to 1x1x1) over level 0's texels.
+    pub fn create_sampler_3d_with_mips(
+        &mut self,
+        texels: Vec<Vec4>,
+        size: glam::UVec3,
+        wrap: WrapMode,
+        filter: FilterMode,
+        mip: MipFilter,
+    ) -> Result<SamplerId> {
+        let levels = crate::buffer::generate_mip_levels_3d(&texels, size);
+        if levels.is_empty() {
+            return Err(RtError::BadSampler {
+                sampler: self.scene.samplers.len() as u32,
+                problem: format!("{} texels for a {}x{}x{} texture", texels.len(), size.x, size.y, size.z),
+            });
+        }
+        self.create_sampler_3d_mipmapped(levels, size, wrap, filter, mip)
+    }
+
+    /// A mipmapped cube map (read by `SamplerCube::sample_dir_lod`):
+    /// `levels[l]` holds level `l`'s six faces (+x, -x, +y, -y, +z, -z, as
+    /// [`create_sampler_cube`](Self::create_sampler_cube) has them) of side
+    /// `max(1, size >> l)`; from 1 level to the full chain (down to 1x1
+    /// faces). A face of the wrong texel count, or more levels than the
+    /// chain has, is refused naming the sampler, the level and the face.
+    pub fn create_sampler_cube_mipmapped(
+        &mut self,
+        levels: Vec<[Vec<Vec4>; 6]>,
+        size: u32,
+        filter: FilterMode,
+        mip: MipFilter,
+    ) -> Result<SamplerId> {
+        const NAMES: [&str; 6] = ["+x", "-x", "+y", "-y", "+z", "-z"];
+        let fail = |problem: String| RtError::BadSampler { sampler: self.scene.samplers.len() as u32, problem };
+        let chain = rt_std::mip_level_count(size, size);
+        if levels.is_empty() || size == 0 {
+            return Err(fail(format!("no mip levels for a cube map of {size}x{size} faces (level 0 is needed)")));
+        }
+        if levels.len() > chain as usize {
+            return Err(fail(format!(
+                "{} mip levels for a cube map of {size}x{size} faces, whose full chain has {chain} (down to 1x1)",
+                levels.len()
+            )));
+        }
+        for (l, faces) in levels.iter().enumerate() {
+            let side = (size >> l).max(1) as usize;
+            for (face, name) in faces.iter().zip(NAMES) {
+                if face.len() != side * side {
+                    return Err(fail(format!(
+                        "cube face {name} of mip level {l} has {} texels for a {side}x{side} face",
+                        face.len()
+                    )));
+                }
+            }
+        }
+        let rec = SamplerRec {
+            levels: levels.len() as u32,
+            texels: levels.iter().flat_map(|faces| faces.concat()).collect(),
+            width: size,
+            height: size,
+            modes: SamplerModes { wrap: WrapMode::Clamp, filter, mip, ..SamplerModes::default() },
+            shape: SamplerShape::Cube,
+        };
+        self.scene.samplers.push(rec);
+        Ok(SamplerId(self.scene.samplers.len() as u32 - 1))
+    }
+
+    /// A mipmapped cube map whose levels are generated on the host: each
+    /// face's full chain of [`generate_mip_levels`](crate::generate_mip_levels)
+    /// (a 2x2 box filter within the face, down to 1x1).
+    pub fn create_sampler_cube_with_mips(
+        &mut self,
+        faces: [Vec<Vec4>; 6],
+        size: u32,
+        filter: FilterMode,
+        mip: MipFilter,
+    ) -> Result<SamplerId> {
+        let lens = faces.each_ref().map(Vec::len);
+        let chains = faces.map(|f| crate::buffer::generate_mip_levels(&f, size, size));
+        let count = chains.iter().map(Vec::len).min().unwrap_or(0);
+        if count == 0 {
+            return Err(RtError::BadSampler {
+                sampler: self.scene.samplers.len() as u32,
+                problem: format!("cube faces of {lens:?} texels (+x to -z) for {size}x{size} faces"),
+            });
+        }
+        let mut chains = chains.map(Vec::into_iter);
+        let levels = (0..count).map(|_| std::array::from_fn(|f| chains[f].next().unwrap_or_default())).collect();
+        self.create_sampler_cube_mipmapped(levels, size, filter, mip)
     }
 
     /// A mipmapped sampler whose levels are generated on the host: the full

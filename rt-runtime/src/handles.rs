@@ -73,6 +73,20 @@ impl BufferId {
     }
 }
 
+/// Bindless sampler ids (`rt_std::BindlessSampler`) are sampler handles
+/// plus one, so that zero is `BindlessSampler::NONE`, the id of no sampler.
+impl SamplerId {
+    /// The id programs sample this sampler through.
+    pub(crate) fn bindless_id(self) -> u32 {
+        self.0 + 1
+    }
+
+    /// The sampler bindless id `id` names, if any (zero names none).
+    pub(crate) fn from_bindless_id(id: u32) -> Option<SamplerId> {
+        id.checked_sub(1).map(SamplerId)
+    }
+}
+
 impl NodeId {
     /// The handle programs receive for this node.
     pub fn object(self) -> rt_std::Object {

@@ -46,7 +46,7 @@ pub use accel::{Acceleration, Builder};
 pub use backend::tiles::{DEFAULT_TILE_BUDGET, LaunchControl, LaunchProgress, Tile, TileBudget};
 pub use backend::wgpu::Traversal;
 pub use backend::{Backend, ExceptionRecord, LaunchReport, Timings};
-pub use buffer::{BufferType, generate_mip_levels};
+pub use buffer::{BufferType, generate_mip_levels, generate_mip_levels_3d};
 pub use context::{Context, ExceptionKind, Scope, UsageCallback};
 pub use error::{Result, RtError};
 pub use scene::{

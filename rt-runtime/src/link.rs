@@ -17,6 +17,7 @@ use crate::scene::{GeometryKind, NodeId, NodeKind, ProgramId};
 use crate::scene::{Scene, Scope};
 use crate::vars::{ScopeKind, VarValue, lookup_order};
 use rt_std::bindless::{BINDLESS_LAYOUT, RW_BINDLESS_LAYOUT};
+use rt_std::bindless_sampler::BINDLESS_SAMPLER_LAYOUT;
 use rt_std::callable::CALLABLE_LAYOUT;
 use rt_std::program::{ProgramDescriptor, TypeLayout, VariableKind};
 use std::any::Any;
@@ -123,6 +124,9 @@ pub fn resolve_values(scene: &Scene, p: ProgramId, record: Record) -> Result<Vec
                 }
                 if ok && (layout.rust == BINDLESS_LAYOUT.rust || layout.rust == RW_BINDLESS_LAYOUT.rust) {
                     check_bindless_id(scene, desc, v, &scope_name(scope), words[0])?;
+                }
+                if ok && layout.rust == BINDLESS_SAMPLER_LAYOUT.rust {
+                    check_sampler_id(scene, desc, v, &scope_name(scope), words[0])?;
                 }
                 ok
             }
@@ -336,7 +340,8 @@ fn layout_compatible(held: &str, declared: &str) -> bool {
     let generic = |layout: &TypeLayout| {
         held == layout.rust && declared.strip_prefix(layout.rust).is_some_and(|rest| rest.starts_with('<'))
     };
-    held == declared || [CALLABLE_LAYOUT, BINDLESS_LAYOUT, RW_BINDLESS_LAYOUT].iter().any(generic)
+    held == declared
+        || [CALLABLE_LAYOUT, BINDLESS_LAYOUT, RW_BINDLESS_LAYOUT, BINDLESS_SAMPLER_LAYOUT].iter().any(generic)
 }
 
 /// A `BindlessBuffer<T>` (`RwBindlessBuffer<T>`) variable's id against the
@@ -375,6 +380,36 @@ fn check_bindless_id(
             named.index(),
             rec.ty
         )));
+    }
+    Ok(())
+}
+
+/// A `BindlessSampler<S>` variable's id against the sampler it names: zero
+/// (none) or a sampler of shape `S`.
+fn check_sampler_id(
+    scene: &Scene,
+    desc: &'static ProgramDescriptor,
+    v: &rt_std::program::VariableDescriptor,
+    scope: &str,
+    id: u32,
+) -> Result<()> {
+    let Some(named) = crate::handles::SamplerId::from_bindless_id(id) else {
+        return Ok(());
+    };
+    let shape = v.ty.rust.split_once('<').and_then(|(_, s)| s.strip_suffix('>')).unwrap_or(v.ty.rust);
+    let error = |found: String| RtError::BindlessVariable {
+        program: desc.name,
+        location: desc.location(),
+        variable: v.name.to_string(),
+        declared: v.ty.rust.to_string(),
+        scope: scope.to_string(),
+        found,
+    };
+    let Some(rec) = scene.samplers.get(named.index() as usize) else {
+        return Err(error(format!("id {id}, which names no sampler of this context")));
+    };
+    if rec.type_name() != shape {
+        return Err(error(format!("the id of sampler {}, a `{}`", named.index(), rec.type_name())));
     }
     Ok(())
 }

@@ -442,6 +442,15 @@ pub trait Tracer {
         let _ = (id, writable);
         None
     }
+    /// The sampler of bindless sampler id `id`, for
+    /// [`BindlessSampler`](crate::BindlessSampler): a
+    /// [`Sampler2d`](crate::Sampler2d), [`Sampler3d`](crate::Sampler3d) or
+    /// [`SamplerCube`](crate::SamplerCube) by the sampler's shape, behind
+    /// `Any`; `None` when the id names no sampler of this launch.
+    fn sampler(&self, id: u32) -> Option<&(dyn core::any::Any + Send + Sync)> {
+        let _ = id;
+        None
+    }
 }
 
 thread_local! {
@@ -725,6 +734,13 @@ pub fn __callable_variables<L: VariableList, R: Default>(f: impl FnOnce(L) -> R)
 /// buffer, or of a buffer of another element type.
 pub(crate) fn bindless_buffer<H: Copy + 'static>(id: u32, writable: bool) -> Option<H> {
     with_installed_tracer(|tracer| tracer.buffer(id, writable).and_then(|h| h.downcast_ref::<H>().copied()), || None)
+}
+
+/// The sampler `S` of bindless sampler id `id` as the installed tracer
+/// has it: `None` without a tracer, for an id of no sampler, or of a
+/// sampler of another shape.
+pub(crate) fn bindless_sampler<S: Copy + 'static>(id: u32) -> Option<S> {
+    with_installed_tracer(|tracer| tracer.sampler(id).and_then(|s| s.downcast_ref::<S>().copied()), || None)
 }
 
 /// Sends `rt_printf!` text to the tracer or stdout.

@@ -60,6 +60,12 @@ pub const EXCEPTION_PROGRAM_ID_INVALID: u32 = rt_abi::EXCEPTION_PROGRAM_ID_INVAL
 /// dropped.
 #[doc(alias = "RT_EXCEPTION_BUFFER_ID_INVALID")]
 pub const EXCEPTION_BUFFER_ID_INVALID: u32 = rt_abi::EXCEPTION_BUFFER_ID_INVALID;
+/// Exception code: a texture was sampled through a bindless sampler id
+/// ([`BindlessSampler`](crate::BindlessSampler)) that names no sampler of
+/// the launch (zero, an id the context did not give) or a sampler of
+/// another shape; the read returned zero (size 0).
+#[doc(alias = "RT_EXCEPTION_TEXTURE_ID_INVALID")]
+pub const EXCEPTION_TEXTURE_ID_INVALID: u32 = rt_abi::EXCEPTION_TEXTURE_ID_INVALID;
 /// The first exception code free for programs' own [`rt_throw`] codes; the
 /// codes below are reserved for the runtime's exceptions.
 #[doc(alias = "RT_EXCEPTION_USER")]

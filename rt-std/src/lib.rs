@@ -74,6 +74,15 @@
 //! zero, a store is dropped, and the exception
 //! [`EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS`] is raised (see [`buffer`]).
 //!
+//! Bindless ids are values rather than handles: [`BindlessBuffer`],
+//! [`RwBindlessBuffer`] (see [`bindless`]), [`BindlessSampler`] (see
+//! [`bindless_sampler`]) and [`Callable`] are one `u32` word that a program
+//! may keep anywhere a value goes (a buffer of ids, a struct or payload
+//! field) and reads through; an id that names nothing of its type raises
+//! its own exception ([`EXCEPTION_BUFFER_ID_INVALID`],
+//! [`EXCEPTION_TEXTURE_ID_INVALID`], [`EXCEPTION_PROGRAM_ID_INVALID`]) and
+//! reads zero.
+//!
 //! ## The CPU execution context
 //! On the GPU, intrinsics read the megakernel's state. On the CPU they read
 //! a thread-local [`cpu::ExecutionContext`]: launch index and size, the
@@ -131,6 +140,7 @@
 pub mod arith;
 pub mod atomic;
 pub mod bindless;
+pub mod bindless_sampler;
 pub mod buffer;
 pub mod callable;
 pub mod cpu;
@@ -146,6 +156,7 @@ pub mod texture;
 
 pub use atomic::{AtomicElement, AtomicInteger};
 pub use bindless::{BindlessBuffer, RwBindlessBuffer};
+pub use bindless_sampler::BindlessSampler;
 pub use buffer::{Buffer, Buffer2d, Buffer3d, RwBuffer, RwBuffer2d, RwBuffer3d};
 pub use callable::Callable;
 pub use data::{Attributes, Payload, RtData};
@@ -159,5 +170,5 @@ pub use rt_macros::{
 pub use scene::{Object, TransformKind};
 pub use texture::{
     FilterMode, IndexMode, MipFilter, Sampler2d, Sampler3d, SamplerCube, SamplerModes, WrapMode, mip_level_count,
-    mip_level_size,
+    mip_level_count_3d, mip_level_size, mip_level_size_3d,
 };

@@ -19,6 +19,7 @@ pub use rt_macros::{rt_attributes, rt_const, rt_enum, rt_function, rt_impl, rt_p
 pub use crate::rt_printf;
 
 pub use crate::bindless::{BindlessBuffer, RwBindlessBuffer};
+pub use crate::bindless_sampler::BindlessSampler;
 pub use crate::buffer::{Buffer, Buffer2d, Buffer3d, RwBuffer, RwBuffer2d, RwBuffer3d};
 pub use crate::callable::Callable;
 pub use crate::data::{Attributes, Payload, RtData};

@@ -1,6 +1,11 @@
-//! [`Sampler2d`] (with mip levels), [`Sampler3d`] and [`SamplerCube`]:
+//! [`Sampler2d`], [`Sampler3d`] and [`SamplerCube`], each with mip levels:
 //! filtered reads of RGBA `f32` textures. (Texel formats are decoded to
 //! RGBA `f32` by the host when it creates a sampler.)
+//!
+//! A program may also hold a sampler's id, a
+//! [`BindlessSampler<S>`](crate::BindlessSampler), and sample through it
+//! with the same methods and the same results (OptiX's `rtTex2D<float4>(id,
+//! ..)`; see [`bindless_sampler`](crate::bindless_sampler)).
 //!
 //! The CPU implementation here is the reference for the GPU one, written to
 //! the rules of WebGPU/Vulkan sampling with explicit level 0:
@@ -39,6 +44,10 @@
 //!   alone). Each level is sampled with the sampler's [`FilterMode`] and
 //!   [`WrapMode`] at its own size: linear filter and linear mip filter are
 //!   trilinear filtering.
+//!
+//! [`Sampler3d::sample_lod`] and [`SamplerCube::sample_dir_lod`] choose
+//! and blend levels by the same rules (a cube map's level is filtered on
+//! the selected face alone).
 //!
 //! [`Sampler2d::sample`] reads level 0 only: programs run in compute shaders,
 //! which have no screen-space derivatives to choose a level from (WGSL's
@@ -364,22 +373,66 @@ impl fmt::Debug for Sampler2d {
     }
 }
 
-/// A 3D texture of RGBA `f32` texels with its wrap and filter modes, as a
-/// variable gives it to a program (OptiX `rtTextureSampler<float4, 3>`).
-/// Texel `(x, y, z)` is stored at `x + y * width + z * width * height`;
+/// How many levels a full mip chain of a 3D texture of `size` has:
+/// `floor(log2(max(width, height, depth))) + 1`, the last level being
+/// 1x1x1 (0 for an empty texture).
+pub fn mip_level_count_3d(size: UVec3) -> u32 {
+    32 - size.max_element().leading_zeros()
+}
+
+/// The size of level `level` of a 3D texture of level-0 size `size`:
+/// `max(1, size >> level)` per axis.
+pub fn mip_level_size_3d(size: UVec3, level: u32) -> UVec3 {
+    let shr = |n: u32| n.checked_shr(level).unwrap_or(0);
+    UVec3::new(shr(size.x), shr(size.y), shr(size.z)).max(UVec3::ONE)
+}
+
+/// Vulkan's level selection, as [`Sampler2d::sample_lod`] makes it (see the
+/// [module docs](self)): the levels LOD `lod` reads from `levels` levels,
+/// `(lo, hi, t)`, level `lo` blended with level `hi` by `t` (`t = 0`: `lo`
+/// alone).
+fn select_levels(levels: u32, mip: MipFilter, lod: f32) -> (u32, u32, f32) {
+    let last = (levels.max(1) - 1) as f32;
+    let d = if lod.is_nan() { 0.0 } else { lod.clamp(0.0, last) };
+    match mip {
+        MipFilter::Nearest => {
+            let l = ((d + 0.5).ceil() - 1.0) as u32;
+            (l, l, 0.0)
+        }
+        MipFilter::Linear => {
+            let lo = d.floor();
+            (lo as u32, (lo + 1.0).min(last) as u32, d - lo)
+        }
+    }
+}
+
+/// Level `lo`'s sample, blended with level `hi`'s by `t` as [`mix`] does
+/// (`hi` is not sampled at `t = 0`).
+fn blend_levels(lo: Vec4, hi: impl FnOnce() -> Vec4, t: f32) -> Vec4 {
+    if t == 0.0 { lo } else { mix(lo, hi(), t) }
+}
+
+/// A 3D texture of RGBA `f32` texels with its wrap and filter modes and its
+/// mip levels, as a variable gives it to a program (OptiX
+/// `rtTextureSampler<float4, 3>`). Texel `(x, y, z)` of a level is stored
+/// at `x + y * width + z * width * height` of that level, the levels one
+/// after the other from level 0, level `l` of [`mip_level_size_3d`];
 /// `uvw = (0, 0, 0)` is the start of the first texel, `(1, 1, 1)` the end of
 /// the last, and the rules are [`Sampler2d`]'s with a third axis: the
 /// [`WrapMode`] per axis on texel indices, [`FilterMode::Nearest`] reads
 /// texel `floor(uvw * size)`, [`FilterMode::Linear`] blends the eight
-/// texels around `uvw * size - 0.5` along x, then y, then z (trilinear).
-/// One level; a NaN or infinite coordinate counts as 0.
+/// texels around `uvw * size - 0.5` along x, then y, then z (trilinear);
+/// levels are chosen as [`Sampler2d::sample_lod`] chooses them.
+/// A NaN or infinite coordinate counts as 0.
 #[doc(alias = "tex3D")]
 #[derive(Clone, Copy)]
 pub struct Sampler3d {
     texels: *const Vec4,
     size: UVec3,
+    levels: u32,
     wrap: WrapMode,
     filter: FilterMode,
+    mip: MipFilter,
 }
 
 // SAFETY: as for `Sampler2d`.
@@ -388,15 +441,37 @@ unsafe impl Send for Sampler3d {}
 unsafe impl Sync for Sampler3d {}
 
 impl Sampler3d {
-    /// A sampler over the `width * height * depth` texels at `texels`.
-    /// Host side only.
+    /// A sampler over the `width * height * depth` texels at `texels`, one
+    /// level. Host side only.
     ///
     /// # Safety
     /// `texels` points to `width * height * depth` initialised `Vec4`s that
     /// stay valid and unchanged while any copy of the handle is used (an
     /// empty size reads nothing and samples to zero).
     pub unsafe fn from_raw_parts(texels: *const Vec4, size: UVec3, wrap: WrapMode, filter: FilterMode) -> Self {
-        Sampler3d { texels, size, wrap, filter }
+        let modes = SamplerModes { wrap, filter, ..SamplerModes::default() };
+        // SAFETY: one level, as the caller promises.
+        unsafe { Sampler3d::from_raw_mip_parts(texels, size, 1, modes) }
+    }
+
+    /// A sampler over a mip chain of `levels` levels at `texels`: level 0
+    /// (`size` texels), then each next level of [`mip_level_size_3d`].
+    /// Host side only. `levels` is clamped to `1..=mip_level_count_3d(size)`;
+    /// `modes.index` is not used (coordinates are normalised).
+    ///
+    /// # Safety
+    /// `texels` points to the texels of those levels, initialised, valid
+    /// and unchanged while any copy of the handle is used.
+    pub unsafe fn from_raw_mip_parts(texels: *const Vec4, size: UVec3, levels: u32, modes: SamplerModes) -> Self {
+        let chain = mip_level_count_3d(size).max(1);
+        Sampler3d {
+            texels,
+            size,
+            levels: levels.clamp(1, chain),
+            wrap: modes.wrap,
+            filter: modes.filter,
+            mip: modes.mip,
+        }
     }
 
     /// Width, height and depth in texels.
@@ -406,8 +481,15 @@ impl Sampler3d {
         self.size
     }
 
-    /// The texture at normalised coordinates `uvw`, filtered and wrapped by
-    /// the sampler's modes.
+    /// How many mip levels the sampler has (1 without mips).
+    ///
+    /// Program kinds: all.
+    pub fn levels(&self) -> u32 {
+        self.levels
+    }
+
+    /// Level 0 of the texture at normalised coordinates `uvw`, filtered and
+    /// wrapped by the sampler's modes.
     ///
     /// Program kinds: all.
     #[doc(alias = "tex3D")]
@@ -415,12 +497,31 @@ impl Sampler3d {
         if self.size.min_element() == 0 {
             return Vec4::ZERO;
         }
+        self.sample_level(uvw, 0)
+    }
+
+    /// The texture at `uvw` at level of detail `lod`, the levels chosen and
+    /// blended as [`Sampler2d::sample_lod`] does (clamped to the levels
+    /// there are; a NaN LOD counts as 0).
+    ///
+    /// Program kinds: all.
+    #[doc(alias = "tex3DLod")]
+    pub fn sample_lod(&self, uvw: Vec3, lod: f32) -> Vec4 {
+        if self.size.min_element() == 0 {
+            return Vec4::ZERO;
+        }
+        let (lo, hi, t) = select_levels(self.levels, self.mip, lod);
+        blend_levels(self.sample_level(uvw, lo), || self.sample_level(uvw, hi), t)
+    }
+
+    /// Level `level` (< `levels`) at `uvw`; the sampler is not degenerate.
+    fn sample_level(&self, uvw: Vec3, level: u32) -> Vec4 {
+        let (start, size) = self.level(level);
         let uvw = Vec3::select(uvw.is_finite_mask(), uvw, Vec3::ZERO);
-        let p = uvw * self.size.as_vec3();
+        let p = uvw * size.as_vec3();
         let wrapped = |x: i64, y: i64, z: i64| {
-            let (x, y, z) =
-                (self.wrap.apply(x, self.size.x), self.wrap.apply(y, self.size.y), self.wrap.apply(z, self.size.z));
-            self.texel(x, y, z)
+            let (x, y, z) = (self.wrap.apply(x, size.x), self.wrap.apply(y, size.y), self.wrap.apply(z, size.z));
+            self.texel(start, size, x, y, z)
         };
         match self.filter {
             FilterMode::Nearest => {
@@ -443,7 +544,8 @@ impl Sampler3d {
         }
     }
 
-    /// Texel `texel`, unfiltered, each coordinate clamped to the last texel.
+    /// Texel `texel` of level 0, unfiltered, each coordinate clamped to the
+    /// last texel.
     ///
     /// Program kinds: all.
     pub fn fetch(&self, texel: UVec3) -> Vec4 {
@@ -451,14 +553,25 @@ impl Sampler3d {
             return Vec4::ZERO;
         }
         let t = texel.min(self.size - 1);
-        self.texel(t.x as usize, t.y as usize, t.z as usize)
+        self.texel(0, self.size, t.x as usize, t.y as usize, t.z as usize)
     }
 
-    fn texel(&self, x: usize, y: usize, z: usize) -> Vec4 {
-        let (w, h) = (self.size.x as usize, self.size.y as usize);
-        debug_assert!(x < w && y < h && z < self.size.z as usize);
-        // SAFETY: in range, so inside the texels of the contract.
-        unsafe { *self.texels.add(x + y * w + z * w * h) }
+    /// The index of level `level`'s first texel, and the level's size.
+    fn level(&self, level: u32) -> (usize, UVec3) {
+        let mut start = 0;
+        for l in 0..level {
+            let s = mip_level_size_3d(self.size, l);
+            start += s.x as usize * s.y as usize * s.z as usize;
+        }
+        (start, mip_level_size_3d(self.size, level))
+    }
+
+    fn texel(&self, start: usize, size: UVec3, x: usize, y: usize, z: usize) -> Vec4 {
+        let (w, h) = (size.x as usize, size.y as usize);
+        debug_assert!(x < w && y < h && z < size.z as usize);
+        // SAFETY: in range of a level below `levels`, so inside the texels
+        // of the contract.
+        unsafe { *self.texels.add(start + x + y * w + z * w * h) }
     }
 }
 
@@ -468,20 +581,27 @@ impl fmt::Debug for Sampler3d {
             .field("size", &self.size)
             .field("wrap", &self.wrap)
             .field("filter", &self.filter)
+            .field("levels", &self.levels)
+            .field("mip", &self.mip)
             .finish()
     }
 }
 
 /// A cube map: six square faces of RGBA `f32` texels, read by direction
-/// (OptiX `texCubemap`, a layered texture of six faces). Faces are stored in
-/// Vulkan's layer order, +x, -x, +y, -y, +z, -z, each `size x size` texels
-/// row-major. See [`SamplerCube::sample_dir`] for the face selection.
+/// (OptiX `texCubemap`, a layered texture of six faces), with mip levels.
+/// Faces are stored in Vulkan's layer order, +x, -x, +y, -y, +z, -z, each
+/// `size x size` texels row-major; level `l` holds six faces of side
+/// `max(1, size >> l)`, the levels one after the other from level 0. See
+/// [`SamplerCube::sample_dir`] for the face selection; levels are chosen as
+/// [`Sampler2d::sample_lod`] chooses them.
 #[doc(alias = "texCubemap")]
 #[derive(Clone, Copy)]
 pub struct SamplerCube {
     texels: *const Vec4,
     size: u32,
+    levels: u32,
     filter: FilterMode,
+    mip: MipFilter,
 }
 
 // SAFETY: as for `Sampler2d`.
@@ -490,14 +610,33 @@ unsafe impl Send for SamplerCube {}
 unsafe impl Sync for SamplerCube {}
 
 impl SamplerCube {
-    /// A cube map over the `6 * size * size` texels at `texels`. Host side
-    /// only.
+    /// A cube map over the `6 * size * size` texels at `texels`, one level.
+    /// Host side only.
     ///
     /// # Safety
     /// `texels` points to `6 * size * size` initialised `Vec4`s that stay
     /// valid and unchanged while any copy of the handle is used.
     pub unsafe fn from_raw_parts(texels: *const Vec4, size: u32, filter: FilterMode) -> Self {
-        SamplerCube { texels, size, filter }
+        // SAFETY: one level, as the caller promises.
+        unsafe { SamplerCube::from_raw_mip_parts(texels, size, 1, filter, MipFilter::Linear) }
+    }
+
+    /// A cube map over `levels` levels at `texels`, each six faces of side
+    /// `max(1, size >> l)`. Host side only. `levels` is clamped to
+    /// `1..=mip_level_count(size, size)`.
+    ///
+    /// # Safety
+    /// `texels` points to the texels of those levels, initialised, valid
+    /// and unchanged while any copy of the handle is used.
+    pub unsafe fn from_raw_mip_parts(
+        texels: *const Vec4,
+        size: u32,
+        levels: u32,
+        filter: FilterMode,
+        mip: MipFilter,
+    ) -> Self {
+        let chain = mip_level_count(size, size).max(1);
+        SamplerCube { texels, size, levels: levels.clamp(1, chain), filter, mip }
     }
 
     /// The side of a face in texels.
@@ -505,6 +644,13 @@ impl SamplerCube {
     /// Program kinds: all.
     pub fn size(&self) -> u32 {
         self.size
+    }
+
+    /// How many mip levels the cube map has (1 without mips).
+    ///
+    /// Program kinds: all.
+    pub fn levels(&self) -> u32 {
+        self.levels
     }
 
     /// The face (0 to 5: +x, -x, +y, -y, +z, -z) and the face coordinates
@@ -532,11 +678,12 @@ impl SamplerCube {
         (face, Vec2::new(0.5 * (sc / rc) + 0.5, 0.5 * (tc / rc) + 0.5))
     }
 
-    /// The cube map in direction `dir` (any length): the face and
-    /// coordinates of [`SamplerCube::face_coordinates`], sampled on that
-    /// face with the sampler's filter, clamped to the face's edge (filtering
-    /// does not reach across to the next face, unlike Vulkan's seamless cube
-    /// maps: a linear sample within half a texel of an edge differs).
+    /// Level 0 of the cube map in direction `dir` (any length): the face
+    /// and coordinates of [`SamplerCube::face_coordinates`], sampled on
+    /// that face with the sampler's filter, clamped to the face's edge
+    /// (filtering does not reach across to the next face, unlike Vulkan's
+    /// seamless cube maps: a linear sample within half a texel of an edge
+    /// differs).
     ///
     /// Program kinds: all.
     #[doc(alias = "texCubemap")]
@@ -545,18 +692,45 @@ impl SamplerCube {
             return Vec4::ZERO;
         }
         let (face, st) = Self::face_coordinates(dir);
-        let n = self.size as usize;
-        // SAFETY: face `face` (< 6) is inside the 6 * size * size texels.
-        let start = unsafe { self.texels.add(face as usize * n * n) };
-        // SAFETY: size * size texels from `start`, as the contract says.
-        let face = unsafe { Sampler2d::from_raw_parts(start, self.size, self.size, WrapMode::Clamp, self.filter) };
-        face.sample(st)
+        self.face(0, face).sample(st)
+    }
+
+    /// The cube map in direction `dir` at level of detail `lod`: the face
+    /// of [`SamplerCube::sample_dir`], its levels chosen and blended as
+    /// [`Sampler2d::sample_lod`] does (clamped to the levels there are; a
+    /// NaN LOD counts as 0).
+    ///
+    /// Program kinds: all.
+    #[doc(alias = "texCubemapLod")]
+    pub fn sample_dir_lod(&self, dir: Vec3, lod: f32) -> Vec4 {
+        if self.size == 0 {
+            return Vec4::ZERO;
+        }
+        let (face, st) = Self::face_coordinates(dir);
+        let (lo, hi, t) = select_levels(self.levels, self.mip, lod);
+        blend_levels(self.face(lo, face).sample(st), || self.face(hi, face).sample(st), t)
+    }
+
+    /// Face `face` (< 6) of level `level` (< `levels`) as a one-level 2D
+    /// sampler clamped to its edges.
+    fn face(&self, level: u32, face: u32) -> Sampler2d {
+        let side = |l: u32| (self.size >> l).max(1) as usize;
+        let start: usize =
+            (0..level).map(|l| 6 * side(l) * side(l)).sum::<usize>() + face as usize * side(level).pow(2);
+        let n = side(level) as u32;
+        // SAFETY: the face lies inside the levels' texels of the contract.
+        unsafe { Sampler2d::from_raw_parts(self.texels.add(start), n, n, WrapMode::Clamp, self.filter) }
     }
 }
 
 impl fmt::Debug for SamplerCube {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.debug_struct("SamplerCube").field("size", &self.size).field("filter", &self.filter).finish()
+        f.debug_struct("SamplerCube")
+            .field("size", &self.size)
+            .field("filter", &self.filter)
+            .field("levels", &self.levels)
+            .field("mip", &self.mip)
+            .finish()
     }
 }
 
@@ -785,6 +959,38 @@ mod tests {
         let empty = unsafe { Sampler3d::from_raw_parts(core::ptr::null(), UVec3::new(2, 0, 2), Clamp, Linear) };
         assert_eq!(empty.sample(Vec3::ONE), Vec4::ZERO);
         assert_eq!(empty.fetch(UVec3::ONE), Vec4::ZERO);
+    }
+
+    #[test]
+    fn sampler_3d_and_cube_levels_are_chosen_as_2d_ones() {
+        // A 4x2x2 volume of three levels (4x2x2, 2x1x1, 1x1x1), level l
+        // all texel(10^l).
+        let texels: Vec<Vec4> = [vec![texel(1.0); 16], vec![texel(10.0); 2], vec![texel(100.0)]].concat();
+        assert_eq!(mip_level_count_3d(UVec3::new(4, 2, 2)), 3);
+        assert_eq!(mip_level_size_3d(UVec3::new(4, 2, 2), 1), UVec3::new(2, 1, 1));
+        let modes = SamplerModes { wrap: Repeat, filter: Linear, mip: MipFilter::Linear, ..SamplerModes::default() };
+        let v = unsafe { Sampler3d::from_raw_mip_parts(texels.as_ptr(), UVec3::new(4, 2, 2), 9, modes) };
+        let uvw = Vec3::new(0.3, 0.6, 0.2);
+        assert_eq!(v.levels(), 3);
+        assert_eq!(v.sample(uvw), texel(1.0));
+        assert_eq!(v.sample_lod(uvw, 1.0), texel(10.0));
+        assert_eq!(v.sample_lod(uvw, 1.25), texel(32.5));
+        assert_eq!(v.sample_lod(uvw, f32::NAN), texel(1.0));
+        assert_eq!(v.sample_lod(uvw, 8.0), texel(100.0));
+        let nearest = SamplerModes { mip: MipFilter::Nearest, ..modes };
+        let n = unsafe { Sampler3d::from_raw_mip_parts(texels.as_ptr(), UVec3::new(4, 2, 2), 3, nearest) };
+        assert_eq!(n.sample_lod(uvw, 0.5), texel(1.0));
+        assert_eq!(n.sample_lod(uvw, 0.51), texel(10.0));
+        // A cube of side 2 with two levels: level 0's face k is texel(k),
+        // level 1's (1x1 faces) texel(10 + k).
+        let cube: Vec<Vec4> =
+            (0..24).map(|i| texel((i / 4) as f32)).chain((0..6).map(|k| texel(10.0 + k as f32))).collect();
+        let c = unsafe { SamplerCube::from_raw_mip_parts(cube.as_ptr(), 2, 2, Nearest, MipFilter::Linear) };
+        assert_eq!(c.levels(), 2);
+        assert_eq!(c.sample_dir(-Vec3::Y), texel(3.0));
+        assert_eq!(c.sample_dir_lod(-Vec3::Y, 1.0), texel(13.0));
+        assert_eq!(c.sample_dir_lod(Vec3::Z, 0.5), texel(9.0));
+        assert_eq!(c.sample_dir_lod(Vec3::Z, -1.0), texel(4.0));
     }
 
     #[test]

@@ -104,6 +104,8 @@ pub mod structs_arrays;
 pub mod texture_3d;
 #[path = "../snapshots/in/texture_cube.rs"]
 pub mod texture_cube;
+#[path = "../snapshots/in/texture_ids.rs"]
+pub mod texture_ids;
 #[path = "../snapshots/in/texture_mips.rs"]
 pub mod texture_mips;
 #[path = "../snapshots/in/textures.rs"]

@@ -15,7 +15,8 @@ pub struct Count {
 
 /// Launch index 0 reads past a buffer's end, 1 throws, 2 traces a NaN ray,
 /// 3 recurses past the trace depth, 4 reads through a null bindless id, 5
-/// does none of these. Word `2 i` is
+/// samples through a null bindless sampler id, 6 does none of these. Word
+/// `2 i` is
 /// what the program saw, word `2 i + 1` the exception program's mark.
 #[rt_program(ray_generation)]
 pub fn probe(#[var] top: Object, #[var] table: Buffer<u32>, #[var] mut out: RwBuffer<u32>) {
@@ -36,6 +37,9 @@ pub fn probe(#[var] top: Object, #[var] table: Buffer<u32>, #[var] mut out: RwBu
         seen = 1000 + prd.n;
     } else if i == 4 {
         seen = 2000 + BindlessBuffer::<u32>::NONE.load(0) + BindlessBuffer::<u32>::NONE.len();
+    } else if i == 5 {
+        let tex = BindlessSampler::<Sampler2d>::NONE;
+        seen = 3000 + tex.size().x + tex.levels() * 10 + tex.sample(vec2(0.5, 0.5)).w as u32;
     }
     out[2 * i] = seen;
 }
@@ -78,7 +82,7 @@ fn run(on: On, off: &[ExceptionKind]) -> (Vec<u32>, Vec<(u32, u32)>) {
     ctx.set_var(Scope::Context, "top", top).unwrap();
     let table = ctx.create_buffer::<u32>(BufferType::Input, vec![7, 8, 9]);
     ctx.set_var(Scope::Context, "table", table).unwrap();
-    let out = ctx.create_buffer::<u32>(BufferType::InputOutput, vec![0; 12]);
+    let out = ctx.create_buffer::<u32>(BufferType::InputOutput, vec![0; 14]);
     ctx.set_var(Scope::Context, "out", out).unwrap();
     let rg = ctx.create_program(&probe::PROGRAM);
     ctx.set_ray_generation_program(0, rg).unwrap();
@@ -86,7 +90,7 @@ fn run(on: On, off: &[ExceptionKind]) -> (Vec<u32>, Vec<(u32, u32)>) {
     ctx.set_miss_program(0, miss).unwrap();
     let ex = ctx.create_program(&mark::PROGRAM);
     ctx.set_exception_program(0, ex).unwrap();
-    let report = ctx.launch_1d(0, 6).unwrap();
+    let report = ctx.launch_1d(0, 7).unwrap();
     let records = report.exceptions.iter().map(|e| (e.launch_index.x, e.code)).collect();
     (ctx.read_buffer::<u32>(out).unwrap(), records)
 }
@@ -99,6 +103,7 @@ fn a_kind_turned_off_raises_nothing_and_its_operation_stays_guarded() {
         (2, EXCEPTION_INVALID_RAY, ExceptionKind::InvalidRay),
         (3, EXCEPTION_TRACE_DEPTH_EXCEEDED, ExceptionKind::TraceDepthExceeded),
         (4, EXCEPTION_BUFFER_ID_INVALID, ExceptionKind::BufferIdInvalid),
+        (5, EXCEPTION_TEXTURE_ID_INVALID, ExceptionKind::TextureIdInvalid),
     ];
     for on in On::ALL.into_iter().filter(|on| on.available()) {
         let name = on.name();
@@ -110,19 +115,24 @@ fn a_kind_turned_off_raises_nothing_and_its_operation_stays_guarded() {
         // What each program saw: the read's guarded value, the program
         // going on after its throw, the NaN ray not traced (its miss did
         // not run), three closest hits before the depth limit.
-        let seen = [words[0], words[2], words[4], words[6], words[8], words[10]];
-        assert_eq!(seen[1..], [2, 40, 1003, 2000, 1], "{name}");
+        let seen = [words[0], words[2], words[4], words[6], words[8], words[10], words[12]];
+        // A null sampler id: size 0, one level, a zero sample.
+        assert_eq!(seen[1..], [2, 40, 1003, 2000, 3010, 1], "{name}");
         assert_eq!(seen[0], run(On::CPU, &[]).0[0], "{name}: the guarded read agrees with the CPU backend's");
         for (i, _, kind) in all {
             let (w, r) = run(on, &[kind]);
             let expected: Vec<(u32, u32)> = all.iter().filter(|(j, ..)| *j != i).map(|(j, c, _)| (*j, *c)).collect();
             assert_eq!(r, expected, "{name}: {kind:?} off");
             assert_eq!(w[2 * i as usize + 1], 0, "{name}: {kind:?} off, no exception program at {i}");
-            assert_eq!([w[0], w[2], w[4], w[6], w[8], w[10]], seen, "{name}: {kind:?} off, the programs saw the same");
+            assert_eq!(
+                [w[0], w[2], w[4], w[6], w[8], w[10], w[12]],
+                seen,
+                "{name}: {kind:?} off, the programs saw the same"
+            );
         }
         let (w, r) = run(on, &[ExceptionKind::All]);
         assert!(r.is_empty(), "{name}: {r:?}");
         assert!(w.iter().skip(1).step_by(2).all(|&m| m == 0), "{name}");
-        assert_eq!([w[0], w[2], w[4], w[6], w[8], w[10]], seen, "{name}");
+        assert_eq!([w[0], w[2], w[4], w[6], w[8], w[10], w[12]], seen, "{name}");
     }
 }

@@ -5,7 +5,8 @@
 //! here (`c / 255`, the sRGB formula's values, halves' exact values, one
 //! channel as `(r, 0, 0, 1)`), through `fetch` and through `sample` at
 //! texel centres in either index mode; a linear sample between two texels
-//! in texel coordinates; the host's checks name the sampler.
+//! in texel coordinates; the same formats behind 3D samplers and cube
+//! maps; the host's checks name the sampler.
 
 use rt_runtime::*;
 use rt_std::prelude::*;
@@ -180,4 +181,83 @@ fn bad_texels_and_modes_are_refused_naming_the_sampler() {
     );
     let ok = SamplerOptions { wrap: WrapMode::Clamp, ..array };
     ctx.create_sampler_from_texels(TexelData::R32F(vec![1.0]), 1, 1, ok).unwrap();
+}
+
+/// Launch index `i` (0 to 5) fetches and samples texel `(i, 0, 0)` of the
+/// volume (clamped to its width), and samples the centre of cube face `i`
+/// (+x, -x, +y, -y, +z, -z).
+#[rt_program(ray_generation)]
+pub fn read_volume_and_cube(#[var] volume: Sampler3d, #[var] cube: SamplerCube, #[var] mut out: RwBuffer<Vec4>) {
+    let i = launch_index().x;
+    let n = volume.size().x as f32;
+    out[i * 3] = volume.fetch(uvec3(i, 0, 0));
+    out[i * 3 + 1] = volume.sample(vec3((i as f32 + 0.5) / n, 0.5, 0.5));
+    let s = 1.0 - 2.0 * (i % 2) as f32;
+    let mut d = vec3(0.0, 0.0, s);
+    if i / 2 == 0 {
+        d = vec3(s, 0.0, 0.0);
+    } else if i / 2 == 1 {
+        d = vec3(0.0, s, 0.0);
+    }
+    out[i * 3 + 2] = cube.sample_dir(d);
+}
+
+/// Texel `i` of `data`, alone.
+fn one(data: &TexelData, i: usize) -> TexelData {
+    match data {
+        TexelData::Rgba8(t) => TexelData::Rgba8(vec![t[i]]),
+        TexelData::Rgba8Srgb(t) => TexelData::Rgba8Srgb(vec![t[i]]),
+        TexelData::Rgba16F(t) => TexelData::Rgba16F(vec![t[i]]),
+        TexelData::Rgba32F(t) => TexelData::Rgba32F(vec![t[i]]),
+        TexelData::R8(t) => TexelData::R8(vec![t[i]]),
+        TexelData::R32F(t) => TexelData::R32F(vec![t[i]]),
+    }
+}
+
+#[test]
+fn every_format_decodes_exactly_behind_3d_samplers_and_cube_maps_on_every_target() {
+    for (name, data, read, want) in cases() {
+        let n = want.len();
+        for on in On::ALL.into_iter().filter(|on| on.available()) {
+            let mut ctx = on.context();
+            ctx.set_ray_type_count(0);
+            // The texels as an n x 1 x 1 volume; cube face f of 1x1 is texel
+            // f % n.
+            let options =
+                SamplerOptions { wrap: WrapMode::Clamp, filter: FilterMode::Nearest, read, ..Default::default() };
+            let volume = ctx.create_sampler_3d_from_texels(data.clone(), UVec3::new(n as u32, 1, 1), options).unwrap();
+            let faces = std::array::from_fn(|f| one(&data, f % n));
+            let cube = ctx.create_sampler_cube_from_texels(faces, 1, FilterMode::Linear, read).unwrap();
+            let out = ctx.create_buffer(BufferType::Output, vec![Vec4::splat(-7.0); 18]);
+            ctx.set_var(Scope::Context, "volume", volume).unwrap();
+            ctx.set_var(Scope::Context, "cube", cube).unwrap();
+            ctx.set_var(Scope::Context, "out", out).unwrap();
+            let rg = ctx.create_program(&read_volume_and_cube::PROGRAM);
+            ctx.set_ray_generation_program(0, rg).unwrap();
+            let report = ctx.launch_1d(0, 6).unwrap();
+            assert!(report.exceptions.is_empty(), "{on:?}: {:?}", report.exceptions);
+            let got: Vec<Vec4> = ctx.read_buffer(out).unwrap();
+            for i in 0..6 {
+                let at = format!("{name} on {}, index {i}", on.name());
+                let texel = want[i.min(n - 1)];
+                assert_eq!(got[3 * i].to_array().map(f32::to_bits), texel.to_array().map(f32::to_bits), "{at}: fetch");
+                assert_eq!(got[3 * i + 1], texel, "{at}: volume sample");
+                assert_eq!(got[3 * i + 2], want[i % n], "{at}: cube face");
+            }
+        }
+    }
+}
+
+#[test]
+fn bad_3d_and_cube_texels_are_refused_naming_the_sampler() {
+    let mut ctx = Context::new();
+    let options = SamplerOptions::default();
+    let e = ctx.create_sampler_3d_from_texels(TexelData::R8(vec![1, 2, 3]), UVec3::new(2, 1, 2), options);
+    assert_eq!(e.unwrap_err().to_string(), "sampler 0: 3 R8 texels for a 2x1x2 texture");
+    let array = SamplerOptions { index: IndexMode::ArrayIndex, wrap: WrapMode::Clamp, ..options };
+    let e = ctx.create_sampler_3d_from_texels(TexelData::R8(vec![1]), UVec3::ONE, array).unwrap_err().to_string();
+    assert!(e.starts_with("sampler 0: array-index coordinates") && e.contains("normalised"), "{e}");
+    let faces = std::array::from_fn(|f| TexelData::Rgba16F(vec![[0; 4]; if f == 5 { 3 } else { 4 }]));
+    let e = ctx.create_sampler_cube_from_texels(faces, 2, FilterMode::Linear, ReadMode::NormalizedFloat);
+    assert_eq!(e.unwrap_err().to_string(), "sampler 0: cube face -z has 3 Rgba16F texels for a 2x2 face");
 }

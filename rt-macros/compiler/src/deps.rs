@@ -44,6 +44,7 @@ fn is_builtin_type_name(name: &str) -> bool {
         || name == "Self"
         || name == "Callable"
         || types::bindless_kind(name).is_some()
+        || name == types::BINDLESS_SAMPLER
 }
 
 fn is_builtin_fn(name: &str) -> bool {

@@ -144,6 +144,7 @@ impl CallSig {
             Ty::Enum(e) => format!("e{}", e.name),
             Ty::Callable(c) => format!("c{}", c.dispatch()),
             Ty::BufferId(w, e) => format!("b{}{}", if *w { "w" } else { "" }, e.mangle()),
+            Ty::SamplerId(s) => format!("t{s}"),
             Ty::Unit => "void".into(),
             t => t.mangle(),
         };
@@ -171,6 +172,9 @@ pub enum Ty {
     /// `BindlessBuffer<T>` (`RwBindlessBuffer<T>` when `true`): the id of a
     /// buffer of `T`, a `u32`.
     BufferId(bool, Box<Ty>),
+    /// `BindlessSampler<S>`: the id of a sampler of shape `S` (`Sampler`,
+    /// `Sampler3d` or `SamplerCube`), a `u32`.
+    SamplerId(Box<Ty>),
     /// `(A, B, ...)`, at least one element: a WGSL struct with fields `f0`,
     /// `f1`, ... (see [`Ty::wgsl`]).
     Tuple(Vec<Ty>),
@@ -205,6 +209,7 @@ impl PartialEq for Ty {
             (Enum(a), Enum(b)) => a.name == b.name,
             (Callable(a), Callable(b)) => a == b,
             (BufferId(v, a), BufferId(w, b)) => v == w && a == b,
+            (SamplerId(a), SamplerId(b)) => a == b,
             (Tuple(a), Tuple(b)) => a == b,
             (Array(a, n), Array(b, m)) => n == m && a == b,
             (Buffer(k, a), Buffer(l, b)) => k == l && a == b,
@@ -243,7 +248,8 @@ impl Ty {
         match self {
             Ty::Scalar(s) => *s != Scalar::Usize,
             Ty::Vec(_, s) => *s != Scalar::Bool,
-            Ty::Mat(_) | Ty::Struct(_) | Ty::Enum(_) | Ty::Callable(_) | Ty::BufferId(..) | Ty::Ray | Ty::Aabb => true,
+            Ty::Mat(_) | Ty::Struct(_) | Ty::Enum(_) | Ty::Callable(_) | Ty::BufferId(..) | Ty::SamplerId(_) => true,
+            Ty::Ray | Ty::Aabb => true,
             Ty::Array(t, _) => t.is_plain_data(),
             Ty::Tuple(ts) => ts.iter().all(Ty::is_plain_data),
             _ => false,
@@ -252,10 +258,13 @@ impl Ty {
 
     /// Whether WGSL spells this type `u32` though it is no integer to the
     /// program: a node handle, a transform kind, an enum, a callable id, a
-    /// bindless buffer id. One heap word, compared with `==`, loaded and
-    /// stored as the word itself.
+    /// bindless buffer or sampler id. One heap word, compared with `==`,
+    /// loaded and stored as the word itself.
     pub fn is_u32_word(&self) -> bool {
-        matches!(self, Ty::Object | Ty::TransformKind | Ty::Enum(_) | Ty::Callable(_) | Ty::BufferId(..))
+        matches!(
+            self,
+            Ty::Object | Ty::TransformKind | Ty::Enum(_) | Ty::Callable(_) | Ty::BufferId(..) | Ty::SamplerId(_)
+        )
     }
 
     /// The Rust name of the type as its `RtData` layout spells it (rt-std's
@@ -266,6 +275,7 @@ impl Ty {
             Ty::Callable(_) => "Callable".into(),
             Ty::BufferId(false, _) => "BindlessBuffer".into(),
             Ty::BufferId(true, _) => "RwBindlessBuffer".into(),
+            Ty::SamplerId(_) => BINDLESS_SAMPLER.into(),
             t => t.to_string(),
         }
     }
@@ -292,7 +302,9 @@ impl Ty {
             Ty::Tuple(ts) => format!("rt_tuple_{}_", ts.iter().map(Ty::mangle).collect::<Vec<_>>().join("_")),
             Ty::Ray => "RtRay".into(),
             Ty::Aabb => "RtAabb".into(),
-            Ty::Object | Ty::TransformKind | Ty::Enum(_) | Ty::Callable(_) | Ty::BufferId(..) => "u32".into(),
+            Ty::Object | Ty::TransformKind | Ty::Enum(_) | Ty::Callable(_) | Ty::BufferId(..) | Ty::SamplerId(_) => {
+                "u32".into()
+            }
             Ty::Buffer(..) => "RtBuffer".into(),
             Ty::Sampler | Ty::SamplerCube => "RtSampler".into(),
             Ty::Sampler3d => "RtSampler3d".into(),
@@ -320,7 +332,7 @@ impl Ty {
     pub fn words(&self) -> u32 {
         match self {
             Ty::Scalar(_) | Ty::IntVar(_) => 1,
-            Ty::Object | Ty::TransformKind | Ty::Enum(_) | Ty::Callable(_) | Ty::BufferId(..) => 1,
+            Ty::Object | Ty::TransformKind | Ty::Enum(_) | Ty::Callable(_) | Ty::BufferId(..) | Ty::SamplerId(_) => 1,
             Ty::Vec(n, _) => *n as u32,
             Ty::Mat(n) => (*n as u32) * (*n as u32),
             Ty::Struct(s) => s.fields.iter().map(|(_, t)| t.words()).sum(),
@@ -365,6 +377,7 @@ impl fmt::Display for Ty {
             Ty::Enum(e) => write!(f, "{}", e.name),
             Ty::Callable(c) => write!(f, "Callable<{}>", c.rust()),
             Ty::BufferId(w, t) => write!(f, "{}<{t}>", bindless_name(*w)),
+            Ty::SamplerId(t) => write!(f, "{BINDLESS_SAMPLER}<{t}>"),
             Ty::Tuple(ts) => {
                 let parts: Vec<String> = ts.iter().map(Ty::to_string).collect();
                 if parts.len() == 1 { write!(f, "({},)", parts[0]) } else { write!(f, "({})", parts.join(", ")) }
@@ -419,6 +432,9 @@ pub fn builtin_type(name: &str) -> Option<Ty> {
         _ => return None,
     })
 }
+
+/// The type name of a bindless sampler id, `BindlessSampler<S>`.
+pub const BINDLESS_SAMPLER: &str = "BindlessSampler";
 
 /// The type name of a bindless buffer id, read-only or writable.
 pub fn bindless_name(writable: bool) -> &'static str {

@@ -7,6 +7,22 @@ use crate::types::{self, Ty};
 use syn::Expr;
 use syn::spanned::Spanned;
 
+/// `BindlessSampler<S>`: `S` one of the sampler types.
+fn resolve_sampler_id(seg: &syn::PathSegment, user: &dyn Fn(&str) -> Option<Ty>) -> Result<Ty> {
+    let want = "`BindlessSampler` takes a sampler type: `BindlessSampler<Sampler2d>`, `<Sampler3d>` or `<SamplerCube>`";
+    let arg = match &seg.arguments {
+        syn::PathArguments::AngleBracketed(a) if a.args.len() == 1 => match &a.args[0] {
+            syn::GenericArgument::Type(t) => t,
+            other => return Err(Error::new(other.span(), want)),
+        },
+        _ => return Err(Error::new(seg.span(), want)),
+    };
+    match resolve_type(arg, user)? {
+        shape @ (Ty::Sampler | Ty::Sampler3d | Ty::SamplerCube) => Ok(Ty::SamplerId(Box::new(shape))),
+        other => Err(Error::new(arg.span(), format!("{want}, found `{other}`"))),
+    }
+}
+
 /// Resolves a Rust type in the subset; `user` looks up user structs.
 pub fn resolve_type(ty: &syn::Type, user: &dyn Fn(&str) -> Option<Ty>) -> Result<Ty> {
     match ty {
@@ -40,6 +56,9 @@ pub fn resolve_type(ty: &syn::Type, user: &dyn Fn(&str) -> Option<Ty>) -> Result
             }
             if name == "Callable" {
                 return resolve_callable(seg, user);
+            }
+            if name == types::BINDLESS_SAMPLER {
+                return resolve_sampler_id(seg, user);
             }
             // Before the generic arguments: `Vec<f32>` is a heap type.
             if let Some(advice) = types::unsupported_type_advice(&name) {

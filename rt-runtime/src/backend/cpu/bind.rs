@@ -5,6 +5,7 @@
 
 use super::super::Settings;
 use crate::accel::cache::NodeAccel;
+use crate::buffer::SamplerShape;
 use crate::error::{Result, RtError};
 use crate::link::{self, Call, Record};
 use crate::scene::{GeometryKind, NodeId, NodeKind, Scene, TriangleMesh};
@@ -50,6 +51,9 @@ pub(crate) struct Linked<'a, P> {
     pub(crate) launch_dim: UVec2,
     /// The handles bindless ids read through, by buffer index.
     pub(crate) bindless: Arc<[BindlessHandles]>,
+    /// The samplers bindless sampler ids read (a `Sampler2d`, `Sampler3d`
+    /// or `SamplerCube` by shape), by sampler index.
+    pub(crate) samplers: Arc<[Box<dyn Any + Send + Sync>]>,
     /// The launch's depth (see `launch_dim`).
     pub(crate) launch_depth: u32,
 }
@@ -77,6 +81,22 @@ impl BindlessHandles {
             })
             .collect()
     }
+}
+
+/// The handle of every sampler of `scene` for bindless sampler ids
+/// (`rt_std::BindlessSampler<S>`), of the sampler type its shape reads as.
+fn sampler_handles(scene: &Scene) -> Arc<[Box<dyn Any + Send + Sync>]> {
+    scene
+        .samplers
+        .iter()
+        .map(|s| -> Box<dyn Any + Send + Sync> {
+            match s.shape {
+                SamplerShape::Flat => Box::new(s.handle()),
+                SamplerShape::Volume(_) => Box::new(s.handle_3d()),
+                SamplerShape::Cube => Box::new(s.handle_cube()),
+            }
+        })
+        .collect()
 }
 
 pub(crate) fn link_all<'a>(
@@ -193,6 +213,7 @@ pub(crate) fn link_all<'a>(
         instance_offsets,
         launch_dim: dim,
         bindless: BindlessHandles::of(scene),
+        samplers: sampler_handles(scene),
         launch_depth: depth,
     })
 }
@@ -224,6 +245,7 @@ impl<'a> Linked<'a, Call> {
             instance_offsets: self.instance_offsets.clone(),
             launch_dim: self.launch_dim,
             bindless: self.bindless.clone(),
+            samplers: self.samplers.clone(),
             launch_depth: self.launch_depth,
         })
     }

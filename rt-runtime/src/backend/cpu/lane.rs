@@ -11,7 +11,7 @@ use crate::accel::wide::isa::{Isa, walk_on};
 use crate::accel::wide::kernels::WalkRay;
 use crate::accel::wide::watertight::WatertightRay;
 use crate::accel::wide::{PACKET, leaf_of};
-use crate::handles::BufferId;
+use crate::handles::{BufferId, SamplerId};
 use crate::link;
 use crate::link::instances::{self, InstancePath};
 use crate::scene::{NodeId, NodeKind, ProgramId, TriangleMesh};
@@ -755,6 +755,10 @@ impl Tracer for Lane<'_> {
             false => Some(&*handles.read),
             true => handles.write.as_deref(),
         }
+    }
+
+    fn sampler(&self, id: u32) -> Option<&(dyn std::any::Any + Send + Sync)> {
+        Some(&**self.l.samplers.get(SamplerId::from_bindless_id(id)?.index() as usize)?)
     }
 
     fn print(&self, text: &str) {

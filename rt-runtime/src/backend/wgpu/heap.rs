@@ -3,12 +3,12 @@
 //! word offset in the one read-write binding `rt_heap`.
 
 use super::kernel;
-use crate::buffer::SamplerShape;
+use crate::buffer::{SamplerRec, SamplerShape};
 use crate::error::{Result, RtError};
 use crate::link::{self, Record};
 use crate::scene::{ProgramId, Scene};
 use crate::vars::VarValue;
-use rt_abi::records::{BufferTable, layout_tag};
+use rt_abi::records::{BufferTable, SamplerTable, layout_tag};
 use rt_std::program::VariableKind;
 
 /// The records of a launch's program uses, laid out before their values
@@ -32,7 +32,7 @@ impl Records {
 
 /// The heap of a launch: the values of `records` (resolved now, so a
 /// changed variable takes effect), then the buffers' words, then sampler
-/// texels, then the bindless buffer table. Also returns the `(buffer index, heap offset, words)` of the
+/// texels, then the bindless buffer and sampler tables. Also returns the `(buffer index, heap offset, words)` of the
 /// buffers programs may write, and every buffer's `(heap offset, words)`.
 pub(crate) fn encode_heap(scene: &Scene, records: &Records) -> Result<EncodedHeap> {
     let base = records.words as usize;
@@ -62,11 +62,14 @@ pub(crate) fn encode_heap(scene: &Scene, records: &Records) -> Result<EncodedHea
         table.extend(entry.words());
     }
     let mut sampler_offsets = Vec::with_capacity(scene.samplers.len());
+    let mut samplers_placed = Vec::with_capacity(scene.samplers.len());
     for s in &scene.samplers {
-        sampler_offsets.push(base + data.len());
+        let start = data.len();
+        sampler_offsets.push(base + start);
         for t in s.texels.iter() {
             data.extend(t.to_array().map(f32::to_bits));
         }
+        samplers_placed.push((base + start, data.len() - start));
     }
     for &(p, r) in &records.uses {
         let desc = scene.program(p)?.desc;
@@ -80,28 +83,8 @@ pub(crate) fn encode_heap(scene: &Scene, records: &Records) -> Result<EncodedHea
                 }
                 (VarValue::Sampler(s), _) => {
                     let rec = &scene.samplers[s.index() as usize];
-                    let modes = rec.modes;
-                    let wrap = match modes.wrap {
-                        rt_std::WrapMode::Repeat => 0,
-                        rt_std::WrapMode::Clamp => 1,
-                        rt_std::WrapMode::Mirror => 2,
-                    };
-                    let filter = match modes.filter {
-                        rt_std::FilterMode::Nearest => 0,
-                        rt_std::FilterMode::Linear => 1,
-                    };
-                    let array = match modes.index {
-                        rt_std::IndexMode::NormalizedCoordinates => 0,
-                        rt_std::IndexMode::ArrayIndex => 1,
-                    };
-                    let mip = match modes.mip {
-                        rt_std::MipFilter::Nearest => 0,
-                        rt_std::MipFilter::Linear => 1,
-                    };
-                    // prelude.wgsl's RtSampler.mode: wrap, filter and
-                    // index mode, mip filter and level count, a byte each.
-                    let mode = wrap | (filter << 8) | (array << 9) | (mip << 16) | (rec.levels << 24);
                     let offset = sampler_offsets[s.index() as usize] as u32;
+                    let mode = sampler_mode(rec);
                     // RtSampler (a cube map's too), or RtSampler3d with its
                     // depth.
                     match rec.shape {
@@ -127,7 +110,50 @@ pub(crate) fn encode_heap(scene: &Scene, records: &Records) -> Result<EncodedHea
     // The bindless buffer table last: never empty, so the heap is not.
     let buffer_table = heap.len() as u32;
     heap.extend(table);
-    Ok(EncodedHeap { words: heap, outputs, placed, buffer_table })
+    // The bindless sampler table right after it (`rt_texid` finds it by the
+    // buffer table's count).
+    heap.push(scene.samplers.len() as u32);
+    for (rec, &offset) in scene.samplers.iter().zip(&sampler_offsets) {
+        let (depth, shape) = match rec.shape {
+            SamplerShape::Flat => (1, SamplerTable::SHAPE_2D),
+            SamplerShape::Volume(d) => (d, SamplerTable::SHAPE_3D),
+            SamplerShape::Cube => (1, SamplerTable::SHAPE_CUBE),
+        };
+        let entry = SamplerTable {
+            offset: offset as u32,
+            width: rec.width,
+            height: rec.height,
+            depth,
+            mode: sampler_mode(rec),
+            shape,
+        };
+        heap.extend(entry.words());
+    }
+    Ok(EncodedHeap { words: heap, outputs, placed, samplers_placed, buffer_table })
+}
+
+/// prelude.wgsl's `RtSampler.mode` of a sampler: wrap, filter and index
+/// mode, mip filter and level count, a byte each.
+fn sampler_mode(rec: &SamplerRec) -> u32 {
+    let modes = rec.modes;
+    let wrap = match modes.wrap {
+        rt_std::WrapMode::Repeat => 0,
+        rt_std::WrapMode::Clamp => 1,
+        rt_std::WrapMode::Mirror => 2,
+    };
+    let filter = match modes.filter {
+        rt_std::FilterMode::Nearest => 0,
+        rt_std::FilterMode::Linear => 1,
+    };
+    let array = match modes.index {
+        rt_std::IndexMode::NormalizedCoordinates => 0,
+        rt_std::IndexMode::ArrayIndex => 1,
+    };
+    let mip = match modes.mip {
+        rt_std::MipFilter::Nearest => 0,
+        rt_std::MipFilter::Linear => 1,
+    };
+    wrap | (filter << 8) | (array << 9) | (mip << 16) | (rec.levels << 24)
 }
 
 /// A launch's heap: its words, the `(buffer index, heap offset, words)` of
@@ -137,6 +163,35 @@ pub(crate) struct EncodedHeap {
     pub(crate) words: Vec<u32>,
     pub(crate) outputs: Vec<(usize, usize, usize)>,
     pub(crate) placed: Vec<(usize, usize)>,
+    /// Every sampler's `(heap offset, words)` of texels.
+    pub(crate) samplers_placed: Vec<(usize, usize)>,
     /// The heap word of the bindless buffer table ([`BufferTable`]).
     pub(crate) buffer_table: u32,
+}
+
+/// The sampler whose texels end first past `max_words` of the heap
+/// (`placed`, `samplers_placed` as [`EncodedHeap`] has them), as the error
+/// that names it; `None` when none does, or a buffer (before the samplers
+/// in the heap) already does: the launch's check of the whole heap says
+/// that (the heap fits, or only the records or the tables cross the
+/// limit). `limit` says how large one binding may be, and on what device.
+pub(crate) fn sampler_past(
+    max_words: usize,
+    placed: &[(usize, usize)],
+    samplers_placed: &[(usize, usize)],
+    limit: impl Fn() -> String,
+) -> Option<RtError> {
+    let problem = |offset: usize, words: usize| {
+        format!(
+            "its {words} words of texels end at word {} of the launch's heap, but {}; the heap holds every \
+             variable, buffer and sampler of the context: make the textures smaller, or fewer",
+            offset + words,
+            limit()
+        )
+    };
+    if placed.iter().any(|(o, w)| o + w > max_words) {
+        return None;
+    }
+    let (i, &(o, w)) = samplers_placed.iter().enumerate().find(|(_, (o, w))| o + w > max_words)?;
+    Some(RtError::BadSampler { sampler: i as u32, problem: problem(o, w) })
 }

@@ -299,11 +299,20 @@ async fn launch_on_device(
     let t2 = web_time::Instant::now();
     let (wgsl, warning) = link_kernel(l.entry, &encoding)?;
     *last_wgsl = Some(wgsl.clone());
-    let Encoding { fresh, heap, outputs, placed, buffer_table, rg_vars, ex_vars, .. } = encoding;
+    let Encoding { fresh, heap, outputs, placed, samplers_placed, buffer_table, rg_vars, ex_vars, .. } = encoding;
     gpu.scene_encodes += fresh.is_some() as u64;
     gpu.geometry_encodes += fresh.as_ref().is_some_and(|e| e.geometry_words.is_some()) as u64;
     // The scene's bindings: the sections with one of their own, the others
     // after the tables (their bases in the tables' header).
+    // A heap past one binding: the sampler that crosses the limit, by name,
+    // where one does.
+    let max_words = (gpu.limits.max_storage_buffer_binding_size / 4) as usize;
+    if heap.len() > max_words {
+        let limit = || format!("{} binds at most {} per storage buffer", gpu.describe(), size(max_words as u64 * 4));
+        if let Some(e) = heap::sampler_past(max_words, &placed, &samplers_placed, limit) {
+            return Err(e);
+        }
+    }
     let mut parts = vec![("the heap (variables, buffers, textures)".to_string(), heap.len())];
     let max_buffers = gpu.limits.max_storage_buffers_per_shader_stage;
     let fresh = fresh.map(|e| compute::scene::place_scene(e, key, &wgsl, scene_bindings, max_buffers, &mut parts));

@@ -66,16 +66,9 @@ var<private> rt_icur: vec4<u32>;
 // Rays this invocation traced (added to rt_log[2] at the end).
 var<private> rt_rays: u32;
 
-// rt_abi::constants::exception_kind_bit: the bit of code's kind in the
-// launch's mask of enabled kinds (the integer kinds are the CPU backend's).
-fn rt_exc_bit(code: u32) -> u32 {
-    if code == RT_EXC_TRACE_DEPTH { return 1u; }
-    if code == RT_EXC_BUFFER_INDEX { return 2u; }
-    if code == RT_EXC_INVALID_RAY { return 4u; }
-    if code == RT_EXC_PROGRAM_ID { return 64u; }
-    if code == RT_EXC_BUFFER_ID { return 128u; }
-    return 32u;
-}
+// rt_exc_bit(code), the bit of code's kind in the launch's mask of enabled
+// kinds, is generated from rt_abi::constants::exception_kind_bit
+// (rt_abi::wgsl::exception_kind_bits) before this file.
 
 fn rt_raise(code: u32) {
     if rt_exc == 0u && (rt_launch.exceptions & rt_exc_bit(code)) != 0u {
@@ -321,27 +314,60 @@ fn rt_tex_sample_grad(s: RtSampler, uv: vec2<f32>, dx: vec2<f32>, dy: vec2<f32>)
     return rt_tex_sample_lod(s, uv, log2(rho));
 }
 
-// 3D textures (rt-std's Sampler3d): one level, texel (x, y, z) at
-// x + y * width + z * width * height; the 2D rules with a third axis.
-fn rt_texel3(s: RtSampler3d, x: u32, y: u32, z: u32) -> vec4<f32> {
-    let w = s.offset + ((z * s.height + y) * s.width + x) * 4u;
+// Vulkan's level selection for 3D and cube samplers, as rt_tex_sample_lod
+// makes it: level lo blended with level hi by t (t = 0: lo alone).
+struct RtTexMip {
+    lo: u32,
+    hi: u32,
+    t: f32,
+}
+fn rt_tex_mip(mode: u32, lod: f32) -> RtTexMip {
+    let levels = max(mode >> 24u, 1u);
+    let last = f32(levels - 1u);
+    var d = 0.0;
+    if (bitcast<u32>(lod) & 0x7fffffffu) <= 0x7f800000u { d = clamp(lod, 0.0, last); }
+    if ((mode >> 16u) & 0xffu) == 0u {
+        let l = u32(ceil(d + 0.5) - 1.0);
+        return RtTexMip(l, l, 0.0);
+    }
+    let lo = floor(d);
+    return RtTexMip(u32(lo), u32(min(lo + 1.0, last)), d - lo);
+}
+
+// 3D textures (rt-std's Sampler3d): texel (x, y, z) of a level at
+// x + y * width + z * width * height of it, the levels one after the
+// other, level l max(1, size >> l); the 2D rules with a third axis.
+struct RtTexLevel3 {
+    offset: u32,
+    size: vec3<u32>,
+}
+fn rt_tex3_level(s: RtSampler3d, l: u32) -> RtTexLevel3 {
+    var offset = s.offset;
+    var size = vec3<u32>(s.width, s.height, s.depth);
+    for (var k = 0u; k < l; k = k + 1u) {
+        offset = offset + size.x * size.y * size.z * 4u;
+        size = max(size >> vec3<u32>(1u), vec3<u32>(1u));
+    }
+    return RtTexLevel3(offset, size);
+}
+fn rt_texel3(lv: RtTexLevel3, x: u32, y: u32, z: u32) -> vec4<f32> {
+    let w = lv.offset + ((z * lv.size.y + y) * lv.size.x + x) * 4u;
     return vec4<f32>(bitcast<f32>(rt_hw(w)), bitcast<f32>(rt_hw(w + 1u)), bitcast<f32>(rt_hw(w + 2u)), bitcast<f32>(rt_hw(w + 3u)));
 }
 fn rt_tex3_fetch(s: RtSampler3d, texel: vec3<u32>) -> vec4<f32> {
     if s.width == 0u || s.height == 0u || s.depth == 0u { return vec4<f32>(); }
     let t = min(texel, vec3<u32>(s.width, s.height, s.depth) - 1u);
-    return rt_texel3(s, t.x, t.y, t.z);
+    return rt_texel3(rt_tex3_level(s, 0u), t.x, t.y, t.z);
 }
-fn rt_tex3_sample(s: RtSampler3d, uvw_in: vec3<f32>) -> vec4<f32> {
-    if s.width == 0u || s.height == 0u || s.depth == 0u { return vec4<f32>(); }
+fn rt_tex3_sample_level(s: RtSampler3d, lv: RtTexLevel3, uvw_in: vec3<f32>) -> vec4<f32> {
     let finite = abs(uvw_in) <= vec3<f32>(RT_F32_MAX);
     let uvw = select(vec3<f32>(0.0), uvw_in, finite);
     let wrap = s.mode & 0xffu;
-    let n = vec3<i32>(i32(s.width), i32(s.height), i32(s.depth));
-    let p = uvw * vec3<f32>(n);
+    let n = vec3<i32>(lv.size);
+    let p = uvw * vec3<f32>(lv.size);
     if ((s.mode >> 8u) & 1u) == 0u {
         let i = vec3<i32>(floor(p));
-        return rt_texel3(s, rt_tex_wrap(i.x, n.x, wrap), rt_tex_wrap(i.y, n.y, wrap), rt_tex_wrap(i.z, n.z, wrap));
+        return rt_texel3(lv, rt_tex_wrap(i.x, n.x, wrap), rt_tex_wrap(i.y, n.y, wrap), rt_tex_wrap(i.z, n.z, wrap));
     }
     let q = p - 0.5;
     let f = floor(q);
@@ -353,21 +379,38 @@ fn rt_tex3_sample(s: RtSampler3d, uvw_in: vec3<f32>) -> vec4<f32> {
     let y1 = rt_tex_wrap(i.y + 1, n.y, wrap);
     let z0 = rt_tex_wrap(i.z, n.z, wrap);
     let z1 = rt_tex_wrap(i.z + 1, n.z, wrap);
-    let top0 = rt_texel3(s, x0, y0, z0) * (1.0 - a.x) + rt_texel3(s, x1, y0, z0) * a.x;
-    let bottom0 = rt_texel3(s, x0, y1, z0) * (1.0 - a.x) + rt_texel3(s, x1, y1, z0) * a.x;
-    let top1 = rt_texel3(s, x0, y0, z1) * (1.0 - a.x) + rt_texel3(s, x1, y0, z1) * a.x;
-    let bottom1 = rt_texel3(s, x0, y1, z1) * (1.0 - a.x) + rt_texel3(s, x1, y1, z1) * a.x;
+    let top0 = rt_texel3(lv, x0, y0, z0) * (1.0 - a.x) + rt_texel3(lv, x1, y0, z0) * a.x;
+    let bottom0 = rt_texel3(lv, x0, y1, z0) * (1.0 - a.x) + rt_texel3(lv, x1, y1, z0) * a.x;
+    let top1 = rt_texel3(lv, x0, y0, z1) * (1.0 - a.x) + rt_texel3(lv, x1, y0, z1) * a.x;
+    let bottom1 = rt_texel3(lv, x0, y1, z1) * (1.0 - a.x) + rt_texel3(lv, x1, y1, z1) * a.x;
     let near = top0 * (1.0 - a.y) + bottom0 * a.y;
     let far = top1 * (1.0 - a.y) + bottom1 * a.y;
     return near * (1.0 - a.z) + far * a.z;
 }
+fn rt_tex3_sample(s: RtSampler3d, uvw: vec3<f32>) -> vec4<f32> {
+    if s.width == 0u || s.height == 0u || s.depth == 0u { return vec4<f32>(); }
+    return rt_tex3_sample_level(s, rt_tex3_level(s, 0u), uvw);
+}
+fn rt_tex3_sample_lod(s: RtSampler3d, uvw: vec3<f32>, lod: f32) -> vec4<f32> {
+    if s.width == 0u || s.height == 0u || s.depth == 0u { return vec4<f32>(); }
+    let m = rt_tex_mip(s.mode, lod);
+    let a = rt_tex3_sample_level(s, rt_tex3_level(s, m.lo), uvw);
+    if m.t == 0.0 { return a; }
+    let b = rt_tex3_sample_level(s, rt_tex3_level(s, m.hi), uvw);
+    return a * (1.0 - m.t) + b * m.t;
+}
 
 // Cube maps (rt-std's SamplerCube): an RtSampler of six square faces, +x,
-// -x, +y, -y, +z, -z; the face and its coordinates by Vulkan's table (ties
-// to z, then y, then x; a non-finite component as 0, the zero direction at
-// face +z's centre), sampled on the face clamped to its edges.
-fn rt_texcube_sample(s: RtSampler, dir: vec3<f32>) -> vec4<f32> {
-    if s.width == 0u { return vec4<f32>(); }
+// -x, +y, -y, +z, -z, per level (level l: six faces of side
+// max(1, width >> l), the levels one after the other); the face and its
+// coordinates by Vulkan's table (ties to z, then y, then x; a non-finite
+// component as 0, the zero direction at face +z's centre), sampled on the
+// face clamped to its edges.
+struct RtCubeFace {
+    face: u32,
+    st: vec2<f32>,
+}
+fn rt_texcube_face(dir: vec3<f32>) -> RtCubeFace {
     let finite = abs(dir) <= vec3<f32>(RT_F32_MAX);
     let d = select(vec3<f32>(0.0), dir, finite);
     let a = abs(d);
@@ -390,8 +433,55 @@ fn rt_texcube_sample(s: RtSampler, dir: vec3<f32>) -> vec4<f32> {
     }
     var st = vec2<f32>(0.5);
     if rc != 0.0 { st = vec2<f32>(0.5 * (sc / rc) + 0.5, 0.5 * (tc / rc) + 0.5); }
-    let lv = RtTexLevel(s.offset + face * s.width * s.width * 4u, vec2<u32>(s.width, s.width));
-    return rt_tex_sample_level(s, lv, st);
+    return RtCubeFace(face, st);
+}
+// Face f of level l as a 2D level.
+fn rt_texcube_level(s: RtSampler, l: u32, f: u32) -> RtTexLevel {
+    var offset = s.offset;
+    var side = s.width;
+    for (var k = 0u; k < l; k = k + 1u) {
+        offset = offset + 6u * side * side * 4u;
+        side = max(side >> 1u, 1u);
+    }
+    return RtTexLevel(offset + f * side * side * 4u, vec2<u32>(side, side));
+}
+fn rt_texcube_sample(s: RtSampler, dir: vec3<f32>) -> vec4<f32> {
+    if s.width == 0u { return vec4<f32>(); }
+    let c = rt_texcube_face(dir);
+    return rt_tex_sample_level(s, rt_texcube_level(s, 0u, c.face), c.st);
+}
+fn rt_texcube_sample_lod(s: RtSampler, dir: vec3<f32>, lod: f32) -> vec4<f32> {
+    if s.width == 0u { return vec4<f32>(); }
+    let c = rt_texcube_face(dir);
+    let m = rt_tex_mip(s.mode, lod);
+    let a = rt_tex_sample_level(s, rt_texcube_level(s, m.lo, c.face), c.st);
+    if m.t == 0.0 { return a; }
+    let b = rt_tex_sample_level(s, rt_texcube_level(s, m.hi, c.face), c.st);
+    return a * (1.0 - m.t) + b * m.t;
+}
+
+// Bindless sampler ids through the launch's sampler table
+// (rt_abi::records::SamplerTable), right after the buffer table: id k names
+// the entry k - 1, 0 none. An id of no sampler, or of one of another shape,
+// reads as an empty sampler (every sample zero, size 0) after raising.
+fn rt_texid_entry(id: u32, shape: u32) -> u32 {
+    let t = rt_launch.buffer_table + 1u + rt_hw(rt_launch.buffer_table) * RT_BUFID_WORDS;
+    if id != 0u && id <= rt_hw(t) {
+        let e = t + 1u + (id - 1u) * RT_TEXID_WORDS;
+        if rt_hw(e + RT_TEXID_SHAPE) == shape { return e; }
+    }
+    rt_raise(RT_EXC_TEXTURE_ID);
+    return 0u;
+}
+fn rt_texid(id: u32, shape: u32) -> RtSampler {
+    let e = rt_texid_entry(id, shape);
+    if e == 0u { return RtSampler(0u, 0u, 0u, 0u); }
+    return RtSampler(rt_hw(e + RT_TEXID_OFFSET), rt_hw(e + RT_TEXID_WIDTH), rt_hw(e + RT_TEXID_HEIGHT), rt_hw(e + RT_TEXID_MODE));
+}
+fn rt_texid3(id: u32) -> RtSampler3d {
+    let e = rt_texid_entry(id, RT_TEXID_3D);
+    if e == 0u { return RtSampler3d(0u, 0u, 0u, 0u, 0u); }
+    return RtSampler3d(rt_hw(e + RT_TEXID_OFFSET), rt_hw(e + RT_TEXID_WIDTH), rt_hw(e + RT_TEXID_HEIGHT), rt_hw(e + RT_TEXID_DEPTH), rt_hw(e + RT_TEXID_MODE));
 }
 
 // ---- rt_printf!: records of (format id, launch index, word count, words)

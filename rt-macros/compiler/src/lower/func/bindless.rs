@@ -108,9 +108,12 @@ impl FnLowerer<'_> {
 }
 
 /// Whether `path` names an item of a bindless id type
-/// (`BindlessBuffer::NONE`, `RwBindlessBuffer::<T>::from_id`).
+/// (`BindlessBuffer::NONE`, `RwBindlessBuffer::<T>::from_id`,
+/// `BindlessSampler::<Sampler2d>::default`).
 pub(super) fn is_bindless_item(path: &syn::Path) -> bool {
-    path.segments.len() == 2 && crate::types::bindless_kind(&path.segments[0].ident.to_string()).is_some()
+    let owner = path.segments[0].ident.to_string();
+    path.segments.len() == 2
+        && (crate::types::bindless_kind(&owner).is_some() || owner == crate::types::BINDLESS_SAMPLER)
 }
 
 impl FnLowerer<'_> {
@@ -127,6 +130,8 @@ impl FnLowerer<'_> {
         let (owner, item) = (&path.segments[0], &path.segments[1]);
         let owner_name = owner.ident.to_string();
         let writable = owner_name == bindless_name(true);
+        let sampler = owner_name == crate::types::BINDLESS_SAMPLER;
+        let (what, example) = if sampler { ("sampler", "Sampler2d") } else { ("element", "Vec3") };
         let name = item.ident.to_string();
         if !item.arguments.is_none() {
             return Err(Error::unsupported(
@@ -137,15 +142,16 @@ impl FnLowerer<'_> {
         }
         let ty = if owner.arguments.is_none() {
             match want {
-                Some(t @ Ty::BufferId(w, _)) if *w == writable => t.clone(),
+                Some(t @ Ty::BufferId(w, _)) if *w == writable && !sampler => t.clone(),
+                Some(t @ Ty::SamplerId(_)) if sampler => t.clone(),
                 _ => {
                     let call = if args.is_some() { format!("{name}(..)") } else { name.clone() };
                     return Err(Error::new(
                         owner.ident.span(),
                         format!(
-                            "the element type of `{owner_name}::{call}` is not known here: name it \
-                             (`{owner_name}::<Vec3>::{call}`) or bind it first \
-                             (`let b: {owner_name}<Vec3> = {owner_name}::{call};`)"
+                            "the {what} type of `{owner_name}::{call}` is not known here: name it \
+                             (`{owner_name}::<{example}>::{call}`) or bind it first \
+                             (`let b: {owner_name}<{example}> = {owner_name}::{call};`)"
                         ),
                     ));
                 }

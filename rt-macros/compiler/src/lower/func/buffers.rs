@@ -176,40 +176,37 @@ impl FnLowerer<'_> {
         Ok(Val::new(t, elem.clone()))
     }
 
-    /// `Sampler3d`'s methods: `sample(uvw)`, `fetch(texel)`, `size()`.
+    /// `Sampler3d`'s methods: `sample(uvw)`, `sample_lod(uvw, lod)`,
+    /// `fetch(texel)`, `size()`, `levels()`.
     pub(super) fn sampler3d_method(&mut self, recv: Val, name: &str, args: &[&Expr], name_span: Span) -> Result<Val> {
-        let (f, arg, ty) = match name {
-            "sample" => ("rt_tex3_sample", "uvw", Ty::vec(3)),
-            "fetch" => ("rt_tex3_fetch", "texel", Ty::Vec(3, Scalar::U32)),
-            "size" => {
+        let (f, params): (&str, &[(&str, Ty)]) = match name {
+            "sample" => ("rt_tex3_sample", &[("uvw", Ty::vec(3))]),
+            "sample_lod" => ("rt_tex3_sample_lod", &[("uvw", Ty::vec(3)), ("lod", Ty::Scalar(Scalar::F32))]),
+            "fetch" => ("rt_tex3_fetch", &[("texel", Ty::Vec(3, Scalar::U32))]),
+            "size" | "levels" => {
                 if !args.is_empty() {
-                    return Err(Error::new(name_span, "`Sampler3d::size` takes no arguments"));
+                    return Err(Error::new(name_span, format!("`Sampler3d::{name}` takes no arguments")));
                 }
-                let size = format!("vec3<u32>({0}.width, {0}.height, {0}.depth)", recv.code);
-                return Ok(Val::new(size, Ty::Vec(3, Scalar::U32)).with_effects(recv.effects).with_reads(recv.reads));
+                let (code, ty) = if name == "size" {
+                    (format!("vec3<u32>({0}.width, {0}.height, {0}.depth)", recv.code), Ty::Vec(3, Scalar::U32))
+                } else {
+                    // prelude.wgsl's RtSampler3d.mode: the level count's byte.
+                    (format!("max({}.mode >> 24u, 1u)", recv.code), Ty::Scalar(Scalar::U32))
+                };
+                return Ok(Val::new(code, ty).with_effects(recv.effects).with_reads(recv.reads));
             }
             _ => {
                 return Err(Error::new(
                     name_span,
-                    format!("no method `{name}` on `Sampler3d` (it has sample, fetch, size)"),
+                    format!("no method `{name}` on `Sampler3d` (it has sample, sample_lod, fetch, size, levels)"),
                 ));
             }
         };
-        if args.len() != 1 {
-            return Err(Error::new(
-                name_span,
-                format!("`Sampler3d::{name}` takes 1 argument (`{arg}: {ty}`), found {}", args.len()),
-            ));
-        }
-        let v = self.expr(args[0], Some(&ty))?;
-        let v = self.deref(v);
-        let v = self.coerce(v, &ty, args[0].span())?;
-        Ok(Val::new(format!("{f}({}, {})", recv.code, v.code), Ty::vec(4))
-            .with_effects(recv.effects || v.effects)
-            .with_reads(recv.reads || v.reads))
+        self.texture_call(recv, "Sampler3d", f, name, params, args, name_span)
     }
 
-    /// `SamplerCube`'s methods: `sample_dir(dir)`, `size()`.
+    /// `SamplerCube`'s methods: `sample_dir(dir)`, `sample_dir_lod(dir,
+    /// lod)`, `size()`, `levels()`.
     pub(super) fn sampler_cube_method(
         &mut self,
         recv: Val,
@@ -217,31 +214,73 @@ impl FnLowerer<'_> {
         args: &[&Expr],
         name_span: Span,
     ) -> Result<Val> {
-        match name {
-            "size" => {
+        let (f, params): (&str, &[(&str, Ty)]) = match name {
+            "sample_dir" => ("rt_texcube_sample", &[("dir", Ty::vec(3))]),
+            "sample_dir_lod" => ("rt_texcube_sample_lod", &[("dir", Ty::vec(3)), ("lod", Ty::Scalar(Scalar::F32))]),
+            "size" | "levels" => {
                 if !args.is_empty() {
-                    return Err(Error::new(name_span, "`SamplerCube::size` takes no arguments"));
+                    return Err(Error::new(name_span, format!("`SamplerCube::{name}` takes no arguments")));
                 }
-                let size = format!("{}.width", recv.code);
-                Ok(Val::new(size, Ty::Scalar(Scalar::U32)).with_effects(recv.effects).with_reads(recv.reads))
+                let code = if name == "size" {
+                    format!("{}.width", recv.code)
+                } else {
+                    // prelude.wgsl's RtSampler.mode: the level count's byte.
+                    format!("max({}.mode >> 24u, 1u)", recv.code)
+                };
+                return Ok(Val::new(code, Ty::Scalar(Scalar::U32)).with_effects(recv.effects).with_reads(recv.reads));
             }
-            "sample_dir" => {
-                if args.len() != 1 {
-                    return Err(Error::new(
-                        name_span,
-                        format!("`SamplerCube::sample_dir` takes 1 argument (`dir: Vec3`), found {}", args.len()),
-                    ));
-                }
-                let ty = Ty::vec(3);
-                let v = self.expr(args[0], Some(&ty))?;
-                let v = self.deref(v);
-                let v = self.coerce(v, &ty, args[0].span())?;
-                Ok(Val::new(format!("rt_texcube_sample({}, {})", recv.code, v.code), Ty::vec(4))
-                    .with_effects(recv.effects || v.effects)
-                    .with_reads(recv.reads || v.reads))
+            _ => {
+                return Err(Error::new(
+                    name_span,
+                    format!("no method `{name}` on `SamplerCube` (it has sample_dir, sample_dir_lod, size, levels)"),
+                ));
             }
-            _ => Err(Error::new(name_span, format!("no method `{name}` on `SamplerCube` (it has sample_dir, size)"))),
+        };
+        self.texture_call(recv, "SamplerCube", f, name, params, args, name_span)
+    }
+
+    /// `f(recv, args..)` for a sampler method of `params`, the arguments
+    /// checked against them and evaluated in order.
+    #[allow(clippy::too_many_arguments)]
+    fn texture_call(
+        &mut self,
+        recv: Val,
+        owner: &str,
+        f: &str,
+        name: &str,
+        params: &[(&str, Ty)],
+        args: &[&Expr],
+        name_span: Span,
+    ) -> Result<Val> {
+        if args.len() != params.len() {
+            let list: Vec<String> = params.iter().map(|(p, ty)| format!("`{p}: {ty}`")).collect();
+            return Err(Error::new(
+                name_span,
+                format!(
+                    "`{owner}::{name}` takes {} argument{} ({}), found {}",
+                    params.len(),
+                    if params.len() == 1 { "" } else { "s" },
+                    list.join(", "),
+                    args.len()
+                ),
+            ));
         }
+        let mut vals: Vec<Val> = Vec::with_capacity(args.len());
+        for (a, (_, ty)) in args.iter().zip(params) {
+            let at = self.here();
+            let v = self.expr(a, Some(ty))?;
+            let v = self.deref(v);
+            let v = self.coerce(v, ty, a.span())?;
+            let mut earlier: Vec<&mut Val> = vals.iter_mut().collect();
+            self.spill(at, &mut earlier);
+            vals.push(v);
+        }
+        let effects = recv.effects || vals.iter().any(|v| v.effects);
+        let reads = recv.reads || vals.iter().any(|v| v.reads);
+        let codes: Vec<String> = vals.iter().map(|v| v.code.clone()).collect();
+        Ok(Val::new(format!("{f}({}, {})", recv.code, codes.join(", ")), Ty::vec(4))
+            .with_effects(effects)
+            .with_reads(reads))
     }
 
     pub(super) fn sampler_method(

@@ -107,6 +107,7 @@ impl FnLowerer<'_> {
             Ty::SamplerCube => return self.sampler_cube_method(recv, name, args, name_span),
             Ty::Callable(sig) => return self.callable_call(recv, sig, name, args, name_span, span),
             Ty::BufferId(w, elem) => return self.bindless_method(recv, *w, elem, name, args, name_span, span),
+            Ty::SamplerId(shape) => return self.sampler_id_method(recv, shape, name, args, name_span, span),
             _ => {}
         }
         let sig = builtins::method_sig(&rt, name).ok_or_else(|| {

@@ -319,6 +319,10 @@ impl FnLowerer<'_> {
                     .with_effects(effects)
                     .with_reads(reads))
             }
+            t @ (Ty::SamplerId(_) | Ty::Sampler | Ty::Sampler3d | Ty::SamplerCube) => Err(Error::new(
+                i.expr.span(),
+                format!("cannot index into a `{t}`: read a texel with `.fetch(texel)`, or sample it"),
+            )),
             t => Err(Error::new(i.expr.span(), format!("cannot index into a value of type `{t}`"))),
         }
     }

@@ -46,6 +46,7 @@ mod intrinsics;
 mod ops;
 mod places;
 mod resume;
+mod sampler_ids;
 mod stmt;
 mod tuples;
 

@@ -84,7 +84,7 @@ impl FnLowerer<'_> {
             (_, t @ (Ty::Scalar(_) | Ty::IntVar(_))) => Some(t),
             // `id == Callable::NONE`, `b == BindlessBuffer::default()`: the
             // id's type from the left.
-            (BinOp::Eq(_) | BinOp::Ne(_), t @ (Ty::Callable(_) | Ty::BufferId(..))) => Some(t),
+            (BinOp::Eq(_) | BinOp::Ne(_), t @ (Ty::Callable(_) | Ty::BufferId(..) | Ty::SamplerId(_))) => Some(t),
             _ => None,
         };
         let at = self.here();

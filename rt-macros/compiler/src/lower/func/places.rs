@@ -97,6 +97,17 @@ impl FnLowerer<'_> {
                         format!("cannot assign to an element through `{ty}`: {how}"),
                     ));
                 }
+                if let t @ (Ty::SamplerId(_) | Ty::Sampler | Ty::Sampler3d | Ty::SamplerCube) =
+                    self.resolved(&self.deref(base_val.clone()).ty)
+                {
+                    return Err(Error::new(
+                        i.expr.span(),
+                        format!(
+                            "cannot assign to texels through `{t}`: textures are read-only in ray programs \
+                             (write into an `RwBuffer<Vec4>` instead)"
+                        ),
+                    ));
+                }
                 let base = self.place(&i.expr)?;
                 let idx = self.int_index(&i.index)?;
                 let element = |code: String, ty: Ty, effects: bool| {

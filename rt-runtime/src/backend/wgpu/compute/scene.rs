@@ -660,6 +660,8 @@ pub(crate) struct Encoding {
     pub outputs: Vec<(usize, usize, usize)>,
     /// Every buffer's `(heap offset, words)`.
     pub placed: Vec<(usize, usize)>,
+    /// Every sampler's `(heap offset, words)`.
+    pub samplers_placed: Vec<(usize, usize)>,
     /// The heap word of the bindless buffer table.
     pub buffer_table: u32,
     pub rg_vars: u32,
@@ -712,6 +714,7 @@ pub(crate) fn encode_launch(
         heap: heap.words,
         outputs: heap.outputs,
         placed: heap.placed,
+        samplers_placed: heap.samplers_placed,
         buffer_table: heap.buffer_table,
         rg_vars,
         ex_vars,

@@ -50,6 +50,8 @@ pub fn prelude(atomic: bool) -> String {
     out.push_str(&rt_abi::records::InstanceRecord::wgsl_constants());
     out.push_str(&rt_abi::records::NodeEntry::wgsl_constants());
     out.push_str(&rt_abi::records::BufferTable::wgsl_constants());
+    out.push_str(&rt_abi::records::SamplerTable::wgsl_constants());
+    out.push_str(&rt_abi::wgsl::exception_kind_bits());
     out.push_str(PRELUDE);
     out
 }
