@@ -206,6 +206,12 @@ fn rolling(ctx: &mut Context) -> NodeId {
 
 /// Runs `rays` (x, y, time) into the scene `build` makes: each ray's words.
 fn run(on: On, build: impl Fn(&mut Context) -> NodeId, rays: &[[f32; 3]]) -> Vec<[f32; WORDS]> {
+    run_on(on, build, rays, true)
+}
+
+/// [`run`]; `motion`: whether the scene has motion transforms (which keep
+/// the ray-query target on the compute traversal).
+fn run_on(on: On, build: impl Fn(&mut Context) -> NodeId, rays: &[[f32; 3]], motion: bool) -> Vec<[f32; WORDS]> {
     let mut ctx = on.context();
     let top = build(&mut ctx);
     ctx.set_var(Scope::Context, "top", top).unwrap();
@@ -220,7 +226,14 @@ fn run(on: On, build: impl Fn(&mut Context) -> NodeId, rays: &[[f32; 3]]) -> Vec
     ctx.set_miss_program(0, miss).unwrap();
     let report = ctx.launch_1d(0, rays.len() as u32).unwrap();
     assert!(report.exceptions.is_empty(), "{}: {:?}", on.name(), report.exceptions);
-    if on == On::RAY_QUERY {
+    if on == On::RAY_QUERY && !motion {
+        assert_eq!(
+            ctx.traversal().map(|(t, _)| t),
+            Some(Traversal::RayQuery),
+            "a static scene is walked by ray queries"
+        );
+    }
+    if on == On::RAY_QUERY && motion {
         let (traversal, why) = ctx.traversal().unwrap();
         assert_eq!(traversal, Traversal::Compute, "a scene with motion keeps the compute traversal");
         assert!(why.contains("motion transform"), "{why}");
@@ -357,4 +370,20 @@ fn bad_motion_keys_are_errors_naming_the_transform() {
     assert_eq!(ctx.motion_keys(t).map(|m| m.t1), Some(1.0));
     ctx.set_transform(t, Mat4::IDENTITY).unwrap();
     assert!(ctx.motion_keys(t).is_none());
+}
+
+/// The ray time on the ray-query traversal too (a scene without motion,
+/// which ray queries walk): the hit and miss programs read it.
+#[test]
+fn current_time_is_the_traced_time_in_a_static_scene_on_every_target() {
+    let still = |ctx: &mut Context| {
+        let quad = group_of(ctx, rt_tests::meshes::unit_quad());
+        let placed = ctx.create_transform(shift(1.0), quad).unwrap();
+        beside_a_far_quad(ctx, placed)
+    };
+    let rays = [[1.25, 0.5, 0.75], [1.0, 0.0, -2.5], [5.0, 0.0, 3.0]];
+    let want = [quad_hit((3.0, 0.0), (0.25, 0.5), 0.75), quad_hit((3.0, 0.0), (0.0, 0.0), -2.5), miss(3.0)];
+    for on in On::ALL.into_iter().filter(|on| on.available()) {
+        check(on, &run_on(on, still, &rays, false), &want, 0.0);
+    }
 }
