@@ -215,15 +215,20 @@ fn run_on(on: On, build: impl Fn(&mut Context) -> NodeId, rays: &[[f32; 3]], mot
     let mut ctx = on.context();
     let top = build(&mut ctx);
     ctx.set_var(Scope::Context, "top", top).unwrap();
+    let rg = ctx.create_program(&probe::PROGRAM);
+    ctx.set_ray_generation_program(0, rg).unwrap();
+    let miss = ctx.create_program(&missed::PROGRAM);
+    ctx.set_miss_program(0, miss).unwrap();
+    launch(on, &mut ctx, rays, motion)
+}
+
+/// Launches `rays` in `ctx` (set up by [`run_on`]).
+fn launch(on: On, ctx: &mut Context, rays: &[[f32; 3]], motion: bool) -> Vec<[f32; WORDS]> {
     let rays_buffer =
         ctx.create_buffer(BufferType::Input, rays.iter().map(|r| Vec4::new(r[0], r[1], r[2], 0.0)).collect());
     ctx.set_var(Scope::Context, "rays", rays_buffer).unwrap();
     let out = ctx.create_buffer::<f32>(BufferType::Output, vec![0.0; rays.len() * WORDS]);
     ctx.set_var(Scope::Context, "out", out).unwrap();
-    let rg = ctx.create_program(&probe::PROGRAM);
-    ctx.set_ray_generation_program(0, rg).unwrap();
-    let miss = ctx.create_program(&missed::PROGRAM);
-    ctx.set_miss_program(0, miss).unwrap();
     let report = ctx.launch_1d(0, rays.len() as u32).unwrap();
     assert!(report.exceptions.is_empty(), "{}: {:?}", on.name(), report.exceptions);
     if on == On::RAY_QUERY && !motion {
@@ -385,5 +390,45 @@ fn current_time_is_the_traced_time_in_a_static_scene_on_every_target() {
     let want = [quad_hit((3.0, 0.0), (0.25, 0.5), 0.75), quad_hit((3.0, 0.0), (0.0, 0.0), -2.5), miss(3.0)];
     for on in On::ALL.into_iter().filter(|on| on.available()) {
         check(on, &run_on(on, still, &rays, false), &want, 0.0);
+    }
+}
+
+/// A transform given motion keys after a launch, then made static again,
+/// under a static transform (which the compute traversal does not fold
+/// into the motion) and nesting a second motion transform: each launch
+/// sees the scene as it is.
+#[test]
+fn motion_keys_set_between_launches_and_nested_under_transforms_on_every_target() {
+    for on in On::ALL.into_iter().filter(|on| on.available()) {
+        let mut ctx = on.context();
+        let quad = group_of(&mut ctx, rt_tests::meshes::unit_quad());
+        // Static for now: `inner` will move up by 0 -> 1, `m` along x by
+        // 0 -> 4, both over [0, 1].
+        let inner = ctx.create_transform(Mat4::IDENTITY, quad).unwrap();
+        let m = ctx.create_transform(Mat4::IDENTITY, inner).unwrap();
+        let lifted = ctx.create_transform(Mat4::from_translation(Vec3::new(0.0, 3.0, 0.0)), m).unwrap();
+        let top = beside_a_far_quad(&mut ctx, lifted);
+        ctx.set_var(Scope::Context, "top", top).unwrap();
+        let rg = ctx.create_program(&probe::PROGRAM);
+        ctx.set_ray_generation_program(0, rg).unwrap();
+        let miss_program = ctx.create_program(&missed::PROGRAM);
+        ctx.set_miss_program(0, miss_program).unwrap();
+        let still = launch(on, &mut ctx, &[[0.5, 3.0, 0.5]], false);
+        check(on, &still, &[quad_hit((2.0, 3.0), (0.5, 0.0), 0.5)], 0.0);
+        ctx.set_motion_keys(m, MotionKeys::Matrices(vec![shift(0.0), shift(4.0)]), 0.0, 1.0).unwrap();
+        let keys = vec![Mat4::IDENTITY, Mat4::from_translation(Vec3::new(0.0, 1.0, 0.0))];
+        ctx.set_motion_keys(inner, MotionKeys::Matrices(keys), 0.0, 1.0).unwrap();
+        // At 0.5: x by 2, y by 3 + 0.5.
+        let moved = launch(on, &mut ctx, &[[2.5, 3.5, 0.5], [0.5, 3.0, 0.5], [4.0, 4.0, 1.0]], true);
+        check(
+            on,
+            &moved,
+            &[quad_hit((4.0, 3.5), (0.5, 0.0), 0.5), miss(0.5), quad_hit((6.0, 4.0), (0.0, 0.0), 1.0)],
+            0.0,
+        );
+        ctx.set_transform(m, shift(1.0)).unwrap();
+        ctx.set_transform(inner, Mat4::IDENTITY).unwrap();
+        let again = launch(on, &mut ctx, &[[1.5, 3.0, 0.9], [4.0, 4.0, 1.0]], false);
+        check(on, &again, &[quad_hit((3.0, 3.0), (0.5, 0.0), 0.9), miss(1.0)], 0.0);
     }
 }
