@@ -386,8 +386,15 @@ fn current_time_is_the_traced_time_in_a_static_scene_on_every_target() {
         let placed = ctx.create_transform(shift(1.0), quad).unwrap();
         beside_a_far_quad(ctx, placed)
     };
-    let rays = [[1.25, 0.5, 0.75], [1.0, 0.0, -2.5], [5.0, 0.0, 3.0]];
-    let want = [quad_hit((3.0, 0.0), (0.25, 0.5), 0.75), quad_hit((3.0, 0.0), (0.0, 0.0), -2.5), miss(3.0)];
+    // A time that is not finite traces at 0.
+    let rays = [[1.25, 0.5, 0.75], [1.0, 0.0, -2.5], [5.0, 0.0, 3.0], [1.0, 0.0, f32::NAN], [5.0, 0.0, f32::INFINITY]];
+    let want = [
+        quad_hit((3.0, 0.0), (0.25, 0.5), 0.75),
+        quad_hit((3.0, 0.0), (0.0, 0.0), -2.5),
+        miss(3.0),
+        quad_hit((3.0, 0.0), (0.0, 0.0), 0.0),
+        miss(0.0),
+    ];
     for on in On::ALL.into_iter().filter(|on| on.available()) {
         check(on, &run_on(on, still, &rays, false), &want, 0.0);
     }
