@@ -234,9 +234,9 @@ pub fn rt_trace_with<P: Payload>(object: Object, ray: Ray, prd: &mut P, flags: u
 }
 
 /// [`rt_trace_with`] at ray time `time` (OptiX 6's `rtTrace(.., time)`, OptiX
-/// 7's `rayTime`): motion transforms and triangles with motion keys are
-/// intersected as they are at `time` (clamped to their time range), and the
-/// programs the trace runs read it with [`current_time`]. A trace without a
+/// 7's `rayTime`): motion transforms are intersected as they are at `time`
+/// (clamped to their time range), and the programs the trace runs read it
+/// with [`current_time`]. A trace without a
 /// time ([`rt_trace`], [`rt_trace_with`]) is at time 0; a trace from a
 /// closest-hit or miss program does not inherit its ray's time: pass
 /// [`current_time`] to keep it.
