@@ -18,6 +18,7 @@
 //! | [`instances`] | a hundred transformed instances of one teapot sharing one BVH |
 //! | [`receiver_grid`] | a sound source's rays counted per cell of a receiver grid with atomic adds, direct and reflected |
 //! | [`callable_brdfs`] | the tutorial's objects each shaded by its own BRDF, a callable program chosen per material from a buffer of ids |
+//! | [`motion_blur`] | a sphere sliding under matrix motion keys and a teapot turning under scale-rotate-translate keys, each sample traced at its own time (`rt_trace_at`) |
 //!
 //! [`common`] holds what the Whitted-style examples share on the device side
 //! (payloads, attributes, lights, the camera), [`tutorial`] the scene of
@@ -51,6 +52,7 @@ pub mod envmap;
 pub mod instances;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod model;
+pub mod motion_blur;
 /// OBJ loading, moved to `rt-scene` ([`rt_scene::obj`]); kept here by its
 /// old name.
 pub use rt_scene::obj as mesh;
@@ -82,7 +84,7 @@ pub struct Example {
 }
 
 /// Every example, in the tour's order.
-pub const EXAMPLES: [Example; 12] = [
+pub const EXAMPLES: [Example; 13] = [
     Example { name: "normal", summary: "normal shader", build: normal::scene, progressive: false },
     Example { name: "diffuse", summary: "ambient + Lambert", build: diffuse::scene, progressive: false },
     Example { name: "phong", summary: "Blinn-Phong", build: phong::scene, progressive: false },
@@ -109,6 +111,12 @@ pub const EXAMPLES: [Example; 12] = [
         summary: "a BRDF per material, a callable from a buffer",
         build: callable_brdfs::scene,
         progressive: false,
+    },
+    Example {
+        name: "motion_blur",
+        summary: "a sliding sphere and a turning teapot, time sampled per path",
+        build: motion_blur::scene,
+        progressive: true,
     },
 ];
 

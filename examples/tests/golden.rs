@@ -287,7 +287,7 @@ macro_rules! wgpu_goldens {
 wgpu_goldens! {
     checked: [
         normal, diffuse, phong, shadows, reflections, envmap, convex_hull, cornell, bunny, instances, receiver_grid,
-        callable_brdfs,
+        callable_brdfs, motion_blur,
     ],
     skipped: [],
 }

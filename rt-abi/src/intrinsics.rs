@@ -140,6 +140,7 @@ pub const INTRINSICS: &[Intrinsic] = &[
     row("launch_dim_3d", "rtLaunchDim", NOT_BOUNDS, Form::Value, "rt_launch_dim_3d", &[], UVec3),
     row("current_ray", "rtCurrentRay", RAY_KINDS, Form::Value, "rt_current_ray", &[], Ray),
     row("t_hit", "rtIntersectionDistance", HITS, Form::Value, "rt_t_hit", &[], F32),
+    row("current_time", "rtCurrentTime", RAY_KINDS, Form::Value, "rt_current_time", &[], F32),
     row(
         "primitive_index",
         "rtPrimitiveIndex",
@@ -153,6 +154,15 @@ pub const INTRINSICS: &[Intrinsic] = &[
     Intrinsic { name: "rt_trace", optix: "rtTrace", callers: Callers::Only(TRACERS), form: Form::Special, wgsl: None },
     Intrinsic {
         name: "rt_trace_with",
+        optix: "rtTrace",
+        callers: Callers::Only(TRACERS),
+        form: Form::Special,
+        wgsl: None,
+    },
+    // `rt_trace_with` at a ray time: lowered as `rt_set_trace_time(time)`
+    // (a runtime function) before the trace.
+    Intrinsic {
+        name: "rt_trace_at",
         optix: "rtTrace",
         callers: Callers::Only(TRACERS),
         form: Form::Special,
@@ -283,6 +293,9 @@ pub const RUNTIME_FUNCTIONS: &[WgslFn] = &[
     WgslFn { name: "rt_texid3", params: &[("id", U32)], ret: Sampler3d },
     WgslFn { name: "rt_printf_begin", params: &[("format", U32), ("words", U32)], ret: Bool },
     WgslFn { name: "rt_printf_word", params: &[("word", U32)], ret: Unit },
+    // The time of the next trace (`rt_trace_at`); every trace takes it and
+    // puts it back to 0, so a trace without one is at time 0.
+    WgslFn { name: "rt_set_trace_time", params: &[("time", F32)], ret: Unit },
 ];
 
 /// The row of the intrinsic rt-std calls `name`.

@@ -336,6 +336,10 @@ pub enum NodeEntry {
     /// child count, child nodes..., the children's instance index
     /// offsets...]`.
     Selector = 4,
+    /// A motion transform (one node): `a` is the scene word of `[instance
+    /// id, key kind, key count, t0, t1, keys...]` (rt-runtime's
+    /// `MotionTransform::encode` after the id), `b` the node below.
+    MotionTransform = 5,
 }
 
 impl NodeEntry {
@@ -347,6 +351,7 @@ impl NodeEntry {
             ("RT_NODE_GROUP", NodeEntry::Group as u32),
             ("RT_NODE_TRANSFORM", NodeEntry::Transform as u32),
             ("RT_NODE_SELECTOR", NodeEntry::Selector as u32),
+            ("RT_NODE_MOTION_TRANSFORM", NodeEntry::MotionTransform as u32),
         ])
     }
 }

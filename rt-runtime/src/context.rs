@@ -7,6 +7,7 @@ use crate::backend::wgpu::{Gpu, WgpuBackend};
 use crate::backend::{self, Backend, LaunchBackend, LaunchReport, Pacing, Settings};
 use crate::buffer::{BufferRec, BufferType, SamplerRec, SamplerShape, Typed};
 use crate::error::{Result, RtError};
+use crate::motion::{MotionKeys, MotionTransform};
 use crate::scene::*;
 use crate::usage::UsageReport;
 use crate::vars::{IntoVariable, VarScope};
@@ -669,7 +670,56 @@ impl Context {
     pub fn create_transform(&mut self, matrix: Mat4, child: NodeId) -> Result<NodeId> {
         self.check_nodes(&[child])?;
         let inverse = checked_inverse(matrix)?;
-        Ok(self.push_node(NodeKind::Transform { matrix, inverse, child }))
+        Ok(self.push_node(NodeKind::Transform { matrix, inverse, child, motion: None }))
+    }
+
+    /// A motion transform node: `keys` (two or more) spread evenly over the
+    /// time range `[t0, t1]`, the transform at a ray's time
+    /// ([`rt_trace_at`](rt_std::rt_trace_at)) interpolated between the two
+    /// keys around it (matrices element by element, [`Srt`](crate::Srt)
+    /// keys with their rotations slerped), clamped to the first and last
+    /// key outside the range (OptiX's `RT_MOTIONBORDERMODE_CLAMP`, its
+    /// default). Groups above bound the child over the whole motion
+    /// ([`MotionTransform::bounds`](crate::MotionTransform)). An instant at
+    /// which the interpolated matrix is singular hides the child.
+    ///
+    /// The ray-query traversal does not walk motion transforms: a scene
+    /// with one runs on the compute traversal.
+    #[doc(alias = "rtTransformSetMotionKeys")]
+    #[doc(alias = "rtTransformSetMotionRange")]
+    #[doc(alias = "rtTransformSetMotionBorderMode")]
+    pub fn create_motion_transform(&mut self, keys: MotionKeys, t0: f32, t1: f32, child: NodeId) -> Result<NodeId> {
+        self.check_nodes(&[child])?;
+        let node = NodeId(self.scene.nodes.len() as u32);
+        let motion = motion_keys(node, keys, t0, t1)?;
+        let (matrix, inverse) = first_key(&motion);
+        Ok(self.push_node(NodeKind::Transform { matrix, inverse, child, motion: Some(Box::new(motion)) }))
+    }
+
+    /// Gives transform `node` motion keys (as
+    /// [`create_motion_transform`](Self::create_motion_transform));
+    /// [`set_transform`](Self::set_transform) makes it static again.
+    #[doc(alias = "rtTransformSetMotionKeys")]
+    pub fn set_motion_keys(&mut self, node: NodeId, keys: MotionKeys, t0: f32, t1: f32) -> Result<()> {
+        let motion = motion_keys(node, keys, t0, t1)?;
+        self.scene.structure_version += 1;
+        match self.scene.nodes.get_mut(node.0 as usize).map(|n| &mut n.kind) {
+            Some(NodeKind::Transform { matrix, inverse, motion: m, .. }) => {
+                (*matrix, *inverse) = first_key(&motion);
+                *m = Some(Box::new(motion));
+                self.accels.transform_moved();
+                Ok(())
+            }
+            _ => Err(RtError::InvalidHandle(format!("{node:?} (not a transform)"))),
+        }
+    }
+
+    /// Transform `node`'s motion, if it has one.
+    pub fn motion_keys(&self, node: NodeId) -> Option<&MotionTransform> {
+        match self.scene.nodes.get(node.0 as usize).map(|n| &n.kind) {
+            Some(NodeKind::Transform { motion, .. }) => motion.as_deref(),
+            _ => None,
+        }
     }
 
     /// Changes a transform's matrix (a refit of the groups above it).
@@ -677,9 +727,10 @@ impl Context {
         self.scene.structure_version += 1;
         let inv = checked_inverse(matrix)?;
         match self.scene.nodes.get_mut(node.0 as usize).map(|n| &mut n.kind) {
-            Some(NodeKind::Transform { matrix: m, inverse, .. }) => {
+            Some(NodeKind::Transform { matrix: m, inverse, motion, .. }) => {
                 *m = matrix;
                 *inverse = inv;
+                *motion = None;
                 self.accels.transform_moved();
                 Ok(())
             }
@@ -1512,6 +1563,19 @@ impl Context {
     pub fn launch_3d(&mut self, entry: u32, width: u32, height: u32, depth: u32) -> Result<LaunchReport> {
         self.run_launch((entry, width, height, depth), None, None)
     }
+}
+
+/// Checked motion keys, or an error naming transform `node`.
+fn motion_keys(node: NodeId, keys: MotionKeys, t0: f32, t1: f32) -> Result<MotionTransform> {
+    MotionTransform::new(keys, t0, t1)
+        .map_err(|problem| RtError::BadTransform { problem: format!("transform {}: {problem}", node.index()) })
+}
+
+/// The first key's matrix and its inverse (identity where it has none): what
+/// the scene keeps as a motion transform's static matrix.
+fn first_key(motion: &MotionTransform) -> (Mat4, Mat4) {
+    let m = motion.matrix_at(motion.t0);
+    (m, checked_inverse(m).unwrap_or(Mat4::IDENTITY))
 }
 
 fn checked_inverse(m: Mat4) -> Result<Mat4> {

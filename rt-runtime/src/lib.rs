@@ -36,6 +36,7 @@ pub mod error;
 mod handles;
 pub mod image_out;
 pub(crate) mod link;
+pub mod motion;
 mod panics;
 pub mod scene;
 pub mod texels;
@@ -49,6 +50,7 @@ pub use backend::{Backend, ExceptionRecord, LaunchReport, Timings};
 pub use buffer::{BufferType, generate_mip_levels, generate_mip_levels_3d};
 pub use context::{Context, ExceptionKind, Scope, UsageCallback};
 pub use error::{Result, RtError};
+pub use motion::{MotionKeys, MotionTransform, Srt};
 pub use scene::{
     BufferId, GeometryId, GeometryInstanceId, GeometryKind, MaterialId, NodeId, ProgramId, SamplerId, TriangleMesh,
 };

@@ -7,6 +7,7 @@
 use crate::accel::Acceleration;
 use crate::buffer::{BufferRec, SamplerRec};
 use crate::error::{Result, RtError};
+use crate::motion::MotionTransform;
 use crate::vars::VarScope;
 use glam::{Mat4, Vec2, Vec3};
 use rt_std::program::ProgramDescriptor;
@@ -106,10 +107,26 @@ pub(crate) struct GeometryInstanceRec {
 }
 
 pub(crate) enum NodeKind {
-    GeometryGroup { children: Vec<GeometryInstanceId>, accel: Acceleration },
-    Group { children: Vec<NodeId>, accel: Acceleration },
-    Transform { matrix: Mat4, inverse: Mat4, child: NodeId },
-    Selector { visit: ProgramId, children: Vec<NodeId> },
+    GeometryGroup {
+        children: Vec<GeometryInstanceId>,
+        accel: Acceleration,
+    },
+    Group {
+        children: Vec<NodeId>,
+        accel: Acceleration,
+    },
+    /// `matrix` and `inverse` are the static transform's; a motion
+    /// transform has `motion` (and its first key as `matrix`).
+    Transform {
+        matrix: Mat4,
+        inverse: Mat4,
+        child: NodeId,
+        motion: Option<Box<MotionTransform>>,
+    },
+    Selector {
+        visit: ProgramId,
+        children: Vec<NodeId>,
+    },
 }
 
 pub(crate) struct NodeRec {

@@ -279,6 +279,8 @@ pub struct ExecutionContext {
     /// Distance of the candidate (any hit) or committed (closest hit)
     /// intersection ([`t_hit`](crate::t_hit)).
     pub t_hit: f32,
+    /// The current ray's time ([`current_time`](crate::current_time)).
+    pub time: f32,
     /// Primitive being intersected or hit
     /// ([`primitive_index`](crate::primitive_index)).
     pub primitive_index: u32,
@@ -343,6 +345,7 @@ impl ExecutionContext {
             tmax: f32::INFINITY,
         },
         t_hit: 0.0,
+        time: 0.0,
         primitive_index: 0,
         exception_code: 0,
         hit_kind: HIT_NONE,
@@ -398,13 +401,15 @@ pub trait Tracer {
     /// closest-hit and miss programs, which update `payload` (a `&mut P` for
     /// the [`Payload`](crate::Payload) type `P` passed to
     /// [`rt_trace`](crate::rt_trace)). `flags` are `RAY_FLAG_*` bits, `mask`
-    /// the visibility mask. The ray has passed [`Ray::is_valid`].
+    /// the visibility mask, `time` the ray's time
+    /// ([`current_time`](crate::current_time), finite). The ray has passed
+    /// [`Ray::is_valid`].
     ///
     /// The ray comes by reference: the program that traces it has usually
     /// just written its fields, and a by-value copy reads them back in wider
     /// loads than they were stored with, which the CPU cannot forward from
     /// the pending stores (a stall on every trace).
-    fn trace(&self, object: Object, ray: &Ray, payload: &mut dyn core::any::Any, flags: u32, mask: u32);
+    fn trace(&self, object: Object, ray: &Ray, payload: &mut dyn core::any::Any, flags: u32, mask: u32, time: f32);
     /// [`rt_potential_intersection`](crate::rt_potential_intersection): whether
     /// `t` lies inside the current ray's interval; if so it becomes the
     /// candidate's [`t_hit`](crate::t_hit).

@@ -236,7 +236,35 @@ pub fn rt_trace_with<P: Payload>(object: Object, ray: Ray, prd: &mut P, flags: u
         cpu::raise(EXCEPTION_INVALID_RAY);
         return;
     }
-    with_installed_tracer(|tracer| tracer.trace(object, &ray, prd, flags, mask), || ())
+    rt_trace_at(object, ray, prd, flags, mask, 0.0)
+}
+
+/// [`rt_trace_with`] at ray time `time` (OptiX 6's `rtTrace(.., time)`, OptiX
+/// 7's `rayTime`): motion transforms are intersected as they are at `time`
+/// (clamped to their time range), and the programs the trace runs read it
+/// with [`current_time`]. A trace without a
+/// time ([`rt_trace`], [`rt_trace_with`]) is at time 0; a trace from a
+/// closest-hit or miss program does not inherit its ray's time: pass
+/// [`current_time`] to keep it.
+///
+/// An invalid ray ([`Ray::is_valid`]) raises [`EXCEPTION_INVALID_RAY`] and is
+/// not traced; a time that is not finite is traced at time 0.
+#[rt_macros::rt_intrinsic]
+pub fn rt_trace_at<P: Payload>(object: Object, ray: Ray, prd: &mut P, flags: u32, mask: u32, time: f32) {
+    if !ray.is_valid() {
+        cpu::raise(EXCEPTION_INVALID_RAY);
+        return;
+    }
+    let time = if time.is_finite() { time } else { 0.0 };
+    with_installed_tracer(|tracer| tracer.trace(object, &ray, prd, flags, mask, time), || ())
+}
+
+/// The current ray's time: what [`rt_trace_at`] traced it with (0 for
+/// [`rt_trace`] and [`rt_trace_with`]).
+#[rt_macros::rt_intrinsic]
+#[inline]
+pub fn current_time() -> f32 {
+    crate::cpu::read(|c| c.time)
 }
 
 /// Whether distance `t` lies inside the current ray's open interval
@@ -491,8 +519,9 @@ mod tests {
     }
 
     impl Tracer for Recorder {
-        fn trace(&self, object: Object, ray: &Ray, payload: &mut dyn Any, flags: u32, mask: u32) {
-            self.log.borrow_mut().push(format!("trace {} {} {flags} {mask:#x}", object.id, ray.ray_type));
+        fn trace(&self, object: Object, ray: &Ray, payload: &mut dyn Any, flags: u32, mask: u32, time: f32) {
+            let at = if time == 0.0 { String::new() } else { format!(" at {time}") };
+            self.log.borrow_mut().push(format!("trace {} {} {flags} {mask:#x}{at}", object.id, ray.ray_type));
             // Run a "closest hit" in a nested context, as a backend would.
             let inner = ExecutionContext { t_hit: 1.0, ..context() };
             let (t, _) = with_tracer(inner, self, t_hit);
@@ -528,6 +557,21 @@ mod tests {
         assert_eq!(*tracer.log.borrow(), ["trace 7 1 2 0x3", "v = 1 [1, 1, 1, 1]\n", "report 4"]);
         // Uninstalled afterwards.
         assert!(rt_report_intersection(0));
+    }
+
+    #[test]
+    fn a_trace_passes_its_time_and_a_non_finite_time_as_zero() {
+        let tracer = Recorder::default();
+        let mut prd = Prd::default();
+        let ((), _) = with_tracer(ExecutionContext::default(), &tracer, || {
+            let ray = Ray::new(Vec3::ZERO, Vec3::Z, 0, 0.0, 10.0);
+            rt_trace_at(Object::new(1), ray, &mut prd, RAY_FLAG_NONE, RAY_MASK_ALL, 0.25);
+            rt_trace_at(Object::new(2), ray, &mut prd, RAY_FLAG_NONE, RAY_MASK_ALL, f32::NAN);
+            rt_trace(Object::new(3), ray, &mut prd);
+        });
+        assert_eq!(*tracer.log.borrow(), ["trace 1 0 0 0xff at 0.25", "trace 2 0 0 0xff", "trace 3 0 0 0xff"]);
+        let ctx = ExecutionContext { time: 0.75, ..Default::default() };
+        assert_eq!(with_context(ctx, current_time).0, 0.75);
     }
 
     #[test]

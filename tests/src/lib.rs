@@ -68,6 +68,8 @@ pub mod math_helpers;
 pub mod matrices;
 #[path = "../snapshots/in/methods.rs"]
 pub mod methods;
+#[path = "../snapshots/in/motion_time.rs"]
+pub mod motion_time;
 #[path = "../snapshots/in/ops_arith.rs"]
 pub mod ops_arith;
 #[path = "../snapshots/in/ops_bits.rs"]

@@ -310,9 +310,12 @@ pub(crate) fn build_accels(scene: &Scene, cache: &mut AccelCache, trees: Trees) 
                     }
                 }
             }
-            NodeKind::Transform { matrix, child, .. } => {
+            NodeKind::Transform { matrix, child, motion, .. } => {
                 let b = built[child.index() as usize].as_ref().map(|b| b.bounds()).unwrap_or(OAabb::empty());
-                NodeAccel::Bounds(transform_bounds(*matrix, &b))
+                match motion {
+                    Some(m) => NodeAccel::Bounds(m.bounds(&b)),
+                    None => NodeAccel::Bounds(transform_bounds(*matrix, &b)),
+                }
             }
             NodeKind::Selector { children, .. } => NodeAccel::Bounds(
                 children

@@ -133,6 +133,9 @@ pub(crate) struct Lane<'a> {
     pub(crate) pool: RefCell<Vec<(TypeId, Box<dyn AnyAttributes>)>>,
     /// The instruction set geometry groups' trees are walked on.
     pub(crate) isa: Isa,
+    /// The time of the ray being traced (`current_time()`; 0 in the ray
+    /// generation and exception programs).
+    pub(crate) time: Cell<f32>,
 }
 
 impl<'a> Lane<'a> {
@@ -148,6 +151,7 @@ impl<'a> Lane<'a> {
             search: Cell::new(std::ptr::null()),
             pool: RefCell::new(Vec::new()),
             isa: Isa::current(),
+            time: Cell::new(0.0),
         }
     }
 
@@ -158,6 +162,7 @@ impl<'a> Lane<'a> {
         self.exception.set(None);
         self.program.set(None);
         self.rays.set(0);
+        self.time.set(0.0);
         let mut ctx = self.base_context();
         self.invoke(&l.ray_generation, &mut ctx, None, None);
         if let Some((code, location)) = self.exception.get() {
@@ -203,6 +208,7 @@ impl<'a> Lane<'a> {
             launch_z,
             launch_depth,
             exceptions_enabled: self.l.settings.exceptions,
+            time: self.time.get(),
             ..ExecutionContext::DEFAULT
         }
     }
@@ -300,7 +306,25 @@ impl<'a> Lane<'a> {
             ),
         };
         match &rec.kind {
-            NodeKind::Transform { matrix, inverse, child } => {
+            NodeKind::Transform { motion: Some(motion), child, .. } => {
+                // The transform at the ray's time; an instant where it has no
+                // inverse hides the child.
+                let m = motion.matrix_at(self.time.get());
+                let det = m.determinant();
+                if det == 0.0 || !det.is_finite() {
+                    return;
+                }
+                let own = Xf { object_to_world: m, world_to_object: m.inverse() };
+                let composed = match xf {
+                    None => own,
+                    Some(x) => Xf {
+                        object_to_world: x.object_to_world * own.object_to_world,
+                        world_to_object: own.world_to_object * x.world_to_object,
+                    },
+                };
+                self.traverse(s, *child, Some(&composed), mask, path.through(rec.instance_id))
+            }
+            NodeKind::Transform { matrix, inverse, child, motion: None } => {
                 // Under no other transform: the node's own matrices, not
                 // their products with the identity.
                 let composed = match xf {
@@ -595,7 +619,7 @@ impl<'a> Lane<'a> {
 }
 
 impl Tracer for Lane<'_> {
-    fn trace(&self, object: Object, ray: &Ray, payload: &mut dyn Any, flags: u32, mask: u32) {
+    fn trace(&self, object: Object, ray: &Ray, payload: &mut dyn Any, flags: u32, mask: u32, time: f32) {
         if self.exception.get().is_some() || rt_std::cpu::pending_exception().is_some() {
             return;
         }
@@ -612,6 +636,7 @@ impl Tracer for Lane<'_> {
         }
         self.depth.set(depth + 1);
         self.rays.set(self.rays.get() + 1);
+        let outer_time = self.time.replace(time);
         let mut search = Search {
             ray_type: ray.ray_type,
             flags,
@@ -675,6 +700,7 @@ impl Tracer for Lane<'_> {
         if let Some(a) = attributes {
             self.return_attributes(a);
         }
+        self.time.set(outer_time);
         self.depth.set(depth);
     }
 

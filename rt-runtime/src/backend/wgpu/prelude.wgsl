@@ -20,6 +20,11 @@ const RT_NONE: u32 = 0xffffffffu;
 var<private> rt_idx: vec2<u32>;
 var<private> rt_exc: u32;
 var<private> rt_ray: RtRay;
+// The current ray's time (rt_current_time), and the time of the next trace
+// (rt_set_trace_time, before an rt_trace_at): every trace takes rt_next_time
+// and puts it back to 0, so a trace without a time is at time 0.
+var<private> rt_time: f32;
+var<private> rt_next_time: f32;
 var<private> rt_t: f32;
 var<private> rt_prim: u32;
 var<private> rt_o2w: mat4x4<f32>;
@@ -148,6 +153,11 @@ fn rt_launch_index_3d() -> vec3<u32> {
 fn rt_launch_dim_3d() -> vec3<u32> { return vec3<u32>(rt_launch_dim(), max(rt_launch.depth, 1u)); }
 fn rt_current_ray() -> RtRay { return rt_ray; }
 fn rt_t_hit() -> f32 { return rt_t; }
+fn rt_current_time() -> f32 { return rt_time; }
+// A time that is not finite traces at 0, as on the CPU backend.
+fn rt_set_trace_time(time: f32) {
+    rt_next_time = select(0.0, time, abs(time) <= RT_F32_MAX);
+}
 fn rt_primitive_index() -> u32 { return rt_prim; }
 fn rt_exception_code() -> u32 { return rt_exc; }
 fn rt_is_triangle_hit() -> bool { return rt_hk == 1u || rt_hk == 2u; }

@@ -45,8 +45,12 @@ impl FnLowerer<'_> {
                     _ => Ok(Some(Val::new(format!("rt_report_intersection({})", a[0].code), BOOL).with_effects(true))),
                 }
             }
-            "rt_trace" | "rt_trace_with" => {
-                let n = if name == "rt_trace" { 3 } else { 5 };
+            "rt_trace" | "rt_trace_with" | "rt_trace_at" => {
+                let n = match name {
+                    "rt_trace" => 3,
+                    "rt_trace_with" => 5,
+                    _ => 6,
+                };
                 if args.len() != n {
                     return Err(Error::new(span, format!("`{name}` takes {n} arguments, found {}", args.len())));
                 }
@@ -62,12 +66,24 @@ impl FnLowerer<'_> {
                         ));
                     }
                 }
-                let (flags, mask) = if n == 5 {
-                    let fm = self.args_typed(&args[3..], &[U32, U32], span, name)?;
-                    (fm[0].code.clone(), fm[1].code.clone())
-                } else {
-                    ("0u".to_string(), "255u".to_string())
+                let (flags, mask, time) = match n {
+                    5 => {
+                        let fm = self.args_typed(&args[3..], &[U32, U32], span, name)?;
+                        (fm[0].code.clone(), fm[1].code.clone(), None)
+                    }
+                    6 => {
+                        let fmt = self.args_typed(&args[3..], &[U32, U32, F32], span, name)?;
+                        (fmt[0].code.clone(), fmt[1].code.clone(), Some(fmt[2].code.clone()))
+                    }
+                    _ => ("0u".to_string(), "255u".to_string(), None),
                 };
+                // The time travels beside the trace call (whose form every
+                // trace shares): the runtime's trace takes it and puts it
+                // back to 0.
+                if let Some(time) = time {
+                    let line = self.mark(span, &format!("rt_set_trace_time({time});"));
+                    self.emit(line);
+                }
                 self.traced.push(pty.clone());
                 self.m.trace_types.borrow_mut().insert(pty.wgsl(), pty.clone());
                 if self.resume.is_some() {

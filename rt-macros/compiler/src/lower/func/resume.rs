@@ -82,7 +82,7 @@ impl<'ast> syn::visit::Visit<'ast> for SiteCounter<'_> {
             && let Some(last) = p.path.segments.last()
         {
             let name = last.ident.to_string();
-            if name == "rt_trace" || name == "rt_trace_with" || self.tracing.contains(&name) {
+            if matches!(name.as_str(), "rt_trace" | "rt_trace_with" | "rt_trace_at") || self.tracing.contains(&name) {
                 self.n += 1;
             }
         }

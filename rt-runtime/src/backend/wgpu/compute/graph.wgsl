@@ -109,6 +109,23 @@ fn rt_search_graph(object: u32, mask: u32) {
                         sp = sp + 1u;
                     }
                 }
+                case RT_NODE_MOTION_TRANSFORM: {
+                    // The transform at the ray's time (motion.wgsl); a
+                    // singular instant hides the child.
+                    let m = rt_scene[node + 1u];
+                    let own = rt_motion_matrix(m);
+                    let inv = rt_affine_inverse(own);
+                    if inv[3].w == 1.0 && level + 1u < RT_LEVELS && sp < RT_GRAPH_STACK {
+                        rt_enter_level(level + 1u, rt_g_o2w[level] * own, inv * rt_g_w2o[level]);
+                        stack[sp] = vec4<u32>(rt_scene[node + 2u], RT_NONE, 0u, level + 1u);
+                        // The transform's instance id comes first.
+                        paths[sp] = path;
+                        if rt_scene[m] != RT_NONE {
+                            paths[sp].y = rt_scene[m];
+                        }
+                        sp = sp + 1u;
+                    }
+                }
                 case RT_NODE_SELECTOR: {
                     let sel = rt_scene[node + 1u];
                     let child = rt_visit(sel, level);

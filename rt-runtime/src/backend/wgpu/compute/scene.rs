@@ -180,11 +180,15 @@ pub(crate) fn instance_of(scene: &Scene, node: NodeId) -> Result<Option<Instance
             NodeKind::GeometryGroup { .. } => {
                 return Ok(Some((n, m, visibility(&masks, node)?, chain_id(scene, node).0)));
             }
-            NodeKind::Transform { matrix, child, .. } => {
+            NodeKind::Transform { matrix, child, motion: None, .. } => {
                 m = m.then(*matrix);
                 n = *child;
             }
-            NodeKind::Group { .. } | NodeKind::Selector { .. } => return Ok(None),
+            // A motion transform has no one matrix: the graph walk
+            // evaluates it at the ray's time.
+            NodeKind::Transform { motion: Some(_), .. } | NodeKind::Group { .. } | NodeKind::Selector { .. } => {
+                return Ok(None);
+            }
         }
     }
     Err(RtError::GraphCycle { node: node.index() })
@@ -349,10 +353,21 @@ impl Encoder<'_> {
                     levels[i] = children.iter().map(|c| levels[c.index() as usize]).max().unwrap_or(0);
                     graph |= !instances_only;
                 }
+                NodeKind::Transform { motion: Some(motion), child, .. } => {
+                    let at = self.tables.at();
+                    self.tables.words.push(chain_id(scene, n).0);
+                    motion.encode(&mut self.tables.words);
+                    node_entries[i] = [NodeEntry::MotionTransform as u32, at, child.index(), mask];
+                    levels[i] = 1 + levels[child.index() as usize];
+                    graph = true;
+                }
                 NodeKind::Transform { .. } => {
-                    // A chain of transforms down to a group or selector.
+                    // A chain of static transforms down to a group, selector
+                    // or motion transform.
                     let (mut m, mut masks, mut below) = (Chain::IDENTITY, Vec::new(), n);
-                    while let NodeKind::Transform { matrix, child, .. } = &scene.nodes[below.index() as usize].kind {
+                    while let NodeKind::Transform { matrix, child, motion: None, .. } =
+                        &scene.nodes[below.index() as usize].kind
+                    {
                         m = m.then(*matrix);
                         masks.push(scene.nodes[below.index() as usize].visibility_mask);
                         below = *child;

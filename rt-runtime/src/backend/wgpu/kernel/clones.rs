@@ -148,7 +148,7 @@ pub(super) fn per_depth_clones(
             out.push_str(&trace_function(w, d, &note_payload));
         }
         out.push_str(&format!(
-            "fn rt_trace_{w}_d{}(object: u32, ray: RtRay, prd: ptr<function, {w}>, flags: u32, mask: u32) {{\n    rt_raise(RT_EXC_TRACE_DEPTH);\n}}\n",
+            "fn rt_trace_{w}_d{}(object: u32, ray: RtRay, prd: ptr<function, {w}>, flags: u32, mask: u32) {{\n    rt_next_time = 0.0;\n    rt_raise(RT_EXC_TRACE_DEPTH);\n}}\n",
             spec.max_depth + 1
         ));
     }

@@ -34,6 +34,7 @@ const PRELUDE: &str = include_str!("../prelude.wgsl");
 const HITS: &str = include_str!("hits.wgsl");
 const TRAVERSE: &str = include_str!("../compute/traverse.wgsl");
 const GRAPH: &str = include_str!("../compute/graph.wgsl");
+const MOTION: &str = include_str!("../compute/motion.wgsl");
 
 /// The start of every module: the records and heap binding the programs
 /// were validated against (rt-abi's, not a copy; of atomic words when
@@ -282,6 +283,7 @@ pub fn generate(spec: &KernelSpec) -> Result<Generated> {
             ));
             out.push_str(KEPT_XFORM);
             out.push_str(GRAPH);
+            out.push_str(MOTION);
         } else {
             out.push_str(TWO_LEVEL);
         }
@@ -488,6 +490,7 @@ var<private> rt_st_vars: array<u32, RT_DEPTHS>;
 var<private> rt_st_type: array<u32, RT_DEPTHS>;
 var<private> rt_st_ray: array<RtRay, RT_DEPTHS>;
 var<private> rt_st_t: array<f32, RT_DEPTHS>;
+var<private> rt_st_time: array<f32, RT_DEPTHS>;
 var<private> rt_st_prim: array<u32, RT_DEPTHS>;
 var<private> rt_st_o2w: array<mat4x4<f32>, RT_DEPTHS>;
 var<private> rt_st_w2o: array<mat4x4<f32>, RT_DEPTHS>;
@@ -622,6 +625,8 @@ fn rt_begin_trace(d: u32) -> bool {{
     let flags = rt_rq_flags;
     let mask = rt_rq_mask;
     let ty = rt_rq_type;
+    let time = rt_next_time;
+    rt_next_time = 0.0;
     if rt_exc != 0u {{
         return false;
     }}
@@ -636,6 +641,8 @@ fn rt_begin_trace(d: u32) -> bool {{
     let e = d + 1u;
     rt_st_ray[e] = rt_ray;
     rt_st_t[e] = rt_t;
+    rt_st_time[e] = rt_time;
+    rt_time = time;
     rt_st_prim[e] = rt_prim;
     rt_st_o2w[e] = rt_o2w;
     rt_st_w2o[e] = rt_w2o;
@@ -680,6 +687,7 @@ fn rt_begin_trace(d: u32) -> bool {{
 fn rt_end_trace(d: u32) {{
     rt_ray = rt_st_ray[d];
     rt_t = rt_st_t[d];
+    rt_time = rt_st_time[d];
     rt_prim = rt_st_prim[d];
     rt_o2w = rt_st_o2w[d];
     rt_w2o = rt_st_w2o[d];
@@ -865,6 +873,8 @@ fn dispatch_payload(programs: &[KernelProgram], w: &str, d: u32) -> String {
 fn trace_function(w: &str, d: u32, note_payload: &str) -> String {
     format!(
         "fn rt_trace_{w}_d{d}(object: u32, ray: RtRay, prd: ptr<function, {w}>, flags: u32, mask: u32) {{
+    let time = rt_next_time;
+    rt_next_time = 0.0;
     if rt_exc != 0u {{
         return;
     }}
@@ -874,6 +884,8 @@ fn trace_function(w: &str, d: u32, note_payload: &str) -> String {
     }}
     let saved_ray = rt_ray;
     let saved_t = rt_t;
+    let saved_time = rt_time;
+    rt_time = time;
     let saved_prim = rt_prim;
     let saved_o2w = rt_o2w;
     let saved_w2o = rt_w2o;
@@ -898,6 +910,7 @@ fn trace_function(w: &str, d: u32, note_payload: &str) -> String {
     }}
     rt_ray = saved_ray;
     rt_t = saved_t;
+    rt_time = saved_time;
     rt_prim = saved_prim;
     rt_o2w = saved_o2w;
     rt_w2o = saved_w2o;

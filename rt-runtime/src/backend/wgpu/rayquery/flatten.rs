@@ -41,6 +41,8 @@ pub(crate) enum Unsupported {
     Masks { node: NodeId, masks: Vec<u8> },
     /// No variable holds a node to trace.
     NoRoots,
+    /// A motion transform's matrix depends on the ray's time.
+    Motion(NodeId),
 }
 
 impl std::fmt::Display for Unsupported {
@@ -57,6 +59,11 @@ impl std::fmt::Display for Unsupported {
                 node.index()
             ),
             Unsupported::NoRoots => write!(f, "no variable holds a node (`Object`) to trace"),
+            Unsupported::Motion(n) => write!(
+                f,
+                "node {} is a motion transform, whose matrix depends on each ray's time; an instance of an acceleration structure has one matrix",
+                n.index()
+            ),
         }
     }
 }
@@ -127,6 +134,7 @@ pub(crate) fn flatten(scene: &Scene) -> Result<std::result::Result<Flat, Unsuppo
                     stack
                         .extend(children.iter().zip(offsets).rev().map(|(c, o)| (*c, m, masks.clone(), path.child(o))));
                 }
+                NodeKind::Transform { motion: Some(_), .. } => return Ok(Err(Unsupported::Motion(n))),
                 NodeKind::Transform { matrix, child, .. } => {
                     stack.push((*child, m.then(*matrix), masks, path.through(rec.instance_id)))
                 }
