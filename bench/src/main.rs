@@ -523,6 +523,13 @@ fn bunny_primary(args: &Args, bunny: &scenes::BenchScene, width: u32, height: u3
     }
 }
 
+/// The launch settings' ratios of one backend: tiled over whole launches,
+/// every exception kind off over on.
+struct LaunchRatios {
+    tiled: Option<f64>,
+    exceptions_off: Option<f64>,
+}
+
 /// What one scene measured, for the top-level ratios.
 #[derive(Default)]
 struct SceneFigures {
@@ -755,7 +762,7 @@ fn measure_gpu(
         j.child("skipped").set("wgpu", why.as_str());
         j.child("skipped").set("handwritten_wgsl", why.as_str());
     } else {
-        let run = || -> Result<(Json, Repeated, String, Option<f64>, Option<f64>)> {
+        let run = || -> Result<(Json, Repeated, String, LaunchRatios)> {
             let (mut ctx, _, gg, g) = scene_with(&scene.mesh, cam, Backend::Wgpu, width, height, Workload::Ao)?;
             ctx.set_traversal(rt_runtime::Traversal::Compute);
             let device = ctx.open_wgpu()?;
@@ -786,13 +793,13 @@ fn measure_gpu(
             }
             w.child("moving_vertices_launch_ms").set("set_positions", ms(vertices.change));
             let tiled = record_tiled_and_whole(&mut w, tiled_and_whole(&mut ctx, width, height, reps));
-            let exceptions = record_exceptions_off(&mut w, &mut ctx, width, height, reps);
-            Ok((w, l, device, tiled, exceptions))
+            let exceptions_off = record_exceptions_off(&mut w, &mut ctx, width, height, reps);
+            Ok((w, l, device, LaunchRatios { tiled, exceptions_off }))
         };
         match run() {
-            Ok((w, l, device, tiled, exceptions)) => {
-                fig.wgpu_tiled_vs_whole = tiled;
-                fig.wgpu_exceptions_off_vs_on = exceptions;
+            Ok((w, l, device, ratios)) => {
+                fig.wgpu_tiled_vs_whole = ratios.tiled;
+                fig.wgpu_exceptions_off_vs_on = ratios.exceptions_off;
                 j.set("wgpu_first_launch", w);
                 j.set("wgpu_device", device);
                 fig.wgpu = Some(mrays(l.rays, l.run));

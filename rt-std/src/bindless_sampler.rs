@@ -311,7 +311,7 @@ mod tests {
     }
 
     impl Tracer for Two {
-        fn trace(&self, _: Object, _: &Ray, _: &mut dyn Any, _: u32, _: u32) {}
+        fn trace(&self, _: Object, _: &Ray, _: &mut dyn Any, _: u32, _: u32, _: f32) {}
         fn potential_intersection(&self, _: f32) -> bool {
             false
         }
