@@ -21,12 +21,15 @@ pub const RAY_MASK_ALL: u32 = 0xFF;
 /// value that clears an id.
 pub const INSTANCE_ID_NONE: u32 = u32::MAX;
 
-/// `rt_trace` at the context's maximum trace depth.
-pub const EXCEPTION_TRACE_DEPTH_EXCEEDED: u32 = 0x3FC;
-/// A buffer accessed outside its bounds.
-pub const EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS: u32 = 0x3FB;
-/// `rt_trace` given a NaN or infinite ray.
-pub const EXCEPTION_INVALID_RAY: u32 = 0x3F6;
+/// `rt_trace` at the context's maximum trace depth. OptiX's code,
+/// `RT_EXCEPTION_TRACE_DEPTH_EXCEEDED`.
+pub const EXCEPTION_TRACE_DEPTH_EXCEEDED: u32 = 0x3ED;
+/// A buffer accessed outside its bounds. OptiX's code,
+/// `RT_EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS`.
+pub const EXCEPTION_BUFFER_INDEX_OUT_OF_BOUNDS: u32 = 0x3FD;
+/// `rt_trace` given a NaN or infinite ray. OptiX's code,
+/// `RT_EXCEPTION_INVALID_RAY`.
+pub const EXCEPTION_INVALID_RAY: u32 = 0x3FE;
 /// Integer overflow (`+ - *`, negation, `abs`, shifts by 32 or more,
 /// `MIN / -1`): raised only on the CPU backend with
 /// integer exceptions on (`Context::set_integer_exceptions`).
@@ -36,13 +39,15 @@ pub const EXCEPTION_INTEGER_OVERFLOW: u32 = 0x3F1;
 pub const EXCEPTION_INTEGER_DIVIDE_BY_ZERO: u32 = 0x3F2;
 /// A callable program called through an id that names no callable program
 /// of the call's signature (zero, a stale id, or a callable of another
-/// signature): the call returns the zero value of its result.
+/// signature): the call returns the zero value of its result. OptiX's
+/// code, `RT_EXCEPTION_PROGRAM_ID_INVALID`.
 pub const EXCEPTION_PROGRAM_ID_INVALID: u32 = 0x3EE;
 /// A buffer read or written through a bindless buffer id that names no
 /// buffer of the launch (zero, an id the context did not give), a buffer of
 /// another element type, or, for a writable id, a buffer programs may not
-/// write: a load returns zero, a store is dropped.
-pub const EXCEPTION_BUFFER_ID_INVALID: u32 = 0x3EA;
+/// write: a load returns zero, a store is dropped. OptiX's code,
+/// `RT_EXCEPTION_BUFFER_ID_INVALID`.
+pub const EXCEPTION_BUFFER_ID_INVALID: u32 = 0x3FA;
 /// A texture sampled through a bindless sampler id that names no sampler
 /// of the launch (zero, an id the context did not give) or a sampler of
 /// another shape (a cube map read as a 2D sampler): the sample is zero, the

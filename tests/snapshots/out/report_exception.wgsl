@@ -37,10 +37,10 @@ fn rtp_report_exception(out_color: RtBuffer) {
     let code: u32 = rt_exception_code();
     var tmp: vec3<f32>;
     switch code {
-        case 1020u: {
+        case 1005u: {
             tmp = vec3<f32>(1.0f, 0.0f, 0.0f);
         }
-        case 1019u, 1014u: {
+        case 1021u, 1022u: {
             tmp = vec3<f32>(1.0f, 1.0f, 0.0f);
         }
         default: {
