@@ -160,9 +160,10 @@ pub fn resolve_values(scene: &Scene, p: ProgramId, record: Record) -> Result<Vec
             _ => false,
         };
         if !ok {
-            return Err(mismatch(value.type_name(&|b| {
-                scene.buffers.get(b.index() as usize).map(|r| r.type_name()).unwrap_or_else(|| format!("{b:?}"))
-            })));
+            return Err(mismatch(value.type_name(
+                &|b| scene.buffers.get(b.index() as usize).map(|r| r.type_name()).unwrap_or_else(|| format!("{b:?}")),
+                &|s| scene.samplers.get(s.index() as usize).map_or_else(|| format!("{s:?}"), |r| r.type_name().into()),
+            )));
         }
         values.push(value);
     }

@@ -64,12 +64,13 @@ impl std::fmt::Debug for VarValue {
 }
 
 impl VarValue {
-    /// How the value's type is spelled in messages.
-    pub fn type_name(&self, buffers: &dyn Fn(BufferId) -> String) -> String {
+    /// How the value's type is spelled in messages (a buffer's and a
+    /// sampler's as the scene's records say: element type, shape).
+    pub fn type_name(&self, buffers: &dyn Fn(BufferId) -> String, samplers: &dyn Fn(SamplerId) -> String) -> String {
         match self {
             VarValue::Data { layout, .. } => layout.rust.to_string(),
             VarValue::Buffer(b) => buffers(*b),
-            VarValue::Sampler(_) => "Sampler2d".into(),
+            VarValue::Sampler(s) => samplers(*s),
             VarValue::Object(_) => "Object".into(),
         }
     }

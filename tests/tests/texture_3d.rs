@@ -155,11 +155,17 @@ fn sampler_dimensions_must_match_the_variable() {
         assert!(e.contains("`volume`") && e.contains("Sampler3d") && e.contains("Sampler2d (SamplerId(0))"), "{e}");
         // And a 3D sampler where a 2D one is read.
         let cube = ctx.create_sampler_3d(vec![Vec4::ONE; 8], UVec3::splat(2), WrapMode::Clamp, FilterMode::Linear);
-        ctx.set_var(Scope::Context, "volume", cube.unwrap()).unwrap();
-        let rg = ctx.create_program(&read_flat::PROGRAM);
-        ctx.set_ray_generation_program(0, rg).unwrap();
+        let cube = cube.unwrap();
+        ctx.set_var(Scope::Context, "volume", cube).unwrap();
+        let flat_rg = ctx.create_program(&read_flat::PROGRAM);
+        ctx.set_ray_generation_program(0, flat_rg).unwrap();
         let e = ctx.launch_1d(0, 1).unwrap_err().to_string();
         assert!(e.contains("read_flat") && e.contains("Sampler3d (SamplerId(1))"), "{e}");
+        // A sampler where a buffer is read: named by its own shape.
+        ctx.set_ray_generation_program(0, rg).unwrap();
+        ctx.set_var(Scope::Context, "points", cube).unwrap();
+        let e = ctx.launch_1d(0, 1).unwrap_err().to_string();
+        assert!(e.contains("`points`") && e.contains("sets it to `Sampler3d`"), "{e}");
     }
     let mut ctx = Context::new();
     let e = ctx.create_sampler_3d(vec![Vec4::ONE; 7], UVec3::splat(2), WrapMode::Clamp, FilterMode::Linear);
