@@ -56,6 +56,13 @@ pub fn linked<'a>(
     Ok((called, linked))
 }
 
+/// The programs of the `linked` callables that read `#[var]` variables:
+/// each has a record of its own (its scope, then the context's) on every
+/// backend.
+pub fn with_variables(linked: &[LinkedCallable]) -> impl Iterator<Item = ProgramId> + '_ {
+    linked.iter().filter(|c| !c.desc.variables.is_empty()).filter_map(|c| ProgramId::from_callable_id(c.id))
+}
+
 /// The `callables` of the signature whose dispatch name is `dispatch`.
 pub fn of_signature<'a>(
     callables: &'a [LinkedCallable],

@@ -183,10 +183,8 @@ pub(crate) fn link_all<'a>(
         .map(|c| c.desc);
     let (_, linked) = link::callables::linked(callers, &link::callables::scene_callables(scene))?;
     let mut callables: Vec<Option<Call>> = scene.programs.iter().map(|_| None).collect();
-    for c in linked.iter().filter(|c| !c.desc.variables.is_empty()) {
-        if let Some(p) = crate::scene::ProgramId::from_callable_id(c.id) {
-            callables[p.index() as usize] = Some(link::resolve(scene, p, Record::default())?);
-        }
+    for p in link::callables::with_variables(&linked) {
+        callables[p.index() as usize] = Some(link::resolve(scene, p, Record::default())?);
     }
     let numbering = link::instances::Numbering::of(scene)?;
     let instance_offsets = scene

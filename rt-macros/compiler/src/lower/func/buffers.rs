@@ -317,34 +317,6 @@ impl FnLowerer<'_> {
                 ));
             }
         };
-        if args.len() != arg_tys.len() {
-            let params: Vec<String> = arg_tys.iter().map(|(p, ty)| format!("`{p}: {ty}`")).collect();
-            return Err(Error::new(
-                name_span,
-                format!(
-                    "`Sampler2d::{name}` takes {} argument{} ({}), found {}",
-                    arg_tys.len(),
-                    if arg_tys.len() == 1 { "" } else { "s" },
-                    params.join(", "),
-                    args.len()
-                ),
-            ));
-        }
-        let mut vals: Vec<Val> = Vec::with_capacity(args.len());
-        for (a, (_, ty)) in args.iter().zip(arg_tys) {
-            let at = self.here();
-            let v = self.expr(a, Some(ty))?;
-            let v = self.deref(v);
-            let v = self.coerce(v, ty, a.span())?;
-            let mut earlier: Vec<&mut Val> = vals.iter_mut().collect();
-            self.spill(at, &mut earlier);
-            vals.push(v);
-        }
-        let effects = recv.effects || vals.iter().any(|v| v.effects);
-        let reads = recv.reads || vals.iter().any(|v| v.reads);
-        let codes: Vec<String> = vals.iter().map(|v| v.code.clone()).collect();
-        Ok(Val::new(format!("{f}({}, {})", recv.code, codes.join(", ")), Ty::vec(4))
-            .with_effects(effects)
-            .with_reads(reads))
+        self.texture_call(recv, "Sampler2d", f, name, arg_tys, args, name_span)
     }
 }

@@ -239,13 +239,16 @@ impl Encoder<'_> {
     fn callable_records(&mut self, callers: &[&ProgramDescriptor]) -> Result<()> {
         let all = link::callables::scene_callables(self.scene);
         let (_, linked) = link::callables::linked(callers.iter().copied(), &all)?;
-        let mut table = Vec::new();
-        for c in linked.iter().filter(|c| !c.desc.variables.is_empty()) {
-            let Some(p) = ProgramId::from_callable_id(c.id) else { continue };
-            table.resize(self.scene.programs.len(), 0);
+        let users: Vec<ProgramId> = link::callables::with_variables(&linked).collect();
+        if users.is_empty() {
+            self.header[3] = 0;
+            return Ok(());
+        }
+        let mut table = vec![0; self.scene.programs.len()];
+        for p in users {
             table[p.index() as usize] = self.record(p, Record::default())?;
         }
-        self.header[3] = if table.is_empty() { 0 } else { self.tables.at() };
+        self.header[3] = self.tables.at();
         self.tables.words.extend(table);
         Ok(())
     }
