@@ -11,6 +11,7 @@ use crate::motion::{MotionKeys, MotionTransform};
 use crate::scene::*;
 use crate::usage::UsageReport;
 use crate::vars::{IntoVariable, VarScope};
+use crate::vertex_motion::VertexMotion;
 use std::any::Any;
 
 pub use crate::scene::Scope;
@@ -528,7 +529,11 @@ impl Context {
         self.scene.structure_version += 1;
         let id = self.scene.geometries.len() as u32;
         mesh.validate().map_err(|problem| RtError::BadGeometry { geometry: id, problem })?;
-        self.scene.geometries.push(GeometryRec { kind: GeometryKind::Triangles(mesh), vars: VarScope::default() });
+        self.scene.geometries.push(GeometryRec {
+            kind: GeometryKind::Triangles(mesh),
+            vars: VarScope::default(),
+            vertex_motion: None,
+        });
         Ok(GeometryId(id))
     }
 
@@ -547,12 +552,15 @@ impl Context {
         self.scene.geometries.push(GeometryRec {
             kind: GeometryKind::Custom { primitive_count, intersection, bounding_box },
             vars: VarScope::default(),
+            vertex_motion: None,
         });
         Ok(GeometryId(self.scene.geometries.len() as u32 - 1))
     }
 
     /// Moves a triangle geometry's vertices (same count): accelerations over
-    /// it are refit, not rebuilt, at the next launch.
+    /// it are refit, not rebuilt, at the next launch. A geometry with vertex
+    /// motion ([`set_motion_vertices`](Self::set_motion_vertices)) becomes
+    /// static at these positions.
     pub fn set_triangle_positions(&mut self, g: GeometryId, positions: Vec<glam::Vec3>) -> Result<()> {
         self.scene.geometry_version += 1;
         self.scene.structure_version += 1;
@@ -575,8 +583,52 @@ impl Context {
         // same vertex count, only the positions themselves can be wrong.
         check_positions(&positions).map_err(|problem| RtError::BadGeometry { geometry: g.0, problem })?;
         mesh.positions = positions;
+        rec.vertex_motion = None;
         self.accels.geometry_moved(g.0);
         Ok(())
+    }
+
+    /// Gives triangle geometry `g` vertex motion: `keys` are two or more
+    /// sets of vertex positions (the mesh's vertex count each, its indices
+    /// over them) spread evenly over `[t0, t1]`. A ray traced at time `t`
+    /// (`rt_trace_at`) meets each triangle with its vertices interpolated
+    /// linearly between the two keys around `t`, clamped to the first and
+    /// last key outside the range (OptiX's `RT_MOTIONBORDERMODE_CLAMP`).
+    /// The built-in attributes (`geometric_normal`, `barycentrics`) are the
+    /// interpolated triangle's; shading normals and texture coordinates stay
+    /// per vertex. The mesh's positions become the first key's, and
+    /// [`set_triangle_positions`](Self::set_triangle_positions) makes it
+    /// static again.
+    ///
+    /// Triangles' boxes hold every key, so no instant's hit is lost. The
+    /// ray-query traversal does not interpolate vertices: a scene with
+    /// vertex motion runs on the compute traversal.
+    #[doc(alias = "rtGeometryTrianglesSetMotionVertices")]
+    #[doc(alias = "rtGeometryTrianglesSetMotionSteps")]
+    #[doc(alias = "rtGeometryTrianglesSetMotionRange")]
+    #[doc(alias = "rtGeometryTrianglesSetMotionBorderMode")]
+    pub fn set_motion_vertices(&mut self, g: GeometryId, keys: Vec<Vec<glam::Vec3>>, t0: f32, t1: f32) -> Result<()> {
+        let rec =
+            self.scene.geometries.get_mut(g.0 as usize).ok_or_else(|| RtError::InvalidHandle(format!("{g:?}")))?;
+        let GeometryKind::Triangles(mesh) = &mut rec.kind else {
+            return Err(RtError::BadGeometry {
+                geometry: g.0,
+                problem: "not a triangle geometry: vertex motion keys move triangles' vertices".into(),
+            });
+        };
+        let motion = VertexMotion::new(keys, t0, t1, mesh.positions.len())
+            .map_err(|problem| RtError::BadGeometry { geometry: g.0, problem })?;
+        mesh.positions.clone_from(&motion.keys[0]);
+        rec.vertex_motion = Some(Box::new(motion));
+        self.scene.geometry_version += 1;
+        self.scene.structure_version += 1;
+        self.accels.geometry_moved(g.0);
+        Ok(())
+    }
+
+    /// Triangle geometry `g`'s vertex motion, if it has some.
+    pub fn motion_vertices(&self, g: GeometryId) -> Option<&VertexMotion> {
+        self.scene.geometries.get(g.0 as usize)?.vertex_motion.as_deref()
     }
 
     pub fn create_material(&mut self) -> MaterialId {

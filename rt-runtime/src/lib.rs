@@ -42,6 +42,7 @@ pub mod scene;
 pub mod texels;
 pub mod usage;
 pub mod vars;
+pub mod vertex_motion;
 
 pub use accel::{Acceleration, Builder};
 pub use backend::tiles::{DEFAULT_TILE_BUDGET, LaunchControl, LaunchProgress, Tile, TileBudget};
@@ -57,3 +58,4 @@ pub use scene::{
 pub use texels::{ReadMode, SamplerOptions, TexelData};
 pub use usage::UsageReport;
 pub use vars::{IntoVariable, VarValue};
+pub use vertex_motion::VertexMotion;

@@ -71,12 +71,7 @@ impl MotionTransform {
         if keys.len() < 2 {
             return Err(format!("a motion transform needs at least 2 keys, found {}", keys.len()));
         }
-        if !t0.is_finite() || !t1.is_finite() {
-            return Err(format!("the motion range [{t0}, {t1}] is not finite"));
-        }
-        if t1 < t0 {
-            return Err(format!("the motion range [{t0}, {t1}] ends before it begins"));
-        }
+        check_range(t0, t1)?;
         let keys = match keys {
             MotionKeys::Matrices(m) => {
                 if let Some(i) = m.iter().position(|k| !k.is_finite()) {
@@ -108,19 +103,7 @@ impl MotionTransform {
     /// clamped to the range, keys spread evenly over it (a range of one
     /// instant: the first key at or before it, the last after).
     pub(crate) fn segment(&self, time: f32) -> (usize, f32) {
-        let n = self.keys.len();
-        let last = (n - 1) as f32;
-        let u = if self.t1 > self.t0 {
-            ((time - self.t0) / (self.t1 - self.t0)).clamp(0.0, 1.0) * last
-        } else if time > self.t0 {
-            last
-        } else {
-            0.0
-        };
-        // NaN times clamp to NaN: take the first key.
-        let u = if u.is_nan() { 0.0 } else { u };
-        let i = (u.floor() as usize).min(n - 2);
-        (i, u - i as f32)
+        segment(self.keys.len(), self.t0, self.t1, time)
     }
 
     /// The object-to-world matrix at `time`.
@@ -197,6 +180,37 @@ impl MotionTransform {
             }
         }
     }
+}
+
+/// Checks a motion range: finite, and `t0 <= t1`.
+pub(crate) fn check_range(t0: f32, t1: f32) -> Result<(), String> {
+    if !t0.is_finite() || !t1.is_finite() {
+        return Err(format!("the motion range [{t0}, {t1}] is not finite"));
+    }
+    if t1 < t0 {
+        return Err(format!("the motion range [{t0}, {t1}] ends before it begins"));
+    }
+    Ok(())
+}
+
+/// The segment of `n` keys (at least 2) spread evenly over `[t0, t1]` that
+/// `time` falls in, and the fraction along it: the time clamped to the
+/// range (a range of one instant: the first key at or before it, the last
+/// after). The compute traversal's `rt_motion_segment` (prelude.wgsl) is
+/// the same.
+pub(crate) fn segment(n: usize, t0: f32, t1: f32, time: f32) -> (usize, f32) {
+    let last = (n - 1) as f32;
+    let u = if t1 > t0 {
+        ((time - t0) / (t1 - t0)).clamp(0.0, 1.0) * last
+    } else if time > t0 {
+        last
+    } else {
+        0.0
+    };
+    // NaN times clamp to NaN: take the first key.
+    let u = if u.is_nan() { 0.0 } else { u };
+    let i = (u.floor() as usize).min(n - 2);
+    (i, u - i as f32)
 }
 
 /// Spherical interpolation from `a` to `b` by `f`, on the shorter arc;

@@ -9,6 +9,7 @@ use crate::buffer::{BufferRec, SamplerRec};
 use crate::error::{Result, RtError};
 use crate::motion::MotionTransform;
 use crate::vars::VarScope;
+use crate::vertex_motion::VertexMotion;
 use glam::{Mat4, Vec2, Vec3};
 use rt_std::program::ProgramDescriptor;
 
@@ -89,6 +90,9 @@ pub enum GeometryKind {
 pub(crate) struct GeometryRec {
     pub kind: GeometryKind,
     pub vars: VarScope,
+    /// A triangle mesh's vertex motion keys (its positions are the first
+    /// key's).
+    pub vertex_motion: Option<Box<VertexMotion>>,
 }
 
 pub(crate) struct MaterialRec {
@@ -241,13 +245,16 @@ impl Scene {
     }
 
     /// No any-hit and no intersection program in use: every primitive is a
-    /// triangle and every candidate commits, so the wgpu kernel searches
-    /// instances with its lean loop over CWBVHs. (Any-hit programs sit in
+    /// triangle that does not move with the ray's time and every candidate
+    /// commits, so the wgpu kernel searches instances with its lean loop
+    /// over CWBVHs (whose triangle slots hold fixed vertices). (Any-hit programs sit in
     /// materials' slots, intersection programs come with custom geometry:
     /// none among the instances', none in the kernel.)
     pub fn searches_triangles_only(&self) -> bool {
         self.instances.iter().all(|gi| {
-            matches!(self.geometries[gi.geometry.index() as usize].kind, GeometryKind::Triangles(_))
+            let g = &self.geometries[gi.geometry.index() as usize];
+            matches!(g.kind, GeometryKind::Triangles(_))
+                && g.vertex_motion.is_none()
                 && gi.materials.iter().all(|m| self.materials[m.index() as usize].any_hit.iter().all(Option::is_none))
         })
     }

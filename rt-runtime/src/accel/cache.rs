@@ -110,7 +110,8 @@ fn transform_bounds(m: Mat4, b: &OAabb) -> OAabb {
 }
 
 /// Primitive bounds of a geometry group, in the order of `prims`.
-/// `(instance, primitive)` pairs, their bounds, and whether all are triangles.
+/// `(instance, primitive)` pairs, their bounds, and whether all are triangles
+/// with fixed vertices (no vertex motion).
 type PrimBounds = (Vec<(u32, u32)>, Vec<OAabb>, bool);
 
 pub(crate) fn prim_bounds(scene: &Scene, children: &[crate::handles::GeometryInstanceId]) -> Result<PrimBounds> {
@@ -124,13 +125,23 @@ pub(crate) fn prim_bounds(scene: &Scene, children: &[crate::handles::GeometryIns
             GeometryKind::Triangles(mesh) => {
                 let n = mesh.indices.len();
                 prims.extend((0..n as u32).map(|t| (gi.index(), t)));
+                let motion = geometry.vertex_motion.as_deref();
+                all_triangles &= motion.is_none();
+                // A moving triangle's box holds it at every key.
+                let bound = |t: usize| match motion {
+                    Some(m) => {
+                        let (lo, hi) = m.triangle_bounds(mesh, t);
+                        to_oaabb(lo, hi)
+                    }
+                    None => triangle_bounds(mesh, t),
+                };
                 #[cfg(not(target_arch = "wasm32"))]
                 {
                     use rayon::prelude::*;
-                    bounds.par_extend((0..n).into_par_iter().with_min_len(4096).map(|t| triangle_bounds(mesh, t)));
+                    bounds.par_extend((0..n).into_par_iter().with_min_len(4096).map(bound));
                 }
                 #[cfg(target_arch = "wasm32")]
-                bounds.extend((0..n).map(|t| triangle_bounds(mesh, t)));
+                bounds.extend((0..n).map(bound));
             }
             GeometryKind::Custom { primitive_count, bounding_box, .. } => {
                 all_triangles = false;
@@ -335,11 +346,17 @@ pub(crate) fn build_accels(scene: &Scene, cache: &mut AccelCache, trees: Trees) 
 }
 
 /// `bvh` in the CPU backend's SIMD layout, its leaves holding the
-/// triangles' vertices when every primitive of `prims` is a triangle.
+/// triangles' vertices when every primitive of `prims` is a triangle with
+/// fixed vertices (moving ones are interpolated per ray by the walk's
+/// callback).
 fn simd_tree(scene: &Scene, bvh: &Bvh, prims: &[(u32, u32)]) -> WideBvh {
     // Each instance's mesh looked up once, not once per triangle.
-    let meshes: Vec<Option<&TriangleMesh>> =
-        (0..scene.instances.len() as u32).map(|gi| instance_mesh(scene, gi)).collect();
+    let meshes: Vec<Option<&TriangleMesh>> = (0..scene.instances.len() as u32)
+        .map(|gi| {
+            let geometry = scene.instances[gi as usize].geometry.index() as usize;
+            instance_mesh(scene, gi).filter(|_| scene.geometries[geometry].vertex_motion.is_none())
+        })
+        .collect();
     let all = prims.iter().all(|(gi, _)| meshes[*gi as usize].is_some());
     let triangle = |p: u32| {
         let (gi, t) = prims[p as usize];

@@ -9,6 +9,7 @@ use crate::buffer::SamplerShape;
 use crate::error::{Result, RtError};
 use crate::link::{self, Call, Record};
 use crate::scene::{GeometryKind, NodeId, NodeKind, Scene, TriangleMesh};
+use crate::vertex_motion::VertexMotion;
 use glam::UVec2;
 use rt_std::cpu::BoundVariables;
 use rt_std::program::{AttributesFromWords, ProgramDescriptor, TypeLayout};
@@ -35,6 +36,9 @@ pub(crate) struct Linked<'a, P> {
     pub(crate) any_hit: Vec<Vec<bool>>,
     /// The triangles of each instance (None: custom geometry).
     pub(crate) meshes: Vec<Option<&'a TriangleMesh>>,
+    /// The vertex motion of each instance's triangles (None: fixed
+    /// vertices, or custom geometry).
+    pub(crate) vertex_motion: Vec<Option<&'a VertexMotion>>,
     /// Intersection program per instance (custom geometry only).
     pub(crate) intersection: Vec<Option<P>>,
     /// Visit program per node (selectors only).
@@ -124,6 +128,7 @@ pub(crate) fn link_all<'a>(
     let mut hits = Vec::with_capacity(scene.instances.len());
     let mut any_hit = Vec::with_capacity(scene.instances.len());
     let mut meshes = Vec::with_capacity(scene.instances.len());
+    let mut vertex_motion = Vec::with_capacity(scene.instances.len());
     let mut intersection = Vec::with_capacity(scene.instances.len());
     for (i, gi) in scene.instances.iter().enumerate() {
         let instance = Some(crate::handles::GeometryInstanceId(i as u32));
@@ -146,7 +151,9 @@ pub(crate) fn link_all<'a>(
         }
         hits.push(per_material);
         any_hit.push(with_any_hit);
-        match &scene.geometries[gi.geometry.index() as usize].kind {
+        let geometry = &scene.geometries[gi.geometry.index() as usize];
+        vertex_motion.push(geometry.vertex_motion.as_deref());
+        match &geometry.kind {
             GeometryKind::Custom { intersection: p, .. } => {
                 meshes.push(None);
                 intersection.push(Some(link::resolve(
@@ -205,6 +212,7 @@ pub(crate) fn link_all<'a>(
         hits,
         any_hit,
         meshes,
+        vertex_motion,
         intersection,
         visit,
         callables,
@@ -237,6 +245,7 @@ impl<'a> Linked<'a, Call> {
                 .collect::<Result<_>>()?,
             any_hit: self.any_hit.clone(),
             meshes: self.meshes.clone(),
+            vertex_motion: self.vertex_motion.clone(),
             intersection: self.intersection.iter().map(opt).collect::<Result<_>>()?,
             visit: self.visit.iter().map(opt).collect::<Result<_>>()?,
             callables: self.callables.iter().map(opt).collect::<Result<_>>()?,

@@ -383,7 +383,12 @@ impl<'a> Lane<'a> {
                     let (gi, prim) = prims[p as usize];
                     match l.meshes[gi as usize] {
                         Some(mesh) => {
-                            let [a, b, c] = mesh.triangle(prim as usize);
+                            // (Moving triangles are never in the SIMD
+                            // tree's packets: they come here.)
+                            let [a, b, c] = match l.vertex_motion[gi as usize] {
+                                Some(m) => m.triangle_at(mesh, prim as usize, self.time.get()),
+                                None => mesh.triangle(prim as usize),
+                            };
                             if let Some(ray) = &prepared
                                 && let Some(hit) = ray.intersect(a, b, c, s.tmax.get())
                             {

@@ -670,12 +670,45 @@ fn rt_hit_kind(custom: bool, gi: u32, prim: u32, w2o: mat4x4<f32>, d: vec3<f32>)
     if custom { return 3u; }
     let g = rt_scene[2] + gi * 8u;
     let ib = rt_scene[g + 2u] + prim * 3u;
-    let pb = rt_scene[g + 1u];
-    let a = rt_v3(pb + rt_scene[ib] * 3u);
-    let b = rt_v3(pb + rt_scene[ib + 1u] * 3u);
-    let c = rt_v3(pb + rt_scene[ib + 2u] * 3u);
+    let a = rt_tri_corner(g, rt_scene[ib]);
+    let b = rt_tri_corner(g, rt_scene[ib + 1u]);
+    let c = rt_tri_corner(g, rt_scene[ib + 2u]);
     if rt_front(a, b, c, (w2o * vec4<f32>(d, 0.0)).xyz) { return 1u; }
     return 2u;
+}
+
+// The segment of n keys (at least 2) spread evenly over [t0, t1] that the
+// current ray's time falls in, and the fraction along it: rt-runtime's
+// motion::segment step by step.
+fn rt_motion_segment(n: u32, t0: f32, t1: f32) -> vec2<f32> {
+    let last = f32(n - 1u);
+    var u = 0.0;
+    if t1 > t0 {
+        u = clamp((rt_time - t0) / (t1 - t0), 0.0, 1.0) * last;
+    } else if rt_time > t0 {
+        u = last;
+    }
+    // A NaN time clamps to NaN: the first key.
+    if u != u {
+        u = 0.0;
+    }
+    let i = min(u32(floor(u)), n - 2u);
+    return vec2<f32>(f32(i), u - f32(i));
+}
+
+// Vertex v of the triangle geometry at instance-table word g, at the
+// current ray's time: its position (kind 0), or (kind 2, vertex motion)
+// its keys [key count, vertex count, t0, t1, positions per key]
+// interpolated as rt-runtime's VertexMotion::triangle_at.
+fn rt_tri_corner(g: u32, v: u32) -> vec3<f32> {
+    let pb = rt_scene[g + 1u];
+    if rt_scene[g] != 2u {
+        return rt_v3(pb + v * 3u);
+    }
+    let s = rt_motion_segment(rt_scene[pb], rt_f(pb + 2u), rt_f(pb + 3u));
+    let a = pb + 4u + (u32(s.x) * rt_scene[pb + 1u] + v) * 3u;
+    let b = a + rt_scene[pb + 1u] * 3u;
+    return rt_v3(a) * (1.0 - s.y) + rt_v3(b) * s.y;
 }
 
 fn rt_load_object(w: u32) -> u32 { return rt_hw(w); }

@@ -20,8 +20,10 @@ pub(crate) struct GeometryLayout {
     pub(crate) key: GeometryKey,
     /// Per geometry group (node index): where its words start.
     pub(crate) gg_bvh: HashMap<u32, GroupWords>,
-    /// Per geometry: its kind and the offsets of its positions, indices,
-    /// normals, texture coordinates and material indices in the tables.
+    /// Per geometry: its kind (0 triangles, 1 custom, 2 triangles with
+    /// vertex motion) and the offsets of its positions (kind 2: its motion
+    /// keys), indices, normals, texture coordinates and material indices in
+    /// the tables.
     pub(crate) geometry_words: Vec<[u32; 6]>,
     /// The deepest BVH of a geometry group.
     pub(crate) deepest_bvh: u32,
@@ -204,7 +206,17 @@ pub(crate) fn encode_geometry(
         match &g.kind {
             GeometryKind::Triangles(mesh) => {
                 let pos = table_at(&tables);
-                tables.extend(mesh.positions.iter().flat_map(|p| [f(p.x), f(p.y), f(p.z)]));
+                // Kind 2: moving vertices, `pos` their keys (`rt_tri_corner`).
+                let kind = match &g.vertex_motion {
+                    Some(motion) => {
+                        motion.encode(&mut tables);
+                        2
+                    }
+                    None => {
+                        tables.extend(mesh.positions.iter().flat_map(|p| [f(p.x), f(p.y), f(p.z)]));
+                        0
+                    }
+                };
                 let idx = table_at(&tables);
                 tables.extend(mesh.indices.iter().flatten());
                 let nrm = match &mesh.normals {
@@ -231,7 +243,7 @@ pub(crate) fn encode_geometry(
                     }
                     None => u32::MAX,
                 };
-                geometry_words.push([0, pos, idx, nrm, uv, mi]);
+                geometry_words.push([kind, pos, idx, nrm, uv, mi]);
             }
             GeometryKind::Custom { .. } => geometry_words.push([1, 0, 0, u32::MAX, u32::MAX, u32::MAX]),
         }

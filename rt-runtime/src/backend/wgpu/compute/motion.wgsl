@@ -13,15 +13,9 @@ fn rt_motion_matrix(m: u32) -> mat4x4<f32> {
     let n = rt_scene[m + 2u];
     let t0 = rt_f(m + 3u);
     let t1 = rt_f(m + 4u);
-    let last = f32(n - 1u);
-    var u = 0.0;
-    if t1 > t0 {
-        u = clamp((rt_time - t0) / (t1 - t0), 0.0, 1.0) * last;
-    } else if rt_time > t0 {
-        u = last;
-    }
-    let i = min(u32(floor(u)), n - 2u);
-    let f = u - f32(i);
+    let s = rt_motion_segment(n, t0, t1);
+    let i = u32(s.x);
+    let f = s.y;
     let keys = m + 5u;
     if kind == 0u {
         return rt_m4(keys + i * 16u) * (1.0 - f) + rt_m4(keys + (i + 1u) * 16u) * f;

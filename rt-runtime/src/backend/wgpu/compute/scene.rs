@@ -576,8 +576,11 @@ fn kernel_spec(
         None => 0,
     };
     let graph_stack = ((deepest_bvh + 2) * (graph_levels + 1)).max(96).next_power_of_two();
+    // (Moving triangles need the full search too: the lean one reads fixed
+    // vertices from triangle slots.)
     let triangles_only =
-        !programs.iter().any(|p| matches!(p.desc.kind, ProgramKind::AnyHit | ProgramKind::Intersection));
+        !programs.iter().any(|p| matches!(p.desc.kind, ProgramKind::AnyHit | ProgramKind::Intersection))
+            && l.scene.geometries.iter().all(|g| g.vertex_motion.is_none());
     if triangles_only != geometry.key.triangles_only {
         return Err(RtError::Gpu(format!(
             "internal: the kernel's programs say triangles only: {triangles_only}, the scene's: {}",

@@ -68,12 +68,12 @@ fn rt_intersect_prim(gi: u32, prim: u32) {
     let g = rt_scene[2] + gi * 8u;
     rt_s_gi = gi;
     rt_c_prim = prim;
-    if rt_scene[g] == 0u {
+    // Kinds 0 and 2: triangles (2 with vertex motion), 1: custom.
+    if rt_scene[g] != 1u {
         let ib = rt_scene[g + 2u] + prim * 3u;
-        let pb = rt_scene[g + 1u];
-        let a = rt_v3(pb + rt_scene[ib] * 3u);
-        let b = rt_v3(pb + rt_scene[ib + 1u] * 3u);
-        let c = rt_v3(pb + rt_scene[ib + 2u] * 3u);
+        let a = rt_tri_corner(g, rt_scene[ib]);
+        let b = rt_tri_corner(g, rt_scene[ib + 1u]);
+        let c = rt_tri_corner(g, rt_scene[ib + 2u]);
         let t = rt_triangle(a, b, c, rt_s_oray, rt_s_tmax);
         if t < 0.0 {
             return;

@@ -750,16 +750,15 @@ fn triangle_attributes(w: &str, layout: &TypeLayout) -> String {
         "fn rt_tri_attr_{w}(gi: u32, prim: u32, bary: vec2<f32>) -> {w} {{
     var a: {w};
     let g = rt_scene[2] + gi * 8u;
-    if rt_scene[g] != 0u {{
+    if rt_scene[g] == 1u {{
         return a;
     }}
     let ib = rt_scene[g + 2u] + prim * 3u;
-    let pb = rt_scene[g + 1u];
     let i0 = rt_scene[ib];
     let i1 = rt_scene[ib + 1u];
     let i2 = rt_scene[ib + 2u];
-    let p0 = rt_v3(pb + i0 * 3u);
-    let gn = cross(rt_v3(pb + i1 * 3u) - p0, rt_v3(pb + i2 * 3u) - p0);
+    let p0 = rt_tri_corner(g, i0);
+    let gn = cross(rt_tri_corner(g, i1) - p0, rt_tri_corner(g, i2) - p0);
     let w = 1.0 - bary.x - bary.y;
 {body}    return a;
 }}

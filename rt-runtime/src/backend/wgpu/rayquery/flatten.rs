@@ -11,7 +11,7 @@ use crate::backend::wgpu::chain::Chain;
 use crate::backend::wgpu::compute::scene::{instances, kept_masks};
 use crate::error::Result;
 use crate::link::instances::{InstancePath, Numbering};
-use crate::scene::{GeometryKind, NodeId, NodeKind, Scene};
+use crate::scene::{GeometryId, GeometryKind, NodeId, NodeKind, Scene};
 use crate::vars::{VarScope, VarValue};
 use glam::Mat4;
 
@@ -43,6 +43,9 @@ pub(crate) enum Unsupported {
     NoRoots,
     /// A motion transform's matrix depends on the ray's time.
     Motion(NodeId),
+    /// A geometry group holds triangles whose vertices move with the ray's
+    /// time.
+    VertexMotion { group: NodeId, geometry: GeometryId },
 }
 
 impl std::fmt::Display for Unsupported {
@@ -63,6 +66,12 @@ impl std::fmt::Display for Unsupported {
                 f,
                 "node {} is a motion transform, whose matrix depends on each ray's time; an instance of an acceleration structure has one matrix",
                 n.index()
+            ),
+            Unsupported::VertexMotion { group, geometry } => write!(
+                f,
+                "geometry group {} holds geometry {}, whose vertices move with each ray's time; a triangle acceleration structure holds fixed vertices",
+                group.index(),
+                geometry.index()
             ),
         }
     }
@@ -121,6 +130,13 @@ pub(crate) fn flatten(scene: &Scene) -> Result<std::result::Result<Flat, Unsuppo
                 NodeKind::GeometryGroup { children, .. } => {
                     if children.is_empty() {
                         continue;
+                    }
+                    let moving = children
+                        .iter()
+                        .map(|gi| scene.instances[gi.index() as usize].geometry)
+                        .find(|g| scene.geometries[g.index() as usize].vertex_motion.is_some());
+                    if let Some(geometry) = moving {
+                        return Ok(Err(Unsupported::VertexMotion { group: n, geometry }));
                     }
                     let Some(mask) = one_mask(&masks) else {
                         return Ok(Err(Unsupported::Masks { node: n, masks }));
