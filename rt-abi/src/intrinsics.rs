@@ -282,6 +282,11 @@ pub const RUNTIME_FUNCTIONS: &[WgslFn] = &[
     WgslFn { name: "rt_tex3_sample", params: &[("s", Sampler3d), ("uvw", Vec3)], ret: Vec4 },
     WgslFn { name: "rt_tex3_fetch", params: &[("s", Sampler3d), ("texel", UVec3)], ret: Vec4 },
     WgslFn { name: "rt_tex3_sample_lod", params: &[("s", Sampler3d), ("uvw", Vec3), ("lod", F32)], ret: Vec4 },
+    WgslFn {
+        name: "rt_tex3_sample_grad",
+        params: &[("s", Sampler3d), ("uvw", Vec3), ("dx", Vec3), ("dy", Vec3)],
+        ret: Vec4,
+    },
     // A cube map (`SamplerCube`) is an `RtSampler` of six square faces.
     WgslFn { name: "rt_texcube_sample", params: &[("s", Sampler), ("dir", Vec3)], ret: Vec4 },
     WgslFn { name: "rt_texcube_sample_lod", params: &[("s", Sampler), ("dir", Vec3), ("lod", F32)], ret: Vec4 },

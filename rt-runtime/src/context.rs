@@ -1116,8 +1116,10 @@ impl Context {
     /// `x + y * width + z * width * height`), one level (for levels, decode
     /// them and pass them to
     /// [`create_sampler_3d_mipmapped`](Self::create_sampler_3d_mipmapped)).
-    /// Coordinates are normalised: [`IndexMode::ArrayIndex`] is refused, as
-    /// are the wrong texel count, naming the sampler.
+    /// With [`IndexMode::ArrayIndex`] coordinates are in texels and clamp to
+    /// the edge, as [`create_sampler_from_texels`](Self::create_sampler_from_texels)'s:
+    /// another wrap mode is refused, as is the wrong texel count, naming
+    /// the sampler.
     pub fn create_sampler_3d_from_texels(
         &mut self,
         texels: crate::TexelData,
@@ -1136,12 +1138,15 @@ impl Context {
                 size.z
             )));
         }
-        if options.index == IndexMode::ArrayIndex {
-            return Err(fail(
-                "array-index coordinates (RT_TEXTURE_INDEX_ARRAY_INDEX) are for 2D samplers here; a 3D sampler reads normalised coordinates".into(),
-            ));
+        if options.index == IndexMode::ArrayIndex && options.wrap != WrapMode::Clamp {
+            return Err(fail(format!(
+                "array-index coordinates (RT_TEXTURE_INDEX_ARRAY_INDEX) clamp to the edge, as GPUs' unnormalised coordinates do: use WrapMode::Clamp, not {:?}",
+                options.wrap
+            )));
         }
-        self.create_sampler_3d(texels.decode(options.read), size, options.wrap, options.filter)
+        let id = self.create_sampler_3d(texels.decode(options.read), size, options.wrap, options.filter)?;
+        self.scene.samplers[id.0 as usize].modes.index = options.index;
+        Ok(id)
     }
 
     /// A cube map over faces of any supported format, decoded to RGBA

@@ -10,7 +10,8 @@
 //! payload field or a callable's argument, compare it with `==`, and sample
 //! through it with the methods of `S`: `sample`, `sample_lod`,
 //! `sample_grad`, `fetch`, `size` and `levels` for a 2D id, `sample`,
-//! `sample_lod`, `fetch`, `size` and `levels` for a 3D one, `sample_dir`,
+//! `sample_lod`, `sample_grad`, `fetch`, `size` and `levels` for a 3D one,
+//! `sample_dir`,
 //! `sample_dir_lod`, `size` and `levels` for a cube map.
 //! The host gets a sampler's id with `Context::sampler_id::<S>(sampler)`,
 //! which checks the sampler's shape, and sets it like any value; a launch
@@ -239,6 +240,14 @@ impl BindlessSampler<Sampler3d> {
     #[doc(alias = "rtTex3DLod")]
     pub fn sample_lod(self, uvw: Vec3, lod: f32) -> Vec4 {
         self.sampler().sample_lod(uvw, lod)
+    }
+
+    /// [`Sampler3d::sample_grad`] through the id.
+    ///
+    /// Program kinds: all but bounding_box.
+    #[doc(alias = "rtTex3DGrad")]
+    pub fn sample_grad(self, uvw: Vec3, dx: Vec3, dy: Vec3) -> Vec4 {
+        self.sampler().sample_grad(uvw, dx, dy)
     }
 
     /// [`Sampler3d::levels`] through the id (1 through an invalid one).

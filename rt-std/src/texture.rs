@@ -47,7 +47,8 @@
 //!
 //! [`Sampler3d::sample_lod`] and [`SamplerCube::sample_dir_lod`] choose
 //! and blend levels by the same rules (a cube map's level is filtered on
-//! the selected face alone).
+//! the selected face alone); [`Sampler3d::sample_grad`] computes `λ` as
+//! `sample_grad` does with three axes.
 //!
 //! [`Sampler2d::sample`] reads level 0 only: programs run in compute shaders,
 //! which have no screen-space derivatives to choose a level from (WGSL's
@@ -433,6 +434,7 @@ pub struct Sampler3d {
     wrap: WrapMode,
     filter: FilterMode,
     mip: MipFilter,
+    index: IndexMode,
 }
 
 // SAFETY: as for `Sampler2d`.
@@ -456,22 +458,17 @@ impl Sampler3d {
 
     /// A sampler over a mip chain of `levels` levels at `texels`: level 0
     /// (`size` texels), then each next level of [`mip_level_size_3d`].
-    /// Host side only. `levels` is clamped to `1..=mip_level_count_3d(size)`;
-    /// `modes.index` is not used (coordinates are normalised).
+    /// Host side only. `levels` is clamped to `1..=mip_level_count_3d(size)`
+    /// (to 1 with [`IndexMode::ArrayIndex`], whose coordinates are in
+    /// texels, as [`Sampler2d`]'s).
     ///
     /// # Safety
     /// `texels` points to the texels of those levels, initialised, valid
     /// and unchanged while any copy of the handle is used.
     pub unsafe fn from_raw_mip_parts(texels: *const Vec4, size: UVec3, levels: u32, modes: SamplerModes) -> Self {
-        let chain = mip_level_count_3d(size).max(1);
-        Sampler3d {
-            texels,
-            size,
-            levels: levels.clamp(1, chain),
-            wrap: modes.wrap,
-            filter: modes.filter,
-            mip: modes.mip,
-        }
+        let chain = if modes.index == IndexMode::ArrayIndex { 1 } else { mip_level_count_3d(size).max(1) };
+        let SamplerModes { wrap, filter, mip, index } = modes;
+        Sampler3d { texels, size, levels: levels.clamp(1, chain), wrap, filter, mip, index }
     }
 
     /// Width, height and depth in texels.
@@ -488,8 +485,9 @@ impl Sampler3d {
         self.levels
     }
 
-    /// Level 0 of the texture at normalised coordinates `uvw`, filtered and
-    /// wrapped by the sampler's modes.
+    /// Level 0 of the texture at coordinates `uvw` (normalised, or in
+    /// texels with [`IndexMode::ArrayIndex`]), filtered and wrapped by the
+    /// sampler's modes.
     ///
     /// Program kinds: all.
     #[doc(alias = "tex3D")]
@@ -514,11 +512,27 @@ impl Sampler3d {
         blend_levels(self.sample_level(uvw, lo), || self.sample_level(uvw, hi), t)
     }
 
+    /// The texture at `uvw` at the level of detail of the footprint `dx`,
+    /// `dy` (the derivatives of `uvw` across a pixel): log2 of its longer
+    /// side in level-0 texels, as [`Sampler2d::sample_grad`] (isotropic,
+    /// as OpenGL and Vulkan define it for 3D textures).
+    ///
+    /// Program kinds: all.
+    #[doc(alias = "tex3DGrad")]
+    pub fn sample_grad(&self, uvw: Vec3, dx: Vec3, dy: Vec3) -> Vec4 {
+        let size = self.size.as_vec3();
+        let rho = (dx * size).length().max((dy * size).length());
+        self.sample_lod(uvw, rho.log2())
+    }
+
     /// Level `level` (< `levels`) at `uvw`; the sampler is not degenerate.
     fn sample_level(&self, uvw: Vec3, level: u32) -> Vec4 {
         let (start, size) = self.level(level);
         let uvw = Vec3::select(uvw.is_finite_mask(), uvw, Vec3::ZERO);
-        let p = uvw * size.as_vec3();
+        let p = match self.index {
+            IndexMode::NormalizedCoordinates => uvw * size.as_vec3(),
+            IndexMode::ArrayIndex => uvw,
+        };
         let wrapped = |x: i64, y: i64, z: i64| {
             let (x, y, z) = (self.wrap.apply(x, size.x), self.wrap.apply(y, size.y), self.wrap.apply(z, size.z));
             self.texel(start, size, x, y, z)
@@ -583,6 +597,7 @@ impl fmt::Debug for Sampler3d {
             .field("filter", &self.filter)
             .field("levels", &self.levels)
             .field("mip", &self.mip)
+            .field("index", &self.index)
             .finish()
     }
 }

@@ -6,7 +6,8 @@
 //! channel as `(r, 0, 0, 1)`), through `fetch` and through `sample` at
 //! texel centres in either index mode; a linear sample between two texels
 //! in texel coordinates; the same formats behind 3D samplers and cube
-//! maps; the host's checks name the sampler.
+//! maps; a 3D sampler in texel coordinates; the host's checks name the
+//! sampler.
 
 use rt_runtime::*;
 use rt_std::prelude::*;
@@ -202,6 +203,65 @@ pub fn read_volume_and_cube(#[var] volume: Sampler3d, #[var] cube: SamplerCube, 
     out[i * 3 + 2] = cube.sample_dir(d);
 }
 
+/// Launch index `i` samples the volume at `at[i]` (texel coordinates).
+#[rt_program(ray_generation)]
+pub fn volume_at(#[var] volume: Sampler3d, #[var] at: Buffer<Vec4>, #[var] mut out: RwBuffer<Vec4>) {
+    let i = launch_index().x;
+    out[i] = volume.sample(at[i].xyz());
+}
+
+/// A 4x2x2 volume of R32F texels `x + 10 y + 100 z` in array-index mode
+/// (OptiX's `RT_TEXTURE_INDEX_ARRAY_INDEX`): coordinates in texels, nearest
+/// at texel centres and corners, linear between centres along each axis
+/// and clamped past the edges; one level (`levels()` is 1).
+#[test]
+fn a_3d_sampler_reads_texel_coordinates_in_array_index_mode_on_every_target() {
+    let texels: Vec<f32> = (0..16).map(|i| (i % 4 + 10 * ((i / 4) % 2) + 100 * (i / 8)) as f32).collect();
+    let value = |v: f32| Vec4::new(v, 0.0, 0.0, 1.0);
+    let at = [
+        Vec4::new(0.5, 0.5, 0.5, 0.0),
+        Vec4::new(3.5, 1.5, 1.5, 0.0),
+        Vec4::new(2.0, 1.0, 1.0, 0.0),
+        Vec4::new(9.0, -3.0, 1.0, 0.0),
+        Vec4::new(1.0, 0.5, 0.5, 0.0),
+        Vec4::new(0.5, 1.0, 0.5, 0.0),
+        Vec4::new(0.5, 0.5, 1.0, 0.0),
+        Vec4::new(9.0, 0.5, -2.0, 0.0),
+    ];
+    let nearest = [value(0.0), value(113.0), value(112.0), value(103.0)];
+    // Between the centres of eight texels (x 1 and 2, y 0 and 1, z 0 and
+    // 1); clamped in x and y, between z 0 and 1; half way between texels 0
+    // and 1 along x, 0 and 10 along y, 0 and 100 along z; clamped to
+    // (3, 0, 0).
+    let linear = [value(0.0), value(113.0), value(56.5), value(53.0), value(0.5), value(5.0), value(50.0), value(3.0)];
+    for (filter, want) in [(FilterMode::Nearest, &nearest[..]), (FilterMode::Linear, &linear[..])] {
+        for on in On::ALL.into_iter().filter(|on| on.available()) {
+            let mut ctx = on.context();
+            ctx.set_ray_type_count(0);
+            let options = SamplerOptions {
+                wrap: WrapMode::Clamp,
+                filter,
+                read: ReadMode::NormalizedFloat,
+                index: IndexMode::ArrayIndex,
+            };
+            let volume = ctx
+                .create_sampler_3d_from_texels(TexelData::R32F(texels.clone()), UVec3::new(4, 2, 2), options)
+                .unwrap();
+            let points = ctx.create_buffer(BufferType::Input, at[..want.len()].to_vec());
+            let out = ctx.create_buffer(BufferType::Output, vec![Vec4::splat(-7.0); want.len()]);
+            ctx.set_var(Scope::Context, "volume", volume).unwrap();
+            ctx.set_var(Scope::Context, "at", points).unwrap();
+            ctx.set_var(Scope::Context, "out", out).unwrap();
+            let rg = ctx.create_program(&volume_at::PROGRAM);
+            ctx.set_ray_generation_program(0, rg).unwrap();
+            let report = ctx.launch_1d(0, want.len() as u32).unwrap();
+            assert!(report.exceptions.is_empty(), "{on:?}: {:?}", report.exceptions);
+            let got: Vec<Vec4> = ctx.read_buffer(out).unwrap();
+            assert_eq!(got, want, "{filter:?} on {}", on.name());
+        }
+    }
+}
+
 /// Texel `i` of `data`, alone.
 fn one(data: &TexelData, i: usize) -> TexelData {
     match data {
@@ -254,9 +314,12 @@ fn bad_3d_and_cube_texels_are_refused_naming_the_sampler() {
     let options = SamplerOptions::default();
     let e = ctx.create_sampler_3d_from_texels(TexelData::R8(vec![1, 2, 3]), UVec3::new(2, 1, 2), options);
     assert_eq!(e.unwrap_err().to_string(), "sampler 0: 3 R8 texels for a 2x1x2 texture");
-    let array = SamplerOptions { index: IndexMode::ArrayIndex, wrap: WrapMode::Clamp, ..options };
+    let array = SamplerOptions { index: IndexMode::ArrayIndex, wrap: WrapMode::Repeat, ..options };
     let e = ctx.create_sampler_3d_from_texels(TexelData::R8(vec![1]), UVec3::ONE, array).unwrap_err().to_string();
-    assert!(e.starts_with("sampler 0: array-index coordinates") && e.contains("normalised"), "{e}");
+    assert_eq!(
+        e,
+        "sampler 0: array-index coordinates (RT_TEXTURE_INDEX_ARRAY_INDEX) clamp to the edge, as GPUs' unnormalised coordinates do: use WrapMode::Clamp, not Repeat"
+    );
     let faces = std::array::from_fn(|f| TexelData::Rgba16F(vec![[0; 4]; if f == 5 { 3 } else { 4 }]));
     let e = ctx.create_sampler_cube_from_texels(faces, 2, FilterMode::Linear, ReadMode::NormalizedFloat);
     assert_eq!(e.unwrap_err().to_string(), "sampler 0: cube face -z has 3 Rgba16F texels for a 2x2 face");

@@ -1,5 +1,6 @@
 //! Mip levels of 3D textures and cube maps (OptiX `tex3DLod`,
-//! `texCubemapLod`): `Sampler3d::sample_lod` and
+//! `tex3DGrad`, `texCubemapLod`): `Sampler3d::sample_lod`, `sample_grad`
+//! (the level of a footprint) and
 //! `SamplerCube::sample_dir_lod` over levels of distinct constant colours,
 //! read through a variable and through a bindless id, with exact values on
 //! every target: integer LODs read their level, fractional ones blend two
@@ -30,6 +31,21 @@ pub fn volume_lods(
     if i == 0 {
         out[lods.len() * 2] = vec4(volume.levels() as f32, by_id.levels() as f32, volume.sample(uvw).x, 0.0);
     }
+}
+
+/// Launch index `i` samples at the footprint `grads[2 i]`, `grads[2 i + 1]`
+/// (their xyz) through the variable and the id.
+#[rt_program(ray_generation)]
+pub fn volume_grads(
+    #[var] volume: Sampler3d,
+    #[var] by_id: BindlessSampler<Sampler3d>,
+    #[var] grads: Buffer<Vec4>,
+    #[var] mut out: RwBuffer<Vec4>,
+) {
+    let i = launch_index().x;
+    let (dx, dy) = (grads[i * 2].xyz(), grads[i * 2 + 1].xyz());
+    out[i * 2] = volume.sample_grad(vec3(0.5, 0.5, 0.5), dx, dy);
+    out[i * 2 + 1] = by_id.sample_grad(vec3(0.5, 0.5, 0.5), dx, dy);
 }
 
 /// As `volume_lods`, for a cube map in direction `dir`.
@@ -139,6 +155,54 @@ fn sample_lod_reads_3d_levels_through_variables_and_ids_on_every_target() {
                 check(&got, &want(mip, |l| colour(l, 0)), 3.0, 1.0, &format!("{} {mip:?} {filter:?}", on.name()));
             }
         }
+    }
+}
+
+/// `sample_grad` (OptiX `tex3DGrad`) takes log2 of the footprint's longer
+/// side in level-0 texels (of a 4x2x1 volume): each axis scaled by its own
+/// size, either derivative the longer, a NaN side ignored, no footprint or
+/// an infinite one clamped to the first or last level.
+#[test]
+fn sample_grad_reads_the_3d_level_of_the_footprint_on_every_target() {
+    // 4x2x1, 2x1x1, 1x1x1: each axis its own size.
+    let size = UVec3::new(4, 2, 1);
+    let levels = || (0..3).map(|l| vec![colour(l, 0); [8, 2, 1][l as usize]]).collect::<Vec<_>>();
+    let v = |x: f32, y: f32, z: f32| Vec4::new(x, y, z, 0.0);
+    let nan = f32::NAN;
+    // (dx, dy, level read)
+    let cases = [
+        (v(0.25, 0.0, 0.0), v(0.0, 0.0, 0.0), 0),
+        (v(0.5, 0.0, 0.0), v(0.0, 0.0, 0.0), 1),
+        (v(0.0, 0.0, 0.0), v(0.0, 0.0, 1.0), 0),
+        (v(0.0, 0.0, 0.0), v(0.0, 0.0, 2.0), 1),
+        (v(0.0, 0.0, 4.0), v(0.0, 0.0, 0.0), 2),
+        (v(0.0, 1.0, 0.0), v(0.125, 0.0, 0.0), 1),
+        (v(0.125, 0.0, 0.0), v(0.0, 2.0, 0.0), 2),
+        (v(nan, 0.0, 0.0), v(0.5, 0.0, 0.0), 1),
+        (v(0.0, 0.0, 0.0), v(0.0, 0.0, 0.0), 0),
+        (v(f32::INFINITY, 0.0, 0.0), v(0.0, 0.0, 0.0), 2),
+        (v(0.0, 0.0, 8.0), v(0.0, 0.0, 0.0), 2),
+    ];
+    for on in On::ALL.into_iter().filter(|on| on.available()) {
+        let mut ctx = on.context();
+        ctx.set_ray_type_count(0);
+        let s = ctx
+            .create_sampler_3d_mipmapped(levels(), size, WrapMode::Repeat, FilterMode::Linear, MipFilter::Linear)
+            .unwrap();
+        let grads = ctx.create_buffer(BufferType::Input, cases.iter().flat_map(|(dx, dy, _)| [*dx, *dy]).collect());
+        let out = ctx.create_buffer(BufferType::Output, vec![Vec4::splat(-1.0); cases.len() * 2]);
+        let id = ctx.sampler_id::<Sampler3d>(s).unwrap();
+        ctx.set_var(Scope::Context, "volume", s).unwrap();
+        ctx.set_var(Scope::Context, "by_id", id).unwrap();
+        ctx.set_var(Scope::Context, "grads", grads).unwrap();
+        ctx.set_var(Scope::Context, "out", out).unwrap();
+        let rg = ctx.create_program(&volume_grads::PROGRAM);
+        ctx.set_ray_generation_program(0, rg).unwrap();
+        let report = ctx.launch_1d(0, cases.len() as u32).unwrap();
+        assert!(report.exceptions.is_empty(), "{on:?}: {:?}", report.exceptions);
+        let got: Vec<Vec4> = ctx.read_buffer(out).unwrap();
+        let want: Vec<Vec4> = cases.iter().flat_map(|(_, _, l)| [colour(*l, 0); 2]).collect();
+        assert_eq!(got, want, "{}", on.name());
     }
 }
 

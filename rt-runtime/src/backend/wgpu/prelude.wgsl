@@ -374,7 +374,9 @@ fn rt_tex3_sample_level(s: RtSampler3d, lv: RtTexLevel3, uvw_in: vec3<f32>) -> v
     let uvw = select(vec3<f32>(0.0), uvw_in, finite);
     let wrap = s.mode & 0xffu;
     let n = vec3<i32>(lv.size);
-    let p = uvw * vec3<f32>(lv.size);
+    // Array-index mode (bit 9): coordinates in texels.
+    var p = uvw * vec3<f32>(lv.size);
+    if ((s.mode >> 9u) & 1u) != 0u { p = uvw; }
     if ((s.mode >> 8u) & 1u) == 0u {
         let i = vec3<i32>(floor(p));
         return rt_texel3(lv, rt_tex_wrap(i.x, n.x, wrap), rt_tex_wrap(i.y, n.y, wrap), rt_tex_wrap(i.z, n.z, wrap));
@@ -408,6 +410,17 @@ fn rt_tex3_sample_lod(s: RtSampler3d, uvw: vec3<f32>, lod: f32) -> vec4<f32> {
     if m.t == 0.0 { return a; }
     let b = rt_tex3_sample_level(s, rt_tex3_level(s, m.hi), uvw);
     return a * (1.0 - m.t) + b * m.t;
+}
+// rt_tex_sample_grad with a third axis.
+fn rt_tex3_side(v: vec3<f32>) -> f32 {
+    let l = length(v);
+    if (bitcast<u32>(l) & 0x7fffffffu) <= 0x7f800000u { return l; }
+    return 0.0;
+}
+fn rt_tex3_sample_grad(s: RtSampler3d, uvw: vec3<f32>, dx: vec3<f32>, dy: vec3<f32>) -> vec4<f32> {
+    let size = vec3<f32>(f32(s.width), f32(s.height), f32(s.depth));
+    let rho = max(rt_tex3_side(dx * size), rt_tex3_side(dy * size));
+    return rt_tex3_sample_lod(s, uvw, log2(rho));
 }
 
 // Cube maps (rt-std's SamplerCube): an RtSampler of six square faces, +x,

@@ -177,11 +177,12 @@ impl FnLowerer<'_> {
     }
 
     /// `Sampler3d`'s methods: `sample(uvw)`, `sample_lod(uvw, lod)`,
-    /// `fetch(texel)`, `size()`, `levels()`.
+    /// `sample_grad(uvw, dx, dy)`, `fetch(texel)`, `size()`, `levels()`.
     pub(super) fn sampler3d_method(&mut self, recv: Val, name: &str, args: &[&Expr], name_span: Span) -> Result<Val> {
         let (f, params): (&str, &[(&str, Ty)]) = match name {
             "sample" => ("rt_tex3_sample", &[("uvw", Ty::vec(3))]),
             "sample_lod" => ("rt_tex3_sample_lod", &[("uvw", Ty::vec(3)), ("lod", Ty::Scalar(Scalar::F32))]),
+            "sample_grad" => ("rt_tex3_sample_grad", &[("uvw", Ty::vec(3)), ("dx", Ty::vec(3)), ("dy", Ty::vec(3))]),
             "fetch" => ("rt_tex3_fetch", &[("texel", Ty::Vec(3, Scalar::U32))]),
             "size" | "levels" => {
                 if !args.is_empty() {
@@ -198,7 +199,9 @@ impl FnLowerer<'_> {
             _ => {
                 return Err(Error::new(
                     name_span,
-                    format!("no method `{name}` on `Sampler3d` (it has sample, sample_lod, fetch, size, levels)"),
+                    format!(
+                        "no method `{name}` on `Sampler3d` (it has sample, sample_lod, sample_grad, fetch, size, levels)"
+                    ),
                 ));
             }
         };

@@ -24,7 +24,7 @@ impl FnLowerer<'_> {
         let ty = Ty::SamplerId(Box::new(shape.clone()));
         let methods: &[&str] = match shape {
             Ty::Sampler => &["sample", "sample_lod", "sample_grad", "fetch", "size", "levels"],
-            Ty::Sampler3d => &["sample", "sample_lod", "fetch", "size", "levels"],
+            Ty::Sampler3d => &["sample", "sample_lod", "sample_grad", "fetch", "size", "levels"],
             _ => &["sample_dir", "sample_dir_lod", "size", "levels"],
         };
         if name == "id" {
