@@ -95,21 +95,7 @@ fn triangle() -> TriangleMesh {
 
 /// A 16 x 16 grid of quads over [-2, 2]^2 at z = 0 (512 triangles).
 fn grid() -> TriangleMesh {
-    let n = 16;
-    let mut mesh = TriangleMesh::default();
-    for y in 0..=n {
-        for x in 0..=n {
-            mesh.positions.push(Vec3::new(x as f32 / 4.0 - 2.0, y as f32 / 4.0 - 2.0, 0.0));
-        }
-    }
-    for y in 0..n {
-        for x in 0..n {
-            let i = y * (n + 1) + x;
-            mesh.indices.push([i, i + 1, i + n + 2]);
-            mesh.indices.push([i, i + n + 2, i + n + 1]);
-        }
-    }
-    mesh
+    rt_tests::meshes::grid(16, 2.0, |_, _| 0.0)
 }
 
 /// A geometry group over `geometries` (one instance each) with the probe's
