@@ -543,6 +543,13 @@ struct SceneFigures {
     /// The CPU backend's tree and walk without its programs, and its rays.
     walk: Option<f64>,
     walk_rays: u64,
+    /// The same tree walked by 16-ray packets (4x4 tiles, then their AO
+    /// rays), as Embree's `rtcIntersect16` is driven.
+    packet_walk: Option<f64>,
+    /// The primary rays alone (no AO rays traced), one by one and in
+    /// packets: where packets should pay most.
+    walk_primary: Option<f64>,
+    packet_walk_primary: Option<f64>,
     wgpu: Option<f64>,
     handwritten: Option<f64>,
     /// Rays per CPU second of the process (lavapipe's threads), which
@@ -638,6 +645,8 @@ fn measure_scene(
     });
     let simd = rt_runtime::accel::CpuSimd::current();
     let mut walks = Vec::new();
+    let (mut packet_walks, mut packet_rays) = (Vec::new(), 0);
+    let (mut primary_walks, mut primary_packet_walks) = (Vec::new(), Vec::new());
     for _ in 0..reps {
         if let Some(ctx) = cpu_ctx.as_mut() {
             match ctx.launch(0, width, height) {
@@ -658,6 +667,32 @@ fn measure_scene(
             });
             walks.push(w.time);
             fig.walk_rays = w.rays;
+            let p = peers::trace_ao16(&tris, cam, width, height, |rays, _, out| {
+                let mut hits = [None; rt_runtime::accel::wide::testing::PACKET_RAYS];
+                t.closest_packet(simd, rays, &mut hits);
+                for (o, h) in out.iter_mut().zip(hits) {
+                    *o = h.map(|h| (h.0, h.1));
+                }
+            });
+            packet_walks.push(p.time);
+            packet_rays = p.rays;
+            // Primary rays only: AO rays (traced with tmin 0, or not
+            // coherent) are not traced.
+            let w = peers::trace_ao(&tris, cam, width, height, |o, d, tmin| {
+                (tmin != 0.0).then(|| t.closest(simd, o, d, tmin, f32::INFINITY).map(|h| (h.0, h.1))).flatten()
+            });
+            primary_walks.push(w.time);
+            let p = peers::trace_ao16(&tris, cam, width, height, |rays, coherent, out| {
+                out.fill(None);
+                if coherent {
+                    let mut hits = [None; rt_runtime::accel::wide::testing::PACKET_RAYS];
+                    t.closest_packet(simd, rays, &mut hits);
+                    for (o, h) in out.iter_mut().zip(hits) {
+                        *o = h.map(|h| (h.0, h.1));
+                    }
+                }
+            });
+            primary_packet_walks.push(p.time);
         }
         let o = peers::obvhs_ao(&bvh, &tris, cam, width, height);
         theirs.push(o.time);
@@ -675,6 +710,10 @@ fn measure_scene(
     let obvhs_run = obvhs_run.expect("reps >= 1");
     if !walks.is_empty() {
         fig.walk = Some(mrays(fig.walk_rays, median(walks)));
+        fig.packet_walk = Some(mrays(packet_rays, median(packet_walks)));
+        let primary = (width * height) as u64;
+        fig.walk_primary = Some(mrays(primary, median(primary_walks)));
+        fig.packet_walk_primary = Some(mrays(primary, median(primary_packet_walks)));
     }
     let rays = j.child("rays");
     rays.set("obvhs", obvhs_run.rays);
@@ -866,6 +905,9 @@ fn record_figures(j: &mut json::Json, fig: &SceneFigures) {
         ("embree_intersect1", fig.embree1),
         ("embree_intersect16", fig.embree16),
         ("cpu_walk_only", fig.walk),
+        ("cpu_packet_walk_only", fig.packet_walk),
+        ("cpu_walk_only_primary", fig.walk_primary),
+        ("cpu_packet_walk_only_primary", fig.packet_walk_primary),
         ("handwritten_wgsl", fig.handwritten),
         ("handwritten_bvh2_wgsl", fig.handwritten_bvh2),
         ("rayquery", fig.rayquery),
@@ -1005,7 +1047,7 @@ fn main() {
     // The headline ratios on the bunny (as before issue #6), and their
     // geometric means over the scenes where both sides were measured.
     let pick = |name: &str| figures.iter().find(|(n, _)| *n == name).map(|(_, f)| f);
-    let ratios: [(&str, RatioOf); 16] = [
+    let ratios: [(&str, RatioOf); 19] = [
         ("cpu_vs_obvhs", |f| ratio(f.cpu, f.obvhs)),
         // Against Embree's best mode (the faster of rtcIntersect1 and
         // rtcIntersect16), and against its single rays alone (the key of
@@ -1014,6 +1056,11 @@ fn main() {
         ("cpu_vs_embree_intersect1", |f| ratio(f.cpu, f.embree1)),
         // The CPU backend's walk without programs against Embree's best.
         ("cpu_walk_only_vs_embree", |f| ratio(f.walk, f.embree)),
+        // What 16-ray packets give the same walk (above 1: packets pay),
+        // and the packet walk against Embree's own packets.
+        ("cpu_packet_walk_vs_walk", |f| ratio(f.packet_walk, f.walk)),
+        ("cpu_packet_walk_vs_walk_primary", |f| ratio(f.packet_walk_primary, f.walk_primary)),
+        ("cpu_packet_walk_vs_embree16", |f| ratio(f.packet_walk, f.embree16)),
         ("megakernel_vs_handwritten", |f| ratio(f.wgpu, f.handwritten)),
         // The same, as rays per CPU second of this process: steady under
         // load from other processes, which the wall-clock ratio is not.

@@ -15,11 +15,14 @@
 //! ordered traversal, generic over [`kernels`] (the box and triangle tests
 //! of each instruction set) and dispatched by [`isa`] (run-time detection,
 //! `RT_CPU_SIMD` to force one); [`watertight`] is the one-triangle test
-//! the packet test reproduces.
+//! the packet test reproduces; [`packet_walk`] walks 16 rays together (the
+//! measurement of what ray packets gain on this tree: `rt-bench`'s
+//! `cpu_packet_walk_vs_walk`).
 
 pub(crate) mod collapse;
 pub mod isa;
 pub(crate) mod kernels;
+pub(crate) mod packet_walk;
 #[doc(hidden)]
 pub mod testing;
 #[cfg(test)]

@@ -6,6 +6,7 @@
 use super::collapse::collapse;
 use super::isa::{Isa, walk_on};
 use super::kernels::WalkRay;
+pub use super::packet_walk::PACKET_RAYS;
 use super::watertight::WatertightRay;
 use super::{PACKET, WideBvh, leaf_of};
 use crate::accel::Builder;
@@ -70,6 +71,46 @@ impl Triangles {
             Some(limit)
         });
         best
+    }
+
+    /// The closest hits of up to [`PACKET_RAYS`](super::packet_walk::PACKET_RAYS)
+    /// rays `(origin, direction, tmin)` walked as one packet on `isa` (which
+    /// must be supported; a packet on AVX2, else one by one), each up to
+    /// infinity, into `out`.
+    pub fn closest_packet(&self, isa: Isa, rays: &[(Vec3, Vec3, f32)], out: &mut [Option<Closest>]) {
+        assert!(isa.supported(), "{} is not supported here", isa.name());
+        assert!(rays.len() <= PACKET_RAYS && out.len() >= rays.len());
+        let n = rays.len();
+        if n == 0 {
+            return;
+        }
+        // (On the stack: this is what rt-bench times.)
+        let prepared: [Option<WatertightRay>; PACKET_RAYS] = std::array::from_fn(|i| {
+            let (o, d, tmin) = rays[i.min(n - 1)];
+            WatertightRay::new(o, d, tmin)
+        });
+        let walk: [WalkRay; PACKET_RAYS] = std::array::from_fn(|i| {
+            let (origin, d, tmin) = rays[i.min(n - 1)];
+            WalkRay { origin, inv_dir: d.recip(), tmin, triangle: prepared[i].as_ref() }
+        });
+        let mut tmax = [f32::INFINITY; PACKET_RAYS];
+        let mut limits = tmax;
+        out[..n].fill(None);
+        super::packet_walk::walk_packet(isa, &self.wide, &walk[..n], &mut limits[..n], |ray, leaf, hits| {
+            let (index, _) = leaf_of(leaf);
+            for lane in 0..PACKET {
+                if hits.mask & (1 << lane) != 0 && hits.t[lane] < tmax[ray] {
+                    tmax[ray] = hits.t[lane];
+                    out[ray] = Some((
+                        hits.t[lane],
+                        self.wide.slots[index as usize * PACKET + lane],
+                        hits.u[lane],
+                        hits.v[lane],
+                    ));
+                }
+            }
+            tmax[ray]
+        });
     }
 
     /// The same by the traversal the CPU backend had before: obvhs's CWBVH

@@ -1,0 +1,402 @@
+//! A packet of up to [`PACKET_RAYS`] rays walked through a [`WideBvh`]
+//! together (Embree's `rtcIntersect16` idea on the CPU backend's tree): at
+//! each node every child box is tested against all the packet's active
+//! rays at once (eight rays a register), the children entered by some ray
+//! are visited with the rays that enter them, and at a leaf each ray that
+//! reached it runs the single-ray triangle test of [`super::kernels`].
+//!
+//! The box test is the single-ray walk's, lane by lane (the near plane by
+//! the sign of each ray's inverse direction, SSE's NaN rules, the same
+//! slack), and leaves commit as the single-ray walk commits (a hit closer
+//! than the ray's closest so far), so a packet finds each ray's closest hit
+//! of the single-ray walk; only the order of leaves differs, which matters
+//! for exact ties between two triangles only.
+//!
+//! AVX2 only: this is the measurement of what packets gain on this tree
+//! (`rt-bench`'s `cpu_packet_walk_only`); another instruction set walks the
+//! rays one by one.
+
+use super::WideBvh;
+use super::kernels::{Hits, WalkRay};
+
+/// Rays in a packet.
+pub const PACKET_RAYS: usize = 16;
+
+/// Walks `tree` with `rays` (at most [`PACKET_RAYS`]), each up to its
+/// `tmax`. Each leaf a ray enters with a triangle hit goes to
+/// `leaf(ray, leaf, hits)`, which returns the ray's new `tmax` (the
+/// closest hit so far). The tree must have packets.
+pub(crate) fn walk_packet<F: FnMut(usize, u32, &Hits) -> f32>(
+    isa: super::isa::Isa,
+    tree: &WideBvh,
+    rays: &[WalkRay],
+    tmax: &mut [f32],
+    leaf: F,
+) {
+    debug_assert!(rays.len() <= PACKET_RAYS && rays.len() == tmax.len() && tree.has_packets());
+    if rays.is_empty() {
+        return;
+    }
+    #[cfg(target_arch = "x86_64")]
+    if isa == super::isa::Isa::Avx2 {
+        // SAFETY: `Isa::Avx2` is only chosen where the CPU has AVX2 and FMA.
+        unsafe { avx2::walk(tree, rays, tmax, leaf) };
+        return;
+    }
+    one_by_one(isa, tree, rays, tmax, leaf);
+}
+
+/// The rays walked one at a time by the single-ray walk.
+fn one_by_one<F: FnMut(usize, u32, &Hits) -> f32>(
+    isa: super::isa::Isa,
+    tree: &WideBvh,
+    rays: &[WalkRay],
+    tmax: &mut [f32],
+    mut leaf: F,
+) {
+    for (i, ray) in rays.iter().enumerate() {
+        super::isa::walk_on(isa, tree, ray, tmax[i], |r, hits| {
+            let t = leaf(i, r, hits?);
+            tmax[i] = t;
+            Some(t)
+        });
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+mod avx2 {
+    use super::super::kernels::x86::Avx2;
+    use super::super::kernels::{FAR_SCALE, Hits, Kernels, NEAR_SLACK, WalkRay};
+    use super::super::watertight::WatertightRay;
+    use super::super::{LEAF, PACKET, Packet, WIDTH, WideBvh, leaf_of};
+    use super::PACKET_RAYS;
+    use std::arch::x86_64::*;
+
+    /// Halves of the packet: eight rays a register.
+    const HALVES: usize = PACKET_RAYS / 8;
+
+    /// The packet's rays by lane: origin, inverse direction, tmin.
+    struct Lanes {
+        origin: [[__m256; 3]; HALVES],
+        inv: [[__m256; 3]; HALVES],
+        tmin: [__m256; HALVES],
+    }
+
+    /// # Safety
+    /// The CPU has AVX2 and FMA.
+    #[target_feature(enable = "avx2,fma")]
+    pub(super) unsafe fn walk<F: FnMut(usize, u32, &Hits) -> f32>(
+        tree: &WideBvh,
+        rays: &[WalkRay],
+        tmax: &mut [f32],
+        mut leaf: F,
+    ) {
+        let n = rays.len();
+        let mut lane_values = [[[f32::NAN; 8]; 7]; HALVES];
+        for (i, r) in rays.iter().enumerate() {
+            let v = &mut lane_values[i / 8];
+            let l = i % 8;
+            (v[0][l], v[1][l], v[2][l]) = (r.origin.x, r.origin.y, r.origin.z);
+            (v[3][l], v[4][l], v[5][l]) = (r.inv_dir.x, r.inv_dir.y, r.inv_dir.z);
+            v[6][l] = r.tmin;
+        }
+        // (Loops, not closures: a closure does not take the function's
+        // target features, and its intrinsics would not inline.)
+        let zero = _mm256_setzero_ps();
+        let mut lanes = Lanes { origin: [[zero; 3]; HALVES], inv: [[zero; 3]; HALVES], tmin: [zero; HALVES] };
+        for (h, values) in lane_values.iter().enumerate() {
+            // SAFETY: each row is eight floats.
+            unsafe {
+                for k in 0..3 {
+                    lanes.origin[h][k] = _mm256_loadu_ps(values[k].as_ptr());
+                    lanes.inv[h][k] = _mm256_loadu_ps(values[3 + k].as_ptr());
+                }
+                lanes.tmin[h] = _mm256_loadu_ps(values[6].as_ptr());
+            }
+        }
+        // (Rays past `n` repeat the last: never walked.)
+        let single: [_; PACKET_RAYS] = std::array::from_fn(|i| Avx2::ray(&rays[i.min(n - 1)]));
+        // Each half's triangle setups by lane, where its rays share `kz`
+        // (coherent rays do): a triangle is then tested against eight rays
+        // at once.
+        let mut soa: [Option<SoaRays>; HALVES] = [None; HALVES];
+        for (h, slot) in soa.iter_mut().enumerate() {
+            let half = &rays[(8 * h).min(n)..(8 * h + 8).min(n)];
+            let Some(first) = half.first().and_then(|r| r.triangle) else { continue };
+            if half.iter().all(|r| r.triangle.is_some_and(|t| t.kz == first.kz)) {
+                *slot = Some(soa_rays(half));
+            }
+        }
+        let all = if n == PACKET_RAYS { u32::MAX >> (32 - PACKET_RAYS) } else { (1u32 << n) - 1 };
+        // Entries: (reference, rays, the nearest entry of those rays); a
+        // node pushes at most its children less the one popped next, as
+        // the single-ray walk does, so `stack_len` bounds them.
+        let need = super::super::walk::stack_len(tree);
+        let mut small = [(0u32, 0u32, 0.0f32); 256];
+        let mut large = Vec::new();
+        let stack: &mut [(u32, u32, f32)] = if need <= small.len() {
+            &mut small
+        } else {
+            large.resize(need, (0, 0, 0.0));
+            &mut large
+        };
+        stack[0] = (tree.root, all, f32::NEG_INFINITY);
+        let mut sp = 1;
+        let mut limits = [f32::INFINITY; PACKET_RAYS];
+        limits[..n].copy_from_slice(tmax);
+        while sp > 0 {
+            sp -= 1;
+            let (current, mask, near) = stack[sp];
+            // Rays whose closest hit is nearer than the entry need not go in.
+            let mut mask = mask;
+            for h in 0..HALVES {
+                // SAFETY: `limits` holds eight floats from `8 * h`.
+                let l = unsafe { _mm256_loadu_ps(limits[8 * h..].as_ptr()) };
+                let passed = _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LT_OQ>(l, _mm256_set1_ps(near))) as u32;
+                mask &= !(passed << (8 * h));
+            }
+            if mask == 0 {
+                continue;
+            }
+            if current & LEAF != 0 {
+                let (index, _) = leaf_of(current);
+                let packet = &tree.packets[index as usize];
+                let mut m = mask;
+                for (h, rays) in soa.iter().enumerate() {
+                    let active = (mask >> (8 * h)) & 0xff;
+                    let Some(rays) = rays else { continue };
+                    if active.count_ones() < 2 {
+                        continue;
+                    }
+                    let Some(hits) = leaf_lanes(packet, rays, &limits[8 * h..8 * h + 8]) else { continue };
+                    m &= !(active << (8 * h));
+                    let mut b = active;
+                    while b != 0 {
+                        let l = b.trailing_zeros() as usize;
+                        b &= b - 1;
+                        if hits[l].mask != 0 {
+                            limits[8 * h + l] = leaf(8 * h + l, current, &hits[l]);
+                        }
+                    }
+                }
+                while m != 0 {
+                    let i = m.trailing_zeros() as usize;
+                    m &= m - 1;
+                    let hits = Avx2::packet(packet, &single[i], limits[i]);
+                    if hits.mask != 0 {
+                        limits[i] = leaf(i, current, &hits);
+                    }
+                }
+                continue;
+            }
+            let node = &tree.nodes[current as usize];
+            let mut limit = [zero; HALVES];
+            for (h, l) in limit.iter_mut().enumerate() {
+                // SAFETY: `limits` holds eight floats from `8 * h`.
+                *l = unsafe { _mm256_loadu_ps(limits[8 * h..].as_ptr()) };
+            }
+            // Per child: the rays entering it and the nearest entry.
+            let mut entered = [(0u32, 0u32, f32::INFINITY); WIDTH];
+            let mut count = 0;
+            for c in 0..WIDTH {
+                let child = node.child[c];
+                if child == u32::MAX {
+                    continue;
+                }
+                let mut hit = 0u32;
+                let mut nearest = _mm256_set1_ps(f32::INFINITY);
+                for (h, &limit) in limit.iter().enumerate() {
+                    let active = (mask >> (8 * h)) & 0xff;
+                    if active == 0 {
+                        continue;
+                    }
+                    let (m, near) = box_lanes(node, c, &lanes, h, limit, active_lanes(active));
+                    hit |= m << (8 * h);
+                    nearest = _mm256_min_ps(near, nearest);
+                }
+                if hit != 0 {
+                    entered[count] = (child, hit, horizontal_min(nearest));
+                    count += 1;
+                }
+            }
+            // Far first onto the stack, so the nearest is popped next.
+            let entered = &mut entered[..count];
+            entered.sort_unstable_by(|a, b| b.2.total_cmp(&a.2));
+            stack[sp..sp + count].copy_from_slice(entered);
+            sp += count;
+        }
+        tmax.copy_from_slice(&limits[..n]);
+    }
+
+    /// Eight rays' triangle setups by lane, sharing `kz` (`axes`): the
+    /// origin's coordinates and the shear in the permuted order, and tmin.
+    #[derive(Clone, Copy)]
+    struct SoaRays {
+        origin: [[f32; 8]; 3],
+        shear: [[f32; 8]; 3],
+        tmin: [f32; 8],
+        axes: [usize; 3],
+    }
+
+    /// `rays` (one to eight, each with a triangle setup of one `kz`) by lane.
+    fn soa_rays(rays: &[WalkRay]) -> SoaRays {
+        let mut out = SoaRays { origin: [[0.0; 8]; 3], shear: [[0.0; 8]; 3], tmin: [0.0; 8], axes: [0, 1, 2] };
+        for (l, r) in rays.iter().enumerate() {
+            let Some(t) = r.triangle else { continue };
+            let o = WatertightRay::permuted(t.kz, t.origin);
+            for k in 0..3 {
+                out.origin[k][l] = o[k];
+                out.shear[k][l] = t.shear[k];
+            }
+            out.tmin[l] = t.tmin;
+            out.axes = t.axes();
+        }
+        out
+    }
+
+    /// Each of eight rays' hits with the (up to four) triangles of
+    /// `packet` before its `limit`, as `packet4` finds them one ray at a
+    /// time: the same operations on the same values, a ray a lane instead
+    /// of a triangle a lane. None where a ray meets a triangle on an edge
+    /// (the single-ray test's double-precision case: the caller tests
+    /// those rays one by one).
+    #[inline]
+    #[target_feature(enable = "avx2,fma")]
+    fn leaf_lanes(packet: &Packet, r: &SoaRays, limit: &[f32]) -> Option<[Hits; 8]> {
+        // SAFETY: every row read is eight floats.
+        let load = |row: &[f32; 8]| unsafe { _mm256_loadu_ps(row.as_ptr()) };
+        let origin = [load(&r.origin[0]), load(&r.origin[1]), load(&r.origin[2])];
+        let shear = [load(&r.shear[0]), load(&r.shear[1]), load(&r.shear[2])];
+        let tmin = load(&r.tmin);
+        // SAFETY: `limit` holds eight floats.
+        let tmax = unsafe { _mm256_loadu_ps(limit.as_ptr()) };
+        let zero = _mm256_setzero_ps();
+        let mut out = [Hits::default(); 8];
+        for lane in 0..PACKET {
+            let v = |k: usize| _mm256_set1_ps(packet.v[k][lane]);
+            let sheared = |k: usize| {
+                let x = _mm256_sub_ps(v(k + r.axes[0]), origin[0]);
+                let y = _mm256_sub_ps(v(k + r.axes[1]), origin[1]);
+                let z = _mm256_sub_ps(v(k + r.axes[2]), origin[2]);
+                [
+                    _mm256_sub_ps(x, _mm256_mul_ps(shear[0], z)),
+                    _mm256_sub_ps(y, _mm256_mul_ps(shear[1], z)),
+                    _mm256_mul_ps(shear[2], z),
+                ]
+            };
+            let [ax, ay, az] = sheared(0);
+            let [bx, by, bz] = sheared(3);
+            let [cx, cy, cz] = sheared(6);
+            let u = _mm256_sub_ps(_mm256_mul_ps(cx, by), _mm256_mul_ps(cy, bx));
+            let v_ = _mm256_sub_ps(_mm256_mul_ps(ax, cy), _mm256_mul_ps(ay, cx));
+            let w = _mm256_sub_ps(_mm256_mul_ps(bx, ay), _mm256_mul_ps(by, ax));
+            let on_edge = _mm256_or_ps(
+                _mm256_or_ps(_mm256_cmp_ps::<_CMP_EQ_OQ>(u, zero), _mm256_cmp_ps::<_CMP_EQ_OQ>(v_, zero)),
+                _mm256_cmp_ps::<_CMP_EQ_OQ>(w, zero),
+            );
+            if _mm256_movemask_ps(on_edge) != 0 {
+                return None;
+            }
+            let neg = _mm256_or_ps(
+                _mm256_or_ps(_mm256_cmp_ps::<_CMP_LT_OQ>(u, zero), _mm256_cmp_ps::<_CMP_LT_OQ>(v_, zero)),
+                _mm256_cmp_ps::<_CMP_LT_OQ>(w, zero),
+            );
+            let pos = _mm256_or_ps(
+                _mm256_or_ps(_mm256_cmp_ps::<_CMP_GT_OQ>(u, zero), _mm256_cmp_ps::<_CMP_GT_OQ>(v_, zero)),
+                _mm256_cmp_ps::<_CMP_GT_OQ>(w, zero),
+            );
+            let outside = _mm256_and_ps(neg, pos);
+            if _mm256_movemask_ps(outside) == 0xff {
+                continue;
+            }
+            let det = _mm256_add_ps(_mm256_add_ps(u, v_), w);
+            let t_scaled =
+                _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(u, az), _mm256_mul_ps(v_, bz)), _mm256_mul_ps(w, cz));
+            let t = _mm256_div_ps(t_scaled, det);
+            let abs = _mm256_andnot_ps(_mm256_set1_ps(-0.0), t);
+            let ok = _mm256_and_ps(
+                _mm256_and_ps(_mm256_cmp_ps::<_CMP_GT_OQ>(t, tmin), _mm256_cmp_ps::<_CMP_LT_OQ>(t, tmax)),
+                _mm256_and_ps(
+                    _mm256_cmp_ps::<_CMP_LT_OQ>(abs, _mm256_set1_ps(f32::INFINITY)),
+                    _mm256_cmp_ps::<_CMP_NEQ_UQ>(det, zero),
+                ),
+            );
+            let hit = _mm256_movemask_ps(_mm256_andnot_ps(outside, ok)) as u32;
+            if hit == 0 {
+                continue;
+            }
+            let (mut ts, mut us, mut vs) = ([0.0f32; 8], [0.0f32; 8], [0.0f32; 8]);
+            // SAFETY: each array holds eight floats.
+            unsafe {
+                _mm256_storeu_ps(ts.as_mut_ptr(), t);
+                _mm256_storeu_ps(us.as_mut_ptr(), _mm256_div_ps(v_, det));
+                _mm256_storeu_ps(vs.as_mut_ptr(), _mm256_div_ps(w, det));
+            }
+            let mut b = hit;
+            while b != 0 {
+                let l = b.trailing_zeros() as usize;
+                b &= b - 1;
+                let h = &mut out[l];
+                h.mask |= 1 << lane;
+                (h.t[lane], h.u[lane], h.v[lane]) = (ts[l], us[l], vs[l]);
+            }
+        }
+        Some(out)
+    }
+
+    /// A lane mask of `bits` (all ones in the lanes whose bit is set).
+    #[inline]
+    #[target_feature(enable = "avx2,fma")]
+    fn active_lanes(bits: u32) -> __m256 {
+        let lane_bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+        let set = _mm256_and_si256(_mm256_set1_epi32(bits as i32), lane_bits);
+        _mm256_castsi256_ps(_mm256_cmpeq_epi32(set, lane_bits))
+    }
+
+    /// The least of eight lanes.
+    #[inline]
+    #[target_feature(enable = "avx2,fma")]
+    fn horizontal_min(v: __m256) -> f32 {
+        let m = _mm_min_ps(_mm256_castps256_ps128(v), _mm256_extractf128_ps::<1>(v));
+        let m = _mm_min_ps(m, _mm_movehl_ps(m, m));
+        let m = _mm_min_ss(m, _mm_shuffle_ps::<1>(m, m));
+        _mm_cvtss_f32(m)
+    }
+
+    /// Child `c` against the `active` lanes of half `h`: the lanes that enter
+    /// it before their `limit`, and their entry distances (+inf in the
+    /// others).
+    #[inline]
+    #[target_feature(enable = "avx2,fma")]
+    fn box_lanes(
+        node: &super::super::Node,
+        c: usize,
+        lanes: &Lanes,
+        h: usize,
+        limit: __m256,
+        active: __m256,
+    ) -> (u32, __m256) {
+        {
+            let (mut near, mut far) = (lanes.tmin[h], _mm256_set1_ps(f32::INFINITY));
+            for axis in (0..3).rev() {
+                let lo = _mm256_set1_ps(node.planes[2 * axis][c]);
+                let hi = _mm256_set1_ps(node.planes[2 * axis + 1][c]);
+                let inv = lanes.inv[h][axis];
+                let o = lanes.origin[h][axis];
+                // The near plane by the sign of the inverse direction.
+                let (pn, pf) = (_mm256_blendv_ps(lo, hi, inv), _mm256_blendv_ps(hi, lo, inv));
+                let tn = _mm256_mul_ps(_mm256_sub_ps(pn, o), inv);
+                let tf = _mm256_mul_ps(_mm256_sub_ps(pf, o), inv);
+                near = _mm256_max_ps(tn, near);
+                far = _mm256_min_ps(tf, far);
+            }
+            let far = _mm256_min_ps(_mm256_mul_ps(far, _mm256_set1_ps(FAR_SCALE)), limit);
+            let slack = _mm256_mul_ps(_mm256_andnot_ps(_mm256_set1_ps(-0.0), near), _mm256_set1_ps(NEAR_SLACK));
+            let near = _mm256_sub_ps(near, slack);
+            let enter = _mm256_and_ps(_mm256_cmp_ps::<_CMP_LE_OQ>(near, far), active);
+            (_mm256_movemask_ps(enter) as u32, _mm256_blendv_ps(_mm256_set1_ps(f32::INFINITY), near, enter))
+        }
+    }
+
+    const _: () = assert!(PACKET_RAYS.is_multiple_of(8));
+}
