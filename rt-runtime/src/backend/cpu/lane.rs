@@ -352,8 +352,14 @@ impl<'a> Lane<'a> {
                 self.traverse(s, *child, Some(&composed), mask, path.through(rec.instance_id))
             }
             NodeKind::Transform { matrix, inverse, child, motion: None } => {
+                let path = path.through(rec.instance_id);
                 // Under no other transform: the node's own matrices, not
-                // their products with the identity.
+                // their products with the identity, borrowed where the
+                // launch holds them.
+                let own = l.transforms.get(node.index() as usize).and_then(Option::as_ref);
+                if let (None, Some(own)) = (xf, own) {
+                    return self.traverse(s, *child, Some(own), mask, path);
+                }
                 let composed = match xf {
                     None => Xf { object_to_world: *matrix, world_to_object: *inverse },
                     Some(x) => Xf {
@@ -361,7 +367,7 @@ impl<'a> Lane<'a> {
                         world_to_object: *inverse * x.world_to_object,
                     },
                 };
-                self.traverse(s, *child, Some(&composed), mask, path.through(rec.instance_id))
+                self.traverse(s, *child, Some(&composed), mask, path)
             }
             NodeKind::Group { children, .. } => {
                 let Some(Some(NodeAccel::Children { bvh, .. })) = l.accels.get(node.index() as usize) else {
@@ -817,7 +823,7 @@ impl Tracer for Lane<'_> {
 /// along world direction `d`: as the wgpu kernel's `rt_hit_kind` says, in
 /// the instance's object space.
 fn front_or_back(hit: &Hit, d: Vec3) -> u32 {
-    let d = hit.xf.map_or(d, |x| (x.world_to_object * d.extend(0.0)).truncate());
+    let d = hit.xf.as_ref().map_or(d, |x| (x.world_to_object * d.extend(0.0)).truncate());
     let [a, b, c] = hit.vertices;
     if d.dot((b - a).cross(c - a)) < 0.0 { HIT_TRIANGLE_FRONT } else { HIT_TRIANGLE_BACK }
 }
