@@ -251,6 +251,33 @@ pub const HIT_TRIANGLE_BACK: u32 = 2;
 /// A custom primitive (reported by an intersection program).
 pub const HIT_CUSTOM: u32 = 3;
 
+/// The transforms of a geometry instance: the product of the transform
+/// nodes above it, and its inverse (the backend supplies both so that no
+/// intrinsic inverts a matrix).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Transforms {
+    /// Object-to-world transform.
+    pub object_to_world: Mat4,
+    /// World-to-object transform (the inverse of `object_to_world`).
+    pub world_to_object: Mat4,
+}
+
+impl Transforms {
+    /// No transform: both matrices the identity.
+    pub const IDENTITY: Transforms = Transforms { object_to_world: Mat4::IDENTITY, world_to_object: Mat4::IDENTITY };
+
+    /// `object_to_world` and its inverse.
+    pub fn new(object_to_world: Mat4) -> Self {
+        Transforms { object_to_world, world_to_object: object_to_world.inverse() }
+    }
+}
+
+impl Default for Transforms {
+    fn default() -> Self {
+        Self::IDENTITY
+    }
+}
+
 /// The state of the program invocation running on this thread: what the
 /// semantic values return and where the hit protocol's flags land.
 ///
@@ -259,8 +286,12 @@ pub const HIT_CUSTOM: u32 = 3;
 /// [`current_ray`](crate::current_ray) and the other intrinsics read it. Code
 /// that calls a program directly (a unit test) gets [`Default`] values, or
 /// installs its own.
+///
+/// The instance's transforms are held by reference (`'t`): the backend
+/// points at the matrices where its traversal composed them, rather than
+/// copying two `Mat4`s into each program call's context.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ExecutionContext {
+pub struct ExecutionContext<'t> {
     /// The launch index being computed ([`launch_index`](crate::launch_index)).
     pub launch_index: UVec2,
     /// The launch size ([`launch_dim`](crate::launch_dim)).
@@ -304,12 +335,10 @@ pub struct ExecutionContext {
     /// The exception kinds [`raise`](Self::raise) records, as
     /// `rt_abi::constants::exception_kind_bit`s; the others it drops.
     pub exceptions_enabled: u32,
-    /// Object-to-world transform of the current geometry instance.
-    pub object_to_world: Mat4,
-    /// World-to-object transform of the current geometry instance (the
-    /// inverse of `object_to_world`; the backend supplies both so that no
-    /// intrinsic inverts a matrix).
-    pub world_to_object: Mat4,
+    /// The transforms of the current geometry instance
+    /// ([`rt_transform_point`](crate::rt_transform_point) and the other
+    /// transform intrinsics).
+    pub transforms: &'t Transforms,
     /// Set by [`rt_ignore_intersection`](crate::rt_ignore_intersection): the
     /// any-hit program rejected its candidate.
     pub ignored: bool,
@@ -326,13 +355,13 @@ pub struct ExecutionContext {
     pub pending_location: Option<&'static core::panic::Location<'static>>,
 }
 
-impl ExecutionContext {
+impl ExecutionContext<'static> {
     /// The context outside any program invocation: launch index 0 of a 1x1
     /// launch, identity transforms, and a current ray from the origin along
     /// +z over `(0, inf)`, so that
     /// [`rt_potential_intersection`](crate::rt_potential_intersection)
     /// accepts every positive distance.
-    pub const DEFAULT: ExecutionContext = ExecutionContext {
+    pub const DEFAULT: ExecutionContext<'static> = ExecutionContext {
         launch_index: UVec2::ZERO,
         launch_dim: UVec2::ONE,
         launch_z: 0,
@@ -354,13 +383,62 @@ impl ExecutionContext {
         instance_index: 0,
         instance_id: rt_abi::constants::INSTANCE_ID_NONE,
         exceptions_enabled: rt_abi::constants::ALL_EXCEPTION_KINDS,
-        object_to_world: Mat4::IDENTITY,
-        world_to_object: Mat4::IDENTITY,
+        transforms: &Transforms::IDENTITY,
         ignored: false,
         terminated: false,
         pending_exception: None,
         pending_location: None,
     };
+}
+
+impl<'t> ExecutionContext<'t> {
+    /// This context with `transforms` as its instance's transforms.
+    pub fn with_transforms<'u>(self, transforms: &'u Transforms) -> ExecutionContext<'u> {
+        let ExecutionContext {
+            launch_index,
+            launch_dim,
+            launch_z,
+            launch_depth,
+            current_ray,
+            t_hit,
+            time,
+            primitive_index,
+            exception_code,
+            hit_kind,
+            ray_flags,
+            ray_mask,
+            instance_index,
+            instance_id,
+            exceptions_enabled,
+            transforms: _,
+            ignored,
+            terminated,
+            pending_exception,
+            pending_location,
+        } = self;
+        ExecutionContext {
+            launch_index,
+            launch_dim,
+            launch_z,
+            launch_depth,
+            current_ray,
+            t_hit,
+            time,
+            primitive_index,
+            exception_code,
+            hit_kind,
+            ray_flags,
+            ray_mask,
+            instance_index,
+            instance_id,
+            exceptions_enabled,
+            transforms,
+            ignored,
+            terminated,
+            pending_exception,
+            pending_location,
+        }
+    }
 
     /// Records `code` as the pending exception unless one is pending already:
     /// the first exception of an invocation is the one the exception program
@@ -384,9 +462,9 @@ impl ExecutionContext {
     }
 }
 
-impl Default for ExecutionContext {
+impl Default for ExecutionContext<'_> {
     fn default() -> Self {
-        Self::DEFAULT
+        ExecutionContext::DEFAULT
     }
 }
 
@@ -461,12 +539,16 @@ pub trait Tracer {
 thread_local! {
     // The context outside any installed one: what `context_mut` changes when
     // no program is running (a unit test calling a program directly).
-    static ROOT: Cell<ExecutionContext> = const { Cell::new(ExecutionContext::DEFAULT) };
+    static ROOT: Cell<ExecutionContext<'static>> = const { Cell::new(ExecutionContext::DEFAULT) };
     // The context of the invocation running now, installed by `in_context`
     // (null: `ROOT`). It points at the caller's `ExecutionContext`, which
     // `in_context` borrows mutably for as long as the pointer is installed,
     // so intrinsics read and write it in place: no copy per program call.
-    static CURRENT: Cell<*mut ExecutionContext> = const { Cell::new(core::ptr::null_mut()) };
+    // Its transforms' lifetime is erased (`'static` here): the context is
+    // only lent out under a lifetime its borrower cannot name (`read`,
+    // `update`, `context_mut`), so no reference read from it, and none
+    // stored in it but `'static` ones, outlives the `in_context` call.
+    static CURRENT: Cell<*mut ExecutionContext<'static>> = const { Cell::new(core::ptr::null_mut()) };
     // The tracer installed by `with_tracer` or `serving`, lifetime erased.
     // Only those store a pointer here, and their guards remove it before the
     // borrow it came from ends, so every pointer read from this cell is live.
@@ -478,16 +560,22 @@ thread_local! {
 
 /// This thread's current execution context, for in-place access.
 #[inline]
-fn current() -> *mut ExecutionContext {
+fn current() -> *mut ExecutionContext<'static> {
     let p = CURRENT.with(Cell::get);
     if p.is_null() { ROOT.with(Cell::as_ptr) } else { p }
 }
 
-/// A copy of this thread's current execution context.
+/// Calls `f` with a copy of this thread's current execution context. The
+/// copy's transforms are borrowed for the call only: `f` returns fields,
+/// or a context for another invocation with
+/// [`ExecutionContext::with_transforms`].
 #[inline]
-pub fn context() -> ExecutionContext {
-    // SAFETY: `current` is live (see `CURRENT`) and only read here.
-    unsafe { *current() }
+pub fn context<R>(f: impl FnOnce(&ExecutionContext<'_>) -> R) -> R {
+    // SAFETY: `current` is live (see `CURRENT`) and only read here; `f`
+    // works for every lifetime of the copy's transforms, so it keeps no
+    // reference to them.
+    let ctx = unsafe { *current() };
+    f(&ctx)
 }
 
 /// Changes this thread's current execution context through `f`.
@@ -495,8 +583,10 @@ pub fn context() -> ExecutionContext {
 /// `f` works on a copy that is stored back when it returns, so changes made
 /// meanwhile by intrinsics that `f` calls are overwritten: keep `f` to field
 /// updates.
-pub fn context_mut<R>(f: impl FnOnce(&mut ExecutionContext) -> R) -> R {
-    let mut ctx = context();
+pub fn context_mut<R>(f: impl FnOnce(&mut ExecutionContext<'_>) -> R) -> R {
+    // SAFETY: as in `read`. `f` works for every lifetime of the copy's
+    // transforms, so it can store only `'static` ones or the copy's own.
+    let mut ctx = unsafe { *current() };
     let result = f(&mut ctx);
     // SAFETY: as in `context`; no reference into the context is held here.
     unsafe { *current() = ctx };
@@ -505,7 +595,7 @@ pub fn context_mut<R>(f: impl FnOnce(&mut ExecutionContext) -> R) -> R {
 
 /// Reads this thread's execution context without copying it (the
 /// intrinsics' fast path).
-pub(crate) fn read<R>(f: impl FnOnce(&ExecutionContext) -> R) -> R {
+pub(crate) fn read<R>(f: impl FnOnce(&ExecutionContext<'_>) -> R) -> R {
     // SAFETY: the context is live (see `CURRENT`); `f` only reads fields and
     // calls nothing that writes the context.
     f(unsafe { &*current() })
@@ -513,7 +603,7 @@ pub(crate) fn read<R>(f: impl FnOnce(&ExecutionContext) -> R) -> R {
 
 /// Updates fields of this thread's execution context in place (the
 /// intrinsics' fast path for flags).
-pub(crate) fn update<R>(f: impl FnOnce(&mut ExecutionContext) -> R) -> R {
+pub(crate) fn update<R>(f: impl FnOnce(&mut ExecutionContext<'_>) -> R) -> R {
     // SAFETY: as in `read`; `f` only writes fields, so this is the only
     // reference to the context while it runs.
     f(unsafe { &mut *current() })
@@ -545,7 +635,7 @@ pub fn raise_here(code: u32) {
 /// hit flags, ...). The previous context and tracer are restored afterwards,
 /// also when `f` panics, so calls nest: a tracer runs the programs of an
 /// inner ray inside the outer program's call.
-pub fn with_context<R>(ctx: ExecutionContext, f: impl FnOnce() -> R) -> (R, ExecutionContext) {
+pub fn with_context<'t, R>(ctx: ExecutionContext<'t>, f: impl FnOnce() -> R) -> (R, ExecutionContext<'t>) {
     let mut ctx = ctx;
     let restore = TracerGuard(TRACER.with(|t| t.replace(None)));
     let result = in_context(&mut ctx, f);
@@ -556,7 +646,11 @@ pub fn with_context<R>(ctx: ExecutionContext, f: impl FnOnce() -> R) -> (R, Exec
 /// Like [`with_context`], with `tracer` serving [`rt_trace`](crate::rt_trace),
 /// the intersection protocol and [`rt_printf!`](crate::rt_printf) for the
 /// duration of `f`.
-pub fn with_tracer<R>(ctx: ExecutionContext, tracer: &dyn Tracer, f: impl FnOnce() -> R) -> (R, ExecutionContext) {
+pub fn with_tracer<'t, R>(
+    ctx: ExecutionContext<'t>,
+    tracer: &dyn Tracer,
+    f: impl FnOnce() -> R,
+) -> (R, ExecutionContext<'t>) {
     let mut ctx = ctx;
     let result = serving(tracer, || in_context(&mut ctx, f));
     (result, ctx)
@@ -570,8 +664,8 @@ pub fn with_tracer<R>(ctx: ExecutionContext, tracer: &dyn Tracer, f: impl FnOnce
 ///
 /// The backend's way to call a program: one context per call, built where
 /// it lives, never copied.
-pub fn in_context<R>(ctx: &mut ExecutionContext, f: impl FnOnce() -> R) -> R {
-    struct Restore(*mut ExecutionContext);
+pub fn in_context<R>(ctx: &mut ExecutionContext<'_>, f: impl FnOnce() -> R) -> R {
+    struct Restore(*mut ExecutionContext<'static>);
     impl Drop for Restore {
         fn drop(&mut self) {
             CURRENT.with(|c| c.set(self.0));
@@ -579,7 +673,9 @@ pub fn in_context<R>(ctx: &mut ExecutionContext, f: impl FnOnce() -> R) -> R {
     }
     // The pointer is installed only while `ctx` is mutably borrowed by this
     // call, and removed by the guard before the borrow ends.
-    let _restore = Restore(CURRENT.with(|c| c.replace(ctx)));
+    // The transforms' lifetime is erased (see `CURRENT`).
+    let ctx: *mut ExecutionContext<'_> = ctx;
+    let _restore = Restore(CURRENT.with(|c| c.replace(ctx.cast())));
     f()
 }
 

@@ -236,7 +236,7 @@ pub fn rt_trace_with<P: Payload>(object: Object, ray: Ray, prd: &mut P, flags: u
         cpu::raise(EXCEPTION_INVALID_RAY);
         return;
     }
-    rt_trace_at(object, ray, prd, flags, mask, 0.0)
+    trace_valid(object, &ray, prd, flags, mask, 0.0)
 }
 
 /// [`rt_trace_with`] at ray time `time` (OptiX 6's `rtTrace(.., time)`, OptiX
@@ -256,7 +256,14 @@ pub fn rt_trace_at<P: Payload>(object: Object, ray: Ray, prd: &mut P, flags: u32
         return;
     }
     let time = if time.is_finite() { time } else { 0.0 };
-    with_installed_tracer(|tracer| tracer.trace(object, &ray, prd, flags, mask, time), || ())
+    trace_valid(object, &ray, prd, flags, mask, time)
+}
+
+/// [`rt_trace_at`] for a ray that has passed [`Ray::is_valid`], at a finite
+/// time: [`rt_trace_with`] checked the ray already.
+#[inline(always)]
+fn trace_valid<P: Payload>(object: Object, ray: &Ray, prd: &mut P, flags: u32, mask: u32, time: f32) {
+    with_installed_tracer(|tracer| tracer.trace(object, ray, prd, flags, mask, time), || ())
 }
 
 /// The current ray's time: what [`rt_trace_at`] traced it with (0 for
@@ -333,8 +340,8 @@ pub fn rt_throw(code: u32) {
 #[inline]
 fn transform(kind: TransformKind) -> Mat4 {
     cpu::read(|ctx| match kind {
-        TransformKind::ObjectToWorld => ctx.object_to_world,
-        TransformKind::WorldToObject => ctx.world_to_object,
+        TransformKind::ObjectToWorld => ctx.transforms.object_to_world,
+        TransformKind::WorldToObject => ctx.transforms.world_to_object,
     })
 }
 
@@ -401,7 +408,7 @@ macro_rules! rt_printf {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::cpu::{ExecutionContext, Tracer, context, with_context, with_tracer};
+    use crate::cpu::{ExecutionContext, Tracer, Transforms, context, with_context, with_tracer};
     use core::any::Any;
     use core::cell::RefCell;
     use glam::Vec4;
@@ -477,7 +484,8 @@ mod tests {
         // normal (1, 1, 0); after scaling, its points satisfy x/4 + y = 1,
         // whose normal is (1/4, 1, 0).
         let o2w = Mat4::from_scale(Vec3::new(4.0, 1.0, 1.0)) * Mat4::from_translation(Vec3::new(0.0, 0.0, 2.0));
-        let ctx = ExecutionContext { object_to_world: o2w, world_to_object: o2w.inverse(), ..Default::default() };
+        let transforms = Transforms { object_to_world: o2w, world_to_object: o2w.inverse() };
+        let ctx = ExecutionContext { transforms: &transforms, ..Default::default() };
         let (r, _) = with_context(ctx, || {
             (
                 rt_transform_normal(TransformKind::ObjectToWorld, Vec3::new(1.0, 1.0, 0.0)),
@@ -498,7 +506,8 @@ mod tests {
     }
 
     fn rt_transform_vector_with(m: Mat4, v: Vec3) -> Vec3 {
-        let ctx = ExecutionContext { object_to_world: m, ..Default::default() };
+        let transforms = Transforms { object_to_world: m, ..Transforms::IDENTITY };
+        let ctx = ExecutionContext { transforms: &transforms, ..Default::default() };
         with_context(ctx, || rt_transform_vector(TransformKind::ObjectToWorld, v)).0
     }
 
@@ -523,7 +532,7 @@ mod tests {
             let at = if time == 0.0 { String::new() } else { format!(" at {time}") };
             self.log.borrow_mut().push(format!("trace {} {} {flags} {mask:#x}{at}", object.id, ray.ray_type));
             // Run a "closest hit" in a nested context, as a backend would.
-            let inner = ExecutionContext { t_hit: 1.0, ..context() };
+            let inner = context(|c| ExecutionContext { t_hit: 1.0, ..c.with_transforms(&Transforms::IDENTITY) });
             let (t, _) = with_tracer(inner, self, t_hit);
             payload.downcast_mut::<Prd>().unwrap().value = t;
         }

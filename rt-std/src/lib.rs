@@ -87,8 +87,10 @@
 //! On the GPU, intrinsics read the megakernel's state. On the CPU they read
 //! a thread-local [`cpu::ExecutionContext`]: launch index and size, the
 //! current ray, the hit distance, the primitive index, the exception code,
-//! the instance's transforms, and the flags a program sets for whoever
-//! called it (`ignored`, `terminated`, `pending_exception`).
+//! the instance's transforms (borrowed: a [`cpu::Transforms`] where the
+//! backend's traversal holds it, so a call copies no matrices), and the
+//! flags a program sets for whoever called it (`ignored`, `terminated`,
+//! `pending_exception`).
 //!
 //! The CPU backend installs a [`cpu::Tracer`] with [`cpu::serving`] (its
 //! implementation of [`rt_trace`], of the intersection protocol and of

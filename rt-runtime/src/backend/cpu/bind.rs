@@ -11,7 +11,7 @@ use crate::link::{self, Call, Record};
 use crate::scene::{GeometryKind, NodeId, NodeKind, Scene, TriangleMesh};
 use crate::vertex_motion::VertexMotion;
 use glam::UVec2;
-use rt_std::cpu::BoundVariables;
+use rt_std::cpu::{BoundVariables, Transforms};
 use rt_std::program::{AttributesFromWords, ProgramDescriptor, TypeLayout};
 use std::any::{Any, TypeId};
 use std::sync::Arc;
@@ -60,6 +60,10 @@ pub(crate) struct Linked<'a, P> {
     pub(crate) samplers: Arc<[Box<dyn Any + Send + Sync>]>,
     /// The launch's depth (see `launch_dim`).
     pub(crate) launch_depth: u32,
+    /// Per node, a transform node's own matrices (without motion), where
+    /// a program's context can borrow them: a ray under one transform
+    /// copies no matrices.
+    pub(crate) transforms: Arc<[Option<Transforms>]>,
 }
 
 /// One buffer's handles for bindless ids (`rt_std::BindlessBuffer<T>`):
@@ -221,6 +225,16 @@ pub(crate) fn link_all<'a>(
         bindless: BindlessHandles::of(scene),
         samplers: sampler_handles(scene),
         launch_depth: depth,
+        transforms: scene
+            .nodes
+            .iter()
+            .map(|n| match &n.kind {
+                NodeKind::Transform { matrix, inverse, motion: None, .. } => {
+                    Some(Transforms { object_to_world: *matrix, world_to_object: *inverse })
+                }
+                _ => None,
+            })
+            .collect(),
     })
 }
 
@@ -254,6 +268,7 @@ impl<'a> Linked<'a, Call> {
             bindless: self.bindless.clone(),
             samplers: self.samplers.clone(),
             launch_depth: self.launch_depth,
+            transforms: self.transforms.clone(),
         })
     }
 }

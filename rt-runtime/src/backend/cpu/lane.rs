@@ -15,10 +15,10 @@ use crate::handles::{BufferId, SamplerId};
 use crate::link;
 use crate::link::instances::{self, InstancePath};
 use crate::scene::{NodeId, NodeKind, ProgramId, TriangleMesh};
-use glam::{Mat4, UVec2, Vec2, Vec3};
+use glam::{UVec2, Vec2, Vec3};
 use rt_std::cpu::{
     AnyAttributes, CpuArgs, CpuResult, ExecutionContext, HIT_CUSTOM, HIT_TRIANGLE_BACK, HIT_TRIANGLE_FRONT, Tracer,
-    TriangleBuiltins,
+    Transforms, TriangleBuiltins,
 };
 use rt_std::program::TypeLayout;
 use rt_std::*;
@@ -31,7 +31,7 @@ use std::cell::{Cell, RefCell};
 /// stores of 4 and 8 bytes and was copied on in 16-byte loads, which the CPU
 /// cannot forward from those stores: a stall per program call.
 #[inline(always)]
-pub(crate) fn set_current_ray(ctx: &mut ExecutionContext, ray: &Ray, tmax: f32) {
+pub(crate) fn set_current_ray(ctx: &mut ExecutionContext<'_>, ray: &Ray, tmax: f32) {
     let r = &mut ctx.current_ray;
     r.origin = ray.origin;
     r.direction = ray.direction;
@@ -63,20 +63,16 @@ pub(crate) struct Hit {
 /// nodes above it. Traversal passes `None` where there are none, so the
 /// usual scene (geometry not under a transform) neither transforms its rays
 /// nor copies matrices into each hit.
-#[derive(Clone, Copy)]
-pub(crate) struct Xf {
-    pub(crate) object_to_world: Mat4,
-    pub(crate) world_to_object: Mat4,
-}
+pub(crate) type Xf = Transforms;
 
-impl Xf {
-    /// Puts `xf`'s transforms in `ctx`, which holds the identity already
-    /// (a context from `base_context`): nothing to copy for None.
-    pub(crate) fn set(ctx: &mut ExecutionContext, xf: Option<&Xf>) {
-        if let Some(x) = xf {
-            ctx.object_to_world = x.object_to_world;
-            ctx.world_to_object = x.world_to_object;
-        }
+/// Points `ctx` at `xf`'s transforms; `ctx` holds the identity already (a
+/// context from [`Lane::context`]): nothing to do for None. The matrices
+/// are not copied: the context borrows them where the traversal (or the
+/// committed hit) holds them.
+#[inline(always)]
+pub(crate) fn set_transforms<'x>(ctx: &mut ExecutionContext<'x>, xf: Option<&'x Xf>) {
+    if let Some(x) = xf {
+        ctx.transforms = x;
     }
 }
 
@@ -136,6 +132,14 @@ pub(crate) struct Lane<'a> {
     /// The time of the ray being traced (`current_time()`; 0 in the ray
     /// generation and exception programs).
     pub(crate) time: Cell<f32>,
+    /// The context every program call starts from (the launch's size and
+    /// the exceptions enabled; identity transforms), built once per lane: a
+    /// call copies it and writes only its own fields, rather than building
+    /// the whole context (and copying it again) each time.
+    pub(crate) base: ExecutionContext<'static>,
+    /// The launch index as programs see it, and its 3D launch's slice
+    /// (`launch_index`, `launch_z`), set per index by `run_index`.
+    pub(crate) launch: Cell<(UVec2, u32)>,
 }
 
 impl<'a> Lane<'a> {
@@ -152,6 +156,13 @@ impl<'a> Lane<'a> {
             pool: RefCell::new(Vec::new()),
             isa: Isa::current(),
             time: Cell::new(0.0),
+            base: ExecutionContext {
+                launch_dim: l.launch_dim,
+                launch_depth: l.launch_depth,
+                exceptions_enabled: l.settings.exceptions,
+                ..ExecutionContext::DEFAULT
+            },
+            launch: Cell::new((UVec2::ZERO, 0)),
         }
     }
 
@@ -163,12 +174,14 @@ impl<'a> Lane<'a> {
         self.program.set(None);
         self.rays.set(0);
         self.time.set(0.0);
-        let mut ctx = self.base_context();
+        self.launch.set(self.launch_index());
+        let mut ctx = self.context();
         self.invoke(&l.ray_generation, &mut ctx, None, None);
         if let Some((code, location)) = self.exception.get() {
             report.exceptions.push(ExceptionRecord { launch_index: index, code, location });
             if let Some(ex) = &l.exception {
-                let mut ctx = ExecutionContext { exception_code: code, ..self.base_context() };
+                let mut ctx = self.context();
+                ctx.exception_code = code;
                 self.invoke(ex, &mut ctx, None, None);
             } else if let Some(v) = link::default_exception_output(l.ray_generation.desc)
                 && let Some(out) = l.ray_generation.call.vars[v].downcast_ref::<RwBuffer2d<glam::Vec4>>()
@@ -186,7 +199,20 @@ impl<'a> Lane<'a> {
         }
     }
 
-    pub(crate) fn base_context(&self) -> ExecutionContext {
+    /// The context of a program call: the lane's base context at the
+    /// launch index and the current ray's time, for the caller to write
+    /// its fields into.
+    #[inline(always)]
+    pub(crate) fn context(&self) -> ExecutionContext<'static> {
+        let mut ctx = self.base;
+        (ctx.launch_index, ctx.launch_z) = self.launch.get();
+        ctx.time = self.time.get();
+        ctx
+    }
+
+    /// The launch index and slice programs see at grid index `index` (see
+    /// [`Lane::launch`]).
+    fn launch_index(&self) -> (UVec2, u32) {
         // The index goes in as one 8-byte store. Built from two `u32`s, LLVM
         // stores it as two 4-byte halves, and the 8-byte load of the
         // program's `launch_index()` just after cannot be forwarded from two
@@ -201,16 +227,7 @@ impl<'a> Lane<'a> {
             (index.y, launch_z) = (index.y % h, index.y / h);
         }
         let bits = std::hint::black_box(index.x as u64 | (index.y as u64) << 32);
-        let launch_index = UVec2::new(bits as u32, (bits >> 32) as u32);
-        ExecutionContext {
-            launch_index,
-            launch_dim: self.l.launch_dim,
-            launch_z,
-            launch_depth,
-            exceptions_enabled: self.l.settings.exceptions,
-            time: self.time.get(),
-            ..ExecutionContext::DEFAULT
-        }
+        (UVec2::new(bits as u32, (bits >> 32) as u32), launch_z)
     }
 
     /// The search in progress. Only called inside one (during `traverse`).
@@ -232,7 +249,7 @@ impl<'a> Lane<'a> {
     pub(crate) fn invoke(
         &self,
         p: &Program<'_>,
-        ctx: &mut ExecutionContext,
+        ctx: &mut ExecutionContext<'_>,
         payload: Option<&mut dyn Any>,
         attributes: Option<&mut Box<dyn AnyAttributes>>,
     ) -> CpuResult {
@@ -291,12 +308,22 @@ impl<'a> Lane<'a> {
         instances::resolve(self.l.scene, path, group, gi)
     }
 
-    pub(crate) fn traverse(&self, s: &Search, node: NodeId, xf: Option<&Xf>, mask: u32, path: InstancePath) {
+    pub(crate) fn traverse(&self, s: &Search, mut node: NodeId, xf: Option<&Xf>, mask: u32, path: InstancePath) {
         let l = self.l;
-        let rec = &l.scene.nodes[node.index() as usize];
-        if (rec.visibility_mask as u32) & mask == 0 || s.done.get() {
-            return;
-        }
+        let rec = loop {
+            let rec = &l.scene.nodes[node.index() as usize];
+            if (rec.visibility_mask as u32) & mask == 0 || s.done.get() {
+                return;
+            }
+            match &rec.kind {
+                // One child (a scene's usual top group): its own tree tests
+                // the ray first thing, so the group's box test would be
+                // repeated; the child is searched in this call, not a
+                // nested one.
+                NodeKind::Group { children, .. } if children.len() == 1 => node = children[0],
+                _ => break rec,
+            }
+        };
         let world_ray = s.world_ray;
         let (origin, direction) = match xf {
             None => (world_ray.origin, world_ray.direction),
@@ -325,8 +352,14 @@ impl<'a> Lane<'a> {
                 self.traverse(s, *child, Some(&composed), mask, path.through(rec.instance_id))
             }
             NodeKind::Transform { matrix, inverse, child, motion: None } => {
+                let path = path.through(rec.instance_id);
                 // Under no other transform: the node's own matrices, not
-                // their products with the identity.
+                // their products with the identity, borrowed where the
+                // launch holds them.
+                let own = l.transforms.get(node.index() as usize).and_then(Option::as_ref);
+                if let (None, Some(own)) = (xf, own) {
+                    return self.traverse(s, *child, Some(own), mask, path);
+                }
                 let composed = match xf {
                     None => Xf { object_to_world: *matrix, world_to_object: *inverse },
                     Some(x) => Xf {
@@ -334,11 +367,8 @@ impl<'a> Lane<'a> {
                         world_to_object: *inverse * x.world_to_object,
                     },
                 };
-                self.traverse(s, *child, Some(&composed), mask, path.through(rec.instance_id))
+                self.traverse(s, *child, Some(&composed), mask, path)
             }
-            // One child (a scene's usual top group): its own tree tests the
-            // ray first thing, so the group's box test would be repeated.
-            NodeKind::Group { children, .. } if children.len() == 1 => self.traverse(s, children[0], xf, mask, path),
             NodeKind::Group { children, .. } => {
                 let Some(Some(NodeAccel::Children { bvh, .. })) = l.accels.get(node.index() as usize) else {
                     return;
@@ -352,10 +382,8 @@ impl<'a> Lane<'a> {
             NodeKind::Selector { children, .. } => {
                 let Some(call) = &l.visit[node.index() as usize] else { return };
                 // The ray in the selector's space, `tmax` the closest hit so far.
-                let mut ctx = ExecutionContext {
-                    current_ray: Ray { origin, direction, tmax: s.tmax.get(), ..*world_ray },
-                    ..self.base_context()
-                };
+                let mut ctx = self.context();
+                ctx.current_ray = Ray { origin, direction, tmax: s.tmax.get(), ..*world_ray };
                 // SAFETY: the payload pointer comes from the `&mut` the trace
                 // call holds for the whole search; nothing else uses it now.
                 let payload = unsafe { &mut *s.payload };
@@ -578,18 +606,16 @@ impl<'a> Lane<'a> {
         mut attributes: Option<Box<dyn AnyAttributes>>,
     ) -> Option<bool> {
         let (instance_index, instance_id) = self.instance_of(s, gi);
-        let mut ctx = ExecutionContext {
-            current_ray: Ray { tmax: t, ..*s.world_ray },
-            t_hit: t,
-            primitive_index: prim,
-            hit_kind,
-            ray_flags: s.flags,
-            ray_mask: s.mask,
-            instance_index,
-            instance_id,
-            ..self.base_context()
-        };
-        Xf::set(&mut ctx, xf);
+        let mut ctx = self.context();
+        set_current_ray(&mut ctx, s.world_ray, t);
+        ctx.t_hit = t;
+        ctx.primitive_index = prim;
+        ctx.hit_kind = hit_kind;
+        ctx.ray_flags = s.flags;
+        ctx.ray_mask = s.mask;
+        ctx.instance_index = instance_index;
+        ctx.instance_id = instance_id;
+        set_transforms(&mut ctx, xf);
         // SAFETY: see `traverse`: the search's payload is only used here.
         let payload = unsafe { &mut *s.payload };
         self.invoke(ah, &mut ctx, Some(payload), attributes.as_mut());
@@ -604,16 +630,14 @@ impl<'a> Lane<'a> {
         s.candidate.set(Some(Candidate { instance: gi, primitive: prim, object_ray: *object_ray, xf: xf.copied() }));
         s.candidate_t.set(None);
         let (instance_index, instance_id) = self.instance_of(s, gi);
-        let mut ctx = ExecutionContext {
-            current_ray: Ray { tmax: s.tmax.get(), ..*object_ray },
-            primitive_index: prim,
-            ray_flags: s.flags,
-            ray_mask: s.mask,
-            instance_index,
-            instance_id,
-            ..self.base_context()
-        };
-        Xf::set(&mut ctx, xf);
+        let mut ctx = self.context();
+        set_current_ray(&mut ctx, object_ray, s.tmax.get());
+        ctx.primitive_index = prim;
+        ctx.ray_flags = s.flags;
+        ctx.ray_mask = s.mask;
+        ctx.instance_index = instance_index;
+        ctx.instance_id = instance_id;
+        set_transforms(&mut ctx, xf);
         let mut attributes = call.attributes.as_ref().map(|ty| self.attributes_of(ty, None));
         self.invoke(call, &mut ctx, None, attributes.as_mut());
         if let Some(a) = attributes {
@@ -681,23 +705,23 @@ impl Tracer for Lane<'_> {
                     };
                     let (path, group) = hit.path;
                     let (instance_index, instance_id) = instances::resolve(l.scene, path, group, hit.instance);
-                    let mut ctx = ExecutionContext {
-                        t_hit: hit.t,
-                        primitive_index: hit.primitive,
-                        hit_kind,
-                        ray_flags: flags,
-                        ray_mask: mask & 0xff,
-                        instance_index,
-                        instance_id,
-                        ..self.base_context()
-                    };
-                    Xf::set(&mut ctx, hit.xf.as_ref());
+                    let mut ctx = self.context();
+                    ctx.t_hit = hit.t;
+                    ctx.primitive_index = hit.primitive;
+                    ctx.hit_kind = hit_kind;
+                    ctx.ray_flags = flags;
+                    ctx.ray_mask = mask & 0xff;
+                    ctx.instance_index = instance_index;
+                    ctx.instance_id = instance_id;
+                    set_transforms(&mut ctx, hit.xf.as_ref());
                     set_current_ray(&mut ctx, ray, hit.t);
                     self.invoke(ch, &mut ctx, Some(payload), attributes.as_mut());
                 }
             }
             None => {
-                let mut ctx = ExecutionContext { ray_flags: flags, ray_mask: mask & 0xff, ..self.base_context() };
+                let mut ctx = self.context();
+                ctx.ray_flags = flags;
+                ctx.ray_mask = mask & 0xff;
                 set_current_ray(&mut ctx, ray, ray.tmax);
                 self.invoke(&l.miss[ray.ray_type as usize], &mut ctx, Some(payload), None);
             }
@@ -804,7 +828,7 @@ impl Tracer for Lane<'_> {
 /// along world direction `d`: as the wgpu kernel's `rt_hit_kind` says, in
 /// the instance's object space.
 fn front_or_back(hit: &Hit, d: Vec3) -> u32 {
-    let d = hit.xf.map_or(d, |x| (x.world_to_object * d.extend(0.0)).truncate());
+    let d = hit.xf.as_ref().map_or(d, |x| (x.world_to_object * d.extend(0.0)).truncate());
     let [a, b, c] = hit.vertices;
     if d.dot((b - a).cross(c - a)) < 0.0 { HIT_TRIANGLE_FRONT } else { HIT_TRIANGLE_BACK }
 }

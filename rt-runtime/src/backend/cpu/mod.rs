@@ -121,17 +121,24 @@ fn run(launch: &Launch) -> Result<LaunchReport> {
             let checking = settings.integer_exceptions;
             rt_std::cpu::serving(&lane, || {
                 rt_std::arith::checking_integers(checking, || {
-                    for i in c * chunk..((c + 1) * chunk).min(total) {
-                        if stop.load(Ordering::Relaxed) {
-                            break;
+                    // One catch around the chunk, not one per index: a
+                    // panic ends the chunk either way, and the lane knows
+                    // the index it was running (`run_index` sets it first).
+                    let run = panics::catching(|| {
+                        for i in c * chunk..((c + 1) * chunk).min(total) {
+                            if stop.load(Ordering::Relaxed) {
+                                break;
+                            }
+                            lane.run_index(tile.index(i), &mut report);
                         }
-                        let index = tile.index(i);
-                        if let Err(caught) = panics::catching(|| lane.run_index(index, &mut report)) {
+                    });
+                    match run {
+                        Ok(()) => Ok(report),
+                        Err(caught) => {
                             stop.store(true, Ordering::Relaxed);
-                            return Err(panicked(lane.program.get(), index, caught));
+                            Err(panicked(lane.program.get(), lane.index.get(), caught))
                         }
                     }
-                    Ok(report)
                 })
             })
         })
