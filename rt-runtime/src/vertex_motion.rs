@@ -13,7 +13,6 @@
 //! outside them.
 
 use crate::motion::{check_range, segment};
-use crate::scene::TriangleMesh;
 use glam::Vec3;
 
 /// A triangle mesh's motion: its vertex positions at each of two or more
@@ -47,22 +46,23 @@ impl VertexMotion {
         Ok(VertexMotion { keys, t0, t1 })
     }
 
-    /// The vertices of triangle `t` of `mesh` (whose indices these keys'
-    /// positions follow) at `time`.
+    /// The vertices of the triangle of vertex indices `indices` (a
+    /// triangle of the mesh these keys move) at `time`.
     #[inline]
-    pub fn triangle_at(&self, mesh: &TriangleMesh, t: usize, time: f32) -> [Vec3; 3] {
+    pub fn triangle_at(&self, indices: [u32; 3], time: f32) -> [Vec3; 3] {
         let (k, f) = segment(self.keys.len(), self.t0, self.t1, time);
         let (a, b) = (&self.keys[k], &self.keys[k + 1]);
-        mesh.indices[t].map(|i| a[i as usize] * (1.0 - f) + b[i as usize] * f)
+        indices.map(|i| a[i as usize] * (1.0 - f) + b[i as usize] * f)
     }
 
-    /// A box holding triangle `t` at every time: each vertex moves along
-    /// straight segments between its keys, so the keys' boxes hold it.
-    pub(crate) fn triangle_bounds(&self, mesh: &TriangleMesh, t: usize) -> (Vec3, Vec3) {
+    /// A box holding the triangle of vertex indices `indices` at every
+    /// time: each vertex moves along straight segments between its keys,
+    /// so the keys' boxes hold it.
+    pub(crate) fn triangle_bounds(&self, indices: [u32; 3]) -> (Vec3, Vec3) {
         let mut lo = Vec3::INFINITY;
         let mut hi = Vec3::NEG_INFINITY;
         for key in &self.keys {
-            for i in mesh.indices[t] {
+            for i in indices {
                 let p = key[i as usize];
                 lo = lo.min(p);
                 hi = hi.max(p);
@@ -87,18 +87,15 @@ impl VertexMotion {
 mod tests {
     use super::*;
 
-    fn mesh() -> TriangleMesh {
-        TriangleMesh { positions: vec![Vec3::ZERO, Vec3::X, Vec3::Y], indices: vec![[0, 1, 2]], ..Default::default() }
-    }
-
+    /// The triangle (0, 0, 0), (1, 0, 0), (0, 1, 0) raised to each height.
     fn rising(heights: &[f32]) -> Vec<Vec<Vec3>> {
-        heights.iter().map(|&z| mesh().positions.iter().map(|p| *p + Vec3::Z * z).collect()).collect()
+        heights.iter().map(|&z| [Vec3::ZERO, Vec3::X, Vec3::Y].iter().map(|p| *p + Vec3::Z * z).collect()).collect()
     }
 
     #[test]
     fn vertices_interpolate_between_keys_and_clamp() {
         let m = VertexMotion::new(rising(&[0.0, 2.0, 6.0]), 1.0, 3.0, 3).unwrap();
-        let z = |time: f32| m.triangle_at(&mesh(), 0, time).map(|p| p.z);
+        let z = |time: f32| m.triangle_at([0, 1, 2], time).map(|p| p.z);
         assert_eq!(z(1.0), [0.0; 3]);
         assert_eq!(z(1.5), [1.0; 3]);
         assert_eq!(z(2.0), [2.0; 3]);
@@ -107,7 +104,7 @@ mod tests {
         assert_eq!(z(-10.0), [0.0; 3]);
         assert_eq!(z(10.0), [6.0; 3]);
         assert_eq!(z(f32::NAN), [0.0; 3]);
-        assert_eq!(m.triangle_at(&mesh(), 0, 2.5)[1], Vec3::new(1.0, 0.0, 4.0));
+        assert_eq!(m.triangle_at([0, 1, 2], 2.5)[1], Vec3::new(1.0, 0.0, 4.0));
     }
 
     #[test]
@@ -115,10 +112,10 @@ mod tests {
         let mut keys = rising(&[0.0, 3.0]);
         keys[1][1] = Vec3::new(-2.0, 5.0, 3.0);
         let m = VertexMotion::new(keys, 0.0, 1.0, 3).unwrap();
-        let (lo, hi) = m.triangle_bounds(&mesh(), 0);
+        let (lo, hi) = m.triangle_bounds([0, 1, 2]);
         assert_eq!((lo, hi), (Vec3::new(-2.0, 0.0, 0.0), Vec3::new(1.0, 5.0, 3.0)));
         for s in 0..=100 {
-            for p in m.triangle_at(&mesh(), 0, s as f32 / 100.0) {
+            for p in m.triangle_at([0, 1, 2], s as f32 / 100.0) {
                 assert!(p.cmpge(lo).all() && p.cmple(hi).all(), "{p} outside {lo}..{hi}");
             }
         }

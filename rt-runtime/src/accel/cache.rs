@@ -130,7 +130,7 @@ pub(crate) fn prim_bounds(scene: &Scene, children: &[crate::handles::GeometryIns
                 // A moving triangle's box holds it at every key.
                 let bound = |t: usize| match motion {
                     Some(m) => {
-                        let (lo, hi) = m.triangle_bounds(mesh, t);
+                        let (lo, hi) = m.triangle_bounds(mesh.indices[t]);
                         to_oaabb(lo, hi)
                     }
                     None => triangle_bounds(mesh, t),

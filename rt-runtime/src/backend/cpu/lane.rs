@@ -414,7 +414,7 @@ impl<'a> Lane<'a> {
                             // (Moving triangles are never in the SIMD
                             // tree's packets: they come here.)
                             let [a, b, c] = match l.vertex_motion[gi as usize] {
-                                Some(m) => m.triangle_at(mesh, prim as usize, self.time.get()),
+                                Some(m) => m.triangle_at(mesh.indices[prim as usize], self.time.get()),
                                 None => mesh.triangle(prim as usize),
                             };
                             if let Some(ray) = &prepared
