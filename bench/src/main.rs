@@ -667,13 +667,15 @@ fn measure_scene(
             });
             walks.push(w.time);
             fig.walk_rays = w.rays;
-            let p = peers::trace_ao16(&tris, cam, width, height, |rays, _, out| {
+            // A packet's closest hits, as `trace_ao16` takes them.
+            let packet = |rays: &[(glam::Vec3, glam::Vec3, f32)], out: &mut [Option<(f32, u32)>]| {
                 let mut hits = [None; rt_runtime::accel::wide::testing::PACKET_RAYS];
                 t.closest_packet(simd, rays, &mut hits);
                 for (o, h) in out.iter_mut().zip(hits) {
                     *o = h.map(|h| (h.0, h.1));
                 }
-            });
+            };
+            let p = peers::trace_ao16(&tris, cam, width, height, |rays, _, out| packet(rays, out));
             packet_walks.push(p.time);
             packet_rays = p.rays;
             // Primary rays only: AO rays (traced with tmin 0, or not
@@ -685,11 +687,7 @@ fn measure_scene(
             let p = peers::trace_ao16(&tris, cam, width, height, |rays, coherent, out| {
                 out.fill(None);
                 if coherent {
-                    let mut hits = [None; rt_runtime::accel::wide::testing::PACKET_RAYS];
-                    t.closest_packet(simd, rays, &mut hits);
-                    for (o, h) in out.iter_mut().zip(hits) {
-                        *o = h.map(|h| (h.0, h.1));
-                    }
+                    packet(rays, out);
                 }
             });
             primary_packet_walks.push(p.time);

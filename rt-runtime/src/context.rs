@@ -564,11 +564,7 @@ impl Context {
     pub fn set_triangle_positions(&mut self, g: GeometryId, positions: Vec<glam::Vec3>) -> Result<()> {
         self.scene.geometry_version += 1;
         self.scene.structure_version += 1;
-        let rec =
-            self.scene.geometries.get_mut(g.0 as usize).ok_or_else(|| RtError::InvalidHandle(format!("{g:?}")))?;
-        let GeometryKind::Triangles(mesh) = &mut rec.kind else {
-            return Err(RtError::BadGeometry { geometry: g.0, problem: "not a triangle geometry".into() });
-        };
+        let (mesh, motion) = self.triangles_mut(g, "")?;
         if positions.len() != mesh.positions.len() {
             return Err(RtError::BadGeometry {
                 geometry: g.0,
@@ -583,7 +579,7 @@ impl Context {
         // same vertex count, only the positions themselves can be wrong.
         check_positions(&positions).map_err(|problem| RtError::BadGeometry { geometry: g.0, problem })?;
         mesh.positions = positions;
-        rec.vertex_motion = None;
+        *motion = None;
         self.accels.geometry_moved(g.0);
         Ok(())
     }
@@ -608,22 +604,31 @@ impl Context {
     #[doc(alias = "rtGeometryTrianglesSetMotionRange")]
     #[doc(alias = "rtGeometryTrianglesSetMotionBorderMode")]
     pub fn set_motion_vertices(&mut self, g: GeometryId, keys: Vec<Vec<glam::Vec3>>, t0: f32, t1: f32) -> Result<()> {
-        let rec =
-            self.scene.geometries.get_mut(g.0 as usize).ok_or_else(|| RtError::InvalidHandle(format!("{g:?}")))?;
-        let GeometryKind::Triangles(mesh) = &mut rec.kind else {
-            return Err(RtError::BadGeometry {
-                geometry: g.0,
-                problem: "not a triangle geometry: vertex motion keys move triangles' vertices".into(),
-            });
-        };
+        let (mesh, held) = self.triangles_mut(g, ": vertex motion keys move triangles' vertices")?;
         let motion = VertexMotion::new(keys, t0, t1, mesh.positions.len())
             .map_err(|problem| RtError::BadGeometry { geometry: g.0, problem })?;
         mesh.positions.clone_from(&motion.keys[0]);
-        rec.vertex_motion = Some(Box::new(motion));
+        *held = Some(Box::new(motion));
         self.scene.geometry_version += 1;
         self.scene.structure_version += 1;
         self.accels.geometry_moved(g.0);
         Ok(())
+    }
+
+    /// Triangle geometry `g`'s mesh and vertex motion, to move its
+    /// vertices; other geometry is refused as "not a triangle geometry"
+    /// followed by `why`.
+    fn triangles_mut(
+        &mut self,
+        g: GeometryId,
+        why: &str,
+    ) -> Result<(&mut TriangleMesh, &mut Option<Box<VertexMotion>>)> {
+        let rec =
+            self.scene.geometries.get_mut(g.0 as usize).ok_or_else(|| RtError::InvalidHandle(format!("{g:?}")))?;
+        match rec {
+            GeometryRec { kind: GeometryKind::Triangles(mesh), vertex_motion, .. } => Ok((mesh, vertex_motion)),
+            _ => Err(RtError::BadGeometry { geometry: g.0, problem: format!("not a triangle geometry{why}") }),
+        }
     }
 
     /// Triangle geometry `g`'s vertex motion, if it has some.

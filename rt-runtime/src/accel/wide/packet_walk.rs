@@ -2,12 +2,16 @@
 //! together (Embree's `rtcIntersect16` idea on the CPU backend's tree): at
 //! each node every child box is tested against all the packet's active
 //! rays at once (eight rays a register), the children entered by some ray
-//! are visited with the rays that enter them, and at a leaf each ray that
-//! reached it runs the single-ray triangle test of [`super::kernels`].
+//! are visited with the rays that enter them, and at a leaf each triangle
+//! is tested against eight rays at once where those rays share the
+//! watertight test's `kz` (coherent rays do); otherwise, or where a ray
+//! meets a triangle on an edge, each ray that reached the leaf runs the
+//! single-ray triangle test of [`super::kernels`].
 //!
 //! The box test is the single-ray walk's, lane by lane (the near plane by
 //! the sign of each ray's inverse direction, SSE's NaN rules, the same
-//! slack), and leaves commit as the single-ray walk commits (a hit closer
+//! slack), the eight-ray triangle test is that test's operations a ray a
+//! lane, and leaves commit as the single-ray walk commits (a hit closer
 //! than the ray's closest so far), so a packet finds each ray's closest hit
 //! of the single-ray walk; only the order of leaves differs, which matters
 //! for exact ties between two triangles only.

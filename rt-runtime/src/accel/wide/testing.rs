@@ -93,23 +93,20 @@ impl Triangles {
             let (origin, d, tmin) = rays[i.min(n - 1)];
             WalkRay { origin, inv_dir: d.recip(), tmin, triangle: prepared[i].as_ref() }
         });
-        let mut tmax = [f32::INFINITY; PACKET_RAYS];
-        let mut limits = tmax;
+        let mut limits = [f32::INFINITY; PACKET_RAYS];
         out[..n].fill(None);
         super::packet_walk::walk_packet(isa, &self.wide, &walk[..n], &mut limits[..n], |ray, leaf, hits| {
             let (index, _) = leaf_of(leaf);
+            // The ray's closest hit so far is the one in `out`.
+            let mut limit = out[ray].map_or(f32::INFINITY, |h| h.0);
             for lane in 0..PACKET {
-                if hits.mask & (1 << lane) != 0 && hits.t[lane] < tmax[ray] {
-                    tmax[ray] = hits.t[lane];
-                    out[ray] = Some((
-                        hits.t[lane],
-                        self.wide.slots[index as usize * PACKET + lane],
-                        hits.u[lane],
-                        hits.v[lane],
-                    ));
+                if hits.mask & (1 << lane) != 0 && hits.t[lane] < limit {
+                    limit = hits.t[lane];
+                    out[ray] =
+                        Some((limit, self.wide.slots[index as usize * PACKET + lane], hits.u[lane], hits.v[lane]));
                 }
             }
-            tmax[ray]
+            limit
         });
     }
 

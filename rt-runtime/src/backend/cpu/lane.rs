@@ -65,6 +65,16 @@ pub(crate) struct Hit {
 /// nor copies matrices into each hit.
 pub(crate) type Xf = Transforms;
 
+/// The transforms of a node with matrices `own` under the transforms
+/// `outer` of the nodes above it.
+#[inline]
+fn under(outer: &Xf, own: &Xf) -> Xf {
+    Xf {
+        object_to_world: outer.object_to_world * own.object_to_world,
+        world_to_object: own.world_to_object * outer.world_to_object,
+    }
+}
+
 /// Points `ctx` at `xf`'s transforms; `ctx` holds the identity already (a
 /// context from [`Lane::context`]): nothing to do for None. The matrices
 /// are not copied: the context borrows them where the traversal (or the
@@ -342,32 +352,19 @@ impl<'a> Lane<'a> {
                     return;
                 }
                 let own = Xf { object_to_world: m, world_to_object: m.inverse() };
-                let composed = match xf {
-                    None => own,
-                    Some(x) => Xf {
-                        object_to_world: x.object_to_world * own.object_to_world,
-                        world_to_object: own.world_to_object * x.world_to_object,
-                    },
-                };
+                let composed = xf.map_or(own, |x| under(x, &own));
                 self.traverse(s, *child, Some(&composed), mask, path.through(rec.instance_id))
             }
-            NodeKind::Transform { matrix, inverse, child, motion: None } => {
+            NodeKind::Transform { child, motion: None, .. } => {
                 let path = path.through(rec.instance_id);
-                // Under no other transform: the node's own matrices, not
-                // their products with the identity, borrowed where the
-                // launch holds them.
-                let own = l.transforms.get(node.index() as usize).and_then(Option::as_ref);
-                if let (None, Some(own)) = (xf, own) {
-                    return self.traverse(s, *child, Some(own), mask, path);
+                // The launch holds every static transform's matrices.
+                let Some(own) = l.transforms.get(node.index() as usize).and_then(Option::as_ref) else { return };
+                match xf {
+                    // Under no other transform: the node's own matrices,
+                    // borrowed, not their products with the identity.
+                    None => self.traverse(s, *child, Some(own), mask, path),
+                    Some(x) => self.traverse(s, *child, Some(&under(x, own)), mask, path),
                 }
-                let composed = match xf {
-                    None => Xf { object_to_world: *matrix, world_to_object: *inverse },
-                    Some(x) => Xf {
-                        object_to_world: x.object_to_world * *matrix,
-                        world_to_object: *inverse * x.world_to_object,
-                    },
-                };
-                self.traverse(s, *child, Some(&composed), mask, path)
             }
             NodeKind::Group { children, .. } => {
                 let Some(Some(NodeAccel::Children { bvh, .. })) = l.accels.get(node.index() as usize) else {

@@ -313,14 +313,14 @@ fn rt_tex_sample_lod(s: RtSampler, uv: vec2<f32>, lod: f32) -> vec4<f32> {
 // The LOD of a footprint dx, dy (in normalised coordinates): log2 of its
 // longer side in level-0 texels, as OpenGL and Vulkan define it. A NaN side
 // counts as 0, as f32::max on the CPU ignores a NaN (WGSL's max may not).
-fn rt_tex_side(v: vec2<f32>) -> f32 {
-    let l = length(v);
+// (rt_tex_side takes a side's length: 2D and 3D footprints share it.)
+fn rt_tex_side(l: f32) -> f32 {
     if (bitcast<u32>(l) & 0x7fffffffu) <= 0x7f800000u { return l; }
     return 0.0;
 }
 fn rt_tex_sample_grad(s: RtSampler, uv: vec2<f32>, dx: vec2<f32>, dy: vec2<f32>) -> vec4<f32> {
     let size = vec2<f32>(f32(s.width), f32(s.height));
-    let rho = max(rt_tex_side(dx * size), rt_tex_side(dy * size));
+    let rho = max(rt_tex_side(length(dx * size)), rt_tex_side(length(dy * size)));
     return rt_tex_sample_lod(s, uv, log2(rho));
 }
 
@@ -412,14 +412,9 @@ fn rt_tex3_sample_lod(s: RtSampler3d, uvw: vec3<f32>, lod: f32) -> vec4<f32> {
     return a * (1.0 - m.t) + b * m.t;
 }
 // rt_tex_sample_grad with a third axis.
-fn rt_tex3_side(v: vec3<f32>) -> f32 {
-    let l = length(v);
-    if (bitcast<u32>(l) & 0x7fffffffu) <= 0x7f800000u { return l; }
-    return 0.0;
-}
 fn rt_tex3_sample_grad(s: RtSampler3d, uvw: vec3<f32>, dx: vec3<f32>, dy: vec3<f32>) -> vec4<f32> {
     let size = vec3<f32>(f32(s.width), f32(s.height), f32(s.depth));
-    let rho = max(rt_tex3_side(dx * size), rt_tex3_side(dy * size));
+    let rho = max(rt_tex_side(length(dx * size)), rt_tex_side(length(dy * size)));
     return rt_tex3_sample_lod(s, uvw, log2(rho));
 }
 
