@@ -6,7 +6,9 @@
 //! give the shared point distances a few ulps apart, and a traversal's box
 //! rounding may reach either first), a neighbour within one ulp of the
 //! closest hit of all (by testing every triangle). The same rays sixteen
-//! at a time as packets (`closest_packet`) find what each finds alone.
+//! at a time as packets (`closest_packet`) find what each finds alone, and
+//! so do coherent packets (a camera's 4x4 tiles, and bundles onwards from
+//! their hits).
 
 use glam::{Mat3, Vec3};
 use rt_runtime::accel::CpuSimd;
@@ -124,10 +126,81 @@ fn check(name: &str, tris: Vec<[Vec3; 3]>, rays: usize) {
         }
     }
     assert!(hits > rays / 4, "{name}: only {hits} of {rays} rays hit");
+    coherent_packets(name, &mesh, &paths, lo, hi);
     // Ties: rays through shared edges, and (the Cornell box, about 2%)
     // coplanar faces that overlap, such as the blocks' bases on the floor.
     eprintln!("{name}: {hits} of {rays} rays hit, {ties} ties");
     assert!(ties < rays / 20, "{name}: {ties} ties in {rays} rays");
+}
+
+/// Coherent packets, as a camera makes them: 4x4 tiles of a 96x72 view of
+/// the whole mesh, from three sides, each ray's packet hit against its
+/// single-ray hit. (Random rays split at the root and mostly go on one by
+/// one; these keep the packet together into the leaves, where its rays
+/// share `kz` and take the eight-ray triangle test.) Then, from each tile's
+/// hits, a bundle of nearly parallel rays onwards (a second bounce's
+/// packet, which thins out and hands its rays to the single-ray walk).
+fn coherent_packets(name: &str, mesh: &Triangles, paths: &[CpuSimd], lo: Vec3, hi: Vec3) {
+    let (center, radius) = ((lo + hi) * 0.5, (hi - lo).length() * 0.5);
+    let (w, h) = (96u32, 72u32);
+    let (mut packets, mut hits) = (0, 0);
+    let mut check_batch = |batch: &[(Vec3, Vec3, f32)], what: &str| -> Vec<Option<(f32, u32, f32, f32)>> {
+        let mut alone = Vec::new();
+        for &isa in paths {
+            let mut got = [None; PACKET_RAYS];
+            mesh.closest_packet(isa, batch, &mut got);
+            alone = batch.iter().map(|&(o, d, tmin)| mesh.closest(isa, o, d, tmin, f32::INFINITY)).collect();
+            for (k, &(o, d, tmin)) in batch.iter().enumerate() {
+                let same = match (got[k], alone[k]) {
+                    (Some(g), Some(a)) if g.1 == a.1 => g.0.to_bits() == a.0.to_bits(),
+                    // A tie: another leaf order may commit either.
+                    (Some(g), Some(a)) => {
+                        g.0.to_bits().abs_diff(a.0.to_bits()) <= 1 && mesh.hits_at(g.1, o, d, tmin, g.0)
+                    }
+                    (None, None) => true,
+                    _ => false,
+                };
+                assert!(
+                    same,
+                    "{name}, {isa:?}, {what} packet ray {k}: {o} + t {d}: {:?}, alone {:?}",
+                    got[k], alone[k]
+                );
+            }
+        }
+        packets += 1;
+        hits += alone.iter().flatten().count();
+        alone
+    };
+    for (side, dir) in
+        [Vec3::new(0.3, 0.2, 1.0), Vec3::new(-1.0, 0.1, 0.2), Vec3::new(0.1, -1.0, -0.4)].iter().enumerate()
+    {
+        let eye = center + dir.normalize() * radius * 2.5;
+        let fwd = (center - eye).normalize();
+        let right = fwd.cross(if side == 2 { Vec3::X } else { Vec3::Y }).normalize();
+        let up = right.cross(fwd);
+        for ty in (0..h).step_by(4) {
+            for tx in (0..w).step_by(4) {
+                let mut batch = Vec::with_capacity(PACKET_RAYS);
+                for i in 0..PACKET_RAYS as u32 {
+                    let (x, y) = (tx + i % 4, ty + i / 4);
+                    let s = (x as f32 + 0.5) / w as f32 * 2.0 - 1.0;
+                    let t = (y as f32 + 0.5) / h as f32 * 2.0 - 1.0;
+                    batch.push((eye, fwd + right * (s * 0.45) + up * (t * 0.34), 0.0));
+                }
+                let found = check_batch(&batch, "primary");
+                // Onwards from the hits, nearly parallel (a mirror-like bounce).
+                let onwards: Vec<_> = batch
+                    .iter()
+                    .zip(&found)
+                    .filter_map(|(&(o, d, _), f)| f.map(|(t, ..)| (o + d * t, Vec3::new(-d.x, d.y * 0.9, -d.z), 1e-4)))
+                    .collect();
+                if !onwards.is_empty() {
+                    check_batch(&onwards, "onwards");
+                }
+            }
+        }
+    }
+    assert!(hits > packets, "{name}: {hits} hits in {packets} coherent packets");
 }
 
 #[test]

@@ -6,7 +6,10 @@
 //! is tested against eight rays at once where those rays share the
 //! watertight test's `kz` (coherent rays do); otherwise, or where a ray
 //! meets a triangle on an edge, each ray that reached the leaf runs the
-//! single-ray triangle test of [`super::kernels`].
+//! single-ray triangle test of [`super::kernels`]. Where fewer than six
+//! of an entry's rays are left (rays that diverged, or passed their
+//! closest hit), each walks the entry's subtree alone by the single-ray
+//! walk (Embree's switch from packets to single rays).
 //!
 //! The box test is the single-ray walk's, lane by lane (the near plane by
 //! the sign of each ray's inverse direction, SSE's NaN rules, the same
@@ -69,12 +72,26 @@ fn one_by_one<F: FnMut(usize, u32, &Hits) -> f32>(
 
 #[cfg(target_arch = "x86_64")]
 mod avx2 {
-    use super::super::kernels::x86::Avx2;
-    use super::super::kernels::{FAR_SCALE, Hits, Kernels, NEAR_SLACK, WalkRay};
+    use super::super::kernels::x86::{Avx2, packet4, triangle_ray};
+    use super::super::kernels::{FAR_SCALE, Hits, NEAR_SLACK, WalkRay};
+    use super::super::walk::{Entry, stack_len, walk_from};
     use super::super::watertight::WatertightRay;
     use super::super::{LEAF, PACKET, Packet, WIDTH, WideBvh, leaf_of};
     use super::PACKET_RAYS;
     use std::arch::x86_64::*;
+    use std::mem::MaybeUninit;
+
+    /// A pushed child: its reference, the rays that enter it (a bit a
+    /// ray), and the nearest of their entry distances.
+    type PacketEntry = (u32, u32, f32);
+
+    /// Stack entries kept on the stack (deeper trees take the heap).
+    const ON_STACK: usize = 7 * 48 + 1;
+
+    /// The rays an entry must have to be walked on as a packet: with fewer,
+    /// each ray walks the entry's subtree alone (Embree's switch from
+    /// packets to single rays where they diverge).
+    const PACKET_BELOW: u32 = 6;
 
     /// Halves of the packet: eight rays a register.
     const HALVES: usize = PACKET_RAYS / 8;
@@ -118,8 +135,6 @@ mod avx2 {
                 lanes.tmin[h] = _mm256_loadu_ps(values[6].as_ptr());
             }
         }
-        // (Rays past `n` repeat the last: never walked.)
-        let single: [_; PACKET_RAYS] = std::array::from_fn(|i| Avx2::ray(&rays[i.min(n - 1)]));
         // Each half's triangle setups by lane, where its rays share `kz`
         // (coherent rays do): a triangle is then tested against eight rays
         // at once.
@@ -134,23 +149,27 @@ mod avx2 {
         let all = if n == PACKET_RAYS { u32::MAX >> (32 - PACKET_RAYS) } else { (1u32 << n) - 1 };
         // Entries: (reference, rays, the nearest entry of those rays); a
         // node pushes at most its children less the one popped next, as
-        // the single-ray walk does, so `stack_len` bounds them.
-        let need = super::super::walk::stack_len(tree);
-        let mut small = [(0u32, 0u32, 0.0f32); 256];
-        let mut large = Vec::new();
-        let stack: &mut [(u32, u32, f32)] = if need <= small.len() {
-            &mut small
+        // the single-ray walk does, so `stack_len` bounds them, and the
+        // single rays a subtree is handed to need no more.
+        let need = stack_len(tree);
+        let mut small = [const { MaybeUninit::<PacketEntry>::uninit() }; ON_STACK];
+        let mut small_single = [const { MaybeUninit::<Entry>::uninit() }; ON_STACK];
+        let (mut large, mut large_single) = (Vec::new(), Vec::new());
+        let (stack, single_stack): (&mut [MaybeUninit<PacketEntry>], &mut [MaybeUninit<Entry>]) = if need <= ON_STACK {
+            (&mut small, &mut small_single)
         } else {
-            large.resize(need, (0, 0, 0.0));
-            &mut large
+            large.resize(need, MaybeUninit::uninit());
+            large_single.resize(need, MaybeUninit::uninit());
+            (&mut large, &mut large_single)
         };
-        stack[0] = (tree.root, all, f32::NEG_INFINITY);
+        stack[0].write((tree.root, all, f32::NEG_INFINITY));
         let mut sp = 1;
         let mut limits = [f32::INFINITY; PACKET_RAYS];
         limits[..n].copy_from_slice(tmax);
         while sp > 0 {
             sp -= 1;
-            let (current, mask, near) = stack[sp];
+            // SAFETY: entries below `sp` were written.
+            let (current, mask, near) = unsafe { stack[sp].assume_init() };
             // Rays whose closest hit is nearer than the entry need not go in.
             let mut mask = mask;
             for h in 0..HALVES {
@@ -160,6 +179,20 @@ mod avx2 {
                 mask &= !(passed << (8 * h));
             }
             if mask == 0 {
+                continue;
+            }
+            if mask.count_ones() < PACKET_BELOW {
+                // Too few rays left to share the tests: each goes on alone.
+                let mut m = mask;
+                while m != 0 {
+                    let i = m.trailing_zeros() as usize;
+                    m &= m - 1;
+                    let limit = &mut limits[i];
+                    walk_from::<Avx2, _>(tree, current, &rays[i], *limit, single_stack, |r, hits| {
+                        *limit = leaf(i, r, hits?);
+                        Some(*limit)
+                    });
+                }
                 continue;
             }
             if current & LEAF != 0 {
@@ -186,7 +219,8 @@ mod avx2 {
                 while m != 0 {
                     let i = m.trailing_zeros() as usize;
                     m &= m - 1;
-                    let hits = Avx2::packet(packet, &single[i], limits[i]);
+                    // SAFETY: the CPU has SSE (x86_64).
+                    let hits = unsafe { packet4(packet, &triangle_ray(&rays[i]), limits[i]) };
                     if hits.mask != 0 {
                         limits[i] = leaf(i, current, &hits);
                     }
@@ -199,9 +233,9 @@ mod avx2 {
                 // SAFETY: `limits` holds eight floats from `8 * h`.
                 *l = unsafe { _mm256_loadu_ps(limits[8 * h..].as_ptr()) };
             }
-            // Per child: the rays entering it and the nearest entry.
-            let mut entered = [(0u32, 0u32, f32::INFINITY); WIDTH];
-            let mut count = 0;
+            // Per child: the rays entering it and the nearest entry, pushed
+            // far to near so the nearest is popped next.
+            let base = sp;
             for c in 0..WIDTH {
                 let child = node.child[c];
                 if child == u32::MAX {
@@ -219,15 +253,18 @@ mod avx2 {
                     nearest = _mm256_min_ps(near, nearest);
                 }
                 if hit != 0 {
-                    entered[count] = (child, hit, horizontal_min(nearest));
-                    count += 1;
+                    let e = (child, hit, horizontal_min(nearest));
+                    // Insertion by descending distance.
+                    let mut j = sp;
+                    // SAFETY: entries from `base` to `sp` were written.
+                    while j > base && unsafe { stack[j - 1].assume_init().2 } < e.2 {
+                        stack[j] = stack[j - 1];
+                        j -= 1;
+                    }
+                    stack[j].write(e);
+                    sp += 1;
                 }
             }
-            // Far first onto the stack, so the nearest is popped next.
-            let entered = &mut entered[..count];
-            entered.sort_unstable_by(|a, b| b.2.total_cmp(&a.2));
-            stack[sp..sp + count].copy_from_slice(entered);
-            sp += count;
         }
         tmax.copy_from_slice(&limits[..n]);
     }

@@ -23,6 +23,20 @@ pub(crate) fn stack_len(tree: &WideBvh) -> usize {
 pub(crate) fn walk<K: Kernels, F: FnMut(u32, Option<&Hits>) -> Option<f32>>(
     tree: &WideBvh,
     ray: &WalkRay,
+    tmax: f32,
+    stack: &mut [MaybeUninit<Entry>],
+    leaf: F,
+) {
+    walk_from::<K, F>(tree, tree.root, ray, tmax, stack, leaf)
+}
+
+/// [`walk`] from the node or leaf `start` of `tree` (the packet walk
+/// hands a subtree on to single rays).
+#[inline(always)]
+pub(crate) fn walk_from<K: Kernels, F: FnMut(u32, Option<&Hits>) -> Option<f32>>(
+    tree: &WideBvh,
+    start: u32,
+    ray: &WalkRay,
     mut tmax: f32,
     stack: &mut [MaybeUninit<Entry>],
     mut leaf: F,
@@ -33,7 +47,7 @@ pub(crate) fn walk<K: Kernels, F: FnMut(u32, Option<&Hits>) -> Option<f32>>(
     }
     let k = K::ray(ray);
     let mut sp = 0usize;
-    let mut current = tree.root;
+    let mut current = start;
     loop {
         if current & LEAF == 0 {
             debug_assert!((current as usize) < tree.nodes.len());

@@ -43,7 +43,7 @@ pub(crate) struct X86Ray<V> {
 }
 
 #[inline(always)]
-fn triangle_ray(ray: &WalkRay) -> TriangleRay {
+pub(crate) fn triangle_ray(ray: &WalkRay) -> TriangleRay {
     // SAFETY: SSE is part of x86_64.
     unsafe {
         match ray.triangle {
@@ -69,7 +69,7 @@ fn triangle_ray(ray: &WalkRay) -> TriangleRay {
 /// The watertight test of four triangles, lane by lane as
 /// `WatertightRay::intersect` computes one.
 #[inline(always)]
-unsafe fn packet4(packet: &Packet, r: &TriangleRay, tmax: f32) -> Hits {
+pub(crate) unsafe fn packet4(packet: &Packet, r: &TriangleRay, tmax: f32) -> Hits {
     let mut hits = Hits::default();
     if !r.ready {
         return hits;
