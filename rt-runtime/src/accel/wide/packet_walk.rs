@@ -9,7 +9,11 @@
 //! single-ray triangle test of [`super::kernels`]. Where fewer than six
 //! of an entry's rays are left (rays that diverged, or passed their
 //! closest hit), each walks the entry's subtree alone by the single-ray
-//! walk (Embree's switch from packets to single rays).
+//! walk (Embree's switch from packets to single rays). Where the packet's
+//! rays share the direction's signs, a node's children are first tested
+//! all at once against the packet as intervals of origins and inverse
+//! directions (a frustum test that culls no child a ray enters), and only
+//! the children it meets are tested ray by ray.
 //!
 //! The box test is the single-ray walk's, lane by lane (the near plane by
 //! the sign of each ray's inverse direction, SSE's NaN rules, the same
@@ -76,8 +80,9 @@ mod avx2 {
     use super::super::kernels::{FAR_SCALE, Hits, NEAR_SLACK, WalkRay};
     use super::super::walk::{Entry, stack_len, walk_from};
     use super::super::watertight::WatertightRay;
-    use super::super::{LEAF, PACKET, Packet, WIDTH, WideBvh, leaf_of};
+    use super::super::{LEAF, PACKET, Packet, WideBvh, leaf_of};
     use super::PACKET_RAYS;
+    use glam::Vec3;
     use std::arch::x86_64::*;
     use std::mem::MaybeUninit;
 
@@ -146,6 +151,7 @@ mod avx2 {
                 *slot = Some(soa_rays(half));
             }
         }
+        let frustum = Frustum::of(rays);
         let all = if n == PACKET_RAYS { u32::MAX >> (32 - PACKET_RAYS) } else { (1u32 << n) - 1 };
         // Entries: (reference, rays, the nearest entry of those rays); a
         // node pushes at most its children less the one popped next, as
@@ -233,10 +239,24 @@ mod avx2 {
                 // SAFETY: `limits` holds eight floats from `8 * h`.
                 *l = unsafe { _mm256_loadu_ps(limits[8 * h..].as_ptr()) };
             }
+            // The children the packet's frustum meets (all of them without
+            // a frustum): no ray enters another.
+            let mut children = match &frustum {
+                Some(f) => {
+                    let mut far = _mm256_set1_ps(f32::NEG_INFINITY);
+                    for (h, &l) in limit.iter().enumerate() {
+                        far = _mm256_max_ps(_mm256_blendv_ps(far, l, active_lanes((mask >> (8 * h)) & 0xff)), far);
+                    }
+                    f.children(node, horizontal_max(far))
+                }
+                None => 0xff,
+            };
             // Per child: the rays entering it and the nearest entry, pushed
             // far to near so the nearest is popped next.
             let base = sp;
-            for c in 0..WIDTH {
+            while children != 0 {
+                let c = children.trailing_zeros() as usize & 7;
+                children &= children - 1;
                 let child = node.child[c];
                 if child == u32::MAX {
                     continue;
@@ -392,6 +412,97 @@ mod avx2 {
         let lane_bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
         let set = _mm256_and_si256(_mm256_set1_epi32(bits as i32), lane_bits);
         _mm256_castsi256_ps(_mm256_cmpeq_epi32(set, lane_bits))
+    }
+
+    /// The packet's rays as intervals, where they share the direction's
+    /// sign on every axis and have finite origins and finite, non-zero
+    /// inverse directions:
+    /// per axis the least and greatest origin and inverse direction, and
+    /// the least `tmin`. A child box is tested against it with interval
+    /// arithmetic, all eight at once, before its rays are tested one by
+    /// one.
+    ///
+    /// The test culls no child a ray enters: a ray's computed entry on an
+    /// axis is `(plane - o) * inv`, rounded twice, which is monotonic in
+    /// `o` and in `inv` (for a fixed sign of the other factor), so over the
+    /// packet's box of origins and inverse directions it is least (and its
+    /// exit greatest) at a corner of that box, and the test takes the least
+    /// (greatest) of the four corners' values, computed by the same
+    /// operations; the max, min, slack and scale that follow are monotonic
+    /// too.
+    struct Frustum {
+        /// The near plane's row of each axis (see `WalkRay::near_rows`).
+        rows: [usize; 3],
+        origin: [[__m256; 3]; 2],
+        inv: [[__m256; 3]; 2],
+        tmin: __m256,
+    }
+
+    impl Frustum {
+        #[inline]
+        #[target_feature(enable = "avx2,fma")]
+        fn of(rays: &[WalkRay]) -> Option<Frustum> {
+            let rows = rays.first()?.near_rows();
+            let (mut lo, mut hi) = ([f32::INFINITY; 6], [f32::NEG_INFINITY; 6]);
+            let mut tmin = f32::INFINITY;
+            for r in rays {
+                let inv = r.inv_dir;
+                if r.near_rows() != rows || !r.origin.is_finite() || !inv.is_finite() || inv.cmpeq(Vec3::ZERO).any() {
+                    return None;
+                }
+                for (k, v) in r.origin.to_array().into_iter().chain(r.inv_dir.to_array()).enumerate() {
+                    lo[k] = lo[k].min(v);
+                    hi[k] = hi[k].max(v);
+                }
+                tmin = tmin.min(r.tmin);
+            }
+            let splat = |v: &[f32]| [_mm256_set1_ps(v[0]), _mm256_set1_ps(v[1]), _mm256_set1_ps(v[2])];
+            Some(Frustum {
+                rows,
+                origin: [splat(&lo[..3]), splat(&hi[..3])],
+                inv: [splat(&lo[3..]), splat(&hi[3..])],
+                tmin: _mm256_set1_ps(tmin),
+            })
+        }
+
+        /// The children of `node` some ray of the packet may enter before
+        /// `limit` (the greatest closest hit so far of its rays): a bit a
+        /// child.
+        #[inline]
+        #[target_feature(enable = "avx2,fma")]
+        fn children(&self, node: &super::super::Node, limit: f32) -> u32 {
+            // SAFETY: the rows are 32-byte aligned.
+            let row = |r: usize| unsafe { _mm256_load_ps(node.planes[r].as_ptr()) };
+            let (mut near, mut far) = (self.tmin, _mm256_set1_ps(f32::INFINITY));
+            for axis in (0..3).rev() {
+                let n = self.rows[axis];
+                let [ilo, ihi] = [self.inv[0][axis], self.inv[1][axis]];
+                // The four corners of (plane - origin) * inv.
+                let corners = |plane: __m256| {
+                    let (a, b) =
+                        (_mm256_sub_ps(plane, self.origin[1][axis]), _mm256_sub_ps(plane, self.origin[0][axis]));
+                    [_mm256_mul_ps(a, ilo), _mm256_mul_ps(a, ihi), _mm256_mul_ps(b, ilo), _mm256_mul_ps(b, ihi)]
+                };
+                let [a, b, c, d] = corners(row(n));
+                near = _mm256_max_ps(_mm256_min_ps(_mm256_min_ps(a, b), _mm256_min_ps(c, d)), near);
+                let [a, b, c, d] = corners(row(n ^ 1));
+                far = _mm256_min_ps(_mm256_max_ps(_mm256_max_ps(a, b), _mm256_max_ps(c, d)), far);
+            }
+            let far = _mm256_min_ps(_mm256_mul_ps(far, _mm256_set1_ps(FAR_SCALE)), _mm256_set1_ps(limit));
+            let slack = _mm256_mul_ps(_mm256_andnot_ps(_mm256_set1_ps(-0.0), near), _mm256_set1_ps(NEAR_SLACK));
+            let near = _mm256_sub_ps(near, slack);
+            _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LE_OQ>(near, far)) as u32
+        }
+    }
+
+    /// The greatest of eight lanes.
+    #[inline]
+    #[target_feature(enable = "avx2,fma")]
+    fn horizontal_max(v: __m256) -> f32 {
+        let m = _mm_max_ps(_mm256_castps256_ps128(v), _mm256_extractf128_ps::<1>(v));
+        let m = _mm_max_ps(m, _mm_movehl_ps(m, m));
+        let m = _mm_max_ss(m, _mm_shuffle_ps::<1>(m, m));
+        _mm_cvtss_f32(m)
     }
 
     /// The least of eight lanes.
