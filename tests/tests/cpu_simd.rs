@@ -12,7 +12,7 @@
 
 use glam::{Mat3, Vec3};
 use rt_runtime::accel::CpuSimd;
-use rt_runtime::accel::wide::testing::{PACKET_RAYS, Triangles};
+use rt_runtime::accel::wide::testing::{Closest, PACKET_RAYS, Triangles};
 
 fn obj(name: &str) -> Vec<[Vec3; 3]> {
     let path = format!("{}/../../shared/scenes/{name}", env!("CARGO_MANIFEST_DIR"));
@@ -99,29 +99,8 @@ fn check(name: &str, tris: Vec<[Vec3; 3]>, rays: usize) {
         // the hardest case for a packet, whose rays split at every node).
         batch.push((o, d, 0.0));
         if batch.len() == PACKET_RAYS || i + 1 == rays {
-            for &isa in &paths {
-                let mut got = [None; PACKET_RAYS];
-                mesh.closest_packet(isa, &batch, &mut got);
-                for (k, &(o, d, tmin)) in batch.iter().enumerate() {
-                    let one = mesh.closest(isa, o, d, tmin, f32::INFINITY);
-                    let same = match (got[k], one) {
-                        (Some(g), Some(w)) if g.1 == w.1 => g.0.to_bits() == w.0.to_bits(),
-                        (Some(g), Some(w)) => {
-                            // A tie: another leaf order may commit either.
-                            ties += 1;
-                            g.0.to_bits().abs_diff(w.0.to_bits()) <= 1 && mesh.hits_at(g.1, o, d, tmin, g.0)
-                        }
-                        (None, None) => true,
-                        _ => false,
-                    };
-                    assert!(
-                        same,
-                        "{name}, {isa:?} packet, ray {}: {o} + t {d}: {:?}, alone {one:?}",
-                        i + 1 - batch.len() + k,
-                        got[k]
-                    );
-                }
-            }
+            let first = i + 1 - batch.len();
+            ties += check_packet(&format!("{name}, rays {first}.."), &mesh, &paths, &batch).1;
             batch.clear();
         }
     }
@@ -131,6 +110,37 @@ fn check(name: &str, tris: Vec<[Vec3; 3]>, rays: usize) {
     // coplanar faces that overlap, such as the blocks' bases on the floor.
     eprintln!("{name}: {hits} of {rays} rays hit, {ties} ties");
     assert!(ties < rays / 20, "{name}: {ties} ties in {rays} rays");
+}
+
+/// `batch` as one packet on every path in `paths`, each ray's hit against
+/// its single-ray hit: the same triangle at the same distance, or a tie
+/// (another leaf order may commit either of two triangles) within one ulp.
+/// Returns the single-ray hits (of the last path) and the ties.
+fn check_packet(
+    what: &str,
+    mesh: &Triangles,
+    paths: &[CpuSimd],
+    batch: &[(Vec3, Vec3, f32)],
+) -> (Vec<Option<Closest>>, usize) {
+    let (mut alone, mut ties) = (Vec::new(), 0);
+    for &isa in paths {
+        let mut got = [None; PACKET_RAYS];
+        mesh.closest_packet(isa, batch, &mut got);
+        alone = batch.iter().map(|&(o, d, tmin)| mesh.closest(isa, o, d, tmin, f32::INFINITY)).collect();
+        for (k, &(o, d, tmin)) in batch.iter().enumerate() {
+            let same = match (got[k], alone[k]) {
+                (Some(g), Some(a)) if g.1 == a.1 => g.0.to_bits() == a.0.to_bits(),
+                (Some(g), Some(a)) => {
+                    ties += 1;
+                    g.0.to_bits().abs_diff(a.0.to_bits()) <= 1 && mesh.hits_at(g.1, o, d, tmin, g.0)
+                }
+                (None, None) => true,
+                _ => false,
+            };
+            assert!(same, "{what}, {isa:?} packet ray {k}: {o} + t {d}: {:?}, alone {:?}", got[k], alone[k]);
+        }
+    }
+    (alone, ties)
 }
 
 /// Coherent packets, as a camera makes them: 4x4 tiles of a 96x72 view of
@@ -144,29 +154,8 @@ fn coherent_packets(name: &str, mesh: &Triangles, paths: &[CpuSimd], lo: Vec3, h
     let (center, radius) = ((lo + hi) * 0.5, (hi - lo).length() * 0.5);
     let (w, h) = (96u32, 72u32);
     let (mut packets, mut hits) = (0, 0);
-    let mut check_batch = |batch: &[(Vec3, Vec3, f32)], what: &str| -> Vec<Option<(f32, u32, f32, f32)>> {
-        let mut alone = Vec::new();
-        for &isa in paths {
-            let mut got = [None; PACKET_RAYS];
-            mesh.closest_packet(isa, batch, &mut got);
-            alone = batch.iter().map(|&(o, d, tmin)| mesh.closest(isa, o, d, tmin, f32::INFINITY)).collect();
-            for (k, &(o, d, tmin)) in batch.iter().enumerate() {
-                let same = match (got[k], alone[k]) {
-                    (Some(g), Some(a)) if g.1 == a.1 => g.0.to_bits() == a.0.to_bits(),
-                    // A tie: another leaf order may commit either.
-                    (Some(g), Some(a)) => {
-                        g.0.to_bits().abs_diff(a.0.to_bits()) <= 1 && mesh.hits_at(g.1, o, d, tmin, g.0)
-                    }
-                    (None, None) => true,
-                    _ => false,
-                };
-                assert!(
-                    same,
-                    "{name}, {isa:?}, {what} packet ray {k}: {o} + t {d}: {:?}, alone {:?}",
-                    got[k], alone[k]
-                );
-            }
-        }
+    let mut check_batch = |batch: &[(Vec3, Vec3, f32)], what: &str| {
+        let (alone, _) = check_packet(&format!("{name}, {what}"), mesh, paths, batch);
         packets += 1;
         hits += alone.iter().flatten().count();
         alone
