@@ -144,6 +144,11 @@ impl Triangles {
         best
     }
 
+    /// The triangles, in primitive order.
+    pub fn triangles(&self) -> &[[Vec3; 3]] {
+        &self.triangles
+    }
+
     /// Whether triangle `p` is hit at exactly `t` (a tie with another
     /// triangle's hit: two traversals may commit either).
     pub fn hits_at(&self, p: u32, origin: Vec3, direction: Vec3, tmin: f32, t: f32) -> bool {
