@@ -414,11 +414,10 @@ mod avx2 {
         _mm256_castsi256_ps(_mm256_cmpeq_epi32(set, lane_bits))
     }
 
-    /// The packet's rays as intervals, where they share the direction's
-    /// sign on every axis and have finite origins and finite, non-zero
-    /// inverse directions:
-    /// per axis the least and greatest origin and inverse direction, and
-    /// the least `tmin`. A child box is tested against it with interval
+    /// The packet's rays as intervals (per axis the least and greatest
+    /// origin and inverse direction, and the least `tmin`), where they
+    /// share the direction's sign on every axis and have finite origins
+    /// and finite, non-zero inverse directions. A child box is tested against it with interval
     /// arithmetic, all eight at once, before its rays are tested one by
     /// one.
     ///
