@@ -8,7 +8,8 @@
 //! closest hit of all (by testing every triangle). The same rays sixteen
 //! at a time as packets (`closest_packet`) find what each finds alone, and
 //! so do coherent packets (a camera's 4x4 tiles, and bundles onwards from
-//! their hits).
+//! their hits) and orthographic ones through the meshes' vertices (where
+//! the single-ray walk must also find the closest hit of all).
 
 use glam::{Mat3, Vec3};
 use rt_runtime::accel::CpuSimd;
@@ -195,6 +196,12 @@ fn coherent_packets(name: &str, mesh: &Triangles, paths: &[CpuSimd], lo: Vec3, h
     // around it (and through the edges that meet there). Half a packet
     // through one vertex and its neighbours in the vertex list, half a
     // small grid beside it.
+    // Both hits or none, at distances `ulps` apart at most.
+    let close = |a: &Option<Closest>, w: Option<Closest>, ulps| match (a, w) {
+        (Some(a), Some(w)) => a.0.to_bits().abs_diff(w.0.to_bits()) <= ulps,
+        (None, None) => true,
+        _ => false,
+    };
     let mut slipped = 0;
     let vertices: Vec<Vec3> = mesh.triangles().iter().flatten().copied().collect();
     let step = (vertices.len() / 64).max(1);
@@ -221,11 +228,6 @@ fn coherent_packets(name: &str, mesh: &Triangles, paths: &[CpuSimd], lo: Vec3, h
                 // vertex one ulp away at most). obvhs's walk lets some of
                 // these rays through.
                 for (&(o, d, _), a) in batch.iter().zip(&alone) {
-                    let close = |a: &Option<Closest>, w: Option<Closest>, ulps| match (a, w) {
-                        (Some(a), Some(w)) => a.0.to_bits().abs_diff(w.0.to_bits()) <= ulps,
-                        (None, None) => true,
-                        _ => false,
-                    };
                     // (Testing every triangle for each ray obvhs lets
                     // through is slow: a quarter of the packets, and not on
                     // the 2M wall.)

@@ -417,9 +417,9 @@ mod avx2 {
     /// The packet's rays as intervals (per axis the least and greatest
     /// origin and inverse direction, and the least `tmin`), where they
     /// share the direction's sign on every axis and have finite origins
-    /// and finite, non-zero inverse directions. A child box is tested against it with interval
-    /// arithmetic, all eight at once, before its rays are tested one by
-    /// one.
+    /// and finite, non-zero inverse directions. A node's child boxes are
+    /// tested against it with interval arithmetic, all eight at once,
+    /// before its rays are tested one by one.
     ///
     /// The test culls no child a ray enters: a ray's computed entry on an
     /// axis is `(plane - o) * inv`, rounded twice, which is monotonic in
@@ -449,7 +449,7 @@ mod avx2 {
                 if r.near_rows() != rows || !r.origin.is_finite() || !inv.is_finite() || inv.cmpeq(Vec3::ZERO).any() {
                     return None;
                 }
-                for (k, v) in r.origin.to_array().into_iter().chain(r.inv_dir.to_array()).enumerate() {
+                for (k, v) in r.origin.to_array().into_iter().chain(inv.to_array()).enumerate() {
                     lo[k] = lo[k].min(v);
                     hi[k] = hi[k].max(v);
                 }
