@@ -5,7 +5,7 @@
 
 use super::super::{ExceptionRecord, LaunchReport};
 use super::bind::{AttributeType, Linked, Program};
-use super::triangle::triangle_builtins;
+use super::triangle::{geometric_normal, triangle_builtins};
 use crate::accel::cache::NodeAccel;
 use crate::accel::wide::isa::{Isa, walk_on};
 use crate::accel::wide::kernels::WalkRay;
@@ -532,7 +532,8 @@ impl<'a> Lane<'a> {
         xf: Option<&Xf>,
     ) {
         let flags = s.flags;
-        let front = || ray.direction.dot((b - a).cross(c - a)) < 0.0;
+        let normal = geometric_normal(&[a, b, c]);
+        let front = || ray.direction.dot(normal) < 0.0;
         if flags & (RAY_FLAG_CULL_FRONT_FACING | RAY_FLAG_CULL_BACK_FACING) != 0 {
             let front = front();
             if (front && flags & RAY_FLAG_CULL_FRONT_FACING != 0) || (!front && flags & RAY_FLAG_CULL_BACK_FACING != 0)
@@ -551,7 +552,7 @@ impl<'a> Lane<'a> {
             && let (_, Some(ah)) = &per_ray[s.ray_type as usize]
         {
             let attributes = ah.attributes.as_ref().map(|ty| {
-                let hit = triangle_builtins(mesh, prim, &[a, b, c], u, v);
+                let hit = triangle_builtins(mesh, prim, normal, u, v);
                 self.attributes_of(ty, Some(&hit))
             });
             let kind = if front() { HIT_TRIANGLE_FRONT } else { HIT_TRIANGLE_BACK };
@@ -691,13 +692,17 @@ impl Tracer for Lane<'_> {
                 if let Some(ch) = closest
                     && flags & RAY_FLAG_DISABLE_CLOSESTHIT == 0
                 {
-                    if let (Some(mesh), Some(ty)) = (l.meshes[hit.instance as usize], &ch.attributes) {
+                    let mesh = l.meshes[hit.instance as usize];
+                    // The geometric normal, once: the attributes and the
+                    // side of the triangle both take it.
+                    let normal = mesh.map(|_| geometric_normal(&hit.vertices));
+                    if let (Some(mesh), Some(normal), Some(ty)) = (mesh, normal, &ch.attributes) {
                         let (u, v) = hit.barycentrics.into();
-                        let values = triangle_builtins(mesh, hit.primitive, &hit.vertices, u, v);
+                        let values = triangle_builtins(mesh, hit.primitive, normal, u, v);
                         attributes = Some(self.attributes_of(ty, Some(&values)));
                     }
-                    let hit_kind = match l.meshes[hit.instance as usize] {
-                        Some(_) => front_or_back(hit, ray.direction),
+                    let hit_kind = match normal {
+                        Some(normal) => front_or_back(hit.xf.as_ref(), normal, ray.direction),
                         None => HIT_CUSTOM,
                     };
                     let (path, group) = hit.path;
@@ -821,13 +826,13 @@ impl Tracer for Lane<'_> {
     }
 }
 
-/// The side of its triangle a committed triangle hit is on, for a ray
-/// along world direction `d`: as the wgpu kernel's `rt_hit_kind` says, in
-/// the instance's object space.
-fn front_or_back(hit: &Hit, d: Vec3) -> u32 {
-    let d = hit.xf.as_ref().map_or(d, |x| (x.world_to_object * d.extend(0.0)).truncate());
-    let [a, b, c] = hit.vertices;
-    if d.dot((b - a).cross(c - a)) < 0.0 { HIT_TRIANGLE_FRONT } else { HIT_TRIANGLE_BACK }
+/// The side of a triangle with geometric normal `normal` (in object space,
+/// [`geometric_normal`]) a ray along world direction `d` meets, under
+/// transforms `xf`: as the wgpu kernel's `rt_hit_kind` says, in the
+/// instance's object space.
+fn front_or_back(xf: Option<&Xf>, normal: Vec3, d: Vec3) -> u32 {
+    let d = xf.map_or(d, |x| (x.world_to_object * d.extend(0.0)).truncate());
+    if d.dot(normal) < 0.0 { HIT_TRIANGLE_FRONT } else { HIT_TRIANGLE_BACK }
 }
 
 /// Attributes of an intersection program that declares none.

@@ -5,20 +5,21 @@ use crate::scene::TriangleMesh;
 use glam::{Vec2, Vec3};
 use rt_std::cpu::TriangleBuiltins;
 
-/// The built-in attributes of triangle `prim` of `mesh`, with vertices `[a,
-/// b, c]`, hit at barycentrics `(u, v)` (weights of vertices 1 and 2).
+/// The unnormalised geometric normal of the triangle with vertices `[a, b,
+/// c]`: `(b - a) x (c - a)`.
 ///
 /// The vertices come by reference: copied as an argument, they went through
 /// the stack in stores and loads of other widths (a stall).
-pub(crate) fn triangle_builtins(
-    mesh: &TriangleMesh,
-    prim: u32,
-    &[a, b, c]: &[Vec3; 3],
-    u: f32,
-    v: f32,
-) -> TriangleBuiltins {
+#[inline]
+pub(crate) fn geometric_normal(&[a, b, c]: &[Vec3; 3]) -> Vec3 {
+    (b - a).cross(c - a)
+}
+
+/// The built-in attributes of triangle `prim` of `mesh`, with geometric
+/// normal `gn` ([`geometric_normal`]), hit at barycentrics `(u, v)`
+/// (weights of vertices 1 and 2).
+pub(crate) fn triangle_builtins(mesh: &TriangleMesh, prim: u32, gn: Vec3, u: f32, v: f32) -> TriangleBuiltins {
     let [i0, i1, i2] = mesh.indices[prim as usize].map(|i| i as usize);
-    let gn = (b - a).cross(c - a);
     let w = 1.0 - u - v;
     let sn = match &mesh.normals {
         Some(n) => n[i0] * w + n[i1] * u + n[i2] * v,
