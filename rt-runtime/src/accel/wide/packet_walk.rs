@@ -82,7 +82,6 @@ mod avx2 {
     use super::super::watertight::WatertightRay;
     use super::super::{LEAF, PACKET, Packet, WideBvh, leaf_of};
     use super::PACKET_RAYS;
-    use glam::Vec3;
     use std::arch::x86_64::*;
     use std::mem::MaybeUninit;
 
@@ -151,7 +150,7 @@ mod avx2 {
                 *slot = Some(soa_rays(half));
             }
         }
-        let frustum = Frustum::of(rays);
+        let frustum = Frustum::of(&lanes, n);
         let all = if n == PACKET_RAYS { u32::MAX >> (32 - PACKET_RAYS) } else { (1u32 << n) - 1 };
         // Entries: (reference, rays, the nearest entry of those rays); a
         // node pushes at most its children less the one popped next, as
@@ -438,29 +437,72 @@ mod avx2 {
     }
 
     impl Frustum {
+        /// The frustum of the first `n` rays of `lanes` (at least one).
         #[inline]
         #[target_feature(enable = "avx2,fma")]
-        fn of(rays: &[WalkRay]) -> Option<Frustum> {
-            let rows = rays.first()?.near_rows();
-            let (mut lo, mut hi) = ([f32::INFINITY; 6], [f32::NEG_INFINITY; 6]);
-            let mut tmin = f32::INFINITY;
-            for r in rays {
-                let inv = r.inv_dir;
-                if r.near_rows() != rows || !r.origin.is_finite() || !inv.is_finite() || inv.cmpeq(Vec3::ZERO).any() {
-                    return None;
+        fn of(lanes: &Lanes, n: usize) -> Option<Frustum> {
+            let inf = _mm256_set1_ps(f32::INFINITY);
+            let zero = _mm256_setzero_ps();
+            let abs = |v: __m256| _mm256_andnot_ps(_mm256_set1_ps(-0.0), v);
+            // Each half's lanes that hold a ray, as a lane mask and as bits.
+            let bits = |h: usize| if n >= 8 * (h + 1) { 0xff } else { ((1u32 << n.saturating_sub(8 * h)) - 1) & 0xff };
+            let mut rows = [0usize; 3];
+            let (mut lo, mut hi) = ([[zero; 3]; 2], [[zero; 3]; 2]);
+            let mut tmin = inf;
+            for k in 0..3 {
+                let (mut negative, mut any) = (0u32, 0u32);
+                let (mut olo, mut ohi, mut ilo, mut ihi) =
+                    (inf, _mm256_set1_ps(f32::NEG_INFINITY), inf, _mm256_set1_ps(f32::NEG_INFINITY));
+                for h in 0..HALVES {
+                    let b = bits(h);
+                    if b == 0 {
+                        continue;
+                    }
+                    let active = active_lanes(b);
+                    let (o, i) = (lanes.origin[h][k], lanes.inv[h][k]);
+                    // Finite origins, finite and non-zero inverse directions.
+                    let ok = _mm256_and_ps(
+                        _mm256_and_ps(
+                            _mm256_cmp_ps::<_CMP_LT_OQ>(abs(o), inf),
+                            _mm256_cmp_ps::<_CMP_LT_OQ>(abs(i), inf),
+                        ),
+                        _mm256_cmp_ps::<_CMP_NEQ_UQ>(i, zero),
+                    );
+                    if (_mm256_movemask_ps(ok) as u32) & b != b {
+                        return None;
+                    }
+                    negative |= (_mm256_movemask_ps(i) as u32 & b) << (8 * h);
+                    any |= b << (8 * h);
+                    olo = _mm256_min_ps(olo, _mm256_blendv_ps(inf, o, active));
+                    ohi = _mm256_max_ps(ohi, _mm256_blendv_ps(_mm256_set1_ps(f32::NEG_INFINITY), o, active));
+                    ilo = _mm256_min_ps(ilo, _mm256_blendv_ps(inf, i, active));
+                    ihi = _mm256_max_ps(ihi, _mm256_blendv_ps(_mm256_set1_ps(f32::NEG_INFINITY), i, active));
                 }
-                for (k, v) in r.origin.to_array().into_iter().chain(inv.to_array()).enumerate() {
-                    lo[k] = lo[k].min(v);
-                    hi[k] = hi[k].max(v);
-                }
-                tmin = tmin.min(r.tmin);
+                // One sign of the direction on the axis for all rays.
+                rows[k] = match negative {
+                    0 => 2 * k,
+                    m if m == any => 2 * k + 1,
+                    _ => return None,
+                };
+                lo[0][k] = _mm256_set1_ps(horizontal_min(olo));
+                hi[0][k] = _mm256_set1_ps(horizontal_max(ohi));
+                lo[1][k] = _mm256_set1_ps(horizontal_min(ilo));
+                hi[1][k] = _mm256_set1_ps(horizontal_max(ihi));
             }
-            let splat = |v: &[f32]| [_mm256_set1_ps(v[0]), _mm256_set1_ps(v[1]), _mm256_set1_ps(v[2])];
+            for h in 0..HALVES {
+                let b = bits(h);
+                if b != 0 {
+                    // (A NaN tmin is passed over, as `f32::min` does.)
+                    let t = lanes.tmin[h];
+                    let valid = _mm256_and_ps(active_lanes(b), _mm256_cmp_ps::<_CMP_ORD_Q>(t, t));
+                    tmin = _mm256_min_ps(tmin, _mm256_blendv_ps(inf, t, valid));
+                }
+            }
             Some(Frustum {
                 rows,
-                origin: [splat(&lo[..3]), splat(&hi[..3])],
-                inv: [splat(&lo[3..]), splat(&hi[3..])],
-                tmin: _mm256_set1_ps(tmin),
+                origin: [lo[0], hi[0]],
+                inv: [lo[1], hi[1]],
+                tmin: _mm256_set1_ps(horizontal_min(tmin)),
             })
         }
 
