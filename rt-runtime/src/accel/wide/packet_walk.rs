@@ -36,7 +36,8 @@ pub const PACKET_RAYS: usize = 16;
 /// Walks `tree` with `rays` (at most [`PACKET_RAYS`]), each up to its
 /// `tmax`. Each leaf a ray enters with a triangle hit goes to
 /// `leaf(ray, leaf, hits)`, which returns the ray's new `tmax` (the
-/// closest hit so far). The tree must have packets.
+/// closest hit so far). The tree must have packets, and each ray's
+/// triangle setup must be of that ray (its origin and tmin).
 pub(crate) fn walk_packet<F: FnMut(usize, u32, &Hits) -> f32>(
     isa: super::isa::Isa,
     tree: &WideBvh,
@@ -79,9 +80,9 @@ mod avx2 {
     use super::super::kernels::x86::{Avx2, packet4, triangle_ray};
     use super::super::kernels::{FAR_SCALE, Hits, NEAR_SLACK, WalkRay};
     use super::super::walk::{Entry, stack_len, walk_from};
-    use super::super::watertight::WatertightRay;
     use super::super::{LEAF, PACKET, Packet, WideBvh, leaf_of};
     use super::PACKET_RAYS;
+    use glam::Vec3;
     use std::arch::x86_64::*;
     use std::mem::MaybeUninit;
 
@@ -147,7 +148,7 @@ mod avx2 {
             let half = &rays[(8 * h).min(n)..(8 * h + 8).min(n)];
             let Some(first) = half.first().and_then(|r| r.triangle) else { continue };
             if half.iter().all(|r| r.triangle.is_some_and(|t| t.kz == first.kz)) {
-                *slot = Some(soa_rays(half));
+                *slot = Some(soa_rays(half, &lanes, h));
             }
         }
         let frustum = Frustum::of(&lanes, n);
@@ -292,26 +293,40 @@ mod avx2 {
     /// origin's coordinates and the shear in the permuted order, and tmin.
     #[derive(Clone, Copy)]
     struct SoaRays {
-        origin: [[f32; 8]; 3],
-        shear: [[f32; 8]; 3],
-        tmin: [f32; 8],
+        origin: [__m256; 3],
+        shear: [__m256; 3],
+        tmin: __m256,
         axes: [usize; 3],
     }
 
-    /// `rays` (one to eight, each with a triangle setup of one `kz`) by lane.
-    fn soa_rays(rays: &[WalkRay]) -> SoaRays {
-        let mut out = SoaRays { origin: [[0.0; 8]; 3], shear: [[0.0; 8]; 3], tmin: [0.0; 8], axes: [0, 1, 2] };
+    /// `rays` (one to eight, half `h` of the packet, each with a triangle
+    /// setup of one `kz`) by lane. A setup's origin and tmin are its ray's
+    /// (see [`walk_packet`](super::walk_packet)), so they are the half's
+    /// lanes, permuted; only the shear is gathered.
+    #[inline]
+    #[target_feature(enable = "avx2,fma")]
+    fn soa_rays(rays: &[WalkRay], lanes: &Lanes, h: usize) -> SoaRays {
+        let mut shear = [[0.0f32; 8]; 3];
+        let mut axes = [0, 1, 2];
         for (l, r) in rays.iter().enumerate() {
             let Some(t) = r.triangle else { continue };
-            let o = WatertightRay::permuted(t.kz, t.origin);
-            for k in 0..3 {
-                out.origin[k][l] = o[k];
-                out.shear[k][l] = t.shear[k];
+            debug_assert!(
+                Vec3::from(t.origin).to_array().map(f32::to_bits) == r.origin.to_array().map(f32::to_bits)
+                    && t.tmin.to_bits() == r.tmin.to_bits()
+            );
+            for (k, row) in shear.iter_mut().enumerate() {
+                row[l] = t.shear[k];
             }
-            out.tmin[l] = t.tmin;
-            out.axes = t.axes();
+            axes = t.axes();
         }
-        out
+        // SAFETY: each row is eight floats.
+        let load = |row: &[f32; 8]| unsafe { _mm256_loadu_ps(row.as_ptr()) };
+        SoaRays {
+            origin: axes.map(|a| lanes.origin[h][a]),
+            shear: [load(&shear[0]), load(&shear[1]), load(&shear[2])],
+            tmin: lanes.tmin[h],
+            axes,
+        }
     }
 
     /// Each of eight rays' hits with the (up to four) triangles of
@@ -323,11 +338,7 @@ mod avx2 {
     #[inline]
     #[target_feature(enable = "avx2,fma")]
     fn leaf_lanes(packet: &Packet, r: &SoaRays, limit: &[f32]) -> Option<[Hits; 8]> {
-        // SAFETY: every row read is eight floats.
-        let load = |row: &[f32; 8]| unsafe { _mm256_loadu_ps(row.as_ptr()) };
-        let origin = [load(&r.origin[0]), load(&r.origin[1]), load(&r.origin[2])];
-        let shear = [load(&r.shear[0]), load(&r.shear[1]), load(&r.shear[2])];
-        let tmin = load(&r.tmin);
+        let (origin, shear, tmin) = (r.origin, r.shear, r.tmin);
         // SAFETY: `limit` holds eight floats.
         let tmax = unsafe { _mm256_loadu_ps(limit.as_ptr()) };
         let zero = _mm256_setzero_ps();
