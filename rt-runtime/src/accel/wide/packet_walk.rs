@@ -77,7 +77,7 @@ fn one_by_one<F: FnMut(usize, u32, &Hits) -> f32>(
 
 #[cfg(target_arch = "x86_64")]
 mod avx2 {
-    use super::super::kernels::x86::{Avx2, packet4, triangle_ray};
+    use super::super::kernels::x86::{Avx2, TriangleRay, packet4, triangle_ray};
     use super::super::kernels::{FAR_SCALE, Hits, NEAR_SLACK, WalkRay};
     use super::super::walk::{Entry, stack_len, walk_from};
     use super::super::{LEAF, PACKET, Packet, WideBvh, leaf_of};
@@ -152,6 +152,7 @@ mod avx2 {
             }
         }
         let frustum = Frustum::of(&lanes, n);
+        let mut setups: [Option<TriangleRay>; PACKET_RAYS] = [None; PACKET_RAYS];
         let all = if n == PACKET_RAYS { u32::MAX >> (32 - PACKET_RAYS) } else { (1u32 << n) - 1 };
         // Entries: (reference, rays, the nearest entry of those rays); a
         // node pushes at most its children less the one popped next, as
@@ -225,8 +226,10 @@ mod avx2 {
                 while m != 0 {
                     let i = m.trailing_zeros() as usize;
                     m &= m - 1;
+                    // (Each ray's setup made once, when a leaf first needs it.)
+                    let r = setups[i].get_or_insert_with(|| triangle_ray(&rays[i]));
                     // SAFETY: the CPU has SSE (x86_64).
-                    let hits = unsafe { packet4(packet, &triangle_ray(&rays[i]), limits[i]) };
+                    let hits = unsafe { packet4(packet, r, limits[i]) };
                     if hits.mask != 0 {
                         limits[i] = leaf(i, current, &hits);
                     }
@@ -307,7 +310,7 @@ mod avx2 {
     #[target_feature(enable = "avx2,fma")]
     fn soa_rays(rays: &[WalkRay], lanes: &Lanes, h: usize) -> SoaRays {
         let mut shear = [[0.0f32; 8]; 3];
-        let mut axes = [0, 1, 2];
+        let axes = rays.first().and_then(|r| r.triangle).map_or([0, 1, 2], |t| t.axes());
         for (l, r) in rays.iter().enumerate() {
             let Some(t) = r.triangle else { continue };
             debug_assert!(
@@ -317,7 +320,6 @@ mod avx2 {
             for (k, row) in shear.iter_mut().enumerate() {
                 row[l] = t.shear[k];
             }
-            axes = t.axes();
         }
         // SAFETY: each row is eight floats.
         let load = |row: &[f32; 8]| unsafe { _mm256_loadu_ps(row.as_ptr()) };
