@@ -151,9 +151,9 @@ mod avx2 {
                 *slot = Some(soa_rays(half, &lanes, h));
             }
         }
-        let frustum = Frustum::of(&lanes, n);
-        let mut setups: [Option<TriangleRay>; PACKET_RAYS] = [None; PACKET_RAYS];
         let all = if n == PACKET_RAYS { u32::MAX >> (32 - PACKET_RAYS) } else { (1u32 << n) - 1 };
+        let frustum = Frustum::of(&lanes, all);
+        let mut setups: [Option<TriangleRay>; PACKET_RAYS] = [None; PACKET_RAYS];
         // Entries: (reference, rays, the nearest entry of those rays); a
         // node pushes at most its children less the one popped next, as
         // the single-ray walk does, so `stack_len` bounds them, and the
@@ -450,22 +450,22 @@ mod avx2 {
     }
 
     impl Frustum {
-        /// The frustum of the first `n` rays of `lanes` (at least one).
+        /// The frustum of the rays of `lanes` whose bits `all` has (at
+        /// least one).
         #[inline]
         #[target_feature(enable = "avx2,fma")]
-        fn of(lanes: &Lanes, n: usize) -> Option<Frustum> {
-            let inf = _mm256_set1_ps(f32::INFINITY);
+        fn of(lanes: &Lanes, all: u32) -> Option<Frustum> {
+            let (inf, neg_inf) = (_mm256_set1_ps(f32::INFINITY), _mm256_set1_ps(f32::NEG_INFINITY));
             let zero = _mm256_setzero_ps();
             let abs = |v: __m256| _mm256_andnot_ps(_mm256_set1_ps(-0.0), v);
-            // Each half's lanes that hold a ray, as a lane mask and as bits.
-            let bits = |h: usize| if n >= 8 * (h + 1) { 0xff } else { ((1u32 << n.saturating_sub(8 * h)) - 1) & 0xff };
+            // Each half's lanes that hold a ray.
+            let bits = |h: usize| (all >> (8 * h)) & 0xff;
             let mut rows = [0usize; 3];
             let (mut lo, mut hi) = ([[zero; 3]; 2], [[zero; 3]; 2]);
             let mut tmin = inf;
             for k in 0..3 {
-                let (mut negative, mut any) = (0u32, 0u32);
-                let (mut olo, mut ohi, mut ilo, mut ihi) =
-                    (inf, _mm256_set1_ps(f32::NEG_INFINITY), inf, _mm256_set1_ps(f32::NEG_INFINITY));
+                let mut negative = 0u32;
+                let (mut olo, mut ohi, mut ilo, mut ihi) = (inf, neg_inf, inf, neg_inf);
                 for h in 0..HALVES {
                     let b = bits(h);
                     if b == 0 {
@@ -485,16 +485,15 @@ mod avx2 {
                         return None;
                     }
                     negative |= (_mm256_movemask_ps(i) as u32 & b) << (8 * h);
-                    any |= b << (8 * h);
                     olo = _mm256_min_ps(olo, _mm256_blendv_ps(inf, o, active));
-                    ohi = _mm256_max_ps(ohi, _mm256_blendv_ps(_mm256_set1_ps(f32::NEG_INFINITY), o, active));
+                    ohi = _mm256_max_ps(ohi, _mm256_blendv_ps(neg_inf, o, active));
                     ilo = _mm256_min_ps(ilo, _mm256_blendv_ps(inf, i, active));
-                    ihi = _mm256_max_ps(ihi, _mm256_blendv_ps(_mm256_set1_ps(f32::NEG_INFINITY), i, active));
+                    ihi = _mm256_max_ps(ihi, _mm256_blendv_ps(neg_inf, i, active));
                 }
                 // One sign of the direction on the axis for all rays.
                 rows[k] = match negative {
                     0 => 2 * k,
-                    m if m == any => 2 * k + 1,
+                    m if m == all => 2 * k + 1,
                     _ => return None,
                 };
                 lo[0][k] = _mm256_set1_ps(horizontal_min(olo));

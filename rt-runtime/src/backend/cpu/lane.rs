@@ -532,8 +532,11 @@ impl<'a> Lane<'a> {
         xf: Option<&Xf>,
     ) {
         let flags = s.flags;
-        let normal = geometric_normal(&[a, b, c]);
-        let front = || ray.direction.dot(normal) < 0.0;
+        // The geometric normal, made once where culling or an any-hit
+        // program asks for it.
+        let normal = std::cell::OnceCell::new();
+        let normal = || *normal.get_or_init(|| geometric_normal(&[a, b, c]));
+        let front = || ray.direction.dot(normal()) < 0.0;
         if flags & (RAY_FLAG_CULL_FRONT_FACING | RAY_FLAG_CULL_BACK_FACING) != 0 {
             let front = front();
             if (front && flags & RAY_FLAG_CULL_FRONT_FACING != 0) || (!front && flags & RAY_FLAG_CULL_BACK_FACING != 0)
@@ -552,7 +555,7 @@ impl<'a> Lane<'a> {
             && let (_, Some(ah)) = &per_ray[s.ray_type as usize]
         {
             let attributes = ah.attributes.as_ref().map(|ty| {
-                let hit = triangle_builtins(mesh, prim, normal, u, v);
+                let hit = triangle_builtins(mesh, prim, normal(), u, v);
                 self.attributes_of(ty, Some(&hit))
             });
             let kind = if front() { HIT_TRIANGLE_FRONT } else { HIT_TRIANGLE_BACK };
