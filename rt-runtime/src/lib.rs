@@ -49,7 +49,7 @@ pub use backend::tiles::{DEFAULT_TILE_BUDGET, LaunchControl, LaunchProgress, Til
 pub use backend::wgpu::Traversal;
 pub use backend::{Backend, ExceptionRecord, LaunchReport, Timings};
 pub use buffer::{BufferType, generate_mip_levels, generate_mip_levels_3d};
-pub use context::{Context, ExceptionKind, Scope, UsageCallback};
+pub use context::{Context, ExceptionKind, MipLevels, SamplerDescriptor, SamplerExtent, Scope, UsageCallback};
 pub use error::{Result, RtError};
 pub use motion::{MotionKeys, MotionTransform, Srt};
 pub use scene::{

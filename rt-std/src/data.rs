@@ -1,7 +1,7 @@
 //! [`RtData`]: values that live in the runtime's buffer heap and variable
 //! records, with one layout for CPU and GPU (packed 32-bit words).
 
-use crate::program::{TriangleBuiltin, TypeLayout};
+use crate::layout::{TriangleBuiltin, TriangleBuiltins, TypeLayout};
 use glam::{IVec2, IVec3, IVec4, Mat2, Mat3, Mat4, UVec2, UVec3, UVec4, Vec2, Vec3, Vec4};
 
 /// A type that programs can read from variables and buffers.
@@ -198,7 +198,7 @@ pub trait Attributes: RtData + Default {
     /// `#[rt_attributes]` writes this field by field; this default goes
     /// through heap words.
     #[doc(hidden)]
-    fn set_triangle(&mut self, t: &crate::cpu::TriangleBuiltins) {
+    fn set_triangle(&mut self, t: &TriangleBuiltins) {
         self.read_words_into(&triangle_words(&Self::LAYOUT, t));
     }
 }
@@ -207,7 +207,7 @@ pub trait Attributes: RtData + Default {
 /// built-in attributes ([`Attributes::set_triangle`]), found by the fields'
 /// names and types.
 #[doc(hidden)]
-pub fn triangle_words(layout: &TypeLayout, t: &crate::cpu::TriangleBuiltins) -> Vec<u32> {
+pub fn triangle_words(layout: &TypeLayout, t: &TriangleBuiltins) -> Vec<u32> {
     let mut words = vec![0u32; layout.words as usize];
     for f in layout.fields {
         let at = f.offset_words as usize;

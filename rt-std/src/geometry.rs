@@ -3,7 +3,7 @@
 use glam::Vec3;
 
 use crate::data::RtData;
-use crate::program::{FieldLayout, TypeLayout};
+use crate::layout::{FieldLayout, TypeLayout};
 
 /// An axis-aligned box from `min` to `max` (inclusive). A bounding-box
 /// program returns one per primitive; a box with `min > max` on some axis is

@@ -149,6 +149,7 @@ pub mod cpu;
 pub mod data;
 pub mod geometry;
 pub mod intrinsics;
+pub mod layout;
 pub mod math;
 pub mod prelude;
 pub mod program;

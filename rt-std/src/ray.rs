@@ -3,7 +3,7 @@
 use glam::Vec3;
 
 use crate::data::RtData;
-use crate::program::{FieldLayout, TypeLayout};
+use crate::layout::{FieldLayout, TypeLayout};
 
 /// A ray: origin, direction, ray type and the parametric interval
 /// `(tmin, tmax)` in which intersections count.

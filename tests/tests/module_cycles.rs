@@ -486,6 +486,30 @@ fn rt_compiler_has_no_import_cycle() {
     assert_no_cycles(&crate_src("../rt-macros/compiler/src"));
 }
 
+/// Every crate of the workspace (the members of its `Cargo.toml`), each
+/// with its cycles spelled out: a crate added later is covered without a
+/// line here.
+#[test]
+fn every_crate_of_the_workspace_has_no_import_cycle() {
+    let root = crate_src("..");
+    let manifest = std::fs::read_to_string(root.join("Cargo.toml")).expect("the workspace's Cargo.toml");
+    let members = manifest
+        .lines()
+        .find_map(|l| l.trim().strip_prefix("members = ["))
+        .expect("a one-line `members = [...]` in the workspace's Cargo.toml");
+    let mut found = Vec::new();
+    let mut checked = 0;
+    for member in members.trim_end_matches(']').split(',').map(|m| m.trim().trim_matches('"')).filter(|m| !m.is_empty())
+    {
+        let src = root.join(member).join("src");
+        assert!(src.is_dir(), "workspace member {member} has no src folder");
+        checked += 1;
+        found.extend(cycles(&src).into_iter().map(|c| format!("{member}: {c}")));
+    }
+    assert!(checked >= 10, "only {checked} crates found in the workspace's members");
+    assert!(found.is_empty(), "import cycles between files:\n  {}", found.join("\n  "));
+}
+
 /// The check finds a cycle through a re-export and a `super` path, and
 /// ignores comments, strings and a parent's bare child paths.
 #[test]

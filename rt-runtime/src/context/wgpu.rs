@@ -1,0 +1,117 @@
+//! What only the wgpu backend has: its device, the statistics of its
+//! launches (encodes, pipelines, bytes moved, the linked megakernel) and
+//! the choice of its traversal. Everything a second GPU backend would need
+//! to answer is here, in one place; the CPU backend answers none of it
+//! (its statistics read zero).
+
+use super::Context;
+use crate::backend::Backend;
+use crate::backend::wgpu::Gpu;
+use crate::error::Result;
+
+impl Context {
+    /// Runs launches on a wgpu device the application already has.
+    pub fn use_wgpu_device(&mut self, device: wgpu::Device, queue: wgpu::Queue, info: wgpu::AdapterInfo) {
+        let _ = self.settle_device_buffers(None);
+        self.wgpu_backend().use_device(Gpu::from_device(device, queue, info));
+        self.run_on(Backend::Wgpu);
+    }
+
+    /// Opens the wgpu device now (launches do it on first use), returning the
+    /// adapter's description.
+    pub fn open_wgpu(&mut self) -> Result<String> {
+        self.wgpu_backend().open()
+    }
+
+    /// Testing recovery: the next wgpu launch destroys its device once its
+    /// work is submitted, as a driver reset or a removed GPU would. That
+    /// launch fails with [`RtError::DeviceLost`] and writes no outputs; the
+    /// one after opens a new device.
+    pub fn simulate_device_loss_in_next_launch(&mut self) {
+        self.wgpu_backend().lose_device_in_next_launch();
+    }
+
+    /// How many wgpu launches encoded and uploaded the scene (tables, BVH
+    /// nodes, triangles); the others found it on the device, unchanged
+    /// since, and encoded only the variables and buffers.
+    pub fn scene_encodes(&self) -> u64 {
+        self.backends().map(|b| b.stats().scene_encodes).sum()
+    }
+
+    /// How many of those encodes also encoded the geometry (geometry groups'
+    /// BVH nodes, primitive tables and triangles; meshes): the others kept
+    /// it on the device and encoded only the rest (transforms, groups,
+    /// programs, records) around it.
+    pub fn geometry_encodes(&self) -> u64 {
+        self.backends().map(|b| b.stats().geometry_encodes).sum()
+    }
+
+    /// How many wgpu pipelines (megakernel links) this context created.
+    pub fn pipelines_created(&self) -> u64 {
+        self.backends().map(|b| b.stats().pipelines_created).sum()
+    }
+
+    /// Bytes the last wgpu launch wrote to the device: the pages of the
+    /// scene and of the heap (records, buffers, textures) that changed since
+    /// the launch before, the log's counters and the launch uniform (0 before
+    /// any wgpu launch).
+    pub fn last_upload_bytes(&self) -> u64 {
+        self.backends().map(|b| b.stats().last_upload_bytes).sum()
+    }
+
+    /// Bytes the last wgpu launch read back from its device: the output
+    /// buffers (not the device-local ones, [`Context::set_buffer_device_local`]),
+    /// the log's header and what it counted, and the timestamps.
+    pub fn last_read_back_bytes(&self) -> u64 {
+        self.backends().map(|b| b.stats().last_read_back_bytes).sum()
+    }
+
+    /// The megakernel WGSL of the last wgpu launch (`RT_DUMP_WGSL=1` also
+    /// writes it to the temporary directory).
+    pub fn linked_wgsl(&self) -> Option<&str> {
+        self.backends().find_map(|b| b.stats().linked_wgsl)
+    }
+
+    /// How the wgpu backend walks the scene: [`Traversal::Auto`] (the
+    /// default) takes hardware ray queries where a GPU has them and the
+    /// scene allows (no selectors; masks along each path that one 8-bit
+    /// mask says), else the compute traversal (also on software adapters
+    /// such as lavapipe, whose ray queries are slower than it), and reads
+    /// `RT_TRAVERSAL=compute|rayquery`; [`Traversal::RayQuery`] on an
+    /// adapter without ray queries fails the launch with an error naming
+    /// the adapter. The CPU backend ignores it.
+    ///
+    /// [`Traversal`]: crate::Traversal
+    /// [`Traversal::Auto`]: crate::Traversal::Auto
+    /// [`Traversal::RayQuery`]: crate::Traversal::RayQuery
+    pub fn set_traversal(&mut self, traversal: crate::Traversal) {
+        self.settings.traversal = traversal;
+    }
+
+    /// The traversal [`Context::set_traversal`] asked for.
+    pub fn traversal_setting(&self) -> crate::Traversal {
+        self.settings.traversal
+    }
+
+    /// The traversal the last wgpu launch used (`Compute` or `RayQuery`)
+    /// and why; None before any wgpu launch.
+    pub fn traversal(&self) -> Option<(crate::Traversal, &str)> {
+        self.backends().find_map(|b| b.stats().traversal)
+    }
+
+    /// How many BLASes (one per kind of geometry in a geometry group) and
+    /// TLASes (one per traced root) the ray-query traversal built: a moved
+    /// transform rebuilds TLASes only, moved vertices the BLASes over them.
+    pub fn ray_query_builds(&self) -> (u64, u64) {
+        self.backends().fold((0, 0), |(b, t), s| (b + s.stats().blas_builds, t + s.stats().tlas_builds))
+    }
+
+    /// Per ray type, whether the last launch's ray-query traces of that type
+    /// took the opaque path (the query forced opaque: no traced geometry
+    /// has an any-hit program for the type, every material index is in
+    /// range, so triangles commit without reaching the kernel); `None`
+    /// unless the last launch used the ray-query traversal.
+    pub fn ray_query_opaque_ray_types(&self) -> Option<Vec<bool>> {
+        self.backends().find_map(|s| s.stats().opaque_ray_types.map(<[bool]>::to_vec))
+    }
+}
