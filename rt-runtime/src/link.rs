@@ -13,7 +13,7 @@ pub(crate) mod instances;
 
 use crate::buffer::SamplerShape;
 use crate::error::{Result, RtError};
-use crate::scene::{GeometryKind, NodeId, NodeKind, ProgramId};
+use crate::scene::{GeometryKind, NodeId, ProgramId};
 use crate::scene::{Scene, Scope};
 use crate::vars::{ScopeKind, VarValue, lookup_order};
 use rt_std::bindless::{BINDLESS_LAYOUT, RW_BINDLESS_LAYOUT};
@@ -275,36 +275,6 @@ pub fn check_types(scene: &Scene) -> Result<()> {
         }
     }
     Ok(())
-}
-
-/// The nodes reachable from `roots`, children before parents; a cycle is an
-/// error.
-pub fn nodes_post_order(scene: &Scene) -> Result<Vec<NodeId>> {
-    let mut state = vec![0u8; scene.nodes.len()];
-    let mut order = Vec::new();
-    fn visit(scene: &Scene, n: usize, state: &mut [u8], order: &mut Vec<NodeId>) -> Result<()> {
-        match state[n] {
-            1 => return Err(RtError::GraphCycle { node: n as u32 }),
-            2 => return Ok(()),
-            _ => {}
-        }
-        state[n] = 1;
-        let children: Vec<NodeId> = match &scene.nodes[n].kind {
-            NodeKind::Group { children, .. } | NodeKind::Selector { children, .. } => children.clone(),
-            NodeKind::Transform { child, .. } => vec![*child],
-            NodeKind::GeometryGroup { .. } => Vec::new(),
-        };
-        for c in children {
-            visit(scene, c.index() as usize, state, order)?;
-        }
-        state[n] = 2;
-        order.push(NodeId(n as u32));
-        Ok(())
-    }
-    for n in 0..scene.nodes.len() {
-        visit(scene, n, &mut state, &mut order)?;
-    }
-    Ok(order)
 }
 
 /// The variable references of a call, without allocating.

@@ -4,7 +4,6 @@
 //! ([`crate::handles`]) are small copyable ids into its tables. The context
 //! owns one and edits it; backends read it.
 
-use crate::accel::Acceleration;
 use crate::buffer::{BufferRec, SamplerRec};
 use crate::error::{Result, RtError};
 use crate::motion::MotionTransform;
@@ -282,5 +281,85 @@ impl Scene {
             Scope::Material(m) => &mut self.materials.get_mut(m.0 as usize).ok_or_else(missing)?.vars,
             Scope::Node(n) => &mut self.nodes.get_mut(n.0 as usize).ok_or_else(missing)?.vars,
         })
+    }
+}
+
+/// The nodes reachable from `roots`, children before parents; a cycle is an
+/// error.
+pub(crate) fn nodes_post_order(scene: &Scene) -> Result<Vec<NodeId>> {
+    let mut state = vec![0u8; scene.nodes.len()];
+    let mut order = Vec::new();
+    fn visit(scene: &Scene, n: usize, state: &mut [u8], order: &mut Vec<NodeId>) -> Result<()> {
+        match state[n] {
+            1 => return Err(RtError::GraphCycle { node: n as u32 }),
+            2 => return Ok(()),
+            _ => {}
+        }
+        state[n] = 1;
+        let children: Vec<NodeId> = match &scene.nodes[n].kind {
+            NodeKind::Group { children, .. } | NodeKind::Selector { children, .. } => children.clone(),
+            NodeKind::Transform { child, .. } => vec![*child],
+            NodeKind::GeometryGroup { .. } => Vec::new(),
+        };
+        for c in children {
+            visit(scene, c.index() as usize, state, order)?;
+        }
+        state[n] = 2;
+        order.push(NodeId(n as u32));
+        Ok(())
+    }
+    for n in 0..scene.nodes.len() {
+        visit(scene, n, &mut state, &mut order)?;
+    }
+    Ok(order)
+}
+
+/// An acceleration builder, by OptiX's names (how each maps onto obvhs:
+/// [`crate::accel`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Builder {
+    Bvh,
+    Sbvh,
+    MedianBvh,
+    Lbvh,
+    TriangleKdTree,
+    NoAccel,
+}
+
+impl Builder {
+    pub fn name(self) -> &'static str {
+        match self {
+            Builder::Bvh => "Bvh",
+            Builder::Sbvh => "Sbvh",
+            Builder::MedianBvh => "MedianBvh",
+            Builder::Lbvh => "Lbvh",
+            Builder::TriangleKdTree => "TriangleKdTree",
+            Builder::NoAccel => "NoAccel",
+        }
+    }
+
+    /// Parses OptiX's builder names.
+    pub fn from_name(name: &str) -> Option<Builder> {
+        [Builder::Bvh, Builder::Sbvh, Builder::MedianBvh, Builder::Lbvh, Builder::TriangleKdTree, Builder::NoAccel]
+            .into_iter()
+            .find(|b| b.name() == name)
+    }
+}
+
+/// An acceleration structure attached to a geometry group or group.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Acceleration {
+    pub builder: Builder,
+}
+
+impl Acceleration {
+    pub fn new(builder: Builder) -> Self {
+        Acceleration { builder }
+    }
+}
+
+impl Default for Acceleration {
+    fn default() -> Self {
+        Acceleration::new(Builder::Bvh)
     }
 }

@@ -241,7 +241,7 @@ pub(crate) fn build_accels(scene: &Scene, cache: &mut AccelCache, trees: Trees) 
     let form = trees.groups;
     let widened = trees.cwbvh;
     let gg_form = if widened || trees.simd { TreeForm::Wide } else { form };
-    let order = link::nodes_post_order(scene)?;
+    let order = crate::scene::nodes_post_order(scene)?;
     let mut built: Vec<Option<NodeAccel>> = std::mem::take(&mut cache.nodes);
     built.resize_with(scene.nodes.len(), || None);
     let (mut any_built, mut any_refit) = (false, false);

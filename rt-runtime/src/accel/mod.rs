@@ -9,7 +9,9 @@
 //! | `TriangleKdTree` | — | obvhs builds no kd-trees: an error, not a silent remap |
 //! | `NoAccel` | a single leaf holding every primitive | linear scan |
 //!
-//! Files: [`bvh`] builds, refits and walks one tree (obvhs's BVH2, widened
+//! The descriptor a group carries ([`Acceleration`], [`Builder`]) is the
+//! scene's (`scene.rs`), so the scene names it without importing this
+//! folder. Files: [`bvh`] builds, refits and walks one tree (obvhs's BVH2, widened
 //! to its CWBVH for the wgpu backend); [`wide`] is the CPU backend's SIMD
 //! layout of a geometry group's tree (8-wide nodes, 4-triangle leaves) and
 //! its walk; [`cache`] keeps a scene's trees across launches, building
@@ -20,53 +22,5 @@ pub(crate) mod bvh;
 pub(crate) mod cache;
 pub mod wide;
 
+pub use crate::scene::{Acceleration, Builder};
 pub use wide::isa::Isa as CpuSimd;
-
-/// An acceleration builder, by OptiX's names.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Builder {
-    Bvh,
-    Sbvh,
-    MedianBvh,
-    Lbvh,
-    TriangleKdTree,
-    NoAccel,
-}
-
-impl Builder {
-    pub fn name(self) -> &'static str {
-        match self {
-            Builder::Bvh => "Bvh",
-            Builder::Sbvh => "Sbvh",
-            Builder::MedianBvh => "MedianBvh",
-            Builder::Lbvh => "Lbvh",
-            Builder::TriangleKdTree => "TriangleKdTree",
-            Builder::NoAccel => "NoAccel",
-        }
-    }
-
-    /// Parses OptiX's builder names.
-    pub fn from_name(name: &str) -> Option<Builder> {
-        [Builder::Bvh, Builder::Sbvh, Builder::MedianBvh, Builder::Lbvh, Builder::TriangleKdTree, Builder::NoAccel]
-            .into_iter()
-            .find(|b| b.name() == name)
-    }
-}
-
-/// An acceleration structure attached to a geometry group or group.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Acceleration {
-    pub builder: Builder,
-}
-
-impl Acceleration {
-    pub fn new(builder: Builder) -> Self {
-        Acceleration { builder }
-    }
-}
-
-impl Default for Acceleration {
-    fn default() -> Self {
-        Acceleration::new(Builder::Bvh)
-    }
-}

@@ -54,7 +54,7 @@ impl Numbering {
     /// Counts every node's instances (children before parents).
     pub(crate) fn of(scene: &Scene) -> Result<Numbering> {
         let mut leaves = vec![0u32; scene.nodes.len()];
-        for n in super::nodes_post_order(scene)? {
+        for n in crate::scene::nodes_post_order(scene)? {
             let count = match &scene.nodes[n.index() as usize].kind {
                 NodeKind::GeometryGroup { children, .. } => children.len() as u32,
                 NodeKind::Transform { child, .. } => leaves[child.index() as usize],

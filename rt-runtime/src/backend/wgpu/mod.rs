@@ -80,6 +80,7 @@ pub(crate) mod compute;
 pub(crate) mod device;
 pub(crate) mod device_local;
 pub(crate) mod dispatch;
+pub(crate) mod encode;
 pub(crate) mod heap;
 pub mod kernel;
 pub(crate) mod pipeline;
@@ -88,9 +89,9 @@ pub(crate) mod readback;
 pub(crate) mod resident;
 
 pub use capture::capture_launches_to;
-pub use compute::geometry::cwbvh_node_words;
 pub use device::{Gpu, WgpuDevice, instance, probe, probe_ray_queries};
 pub use device_local::DeviceBuffer;
+pub use encode::geometry::cwbvh_node_words;
 pub use rayquery::Traversal;
 
 use super::waiting::{self, LocalBoxFuture};
@@ -100,7 +101,7 @@ use crate::accel::cache::Trees;
 use crate::buffer::BufferRec;
 use crate::error::{Result, RtError};
 use crate::scene::Scene;
-use compute::scene::{Encoding, SceneKey};
+use encode::{Encoding, SceneKey};
 use glam::UVec2;
 use readback::{LOG_EXCEPTIONS, LOG_PRINT_WORDS};
 use resident::DeviceLocal;
@@ -295,7 +296,7 @@ async fn launch_on_device(
     let key = SceneKey::of(l.scene, l.accels, l.entry, scene_bindings, slots);
     let device_sections: Vec<Option<&[u32]>> =
         gpu.resident.scene.iter().map(|m| m.as_ref().map(|m| &m.words[..])).collect();
-    let encoding = compute::scene::encode_launch(l, key, gpu.resident.held.as_ref(), &device_sections)?;
+    let encoding = encode::encode_launch(l, key, gpu.resident.held.as_ref(), &device_sections)?;
     let t2 = web_time::Instant::now();
     let (wgsl, warning) = link_kernel(l.entry, &encoding)?;
     *last_wgsl = Some(wgsl.clone());
@@ -315,7 +316,7 @@ async fn launch_on_device(
     }
     let mut parts = vec![("the heap (variables, buffers, textures)".to_string(), heap.len())];
     let max_buffers = gpu.limits.max_storage_buffers_per_shader_stage;
-    let fresh = fresh.map(|e| compute::scene::place_scene(e, key, &wgsl, scene_bindings, max_buffers, &mut parts));
+    let fresh = fresh.map(|e| encode::place_scene(e, key, &wgsl, scene_bindings, max_buffers, &mut parts));
     check_bindings(gpu, &parts)?;
     pipeline::ensure(gpu, &wgsl, slots, warning.as_deref()).await?;
     let t3 = web_time::Instant::now();

@@ -1,7 +1,7 @@
 //! Residency: the buffers a context keeps on its device between launches,
 //! mirrored on the host so a launch uploads only the pages that changed.
 
-use super::compute::scene::{NewScene, ResidentScene};
+use super::encode::{NewScene, ResidentScene};
 use super::kernel::SCENE_SECTIONS;
 use std::ops::Range;
 use wgpu::util::DeviceExt;

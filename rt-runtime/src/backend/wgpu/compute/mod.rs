@@ -1,5 +1,5 @@
-//! The compute traversal: the scene encoded into words ([`scene`], around
-//! the geometry part [`geometry`]) and walked by the kernel's own WGSL
+//! The compute traversal: the scene encoded into words ([`super::encode`])
+//! walked by the kernel's own WGSL
 //! (`traverse.wgsl`, `graph.wgsl`, linked by [`super::kernel`]).
 //!
 //! Traversal: every transform chain down to a geometry group is flattened
@@ -13,6 +13,3 @@
 //! The graph traversal is linked only into kernels whose scene needs it, so
 //! two-level scenes keep the lean kernel. Semantics are the CPU backend's.
 //!
-
-pub(crate) mod geometry;
-pub(crate) mod scene;

@@ -3,7 +3,7 @@
 //! the linked callables of that signature whose default raises
 //! `EXCEPTION_PROGRAM_ID_INVALID` and returns zero. A callable's `#[var]`
 //! variables come from its record, which the scene's table at header word 3
-//! locates by program index (`compute::scene`). Which callables a kernel
+//! locates by program index (`encode`). Which callables a kernel
 //! links (those of a signature some linked program calls, and so on through
 //! the callables' own calls) and the refusal of cycles (WGSL has no
 //! recursion) are the link's, the same for every backend

@@ -8,7 +8,7 @@
 //! ([`Unsupported`] says which node and why).
 
 use crate::backend::wgpu::chain::Chain;
-use crate::backend::wgpu::compute::scene::{instances, kept_masks};
+use crate::backend::wgpu::encode::{instances, kept_masks};
 use crate::error::Result;
 use crate::link::instances::{InstancePath, Numbering};
 use crate::scene::{GeometryId, GeometryKind, NodeId, NodeKind, Scene};
