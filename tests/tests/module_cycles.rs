@@ -486,6 +486,44 @@ fn rt_compiler_has_no_import_cycle() {
     assert_no_cycles(&crate_src("../rt-macros/compiler/src"));
 }
 
+/// rt-runtime's top-level modules, bottom first, as ARCHITECTURE.md
+/// states them: a file may name its own module's files and those of the
+/// layers below, never a layer above. (A doc link is a comment, not an
+/// import.)
+const RT_RUNTIME_LAYERS: &[&[&str]] = &[
+    &["error", "handles", "motion", "panics", "texels", "buffer"],
+    &["vars", "vertex_motion"],
+    &["scene"],
+    &["link"],
+    &["accel"],
+    &["backend"],
+    &["usage"],
+    &["context", "image_out"],
+    &[""],
+];
+
+#[test]
+fn rt_runtime_imports_run_one_way() {
+    let src = crate_src("../rt-runtime/src");
+    let krate = Crate::load(&src);
+    let layer = |m: &ModPath| {
+        let top = m.first().map_or("", String::as_str);
+        RT_RUNTIME_LAYERS
+            .iter()
+            .position(|l| l.contains(&top))
+            .unwrap_or_else(|| panic!("rt-runtime's module `{top}` has no layer in RT_RUNTIME_LAYERS: add it"))
+    };
+    let mut upward = Vec::new();
+    for (from, deps) in krate.graph() {
+        for to in deps.iter().filter(|to| krate.files.contains_key(*to)) {
+            if layer(to) > layer(&from) {
+                upward.push(format!("{} names {}", krate.name(&from, &src), krate.name(to, &src)));
+            }
+        }
+    }
+    assert!(upward.is_empty(), "imports that run up rt-runtime's layers:\n  {}", upward.join("\n  "));
+}
+
 /// Every crate of the workspace (the members of its `Cargo.toml`), each
 /// with its cycles spelled out: a crate added later is covered without a
 /// line here.
