@@ -31,6 +31,8 @@
 
 mod bind;
 mod lane;
+mod tracer;
+mod traverse;
 mod triangle;
 
 use super::{Launch, LaunchBackend, LaunchReport};

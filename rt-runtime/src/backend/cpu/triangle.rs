@@ -3,7 +3,7 @@
 
 use crate::scene::TriangleMesh;
 use glam::{Vec2, Vec3};
-use rt_std::cpu::TriangleBuiltins;
+use rt_std::cpu::{HIT_TRIANGLE_BACK, HIT_TRIANGLE_FRONT, Transforms, TriangleBuiltins};
 
 /// The unnormalised geometric normal of the triangle with vertices `[a, b,
 /// c]`: `(b - a) x (c - a)`.
@@ -30,4 +30,13 @@ pub(crate) fn triangle_builtins(mesh: &TriangleMesh, prim: u32, gn: Vec3, u: f32
         None => Vec2::new(u, v),
     };
     TriangleBuiltins { geometric_normal: gn, shading_normal: sn, texcoord: uv, barycentrics: Vec2::new(u, v) }
+}
+
+/// The side of a triangle with geometric normal `normal` (in object space,
+/// [`geometric_normal`]) a ray along world direction `d` meets, under
+/// transforms `xf`: as the wgpu kernel's `rt_hit_kind` says, in the
+/// instance's object space.
+pub(crate) fn front_or_back(xf: Option<&Transforms>, normal: Vec3, d: Vec3) -> u32 {
+    let d = xf.map_or(d, |x| (x.world_to_object * d.extend(0.0)).truncate());
+    if d.dot(normal) < 0.0 { HIT_TRIANGLE_FRONT } else { HIT_TRIANGLE_BACK }
 }

@@ -1,0 +1,196 @@
+//! A lane as rt-std's [`Tracer`]: `rt_trace` and the other intrinsics that
+//! need the runtime (reporting intersections, callables, bindless ids,
+//! prints), served while its programs run as Rust.
+
+use super::lane::{Hit, Lane, NoAttributes, Search, set_current_ray, set_transforms};
+use super::triangle::front_or_back;
+use super::triangle::{geometric_normal, triangle_builtins};
+use crate::handles::{BufferId, SamplerId};
+use crate::link::instances::{self, InstancePath};
+use crate::scene::{NodeId, ProgramId};
+use glam::{Vec2, Vec3};
+use rt_std::cpu::{AnyAttributes, HIT_CUSTOM, Tracer};
+use rt_std::*;
+use std::any::Any;
+use std::cell::{Cell, RefCell};
+
+impl Tracer for Lane<'_> {
+    fn trace(&self, object: Object, ray: &Ray, payload: &mut dyn Any, flags: u32, mask: u32, time: f32) {
+        if self.exception.get().is_some() || rt_std::cpu::pending_exception().is_some() {
+            return;
+        }
+        let depth = self.depth.get();
+        let l = self.l;
+        if depth >= l.settings.max_trace_depth {
+            rt_std::cpu::raise(EXCEPTION_TRACE_DEPTH_EXCEEDED);
+            return;
+        }
+        let node = NodeId(object.id);
+        if object.id as usize >= l.scene.nodes.len() || ray.ray_type >= l.scene.ray_type_count() {
+            rt_std::cpu::raise(EXCEPTION_INVALID_RAY);
+            return;
+        }
+        self.depth.set(depth + 1);
+        self.rays.set(self.rays.get() + 1);
+        let outer_time = self.time.replace(time);
+        let mut search = Search {
+            ray_type: ray.ray_type,
+            flags,
+            mask: mask & 0xff,
+            world_ray: ray,
+            payload: payload as *mut dyn Any,
+            tmax: Cell::new(ray.tmax),
+            done: Cell::new(false),
+            committed: Cell::new(None),
+            attributes: RefCell::new(None),
+            candidate: Cell::new(None),
+            candidate_t: Cell::new(None),
+            group: Cell::new((InstancePath::ROOT, node)),
+        };
+        // The pointer's lifetime is erased; it is restored below, before
+        // `search` (and the ray it borrows) go away.
+        let outer = self.search.replace((&search as *const Search<'_>).cast());
+        self.traverse(&search, node, None, mask & 0xff, InstancePath::ROOT);
+        self.search.set(outer);
+        let mut attributes = search.attributes.take();
+        // Read in place: a copy of the hit would load the fields its last
+        // commit stored one by one in wider words (a stall).
+        match search.committed.get_mut() {
+            Some(hit) => {
+                let (closest, _) = &l.hits[hit.instance as usize][hit.material as usize][ray.ray_type as usize];
+                if let Some(ch) = closest
+                    && flags & RAY_FLAG_DISABLE_CLOSESTHIT == 0
+                {
+                    let mesh = l.meshes[hit.instance as usize];
+                    // The geometric normal, once: the attributes and the
+                    // side of the triangle both take it.
+                    let normal = mesh.map(|_| geometric_normal(&hit.vertices));
+                    if let (Some(mesh), Some(normal), Some(ty)) = (mesh, normal, &ch.attributes) {
+                        let (u, v) = hit.barycentrics.into();
+                        let values = triangle_builtins(mesh, hit.primitive, normal, u, v);
+                        attributes = Some(self.attributes_of(ty, Some(&values)));
+                    }
+                    let hit_kind = match normal {
+                        Some(normal) => front_or_back(hit.xf.as_ref(), normal, ray.direction),
+                        None => HIT_CUSTOM,
+                    };
+                    let (path, group) = hit.path;
+                    let (instance_index, instance_id) = instances::resolve(l.scene, path, group, hit.instance);
+                    let mut ctx = self.context();
+                    ctx.t_hit = hit.t;
+                    ctx.primitive_index = hit.primitive;
+                    ctx.hit_kind = hit_kind;
+                    ctx.ray_flags = flags;
+                    ctx.ray_mask = mask & 0xff;
+                    ctx.instance_index = instance_index;
+                    ctx.instance_id = instance_id;
+                    set_transforms(&mut ctx, hit.xf.as_ref());
+                    set_current_ray(&mut ctx, ray, hit.t);
+                    self.invoke(ch, &mut ctx, Some(payload), attributes.as_mut());
+                }
+            }
+            None => {
+                let mut ctx = self.context();
+                ctx.ray_flags = flags;
+                ctx.ray_mask = mask & 0xff;
+                set_current_ray(&mut ctx, ray, ray.tmax);
+                self.invoke(&l.miss[ray.ray_type as usize], &mut ctx, Some(payload), None);
+            }
+        }
+        if let Some(a) = attributes {
+            self.return_attributes(a);
+        }
+        self.time.set(outer_time);
+        self.depth.set(depth);
+    }
+
+    fn potential_intersection(&self, t: f32) -> bool {
+        if self.search.get().is_null() {
+            return false;
+        }
+        let s = self.search();
+        let Some(c) = s.candidate.get() else { return false };
+        let ok = t > c.object_ray.tmin && t < s.tmax.get();
+        s.candidate_t.set(ok.then_some(t));
+        if ok {
+            rt_std::cpu::context_mut(|ctx| ctx.t_hit = t);
+        }
+        ok
+    }
+
+    fn report_intersection(&self, material: u32, attributes: Option<&dyn AnyAttributes>) -> bool {
+        if self.search.get().is_null() {
+            return false;
+        }
+        let s = self.search();
+        let (Some(c), Some(t)) = (s.candidate.get(), s.candidate_t.get()) else { return false };
+        if t >= s.tmax.get() {
+            return false;
+        }
+        let gi = c.instance;
+        let Some(per_ray) = self.l.hits[gi as usize].get(material as usize) else {
+            // A material index the instance does not have: nothing to run.
+            return false;
+        };
+        let attributes = attributes.unwrap_or(&NoAttributes);
+        let mut terminate = s.flags & RAY_FLAG_TERMINATE_ON_FIRST_HIT != 0;
+        if let (_, Some(ah)) = &per_ray[s.ray_type as usize]
+            && s.flags & RAY_FLAG_DISABLE_ANYHIT == 0
+        {
+            let copy = self.copy_of(attributes);
+            match self.any_hit(s, ah, (t, HIT_CUSTOM), (gi, c.primitive), c.xf.as_ref(), Some(copy)) {
+                None => return false,
+                Some(terminated) => terminate |= terminated,
+            }
+        }
+        {
+            let mut committed = s.attributes.borrow_mut();
+            let reused = committed.as_mut().is_some_and(|a| a.copy_from(attributes));
+            if !reused && let Some(old) = committed.replace(self.copy_of(attributes)) {
+                self.return_attributes(old);
+            }
+        }
+        s.tmax.set(t);
+        s.committed.set(Some(Hit {
+            instance: gi,
+            material,
+            primitive: c.primitive,
+            t,
+            barycentrics: Vec2::ZERO,
+            vertices: [Vec3::ZERO; 3],
+            xf: c.xf,
+            path: s.group.get(),
+        }));
+        s.done.set(s.done.get() | terminate);
+        true
+    }
+
+    fn callable(&self, id: u32) -> Option<&'static (dyn std::any::Any + Send + Sync)> {
+        let rec = self.l.scene.programs.get(ProgramId::from_callable_id(id)?.index() as usize)?;
+        rec.desc.callable.map(|c| c.cpu)
+    }
+
+    fn callable_variables(&self, id: u32) -> Option<&rt_std::cpu::BoundVariables<'_>> {
+        let p = ProgramId::from_callable_id(id)?;
+        self.l.callables.get(p.index() as usize)?.as_ref().map(|c| &c.vars)
+    }
+
+    fn buffer(&self, id: u32, writable: bool) -> Option<&(dyn std::any::Any + Send + Sync)> {
+        let handles = self.l.bindless.get(BufferId::from_bindless_id(id)?.index() as usize)?;
+        match writable {
+            false => Some(&*handles.read),
+            true => handles.write.as_deref(),
+        }
+    }
+
+    fn sampler(&self, id: u32) -> Option<&(dyn std::any::Any + Send + Sync)> {
+        Some(&**self.l.samplers.get(SamplerId::from_bindless_id(id)?.index() as usize)?)
+    }
+
+    fn print(&self, text: &str) {
+        let settings = self.l.settings;
+        if settings.print_enabled && settings.print_launch_index.is_none_or(|i| i == self.index.get()) {
+            self.prints.borrow_mut().push(text.to_string());
+        }
+    }
+}
