@@ -93,8 +93,23 @@ pub enum RtError {
         "programs disagree on WGSL item `{item}`: `{a}` ({a_location}) and `{b}` ({b_location}) define it differently (two types or helpers with one name?)"
     )]
     LinkConflict { item: String, a: &'static str, a_location: String, b: &'static str, b_location: String },
+    /// What the device or its driver reported, or a limit of the device
+    /// the launch does not fit.
     #[error("the wgpu backend: {0}")]
     Gpu(String),
+    /// A setting (an environment variable such as `RT_BACKEND` or
+    /// `RT_TRAVERSAL`) of a value the runtime does not know.
+    #[error("{setting} is `{value}`; expected {expected}")]
+    Config { setting: &'static str, value: String, expected: &'static str },
+    /// Something asked for (a backend, a traversal) that this build or
+    /// this adapter cannot give, and why.
+    #[error("{asked} was asked for, but {why}")]
+    Unsupported { asked: &'static str, why: String },
+    /// A blocking call where the caller cannot block (a browser page).
+    #[error(
+        "this call waits for the GPU, which a browser page cannot do in a blocking call: use Context::launch_async"
+    )]
+    WouldBlock,
     #[error(
         "the wgpu device on {adapter} was lost during the launch ({reason}); the launch wrote none of its outputs and the context's data is unchanged: the next launch opens a new device and uploads the scene again"
     )]

@@ -54,7 +54,9 @@ impl Backend {
             return match v.as_str() {
                 "cpu" => Ok((Backend::Cpu, "RT_BACKEND=cpu".into())),
                 "wgpu" => Ok((Backend::Wgpu, "RT_BACKEND=wgpu".into())),
-                other => Err(RtError::Gpu(format!("RT_BACKEND is `{other}`; expected `cpu` or `wgpu`"))),
+                other => {
+                    Err(RtError::Config { setting: "RT_BACKEND", value: other.into(), expected: "`cpu` or `wgpu`" })
+                }
             };
         }
         match wgpu::probe() {
@@ -157,8 +159,6 @@ pub(crate) struct Settings {
     pub integer_exceptions: bool,
     /// The exception kinds raised (`rt_abi::constants::exception_kind_bit`s).
     pub exceptions: u32,
-    /// How the wgpu backend walks the scene.
-    pub traversal: wgpu::Traversal,
     /// How launches are cut into tiles.
     pub tile_budget: TileBudget,
 }
@@ -171,7 +171,6 @@ impl Default for Settings {
             print_launch_index: None,
             integer_exceptions: false,
             exceptions: rt_abi::constants::ALL_EXCEPTION_KINDS,
-            traversal: wgpu::Traversal::Auto,
             tile_budget: TileBudget::default(),
         }
     }
@@ -199,32 +198,6 @@ pub(crate) struct Launch<'a> {
     /// the device in between.
     pub first_tile: bool,
     pub last_tile: bool,
-}
-
-/// What a backend counts (zero where it does not apply: the CPU backend
-/// encodes, uploads and links nothing).
-#[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct BackendStats<'a> {
-    /// Launches that encoded and uploaded the scene.
-    pub scene_encodes: u64,
-    /// Of those, the ones that encoded the geometry part too.
-    pub geometry_encodes: u64,
-    /// Pipelines (megakernel links) created.
-    pub pipelines_created: u64,
-    /// Bytes the last launch wrote to a device.
-    pub last_upload_bytes: u64,
-    /// Bytes the last launch read back from the device (wgpu).
-    pub last_read_back_bytes: u64,
-    /// The last launch's linked kernel source.
-    pub linked_wgsl: Option<&'a str>,
-    /// The wgpu backend's last traversal and why.
-    pub traversal: Option<(wgpu::Traversal, &'a str)>,
-    /// BLASes and TLASes the ray-query traversal built.
-    pub blas_builds: u64,
-    pub tlas_builds: u64,
-    /// Per ray type, whether the last ray-query launch forced its traces
-    /// opaque (none when it took the compute traversal).
-    pub opaque_ray_types: Option<&'a [bool]>,
 }
 
 /// Where launches run: implemented by the CPU backend and the wgpu
@@ -257,35 +230,27 @@ pub(crate) trait LaunchBackend: Any + Send + Sync {
     /// buffers (called after every launch, failed or not; a backend writes
     /// only what it read back whole).
     fn read_back_outputs(&mut self, buffers: &mut [BufferRec]);
-    /// What this backend counted.
-    fn stats(&self) -> BackendStats<'_>;
     /// Whether programs write the host's buffers in place during
     /// [`LaunchBackend::launch`] (the CPU backend): the launch keeps a copy
     /// of the writable buffers to put back if it fails. (A launch of
     /// several tiles keeps one on every backend: each tile's outputs reach
     /// the host's buffers before the next tile runs.)
-    fn writes_host_buffers(&self) -> bool {
-        false
-    }
-    /// Forgets what a launch that panicked may have left half done (the
-    /// wgpu backend drops its device; the next launch opens one).
-    fn after_panic(&mut self) {}
-    /// Forgets what the tiles of a launch that failed or was cancelled
-    /// wrote and did not read back (the wgpu backend uploads its heap
-    /// whole at the next launch, after putting the words its device-local
-    /// buffers had before the launch into `buffers`).
-    fn discard_unread_outputs(&mut self, _buffers: &mut [BufferRec]) {}
-    /// Writes the words of the device-local buffers this backend holds
-    /// newer than the host into `buffers`, and holds them no longer.
-    fn settle(&mut self, _buffers: &mut [BufferRec]) -> Result<()> {
-        Ok(())
-    }
-    /// The words of buffer `buffer` where this backend holds them newer
-    /// than the host, whose copy is at `host_version`: a read of the
-    /// device to await (a blocking caller runs it to the end).
-    fn device_words_async(&self, _buffer: usize, _host_version: u64) -> Option<LocalBoxFuture<'_, Result<Vec<u32>>>> {
-        None
-    }
+    fn writes_host_buffers(&self) -> bool;
+    /// Forgets what a failed launch may have left half done: after a panic
+    /// in the runtime, or after tiles whose outputs were not read back
+    /// (the wgpu backend drops its device, or its heap, so that the next
+    /// launch starts over).
+    fn recover(&mut self, failure: Failure<'_>);
+}
+
+/// How a launch failed, for [`LaunchBackend::recover`].
+pub(crate) enum Failure<'b> {
+    /// The runtime panicked inside a tile.
+    Panicked,
+    /// The launch failed or was cancelled after tiles ran whose outputs
+    /// were not read back; `buffers` are the host's, already put back as
+    /// they were before the launch.
+    Abandoned(&'b mut [BufferRec]),
 }
 
 impl Backend {
@@ -313,7 +278,10 @@ impl LaunchBackend for NoCpuBackend {
         Backend::Cpu
     }
     fn prepare(&mut self) -> Result<()> {
-        Err(RtError::Gpu("the CPU backend is not built for wasm32 (no threads there): use Backend::Wgpu".into()))
+        Err(RtError::Unsupported {
+            asked: "the CPU backend",
+            why: "it is not built for wasm32 (no threads there): use Backend::Wgpu".into(),
+        })
     }
     fn trees(&self, _: &Scene) -> Trees {
         Trees { groups: crate::accel::bvh::TreeForm::Binary, cwbvh: false, simd: false }
@@ -322,9 +290,10 @@ impl LaunchBackend for NoCpuBackend {
         self.prepare().map(|_| LaunchReport::default())
     }
     fn read_back_outputs(&mut self, _: &mut [BufferRec]) {}
-    fn stats(&self) -> BackendStats<'_> {
-        BackendStats::default()
+    fn writes_host_buffers(&self) -> bool {
+        false
     }
+    fn recover(&mut self, _: Failure<'_>) {}
 }
 
 /// The words of every buffer programs may write, by index.
@@ -423,7 +392,7 @@ pub(crate) async fn launch(
             put_back(&mut scene.buffers, kept);
         }
         if last.is_some() {
-            backend.discard_unread_outputs(&mut scene.buffers);
+            backend.recover(Failure::Abandoned(&mut scene.buffers));
         }
         return Err(e);
     }
@@ -444,7 +413,7 @@ async fn run_tile(backend: &mut dyn LaunchBackend, launch: &Launch<'_>) -> Resul
         Err(RtError::RuntimePanicked { backend: name, message: caught.message, at: caught.at })
     });
     if matches!(result, Err(RtError::RuntimePanicked { .. })) {
-        backend.after_panic();
+        backend.recover(Failure::Panicked);
     }
     result
 }
@@ -488,9 +457,10 @@ mod tests {
             panic!("a bug in a backend")
         }
         fn read_back_outputs(&mut self, _: &mut [BufferRec]) {}
-        fn stats(&self) -> BackendStats<'_> {
-            BackendStats::default()
+        fn writes_host_buffers(&self) -> bool {
+            false
         }
+        fn recover(&mut self, _: Failure<'_>) {}
     }
 
     #[test]

@@ -33,15 +33,11 @@ pub(crate) fn now<F: Future>(f: F) -> Option<F::Output> {
 }
 
 /// A blocking call of a fallible future: [`now`], failing in a browser
-/// with [`WOULD_BLOCK`] where it would have to wait for the device.
+/// with [`RtError::WouldBlock`](crate::error::RtError::WouldBlock) where it
+/// would have to wait for the device.
 pub(crate) fn block<T>(f: impl Future<Output = crate::error::Result<T>>) -> crate::error::Result<T> {
-    now(f).unwrap_or_else(|| Err(crate::error::RtError::Gpu(WOULD_BLOCK.into())))
+    now(f).unwrap_or(Err(crate::error::RtError::WouldBlock))
 }
-
-/// What a blocking call says in a browser when it would have to wait for
-/// the device.
-const WOULD_BLOCK: &str =
-    "this call waits for the GPU, which a browser page cannot do in a blocking call: use Context::launch_async";
 
 /// A value a callback delivers once (a buffer's mapping), to be awaited.
 pub(crate) struct Delivery<T> {

@@ -52,7 +52,7 @@ impl Context {
     #[doc(alias = "rtBufferGetDevicePointer")]
     pub fn wgpu_buffer(&self, b: BufferId) -> Result<DeviceBuffer> {
         self.scene.buffers.get(b.index() as usize).ok_or_else(|| RtError::InvalidHandle(format!("{b:?}")))?;
-        self.wgpu().and_then(|w| w.placed(b.index() as usize)).ok_or_else(|| RtError::BadBuffer {
+        self.wgpu_backend_ref().and_then(|w| w.placed(b.index() as usize)).ok_or_else(|| RtError::BadBuffer {
             buffer: b.index(),
             problem: "is not on a wgpu device yet: launch on the wgpu backend first".into(),
         })
@@ -61,7 +61,7 @@ impl Context {
     /// The wgpu device launches run on, once it is open (after a wgpu
     /// launch, [`Context::open_wgpu`] or [`Context::open_wgpu_for_surface`]).
     pub fn wgpu_device(&self) -> Option<WgpuDevice> {
-        self.wgpu().and_then(WgpuBackend::handles)
+        self.wgpu_backend_ref().and_then(WgpuBackend::handles)
     }
 
     /// Opens the runtime's wgpu device (its features and limits, as
@@ -83,27 +83,24 @@ impl Context {
         Ok(self.wgpu_device().expect("opened above"))
     }
 
-    /// The wgpu backend, active or parked, if the context has one.
-    fn wgpu(&self) -> Option<&WgpuBackend> {
-        self.backends().find_map(|b| (b as &dyn Any).downcast_ref::<WgpuBackend>())
-    }
-
     /// The device's words of buffer `b` where a backend holds them newer
     /// than the host does, awaiting the device's read-back.
     pub(super) async fn device_words_async(&self, b: BufferId) -> Option<Result<Vec<u32>>> {
         let rec = self.scene.buffers.get(b.index() as usize)?;
-        let read =
-            self.backends().find_map(|backend| backend.device_words_async(b.index() as usize, rec.host_version))?;
+        let read = self.wgpu_backend_ref()?.device_words_async(b.index() as usize, rec.host_version)?;
         Some(read.await)
     }
 
     /// Brings the words of device-local buffers that backends other than
-    /// `except` hold newer than the host into the host's buffers.
+    /// `except` hold newer than the host into the host's buffers (only the
+    /// wgpu backend holds any).
     pub(super) fn settle_device_buffers(&mut self, except: Option<Backend>) -> Result<()> {
         let Context { backend, parked, scene, .. } = self;
         for b in std::iter::once(backend).chain(parked.iter_mut()) {
-            if Some(b.kind()) != except {
-                b.settle(&mut scene.buffers)?;
+            if Some(b.kind()) != except
+                && let Some(wgpu) = (&mut **b as &mut dyn Any).downcast_mut::<WgpuBackend>()
+            {
+                wgpu.settle(&mut scene.buffers)?;
             }
         }
         Ok(())

@@ -110,7 +110,6 @@ impl Context {
         };
         if let Some(mut callback) = self.usage_report.take() {
             let after = self.usage_counters();
-            let stats = self.backend.stats();
             let report = UsageReport {
                 entry,
                 size: glam::UVec2::new(width, height.saturating_mul(depth)),
@@ -122,7 +121,9 @@ impl Context {
                 geometry_encoded: after[3] > before[3],
                 pipelines_created: after[4] - before[4],
                 upload_bytes: if self.backend.kind() == Backend::Wgpu && result.is_ok() { after[5] } else { 0 },
-                traversal: stats.traversal.filter(|_| self.backend.kind() == Backend::Wgpu),
+                traversal: (&*self.backend as &dyn std::any::Any)
+                    .downcast_ref::<crate::backend::wgpu::WgpuBackend>()
+                    .and_then(|b| b.stats().traversal),
             };
             callback(&report);
             self.usage_report = Some(callback);

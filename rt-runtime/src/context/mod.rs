@@ -160,6 +160,11 @@ impl Context {
         std::iter::once(&*self.backend).chain(self.parked.iter().map(|b| &**b))
     }
 
+    /// The wgpu backend, active or parked, if the context has one.
+    pub(super) fn wgpu_backend_ref(&self) -> Option<&WgpuBackend> {
+        self.backends().find_map(|b| (b as &dyn Any).downcast_ref::<WgpuBackend>())
+    }
+
     /// The wgpu backend, active or parked (a new one parked if there is
     /// none yet).
     pub(super) fn wgpu_backend(&mut self) -> &mut WgpuBackend {

@@ -35,7 +35,7 @@ impl Context {
     /// nodes, triangles); the others found it on the device, unchanged
     /// since, and encoded only the variables and buffers.
     pub fn scene_encodes(&self) -> u64 {
-        self.backends().map(|b| b.stats().scene_encodes).sum()
+        self.wgpu_backend_ref().map_or(0, |b| b.stats().scene_encodes)
     }
 
     /// How many of those encodes also encoded the geometry (geometry groups'
@@ -43,12 +43,12 @@ impl Context {
     /// it on the device and encoded only the rest (transforms, groups,
     /// programs, records) around it.
     pub fn geometry_encodes(&self) -> u64 {
-        self.backends().map(|b| b.stats().geometry_encodes).sum()
+        self.wgpu_backend_ref().map_or(0, |b| b.stats().geometry_encodes)
     }
 
     /// How many wgpu pipelines (megakernel links) this context created.
     pub fn pipelines_created(&self) -> u64 {
-        self.backends().map(|b| b.stats().pipelines_created).sum()
+        self.wgpu_backend_ref().map_or(0, |b| b.stats().pipelines_created)
     }
 
     /// Bytes the last wgpu launch wrote to the device: the pages of the
@@ -56,20 +56,20 @@ impl Context {
     /// the launch before, the log's counters and the launch uniform (0 before
     /// any wgpu launch).
     pub fn last_upload_bytes(&self) -> u64 {
-        self.backends().map(|b| b.stats().last_upload_bytes).sum()
+        self.wgpu_backend_ref().map_or(0, |b| b.stats().last_upload_bytes)
     }
 
     /// Bytes the last wgpu launch read back from its device: the output
     /// buffers (not the device-local ones, [`Context::set_buffer_device_local`]),
     /// the log's header and what it counted, and the timestamps.
     pub fn last_read_back_bytes(&self) -> u64 {
-        self.backends().map(|b| b.stats().last_read_back_bytes).sum()
+        self.wgpu_backend_ref().map_or(0, |b| b.stats().last_read_back_bytes)
     }
 
     /// The megakernel WGSL of the last wgpu launch (`RT_DUMP_WGSL=1` also
     /// writes it to the temporary directory).
     pub fn linked_wgsl(&self) -> Option<&str> {
-        self.backends().find_map(|b| b.stats().linked_wgsl)
+        self.wgpu_backend_ref().and_then(|b| b.stats().linked_wgsl)
     }
 
     /// How the wgpu backend walks the scene: [`Traversal::Auto`] (the
@@ -85,25 +85,25 @@ impl Context {
     /// [`Traversal::Auto`]: crate::Traversal::Auto
     /// [`Traversal::RayQuery`]: crate::Traversal::RayQuery
     pub fn set_traversal(&mut self, traversal: crate::Traversal) {
-        self.settings.traversal = traversal;
+        self.wgpu_backend().set_traversal(traversal);
     }
 
     /// The traversal [`Context::set_traversal`] asked for.
     pub fn traversal_setting(&self) -> crate::Traversal {
-        self.settings.traversal
+        self.wgpu_backend_ref().map_or(crate::Traversal::Auto, |b| b.traversal_setting())
     }
 
     /// The traversal the last wgpu launch used (`Compute` or `RayQuery`)
     /// and why; None before any wgpu launch.
     pub fn traversal(&self) -> Option<(crate::Traversal, &str)> {
-        self.backends().find_map(|b| b.stats().traversal)
+        self.wgpu_backend_ref().and_then(|b| b.stats().traversal)
     }
 
     /// How many BLASes (one per kind of geometry in a geometry group) and
     /// TLASes (one per traced root) the ray-query traversal built: a moved
     /// transform rebuilds TLASes only, moved vertices the BLASes over them.
     pub fn ray_query_builds(&self) -> (u64, u64) {
-        self.backends().fold((0, 0), |(b, t), s| (b + s.stats().blas_builds, t + s.stats().tlas_builds))
+        self.wgpu_backend_ref().map_or((0, 0), |b| (b.stats().blas_builds, b.stats().tlas_builds))
     }
 
     /// Per ray type, whether the last launch's ray-query traces of that type
@@ -112,6 +112,6 @@ impl Context {
     /// range, so triangles commit without reaching the kernel); `None`
     /// unless the last launch used the ray-query traversal.
     pub fn ray_query_opaque_ray_types(&self) -> Option<Vec<bool>> {
-        self.backends().find_map(|s| s.stats().opaque_ray_types.map(<[bool]>::to_vec))
+        self.wgpu_backend_ref().and_then(|b| b.stats().opaque_ray_types.map(<[bool]>::to_vec))
     }
 }

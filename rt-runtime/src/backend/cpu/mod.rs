@@ -78,9 +78,9 @@ impl LaunchBackend for CpuBackend {
     /// Programs wrote the host's buffers themselves.
     fn read_back_outputs(&mut self, _: &mut [BufferRec]) {}
 
-    fn stats(&self) -> super::BackendStats<'_> {
-        super::BackendStats::default()
-    }
+    /// Nothing outlives a launch but the host's buffers, which the launch
+    /// path puts back.
+    fn recover(&mut self, _: super::Failure<'_>) {}
 }
 
 /// The error for a panic at `index`, in `program` (`None`: in the runtime,

@@ -95,7 +95,7 @@ pub use encode::geometry::cwbvh_node_words;
 pub use rayquery::Traversal;
 
 use super::waiting::{self, LocalBoxFuture};
-use super::{BackendStats, ExceptionRecord, Launch, LaunchBackend, LaunchReport};
+use super::{ExceptionRecord, Failure, Launch, LaunchBackend, LaunchReport};
 use crate::accel::bvh::TreeForm;
 use crate::accel::cache::Trees;
 use crate::buffer::BufferRec;
@@ -116,6 +116,8 @@ pub(crate) struct WgpuBackend {
     last_traversal: Option<(Traversal, String)>,
     lose_device_in_next_launch: bool,
     pending: Option<ReadOutputs>,
+    /// How launches walk the scene.
+    traversal: Traversal,
 }
 
 /// What a launch read back of its output buffers, for the host's copies.
@@ -161,6 +163,54 @@ impl WgpuBackend {
     pub(crate) fn lose_device_in_next_launch(&mut self) {
         self.lose_device_in_next_launch = true;
     }
+    /// Writes the words of the device-local buffers this backend holds
+    /// newer than the host into `buffers`, and holds them no longer.
+    pub(crate) fn settle(&mut self, buffers: &mut [BufferRec]) -> Result<()> {
+        match self.gpu.as_mut() {
+            Some(gpu) => DeviceLocal::settle(gpu, buffers),
+            None => Ok(()),
+        }
+    }
+
+    /// The words of buffer `buffer` where this backend holds them newer
+    /// than the host, whose copy is at `host_version`: a read of the
+    /// device to await (a blocking caller runs it to the end).
+    pub(crate) fn device_words_async(
+        &self,
+        buffer: usize,
+        host_version: u64,
+    ) -> Option<LocalBoxFuture<'_, Result<Vec<u32>>>> {
+        DeviceLocal::words(self.gpu.as_ref()?, buffer, host_version)
+    }
+
+    /// How the launches walk the scene ([`Traversal`]).
+    pub(crate) fn set_traversal(&mut self, traversal: Traversal) {
+        self.traversal = traversal;
+    }
+
+    /// The traversal [`WgpuBackend::set_traversal`] asked for.
+    pub(crate) fn traversal_setting(&self) -> Traversal {
+        self.traversal
+    }
+
+    /// What this backend counted.
+    pub(crate) fn stats(&self) -> WgpuStats<'_> {
+        let gpu = self.gpu.as_ref();
+        WgpuStats {
+            scene_encodes: gpu.map_or(0, |g| g.scene_encodes),
+            geometry_encodes: gpu.map_or(0, |g| g.geometry_encodes),
+            pipelines_created: gpu.map_or(0, |g| g.pipelines_created),
+            last_upload_bytes: gpu.map_or(0, |g| g.last_upload_bytes()),
+            last_read_back_bytes: gpu.map_or(0, |g| g.resident.downloaded),
+            linked_wgsl: self.last_wgsl.as_deref(),
+            traversal: self.last_traversal.as_ref().map(|(t, why)| (*t, why.as_str())),
+            blas_builds: gpu.map_or(0, |g| g.ray_query_accels.blas_builds),
+            tlas_builds: gpu.map_or(0, |g| g.ray_query_accels.tlas_builds),
+            opaque_ray_types: gpu
+                .filter(|_| matches!(self.last_traversal, Some((Traversal::RayQuery, _))))
+                .map(|g| &g.ray_query_accels.opaque_ray_types[..]),
+        }
+    }
 }
 
 impl LaunchBackend for WgpuBackend {
@@ -168,33 +218,28 @@ impl LaunchBackend for WgpuBackend {
         super::Backend::Wgpu
     }
 
-    /// A device that was lost is dropped with everything it held, so this
-    /// launch opens a new one and uploads the scene from the host again.
-    fn after_panic(&mut self) {
-        self.gpu = None;
-        self.pending = None;
+    /// The device's words are the launch's, not the host's.
+    fn writes_host_buffers(&self) -> bool {
+        false
     }
 
-    /// The device's heap holds outputs no mirror knows of: a new heap
-    /// buffer, uploaded whole, at the next launch (device-local buffers'
-    /// words from before the launch go to the host first).
-    fn discard_unread_outputs(&mut self, buffers: &mut [BufferRec]) {
-        if let Some(gpu) = self.gpu.as_mut() {
-            DeviceLocal::restore(gpu, buffers);
-            gpu.resident.heap = None;
+    /// After a panic, the device is dropped with everything it held, so
+    /// the next launch opens a new one and uploads the scene from the host
+    /// again. After tiles whose outputs were not read back, the device's
+    /// heap holds outputs no mirror knows of: a new heap buffer, uploaded
+    /// whole, at the next launch (device-local buffers' words from before
+    /// the launch go to the host first).
+    fn recover(&mut self, failure: Failure<'_>) {
+        match failure {
+            Failure::Panicked => self.gpu = None,
+            Failure::Abandoned(buffers) => {
+                if let Some(gpu) = self.gpu.as_mut() {
+                    DeviceLocal::restore(gpu, buffers);
+                    gpu.resident.heap = None;
+                }
+            }
         }
         self.pending = None;
-    }
-
-    fn settle(&mut self, buffers: &mut [BufferRec]) -> Result<()> {
-        match self.gpu.as_mut() {
-            Some(gpu) => DeviceLocal::settle(gpu, buffers),
-            None => Ok(()),
-        }
-    }
-
-    fn device_words_async(&self, buffer: usize, host_version: u64) -> Option<LocalBoxFuture<'_, Result<Vec<u32>>>> {
-        DeviceLocal::words(self.gpu.as_ref()?, buffer, host_version)
     }
 
     fn prepare(&mut self) -> Result<()> {
@@ -229,10 +274,11 @@ impl LaunchBackend for WgpuBackend {
     fn launch_async<'a>(&'a mut self, l: &'a Launch<'a>) -> LocalBoxFuture<'a, Result<LaunchReport>> {
         Box::pin(async move {
             self.pending = None;
-            let WgpuBackend { gpu, last_wgsl, last_traversal, lose_device_in_next_launch, pending } = self;
+            let WgpuBackend { gpu, last_wgsl, last_traversal, lose_device_in_next_launch, pending, traversal } = self;
             let device = gpu.as_mut().expect("opened by prepare");
             let result =
-                launch_on_device(device, last_wgsl, last_traversal, lose_device_in_next_launch, pending, l).await;
+                launch_on_device(device, last_wgsl, last_traversal, *traversal, lose_device_in_next_launch, pending, l)
+                    .await;
             if matches!(result, Err(RtError::DeviceLost { .. })) {
                 self.gpu = None;
             }
@@ -248,24 +294,6 @@ impl LaunchBackend for WgpuBackend {
             at += n;
         }
     }
-
-    fn stats(&self) -> BackendStats<'_> {
-        let gpu = self.gpu.as_ref();
-        BackendStats {
-            scene_encodes: gpu.map_or(0, |g| g.scene_encodes),
-            geometry_encodes: gpu.map_or(0, |g| g.geometry_encodes),
-            pipelines_created: gpu.map_or(0, |g| g.pipelines_created),
-            last_upload_bytes: gpu.map_or(0, |g| g.last_upload_bytes()),
-            last_read_back_bytes: gpu.map_or(0, |g| g.resident.downloaded),
-            linked_wgsl: self.last_wgsl.as_deref(),
-            traversal: self.last_traversal.as_ref().map(|(t, why)| (*t, why.as_str())),
-            blas_builds: gpu.map_or(0, |g| g.ray_query_accels.blas_builds),
-            tlas_builds: gpu.map_or(0, |g| g.ray_query_accels.tlas_builds),
-            opaque_ray_types: gpu
-                .filter(|_| matches!(self.last_traversal, Some((Traversal::RayQuery, _))))
-                .map(|g| &g.ray_query_accels.opaque_ray_types[..]),
-        }
-    }
 }
 
 /// Runs launch `l` on `gpu`, phase by phase: encode (the scene unless the
@@ -276,6 +304,7 @@ async fn launch_on_device(
     gpu: &mut Gpu,
     last_wgsl: &mut Option<String>,
     last_traversal: &mut Option<(Traversal, String)>,
+    traversal: Traversal,
     lose_device: &mut bool,
     pending: &mut Option<ReadOutputs>,
     l: &Launch<'_>,
@@ -284,7 +313,7 @@ async fn launch_on_device(
     let scene_bindings = gpu.scene_bindings;
     // The scene, unless the device holds this one already (same structure,
     // same acceleration structures): then only the heap is encoded.
-    let plan = rayquery::plan(l.scene, gpu, l.settings.traversal)?;
+    let plan = rayquery::plan(l.scene, gpu, traversal)?;
     let slots = match &plan {
         rayquery::Plan::RayQuery(flat) => flat.roots.len() as u32,
         rayquery::Plan::Compute(_) => 0,
@@ -472,4 +501,29 @@ fn size(bytes: u64) -> String {
         b if b >= MIB => format!("{:.1} MiB", b as f64 / MIB as f64),
         b => format!("{} KiB", b.div_ceil(1 << 10)),
     }
+}
+
+/// What the wgpu backend counts ([`WgpuBackend::stats`]).
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct WgpuStats<'a> {
+    /// Launches that encoded and uploaded the scene.
+    pub scene_encodes: u64,
+    /// Of those, the ones that encoded the geometry part too.
+    pub geometry_encodes: u64,
+    /// Pipelines (megakernel links) created.
+    pub pipelines_created: u64,
+    /// Bytes the last launch wrote to a device.
+    pub last_upload_bytes: u64,
+    /// Bytes the last launch read back from the device (wgpu).
+    pub last_read_back_bytes: u64,
+    /// The last launch's linked kernel source.
+    pub linked_wgsl: Option<&'a str>,
+    /// The wgpu backend's last traversal and why.
+    pub traversal: Option<(Traversal, &'a str)>,
+    /// BLASes and TLASes the ray-query traversal built.
+    pub blas_builds: u64,
+    pub tlas_builds: u64,
+    /// Per ray type, whether the last ray-query launch forced its traces
+    /// opaque (none when it took the compute traversal).
+    pub opaque_ray_types: Option<&'a [bool]>,
 }

@@ -62,7 +62,7 @@ impl Traversal {
         if let Ok(v) = std::env::var("RT_TRAVERSAL") {
             return match Traversal::from_name(&v) {
                 Some(Traversal::Auto) | None => {
-                    Err(RtError::Gpu(format!("RT_TRAVERSAL is `{v}`; expected `compute` or `rayquery`")))
+                    Err(RtError::Config { setting: "RT_TRAVERSAL", value: v, expected: "`compute` or `rayquery`" })
                 }
                 Some(t) => Ok((t, format!("RT_TRAVERSAL={v}"))),
             };
@@ -104,8 +104,11 @@ pub(crate) enum Plan {
 /// `asked` (`Auto` reads `RT_TRAVERSAL`).
 pub(crate) fn plan(scene: &Scene, gpu: &Gpu, asked: Traversal) -> Result<Plan> {
     let asked = match (asked, std::env::var("RT_TRAVERSAL")) {
-        (Traversal::Auto, Ok(v)) => Traversal::from_name(&v)
-            .ok_or_else(|| RtError::Gpu(format!("RT_TRAVERSAL is `{v}`; expected `auto`, `compute` or `rayquery`")))?,
+        (Traversal::Auto, Ok(v)) => Traversal::from_name(&v).ok_or_else(|| RtError::Config {
+            setting: "RT_TRAVERSAL",
+            value: v.clone(),
+            expected: "`auto`, `compute` or `rayquery`",
+        })?,
         (asked, _) => asked,
     };
     if asked == Traversal::Compute {
@@ -117,7 +120,7 @@ pub(crate) fn plan(scene: &Scene, gpu: &Gpu, asked: Traversal) -> Result<Plan> {
     if !gpu.ray_query {
         let why = format!("{} has no ray queries (wgpu::Features::EXPERIMENTAL_RAY_QUERY)", gpu.describe());
         if asked == Traversal::RayQuery {
-            return Err(RtError::Gpu(format!("the ray-query traversal was asked for, but {why}")));
+            return Err(RtError::Unsupported { asked: "the ray-query traversal", why });
         }
         return Ok(Plan::Compute(why));
     }
@@ -130,7 +133,7 @@ pub(crate) fn plan(scene: &Scene, gpu: &Gpu, asked: Traversal) -> Result<Plan> {
             2 + gpu.scene_bindings + 1
         );
         if asked == Traversal::RayQuery {
-            return Err(RtError::Gpu(format!("the ray-query traversal was asked for, but {why}")));
+            return Err(RtError::Unsupported { asked: "the ray-query traversal", why });
         }
         return Ok(Plan::Compute(why));
     }
