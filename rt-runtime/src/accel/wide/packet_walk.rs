@@ -118,39 +118,8 @@ mod avx2 {
         mut leaf: F,
     ) {
         let n = rays.len();
-        let mut lane_values = [[[f32::NAN; 8]; 7]; HALVES];
-        for (i, r) in rays.iter().enumerate() {
-            let v = &mut lane_values[i / 8];
-            let l = i % 8;
-            (v[0][l], v[1][l], v[2][l]) = (r.origin.x, r.origin.y, r.origin.z);
-            (v[3][l], v[4][l], v[5][l]) = (r.inv_dir.x, r.inv_dir.y, r.inv_dir.z);
-            v[6][l] = r.tmin;
-        }
-        // (Loops, not closures: a closure does not take the function's
-        // target features, and its intrinsics would not inline.)
+        let (lanes, soa) = packet_lanes(rays);
         let zero = _mm256_setzero_ps();
-        let mut lanes = Lanes { origin: [[zero; 3]; HALVES], inv: [[zero; 3]; HALVES], tmin: [zero; HALVES] };
-        for (h, values) in lane_values.iter().enumerate() {
-            // SAFETY: each row is eight floats.
-            unsafe {
-                for k in 0..3 {
-                    lanes.origin[h][k] = _mm256_loadu_ps(values[k].as_ptr());
-                    lanes.inv[h][k] = _mm256_loadu_ps(values[3 + k].as_ptr());
-                }
-                lanes.tmin[h] = _mm256_loadu_ps(values[6].as_ptr());
-            }
-        }
-        // Each half's triangle setups by lane, where its rays share `kz`
-        // (coherent rays do): a triangle is then tested against eight rays
-        // at once.
-        let mut soa: [Option<SoaRays>; HALVES] = [None; HALVES];
-        for (h, slot) in soa.iter_mut().enumerate() {
-            let half = &rays[(8 * h).min(n)..(8 * h + 8).min(n)];
-            let Some(first) = half.first().and_then(|r| r.triangle) else { continue };
-            if half.iter().all(|r| r.triangle.is_some_and(|t| t.kz == first.kz)) {
-                *slot = Some(soa_rays(half, &lanes, h));
-            }
-        }
         let all = if n == PACKET_RAYS { u32::MAX >> (32 - PACKET_RAYS) } else { (1u32 << n) - 1 };
         let frustum = Frustum::of(&lanes, all);
         let mut setups: [Option<TriangleRay>; PACKET_RAYS] = [None; PACKET_RAYS];
@@ -190,50 +159,11 @@ mod avx2 {
             }
             if mask.count_ones() < PACKET_BELOW {
                 // Too few rays left to share the tests: each goes on alone.
-                let mut m = mask;
-                while m != 0 {
-                    let i = m.trailing_zeros() as usize;
-                    m &= m - 1;
-                    let limit = &mut limits[i];
-                    walk_from::<Avx2, _>(tree, current, &rays[i], *limit, single_stack, |r, hits| {
-                        *limit = leaf(i, r, hits?);
-                        Some(*limit)
-                    });
-                }
+                alone(tree, current, mask, rays, &mut limits, single_stack, &mut leaf);
                 continue;
             }
             if current & LEAF != 0 {
-                let (index, _) = leaf_of(current);
-                let packet = &tree.packets[index as usize];
-                let mut m = mask;
-                for (h, rays) in soa.iter().enumerate() {
-                    let active = (mask >> (8 * h)) & 0xff;
-                    let Some(rays) = rays else { continue };
-                    if active.count_ones() < 2 {
-                        continue;
-                    }
-                    let Some(hits) = leaf_lanes(packet, rays, &limits[8 * h..8 * h + 8]) else { continue };
-                    m &= !(active << (8 * h));
-                    let mut b = active;
-                    while b != 0 {
-                        let l = b.trailing_zeros() as usize;
-                        b &= b - 1;
-                        if hits[l].mask != 0 {
-                            limits[8 * h + l] = leaf(8 * h + l, current, &hits[l]);
-                        }
-                    }
-                }
-                while m != 0 {
-                    let i = m.trailing_zeros() as usize;
-                    m &= m - 1;
-                    // (Each ray's setup made once, when a leaf first needs it.)
-                    let r = setups[i].get_or_insert_with(|| triangle_ray(&rays[i]));
-                    // SAFETY: the CPU has SSE (x86_64).
-                    let hits = unsafe { packet4(packet, r, limits[i]) };
-                    if hits.mask != 0 {
-                        limits[i] = leaf(i, current, &hits);
-                    }
-                }
+                leaf_entry(tree, current, mask, &soa, rays, &mut limits, &mut setups, &mut leaf);
                 continue;
             }
             let node = &tree.nodes[current as usize];
@@ -290,6 +220,122 @@ mod avx2 {
             }
         }
         tmax.copy_from_slice(&limits[..n]);
+    }
+
+    /// The packet's rays by lane, and each half's triangle setups by lane
+    /// where its rays share `kz` (coherent rays do): a triangle is then
+    /// tested against eight rays at once.
+    #[inline]
+    #[target_feature(enable = "avx2,fma")]
+    fn packet_lanes(rays: &[WalkRay]) -> (Lanes, [Option<SoaRays>; HALVES]) {
+        let n = rays.len();
+        let mut lane_values = [[[f32::NAN; 8]; 7]; HALVES];
+        for (i, r) in rays.iter().enumerate() {
+            let v = &mut lane_values[i / 8];
+            let l = i % 8;
+            (v[0][l], v[1][l], v[2][l]) = (r.origin.x, r.origin.y, r.origin.z);
+            (v[3][l], v[4][l], v[5][l]) = (r.inv_dir.x, r.inv_dir.y, r.inv_dir.z);
+            v[6][l] = r.tmin;
+        }
+        // (Loops, not closures: a closure does not take the function's
+        // target features, and its intrinsics would not inline.)
+        let zero = _mm256_setzero_ps();
+        let mut lanes = Lanes { origin: [[zero; 3]; HALVES], inv: [[zero; 3]; HALVES], tmin: [zero; HALVES] };
+        for (h, values) in lane_values.iter().enumerate() {
+            // SAFETY: each row is eight floats.
+            unsafe {
+                for k in 0..3 {
+                    lanes.origin[h][k] = _mm256_loadu_ps(values[k].as_ptr());
+                    lanes.inv[h][k] = _mm256_loadu_ps(values[3 + k].as_ptr());
+                }
+                lanes.tmin[h] = _mm256_loadu_ps(values[6].as_ptr());
+            }
+        }
+        // Each half's triangle setups by lane, where its rays share `kz`
+        // (coherent rays do): a triangle is then tested against eight rays
+        // at once.
+        let mut soa: [Option<SoaRays>; HALVES] = [None; HALVES];
+        for (h, slot) in soa.iter_mut().enumerate() {
+            let half = &rays[(8 * h).min(n)..(8 * h + 8).min(n)];
+            let Some(first) = half.first().and_then(|r| r.triangle) else { continue };
+            if half.iter().all(|r| r.triangle.is_some_and(|t| t.kz == first.kz)) {
+                *slot = Some(soa_rays(half, &lanes, h));
+            }
+        }
+        (lanes, soa)
+    }
+
+    /// The rays of `mask` walked on from `current` one at a time, each to
+    /// its own closest hit.
+    #[inline]
+    #[target_feature(enable = "avx2,fma")]
+    fn alone<F: FnMut(usize, u32, &Hits) -> f32>(
+        tree: &WideBvh,
+        current: u32,
+        mask: u32,
+        rays: &[WalkRay],
+        limits: &mut [f32; PACKET_RAYS],
+        single_stack: &mut [MaybeUninit<Entry>],
+        leaf: &mut F,
+    ) {
+        let mut m = mask;
+        while m != 0 {
+            let i = m.trailing_zeros() as usize;
+            m &= m - 1;
+            let limit = &mut limits[i];
+            walk_from::<Avx2, _>(tree, current, &rays[i], *limit, single_stack, |r, hits| {
+                *limit = leaf(i, r, hits?);
+                Some(*limit)
+            });
+        }
+    }
+
+    /// Leaf `current` tested against the rays of `mask`: eight at a time
+    /// in each half whose rays share a triangle setup, the rest one by one.
+    #[inline]
+    #[target_feature(enable = "avx2,fma")]
+    #[allow(clippy::too_many_arguments)]
+    fn leaf_entry<F: FnMut(usize, u32, &Hits) -> f32>(
+        tree: &WideBvh,
+        current: u32,
+        mask: u32,
+        soa: &[Option<SoaRays>; HALVES],
+        rays: &[WalkRay],
+        limits: &mut [f32; PACKET_RAYS],
+        setups: &mut [Option<TriangleRay>; PACKET_RAYS],
+        leaf: &mut F,
+    ) {
+        let (index, _) = leaf_of(current);
+        let packet = &tree.packets[index as usize];
+        let mut m = mask;
+        for (h, rays) in soa.iter().enumerate() {
+            let active = (mask >> (8 * h)) & 0xff;
+            let Some(rays) = rays else { continue };
+            if active.count_ones() < 2 {
+                continue;
+            }
+            let Some(hits) = leaf_lanes(packet, rays, &limits[8 * h..8 * h + 8]) else { continue };
+            m &= !(active << (8 * h));
+            let mut b = active;
+            while b != 0 {
+                let l = b.trailing_zeros() as usize;
+                b &= b - 1;
+                if hits[l].mask != 0 {
+                    limits[8 * h + l] = leaf(8 * h + l, current, &hits[l]);
+                }
+            }
+        }
+        while m != 0 {
+            let i = m.trailing_zeros() as usize;
+            m &= m - 1;
+            // (Each ray's setup made once, when a leaf first needs it.)
+            let r = setups[i].get_or_insert_with(|| triangle_ray(&rays[i]));
+            // SAFETY: the CPU has SSE (x86_64).
+            let hits = unsafe { packet4(packet, r, limits[i]) };
+            if hits.mask != 0 {
+                limits[i] = leaf(i, current, &hits);
+            }
+        }
     }
 
     /// Eight rays' triangle setups by lane, sharing `kz` (`axes`): the

@@ -107,28 +107,19 @@ fn sampler_handles(scene: &Scene) -> Arc<[Box<dyn Any + Send + Sync>]> {
         .collect()
 }
 
-pub(crate) fn link_all<'a>(
-    scene: &'a Scene,
-    settings: &'a Settings,
-    accels: &'a [Option<NodeAccel>],
-    entry: u32,
-    (dim, depth): (UVec2, u32),
-) -> Result<Linked<'a, Call>> {
-    let count = scene.entry_points.len() as u32;
-    let ep = scene.entry_points.get(entry as usize).ok_or(RtError::NoSuchEntryPoint { entry, count })?;
-    let rg = ep.ray_generation.ok_or(RtError::NoRayGeneration { entry })?;
-    link::check_types(scene)?;
-    let ray_generation = link::resolve(scene, rg, Record::default())?;
-    let exception = ep.exception.map(|p| link::resolve(scene, p, Record::default())).transpose()?;
-    let miss = scene
-        .miss
-        .iter()
-        .enumerate()
-        .map(|(r, m)| {
-            let p = m.ok_or(RtError::NoMissProgram { ray_type: r as u32 })?;
-            link::resolve(scene, p, Record::default())
-        })
-        .collect::<Result<Vec<_>>>()?;
+/// What each geometry instance's hits run: per material and ray type, its
+/// closest-hit and any-hit uses; per ray type, whether any material has an
+/// any-hit program; its mesh, vertex motion or intersection program.
+struct InstanceUses<'a> {
+    hits: Vec<Vec<Vec<HitPrograms<Call>>>>,
+    any_hit: Vec<Vec<bool>>,
+    meshes: Vec<Option<&'a TriangleMesh>>,
+    vertex_motion: Vec<Option<&'a VertexMotion>>,
+    intersection: Vec<Option<Call>>,
+}
+
+/// Resolves every geometry instance's program uses (see [`InstanceUses`]).
+fn instance_uses(scene: &Scene) -> Result<InstanceUses<'_>> {
     let mut hits = Vec::with_capacity(scene.instances.len());
     let mut any_hit = Vec::with_capacity(scene.instances.len());
     let mut meshes = Vec::with_capacity(scene.instances.len());
@@ -172,6 +163,32 @@ pub(crate) fn link_all<'a>(
             }
         }
     }
+    Ok(InstanceUses { hits, any_hit, meshes, vertex_motion, intersection })
+}
+
+pub(crate) fn link_all<'a>(
+    scene: &'a Scene,
+    settings: &'a Settings,
+    accels: &'a [Option<NodeAccel>],
+    entry: u32,
+    (dim, depth): (UVec2, u32),
+) -> Result<Linked<'a, Call>> {
+    let count = scene.entry_points.len() as u32;
+    let ep = scene.entry_points.get(entry as usize).ok_or(RtError::NoSuchEntryPoint { entry, count })?;
+    let rg = ep.ray_generation.ok_or(RtError::NoRayGeneration { entry })?;
+    link::check_types(scene)?;
+    let ray_generation = link::resolve(scene, rg, Record::default())?;
+    let exception = ep.exception.map(|p| link::resolve(scene, p, Record::default())).transpose()?;
+    let miss = scene
+        .miss
+        .iter()
+        .enumerate()
+        .map(|(r, m)| {
+            let p = m.ok_or(RtError::NoMissProgram { ray_type: r as u32 })?;
+            link::resolve(scene, p, Record::default())
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let InstanceUses { hits, any_hit, meshes, vertex_motion, intersection } = instance_uses(scene)?;
     let visit = scene
         .nodes
         .iter()

@@ -98,98 +98,106 @@ impl Lane<'_> {
                     self.traverse(s, *child, xf, mask, path.child(offset));
                 }
             }
-            NodeKind::GeometryGroup { .. } => {
-                let Some(Some(NodeAccel::Prims { bvh, simd, prims, .. })) = l.accels.get(node.index() as usize) else {
-                    return;
-                };
-                s.group.set((path, node));
-                // The world ray's `tmax` is not read here (the search's is):
-                // copying the whole ray loads `tmin` and `tmax` as one 8-byte
-                // word, which stalls when the tracing program stored them
-                // one by one just before.
-                let (ray_type, tmin) = (world_ray.ray_type, world_ray.tmin);
-                let object_ray = || Ray { origin, direction, ray_type, tmin, tmax: s.tmax.get() };
-                let prepared = WatertightRay::new(origin, direction, tmin);
-                let visit = |p: u32| {
-                    let (gi, prim) = prims[p as usize];
-                    match l.meshes[gi as usize] {
-                        Some(mesh) => {
-                            // (Moving triangles are never in the SIMD
-                            // tree's packets: they come here.)
-                            let [a, b, c] = match l.vertex_motion[gi as usize] {
-                                Some(m) => m.triangle_at(mesh.indices[prim as usize], self.time.get()),
-                                None => mesh.triangle(prim as usize),
-                            };
-                            if let Some(ray) = &prepared
-                                && let Some(hit) = ray.intersect(a, b, c, s.tmax.get())
-                            {
-                                self.triangle_hit(s, ray, mesh, gi, prim, hit, [a, b, c], xf);
-                            }
-                        }
-                        None => self.intersect_custom(s, gi, prim, &object_ray(), xf),
-                    }
-                };
-                let Some(tree) = simd else {
-                    // `NoAccel`'s single leaf.
-                    bvh.traverse(origin, direction.recip(), tmin, &|| s.tmax.get(), &mut |p| {
-                        visit(p);
-                        !s.done.get()
-                    });
-                    return;
-                };
-                let ray = WalkRay { origin, inv_dir: direction.recip(), tmin, triangle: prepared.as_ref() };
-                let next = || (!s.done.get()).then(|| s.tmax.get());
-                walk_on(self.isa, tree, &ray, s.tmax.get(), |leaf, hits| {
-                    let (index, count) = leaf_of(leaf);
-                    let slots = &tree.slots[index as usize * PACKET..][..count as usize];
-                    match hits {
-                        // Triangle packets: each lane hit, in lane order,
-                        // against the closest hit so far (an earlier lane
-                        // may have committed a closer one).
-                        Some(hits) => {
-                            // (The walk tests packets only with a setup.)
-                            let ray = prepared.as_ref()?;
-                            let mut mask = hits.mask;
-                            while mask != 0 {
-                                let lane = mask.trailing_zeros() as usize;
-                                mask &= mask - 1;
-                                let t = hits.t[lane];
-                                // (Hits are never NaN.)
-                                if t >= s.tmax.get() {
-                                    continue;
-                                }
-                                let (gi, prim) = prims[slots[lane] as usize];
-                                if let Some(mesh) = l.meshes[gi as usize] {
-                                    let vertices = tree.packets[index as usize].vertices(lane);
-                                    self.triangle_hit(
-                                        s,
-                                        ray,
-                                        mesh,
-                                        gi,
-                                        prim,
-                                        (t, hits.u[lane], hits.v[lane]),
-                                        vertices,
-                                        xf,
-                                    );
-                                }
-                                if s.done.get() {
-                                    return None;
-                                }
-                            }
-                        }
-                        None => {
-                            for &p in slots {
-                                visit(p);
-                                if s.done.get() {
-                                    return None;
-                                }
-                            }
-                        }
-                    }
-                    next()
-                });
-            }
+            NodeKind::GeometryGroup { .. } => self.search_geometry_group(s, node, xf, path, origin, direction),
         }
+    }
+
+    /// The search through geometry group `node`, the ray in its object
+    /// space (`origin`, `direction`): its SIMD tree's walk (or `NoAccel`'s
+    /// single leaf), triangles tested as the walk hands their packets
+    /// over, custom primitives by their intersection programs.
+    #[inline(always)]
+    fn search_geometry_group(
+        &self,
+        s: &Search,
+        node: NodeId,
+        xf: Option<&Xf>,
+        path: InstancePath,
+        origin: Vec3,
+        direction: Vec3,
+    ) {
+        let l = self.l;
+        let world_ray = s.world_ray;
+        let Some(Some(NodeAccel::Prims { bvh, simd, prims, .. })) = l.accels.get(node.index() as usize) else {
+            return;
+        };
+        s.group.set((path, node));
+        // The world ray's `tmax` is not read here (the search's is):
+        // copying the whole ray loads `tmin` and `tmax` as one 8-byte
+        // word, which stalls when the tracing program stored them
+        // one by one just before.
+        let (ray_type, tmin) = (world_ray.ray_type, world_ray.tmin);
+        let object_ray = || Ray { origin, direction, ray_type, tmin, tmax: s.tmax.get() };
+        let prepared = WatertightRay::new(origin, direction, tmin);
+        let visit = |p: u32| {
+            let (gi, prim) = prims[p as usize];
+            match l.meshes[gi as usize] {
+                Some(mesh) => {
+                    // (Moving triangles are never in the SIMD
+                    // tree's packets: they come here.)
+                    let [a, b, c] = match l.vertex_motion[gi as usize] {
+                        Some(m) => m.triangle_at(mesh.indices[prim as usize], self.time.get()),
+                        None => mesh.triangle(prim as usize),
+                    };
+                    if let Some(ray) = &prepared
+                        && let Some(hit) = ray.intersect(a, b, c, s.tmax.get())
+                    {
+                        self.triangle_hit(s, ray, mesh, gi, prim, hit, [a, b, c], xf);
+                    }
+                }
+                None => self.intersect_custom(s, gi, prim, &object_ray(), xf),
+            }
+        };
+        let Some(tree) = simd else {
+            // `NoAccel`'s single leaf.
+            bvh.traverse(origin, direction.recip(), tmin, &|| s.tmax.get(), &mut |p| {
+                visit(p);
+                !s.done.get()
+            });
+            return;
+        };
+        let ray = WalkRay { origin, inv_dir: direction.recip(), tmin, triangle: prepared.as_ref() };
+        let next = || (!s.done.get()).then(|| s.tmax.get());
+        walk_on(self.isa, tree, &ray, s.tmax.get(), |leaf, hits| {
+            let (index, count) = leaf_of(leaf);
+            let slots = &tree.slots[index as usize * PACKET..][..count as usize];
+            match hits {
+                // Triangle packets: each lane hit, in lane order,
+                // against the closest hit so far (an earlier lane
+                // may have committed a closer one).
+                Some(hits) => {
+                    // (The walk tests packets only with a setup.)
+                    let ray = prepared.as_ref()?;
+                    let mut mask = hits.mask;
+                    while mask != 0 {
+                        let lane = mask.trailing_zeros() as usize;
+                        mask &= mask - 1;
+                        let t = hits.t[lane];
+                        // (Hits are never NaN.)
+                        if t >= s.tmax.get() {
+                            continue;
+                        }
+                        let (gi, prim) = prims[slots[lane] as usize];
+                        if let Some(mesh) = l.meshes[gi as usize] {
+                            let vertices = tree.packets[index as usize].vertices(lane);
+                            self.triangle_hit(s, ray, mesh, gi, prim, (t, hits.u[lane], hits.v[lane]), vertices, xf);
+                        }
+                        if s.done.get() {
+                            return None;
+                        }
+                    }
+                }
+                None => {
+                    for &p in slots {
+                        visit(p);
+                        if s.done.get() {
+                            return None;
+                        }
+                    }
+                }
+            }
+            next()
+        });
     }
 
     /// A ray/triangle hit `(t, u, v)` with triangle `prim` (vertices

@@ -240,55 +240,12 @@ pub fn generate(spec: &KernelSpec) -> Result<Generated> {
     let (types, functions) = linked_items(&with_callables)?;
     let tracing_helpers = helpers_that_trace(&functions);
 
-    let mut payloads: BTreeMap<&str, TypeLayout> = BTreeMap::new();
-    let mut attributes: BTreeMap<&str, TypeLayout> = BTreeMap::new();
-    for p in &all {
-        if let Some(pl) = p.desc.payload {
-            payloads.insert(pl.wgsl, pl);
-        }
-        for pl in p.desc.traced_payloads {
-            payloads.insert(pl.wgsl, *pl);
-        }
-        if let Some(a) = p.desc.attributes {
-            attributes.insert(a.wgsl, a);
-        }
-    }
+    let (payloads, attributes) = payloads_and_attributes(&all);
 
-    // Ray queries are a WGSL extension, enabled before anything else.
-    let mut out = if spec.ray_query_slots > 0 { String::from("enable wgpu_ray_query;\n") } else { String::new() };
     // One program's atomic update makes the whole heap atomic words: the
     // binding has one type, and the same buffer may be another program's.
     let atomic = rt_abi::wgsl::needs_atomic_heap(functions.keys().copied());
-    out.push_str(&prelude(atomic));
-    out.push_str(&scene_access(spec.scene_bindings));
-    out.push_str(&format!(
-        "\nconst RT_BVH_STACK: u32 = {}u;\nconst RT_TLAS_STACK: u32 = {}u;\nconst RT_GROUPS: bool = {};\nconst RT_TRIANGLES_ONLY: bool = {};\nconst RT_CWBVH: bool = {};\nconst RT_CW_STACK: u32 = {}u;\n",
-        spec.bvh_stack,
-        spec.tlas_stack.max(1),
-        spec.tlas_stack > 0,
-        spec.triangles_only,
-        spec.cwbvh_stack > 0,
-        spec.cwbvh_stack.max(1),
-    ));
-    out.push_str(HITS);
-    if spec.ray_query_slots > 0 {
-        // The ray-query loop: it defines rt_search.
-        out.push_str(KEPT_XFORM);
-        out.push_str(&super::rayquery::wgsl::search_wgsl(spec.ray_query_slots));
-    } else {
-        out.push_str(TRAVERSE);
-        if spec.graph_levels > 0 {
-            out.push_str(&format!(
-                "\nconst RT_LEVELS: u32 = {}u;\nconst RT_GRAPH_STACK: u32 = {}u;\nvar<private> rt_s_payload: u32;\n",
-                spec.graph_levels, spec.graph_stack
-            ));
-            out.push_str(KEPT_XFORM);
-            out.push_str(GRAPH);
-            out.push_str(MOTION);
-        } else {
-            out.push_str(TWO_LEVEL);
-        }
-    }
+    let mut out = runtime_part(spec, atomic);
     out.push_str("\n// ---- types ----\n");
     for (item, _) in types.values() {
         out.push_str(item.text);
@@ -366,6 +323,68 @@ pub fn generate(spec: &KernelSpec) -> Result<Generated> {
 
     out.push_str(&entry_point(spec, &run_ray_generation));
     Ok(Generated { wgsl: out, warning })
+}
+
+/// The payload types `all` take or trace, and the attribute types they
+/// take, by WGSL name.
+fn payloads_and_attributes(
+    all: &[KernelProgram],
+) -> (BTreeMap<&'static str, TypeLayout>, BTreeMap<&'static str, TypeLayout>) {
+    let mut payloads: BTreeMap<&str, TypeLayout> = BTreeMap::new();
+    let mut attributes: BTreeMap<&str, TypeLayout> = BTreeMap::new();
+    for p in all {
+        if let Some(pl) = p.desc.payload {
+            payloads.insert(pl.wgsl, pl);
+        }
+        for pl in p.desc.traced_payloads {
+            payloads.insert(pl.wgsl, *pl);
+        }
+        if let Some(a) = p.desc.attributes {
+            attributes.insert(a.wgsl, a);
+        }
+    }
+    (payloads, attributes)
+}
+
+/// The runtime's part of the kernel, before the programs' types: the
+/// ray-query extension where the kernel uses it, the prelude (over a heap
+/// of atomic words when `atomic`), the scene's bindings, the stacks'
+/// sizes, and the search: the ray-query loop, or the compute traversal
+/// (with the graph traversal where the scene needs it).
+fn runtime_part(spec: &KernelSpec, atomic: bool) -> String {
+    // Ray queries are a WGSL extension, enabled before anything else.
+    let mut out = if spec.ray_query_slots > 0 { String::from("enable wgpu_ray_query;\n") } else { String::new() };
+    out.push_str(&prelude(atomic));
+    out.push_str(&scene_access(spec.scene_bindings));
+    out.push_str(&format!(
+        "\nconst RT_BVH_STACK: u32 = {}u;\nconst RT_TLAS_STACK: u32 = {}u;\nconst RT_GROUPS: bool = {};\nconst RT_TRIANGLES_ONLY: bool = {};\nconst RT_CWBVH: bool = {};\nconst RT_CW_STACK: u32 = {}u;\n",
+        spec.bvh_stack,
+        spec.tlas_stack.max(1),
+        spec.tlas_stack > 0,
+        spec.triangles_only,
+        spec.cwbvh_stack > 0,
+        spec.cwbvh_stack.max(1),
+    ));
+    out.push_str(HITS);
+    if spec.ray_query_slots > 0 {
+        // The ray-query loop: it defines rt_search.
+        out.push_str(KEPT_XFORM);
+        out.push_str(&super::rayquery::wgsl::search_wgsl(spec.ray_query_slots));
+    } else {
+        out.push_str(TRAVERSE);
+        if spec.graph_levels > 0 {
+            out.push_str(&format!(
+                "\nconst RT_LEVELS: u32 = {}u;\nconst RT_GRAPH_STACK: u32 = {}u;\nvar<private> rt_s_payload: u32;\n",
+                spec.graph_levels, spec.graph_stack
+            ));
+            out.push_str(KEPT_XFORM);
+            out.push_str(GRAPH);
+            out.push_str(MOTION);
+        } else {
+            out.push_str(TWO_LEVEL);
+        }
+    }
+    out
 }
 
 /// The WGSL types and shared functions of `all`, deduplicated by name; two

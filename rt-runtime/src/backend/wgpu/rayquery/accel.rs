@@ -178,6 +178,52 @@ pub(crate) fn sync(
     let adapter = adapter.to_string();
     let mut replaced = false;
 
+    let builds = sync_blases((device, limits, &adapter), rq, scene, accels, flat)?;
+    let tlas_builds = sync_tlases(device, limits, &adapter, rq, flat)?;
+    replaced |= !tlas_builds.is_empty();
+
+    // Record every build in one submission.
+    let built = !builds.is_empty() || !tlas_builds.is_empty();
+    if built {
+        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("rt accels") });
+        let entries: Vec<wgpu::BlasBuildEntry> = builds.iter().map(|(blas, input)| build_entry(blas, input)).collect();
+        encoder.build_acceleration_structures(entries.iter(), tlas_builds.iter().map(|&s| &rq.tlas[s].1));
+        queue.submit([encoder.finish()]);
+        let _ = device.poll(wgpu::PollType::wait_indefinitely());
+        if let Some(e) = crate::backend::waiting::now(scope.pop()).flatten() {
+            rq.groups.clear();
+            rq.tlas.clear();
+            return Err(RtError::Gpu(format!("building the ray-query acceleration structures on {adapter}: {e}")));
+        }
+    }
+
+    // The side table.
+    rq.opaque_ray_types = opaque_ray_types(scene, &rq.groups);
+    let words = side_table(scene, flat, &rq.groups, &rq.opaque_ray_types);
+    if rq.side.as_ref().is_none_or(|(w, _)| *w != words) {
+        let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("rt_query_side"),
+            contents: bytes(&words),
+            usage: wgpu::BufferUsages::STORAGE,
+        });
+        rq.side = Some((words, buffer));
+        replaced = true;
+    }
+    Ok((replaced, built))
+}
+
+/// Makes `rq` hold a BLAS for each geometry group `flat` reaches, new
+/// ones for the groups whose trees changed (or are new); returns the new
+/// BLASes with their inputs, to build.
+fn sync_blases(
+    (device, limits, adapter): (&wgpu::Device, &wgpu::Limits, &str),
+    rq: &mut RayQueryAccels,
+    scene: &Scene,
+    accels: &AccelCache,
+    flat: &Flat,
+) -> Result<Vec<(wgpu::Blas, BlasInput)>> {
+    let adapter = adapter.to_string();
     // BLASes of the groups whose trees changed (or are new).
     let mut used: Vec<NodeId> = flat.roots.iter().flat_map(|(_, insts)| insts.iter().map(|i| i.group)).collect();
     used.sort();
@@ -217,7 +263,19 @@ pub(crate) fn sync(
     }
     rq.blas_builds += builds.len() as u64;
     rq.groups.extend(new_groups);
+    Ok(builds)
+}
 
+/// Makes `rq` hold a TLAS for each of `flat`'s roots, a new one where an
+/// instance changed; returns the slots of the new ones, to build.
+fn sync_tlases(
+    device: &wgpu::Device,
+    limits: &wgpu::Limits,
+    adapter: &str,
+    rq: &mut RayQueryAccels,
+    flat: &Flat,
+) -> Result<Vec<usize>> {
+    let adapter = adapter.to_string();
     // TLASes: one per root, rebuilt when an instance changed.
     let mut tlas_builds: Vec<usize> = Vec::new();
     rq.tlas.truncate(flat.roots.len());
@@ -276,39 +334,9 @@ pub(crate) fn sync(
             rq.tlas.push((keys, tlas));
         }
         tlas_builds.push(slot);
-        replaced = true;
     }
     rq.tlas_builds += tlas_builds.len() as u64;
-
-    // Record every build in one submission.
-    let built = !builds.is_empty() || !tlas_builds.is_empty();
-    if built {
-        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("rt accels") });
-        let entries: Vec<wgpu::BlasBuildEntry> = builds.iter().map(|(blas, input)| build_entry(blas, input)).collect();
-        encoder.build_acceleration_structures(entries.iter(), tlas_builds.iter().map(|&s| &rq.tlas[s].1));
-        queue.submit([encoder.finish()]);
-        let _ = device.poll(wgpu::PollType::wait_indefinitely());
-        if let Some(e) = crate::backend::waiting::now(scope.pop()).flatten() {
-            rq.groups.clear();
-            rq.tlas.clear();
-            return Err(RtError::Gpu(format!("building the ray-query acceleration structures on {adapter}: {e}")));
-        }
-    }
-
-    // The side table.
-    rq.opaque_ray_types = opaque_ray_types(scene, &rq.groups);
-    let words = side_table(scene, flat, &rq.groups, &rq.opaque_ray_types);
-    if rq.side.as_ref().is_none_or(|(w, _)| *w != words) {
-        let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("rt_query_side"),
-            contents: bytes(&words),
-            usage: wgpu::BufferUsages::STORAGE,
-        });
-        rq.side = Some((words, buffer));
-        replaced = true;
-    }
-    Ok((replaced, built))
+    Ok(tlas_builds)
 }
 
 /// The build of one BLAS over its recorded inputs.
