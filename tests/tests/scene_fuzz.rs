@@ -71,7 +71,7 @@ fn a_deep_culled_graph_agrees() {
 /// backend and missed on wgpu. The CPU backend transforms the ray level by
 /// level, the wgpu encoder composed the chain and inverted it once in f32:
 /// at this condition number the two disagreed near the silhouette. Fixed
-/// by composing and inverting chains in f64 (`backend/wgpu/chain.rs`).
+/// by composing and inverting chains in f64 (`backend/wgpu/transform_chain.rs`).
 #[test]
 fn a_chain_of_two_nearly_singular_transforms_agrees() {
     graph_agrees(7, 371);

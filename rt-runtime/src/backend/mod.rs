@@ -16,18 +16,18 @@
 
 #[cfg(not(target_arch = "wasm32"))]
 pub mod cpu;
+pub(crate) mod futures;
 pub mod tiles;
-pub(crate) mod waiting;
 pub mod wgpu;
 
 use crate::accel::cache::{AccelCache, Trees, build_accels};
 use crate::buffer::BufferRec;
 use crate::error::{Result, RtError};
 use crate::scene::Scene;
+use futures::{Catching, LocalBoxFuture};
 use glam::UVec2;
 use std::any::Any;
 use tiles::{LaunchControl, LaunchProgress, Pace, Tile, TileBudget, Tiler};
-use waiting::{Catching, LocalBoxFuture};
 use web_time::Instant;
 
 /// Where a context's launches run.
@@ -222,7 +222,7 @@ pub(crate) trait LaunchBackend: Any + Send + Sync {
     /// [`LaunchBackend::launch`] for a caller that awaits rather than
     /// blocks: the wgpu backend waits for its read-backs so; the others
     /// run the blocking launch when first polled (inside the poll that
-    /// catches a panic, [`waiting::Catching`]).
+    /// catches a panic, [`futures::Catching`]).
     fn launch_async<'a>(&'a mut self, launch: &'a Launch<'a>) -> LocalBoxFuture<'a, Result<LaunchReport>> {
         Box::pin(async move { self.launch(launch) })
     }
@@ -479,7 +479,7 @@ mod tests {
             first_tile: true,
             last_tile: true,
         };
-        let result = waiting::now(run_tile(&mut Panicking, &launch)).expect("ready natively");
+        let result = futures::now(run_tile(&mut Panicking, &launch)).expect("ready natively");
         match result {
             Err(RtError::RuntimePanicked { backend: "cpu", message, .. }) => assert_eq!(message, "a bug in a backend"),
             other => panic!("{other:?}"),

@@ -78,7 +78,7 @@ impl Context {
     /// device-local buffer ([`Context::set_buffer_device_local`]) that a
     /// wgpu launch wrote is read from the device.
     pub fn read_buffer<T: RtData + Send + Sync>(&self, b: BufferId) -> Result<Vec<T>> {
-        backend::waiting::block(self.read_buffer_async(b))
+        backend::futures::block(self.read_buffer_async(b))
     }
 
     /// [`Context::read_buffer`] for a caller that must not block (a

@@ -86,7 +86,7 @@ impl Context {
         part: Option<Tile>,
         progress: Option<&mut dyn FnMut(LaunchProgress) -> LaunchControl>,
     ) -> Result<LaunchReport> {
-        backend::waiting::block(self.run_launch_async(size, part, progress))
+        backend::futures::block(self.run_launch_async(size, part, progress))
     }
 
     /// Every launch: the backend's run, then the usage report.

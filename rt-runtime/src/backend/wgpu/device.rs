@@ -2,9 +2,9 @@
 //! device), its limits and the one bind-group layout, and what its
 //! callbacks report (a lost device, uncaptured errors).
 
+use super::device_mirror::Resident;
 use super::kernel::SCENE_SECTIONS;
 use super::rayquery::accel::RayQueryAccels;
-use super::resident::Resident;
 use crate::error::{Result, RtError};
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
@@ -99,7 +99,7 @@ impl Gpu {
     /// Opens the first adapter of `instance` (that can present to
     /// `surface`, if given) with the runtime's features and limits.
     pub fn open(instance: &wgpu::Instance, surface: Option<&wgpu::Surface<'_>>) -> Result<Gpu> {
-        super::waiting::block(Gpu::open_async(instance, surface))
+        super::futures::block(Gpu::open_async(instance, surface))
     }
 
     /// [`Gpu::open`], awaiting the adapter and the device (a browser page
@@ -334,7 +334,7 @@ pub fn probe_ray_queries() -> bool {
 /// comes only asynchronously, and a probe may not block).
 fn probe_adapter() -> Option<wgpu::Adapter> {
     let instance = instance();
-    super::waiting::now(instance.request_adapter(&wgpu::RequestAdapterOptions {
+    super::futures::now(instance.request_adapter(&wgpu::RequestAdapterOptions {
         power_preference: wgpu::PowerPreference::HighPerformance,
         ..Default::default()
     }))?

@@ -2,7 +2,7 @@
 //! programs write to them stays on the device across launches and is never
 //! read back unless the host asks.
 //!
-//! The heap's mirror ([`super::resident`]) is what the upload diffs the
+//! The heap's mirror ([`super::device_mirror`]) is what the upload diffs the
 //! host's words against. For a buffer the device holds newer ("held"), the
 //! mirror keeps the host's older words, the same as the host's copy, so the
 //! diff never writes them over the device's. What changes that:
@@ -20,9 +20,9 @@
 //! [`Context::set_buffer_device_local`]: crate::Context::set_buffer_device_local
 
 use super::device::Gpu;
+use super::device_mirror::{DeviceLocal, Held};
 use super::readback::read_back;
-use super::resident::{DeviceLocal, Held};
-use crate::backend::waiting;
+use crate::backend::futures;
 use crate::buffer::BufferRec;
 use crate::error::Result;
 use crate::scene::Scene;
@@ -159,7 +159,7 @@ impl DeviceLocal {
         let copies: Vec<_> = saved_for.iter().map(|(h, at)| (saved, *at, h.words as u64 * 4)).collect();
         // A device that cannot even give these back is lost: the host's
         // copies are what is left.
-        let read = waiting::now(read_back(device, queue, &mut None, encoder, &copies, false));
+        let read = futures::now(read_back(device, queue, &mut None, encoder, &copies, false));
         if let Some(Ok(words)) = read {
             let mut at = 0;
             for (h, _) in &saved_for {
@@ -190,7 +190,7 @@ impl DeviceLocal {
         gpu: &Gpu,
         buffer: usize,
         host_version: u64,
-    ) -> Option<waiting::LocalBoxFuture<'_, Result<Vec<u32>>>> {
+    ) -> Option<futures::LocalBoxFuture<'_, Result<Vec<u32>>>> {
         let h = *gpu.resident.device_local.held.iter().find(|h| h.buffer == buffer && h.version == host_version)?;
         Some(Box::pin(async move { read_held_async(gpu, &[h]).await }))
     }
@@ -206,7 +206,7 @@ impl DeviceLocal {
 /// The heap words of `held`, concatenated, read with a staging buffer of
 /// their own (the host may ask through `&Context`).
 fn read_held(gpu: &Gpu, held: &[Held]) -> Result<Vec<u32>> {
-    waiting::block(read_held_async(gpu, held))
+    futures::block(read_held_async(gpu, held))
 }
 
 /// [`read_held`], awaiting the read-back.

@@ -5,8 +5,8 @@
 
 use super::Launch;
 use super::device::Gpu;
+use super::device_mirror::words_to_bytes;
 use super::readback::LOG_EXCEPTIONS;
-use super::resident::words_to_bytes;
 use glam::UVec2;
 use rt_abi::records::LaunchUniform;
 

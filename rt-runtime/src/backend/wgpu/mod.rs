@@ -37,7 +37,7 @@
 //! instances, materials, hit records).
 //!
 //! Files: [`device`] (the device and its health, ray queries requested
-//! where the adapter has them), [`resident`] (buffers
+//! where the adapter has them), [`device_mirror`] (buffers
 //! kept on the device, uploads of changed pages), [`device_local`] (buffers
 //! whose words stay on the device, never read back), [`heap`] (variables'
 //! records, buffers, textures), [`kernel`] (the megakernel's WGSL),
@@ -75,10 +75,10 @@
 //! check every kept word against a fresh encoding.
 
 pub mod capture;
-pub(crate) mod chain;
 pub(crate) mod compute;
 pub(crate) mod device;
 pub(crate) mod device_local;
+pub(crate) mod device_mirror;
 pub(crate) mod dispatch;
 pub(crate) mod encode;
 pub(crate) mod heap;
@@ -86,7 +86,7 @@ pub mod kernel;
 pub(crate) mod pipeline;
 pub(crate) mod rayquery;
 pub(crate) mod readback;
-pub(crate) mod resident;
+pub(crate) mod transform_chain;
 
 pub use capture::capture_launches_to;
 pub use device::{Gpu, WgpuDevice, instance, probe, probe_ray_queries};
@@ -94,17 +94,17 @@ pub use device_local::DeviceBuffer;
 pub use encode::geometry::cwbvh_node_words;
 pub use rayquery::Traversal;
 
-use super::waiting::{self, LocalBoxFuture};
+use super::futures::{self, LocalBoxFuture};
 use super::{ExceptionRecord, Failure, Launch, LaunchBackend, LaunchReport};
 use crate::accel::bvh::TreeForm;
 use crate::accel::cache::Trees;
 use crate::buffer::BufferRec;
 use crate::error::{Result, RtError};
 use crate::scene::Scene;
+use device_mirror::DeviceLocal;
 use encode::{Encoding, SceneKey};
 use glam::UVec2;
 use readback::{LOG_EXCEPTIONS, LOG_PRINT_WORDS};
-use resident::DeviceLocal;
 
 /// The wgpu backend: its device (opened at the first launch, dropped when
 /// lost), the last launch's kernel and the outputs it read back.
@@ -243,7 +243,7 @@ impl LaunchBackend for WgpuBackend {
     }
 
     fn prepare(&mut self) -> Result<()> {
-        waiting::block(self.prepare_async())
+        futures::block(self.prepare_async())
     }
 
     fn prepare_async(&mut self) -> LocalBoxFuture<'_, Result<()>> {
@@ -268,7 +268,7 @@ impl LaunchBackend for WgpuBackend {
     /// (see [`LaunchBackend::prepare`]); the host's copies of buffers are
     /// only written from a read-back that completed.
     fn launch(&mut self, l: &Launch) -> Result<LaunchReport> {
-        waiting::block(self.launch_async(l))
+        futures::block(self.launch_async(l))
     }
 
     fn launch_async<'a>(&'a mut self, l: &'a Launch<'a>) -> LocalBoxFuture<'a, Result<LaunchReport>> {
@@ -356,7 +356,8 @@ async fn launch_on_device(
         false => Vec::new(),
     };
     let kept = gpu.resident.device_local.held_ranges();
-    let mut replaced = resident::upload(&gpu.device, &gpu.queue, &mut gpu.resident, (heap, &kept), fresh, log_words);
+    let mut replaced =
+        device_mirror::upload(&gpu.device, &gpu.queue, &mut gpu.resident, (heap, &kept), fresh, log_words);
     DeviceLocal::after_upload(gpu, &moves);
     let mut accel = std::time::Duration::ZERO;
     if let rayquery::Plan::RayQuery(flat) = &plan {
@@ -411,7 +412,7 @@ async fn launch_on_device(
 fn capture_before(
     folder: std::path::PathBuf,
     wgsl: &str,
-    res: &resident::Resident,
+    res: &device_mirror::Resident,
     log_words: u32,
     tiles: &[dispatch::Tile],
 ) -> capture::Before {

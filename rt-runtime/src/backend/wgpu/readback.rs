@@ -2,7 +2,7 @@
 //! launch's log (exceptions and `rt_printf!` records) decoded.
 
 use super::device::Gpu;
-use crate::backend::waiting::Delivery;
+use crate::backend::futures::Delivery;
 use crate::error::{Result, RtError};
 use crate::scene::Scene;
 use glam::UVec2;

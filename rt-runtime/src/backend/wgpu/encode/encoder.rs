@@ -7,7 +7,7 @@ use super::super::kernel::KernelProgram;
 use super::geometry::{GeometryLayout, GroupWords, SCENE_HEADER, f, push_bvh};
 use super::{NODE_BIT, Tail};
 use crate::accel::cache::{AccelCache, NodeAccel};
-use crate::backend::wgpu::chain::Chain;
+use crate::backend::wgpu::transform_chain::Chain;
 use crate::error::{Result, RtError};
 use crate::link::instances::{Numbering, chain_id, group_words};
 use crate::link::{self, Record};

@@ -17,17 +17,17 @@
 //! its scope record in the heap (offset passed at dispatch), so changing a
 //! value never relinks.
 
-mod arms;
 mod callables;
 mod clones;
 mod stack;
+mod switch_arms;
 
 use crate::error::{Result, RtError};
 use crate::link::{self, callables::LinkedCallable};
-use arms::Arms;
 use clones::{Linked, at_depth, clone_estimate, helpers_that_trace, per_depth_clones};
 use rt_std::program::{ProgramDescriptor, ProgramKind, TriangleBuiltin, TypeLayout, VariableKind};
 use std::collections::{BTreeMap, BTreeSet};
+use switch_arms::Arms;
 
 /// The runtime's half of every module, after the contract's records, heap
 /// and exception codes (see [`prelude`]).

@@ -4,7 +4,7 @@
 //! payload type) and `stack_loop.wgsl`, templates whose `{name}`s this
 //! file fills.
 
-use super::arms::Arms;
+use super::switch_arms::Arms;
 use super::{KernelProgram, KernelSpec, traces, var_args};
 use rt_std::program::ProgramKind;
 use std::collections::{BTreeMap, BTreeSet};

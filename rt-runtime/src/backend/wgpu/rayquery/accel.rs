@@ -191,7 +191,7 @@ pub(crate) fn sync(
         encoder.build_acceleration_structures(entries.iter(), tlas_builds.iter().map(|&s| &rq.tlas[s].1));
         queue.submit([encoder.finish()]);
         let _ = device.poll(wgpu::PollType::wait_indefinitely());
-        if let Some(e) = crate::backend::waiting::now(scope.pop()).flatten() {
+        if let Some(e) = crate::backend::futures::now(scope.pop()).flatten() {
             rq.groups.clear();
             rq.tlas.clear();
             return Err(RtError::Gpu(format!("building the ray-query acceleration structures on {adapter}: {e}")));

@@ -7,8 +7,8 @@
 //! cannot be flattened: such scenes keep the compute traversal
 //! ([`Unsupported`] says which node and why).
 
-use crate::backend::wgpu::chain::Chain;
 use crate::backend::wgpu::encode::{instances, kept_masks};
+use crate::backend::wgpu::transform_chain::Chain;
 use crate::error::Result;
 use crate::link::instances::{InstancePath, Numbering};
 use crate::scene::{GeometryId, GeometryKind, NodeId, NodeKind, Scene};
