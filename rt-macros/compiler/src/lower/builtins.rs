@@ -300,14 +300,15 @@ pub fn method_sig(recv: &Ty, name: &str) -> Option<MethodSig> {
 
 /// Methods of `f32` and float vectors (glam's).
 fn float_method(recv: &Ty, name: &str) -> Option<MethodSig> {
-    let t = recv.clone();
-    let is_vec = matches!(recv, Ty::Vec(..));
-    let is_scalar = matches!(recv, Ty::Scalar(_));
-    let n = match recv {
-        Ty::Vec(n, _) => *n,
-        _ => 1,
-    };
-    let unary = match name {
+    if let Some(f) = float_wgsl_builtin(name) {
+        return sig(vec![], recv.clone(), wgsl_fn(f));
+    }
+    float_formula(recv, name).or_else(|| float_vec_method(recv, name))
+}
+
+/// The WGSL builtin that is the float method `name` of no arguments.
+fn float_wgsl_builtin(name: &str) -> Option<&'static str> {
+    match name {
         "abs" => Some("abs"),
         "sqrt" => Some("sqrt"),
         "exp" => Some("exp"),
@@ -334,22 +335,29 @@ fn float_method(recv: &Ty, name: &str) -> Option<MethodSig> {
         "to_degrees" => Some("degrees"),
         "round_ties_even" => Some("round"),
         _ => None,
-    };
-    if let Some(f) = unary {
-        return sig(vec![], t, wgsl_fn(f));
     }
+}
+
+/// The float methods of `f32` and float vectors alike that WGSL spells
+/// otherwise (a formula, or a builtin of other arguments), and `f32`'s own.
+fn float_formula(recv: &Ty, name: &str) -> Option<MethodSig> {
+    let t = recv.clone();
+    let is_vec = matches!(recv, Ty::Vec(..));
+    let is_scalar = matches!(recv, Ty::Scalar(_));
+    let n = match recv {
+        Ty::Vec(n, _) => *n,
+        _ => 1,
+    };
     let w = t.wgsl();
     let one = if is_vec { format!("{w}(1.0)") } else { "1.0f".to_string() };
     match name {
-        "recip" => return sig(vec![], t, move |a| format!("({one} / {})", a[0])),
-        "fract" => return sig(vec![], t, |a| format!("({0} - trunc({0}))", a[0])),
+        "recip" => sig(vec![], t, move |a| format!("({one} / {})", a[0])),
+        "fract" => sig(vec![], t, |a| format!("({0} - trunc({0}))", a[0])),
         // Half away from zero. (`floor(abs(x) + 0.5)` is wrong where the
         // addition rounds: 0.49999997, and odd values from 2^23 on.)
         "round" => {
             let half = if is_vec { format!("{w}(0.5)") } else { "0.5f".to_string() };
-            return sig(vec![], t, move |a| {
-                format!("(trunc({0}) + sign({0}) * step({half}, abs({0} - trunc({0}))))", a[0])
-            });
+            sig(vec![], t, move |a| format!("(trunc({0}) + sign({0}) * step({half}, abs({0} - trunc({0}))))", a[0]))
         }
         "signum" => {
             let (pos, neg) =
@@ -359,67 +367,68 @@ fn float_method(recv: &Ty, name: &str) -> Option<MethodSig> {
             } else {
                 "(bitcast<u32>({}) & 0x80000000u) != 0u".to_string()
             };
-            return sig(vec![], t, move |a| format!("select({pos}, {neg}, {})", sign_bit.replace("{}", &a[0])));
+            sig(vec![], t, move |a| format!("select({pos}, {neg}, {})", sign_bit.replace("{}", &a[0])))
         }
-        "powf" => {
-            return sig(vec![F32], t, move |a| {
-                if is_vec { format!("pow({}, {w}({}))", a[0], a[1]) } else { format!("pow({}, {})", a[0], a[1]) }
-            });
-        }
+        "powf" => sig(vec![F32], t, move |a| {
+            if is_vec { format!("pow({}, {w}({}))", a[0], a[1]) } else { format!("pow({}, {})", a[0], a[1]) }
+        }),
         "powi" if is_scalar => {
             let mut s = sig(vec![Ty::Scalar(Scalar::I32)], t, |a| format!("rt_powi({}, {})", a[0], a[1]))?;
             s.support = vec![("rt_powi", POWI)];
-            return Some(s);
+            Some(s)
         }
-        "atan2" if is_scalar => return sig(vec![F32], t, |a| format!("atan2({}, {})", a[0], a[1])),
-        "mul_add" => return sig(vec![t.clone(), t.clone()], t, wgsl_fn("fma")),
-        "is_nan" if is_scalar => return sig(vec![], Ty::Scalar(Scalar::Bool), |a| format!("({0} != {0})", a[0])),
+        "atan2" if is_scalar => sig(vec![F32], t, |a| format!("atan2({}, {})", a[0], a[1])),
+        "mul_add" => sig(vec![t.clone(), t.clone()], t, wgsl_fn("fma")),
+        "is_nan" if is_scalar => sig(vec![], Ty::Scalar(Scalar::Bool), |a| format!("({0} != {0})", a[0])),
         "is_finite" if is_scalar => {
-            return sig(vec![], Ty::Scalar(Scalar::Bool), |a| format!("(abs({}) <= {})", a[0], f32_literal(f32::MAX)));
+            sig(vec![], Ty::Scalar(Scalar::Bool), |a| format!("(abs({}) <= {})", a[0], f32_literal(f32::MAX)))
         }
         "is_infinite" if is_scalar => {
-            return sig(vec![], Ty::Scalar(Scalar::Bool), |a| format!("(abs({}) > {})", a[0], f32_literal(f32::MAX)));
+            sig(vec![], Ty::Scalar(Scalar::Bool), |a| format!("(abs({}) > {})", a[0], f32_literal(f32::MAX)))
         }
         "sin_cos" if is_scalar => {
             let pair = Ty::Tuple(vec![F32, F32]);
             let name = pair.wgsl();
-            return sig(vec![], pair, move |a| format!("{name}(sin({0}), cos({0}))", a[0]));
+            sig(vec![], pair, move |a| format!("{name}(sin({0}), cos({0}))", a[0]))
         }
-        "hypot" if is_scalar => return sig(vec![F32], t, |a| format!("length(vec2<f32>({}, {}))", a[0], a[1])),
-        _ => {}
+        "hypot" if is_scalar => sig(vec![F32], t, |a| format!("length(vec2<f32>({}, {}))", a[0], a[1])),
+        _ => None,
     }
-    if is_vec {
-        let v3 = Ty::vec(3);
-        match name {
-            "length" => return sig(vec![], F32, wgsl_fn("length")),
-            "length_squared" => return sig(vec![], F32, |a| format!("dot({0}, {0})", a[0])),
-            "length_recip" => return sig(vec![], F32, |a| format!("inverseSqrt(dot({0}, {0}))", a[0])),
-            "normalize" => return sig(vec![], t, wgsl_fn("normalize")),
-            // (`inverseSqrt` of a positive length only: WGSL rejects a
-            // constant zero vector's `inverseSqrt(0.0)` even unselected.)
-            "normalize_or_zero" => {
-                return sig(vec![], t, move |a| {
-                    format!(
-                        "select({w}(), {0} * inverseSqrt(select(1.0, dot({0}, {0}), dot({0}, {0}) > 0.0)), dot({0}, {0}) > 0.0)",
-                        a[0]
-                    )
-                });
-            }
-            "distance" => return sig(vec![t.clone()], F32, wgsl_fn("distance")),
-            "distance_squared" => {
-                return sig(vec![t.clone()], F32, |a| format!("dot({0} - {1}, {0} - {1})", a[0], a[1]));
-            }
-            // glam's formula, not WGSL's `mix`: GPUs compute that as
-            // `a + t * (b - a)`, which misses `b` at `t == 1` (glam
-            // promises both ends exactly).
-            "lerp" => return sig(vec![t.clone(), F32], t, |a| lerp_formula(&a[0], &a[1], &a[2])),
-            "reflect" if n == 3 => return sig(vec![v3.clone()], v3, wgsl_fn("reflect")),
-            "refract" if n == 3 => return sig(vec![v3.clone(), F32], v3, wgsl_fn("refract")),
-            "cross" if n == 3 => return sig(vec![v3.clone()], v3, wgsl_fn("cross")),
-            _ => {}
-        }
+}
+
+/// The float vectors' own: lengths, normalization, distances, `lerp`, and
+/// `Vec3`'s `reflect`, `refract` and `cross`.
+fn float_vec_method(recv: &Ty, name: &str) -> Option<MethodSig> {
+    let Ty::Vec(n, _) = *recv else {
+        return None;
+    };
+    let t = recv.clone();
+    let w = t.wgsl();
+    let v3 = Ty::vec(3);
+    match name {
+        "length" => sig(vec![], F32, wgsl_fn("length")),
+        "length_squared" => sig(vec![], F32, |a| format!("dot({0}, {0})", a[0])),
+        "length_recip" => sig(vec![], F32, |a| format!("inverseSqrt(dot({0}, {0}))", a[0])),
+        "normalize" => sig(vec![], t, wgsl_fn("normalize")),
+        // (`inverseSqrt` of a positive length only: WGSL rejects a
+        // constant zero vector's `inverseSqrt(0.0)` even unselected.)
+        "normalize_or_zero" => sig(vec![], t, move |a| {
+            format!(
+                "select({w}(), {0} * inverseSqrt(select(1.0, dot({0}, {0}), dot({0}, {0}) > 0.0)), dot({0}, {0}) > 0.0)",
+                a[0]
+            )
+        }),
+        "distance" => sig(vec![t.clone()], F32, wgsl_fn("distance")),
+        "distance_squared" => sig(vec![t.clone()], F32, |a| format!("dot({0} - {1}, {0} - {1})", a[0], a[1])),
+        // glam's formula, not WGSL's `mix`: GPUs compute that as
+        // `a + t * (b - a)`, which misses `b` at `t == 1` (glam
+        // promises both ends exactly).
+        "lerp" => sig(vec![t.clone(), F32], t, |a| lerp_formula(&a[0], &a[1], &a[2])),
+        "reflect" if n == 3 => sig(vec![v3.clone()], v3, wgsl_fn("reflect")),
+        "refract" if n == 3 => sig(vec![v3.clone(), F32], v3, wgsl_fn("refract")),
+        "cross" if n == 3 => sig(vec![v3.clone()], v3, wgsl_fn("cross")),
+        _ => None,
     }
-    None
 }
 
 /// Methods of the integer scalars and vectors.

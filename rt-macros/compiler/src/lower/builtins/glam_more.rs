@@ -393,7 +393,18 @@ fn with_fmod(m: Option<MethodSig>) -> Option<MethodSig> {
     })
 }
 
+/// Methods of the float vectors, one group of methods after another.
 fn float_vec(n: u8, recv: &Ty, name: &str) -> Option<MethodSig> {
+    geometry(n, recv, name)
+        .or_else(|| blend(n, recv, name))
+        .or_else(|| lengths(n, recv, name))
+        .or_else(|| vec2_method(n, recv, name))
+        .or_else(|| per_component(n, recv, name))
+}
+
+/// Projections and rejections, reflection and refraction, homogeneous
+/// coordinates, `any_orthonormal_vector`.
+fn geometry(n: u8, recv: &Ty, name: &str) -> Option<MethodSig> {
     let t = recv.clone();
     match name {
         "project_onto" => sig(vec![t.clone()], t, |a| format!("({1} * (dot({0}, {1}) / dot({1}, {1})))", a[0], a[1])),
@@ -402,6 +413,31 @@ fn float_vec(n: u8, recv: &Ty, name: &str) -> Option<MethodSig> {
         }
         "project_onto_normalized" => sig(vec![t.clone()], t, |a| format!("({1} * dot({0}, {1}))", a[0], a[1])),
         "reject_from_normalized" => sig(vec![t.clone()], t, |a| format!("({0} - {1} * dot({0}, {1}))", a[0], a[1])),
+        "reflect" if n != 3 => sig(vec![t.clone()], t, |a| format!("reflect({}, {})", a[0], a[1])),
+        "refract" if n != 3 => sig(vec![t.clone(), F32], t, |a| format!("refract({}, {}, {})", a[0], a[1], a[2])),
+        "to_homogeneous" if n == 3 => sig(vec![], Ty::vec(4), |a| format!("vec4<f32>({}, 1.0f)", a[0])),
+        "project" if n == 4 => sig(vec![], Ty::vec(3), |a| format!("({0}.xyz / {0}.w)", a[0])),
+        "any_orthonormal_vector" if n == 3 => {
+            let f = "rt_any_orthonormal_vector";
+            let text = "\
+fn rt_any_orthonormal_vector(v: vec3<f32>) -> vec3<f32> {
+    let sign = select(1.0f, -1.0f, (bitcast<u32>(v.z) & 0x80000000u) != 0u);
+    let a = -1.0f / (sign + v.z);
+    let b = v.x * v.y * a;
+    return vec3<f32>(b, sign + v.y * v.y * a, -v.y);
+}
+";
+            with_support(sig(vec![], t, move |a| format!("{f}({})", a[0])), f, text)
+        }
+        _ => None,
+    }
+}
+
+/// Interpolation and clamping to `[0, 1]`: `midpoint`, `lerp_monotonic`,
+/// `saturate`, `step`, `smoothstep`.
+fn blend(n: u8, recv: &Ty, name: &str) -> Option<MethodSig> {
+    let t = recv.clone();
+    match name {
         "midpoint" => sig(vec![t.clone()], t, |a| format!("(({} + {}) * 0.5f)", a[0], a[1])),
         "saturate" => sig(vec![], t, |a| format!("saturate({})", a[0])),
         // glam: 0 where `rhs < self`, else 1; WGSL's `step(edge, x)`.
@@ -410,19 +446,19 @@ fn float_vec(n: u8, recv: &Ty, name: &str) -> Option<MethodSig> {
             let tt = format!("saturate((({} - {1}) / ({2} - {1})))", a[0], a[1], a[2]);
             format!("({tt} * {tt} * ({w3}(3.0f) - {w3}(2.0f) * {tt}))", w3 = recv_w(n))
         }),
-        "copysign" => sig(vec![t.clone()], t, move |a| {
-            let u = format!("vec{n}<u32>");
-            format!(
-                "bitcast<vec{n}<f32>>((bitcast<{u}>({}) & {u}(0x7fffffffu)) | (bitcast<{u}>({}) & {u}(0x80000000u)))",
-                a[0], a[1]
-            )
-        }),
+        "lerp_monotonic" => sig(vec![t.clone(), F32], t, |a| format!("({0} + ({1} - {0}) * {2})", a[0], a[1], a[2])),
+        _ => None,
+    }
+}
+
+/// Lengths: `is_normalized`, the `clamp_length` family, `normalize_or`,
+/// `normalize_and_length`.
+fn lengths(n: u8, recv: &Ty, name: &str) -> Option<MethodSig> {
+    let t = recv.clone();
+    match name {
         "is_normalized" => {
             sig(vec![], Ty::Scalar(Scalar::Bool), |a| format!("(abs(dot({0}, {0}) - 1.0f) <= 2e-4f)", a[0]))
         }
-        "abs_diff_eq" => sig(vec![t.clone(), F32], Ty::Scalar(Scalar::Bool), move |a| {
-            format!("all(abs({} - {}) <= vec{n}<f32>({}))", a[0], a[1], a[2])
-        }),
         "clamp_length" | "clamp_length_max" | "clamp_length_min" => {
             let params = if name == "clamp_length" { vec![F32, F32] } else { vec![F32] };
             let which = name.to_string();
@@ -446,17 +482,6 @@ fn float_vec(n: u8, recv: &Ty, name: &str) -> Option<MethodSig> {
                 }
             })
         }
-        "perp" if n == 2 => sig(vec![], t, |a| format!("vec2<f32>(-{0}.y, {0}.x)", a[0])),
-        "perp_dot" if n == 2 => {
-            sig(vec![t.clone()], F32, |a| format!("(({0}.x * {1}.y) - ({0}.y * {1}.x))", a[0], a[1]))
-        }
-        "rotate" if n == 2 => sig(vec![t.clone()], t, |a| {
-            format!("vec2<f32>({0}.x * {1}.x - {0}.y * {1}.y, {0}.y * {1}.x + {0}.x * {1}.y)", a[0], a[1])
-        }),
-        "to_angle" if n == 2 => sig(vec![], F32, |a| format!("atan2({0}.y, {0}.x)", a[0])),
-        "reflect" if n != 3 => sig(vec![t.clone()], t, |a| format!("reflect({}, {})", a[0], a[1])),
-        "refract" if n != 3 => sig(vec![t.clone(), F32], t, |a| format!("refract({}, {}, {})", a[0], a[1], a[2])),
-        "lerp_monotonic" => sig(vec![t.clone(), F32], t, |a| format!("({0} + ({1} - {0}) * {2})", a[0], a[1], a[2])),
         "normalize_or" => {
             let i = n as usize - 2;
             let f: &'static str = ["rt_normalize_or2", "rt_normalize_or3", "rt_normalize_or4"][i];
@@ -469,6 +494,42 @@ fn float_vec(n: u8, recv: &Ty, name: &str) -> Option<MethodSig> {
             let ret = Ty::Tuple(vec![t.clone(), F32]);
             with_support(sig(vec![], ret, move |a| format!("{f}({})", a[0])), f, NORMALIZE_AND_LENGTH[i])
         }
+        _ => None,
+    }
+}
+
+/// `Vec2`'s own: `perp`, `perp_dot`, `rotate`, `to_angle`.
+fn vec2_method(n: u8, recv: &Ty, name: &str) -> Option<MethodSig> {
+    let t = recv.clone();
+    match name {
+        "perp" if n == 2 => sig(vec![], t, |a| format!("vec2<f32>(-{0}.y, {0}.x)", a[0])),
+        "perp_dot" if n == 2 => {
+            sig(vec![t.clone()], F32, |a| format!("(({0}.x * {1}.y) - ({0}.y * {1}.x))", a[0], a[1]))
+        }
+        "rotate" if n == 2 => sig(vec![t.clone()], t, |a| {
+            format!("vec2<f32>({0}.x * {1}.x - {0}.y * {1}.y, {0}.y * {1}.x + {0}.x * {1}.y)", a[0], a[1])
+        }),
+        "to_angle" if n == 2 => sig(vec![], F32, |a| format!("atan2({0}.y, {0}.x)", a[0])),
+        _ => None,
+    }
+}
+
+/// Per component: `copysign`, `sin_cos`, the Euclidean `rem_euclid` and
+/// `div_euclid`, the tests (`abs_diff_eq`, `is_finite`, `is_nan`,
+/// `is_negative_bitmask`) and `min_position`/`max_position`.
+fn per_component(n: u8, recv: &Ty, name: &str) -> Option<MethodSig> {
+    let t = recv.clone();
+    match name {
+        "copysign" => sig(vec![t.clone()], t, move |a| {
+            let u = format!("vec{n}<u32>");
+            format!(
+                "bitcast<vec{n}<f32>>((bitcast<{u}>({}) & {u}(0x7fffffffu)) | (bitcast<{u}>({}) & {u}(0x80000000u)))",
+                a[0], a[1]
+            )
+        }),
+        "abs_diff_eq" => sig(vec![t.clone(), F32], Ty::Scalar(Scalar::Bool), move |a| {
+            format!("all(abs({} - {}) <= vec{n}<f32>({}))", a[0], a[1], a[2])
+        }),
         "sin_cos" => {
             let pair = Ty::Tuple(vec![t.clone(), t]);
             let name = pair.wgsl();
@@ -499,20 +560,6 @@ fn float_vec(n: u8, recv: &Ty, name: &str) -> Option<MethodSig> {
             format!("all(abs({}) <= vec{n}<f32>({}))", a[0], super::f32_literal(f32::MAX))
         }),
         "is_nan" => sig(vec![], Ty::Scalar(Scalar::Bool), |a| format!("any({0} != {0})", a[0])),
-        "to_homogeneous" if n == 3 => sig(vec![], Ty::vec(4), |a| format!("vec4<f32>({}, 1.0f)", a[0])),
-        "project" if n == 4 => sig(vec![], Ty::vec(3), |a| format!("({0}.xyz / {0}.w)", a[0])),
-        "any_orthonormal_vector" if n == 3 => {
-            let f = "rt_any_orthonormal_vector";
-            let text = "\
-fn rt_any_orthonormal_vector(v: vec3<f32>) -> vec3<f32> {
-    let sign = select(1.0f, -1.0f, (bitcast<u32>(v.z) & 0x80000000u) != 0u);
-    let a = -1.0f / (sign + v.z);
-    let b = v.x * v.y * a;
-    return vec3<f32>(b, sign + v.y * v.y * a, -v.y);
-}
-";
-            with_support(sig(vec![], t, move |a| format!("{f}({})", a[0])), f, text)
-        }
         _ => None,
     }
 }

@@ -124,21 +124,52 @@ fn bits(s: Scalar, a: &str) -> String {
     if s == Scalar::I32 { format!("bitcast<u32>({a})") } else { a.to_string() }
 }
 
-/// The methods of this file for the integer scalar `s`.
+/// The methods of this file for the integer scalar `s`, one group of
+/// methods after another.
 fn int(s: Scalar, name: &str) -> Option<MethodSig> {
+    bit_method(s, name)
+        .or_else(|| shift(s, name))
+        .or_else(|| wrapping(s, name))
+        .or_else(|| overflowing(s, name))
+        .or_else(|| power(s, name))
+        .or_else(|| root_or_log(s, name))
+        .or_else(|| sign_or_mean(s, name))
+        .or_else(|| round_up(s, name))
+}
+
+/// `(ty, bool)`: what the `overflowing_` methods return.
+fn pair(ty: Ty) -> Ty {
+    Ty::Tuple(vec![ty, BOOL])
+}
+
+/// Bit counts of ones (`count_zeros`, `leading_ones`, `trailing_ones`),
+/// byte order (`to_be`, `to_le`) and the sign casts.
+fn bit_method(s: Scalar, name: &str) -> Option<MethodSig> {
     let t = Ty::Scalar(s);
     let signed = s == Scalar::I32;
-    let zero = if signed { "0i" } else { "0u" };
-    let pair = |ty: Ty| Ty::Tuple(vec![ty, BOOL]);
-    let pair_w = pair(t.clone()).wgsl();
-    let (pow_fn, pow_text) = if signed { ("rt_pow_i32", POW_I32) } else { ("rt_pow_u32", POW_U32) };
-    let pow = [(pow_fn, pow_text), ("rt_mul_over_u32", MUL_OVER)];
     let count = |f: &'static str| move |a: &[String]| format!("{f}(~{})", bits(s, &a[0]));
     match name {
         "count_zeros" => sig(vec![], U32, count("countOneBits")),
         "leading_ones" => sig(vec![], U32, count("countLeadingZeros")),
         "trailing_ones" => sig(vec![], U32, count("countTrailingZeros")),
-        "wrapping_neg" => sig(vec![], t, move |a| format!("({zero} - {})", a[0])),
+        "to_be" => sig(vec![], t, move |a| byte_swap(s, &a[0])),
+        // Little-endian, as every target the CPU backend builds for.
+        "to_le" => sig(vec![], t, |a| a[0].clone()),
+        "cast_unsigned" if signed => sig(vec![], U32, |a| format!("bitcast<u32>({})", a[0])),
+        // `u32` only.
+        "cast_signed" if !signed => sig(vec![], I32, |a| format!("bitcast<i32>({})", a[0])),
+        _ => None,
+    }
+}
+
+/// The shifts by an amount of 32 or more: `wrapping_`, `overflowing_` and
+/// `unbounded_shl`/`shr`.
+fn shift(s: Scalar, name: &str) -> Option<MethodSig> {
+    let t = Ty::Scalar(s);
+    let signed = s == Scalar::I32;
+    let zero = if signed { "0i" } else { "0u" };
+    let pair_w = pair(t.clone()).wgsl();
+    match name {
         "wrapping_shl" => sig(vec![U32], t, |a| format!("({} << ({} & 31u))", a[0], a[1])),
         "wrapping_shr" => sig(vec![U32], t, |a| format!("({} >> ({} & 31u))", a[0], a[1])),
         "overflowing_shl" => {
@@ -154,11 +185,39 @@ fn int(s: Scalar, name: &str) -> Option<MethodSig> {
             let fill = if signed { format!("select(0i, -1i, {} < 0i)", a[0]) } else { "0u".into() };
             format!("select({0} >> ({1} & 31u), {fill}, {1} >= 32u)", a[0], a[1])
         }),
+        _ => None,
+    }
+}
+
+/// The `wrapping_` forms of negation, `abs`, the remainder and the
+/// Euclidean division and remainder (the shifts and `pow` are [`shift`]'s
+/// and [`power`]'s).
+fn wrapping(s: Scalar, name: &str) -> Option<MethodSig> {
+    let t = Ty::Scalar(s);
+    let signed = s == Scalar::I32;
+    let zero = if signed { "0i" } else { "0u" };
+    match name {
+        "wrapping_neg" => sig(vec![], t, move |a| format!("({zero} - {})", a[0])),
         // `x % 0` is 0 and `MIN % -1` is 0 on the GPU, std's wrapping
         // values where it does not panic.
         "wrapping_rem" => sig(vec![t.clone()], t, |a| format!("({} % {})", a[0], a[1])),
         "wrapping_div_euclid" => super::int_division::method(&t, "div_euclid"),
         "wrapping_rem_euclid" => super::int_division::method(&t, "rem_euclid"),
+        // `i32` only.
+        "wrapping_abs" if signed => sig(vec![], t, |a| format!("abs({})", a[0])),
+        _ => None,
+    }
+}
+
+/// The `overflowing_` forms of division, the remainder, negation, `abs`,
+/// products and mixed-sign sums (the shifts and `pow` are [`shift`]'s and
+/// [`power`]'s): the value and whether it overflowed.
+fn overflowing(s: Scalar, name: &str) -> Option<MethodSig> {
+    let t = Ty::Scalar(s);
+    let signed = s == Scalar::I32;
+    let zero = if signed { "0i" } else { "0u" };
+    let pair_w = pair(t.clone()).wgsl();
+    match name {
         // A zero divisor reads as one (std panics); `MIN / -1` and its
         // remainder overflow (the quotient wraps to `MIN`, the remainder
         // is 0).
@@ -201,6 +260,29 @@ fn int(s: Scalar, name: &str) -> Option<MethodSig> {
             }),
             &[("rt_mul_over_u32", MUL_OVER)],
         ),
+        "overflowing_neg" if signed => {
+            sig(vec![], pair(t), move |a| format!("{pair_w}(0i - {0}, {0} == i32(-2147483648))", a[0]))
+        }
+        "overflowing_neg" => sig(vec![], pair(t), move |a| format!("{pair_w}(0u - {0}, {0} != 0u)", a[0])),
+        "overflowing_abs" if signed => {
+            sig(vec![], pair(t), move |a| format!("{pair_w}(abs({0}), {0} == i32(-2147483648))", a[0]))
+        }
+        "overflowing_add_signed" if !signed => sig(vec![I32], pair(t), move |a| {
+            let r = format!("({} + bitcast<u32>({}))", a[0], a[1]);
+            format!("{pair_w}({r}, select({r} < {0}, {r} > {0}, {1} < 0i))", a[0], a[1])
+        }),
+        _ => None,
+    }
+}
+
+/// `pow` and its `wrapping_`, `overflowing_` and `saturating_` forms.
+fn power(s: Scalar, name: &str) -> Option<MethodSig> {
+    let t = Ty::Scalar(s);
+    let signed = s == Scalar::I32;
+    let pair_w = pair(t.clone()).wgsl();
+    let (pow_fn, pow_text) = if signed { ("rt_pow_i32", POW_I32) } else { ("rt_pow_u32", POW_U32) };
+    let pow = [(pow_fn, pow_text), ("rt_mul_over_u32", MUL_OVER)];
+    match name {
         "pow" | "wrapping_pow" => with(sig(vec![U32], t, move |a| format!("{pow_fn}({}, {}).value", a[0], a[1])), &pow),
         "overflowing_pow" => with(
             sig(vec![U32], pair(t), move |a| {
@@ -223,6 +305,16 @@ fn int(s: Scalar, name: &str) -> Option<MethodSig> {
             }),
             &pow,
         ),
+        _ => None,
+    }
+}
+
+/// Integer roots and logarithms: `isqrt`, `ilog2`, `ilog10`, `ilog`.
+fn root_or_log(s: Scalar, name: &str) -> Option<MethodSig> {
+    let t = Ty::Scalar(s);
+    let signed = s == Scalar::I32;
+    let zero = if signed { "0i" } else { "0u" };
+    match name {
         "isqrt" => with(
             sig(vec![], t, move |a| {
                 if signed {
@@ -253,6 +345,17 @@ fn int(s: Scalar, name: &str) -> Option<MethodSig> {
             }),
             &[("rt_ilog", ILOG)],
         ),
+        _ => None,
+    }
+}
+
+/// Signs, distances and means: `abs_diff`, `midpoint`, and `i32`'s
+/// `unsigned_abs`, `saturating_neg`, `saturating_abs`, `is_positive`,
+/// `is_negative`.
+fn sign_or_mean(s: Scalar, name: &str) -> Option<MethodSig> {
+    let t = Ty::Scalar(s);
+    let signed = s == Scalar::I32;
+    match name {
         "abs_diff" => sig(vec![t.clone()], U32, move |a| {
             let (x, y) = (bits(s, &a[0]), bits(s, &a[1]));
             format!("select({x} - {y}, {y} - {x}, {} < {})", a[0], a[1])
@@ -265,11 +368,6 @@ fn int(s: Scalar, name: &str) -> Option<MethodSig> {
             let floor = format!("(({0} & {1}) + (({0} ^ {1}) >> 1u))", a[0], a[1]);
             format!("({floor} + select(0i, 1i, {floor} < 0i && (({0} ^ {1}) & 1i) != 0i))", a[0], a[1])
         }),
-        "to_be" => sig(vec![], t, move |a| byte_swap(s, &a[0])),
-        // Little-endian, as every target the CPU backend builds for.
-        "to_le" => sig(vec![], t, |a| a[0].clone()),
-        // `i32` only.
-        "wrapping_abs" if signed => sig(vec![], t, |a| format!("abs({})", a[0])),
         "unsigned_abs" if signed => {
             sig(vec![], U32, |a| format!("select(bitcast<u32>({0}), 0u - bitcast<u32>({0}), {0} < 0i)", a[0]))
         }
@@ -279,18 +377,18 @@ fn int(s: Scalar, name: &str) -> Option<MethodSig> {
         "saturating_abs" if signed => {
             sig(vec![], t, |a| format!("select(abs({0}), 2147483647i, {0} == i32(-2147483648))", a[0]))
         }
-        "overflowing_neg" if signed => {
-            sig(vec![], pair(t), move |a| format!("{pair_w}(0i - {0}, {0} == i32(-2147483648))", a[0]))
-        }
-        "overflowing_neg" => sig(vec![], pair(t), move |a| format!("{pair_w}(0u - {0}, {0} != 0u)", a[0])),
-        "overflowing_abs" if signed => {
-            sig(vec![], pair(t), move |a| format!("{pair_w}(abs({0}), {0} == i32(-2147483648))", a[0]))
-        }
         "is_positive" if signed => sig(vec![], BOOL, |a| format!("({} > 0i)", a[0])),
         "is_negative" if signed => sig(vec![], BOOL, |a| format!("({} < 0i)", a[0])),
-        "cast_unsigned" if signed => sig(vec![], U32, |a| format!("bitcast<u32>({})", a[0])),
-        // `u32` only.
-        "cast_signed" if !signed => sig(vec![], I32, |a| format!("bitcast<i32>({})", a[0])),
+        _ => None,
+    }
+}
+
+/// `u32`'s rounding up: `div_ceil`, `next_multiple_of`,
+/// `next_power_of_two`.
+fn round_up(s: Scalar, name: &str) -> Option<MethodSig> {
+    let t = Ty::Scalar(s);
+    let signed = s == Scalar::I32;
+    match name {
         "div_ceil" if !signed => sig(vec![t.clone()], t, |a| {
             let d = format!("select({0}, 1u, {0} == 0u)", a[1]);
             format!("(({0} / {d}) + select(0u, 1u, ({0} % {d}) != 0u))", a[0])
@@ -304,10 +402,6 @@ fn int(s: Scalar, name: &str) -> Option<MethodSig> {
                 "select(select(1u << (32u - countLeadingZeros({0} - 1u)), 0u, {0} > 2147483648u), 1u, {0} <= 1u)",
                 a[0]
             )
-        }),
-        "overflowing_add_signed" if !signed => sig(vec![I32], pair(t), move |a| {
-            let r = format!("({} + bitcast<u32>({}))", a[0], a[1]);
-            format!("{pair_w}({r}, select({r} < {0}, {r} > {0}, {1} < 0i))", a[0], a[1])
         }),
         _ => None,
     }

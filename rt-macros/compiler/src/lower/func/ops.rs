@@ -106,155 +106,151 @@ impl FnLowerer<'_> {
         let (lt, rt) = (self.resolved(&l.ty), self.resolved(&r.ty));
         let effects = l.effects || r.effects;
         let reads = l.reads || r.reads;
+        let o = Operands { l, r, lt, rt, effects, reads, span };
         let sym = op_symbol(op);
-        let mismatch = |lt: &Ty, rt: &Ty| {
-            let numeric = |t: &Ty| matches!(t, Ty::Scalar(s) if *s != Scalar::Bool);
-            let hint = if numeric(lt) && numeric(rt) {
-                format!(": there are no implicit conversions; convert one side with `as {lt}` or `as {rt}`")
-            } else {
-                String::new()
-            };
-            Error::new(span, format!("cannot apply `{sym}` to `{lt}` and `{rt}`{hint}"))
-        };
-        let ty = match op {
-            BinOp::Add(_) | BinOp::Sub(_) | BinOp::Mul(_) | BinOp::Div(_) | BinOp::Rem(_) => {
-                let mul = matches!(op, BinOp::Mul(_));
-                match (&lt, &rt) {
-                    (a, b) if (self.is_int(a) || *a == F32) && self.unify(a, b) => self.resolved(a),
-                    (Ty::Vec(n, s), Ty::Vec(m, t)) if n == m && s == t && *s != Scalar::Bool => lt.clone(),
-                    (Ty::Vec(_, s), b) if Some(*s) == b.scalar() && !matches!(b, Ty::Vec(..) | Ty::Mat(_)) => {
-                        lt.clone()
-                    }
-                    (Ty::Vec(_, s), Ty::IntVar(_)) if s.is_int() => {
-                        self.unify(&rt, &Ty::Scalar(*s));
-                        lt.clone()
-                    }
-                    (a, Ty::Vec(_, s)) if Some(*s) == a.scalar() && !matches!(a, Ty::Vec(..) | Ty::Mat(_)) => {
-                        rt.clone()
-                    }
-                    (Ty::IntVar(_), Ty::Vec(_, s)) if s.is_int() => {
-                        self.unify(&lt, &Ty::Scalar(*s));
-                        rt.clone()
-                    }
-                    (Ty::Mat(n), Ty::Mat(m)) if n == m && !matches!(op, BinOp::Div(_) | BinOp::Rem(_)) => lt.clone(),
-                    (Ty::Mat(n), Ty::Vec(m, Scalar::F32)) if mul && n == m => rt.clone(),
-                    (Ty::Mat(_), b) if mul && *b == F32 => lt.clone(),
-                    (a, Ty::Mat(_)) if mul && *a == F32 => rt.clone(),
-                    _ => return Err(mismatch(&lt, &rt)),
-                }
+        match op {
+            BinOp::Add(_) | BinOp::Sub(_) | BinOp::Mul(_) | BinOp::Div(_) | BinOp::Rem(_) => self.arithmetic(op, o),
+            BinOp::BitAnd(_) | BinOp::BitOr(_) | BinOp::BitXor(_) => self.bitwise(op, o),
+            BinOp::Shl(_) | BinOp::Shr(_) if matches!(o.lt, Ty::Vec(_, s) if s.is_int()) => self.vector_shift(sym, o),
+            BinOp::Shl(_) | BinOp::Shr(_) => self.scalar_shift(sym, o),
+            BinOp::Eq(_) | BinOp::Ne(_) => self.equality(op, o),
+            BinOp::Lt(_) | BinOp::Le(_) | BinOp::Gt(_) | BinOp::Ge(_) => self.comparison(sym, o),
+            _ => Err(Error::unsupported(span, &format!("the `{sym}` operator"), "see the supported operators")),
+        }
+    }
+
+    /// `+ - * / %`: scalars of one type, vectors with vectors or scalars
+    /// of their element type, and glam's matrix products.
+    fn arithmetic(&mut self, op: &BinOp, o: Operands) -> Result<Val> {
+        let (lt, rt) = (&o.lt, &o.rt);
+        let mul = matches!(op, BinOp::Mul(_));
+        let ty = match (lt, rt) {
+            (a, b) if (self.is_int(a) || *a == F32) && self.unify(a, b) => self.resolved(a),
+            (Ty::Vec(n, s), Ty::Vec(m, t)) if n == m && s == t && *s != Scalar::Bool => lt.clone(),
+            (Ty::Vec(_, s), b) if Some(*s) == b.scalar() && !matches!(b, Ty::Vec(..) | Ty::Mat(_)) => lt.clone(),
+            (Ty::Vec(_, s), Ty::IntVar(_)) if s.is_int() => {
+                self.unify(rt, &Ty::Scalar(*s));
+                lt.clone()
             }
-            BinOp::BitAnd(_) | BinOp::BitOr(_) | BinOp::BitXor(_) => {
-                if lt == BOOL && rt == BOOL {
-                    if matches!(op, BinOp::BitXor(_)) {
-                        return Ok(Val::new(format!("({} != {})", l.code, r.code), BOOL)
-                            .with_effects(effects)
-                            .with_reads(reads));
-                    }
-                    BOOL
-                } else if matches!(lt, Ty::Vec(_, Scalar::Bool)) && lt == rt {
-                    // glam's `BVec` operators, per component (WGSL's `&`,
-                    // `|` on bool vectors; `^` is `!=`).
-                    if matches!(op, BinOp::BitXor(_)) {
-                        return Ok(Val::new(format!("({} != {})", l.code, r.code), lt)
-                            .with_effects(effects)
-                            .with_reads(reads));
-                    }
-                    lt.clone()
-                } else if self.is_int(&lt) && self.unify(&lt, &rt) {
-                    self.resolved(&lt)
-                } else if matches!(lt, Ty::Vec(_, s) if s.is_int()) && lt == rt {
-                    lt.clone()
-                } else if let Ty::Vec(n, s) = lt
-                    && s.is_int()
-                    && self.unify(&rt, &Ty::Scalar(s))
-                {
-                    // glam's `v & 1`: WGSL wants both sides the same type.
-                    let code = format!("({} {sym} vec{n}<{}>({}))", l.code, s.wgsl(), r.code);
-                    return Ok(Val::new(code, lt).with_effects(effects).with_reads(reads));
-                } else {
-                    return Err(mismatch(&lt, &rt));
-                }
+            (a, Ty::Vec(_, s)) if Some(*s) == a.scalar() && !matches!(a, Ty::Vec(..) | Ty::Mat(_)) => rt.clone(),
+            (Ty::IntVar(_), Ty::Vec(_, s)) if s.is_int() => {
+                self.unify(lt, &Ty::Scalar(*s));
+                rt.clone()
             }
-            BinOp::Shl(_) | BinOp::Shr(_) if matches!(lt, Ty::Vec(_, s) if s.is_int()) => {
-                // glam shifts a vector by a scalar or by a vector of either
-                // signedness; WGSL wants a `vecN<u32>` amount.
-                let Ty::Vec(n, _) = lt else { unreachable!() };
-                let amount = match rt {
-                    Ty::Vec(m, Scalar::U32) if m == n => r.code.clone(),
-                    Ty::Vec(m, t) if m == n && t.is_int() => format!("vec{n}<u32>({})", r.code),
-                    Ty::IntVar(_) if self.unify(&rt, &U32) => format!("vec{n}<u32>({})", r.code),
-                    Ty::Scalar(Scalar::I32) => format!("vec{n}<u32>(u32({}))", r.code),
-                    Ty::Scalar(t) if t.is_int() => format!("vec{n}<u32>({})", r.code),
-                    _ => return Err(mismatch(&lt, &rt)),
-                };
-                let amount = self.mask_amount(amount, Some(n));
-                return Ok(Val::new(format!("({} {sym} {amount})", l.code), lt)
-                    .with_effects(effects)
-                    .with_reads(reads));
-            }
-            BinOp::Shl(_) | BinOp::Shr(_) => {
-                if !self.is_int(&lt) || !self.is_int(&rt) {
-                    return Err(mismatch(&lt, &rt));
-                }
-                let amount = match rt {
-                    Ty::IntVar(_) => {
-                        self.unify(&rt, &U32);
-                        r.code.clone()
-                    }
-                    Ty::Scalar(Scalar::U32) | Ty::Scalar(Scalar::Usize) => r.code.clone(),
-                    _ => format!("u32({})", r.code),
-                };
-                let amount = self.mask_amount(amount, None);
-                return Ok(Val::new(format!("({} {sym} {amount})", l.code), lt)
-                    .with_effects(effects)
-                    .with_reads(reads));
-            }
-            BinOp::Eq(_) | BinOp::Ne(_) => {
-                if !self.unify(&lt, &rt) || !lt.is_value() {
-                    return Err(mismatch(&lt, &rt));
-                }
-                // Rust's float `!=` is true where a NaN is (unordered); WGSL
-                // implementations compare ordered: `!(a == b)` is Rust's.
-                if matches!(op, BinOp::Ne(_)) && lt.scalar() == Some(Scalar::F32) {
-                    let eq = match lt {
-                        Ty::Vec(..) => format!("all({} == {})", l.code, r.code),
-                        _ => format!("({} == {})", l.code, r.code),
-                    };
-                    return Ok(Val::new(format!("!{eq}"), BOOL).with_effects(effects).with_reads(reads));
-                }
-                return Ok(match lt {
-                    Ty::Vec(..) => {
-                        let f = if matches!(op, BinOp::Eq(_)) { "all" } else { "any" };
-                        Val::new(format!("{f}({} {sym} {})", l.code, r.code), BOOL)
-                            .with_effects(effects)
-                            .with_reads(reads)
-                    }
-                    t if matches!(t, Ty::Scalar(_) | Ty::IntVar(_)) || t.is_u32_word() => {
-                        Val::new(format!("({} {sym} {})", l.code, r.code), BOOL).with_effects(effects).with_reads(reads)
-                    }
-                    other => {
-                        return Err(Error::new(
-                            span,
-                            format!("`{sym}` on `{other}` is not supported: compare the fields"),
-                        ));
-                    }
-                });
-            }
-            BinOp::Lt(_) | BinOp::Le(_) | BinOp::Gt(_) | BinOp::Ge(_) => {
-                let ok = (self.is_int(&lt) || lt == F32) && self.unify(&lt, &rt);
-                if !ok {
-                    return Err(mismatch(&lt, &rt));
-                }
-                return Ok(Val::new(format!("({} {sym} {})", l.code, r.code), BOOL)
-                    .with_effects(effects)
-                    .with_reads(reads));
-            }
-            _ => return Err(Error::unsupported(span, &format!("the `{sym}` operator"), "see the supported operators")),
+            (Ty::Mat(n), Ty::Mat(m)) if n == m && !matches!(op, BinOp::Div(_) | BinOp::Rem(_)) => lt.clone(),
+            (Ty::Mat(n), Ty::Vec(m, Scalar::F32)) if mul && n == m => rt.clone(),
+            (Ty::Mat(_), b) if mul && *b == F32 => lt.clone(),
+            (a, Ty::Mat(_)) if mul && *a == F32 => rt.clone(),
+            _ => return Err(o.mismatch(op)),
         };
         if matches!(op, BinOp::Rem(_)) && ty.scalar() == Some(Scalar::F32) {
+            let Operands { l, r, lt, rt, .. } = o;
             return Ok(self.float_rem(l, &lt, r, &rt, ty));
         }
-        Ok(Val::new(format!("({} {sym} {})", l.code, r.code), ty).with_effects(effects).with_reads(reads))
+        Ok(o.infix(op_symbol(op), ty))
+    }
+
+    /// `& | ^`: logic on bools and bool vectors (`^` is `!=`), bitwise on
+    /// integers and integer vectors, glam's vector with a scalar.
+    fn bitwise(&mut self, op: &BinOp, o: Operands) -> Result<Val> {
+        let sym = op_symbol(op);
+        let lt = &o.lt;
+        let ty = if *lt == BOOL && o.rt == BOOL {
+            if matches!(op, BinOp::BitXor(_)) {
+                return Ok(o.val(format!("({} != {})", o.l.code, o.r.code), BOOL));
+            }
+            BOOL
+        } else if matches!(lt, Ty::Vec(_, Scalar::Bool)) && *lt == o.rt {
+            // glam's `BVec` operators, per component (WGSL's `&`,
+            // `|` on bool vectors; `^` is `!=`).
+            if matches!(op, BinOp::BitXor(_)) {
+                return Ok(o.val(format!("({} != {})", o.l.code, o.r.code), lt.clone()));
+            }
+            lt.clone()
+        } else if self.is_int(lt) && self.unify(lt, &o.rt) {
+            self.resolved(lt)
+        } else if matches!(lt, Ty::Vec(_, s) if s.is_int()) && *lt == o.rt {
+            lt.clone()
+        } else if let Ty::Vec(n, s) = *lt
+            && s.is_int()
+            && self.unify(&o.rt, &Ty::Scalar(s))
+        {
+            // glam's `v & 1`: WGSL wants both sides the same type.
+            let code = format!("({} {sym} vec{n}<{}>({}))", o.l.code, s.wgsl(), o.r.code);
+            return Ok(o.val(code, lt.clone()));
+        } else {
+            return Err(o.mismatch(op));
+        };
+        Ok(o.infix(sym, ty))
+    }
+
+    /// `<<`, `>>` of an integer vector: glam shifts a vector by a scalar or
+    /// by a vector of either signedness; WGSL wants a `vecN<u32>` amount.
+    fn vector_shift(&mut self, sym: &str, o: Operands) -> Result<Val> {
+        let Ty::Vec(n, _) = o.lt else { unreachable!() };
+        let (r, rt) = (&o.r, &o.rt);
+        let amount = match *rt {
+            Ty::Vec(m, Scalar::U32) if m == n => r.code.clone(),
+            Ty::Vec(m, t) if m == n && t.is_int() => format!("vec{n}<u32>({})", r.code),
+            Ty::IntVar(_) if self.unify(rt, &U32) => format!("vec{n}<u32>({})", r.code),
+            Ty::Scalar(Scalar::I32) => format!("vec{n}<u32>(u32({}))", r.code),
+            Ty::Scalar(t) if t.is_int() => format!("vec{n}<u32>({})", r.code),
+            _ => return Err(o.mismatch_of(sym)),
+        };
+        let amount = self.mask_amount(amount, Some(n));
+        Ok(o.val(format!("({} {sym} {amount})", o.l.code), o.lt.clone()))
+    }
+
+    /// `<<`, `>>` of an integer scalar, by a `u32` amount.
+    fn scalar_shift(&mut self, sym: &str, o: Operands) -> Result<Val> {
+        if !self.is_int(&o.lt) || !self.is_int(&o.rt) {
+            return Err(o.mismatch_of(sym));
+        }
+        let amount = match o.rt {
+            Ty::IntVar(_) => {
+                self.unify(&o.rt, &U32);
+                o.r.code.clone()
+            }
+            Ty::Scalar(Scalar::U32) | Ty::Scalar(Scalar::Usize) => o.r.code.clone(),
+            _ => format!("u32({})", o.r.code),
+        };
+        let amount = self.mask_amount(amount, None);
+        Ok(o.val(format!("({} {sym} {amount})", o.l.code), o.lt.clone()))
+    }
+
+    /// `==`, `!=` of two values of one type; vectors compare whole.
+    fn equality(&mut self, op: &BinOp, o: Operands) -> Result<Val> {
+        let sym = op_symbol(op);
+        let (l, r, lt) = (&o.l, &o.r, &o.lt);
+        if !self.unify(lt, &o.rt) || !lt.is_value() {
+            return Err(o.mismatch(op));
+        }
+        // Rust's float `!=` is true where a NaN is (unordered); WGSL
+        // implementations compare ordered: `!(a == b)` is Rust's.
+        if matches!(op, BinOp::Ne(_)) && lt.scalar() == Some(Scalar::F32) {
+            let eq = match lt {
+                Ty::Vec(..) => format!("all({} == {})", l.code, r.code),
+                _ => format!("({} == {})", l.code, r.code),
+            };
+            return Ok(o.val(format!("!{eq}"), BOOL));
+        }
+        match lt {
+            Ty::Vec(..) => {
+                let f = if matches!(op, BinOp::Eq(_)) { "all" } else { "any" };
+                Ok(o.val(format!("{f}({} {sym} {})", l.code, r.code), BOOL))
+            }
+            t if matches!(t, Ty::Scalar(_) | Ty::IntVar(_)) || t.is_u32_word() => Ok(o.infix(sym, BOOL)),
+            other => Err(Error::new(o.span, format!("`{sym}` on `{other}` is not supported: compare the fields"))),
+        }
+    }
+
+    /// `< <= > >=` of two integers or two floats.
+    fn comparison(&mut self, sym: &str, o: Operands) -> Result<Val> {
+        let ok = (self.is_int(&o.lt) || o.lt == F32) && self.unify(&o.lt, &o.rt);
+        if !ok {
+            return Err(o.mismatch_of(sym));
+        }
+        Ok(o.infix(sym, BOOL))
     }
 
     /// Float `l % r` of type `ty`: Rust's `fmod`, not WGSL's
@@ -405,6 +401,50 @@ pub(super) fn is_compound(op: &BinOp) -> bool {
             | BinOp::ShlAssign(_)
             | BinOp::ShrAssign(_)
     )
+}
+
+/// The two sides of a binary operator, lowered, with their resolved types.
+struct Operands {
+    l: Val,
+    r: Val,
+    lt: Ty,
+    rt: Ty,
+    /// Whether either side has effects.
+    effects: bool,
+    /// Whether either side reads state.
+    reads: bool,
+    /// The operator's span, where errors point.
+    span: Span,
+}
+
+impl Operands {
+    /// `code` of type `ty`, with the effects and reads of both sides.
+    fn val(&self, code: String, ty: Ty) -> Val {
+        Val::new(code, ty).with_effects(self.effects).with_reads(self.reads)
+    }
+
+    /// `(l sym r)` of type `ty`.
+    fn infix(&self, sym: &str, ty: Ty) -> Val {
+        self.val(format!("({} {sym} {})", self.l.code, self.r.code), ty)
+    }
+
+    /// The error for operands `op` does not apply to.
+    fn mismatch(&self, op: &BinOp) -> Error {
+        self.mismatch_of(op_symbol(op))
+    }
+
+    /// The error for operands the operator `sym` does not apply to, with
+    /// a hint where both are numbers.
+    fn mismatch_of(&self, sym: &str) -> Error {
+        let (lt, rt) = (&self.lt, &self.rt);
+        let numeric = |t: &Ty| matches!(t, Ty::Scalar(s) if *s != Scalar::Bool);
+        let hint = if numeric(lt) && numeric(rt) {
+            format!(": there are no implicit conversions; convert one side with `as {lt}` or `as {rt}`")
+        } else {
+            String::new()
+        };
+        Error::new(self.span, format!("cannot apply `{sym}` to `{lt}` and `{rt}`{hint}"))
+    }
 }
 
 pub(super) fn compound_base(op: &BinOp) -> BinOp {

@@ -5,23 +5,12 @@
 use super::*;
 
 impl FnLowerer<'_> {
+    /// What `e` names as the target of an assignment or a `&mut`.
     pub(super) fn place(&mut self, e: &Expr) -> Result<Place> {
         match e {
             Expr::Paren(p) => self.place(&p.expr),
             Expr::Group(g) => self.place(&g.expr),
-            Expr::Path(p) if p.path.segments.len() == 1 => {
-                let name = p.path.segments[0].ident.to_string();
-                match self.lookup(&name).cloned() {
-                    Some(Local { wgsl, .. }) if wgsl == POISONED => Err(Error::silent(p.span())),
-                    Some(Local { wgsl, ty, var: true }) => Ok(Place::Wgsl(Val::new(self.mark(p.span(), &wgsl), ty))),
-                    Some(Local { ty: Ty::Ref(..), .. }) => Err(Error::new(
-                        p.span(),
-                        format!("cannot assign to the reference `{name}`: assign through it with `*{name} = ...`"),
-                    )),
-                    Some(_) => Err(Error::new(p.span(), format!("cannot assign twice to immutable variable `{name}`"))),
-                    None => Err(Error::new(p.span(), format!("cannot find variable `{name}`"))),
-                }
-            }
+            Expr::Path(p) if p.path.segments.len() == 1 => self.local_place(p),
             Expr::MethodCall(m) if m.method == "col_mut" => match self.col_mut_place(m)? {
                 Some(p) => Ok(p),
                 None => Err(Error::new(m.span(), "cannot assign to this expression")),
@@ -39,94 +28,117 @@ impl FnLowerer<'_> {
                     t => Err(Error::new(u.span(), format!("cannot assign through `{t}`"))),
                 }
             }
-            Expr::Field(f) => {
-                let name = match &f.member {
-                    syn::Member::Named(n) => n.to_string(),
-                    syn::Member::Unnamed(i) => i.index.to_string(),
-                };
-                // Fields of reference parameters are places through the pointer.
-                let base = match self.ref_base(&f.base) {
-                    Some((code, ty)) => Place::Wgsl(Val::new(code, ty)),
-                    None => self.place(&f.base)?,
-                };
-                match base {
-                    Place::Wgsl(v) => Ok(Place::Wgsl(self.field_of(v, &name, f.member.span())?)),
-                    Place::Buffer { buf, kind, elem, index, path, ty, effects } => {
-                        let v = self.field_of(Val::new("e", ty), &name, f.member.span())?;
-                        let path = format!("{path}{}", &v.code[1..]);
-                        Ok(Place::Buffer { buf, kind, elem, index, path, ty: v.ty, effects })
-                    }
-                }
-            }
-            Expr::Index(i) => {
-                let base_val = self.expr(&i.expr, None)?;
-                if let Ty::Buffer(kind, elem) = self.resolved(&self.deref(base_val.clone()).ty) {
-                    if !kind.writable {
-                        return Err(Error::new(
-                            i.expr.span(),
-                            format!(
-                                "cannot write to a read-only `{}`: declare the variable as `{}`",
-                                kind.rust_name(),
-                                BufferKind { writable: true, ..kind }.rust_name()
-                            ),
-                        ));
-                    }
-                    let index = self.buffer_index(kind, &i.index)?;
-                    let t = self.tmp();
-                    self.emit_let(format!("let {t} = {};", index.code), &index);
-                    let buf = self.deref(base_val);
-                    return Ok(Place::Buffer {
-                        buf,
-                        kind,
-                        elem: (*elem).clone(),
-                        index: t,
-                        path: String::new(),
-                        ty: *elem,
-                        effects: false,
-                    });
-                }
-                if let Ty::BufferId(writable, elem) = self.resolved(&self.deref(base_val.clone()).ty) {
-                    let ty = Ty::BufferId(writable, elem.clone());
-                    let how = if writable {
-                        "write the element with `.store(i, v)`".to_string()
-                    } else {
-                        format!("it is read-only; write through an `RwBindlessBuffer<{elem}>` with `.store(i, v)`")
-                    };
-                    return Err(Error::new(
-                        i.expr.span(),
-                        format!("cannot assign to an element through `{ty}`: {how}"),
-                    ));
-                }
-                if let t @ (Ty::SamplerId(_) | Ty::Sampler | Ty::Sampler3d | Ty::SamplerCube) =
-                    self.resolved(&self.deref(base_val.clone()).ty)
-                {
-                    return Err(Error::new(
-                        i.expr.span(),
-                        format!(
-                            "cannot assign to texels through `{t}`: textures are read-only in ray programs \
-                             (write into an `RwBuffer<Vec4>` instead)"
-                        ),
-                    ));
-                }
-                let base = self.place(&i.expr)?;
-                let idx = self.int_index(&i.index)?;
-                let element = |code: String, ty: Ty, effects: bool| {
-                    Place::Wgsl(Val::new(format!("{code}[{}]", idx.code), ty).with_effects(effects || idx.effects))
-                };
-                match base {
-                    Place::Wgsl(Val { code, ty: Ty::Array(elem, _), effects, .. }) => Ok(element(code, *elem, effects)),
-                    Place::Wgsl(Val { code, ty: Ty::Vec(_, s), effects, .. }) => {
-                        Ok(element(code, Ty::Scalar(s), effects))
-                    }
-                    Place::Buffer { buf, kind, elem, index, path, ty: Ty::Array(e, _), effects } => {
-                        let path = format!("{path}[{}]", idx.code);
-                        Ok(Place::Buffer { buf, kind, elem, index, path, ty: *e, effects: effects || idx.effects })
-                    }
-                    _ => Err(Error::new(i.expr.span(), "cannot index into this value")),
-                }
-            }
+            Expr::Field(f) => self.field_place(f),
+            Expr::Index(i) => self.index_place(i),
             other => Err(Error::new(other.span(), "cannot assign to this expression")),
         }
+    }
+
+    /// A local variable as a place: a `let mut` one only.
+    fn local_place(&mut self, p: &syn::ExprPath) -> Result<Place> {
+        let name = p.path.segments[0].ident.to_string();
+        match self.lookup(&name).cloned() {
+            Some(Local { wgsl, .. }) if wgsl == POISONED => Err(Error::silent(p.span())),
+            Some(Local { wgsl, ty, var: true }) => Ok(Place::Wgsl(Val::new(self.mark(p.span(), &wgsl), ty))),
+            Some(Local { ty: Ty::Ref(..), .. }) => Err(Error::new(
+                p.span(),
+                format!("cannot assign to the reference `{name}`: assign through it with `*{name} = ...`"),
+            )),
+            Some(_) => Err(Error::new(p.span(), format!("cannot assign twice to immutable variable `{name}`"))),
+            None => Err(Error::new(p.span(), format!("cannot find variable `{name}`"))),
+        }
+    }
+
+    /// `base.field` as a place, in a local or in a buffer element.
+    fn field_place(&mut self, f: &syn::ExprField) -> Result<Place> {
+        let name = match &f.member {
+            syn::Member::Named(n) => n.to_string(),
+            syn::Member::Unnamed(i) => i.index.to_string(),
+        };
+        // Fields of reference parameters are places through the pointer.
+        let base = match self.ref_base(&f.base) {
+            Some((code, ty)) => Place::Wgsl(Val::new(code, ty)),
+            None => self.place(&f.base)?,
+        };
+        match base {
+            Place::Wgsl(v) => Ok(Place::Wgsl(self.field_of(v, &name, f.member.span())?)),
+            Place::Buffer { buf, kind, elem, index, path, ty, effects } => {
+                let v = self.field_of(Val::new("e", ty), &name, f.member.span())?;
+                let path = format!("{path}{}", &v.code[1..]);
+                Ok(Place::Buffer { buf, kind, elem, index, path, ty: v.ty, effects })
+            }
+        }
+    }
+
+    /// `base[index]` as a place: a writable buffer's element, or an element
+    /// of an array or a vector (in a local or a buffer element).
+    fn index_place(&mut self, i: &syn::ExprIndex) -> Result<Place> {
+        let base_val = self.expr(&i.expr, None)?;
+        if let Ty::Buffer(kind, elem) = self.resolved(&self.deref(base_val.clone()).ty) {
+            return self.buffer_element_place(i, base_val, kind, *elem);
+        }
+        self.reject_id_and_sampler_elements(i, &base_val)?;
+        let base = self.place(&i.expr)?;
+        let idx = self.int_index(&i.index)?;
+        let element = |code: String, ty: Ty, effects: bool| {
+            Place::Wgsl(Val::new(format!("{code}[{}]", idx.code), ty).with_effects(effects || idx.effects))
+        };
+        match base {
+            Place::Wgsl(Val { code, ty: Ty::Array(elem, _), effects, .. }) => Ok(element(code, *elem, effects)),
+            Place::Wgsl(Val { code, ty: Ty::Vec(_, s), effects, .. }) => Ok(element(code, Ty::Scalar(s), effects)),
+            Place::Buffer { buf, kind, elem, index, path, ty: Ty::Array(e, _), effects } => {
+                let path = format!("{path}[{}]", idx.code);
+                Ok(Place::Buffer { buf, kind, elem, index, path, ty: *e, effects: effects || idx.effects })
+            }
+            _ => Err(Error::new(i.expr.span(), "cannot index into this value")),
+        }
+    }
+
+    /// `buf[index]` of the buffer `buf` (its element type `elem`) as a
+    /// place: the index evaluated once, into a `let`; an error where the
+    /// buffer is read-only.
+    fn buffer_element_place(&mut self, i: &syn::ExprIndex, buf: Val, kind: BufferKind, elem: Ty) -> Result<Place> {
+        if !kind.writable {
+            return Err(Error::new(
+                i.expr.span(),
+                format!(
+                    "cannot write to a read-only `{}`: declare the variable as `{}`",
+                    kind.rust_name(),
+                    BufferKind { writable: true, ..kind }.rust_name()
+                ),
+            ));
+        }
+        let index = self.buffer_index(kind, &i.index)?;
+        let t = self.tmp();
+        self.emit_let(format!("let {t} = {};", index.code), &index);
+        let buf = self.deref(buf);
+        Ok(Place::Buffer { buf, kind, elem: elem.clone(), index: t, path: String::new(), ty: elem, effects: false })
+    }
+
+    /// The error for an element assigned through a bindless buffer id or
+    /// a sampler (each says how to write instead), where `base` is one.
+    fn reject_id_and_sampler_elements(&self, i: &syn::ExprIndex, base: &Val) -> Result<()> {
+        if let Ty::BufferId(writable, elem) = self.resolved(&self.deref(base.clone()).ty) {
+            let ty = Ty::BufferId(writable, elem.clone());
+            let how = if writable {
+                "write the element with `.store(i, v)`".to_string()
+            } else {
+                format!("it is read-only; write through an `RwBindlessBuffer<{elem}>` with `.store(i, v)`")
+            };
+            return Err(Error::new(i.expr.span(), format!("cannot assign to an element through `{ty}`: {how}")));
+        }
+        if let t @ (Ty::SamplerId(_) | Ty::Sampler | Ty::Sampler3d | Ty::SamplerCube) =
+            self.resolved(&self.deref(base.clone()).ty)
+        {
+            return Err(Error::new(
+                i.expr.span(),
+                format!(
+                    "cannot assign to texels through `{t}`: textures are read-only in ray programs \
+                     (write into an `RwBuffer<Vec4>` instead)"
+                ),
+            ));
+        }
+        Ok(())
     }
 
     /// glam's methods that change a matrix or a bool vector in place and

@@ -1,0 +1,296 @@
+//! What each `rt_*` attribute expands to: `#[rt_program]`,
+//! `#[rt_function]`, `#[rt_struct]` (and `#[rt_payload]`,
+//! `#[rt_attributes]`), `#[rt_impl]`, `#[rt_enum]` and `#[rt_const]`. Each
+//! parses its item and arguments, emits the item as the CPU compiles it
+//! with the checks rustc runs for it, and starts the item's chain (see
+//! `chain.rs`); an item that does not parse, or a wrong argument, is the
+//! item as written with the error beside it.
+
+use super::chain::{export_macro, start_chain};
+use super::data::{decorate_struct, rt_data_impl};
+use super::parse_kind;
+use super::thunk::{cpu_thunk, pass_attributes_to_reports};
+use crate::declared::{declared_checks, reroot};
+use crate::error::{Error, Errors};
+use crate::kinds::Kind;
+use crate::signature;
+use crate::{StructRole, deps};
+use proc_macro2::{Span, TokenStream, TokenTree};
+use quote::{format_ident, quote, quote_spanned};
+use syn::spanned::Spanned;
+
+/// The original function with `#[var]` parameter attributes removed.
+fn strip_var_attrs(f: &syn::ItemFn) -> syn::ItemFn {
+    let mut f = f.clone();
+    for input in f.sig.inputs.iter_mut() {
+        if let syn::FnArg::Typed(pt) = input {
+            pt.attrs.retain(|a| !signature::is_var_attr(a));
+        }
+    }
+    f
+}
+
+/// `#[rt_program(kind)]`.
+pub fn rt_program(attr: TokenStream, item: TokenStream) -> TokenStream {
+    let f: syn::ItemFn = match syn::parse2(item.clone()) {
+        Ok(f) => f,
+        Err(e) => {
+            let err = e.to_compile_error();
+            return quote!(#err #item);
+        }
+    };
+    let mut stripped = strip_var_attrs(&f);
+    let kind = match syn::parse2::<syn::Ident>(attr.clone()) {
+        Ok(i) => match parse_kind(&i) {
+            Ok(k) => k,
+            Err(e) => return failed_program(&f, &stripped, e.into()),
+        },
+        Err(_) => {
+            let all: Vec<&str> = crate::kinds::ALL_KINDS.iter().map(|k| k.name()).collect();
+            let span = if attr.is_empty() { Span::call_site() } else { attr.span() };
+            let e = Error::new(span, format!("`#[rt_program]` needs a program kind: one of {}", all.join(", ")));
+            return failed_program(&f, &stripped, e.into());
+        }
+    };
+    let params = match signature::program_params(kind, &f) {
+        Ok(p) => p,
+        Err(e) => return failed_program(&f, &stripped, e),
+    };
+    if kind == Kind::Intersection {
+        pass_attributes_to_reports(&mut stripped, &params);
+    }
+    crate::cpu_semantics::rewrite_fn(&mut stripped);
+    let name = &f.sig.ident;
+    let vis = &f.vis;
+    let thunk = cpu_thunk(kind, &f, &params);
+    let kind_ident = format_ident!("{}", kind.name());
+    let entry = quote!(program #kind_ident { #item });
+    let deps: Vec<syn::Path> = deps::of_fn(&f).into_iter().map(|p| reroot(&p)).collect();
+    let declared = declared_checks(&deps, &params);
+    let body = start_chain(entry, deps);
+    quote! {
+        #stripped
+        #[doc(hidden)]
+        #[allow(non_snake_case, unused_imports, clippy::all)]
+        #vis mod #name {
+            use super::*;
+            #declared
+            #thunk
+            /// The program's descriptor: WGSL, layouts, variables and the CPU entry.
+            pub static PROGRAM: ::rt_std::program::ProgramDescriptor = #body;
+        }
+    }
+}
+
+/// A program whose attribute or signature is wrong: the function as written
+/// and a module whose `PROGRAM` is the errors (an expression of any type), so
+/// code that names `name::PROGRAM` reports nothing more.
+fn failed_program(f: &syn::ItemFn, stripped: &syn::ItemFn, e: Errors) -> TokenStream {
+    let name = &f.sig.ident;
+    let vis = &f.vis;
+    let errs = error_expr(&e);
+    quote! {
+        #stripped
+        #[doc(hidden)]
+        #[allow(non_snake_case, unused_imports, clippy::all)]
+        #vis mod #name {
+            pub static PROGRAM: ::rt_std::program::ProgramDescriptor = #errs;
+        }
+    }
+}
+
+/// `#[rt_function]`.
+pub fn rt_function(attr: TokenStream, item: TokenStream) -> TokenStream {
+    let f: syn::ItemFn = match syn::parse2(item.clone()) {
+        Ok(f) => f,
+        Err(e) => {
+            let err = e.to_compile_error();
+            return quote!(#err #item);
+        }
+    };
+    if !attr.is_empty() {
+        return with_errors(Error::new(attr.span(), "`#[rt_function]` takes no arguments").into(), item);
+    }
+    let deps = deps::of_fn(&f);
+    let declared = declared_checks(&deps, &[]);
+    let body = start_chain(quote!(function { #item }), deps);
+    let marker = crate::declared::marker(&f.vis, &f.sig.ident, true);
+    let mut cpu = f;
+    crate::cpu_semantics::rewrite_fn(&mut cpu);
+    quote!(#cpu #marker const _: () = { #declared }; #body)
+}
+
+/// `#[rt_struct]`, `#[rt_payload]`, `#[rt_attributes]`.
+pub fn rt_struct(attr: TokenStream, item: TokenStream, role: StructRole) -> TokenStream {
+    let s: syn::ItemStruct = match syn::parse2(item.clone()) {
+        Ok(s) => s,
+        Err(e) => {
+            if let Ok(en) = syn::parse2::<syn::ItemEnum>(item.clone()) {
+                let msg = format!("`{}` is an enum: declare it with #[rt_enum]", en.ident);
+                return with_errors(Error::new(en.enum_token.span, msg).into(), item);
+            }
+            let err = e.to_compile_error();
+            return quote!(#err #item);
+        }
+    };
+    let with_impl = match struct_args(attr) {
+        Ok(w) => w,
+        Err(e) => return with_errors(e.into(), item),
+    };
+    let decorated = decorate_struct(&s);
+    let data_impl = rt_data_impl(&s, role);
+    let role_kw = format_ident!("{}", role.keyword());
+    let mut deps = deps::of_struct(&s);
+    let mut impl_checks = TokenStream::new();
+    if let Some(span) = with_impl {
+        // The impl's link: its macro where the struct is (see `methods`),
+        // at `impl`, so a missing block is reported there.
+        let mac = syn::Ident::new(&crate::methods::macro_ident(&s.ident).to_string(), span);
+        deps.push(syn::Path::from(mac));
+        let name = &s.ident;
+        impl_checks = quote_spanned! {span=>
+            impl ::rt_std::data::__DeclaresRtImpl for #name {}
+            const _: () = {
+                #[allow(dead_code)]
+                fn __rt_impl_block() { ::rt_std::data::__require_impl_block::<#name>(); }
+            };
+        };
+    }
+    let body = start_chain(quote!(struct #role_kw { #item }), deps);
+    quote!(#decorated #data_impl #impl_checks #body)
+}
+
+/// A struct attribute's arguments: none, or `impl` (its span), which says
+/// the type has an `#[rt_impl]` block.
+fn struct_args(attr: TokenStream) -> Result<Option<Span>, Error> {
+    let mut it = attr.clone().into_iter();
+    match (it.next(), it.next()) {
+        (None, _) => Ok(None),
+        (Some(TokenTree::Ident(i)), None) if i == "impl" => Ok(Some(i.span())),
+        _ => Err(Error::new(
+            attr.span(),
+            "this attribute takes no arguments, or `impl` for a type with an #[rt_impl] block",
+        )),
+    }
+}
+
+/// `#[rt_impl]`: the impl as the CPU compiles it, the marker that says the
+/// type has one, and its link in the chain, `__rt_impl_<Type>` (what its
+/// methods name, collected here; see `methods`). Its bodies are checked
+/// where the struct's chain ends, which has the struct.
+pub fn rt_impl(attr: TokenStream, item: TokenStream) -> TokenStream {
+    let i: syn::ItemImpl = match syn::parse2(item.clone()) {
+        Ok(i) => i,
+        Err(_) => {
+            let span = syn::parse2::<syn::Item>(item.clone()).map(|i| i.span()).unwrap_or_else(|_| Span::call_site());
+            return with_errors(Error::new(span, "`#[rt_impl]` goes on an `impl` block").into(), item);
+        }
+    };
+    if !attr.is_empty() {
+        return with_errors(Error::new(attr.span(), "`#[rt_impl]` takes no arguments").into(), item);
+    }
+    let ty_ident = match &*i.self_ty {
+        syn::Type::Path(p) if p.qself.is_none() && !p.path.segments.is_empty() => {
+            p.path.segments.last().unwrap().ident.clone()
+        }
+        _ => {
+            let errs = crate::methods::check_impl(&i).err().unwrap_or_default();
+            return with_errors(errs, item);
+        }
+    };
+    let mac = crate::methods::macro_ident(&ty_ident);
+    let self_ty = &i.self_ty;
+    let span = crate::methods::span(&i);
+    let markers = quote_spanned! {span=>
+        impl ::rt_std::data::__HasRtImplBlock for #self_ty {}
+        const _: () = {
+            #[allow(dead_code)]
+            fn __rt_impl_declared() { ::rt_std::data::__require_impl_declared::<#self_ty>(); }
+        };
+    };
+    if let Err(e) = crate::methods::check_impl(&i) {
+        // Exported all the same, so the struct's chain closes and says
+        // nothing more; the lowering leaves a rejected impl out.
+        let errs = e.to_compile_errors();
+        let export = export_macro(&mac, quote!(impl { #item }));
+        return quote!(#errs #item #markers #export);
+    }
+    let deps = deps::of_impl(&i);
+    let declared = declared_checks(&deps, &[]);
+    let cpu = crate::methods::cpu_impl(&i);
+    let body = start_chain(quote!(impl { #item }), deps);
+    quote!(#cpu const _: () = { #declared }; #markers #body)
+}
+
+/// `#[rt_enum]`: the enum with its `RtData`, and its link in the chain
+/// (an enum depends on nothing). A shape the subset rejects is an error at
+/// the enum, and the enum as written.
+pub fn rt_enum(attr: TokenStream, item: TokenStream) -> TokenStream {
+    let e: syn::ItemEnum = match syn::parse2(item.clone()) {
+        Ok(e) => e,
+        Err(_) => {
+            let span = syn::parse2::<syn::Item>(item.clone()).map(|i| i.span()).unwrap_or_else(|_| Span::call_site());
+            return with_errors(
+                Error::new(span, "`#[rt_enum]` declares an enum: use #[rt_struct] for a struct").into(),
+                item,
+            );
+        }
+    };
+    if !attr.is_empty() {
+        return with_errors(Error::new(attr.span(), "`#[rt_enum]` takes no arguments").into(), item);
+    }
+    // Exported even when the shape is wrong: programs that name the enum
+    // then stay silent (the lowering sees it failed) rather than add
+    // "cannot find macro" to the one error.
+    let export = export_macro(&e.ident, quote!(enum { #item }));
+    let def = match crate::enums::check(&e) {
+        Ok(d) => d,
+        Err(err) => {
+            let errs = Errors::from(err).to_compile_errors();
+            return quote!(#errs #item #export);
+        }
+    };
+    let rust = crate::enums::rust_side(&e, &def);
+    quote!(#rust #export)
+}
+
+/// `#[rt_const]`.
+pub fn rt_const(attr: TokenStream, item: TokenStream) -> TokenStream {
+    let c: syn::ItemConst = match syn::parse2(item.clone()) {
+        Ok(c) => c,
+        Err(e) => {
+            let err = e.to_compile_error();
+            return quote!(#err #item);
+        }
+    };
+    if !attr.is_empty() {
+        return with_errors(Error::new(attr.span(), "`#[rt_const]` takes no arguments").into(), item);
+    }
+    let deps = deps::of_const(&c);
+    let declared = declared_checks(&deps, &[]);
+    let marker = crate::declared::marker(&c.vis, &c.ident, false);
+    let body = start_chain(quote!(constant { #item }), deps);
+    quote!(#item #marker const _: () = { #declared }; #body)
+}
+
+fn with_errors(e: Errors, item: TokenStream) -> TokenStream {
+    let errs = e.to_compile_errors();
+    quote!(#errs #item)
+}
+
+/// The errors as one expression, of whatever type the context wants:
+/// `{ compile_error!(a); compile_error!(b) }`.
+fn error_expr(e: &Errors) -> TokenStream {
+    let errs: Vec<TokenStream> =
+        e.0.iter()
+            .filter(|e| !e.is_silent())
+            .map(|e| {
+                let msg = &e.message;
+                quote_spanned!(e.span=> ::core::compile_error!(#msg))
+            })
+            .collect();
+    match errs.split_last() {
+        Some((last, rest)) => quote!({ #(#rest;)* #last }),
+        None => quote!(::core::compile_error!("rt_program failed")),
+    }
+}

@@ -1,0 +1,185 @@
+//! A struct's Rust side: the struct with `#[repr(C)]` and the derives
+//! programs rely on, its `RtData` impl (the heap layout, and the words
+//! written and read field by field) and its role's marker trait
+//! (`Payload`, or `Attributes` with `set_triangle`).
+
+use crate::StructRole;
+use crate::lower;
+use crate::signature;
+use proc_macro2::TokenStream;
+use quote::{format_ident, quote};
+
+/// The struct with `#[repr(C)]` and the derives programs rely on.
+pub(super) fn decorate_struct(s: &syn::ItemStruct) -> TokenStream {
+    let derived = crate::enums::derived_traits(&s.attrs);
+    let wanted = ["Clone", "Copy", "Debug", "Default", "PartialEq"];
+    let missing: Vec<syn::Ident> =
+        wanted.iter().filter(|w| !derived.iter().any(|d| d == *w)).map(|w| format_ident!("{}", w)).collect();
+    let has_repr = s.attrs.iter().any(|a| a.path().is_ident("repr"));
+    let repr = if has_repr { quote!() } else { quote!(#[repr(C)]) };
+    let derive = if missing.is_empty() { quote!() } else { quote!(#[derive(#(#missing),*)]) };
+    quote!(#derive #repr #s)
+}
+
+/// `impl RtData` (and the role's marker trait) for a user struct.
+pub(super) fn rt_data_impl(s: &syn::ItemStruct, role: StructRole) -> TokenStream {
+    let name = &s.ident;
+    let name_str = name.to_string();
+    let wgsl = lower::wgsl_ident(&name_str);
+    let syn::Fields::Named(fields) = &s.fields else {
+        return TokenStream::new();
+    };
+    let mut offset = quote!(0u32);
+    let mut field_layouts = Vec::new();
+    let mut writes = Vec::new();
+    let mut reads = Vec::new();
+    let mut reads_into = Vec::new();
+    // `Attributes::set_triangle`: the built-in triangle attributes into the
+    // fields of their names and types (as the runtime's layout matches
+    // them), zero into the rest.
+    let mut triangle_sets = Vec::new();
+    for f in &fields.named {
+        let ident = f.ident.as_ref().unwrap();
+        let fname = ident.to_string();
+        let tyname = signature::type_text(&f.ty);
+        let FieldCode { words, write, read, read_into, zero } = field_code(ident, &f.ty, &offset);
+        field_layouts.push(quote!(::rt_std::program::FieldLayout { name: #fname, ty: #tyname, offset_words: #offset }));
+        triangle_sets.push(if is_triangle_builtin(&fname, &tyname) { quote!(self.#ident = t.#ident;) } else { zero });
+        writes.push(write);
+        reads.push(read);
+        reads_into.push(read_into);
+        offset = quote!(#offset + #words);
+    }
+    let marker = role_marker(role, name, &triangle_sets);
+    quote! {
+        impl ::rt_std::RtData for #name {
+            const LAYOUT: ::rt_std::program::TypeLayout = ::rt_std::program::TypeLayout {
+                rust: #name_str,
+                wgsl: #wgsl,
+                words: #offset,
+                fields: &[#(#field_layouts),*],
+            };
+            fn write_words(&self, out: &mut [u32]) {
+                #(#writes)*
+            }
+            #[allow(unreachable_code)]
+            fn read_words(words: &[u32]) -> Self {
+                Self { #(#reads),* }
+            }
+            #[allow(unreachable_code)]
+            fn read_words_into(&mut self, words: &[u32]) {
+                #(#reads_into)*
+            }
+        }
+        #marker
+    }
+}
+
+/// One field's part of its struct's `RtData` impl, the field at `offset`
+/// words (an expression over the fields before it).
+struct FieldCode {
+    /// The field's size in words (an expression).
+    words: TokenStream,
+    /// `write_words`'s statement for the field.
+    write: TokenStream,
+    /// `read_words`'s `field: value`.
+    read: TokenStream,
+    /// `read_words_into`'s statement for the field.
+    read_into: TokenStream,
+    /// The statement that zeroes the field (`set_triangle`'s for a field
+    /// that is not a triangle builtin).
+    zero: TokenStream,
+}
+
+/// The code of the field `ident: ty` at `offset`: an array element by
+/// element, a type the lowering rejects left out, any other through its
+/// own `RtData`.
+fn field_code(ident: &syn::Ident, ty: &syn::Type, offset: &TokenStream) -> FieldCode {
+    match ty {
+        syn::Type::Array(a) => array_field(ident, a, offset),
+        syn::Type::Path(p)
+            if p.path
+                .segments
+                .last()
+                .is_some_and(|s| crate::types::unsupported_type_advice(&s.ident.to_string()).is_some()) =>
+        {
+            rejected_field(ident)
+        }
+        ty => plain_field(ident, ty, offset),
+    }
+}
+
+/// An array field, element by element through the element's `RtData`.
+fn array_field(ident: &syn::Ident, a: &syn::TypeArray, offset: &TokenStream) -> FieldCode {
+    let elem = &a.elem;
+    let len = &a.len;
+    let words = quote!(((#len) as u32 * <#elem as ::rt_std::RtData>::LAYOUT.words));
+    let write = quote! {
+        for (i, e) in self.#ident.iter().enumerate() {
+            let w = <#elem as ::rt_std::RtData>::LAYOUT.words as usize;
+            ::rt_std::RtData::write_words(e, &mut out[(#offset) as usize + i * w..]);
+        }
+    };
+    let read = quote! {
+        #ident: core::array::from_fn(|i| {
+            let w = <#elem as ::rt_std::RtData>::LAYOUT.words as usize;
+            <#elem as ::rt_std::RtData>::read_words(&words[(#offset) as usize + i * w..])
+        })
+    };
+    let read_into = quote! {
+        for (i, e) in self.#ident.iter_mut().enumerate() {
+            let w = <#elem as ::rt_std::RtData>::LAYOUT.words as usize;
+            ::rt_std::RtData::read_words_into(e, &words[(#offset) as usize + i * w..]);
+        }
+    };
+    let zero = quote!(self.#ident.fill(::rt_std::data::zeroed::<#elem>()););
+    FieldCode { words, write, read, read_into, zero }
+}
+
+/// A field of a type the subset rejects: the lowering rejects it and says
+/// why, so it is left out of the layout rather than add rustc's `RtData`
+/// errors to that.
+fn rejected_field(ident: &syn::Ident) -> FieldCode {
+    FieldCode {
+        words: quote!(0u32),
+        write: quote!(),
+        read: quote!(#ident: ::core::unreachable!()),
+        read_into: quote!(::core::unreachable!();),
+        zero: quote!(::core::unreachable!();),
+    }
+}
+
+/// Any other field, through its type's own `RtData`.
+fn plain_field(ident: &syn::Ident, ty: &syn::Type, offset: &TokenStream) -> FieldCode {
+    let words = quote!(<#ty as ::rt_std::RtData>::LAYOUT.words);
+    let write = quote!(::rt_std::RtData::write_words(&self.#ident, &mut out[(#offset) as usize..]););
+    let read = quote!(#ident: <#ty as ::rt_std::RtData>::read_words(&words[(#offset) as usize..]));
+    let read_into = quote!(::rt_std::RtData::read_words_into(&mut self.#ident, &words[(#offset) as usize..]););
+    let zero = quote!(self.#ident = ::rt_std::data::zeroed::<#ty>(););
+    FieldCode { words, write, read, read_into, zero }
+}
+
+/// Whether the field `fname` of type `tyname` takes a built-in triangle
+/// attribute, as `rt_std::program::TriangleBuiltin::of_field` matches the
+/// layout: the type as written, or a path ending in it.
+fn is_triangle_builtin(fname: &str, tyname: &str) -> bool {
+    let ty_name = tyname.rsplit("::").next().unwrap_or(tyname).trim();
+    matches!((fname, ty_name), ("geometric_normal" | "shading_normal", "Vec3") | ("texcoord" | "barycentrics", "Vec2"))
+}
+
+/// The role's marker trait for the struct `name`: none for plain data,
+/// `Payload`, or `Attributes` with `set_triangle` made of `triangle_sets`.
+fn role_marker(role: StructRole, name: &syn::Ident, triangle_sets: &[TokenStream]) -> TokenStream {
+    match role {
+        StructRole::Data => quote!(),
+        StructRole::Payload => quote!(impl ::rt_std::Payload for #name {}),
+        StructRole::Attributes => quote! {
+            impl ::rt_std::Attributes for #name {
+                #[allow(unreachable_code)]
+                fn set_triangle(&mut self, t: &::rt_std::cpu::TriangleBuiltins) {
+                    #(#triangle_sets)*
+                }
+            }
+        },
+    }
+}
