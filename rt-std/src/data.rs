@@ -223,7 +223,7 @@ pub fn triangle_words(layout: &TypeLayout, t: &TriangleBuiltins) -> Vec<u32> {
 }
 
 // The checks `#[rt_program]` and `#[rt_function]` emit for the types they
-// name (`rt_compiler::expand::declared_checks`): a type declared without
+// name (`rt_compiler::declared::declared_checks`): a type declared without
 // its rt attribute gets one error that names the attribute to add. They
 // go through traits of their own, with blanket impls rustc does not
 // recommend, so the error lists no implementing types (a list that would

@@ -31,7 +31,7 @@ pub enum TriangleBuiltin {
 impl TriangleBuiltin {
     /// The built-in a field of this name and type (as the layout spells
     /// it) receives, if any. `#[rt_attributes]` applies the same rule when
-    /// it generates `Attributes::set_triangle` (rt-compiler's `expand.rs`,
+    /// it generates `Attributes::set_triangle` (rt-compiler's `expand/data.rs`,
     /// which cannot call this).
     pub fn of_field(f: &FieldLayout) -> Option<Self> {
         let ty = f.ty.rsplit("::").next().unwrap_or(f.ty).trim();
