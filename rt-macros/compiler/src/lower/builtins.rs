@@ -8,7 +8,7 @@ mod glam_angles;
 mod glam_assoc;
 mod glam_ints;
 mod glam_masks;
-mod glam_more;
+mod glam_formulas;
 mod int_division;
 mod std_scalars;
 
@@ -241,7 +241,7 @@ pub fn method_sig(recv: &Ty, name: &str) -> Option<MethodSig> {
     if name == "clone" && recv.is_value() {
         return sig(vec![], t, |a| a[0].clone());
     }
-    if let Some(m) = glam_more::method(recv, name) {
+    if let Some(m) = glam_formulas::method(recv, name) {
         return Some(m);
     }
     if let Some(m) = std_scalars::method(recv, name) {

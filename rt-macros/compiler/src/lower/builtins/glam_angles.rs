@@ -4,7 +4,7 @@
 //! `rotate_axis`, `rotate_towards` and `slerp` (glam's quaternion product,
 //! expanded),
 //! `move_towards`, `any_orthogonal_vector` and `any_orthonormal_pair`. As in
-//! the rest of [`super::glam_more`], operation for operation, so the
+//! the rest of [`super::glam_formulas`], operation for operation, so the
 //! backends differ only by WGSL's rounding.
 
 use super::MethodSig;
