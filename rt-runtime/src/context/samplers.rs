@@ -169,7 +169,7 @@ impl SamplerExtent {
         if images.is_empty() || zero_sized {
             return Err(empty);
         }
-        if images.len() % self.faces() != 0 {
+        if !images.len().is_multiple_of(self.faces()) {
             return Err(format!("{} images for a cube map's levels (six faces a level)", images.len()));
         }
         let chain = self.chain();
