@@ -37,8 +37,19 @@ pub fn run(
     if !adapter.features().contains(wgpu::Features::EXPERIMENTAL_RAY_QUERY) {
         return Err(format!("{} has no ray queries", adapter.get_info().name));
     }
+    let (device, queue) = open_device(&adapter)?;
+    let (structures, build) = build_structures(&device, &queue, mesh)?;
+    let kernel = Kernel::new(&device, &structures.tlas, mesh, cam, (width, height));
+    let measured =
+        time_runs(&device, &queue, &kernel.pipeline, &kernel.bind, &kernel.out_b, (width, height), reps, &adapter)?;
+    Ok((measured, build))
+}
+
+/// A device with ray queries (and timestamps where the adapter has them)
+/// and the adapter's limits on bindings and acceleration structures.
+fn open_device(adapter: &wgpu::Adapter) -> Result<(wgpu::Device, wgpu::Queue), String> {
     let a = adapter.limits();
-    let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+    pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
         required_limits: wgpu::Limits {
             max_storage_buffer_binding_size: a.max_storage_buffer_binding_size,
             max_blas_primitive_count: a.max_blas_primitive_count,
@@ -54,7 +65,24 @@ pub fn run(
         experimental_features: unsafe { wgpu::ExperimentalFeatures::enabled() },
         ..Default::default()
     }))
-    .map_err(|e| e.to_string())?;
+    .map_err(|e| e.to_string())
+}
+
+/// The mesh's acceleration structures, with the buffers they were built
+/// from (kept for the run).
+struct Structures {
+    _blas: wgpu::Blas,
+    tlas: wgpu::Tlas,
+    _inputs: [wgpu::Buffer; 2],
+}
+
+/// One opaque BLAS of the mesh under a TLAS of one instance, built on the
+/// device: the structures and the build's time (until the device finished).
+fn build_structures(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    mesh: &TriangleMesh,
+) -> Result<(Structures, Duration), String> {
     let positions: Vec<f32> = mesh.positions.iter().flat_map(|p| p.to_array()).collect();
     let indices: Vec<u32> = mesh.indices.iter().flatten().copied().collect();
     let input = |contents: &[u8]| {
@@ -106,54 +134,73 @@ pub fn run(
     queue.submit([enc.finish()]);
     device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| e.to_string())?;
     let build = built.elapsed();
+    Ok((Structures { _blas: blas, tlas, _inputs: [vertices, index_buffer] }, build))
+}
 
-    let (eye, u, v, w) = cam;
-    let mut camera: Vec<u32> = Vec::new();
-    for c in [eye, u, v, w] {
-        camera.extend([c.x, c.y, c.z, 0.0].map(f32::to_bits));
-    }
-    camera.extend([width, height, 0, 0]);
-    let tris: Vec<f32> =
-        mesh.indices.iter().flat_map(|t| t.iter().flat_map(|&i| mesh.positions[i as usize].to_array())).collect();
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some("handwritten ray query"),
-        source: wgpu::ShaderSource::Wgsl(wgsl().into()),
-    });
-    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-        label: Some("handwritten ray query"),
-        layout: None,
-        module: &module,
-        entry_point: Some("main"),
-        compilation_options: Default::default(),
-        cache: None,
-    });
-    let storage = |contents: &[u8], extra| {
-        device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+/// The kernel's pipeline bound to the TLAS, the triangles, the output and
+/// the camera.
+struct Kernel {
+    pipeline: wgpu::ComputePipeline,
+    bind: wgpu::BindGroup,
+    out_b: wgpu::Buffer,
+    _inputs: [wgpu::Buffer; 2],
+}
+
+impl Kernel {
+    fn new(
+        device: &wgpu::Device,
+        tlas: &wgpu::Tlas,
+        mesh: &TriangleMesh,
+        cam: (Vec3, Vec3, Vec3, Vec3),
+        (width, height): (u32, u32),
+    ) -> Kernel {
+        let (eye, u, v, w) = cam;
+        let mut camera: Vec<u32> = Vec::new();
+        for c in [eye, u, v, w] {
+            camera.extend([c.x, c.y, c.z, 0.0].map(f32::to_bits));
+        }
+        camera.extend([width, height, 0, 0]);
+        let tris: Vec<f32> =
+            mesh.indices.iter().flat_map(|t| t.iter().flat_map(|&i| mesh.positions[i as usize].to_array())).collect();
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("handwritten ray query"),
+            source: wgpu::ShaderSource::Wgsl(wgsl().into()),
+        });
+        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("handwritten ray query"),
+            layout: None,
+            module: &module,
+            entry_point: Some("main"),
+            compilation_options: Default::default(),
+            cache: None,
+        });
+        let storage = |contents: &[u8], extra| {
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: None,
+                contents,
+                usage: wgpu::BufferUsages::STORAGE | extra,
+            })
+        };
+        let pixels = (width * height) as usize;
+        let tris_b = storage(bytes(&tris), wgpu::BufferUsages::empty());
+        let out_b = storage(bytes(&vec![0u32; pixels * 2]), wgpu::BufferUsages::COPY_SRC);
+        let cam_b = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: None,
-            contents,
-            usage: wgpu::BufferUsages::STORAGE | extra,
-        })
-    };
-    let pixels = (width * height) as usize;
-    let tris_b = storage(bytes(&tris), wgpu::BufferUsages::empty());
-    let out_b = storage(bytes(&vec![0u32; pixels * 2]), wgpu::BufferUsages::COPY_SRC);
-    let cam_b = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: None,
-        contents: bytes(&camera),
-        usage: wgpu::BufferUsages::UNIFORM,
-    });
-    let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: None,
-        layout: &pipeline.get_bind_group_layout(0),
-        entries: &[
-            wgpu::BindGroupEntry { binding: 0, resource: tlas.as_binding() },
-            wgpu::BindGroupEntry { binding: 1, resource: tris_b.as_entire_binding() },
-            wgpu::BindGroupEntry { binding: 2, resource: out_b.as_entire_binding() },
-            wgpu::BindGroupEntry { binding: 3, resource: cam_b.as_entire_binding() },
-        ],
-    });
-    let measured = time_runs(&device, &queue, &pipeline, &bind, &out_b, (width, height), reps, &adapter)?;
-    Ok((measured, build))
+            contents: bytes(&camera),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+        let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: None,
+            layout: &pipeline.get_bind_group_layout(0),
+            entries: &[
+                wgpu::BindGroupEntry { binding: 0, resource: tlas.as_binding() },
+                wgpu::BindGroupEntry { binding: 1, resource: tris_b.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 2, resource: out_b.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 3, resource: cam_b.as_entire_binding() },
+            ],
+        });
+        Kernel { pipeline, bind, out_b, _inputs: [tris_b, cam_b] }
+    }
 }
 
 #[cfg(test)]

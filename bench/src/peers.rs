@@ -39,9 +39,9 @@ fn ao_ray(tris: &[Triangle], eye: Vec3, dir: Vec3, t: f32, prim: u32, pixel: u32
     let p = eye + t * dir;
     let n = Vec3::from(tris[prim as usize].compute_normal()).normalize();
     let n = faceforward(n, dir, n);
-    let h1 = crate::hash(pixel);
-    let h2 = crate::hash(h1);
-    let ao = crate::cosine_direction(n, (h1 >> 8) as f32 / 16777216.0, (h2 >> 8) as f32 / 16777216.0);
+    let h1 = crate::programs::hash(pixel);
+    let h2 = crate::programs::hash(h1);
+    let ao = crate::programs::cosine_direction(n, (h1 >> 8) as f32 / 16777216.0, (h2 >> 8) as f32 / 16777216.0);
     (p + n * 1e-4, ao)
 }
 

@@ -7,11 +7,11 @@
 //! software traversal figures (Mesa's own BVH and traversal in LLVM code),
 //! not hardware ones.
 
+use crate::figures::SceneFigures;
 use crate::json::Json;
-use crate::{
-    SceneFigures, Workload, handwritten_rayquery, measure_launches, moving_transform_launches, moving_vertex_launches,
-    mrays, ms, scene_with, scenes,
-};
+use crate::launches::{Repeated, measure_launches, moving_transform_launches, moving_vertex_launches, mrays, ms};
+use crate::programs::{Workload, scene_with};
+use crate::{handwritten_rayquery, scenes};
 use rt_runtime::{Backend, Result, Traversal};
 
 /// Measures the megakernel with ray queries and the hand-written ray-query
@@ -31,7 +31,7 @@ pub(crate) fn measure(
         j.child("skipped").set("handwritten_rayquery", why);
         return;
     }
-    let run = || -> Result<(Json, crate::Repeated)> {
+    let run = || -> Result<(Json, Repeated)> {
         let (mut ctx, _, gg, g) = scene_with(&scene.mesh, cam, Backend::Wgpu, width, height, Workload::Ao)?;
         ctx.set_traversal(Traversal::RayQuery);
         let (first, l) = measure_launches(&mut ctx, width, height, reps)?;

@@ -114,7 +114,8 @@ pub fn wall_of_copies(mesh: &TriangleMesh, copies: u32, columns: u32) -> Triangl
     out
 }
 
-/// The four scenes of issue #6, in the order they are reported.
+/// The bench's four scenes (the bunny, the teapot, the Cornell box and a
+/// wall of 30 bunnies), in the order they are reported.
 pub fn load_all(dir: &Path) -> Result<Vec<BenchScene>, String> {
     let front = Vec3::new(0.0, 0.1, 2.2);
     let bunny = load_obj(&dir.join("stanford-bunny.obj"))?;

@@ -1,7 +1,7 @@
 //! The CPU backend's SIMD traversal (8-wide float nodes, 4-triangle
-//! packets) against the traversal it replaced (obvhs's CWBVH walk, one
-//! watertight test per triangle) on the four benchmark scenes: 100k random
-//! rays each, on every instruction set this CPU has. The same triangle at
+//! packets) against obvhs's CWBVH walk (one watertight test per triangle)
+//! on the four benchmark scenes: 100k random rays each, on every
+//! instruction set this CPU has. The same triangle at
 //! the same distance bit for bit; or, where triangles meet (their tests
 //! give the shared point distances a few ulps apart, and a traversal's box
 //! rounding may reach either first), a neighbour within one ulp of the
@@ -269,8 +269,8 @@ fn bunny_wall_2m() {
 }
 
 /// The collapse fills nodes: on the bunny, over six children a node and
-/// over 2.5 triangles a leaf (the greedy collapse it replaced gave 4.25
-/// and 3.13: emptier nodes, one level shallower).
+/// over 2.5 triangles a leaf (a greedy collapse gives 4.25 and 3.13:
+/// emptier nodes, one level shallower).
 #[test]
 fn the_bunnys_tree_is_full() {
     let tris = obj("stanford-bunny.obj");

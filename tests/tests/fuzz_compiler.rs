@@ -25,9 +25,10 @@ fn generated_programs_agree_on_cpu_and_gpu() {
     }
 }
 
-/// The run above includes the forms of issue 19: tuple literals read by
-/// `.0`/`.1` and values through an `#[rt_enum]` (`FuzzKind`, matched
-/// exhaustively), in a fair share of its programs.
+/// The run above includes tuple literals read by `.0`/`.1`, values through
+/// an `#[rt_enum]` (`FuzzKind`, matched exhaustively) and calls of
+/// `#[rt_impl]` methods (`&mut self` ones among them), in a fair share of
+/// its programs.
 #[test]
 fn the_fixed_seed_generates_tuples_enums_and_methods() {
     let cfg = fuzz::Config::from_env(0x5eed, 300);
@@ -63,12 +64,11 @@ fn the_fixed_seed_generates_tuples_enums_and_methods() {
     assert!(tuples >= 30 && enums >= 30 && methods >= 30 && mut_self >= 5, "{what}");
 }
 
-/// The run above also includes the forms added later in issue 19: bool
-/// vectors (`cmp*`, consumed by `any`/`all`/`bitmask`/`select`), the
-/// dividing methods with any divisor (method and path forms), integer
-/// vectors' `cross`/`manhattan_distance`, NaN operands of comparisons and
-/// the vectors' `from_array`, std's integer methods (`pow`, `isqrt`,
-/// `ilog2`, `abs_diff`, `midpoint`, ...).
+/// The run above also includes bool vectors (`cmp*`, consumed by
+/// `any`/`all`/`bitmask`/`select`), the dividing methods with any divisor
+/// (method and path forms), integer vectors' `cross`/`manhattan_distance`,
+/// NaN operands of comparisons and the vectors' `from_array`, std's integer
+/// methods (`pow`, `isqrt`, `ilog2`, `abs_diff`, `midpoint`, ...).
 #[test]
 fn the_fixed_seed_generates_bool_vectors_dividing_methods_and_nan_operands() {
     let cfg = fuzz::Config::from_env(0x5eed, 300);

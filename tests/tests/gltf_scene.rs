@@ -8,6 +8,7 @@
 
 use examples::{Camera, Scene, Settings};
 use glam::{Mat4, Vec2, Vec3, Vec4};
+use gltf::json::{self, accessor::ComponentType, accessor::Type, validation::Checked::Valid, validation::USize64};
 use rt_runtime::{Acceleration, Backend, BufferType, Builder, Context, Scope, TriangleMesh};
 use rt_std::prelude::*;
 use std::path::{Path, PathBuf};
@@ -93,95 +94,10 @@ fn png() -> Vec<u8> {
 /// as a `.glb`: one textured quad mesh, two nodes showing it (the second
 /// under [`second`]), a camera node.
 fn write_file(dir: &Path) -> PathBuf {
-    use gltf::json::{self, validation::Checked::Valid, validation::USize64};
-    let mut root = json::Root::default();
-    let mut bin: Vec<u8> = Vec::new();
-    let mut view = |root: &mut json::Root, bytes: &[u8]| {
-        while !bin.len().is_multiple_of(4) {
-            bin.push(0);
-        }
-        let v = json::buffer::View {
-            buffer: json::Index::new(0),
-            byte_length: USize64::from(bytes.len()),
-            byte_offset: Some(USize64::from(bin.len())),
-            byte_stride: None,
-            name: None,
-            target: None,
-            extensions: None,
-            extras: Default::default(),
-        };
-        bin.extend_from_slice(bytes);
-        root.push(v)
-    };
-    let accessor = |root: &mut json::Root, view, count: usize, component, type_, bounds: Option<(Vec3, Vec3)>| {
-        root.push(json::Accessor {
-            buffer_view: Some(view),
-            byte_offset: None,
-            count: USize64::from(count),
-            component_type: Valid(json::accessor::GenericComponentType(component)),
-            extensions: None,
-            extras: Default::default(),
-            type_: Valid(type_),
-            min: bounds.map(|(lo, _)| json::Value::from(lo.to_array().to_vec())),
-            max: bounds.map(|(_, hi)| json::Value::from(hi.to_array().to_vec())),
-            name: None,
-            normalized: false,
-            sparse: None,
-        })
-    };
-    let floats = |v: &[f32]| v.iter().flat_map(|f| f.to_le_bytes()).collect::<Vec<u8>>();
-    let mesh = quad();
-    let positions: Vec<f32> = mesh.positions.iter().flat_map(|p| p.to_array()).collect();
-    let normals: Vec<f32> = mesh.normals.as_ref().unwrap().iter().flat_map(|n| n.to_array()).collect();
-    let texcoords: Vec<f32> = mesh.texcoords.as_ref().unwrap().iter().flat_map(|t| t.to_array()).collect();
-    let indices: Vec<u8> = mesh.indices.iter().flatten().flat_map(|i| (*i as u16).to_le_bytes()).collect();
-    use json::accessor::{ComponentType, Type};
-    let v = view(&mut root, &floats(&positions));
-    let position =
-        accessor(&mut root, v, 4, ComponentType::F32, Type::Vec3, Some((Vec3::ZERO, Vec3::new(1.0, 1.0, 0.0))));
-    let v = view(&mut root, &floats(&normals));
-    let normal = accessor(&mut root, v, 4, ComponentType::F32, Type::Vec3, None);
-    let v = view(&mut root, &floats(&texcoords));
-    let texcoord = accessor(&mut root, v, 4, ComponentType::F32, Type::Vec2, None);
-    let v = view(&mut root, &indices);
-    let index = accessor(&mut root, v, 6, ComponentType::U16, Type::Scalar, None);
-    let v = view(&mut root, &png());
-    let image = root.push(json::Image {
-        buffer_view: Some(v),
-        mime_type: Some(json::image::MimeType("image/png".into())),
-        name: None,
-        uri: None,
-        extensions: None,
-        extras: Default::default(),
-    });
-    let texture = root.push(json::Texture {
-        name: None,
-        sampler: None,
-        source: image,
-        extensions: None,
-        extras: Default::default(),
-    });
-    let material = root.push(json::Material {
-        name: Some("textured".into()),
-        pbr_metallic_roughness: json::material::PbrMetallicRoughness {
-            base_color_factor: json::material::PbrBaseColorFactor(BASE.extend(1.0).to_array()),
-            base_color_texture: Some(json::texture::Info {
-                index: texture,
-                tex_coord: 0,
-                extensions: None,
-                extras: Default::default(),
-            }),
-            metallic_factor: json::material::StrengthFactor(0.0),
-            ..Default::default()
-        },
-        ..Default::default()
-    });
-    let attributes = [
-        (json::mesh::Semantic::Positions, position),
-        (json::mesh::Semantic::Normals, normal),
-        (json::mesh::Semantic::TexCoords(0), texcoord),
-    ];
-    let quad_mesh = root.push(json::Mesh {
+    let mut doc = Document { root: json::Root::default(), bin: Vec::new() };
+    let (attributes, index) = quad_accessors(&mut doc);
+    let material = textured_material(&mut doc);
+    let quad_mesh = doc.root.push(json::Mesh {
         extensions: None,
         extras: Default::default(),
         name: Some("quad".into()),
@@ -196,11 +112,165 @@ fn write_file(dir: &Path) -> PathBuf {
         }],
         weights: None,
     });
-    let first = root.push(json::Node { mesh: Some(quad_mesh), ..Default::default() });
-    let moved =
-        root.push(json::Node { mesh: Some(quad_mesh), matrix: Some(second().to_cols_array()), ..Default::default() });
+    let first = doc.root.push(json::Node { mesh: Some(quad_mesh), ..Default::default() });
+    let moved = doc.root.push(json::Node {
+        mesh: Some(quad_mesh),
+        matrix: Some(second().to_cols_array()),
+        ..Default::default()
+    });
+    let viewer = camera_node(&mut doc);
+    let scene = doc.root.push(json::Scene {
+        extensions: None,
+        extras: Default::default(),
+        name: None,
+        nodes: vec![first, moved, viewer],
+    });
+    doc.root.scene = Some(scene);
+    let path = dir.join("instanced.glb");
+    std::fs::write(&path, doc.glb()).unwrap();
+    path
+}
+
+/// A glTF document being written: its JSON and its binary chunk.
+struct Document {
+    root: json::Root,
+    bin: Vec<u8>,
+}
+
+impl Document {
+    /// `bytes` appended to the binary chunk (4-byte aligned) as a buffer
+    /// view.
+    fn view(&mut self, bytes: &[u8]) -> json::Index<json::buffer::View> {
+        while !self.bin.len().is_multiple_of(4) {
+            self.bin.push(0);
+        }
+        let v = json::buffer::View {
+            buffer: json::Index::new(0),
+            byte_length: USize64::from(bytes.len()),
+            byte_offset: Some(USize64::from(self.bin.len())),
+            byte_stride: None,
+            name: None,
+            target: None,
+            extensions: None,
+            extras: Default::default(),
+        };
+        self.bin.extend_from_slice(bytes);
+        self.root.push(v)
+    }
+
+    /// `count` elements of `bytes` (in a view of their own) as an accessor.
+    fn accessor(
+        &mut self,
+        bytes: &[u8],
+        count: usize,
+        component: ComponentType,
+        type_: Type,
+        bounds: Option<(Vec3, Vec3)>,
+    ) -> json::Index<json::Accessor> {
+        let view = self.view(bytes);
+        self.root.push(json::Accessor {
+            buffer_view: Some(view),
+            byte_offset: None,
+            count: USize64::from(count),
+            component_type: Valid(json::accessor::GenericComponentType(component)),
+            extensions: None,
+            extras: Default::default(),
+            type_: Valid(type_),
+            min: bounds.map(|(lo, _)| json::Value::from(lo.to_array().to_vec())),
+            max: bounds.map(|(_, hi)| json::Value::from(hi.to_array().to_vec())),
+            name: None,
+            normalized: false,
+            sparse: None,
+        })
+    }
+
+    /// The document as a `.glb`, its one buffer the binary chunk.
+    fn glb(mut self) -> Vec<u8> {
+        while !self.bin.len().is_multiple_of(4) {
+            self.bin.push(0);
+        }
+        self.root.push(json::Buffer {
+            byte_length: USize64::from(self.bin.len()),
+            name: None,
+            uri: None,
+            extensions: None,
+            extras: Default::default(),
+        });
+        let json = self.root.to_vec().expect("the document serialises");
+        let glb = gltf::binary::Glb {
+            header: gltf::binary::Header { magic: *b"glTF", version: 2, length: 0 },
+            json: json.into(),
+            bin: Some(self.bin.into()),
+        };
+        glb.to_vec().expect("the GLB assembles")
+    }
+}
+
+/// A vertex attribute of a mesh primitive: its semantic and accessor.
+type Attribute = (json::mesh::Semantic, json::Index<json::Accessor>);
+
+/// [`quad`]'s vertex attributes (positions, normals, texture coordinates)
+/// and its indices as accessors.
+fn quad_accessors(doc: &mut Document) -> ([Attribute; 3], json::Index<json::Accessor>) {
+    let floats = |v: &[f32]| v.iter().flat_map(|f| f.to_le_bytes()).collect::<Vec<u8>>();
+    let mesh = quad();
+    let positions: Vec<f32> = mesh.positions.iter().flat_map(|p| p.to_array()).collect();
+    let normals: Vec<f32> = mesh.normals.as_ref().unwrap().iter().flat_map(|n| n.to_array()).collect();
+    let texcoords: Vec<f32> = mesh.texcoords.as_ref().unwrap().iter().flat_map(|t| t.to_array()).collect();
+    let indices: Vec<u8> = mesh.indices.iter().flatten().flat_map(|i| (*i as u16).to_le_bytes()).collect();
+    let bounds = Some((Vec3::ZERO, Vec3::new(1.0, 1.0, 0.0)));
+    let position = doc.accessor(&floats(&positions), 4, ComponentType::F32, Type::Vec3, bounds);
+    let normal = doc.accessor(&floats(&normals), 4, ComponentType::F32, Type::Vec3, None);
+    let texcoord = doc.accessor(&floats(&texcoords), 4, ComponentType::F32, Type::Vec2, None);
+    let index = doc.accessor(&indices, 6, ComponentType::U16, Type::Scalar, None);
+    let attributes = [
+        (json::mesh::Semantic::Positions, position),
+        (json::mesh::Semantic::Normals, normal),
+        (json::mesh::Semantic::TexCoords(0), texcoord),
+    ];
+    (attributes, index)
+}
+
+/// The material: [`BASE`] times the [`png`] texture (embedded in the
+/// binary chunk).
+fn textured_material(doc: &mut Document) -> json::Index<json::Material> {
+    let v = doc.view(&png());
+    let image = doc.root.push(json::Image {
+        buffer_view: Some(v),
+        mime_type: Some(json::image::MimeType("image/png".into())),
+        name: None,
+        uri: None,
+        extensions: None,
+        extras: Default::default(),
+    });
+    let texture = doc.root.push(json::Texture {
+        name: None,
+        sampler: None,
+        source: image,
+        extensions: None,
+        extras: Default::default(),
+    });
+    doc.root.push(json::Material {
+        name: Some("textured".into()),
+        pbr_metallic_roughness: json::material::PbrMetallicRoughness {
+            base_color_factor: json::material::PbrBaseColorFactor(BASE.extend(1.0).to_array()),
+            base_color_texture: Some(json::texture::Info {
+                index: texture,
+                tex_coord: 0,
+                extensions: None,
+                extras: Default::default(),
+            }),
+            metallic_factor: json::material::StrengthFactor(0.0),
+            ..Default::default()
+        },
+        ..Default::default()
+    })
+}
+
+/// The [`camera`] as a perspective camera's node.
+fn camera_node(doc: &mut Document) -> json::Index<json::Node> {
     let c = camera();
-    let lens = root.push(json::Camera {
+    let lens = doc.root.push(json::Camera {
         name: None,
         orthographic: None,
         perspective: Some(json::camera::Perspective {
@@ -216,34 +286,7 @@ fn write_file(dir: &Path) -> PathBuf {
         extras: Default::default(),
     });
     // The camera looks down its -z: from the eye towards the quads, +y up.
-    let viewer =
-        root.push(json::Node { camera: Some(lens), translation: Some(c.eye.to_array()), ..Default::default() });
-    let scene = root.push(json::Scene {
-        extensions: None,
-        extras: Default::default(),
-        name: None,
-        nodes: vec![first, moved, viewer],
-    });
-    root.scene = Some(scene);
-    while !bin.len().is_multiple_of(4) {
-        bin.push(0);
-    }
-    root.push(json::Buffer {
-        byte_length: USize64::from(bin.len()),
-        name: None,
-        uri: None,
-        extensions: None,
-        extras: Default::default(),
-    });
-    let json = root.to_vec().expect("the document serialises");
-    let glb = gltf::binary::Glb {
-        header: gltf::binary::Header { magic: *b"glTF", version: 2, length: 0 },
-        json: json.into(),
-        bin: Some(bin.into()),
-    };
-    let path = dir.join("instanced.glb");
-    std::fs::write(&path, glb.to_vec().expect("the GLB assembles")).unwrap();
-    path
+    doc.root.push(json::Node { camera: Some(lens), translation: Some(c.eye.to_array()), ..Default::default() })
 }
 
 /// The programs, camera and background both scenes share.

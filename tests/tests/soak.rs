@@ -227,11 +227,10 @@ fn two_thousand_changing_launches_keep_memory_flat_and_images_fresh() {
     }
 }
 
-/// Found by this soak: on lavapipe, rays with a zero direction component
-/// (here straight down, `(0, 0, -1)` after `normalize`) missed everything
-/// under a group on wgpu, because `1.0 / 0.0` in the slab test is an
-/// infinity WGSL lets the compiler assume away; the kernel now takes a
-/// finite reciprocal (`rt_safe_inv`).
+/// Rays with a zero direction component (here straight down, `(0, 0, -1)`
+/// after `normalize`) under a group: `1.0 / 0.0` in the slab test is an
+/// infinity WGSL lets the compiler assume away (on lavapipe such rays miss
+/// everything), so the kernel takes a finite reciprocal (`rt_safe_inv`).
 #[test]
 fn axis_aligned_rays_through_a_group_hit_on_wgpu_as_on_the_cpu() {
     let _alone = ALONE.lock().unwrap_or_else(|e| e.into_inner());

@@ -1,8 +1,8 @@
-//! The glam methods added in `glam_angles.rs` and `glam_ints.rs` and the
-//! later additions to `glam_more.rs`: angles and rotations, normalizing
-//! with a fallback, tuple results, Euclidean division of vectors,
-//! positions and sign masks, integer-vector geometry, saturating
-//! arithmetic and matrix extras, on both backends.
+//! The glam methods of `glam_angles.rs`, `glam_ints.rs` and part of
+//! `glam_more.rs`: angles and rotations, normalizing with a fallback, tuple
+//! results, Euclidean division of vectors, positions and sign masks,
+//! integer-vector geometry, saturating arithmetic and matrix extras, on
+//! both backends.
 
 use super::*;
 

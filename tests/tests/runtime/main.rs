@@ -10,11 +10,25 @@ use rt_std::prelude::*;
 use rt_tests::targets::On;
 
 mod device;
+mod exceptions;
+mod graphs;
+mod ray_flags;
+mod refits;
+mod scopes;
+mod selectors;
 mod shading;
+mod textures;
 mod tracing;
 
 use device::*;
+use exceptions::*;
+use graphs::*;
+use ray_flags::*;
+use refits::*;
+use scopes::*;
+use selectors::*;
 use shading::*;
+use textures::*;
 use tracing::*;
 
 #[rt_payload(impl)]
@@ -453,8 +467,9 @@ fn world(x: u32, y: u32, extent: f32) -> (f32, f32) {
     (p(x), p(y))
 }
 
-/// Instantiates every test of `shading` and `tracing` once per target: the
-/// CPU backend, the compute traversal, the ray-query traversal.
+/// Instantiates the tests that take a target (`fn(On)`, from every module
+/// but `device`) once per target: the CPU backend, the compute traversal,
+/// the ray-query traversal.
 macro_rules! on_backends {
     ($($name:ident),* $(,)?) => {
         mod cpu {

@@ -179,11 +179,11 @@ pub(crate) fn launches_wider_than_the_dispatch_limit_write_every_index(backend: 
 
 /// Nested triangles of geometrically growing size (each a level deeper)
 /// make a BVH2 that is a chain about 300 levels deep (its CWBVH, with up to
-/// seven leaves a node, over 32). The wgpu kernel's traversal stacks used
-/// to be a fixed 64 entries, dropping entries when full; they are now sized
-/// from the deepest BVH2 and CWBVH (a near-first traversal keeps at most
-/// one pending entry per level), checked here, and every ray still finds
-/// its triangle on both backends.
+/// seven leaves a node, over 32). The wgpu kernel's traversal stacks are
+/// sized from the deepest BVH2 and CWBVH (a near-first traversal keeps at
+/// most one pending entry per level), not a fixed 64 entries that would
+/// drop entries when full: checked here, and every ray finds its triangle
+/// on both backends.
 pub(crate) fn a_bvh_deeper_than_64_levels_loses_no_hit(backend: On) {
     // Without an any-hit program the wgpu kernel walks the CWBVH (about a
     // third as deep, still past 32 levels); with one, the BVH2.

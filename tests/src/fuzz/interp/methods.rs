@@ -113,40 +113,51 @@ pub(super) fn method(r: &V, m: &str, a: &[V]) -> R<V> {
             }
         }
     }
-    let comp_wise = |f: &mut dyn FnMut(&V) -> R<V>| -> R<V> { map1(r, &mut |s| f(s)) };
-    match (r, m) {
-        // ---- reductions and geometry on vectors ----
-        (V::Vec(c), "dot") => return dot(c, a[0].comps()),
-        (V::Vec(c), "length_squared") => return dot(c, c),
-        (V::Vec(c), "length") => return fv(loose::length(c)),
+    if let Some(v) = vector_geometry(r, m, a)? {
+        return Ok(v);
+    }
+    if let Some(v) = bool_vector(r, m, a)? {
+        return Ok(v);
+    }
+    if let Some(v) = float_vector(r, m, a)? {
+        return Ok(v);
+    }
+    component_wise(r, m, a)
+}
+
+/// Reductions and geometry on vectors (`dot`, `length`, `extend`, integer
+/// `cross`, ...); `None` for another method.
+fn vector_geometry(r: &V, m: &str, a: &[V]) -> R<Option<V>> {
+    Ok(Some(match (r, m) {
+        (V::Vec(c), "dot") => dot(c, a[0].comps())?,
+        (V::Vec(c), "length_squared") => dot(c, c)?,
+        (V::Vec(c), "length") => fv(loose::length(c))?,
         (V::Vec(_), "distance") => {
             let d = bin(BinOp::Sub, r, &a[0])?;
-            return fv(loose::length(d.comps()));
+            fv(loose::length(d.comps()))?
         }
         (V::Vec(_), "distance_squared") => {
             let d = bin(BinOp::Sub, r, &a[0])?;
-            return dot(d.comps(), d.comps());
+            dot(d.comps(), d.comps())?
         }
-        (V::Vec(c), "element_sum") => {
-            return c[1..].iter().try_fold(c[0].clone(), |acc, x| loose_bin(BinOp::Add, &acc, x));
-        }
+        (V::Vec(c), "element_sum") => c[1..].iter().try_fold(c[0].clone(), |acc, x| loose_bin(BinOp::Add, &acc, x))?,
         (V::Vec(c), "element_product") => {
-            return c[1..].iter().try_fold(c[0].clone(), |acc, x| loose_bin(BinOp::Mul, &acc, x));
+            c[1..].iter().try_fold(c[0].clone(), |acc, x| loose_bin(BinOp::Mul, &acc, x))?
         }
-        (V::Vec(c), "min_element") => return c[1..].iter().try_fold(c[0].clone(), |acc, x| min_max(&acc, x, true)),
-        (V::Vec(c), "max_element") => return c[1..].iter().try_fold(c[0].clone(), |acc, x| min_max(&acc, x, false)),
+        (V::Vec(c), "min_element") => c[1..].iter().try_fold(c[0].clone(), |acc, x| min_max(&acc, x, true))?,
+        (V::Vec(c), "max_element") => c[1..].iter().try_fold(c[0].clone(), |acc, x| min_max(&acc, x, false))?,
         (V::Vec(c), "extend") => {
             let mut c = c.clone();
             c.push(a[0].clone());
-            return Ok(V::Vec(c));
+            V::Vec(c)
         }
-        (V::Vec(c), "truncate") => return Ok(V::Vec(c[..c.len() - 1].to_vec())),
+        (V::Vec(c), "truncate") => V::Vec(c[..c.len() - 1].to_vec()),
         (V::Vec(c), "cross") if !matches!(c[0], V::F(..)) => {
             let b = a[0].comps();
             let m2 = |i: usize, j: usize| -> R<V> {
                 scalar_bin(BinOp::Sub, &scalar_bin(BinOp::Mul, &c[i], &b[j])?, &scalar_bin(BinOp::Mul, &b[i], &c[j])?)
             };
-            return Ok(V::Vec(vec![m2(1, 2)?, m2(2, 0)?, m2(0, 1)?]));
+            V::Vec(vec![m2(1, 2)?, m2(2, 0)?, m2(0, 1)?])
         }
         (V::Vec(c), "manhattan_distance") => {
             let mut acc = V::U(0, false);
@@ -158,16 +169,23 @@ pub(super) fn method(r: &V, m: &str, a: &[V]) -> R<V> {
                 };
                 acc = scalar_bin(BinOp::Add, &acc, &d)?;
             }
-            return Ok(acc);
+            acc
         }
-        // ---- bool vectors ----
+        _ => return Ok(None),
+    }))
+}
+
+/// Bool vectors' methods (`any`, `all`, `bitmask`), the comparisons that
+/// make them (`cmp*`) and `select` by a mask; `None` for another method.
+fn bool_vector(r: &V, m: &str, a: &[V]) -> R<Option<V>> {
+    Ok(Some(match (r, m) {
         (V::Vec(c), "any" | "all") => {
             let want = m == "any";
             // A certain component equal to `want` decides; else an
             // uncertain one leaves it open.
             let decided = c.iter().any(|x| matches!(x, V::B(v, false) if *v == want));
             let unc = !decided && c.iter().any(|x| matches!(x, V::B(_, true)));
-            return Ok(V::B(if decided { want } else { !want }, unc));
+            V::B(if decided { want } else { !want }, unc)
         }
         (V::Vec(c), "bitmask") => {
             let mut bits = 0u32;
@@ -177,7 +195,7 @@ pub(super) fn method(r: &V, m: &str, a: &[V]) -> R<V> {
                 bits |= (*v as u32) << i;
                 unc |= *u;
             }
-            return Ok(V::U(bits, unc));
+            V::U(bits, unc)
         }
         (V::Vec(_), "cmpeq" | "cmpne" | "cmplt" | "cmple" | "cmpgt" | "cmpge") => {
             let op = match m {
@@ -188,7 +206,7 @@ pub(super) fn method(r: &V, m: &str, a: &[V]) -> R<V> {
                 "cmpgt" => BinOp::Gt,
                 _ => BinOp::Ge,
             };
-            return zip(r, &a[0], &mut |x, y| scalar_bin(op, x, y));
+            zip(r, &a[0], &mut |x, y| scalar_bin(op, x, y))?
         }
         // `VecN::select(mask, if_true, if_false)`, the mask first.
         (V::Vec(mask), "select") => {
@@ -208,14 +226,23 @@ pub(super) fn method(r: &V, m: &str, a: &[V]) -> R<V> {
                     (v, true) => panic!("select of {v:?}"),
                 }
             });
-            return Ok(V::Vec(picked.collect()));
+            V::Vec(picked.collect())
         }
+        _ => return Ok(None),
+    }))
+}
+
+/// Float vectors' own methods (`cross`, `normalize_or_zero`, `lerp`,
+/// `fract_gl`); `None` for another method.
+fn float_vector(r: &V, m: &str, a: &[V]) -> R<Option<V>> {
+    let comp_wise = |f: &mut dyn FnMut(&V) -> R<V>| -> R<V> { map1(r, &mut |s| f(s)) };
+    Ok(Some(match (r, m) {
         (V::Vec(c), "cross") => {
             let b = a[0].comps();
             let m2 = |i: usize, j: usize| -> R<F> {
                 fsub(fmul(c[i].f(), b[j].f(), true)?, fmul(b[i].f(), c[j].f(), true)?, true)
             };
-            return Ok(V::Vec(vec![fv(m2(1, 2))?, fv(m2(2, 0))?, fv(m2(0, 1))?]));
+            V::Vec(vec![fv(m2(1, 2))?, fv(m2(2, 0))?, fv(m2(0, 1))?])
         }
         (V::Vec(c), "normalize_or_zero") => {
             // glam: `self * (1 / length)` if that is finite and positive,
@@ -226,7 +253,7 @@ pub(super) fn method(r: &V, m: &str, a: &[V]) -> R<V> {
             let rcp = 1.0 / len.0;
             if !(rcp.is_finite() && rcp > 0.0) {
                 let unc = d.1 > 0.0;
-                return Ok(V::Vec(c.iter().map(|_| V::F(0.0, if unc { 2.0 } else { 0.0 })).collect()));
+                return Ok(Some(V::Vec(c.iter().map(|_| V::F(0.0, if unc { 2.0 } else { 0.0 })).collect())));
             }
             // Relative error of 1/len: half of dot's, plus a few ULP.
             let rel =
@@ -240,13 +267,18 @@ pub(super) fn method(r: &V, m: &str, a: &[V]) -> R<V> {
                     fv(fin(r, err))
                 })
                 .collect();
-            return Ok(V::Vec(out?));
+            V::Vec(out?)
         }
-        (V::Vec(_), "lerp") => return zip3(r, &a[0], &a[1], &mut |x, y, s| fv(loose::mix(x.f(), y.f(), s.f()))),
-        (V::Vec(_), "fract_gl") => return comp_wise(&mut |s| fv(ffract(s.f(), f32::floor))),
-        _ => {}
-    }
-    // ---- component-wise methods (scalars, and vectors where glam has them) ----
+        (V::Vec(_), "lerp") => zip3(r, &a[0], &a[1], &mut |x, y, s| fv(loose::mix(x.f(), y.f(), s.f())))?,
+        (V::Vec(_), "fract_gl") => comp_wise(&mut |s| fv(ffract(s.f(), f32::floor)))?,
+        _ => return Ok(None),
+    }))
+}
+
+/// The component-wise methods: of scalars, and of vectors where glam has
+/// them.
+fn component_wise(r: &V, m: &str, a: &[V]) -> R<V> {
+    let comp_wise = |f: &mut dyn FnMut(&V) -> R<V>| -> R<V> { map1(r, &mut |s| f(s)) };
     let two = |f: &mut dyn FnMut(&V, &V) -> R<V>| -> R<V> { zip(r, &a[0], &mut |x, y| f(x, y)) };
     match m {
         "min" => two(&mut |x, y| min_max(x, y, true)),

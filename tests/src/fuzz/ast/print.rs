@@ -1,0 +1,344 @@
+//! The AST printed as the Rust source of an `#[rt_program(ray_generation)]`
+//! with its `#[rt_struct]`s, `#[rt_impl]`s and `#[rt_function]`s.
+
+use super::*;
+use std::fmt::Write;
+
+impl Program {
+    /// Words of a value of type `t` in the runtime's packed layout.
+    pub fn words(&self, t: &Ty) -> u32 {
+        match t {
+            Ty::S(_) => 1,
+            Ty::V(n, _) => *n as u32,
+            Ty::Struct(i) => self.structs[*i].fields.iter().map(|(_, f)| self.words(f)).sum(),
+            Ty::Arr(e, n) => self.words(e) * n,
+        }
+    }
+
+    /// The program as a Rust source file.
+    pub fn source(&self) -> String {
+        let mut s = String::from("use rt_std::prelude::*;\n");
+        s.push_str("\n#[rt_enum]\npub enum FuzzKind {\n    Alpha,\n    Beta = 5,\n    Gamma,\n}\n");
+        for (i, d) in self.structs.iter().enumerate() {
+            let has_impl = self.helpers.iter().any(|h| h.method.is_some_and(|m| m.of == i));
+            s.push_str(if has_impl { "\n#[rt_struct(impl)]\npub struct " } else { "\n#[rt_struct]\npub struct " });
+            s.push_str(&d.name);
+            s.push_str(" {\n");
+            for (n, t) in &d.fields {
+                let _ = writeln!(s, "    pub {n}: {},", t.rust(self));
+            }
+            s.push_str("}\n");
+        }
+        let params = |h: &Helper| -> Vec<String> {
+            h.params
+                .iter()
+                .map(|p| match p {
+                    Param::Val(n, t) => format!("{n}: {}", t.rust(self)),
+                    Param::MutRef(n, t) => format!("{n}: &mut {}", t.rust(self)),
+                })
+                .collect()
+        };
+        for h in self.helpers.iter().filter(|h| h.method.is_none()) {
+            let ret = h.ret.as_ref().map(|t| format!(" -> {}", t.rust(self))).unwrap_or_default();
+            let _ = write!(s, "\n#[rt_function]\npub fn {}({}){ret} ", h.name, params(h).join(", "));
+            self.block(&mut s, &h.body, 0);
+            s.push('\n');
+        }
+        for (i, d) in self.structs.iter().enumerate() {
+            let methods: Vec<&Helper> = self.helpers.iter().filter(|h| h.method.is_some_and(|m| m.of == i)).collect();
+            if methods.is_empty() {
+                continue;
+            }
+            let _ = writeln!(s, "\n#[rt_impl]\nimpl {} {{", d.name);
+            for h in methods {
+                let m = h.method.unwrap();
+                let mut ps = params(h);
+                let (first, body) = match &h.params[0] {
+                    Param::Val(n, _) | Param::MutRef(n, _) => (n.clone(), h.body.clone()),
+                };
+                ps[0] = match m.receiver {
+                    Receiver::Value => "self".into(),
+                    Receiver::Ref => "&self".into(),
+                    Receiver::MutRef => "&mut self".into(),
+                };
+                let mut body = body;
+                rename::block(&mut body, &first, m.receiver == Receiver::Ref);
+                let ret = h.ret.as_ref().map(|t| format!(" -> {}", t.rust(self))).unwrap_or_default();
+                let _ = write!(s, "    pub fn {}({}){ret} ", h.name, ps.join(", "));
+                self.block(&mut s, &body, 1);
+                s.push('\n');
+            }
+            s.push_str("}\n");
+        }
+        let mut params: Vec<String> =
+            self.inputs.iter().map(|(n, t)| format!("#[var] {n}: {}", t.rust(self))).collect();
+        params.extend(self.outputs.iter().map(|(n, t)| format!("#[var] mut {n}: RwBuffer<{}>", t.rust(self))));
+        let _ =
+            write!(s, "\n#[rt_program(ray_generation)]\npub fn {}(\n    {},\n) ", self.name, params.join(",\n    "));
+        self.block(&mut s, &self.body, 0);
+        s.push('\n');
+        s
+    }
+
+    fn block(&self, s: &mut String, b: &Block, depth: usize) {
+        s.push_str("{\n");
+        for st in &b.stmts {
+            self.stmt(s, st, depth + 1);
+        }
+        if let Some(t) = &b.tail {
+            indent(s, depth + 1);
+            s.push_str(&self.expr(t));
+            s.push('\n');
+        }
+        indent(s, depth);
+        s.push('}');
+    }
+
+    fn stmt(&self, s: &mut String, st: &Stmt, depth: usize) {
+        indent(s, depth);
+        match st {
+            Stmt::Let { name, mutable, ty, annotate, init } => {
+                let m = if *mutable { "mut " } else { "" };
+                let t = if *annotate { format!(": {}", ty.rust(self)) } else { String::new() };
+                let _ = writeln!(s, "let {m}{name}{t} = {};", self.expr(init));
+            }
+            Stmt::Assign(p, op, v) => {
+                let sym = op.map(|o| format!("{}=", o.symbol())).unwrap_or_else(|| "=".into());
+                let _ = writeln!(s, "{} {sym} {};", self.place(p), self.expr(v));
+            }
+            Stmt::If(c, t, e) => {
+                self.if_chain(s, c, t, e.as_ref(), depth);
+                s.push('\n');
+            }
+            Stmt::For { var, ty, start, end, inclusive, body } => {
+                let range = if *inclusive { "..=" } else { ".." };
+                let _ = write!(s, "for {var} in {start}{}{range}{} ", ty.rust(), self.expr(end));
+                self.block(s, body, depth);
+                s.push('\n');
+            }
+            Stmt::While(c, body) => {
+                let _ = write!(s, "while {} ", self.expr(c));
+                self.block(s, body, depth);
+                s.push('\n');
+            }
+            Stmt::Loop(body) => {
+                s.push_str("loop ");
+                self.block(s, body, depth);
+                s.push('\n');
+            }
+            Stmt::Break => s.push_str("break;\n"),
+            Stmt::Continue => s.push_str("continue;\n"),
+            Stmt::Match(e, arms) => {
+                self.match_text(s, e, arms, depth);
+                s.push('\n');
+            }
+            Stmt::Store { buf, index, value, form } => {
+                let b = &self.outputs[*buf].0;
+                let (i, v) = (self.expr(index), self.expr(value));
+                let _ = match form {
+                    StoreForm::Method => writeln!(s, "{b}.store({i}, {v});"),
+                    StoreForm::Index => writeln!(s, "{b}[{i}] = {v};"),
+                    StoreForm::Compound(op) => writeln!(s, "{b}[{i}] {}= {v};", op.symbol()),
+                };
+            }
+            Stmt::Expr(e) => {
+                let _ = writeln!(s, "{};", self.expr(e));
+            }
+            Stmt::Return(e) => {
+                let _ = match e {
+                    Some(e) => writeln!(s, "return {};", self.expr(e)),
+                    None => writeln!(s, "return;"),
+                };
+            }
+        }
+    }
+
+    fn if_chain(&self, s: &mut String, c: &Expr, t: &Block, e: Option<&Block>, depth: usize) {
+        let _ = write!(s, "if {} ", self.expr(c));
+        self.block(s, t, depth);
+        if let Some(e) = e {
+            s.push_str(" else ");
+            // `else if` for an else block that is a single `if` statement.
+            if let ([Stmt::If(c2, t2, e2)], None) = (e.stmts.as_slice(), &e.tail) {
+                self.if_chain(s, c2, t2, e2.as_ref(), depth);
+            } else {
+                self.block(s, e, depth);
+            }
+        }
+    }
+
+    fn match_text(&self, s: &mut String, e: &Expr, arms: &[Arm], depth: usize) {
+        let _ = writeln!(s, "match {} {{", self.expr(e));
+        for a in arms {
+            indent(s, depth + 1);
+            let pat = if a.pats.is_empty() {
+                a.bind.clone().unwrap_or_else(|| "_".into())
+            } else {
+                a.pats.iter().map(|p| lit_text(&Lit { v: *p, suffix: false })).collect::<Vec<_>>().join(" | ")
+            };
+            let _ = write!(s, "{pat} => ");
+            self.block(s, &a.body, depth + 1);
+            s.push('\n');
+        }
+        indent(s, depth);
+        s.push('}');
+    }
+
+    fn place(&self, p: &Place) -> String {
+        match p {
+            Place::Var(n) => n.clone(),
+            Place::Deref(n) => format!("*{n}"),
+            Place::Field(b, f, _) => match &**b {
+                Place::Deref(n) => format!("(*{n}).{f}"),
+                _ => format!("{}.{f}", self.place(b)),
+            },
+            Place::Index(b, i) => format!("{}[{}]", self.place(b), index_text(self, i)),
+        }
+    }
+
+    /// An expression as Rust text. Operators, casts and `if`/`match`
+    /// expressions are parenthesised, so precedence never matters.
+    pub fn expr(&self, e: &Expr) -> String {
+        match e {
+            Expr::Lit(l) => lit_text(l),
+            Expr::Var(n) => n.clone(),
+            Expr::Deref(n) => format!("(*{n})"),
+            Expr::LaunchX => "launch_index().x".into(),
+            Expr::Field(b, f, _) => format!("{}.{f}", self.receiver(b)),
+            Expr::Index(b, i) => format!("{}[{}]", self.receiver(b), index_text(self, i)),
+            Expr::Unary(op, x) => {
+                let sym = if *op == UnOp::Neg { "-" } else { "!" };
+                format!("({sym}{})", self.receiver(x))
+            }
+            Expr::Bin(op, a, b) => format!("({} {} {})", self.expr(a), op.symbol(), self.expr(b)),
+            Expr::Cast(x, s) => format!("({} as {})", self.receiver(x), s.rust()),
+            Expr::Method(r, m, args) => format!("{}.{m}({})", self.receiver(r), self.args(args)),
+            Expr::Path(t, f, args) => format!("{t}::{f}({})", self.args(args)),
+            Expr::Free(f, args) => format!("{f}({})", self.args(args)),
+            Expr::Const(t, n) if t.is_empty() => n.to_string(),
+            Expr::Const(t, n) => format!("{t}::{n}"),
+            Expr::Call(h, args) => {
+                let a: Vec<String> = args
+                    .iter()
+                    .map(|a| match a {
+                        Arg::Val(e) => self.expr(e),
+                        Arg::MutRef(n) if self.is_ref_param(n) => n.clone(),
+                        Arg::MutRef(n) => format!("&mut {n}"),
+                    })
+                    .collect();
+                let Some(helper) = self.helpers.get(*h) else { return format!("missing_helper({})", a.join(", ")) };
+                match helper.method {
+                    None => format!("{}({})", helper.name, a.join(", ")),
+                    Some(m) => {
+                        let ty = &self.structs[m.of].name;
+                        let (recv, rest) = (a[0].clone(), &a[1..]);
+                        if m.ufcs {
+                            let recv = match (m.receiver, &args[0]) {
+                                (Receiver::Ref, Arg::Val(e)) => format!("&{}", self.receiver(e)),
+                                _ => recv,
+                            };
+                            let all: Vec<String> = std::iter::once(recv).chain(rest.iter().cloned()).collect();
+                            format!("{ty}::{}({})", helper.name, all.join(", "))
+                        } else {
+                            let recv = match &args[0] {
+                                Arg::Val(e) => self.receiver(e),
+                                Arg::MutRef(n) => n.clone(),
+                            };
+                            format!("{recv}.{}({})", helper.name, rest.join(", "))
+                        }
+                    }
+                }
+            }
+            Expr::StructLit(i, fields) => {
+                let d = &self.structs[*i];
+                let f: Vec<String> =
+                    fields.iter().map(|(k, v)| format!("{}: {}", d.fields[*k].0, self.expr(v))).collect();
+                format!("{} {{ {} }}", d.name, f.join(", "))
+            }
+            Expr::ArrayLit(xs) => format!("[{}]", self.args(xs)),
+            Expr::ArrayRepeat(x, n) => format!("[{}; {n}]", self.expr(x)),
+            Expr::If(c, t, e) => {
+                let mut s = String::from("(");
+                self.if_chain(&mut s, c, t, Some(e), 1);
+                s.push(')');
+                s
+            }
+            Expr::Match(x, arms) => {
+                let mut s = String::from("(");
+                self.match_text(&mut s, x, arms, 1);
+                s.push(')');
+                s
+            }
+            Expr::BufLoad(b, i, method) => {
+                let b = &self.outputs[*b].0;
+                if *method { format!("{b}.load({})", self.expr(i)) } else { format!("{b}[{}]", self.expr(i)) }
+            }
+            Expr::TupleField(xs, k) => format!("({},).{k}", self.args(xs)),
+            Expr::EnumRound(x) => format!(
+                "(match (match ({}) % 3 {{ 0 => FuzzKind::Alpha, 1 => FuzzKind::Beta, _ => FuzzKind::Gamma }}) \
+                 {{ FuzzKind::Alpha => 10u32, FuzzKind::Beta => FuzzKind::Beta as u32, FuzzKind::Gamma => 7u32 }})",
+                self.expr(x)
+            ),
+        }
+    }
+
+    /// `&mut` parameters are named `state*` (see the generator), or are a
+    /// method's `&mut self`.
+    fn is_ref_param(&self, n: &str) -> bool {
+        n.starts_with("state") || n == "self"
+    }
+
+    /// An expression in receiver position (`x.f()`, `x.y`, `x[i]`, `-x`):
+    /// literals are suffixed and parenthesised, since `2.0.sqrt()` is
+    /// ambiguous in Rust.
+    fn receiver(&self, e: &Expr) -> String {
+        match e {
+            Expr::Lit(l) => format!("({})", lit_text(&Lit { v: l.v, suffix: true })),
+            Expr::StructLit(..) => format!("({})", self.expr(e)),
+            _ => self.expr(e),
+        }
+    }
+
+    fn args(&self, xs: &[Expr]) -> String {
+        xs.iter().map(|x| self.expr(x)).collect::<Vec<_>>().join(", ")
+    }
+}
+
+fn index_text(p: &Program, i: &Expr) -> String {
+    match i {
+        Expr::Lit(Lit { v: LitV::U32(k), .. }) => k.to_string(),
+        Expr::Lit(Lit { v: LitV::I32(k), .. }) => k.to_string(),
+        _ => format!("{} as usize", p.receiver(i)),
+    }
+}
+
+fn indent(s: &mut String, depth: usize) {
+    for _ in 0..depth {
+        s.push_str("    ");
+    }
+}
+
+pub fn lit_text(l: &Lit) -> String {
+    match l.v {
+        LitV::Bool(b) => b.to_string(),
+        LitV::I32(i) => {
+            let t = if l.suffix { format!("{i}i32") } else { i.to_string() };
+            if i < 0 { format!("({t})") } else { t }
+        }
+        LitV::U32(u) => {
+            // Large values in hex, as hash constants are written.
+            let t = if u > 0xffff && u % 7 == 0 { format!("{u:#x}") } else { u.to_string() };
+            if l.suffix { format!("{t}u32") } else { t }
+        }
+        LitV::F32(f) => {
+            let mut t = format!("{f:?}");
+            if !t.contains(['.', 'e']) {
+                t.push_str(".0");
+            }
+            if l.suffix {
+                t.push_str("f32");
+            }
+            if f.is_sign_negative() { format!("({t})") } else { t }
+        }
+    }
+}
