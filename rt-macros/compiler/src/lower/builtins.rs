@@ -6,9 +6,9 @@
 
 mod glam_angles;
 mod glam_assoc;
+mod glam_formulas;
 mod glam_ints;
 mod glam_masks;
-mod glam_formulas;
 mod int_division;
 mod std_scalars;
 
