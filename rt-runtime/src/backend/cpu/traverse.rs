@@ -11,7 +11,8 @@ use crate::accel::wide::kernels::WalkRay;
 use crate::accel::wide::watertight::WatertightRay;
 use crate::accel::wide::{PACKET, leaf_of};
 use crate::link::instances::{self, InstancePath};
-use crate::scene::{NodeId, NodeKind, TriangleMesh};
+use crate::motion::MotionTransform;
+use crate::scene::{NodeId, NodeKind, NodeRec, TriangleMesh};
 use glam::{Vec2, Vec3};
 use rt_std::cpu::{AnyAttributes, CpuResult, HIT_TRIANGLE_BACK, HIT_TRIANGLE_FRONT};
 use rt_std::*;
@@ -24,22 +25,9 @@ impl Lane<'_> {
         instances::resolve(self.l.scene, path, group, gi)
     }
 
-    pub(crate) fn traverse(&self, s: &Search, mut node: NodeId, xf: Option<&Xf>, mask: u32, path: InstancePath) {
+    pub(crate) fn traverse(&self, s: &Search, node: NodeId, xf: Option<&Xf>, mask: u32, path: InstancePath) {
         let l = self.l;
-        let rec = loop {
-            let rec = &l.scene.nodes[node.index() as usize];
-            if (rec.visibility_mask as u32) & mask == 0 || s.done.get() {
-                return;
-            }
-            match &rec.kind {
-                // One child (a scene's usual top group): its own tree tests
-                // the ray first thing, so the group's box test would be
-                // repeated; the child is searched in this call, not a
-                // nested one.
-                NodeKind::Group { children, .. } if children.len() == 1 => node = children[0],
-                _ => break rec,
-            }
-        };
+        let Some((node, rec)) = self.entered(s, node, mask) else { return };
         let world_ray = s.world_ray;
         let (origin, direction) = match xf {
             None => (world_ray.origin, world_ray.direction),
@@ -49,7 +37,167 @@ impl Lane<'_> {
             ),
         };
         match &rec.kind {
-            NodeKind::Transform { motion: Some(motion), child, .. } => {
+            NodeKind::Transform { motion, child, .. } => {
+                self.enter_transform(s, node, motion.as_deref(), *child, xf, mask, path.through(rec.instance_id))
+            }
+            NodeKind::Group { children, .. } => {
+                self.search_group(s, node, children, xf, mask, path, (origin, direction))
+            }
+            NodeKind::Selector { children, .. } => {
+                self.visit_selector(s, node, children, xf, mask, path, (origin, direction))
+            }
+            NodeKind::GeometryGroup { .. } => {
+                let Some(Some(NodeAccel::Prims { bvh, simd, prims, .. })) = l.accels.get(node.index() as usize) else {
+                    return;
+                };
+                s.group.set((path, node));
+                // The world ray's `tmax` is not read here (the search's is):
+                // copying the whole ray loads `tmin` and `tmax` as one 8-byte
+                // word, which stalls when the tracing program stored them
+                // one by one just before.
+                let (ray_type, tmin) = (world_ray.ray_type, world_ray.tmin);
+                let object_ray = || Ray { origin, direction, ray_type, tmin, tmax: s.tmax.get() };
+                let prepared = WatertightRay::new(origin, direction, tmin);
+                let visit = |p: u32| {
+                    let (gi, prim) = prims[p as usize];
+                    match l.meshes[gi as usize] {
+                        Some(mesh) => {
+                            // (Moving triangles are never in the SIMD
+                            // tree's packets: they come here.)
+                            let [a, b, c] = match l.vertex_motion[gi as usize] {
+                                Some(m) => m.triangle_at(mesh.indices[prim as usize], self.time.get()),
+                                None => mesh.triangle(prim as usize),
+                            };
+                            if let Some(ray) = &prepared
+                                && let Some(hit) = ray.intersect(a, b, c, s.tmax.get())
+                            {
+                                self.triangle_hit(s, ray, mesh, gi, prim, hit, [a, b, c], xf);
+                            }
+                        }
+                        None => self.intersect_custom(s, gi, prim, &object_ray(), xf),
+                    }
+                };
+                let Some(tree) = simd else {
+                    // `NoAccel`'s single leaf.
+                    bvh.traverse(origin, direction.recip(), tmin, &|| s.tmax.get(), &mut |p| {
+                        visit(p);
+                        !s.done.get()
+                    });
+                    return;
+                };
+                let ray = WalkRay { origin, inv_dir: direction.recip(), tmin, triangle: prepared.as_ref() };
+                let next = || (!s.done.get()).then(|| s.tmax.get());
+                walk_on(self.isa, tree, &ray, s.tmax.get(), |leaf, hits| {
+                    let (index, count) = leaf_of(leaf);
+                    let slots = &tree.slots[index as usize * PACKET..][..count as usize];
+                    match hits {
+                        // Triangle packets: each lane hit, in lane order,
+                        // against the closest hit so far (an earlier lane
+                        // may have committed a closer one).
+                        Some(hits) => {
+                            // (The walk tests packets only with a setup.)
+                            let ray = prepared.as_ref()?;
+                            let mut mask = hits.mask;
+                            while mask != 0 {
+                                let lane = mask.trailing_zeros() as usize;
+                                mask &= mask - 1;
+                                let t = hits.t[lane];
+                                // (Hits are never NaN.)
+                                if t >= s.tmax.get() {
+                                    continue;
+                                }
+                                let (gi, prim) = prims[slots[lane] as usize];
+                                if let Some(mesh) = l.meshes[gi as usize] {
+                                    let vertices = tree.packets[index as usize].vertices(lane);
+                                    self.triangle_hit(
+                                        s,
+                                        ray,
+                                        mesh,
+                                        gi,
+                                        prim,
+                                        (t, hits.u[lane], hits.v[lane]),
+                                        vertices,
+                                        xf,
+                                    );
+                                }
+                                if s.done.get() {
+                                    return None;
+                                }
+                            }
+                        }
+                        None => {
+                            for &p in slots {
+                                visit(p);
+                                if s.done.get() {
+                                    return None;
+                                }
+                            }
+                        }
+                    }
+                    next()
+                });
+            }
+        }
+    }
+
+    /// The node the search enters at `node`: past groups of one child (a
+    /// scene's usual top group: its own tree tests the ray first thing, so
+    /// the group's box test would be repeated; the child is searched in
+    /// this call, not a nested one); none where the ray's `mask` hides it
+    /// or the search is done.
+    #[inline(always)]
+    fn entered(&self, s: &Search, mut node: NodeId, mask: u32) -> Option<(NodeId, &'_ NodeRec)> {
+        loop {
+            let rec = &self.l.scene.nodes[node.index() as usize];
+            if (rec.visibility_mask as u32) & mask == 0 || s.done.get() {
+                return None;
+            }
+            match &rec.kind {
+                NodeKind::Group { children, .. } if children.len() == 1 => node = children[0],
+                _ => return Some((node, rec)),
+            }
+        }
+    }
+
+    /// The search through group `node`'s BVH2 over its children, the ray in
+    /// the group's space (`ray`: origin and direction).
+    #[allow(clippy::too_many_arguments)]
+    fn search_group(
+        &self,
+        s: &Search,
+        node: NodeId,
+        children: &[NodeId],
+        xf: Option<&Xf>,
+        mask: u32,
+        path: InstancePath,
+        (origin, direction): (Vec3, Vec3),
+    ) {
+        let l = self.l;
+        let Some(Some(NodeAccel::Children { bvh, .. })) = l.accels.get(node.index() as usize) else {
+            return;
+        };
+        let offsets = &l.instance_offsets[node.index() as usize];
+        bvh.traverse(origin, direction.recip(), s.world_ray.tmin, &|| s.tmax.get(), &mut |c| {
+            self.traverse(s, children[c as usize], xf, mask, path.child(offsets[c as usize]));
+            !s.done.get()
+        });
+    }
+
+    /// The search below transform `node` (of motion `motion`, if it
+    /// moves): the child under the transform composed with `xf`.
+    #[allow(clippy::too_many_arguments)]
+    fn enter_transform(
+        &self,
+        s: &Search,
+        node: NodeId,
+        motion: Option<&MotionTransform>,
+        child: NodeId,
+        xf: Option<&Xf>,
+        mask: u32,
+        path: InstancePath,
+    ) {
+        match motion {
+            Some(motion) => {
                 // The transform at the ray's time; an instant where it has no
                 // inverse hides the child.
                 let m = motion.matrix_at(self.time.get());
@@ -59,145 +207,50 @@ impl Lane<'_> {
                 }
                 let own = Xf { object_to_world: m, world_to_object: m.inverse() };
                 let composed = xf.map_or(own, |x| under(x, &own));
-                self.traverse(s, *child, Some(&composed), mask, path.through(rec.instance_id))
+                self.traverse(s, child, Some(&composed), mask, path)
             }
-            NodeKind::Transform { child, motion: None, .. } => {
-                let path = path.through(rec.instance_id);
+            None => {
                 // The launch holds every static transform's matrices.
-                let Some(own) = l.transforms.get(node.index() as usize).and_then(Option::as_ref) else { return };
+                let Some(own) = self.l.transforms.get(node.index() as usize).and_then(Option::as_ref) else { return };
                 match xf {
                     // Under no other transform: the node's own matrices,
                     // borrowed, not their products with the identity.
-                    None => self.traverse(s, *child, Some(own), mask, path),
-                    Some(x) => self.traverse(s, *child, Some(&under(x, own)), mask, path),
+                    None => self.traverse(s, child, Some(own), mask, path),
+                    Some(x) => self.traverse(s, child, Some(&under(x, own)), mask, path),
                 }
             }
-            NodeKind::Group { children, .. } => {
-                let Some(Some(NodeAccel::Children { bvh, .. })) = l.accels.get(node.index() as usize) else {
-                    return;
-                };
-                let offsets = &l.instance_offsets[node.index() as usize];
-                bvh.traverse(origin, direction.recip(), world_ray.tmin, &|| s.tmax.get(), &mut |c| {
-                    self.traverse(s, children[c as usize], xf, mask, path.child(offsets[c as usize]));
-                    !s.done.get()
-                });
-            }
-            NodeKind::Selector { children, .. } => {
-                let Some(call) = &l.visit[node.index() as usize] else { return };
-                // The ray in the selector's space, `tmax` the closest hit so far.
-                let mut ctx = self.context();
-                ctx.current_ray = Ray { origin, direction, tmax: s.tmax.get(), ..*world_ray };
-                // SAFETY: the payload pointer comes from the `&mut` the trace
-                // call holds for the whole search; nothing else uses it now.
-                let payload = unsafe { &mut *s.payload };
-                let r = self.invoke(call, &mut ctx, Some(payload), None);
-                if let CpuResult::Child(c) = r
-                    && let Some(child) = children.get(c as usize)
-                {
-                    let offset = l.instance_offsets[node.index() as usize][c as usize];
-                    self.traverse(s, *child, xf, mask, path.child(offset));
-                }
-            }
-            NodeKind::GeometryGroup { .. } => self.search_geometry_group(s, node, xf, path, origin, direction),
         }
     }
 
-    /// The search through geometry group `node`, the ray in its object
-    /// space (`origin`, `direction`): its SIMD tree's walk (or `NoAccel`'s
-    /// single leaf), triangles tested as the walk hands their packets
-    /// over, custom primitives by their intersection programs.
-    #[inline(always)]
-    fn search_geometry_group(
+    /// The search below selector `node`: its visit program, run on the ray
+    /// in the selector's space (`ray`: origin and direction), chooses the
+    /// child searched.
+    #[allow(clippy::too_many_arguments)]
+    fn visit_selector(
         &self,
         s: &Search,
         node: NodeId,
+        children: &[NodeId],
         xf: Option<&Xf>,
+        mask: u32,
         path: InstancePath,
-        origin: Vec3,
-        direction: Vec3,
+        (origin, direction): (Vec3, Vec3),
     ) {
         let l = self.l;
-        let world_ray = s.world_ray;
-        let Some(Some(NodeAccel::Prims { bvh, simd, prims, .. })) = l.accels.get(node.index() as usize) else {
-            return;
-        };
-        s.group.set((path, node));
-        // The world ray's `tmax` is not read here (the search's is):
-        // copying the whole ray loads `tmin` and `tmax` as one 8-byte
-        // word, which stalls when the tracing program stored them
-        // one by one just before.
-        let (ray_type, tmin) = (world_ray.ray_type, world_ray.tmin);
-        let object_ray = || Ray { origin, direction, ray_type, tmin, tmax: s.tmax.get() };
-        let prepared = WatertightRay::new(origin, direction, tmin);
-        let visit = |p: u32| {
-            let (gi, prim) = prims[p as usize];
-            match l.meshes[gi as usize] {
-                Some(mesh) => {
-                    // (Moving triangles are never in the SIMD
-                    // tree's packets: they come here.)
-                    let [a, b, c] = match l.vertex_motion[gi as usize] {
-                        Some(m) => m.triangle_at(mesh.indices[prim as usize], self.time.get()),
-                        None => mesh.triangle(prim as usize),
-                    };
-                    if let Some(ray) = &prepared
-                        && let Some(hit) = ray.intersect(a, b, c, s.tmax.get())
-                    {
-                        self.triangle_hit(s, ray, mesh, gi, prim, hit, [a, b, c], xf);
-                    }
-                }
-                None => self.intersect_custom(s, gi, prim, &object_ray(), xf),
-            }
-        };
-        let Some(tree) = simd else {
-            // `NoAccel`'s single leaf.
-            bvh.traverse(origin, direction.recip(), tmin, &|| s.tmax.get(), &mut |p| {
-                visit(p);
-                !s.done.get()
-            });
-            return;
-        };
-        let ray = WalkRay { origin, inv_dir: direction.recip(), tmin, triangle: prepared.as_ref() };
-        let next = || (!s.done.get()).then(|| s.tmax.get());
-        walk_on(self.isa, tree, &ray, s.tmax.get(), |leaf, hits| {
-            let (index, count) = leaf_of(leaf);
-            let slots = &tree.slots[index as usize * PACKET..][..count as usize];
-            match hits {
-                // Triangle packets: each lane hit, in lane order,
-                // against the closest hit so far (an earlier lane
-                // may have committed a closer one).
-                Some(hits) => {
-                    // (The walk tests packets only with a setup.)
-                    let ray = prepared.as_ref()?;
-                    let mut mask = hits.mask;
-                    while mask != 0 {
-                        let lane = mask.trailing_zeros() as usize;
-                        mask &= mask - 1;
-                        let t = hits.t[lane];
-                        // (Hits are never NaN.)
-                        if t >= s.tmax.get() {
-                            continue;
-                        }
-                        let (gi, prim) = prims[slots[lane] as usize];
-                        if let Some(mesh) = l.meshes[gi as usize] {
-                            let vertices = tree.packets[index as usize].vertices(lane);
-                            self.triangle_hit(s, ray, mesh, gi, prim, (t, hits.u[lane], hits.v[lane]), vertices, xf);
-                        }
-                        if s.done.get() {
-                            return None;
-                        }
-                    }
-                }
-                None => {
-                    for &p in slots {
-                        visit(p);
-                        if s.done.get() {
-                            return None;
-                        }
-                    }
-                }
-            }
-            next()
-        });
+        let Some(call) = &l.visit[node.index() as usize] else { return };
+        // The ray in the selector's space, `tmax` the closest hit so far.
+        let mut ctx = self.context();
+        ctx.current_ray = Ray { origin, direction, tmax: s.tmax.get(), ..*s.world_ray };
+        // SAFETY: the payload pointer comes from the `&mut` the trace
+        // call holds for the whole search; nothing else uses it now.
+        let payload = unsafe { &mut *s.payload };
+        let r = self.invoke(call, &mut ctx, Some(payload), None);
+        if let CpuResult::Child(c) = r
+            && let Some(child) = children.get(c as usize)
+        {
+            let offset = l.instance_offsets[node.index() as usize][c as usize];
+            self.traverse(s, *child, xf, mask, path.child(offset));
+        }
     }
 
     /// A ray/triangle hit `(t, u, v)` with triangle `prim` (vertices
