@@ -6,7 +6,7 @@
 
 use super::Context;
 use crate::backend::Backend;
-use crate::backend::wgpu::Gpu;
+use crate::backend::wgpu::{Gpu, WgpuBackend};
 use crate::error::Result;
 
 impl Context {
@@ -103,7 +103,7 @@ impl Context {
     /// TLASes (one per traced root) the ray-query traversal built: a moved
     /// transform rebuilds TLASes only, moved vertices the BLASes over them.
     pub fn ray_query_builds(&self) -> (u64, u64) {
-        self.wgpu_backend_ref().map_or((0, 0), |b| (b.stats().blas_builds, b.stats().tlas_builds))
+        self.wgpu_backend_ref().map(WgpuBackend::stats).map_or((0, 0), |s| (s.blas_builds, s.tlas_builds))
     }
 
     /// Per ray type, whether the last launch's ray-query traces of that type
