@@ -56,8 +56,6 @@ pub enum RtError {
         scope: String,
         found: String,
     },
-    #[error("ray type {ray_type} has no miss program (set one with `set_miss_program`)")]
-    NoMissProgram { ray_type: u32 },
     #[error("entry point {entry} has no ray generation program")]
     NoRayGeneration { entry: u32 },
     #[error("entry point {entry} does not exist: the context has {count} (see `set_entry_point_count`)")]

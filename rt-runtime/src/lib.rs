@@ -32,6 +32,7 @@ pub mod accel;
 pub mod backend;
 pub mod buffer;
 pub mod context;
+mod env_settings;
 pub mod error;
 mod handles;
 pub mod image_out;

@@ -225,9 +225,8 @@ pub fn check_types(scene: &Scene) -> Result<()> {
         }
     };
     for (r, m) in scene.miss.iter().enumerate() {
-        match m {
-            Some(p) => note(r as u32, scene.program(*p)?.desc)?,
-            None => return Err(RtError::NoMissProgram { ray_type: r as u32 }),
+        if let Some(p) = m {
+            note(r as u32, scene.program(*p)?.desc)?;
         }
     }
     for mat in &scene.materials {

@@ -186,14 +186,14 @@ fn user_structs_round_trip_through_heap_words() {
     assert_eq!(Vec3::read_words(&words[..2]), Vec3::new(1.0, 2.0, 0.0));
 }
 
-/// Attributes with the built-in triangle fields, others beside them, and one
-/// of a built-in's name but another type; one built-in's type is written as
-/// a path.
+/// Attributes with the built-in triangle fields and others beside them; one
+/// built-in's type is written as a path. (A field of a built-in's name but
+/// another type is a compile error: `compile_fail/attribute_builtin_misspelled.rs`.)
 #[rt_std::prelude::rt_attributes]
 pub struct Mixed {
     pub weight: f32,
     pub geometric_normal: Vec3,
-    pub barycentrics: Vec3,
+    pub weights: Vec3,
     pub frame: glam::Mat3,
     pub texcoord: glam::Vec2,
     pub spare: [f32; 2],
@@ -212,7 +212,7 @@ fn triangle_hits_fill_the_built_in_attribute_fields_and_zero_the_rest() {
     let mut m = Mixed {
         weight: 7.0,
         geometric_normal: Vec3::splat(9.0),
-        barycentrics: Vec3::splat(9.0),
+        weights: Vec3::splat(9.0),
         frame: glam::Mat3::IDENTITY,
         texcoord: Vec2::splat(9.0),
         spare: [9.0; 2],
@@ -221,8 +221,7 @@ fn triangle_hits_fill_the_built_in_attribute_fields_and_zero_the_rest() {
     let expected = Mixed {
         weight: 0.0,
         geometric_normal: t.geometric_normal,
-        // `barycentrics` is a Vec2 built-in: a Vec3 of that name is not it.
-        barycentrics: Vec3::ZERO,
+        weights: Vec3::ZERO,
         frame: glam::Mat3::ZERO,
         texcoord: t.texcoord,
         spare: [0.0; 2],

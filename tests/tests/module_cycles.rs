@@ -491,7 +491,7 @@ fn rt_compiler_has_no_import_cycle() {
 /// layers below, never a layer above. (A doc link is a comment, not an
 /// import.)
 const RT_RUNTIME_LAYERS: &[&[&str]] = &[
-    &["error", "handles", "motion", "panics", "texels", "buffer"],
+    &["error", "env_settings", "handles", "motion", "panics", "texels", "buffer"],
     &["vars", "vertex_motion"],
     &["scene"],
     &["link"],

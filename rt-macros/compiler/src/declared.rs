@@ -16,6 +16,7 @@
 //!   namespace), and requires the name to implement the marker trait: the
 //!   fallback does not, and its trait's message says what to add.
 
+use crate::deps::{Dep, DepKind};
 use crate::signature::{self, Role};
 use proc_macro2::TokenStream;
 use quote::{quote, quote_spanned};
@@ -27,7 +28,7 @@ use syn::spanned::Spanned;
 /// not is rustc's "cannot find macro" in the chain, and this adds the
 /// message of `RtData`, `Payload` or `Attributes`
 /// (`#[diagnostic::on_unimplemented]`), which says which attribute to add.
-pub fn declared_checks(deps: &[syn::Path], params: &[signature::Param]) -> TokenStream {
+pub fn declared_checks(deps: &[Dep], params: &[signature::Param]) -> TokenStream {
     let mut checks = Vec::new();
     let mut roles = Vec::new();
     for p in params {
@@ -41,16 +42,14 @@ pub fn declared_checks(deps: &[syn::Path], params: &[signature::Param]) -> Token
         let span = p.ty.span();
         checks.push(quote_spanned!(span=> ::rt_std::data::#check::<#ty>();));
     }
-    for d in deps {
-        let Some(last) = d.segments.last() else { continue };
-        let name = last.ident.to_string();
-        let type_like =
-            name.chars().next().is_some_and(|c| c.is_ascii_uppercase()) && name.chars().any(|c| c.is_ascii_lowercase());
-        if !type_like || roles.contains(&quote!(#d).to_string()) {
+    for d in deps.iter().filter(|d| d.kind == DepKind::Type) {
+        let Some(last) = d.path.segments.last() else { continue };
+        let path = &d.path;
+        if roles.contains(&quote!(#path).to_string()) {
             continue;
         }
         let span = last.ident.span();
-        checks.push(quote_spanned!(span=> ::rt_std::data::__require_declared::<#d>();));
+        checks.push(quote_spanned!(span=> ::rt_std::data::__require_declared::<#path>();));
     }
     let named = named_checks(deps);
     if checks.is_empty() && named.is_empty() {
@@ -65,45 +64,26 @@ pub fn declared_checks(deps: &[syn::Path], params: &[signature::Param]) -> Token
     }
 }
 
-/// What a dependency's name says it is: a constant (`SCALE`), a function
-/// (`tone_map`), or a type (neither).
-#[derive(Clone, Copy, PartialEq, Eq)]
-enum NameKind {
-    Const,
-    Function,
-}
-
-fn name_kind(name: &str) -> Option<NameKind> {
-    let first = name.chars().next()?;
-    if first.is_ascii_uppercase() && name.chars().all(|c| c.is_ascii_uppercase() || c.is_ascii_digit() || c == '_') {
-        Some(NameKind::Const)
-    } else if first.is_ascii_lowercase() || first == '_' {
-        Some(NameKind::Function)
-    } else {
-        None
-    }
-}
-
 /// The checks for the constants and functions among `deps` (see the
 /// module's doc), in a module of their own one level down.
-fn named_checks(deps: &[syn::Path]) -> TokenStream {
+fn named_checks(deps: &[Dep]) -> TokenStream {
     let mut seen = BTreeSet::new();
     let mut fallbacks = Vec::new();
     let mut imports = Vec::new();
     let mut checks = Vec::new();
     for d in deps {
-        let Some(last) = d.segments.last() else { continue };
+        let Some(last) = d.path.segments.last() else { continue };
         let ident = &last.ident;
-        let Some(kind) = name_kind(&ident.to_string()) else { continue };
+        let require = match d.kind {
+            DepKind::Type => continue,
+            DepKind::Value => quote!(__require_rt_const),
+            DepKind::Function => quote!(__require_rt_function),
+        };
         if !seen.insert(ident.to_string()) {
             continue;
         }
         let span = ident.span();
-        let path = one_level_down(d);
-        let require = match kind {
-            NameKind::Const => quote!(__require_rt_const),
-            NameKind::Function => quote!(__require_rt_function),
-        };
+        let path = one_level_down(&d.path);
         fallbacks.push(quote!(pub struct #ident {}));
         imports.push(quote_spanned!(span=> use #path;));
         checks.push(quote_spanned!(span=> ::rt_std::data::#require::<#ident>();));

@@ -7,17 +7,42 @@ use crate::types;
 use std::collections::BTreeSet;
 use syn::visit::Visit;
 
+/// Where an item names a dependency, which says what the dependency is
+/// whatever its spelling (`RGB` may be a struct, `Scale` a constant).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DepKind {
+    /// A type: in a type, a struct literal, or before `::` (`Kind::Metal`,
+    /// `Sphere::UNIT`, `Rgb::new()`).
+    Type,
+    /// A constant: a path in an expression.
+    Value,
+    /// A function: the callee of a call.
+    Function,
+}
+
+/// A dependency: its path and what the use says it is.
+#[derive(Clone, Debug)]
+pub struct Dep {
+    pub path: syn::Path,
+    pub kind: DepKind,
+}
+
+/// The paths of `deps`, in order: the links of the chain (see `expand`).
+pub fn paths(deps: &[Dep]) -> Vec<syn::Path> {
+    deps.iter().map(|d| d.path.clone()).collect()
+}
+
 /// Dependency paths of an item, deduplicated, in first-seen order.
 #[derive(Default)]
 pub struct Deps {
-    pub paths: Vec<syn::Path>,
+    pub deps: Vec<Dep>,
     seen: BTreeSet<String>,
     locals: BTreeSet<String>,
     self_name: String,
 }
 
 impl Deps {
-    fn add(&mut self, path: &syn::Path) {
+    fn add(&mut self, path: &syn::Path, kind: DepKind) {
         let mut p = path.clone();
         for seg in p.segments.iter_mut() {
             seg.arguments = syn::PathArguments::None;
@@ -32,7 +57,7 @@ impl Deps {
         }
         let key = quote::quote!(#p).to_string();
         if self.seen.insert(key) {
-            self.paths.push(p);
+            self.deps.push(Dep { path: p, kind });
         }
     }
 }
@@ -73,14 +98,17 @@ fn is_builtin_fn(name: &str) -> bool {
         )
 }
 
-fn is_const_like(name: &str) -> bool {
+/// A name that starts with a capital: in an expression, a constant's
+/// (`SCALE`, or `Scale` against the convention); before `::`, a type's
+/// (`RGB::new()`, `Kind::Metal`).
+fn is_capitalised(name: &str) -> bool {
     name.chars().next().is_some_and(|c| c.is_ascii_uppercase())
-        && name.chars().all(|c| c.is_ascii_uppercase() || c.is_ascii_digit() || c == '_')
 }
 
-/// `CamelCase`: a type's or a variant's name.
-fn is_type_like(name: &str) -> bool {
-    name.chars().next().is_some_and(|c| c.is_ascii_uppercase()) && !is_const_like(name)
+/// The capitalised names a program's expressions use that rt-std declares:
+/// the transform kinds of the prelude, and `Option`'s variants.
+fn is_builtin_value(name: &str) -> bool {
+    matches!(name, "ObjectToWorld" | "WorldToObject" | "None" | "Some" | "Self")
 }
 
 fn is_builtin_const(name: &str) -> bool {
@@ -94,7 +122,7 @@ impl<'ast> Visit<'ast> for Deps {
             && !is_builtin_type_name(&seg.ident.to_string())
             && !(t.path.segments.len() == 1 && self.locals.contains(&seg.ident.to_string()))
         {
-            self.add(&t.path);
+            self.add(&t.path, DepKind::Type);
         }
         syn::visit::visit_type_path(self, t);
     }
@@ -103,7 +131,7 @@ impl<'ast> Visit<'ast> for Deps {
         if let Some(seg) = s.path.segments.last()
             && !is_builtin_type_name(&seg.ident.to_string())
         {
-            self.add(&s.path);
+            self.add(&s.path, DepKind::Type);
         }
         syn::visit::visit_expr_struct(self, s);
     }
@@ -116,19 +144,19 @@ impl<'ast> Visit<'ast> for Deps {
             if segs.len() >= 2 {
                 // `Type::function()`: a user struct's `default()`.
                 let owner = &segs[segs.len() - 2];
-                if !is_builtin_type_name(owner) && owner.chars().next().is_some_and(|c| c.is_uppercase()) {
+                if !is_builtin_type_name(owner) && is_capitalised(owner) {
                     let mut owner_path = p.path.clone();
                     owner_path.segments.pop();
                     let owner_path = syn::Path {
                         leading_colon: owner_path.leading_colon,
                         segments: owner_path.segments.into_pairs().map(|p| p.into_value()).collect(),
                     };
-                    self.add(&owner_path);
+                    self.add(&owner_path, DepKind::Type);
                 } else if !is_builtin_type_name(owner) {
-                    self.add(&p.path);
+                    self.add(&p.path, DepKind::Function);
                 }
             } else if !is_builtin_fn(&segs[0]) && !self.locals.contains(&segs[0]) {
-                self.add(&p.path);
+                self.add(&p.path, DepKind::Function);
             }
         }
         for a in &c.args {
@@ -140,15 +168,19 @@ impl<'ast> Visit<'ast> for Deps {
         let segs: Vec<String> = p.path.segments.iter().map(|s| s.ident.to_string()).collect();
         let last = segs.last().cloned().unwrap_or_default();
         if segs.len() == 1 {
-            if is_const_like(&last) && !self.locals.contains(&last) && !is_builtin_const(&last) {
-                self.add(&p.path);
+            if is_capitalised(&last)
+                && !self.locals.contains(&last)
+                && !is_builtin_const(&last)
+                && !is_builtin_value(&last)
+            {
+                self.add(&p.path, DepKind::Value);
             }
         } else {
             let owner = &segs[segs.len() - 2];
-            let of_type = is_type_like(owner) && !is_builtin_type_name(owner) && owner != "TransformKind";
-            if is_const_like(&last) && !of_type && !is_builtin_type_name(owner) && owner != "consts" {
-                self.add(&p.path);
-            } else if of_type && (is_type_like(&last) || is_const_like(&last)) {
+            let of_type = is_capitalised(owner) && !is_builtin_type_name(owner) && owner != "TransformKind";
+            if is_capitalised(&last) && !of_type && !is_builtin_type_name(owner) && owner != "consts" {
+                self.add(&p.path, DepKind::Value);
+            } else if of_type && is_capitalised(&last) {
                 // `Kind::Metal`, in an expression or a pattern: an
                 // `#[rt_enum]`'s variant; `Sphere::UNIT`: an `#[rt_impl]`'s
                 // associated constant. The type is the dependency.
@@ -158,7 +190,7 @@ impl<'ast> Visit<'ast> for Deps {
                     leading_colon: owner_path.leading_colon,
                     segments: owner_path.segments.into_pairs().map(|p| p.into_value()).collect(),
                 };
-                self.add(&owner_path);
+                self.add(&owner_path, DepKind::Type);
             }
         }
     }
@@ -193,7 +225,7 @@ impl<'ast> Visit<'ast> for Deps {
 }
 
 /// Dependencies of a function (signature and body).
-pub fn of_fn(f: &syn::ItemFn) -> Vec<syn::Path> {
+pub fn of_fn(f: &syn::ItemFn) -> Vec<Dep> {
     let mut d = Deps { self_name: f.sig.ident.to_string(), ..Deps::default() };
     // Collect fn-local consts first so their uses are not dependencies.
     d.visit_block(&f.block);
@@ -204,20 +236,20 @@ pub fn of_fn(f: &syn::ItemFn) -> Vec<syn::Path> {
     let mut d = Deps { self_name: f.sig.ident.to_string(), locals, ..Deps::default() };
     d.visit_signature(&f.sig);
     d.visit_block(&f.block);
-    d.paths
+    d.deps
 }
 
 /// Dependencies of a struct (its field types).
-pub fn of_struct(s: &syn::ItemStruct) -> Vec<syn::Path> {
+pub fn of_struct(s: &syn::ItemStruct) -> Vec<Dep> {
     let mut d = Deps { self_name: s.ident.to_string(), ..Deps::default() };
     d.visit_fields(&s.fields);
-    d.paths
+    d.deps
 }
 
 /// Dependencies of an `#[rt_impl]` block: what its methods and constants
 /// name, but not its own type (whose chain collects the impl; see
 /// `methods`).
-pub fn of_impl(i: &syn::ItemImpl) -> Vec<syn::Path> {
+pub fn of_impl(i: &syn::ItemImpl) -> Vec<Dep> {
     let self_name = crate::methods::self_name(i).unwrap_or_default();
     let mut d = Deps { self_name: self_name.clone(), ..Deps::default() };
     for item in &i.items {
@@ -239,13 +271,13 @@ pub fn of_impl(i: &syn::ItemImpl) -> Vec<syn::Path> {
             _ => {}
         }
     }
-    d.paths
+    d.deps
 }
 
 /// Dependencies of a constant (its type and value).
-pub fn of_const(c: &syn::ItemConst) -> Vec<syn::Path> {
+pub fn of_const(c: &syn::ItemConst) -> Vec<Dep> {
     let mut d = Deps { self_name: c.ident.to_string(), ..Deps::default() };
     d.visit_type(&c.ty);
     d.visit_expr(&c.expr);
-    d.paths
+    d.deps
 }

@@ -50,7 +50,7 @@ impl Backend {
     /// machines (3.7 vs 0.9 Mrays/s for the bunny's primary rays on a 2-core
     /// VM, BENCHMARKS.md).
     pub fn choose() -> Result<(Backend, String), RtError> {
-        if let Ok(v) = std::env::var("RT_BACKEND") {
+        if let Some(v) = crate::env_settings::setting("RT_BACKEND") {
             return match v.as_str() {
                 "cpu" => Ok((Backend::Cpu, "RT_BACKEND=cpu".into())),
                 "wgpu" => Ok((Backend::Wgpu, "RT_BACKEND=wgpu".into())),

@@ -531,6 +531,7 @@ mod grids;
 mod int_division;
 mod math;
 mod methods;
+mod names;
 mod scalars;
 mod std_scalars;
 mod structs_arrays;

@@ -506,6 +506,7 @@ on_backends!(
     user_exception_reaches_the_exception_program_and_other_pixels_are_untouched,
     variables_resolve_innermost_scope_first,
     link_errors_name_the_program_the_variable_and_the_scopes,
+    a_ray_type_without_a_miss_program_leaves_the_payload,
     moving_geometry_refits_instead_of_rebuilding,
     selector_chooses_a_child_from_the_payload_and_launch_index_parity,
     visit_programs_see_the_ray_in_the_selectors_space_and_check_the_payload_type,

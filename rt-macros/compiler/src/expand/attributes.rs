@@ -7,7 +7,7 @@
 //! item as written with the error beside it.
 
 use super::chain::{export_macro, start_chain};
-use super::data::{decorate_struct, rt_data_impl};
+use super::data::{decorate_struct, near_triangle_builtins, rt_data_impl};
 use super::parse_kind;
 use super::thunk::{cpu_thunk, pass_attributes_to_reports};
 use crate::declared::{declared_checks, reroot};
@@ -65,9 +65,9 @@ pub fn rt_program(attr: TokenStream, item: TokenStream) -> TokenStream {
     let thunk = cpu_thunk(kind, &f, &params);
     let kind_ident = format_ident!("{}", kind.name());
     let entry = quote!(program #kind_ident { #item });
-    let deps: Vec<syn::Path> = deps::of_fn(&f).into_iter().map(|p| reroot(&p)).collect();
+    let deps: Vec<deps::Dep> = deps::of_fn(&f).into_iter().map(|d| deps::Dep { path: reroot(&d.path), ..d }).collect();
     let declared = declared_checks(&deps, &params);
-    let body = start_chain(entry, deps);
+    let body = start_chain(entry, deps::paths(&deps));
     quote! {
         #stripped
         #[doc(hidden)]
@@ -113,7 +113,7 @@ pub fn rt_function(attr: TokenStream, item: TokenStream) -> TokenStream {
     }
     let deps = deps::of_fn(&f);
     let declared = declared_checks(&deps, &[]);
-    let body = start_chain(quote!(function { #item }), deps);
+    let body = start_chain(quote!(function { #item }), deps::paths(&deps));
     let marker = crate::declared::marker(&f.vis, &f.sig.ident, true);
     let mut cpu = f;
     crate::cpu_semantics::rewrite_fn(&mut cpu);
@@ -137,6 +137,9 @@ pub fn rt_struct(attr: TokenStream, item: TokenStream, role: StructRole) -> Toke
         Ok(w) => w,
         Err(e) => return with_errors(e.into(), item),
     };
+    // A near miss of a built-in is reported beside the struct's expansion,
+    // which goes on (its programs compile as they are).
+    let near = if role == StructRole::Attributes { near_triangle_builtins(&s).to_compile_errors() } else { quote!() };
     let decorated = decorate_struct(&s);
     let data_impl = rt_data_impl(&s, role);
     let role_kw = format_ident!("{}", role.keyword());
@@ -146,7 +149,7 @@ pub fn rt_struct(attr: TokenStream, item: TokenStream, role: StructRole) -> Toke
         // The impl's link: its macro where the struct is (see `methods`),
         // at `impl`, so a missing block is reported there.
         let mac = syn::Ident::new(&crate::methods::macro_ident(&s.ident).to_string(), span);
-        deps.push(syn::Path::from(mac));
+        deps.push(deps::Dep { path: syn::Path::from(mac), kind: deps::DepKind::Type });
         let name = &s.ident;
         impl_checks = quote_spanned! {span=>
             impl ::rt_std::data::__DeclaresRtImpl for #name {}
@@ -156,8 +159,8 @@ pub fn rt_struct(attr: TokenStream, item: TokenStream, role: StructRole) -> Toke
             };
         };
     }
-    let body = start_chain(quote!(struct #role_kw { #item }), deps);
-    quote!(#decorated #data_impl #impl_checks #body)
+    let body = start_chain(quote!(struct #role_kw { #item }), deps::paths(&deps));
+    quote!(#near #decorated #data_impl #impl_checks #body)
 }
 
 /// A struct attribute's arguments: none, or `impl` (its span), which says
@@ -218,7 +221,7 @@ pub fn rt_impl(attr: TokenStream, item: TokenStream) -> TokenStream {
     let deps = deps::of_impl(&i);
     let declared = declared_checks(&deps, &[]);
     let cpu = crate::methods::cpu_impl(&i);
-    let body = start_chain(quote!(impl { #item }), deps);
+    let body = start_chain(quote!(impl { #item }), deps::paths(&deps));
     quote!(#cpu const _: () = { #declared }; #markers #body)
 }
 
@@ -269,7 +272,7 @@ pub fn rt_const(attr: TokenStream, item: TokenStream) -> TokenStream {
     let deps = deps::of_const(&c);
     let declared = declared_checks(&deps, &[]);
     let marker = crate::declared::marker(&c.vis, &c.ident, false);
-    let body = start_chain(quote!(constant { #item }), deps);
+    let body = start_chain(quote!(constant { #item }), deps::paths(&deps));
     quote!(#item #marker const _: () = { #declared }; #body)
 }
 

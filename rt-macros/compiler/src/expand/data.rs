@@ -164,7 +164,67 @@ fn plain_field(ident: &syn::Ident, ty: &syn::Type, offset: &TokenStream) -> Fiel
 /// layout: the type as written, or a path ending in it.
 fn is_triangle_builtin(fname: &str, tyname: &str) -> bool {
     let ty_name = tyname.rsplit("::").next().unwrap_or(tyname).trim();
-    matches!((fname, ty_name), ("geometric_normal" | "shading_normal", "Vec3") | ("texcoord" | "barycentrics", "Vec2"))
+    TRIANGLE_BUILTINS.iter().any(|(n, t)| *n == fname && *t == ty_name)
+}
+
+/// The built-in attributes of a triangle hit, by name and type, as
+/// [`is_triangle_builtin`] matches them.
+const TRIANGLE_BUILTINS: [(&str, &str); 4] =
+    [("geometric_normal", "Vec3"), ("shading_normal", "Vec3"), ("texcoord", "Vec2"), ("barycentrics", "Vec2")];
+
+/// Errors for the fields of an `#[rt_attributes]` struct that look meant as
+/// a triangle's built-in but would not receive it (`texcoords`,
+/// `tex_coord`, `texcoord: Vec3`): on triangles such a field reads zero on
+/// every backend, silently, so the macro refuses it and names the
+/// built-ins.
+pub(super) fn near_triangle_builtins(s: &syn::ItemStruct) -> crate::error::Errors {
+    let mut errors = crate::error::Errors::default();
+    let list = TRIANGLE_BUILTINS.iter().map(|(n, t)| format!("`{n}: {t}`")).collect::<Vec<_>>().join(", ");
+    for f in &s.fields {
+        let Some(ident) = &f.ident else { continue };
+        let fname = ident.to_string();
+        let ty = &f.ty;
+        let tyname = quote!(#ty).to_string().replace(' ', "");
+        if is_triangle_builtin(&fname, &tyname) {
+            continue;
+        }
+        let near = TRIANGLE_BUILTINS.iter().find(|(n, _)| *n == fname || looks_like(&fname, n));
+        if let Some((n, t)) = near {
+            let what = if *n == fname {
+                format!("field `{fname}` has the name of a triangle's built-in attribute but not its type `{t}`")
+            } else {
+                format!("field `{fname}` is not a triangle's built-in attribute (did you mean `{n}: {t}`?)")
+            };
+            errors.push(crate::error::Error::new(
+                ident.span(),
+                format!("{what}: triangles fill only {list}, and a field they do not fill reads zero"),
+            ));
+        }
+    }
+    errors
+}
+
+/// Whether `name` is a near miss of the built-in `builtin`: the same once
+/// case, `_` and a plural `s` are set aside, or one edit away.
+fn looks_like(name: &str, builtin: &str) -> bool {
+    let squash = |s: &str| s.to_ascii_lowercase().replace('_', "").trim_end_matches('s').to_string();
+    squash(name) == squash(builtin) || edit_distance(name, builtin) <= 1
+}
+
+/// Levenshtein distance over bytes (field names are ASCII identifiers).
+fn edit_distance(a: &str, b: &str) -> usize {
+    let (a, b) = (a.as_bytes(), b.as_bytes());
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.iter().enumerate() {
+        let mut diag = row[0];
+        row[0] = i + 1;
+        for (j, cb) in b.iter().enumerate() {
+            let up = row[j + 1];
+            row[j + 1] = (diag + usize::from(ca != cb)).min(up + 1).min(row[j] + 1);
+            diag = up;
+        }
+    }
+    row[b.len()]
 }
 
 /// The role's marker trait for the struct `name`: none for plain data,

@@ -15,8 +15,8 @@ use syn::spanned::Spanned;
 /// The dependencies `entry` reaches, directly or through other dependencies
 /// (callers may pass a superset, such as every item of a file).
 pub(super) fn reachable(entry: &Entry<'_>, deps: &[Item]) -> Vec<Item> {
-    let names_of = |paths: Vec<syn::Path>| -> Vec<String> {
-        paths.iter().filter_map(|p| p.segments.last().map(|s| s.ident.to_string())).collect()
+    let names_of = |deps: Vec<crate::deps::Dep>| -> Vec<String> {
+        deps.iter().filter_map(|d| d.path.segments.last().map(|s| s.ident.to_string())).collect()
     };
     let mut todo = match entry {
         Entry::Program(_, f) | Entry::Helper(f) => names_of(crate::deps::of_fn(f)),

@@ -59,7 +59,7 @@ impl Isa {
     pub fn current() -> Isa {
         static CURRENT: OnceLock<Isa> = OnceLock::new();
         *CURRENT.get_or_init(|| {
-            let Ok(name) = std::env::var(ENV) else { return Isa::best() };
+            let Some(name) = crate::env_settings::setting(ENV) else { return Isa::best() };
             match Isa::ALL.into_iter().find(|i| i.name() == name.trim()) {
                 Some(i) if i.supported() => i,
                 Some(i) => {

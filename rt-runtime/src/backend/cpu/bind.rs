@@ -27,7 +27,9 @@ pub(crate) struct Linked<'a, P> {
     pub(crate) accels: &'a [Option<NodeAccel>],
     pub(crate) ray_generation: P,
     pub(crate) exception: Option<P>,
-    pub(crate) miss: Vec<P>,
+    /// Per ray type; `None` where the ray type has no miss program (a miss
+    /// then does nothing, as in OptiX).
+    pub(crate) miss: Vec<Option<P>>,
     /// `[instance][material slot][ray type]` → (closest hit, any hit).
     pub(crate) hits: Vec<Vec<Vec<HitPrograms<P>>>>,
     /// `[instance][ray type]`: whether some material of the instance has an
@@ -182,11 +184,7 @@ pub(crate) fn link_all<'a>(
     let miss = scene
         .miss
         .iter()
-        .enumerate()
-        .map(|(r, m)| {
-            let p = m.ok_or(RtError::NoMissProgram { ray_type: r as u32 })?;
-            link::resolve(scene, p, Record::default())
-        })
+        .map(|m| m.map(|p| link::resolve(scene, p, Record::default())).transpose())
         .collect::<Result<Vec<_>>>()?;
     let InstanceUses { hits, any_hit, meshes, vertex_motion, intersection } = instance_uses(scene)?;
     let visit = scene
@@ -204,7 +202,7 @@ pub(crate) fn link_all<'a>(
     // kernel refuses them (a direct call would recurse, maybe forever).
     let callers = std::iter::once(&ray_generation)
         .chain(&exception)
-        .chain(&miss)
+        .chain(miss.iter().flatten())
         .chain(hits.iter().flatten().flatten().flat_map(|(ch, ah)| ch.iter().chain(ah)))
         .chain(intersection.iter().flatten())
         .chain(visit.iter().flatten())
@@ -268,7 +266,7 @@ impl<'a> Linked<'a, Call> {
             accels: self.accels,
             ray_generation: Program::bind(&self.ray_generation)?,
             exception: opt(&self.exception)?,
-            miss: self.miss.iter().map(Program::bind).collect::<Result<_>>()?,
+            miss: self.miss.iter().map(opt).collect::<Result<_>>()?,
             hits: self
                 .hits
                 .iter()

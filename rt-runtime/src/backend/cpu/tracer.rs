@@ -90,11 +90,13 @@ impl Tracer for Lane<'_> {
                 }
             }
             None => {
-                let mut ctx = self.context();
-                ctx.ray_flags = flags;
-                ctx.ray_mask = mask & 0xff;
-                set_current_ray(&mut ctx, ray, ray.tmax);
-                self.invoke(&l.miss[ray.ray_type as usize], &mut ctx, Some(payload), None);
+                if let Some(miss) = &l.miss[ray.ray_type as usize] {
+                    let mut ctx = self.context();
+                    ctx.ray_flags = flags;
+                    ctx.ray_mask = mask & 0xff;
+                    set_current_ray(&mut ctx, ray, ray.tmax);
+                    self.invoke(miss, &mut ctx, Some(payload), None);
+                }
             }
         }
         if let Some(a) = attributes {

@@ -333,8 +333,14 @@ impl FnLowerer<'_> {
                     format!("cannot cast enum `{}` as `{}`: cast it to an integer", e.name, ts.rust()),
                 ));
             }
+            Ty::IntVar(_) if ts != Scalar::Bool => {
+                // `j as f32` leaves `j`'s type to its other uses, as rustc
+                // does (`i32` where none decides): the conversion's text is
+                // the same from `i32` and from `u32`.
+                let code = format!("{}({})", ts.wgsl(), v.code);
+                return Ok(Val::new(code, Ty::Scalar(ts)).with_effects(v.effects).with_reads(v.reads));
+            }
             Ty::IntVar(_) => {
-                // `5 as f32`: the literal is an i32 as in Rust.
                 self.unify(&from, &I32);
                 I32
             }

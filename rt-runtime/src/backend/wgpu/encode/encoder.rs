@@ -339,11 +339,16 @@ impl Encoder<'_> {
         }
         self.header[4] = scene.ray_type_count();
         self.header[5] = self.tables.at();
-        for (r, m) in scene.miss.iter().enumerate() {
-            let p = m.ok_or(RtError::NoMissProgram { ray_type: r as u32 })?;
-            let kp = self.use_program(p)?;
-            let vars = self.record(p, Record::default())?;
-            self.tables.words.extend([kp.case, vars]);
+        // Case 0 where a ray type has no miss program: a miss does nothing.
+        for m in &scene.miss {
+            match *m {
+                Some(p) => {
+                    let kp = self.use_program(p)?;
+                    let vars = self.record(p, Record::default())?;
+                    self.tables.words.extend([kp.case, vars]);
+                }
+                None => self.tables.words.extend([0, 0]),
+            }
         }
         self.header[6] = self.tables.at();
         self.tables.words.extend(isect);

@@ -659,7 +659,9 @@ fn trace_function(w: &str, d: u32, note_payload: &str) -> String {
         let mr = rt_scene[5] + ray.ray_type * 2u;
         rt_ray = ray;
         rt_hk = 0u;
-        rt_miss_{w}_d{d}(rt_scene[mr], rt_scene[mr + 1u], prd);
+        if rt_scene[mr] != 0u {{
+            rt_miss_{w}_d{d}(rt_scene[mr], rt_scene[mr + 1u], prd);
+        }}
     }}
     rt_ray = saved_ray;
     rt_t = saved_t;

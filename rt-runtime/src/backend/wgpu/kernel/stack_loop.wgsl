@@ -70,7 +70,8 @@ fn rt_begin_trace(d: u32) -> bool {
         rt_hk = 0u;
         rt_st_case[e] = rt_scene[mr];
         rt_st_vars[e] = rt_scene[mr + 1u];
-        run = true;
+        // Case 0: the ray type has no miss program, and a miss does nothing.
+        run = rt_scene[mr] != 0u;
     }
     if !run {
         rt_end_trace(e);

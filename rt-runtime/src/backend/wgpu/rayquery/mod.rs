@@ -59,14 +59,22 @@ impl Traversal {
     /// flattened still takes the compute traversal, per launch: see
     /// [`crate::Context::traversal`].)
     pub fn choose() -> Result<(Traversal, String)> {
-        if let Ok(v) = std::env::var("RT_TRAVERSAL") {
+        if let Some(v) = crate::env_settings::setting("RT_TRAVERSAL") {
             return match Traversal::from_name(&v) {
-                Some(Traversal::Auto) | None => {
-                    Err(RtError::Config { setting: "RT_TRAVERSAL", value: v, expected: "`compute` or `rayquery`" })
-                }
+                Some(Traversal::Auto) => Self::probe(),
+                None => Err(RtError::Config {
+                    setting: "RT_TRAVERSAL",
+                    value: v,
+                    expected: "`auto`, `compute` or `rayquery`",
+                }),
                 Some(t) => Ok((t, format!("RT_TRAVERSAL={v}"))),
             };
         }
+        Self::probe()
+    }
+
+    /// What `Auto` takes on the default adapter, and why.
+    fn probe() -> Result<(Traversal, String)> {
         Ok(match super::device::probe() {
             Some(info) if info.device_type == wgpu::DeviceType::Cpu => {
                 let why = SOFTWARE.replace("{adapter}", &info.name);
@@ -103,8 +111,8 @@ pub(crate) enum Plan {
 /// Chooses the traversal for a launch over `scene` on `gpu`, asked for as
 /// `asked` (`Auto` reads `RT_TRAVERSAL`).
 pub(crate) fn plan(scene: &Scene, gpu: &Gpu, asked: Traversal) -> Result<Plan> {
-    let asked = match (asked, std::env::var("RT_TRAVERSAL")) {
-        (Traversal::Auto, Ok(v)) => Traversal::from_name(&v).ok_or_else(|| RtError::Config {
+    let asked = match (asked, crate::env_settings::setting("RT_TRAVERSAL")) {
+        (Traversal::Auto, Some(v)) => Traversal::from_name(&v).ok_or_else(|| RtError::Config {
             setting: "RT_TRAVERSAL",
             value: v.clone(),
             expected: "`auto`, `compute` or `rayquery`",
