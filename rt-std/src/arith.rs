@@ -36,6 +36,7 @@
 mod division;
 mod indexing;
 mod methods;
+mod references;
 use division::RtDivide;
 pub use indexing::{RtIndex, RtIndexMut};
 pub use methods::{Gpu, GpuMut};

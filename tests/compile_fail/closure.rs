@@ -1,4 +1,5 @@
-// A closure inside a program: WGSL has no closures.
+// A closure that escapes (here stored under another name): closures are
+// inlined where they are called, and this one is not only called.
 use rt_std::prelude::*;
 
 #[rt_payload]
@@ -9,7 +10,8 @@ pub struct Radiance {
 #[rt_program(miss)]
 pub fn miss(prd: &mut Radiance, #[var] bg_color: Vec3) {
     let scale = |c: Vec3| c * 0.5;
-    prd.result = scale(bg_color);
+    let also = scale;
+    prd.result = also(bg_color);
 }
 
 // Code that uses the program still compiles: only the mistake is reported.

@@ -9,8 +9,8 @@ pub struct Radiance {
 
 #[rt_function]
 pub fn gamma(c: Vec3) -> Vec3 {
-    let encode = |x: f32| x.powf(1.0 / 2.2);
-    vec3(encode(c.x), encode(c.y), encode(c.z))
+    let r = &c;
+    vec3(r.x.powf(1.0 / 2.2), r.y.powf(1.0 / 2.2), r.z.powf(1.0 / 2.2))
 }
 
 #[rt_program(miss)]

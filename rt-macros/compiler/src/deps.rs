@@ -196,11 +196,10 @@ impl<'ast> Visit<'ast> for Deps {
     }
 
     fn visit_local(&mut self, l: &'ast syn::Local) {
-        // `let f = |x| ...;`: calls of `f` are not dependencies (the
-        // lowering rejects the closure itself).
-        if let Some(init) = &l.init
-            && matches!(&*init.expr, syn::Expr::Closure(_))
-            && let syn::Pat::Ident(pi) = &l.pat
+        // `let f = |x| ...;` (or `let g = f;`): calls of `f` are of the
+        // closure, not dependencies.
+        if let syn::Pat::Ident(pi) = &l.pat
+            && l.init.is_some()
         {
             self.locals.insert(pi.ident.to_string());
         }

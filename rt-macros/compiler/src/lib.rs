@@ -48,6 +48,7 @@ pub mod kinds;
 pub mod lower;
 pub mod methods;
 pub mod signature;
+pub mod sugar;
 pub mod types;
 pub mod validate;
 

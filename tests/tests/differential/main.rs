@@ -529,6 +529,7 @@ mod glam_arrays;
 mod glam_more;
 mod grids;
 mod int_division;
+mod iterators;
 mod math;
 mod methods;
 mod names;

@@ -3,6 +3,9 @@
 //! constant in CamelCase, and a loop index whose type a later use decides
 //! after a cast has read it.
 
+// The capitals are the point of these names.
+#![allow(clippy::upper_case_acronyms)]
+
 use super::*;
 
 #[rt_struct]

@@ -212,6 +212,21 @@ pub fn lower_own(entry: Entry<'_>, deps: &[Item]) -> std::result::Result<Lowered
 }
 
 fn lower_impl(entry: Entry<'_>, deps: &[Item], report_deps: bool) -> std::result::Result<Lowered, Errors> {
+    // The lowering reads functions with their sugar rewritten (`sugar`).
+    let sweetened;
+    let entry = match entry {
+        Entry::Program(kind, f) => {
+            sweetened = crate::sugar::function(f);
+            Entry::Program(kind, &sweetened)
+        }
+        Entry::Helper(f) => {
+            sweetened = crate::sugar::function(f);
+            Entry::Helper(&sweetened)
+        }
+        other => other,
+    };
+    let deps: Vec<Item> = deps.iter().map(crate::sugar::item).collect();
+    let deps = &deps[..];
     let mut unit = unit::Unit::new(&entry);
     let deps = items::reachable(&entry, deps);
     let items::ByKind { structs: structs_raw, fns: helpers_raw, consts: consts_raw, failed: failed_members } =

@@ -101,6 +101,10 @@ impl FnLowerer<'_> {
         }
         let rt = self.resolved(&recv.ty);
         match &rt {
+            // A fixed array's length: a constant (`usize`, as in Rust).
+            Ty::Array(_, n) if name == "len" && args.is_empty() => {
+                return Ok(Val::new(format!("{n}u"), Ty::Scalar(Scalar::Usize)).with_effects(recv.effects));
+            }
             Ty::Buffer(kind, elem) => return self.buffer_method(recv, *kind, elem, name, args, name_span, span),
             Ty::Sampler => return self.sampler_method(recv, name, args, name_span, span),
             Ty::Sampler3d => return self.sampler3d_method(recv, name, args, name_span),

@@ -68,9 +68,11 @@ impl FnLowerer<'_> {
             }
             Expr::Tuple(t) if t.elems.is_empty() => Ok(Val::new("", Ty::Unit)),
             Expr::Tuple(t) => self.tuple_lit(t, want),
-            Expr::Closure(c) => {
-                Err(Error::unsupported(c.or1_token.span, "a closure", "write a #[rt_function] helper and call it"))
-            }
+            Expr::Closure(c) => Err(Error::unsupported(
+                c.or1_token.span,
+                "a closure that is not only called (stored, passed on, returned, or `move`)",
+                "call it where it is bound or pass it to an iterator adaptor; a #[rt_function] helper can hold it",
+            )),
             Expr::Reference(r) => Err(Error::unsupported(
                 r.and_token.span,
                 "a reference here",

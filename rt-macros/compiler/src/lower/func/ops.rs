@@ -54,7 +54,9 @@ impl FnLowerer<'_> {
                 let v = self.expr(&u.expr, want)?;
                 match v.ty {
                     Ty::Ref(..) => Ok(self.deref(v)),
-                    t => Err(Error::new(u.span(), format!("type `{t}` cannot be dereferenced"))),
+                    // An element an iterator chain yields by reference is a
+                    // value here (`sugar`); rustc checks the CPU copy's `*`.
+                    _ => Ok(v),
                 }
             }
             _ => Err(Error::unsupported(u.span(), "this operator", "use arithmetic, comparison and logic operators")),

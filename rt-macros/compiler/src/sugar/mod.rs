@@ -1,0 +1,105 @@
+//! Rust that means a plain loop or an `if` chain, rewritten syn to syn
+//! before the lowering types it, so the lowering sees only the subset's
+//! core: closures bound to a name, inlined at their calls (`closures.rs`);
+//! iterator loops and reductions over ranges and fixed arrays
+//! (`iterators.rs`), `matches!` and the arms the lowering's `switch` cannot
+//! take, range patterns and guards (`patterns.rs`); then labelled loops,
+//! as flags (`labels.rs`).
+//!
+//! Only the WGSL side reads the rewritten form. The CPU copy of a program
+//! is the function as written, compiled by rustc, so each rewrite must mean
+//! what rustc means (the differential tests run both), and rustc checks
+//! what the rewrite takes on trust: borrows, exhaustiveness, the types of
+//! closures. Spans are the user's own, so an error in rewritten code points
+//! at what the user wrote.
+
+mod closures;
+mod iterators;
+mod labels;
+mod patterns;
+
+use crate::Item;
+use syn::visit_mut::VisitMut;
+
+/// `f` with its sugar rewritten.
+pub fn function(f: &syn::ItemFn) -> syn::ItemFn {
+    let mut f = f.clone();
+    block(&mut f.block);
+    f
+}
+
+/// Both passes over a function's body.
+fn block(b: &mut syn::Block) {
+    Rewriter::default().visit_block_mut(b);
+    labels::Labels::default().visit_block_mut(b);
+}
+
+/// `item` with the sugar of its functions and methods rewritten.
+pub fn item(item: &Item) -> Item {
+    match item {
+        Item::Function(f) => Item::Function(function(f)),
+        Item::Impl(i) => {
+            let mut i = i.clone();
+            for it in &mut i.items {
+                if let syn::ImplItem::Fn(f) = it {
+                    block(&mut f.block);
+                }
+            }
+            Item::Impl(i)
+        }
+        other => other.clone(),
+    }
+}
+
+/// The rewriting pass: innermost expressions first, so that a rewrite sees
+/// rewritten operands. Names it introduces start with `rt_sugar_`, which
+/// user code does not spell (and which WGSL takes: `__` it reserves).
+#[derive(Default)]
+struct Rewriter {
+    fresh: u32,
+}
+
+impl Rewriter {
+    /// A fresh local name, `rt_sugar_<what><n>`.
+    fn fresh(&mut self, what: &str, span: proc_macro2::Span) -> syn::Ident {
+        self.fresh += 1;
+        syn::Ident::new(&format!("rt_sugar_{what}{}", self.fresh), span)
+    }
+}
+
+impl VisitMut for Rewriter {
+    fn visit_block_mut(&mut self, b: &mut syn::Block) {
+        closures::inline_bound(&mut b.stmts);
+        syn::visit_mut::visit_block_mut(self, b);
+    }
+
+    fn visit_expr_mut(&mut self, e: &mut syn::Expr) {
+        // `matches!`'s tokens are opaque to the visit: the `match` it
+        // stands for is visited instead.
+        if let syn::Expr::Macro(m) = e
+            && let Some(r) = self.matches_macro(&m.mac)
+        {
+            *e = r;
+        }
+        syn::visit_mut::visit_expr_mut(self, e);
+        let rewritten = match e {
+            syn::Expr::ForLoop(f) => self.for_loop(f),
+            syn::Expr::MethodCall(m) => self.reduction(m),
+            syn::Expr::Match(m) => self.match_chain(m),
+            _ => None,
+        };
+        if let Some(r) = rewritten {
+            *e = r;
+        }
+    }
+
+    fn visit_stmt_mut(&mut self, s: &mut syn::Stmt) {
+        // `matches!(..)` as a statement's expression is a `Stmt::Macro`.
+        if let syn::Stmt::Macro(m) = s
+            && let Some(r) = self.matches_macro(&m.mac)
+        {
+            *s = syn::Stmt::Expr(r, m.semi_token);
+        }
+        syn::visit_mut::visit_stmt_mut(self, s);
+    }
+}
