@@ -54,6 +54,8 @@ struct Args {
     mesh: Option<PathBuf>,
     #[command(flatten)]
     camera: examples::model::CameraArgs,
+    #[command(flatten)]
+    limits: examples::limits::LimitArgs,
     /// The window's inner size in pixels.
     #[arg(long, value_parser = parse_size, default_value = "512x384")]
     size: (u32, u32),
@@ -140,7 +142,7 @@ fn run(args: &Args) -> Result<(), Failure> {
     // glTF scenes are shown flattened into one world-space mesh (the
     // viewer's scene is `bunny::mesh_scene`'s).
     let options = args.camera.options()?;
-    let (mut loaded, file_camera) = rt_scene::load_flat(&path).map_err(|e| match e {
+    let (mut loaded, file_camera) = rt_scene::load_flat_with(&path, &args.limits.limits()).map_err(|e| match e {
         rt_scene::SceneError::Obj(e) => Error::Mesh(e),
         e => Error::Scene(e),
     })?;
