@@ -19,7 +19,7 @@ pub struct LimitArgs {
     /// All of a glTF file's buffers together, MiB (default 1024).
     #[arg(long, value_name = "MIB")]
     pub max_buffer_mib: Option<u64>,
-    /// All textures' pixels together, millions (default 64 Mi, 67.1).
+    /// All textures' pixels together (default 33554432, two 4096x4096).
     #[arg(long, value_name = "N")]
     pub max_texture_pixels: Option<u64>,
     /// Triangles shown, counting each instance (default 100000000).

@@ -28,11 +28,11 @@ pub struct LoadLimits {
     /// Decoded bytes of one `data:` URI. Default 256 MiB.
     pub max_data_uri_bytes: u64,
     /// Pixels of all textures together, checked from each image's header
-    /// before it is decoded. Default 64 Mi (8192x8192).
+    /// before it is decoded. Default 32 Mi (two 4096x4096 textures).
     pub max_texture_pixels: u64,
     /// Bytes of all textures together as the loader keeps them (linear
     /// RGBA f32, 16 bytes a pixel), checked from each image's header.
-    /// Default 1 GiB.
+    /// Default 512 MiB.
     pub max_texture_bytes: u64,
     /// Triangles as seen, counting each instance. Default 100 million.
     pub max_triangles: u64,
@@ -52,8 +52,8 @@ impl Default for LoadLimits {
             max_file_bytes: 1 << 30,
             max_buffer_bytes: 1 << 30,
             max_data_uri_bytes: 256 << 20,
-            max_texture_pixels: 64 << 20,
-            max_texture_bytes: 1 << 30,
+            max_texture_pixels: 32 << 20,
+            max_texture_bytes: 512 << 20,
             max_triangles: 100_000_000,
             max_instances: 1_000_000,
             max_nodes: 1_000_000,

@@ -22,7 +22,12 @@ fn the_base_file_loads_and_moves() {
 
 #[test]
 fn what_the_gltf_crate_would_panic_on_is_refused_first() {
-    let cases: [common::Case; 8] = [
+    let cases: [common::Case; 9] = [
+        (
+            "count_zero.gltf",
+            &[(r#""bufferView":4,"componentType":5126,"count":2"#, r#""bufferView":4,"componentType":5126,"count":0"#)],
+            "accessors[4]: has a count of 0 (the specification asks for at least 1)",
+        ),
         (
             "stride.gltf",
             &[(r#""byteOffset":0,"byteLength":36}"#, r#""byteOffset":0,"byteLength":36,"byteStride":4}"#)],

@@ -1,4 +1,4 @@
-//! Byte ranges: each buffer view inside its buffer's declared length, each
+//! Byte ranges: each accessor's count at least 1, each buffer view inside its buffer's declared length, each
 //! view's stride one the specification allows, each accessor's elements
 //! (with the view's stride) inside its view. Buffers' data is checked
 //! against their declared lengths when it is read, so what passes here
@@ -32,8 +32,12 @@ pub(super) fn check(r: &Reader, root: &json::Root) -> Result<(), GltfError> {
         }
     }
     for (i, a) in root.accessors.iter().enumerate() {
-        let Some(view_index) = &a.buffer_view else { continue };
         let object = format!("accessors[{i}]");
+        // The `gltf` crate's readers compute `count - 1`.
+        if a.count.0 == 0 || a.sparse.as_ref().is_some_and(|s| s.count.0 == 0) {
+            return Err(r.error(&object, "has a count of 0 (the specification asks for at least 1)".into()));
+        }
+        let Some(view_index) = &a.buffer_view else { continue };
         let view = &root.buffer_views[view_index.value()];
         // Both checked valid by `refs`.
         let (json::validation::Checked::Valid(c), json::validation::Checked::Valid(t)) = (&a.component_type, &a.type_)
@@ -53,11 +57,8 @@ pub(super) fn check(r: &Reader, root: &json::Root) -> Result<(), GltfError> {
         }
         let offset = a.byte_offset.map_or(0, |o| o.0);
         let count = a.count.0;
-        let needed = if count == 0 {
-            Some(offset)
-        } else {
-            (count - 1).checked_mul(stride).and_then(|n| n.checked_add(size)).and_then(|n| n.checked_add(offset))
-        };
+        let needed =
+            (count - 1).checked_mul(stride).and_then(|n| n.checked_add(size)).and_then(|n| n.checked_add(offset));
         if needed.is_none_or(|n| n > view.byte_length.0) {
             return Err(r.error(
                 &object,
