@@ -159,6 +159,9 @@ fn run(args: &Args) -> Result<(), Failure> {
     }
     let (width, height) = args.size;
     let settings = Settings { spp: 1, backend, ..Settings::new(width, height) };
+    let bounds = (loaded.min, loaded.max);
+    let camera = options.camera(bounds, file_camera, options.up.to_y_up(), settings.aspect());
+    options.check_camera(&path, &camera, bounds)?;
     let view = Progressive::framed(&loaded, &settings, options, file_camera)?;
     let name = path.file_name().map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned());
     let event_loop =
