@@ -61,6 +61,7 @@
 //! by hand never compiles it.
 
 pub mod build;
+pub mod clip;
 pub mod error;
 pub mod glb;
 pub mod gltf;

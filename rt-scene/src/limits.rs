@@ -12,6 +12,7 @@
 //! object and the limit (`LoadLimits::max_texture_pixels`), so a user who
 //! trusts a large file knows which bound to raise.
 
+use crate::clip::clip_path;
 use std::io::Read;
 use std::path::{Path, PathBuf};
 
@@ -122,14 +123,14 @@ pub fn read_text(path: &Path, limits: &LoadLimits) -> Result<String, String> {
 pub fn resolve(dir: Option<&Path>, relative: &str, limits: &LoadLimits) -> Result<PathBuf, String> {
     let dir = dir.filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
     let path = dir.join(relative);
-    let real = path.canonicalize().map_err(|e| format!("{}: {}", path.display(), reason(&e)))?;
+    let real = path.canonicalize().map_err(|e| format!("{}: {}", clip_path(&path), reason(&e)))?;
     let inside = |d: &Path| d.canonicalize().is_ok_and(|d| real.starts_with(d));
     if inside(dir) || limits.allowed_dirs.iter().any(|d| inside(d)) {
         Ok(path)
     } else {
         Err(format!(
             "{} is outside the model's folder {} (allow its folder with LoadLimits::allowed_dirs, `--allow-path DIR`)",
-            path.display(),
+            clip_path(&path),
             dir.display()
         ))
     }

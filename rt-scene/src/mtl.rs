@@ -63,7 +63,7 @@ fn numbers(keyword: &str, words: &[&str]) -> Result<Vec<f32>, String> {
         .map(|w| match w.parse::<f32>() {
             Ok(v) if v.is_finite() => Ok(v),
             Ok(v) => Err(format!("`{keyword}` has {v}, which is not finite")),
-            Err(_) => Err(format!("`{keyword}` has `{w}`, which is not a number")),
+            Err(_) => Err(format!("`{keyword}` has `{}`, which is not a number", crate::clip::clip(w))),
         })
         .collect()
 }

@@ -301,7 +301,10 @@ pub fn check_obj(text: &str) -> Result<(), (usize, String)> {
                         check_index(part, what, seen, total).map_err(|p| (n, p))?;
                     }
                     if parts.next().is_some() {
-                        return Err((n, format!("face corner `{corner}` has more than 3 indices")));
+                        return Err((
+                            n,
+                            format!("face corner `{}` has more than 3 indices", crate::clip::clip(corner)),
+                        ));
                     }
                 }
             }
@@ -350,14 +353,14 @@ fn numbers(words: &[&str], count: usize, what: &str) -> Result<Vec<f32>, String>
     }
     words[..count]
         .iter()
-        .map(|w| w.parse::<f32>().map_err(|_| format!("{what} has `{w}`, which is not a number")))
+        .map(|w| w.parse::<f32>().map_err(|_| format!("{what} has `{}`, which is not a number", crate::clip::clip(w))))
         .collect()
 }
 
 /// A face index: 1-based into the whole file's elements, or negative,
 /// relative to the `seen` so far.
 fn check_index(s: &str, what: &str, seen: usize, total: usize) -> Result<(), String> {
-    let i: i64 = s.parse().map_err(|_| format!("face {what} index `{s}` is not an integer"))?;
+    let i: i64 = s.parse().map_err(|_| format!("face {what} index `{}` is not an integer", crate::clip::clip(s)))?;
     let ok = match i {
         0 => return Err(format!("face {what} index 0 is invalid (OBJ indices start at 1)")),
         i if i > 0 => (i as u64) <= total as u64,

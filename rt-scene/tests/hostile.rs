@@ -231,3 +231,17 @@ fn obj2glb_reads_a_one_number_colour_and_refuses_a_non_finite_one() {
     assert_eq!(out.status.code(), Some(2));
     assert_eq!(String::from_utf8_lossy(&out.stderr).trim_end(), "obj2glb: m.mtl:3: `Ks` has NaN, which is not finite");
 }
+
+/// Words and values quoted from a file are clipped, so a refusal stays a
+/// short line however long the file makes them.
+#[test]
+fn quoted_words_are_clipped() {
+    let e = rt_scene::obj::parse_obj(&format!("v 0 0 {}\n", "7x".repeat(500)), "long.obj", None).unwrap_err();
+    assert_eq!(e.to_string(), format!("long.obj:1: a vertex has `{}...`, which is not a number", "7x".repeat(24)));
+    let text = edited(&[(
+        r#"{"buffer":0,"byteOffset":0,"byteLength":36}"#,
+        &format!(r#"{{"buffer":"{}"}}"#, "b".repeat(900)),
+    )]);
+    let line = refused("long.gltf", &text);
+    assert!(line.len() < 200 && line.starts_with("not valid glTF JSON: invalid type: string \"bbbb"), "{line}");
+}

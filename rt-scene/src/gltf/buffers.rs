@@ -8,6 +8,7 @@
 //! 0.13, urlencoding and image's JPEG decoder; the little needed is here.
 
 use super::Reader;
+use crate::clip::{clip, clip_path};
 use crate::error::GltfError;
 use std::path::Path;
 
@@ -83,13 +84,15 @@ pub(super) fn read_uri(r: &Reader, object: &str, uri: &str, dir: Option<&Path>) 
         return base64(payload).ok_or_else(|| r.error(object, "a `data:` URI whose base64 does not decode".into()));
     }
     if uri.contains("://") {
-        return Err(r.error(object, format!("URI `{uri}` is not a local file; only relative paths and data: URIs")));
+        return Err(
+            r.error(object, format!("URI `{}` is not a local file; only relative paths and data: URIs", clip(uri)))
+        );
     }
     let relative = percent_decode(uri);
     let path = crate::limits::resolve(dir, &relative, &r.limits)
-        .map_err(|why| r.error(object, format!("URI `{uri}`: cannot read {why}")))?;
+        .map_err(|why| r.error(object, format!("URI `{}`: cannot read {why}", clip(uri))))?;
     crate::limits::read_file(&path, &r.limits)
-        .map_err(|why| r.error(object, format!("URI `{uri}`: cannot read {}: {why}", path.display())))
+        .map_err(|why| r.error(object, format!("URI `{}`: cannot read {}: {why}", clip(uri), clip_path(&path))))
 }
 
 fn percent_decode(s: &str) -> String {

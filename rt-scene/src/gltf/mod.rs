@@ -28,6 +28,7 @@ mod validate;
 pub use animation::Rig;
 pub use mesh::MeshData;
 
+use crate::clip::clip_quoted;
 use crate::error::GltfError;
 use crate::limits::LoadLimits;
 use crate::{Light, LightKind, MaterialInfo, SceneCamera};
@@ -256,7 +257,7 @@ fn document_error(r: &Reader, e: gltf::Error) -> GltfError {
             r.error(&path.to_string(), format!("{why}{more}"))
         }
         gltf::Error::Binary(e) => r.file_error(format!("not a valid GLB file: {e}")),
-        gltf::Error::Deserialize(e) => r.file_error(format!("not valid glTF JSON: {e}")),
+        gltf::Error::Deserialize(e) => r.file_error(format!("not valid glTF JSON: {}", clip_quoted(&e.to_string()))),
         other => r.file_error(other.to_string()),
     }
 }
