@@ -50,6 +50,7 @@ pub mod cornell;
 pub mod diffuse;
 pub mod envmap;
 pub mod instances;
+pub mod limits;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod model;
 pub mod motion_blur;

@@ -13,7 +13,7 @@ use crate::mesh::LoadedMesh;
 use crate::scene::{Camera, Error, Scene, Settings};
 use glam::{Mat3, Mat4, Vec3};
 use rt_runtime::{Acceleration, Builder, Scope};
-use rt_scene::{Format, SceneCamera};
+use rt_scene::{Format, LoadLimits, SceneCamera};
 use std::path::Path;
 
 /// Which axis of the file points up.
@@ -159,6 +159,51 @@ impl CameraOptions {
     }
 }
 
+/// How far from the model's centre, in model sizes, a camera may be: far
+/// enough that rays are not lost in rounding, near enough that the model
+/// is not lost in it.
+const DISTANCE_RANGE: (f32, f32) = (1e-6, 1e6);
+
+impl CameraOptions {
+    /// Refuses a camera no picture of the model at `path` can be taken
+    /// with: a `--distance` out of [`DISTANCE_RANGE`] of the model's size,
+    /// or any camera (the file's too) whose position, view direction or up
+    /// vector is not finite or degenerate.
+    pub fn check_camera(&self, path: &Path, camera: &Camera, bounds: (Vec3, Vec3)) -> Result<(), Error> {
+        let size = (bounds.1 - bounds.0).length();
+        let size = if size > 0.0 && size.is_finite() { size } else { 1.0 };
+        if let Some(d) = self.distance {
+            let (lo, hi) = (DISTANCE_RANGE.0 * size, DISTANCE_RANGE.1 * size);
+            if !(lo..=hi).contains(&d) {
+                return Err(Error::Settings(format!(
+                    "--distance {d:e} is outside {lo:e}..={hi:e} ({:e} to {:e} times the size of {})",
+                    DISTANCE_RANGE.0,
+                    DISTANCE_RANGE.1,
+                    path.display()
+                )));
+            }
+        }
+        let forward = camera.look_at - camera.eye;
+        let sound = camera.eye.is_finite()
+            && forward.is_finite()
+            && forward.length() > 0.0
+            && forward.normalize().cross(camera.up).length() > 1e-6
+            && camera.vfov_degrees > 0.0
+            && camera.vfov_degrees < 180.0;
+        if !sound {
+            return Err(Error::Settings(format!(
+                "{}: no picture can be taken with the camera at {} looking at {} (up {}, {} degrees)",
+                path.display(),
+                camera.eye,
+                camera.look_at,
+                camera.up,
+                camera.vfov_degrees
+            )));
+        }
+        Ok(())
+    }
+}
+
 /// What [`model_scene`] loaded.
 pub struct Model {
     pub scene: Scene,
@@ -171,14 +216,26 @@ pub struct Model {
     pub animation: Option<rt_scene::Animation>,
 }
 
-/// The file at `path` lit and framed as the `render` binary shows it.
+/// The file at `path` lit and framed as the `render` binary shows it,
+/// loaded within the default [`LoadLimits`].
 pub fn model_scene(path: &Path, settings: &Settings, options: CameraOptions) -> Result<Model, Error> {
+    model_scene_with(path, settings, options, &LoadLimits::default())
+}
+
+/// [`model_scene`] within `limits`.
+pub fn model_scene_with(
+    path: &Path,
+    settings: &Settings,
+    options: CameraOptions,
+    limits: &LoadLimits,
+) -> Result<Model, Error> {
     let to_y_up = options.up.to_y_up();
     match Format::of(path) {
         Some(Format::Obj) => {
-            let mut loaded = crate::mesh::load_obj(path)?;
+            let mut loaded = crate::mesh::load_obj_with(path, limits)?;
             turn(&mut loaded, to_y_up);
             let camera = options.camera((loaded.min, loaded.max), None, to_y_up, settings.aspect());
+            options.check_camera(path, &camera, (loaded.min, loaded.max))?;
             let scene = bunny::mesh_scene_from(&loaded, settings, options.view(), camera)?;
             Ok(Model {
                 scene,
@@ -188,18 +245,19 @@ pub fn model_scene(path: &Path, settings: &Settings, options: CameraOptions) -> 
                 animation: None,
             })
         }
-        Some(Format::Gltf) => gltf_scene(path, settings, options),
+        Some(Format::Gltf) => gltf_scene(path, settings, options, limits),
         None => Err(rt_scene::SceneError::UnknownFormat { file: path.display().to_string() }.into()),
     }
 }
 
-fn gltf_scene(path: &Path, settings: &Settings, options: CameraOptions) -> Result<Model, Error> {
+fn gltf_scene(path: &Path, settings: &Settings, options: CameraOptions, limits: &LoadLimits) -> Result<Model, Error> {
     let to_y_up = options.up.to_y_up();
     let (mut ctx, output) = Scene::start(settings, 1.0)?;
-    let loaded = rt_scene::load(&mut ctx, path)?;
+    let loaded = rt_scene::load_with(&mut ctx, path, limits)?;
     let info = &loaded.info;
     let bounds = turned_bounds(info.min, info.max, to_y_up);
     let camera = options.camera(bounds, info.camera, to_y_up, settings.aspect());
+    options.check_camera(path, &camera, bounds)?;
     let file_camera = info.camera.is_some() && !options.places_camera() && !options.ignore_file_camera;
     let lit = bunny::light_and_frame(&mut ctx, settings, bounds, options.view(), camera)?;
     for m in &loaded.materials {

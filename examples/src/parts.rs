@@ -28,12 +28,33 @@ use std::path::{Path, PathBuf};
 
 const MAGIC: &str = "rt-part 1";
 
+/// The most parts a picture is cut into.
+pub const MAX_PARTS: u32 = 4096;
+
+/// The longest header a part file has (its settings line is what grows).
+const MAX_HEADER: usize = 64 << 10;
+
+/// `text` cut to a length an error line can quote.
+fn quoted(text: &str) -> String {
+    const MAX: usize = 80;
+    match text.char_indices().nth(MAX) {
+        Some((i, _)) => format!("{}...", &text[..i]),
+        None => text.to_string(),
+    }
+}
+
 /// The rows of band `k` of `n` of a picture `height` rows high: bands
 /// start on multiples of 8 rows (the launch's block grid), the last ends at
 /// the top. An error when `k >= n` or when a band would be empty.
 pub fn band(height: u32, k: u32, n: u32) -> Result<Range<u32>, Error> {
     if n == 0 || k >= n {
         return Err(Error::Settings(format!("--tile {k}/{n}: K must be below N (parts are numbered from 0)")));
+    }
+    if n > MAX_PARTS || n > height.div_ceil(8).max(1) {
+        return Err(Error::Settings(format!(
+            "--tile {k}/{n}: {height} rows make at most {} parts (bands of whole 8-row blocks, at most {MAX_PARTS})",
+            height.div_ceil(8).clamp(1, MAX_PARTS)
+        )));
     }
     let edge = |i: u32| if i == n { height } else { ((i as u64 * height as u64 / n as u64) as u32) / 8 * 8 };
     let rows = edge(k)..edge(k + 1);
@@ -105,12 +126,18 @@ impl Part {
     }
 
     /// Reads a part file, checking its header, its length and its pixels'
-    /// hash.
+    /// hash. Only a regular file no longer than the largest picture's
+    /// part is read, and the header's sizes are checked against the
+    /// file's length before anything is allocated for its pixels.
     pub fn load(path: &Path) -> Result<Part, Error> {
         let bad = |problem: String| Error::Part { path: path.display().to_string(), problem };
-        let bytes = std::fs::read(path).map_err(|e| bad(e.to_string()))?;
-        let end =
-            bytes.windows(2).position(|w| w == b"\n\n").ok_or_else(|| bad("not a part file (no header)".into()))?;
+        let max_bytes = MAX_HEADER as u64 + crate::Settings::MAX_PIXELS * 16;
+        let limits = rt_scene::LoadLimits { max_file_bytes: max_bytes, ..Default::default() };
+        let bytes = rt_scene::limits::read_file(path, &limits).map_err(bad)?;
+        let end = bytes[..bytes.len().min(MAX_HEADER)]
+            .windows(2)
+            .position(|w| w == b"\n\n")
+            .ok_or_else(|| bad(format!("not a part file (no header in its first {MAX_HEADER} bytes)")))?;
         let header = std::str::from_utf8(&bytes[..end]).map_err(|_| bad("not a part file (header not text)".into()))?;
         let mut lines = header.lines();
         if lines.next() != Some(MAGIC) {
@@ -121,16 +148,20 @@ impl Part {
             line.strip_prefix(name)
                 .and_then(|rest| rest.strip_prefix(' '))
                 .map(str::to_string)
-                .ok_or_else(|| bad(format!("header line `{line}` should begin with `{name}`")))
+                .ok_or_else(|| bad(format!("header line `{}` should begin with `{name}`", quoted(line))))
         };
         let pair = |text: String, name: &str| -> Result<(u32, u32), Error> {
             let mut it = text.split(' ').map(str::parse::<u32>);
             match (it.next(), it.next(), it.next()) {
                 (Some(Ok(a)), Some(Ok(b)), None) => Ok((a, b)),
-                _ => Err(bad(format!("`{name} {text}` is not two numbers"))),
+                _ => Err(bad(format!("`{name} {}` is not two numbers", quoted(&text)))),
             }
         };
         let (width, height) = pair(field("size")?, "size")?;
+        let pixels = width as u64 * height as u64;
+        if pixels == 0 || pixels > crate::Settings::MAX_PIXELS {
+            return Err(bad(format!("size {width}x{height} is not a picture a render makes")));
+        }
         let tile = pair(field("tile")?, "tile")?;
         let (y0, y1) = pair(field("rows")?, "rows")?;
         let settings = field("settings")?;
@@ -181,7 +212,7 @@ pub fn merge(parts: &[(PathBuf, Part)]) -> Result<Image, Error> {
             return Err(differ("count of parts", n.to_string(), p.tile.1.to_string()));
         }
         if p.settings != first.settings {
-            return Err(differ("settings", first.settings.clone(), p.settings.clone()));
+            return Err(differ("settings", quoted(&first.settings), quoted(&p.settings)));
         }
         if let Some(other) = seen[p.tile.0 as usize].replace(path) {
             return Err(Error::Part {
@@ -190,9 +221,13 @@ pub fn merge(parts: &[(PathBuf, Part)]) -> Result<Image, Error> {
             });
         }
     }
-    let missing: Vec<String> = (0..n).filter(|&k| seen[k as usize].is_none()).map(|k| k.to_string()).collect();
+    let missing: Vec<u32> = (0..n).filter(|&k| seen[k as usize].is_none()).collect();
     if !missing.is_empty() {
-        return Err(Error::Settings(format!("--merge: part {} of {n} missing", missing.join(", "))));
+        let mut list: Vec<String> = missing.iter().take(8).map(u32::to_string).collect();
+        if missing.len() > 8 {
+            list.push(format!("and {} more", missing.len() - 8));
+        }
+        return Err(Error::Settings(format!("--merge: part {} of {n} missing", list.join(", "))));
     }
     let (w, h) = (first.width as usize, first.height as usize);
     let mut pixels = vec![Vec4::ZERO; w * h];

@@ -94,6 +94,10 @@ impl Settings {
     /// Default samples per pixel: the whole tour takes about 29 s in
     /// release on the 2-core CI VM (BENCHMARKS.md).
     pub const DEFAULT_SPP: u32 = 64;
+    /// The most pixels a render takes (8K UHD, 7680x4320, fits): each is
+    /// 16 bytes in several buffers (output, accumulation, display), so a
+    /// 16384x16384 picture would need tens of GiB.
+    pub const MAX_PIXELS: u64 = 40 << 20;
 
     pub fn new(width: u32, height: u32) -> Self {
         Settings { width, height, spp: Self::DEFAULT_SPP, backend: Backend::Cpu, traversal: Traversal::Auto }
@@ -111,6 +115,16 @@ impl Settings {
     pub(crate) fn check(&self) -> Result<(), Error> {
         if self.width == 0 || self.height == 0 || self.width > 16384 || self.height > 16384 {
             return Err(Error::Settings(format!("image size {}x{} is outside 1..=16384", self.width, self.height)));
+        }
+        let pixels = self.width as u64 * self.height as u64;
+        if pixels > Self::MAX_PIXELS {
+            return Err(Error::Settings(format!(
+                "image size {}x{} is {pixels} pixels, over the {} a render holds in memory (16 bytes each, several \
+                 buffers)",
+                self.width,
+                self.height,
+                Self::MAX_PIXELS
+            )));
         }
         if self.spp == 0 {
             return Err(Error::Settings("--spp must be at least 1".into()));

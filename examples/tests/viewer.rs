@@ -339,6 +339,19 @@ fn viewer_refuses_bad_input_in_one_line() {
     let run = viewer(None, &["--size", "96by72"], &dir);
     assert_eq!(run.status.code(), Some(2), "{}", run.stderr);
     assert!(run.stderr.contains("`96by72` is not WIDTHxHEIGHT"), "{}", run.stderr);
+    // The loader's limits and the camera's range, as `render` has them.
+    let teapot = shared_scene("teapot.obj");
+    for (flags, text) in [
+        (["--max-triangles", "10"], "over the limit of 10 (LoadLimits::max_triangles)"),
+        (["--distance", "1e-30"], "--distance 1e-30 is outside "),
+    ] {
+        let mut args = vec![teapot.to_str().unwrap(), "--frames", "1", "--backend", "cpu"];
+        args.extend(flags);
+        let run = viewer(None, &args, &dir);
+        assert_eq!(run.status.code(), Some(2), "{}", run.stderr);
+        assert_eq!(run.stderr.lines().count(), 1, "{}", run.stderr);
+        assert!(run.stderr.contains(text), "{}", run.stderr);
+    }
 }
 
 /// Without a display the viewer says so and fails (status 1), no panic.

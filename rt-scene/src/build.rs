@@ -130,7 +130,9 @@ impl Materials {
         if let Some(id) = index.and_then(|i| self.made[i]).or(if index.is_none() { self.default } else { None }) {
             return Ok(id);
         }
-        let info = index.map_or_else(MaterialInfo::default, |i| self.infos[i].clone());
+        // Each material is made once: its info (its texels, perhaps
+        // hundreds of MiB) moves into the output rather than being copied.
+        let info = index.map_or_else(MaterialInfo::default, |i| std::mem::take(&mut self.infos[i]));
         let id = ctx.create_material();
         let texture = match &info.base_color_texture {
             Some(t) => ctx.create_sampler(t.texels.clone(), t.width, t.height, WrapMode::Repeat, FilterMode::Linear)?,

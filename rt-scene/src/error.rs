@@ -40,13 +40,17 @@ pub enum SceneError {
     /// The runtime refused what the file describes (a singular transform,
     /// say): the file and the runtime's reason.
     Runtime { file: String, error: Box<RtError> },
+    /// A panic while loading the file, caught at [`crate::load`]'s
+    /// boundary: a bug of the loader (or a crate it uses), which the file
+    /// triggered.
+    Internal { file: String, message: String },
 }
 
 impl SceneError {
     /// Whether the input is at fault (a bad or unsupported file) rather
     /// than the runtime: the binaries exit 2 for these.
     pub fn is_bad_input(&self) -> bool {
-        !matches!(self, SceneError::Runtime { .. })
+        !matches!(self, SceneError::Runtime { .. } | SceneError::Internal { .. })
     }
 }
 
@@ -59,6 +63,9 @@ impl fmt::Display for SceneError {
                 write!(f, "{file}: not a scene format this build reads (expected .obj, .gltf or .glb)")
             }
             SceneError::Runtime { file, error } => write!(f, "{file}: {error}"),
+            SceneError::Internal { file, message } => {
+                write!(f, "{file}: internal error while loading (a bug; please report it): {}", first_line(message))
+            }
         }
     }
 }
@@ -69,9 +76,14 @@ impl std::error::Error for SceneError {
             SceneError::Obj(e) => Some(e),
             SceneError::Gltf(e) => Some(e),
             SceneError::Runtime { error, .. } => Some(error.as_ref()),
-            SceneError::UnknownFormat { .. } => None,
+            SceneError::UnknownFormat { .. } | SceneError::Internal { .. } => None,
         }
     }
+}
+
+/// A panic message's first line, so the error stays one line.
+fn first_line(message: &str) -> &str {
+    message.lines().next().unwrap_or_default()
 }
 
 impl From<MeshError> for SceneError {

@@ -42,7 +42,16 @@
 //! ## Errors
 //! Bad input is a [`SceneError`] naming the file and, for glTF, the object
 //! (`meshes[2].primitives[0]`) and the problem; nothing here panics on a
-//! file's contents.
+//! file's contents. glTF documents are checked whole before the `gltf`
+//! crate reads them (`gltf/validate/`). Should a panic escape anyway, [`load`]
+//! catches it at its boundary as [`SceneError::Internal`] naming the file.
+//!
+//! ## Limits
+//! Files come from strangers: [`LoadLimits`] bounds what loading may read
+//! and allocate (file, buffer and texture bytes, texture pixels from the
+//! image header before decoding, triangles, instances, nodes) and which
+//! folders URIs and `mtllib`s may name ([`load_with`]; [`load`] uses the
+//! defaults).
 //!
 //! ## Why a crate of its own
 //! Loading pulls in file-format crates (`gltf`, `tobj`) that the runtime
@@ -52,12 +61,16 @@
 //! by hand never compiles it.
 
 pub mod build;
+pub mod clip;
 pub mod error;
 pub mod glb;
 pub mod gltf;
+pub mod limits;
+pub mod mtl;
 pub mod obj;
 
 pub use error::{GltfError, SceneError};
+pub use limits::LoadLimits;
 
 use glam::{Vec3, Vec4};
 use rt_runtime::{Context, MaterialId, NodeId};
@@ -95,8 +108,23 @@ impl Animation {
     /// (seconds; before the first key and after the last the poses hold).
     /// A pose the context refuses (a key that scales to zero: a singular
     /// matrix) is an error naming the file.
+    /// A time that is not finite, or a pose whose matrix cannot be
+    /// inverted, is a [`SceneError::Gltf`] naming the file and the node.
     pub fn pose(&self, ctx: &mut Context, time: f32) -> Result<(), SceneError> {
-        for (matrix, node) in self.rig.instance_matrices(time).into_iter().zip(&self.transforms) {
+        let bad = |object: Option<String>, problem: String| {
+            SceneError::Gltf(GltfError { file: self.file.clone(), object, problem })
+        };
+        if !time.is_finite() {
+            return Err(bad(None, format!("cannot pose the animation at time {time}: not a finite number of seconds")));
+        }
+        let matrices = self.rig.instance_matrices(time);
+        for (i, matrix) in matrices.iter().enumerate() {
+            if let (Some(_), Some(problem)) = (self.transforms[i], gltf::transform_problem(matrix)) {
+                let node = self.rig.paths[i].last().copied().unwrap_or_default();
+                return Err(bad(Some(format!("nodes[{node}]")), format!("at {time} s, its world transform {problem}")));
+            }
+        }
+        for (matrix, node) in matrices.into_iter().zip(&self.transforms) {
             if let Some(node) = node {
                 ctx.set_transform(*node, matrix).map_err(|e| SceneError::Runtime {
                     file: format!("{} at {time} s", self.file),
@@ -218,29 +246,55 @@ impl Format {
     }
 }
 
-/// Loads the scene at `path` into `ctx`, by its extension.
+/// Loads the scene at `path` into `ctx`, by its extension, within the
+/// default [`LoadLimits`].
 pub fn load(ctx: &mut Context, path: &Path) -> Result<Loaded, SceneError> {
+    load_with(ctx, path, &LoadLimits::default())
+}
+
+/// [`load`] within `limits`. A panic while loading (a bug, here or in a
+/// format crate) is caught and returned as [`SceneError::Internal`]; what
+/// it had added to `ctx` stays there, unreferenced.
+pub fn load_with(ctx: &mut Context, path: &Path, limits: &LoadLimits) -> Result<Loaded, SceneError> {
     let file = path.display().to_string();
-    match Format::of(path) {
-        Some(Format::Obj) => build::build_obj(ctx, obj::load_obj(path)?, &file),
-        Some(Format::Gltf) => build::build_gltf(ctx, gltf::read(path)?, &file),
-        None => Err(SceneError::UnknownFormat { file }),
-    }
+    guarded(path, || match Format::of(path) {
+        Some(Format::Obj) => build::build_obj(ctx, obj::load_obj_with(path, limits)?, &file),
+        Some(Format::Gltf) => build::build_gltf(ctx, gltf::read_with(path, limits)?, &file),
+        None => Err(SceneError::UnknownFormat { file: file.clone() }),
+    })
+}
+
+/// `load` run with its panics caught as [`SceneError::Internal`] naming
+/// `path`.
+fn guarded<T>(path: &Path, load: impl FnOnce() -> Result<T, SceneError>) -> Result<T, SceneError> {
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(load)).unwrap_or_else(|panic| {
+        let message = panic
+            .downcast_ref::<&str>()
+            .map(|s| s.to_string())
+            .or_else(|| panic.downcast_ref::<String>().cloned())
+            .unwrap_or_else(|| "a panic without a message".into());
+        Err(SceneError::Internal { file: path.display().to_string(), message })
+    })
 }
 
 /// Loads the scene at `path` as one mesh in world space (every instance's
 /// triangles transformed and concatenated, material indices into one
 /// list): for code that takes an OBJ-style [`obj::LoadedMesh`].
 pub fn load_flat(path: &Path) -> Result<(obj::LoadedMesh, Option<SceneCamera>), SceneError> {
-    match Format::of(path) {
-        Some(Format::Obj) => Ok((obj::load_obj(path)?, None)),
+    load_flat_with(path, &LoadLimits::default())
+}
+
+/// [`load_flat`] within `limits`.
+pub fn load_flat_with(path: &Path, limits: &LoadLimits) -> Result<(obj::LoadedMesh, Option<SceneCamera>), SceneError> {
+    guarded(path, || match Format::of(path) {
+        Some(Format::Obj) => Ok((obj::load_obj_with(path, limits)?, None)),
         Some(Format::Gltf) => {
-            let asset = gltf::read(path)?;
+            let asset = gltf::read_with(path, limits)?;
             let camera = asset.camera;
             Ok((flatten(asset), camera))
         }
         None => Err(SceneError::UnknownFormat { file: path.display().to_string() }),
-    }
+    })
 }
 
 /// `asset`'s instances baked into one world-space mesh.
@@ -304,4 +358,16 @@ pub fn flatten(asset: gltf::Asset) -> obj::LoadedMesh {
 
 fn mesh_material(m: &MaterialInfo) -> obj::MeshMaterial {
     obj::MeshMaterial { name: m.name.clone(), diffuse: m.base_color.truncate(), emission: m.emissive }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_panic_while_loading_is_an_internal_error_naming_the_file() {
+        let e = guarded::<()>(Path::new("x.glb"), || panic!("boom\nsecond line")).unwrap_err();
+        assert_eq!(e.to_string(), "x.glb: internal error while loading (a bug; please report it): boom");
+        assert!(!e.is_bad_input());
+    }
 }

@@ -12,6 +12,7 @@
 //! (Moved here from the examples crate, where `examples::mesh` re-exports
 //! it, so the `render` binary, the examples and users share one loader.)
 
+use crate::limits::LoadLimits;
 use glam::Vec3;
 use rt_runtime::TriangleMesh;
 use std::fmt;
@@ -71,31 +72,44 @@ pub struct LoadedMesh {
 /// Edges sharper than this keep their facets when normals are computed.
 pub const CREASE_DEGREES: f32 = 50.0;
 
-/// Loads the OBJ at `path` (and its `.mtl` files, relative to it).
+/// Loads the OBJ at `path` (and its `.mtl` files, relative to it) within
+/// the default [`LoadLimits`].
 pub fn load_obj(path: &Path) -> Result<LoadedMesh, MeshError> {
-    let file = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|e| MeshError {
-        file: file.clone(),
-        line: None,
-        problem: format!("cannot read the file: {}", io_reason(&e)),
-    })?;
-    parse_obj(&text, &file, path.parent())
+    load_obj_with(path, &LoadLimits::default())
 }
 
-fn io_reason(e: &std::io::Error) -> String {
-    match e.kind() {
-        std::io::ErrorKind::NotFound => "no such file".into(),
-        std::io::ErrorKind::InvalidData => "it is not UTF-8 text".into(),
-        _ => e.to_string(),
+/// [`load_obj`] within `limits`: the OBJ and its `.mtl`s regular files
+/// within the size bound, `.mtl`s inside the OBJ's folder (or an allowed
+/// one), the triangles within the bound.
+pub fn load_obj_with(path: &Path, limits: &LoadLimits) -> Result<LoadedMesh, MeshError> {
+    let file = path.display().to_string();
+    let text = crate::limits::read_text(path, limits).map_err(|why| MeshError {
+        file: file.clone(),
+        line: None,
+        problem: format!("cannot read the file: {why}"),
+    })?;
+    let dir = path.parent();
+    let read = |mtl: &Path| {
+        let path = crate::limits::resolve(dir, &mtl.to_string_lossy(), limits)?;
+        crate::limits::read_text(&path, limits).map_err(|why| format!("{}: {why}", path.display()))
+    };
+    let loaded = parse_obj_with_mtl(&text, &file, &read)?;
+    let triangles = loaded.mesh.indices.len() as u64;
+    if let Some(problem) =
+        crate::limits::over("its count of triangles", triangles, limits.max_triangles, "max_triangles")
+    {
+        return Err(MeshError { file, line: None, problem });
     }
+    Ok(loaded)
 }
 
 /// Loads OBJ text; `file` names it in messages, `.mtl` files are looked up
 /// in `dir`.
 pub fn parse_obj(text: &str, file: &str, dir: Option<&Path>) -> Result<LoadedMesh, MeshError> {
+    let limits = LoadLimits::default();
     let read = |mtl: &Path| {
-        let path = dir.map_or_else(|| mtl.to_path_buf(), |d| d.join(mtl));
-        std::fs::read_to_string(&path).map_err(|e| format!("{}: {}", path.display(), io_reason(&e)))
+        let path = crate::limits::resolve(dir, &mtl.to_string_lossy(), &limits)?;
+        crate::limits::read_text(&path, &limits).map_err(|why| format!("{}: {why}", path.display()))
     };
     parse_obj_with_mtl(text, file, &read)
 }
@@ -123,9 +137,18 @@ pub fn parse_obj_with_mtl(
     };
     let mut warnings = Vec::new();
     let mtl_problems = std::cell::RefCell::new(Vec::new());
+    let mtl_error = std::cell::RefCell::new(None);
+    let text = normalise(text);
     let (models, materials) = tobj::load_obj_buf(&mut text.as_bytes(), &options, |name| {
         let result = match mtl(name) {
-            Ok(text) => tobj::load_mtl_buf(&mut text.as_bytes()).map_err(|e| format!("{}: {e}", name.display())),
+            Ok(text) => match crate::mtl::normalise(&text) {
+                Ok(text) => tobj::load_mtl_buf(&mut text.as_bytes()).map_err(|e| format!("{}: {e}", name.display())),
+                Err((line, problem)) => {
+                    let file = name.display().to_string();
+                    *mtl_error.borrow_mut() = Some(MeshError { file, line: Some(line), problem });
+                    return Err(tobj::LoadError::MaterialParseError);
+                }
+            },
             Err(why) => Err(why),
         };
         result.map_err(|why| {
@@ -134,6 +157,9 @@ pub fn parse_obj_with_mtl(
         })
     })
     .map_err(|e| err(None, format!("not a valid OBJ file ({e})")))?;
+    if let Some(e) = mtl_error.into_inner() {
+        return Err(e);
+    }
     warnings.extend(mtl_problems.into_inner());
     let materials = materials.unwrap_or_default();
 
@@ -250,7 +276,7 @@ pub fn check_obj(text: &str) -> Result<(), (usize, String)> {
             }
             "vt" => {
                 seen_vt += 1;
-                numbers(&rest, 2, "a texture coordinate").map_err(|p| (n, p))?;
+                numbers(&rest, rest.len().clamp(1, 3), "a texture coordinate").map_err(|p| (n, p))?;
             }
             "vn" => {
                 seen_vn += 1;
@@ -275,7 +301,10 @@ pub fn check_obj(text: &str) -> Result<(), (usize, String)> {
                         check_index(part, what, seen, total).map_err(|p| (n, p))?;
                     }
                     if parts.next().is_some() {
-                        return Err((n, format!("face corner `{corner}` has more than 3 indices")));
+                        return Err((
+                            n,
+                            format!("face corner `{}` has more than 3 indices", crate::clip::clip(corner)),
+                        ));
                     }
                 }
             }
@@ -285,6 +314,38 @@ pub fn check_obj(text: &str) -> Result<(), (usize, String)> {
     Ok(())
 }
 
+/// OBJ text in the form `tobj` reads: a one-number `vt u` as `vt u 0`
+/// (the format makes v optional, `tobj` asks for it), and `usemtl` and
+/// `mtllib` names after a tab as after a space (`tobj` splits these lines
+/// at a space). Checked by [`check_obj`] first.
+fn normalise(text: &str) -> std::borrow::Cow<'_, str> {
+    let needs = |line: &str| {
+        let mut words = line.split_whitespace();
+        match words.next() {
+            Some("vt") => words.count() == 1,
+            Some("usemtl") | Some("mtllib") => !line.trim_start()[6..].starts_with(' '),
+            _ => false,
+        }
+    };
+    if !text.lines().any(needs) {
+        return std::borrow::Cow::Borrowed(text);
+    }
+    let mut out = String::with_capacity(text.len() + 64);
+    for line in text.lines() {
+        if needs(line) {
+            let words: Vec<&str> = line.split_whitespace().collect();
+            match words[0] {
+                "vt" => out.push_str(&format!("vt {} 0", words[1])),
+                keyword => out.push_str(&format!("{keyword} {}", line.trim_start()[6..].trim())),
+            }
+        } else {
+            out.push_str(line);
+        }
+        out.push('\n');
+    }
+    std::borrow::Cow::Owned(out)
+}
+
 /// The first `count` words as finite-or-not floats.
 fn numbers(words: &[&str], count: usize, what: &str) -> Result<Vec<f32>, String> {
     if words.len() < count {
@@ -292,14 +353,14 @@ fn numbers(words: &[&str], count: usize, what: &str) -> Result<Vec<f32>, String>
     }
     words[..count]
         .iter()
-        .map(|w| w.parse::<f32>().map_err(|_| format!("{what} has `{w}`, which is not a number")))
+        .map(|w| w.parse::<f32>().map_err(|_| format!("{what} has `{}`, which is not a number", crate::clip::clip(w))))
         .collect()
 }
 
 /// A face index: 1-based into the whole file's elements, or negative,
 /// relative to the `seen` so far.
 fn check_index(s: &str, what: &str, seen: usize, total: usize) -> Result<(), String> {
-    let i: i64 = s.parse().map_err(|_| format!("face {what} index `{s}` is not an integer"))?;
+    let i: i64 = s.parse().map_err(|_| format!("face {what} index `{}` is not an integer", crate::clip::clip(s)))?;
     let ok = match i {
         0 => return Err(format!("face {what} index 0 is invalid (OBJ indices start at 1)")),
         i if i > 0 => (i as u64) <= total as u64,

@@ -4,6 +4,7 @@
 //! `tests/` compare its WGSL with the checked-in snapshots.
 #![allow(dead_code, clippy::too_many_arguments, clippy::type_complexity)]
 
+pub mod file_fuzz;
 pub mod fuzz;
 pub mod meshes;
 pub mod scene_fuzz;

@@ -17,8 +17,16 @@
 //!
 //! Exit status: 0 with the image written; 2 for bad input (the model: one
 //! line naming the file, the line or glTF object when known and the
-//! problem; or arguments, such as a backend with no adapter), and no
-//! image; 1 if rendering or writing failed.
+//! problem; or arguments, such as a backend with no adapter, a camera or
+//! time that is not finite or out of range, a picture too large to hold),
+//! and no image; 1 if rendering or writing failed. Every image is written
+//! whole or not at all (to a name beside it, then renamed); a `--frames`
+//! run that fails removes the frames it had written.
+//!
+//! The model is loaded within [`rt_scene::LoadLimits`] (flags
+//! `--max-file-mib`, `--max-texture-pixels`, `--max-triangles`, ...): its
+//! URIs and `mtllib`s may name files only inside its folder, unless
+//! `--allow-path DIR` allows another.
 
 use clap::Parser;
 use examples::model::{self, CameraArgs};
@@ -61,6 +69,8 @@ struct Args {
     spp: u32,
     #[command(flatten)]
     camera: CameraArgs,
+    #[command(flatten)]
+    limits: examples::limits::LimitArgs,
     /// Seconds into the file's animation to pose the scene at.
     #[arg(long, allow_negative_numbers = true, conflicts_with = "frames")]
     time: Option<f32>,
@@ -131,6 +141,9 @@ fn run(args: &Args) -> Result<(), Error> {
     }
     let mesh = args.mesh.as_deref().expect("clap requires a model without --merge");
     let options = args.camera.options()?;
+    if let Some(time) = args.time.filter(|t| !t.is_finite()) {
+        return Err(Error::Settings(format!("--time {time} is not a finite number of seconds")));
+    }
     let tile = args.tile.as_deref().map(parts::parse_tile).transpose()?;
     let rows = match tile {
         Some((k, n)) => parts::band(args.height, k, n)?,
@@ -139,7 +152,7 @@ fn run(args: &Args) -> Result<(), Error> {
     let (backend, what) = BackendChoice::open_or_choose(args.backend)?;
     let settings = Settings { spp: args.spp, backend, ..Settings::new(args.width, args.height) };
     let frames = args.frames.as_deref().map(|f| parse_frames(f, args.fps, &args.out)).transpose()?;
-    let mut loaded = model::model_scene(mesh, &settings, options)?;
+    let mut loaded = model::model_scene_with(mesh, &settings, options, &args.limits.limits())?;
     for warning in &loaded.warnings {
         eprintln!("render: warning: {warning}");
     }
@@ -158,11 +171,23 @@ fn run(args: &Args) -> Result<(), Error> {
             render_one(args, (mesh, &what, time), &mut loaded, (tile, rows), &args.out)
         }
         (Some(frames), Some(animation)) => {
+            // Each frame is written whole (beside its name, then renamed);
+            // a run that fails removes the frames it wrote, so no frame of
+            // a failing run is left.
+            let mut written = Vec::new();
             for frame in frames {
                 let time = frame as f32 / args.fps;
-                animation.pose(&mut loaded.scene.ctx, time)?;
                 let out = frame_path(&args.out, frame);
-                render_one(args, (mesh, &what, Some(time)), &mut loaded, (tile, rows.clone()), &out)?;
+                let done = animation.pose(&mut loaded.scene.ctx, time).map_err(Error::from).and_then(|()| {
+                    render_one(args, (mesh, &what, Some(time)), &mut loaded, (tile, rows.clone()), &out)
+                });
+                if let Err(e) = done {
+                    for path in &written {
+                        let _ = std::fs::remove_file(path);
+                    }
+                    return Err(e);
+                }
+                written.push(out);
             }
             Ok(())
         }

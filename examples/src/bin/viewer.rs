@@ -54,6 +54,8 @@ struct Args {
     mesh: Option<PathBuf>,
     #[command(flatten)]
     camera: examples::model::CameraArgs,
+    #[command(flatten)]
+    limits: examples::limits::LimitArgs,
     /// The window's inner size in pixels.
     #[arg(long, value_parser = parse_size, default_value = "512x384")]
     size: (u32, u32),
@@ -140,7 +142,7 @@ fn run(args: &Args) -> Result<(), Failure> {
     // glTF scenes are shown flattened into one world-space mesh (the
     // viewer's scene is `bunny::mesh_scene`'s).
     let options = args.camera.options()?;
-    let (mut loaded, file_camera) = rt_scene::load_flat(&path).map_err(|e| match e {
+    let (mut loaded, file_camera) = rt_scene::load_flat_with(&path, &args.limits.limits()).map_err(|e| match e {
         rt_scene::SceneError::Obj(e) => Error::Mesh(e),
         e => Error::Scene(e),
     })?;
@@ -157,6 +159,9 @@ fn run(args: &Args) -> Result<(), Failure> {
     }
     let (width, height) = args.size;
     let settings = Settings { spp: 1, backend, ..Settings::new(width, height) };
+    let bounds = (loaded.min, loaded.max);
+    let camera = options.camera(bounds, file_camera, options.up.to_y_up(), settings.aspect());
+    options.check_camera(&path, &camera, bounds)?;
     let view = Progressive::framed(&loaded, &settings, options, file_camera)?;
     let name = path.file_name().map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned());
     let event_loop =

@@ -112,7 +112,9 @@ impl Channel {
         let cubic = self.interpolation == Interpolation::CubicSpline;
         let value = |k: usize| if cubic { self.values[3 * k + 1] } else { self.values[k] };
         let last = self.times.len() - 1;
-        if time <= self.times[0] {
+        // A time that is not a number poses the first key
+        // (`Animation::pose` refuses it before).
+        if time.is_nan() || time <= self.times[0] {
             return value(0);
         }
         if time >= self.times[last] {

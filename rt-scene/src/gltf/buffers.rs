@@ -8,6 +8,7 @@
 //! 0.13, urlencoding and image's JPEG decoder; the little needed is here.
 
 use super::Reader;
+use crate::clip::{clip, clip_path};
 use crate::error::GltfError;
 use std::path::Path;
 
@@ -44,6 +45,7 @@ pub(super) fn load_buffers(
 ) -> Result<Vec<Vec<u8>>, GltfError> {
     let mut blob = blob;
     let mut out = Vec::new();
+    let mut total = 0u64;
     for buffer in doc.buffers() {
         let object = format!("buffers[{}]", buffer.index());
         let data = match buffer.source() {
@@ -52,6 +54,8 @@ pub(super) fn load_buffers(
             })?,
             gltf::buffer::Source::Uri(uri) => read_uri(r, &object, uri, dir)?,
         };
+        total += buffer.length() as u64;
+        r.within(Some(&object), "the count of buffer bytes", total, r.limits.max_buffer_bytes, "max_buffer_bytes")?;
         if data.len() < buffer.length() {
             return Err(
                 r.error(&object, format!("declares {} bytes, but its data has only {}", buffer.length(), data.len()))
@@ -69,17 +73,26 @@ pub(super) fn read_uri(r: &Reader, object: &str, uri: &str, dir: Option<&Path>) 
         let Some((_, payload)) = rest.split_once(";base64,") else {
             return Err(r.error(object, "a `data:` URI that is not base64".into()));
         };
+        let limit = r.limits.max_data_uri_bytes;
+        r.within(
+            Some(object),
+            "the `data:` URI's count of bytes",
+            payload.len() as u64 / 4 * 3,
+            limit,
+            "max_data_uri_bytes",
+        )?;
         return base64(payload).ok_or_else(|| r.error(object, "a `data:` URI whose base64 does not decode".into()));
     }
     if uri.contains("://") {
-        return Err(r.error(object, format!("URI `{uri}` is not a local file; only relative paths and data: URIs")));
+        return Err(
+            r.error(object, format!("URI `{}` is not a local file; only relative paths and data: URIs", clip(uri)))
+        );
     }
     let relative = percent_decode(uri);
-    let path = dir.map_or_else(|| Path::new(&relative).to_path_buf(), |d| d.join(&relative));
-    std::fs::read(&path).map_err(|e| {
-        let why = if e.kind() == std::io::ErrorKind::NotFound { "no such file".to_string() } else { e.to_string() };
-        r.error(object, format!("URI `{uri}`: cannot read {}: {why}", path.display()))
-    })
+    let path = crate::limits::resolve(dir, &relative, &r.limits)
+        .map_err(|why| r.error(object, format!("URI `{}`: cannot read {why}", clip(uri))))?;
+    crate::limits::read_file(&path, &r.limits)
+        .map_err(|why| r.error(object, format!("URI `{}`: cannot read {}: {why}", clip(uri), clip_path(&path))))
 }
 
 fn percent_decode(s: &str) -> String {

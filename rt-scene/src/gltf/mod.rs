@@ -22,12 +22,16 @@
 pub mod animation;
 pub(crate) mod buffers;
 mod mesh;
+mod texture;
+mod validate;
 
 pub use animation::Rig;
 pub use mesh::MeshData;
 
+use crate::clip::clip_quoted;
 use crate::error::GltfError;
-use crate::{Light, LightKind, MaterialInfo, SceneCamera, Texture};
+use crate::limits::LoadLimits;
+use crate::{Light, LightKind, MaterialInfo, SceneCamera};
 use glam::{Mat4, Vec3, Vec4};
 use std::path::Path;
 
@@ -50,9 +54,13 @@ pub struct Asset {
     pub warnings: Vec<String>,
 }
 
-/// Names the file in errors.
+/// Names the file in errors, and keeps the limits and what counts
+/// against them.
 pub(crate) struct Reader {
     file: String,
+    pub(crate) limits: LoadLimits,
+    /// Texture pixels decoded so far.
+    texture_pixels: std::cell::Cell<u64>,
 }
 
 impl Reader {
@@ -63,35 +71,68 @@ impl Reader {
     pub(crate) fn file_error(&self, problem: String) -> GltfError {
         GltfError { file: self.file.clone(), object: None, problem }
     }
+
+    fn new(file: String, limits: &LoadLimits) -> Reader {
+        Reader { file, limits: limits.clone(), texture_pixels: Default::default() }
+    }
+
+    /// `count` of `what` within limit `name`, or an error naming `object`.
+    pub(crate) fn within(
+        &self,
+        object: Option<&str>,
+        what: &str,
+        count: u64,
+        limit: u64,
+        name: &str,
+    ) -> Result<(), GltfError> {
+        match (crate::limits::over(what, count, limit, name), object) {
+            (None, _) => Ok(()),
+            (Some(problem), Some(object)) => Err(self.error(object, problem)),
+            (Some(problem), None) => Err(self.file_error(problem)),
+        }
+    }
 }
 
 /// Deeper node hierarchies are refused (the `gltf` crate does not check
 /// for cycles).
 const MAX_DEPTH: usize = 256;
 
-/// Reads the glTF or GLB file at `path` (buffers and images relative to it).
+/// Reads the glTF or GLB file at `path` (buffers and images relative to
+/// it) within the default [`LoadLimits`].
 pub fn read(path: &Path) -> Result<Asset, GltfError> {
-    let r = Reader { file: path.display().to_string() };
-    let bytes = std::fs::read(path).map_err(|e| {
-        let why = if e.kind() == std::io::ErrorKind::NotFound { "no such file".to_string() } else { e.to_string() };
-        r.file_error(format!("cannot read the file: {why}"))
-    })?;
+    read_with(path, &LoadLimits::default())
+}
+
+/// [`read`] within `limits`.
+pub fn read_with(path: &Path, limits: &LoadLimits) -> Result<Asset, GltfError> {
+    let r = Reader::new(path.display().to_string(), limits);
+    let bytes =
+        crate::limits::read_file(path, limits).map_err(|why| r.file_error(format!("cannot read the file: {why}")))?;
     read_bytes(&r, &bytes, path.parent())
 }
 
 /// Reads glTF or GLB bytes; `file` names them in errors, relative URIs are
-/// looked up in `dir`.
+/// looked up in `dir` (within the default [`LoadLimits`]).
 pub fn parse(bytes: &[u8], file: &str, dir: Option<&Path>) -> Result<Asset, GltfError> {
-    read_bytes(&Reader { file: file.to_string() }, bytes, dir)
+    parse_with(bytes, file, dir, &LoadLimits::default())
+}
+
+/// [`parse`] within `limits`.
+pub fn parse_with(bytes: &[u8], file: &str, dir: Option<&Path>, limits: &LoadLimits) -> Result<Asset, GltfError> {
+    read_bytes(&Reader::new(file.to_string(), limits), bytes, dir)
 }
 
 fn read_bytes(r: &Reader, bytes: &[u8], dir: Option<&Path>) -> Result<Asset, GltfError> {
     if bytes.starts_with(b"glTF") {
         buffers::check_glb_header(r, bytes)?;
     }
-    let gltf = gltf::Gltf::from_slice(bytes).map_err(|e| document_error(r, e))?;
-    let buffers = buffers::load_buffers(r, &gltf.document, gltf.blob.clone(), dir)?;
-    let doc = &gltf.document;
+    let gltf = gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| document_error(r, e))?;
+    let json = gltf.document.into_json();
+    validate::check(r, &json)?;
+    r.within(None, "the count of nodes", json.nodes.len() as u64, r.limits.max_nodes, "max_nodes")?;
+    let doc = gltf::Document::from_json(json).map_err(|e| document_error(r, e))?;
+    let buffers = buffers::load_buffers(r, &doc, gltf.blob, dir)?;
+    let doc = &doc;
     let mut asset = Asset {
         meshes: Vec::new(),
         instances: Vec::new(),
@@ -115,7 +156,10 @@ fn read_bytes(r: &Reader, bytes: &[u8], dir: Option<&Path>) -> Result<Asset, Glt
     let mut mesh_slot = vec![None; doc.meshes().len()];
     let mut stack: Vec<(gltf::Node, Mat4, Vec<usize>)> =
         roots.into_iter().rev().map(|n| (n, Mat4::IDENTITY, Vec::new())).collect();
+    let (mut visited, mut triangles) = (0u64, 0u64);
     while let Some((node, parent, mut path)) = stack.pop() {
+        visited += 1;
+        r.within(None, "the count of nodes visited", visited, r.limits.max_nodes, "max_nodes")?;
         let depth = path.len();
         path.push(node.index());
         let object = format!("nodes[{}]", node.index());
@@ -138,7 +182,27 @@ fn read_bytes(r: &Reader, bytes: &[u8], dir: Option<&Path>) -> Result<Asset, Glt
                     asset.meshes.len() - 1
                 }
             };
+            if let Some(problem) = transform_problem(&world) {
+                return Err(r.error(&object, format!("its world transform {problem}")));
+            }
+            let positions = &asset.meshes[slot].mesh.positions;
+            if let Some(p) = positions.iter().find(|p| !world.transform_point3(**p).is_finite()) {
+                return Err(r.error(
+                    &object,
+                    format!("meshes[{}] has vertex {p}, which its transform moves out of f32's range", mesh.index()),
+                ));
+            }
             asset.instances.push((slot, world));
+            let limits = &r.limits;
+            r.within(
+                Some(&object),
+                "the count of instances",
+                asset.instances.len() as u64,
+                limits.max_instances,
+                "max_instances",
+            )?;
+            triangles += asset.meshes[slot].mesh.indices.len() as u64;
+            r.within(Some(&object), "the count of triangles shown", triangles, limits.max_triangles, "max_triangles")?;
             asset.rig.paths.push(path.clone());
         }
         if node.skin().is_some() {
@@ -170,6 +234,19 @@ fn read_bytes(r: &Reader, bytes: &[u8], dir: Option<&Path>) -> Result<Asset, Glt
     Ok(asset)
 }
 
+/// Why `m` cannot place an instance (the runtime inverts it to trace
+/// rays), or `None`.
+pub(crate) fn transform_problem(m: &Mat4) -> Option<String> {
+    let det = m.determinant();
+    if !m.is_finite() || !det.is_finite() {
+        return Some("is not finite".into());
+    }
+    if det.abs() < 1e-12 || !m.inverse().is_finite() {
+        return Some(format!("is singular (determinant {det:e}): a scale of zero?"));
+    }
+    None
+}
+
 /// The `gltf` crate's refusal, as one line naming the object when it can.
 fn document_error(r: &Reader, e: gltf::Error) -> GltfError {
     match e {
@@ -180,7 +257,7 @@ fn document_error(r: &Reader, e: gltf::Error) -> GltfError {
             r.error(&path.to_string(), format!("{why}{more}"))
         }
         gltf::Error::Binary(e) => r.file_error(format!("not a valid GLB file: {e}")),
-        gltf::Error::Deserialize(e) => r.file_error(format!("not valid glTF JSON: {e}")),
+        gltf::Error::Deserialize(e) => r.file_error(format!("not valid glTF JSON: {}", clip_quoted(&e.to_string()))),
         other => r.file_error(other.to_string()),
     }
 }
@@ -202,7 +279,7 @@ fn read_material(
                 warnings.push(format!("{object}: base colour texture uses TEXCOORD_{}; ignored", info.tex_coord()));
                 None
             } else {
-                read_texture(r, &object, &info.texture(), buffers, dir, warnings)?
+                texture::read_texture(r, &object, &info.texture(), buffers, dir, warnings)?
             }
         }
     };
@@ -214,52 +291,6 @@ fn read_material(
         roughness: pbr.roughness_factor(),
         emissive: Vec3::from_array(material.emissive_factor()),
     })
-}
-
-/// A texture's image decoded to linear RGBA (glTF colour textures are
-/// sRGB), or `None` with a warning for a format this build does not decode.
-fn read_texture(
-    r: &Reader,
-    material: &str,
-    texture: &gltf::Texture,
-    buffers: &[Vec<u8>],
-    dir: Option<&Path>,
-    warnings: &mut Vec<String>,
-) -> Result<Option<Texture>, GltfError> {
-    let image = texture.source();
-    let object = format!("images[{}]", image.index());
-    let bytes = match image.source() {
-        gltf::image::Source::View { view, .. } => {
-            let data = &buffers[view.buffer().index()];
-            let end = view.offset() + view.length();
-            data.get(view.offset()..end)
-                .ok_or_else(|| {
-                    r.error(&object, format!("bufferViews[{}] is out of range of its buffer", view.index()))
-                })?
-                .to_vec()
-        }
-        gltf::image::Source::Uri { uri, .. } => buffers::read_uri(r, &object, uri, dir)?,
-    };
-    let format = image::guess_format(&bytes).ok();
-    if format != Some(image::ImageFormat::Png) {
-        warnings.push(format!(
-            "{material}: {object} is {}, which this build does not decode (PNG only); base colour factor used alone",
-            format.map_or("not a known image format".to_string(), |f| format!("{f:?}"))
-        ));
-        return Ok(None);
-    }
-    let decoded = image::load_from_memory_with_format(&bytes, image::ImageFormat::Png)
-        .map_err(|e| r.error(&object, format!("the PNG does not decode: {e}")))?
-        .to_rgba32f();
-    let (width, height) = decoded.dimensions();
-    // 0 and 1 map to themselves exactly.
-    let linear = |c: f32| match c {
-        c if c <= 0.04045 => c / 12.92,
-        c if c >= 1.0 => c,
-        c => ((c + 0.055) / 1.055).powf(2.4),
-    };
-    let texels = decoded.pixels().map(|p| Vec4::new(linear(p[0]), linear(p[1]), linear(p[2]), p[3])).collect();
-    Ok(Some(Texture { width, height, texels }))
 }
 
 fn read_camera(object: &str, camera: &gltf::Camera, world: Mat4, asset: &mut Asset) {
