@@ -67,6 +67,18 @@ start=$(date +%s)
 echo "scripts/test.sh: cargo fmt --check and cargo clippy (-D warnings)"
 cargo fmt --all --check
 cargo clippy --workspace --all-targets -j"$CARGO_BUILD_JOBS" -- -D warnings
+# The platforms this machine cannot run: macOS (wgpu's Metal backend) and
+# Windows (DX12, GLES, Vulkan). clippy compiles the runtime, the loaders,
+# the examples (the viewer's window and surface code included) and the
+# bench for each, without linking.
+for target in aarch64-apple-darwin x86_64-pc-windows-msvc; do
+    if command -v rustup >/dev/null && ! rustup target list --installed | grep -qx "$target"; then
+        echo "scripts/test.sh: rustup target add $target"
+        rustup target add "$target"
+    fi
+    echo "scripts/test.sh: cargo clippy --target $target (-D warnings)"
+    cargo clippy --target "$target" -p rt-runtime -p rt-scene -p examples -p rt-bench -j"$CARGO_BUILD_JOBS" -- -D warnings
+done
 # rt-runtime's wgpu backend builds for the browser (wasm32, WebGPU): the
 # page of web/ (rt-web, over rt-runtime and the examples), which the
 # browser test serves to Chromium.
