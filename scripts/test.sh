@@ -103,6 +103,12 @@ for simd in sse4.1 scalar; do
     RT_CPU_SIMD=$simd cargo test -p rt-tests --test runtime -j"$CARGO_BUILD_JOBS" -- cpu:: 2>&1 | tee -a "$log"
     RT_CPU_SIMD=$simd cargo test -p examples --test golden -j"$CARGO_BUILD_JOBS" -- cpu_renders_match_the_goldens 2>&1 | tee -a "$log"
 done
+# The library crates packed as crates.io would get them (each verified
+# against the others' packs), and a user's crate outside the workspace
+# built on the packs: README's first program, one image on the CPU
+# backend, its pixels checked.
+echo "scripts/test.sh: scripts/package.sh (cargo package, then a consumer outside the workspace)"
+bash scripts/package.sh
 passed=$(grep -Eo '^test result: [a-zA-Z]+\. [0-9]+ passed' "$log" | awk '{s += $4} END {print s + 0}')
 failed=$(grep -Eo '[0-9]+ failed;' "$log" | awk '{s += $1} END {print s + 0}')
 echo "scripts/test.sh: tests took $(( $(date +%s) - start )) s"
