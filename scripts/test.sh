@@ -79,6 +79,10 @@ for target in aarch64-apple-darwin x86_64-pc-windows-msvc; do
     echo "scripts/test.sh: cargo clippy --target $target (-D warnings)"
     cargo clippy --target "$target" -p rt-runtime -p rt-scene -p examples -p rt-bench -j"$CARGO_BUILD_JOBS" -- -D warnings
 done
+# The API documentation, every warning an error (broken and private
+# links included).
+echo "scripts/test.sh: cargo doc --workspace --no-deps (RUSTDOCFLAGS=-D warnings)"
+RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps -j"$CARGO_BUILD_JOBS"
 # rt-runtime's wgpu backend builds for the browser (wasm32, WebGPU): the
 # page of web/ (rt-web, over rt-runtime and the examples), which the
 # browser test serves to Chromium.

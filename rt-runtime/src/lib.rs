@@ -15,7 +15,7 @@
 //! ctx.launch(0, 640, 480)?;
 //! ```
 //!
-//! Launches link first ([`link`]): every variable is resolved in
+//! Launches link first (`link`): every variable is resolved in
 //! OptiX's scope order for its program kind, and payload and attribute types
 //! are checked to agree; errors name the program with its Rust file and line.
 //! Backends: the CPU backend ([`backend::cpu`]) runs programs natively; the

@@ -6,7 +6,7 @@
 //!
 //! The arithmetic here is the reference: the CPU backend calls it, and the
 //! compute traversal's `rt_motion_matrix` (`backend/wgpu/compute/graph.wgsl`)
-//! does the same steps on the keys [`MotionTransform::encode`] writes.
+//! does the same steps on the keys `MotionTransform::encode` writes.
 
 use glam::{Mat4, Quat, Vec3, Vec4};
 use obvhs::aabb::Aabb as OAabb;

@@ -1,7 +1,7 @@
 //! The scene graph: programs, geometry, materials, geometry instances and
 //! the nodes above them, as in OptiX, with buffers, samplers, variables and
-//! entry points: everything a launch runs over ([`Scene`]). Handles
-//! ([`crate::handles`]) are small copyable ids into its tables. The context
+//! entry points: everything a launch runs over (`Scene`). Handles
+//! (`crate::handles`) are small copyable ids into its tables. The context
 //! owns one and edits it; backends read it.
 
 use crate::buffer::{BufferRec, SamplerRec};

@@ -7,9 +7,9 @@
 //!
 //! The arithmetic here is the reference: the CPU backend calls it, and the
 //! compute traversal's `rt_tri_corner` (`backend/wgpu/prelude.wgsl`) does
-//! the same steps on the words [`VertexMotion::encode`] writes. Both
+//! the same steps on the words `VertexMotion::encode` writes. Both
 //! backends walk trees whose triangle boxes hold every key
-//! ([`VertexMotion::triangle_bounds`]), so no instant's triangle lies
+//! (`VertexMotion::triangle_bounds`), so no instant's triangle lies
 //! outside them.
 
 use crate::motion::{check_range, segment};

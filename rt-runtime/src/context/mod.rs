@@ -32,9 +32,9 @@ pub use samplers::{MipLevels, SamplerDescriptor, SamplerExtent};
 
 /// A ray-tracing context: the root of everything, as in OptiX.
 ///
-/// It holds the scene it edits ([`Scene`]), the launch settings, the
+/// It holds the scene it edits (`Scene`), the launch settings, the
 /// acceleration structures built for the scene, and the backend launches
-/// run on, behind [`LaunchBackend`]. A backend it ran on before (or opened
+/// run on, behind `LaunchBackend`. A backend it ran on before (or opened
 /// ahead, [`Context::open_wgpu`]) is kept, with its device and its
 /// statistics, for when the context switches back.
 ///

@@ -80,7 +80,7 @@ impl Context {
     /// Sets entry point `entry`'s exception program: it runs at a launch
     /// index after the index's first exception, with the code in
     /// `exception_code()`. Every exception is also recorded in
-    /// [`LaunchReport::exceptions`], with or without an exception program.
+    /// [`crate::LaunchReport::exceptions`], with or without an exception program.
     ///
     /// Without one, the default exception program runs (both backends): if
     /// the ray-generation program declares a `RwBuffer2d<Vec4>` variable

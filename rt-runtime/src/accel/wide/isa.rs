@@ -2,7 +2,7 @@
 //! FMA, else SSE4.1, else one lane at a time), or the one `RT_CPU_SIMD`
 //! names (`avx2`, `sse4.1`, `scalar`), so the test suite can run each path
 //! on one machine. Every path gives the same hits (see
-//! [`super::kernels`]).
+//! `super::kernels`).
 
 use super::WideBvh;
 use super::kernels::{Hits, WalkRay, scalar::Scalar};
