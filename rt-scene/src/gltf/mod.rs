@@ -41,7 +41,9 @@ pub struct Asset {
     pub instances: Vec<(usize, Mat4)>,
     /// The document's materials, by glTF index.
     pub materials: Vec<MaterialInfo>,
+    /// The first node with a perspective camera, in world space.
     pub camera: Option<SceneCamera>,
+    /// The `KHR_lights_punctual` lights nodes hold, in world space.
     pub lights: Vec<Light>,
     /// The nodes the instances hang from and the animations that move
     /// them.
