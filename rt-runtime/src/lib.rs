@@ -93,6 +93,7 @@
 // Errors carry the names, locations and scopes at fault; they are returned
 // on cold paths only, so their size does not matter.
 #![allow(clippy::result_large_err)]
+#![warn(missing_docs)]
 
 pub mod accel;
 pub mod backend;

@@ -22,7 +22,9 @@ use glam::Vec3;
 pub struct VertexMotion {
     /// Per key, a position per vertex (the mesh's vertex count each).
     pub keys: Vec<Vec<Vec3>>,
+    /// The time of the first key.
     pub t0: f32,
+    /// The time of the last key.
     pub t1: f32,
 }
 

@@ -89,6 +89,7 @@ impl Backend {
         }
     }
 
+    /// The backend's name as `from_name` (and `RT_BACKEND`) take it.
     pub fn name(self) -> &'static str {
         match self {
             Backend::Cpu => "cpu",
@@ -100,6 +101,7 @@ impl Backend {
 /// An exception raised during a launch.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct ExceptionRecord {
+    /// The launch index that raised it.
     pub launch_index: UVec2,
     /// `EXCEPTION_*` code, or a user code from `rt_throw`.
     pub code: u32,

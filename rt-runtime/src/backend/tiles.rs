@@ -80,6 +80,7 @@ impl LaunchProgress {
 /// What a progress callback answers: go on with the next tile, or stop.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum LaunchControl {
+    /// Go on with the next tile.
     Continue,
     /// Stop before the next tile: the launch fails with
     /// [`RtError::LaunchCancelled`](crate::RtError::LaunchCancelled) and
@@ -91,7 +92,9 @@ pub enum LaunchControl {
 /// 8 x 8 block grid.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Tile {
+    /// The first launch index of the tile.
     pub origin: UVec2,
+    /// Its width and height in launch indices.
     pub size: UVec2,
 }
 

@@ -25,6 +25,7 @@ pub enum Isa {
 pub const ENV: &str = "RT_CPU_SIMD";
 
 impl Isa {
+    /// Every instruction set, widest first.
     pub const ALL: [Isa; 3] = [Isa::Avx2, Isa::Sse41, Isa::Scalar];
 
     /// The name `RT_CPU_SIMD` takes.
