@@ -57,6 +57,17 @@ if ! command -v chromium >/dev/null; then
         echo "scripts/test.sh: no chromium found; the browser test (examples/tests/browser.rs) will fail (apt-get install chromium)" >&2
     fi
 fi
+# GNU parallel, for README's distributed render run as written
+# (examples/tests/gnu_parallel.rs, with local workers).
+if ! parallel --version 2>/dev/null | grep -q 'GNU parallel'; then
+    if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null; then
+        echo "scripts/test.sh: installing GNU parallel for the distributed render test"
+        apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq parallel >/dev/null
+    else
+        echo "scripts/test.sh: no GNU parallel found; examples/tests/gnu_parallel.rs will fail (apt-get install parallel)" >&2
+    fi
+fi
+export RT_REQUIRE_PARALLEL=1
 export RT_TINT=require
 # rt-runtime keeps every kernel the suite links here, for the Tint check.
 export RT_WGSL_KERNEL_DIR="$PWD/target/rt-kernels"
