@@ -57,6 +57,17 @@ if ! command -v chromium >/dev/null; then
         echo "scripts/test.sh: no chromium found; the browser test (examples/tests/browser.rs) will fail (apt-get install chromium)" >&2
     fi
 fi
+# GNU parallel, for README's distributed render run as written
+# (examples/tests/gnu_parallel.rs, with local workers).
+if ! parallel --version 2>/dev/null | grep -q 'GNU parallel'; then
+    if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null; then
+        echo "scripts/test.sh: installing GNU parallel for the distributed render test"
+        apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq parallel >/dev/null
+    else
+        echo "scripts/test.sh: no GNU parallel found; examples/tests/gnu_parallel.rs will fail (apt-get install parallel)" >&2
+    fi
+fi
+export RT_REQUIRE_PARALLEL=1
 export RT_TINT=require
 # rt-runtime keeps every kernel the suite links here, for the Tint check.
 export RT_WGSL_KERNEL_DIR="$PWD/target/rt-kernels"
@@ -67,6 +78,22 @@ start=$(date +%s)
 echo "scripts/test.sh: cargo fmt --check and cargo clippy (-D warnings)"
 cargo fmt --all --check
 cargo clippy --workspace --all-targets -j"$CARGO_BUILD_JOBS" -- -D warnings
+# The platforms this machine cannot run: macOS (wgpu's Metal backend) and
+# Windows (DX12, GLES, Vulkan). clippy compiles the runtime, the loaders,
+# the examples (the viewer's window and surface code included) and the
+# bench for each, without linking.
+for target in aarch64-apple-darwin x86_64-pc-windows-msvc; do
+    if command -v rustup >/dev/null && ! rustup target list --installed | grep -qx "$target"; then
+        echo "scripts/test.sh: rustup target add $target"
+        rustup target add "$target"
+    fi
+    echo "scripts/test.sh: cargo clippy --target $target (-D warnings)"
+    cargo clippy --target "$target" -p rt-runtime -p rt-scene -p examples -p rt-bench -j"$CARGO_BUILD_JOBS" -- -D warnings
+done
+# The API documentation, every warning an error (broken and private
+# links included).
+echo "scripts/test.sh: cargo doc --workspace --no-deps (RUSTDOCFLAGS=-D warnings)"
+RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps -j"$CARGO_BUILD_JOBS"
 # rt-runtime's wgpu backend builds for the browser (wasm32, WebGPU): the
 # page of web/ (rt-web, over rt-runtime and the examples), which the
 # browser test serves to Chromium.
@@ -91,6 +118,12 @@ for simd in sse4.1 scalar; do
     RT_CPU_SIMD=$simd cargo test -p rt-tests --test runtime -j"$CARGO_BUILD_JOBS" -- cpu:: 2>&1 | tee -a "$log"
     RT_CPU_SIMD=$simd cargo test -p examples --test golden -j"$CARGO_BUILD_JOBS" -- cpu_renders_match_the_goldens 2>&1 | tee -a "$log"
 done
+# The library crates packed as crates.io would get them (each verified
+# against the others' packs), and a user's crate outside the workspace
+# built on the packs: README's first program, one image on the CPU
+# backend, its pixels checked.
+echo "scripts/test.sh: scripts/package.sh (cargo package, then a consumer outside the workspace)"
+bash scripts/package.sh
 passed=$(grep -Eo '^test result: [a-zA-Z]+\. [0-9]+ passed' "$log" | awk '{s += $4} END {print s + 0}')
 failed=$(grep -Eo '[0-9]+ failed;' "$log" | awk '{s += $1} END {print s + 0}')
 echo "scripts/test.sh: tests took $(( $(date +%s) - start )) s"

@@ -47,7 +47,7 @@ const COLOURS: [RGBColor; 11] = [
     RGBColor(0x00, 0x00, 0x80),
 ];
 
-/// The chart files [`write`] makes, in its order.
+/// The chart files [`write()`] makes, in its order.
 pub const FILES: [&str; 2] = ["mrays_by_scene.svg", "mrays_vs_triangles.svg"];
 
 /// A scene of the run.

@@ -45,7 +45,7 @@ struct RtSampler3d {
 /// decimal that round-trips, with `f`; the extremes `±f32::MAX` as hex
 /// floats (their shortest decimal, `3.4028235e38`, lies above `f32::MAX`,
 /// and Tint rejects a literal it cannot represent); infinity and NaN as a
-/// call of [`FLOATS`]' `rt_f32_from_bits`. WGSL has no literal for those,
+/// call of `FLOATS`' `rt_f32_from_bits`. WGSL has no literal for those,
 /// and a constant expression that evaluates to one is a shader-creation
 /// error (Tint: "value inf cannot be represented as 'f32'"; naga lets
 /// `bitcast<f32>(0x7f800000u)` through): a call of a user function is never

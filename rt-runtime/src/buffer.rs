@@ -27,6 +27,7 @@ pub enum BufferType {
 }
 
 impl BufferType {
+    /// Whether programs may write the buffer (`Output`, `InputOutput`).
     pub fn writable_by_programs(self) -> bool {
         self != BufferType::Input
     }

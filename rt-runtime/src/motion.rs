@@ -6,7 +6,7 @@
 //!
 //! The arithmetic here is the reference: the CPU backend calls it, and the
 //! compute traversal's `rt_motion_matrix` (`backend/wgpu/compute/graph.wgsl`)
-//! does the same steps on the keys [`MotionTransform::encode`] writes.
+//! does the same steps on the keys `MotionTransform::encode` writes.
 
 use glam::{Mat4, Quat, Vec3, Vec4};
 use obvhs::aabb::Aabb as OAabb;
@@ -19,9 +19,11 @@ use obvhs::aabb::Aabb as OAabb;
 #[doc(alias = "RT_MOTIONKEYTYPE_SRT")]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Srt {
+    /// Scale along x, y and z.
     pub scale: Vec3,
     /// A unit quaternion (normalised on creation).
     pub rotation: Quat,
+    /// Where the origin goes.
     pub translation: Vec3,
 }
 
@@ -55,8 +57,11 @@ impl MotionKeys {
 /// A transform's motion: its keys over `[t0, t1]`, clamped outside it.
 #[derive(Clone, Debug, PartialEq)]
 pub struct MotionTransform {
+    /// The keys, spread evenly over `[t0, t1]`.
     pub keys: MotionKeys,
+    /// The time of the first key.
     pub t0: f32,
+    /// The time of the last key.
     pub t1: f32,
 }
 

@@ -1,7 +1,7 @@
 //! The scene graph: programs, geometry, materials, geometry instances and
 //! the nodes above them, as in OptiX, with buffers, samplers, variables and
-//! entry points: everything a launch runs over ([`Scene`]). Handles
-//! ([`crate::handles`]) are small copyable ids into its tables. The context
+//! entry points: everything a launch runs over (`Scene`). Handles
+//! (`crate::handles`) are small copyable ids into its tables. The context
 //! owns one and edits it; backends read it.
 
 use crate::buffer::{BufferRec, SamplerRec};
@@ -17,6 +17,7 @@ pub use crate::handles::{BufferId, GeometryId, GeometryInstanceId, MaterialId, N
 /// A triangle mesh in object space.
 #[derive(Clone, Debug, Default)]
 pub struct TriangleMesh {
+    /// Vertex positions.
     pub positions: Vec<Vec3>,
     /// Three vertex indices per triangle.
     pub indices: Vec<[u32; 3]>,
@@ -83,7 +84,14 @@ pub enum GeometryKind {
     /// (Vec2).
     Triangles(TriangleMesh),
     /// Custom primitives: an intersection and a bounding-box program.
-    Custom { primitive_count: u32, intersection: ProgramId, bounding_box: ProgramId },
+    Custom {
+        /// How many primitives (the programs' `prim` runs from 0 to this).
+        primitive_count: u32,
+        /// The program that intersects a ray with one primitive.
+        intersection: ProgramId,
+        /// The program that bounds one primitive.
+        bounding_box: ProgramId,
+    },
 }
 
 pub(crate) struct GeometryRec {
@@ -156,11 +164,18 @@ pub(crate) struct EntryPoint {
 /// Where a variable is set.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Scope {
+    /// The context: every program's outermost scope.
     Context,
+    /// A program: the innermost scope of its own variables.
     Program(ProgramId),
+    /// A geometry (read by its intersection and bounding-box programs).
     Geometry(GeometryId),
+    /// A geometry instance (read by hit, intersection and bounding-box
+    /// programs).
     GeometryInstance(GeometryInstanceId),
+    /// A material (read by its hit programs).
     Material(MaterialId),
+    /// A node (read by a selector's visit program).
     Node(NodeId),
 }
 
@@ -318,15 +333,23 @@ pub(crate) fn nodes_post_order(scene: &Scene) -> Result<Vec<NodeId>> {
 /// [`crate::accel`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Builder {
+    /// BVH2, obvhs' medium-quality build: the general-purpose default.
     Bvh,
+    /// BVH2 with spatial splits: highest quality; triangles only.
     Sbvh,
+    /// BVH2, obvhs' fast build: lower quality.
     MedianBvh,
+    /// BVH2, obvhs' fastest build.
     Lbvh,
+    /// OptiX's kd-tree, which obvhs does not build: asking for it is an
+    /// error.
     TriangleKdTree,
+    /// One leaf holding every primitive: a linear scan.
     NoAccel,
 }
 
 impl Builder {
+    /// OptiX's name for the builder (`"Bvh"`, `"Sbvh"`, ...).
     pub fn name(self) -> &'static str {
         match self {
             Builder::Bvh => "Bvh",
@@ -349,10 +372,12 @@ impl Builder {
 /// An acceleration structure attached to a geometry group or group.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Acceleration {
+    /// How the structure is built.
     pub builder: Builder,
 }
 
 impl Acceleration {
+    /// A structure built by `builder`.
     pub fn new(builder: Builder) -> Self {
         Acceleration { builder }
     }

@@ -13,19 +13,23 @@ use std::time::Duration;
 /// What one launch did.
 #[derive(Debug)]
 pub struct UsageReport<'a> {
+    /// The entry point launched.
     pub entry: u32,
     /// The launch's grid: width and height (a 3D launch's height times its
     /// depth).
     pub size: UVec2,
+    /// The backend it ran on.
     pub backend: Backend,
     /// The launch's report, or why it failed.
     pub outcome: Result<&'a LaunchReport, &'a RtError>,
     /// Full acceleration builds and refits the launch did.
     pub acceleration_builds: u64,
+    /// Refits (a structure updated for moved geometry, not rebuilt).
     pub acceleration_refits: u64,
     /// Whether the launch encoded and uploaded the scene (wgpu; the others
     /// found it on the device), and its geometry too.
     pub scene_encoded: bool,
+    /// Whether the launch encoded and uploaded the geometry (wgpu).
     pub geometry_encoded: bool,
     /// Megakernel pipelines the launch created (wgpu; 0 when it reused one).
     pub pipelines_created: u64,

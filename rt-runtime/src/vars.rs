@@ -17,11 +17,17 @@ use std::sync::Arc;
 /// A scope kind, in lookup terms.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ScopeKind {
+    /// Variables of the program itself.
     Program,
+    /// Variables of the geometry instance hit (or intersected).
     GeometryInstance,
+    /// Variables of the material hit.
     Material,
+    /// Variables of the geometry intersected.
     Geometry,
+    /// Variables of the node a selector visits.
     Node,
+    /// Variables of the context.
     Context,
 }
 
@@ -43,12 +49,18 @@ pub fn lookup_order(kind: ProgramKind) -> &'static [ScopeKind] {
 pub enum VarValue {
     /// Plain data: its layout, its heap words (GPU) and the Rust value (CPU).
     Data {
+        /// The type: its Rust and WGSL spellings and its size in words.
         layout: TypeLayout,
+        /// The value as the GPU heap holds it.
         words: Vec<u32>,
+        /// The value itself, for the CPU backend.
         value: Arc<dyn Any + Send + Sync>,
     },
+    /// A buffer (a program's `Buffer`, `RwBuffer` and their 2D and 3D kinds).
     Buffer(BufferId),
+    /// A texture sampler (a program's `Sampler2d`, `Sampler3d`, `SamplerCube`).
     Sampler(SamplerId),
+    /// A scene node to trace into (a program's `Object`).
     Object(NodeId),
 }
 
@@ -78,6 +90,7 @@ impl VarValue {
 
 /// Values that can be assigned to variables.
 pub trait IntoVariable {
+    /// The value as a variable holds it.
     fn into_variable(self) -> VarValue;
 }
 
@@ -114,18 +127,22 @@ pub struct VarScope {
 }
 
 impl VarScope {
+    /// Sets `name`, replacing any value it had.
     pub fn set(&mut self, name: &str, value: VarValue) {
         self.vars.insert(name.to_string(), value);
     }
 
+    /// The value of `name`, if set here.
     pub fn get(&self, name: &str) -> Option<&VarValue> {
         self.vars.get(name)
     }
 
+    /// Unsets `name`, returning the value it had.
     pub fn remove(&mut self, name: &str) -> Option<VarValue> {
         self.vars.remove(name)
     }
 
+    /// The names set here, in order.
     pub fn names(&self) -> impl Iterator<Item = &str> {
         self.vars.keys().map(String::as_str)
     }

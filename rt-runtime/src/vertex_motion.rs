@@ -7,9 +7,9 @@
 //!
 //! The arithmetic here is the reference: the CPU backend calls it, and the
 //! compute traversal's `rt_tri_corner` (`backend/wgpu/prelude.wgsl`) does
-//! the same steps on the words [`VertexMotion::encode`] writes. Both
+//! the same steps on the words `VertexMotion::encode` writes. Both
 //! backends walk trees whose triangle boxes hold every key
-//! ([`VertexMotion::triangle_bounds`]), so no instant's triangle lies
+//! (`VertexMotion::triangle_bounds`), so no instant's triangle lies
 //! outside them.
 
 use crate::motion::{check_range, segment};
@@ -22,7 +22,9 @@ use glam::Vec3;
 pub struct VertexMotion {
     /// Per key, a position per vertex (the mesh's vertex count each).
     pub keys: Vec<Vec<Vec3>>,
+    /// The time of the first key.
     pub t0: f32,
+    /// The time of the last key.
     pub t1: f32,
 }
 

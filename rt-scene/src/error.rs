@@ -10,10 +10,12 @@ use std::fmt;
 /// A glTF file that cannot be used: the file, the object, the problem.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct GltfError {
+    /// The file, as the caller named it.
     pub file: String,
     /// The glTF object at fault, as a JSON path (`meshes[2].primitives[0]`),
     /// or `None` when the problem is with the file as a whole.
     pub object: Option<String>,
+    /// What is wrong, in a sentence.
     pub problem: String,
 }
 
@@ -36,14 +38,27 @@ pub enum SceneError {
     /// A glTF or GLB file with a problem.
     Gltf(GltfError),
     /// A file whose extension names no format this crate reads.
-    UnknownFormat { file: String },
+    UnknownFormat {
+        /// The file, as the caller named it.
+        file: String,
+    },
     /// The runtime refused what the file describes (a singular transform,
     /// say): the file and the runtime's reason.
-    Runtime { file: String, error: Box<RtError> },
+    Runtime {
+        /// The file (with the animation time, for a pose).
+        file: String,
+        /// The runtime's own error.
+        error: Box<RtError>,
+    },
     /// A panic while loading the file, caught at [`crate::load`]'s
     /// boundary: a bug of the loader (or a crate it uses), which the file
     /// triggered.
-    Internal { file: String, message: String },
+    Internal {
+        /// The file, as the caller named it.
+        file: String,
+        /// The panic's message.
+        message: String,
+    },
 }
 
 impl SceneError {

@@ -28,6 +28,7 @@ pub struct GltfBuilder {
 }
 
 impl GltfBuilder {
+    /// A document with nothing in it yet.
     pub fn new() -> Self {
         Self::default()
     }

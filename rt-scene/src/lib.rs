@@ -5,7 +5,9 @@
 //! scene graph and returns the graph's top node, its materials and what it
 //! found ([`SceneInfo`]: counts, world bounds, the file's camera and
 //! lights, warnings for what it ignored). Add your own programs to the
-//! materials and launch:
+//! materials and launch (README.md, packaged with this crate, opens with
+//! such programs; [rt-runtime's first program](rt_runtime#a-first-program)
+//! renders them on the CPU backend):
 //!
 //! ```no_run
 //! # fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -60,6 +62,8 @@
 //! examples and benchmarks depend on this crate; a user who builds scenes
 //! by hand never compiles it.
 
+#![warn(missing_docs)]
+
 pub mod build;
 pub mod clip;
 pub mod error;
@@ -83,6 +87,7 @@ pub struct Loaded {
     pub top: NodeId,
     /// The materials made, each with the variables of the table above.
     pub materials: Vec<Material>,
+    /// What the file holds: counts, bounds, camera, lights, warnings.
     pub info: SceneInfo,
     /// The file's node animation, bound to the transforms it moves (glTF
     /// files with animations of the nodes meshes hang from).
@@ -97,8 +102,9 @@ pub struct Animation {
     /// Per instance, the transform the animation moves (`None`: it does not
     /// move).
     transforms: Vec<Option<NodeId>>,
-    /// The first and last key times, seconds.
+    /// The first key time, seconds.
     pub start: f32,
+    /// The last key time, seconds.
     pub end: f32,
     file: String,
 }
@@ -146,19 +152,27 @@ impl Animation {
 /// from.
 #[derive(Clone, Debug)]
 pub struct Material {
+    /// The context's material, carrying the variables of the table above.
     pub id: MaterialId,
+    /// What the file says the material is.
     pub info: MaterialInfo,
 }
 
 /// A material as a file describes it.
 #[derive(Clone, Debug, PartialEq)]
 pub struct MaterialInfo {
+    /// The file's name for it (a glTF material without one: its JSON path,
+    /// `materials[3]`).
     pub name: String,
     /// Linear RGBA.
     pub base_color: Vec4,
+    /// The base colour's texture, decoded, if the material has one.
     pub base_color_texture: Option<Texture>,
+    /// Metalness, 0 to 1 (glTF's `metallicFactor`).
     pub metallic: f32,
+    /// Perceptual roughness, 0 to 1 (glTF's `roughnessFactor`).
     pub roughness: f32,
+    /// Emitted linear RGB (glTF's `emissiveFactor`, OBJ's `Ke`).
     pub emissive: Vec3,
 }
 
@@ -166,8 +180,11 @@ pub struct MaterialInfo {
 /// texture coordinate (0, 0)).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Texture {
+    /// Texels per row.
     pub width: u32,
+    /// Rows.
     pub height: u32,
+    /// `width * height` texels, row by row from the top.
     pub texels: Vec<Vec4>,
 }
 
@@ -182,8 +199,9 @@ pub struct SceneInfo {
     pub triangles: usize,
     /// Triangles stored, counting each mesh once.
     pub unique_triangles: usize,
-    /// World-space bounds of everything shown.
+    /// World-space bounds of everything shown: the lowest corner.
     pub min: Vec3,
+    /// World-space bounds of everything shown: the highest corner.
     pub max: Vec3,
     /// The file's first perspective camera.
     pub camera: Option<SceneCamera>,
@@ -196,10 +214,13 @@ pub struct SceneInfo {
 /// A file's perspective camera, in world space.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SceneCamera {
+    /// Where the camera is.
     pub eye: Vec3,
     /// Unit view direction.
     pub forward: Vec3,
+    /// Unit up direction, perpendicular to `forward`.
     pub up: Vec3,
+    /// Vertical field of view, degrees.
     pub vfov_degrees: f32,
     /// The aspect ratio the file asks for, if any.
     pub aspect: Option<f32>,
@@ -208,29 +229,45 @@ pub struct SceneCamera {
 /// A punctual light, in world space.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Light {
+    /// The file's name for it, else its JSON path (`lights[0]`).
     pub name: String,
+    /// Directional, point or spot.
     pub kind: LightKind,
     /// Linear RGB.
     pub color: Vec3,
     /// Candela (point, spot) or lux (directional).
     pub intensity: f32,
+    /// The distance beyond which the light is meant to be ignored, if the
+    /// file sets one.
     pub range: Option<f32>,
+    /// Where the light is (point, spot).
     pub position: Vec3,
     /// Unit direction the light shines (directional, spot).
     pub direction: Vec3,
 }
 
+/// The kinds of `KHR_lights_punctual` light.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum LightKind {
+    /// Parallel light from infinitely far, along [`Light::direction`].
     Directional,
+    /// Light from [`Light::position`] in every direction.
     Point,
-    Spot { inner_cone_angle: f32, outer_cone_angle: f32 },
+    /// A cone of light from [`Light::position`] along [`Light::direction`].
+    Spot {
+        /// Full intensity inside this angle from the axis, radians.
+        inner_cone_angle: f32,
+        /// No light outside this angle from the axis, radians.
+        outer_cone_angle: f32,
+    },
 }
 
 /// Which loader a file needs, by extension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Format {
+    /// Wavefront OBJ (`.obj`), with its `.mtl` files.
     Obj,
+    /// glTF 2.0: `.gltf` (JSON) or `.glb` (binary).
     Gltf,
 }
 

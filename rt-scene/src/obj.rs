@@ -22,8 +22,11 @@ use std::path::Path;
 /// problem.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct MeshError {
+    /// The `.obj` or `.mtl` file, as named.
     pub file: String,
+    /// The line at fault, 1-based, when known.
     pub line: Option<usize>,
+    /// What is wrong, in a sentence.
     pub problem: String,
 }
 
@@ -41,6 +44,7 @@ impl std::error::Error for MeshError {}
 /// A material of a loaded mesh.
 #[derive(Clone, Debug, PartialEq)]
 pub struct MeshMaterial {
+    /// The `.mtl`'s name for it (`newmtl`).
     pub name: String,
     /// `Kd`, or [`DEFAULT_GREY`] when the material has none.
     pub diffuse: Vec3,
@@ -63,7 +67,9 @@ pub struct LoadedMesh {
     /// At least one; the last is [`DEFAULT_GREY`] when some object has no
     /// material.
     pub materials: Vec<MeshMaterial>,
+    /// The lowest corner of the mesh's bounds.
     pub min: Vec3,
+    /// The highest corner of the mesh's bounds.
     pub max: Vec3,
     /// What was odd but not fatal (a missing `.mtl`), one line each.
     pub warnings: Vec<String>,

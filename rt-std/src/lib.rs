@@ -16,6 +16,12 @@
 //! use rt_std::prelude::*;
 //! ```
 //!
+//! README.md (packaged with this crate) opens with a first program: a
+//! closest hit that shades by the surface normal and a miss program that
+//! returns a background colour. rt-runtime's crate documentation renders
+//! it, host side included, on the CPU backend (its section "A first
+//! program", a doc test).
+//!
 //! Two rules hold for every item:
 //!
 //! - **It has a real CPU implementation**, here, with the semantics the GPU

@@ -11,7 +11,7 @@
 //! (but not of a literal: `-2147483648i32` stays a literal), indexing
 //! (`a[i]` reads through `arith::at`, a written place through
 //! `arith::at_mut`), and the methods whose Rust (std or glam) versions
-//! panic where WGSL answers ([`gpu_method`]): `abs` (of `i32::MIN`),
+//! panic where WGSL answers (`gpu_method`): `abs` (of `i32::MIN`),
 //! `clamp` (with `lo > hi`), the dividing methods (a zero divisor) and the
 //! sums and products of integer vectors (`dot`, `element_sum`, `cross`,
 //! ..., which overflow). A method call `x.dot(y)` becomes

@@ -11,12 +11,12 @@
 //!
 //! The descriptor a group carries ([`Acceleration`], [`Builder`]) is the
 //! scene's (`scene.rs`), so the scene names it without importing this
-//! folder. Files: [`bvh`] builds, refits and walks one tree (obvhs's BVH2, widened
+//! folder. Files: `bvh` builds, refits and walks one tree (obvhs's BVH2, widened
 //! to its CWBVH for the wgpu backend); [`wide`] is the CPU backend's SIMD
 //! layout of a geometry group's tree (8-wide nodes, 4-triangle leaves) and
-//! its walk; [`cache`] keeps a scene's trees across launches, building
+//! its walk; `cache` keeps a scene's trees across launches, building
 //! what is new and refitting what moved, in the forms the launch's backend
-//! walks ([`cache::Trees`]).
+//! walks (`cache::Trees`).
 
 pub(crate) mod bvh;
 pub(crate) mod cache;

@@ -1,15 +1,15 @@
 //! Backends: where launches run.
 //!
-//! A backend implements [`LaunchBackend`]: it says which trees it walks
-//! ([`LaunchBackend::trees`]), gets ready ([`LaunchBackend::prepare`]: the
+//! A backend implements `LaunchBackend`: it says which trees it walks
+//! (`LaunchBackend::trees`), gets ready (`LaunchBackend::prepare`: the
 //! wgpu backend opens its device), runs a launch over the scene
-//! ([`LaunchBackend::launch`]), hands what programs wrote to the host's
-//! buffers ([`LaunchBackend::read_back_outputs`]) and counts what it did
-//! ([`LaunchBackend::stats`]). What every launch does around that (the
+//! (`LaunchBackend::launch`), hands what programs wrote to the host's
+//! buffers (`LaunchBackend::read_back_outputs`) and counts what it did
+//! (`LaunchBackend::stats`). What every launch does around that (the
 //! size check, the acceleration structures' build, the cut into tiles
 //! that each stay under a time budget, [`tiles`]) is written once, in
-//! [`launch`]. The link step (variable resolution by scope, payload and
-//! attribute agreement) is shared too: [`crate::link`].
+//! `launch`. The link step (variable resolution by scope, payload and
+//! attribute agreement) is shared too: `crate::link`.
 //!
 //! The backends: [`cpu`] runs programs natively; [`wgpu`] links them into
 //! one megakernel (its traversal in `wgpu/compute/`).
@@ -89,6 +89,7 @@ impl Backend {
         }
     }
 
+    /// The backend's name as `from_name` (and `RT_BACKEND`) take it.
     pub fn name(self) -> &'static str {
         match self {
             Backend::Cpu => "cpu",
@@ -100,6 +101,7 @@ impl Backend {
 /// An exception raised during a launch.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct ExceptionRecord {
+    /// The launch index that raised it.
     pub launch_index: UVec2,
     /// `EXCEPTION_*` code, or a user code from `rt_throw`.
     pub code: u32,

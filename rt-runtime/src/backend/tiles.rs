@@ -3,9 +3,9 @@
 //! Desktop drivers reset a GPU whose work runs past about two seconds
 //! (Windows' TDR, Linux's hang check), and a user waiting on a long render
 //! wants to see it advance and to stop it. So a launch runs as tiles, one
-//! submission each: [`Tiler`] cuts the launch into whole 8 x 8 blocks (the
+//! submission each: `Tiler` cuts the launch into whole 8 x 8 blocks (the
 //! megakernel's workgroups) in row-major order, either bands of whole rows
-//! or pieces of one band of at most 8 rows; [`Pace`] remembers how long an
+//! or pieces of one band of at most 8 rows; `Pace` remembers how long an
 //! index of each entry point took, so the next tile is sized to half the
 //! budget. Every launch index runs exactly once, whatever the cut, and the
 //! outputs, exceptions and prints are those of one launch over the whole
@@ -80,6 +80,7 @@ impl LaunchProgress {
 /// What a progress callback answers: go on with the next tile, or stop.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum LaunchControl {
+    /// Go on with the next tile.
     Continue,
     /// Stop before the next tile: the launch fails with
     /// [`RtError::LaunchCancelled`](crate::RtError::LaunchCancelled) and
@@ -91,7 +92,9 @@ pub enum LaunchControl {
 /// 8 x 8 block grid.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Tile {
+    /// The first launch index of the tile.
     pub origin: UVec2,
+    /// Its width and height in launch indices.
     pub size: UVec2,
 }
 

@@ -12,6 +12,8 @@ use glam::Mat4;
 use rt_std::program::ProgramKind;
 
 impl Context {
+    /// A material without programs: set its closest- and any-hit programs per
+    /// ray type, and its variables (the material scope).
     pub fn create_material(&mut self) -> MaterialId {
         self.scene.structure_version += 1;
         let n = self.ray_type_count() as usize;
@@ -27,6 +29,8 @@ impl Context {
         self.scene.materials.get_mut(m.0 as usize).ok_or_else(|| RtError::InvalidHandle(format!("{m:?}")))
     }
 
+    /// Sets material `m`'s closest-hit program for `ray_type`: it runs once
+    /// per ray, at the nearest hit accepted.
     pub fn set_closest_hit_program(&mut self, m: MaterialId, ray_type: u32, p: ProgramId) -> Result<()> {
         self.scene.structure_version += 1;
         self.check_ray_type(ray_type)?;
@@ -35,6 +39,9 @@ impl Context {
         Ok(())
     }
 
+    /// Sets material `m`'s any-hit program for `ray_type`: it runs at every
+    /// hit found closer than the nearest so far, and may ignore it or end the
+    /// ray.
     pub fn set_any_hit_program(&mut self, m: MaterialId, ray_type: u32, p: ProgramId) -> Result<()> {
         self.scene.structure_version += 1;
         self.check_ray_type(ray_type)?;
@@ -43,6 +50,8 @@ impl Context {
         Ok(())
     }
 
+    /// Geometry `g` with its materials (at least one; a triangle's material
+    /// index chooses among them).
     pub fn create_geometry_instance(&mut self, g: GeometryId, materials: &[MaterialId]) -> Result<GeometryInstanceId> {
         self.scene.geometry_version += 1;
         self.scene.structure_version += 1;
@@ -85,6 +94,8 @@ impl Context {
         }
     }
 
+    /// A node holding geometry instances, with the acceleration structure
+    /// built over their primitives.
     pub fn create_geometry_group(&mut self, children: &[GeometryInstanceId], accel: Acceleration) -> Result<NodeId> {
         self.scene.structure_version += 1;
         self.scene.geometry_version += 1;
@@ -94,6 +105,8 @@ impl Context {
         Ok(self.push_node(NodeKind::GeometryGroup { children: children.to_vec(), accel }))
     }
 
+    /// A node holding other nodes, with the acceleration structure built over
+    /// their bounds.
     pub fn create_group(&mut self, children: &[NodeId], accel: Acceleration) -> Result<NodeId> {
         self.check_nodes(children)?;
         Ok(self.push_node(NodeKind::Group { children: children.to_vec(), accel }))
@@ -171,6 +184,8 @@ impl Context {
         }
     }
 
+    /// A node whose `visit` program chooses, per ray, which of `children`
+    /// the ray enters.
     pub fn create_selector(&mut self, visit: ProgramId, children: &[NodeId]) -> Result<NodeId> {
         self.expect_kind(visit, ProgramKind::Visit, "a selector's visit".into())?;
         self.check_nodes(children)?;

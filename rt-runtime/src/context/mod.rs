@@ -32,9 +32,9 @@ pub use samplers::{MipLevels, SamplerDescriptor, SamplerExtent};
 
 /// A ray-tracing context: the root of everything, as in OptiX.
 ///
-/// It holds the scene it edits ([`Scene`]), the launch settings, the
+/// It holds the scene it edits (`Scene`), the launch settings, the
 /// acceleration structures built for the scene, and the backend launches
-/// run on, behind [`LaunchBackend`]. A backend it ran on before (or opened
+/// run on, behind `LaunchBackend`. A backend it ran on before (or opened
 /// ahead, [`Context::open_wgpu`]) is kept, with its device and its
 /// statistics, for when the context switches back.
 ///
@@ -182,15 +182,21 @@ impl Context {
         (self.accels.builds, self.accels.refits)
     }
 
+    /// Sets how many entry points (ray-generation programs launches choose by
+    /// index) the context has; new ones have no programs yet.
     pub fn set_entry_point_count(&mut self, n: u32) {
         self.scene.structure_version += 1;
         self.scene.entry_points.resize(n as usize, EntryPoint::default());
     }
 
+    /// How many entry points the context has (1 to start with).
     pub fn entry_point_count(&self) -> u32 {
         self.scene.entry_points.len() as u32
     }
 
+    /// Sets how many ray types (a trace's `ray_type`, each with its own miss
+    /// program and its own closest- and any-hit program per material) the
+    /// context has; new ones have no programs yet.
     pub fn set_ray_type_count(&mut self, n: u32) {
         self.scene.structure_version += 1;
         self.scene.miss.resize(n as usize, None);
@@ -200,6 +206,7 @@ impl Context {
         }
     }
 
+    /// How many ray types the context has (1 to start with).
     pub fn ray_type_count(&self) -> u32 {
         self.scene.ray_type_count()
     }

@@ -70,6 +70,8 @@ impl Context {
         Ok(())
     }
 
+    /// Sets entry point `entry`'s ray-generation program: the program a
+    /// launch of `entry` runs at every launch index.
     pub fn set_ray_generation_program(&mut self, entry: u32, p: ProgramId) -> Result<()> {
         self.scene.structure_version += 1;
         self.expect_kind(p, ProgramKind::RayGeneration, format!("entry point {entry}'s ray generation"))?;
@@ -80,7 +82,7 @@ impl Context {
     /// Sets entry point `entry`'s exception program: it runs at a launch
     /// index after the index's first exception, with the code in
     /// `exception_code()`. Every exception is also recorded in
-    /// [`LaunchReport::exceptions`], with or without an exception program.
+    /// [`crate::LaunchReport::exceptions`], with or without an exception program.
     ///
     /// Without one, the default exception program runs (both backends): if
     /// the ray-generation program declares a `RwBuffer2d<Vec4>` variable
@@ -94,6 +96,8 @@ impl Context {
         Ok(())
     }
 
+    /// Sets `ray_type`'s miss program: it runs for a ray of that type that
+    /// hits nothing.
     pub fn set_miss_program(&mut self, ray_type: u32, p: ProgramId) -> Result<()> {
         self.scene.structure_version += 1;
         self.check_ray_type(ray_type)?;

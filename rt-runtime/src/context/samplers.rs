@@ -16,7 +16,12 @@ use rt_std::{FilterMode, IndexMode, MipFilter, SamplerModes, WrapMode};
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum SamplerExtent {
     /// A 2D texture of `width x height` texels, read by a `Sampler2d`.
-    Flat { width: u32, height: u32 },
+    Flat {
+        /// Texels per row.
+        width: u32,
+        /// Rows.
+        height: u32,
+    },
     /// A 3D texture, read by a `Sampler3d`; texel `(x, y, z)` at
     /// `x + y * width + z * width * height`.
     Volume(UVec3),

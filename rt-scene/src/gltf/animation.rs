@@ -18,16 +18,22 @@ use gltf::animation::{Interpolation, Property};
 /// What a channel moves.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Target {
+    /// The node's translation (xyz).
     Translation,
+    /// The node's rotation (a unit quaternion, xyzw).
     Rotation,
+    /// The node's scale (xyz).
     Scale,
 }
 
 /// One animated property of one node.
 #[derive(Clone, Debug)]
 pub struct Channel {
+    /// The node moved, by glTF index.
     pub node: usize,
+    /// Which of its properties.
     pub target: Target,
+    /// Step, linear or cubic spline between keys.
     pub interpolation: Interpolation,
     /// Key times, seconds, increasing.
     pub times: Vec<f32>,
@@ -39,6 +45,7 @@ pub struct Channel {
 /// A node's local transform as the file gives it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Local {
+    /// A matrix (no channel may move it).
     Matrix(Mat4),
     /// Translation, rotation, scale: what channels move.
     Trs(Vec3, Quat, Vec3),
@@ -71,6 +78,7 @@ pub struct Rig {
     /// For each instance (as `Asset::instances`), its node chain from the
     /// root down to the node that shows the mesh.
     pub paths: Vec<Vec<usize>>,
+    /// The animation's channels, each moving one property of one node.
     pub channels: Vec<Channel>,
 }
 

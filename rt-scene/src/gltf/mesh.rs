@@ -18,7 +18,9 @@ use rt_runtime::TriangleMesh;
 pub struct MeshData {
     /// The glTF mesh's index.
     pub index: usize,
+    /// The glTF mesh's name, else its JSON path (`meshes[2]`).
     pub name: String,
+    /// Its primitives' triangles, as one mesh.
     pub mesh: TriangleMesh,
     /// The glTF material of each slot `mesh.material_indices` uses; `None`
     /// is glTF's default material (primitives without one).

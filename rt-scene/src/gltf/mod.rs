@@ -5,7 +5,7 @@
 //! What is read: the default scene's node hierarchy (or the first scene's,
 //! or every root node's when there are no scenes), each node's world matrix
 //! (parent times local, TRS or matrix); every mesh a node uses, once, with
-//! its primitives ([`mesh`]); materials' base colour factor and texture,
+//! its primitives (`mesh`); materials' base colour factor and texture,
 //! metallic and roughness factors and emissive factor; the first
 //! perspective camera met in the hierarchy; `KHR_lights_punctual` lights.
 //! Node animations ([`animation`]) are read into [`Asset::rig`], so a
@@ -17,7 +17,7 @@
 //!
 //! Problems are [`GltfError`]s naming the file and the object, never
 //! panics: the GLB header and every accessor's byte range are checked
-//! ([`buffers`]) before the `gltf` crate reads anything.
+//! (`buffers`) before the `gltf` crate reads anything.
 
 pub mod animation;
 pub(crate) mod buffers;
@@ -45,7 +45,9 @@ pub struct Asset {
     pub instances: Vec<(usize, Mat4)>,
     /// The document's materials, by glTF index.
     pub materials: Vec<MaterialInfo>,
+    /// The first node with a perspective camera, in world space.
     pub camera: Option<SceneCamera>,
+    /// The `KHR_lights_punctual` lights nodes hold, in world space.
     pub lights: Vec<Light>,
     /// The nodes the instances hang from and the animations that move
     /// them.

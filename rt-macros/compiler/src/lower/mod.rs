@@ -9,10 +9,10 @@
 //! and its constants `<Type>__<NAME>`, runtime items `rt_*`/`Rt*`; user
 //! structs and constants keep their names.
 //!
-//! [`lower`] runs the phases of [`unit`] in order: the items the entry
-//! reaches ([`items`]), sorted by dependency ([`order`]); constants; helper
+//! [`lower`] runs the phases of `unit` in order: the items the entry
+//! reaches (`items`), sorted by dependency (`order`); constants; helper
 //! signatures, then bodies, callees first ([`func`] lowers one body); the
-//! program ([`program`]); and [`assemble`]s and validates the module.
+//! program (`program`); and `assemble`s and validates the module.
 
 pub mod accessors;
 mod assemble;

@@ -2,7 +2,7 @@
 //! FMA, else SSE4.1, else one lane at a time), or the one `RT_CPU_SIMD`
 //! names (`avx2`, `sse4.1`, `scalar`), so the test suite can run each path
 //! on one machine. Every path gives the same hits (see
-//! [`super::kernels`]).
+//! `super::kernels`).
 
 use super::WideBvh;
 use super::kernels::{Hits, WalkRay, scalar::Scalar};
@@ -25,6 +25,7 @@ pub enum Isa {
 pub const ENV: &str = "RT_CPU_SIMD";
 
 impl Isa {
+    /// Every instruction set, widest first.
     pub const ALL: [Isa; 3] = [Isa::Avx2, Isa::Sse41, Isa::Scalar];
 
     /// The name `RT_CPU_SIMD` takes.

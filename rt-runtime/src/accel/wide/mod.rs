@@ -8,14 +8,14 @@
 //! subtractions, six products and a few min/max (one AVX2 instruction
 //! each). A leaf's four triangles are nine rows of four floats (the three
 //! vertices' coordinates), tested in one four-wide watertight test that
-//! gives exactly the hits of [`watertight::WatertightRay::intersect`], bit
+//! gives exactly the hits of `watertight::WatertightRay::intersect`, bit
 //! for bit: same operations, same order, no fused multiply-adds.
 //!
-//! Files: [`collapse`] builds the layout from a BVH2; [`walk`] is the
-//! ordered traversal, generic over [`kernels`] (the box and triangle tests
+//! Files: `collapse` builds the layout from a BVH2; `walk` is the
+//! ordered traversal, generic over `kernels` (the box and triangle tests
 //! of each instruction set) and dispatched by [`isa`] (run-time detection,
-//! `RT_CPU_SIMD` to force one); [`watertight`] is the one-triangle test
-//! the packet test reproduces; [`packet_walk`] walks 16 rays together (the
+//! `RT_CPU_SIMD` to force one); `watertight` is the one-triangle test
+//! the packet test reproduces; `packet_walk` walks 16 rays together (the
 //! measurement of what ray packets gain on this tree: `rt-bench`'s
 //! `cpu_packet_walk_vs_walk`).
 

@@ -72,8 +72,9 @@ impl WatertightRay {
     }
 
     /// The rows of [`crate::accel::wide::Packet`] (and axes) holding a
-    /// vertex's `kx`, `ky` and `kz` coordinates.
-    #[cfg_attr(target_arch = "wasm32", allow(dead_code))]
+    /// vertex's `kx`, `ky` and `kz` coordinates. (Read by the x86-64
+    /// kernels only.)
+    #[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
     pub(crate) fn axes(&self) -> [usize; 3] {
         [(self.kz + 1) % 3, (self.kz + 2) % 3, self.kz]
     }

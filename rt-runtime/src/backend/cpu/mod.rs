@@ -11,7 +11,7 @@
 //! `rt_report_intersection` runs any hit, which may ignore the candidate or
 //! terminate the ray), ray flags and visibility masks, the trace-depth limit
 //! and exceptions. Intrinsics reach this backend through rt-std's
-//! thread-local execution context and the [`Tracer`] it installs.
+//! thread-local execution context and the `Tracer` it installs.
 //!
 //! Per ray nothing is allocated and nothing is looked up by name: variables
 //! are bound once per launch and program use, their types checked then
@@ -24,8 +24,8 @@
 //! distance and barycentrics; the attributes are computed once, for the
 //! closest hit.
 //!
-//! Files: [`bind`] resolves and binds every program use of a launch,
-//! [`lane`] runs launch indices and traces rays, [`triangle`] computes a
+//! Files: `bind` resolves and binds every program use of a launch,
+//! `lane` runs launch indices and traces rays, `triangle` computes a
 //! triangle hit's built-in attributes; this file is the backend and its
 //! run.
 

@@ -30,6 +30,7 @@ pub struct Gpu {
     /// How many launches encoded the scene (see `SceneKey`), and how many
     /// of those its geometry part too (`GeometryKey`).
     pub scene_encodes: u64,
+    /// How many of those encoded the geometry too.
     pub geometry_encodes: u64,
     pub(crate) resident: Resident,
     pub(crate) health: Arc<Health>,
@@ -50,8 +51,11 @@ pub struct WgpuDevice {
     /// The adapter, when the context opened the device itself (`None` for
     /// a device from `Context::use_wgpu_device`).
     pub adapter: Option<wgpu::Adapter>,
+    /// The device launches run on.
     pub device: wgpu::Device,
+    /// Its queue, which launches submit to.
     pub queue: wgpu::Queue,
+    /// The adapter's name, backend and kind.
     pub info: wgpu::AdapterInfo,
 }
 

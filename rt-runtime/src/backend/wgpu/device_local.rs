@@ -33,11 +33,13 @@ use crate::scene::Scene;
 /// may move the buffer or replace the heap.
 #[derive(Clone, Debug)]
 pub struct DeviceBuffer {
+    /// The context's heap.
     pub buffer: wgpu::Buffer,
     /// A multiple of 4 (one word), not of the adapter's storage-binding
     /// alignment: copy the range (`copy_buffer_to_buffer`) or pass the
     /// offset to a shader that binds the whole buffer.
     pub offset: u64,
+    /// The buffer's elements, in bytes.
     pub size: u64,
 }
 

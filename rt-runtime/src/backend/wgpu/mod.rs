@@ -27,25 +27,25 @@
 //!
 //! Traversal: two, each a folder, sharing the megakernel linker
 //! ([`kernel`], with the candidate and hit code both use in
-//! `kernel/hits.wgsl`), the heap ([`heap`]) and the dispatch
-//! ([`dispatch`]): the compute traversal ([`compute`]: the scene's
+//! `kernel/hits.wgsl`), the heap (`heap`) and the dispatch
+//! (`dispatch`): the compute traversal (`compute`: the scene's
 //! encoding and the WGSL that walks it, on every adapter) and hardware ray
-//! queries ([`rayquery`]: BLASes and TLASes the device builds, a
+//! queries (`rayquery`: BLASes and TLASes the device builds, a
 //! `rayQueryProceed` loop running any-hit and intersection programs, on
 //! adapters with `EXPERIMENTAL_RAY_QUERY`). [`Traversal`] chooses; the
 //! ray-query traversal still reads the compute encoding's tables (geometry
 //! instances, materials, hit records).
 //!
-//! Files: [`device`] (the device and its health, ray queries requested
-//! where the adapter has them), [`device_mirror`] (buffers
-//! kept on the device, uploads of changed pages), [`device_local`] (buffers
-//! whose words stay on the device, never read back), [`heap`] (variables'
+//! Files: `device` (the device and its health, ray queries requested
+//! where the adapter has them), `device_mirror` (buffers
+//! kept on the device, uploads of changed pages), `device_local` (buffers
+//! whose words stay on the device, never read back), `heap` (variables'
 //! records, buffers, textures), [`kernel`] (the megakernel's WGSL),
-//! [`pipeline`] (pipelines by WGSL), [`dispatch`] (a tile's dispatches,
-//! uniforms, bind groups, the compute pass), [`chain`] (transform chains
-//! composed and inverted in f64), [`readback`] (results and the log back to the
+//! `pipeline` (pipelines by WGSL), `dispatch` (a tile's dispatches,
+//! uniforms, bind groups, the compute pass), `chain` (transform chains
+//! composed and inverted in f64), `readback` (results and the log back to the
 //! host, `rt_printf!` formatting); this file runs a launch through them
-//! ([`launch_on_device`]).
+//! (`launch_on_device`).
 //!
 //! Speed on lavapipe: llvmpipe runs a workgroup's invocations as SIMD lanes
 //! and both sides of a divergent branch under a mask, so a search costs

@@ -4,21 +4,21 @@
 //! later uses resolve, `i32` by default as in Rust).
 //!
 //! [`FnLowerer`] is one struct; its methods live by concern, one file each:
-//! - [`stmt`]: statements, `let`, `const` items, `rt_printf!`;
-//! - [`expr`]: the expression dispatch, literals, paths, fields, indexing,
+//! - `stmt`: statements, `let`, `const` items, `rt_printf!`;
+//! - `expr`: the expression dispatch, literals, paths, fields, indexing,
 //!   struct and array literals;
-//! - [`ops`]: operators and casts;
-//! - [`eval`]: evaluation order (spilling operands) and WGSL's constant
+//! - `ops`: operators and casts;
+//! - `eval`: evaluation order (spilling operands) and WGSL's constant
 //!   expressions;
-//! - [`places`]: assignment and `&mut` arguments;
-//! - [`control`]: `if`, blocks, loops, `match`, `break`/`continue`/`return`;
-//! - [`calls`]: methods of builtin types, constructors, glam's free
+//! - `places`: assignment and `&mut` arguments;
+//! - `control`: `if`, blocks, loops, `match`, `break`/`continue`/`return`;
+//! - `calls`: methods of builtin types, constructors, glam's free
 //!   functions, `#[rt_function]` helpers;
-//! - [`intrinsics`]: intrinsic calls from the contract's rows;
-//! - [`buffers`]: buffer and sampler access;
-//! - [`infer`]: integer inference variables, coercion;
-//! - [`tuples`]: tuple values, `let` and `match` over tuple patterns;
-//! - [`resume`]: the resumable form of a tracing function.
+//! - `intrinsics`: intrinsic calls from the contract's rows;
+//! - `buffers`: buffer and sampler access;
+//! - `infer`: integer inference variables, coercion;
+//! - `tuples`: tuple values, `let` and `match` over tuple patterns;
+//! - `resume`: the resumable form of a tracing function.
 //!
 //! This file holds the struct, the entry point ([`FnLowerer::function`]),
 //! names and scopes, and the block walker.

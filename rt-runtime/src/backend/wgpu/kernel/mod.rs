@@ -89,17 +89,22 @@ fn rt_hit_xform() {
 /// A program the kernel may dispatch to, with its case id (> 0).
 #[derive(Clone, Copy)]
 pub struct KernelProgram {
+    /// Its case in the kernel's dispatch switch.
     pub case: u32,
+    /// The program, as `#[rt_program]` described it.
     pub desc: &'static ProgramDescriptor,
 }
 
 /// What the kernel is linked for.
 pub struct KernelSpec {
+    /// The entry point's ray-generation program.
     pub ray_generation: KernelProgram,
+    /// Its exception program (`None`: the default one).
     pub exception: Option<KernelProgram>,
     /// Every closest-hit, any-hit, miss, intersection and visit program in
     /// use.
     pub programs: Vec<KernelProgram>,
+    /// The context's maximum trace depth.
     pub max_depth: u32,
     /// 0 when every node is an instance or a group of instances (the
     /// two-level fast path alone); otherwise the graph traversal is linked
@@ -160,8 +165,11 @@ pub const SCENE_HEADER_BASES: usize = 8;
 /// One part of the scene data: its WGSL binding name, accessor, and what it
 /// holds (for errors).
 pub struct SceneSection {
+    /// The WGSL name of its binding.
     pub binding: &'static str,
+    /// The WGSL function that reads a word of it.
     pub accessor: &'static str,
+    /// What it holds, in words, for errors.
     pub what: &'static str,
 }
 
@@ -220,6 +228,7 @@ pub const MAX_CLONES: u64 = 16;
 
 /// The generated megakernel.
 pub struct Generated {
+    /// The megakernel's WGSL source.
     pub wgsl: String,
     /// What the caller should tell the user when it creates the pipeline
     /// (once per pipeline, not per launch).

@@ -45,6 +45,8 @@ pub enum Traversal {
 }
 
 impl Traversal {
+    /// The traversal's name as `RT_TRAVERSAL` takes it (`auto`, `compute`,
+    /// `rayquery`).
     pub fn name(self) -> &'static str {
         match self {
             Traversal::Auto => "auto",
