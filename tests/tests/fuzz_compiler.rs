@@ -204,3 +204,22 @@ fn regressions_agree_on_cpu_and_gpu() {
     }
     assert!(failures.is_empty(), "{}", failures[..failures.len().min(30)].join("\n"));
 }
+
+/// The run above also loops over arrays as Rust writes it: by value, through
+/// `.iter()`, reversed and numbered (`enumerate`), which the compiler
+/// rewrites into counted loops.
+#[test]
+fn the_fixed_seed_generates_array_loops() {
+    let cfg = fuzz::Config::from_env(0x5eed, 300);
+    let sources = fuzz::on_big_stack(move || {
+        (cfg.first..cfg.first + cfg.programs)
+            .map(|id| fuzz::generate::program(cfg.seed, id).source())
+            .collect::<Vec<_>>()
+    });
+    let count = |form: &str| sources.iter().filter(|s| s.contains(form)).count();
+    let (iter, rev, numbered) = (count(".iter()"), count(".rev() "), count(".enumerate()"));
+    let what =
+        format!("of 300 programs, {iter} loop through `.iter()`, {rev} reversed, {numbered} with `.enumerate()`");
+    eprintln!("{what}");
+    assert!(iter >= 30 && rev >= 15 && numbered >= 15, "{what}");
+}

@@ -62,6 +62,8 @@ impl Editor {
             let inner: Vec<Block> = match &b.stmts[i] {
                 Stmt::If(_, t, e) => std::iter::once(t.clone()).chain(e.clone()).collect(),
                 Stmt::For { body, .. } | Stmt::While(_, body) | Stmt::Loop(body) => vec![body.clone()],
+                // (Its body names the element: not flattened.)
+                Stmt::Each { .. } => Vec::new(),
                 Stmt::Match(_, arms) => arms.iter().map(|a| a.body.clone()).collect(),
                 _ => Vec::new(),
             };
@@ -93,7 +95,7 @@ impl Editor {
                     self.block(e);
                 }
             }
-            Stmt::For { end, body, .. } => {
+            Stmt::For { end, body, .. } | Stmt::Each { array: end, body, .. } => {
                 self.expr(end);
                 self.block(body);
             }
@@ -242,7 +244,7 @@ fn renumber(b: &mut Block, removed: usize) {
                     renumber(e, r);
                 }
             }
-            Stmt::For { end, body, .. } => {
+            Stmt::For { end, body, .. } | Stmt::Each { array: end, body, .. } => {
                 expr(end, r);
                 renumber(body, r);
             }

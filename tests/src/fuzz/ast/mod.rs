@@ -288,6 +288,19 @@ pub enum Stmt {
         inclusive: bool,
         body: Block,
     },
+    /// A loop over a fixed array's elements, `var` each in turn: `for var
+    /// in array` (by value), `for &var in array.iter()` (`by_ref`), each
+    /// `.rev()` when `rev`; with `index`, `for (raw, &var) in
+    /// array.iter().enumerate()` (then `.rev()`), the body starting `let
+    /// index = raw as u32;`.
+    Each {
+        var: String,
+        index: Option<(String, String)>,
+        array: Expr,
+        by_ref: bool,
+        rev: bool,
+        body: Block,
+    },
     While(Expr, Block),
     Loop(Block),
     Break,

@@ -116,6 +116,18 @@ impl Program {
                 self.block(s, body, depth);
                 s.push('\n');
             }
+            Stmt::Each { var, index, array, by_ref, rev, body } => {
+                let a = self.expr(array);
+                let rev = if *rev { ".rev()" } else { "" };
+                let _ = match index {
+                    Some((raw, _)) => write!(s, "for ({raw}, &{var}) in ({a}).iter().enumerate(){rev} "),
+                    None if *by_ref => write!(s, "for &{var} in ({a}).iter(){rev} "),
+                    None if rev.is_empty() => write!(s, "for {var} in {a} "),
+                    None => write!(s, "for {var} in ({a}).into_iter(){rev} "),
+                };
+                self.block(s, body, depth);
+                s.push('\n');
+            }
             Stmt::While(c, body) => {
                 let _ = write!(s, "while {} ", self.expr(c));
                 self.block(s, body, depth);

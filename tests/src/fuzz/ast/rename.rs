@@ -32,7 +32,7 @@ fn stmt(s: &mut Stmt, from: &str, by_ref: bool) {
                 block(e, from, by_ref);
             }
         }
-        Stmt::For { end, body, .. } => {
+        Stmt::For { end, body, .. } | Stmt::Each { array: end, body, .. } => {
             expr(end, from, by_ref);
             block(body, from, by_ref);
         }

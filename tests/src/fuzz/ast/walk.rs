@@ -105,7 +105,7 @@ impl Block {
                         e.visit(f);
                     }
                 }
-                Stmt::For { end, body, .. } => {
+                Stmt::For { end, body, .. } | Stmt::Each { array: end, body, .. } => {
                     end.visit(f);
                     body.visit(f);
                 }

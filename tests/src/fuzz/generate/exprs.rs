@@ -73,7 +73,7 @@ impl Gen {
 
     /// Expressions naming a variable (or a component, field or element of
     /// one) of type `t`.
-    fn readable(&mut self, t: &Ty) -> Vec<Expr> {
+    pub(super) fn readable(&mut self, t: &Ty) -> Vec<Expr> {
         let vars: Vec<Var> = self.vars().cloned().collect();
         let mut out = Vec::new();
         // Dynamic indices of projections are themselves expressions: one

@@ -302,7 +302,8 @@ impl Gen {
 
     fn loop_stmt(&mut self, out: &mut Vec<Stmt>) {
         self.loop_depth += 1;
-        match self.r.weighted(&[5, 3, 2]) {
+        match self.r.weighted(&[5, 3, 2, 3]) {
+            3 => out.push(self.each_stmt()),
             0 => {
                 let var = self.name("i");
                 let ty = self.r.pick(&[Scalar::I32, Scalar::U32]);
@@ -354,6 +355,45 @@ impl Gen {
             }
         }
         self.loop_depth -= 1;
+    }
+
+    /// A loop over an array's elements (`Stmt::Each`): an array local in
+    /// scope or a literal, by value or through `.iter()`, maybe reversed,
+    /// maybe numbered.
+    fn each_stmt(&mut self) -> Stmt {
+        let n = self.r.pick(&[1u32, 2, 3, 4]);
+        let et = if self.r.chance(70) {
+            Ty::S(self.r.pick(&[Scalar::F32, Scalar::U32, Scalar::I32]))
+        } else {
+            self.r.pick(&self.vecs)
+        };
+        let ty = Ty::Arr(b_ty(et.clone()), n);
+        let array = match self.readable(&ty) {
+            cands if !cands.is_empty() && self.r.chance(60) => self.r.pick(&cands),
+            _ => Expr::ArrayLit((0..n).map(|i| self.expr(&et, 2, i > 0)).collect()),
+        };
+        let var = self.name("e");
+        let index = self.r.chance(40).then(|| (self.name("raw"), self.name("k")));
+        let by_ref = index.is_some() || self.r.chance(50);
+        let rev = self.r.chance(35);
+        self.scopes.push(Vec::new());
+        self.bind(&var, et, false, Kind::ReadOnly);
+        let mut first = Vec::new();
+        if let Some((raw, k)) = &index {
+            first.push(Stmt::Let {
+                name: k.clone(),
+                mutable: false,
+                ty: U32,
+                annotate: false,
+                init: Expr::Cast(b(Expr::Var(raw.clone())), Scalar::U32),
+            });
+            self.bind(k, U32, false, Kind::ReadOnly);
+        }
+        let mut body = self.block(4, None);
+        self.scopes.pop();
+        first.append(&mut body.stmts);
+        body.stmts = first;
+        Stmt::Each { var, index, array, by_ref, rev, body }
     }
 
     /// A `match` scrutinee: the expression, its type and the values it

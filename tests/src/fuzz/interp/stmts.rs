@@ -126,6 +126,26 @@ impl Interp<'_> {
                     i += 1;
                 }
             }
+            Stmt::Each { var, index, array, rev, body, .. } => {
+                let V::Arr(items) = self.expr(array)? else { unreachable!("an array by construction") };
+                let order: Vec<usize> =
+                    if *rev { (0..items.len()).rev().collect() } else { (0..items.len()).collect() };
+                for k in order {
+                    self.tick();
+                    self.scopes.push(Vec::new());
+                    self.bind(var, items[k].clone());
+                    if let Some((raw, _)) = index {
+                        self.bind(raw, V::U(k as u32, false));
+                    }
+                    let r = self.block(body);
+                    self.scopes.pop();
+                    match r?.0 {
+                        Flow::Break => break,
+                        f @ Flow::Return(_) => return Ok(f),
+                        _ => {}
+                    }
+                }
+            }
             Stmt::While(c, body) => loop {
                 self.tick();
                 if !self.expr(c)?.certain_bool("a `while` condition")? {
