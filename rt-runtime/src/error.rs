@@ -175,6 +175,15 @@ pub enum RtError {
     LaunchCancelled { entry: u32, done: u64, total: u64 },
     #[error("writing {path}: {problem}")]
     Image { path: String, problem: String },
+    /// A post-processing stage whose variable (a buffer, a setting) is
+    /// missing or does not fit: `stage` names the stage (its index and
+    /// kind), `variable` the variable at fault.
+    #[error("post-processing stage {stage}: variable `{variable}` {problem}")]
+    BadStage { stage: String, variable: String, problem: String },
+    /// A command list used out of order (appended to after finalizing,
+    /// executed before), or one of its commands that does not fit.
+    #[error("command list: {problem}")]
+    BadCommandList { problem: String },
 }
 
 /// Results of the runtime.

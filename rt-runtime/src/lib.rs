@@ -38,6 +38,7 @@ pub mod image_out;
 pub(crate) mod link;
 pub mod motion;
 mod panics;
+pub mod postprocess;
 pub mod scene;
 pub mod texels;
 pub mod usage;
@@ -52,6 +53,7 @@ pub use buffer::{BufferType, generate_mip_levels, generate_mip_levels_3d};
 pub use context::{Context, ExceptionKind, MipLevels, SamplerDescriptor, SamplerExtent, Scope, UsageCallback};
 pub use error::{Result, RtError};
 pub use motion::{MotionKeys, MotionTransform, Srt};
+pub use postprocess::{StageId, StageKind, StageValue};
 pub use scene::{
     BufferId, GeometryId, GeometryInstanceId, GeometryKind, MaterialId, NodeId, ProgramId, SamplerId, TriangleMesh,
 };

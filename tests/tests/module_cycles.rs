@@ -497,6 +497,7 @@ const RT_RUNTIME_LAYERS: &[&[&str]] = &[
     &["link"],
     &["accel"],
     &["backend"],
+    &["postprocess"],
     &["usage"],
     &["context", "image_out"],
     &[""],
