@@ -71,7 +71,7 @@ pub mod tutorial;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod viewer;
 
-pub use scene::{BackendChoice, Camera, Error, Image, Rendered, Scene, Settings};
+pub use scene::{Aovs, BackendChoice, Camera, Error, Image, Rendered, Scene, Settings};
 
 /// One example: its name (the tour's file name) and how to build its scene.
 pub struct Example {

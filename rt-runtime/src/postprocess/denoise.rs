@@ -8,13 +8,13 @@
 //! 1. **Prepare**: the colour is divided by the albedo guide (where a
 //!    channel's albedo is not about zero), so that texture and material
 //!    colour are not blurred: what is filtered is the light that reached
-//!    the surface. Its luminance's variance is estimated from a 7x7
-//!    neighbourhood of pixels facing the same way (a path tracer's
-//!    estimate over few samples has no history to take it from).
-//! 2. **À-trous**, [`ITERATIONS`] times with the taps 1, 2, 4, ... pixels
+//!    the surface. Its luminance's variance is estimated from the
+//!    neighbouring pixels facing the same way (3x3 by default; a path
+//!    tracer's estimate over few samples has no history to take it from).
+//! 2. **À-trous**, [`Tuning::iterations`] times (3) with the taps 1, 2, 4 pixels
 //!    apart: a 5x5 B3-spline kernel whose weights stop at edges: normals
-//!    apart (`dot^`[`SIGMA_NORMAL`]), albedos apart, and luminances apart
-//!    by more than [`SIGMA_LUMINANCE`] standard deviations (of the
+//!    apart (`dot^`[`Tuning::sigma_normal`]), albedos apart, and luminances
+//!    apart by more than [`Tuning::sigma_luminance`] standard deviations (of the
 //!    variance blurred 3x3). Each pass also carries the variance of its
 //!    result, so later, wider passes stop at smaller differences.
 //! 3. **Finish**: the filtered light times the albedo, blended with the
@@ -26,18 +26,35 @@
 
 use glam::{Vec3, Vec4, Vec4Swizzles};
 
-/// À-trous passes: the last one's taps are 16 pixels apart.
-pub const ITERATIONS: u32 = 5;
-/// Luminance differences are measured in standard deviations times this.
-pub const SIGMA_LUMINANCE: f32 = 4.0;
-/// The normal weight is `max(0, n_p . n_q)` to this power.
-pub const SIGMA_NORMAL: f32 = 128.0;
-/// Albedos whose squared distance is this apart weigh `1/e`.
-pub const SIGMA_ALBEDO: f32 = 0.01;
+/// The denoiser's tunings; [`Tuning::default`] is what the stage runs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Tuning {
+    /// À-trous passes: the last one's taps are `2^(iterations - 1)` pixels
+    /// apart.
+    pub iterations: u32,
+    /// Luminance differences are measured in standard deviations times
+    /// this.
+    pub sigma_luminance: f32,
+    /// The normal weight is `max(0, n_p . n_q)` to this power.
+    pub sigma_normal: f32,
+    /// Albedos whose squared distance is this apart weigh `1/e`.
+    pub sigma_albedo: f32,
+    /// The radius of the variance estimate's neighbourhood.
+    pub variance_radius: i32,
+}
+
+/// The default is the best of a sweep over the path-traced Cornell box at
+/// 4 and 16 samples a pixel (`examples/tests/denoise.rs` measures it):
+/// wider kernels (more passes) and a wider variance neighbourhood blur its
+/// shadows; looser luminance stops blur them too, tighter ones keep noise.
+impl Default for Tuning {
+    fn default() -> Tuning {
+        Tuning { iterations: 3, sigma_luminance: 3.0, sigma_normal: 64.0, sigma_albedo: 0.01, variance_radius: 1 }
+    }
+}
+
 /// Below this, an albedo channel is about black and is not divided by.
 pub const ALBEDO_FLOOR: f32 = 1e-3;
-/// The radius of the variance estimate's neighbourhood.
-pub const VARIANCE_RADIUS: i32 = 3;
 
 /// The B3-spline kernel's weights for offsets -2..=2.
 const KERNEL: [f32; 5] = [1.0 / 16.0, 1.0 / 4.0, 3.0 / 8.0, 1.0 / 4.0, 1.0 / 16.0];
@@ -69,26 +86,31 @@ pub fn unit_normal(n: Vec4) -> Vec3 {
 }
 
 /// How much two pixels' normals agree: 1 when both are zero.
-pub fn normal_weight(a: Vec3, b: Vec3) -> f32 {
+pub fn normal_weight(a: Vec3, b: Vec3, t: &Tuning) -> f32 {
     if a == Vec3::ZERO && b == Vec3::ZERO {
         return 1.0;
     }
-    a.dot(b).max(0.0).powf(SIGMA_NORMAL)
+    a.dot(b).max(0.0).powf(t.sigma_normal)
 }
 
 /// How much two pixels' albedos agree.
-pub fn albedo_weight(a: Vec3, b: Vec3) -> f32 {
-    (-(a - b).length_squared() / SIGMA_ALBEDO).exp()
+pub fn albedo_weight(a: Vec3, b: Vec3, t: &Tuning) -> f32 {
+    (-(a - b).length_squared() / t.sigma_albedo).exp()
 }
 
 /// The denoised image.
 pub fn denoise(images: &Guided, blend: f32) -> Vec<Vec4> {
+    denoise_with(images, blend, &Tuning::default())
+}
+
+/// [`denoise`] with a tuning of its own.
+pub fn denoise_with(images: &Guided, blend: f32, t: &Tuning) -> Vec<Vec4> {
     let normals: Vec<Vec3> = images.normal.iter().map(|&n| unit_normal(n)).collect();
     let albedos: Vec<Vec3> = images.albedo.iter().map(|&a| demodulation(a)).collect();
-    let mut light = prepare(images, &normals, &albedos);
+    let mut light = prepare(images, &normals, &albedos, t);
     let mut next = vec![Vec4::ZERO; light.len()];
-    for i in 0..ITERATIONS {
-        atrous(images, &normals, &albedos, &light, &mut next, 1 << i);
+    for i in 0..t.iterations {
+        atrous(images, &normals, &albedos, &light, &mut next, 1 << i, t);
         std::mem::swap(&mut light, &mut next);
     }
     (0..light.len()).map(|p| finish(images.color[p], light[p].xyz() * albedos[p], blend)).collect()
@@ -100,7 +122,7 @@ pub fn finish(input: Vec4, filtered: Vec3, blend: f32) -> Vec4 {
 }
 
 /// Pass 1: the demodulated colour and its luminance's variance (in w).
-fn prepare(images: &Guided, normals: &[Vec3], albedos: &[Vec3]) -> Vec<Vec4> {
+fn prepare(images: &Guided, normals: &[Vec3], albedos: &[Vec3], t: &Tuning) -> Vec<Vec4> {
     let (w, h) = (images.width as i32, images.height as i32);
     let light: Vec<Vec3> = (0..normals.len()).map(|p| images.color[p].xyz() / albedos[p]).collect();
     let mut out = vec![Vec4::ZERO; light.len()];
@@ -108,14 +130,14 @@ fn prepare(images: &Guided, normals: &[Vec3], albedos: &[Vec3]) -> Vec<Vec4> {
         for (x, o) in row.iter_mut().enumerate() {
             let p = y * images.width + x;
             let (mut m1, mut m2, mut sum) = (0.0f32, 0.0f32, 0.0f32);
-            for dy in -VARIANCE_RADIUS..=VARIANCE_RADIUS {
-                for dx in -VARIANCE_RADIUS..=VARIANCE_RADIUS {
+            for dy in -t.variance_radius..=t.variance_radius {
+                for dx in -t.variance_radius..=t.variance_radius {
                     let (qx, qy) = (x as i32 + dx, y as i32 + dy);
                     if qx < 0 || qy < 0 || qx >= w || qy >= h {
                         continue;
                     }
                     let q = (qy * w + qx) as usize;
-                    let weight = if q == p { 1.0 } else { normal_weight(normals[p], normals[q]) };
+                    let weight = if q == p { 1.0 } else { normal_weight(normals[p], normals[q], t) };
                     let l = luminance(light[q]);
                     m1 += weight * l;
                     m2 += weight * l * l;
@@ -131,14 +153,22 @@ fn prepare(images: &Guided, normals: &[Vec3], albedos: &[Vec3]) -> Vec<Vec4> {
 
 /// One à-trous pass with taps `step` pixels apart, from `light` (colour,
 /// variance) into `out`.
-fn atrous(images: &Guided, normals: &[Vec3], albedos: &[Vec3], light: &[Vec4], out: &mut [Vec4], step: i32) {
+fn atrous(
+    images: &Guided,
+    normals: &[Vec3],
+    albedos: &[Vec3],
+    light: &[Vec4],
+    out: &mut [Vec4],
+    step: i32,
+    t: &Tuning,
+) {
     let (w, h) = (images.width as i32, images.height as i32);
     for_each_row(out, images.width, |y, row| {
         for (x, o) in row.iter_mut().enumerate() {
             let (x, y) = (x as i32, y as i32);
             let p = (y * w + x) as usize;
             let center = light[p];
-            let sigma = SIGMA_LUMINANCE * blurred_variance(light, w, h, x, y).sqrt() + 1e-6;
+            let sigma = t.sigma_luminance * blurred_variance(light, w, h, x, y).sqrt() + 1e-6;
             let lp = luminance(center.xyz());
             let (mut color, mut variance, mut sum) = (Vec3::ZERO, 0.0f32, 0.0f32);
             for (j, ky) in KERNEL.iter().enumerate() {
@@ -153,7 +183,10 @@ fn atrous(images: &Guided, normals: &[Vec3], albedos: &[Vec3], light: &[Vec4], o
                         kx * ky
                     } else {
                         let wl = (-(lp - luminance(s.xyz())).abs() / sigma).exp();
-                        kx * ky * wl * normal_weight(normals[p], normals[q]) * albedo_weight(albedos[p], albedos[q])
+                        kx * ky
+                            * wl
+                            * normal_weight(normals[p], normals[q], t)
+                            * albedo_weight(albedos[p], albedos[q], t)
                     };
                     color += weight * s.xyz();
                     variance += weight * weight * s.w;
