@@ -23,6 +23,9 @@
 //! Both trace the same graphs (nested groups, transforms, selectors) with
 //! the same semantics, exceptions included: an entry point without an
 //! exception program gets the default one ([`Context::set_exception_program`]).
+//! After its launches a renderer runs post-processing stages
+//! ([`postprocess`]: a denoiser, a tonemapper), alone or with the launches
+//! in a command list ([`command_list`]).
 
 // Errors carry the names, locations and scopes at fault; they are returned
 // on cold paths only, so their size does not matter.
@@ -31,6 +34,7 @@
 pub mod accel;
 pub mod backend;
 pub mod buffer;
+pub mod command_list;
 pub mod context;
 pub mod error;
 mod handles;
@@ -50,6 +54,7 @@ pub use backend::tiles::{DEFAULT_TILE_BUDGET, LaunchControl, LaunchProgress, Til
 pub use backend::wgpu::Traversal;
 pub use backend::{Backend, ExceptionRecord, LaunchReport, Timings};
 pub use buffer::{BufferType, generate_mip_levels, generate_mip_levels_3d};
+pub use command_list::{Command, CommandList, CommandProgress};
 pub use context::{Context, ExceptionKind, MipLevels, SamplerDescriptor, SamplerExtent, Scope, UsageCallback};
 pub use error::{Result, RtError};
 pub use motion::{MotionKeys, MotionTransform, Srt};

@@ -500,6 +500,7 @@ const RT_RUNTIME_LAYERS: &[&[&str]] = &[
     &["postprocess"],
     &["usage"],
     &["context", "image_out"],
+    &["command_list"],
     &[""],
 ];
 
