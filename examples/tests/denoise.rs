@@ -145,3 +145,19 @@ fn at_4_spp_the_denoised_error_is_6x_lower_and_edges_stay_sharp() {
 fn at_16_spp_the_denoised_error_is_6x_lower_and_edges_stay_sharp() {
     check(16);
 }
+
+/// The same stage on the wgpu backend (its WGSL passes on the device)
+/// gives the CPU's denoised Cornell box within 1e-3 relative.
+#[test]
+fn the_wgpu_denoiser_agrees_with_the_cpu_on_the_cornell_box() {
+    let (mut ctx, aovs, _) = render(4);
+    let cpu = denoise(&mut ctx, aovs);
+    ctx.set_backend(Backend::Wgpu);
+    let gpu = denoise(&mut ctx, aovs);
+    let mut worst = 0.0f32;
+    for (c, g) in cpu.iter().zip(&gpu) {
+        worst = worst.max(((*c - *g).abs() / c.abs().max(Vec4::splat(0.01))).max_element());
+    }
+    println!("largest relative difference, cpu against wgpu: {worst:e}");
+    assert!(worst <= 1e-3, "{worst}");
+}

@@ -59,6 +59,8 @@ pub struct Context {
     usage_report: Option<UsageCallback>,
     /// Post-processing stages, by [`StageId`](crate::postprocess::StageId).
     pub(crate) stages: Vec<crate::postprocess::Stage>,
+    /// The stages' pipelines on the wgpu device, once a stage ran there.
+    pub(crate) stage_pipelines: Option<crate::postprocess::gpu::Pipelines>,
 }
 
 /// A kind of exception whose checks [`Context::set_exception_enabled`]
@@ -131,6 +133,7 @@ impl Context {
             pace: Pace::default(),
             usage_report: None,
             stages: Vec::new(),
+            stage_pipelines: None,
         }
     }
 

@@ -2,7 +2,9 @@
 //! their variables, running one.
 
 use super::Context;
+use crate::backend::Backend;
 use crate::error::{Result, RtError};
+use crate::postprocess::gpu::Pipelines;
 use crate::postprocess::{Pixels, Plan, Stage, StageId, StageKind, StageValue};
 use glam::Vec4;
 
@@ -53,7 +55,9 @@ impl Context {
 
     /// Runs `stage` over `width` x `height` pixels, the size its buffers
     /// must have, into its `output_buffer`: on the wgpu backend as compute
-    /// passes on the context's device, on the CPU backend natively. The
+    /// passes on the context's device (one submission; the stage's images
+    /// go up to the device and its output comes back to the host buffer),
+    /// on the CPU backend natively. The
     /// stage is checked first ([`RtError::BadStage`] naming the variable
     /// at fault); a stage that fails writes nothing.
     pub fn run_stage(&mut self, stage: StageId, width: u32, height: u32) -> Result<()> {
@@ -81,7 +85,21 @@ impl Context {
             None => None,
         };
         let pixels = Pixels { input: self.read_buffer::<Vec4>(plan.input)?, guides };
-        let out = plan.run_cpu(&pixels);
+        let out = match self.backend() {
+            Backend::Wgpu => self.run_on_wgpu(plan, &pixels)?,
+            _ => plan.run_cpu(&pixels),
+        };
         self.write_buffer(plan.output, &out)
+    }
+
+    /// Runs a checked stage's passes on the wgpu device (opened first if
+    /// no launch opened it yet).
+    fn run_on_wgpu(&mut self, plan: &Plan, pixels: &Pixels) -> Result<Vec<Vec4>> {
+        self.open_wgpu()?;
+        let handles = self.wgpu_device().ok_or_else(|| RtError::Gpu("no device after opening one".into()))?;
+        if !self.stage_pipelines.as_ref().is_some_and(|p| p.on(&handles.device)) {
+            self.stage_pipelines = Some(Pipelines::new(&handles.device)?);
+        }
+        self.stage_pipelines.as_ref().expect("made above").run(&handles.queue, plan, pixels)
     }
 }

@@ -20,6 +20,7 @@
 //! [`gpu`] that the wgpu backend runs on its device.
 
 pub mod denoise;
+pub(crate) mod gpu;
 pub mod tonemap;
 
 use crate::buffer::{BufferRec, Typed};
