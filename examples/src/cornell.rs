@@ -251,6 +251,11 @@ fn build(settings: &Settings, loaded: mesh::LoadedMesh, text: &str, file: String
         Ok(ctx.create_buffer_2d::<Vec4>(BufferType::InputOutput, settings.width, settings.height)?)
     };
     let aovs = Aovs { radiance: aov()?, albedo: aov()?, normal: aov()? };
+    // Read back only when asked for (a denoiser, `read_buffer`), not after
+    // every launch.
+    for b in [aovs.radiance, aovs.albedo, aovs.normal] {
+        ctx.set_buffer_device_local(b, true)?;
+    }
     ctx.set_var(Scope::Context, "radiance_buffer", aovs.radiance)?;
     ctx.set_var(Scope::Context, "albedo_buffer", aovs.albedo)?;
     ctx.set_var(Scope::Context, "normal_buffer", aovs.normal)?;
