@@ -47,6 +47,7 @@ pub mod callable_brdfs;
 pub mod common;
 pub mod convex_hull;
 pub mod cornell;
+pub mod denoised;
 pub mod diffuse;
 pub mod envmap;
 pub mod instances;

@@ -161,3 +161,24 @@ fn the_wgpu_denoiser_agrees_with_the_cpu_on_the_cornell_box() {
     println!("largest relative difference, cpu against wgpu: {worst:e}");
     assert!(worst <= 1e-3, "{worst}");
 }
+
+/// The tour's `--denoise` pair (`examples::denoised`, a command list of
+/// the denoiser and two tonemappers): the denoised picture is nearer the
+/// tonemapped reference than the noisy one; a scene without guides gives
+/// no pair.
+#[test]
+fn the_tours_denoised_pair_is_nearer_the_reference_than_the_noisy_picture() {
+    use rt_runtime::postprocess::tonemap::tonemap_pixel;
+    let reference: Vec<Vec4> =
+        reference().iter().map(|&p| tonemap_pixel(p, examples::denoised::EXPOSURE, 2.2)).collect();
+    let settings = Settings { backend: Backend::Cpu, ..Settings::new(W, H).with_spp(4) };
+    let mut scene = cornell::scene(&settings).unwrap();
+    scene.render(&mut |_| {}).unwrap();
+    let (noisy, denoised) = examples::denoised::noisy_and_denoised(&mut scene).unwrap().expect("cornell has guides");
+    let mse = |img: &[Vec4]| img.iter().zip(&reference).map(|(a, b)| (*a - *b).xyz().length_squared()).sum::<f32>();
+    let (noisy_error, denoised_error) = (mse(&noisy.pixels), mse(&denoised.pixels));
+    println!("display MSE: noisy {noisy_error:.3}, denoised {denoised_error:.3}");
+    assert!(denoised_error * 4.0 < noisy_error, "noisy {noisy_error}, denoised {denoised_error}");
+    let mut plain = examples::normal::scene(&settings).unwrap();
+    assert!(examples::denoised::noisy_and_denoised(&mut plain).unwrap().is_none());
+}
