@@ -85,9 +85,11 @@ pub fn unit_normal(n: Vec4) -> Vec3 {
     n.xyz().normalize_or_zero()
 }
 
-/// How much two pixels' normals agree: 1 when both are zero.
+/// How much two pixels' normals agree: 1 when both are zero (a pixel
+/// that hit nothing) or equal.
 pub fn normal_weight(a: Vec3, b: Vec3, t: &Tuning) -> f32 {
-    if a == Vec3::ZERO && b == Vec3::ZERO {
+    if a == b {
+        // Zero for both, or one surface: skips the power.
         return 1.0;
     }
     a.dot(b).max(0.0).powf(t.sigma_normal)
@@ -95,6 +97,9 @@ pub fn normal_weight(a: Vec3, b: Vec3, t: &Tuning) -> f32 {
 
 /// How much two pixels' albedos agree.
 pub fn albedo_weight(a: Vec3, b: Vec3, t: &Tuning) -> f32 {
+    if a == b {
+        return 1.0;
+    }
     (-(a - b).length_squared() / t.sigma_albedo).exp()
 }
 

@@ -49,13 +49,16 @@ fn unit_normal(p: u32) -> vec3<f32> {
 }
 
 fn normal_weight(a: vec3<f32>, b: vec3<f32>) -> f32 {
-    if all(a == vec3<f32>(0.0)) && all(b == vec3<f32>(0.0)) {
+    if all(a == b) {
         return 1.0;
     }
     return pow(max(dot(a, b), 0.0), params.sigma_normal);
 }
 
 fn albedo_weight(a: vec3<f32>, b: vec3<f32>) -> f32 {
+    if all(a == b) {
+        return 1.0;
+    }
     let d = a - b;
     return exp(-dot(d, d) / params.sigma_albedo);
 }
