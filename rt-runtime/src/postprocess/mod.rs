@@ -8,7 +8,7 @@
 //! (`input_buffer`, `input_albedo_buffer`, `input_normal_buffer`,
 //! `output_buffer`) and settings (`blend`, `exposure`, `gamma`). Every
 //! image buffer holds one `Vec4` a pixel, RGBA (a normal's xyz, an
-//! albedo's rgb), 2D and of the stage's size. [`Stage::plan`] checks all
+//! albedo's rgb), 2D and of the stage's size. `Stage::plan` checks all
 //! of it before anything runs, naming the stage and the variable at
 //! fault; a command list's finalize runs the same check
 //! ([`crate::command_list`]).
@@ -17,7 +17,7 @@
 //! guided by albedo, normal and a luminance variance it estimates, the
 //! spatial part of SVGF) and [`tonemap`] (exposure, ACES-fitted filmic
 //! curve, gamma), each a CPU reference here and a WGSL compute pass in
-//! [`gpu`] that the wgpu backend runs on its device.
+//! `gpu.rs` that the wgpu backend runs on its device.
 
 pub mod denoise;
 pub(crate) mod gpu;
