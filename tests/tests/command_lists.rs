@@ -50,6 +50,11 @@ struct Frame {
 /// A context with `noisy` as entry point 0 and a denoiser and tonemapper
 /// over its buffers (colour, albedo, normal, denoised, display).
 fn frame(on: On) -> Frame {
+    frame_with(on, false)
+}
+
+/// [`frame`], its launch's outputs kept on the device when `device_local`.
+fn frame_with(on: On, device_local: bool) -> Frame {
     let mut ctx = on.context();
     ctx.set_ray_type_count(0);
     let p = ctx.create_program(&noisy::PROGRAM);
@@ -60,6 +65,7 @@ fn frame(on: On) -> Frame {
     let [color, albedo, normal, denoised, display] = buffers;
     for (name, b) in [("color", color), ("albedo", albedo), ("normal", normal)] {
         ctx.set_var(Scope::Context, name, b).unwrap();
+        ctx.set_buffer_device_local(b, device_local).unwrap();
     }
     let denoiser = ctx.create_postprocessing_stage(StageKind::Denoiser);
     ctx.set_stage_var(denoiser, "input_buffer", color).unwrap();
@@ -190,4 +196,31 @@ fn finalize_names_the_stage_and_variable_or_the_launch_at_fault() {
     list.append_launch_1d(1, 4).unwrap();
     let e = list.finalize(&ctx).unwrap_err().to_string();
     assert_eq!(e, "command list: command 0 (a launch): entry point 1 has no ray generation program");
+}
+
+/// A list on the wgpu backend whose launch leaves its outputs on the
+/// device (device-local buffers): its stages read them from there, and
+/// the pictures are the CPU backend's within 1e-4.
+#[test]
+fn stages_read_a_launchs_device_local_outputs() {
+    let run = |on: On, device_local: bool| {
+        let Frame { mut ctx, buffers, denoiser, tonemapper } = frame_with(on, device_local);
+        let mut list = CommandList::new();
+        list.append_launch_2d(0, W, H).unwrap();
+        list.append_stage(denoiser, W, H).unwrap();
+        list.append_stage(tonemapper, W, H).unwrap();
+        list.finalize(&ctx).unwrap();
+        list.execute(&mut ctx).unwrap();
+        read(&ctx, &buffers)
+    };
+    let cpu = run(On::CPU, false);
+    let gpu = run(On::COMPUTE, true);
+    for (b, (c, g)) in cpu.iter().zip(&gpu).enumerate() {
+        for (i, (x, y)) in c.iter().zip(g).enumerate() {
+            assert!(
+                (*x - *y).abs().max_element() <= 1e-4 * x.abs().max_element().max(1.0),
+                "buffer {b} pixel {i}: {x} {y}"
+            );
+        }
+    }
 }
