@@ -18,7 +18,8 @@
 //!   obvhs's direct build against our end-to-end build.
 //! - Also: primary rays on the bunny per backend, the tour's megakernel
 //!   link and pipeline times (`tour.rs`), lowering time per program
-//!   (`lowering.rs`).
+//!   (`lowering.rs`), the denoiser's time per megapixel and against a
+//!   1-spp launch (`denoise.rs`).
 //!
 //! Every ratio compares figures measured in this run, on this machine;
 //! higher is better for us.
@@ -35,6 +36,7 @@
 
 mod bunny;
 mod cli;
+mod denoise;
 mod embree;
 mod figures;
 mod gpu;
@@ -90,6 +92,12 @@ fn main() {
     figures::record_ratios(&mut json, &scene_figures);
 
     if !args.traversal_only {
+        let backends: Vec<_> = ["cpu", "wgpu"]
+            .into_iter()
+            .filter(|b| args.measures(b))
+            .filter_map(rt_runtime::Backend::from_name)
+            .collect();
+        denoise::measure(&backends, (width, height), reps, json.child("denoise"));
         lowering::measure(if args.quick { 5 } else { 20 }, json.child("lowering"));
     }
     // The tour's program sets on the wgpu backend.

@@ -14,20 +14,27 @@
 //! light`): its four vertices are read from the text and made a one-sided
 //! quad light facing into the box, with the emission of material `light`
 //! (`Ka 20 20 20`).
+//!
+//! Beside the picture, the camera writes what a denoiser needs
+//! ([`Aovs`]): the mean linear radiance, and the albedo and shading normal
+//! of each path's first hit, averaged over the samples.
 
 use crate::common::*;
 use crate::diffuse::facing_normal;
 use crate::mesh::{self, MeshError};
-use crate::scene::{Camera, Error, Scene, Settings, shared_scene};
+use crate::scene::{Aovs, Camera, Error, Scene, Settings, shared_scene};
 use glam::Vec3;
 use rt_runtime::{Acceleration, BufferType, Builder, Scope, TriangleMesh};
 use rt_std::prelude::*;
 
 /// Per-path state: what the path has gathered, its weight, where it goes
-/// next, its RNG state, its length and whether it has ended.
+/// next, its RNG state, its length and whether it has ended; and the
+/// albedo and shading normal of its first hit, the denoiser's guides.
 #[rt_payload]
 pub struct PathPrd {
     pub radiance: Vec3,
+    pub albedo: Vec3,
+    pub normal: Vec3,
     pub throughput: Vec3,
     pub origin: Vec3,
     pub direction: Vec3,
@@ -67,6 +74,9 @@ pub fn path_camera(
     #[var] top_object: Object,
     #[var] mut accum_buffer: RwBuffer2d<Vec4>,
     #[var] mut output_buffer: RwBuffer2d<Vec4>,
+    #[var] mut radiance_buffer: RwBuffer2d<Vec4>,
+    #[var] mut albedo_buffer: RwBuffer2d<Vec4>,
+    #[var] mut normal_buffer: RwBuffer2d<Vec4>,
 ) {
     let idx = launch_index();
     let dim = launch_dim();
@@ -75,6 +85,8 @@ pub fn path_camera(
     let d = (idx.as_vec2() + jitter) / dim.as_vec2() * 2.0 - Vec2::ONE;
     let mut prd = PathPrd {
         radiance: Vec3::ZERO,
+        albedo: Vec3::ZERO,
+        normal: Vec3::ZERO,
         throughput: Vec3::ONE,
         origin: eye,
         direction: (d.x * u + d.y * v + w).normalize(),
@@ -93,6 +105,12 @@ pub fn path_camera(
     acc += prd.radiance.extend(1.0);
     accum_buffer[idx] = acc;
     output_buffer[idx] = tonemap(acc.xyz() / acc.w, exposure).extend(1.0);
+    // The guides (AOVs), averaged over the frames as the radiance is.
+    let mean = acc.xyz() / acc.w;
+    radiance_buffer[idx] = mean.extend(1.0);
+    let keep = (acc.w - 1.0) / acc.w;
+    albedo_buffer[idx] = (albedo_buffer[idx].xyz() * keep + prd.albedo / acc.w).extend(1.0);
+    normal_buffer[idx] = (normal_buffer[idx].xyz() * keep + prd.normal / acc.w).extend(0.0);
 }
 
 /// Paths that leave the box end in the dark.
@@ -117,6 +135,8 @@ pub fn path_diffuse(
     let n = facing_normal(attr.shading_normal, attr.geometric_normal, ray.direction);
     if prd.depth == 0 {
         prd.radiance += prd.throughput * emission;
+        prd.albedo = kd;
+        prd.normal = n;
     }
     if emission.max_element() > 0.0 {
         prd.done = true;
@@ -227,6 +247,18 @@ fn build(settings: &Settings, loaded: mesh::LoadedMesh, text: &str, file: String
     camera(settings.aspect()).set_vars(&mut ctx, settings.aspect())?;
     let accum = ctx.create_buffer_2d::<Vec4>(BufferType::InputOutput, settings.width, settings.height)?;
     ctx.set_var(Scope::Context, "accum_buffer", accum)?;
+    let mut aov = || -> Result<_, Error> {
+        Ok(ctx.create_buffer_2d::<Vec4>(BufferType::InputOutput, settings.width, settings.height)?)
+    };
+    let aovs = Aovs { radiance: aov()?, albedo: aov()?, normal: aov()? };
+    // Read back only when asked for (a denoiser, `read_buffer`), not after
+    // every launch.
+    for b in [aovs.radiance, aovs.albedo, aovs.normal] {
+        ctx.set_buffer_device_local(b, true)?;
+    }
+    ctx.set_var(Scope::Context, "radiance_buffer", aovs.radiance)?;
+    ctx.set_var(Scope::Context, "albedo_buffer", aovs.albedo)?;
+    ctx.set_var(Scope::Context, "normal_buffer", aovs.normal)?;
     ctx.set_var(Scope::Context, "max_depth", MAX_DEPTH)?;
     ctx.set_var(Scope::Context, "exposure", EXPOSURE)?;
     ctx.set_var(Scope::Context, "light", light)?;
@@ -257,5 +289,6 @@ fn build(settings: &Settings, loaded: mesh::LoadedMesh, text: &str, file: String
     ctx.set_var(Scope::Context, "top_shadower", top)?;
     let mut scene = Scene::new(ctx, output, settings);
     scene.frames = settings.spp;
+    scene.aovs = Some(aovs);
     Ok(scene)
 }

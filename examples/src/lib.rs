@@ -47,6 +47,7 @@ pub mod callable_brdfs;
 pub mod common;
 pub mod convex_hull;
 pub mod cornell;
+pub mod denoised;
 pub mod diffuse;
 pub mod envmap;
 pub mod instances;
@@ -72,7 +73,7 @@ pub mod tutorial;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod viewer;
 
-pub use scene::{BackendChoice, Camera, Error, Image, Rendered, Scene, Settings};
+pub use scene::{Aovs, BackendChoice, Camera, Error, Image, Rendered, Scene, Settings};
 
 /// One example: its name (the tour's file name) and how to build its scene.
 pub struct Example {

@@ -322,6 +322,20 @@ pub struct Scene {
     /// rendered, so entry 0 sees what a whole render gives it (the
     /// receiver grid's rays, which entry 0 shows).
     pub pre_launch: Option<(u32, UVec2)>,
+    /// The guide outputs (AOVs) a denoiser reads, where the scene writes
+    /// them.
+    pub aovs: Option<Aovs>,
+}
+
+/// What a path-traced scene writes beside its picture for a denoiser
+/// ([`rt_runtime::postprocess`]): `width` x `height` `Vec4` buffers of the
+/// mean linear radiance, the first hit's albedo and its shading normal,
+/// each averaged over the samples so far (zero where a path hit nothing).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Aovs {
+    pub radiance: BufferId,
+    pub albedo: BufferId,
+    pub normal: BufferId,
 }
 
 /// One rendered picture and what it cost.
@@ -377,6 +391,7 @@ impl Scene {
             height: settings.height,
             frames: 1,
             pre_launch: None,
+            aovs: None,
         }
     }
 

@@ -23,6 +23,9 @@
 //! Both trace the same graphs (nested groups, transforms, selectors) with
 //! the same semantics, exceptions included: an entry point without an
 //! exception program gets the default one ([`Context::set_exception_program`]).
+//! After its launches a renderer runs post-processing stages
+//! ([`postprocess`]: a denoiser, a tonemapper), alone or with the launches
+//! in a command list ([`command_list`]).
 //!
 //! ## A first program
 //!
@@ -98,6 +101,7 @@
 pub mod accel;
 pub mod backend;
 pub mod buffer;
+pub mod command_list;
 pub mod context;
 mod env_settings;
 pub mod error;
@@ -106,6 +110,7 @@ pub mod image_out;
 pub(crate) mod link;
 pub mod motion;
 mod panics;
+pub mod postprocess;
 pub mod scene;
 pub mod texels;
 pub mod usage;
@@ -117,9 +122,11 @@ pub use backend::tiles::{DEFAULT_TILE_BUDGET, LaunchControl, LaunchProgress, Til
 pub use backend::wgpu::Traversal;
 pub use backend::{Backend, ExceptionRecord, LaunchReport, Timings};
 pub use buffer::{BufferType, generate_mip_levels, generate_mip_levels_3d};
+pub use command_list::{Command, CommandList, CommandProgress};
 pub use context::{Context, ExceptionKind, MipLevels, SamplerDescriptor, SamplerExtent, Scope, UsageCallback};
 pub use error::{Result, RtError};
 pub use motion::{MotionKeys, MotionTransform, Srt};
+pub use postprocess::{StageId, StageKind, StageValue};
 pub use scene::{
     BufferId, GeometryId, GeometryInstanceId, GeometryKind, MaterialId, NodeId, ProgramId, SamplerId, TriangleMesh,
 };

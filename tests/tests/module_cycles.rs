@@ -497,8 +497,10 @@ const RT_RUNTIME_LAYERS: &[&[&str]] = &[
     &["link"],
     &["accel"],
     &["backend"],
+    &["postprocess"],
     &["usage"],
     &["context", "image_out"],
+    &["command_list"],
     &[""],
 ];
 

@@ -2,6 +2,9 @@
 //! time and ray rate.
 //!
 //!     cargo run --release -p examples --bin tour -- --out out
+//!
+//! `--denoise` adds the denoiser's before and after where an example
+//! writes its guides (`cornell_noisy.png`, `cornell_denoised.png`).
 
 use clap::Parser;
 use examples::{BackendChoice, EXAMPLES, Settings, progress_bar};
@@ -31,6 +34,12 @@ struct Args {
     /// Render only these examples (by name; repeatable).
     #[arg(long = "only")]
     only: Vec<String>,
+    /// Also write, for the examples that write a denoiser's guides
+    /// (cornell), `<name>_noisy.png` and `<name>_denoised.png`: the
+    /// picture through the runtime's tonemapper, without and with its
+    /// denoiser (`examples::denoised`).
+    #[arg(long)]
+    denoise: bool,
 }
 
 fn main() -> ExitCode {
@@ -86,6 +95,16 @@ fn run(args: &Args) -> Result<(), String> {
             build_seconds,
             path.display()
         );
+        if args.denoise
+            && let Some((noisy, denoised)) =
+                examples::denoised::noisy_and_denoised(&mut scene).map_err(|e| format!("{}: {e}", example.name))?
+        {
+            for (suffix, image) in [("noisy", noisy), ("denoised", denoised)] {
+                let path = args.out.join(format!("{}_{suffix}.png", example.name));
+                image.save_png(&path).map_err(|e| e.to_string())?;
+                println!("{:<12} {}", "", path.display());
+            }
+        }
         if !rendered.exceptions.is_empty() {
             let first = rendered.exceptions[0];
             eprintln!(

@@ -160,6 +160,24 @@ impl Context {
         self.settings.tile_budget
     }
 
+    /// [`Context::launch_3d`], calling `progress` after every tile as
+    /// [`Context::launch_with_progress`] does (which may cancel it).
+    pub fn launch_3d_with_progress(
+        &mut self,
+        entry: u32,
+        width: u32,
+        height: u32,
+        depth: u32,
+        progress: &mut dyn FnMut(LaunchProgress) -> LaunchControl,
+    ) -> Result<LaunchReport> {
+        self.run_launch((entry, width, height, depth), None, Some(progress))
+    }
+
+    /// Whether entry point `entry` exists and has a ray generation program.
+    pub fn has_ray_generation_program(&self, entry: u32) -> bool {
+        self.scene.entry_points.get(entry as usize).is_some_and(|e| e.ray_generation.is_some())
+    }
+
     /// A 1D launch of `width` indices.
     pub fn launch_1d(&mut self, entry: u32, width: u32) -> Result<LaunchReport> {
         self.launch(entry, width, 1)

@@ -5,6 +5,7 @@
 //! primitives; `graph.rs` materials, instances, groups, transforms and
 //! selectors; `variables.rs` variables on scopes; `buffers.rs`,
 //! `samplers.rs` and `bindless.rs` data and its ids; `launch.rs` launches;
+//! `stages.rs` post-processing stages;
 //! `wgpu.rs` and `device_buffers.rs` what only the wgpu backend has.
 
 use crate::accel::cache::AccelCache;
@@ -25,6 +26,7 @@ mod graph;
 mod launch;
 mod programs;
 mod samplers;
+mod stages;
 mod variables;
 mod wgpu;
 pub use device_buffers::{DeviceBuffer, WgpuDevice};
@@ -55,6 +57,10 @@ pub struct Context {
     pace: Pace,
     /// Called after every launch ([`Context::set_usage_report`]).
     usage_report: Option<UsageCallback>,
+    /// Post-processing stages, by [`StageId`](crate::postprocess::StageId).
+    pub(crate) stages: Vec<crate::postprocess::Stage>,
+    /// The stages' pipelines on the wgpu device, once a stage ran there.
+    pub(crate) stage_pipelines: Option<crate::postprocess::gpu::Pipelines>,
 }
 
 /// A kind of exception whose checks [`Context::set_exception_enabled`]
@@ -126,6 +132,8 @@ impl Context {
             parked: Vec::new(),
             pace: Pace::default(),
             usage_report: None,
+            stages: Vec::new(),
+            stage_pipelines: None,
         }
     }
 

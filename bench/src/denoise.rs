@@ -1,0 +1,72 @@
+//! The denoiser's cost: on each backend, the path-traced Cornell box
+//! (the `examples` crate's, with its albedo and normal guides) at the
+//! bench's resolution, one launch of one sample a pixel and one run of
+//! the denoiser stage over what it wrote, each the median of `reps`
+//! after a first run that links and builds. Reported: the stage's time
+//! per megapixel, and `denoise_vs_launch`, the stage's time over the
+//! launch's (the goal on the wgpu backend: under 0.5).
+
+use crate::json::Json;
+use crate::peers::median;
+use examples::{Settings, cornell};
+use rt_runtime::{Backend, BufferType, Scope, StageKind};
+use std::time::{Duration, Instant};
+
+/// Measures each backend `backends` names into `json`'s children.
+pub fn measure(backends: &[Backend], (width, height): (u32, u32), reps: usize, json: &mut Json) {
+    eprintln!("\ndenoiser on the Cornell box at {width}x{height} (median of {reps}):");
+    for &backend in backends {
+        let j = json.child(backend.name());
+        match measure_on(backend, width, height, reps) {
+            Ok((launch, stage)) => {
+                let megapixels = (width * height) as f64 / 1e6;
+                let per_mpix = stage.as_secs_f64() * 1e3 / megapixels;
+                let ratio = stage.as_secs_f64() / launch.as_secs_f64();
+                eprintln!(
+                    "  {:5} 1-spp launch {:8.2} ms, denoise {:8.2} ms ({per_mpix:.2} ms per megapixel), denoise_vs_launch {ratio:.3}",
+                    backend.name(),
+                    launch.as_secs_f64() * 1e3,
+                    stage.as_secs_f64() * 1e3
+                );
+                j.set("launch_ms", launch.as_secs_f64() * 1e3);
+                j.set("denoise_ms", stage.as_secs_f64() * 1e3);
+                j.set("denoise_ms_per_megapixel", per_mpix);
+                j.set("denoise_vs_launch", ratio);
+            }
+            Err(e) => {
+                eprintln!("  {:5} failed: {e}", backend.name());
+                j.set("error", e.as_str());
+            }
+        }
+    }
+}
+
+/// The median time of a 1-spp launch and of the denoiser after it.
+fn measure_on(backend: Backend, width: u32, height: u32, reps: usize) -> Result<(Duration, Duration), String> {
+    let settings = Settings { backend, ..Settings::new(width, height).with_spp(1) };
+    let mut scene = cornell::scene(&settings).map_err(|e| e.to_string())?;
+    let aovs = scene.aovs.ok_or("the Cornell box writes no guides")?;
+    let ctx = &mut scene.ctx;
+    let e = |e: rt_runtime::RtError| e.to_string();
+    ctx.set_var(Scope::Context, "frame", 0u32).map_err(e)?;
+    let out = ctx.create_buffer_2d::<glam::Vec4>(BufferType::Output, width, height).map_err(e)?;
+    let stage = ctx.create_postprocessing_stage(StageKind::Denoiser);
+    ctx.set_stage_var(stage, "input_buffer", aovs.radiance).map_err(e)?;
+    ctx.set_stage_var(stage, "input_albedo_buffer", aovs.albedo).map_err(e)?;
+    ctx.set_stage_var(stage, "input_normal_buffer", aovs.normal).map_err(e)?;
+    ctx.set_stage_var(stage, "output_buffer", out).map_err(e)?;
+    let (mut launches, mut stages) = (Vec::new(), Vec::new());
+    for rep in 0..=reps {
+        let t = Instant::now();
+        ctx.launch(0, width, height).map_err(e)?;
+        let launched = t.elapsed();
+        let t = Instant::now();
+        ctx.run_stage(stage, width, height).map_err(e)?;
+        // The first of each links, builds and compiles.
+        if rep > 0 {
+            launches.push(launched);
+            stages.push(t.elapsed());
+        }
+    }
+    Ok((median(launches), median(stages)))
+}

@@ -1,0 +1,189 @@
+//! Command lists: OptiX 6's `RTcommandlist`, a renderer's frame as one
+//! object: launches (1D, 2D, 3D) and post-processing stages
+//! ([`crate::postprocess`]) appended in order, checked once by
+//! [`CommandList::finalize`], run as often as wanted by
+//! [`CommandList::execute`].
+//!
+//! ```text
+//! let mut list = CommandList::new();
+//! list.append_launch_2d(0, width, height)?;
+//! list.append_stage(denoiser, width, height)?;
+//! list.append_stage(tonemapper, width, height)?;
+//! list.finalize(&ctx)?;
+//! list.execute(&mut ctx)?;   // every frame
+//! ```
+//!
+//! What a list gives is what running its commands one by one gives
+//! ([`Context::launch_3d`], [`Context::run_stage`]): each launch runs
+//! through the one launch path, tiled under the context's budget, and
+//! each stage on the backend the context launches on. On the wgpu
+//! backend that is one submission a launch tile and one a stage, not one
+//! for the whole list: the launch path reads a launch's outputs back
+//! before the next command (device-local buffers,
+//! [`Context::set_buffer_device_local`], stay on the device).
+
+use crate::backend::LaunchReport;
+use crate::backend::tiles::{LaunchControl, LaunchProgress};
+use crate::context::Context;
+use crate::error::{Result, RtError};
+use crate::postprocess::StageId;
+
+/// One command of a list.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Command {
+    /// A launch of entry point `entry` over `width` x `height` x `depth`
+    /// indices (`depth` 1 for 1D and 2D launches, `height` 1 for 1D).
+    Launch { entry: u32, width: u32, height: u32, depth: u32 },
+    /// A post-processing stage run over `width` x `height` pixels.
+    Stage { stage: StageId, width: u32, height: u32 },
+}
+
+/// A list of launches and stages (OptiX's `RTcommandlist`): appended to,
+/// then finalized, then executed.
+#[derive(Clone, Debug, Default)]
+pub struct CommandList {
+    commands: Vec<Command>,
+    finalized: bool,
+}
+
+/// Where [`CommandList::execute_with_progress`] stands: in command
+/// `command` of `commands` (a launch), with that launch's progress.
+#[derive(Clone, Copy, Debug)]
+pub struct CommandProgress {
+    pub command: usize,
+    pub commands: usize,
+    pub launch: LaunchProgress,
+}
+
+impl CommandList {
+    /// An empty list.
+    #[doc(alias = "rtCommandListCreate")]
+    pub fn new() -> CommandList {
+        CommandList::default()
+    }
+
+    /// The commands, in order.
+    pub fn commands(&self) -> &[Command] {
+        &self.commands
+    }
+
+    /// Whether [`CommandList::finalize`] succeeded.
+    pub fn is_finalized(&self) -> bool {
+        self.finalized
+    }
+
+    /// Appends a 1D launch.
+    #[doc(alias = "rtCommandListAppendLaunch1D")]
+    pub fn append_launch_1d(&mut self, entry: u32, width: u32) -> Result<()> {
+        self.append(Command::Launch { entry, width, height: 1, depth: 1 })
+    }
+
+    /// Appends a 2D launch.
+    #[doc(alias = "rtCommandListAppendLaunch2D")]
+    pub fn append_launch_2d(&mut self, entry: u32, width: u32, height: u32) -> Result<()> {
+        self.append(Command::Launch { entry, width, height, depth: 1 })
+    }
+
+    /// Appends a 3D launch.
+    #[doc(alias = "rtCommandListAppendLaunch3D")]
+    pub fn append_launch_3d(&mut self, entry: u32, width: u32, height: u32, depth: u32) -> Result<()> {
+        self.append(Command::Launch { entry, width, height, depth })
+    }
+
+    /// Appends stage `stage`, run over `width` x `height` pixels.
+    #[doc(alias = "rtCommandListAppendPostprocessingStage")]
+    pub fn append_stage(&mut self, stage: StageId, width: u32, height: u32) -> Result<()> {
+        self.append(Command::Stage { stage, width, height })
+    }
+
+    /// Adds a command, unless the list is finalized: then the error names
+    /// the command, and the list is unchanged.
+    fn append(&mut self, command: Command) -> Result<()> {
+        if self.finalized {
+            let what = match command {
+                Command::Launch { entry, .. } => format!("a launch of entry point {entry}"),
+                Command::Stage { stage, .. } => format!("post-processing stage {}", stage.index()),
+            };
+            return Err(RtError::BadCommandList {
+                problem: format!(
+                    "{what} was appended after the list was finalized; a finalized list is fixed: make a new one"
+                ),
+            });
+        }
+        self.commands.push(command);
+        Ok(())
+    }
+
+    /// Checks every command against `ctx` and fixes the list: launches
+    /// name existing entry points with a ray generation program and at
+    /// least one index a dimension; stages' buffers are set, float RGBA
+    /// and of the size appended ([`RtError::BadStage`] names the stage
+    /// and the variable at fault). A list that fails stays open.
+    #[doc(alias = "rtCommandListFinalize")]
+    pub fn finalize(&mut self, ctx: &Context) -> Result<()> {
+        for (i, command) in self.commands.iter().enumerate() {
+            check(ctx, i, *command)?;
+        }
+        self.finalized = true;
+        Ok(())
+    }
+
+    /// Runs the commands in order on `ctx`, returning each launch's
+    /// report. The list must be finalized. Stages are checked again as
+    /// they run (their buffers may have changed since); a command that
+    /// fails stops the list there, with the commands before it done, as
+    /// running them one by one would leave them.
+    #[doc(alias = "rtCommandListExecute")]
+    pub fn execute(&self, ctx: &mut Context) -> Result<Vec<LaunchReport>> {
+        self.execute_with_progress(ctx, |_| LaunchControl::Continue)
+    }
+
+    /// [`CommandList::execute`], calling `progress` after every tile of
+    /// every launch; its answer may cancel the launch (which then fails
+    /// with [`RtError::LaunchCancelled`], its buffers as they were) and
+    /// with it the rest of the list.
+    pub fn execute_with_progress(
+        &self,
+        ctx: &mut Context,
+        mut progress: impl FnMut(CommandProgress) -> LaunchControl,
+    ) -> Result<Vec<LaunchReport>> {
+        if !self.finalized {
+            return Err(RtError::BadCommandList { problem: "executed before it was finalized".into() });
+        }
+        let mut reports = Vec::new();
+        let commands = self.commands.len();
+        for (command, c) in self.commands.iter().enumerate() {
+            match *c {
+                Command::Launch { entry, width, height, depth } => {
+                    let mut each = |launch| progress(CommandProgress { command, commands, launch });
+                    reports.push(ctx.launch_3d_with_progress(entry, width, height, depth, &mut each)?);
+                }
+                Command::Stage { stage, width, height } => ctx.run_stage(stage, width, height)?,
+            }
+        }
+        Ok(reports)
+    }
+}
+
+/// Checks command `i` against `ctx`.
+fn check(ctx: &Context, i: usize, command: Command) -> Result<()> {
+    match command {
+        Command::Launch { entry, width, height, depth } => {
+            let count = ctx.entry_point_count();
+            let problem = if entry >= count {
+                Some(format!("entry point {entry} does not exist: the context has {count}"))
+            } else if !ctx.has_ray_generation_program(entry) {
+                Some(format!("entry point {entry} has no ray generation program"))
+            } else if width == 0 || height == 0 || depth == 0 {
+                Some(format!("{width}x{height}x{depth} has no index; a launch needs at least one a dimension"))
+            } else {
+                None
+            };
+            match problem {
+                Some(p) => Err(RtError::BadCommandList { problem: format!("command {i} (a launch): {p}") }),
+                None => Ok(()),
+            }
+        }
+        Command::Stage { stage, width, height } => ctx.plan_stage(stage, Some((width, height))).map(|_| ()),
+    }
+}

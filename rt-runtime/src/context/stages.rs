@@ -1,0 +1,105 @@
+//! Post-processing stages ([`crate::postprocess`]): creating them, setting
+//! their variables, running one.
+
+use super::Context;
+use crate::backend::Backend;
+use crate::error::{Result, RtError};
+use crate::postprocess::gpu::Pipelines;
+use crate::postprocess::{Pixels, Plan, Stage, StageId, StageKind, StageValue};
+use glam::Vec4;
+
+impl Context {
+    /// A built-in post-processing stage of kind `kind`, its variables
+    /// unset (settings at their defaults).
+    pub fn create_postprocessing_stage(&mut self, kind: StageKind) -> StageId {
+        self.stages.push(Stage::new(kind));
+        StageId(self.stages.len() as u32 - 1)
+    }
+
+    /// A built-in stage by OptiX's name (`DLDenoiser`, `TonemapperSimple`)
+    /// or this project's (`denoiser`, `tonemapper`); an unknown name is an
+    /// error naming it.
+    #[doc(alias = "rtPostProcessingStageCreateBuiltin")]
+    pub fn create_builtin_postprocessing_stage(&mut self, name: &str) -> Result<StageId> {
+        match StageKind::from_name(name) {
+            Some(kind) => Ok(self.create_postprocessing_stage(kind)),
+            None => Err(RtError::Unsupported {
+                asked: "a built-in post-processing stage",
+                why: format!(
+                    "there is none named `{name}`: the built-ins are `DLDenoiser` (`denoiser`) and `TonemapperSimple` (`tonemapper`)"
+                ),
+            }),
+        }
+    }
+
+    /// Sets variable `name` of `stage` (OptiX's
+    /// `rtPostProcessingStageDeclareVariable` and `rtVariableSet*`): a
+    /// buffer (`input_buffer`, ...) or a number (`blend`, `exposure`,
+    /// `gamma`). A name the stage does not have, or a value of the other
+    /// sort, is an error naming both; nothing is changed then.
+    #[doc(alias = "rtPostProcessingStageDeclareVariable")]
+    pub fn set_stage_var(&mut self, stage: StageId, name: &str, value: impl Into<StageValue>) -> Result<()> {
+        let s = self.stage_mut(stage)?;
+        s.set(stage, name, value.into())
+    }
+
+    /// The value of `stage`'s variable `name`, if set.
+    pub fn stage_var(&self, stage: StageId, name: &str) -> Result<Option<StageValue>> {
+        Ok(self.stage(stage)?.vars.get(name).copied())
+    }
+
+    /// The kind of `stage`.
+    pub fn stage_kind(&self, stage: StageId) -> Result<StageKind> {
+        Ok(self.stage(stage)?.kind)
+    }
+
+    /// Runs `stage` over `width` x `height` pixels, the size its buffers
+    /// must have, into its `output_buffer`: on the wgpu backend as compute
+    /// passes on the context's device (one submission; the stage's images
+    /// go up to the device and its output comes back to the host buffer),
+    /// on the CPU backend natively. The
+    /// stage is checked first ([`RtError::BadStage`] naming the variable
+    /// at fault); a stage that fails writes nothing.
+    pub fn run_stage(&mut self, stage: StageId, width: u32, height: u32) -> Result<()> {
+        let plan = self.plan_stage(stage, Some((width, height)))?;
+        self.run_plan(&plan)
+    }
+
+    pub(crate) fn stage(&self, stage: StageId) -> Result<&Stage> {
+        self.stages.get(stage.0 as usize).ok_or_else(|| RtError::InvalidHandle(format!("{stage:?}")))
+    }
+
+    fn stage_mut(&mut self, stage: StageId) -> Result<&mut Stage> {
+        self.stages.get_mut(stage.0 as usize).ok_or_else(|| RtError::InvalidHandle(format!("{stage:?}")))
+    }
+
+    /// `stage` checked against the context's buffers for a run at `size`.
+    pub(crate) fn plan_stage(&self, stage: StageId, size: Option<(u32, u32)>) -> Result<Plan> {
+        self.stage(stage)?.plan(stage, &self.scene.buffers, size)
+    }
+
+    /// Runs a checked stage and writes its output buffer.
+    pub(crate) fn run_plan(&mut self, plan: &Plan) -> Result<()> {
+        let guides = match plan.guides {
+            Some((albedo, normal)) => Some((self.read_buffer::<Vec4>(albedo)?, self.read_buffer::<Vec4>(normal)?)),
+            None => None,
+        };
+        let pixels = Pixels { input: self.read_buffer::<Vec4>(plan.input)?, guides };
+        let out = match self.backend() {
+            Backend::Wgpu => self.run_on_wgpu(plan, &pixels)?,
+            _ => plan.run_cpu(&pixels),
+        };
+        self.write_buffer(plan.output, &out)
+    }
+
+    /// Runs a checked stage's passes on the wgpu device (opened first if
+    /// no launch opened it yet).
+    fn run_on_wgpu(&mut self, plan: &Plan, pixels: &Pixels) -> Result<Vec<Vec4>> {
+        self.open_wgpu()?;
+        let handles = self.wgpu_device().ok_or_else(|| RtError::Gpu("no device after opening one".into()))?;
+        if !self.stage_pipelines.as_ref().is_some_and(|p| p.on(&handles.device)) {
+            self.stage_pipelines = Some(Pipelines::new(&handles.device)?);
+        }
+        self.stage_pipelines.as_ref().expect("made above").run(&handles.queue, plan, pixels)
+    }
+}

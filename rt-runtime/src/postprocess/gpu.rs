@@ -1,0 +1,213 @@
+//! The stages on a wgpu device: the passes of `gpu/stages.wgsl` (the
+//! same arithmetic as [`super::denoise`] and [`super::tonemap`]) as plain
+//! compute passes, all of a stage in one submission: the stage's images
+//! are uploaded to storage buffers, every pass runs (the denoiser's
+//! prepare, its à-trous passes ping-ponging between two buffers, finish;
+//! or the tonemapper's one), and the output is read back. The pipelines
+//! are made once per device ([`Pipelines`]).
+
+use super::denoise::Tuning;
+use super::{Pixels, Plan, StageKind};
+use crate::error::{Result, RtError};
+use glam::Vec4;
+use wgpu::util::DeviceExt;
+
+const WGSL: &str = include_str!("gpu/stages.wgsl");
+
+/// The stages' pipelines on one device.
+pub(crate) struct Pipelines {
+    device: wgpu::Device,
+    layout: wgpu::BindGroupLayout,
+    prepare: wgpu::ComputePipeline,
+    atrous: wgpu::ComputePipeline,
+    finish: wgpu::ComputePipeline,
+    tonemap: wgpu::ComputePipeline,
+}
+
+impl Pipelines {
+    /// Whether these were made on `device`.
+    pub fn on(&self, device: &wgpu::Device) -> bool {
+        self.device == *device
+    }
+
+    /// The stages' pipelines on `device`.
+    pub fn new(device: &wgpu::Device) -> Result<Pipelines> {
+        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("rt post-processing stages"),
+            source: wgpu::ShaderSource::Wgsl(WGSL.into()),
+        });
+        let storage = |binding, read_only| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::COMPUTE,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Storage { read_only },
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+            count: None,
+        };
+        let uniform = wgpu::BindGroupLayoutEntry {
+            binding: 0,
+            visibility: wgpu::ShaderStages::COMPUTE,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Uniform,
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+            count: None,
+        };
+        let entries =
+            [uniform, storage(1, true), storage(2, true), storage(3, true), storage(4, true), storage(5, false)];
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("rt post-processing stages"),
+            entries: &entries,
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("rt post-processing stages"),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let pipeline = |entry: &str| {
+            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(entry),
+                layout: Some(&pipeline_layout),
+                module: &module,
+                entry_point: Some(entry),
+                compilation_options: Default::default(),
+                cache: None,
+            })
+        };
+        let made = Pipelines {
+            device: device.clone(),
+            prepare: pipeline("prepare"),
+            atrous: pipeline("atrous"),
+            finish: pipeline("finish"),
+            tonemap: pipeline("tonemap"),
+            layout,
+        };
+        match crate::backend::futures::block(async { Ok(scope.pop().await) })? {
+            Some(e) => Err(RtError::Gpu(format!("the post-processing stages' WGSL does not compile: {e}"))),
+            None => Ok(made),
+        }
+    }
+
+    /// Runs `plan` over `pixels` on `queue`, returning its output.
+    pub fn run(&self, queue: &wgpu::Queue, plan: &Plan, pixels: &Pixels) -> Result<Vec<Vec4>> {
+        let device = &self.device;
+        let n = (plan.width * plan.height) as usize;
+        let bytes = (n * 16) as u64;
+        let upload = |label, px: &[Vec4]| {
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents: &px.iter().flat_map(|p| p.to_array()).flat_map(f32::to_le_bytes).collect::<Vec<u8>>(),
+                usage: wgpu::BufferUsages::STORAGE,
+            })
+        };
+        let scratch = |label| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: bytes,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: false,
+            })
+        };
+        let empty = upload("rt stage: unused", &[Vec4::ZERO]);
+        let color = upload("rt stage: input", &pixels.input);
+        let (albedo, normal) = match &pixels.guides {
+            Some((a, n)) => (upload("rt stage: albedo", a), upload("rt stage: normal", n)),
+            None => (upload("rt stage: unused", &[Vec4::ZERO]), upload("rt stage: unused", &[Vec4::ZERO])),
+        };
+        let (a, b) = (scratch("rt stage: ping"), scratch("rt stage: pong"));
+        let t = Tuning::default();
+        let mut encoder = device.create_command_encoder(&Default::default());
+        let mut pass = |pipeline: &wgpu::ComputePipeline, step: i32, src: &wgpu::Buffer, dst: &wgpu::Buffer| {
+            let settings = [plan.settings[0], plan.settings.get(1).copied().unwrap_or(0.0)];
+            let params = params(plan, step, &t, settings);
+            let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("rt stage: params"),
+                contents: &params,
+                usage: wgpu::BufferUsages::UNIFORM,
+            });
+            let buffers = [&uniform, &color, &albedo, &normal, src, dst];
+            let entries: Vec<_> = buffers
+                .iter()
+                .enumerate()
+                .map(|(i, b)| wgpu::BindGroupEntry { binding: i as u32, resource: b.as_entire_binding() })
+                .collect();
+            let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: None,
+                layout: &self.layout,
+                entries: &entries,
+            });
+            let mut cpass = encoder.begin_compute_pass(&Default::default());
+            cpass.set_pipeline(pipeline);
+            cpass.set_bind_group(0, &group, &[]);
+            cpass.dispatch_workgroups(plan.width.div_ceil(8), plan.height.div_ceil(8), 1);
+        };
+        let out = match plan.kind {
+            StageKind::Denoiser => {
+                pass(&self.prepare, 0, &empty, &a);
+                let (mut src, mut dst) = (&a, &b);
+                for i in 0..t.iterations {
+                    pass(&self.atrous, 1 << i, src, dst);
+                    std::mem::swap(&mut src, &mut dst);
+                }
+                pass(&self.finish, 0, src, dst);
+                dst
+            }
+            StageKind::Tonemapper => {
+                pass(&self.tonemap, 0, &empty, &a);
+                &a
+            }
+        };
+        let staging = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("rt stage: read-back"),
+            size: bytes,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        encoder.copy_buffer_to_buffer(out, 0, &staging, 0, bytes);
+        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        queue.submit([encoder.finish()]);
+        let slice = staging.slice(..);
+        let (sender, receiver) = std::sync::mpsc::channel();
+        slice.map_async(wgpu::MapMode::Read, move |r| {
+            let _ = sender.send(r);
+        });
+        let gpu_err = |what: &str, e: String| RtError::Gpu(format!("running a post-processing stage: {what}: {e}"));
+        device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| gpu_err("waiting", e.to_string()))?;
+        if let Some(e) = crate::backend::futures::block(async { Ok(scope.pop().await) })? {
+            return Err(gpu_err("validation", e.to_string()));
+        }
+        match receiver.recv() {
+            Ok(Ok(())) => {}
+            Ok(Err(e)) => return Err(gpu_err("reading back", e.to_string())),
+            Err(e) => return Err(gpu_err("reading back", e.to_string())),
+        }
+        let mapped = slice.get_mapped_range().map_err(|e| gpu_err("reading back", e.to_string()))?;
+        let floats: Vec<f32> = mapped.chunks_exact(4).map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
+        drop(mapped);
+        staging.unmap();
+        Ok(floats.chunks_exact(4).map(Vec4::from_slice).collect())
+    }
+}
+
+/// The `Params` uniform of `stages.wgsl` for one pass.
+fn params(plan: &Plan, step: i32, t: &Tuning, [first, second]: [f32; 2]) -> Vec<u8> {
+    let words: [u32; 12] = [
+        plan.width,
+        plan.height,
+        step as u32,
+        t.variance_radius as u32,
+        t.sigma_luminance.to_bits(),
+        t.sigma_normal.to_bits(),
+        t.sigma_albedo.to_bits(),
+        first.to_bits(),
+        second.to_bits(),
+        0,
+        0,
+        0,
+    ];
+    words.iter().flat_map(|w| w.to_le_bytes()).collect()
+}

@@ -1,0 +1,226 @@
+//! Command lists (OptiX 6's `RTcommandlist`): a list of a launch, the
+//! denoiser and the tonemapper gives what running them one by one gives,
+//! bit for bit, on every backend; launches in it are tiled and cancelled
+//! as any; and a list used out of order, or holding a command that does
+//! not fit, is refused with an error naming the command, stage and
+//! variable.
+
+use rt_runtime::*;
+use rt_std::prelude::*;
+use rt_tests::targets::On;
+
+/// A noisy picture of two surfaces (left half and right half): colour
+/// from a hash of the launch index and `frame`, albedo and normal per
+/// half.
+#[rt_program(ray_generation)]
+pub fn noisy(
+    #[var] frame: u32,
+    #[var] mut color: RwBuffer2d<Vec4>,
+    #[var] mut albedo: RwBuffer2d<Vec4>,
+    #[var] mut normal: RwBuffer2d<Vec4>,
+) {
+    let idx = launch_index();
+    let dim = launch_dim();
+    let mut h = (idx.x * 73856093) ^ (idx.y * 19349663) ^ (frame * 83492791);
+    h = (h ^ (h >> 13)) * 1274126177;
+    h = h ^ (h >> 16);
+    let noise = (h & 1023) as f32 / 1023.0;
+    let left = idx.x < dim.x / 2;
+    let mut base = 0.8;
+    let mut n = Vec3::Y;
+    if left {
+        base = 0.2;
+        n = Vec3::X;
+    }
+    color[idx] = Vec4::new(base * 2.0 * noise, base, base * noise, 1.0);
+    albedo[idx] = Vec4::new(0.5, 0.5, 0.5, 1.0);
+    normal[idx] = n.extend(0.0);
+}
+
+const W: u32 = 24;
+const H: u32 = 16;
+
+struct Frame {
+    ctx: Context,
+    buffers: [BufferId; 5],
+    denoiser: StageId,
+    tonemapper: StageId,
+}
+
+/// A context with `noisy` as entry point 0 and a denoiser and tonemapper
+/// over its buffers (colour, albedo, normal, denoised, display).
+fn frame(on: On) -> Frame {
+    frame_with(on, false)
+}
+
+/// [`frame`], its launch's outputs kept on the device when `device_local`.
+fn frame_with(on: On, device_local: bool) -> Frame {
+    let mut ctx = on.context();
+    ctx.set_ray_type_count(0);
+    let p = ctx.create_program(&noisy::PROGRAM);
+    ctx.set_ray_generation_program(0, p).unwrap();
+    ctx.set_var(Scope::Context, "frame", 3u32).unwrap();
+    let mut image = || ctx.create_buffer_2d::<Vec4>(BufferType::InputOutput, W, H).unwrap();
+    let buffers = [image(), image(), image(), image(), image()];
+    let [color, albedo, normal, denoised, display] = buffers;
+    for (name, b) in [("color", color), ("albedo", albedo), ("normal", normal)] {
+        ctx.set_var(Scope::Context, name, b).unwrap();
+        ctx.set_buffer_device_local(b, device_local).unwrap();
+    }
+    let denoiser = ctx.create_postprocessing_stage(StageKind::Denoiser);
+    ctx.set_stage_var(denoiser, "input_buffer", color).unwrap();
+    ctx.set_stage_var(denoiser, "input_albedo_buffer", albedo).unwrap();
+    ctx.set_stage_var(denoiser, "input_normal_buffer", normal).unwrap();
+    ctx.set_stage_var(denoiser, "output_buffer", denoised).unwrap();
+    let tonemapper = ctx.create_builtin_postprocessing_stage("TonemapperSimple").unwrap();
+    ctx.set_stage_var(tonemapper, "input_buffer", denoised).unwrap();
+    ctx.set_stage_var(tonemapper, "output_buffer", display).unwrap();
+    ctx.set_stage_var(tonemapper, "exposure", 2.0f32).unwrap();
+    Frame { ctx, buffers, denoiser, tonemapper }
+}
+
+fn read(ctx: &Context, buffers: &[BufferId]) -> Vec<Vec<Vec4>> {
+    buffers.iter().map(|&b| ctx.read_buffer::<Vec4>(b).unwrap()).collect()
+}
+
+#[test]
+fn a_list_gives_what_its_commands_give_one_by_one() {
+    for on in [On::CPU, On::COMPUTE] {
+        let mut one_by_one = frame(on);
+        one_by_one.ctx.launch(0, W, H).unwrap();
+        one_by_one.ctx.run_stage(one_by_one.denoiser, W, H).unwrap();
+        one_by_one.ctx.run_stage(one_by_one.tonemapper, W, H).unwrap();
+        let want = read(&one_by_one.ctx, &one_by_one.buffers);
+
+        let Frame { mut ctx, buffers, denoiser, tonemapper } = frame(on);
+        // Small tiles: a list's launches are cut as any launch is.
+        ctx.set_tile_budget(TileBudget::Indices(64));
+        let mut list = CommandList::new();
+        list.append_launch_2d(0, W, H).unwrap();
+        list.append_stage(denoiser, W, H).unwrap();
+        list.append_stage(tonemapper, W, H).unwrap();
+        list.finalize(&ctx).unwrap();
+        let reports = list.execute(&mut ctx).unwrap();
+        assert_eq!(reports.len(), 1);
+        assert!(reports[0].tiles > 1, "{} tiles", reports[0].tiles);
+        let got = read(&ctx, &buffers);
+        assert_eq!(got, want, "{}", on.name());
+        // The stages did something: the display is the tonemapped denoised colour.
+        assert_ne!(got[3], got[0]);
+        assert!(got[4].iter().all(|p| p.max_element() <= 1.0));
+        // Executed again, it gives the same.
+        list.execute(&mut ctx).unwrap();
+        assert_eq!(read(&ctx, &buffers), want, "{}", on.name());
+    }
+}
+
+#[test]
+fn a_cancelled_launch_stops_the_list_before_its_stages() {
+    let Frame { mut ctx, buffers, denoiser, .. } = frame(On::CPU);
+    ctx.set_tile_budget(TileBudget::Indices(64));
+    let mut list = CommandList::new();
+    list.append_launch_2d(0, W, H).unwrap();
+    list.append_stage(denoiser, W, H).unwrap();
+    list.finalize(&ctx).unwrap();
+    let mut seen = Vec::new();
+    let e = list
+        .execute_with_progress(&mut ctx, |p| {
+            seen.push((p.command, p.commands));
+            LaunchControl::Cancel
+        })
+        .unwrap_err();
+    assert!(matches!(e, RtError::LaunchCancelled { entry: 0, .. }), "{e}");
+    assert_eq!(seen, vec![(0, 2)]);
+    for pixels in read(&ctx, &buffers) {
+        assert_eq!(pixels, vec![Vec4::ZERO; (W * H) as usize], "a cancelled list leaves its buffers as they were");
+    }
+}
+
+#[test]
+fn a_list_used_out_of_order_is_refused_and_keeps_its_commands() {
+    let Frame { mut ctx, denoiser, tonemapper, .. } = frame(On::CPU);
+    let mut list = CommandList::new();
+    list.append_launch_2d(0, W, H).unwrap();
+    let e = list.execute(&mut ctx).unwrap_err().to_string();
+    assert_eq!(e, "command list: executed before it was finalized");
+    list.append_stage(denoiser, W, H).unwrap();
+    list.finalize(&ctx).unwrap();
+    let e = list.append_stage(tonemapper, W, H).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "command list: post-processing stage 1 was appended after the list was finalized; a finalized list is fixed: make a new one"
+    );
+    assert!(matches!(e, RtError::BadCommandList { .. }));
+    assert_eq!(list.commands().len(), 2, "nothing lost, nothing added");
+    assert!(list.is_finalized());
+    list.execute(&mut ctx).unwrap();
+}
+
+#[test]
+fn finalize_names_the_stage_and_variable_or_the_launch_at_fault() {
+    let Frame { mut ctx, denoiser, .. } = frame(On::CPU);
+    let mut list = CommandList::new();
+    list.append_launch_2d(0, W, H).unwrap();
+    list.append_stage(denoiser, W, H + 8).unwrap();
+    match list.finalize(&ctx).unwrap_err() {
+        RtError::BadStage { stage, variable, problem } => {
+            assert_eq!((stage.as_str(), variable.as_str()), ("0 (`denoiser`)", "input_buffer"));
+            assert_eq!(problem, format!("is buffer 0 of {W}x{H} elements, but the stage runs at {W}x{}", H + 8));
+        }
+        other => panic!("{other:?}"),
+    }
+    assert!(!list.is_finalized(), "a list that fails to finalize stays open");
+
+    let ints = ctx.create_buffer_2d::<f32>(BufferType::Output, W, H).unwrap();
+    ctx.set_stage_var(denoiser, "output_buffer", ints).unwrap();
+    let mut list = CommandList::new();
+    list.append_stage(denoiser, W, H).unwrap();
+    match list.finalize(&ctx).unwrap_err() {
+        RtError::BadStage { variable, problem, .. } => {
+            assert_eq!(variable, "output_buffer");
+            assert!(problem.contains("holds `f32`"), "{problem}");
+        }
+        other => panic!("{other:?}"),
+    }
+
+    for (entry, size, want) in [
+        (1, (W, H), "command list: command 0 (a launch): entry point 1 does not exist: the context has 1"),
+        (0, (0, H), "command list: command 0 (a launch): 0x16x1 has no index; a launch needs at least one a dimension"),
+    ] {
+        let mut list = CommandList::new();
+        list.append_launch_2d(entry, size.0, size.1).unwrap();
+        assert_eq!(list.finalize(&ctx).unwrap_err().to_string(), want);
+    }
+    ctx.set_entry_point_count(2);
+    let mut list = CommandList::new();
+    list.append_launch_1d(1, 4).unwrap();
+    let e = list.finalize(&ctx).unwrap_err().to_string();
+    assert_eq!(e, "command list: command 0 (a launch): entry point 1 has no ray generation program");
+}
+
+/// A list on the wgpu backend whose launch leaves its outputs on the
+/// device (device-local buffers): its stages read them from there, and
+/// the pictures are the CPU backend's within 1e-4.
+#[test]
+fn stages_read_a_launchs_device_local_outputs() {
+    let run = |on: On, device_local: bool| {
+        let Frame { mut ctx, buffers, denoiser, tonemapper } = frame_with(on, device_local);
+        let mut list = CommandList::new();
+        list.append_launch_2d(0, W, H).unwrap();
+        list.append_stage(denoiser, W, H).unwrap();
+        list.append_stage(tonemapper, W, H).unwrap();
+        list.finalize(&ctx).unwrap();
+        list.execute(&mut ctx).unwrap();
+        read(&ctx, &buffers)
+    };
+    let cpu = run(On::CPU, false);
+    let gpu = run(On::COMPUTE, true);
+    for (b, (c, g)) in cpu.iter().zip(&gpu).enumerate() {
+        for (i, (x, y)) in c.iter().zip(g).enumerate() {
+            assert!(
+                (*x - *y).abs().max_element() <= 1e-4 * x.abs().max_element().max(1.0),
+                "buffer {b} pixel {i}: {x} {y}"
+            );
+        }
+    }
+}
