@@ -33,9 +33,25 @@ use crate::postprocess::StageId;
 pub enum Command {
     /// A launch of entry point `entry` over `width` x `height` x `depth`
     /// indices (`depth` 1 for 1D and 2D launches, `height` 1 for 1D).
-    Launch { entry: u32, width: u32, height: u32, depth: u32 },
+    Launch {
+        /// The entry point.
+        entry: u32,
+        /// Launch indices along x.
+        width: u32,
+        /// Along y (1 for a 1D launch).
+        height: u32,
+        /// Along z (1 for 1D and 2D launches).
+        depth: u32,
+    },
     /// A post-processing stage run over `width` x `height` pixels.
-    Stage { stage: StageId, width: u32, height: u32 },
+    Stage {
+        /// The stage.
+        stage: StageId,
+        /// Pixels per row.
+        width: u32,
+        /// Rows.
+        height: u32,
+    },
 }
 
 /// A list of launches and stages (OptiX's `RTcommandlist`): appended to,
@@ -50,8 +66,11 @@ pub struct CommandList {
 /// `command` of `commands` (a launch), with that launch's progress.
 #[derive(Clone, Copy, Debug)]
 pub struct CommandProgress {
+    /// The command running, from 0.
     pub command: usize,
+    /// The list's commands.
     pub commands: usize,
+    /// The running launch's own progress.
     pub launch: LaunchProgress,
 }
 

@@ -61,10 +61,15 @@ const KERNEL: [f32; 5] = [1.0 / 16.0, 1.0 / 4.0, 3.0 / 8.0, 1.0 / 4.0, 1.0 / 16.
 
 /// A denoiser's images, row-major, `width * height` pixels each.
 pub struct Guided<'a> {
+    /// Pixels per row.
     pub width: usize,
+    /// Rows.
     pub height: usize,
+    /// The noisy image.
     pub color: &'a [Vec4],
+    /// The first hit's albedo (a guide).
     pub albedo: &'a [Vec4],
+    /// The first hit's shading normal (a guide).
     pub normal: &'a [Vec4],
 }
 

@@ -52,6 +52,8 @@ pub enum StageKind {
 impl StageKind {
     /// The kind OptiX's built-in name (`DLDenoiser`, `TonemapperSimple`)
     /// or this project's (`denoiser`, `tonemapper`) names.
+    /// The kind OptiX's name (`DLDenoiser`, `TonemapperSimple`) or this
+    /// crate's (`denoiser`, `tonemapper`) names.
     pub fn from_name(name: &str) -> Option<StageKind> {
         match name {
             "DLDenoiser" | "denoiser" => Some(StageKind::Denoiser),
@@ -60,6 +62,7 @@ impl StageKind {
         }
     }
 
+    /// This crate's name of the kind.
     pub fn name(self) -> &'static str {
         match self {
             StageKind::Denoiser => "denoiser",
@@ -87,7 +90,9 @@ const OUTPUT: &str = "output_buffer";
 /// A stage variable's value: a buffer or a number.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum StageValue {
+    /// A buffer (`input_buffer`, `output_buffer`, ...).
     Buffer(BufferId),
+    /// A setting (`blend`, `exposure`, `gamma`).
     Float(f32),
 }
 
