@@ -22,8 +22,11 @@ if ! command -v wasm-bindgen >/dev/null || [ "$(wasm-bindgen --version | awk '{p
 fi
 # No debug information: the page loads the module, nobody steps through it.
 CARGO_PROFILE_DEV_DEBUG=false cargo build --target wasm32-unknown-unknown -p rt-web -j"$jobs"
+# The module is where cargo put it (CARGO_TARGET_DIR may move it); the
+# page goes to target/web, where the browser test serves it.
+build=$(cargo metadata --format-version 1 --no-deps | sed -n 's/.*"target_directory":"\([^"]*\)".*/\1/p')
 rm -rf target/web
 mkdir -p target/web
-wasm-bindgen --target web --no-typescript --out-dir target/web/pkg target/wasm32-unknown-unknown/debug/rt_web.wasm
+wasm-bindgen --target web --no-typescript --out-dir target/web/pkg "$build/wasm32-unknown-unknown/debug/rt_web.wasm"
 cp web/index.html target/web/
 echo "scripts/web.sh: the page is in target/web ($(du -sh target/web | cut -f1))"
