@@ -67,6 +67,8 @@ fn is_builtin_type_name(name: &str) -> bool {
         || types::buffer_kind(name).is_some()
         || types::unsupported_type_advice(name).is_some()
         || name == "Self"
+        // `Default::default()`, the base of a struct update.
+        || name == "Default"
         || name == "Callable"
         || types::bindless_kind(name).is_some()
         || name == types::BINDLESS_SAMPLER
@@ -204,6 +206,13 @@ impl<'ast> Visit<'ast> for Deps {
             self.locals.insert(pi.ident.to_string());
         }
         syn::visit::visit_local(self, l);
+    }
+
+    fn visit_item_fn(&mut self, f: &'ast syn::ItemFn) {
+        // A function declared in a body is not a dependency (the lowering
+        // takes it as a helper; what it names is).
+        self.locals.insert(f.sig.ident.to_string());
+        syn::visit::visit_item_fn(self, f);
     }
 
     fn visit_item_const(&mut self, c: &'ast syn::ItemConst) {

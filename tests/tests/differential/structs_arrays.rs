@@ -28,6 +28,16 @@ pub struct Accum {
     pub count: u32,
 }
 
+/// A helper with a function declared in its body.
+#[rt_function]
+pub fn smooth(x: f32) -> f32 {
+    fn cube(v: f32) -> f32 {
+        v * v * v
+    }
+    let t = x.clamp(0.0, 1.0);
+    3.0 * t * t - 2.0 * cube(t)
+}
+
 /// A xorshift step: advances `state`, returns a float in [0, 1).
 #[rt_function]
 pub fn rand(state: &mut u32) -> f32 {
@@ -191,6 +201,30 @@ differential! {
             let stops = STOPS;
             let exposure = stops[(cell % STRATA) as usize % 3] + STOPS[cell as usize % 3];
             [cell as f32, exposure, TINT.y * GAMMA, (STRATA * 2) as f32, TINT.dot(Vec3::ONE)]
+        }
+        /// Functions declared in a body: a helper's, and the program's own
+        /// (which calls a module-level helper and another nested one).
+        nested_functions(a: u32) -> [f32; 2] over one(&U16), tol CHAINED => {
+            fn halve(v: f32) -> f32 {
+                v * 0.5
+            }
+            fn blend(v: f32) -> f32 {
+                smooth(halve(v)) + halve(1.0)
+            }
+            let x = (a % 7) as f32 / 4.0;
+            [smooth(x), blend(x)]
+        }
+        /// Struct update syntax: from another value (evaluated once, after
+        /// the fields) and from `Default::default()` / `Accum::default()`.
+        struct_update(a: u32) -> [f32; 6] over one(&U16) => {
+            let mut s = a | 1;
+            let base = Accum { mean: Vec3::splat(a as f32), count: 7 };
+            let more = Accum { count: base.count + 1, ..base };
+            let from_call = Accum { mean: Vec3::X, ..Accum { mean: Vec3::ONE, count: (rand(&mut s) * 8.0) as u32 } };
+            let zeroed = Accum { count: a % 5, ..Default::default() };
+            let stop = Stop { at: 0.5, ..Stop::default() };
+            [more.mean.x + more.count as f32, from_call.mean.x, from_call.count as f32, zeroed.mean.y,
+             zeroed.count as f32, stop.at + stop.color.z]
         }
     }
 }

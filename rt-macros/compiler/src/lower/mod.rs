@@ -212,23 +212,28 @@ pub fn lower_own(entry: Entry<'_>, deps: &[Item]) -> std::result::Result<Lowered
 }
 
 fn lower_impl(entry: Entry<'_>, deps: &[Item], report_deps: bool) -> std::result::Result<Lowered, Errors> {
-    // The lowering reads functions with their sugar rewritten (`sugar`).
+    // The lowering reads functions with their sugar rewritten, and the
+    // functions declared in their bodies as helpers beside them (`sugar`).
+    let mut taken: HashSet<String> = deps.iter().map(Item::name).collect();
+    let mut nested = Vec::new();
     let sweetened;
     let entry = match entry {
         Entry::Program(kind, f) => {
-            sweetened = crate::sugar::function(f);
+            taken.insert(f.sig.ident.to_string());
+            sweetened = crate::sugar::function(f, &mut taken, &mut nested);
             Entry::Program(kind, &sweetened)
         }
         Entry::Helper(f) => {
-            sweetened = crate::sugar::function(f);
+            taken.insert(f.sig.ident.to_string());
+            sweetened = crate::sugar::function(f, &mut taken, &mut nested);
             Entry::Helper(&sweetened)
         }
         other => other,
     };
-    let deps: Vec<Item> = deps.iter().map(crate::sugar::item).collect();
-    let deps = &deps[..];
+    let mut deps: Vec<Item> = deps.iter().map(|d| crate::sugar::item(d, &mut taken, &mut nested)).collect();
+    deps.extend(nested.into_iter().map(Item::Function));
     let mut unit = unit::Unit::new(&entry);
-    let deps = items::reachable(&entry, deps);
+    let deps = items::reachable(&entry, &deps);
     let items::ByKind { structs: structs_raw, fns: helpers_raw, consts: consts_raw, failed: failed_members } =
         items::by_kind(&entry, &deps);
     let consts_raw = items::const_order(&consts_raw);

@@ -4,7 +4,8 @@
 //! iterator loops and reductions over ranges and fixed arrays
 //! (`iterators.rs`), `matches!` and the arms the lowering's `switch` cannot
 //! take, range patterns and guards (`patterns.rs`); then labelled loops,
-//! as flags (`labels.rs`).
+//! as flags (`labels.rs`). Functions declared in a body are taken out to
+//! be helpers (`nested.rs`).
 //!
 //! Only the WGSL side reads the rewritten form. The CPU copy of a program
 //! is the function as written, compiled by rustc, so each rewrite must mean
@@ -16,14 +17,23 @@
 mod closures;
 mod iterators;
 mod labels;
+mod nested;
 mod patterns;
 
 use crate::Item;
+use std::collections::HashSet;
 use syn::visit_mut::VisitMut;
 
-/// `f` with its sugar rewritten.
-pub fn function(f: &syn::ItemFn) -> syn::ItemFn {
+/// `f` with its sugar rewritten, and the functions declared in its body
+/// (their names not in `taken`) taken out, rewritten too, into `nested`.
+pub fn function(f: &syn::ItemFn, taken: &mut HashSet<String>, nested: &mut Vec<syn::ItemFn>) -> syn::ItemFn {
     let mut f = f.clone();
+    let mut inner = Vec::new();
+    nested::hoist(&mut f.block, taken, &mut inner);
+    for mut g in inner {
+        block(&mut g.block);
+        nested.push(g);
+    }
     block(&mut f.block);
     f
 }
@@ -34,14 +44,21 @@ fn block(b: &mut syn::Block) {
     labels::Labels::default().visit_block_mut(b);
 }
 
-/// `item` with the sugar of its functions and methods rewritten.
-pub fn item(item: &Item) -> Item {
+/// `item` with the sugar of its functions and methods rewritten (and
+/// their nested functions taken out, as [`function`] does).
+pub fn item(item: &Item, taken: &mut HashSet<String>, nested: &mut Vec<syn::ItemFn>) -> Item {
     match item {
-        Item::Function(f) => Item::Function(function(f)),
+        Item::Function(f) => Item::Function(function(f, taken, nested)),
         Item::Impl(i) => {
             let mut i = i.clone();
             for it in &mut i.items {
                 if let syn::ImplItem::Fn(f) = it {
+                    let mut inner = Vec::new();
+                    nested::hoist(&mut f.block, taken, &mut inner);
+                    for mut g in inner {
+                        block(&mut g.block);
+                        nested.push(g);
+                    }
                     block(&mut f.block);
                 }
             }

@@ -110,40 +110,27 @@ impl Interp<'_> {
             Stmt::For { var, ty, start, end, inclusive, body } => {
                 let end = self.expr(end)?.certain_u64("a loop bound")?;
                 let last = if *inclusive { end } else { end - 1 };
-                let mut i = *start;
-                while i <= last {
-                    self.tick();
-                    self.scopes.push(Vec::new());
+                let values = (*start..=last).map(|i| {
                     let v = if *ty == Scalar::I32 { V::I(i as i32, false) } else { V::U(i as u32, false) };
-                    self.bind(var, v);
-                    let r = self.block(body);
-                    self.scopes.pop();
-                    match r?.0 {
-                        Flow::Break => break,
-                        f @ Flow::Return(_) => return Ok(f),
-                        _ => {}
-                    }
-                    i += 1;
+                    vec![(var.as_str(), v)]
+                });
+                if let Some(f) = self.iterations(values, body)? {
+                    return Ok(f);
                 }
             }
             Stmt::Each { var, index, array, rev, body, .. } => {
                 let V::Arr(items) = self.expr(array)? else { unreachable!("an array by construction") };
                 let order: Vec<usize> =
                     if *rev { (0..items.len()).rev().collect() } else { (0..items.len()).collect() };
-                for k in order {
-                    self.tick();
-                    self.scopes.push(Vec::new());
-                    self.bind(var, items[k].clone());
+                let values = order.into_iter().map(|k| {
+                    let mut binds = vec![(var.as_str(), items[k].clone())];
                     if let Some((raw, _)) = index {
-                        self.bind(raw, V::U(k as u32, false));
+                        binds.push((raw.as_str(), V::U(k as u32, false)));
                     }
-                    let r = self.block(body);
-                    self.scopes.pop();
-                    match r?.0 {
-                        Flow::Break => break,
-                        f @ Flow::Return(_) => return Ok(f),
-                        _ => {}
-                    }
+                    binds
+                });
+                if let Some(f) = self.iterations(values, body)? {
+                    return Ok(f);
                 }
             }
             Stmt::While(c, body) => loop {
@@ -178,27 +165,7 @@ impl Interp<'_> {
                 self.scopes.pop();
                 return Ok(r?.0);
             }
-            Stmt::Store { buf, index, value, form } => {
-                // `buf.store(i, v)` evaluates `i` first; `buf[i] = v` (and
-                // `op=`) evaluates `v` first, as Rust does for `IndexMut`
-                // assignments of `Copy` values.
-                let (i, v) = match form {
-                    StoreForm::Method => {
-                        let i = self.expr(index)?;
-                        (i, self.expr(value)?)
-                    }
-                    _ => {
-                        let v = self.expr(value)?;
-                        (self.expr(index)?, v)
-                    }
-                };
-                let i = i.certain_u64("a store index")?;
-                let v = match form {
-                    StoreForm::Compound(op) => bin(*op, &self.load(*buf, i), &v)?,
-                    _ => v,
-                };
-                self.store(*buf, i, &v);
-            }
+            Stmt::Store { buf, index, value, form } => self.store_stmt(*buf, index, value, *form)?,
             Stmt::Expr(e) => {
                 self.expr(e)?;
             }
@@ -208,6 +175,50 @@ impl Interp<'_> {
             }
         }
         Ok(Flow::Normal)
+    }
+
+    /// `buf.store(i, v)` evaluates `i` first; `buf[i] = v` (and `op=`)
+    /// evaluates `v` first, as Rust does for `IndexMut` assignments of
+    /// `Copy` values.
+    fn store_stmt(&mut self, buf: usize, index: &Expr, value: &Expr, form: StoreForm) -> R<()> {
+        let (i, v) = match form {
+            StoreForm::Method => {
+                let i = self.expr(index)?;
+                (i, self.expr(value)?)
+            }
+            _ => {
+                let v = self.expr(value)?;
+                (self.expr(index)?, v)
+            }
+        };
+        let i = i.certain_u64("a store index")?;
+        let v = match form {
+            StoreForm::Compound(op) => bin(op, &self.load(buf, i), &v)?,
+            _ => v,
+        };
+        self.store(buf, i, &v);
+        Ok(())
+    }
+
+    /// A counted loop: `body` once per item of `iterations`, in a scope of
+    /// its own with the item's bindings, until a `break`; a `return`
+    /// passed up.
+    fn iterations<'a>(&mut self, iterations: impl Iterator<Item = Vec<(&'a str, V)>>, body: &Block) -> R<Option<Flow>> {
+        for binds in iterations {
+            self.tick();
+            self.scopes.push(Vec::new());
+            for (name, v) in binds {
+                self.bind(name, v);
+            }
+            let r = self.block(body);
+            self.scopes.pop();
+            match r?.0 {
+                Flow::Break => break,
+                f @ Flow::Return(_) => return Ok(Some(f)),
+                _ => {}
+            }
+        }
+        Ok(None)
     }
 
     fn local_index(&self, i: i64) -> usize {

@@ -340,9 +340,6 @@ impl FnLowerer<'_> {
     }
 
     pub(super) fn struct_lit(&mut self, s: &syn::ExprStruct) -> Result<Val> {
-        if let Some(r) = &s.rest {
-            return Err(Error::unsupported(r.span(), "struct update syntax (`..`)", "list every field"));
-        }
         let name = s.path.segments.last().unwrap().ident.to_string();
         let ty = match name.as_str() {
             "Ray" => Ty::Ray,
@@ -395,10 +392,30 @@ impl FnLowerer<'_> {
             }
             done.push((idx, v));
         }
-        let effects = done.iter().any(|(_, v)| v.effects);
-        let reads = done.iter().any(|(_, v)| v.reads);
+        // `..base`, evaluated after the fields as in Rust, once; the
+        // fields not written come from it.
+        let base = match &s.rest {
+            None => None,
+            Some(r) => {
+                let at = self.here();
+                let v = self.struct_base(r, &ty)?;
+                self.spill(at, &mut done.iter_mut().map(|(_, v)| v).collect::<Vec<_>>());
+                Some(v)
+            }
+        };
+        let mut effects = done.iter().any(|(_, v)| v.effects);
+        let mut reads = done.iter().any(|(_, v)| v.reads);
         for (idx, v) in done {
             given[idx] = Some(v.code);
+        }
+        if let Some(b) = base {
+            effects |= b.effects;
+            reads |= b.reads;
+            for (i, (f, _)) in fields.iter().enumerate() {
+                if given[i].is_none() {
+                    given[i] = Some(self.field_of(b.clone(), f, s.span())?.code);
+                }
+            }
         }
         let missing: Vec<&str> =
             fields.iter().zip(&given).filter(|(_, g)| g.is_none()).map(|((n, _), _)| n.as_str()).collect();
@@ -410,6 +427,28 @@ impl FnLowerer<'_> {
         }
         let args: Vec<String> = given.into_iter().map(|g| g.unwrap()).collect();
         Ok(Val::new(format!("{}({})", ty.wgsl(), args.join(", ")), ty).with_effects(effects).with_reads(reads))
+    }
+
+    /// The base of `S { .., ..base }`: `Default::default()` or
+    /// `S::default()` as the zero value (what the `Default` the struct's
+    /// attribute derives gives), anything else evaluated once into a
+    /// local.
+    fn struct_base(&mut self, r: &Expr, ty: &Ty) -> Result<Val> {
+        if let Expr::Call(c) = strip_parens(r)
+            && c.args.is_empty()
+            && let Expr::Path(p) = &*c.func
+            && let [owner, f] = p.path.segments.iter().map(|s| s.ident.to_string()).collect::<Vec<_>>().as_slice()
+            && f == "default"
+            && (owner == "Default" || *owner == ty.to_string())
+        {
+            return Ok(Val::new(format!("{}()", ty.wgsl()), ty.clone()));
+        }
+        let v = self.expr(r, Some(ty))?;
+        let v = self.deref(v);
+        let v = self.coerce(v, ty, r.span())?;
+        let t = self.tmp();
+        self.emit_let(format!("let {t} = {};", v.code), &v);
+        Ok(Val::new(t, v.ty).with_reads(v.reads))
     }
 
     pub(super) fn array_lit(&mut self, a: &syn::ExprArray, want: Option<&Ty>) -> Result<Val> {
