@@ -162,7 +162,7 @@ impl CameraOptions {
 /// How far from the model's centre, in model sizes, a camera may be: far
 /// enough that rays are not lost in rounding, near enough that the model
 /// is not lost in it.
-const DISTANCE_RANGE: (f32, f32) = (1e-6, 1e6);
+pub const DISTANCE_RANGE: (f32, f32) = (1e-6, 1e6);
 
 impl CameraOptions {
     /// Refuses a camera no picture of the model at `path` can be taken
