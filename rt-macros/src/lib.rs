@@ -7,7 +7,8 @@
 use proc_macro::TokenStream;
 
 /// Declares a ray program: `#[rt_program(closest_hit)]`, and so on for the
-/// eight kinds. See `rt_std` for the subset of Rust programs may use.
+/// eight kinds. The subset of Rust programs may use is listed in the
+/// project's `docs/subset.md`; `rt_std` has what they may name.
 #[proc_macro_attribute]
 pub fn rt_program(attr: TokenStream, item: TokenStream) -> TokenStream {
     rt_compiler::expand::rt_program(attr.into(), item.into()).into()
