@@ -51,6 +51,7 @@ pub mod denoised;
 pub mod diffuse;
 pub mod envmap;
 pub mod instances;
+#[cfg(not(target_arch = "wasm32"))]
 pub mod limits;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod model;
