@@ -1,6 +1,6 @@
 //! The denoiser's quality on the path-traced Cornell box at 128x128 on
 //! the CPU backend, against a reference of [`REFERENCE_SPP`] samples a
-//! pixel checked in as `tests/golden/cornell_reference_128.exr` (its
+//! pixel checked in as `tests/reference/cornell_reference_128.exr` (its
 //! linear radiance; rendering it takes minutes in a release build, too
 //! long for a debug test). To make it again (after a change meant to
 //! change the Cornell box's picture) run, in release:
@@ -28,7 +28,7 @@ const REFERENCE_SPP: u32 = 4096;
 const D: u32 = 2;
 
 fn reference_path() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/golden/cornell_reference_128.exr")
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/reference/cornell_reference_128.exr")
 }
 
 /// The Cornell box at `spp` on the CPU backend: its context (for the
