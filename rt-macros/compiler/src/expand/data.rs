@@ -183,8 +183,7 @@ pub(super) fn near_triangle_builtins(s: &syn::ItemStruct) -> crate::error::Error
     for f in &s.fields {
         let Some(ident) = &f.ident else { continue };
         let fname = ident.to_string();
-        let ty = &f.ty;
-        let tyname = quote!(#ty).to_string().replace(' ', "");
+        let tyname = signature::type_text(&f.ty);
         if is_triangle_builtin(&fname, &tyname) {
             continue;
         }

@@ -237,7 +237,7 @@ impl Rewriter {
                     parse_quote_spanned!(span=> (#l, #r))
                 });
             }
-            ("map", [Expr::Closure(c)]) if inline(c, vec![parse_quote_spanned!(span=> x)]).is_some() => {
+            ("map", [Expr::Closure(c)]) if inlinable(c, 1) => {
                 if seq.after.is_empty() {
                     let (inner, c) = (seq.element, c.clone());
                     seq.element = Box::new(move |k| inline(&c, vec![inner(k)]).expect("inlined above"));
@@ -245,7 +245,7 @@ impl Rewriter {
                     seq.after.push(After::Map(c.clone()));
                 }
             }
-            ("filter", [Expr::Closure(c)]) if inline(c, vec![parse_quote_spanned!(span=> x)]).is_some() => {
+            ("filter", [Expr::Closure(c)]) if inlinable(c, 1) => {
                 seq.after.push(After::Filter(c.clone()));
             }
             _ => return None,
@@ -300,7 +300,7 @@ impl Rewriter {
 /// another number of arguments, or a `return` (which would leave the
 /// enclosing function).
 pub(super) fn inline(c: &syn::ExprClosure, args: Vec<Expr>) -> Option<Expr> {
-    if c.inputs.len() != args.len() || has_return(&c.body) {
+    if !inlinable(c, args.len()) {
         return None;
     }
     let span = c.or1_token.span;
@@ -315,6 +315,11 @@ pub(super) fn inline(c: &syn::ExprClosure, args: Vec<Expr>) -> Option<Expr> {
         .collect();
     let body = &c.body;
     Some(parse_quote_spanned! {span=> { #(#binds)* #body } })
+}
+
+/// Whether `c` can be inlined with `arity` arguments (see [`inline`]).
+fn inlinable(c: &syn::ExprClosure, arity: usize) -> bool {
+    c.inputs.len() == arity && !has_return(&c.body)
 }
 
 /// `e` without the parentheses around it.

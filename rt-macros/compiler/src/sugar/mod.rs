@@ -28,14 +28,20 @@ use syn::visit_mut::VisitMut;
 /// (their names not in `taken`) taken out, rewritten too, into `nested`.
 pub fn function(f: &syn::ItemFn, taken: &mut HashSet<String>, nested: &mut Vec<syn::ItemFn>) -> syn::ItemFn {
     let mut f = f.clone();
+    body(&mut f.block, taken, nested);
+    f
+}
+
+/// A function's body rewritten, its nested functions taken out into
+/// `nested` (rewritten too).
+fn body(b: &mut syn::Block, taken: &mut HashSet<String>, nested: &mut Vec<syn::ItemFn>) {
     let mut inner = Vec::new();
-    nested::hoist(&mut f.block, taken, &mut inner);
+    nested::hoist(b, taken, &mut inner);
     for mut g in inner {
         block(&mut g.block);
         nested.push(g);
     }
-    block(&mut f.block);
-    f
+    block(b);
 }
 
 /// Both passes over a function's body.
@@ -53,13 +59,7 @@ pub fn item(item: &Item, taken: &mut HashSet<String>, nested: &mut Vec<syn::Item
             let mut i = i.clone();
             for it in &mut i.items {
                 if let syn::ImplItem::Fn(f) = it {
-                    let mut inner = Vec::new();
-                    nested::hoist(&mut f.block, taken, &mut inner);
-                    for mut g in inner {
-                        block(&mut g.block);
-                        nested.push(g);
-                    }
-                    block(&mut f.block);
+                    body(&mut f.block, taken, nested);
                 }
             }
             Item::Impl(i)
