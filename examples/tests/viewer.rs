@@ -344,6 +344,8 @@ fn viewer_refuses_bad_input_in_one_line() {
     for (flags, text) in [
         (["--max-triangles", "10"], "over the limit of 10 (LoadLimits::max_triangles)"),
         (["--distance", "1e-30"], "--distance 1e-30 is outside "),
+        (["--time", "1"], "teapot.obj: has no node animation to pose"),
+        (["--time", "NaN"], "cannot pose the animation at time NaN: not a finite number of seconds"),
     ] {
         let mut args = vec![teapot.to_str().unwrap(), "--frames", "1", "--backend", "cpu"];
         args.extend(flags);

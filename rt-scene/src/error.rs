@@ -62,10 +62,11 @@ pub enum SceneError {
 }
 
 impl SceneError {
-    /// Whether the input is at fault (a bad or unsupported file) rather
-    /// than the runtime: the binaries exit 2 for these.
+    /// Whether the input is at fault (a bad or unsupported file, or one
+    /// that made the loader panic) rather than the runtime: the binaries
+    /// exit 2 for these, with the error as their one line.
     pub fn is_bad_input(&self) -> bool {
-        !matches!(self, SceneError::Runtime { .. } | SceneError::Internal { .. })
+        !matches!(self, SceneError::Runtime { .. })
     }
 }
 

@@ -46,7 +46,9 @@
 //! (`meshes[2].primitives[0]`) and the problem; nothing here panics on a
 //! file's contents. glTF documents are checked whole before the `gltf`
 //! crate reads them (`gltf/validate/`). Should a panic escape anyway, [`load`]
-//! catches it at its boundary as [`SceneError::Internal`] naming the file.
+//! catches it at its boundary as [`SceneError::Internal`] naming the file,
+//! and the panic hook stays silent for it (`guard.rs`), so the error is the
+//! one line a user sees.
 //!
 //! ## Limits
 //! Files come from strangers: [`LoadLimits`] bounds what loading may read
@@ -67,13 +69,16 @@
 pub mod build;
 pub mod clip;
 pub mod error;
+pub mod flat;
 pub mod glb;
 pub mod gltf;
+mod guard;
 pub mod limits;
 pub mod mtl;
 pub mod obj;
 
 pub use error::{GltfError, SceneError};
+pub use flat::{flatten, load_flat, load_flat_at, load_flat_with};
 pub use limits::LoadLimits;
 
 use glam::{Vec3, Vec4};
@@ -294,117 +299,9 @@ pub fn load(ctx: &mut Context, path: &Path) -> Result<Loaded, SceneError> {
 /// it had added to `ctx` stays there, unreferenced.
 pub fn load_with(ctx: &mut Context, path: &Path, limits: &LoadLimits) -> Result<Loaded, SceneError> {
     let file = path.display().to_string();
-    guarded(path, || match Format::of(path) {
+    guard::guarded(path, || match Format::of(path) {
         Some(Format::Obj) => build::build_obj(ctx, obj::load_obj_with(path, limits)?, &file),
         Some(Format::Gltf) => build::build_gltf(ctx, gltf::read_with(path, limits)?, &file),
         None => Err(SceneError::UnknownFormat { file: file.clone() }),
     })
-}
-
-/// `load` run with its panics caught as [`SceneError::Internal`] naming
-/// `path`.
-fn guarded<T>(path: &Path, load: impl FnOnce() -> Result<T, SceneError>) -> Result<T, SceneError> {
-    std::panic::catch_unwind(std::panic::AssertUnwindSafe(load)).unwrap_or_else(|panic| {
-        let message = panic
-            .downcast_ref::<&str>()
-            .map(|s| s.to_string())
-            .or_else(|| panic.downcast_ref::<String>().cloned())
-            .unwrap_or_else(|| "a panic without a message".into());
-        Err(SceneError::Internal { file: path.display().to_string(), message })
-    })
-}
-
-/// Loads the scene at `path` as one mesh in world space (every instance's
-/// triangles transformed and concatenated, material indices into one
-/// list): for code that takes an OBJ-style [`obj::LoadedMesh`].
-pub fn load_flat(path: &Path) -> Result<(obj::LoadedMesh, Option<SceneCamera>), SceneError> {
-    load_flat_with(path, &LoadLimits::default())
-}
-
-/// [`load_flat`] within `limits`.
-pub fn load_flat_with(path: &Path, limits: &LoadLimits) -> Result<(obj::LoadedMesh, Option<SceneCamera>), SceneError> {
-    guarded(path, || match Format::of(path) {
-        Some(Format::Obj) => Ok((obj::load_obj_with(path, limits)?, None)),
-        Some(Format::Gltf) => {
-            let asset = gltf::read_with(path, limits)?;
-            let camera = asset.camera;
-            Ok((flatten(asset), camera))
-        }
-        None => Err(SceneError::UnknownFormat { file: path.display().to_string() }),
-    })
-}
-
-/// `asset`'s instances baked into one world-space mesh.
-pub fn flatten(asset: gltf::Asset) -> obj::LoadedMesh {
-    use rt_runtime::TriangleMesh;
-    let mut mesh = TriangleMesh { normals: Some(Vec::new()), material_indices: Some(Vec::new()), ..Default::default() };
-    let mut materials: Vec<obj::MeshMaterial> = Vec::new();
-    let mut slot_of: Vec<Option<usize>> = Vec::new();
-    let mut default_slot = None;
-    let (mut min, mut max) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
-    for &(m, world) in &asset.instances {
-        let data = &asset.meshes[m];
-        let normal_matrix = world.inverse().transpose();
-        let base = mesh.positions.len() as u32;
-        for p in &data.mesh.positions {
-            let q = world.transform_point3(*p);
-            min = min.min(q);
-            max = max.max(q);
-            mesh.positions.push(q);
-        }
-        let normals = data.mesh.normals.as_deref().unwrap_or(&[]);
-        mesh.normals
-            .as_mut()
-            .expect("set above")
-            .extend(normals.iter().map(|n| normal_matrix.transform_vector3(*n).normalize_or(Vec3::Y)));
-        let flip = world.determinant() < 0.0;
-        for t in &data.mesh.indices {
-            let [a, b, c] = t.map(|i| i + base);
-            mesh.indices.push(if flip { [a, c, b] } else { [a, b, c] });
-        }
-        let slots: Vec<u32> = data
-            .materials
-            .iter()
-            .map(|gm| {
-                let slot = match gm {
-                    Some(i) => {
-                        if slot_of.len() <= *i {
-                            slot_of.resize(*i + 1, None);
-                        }
-                        *slot_of[*i].get_or_insert_with(|| {
-                            materials.push(mesh_material(&asset.materials[*i]));
-                            materials.len() - 1
-                        })
-                    }
-                    None => *default_slot.get_or_insert_with(|| {
-                        materials.push(mesh_material(&MaterialInfo::default()));
-                        materials.len() - 1
-                    }),
-                };
-                slot as u32
-            })
-            .collect();
-        let local = data.mesh.material_indices.as_deref().unwrap_or(&[]);
-        mesh.material_indices
-            .as_mut()
-            .expect("set above")
-            .extend((0..data.mesh.indices.len()).map(|t| slots[local.get(t).copied().unwrap_or(0) as usize]));
-    }
-    obj::LoadedMesh { mesh, materials, min, max, warnings: asset.warnings }
-}
-
-fn mesh_material(m: &MaterialInfo) -> obj::MeshMaterial {
-    obj::MeshMaterial { name: m.name.clone(), diffuse: m.base_color.truncate(), emission: m.emissive }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn a_panic_while_loading_is_an_internal_error_naming_the_file() {
-        let e = guarded::<()>(Path::new("x.glb"), || panic!("boom\nsecond line")).unwrap_err();
-        assert_eq!(e.to_string(), "x.glb: internal error while loading (a bug; please report it): boom");
-        assert!(!e.is_bad_input());
-    }
 }

@@ -116,3 +116,42 @@ fn bad_channels_are_refused_by_name() {
         "bad.glb: animations[0].channels[0]: it moves nodes[0], which has a matrix (animated nodes take translation, rotation and scale)"
     );
 }
+
+#[test]
+fn a_flat_load_at_a_time_bakes_the_pose_and_refuses_what_it_cannot_pose() {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("rt-scene-animation-flat");
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("moving.glb");
+    std::fs::write(&path, moving().to_glb()).unwrap();
+    let limits = rt_scene::LoadLimits::default();
+    let (rest, _) = rt_scene::load_flat_with(&path, &limits).unwrap();
+    let (posed, _) = rt_scene::load_flat_at(&path, &limits, 0.25).unwrap();
+    // The still node's triangle first, then the moving one's, 0.5 along x.
+    assert_eq!(rest.mesh.positions[3..], [Vec3::ZERO, Vec3::X, Vec3::Y]);
+    let moved = [Vec3::new(0.5, 0.0, 0.0), Vec3::new(1.5, 0.0, 0.0), Vec3::new(0.5, 1.0, 0.0)];
+    assert!(
+        posed.mesh.positions[3..].iter().zip(moved).all(|(p, q)| p.abs_diff_eq(q, 1e-6)),
+        "{:?}",
+        posed.mesh.positions
+    );
+    assert_eq!(posed.mesh.positions[..3], rest.mesh.positions[..3]);
+    assert!(posed.max.x >= 1.5 - 1e-6);
+
+    let e = rt_scene::load_flat_at(&path, &limits, f32::NAN).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        format!("{}: cannot pose the animation at time NaN: not a finite number of seconds", path.display())
+    );
+    assert!(e.is_bad_input());
+    let mut still = GltfBuilder::new();
+    let mesh = still.mesh("tri", &triangle(), &[]);
+    still.node(mesh, Mat4::IDENTITY);
+    let still_path = dir.join("still.glb");
+    std::fs::write(&still_path, still.to_glb()).unwrap();
+    let obj = dir.join("tri.obj");
+    std::fs::write(&obj, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+    for file in [&still_path, &obj] {
+        let e = rt_scene::load_flat_at(file, &limits, 1.0).unwrap_err();
+        assert_eq!(e.to_string(), format!("{}: has no node animation to pose", file.display()));
+    }
+}

@@ -80,6 +80,10 @@ struct Args {
     /// wgpu backend).
     #[arg(long, value_enum, default_value_t = Present::Auto)]
     present: Present,
+    /// Show a glTF file's node animation posed at this time, in seconds
+    /// (as `render --time` poses it).
+    #[arg(long, allow_negative_numbers = true)]
+    time: Option<f32>,
     /// Stop refining at this many samples per pixel.
     #[arg(long, default_value_t = 4096, value_parser = clap::value_parser!(u32).range(1..))]
     max_spp: u32,
@@ -142,7 +146,12 @@ fn run(args: &Args) -> Result<(), Failure> {
     // glTF scenes are shown flattened into one world-space mesh (the
     // viewer's scene is `bunny::mesh_scene`'s).
     let options = args.camera.options()?;
-    let (mut loaded, file_camera) = rt_scene::load_flat_with(&path, &args.limits.limits()).map_err(|e| match e {
+    let limits = args.limits.limits();
+    let flat = match args.time {
+        Some(time) => rt_scene::load_flat_at(&path, &limits, time),
+        None => rt_scene::load_flat_with(&path, &limits),
+    };
+    let (mut loaded, file_camera) = flat.map_err(|e| match e {
         rt_scene::SceneError::Obj(e) => Error::Mesh(e),
         e => Error::Scene(e),
     })?;

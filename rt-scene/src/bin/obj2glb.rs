@@ -17,8 +17,10 @@ fn main() -> ExitCode {
         eprintln!("usage: obj2glb IN.obj OUT.glb");
         return ExitCode::from(2);
     };
-    let loaded = match rt_scene::obj::load_obj(Path::new(input)) {
-        Ok(l) => l,
+    // Through `load_flat`, whose boundary turns a loader's panic into one
+    // line naming the file.
+    let loaded = match rt_scene::load_flat(Path::new(input)) {
+        Ok((l, _)) => l,
         Err(e) => {
             eprintln!("obj2glb: {e}");
             return ExitCode::from(2);
