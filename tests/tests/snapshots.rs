@@ -126,3 +126,64 @@ fn every_corpus_file_is_compiled_by_rustc() {
         .collect();
     assert!(missing.is_empty(), "snapshots/in files not in src/lib.rs (add a #[path] module): {missing:?}");
 }
+
+/// The typed form (`rt_compiler::typed`) of every corpus program: every
+/// expression the lowering typed has a settled type (no integer left to
+/// infer), and the only expressions without one are those whose parts are
+/// typed: a called function's path, a range (its bounds are typed), a
+/// block (its statements and tail are), a shared `&` argument (its operand
+/// is), an array repeat's length (a constant).
+#[test]
+fn every_expression_of_the_corpus_has_a_settled_type() {
+    use syn::visit::Visit;
+    /// Addresses of the expressions a reader never needs typed.
+    #[derive(Default)]
+    struct Excused(std::collections::HashSet<usize>);
+    impl<'a> Visit<'a> for Excused {
+        fn visit_expr(&mut self, e: &'a syn::Expr) {
+            match e {
+                syn::Expr::Call(c) => {
+                    self.0.insert(rt_compiler::typed::address(&c.func));
+                }
+                syn::Expr::Repeat(r) => {
+                    self.0.insert(rt_compiler::typed::address(&r.len));
+                }
+                syn::Expr::Range(_) | syn::Expr::Block(_) => {
+                    self.0.insert(rt_compiler::typed::address(e));
+                }
+                syn::Expr::Reference(r) if r.mutability.is_none() => {
+                    self.0.insert(rt_compiler::typed::address(e));
+                }
+                _ => {}
+            }
+            syn::visit::visit_expr(self, e);
+        }
+    }
+    let (programs, items) = corpus();
+    let (mut typed, mut all, mut unexpected) = (0, 0, Vec::new());
+    for (file, kind, f) in &programs {
+        let Ok(lowered) = rt_compiler::lower::lower(rt_compiler::lower::Entry::Program(*kind, f), &items) else {
+            continue;
+        };
+        let program = (f.sig.ident.to_string(), lowered.typed.expect("a program's typed form"));
+        for (name, form) in std::iter::once(program).chain(lowered.typed_helpers) {
+            let mut excused = Excused::default();
+            excused.visit_block(&form.body);
+            for (e, ty) in form.typed_expressions() {
+                all += 1;
+                match ty {
+                    Some(t) => {
+                        typed += 1;
+                        let settled = !format!("{t:?}").contains("IntVar");
+                        assert!(settled, "{file} `{name}`: `{}`: {t:?} not settled", quote::quote!(#e));
+                    }
+                    None if excused.0.contains(&rt_compiler::typed::address(e)) => {}
+                    None => unexpected.push(format!("{file} `{name}`: `{}`", quote::quote!(#e))),
+                }
+            }
+        }
+    }
+    assert!(unexpected.is_empty(), "expressions the typed form lacks:\n{}", unexpected.join("\n"));
+    assert!(typed * 10 > all * 9, "only {typed} of {all} expressions typed");
+    eprintln!("{typed} of {all} expressions typed");
+}

@@ -49,6 +49,7 @@ pub mod lower;
 pub mod methods;
 pub mod signature;
 pub mod sugar;
+pub mod typed;
 pub mod types;
 pub mod validate;
 

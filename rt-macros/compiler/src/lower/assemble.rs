@@ -41,6 +41,7 @@ pub(super) fn assemble(
     out.functions.extend(unit.sections);
     out.sites.extend(unit.sites);
     out.program = program_text;
+    out.typed_helpers = unit.typed_helpers;
     if out.resumable.is_some() {
         out.resumable_functions = unit.resumable_functions;
     } else if let Some(why) = &mut out.not_resumable

@@ -188,6 +188,10 @@ pub struct Lowered {
     /// each helper under its own): the names per-depth clones rename and
     /// the byte offsets where they end, in text order (`text::Site`).
     pub sites: BTreeMap<String, Vec<(text::Site, usize)>>,
+    /// The program's body with each expression's type (`crate::typed`).
+    pub typed: Option<crate::typed::Typed>,
+    /// The same for each helper the module lowered, by Rust name.
+    pub typed_helpers: Vec<(String, crate::typed::Typed)>,
 }
 
 /// The entry being lowered.

@@ -51,6 +51,7 @@ pub(super) fn program_unit(
     let mut l = FnLowerer::new(m, FnRole::Program(kind), &name, ret);
     let text = l.function(&out.wgsl_entry, &lps, &f.block);
     let done = l.finish(&text);
+    out.typed = Some(l.typed(&f.block));
     out.sites.insert(out.wgsl_entry.clone(), done.sites);
     let mut intr: Vec<String> = l.intrinsics.iter().map(|(n, _)| n.to_string()).collect();
     intr.sort();

@@ -33,6 +33,8 @@ pub(super) struct Unit<'e, 'a> {
     pub sites: Vec<(String, Vec<(text::Site, usize)>)>,
     /// Resumable forms of the helpers that trace: `(name, text)`.
     pub resumable_functions: Vec<(String, String)>,
+    /// The typed form of each helper lowered, by Rust name.
+    pub typed_helpers: Vec<(String, crate::typed::Typed)>,
     /// Why tracing helpers have no resumable form.
     pub not_resumable_helpers: Vec<String>,
 }
@@ -47,6 +49,7 @@ impl<'e, 'a> Unit<'e, 'a> {
             source_ranges: Vec::new(),
             sites: Vec::new(),
             resumable_functions: Vec::new(),
+            typed_helpers: Vec::new(),
             not_resumable_helpers: Vec::new(),
         }
     }
@@ -240,6 +243,7 @@ impl<'e, 'a> Unit<'e, 'a> {
             let mut l = FnLowerer::new(m, FnRole::Helper, &name, sig.ret.clone());
             let body = l.function(&sig.wgsl_name, &params, &f.block);
             let done = l.finish(&body);
+            self.typed_helpers.push((name.clone(), l.typed(&f.block)));
             let mut intr: Vec<&'static str> = l.intrinsics.iter().map(|(n, _)| *n).collect();
             intr.sort();
             intr.dedup();

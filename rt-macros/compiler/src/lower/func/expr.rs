@@ -7,6 +7,7 @@ impl FnLowerer<'_> {
     pub fn expr(&mut self, e: &Expr, want: Option<&Ty>) -> Result<Val> {
         let span = e.span();
         let v = self.expr_inner(e, want)?;
+        self.expr_types.insert(crate::typed::address(e), v.ty.clone());
         let code = if v.code.is_empty() { v.code } else { self.mark(span, &v.code) };
         Ok(Val { code, ty: v.ty, effects: v.effects, reads: v.reads })
     }

@@ -115,6 +115,9 @@ pub struct FnLowerer<'m> {
     /// Tuple types whose integer elements were not inferred yet when they
     /// were built: declared by [`FnLowerer::finish`].
     pending_tuples: Vec<Ty>,
+    /// Each expression lowered, by address, with its type before inference
+    /// settled (the typed form, `crate::typed`).
+    expr_types: std::collections::HashMap<usize, Ty>,
 }
 
 /// The statements emitted into one block so far, each with whether it
@@ -187,6 +190,7 @@ impl<'m> FnLowerer<'m> {
             hoist: false,
             hoisted_calls: 0,
             pending_tuples: Vec::new(),
+            expr_types: std::collections::HashMap::new(),
         }
     }
 
@@ -263,6 +267,13 @@ impl<'m> FnLowerer<'m> {
             self.m.note_tuples(&self.settled(t));
         }
         text::finish(text, &|v| self.resolve_var(v) == Scalar::I32)
+    }
+
+    /// The typed form of `body`, which [`FnLowerer::function`] lowered:
+    /// each expression's type with inference settled.
+    pub fn typed(&self, body: &syn::Block) -> crate::typed::Typed {
+        let settled = self.expr_types.iter().map(|(a, t)| (*a, self.settled(t))).collect();
+        crate::typed::Typed::number(body, &settled)
     }
 
     /// Resolves an integer inference variable (default `i32`).

@@ -5,8 +5,19 @@
 use super::*;
 
 impl FnLowerer<'_> {
-    /// What `e` names as the target of an assignment or a `&mut`.
+    /// What `e` names as the target of an assignment or a `&mut`, its
+    /// type noted in the typed form.
     pub(super) fn place(&mut self, e: &Expr) -> Result<Place> {
+        let place = self.place_inner(e)?;
+        let ty = match &place {
+            Place::Wgsl(v) => v.ty.clone(),
+            Place::Buffer { ty, .. } => ty.clone(),
+        };
+        self.expr_types.insert(crate::typed::address(e), ty);
+        Ok(place)
+    }
+
+    fn place_inner(&mut self, e: &Expr) -> Result<Place> {
         match e {
             Expr::Paren(p) => self.place(&p.expr),
             Expr::Group(g) => self.place(&g.expr),
@@ -57,7 +68,10 @@ impl FnLowerer<'_> {
         };
         // Fields of reference parameters are places through the pointer.
         let base = match self.ref_base(&f.base) {
-            Some((code, ty)) => Place::Wgsl(Val::new(code, ty)),
+            Some((code, ty)) => {
+                self.expr_types.insert(crate::typed::address(&f.base), Ty::Ref(true, Box::new(ty.clone())));
+                Place::Wgsl(Val::new(code, ty))
+            }
             None => self.place(&f.base)?,
         };
         match base {
@@ -367,10 +381,17 @@ impl FnLowerer<'_> {
     /// A `&mut place` argument (or a `&mut T` parameter passed on): the WGSL
     /// pointer expression and the pointee type.
     pub(super) fn mut_ref_arg(&mut self, e: &Expr) -> Result<(String, Ty)> {
+        let (ptr, ty) = self.mut_ref_arg_inner(e)?;
+        self.expr_types.insert(crate::typed::address(e), Ty::Ref(true, Box::new(ty.clone())));
+        Ok((ptr, ty))
+    }
+
+    fn mut_ref_arg_inner(&mut self, e: &Expr) -> Result<(String, Ty)> {
         match e {
             Expr::Reference(r) if r.mutability.is_some() => {
                 if let Some(ptr) = self.ref_param(&r.expr) {
                     // `&mut *prd` or `&mut prd` where prd is `&mut T`.
+                    self.expr_types.insert(crate::typed::address(&r.expr), Ty::Ref(true, Box::new(ptr.1.clone())));
                     return Ok(ptr);
                 }
                 let inner = match &*r.expr {
