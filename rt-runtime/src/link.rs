@@ -16,10 +16,7 @@ use crate::error::{Result, RtError};
 use crate::scene::{GeometryKind, NodeId, ProgramId};
 use crate::scene::{Scene, Scope};
 use crate::vars::{ScopeKind, VarValue, lookup_order};
-use rt_std::bindless::{BINDLESS_LAYOUT, RW_BINDLESS_LAYOUT};
-use rt_std::bindless_sampler::BINDLESS_SAMPLER_LAYOUT;
-use rt_std::callable::CALLABLE_LAYOUT;
-use rt_std::program::{ProgramDescriptor, TypeLayout, VariableKind};
+use rt_std::program::{LayoutKind, ProgramDescriptor, SamplerKind, ScalarKind, TypeLayout, VariableKind};
 use std::any::Any;
 use std::sync::Arc;
 
@@ -43,9 +40,12 @@ pub const EXCEPTION_COLOR: glam::Vec4 = glam::Vec4::new(1.0, 0.0, 1.0, 1.0);
 /// `RwBuffer2d<Vec4>` variable, by index in its declaration order.
 pub fn default_exception_output(ray_generation: &ProgramDescriptor) -> Option<usize> {
     ray_generation.variables.iter().position(
-        |v| matches!(v.kind, VariableKind::Buffer { element, dimensions: 2, writable: true } if element.rust == "Vec4"),
+        |v| matches!(v.kind, VariableKind::Buffer { element, dimensions: 2, writable: true } if element.kind == VEC4),
     )
 }
+
+/// `Vec4`'s kind.
+const VEC4: LayoutKind = LayoutKind::Vector { scalar: ScalarKind::F32, len: 4 };
 
 /// The ids a program use is resolved against.
 #[derive(Clone, Copy, Default)]
@@ -118,23 +118,26 @@ pub fn resolve_values(scene: &Scene, p: ProgramId, record: Record) -> Result<Vec
         };
         let ok = match (value, v.kind) {
             (VarValue::Data { layout, words, .. }, VariableKind::Value) => {
-                let ok = layout_compatible(layout.rust, v.ty.rust);
-                if ok && layout.rust == CALLABLE_LAYOUT.rust {
-                    check_callable_id(scene, desc, v, &scope_name(scope), words[0])?;
-                }
-                if ok && (layout.rust == BINDLESS_LAYOUT.rust || layout.rust == RW_BINDLESS_LAYOUT.rust) {
-                    check_bindless_id(scene, desc, v, &scope_name(scope), words[0])?;
-                }
-                if ok && layout.rust == BINDLESS_SAMPLER_LAYOUT.rust {
-                    check_sampler_id(scene, desc, v, &scope_name(scope), words[0])?;
+                let ok = layout_compatible(layout, &v.ty);
+                if ok {
+                    let scope = scope_name(scope);
+                    match v.ty.kind {
+                        LayoutKind::Callable(Some(sig)) => check_callable_id(scene, desc, v, sig, &scope, words[0])?,
+                        LayoutKind::BufferId { writable, element: Some(element) } => {
+                            check_bindless_id(scene, desc, v, (element, writable), &scope, words[0])?
+                        }
+                        LayoutKind::SamplerId(Some(shape)) => {
+                            check_sampler_id(scene, desc, v, shape, &scope, words[0])?
+                        }
+                        _ => {}
+                    }
                 }
                 ok
             }
             (VarValue::Buffer(b), VariableKind::Buffer { element, dimensions, writable }) => {
                 let rec =
                     scene.buffers.get(b.index() as usize).ok_or_else(|| RtError::InvalidHandle(format!("{b:?}")))?;
-                let held = rec.storage.layout().rust;
-                layout_compatible(held, element.rust)
+                layout_compatible(&rec.storage.layout(), &element)
                     && rec.dims == dimensions
                     && (!writable || rec.ty.writable_by_programs())
             }
@@ -300,18 +303,21 @@ pub fn bind_error(call: &Call, e: rt_std::cpu::VariableMismatch) -> RtError {
     }
 }
 
-/// Whether a value of Rust type `held` (a layout's name) may be read as the
-/// declared type `declared`: the same type, or an id of any callable
-/// signature for a `Callable<F>` (its layout does not spell `F`; the id's
-/// program is checked against `F` by `check_callable_id`), a bindless id
-/// of any element type for a `BindlessBuffer<T>` (the id's buffer is
-/// checked against `T` by `check_bindless_id`, and at each access).
-fn layout_compatible(held: &str, declared: &str) -> bool {
-    let generic = |layout: &TypeLayout| {
-        held == layout.rust && declared.strip_prefix(layout.rust).is_some_and(|rest| rest.starts_with('<'))
-    };
-    held == declared
-        || [CALLABLE_LAYOUT, BINDLESS_LAYOUT, RW_BINDLESS_LAYOUT, BINDLESS_SAMPLER_LAYOUT].iter().any(generic)
+/// Whether a value laid out as `held` may be read as the declared type:
+/// the same type (the same kind, and for a struct or enum the same name:
+/// Rust's types are nominal), or an id for an id variable of the same
+/// kind, whatever the host's layout knows of what it names (a
+/// `Callable<F>` value's layout does not carry `F`): the id's target is
+/// checked against the declaration by `check_callable_id`,
+/// `check_bindless_id` and `check_sampler_id`, and at each access.
+pub(crate) fn layout_compatible(held: &TypeLayout, declared: &TypeLayout) -> bool {
+    match (held.kind, declared.kind) {
+        (LayoutKind::Callable(_), LayoutKind::Callable(_)) | (LayoutKind::SamplerId(_), LayoutKind::SamplerId(_)) => {
+            true
+        }
+        (LayoutKind::BufferId { writable: a, .. }, LayoutKind::BufferId { writable: b, .. }) => a == b,
+        (a, b) => a == b && held.rust == declared.rust && held.words == declared.words,
+    }
 }
 
 /// A `BindlessBuffer<T>` (`RwBindlessBuffer<T>`) variable's id against the
@@ -321,14 +327,13 @@ fn check_bindless_id(
     scene: &Scene,
     desc: &'static ProgramDescriptor,
     v: &rt_std::program::VariableDescriptor,
+    (element, writable): (&TypeLayout, bool),
     scope: &str,
     id: u32,
 ) -> Result<()> {
     let Some(named) = crate::handles::BufferId::from_bindless_id(id) else {
         return Ok(());
     };
-    let writable = v.ty.rust.starts_with(RW_BINDLESS_LAYOUT.rust);
-    let element = v.ty.rust.split_once('<').and_then(|(_, e)| e.strip_suffix('>')).unwrap_or(v.ty.rust);
     let error = |found: String| RtError::BindlessVariable {
         program: desc.name,
         location: desc.location(),
@@ -340,15 +345,16 @@ fn check_bindless_id(
     let Some(rec) = scene.buffers.get(named.index() as usize) else {
         return Err(error(format!("id {id}, which names no buffer of this context")));
     };
-    let held = rec.storage.layout().rust;
-    if held != element {
-        return Err(error(format!("the id of buffer {} of `{held}` elements", named.index())));
+    let held = rec.storage.layout();
+    if !layout_compatible(&held, element) {
+        return Err(error(format!("the id of buffer {} of `{}` elements", named.index(), held.rust)));
     }
     if writable && !rec.ty.writable_by_programs() {
         return Err(error(format!(
-            "the id of buffer {}, an {:?} buffer programs may not write (use a `BindlessBuffer<{element}>`)",
+            "the id of buffer {}, an {:?} buffer programs may not write (use a `BindlessBuffer<{}>`)",
             named.index(),
-            rec.ty
+            rec.ty,
+            element.rust
         )));
     }
     Ok(())
@@ -360,13 +366,13 @@ fn check_sampler_id(
     scene: &Scene,
     desc: &'static ProgramDescriptor,
     v: &rt_std::program::VariableDescriptor,
+    shape: SamplerKind,
     scope: &str,
     id: u32,
 ) -> Result<()> {
     let Some(named) = crate::handles::SamplerId::from_bindless_id(id) else {
         return Ok(());
     };
-    let shape = v.ty.rust.split_once('<').and_then(|(_, s)| s.strip_suffix('>')).unwrap_or(v.ty.rust);
     let error = |found: String| RtError::BindlessVariable {
         program: desc.name,
         location: desc.location(),
@@ -378,25 +384,30 @@ fn check_sampler_id(
     let Some(rec) = scene.samplers.get(named.index() as usize) else {
         return Err(error(format!("id {id}, which names no sampler of this context")));
     };
-    if rec.type_name() != shape {
+    let held = match rec.shape {
+        SamplerShape::Flat => SamplerKind::Flat,
+        SamplerShape::Volume(_) => SamplerKind::Volume,
+        SamplerShape::Cube => SamplerKind::Cube,
+    };
+    if held != shape {
         return Err(error(format!("the id of sampler {}, a `{}`", named.index(), rec.type_name())));
     }
     Ok(())
 }
 
 /// A `Callable<F>` variable's id against the program it names: zero (none)
-/// or a callable program of signature `F` (its descriptor's spelling).
+/// or a callable program of signature `F`.
 fn check_callable_id(
     scene: &Scene,
     desc: &'static ProgramDescriptor,
     v: &rt_std::program::VariableDescriptor,
+    declared: &rt_std::program::CallableSignature,
     scope: &str,
     id: u32,
 ) -> Result<()> {
     let Some(named) = ProgramId::from_callable_id(id) else {
         return Ok(());
     };
-    let declared = v.ty.rust.strip_prefix("Callable<").and_then(|s| s.strip_suffix('>')).unwrap_or(v.ty.rust);
     let error = |found: String| RtError::CallableVariable {
         program: desc.name,
         location: desc.location(),
@@ -409,7 +420,7 @@ fn check_callable_id(
         return Err(error(format!("id {id}, which names no program of this context")));
     };
     match target.callable {
-        Some(c) if c.signature.rust == declared => Ok(()),
+        Some(c) if c.signature == *declared => Ok(()),
         Some(c) => Err(error(format!(
             "the id of `{}` ({}), a callable of signature `{}`",
             target.name,
@@ -417,5 +428,32 @@ fn check_callable_id(
             c.signature.rust
         ))),
         None => Err(error(format!("the id of `{}` ({}), a {:?} program", target.name, target.location(), target.kind))),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rt_std::RtData;
+    use rt_std::program::LayoutKind;
+
+    const fn named(rust: &'static str, kind: LayoutKind) -> TypeLayout {
+        TypeLayout { kind, rust, wgsl: rust, words: 1, fields: &[] }
+    }
+
+    #[test]
+    fn layouts_match_by_kind_and_name_and_ids_by_kind() {
+        assert!(layout_compatible(&u32::LAYOUT, &u32::LAYOUT));
+        assert!(!layout_compatible(&u32::LAYOUT, &i32::LAYOUT));
+        assert!(!layout_compatible(&f32::LAYOUT, &named("f32", LayoutKind::Enum)));
+        assert!(!layout_compatible(&named("A", LayoutKind::Struct), &named("B", LayoutKind::Struct)));
+        // The host's id layouts know nothing of what they name.
+        let declared_buffer =
+            named("BindlessBuffer<u32>", LayoutKind::BufferId { writable: false, element: Some(&u32::LAYOUT) });
+        assert!(layout_compatible(&rt_std::bindless::BINDLESS_LAYOUT, &declared_buffer));
+        assert!(!layout_compatible(&rt_std::bindless::RW_BINDLESS_LAYOUT, &declared_buffer));
+        let sampler = named("BindlessSampler<Sampler2d>", LayoutKind::SamplerId(Some(SamplerKind::Flat)));
+        assert!(layout_compatible(&rt_std::bindless_sampler::BINDLESS_SAMPLER_LAYOUT, &sampler));
+        assert!(!layout_compatible(&u32::LAYOUT, &sampler));
     }
 }

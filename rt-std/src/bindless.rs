@@ -35,14 +35,26 @@ use core::ops::Index;
 
 use crate::buffer::{Buffer, RwBuffer};
 use crate::data::{RtData, zeroed};
-use crate::program::TypeLayout;
+use crate::program::{LayoutKind, TypeLayout};
 
 /// The layout every `BindlessBuffer<T>` shares (one word): its element type
 /// is checked against the buffer an id names at launch and at each access.
-pub const BINDLESS_LAYOUT: TypeLayout = TypeLayout { rust: "BindlessBuffer", wgsl: "u32", words: 1, fields: &[] };
+pub const BINDLESS_LAYOUT: TypeLayout = TypeLayout {
+    kind: LayoutKind::BufferId { writable: false, element: None },
+    rust: "BindlessBuffer",
+    wgsl: "u32",
+    words: 1,
+    fields: &[],
+};
 
 /// The layout every `RwBindlessBuffer<T>` shares.
-pub const RW_BINDLESS_LAYOUT: TypeLayout = TypeLayout { rust: "RwBindlessBuffer", wgsl: "u32", words: 1, fields: &[] };
+pub const RW_BINDLESS_LAYOUT: TypeLayout = TypeLayout {
+    kind: LayoutKind::BufferId { writable: true, element: None },
+    rust: "RwBindlessBuffer",
+    wgsl: "u32",
+    words: 1,
+    fields: &[],
+};
 
 /// Raises the invalid-id exception.
 fn invalid() {

@@ -39,13 +39,13 @@ use core::marker::PhantomData;
 use glam::{UVec2, UVec3, Vec2, Vec3, Vec4};
 
 use crate::data::RtData;
-use crate::program::TypeLayout;
+use crate::program::{LayoutKind, TypeLayout};
 use crate::texture::{Sampler2d, Sampler3d, SamplerCube, WrapMode};
 
 /// The layout every `BindlessSampler<S>` shares (one word): its shape is
 /// checked against the sampler an id names at launch and at each read.
 pub const BINDLESS_SAMPLER_LAYOUT: TypeLayout =
-    TypeLayout { rust: "BindlessSampler", wgsl: "u32", words: 1, fields: &[] };
+    TypeLayout { kind: LayoutKind::SamplerId(None), rust: "BindlessSampler", wgsl: "u32", words: 1, fields: &[] };
 
 mod sealed {
     pub trait Sealed {}

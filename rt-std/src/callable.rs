@@ -42,7 +42,7 @@
 //! `rt_throw` and `rt_printf!`.
 
 use crate::data::RtData;
-use crate::program::TypeLayout;
+use crate::program::{LayoutKind, TypeLayout};
 use core::marker::PhantomData;
 
 /// The id of a callable program of signature `F` (`fn(Vec3, Vec3) -> Vec3`):
@@ -104,7 +104,8 @@ impl<F> core::fmt::Debug for Callable<F> {
 
 /// The layout every `Callable` shares: its signature is checked against
 /// the id's program at launch, not by the layout's name.
-pub const CALLABLE_LAYOUT: TypeLayout = TypeLayout { rust: "Callable", wgsl: "u32", words: 1, fields: &[] };
+pub const CALLABLE_LAYOUT: TypeLayout =
+    TypeLayout { kind: LayoutKind::Callable(None), rust: "Callable", wgsl: "u32", words: 1, fields: &[] };
 
 impl<F: 'static> RtData for Callable<F> {
     const LAYOUT: TypeLayout = CALLABLE_LAYOUT;

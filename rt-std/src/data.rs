@@ -29,10 +29,18 @@ pub trait RtData: Copy + 'static {
     }
 }
 
+use crate::layout::{LayoutKind, ScalarKind};
+
 macro_rules! scalar {
-    ($t:ty, $rust:literal, $wgsl:literal, |$v:ident| $to:expr, |$w:ident| $from:expr) => {
+    ($t:ty, $k:ident, $rust:literal, $wgsl:literal, |$v:ident| $to:expr, |$w:ident| $from:expr) => {
         impl RtData for $t {
-            const LAYOUT: TypeLayout = TypeLayout { rust: $rust, wgsl: $wgsl, words: 1, fields: &[] };
+            const LAYOUT: TypeLayout = TypeLayout {
+                kind: LayoutKind::Scalar(ScalarKind::$k),
+                rust: $rust,
+                wgsl: $wgsl,
+                words: 1,
+                fields: &[],
+            };
             #[inline]
             fn write_words(&self, out: &mut [u32]) {
                 let $v = *self;
@@ -47,10 +55,10 @@ macro_rules! scalar {
     };
 }
 
-scalar!(f32, "f32", "f32", |v| v.to_bits(), |w| f32::from_bits(w));
-scalar!(i32, "i32", "i32", |v| v as u32, |w| w as i32);
-scalar!(u32, "u32", "u32", |v| v, |w| w);
-scalar!(bool, "bool", "bool", |v| v as u32, |w| w != 0);
+scalar!(f32, F32, "f32", "f32", |v| v.to_bits(), |w| f32::from_bits(w));
+scalar!(i32, I32, "i32", "i32", |v| v as u32, |w| w as i32);
+scalar!(u32, U32, "u32", "u32", |v| v, |w| w);
+scalar!(bool, Bool, "bool", "bool", |v| v as u32, |w| w != 0);
 
 // Whole values go through fixed-size chunks: a copy over however many words
 // the slice has becomes a `memcpy` call of that length, whose stores the
@@ -58,9 +66,15 @@ scalar!(bool, "bool", "bool", |v| v as u32, |w| w != 0);
 // slice shorter than the value, which the runtime never passes, takes what
 // fits.
 macro_rules! vector {
-    ($t:ty, $s:ty, $n:literal, $rust:literal, $wgsl:literal) => {
+    ($t:ty, $s:ty, $k:ident, $n:literal, $rust:literal, $wgsl:literal) => {
         impl RtData for $t {
-            const LAYOUT: TypeLayout = TypeLayout { rust: $rust, wgsl: $wgsl, words: $n, fields: &[] };
+            const LAYOUT: TypeLayout = TypeLayout {
+                kind: LayoutKind::Vector { scalar: ScalarKind::$k, len: $n },
+                rust: $rust,
+                wgsl: $wgsl,
+                words: $n,
+                fields: &[],
+            };
             #[inline]
             fn write_words(&self, out: &mut [u32]) {
                 let a: [$s; $n] = (*self).into();
@@ -93,20 +107,21 @@ macro_rules! vector {
     };
 }
 
-vector!(Vec2, f32, 2, "Vec2", "vec2<f32>");
-vector!(Vec3, f32, 3, "Vec3", "vec3<f32>");
-vector!(Vec4, f32, 4, "Vec4", "vec4<f32>");
-vector!(IVec2, i32, 2, "IVec2", "vec2<i32>");
-vector!(IVec3, i32, 3, "IVec3", "vec3<i32>");
-vector!(IVec4, i32, 4, "IVec4", "vec4<i32>");
-vector!(UVec2, u32, 2, "UVec2", "vec2<u32>");
-vector!(UVec3, u32, 3, "UVec3", "vec3<u32>");
-vector!(UVec4, u32, 4, "UVec4", "vec4<u32>");
+vector!(Vec2, f32, F32, 2, "Vec2", "vec2<f32>");
+vector!(Vec3, f32, F32, 3, "Vec3", "vec3<f32>");
+vector!(Vec4, f32, F32, 4, "Vec4", "vec4<f32>");
+vector!(IVec2, i32, I32, 2, "IVec2", "vec2<i32>");
+vector!(IVec3, i32, I32, 3, "IVec3", "vec3<i32>");
+vector!(IVec4, i32, I32, 4, "IVec4", "vec4<i32>");
+vector!(UVec2, u32, U32, 2, "UVec2", "vec2<u32>");
+vector!(UVec3, u32, U32, 3, "UVec3", "vec3<u32>");
+vector!(UVec4, u32, U32, 4, "UVec4", "vec4<u32>");
 
 macro_rules! matrix {
     ($t:ty, $n:literal, $rust:literal, $wgsl:literal) => {
         impl RtData for $t {
-            const LAYOUT: TypeLayout = TypeLayout { rust: $rust, wgsl: $wgsl, words: $n * $n, fields: &[] };
+            const LAYOUT: TypeLayout =
+                TypeLayout { kind: LayoutKind::Matrix($n), rust: $rust, wgsl: $wgsl, words: $n * $n, fields: &[] };
             #[inline]
             fn write_words(&self, out: &mut [u32]) {
                 let a = self.to_cols_array();
@@ -146,7 +161,13 @@ macro_rules! tuple {
     ($($t:ident $i:tt),+) => {
         impl<$($t: RtData),+> RtData for ($($t,)+) {
             const LAYOUT: TypeLayout =
-                TypeLayout { rust: "(tuple)", wgsl: "(tuple)", words: 0 $(+ $t::LAYOUT.words)+, fields: &[] };
+            TypeLayout {
+                kind: LayoutKind::Tuple,
+                rust: "(tuple)",
+                wgsl: "(tuple)",
+                words: 0 $(+ $t::LAYOUT.words)+,
+                fields: &[],
+            };
             #[inline]
             #[allow(unused_assignments)]
             fn write_words(&self, out: &mut [u32]) {

@@ -27,6 +27,7 @@ impl Aabb {
 
 impl RtData for Aabb {
     const LAYOUT: TypeLayout = TypeLayout {
+        kind: crate::layout::LayoutKind::Builtin,
         rust: "Aabb",
         wgsl: "RtAabb",
         words: 6,

@@ -45,11 +45,88 @@ impl TriangleBuiltin {
     }
 }
 
+/// A 32-bit scalar of the heap.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ScalarKind {
+    /// `f32`.
+    F32,
+    /// `i32`.
+    I32,
+    /// `u32`.
+    U32,
+    /// `bool`, one word.
+    Bool,
+}
+
+/// The shape of a sampler a `BindlessSampler<S>` id names.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SamplerKind {
+    /// `Sampler2d`.
+    Flat,
+    /// `Sampler3d`.
+    Volume,
+    /// `SamplerCube`.
+    Cube,
+}
+
+/// What kind of type a [`TypeLayout`] describes, so that the runtime
+/// matches types by their structure and never reads their Rust spelling.
+///
+/// The ids' kinds carry what they name where the layout's maker knows it:
+/// the compiler always does (a program's variable of type
+/// `BindlessBuffer<Vec3>` is `BufferId { element: Some(Vec3's layout) }`);
+/// a host value of a generic id type may not (`Callable<F>` is
+/// `Callable(None)`), and the linker then checks the id against what it
+/// names.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LayoutKind {
+    /// `()`: no words.
+    Unit,
+    /// One scalar.
+    Scalar(ScalarKind),
+    /// A glam vector of `len` scalars.
+    Vector {
+        /// Its scalar.
+        scalar: ScalarKind,
+        /// 2, 3 or 4.
+        len: u8,
+    },
+    /// A square f32 matrix of this size, column-major.
+    Matrix(u8),
+    /// A `#[rt_struct]`, `#[rt_payload]` or `#[rt_attributes]` struct.
+    Struct,
+    /// A `#[rt_enum]`: one word.
+    Enum,
+    /// A tuple.
+    Tuple,
+    /// A fixed array of `len` elements.
+    Array(u32),
+    /// A buffer, sampler or node a variable is bound to (the variable's
+    /// `VariableKind` says which).
+    Handle,
+    /// A struct the runtime defines (`Ray`, `Aabb`).
+    Builtin,
+    /// `Callable<fn(..) -> R>`: a callable program's id, with its signature.
+    Callable(Option<&'static CallableSignature>),
+    /// `BindlessBuffer<T>` (`writable`: `RwBindlessBuffer<T>`): a buffer's
+    /// id, with the layout of `T`.
+    BufferId {
+        /// Programs may write through the id.
+        writable: bool,
+        /// The element's layout.
+        element: Option<&'static TypeLayout>,
+    },
+    /// `BindlessSampler<S>`: a sampler's id, with the shape `S`.
+    SamplerId(Option<SamplerKind>),
+}
+
 /// How a type is spelled in Rust and WGSL, and how it is laid out in the
 /// runtime's buffer heap: fields packed in declaration order, four bytes per
 /// scalar, no padding (so the same bytes serve CPU and GPU).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct TypeLayout {
+    /// What kind of type it is, and what an id names.
+    pub kind: LayoutKind,
     /// The Rust spelling (`Vec3`, `Radiance`, `Buffer<BasicLight>`).
     pub rust: &'static str,
     /// The WGSL spelling (`vec3<f32>`, `Radiance`, `RtBuffer`).
@@ -75,4 +152,20 @@ pub struct TriangleBuiltins {
     pub texcoord: glam::Vec2,
     /// The weights of vertices `b` and `c`.
     pub barycentrics: glam::Vec2,
+}
+
+/// The signature of a callable program, or of a call through a
+/// `Callable` id: the megakernel has one dispatch
+/// function per signature, `switch`ing over the callables of it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct CallableSignature {
+    /// The Rust spelling, `fn(Vec3, Vec3) -> Vec3` (`fn(u32)` for no result).
+    pub rust: &'static str,
+    /// The WGSL dispatch function a call lowers to,
+    /// `rt_call_<parameters>__<result>`.
+    pub dispatch: &'static str,
+    /// The WGSL parameter types, in order.
+    pub params: &'static [&'static str],
+    /// The WGSL result type; `None` for no result.
+    pub ret: Option<&'static str>,
 }

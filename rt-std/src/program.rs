@@ -6,7 +6,9 @@
 
 use crate::cpu::{CpuArgs, CpuResult};
 #[doc(inline)]
-pub use crate::layout::{FieldLayout, TriangleBuiltin, TypeLayout};
+pub use crate::layout::{
+    CallableSignature, FieldLayout, LayoutKind, SamplerKind, ScalarKind, TriangleBuiltin, TypeLayout,
+};
 
 /// The nine kinds of ray program, as in OptiX: the contract's
 /// [`rt_abi::Kind`], whose `name()` is the `#[rt_program(...)]` spelling.
@@ -107,22 +109,6 @@ impl WgslSite {
             sites.iter().filter_map(|s| if let WgslName::Call(h) = s.name { Some(h) } else { None }).collect();
         called.into_iter().collect()
     }
-}
-
-/// The signature of a callable program, or of a call through a
-/// [`Callable`](crate::Callable) id: the megakernel has one dispatch
-/// function per signature, `switch`ing over the callables of it.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct CallableSignature {
-    /// The Rust spelling, `fn(Vec3, Vec3) -> Vec3` (`fn(u32)` for no result).
-    pub rust: &'static str,
-    /// The WGSL dispatch function a call lowers to,
-    /// `rt_call_<parameters>__<result>`.
-    pub dispatch: &'static str,
-    /// The WGSL parameter types, in order.
-    pub params: &'static [&'static str],
-    /// The WGSL result type; `None` for no result.
-    pub ret: Option<&'static str>,
 }
 
 /// What a callable program's descriptor adds.

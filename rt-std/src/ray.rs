@@ -48,6 +48,7 @@ impl Ray {
 
 impl RtData for Ray {
     const LAYOUT: TypeLayout = TypeLayout {
+        kind: crate::layout::LayoutKind::Builtin,
         rust: "Ray",
         wgsl: "RtRay",
         words: 9,

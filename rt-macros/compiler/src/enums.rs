@@ -128,7 +128,13 @@ pub fn rust_side(e: &syn::ItemEnum, def: &EnumDef) -> TokenStream {
         #default
         impl ::rt_std::RtData for #name {
             const LAYOUT: ::rt_std::program::TypeLayout =
-                ::rt_std::program::TypeLayout { rust: #name_str, wgsl: "u32", words: 1, fields: &[] };
+                ::rt_std::program::TypeLayout {
+                    kind: ::rt_std::program::LayoutKind::Enum,
+                    rust: #name_str,
+                    wgsl: "u32",
+                    words: 1,
+                    fields: &[],
+                };
             #[inline]
             fn write_words(&self, out: &mut [u32]) {
                 out[0] = *self as u32;

@@ -64,7 +64,7 @@ impl Context {
     fn check_bindless<T: RtData>(&self, b: BufferId, writable: bool) -> Result<()> {
         let rec = self.scene.buffers.get(b.index() as usize).ok_or_else(|| RtError::InvalidHandle(format!("{b:?}")))?;
         let held = rec.storage.layout().rust;
-        if held != T::LAYOUT.rust {
+        if !crate::link::layout_compatible(&rec.storage.layout(), &T::LAYOUT) {
             return Err(RtError::BadBuffer {
                 buffer: b.index(),
                 problem: format!(

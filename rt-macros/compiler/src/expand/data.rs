@@ -54,6 +54,7 @@ pub(super) fn rt_data_impl(s: &syn::ItemStruct, role: StructRole) -> TokenStream
     quote! {
         impl ::rt_std::RtData for #name {
             const LAYOUT: ::rt_std::program::TypeLayout = ::rt_std::program::TypeLayout {
+                kind: ::rt_std::program::LayoutKind::Struct,
                 rust: #name_str,
                 wgsl: #wgsl,
                 words: #offset,

@@ -18,8 +18,59 @@ fn str_slice(items: &[String]) -> TokenStream {
     quote!(&[#(#items),*])
 }
 
+/// `LayoutKind` tokens for a type: what the runtime matches instead of
+/// the type's spelling.
+pub(super) fn layout_kind(ty: &Ty) -> TokenStream {
+    let scalar = |s: &crate::types::Scalar| match s {
+        crate::types::Scalar::F32 => quote!(::rt_std::program::ScalarKind::F32),
+        crate::types::Scalar::U32 | crate::types::Scalar::Usize => quote!(::rt_std::program::ScalarKind::U32),
+        crate::types::Scalar::I32 => quote!(::rt_std::program::ScalarKind::I32),
+        crate::types::Scalar::Bool => quote!(::rt_std::program::ScalarKind::Bool),
+    };
+    let kind = match ty {
+        Ty::Unit | Ty::Never => quote!(Unit),
+        Ty::Scalar(s) => {
+            let s = scalar(s);
+            quote!(Scalar(#s))
+        }
+        Ty::IntVar(_) => quote!(Scalar(::rt_std::program::ScalarKind::I32)),
+        Ty::Vec(n, s) => {
+            let s = scalar(s);
+            quote!(Vector { scalar: #s, len: #n })
+        }
+        Ty::Mat(n) => quote!(Matrix(#n)),
+        Ty::Struct(_) => quote!(Struct),
+        Ty::Enum(_) => quote!(Enum),
+        Ty::Tuple(_) => quote!(Tuple),
+        Ty::Array(_, n) => quote!(Array(#n)),
+        Ty::Ray | Ty::Aabb => quote!(Builtin),
+        Ty::Callable(sig) => {
+            let sig = signature_tokens(sig);
+            quote!(Callable(Some(&#sig)))
+        }
+        Ty::BufferId(writable, element) => {
+            let element = layout(element);
+            quote!(BufferId { writable: #writable, element: Some(&#element) })
+        }
+        Ty::SamplerId(shape) => {
+            let shape = match **shape {
+                Ty::Sampler3d => quote!(Volume),
+                Ty::SamplerCube => quote!(Cube),
+                _ => quote!(Flat),
+            };
+            quote!(SamplerId(Some(::rt_std::program::SamplerKind::#shape)))
+        }
+        Ty::Ref(_, t) => return layout_kind(t),
+        Ty::Object | Ty::TransformKind | Ty::Buffer(..) | Ty::Sampler | Ty::Sampler3d | Ty::SamplerCube => {
+            quote!(Handle)
+        }
+    };
+    quote!(::rt_std::program::LayoutKind::#kind)
+}
+
 /// `TypeLayout` tokens for a type.
 fn layout(ty: &Ty) -> TokenStream {
+    let kind = layout_kind(ty);
     let rust = ty.rust();
     let wgsl = ty.wgsl();
     let words = ty.words();
@@ -34,7 +85,7 @@ fn layout(ty: &Ty) -> TokenStream {
             quote!(::rt_std::program::FieldLayout { name: #n, ty: #tr, offset_words: #o })
         })
         .collect();
-    quote!(::rt_std::program::TypeLayout { rust: #rust, wgsl: #wgsl, words: #words, fields: &[#(#fields),*] })
+    quote!(::rt_std::program::TypeLayout { kind: #kind, rust: #rust, wgsl: #wgsl, words: #words, fields: &[#(#fields),*] })
 }
 
 fn option_layout(ty: &Option<Ty>) -> TokenStream {

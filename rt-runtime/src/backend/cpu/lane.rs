@@ -309,7 +309,8 @@ impl<'a> Lane<'a> {
 pub(crate) struct NoAttributes;
 
 impl RtData for NoAttributes {
-    const LAYOUT: TypeLayout = TypeLayout { rust: "()", wgsl: "", words: 0, fields: &[] };
+    const LAYOUT: TypeLayout =
+        TypeLayout { kind: rt_std::program::LayoutKind::Unit, rust: "()", wgsl: "", words: 0, fields: &[] };
     fn write_words(&self, _: &mut [u32]) {}
     fn read_words(_: &[u32]) -> Self {
         NoAttributes

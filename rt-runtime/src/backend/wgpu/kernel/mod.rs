@@ -701,7 +701,13 @@ mod tests {
             FieldLayout { name: "barycentrics", ty: "Vec3", offset_words: 5 },
             FieldLayout { name: "weight", ty: "f32", offset_words: 8 },
         ];
-        let layout = TypeLayout { rust: "Mixed", wgsl: "Mixed", words: 9, fields: &FIELDS };
+        let layout = TypeLayout {
+            kind: rt_std::program::LayoutKind::Struct,
+            rust: "Mixed",
+            wgsl: "Mixed",
+            words: 9,
+            fields: &FIELDS,
+        };
         let wgsl = super::triangle_attributes("Mixed", &layout);
         assert!(wgsl.contains("a.geometric_normal = gn;"), "{wgsl}");
         assert!(wgsl.contains("a.texcoord = bary;"), "{wgsl}");
