@@ -3,7 +3,9 @@
 use glam::Vec3;
 
 use crate::data::RtData;
-use crate::layout::{FieldLayout, TypeLayout};
+use crate::layout::{FieldLayout, LayoutKind, ScalarKind, TypeLayout};
+
+const VEC3: LayoutKind = LayoutKind::Vector { scalar: ScalarKind::F32, len: 3 };
 
 /// An axis-aligned box from `min` to `max` (inclusive). A bounding-box
 /// program returns one per primitive; a box with `min > max` on some axis is
@@ -32,8 +34,8 @@ impl RtData for Aabb {
         wgsl: "RtAabb",
         words: 6,
         fields: &[
-            FieldLayout { name: "min", ty: "Vec3", offset_words: 0 },
-            FieldLayout { name: "max", ty: "Vec3", offset_words: 3 },
+            FieldLayout { name: "min", ty: "Vec3", kind: VEC3, offset_words: 0 },
+            FieldLayout { name: "max", ty: "Vec3", kind: VEC3, offset_words: 3 },
         ],
     };
 

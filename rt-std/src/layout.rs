@@ -9,8 +9,10 @@
 pub struct FieldLayout {
     /// Field name.
     pub name: &'static str,
-    /// Rust spelling of the field's type.
+    /// Rust spelling of the field's type (for messages).
     pub ty: &'static str,
+    /// What kind of type the field is.
+    pub kind: LayoutKind,
     /// Offset in 32-bit words from the start of the struct.
     pub offset_words: u32,
 }
@@ -34,12 +36,13 @@ impl TriangleBuiltin {
     /// it generates `Attributes::set_triangle` (rt-compiler's `expand/data.rs`,
     /// which cannot call this).
     pub fn of_field(f: &FieldLayout) -> Option<Self> {
-        let ty = f.ty.rsplit("::").next().unwrap_or(f.ty).trim();
-        match (f.name, ty) {
-            ("geometric_normal", "Vec3") => Some(Self::GeometricNormal),
-            ("shading_normal", "Vec3") => Some(Self::ShadingNormal),
-            ("texcoord", "Vec2") => Some(Self::Texcoord),
-            ("barycentrics", "Vec2") => Some(Self::Barycentrics),
+        const VEC2: LayoutKind = LayoutKind::Vector { scalar: ScalarKind::F32, len: 2 };
+        const VEC3: LayoutKind = LayoutKind::Vector { scalar: ScalarKind::F32, len: 3 };
+        match (f.name, f.kind) {
+            ("geometric_normal", VEC3) => Some(Self::GeometricNormal),
+            ("shading_normal", VEC3) => Some(Self::ShadingNormal),
+            ("texcoord", VEC2) => Some(Self::Texcoord),
+            ("barycentrics", VEC2) => Some(Self::Barycentrics),
             _ => None,
         }
     }

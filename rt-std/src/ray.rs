@@ -3,7 +3,9 @@
 use glam::Vec3;
 
 use crate::data::RtData;
-use crate::layout::{FieldLayout, TypeLayout};
+use crate::layout::{FieldLayout, LayoutKind, ScalarKind, TypeLayout};
+
+const VEC3: LayoutKind = LayoutKind::Vector { scalar: ScalarKind::F32, len: 3 };
 
 /// A ray: origin, direction, ray type and the parametric interval
 /// `(tmin, tmax)` in which intersections count.
@@ -53,11 +55,11 @@ impl RtData for Ray {
         wgsl: "RtRay",
         words: 9,
         fields: &[
-            FieldLayout { name: "origin", ty: "Vec3", offset_words: 0 },
-            FieldLayout { name: "direction", ty: "Vec3", offset_words: 3 },
-            FieldLayout { name: "ray_type", ty: "u32", offset_words: 6 },
-            FieldLayout { name: "tmin", ty: "f32", offset_words: 7 },
-            FieldLayout { name: "tmax", ty: "f32", offset_words: 8 },
+            FieldLayout { name: "origin", ty: "Vec3", kind: VEC3, offset_words: 0 },
+            FieldLayout { name: "direction", ty: "Vec3", kind: VEC3, offset_words: 3 },
+            FieldLayout { name: "ray_type", ty: "u32", kind: LayoutKind::Scalar(ScalarKind::U32), offset_words: 6 },
+            FieldLayout { name: "tmin", ty: "f32", kind: LayoutKind::Scalar(ScalarKind::F32), offset_words: 7 },
+            FieldLayout { name: "tmax", ty: "f32", kind: LayoutKind::Scalar(ScalarKind::F32), offset_words: 8 },
         ],
     };
 

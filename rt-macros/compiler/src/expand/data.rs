@@ -43,7 +43,10 @@ pub(super) fn rt_data_impl(s: &syn::ItemStruct, role: StructRole) -> TokenStream
         let fname = ident.to_string();
         let tyname = signature::type_text(&f.ty);
         let FieldCode { words, write, read, read_into, zero } = field_code(ident, &f.ty, &offset);
-        field_layouts.push(quote!(::rt_std::program::FieldLayout { name: #fname, ty: #tyname, offset_words: #offset }));
+        let kind = field_kind(&f.ty);
+        field_layouts.push(
+            quote!(::rt_std::program::FieldLayout { name: #fname, ty: #tyname, kind: #kind, offset_words: #offset }),
+        );
         triangle_sets.push(if is_triangle_builtin(&fname, &tyname) { quote!(self.#ident = t.#ident;) } else { zero });
         writes.push(write);
         reads.push(read);
@@ -95,6 +98,27 @@ struct FieldCode {
 /// The code of the field `ident: ty` at `offset`: an array element by
 /// element, a type the lowering rejects left out, any other through its
 /// own `RtData`.
+/// A field's `LayoutKind` tokens: an array's length, else the kind its
+/// type's `RtData` layout gives (a rejected type, whose error is reported
+/// once elsewhere, gets `Unit`).
+fn field_kind(ty: &syn::Type) -> TokenStream {
+    match ty {
+        syn::Type::Array(a) => {
+            let len = &a.len;
+            quote!(::rt_std::program::LayoutKind::Array((#len) as u32))
+        }
+        syn::Type::Path(p)
+            if p.path
+                .segments
+                .last()
+                .is_some_and(|s| crate::types::unsupported_type_advice(&s.ident.to_string()).is_some()) =>
+        {
+            quote!(::rt_std::program::LayoutKind::Unit)
+        }
+        ty => quote!(<#ty as ::rt_std::RtData>::LAYOUT.kind),
+    }
+}
+
 fn field_code(ident: &syn::Ident, ty: &syn::Type, offset: &TokenStream) -> FieldCode {
     match ty {
         syn::Type::Array(a) => array_field(ident, a, offset),

@@ -82,7 +82,8 @@ fn layout(ty: &Ty) -> TokenStream {
             let tr = t.rust();
             let o = offset;
             offset += t.words();
-            quote!(::rt_std::program::FieldLayout { name: #n, ty: #tr, offset_words: #o })
+            let kind = layout_kind(&t);
+            quote!(::rt_std::program::FieldLayout { name: #n, ty: #tr, kind: #kind, offset_words: #o })
         })
         .collect();
     quote!(::rt_std::program::TypeLayout { kind: #kind, rust: #rust, wgsl: #wgsl, words: #words, fields: &[#(#fields),*] })

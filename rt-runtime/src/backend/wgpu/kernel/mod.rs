@@ -689,17 +689,20 @@ fn trace_function(w: &str, d: u32, note_payload: &str) -> String {
 
 #[cfg(test)]
 mod tests {
-    use rt_std::program::{FieldLayout, TypeLayout};
+    use rt_std::program::{FieldLayout, LayoutKind, ScalarKind, TypeLayout};
+
+    const VEC2: LayoutKind = LayoutKind::Vector { scalar: ScalarKind::F32, len: 2 };
+    const VEC3: LayoutKind = LayoutKind::Vector { scalar: ScalarKind::F32, len: 3 };
 
     /// The megakernel fills the built-in triangle attributes by the same
     /// rule as the CPU backend: by name, and by type as written or as a path.
     #[test]
     fn triangle_attributes_are_filled_by_name_and_type() {
         static FIELDS: [FieldLayout; 4] = [
-            FieldLayout { name: "geometric_normal", ty: "Vec3", offset_words: 0 },
-            FieldLayout { name: "texcoord", ty: "glam :: Vec2", offset_words: 3 },
-            FieldLayout { name: "barycentrics", ty: "Vec3", offset_words: 5 },
-            FieldLayout { name: "weight", ty: "f32", offset_words: 8 },
+            FieldLayout { name: "geometric_normal", ty: "Vec3", kind: VEC3, offset_words: 0 },
+            FieldLayout { name: "texcoord", ty: "glam :: Vec2", kind: VEC2, offset_words: 3 },
+            FieldLayout { name: "barycentrics", ty: "Vec3", kind: VEC3, offset_words: 5 },
+            FieldLayout { name: "weight", ty: "f32", kind: LayoutKind::Scalar(ScalarKind::F32), offset_words: 8 },
         ];
         let layout = TypeLayout {
             kind: rt_std::program::LayoutKind::Struct,
