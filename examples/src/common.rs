@@ -1,7 +1,9 @@
 //! What every Whitted-style example shares, on the device side: the per-ray
 //! data of radiance and shadow rays, the attributes geometry reports, the
 //! light type, and example 1's pinhole camera, background and exception
-//! programs (the seed's `seed_common` and `seed_camera`).
+//! programs. The snapshot corpus lowers these programs as they are here
+//! (`tests/tests/snapshots.rs`), and its shared types file
+//! (`tests/snapshots/in/seed_common.rs`) is held equal to the types above.
 
 use rt_std::prelude::*;
 

@@ -2,27 +2,30 @@
 //! from the snapshot corpus) agree with the library lowering and describe
 //! the programs fully; the CPU entry runs the Rust function.
 
+use examples::common::{Normals, Radiance};
+use examples::{common, convex_hull, diffuse, envmap, normal, phong, reflections, shadows};
 use glam::{Vec2, Vec3};
 use rt_std::cpu::{BoundVariables, CpuArgs, CpuResult};
 use rt_std::program::{ProgramKind, VariableKind};
-use rt_tests::seed_common::{Normals, Radiance};
-use rt_tests::*;
 
 #[test]
 fn macro_wgsl_equals_the_checked_in_snapshot() {
     let programs = [
-        &seed_camera::pinhole_camera::PROGRAM,
-        &seed_camera::miss::PROGRAM,
-        &seed_camera::exception::PROGRAM,
-        &seed_normal::closest_hit_radiance::PROGRAM,
-        &seed_diffuse::diffuse::PROGRAM,
-        &seed_phong::phong::PROGRAM,
-        &seed_phong::any_hit_shadow::PROGRAM,
-        &seed_reflections::floor_reflect::PROGRAM,
-        &seed_envmap::envmap_miss::PROGRAM,
-        &seed_convex_hull::chull_intersect::PROGRAM,
-        &seed_convex_hull::chull_bounds::PROGRAM,
-        &seed_convex_hull::glass::PROGRAM,
+        &common::pinhole_camera::PROGRAM,
+        &common::background::PROGRAM,
+        &common::shadow_miss::PROGRAM,
+        &common::any_hit_shadow::PROGRAM,
+        &common::exception::PROGRAM,
+        &normal::normal_shader::PROGRAM,
+        &diffuse::diffuse::PROGRAM,
+        &phong::phong::PROGRAM,
+        &shadows::phong_shadowed::PROGRAM,
+        &reflections::reflective::PROGRAM,
+        &envmap::envmap_miss::PROGRAM,
+        &convex_hull::chull_intersect::PROGRAM,
+        &convex_hull::chull_bounds::PROGRAM,
+        &convex_hull::glass::PROGRAM,
+        &convex_hull::glass_shadow::PROGRAM,
     ];
     for p in programs {
         let path = format!("{}/snapshots/out/{}.wgsl", env!("CARGO_MANIFEST_DIR"), p.name);
@@ -48,9 +51,9 @@ fn macro_wgsl_equals_the_checked_in_snapshot() {
 
 #[test]
 fn descriptor_describes_the_program() {
-    let p = &seed_phong::phong::PROGRAM;
+    let p = &shadows::phong_shadowed::PROGRAM;
     assert_eq!(p.kind, ProgramKind::ClosestHit);
-    assert_eq!(p.wgsl_entry, "rtp_phong");
+    assert_eq!(p.wgsl_entry, "rtp_phong_shadowed");
     assert_eq!(p.payload.unwrap().rust, "Radiance");
     assert_eq!(p.payload.unwrap().words, 5);
     assert_eq!(p.attributes.unwrap().wgsl, "Normals");
@@ -72,12 +75,15 @@ fn descriptor_describes_the_program() {
     for i in ["current_ray", "rt_trace", "rt_transform_normal", "t_hit"] {
         assert!(p.intrinsics.contains(&i), "{i} missing from {:?}", p.intrinsics);
     }
-    assert!(p.file.ends_with("seed_phong.rs"), "{}", p.file);
-    assert_eq!(p.line, 6);
-    let e = &seed_camera::exception::PROGRAM;
-    assert_eq!(e.printf.len(), 1);
-    assert_eq!(e.printf[0].format, "exception {} at {}");
-    assert_eq!(e.printf[0].args, ["u32", "vec2<u32>"]);
+    assert!(p.file.ends_with("shadows.rs"), "{}", p.file);
+    assert_eq!(p.line, 50);
+    let e = &rt_tests::printf::printf::PROGRAM;
+    // Its own three formats and its helper's, each with its argument types.
+    assert_eq!(e.printf.len(), 4);
+    let depth = e.printf.iter().find(|f| f.format == "depth {} importance {} verbose {}").unwrap();
+    assert_eq!(depth.args, ["i32", "f32", "bool"]);
+    let raw = e.printf.iter().find(|f| f.format == "{{raw}} {} {} {}").unwrap();
+    assert_eq!(raw.args, ["vec2<u32>", "vec3<i32>", "bool"]);
 }
 
 #[test]
@@ -85,7 +91,7 @@ fn descriptor_records_the_sites_per_depth_clones_rename() {
     use rt_std::program::{WgslName, WgslSite};
     // `glass` traces twice (reflection and refraction) and calls one helper
     // that does not trace.
-    let p = &seed_convex_hull::glass::PROGRAM;
+    let p = &convex_hull::glass::PROGRAM;
     assert_eq!(WgslSite::traces_per_payload(p.wgsl_program_sites), [("Radiance", 2)]);
     assert_eq!(WgslSite::helpers_called(p.wgsl_program_sites), ["rtf_fresnel_schlick"]);
     assert_eq!(p.wgsl_program_sites[0].name, WgslName::Definition);
@@ -108,7 +114,7 @@ fn descriptor_records_the_sites_per_depth_clones_rename() {
     // Types and resumable forms have none; a program that does not trace or
     // call anything only its own name.
     assert!(p.wgsl_types.iter().chain(p.wgsl_resumable_functions).all(|t| t.sites.is_empty()));
-    let miss = &seed_camera::miss::PROGRAM;
+    let miss = &common::background::PROGRAM;
     assert_eq!(miss.wgsl_program_sites.iter().map(|s| s.name).collect::<Vec<_>>(), [WgslName::Definition]);
 }
 
@@ -116,9 +122,9 @@ fn descriptor_records_the_sites_per_depth_clones_rename() {
 fn cpu_entry_runs_the_rust_function() {
     let mut prd = Radiance { result: Vec3::ZERO, importance: 1.0, depth: 0 };
     let bg = Vec3::new(0.1, 0.2, 0.3);
-    let vars = (seed_camera::miss::PROGRAM.cpu_bind)(&[&bg]).unwrap();
+    let vars = (common::background::PROGRAM.cpu_bind)(&[&bg]).unwrap();
     let mut args = CpuArgs { payload: Some(&mut prd), attributes: None, primitive: 0, variables: &vars };
-    assert_eq!((seed_camera::miss::PROGRAM.cpu)(&mut args), CpuResult::Unit);
+    assert_eq!((common::background::PROGRAM.cpu)(&mut args), CpuResult::Unit);
     assert_eq!(prd.result, bg);
 
     // The normal shader with identity transforms: n * 0.5 + 0.5.
@@ -130,14 +136,14 @@ fn cpu_entry_runs_the_rust_function() {
         primitive: 0,
         variables: &BoundVariables::NONE,
     };
-    (seed_normal::closest_hit_radiance::PROGRAM.cpu)(&mut args);
+    (normal::normal_shader::PROGRAM.cpu)(&mut args);
     assert_eq!(prd.result, Vec3::new(0.5, 1.0, 0.5));
 
     let lo = Vec3::splat(-1.0);
     let hi = Vec3::new(1.0, 2.0, 3.0);
-    let vars = (seed_convex_hull::chull_bounds::PROGRAM.cpu_bind)(&[&lo, &hi]).unwrap();
+    let vars = (convex_hull::chull_bounds::PROGRAM.cpu_bind)(&[&lo, &hi]).unwrap();
     let mut args = CpuArgs { payload: None, attributes: None, primitive: 3, variables: &vars };
-    assert_eq!((seed_convex_hull::chull_bounds::PROGRAM.cpu)(&mut args), CpuResult::Aabb(rt_std::Aabb::new(lo, hi)));
+    assert_eq!((convex_hull::chull_bounds::PROGRAM.cpu)(&mut args), CpuResult::Aabb(rt_std::Aabb::new(lo, hi)));
 }
 
 #[test]
@@ -145,32 +151,31 @@ fn cpu_bind_checks_each_variable_once() {
     let bg = Vec3::ONE;
     let wrong = 1.0f32;
     // The declared type is checked at binding, with the variable's position.
-    let e = (seed_camera::miss::PROGRAM.cpu_bind)(&[&wrong]).unwrap_err();
+    let e = (common::background::PROGRAM.cpu_bind)(&[&wrong]).unwrap_err();
     assert_eq!(e.index, 0);
     assert!(e.expected.ends_with("Vec3"), "{}", e.expected);
     // So is the count.
-    assert!((seed_camera::miss::PROGRAM.cpu_bind)(&[]).is_err());
-    assert!((seed_camera::miss::PROGRAM.cpu_bind)(&[&bg, &bg]).is_err());
+    assert!((common::background::PROGRAM.cpu_bind)(&[]).is_err());
+    assert!((common::background::PROGRAM.cpu_bind)(&[&bg, &bg]).is_err());
     // Values bound to one program's types are not read as another's.
-    let vars = (seed_camera::miss::PROGRAM.cpu_bind)(&[&bg]).unwrap();
+    let vars = (common::background::PROGRAM.cpu_bind)(&[&bg]).unwrap();
     let mut args = CpuArgs { payload: None, attributes: None, primitive: 0, variables: &vars };
-    let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-        (seed_convex_hull::chull_bounds::PROGRAM.cpu)(&mut args)
-    }));
+    let r =
+        std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| (convex_hull::chull_bounds::PROGRAM.cpu)(&mut args)));
     assert!(r.is_err());
 }
 
 #[test]
 fn user_structs_round_trip_through_heap_words() {
     use rt_std::RtData;
-    let l = seed_common::BasicLight { pos: Vec3::new(1.0, 2.0, 3.0), color: Vec3::ONE, casts_shadow: -7 };
+    let l = common::BasicLight { pos: Vec3::new(1.0, 2.0, 3.0), color: Vec3::ONE, casts_shadow: -7 };
     let mut words = [0u32; 7];
     l.write_words(&mut words);
     assert_eq!(words[6], (-7i32) as u32);
-    assert_eq!(seed_common::BasicLight::read_words(&words), l);
-    assert_eq!(<seed_common::BasicLight as RtData>::LAYOUT.words, 7);
+    assert_eq!(common::BasicLight::read_words(&words), l);
+    assert_eq!(<common::BasicLight as RtData>::LAYOUT.words, 7);
     // In place, field by field (how the CPU backend refills attributes).
-    let mut m = seed_common::BasicLight { pos: Vec3::splat(9.0), color: Vec3::ZERO, casts_shadow: 5 };
+    let mut m = common::BasicLight { pos: Vec3::splat(9.0), color: Vec3::ZERO, casts_shadow: 5 };
     m.read_words_into(&words);
     assert_eq!(m, l);
     // Vectors and matrices in place, and from a slice longer than they are.

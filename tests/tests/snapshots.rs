@@ -1,4 +1,5 @@
-//! WGSL snapshot tests: every program in `snapshots/in/*.rs` is lowered (with
+//! WGSL snapshot tests: every program in `snapshots/in/*.rs` and in the
+//! examples of the seed lecture (`EXAMPLE_FILES`) is lowered (with
 //! every `rt_*` item of the corpus as a possible dependency) and compared
 //! with `snapshots/out/<program>.wgsl`; every snapshot is then validated by
 //! naga on its own. Run with `RT_BLESS=1` to rewrite the snapshots.
@@ -6,6 +7,10 @@
 use rt_compiler::{Declared, Item};
 use snapshot_modules::corpus_dir;
 use std::path::PathBuf;
+
+/// The examples whose programs are in the corpus: the seed lecture's.
+const EXAMPLE_FILES: [&str; 8] =
+    ["common.rs", "normal.rs", "diffuse.rs", "phong.rs", "shadows.rs", "reflections.rs", "envmap.rs", "convex_hull.rs"];
 
 /// `(file, program kind, program)` for every program, and every item.
 fn corpus() -> (Vec<(String, rt_compiler::Kind, syn::ItemFn)>, Vec<Item>) {
@@ -15,9 +20,14 @@ fn corpus() -> (Vec<(String, rt_compiler::Kind, syn::ItemFn)>, Vec<Item>) {
         .filter(|p| p.extension().is_some_and(|e| e == "rs"))
         .collect();
     files.sort();
+    // The seed lecture's programs, as the examples run them.
+    let examples = corpus_dir().join("../../examples/src");
+    files.extend(EXAMPLE_FILES.iter().map(|f| examples.join(f)));
     let mut programs = Vec::new();
     let mut items = Vec::new();
+    let mut names = std::collections::HashSet::new();
     for f in files {
+        let is_example = f.starts_with(&examples);
         let text = std::fs::read_to_string(&f).unwrap();
         let file: syn::File = syn::parse_str(&text).unwrap_or_else(|e| panic!("{}: {e}", f.display()));
         for it in &file.items {
@@ -25,13 +35,61 @@ fn corpus() -> (Vec<(String, rt_compiler::Kind, syn::ItemFn)>, Vec<Item>) {
                 Some(Ok(Declared::Program(k, func))) => {
                     programs.push((f.file_name().unwrap().to_string_lossy().into_owned(), k, func))
                 }
-                Some(Ok(Declared::Item(i))) => items.push(i),
+                // The examples' shared types are `seed_common.rs`'s (the
+                // test below holds them equal); their helpers may repeat
+                // the corpus's own.
+                Some(Ok(Declared::Item(i))) if is_example && item_name(&i).is_some_and(|n| names.contains(&n)) => {}
+                Some(Ok(Declared::Item(i))) => {
+                    names.extend(item_name(&i));
+                    items.push(i)
+                }
                 Some(Err(e)) => panic!("{}: {}", f.display(), e.message),
                 None => {}
             }
         }
     }
     (programs, items)
+}
+
+/// The name an item declares (a struct's, a helper's, a constant's).
+fn item_name(item: &Item) -> Option<String> {
+    match item {
+        Item::Struct(s, _) => Some(s.ident.to_string()),
+        Item::Function(f) => Some(f.sig.ident.to_string()),
+        Item::Const(c) => Some(c.ident.to_string()),
+        Item::Enum(e) => Some(e.ident.to_string()),
+        Item::Impl(_) => None,
+    }
+}
+
+/// The items `file` declares, by name, as tokens without their doc comments.
+fn undocumented_items(file: &std::path::Path) -> std::collections::BTreeMap<String, String> {
+    let text = std::fs::read_to_string(file).unwrap();
+    let parsed: syn::File = syn::parse_str(&text).unwrap();
+    let mut out = std::collections::BTreeMap::new();
+    for mut item in parsed.items {
+        let (name, attrs) = match &mut item {
+            syn::Item::Struct(s) => (s.ident.to_string(), &mut s.attrs),
+            syn::Item::Const(c) => (c.ident.to_string(), &mut c.attrs),
+            _ => continue,
+        };
+        attrs.retain(|a| !a.path().is_ident("doc"));
+        out.insert(name, quote::quote!(#item).to_string());
+    }
+    out
+}
+
+/// The corpus's shared types (`seed_common.rs`, which the other corpus
+/// files use) are the examples' own, so the examples' programs lower
+/// against what they are compiled with.
+#[test]
+fn the_corpus_shares_the_examples_types() {
+    let corpus = undocumented_items(&corpus_dir().join("in/seed_common.rs"));
+    let examples = undocumented_items(&corpus_dir().join("../../examples/src/common.rs"));
+    assert!(corpus.len() >= 6, "{corpus:?}");
+    for (name, item) in &corpus {
+        assert_eq!(Some(item), examples.get(name), "`{name}` of seed_common.rs drifted from examples/src/common.rs");
+    }
 }
 
 #[path = "common/snapshot_modules.rs"]

@@ -1,5 +1,8 @@
 //! Shared declarations of the seed's worked examples: per-ray data, the
-//! attributes triangle meshes and custom primitives report, and lights.
+//! attributes triangle meshes and custom primitives report, and lights. The
+//! examples' own (`examples/src/common.rs`, whose programs the snapshot
+//! corpus lowers as they are): `the_corpus_shares_the_examples_types` fails
+//! when the two differ but for their doc comments.
 use rt_std::prelude::*;
 
 /// Per-ray data of radiance rays.

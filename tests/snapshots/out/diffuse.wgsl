@@ -40,13 +40,17 @@ fn rt_load_vec3f(w: u32) -> vec3<f32> {
     return vec3<f32>(rt_load_f32(w + 0u), rt_load_f32(w + 1u), rt_load_f32(w + 2u));
 }
 
+fn rtf_facing_normal(shading_normal: vec3<f32>, geometric_normal: vec3<f32>, ray_direction: vec3<f32>) -> vec3<f32> {
+    let n: vec3<f32> = normalize(rt_transform_normal(0u, shading_normal));
+    let g: vec3<f32> = normalize(rt_transform_normal(0u, geometric_normal));
+    return faceForward(n, ray_direction, g);
+}
+
 fn rtp_diffuse(prd: ptr<function, Radiance>, attr: Normals, ka: vec3<f32>, kd: vec3<f32>, ambient_light_color: vec3<f32>, lights: RtBuffer) {
     let ray: RtRay = rt_current_ray();
-    let world_shading_normal: vec3<f32> = normalize(rt_transform_normal(0u, attr.shading_normal));
-    let world_geometric_normal: vec3<f32> = normalize(rt_transform_normal(0u, attr.geometric_normal));
-    let ffnormal: vec3<f32> = faceForward(world_shading_normal, ray.direction, world_geometric_normal);
-    var color: vec3<f32> = (ka * ambient_light_color);
+    let ffnormal: vec3<f32> = rtf_facing_normal(attr.shading_normal, attr.geometric_normal, ray.direction);
     let hit_point: vec3<f32> = (ray.origin + (rt_t_hit() * ray.direction));
+    var color: vec3<f32> = (ka * ambient_light_color);
     let end = lights.len;
     for (var i: u32 = 0u; i < end; i++) {
         let light: BasicLight = rt_bufload_BasicLight(lights, i);

@@ -38,14 +38,6 @@ fn rt_store_vec4f(w: u32, v: vec4<f32>) {
 
 fn rtp_exception(bad_color: vec3<f32>, output_buffer: RtBuffer) {
     var output_buffer_1 = output_buffer;
-    let code: u32 = rt_exception_code();
-    let tmp = code;
-    let tmp_1 = rt_launch_index();
-    if rt_printf_begin(4195234753u, 3u) {
-        rt_printf_word(tmp);
-        rt_printf_word(tmp_1[0]);
-        rt_printf_word(tmp_1[1]);
-    }
-    let tmp_2 = rt_launch_index();
-    rt_bufstore2_vec4f(output_buffer_1, tmp_2, vec4<f32>(bad_color, 1.0f));
+    let tmp = rt_launch_index();
+    rt_bufstore2_vec4f(output_buffer_1, tmp, vec4<f32>(bad_color, 1.0f));
 }

@@ -48,8 +48,7 @@ const RADIANCE_RAY: u32 = 0u;
 fn rtp_pinhole_camera(eye: vec3<f32>, u: vec3<f32>, v: vec3<f32>, w: vec3<f32>, scene_epsilon: f32, top_object: u32, output_buffer: RtBuffer) {
     var output_buffer_1 = output_buffer;
     let idx: vec2<u32> = rt_launch_index();
-    let dim: vec2<u32> = rt_launch_dim();
-    let d: vec2<f32> = ((((vec2<f32>(idx) + vec2<f32>(0.5f)) / vec2<f32>(dim)) * 2.0f) - vec2<f32>(1.0));
+    let d: vec2<f32> = ((((vec2<f32>(idx) + vec2<f32>(0.5f)) / vec2<f32>(rt_launch_dim())) * 2.0f) - vec2<f32>(1.0));
     let ray_direction: vec3<f32> = normalize((((d.x * u) + (d.y * v)) + w));
     let ray: RtRay = RtRay(eye, ray_direction, RADIANCE_RAY, scene_epsilon, rt_f32_from_bits(0x7f800000u));
     var prd: Radiance = Radiance(vec3<f32>(0.0), 1.0f, 0i);
@@ -62,7 +61,6 @@ fn rtp_pinhole_camera(eye: vec3<f32>, u: vec3<f32>, v: vec3<f32>, w: vec3<f32>, 
 var<private> rt_fr_rtp_pinhole_camera_rt_site: array<u32, RT_DEPTHS>;
 var<private> rt_fr_rtp_pinhole_camera_output_buffer_1: array<RtBuffer, RT_DEPTHS>;
 var<private> rt_fr_rtp_pinhole_camera_idx: array<vec2<u32>, RT_DEPTHS>;
-var<private> rt_fr_rtp_pinhole_camera_dim: array<vec2<u32>, RT_DEPTHS>;
 var<private> rt_fr_rtp_pinhole_camera_d: array<vec2<f32>, RT_DEPTHS>;
 var<private> rt_fr_rtp_pinhole_camera_ray_direction: array<vec3<f32>, RT_DEPTHS>;
 var<private> rt_fr_rtp_pinhole_camera_ray: array<RtRay, RT_DEPTHS>;
@@ -71,7 +69,6 @@ fn rtp_pinhole_camera(eye: vec3<f32>, u: vec3<f32>, v: vec3<f32>, w: vec3<f32>, 
     var rt_site: u32 = 0u;
     var output_buffer_1: RtBuffer;
     var idx: vec2<u32>;
-    var dim: vec2<u32>;
     var d: vec2<f32>;
     var ray_direction: vec3<f32>;
     var ray: RtRay;
@@ -79,7 +76,6 @@ fn rtp_pinhole_camera(eye: vec3<f32>, u: vec3<f32>, v: vec3<f32>, w: vec3<f32>, 
     if rt_rs != 0u {
         output_buffer_1 = rt_fr_rtp_pinhole_camera_output_buffer_1[rt_d];
         idx = rt_fr_rtp_pinhole_camera_idx[rt_d];
-        dim = rt_fr_rtp_pinhole_camera_dim[rt_d];
         d = rt_fr_rtp_pinhole_camera_d[rt_d];
         ray_direction = rt_fr_rtp_pinhole_camera_ray_direction[rt_d];
         ray = rt_fr_rtp_pinhole_camera_ray[rt_d];
@@ -91,8 +87,7 @@ fn rtp_pinhole_camera(eye: vec3<f32>, u: vec3<f32>, v: vec3<f32>, w: vec3<f32>, 
     }
     if rt_site == 0u {
         idx = rt_launch_index();
-        dim = rt_launch_dim();
-        d = ((((vec2<f32>(idx) + vec2<f32>(0.5f)) / vec2<f32>(dim)) * 2.0f) - vec2<f32>(1.0));
+        d = ((((vec2<f32>(idx) + vec2<f32>(0.5f)) / vec2<f32>(rt_launch_dim())) * 2.0f) - vec2<f32>(1.0));
         ray_direction = normalize((((d.x * u) + (d.y * v)) + w));
         ray = RtRay(eye, ray_direction, RADIANCE_RAY, scene_epsilon, rt_f32_from_bits(0x7f800000u));
         prd = Radiance(vec3<f32>(0.0), 1.0f, 0i);
@@ -101,7 +96,6 @@ fn rtp_pinhole_camera(eye: vec3<f32>, u: vec3<f32>, v: vec3<f32>, w: vec3<f32>, 
         rt_request_Radiance(top_object, ray, prd, 0u, 255u);
         rt_fr_rtp_pinhole_camera_output_buffer_1[rt_d] = output_buffer_1;
         rt_fr_rtp_pinhole_camera_idx[rt_d] = idx;
-        rt_fr_rtp_pinhole_camera_dim[rt_d] = dim;
         rt_fr_rtp_pinhole_camera_d[rt_d] = d;
         rt_fr_rtp_pinhole_camera_ray_direction[rt_d] = ray_direction;
         rt_fr_rtp_pinhole_camera_ray[rt_d] = ray;

@@ -1,4 +1,4 @@
-// closest_hit program `closest_hit_radiance`
+// closest_hit program `normal_shader`
 
 struct Normals {
     geometric_normal: vec3<f32>,
@@ -11,6 +11,6 @@ struct Radiance {
     depth: i32,
 }
 
-fn rtp_closest_hit_radiance(prd: ptr<function, Radiance>, attr: Normals) {
+fn rtp_normal_shader(prd: ptr<function, Radiance>, attr: Normals) {
     (*prd).result = ((normalize(rt_transform_normal(0u, attr.shading_normal)) * 0.5f) + 0.5f);
 }

@@ -1,4 +1,4 @@
-// miss program `miss`
+// miss program `background`
 
 struct Radiance {
     result: vec3<f32>,
@@ -14,6 +14,6 @@ fn rt_load_vec3f(w: u32) -> vec3<f32> {
     return vec3<f32>(rt_load_f32(w + 0u), rt_load_f32(w + 1u), rt_load_f32(w + 2u));
 }
 
-fn rtp_miss(prd: ptr<function, Radiance>, bg_color: vec3<f32>) {
+fn rtp_background(prd: ptr<function, Radiance>, bg_color: vec3<f32>) {
     (*prd).result = bg_color;
 }
