@@ -263,7 +263,8 @@ impl Progressive {
     pub fn picture(&self) -> Result<Image, Error> {
         let (width, height) = (self.scene.width, self.scene.height);
         if self.denoise {
-            let aovs = self.scene.aovs.expect("mesh_scene writes guides");
+            let aovs =
+                self.scene.aovs.ok_or_else(|| Error::Settings("the scene writes no guides to denoise".into()))?;
             let [color, albedo, normal] = [aovs.radiance, aovs.albedo, aovs.normal].map(|b| self.read_cropped(b));
             let (color, albedo, normal) = (color?, albedo?, normal?);
             let (w, h) = (width as usize, height as usize);
