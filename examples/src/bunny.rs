@@ -7,19 +7,31 @@
 //! under it, each `.mtl` material gets its own `kd`. Pictures are
 //! progressive like the Cornell box's: each launch traces one jittered
 //! camera ray per pixel and `ao_samples` occlusion rays from what it hits,
-//! and the output is the running mean.
+//! and the output is the running mean. Beside it the camera writes a
+//! denoiser's guides ([`Aovs`]): the mean radiance, and the first hit's
+//! albedo and shading normal, averaged over the samples as the radiance is.
 
 use crate::common::*;
 use crate::diffuse::facing_normal;
 use crate::mesh::{self, LoadedMesh};
-use crate::scene::{Camera, Error, Scene, Settings, quad, shared_scene};
+use crate::scene::{Aovs, Camera, Error, Scene, Settings, quad, shared_scene};
 use crate::shadows::direct_light;
 use glam::Vec3;
 use rt_runtime::{Acceleration, BufferType, Builder, Scope};
 use rt_std::prelude::*;
 
+/// Per-ray data of a lit mesh's camera rays: the colour found, and the
+/// albedo and shading normal of what the ray hit (the denoiser's guides;
+/// the background's colour and no normal where it hit nothing).
+#[rt_payload]
+pub struct GuidedRadiance {
+    pub result: Vec3,
+    pub albedo: Vec3,
+    pub normal: Vec3,
+}
+
 /// A jittered pinhole camera that accumulates one sample per launch and
-/// writes the mean, gamma-corrected.
+/// writes the mean, gamma-corrected, and the guides' running means.
 #[rt_program(ray_generation)]
 pub fn accumulating_camera(
     #[var] eye: Vec3,
@@ -31,6 +43,9 @@ pub fn accumulating_camera(
     #[var] top_object: Object,
     #[var] mut accum_buffer: RwBuffer2d<Vec4>,
     #[var] mut output_buffer: RwBuffer2d<Vec4>,
+    #[var] mut radiance_buffer: RwBuffer2d<Vec4>,
+    #[var] mut albedo_buffer: RwBuffer2d<Vec4>,
+    #[var] mut normal_buffer: RwBuffer2d<Vec4>,
 ) {
     let idx = launch_index();
     let dim = launch_dim();
@@ -41,15 +56,32 @@ pub fn accumulating_camera(
     }
     let d = (idx.as_vec2() + jitter) / dim.as_vec2() * 2.0 - Vec2::ONE;
     let ray = Ray::new(eye, (d.x * u + d.y * v + w).normalize(), RADIANCE_RAY, scene_epsilon, f32::INFINITY);
-    let mut prd = Radiance { result: Vec3::ZERO, importance: 1.0, depth: 0 };
+    let mut prd = GuidedRadiance { result: Vec3::ZERO, albedo: Vec3::ZERO, normal: Vec3::ZERO };
     rt_trace(top_object, ray, &mut prd);
     let mut acc = Vec4::ZERO;
+    let mut albedo = Vec3::ZERO;
+    let mut normal = Vec3::ZERO;
     if frame > 0 {
         acc = accum_buffer[idx];
+        albedo = albedo_buffer[idx].xyz();
+        normal = normal_buffer[idx].xyz();
     }
     acc += prd.result.extend(1.0);
     accum_buffer[idx] = acc;
-    output_buffer[idx] = (acc.xyz() / acc.w).max(Vec3::ZERO).powf(1.0 / 2.2).extend(1.0);
+    let mean = acc.xyz() / acc.w;
+    output_buffer[idx] = mean.max(Vec3::ZERO).powf(1.0 / 2.2).extend(1.0);
+    radiance_buffer[idx] = mean.extend(1.0);
+    let keep = (acc.w - 1.0) / acc.w;
+    albedo_buffer[idx] = (albedo * keep + prd.albedo / acc.w).extend(1.0);
+    normal_buffer[idx] = (normal * keep + prd.normal / acc.w).extend(0.0);
+}
+
+/// Camera rays that hit nothing see the background, which is also their
+/// albedo (a flat colour the denoiser divides out).
+#[rt_program(miss)]
+pub fn guided_background(prd: &mut GuidedRadiance, #[var] bg_color: Vec3) {
+    prd.result = bg_color;
+    prd.albedo = bg_color;
 }
 
 /// Diffuse and a little specular light from the lights (with shadows), plus
@@ -57,7 +89,7 @@ pub fn accumulating_camera(
 /// cosine-distributed rays that travel `ao_radius` unblocked.
 #[rt_program(closest_hit)]
 pub fn occluded_shade(
-    prd: &mut Radiance,
+    prd: &mut GuidedRadiance,
     attr: &Normals,
     #[var] kd: Vec3,
     #[var] ks: Vec3,
@@ -87,6 +119,8 @@ pub fn occluded_shade(
     let ao = open / ao_samples.max(1) as f32;
     prd.result = kd * ambient_light_color * ao
         + direct_light(hit_point, n, ray.direction, kd, ks, phong_exp, lights, scene_epsilon, top_shadower);
+    prd.albedo = kd;
+    prd.normal = n;
 }
 
 /// How a mesh is shown.
@@ -164,6 +198,7 @@ pub fn mesh_scene_from(
     let mut scene = Scene::new(ctx, output, settings);
     scene.frames = settings.spp;
     scene.accumulation = Some(lit.accumulation);
+    scene.aovs = Some(lit.aovs);
     Ok(scene)
 }
 
@@ -174,6 +209,8 @@ pub struct Lit {
     block: rt_runtime::ProgramId,
     /// The accumulation buffer.
     pub accumulation: rt_runtime::BufferId,
+    /// The guide buffers the camera writes.
+    pub aovs: Aovs,
 }
 
 impl Lit {
@@ -209,7 +246,7 @@ pub fn light_and_frame(
     ctx.set_var(Scope::Context, "scene_epsilon", radius * 1e-4)?;
     let ray_generation = ctx.create_program(&accumulating_camera::PROGRAM);
     ctx.set_ray_generation_program(0, ray_generation)?;
-    let miss = ctx.create_program(&background::PROGRAM);
+    let miss = ctx.create_program(&guided_background::PROGRAM);
     ctx.set_miss_program(RADIANCE_RAY, miss)?;
     let shadow_miss = ctx.create_program(&shadow_miss::PROGRAM);
     ctx.set_miss_program(SHADOW_RAY, shadow_miss)?;
@@ -217,6 +254,7 @@ pub fn light_and_frame(
     camera.set_vars(ctx, settings.aspect())?;
     let accum = ctx.create_buffer_2d::<Vec4>(BufferType::InputOutput, settings.width, settings.height)?;
     ctx.set_var(Scope::Context, "accum_buffer", accum)?;
+    let aovs = guide_buffers(ctx, (settings.width, settings.height))?;
     let key =
         BasicLight { pos: key_light_position_in(bounds, view), color: Vec3::new(0.75, 0.7, 0.62), casts_shadow: 1 };
     let lights = ctx.create_buffer(BufferType::Input, vec![key]);
@@ -228,7 +266,20 @@ pub fn light_and_frame(
     ctx.set_var(Scope::Context, "phong_exp", 40.0f32)?;
     let shade = ctx.create_program(&occluded_shade::PROGRAM);
     let block = ctx.create_program(&any_hit_shadow::PROGRAM);
-    Ok(Lit { shade, block, accumulation: accum })
+    Ok(Lit { shade, block, accumulation: accum, aovs })
+}
+
+/// The camera's guide buffers at `size`, set as its variables: kept on the
+/// device (read back only when asked for, by a denoiser or `read_buffer`),
+/// not after every launch.
+pub fn guide_buffers(ctx: &mut rt_runtime::Context, (width, height): (u32, u32)) -> Result<Aovs, Error> {
+    let mut guide = |name: &str| -> Result<_, Error> {
+        let b = ctx.create_buffer_2d::<Vec4>(BufferType::InputOutput, width, height)?;
+        ctx.set_buffer_device_local(b, true)?;
+        ctx.set_var(Scope::Context, name, b)?;
+        Ok(b)
+    };
+    Ok(Aovs { radiance: guide("radiance_buffer")?, albedo: guide("albedo_buffer")?, normal: guide("normal_buffer")? })
 }
 
 /// The floor under `[min, max]`: a square 80 radii wide at `min.y`.

@@ -3,11 +3,13 @@
 //! ([`Aovs`]), run as one command list: the denoiser over the mean
 //! radiance, then the tonemapper over the raw and over the denoised
 //! radiance, so the two pictures differ only by the denoising. The
-//! tour's `--denoise` writes them side by side.
+//! tour's `--denoise` writes them side by side. [`Denoiser`] is the
+//! denoiser alone, over linear radiance (`render --denoise`), and
+//! [`guides`] reads the guides back (`render --aov`).
 
 use crate::scene::{Aovs, Error, Image, Scene};
 use glam::Vec4;
-use rt_runtime::{BufferType, CommandList, StageKind};
+use rt_runtime::{BufferId, BufferType, CommandList, Context, StageKind};
 
 /// The exposure the pair's tonemapper applies.
 pub const EXPOSURE: f32 = 1.6;
@@ -31,14 +33,96 @@ pub fn noisy_and_denoised(scene: &mut Scene) -> Result<Option<(Image, Image)>, E
     let mut list = CommandList::new();
     list.append_stage(denoiser, w, h)?;
     for (input, output) in [(radiance, noisy_display), (denoised, denoised_display)] {
-        let tonemapper = ctx.create_postprocessing_stage(StageKind::Tonemapper);
-        ctx.set_stage_var(tonemapper, "input_buffer", input)?;
-        ctx.set_stage_var(tonemapper, "output_buffer", output)?;
-        ctx.set_stage_var(tonemapper, "exposure", EXPOSURE)?;
-        list.append_stage(tonemapper, w, h)?;
+        append_tonemapper(ctx, &mut list, (input, output), (w, h))?;
     }
     list.finalize(ctx)?;
     list.execute(ctx)?;
     let read = |b| -> Result<Image, Error> { Ok(Image { width: w, height: h, pixels: ctx.read_buffer::<Vec4>(b)? }) };
     Ok(Some((read(noisy_display)?, read(denoised_display)?)))
+}
+
+/// The picture of `scene`'s last render through the tonemapper alone (as
+/// [`noisy_and_denoised`] shows its pair, to be set beside them), or
+/// `None` where the scene writes no guides.
+pub fn tonemapped(scene: &mut Scene) -> Result<Option<Image>, Error> {
+    let Some(aovs) = scene.aovs else {
+        return Ok(None);
+    };
+    let (width, height) = (scene.width, scene.height);
+    let ctx = &mut scene.ctx;
+    let output = ctx.create_buffer_2d::<Vec4>(BufferType::Output, width, height)?;
+    let mut list = CommandList::new();
+    append_tonemapper(ctx, &mut list, (aovs.radiance, output), (width, height))?;
+    list.finalize(ctx)?;
+    list.execute(ctx)?;
+    Ok(Some(Image { width, height, pixels: ctx.read_buffer::<Vec4>(output)? }))
+}
+
+/// Appends to `list` a tonemapper (at [`EXPOSURE`]) from `input` to
+/// `output`, `width` x `height`.
+fn append_tonemapper(
+    ctx: &mut Context,
+    list: &mut CommandList,
+    (input, output): (BufferId, BufferId),
+    (width, height): (u32, u32),
+) -> Result<(), Error> {
+    let tonemapper = ctx.create_postprocessing_stage(StageKind::Tonemapper);
+    ctx.set_stage_var(tonemapper, "input_buffer", input)?;
+    ctx.set_stage_var(tonemapper, "output_buffer", output)?;
+    ctx.set_stage_var(tonemapper, "exposure", EXPOSURE)?;
+    list.append_stage(tonemapper, width, height)?;
+    Ok(())
+}
+
+/// The denoiser stage set up once over a scene's guides, run after each
+/// render (a `--frames` run's every frame reuses its output buffer).
+pub struct Denoiser {
+    list: CommandList,
+    output: BufferId,
+    size: (u32, u32),
+}
+
+impl Denoiser {
+    /// The denoiser over `scene`'s guides, or `None` where the scene
+    /// writes none.
+    pub fn new(scene: &mut Scene) -> Result<Option<Denoiser>, Error> {
+        let Some(Aovs { radiance, albedo, normal }) = scene.aovs else {
+            return Ok(None);
+        };
+        let (w, h) = (scene.width, scene.height);
+        let ctx = &mut scene.ctx;
+        let output = ctx.create_buffer_2d::<Vec4>(BufferType::Output, w, h)?;
+        let denoiser = ctx.create_postprocessing_stage(StageKind::Denoiser);
+        ctx.set_stage_var(denoiser, "input_buffer", radiance)?;
+        ctx.set_stage_var(denoiser, "input_albedo_buffer", albedo)?;
+        ctx.set_stage_var(denoiser, "input_normal_buffer", normal)?;
+        ctx.set_stage_var(denoiser, "output_buffer", output)?;
+        let mut list = CommandList::new();
+        list.append_stage(denoiser, w, h)?;
+        list.finalize(ctx)?;
+        Ok(Some(Denoiser { list, output, size: (w, h) }))
+    }
+
+    /// The last render's mean radiance, denoised (linear; alpha the
+    /// input's).
+    pub fn run(&self, scene: &mut Scene) -> Result<Image, Error> {
+        self.list.execute(&mut scene.ctx)?;
+        let (width, height) = self.size;
+        Ok(Image { width, height, pixels: scene.ctx.read_buffer::<Vec4>(self.output)? })
+    }
+}
+
+/// The last render's guides, read back: the first hit's albedo and
+/// shading normal, each averaged over the samples, alpha 1 (to be seen in
+/// an image viewer); `None` where the scene writes none.
+pub fn guides(scene: &Scene) -> Result<Option<(Image, Image)>, Error> {
+    let Some(aovs) = scene.aovs else {
+        return Ok(None);
+    };
+    let (width, height) = (scene.width, scene.height);
+    let read = |b| -> Result<Image, Error> {
+        let pixels = scene.ctx.read_buffer::<Vec4>(b)?.into_iter().map(|p| p.truncate().extend(1.0)).collect();
+        Ok(Image { width, height, pixels })
+    };
+    Ok(Some((read(aovs.albedo)?, read(aovs.normal)?)))
 }

@@ -278,6 +278,7 @@ fn gltf_scene(path: &Path, settings: &Settings, options: CameraOptions, limits: 
     let mut scene = Scene::new(ctx, output, settings);
     scene.frames = settings.spp;
     scene.accumulation = Some(lit.accumulation);
+    scene.aovs = Some(lit.aovs);
     Ok(Model {
         scene,
         triangles: info.triangles,

@@ -148,10 +148,30 @@ impl GpuPresenter {
         (width, height): (u32, u32),
     ) -> Result<(), String> {
         let at = ctx.wgpu_buffer(buffer).map_err(|e| e.to_string())?;
-        if self.picture.as_ref().is_none_or(|(b, _)| b.size() < at.size) {
+        let picture = self.picture_buffer(at.size, (stride, width, height));
+        let mut encoder =
+            self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("present") });
+        encoder.copy_buffer_to_buffer(&at.buffer, at.offset, &picture, 0, at.size);
+        self.queue.submit([encoder.finish()]);
+        self.redraw((width, height))
+    }
+
+    /// Shows a picture made on the host (the viewer's denoised one),
+    /// written to the device first.
+    pub fn present_image(&mut self, image: &crate::Image) -> Result<(), String> {
+        let bytes: Vec<u8> = image.pixels.iter().flat_map(|p| p.to_array()).flat_map(|x| x.to_le_bytes()).collect();
+        let picture = self.picture_buffer(bytes.len() as u64, (image.width, image.width, image.height));
+        self.queue.write_buffer(&picture, 0, &bytes);
+        self.redraw((image.width, image.height))
+    }
+
+    /// The picture's buffer, holding at least `size` bytes (made anew when
+    /// smaller), with the draw told `(stride, width, height)`.
+    fn picture_buffer(&mut self, size: u64, (stride, width, height): (u32, u32, u32)) -> wgpu::Buffer {
+        if self.picture.as_ref().is_none_or(|(b, _)| b.size() < size) {
             let picture = self.device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("present picture"),
-                size: at.size.max(16),
+                size: size.max(16),
                 usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
                 mapped_at_creation: false,
             });
@@ -168,12 +188,7 @@ impl GpuPresenter {
         let words = [stride, width, height, 0];
         let bytes: Vec<u8> = words.iter().flat_map(|w| w.to_le_bytes()).collect();
         self.queue.write_buffer(&self.uniform, 0, &bytes);
-        let mut encoder =
-            self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("present") });
-        let (picture, _) = self.picture.as_ref().expect("made above");
-        encoder.copy_buffer_to_buffer(&at.buffer, at.offset, picture, 0, at.size);
-        self.queue.submit([encoder.finish()]);
-        self.redraw((width, height))
+        self.picture.as_ref().expect("made above").0.clone()
     }
 
     /// Shows the last picture again (the window was uncovered) at the

@@ -10,8 +10,15 @@
 //! starts again from sample 0, so a still view after `n` refinements is
 //! exactly what `render --spp n` draws of it.
 //!
-//! The runtime cannot free or resize a buffer, so the output and
-//! accumulation buffers only grow: a smaller picture is launched over the
+//! With [`Progressive::set_denoise`] on, [`Progressive::picture`] is the
+//! running mean through the runtime's denoiser
+//! ([`rt_runtime::postprocess::denoise`], on the host) over the guides the
+//! camera writes, gamma corrected as the camera corrects its own; the
+//! samples go on accumulating as before, so turning it off shows the raw
+//! mean of the same samples.
+//!
+//! The runtime cannot free or resize a buffer, so the output, accumulation
+//! and guide buffers only grow: a smaller picture is launched over the
 //! top-left part of them (launch indices address buffers by their own
 //! width) and cropped on the way out.
 //!
@@ -34,6 +41,7 @@ use crate::mesh::LoadedMesh;
 use crate::model::CameraOptions;
 use crate::scene::{Camera, Error, Image, Scene, Settings};
 use glam::{Vec3, Vec4};
+use rt_runtime::postprocess::denoise::{self, Guided};
 use rt_runtime::{BufferType, Scope};
 use rt_scene::SceneCamera;
 use std::time::Instant;
@@ -47,7 +55,7 @@ pub struct Frame {
 }
 
 /// What one sample's launch cost.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, Default)]
 pub struct Sample {
     /// Rays this launch traced.
     pub rays: u64,
@@ -79,6 +87,8 @@ pub struct Progressive {
     bounds: (Vec3, Vec3),
     /// Whether the output and accumulation buffers stay on the device.
     device_local: bool,
+    /// Whether [`Progressive::picture`] is denoised.
+    denoise: bool,
 }
 
 impl Progressive {
@@ -110,6 +120,7 @@ impl Progressive {
             bounds,
             scene,
             device_local: false,
+            denoise: false,
         })
     }
 
@@ -200,6 +211,7 @@ impl Progressive {
             ctx.set_var(Scope::Context, "accum_buffer", accum)?;
             self.scene.output = output;
             self.scene.accumulation = Some(accum);
+            self.scene.aovs = Some(bunny::guide_buffers(ctx, capacity)?);
             self.capacity = capacity;
             self.keep_on_device(self.device_local)?;
         }
@@ -235,14 +247,41 @@ impl Progressive {
         Ok(Sample { rays: report.rays, seconds: start.elapsed().as_secs_f64(), exceptions: report.exceptions.len() })
     }
 
-    /// The picture so far, read from the output buffer.
+    /// Denoises [`Progressive::picture`] from now on (or not); the
+    /// samples so far are kept either way.
+    pub fn set_denoise(&mut self, on: bool) {
+        self.denoise = on;
+    }
+
+    /// Whether [`Progressive::picture`] is denoised.
+    pub fn denoising(&self) -> bool {
+        self.denoise
+    }
+
+    /// The picture so far, read from the output buffer, or denoised from
+    /// the guides ([`Progressive::set_denoise`]).
     pub fn picture(&self) -> Result<Image, Error> {
         let (width, height) = (self.scene.width, self.scene.height);
-        let all = self.scene.ctx.read_buffer::<Vec4>(self.scene.output)?;
+        if self.denoise {
+            let aovs =
+                self.scene.aovs.ok_or_else(|| Error::Settings("the scene writes no guides to denoise".into()))?;
+            let [color, albedo, normal] = [aovs.radiance, aovs.albedo, aovs.normal].map(|b| self.read_cropped(b));
+            let (color, albedo, normal) = (color?, albedo?, normal?);
+            let (w, h) = (width as usize, height as usize);
+            let guided = Guided { width: w, height: h, color: &color, albedo: &albedo, normal: &normal };
+            let pixels = denoise::denoise(&guided, 0.0);
+            return Ok(Image { width, height, pixels }.to_display());
+        }
+        Ok(Image { width, height, pixels: self.read_cropped(self.scene.output)? })
+    }
+
+    /// The picture's part of buffer `b` (of the capacity's size), row by
+    /// row.
+    fn read_cropped(&self, b: rt_runtime::BufferId) -> Result<Vec<Vec4>, Error> {
+        let (width, height) = (self.scene.width as usize, self.scene.height as usize);
+        let all = self.scene.ctx.read_buffer::<Vec4>(b)?;
         let stride = self.capacity.0 as usize;
-        let pixels =
-            (0..height as usize).flat_map(|y| &all[y * stride..y * stride + width as usize]).copied().collect();
-        Ok(Image { width, height, pixels })
+        Ok((0..height).flat_map(|y| &all[y * stride..y * stride + width]).copied().collect())
     }
 }
 
@@ -310,6 +349,37 @@ mod tests {
             assert_eq!(frame.image, fresh.image, "{w}x{h}");
             assert!(frame.sample.rays >= (w * h) as u64);
         }
+    }
+
+    /// The denoised picture is the raw one's samples through the denoiser:
+    /// nearer a picture of many more samples, kept across the toggle, and
+    /// (as the camera corrects its own) gamma corrected.
+    #[test]
+    fn denoising_shows_the_same_samples_nearer_a_converged_picture() {
+        let loaded = mesh::load_obj(&crate::scene::shared_scene("teapot.obj")).unwrap();
+        let options = CameraOptions { elevation: Some(3.0), ..CameraOptions::default() };
+        let mut view = Progressive::framed(&loaded, &Settings::new(128, 96), options, None).unwrap();
+        view.resize(120, 90).unwrap(); // launched over part of the buffers
+        view.set_camera(view.home_camera());
+        view.refine().unwrap();
+        let raw = view.refine().unwrap().image;
+        view.set_denoise(true);
+        assert!(view.denoising());
+        let denoised = view.picture().unwrap();
+        assert_eq!(view.samples(), 2, "the toggle keeps the samples");
+        view.set_denoise(false);
+        assert_eq!(view.picture().unwrap(), raw);
+        let settings = Settings::new(120, 90).with_spp(32);
+        let camera = options.camera((loaded.min, loaded.max), None, options.up.to_y_up(), settings.aspect());
+        let mut scene = bunny::mesh_scene_from(&loaded, &settings, options.view(), camera).unwrap();
+        let converged = scene.render(&mut |_| {}).unwrap().image;
+        let error = |image: &Image| -> f32 {
+            image.pixels.iter().zip(&converged.pixels).map(|(a, b)| (*a - *b).truncate().length_squared()).sum()
+        };
+        let (raw_error, denoised_error) = (error(&raw), error(&denoised));
+        eprintln!("squared error against 32 spp: raw {raw_error}, denoised {denoised_error}");
+        assert_ne!(raw, denoised);
+        assert!(denoised_error < raw_error * 0.8, "raw {raw_error}, denoised {denoised_error}");
     }
 
     #[test]

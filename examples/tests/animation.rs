@@ -123,3 +123,27 @@ fn what_cannot_be_animated_is_refused() {
     refused(render(&[model, "--frames", "0..3", "--fps", "0", "--out", out]), "--fps 0 must be positive");
     assert!(std::fs::read_dir(&dir).unwrap().all(|e| !e.unwrap().file_name().to_string_lossy().ends_with(".png")));
 }
+
+/// `--frames` with `--denoise` and `--aov`: each frame denoised as a
+/// render of that time alone is, its guides named after it.
+#[test]
+fn frames_are_denoised_each_with_its_guides() {
+    let dir = temp_dir("denoised-frames");
+    let model = sliding_teapot(&dir);
+    let model = model.to_str().unwrap();
+    let (out, aov) = (dir.join("frame_##.png"), dir.join("aov"));
+    let denoise = ["--denoise", "--aov", aov.to_str().unwrap()];
+    let frames = [model, "--backend", "cpu", "--frames", "0..2", "--fps", "1", "--out", out.to_str().unwrap()];
+    ok(render(&[&frames[..], &denoise[..], &SIZE[..]].concat()));
+    let mut guides: Vec<_> =
+        std::fs::read_dir(&aov).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
+    guides.sort();
+    assert_eq!(guides, ["frame_00_albedo.exr", "frame_00_normal.exr", "frame_01_albedo.exr", "frame_01_normal.exr"]);
+    let at_one = dir.join("at_one.png");
+    let alone = [model, "--backend", "cpu", "--time", "1", "--out", at_one.to_str().unwrap()];
+    ok(render(&[&alone[..], &["--denoise"][..], &SIZE[..]].concat()));
+    assert_eq!(png(&at_one), png(&dir.join("frame_01.png")), "frame 1 is --time 1 --denoise");
+    let raw = dir.join("raw.png");
+    ok(render(&[&[model, "--backend", "cpu", "--time", "1", "--out", raw.to_str().unwrap()][..], &SIZE[..]].concat()));
+    assert_ne!(png(&raw), png(&at_one), "the denoiser changed nothing");
+}

@@ -277,3 +277,27 @@ fn tour_renders_the_named_examples_and_says_which_backend() {
     }
     assert!(!dir.join("bunny.png").exists());
 }
+
+/// `tour --denoise`: for an example that writes guides (bunny), the pair
+/// at `--denoise-spp` and the `--spp` picture through the same tonemapper;
+/// nothing more for one that writes none (normal).
+#[test]
+fn tour_denoise_writes_the_pair_beside_the_converged_picture() {
+    let dir = temp_dir("tour-denoise");
+    let out = Command::new(env!("CARGO_BIN_EXE_tour"))
+        .args(["--out", dir.to_str().unwrap(), "--width", "32", "--height", "24", "--spp", "3"])
+        .args(["--denoise-spp", "1", "--backend", "cpu", "--denoise", "--only", "normal", "--only", "bunny"])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", stderr(&out));
+    let mut written: Vec<_> =
+        std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
+    written.sort();
+    assert_eq!(written, ["bunny.png", "bunny_converged.png", "bunny_denoised.png", "bunny_noisy.png", "normal.png"]);
+    let read = |name: &str| image::open(dir.join(name)).unwrap().to_rgb8();
+    let (noisy, denoised, converged) =
+        (read("bunny_noisy.png"), read("bunny_denoised.png"), read("bunny_converged.png"));
+    assert_eq!(noisy.dimensions(), (32, 24));
+    assert_ne!(noisy, denoised);
+    assert_ne!(noisy, converged, "the pair is rendered at --denoise-spp, not --spp");
+}

@@ -228,6 +228,20 @@ fn viewer_under_xvfb_shows_what_render_draws() {
     assert!(summary.contains("shown through the host (softbuffer)"), "{summary}");
 }
 
+/// `--denoise` (the N key's state at the start): the window shows the
+/// samples through the denoiser, what `render --denoise` draws, to the
+/// byte on the CPU backend.
+#[test]
+fn viewer_denoised_is_what_render_denoise_draws() {
+    let Some(xvfb) = start_xvfb("viewer_denoised_is_what_render_denoise_draws") else { return };
+    let dir = temp_dir("denoise");
+    let shot = screenshot(&xvfb.display, &dir, "denoised", SIZE, 4, &["--backend", "cpu", "--denoise"]);
+    assert_shows_a_mesh(&shot, "denoised");
+    let bunny = shared_scene("stanford-bunny.obj");
+    assert_eq!(difference(&shot, &rendered_with(&dir, &bunny, SIZE, 4, &["--denoise"])), (0, 0.0));
+    assert!(difference(&shot, &rendered(&dir, &bunny, SIZE, 4)).1 > 0.5, "the denoiser changed little");
+}
+
 /// The camera flags are `render`'s, with its meaning: the same picture to
 /// the byte.
 #[test]

@@ -15,6 +15,13 @@
 //! number (`frame_####.png` → `frame_0007.png`), so a job array can give
 //! each machine its range (with `--tile`, each frame's part).
 //!
+//! `--denoise` writes the picture through the runtime's denoiser (guided
+//! by the first hit's albedo and normal, which the camera writes beside
+//! the radiance), and `--aov DIR` writes those guides as OpenEXR:
+//! `DIR/<stem>_albedo.exr` and `DIR/<stem>_normal.exr`, `<stem>` the name
+//! of `--out` without its extension. Both need the whole picture, so
+//! neither goes with `--tile` or `--merge`.
+//!
 //! Exit status: 0 with the image written; 2 for bad input (the model: one
 //! line naming the file, the line or glTF object when known and the
 //! problem; or arguments, such as a backend with no adapter, a camera or
@@ -29,6 +36,7 @@
 //! `--allow-path DIR` allows another.
 
 use clap::Parser;
+use examples::denoised::{self, Denoiser};
 use examples::model::{self, CameraArgs};
 use examples::scene::Image;
 use examples::{BackendChoice, Error, Settings, parts, progress_bar};
@@ -81,6 +89,15 @@ struct Args {
     /// Frames per second of `--frames`.
     #[arg(long, default_value_t = 24.0)]
     fps: f32,
+    /// Write the picture denoised: the runtime's denoiser over the mean
+    /// radiance, guided by the first hit's albedo and normal.
+    #[arg(long)]
+    denoise: bool,
+    /// Also write the denoiser's guides as OpenEXR into DIR (created if
+    /// missing): `<stem>_albedo.exr` and `<stem>_normal.exr`, `<stem>`
+    /// being `--out`'s file name without its extension.
+    #[arg(long, value_name = "DIR")]
+    aov: Option<PathBuf>,
 }
 
 fn main() -> ExitCode {
@@ -135,7 +152,31 @@ fn settings_line(args: &Args, model: &Path, backend: &str) -> Result<String, Err
     ))
 }
 
+/// Refuses flags that do not go together (clap's own conflicts aside):
+/// the denoiser and the guides need the whole picture.
+fn check_flags(args: &Args) -> Result<(), Error> {
+    let whole = [
+        ("--denoise", args.denoise, "the denoiser reads each pixel's neighbours, which other parts render"),
+        ("--aov", args.aov.is_some(), "it writes the whole picture's guides"),
+    ];
+    for (flag, _, why) in whole.iter().filter(|(_, on, _)| *on) {
+        if args.tile.is_some() {
+            let why =
+                if *flag == "--denoise" { format!("it needs the whole picture ({why})") } else { why.to_string() };
+            return Err(Error::Settings(format!("{flag} cannot go with --tile: {why}; render without --tile")));
+        }
+        if !args.merge.is_empty() {
+            return Err(Error::Settings(format!(
+                "{flag} cannot go with --merge: part files hold the radiance only; render the whole picture \
+                 with {flag} instead"
+            )));
+        }
+    }
+    Ok(())
+}
+
 fn run(args: &Args) -> Result<(), Error> {
+    check_flags(args)?;
     if !args.merge.is_empty() {
         return merge(args);
     }
@@ -156,6 +197,11 @@ fn run(args: &Args) -> Result<(), Error> {
     for warning in &loaded.warnings {
         eprintln!("render: warning: {warning}");
     }
+    let denoiser = match args.denoise {
+        true => Some(Denoiser::new(&mut loaded.scene)?.ok_or_else(|| no_guides(mesh))?),
+        false => None,
+    };
+    let denoiser = denoiser.as_ref();
     let no_animation =
         || Error::Settings(format!("{}: has no node animation to pose (--time and --frames need one)", mesh.display()));
     match (frames, loaded.animation.take()) {
@@ -168,7 +214,7 @@ fn run(args: &Args) -> Result<(), Error> {
                 (Some(_), None) => return Err(no_animation()),
                 (None, _) => None,
             };
-            render_one(args, (mesh, &what, time), &mut loaded, (tile, rows), &args.out)
+            render_one(args, (mesh, &what, time), &mut loaded, (tile, rows), (&args.out, denoiser)).map(|_| ())
         }
         (Some(frames), Some(animation)) => {
             // Each frame is written whole (beside its name, then renamed);
@@ -179,15 +225,17 @@ fn run(args: &Args) -> Result<(), Error> {
                 let time = frame as f32 / args.fps;
                 let out = frame_path(&args.out, frame);
                 let done = animation.pose(&mut loaded.scene.ctx, time).map_err(Error::from).and_then(|()| {
-                    render_one(args, (mesh, &what, Some(time)), &mut loaded, (tile, rows.clone()), &out)
+                    render_one(args, (mesh, &what, Some(time)), &mut loaded, (tile, rows.clone()), (&out, denoiser))
                 });
-                if let Err(e) = done {
-                    for path in &written {
-                        let _ = std::fs::remove_file(path);
+                match done {
+                    Ok(paths) => written.extend(paths),
+                    Err(e) => {
+                        for path in &written {
+                            let _ = std::fs::remove_file(path);
+                        }
+                        return Err(e);
                     }
-                    return Err(e);
                 }
-                written.push(out);
             }
             Ok(())
         }
@@ -225,15 +273,41 @@ fn frame_path(out: &Path, frame: u32) -> PathBuf {
     PathBuf::from(format!("{}{frame:0width$}{}", &text[..start], &text[end..], width = end - start))
 }
 
+/// A model scene that writes no guides to denoise with.
+fn no_guides(mesh: &Path) -> Error {
+    Error::Settings(format!("{}: the scene writes no guides for the denoiser", mesh.display()))
+}
+
+/// `--aov`: the last render's guides into `dir`, named after `out`, each
+/// path added to `written` once written.
+fn write_guides(
+    loaded: &model::Model,
+    (mesh, out): (&Path, &Path),
+    dir: &Path,
+    written: &mut Vec<PathBuf>,
+) -> Result<(), Error> {
+    let (albedo, normal) = denoised::guides(&loaded.scene)?.ok_or_else(|| no_guides(mesh))?;
+    std::fs::create_dir_all(dir).map_err(|e| Error::Io { path: dir.display().to_string(), problem: e.to_string() })?;
+    let stem = out.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "render".into());
+    for (name, image) in [("albedo", albedo), ("normal", normal)] {
+        let path = dir.join(format!("{stem}_{name}.exr"));
+        image.save_exr(&path)?;
+        println!("{}", path.display());
+        written.push(path);
+    }
+    Ok(())
+}
+
 /// Renders the scene as it is posed to `out` (the whole picture, or the
-/// part `tile` of it: its `rows`).
+/// part `tile` of it: its `rows`), denoised by `denoiser` if given, with
+/// the guides beside it for `--aov`; the paths written.
 fn render_one(
     args: &Args,
     (mesh, what, time): (&Path, &str, Option<f32>),
     loaded: &mut model::Model,
     (tile, rows): (Option<(u32, u32)>, std::ops::Range<u32>),
-    out: &Path,
-) -> Result<(), Error> {
+    (out, denoiser): (&Path, Option<&Denoiser>),
+) -> Result<Vec<PathBuf>, Error> {
     let settings = &loaded.scene;
     let (width, height, spp) = (settings.width, settings.height, settings.frames);
     let bar = progress_bar::spp_bar("render", loaded.scene.frames);
@@ -245,24 +319,42 @@ fn render_one(
         .radiance
         .as_ref()
         .ok_or_else(|| Error::Settings(format!("{}: the scene keeps no radiance to write", mesh.display())))?;
-    match tile {
-        Some(tile) => {
-            let mut line = settings_line(args, mesh, loaded.scene.ctx.backend().name())?;
-            if let Some(time) = time {
-                line.push_str(&format!(" time {time}"));
+    let denoised = denoiser.map(|d| d.run(&mut loaded.scene)).transpose()?;
+    let radiance = denoised.as_ref().unwrap_or(radiance);
+    // The picture, then its guides: a failure removes what this call wrote.
+    let mut written = Vec::new();
+    let mut write = || -> Result<(), Error> {
+        match tile {
+            Some(tile) => {
+                let mut line = settings_line(args, mesh, loaded.scene.ctx.backend().name())?;
+                if let Some(time) = time {
+                    line.push_str(&format!(" time {time}"));
+                }
+                parts::Part::of(radiance, tile, &line)?.save(out)?;
             }
-            parts::Part::of(radiance, tile, &line)?.save(out)?;
+            None => save(radiance, out)?,
         }
-        None => save(radiance, out)?,
+        written.push(out.to_path_buf());
+        if let Some(dir) = &args.aov {
+            write_guides(loaded, (mesh, out), dir, &mut written)?;
+        }
+        Ok(())
+    };
+    if let Err(e) = write() {
+        for path in &written {
+            let _ = std::fs::remove_file(path);
+        }
+        return Err(e);
     }
     let part = tile.map_or(String::new(), |(k, n)| format!(" (part {k} of {n}: rows {}..{})", rows.start, rows.end));
     println!(
-        "{}{part}: {} triangles, {}x{}, {} spp{} with {what}{}: {:.2} s, {:.2} Mrays/s",
+        "{}{part}: {} triangles, {}x{}, {} spp{}{} with {what}{}: {:.2} s, {:.2} Mrays/s",
         out.display(),
         loaded.triangles,
         width,
         height,
         spp,
+        if denoised.is_some() { " denoised" } else { "" },
         time.map_or(String::new(), |t| format!(" at {t} s of the animation")),
         if loaded.file_camera { ", the file's camera" } else { "" },
         rendered.seconds,
@@ -271,5 +363,5 @@ fn render_one(
     if !rendered.exceptions.is_empty() {
         eprintln!("render: warning: {} pixels raised exceptions (painted magenta)", rendered.exceptions.len());
     }
-    Ok(())
+    Ok(written)
 }

@@ -4,7 +4,11 @@
 //!     cargo run --release -p examples --bin tour -- --out out
 //!
 //! `--denoise` adds the denoiser's before and after where an example
-//! writes its guides (`cornell_noisy.png`, `cornell_denoised.png`).
+//! writes its guides (cornell, bunny): the example rendered again at
+//! `--denoise-spp` samples a pixel, through the runtime's tonemapper
+//! without and with its denoiser (`cornell_noisy.png`,
+//! `cornell_denoised.png`), beside the `--spp` render through the same
+//! tonemapper (`cornell_converged.png`).
 
 use clap::Parser;
 use examples::{BackendChoice, EXAMPLES, Settings, progress_bar};
@@ -35,11 +39,16 @@ struct Args {
     #[arg(long = "only")]
     only: Vec<String>,
     /// Also write, for the examples that write a denoiser's guides
-    /// (cornell), `<name>_noisy.png` and `<name>_denoised.png`: the
-    /// picture through the runtime's tonemapper, without and with its
-    /// denoiser (`examples::denoised`).
+    /// (cornell, bunny), `<name>_noisy.png` and `<name>_denoised.png`:
+    /// the example at `--denoise-spp` through the runtime's tonemapper,
+    /// without and with its denoiser (`examples::denoised`), and
+    /// `<name>_converged.png`: the `--spp` render through the same
+    /// tonemapper.
     #[arg(long)]
     denoise: bool,
+    /// Samples per pixel of the `--denoise` pair.
+    #[arg(long, default_value_t = 16)]
+    denoise_spp: u32,
 }
 
 fn main() -> ExitCode {
@@ -95,15 +104,8 @@ fn run(args: &Args) -> Result<(), String> {
             build_seconds,
             path.display()
         );
-        if args.denoise
-            && let Some((noisy, denoised)) =
-                examples::denoised::noisy_and_denoised(&mut scene).map_err(|e| format!("{}: {e}", example.name))?
-        {
-            for (suffix, image) in [("noisy", noisy), ("denoised", denoised)] {
-                let path = args.out.join(format!("{}_{suffix}.png", example.name));
-                image.save_png(&path).map_err(|e| e.to_string())?;
-                println!("{:<12} {}", "", path.display());
-            }
+        if args.denoise {
+            denoise(args, example, &settings, &mut scene).map_err(|e| format!("{}: {e}", example.name))?;
         }
         if !rendered.exceptions.is_empty() {
             let first = rendered.exceptions[0];
@@ -124,5 +126,31 @@ fn run(args: &Args) -> Result<(), String> {
         total_rays,
         start.elapsed().as_secs_f64()
     );
+    Ok(())
+}
+
+/// `--denoise`: where `scene` (rendered at `--spp`) writes guides, its
+/// picture through the tonemapper, and the example rendered again at
+/// `--denoise-spp`, without and with the denoiser.
+fn denoise(
+    args: &Args,
+    example: &examples::Example,
+    settings: &Settings,
+    scene: &mut examples::Scene,
+) -> Result<(), examples::Error> {
+    let Some(converged) = examples::denoised::tonemapped(scene)? else {
+        return Ok(());
+    };
+    let low = Settings { spp: args.denoise_spp, ..*settings };
+    let mut noisy_scene = (example.build)(&low)?;
+    noisy_scene.render(&mut |_| {})?;
+    let Some((noisy, denoised)) = examples::denoised::noisy_and_denoised(&mut noisy_scene)? else {
+        return Ok(());
+    };
+    for (suffix, image) in [("noisy", noisy), ("denoised", denoised), ("converged", converged)] {
+        let path = args.out.join(format!("{}_{suffix}.png", example.name));
+        image.save_png(&path)?;
+        println!("{:<12} {}", "", path.display());
+    }
     Ok(())
 }

@@ -7,9 +7,10 @@
 //!
 //! The camera flags are `render`'s (a glTF file's own camera is used when
 //! it has one and no position is asked for). Left-drag orbits, the wheel
-//! zooms, W/A/S/D walk, Q/E go down and up, R resets the camera, Esc quits.
-//! The title says the frame rate, the rays per second, the samples so far
-//! and the backend.
+//! zooms, W/A/S/D walk, Q/E go down and up, R resets the camera, N turns
+//! the denoiser on and off (`--denoise` starts with it on), Esc quits.
+//! The title says the frame rate, the rays per second, the samples so far,
+//! whether the denoiser is on and the backend.
 //!
 //! On the wgpu backend frames go from the GPU to the window: the picture
 //! stays on the device (`Context::set_buffer_device_local`) and is drawn
@@ -87,6 +88,10 @@ struct Args {
     /// Stop refining at this many samples per pixel.
     #[arg(long, default_value_t = 4096, value_parser = clap::value_parser!(u32).range(1..))]
     max_spp: u32,
+    /// Start with the denoiser on (the N key turns it on and off): the
+    /// picture shown is the samples so far through the runtime's denoiser.
+    #[arg(long)]
+    denoise: bool,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -171,7 +176,8 @@ fn run(args: &Args) -> Result<(), Failure> {
     let bounds = (loaded.min, loaded.max);
     let camera = options.camera(bounds, file_camera, options.up.to_y_up(), settings.aspect());
     options.check_camera(&path, &camera, bounds)?;
-    let view = Progressive::framed(&loaded, &settings, options, file_camera)?;
+    let mut view = Progressive::framed(&loaded, &settings, options, file_camera)?;
+    view.set_denoise(args.denoise);
     let name = path.file_name().map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned());
     let event_loop =
         EventLoop::new().map_err(|e| Failure::Other(format!("cannot open a window: {}", without_location(&e))))?;
@@ -285,6 +291,20 @@ struct App {
     readout: Tally,
     readout_since: Instant,
     failure: Option<Failure>,
+    /// The picture must be shown again as it is (the denoiser was turned
+    /// on or off), even when no sample is to be added.
+    restyle: bool,
+}
+
+/// The window's title: the model, the figures, whether the denoiser is on.
+fn title(name: &str, readout: &Tally, spp: u32, denoise: bool, backend: &str, exceptions: usize) -> String {
+    format!(
+        "{name} - {:.1} FPS, {:.2} Mrays/s, {spp} spp, denoiser {}, {backend} backend{}",
+        readout.fps(),
+        readout.mrays_per_second(),
+        if denoise { "on" } else { "off" },
+        if exceptions > 0 { format!(", {exceptions} exceptions") } else { String::new() }
+    )
 }
 
 impl App {
@@ -312,6 +332,7 @@ impl App {
             readout: Tally::default(),
             readout_since: Instant::now(),
             failure: None,
+            restyle: false,
         }
     }
 
@@ -329,6 +350,7 @@ impl App {
     /// Whether there is more to draw without new input.
     fn busy(&self) -> bool {
         !self.converged()
+            || self.restyle
             || self.size != (self.view.width(), self.view.height())
             || self.keys_held.iter().any(|k| walk_direction(*k).is_some())
             || self.camera != self.view.camera()
@@ -362,16 +384,17 @@ impl App {
         let shown = self.shown_window.as_mut().expect("checked above");
         let sample = match &mut shown.screen {
             Screen::Host(surface) => {
-                if again {
+                if again && !self.restyle {
                     // Nothing new to draw: show the last picture again
                     // (the window may have been uncovered).
                     return show_words(surface, &self.shown_words);
                 }
-                let frame = self.view.refine()?;
-                self.shown_words = viewer::to_xrgb(&frame.image);
+                let sample = if again { viewer::Sample::default() } else { self.view.sample()? };
+                let image = self.view.picture()?;
+                self.shown_words = viewer::to_xrgb(&image);
                 surface.resize(w, h).map_err(window_failure)?;
                 show_words(surface, &self.shown_words)?;
-                self.shown = Some(frame.image);
+                self.shown = Some(image);
                 if want_screenshot {
                     // The screenshot is the picture sent; reading the
                     // window back checks the whole way to the screen (a
@@ -379,16 +402,26 @@ impl App {
                     // not at all).
                     check_window(|| surface.fetch().map_err(|e| e.to_string()), &self.shown_words, 1);
                 }
-                frame.sample
+                sample
             }
             Screen::Gpu(presenter) => {
-                if again {
+                if again && !self.restyle {
                     return presenter.redraw((width, height)).map_err(Failure::Other);
                 }
-                let sample = self.view.sample()?;
-                let out = self.view.output();
-                presenter.present(self.view.context(), out.buffer, out.stride, out.size).map_err(Failure::Other)?;
-                if want_screenshot {
+                let sample = if again { viewer::Sample::default() } else { self.view.sample()? };
+                if self.view.denoising() {
+                    // Denoised on the host: the picture goes up from there.
+                    let image = self.view.picture()?;
+                    presenter.present_image(&image).map_err(Failure::Other)?;
+                    if want_screenshot {
+                        check_window(fetch_window(&shown.window, (w, h)), &viewer::to_xrgb(&image), 50);
+                    }
+                    self.shown = Some(image);
+                } else {
+                    let out = self.view.output();
+                    presenter.present(self.view.context(), out.buffer, out.stride, out.size).map_err(Failure::Other)?;
+                }
+                if want_screenshot && !self.view.denoising() {
                     // The picture the device holds, read back once, and
                     // the window as the X server has it (the presentation
                     // may reach it a little later).
@@ -407,19 +440,14 @@ impl App {
         }
         self.totals.wall = self.started.elapsed();
         self.readout.wall = self.readout_since.elapsed();
-        if self.totals.frames == 1 || self.readout.wall >= READOUT_PERIOD {
-            shown.window.set_title(&format!(
-                "{} - {:.1} FPS, {:.2} Mrays/s, {} spp, {} backend{}",
-                self.name,
-                self.readout.fps(),
-                self.readout.mrays_per_second(),
-                self.view.samples(),
-                self.backend,
-                if sample.exceptions > 0 { format!(", {} exceptions", sample.exceptions) } else { String::new() }
-            ));
+        if self.totals.frames == 1 || self.readout.wall >= READOUT_PERIOD || self.restyle {
+            let spp = self.view.samples();
+            let denoise = self.view.denoising();
+            shown.window.set_title(&title(&self.name, &self.readout, spp, denoise, self.backend, sample.exceptions));
             self.readout = Tally::default();
             self.readout_since = Instant::now();
         }
+        self.restyle = false;
         Ok(())
     }
 
@@ -568,6 +596,10 @@ impl ApplicationHandler for App {
                 self.keys_held.insert(key);
                 match key {
                     KeyCode::KeyR => self.camera = self.view.home_camera(),
+                    KeyCode::KeyN => {
+                        self.view.set_denoise(!self.view.denoising());
+                        self.restyle = true;
+                    }
                     KeyCode::Escape => event_loop.exit(),
                     _ => {}
                 }
@@ -583,5 +615,19 @@ impl ApplicationHandler for App {
         {
             shown.window.request_redraw();
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_title_says_whether_the_denoiser_is_on() {
+        let readout = Tally { frames: 10, rays: 2_000_000, launch_seconds: 2.0, wall: Duration::from_secs(2) };
+        let on = title("bunny.obj", &readout, 12, true, "cpu", 0);
+        assert_eq!(on, "bunny.obj - 5.0 FPS, 1.00 Mrays/s, 12 spp, denoiser on, cpu backend");
+        let off = title("bunny.obj", &readout, 12, false, "wgpu", 3);
+        assert_eq!(off, "bunny.obj - 5.0 FPS, 1.00 Mrays/s, 12 spp, denoiser off, wgpu backend, 3 exceptions");
     }
 }
