@@ -50,8 +50,6 @@ pub enum StageKind {
 }
 
 impl StageKind {
-    /// The kind OptiX's built-in name (`DLDenoiser`, `TonemapperSimple`)
-    /// or this project's (`denoiser`, `tonemapper`) names.
     /// The kind OptiX's name (`DLDenoiser`, `TonemapperSimple`) or this
     /// crate's (`denoiser`, `tonemapper`) names.
     pub fn from_name(name: &str) -> Option<StageKind> {
