@@ -37,9 +37,15 @@
 //! program's and not part of the signature: `fn tint(c: Vec3, #[var]
 //! strength: f32) -> Vec3` is a `Callable<fn(Vec3) -> Vec3>`.
 //!
-//! Callables do not trace rays; they may call helpers, other callables (not
-//! in a cycle: WGSL has no recursion), `launch_index`, `launch_dim`,
-//! `rt_throw` and `rt_printf!`.
+//! Callables do not trace rays; they may call helpers, other callables,
+//! `launch_index`, `launch_dim`, `rt_throw` and `rt_printf!`. WGSL has no
+//! recursion, so no callable calls itself: a callable may call callables
+//! of its own signature (a `blend` of two BRDFs), but a call through an id
+//! of its own program raises
+//! [`EXCEPTION_PROGRAM_ID_INVALID`](crate::EXCEPTION_PROGRAM_ID_INVALID) and
+//! returns zero, on every backend; and callables of two or more programs
+//! that may call each other (`a` calls a signature of `b`'s, `b` one of
+//! `a`'s) are a cycle, which a launch refuses naming it.
 
 use crate::data::RtData;
 use crate::program::{LayoutKind, TypeLayout};

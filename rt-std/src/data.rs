@@ -248,15 +248,23 @@ pub fn triangle_words(layout: &TypeLayout, t: &TriangleBuiltins) -> Vec<u32> {
 // its rt attribute gets one error that names the attribute to add. They
 // go through traits of their own, with blanket impls rustc does not
 // recommend, so the error lists no implementing types (a list that would
-// change with every struct of the workspace).
+// change with every struct of the workspace). `DeclaredData` is the
+// attributes' own (through `DeclaredByAttribute`), not every `RtData`'s:
+// a type alias of a glam type is refused by it too, and told why.
 #[doc(hidden)]
 #[diagnostic::on_unimplemented(
-    message = "`{Self}` is not declared for ray programs",
-    label = "mark `{Self}` with #[rt_struct] (or #[rt_payload], #[rt_attributes], #[rt_enum])"
+    message = "this type is not declared for ray programs",
+    label = "`{Self}` is not declared with #[rt_struct], #[rt_payload], #[rt_attributes] or #[rt_enum]",
+    note = "a `type` alias is not seen by the macros that compile programs: name the declared type itself"
 )]
 pub trait DeclaredData {}
 #[diagnostic::do_not_recommend]
-impl<T: RtData> DeclaredData for T {}
+impl<T: DeclaredByAttribute> DeclaredData for T {}
+
+/// Implemented by `#[rt_struct]`, `#[rt_payload]`, `#[rt_attributes]` and
+/// `#[rt_enum]` for their type.
+#[doc(hidden)]
+pub trait DeclaredByAttribute {}
 
 #[doc(hidden)]
 #[diagnostic::on_unimplemented(message = "`{Self}` is not a ray payload", label = "mark `{Self}` with #[rt_payload]")]

@@ -66,11 +66,15 @@ pub struct WgslItem {
     pub sites: &'static [WgslSite],
 }
 
-/// A name in a WGSL function's text that the linker's per-depth clones
-/// suffix with `_d<k>`, recorded by the compiler where it lowered the name:
-/// where the name ends (a byte offset into the text) and what it names.
-/// Recorded for the plain forms of programs and helpers, in text order, so
-/// the linker renames by offset and never searches the text.
+/// A name in a WGSL function's text that the linker may suffix, recorded
+/// by the compiler where it lowered the name: where the name ends (a byte
+/// offset into the text) and what it names. Per-depth clones suffix a
+/// function's own name, its trace and helper calls with `_d<k>`; a
+/// callable that calls callables gets dispatch functions of its own, so
+/// its calls through ids (and its helpers' that make them) are suffixed
+/// with its name. Recorded for the plain forms of programs and helpers, in
+/// text order, so the linker renames by offset and never searches the
+/// text.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct WgslSite {
     /// Byte offset in the function's text just past the name.
@@ -88,6 +92,9 @@ pub enum WgslName {
     Trace(&'static str),
     /// A call of the helper of this WGSL name (`rtf_<helper>(`).
     Call(&'static str),
+    /// A call through a callable id, `rt_call_<signature>(`: the
+    /// signature's dispatch function ([`CallableSignature::dispatch`]).
+    Dispatch(&'static str),
 }
 
 impl WgslSite {

@@ -15,9 +15,7 @@ pub fn tint(c: Vec3, #[var] strength: f32, #[var] offset: Vec3) -> Vec3 {
     c * strength + offset
 }
 
-/// `next` of `table[i]`: both variables of this callable. (Of another
-/// signature than its own: a callable calling its own signature would be a
-/// cycle to WGSL.)
+/// `next` of `table[i]`: both variables of this callable.
 #[rt_program(callable)]
 pub fn lookup(#[var] table: Buffer<u32>, i: u32, #[var] next: Callable<fn(i32) -> i32>) -> u32 {
     next.call(table[i] as i32) as u32

@@ -1,7 +1,10 @@
 //! Callable programs (`#[rt_program(callable)]`, OptiX bindless callables):
 //! ids held in a variable, a buffer and a struct, called from a ray
 //! generation program and a helper, with exact results on every target;
-//! an invalid id raises `EXCEPTION_PROGRAM_ID_INVALID` and returns zero.
+//! an invalid id raises `EXCEPTION_PROGRAM_ID_INVALID` and returns zero. A
+//! callable blends two callables of its own signature; one calling its own
+//! program raises as an invalid id does, and two programs that may call
+//! each other are a cycle, refused at launch.
 
 use rt_runtime::*;
 use rt_std::prelude::*;
@@ -199,8 +202,8 @@ fn callables_calling_each_other_in_a_cycle_are_refused_at_launch_on_every_target
         assert_eq!(
             e,
             "callable programs call each other in a cycle, which no backend runs (WGSL has no recursion): \
-             `ping` (tests/tests/callables.rs:167) calls `pong` (tests/tests/callables.rs:172) calls `ping` \
-             (tests/tests/callables.rs:167)",
+             `ping` (tests/tests/callables.rs:170) calls `pong` (tests/tests/callables.rs:175) calls `ping` \
+             (tests/tests/callables.rs:170)",
             "{}",
             on.name()
         );
@@ -357,5 +360,163 @@ fn a_callable_field_may_name_a_struct_declared_after_its_own() {
         ctx.launch_1d(0, 3).unwrap();
         let want = vec![Vec3::ZERO, Vec3::splat(2.0), Vec3::splat(4.0)];
         assert_eq!(ctx.read_buffer::<Vec3>(out).unwrap(), want, "{}", on.name());
+    }
+}
+
+/// Diffuse: an albedo times the cosine.
+#[rt_program(callable)]
+pub fn lambert(n: Vec3, l: Vec3) -> Vec3 {
+    vec3(0.8, 0.5, 0.25) * n.dot(l).max(0.0)
+}
+
+/// A mirror: white as much as the reflected light leaves along +z.
+#[rt_program(callable)]
+pub fn mirror(n: Vec3, l: Vec3) -> Vec3 {
+    let r = 2.0 * n.dot(l) * n - l;
+    Vec3::splat(r.z.max(0.0))
+}
+
+#[rt_struct]
+pub struct Mix {
+    pub a: Callable<fn(Vec3, Vec3) -> Vec3>,
+    pub b: Callable<fn(Vec3, Vec3) -> Vec3>,
+    pub w: f32,
+}
+
+/// Calls `brdf`: from the ray generation program and from a callable.
+#[rt_function]
+pub fn shade(brdf: Callable<fn(Vec3, Vec3) -> Vec3>, n: Vec3, l: Vec3) -> Vec3 {
+    brdf.call(n, l)
+}
+
+/// Two BRDFs of its own signature mixed by `w`, one called directly, one
+/// through a helper.
+#[rt_program(callable)]
+pub fn blend(n: Vec3, l: Vec3, #[var] mix: Mix) -> Vec3 {
+    mix.a.call(n, l) * (1.0 - mix.w) + shade(mix.b, n, l) * mix.w
+}
+
+/// Every pixel shades its own normal with `brdf`, through the helper.
+#[rt_program(ray_generation)]
+pub fn run_brdf(#[var] brdf: Callable<fn(Vec3, Vec3) -> Vec3>, #[var] mut image: RwBuffer<Vec3>) {
+    let (i, dim) = (launch_index(), launch_dim());
+    let n = vec3(i.x as f32 - 1.5, i.y as f32 - 1.0, 2.0).normalize();
+    image[i.y * dim.x + i.x] = shade(brdf, n, LIGHT);
+}
+
+#[rt_const]
+pub const LIGHT: Vec3 = Vec3::new(0.36, 0.48, 0.8);
+
+const W: u32 = 4;
+const H: u32 = 3;
+
+type Brdf = Callable<fn(Vec3, Vec3) -> Vec3>;
+
+/// The image `run_brdf` makes of `blend` and the codes of its exceptions:
+/// `lambert`, `mirror` and `blend` twice are created, and `mix(ids)` is
+/// the second `blend`'s, the one called.
+fn blend_image(on: On, mix: impl Fn(&[Brdf]) -> Mix) -> (Vec<Vec3>, Vec<u32>) {
+    let mut ctx = on.context();
+    ctx.set_ray_type_count(0);
+    let programs = [&lambert::PROGRAM, &mirror::PROGRAM, &blend::PROGRAM, &blend::PROGRAM];
+    let programs: Vec<ProgramId> = programs.into_iter().map(|p| ctx.create_program(p)).collect();
+    let ids: Vec<Brdf> = programs.iter().map(|p| ctx.callable_id::<fn(Vec3, Vec3) -> Vec3>(*p).unwrap()).collect();
+    ctx.set_var(programs[3], "mix", mix(&ids)).unwrap();
+    ctx.set_var(Scope::Context, "mix", Mix { a: ids[0], b: ids[0], w: 0.0 }).unwrap();
+    let image = ctx.create_buffer::<Vec3>(BufferType::Output, vec![Vec3::splat(9.0); (W * H) as usize]);
+    ctx.set_var(Scope::Context, "brdf", ids[3]).unwrap();
+    ctx.set_var(Scope::Context, "image", image).unwrap();
+    let rg = ctx.create_program(&run_brdf::PROGRAM);
+    ctx.set_ray_generation_program(0, rg).unwrap();
+    let report = ctx.launch(0, W, H).unwrap();
+    (ctx.read_buffer(image).unwrap(), report.exceptions.iter().map(|e| e.code).collect())
+}
+
+/// The reference pixels: `a` and `b` mixed by `w`.
+fn blended(a: fn(Vec3, Vec3) -> Vec3, b: fn(Vec3, Vec3) -> Vec3, w: f32) -> Vec<Vec3> {
+    (0..W * H)
+        .map(|p| {
+            let n = vec3((p % W) as f32 - 1.5, (p / W) as f32 - 1.0, 2.0).normalize();
+            a(n, LIGHT) * (1.0 - w) + b(n, LIGHT) * w
+        })
+        .collect()
+}
+
+fn black(_: Vec3, _: Vec3) -> Vec3 {
+    Vec3::ZERO
+}
+
+fn assert_close(got: &[Vec3], want: &[Vec3], on: On) {
+    assert_eq!(got.len(), want.len(), "{}", on.name());
+    for (p, (g, w)) in got.iter().zip(want).enumerate() {
+        assert!(g.abs_diff_eq(*w, 1e-5), "{}: pixel {p}: {g} != {w}", on.name());
+    }
+}
+
+#[test]
+fn a_callable_blends_two_callables_of_its_own_signature_on_every_target() {
+    let want = blended(lambert, mirror, 0.25);
+    // Both BRDFs show in every pixel.
+    assert!(want.iter().all(|c| c.x > 0.1 && c.x != c.z), "{want:?}");
+    for on in On::ALL.into_iter().filter(|on| on.available()) {
+        let (image, exceptions) = blend_image(on, |ids| Mix { a: ids[0], b: ids[1], w: 0.25 });
+        assert_close(&image, &want, on);
+        assert_eq!(exceptions, Vec::<u32>::new(), "{}", on.name());
+    }
+}
+
+#[test]
+fn a_callable_calling_its_own_program_raises_and_gets_zero_on_every_target() {
+    let raised = vec![EXCEPTION_PROGRAM_ID_INVALID; (W * H) as usize];
+    for on in On::ALL.into_iter().filter(|on| on.available()) {
+        // Its own id, through the helper.
+        let (image, exceptions) = blend_image(on, |ids| Mix { a: ids[0], b: ids[3], w: 0.25 });
+        assert_close(&image, &blended(lambert, black, 0.25), on);
+        assert_eq!(exceptions, raised, "{}", on.name());
+        // The other id of the same program, directly.
+        let (image, exceptions) = blend_image(on, |ids| Mix { a: ids[2], b: ids[1], w: 0.25 });
+        assert_close(&image, &blended(black, mirror, 0.25), on);
+        assert_eq!(exceptions, raised, "{}", on.name());
+    }
+}
+
+/// Half of what `under` gives: of `blend`'s signature and calling it, so
+/// with `blend` in a scene the two may call each other.
+#[rt_program(callable)]
+pub fn layer(n: Vec3, l: Vec3, #[var] under: Callable<fn(Vec3, Vec3) -> Vec3>) -> Vec3 {
+    under.call(n, l) * 0.5
+}
+
+#[test]
+fn two_callables_of_one_signature_calling_it_are_a_cycle_refused_on_every_target() {
+    for on in On::ALL.into_iter().filter(|on| on.available()) {
+        let mut ctx = on.context();
+        ctx.set_ray_type_count(0);
+        let b = ctx.create_program(&blend::PROGRAM);
+        let l = ctx.create_program(&layer::PROGRAM);
+        let m = ctx.create_program(&mirror::PROGRAM);
+        let (b, l, m) = (
+            ctx.callable_id::<fn(Vec3, Vec3) -> Vec3>(b).unwrap(),
+            ctx.callable_id::<fn(Vec3, Vec3) -> Vec3>(l).unwrap(),
+            ctx.callable_id::<fn(Vec3, Vec3) -> Vec3>(m).unwrap(),
+        );
+        // The ids set would end, but which programs may call which is
+        // what the link knows: the variables change without relinking.
+        ctx.set_var(Scope::Context, "mix", Mix { a: l, b: m, w: 0.5 }).unwrap();
+        ctx.set_var(Scope::Context, "under", m).unwrap();
+        let image = ctx.create_buffer::<Vec3>(BufferType::Output, vec![Vec3::ZERO; 2]);
+        ctx.set_var(Scope::Context, "brdf", b).unwrap();
+        ctx.set_var(Scope::Context, "image", image).unwrap();
+        let rg = ctx.create_program(&run_brdf::PROGRAM);
+        ctx.set_ray_generation_program(0, rg).unwrap();
+        let e = ctx.launch(0, 2, 1).unwrap_err().to_string();
+        assert_eq!(
+            e,
+            "callable programs call each other in a cycle, which no backend runs (WGSL has no recursion): \
+             `blend` (tests/tests/callables.rs:395) calls `layer` (tests/tests/callables.rs:486) calls `blend` \
+             (tests/tests/callables.rs:395)",
+            "{}",
+            on.name()
+        );
     }
 }

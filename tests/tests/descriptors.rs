@@ -105,7 +105,7 @@ fn descriptor_records_the_sites_per_depth_clones_rename() {
             let name = match s.name {
                 WgslName::Definition => format!("fn {own}"),
                 WgslName::Trace(payload) => format!("rt_trace_{payload}"),
-                WgslName::Call(h) => h.to_string(),
+                WgslName::Call(h) | WgslName::Dispatch(h) => h.to_string(),
             };
             let (before, after) = text.split_at(s.end as usize);
             assert!(before.ends_with(&name) && after.starts_with('('), "{s:?} in {own}");

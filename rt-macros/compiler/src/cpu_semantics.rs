@@ -24,6 +24,13 @@
 //! written (a bitwise compound assignment only has its right side
 //! evaluated first, as the arithmetic ones: its place may be an `at_mut`
 //! borrow), as is everything inside macro invocations and `const` items.
+//!
+//! A function that names a scalar type the subset refuses (`u64`, `f64`,
+//! `u8`, ...: [`names_refused_scalar`]), or that is generic, is left as
+//! written: the lowering refuses it with its own message, and
+//! `rt_std::arith`, which has no such types and which a type parameter's
+//! bounds do not name, would only add rustc's errors about its traits
+//! after it.
 
 use proc_macro2::Span;
 use syn::spanned::Spanned;
@@ -32,6 +39,9 @@ use syn::{BinOp, Expr, UnOp};
 
 /// Rewrites `f`'s body in place.
 pub fn rewrite_fn(f: &mut syn::ItemFn) {
+    if names_refused_scalar(f) || !f.sig.generics.params.is_empty() {
+        return;
+    }
     // `&mut` parameters (`m: &mut Mat3`, `&mut self`): an in-place method's
     // receiver is reborrowed through them (`&mut *m`), not borrowed again.
     let ref_params = f
@@ -336,6 +346,35 @@ impl VisitMut for Rewriter {
     }
 }
 
+/// The scalar types the subset refuses (`types::unsupported_type_advice`
+/// has the advice): `rt_std::arith` implements nothing for them.
+const REFUSED_SCALARS: &[&str] = &["f64", "i64", "u64", "i128", "u128", "isize", "i8", "u8", "i16", "u16"];
+
+/// Whether `f` names a refused scalar type, as a type or a literal's
+/// suffix, anywhere in its signature or body.
+pub fn names_refused_scalar(f: &syn::ItemFn) -> bool {
+    struct Find(bool);
+    impl<'ast> syn::visit::Visit<'ast> for Find {
+        fn visit_type_path(&mut self, t: &'ast syn::TypePath) {
+            if t.qself.is_none() && t.path.segments.len() == 1 {
+                self.0 |= REFUSED_SCALARS.iter().any(|s| t.path.segments[0].ident == s);
+            }
+            syn::visit::visit_type_path(self, t);
+        }
+        fn visit_lit(&mut self, l: &'ast syn::Lit) {
+            let suffix = match l {
+                syn::Lit::Int(i) => i.suffix(),
+                syn::Lit::Float(f) => f.suffix(),
+                _ => "",
+            };
+            self.0 |= REFUSED_SCALARS.contains(&suffix);
+        }
+    }
+    let mut find = Find(false);
+    syn::visit::Visit::visit_item_fn(&mut find, f);
+    find.0
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -357,6 +396,20 @@ mod tests {
              { let __rt_rhs = (* :: rt_std :: arith :: at (& arr , 1)) ; :: rt_std :: arith :: sub_assign (& mut y , __rt_rhs) } ; \
              let n = - 1i32 ; }"
         );
+    }
+
+    #[test]
+    fn functions_the_lowering_refuses_by_type_are_left_as_written() {
+        for src in [
+            "fn f(x: u32) -> u32 { let h: u64 = x as u64 * 3; (h >> 1) as u32 }",
+            "fn f(x: f32) -> f32 { x * 2.0f64 as f32 }",
+            "fn f<T: Copy + core::ops::Add<Output = T>>(x: T) -> T { x + x }",
+        ] {
+            let f: syn::ItemFn = syn::parse_str(src).unwrap();
+            assert_eq!(rewritten(src), f.block.to_token_stream().to_string(), "{src}");
+        }
+        // A name that only contains one is rewritten.
+        assert!(rewritten("fn f(u64s: u32) -> u32 { u64s + 1 }").contains("arith :: add"));
     }
 
     #[test]

@@ -126,6 +126,7 @@ pub fn rust_side(e: &syn::ItemEnum, def: &EnumDef) -> TokenStream {
         #repr
         #e
         #default
+        impl ::rt_std::data::DeclaredByAttribute for #name {}
         impl ::rt_std::RtData for #name {
             const LAYOUT: ::rt_std::program::TypeLayout =
                 ::rt_std::program::TypeLayout {

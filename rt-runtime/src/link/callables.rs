@@ -5,6 +5,14 @@
 //! cannot run a cycle; the CPU backend refuses it too, with the same error,
 //! so that a scene runs on both or on neither (and a CPU launch never
 //! recurses until its stack overflows).
+//!
+//! A callable may call callables of its own signature ("blend two
+//! BRDFs"): every callable that calls through ids has dispatch functions of
+//! its own, over the callables of each signature it calls except itself
+//! ([`calls_itself`]). So only a cycle through two or more programs is
+//! refused at link; a callable called through an id of its own program, by
+//! itself, raises `EXCEPTION_PROGRAM_ID_INVALID` and returns zero, as an id
+//! of no callable does, on every backend.
 
 use crate::error::{Result, RtError};
 use crate::scene::{ProgramId, Scene};
@@ -71,16 +79,34 @@ pub fn of_signature<'a>(
     callables.iter().filter(move |c| c.desc.callable.is_some_and(|s| s.signature.dispatch == dispatch))
 }
 
-/// Callables calling back into their own signature, directly or through
-/// others: the cycle, spelled out.
+/// Whether a call from callable `caller` to `callee` would be the caller
+/// calling itself (the same program, through any of its ids): no backend
+/// makes that call (WGSL has no recursion); it raises
+/// `EXCEPTION_PROGRAM_ID_INVALID` and returns zero instead.
+pub fn calls_itself(caller: &ProgramDescriptor, callee: &ProgramDescriptor) -> bool {
+    caller.wgsl_entry == callee.wgsl_entry
+}
+
+/// The `linked` callables of the signature whose dispatch name is
+/// `dispatch` that callable `caller` may call (itself excepted).
+pub fn callable_from<'a>(
+    caller: &'a ProgramDescriptor,
+    linked: &'a [LinkedCallable],
+    dispatch: &'a str,
+) -> impl Iterator<Item = &'a LinkedCallable> {
+    of_signature(linked, dispatch).filter(move |c| !calls_itself(caller, c.desc))
+}
+
+/// Callables calling back into themselves through other programs: the
+/// cycle, spelled out.
 fn check_acyclic(linked: &[LinkedCallable]) -> Result<()> {
     fn visit(
         c: &LinkedCallable,
         linked: &[LinkedCallable],
         path: &mut Vec<LinkedCallable>,
-        done: &mut BTreeSet<u32>,
+        done: &mut BTreeSet<&'static str>,
     ) -> Result<()> {
-        if let Some(at) = path.iter().position(|p| p.id == c.id) {
+        if let Some(at) = path.iter().position(|p| calls_itself(p.desc, c.desc)) {
             let cycle: Vec<String> = path[at..]
                 .iter()
                 .chain(std::iter::once(c))
@@ -88,12 +114,12 @@ fn check_acyclic(linked: &[LinkedCallable]) -> Result<()> {
                 .collect();
             return Err(RtError::CallableCycle { cycle: cycle.join(" calls ") });
         }
-        if !done.insert(c.id) {
+        if !done.insert(c.desc.wgsl_entry) {
             return Ok(());
         }
         path.push(*c);
         for sig in c.desc.calls {
-            for next in of_signature(linked, sig.dispatch) {
+            for next in callable_from(c.desc, linked, sig.dispatch) {
                 visit(next, linked, path, done)?;
             }
         }

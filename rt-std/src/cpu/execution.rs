@@ -271,10 +271,13 @@ pub trait Tracer {
     fn print(&self, text: &str);
     /// The Rust function of the callable program of id `id` (a
     /// `fn(A, ..) -> R` behind `Any`), for
-    /// [`Callable::call`](crate::Callable::call); `None` when the id names
-    /// no callable program of this launch.
-    fn callable(&self, id: u32) -> Option<&'static (dyn core::any::Any + Send + Sync)> {
-        let _ = id;
+    /// [`Callable::call`](crate::Callable::call) made by the callable of id
+    /// `caller` (0 when a program of another kind calls); `None` when the
+    /// id names no callable program of this launch, or the caller's own
+    /// program (a callable does not call itself on any backend: WGSL has
+    /// no recursion).
+    fn callable(&self, id: u32, caller: u32) -> Option<&'static (dyn core::any::Any + Send + Sync)> {
+        let _ = (id, caller);
         None
     }
     /// The `#[var]` variables of the callable program of id `id`, bound
@@ -544,10 +547,11 @@ pub fn __report_intersection<A: crate::Attributes + Send>(material: u32, attribu
     }
 }
 
-/// The Rust function of callable `id` as the installed tracer has it (none
-/// without a tracer).
+/// The Rust function of callable `id` as the installed tracer has it for
+/// the running callable, if any, to call (none without a tracer).
 pub(crate) fn callable(id: u32) -> Option<&'static (dyn core::any::Any + Send + Sync)> {
-    with_installed_tracer(|tracer| tracer.callable(id), || None)
+    let caller = CALLEE.with(Cell::get);
+    with_installed_tracer(|tracer| tracer.callable(id, caller), || None)
 }
 
 /// Runs `f`, the Rust function of callable `id`, with `id` as the callee

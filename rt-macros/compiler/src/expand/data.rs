@@ -75,6 +75,7 @@ pub(super) fn rt_data_impl(s: &syn::ItemStruct, role: StructRole) -> TokenStream
                 #(#reads_into)*
             }
         }
+        impl ::rt_std::data::DeclaredByAttribute for #name {}
         #marker
     }
 }

@@ -133,6 +133,7 @@ fn wgsl_sites(sites: &[(Site, usize)]) -> TokenStream {
             Site::Definition => quote!(Definition),
             Site::Trace(p) => quote!(Trace(#p)),
             Site::Call(h) => quote!(Call(#h)),
+            Site::Dispatch(d) => quote!(Dispatch(#d)),
         };
         quote!(::rt_std::program::WgslSite { end: #end, name: ::rt_std::program::WgslName::#name })
     });

@@ -7,7 +7,7 @@
 //! (`\u{4}L var value\u{5}`, `\u{4}T var\u{5}`). [`finish`] resolves the
 //! placeholders, strips the markers and returns the byte range of every
 //! marked piece: the source map from WGSL spans to Rust spans. Names the
-//! linker renames per trace depth (a function's own, its trace and helper
+//! linker renames (a function's own, its trace, helper and dispatch
 //! calls) are followed by a [`site`] placeholder, which `finish` turns into
 //! the byte offset where the name ends: the facts the linker reads instead
 //! of searching the text.
@@ -44,6 +44,9 @@ pub enum Site {
     Trace(String),
     /// A call of the helper of this WGSL name.
     Call(String),
+    /// A call of the dispatch function of this name (a call through a
+    /// callable id).
+    Dispatch(String),
 }
 
 /// A placeholder written right after the name `site` describes: [`finish`]
@@ -53,6 +56,7 @@ pub fn site(site: &Site) -> String {
         Site::Definition => format!("{PH_OPEN}D{PH_CLOSE}"),
         Site::Trace(p) => format!("{PH_OPEN}R{p}{PH_CLOSE}"),
         Site::Call(h) => format!("{PH_OPEN}C{h}{PH_CLOSE}"),
+        Site::Dispatch(d) => format!("{PH_OPEN}X{d}{PH_CLOSE}"),
     }
 }
 
@@ -105,6 +109,7 @@ pub fn finish(text: &str, signed: &dyn Fn(u32) -> bool) -> Finished {
                     "D" => sites.push((Site::Definition, out.len())),
                     "R" => sites.push((Site::Trace(rest.to_string()), out.len())),
                     "C" => sites.push((Site::Call(rest.to_string()), out.len())),
+                    "X" => sites.push((Site::Dispatch(rest.to_string()), out.len())),
                     "L" => {
                         let (var, value) = rest.split_once(' ').unwrap_or((rest, "0"));
                         let signed = signed(var.parse().unwrap_or(0));

@@ -167,8 +167,14 @@ impl Tracer for Lane<'_> {
         true
     }
 
-    fn callable(&self, id: u32) -> Option<&'static (dyn std::any::Any + Send + Sync)> {
-        let rec = self.l.scene.programs.get(ProgramId::from_callable_id(id)?.index() as usize)?;
+    fn callable(&self, id: u32, caller: u32) -> Option<&'static (dyn std::any::Any + Send + Sync)> {
+        let program = |id| self.l.scene.programs.get(ProgramId::from_callable_id(id)?.index() as usize);
+        let rec = program(id)?;
+        // As the wgpu kernel's dispatch functions do, a callable's calls
+        // leave its own program out (`link::callables`).
+        if program(caller).is_some_and(|c| crate::link::callables::calls_itself(c.desc, rec.desc)) {
+            return None;
+        }
         rec.desc.callable.map(|c| c.cpu)
     }
 

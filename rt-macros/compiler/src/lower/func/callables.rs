@@ -48,7 +48,8 @@ impl FnLowerer<'_> {
         }
         let dispatch = sig.dispatch();
         self.m.call_types.borrow_mut().insert(dispatch.clone(), sig.clone());
-        let code = format!("{dispatch}({})", codes(&vals).join(", "));
+        let site = text::site(&text::Site::Dispatch(dispatch.clone()));
+        let code = format!("{dispatch}{site}({})", codes(&vals).join(", "));
         if matches!(sig.ret, Ty::Unit) {
             let line = self.mark(span, &format!("{code};"));
             self.emit(line);

@@ -20,26 +20,27 @@ pub(super) type Linked = BTreeMap<&'static str, (&'static WgslItem, &'static Pro
 /// a helper that traces (a helper tracing only through another was emitted
 /// once, calling a name only its per-depth clones had: the link failed).
 pub(super) fn helpers_that_trace(functions: &Linked) -> BTreeSet<&'static str> {
-    let mut tracing: BTreeSet<&'static str> = functions
-        .iter()
-        .filter(|(_, (f, _))| f.sites.iter().any(|s| matches!(s.name, WgslName::Trace(_))))
-        .map(|(n, _)| *n)
-        .collect();
-    // And those that call one, however far down (helpers do not recurse:
-    // the compiler rejects it, so this ends).
+    helpers_reaching(functions, |s| matches!(s, WgslName::Trace(_)))
+}
+
+/// The helpers with a site that `own` picks in their text, or calling a
+/// helper that has one, however far down (helpers do not recurse: the
+/// compiler rejects it, so this ends).
+pub(super) fn helpers_reaching(functions: &Linked, own: impl Fn(&WgslName) -> bool) -> BTreeSet<&'static str> {
+    let mut found: BTreeSet<&'static str> =
+        functions.iter().filter(|(_, (f, _))| f.sites.iter().any(|s| own(&s.name))).map(|(n, _)| *n).collect();
     loop {
         let callers: Vec<&'static str> = functions
             .iter()
             .filter(|(n, (f, _))| {
-                !tracing.contains(*n)
-                    && f.sites.iter().any(|s| matches!(s.name, WgslName::Call(h) if tracing.contains(h)))
+                !found.contains(*n) && f.sites.iter().any(|s| matches!(s.name, WgslName::Call(h) if found.contains(h)))
             })
             .map(|(n, _)| *n)
             .collect();
         if callers.is_empty() {
-            return tracing;
+            return found;
         }
-        tracing.extend(callers);
+        found.extend(callers);
     }
 }
 
@@ -54,7 +55,7 @@ pub(super) fn at_depth(text: &str, sites: &[WgslSite], depth: u32, tracing_helpe
             WgslName::Definition => depth,
             WgslName::Trace(_) => depth + 1,
             WgslName::Call(h) if tracing_helpers.contains(h) => depth,
-            WgslName::Call(_) => continue,
+            WgslName::Call(_) | WgslName::Dispatch(_) => continue,
         };
         let end = site.end as usize;
         out.push_str(&text[from..end]);
@@ -75,7 +76,7 @@ pub(super) fn trace_sites(sites: &[WgslSite], functions: &Linked, tracing: &BTre
             WgslName::Call(h) if tracing.contains(h) => {
                 functions.get(h).map_or(0, |(f, _)| trace_sites(f.sites, functions, tracing))
             }
-            WgslName::Call(_) | WgslName::Definition => 0,
+            WgslName::Call(_) | WgslName::Definition | WgslName::Dispatch(_) => 0,
         })
         .fold(0, u64::saturating_add)
 }

@@ -294,11 +294,7 @@ pub fn generate(spec: &KernelSpec) -> Result<Generated> {
     let payload_ids: BTreeMap<&str, u32> = payloads.keys().enumerate().map(|(i, w)| (*w, i as u32)).collect();
     if !called.is_empty() {
         out.push_str("\n// ---- callables ----\n");
-        // The same callable created twice: two ids, one function.
-        let mut emitted: BTreeSet<&str> = BTreeSet::new();
-        for c in callables.iter().filter(|c| emitted.insert(c.desc.wgsl_entry)) {
-            out.push_str(c.desc.wgsl_program);
-        }
+        out.push_str(&callables::callable_functions(&called, &callables, &functions));
         out.push_str(&callables::dispatch(&called, &callables));
     }
     out.push_str("\n// ---- dispatch ----\n");
