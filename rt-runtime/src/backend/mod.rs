@@ -148,6 +148,12 @@ pub struct Timings {
     /// read-back. `None` on the CPU backend and on devices without
     /// `wgpu::Features::TIMESTAMP_QUERY`.
     pub kernel: Option<std::time::Duration>,
+    /// From the launch's start (after the device is open) to its first
+    /// dispatch: the acceleration builds (`build`), the encoding, the
+    /// link, the uploads and the ray-query traversal's device builds;
+    /// what the launch did before its kernel started. On the CPU backend,
+    /// `build` and the programs' binding (`encode`).
+    pub setup: std::time::Duration,
 }
 
 /// How a context's launches run, besides its scene: set by the context,
@@ -404,6 +410,7 @@ pub(crate) async fn launch(
         report.prints.sort_by_key(|(at, _)| (at.y, at.x));
     }
     report.timings.build = build;
+    report.timings.setup += build;
     Ok(report)
 }
 
@@ -431,6 +438,10 @@ fn merge(report: &mut LaunchReport, tile: LaunchReport) {
     a.link += b.link;
     a.run += b.run;
     a.accel += b.accel;
+    // The first tile's: the launch's first dispatch.
+    if report.tiles == 1 {
+        a.setup = b.setup;
+    }
     a.kernel = match (report.tiles, a.kernel, b.kernel) {
         (1, _, k) => k,
         (_, Some(x), Some(y)) => Some(x + y),

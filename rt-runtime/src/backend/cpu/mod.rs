@@ -160,6 +160,7 @@ fn run(launch: &Launch) -> Result<LaunchReport> {
         run: t2.elapsed(),
         kernel: None,
         accel: Default::default(),
+        setup: t2 - t1,
     };
     Ok(report)
 }

@@ -383,6 +383,8 @@ async fn launch_on_device(
         true => outputs.iter().copied().filter(|&(i, ..)| !l.scene.buffers[i].device_local).collect(),
         false => Vec::new(),
     };
+    // Everything before the dispatch is recorded; it is submitted next.
+    let setup = t1.elapsed();
     let results = readback::results(gpu, encoder, &read, lose).await?;
     let (header, kernel) = (results.header, results.kernel);
     if let Some(before) = &capture {
@@ -401,8 +403,15 @@ async fn launch_on_device(
     report.exceptions.sort_by_key(|e| (e.launch_index.y, e.launch_index.x));
     report.prints = readback::decode_prints(l.scene, &print_words, print_words.len());
     report.rays = header[2] as u64;
-    report.timings =
-        super::Timings { build: Default::default(), encode: t2 - t1, link: t3 - t2, run: t3.elapsed(), kernel, accel };
+    report.timings = super::Timings {
+        build: Default::default(),
+        encode: t2 - t1,
+        link: t3 - t2,
+        run: t3.elapsed(),
+        kernel,
+        accel,
+        setup,
+    };
     Ok(report)
 }
 
