@@ -45,8 +45,8 @@ pub(crate) fn measure(
         let after_vertices = ctx.ray_query_builds();
         let mut w = Json::obj();
         w.set("rays", l.rays);
-        // Our BVH (still built: the scene's tables come from it) and the
-        // device's BLAS and TLAS of the first launch.
+        // The host's part (the geometry group's primitives and bounds; no
+        // tree) and the device's BLAS and TLAS of the first launch.
         w.set("build_ms", ms(first.timings.build));
         w.set("accel_build_ms", ms(first.timings.accel));
         w.set("link_ms", ms(first.timings.link));

@@ -216,9 +216,11 @@ pub(crate) trait LaunchBackend: Any + Send + Sync {
     /// Gets ready for a launch, before anything is built (the wgpu backend
     /// drops a lost device and opens one).
     fn prepare(&mut self) -> Result<()>;
-    /// The trees this backend walks, which the acceleration builder builds
-    /// for it.
-    fn trees(&self, scene: &Scene) -> Trees;
+    /// The trees this backend walks in the launch about to run (after
+    /// [`LaunchBackend::prepare`]), which the acceleration builder builds
+    /// for it; the wgpu backend chooses the launch's traversal here, and
+    /// fails where the one asked for cannot run.
+    fn trees(&mut self, scene: &Scene) -> Result<Trees>;
     /// Runs a launch's tile. Outputs wait for
     /// [`LaunchBackend::read_back_outputs`].
     fn launch(&mut self, launch: &Launch) -> Result<LaunchReport>;
@@ -291,8 +293,8 @@ impl LaunchBackend for NoCpuBackend {
             why: "it is not built for wasm32 (no threads there): use Backend::Wgpu".into(),
         })
     }
-    fn trees(&self, _: &Scene) -> Trees {
-        Trees { groups: crate::accel::bvh::TreeForm::Binary, cwbvh: false, simd: false }
+    fn trees(&mut self, _: &Scene) -> Result<Trees> {
+        Ok(Trees { groups: crate::accel::bvh::TreeForm::Binary, geometry: true, cwbvh: false, simd: false })
     }
     fn launch(&mut self, _: &Launch) -> Result<LaunchReport> {
         self.prepare().map(|_| LaunchReport::default())
@@ -363,7 +365,8 @@ pub(crate) async fn launch(
     }
     backend.prepare_async().await?;
     let t0 = Instant::now();
-    build_accels(scene, accels, backend.trees(scene))?;
+    let trees = backend.trees(scene)?;
+    build_accels(scene, accels, trees)?;
     let build = t0.elapsed();
     let budget = settings.tile_budget;
     let total = part.count();
@@ -463,8 +466,8 @@ mod tests {
         fn prepare(&mut self) -> Result<()> {
             Ok(())
         }
-        fn trees(&self, _: &Scene) -> Trees {
-            Trees { groups: crate::accel::bvh::TreeForm::Binary, cwbvh: false, simd: false }
+        fn trees(&mut self, _: &Scene) -> Result<Trees> {
+            Ok(Trees { groups: crate::accel::bvh::TreeForm::Binary, geometry: true, cwbvh: false, simd: false })
         }
         fn launch(&mut self, _: &Launch) -> Result<LaunchReport> {
             panic!("a bug in a backend")
