@@ -46,6 +46,12 @@ pub(crate) struct Args {
     /// figures, no lowering times (for profiling the traversal alone).
     #[arg(long)]
     pub(crate) traversal_only: bool,
+    /// Only the wgpu traversals' setup, per scene: a first launch with the
+    /// compute traversal, then one with ray queries, each on a fresh
+    /// context, timed from its call to its first dispatch (ratio
+    /// `rayquery_setup_over_compute_setup`). Nothing else is measured.
+    #[arg(long)]
+    pub(crate) setup_only: bool,
     /// Use Mesa's usual on-disk shader cache (by default the bench gives
     /// Mesa a fresh one, so each kernel's first compile is cold).
     #[arg(long)]

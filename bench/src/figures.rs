@@ -42,6 +42,11 @@ pub(crate) struct SceneFigures {
     pub(crate) rayquery_kernel: Option<f64>,
     pub(crate) rayquery_handwritten: Option<f64>,
     pub(crate) rayquery_handwritten_kernel: Option<f64>,
+    /// Each traversal's setup in milliseconds: its first launch's time to
+    /// its first dispatch (`Timings::setup`: acceleration builds on the
+    /// host and the device, encoding, link, uploads).
+    pub(crate) compute_setup: Option<f64>,
+    pub(crate) rayquery_setup: Option<f64>,
     /// Throughput of launches cut into tiles (the default) over whole
     /// ones, per backend.
     pub(crate) cpu_tiled_vs_whole: Option<f64>,
@@ -82,6 +87,11 @@ pub(crate) fn record_figures(j: &mut Json, fig: &SceneFigures) {
     ] {
         j.child("kernel_mrays_per_s").set(k, v);
     }
+    // Below 1: the ray-query traversal starts its first dispatch sooner.
+    let setup = j.child("setup_ms");
+    setup.set("compute", fig.compute_setup);
+    setup.set("rayquery", fig.rayquery_setup);
+    j.set("rayquery_setup_over_compute_setup", ratio(fig.rayquery_setup, fig.compute_setup));
     j.set("wgpu_grays_per_s", fig.wgpu_kernel.or(fig.wgpu).map(|m| m / 1e3));
     if fig.wgpu.is_some() {
         j.set("wgpu_grays_timed_by", if fig.wgpu_kernel.is_some() { "device timestamps" } else { "wall clock" });
@@ -107,7 +117,7 @@ fn geomean(rs: &[Option<f64>]) -> Option<f64> {
 /// the bunny to the wall; and the CPU backend's instruction set.
 pub(crate) fn record_ratios(json: &mut Json, figures: &[(&str, SceneFigures)]) {
     let pick = |name: &str| figures.iter().find(|(n, _)| *n == name).map(|(_, f)| f);
-    let ratios: [(&str, RatioOf); 19] = [
+    let ratios: [(&str, RatioOf); 20] = [
         ("cpu_vs_obvhs", |f| ratio(f.cpu, f.obvhs)),
         // Against Embree's best mode (the faster of rtcIntersect1 and
         // rtcIntersect16), and against its single rays alone.
@@ -137,6 +147,9 @@ pub(crate) fn record_ratios(json: &mut Json, figures: &[(&str, SceneFigures)]) {
         ("rayquery_vs_compute_kernel", |f| ratio(f.rayquery_kernel, f.wgpu_kernel)),
         ("megakernel_rayquery_vs_handwritten", |f| ratio(f.rayquery, f.rayquery_handwritten)),
         ("megakernel_rayquery_vs_handwritten_kernel", |f| ratio(f.rayquery_kernel, f.rayquery_handwritten_kernel)),
+        // The ray-query traversal's setup (first launch to first dispatch)
+        // over the compute traversal's: below 1, ray queries start sooner.
+        ("rayquery_setup_over_compute_setup", |f| ratio(f.rayquery_setup, f.compute_setup)),
         // Launches cut into tiles (the default budget) against whole ones
         // (above 1: tiles are faster).
         ("cpu_tiled_vs_whole_launch", |f| f.cpu_tiled_vs_whole),

@@ -41,7 +41,7 @@ pub(crate) fn measure_gpu(
         j.child("skipped").set("handwritten_wgsl", why.as_str());
         return;
     }
-    match megakernel(scene, cam, (width, height), reps) {
+    match megakernel(scene, cam, (width, height), reps, fig) {
         Ok((w, l, device, ratios)) => {
             fig.wgpu_tiled_vs_whole = ratios.tiled;
             fig.wgpu_exceptions_off_vs_on = ratios.exceptions_off;
@@ -74,12 +74,14 @@ pub(crate) fn measure_gpu(
 /// The megakernel with the compute traversal: its first launch's figures
 /// and the repeated launches' (as they are, under a moving transform, with
 /// moving vertices, tiled and with exceptions off) as a JSON object, the
-/// repeated launches' medians, the adapter and the launch settings' ratios.
+/// repeated launches' medians, the adapter and the launch settings' ratios;
+/// its setup into `fig`.
 fn megakernel(
     scene: &scenes::BenchScene,
     cam: scenes::Camera,
     (width, height): (u32, u32),
     reps: usize,
+    fig: &mut SceneFigures,
 ) -> Result<(Json, Repeated, String, LaunchRatios)> {
     let (mut ctx, _, gg, g) = scene_with(&scene.mesh, cam, Backend::Wgpu, width, height, Workload::Ao)?;
     ctx.set_traversal(rt_runtime::Traversal::Compute);
@@ -93,6 +95,8 @@ fn megakernel(
     w.set("rays", l.rays);
     w.set("build_ms", ms(first.timings.build));
     w.set("link_ms", ms(first.timings.link));
+    w.set("setup_ms", ms(first.timings.setup));
+    fig.compute_setup = Some(ms(first.timings.setup));
     w.set("first_dispatch_ms", ms(first.timings.run.saturating_sub(l.run)));
     // Repeated launches, in medians: the host's preparation, the
     // run (upload, dispatch, wait, read-back), the kernel; as

@@ -28,7 +28,7 @@
 //! and its context (`programs.rs`); repeated launches and what they
 //! measured (`launches.rs`); the bunny's primary rays and build
 //! (`bunny.rs`); each scene's CPU side and peers (`measure.rs`), its wgpu
-//! side (`gpu.rs`, `rayquery.rs`); the figures and the headline ratios
+//! side (`gpu.rs`, `rayquery.rs`; `setup.rs` for `--setup-only`); the figures and the headline ratios
 //! reported from them (`figures.rs`).
 
 // The runtime's errors name programs and scopes; size does not matter here.
@@ -51,6 +51,7 @@ mod plot;
 mod programs;
 mod rayquery;
 mod scenes;
+mod setup;
 mod tour;
 
 use clap::Parser;
@@ -80,7 +81,8 @@ fn main() {
     record_machine(&args, (width, height), reps, &mut json);
     let embree = load_embree(&args, &mut json);
 
-    if args.measures_scene("bunny") && !args.traversal_only {
+    let only = args.traversal_only || args.setup_only;
+    if args.measures_scene("bunny") && !only {
         bunny::bunny_primary(&args, &all[0], width, height, reps, &mut json);
     }
     let mut scene_figures = Vec::new();
@@ -91,7 +93,7 @@ fn main() {
     }
     figures::record_ratios(&mut json, &scene_figures);
 
-    if !args.traversal_only {
+    if !only {
         let backends: Vec<_> = ["cpu", "wgpu"]
             .into_iter()
             .filter(|b| args.measures(b))
@@ -101,7 +103,7 @@ fn main() {
         lowering::measure(if args.quick { 5 } else { 20 }, json.child("lowering"));
     }
     // The tour's program sets on the wgpu backend.
-    if args.measures("wgpu") {
+    if args.measures("wgpu") && !args.setup_only {
         let names = args.tour_link_names();
         eprintln!();
         tour::measure(&names, json.child("tour_links"));

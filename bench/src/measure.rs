@@ -67,10 +67,15 @@ pub(crate) fn measure_scene(
 ) -> SceneFigures {
     let mut fig = SceneFigures::default();
     let cam = scene.camera(width, height);
-    let tris = scene.obvhs_triangles();
     j.set("triangles", scene.triangles());
     j.set("source", scene.source.as_str());
     eprintln!("\n{}: {} triangles, {width}x{height}, primary + AO", scene.name, scene.triangles());
+    if args.setup_only {
+        crate::setup::measure(scene, cam, (width, height), j, &mut fig);
+        record_figures(j, &fig);
+        return fig;
+    }
+    let tris = scene.obvhs_triangles();
 
     // Builds: obvhs's CWBVH, Embree's own BVH, then ours inside the first
     // CPU launch (one sample each).

@@ -4,7 +4,8 @@
 //! candidates (entry rejected, exit accepted), a moved transform rebuilds
 //! only the TLAS and moved vertices only their BLAS (counted), 10,000
 //! instances, a selector scene falling back to the compute traversal with
-//! its reason, and the errors: ray queries forced on a device without
+//! its reason, no host tree built for ray queries (one built when a launch
+//! falls back), and the errors: ray queries forced on a device without
 //! them, a scene over the device's TLAS limit. (The runtime suite runs its
 //! any-hit, culling, flag and mask tests on this traversal too.)
 //!
@@ -194,6 +195,54 @@ fn ray_queries_run_and_hit_what_the_other_targets_hit() {
     assert_eq!(images[0], images[2]);
 }
 
+/// The ray-query traversal walks the device's structures: it builds no
+/// geometry group's tree on the host (but still refuses a builder no
+/// backend has). A launch that falls back to the compute traversal (a
+/// selector above the group) builds the tree then, from vertices moved
+/// since; both traversals then draw the same image, and going back to ray
+/// queries builds nothing more on the host.
+#[test]
+fn ray_query_launches_build_no_host_tree_and_a_fallback_builds_it() {
+    if !On::RAY_QUERY.available() {
+        return;
+    }
+    let (mut ctx, out) = camera(On::RAY_QUERY, 1.0, 5.0);
+    let (gg, geom) = quad(&mut ctx, 0.5);
+    let t = ctx.create_transform(Mat4::from_translation(Vec3::new(0.25, 0.0, 1.0)), gg).unwrap();
+    ctx.set_var(Scope::Context, "top", t).unwrap();
+    image(&mut ctx, out);
+    assert_ray_queries_ran(&ctx);
+    assert_eq!((ctx.geometry_trees_built(), ctx.ray_query_builds()), (0, (1, 1)));
+    // Moved vertices: the BLAS again, still no tree.
+    let s = 0.25;
+    let moved = vec![Vec3::new(-s, -s, 0.0), Vec3::new(s, -s, 0.0), Vec3::new(s, s, 0.0), Vec3::new(-s, s, 0.0)];
+    ctx.set_triangle_positions(geom, moved).unwrap();
+    let rq = image(&mut ctx, out);
+    assert_eq!((ctx.geometry_trees_built(), ctx.ray_query_builds()), (0, (2, 2)));
+    let covered = rq.iter().filter(|p| p.w == 4.0).count();
+    assert_eq!(covered, 16, "the moved quad covers 4 x 4 pixel centres");
+    // Under a selector the scene cannot be flattened: the compute
+    // traversal, whose tree is built now, over the moved vertices.
+    let visit = ctx.create_program(&first_child::PROGRAM);
+    let sel = ctx.create_selector(visit, &[t]).unwrap();
+    ctx.set_var(Scope::Context, "top", sel).unwrap();
+    assert_eq!(image(&mut ctx, out), rq);
+    assert_eq!(ctx.traversal().unwrap().0, Traversal::Compute);
+    assert_eq!(ctx.geometry_trees_built(), 1);
+    // Ray queries again: the same image, nothing more built on the host.
+    ctx.set_var(Scope::Context, "top", t).unwrap();
+    assert_eq!(image(&mut ctx, out), rq);
+    assert_ray_queries_ran(&ctx);
+    assert_eq!(ctx.geometry_trees_built(), 1);
+    // A builder no backend has is refused here too.
+    let m = material(&mut ctx);
+    let gi = ctx.create_geometry_instance(geom, &[m]).unwrap();
+    let kd = ctx.create_geometry_group(&[gi], Acceleration::new(Builder::TriangleKdTree)).unwrap();
+    ctx.set_var(Scope::Context, "top", kd).unwrap();
+    let e = ctx.launch(0, W, W).unwrap_err().to_string();
+    assert!(e.starts_with("acceleration builder `TriangleKdTree` cannot be honoured: obvhs builds BVHs"), "{e}");
+}
+
 /// Rays starting inside a sphere: the entry (behind the origin) is
 /// rejected by `rt_potential_intersection`, the exit is accepted and
 /// generated, at t = sqrt(r^2 - x^2 - y^2).
@@ -375,10 +424,13 @@ fn ray_queries_forced_on_a_device_without_them_fail_naming_the_adapter() {
             && err.contains("EXPERIMENTAL_RAY_QUERY"),
         "{err}"
     );
-    // Auto falls back to the compute traversal there.
+    assert_eq!(ctx.geometry_trees_built(), 0);
+    // Auto falls back to the compute traversal there, whose tree is built
+    // then.
     ctx.set_traversal(Traversal::Auto);
     ctx.launch(0, W, W).unwrap();
     assert_eq!(ctx.traversal().unwrap().0, Traversal::Compute);
+    assert_eq!(ctx.geometry_trees_built(), 1);
 }
 
 /// A device whose TLAS may hold 4 instances, and a scene of 5: a typed

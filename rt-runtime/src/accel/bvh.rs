@@ -49,6 +49,22 @@ fn params(p: BvhBuildParams, form: TreeForm) -> BvhBuildParams {
     }
 }
 
+/// Why `builder` cannot build a tree over primitives of which all are
+/// fixed triangles or not (`triangles`); None where it can.
+pub(crate) fn refusal(builder: Builder, triangles: bool) -> Option<crate::error::RtError> {
+    match builder {
+        Builder::TriangleKdTree => Some(crate::error::RtError::UnsupportedBuilder {
+            builder: "TriangleKdTree",
+            reason: "obvhs builds BVHs, not kd-trees; use Sbvh for the same trace quality",
+        }),
+        Builder::Sbvh if !triangles => Some(crate::error::RtError::UnsupportedBuilder {
+            builder: "Sbvh",
+            reason: "spatial splits need triangles, and this group holds custom primitives or instances; use Bvh",
+        }),
+        _ => None,
+    }
+}
+
 /// Builds a BVH over `bounds` in the form `form` needs; `triangles`, when
 /// every primitive is a triangle, enables spatial splits for `Sbvh`.
 pub(crate) fn build(
@@ -57,14 +73,11 @@ pub(crate) fn build(
     triangles: Option<&[obvhs::triangle::Triangle]>,
     form: TreeForm,
 ) -> Result<Bvh, crate::error::RtError> {
-    let bvh = match builder {
-        Builder::TriangleKdTree => {
-            return Err(crate::error::RtError::UnsupportedBuilder {
-                builder: "TriangleKdTree",
-                reason: "obvhs builds BVHs, not kd-trees; use Sbvh for the same trace quality",
-            });
-        }
-        Builder::NoAccel => {
+    if let Some(refused) = refusal(builder, triangles.is_some()) {
+        return Err(refused);
+    }
+    let bvh = match (builder, triangles) {
+        (Builder::NoAccel, _) => {
             let mut bvh = Bvh2::zeroed(bounds.len());
             let mut all = OAabb::empty();
             for b in bounds {
@@ -74,18 +87,11 @@ pub(crate) fn build(
             bvh.primitive_indices = (0..bounds.len() as u32).collect();
             bvh
         }
-        Builder::Sbvh => match triangles {
-            Some(tris) => ploc(bounds, Some(tris), params(BvhBuildParams::slow_build(), form)),
-            None => {
-                return Err(crate::error::RtError::UnsupportedBuilder {
-                    builder: "Sbvh",
-                    reason: "spatial splits need triangles, and this group holds custom primitives or instances; use Bvh",
-                });
-            }
-        },
-        Builder::Bvh => ploc(bounds, None, params(BvhBuildParams::medium_build(), form)),
-        Builder::MedianBvh => ploc(bounds, None, params(BvhBuildParams::fast_build(), form)),
-        Builder::Lbvh => ploc(bounds, None, params(BvhBuildParams::fastest_build(), form)),
+        (Builder::Sbvh, Some(tris)) => ploc(bounds, Some(tris), params(BvhBuildParams::slow_build(), form)),
+        (Builder::MedianBvh, _) => ploc(bounds, None, params(BvhBuildParams::fast_build(), form)),
+        (Builder::Lbvh, _) => ploc(bounds, None, params(BvhBuildParams::fastest_build(), form)),
+        // `Bvh` (what `refusal` refused cannot come here).
+        _ => ploc(bounds, None, params(BvhBuildParams::medium_build(), form)),
     };
     Ok(Bvh { bvh })
 }

@@ -2,7 +2,7 @@
 //! launches.
 
 use super::Builder;
-use super::bvh::{Bvh, TreeForm, build, refit_wide, to_oaabb, widen};
+use super::bvh::{Bvh, TreeForm, build, refit_wide, refusal, to_oaabb, widen};
 use super::wide::WideBvh;
 use super::wide::collapse::collapse;
 use crate::error::{Result, RtError};
@@ -17,9 +17,10 @@ use rt_std::cpu::{CpuArgs, CpuResult, ExecutionContext};
 /// Nodes never change their children once created, so an entry stays valid
 /// until something under it moves: a new node is built at the next launch
 /// and the others are kept; moved geometry refits the geometry groups over
-/// it (and the groups above refit to their children's new bounds). The
-/// CWBVH form is added to kept entries the first time the CPU backend
-/// launches ([`TreeForm`]).
+/// it (and the groups above refit to their children's new bounds). A
+/// geometry group's tree is built only for a launch that walks it (not for
+/// the ray-query traversal, [`Trees::geometry`]), and its CWBVH and SIMD
+/// forms the first time a launch walks those ([`TreeForm`]).
 #[derive(Default)]
 pub(crate) struct AccelCache {
     pub(crate) nodes: Vec<Option<NodeAccel>>,
@@ -37,6 +38,8 @@ pub(crate) struct AccelCache {
     /// The last stamp given to a geometry group's tree (see
     /// [`NodeAccel::Prims`]'s `stamp`).
     stamps: u64,
+    /// How many geometry groups' BVHs were built on the host.
+    pub geometry_trees: u64,
 }
 
 impl AccelCache {
@@ -55,9 +58,11 @@ impl AccelCache {
 }
 
 pub(crate) enum NodeAccel {
-    /// A geometry group: a BVH over `(instance, primitive)` pairs.
+    /// A geometry group: a BVH over `(instance, primitive)` pairs (None
+    /// until a launch walks it: the ray-query traversal walks the
+    /// device's BLASes instead).
     Prims {
-        bvh: Bvh,
+        bvh: Option<Bvh>,
         /// The same tree converted to obvhs's 8-wide compressed BVH, which
         /// the wgpu backend's compute kernel walks (None until it launches,
         /// and for `NoAccel`'s single leaf).
@@ -226,6 +231,11 @@ const ALL_TRIANGLES: &str = "all primitives are triangles";
 pub(crate) struct Trees {
     /// The form of groups' BVH2s.
     pub groups: TreeForm,
+    /// Whether geometry groups get a BVH at all: not for the ray-query
+    /// traversal, which walks the device's BLASes (built from the
+    /// triangles) and needs of a geometry group only its primitives, its
+    /// bounds and its stamp. (Their builders are still checked.)
+    pub geometry: bool,
     /// Whether geometry groups get obvhs's CWBVH (their BVH2 then built in
     /// the widened form, with one reinsertion pass).
     pub cwbvh: bool,
@@ -239,68 +249,17 @@ pub(crate) struct Trees {
 /// for (see [`AccelCache`]).
 pub(crate) fn build_accels(scene: &Scene, cache: &mut AccelCache, trees: Trees) -> Result<()> {
     let form = trees.groups;
-    let widened = trees.cwbvh;
-    let gg_form = if widened || trees.simd { TreeForm::Wide } else { form };
     let order = crate::scene::nodes_post_order(scene)?;
     let mut built: Vec<Option<NodeAccel>> = std::mem::take(&mut cache.nodes);
     built.resize_with(scene.nodes.len(), || None);
-    let (mut any_built, mut any_refit) = (false, false);
-    let union = |bounds: &[OAabb]| bounds.iter().fold(OAabb::empty(), |acc, b| acc.union(b));
+    let mut done = Done::default();
     for n in order {
         let i = n.index() as usize;
         let node = &scene.nodes[i];
         let old = built[i].take();
         let new = match &node.kind {
             NodeKind::GeometryGroup { children, accel: a } => {
-                // The wide forms of a single leaf (`NoAccel`) or of nothing
-                // are pointless: both backends walk the BVH2 then.
-                let widens = |prims: &[(u32, u32)]| a.builder != Builder::NoAccel && !prims.is_empty();
-                let wants_wide = |prims: &[(u32, u32)]| widened && widens(prims);
-                let wants_simd = |prims: &[(u32, u32)]| trees.simd && widens(prims);
-                match old {
-                    Some(NodeAccel::Prims { mut bvh, mut wide, mut simd, prims, mut bounds, mut stamp }) => {
-                        let moved = cache.moved
-                            && children.iter().any(|gi| {
-                                let g = scene.instances[gi.index() as usize].geometry.index();
-                                cache.moved_geometries.contains(&g)
-                            });
-                        if moved {
-                            let (_, prim_bounds, _) = prim_bounds(scene, children)?;
-                            cache.geometry_group_changes += 1;
-                            bvh.refit(&prim_bounds);
-                            if let Some(cw) = wide.as_mut() {
-                                refit_wide(cw, &prim_bounds);
-                            }
-                            bounds = union(&prim_bounds);
-                            any_refit = true;
-                            cache.stamps += 1;
-                            stamp = cache.stamps;
-                        }
-                        if wide.is_none() && wants_wide(&prims) {
-                            wide = Some(widen(&bvh));
-                        }
-                        // Moved: collapsed again from the refit BVH2 (a
-                        // linear pass), its packets holding the new vertices.
-                        if moved {
-                            simd = None;
-                        }
-                        if simd.is_none() && wants_simd(&prims) {
-                            simd = Some(Box::new(simd_tree(scene, &bvh, &prims)));
-                        }
-                        NodeAccel::Prims { bvh, wide, simd, prims, bounds, stamp }
-                    }
-                    _ => {
-                        let (prims, bounds, all_tris) = prim_bounds(scene, children)?;
-                        let tris = (a.builder == Builder::Sbvh && all_tris).then(|| group_triangles(scene, &prims));
-                        let bvh = build(a.builder, &bounds, tris.as_deref(), gg_form)?;
-                        let wide = wants_wide(&prims).then(|| widen(&bvh));
-                        let simd = wants_simd(&prims).then(|| Box::new(simd_tree(scene, &bvh, &prims)));
-                        any_built = true;
-                        cache.geometry_group_changes += 1;
-                        cache.stamps += 1;
-                        NodeAccel::Prims { bvh, wide, simd, prims, bounds: union(&bounds), stamp: cache.stamps }
-                    }
-                }
+                geometry_group(scene, cache, (children, a.builder), old, trees, &mut done)?
             }
             NodeKind::Group { children, accel: a } => {
                 let bounds: Vec<OAabb> = children
@@ -311,12 +270,12 @@ pub(crate) fn build_accels(scene: &Scene, cache: &mut AccelCache, trees: Trees) 
                     Some(NodeAccel::Children { mut bvh, .. }) => {
                         if cache.moved {
                             bvh.refit(&bounds);
-                            any_refit = true;
+                            done.refit = true;
                         }
                         NodeAccel::Children { bvh, bounds: union(&bounds) }
                     }
                     _ => {
-                        any_built = true;
+                        done.built = true;
                         NodeAccel::Children { bvh: build(a.builder, &bounds, None, form)?, bounds: union(&bounds) }
                     }
                 }
@@ -337,12 +296,119 @@ pub(crate) fn build_accels(scene: &Scene, cache: &mut AccelCache, trees: Trees) 
         };
         built[i] = Some(new);
     }
-    cache.builds += any_built as u64;
-    cache.refits += any_refit as u64;
+    cache.builds += done.built as u64;
+    cache.refits += done.refit as u64;
     cache.nodes = built;
     cache.moved = false;
     cache.moved_geometries.clear();
     Ok(())
+}
+
+/// Whether a launch's [`build_accels`] built anything and refit anything.
+#[derive(Default)]
+struct Done {
+    built: bool,
+    refit: bool,
+}
+
+/// The union of `bounds`.
+fn union(bounds: &[OAabb]) -> OAabb {
+    bounds.iter().fold(OAabb::empty(), |acc, b| acc.union(b))
+}
+
+/// A geometry group's entry (its geometry instances `children`, its
+/// builder) for a launch walking `trees`: `old` kept, refit where its
+/// geometry moved and given the forms it lacks, or a new one.
+fn geometry_group(
+    scene: &Scene,
+    cache: &mut AccelCache,
+    (children, builder): (&[crate::handles::GeometryInstanceId], Builder),
+    old: Option<NodeAccel>,
+    trees: Trees,
+    done: &mut Done,
+) -> Result<NodeAccel> {
+    let form = if trees.cwbvh || trees.simd { TreeForm::Wide } else { trees.groups };
+    // The wide forms of a single leaf (`NoAccel`) or of nothing are
+    // pointless: both backends walk the BVH2 then.
+    let widens = |prims: &[(u32, u32)]| builder != Builder::NoAccel && !prims.is_empty();
+    let Some(NodeAccel::Prims { mut bvh, mut wide, mut simd, prims, mut bounds, mut stamp }) = old else {
+        let (prims, boxes, all_tris) = prim_bounds(scene, children)?;
+        let bvh = match trees.geometry {
+            true => Some(group_tree(scene, cache, builder, (&prims, &boxes, all_tris), form)?),
+            false => match refusal(builder, all_tris) {
+                Some(refused) => return Err(refused),
+                None => None,
+            },
+        };
+        let wide = bvh.as_ref().filter(|_| trees.cwbvh && widens(&prims)).map(widen);
+        let simd = bvh.as_ref().filter(|_| trees.simd && widens(&prims)).map(|t| Box::new(simd_tree(scene, t, &prims)));
+        done.built = true;
+        cache.geometry_group_changes += 1;
+        cache.stamps += 1;
+        return Ok(NodeAccel::Prims { bvh, wide, simd, prims, bounds: union(&boxes), stamp: cache.stamps });
+    };
+    let moved = cache.moved
+        && children.iter().any(|gi| {
+            let g = scene.instances[gi.index() as usize].geometry.index();
+            cache.moved_geometries.contains(&g)
+        });
+    let mut moved_bounds = None;
+    if moved {
+        let (_, boxes, all_tris) = prim_bounds(scene, children)?;
+        cache.geometry_group_changes += 1;
+        if let Some(tree) = bvh.as_mut() {
+            tree.refit(&boxes);
+        }
+        if let Some(cw) = wide.as_mut() {
+            refit_wide(cw, &boxes);
+        }
+        bounds = union(&boxes);
+        done.refit = true;
+        cache.stamps += 1;
+        stamp = cache.stamps;
+        // Collapsed again from the refit BVH2 (a linear pass), its packets
+        // holding the new vertices.
+        simd = None;
+        moved_bounds = Some((boxes, all_tris));
+    }
+    if bvh.is_none() && trees.geometry {
+        // Earlier launches walked the device's structures; this one walks
+        // the host's tree, built now.
+        let (boxes, all_tris) = match moved_bounds {
+            Some(b) => b,
+            None => {
+                let (_, boxes, all_tris) = prim_bounds(scene, children)?;
+                (boxes, all_tris)
+            }
+        };
+        bvh = Some(group_tree(scene, cache, builder, (&prims, &boxes, all_tris), form)?);
+        cache.geometry_group_changes += 1;
+        done.built = true;
+    }
+    if let Some(tree) = &bvh {
+        if wide.is_none() && trees.cwbvh && widens(&prims) {
+            wide = Some(widen(tree));
+        }
+        if simd.is_none() && trees.simd && widens(&prims) {
+            simd = Some(Box::new(simd_tree(scene, tree, &prims)));
+        }
+    }
+    Ok(NodeAccel::Prims { bvh, wide, simd, prims, bounds, stamp })
+}
+
+/// A geometry group's BVH2 over its primitives (`prims`, their bounds,
+/// and whether all are fixed triangles, which `Sbvh` splits), counted in
+/// `cache`.
+fn group_tree(
+    scene: &Scene,
+    cache: &mut AccelCache,
+    builder: Builder,
+    (prims, bounds, all_tris): (&[(u32, u32)], &[OAabb], bool),
+    form: TreeForm,
+) -> Result<Bvh> {
+    let tris = (builder == Builder::Sbvh && all_tris).then(|| group_triangles(scene, prims));
+    cache.geometry_trees += 1;
+    build(builder, bounds, tris.as_deref(), form)
 }
 
 /// `bvh` in the CPU backend's SIMD layout, its leaves holding the

@@ -148,6 +148,12 @@ pub struct Timings {
     /// read-back. `None` on the CPU backend and on devices without
     /// `wgpu::Features::TIMESTAMP_QUERY`.
     pub kernel: Option<std::time::Duration>,
+    /// From the launch's start (after the device is open) to its first
+    /// dispatch: the acceleration builds (`build`), the encoding, the
+    /// link, the uploads and the ray-query traversal's device builds;
+    /// what the launch did before its kernel started. On the CPU backend,
+    /// `build` and the programs' binding (`encode`).
+    pub setup: std::time::Duration,
 }
 
 /// How a context's launches run, besides its scene: set by the context,
@@ -210,9 +216,11 @@ pub(crate) trait LaunchBackend: Any + Send + Sync {
     /// Gets ready for a launch, before anything is built (the wgpu backend
     /// drops a lost device and opens one).
     fn prepare(&mut self) -> Result<()>;
-    /// The trees this backend walks, which the acceleration builder builds
-    /// for it.
-    fn trees(&self, scene: &Scene) -> Trees;
+    /// The trees this backend walks in the launch about to run (after
+    /// [`LaunchBackend::prepare`]), which the acceleration builder builds
+    /// for it; the wgpu backend chooses the launch's traversal here, and
+    /// fails where the one asked for cannot run.
+    fn trees(&mut self, scene: &Scene) -> Result<Trees>;
     /// Runs a launch's tile. Outputs wait for
     /// [`LaunchBackend::read_back_outputs`].
     fn launch(&mut self, launch: &Launch) -> Result<LaunchReport>;
@@ -285,8 +293,8 @@ impl LaunchBackend for NoCpuBackend {
             why: "it is not built for wasm32 (no threads there): use Backend::Wgpu".into(),
         })
     }
-    fn trees(&self, _: &Scene) -> Trees {
-        Trees { groups: crate::accel::bvh::TreeForm::Binary, cwbvh: false, simd: false }
+    fn trees(&mut self, _: &Scene) -> Result<Trees> {
+        Ok(Trees { groups: crate::accel::bvh::TreeForm::Binary, geometry: true, cwbvh: false, simd: false })
     }
     fn launch(&mut self, _: &Launch) -> Result<LaunchReport> {
         self.prepare().map(|_| LaunchReport::default())
@@ -357,7 +365,8 @@ pub(crate) async fn launch(
     }
     backend.prepare_async().await?;
     let t0 = Instant::now();
-    build_accels(scene, accels, backend.trees(scene))?;
+    let trees = backend.trees(scene)?;
+    build_accels(scene, accels, trees)?;
     let build = t0.elapsed();
     let budget = settings.tile_budget;
     let total = part.count();
@@ -404,6 +413,7 @@ pub(crate) async fn launch(
         report.prints.sort_by_key(|(at, _)| (at.y, at.x));
     }
     report.timings.build = build;
+    report.timings.setup += build;
     Ok(report)
 }
 
@@ -431,6 +441,10 @@ fn merge(report: &mut LaunchReport, tile: LaunchReport) {
     a.link += b.link;
     a.run += b.run;
     a.accel += b.accel;
+    // The first tile's: the launch's first dispatch.
+    if report.tiles == 1 {
+        a.setup = b.setup;
+    }
     a.kernel = match (report.tiles, a.kernel, b.kernel) {
         (1, _, k) => k,
         (_, Some(x), Some(y)) => Some(x + y),
@@ -452,8 +466,8 @@ mod tests {
         fn prepare(&mut self) -> Result<()> {
             Ok(())
         }
-        fn trees(&self, _: &Scene) -> Trees {
-            Trees { groups: crate::accel::bvh::TreeForm::Binary, cwbvh: false, simd: false }
+        fn trees(&mut self, _: &Scene) -> Result<Trees> {
+            Ok(Trees { groups: crate::accel::bvh::TreeForm::Binary, geometry: true, cwbvh: false, simd: false })
         }
         fn launch(&mut self, _: &Launch) -> Result<LaunchReport> {
             panic!("a bug in a backend")

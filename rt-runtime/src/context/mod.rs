@@ -190,6 +190,14 @@ impl Context {
         (self.accels.builds, self.accels.refits)
     }
 
+    /// How many geometry groups' BVHs launches have built on the host. The
+    /// CPU backend and the wgpu backend's compute traversal walk them; the
+    /// ray-query traversal walks the device's acceleration structures and
+    /// builds none (a later launch that walks them builds them then).
+    pub fn geometry_trees_built(&self) -> u64 {
+        self.accels.geometry_trees
+    }
+
     /// Sets how many entry points (ray-generation programs launches choose by
     /// index) the context has; new ones have no programs yet.
     pub fn set_entry_point_count(&mut self, n: u32) {

@@ -149,7 +149,9 @@ pub(crate) fn culling_in_the_lean_search(backend: On) {
         assert_eq!(center(flags, 10.0), above, "flags {flags:#x} from above");
         assert_eq!(center(flags, -10.0), below, "flags {flags:#x} from below");
     }
-    if backend == Backend::Wgpu {
+    // The compute traversal's lean search over the CWBVH (ray queries walk
+    // the device's structures).
+    if ctx.traversal().is_some_and(|(t, _)| t == Traversal::Compute) {
         let wgsl = ctx.linked_wgsl().unwrap();
         assert!(
             wgsl.contains("const RT_TRIANGLES_ONLY: bool = true;") && wgsl.contains("const RT_CWBVH: bool = true;")

@@ -231,7 +231,9 @@ pub(crate) fn deep_bvh_probe(backend: On, any_hit: bool) {
     let got = ctx.read_buffer::<f32>(hits).unwrap();
     let missed: Vec<u32> = (0..N).filter(|&i| got[i as usize] != 1.0).collect();
     assert!(missed.is_empty(), "rays that missed their triangle (any hit: {any_hit}): {missed:?}");
-    if backend == Backend::Wgpu {
+    // The compute traversal's stacks (ray queries walk the device's
+    // structures: their kernel has none).
+    if ctx.traversal().is_some_and(|(t, _)| t == Traversal::Compute) {
         let wgsl = ctx.linked_wgsl().unwrap();
         let constant = |name: &str| -> u32 {
             wgsl.split(&format!("const {name}: u32 = "))

@@ -63,8 +63,8 @@ impl LaunchBackend for CpuBackend {
 
     /// Groups' BVH2s as the wide form's; every geometry group's tree in the
     /// SIMD layout, its triangles in its leaves.
-    fn trees(&self, _: &Scene) -> Trees {
-        Trees { groups: TreeForm::Wide, cwbvh: false, simd: true }
+    fn trees(&mut self, _: &Scene) -> Result<Trees> {
+        Ok(Trees { groups: TreeForm::Wide, geometry: true, cwbvh: false, simd: true })
     }
 
     fn launch(&mut self, launch: &Launch) -> Result<LaunchReport> {
@@ -160,6 +160,7 @@ fn run(launch: &Launch) -> Result<LaunchReport> {
         run: t2.elapsed(),
         kernel: None,
         accel: Default::default(),
+        setup: t2 - t1,
     };
     Ok(report)
 }

@@ -47,7 +47,9 @@ impl Lane<'_> {
                 self.visit_selector(s, node, children, xf, mask, path, (origin, direction))
             }
             NodeKind::GeometryGroup { .. } => {
-                let Some(Some(NodeAccel::Prims { bvh, simd, prims, .. })) = l.accels.get(node.index() as usize) else {
+                let Some(Some(NodeAccel::Prims { bvh: Some(bvh), simd, prims, .. })) =
+                    l.accels.get(node.index() as usize)
+                else {
                     return;
                 };
                 s.group.set((path, node));

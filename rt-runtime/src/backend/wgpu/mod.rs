@@ -13,6 +13,8 @@
 //! compressed 8-wide BVH, 20 words a node) where the kernel searches
 //! triangles only (no any-hit or intersection program) and every geometry
 //! group has one (`RT_CWBVH`), else the BVH2s they are converted from.
+//! The ray-query traversal walks none of them: its launches build no
+//! geometry group's tree on the host (`WgpuBackend::trees`).
 //!
 //! Large scenes: each section is its own binding, so a scene renders when
 //! each section fits the adapter's `max_storage_buffer_binding_size` (128
@@ -118,6 +120,9 @@ pub(crate) struct WgpuBackend {
     pending: Option<ReadOutputs>,
     /// How launches walk the scene.
     traversal: Traversal,
+    /// The traversal of the launch running now, chosen when it asked for
+    /// its trees ([`LaunchBackend::trees`]).
+    plan: Option<rayquery::Plan>,
 }
 
 /// What a launch read back of its output buffers, for the host's copies.
@@ -258,10 +263,20 @@ impl LaunchBackend for WgpuBackend {
         })
     }
 
-    /// Groups' BVH2s as they are walked; geometry groups' CWBVHs where the
-    /// kernel searches triangles only.
-    fn trees(&self, scene: &Scene) -> Trees {
-        Trees { groups: TreeForm::Binary, cwbvh: scene.searches_triangles_only(), simd: false }
+    /// Chooses the launch's traversal ([`rayquery::plan`]) and keeps it
+    /// for the launch's tiles. The compute traversal walks groups' BVH2s
+    /// and geometry groups' CWBVHs where the kernel searches triangles
+    /// only, else their BVH2s. The ray-query traversal walks the device's
+    /// structures, built from the triangles and the custom primitives'
+    /// boxes: geometry groups get no tree (groups keep their BVH2s, small,
+    /// which the scene's node table points at).
+    fn trees(&mut self, scene: &Scene) -> Result<Trees> {
+        let gpu = self.gpu.as_ref().expect("opened by prepare");
+        let plan = rayquery::plan(scene, gpu, self.traversal)?;
+        let geometry = matches!(plan, rayquery::Plan::Compute(_));
+        self.plan = Some(plan);
+        let cwbvh = geometry && scene.searches_triangles_only();
+        Ok(Trees { groups: TreeForm::Binary, geometry, cwbvh, simd: false })
     }
 
     /// Runs the launch on the device. A device lost during it is dropped
@@ -274,11 +289,24 @@ impl LaunchBackend for WgpuBackend {
     fn launch_async<'a>(&'a mut self, l: &'a Launch<'a>) -> LocalBoxFuture<'a, Result<LaunchReport>> {
         Box::pin(async move {
             self.pending = None;
-            let WgpuBackend { gpu, last_wgsl, last_traversal, lose_device_in_next_launch, pending, traversal } = self;
+            let WgpuBackend {
+                gpu,
+                last_wgsl,
+                last_traversal,
+                lose_device_in_next_launch,
+                pending,
+                traversal,
+                plan: kept,
+            } = self;
             let device = gpu.as_mut().expect("opened by prepare");
+            let plan = match kept.take() {
+                Some(plan) => plan,
+                None => rayquery::plan(l.scene, device, *traversal)?,
+            };
             let result =
-                launch_on_device(device, last_wgsl, last_traversal, *traversal, lose_device_in_next_launch, pending, l)
+                launch_on_device(device, last_wgsl, last_traversal, &plan, lose_device_in_next_launch, pending, l)
                     .await;
+            *kept = Some(plan);
             if matches!(result, Err(RtError::DeviceLost { .. })) {
                 self.gpu = None;
             }
@@ -304,7 +332,7 @@ async fn launch_on_device(
     gpu: &mut Gpu,
     last_wgsl: &mut Option<String>,
     last_traversal: &mut Option<(Traversal, String)>,
-    traversal: Traversal,
+    plan: &rayquery::Plan,
     lose_device: &mut bool,
     pending: &mut Option<ReadOutputs>,
     l: &Launch<'_>,
@@ -313,12 +341,11 @@ async fn launch_on_device(
     let scene_bindings = gpu.scene_bindings;
     // The scene, unless the device holds this one already (same structure,
     // same acceleration structures): then only the heap is encoded.
-    let plan = rayquery::plan(l.scene, gpu, traversal)?;
-    let slots = match &plan {
+    let slots = match plan {
         rayquery::Plan::RayQuery(flat) => flat.roots.len() as u32,
         rayquery::Plan::Compute(_) => 0,
     };
-    *last_traversal = Some(match &plan {
+    *last_traversal = Some(match plan {
         rayquery::Plan::RayQuery(_) => (Traversal::RayQuery, format!("{} has ray queries", gpu.describe())),
         rayquery::Plan::Compute(why) => (Traversal::Compute, why.clone()),
     });
@@ -360,7 +387,7 @@ async fn launch_on_device(
         device_mirror::upload(&gpu.device, &gpu.queue, &mut gpu.resident, (heap, &kept), fresh, log_words);
     DeviceLocal::after_upload(gpu, &moves);
     let mut accel = std::time::Duration::ZERO;
-    if let rayquery::Plan::RayQuery(flat) = &plan {
+    if let rayquery::Plan::RayQuery(flat) = plan {
         let t = web_time::Instant::now();
         let adapter = gpu.describe();
         let Gpu { device, queue, limits, ray_query_accels, .. } = gpu;
@@ -383,6 +410,8 @@ async fn launch_on_device(
         true => outputs.iter().copied().filter(|&(i, ..)| !l.scene.buffers[i].device_local).collect(),
         false => Vec::new(),
     };
+    // Everything before the dispatch is recorded; it is submitted next.
+    let setup = t1.elapsed();
     let results = readback::results(gpu, encoder, &read, lose).await?;
     let (header, kernel) = (results.header, results.kernel);
     if let Some(before) = &capture {
@@ -401,8 +430,15 @@ async fn launch_on_device(
     report.exceptions.sort_by_key(|e| (e.launch_index.y, e.launch_index.x));
     report.prints = readback::decode_prints(l.scene, &print_words, print_words.len());
     report.rays = header[2] as u64;
-    report.timings =
-        super::Timings { build: Default::default(), encode: t2 - t1, link: t3 - t2, run: t3.elapsed(), kernel, accel };
+    report.timings = super::Timings {
+        build: Default::default(),
+        encode: t2 - t1,
+        link: t3 - t2,
+        run: t3.elapsed(),
+        kernel,
+        accel,
+        setup,
+    };
     Ok(report)
 }
 

@@ -1,5 +1,6 @@
 //! The geometry part of the compute traversal's scene: per geometry group
-//! its BVH (BVH2 or CWBVH nodes), primitive table and triangle slots, per
+//! its BVH (BVH2 or CWBVH nodes), primitive table and triangle slots (none
+//! for a group without a host tree: the ray-query traversal's), per
 //! geometry its mesh arrays. It leads each section and stays on the device
 //! until geometry changes ([`GeometryKey`]).
 
@@ -177,6 +178,12 @@ pub(crate) fn encode_geometry(
     let cwbvh = key.triangles_only && groups().all(|(_, _, wide, prims)| prims.is_empty() || wide.is_some());
     for (n, bvh, wide, prims) in groups() {
         let tri_slots = tris.len() as u32;
+        let Some(bvh) = bvh else {
+            // No tree on the host: the launch walks the device's structures
+            // (ray queries), which read no node, primitive table or slot.
+            gg_bvh.insert(n as u32, GroupWords { bvh: RT_NONE, table: table_at(&tables), tri_slots });
+            continue;
+        };
         let (at, table, order) = match wide {
             Some(cw) if cwbvh => {
                 let at = nodes.len() as u32;

@@ -122,7 +122,7 @@ pub(crate) fn flatten(scene: &Scene) -> Result<std::result::Result<Flat, Unsuppo
         let mut out = Vec::new();
         let mut stack: Vec<(NodeId, Chain, Vec<u8>, InstancePath)> =
             vec![(root, Chain::IDENTITY, Vec::new(), InstancePath::ROOT)];
-        // Depth is bounded: the acceleration build refused cycles.
+        // Depth is bounded: `plan` refused cycles.
         while let Some((n, m, mut masks, path)) = stack.pop() {
             let rec = &scene.nodes[n.index() as usize];
             masks.push(rec.visibility_mask);

@@ -147,6 +147,9 @@ pub(crate) fn plan(scene: &Scene, gpu: &Gpu, asked: Traversal) -> Result<Plan> {
         }
         return Ok(Plan::Compute(why));
     }
+    // A cycle in the graph is refused before flatten walks its paths (the
+    // acceleration build, which refuses it too, runs after this choice).
+    crate::scene::nodes_post_order(scene)?;
     match flatten::flatten(scene)? {
         Ok(flat) => Ok(Plan::RayQuery(flat)),
         Err(Unsupported::NoRoots) => Ok(Plan::Compute(Unsupported::NoRoots.to_string())),
