@@ -2,8 +2,9 @@
 //! arr`, `.iter()`, `.enumerate()`, `.rev()`, `.step_by()`, `.zip()`,
 //! `.map()`, `.filter()`, `.sum()`, `.fold()`, `.any()`, `.all()`,
 //! `.count()`, with closures inlined), closures bound to a name,
-//! `arr.len()`, labelled `break` and `continue`, and the patterns a
-//! `switch` cannot take: `matches!`, range patterns and guards.
+//! `arr.len()`, labelled `break` and `continue`, `break` with a value, and
+//! the patterns a `switch` cannot take: `matches!`, range patterns and
+//! guards.
 
 use super::*;
 
@@ -87,6 +88,42 @@ differential! {
             let odd = (0..n).filter(|i| i % 2 == 1).count() as u32;
             let squares = (0..n).map(|i| i * i).fold(1, |a, b| (a * 3 + b) % 100003);
             [rev, stepped, closed, sum, odd, squares]
+        }
+        /// `loop`s whose `break`s carry the value: an integer settled by
+        /// its use, a float from a `match` arm (a `break` out of a
+        /// `switch`), and a plain `break` out of an inner `while`.
+        loop_values(n: u32) -> [f32; 3] over one(&[0, 1, 2, 5, 9, 17, 40]) => {
+            let mut i = 0u32;
+            let root = loop {
+                if i * i >= n {
+                    break i;
+                }
+                i += 1;
+            };
+            let mut k = 0u32;
+            let picked = loop {
+                k += 1;
+                match k % 4 {
+                    3 => break k as f32 * 0.5,
+                    _ if k > n => break -1.0,
+                    _ => {}
+                }
+            };
+            let mut steps = 0u32;
+            let settled = loop {
+                let mut m = steps;
+                while m > 0 {
+                    if m == 3 {
+                        break;
+                    }
+                    m -= 1;
+                }
+                steps += 1;
+                if steps > n / 3 {
+                    break m + steps * 10;
+                }
+            };
+            [root as f32, picked, settled as f32]
         }
         /// Closures bound to a name, reading and writing what they capture;
         /// labelled `break` and `continue` out of nested loops.

@@ -3,6 +3,9 @@
 
 use super::*;
 
+/// A `loop`'s value: the variable its `break`s assign, and its type.
+type LoopValue = (String, Ty);
+
 impl FnLowerer<'_> {
     pub(super) fn cond(&mut self, e: &Expr) -> Result<String> {
         let v = self.expr(e, Some(&BOOL))?;
@@ -129,6 +132,25 @@ impl FnLowerer<'_> {
     }
 
     pub(super) fn loop_body(&mut self, stmts: &[Stmt]) -> Result<Vec<String>> {
+        self.loop_values.push(None);
+        let r = self.loop_body_inner(stmts);
+        self.loop_values.pop();
+        r
+    }
+
+    /// A `loop`'s body, whose `break`s may carry a value: the body's
+    /// lines and, if a `break` had a value, the variable it was assigned to
+    /// and its type.
+    fn value_loop_body(&mut self, stmts: &[Stmt]) -> Result<(Vec<String>, Option<LoopValue>)> {
+        let var = self.fresh("loop_value");
+        self.loop_values.push(Some((var, None)));
+        let r = self.loop_body_inner(stmts);
+        let value = self.loop_values.pop().flatten();
+        let lines = r?;
+        Ok((lines, value.and_then(|(var, ty)| Some((var, ty?)))))
+    }
+
+    fn loop_body_inner(&mut self, stmts: &[Stmt]) -> Result<Vec<String>> {
         self.loop_depth += 1;
         self.breaks.push(None);
         let r = self.sub_block(stmts, Some(&Ty::Unit));
@@ -177,11 +199,23 @@ impl FnLowerer<'_> {
         if let Some(lb) = &l.label {
             return Err(Error::unsupported(lb.span(), "a labeled loop", "WGSL has no labels; use a flag variable"));
         }
-        let body = self.loop_body(&l.body.stmts)?;
+        let at = self.blocks.last().map_or(0, Block::len);
+        let (body, value) = self.value_loop_body(&l.body.stmts)?;
         let text = self.mark(l.span(), &format!("loop {{\n{}}}", indent(&body.join("\n"))));
         self.emit(text);
-        // A `loop` without `break` never ends; either way it yields no value.
-        Ok(Val::new("", Ty::Unit))
+        match value {
+            // The `break`s assigned the loop's value to a variable declared
+            // just before it.
+            Some((var, ty)) => {
+                if let Some(block) = self.blocks.last_mut() {
+                    block.insert(at, format!("var {var}: {};", ty.wgsl()), false);
+                }
+                Ok(Val::new(var, ty).with_reads(true))
+            }
+            // A `loop` without `break` never ends; with plain `break`s it
+            // yields no value.
+            None => Ok(Val::new("", Ty::Unit)),
+        }
     }
 
     pub(super) fn for_loop(&mut self, f: &syn::ExprForLoop) -> Result<Val> {
@@ -281,16 +315,50 @@ impl FnLowerer<'_> {
         if let Some(l) = &b.label {
             return Err(Error::unsupported(l.span(), "a labeled `break`", "WGSL has no labels; use a flag variable"));
         }
-        if let Some(v) = &b.expr {
-            return Err(Error::unsupported(v.span(), "`break` with a value", "assign to a variable before `break`"));
-        }
         if self.loop_depth == 0 {
             return Err(Error::new(b.span(), "`break` outside of a loop"));
+        }
+        if let Some(v) = &b.expr {
+            self.break_value(v)?;
         }
         let text = self.break_text();
         let line = self.mark(b.span(), &text);
         self.emit(line);
         Ok(Val::new("", Ty::Never))
+    }
+
+    /// `break value`'s value, assigned to its `loop`'s variable (the
+    /// loop's type set by the first such `break`, the others coerced to
+    /// it).
+    fn break_value(&mut self, v: &Expr) -> Result<()> {
+        if self.resume.is_some() {
+            // The resumable form keeps its locals in frames; this variable
+            // is not one of them.
+            return Err(Error::unsupported(
+                v.span(),
+                "`break` with a value in a tracing program's resumable form",
+                "assign to a variable before `break`",
+            ));
+        }
+        let Some(Some((var, ty))) = self.loop_values.last().cloned() else {
+            return Err(Error::new(
+                v.span(),
+                "`break` with a value inside a `while` or `for` loop: only `loop` has one",
+            ));
+        };
+        let val = self.expr(v, ty.as_ref())?;
+        let val = match &ty {
+            Some(t) => self.coerce(val, t, v.span())?,
+            None => val,
+        };
+        if matches!(val.ty, Ty::Unit | Ty::Never) {
+            return Ok(());
+        }
+        if let Some(Some((_, slot))) = self.loop_values.last_mut() {
+            slot.get_or_insert(val.ty.clone());
+        }
+        self.emit(format!("{var} = {};", val.code));
+        Ok(())
     }
 
     /// `continue`.

@@ -90,6 +90,10 @@ pub struct FnLowerer<'m> {
     /// only: `Some((flag, used))`, set the flag, leave the `switch`, and
     /// test the flag after it.
     breaks: Vec<Option<(String, bool)>>,
+    /// Per loop being lowered, innermost last: for a `loop`, the variable
+    /// a `break value` assigns and the value's type once one is seen;
+    /// `None` for `while` and `for`, which take no value.
+    loop_values: Vec<Option<(String, Option<Ty>)>>,
     /// WGSL names of function-local `const` items (patterns name them).
     local_consts: HashSet<String>,
     /// Intrinsics called (directly, or through helpers) with the call span.
@@ -179,6 +183,7 @@ impl<'m> FnLowerer<'m> {
             loop_depth: 0,
             in_function: false,
             breaks: Vec::new(),
+            loop_values: Vec::new(),
             local_consts: HashSet::new(),
             intrinsics: Vec::new(),
             calls: Vec::new(),
