@@ -255,7 +255,7 @@ pub fn triangle_words(layout: &TypeLayout, t: &TriangleBuiltins) -> Vec<u32> {
 #[diagnostic::on_unimplemented(
     message = "this type is not declared for ray programs",
     label = "`{Self}` is not declared with #[rt_struct], #[rt_payload], #[rt_attributes] or #[rt_enum]",
-    note = "a `type` alias is not seen by the macros that compile programs: name the declared type itself"
+    note = "a type of your own needs the attribute on its declaration; a `type` alias of `{Self}` must be replaced by `{Self}` itself (the macros that compile programs do not see aliases)"
 )]
 pub trait DeclaredData {}
 #[diagnostic::do_not_recommend]
