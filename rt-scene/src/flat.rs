@@ -42,8 +42,10 @@ fn load_flat_posed(
     let file = path.display().to_string();
     let bad =
         |object: Option<String>, problem: String| SceneError::Gltf(GltfError { file: file.clone(), object, problem });
-    if let Some(time) = time.filter(|t| !t.is_finite()) {
-        return Err(bad(None, format!("cannot pose the animation at time {time}: not a finite number of seconds")));
+    // A time that is not finite is refused before the file is read (an
+    // OBJ's too), as `Animation::pose` refuses it.
+    if let Some(problem) = time.and_then(gltf::animation::time_problem) {
+        return Err(bad(None, problem));
     }
     let no_animation = || bad(None, "has no node animation to pose".into());
     guard::guarded(path, || match Format::of(path) {
@@ -55,7 +57,8 @@ fn load_flat_posed(
                 if !asset.rig.is_animated() {
                     return Err(no_animation());
                 }
-                pose(&mut asset, time).map_err(|(object, problem)| bad(Some(object), problem))?;
+                let matrices = asset.rig.checked_matrices(time).map_err(|(object, problem)| bad(object, problem))?;
+                pose(&mut asset, matrices, time).map_err(|(object, problem)| bad(Some(object), problem))?;
             }
             let camera = asset.camera;
             Ok((flatten(asset), camera))
@@ -64,18 +67,18 @@ fn load_flat_posed(
     })
 }
 
-/// Every instance of `asset` moved to its world matrix at `time`, or the
-/// node whose pose cannot be shown and why.
-fn pose(asset: &mut gltf::Asset, time: f32) -> Result<(), (String, String)> {
-    let matrices = asset.rig.instance_matrices(time);
+/// Every instance of `asset` moved to its world matrix at `time`
+/// (`matrices`, checked), or the node whose pose moves a vertex out of
+/// f32's range.
+fn pose(asset: &mut gltf::Asset, matrices: Vec<glam::Mat4>, time: f32) -> Result<(), (String, String)> {
     for (i, (instance, matrix)) in asset.instances.iter_mut().zip(matrices).enumerate() {
-        let node = format!("nodes[{}]", asset.rig.paths[i].last().copied().unwrap_or_default());
-        if let Some(problem) = gltf::transform_problem(&matrix) {
-            return Err((node, format!("at {time} s, its world transform {problem}")));
-        }
         let positions = &asset.meshes[instance.0].mesh.positions;
         if let Some(p) = positions.iter().find(|p| !matrix.transform_point3(**p).is_finite()) {
-            return Err((node, format!("at {time} s, its transform moves vertex {p} out of f32's range")));
+            let node = asset.rig.paths[i].last().copied().unwrap_or_default();
+            return Err((
+                format!("nodes[{node}]"),
+                format!("at {time} s, its transform moves vertex {p} out of f32's range"),
+            ));
         }
         instance.1 = matrix;
     }

@@ -122,19 +122,10 @@ impl Animation {
     /// A time that is not finite, or a pose whose matrix cannot be
     /// inverted, is a [`SceneError::Gltf`] naming the file and the node.
     pub fn pose(&self, ctx: &mut Context, time: f32) -> Result<(), SceneError> {
-        let bad = |object: Option<String>, problem: String| {
-            SceneError::Gltf(GltfError { file: self.file.clone(), object, problem })
-        };
-        if !time.is_finite() {
-            return Err(bad(None, format!("cannot pose the animation at time {time}: not a finite number of seconds")));
-        }
-        let matrices = self.rig.instance_matrices(time);
-        for (i, matrix) in matrices.iter().enumerate() {
-            if let (Some(_), Some(problem)) = (self.transforms[i], gltf::transform_problem(matrix)) {
-                let node = self.rig.paths[i].last().copied().unwrap_or_default();
-                return Err(bad(Some(format!("nodes[{node}]")), format!("at {time} s, its world transform {problem}")));
-            }
-        }
+        let matrices = self
+            .rig
+            .checked_matrices(time)
+            .map_err(|(object, problem)| SceneError::Gltf(GltfError { file: self.file.clone(), object, problem }))?;
         for (matrix, node) in matrices.into_iter().zip(&self.transforms) {
             if let Some(node) = node {
                 ctx.set_transform(*node, matrix).map_err(|e| SceneError::Runtime {

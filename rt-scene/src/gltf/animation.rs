@@ -96,6 +96,24 @@ impl Rig {
         Some((first, last))
     }
 
+    /// Every instance's world matrix at `time` (seconds), checked: a time
+    /// that is not finite (no object), or the node of an instance whose
+    /// world matrix is not finite or cannot be inverted, with the problem
+    /// as `GltfError` words.
+    pub fn checked_matrices(&self, time: f32) -> Result<Vec<Mat4>, (Option<String>, String)> {
+        if let Some(problem) = time_problem(time) {
+            return Err((None, problem));
+        }
+        let matrices = self.instance_matrices(time);
+        for (path, matrix) in self.paths.iter().zip(&matrices) {
+            if let Some(problem) = super::transform_problem(matrix) {
+                let node = path.last().copied().unwrap_or_default();
+                return Err((Some(format!("nodes[{node}]")), format!("at {time} s, its world transform {problem}")));
+            }
+        }
+        Ok(matrices)
+    }
+
     /// Every instance's world matrix at `time` (seconds).
     pub fn instance_matrices(&self, time: f32) -> Vec<Mat4> {
         let mut locals = self.locals.clone();
@@ -112,6 +130,12 @@ impl Rig {
         }
         self.paths.iter().map(|path| path.iter().fold(Mat4::IDENTITY, |world, &n| world * locals[n].matrix())).collect()
     }
+}
+
+/// Why an animation cannot be posed at `time`, if it cannot: a time that
+/// is not finite.
+pub fn time_problem(time: f32) -> Option<String> {
+    (!time.is_finite()).then(|| format!("cannot pose the animation at time {time}: not a finite number of seconds"))
 }
 
 impl Channel {
