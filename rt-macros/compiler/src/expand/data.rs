@@ -42,8 +42,7 @@ pub(super) fn rt_data_impl(s: &syn::ItemStruct, role: StructRole) -> TokenStream
         let ident = f.ident.as_ref().unwrap();
         let fname = ident.to_string();
         let tyname = signature::type_text(&f.ty);
-        let FieldCode { words, write, read, read_into, zero } = field_code(ident, &f.ty, &offset);
-        let kind = field_kind(&f.ty);
+        let FieldCode { words, kind, write, read, read_into, zero } = field_code(ident, &f.ty, &offset);
         field_layouts.push(
             quote!(::rt_std::program::FieldLayout { name: #fname, ty: #tyname, kind: #kind, offset_words: #offset }),
         );
@@ -85,6 +84,8 @@ pub(super) fn rt_data_impl(s: &syn::ItemStruct, role: StructRole) -> TokenStream
 struct FieldCode {
     /// The field's size in words (an expression).
     words: TokenStream,
+    /// The field's `LayoutKind` (an expression).
+    kind: TokenStream,
     /// `write_words`'s statement for the field.
     write: TokenStream,
     /// `read_words`'s `field: value`.
@@ -99,27 +100,6 @@ struct FieldCode {
 /// The code of the field `ident: ty` at `offset`: an array element by
 /// element, a type the lowering rejects left out, any other through its
 /// own `RtData`.
-/// A field's `LayoutKind` tokens: an array's length, else the kind its
-/// type's `RtData` layout gives (a rejected type, whose error is reported
-/// once elsewhere, gets `Unit`).
-fn field_kind(ty: &syn::Type) -> TokenStream {
-    match ty {
-        syn::Type::Array(a) => {
-            let len = &a.len;
-            quote!(::rt_std::program::LayoutKind::Array((#len) as u32))
-        }
-        syn::Type::Path(p)
-            if p.path
-                .segments
-                .last()
-                .is_some_and(|s| crate::types::unsupported_type_advice(&s.ident.to_string()).is_some()) =>
-        {
-            quote!(::rt_std::program::LayoutKind::Unit)
-        }
-        ty => quote!(<#ty as ::rt_std::RtData>::LAYOUT.kind),
-    }
-}
-
 fn field_code(ident: &syn::Ident, ty: &syn::Type, offset: &TokenStream) -> FieldCode {
     match ty {
         syn::Type::Array(a) => array_field(ident, a, offset),
@@ -140,6 +120,7 @@ fn array_field(ident: &syn::Ident, a: &syn::TypeArray, offset: &TokenStream) -> 
     let elem = &a.elem;
     let len = &a.len;
     let words = quote!(((#len) as u32 * <#elem as ::rt_std::RtData>::LAYOUT.words));
+    let kind = quote!(::rt_std::program::LayoutKind::Array((#len) as u32));
     let write = quote! {
         for (i, e) in self.#ident.iter().enumerate() {
             let w = <#elem as ::rt_std::RtData>::LAYOUT.words as usize;
@@ -159,7 +140,7 @@ fn array_field(ident: &syn::Ident, a: &syn::TypeArray, offset: &TokenStream) -> 
         }
     };
     let zero = quote!(self.#ident.fill(::rt_std::data::zeroed::<#elem>()););
-    FieldCode { words, write, read, read_into, zero }
+    FieldCode { words, kind, write, read, read_into, zero }
 }
 
 /// A field of a type the subset rejects: the lowering rejects it and says
@@ -168,6 +149,7 @@ fn array_field(ident: &syn::Ident, a: &syn::TypeArray, offset: &TokenStream) -> 
 fn rejected_field(ident: &syn::Ident) -> FieldCode {
     FieldCode {
         words: quote!(0u32),
+        kind: quote!(::rt_std::program::LayoutKind::Unit),
         write: quote!(),
         read: quote!(#ident: ::core::unreachable!()),
         read_into: quote!(::core::unreachable!();),
@@ -178,11 +160,12 @@ fn rejected_field(ident: &syn::Ident) -> FieldCode {
 /// Any other field, through its type's own `RtData`.
 fn plain_field(ident: &syn::Ident, ty: &syn::Type, offset: &TokenStream) -> FieldCode {
     let words = quote!(<#ty as ::rt_std::RtData>::LAYOUT.words);
+    let kind = quote!(<#ty as ::rt_std::RtData>::LAYOUT.kind);
     let write = quote!(::rt_std::RtData::write_words(&self.#ident, &mut out[(#offset) as usize..]););
     let read = quote!(#ident: <#ty as ::rt_std::RtData>::read_words(&words[(#offset) as usize..]));
     let read_into = quote!(::rt_std::RtData::read_words_into(&mut self.#ident, &words[(#offset) as usize..]););
     let zero = quote!(self.#ident = ::rt_std::data::zeroed::<#ty>(););
-    FieldCode { words, write, read, read_into, zero }
+    FieldCode { words, kind, write, read, read_into, zero }
 }
 
 /// Whether the field `fname` of type `tyname` takes a built-in triangle
