@@ -142,12 +142,10 @@ impl FnLowerer<'_> {
     /// lines and, if a `break` had a value, the variable it was assigned to
     /// and its type.
     fn value_loop_body(&mut self, stmts: &[Stmt]) -> Result<(Vec<String>, Option<LoopValue>)> {
-        let var = self.fresh("loop_value");
-        self.loop_values.push(Some((var, None)));
+        self.loop_values.push(Some(None));
         let r = self.loop_body_inner(stmts);
-        let value = self.loop_values.pop().flatten();
-        let lines = r?;
-        Ok((lines, value.and_then(|(var, ty)| Some((var, ty?)))))
+        let value = self.loop_values.pop().flatten().flatten();
+        Ok((r?, value))
     }
 
     fn loop_body_inner(&mut self, stmts: &[Stmt]) -> Result<Vec<String>> {
@@ -340,23 +338,27 @@ impl FnLowerer<'_> {
                 "assign to a variable before `break`",
             ));
         }
-        let Some(Some((var, ty))) = self.loop_values.last().cloned() else {
+        let Some(Some(value)) = self.loop_values.last().cloned() else {
             return Err(Error::new(
                 v.span(),
                 "`break` with a value inside a `while` or `for` loop: only `loop` has one",
             ));
         };
-        let val = self.expr(v, ty.as_ref())?;
-        let val = match &ty {
-            Some(t) => self.coerce(val, t, v.span())?,
-            None => val,
-        };
+        let val = self.expr(v, value.as_ref().map(|(_, t)| t))?;
         if matches!(val.ty, Ty::Unit | Ty::Never) {
             return Ok(());
         }
-        if let Some(Some((_, slot))) = self.loop_values.last_mut() {
-            slot.get_or_insert(val.ty.clone());
-        }
+        let (var, val) = match value {
+            Some((var, t)) => (var, self.coerce(val, &t, v.span())?),
+            // The first value names the loop's variable and sets its type.
+            None => {
+                let var = self.fresh("loop_value");
+                if let Some(Some(slot)) = self.loop_values.last_mut() {
+                    *slot = Some((var.clone(), val.ty.clone()));
+                }
+                (var, val)
+            }
+        };
         self.emit(format!("{var} = {};", val.code));
         Ok(())
     }

@@ -91,9 +91,10 @@ pub struct FnLowerer<'m> {
     /// test the flag after it.
     breaks: Vec<Option<(String, bool)>>,
     /// Per loop being lowered, innermost last: for a `loop`, the variable
-    /// a `break value` assigns and the value's type once one is seen;
-    /// `None` for `while` and `for`, which take no value.
-    loop_values: Vec<Option<(String, Option<Ty>)>>,
+    /// its `break value`s assign and the value's type, once the first is
+    /// lowered (`Some(None)` before); `None` for `while` and `for`, which
+    /// take no value.
+    loop_values: Vec<Option<Option<(String, Ty)>>>,
     /// WGSL names of function-local `const` items (patterns name them).
     local_consts: HashSet<String>,
     /// Intrinsics called (directly, or through helpers) with the call span.
