@@ -346,10 +346,6 @@ impl VisitMut for Rewriter {
     }
 }
 
-/// The scalar types the subset refuses (`types::unsupported_type_advice`
-/// has the advice): `rt_std::arith` implements nothing for them.
-const REFUSED_SCALARS: &[&str] = &["f64", "i64", "u64", "i128", "u128", "isize", "i8", "u8", "i16", "u16"];
-
 /// Whether `f` names a refused scalar type, as a type or a literal's
 /// suffix, anywhere in its signature or body.
 pub fn names_refused_scalar(f: &syn::ItemFn) -> bool {
@@ -357,7 +353,7 @@ pub fn names_refused_scalar(f: &syn::ItemFn) -> bool {
     impl<'ast> syn::visit::Visit<'ast> for Find {
         fn visit_type_path(&mut self, t: &'ast syn::TypePath) {
             if t.qself.is_none() && t.path.segments.len() == 1 {
-                self.0 |= REFUSED_SCALARS.iter().any(|s| t.path.segments[0].ident == s);
+                self.0 |= crate::types::REFUSED_SCALARS.iter().any(|s| t.path.segments[0].ident == s);
             }
             syn::visit::visit_type_path(self, t);
         }
@@ -367,7 +363,7 @@ pub fn names_refused_scalar(f: &syn::ItemFn) -> bool {
                 syn::Lit::Float(f) => f.suffix(),
                 _ => "",
             };
-            self.0 |= REFUSED_SCALARS.contains(&suffix);
+            self.0 |= crate::types::REFUSED_SCALARS.contains(&suffix);
         }
     }
     let mut find = Find(false);
@@ -410,6 +406,13 @@ mod tests {
         }
         // A name that only contains one is rewritten.
         assert!(rewritten("fn f(u64s: u32) -> u32 { u64s + 1 }").contains("arith :: add"));
+    }
+
+    #[test]
+    fn every_refused_scalar_has_the_lowerings_advice() {
+        for s in crate::types::REFUSED_SCALARS {
+            assert!(crate::types::unsupported_type_advice(s).is_some(), "{s}");
+        }
     }
 
     #[test]

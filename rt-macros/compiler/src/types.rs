@@ -464,6 +464,12 @@ pub fn buffer_kind(name: &str) -> Option<BufferKind> {
     })
 }
 
+/// The scalar types the subset refuses, each with its advice in
+/// [`unsupported_type_advice`]: `rt_std::arith` implements nothing for
+/// them, so the CPU copy of a function naming one is left as written
+/// (`cpu_semantics`).
+pub const REFUSED_SCALARS: &[&str] = &["f64", "i64", "u64", "i128", "u128", "isize", "i8", "u8", "i16", "u16"];
+
 /// Type names that Rust users reach for but the subset rejects, with what to
 /// use instead (the message reads "the type `T` is not supported in ray
 /// programs: `<advice>`").
