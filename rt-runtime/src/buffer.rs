@@ -231,16 +231,6 @@ impl SamplerRec {
         }
     }
 
-    /// The sampler's shape, as a layout's kind (a `BindlessSampler<S>`
-    /// variable's) names it.
-    pub fn kind(&self) -> rt_std::program::SamplerKind {
-        match self.shape {
-            SamplerShape::Flat => rt_std::program::SamplerKind::Flat,
-            SamplerShape::Volume(_) => rt_std::program::SamplerKind::Volume,
-            SamplerShape::Cube => rt_std::program::SamplerKind::Cube,
-        }
-    }
-
     /// The program type a variable of this sampler must have.
     pub fn type_name(&self) -> &'static str {
         match self.shape {

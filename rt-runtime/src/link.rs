@@ -384,7 +384,12 @@ fn check_sampler_id(
     let Some(rec) = scene.samplers.get(named.index() as usize) else {
         return Err(error(format!("id {id}, which names no sampler of this context")));
     };
-    if rec.kind() != shape {
+    let held = match rec.shape {
+        SamplerShape::Flat => SamplerKind::Flat,
+        SamplerShape::Volume(_) => SamplerKind::Volume,
+        SamplerShape::Cube => SamplerKind::Cube,
+    };
+    if held != shape {
         return Err(error(format!("the id of sampler {}, a `{}`", named.index(), rec.type_name())));
     }
     Ok(())

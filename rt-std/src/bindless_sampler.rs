@@ -59,8 +59,6 @@ mod sealed {
 pub trait SamplerShape: sealed::Sealed + Copy + Send + Sync + 'static {
     /// The type's name, as programs and errors spell it.
     const NAME: &'static str;
-    /// The shape, as a layout's kind names it.
-    const KIND: crate::layout::SamplerKind;
     /// The sampler the tracer gives for no sampler of this shape: every
     /// read zero, size 0.
     fn empty() -> Self;
@@ -68,7 +66,6 @@ pub trait SamplerShape: sealed::Sealed + Copy + Send + Sync + 'static {
 
 impl SamplerShape for Sampler2d {
     const NAME: &'static str = "Sampler2d";
-    const KIND: crate::layout::SamplerKind = crate::layout::SamplerKind::Flat;
     fn empty() -> Self {
         // SAFETY: a sampler of no texels reads none.
         unsafe { Sampler2d::from_raw_parts(core::ptr::null(), 0, 0, WrapMode::Repeat, Default::default()) }
@@ -77,7 +74,6 @@ impl SamplerShape for Sampler2d {
 
 impl SamplerShape for Sampler3d {
     const NAME: &'static str = "Sampler3d";
-    const KIND: crate::layout::SamplerKind = crate::layout::SamplerKind::Volume;
     fn empty() -> Self {
         // SAFETY: as for `Sampler2d`.
         unsafe { Sampler3d::from_raw_parts(core::ptr::null(), UVec3::ZERO, WrapMode::Repeat, Default::default()) }
@@ -86,7 +82,6 @@ impl SamplerShape for Sampler3d {
 
 impl SamplerShape for SamplerCube {
     const NAME: &'static str = "SamplerCube";
-    const KIND: crate::layout::SamplerKind = crate::layout::SamplerKind::Cube;
     fn empty() -> Self {
         // SAFETY: as for `Sampler2d`.
         unsafe { SamplerCube::from_raw_parts(core::ptr::null(), 0, Default::default()) }

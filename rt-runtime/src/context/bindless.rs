@@ -47,7 +47,7 @@ impl Context {
     ) -> Result<rt_std::BindlessSampler<S>> {
         let rec =
             self.scene.samplers.get(s.index() as usize).ok_or_else(|| RtError::InvalidHandle(format!("{s:?}")))?;
-        if rec.kind() != S::KIND {
+        if rec.type_name() != S::NAME {
             return Err(RtError::BadSampler {
                 sampler: s.index(),
                 problem: format!(
