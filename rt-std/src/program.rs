@@ -215,6 +215,20 @@ pub struct ProgramDescriptor {
     /// from heap words (the CPU backend fills built-in triangle attributes
     /// this way).
     pub cpu_attributes: Option<AttributesFromWords>,
+    /// The program compiled lane-wise for the CPU backend, or why it runs
+    /// one launch index at a time there.
+    pub cpu_lanes: CpuLanes,
+}
+
+/// Whether the CPU backend can run a program lane-wise
+/// ([`crate::cpu::lanes`]).
+#[derive(Clone, Copy, Debug)]
+pub enum CpuLanes {
+    /// The program's lane-wise entry.
+    Lanes(crate::cpu::lanes::LanesEntry),
+    /// The program runs one launch index at a time: the construct, or the
+    /// kind of program, the lane-wise lowering does not take.
+    Scalar(&'static str),
 }
 
 impl ProgramDescriptor {

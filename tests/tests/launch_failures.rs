@@ -48,7 +48,9 @@ fn with_cpu(
     desc: &'static ProgramDescriptor,
     cpu: fn(&mut rt_std::cpu::CpuArgs<'_>) -> rt_std::cpu::CpuResult,
 ) -> &'static ProgramDescriptor {
-    Box::leak(Box::new(ProgramDescriptor { cpu, ..*desc }))
+    // (The scalar entry replaced, and so the one that runs.)
+    let cpu_lanes = rt_std::program::CpuLanes::Scalar("the test replaces the scalar entry");
+    Box::leak(Box::new(ProgramDescriptor { cpu, cpu_lanes, ..*desc }))
 }
 
 fn fill_panicking_at_five(args: &mut rt_std::cpu::CpuArgs<'_>) -> rt_std::cpu::CpuResult {

@@ -217,8 +217,12 @@ fn camera_panicking_late(args: &mut rt_std::cpu::CpuArgs<'_>) -> rt_std::cpu::Cp
 fn a_panic_in_a_later_tile_leaves_the_buffers_as_they_were() {
     let mut s = scene(On::CPU, W, H);
     s.ctx.set_tile_budget(TileBudget::Indices(5000));
-    let desc =
-        Box::leak(Box::new(rt_std::program::ProgramDescriptor { cpu: camera_panicking_late, ..camera::PROGRAM }));
+    // (The scalar entry replaced, and so the one that runs.)
+    let desc = Box::leak(Box::new(rt_std::program::ProgramDescriptor {
+        cpu: camera_panicking_late,
+        cpu_lanes: rt_std::program::CpuLanes::Scalar("the test replaces the scalar entry"),
+        ..camera::PROGRAM
+    }));
     let bad = s.ctx.create_program(desc);
     s.ctx.set_ray_generation_program(0, bad).unwrap();
     let before = s.ctx.read_buffer::<Vec4>(s.out).unwrap();

@@ -45,6 +45,7 @@ pub mod error;
 pub mod expand;
 pub mod intrinsic;
 pub mod kinds;
+pub mod lanes;
 pub mod lower;
 pub mod methods;
 pub mod signature;

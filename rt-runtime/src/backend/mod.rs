@@ -169,6 +169,8 @@ pub(crate) struct Settings {
     pub exceptions: u32,
     /// How launches are cut into tiles.
     pub tile_budget: TileBudget,
+    /// How the CPU backend runs programs.
+    pub cpu_execution: cpu::CpuExecution,
 }
 
 impl Default for Settings {
@@ -180,6 +182,7 @@ impl Default for Settings {
             integer_exceptions: false,
             exceptions: rt_abi::constants::ALL_EXCEPTION_KINDS,
             tile_budget: TileBudget::default(),
+            cpu_execution: cpu::CpuExecution::from_env(),
         }
     }
 }

@@ -9,6 +9,23 @@ use crate::vars::VarScope;
 use rt_std::program::{ProgramDescriptor, ProgramKind};
 
 impl Context {
+    /// How the CPU backend runs programs: lane-wise where a program has a
+    /// lane-wise form (the default), or one launch index at a time (what a
+    /// debugger steps through). Overrides `RT_CPU_EXEC` for this context.
+    pub fn set_cpu_execution(&mut self, mode: crate::CpuExecution) {
+        self.settings.cpu_execution = mode;
+    }
+
+    /// How the CPU backend runs each program created in this context, in
+    /// creation order: lane-wise, or one launch index at a time and why
+    /// (the construct its lane-wise lowering does not take, the program's
+    /// kind, or the setting). Only ray generation programs run lane-wise;
+    /// the programs their traces reach run one launch index at a time.
+    pub fn cpu_execution(&self) -> Vec<crate::ProgramExecution> {
+        let mode = self.settings.cpu_execution;
+        self.scene.programs.iter().map(|p| crate::ProgramExecution::of(p.desc, mode)).collect()
+    }
+
     /// Creates a program from a descriptor (`my_program::PROGRAM`).
     pub fn create_program(&mut self, desc: &'static ProgramDescriptor) -> ProgramId {
         self.scene.structure_version += 1;

@@ -269,6 +269,42 @@ pub trait Tracer {
     fn report_intersection(&self, material: u32, attributes: Option<&dyn AnyAttributes>) -> bool;
     /// [`rt_printf!`](crate::rt_printf) output.
     fn print(&self, text: &str);
+    /// Lane-wise execution ([`lanes`](super::lanes)): the statement that
+    /// follows runs for lane `lane` of the block; the backend switches its
+    /// per-index state (launch index, pending exception, prints) to that
+    /// lane's, in this thread's execution context too.
+    fn enter_lane(&self, lane: usize) {
+        let _ = lane;
+    }
+    /// Lane-wise execution: lane `lane`'s statement is done; the backend
+    /// keeps what it changed of the lane's state.
+    fn leave_lane(&self, lane: usize) {
+        let _ = lane;
+    }
+    /// Lane-wise execution: [`trace`](Self::trace) for each lane of `mask`
+    /// (each with a payload), in that lane's state; a backend traces them
+    /// together where it can. The rays are valid.
+    #[allow(clippy::too_many_arguments)]
+    fn trace_lanes(
+        &self,
+        mask: &super::lanes::Mask,
+        objects: &[Object; super::lanes::LANES],
+        rays: &[Ray; super::lanes::LANES],
+        payloads: &mut [Option<&mut dyn core::any::Any>; super::lanes::LANES],
+        flags: u32,
+        ray_mask: u32,
+        time: f32,
+    ) {
+        for l in 0..super::lanes::LANES {
+            if mask[l]
+                && let Some(p) = payloads[l].as_deref_mut()
+            {
+                self.enter_lane(l);
+                self.trace(objects[l], &rays[l], p, flags, ray_mask, time);
+                self.leave_lane(l);
+            }
+        }
+    }
     /// The Rust function of the callable program of id `id` (a
     /// `fn(A, ..) -> R` behind `Any`), for
     /// [`Callable::call`](crate::Callable::call) made by the callable of id

@@ -1,10 +1,12 @@
-//! The CPU side of programs, in two rooms: `thunk.rs`, the contract with
+//! The CPU side of programs, in three rooms: `thunk.rs`, the contract with
 //! the compiler's generated thunks (how the CPU backend calls a program's
-//! Rust function and binds its variables), and `execution.rs`, the
-//! per-thread state that intrinsics read and write when programs run as
-//! Rust.
+//! Rust function and binds its variables), `execution.rs`, the per-thread
+//! state that intrinsics read and write when programs run as Rust, and
+//! `lanes.rs`, what a program's lane-wise form calls to run a block of
+//! launch indices at once.
 
 mod execution;
+pub mod lanes;
 mod thunk;
 
 pub use crate::layout::TriangleBuiltins;

@@ -63,6 +63,7 @@ pub fn rt_program(attr: TokenStream, item: TokenStream) -> TokenStream {
     let name = &f.sig.ident;
     let vis = &f.vis;
     let thunk = cpu_thunk(kind, &f, &params);
+    let lanes = crate::lanes::cpu_lanes(kind, &stripped, &params);
     let kind_ident = format_ident!("{}", kind.name());
     let entry = quote!(program #kind_ident { #item });
     let deps: Vec<deps::Dep> = deps::of_fn(&f).into_iter().map(|d| deps::Dep { path: reroot(&d.path), ..d }).collect();
@@ -76,6 +77,7 @@ pub fn rt_program(attr: TokenStream, item: TokenStream) -> TokenStream {
             use super::*;
             #declared
             #thunk
+            #lanes
             /// The program's descriptor: WGSL, layouts, variables and the CPU entry.
             pub static PROGRAM: ::rt_std::program::ProgramDescriptor = #body;
         }

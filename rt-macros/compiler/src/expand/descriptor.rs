@@ -242,6 +242,7 @@ pub(super) fn program_output(kind: Kind, f: &syn::ItemFn, lowered: Result<Lowere
             cpu: cpu,
             cpu_bind: cpu_bind,
             cpu_attributes: #cpu_attributes,
+            cpu_lanes: CPU_LANES,
         }
         }
     }

@@ -28,6 +28,7 @@ mod thunk;
 
 pub use attributes::{rt_const, rt_enum, rt_function, rt_impl, rt_program, rt_struct};
 pub use chain::{collect, parse_defs};
+pub(crate) use thunk::variable_tuple;
 
 use crate::error::Error;
 use crate::kinds::Kind;

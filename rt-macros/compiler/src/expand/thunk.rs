@@ -173,7 +173,7 @@ fn callable_thunk(f: &syn::ItemFn, params: &[signature::Param]) -> TokenStream {
 
 /// `(a, b, ...)` of `items`, as tuples of at most eight nested as deep as
 /// needed (rt-std implements `VariableList` for tuples up to eight).
-fn variable_tuple(items: &[TokenStream]) -> TokenStream {
+pub(crate) fn variable_tuple(items: &[TokenStream]) -> TokenStream {
     if items.len() <= 8 {
         return quote!((#(#items,)*));
     }

@@ -142,6 +142,8 @@ pub(crate) struct Lane<'a> {
     /// The launch index as programs see it, and its 3D launch's slice
     /// (`launch_index`, `launch_z`), set per index by `run_index`.
     pub(crate) launch: Cell<(UVec2, u32)>,
+    /// The lanes of the block running lane-wise (`block.rs`).
+    pub(crate) block: RefCell<[super::block::BlockLane; rt_std::cpu::lanes::LANES]>,
 }
 
 impl<'a> Lane<'a> {
@@ -165,6 +167,7 @@ impl<'a> Lane<'a> {
                 ..ExecutionContext::DEFAULT
             },
             launch: Cell::new((UVec2::ZERO, 0)),
+            block: RefCell::new(Default::default()),
         }
     }
 
@@ -179,6 +182,14 @@ impl<'a> Lane<'a> {
         self.launch.set(self.launch_index());
         let mut ctx = self.context();
         self.invoke(&l.ray_generation, &mut ctx, None, None);
+        report.rays += self.rays.get();
+        self.finish_index(index, report);
+    }
+
+    /// The end of a launch index's run: its exception recorded and handled
+    /// (the exception program, or the default's magenta), its prints kept.
+    pub(crate) fn finish_index(&self, index: UVec2, report: &mut LaunchReport) {
+        let l = self.l;
         if let Some((code, location)) = self.exception.get() {
             report.exceptions.push(ExceptionRecord { launch_index: index, code, location });
             if let Some(ex) = &l.exception {
@@ -195,7 +206,6 @@ impl<'a> Lane<'a> {
                 }
             }
         }
-        report.rays += self.rays.get();
         if !self.prints.borrow().is_empty() {
             report.prints.extend(self.prints.take().into_iter().map(|t| (index, t)));
         }
@@ -214,7 +224,7 @@ impl<'a> Lane<'a> {
 
     /// The launch index and slice programs see at grid index `index` (see
     /// [`Lane::launch`]).
-    fn launch_index(&self) -> (UVec2, u32) {
+    pub(crate) fn launch_index(&self) -> (UVec2, u32) {
         // The index goes in as one 8-byte store. Built from two `u32`s, LLVM
         // stores it as two 4-byte halves, and the 8-byte load of the
         // program's `launch_index()` just after cannot be forwarded from two

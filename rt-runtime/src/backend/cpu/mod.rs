@@ -24,13 +24,22 @@
 //! distance and barycentrics; the attributes are computed once, for the
 //! closest hit.
 //!
+//! A ray generation program with a lane-wise form runs a block of launch
+//! indices per call (`block`), unless the context asks for one index at a
+//! time (`execution`: `RT_CPU_EXEC`, [`crate::Context::set_cpu_execution`]).
+//!
 //! Files: `bind` resolves and binds every program use of a launch,
-//! `lane` runs launch indices and traces rays, `triangle` computes a
-//! triangle hit's built-in attributes; this file is the backend and its
-//! run.
+//! `lane` runs launch indices and traces rays, `block` runs a block of
+//! them lane-wise, `packet` traces a block's rays together, `execution`
+//! says which way programs run, `triangle`
+//! computes a triangle hit's built-in attributes; this file is the backend
+//! and its run.
 
 mod bind;
+mod block;
+mod execution;
 mod lane;
+mod packet;
 mod tracer;
 mod traverse;
 mod triangle;
@@ -43,9 +52,12 @@ use crate::error::{Result, RtError};
 use crate::panics;
 use crate::scene::Scene;
 use bind::link_all;
+pub use execution::{CpuExecution, ProgramExecution};
 use glam::UVec2;
 use lane::Lane;
 use rayon::prelude::*;
+use rt_std::cpu::lanes::LANES;
+use rt_std::program::CpuLanes;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 /// The CPU backend: it keeps nothing between launches.
@@ -108,6 +120,10 @@ fn run(launch: &Launch) -> Result<LaunchReport> {
     let t1 = web_time::Instant::now();
     let calls = link_all(scene, settings, &accels.nodes, entry, (UVec2::new(width, height / depth), depth))?;
     let linked = calls.bind()?;
+    let lanes = match (settings.cpu_execution, linked.ray_generation.desc.cpu_lanes) {
+        (CpuExecution::Lanes, CpuLanes::Lanes(entry)) => Some(entry),
+        _ => None,
+    };
     let t2 = web_time::Instant::now();
     // Chunks of launch indices in row-major order (not rows: a 1D launch
     // spreads over all cores too); reports are merged in index order.
@@ -127,11 +143,24 @@ fn run(launch: &Launch) -> Result<LaunchReport> {
                     // panic ends the chunk either way, and the lane knows
                     // the index it was running (`run_index` sets it first).
                     let run = panics::catching(|| {
-                        for i in c * chunk..((c + 1) * chunk).min(total) {
-                            if stop.load(Ordering::Relaxed) {
-                                break;
+                        let end = ((c + 1) * chunk).min(total);
+                        let mut i = c * chunk;
+                        while i < end && !stop.load(Ordering::Relaxed) {
+                            match lanes {
+                                Some(entry) => {
+                                    let n = (end - i).min(LANES as u64);
+                                    let mut indices = [UVec2::ZERO; LANES];
+                                    for (k, index) in indices.iter_mut().take(n as usize).enumerate() {
+                                        *index = tile.index(i + k as u64);
+                                    }
+                                    lane.run_block(entry, &indices[..n as usize], &mut report);
+                                    i += n;
+                                }
+                                None => {
+                                    lane.run_index(tile.index(i), &mut report);
+                                    i += 1;
+                                }
                             }
-                            lane.run_index(tile.index(i), &mut report);
                         }
                     });
                     match run {

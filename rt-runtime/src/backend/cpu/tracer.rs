@@ -9,6 +9,7 @@ use crate::handles::{BufferId, SamplerId};
 use crate::link::instances::{self, InstancePath};
 use crate::scene::{NodeId, ProgramId};
 use glam::{Vec2, Vec3};
+use rt_std::cpu::lanes::LANES;
 use rt_std::cpu::{AnyAttributes, HIT_CUSTOM, Tracer};
 use rt_std::*;
 use std::any::Any;
@@ -16,94 +17,33 @@ use std::cell::{Cell, RefCell};
 
 impl Tracer for Lane<'_> {
     fn trace(&self, object: Object, ray: &Ray, payload: &mut dyn Any, flags: u32, mask: u32, time: f32) {
-        if self.exception.get().is_some() || rt_std::cpu::pending_exception().is_some() {
-            return;
-        }
-        let depth = self.depth.get();
-        let l = self.l;
-        if depth >= l.settings.max_trace_depth {
-            rt_std::cpu::raise(EXCEPTION_TRACE_DEPTH_EXCEEDED);
+        if !self.may_trace(object, ray) {
             return;
         }
         let node = NodeId(object.id);
-        if object.id as usize >= l.scene.nodes.len() || ray.ray_type >= l.scene.ray_type_count() {
-            rt_std::cpu::raise(EXCEPTION_INVALID_RAY);
-            return;
-        }
-        self.depth.set(depth + 1);
-        self.rays.set(self.rays.get() + 1);
-        let outer_time = self.time.replace(time);
-        let mut search = Search {
-            ray_type: ray.ray_type,
-            flags,
-            mask: mask & 0xff,
-            world_ray: ray,
-            payload: payload as *mut dyn Any,
-            tmax: Cell::new(ray.tmax),
-            done: Cell::new(false),
-            committed: Cell::new(None),
-            attributes: RefCell::new(None),
-            candidate: Cell::new(None),
-            candidate_t: Cell::new(None),
-            group: Cell::new((InstancePath::ROOT, node)),
-        };
+        let mut search = Search::new(ray, payload, flags, mask, node);
         // The pointer's lifetime is erased; it is restored below, before
         // `search` (and the ray it borrows) go away.
         let outer = self.search.replace((&search as *const Search<'_>).cast());
+        let (depth, outer_time) = self.enter_trace(time);
         self.traverse(&search, node, None, mask & 0xff, InstancePath::ROOT);
         self.search.set(outer);
-        let mut attributes = search.attributes.take();
-        // Read in place: a copy of the hit would load the fields its last
-        // commit stored one by one in wider words (a stall).
-        match search.committed.get_mut() {
-            Some(hit) => {
-                let (closest, _) = &l.hits[hit.instance as usize][hit.material as usize][ray.ray_type as usize];
-                if let Some(ch) = closest
-                    && flags & RAY_FLAG_DISABLE_CLOSESTHIT == 0
-                {
-                    let mesh = l.meshes[hit.instance as usize];
-                    // The geometric normal, once: the attributes and the
-                    // side of the triangle both take it.
-                    let normal = mesh.map(|_| geometric_normal(&hit.vertices));
-                    if let (Some(mesh), Some(normal), Some(ty)) = (mesh, normal, &ch.attributes) {
-                        let (u, v) = hit.barycentrics.into();
-                        let values = triangle_builtins(mesh, hit.primitive, normal, u, v);
-                        attributes = Some(self.attributes_of(ty, Some(&values)));
-                    }
-                    let hit_kind = match normal {
-                        Some(normal) => front_or_back(hit.xf.as_ref(), normal, ray.direction),
-                        None => HIT_CUSTOM,
-                    };
-                    let (path, group) = hit.path;
-                    let (instance_index, instance_id) = instances::resolve(l.scene, path, group, hit.instance);
-                    let mut ctx = self.context();
-                    ctx.t_hit = hit.t;
-                    ctx.primitive_index = hit.primitive;
-                    ctx.hit_kind = hit_kind;
-                    ctx.ray_flags = flags;
-                    ctx.ray_mask = mask & 0xff;
-                    ctx.instance_index = instance_index;
-                    ctx.instance_id = instance_id;
-                    set_transforms(&mut ctx, hit.xf.as_ref());
-                    set_current_ray(&mut ctx, ray, hit.t);
-                    self.invoke(ch, &mut ctx, Some(payload), attributes.as_mut());
-                }
-            }
-            None => {
-                if let Some(miss) = &l.miss[ray.ray_type as usize] {
-                    let mut ctx = self.context();
-                    ctx.ray_flags = flags;
-                    ctx.ray_mask = mask & 0xff;
-                    set_current_ray(&mut ctx, ray, ray.tmax);
-                    self.invoke(miss, &mut ctx, Some(payload), None);
-                }
-            }
-        }
-        if let Some(a) = attributes {
-            self.return_attributes(a);
-        }
-        self.time.set(outer_time);
-        self.depth.set(depth);
+        self.hand_over(&mut search, ray, payload, flags, mask);
+        self.leave_trace(depth, outer_time);
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn trace_lanes(
+        &self,
+        mask: &rt_std::cpu::lanes::Mask,
+        objects: &[Object; LANES],
+        rays: &[Ray; LANES],
+        payloads: &mut [Option<&mut dyn Any>; LANES],
+        flags: u32,
+        ray_mask: u32,
+        time: f32,
+    ) {
+        self.trace_packet(mask, objects, rays, payloads, flags, ray_mask, time);
     }
 
     fn potential_intersection(&self, t: f32) -> bool {
@@ -195,10 +135,131 @@ impl Tracer for Lane<'_> {
         Some(&**self.l.samplers.get(SamplerId::from_bindless_id(id)?.index() as usize)?)
     }
 
+    fn enter_lane(&self, lane: usize) {
+        self.enter_block_lane(lane);
+    }
+
+    fn leave_lane(&self, lane: usize) {
+        self.leave_block_lane(lane);
+    }
+
     fn print(&self, text: &str) {
         let settings = self.l.settings;
         if settings.print_enabled && settings.print_launch_index.is_none_or(|i| i == self.index.get()) {
             self.prints.borrow_mut().push(text.to_string());
+        }
+    }
+}
+
+impl<'r> Search<'r> {
+    /// A search for `ray` from `node`, nothing found yet.
+    pub(crate) fn new(ray: &'r Ray, payload: &mut dyn Any, flags: u32, mask: u32, node: NodeId) -> Search<'r> {
+        Search {
+            ray_type: ray.ray_type,
+            flags,
+            mask: mask & 0xff,
+            world_ray: ray,
+            payload: payload as *mut dyn Any,
+            tmax: Cell::new(ray.tmax),
+            done: Cell::new(false),
+            committed: Cell::new(None),
+            attributes: RefCell::new(None),
+            candidate: Cell::new(None),
+            candidate_t: Cell::new(None),
+            group: Cell::new((InstancePath::ROOT, node)),
+        }
+    }
+}
+
+impl Lane<'_> {
+    /// Whether a trace of `ray` against `object` goes ahead: not after an
+    /// exception, not past the depth limit (raised), not of a node or ray
+    /// type the scene lacks (raised).
+    pub(crate) fn may_trace(&self, object: Object, ray: &Ray) -> bool {
+        if self.exception.get().is_some() || rt_std::cpu::pending_exception().is_some() {
+            return false;
+        }
+        let l = self.l;
+        if self.depth.get() >= l.settings.max_trace_depth {
+            rt_std::cpu::raise(EXCEPTION_TRACE_DEPTH_EXCEEDED);
+            return false;
+        }
+        if object.id as usize >= l.scene.nodes.len() || ray.ray_type >= l.scene.ray_type_count() {
+            rt_std::cpu::raise(EXCEPTION_INVALID_RAY);
+            return false;
+        }
+        true
+    }
+
+    /// A trace's start: one level deeper, one more ray, at `time`; the
+    /// depth and time to go back to.
+    pub(crate) fn enter_trace(&self, time: f32) -> (u32, f32) {
+        let depth = self.depth.get();
+        self.depth.set(depth + 1);
+        self.rays.set(self.rays.get() + 1);
+        (depth, self.time.replace(time))
+    }
+
+    /// A trace's end (see [`Lane::enter_trace`]).
+    pub(crate) fn leave_trace(&self, depth: u32, time: f32) {
+        self.time.set(time);
+        self.depth.set(depth);
+    }
+
+    /// The end of a search: its closest hit to the closest-hit program of
+    /// the hit's material and the ray's type, or the ray to the ray type's
+    /// miss program.
+    pub(crate) fn hand_over(&self, search: &mut Search<'_>, ray: &Ray, payload: &mut dyn Any, flags: u32, mask: u32) {
+        let l = self.l;
+        let mut attributes = search.attributes.take();
+        // Read in place: a copy of the hit would load the fields its last
+        // commit stored one by one in wider words (a stall).
+        match search.committed.get_mut() {
+            Some(hit) => {
+                let (closest, _) = &l.hits[hit.instance as usize][hit.material as usize][ray.ray_type as usize];
+                if let Some(ch) = closest
+                    && flags & RAY_FLAG_DISABLE_CLOSESTHIT == 0
+                {
+                    let mesh = l.meshes[hit.instance as usize];
+                    // The geometric normal, once: the attributes and the
+                    // side of the triangle both take it.
+                    let normal = mesh.map(|_| geometric_normal(&hit.vertices));
+                    if let (Some(mesh), Some(normal), Some(ty)) = (mesh, normal, &ch.attributes) {
+                        let (u, v) = hit.barycentrics.into();
+                        let values = triangle_builtins(mesh, hit.primitive, normal, u, v);
+                        attributes = Some(self.attributes_of(ty, Some(&values)));
+                    }
+                    let hit_kind = match normal {
+                        Some(normal) => front_or_back(hit.xf.as_ref(), normal, ray.direction),
+                        None => HIT_CUSTOM,
+                    };
+                    let (path, group) = hit.path;
+                    let (instance_index, instance_id) = instances::resolve(l.scene, path, group, hit.instance);
+                    let mut ctx = self.context();
+                    ctx.t_hit = hit.t;
+                    ctx.primitive_index = hit.primitive;
+                    ctx.hit_kind = hit_kind;
+                    ctx.ray_flags = flags;
+                    ctx.ray_mask = mask & 0xff;
+                    ctx.instance_index = instance_index;
+                    ctx.instance_id = instance_id;
+                    set_transforms(&mut ctx, hit.xf.as_ref());
+                    set_current_ray(&mut ctx, ray, hit.t);
+                    self.invoke(ch, &mut ctx, Some(payload), attributes.as_mut());
+                }
+            }
+            None => {
+                if let Some(miss) = &l.miss[ray.ray_type as usize] {
+                    let mut ctx = self.context();
+                    ctx.ray_flags = flags;
+                    ctx.ray_mask = mask & 0xff;
+                    set_current_ray(&mut ctx, ray, ray.tmax);
+                    self.invoke(miss, &mut ctx, Some(payload), None);
+                }
+            }
+        }
+        if let Some(a) = attributes {
+            self.return_attributes(a);
         }
     }
 }
