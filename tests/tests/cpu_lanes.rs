@@ -75,6 +75,7 @@ pub fn nothing(prd: &mut Probe) {
 }
 
 /// A program the lane-wise lowering refuses: a `let` without a value.
+#[allow(clippy::needless_late_init)]
 #[rt_program(ray_generation)]
 pub fn late_init(#[var] mut out: RwBuffer2d<Vec4>) {
     let idx = launch_index();

@@ -287,15 +287,15 @@ pub trait Tracer {
     #[allow(clippy::too_many_arguments)]
     fn trace_lanes(
         &self,
-        mask: &super::lanes::Mask,
-        objects: &[Object; super::lanes::LANES],
-        rays: &[Ray; super::lanes::LANES],
-        payloads: &mut [Option<&mut dyn core::any::Any>; super::lanes::LANES],
+        mask: &super::mask::Mask,
+        objects: &[Object; super::mask::LANES],
+        rays: &[Ray; super::mask::LANES],
+        payloads: &mut [Option<&mut dyn core::any::Any>; super::mask::LANES],
         flags: u32,
         ray_mask: u32,
         time: f32,
     ) {
-        for l in 0..super::lanes::LANES {
+        for l in 0..super::mask::LANES {
             if mask[l]
                 && let Some(p) = payloads[l].as_deref_mut()
             {
@@ -515,6 +515,16 @@ impl Drop for TracerGuard {
 }
 
 /// Calls `f` with the installed tracer, or `fallback` when there is none.
+/// `f` with the installed tracer, if any (for code that calls it many
+/// times: one lookup).
+pub(crate) fn installed_tracer<R>(f: impl FnOnce(Option<&dyn Tracer>) -> R) -> R {
+    match TRACER.with(Cell::get) {
+        // SAFETY: as in `with_installed_tracer`.
+        Some(tracer) => f(Some(unsafe { &*tracer })),
+        None => f(None),
+    }
+}
+
 pub(crate) fn with_installed_tracer<R>(f: impl FnOnce(&dyn Tracer) -> R, fallback: impl FnOnce() -> R) -> R {
     match TRACER.with(Cell::get) {
         // SAFETY: see `TRACER`: an installed pointer is live until the

@@ -14,19 +14,10 @@
 //! A lane that returns leaves the mask; a block whose mask is empty is not
 //! run, so [`fill`] always has a lane to take a value from.
 
-use super::execution::{raise, with_installed_tracer};
+use super::execution::{Tracer, installed_tracer, raise, with_installed_tracer};
+pub use super::mask::{LANES, LaneContext, LanesEntry, Mask};
 use crate::{EXCEPTION_INVALID_RAY, Object, Payload, RAY_FLAG_NONE, RAY_MASK_ALL, Ray};
 use core::any::Any;
-
-/// The number of launch indices a lane-wise program runs at once.
-pub const LANES: usize = 8;
-
-/// Which lanes run: `true` for a running lane.
-pub type Mask = [bool; LANES];
-
-/// A program's lane-wise entry: runs the lanes of `mask` (the backend has
-/// set up each lane's launch index) with the program's variables.
-pub type LanesEntry = fn(&Mask, &super::BoundVariables<'_>);
 
 /// Whether any lane of `mask` runs.
 #[inline(always)]
@@ -52,43 +43,85 @@ pub fn or(a: &Mask, b: &Mask) -> Mask {
     core::array::from_fn(|l| a[l] || b[l])
 }
 
-/// Runs `f(lane)` for the lanes of `mask` inside the backend's state for
-/// that lane.
+/// Runs `f(lane)` inside `tracer`'s state for that lane.
 #[inline(always)]
-fn in_lane<R>(lane: usize, f: impl FnOnce() -> R) -> R {
-    with_installed_tracer(|t| t.enter_lane(lane), || ());
-    let r = f();
-    with_installed_tracer(|t| t.leave_lane(lane), || ());
-    r
-}
-
-/// Runs a statement for each lane of `mask`; `f` returns whether the lane
-/// returned from the program, and such lanes leave `mask`.
-#[inline(always)]
-pub fn each(mask: &mut Mask, mut f: impl FnMut(usize) -> bool) {
-    for (l, running) in mask.iter_mut().enumerate() {
-        if *running && in_lane(l, || f(l)) {
-            *running = false;
+fn in_lane<R>(tracer: Option<&dyn Tracer>, lane: usize, f: impl FnOnce() -> R) -> R {
+    match tracer {
+        Some(t) => {
+            t.enter_lane(lane);
+            let r = f();
+            t.leave_lane(lane);
+            r
         }
+        None => f(),
     }
 }
 
-/// A local's values: `f(lane)` for each lane of `mask`, and for the lanes
-/// not running a copy of the first running lane's value (never read).
+/// Runs a statement (or a run of them) for each lane of `mask` in turn;
+/// `f` returns whether the lane returned from the program, and such lanes
+/// leave `mask`.
+#[inline(always)]
+pub fn each(mask: &mut Mask, mut f: impl FnMut(usize) -> bool) {
+    installed_tracer(|t| {
+        for (l, running) in mask.iter_mut().enumerate() {
+            if *running && in_lane(t, l, || f(l)) {
+                *running = false;
+            }
+        }
+    })
+}
+
+/// A value's lanes: `f(lane)` for each lane of `mask`, in that lane's
+/// state, and for the lanes not running a copy of the first running lane's
+/// value (never read).
 ///
 /// # Panics
 /// If no lane of `mask` runs: the compiler never lets that happen.
 #[inline(always)]
 pub fn fill<T: Copy>(mask: &Mask, mut f: impl FnMut(usize) -> T) -> [T; LANES] {
     let first = mask.iter().position(|&m| m).expect("a lane-wise block runs with at least one lane");
-    let v = in_lane(first, || f(first));
-    let mut values = [v; LANES];
-    for (l, value) in values.iter_mut().enumerate().skip(first + 1) {
-        if mask[l] {
-            *value = in_lane(l, || f(l));
+    installed_tracer(|t| {
+        let v = in_lane(t, first, || f(first));
+        let mut values = [v; LANES];
+        for (l, value) in values.iter_mut().enumerate().skip(first + 1) {
+            if mask[l] {
+                *value = in_lane(t, l, || f(l));
+            }
         }
+        values
+    })
+}
+
+/// The values a run of statements leaves in a local, lane by lane: a lane
+/// sets its value at the run's end; [`Slots::finish`] makes the lane-wise
+/// local the statements after the run read.
+pub struct Slots<T>([Option<T>; LANES]);
+
+impl<T: Copy> Slots<T> {
+    /// No lane's value yet.
+    #[allow(clippy::new_without_default)]
+    #[inline(always)]
+    pub fn new() -> Self {
+        Slots([None; LANES])
     }
-    values
+
+    /// Lane `lane`'s value.
+    #[inline(always)]
+    pub fn set(&mut self, lane: usize, value: T) {
+        self.0[lane] = Some(value);
+    }
+
+    /// The values, a lane that set none holding a copy of one that did
+    /// (it is not running, so never read).
+    ///
+    /// # Panics
+    /// If no lane set a value: the compiler reads slots only while a lane
+    /// runs, and every running lane ran the whole run.
+    #[inline(always)]
+    pub fn finish(self) -> [T; LANES] {
+        let any = self.0.iter().flatten().next().copied().expect("a running lane set its value");
+        core::array::from_fn(|l| self.0[l].unwrap_or(any))
+    }
 }
 
 /// `rt_trace(objects[l], rays[l], &mut payloads[l])` for the lanes of
@@ -99,7 +132,7 @@ pub fn trace<P: Payload>(mask: &Mask, objects: &[Object; LANES], rays: &[Ray; LA
     let mut go = *mask;
     for (l, (going, ray)) in go.iter_mut().zip(rays).enumerate() {
         if *going && !ray.is_valid() {
-            in_lane(l, || raise(EXCEPTION_INVALID_RAY));
+            installed_tracer(|t| in_lane(t, l, || raise(EXCEPTION_INVALID_RAY)));
             *going = false;
         }
     }
@@ -111,20 +144,6 @@ pub fn trace<P: Payload>(mask: &Mask, objects: &[Object; LANES], rays: &[Ray; LA
         *slot = Some(p as &mut dyn Any);
     }
     with_installed_tracer(|t| t.trace_lanes(&go, objects, rays, &mut refs, RAY_FLAG_NONE, RAY_MASK_ALL, 0.0), || ());
-}
-
-/// A lane's own part of this thread's execution context: its launch index
-/// and slice, and the exception its program raised and where.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct LaneContext {
-    /// [`launch_index`](crate::launch_index) in the lane.
-    pub launch_index: glam::UVec2,
-    /// The slice of a 3D launch.
-    pub launch_z: u32,
-    /// The exception the lane's program raised, if any.
-    pub pending_exception: Option<u32>,
-    /// Where, when the raiser said.
-    pub pending_location: Option<&'static core::panic::Location<'static>>,
 }
 
 /// Puts `lane`'s part into this thread's execution context (a backend's

@@ -3,10 +3,12 @@
 //! Rust function and binds its variables), `execution.rs`, the per-thread
 //! state that intrinsics read and write when programs run as Rust, and
 //! `lanes.rs`, what a program's lane-wise form calls to run a block of
-//! launch indices at once.
+//! launch indices at once (`mask.rs`: a block's shape, which the others
+//! name).
 
 mod execution;
 pub mod lanes;
+mod mask;
 mod thunk;
 
 pub use crate::layout::TriangleBuiltins;

@@ -1,10 +1,14 @@
-//! A body's statements, lane-wise. Each local holds a value per lane
-//! (`[T; LANES]`); `__mask` holds the running lanes. A statement runs as
-//! one of:
+//! A body's statements, lane-wise. `__mask` holds the running lanes; a
+//! local that statements after its own run read holds a value per lane
+//! (`[T; LANES]`). Statements run as:
 //!
-//! - **per lane** (most statements): the statement itself, renamed for one
-//!   lane (`rename.rs`), run by `each`/`fill` for every running lane; a
-//!   `return` in it takes its lane out of `__mask`;
+//! - **runs of plain statements**, fused: the statements themselves, run
+//!   for one lane after the other (`each`), each lane through the whole
+//!   run, as the scalar copy runs them (`rename.rs` reads the lane-wise
+//!   locals of earlier statements as `x[__l]`); the run's own `let`s are
+//!   plain locals inside it, and their values go to per-lane slots at the
+//!   run's end (`Slots`), which become lane-wise locals after it. A
+//!   `return` in the run takes its lane out of `__mask`;
 //! - **a trace** (`rt_trace(object, ray, &mut payload)` with a lane-wise
 //!   payload): the lanes' objects and rays first, then one call that hands
 //!   them to the backend together;
@@ -13,8 +17,8 @@
 //!   that returned in either branch out of `__mask` after;
 //! - a **block** (one that holds such a trace), its statements in turn.
 //!
-//! After a statement that may take lanes out, the rest of the block runs
-//! only if a lane still runs (so a `let` always has a lane to fill from).
+//! After a statement or run that may take lanes out, the rest of the block
+//! runs only if a lane still runs (so each slot has a lane's value).
 
 use super::Refusal;
 use super::rename::{bound, for_lane};
@@ -41,30 +45,91 @@ impl Writer {
     }
 
     fn stmts(&mut self, stmts: &[syn::Stmt]) -> Result<TokenStream, Refusal> {
-        let mut out = TokenStream::new();
-        for (i, s) in stmts.iter().enumerate() {
-            let (code, retires) = self.stmt(s)?;
-            out.extend(code);
-            if retires && i + 1 < stmts.len() {
-                let rest = self.stmts(&stmts[i + 1..])?;
-                out.extend(quote!(if ::rt_std::cpu::lanes::any(&__mask) { #rest }));
-                break;
-            }
+        let Some(first) = stmts.first() else { return Ok(TokenStream::new()) };
+        let (code, retires, locals, rest) = if self.structural(first) {
+            let (code, retires) = self.stmt(first)?;
+            (code, retires, TokenStream::new(), &stmts[1..])
+        } else {
+            let n = stmts.iter().take_while(|s| !self.structural(s)).count();
+            let (code, retires, locals) = self.fused(&stmts[..n])?;
+            (code, retires, locals, &stmts[n..])
+        };
+        let mut out = code;
+        let rest = self.stmts(rest)?;
+        if rest.is_empty() {
+            return Ok(out);
+        }
+        if retires {
+            out.extend(quote!(if ::rt_std::cpu::lanes::any(&__mask) { #locals #rest }));
+        } else {
+            out.extend(locals);
+            out.extend(rest);
         }
         Ok(out)
     }
 
-    /// One statement's code, and whether it may take lanes out.
-    fn stmt(&mut self, s: &syn::Stmt) -> Result<(TokenStream, bool), Refusal> {
-        match s {
-            syn::Stmt::Local(l) => self.local(l).map(|c| (c, false)),
-            syn::Stmt::Item(item) => Ok((quote!(#item), false)),
-            syn::Stmt::Macro(m) => {
-                let e = syn::Expr::Macro(syn::ExprMacro { attrs: m.attrs.clone(), mac: m.mac.clone() });
-                self.per_lane(&e)
+    /// A run of plain statements for each lane in turn (see the module's
+    /// doc), the slots of its `let`s after it; whether a lane may return.
+    /// The code, whether a lane may return, and the slots' lane-wise locals
+    /// for the statements after the run (to run only while a lane runs).
+    fn fused(&mut self, stmts: &[syn::Stmt]) -> Result<(TokenStream, bool, TokenStream), Refusal> {
+        let outer = self.varying.clone();
+        let mut body = TokenStream::new();
+        let mut retires = false;
+        // The run's locals by name: the slot its last binding goes to.
+        let mut exports: Vec<(syn::Ident, syn::Ident, Option<syn::Token![mut]>)> = Vec::new();
+        for s in stmts {
+            match s {
+                syn::Stmt::Local(l) => {
+                    self.check_local(l)?;
+                    let mut l = l.clone();
+                    if let Some(init) = &mut l.init {
+                        for_lane(&mut init.expr, &self.varying, false)?;
+                    }
+                    let (pat, _) = untyped(&l.pat);
+                    for n in bound(pat) {
+                        self.varying.remove(&n.to_string());
+                        exports.retain(|(name, _, _)| *name != n);
+                        let slot = format_ident!("__slot{}", self.next);
+                        self.next += 1;
+                        exports.push((n.clone(), slot, mutability_of(pat, &n)));
+                    }
+                    body.extend(quote!(#l));
+                }
+                syn::Stmt::Item(item) => body.extend(quote!(#item)),
+                syn::Stmt::Macro(m) => {
+                    let mut e = syn::Expr::Macro(syn::ExprMacro { attrs: m.attrs.clone(), mac: m.mac.clone() });
+                    for_lane(&mut e, &self.varying, true)?;
+                    body.extend(quote!(#e;));
+                }
+                syn::Stmt::Expr(e, _) => {
+                    retires |= returns(e);
+                    let mut e = e.clone();
+                    for_lane(&mut e, &self.varying, true)?;
+                    body.extend(quote!(#e;));
+                }
             }
-            syn::Stmt::Expr(e, _) => self.expr_stmt(e),
         }
+        let slots = exports.iter().map(|(_, slot, _)| quote!(let mut #slot = ::rt_std::cpu::lanes::Slots::new();));
+        let sets = exports.iter().map(|(name, slot, _)| quote!(#slot.set(__l, #name);));
+        let finishes =
+            exports.iter().map(|(name, slot, m)| quote!(#[allow(unused_mut)] let #m #name = #slot.finish();));
+        let code = quote! {
+            #(#slots)*
+            ::rt_std::cpu::lanes::each(&mut __mask, |__l| {
+                #[allow(unreachable_code)]
+                {
+                    #body
+                    #(#sets)*
+                    false
+                }
+            });
+        };
+        self.varying = outer;
+        for (name, _, _) in &exports {
+            self.varying.insert(name.to_string());
+        }
+        Ok((code, retires, quote!(#(#finishes)*)))
     }
 
     fn expr_stmt(&mut self, e: &syn::Expr) -> Result<(TokenStream, bool), Refusal> {
@@ -91,27 +156,30 @@ impl Writer {
         }
     }
 
+    /// `rt_trace(object, ray, &mut p)` with `p` a lane-wise local: the call
+    /// and `p`.
+    fn packet_payload<'e>(&self, e: &'e syn::Expr) -> Option<(&'e syn::ExprCall, &'e syn::Ident)> {
+        let syn::Expr::Call(c) = e else { return None };
+        let syn::Expr::Path(f) = &*c.func else { return None };
+        if f.path.segments.last().is_none_or(|s| s.ident != "rt_trace") || c.args.len() != 3 {
+            return None;
+        }
+        let syn::Expr::Reference(r) = &c.args[2] else { return None };
+        let syn::Expr::Path(p) = &*r.expr else { return None };
+        let payload = p.path.get_ident().filter(|i| self.varying.contains(&i.to_string()))?;
+        r.mutability.is_some().then_some((c, payload))
+    }
+
     /// `rt_trace(object, ray, &mut p)` with `p` lane-wise, as a packet.
     fn trace(&mut self, e: &syn::Expr) -> Result<Option<TokenStream>, Refusal> {
-        let syn::Expr::Call(c) = e else { return Ok(None) };
-        let syn::Expr::Path(f) = &*c.func else { return Ok(None) };
-        if f.path.segments.last().is_none_or(|s| s.ident != "rt_trace") || c.args.len() != 3 {
-            return Ok(None);
-        }
-        let syn::Expr::Reference(r) = &c.args[2] else { return Ok(None) };
-        let syn::Expr::Path(p) = &*r.expr else { return Ok(None) };
-        let Some(payload) = p.path.get_ident().filter(|i| self.varying.contains(&i.to_string())) else {
-            return Ok(None);
-        };
-        if r.mutability.is_none() {
-            return Ok(None);
-        }
-        let object = self.lanes_of(&c.args[0])?;
-        let ray = self.lanes_of(&c.args[1])?;
+        let Some((c, payload)) = self.packet_payload(e) else { return Ok(None) };
+        let (object, ray) = (&c.args[0], &c.args[1]);
+        let both = self.lanes_of(&syn::parse_quote!((#object, #ray)))?;
         Ok(Some(quote! {
             {
-                let __objects = #object;
-                let __rays = #ray;
+                let __both = #both;
+                let __objects = ::core::array::from_fn(|l| __both[l].0);
+                let __rays = ::core::array::from_fn(|l| __both[l].1);
                 ::rt_std::cpu::lanes::trace(&__mask, &__objects, &__rays, &mut #payload);
             }
         }))
@@ -176,7 +244,9 @@ impl Writer {
         Ok(quote!(::rt_std::cpu::lanes::fill(&__mask, |__l| #e)))
     }
 
-    fn local(&mut self, l: &syn::Local) -> Result<TokenStream, Refusal> {
+    /// A `let` the fused run takes: with a value, without `else`, not a
+    /// closure (whose value has no slot).
+    fn check_local(&self, l: &syn::Local) -> Result<(), Refusal> {
         let Some(init) = &l.init else {
             return Err(Refusal::new(l.span(), "a `let` without a value".into()));
         };
@@ -186,42 +256,36 @@ impl Writer {
         if matches!(&*init.expr, syn::Expr::Closure(_)) {
             return Err(Refusal::new(init.expr.span(), "a closure bound to a local".into()));
         }
-        let (pat, ty) = match &l.pat {
-            syn::Pat::Type(t) => (&*t.pat, Some(&*t.ty)),
-            p => (p, None),
-        };
-        let value = self.lanes_of(&init.expr)?;
-        let code = match pat {
-            syn::Pat::Ident(p) if p.by_ref.is_none() && p.subpat.is_none() => {
-                let (m, name) = (&p.mutability, &p.ident);
-                let annot = ty.map(|t| quote!(: [#t; ::rt_std::cpu::lanes::LANES]));
-                quote!(#[allow(unused_mut)] let #m #name #annot = #value;)
-            }
-            // A pattern: the value per lane, then each name it binds.
-            _ => {
-                let tmp = format_ident!("__value{}", self.next);
-                self.next += 1;
-                let annot = ty.map(|t| quote!(: #t));
-                let names = bound(pat);
-                let mut out = quote!(let #tmp = #value;);
-                for n in &names {
-                    let m = mutability_of(pat, n);
-                    out.extend(quote! {
-                        #[allow(unused_mut)]
-                        let #m #n = ::rt_std::cpu::lanes::fill(&__mask, |__l| {
-                            #[allow(unused_variables, unused_mut)]
-                            let #pat #annot = #tmp[__l];
-                            #n
-                        });
-                    });
-                }
-                out
-            }
-        };
-        for n in bound(pat) {
-            self.varying.insert(n.to_string());
+        Ok(())
+    }
+
+    /// Whether `s` runs for all lanes at once: a `return`, or a trace with
+    /// a lane-wise payload, alone or in an `if` or a block.
+    fn structural(&self, s: &syn::Stmt) -> bool {
+        let syn::Stmt::Expr(e, _) = s else { return false };
+        match e {
+            syn::Expr::Return(_) => true,
+            syn::Expr::Call(_) => self.packet_payload(e).is_some(),
+            syn::Expr::If(i) => !matches!(&*i.cond, syn::Expr::Let(_)) && traces(e),
+            syn::Expr::Block(b) => b.label.is_none() && traces(e),
+            _ => false,
         }
-        Ok(code)
+    }
+
+    /// A structural statement's code, and whether it may take lanes out.
+    fn stmt(&mut self, s: &syn::Stmt) -> Result<(TokenStream, bool), Refusal> {
+        match s {
+            syn::Stmt::Expr(e, _) => self.expr_stmt(e),
+            other => Err(Refusal::new(other.span(), "a statement the lane-wise form does not take".into())),
+        }
+    }
+}
+
+/// A `let`'s pattern without its type.
+fn untyped(p: &syn::Pat) -> (&syn::Pat, Option<&syn::Type>) {
+    match p {
+        syn::Pat::Type(t) => (&t.pat, Some(&t.ty)),
+        p => (p, None),
     }
 }
 

@@ -143,7 +143,7 @@ pub(crate) struct Lane<'a> {
     /// (`launch_index`, `launch_z`), set per index by `run_index`.
     pub(crate) launch: Cell<(UVec2, u32)>,
     /// The lanes of the block running lane-wise (`block.rs`).
-    pub(crate) block: RefCell<[super::block::BlockLane; rt_std::cpu::lanes::LANES]>,
+    pub(crate) block: Block,
 }
 
 impl<'a> Lane<'a> {
@@ -167,7 +167,7 @@ impl<'a> Lane<'a> {
                 ..ExecutionContext::DEFAULT
             },
             launch: Cell::new((UVec2::ZERO, 0)),
-            block: RefCell::new(Default::default()),
+            block: Default::default(),
         }
     }
 
@@ -328,3 +328,21 @@ impl RtData for NoAttributes {
 }
 
 impl rt_std::Attributes for NoAttributes {}
+
+/// One launch index of the running block.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct BlockLane {
+    /// The grid index (what reports name).
+    pub(crate) index: UVec2,
+    /// The launch index and slice, and the program's pending exception.
+    pub(crate) context: rt_std::cpu::lanes::LaneContext,
+    /// The first exception of a program the lane's traces ran.
+    pub(crate) exception: Option<(u32, Option<&'static std::panic::Location<'static>>)>,
+}
+
+/// The running block's lanes, and their prints.
+#[derive(Default)]
+pub(crate) struct Block {
+    pub(crate) lanes: [std::cell::Cell<BlockLane>; rt_std::cpu::lanes::LANES],
+    pub(crate) prints: std::cell::RefCell<[Vec<String>; rt_std::cpu::lanes::LANES]>,
+}
