@@ -84,7 +84,8 @@ impl Context {
             Some((albedo, normal)) => Some((self.read_buffer::<Vec4>(albedo)?, self.read_buffer::<Vec4>(normal)?)),
             None => None,
         };
-        let pixels = Pixels { input: self.read_buffer::<Vec4>(plan.input)?, guides };
+        let variance = plan.variance.map(|v| self.read_buffer::<Vec4>(v)).transpose()?;
+        let pixels = Pixels { input: self.read_buffer::<Vec4>(plan.input)?, guides, variance };
         let out = match self.backend() {
             Backend::Wgpu => self.run_on_wgpu(plan, &pixels)?,
             _ => plan.run_cpu(&pixels),

@@ -57,8 +57,15 @@ impl Pipelines {
             },
             count: None,
         };
-        let entries =
-            [uniform, storage(1, true), storage(2, true), storage(3, true), storage(4, true), storage(5, false)];
+        let entries = [
+            uniform,
+            storage(1, true),
+            storage(2, true),
+            storage(3, true),
+            storage(4, true),
+            storage(5, false),
+            storage(6, true),
+        ];
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("rt post-processing stages"),
             entries: &entries,
@@ -118,6 +125,10 @@ impl Pipelines {
             Some((a, n)) => (upload("rt stage: albedo", a), upload("rt stage: normal", n)),
             None => (upload("rt stage: unused", &[Vec4::ZERO]), upload("rt stage: unused", &[Vec4::ZERO])),
         };
+        let variance = match &pixels.variance {
+            Some(v) => upload("rt stage: variance", v),
+            None => upload("rt stage: unused", &[Vec4::ZERO]),
+        };
         let (a, b) = (scratch("rt stage: ping"), scratch("rt stage: pong"));
         let t = Tuning::default();
         let mut encoder = device.create_command_encoder(&Default::default());
@@ -129,7 +140,7 @@ impl Pipelines {
                 contents: &params,
                 usage: wgpu::BufferUsages::UNIFORM,
             });
-            let buffers = [&uniform, &color, &albedo, &normal, src, dst];
+            let buffers = [&uniform, &color, &albedo, &normal, src, dst, &variance];
             let entries: Vec<_> = buffers
                 .iter()
                 .enumerate()
@@ -205,7 +216,7 @@ fn params(plan: &Plan, step: i32, t: &Tuning, [first, second]: [f32; 2]) -> Vec<
         t.sigma_albedo.to_bits(),
         first.to_bits(),
         second.to_bits(),
-        0,
+        plan.variance.is_some() as u32,
         0,
         0,
     ];
