@@ -19,8 +19,11 @@
 //! each stage on the backend the context launches on. On the wgpu
 //! backend that is one submission a launch tile and one a stage, not one
 //! for the whole list: the launch path reads a launch's outputs back
-//! before the next command (device-local buffers,
-//! [`Context::set_buffer_device_local`], stay on the device).
+//! before the next command, except device-local buffers
+//! ([`Context::set_buffer_device_local`]), which stay on the device, and
+//! which a stage then takes from the launch's heap by a copy on the
+//! device ([`Context::stage_inputs_read_on_device`] counts them); a
+//! stage's output comes back to the host.
 
 use crate::backend::LaunchReport;
 use crate::backend::tiles::{LaunchControl, LaunchProgress};

@@ -199,8 +199,11 @@ fn finalize_names_the_stage_and_variable_or_the_launch_at_fault() {
 }
 
 /// A list on the wgpu backend whose launch leaves its outputs on the
-/// device (device-local buffers): its stages read them from there, and
-/// the pictures are the CPU backend's within 1e-4.
+/// device (device-local buffers): its stages take them from there, copied
+/// on the device (the denoiser's colour, albedo and normal; the
+/// tonemapper's input, the denoiser's output, comes from the host), and
+/// the pictures are the CPU backend's within 1e-4, as they are when the
+/// launch reads its outputs back.
 #[test]
 fn stages_read_a_launchs_device_local_outputs() {
     let run = |on: On, device_local: bool| {
@@ -211,11 +214,21 @@ fn stages_read_a_launchs_device_local_outputs() {
         list.append_stage(tonemapper, W, H).unwrap();
         list.finalize(&ctx).unwrap();
         list.execute(&mut ctx).unwrap();
-        read(&ctx, &buffers)
+        (read(&ctx, &buffers), ctx.stage_inputs_read_on_device())
     };
-    let cpu = run(On::CPU, false);
-    let gpu = run(On::COMPUTE, true);
-    for (b, (c, g)) in cpu.iter().zip(&gpu).enumerate() {
+    let (cpu, none) = run(On::CPU, false);
+    assert_eq!(none, 0);
+    let (on_device, copied) = run(On::COMPUTE, true);
+    assert_eq!(copied, 3, "the denoiser's three inputs are taken on the device");
+    let (through_host, copied) = run(On::COMPUTE, false);
+    assert_eq!(copied, 0, "outputs read back are taken from the host");
+    for gpu in [on_device, through_host] {
+        assert_close(&cpu, &gpu);
+    }
+}
+
+fn assert_close(want: &[Vec<Vec4>], got: &[Vec<Vec4>]) {
+    for (b, (c, g)) in want.iter().zip(got).enumerate() {
         for (i, (x, y)) in c.iter().zip(g).enumerate() {
             assert!(
                 (*x - *y).abs().max_element() <= 1e-4 * x.abs().max_element().max(1.0),
@@ -223,4 +236,24 @@ fn stages_read_a_launchs_device_local_outputs() {
             );
         }
     }
+}
+
+/// A device-local input the host writes after the launch: the stage reads
+/// the host's words, not the device's older ones.
+#[test]
+fn a_host_write_after_the_launch_is_what_a_stage_reads() {
+    let run = |on: On| {
+        let Frame { mut ctx, buffers, denoiser, .. } = frame_with(on, true);
+        ctx.launch(0, W, H).unwrap();
+        let flat = vec![Vec4::new(0.25, 0.5, 0.75, 1.0); (W * H) as usize];
+        ctx.write_buffer(buffers[0], &flat).unwrap();
+        ctx.run_stage(denoiser, W, H).unwrap();
+        (read(&ctx, &buffers), ctx.stage_inputs_read_on_device())
+    };
+    let (cpu, _) = run(On::CPU);
+    let (gpu, copied) = run(On::COMPUTE);
+    assert_eq!(copied, 2, "the albedo and normal come from the device, the colour from the host");
+    // A flat colour over one albedo stays flat where the normals agree.
+    assert_eq!(cpu[3][0], Vec4::new(0.25, 0.5, 0.75, 1.0));
+    assert_close(&cpu, &gpu);
 }

@@ -4,8 +4,9 @@
 use super::Context;
 use crate::backend::Backend;
 use crate::error::{Result, RtError};
-use crate::postprocess::gpu::Pipelines;
+use crate::postprocess::gpu::{Pipelines, Source};
 use crate::postprocess::{Pixels, Plan, Stage, StageId, StageKind, StageValue};
+use crate::scene::BufferId;
 use glam::Vec4;
 
 impl Context {
@@ -56,8 +57,9 @@ impl Context {
     /// Runs `stage` over `width` x `height` pixels, the size its buffers
     /// must have, into its `output_buffer`: on the wgpu backend as compute
     /// passes on the context's device (one submission; the stage's images
-    /// go up to the device and its output comes back to the host buffer),
-    /// on the CPU backend natively. The
+    /// go up to the device, or where a launch left a device-local buffer's
+    /// newest words on the device are copied there, and its output comes
+    /// back to the host buffer), on the CPU backend natively. The
     /// stage is checked first ([`RtError::BadStage`] naming the variable
     /// at fault); a stage that fails writes nothing.
     pub fn run_stage(&mut self, stage: StageId, width: u32, height: u32) -> Result<()> {
@@ -80,27 +82,46 @@ impl Context {
 
     /// Runs a checked stage and writes its output buffer.
     pub(crate) fn run_plan(&mut self, plan: &Plan) -> Result<()> {
-        let guides = match plan.guides {
-            Some((albedo, normal)) => Some((self.read_buffer::<Vec4>(albedo)?, self.read_buffer::<Vec4>(normal)?)),
-            None => None,
-        };
-        let variance = plan.variance.map(|v| self.read_buffer::<Vec4>(v)).transpose()?;
-        let pixels = Pixels { input: self.read_buffer::<Vec4>(plan.input)?, guides, variance };
+        let ids = Pixels { input: plan.input, guides: plan.guides, variance: plan.variance };
         let out = match self.backend() {
-            Backend::Wgpu => self.run_on_wgpu(plan, &pixels)?,
-            _ => plan.run_cpu(&pixels),
+            Backend::Wgpu => {
+                let sources = ids.try_map(|b| self.stage_source(b))?;
+                self.run_on_wgpu(plan, &sources)?
+            }
+            _ => plan.run_cpu(&ids.try_map(|b| self.read_buffer::<Vec4>(b))?),
         };
         self.write_buffer(plan.output, &out)
     }
 
+    /// Where a stage on the wgpu device takes buffer `b` from: the
+    /// device's heap, where a launch left newer words than the host's
+    /// there (a device-local buffer), else the host's pixels.
+    fn stage_source(&self, b: BufferId) -> Result<Source> {
+        let version = self.scene.buffers.get(b.index() as usize).map(|r| r.host_version);
+        let held = version.and_then(|v| self.wgpu_backend_ref()?.held(b.index() as usize, v));
+        match held {
+            Some(on_device) => Ok(Source::Device(on_device)),
+            None => Ok(Source::Host(self.read_buffer::<Vec4>(b)?)),
+        }
+    }
+
+    /// How many stage inputs the wgpu backend has taken from its device
+    /// (device-local buffers a launch left there, copied on the device),
+    /// not through the host.
+    pub fn stage_inputs_read_on_device(&self) -> u64 {
+        self.stage_device_inputs
+    }
+
     /// Runs a checked stage's passes on the wgpu device (opened first if
     /// no launch opened it yet).
-    fn run_on_wgpu(&mut self, plan: &Plan, pixels: &Pixels) -> Result<Vec<Vec4>> {
+    fn run_on_wgpu(&mut self, plan: &Plan, sources: &Pixels<Source>) -> Result<Vec<Vec4>> {
         self.open_wgpu()?;
         let handles = self.wgpu_device().ok_or_else(|| RtError::Gpu("no device after opening one".into()))?;
         if !self.stage_pipelines.as_ref().is_some_and(|p| p.on(&handles.device)) {
             self.stage_pipelines = Some(Pipelines::new(&handles.device)?);
         }
-        self.stage_pipelines.as_ref().expect("made above").run(&handles.queue, plan, pixels)
+        let out = self.stage_pipelines.as_ref().expect("made above").run(&handles.queue, plan, sources)?;
+        self.stage_device_inputs += sources.each().filter(|s| matches!(s, Source::Device(_))).count() as u64;
+        Ok(out)
     }
 }

@@ -1,13 +1,16 @@
 //! The stages on a wgpu device: the passes of `gpu/stages.wgsl` (the
 //! same arithmetic as [`super::denoise`] and [`super::tonemap`]) as plain
 //! compute passes, all of a stage in one submission: the stage's images
-//! are uploaded to storage buffers, every pass runs (the denoiser's
+//! are uploaded to storage buffers (or, where a launch left a
+//! device-local buffer's newest words in its heap, copied from there on
+//! the device), every pass runs (the denoiser's
 //! prepare, its à-trous passes ping-ponging between two buffers, finish;
 //! or the tonemapper's one), and the output is read back. The pipelines
 //! are made once per device ([`Pipelines`]).
 
 use super::denoise::Tuning;
 use super::{Pixels, Plan, StageKind};
+use crate::backend::wgpu::DeviceBuffer;
 use crate::error::{Result, RtError};
 use glam::Vec4;
 use wgpu::util::DeviceExt;
@@ -99,8 +102,8 @@ impl Pipelines {
         }
     }
 
-    /// Runs `plan` over `pixels` on `queue`, returning its output.
-    pub fn run(&self, queue: &wgpu::Queue, plan: &Plan, pixels: &Pixels) -> Result<Vec<Vec4>> {
+    /// Runs `plan` over `images` on `queue`, returning its output.
+    pub fn run(&self, queue: &wgpu::Queue, plan: &Plan, images: &Pixels<Source>) -> Result<Vec<Vec4>> {
         let device = &self.device;
         let n = (plan.width * plan.height) as usize;
         let bytes = (n * 16) as u64;
@@ -119,19 +122,34 @@ impl Pipelines {
                 mapped_at_creation: false,
             })
         };
+        let mut encoder = device.create_command_encoder(&Default::default());
+        // An image on the device is copied from the heap in this
+        // submission, before the passes read it.
+        let mut image = |label, source: &Source| match source {
+            Source::Host(px) => upload(label, px),
+            Source::Device(d) => {
+                let b = device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some(label),
+                    size: bytes,
+                    usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+                    mapped_at_creation: false,
+                });
+                encoder.copy_buffer_to_buffer(&d.buffer, d.offset, &b, 0, bytes.min(d.size));
+                b
+            }
+        };
         let empty = upload("rt stage: unused", &[Vec4::ZERO]);
-        let color = upload("rt stage: input", &pixels.input);
-        let (albedo, normal) = match &pixels.guides {
-            Some((a, n)) => (upload("rt stage: albedo", a), upload("rt stage: normal", n)),
+        let color = image("rt stage: input", &images.input);
+        let (albedo, normal) = match &images.guides {
+            Some((a, n)) => (image("rt stage: albedo", a), image("rt stage: normal", n)),
             None => (upload("rt stage: unused", &[Vec4::ZERO]), upload("rt stage: unused", &[Vec4::ZERO])),
         };
-        let variance = match &pixels.variance {
-            Some(v) => upload("rt stage: variance", v),
+        let variance = match &images.variance {
+            Some(v) => image("rt stage: variance", v),
             None => upload("rt stage: unused", &[Vec4::ZERO]),
         };
         let (a, b) = (scratch("rt stage: ping"), scratch("rt stage: pong"));
         let t = Tuning::default();
-        let mut encoder = device.create_command_encoder(&Default::default());
         let mut pass = |pipeline: &wgpu::ComputePipeline, step: i32, src: &wgpu::Buffer, dst: &wgpu::Buffer| {
             let settings = [plan.settings[0], plan.settings.get(1).copied().unwrap_or(0.0)];
             let params = params(plan, step, &t, settings);
@@ -202,6 +220,14 @@ impl Pipelines {
         staging.unmap();
         Ok(floats.chunks_exact(4).map(Vec4::from_slice).collect())
     }
+}
+
+/// Where a stage's image is for the device: the host's pixels (uploaded),
+/// or a range of the launch heap holding a buffer's newest words (copied
+/// on the device, never through the host).
+pub(crate) enum Source {
+    Host(Vec<Vec4>),
+    Device(DeviceBuffer),
 }
 
 /// The `Params` uniform of `stages.wgsl` for one pass.

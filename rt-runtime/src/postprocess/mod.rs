@@ -247,12 +247,29 @@ impl Stage {
     }
 }
 
-/// A planned stage's pixels: the input and, for the denoiser, its guides
-/// and the variance where given.
-pub(crate) struct Pixels {
-    pub input: Vec<Vec4>,
-    pub guides: Option<(Vec<Vec4>, Vec<Vec4>)>,
-    pub variance: Option<Vec<Vec4>>,
+/// A planned stage's images: the input and, for the denoiser, its guides
+/// and the variance where given; each the pixels on the host, or on the
+/// wgpu backend where they are (`gpu::Source`).
+pub(crate) struct Pixels<T = Vec<Vec4>> {
+    pub input: T,
+    pub guides: Option<(T, T)>,
+    pub variance: Option<T>,
+}
+
+impl<T> Pixels<T> {
+    /// Every image: the input, the guides, the variance.
+    pub fn each(&self) -> impl Iterator<Item = &T> {
+        std::iter::once(&self.input).chain(self.guides.iter().flat_map(|(a, n)| [a, n])).chain(&self.variance)
+    }
+
+    /// Each image through `f`, the first error stopping.
+    pub fn try_map<U, E>(self, mut f: impl FnMut(T) -> std::result::Result<U, E>) -> std::result::Result<Pixels<U>, E> {
+        let guides = match self.guides {
+            Some((a, n)) => Some((f(a)?, f(n)?)),
+            None => None,
+        };
+        Ok(Pixels { input: f(self.input)?, guides, variance: self.variance.map(&mut f).transpose()? })
+    }
 }
 
 impl Plan {
