@@ -63,6 +63,8 @@ pub struct Context {
     pub(crate) stage_pipelines: Option<crate::postprocess::gpu::Pipelines>,
     /// Stage inputs the wgpu backend took from its heap on the device.
     pub(crate) stage_device_inputs: u64,
+    /// Queue submissions of stages on the wgpu device.
+    pub(crate) stage_submits: u64,
 }
 
 /// A kind of exception whose checks [`Context::set_exception_enabled`]
@@ -137,6 +139,7 @@ impl Context {
             stages: Vec::new(),
             stage_pipelines: None,
             stage_device_inputs: 0,
+            stage_submits: 0,
         }
     }
 

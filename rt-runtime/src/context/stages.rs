@@ -64,7 +64,7 @@ impl Context {
     /// at fault); a stage that fails writes nothing.
     pub fn run_stage(&mut self, stage: StageId, width: u32, height: u32) -> Result<()> {
         let plan = self.plan_stage(stage, Some((width, height)))?;
-        self.run_plan(&plan)
+        self.run_plans(&[plan])
     }
 
     pub(crate) fn stage(&self, stage: StageId) -> Result<&Stage> {
@@ -80,17 +80,32 @@ impl Context {
         self.stage(stage)?.plan(stage, &self.scene.buffers, size)
     }
 
-    /// Runs a checked stage and writes its output buffer.
-    pub(crate) fn run_plan(&mut self, plan: &Plan) -> Result<()> {
-        let ids = Pixels { input: plan.input, guides: plan.guides, variance: plan.variance };
-        let out = match self.backend() {
-            Backend::Wgpu => {
-                let sources = ids.try_map(|b| self.stage_source(b))?;
-                self.run_on_wgpu(plan, &sources)?
+    /// Runs checked stages in order and writes their output buffers: on
+    /// the CPU backend one by one; on the wgpu backend all in one
+    /// submission, a stage reading an earlier one's output on the device.
+    pub(crate) fn run_plans(&mut self, plans: &[Plan]) -> Result<()> {
+        if self.backend() != Backend::Wgpu {
+            for plan in plans {
+                let ids = Pixels { input: plan.input, guides: plan.guides, variance: plan.variance };
+                let out = plan.run_cpu(&ids.try_map(|b| self.read_buffer::<Vec4>(b))?);
+                self.write_buffer(plan.output, &out)?;
             }
-            _ => plan.run_cpu(&ids.try_map(|b| self.read_buffer::<Vec4>(b))?),
-        };
-        self.write_buffer(plan.output, &out)
+            return Ok(());
+        }
+        let mut stages = Vec::new();
+        for (i, plan) in plans.iter().enumerate() {
+            let ids = Pixels { input: plan.input, guides: plan.guides, variance: plan.variance };
+            let sources = ids.try_map(|b| match plans[..i].iter().rposition(|p| p.output == b) {
+                Some(k) => Ok(Source::Earlier(k)),
+                None => self.stage_source(b),
+            })?;
+            stages.push((plan.clone(), sources));
+        }
+        let outputs = self.run_on_wgpu(&stages)?;
+        for (plan, out) in plans.iter().zip(outputs) {
+            self.write_buffer(plan.output, &out)?;
+        }
+        Ok(())
     }
 
     /// Where a stage on the wgpu device takes buffer `b` from: the
@@ -112,16 +127,25 @@ impl Context {
         self.stage_device_inputs
     }
 
-    /// Runs a checked stage's passes on the wgpu device (opened first if
-    /// no launch opened it yet).
-    fn run_on_wgpu(&mut self, plan: &Plan, sources: &Pixels<Source>) -> Result<Vec<Vec4>> {
+    /// How many queue submissions stages have made on the wgpu device: one
+    /// for each [`Context::run_stage`], one for each run of consecutive
+    /// stages of a command list.
+    pub fn stage_submissions(&self) -> u64 {
+        self.stage_submits
+    }
+
+    /// Runs checked stages' passes on the wgpu device (opened first if no
+    /// launch opened it yet), in one submission; their outputs.
+    fn run_on_wgpu(&mut self, stages: &[(Plan, Pixels<Source>)]) -> Result<Vec<Vec<Vec4>>> {
         self.open_wgpu()?;
         let handles = self.wgpu_device().ok_or_else(|| RtError::Gpu("no device after opening one".into()))?;
         if !self.stage_pipelines.as_ref().is_some_and(|p| p.on(&handles.device)) {
             self.stage_pipelines = Some(Pipelines::new(&handles.device)?);
         }
-        let out = self.stage_pipelines.as_ref().expect("made above").run(&handles.queue, plan, sources)?;
-        self.stage_device_inputs += sources.each().filter(|s| matches!(s, Source::Device(_))).count() as u64;
-        Ok(out)
+        let outputs = self.stage_pipelines.as_ref().expect("made above").run(&handles.queue, stages)?;
+        self.stage_submits += 1;
+        let from_device = stages.iter().flat_map(|(_, s)| s.each()).filter(|s| matches!(s, Source::Device(_)));
+        self.stage_device_inputs += from_device.count() as u64;
+        Ok(outputs)
     }
 }

@@ -1,12 +1,14 @@
 //! The stages on a wgpu device: the passes of `gpu/stages.wgsl` (the
 //! same arithmetic as [`super::denoise`] and [`super::tonemap`]) as plain
-//! compute passes, all of a stage in one submission: the stage's images
+//! compute passes, all of a run of stages (a command list's stages one
+//! after another, or one stage) in one submission: each stage's images
 //! are uploaded to storage buffers (or, where a launch left a
 //! device-local buffer's newest words in its heap, copied from there on
-//! the device), every pass runs (the denoiser's
-//! prepare, its à-trous passes ping-ponging between two buffers, finish;
-//! or the tonemapper's one), and the output is read back. The pipelines
-//! are made once per device ([`Pipelines`]).
+//! the device; or, where an earlier stage of the run wrote them, read
+//! where it did), every pass runs (the denoiser's prepare, its à-trous
+//! passes ping-ponging between two buffers, finish; or the tonemapper's
+//! one), and every stage's output is read back. The pipelines are made
+//! once per device ([`Pipelines`]).
 
 use super::denoise::Tuning;
 use super::{Pixels, Plan, StageKind};
@@ -102,8 +104,75 @@ impl Pipelines {
         }
     }
 
-    /// Runs `plan` over `images` on `queue`, returning its output.
-    pub fn run(&self, queue: &wgpu::Queue, plan: &Plan, images: &Pixels<Source>) -> Result<Vec<Vec4>> {
+    /// Runs `stages` (each a plan over its images) in order on `queue`,
+    /// all in one submission, and returns each one's output. An image
+    /// that an earlier stage of the run wrote ([`Source::Earlier`]) is
+    /// that stage's output as it lies on the device.
+    pub fn run(&self, queue: &wgpu::Queue, stages: &[(Plan, Pixels<Source>)]) -> Result<Vec<Vec<Vec4>>> {
+        let device = &self.device;
+        let mut encoder = device.create_command_encoder(&Default::default());
+        let mut outputs: Vec<wgpu::Buffer> = Vec::new();
+        for (plan, images) in stages {
+            let out = self.encode(&mut encoder, plan, images, &outputs);
+            outputs.push(out);
+        }
+        let staging: Vec<wgpu::Buffer> = outputs
+            .iter()
+            .map(|out| {
+                let staging = device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("rt stage: read-back"),
+                    size: out.size(),
+                    usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+                    mapped_at_creation: false,
+                });
+                encoder.copy_buffer_to_buffer(out, 0, &staging, 0, out.size());
+                staging
+            })
+            .collect();
+        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        queue.submit([encoder.finish()]);
+        let (sender, receiver) = std::sync::mpsc::channel();
+        for (i, staging) in staging.iter().enumerate() {
+            let sender = sender.clone();
+            staging.slice(..).map_async(wgpu::MapMode::Read, move |r| {
+                let _ = sender.send((i, r));
+            });
+        }
+        let gpu_err = |what: &str, e: String| RtError::Gpu(format!("running a post-processing stage: {what}: {e}"));
+        device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| gpu_err("waiting", e.to_string()))?;
+        if let Some(e) = crate::backend::futures::block(async { Ok(scope.pop().await) })? {
+            return Err(gpu_err("validation", e.to_string()));
+        }
+        for _ in &staging {
+            match receiver.recv() {
+                Ok((_, Ok(()))) => {}
+                Ok((_, Err(e))) => return Err(gpu_err("reading back", e.to_string())),
+                Err(e) => return Err(gpu_err("reading back", e.to_string())),
+            }
+        }
+        let mut images = Vec::new();
+        for staging in &staging {
+            let slice = staging.slice(..);
+            let mapped = slice.get_mapped_range().map_err(|e| gpu_err("reading back", e.to_string()))?;
+            let floats: Vec<f32> =
+                mapped.chunks_exact(4).map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
+            drop(mapped);
+            staging.unmap();
+            images.push(floats.chunks_exact(4).map(Vec4::from_slice).collect());
+        }
+        Ok(images)
+    }
+
+    /// Records `plan`'s passes over `images` into `encoder` (`earlier`:
+    /// the outputs of the run's stages before it), returning the buffer
+    /// its output will be in.
+    fn encode(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        plan: &Plan,
+        images: &Pixels<Source>,
+        earlier: &[wgpu::Buffer],
+    ) -> wgpu::Buffer {
         let device = &self.device;
         let n = (plan.width * plan.height) as usize;
         let bytes = (n * 16) as u64;
@@ -122,9 +191,9 @@ impl Pipelines {
                 mapped_at_creation: false,
             })
         };
-        let mut encoder = device.create_command_encoder(&Default::default());
         // An image on the device is copied from the heap in this
-        // submission, before the passes read it.
+        // submission, before the passes read it; an earlier stage's output
+        // is read where that stage wrote it.
         let mut image = |label, source: &Source| match source {
             Source::Host(px) => upload(label, px),
             Source::Device(d) => {
@@ -137,6 +206,7 @@ impl Pipelines {
                 encoder.copy_buffer_to_buffer(&d.buffer, d.offset, &b, 0, bytes.min(d.size));
                 b
             }
+            Source::Earlier(k) => earlier[*k].clone(),
         };
         let empty = upload("rt stage: unused", &[Vec4::ZERO]);
         let color = image("rt stage: input", &images.input);
@@ -174,7 +244,7 @@ impl Pipelines {
             cpass.set_bind_group(0, &group, &[]);
             cpass.dispatch_workgroups(plan.width.div_ceil(8), plan.height.div_ceil(8), 1);
         };
-        let out = match plan.kind {
+        match plan.kind {
             StageKind::Denoiser => {
                 pass(&self.prepare, 0, &empty, &a);
                 let (mut src, mut dst) = (&a, &b);
@@ -183,51 +253,24 @@ impl Pipelines {
                     std::mem::swap(&mut src, &mut dst);
                 }
                 pass(&self.finish, 0, src, dst);
-                dst
+                dst.clone()
             }
             StageKind::Tonemapper => {
                 pass(&self.tonemap, 0, &empty, &a);
-                &a
+                a
             }
-        };
-        let staging = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("rt stage: read-back"),
-            size: bytes,
-            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        encoder.copy_buffer_to_buffer(out, 0, &staging, 0, bytes);
-        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        queue.submit([encoder.finish()]);
-        let slice = staging.slice(..);
-        let (sender, receiver) = std::sync::mpsc::channel();
-        slice.map_async(wgpu::MapMode::Read, move |r| {
-            let _ = sender.send(r);
-        });
-        let gpu_err = |what: &str, e: String| RtError::Gpu(format!("running a post-processing stage: {what}: {e}"));
-        device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| gpu_err("waiting", e.to_string()))?;
-        if let Some(e) = crate::backend::futures::block(async { Ok(scope.pop().await) })? {
-            return Err(gpu_err("validation", e.to_string()));
         }
-        match receiver.recv() {
-            Ok(Ok(())) => {}
-            Ok(Err(e)) => return Err(gpu_err("reading back", e.to_string())),
-            Err(e) => return Err(gpu_err("reading back", e.to_string())),
-        }
-        let mapped = slice.get_mapped_range().map_err(|e| gpu_err("reading back", e.to_string()))?;
-        let floats: Vec<f32> = mapped.chunks_exact(4).map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
-        drop(mapped);
-        staging.unmap();
-        Ok(floats.chunks_exact(4).map(Vec4::from_slice).collect())
     }
 }
 
 /// Where a stage's image is for the device: the host's pixels (uploaded),
-/// or a range of the launch heap holding a buffer's newest words (copied
-/// on the device, never through the host).
+/// a range of the launch heap holding a buffer's newest words (copied on
+/// the device, never through the host), or the output of the `k`th stage
+/// of the same run (read where it lies).
 pub(crate) enum Source {
     Host(Vec<Vec4>),
     Device(DeviceBuffer),
+    Earlier(usize),
 }
 
 /// The `Params` uniform of `stages.wgsl` for one pass.
