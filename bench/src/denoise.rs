@@ -54,6 +54,7 @@ fn measure_on(backend: Backend, width: u32, height: u32, reps: usize) -> Result<
     ctx.set_stage_var(stage, "input_buffer", aovs.radiance).map_err(e)?;
     ctx.set_stage_var(stage, "input_albedo_buffer", aovs.albedo).map_err(e)?;
     ctx.set_stage_var(stage, "input_normal_buffer", aovs.normal).map_err(e)?;
+    ctx.set_stage_var(stage, "input_variance_buffer", aovs.variance).map_err(e)?;
     ctx.set_stage_var(stage, "output_buffer", out).map_err(e)?;
     let (mut launches, mut stages) = (Vec::new(), Vec::new());
     for rep in 0..=reps {

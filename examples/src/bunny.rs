@@ -8,11 +8,13 @@
 //! progressive like the Cornell box's: each launch traces one jittered
 //! camera ray per pixel and `ao_samples` occlusion rays from what it hits,
 //! and the output is the running mean. Beside it the camera writes a
-//! denoiser's guides ([`Aovs`]): the mean radiance, and the first hit's
-//! albedo and shading normal, averaged over the samples as the radiance is.
+//! denoiser's guides ([`Aovs`]): the mean radiance, the first hit's
+//! albedo and shading normal, averaged over the samples as the radiance
+//! is, and the variance of the mean's luminance ([`crate::guides`]).
 
 use crate::common::*;
 use crate::diffuse::facing_normal;
+use crate::guides::{add_luminance_sample, demodulated_luminance};
 use crate::mesh::{self, LoadedMesh};
 use crate::scene::{Aovs, Camera, Error, Scene, Settings, quad, shared_scene};
 use crate::shadows::direct_light;
@@ -31,7 +33,8 @@ pub struct GuidedRadiance {
 }
 
 /// A jittered pinhole camera that accumulates one sample per launch and
-/// writes the mean, gamma-corrected, and the guides' running means.
+/// writes the mean, gamma-corrected, the guides' running means and the
+/// luminance's variance entry ([`add_luminance_sample`]).
 #[rt_program(ray_generation)]
 pub fn accumulating_camera(
     #[var] eye: Vec3,
@@ -46,6 +49,7 @@ pub fn accumulating_camera(
     #[var] mut radiance_buffer: RwBuffer2d<Vec4>,
     #[var] mut albedo_buffer: RwBuffer2d<Vec4>,
     #[var] mut normal_buffer: RwBuffer2d<Vec4>,
+    #[var] mut variance_buffer: RwBuffer2d<Vec4>,
 ) {
     let idx = launch_index();
     let dim = launch_dim();
@@ -61,10 +65,12 @@ pub fn accumulating_camera(
     let mut acc = Vec4::ZERO;
     let mut albedo = Vec3::ZERO;
     let mut normal = Vec3::ZERO;
+    let mut moments = Vec4::ZERO;
     if frame > 0 {
         acc = accum_buffer[idx];
         albedo = albedo_buffer[idx].xyz();
         normal = normal_buffer[idx].xyz();
+        moments = variance_buffer[idx];
     }
     acc += prd.result.extend(1.0);
     accum_buffer[idx] = acc;
@@ -74,6 +80,7 @@ pub fn accumulating_camera(
     let keep = (acc.w - 1.0) / acc.w;
     albedo_buffer[idx] = (albedo * keep + prd.albedo / acc.w).extend(1.0);
     normal_buffer[idx] = (normal * keep + prd.normal / acc.w).extend(0.0);
+    variance_buffer[idx] = add_luminance_sample(moments, demodulated_luminance(prd.result, prd.albedo), acc.w);
 }
 
 /// Camera rays that hit nothing see the background, which is also their
@@ -279,7 +286,12 @@ pub fn guide_buffers(ctx: &mut rt_runtime::Context, (width, height): (u32, u32))
         ctx.set_var(Scope::Context, name, b)?;
         Ok(b)
     };
-    Ok(Aovs { radiance: guide("radiance_buffer")?, albedo: guide("albedo_buffer")?, normal: guide("normal_buffer")? })
+    Ok(Aovs {
+        radiance: guide("radiance_buffer")?,
+        albedo: guide("albedo_buffer")?,
+        normal: guide("normal_buffer")?,
+        variance: guide("variance_buffer")?,
+    })
 }
 
 /// The floor under `[min, max]`: a square 80 radii wide at `min.y`.

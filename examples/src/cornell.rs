@@ -16,11 +16,13 @@
 //! (`Ka 20 20 20`).
 //!
 //! Beside the picture, the camera writes what a denoiser needs
-//! ([`Aovs`]): the mean linear radiance, and the albedo and shading normal
-//! of each path's first hit, averaged over the samples.
+//! ([`Aovs`]): the mean linear radiance, the albedo and shading normal of
+//! each path's first hit, averaged over the samples, and the variance of
+//! the mean's luminance ([`crate::guides`]).
 
 use crate::common::*;
 use crate::diffuse::facing_normal;
+use crate::guides::{add_luminance_sample, demodulated_luminance};
 use crate::mesh::{self, MeshError};
 use crate::scene::{Aovs, Camera, Error, Scene, Settings, shared_scene};
 use glam::Vec3;
@@ -77,6 +79,7 @@ pub fn path_camera(
     #[var] mut radiance_buffer: RwBuffer2d<Vec4>,
     #[var] mut albedo_buffer: RwBuffer2d<Vec4>,
     #[var] mut normal_buffer: RwBuffer2d<Vec4>,
+    #[var] mut variance_buffer: RwBuffer2d<Vec4>,
 ) {
     let idx = launch_index();
     let dim = launch_dim();
@@ -111,6 +114,8 @@ pub fn path_camera(
     let keep = (acc.w - 1.0) / acc.w;
     albedo_buffer[idx] = (albedo_buffer[idx].xyz() * keep + prd.albedo / acc.w).extend(1.0);
     normal_buffer[idx] = (normal_buffer[idx].xyz() * keep + prd.normal / acc.w).extend(0.0);
+    let l = demodulated_luminance(prd.radiance, prd.albedo);
+    variance_buffer[idx] = add_luminance_sample(variance_buffer[idx], l, acc.w);
 }
 
 /// Paths that leave the box end in the dark.
@@ -250,15 +255,16 @@ fn build(settings: &Settings, loaded: mesh::LoadedMesh, text: &str, file: String
     let mut aov = || -> Result<_, Error> {
         Ok(ctx.create_buffer_2d::<Vec4>(BufferType::InputOutput, settings.width, settings.height)?)
     };
-    let aovs = Aovs { radiance: aov()?, albedo: aov()?, normal: aov()? };
+    let aovs = Aovs { radiance: aov()?, albedo: aov()?, normal: aov()?, variance: aov()? };
     // Read back only when asked for (a denoiser, `read_buffer`), not after
     // every launch.
-    for b in [aovs.radiance, aovs.albedo, aovs.normal] {
+    for b in [aovs.radiance, aovs.albedo, aovs.normal, aovs.variance] {
         ctx.set_buffer_device_local(b, true)?;
     }
     ctx.set_var(Scope::Context, "radiance_buffer", aovs.radiance)?;
     ctx.set_var(Scope::Context, "albedo_buffer", aovs.albedo)?;
     ctx.set_var(Scope::Context, "normal_buffer", aovs.normal)?;
+    ctx.set_var(Scope::Context, "variance_buffer", aovs.variance)?;
     ctx.set_var(Scope::Context, "max_depth", MAX_DEPTH)?;
     ctx.set_var(Scope::Context, "exposure", EXPOSURE)?;
     ctx.set_var(Scope::Context, "light", light)?;

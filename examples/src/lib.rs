@@ -21,7 +21,8 @@
 //! | [`motion_blur`] | a sphere sliding under matrix motion keys and a teapot turning under scale-rotate-translate keys, each sample traced at its own time (`rt_trace_at`) |
 //!
 //! [`common`] holds what the Whitted-style examples share on the device side
-//! (payloads, attributes, lights, the camera), [`tutorial`] the scene of
+//! (payloads, attributes, lights, the camera), [`guides`] what the path
+//! tracers keep for a denoiser beside the radiance, [`tutorial`] the scene of
 //! examples 1 to 7, [`scene`] the host side of every example (settings,
 //! camera, rendering to an [`Image`]), and [`mesh`] OBJ loading with
 //! line-precise errors; [`viewer`] is the live viewer's progressive
@@ -50,6 +51,7 @@ pub mod cornell;
 pub mod denoised;
 pub mod diffuse;
 pub mod envmap;
+pub mod guides;
 pub mod instances;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod limits;

@@ -330,12 +330,15 @@ pub struct Scene {
 /// What a path-traced scene writes beside its picture for a denoiser
 /// ([`rt_runtime::postprocess`]): `width` x `height` `Vec4` buffers of the
 /// mean linear radiance, the first hit's albedo and its shading normal,
-/// each averaged over the samples so far (zero where a path hit nothing).
+/// each averaged over the samples so far (zero where a path hit nothing),
+/// and the luminance's variance entry ([`crate::guides`]: in x the
+/// variance of the mean, the denoiser's `input_variance_buffer`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Aovs {
     pub radiance: BufferId,
     pub albedo: BufferId,
     pub normal: BufferId,
+    pub variance: BufferId,
 }
 
 /// One rendered picture and what it cost.

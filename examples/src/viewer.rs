@@ -265,10 +265,12 @@ impl Progressive {
         if self.denoise {
             let aovs =
                 self.scene.aovs.ok_or_else(|| Error::Settings("the scene writes no guides to denoise".into()))?;
-            let [color, albedo, normal] = [aovs.radiance, aovs.albedo, aovs.normal].map(|b| self.read_cropped(b));
-            let (color, albedo, normal) = (color?, albedo?, normal?);
+            let [color, albedo, normal, variance] =
+                [aovs.radiance, aovs.albedo, aovs.normal, aovs.variance].map(|b| self.read_cropped(b));
+            let (color, albedo, normal, variance) = (color?, albedo?, normal?, variance?);
             let (w, h) = (width as usize, height as usize);
-            let guided = Guided { width: w, height: h, color: &color, albedo: &albedo, normal: &normal };
+            let variance = Some(&variance[..]);
+            let guided = Guided { width: w, height: h, color: &color, albedo: &albedo, normal: &normal, variance };
             let pixels = denoise::denoise(&guided, 0.0);
             return Ok(Image { width, height, pixels }.to_display());
         }

@@ -138,7 +138,11 @@ fn frames_are_denoised_each_with_its_guides() {
     let mut guides: Vec<_> =
         std::fs::read_dir(&aov).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
     guides.sort();
-    assert_eq!(guides, ["frame_00_albedo.exr", "frame_00_normal.exr", "frame_01_albedo.exr", "frame_01_normal.exr"]);
+    let want: Vec<_> = ["frame_00", "frame_01"]
+        .iter()
+        .flat_map(|f| ["albedo", "normal", "variance"].map(|g| format!("{f}_{g}.exr")))
+        .collect();
+    assert_eq!(guides, want);
     let at_one = dir.join("at_one.png");
     let alone = [model, "--backend", "cpu", "--time", "1", "--out", at_one.to_str().unwrap()];
     ok(render(&[&alone[..], &["--denoise"][..], &SIZE[..]].concat()));

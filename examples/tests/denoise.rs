@@ -8,7 +8,9 @@
 //!     RT_BLESS=1 cargo test --release -p examples --test denoise
 //!
 //! At 4 and at 16 samples a pixel the denoised image's relative MSE must
-//! be at least 6 times lower than the raw image's, and the gradients
+//! be at least 6 times lower than the raw image's, with the per-pixel
+//! variance the camera writes and with the denoiser's spatial estimate
+//! alone, and the gradients
 //! across the picture's geometric edges (where the first hit's normal
 //! turns) and across its sharpest shadow edges (on the floor, one
 //! surface) must stay within 20% of the reference's. Each test prints its
@@ -56,14 +58,19 @@ fn reference() -> Vec<Vec4> {
     (0..H).flat_map(|y| (0..W).map(move |x| (x, y))).map(|(x, y)| Vec4::from(img.get_pixel(x, H - 1 - y).0)).collect()
 }
 
-/// The denoiser run on the render's context over its guides.
-fn denoise(ctx: &mut Context, aovs: Aovs) -> Vec<Vec4> {
+/// The denoiser run on the render's context over its guides, and over
+/// its per-pixel variance when `with_variance` (else the denoiser
+/// estimates the variance from the neighbouring pixels).
+fn denoise(ctx: &mut Context, aovs: Aovs, with_variance: bool) -> Vec<Vec4> {
     let out = ctx.create_buffer_2d::<Vec4>(BufferType::Output, W, H).unwrap();
     let stage = ctx.create_postprocessing_stage(StageKind::Denoiser);
     ctx.set_stage_var(stage, "input_buffer", aovs.radiance).unwrap();
     ctx.set_stage_var(stage, "input_albedo_buffer", aovs.albedo).unwrap();
     ctx.set_stage_var(stage, "input_normal_buffer", aovs.normal).unwrap();
     ctx.set_stage_var(stage, "output_buffer", out).unwrap();
+    if with_variance {
+        ctx.set_stage_var(stage, "input_variance_buffer", aovs.variance).unwrap();
+    }
     ctx.run_stage(stage, W, H).unwrap();
     ctx.read_buffer::<Vec4>(out).unwrap()
 }
@@ -116,23 +123,26 @@ fn check(spp: u32) {
     let reference = reference();
     let (mut ctx, aovs, raw) = render(spp);
     let normal = ctx.read_buffer::<Vec4>(aovs.normal).unwrap();
-    let denoised = denoise(&mut ctx, aovs);
-    let (raw_error, denoised_error) = (rel_mse(&raw, &reference), rel_mse(&denoised, &reference));
     let (geometric, shadow) = edges(&reference, &normal);
     assert!(geometric.len() > 100, "{} geometric edge pixels", geometric.len());
-    let report = format!(
-        "{spp} spp: relative MSE raw {raw_error:.5}, denoised {denoised_error:.5} ({:.1}x lower); geometric edges' gradient {:.4} vs reference {:.4}; shadow edges' {:.4} vs {:.4}",
-        raw_error / denoised_error,
-        mean_gradient(&denoised, &geometric),
-        mean_gradient(&reference, &geometric),
-        mean_gradient(&denoised, &shadow),
-        mean_gradient(&reference, &shadow),
-    );
-    println!("{report}");
-    assert!(denoised_error * 6.0 <= raw_error, "{report}");
-    for pixels in [&geometric, &shadow] {
-        let (got, want) = (mean_gradient(&denoised, pixels), mean_gradient(&reference, pixels));
-        assert!((got - want).abs() <= 0.2 * want, "{report}");
+    let raw_error = rel_mse(&raw, &reference);
+    for (with_variance, variance) in [(true, "per-pixel variance"), (false, "spatial variance estimate")] {
+        let denoised = denoise(&mut ctx, aovs, with_variance);
+        let denoised_error = rel_mse(&denoised, &reference);
+        let report = format!(
+            "{spp} spp, {variance}: relative MSE raw {raw_error:.5}, denoised {denoised_error:.5} ({:.1}x lower); geometric edges' gradient {:.4} vs reference {:.4}; shadow edges' {:.4} vs {:.4}",
+            raw_error / denoised_error,
+            mean_gradient(&denoised, &geometric),
+            mean_gradient(&reference, &geometric),
+            mean_gradient(&denoised, &shadow),
+            mean_gradient(&reference, &shadow),
+        );
+        println!("{report}");
+        assert!(denoised_error * 6.0 <= raw_error, "{report}");
+        for pixels in [&geometric, &shadow] {
+            let (got, want) = (mean_gradient(&denoised, pixels), mean_gradient(&reference, pixels));
+            assert!((got - want).abs() <= 0.2 * want, "{report}");
+        }
     }
 }
 
@@ -147,13 +157,14 @@ fn at_16_spp_the_denoised_error_is_6x_lower_and_edges_stay_sharp() {
 }
 
 /// The same stage on the wgpu backend (its WGSL passes on the device)
-/// gives the CPU's denoised Cornell box within 1e-3 relative.
+/// gives the CPU's denoised Cornell box within 1e-3 relative, guided by
+/// the per-pixel variance.
 #[test]
 fn the_wgpu_denoiser_agrees_with_the_cpu_on_the_cornell_box() {
     let (mut ctx, aovs, _) = render(4);
-    let cpu = denoise(&mut ctx, aovs);
+    let cpu = denoise(&mut ctx, aovs, true);
     ctx.set_backend(Backend::Wgpu);
-    let gpu = denoise(&mut ctx, aovs);
+    let gpu = denoise(&mut ctx, aovs, true);
     let mut worst = 0.0f32;
     for (c, g) in cpu.iter().zip(&gpu) {
         worst = worst.max(((*c - *g).abs() / c.abs().max(Vec4::splat(0.01))).max_element());

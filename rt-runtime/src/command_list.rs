@@ -17,10 +17,17 @@
 //! ([`Context::launch_3d`], [`Context::run_stage`]): each launch runs
 //! through the one launch path, tiled under the context's budget, and
 //! each stage on the backend the context launches on. On the wgpu
-//! backend that is one submission a launch tile and one a stage, not one
-//! for the whole list: the launch path reads a launch's outputs back
-//! before the next command (device-local buffers,
-//! [`Context::set_buffer_device_local`], stay on the device).
+//! backend a launch is one submission a tile (so that its progress is
+//! reported and it can be cancelled between tiles), and the stages that
+//! follow one another in the list are one submission together
+//! ([`Context::stage_submissions`] counts them), a stage reading an
+//! earlier one's output on the device: the list is not one submission
+//! as a whole. The launch path reads a launch's outputs back before the
+//! next command, except device-local buffers
+//! ([`Context::set_buffer_device_local`]), which stay on the device and
+//! which a stage takes from the launch's heap by a copy on the device
+//! ([`Context::stage_inputs_read_on_device`] counts them); every stage's
+//! output comes back to the host.
 
 use crate::backend::LaunchReport;
 use crate::backend::tiles::{LaunchControl, LaunchProgress};
@@ -151,7 +158,9 @@ impl CommandList {
     /// report. The list must be finalized. Stages are checked again as
     /// they run (their buffers may have changed since); a command that
     /// fails stops the list there, with the commands before it done, as
-    /// running them one by one would leave them.
+    /// running them one by one would leave them (but a run of stages that
+    /// fails on the wgpu device, one submission, writes none of its
+    /// outputs).
     #[doc(alias = "rtCommandListExecute")]
     pub fn execute(&self, ctx: &mut Context) -> Result<Vec<LaunchReport>> {
         self.execute_with_progress(ctx, |_| LaunchControl::Continue)
@@ -171,14 +180,29 @@ impl CommandList {
         }
         let mut reports = Vec::new();
         let commands = self.commands.len();
-        for (command, c) in self.commands.iter().enumerate() {
-            match *c {
-                Command::Launch { entry, width, height, depth } => {
-                    let mut each = |launch| progress(CommandProgress { command, commands, launch });
-                    reports.push(ctx.launch_3d_with_progress(entry, width, height, depth, &mut each)?);
-                }
-                Command::Stage { stage, width, height } => ctx.run_stage(stage, width, height)?,
+        let mut command = 0;
+        while command < commands {
+            if let Command::Launch { entry, width, height, depth } = self.commands[command] {
+                let mut each = |launch| progress(CommandProgress { command, commands, launch });
+                reports.push(ctx.launch_3d_with_progress(entry, width, height, depth, &mut each)?);
+                command += 1;
+                continue;
             }
+            // A run of stages: planned, then run together (on wgpu, one
+            // submission). A stage that fails its check runs the ones
+            // before it first.
+            let mut plans = Vec::new();
+            while let Some(&Command::Stage { stage, width, height }) = self.commands.get(command) {
+                match ctx.plan_stage(stage, Some((width, height))) {
+                    Ok(plan) => plans.push(plan),
+                    Err(e) => {
+                        ctx.run_plans(&plans)?;
+                        return Err(e);
+                    }
+                }
+                command += 1;
+            }
+            ctx.run_plans(&plans)?;
         }
         Ok(reports)
     }

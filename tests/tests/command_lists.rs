@@ -1,6 +1,6 @@
 //! Command lists (OptiX 6's `RTcommandlist`): a list of a launch, the
 //! denoiser and the tonemapper gives what running them one by one gives,
-//! bit for bit, on every backend; launches in it are tiled and cancelled
+//! bit for bit, on every backend (on wgpu its stages in one submission); launches in it are tiled and cancelled
 //! as any; and a list used out of order, or holding a command that does
 //! not fit, is refused with an error naming the command, stage and
 //! variable.
@@ -91,6 +91,11 @@ fn a_list_gives_what_its_commands_give_one_by_one() {
         one_by_one.ctx.run_stage(one_by_one.denoiser, W, H).unwrap();
         one_by_one.ctx.run_stage(one_by_one.tonemapper, W, H).unwrap();
         let want = read(&one_by_one.ctx, &one_by_one.buffers);
+        // On wgpu a stage run alone is a submission; the list's two stages
+        // are one together, the tonemapper reading the denoiser's output
+        // on the device. The CPU backend submits nothing.
+        let submissions = |n: u64| if on == On::CPU { 0 } else { n };
+        assert_eq!(one_by_one.ctx.stage_submissions(), submissions(2), "{}", on.name());
 
         let Frame { mut ctx, buffers, denoiser, tonemapper } = frame(on);
         // Small tiles: a list's launches are cut as any launch is.
@@ -105,12 +110,14 @@ fn a_list_gives_what_its_commands_give_one_by_one() {
         assert!(reports[0].tiles > 1, "{} tiles", reports[0].tiles);
         let got = read(&ctx, &buffers);
         assert_eq!(got, want, "{}", on.name());
+        assert_eq!(ctx.stage_submissions(), submissions(1), "{}", on.name());
         // The stages did something: the display is the tonemapped denoised colour.
         assert_ne!(got[3], got[0]);
         assert!(got[4].iter().all(|p| p.max_element() <= 1.0));
         // Executed again, it gives the same.
         list.execute(&mut ctx).unwrap();
         assert_eq!(read(&ctx, &buffers), want, "{}", on.name());
+        assert_eq!(ctx.stage_submissions(), submissions(2), "{}", on.name());
     }
 }
 
@@ -199,8 +206,11 @@ fn finalize_names_the_stage_and_variable_or_the_launch_at_fault() {
 }
 
 /// A list on the wgpu backend whose launch leaves its outputs on the
-/// device (device-local buffers): its stages read them from there, and
-/// the pictures are the CPU backend's within 1e-4.
+/// device (device-local buffers): its stages take them from there, copied
+/// on the device (the denoiser's colour, albedo and normal; the
+/// tonemapper's input, the denoiser's output, comes from the host), and
+/// the pictures are the CPU backend's within 1e-4, as they are when the
+/// launch reads its outputs back.
 #[test]
 fn stages_read_a_launchs_device_local_outputs() {
     let run = |on: On, device_local: bool| {
@@ -211,16 +221,68 @@ fn stages_read_a_launchs_device_local_outputs() {
         list.append_stage(tonemapper, W, H).unwrap();
         list.finalize(&ctx).unwrap();
         list.execute(&mut ctx).unwrap();
-        read(&ctx, &buffers)
+        (read(&ctx, &buffers), ctx.stage_inputs_read_on_device())
     };
-    let cpu = run(On::CPU, false);
-    let gpu = run(On::COMPUTE, true);
-    for (b, (c, g)) in cpu.iter().zip(&gpu).enumerate() {
+    let (cpu, none) = run(On::CPU, false);
+    assert_eq!(none, 0);
+    let (on_device, copied) = run(On::COMPUTE, true);
+    assert_eq!(copied, 3, "the denoiser's three inputs are taken on the device");
+    let (through_host, copied) = run(On::COMPUTE, false);
+    assert_eq!(copied, 0, "outputs read back are taken from the host");
+    for gpu in [on_device, through_host] {
+        assert_close(&cpu, &gpu);
+    }
+}
+
+fn assert_close(want: &[Vec<Vec4>], got: &[Vec<Vec4>]) {
+    for (b, (c, g)) in want.iter().zip(got).enumerate() {
         for (i, (x, y)) in c.iter().zip(g).enumerate() {
             assert!(
                 (*x - *y).abs().max_element() <= 1e-4 * x.abs().max_element().max(1.0),
                 "buffer {b} pixel {i}: {x} {y}"
             );
         }
+    }
+}
+
+/// A device-local input the host writes after the launch: the stage reads
+/// the host's words, not the device's older ones.
+#[test]
+fn a_host_write_after_the_launch_is_what_a_stage_reads() {
+    let run = |on: On| {
+        let Frame { mut ctx, buffers, denoiser, .. } = frame_with(on, true);
+        ctx.launch(0, W, H).unwrap();
+        let flat = vec![Vec4::new(0.25, 0.5, 0.75, 1.0); (W * H) as usize];
+        ctx.write_buffer(buffers[0], &flat).unwrap();
+        ctx.run_stage(denoiser, W, H).unwrap();
+        (read(&ctx, &buffers), ctx.stage_inputs_read_on_device())
+    };
+    let (cpu, _) = run(On::CPU);
+    let (gpu, copied) = run(On::COMPUTE);
+    assert_eq!(copied, 2, "the albedo and normal come from the device, the colour from the host");
+    // A flat colour over one albedo stays flat where the normals agree.
+    assert_eq!(cpu[3][0], Vec4::new(0.25, 0.5, 0.75, 1.0));
+    assert_close(&cpu, &gpu);
+}
+
+/// A stage that fails its check as the list runs (its buffers changed
+/// after finalize) stops the list there, the stage before it done, on
+/// the CPU and in a wgpu run of stages alike.
+#[test]
+fn a_stage_failing_as_the_list_runs_leaves_the_stages_before_it_done() {
+    for on in [On::CPU, On::COMPUTE] {
+        let Frame { mut ctx, buffers, denoiser, tonemapper } = frame(on);
+        ctx.launch(0, W, H).unwrap();
+        let mut list = CommandList::new();
+        list.append_stage(denoiser, W, H).unwrap();
+        list.append_stage(tonemapper, W, H).unwrap();
+        list.finalize(&ctx).unwrap();
+        let small = ctx.create_buffer_2d::<Vec4>(BufferType::Output, W, H - 1).unwrap();
+        ctx.set_stage_var(tonemapper, "output_buffer", small).unwrap();
+        let e = list.execute(&mut ctx).unwrap_err();
+        assert!(matches!(&e, RtError::BadStage { variable, .. } if variable == "output_buffer"), "{e}");
+        let denoised = ctx.read_buffer::<Vec4>(buffers[3]).unwrap();
+        assert_ne!(denoised, vec![Vec4::ZERO; (W * H) as usize], "{}: the denoiser ran", on.name());
+        assert_eq!(ctx.read_buffer::<Vec4>(buffers[4]).unwrap(), vec![Vec4::ZERO; (W * H) as usize]);
     }
 }

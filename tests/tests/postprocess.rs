@@ -108,6 +108,19 @@ fn mismatched_buffer_sizes_are_named() {
             small.index()
         )
     );
+    // The optional variance buffer too.
+    let (with_variance, _) = denoiser(&mut ctx, 8, 6);
+    let wide = image(&mut ctx, 9, 6, |_, _| Vec4::ZERO);
+    ctx.set_stage_var(with_variance, "input_variance_buffer", wide).unwrap();
+    let (stage_name, variable, text) = stage_error(ctx.run_stage(with_variance, 8, 6).unwrap_err());
+    assert_eq!((stage_name.as_str(), variable.as_str()), ("1 (`denoiser`)", "input_variance_buffer"));
+    assert_eq!(
+        text,
+        format!(
+            "post-processing stage 1 (`denoiser`): variable `input_variance_buffer` is buffer {} of 9x6 elements, but the stage runs at 8x6",
+            wide.index()
+        )
+    );
     // The run's size is checked against the input too.
     let (stage2, _) = denoiser(&mut ctx, 8, 6);
     let (_, variable, _) = stage_error(ctx.run_stage(stage2, 16, 6).unwrap_err());
@@ -123,6 +136,13 @@ fn a_buffer_that_is_not_float_rgba_is_named() {
     let (_, variable, text) = stage_error(ctx.run_stage(stage, 4, 4).unwrap_err());
     assert_eq!(variable, "input_albedo_buffer");
     assert!(text.ends_with("which holds `u32`; stages take float RGBA (`Vec4`) buffers"), "{text}");
+    let (stage2, [.., out]) = denoiser(&mut ctx, 4, 4);
+    let floats = ctx.create_buffer_2d::<f32>(BufferType::Input, 4, 4).unwrap();
+    ctx.set_stage_var(stage2, "input_variance_buffer", floats).unwrap();
+    let (_, variable, text) = stage_error(ctx.run_stage(stage2, 4, 4).unwrap_err());
+    assert_eq!(variable, "input_variance_buffer");
+    assert!(text.ends_with("which holds `f32`; stages take float RGBA (`Vec4`) buffers"), "{text}");
+    assert_eq!(ctx.read_buffer::<Vec4>(out).unwrap(), vec![Vec4::ZERO; 16], "a failed stage writes nothing");
 }
 
 #[test]
@@ -132,7 +152,7 @@ fn unknown_variables_values_of_the_wrong_sort_and_an_output_over_an_input_are_re
     let text = ctx.set_stage_var(stage, "exposure", 2.0f32).unwrap_err().to_string();
     assert_eq!(
         text,
-        "post-processing stage 0 (`denoiser`): variable `exposure` is not a variable of the denoiser; it has input_buffer, input_albedo_buffer, input_normal_buffer, output_buffer, blend"
+        "post-processing stage 0 (`denoiser`): variable `exposure` is not a variable of the denoiser; it has input_buffer, input_albedo_buffer, input_normal_buffer, input_variance_buffer, output_buffer, blend"
     );
     let (_, variable, _) = stage_error(ctx.set_stage_var(stage, "blend", color).unwrap_err());
     assert_eq!(variable, "blend");
@@ -144,19 +164,39 @@ fn unknown_variables_values_of_the_wrong_sort_and_an_output_over_an_input_are_re
     let (_, variable, text) = stage_error(ctx.run_stage(stage, 4, 4).unwrap_err());
     assert_eq!(variable, "output_buffer");
     assert!(text.contains("which is also its `input_buffer`"), "{text}");
+    let (stage2, [.., out]) = denoiser(&mut ctx, 4, 4);
+    ctx.set_stage_var(stage2, "input_variance_buffer", out).unwrap();
+    let (_, variable, text) = stage_error(ctx.run_stage(stage2, 4, 4).unwrap_err());
+    assert_eq!(variable, "output_buffer");
+    assert!(text.contains("which is also its `input_variance_buffer`"), "{text}");
     let e = ctx.create_builtin_postprocessing_stage("SuperDenoiser").unwrap_err().to_string();
     assert!(e.contains("`SuperDenoiser`"), "{e}");
 }
 
 /// Both stages on the CPU backend and as WGSL on the wgpu backend, over a
-/// noisy picture of two surfaces: the same images within 1e-4 relative.
+/// noisy picture of two surfaces, the denoiser with and without a
+/// per-pixel variance (known in some pixels, unknown in others): the same
+/// images within 1e-4 relative.
 #[test]
 fn the_stages_agree_on_the_cpu_and_wgpu_backends() {
+    let spatial = agree(false);
+    assert_ne!(agree(true), spatial, "the variance changed the denoised picture");
+}
+
+/// The denoised picture on the CPU backend, checked against wgpu's.
+fn agree(with_variance: bool) -> Vec<Vec4> {
     let (w, h) = (40, 24);
     let run = |backend: rt_runtime::Backend| {
         let mut ctx = Context::new();
         ctx.set_backend(backend);
         let (stage, [color, albedo, normal, out]) = denoiser(&mut ctx, w, h);
+        if with_variance {
+            let variance = image(&mut ctx, w, h, |x, y| {
+                let v = if (x * 7 + y * 3) % 5 == 0 { -1.0 } else { 0.002 * ((x + 2 * y) % 9) as f32 };
+                Vec4::new(v, 0.0, 0.0, 0.0)
+            });
+            ctx.set_stage_var(stage, "input_variance_buffer", variance).unwrap();
+        }
         let noise = |x: u32, y: u32| ((x.wrapping_mul(73856093) ^ y.wrapping_mul(19349663)) % 1000) as f32 / 1000.0;
         let px = (0..h).flat_map(|y| (0..w).map(move |x| (x, y)));
         let c: Vec<Vec4> = px.clone().map(|(x, y)| Vec4::new(2.0 * noise(x, y), noise(y, x), 0.5, 1.0)).collect();
@@ -184,4 +224,5 @@ fn the_stages_agree_on_the_cpu_and_wgpu_backends() {
             assert!((*x - *y).abs().max_element() <= tolerance, "{name} pixel {i}: cpu {x} wgpu {y}");
         }
     }
+    cpu
 }

@@ -16,9 +16,11 @@
 //! each machine its range (with `--tile`, each frame's part).
 //!
 //! `--denoise` writes the picture through the runtime's denoiser (guided
-//! by the first hit's albedo and normal, which the camera writes beside
-//! the radiance), and `--aov DIR` writes those guides as OpenEXR:
-//! `DIR/<stem>_albedo.exr` and `DIR/<stem>_normal.exr`, `<stem>` the name
+//! by the first hit's albedo and normal and by each pixel's luminance
+//! variance, which the camera writes beside the radiance), and `--aov
+//! DIR` writes those guides as OpenEXR: `DIR/<stem>_albedo.exr`,
+//! `DIR/<stem>_normal.exr` and `DIR/<stem>_variance.exr` (grey: the
+//! variance of the mean's luminance, -1 below 2 spp), `<stem>` the name
 //! of `--out` without its extension. Both need the whole picture, so
 //! neither goes with `--tile` or `--merge`.
 //!
@@ -90,12 +92,14 @@ struct Args {
     #[arg(long, default_value_t = 24.0)]
     fps: f32,
     /// Write the picture denoised: the runtime's denoiser over the mean
-    /// radiance, guided by the first hit's albedo and normal.
+    /// radiance, guided by the first hit's albedo and normal and each
+    /// pixel's luminance variance.
     #[arg(long)]
     denoise: bool,
     /// Also write the denoiser's guides as OpenEXR into DIR (created if
-    /// missing): `<stem>_albedo.exr` and `<stem>_normal.exr`, `<stem>`
-    /// being `--out`'s file name without its extension.
+    /// missing): `<stem>_albedo.exr`, `<stem>_normal.exr` and
+    /// `<stem>_variance.exr`, `<stem>` being `--out`'s file name without
+    /// its extension.
     #[arg(long, value_name = "DIR")]
     aov: Option<PathBuf>,
 }
@@ -286,10 +290,10 @@ fn write_guides(
     dir: &Path,
     written: &mut Vec<PathBuf>,
 ) -> Result<(), Error> {
-    let (albedo, normal) = denoised::guides(&loaded.scene)?.ok_or_else(|| no_guides(mesh))?;
+    let guides = denoised::guides(&loaded.scene)?.ok_or_else(|| no_guides(mesh))?;
     std::fs::create_dir_all(dir).map_err(|e| Error::Io { path: dir.display().to_string(), problem: e.to_string() })?;
     let stem = out.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "render".into());
-    for (name, image) in [("albedo", albedo), ("normal", normal)] {
+    for (name, image) in [("albedo", guides.albedo), ("normal", guides.normal), ("variance", guides.variance)] {
         let path = dir.join(format!("{stem}_{name}.exr"));
         image.save_exr(&path)?;
         println!("{}", path.display());

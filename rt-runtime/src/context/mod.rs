@@ -61,6 +61,10 @@ pub struct Context {
     pub(crate) stages: Vec<crate::postprocess::Stage>,
     /// The stages' pipelines on the wgpu device, once a stage ran there.
     pub(crate) stage_pipelines: Option<crate::postprocess::gpu::Pipelines>,
+    /// Stage inputs the wgpu backend took from its heap on the device.
+    pub(crate) stage_device_inputs: u64,
+    /// Queue submissions of stages on the wgpu device.
+    pub(crate) stage_submits: u64,
 }
 
 /// A kind of exception whose checks [`Context::set_exception_enabled`]
@@ -134,6 +138,8 @@ impl Context {
             usage_report: None,
             stages: Vec::new(),
             stage_pipelines: None,
+            stage_device_inputs: 0,
+            stage_submits: 0,
         }
     }
 

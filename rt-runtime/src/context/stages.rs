@@ -4,8 +4,9 @@
 use super::Context;
 use crate::backend::Backend;
 use crate::error::{Result, RtError};
-use crate::postprocess::gpu::Pipelines;
+use crate::postprocess::gpu::{Pipelines, Source};
 use crate::postprocess::{Pixels, Plan, Stage, StageId, StageKind, StageValue};
+use crate::scene::BufferId;
 use glam::Vec4;
 
 impl Context {
@@ -56,13 +57,14 @@ impl Context {
     /// Runs `stage` over `width` x `height` pixels, the size its buffers
     /// must have, into its `output_buffer`: on the wgpu backend as compute
     /// passes on the context's device (one submission; the stage's images
-    /// go up to the device and its output comes back to the host buffer),
-    /// on the CPU backend natively. The
+    /// go up to the device, or where a launch left a device-local buffer's
+    /// newest words on the device are copied there, and its output comes
+    /// back to the host buffer), on the CPU backend natively. The
     /// stage is checked first ([`RtError::BadStage`] naming the variable
     /// at fault); a stage that fails writes nothing.
     pub fn run_stage(&mut self, stage: StageId, width: u32, height: u32) -> Result<()> {
         let plan = self.plan_stage(stage, Some((width, height)))?;
-        self.run_plan(&plan)
+        self.run_plans(&[plan])
     }
 
     pub(crate) fn stage(&self, stage: StageId) -> Result<&Stage> {
@@ -78,28 +80,72 @@ impl Context {
         self.stage(stage)?.plan(stage, &self.scene.buffers, size)
     }
 
-    /// Runs a checked stage and writes its output buffer.
-    pub(crate) fn run_plan(&mut self, plan: &Plan) -> Result<()> {
-        let guides = match plan.guides {
-            Some((albedo, normal)) => Some((self.read_buffer::<Vec4>(albedo)?, self.read_buffer::<Vec4>(normal)?)),
-            None => None,
-        };
-        let pixels = Pixels { input: self.read_buffer::<Vec4>(plan.input)?, guides };
-        let out = match self.backend() {
-            Backend::Wgpu => self.run_on_wgpu(plan, &pixels)?,
-            _ => plan.run_cpu(&pixels),
-        };
-        self.write_buffer(plan.output, &out)
+    /// Runs checked stages in order and writes their output buffers: on
+    /// the CPU backend one by one; on the wgpu backend all in one
+    /// submission, a stage reading an earlier one's output on the device.
+    pub(crate) fn run_plans(&mut self, plans: &[Plan]) -> Result<()> {
+        if self.backend() != Backend::Wgpu {
+            for plan in plans {
+                let ids = Pixels { input: plan.input, guides: plan.guides, variance: plan.variance };
+                let out = plan.run_cpu(&ids.try_map(|b| self.read_buffer::<Vec4>(b))?);
+                self.write_buffer(plan.output, &out)?;
+            }
+            return Ok(());
+        }
+        let mut stages = Vec::new();
+        for (i, plan) in plans.iter().enumerate() {
+            let ids = Pixels { input: plan.input, guides: plan.guides, variance: plan.variance };
+            let sources = ids.try_map(|b| match plans[..i].iter().rposition(|p| p.output == b) {
+                Some(k) => Ok(Source::Earlier(k)),
+                None => self.stage_source(b),
+            })?;
+            stages.push((plan.clone(), sources));
+        }
+        let outputs = self.run_on_wgpu(&stages)?;
+        for (plan, out) in plans.iter().zip(outputs) {
+            self.write_buffer(plan.output, &out)?;
+        }
+        Ok(())
     }
 
-    /// Runs a checked stage's passes on the wgpu device (opened first if
-    /// no launch opened it yet).
-    fn run_on_wgpu(&mut self, plan: &Plan, pixels: &Pixels) -> Result<Vec<Vec4>> {
+    /// Where a stage on the wgpu device takes buffer `b` from: the
+    /// device's heap, where a launch left newer words than the host's
+    /// there (a device-local buffer), else the host's pixels.
+    fn stage_source(&self, b: BufferId) -> Result<Source> {
+        let version = self.scene.buffers.get(b.index() as usize).map(|r| r.host_version);
+        let held = version.and_then(|v| self.wgpu_backend_ref()?.held(b.index() as usize, v));
+        match held {
+            Some(on_device) => Ok(Source::Device(on_device)),
+            None => Ok(Source::Host(self.read_buffer::<Vec4>(b)?)),
+        }
+    }
+
+    /// How many stage inputs the wgpu backend has taken from its device
+    /// (device-local buffers a launch left there, copied on the device),
+    /// not through the host.
+    pub fn stage_inputs_read_on_device(&self) -> u64 {
+        self.stage_device_inputs
+    }
+
+    /// How many queue submissions stages have made on the wgpu device: one
+    /// for each [`Context::run_stage`], one for each run of consecutive
+    /// stages of a command list.
+    pub fn stage_submissions(&self) -> u64 {
+        self.stage_submits
+    }
+
+    /// Runs checked stages' passes on the wgpu device (opened first if no
+    /// launch opened it yet), in one submission; their outputs.
+    fn run_on_wgpu(&mut self, stages: &[(Plan, Pixels<Source>)]) -> Result<Vec<Vec<Vec4>>> {
         self.open_wgpu()?;
         let handles = self.wgpu_device().ok_or_else(|| RtError::Gpu("no device after opening one".into()))?;
         if !self.stage_pipelines.as_ref().is_some_and(|p| p.on(&handles.device)) {
             self.stage_pipelines = Some(Pipelines::new(&handles.device)?);
         }
-        self.stage_pipelines.as_ref().expect("made above").run(&handles.queue, plan, pixels)
+        let outputs = self.stage_pipelines.as_ref().expect("made above").run(&handles.queue, stages)?;
+        self.stage_submits += 1;
+        let from_device = stages.iter().flat_map(|(_, s)| s.each()).filter(|s| matches!(s, Source::Device(_)));
+        self.stage_device_inputs += from_device.count() as u64;
+        Ok(outputs)
     }
 }

@@ -1,16 +1,20 @@
 //! The denoiser: an edge-avoiding à-trous wavelet filter (Dammertz et al.
 //! 2010) steered by a luminance variance, the spatial part of SVGF
 //! (Schied et al. 2017). This file is the reference; the wgpu backend
-//! runs the same passes as WGSL (`postprocess/gpu/denoise.wgsl`).
+//! runs the same passes as WGSL (`postprocess/gpu/stages.wgsl`).
 //!
 //! The passes, each over every pixel:
 //!
 //! 1. **Prepare**: the colour is divided by the albedo guide (where a
 //!    channel's albedo is not about zero), so that texture and material
 //!    colour are not blurred: what is filtered is the light that reached
-//!    the surface. Its luminance's variance is estimated from the
-//!    neighbouring pixels facing the same way (3x3 by default; a path
-//!    tracer's estimate over few samples has no history to take it from).
+//!    the surface. Its luminance's variance is the renderer's per-pixel
+//!    one where given ([`Guided::variance`]: the sample variance of the
+//!    pixel's samples over their count, the variance of their mean, as
+//!    SVGF keeps it), so that an edge no sample disagrees about (a
+//!    contact shadow's) stops the filter; where not given (or unknown for
+//!    a pixel), it is estimated from the neighbouring pixels facing the
+//!    same way (3x3 by default), which takes such edges for noise too.
 //! 2. **À-trous**, [`Tuning::iterations`] times (3) with the taps 1, 2, 4 pixels
 //!    apart: a 5x5 B3-spline kernel whose weights stop at edges: normals
 //!    apart (`dot^`[`Tuning::sigma_normal`]), albedos apart, and luminances
@@ -71,6 +75,11 @@ pub struct Guided<'a> {
     pub albedo: &'a [Vec4],
     /// The first hit's shading normal (a guide).
     pub normal: &'a [Vec4],
+    /// The variance of each pixel's mean luminance (of its colour divided
+    /// by its albedo, [`demodulation`]) in x, where the renderer keeps
+    /// it; a negative x is unknown (fewer than two samples), and such a
+    /// pixel's variance is estimated from its neighbours.
+    pub variance: Option<&'a [Vec4]>,
 }
 
 /// The luminance of linear RGB (Rec. 709).
@@ -131,7 +140,8 @@ pub fn finish(input: Vec4, filtered: Vec3, blend: f32) -> Vec4 {
     input.xyz().lerp(filtered, 1.0 - blend).extend(input.w)
 }
 
-/// Pass 1: the demodulated colour and its luminance's variance (in w).
+/// Pass 1: the demodulated colour and its luminance's variance (in w):
+/// the given one, or else the spatial estimate.
 fn prepare(images: &Guided, normals: &[Vec3], albedos: &[Vec3], t: &Tuning) -> Vec<Vec4> {
     let (w, h) = (images.width as i32, images.height as i32);
     let light: Vec<Vec3> = (0..normals.len()).map(|p| images.color[p].xyz() / albedos[p]).collect();
@@ -139,6 +149,11 @@ fn prepare(images: &Guided, normals: &[Vec3], albedos: &[Vec3], t: &Tuning) -> V
     for_each_row(&mut out, images.width, |y, row| {
         for (x, o) in row.iter_mut().enumerate() {
             let p = y * images.width + x;
+            let given = images.variance.map_or(-1.0, |v| v[p].x);
+            if given >= 0.0 {
+                *o = light[p].extend(given);
+                continue;
+            }
             let (mut m1, mut m2, mut sum) = (0.0f32, 0.0f32, 0.0f32);
             for dy in -t.variance_radius..=t.variance_radius {
                 for dx in -t.variance_radius..=t.variance_radius {
@@ -245,7 +260,7 @@ mod tests {
         let albedo = vec![Vec4::new(0.6, 0.3, 0.2, 1.0); width * height];
         let normal = vec![Vec4::new(0.0, 0.6, 0.8, 0.0); width * height];
         let color = vec![color; width * height];
-        denoise(&Guided { width, height, color: &color, albedo: &albedo, normal: &normal }, 0.0)
+        denoise(&Guided { width, height, color: &color, albedo: &albedo, normal: &normal, variance: None }, 0.0)
     }
 
     #[test]
@@ -274,7 +289,10 @@ mod tests {
             }
         }
         let albedo = vec![Vec4::ONE; w * h];
-        let out = denoise(&Guided { width: w, height: h, color: &color, albedo: &albedo, normal: &normal }, 0.0);
+        let out = denoise(
+            &Guided { width: w, height: h, color: &color, albedo: &albedo, normal: &normal, variance: None },
+            0.0,
+        );
         let error = |img: &[Vec4]| {
             let mut e = 0.0;
             for (i, p) in img.iter().enumerate() {
@@ -288,6 +306,57 @@ mod tests {
         let row = 8 * w;
         assert!((out[row + w / 2 - 1].x - 0.2).abs() < 0.1, "{}", out[row + w / 2 - 1]);
         assert!((out[row + w / 2].x - 0.8).abs() < 0.2, "{}", out[row + w / 2]);
+    }
+
+    /// One surface (one normal, one albedo) lit 0.2 on the left and 0.8 on
+    /// the right, plus `noise` times a pseudo-random value in [-1, 1).
+    fn shadow_edge(w: usize, h: usize, noise: f32) -> Vec<Vec4> {
+        let mut seed = 777u32;
+        let mut rnd = move || {
+            seed = seed.wrapping_mul(1664525).wrapping_add(1013904223);
+            (seed >> 8) as f32 / (1u32 << 23) as f32 - 1.0
+        };
+        (0..w * h).map(|p| Vec3::splat(if p % w < w / 2 { 0.2 } else { 0.8 } + noise * rnd()).extend(1.0)).collect()
+    }
+
+    #[test]
+    fn a_given_variance_keeps_a_noise_free_edge_that_the_spatial_estimate_blurs() {
+        let (w, h) = (32usize, 16usize);
+        let color = shadow_edge(w, h, 0.0);
+        let (albedo, normal) = (vec![Vec4::ONE; w * h], vec![Vec4::Z; w * h]);
+        let run = |variance: Option<&[Vec4]>| {
+            denoise(&Guided { width: w, height: h, color: &color, albedo: &albedo, normal: &normal, variance }, 0.0)
+        };
+        let zero = vec![Vec4::ZERO; w * h];
+        for (p, (out, input)) in run(Some(&zero)).iter().zip(&color).enumerate() {
+            assert!((*out - *input).abs().max_element() < 1e-6, "pixel {p}: {out} vs {input}");
+        }
+        // Without it, the spatial estimate sees the edge as noise.
+        let spatial = run(None);
+        let edge = 8 * w + w / 2 - 1;
+        assert!((spatial[edge].x - 0.2).abs() > 0.05, "{}", spatial[edge]);
+        // An unknown variance (negative) is estimated as without one.
+        assert_eq!(run(Some(&vec![Vec4::splat(-1.0); w * h])), spatial);
+    }
+
+    #[test]
+    fn a_given_variance_of_real_noise_smooths_it_and_keeps_the_edge() {
+        let (w, h) = (32usize, 16usize);
+        let noise = 0.1;
+        let color = shadow_edge(w, h, noise);
+        let clean = shadow_edge(w, h, 0.0);
+        let (albedo, normal) = (vec![Vec4::ONE; w * h], vec![Vec4::Z; w * h]);
+        // Uniform in [-a, a): variance a^2 / 3.
+        let variance = vec![Vec4::new(noise * noise / 3.0, 0.0, 0.0, 0.0); w * h];
+        let guided =
+            Guided { width: w, height: h, color: &color, albedo: &albedo, normal: &normal, variance: Some(&variance) };
+        let out = denoise(&guided, 0.0);
+        let error =
+            |img: &[Vec4]| img.iter().zip(&clean).map(|(a, b)| (a.xyz() - b.xyz()).length_squared()).sum::<f32>();
+        assert!(error(&out) * 5.0 < error(&color), "{} vs {}", error(&out), error(&color));
+        let row = 8 * w;
+        assert!((out[row + w / 2 - 1].x - 0.2).abs() < 0.05, "{}", out[row + w / 2 - 1]);
+        assert!((out[row + w / 2].x - 0.8).abs() < 0.05, "{}", out[row + w / 2]);
     }
 
     #[test]

@@ -1,13 +1,18 @@
 //! The stages on a wgpu device: the passes of `gpu/stages.wgsl` (the
 //! same arithmetic as [`super::denoise`] and [`super::tonemap`]) as plain
-//! compute passes, all of a stage in one submission: the stage's images
-//! are uploaded to storage buffers, every pass runs (the denoiser's
-//! prepare, its à-trous passes ping-ponging between two buffers, finish;
-//! or the tonemapper's one), and the output is read back. The pipelines
-//! are made once per device ([`Pipelines`]).
+//! compute passes, all of a run of stages (a command list's stages one
+//! after another, or one stage) in one submission: each stage's images
+//! are uploaded to storage buffers (or, where a launch left a
+//! device-local buffer's newest words in its heap, copied from there on
+//! the device; or, where an earlier stage of the run wrote them, read
+//! where it did), every pass runs (the denoiser's prepare, its à-trous
+//! passes ping-ponging between two buffers, finish; or the tonemapper's
+//! one), and every stage's output is read back. The pipelines are made
+//! once per device ([`Pipelines`]).
 
 use super::denoise::Tuning;
 use super::{Pixels, Plan, StageKind};
+use crate::backend::wgpu::DeviceBuffer;
 use crate::error::{Result, RtError};
 use glam::Vec4;
 use wgpu::util::DeviceExt;
@@ -57,8 +62,15 @@ impl Pipelines {
             },
             count: None,
         };
-        let entries =
-            [uniform, storage(1, true), storage(2, true), storage(3, true), storage(4, true), storage(5, false)];
+        let entries = [
+            uniform,
+            storage(1, true),
+            storage(2, true),
+            storage(3, true),
+            storage(4, true),
+            storage(5, false),
+            storage(6, true),
+        ];
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("rt post-processing stages"),
             entries: &entries,
@@ -92,8 +104,75 @@ impl Pipelines {
         }
     }
 
-    /// Runs `plan` over `pixels` on `queue`, returning its output.
-    pub fn run(&self, queue: &wgpu::Queue, plan: &Plan, pixels: &Pixels) -> Result<Vec<Vec4>> {
+    /// Runs `stages` (each a plan over its images) in order on `queue`,
+    /// all in one submission, and returns each one's output. An image
+    /// that an earlier stage of the run wrote ([`Source::Earlier`]) is
+    /// that stage's output as it lies on the device.
+    pub fn run(&self, queue: &wgpu::Queue, stages: &[(Plan, Pixels<Source>)]) -> Result<Vec<Vec<Vec4>>> {
+        let device = &self.device;
+        let mut encoder = device.create_command_encoder(&Default::default());
+        let mut outputs: Vec<wgpu::Buffer> = Vec::new();
+        for (plan, images) in stages {
+            let out = self.encode(&mut encoder, plan, images, &outputs);
+            outputs.push(out);
+        }
+        let staging: Vec<wgpu::Buffer> = outputs
+            .iter()
+            .map(|out| {
+                let staging = device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("rt stage: read-back"),
+                    size: out.size(),
+                    usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+                    mapped_at_creation: false,
+                });
+                encoder.copy_buffer_to_buffer(out, 0, &staging, 0, out.size());
+                staging
+            })
+            .collect();
+        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        queue.submit([encoder.finish()]);
+        let (sender, receiver) = std::sync::mpsc::channel();
+        for (i, staging) in staging.iter().enumerate() {
+            let sender = sender.clone();
+            staging.slice(..).map_async(wgpu::MapMode::Read, move |r| {
+                let _ = sender.send((i, r));
+            });
+        }
+        let gpu_err = |what: &str, e: String| RtError::Gpu(format!("running a post-processing stage: {what}: {e}"));
+        device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| gpu_err("waiting", e.to_string()))?;
+        if let Some(e) = crate::backend::futures::block(async { Ok(scope.pop().await) })? {
+            return Err(gpu_err("validation", e.to_string()));
+        }
+        for _ in &staging {
+            match receiver.recv() {
+                Ok((_, Ok(()))) => {}
+                Ok((_, Err(e))) => return Err(gpu_err("reading back", e.to_string())),
+                Err(e) => return Err(gpu_err("reading back", e.to_string())),
+            }
+        }
+        let mut images = Vec::new();
+        for staging in &staging {
+            let slice = staging.slice(..);
+            let mapped = slice.get_mapped_range().map_err(|e| gpu_err("reading back", e.to_string()))?;
+            let floats: Vec<f32> =
+                mapped.chunks_exact(4).map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
+            drop(mapped);
+            staging.unmap();
+            images.push(floats.chunks_exact(4).map(Vec4::from_slice).collect());
+        }
+        Ok(images)
+    }
+
+    /// Records `plan`'s passes over `images` into `encoder` (`earlier`:
+    /// the outputs of the run's stages before it), returning the buffer
+    /// its output will be in.
+    fn encode(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        plan: &Plan,
+        images: &Pixels<Source>,
+        earlier: &[wgpu::Buffer],
+    ) -> wgpu::Buffer {
         let device = &self.device;
         let n = (plan.width * plan.height) as usize;
         let bytes = (n * 16) as u64;
@@ -112,15 +191,35 @@ impl Pipelines {
                 mapped_at_creation: false,
             })
         };
+        // An image on the device is copied from the heap in this
+        // submission, before the passes read it; an earlier stage's output
+        // is read where that stage wrote it.
+        let mut image = |label, source: &Source| match source {
+            Source::Host(px) => upload(label, px),
+            Source::Device(d) => {
+                let b = device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some(label),
+                    size: bytes,
+                    usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+                    mapped_at_creation: false,
+                });
+                encoder.copy_buffer_to_buffer(&d.buffer, d.offset, &b, 0, bytes.min(d.size));
+                b
+            }
+            Source::Earlier(k) => earlier[*k].clone(),
+        };
         let empty = upload("rt stage: unused", &[Vec4::ZERO]);
-        let color = upload("rt stage: input", &pixels.input);
-        let (albedo, normal) = match &pixels.guides {
-            Some((a, n)) => (upload("rt stage: albedo", a), upload("rt stage: normal", n)),
+        let color = image("rt stage: input", &images.input);
+        let (albedo, normal) = match &images.guides {
+            Some((a, n)) => (image("rt stage: albedo", a), image("rt stage: normal", n)),
             None => (upload("rt stage: unused", &[Vec4::ZERO]), upload("rt stage: unused", &[Vec4::ZERO])),
+        };
+        let variance = match &images.variance {
+            Some(v) => image("rt stage: variance", v),
+            None => upload("rt stage: unused", &[Vec4::ZERO]),
         };
         let (a, b) = (scratch("rt stage: ping"), scratch("rt stage: pong"));
         let t = Tuning::default();
-        let mut encoder = device.create_command_encoder(&Default::default());
         let mut pass = |pipeline: &wgpu::ComputePipeline, step: i32, src: &wgpu::Buffer, dst: &wgpu::Buffer| {
             let settings = [plan.settings[0], plan.settings.get(1).copied().unwrap_or(0.0)];
             let params = params(plan, step, &t, settings);
@@ -129,7 +228,7 @@ impl Pipelines {
                 contents: &params,
                 usage: wgpu::BufferUsages::UNIFORM,
             });
-            let buffers = [&uniform, &color, &albedo, &normal, src, dst];
+            let buffers = [&uniform, &color, &albedo, &normal, src, dst, &variance];
             let entries: Vec<_> = buffers
                 .iter()
                 .enumerate()
@@ -145,7 +244,7 @@ impl Pipelines {
             cpass.set_bind_group(0, &group, &[]);
             cpass.dispatch_workgroups(plan.width.div_ceil(8), plan.height.div_ceil(8), 1);
         };
-        let out = match plan.kind {
+        match plan.kind {
             StageKind::Denoiser => {
                 pass(&self.prepare, 0, &empty, &a);
                 let (mut src, mut dst) = (&a, &b);
@@ -154,43 +253,24 @@ impl Pipelines {
                     std::mem::swap(&mut src, &mut dst);
                 }
                 pass(&self.finish, 0, src, dst);
-                dst
+                dst.clone()
             }
             StageKind::Tonemapper => {
                 pass(&self.tonemap, 0, &empty, &a);
-                &a
+                a
             }
-        };
-        let staging = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("rt stage: read-back"),
-            size: bytes,
-            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        encoder.copy_buffer_to_buffer(out, 0, &staging, 0, bytes);
-        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        queue.submit([encoder.finish()]);
-        let slice = staging.slice(..);
-        let (sender, receiver) = std::sync::mpsc::channel();
-        slice.map_async(wgpu::MapMode::Read, move |r| {
-            let _ = sender.send(r);
-        });
-        let gpu_err = |what: &str, e: String| RtError::Gpu(format!("running a post-processing stage: {what}: {e}"));
-        device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| gpu_err("waiting", e.to_string()))?;
-        if let Some(e) = crate::backend::futures::block(async { Ok(scope.pop().await) })? {
-            return Err(gpu_err("validation", e.to_string()));
         }
-        match receiver.recv() {
-            Ok(Ok(())) => {}
-            Ok(Err(e)) => return Err(gpu_err("reading back", e.to_string())),
-            Err(e) => return Err(gpu_err("reading back", e.to_string())),
-        }
-        let mapped = slice.get_mapped_range().map_err(|e| gpu_err("reading back", e.to_string()))?;
-        let floats: Vec<f32> = mapped.chunks_exact(4).map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
-        drop(mapped);
-        staging.unmap();
-        Ok(floats.chunks_exact(4).map(Vec4::from_slice).collect())
     }
+}
+
+/// Where a stage's image is for the device: the host's pixels (uploaded),
+/// a range of the launch heap holding a buffer's newest words (copied on
+/// the device, never through the host), or the output of the `k`th stage
+/// of the same run (read where it lies).
+pub(crate) enum Source {
+    Host(Vec<Vec4>),
+    Device(DeviceBuffer),
+    Earlier(usize),
 }
 
 /// The `Params` uniform of `stages.wgsl` for one pass.
@@ -205,7 +285,7 @@ fn params(plan: &Plan, step: i32, t: &Tuning, [first, second]: [f32; 2]) -> Vec<
         t.sigma_albedo.to_bits(),
         first.to_bits(),
         second.to_bits(),
-        0,
+        plan.variance.is_some() as u32,
         0,
         0,
     ];

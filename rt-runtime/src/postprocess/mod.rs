@@ -5,17 +5,18 @@
 //! A stage is created by kind ([`StageKind`]) or by OptiX's built-in
 //! name (`DLDenoiser`, `TonemapperSimple`) and set up with
 //! [`Context::set_stage_var`](crate::Context::set_stage_var): buffers
-//! (`input_buffer`, `input_albedo_buffer`, `input_normal_buffer`,
-//! `output_buffer`) and settings (`blend`, `exposure`, `gamma`). Every
-//! image buffer holds one `Vec4` a pixel, RGBA (a normal's xyz, an
-//! albedo's rgb), 2D and of the stage's size. `Stage::plan` checks all
+//! (`input_buffer`, `input_albedo_buffer`, `input_normal_buffer`, the
+//! optional `input_variance_buffer`, `output_buffer`) and settings
+//! (`blend`, `exposure`, `gamma`). Every image buffer holds one `Vec4` a
+//! pixel, RGBA (a normal's xyz, an albedo's rgb, a variance in x), 2D and
+//! of the stage's size. `Stage::plan` checks all
 //! of it before anything runs, naming the stage and the variable at
 //! fault; a command list's finalize runs the same check
 //! ([`crate::command_list`]).
 //!
 //! The passes: [`denoise`] (an edge-avoiding à-trous wavelet filter
-//! guided by albedo, normal and a luminance variance it estimates, the
-//! spatial part of SVGF) and [`tonemap`] (exposure, ACES-fitted filmic
+//! guided by albedo, normal and a luminance variance, the renderer's
+//! per-pixel one or its own spatial estimate: the spatial part of SVGF) and [`tonemap`] (exposure, ACES-fitted filmic
 //! curve, gamma), each a CPU reference here and a WGSL compute pass in
 //! `gpu.rs` that the wgpu backend runs on its device.
 
@@ -69,11 +70,12 @@ impl StageKind {
     }
 
     /// The variables a stage of this kind takes: name, whether it is a
-    /// buffer, and a setting's default (`None` for buffers).
+    /// buffer, and a setting's default (`None` for buffers). Every buffer
+    /// must be set but the denoiser's `input_variance_buffer`.
     pub fn variables(self) -> &'static [(&'static str, Option<f32>)] {
         match self {
             StageKind::Denoiser => {
-                &[(INPUT, None), (ALBEDO, None), (NORMAL, None), (OUTPUT, None), ("blend", Some(0.0))]
+                &[(INPUT, None), (ALBEDO, None), (NORMAL, None), (VARIANCE, None), (OUTPUT, None), ("blend", Some(0.0))]
             }
             StageKind::Tonemapper => &[(INPUT, None), (OUTPUT, None), ("exposure", Some(1.0)), ("gamma", Some(2.2))],
         }
@@ -83,6 +85,11 @@ impl StageKind {
 const INPUT: &str = "input_buffer";
 const ALBEDO: &str = "input_albedo_buffer";
 const NORMAL: &str = "input_normal_buffer";
+/// The denoiser's optional per-pixel variance: in x, the variance of the
+/// pixel's mean luminance (of its colour divided by its albedo, as
+/// [`denoise`] filters it), negative where unknown (fewer than two
+/// samples).
+const VARIANCE: &str = "input_variance_buffer";
 const OUTPUT: &str = "output_buffer";
 
 /// A stage variable's value: a buffer or a number.
@@ -123,6 +130,8 @@ pub(crate) struct Plan {
     pub input: BufferId,
     /// The denoiser's albedo and normal guides.
     pub guides: Option<(BufferId, BufferId)>,
+    /// The denoiser's per-pixel variance, where set.
+    pub variance: Option<BufferId>,
     pub output: BufferId,
     /// `blend` for the denoiser; `exposure` and `gamma` for the tonemapper.
     pub settings: Vec<f32>,
@@ -160,8 +169,9 @@ impl Stage {
     }
 
     /// Checks the stage against `buffers` for a run at `size` (the size
-    /// of its input buffer when `None`): every buffer set, existing,
-    /// 2D of `Vec4`, of that size, the output apart from the inputs.
+    /// of its input buffer when `None`): every buffer set (the variance
+    /// where given), existing, 2D of `Vec4`, of that size, the output
+    /// apart from the inputs.
     pub fn plan(&self, id: StageId, buffers: &[BufferRec], size: Option<(u32, u32)>) -> Result<Plan> {
         let label = self.label(id);
         let bad = |variable: &str, problem: String| RtError::BadStage {
@@ -197,7 +207,9 @@ impl Stage {
         if width == 0 || height == 0 {
             return Err(bad(INPUT, format!("a stage runs over at least 1x1 pixels, not {width}x{height}")));
         }
+        let has_variance = self.vars.contains_key(VARIANCE);
         let names: &[&'static str] = match self.kind {
+            StageKind::Denoiser if has_variance => &[INPUT, ALBEDO, NORMAL, VARIANCE, OUTPUT],
             StageKind::Denoiser => &[INPUT, ALBEDO, NORMAL, OUTPUT],
             StageKind::Tonemapper => &[INPUT, OUTPUT],
         };
@@ -223,7 +235,8 @@ impl Stage {
         }
         let settings = self.kind.variables().iter().filter_map(|(n, d)| d.map(|d| self.setting(n, d))).collect();
         let guides = (self.kind == StageKind::Denoiser).then(|| (ids[1], ids[2]));
-        Ok(Plan { kind: self.kind, width, height, input, guides, output, settings })
+        let variance = (self.kind == StageKind::Denoiser && has_variance).then(|| ids[3]);
+        Ok(Plan { kind: self.kind, width, height, input, guides, variance, output, settings })
     }
 
     fn setting(&self, name: &str, default: f32) -> f32 {
@@ -234,10 +247,29 @@ impl Stage {
     }
 }
 
-/// A planned stage's pixels: the input and, for the denoiser, its guides.
-pub(crate) struct Pixels {
-    pub input: Vec<Vec4>,
-    pub guides: Option<(Vec<Vec4>, Vec<Vec4>)>,
+/// A planned stage's images: the input and, for the denoiser, its guides
+/// and the variance where given; each the pixels on the host, or on the
+/// wgpu backend where they are (`gpu::Source`).
+pub(crate) struct Pixels<T = Vec<Vec4>> {
+    pub input: T,
+    pub guides: Option<(T, T)>,
+    pub variance: Option<T>,
+}
+
+impl<T> Pixels<T> {
+    /// Every image: the input, the guides, the variance.
+    pub fn each(&self) -> impl Iterator<Item = &T> {
+        std::iter::once(&self.input).chain(self.guides.iter().flat_map(|(a, n)| [a, n])).chain(&self.variance)
+    }
+
+    /// Each image through `f`, the first error stopping.
+    pub fn try_map<U, E>(self, mut f: impl FnMut(T) -> std::result::Result<U, E>) -> std::result::Result<Pixels<U>, E> {
+        let guides = match self.guides {
+            Some((a, n)) => Some((f(a)?, f(n)?)),
+            None => None,
+        };
+        Ok(Pixels { input: f(self.input)?, guides, variance: self.variance.map(&mut f).transpose()? })
+    }
 }
 
 impl Plan {
@@ -246,7 +278,8 @@ impl Plan {
         let (w, h) = (self.width as usize, self.height as usize);
         match (&self.kind, &pixels.guides) {
             (StageKind::Denoiser, Some((albedo, normal))) => {
-                let images = denoise::Guided { width: w, height: h, color: &pixels.input, albedo, normal };
+                let variance = pixels.variance.as_deref();
+                let images = denoise::Guided { width: w, height: h, color: &pixels.input, albedo, normal, variance };
                 denoise::denoise(&images, self.settings[0])
             }
             _ => tonemap::tonemap(&pixels.input, self.settings[0], self.settings[1]),

@@ -3,7 +3,7 @@
 //! Narkowicz's fit of the ACES filmic curve (a toe, a shoulder that
 //! reaches 1 smoothly instead of clipping), and raised to `1 / gamma`
 //! (2.2 by default: sRGB-ready values in [0, 1]). Alpha passes through.
-//! `postprocess/gpu/tonemap.wgsl` computes the same on the device.
+//! `postprocess/gpu/stages.wgsl` computes the same on the device.
 
 use glam::{Vec3, Vec4};
 

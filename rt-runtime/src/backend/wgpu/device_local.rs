@@ -197,6 +197,15 @@ impl DeviceLocal {
         Some(Box::pin(async move { read_held_async(gpu, &[h]).await }))
     }
 
+    /// Where the device's words of `buffer` lie in its heap, if it holds
+    /// them newer than the host's copy at `host_version` (what
+    /// [`DeviceLocal::words`] would read back).
+    pub(crate) fn held(gpu: &Gpu, buffer: usize, host_version: u64) -> Option<DeviceBuffer> {
+        let h = gpu.resident.device_local.held.iter().find(|h| h.buffer == buffer && h.version == host_version)?;
+        let heap = gpu.resident.heap.as_ref()?;
+        Some(DeviceBuffer { buffer: heap.buffer.clone(), offset: h.offset as u64 * 4, size: h.words as u64 * 4 })
+    }
+
     /// Where `buffer` lies in the device's heap.
     pub(crate) fn placed(gpu: &Gpu, buffer: usize) -> Option<DeviceBuffer> {
         let heap = gpu.resident.heap.as_ref()?;

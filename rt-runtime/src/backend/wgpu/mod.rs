@@ -145,6 +145,12 @@ impl WgpuBackend {
         DeviceLocal::placed(self.gpu.as_ref()?, buffer)
     }
 
+    /// Where the device holds `buffer`'s words newer than the host's copy
+    /// at `host_version` (a device-local buffer a launch wrote).
+    pub(crate) fn held(&self, buffer: usize, host_version: u64) -> Option<DeviceBuffer> {
+        DeviceLocal::held(self.gpu.as_ref()?, buffer, host_version)
+    }
+
     /// The open device's handles.
     pub(crate) fn handles(&self) -> Option<WgpuDevice> {
         let gpu = self.gpu.as_ref()?;

@@ -16,6 +16,8 @@ struct Params {
     // `blend` for the denoiser's finish, `exposure` for the tonemapper.
     blend_or_exposure: f32,
     gamma: f32,
+    // 1 where `variance` holds the renderer's per-pixel variance.
+    has_variance: u32,
 }
 
 @group(0) @binding(0) var<uniform> params: Params;
@@ -26,6 +28,9 @@ struct Params {
 // The previous pass's light (rgb) and variance (a).
 @group(0) @binding(4) var<storage, read> src: array<vec4<f32>>;
 @group(0) @binding(5) var<storage, read_write> dst: array<vec4<f32>>;
+// The denoiser's per-pixel variance (x; negative where unknown), read
+// where `params.has_variance` is 1.
+@group(0) @binding(6) var<storage, read> variance: array<vec4<f32>>;
 
 const ALBEDO_FLOOR: f32 = 1e-3;
 const KERNEL: array<f32, 5> = array<f32, 5>(1.0 / 16.0, 1.0 / 4.0, 3.0 / 8.0, 1.0 / 4.0, 1.0 / 16.0);
@@ -71,7 +76,8 @@ fn index(x: i32, y: i32) -> u32 {
     return u32(y) * params.width + u32(x);
 }
 
-// Pass 1: the demodulated colour and its luminance's variance.
+// Pass 1: the demodulated colour and its luminance's variance: the
+// given one, or else the spatial estimate.
 @compute @workgroup_size(8, 8)
 fn prepare(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x >= params.width || id.y >= params.height {
@@ -80,6 +86,13 @@ fn prepare(@builtin(global_invocation_id) id: vec3<u32>) {
     let x = i32(id.x);
     let y = i32(id.y);
     let p = index(x, y);
+    if params.has_variance == 1u {
+        let given = variance[p].x;
+        if given >= 0.0 {
+            dst[p] = vec4<f32>(color[p].xyz / demodulation(p), given);
+            return;
+        }
+    }
     let np = unit_normal(p);
     var m1 = 0.0;
     var m2 = 0.0;
