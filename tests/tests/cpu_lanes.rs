@@ -41,6 +41,10 @@ pub fn divergent(#[var] top: Object, #[var] mut out: RwBuffer2d<Vec4>) {
         if idx.x % 7 == 2 {
             rt_throw(EXCEPTION_USER + idx.x);
         }
+        if idx.x % 11 == 6 {
+            out[idx] = vec4(-3.0, 0.0, 0.0, 0.0);
+            return;
+        }
     }
     let mut k = idx.x * 3 + idx.y + 1;
     let mut steps = 0u32;
@@ -86,6 +90,26 @@ pub fn late_init(#[var] mut out: RwBuffer2d<Vec4>) {
         v = 2.0;
     }
     out[idx] = Vec4::splat(v);
+}
+
+/// A program the lane-wise lowering refuses: a closure bound to a local.
+#[rt_program(ray_generation)]
+pub fn bound_closure(#[var] mut out: RwBuffer2d<Vec4>) {
+    let idx = launch_index();
+    let twice = |a: f32| a * 2.0;
+    out[idx] = Vec4::splat(twice(idx.x as f32));
+}
+
+#[rt_function]
+pub fn half(x: f32) -> f32 {
+    x * 0.5
+}
+
+/// A program the lane-wise lowering refuses: a path through `self::`.
+#[rt_program(ray_generation)]
+pub fn module_path(#[var] mut out: RwBuffer2d<Vec4>) {
+    let idx = launch_index();
+    out[idx] = Vec4::splat(self::half(idx.x as f32));
 }
 
 /// What one launch left: the output and the report's exceptions, prints and
@@ -140,6 +164,7 @@ fn lanes_and_scalar_agree_exactly() {
     assert!(out.iter().any(|p| p.x > 0.0 && p.z >= 11.0), "a hit whose closest hit traced again");
     assert!(out.iter().any(|p| p.x == -2.0), "a miss");
     assert!(out.iter().any(|p| p.x == -1.0), "an early return");
+    assert!(out.iter().any(|p| p.x == -3.0), "a return inside a branch that runs under a mask");
     assert!(!exceptions.is_empty() && exceptions.iter().all(|e| e.1 >= EXCEPTION_USER));
     assert!(!prints.is_empty());
     assert!(rays > 13 * 7 / 2);
@@ -158,25 +183,39 @@ fn cpu_execution_names_each_program_and_why() {
     assert_eq!(find("nearest").as_deref(), Some("closest_hit programs run one launch index at a time"));
     let line = include_str!("cpu_lanes.rs").lines().position(|l| l.trim() == "let v: f32;").unwrap() + 1;
     assert_eq!(find("late_init"), Some(format!("a `let` without a value (line {line})")));
+    let line_of = |text: &str| include_str!("cpu_lanes.rs").lines().position(|l| l.trim() == text).unwrap() + 1;
+    ctx.create_program(&bound_closure::PROGRAM);
+    ctx.create_program(&module_path::PROGRAM);
+    let ways = ctx.cpu_execution();
+    let find = |name: &str| ways.iter().find(|w| w.program == name).unwrap().scalar_because.clone();
+    let line = line_of("let twice = |a: f32| a * 2.0;");
+    assert_eq!(find("bound_closure"), Some(format!("a closure bound to a local (line {line})")));
+    let line = line_of("out[idx] = Vec4::splat(self::half(idx.x as f32));");
+    assert_eq!(find("module_path"), Some(format!("a path through `self::` or `super::` (line {line})")));
     ctx.set_cpu_execution(CpuExecution::Scalar);
     assert!(ctx.cpu_execution().iter().all(|w| w.scalar_because.is_some()));
 }
 
 #[test]
-fn a_refused_program_still_runs_and_agrees() {
-    let outcome = |mode| {
+fn refused_programs_still_run_and_agree() {
+    let outcome = |program: &'static rt_std::program::ProgramDescriptor, mode| {
         let mut ctx = Context::new();
         ctx.set_backend(Backend::Cpu);
         ctx.set_cpu_execution(mode);
-        let rg = ctx.create_program(&late_init::PROGRAM);
+        let rg = ctx.create_program(program);
         ctx.set_ray_generation_program(0, rg).unwrap();
         let out = ctx.create_buffer_2d::<Vec4>(BufferType::Output, 9, 2).unwrap();
         ctx.set_var(Scope::Context, "out", out).unwrap();
         ctx.launch(0, 9, 2).unwrap();
         ctx.read_buffer::<Vec4>(out).unwrap()
     };
-    let lanes = outcome(CpuExecution::Lanes);
-    assert_eq!(lanes, outcome(CpuExecution::Scalar));
+    let lanes = outcome(&late_init::PROGRAM, CpuExecution::Lanes);
+    assert_eq!(lanes, outcome(&late_init::PROGRAM, CpuExecution::Scalar));
     assert_eq!(lanes[0], Vec4::splat(2.0));
     assert_eq!(lanes[5], Vec4::splat(1.0));
+    for p in [&bound_closure::PROGRAM, &module_path::PROGRAM] {
+        let lanes = outcome(p, CpuExecution::Lanes);
+        assert_eq!(lanes, outcome(p, CpuExecution::Scalar), "{}", p.name);
+        assert_ne!(lanes[5], Vec4::ZERO, "{}", p.name);
+    }
 }
