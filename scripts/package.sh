@@ -19,11 +19,27 @@ crates="rt-abi rt-compiler rt-macros rt-std rt-runtime rt-scene"
 # by the names their manifests give.
 unpublished=$(grep -l '^publish = false' ./*/Cargo.toml ./*/*/Cargo.toml 2>/dev/null |
     xargs -r awk '/^\[/ { in_package = ($0 == "[package]") } in_package && $1 == "name" { gsub(/"/, "", $3); print $3 }')
+target=$(cargo metadata --format-version 1 --no-deps | sed -n 's/.*"target_directory":"\([^"]*\)".*/\1/p')
+version=$(sed -n 's/^version = "\(.*\)"$/\1/p' Cargo.toml | head -1)
+# A pack verified against the others is built from them as from a
+# registry, and cargo takes a registry crate of one version as unchanged:
+# it neither unpacks it again into its registry's sources (one folder per
+# local registry path) nor rebuilds what an earlier run built of it. So
+# the packs of an earlier run, unpacked and built, go first.
+cargo_home="${CARGO_HOME:-$HOME/.cargo}"
+for c in $crates; do
+    rm -rf "$cargo_home"/registry/src/-*/"$c-$version"
+    lib=${c//-/_}
+    for d in "$target"/debug/deps/"$lib"-*.d; do
+        [ -e "$d" ] && grep -q 'registry/src/-' "$d" || continue
+        hash=${d##*-}
+        hash=${hash%.d}
+        rm -rf "$target/debug/.fingerprint/$c-$hash" "$target"/debug/deps/*"$lib-$hash".*
+    done
+done
 # (--allow-dirty: what is checked is the packing, not git's state.)
 # shellcheck disable=SC2046
 cargo package --workspace $(printf -- '--exclude %s ' $unpublished) --allow-dirty -j"$jobs"
-target=$(cargo metadata --format-version 1 --no-deps | sed -n 's/.*"target_directory":"\([^"]*\)".*/\1/p')
-version=$(sed -n 's/^version = "\(.*\)"$/\1/p' Cargo.toml | head -1)
 echo "scripts/package.sh: the packages"
 for c in $crates; do
     echo "  $c-$version.crate $(stat -c %s "$target/package/$c-$version.crate") bytes"

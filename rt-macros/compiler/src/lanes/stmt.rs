@@ -46,11 +46,22 @@ impl Writer {
 
     fn stmts(&mut self, stmts: &[syn::Stmt]) -> Result<TokenStream, Refusal> {
         let Some(first) = stmts.first() else { return Ok(TokenStream::new()) };
-        let (code, retires, locals, rest) = if self.structural(first) {
+        let (code, retires, locals, rest) = if self.structural_in(first, &self.varying) {
             let (code, retires) = self.stmt(first)?;
             (code, retires, TokenStream::new(), &stmts[1..])
         } else {
-            let n = stmts.iter().take_while(|s| !self.structural(s)).count();
+            // (A `let` of the run makes its local lane-wise for a trace
+            // that ends the run.)
+            let mut names = self.varying.clone();
+            let n = stmts
+                .iter()
+                .take_while(|s| {
+                    if let syn::Stmt::Local(l) = s {
+                        names.extend(bound(untyped(&l.pat).0).iter().map(|i| i.to_string()));
+                    }
+                    !self.structural_in(s, &names)
+                })
+                .count();
             let (code, retires, locals) = self.fused(&stmts[..n])?;
             (code, retires, locals, &stmts[n..])
         };
@@ -156,23 +167,9 @@ impl Writer {
         }
     }
 
-    /// `rt_trace(object, ray, &mut p)` with `p` a lane-wise local: the call
-    /// and `p`.
-    fn packet_payload<'e>(&self, e: &'e syn::Expr) -> Option<(&'e syn::ExprCall, &'e syn::Ident)> {
-        let syn::Expr::Call(c) = e else { return None };
-        let syn::Expr::Path(f) = &*c.func else { return None };
-        if f.path.segments.last().is_none_or(|s| s.ident != "rt_trace") || c.args.len() != 3 {
-            return None;
-        }
-        let syn::Expr::Reference(r) = &c.args[2] else { return None };
-        let syn::Expr::Path(p) = &*r.expr else { return None };
-        let payload = p.path.get_ident().filter(|i| self.varying.contains(&i.to_string()))?;
-        r.mutability.is_some().then_some((c, payload))
-    }
-
     /// `rt_trace(object, ray, &mut p)` with `p` lane-wise, as a packet.
     fn trace(&mut self, e: &syn::Expr) -> Result<Option<TokenStream>, Refusal> {
-        let Some((c, payload)) = self.packet_payload(e) else { return Ok(None) };
+        let Some((c, payload)) = packet_payload(e, &self.varying) else { return Ok(None) };
         let (object, ray) = (&c.args[0], &c.args[1]);
         let both = self.lanes_of(&syn::parse_quote!((#object, #ray)))?;
         Ok(Some(quote! {
@@ -261,11 +258,12 @@ impl Writer {
 
     /// Whether `s` runs for all lanes at once: a `return`, or a trace with
     /// a lane-wise payload, alone or in an `if` or a block.
-    fn structural(&self, s: &syn::Stmt) -> bool {
+    /// `varying`: the lane-wise locals at `s`.
+    fn structural_in(&self, s: &syn::Stmt, varying: &HashSet<String>) -> bool {
         let syn::Stmt::Expr(e, _) = s else { return false };
         match e {
             syn::Expr::Return(_) => true,
-            syn::Expr::Call(_) => self.packet_payload(e).is_some(),
+            syn::Expr::Call(_) => packet_payload(e, varying).is_some(),
             syn::Expr::If(i) => !matches!(&*i.cond, syn::Expr::Let(_)) && traces(e),
             syn::Expr::Block(b) => b.label.is_none() && traces(e),
             _ => false,
@@ -279,6 +277,20 @@ impl Writer {
             other => Err(Refusal::new(other.span(), "a statement the lane-wise form does not take".into())),
         }
     }
+}
+
+/// `rt_trace(object, ray, &mut p)` with `p` a lane-wise local: the call
+/// and `p`.
+fn packet_payload<'e>(e: &'e syn::Expr, varying: &HashSet<String>) -> Option<(&'e syn::ExprCall, &'e syn::Ident)> {
+    let syn::Expr::Call(c) = e else { return None };
+    let syn::Expr::Path(f) = &*c.func else { return None };
+    if f.path.segments.last().is_none_or(|s| s.ident != "rt_trace") || c.args.len() != 3 {
+        return None;
+    }
+    let syn::Expr::Reference(r) = &c.args[2] else { return None };
+    let syn::Expr::Path(p) = &*r.expr else { return None };
+    let payload = p.path.get_ident().filter(|i| varying.contains(&i.to_string()))?;
+    r.mutability.is_some().then_some((c, payload))
 }
 
 /// A `let`'s pattern without its type.
