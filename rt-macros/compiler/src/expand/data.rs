@@ -104,10 +104,10 @@ fn field_code(ident: &syn::Ident, ty: &syn::Type, offset: &TokenStream) -> Field
     match ty {
         syn::Type::Array(a) => array_field(ident, a, offset),
         syn::Type::Path(p)
-            if p.path
-                .segments
-                .last()
-                .is_some_and(|s| crate::types::unsupported_type_advice(&s.ident.to_string()).is_some()) =>
+            if p.path.segments.last().is_some_and(|s| {
+                let name = s.ident.to_string();
+                crate::types::unsupported_type_advice(&name).is_some() || name == "Option"
+            }) =>
         {
             rejected_field(ident)
         }

@@ -18,6 +18,7 @@
 //! - `buffers`: buffer and sampler access;
 //! - `infer`: integer inference variables, coercion;
 //! - `tuples`: tuple values, `let` and `match` over tuple patterns;
+//! - `options`: `Option` values, `Some`/`None` and their methods;
 //! - `resume`: the resumable form of a tracing function.
 //!
 //! This file holds the struct, the entry point ([`FnLowerer::function`]),
@@ -44,6 +45,7 @@ mod expr;
 mod infer;
 mod intrinsics;
 mod ops;
+mod options;
 mod places;
 mod resume;
 mod sampler_ids;

@@ -244,7 +244,7 @@ impl FnLowerer<'_> {
     }
 
     /// The conditions one pattern puts on the value `code` of type `ty`.
-    fn element_pattern(
+    pub(super) fn element_pattern(
         &mut self,
         p: &syn::Pat,
         code: &str,
@@ -262,6 +262,7 @@ impl FnLowerer<'_> {
             }
             syn::Pat::Paren(pp) => self.element_pattern(&pp.pat, code, ty, conds, names),
             syn::Pat::Wild(_) => Ok(()),
+            _ if matches!(self.resolved(ty), Ty::Option(_)) => self.option_pattern(p, code, ty, conds, names),
             _ if matches!(self.resolved(ty), Ty::Tuple(_)) => {
                 Err(Error::unsupported(p.span(), "this pattern for a tuple", "write a tuple pattern, `_` or a name"))
             }
@@ -293,7 +294,7 @@ pub(super) fn has_int_var(t: &Ty) -> bool {
     match t {
         Ty::IntVar(_) => true,
         Ty::Tuple(ts) => ts.iter().any(has_int_var),
-        Ty::Array(t, _) | Ty::Ref(_, t) => has_int_var(t),
+        Ty::Array(t, _) | Ty::Ref(_, t) | Ty::Option(t) => has_int_var(t),
         _ => false,
     }
 }
