@@ -158,6 +158,9 @@ impl<'ast> Visit<'ast> for Deps {
                 } else if !is_builtin_type_name(owner) {
                     self.add(&p.path, DepKind::Function);
                 }
+            } else if is_capitalised(&segs[0]) && !is_builtin_value(&segs[0]) && !self.locals.contains(&segs[0]) {
+                // `Rgb(a, b, c)`: a tuple struct's constructor.
+                self.add(&p.path, DepKind::Type);
             } else if !is_builtin_fn(&segs[0]) && !is_builtin_value(&segs[0]) && !self.locals.contains(&segs[0]) {
                 self.add(&p.path, DepKind::Function);
             }

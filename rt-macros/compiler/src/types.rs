@@ -99,6 +99,12 @@ impl StructDef {
     pub fn field(&self, name: &str) -> Option<&Ty> {
         self.fields.iter().find(|(n, _)| n == name).map(|(_, t)| t)
     }
+
+    /// Whether it is a tuple struct (`struct Rgb(f32, f32, f32);`): its
+    /// fields are named `0`, `1`, ...
+    pub fn is_tuple(&self) -> bool {
+        self.fields.first().is_some_and(|(n, _)| n == "0")
+    }
 }
 
 /// A C-like enum declared with `#[rt_enum]`: a `u32` in WGSL and one word

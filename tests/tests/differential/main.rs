@@ -538,6 +538,7 @@ mod options;
 mod scalars;
 mod std_scalars;
 mod structs_arrays;
+mod tuple_structs;
 mod tuples;
 mod vectors;
 

@@ -316,6 +316,12 @@ pub fn is_reserved(name: &str) -> bool {
 }
 
 /// The WGSL name of a struct field or module-level identifier.
+/// A struct field's WGSL name: a tuple struct's `0` is `f0` (as a tuple's
+/// element is), any other field's its identifier made safe.
+pub fn wgsl_field(name: &str) -> String {
+    if name.starts_with(|c: char| c.is_ascii_digit()) { format!("f{name}") } else { wgsl_ident(name) }
+}
+
 pub fn wgsl_ident(name: &str) -> String {
     if is_reserved(name) || name.starts_with("rt") || name.starts_with("Rt") || name.starts_with("__") {
         format!("{name}_")

@@ -261,6 +261,9 @@ impl FnLowerer<'_> {
         if options::is_some_path(path) && self.lookup("Some").is_none() {
             return self.option_some(c, want);
         }
+        if let Some(ty) = self.tuple_struct_named(path) {
+            return self.tuple_struct_lit(&ty, &args, c.span());
+        }
         if let Some(seg) = path.segments.iter().find(|s| !s.arguments.is_none()) {
             return Err(Error::unsupported(seg.arguments.span(), "generic arguments", "ray programs are not generic"));
         }

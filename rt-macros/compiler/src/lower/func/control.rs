@@ -418,7 +418,7 @@ impl FnLowerer<'_> {
             self.emit_let(format!("let {t} = {};", scrut.code), &scrut);
             scrut = Val::new(t, scrut.ty);
         }
-        if let Ty::Tuple(_) | Ty::Option(_) = sty {
+        if matches!(&sty, Ty::Tuple(_) | Ty::Option(_)) || matches!(&sty, Ty::Struct(d) if d.is_tuple()) {
             return self.match_tuple(m, want, scrut, sty);
         }
         if !self.is_int(&sty) && !matches!(sty, Ty::Enum(_)) {

@@ -282,7 +282,10 @@ impl FnLowerer<'_> {
             }
             Ty::Struct(_) | Ty::Ray | Ty::Aabb => match t.fields().into_iter().find(|(n, _)| n == name) {
                 Some((_, fty)) => {
-                    Ok(Val::new(format!("{}.{name}", base.code), fty).with_effects(base.effects).with_reads(base.reads))
+                    let field = crate::lower::resolve::wgsl_field(name);
+                    Ok(Val::new(format!("{}.{field}", base.code), fty)
+                        .with_effects(base.effects)
+                        .with_reads(base.reads))
                 }
                 None => Err(Error::new(span, format!("no field `{name}` on `{t}`"))),
             },

@@ -19,6 +19,7 @@
 //! - `infer`: integer inference variables, coercion;
 //! - `tuples`: tuple values, `let` and `match` over tuple patterns;
 //! - `options`: `Option` values, `Some`/`None` and their methods;
+//! - `tuple_structs`: `Rgb(a, b, c)` and its patterns;
 //! - `resume`: the resumable form of a tracing function.
 //!
 //! This file holds the struct, the entry point ([`FnLowerer::function`]),
@@ -50,6 +51,7 @@ mod places;
 mod resume;
 mod sampler_ids;
 mod stmt;
+mod tuple_structs;
 mod tuples;
 
 use eval::int_literal_value;
