@@ -70,6 +70,7 @@ fn is_builtin_type_name(name: &str) -> bool {
         // `Default::default()`, the base of a struct update.
         || name == "Default"
         || name == "Callable"
+        || name == "Option"
         || types::bindless_kind(name).is_some()
         || name == types::BINDLESS_SAMPLER
 }
@@ -157,7 +158,10 @@ impl<'ast> Visit<'ast> for Deps {
                 } else if !is_builtin_type_name(owner) {
                     self.add(&p.path, DepKind::Function);
                 }
-            } else if !is_builtin_fn(&segs[0]) && !self.locals.contains(&segs[0]) {
+            } else if is_capitalised(&segs[0]) && !is_builtin_value(&segs[0]) && !self.locals.contains(&segs[0]) {
+                // `Rgb(a, b, c)`: a tuple struct's constructor.
+                self.add(&p.path, DepKind::Type);
+            } else if !is_builtin_fn(&segs[0]) && !is_builtin_value(&segs[0]) && !self.locals.contains(&segs[0]) {
                 self.add(&p.path, DepKind::Function);
             }
         }

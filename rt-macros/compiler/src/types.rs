@@ -99,6 +99,12 @@ impl StructDef {
     pub fn field(&self, name: &str) -> Option<&Ty> {
         self.fields.iter().find(|(n, _)| n == name).map(|(_, t)| t)
     }
+
+    /// Whether it is a tuple struct (`struct Rgb(f32, f32, f32);`): its
+    /// fields are named `0`, `1`, ...
+    pub fn is_tuple(&self) -> bool {
+        self.fields.first().is_some_and(|(n, _)| n == "0")
+    }
 }
 
 /// A C-like enum declared with `#[rt_enum]`: a `u32` in WGSL and one word
@@ -178,6 +184,10 @@ pub enum Ty {
     /// `(A, B, ...)`, at least one element: a WGSL struct with fields `f0`,
     /// `f1`, ... (see [`Ty::wgsl`]).
     Tuple(Vec<Ty>),
+    /// `Option<T>`: a WGSL struct of a flag and a value, `some` and
+    /// `value` (the value's zero when `None`); never stored where the host
+    /// reads (see [`Ty::is_plain_data`]).
+    Option(Box<Ty>),
     Array(Box<Ty>, u32),
     Ray,
     Aabb,
@@ -211,6 +221,7 @@ impl PartialEq for Ty {
             (BufferId(v, a), BufferId(w, b)) => v == w && a == b,
             (SamplerId(a), SamplerId(b)) => a == b,
             (Tuple(a), Tuple(b)) => a == b,
+            (Option(a), Option(b)) => a == b,
             (Array(a, n), Array(b, m)) => n == m && a == b,
             (Buffer(k, a), Buffer(l, b)) => k == l && a == b,
             (Ref(m, a), Ref(n, b)) => m == n && a == b,
@@ -300,6 +311,7 @@ impl Ty {
             // linker shares it); `rt_` names are never the user's, and the
             // trailing `_` keeps naga from renaming it.
             Ty::Tuple(ts) => format!("rt_tuple_{}_", ts.iter().map(Ty::mangle).collect::<Vec<_>>().join("_")),
+            Ty::Option(t) => format!("rt_option_{}_", t.mangle()),
             Ty::Ray => "RtRay".into(),
             Ty::Aabb => "RtAabb".into(),
             Ty::Object | Ty::TransformKind | Ty::Enum(_) | Ty::Callable(_) | Ty::BufferId(..) | Ty::SamplerId(_) => {
@@ -338,6 +350,7 @@ impl Ty {
             Ty::Struct(s) => s.fields.iter().map(|(_, t)| t.words()).sum(),
             Ty::Array(t, n) => t.words() * n,
             Ty::Tuple(ts) => ts.iter().map(Ty::words).sum(),
+            Ty::Option(t) => 1 + t.words(),
             Ty::Ray => 9,
             Ty::Aabb => 6,
             Ty::Buffer(..) | Ty::Sampler | Ty::SamplerCube => 4,
@@ -359,6 +372,7 @@ impl Ty {
             ],
             Ty::Aabb => vec![("min".into(), Ty::vec(3)), ("max".into(), Ty::vec(3))],
             Ty::Tuple(ts) => ts.iter().enumerate().map(|(i, t)| (format!("f{i}"), t.clone())).collect(),
+            Ty::Option(t) => vec![("some".into(), BOOL), ("value".into(), (**t).clone())],
             _ => Vec::new(),
         }
     }
@@ -382,6 +396,7 @@ impl fmt::Display for Ty {
                 let parts: Vec<String> = ts.iter().map(Ty::to_string).collect();
                 if parts.len() == 1 { write!(f, "({},)", parts[0]) } else { write!(f, "({})", parts.join(", ")) }
             }
+            Ty::Option(t) => write!(f, "Option<{t}>"),
             Ty::Array(t, n) => write!(f, "[{t}; {n}]"),
             Ty::Ray => write!(f, "Ray"),
             Ty::Aabb => write!(f, "Aabb"),
@@ -482,7 +497,7 @@ pub fn unsupported_type_advice(name: &str) -> Option<&'static str> {
         "Vec" | "VecDeque" | "HashMap" | "BTreeMap" | "Box" | "Rc" | "Arc" => {
             "programs have no heap; use a fixed-size array or a buffer variable"
         }
-        "Option" | "Result" => "return a flag or a sentinel value",
+        "Result" => "return an `Option`, or a flag or a sentinel value",
         "DVec2" | "DVec3" | "DVec4" | "DMat3" | "DMat4" => "the GPU computes in f32; use Vec2/Vec3/Vec4 and Mat3/Mat4",
         "Vec3A" => "use Vec3",
         "Quat" => "use Mat3/Mat4",

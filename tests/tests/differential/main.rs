@@ -530,12 +530,15 @@ mod glam_more;
 mod grids;
 mod int_division;
 mod iterators;
+mod let_patterns;
 mod math;
 mod methods;
 mod names;
+mod options;
 mod scalars;
 mod std_scalars;
 mod structs_arrays;
+mod tuple_structs;
 mod tuples;
 mod vectors;
 

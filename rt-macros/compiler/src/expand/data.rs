@@ -26,9 +26,9 @@ pub(super) fn rt_data_impl(s: &syn::ItemStruct, role: StructRole) -> TokenStream
     let name = &s.ident;
     let name_str = name.to_string();
     let wgsl = lower::wgsl_ident(&name_str);
-    let syn::Fields::Named(fields) = &s.fields else {
+    if matches!(s.fields, syn::Fields::Unit) {
         return TokenStream::new();
-    };
+    }
     let mut offset = quote!(0u32);
     let mut field_layouts = Vec::new();
     let mut writes = Vec::new();
@@ -38,9 +38,14 @@ pub(super) fn rt_data_impl(s: &syn::ItemStruct, role: StructRole) -> TokenStream
     // fields of their names and types (as the runtime's layout matches
     // them), zero into the rest.
     let mut triangle_sets = Vec::new();
-    for f in &fields.named {
-        let ident = f.ident.as_ref().unwrap();
-        let fname = ident.to_string();
+    for (i, f) in s.fields.iter().enumerate() {
+        // A tuple struct's fields are `0`, `1`, ...: `self.0`, `Self { 0: .. }`.
+        let ident = match &f.ident {
+            Some(id) => syn::Member::Named(id.clone()),
+            None => syn::Member::Unnamed(syn::Index::from(i)),
+        };
+        let ident = &ident;
+        let fname = f.ident.as_ref().map_or_else(|| i.to_string(), |id| id.to_string());
         let tyname = signature::type_text(&f.ty);
         let FieldCode { words, kind, write, read, read_into, zero } = field_code(ident, &f.ty, &offset);
         field_layouts.push(
@@ -100,14 +105,14 @@ struct FieldCode {
 /// The code of the field `ident: ty` at `offset`: an array element by
 /// element, a type the lowering rejects left out, any other through its
 /// own `RtData`.
-fn field_code(ident: &syn::Ident, ty: &syn::Type, offset: &TokenStream) -> FieldCode {
+fn field_code(ident: &syn::Member, ty: &syn::Type, offset: &TokenStream) -> FieldCode {
     match ty {
         syn::Type::Array(a) => array_field(ident, a, offset),
         syn::Type::Path(p)
-            if p.path
-                .segments
-                .last()
-                .is_some_and(|s| crate::types::unsupported_type_advice(&s.ident.to_string()).is_some()) =>
+            if p.path.segments.last().is_some_and(|s| {
+                let name = s.ident.to_string();
+                crate::types::unsupported_type_advice(&name).is_some() || name == "Option"
+            }) =>
         {
             rejected_field(ident)
         }
@@ -116,7 +121,7 @@ fn field_code(ident: &syn::Ident, ty: &syn::Type, offset: &TokenStream) -> Field
 }
 
 /// An array field, element by element through the element's `RtData`.
-fn array_field(ident: &syn::Ident, a: &syn::TypeArray, offset: &TokenStream) -> FieldCode {
+fn array_field(ident: &syn::Member, a: &syn::TypeArray, offset: &TokenStream) -> FieldCode {
     let elem = &a.elem;
     let len = &a.len;
     let words = quote!(((#len) as u32 * <#elem as ::rt_std::RtData>::LAYOUT.words));
@@ -146,7 +151,7 @@ fn array_field(ident: &syn::Ident, a: &syn::TypeArray, offset: &TokenStream) -> 
 /// A field of a type the subset rejects: the lowering rejects it and says
 /// why, so it is left out of the layout rather than add rustc's `RtData`
 /// errors to that.
-fn rejected_field(ident: &syn::Ident) -> FieldCode {
+fn rejected_field(ident: &syn::Member) -> FieldCode {
     FieldCode {
         words: quote!(0u32),
         kind: quote!(::rt_std::program::LayoutKind::Unit),
@@ -158,7 +163,7 @@ fn rejected_field(ident: &syn::Ident) -> FieldCode {
 }
 
 /// Any other field, through its type's own `RtData`.
-fn plain_field(ident: &syn::Ident, ty: &syn::Type, offset: &TokenStream) -> FieldCode {
+fn plain_field(ident: &syn::Member, ty: &syn::Type, offset: &TokenStream) -> FieldCode {
     let words = quote!(<#ty as ::rt_std::RtData>::LAYOUT.words);
     let kind = quote!(<#ty as ::rt_std::RtData>::LAYOUT.kind);
     let write = quote!(::rt_std::RtData::write_words(&self.#ident, &mut out[(#offset) as usize..]););

@@ -41,7 +41,8 @@ pub(super) fn layout_kind(ty: &Ty) -> TokenStream {
         Ty::Mat(n) => quote!(Matrix(#n)),
         Ty::Struct(_) => quote!(Struct),
         Ty::Enum(_) => quote!(Enum),
-        Ty::Tuple(_) => quote!(Tuple),
+        // A struct of a flag and a value (never in a layout the host reads).
+        Ty::Tuple(_) | Ty::Option(_) => quote!(Tuple),
         Ty::Array(_, n) => quote!(Array(#n)),
         Ty::Ray | Ty::Aabb => quote!(Builtin),
         Ty::Callable(sig) => {

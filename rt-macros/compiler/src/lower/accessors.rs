@@ -89,7 +89,7 @@ impl Accessors {
                 let mut parts = Vec::new();
                 for (fname, fty) in ty.fields() {
                     let f = self.store(&fty);
-                    parts.push(format!("{f}(w + {offset}u, v.{fname});"));
+                    parts.push(format!("{f}(w + {offset}u, v.{});", super::resolve::wgsl_field(&fname)));
                     offset += fty.words();
                 }
                 parts.join("\n    ")

@@ -4,7 +4,7 @@
 //! resumable form with it.
 
 use super::unit::Unit;
-use super::{Entry, Lowered, ModuleCtx, wgsl_ident};
+use super::{Entry, Lowered, ModuleCtx};
 use crate::error::Errors;
 use proc_macro2::Span;
 use std::collections::HashMap;
@@ -28,7 +28,7 @@ pub(super) fn assemble(
     for name in &struct_order {
         let d = &m.structs[name];
         let fields: Vec<String> =
-            d.fields.iter().map(|(n, t)| format!("    {}: {},", wgsl_ident(n), t.wgsl())).collect();
+            d.fields.iter().map(|(n, t)| format!("    {}: {},", super::resolve::wgsl_field(n), t.wgsl())).collect();
         out.types.push((d.wgsl_name.clone(), format!("struct {} {{\n{}\n}}\n", d.wgsl_name, fields.join("\n"))));
     }
     for (name, ty) in m.tuples.borrow().iter() {

@@ -194,10 +194,12 @@ impl<'r, 'a> StructGraph<'r, 'a> {
         self.raw.iter().find(|(s, _)| s.ident == name)
     }
 
-    fn named_fields(&self, name: &str) -> &'a syn::FieldsNamed {
+    /// A struct's fields: named, or a tuple struct's `0`, `1`, ...
+    fn struct_fields(&self, name: &str) -> &'a syn::punctuated::Punctuated<syn::Field, syn::Token![,]> {
         match &self.raw(name).unwrap().0.fields {
-            syn::Fields::Named(f) => f,
-            _ => unreachable!("checked on entering the struct"),
+            syn::Fields::Named(f) => &f.named,
+            syn::Fields::Unnamed(f) => &f.unnamed,
+            syn::Fields::Unit => unreachable!("checked on entering the struct"),
         }
     }
 }
@@ -226,22 +228,20 @@ impl Graph for StructGraph<'_, '_> {
                 if !s.generics.params.is_empty() {
                     return Err(Error::unsupported(s.generics.span(), "a generic struct", "use concrete field types"));
                 }
-                let fields_named = match &s.fields {
-                    syn::Fields::Named(f) => f,
-                    syn::Fields::Unnamed(f) => {
-                        return Err(Error::unsupported(f.span(), "a tuple struct", "use named fields"));
-                    }
+                let n = match &s.fields {
+                    syn::Fields::Named(f) => f.named.len(),
+                    syn::Fields::Unnamed(f) => f.unnamed.len(),
                     syn::Fields::Unit => {
                         return Err(Error::unsupported(s.ident.span(), "a unit struct", "give it at least one field"));
                     }
                 };
-                Ok((0..fields_named.named.len()).map(|i| (StructNode::Field(name.clone(), i), false)).collect())
+                Ok((0..n).map(|i| (StructNode::Field(name.clone(), i), false)).collect())
             }
             StructNode::Field(name, i) => {
                 // Every struct the field's type names (nested, an array's or
                 // a tuple's element, in a callable's signature) first, so
                 // they are built when the field's type is resolved.
-                let ty = &self.named_fields(name).named[*i].ty;
+                let ty = &self.struct_fields(name)[*i].ty;
                 let mut named = Vec::new();
                 idents(quote::quote!(#ty), &mut named);
                 let through_callable =
@@ -261,8 +261,8 @@ impl Graph for StructGraph<'_, '_> {
     fn done(&mut self, n: &StructNode) -> Result<()> {
         match n {
             StructNode::Field(name, i) => {
-                let f = &self.named_fields(name).named[*i];
-                let fname = f.ident.as_ref().unwrap().to_string();
+                let f = &self.struct_fields(name)[*i];
+                let fname = f.ident.as_ref().map_or_else(|| i.to_string(), |id| id.to_string());
                 let ty = resolve_type(&f.ty, &|n| {
                     self.defs
                         .get(n)
@@ -282,7 +282,7 @@ impl Graph for StructGraph<'_, '_> {
             }
             StructNode::Struct(name) => {
                 let (s, role) = *self.raw(name).unwrap();
-                let n = self.named_fields(name).named.len();
+                let n = self.struct_fields(name).len();
                 let fields = (0..n).map(|i| self.fields[&(name.clone(), i)].clone()).collect();
                 let def = Rc::new(StructDef {
                     name: name.to_string(),
@@ -303,7 +303,7 @@ impl Graph for StructGraph<'_, '_> {
         if let (StructNode::Field(holder, i), true) = (from, through_callable) {
             // Legal Rust (an id is one word whatever its signature), but the
             // signature's types are resolved before the struct is built.
-            let f = &self.named_fields(holder).named[*i];
+            let f = &self.struct_fields(holder)[*i];
             let mut named = Vec::new();
             let ty = &f.ty;
             idents(quote::quote!(#ty), &mut named);

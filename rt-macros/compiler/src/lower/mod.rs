@@ -121,6 +121,11 @@ impl ModuleCtx {
                 }
                 self.tuples.borrow_mut().entry(ty.wgsl()).or_insert_with(|| ty.clone());
             }
+            // An `Option` is a struct of its own, declared as a tuple is.
+            Ty::Option(t) => {
+                self.note_tuples(t);
+                self.tuples.borrow_mut().entry(ty.wgsl()).or_insert_with(|| ty.clone());
+            }
             Ty::Array(t, _) | Ty::Ref(_, t) | Ty::Buffer(_, t) | Ty::BufferId(_, t) => self.note_tuples(t),
             _ => {}
         }

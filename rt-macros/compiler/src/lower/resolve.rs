@@ -60,6 +60,9 @@ pub fn resolve_type(ty: &syn::Type, user: &dyn Fn(&str) -> Option<Ty>) -> Result
             if name == types::BINDLESS_SAMPLER {
                 return resolve_sampler_id(seg, user);
             }
+            if name == "Option" {
+                return resolve_option(seg, user);
+            }
             // Before the generic arguments: `Vec<f32>` is a heap type.
             if let Some(advice) = types::unsupported_type_advice(&name) {
                 return Err(Error::unsupported(seg.ident.span(), &format!("the type `{name}`"), advice));
@@ -125,9 +128,12 @@ pub fn resolve_type(ty: &syn::Type, user: &dyn Fn(&str) -> Option<Ty>) -> Result
 
 /// What to store instead of a value that cannot be stored, where there is
 /// one: a bool vector's bits (WGSL's bools have no layout in memory the
-/// host shares).
+/// host shares), an `Option`'s flag and value.
 pub fn store_advice(ty: &Ty) -> String {
     match ty {
+        Ty::Option(t) => format!(
+            ": an `Option` has no memory layout the host shares; store a flag and a value (`hit: bool, value: {t}`, or a sentinel value) and rebuild it with `if hit {{ Some(value) }} else {{ None }}`"
+        ),
         Ty::Vec(_, types::Scalar::Bool) => {
             format!(
                 ": a bool vector has no memory layout the host shares; store `mask.bitmask()` (a `u32`) and rebuild it with `{ty}::new(bits & 1 != 0, ..)`"
@@ -135,6 +141,32 @@ pub fn store_advice(ty: &Ty) -> String {
         }
         _ => String::new(),
     }
+}
+
+/// `Option<T>` of a value a tuple may hold (scalars, vectors, matrices,
+/// arrays, structs, enums, tuples, ids).
+fn resolve_option(seg: &syn::PathSegment, user: &dyn Fn(&str) -> Option<Ty>) -> Result<Ty> {
+    let arg = match &seg.arguments {
+        syn::PathArguments::AngleBracketed(a) if a.args.len() == 1 => match &a.args[0] {
+            syn::GenericArgument::Type(t) => t,
+            other => return Err(Error::new(other.span(), "`Option` takes a type: `Option<f32>`")),
+        },
+        _ => return Err(Error::new(seg.span(), "`Option` takes one type: `Option<f32>`")),
+    };
+    let elem = resolve_type(arg, user)?;
+    let ok = match &elem {
+        Ty::Scalar(_) | Ty::Option(_) => true,
+        Ty::Tuple(ts) => ts.iter().all(|t| !matches!(t, Ty::Unit)),
+        t => t.is_plain_data(),
+    };
+    if !ok {
+        return Err(Error::unsupported(
+            arg.span(),
+            &format!("`Option<{elem}>`"),
+            "an `Option` holds a plain value (a scalar, vector, matrix, array, struct, enum or tuple); keep handles and references apart and pass a flag beside them",
+        ));
+    }
+    Ok(Ty::Option(Box::new(elem)))
 }
 
 /// `Callable<fn(A, ..) -> R>`: arguments and result of plain values.
@@ -190,7 +222,7 @@ pub fn check_callable_value(ty: &Ty, span: proc_macro2::Span, what: &str) -> Res
 /// structs, enums, tuples): not handles, references or `()`.
 pub fn check_tuple_element(ty: &Ty, span: proc_macro2::Span) -> Result<()> {
     let ok = match ty {
-        Ty::Scalar(_) => true,
+        Ty::Scalar(_) | Ty::Option(_) => true,
         Ty::Tuple(ts) => ts.iter().all(|t| !matches!(t, Ty::Unit)),
         t => t.is_plain_data(),
     };
@@ -284,6 +316,12 @@ pub fn is_reserved(name: &str) -> bool {
 }
 
 /// The WGSL name of a struct field or module-level identifier.
+/// A struct field's WGSL name: a tuple struct's `0` is `f0` (as a tuple's
+/// element is), any other field's its identifier made safe.
+pub fn wgsl_field(name: &str) -> String {
+    if name.starts_with(|c: char| c.is_ascii_digit()) { format!("f{name}") } else { wgsl_ident(name) }
+}
+
 pub fn wgsl_ident(name: &str) -> String {
     if is_reserved(name) || name.starts_with("rt") || name.starts_with("Rt") || name.starts_with("__") {
         format!("{name}_")

@@ -19,13 +19,23 @@ use syn::spanned::Spanned;
 use syn::{Expr, parse_quote_spanned};
 
 /// Element `k` of a sequence, as an expression of the counter `k`.
-type Element = Box<dyn Fn(Expr) -> Expr>;
+pub(super) type Element = Box<dyn Fn(Expr) -> Expr>;
 
 /// What runs on an element after the counted part of a chain: a `filter`
 /// test, or a `map` after one.
 enum After {
     Filter(syn::ExprClosure),
     Map(syn::ExprClosure),
+}
+
+/// A chain's counted loop ([`Rewriter::chain_loop`]).
+pub(super) struct ChainLoop {
+    pub setup: Vec<syn::Stmt>,
+    pub count: Expr,
+    /// Sets the value to element `k`, or `continue`s past a filtered one.
+    pub body: Vec<syn::Stmt>,
+    /// Element `k` as an expression, where nothing follows the counted part.
+    pub element: Option<Element>,
 }
 
 /// A chain as a counted sequence (see the module's doc).
@@ -158,6 +168,24 @@ impl Rewriter {
             }
         }
         stmts
+    }
+
+    /// Whether `e` is an iterator chain this file takes (not a bare array).
+    pub(super) fn is_chain(&mut self, e: &Expr) -> bool {
+        self.chain(e, false).is_some()
+    }
+
+    /// The counted loop over the chain `e`, for the reductions other files
+    /// write (`options.rs`): its setup, its count, the statements that set
+    /// `value` to element `k` (or `continue` past a filtered one), and
+    /// element `k` itself where no filter or map comes after the counted
+    /// part.
+    pub(super) fn chain_loop(&mut self, e: &Expr, k: &syn::Ident, value: &syn::Ident) -> Option<ChainLoop> {
+        let seq = self.chain(e, false)?;
+        let body = self.element_stmts(&seq, k, value);
+        let Seq { setup, count, element, after, .. } = seq;
+        let element = after.is_empty().then_some(element);
+        Some(ChainLoop { setup, count, body, element })
     }
 
     /// The sequence `e` yields, if it is a chain: a range, an array

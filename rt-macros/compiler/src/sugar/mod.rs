@@ -3,7 +3,9 @@
 //! core: closures bound to a name, inlined at their calls (`closures.rs`);
 //! iterator loops and reductions over ranges and fixed arrays
 //! (`iterators.rs`), `matches!` and the arms the lowering's `switch` cannot
-//! take, range patterns and guards (`patterns.rs`); then labelled loops,
+//! take, range patterns and guards (`patterns.rs`); `if let`, `while let`
+//! and `let ... else` as that `match` (`lets.rs`); `Option`'s methods that
+//! take closures, as a `match` too (`options.rs`); then labelled loops,
 //! as flags (`labels.rs`). Functions declared in a body are taken out to
 //! be helpers (`nested.rs`).
 //!
@@ -17,7 +19,9 @@
 mod closures;
 mod iterators;
 mod labels;
+mod lets;
 mod nested;
+mod options;
 mod patterns;
 
 use crate::Item;
@@ -101,8 +105,12 @@ impl VisitMut for Rewriter {
         syn::visit_mut::visit_expr_mut(self, e);
         let rewritten = match e {
             syn::Expr::ForLoop(f) => self.for_loop(f),
-            syn::Expr::MethodCall(m) => self.reduction(m),
+            syn::Expr::MethodCall(m) => {
+                self.reduction(m).or_else(|| self.option_reduction(m)).or_else(|| self.option_closure(m))
+            }
             syn::Expr::Match(m) => self.match_chain(m),
+            syn::Expr::If(i) => self.if_let(i),
+            syn::Expr::While(w) => self.while_let(w),
             _ => None,
         };
         if let Some(r) = rewritten {
@@ -118,5 +126,10 @@ impl VisitMut for Rewriter {
             *s = syn::Stmt::Expr(r, m.semi_token);
         }
         syn::visit_mut::visit_stmt_mut(self, s);
+        if let syn::Stmt::Local(l) = s
+            && let Some(r) = self.let_else(l)
+        {
+            *s = r;
+        }
     }
 }

@@ -4,7 +4,9 @@
 //!
 //! Each arm's pattern becomes a condition on the scrutinee: a literal or a
 //! constant is `==`, a range compares both ends, `|` is `||`, `_` and a
-//! binding are true (the binding is a `let` in the arm and in its guard).
+//! binding are true (the binding is a `let` in the arm and in its guard),
+//! a tuple's elements each their own, `Some(p)` the flag and `p` on the
+//! value, `None` the flag's absence.
 //! The last arm is the final `else`: rustc checks the match on the CPU copy,
 //! so the arms are exhaustive and the last one takes what the others left.
 
@@ -100,20 +102,46 @@ fn has_range(p: &syn::Pat) -> bool {
         syn::Pat::Range(_) => true,
         syn::Pat::Or(o) => o.cases.iter().any(has_range),
         syn::Pat::Paren(p) => has_range(&p.pat),
+        syn::Pat::Tuple(t) => t.elems.iter().any(has_range),
+        syn::Pat::Ident(p) => p.subpat.as_ref().is_some_and(|(_, p)| has_range(p)),
+        syn::Pat::TupleStruct(t) => t.elems.iter().any(has_range),
         _ => false,
     }
 }
 
 /// The test that `pat` matches `on`, with the `let`s of its bindings
 /// pushed on `binds`; `None` for a pattern this does not test (a struct,
-/// tuple or variant with fields), which stays a `match` for the lowering
-/// to take or refuse.
+/// a variant with fields other than `Some`), which stays a `match` for the
+/// lowering to take or refuse.
 fn condition(pat: &syn::Pat, on: &Expr, binds: &mut Vec<syn::Stmt>) -> Option<Expr> {
     let span = pat.span();
     Some(match pat {
         syn::Pat::Wild(_) => parse_quote_spanned!(span=> true),
+        // `Option`'s patterns: the value is read only once the flag is
+        // tested (`rt_sugar_value` is the lowering's read of it).
+        syn::Pat::Ident(pi) if pi.ident == "None" && pi.subpat.is_none() => parse_quote_spanned!(span=> #on.is_none()),
+        syn::Pat::TupleStruct(ts) if ts.path.is_ident("Some") && ts.elems.len() == 1 => {
+            let value: Expr = parse_quote_spanned!(span=> #on.rt_sugar_value());
+            let inner = condition(&ts.elems[0], &value, binds)?;
+            parse_quote_spanned!(span=> (#on.is_some() && #inner))
+        }
+        syn::Pat::Tuple(t) => {
+            let mut all = Vec::new();
+            for (i, p) in t.elems.iter().enumerate() {
+                let k = syn::Index::from(i);
+                let elem: Expr = parse_quote_spanned!(span=> #on.#k);
+                all.push(condition(p, &elem, binds)?);
+            }
+            parse_quote_spanned!(span=> (true #(&& #all)*))
+        }
         syn::Pat::Lit(l) => parse_quote_spanned!(span=> #on == #l),
         syn::Pat::Path(p) => parse_quote_spanned!(span=> #on == #p),
+        // `k @ 1..=9`: the binding, and the pattern's test.
+        syn::Pat::Ident(pi) if pi.by_ref.is_none() && pi.subpat.is_some() => {
+            let (id, (_, sub)) = (&pi.ident, pi.subpat.as_ref()?);
+            binds.push(parse_quote_spanned! {span=> let #id = #on; });
+            condition(sub, on, binds)?
+        }
         syn::Pat::Ident(pi) if pi.subpat.is_none() && pi.by_ref.is_none() => {
             let name = pi.ident.to_string();
             if name.chars().next().is_some_and(|c| c.is_ascii_uppercase()) {

@@ -89,6 +89,13 @@ impl FnLowerer<'_> {
 
     /// Lowers `recv.name(args)`.
     pub(super) fn method(&mut self, recv: Val, name: &str, args: &[&Expr], name_span: Span, span: Span) -> Result<Val> {
+        // `sugar/options.rs`'s marker: the receiver itself if an `Option`,
+        // the method the user wrote on anything else.
+        let name = match name.strip_prefix("rt_sugar_option_") {
+            Some(_) if matches!(self.resolved(&recv.ty), Ty::Option(_)) => return Ok(recv),
+            Some(written) => written,
+            None => name,
+        };
         let rt = self.resolved(&recv.ty);
         if let Ty::IntVar(_) = rt {
             // `3.max(x)`: the literal's type comes from the argument.
@@ -112,6 +119,7 @@ impl FnLowerer<'_> {
             Ty::Callable(sig) => return self.callable_call(recv, sig, name, args, name_span, span),
             Ty::BufferId(w, elem) => return self.bindless_method(recv, *w, elem, name, args, name_span, span),
             Ty::SamplerId(shape) => return self.sampler_id_method(recv, shape, name, args, name_span, span),
+            Ty::Option(inner) => return self.option_method(recv, inner, name, args, name_span),
             _ => {}
         }
         let sig = builtins::method_sig(&rt, name).ok_or_else(|| {
@@ -249,6 +257,12 @@ impl FnLowerer<'_> {
         }
         if bindless::is_bindless_item(path) {
             return self.bindless_item(path, Some(&args), want, c.span());
+        }
+        if options::is_some_path(path) && self.lookup("Some").is_none() {
+            return self.option_some(c, want);
+        }
+        if let Some(ty) = self.tuple_struct_named(path) {
+            return self.tuple_struct_lit(&ty, &args, c.span());
         }
         if let Some(seg) = path.segments.iter().find(|s| !s.arguments.is_none()) {
             return Err(Error::unsupported(seg.arguments.span(), "generic arguments", "ray programs are not generic"));

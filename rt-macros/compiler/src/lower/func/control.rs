@@ -14,13 +14,6 @@ impl FnLowerer<'_> {
     }
 
     pub(super) fn if_expr(&mut self, i: &syn::ExprIf, want: Option<&Ty>) -> Result<Val> {
-        if let Expr::Let(l) = &*i.cond {
-            return Err(Error::unsupported(
-                l.let_token.span,
-                "`if let`",
-                "compare the value in a plain `if` (`if x == 0`), or `match` on an integer",
-            ));
-        }
         let cond = self.cond(&i.cond)?;
         let (then_lines, then_val) = self.sub_block(&i.then_branch.stmts, want)?;
         let then_ty = then_val.as_ref().map(|v| self.resolved(&v.ty)).unwrap_or(Ty::Unit);
@@ -425,7 +418,7 @@ impl FnLowerer<'_> {
             self.emit_let(format!("let {t} = {};", scrut.code), &scrut);
             scrut = Val::new(t, scrut.ty);
         }
-        if let Ty::Tuple(_) = sty {
+        if matches!(&sty, Ty::Tuple(_) | Ty::Option(_)) || matches!(&sty, Ty::Struct(d) if d.is_tuple()) {
             return self.match_tuple(m, want, scrut, sty);
         }
         if !self.is_int(&sty) && !matches!(sty, Ty::Enum(_)) {

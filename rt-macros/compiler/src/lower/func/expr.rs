@@ -32,6 +32,9 @@ impl FnLowerer<'_> {
             Expr::Path(p) if p.qself.is_none() && bindless::is_bindless_item(&p.path) => {
                 self.bindless_item(&p.path, None, want, p.span())
             }
+            Expr::Path(p) if p.qself.is_none() && options::is_none_path(&p.path) && self.lookup("None").is_none() => {
+                self.option_none(p, want)
+            }
             Expr::Path(p) => self.path_expr(p),
             Expr::Unary(u) => self.unary(u, want),
             Expr::Binary(b) => self.binary(b, want),
@@ -83,9 +86,11 @@ impl FnLowerer<'_> {
                 Err(Error::unsupported(t.question_token.span, "the `?` operator", "check the condition with if/else"))
             }
             Expr::Range(r) => Err(Error::unsupported(r.span(), "a range outside a `for` loop", "use `for i in a..b`")),
-            Expr::Let(l) => {
-                Err(Error::unsupported(l.let_token.span, "`if let` / `while let`", "compare values with if/else"))
-            }
+            Expr::Let(l) => Err(Error::unsupported(
+                l.let_token.span,
+                "a `let` inside a longer condition (`if let P = e && c`)",
+                "put the rest of the condition in an `if` inside the `if let`",
+            )),
             Expr::Async(a) => Err(Error::unsupported(a.async_token.span, "`async`", "ray programs are synchronous")),
             Expr::Await(a) => Err(Error::unsupported(a.await_token.span, "`.await`", "ray programs are synchronous")),
             Expr::Yield(y) => {
@@ -277,7 +282,10 @@ impl FnLowerer<'_> {
             }
             Ty::Struct(_) | Ty::Ray | Ty::Aabb => match t.fields().into_iter().find(|(n, _)| n == name) {
                 Some((_, fty)) => {
-                    Ok(Val::new(format!("{}.{name}", base.code), fty).with_effects(base.effects).with_reads(base.reads))
+                    let field = crate::lower::resolve::wgsl_field(name);
+                    Ok(Val::new(format!("{}.{field}", base.code), fty)
+                        .with_effects(base.effects)
+                        .with_reads(base.reads))
                 }
                 None => Err(Error::new(span, format!("no field `{name}` on `{t}`"))),
             },

@@ -33,6 +33,7 @@ impl FnLowerer<'_> {
             Ty::Array(e, n) => Ty::Array(Box::new(self.resolved(e)), *n),
             Ty::Ref(m, e) => Ty::Ref(*m, Box::new(self.resolved(e))),
             Ty::Tuple(ts) => Ty::Tuple(ts.iter().map(|t| self.resolved(t)).collect()),
+            Ty::Option(e) => Ty::Option(Box::new(self.resolved(e))),
             other => other.clone(),
         }
     }
@@ -45,6 +46,7 @@ impl FnLowerer<'_> {
             Ty::Array(e, n) => Ty::Array(Box::new(self.settled(&e)), n),
             Ty::Ref(m, e) => Ty::Ref(m, Box::new(self.settled(&e))),
             Ty::Tuple(ts) => Ty::Tuple(ts.iter().map(|t| self.settled(t)).collect()),
+            Ty::Option(e) => Ty::Option(Box::new(self.settled(&e))),
             other => other,
         }
     }
@@ -67,6 +69,7 @@ impl FnLowerer<'_> {
             // open); a mismatch may leave earlier elements unified, which
             // only matters for the error that follows.
             (Ty::Tuple(xs), Ty::Tuple(ys)) => xs.len() == ys.len() && xs.iter().zip(ys).all(|(x, y)| self.unify(x, y)),
+            (Ty::Option(x), Ty::Option(y)) => self.unify(x, y),
             _ => a == b,
         }
     }

@@ -18,6 +18,8 @@
 //! - `buffers`: buffer and sampler access;
 //! - `infer`: integer inference variables, coercion;
 //! - `tuples`: tuple values, `let` and `match` over tuple patterns;
+//! - `options`: `Option` values, `Some`/`None` and their methods;
+//! - `tuple_structs`: `Rgb(a, b, c)` and its patterns;
 //! - `resume`: the resumable form of a tracing function.
 //!
 //! This file holds the struct, the entry point ([`FnLowerer::function`]),
@@ -44,10 +46,12 @@ mod expr;
 mod infer;
 mod intrinsics;
 mod ops;
+mod options;
 mod places;
 mod resume;
 mod sampler_ids;
 mod stmt;
+mod tuple_structs;
 mod tuples;
 
 use eval::int_literal_value;

@@ -76,7 +76,7 @@ impl FnLowerer<'_> {
                 (pi.ident.to_string(), pi.mutability.is_some())
             }
             syn::Pat::Wild(_) => ("_".to_string(), false),
-            syn::Pat::Tuple(_) => {
+            syn::Pat::Tuple(_) | syn::Pat::TupleStruct(_) => {
                 let Some(init) = &l.init else {
                     return Err(Error::new(pat.span(), "a tuple pattern needs a value: `let (a, b) = ...;`"));
                 };

@@ -104,6 +104,13 @@ impl FnLowerer<'_> {
                 Ok(())
             }
             syn::Pat::Paren(p) => self.bind_elements(&p.pat, v, span),
+            syn::Pat::TupleStruct(ts) if !options::is_some_path(&ts.path) => {
+                let fields = self.tuple_struct_fields(ts, &v.ty)?;
+                for (p, (f, fty)) in ts.elems.iter().zip(fields) {
+                    self.bind_elements(p, Val::new(format!("{}.{f}", v.code), fty), span)?;
+                }
+                Ok(())
+            }
             syn::Pat::Wild(_) => Ok(()),
             syn::Pat::Ident(pi) if pi.by_ref.is_none() && pi.subpat.is_none() => {
                 let name = pi.ident.to_string();
@@ -244,7 +251,7 @@ impl FnLowerer<'_> {
     }
 
     /// The conditions one pattern puts on the value `code` of type `ty`.
-    fn element_pattern(
+    pub(super) fn element_pattern(
         &mut self,
         p: &syn::Pat,
         code: &str,
@@ -261,7 +268,15 @@ impl FnLowerer<'_> {
                 Ok(())
             }
             syn::Pat::Paren(pp) => self.element_pattern(&pp.pat, code, ty, conds, names),
+            syn::Pat::TupleStruct(ts) if !options::is_some_path(&ts.path) => {
+                let fields = self.tuple_struct_fields(ts, ty)?;
+                for (ep, (f, fty)) in ts.elems.iter().zip(fields) {
+                    self.element_pattern(ep, &format!("{code}.{f}"), &fty, conds, names)?;
+                }
+                Ok(())
+            }
             syn::Pat::Wild(_) => Ok(()),
+            _ if matches!(self.resolved(ty), Ty::Option(_)) => self.option_pattern(p, code, ty, conds, names),
             _ if matches!(self.resolved(ty), Ty::Tuple(_)) => {
                 Err(Error::unsupported(p.span(), "this pattern for a tuple", "write a tuple pattern, `_` or a name"))
             }
@@ -293,7 +308,7 @@ pub(super) fn has_int_var(t: &Ty) -> bool {
     match t {
         Ty::IntVar(_) => true,
         Ty::Tuple(ts) => ts.iter().any(has_int_var),
-        Ty::Array(t, _) | Ty::Ref(_, t) => has_int_var(t),
+        Ty::Array(t, _) | Ty::Ref(_, t) | Ty::Option(t) => has_int_var(t),
         _ => false,
     }
 }

@@ -1,0 +1,244 @@
+//! `Option<T>`: a WGSL struct of a flag and a value (`Ty::Option`'s
+//! spelling, declared once per module as a tuple is), `some` and `value`,
+//! the value's zero when `None`.
+//!
+//! `Some(x)`; `None`, typed by what its place wants (a `let`'s annotation, a
+//! parameter, the other branch of an `if` or `match`, `None::<T>`); the
+//! methods that take no closure (`is_some`, `is_none`, `unwrap_or`,
+//! `unwrap_or_default`, `or`, `xor`, and `copied`/`cloned`, which change
+//! nothing where elements are values). `unwrap` and `expect` are refused:
+//! the CPU copy would panic where the GPU has no panic to give. Patterns `Some(p)` and `None` are taken
+//! where tuple patterns are (`tuples.rs`); the methods that take closures
+//! (`map`, `and_then`, `filter`, `unwrap_or_else`, `is_some_and`,
+//! `map_or`, ...) are `match`es by the time the lowering sees them
+//! (`sugar/options.rs`).
+
+use super::*;
+
+/// Whether `p` is the path `None` or `Option::None`.
+pub(super) fn is_none_path(p: &syn::Path) -> bool {
+    variant_path(p, "None")
+}
+
+/// Whether `p` is the path `Some` or `Option::Some`.
+pub(super) fn is_some_path(p: &syn::Path) -> bool {
+    variant_path(p, "Some")
+}
+
+fn variant_path(p: &syn::Path, name: &str) -> bool {
+    let segs: Vec<String> = p.segments.iter().map(|s| s.ident.to_string()).collect();
+    let segs: Vec<&str> = segs.iter().map(String::as_str).collect();
+    matches!(segs.as_slice(), [n] | ["Option", n] | ["std" | "core", "option", "Option", n] if *n == name)
+}
+
+/// Whether `t`'s WGSL zero value is its Rust `Default` (an enum's default
+/// is its first variant, whose discriminant may be another number; a
+/// matrix's is the identity).
+fn zero_is_default(t: &Ty) -> bool {
+    match t {
+        Ty::Scalar(_) | Ty::Vec(..) => true,
+        Ty::Tuple(ts) => ts.iter().all(zero_is_default),
+        Ty::Array(t, _) => zero_is_default(t),
+        Ty::Struct(s) => s.fields.iter().all(|(_, t)| zero_is_default(t)),
+        _ => false,
+    }
+}
+
+impl FnLowerer<'_> {
+    /// `Some(x)`: the value, then the struct with its flag set.
+    pub(super) fn option_some(&mut self, c: &syn::ExprCall, want: Option<&Ty>) -> Result<Val> {
+        let [arg] = c.args.iter().collect::<Vec<_>>()[..] else {
+            return Err(Error::new(c.span(), "`Some` takes one value: `Some(x)`"));
+        };
+        let inner = match want.map(|w| self.resolved(w)) {
+            Some(Ty::Option(t)) => Some(*t),
+            _ => None,
+        };
+        let v = self.expr(arg, inner.as_ref())?;
+        let v = self.deref(v);
+        let v = match &inner {
+            Some(t) => self.coerce(v, t, arg.span())?,
+            None => v,
+        };
+        let ety = self.resolved(&v.ty);
+        if !matches!(ety, Ty::IntVar(_) | Ty::Scalar(_) | Ty::Option(_)) && !ety.is_plain_data() {
+            return Err(Error::unsupported(
+                arg.span(),
+                &format!("`Option<{ety}>`"),
+                "an `Option` holds a plain value (a scalar, vector, matrix, array, struct, enum or tuple); keep handles and references apart and pass a flag beside them",
+            ));
+        }
+        let ty = Ty::Option(Box::new(ety));
+        self.note_tuple(&ty);
+        Ok(Val::new(format!("{}(true, {})", ty.wgsl(), v.code), ty).with_effects(v.effects).with_reads(v.reads))
+    }
+
+    /// `None` (or `None::<T>`): the struct's zero value, of the type its
+    /// place wants.
+    pub(super) fn option_none(&mut self, p: &syn::ExprPath, want: Option<&Ty>) -> Result<Val> {
+        let last = p.path.segments.last().unwrap();
+        let ty = match &last.arguments {
+            syn::PathArguments::AngleBracketed(a) if a.args.len() == 1 => match &a.args[0] {
+                syn::GenericArgument::Type(t) => {
+                    let t = self.resolve_type(&syn::parse_quote_spanned!(t.span()=> Option<#t>))?;
+                    if let Some(w) = want {
+                        let v = Val::new("", t.clone());
+                        self.coerce(v, w, p.span())?;
+                    }
+                    t
+                }
+                other => return Err(Error::new(other.span(), "`None` takes a type: `None::<f32>`")),
+            },
+            syn::PathArguments::None => match want.map(|w| self.resolved(w)) {
+                Some(t @ Ty::Option(_)) => t,
+                Some(other) if other.is_value() => {
+                    return Err(Error::new(p.span(), format!("mismatched types: expected `{other}`, found `Option`")));
+                }
+                _ => {
+                    return Err(Error::new(
+                        p.span(),
+                        "the type of this `None` is not known here: annotate the binding (`let o: Option<f32> = None;`) or write `None::<f32>`",
+                    ));
+                }
+            },
+            other => return Err(Error::new(other.span(), "`None` takes one type: `None::<f32>`")),
+        };
+        self.note_tuple(&ty);
+        Ok(Val::new(format!("{}()", ty.wgsl()), ty))
+    }
+
+    /// `o.name(args)` on an `Option<T>`.
+    pub(super) fn option_method(
+        &mut self,
+        recv: Val,
+        inner: &Ty,
+        name: &str,
+        args: &[&Expr],
+        name_span: Span,
+    ) -> Result<Val> {
+        let opt = Ty::Option(Box::new(inner.clone()));
+        let arity = match name {
+            "is_some" | "is_none" | "rt_sugar_value" | "unwrap_or_default" | "copied" | "cloned" => 0,
+            "unwrap_or" | "or" | "xor" => 1,
+            "unwrap" | "expect" => {
+                return Err(Error::unsupported(
+                    name_span,
+                    &format!("`{name}` on an `Option`"),
+                    "a `None` would panic on the CPU and has nothing to stop on the GPU; use `unwrap_or(..)`, `if let Some(x) = o`, `let Some(x) = o else { return; };` or `match`",
+                ));
+            }
+            _ => {
+                return Err(Error::new(
+                    name_span,
+                    format!(
+                        "no method `{name}` on `{opt}` in ray programs: programs call `is_some`, `is_none`, `unwrap_or`, `unwrap_or_else`, `unwrap_or_default`, `copied`, `map`, `map_or`, `and_then`, `filter`, `is_some_and`, `or`, `xor`, or `match` on `Some(x)` / `None`"
+                    ),
+                ));
+            }
+        };
+        if args.len() != arity {
+            return Err(Error::new(
+                name_span,
+                format!("`Option::{name}` takes {arity} argument(s), found {}", args.len()),
+            ));
+        }
+        let (effects, reads) = (recv.effects, recv.reads);
+        match name {
+            // `arr.iter().min().copied()`: elements are values here.
+            "copied" | "cloned" => return Ok(recv),
+            "is_some" => {
+                return Ok(Val::new(format!("{}.some", recv.code), BOOL).with_effects(effects).with_reads(reads));
+            }
+            "is_none" => {
+                return Ok(Val::new(format!("!({}.some)", recv.code), BOOL).with_effects(effects).with_reads(reads));
+            }
+            // The value of an option a pattern has tested (`sugar/`'s
+            // conditions); not a name user code reaches.
+            "rt_sugar_value" => {
+                return Ok(Val::new(format!("{}.value", recv.code), inner.clone())
+                    .with_effects(effects)
+                    .with_reads(reads));
+            }
+            "unwrap_or_default" if !zero_is_default(inner) => {
+                return Err(Error::unsupported(
+                    name_span,
+                    &format!("`unwrap_or_default` on `{opt}`"),
+                    "the default of an enum (its first variant) or a matrix (the identity) is not the zero WGSL has; write `unwrap_or(..)` with the value",
+                ));
+            }
+            "unwrap_or_default" => {
+                return Ok(Val::new(format!("{}.value", recv.code), inner.clone())
+                    .with_effects(effects)
+                    .with_reads(reads));
+            }
+            _ => {}
+        }
+        // The receiver once, then the argument (Rust evaluates both).
+        let o = self.fresh("opt");
+        self.emit_let(format!("let {o} = {};", recv.code), &recv);
+        let t = self.tmp();
+        match name {
+            "unwrap_or" | "or" | "xor" => {
+                let want = if name == "unwrap_or" { inner.clone() } else { opt.clone() };
+                let d = self.expr(args[0], Some(&want))?;
+                let d = self.deref(d);
+                let d = self.coerce(d, &want, args[0].span())?;
+                let pick = match name {
+                    "unwrap_or" => format!("if {o}.some {{\n    {t} = {o}.value;\n}}"),
+                    "or" => format!("if {o}.some {{\n    {t} = {o};\n}}"),
+                    _ => format!(
+                        "if {o}.some && {t}.some {{\n    {t} = {}();\n}} else if {o}.some {{\n    {t} = {o};\n}}",
+                        opt.wgsl()
+                    ),
+                };
+                self.emit(format!("var {t}: {} = {};", want.wgsl(), d.code));
+                self.emit(pick);
+                Ok(Val::new(t, want))
+            }
+            _ => unreachable!("the arities above"),
+        }
+    }
+
+    /// The conditions a pattern puts on the option `code` of type `ty`
+    /// (`Some(p)`, `None`, a name), for `tuples.rs`'s `if` chains.
+    pub(super) fn option_pattern(
+        &mut self,
+        p: &syn::Pat,
+        code: &str,
+        ty: &Ty,
+        conds: &mut Vec<String>,
+        names: &mut Vec<(String, String, Ty)>,
+    ) -> Result<()> {
+        let Ty::Option(inner) = self.resolved(ty) else {
+            return Err(Error::new(p.span(), format!("mismatched types: expected `Option`, found `{ty}`")));
+        };
+        match p {
+            syn::Pat::TupleStruct(ts) if is_some_path(&ts.path) && ts.elems.len() == 1 => {
+                conds.push(format!("{code}.some"));
+                // `Some(&m)` of an iterator's element: elements are values.
+                let elem = match &ts.elems[0] {
+                    syn::Pat::Reference(r) => &*r.pat,
+                    p => p,
+                };
+                self.element_pattern(elem, &format!("{code}.value"), &inner, conds, names)
+            }
+            syn::Pat::Ident(pi) if pi.ident == "None" && pi.subpat.is_none() && self.lookup("None").is_none() => {
+                conds.push(format!("!{code}.some"));
+                Ok(())
+            }
+            syn::Pat::Path(pp) if pp.qself.is_none() && is_none_path(&pp.path) => {
+                conds.push(format!("!{code}.some"));
+                Ok(())
+            }
+            syn::Pat::Ident(pi) if pi.by_ref.is_none() && pi.subpat.is_none() && pi.mutability.is_none() => {
+                names.push((pi.ident.to_string(), code.to_string(), self.resolved(ty)));
+                Ok(())
+            }
+            other => Err(Error::unsupported(
+                other.span(),
+                "this pattern for an `Option`",
+                "match `Some(p)`, `None`, `_` or a name (without `mut`: copy it into a `let mut` in the arm)",
+            )),
+        }
+    }
+}

@@ -1,0 +1,132 @@
+//! `Option<T>`: built with `Some`/`None`, returned from and passed to
+//! helpers, matched, destructured with `if let`, `while let` and
+//! `let ... else`, and through its methods with and without closures, at
+//! scalars, vectors, tuples, arrays and structs.
+
+// The forms under test are spelled out: a search loop, a closure for a
+// constant default, a `None` literal's default.
+#![allow(clippy::manual_find, clippy::unnecessary_lazy_evaluations, clippy::unnecessary_literal_unwrap)]
+
+use super::*;
+
+/// The first index whose element exceeds `x`, if any: `Option` as a result.
+#[rt_function]
+pub fn first_above(arr: [f32; 4], x: f32) -> Option<u32> {
+    for i in 0..4u32 {
+        if arr[i as usize] > x {
+            return Some(i);
+        }
+    }
+    None
+}
+
+/// `Option` as a parameter and a result, through a closure method.
+#[rt_function]
+pub fn halved(o: Option<f32>) -> Option<f32> {
+    o.map(|v| v * 0.5)
+}
+
+/// A struct carried in an `Option`.
+#[rt_struct]
+pub struct Hit {
+    pub t: f32,
+    pub id: u32,
+}
+
+/// The nearer of two hits, either maybe missing.
+#[rt_function]
+pub fn nearer(a: Option<Hit>, b: Option<Hit>) -> Option<Hit> {
+    match (a, b) {
+        (Some(x), Some(y)) => {
+            if y.t < x.t {
+                Some(y)
+            } else {
+                Some(x)
+            }
+        }
+        (Some(x), None) => Some(x),
+        (None, y) => y,
+    }
+}
+
+/// `let ... else` on an `Option` in a helper.
+#[rt_function]
+pub fn id_or_sentinel(h: Option<Hit>) -> u32 {
+    let Some(hit) = h else {
+        return 99;
+    };
+    hit.id
+}
+
+differential! {
+    /// Option values and their methods.
+    fn options {
+        /// Built, matched with guards and ranges, `if let`, methods
+        /// without closures.
+        values(n: u32, x: f32) -> [f32; 4] over pairs(&[0, 1, 2, 3, 7, 10, 4000000000], &[-1.5, 0.0, 0.5, 1.0, 2.5, 4.0]) => {
+            let arr = [0.25, 1.0, 2.0, 3.5];
+            let found = first_above(arr, x);
+            let a = match found {
+                Some(0) => 10.0,
+                Some(k @ 1..=2) => k as f32,
+                Some(k) if k > 2 => 5.0,
+                Some(_) => 6.0,
+                None => -1.0,
+            };
+            let small = if n < 5 { Some(n) } else { None };
+            let mut b = 0.0;
+            if let Some(k) = small {
+                b = k as f32 + small.is_some() as u32 as f32;
+            } else if small.is_none() {
+                b = -2.0;
+            }
+            let none: Option<f32> = None;
+            let c = none.or(Some(x)).unwrap_or(7.0) + none.unwrap_or_default() + Some(x).xor(none).unwrap_or(1.0);
+            let d = found.map(|i| arr[i as usize]).unwrap_or(x);
+            [a, b, c, d]
+        }
+        /// Closure methods, `while let`, `let ... else` in a loop, vectors,
+        /// tuples and arrays inside.
+        closures(n: u32, x: f32) -> [f32; 4] over pairs(&[0, 1, 2, 5, 9, 12], &[-2.0, 0.0, 0.75, 3.0]) => {
+            let o = Some(n).filter(|k| *k % 3 != 0).and_then(|k| if k < 9 { Some(k as f32) } else { None });
+            let a = o.map_or(-1.0, |v| v * 2.0) + halved(o).unwrap_or_else(|| 0.25);
+            let mut left = Some(n % 6);
+            let mut sum = 0;
+            while let Some(k) = left {
+                sum += k;
+                left = if k > 0 { Some(k - 1) } else { None };
+            }
+            let mut count = 0.0;
+            for i in 0..4 {
+                let Some(j) = first_above([0.5, 1.5, 2.5, 3.5], x + i as f32) else { continue };
+                count += j as f32;
+            }
+            let pair: Option<(u32, Vec3)> = if x > 0.0 { Some((n, Vec3::new(x, 1.0, 2.0))) } else { None };
+            let p = match pair {
+                Some((k, v)) if k > 1 => v.x + v.z,
+                Some((_, v)) => v.y,
+                None => 0.0,
+            };
+            let arr: Option<[f32; 3]> = Some([x, 2.0, 3.0]);
+            let q = arr.is_some_and(|a| a[0] > 0.5) as u32 as f32 + Some(x).is_none_or(|y| y > 1.0) as u32 as f32;
+            [a, sum as f32 + count, p, q]
+        }
+        /// Structs in options, through helpers.
+        structs(n: u32, x: f32) -> [u32; 2] over pairs(&[0, 1, 2, 3], &[0.0, 1.0, 2.0]) => {
+            let a = if n % 2 == 0 { Some(Hit { t: x, id: n }) } else { None };
+            let b = if n > 1 { Some(Hit { t: 1.0, id: 50 + n }) } else { None };
+            let near = nearer(a, b);
+            [id_or_sentinel(near), near.map_or(0, |h| h.id + 1)]
+        }
+        /// The reductions of iterator chains that return an `Option`.
+        reductions(n: u32, x: f32) -> [f32; 4] over pairs(&[0, 1, 2, 5, 9, 14], &[-1.0, 0.5, 1.5, 2.5, 5.0]) => {
+            let arr = [x, 1.0, 2.0, 3.0];
+            let a = arr.iter().position(|v| *v > 1.5).map_or(-1.0, |i| i as f32);
+            let b = [3u32, n, 2].iter().min().copied().unwrap_or(0) as f32
+                + (0..n).map(|i| i * 3 % 7).max().unwrap_or(100) as f32;
+            let c = arr.iter().find(|v| **v > 1.5).copied().unwrap_or(-2.0);
+            let d = (0..n).filter(|i| i % 2 == 1).position(|i| i > 4).map_or(-1.0, |p| p as f32);
+            [a, b, c, d]
+        }
+    }
+}
