@@ -53,6 +53,14 @@ pub fn rt_impl(attr: TokenStream, item: TokenStream) -> TokenStream {
     rt_compiler::expand::rt_impl(attr.into(), item.into()).into()
 }
 
+/// Declares a trait programs may implement (`#[rt_impl] impl Trait for
+/// Type`, the type declared `(impl Trait)`) and call with static dispatch:
+/// methods with or without default bodies and associated constants.
+#[proc_macro_attribute]
+pub fn rt_trait(attr: TokenStream, item: TokenStream) -> TokenStream {
+    rt_compiler::expand::rt_trait(attr.into(), item.into()).into()
+}
+
 /// Declares a constant programs may use.
 #[proc_macro_attribute]
 pub fn rt_const(attr: TokenStream, item: TokenStream) -> TokenStream {

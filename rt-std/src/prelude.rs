@@ -14,7 +14,9 @@ pub use glam::{
     bvec3, bvec4, ivec2, ivec3, ivec4, uvec2, uvec3, uvec4, vec2, vec3, vec4,
 };
 
-pub use rt_macros::{rt_attributes, rt_const, rt_enum, rt_function, rt_impl, rt_payload, rt_program, rt_struct};
+pub use rt_macros::{
+    rt_attributes, rt_const, rt_enum, rt_function, rt_impl, rt_payload, rt_program, rt_struct, rt_trait,
+};
 
 pub use crate::rt_printf;
 

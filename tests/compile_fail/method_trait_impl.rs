@@ -1,4 +1,5 @@
-// A trait impl under #[rt_impl]: ray programs have no traits.
+// An impl of one of std's traits under #[rt_impl]: ray programs implement
+// traits declared with #[rt_trait].
 use rt_std::prelude::*;
 
 #[rt_struct(impl)]

@@ -1,6 +1,8 @@
-// A trait object parameter: WGSL has no dynamic dispatch.
+// A trait object parameter: traits dispatch statically in ray programs;
+// the code chosen at run time is a callable program called through an id.
 use rt_std::prelude::*;
 
+#[rt_trait]
 pub trait Shade {
     fn shade(&self) -> f32;
 }

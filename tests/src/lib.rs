@@ -39,6 +39,8 @@ pub mod enums;
 pub mod exceptions;
 #[path = "../snapshots/in/fuzz_regressions.rs"]
 pub mod fuzz_regressions;
+#[path = "../snapshots/in/generics.rs"]
+pub mod generics;
 #[path = "../snapshots/in/glam_added.rs"]
 pub mod glam_added;
 #[path = "../snapshots/in/glam_arrays.rs"]
@@ -101,6 +103,8 @@ pub mod texture_mips;
 pub mod textures;
 #[path = "../snapshots/in/trace_in_match.rs"]
 pub mod trace_in_match;
+#[path = "../snapshots/in/traits.rs"]
+pub mod traits;
 #[path = "../snapshots/in/tuples.rs"]
 pub mod tuples;
 #[path = "../snapshots/in/vectors.rs"]

@@ -223,3 +223,20 @@ fn the_fixed_seed_generates_array_loops() {
     eprintln!("{what}");
     assert!(iter >= 30 && rev >= 15 && numbered >= 15, "{what}");
 }
+
+/// The fixed seed calls the generic helper every program declares
+/// (`fuzz_pick<T>`) in a fair share of its programs, several times in some
+/// (at the types of their arguments).
+#[test]
+fn the_fixed_seed_calls_a_generic_helper() {
+    let cfg = fuzz::Config::from_env(0x5eed, 300);
+    let (some, several) = fuzz::on_big_stack(move || {
+        let calls: Vec<usize> = (cfg.first..cfg.first + cfg.programs)
+            .map(|id| fuzz::generate::program(cfg.seed, id).source().matches("fuzz_pick(").count())
+            .collect();
+        (calls.iter().filter(|&&n| n >= 1).count(), calls.iter().filter(|&&n| n >= 3).count())
+    });
+    let what = format!("of 300 programs, {some} call the generic `fuzz_pick`, {several} three times or more");
+    eprintln!("{what}");
+    assert!(some >= 30 && several >= 5, "{what}");
+}

@@ -26,11 +26,14 @@
 //! borrow), as is everything inside macro invocations and `const` items.
 //!
 //! A function that names a scalar type the subset refuses (`u64`, `f64`,
-//! `u8`, ...: [`names_refused_scalar`]), or that is generic, is left as
-//! written: the lowering refuses it with its own message, and
-//! `rt_std::arith`, which has no such types and which a type parameter's
-//! bounds do not name, would only add rustc's errors about its traits
-//! after it.
+//! `u8`, ...: [`names_refused_scalar`]) or takes an `impl Trait` is left
+//! as written: the lowering refuses it with its own message, and
+//! `rt_std::arith`, which has no such types, would only add rustc's errors
+//! about its traits after it. A generic function is left as written too:
+//! its bounds name std's operator traits, not `rt_std::arith`'s, so its
+//! CPU copy keeps Rust's operators (an instance at an integer type that
+//! overflows panics in a debug build where WGSL wraps; at float and
+//! vector types the two agree).
 
 use proc_macro2::Span;
 use syn::spanned::Spanned;
@@ -39,7 +42,9 @@ use syn::{BinOp, Expr, UnOp};
 
 /// Rewrites `f`'s body in place.
 pub fn rewrite_fn(f: &mut syn::ItemFn) {
-    if names_refused_scalar(f) || !f.sig.generics.params.is_empty() {
+    let impl_trait =
+        f.sig.inputs.iter().any(|a| matches!(a, syn::FnArg::Typed(pt) if matches!(&*pt.ty, syn::Type::ImplTrait(_))));
+    if names_refused_scalar(f) || !f.sig.generics.params.is_empty() || impl_trait {
         return;
     }
     // `&mut` parameters (`m: &mut Mat3`, `&mut self`): an in-place method's

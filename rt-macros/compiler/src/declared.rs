@@ -75,7 +75,7 @@ fn named_checks(deps: &[Dep]) -> TokenStream {
         let Some(last) = d.path.segments.last() else { continue };
         let ident = &last.ident;
         let require = match d.kind {
-            DepKind::Type => continue,
+            DepKind::Type | DepKind::Trait => continue,
             DepKind::Value => quote!(__require_rt_const),
             DepKind::Function => quote!(__require_rt_function),
         };

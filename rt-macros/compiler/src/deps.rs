@@ -18,6 +18,9 @@ pub enum DepKind {
     Value,
     /// A function: the callee of a call.
     Function,
+    /// A trait: the one an `#[rt_impl]` implements (an `#[rt_trait]`,
+    /// whose link hands out its default methods).
+    Trait,
 }
 
 /// A dependency: its path and what the use says it is.
@@ -147,7 +150,9 @@ impl<'ast> Visit<'ast> for Deps {
             if segs.len() >= 2 {
                 // `Type::function()`: a user struct's `default()`.
                 let owner = &segs[segs.len() - 2];
-                if !is_builtin_type_name(owner) && is_capitalised(owner) {
+                if segs.len() == 2 && self.locals.contains(owner) {
+                    // `T::default()`, `T` a type parameter.
+                } else if !is_builtin_type_name(owner) && is_capitalised(owner) {
                     let mut owner_path = p.path.clone();
                     owner_path.segments.pop();
                     let owner_path = syn::Path {
@@ -163,6 +168,10 @@ impl<'ast> Visit<'ast> for Deps {
                 self.add(&p.path, DepKind::Type);
             } else if !is_builtin_fn(&segs[0]) && !is_builtin_value(&segs[0]) && !self.locals.contains(&segs[0]) {
                 self.add(&p.path, DepKind::Function);
+            }
+            // A turbofish's types: `lerp::<Rgb>(..)`.
+            for seg in &p.path.segments {
+                self.visit_path_arguments(&seg.arguments);
             }
         }
         for a in &c.args {
@@ -183,6 +192,10 @@ impl<'ast> Visit<'ast> for Deps {
             }
         } else {
             let owner = &segs[segs.len() - 2];
+            if segs.len() == 2 && self.locals.contains(owner) {
+                // `T::ZERO`, `T` a type parameter.
+                return;
+            }
             let of_type = is_capitalised(owner) && !is_builtin_type_name(owner) && owner != "TransformKind";
             if is_capitalised(&last) && !of_type && !is_builtin_type_name(owner) && owner != "consts" {
                 self.add(&p.path, DepKind::Value);
@@ -242,9 +255,10 @@ pub fn of_fn(f: &syn::ItemFn) -> Vec<Dep> {
     // Collect fn-local consts first so their uses are not dependencies.
     d.visit_block(&f.block);
     let mut locals = std::mem::take(&mut d.locals);
-    // Generic parameters are not types to collect (the lowering rejects
-    // generic functions).
+    // Generic parameters are not items to collect (a type parameter in a
+    // type, a const one in an expression).
     locals.extend(f.sig.generics.type_params().map(|t| t.ident.to_string()));
+    locals.extend(f.sig.generics.const_params().map(|c| c.ident.to_string()));
     let mut d = Deps { self_name: f.sig.ident.to_string(), locals, ..Deps::default() };
     d.visit_signature(&f.sig);
     d.visit_block(&f.block);
@@ -264,6 +278,11 @@ pub fn of_struct(s: &syn::ItemStruct) -> Vec<Dep> {
 pub fn of_impl(i: &syn::ItemImpl) -> Vec<Dep> {
     let self_name = crate::methods::self_name(i).unwrap_or_default();
     let mut d = Deps { self_name: self_name.clone(), ..Deps::default() };
+    if let Some((_, path, _)) = &i.trait_
+        && !crate::traits::is_std_trait(path)
+    {
+        d.add(path, DepKind::Trait);
+    }
     for item in &i.items {
         match item {
             syn::ImplItem::Fn(f) => {
@@ -291,5 +310,35 @@ pub fn of_const(c: &syn::ItemConst) -> Vec<Dep> {
     let mut d = Deps { self_name: c.ident.to_string(), ..Deps::default() };
     d.visit_type(&c.ty);
     d.visit_expr(&c.expr);
+    d.deps
+}
+
+/// Dependencies of an `#[rt_trait]`: what its signatures and default
+/// bodies name.
+pub fn of_trait(t: &syn::ItemTrait) -> Vec<Dep> {
+    let mut d = Deps { self_name: t.ident.to_string(), ..Deps::default() };
+    for item in &t.items {
+        match item {
+            syn::TraitItem::Fn(f) => {
+                let mut locals = Deps::default();
+                if let Some(b) = &f.default {
+                    locals.visit_block(b);
+                }
+                d.locals = locals.locals;
+                d.visit_signature(&f.sig);
+                if let Some(b) = &f.default {
+                    d.visit_block(b);
+                }
+            }
+            syn::TraitItem::Const(c) => {
+                d.locals.clear();
+                d.visit_type(&c.ty);
+                if let Some((_, e)) = &c.default {
+                    d.visit_expr(e);
+                }
+            }
+            _ => {}
+        }
+    }
     d.deps
 }

@@ -50,6 +50,7 @@ pub mod lower;
 pub mod methods;
 pub mod signature;
 pub mod sugar;
+pub mod traits;
 pub mod typed;
 pub mod types;
 pub mod validate;
@@ -99,8 +100,10 @@ pub enum Item {
     /// `#[rt_enum]`: a C-like enum.
     Enum(syn::ItemEnum),
     /// `#[rt_impl]`: the methods, associated functions and constants of
-    /// a struct (see [`methods`]).
+    /// a struct (see [`methods`]), or its impl of an `#[rt_trait]`.
     Impl(syn::ItemImpl),
+    /// `#[rt_trait]`: a trait with static dispatch (see [`traits`]).
+    Trait(syn::ItemTrait),
 }
 
 impl Item {
@@ -111,7 +114,8 @@ impl Item {
             Item::Const(c) => c.ident.to_string(),
             Item::Enum(e) => e.ident.to_string(),
             // Not a name Rust code can spell: an impl never shadows an item.
-            Item::Impl(i) => methods::impl_key(&methods::self_name(i).unwrap_or_default()),
+            Item::Impl(i) => methods::impl_key_of(i),
+            Item::Trait(t) => t.ident.to_string(),
         }
     }
 }
@@ -130,6 +134,7 @@ pub fn declared(item: &syn::Item) -> Option<Result<Declared, Error>> {
         syn::Item::Const(c) => &c.attrs,
         syn::Item::Enum(e) => &e.attrs,
         syn::Item::Impl(i) => &i.attrs,
+        syn::Item::Trait(t) => &t.attrs,
         _ => return None,
     };
     let attr = attrs.iter().find(|a| {
@@ -145,6 +150,7 @@ pub fn declared(item: &syn::Item) -> Option<Result<Declared, Error>> {
                     | "rt_const"
                     | "rt_enum"
                     | "rt_impl"
+                    | "rt_trait"
             )
         })
     })?;
@@ -171,6 +177,12 @@ pub fn declared(item: &syn::Item) -> Option<Result<Declared, Error>> {
                     return Err(e.0.into_iter().next().expect("an error"));
                 }
                 Declared::Item(Item::Impl(i.clone()))
+            }
+            ("rt_trait", syn::Item::Trait(t)) => {
+                if let Err(e) = traits::check_trait(t) {
+                    return Err(e.0.into_iter().next().expect("an error"));
+                }
+                Declared::Item(Item::Trait(t.clone()))
             }
             (n, _) => {
                 return Err(Error::new(

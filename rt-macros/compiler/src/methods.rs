@@ -17,7 +17,8 @@
 //! names; the lowering resolves a call by the receiver's type, as rustc
 //! does.
 //!
-//! One `#[rt_impl]` block per type. The impl's own dependencies leave out
+//! One inherent `#[rt_impl]` block per type (and one per `#[rt_trait]` it
+//! implements, see `traits`). The impl's own dependencies leave out
 //! its type (the struct's chain is collecting it); a method that names a
 //! helper or another type whose own chain names this type back is a cycle
 //! the chain cannot close (rustc then cannot find one of the macros):
@@ -52,6 +53,25 @@ pub fn impl_key(ty: &str) -> String {
     format!("impl {ty}")
 }
 
+/// The item name of an impl block: `impl Type`, or `impl Trait for Type`
+/// for an impl of an `#[rt_trait]` (see `traits`).
+pub fn impl_key_of(i: &syn::ItemImpl) -> String {
+    let ty = self_name(i).unwrap_or_default();
+    match crate::traits::trait_name(i) {
+        Some(t) => format!("impl {t} for {ty}"),
+        None => impl_key(&ty),
+    }
+}
+
+/// The link an impl block exports: `__rt_impl_Type`, or
+/// `__rt_impl_Type__Trait` for a trait impl.
+pub fn impl_macro_ident_of(i: &syn::ItemImpl, ty: &syn::Ident) -> syn::Ident {
+    match crate::traits::trait_name(i) {
+        Some(t) => crate::traits::impl_macro_ident(ty, &syn::Ident::new(&t, ty.span())),
+        None => macro_ident(ty),
+    }
+}
+
 /// The macro `#[rt_impl]` exports for `ty`, which `#[rt_struct(impl)]`
 /// collects.
 pub fn macro_ident(ty: &syn::Ident) -> syn::Ident {
@@ -79,12 +99,18 @@ pub fn const_wgsl_name(ty: &str, name: &str) -> String {
 /// fault. The methods' bodies are checked where they are lowered.
 pub fn check_impl(i: &syn::ItemImpl) -> Result<(), Errors> {
     let mut errors = Errors::default();
-    if let Some((_, path, _)) = &i.trait_ {
-        errors.push(Error::unsupported(
-            path.span(),
-            "a trait impl",
-            "ray programs have no traits: write the methods in an inherent `impl` block",
-        ));
+    if let Some((bang, path, _)) = &i.trait_ {
+        if crate::traits::is_std_trait(path) {
+            let name = path.segments.last().map(|s| s.ident.to_string()).unwrap_or_default();
+            errors.push(Error::unsupported(
+                path.span(),
+                &format!("an impl of std's `{name}`"),
+                "ray programs implement traits declared with #[rt_trait]; write the operation as a method \
+                 in an inherent `impl` block",
+            ));
+        } else if let Some(b) = bang {
+            errors.push(Error::unsupported(b.span(), "a negative impl", "implement the trait"));
+        }
     }
     if !i.generics.params.is_empty() {
         errors.push(Error::unsupported(i.generics.span(), "a generic impl", "write the impl for one concrete type"));

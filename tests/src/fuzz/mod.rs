@@ -12,7 +12,9 @@
 //!    nested `if`/`match`/loops, helpers (one taking `&mut u32`), buffer
 //!    loads and stores, tuple literals read by `.0`/`.1`, and integers
 //!    through an `#[rt_enum]` every program declares (`FuzzKind`, matched
-//!    exhaustively); helpers whose first parameter is the last struct are
+//!    exhaustively), a generic helper every program declares
+//!    (`fuzz_pick<T>`) called at the types of its arguments (scalars,
+//!    vectors, structs); helpers whose first parameter is the last struct are
 //!    often printed as its `#[rt_impl]` methods (`self`, `&self` or `&mut
 //!    self`), called as `x.name(..)` or `Struct::name(x, ..)` (see
 //!    `ast::Method`). The AST prints as the Rust source of an

@@ -133,7 +133,7 @@ impl Editor {
             Expr::Path(_, _, args) | Expr::Free(_, args) => args.clone(),
             Expr::If(_, t, f) => t.tail.iter().chain(f.tail.iter()).cloned().collect(),
             Expr::Match(_, arms) => arms.iter().filter_map(|a| a.body.tail.clone()).collect(),
-            Expr::TupleField(xs, k) => vec![xs[*k].clone()],
+            Expr::TupleField(xs, k) | Expr::Pick(xs, k) => vec![xs[*k].clone()],
             _ => Vec::new(),
         };
         for c in children {
@@ -148,7 +148,7 @@ impl Editor {
             | Expr::Cast(x, _)
             | Expr::ArrayRepeat(x, _)
             | Expr::EnumRound(x) => self.expr(x),
-            Expr::TupleField(xs, _) => xs.iter_mut().for_each(|a| self.expr(a)),
+            Expr::TupleField(xs, _) | Expr::Pick(xs, _) => xs.iter_mut().for_each(|a| self.expr(a)),
             Expr::Index(a, i) | Expr::Bin(_, a, i) => {
                 self.expr(a);
                 self.expr(i);
@@ -207,7 +207,7 @@ fn renumber(b: &mut Block, removed: usize) {
             | Expr::Cast(x, _)
             | Expr::ArrayRepeat(x, _)
             | Expr::EnumRound(x) => expr(x, r),
-            Expr::TupleField(xs, _) => xs.iter_mut().for_each(|a| expr(a, r)),
+            Expr::TupleField(xs, _) | Expr::Pick(xs, _) => xs.iter_mut().for_each(|a| expr(a, r)),
             Expr::Index(a, c) | Expr::Bin(_, a, c) => {
                 expr(a, r);
                 expr(c, r);

@@ -60,7 +60,8 @@
 //! program's worst float difference in ULPs.
 
 // The programs spell things out on purpose: `a == a`, `x as f32` on an
-// `f32`, `|` patterns rather than ranges, `% 2 == 0`, index loops, and
+// `f32`, `|` patterns rather than ranges, `% 2 == 0`, index loops, a swap
+// through a temporary, and
 // constants to the last digit are what is under test.
 #![allow(
     clippy::eq_op,
@@ -71,7 +72,8 @@
     clippy::manual_is_multiple_of,
     clippy::needless_range_loop,
     clippy::excessive_precision,
-    clippy::approx_constant
+    clippy::approx_constant,
+    clippy::manual_swap
 )]
 
 use rt_runtime::*;
@@ -524,6 +526,7 @@ mod bool_vectors;
 mod control_flow;
 mod edge_cases;
 mod enums;
+mod generics;
 mod glam_added;
 mod glam_arrays;
 mod glam_more;
@@ -538,6 +541,7 @@ mod options;
 mod scalars;
 mod std_scalars;
 mod structs_arrays;
+mod traits;
 mod tuple_structs;
 mod tuples;
 mod vectors;

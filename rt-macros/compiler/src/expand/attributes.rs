@@ -135,7 +135,7 @@ pub fn rt_struct(attr: TokenStream, item: TokenStream, role: StructRole) -> Toke
             return quote!(#err #item);
         }
     };
-    let with_impl = match struct_args(attr) {
+    let (with_impl, trait_impls) = match struct_args(attr) {
         Ok(w) => w,
         Err(e) => return with_errors(e.into(), item),
     };
@@ -161,22 +161,47 @@ pub fn rt_struct(attr: TokenStream, item: TokenStream, role: StructRole) -> Toke
             };
         };
     }
+    for t in &trait_impls {
+        // Each trait impl's link (see `traits`), at the trait's name.
+        let mac = crate::traits::impl_macro_ident(&syn::Ident::new(&s.ident.to_string(), t.span()), t);
+        deps.push(deps::Dep { path: syn::Path::from(mac), kind: deps::DepKind::Type });
+    }
     let body = start_chain(quote!(struct #role_kw { #item }), deps::paths(&deps));
     quote!(#near #decorated #data_impl #impl_checks #body)
 }
 
-/// A struct attribute's arguments: none, or `impl` (its span), which says
-/// the type has an `#[rt_impl]` block.
-fn struct_args(attr: TokenStream) -> Result<Option<Span>, Error> {
-    let mut it = attr.clone().into_iter();
-    match (it.next(), it.next()) {
-        (None, _) => Ok(None),
-        (Some(TokenTree::Ident(i)), None) if i == "impl" => Ok(Some(i.span())),
-        _ => Err(Error::new(
+/// A struct attribute's arguments: none, or a list of `impl` (its span),
+/// which says the type has an inherent `#[rt_impl]` block, and `impl
+/// Trait`, which says it has an `#[rt_impl]` of the `#[rt_trait]` `Trait`.
+fn struct_args(attr: TokenStream) -> Result<(Option<Span>, Vec<syn::Ident>), Error> {
+    let wrong = || {
+        Error::new(
             attr.span(),
-            "this attribute takes no arguments, or `impl` for a type with an #[rt_impl] block",
-        )),
+            "this attribute takes no arguments, or `impl` for a type with an #[rt_impl] block and \
+             `impl Trait` for each #[rt_impl] of an #[rt_trait] (as in `impl, impl Bsdf`)",
+        )
+    };
+    let mut inherent = None;
+    let mut traits = Vec::new();
+    let mut it = attr.clone().into_iter().peekable();
+    while let Some(t) = it.next() {
+        match t {
+            TokenTree::Ident(i) if i == "impl" => match it.peek() {
+                Some(TokenTree::Ident(name)) => {
+                    traits.push(name.clone());
+                    it.next();
+                }
+                _ => inherent = Some(i.span()),
+            },
+            _ => return Err(wrong()),
+        }
+        match it.next() {
+            None => break,
+            Some(TokenTree::Punct(p)) if p.as_char() == ',' => {}
+            Some(_) => return Err(wrong()),
+        }
     }
+    Ok((inherent, traits))
 }
 
 /// `#[rt_impl]`: the impl as the CPU compiles it, the marker that says the
@@ -203,15 +228,21 @@ pub fn rt_impl(attr: TokenStream, item: TokenStream) -> TokenStream {
             return with_errors(errs, item);
         }
     };
-    let mac = crate::methods::macro_ident(&ty_ident);
+    let mac = crate::methods::impl_macro_ident_of(&i, &ty_ident);
     let self_ty = &i.self_ty;
     let span = crate::methods::span(&i);
-    let markers = quote_spanned! {span=>
-        impl ::rt_std::data::__HasRtImplBlock for #self_ty {}
-        const _: () = {
-            #[allow(dead_code)]
-            fn __rt_impl_declared() { ::rt_std::data::__require_impl_declared::<#self_ty>(); }
-        };
+    // The inherent block's markers (a type has one; its trait impls are
+    // found by their links, see `traits`).
+    let markers = if crate::traits::trait_name(&i).is_some() {
+        TokenStream::new()
+    } else {
+        quote_spanned! {span=>
+            impl ::rt_std::data::__HasRtImplBlock for #self_ty {}
+            const _: () = {
+                #[allow(dead_code)]
+                fn __rt_impl_declared() { ::rt_std::data::__require_impl_declared::<#self_ty>(); }
+            };
+        }
     };
     if let Err(e) = crate::methods::check_impl(&i) {
         // Exported all the same, so the struct's chain closes and says
@@ -225,6 +256,50 @@ pub fn rt_impl(attr: TokenStream, item: TokenStream) -> TokenStream {
     let cpu = crate::methods::cpu_impl(&i);
     let body = start_chain(quote!(impl { #item }), deps::paths(&deps));
     quote!(#cpu const _: () = { #declared }; #markers #body)
+}
+
+/// `#[rt_trait]`: the trait as the CPU compiles it (its default bodies
+/// rewritten to the GPU's integer semantics) and its link, `Trait!`, which
+/// hands out its tokens to the impls (see `traits`). A shape the subset
+/// rejects is an error at the part at fault, beside the trait as written.
+pub fn rt_trait(attr: TokenStream, item: TokenStream) -> TokenStream {
+    let t: syn::ItemTrait = match syn::parse2(item.clone()) {
+        Ok(t) => t,
+        Err(_) => {
+            let span = syn::parse2::<syn::Item>(item.clone()).map(|i| i.span()).unwrap_or_else(|_| Span::call_site());
+            return with_errors(Error::new(span, "`#[rt_trait]` goes on a trait declaration").into(), item);
+        }
+    };
+    if !attr.is_empty() {
+        return with_errors(Error::new(attr.span(), "`#[rt_trait]` takes no arguments").into(), item);
+    }
+    if let Err(e) = crate::traits::check_trait(&t) {
+        // Exported all the same, so its impls' chains close and say
+        // nothing more.
+        let errs = e.to_compile_errors();
+        let export = export_macro(&t.ident, quote!(trait { #item }));
+        return quote!(#errs #item #export);
+    }
+    let deps = deps::of_trait(&t);
+    let declared = declared_checks(&deps, &[]);
+    let mut cpu = t.clone();
+    for it in cpu.items.iter_mut() {
+        if let syn::TraitItem::Fn(m) = it
+            && let Some(block) = &m.default
+        {
+            let mut f = syn::ItemFn {
+                attrs: std::mem::take(&mut m.attrs),
+                vis: syn::Visibility::Inherited,
+                sig: m.sig.clone(),
+                block: Box::new(block.clone()),
+            };
+            crate::cpu_semantics::rewrite_fn(&mut f);
+            m.attrs = f.attrs;
+            m.default = Some(*f.block);
+        }
+    }
+    let body = start_chain(quote!(trait { #item }), deps::paths(&deps));
+    quote!(#cpu const _: () = { #declared }; #body)
 }
 
 /// `#[rt_enum]`: the enum with its `RtData`, and its link in the chain

@@ -17,7 +17,9 @@
 //!
 //! `#[rt_impl] impl S` is a link too, `__rt_impl_S`, and `#[rt_struct(impl)]`
 //! puts it among the struct's dependencies, so `S!` hands out the impl with
-//! the struct (see [`crate::methods`]).
+//! the struct (see [`crate::methods`]); likewise `impl T for S`,
+//! `__rt_impl_S__T`, with `#[rt_struct(impl T)]`, and `#[rt_trait] trait T`
+//! is the link `T` (see [`crate::traits`]).
 
 use super::descriptor::program_output;
 use super::parse_kind;
@@ -108,6 +110,7 @@ pub fn parse_defs(tokens: TokenStream) -> syn::Result<Vec<Item>> {
             ("constant", _) => Item::Const(syn::parse2(g.stream())?),
             ("enum", _) => Item::Enum(syn::parse2(g.stream())?),
             ("impl", _) => Item::Impl(syn::parse2(g.stream())?),
+            ("trait", _) => Item::Trait(syn::parse2(g.stream())?),
             _ => return Err(syn::Error::new(g.span(), "malformed definition")),
         };
         if !items.iter().any(|i: &Item| i.name() == item.name()) {
@@ -158,7 +161,16 @@ fn finish(entry: &TokenStream, done: TokenStream) -> TokenStream {
             }) else {
                 return quote!(compile_error!("malformed rt entry"););
             };
-            export_macro(&crate::methods::macro_ident(&ty), quote!(impl { #item_tokens } #done))
+            export_macro(&crate::methods::impl_macro_ident_of(&i, &ty), quote!(impl { #item_tokens } #done))
+        }
+        "trait" => {
+            // Its default bodies are checked in each impl that uses them.
+            let Some(TokenTree::Group(g)) = it.next() else { return quote!(compile_error!("malformed rt entry");) };
+            let item_tokens = g.stream();
+            match syn::parse2::<syn::ItemTrait>(item_tokens.clone()) {
+                Ok(t) => export_macro(&t.ident, quote!(trait { #item_tokens } #done)),
+                Err(e) => e.to_compile_error(),
+            }
         }
         "function" | "constant" | "struct" => {
             let role = if kw == "struct" {

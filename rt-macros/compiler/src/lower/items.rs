@@ -23,7 +23,7 @@ pub(super) fn reachable(entry: &Entry<'_>, deps: &[Item]) -> Vec<Item> {
         // A struct's chain carries its impl (see `methods`).
         Entry::Struct(s) => {
             let mut names = names_of(crate::deps::of_struct(s));
-            names.push(crate::methods::impl_key(&s.ident.to_string()));
+            names.extend(impls_of(deps, &s.ident.to_string()));
             names
         }
         Entry::Const(c) => names_of(crate::deps::of_const(c)),
@@ -36,7 +36,7 @@ pub(super) fn reachable(entry: &Entry<'_>, deps: &[Item]) -> Vec<Item> {
         }
         if let Some(item) = deps.iter().find(|d| d.name() == n) {
             if let Item::Struct(s, _) = item {
-                todo.push(crate::methods::impl_key(&s.ident.to_string()));
+                todo.extend(impls_of(deps, &s.ident.to_string()));
             }
             todo.extend(names_of(match item {
                 Item::Struct(s, _) => crate::deps::of_struct(s),
@@ -44,6 +44,7 @@ pub(super) fn reachable(entry: &Entry<'_>, deps: &[Item]) -> Vec<Item> {
                 Item::Const(c) => crate::deps::of_const(c),
                 Item::Enum(_) => Vec::new(),
                 Item::Impl(i) => crate::deps::of_impl(i),
+                Item::Trait(t) => crate::deps::of_trait(t),
             }));
             out.push(item.clone());
         }
@@ -53,12 +54,24 @@ pub(super) fn reachable(entry: &Entry<'_>, deps: &[Item]) -> Vec<Item> {
     out
 }
 
+/// The item names of the impl blocks of type `ty` among `deps`: its
+/// inherent block and its trait impls (a struct's chain carries them).
+fn impls_of(deps: &[Item], ty: &str) -> Vec<String> {
+    let mut names = vec![crate::methods::impl_key(ty)];
+    for d in deps {
+        if let Item::Impl(i) = d
+            && crate::methods::self_name(i).as_deref() == Some(ty)
+            && !names.contains(&d.name())
+        {
+            names.push(d.name());
+        }
+    }
+    names
+}
+
 /// Rejects function shapes the subset has no use for.
 pub(super) fn check_fn_shape(f: &syn::ItemFn) -> std::result::Result<(), Errors> {
     let mut errors = Errors::default();
-    if !f.sig.generics.params.is_empty() {
-        errors.push(Error::unsupported(f.sig.generics.span(), "a generic function", "write one function per type"));
-    }
     if let Some(a) = &f.sig.asyncness {
         errors.push(Error::unsupported(a.span(), "an `async` function", "ray programs are synchronous"));
     }
@@ -71,6 +84,15 @@ pub(super) fn check_fn_shape(f: &syn::ItemFn) -> std::result::Result<(), Errors>
     for input in &f.sig.inputs {
         if let syn::FnArg::Receiver(r) = input {
             errors.push(Error::unsupported(r.span(), "a `self` parameter", "helpers are free functions"));
+        }
+        if let syn::FnArg::Typed(pt) = input
+            && let syn::Type::ImplTrait(t) = &*pt.ty
+        {
+            errors.push(Error::unsupported(
+                t.span(),
+                "an `impl Trait` parameter",
+                "name a type parameter: `fn f<T: Trait>(x: T)`",
+            ));
         }
     }
     if errors.is_empty() { Ok(()) } else { Err(errors) }
@@ -106,6 +128,9 @@ pub(super) struct FnDef {
     /// parameter.
     pub has_receiver: bool,
     pub f: syn::ItemFn,
+    /// An instance of a generic helper: which, for its errors (see
+    /// `generics`).
+    pub instance: Option<String>,
 }
 
 /// A constant the unit lowers: a `#[rt_const]`, or an associated constant.
@@ -368,15 +393,30 @@ pub(super) struct ByKind<'a> {
     /// Members of impls whose shape was rejected (their attribute said
     /// why): uses of them are silent errors.
     pub failed: Vec<String>,
+    /// The generic helpers, by name (their instances are among `fns`).
+    pub generics: HashMap<String, Rc<syn::ItemFn>>,
 }
 
-pub(super) fn by_kind<'a>(entry: &'a Entry<'_>, deps: &'a [Item]) -> ByKind<'a> {
-    let mut k = ByKind { structs: Vec::new(), fns: Vec::new(), consts: Vec::new(), failed: Vec::new() };
+/// The dependencies by kind; `instances`, of the generic helpers among
+/// them, are helpers too.
+pub(super) fn by_kind<'a>(
+    entry: &'a Entry<'_>,
+    deps: &'a [Item],
+    instances: &[super::generics::Instance],
+) -> ByKind<'a> {
+    let mut k = ByKind {
+        structs: Vec::new(),
+        fns: Vec::new(),
+        consts: Vec::new(),
+        failed: Vec::new(),
+        generics: HashMap::new(),
+    };
     let helper = |f: &syn::ItemFn| FnDef {
         key: f.sig.ident.to_string(),
         wgsl_name: format!("rtf_{}", f.sig.ident),
         has_receiver: false,
         f: f.clone(),
+        instance: None,
     };
     let constant = |c: &syn::ItemConst| ConstDef {
         key: c.ident.to_string(),
@@ -387,11 +427,16 @@ pub(super) fn by_kind<'a>(entry: &'a Entry<'_>, deps: &'a [Item]) -> ByKind<'a> 
     for d in deps {
         match d {
             Item::Struct(s, r) => k.structs.push((s, *r)),
+            Item::Function(f) if super::generics::is_generic(f) => {
+                k.generics.insert(f.sig.ident.to_string(), Rc::new(f.clone()));
+            }
             Item::Function(f) => k.fns.push(helper(f)),
             Item::Const(c) => k.consts.push(constant(c)),
             // Built before the structs (`ModuleCtx::enums`).
             Item::Enum(_) => {}
             Item::Impl(i) => impls.push(i),
+            // Through the impls that use its defaults.
+            Item::Trait(_) => {}
         }
     }
     match &entry {
@@ -412,13 +457,43 @@ pub(super) fn by_kind<'a>(entry: &'a Entry<'_>, deps: &'a [Item]) -> ByKind<'a> 
         }
         Entry::Program(..) => {}
     }
+    for inst in instances {
+        if let Some(g) = k.generics.get(&inst.generic) {
+            k.fns.push(FnDef {
+                key: inst.key(),
+                wgsl_name: inst.wgsl_name(),
+                has_receiver: false,
+                f: super::generics::instantiate(g, &inst.args),
+                instance: Some(inst.describe(g)),
+            });
+        }
+    }
+    let traits: Vec<&syn::ItemTrait> = deps
+        .iter()
+        .filter_map(|d| match d {
+            Item::Trait(t) => Some(t),
+            _ => None,
+        })
+        .collect();
+    // Inherent blocks first: where a trait impl defines a name the
+    // inherent block does, a call means the inherent one, as in Rust.
+    impls.sort_by_key(|i| i.trait_.is_some());
     for i in impls {
+        // A trait impl with the trait's defaults it does not override.
+        let of_trait = crate::traits::trait_name(i).and_then(|n| traits.iter().find(|t| t.ident == n));
+        let completed = of_trait.map(|t| crate::traits::complete(i, t));
+        let i = completed.as_ref().unwrap_or(i);
         let (fns, consts, failed) = crate::methods::lowerable(i);
-        k.fns.extend(fns.into_iter().map(|m| FnDef {
+        let taken: Vec<String> =
+            k.fns.iter().map(|f| f.key.clone()).chain(k.consts.iter().map(|c| c.key.clone())).collect();
+        let fns = fns.into_iter().filter(|m| !taken.contains(&m.key));
+        let consts = consts.into_iter().filter(|c| !taken.contains(&c.key));
+        k.fns.extend(fns.map(|m| FnDef {
             key: m.key,
             wgsl_name: m.wgsl_name,
             has_receiver: m.has_receiver,
             f: m.f,
+            instance: None,
         }));
         k.consts.extend(consts.into_iter().map(|c| ConstDef {
             key: c.key,

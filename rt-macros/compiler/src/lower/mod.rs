@@ -4,12 +4,14 @@
 //! The module is laid out as four sections the runtime's linker relies on:
 //! a *prelude* of runtime stubs (replaced at link time by the real runtime),
 //! the *types*, the *functions* (accessors, constants and helpers) and the
-//! *program*. Names: programs are `rtp_<name>`, helpers `rtf_<name>`, the
+//! *program*. Names: programs are `rtp_<name>`, helpers `rtf_<name>` (an
+//! instance of a generic one `rtf_<name>__<arguments>`, see [`generics`]), the
 //! methods and associated functions of an `#[rt_impl]` `rtm_<Type>__<name>`
 //! and its constants `<Type>__<NAME>`, runtime items `rt_*`/`Rt*`; user
 //! structs and constants keep their names.
 //!
-//! [`lower`] runs the phases of `unit` in order: the items the entry
+//! [`lower`] runs the phases of `unit` in order, in passes while calls
+//! ask for instances of generic helpers the pass lacked: the items the entry
 //! reaches (`items`), sorted by dependency (`order`); constants; helper
 //! signatures, then bodies, callees first ([`func`] lowers one body); the
 //! program (`program`); and `assemble`s and validates the module.
@@ -18,6 +20,7 @@ pub mod accessors;
 mod assemble;
 pub mod builtins;
 pub mod func;
+pub mod generics;
 mod items;
 mod order;
 mod program;
@@ -83,6 +86,10 @@ pub struct ModuleCtx {
     pub call_types: RefCell<BTreeMap<String, Rc<crate::types::CallSig>>>,
     /// Dependencies that failed to lower: using them is a silent error.
     pub failed: HashSet<String>,
+    /// The generic helpers, by name: called through their instances.
+    pub generics: HashMap<String, Rc<syn::ItemFn>>,
+    /// The instances calls asked for (see `generics`), in order.
+    pub wanted: RefCell<Vec<generics::Instance>>,
     printf: RefCell<BTreeMap<u32, (String, Vec<String>)>>,
 }
 
@@ -241,12 +248,69 @@ fn lower_impl(entry: Entry<'_>, deps: &[Item], report_deps: bool) -> std::result
     };
     let mut deps: Vec<Item> = deps.iter().map(|d| crate::sugar::item(d, &mut taken, &mut nested)).collect();
     deps.extend(nested.into_iter().map(Item::Function));
-    let mut unit = unit::Unit::new(&entry);
+    if let Entry::Helper(f) = &entry
+        && generics::is_generic(f)
+    {
+        // Its body is checked per instance, by the callers (`generics`).
+        let mut errors = items::check_fn_shape(f).err().unwrap_or_default();
+        errors.0.extend(generics::check_alone(f).err().unwrap_or_default().0);
+        if !errors.is_empty() {
+            return Err(errors);
+        }
+        return Ok(Lowered { name: f.sig.ident.to_string(), ..Lowered::default() });
+    }
     let deps = items::reachable(&entry, &deps);
-    let items::ByKind { structs: structs_raw, fns: helpers_raw, consts: consts_raw, failed: failed_members } =
-        items::by_kind(&entry, &deps);
+    // Passes until every instance of a generic helper the unit calls is
+    // among its helpers (see `generics`).
+    let mut instances: Vec<generics::Instance> = Vec::new();
+    loop {
+        let more = match lower_pass(&entry, &deps, &instances, report_deps) {
+            Pass::Done(r) => return *r,
+            Pass::More(more) => more,
+        };
+        let too_long = more.iter().any(|i| i.key().len() > generics::MAX_KEY);
+        if too_long || instances.len() + more.len() > generics::MAX_INSTANCES {
+            let (name, span) = match &entry {
+                Entry::Program(_, f) | Entry::Helper(f) => (f.sig.ident.to_string(), f.sig.ident.span()),
+                Entry::Struct(s) => (s.ident.to_string(), s.ident.span()),
+                Entry::Const(c) => (c.ident.to_string(), c.ident.span()),
+            };
+            let mut last = more.last().map(generics::Instance::key).unwrap_or_default();
+            if last.len() > 60 {
+                last = format!("{}...", last.chars().take(60).collect::<String>());
+            }
+            return Err(Error::new(
+                span,
+                format!(
+                    "`{name}` calls generic helpers at ever new types (`{last}`, after {} instances): a generic \
+                     that calls itself, through others, at a new type each time never ends; give it fixed types",
+                    instances.len()
+                ),
+            )
+            .into());
+        }
+        instances.extend(more);
+    }
+}
+
+/// What one pass over a unit ends with: the module, or instances of
+/// generic helpers the pass did not have.
+enum Pass {
+    Done(Box<std::result::Result<Lowered, Errors>>),
+    More(Vec<generics::Instance>),
+}
+
+fn lower_pass(entry: &Entry<'_>, deps: &[Item], instances: &[generics::Instance], report_deps: bool) -> Pass {
+    let mut unit = unit::Unit::new(entry);
+    let items::ByKind {
+        structs: structs_raw,
+        fns: helpers_raw,
+        consts: consts_raw,
+        failed: failed_members,
+        generics: generic_fns,
+    } = items::by_kind(entry, deps, instances);
     let consts_raw = items::const_order(&consts_raw);
-    let (enums, failed_enums) = items::enums(&deps);
+    let (enums, failed_enums) = items::enums(deps);
     let (structs, struct_order) = unit.build_structs(&structs_raw, &enums);
     let mut failed_structs: HashSet<String> =
         structs_raw.iter().map(|(s, _)| s.ident.to_string()).filter(|n| !structs.contains_key(n)).collect();
@@ -266,6 +330,8 @@ fn lower_impl(entry: Entry<'_>, deps: &[Item], report_deps: bool) -> std::result
         report_types: RefCell::new(BTreeMap::new()),
         call_types: RefCell::new(BTreeMap::new()),
         printf: RefCell::new(BTreeMap::new()),
+        generics: generic_fns,
+        wanted: RefCell::new(Vec::new()),
     };
     for (name, d) in &m.structs {
         m.global_names.insert(wgsl_ident(name));
@@ -278,11 +344,15 @@ fn lower_impl(entry: Entry<'_>, deps: &[Item], report_deps: bool) -> std::result
     unit.lower_helpers(&mut m, &helper_items);
     let mut out = Lowered::default();
     let program_text = unit.lower_entry(&m, &mut out);
+    let more: Vec<generics::Instance> = m.wanted.take().into_iter().filter(|w| !instances.contains(w)).collect();
+    if !more.is_empty() {
+        return Pass::More(more);
+    }
     if !report_deps {
         unit.silence_dependencies();
     }
     if !unit.errors.is_empty() {
-        return Err(unit.errors);
+        return Pass::Done(Box::new(Err(unit.errors)));
     }
-    assemble::assemble(&m, &entry, unit, struct_order, program_text, out)
+    Pass::Done(Box::new(assemble::assemble(&m, entry, unit, struct_order, program_text, out)))
 }

@@ -112,10 +112,17 @@ pub fn resolve_type(ty: &syn::Type, user: &dyn Fn(&str) -> Option<Ty>) -> Result
             Err(Error::unsupported(s.span(), "a slice", "use a fixed-size array or a buffer variable"))
         }
         syn::Type::Ptr(p) => Err(Error::unsupported(p.span(), "a raw pointer", "use `&mut` parameters")),
-        syn::Type::TraitObject(t) => {
-            Err(Error::unsupported(t.span(), "a trait object", "WGSL has no dynamic dispatch; take a concrete type"))
-        }
-        syn::Type::ImplTrait(t) => Err(Error::unsupported(t.span(), "`impl Trait`", "use concrete types")),
+        syn::Type::TraitObject(t) => Err(Error::unsupported(
+            t.span(),
+            "a trait object (`dyn`)",
+            "traits dispatch statically in ray programs: take a type parameter (`fn f<T: Trait>(x: T)`); \
+             to choose the code at run time, call a callable program through a `Callable` id",
+        )),
+        syn::Type::ImplTrait(t) => Err(Error::unsupported(
+            t.span(),
+            "`impl Trait`",
+            "name a type parameter (`fn f<T: Trait>(x: T)`) or a concrete type",
+        )),
         syn::Type::BareFn(f) => {
             Err(Error::unsupported(f.span(), "a function pointer", "WGSL has no function pointers"))
         }

@@ -58,6 +58,9 @@ impl<'e, 'a> Unit<'e, 'a> {
     /// struct's: its chain reports the impl's errors; see `methods`).
     fn owns(&self, name: &str) -> bool {
         match self.entry {
+            // An instance of a generic helper is its caller's: the
+            // generic's own macro has no types to check it with.
+            _ if name.contains('<') => true,
             Entry::Helper(f) => f.sig.ident == name,
             Entry::Struct(s) => s.ident == name || name.starts_with(&format!("{}::", s.ident)),
             Entry::Const(c) => c.ident == name,
@@ -177,7 +180,10 @@ impl<'e, 'a> Unit<'e, 'a> {
                 self.errors.0.extend(e.0);
                 continue;
             }
-            let Some((params, ret)) = helper_signature(m, f, &mut self.errors) else { continue };
+            let first = self.errors.0.len();
+            let sig = helper_signature(m, f, &mut self.errors);
+            note_instance(&mut self.errors, first, def);
+            let Some((params, ret)) = sig else { continue };
             let wgsl_name = def.wgsl_name.clone();
             m.global_names.insert(wgsl_name.clone());
             m.helpers.insert(
@@ -210,7 +216,7 @@ impl<'e, 'a> Unit<'e, 'a> {
     /// before the order is known. Not needed without methods.
     fn method_calls(m: &ModuleCtx, helper_items: &HashMap<String, FnDef>) -> HashMap<String, Vec<(String, Span)>> {
         let mut calls = HashMap::new();
-        if !helper_items.values().any(|d| d.has_receiver) {
+        if !helper_items.values().any(|d| d.has_receiver) && m.generics.is_empty() {
             return calls;
         }
         for (name, def) in helper_items {
@@ -231,7 +237,9 @@ impl<'e, 'a> Unit<'e, 'a> {
             Ok(o) => o,
             Err((name, e)) => {
                 self.own(&name);
+                let first = self.errors.0.len();
                 self.errors.push(e);
+                note_instance(&mut self.errors, first, &helper_items[&name]);
                 Vec::new()
             }
         };
@@ -248,7 +256,9 @@ impl<'e, 'a> Unit<'e, 'a> {
             intr.sort();
             intr.dedup();
             let traced = l.traced.clone();
+            let first = self.errors.0.len();
             self.errors.0.extend(l.errors.0);
+            note_instance(&mut self.errors, first, &helper_items[&name]);
             for (id, r) in done.ranges {
                 self.source_ranges.push((sig.wgsl_name.clone(), id, r));
             }
@@ -347,4 +357,16 @@ fn helper_signature(m: &ModuleCtx, f: &syn::ItemFn, errors: &mut Errors) -> Opti
         },
     };
     ok.then_some((params, ret))
+}
+
+/// Names the instance in the errors from `first` on, when `def` is one: the
+/// span is in the generic's body, which every instance shares.
+fn note_instance(errors: &mut Errors, first: usize, def: &FnDef) {
+    if let Some(what) = &def.instance {
+        for e in &mut errors.0[first..] {
+            if !e.is_silent() {
+                e.message = format!("{} ({what})", e.message);
+            }
+        }
+    }
 }

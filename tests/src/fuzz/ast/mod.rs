@@ -227,6 +227,10 @@ pub enum Expr {
     /// `(a, b).k`: a tuple literal, its elements evaluated in order, one
     /// read.
     TupleField(Vec<Expr>, usize),
+    /// `fuzz_pick(k == 1, a, b)`: the generic helper every program
+    /// declares, at the elements' type (both evaluated in order, one
+    /// returned).
+    Pick(Vec<Expr>, usize),
     /// An `i32`/`u32` through the `#[rt_enum] FuzzKind` every program
     /// declares: `x % 3` picks a variant (0: `Alpha`, 1: `Beta`, else
     /// `Gamma`), an exhaustive `match` on it gives 10, `Beta as u32` (5) or 7.

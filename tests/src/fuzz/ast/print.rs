@@ -19,6 +19,9 @@ impl Program {
     pub fn source(&self) -> String {
         let mut s = String::from("use rt_std::prelude::*;\n");
         s.push_str("\n#[rt_enum]\npub enum FuzzKind {\n    Alpha,\n    Beta = 5,\n    Gamma,\n}\n");
+        s.push_str(
+            "\n#[rt_function]\npub fn fuzz_pick<T: Copy>(second: bool, a: T, b: T) -> T {\n    if second { b } else { a }\n}\n",
+        );
         for (i, d) in self.structs.iter().enumerate() {
             let has_impl = self.helpers.iter().any(|h| h.method.is_some_and(|m| m.of == i));
             s.push_str(if has_impl { "\n#[rt_struct(impl)]\npub struct " } else { "\n#[rt_struct]\npub struct " });
@@ -286,6 +289,7 @@ impl Program {
                 if *method { format!("{b}.load({})", self.expr(i)) } else { format!("{b}[{}]", self.expr(i)) }
             }
             Expr::TupleField(xs, k) => format!("({},).{k}", self.args(xs)),
+            Expr::Pick(xs, k) => format!("fuzz_pick({}, {})", *k == 1, self.args(xs)),
             Expr::EnumRound(x) => format!(
                 "(match (match ({}) % 3 {{ 0 => FuzzKind::Alpha, 1 => FuzzKind::Beta, _ => FuzzKind::Gamma }}) \
                  {{ FuzzKind::Alpha => 10u32, FuzzKind::Beta => FuzzKind::Beta as u32, FuzzKind::Gamma => 7u32 }})",

@@ -83,7 +83,7 @@ fn expr(e: &mut Expr, from: &str, by_ref: bool) {
             expr(r, from, by_ref);
             args.iter_mut().for_each(|a| expr(a, from, by_ref));
         }
-        Expr::Path(_, _, xs) | Expr::Free(_, xs) | Expr::ArrayLit(xs) | Expr::TupleField(xs, _) => {
+        Expr::Path(_, _, xs) | Expr::Free(_, xs) | Expr::ArrayLit(xs) | Expr::TupleField(xs, _) | Expr::Pick(xs, _) => {
             xs.iter_mut().for_each(|a| expr(a, from, by_ref))
         }
         Expr::Call(_, args) => args.iter_mut().for_each(|a| match a {

@@ -16,7 +16,7 @@ impl Expr {
             | Expr::Cast(b, _)
             | Expr::ArrayRepeat(b, _)
             | Expr::EnumRound(b) => b.has_effects(p),
-            Expr::TupleField(xs, _) => any(xs),
+            Expr::TupleField(xs, _) | Expr::Pick(xs, _) => any(xs),
             Expr::Index(a, b) | Expr::Bin(_, a, b) => a.has_effects(p) || b.has_effects(p),
             Expr::Method(r, _, args) => r.has_effects(p) || any(args),
             Expr::Path(_, _, args) | Expr::Free(_, args) | Expr::ArrayLit(args) => any(args),
@@ -55,7 +55,7 @@ impl Expr {
             | Expr::Cast(x, _)
             | Expr::ArrayRepeat(x, _)
             | Expr::EnumRound(x) => x.visit(f),
-            Expr::TupleField(xs, _) => xs.iter().for_each(|a| a.visit(f)),
+            Expr::TupleField(xs, _) | Expr::Pick(xs, _) => xs.iter().for_each(|a| a.visit(f)),
             Expr::Index(a, b) | Expr::Bin(_, a, b) => {
                 a.visit(f);
                 b.visit(f);
@@ -84,10 +84,10 @@ impl Expr {
         }
     }
 
-    /// Whether the expression calls a helper.
+    /// Whether the expression calls a helper (`fuzz_pick` too).
     pub fn calls_helper(&self) -> bool {
         let mut found = false;
-        self.visit(&mut |e| found |= matches!(e, Expr::Call(..)));
+        self.visit(&mut |e| found |= matches!(e, Expr::Call(..) | Expr::Pick(..)));
         found
     }
 }

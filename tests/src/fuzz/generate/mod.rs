@@ -292,6 +292,8 @@ impl Gen {
             }
             Expr::Match(_, arms) => arms.iter().any(|a| a.body.tail.as_ref().is_some_and(|x| self.is_const(x))),
             Expr::TupleField(xs, k) => self.is_const(&xs[*k]),
+            // A call: evaluated at run time.
+            Expr::Pick(..) => false,
             Expr::EnumRound(x) => self.is_const(x),
         }
     }

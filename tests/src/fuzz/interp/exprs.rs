@@ -73,7 +73,7 @@ impl Interp<'_> {
                 let k = self.expr(i)?.certain_u64("a load index")?;
                 self.load(*b, k)
             }
-            Expr::TupleField(xs, k) => self.exprs(xs)?.swap_remove(*k),
+            Expr::TupleField(xs, k) | Expr::Pick(xs, k) => self.exprs(xs)?.swap_remove(*k),
             Expr::EnumRound(x) => {
                 let k = self.expr(x)?.certain_u64("an enum's integer")?;
                 enum_round(k)

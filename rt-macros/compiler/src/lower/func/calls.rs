@@ -9,7 +9,11 @@ use super::*;
 impl FnLowerer<'_> {
     pub(super) fn method_call(&mut self, m: &syn::ExprMethodCall, _want: Option<&Ty>) -> Result<Val> {
         if let Some(t) = &m.turbofish {
-            return Err(Error::unsupported(t.span(), "generic arguments", "ray programs are not generic"));
+            return Err(Error::unsupported(
+                t.span(),
+                "generic arguments on a method",
+                "methods are not generic in ray programs; write a generic #[rt_function]",
+            ));
         }
         let name = m.method.to_string();
         let args: Vec<&Expr> = m.args.iter().collect();
@@ -126,7 +130,8 @@ impl FnLowerer<'_> {
             let hint = match &rt {
                 Ty::Struct(_) | Ty::Enum(_) => format!(
                     ": the methods programs call are declared in an `#[rt_impl] impl {rt}` block, \
-                     with the type declared `(impl)` (as in `#[rt_struct(impl)]`)"
+                     with the type declared `(impl)` (as in `#[rt_struct(impl)]`), or in an \
+                     `#[rt_impl] impl Trait for {rt}`, with the type declared `(impl Trait)`"
                 ),
                 _ => builtins::method_hint(&rt, name),
             };
@@ -264,12 +269,23 @@ impl FnLowerer<'_> {
         if let Some(ty) = self.tuple_struct_named(path) {
             return self.tuple_struct_lit(&ty, &args, c.span());
         }
-        if let Some(seg) = path.segments.iter().find(|s| !s.arguments.is_none()) {
-            return Err(Error::unsupported(seg.arguments.span(), "generic arguments", "ray programs are not generic"));
-        }
         let segs: Vec<String> = path.segments.iter().map(|s| s.ident.to_string()).collect();
         let name = segs.last().unwrap().clone();
         let span = c.span();
+        let of_type = segs.len() >= 2 && segs[segs.len() - 2].starts_with(|c: char| c.is_ascii_uppercase());
+        if !of_type
+            && self.lookup(&name).is_none()
+            && let Some(g) = self.m.generics.get(&name).cloned()
+        {
+            return self.generic_call(&g, path, &args, want, span);
+        }
+        if let Some(seg) = path.segments.iter().find(|s| !s.arguments.is_none()) {
+            return Err(Error::unsupported(
+                seg.arguments.span(),
+                "generic arguments",
+                "only generic #[rt_function]s take them",
+            ));
+        }
         let name_span = path.segments.last().unwrap().ident.span();
 
         if segs.len() == 1

@@ -14,6 +14,8 @@
 //! - `control`: `if`, blocks, loops, `match`, `break`/`continue`/`return`;
 //! - `calls`: methods of builtin types, constructors, glam's free
 //!   functions, `#[rt_function]` helpers;
+//! - `generic_calls`: calls of generic helpers, the instance's arguments
+//!   inferred (see `lower/generics.rs`);
 //! - `intrinsics`: intrinsic calls from the contract's rows;
 //! - `buffers`: buffer and sampler access;
 //! - `infer`: integer inference variables, coercion;
@@ -43,6 +45,7 @@ mod calls;
 mod control;
 mod eval;
 mod expr;
+mod generic_calls;
 mod infer;
 mod intrinsics;
 mod ops;
@@ -105,8 +108,10 @@ pub struct FnLowerer<'m> {
     pub intrinsics: Vec<(&'static str, Span)>,
     /// Helpers called.
     pub calls: Vec<String>,
-    /// Methods called as `value.name(..)`, by key (`Type::name`), with the
-    /// call's span: the helper order needs them (see `Unit::method_calls`).
+    /// Calls only types resolve, by key, with the call's span: methods
+    /// called as `value.name(..)` (`Type::name`) and instances of generic
+    /// helpers (`lerp<Vec3>`); the helper order needs them (see
+    /// `Unit::method_calls`).
     pub method_calls: Vec<(String, Span)>,
     /// Payload types passed to `rt_trace`.
     pub traced: Vec<Ty>,
