@@ -118,13 +118,14 @@ for simd in sse4.1 scalar; do
     RT_CPU_SIMD=$simd cargo test -p rt-tests --test runtime -j"$CARGO_BUILD_JOBS" -- cpu:: 2>&1 | tee -a "$log"
     RT_CPU_SIMD=$simd cargo test -p examples --test golden -j"$CARGO_BUILD_JOBS" -- cpu_renders_match_the_goldens 2>&1 | tee -a "$log"
 done
-# Ray generation programs ran lane-wise above (the CPU backend's
-# default); their scalar copy, what RT_CPU_EXEC=scalar runs, against the
-# runtime suite's CPU tests, wgpu (the differential tests) and the goldens.
-echo "scripts/test.sh: the CPU backend's tests with RT_CPU_EXEC=scalar"
-RT_CPU_EXEC=scalar cargo test -p rt-tests --test runtime -j"$CARGO_BUILD_JOBS" -- cpu:: 2>&1 | tee -a "$log"
-RT_CPU_EXEC=scalar cargo test -p rt-tests --test differential -j"$CARGO_BUILD_JOBS" 2>&1 | tee -a "$log"
-RT_CPU_EXEC=scalar cargo test -p examples --test golden -j"$CARGO_BUILD_JOBS" -- cpu_renders_match_the_goldens 2>&1 | tee -a "$log"
+# Ray generation programs ran one launch index at a time above (the CPU
+# backend's default); their lane-wise form, what RT_CPU_EXEC=lanes runs,
+# against the runtime suite's CPU tests, wgpu (the differential tests) and
+# the goldens.
+echo "scripts/test.sh: the CPU backend's tests with RT_CPU_EXEC=lanes"
+RT_CPU_EXEC=lanes cargo test -p rt-tests --test runtime -j"$CARGO_BUILD_JOBS" -- cpu:: 2>&1 | tee -a "$log"
+RT_CPU_EXEC=lanes cargo test -p rt-tests --test differential -j"$CARGO_BUILD_JOBS" 2>&1 | tee -a "$log"
+RT_CPU_EXEC=lanes cargo test -p examples --test golden -j"$CARGO_BUILD_JOBS" -- cpu_renders_match_the_goldens 2>&1 | tee -a "$log"
 # The library crates packed as crates.io would get them (each verified
 # against the others' packs), and a user's crate outside the workspace
 # built on the packs: README's first program, one image on the CPU

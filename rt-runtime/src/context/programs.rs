@@ -10,8 +10,8 @@ use rt_std::program::{ProgramDescriptor, ProgramKind};
 
 impl Context {
     /// How the CPU backend runs programs: lane-wise where a program has a
-    /// lane-wise form (the default), or one launch index at a time (what a
-    /// debugger steps through). Overrides `RT_CPU_EXEC` for this context.
+    /// lane-wise form, or one launch index at a time (the default, and what
+    /// a debugger steps through). Overrides `RT_CPU_EXEC` for this context.
     pub fn set_cpu_execution(&mut self, mode: crate::CpuExecution) {
         self.settings.cpu_execution = mode;
     }

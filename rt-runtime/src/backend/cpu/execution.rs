@@ -1,8 +1,9 @@
 //! How the CPU backend runs ray programs: lane-wise, a block of launch
 //! indices per call where the program has a lane-wise form
 //! (`rt_std::cpu::lanes`), or one launch index at a time (the scalar copy,
-//! what a debugger steps through). `RT_CPU_EXEC=scalar|lanes` forces one
-//! for every context that has not chosen ([`crate::Context::set_cpu_execution`]).
+//! what a debugger steps through, and the default). `RT_CPU_EXEC=scalar|lanes`
+//! chooses for every context that has not chosen
+//! ([`crate::Context::set_cpu_execution`]).
 
 use rt_std::program::{CpuLanes, ProgramDescriptor};
 use std::sync::OnceLock;
@@ -10,11 +11,11 @@ use std::sync::OnceLock;
 /// How the CPU backend runs programs.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum CpuExecution {
-    /// Lane-wise where the program has a lane-wise form, else scalar (the
-    /// default).
-    #[default]
+    /// Lane-wise where the program has a lane-wise form, else scalar.
     Lanes,
-    /// One launch index at a time, always.
+    /// One launch index at a time, always (the default: the lane-wise form
+    /// measures slower on the bunny today; BENCHMARKS.md).
+    #[default]
     Scalar,
 }
 
@@ -66,7 +67,9 @@ impl ProgramExecution {
     /// How `desc` runs under `mode`.
     pub fn of(desc: &ProgramDescriptor, mode: CpuExecution) -> ProgramExecution {
         let scalar_because = match (mode, desc.cpu_lanes) {
-            (CpuExecution::Scalar, _) => Some(format!("{ENV}=scalar or Context::set_cpu_execution(Scalar)")),
+            (CpuExecution::Scalar, _) => {
+                Some(format!("the context runs one launch index at a time (CpuExecution::Scalar; {ENV}=lanes)"))
+            }
             (CpuExecution::Lanes, CpuLanes::Lanes(_)) => None,
             (CpuExecution::Lanes, CpuLanes::Scalar(why)) => Some(why.to_string()),
         };
