@@ -25,6 +25,10 @@ pub struct Probe {
 /// runs a loop of its own length, and one prints.
 #[rt_program(ray_generation)]
 pub fn divergent(#[var] top: Object, #[var] mut out: RwBuffer2d<Vec4>) {
+    // (A function declared in the body, called after the trace.)
+    fn twice(x: f32) -> f32 {
+        x * 2.0
+    }
     let idx = launch_index();
     let dim = launch_dim();
     if idx.x % 5 == 3 {
@@ -55,7 +59,7 @@ pub fn divergent(#[var] top: Object, #[var] mut out: RwBuffer2d<Vec4>) {
     if idx.x == 4 && idx.y % 2 == 0 {
         rt_printf!("lane {} {} steps {}", idx.x, idx.y, steps);
     }
-    out[idx] = vec4(prd.t, prd.prim as f32, prd.depth as f32, steps as f32);
+    out[idx] = vec4(prd.t, prd.prim as f32, prd.depth as f32, twice(steps as f32));
 }
 
 /// A closest hit that traces again (a nested trace from a lane-wise one).

@@ -5,10 +5,10 @@
 //! Each local variable holds one value per lane (`[T; LANES]`); a
 //! statement runs for every lane of the active [`Mask`] in turn
 //! ([`each`], [`fill`]), with the backend's per-index state switched to
-//! that lane around it ([`Tracer::enter_lane`](super::Tracer::enter_lane)), so intrinsics, exceptions
+//! that lane around it ([`Tracer::enter_lane`]), so intrinsics, exceptions
 //! and prints behave exactly as in the scalar copy. Control flow that holds
 //! a trace runs under masks, and [`trace`] hands the active lanes' rays to
-//! the backend together ([`Tracer::trace_lanes`](super::Tracer::trace_lanes)), which traces them as a
+//! the backend together ([`Tracer::trace_lanes`]), which traces them as a
 //! packet where it can.
 //!
 //! A lane that returns leaves the mask; a block whose mask is empty is not
@@ -147,7 +147,7 @@ pub fn trace<P: Payload>(mask: &Mask, objects: &[Object; LANES], rays: &[Ray; LA
 }
 
 /// Puts `lane`'s part into this thread's execution context (a backend's
-/// [`Tracer::enter_lane`](super::Tracer::enter_lane)).
+/// [`Tracer::enter_lane`]).
 #[inline]
 pub fn put_lane_context(lane: &LaneContext) {
     super::execution::update(|c| {
@@ -159,7 +159,7 @@ pub fn put_lane_context(lane: &LaneContext) {
 }
 
 /// Takes the running lane's exception back out of this thread's execution
-/// context (a backend's [`Tracer::leave_lane`](super::Tracer::leave_lane)).
+/// context (a backend's [`Tracer::leave_lane`]).
 #[inline]
 pub fn take_lane_exception(lane: &mut LaneContext) {
     super::execution::read(|c| {

@@ -36,10 +36,15 @@ pub(super) struct Writer {
 }
 
 impl Writer {
-    /// A block's statements in a scope of their own.
+    /// A block's statements in a scope of their own. Its items (nested
+    /// `fn`s, `const`s) come first, outside the runs, so every run sees
+    /// them, as the whole block does in Rust.
     pub(super) fn block(&mut self, stmts: &[syn::Stmt]) -> Result<TokenStream, Refusal> {
         let outer = self.varying.clone();
-        let r = self.stmts(stmts);
+        let (items, rest): (Vec<&syn::Stmt>, Vec<&syn::Stmt>) =
+            stmts.iter().partition(|s| matches!(s, syn::Stmt::Item(_)));
+        let rest: Vec<syn::Stmt> = rest.into_iter().cloned().collect();
+        let r = self.stmts(&rest).map(|code| quote!(#(#items)* #code));
         self.varying = outer;
         r
     }

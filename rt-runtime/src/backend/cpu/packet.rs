@@ -13,7 +13,6 @@ use crate::accel::cache::NodeAccel;
 use crate::accel::wide::kernels::WalkRay;
 use crate::accel::wide::packet_walk::walk_packet;
 use crate::accel::wide::watertight::WatertightRay;
-use crate::accel::wide::{PACKET, leaf_of};
 use crate::link::instances::InstancePath;
 use crate::scene::{NodeId, NodeKind};
 use rt_std::cpu::Tracer;
@@ -86,22 +85,7 @@ impl Lane<'_> {
         self.rays.set(self.rays.get() + n as u64 - 1);
         walk_packet(self.isa, tree, &walk[..n], &mut limits[..n], |k, leaf, hits| {
             let (Some(s), Some(ray)) = (searches[k].as_ref(), prepared[k].as_ref()) else { return f32::NEG_INFINITY };
-            let (index, _) = leaf_of(leaf);
-            let slots = &tree.slots[index as usize * PACKET..];
-            let mut m = hits.mask;
-            while m != 0 {
-                let lane = m.trailing_zeros() as usize;
-                m &= m - 1;
-                let t = hits.t[lane];
-                if t >= s.tmax.get() {
-                    continue;
-                }
-                let (gi, prim) = prims[slots[lane] as usize];
-                if let Some(mesh) = l.meshes[gi as usize] {
-                    let vertices = tree.packets[index as usize].vertices(lane);
-                    self.triangle_hit(s, ray, mesh, gi, prim, (t, hits.u[lane], hits.v[lane]), vertices, None);
-                }
-            }
+            self.leaf_hits(s, ray, tree, prims, leaf, hits, None);
             s.tmax.get()
         });
         self.leave_trace(depth, outer_time);

@@ -7,9 +7,9 @@ use super::lane::{Candidate, Hit, Lane, Search, Xf, set_current_ray, set_transfo
 use super::triangle::{geometric_normal, triangle_builtins};
 use crate::accel::cache::NodeAccel;
 use crate::accel::wide::isa::walk_on;
-use crate::accel::wide::kernels::WalkRay;
+use crate::accel::wide::kernels::{Hits, WalkRay};
 use crate::accel::wide::watertight::WatertightRay;
-use crate::accel::wide::{PACKET, leaf_of};
+use crate::accel::wide::{PACKET, WideBvh, leaf_of};
 use crate::link::instances::{self, InstancePath};
 use crate::motion::MotionTransform;
 use crate::scene::{NodeId, NodeKind, NodeRec, TriangleMesh};
@@ -93,38 +93,10 @@ impl Lane<'_> {
                     let (index, count) = leaf_of(leaf);
                     let slots = &tree.slots[index as usize * PACKET..][..count as usize];
                     match hits {
-                        // Triangle packets: each lane hit, in lane order,
-                        // against the closest hit so far (an earlier lane
-                        // may have committed a closer one).
+                        // (The walk tests packets only with a setup.)
                         Some(hits) => {
-                            // (The walk tests packets only with a setup.)
-                            let ray = prepared.as_ref()?;
-                            let mut mask = hits.mask;
-                            while mask != 0 {
-                                let lane = mask.trailing_zeros() as usize;
-                                mask &= mask - 1;
-                                let t = hits.t[lane];
-                                // (Hits are never NaN.)
-                                if t >= s.tmax.get() {
-                                    continue;
-                                }
-                                let (gi, prim) = prims[slots[lane] as usize];
-                                if let Some(mesh) = l.meshes[gi as usize] {
-                                    let vertices = tree.packets[index as usize].vertices(lane);
-                                    self.triangle_hit(
-                                        s,
-                                        ray,
-                                        mesh,
-                                        gi,
-                                        prim,
-                                        (t, hits.u[lane], hits.v[lane]),
-                                        vertices,
-                                        xf,
-                                    );
-                                }
-                                if s.done.get() {
-                                    return None;
-                                }
+                            if self.leaf_hits(s, prepared.as_ref()?, tree, prims, leaf, hits, xf) {
+                                return None;
                             }
                         }
                         None => {
@@ -140,6 +112,44 @@ impl Lane<'_> {
                 });
             }
         }
+    }
+
+    /// A leaf's triangle hits (a packet's lanes) for search `s`: each, in
+    /// lane order, against the closest hit so far (an earlier lane may have
+    /// committed a closer one); whether the search is done.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    pub(crate) fn leaf_hits(
+        &self,
+        s: &Search,
+        ray: &WatertightRay,
+        tree: &WideBvh,
+        prims: &[(u32, u32)],
+        leaf: u32,
+        hits: &Hits,
+        xf: Option<&Xf>,
+    ) -> bool {
+        let (index, count) = leaf_of(leaf);
+        let slots = &tree.slots[index as usize * PACKET..][..count as usize];
+        let mut mask = hits.mask;
+        while mask != 0 {
+            let lane = mask.trailing_zeros() as usize;
+            mask &= mask - 1;
+            let t = hits.t[lane];
+            // (Hits are never NaN.)
+            if t >= s.tmax.get() {
+                continue;
+            }
+            let (gi, prim) = prims[slots[lane] as usize];
+            if let Some(mesh) = self.l.meshes[gi as usize] {
+                let vertices = tree.packets[index as usize].vertices(lane);
+                self.triangle_hit(s, ray, mesh, gi, prim, (t, hits.u[lane], hits.v[lane]), vertices, xf);
+            }
+            if s.done.get() {
+                return true;
+            }
+        }
+        false
     }
 
     /// The node the search enters at `node`: past groups of one child (a
