@@ -118,7 +118,7 @@ pub mod vars;
 pub mod vertex_motion;
 
 pub use accel::{Acceleration, Builder};
-pub use backend::cpu::{CpuExecution, ProgramExecution};
+pub use backend::cpu_execution::{CpuExecution, ProgramExecution};
 pub use backend::tiles::{DEFAULT_TILE_BUDGET, LaunchControl, LaunchProgress, Tile, TileBudget};
 pub use backend::wgpu::Traversal;
 pub use backend::{Backend, ExceptionRecord, LaunchReport, Timings};

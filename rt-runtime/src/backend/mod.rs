@@ -16,6 +16,7 @@
 
 #[cfg(not(target_arch = "wasm32"))]
 pub mod cpu;
+pub mod cpu_execution;
 pub(crate) mod futures;
 pub mod tiles;
 pub mod wgpu;
@@ -170,7 +171,7 @@ pub(crate) struct Settings {
     /// How launches are cut into tiles.
     pub tile_budget: TileBudget,
     /// How the CPU backend runs programs.
-    pub cpu_execution: cpu::CpuExecution,
+    pub cpu_execution: cpu_execution::CpuExecution,
 }
 
 impl Default for Settings {
@@ -182,7 +183,7 @@ impl Default for Settings {
             integer_exceptions: false,
             exceptions: rt_abi::constants::ALL_EXCEPTION_KINDS,
             tile_budget: TileBudget::default(),
-            cpu_execution: cpu::CpuExecution::from_env(),
+            cpu_execution: cpu_execution::CpuExecution::from_env(),
         }
     }
 }

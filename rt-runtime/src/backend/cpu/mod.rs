@@ -26,24 +26,24 @@
 //!
 //! A ray generation program with a lane-wise form runs a block of launch
 //! indices per call (`block`), unless the context asks for one index at a
-//! time (`execution`: `RT_CPU_EXEC`, [`crate::Context::set_cpu_execution`]).
+//! time (`super::cpu_execution`: `RT_CPU_EXEC`,
+//! [`crate::Context::set_cpu_execution`]).
 //!
 //! Files: `bind` resolves and binds every program use of a launch,
 //! `lane` runs launch indices and traces rays, `block` runs a block of
-//! them lane-wise, `packet` traces a block's rays together, `execution`
-//! says which way programs run, `triangle`
+//! them lane-wise, `packet` traces a block's rays together, `triangle`
 //! computes a triangle hit's built-in attributes; this file is the backend
 //! and its run.
 
 mod bind;
 mod block;
-mod execution;
 mod lane;
 mod packet;
 mod tracer;
 mod traverse;
 mod triangle;
 
+use super::cpu_execution::CpuExecution;
 use super::{Launch, LaunchBackend, LaunchReport};
 use crate::accel::bvh::TreeForm;
 use crate::accel::cache::Trees;
@@ -52,7 +52,6 @@ use crate::error::{Result, RtError};
 use crate::panics;
 use crate::scene::Scene;
 use bind::link_all;
-pub use execution::{CpuExecution, ProgramExecution};
 use glam::UVec2;
 use lane::Lane;
 use rayon::prelude::*;

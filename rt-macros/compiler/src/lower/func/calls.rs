@@ -249,6 +249,29 @@ impl FnLowerer<'_> {
         }
     }
 
+    /// A call that builds a value of a built-in or declared item rather
+    /// than calling a function: a callable or bindless id, `Some(..)`, a
+    /// tuple struct.
+    fn item_call(
+        &mut self,
+        c: &syn::ExprCall,
+        path: &syn::Path,
+        args: &[&Expr],
+        want: Option<&Ty>,
+    ) -> Option<Result<Val>> {
+        if callables::is_callable_item(path) {
+            return Some(self.callable_item(path, Some(args), want, c.span()));
+        }
+        if bindless::is_bindless_item(path) {
+            return Some(self.bindless_item(path, Some(args), want, c.span()));
+        }
+        if options::is_some_path(path) && self.lookup("Some").is_none() {
+            return Some(self.option_some(c, want));
+        }
+        let ty = self.tuple_struct_named(path)?;
+        Some(self.tuple_struct_lit(&ty, args, c.span()))
+    }
+
     pub(super) fn call(&mut self, c: &syn::ExprCall, want: Option<&Ty>) -> Result<Val> {
         let path = match &*c.func {
             Expr::Path(p) if p.qself.is_none() => &p.path,
@@ -257,17 +280,8 @@ impl FnLowerer<'_> {
             }
         };
         let args: Vec<&Expr> = c.args.iter().collect();
-        if callables::is_callable_item(path) {
-            return self.callable_item(path, Some(&args), want, c.span());
-        }
-        if bindless::is_bindless_item(path) {
-            return self.bindless_item(path, Some(&args), want, c.span());
-        }
-        if options::is_some_path(path) && self.lookup("Some").is_none() {
-            return self.option_some(c, want);
-        }
-        if let Some(ty) = self.tuple_struct_named(path) {
-            return self.tuple_struct_lit(&ty, &args, c.span());
+        if let Some(v) = self.item_call(c, path, &args, want) {
+            return v;
         }
         let segs: Vec<String> = path.segments.iter().map(|s| s.ident.to_string()).collect();
         let name = segs.last().unwrap().clone();
