@@ -30,6 +30,21 @@ fn strip_var_attrs(f: &syn::ItemFn) -> syn::ItemFn {
     f
 }
 
+/// The lane-wise form of program `f` as written (`crate::lanes`): its CPU
+/// copy, rewritten; emitted with the descriptor, inside the program's
+/// module, where the lowering succeeded.
+pub(super) fn lane_form(kind: Kind, f: &syn::ItemFn) -> TokenStream {
+    let mut stripped = strip_var_attrs(f);
+    let Ok(params) = signature::program_params(kind, f) else {
+        return quote!(
+            const CPU_LANES: ::rt_std::program::CpuLanes =
+                ::rt_std::program::CpuLanes::Scalar("the program has errors");
+        );
+    };
+    crate::cpu_semantics::rewrite_fn(&mut stripped);
+    crate::lanes::cpu_lanes(kind, &stripped, &params)
+}
+
 /// `#[rt_program(kind)]`.
 pub fn rt_program(attr: TokenStream, item: TokenStream) -> TokenStream {
     let f: syn::ItemFn = match syn::parse2(item.clone()) {
@@ -63,7 +78,6 @@ pub fn rt_program(attr: TokenStream, item: TokenStream) -> TokenStream {
     let name = &f.sig.ident;
     let vis = &f.vis;
     let thunk = cpu_thunk(kind, &f, &params);
-    let lanes = crate::lanes::cpu_lanes(kind, &stripped, &params);
     let kind_ident = format_ident!("{}", kind.name());
     let entry = quote!(program #kind_ident { #item });
     let deps: Vec<deps::Dep> = deps::of_fn(&f).into_iter().map(|d| deps::Dep { path: reroot(&d.path), ..d }).collect();
@@ -77,7 +91,6 @@ pub fn rt_program(attr: TokenStream, item: TokenStream) -> TokenStream {
             use super::*;
             #declared
             #thunk
-            #lanes
             /// The program's descriptor: WGSL, layouts, variables and the CPU entry.
             pub static PROGRAM: ::rt_std::program::ProgramDescriptor = #body;
         }

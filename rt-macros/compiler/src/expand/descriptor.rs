@@ -142,6 +142,15 @@ fn wgsl_sites(sites: &[(Site, usize)]) -> TokenStream {
 }
 
 pub(super) fn program_output(kind: Kind, f: &syn::ItemFn, lowered: Result<Lowered, Errors>) -> TokenStream {
+    // The lane-wise form only where the program lowered: one that did not
+    // has its errors already, and a second copy of its body would repeat
+    // rustc's.
+    let lanes = match &lowered {
+        Ok(_) => super::attributes::lane_form(kind, f),
+        Err(_) => quote! {
+            const CPU_LANES: ::rt_std::program::CpuLanes = ::rt_std::program::CpuLanes::Scalar("the program has errors");
+        },
+    };
     let (errors, l) = match lowered {
         Ok(l) => (TokenStream::new(), l),
         Err(e) => (e.to_compile_errors(), Lowered { name: f.sig.ident.to_string(), ..Lowered::default() }),
@@ -217,6 +226,7 @@ pub(super) fn program_output(kind: Kind, f: &syn::ItemFn, lowered: Result<Lowere
     quote! {
         {
         #errors
+        #lanes
         ::rt_std::program::ProgramDescriptor {
             kind: ::rt_std::program::ProgramKind::#variant,
             name: #name,

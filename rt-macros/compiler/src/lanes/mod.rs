@@ -50,7 +50,7 @@ pub fn cpu_lanes(kind: Kind, f: &syn::ItemFn, params: &[Param]) -> TokenStream {
         Ok(entry) => quote! {
             #entry
             /// The program's lane-wise form (`rt_std::cpu::lanes`).
-            pub const CPU_LANES: ::rt_std::program::CpuLanes = ::rt_std::program::CpuLanes::Lanes(cpu_lanes);
+            const CPU_LANES: ::rt_std::program::CpuLanes = ::rt_std::program::CpuLanes::Lanes(cpu_lanes);
         },
         Err(r) => {
             // `line!()` at the construct's span: its line in the user's file.
@@ -61,7 +61,7 @@ pub fn cpu_lanes(kind: Kind, f: &syn::ItemFn, params: &[Param]) -> TokenStream {
             };
             quote! {
                 /// Why the program has no lane-wise form.
-                pub const CPU_LANES: ::rt_std::program::CpuLanes = ::rt_std::program::CpuLanes::Scalar(#why);
+                const CPU_LANES: ::rt_std::program::CpuLanes = ::rt_std::program::CpuLanes::Scalar(#why);
             }
         }
     }
@@ -110,7 +110,7 @@ fn entry(f: &syn::ItemFn, params: &[Param]) -> Result<TokenStream, Refusal> {
         /// Runs the program lane-wise over `mask`'s lanes (the CPU backend's
         /// lane-wise entry).
         #[allow(unused, clippy::all)]
-        pub fn cpu_lanes(
+        fn cpu_lanes(
             __rt_mask: &::rt_std::cpu::lanes::Mask,
             __rt_variables: &::rt_std::cpu::BoundVariables<'_>,
         ) {
