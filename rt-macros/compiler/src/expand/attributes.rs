@@ -30,21 +30,6 @@ fn strip_var_attrs(f: &syn::ItemFn) -> syn::ItemFn {
     f
 }
 
-/// The lane-wise form of program `f` as written (`crate::lanes`): its CPU
-/// copy, rewritten; emitted with the descriptor, inside the program's
-/// module, where the lowering succeeded.
-pub(super) fn lane_form(kind: Kind, f: &syn::ItemFn) -> TokenStream {
-    let mut stripped = strip_var_attrs(f);
-    let Ok(params) = signature::program_params(kind, f) else {
-        return quote!(
-            const CPU_LANES: ::rt_std::program::CpuLanes =
-                ::rt_std::program::CpuLanes::Scalar("the program has errors");
-        );
-    };
-    crate::cpu_semantics::rewrite_fn(&mut stripped);
-    crate::lanes::cpu_lanes(kind, &stripped, &params)
-}
-
 /// `#[rt_program(kind)]`.
 pub fn rt_program(attr: TokenStream, item: TokenStream) -> TokenStream {
     let f: syn::ItemFn = match syn::parse2(item.clone()) {

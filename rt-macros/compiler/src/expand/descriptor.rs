@@ -146,7 +146,7 @@ pub(super) fn program_output(kind: Kind, f: &syn::ItemFn, lowered: Result<Lowere
     // has its errors already, and a second copy of its body would repeat
     // rustc's.
     let lanes = match &lowered {
-        Ok(_) => super::attributes::lane_form(kind, f),
+        Ok(_) => crate::lanes::lane_form(kind, f),
         Err(_) => quote! {
             const CPU_LANES: ::rt_std::program::CpuLanes = ::rt_std::program::CpuLanes::Scalar("the program has errors");
         },

@@ -38,6 +38,27 @@ impl Refusal {
     }
 }
 
+/// The lane-wise form of program `f` as written: its CPU copy (`#[var]`
+/// attributes taken off, `cpu_semantics` applied), rewritten; emitted with
+/// the descriptor, inside the program's module, where the lowering
+/// succeeded.
+pub fn lane_form(kind: Kind, f: &syn::ItemFn) -> TokenStream {
+    let Ok(params) = crate::signature::program_params(kind, f) else {
+        return quote!(
+            const CPU_LANES: ::rt_std::program::CpuLanes =
+                ::rt_std::program::CpuLanes::Scalar("the program has errors");
+        );
+    };
+    let mut copy = f.clone();
+    for input in copy.sig.inputs.iter_mut() {
+        if let syn::FnArg::Typed(pt) = input {
+            pt.attrs.retain(|a| !crate::signature::is_var_attr(a));
+        }
+    }
+    crate::cpu_semantics::rewrite_fn(&mut copy);
+    cpu_lanes(kind, &copy, &params)
+}
+
 /// `CPU_LANES`, the descriptor's `cpu_lanes`: the lane-wise entry of `f`
 /// (the CPU copy, after `cpu_semantics`), or why there is none.
 pub fn cpu_lanes(kind: Kind, f: &syn::ItemFn, params: &[Param]) -> TokenStream {
