@@ -7,6 +7,10 @@ use crate::json::Json;
 #[derive(Default)]
 pub(crate) struct SceneFigures {
     pub(crate) cpu: Option<f64>,
+    /// The CPU backend with ray generation programs run lane-wise, and
+    /// one launch index at a time (one of them is `cpu`).
+    pub(crate) cpu_lanes: Option<f64>,
+    pub(crate) cpu_scalar: Option<f64>,
     pub(crate) obvhs: Option<f64>,
     /// Embree's best mode: the faster of `embree1` and `embree16`.
     pub(crate) embree: Option<f64>,
@@ -60,6 +64,8 @@ pub(crate) struct SceneFigures {
 pub(crate) fn record_figures(j: &mut Json, fig: &SceneFigures) {
     for (k, v) in [
         ("cpu", fig.cpu),
+        ("cpu_lanes", fig.cpu_lanes),
+        ("cpu_scalar", fig.cpu_scalar),
         ("wgpu", fig.wgpu),
         ("obvhs", fig.obvhs),
         ("embree", fig.embree),
@@ -117,12 +123,15 @@ fn geomean(rs: &[Option<f64>]) -> Option<f64> {
 /// the bunny to the wall; and the CPU backend's instruction set.
 pub(crate) fn record_ratios(json: &mut Json, figures: &[(&str, SceneFigures)]) {
     let pick = |name: &str| figures.iter().find(|(n, _)| *n == name).map(|(_, f)| f);
-    let ratios: [(&str, RatioOf); 20] = [
+    let ratios: [(&str, RatioOf); 21] = [
         ("cpu_vs_obvhs", |f| ratio(f.cpu, f.obvhs)),
         // Against Embree's best mode (the faster of rtcIntersect1 and
         // rtcIntersect16), and against its single rays alone.
         ("cpu_vs_embree", |f| ratio(f.cpu, f.embree)),
         ("cpu_vs_embree_intersect1", |f| ratio(f.cpu, f.embree1)),
+        // Ray generation lane-wise against one launch index at a time
+        // (above 1: lane-wise is faster).
+        ("cpu_lanes_vs_scalar", |f| ratio(f.cpu_lanes, f.cpu_scalar)),
         // The CPU backend's walk without programs against Embree's best.
         ("cpu_walk_only_vs_embree", |f| ratio(f.walk, f.embree)),
         // What 16-ray packets give the same walk (above 1: packets pay),

@@ -36,6 +36,9 @@ struct Runs {
     ours: Vec<Duration>,
     our_prepare: Vec<Duration>,
     our_rays: u64,
+    /// The CPU backend in the other execution mode than `ours` (lane-wise
+    /// where `ours` is scalar, and the reverse), on the same context.
+    other_mode: Vec<Duration>,
     /// obvhs's CWBVH traversal.
     theirs: Vec<Duration>,
     obvhs_run: Option<AoRun>,
@@ -172,6 +175,13 @@ fn interleaved(
                     runs.our_rays = r.rays;
                     runs.ours.push(r.timings.run);
                     runs.our_prepare.push(r.timings.build + r.timings.encode);
+                    // The same launch in the other execution mode.
+                    let mode = CpuExecution::from_env();
+                    ctx.set_cpu_execution(other_mode(mode));
+                    if let Ok(o) = ctx.launch(0, frame.width, frame.height) {
+                        runs.other_mode.push(o.timings.run);
+                    }
+                    ctx.set_cpu_execution(mode);
                 }
                 Err(e) => {
                     eprintln!("cpu: {e}");
@@ -260,6 +270,13 @@ fn record_runs(frame: Frame, runs: Runs, j: &mut Json, fig: &mut SceneFigures) {
         // variables resolved, programs bound).
         j.set("cpu_repeat_prepare_ms", ms(median(runs.our_prepare)));
         j.child("rays").set("cpu", runs.our_rays);
+        if !runs.other_mode.is_empty() {
+            let other = mrays(runs.our_rays, median(runs.other_mode));
+            (fig.cpu_lanes, fig.cpu_scalar) = match CpuExecution::from_env() {
+                CpuExecution::Lanes => (fig.cpu, Some(other)),
+                CpuExecution::Scalar => (Some(other), fig.cpu),
+            };
+        }
     }
     if let Some(e) = &runs.embree16_run {
         fig.embree16 = Some(mrays(e.rays, median(runs.emb16)));
@@ -320,5 +337,13 @@ fn cpu_launch_settings(
         let measured = tiled_and_whole(ctx, width, height, reps);
         fig.cpu_tiled_vs_whole = record_tiled_and_whole(j.child("cpu"), measured);
         fig.cpu_exceptions_off_vs_on = record_exceptions_off(j.child("cpu"), ctx, width, height, reps);
+    }
+}
+
+/// The execution mode the bench measures beside `mode`.
+fn other_mode(mode: CpuExecution) -> CpuExecution {
+    match mode {
+        CpuExecution::Lanes => CpuExecution::Scalar,
+        CpuExecution::Scalar => CpuExecution::Lanes,
     }
 }

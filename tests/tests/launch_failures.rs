@@ -95,6 +95,44 @@ fn a_panicking_program_is_an_error_naming_it_and_the_outputs_stay_as_they_were()
     assert_eq!(ctx.read_buffer::<u32>(out).unwrap(), (0..64).map(|i| i + 100).collect::<Vec<u32>>());
 }
 
+/// `fill`'s lane-wise form, panicking in the lane of launch index 13 (lane
+/// 5 of the second block) after the lanes before it ran the statement.
+fn fill_lanes_panicking_at_thirteen(mask: &rt_std::cpu::lanes::Mask, vars: &rt_std::cpu::BoundVariables<'_>) {
+    let mut running = *mask;
+    rt_std::cpu::lanes::each(&mut running, |_| {
+        if launch_index().x == 13 {
+            panic!("boom at thirteen");
+        }
+        false
+    });
+    match fill::PROGRAM.cpu_lanes {
+        rt_std::program::CpuLanes::Lanes(entry) => entry(mask, vars),
+        rt_std::program::CpuLanes::Scalar(why) => panic!("`fill` runs lane-wise, not scalar: {why}"),
+    }
+}
+
+#[test]
+fn a_panic_in_a_lane_names_that_lanes_launch_index() {
+    let mut ctx = Context::new();
+    ctx.set_ray_type_count(0);
+    ctx.set_cpu_execution(CpuExecution::Lanes);
+    let before: Vec<u32> = (0..64).map(|i| 7 * i).collect();
+    let out = ctx.create_buffer::<u32>(BufferType::InputOutput, before.clone());
+    ctx.set_var(Scope::Context, "out", out).unwrap();
+    let lanes = rt_std::program::CpuLanes::Lanes(fill_lanes_panicking_at_thirteen);
+    let bad = ctx.create_program(Box::leak(Box::new(ProgramDescriptor { cpu_lanes: lanes, ..fill::PROGRAM })));
+    ctx.set_ray_generation_program(0, bad).unwrap();
+    let text = ctx.launch_1d(0, 64).unwrap_err().to_string();
+    assert!(text.starts_with("program `fill` (") && text.contains("panicked at launch index [13, 0]"), "{text}");
+    assert!(text.contains("boom at thirteen"), "{text}");
+    assert_eq!(ctx.read_buffer::<u32>(out).unwrap(), before, "the launch wrote none of its outputs");
+    // The context is usable: the program's own lane-wise form runs.
+    let good = ctx.create_program(&fill::PROGRAM);
+    ctx.set_ray_generation_program(0, good).unwrap();
+    ctx.launch_1d(0, 64).unwrap();
+    assert_eq!(ctx.read_buffer::<u32>(out).unwrap(), (0..64).map(|i| i + 100).collect::<Vec<u32>>());
+}
+
 #[test]
 fn a_panicking_bounding_box_program_is_an_error_naming_it_and_the_primitive() {
     let mut ctx = Context::new();

@@ -9,6 +9,7 @@ use glam::{Mat4, UVec2};
 use crate::ray::Ray;
 use crate::scene::Object;
 
+use super::mask::LANES;
 use super::thunk::{BoundVariables, VariableList};
 use crate::layout::TriangleBuiltins;
 
@@ -269,21 +270,9 @@ pub trait Tracer {
     fn report_intersection(&self, material: u32, attributes: Option<&dyn AnyAttributes>) -> bool;
     /// [`rt_printf!`](crate::rt_printf) output.
     fn print(&self, text: &str);
-    /// Lane-wise execution ([`lanes`](super::lanes)): the statement that
-    /// follows runs for lane `lane` of the block; the backend switches its
-    /// per-index state (launch index, pending exception, prints) to that
-    /// lane's, in this thread's execution context too.
-    fn enter_lane(&self, lane: usize) {
-        let _ = lane;
-    }
-    /// Lane-wise execution: lane `lane`'s statement is done; the backend
-    /// keeps what it changed of the lane's state.
-    fn leave_lane(&self, lane: usize) {
-        let _ = lane;
-    }
     /// Lane-wise execution: [`trace`](Self::trace) for each lane of `mask`
-    /// (each with a payload), in that lane's state; a backend traces them
-    /// together where it can. The rays are valid.
+    /// (each with a payload), in that lane's context ([`enter_lane`]); a
+    /// backend traces them together where it can. The rays are valid.
     #[allow(clippy::too_many_arguments)]
     fn trace_lanes(
         &self,
@@ -299,9 +288,8 @@ pub trait Tracer {
             if mask[l]
                 && let Some(p) = payloads[l].as_deref_mut()
             {
-                self.enter_lane(l);
+                enter_lane(l);
                 self.trace(objects[l], &rays[l], p, flags, ray_mask, time);
-                self.leave_lane(l);
             }
         }
     }
@@ -358,6 +346,13 @@ thread_local! {
     // `update`, `context_mut`), so no reference read from it, and none
     // stored in it but `'static` ones, outlives the `in_context` call.
     static CURRENT: Cell<*mut ExecutionContext<'static>> = const { Cell::new(core::ptr::null_mut()) };
+    // The contexts of the lane-wise block running now, one per lane, lent
+    // by `in_block` as `CURRENT`'s are by `in_context` (null: no block).
+    static BLOCK: Cell<*mut ExecutionContext<'static>> = const { Cell::new(core::ptr::null_mut()) };
+    // The lane of the block entered last (`enter_lane`). It is left as it
+    // is when a block ends, so a backend finds the lane at fault after a
+    // panic unwound out of the block.
+    static LANE: Cell<usize> = const { Cell::new(0) };
     // The tracer installed by `with_tracer` or `serving`, lifetime erased.
     // Only those store a pointer here, and their guards remove it before the
     // borrow it came from ends, so every pointer read from this cell is live.
@@ -488,6 +483,50 @@ pub fn in_context<R>(ctx: &mut ExecutionContext<'_>, f: impl FnOnce() -> R) -> R
     f()
 }
 
+/// Runs `f` with `contexts` as the execution contexts of a lane-wise
+/// block ([`lanes`](super::lanes)), one per lane, lane 0's current;
+/// [`enter_lane`] makes another lane's current. Intrinsics read and write
+/// the contexts in place, as [`in_context`]'s. The previous context and
+/// block are restored afterwards, also when `f` panics.
+pub fn in_block<R>(contexts: &mut [ExecutionContext<'_>; LANES], f: impl FnOnce() -> R) -> R {
+    struct Restore(*mut ExecutionContext<'static>, *mut ExecutionContext<'static>);
+    impl Drop for Restore {
+        fn drop(&mut self) {
+            CURRENT.with(|c| c.set(self.0));
+            BLOCK.with(|b| b.set(self.1));
+        }
+    }
+    // As in `in_context`: installed only while `contexts` is mutably
+    // borrowed by this call, removed by the guard before the borrow ends.
+    let first: *mut ExecutionContext<'_> = contexts.as_mut_ptr();
+    let first = first.cast::<ExecutionContext<'static>>();
+    let _restore = Restore(CURRENT.with(|c| c.replace(first)), BLOCK.with(|b| b.replace(first)));
+    LANE.with(|l| l.set(0));
+    f()
+}
+
+/// Makes lane `lane`'s context the current one, inside [`in_block`]
+/// (nothing outside a block: a program's lane-wise form called directly
+/// runs every lane in the one current context).
+#[inline(always)]
+pub fn enter_lane(lane: usize) {
+    let block = BLOCK.with(Cell::get);
+    if !block.is_null() && lane < LANES {
+        // SAFETY: `block` points at `in_block`'s `LANES` contexts, live
+        // while it is installed; `lane` is in range.
+        CURRENT.with(|c| c.set(unsafe { block.add(lane) }));
+        LANE.with(|l| l.set(lane));
+    }
+}
+
+/// The lane [`enter_lane`] entered last (0 before any): the lane running
+/// now inside a block, and the one that was running when a panic unwound
+/// out of one.
+#[inline]
+pub fn current_lane() -> usize {
+    LANE.with(Cell::get)
+}
+
 /// Runs `f` with `tracer` serving [`rt_trace`](crate::rt_trace), the
 /// intersection protocol and [`rt_printf!`](crate::rt_printf); the context
 /// stays as it is. The previous tracer is restored afterwards, also when `f`
@@ -515,16 +554,6 @@ impl Drop for TracerGuard {
 }
 
 /// Calls `f` with the installed tracer, or `fallback` when there is none.
-/// `f` with the installed tracer, if any (for code that calls it many
-/// times: one lookup).
-pub(crate) fn installed_tracer<R>(f: impl FnOnce(Option<&dyn Tracer>) -> R) -> R {
-    match TRACER.with(Cell::get) {
-        // SAFETY: as in `with_installed_tracer`.
-        Some(tracer) => f(Some(unsafe { &*tracer })),
-        None => f(None),
-    }
-}
-
 pub(crate) fn with_installed_tracer<R>(f: impl FnOnce(&dyn Tracer) -> R, fallback: impl FnOnce() -> R) -> R {
     match TRACER.with(Cell::get) {
         // SAFETY: see `TRACER`: an installed pointer is live until the

@@ -4,9 +4,11 @@
 //! A lane-wise program runs a block of [`LANES`] launch indices at once.
 //! Each local variable holds one value per lane (`[T; LANES]`); a
 //! statement runs for every lane of the active [`Mask`] in turn
-//! ([`each`], [`fill`]), with the backend's per-index state switched to
-//! that lane around it ([`Tracer::enter_lane`]), so intrinsics, exceptions
-//! and prints behave exactly as in the scalar copy. Control flow that holds
+//! ([`each`], [`fill`]). Each lane has its own execution context, which the
+//! backend lends for the block ([`in_block`]); running a lane's statement
+//! makes its context current ([`enter_lane`]: one pointer), so intrinsics
+//! and exceptions behave exactly as in the scalar copy. A backend finds the
+//! lane a call into it comes from with [`current_lane`]. Control flow that holds
 //! a trace runs under masks, and [`trace`] hands the active lanes' rays to
 //! the backend together ([`Tracer::trace_lanes`]), which traces them as a
 //! packet where it can.
@@ -14,8 +16,9 @@
 //! A lane that returns leaves the mask; a block whose mask is empty is not
 //! run, so [`fill`] always has a lane to take a value from.
 
-use super::execution::{Tracer, installed_tracer, raise, with_installed_tracer};
-pub use super::mask::{LANES, LaneContext, LanesEntry, Mask};
+pub use super::execution::{current_lane, enter_lane, in_block};
+use super::execution::{raise, with_installed_tracer};
+pub use super::mask::{LANES, LanesEntry, Mask};
 use crate::{EXCEPTION_INVALID_RAY, Object, Payload, RAY_FLAG_NONE, RAY_MASK_ALL, Ray};
 use core::any::Any;
 
@@ -43,36 +46,23 @@ pub fn or(a: &Mask, b: &Mask) -> Mask {
     core::array::from_fn(|l| a[l] || b[l])
 }
 
-/// Runs `f(lane)` inside `tracer`'s state for that lane.
-#[inline(always)]
-fn in_lane<R>(tracer: Option<&dyn Tracer>, lane: usize, f: impl FnOnce() -> R) -> R {
-    match tracer {
-        Some(t) => {
-            t.enter_lane(lane);
-            let r = f();
-            t.leave_lane(lane);
-            r
-        }
-        None => f(),
-    }
-}
-
 /// Runs a statement (or a run of them) for each lane of `mask` in turn;
 /// `f` returns whether the lane returned from the program, and such lanes
 /// leave `mask`.
 #[inline(always)]
 pub fn each(mask: &mut Mask, mut f: impl FnMut(usize) -> bool) {
-    installed_tracer(|t| {
-        for (l, running) in mask.iter_mut().enumerate() {
-            if *running && in_lane(t, l, || f(l)) {
+    for (l, running) in mask.iter_mut().enumerate() {
+        if *running {
+            enter_lane(l);
+            if f(l) {
                 *running = false;
             }
         }
-    })
+    }
 }
 
 /// A value's lanes: `f(lane)` for each lane of `mask`, in that lane's
-/// state, and for the lanes not running a copy of the first running lane's
+/// context, and for the lanes not running a copy of the first running lane's
 /// value (never read).
 ///
 /// # Panics
@@ -80,16 +70,15 @@ pub fn each(mask: &mut Mask, mut f: impl FnMut(usize) -> bool) {
 #[inline(always)]
 pub fn fill<T: Copy>(mask: &Mask, mut f: impl FnMut(usize) -> T) -> [T; LANES] {
     let first = mask.iter().position(|&m| m).expect("a lane-wise block runs with at least one lane");
-    installed_tracer(|t| {
-        let v = in_lane(t, first, || f(first));
-        let mut values = [v; LANES];
-        for (l, value) in values.iter_mut().enumerate().skip(first + 1) {
-            if mask[l] {
-                *value = in_lane(t, l, || f(l));
-            }
+    enter_lane(first);
+    let mut values = [f(first); LANES];
+    for (l, value) in values.iter_mut().enumerate().skip(first + 1) {
+        if mask[l] {
+            enter_lane(l);
+            *value = f(l);
         }
-        values
-    })
+    }
+    values
 }
 
 /// The values a run of statements leaves in a local, lane by lane: a lane
@@ -132,7 +121,8 @@ pub fn trace<P: Payload>(mask: &Mask, objects: &[Object; LANES], rays: &[Ray; LA
     let mut go = *mask;
     for (l, (going, ray)) in go.iter_mut().zip(rays).enumerate() {
         if *going && !ray.is_valid() {
-            installed_tracer(|t| in_lane(t, l, || raise(EXCEPTION_INVALID_RAY)));
+            enter_lane(l);
+            raise(EXCEPTION_INVALID_RAY);
             *going = false;
         }
     }
@@ -144,26 +134,4 @@ pub fn trace<P: Payload>(mask: &Mask, objects: &[Object; LANES], rays: &[Ray; LA
         *slot = Some(p as &mut dyn Any);
     }
     with_installed_tracer(|t| t.trace_lanes(&go, objects, rays, &mut refs, RAY_FLAG_NONE, RAY_MASK_ALL, 0.0), || ());
-}
-
-/// Puts `lane`'s part into this thread's execution context (a backend's
-/// [`Tracer::enter_lane`]).
-#[inline]
-pub fn put_lane_context(lane: &LaneContext) {
-    super::execution::update(|c| {
-        c.launch_index = lane.launch_index;
-        c.launch_z = lane.launch_z;
-        c.pending_exception = lane.pending_exception;
-        c.pending_location = lane.pending_location;
-    })
-}
-
-/// Takes the running lane's exception back out of this thread's execution
-/// context (a backend's [`Tracer::leave_lane`]).
-#[inline]
-pub fn take_lane_exception(lane: &mut LaneContext) {
-    super::execution::read(|c| {
-        lane.pending_exception = c.pending_exception;
-        lane.pending_location = c.pending_location;
-    })
 }

@@ -1,70 +1,111 @@
 //! A block: up to `LANES` launch indices run by one call of the ray
-//! generation program's lane-wise form (`rt_std::cpu::lanes`). The lane
-//! keeps each launch index's state (its launch index, first exception,
-//! pending exception, prints) in [`BlockLane`]s and switches to one around
-//! each of its statements (`enter_lane`, `leave_lane`), so every intrinsic
-//! and every program the statement reaches sees that launch index, as in
-//! the scalar run. At the end each launch index is finished as a scalar
-//! run finishes it, in index order.
+//! generation program's lane-wise form (`rt_std::cpu::lanes`).
+//!
+//! Each launch index of the block has its own execution context, which
+//! rt-std switches between with one pointer as the program runs a lane's
+//! statements (`lanes::enter_lane`). The lane's own per-index state (its
+//! launch index, the first exception of the programs its traces ran, its
+//! prints) is kept per block lane ([`Block`]) and loaded lazily: only
+//! when a call into the backend comes from another lane than the one loaded
+//! ([`Lane::sync_block_lane`], at `rt_trace` and `rt_printf!`), so a run of
+//! plain statements pays nothing for it. At the end each launch index is
+//! finished as a scalar run finishes it, in index order.
 
 use super::super::LaunchReport;
-use super::lane::{BlockLane, Lane};
+use super::lane::Lane;
 use glam::UVec2;
-use rt_std::cpu::lanes::{LANES, LaneContext, LanesEntry, Mask};
+use rt_std::cpu::lanes::{LANES, LanesEntry, Mask, current_lane, enter_lane, in_block};
+
+/// No block lane's state is loaded into the lane.
+const NONE_LOADED: usize = usize::MAX;
 
 impl Lane<'_> {
     /// Runs `indices` (at most `LANES`) through the ray generation
     /// program's lane-wise `entry`.
     pub(crate) fn run_block(&self, entry: LanesEntry, indices: &[UVec2], report: &mut LaunchReport) {
         let l = self.l;
+        let n = indices.len().min(LANES);
         let mut mask: Mask = [false; LANES];
-        for (i, &index) in indices.iter().enumerate().take(LANES) {
-            self.index.set(index);
-            let (launch_index, launch_z) = self.launch_index();
-            let context = LaneContext { launch_index, launch_z, ..LaneContext::default() };
-            self.block.lanes[i].set(BlockLane { index, context, exception: None });
-            mask[i] = true;
-        }
         self.depth.set(0);
         self.rays.set(0);
         self.time.set(0.0);
+        let mut contexts = [self.base; LANES];
+        for (i, &index) in indices.iter().enumerate().take(n) {
+            self.index.set(index);
+            let launch = self.launch_index();
+            (contexts[i].launch_index, contexts[i].launch_z) = launch;
+            self.block.indices[i].set(index);
+            self.block.launches[i].set(launch);
+            self.block.exceptions[i].set(None);
+            mask[i] = true;
+        }
+        self.block.loaded.set(NONE_LOADED);
+        self.block.active.set(true);
         let rg = &l.ray_generation;
-        let mut ctx = self.context();
         let outer = self.program.replace(Some(rg.desc));
-        rt_std::cpu::in_context(&mut ctx, || entry(&mask, &rg.vars));
+        in_block(&mut contexts, || entry(&mask, &rg.vars));
         self.program.set(outer);
+        self.store_block_lane();
+        self.block.active.set(false);
         report.rays += self.rays.get();
-        for i in 0..indices.len().min(LANES) {
-            let b = self.block.lanes[i].get();
-            let own = b.context.pending_exception.map(|c| (c, b.context.pending_location));
-            self.index.set(b.index);
-            self.launch.set((b.context.launch_index, b.context.launch_z));
-            self.exception.set(b.exception.or(own));
+        for (i, ctx) in contexts.iter().enumerate().take(n) {
+            let index = self.block.indices[i].get();
+            let own = ctx.pending_exception.map(|c| (c, ctx.pending_location));
+            self.index.set(index);
+            self.launch.set(self.block.launches[i].get());
+            self.exception.set(self.block.exceptions[i].get().or(own));
             *self.prints.borrow_mut() = std::mem::take(&mut self.block.prints.borrow_mut()[i]);
-            self.finish_index(b.index, report);
+            self.finish_index(index, report);
         }
     }
 
-    /// Switches the lane's per-index state to lane `i` of the block.
+    /// Makes block lane `i` the running one: its execution context current
+    /// and its per-index state loaded.
     #[inline]
     pub(crate) fn enter_block_lane(&self, i: usize) {
-        let b = self.block.lanes[i].get();
-        self.index.set(b.index);
-        self.launch.set((b.context.launch_index, b.context.launch_z));
-        self.exception.set(b.exception);
-        rt_std::cpu::lanes::put_lane_context(&b.context);
+        enter_lane(i);
+        self.sync_block_lane();
     }
 
-    /// Keeps what lane `i`'s statement changed of its state.
+    /// Inside a block, loads the per-index state of the lane running now
+    /// (`lanes::current_lane`) if another lane's is loaded; outside one,
+    /// nothing.
     #[inline]
-    pub(crate) fn leave_block_lane(&self, i: usize) {
-        let mut b = self.block.lanes[i].get();
-        b.exception = self.exception.get();
-        rt_std::cpu::lanes::take_lane_exception(&mut b.context);
-        self.block.lanes[i].set(b);
-        let mut prints = self.prints.borrow_mut();
-        if !prints.is_empty() {
-            self.block.prints.borrow_mut()[i].append(&mut prints);
+    pub(crate) fn sync_block_lane(&self) {
+        if self.block.active.get() && self.block.loaded.get() != current_lane() {
+            self.load_block_lane(current_lane());
+        }
+    }
+
+    /// Keeps the loaded lane's state, then loads lane `i`'s.
+    #[inline(never)]
+    fn load_block_lane(&self, i: usize) {
+        self.store_block_lane();
+        self.index.set(self.block.indices[i].get());
+        self.launch.set(self.block.launches[i].get());
+        self.exception.set(self.block.exceptions[i].get());
+        self.block.loaded.set(i);
+    }
+
+    /// Keeps what the loaded lane's programs changed of its state (its
+    /// first exception, its prints) in the block; then no lane's is loaded.
+    pub(crate) fn store_block_lane(&self) {
+        let i = self.block.loaded.replace(NONE_LOADED);
+        if i == NONE_LOADED {
+            return;
+        }
+        self.block.exceptions[i].set(self.exception.get());
+        if !self.prints.borrow().is_empty() {
+            self.block.prints.borrow_mut()[i].append(&mut self.prints.borrow_mut());
+        }
+    }
+
+    /// The launch index a panic ended: inside a block, the lane's that was
+    /// running.
+    pub(crate) fn index_at_fault(&self) -> UVec2 {
+        match self.block.active.get() {
+            true => self.block.indices[current_lane().min(LANES - 1)].get(),
+            false => self.index.get(),
         }
     }
 }

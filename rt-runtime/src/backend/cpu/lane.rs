@@ -111,15 +111,18 @@ pub(crate) struct Search<'r> {
     pub(crate) group: Cell<(InstancePath, NodeId)>,
 }
 
+/// A launch index's first exception: its code, and where it was raised
+/// when the raiser said (integer exceptions).
+pub(crate) type FirstException = (u32, Option<&'static std::panic::Location<'static>>);
+
 /// One worker's state over a chunk of launch indices; also rt-std's
 /// [`Tracer`] for the programs it runs.
 pub(crate) struct Lane<'a> {
     pub(crate) l: &'a Linked<'a, Program<'a>>,
     pub(crate) index: Cell<UVec2>,
     pub(crate) depth: Cell<u32>,
-    /// The launch index's first exception, and where it was raised when
-    /// the raiser said (integer exceptions).
-    pub(crate) exception: Cell<Option<(u32, Option<&'static std::panic::Location<'static>>)>>,
+    /// The launch index's first exception.
+    pub(crate) exception: Cell<Option<FirstException>>,
     /// The innermost program running (left as it was when a panic unwinds
     /// past `invoke`: the program that panicked).
     pub(crate) program: Cell<Option<&'static rt_std::program::ProgramDescriptor>>,
@@ -167,7 +170,7 @@ impl<'a> Lane<'a> {
                 ..ExecutionContext::DEFAULT
             },
             launch: Cell::new((UVec2::ZERO, 0)),
-            block: Default::default(),
+            block: Block { loaded: Cell::new(usize::MAX), ..Default::default() },
         }
     }
 
@@ -329,20 +332,23 @@ impl RtData for NoAttributes {
 
 impl rt_std::Attributes for NoAttributes {}
 
-/// One launch index of the running block.
-#[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct BlockLane {
-    /// The grid index (what reports name).
-    pub(crate) index: UVec2,
-    /// The launch index and slice, and the program's pending exception.
-    pub(crate) context: rt_std::cpu::lanes::LaneContext,
-    /// The first exception of a program the lane's traces ran.
-    pub(crate) exception: Option<(u32, Option<&'static std::panic::Location<'static>>)>,
-}
-
-/// The running block's lanes, and their prints.
+/// The running block's launch indices, each one's own state, and which
+/// lane's state the lane holds now (`block.rs`). Kept field by field, so
+/// switching lanes copies only what a lane's programs change.
 #[derive(Default)]
 pub(crate) struct Block {
-    pub(crate) lanes: [std::cell::Cell<BlockLane>; rt_std::cpu::lanes::LANES],
-    pub(crate) prints: std::cell::RefCell<[Vec<String>; rt_std::cpu::lanes::LANES]>,
+    /// Whether a block is running.
+    pub(crate) active: Cell<bool>,
+    /// The block lane whose state `index`, `launch`, `exception` and
+    /// `prints` hold (`usize::MAX`: none).
+    pub(crate) loaded: Cell<usize>,
+    /// Each lane's grid index (what reports name).
+    pub(crate) indices: [Cell<UVec2>; rt_std::cpu::lanes::LANES],
+    /// Each lane's launch index and slice as programs see them
+    /// ([`Lane::launch`]).
+    pub(crate) launches: [Cell<(UVec2, u32)>; rt_std::cpu::lanes::LANES],
+    /// Each lane's first exception of a program its traces ran.
+    pub(crate) exceptions: [Cell<Option<FirstException>>; rt_std::cpu::lanes::LANES],
+    /// Each lane's prints.
+    pub(crate) prints: RefCell<[Vec<String>; rt_std::cpu::lanes::LANES]>,
 }

@@ -166,7 +166,7 @@ fn run(launch: &Launch) -> Result<LaunchReport> {
                         Ok(()) => Ok(report),
                         Err(caught) => {
                             stop.store(true, Ordering::Relaxed);
-                            Err(panicked(lane.program.get(), lane.index.get(), caught))
+                            Err(panicked(lane.program.get(), lane.index_at_fault(), caught))
                         }
                     }
                 })

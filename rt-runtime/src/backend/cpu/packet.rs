@@ -16,7 +16,7 @@ use crate::accel::wide::watertight::WatertightRay;
 use crate::link::instances::InstancePath;
 use crate::scene::{NodeId, NodeKind};
 use rt_std::cpu::Tracer;
-use rt_std::cpu::lanes::{LANES, Mask};
+use rt_std::cpu::lanes::{LANES, Mask, enter_lane};
 use rt_std::{Object, Ray};
 use std::any::Any;
 
@@ -33,13 +33,15 @@ impl Lane<'_> {
         ray_mask: u32,
         time: f32,
     ) {
-        // The lanes whose trace goes ahead (each checked in its own state).
+        // The lanes whose trace goes ahead, each checked in its own
+        // context against its first exception (kept in the block, so no
+        // lane's state is loaded for it).
+        self.store_block_lane();
         let mut go: Mask = [false; LANES];
         for l in 0..LANES {
             if mask[l] && payloads[l].is_some() {
-                self.enter_block_lane(l);
-                go[l] = self.may_trace(objects[l], &rays[l]);
-                self.leave_block_lane(l);
+                enter_lane(l);
+                go[l] = self.may_trace_after(self.block.exceptions[l].get().is_some(), objects[l], &rays[l]);
             }
         }
         let Some(group) = self.packet_group(&go, objects, rays, ray_mask) else {
@@ -47,7 +49,6 @@ impl Lane<'_> {
                 if let (true, Some(p)) = (go[l], payloads[l].as_deref_mut()) {
                     self.enter_block_lane(l);
                     self.trace(objects[l], &rays[l], p, flags, ray_mask, time);
-                    self.leave_block_lane(l);
                 }
             }
             return;
@@ -81,8 +82,8 @@ impl Lane<'_> {
             WalkRay { origin: r.origin, inv_dir: r.direction.recip(), tmin: r.tmin, triangle: prepared[k].as_ref() }
         });
         let mut limits: [f32; LANES] = std::array::from_fn(|k| rays[lanes[k.min(n - 1)]].tmax);
+        self.rays.set(self.rays.get() + n as u64);
         let (depth, outer_time) = self.enter_trace(time);
-        self.rays.set(self.rays.get() + n as u64 - 1);
         walk_packet(self.isa, tree, &walk[..n], &mut limits[..n], |k, leaf, hits| {
             let (Some(s), Some(ray)) = (searches[k].as_ref(), prepared[k].as_ref()) else { return f32::NEG_INFINITY };
             self.leaf_hits(s, ray, tree, prims, leaf, hits, None);
@@ -93,10 +94,8 @@ impl Lane<'_> {
             let (Some(s), Some(p)) = (searches[k].as_mut(), payloads[i].as_deref_mut()) else { continue };
             self.enter_block_lane(i);
             let (depth, outer_time) = self.enter_trace(time);
-            self.rays.set(self.rays.get() - 1);
             self.hand_over(s, &rays[i], p, flags, ray_mask);
             self.leave_trace(depth, outer_time);
-            self.leave_block_lane(i);
         }
     }
 

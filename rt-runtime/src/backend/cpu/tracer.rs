@@ -17,6 +17,7 @@ use std::cell::{Cell, RefCell};
 
 impl Tracer for Lane<'_> {
     fn trace(&self, object: Object, ray: &Ray, payload: &mut dyn Any, flags: u32, mask: u32, time: f32) {
+        self.sync_block_lane();
         if !self.may_trace(object, ray) {
             return;
         }
@@ -25,6 +26,7 @@ impl Tracer for Lane<'_> {
         // The pointer's lifetime is erased; it is restored below, before
         // `search` (and the ray it borrows) go away.
         let outer = self.search.replace((&search as *const Search<'_>).cast());
+        self.rays.set(self.rays.get() + 1);
         let (depth, outer_time) = self.enter_trace(time);
         self.traverse(&search, node, None, mask & 0xff, InstancePath::ROOT);
         self.search.set(outer);
@@ -135,15 +137,8 @@ impl Tracer for Lane<'_> {
         Some(&**self.l.samplers.get(SamplerId::from_bindless_id(id)?.index() as usize)?)
     }
 
-    fn enter_lane(&self, lane: usize) {
-        self.enter_block_lane(lane);
-    }
-
-    fn leave_lane(&self, lane: usize) {
-        self.leave_block_lane(lane);
-    }
-
     fn print(&self, text: &str) {
+        self.sync_block_lane();
         let settings = self.l.settings;
         if settings.print_enabled && settings.print_launch_index.is_none_or(|i| i == self.index.get()) {
             self.prints.borrow_mut().push(text.to_string());
@@ -176,7 +171,13 @@ impl Lane<'_> {
     /// exception, not past the depth limit (raised), not of a node or ray
     /// type the scene lacks (raised).
     pub(crate) fn may_trace(&self, object: Object, ray: &Ray) -> bool {
-        if self.exception.get().is_some() || rt_std::cpu::pending_exception().is_some() {
+        self.may_trace_after(self.exception.get().is_some(), object, ray)
+    }
+
+    /// [`Lane::may_trace`] for a launch index whose programs raised an
+    /// exception already, or not (`raised`).
+    pub(crate) fn may_trace_after(&self, raised: bool, object: Object, ray: &Ray) -> bool {
+        if raised || rt_std::cpu::pending_exception().is_some() {
             return false;
         }
         let l = self.l;
@@ -191,12 +192,11 @@ impl Lane<'_> {
         true
     }
 
-    /// A trace's start: one level deeper, one more ray, at `time`; the
-    /// depth and time to go back to.
+    /// A trace's start: one level deeper, at `time`; the depth and time to
+    /// go back to. (The caller counts its rays.)
     pub(crate) fn enter_trace(&self, time: f32) -> (u32, f32) {
         let depth = self.depth.get();
         self.depth.set(depth + 1);
-        self.rays.set(self.rays.get() + 1);
         (depth, self.time.replace(time))
     }
 
