@@ -1,6 +1,8 @@
 //! Lane-wise execution on the CPU backend (`rt_std::cpu::lanes`): ray
-//! generation programs run a block of launch indices per call, and a trace
-//! under a mask goes to the backend as a packet. Every launch here runs
+//! generation programs run a block of launch indices per call, a trace
+//! under a mask goes to the backend as a packet, and the packet's
+//! closest-hit and miss programs run lane-wise, one call per program (the
+//! closest hit here traces again, so a nested packet too). Every launch here runs
 //! lane-wise and one index at a time, and the two agree exactly: outputs,
 //! exceptions (code, launch index, order), prints and ray counts; with
 //! divergent control flow (early returns in some lanes, a trace inside a
@@ -80,6 +82,12 @@ pub fn nearest(prd: &mut Probe, #[var] top: Object) {
 #[rt_program(miss)]
 pub fn nothing(prd: &mut Probe) {
     prd.t = -2.0;
+}
+
+/// A program of a kind that runs one launch index at a time.
+#[rt_program(any_hit)]
+pub fn any_seen(prd: &mut Probe) {
+    prd.depth += 100;
 }
 
 /// A program the lane-wise lowering refuses: a `let` without a value.
@@ -180,11 +188,15 @@ fn cpu_execution_names_each_program_and_why() {
     ctx.set_cpu_execution(CpuExecution::Lanes);
     ctx.create_program(&divergent::PROGRAM);
     ctx.create_program(&nearest::PROGRAM);
+    ctx.create_program(&nothing::PROGRAM);
+    ctx.create_program(&any_seen::PROGRAM);
     ctx.create_program(&late_init::PROGRAM);
     let ways = ctx.cpu_execution();
     let find = |name: &str| ways.iter().find(|w| w.program == name).unwrap().scalar_because.clone();
     assert_eq!(find("divergent"), None);
-    assert_eq!(find("nearest").as_deref(), Some("closest_hit programs run one launch index at a time"));
+    assert_eq!(find("nearest"), None);
+    assert_eq!(find("nothing"), None);
+    assert_eq!(find("any_seen").as_deref(), Some("any_hit programs run one launch index at a time"));
     let line = include_str!("cpu_lanes.rs").lines().position(|l| l.trim() == "let v: f32;").unwrap() + 1;
     assert_eq!(find("late_init"), Some(format!("a `let` without a value (line {line})")));
     let line_of = |text: &str| include_str!("cpu_lanes.rs").lines().position(|l| l.trim() == text).unwrap() + 1;

@@ -97,7 +97,11 @@ fn a_panicking_program_is_an_error_naming_it_and_the_outputs_stay_as_they_were()
 
 /// `fill`'s lane-wise form, panicking in the lane of launch index 13 (lane
 /// 5 of the second block) after the lanes before it ran the statement.
-fn fill_lanes_panicking_at_thirteen(mask: &rt_std::cpu::lanes::Mask, vars: &rt_std::cpu::BoundVariables<'_>) {
+fn fill_lanes_panicking_at_thirteen(
+    mask: &rt_std::cpu::lanes::Mask,
+    args: &mut rt_std::cpu::lanes::LaneArgs<'_>,
+    vars: &rt_std::cpu::BoundVariables<'_>,
+) {
     let mut running = *mask;
     rt_std::cpu::lanes::each(&mut running, |_| {
         if launch_index().x == 13 {
@@ -106,7 +110,7 @@ fn fill_lanes_panicking_at_thirteen(mask: &rt_std::cpu::lanes::Mask, vars: &rt_s
         false
     });
     match fill::PROGRAM.cpu_lanes {
-        rt_std::program::CpuLanes::Lanes(entry) => entry(mask, vars),
+        rt_std::program::CpuLanes::Lanes(entry) => entry(mask, args, vars),
         rt_std::program::CpuLanes::Scalar(why) => panic!("`fill` runs lane-wise, not scalar: {why}"),
     }
 }

@@ -18,8 +18,8 @@
 
 pub use super::execution::{current_lane, enter_lane, in_block};
 use super::execution::{raise, with_installed_tracer};
-pub use super::mask::{LANES, LanesEntry, Mask};
-use crate::{EXCEPTION_INVALID_RAY, Object, Payload, RAY_FLAG_NONE, RAY_MASK_ALL, Ray};
+pub use super::mask::{LANES, LaneArgs, LanesEntry, Mask};
+use crate::{EXCEPTION_INVALID_RAY, Object, Payload, RAY_FLAG_NONE, RAY_MASK_ALL, Ray, RtData};
 use core::any::Any;
 
 /// Whether any lane of `mask` runs.
@@ -134,4 +134,48 @@ pub fn trace<P: Payload>(mask: &Mask, objects: &[Object; LANES], rays: &[Ray; LA
         *slot = Some(p as &mut dyn Any);
     }
     with_installed_tracer(|t| t.trace_lanes(&go, objects, rays, &mut refs, RAY_FLAG_NONE, RAY_MASK_ALL, 0.0), || ());
+}
+
+/// Values of `T` for the lanes that do not run, so a lane-wise parameter
+/// has a reference in every lane ([`refs`]): `T` read from zero words.
+pub fn spares<T: RtData>() -> [T; LANES] {
+    let words = T::LAYOUT.words as usize;
+    let zeros = [0u32; 64];
+    let big;
+    let zeros = match zeros.get(..words) {
+        Some(z) => z,
+        None => {
+            big = std::vec![0u32; words];
+            &big[..]
+        }
+    };
+    core::array::from_fn(|_| T::read_words(zeros))
+}
+
+/// A payload or attributes parameter, lane-wise: each running lane's
+/// `&mut T` from `slots` (a [`LaneArgs`] field), each other lane's into
+/// `spares`. A running lane whose slot holds no `T` (a ray traced with a
+/// payload type its programs do not take) raises
+/// [`EXCEPTION_INVALID_RAY`] and leaves `mask`, as the scalar thunk raises
+/// it instead of running the program.
+pub fn refs<'a, T: 'static>(
+    mask: &mut Mask,
+    slots: &'a mut [Option<&mut dyn Any>; LANES],
+    spares: &'a mut [T; LANES],
+) -> [&'a mut T; LANES] {
+    let mut refs = spares.each_mut();
+    for (l, (r, slot)) in refs.iter_mut().zip(slots.iter_mut()).enumerate() {
+        if !mask[l] {
+            continue;
+        }
+        match slot.as_deref_mut().and_then(|a| a.downcast_mut::<T>()) {
+            Some(value) => *r = value,
+            None => {
+                enter_lane(l);
+                raise(EXCEPTION_INVALID_RAY);
+                mask[l] = false;
+            }
+        }
+    }
+    refs
 }

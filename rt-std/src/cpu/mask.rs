@@ -11,5 +11,16 @@ pub type Mask = [bool; LANES];
 
 /// A program's lane-wise entry: runs the lanes of `mask` (the backend has
 /// given each lane its execution context, [`in_block`](super::lanes::in_block))
-/// with the program's variables.
-pub type LanesEntry = fn(&Mask, &super::thunk::BoundVariables<'_>);
+/// with their payloads and attributes and the program's variables.
+pub type LanesEntry = fn(&Mask, &mut LaneArgs<'_>, &super::thunk::BoundVariables<'_>);
+
+/// What a hit or miss program's lanes take, lane by lane: the payload
+/// (`&mut P`) and the attributes (`&A`), as [`CpuArgs`](super::CpuArgs)
+/// holds them for one call. A ray generation program takes neither.
+#[derive(Default)]
+pub struct LaneArgs<'a> {
+    /// Each lane's payload.
+    pub payloads: [Option<&'a mut dyn core::any::Any>; LANES],
+    /// Each lane's attributes.
+    pub attributes: [Option<&'a mut dyn core::any::Any>; LANES],
+}

@@ -5,9 +5,11 @@
 //! the backend together (`rt_std::cpu::lanes`; the statement forms are in
 //! `stmt.rs`, one lane's view of a statement in `rename.rs`).
 //!
-//! Ray-generation programs get the form. A program of another kind, or one
-//! with a construct the rewriting does not take, runs one launch index at a
-//! time as before: its descriptor's `cpu_lanes` says why
+//! Ray-generation, closest-hit and miss programs get the form; a payload or
+//! attributes parameter holds each lane's reference (`lanes::refs`), and
+//! the backend runs a packet's hits lane-wise, one call per program. A
+//! program of another kind, or one with a construct the rewriting does not
+//! take, runs one launch index at a time as before: its descriptor's `cpu_lanes` says why
 //! (`CpuLanes::Scalar`), and the CPU backend reports it
 //! (`Context::cpu_execution`). A refusal is never an error: the scalar copy
 //! always runs.
@@ -62,7 +64,7 @@ pub fn lane_form(kind: Kind, f: &syn::ItemFn) -> TokenStream {
 /// `CPU_LANES`, the descriptor's `cpu_lanes`: the lane-wise entry of `f`
 /// (the CPU copy, after `cpu_semantics`), or why there is none.
 pub fn cpu_lanes(kind: Kind, f: &syn::ItemFn, params: &[Param]) -> TokenStream {
-    let form = if kind == Kind::RayGeneration {
+    let form = if matches!(kind, Kind::RayGeneration | Kind::ClosestHit | Kind::Miss) {
         entry(f, params)
     } else {
         Err(Refusal { at: None, what: format!("{} programs run one launch index at a time", kind.name()) })
@@ -88,7 +90,8 @@ pub fn cpu_lanes(kind: Kind, f: &syn::ItemFn, params: &[Param]) -> TokenStream {
     }
 }
 
-/// `fn cpu_lanes(mask, variables)`: the variables bound as `cpu` binds them,
+/// `fn cpu_lanes(mask, args, variables)`: the variables bound as `cpu`
+/// binds them, the payload and attributes taken from `args` lane by lane,
 /// then the body lane-wise.
 fn entry(f: &syn::ItemFn, params: &[Param]) -> Result<TokenStream, Refusal> {
     if let Some(span) = module_relative_path(&f.block) {
@@ -98,21 +101,38 @@ fn entry(f: &syn::ItemFn, params: &[Param]) -> Result<TokenStream, Refusal> {
     let mut types = Vec::new();
     let mut locals = Vec::new();
     let mut binds = Vec::new();
+    let mut takes = Vec::new();
     for (i, (p, input)) in params.iter().zip(&f.sig.inputs).enumerate() {
         let syn::FnArg::Typed(pt) = input else {
             return Err(Refusal::new(p.span, "a `self` parameter".into()));
         };
-        if p.role != Role::Variable {
-            return Err(Refusal::new(p.span, "a parameter that is not a variable".into()));
-        }
         let syn::Pat::Ident(pi) = &*pt.pat else {
             return Err(Refusal::new(p.span, "a parameter pattern".into()));
         };
         let ty = reroot_type(&p.ty);
+        let name = &pi.ident;
+        let slots = match p.role {
+            Role::Variable => None,
+            Role::Payload { .. } => Some(quote!(payloads)),
+            Role::Attributes { .. } => Some(quote!(attributes)),
+            Role::Primitive | Role::Argument => {
+                return Err(Refusal::new(p.span, "a parameter that is not a variable, payload or attributes".into()));
+            }
+        };
+        if let Some(slots) = slots {
+            // Each lane's `&mut T` (a lane that does not run: a spare).
+            let spare = format_ident!("__rt_spare{}", i);
+            writer.varying.insert(name.to_string());
+            takes.push(quote! {
+                let mut #spare = ::rt_std::cpu::lanes::spares::<#ty>();
+                #[allow(unused_mut)]
+                let mut #name = ::rt_std::cpu::lanes::refs::<#ty>(&mut __mask, &mut __rt_args.#slots, &mut #spare);
+            });
+            continue;
+        }
         let local = format_ident!("__rt_arg{}", i);
         types.push(quote!(::rt_std::cpu::Var<#ty>));
         locals.push(quote!(::rt_std::cpu::Var(#local)));
-        let name = &pi.ident;
         // A `mut` variable the program assigns holds a value per lane; a
         // buffer is written through, never assigned.
         if pi.mutability.is_some() && !is_buffer(&p.ty) {
@@ -133,13 +153,17 @@ fn entry(f: &syn::ItemFn, params: &[Param]) -> Result<TokenStream, Refusal> {
         #[allow(unused, clippy::all)]
         fn cpu_lanes(
             __rt_mask: &::rt_std::cpu::lanes::Mask,
+            __rt_args: &mut ::rt_std::cpu::lanes::LaneArgs<'_>,
             __rt_variables: &::rt_std::cpu::BoundVariables<'_>,
         ) {
-            let _ = __rt_variables;
+            let _ = (&__rt_args, __rt_variables);
             #read
             let mut __mask = *__rt_mask;
             #(#binds)*
-            #body
+            #(#takes)*
+            if ::rt_std::cpu::lanes::any(&__mask) {
+                #body
+            }
         }
     })
 }

@@ -100,7 +100,9 @@ impl Writer {
                     self.check_local(l)?;
                     let mut l = l.clone();
                     if let Some(init) = &mut l.init {
-                        for_lane(&mut init.expr, &self.varying, false)?;
+                        // (`let x = if c { return; } else { .. };`)
+                        retires |= returns(&init.expr);
+                        for_lane(&mut init.expr, &self.varying, true)?;
                     }
                     let (pat, _) = untyped(&l.pat);
                     for n in bound(pat) {

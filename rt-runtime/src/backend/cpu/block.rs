@@ -14,7 +14,7 @@
 use super::super::LaunchReport;
 use super::lane::Lane;
 use glam::UVec2;
-use rt_std::cpu::lanes::{LANES, LanesEntry, Mask, current_lane, enter_lane, in_block};
+use rt_std::cpu::lanes::{LANES, LaneArgs, LanesEntry, Mask, current_lane, enter_lane, in_block};
 
 /// No block lane's state is loaded into the lane.
 const NONE_LOADED: usize = usize::MAX;
@@ -43,7 +43,7 @@ impl Lane<'_> {
         self.block.active.set(true);
         let rg = &l.ray_generation;
         let outer = self.program.replace(Some(rg.desc));
-        in_block(&mut contexts, || entry(&mask, &rg.vars));
+        in_block(&mut contexts, || entry(&mask, &mut LaneArgs::default(), &rg.vars));
         self.program.set(outer);
         self.store_block_lane();
         self.block.active.set(false);

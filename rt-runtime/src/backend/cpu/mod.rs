@@ -37,6 +37,7 @@
 
 mod bind;
 mod block;
+mod hit_block;
 mod lane;
 mod packet;
 mod tracer;

@@ -2,9 +2,9 @@
 //! packet where the scene allows: every lane's ray against the same
 //! geometry group of fixed triangles with no any-hit program for the ray
 //! type, in a SIMD tree with packets, walked by
-//! [`walk_packet`](crate::accel::wide::packet_walk::walk_packet). Each
-//! lane's closest hit then goes to its closest-hit (or miss) program in
-//! that lane's state, as a single trace hands it over. Anything else (a
+//! [`walk_packet`](crate::accel::wide::packet_walk::walk_packet). The
+//! lanes' hits then go to their closest-hit (or miss) programs, lane-wise
+//! where a program has the form (`hit_block.rs`). Anything else (a
 //! transform, a group over several children, custom primitives, any-hit
 //! programs, moving vertices) is traced lane by lane.
 
@@ -90,13 +90,7 @@ impl Lane<'_> {
             s.tmax.get()
         });
         self.leave_trace(depth, outer_time);
-        for (k, &i) in lanes.iter().enumerate() {
-            let (Some(s), Some(p)) = (searches[k].as_mut(), payloads[i].as_deref_mut()) else { continue };
-            self.enter_block_lane(i);
-            let (depth, outer_time) = self.enter_trace(time);
-            self.hand_over(s, &rays[i], p, flags, ray_mask);
-            self.leave_trace(depth, outer_time);
-        }
+        self.hand_over_lanes(lanes, &mut searches, rays, payloads, flags, ray_mask, time);
     }
 
     /// The geometry group the lanes of `go` all search as a packet, if

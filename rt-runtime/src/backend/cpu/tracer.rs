@@ -2,6 +2,7 @@
 //! need the runtime (reporting intersections, callables, bindless ids,
 //! prints), served while its programs run as Rust.
 
+use super::bind::Program;
 use super::lane::{Hit, Lane, NoAttributes, Search, set_current_ray, set_transforms};
 use super::triangle::front_or_back;
 use super::triangle::{geometric_normal, triangle_builtins};
@@ -10,7 +11,7 @@ use crate::link::instances::{self, InstancePath};
 use crate::scene::{NodeId, ProgramId};
 use glam::{Vec2, Vec3};
 use rt_std::cpu::lanes::LANES;
-use rt_std::cpu::{AnyAttributes, HIT_CUSTOM, Tracer};
+use rt_std::cpu::{AnyAttributes, ExecutionContext, HIT_CUSTOM, Tracer};
 use rt_std::*;
 use std::any::Any;
 use std::cell::{Cell, RefCell};
@@ -166,7 +167,7 @@ impl<'r> Search<'r> {
     }
 }
 
-impl Lane<'_> {
+impl<'a> Lane<'a> {
     /// Whether a trace of `ray` against `object` goes ahead: not after an
     /// exception, not past the depth limit (raised), not of a node or ray
     /// type the scene lacks (raised).
@@ -210,56 +211,68 @@ impl Lane<'_> {
     /// the hit's material and the ray's type, or the ray to the ray type's
     /// miss program.
     pub(crate) fn hand_over(&self, search: &mut Search<'_>, ray: &Ray, payload: &mut dyn Any, flags: u32, mask: u32) {
-        let l = self.l;
         let mut attributes = search.attributes.take();
-        // Read in place: a copy of the hit would load the fields its last
-        // commit stored one by one in wider words (a stall).
-        match search.committed.get_mut() {
-            Some(hit) => {
-                let (closest, _) = &l.hits[hit.instance as usize][hit.material as usize][ray.ray_type as usize];
-                if let Some(ch) = closest
-                    && flags & RAY_FLAG_DISABLE_CLOSESTHIT == 0
-                {
-                    let mesh = l.meshes[hit.instance as usize];
-                    // The geometric normal, once: the attributes and the
-                    // side of the triangle both take it.
-                    let normal = mesh.map(|_| geometric_normal(&hit.vertices));
-                    if let (Some(mesh), Some(normal), Some(ty)) = (mesh, normal, &ch.attributes) {
-                        let (u, v) = hit.barycentrics.into();
-                        let values = triangle_builtins(mesh, hit.primitive, normal, u, v);
-                        attributes = Some(self.attributes_of(ty, Some(&values)));
-                    }
-                    let hit_kind = match normal {
-                        Some(normal) => front_or_back(hit.xf.as_ref(), normal, ray.direction),
-                        None => HIT_CUSTOM,
-                    };
-                    let (path, group) = hit.path;
-                    let (instance_index, instance_id) = instances::resolve(l.scene, path, group, hit.instance);
-                    let mut ctx = self.context();
-                    ctx.t_hit = hit.t;
-                    ctx.primitive_index = hit.primitive;
-                    ctx.hit_kind = hit_kind;
-                    ctx.ray_flags = flags;
-                    ctx.ray_mask = mask & 0xff;
-                    ctx.instance_index = instance_index;
-                    ctx.instance_id = instance_id;
-                    set_transforms(&mut ctx, hit.xf.as_ref());
-                    set_current_ray(&mut ctx, ray, hit.t);
-                    self.invoke(ch, &mut ctx, Some(payload), attributes.as_mut());
-                }
-            }
-            None => {
-                if let Some(miss) = &l.miss[ray.ray_type as usize] {
-                    let mut ctx = self.context();
-                    ctx.ray_flags = flags;
-                    ctx.ray_mask = mask & 0xff;
-                    set_current_ray(&mut ctx, ray, ray.tmax);
-                    self.invoke(miss, &mut ctx, Some(payload), None);
-                }
-            }
+        if let Some((program, mut ctx)) = self.handed_to(search, ray, flags, mask, &mut attributes) {
+            self.invoke(program, &mut ctx, Some(payload), attributes.as_mut());
         }
         if let Some(a) = attributes {
             self.return_attributes(a);
         }
+    }
+
+    /// The program a finished search goes to (the closest-hit program of
+    /// the hit's material and the ray's type, or the ray type's miss
+    /// program; none where there is none or the ray's flags skip it) and
+    /// its call's context, at the loaded launch index. A triangle hit's
+    /// attributes are made into `attributes` where the program takes them.
+    pub(crate) fn handed_to<'s>(
+        &self,
+        search: &'s mut Search<'_>,
+        ray: &Ray,
+        flags: u32,
+        mask: u32,
+        attributes: &mut Option<Box<dyn AnyAttributes>>,
+    ) -> Option<(&'a Program<'a>, ExecutionContext<'s>)> {
+        let l = self.l;
+        // Read in place: a copy of the hit would load the fields its last
+        // commit stored one by one in wider words (a stall).
+        let Some(hit) = search.committed.get_mut() else {
+            let miss = l.miss[ray.ray_type as usize].as_ref()?;
+            let mut ctx = self.context();
+            ctx.ray_flags = flags;
+            ctx.ray_mask = mask & 0xff;
+            set_current_ray(&mut ctx, ray, ray.tmax);
+            return Some((miss, ctx));
+        };
+        let (closest, _) = &l.hits[hit.instance as usize][hit.material as usize][ray.ray_type as usize];
+        let ch = closest.as_ref().filter(|_| flags & RAY_FLAG_DISABLE_CLOSESTHIT == 0)?;
+        let mesh = l.meshes[hit.instance as usize];
+        // The geometric normal, once: the attributes and the side of the
+        // triangle both take it.
+        let normal = mesh.map(|_| geometric_normal(&hit.vertices));
+        if let (Some(mesh), Some(normal), Some(ty)) = (mesh, normal, &ch.attributes) {
+            let (u, v) = hit.barycentrics.into();
+            let values = triangle_builtins(mesh, hit.primitive, normal, u, v);
+            if let Some(old) = attributes.replace(self.attributes_of(ty, Some(&values))) {
+                self.return_attributes(old);
+            }
+        }
+        let hit_kind = match normal {
+            Some(normal) => front_or_back(hit.xf.as_ref(), normal, ray.direction),
+            None => HIT_CUSTOM,
+        };
+        let (path, group) = hit.path;
+        let (instance_index, instance_id) = instances::resolve(l.scene, path, group, hit.instance);
+        let mut ctx = self.context();
+        ctx.t_hit = hit.t;
+        ctx.primitive_index = hit.primitive;
+        ctx.hit_kind = hit_kind;
+        ctx.ray_flags = flags;
+        ctx.ray_mask = mask & 0xff;
+        ctx.instance_index = instance_index;
+        ctx.instance_id = instance_id;
+        set_transforms(&mut ctx, hit.xf.as_ref());
+        set_current_ray(&mut ctx, ray, hit.t);
+        Some((ch, ctx))
     }
 }
