@@ -87,7 +87,7 @@ fn read(ctx: &Context, buffers: &[BufferId]) -> Vec<Vec<Vec4>> {
 
 #[test]
 fn a_list_gives_what_its_commands_give_one_by_one() {
-    for on in [On::CPU, On::COMPUTE] {
+    for on in On::ALL {
         let mut one_by_one = frame(on);
         one_by_one.ctx.launch(0, W, H).unwrap();
         one_by_one.ctx.run_stage(one_by_one.denoiser, W, H).unwrap();
