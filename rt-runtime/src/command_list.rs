@@ -15,25 +15,32 @@
 //!
 //! What a list gives is what running its commands one by one gives
 //! ([`Context::launch_3d`], [`Context::run_stage`]): each launch runs
-//! through the one launch path, tiled under the context's budget, and
-//! each stage on the backend the context launches on. On the wgpu
-//! backend a launch is one submission a tile (so that its progress is
-//! reported and it can be cancelled between tiles), and the stages that
-//! follow one another in the list are one submission together
-//! ([`Context::stage_submissions`] counts them), a stage reading an
-//! earlier one's output on the device: the list is not one submission
-//! as a whole. The launch path reads a launch's outputs back before the
-//! next command, except device-local buffers
-//! ([`Context::set_buffer_device_local`]), which stay on the device and
-//! which a stage takes from the launch's heap by a copy on the device
-//! ([`Context::stage_inputs_read_on_device`] counts them); every stage's
-//! output comes back to the host.
+//! through the one launch path, tiled under the context's budget, with
+//! progress and cancellation between tiles, and each stage on the
+//! backend the context launches on.
+//!
+//! On the wgpu backend, the submissions: a launch is one a tile (so that
+//! its progress is reported and it can be cancelled between tiles), and
+//! the run of stages that follows it in the list rides in its last
+//! tile's submission, recorded after the dispatches
+//! (`backend::wgpu::tail`): a launch of one tile and the stages after
+//! it are one submission, a launch of `T` tiles and its stages `T`. The
+//! stages read what the launch wrote where it lies in the device's heap;
+//! those buffers are not read back (the device holds them, newer than
+//! the host, as it holds device-local ones, and
+//! [`Context::read_buffer`] copies one when asked), while the stages'
+//! outputs come back with the launch's other outputs, in its one read.
+//! A run of stages with no launch before it (at the list's start) is one
+//! submission of its own ([`Context::stage_submissions`]). A launch that
+//! logs exceptions or prints reads its log in one more
+//! ([`Context::wgpu_submissions`] counts every submission). A launch
+//! cancelled before its last tile runs none of its stages.
 
 use crate::backend::LaunchReport;
 use crate::backend::tiles::{LaunchControl, LaunchProgress};
 use crate::context::Context;
 use crate::error::{Result, RtError};
-use crate::postprocess::StageId;
+use crate::postprocess::{Plan, StageId};
 
 /// One command of a list.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -182,30 +189,43 @@ impl CommandList {
         let commands = self.commands.len();
         let mut command = 0;
         while command < commands {
-            if let Command::Launch { entry, width, height, depth } = self.commands[command] {
-                let mut each = |launch| progress(CommandProgress { command, commands, launch });
-                reports.push(ctx.launch_3d_with_progress(entry, width, height, depth, &mut each)?);
-                command += 1;
-                continue;
-            }
-            // A run of stages: planned, then run together (on wgpu, one
-            // submission). A stage that fails its check runs the ones
-            // before it first.
-            let mut plans = Vec::new();
-            while let Some(&Command::Stage { stage, width, height }) = self.commands.get(command) {
-                match ctx.plan_stage(stage, Some((width, height))) {
-                    Ok(plan) => plans.push(plan),
-                    Err(e) => {
-                        ctx.run_plans(&plans)?;
-                        return Err(e);
-                    }
+            // The run of stages from here (after a launch, from the next
+            // command): planned first; a stage that fails its check stops
+            // the run there, the commands before it done.
+            let launch = match self.commands[command] {
+                Command::Launch { entry, width, height, depth } => Some((entry, width, height, depth)),
+                Command::Stage { .. } => None,
+            };
+            let first = command + launch.is_some() as usize;
+            let (plans, failed) = plan_run(ctx, &self.commands[first..]);
+            match launch {
+                Some(size) => {
+                    let mut each = |launch| progress(CommandProgress { command, commands, launch });
+                    reports.push(ctx.launch_then_stages(size, &mut each, &plans)?);
                 }
-                command += 1;
+                None => ctx.run_plans(&plans)?,
             }
-            ctx.run_plans(&plans)?;
+            if let Some(e) = failed {
+                return Err(e);
+            }
+            command = first + plans.len();
         }
         Ok(reports)
     }
+}
+
+/// The plans of the stages `commands` starts with, up to the first
+/// launch or the first stage that fails its check (then its error too).
+fn plan_run(ctx: &Context, commands: &[Command]) -> (Vec<Plan>, Option<RtError>) {
+    let mut plans = Vec::new();
+    for command in commands {
+        let Command::Stage { stage, width, height } = *command else { break };
+        match ctx.plan_stage(stage, Some((width, height))) {
+            Ok(plan) => plans.push(plan),
+            Err(e) => return (plans, Some(e)),
+        }
+    }
+    (plans, None)
 }
 
 /// Checks command `i` against `ctx`.

@@ -1,6 +1,8 @@
 //! Command lists (OptiX 6's `RTcommandlist`): a list of a launch, the
 //! denoiser and the tonemapper gives what running them one by one gives,
-//! bit for bit, on every backend (on wgpu its stages in one submission); launches in it are tiled and cancelled
+//! bit for bit, on every backend (on wgpu a launch and the stages after
+//! it in one submission, the stages reading the launch's outputs on the
+//! device); launches in it are tiled, report progress and are cancelled
 //! as any; and a list used out of order, or holding a command that does
 //! not fit, is refused with an error naming the command, stage and
 //! variable.
@@ -85,15 +87,14 @@ fn read(ctx: &Context, buffers: &[BufferId]) -> Vec<Vec<Vec4>> {
 
 #[test]
 fn a_list_gives_what_its_commands_give_one_by_one() {
-    for on in [On::CPU, On::COMPUTE] {
+    for on in On::ALL {
         let mut one_by_one = frame(on);
         one_by_one.ctx.launch(0, W, H).unwrap();
         one_by_one.ctx.run_stage(one_by_one.denoiser, W, H).unwrap();
         one_by_one.ctx.run_stage(one_by_one.tonemapper, W, H).unwrap();
         let want = read(&one_by_one.ctx, &one_by_one.buffers);
-        // On wgpu a stage run alone is a submission; the list's two stages
-        // are one together, the tonemapper reading the denoiser's output
-        // on the device. The CPU backend submits nothing.
+        // On wgpu a stage run alone is a submission; the list's stages
+        // ride in its launch's last one. The CPU backend submits nothing.
         let submissions = |n: u64| if on == On::CPU { 0 } else { n };
         assert_eq!(one_by_one.ctx.stage_submissions(), submissions(2), "{}", on.name());
 
@@ -105,20 +106,115 @@ fn a_list_gives_what_its_commands_give_one_by_one() {
         list.append_stage(denoiser, W, H).unwrap();
         list.append_stage(tonemapper, W, H).unwrap();
         list.finalize(&ctx).unwrap();
-        let reports = list.execute(&mut ctx).unwrap();
+        let mut tiles_seen = 0;
+        let reports = list
+            .execute_with_progress(&mut ctx, |p| {
+                assert_eq!((p.command, p.commands), (0, 3));
+                tiles_seen += 1;
+                LaunchControl::Continue
+            })
+            .unwrap();
         assert_eq!(reports.len(), 1);
-        assert!(reports[0].tiles > 1, "{} tiles", reports[0].tiles);
+        let tiles = reports[0].tiles;
+        assert!(tiles > 1, "{tiles} tiles");
+        assert_eq!(tiles_seen, tiles, "progress after every tile");
+        // One submission a tile, the stages in the last: nothing else.
+        assert_eq!(ctx.wgpu_submissions(), submissions(tiles as u64), "{}", on.name());
         let got = read(&ctx, &buffers);
         assert_eq!(got, want, "{}", on.name());
-        assert_eq!(ctx.stage_submissions(), submissions(1), "{}", on.name());
+        assert_eq!(ctx.stage_submissions(), 0, "{}", on.name());
         // The stages did something: the display is the tonemapped denoised colour.
         assert_ne!(got[3], got[0]);
         assert!(got[4].iter().all(|p| p.max_element() <= 1.0));
         // Executed again, it gives the same.
         list.execute(&mut ctx).unwrap();
         assert_eq!(read(&ctx, &buffers), want, "{}", on.name());
-        assert_eq!(ctx.stage_submissions(), submissions(2), "{}", on.name());
+        assert_eq!(ctx.stage_submissions(), 0, "{}", on.name());
     }
+}
+
+/// On wgpu, a list of a launch of one tile, the denoiser and the
+/// tonemapper is one submission, where the commands one by one are three;
+/// the launch's outputs the stages read stay on the device (the list reads
+/// back only the stages' outputs and the log's header), and a read of one
+/// copies it then (one submission each); the pictures are the same, bit
+/// for bit.
+#[test]
+fn on_wgpu_a_launch_and_its_stages_are_one_submission() {
+    let images = 4 * (W * H) as u64 * 4;
+    let mut one_by_one = frame(On::COMPUTE);
+    one_by_one.ctx.set_tile_budget(TileBudget::Whole);
+    let report = one_by_one.ctx.launch(0, W, H).unwrap();
+    assert_eq!(report.tiles, 1);
+    let launch_read_back = one_by_one.ctx.last_read_back_bytes();
+    one_by_one.ctx.run_stage(one_by_one.denoiser, W, H).unwrap();
+    one_by_one.ctx.run_stage(one_by_one.tonemapper, W, H).unwrap();
+    assert_eq!(one_by_one.ctx.wgpu_submissions(), 3);
+    // The launch read back its five images (every one is writable) and
+    // the log's header (and timestamps, where the device has them).
+    let log = launch_read_back - 5 * images;
+    assert!(log == 16 || log == 32, "{launch_read_back} bytes read back");
+    let want = read(&one_by_one.ctx, &one_by_one.buffers);
+
+    let Frame { mut ctx, buffers, denoiser, tonemapper } = frame(On::COMPUTE);
+    ctx.set_tile_budget(TileBudget::Whole);
+    let mut list = CommandList::new();
+    list.append_launch_2d(0, W, H).unwrap();
+    list.append_stage(denoiser, W, H).unwrap();
+    list.append_stage(tonemapper, W, H).unwrap();
+    list.finalize(&ctx).unwrap();
+    for frame in 1..=2 {
+        let before = ctx.wgpu_submissions();
+        let reports = list.execute(&mut ctx).unwrap();
+        assert_eq!(reports[0].tiles, 1);
+        assert_eq!(ctx.wgpu_submissions() - before, 1, "frame {frame}: the launch and both stages in one");
+        assert_eq!(ctx.last_read_back_bytes(), 2 * images + log, "frame {frame}: the stages' two outputs and the log");
+        assert_eq!(ctx.stage_submissions(), 0);
+        // The denoiser's colour, albedo and normal came from the heap.
+        assert_eq!(ctx.stage_inputs_read_on_device(), 3 * frame);
+    }
+    // The denoised and displayed images are on the host; reading them
+    // submits nothing.
+    let before = ctx.wgpu_submissions();
+    assert_eq!(ctx.read_buffer::<Vec4>(buffers[3]).unwrap(), want[3]);
+    assert_eq!(ctx.read_buffer::<Vec4>(buffers[4]).unwrap(), want[4]);
+    assert_eq!(ctx.wgpu_submissions(), before);
+    // The launch's images are the device's: each read is a copy.
+    for b in 0..3 {
+        assert_eq!(ctx.read_buffer::<Vec4>(buffers[b]).unwrap(), want[b], "buffer {b}");
+    }
+    assert_eq!(ctx.wgpu_submissions(), before + 3);
+}
+
+/// On wgpu, a list whose launch is cancelled between tiles runs none of
+/// its stages and leaves every buffer as it was, and the list after runs
+/// whole.
+#[test]
+fn on_wgpu_a_cancelled_launch_runs_none_of_the_stages_riding_in_it() {
+    let Frame { mut ctx, buffers, denoiser, tonemapper } = frame(On::COMPUTE);
+    ctx.set_tile_budget(TileBudget::Indices(64));
+    let mut list = CommandList::new();
+    list.append_launch_2d(0, W, H).unwrap();
+    list.append_stage(denoiser, W, H).unwrap();
+    list.append_stage(tonemapper, W, H).unwrap();
+    list.finalize(&ctx).unwrap();
+    let mut seen = 0;
+    let e = list
+        .execute_with_progress(&mut ctx, |_| {
+            seen += 1;
+            if seen == 2 { LaunchControl::Cancel } else { LaunchControl::Continue }
+        })
+        .unwrap_err();
+    assert!(matches!(e, RtError::LaunchCancelled { entry: 0, done: 128, .. }), "{e}");
+    for (b, pixels) in read(&ctx, &buffers).into_iter().enumerate() {
+        assert_eq!(pixels, vec![Vec4::ZERO; (W * H) as usize], "buffer {b} as it was");
+    }
+    list.execute(&mut ctx).unwrap();
+    let mut one_by_one = frame(On::COMPUTE);
+    one_by_one.ctx.launch(0, W, H).unwrap();
+    one_by_one.ctx.run_stage(one_by_one.denoiser, W, H).unwrap();
+    one_by_one.ctx.run_stage(one_by_one.tonemapper, W, H).unwrap();
+    assert_eq!(read(&ctx, &buffers), read(&one_by_one.ctx, &one_by_one.buffers));
 }
 
 #[test]
@@ -205,12 +301,11 @@ fn finalize_names_the_stage_and_variable_or_the_launch_at_fault() {
     assert_eq!(e, "command list: command 0 (a launch): entry point 1 has no ray generation program");
 }
 
-/// A list on the wgpu backend whose launch leaves its outputs on the
-/// device (device-local buffers): its stages take them from there, copied
-/// on the device (the denoiser's colour, albedo and normal; the
-/// tonemapper's input, the denoiser's output, comes from the host), and
-/// the pictures are the CPU backend's within 1e-4, as they are when the
-/// launch reads its outputs back.
+/// A list on the wgpu backend: its stages take the launch's outputs from
+/// the device, copied there (the denoiser's colour, albedo and normal;
+/// the tonemapper reads the denoiser's output where it wrote it), whether
+/// the buffers are device-local or not, and the pictures are the CPU
+/// backend's within 1e-4.
 #[test]
 fn stages_read_a_launchs_device_local_outputs() {
     let run = |on: On, device_local: bool| {
@@ -227,9 +322,9 @@ fn stages_read_a_launchs_device_local_outputs() {
     assert_eq!(none, 0);
     let (on_device, copied) = run(On::COMPUTE, true);
     assert_eq!(copied, 3, "the denoiser's three inputs are taken on the device");
-    let (through_host, copied) = run(On::COMPUTE, false);
-    assert_eq!(copied, 0, "outputs read back are taken from the host");
-    for gpu in [on_device, through_host] {
+    let (not_local, copied) = run(On::COMPUTE, false);
+    assert_eq!(copied, 3, "in a list, the launch's outputs the stages read stay on the device too");
+    for gpu in [on_device, not_local] {
         assert_close(&cpu, &gpu);
     }
 }

@@ -2,9 +2,10 @@
 //! their variables, running one.
 
 use super::Context;
-use crate::backend::Backend;
+use crate::backend::tiles::{LaunchControl, LaunchProgress};
+use crate::backend::{Backend, LaunchReport};
 use crate::error::{Result, RtError};
-use crate::postprocess::gpu::{Pipelines, Source};
+use crate::postprocess::gpu::{Pipelines, Source, StageTail, pixels};
 use crate::postprocess::{Pixels, Plan, Stage, StageId, StageKind, StageValue};
 use crate::scene::BufferId;
 use glam::Vec4;
@@ -127,23 +128,67 @@ impl Context {
         self.stage_device_inputs
     }
 
-    /// How many queue submissions stages have made on the wgpu device: one
-    /// for each [`Context::run_stage`], one for each run of consecutive
-    /// stages of a command list.
+    /// How many queue submissions stages have made of their own on the
+    /// wgpu device: one for each [`Context::run_stage`], one for each run
+    /// of consecutive stages of a command list that no launch comes
+    /// before (the stages after a list's launch ride in its last
+    /// submission, [`Context::wgpu_submissions`] counts that).
     pub fn stage_submissions(&self) -> u64 {
         self.stage_submits
     }
 
-    /// Runs checked stages' passes on the wgpu device (opened first if no
-    /// launch opened it yet), in one submission; their outputs.
-    fn run_on_wgpu(&mut self, stages: &[(Plan, Pixels<Source>)]) -> Result<Vec<Vec<Vec4>>> {
+    /// The stages' pipelines on the wgpu device (opened first if no launch
+    /// opened it yet), made once per device.
+    fn stage_pipelines(&mut self) -> Result<(Pipelines, super::WgpuDevice)> {
         self.open_wgpu()?;
         let handles = self.wgpu_device().ok_or_else(|| RtError::Gpu("no device after opening one".into()))?;
         if !self.stage_pipelines.as_ref().is_some_and(|p| p.on(&handles.device)) {
             self.stage_pipelines = Some(Pipelines::new(&handles.device)?);
         }
-        let outputs = self.stage_pipelines.as_ref().expect("made above").run(&handles.queue, stages)?;
+        Ok((self.stage_pipelines.clone().expect("made above"), handles))
+    }
+
+    /// Runs entry point `entry` over `size` (width, height, depth) as
+    /// [`Context::launch_3d_with_progress`] does, then the checked stages
+    /// `plans` in order. On the wgpu backend the stages are recorded into
+    /// the launch's last submission, after its dispatches, reading the
+    /// launch's outputs where they lie in its heap; those outputs are not
+    /// read back (the device holds them, and a read copies them then),
+    /// the stages' outputs are, with the launch's others. A launch that
+    /// fails or is cancelled runs no stage.
+    pub(crate) fn launch_then_stages(
+        &mut self,
+        (entry, width, height, depth): (u32, u32, u32, u32),
+        progress: &mut dyn FnMut(LaunchProgress) -> LaunchControl,
+        plans: &[Plan],
+    ) -> Result<LaunchReport> {
+        if self.backend() != Backend::Wgpu || plans.is_empty() {
+            let report = self.launch_3d_with_progress(entry, width, height, depth, progress)?;
+            self.run_plans(plans)?;
+            return Ok(report);
+        }
+        let (pipelines, _) = self.stage_pipelines()?;
+        let tail = StageTail { pipelines, plans: plans.to_vec() };
+        self.wgpu_backend().arm_tail(Box::new(tail));
+        let report = self.launch_3d_with_progress(entry, width, height, depth, progress);
+        let ran = self.wgpu_backend().take_tail();
+        let report = report?;
+        let (outputs, from_device) =
+            ran.ok_or_else(|| RtError::Gpu("the stages after the launch did not run".into()))?;
+        for (plan, words) in plans.iter().zip(outputs) {
+            self.write_buffer(plan.output, &pixels(&words))?;
+        }
+        self.stage_device_inputs += from_device;
+        Ok(report)
+    }
+
+    /// Runs checked stages' passes on the wgpu device (opened first if no
+    /// launch opened it yet), in one submission; their outputs.
+    fn run_on_wgpu(&mut self, stages: &[(Plan, Pixels<Source>)]) -> Result<Vec<Vec<Vec4>>> {
+        let (pipelines, handles) = self.stage_pipelines()?;
+        let outputs = pipelines.run(&handles.queue, stages)?;
         self.stage_submits += 1;
+        self.wgpu_backend().count_submission();
         let from_device = stages.iter().flat_map(|(_, s)| s.each()).filter(|s| matches!(s, Source::Device(_)));
         self.stage_device_inputs += from_device.count() as u64;
         Ok(outputs)

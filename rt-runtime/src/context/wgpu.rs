@@ -66,6 +66,18 @@ impl Context {
         self.wgpu_backend_ref().map_or(0, |b| b.stats().last_read_back_bytes)
     }
 
+    /// Queue submissions the runtime made on its wgpu device since the
+    /// device opened (0 before): one a launch's tile (its dispatches, and
+    /// the read-back of its outputs and log), one more where a launch
+    /// logged exceptions or prints, one a build of the ray-query
+    /// traversal's structures, one or two where device-local words move
+    /// or are put aside, one a read of a buffer the device holds, and one
+    /// a run of stages ([`Context::run_stage`]) unless it rode in a
+    /// command list's launch ([`crate::command_list`]).
+    pub fn wgpu_submissions(&self) -> u64 {
+        self.wgpu_backend_ref().map_or(0, |b| b.submissions())
+    }
+
     /// The megakernel WGSL of the last wgpu launch (`RT_DUMP_WGSL=1` also
     /// writes it to the temporary directory).
     pub fn linked_wgsl(&self) -> Option<&str> {

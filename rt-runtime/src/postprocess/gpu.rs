@@ -9,17 +9,25 @@
 //! passes ping-ponging between two buffers, finish; or the tonemapper's
 //! one), and every stage's output is read back. The pipelines are made
 //! once per device ([`Pipelines`]).
+//!
+//! After a command list's launch, the run rides in the launch's last
+//! submission instead ([`StageTail`], a `backend::wgpu::tail::Tail`):
+//! recorded after the launch's dispatches, reading what the launch wrote
+//! where it lies in the heap.
 
 use super::denoise::Tuning;
 use super::{Pixels, Plan, StageKind};
 use crate::backend::wgpu::DeviceBuffer;
+use crate::backend::wgpu::tail::{Recorded, Tail};
 use crate::error::{Result, RtError};
+use crate::scene::{BufferId, Scene};
 use glam::Vec4;
 use wgpu::util::DeviceExt;
 
 const WGSL: &str = include_str!("gpu/stages.wgsl");
 
 /// The stages' pipelines on one device.
+#[derive(Clone)]
 pub(crate) struct Pipelines {
     device: wgpu::Device,
     layout: wgpu::BindGroupLayout,
@@ -111,11 +119,7 @@ impl Pipelines {
     pub fn run(&self, queue: &wgpu::Queue, stages: &[(Plan, Pixels<Source>)]) -> Result<Vec<Vec<Vec4>>> {
         let device = &self.device;
         let mut encoder = device.create_command_encoder(&Default::default());
-        let mut outputs: Vec<wgpu::Buffer> = Vec::new();
-        for (plan, images) in stages {
-            let out = self.encode(&mut encoder, plan, images, &outputs);
-            outputs.push(out);
-        }
+        let outputs = self.record(&mut encoder, stages);
         let staging: Vec<wgpu::Buffer> = outputs
             .iter()
             .map(|out| {
@@ -154,13 +158,24 @@ impl Pipelines {
         for staging in &staging {
             let slice = staging.slice(..);
             let mapped = slice.get_mapped_range().map_err(|e| gpu_err("reading back", e.to_string()))?;
-            let floats: Vec<f32> =
-                mapped.chunks_exact(4).map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
+            let words: Vec<u32> =
+                mapped.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
             drop(mapped);
             staging.unmap();
-            images.push(floats.chunks_exact(4).map(Vec4::from_slice).collect());
+            images.push(pixels(&words));
         }
         Ok(images)
+    }
+
+    /// Records `stages`' passes into `encoder`, in order; the buffers their
+    /// outputs will be in.
+    pub fn record(&self, encoder: &mut wgpu::CommandEncoder, stages: &[(Plan, Pixels<Source>)]) -> Vec<wgpu::Buffer> {
+        let mut outputs: Vec<wgpu::Buffer> = Vec::new();
+        for (plan, images) in stages {
+            let out = self.encode(encoder, plan, images, &outputs);
+            outputs.push(out);
+        }
+        outputs
     }
 
     /// Records `plan`'s passes over `images` into `encoder` (`earlier`:
@@ -271,6 +286,79 @@ pub(crate) enum Source {
     Host(Vec<Vec4>),
     Device(DeviceBuffer),
     Earlier(usize),
+}
+
+/// Pixels from their words, four a pixel.
+pub(crate) fn pixels(words: &[u32]) -> Vec<Vec4> {
+    let f = f32::from_bits;
+    words.chunks_exact(4).map(|c| Vec4::new(f(c[0]), f(c[1]), f(c[2]), f(c[3]))).collect()
+}
+
+/// A run of stages after a command list's launch, in its last submission
+/// (`backend::wgpu::tail`): each image is an earlier stage's output of
+/// the run, where it lies; else where the device has the buffer's newest
+/// words (the launch wrote it, or holds it); else the host's pixels,
+/// uploaded.
+pub(crate) struct StageTail {
+    pub pipelines: Pipelines,
+    pub plans: Vec<Plan>,
+}
+
+impl StageTail {
+    /// Where `plans[i]` takes image `b` from.
+    fn source(
+        &self,
+        i: usize,
+        b: BufferId,
+        scene: &Scene,
+        on_device: &dyn Fn(usize) -> Option<DeviceBuffer>,
+    ) -> Source {
+        if let Some(k) = self.plans[..i].iter().rposition(|p| p.output == b) {
+            return Source::Earlier(k);
+        }
+        if let Some(d) = on_device(b.index() as usize) {
+            return Source::Device(d);
+        }
+        let mut words = Vec::new();
+        scene.buffers[b.index() as usize].storage.to_words(&mut words);
+        Source::Host(pixels(&words))
+    }
+}
+
+impl Tail for StageTail {
+    /// Every buffer of the stages: what the launch left in those they read
+    /// stays on the device for them, and those they write take the
+    /// stages' outputs (which the context writes to the host, newer than
+    /// what the device holds), so the launch reads none of them back.
+    fn keeps(&self, buffer: usize) -> bool {
+        let touches = |p: &Plan| {
+            let ids = Pixels { input: p.input, guides: p.guides, variance: p.variance };
+            p.output.index() as usize == buffer || ids.each().any(|b| b.index() as usize == buffer)
+        };
+        self.plans.iter().any(touches)
+    }
+
+    fn record(
+        &mut self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        scene: &Scene,
+        on_device: &dyn Fn(usize) -> Option<DeviceBuffer>,
+    ) -> Result<Recorded> {
+        // The launch opened a new device (the last was lost).
+        if !self.pipelines.on(device) {
+            self.pipelines = Pipelines::new(device)?;
+        }
+        let mut stages = Vec::new();
+        let mut from_device = 0;
+        for (i, plan) in self.plans.iter().enumerate() {
+            let ids = Pixels { input: plan.input, guides: plan.guides, variance: plan.variance };
+            let sources = ids.try_map(|b| Ok::<_, RtError>(self.source(i, b, scene, on_device)))?;
+            from_device += sources.each().filter(|s| matches!(s, Source::Device(_))).count() as u64;
+            stages.push((plan.clone(), sources));
+        }
+        Ok(Recorded { read_back: self.pipelines.record(encoder, &stages), from_device })
+    }
 }
 
 /// The `Params` uniform of `stages.wgsl` for one pass.

@@ -67,9 +67,16 @@ pub(crate) struct Health {
     /// Errors outside any error scope (wgpu's default handler would panic
     /// on them); a launch that finds one fails with it.
     pub(crate) uncaptured: Mutex<Vec<String>>,
+    /// Queue submissions the runtime made on the device.
+    pub(crate) submissions: std::sync::atomic::AtomicU64,
 }
 
 impl Health {
+    /// Counts one queue submission.
+    pub(crate) fn submitted(&self) {
+        self.submissions.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    }
+
     pub(crate) fn lost_reason(&self) -> Option<String> {
         self.lost.lock().unwrap_or_else(|e| e.into_inner()).clone()
     }

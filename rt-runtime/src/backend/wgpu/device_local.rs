@@ -56,7 +56,7 @@ impl DeviceLocal {
         heap: &[u32],
         several_tiles: bool,
     ) -> Vec<(u64, usize, usize)> {
-        let Gpu { device, queue, resident, .. } = gpu;
+        let Gpu { device, queue, resident, health, .. } = gpu;
         let this = &mut resident.device_local;
         this.saved_for.clear();
         let mirror = resident.heap.as_mut().filter(|m| m.words.len() == heap.len());
@@ -108,6 +108,7 @@ impl DeviceLocal {
         // Submitted now, before the upload's writes: those reach the
         // device ahead of the next submission's commands.
         queue.submit([encoder.finish()]);
+        health.submitted();
         copies
     }
 
@@ -125,7 +126,7 @@ impl DeviceLocal {
         if copies.is_empty() {
             return;
         }
-        let Gpu { device, queue, resident, .. } = gpu;
+        let Gpu { device, queue, resident, health, .. } = gpu;
         let saved = resident.device_local.saved.as_ref().expect("saved before the upload");
         let heap = &resident.heap.as_ref().expect("uploaded").buffer;
         let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("rt move") });
@@ -133,16 +134,23 @@ impl DeviceLocal {
             encoder.copy_buffer_to_buffer(saved, at, heap, offset as u64 * 4, words as u64 * 4);
         }
         queue.submit([encoder.finish()]);
+        health.submitted();
     }
 
-    /// After a launch's last tile ran: device-local `outputs` (`(buffer,
-    /// word offset, words)`) are held, the others were read back.
-    pub(crate) fn after_launch(&mut self, scene: &Scene, outputs: &[(usize, usize, usize)]) {
+    /// After a launch's last tile ran: the `outputs` (`(buffer, word
+    /// offset, words)`) that were `kept` on the device (device-local ones,
+    /// those a tail took there) are held, the others were read back.
+    pub(crate) fn after_launch(
+        &mut self,
+        scene: &Scene,
+        outputs: &[(usize, usize, usize)],
+        kept: &dyn Fn(usize) -> bool,
+    ) {
         self.saved_for.clear();
         for &(buffer, offset, words) in outputs {
             self.held.retain(|h| h.buffer != buffer);
             let rec = &scene.buffers[buffer];
-            if rec.device_local {
+            if kept(buffer) {
                 self.held.push(Held { buffer, offset, words, version: rec.host_version });
             }
         }
@@ -152,7 +160,7 @@ impl DeviceLocal {
     /// before it go to the host (whose copy the next launch uploads whole),
     /// and nothing is held.
     pub(crate) fn restore(gpu: &mut Gpu, buffers: &mut [BufferRec]) {
-        let Gpu { device, queue, resident, .. } = gpu;
+        let Gpu { device, queue, resident, health, .. } = gpu;
         let this = &mut resident.device_local;
         this.held.clear();
         let saved_for = std::mem::take(&mut this.saved_for);
@@ -161,6 +169,7 @@ impl DeviceLocal {
         let copies: Vec<_> = saved_for.iter().map(|(h, at)| (saved, *at, h.words as u64 * 4)).collect();
         // A device that cannot even give these back is lost: the host's
         // copies are what is left.
+        health.submitted();
         let read = futures::now(read_back(device, queue, &mut None, encoder, &copies, false));
         if let Some(Ok(words)) = read {
             let mut at = 0;
@@ -225,6 +234,7 @@ async fn read_held_async(gpu: &Gpu, held: &[Held]) -> Result<Vec<u32>> {
     let heap = &gpu.resident.heap.as_ref().expect("held words live in a heap").buffer;
     let encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("rt read held") });
     let copies: Vec<_> = held.iter().map(|h| (heap, h.offset as u64 * 4, h.words as u64 * 4)).collect();
+    gpu.health.submitted();
     read_back(&gpu.device, &gpu.queue, &mut None, encoder, &copies, false)
         .await
         .map_err(|what| gpu.health.failure(gpu.describe(), format!("reading a device-local buffer: {what}")))

@@ -88,6 +88,7 @@ pub mod kernel;
 pub(crate) mod pipeline;
 pub(crate) mod rayquery;
 pub(crate) mod readback;
+pub(crate) mod tail;
 pub(crate) mod transform_chain;
 
 pub use capture::capture_launches_to;
@@ -107,6 +108,7 @@ use device_mirror::DeviceLocal;
 use encode::{Encoding, SceneKey};
 use glam::UVec2;
 use readback::{LOG_EXCEPTIONS, LOG_PRINT_WORDS};
+use tail::{Recorded, Tail, TailState};
 
 /// The wgpu backend: its device (opened at the first launch, dropped when
 /// lost), the last launch's kernel and the outputs it read back.
@@ -123,6 +125,9 @@ pub(crate) struct WgpuBackend {
     /// The traversal of the launch running now, chosen when it asked for
     /// its trees ([`LaunchBackend::trees`]).
     plan: Option<rayquery::Plan>,
+    /// Work for the next launch's last submission ([`tail`]), or what it
+    /// read back.
+    tail: TailState,
 }
 
 /// What a launch read back of its output buffers, for the host's copies.
@@ -192,6 +197,35 @@ impl WgpuBackend {
         host_version: u64,
     ) -> Option<LocalBoxFuture<'_, Result<Vec<u32>>>> {
         DeviceLocal::words(self.gpu.as_ref()?, buffer, host_version)
+    }
+
+    /// Records `tail` into the next launch's last submission
+    /// ([`tail`]); [`WgpuBackend::take_tail`] gives what it read back.
+    pub(crate) fn arm_tail(&mut self, tail: Box<dyn Tail>) {
+        self.tail = TailState::Armed(tail);
+    }
+
+    /// The words of what the armed tail read back, and how many buffers it
+    /// took from the device, once a launch's last tile ran it; `None` when
+    /// none did (the launch failed or was cancelled first). Disarms the
+    /// tail.
+    pub(crate) fn take_tail(&mut self) -> Option<(Vec<Vec<u32>>, u64)> {
+        match std::mem::take(&mut self.tail) {
+            TailState::Done(words, from_device) => Some((words, from_device)),
+            _ => None,
+        }
+    }
+
+    /// Queue submissions the runtime made on the open device.
+    pub(crate) fn submissions(&self) -> u64 {
+        self.gpu.as_ref().map_or(0, |g| g.health.submissions.load(std::sync::atomic::Ordering::Relaxed))
+    }
+
+    /// Counts a submission the context made on the device itself.
+    pub(crate) fn count_submission(&self) {
+        if let Some(g) = self.gpu.as_ref() {
+            g.health.submitted();
+        }
     }
 
     /// How the launches walk the scene ([`Traversal`]).
@@ -303,15 +337,15 @@ impl LaunchBackend for WgpuBackend {
                 pending,
                 traversal,
                 plan: kept,
+                tail,
             } = self;
             let device = gpu.as_mut().expect("opened by prepare");
             let plan = match kept.take() {
                 Some(plan) => plan,
                 None => rayquery::plan(l.scene, device, *traversal)?,
             };
-            let result =
-                launch_on_device(device, last_wgsl, last_traversal, &plan, lose_device_in_next_launch, pending, l)
-                    .await;
+            let last = (last_wgsl, last_traversal);
+            let result = launch_on_device(device, last, &plan, lose_device_in_next_launch, (pending, tail), l).await;
             *kept = Some(plan);
             if matches!(result, Err(RtError::DeviceLost { .. })) {
                 self.gpu = None;
@@ -332,15 +366,15 @@ impl LaunchBackend for WgpuBackend {
 
 /// Runs launch `l` on `gpu`, phase by phase: encode (the scene unless the
 /// device holds it, and the heap), link (the megakernel's WGSL and its
-/// pipeline), upload (the pages that changed), dispatch, read back. The
-/// outputs' words are left in `pending` once read back whole.
+/// pipeline), upload (the pages that changed), dispatch, an armed
+/// [`tail`] after it in the last tile, read back. The outputs' words are
+/// left in `pending` once read back whole, the tail's in `tail`.
 async fn launch_on_device(
     gpu: &mut Gpu,
-    last_wgsl: &mut Option<String>,
-    last_traversal: &mut Option<(Traversal, String)>,
+    (last_wgsl, last_traversal): (&mut Option<String>, &mut Option<(Traversal, String)>),
     plan: &rayquery::Plan,
     lose_device: &mut bool,
-    pending: &mut Option<ReadOutputs>,
+    (pending, tail): (&mut Option<ReadOutputs>, &mut TailState),
     l: &Launch<'_>,
 ) -> Result<LaunchReport> {
     let t1 = web_time::Instant::now();
@@ -401,6 +435,7 @@ async fn launch_on_device(
             rayquery::accel::sync((device, queue, limits, &adapter), ray_query_accels, l.scene, l.accels, flat)?;
         replaced |= new_bindings;
         if built {
+            gpu.health.submitted();
             accel = t.elapsed();
         }
     }
@@ -408,34 +443,40 @@ async fn launch_on_device(
     let (rg_case, ex_case) = (held.spec.ray_generation.case, held.spec.exception.map_or(0, |e| e.case));
     let tiles = dispatch::tiles(l, &gpu.limits, [rg_case, rg_vars], [ex_case, ex_vars], buffer_table);
     let capture = capture::folder().map(|folder| capture_before(folder, &wgsl, &gpu.resident, log_words, &tiles));
-    let encoder = dispatch::record(gpu, &wgsl, slots, &tiles, replaced);
+    let mut encoder = dispatch::record(gpu, &wgsl, slots, &tiles, replaced);
+    let mut armed = tail.take_if_last(l.last_tile);
     // Outputs stay on the device until the launch's last tile (the mirror
     // still holds what the host does, so no tile uploads them again), and
-    // device-local ones after it too.
+    // device-local ones and those the tail takes there after it too.
+    let kept = |armed: &Option<Box<dyn Tail>>, i: usize| {
+        l.scene.buffers[i].device_local || armed.as_ref().is_some_and(|t| t.keeps(i))
+    };
     let read: Vec<_> = match l.last_tile {
-        true => outputs.iter().copied().filter(|&(i, ..)| !l.scene.buffers[i].device_local).collect(),
+        true => outputs.iter().copied().filter(|&(i, ..)| !kept(&armed, i)).collect(),
         false => Vec::new(),
     };
+    let recorded = match armed.as_mut() {
+        Some(t) => Some(record_tail(gpu, t.as_mut(), &mut encoder, l.scene, &outputs)?),
+        None => None,
+    };
+    let extra = recorded.as_ref().map_or(&[][..], |r| &r.read_back[..]);
     // Everything before the dispatch is recorded; it is submitted next.
     let setup = t1.elapsed();
-    let results = readback::results(gpu, encoder, &read, lose).await?;
+    let mut results = readback::results(gpu, encoder, &read, extra, lose).await?;
     let (header, kernel) = (results.header, results.kernel);
     if let Some(before) = &capture {
         capture::write(before, &read, &results.words, header[2]);
     }
+    if let Some(r) = &recorded {
+        *tail = TailState::Done(std::mem::take(&mut results.extra), r.from_device);
+    }
     // The outputs go to the host's buffers now, whatever happens next.
     *pending = Some(ReadOutputs { words: results.words, outputs: read });
     if l.last_tile {
-        gpu.resident.device_local.after_launch(l.scene, &outputs);
+        gpu.resident.device_local.after_launch(l.scene, &outputs, &|i| kept(&armed, i));
     }
     let (exception_words, print_words) = readback::log(gpu, header).await?;
-    let mut report = LaunchReport::default();
-    for w in exception_words.chunks_exact(3) {
-        report.exceptions.push(ExceptionRecord { launch_index: UVec2::new(w[0], w[1]), code: w[2], location: None });
-    }
-    report.exceptions.sort_by_key(|e| (e.launch_index.y, e.launch_index.x));
-    report.prints = readback::decode_prints(l.scene, &print_words, print_words.len());
-    report.rays = header[2] as u64;
+    let mut report = logged(l.scene, &exception_words, &print_words, header);
     report.timings = super::Timings {
         build: Default::default(),
         encode: t2 - t1,
@@ -446,6 +487,39 @@ async fn launch_on_device(
         setup,
     };
     Ok(report)
+}
+
+/// A launch's report of what its log held: its exception records and
+/// prints, and the rays its header counted.
+fn logged(scene: &Scene, exception_words: &[u32], print_words: &[u32], header: [u32; 4]) -> LaunchReport {
+    let mut report = LaunchReport::default();
+    for w in exception_words.chunks_exact(3) {
+        report.exceptions.push(ExceptionRecord { launch_index: UVec2::new(w[0], w[1]), code: w[2], location: None });
+    }
+    report.exceptions.sort_by_key(|e| (e.launch_index.y, e.launch_index.x));
+    report.prints = readback::decode_prints(scene, print_words, print_words.len());
+    report.rays = header[2] as u64;
+    report
+}
+
+/// Records `tail` into `encoder`: a buffer the launch wrote (`outputs`:
+/// `(buffer index, heap offset, words)`) or the device holds is where it
+/// lies in the heap.
+fn record_tail(
+    gpu: &Gpu,
+    tail: &mut dyn Tail,
+    encoder: &mut wgpu::CommandEncoder,
+    scene: &Scene,
+    outputs: &[(usize, usize, usize)],
+) -> Result<Recorded> {
+    let heap = &gpu.resident.heap.as_ref().expect("uploaded before the dispatch").buffer;
+    let on_device = |b: usize| match outputs.iter().find(|o| o.0 == b) {
+        Some(&(_, offset, words)) => {
+            Some(DeviceBuffer { buffer: heap.clone(), offset: offset as u64 * 4, size: words as u64 * 4 })
+        }
+        None => DeviceLocal::held(gpu, b, scene.buffers.get(b)?.host_version),
+    };
+    tail.record(&gpu.device, encoder, scene, &on_device)
 }
 
 /// What [`capture`] keeps of a launch before it runs: the kernel, the heap,

@@ -150,16 +150,20 @@ pub(crate) struct Results {
     pub words: Vec<u32>,
     pub header: [u32; 4],
     pub kernel: Option<std::time::Duration>,
+    /// The words of each of the `extra` buffers read back whole.
+    pub extra: Vec<Vec<u32>>,
 }
 
 /// Submits `encoder` with copies of the output buffers (`(buffer index,
 /// heap offset, words)`), the log's header and the timestamps, and reads
-/// them back; the heap's mirror takes the outputs' new words. A device
-/// lost or an error wgpu reported fails the launch.
+/// them back, with the `extra` buffers whole (a tail's, `super::tail`);
+/// the heap's mirror takes the outputs' new words. A device lost or an
+/// error wgpu reported fails the launch.
 pub(crate) async fn results(
     gpu: &mut Gpu,
     mut encoder: wgpu::CommandEncoder,
     outputs: &[(usize, usize, usize)],
+    extra: &[wgpu::Buffer],
     lose: bool,
 ) -> Result<Results> {
     let adapter = gpu.describe();
@@ -175,8 +179,10 @@ pub(crate) async fn results(
         encoder.resolve_query_set(set, 0..2, resolved, 0);
         copies.push((resolved, 0, 16));
     }
+    copies.extend(extra.iter().map(|b| (b, 0, b.size())));
     res.downloaded = copies.iter().map(|c| c.2).sum();
-    let words = read_back(device, queue, &mut res.readback, encoder, &copies, lose)
+    health.submitted();
+    let mut words = read_back(device, queue, &mut res.readback, encoder, &copies, lose)
         .await
         .map_err(|what| health.failure(adapter.clone(), what))?;
     if let Some(errors) = health.take_errors() {
@@ -196,7 +202,13 @@ pub(crate) async fn results(
         let ns = end.saturating_sub(start) as f64 * queue.get_timestamp_period() as f64;
         std::time::Duration::from_nanos(ns as u64)
     });
-    Ok(Results { words, header, kernel })
+    let mut tail = words.split_off(at + 4 + if res.timestamps.is_some() { 4 } else { 0 });
+    let mut extra_words = Vec::new();
+    for b in extra.iter().rev() {
+        extra_words.push(tail.split_off(tail.len() - (b.size() / 4) as usize));
+    }
+    extra_words.reverse();
+    Ok(Results { words, header, kernel, extra: extra_words })
 }
 
 /// The log's exception records and print words, when the launch (its log
@@ -215,6 +227,7 @@ pub(crate) async fn log(gpu: &mut Gpu, header: [u32; 4]) -> Result<(Vec<u32>, Ve
     let mut copies = vec![(log, 16, exceptions * 12)];
     copies.push((log, print_base, print_used * 4));
     res.downloaded += copies.iter().map(|c| c.2).sum::<u64>();
+    health.submitted();
     let mut words = read_back(device, queue, &mut res.readback, encoder, &copies, false)
         .await
         .map_err(|what| health.failure(adapter.clone(), what))?;
