@@ -2,7 +2,7 @@
 //! `+ - * /` between two values and with a scalar on the right (`Mul` and
 //! `Mul<f32>` side by side), `-a`, `!a`, compound assignments through
 //! `AddAssign`/`MulAssign` (one whose meaning differs from `+`), and `Index`,
-//! in programs, helpers and methods.
+//! in programs, helpers, methods and a generic helper bounded by `Add`.
 
 use super::*;
 use std::ops::{Add, AddAssign, BitAnd, BitOrAssign, BitXor, Div, Index, Mul, MulAssign, Neg, Not, Sub};
@@ -143,6 +143,13 @@ impl BitOrAssign<u32> for Mask {
     }
 }
 
+/// A generic helper bounded by std's `Add`: instantiated at a user struct
+/// and at `f32`.
+#[rt_function]
+pub fn sum3<T: Add<Output = T> + Copy>(a: T, b: T, c: T) -> T {
+    a + b + c
+}
+
 /// Operators in a helper.
 #[rt_function]
 pub fn mix3(a: Rgb3, b: Rgb3, t: f32) -> Rgb3 {
@@ -162,7 +169,8 @@ differential! {
             let m = mix3(a, b, 0.25);
             let q = (a + b) / y;
             let i = 2;
-            [c.r, c.g, c.b, d.r, d.g, d.b, m[0] + m[1] + m[i], a.doubled()[1], q.r + q.g + q[2], d[0], (a - b).b, (-(a * x))[1]]
+            let s = sum3(a, b, c);
+            [c.r, c.g, c.b, d.r, d.g, d.b, m[0] + m[1] + m[i], a.doubled()[1], q.r + q.g + q[2], d[0] + s.g, (a - b).b + sum3(x, y, 1.0), (-(a * x))[1]]
         }
         masks(n: u32, k: u32) -> [u32; 3] over pairs(&[0, 1, 5, 0xf0, 0x7f], &[0, 3, 9]) => {
             let a = Mask { bits: n };
