@@ -53,6 +53,11 @@ pub const EXCEPTION_BUFFER_ID_INVALID: u32 = 0x3FA;
 /// another shape (a cube map read as a 2D sampler): the sample is zero, the
 /// size 0. OptiX's code, `RT_EXCEPTION_TEXTURE_ID_INVALID`.
 pub const EXCEPTION_TEXTURE_ID_INVALID: u32 = 0x3EF;
+/// A program's panic: `unwrap`/`expect` of a `None`. The program goes on
+/// with the zero value, as after any exception, and the launch index's
+/// work stops when it returns. Enabled with the programs' own codes
+/// (`exception_kind_bit` gives it their bit).
+pub const EXCEPTION_PANIC: u32 = 0x3F3;
 /// The first code free for programs' own `rt_throw` codes.
 pub const EXCEPTION_USER: u32 = 0x400;
 
@@ -94,6 +99,7 @@ pub const CONSTANTS: &[(&str, u32)] = &[
     ("EXCEPTION_PROGRAM_ID_INVALID", EXCEPTION_PROGRAM_ID_INVALID),
     ("EXCEPTION_BUFFER_ID_INVALID", EXCEPTION_BUFFER_ID_INVALID),
     ("EXCEPTION_TEXTURE_ID_INVALID", EXCEPTION_TEXTURE_ID_INVALID),
+    ("EXCEPTION_PANIC", EXCEPTION_PANIC),
     ("EXCEPTION_USER", EXCEPTION_USER),
 ];
 

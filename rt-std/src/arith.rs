@@ -36,10 +36,12 @@
 mod division;
 mod indexing;
 mod methods;
+mod panics;
 mod references;
 use division::RtDivide;
 pub use indexing::{RtIndex, RtIndexMut};
 pub use methods::{Gpu, GpuMut};
+pub use panics::{RtUnwrap, expect, unwrap};
 
 use glam::{IVec2, IVec3, IVec4, Mat2, Mat3, Mat4, Quat, UVec2, UVec3, UVec4, Vec2, Vec3, Vec4};
 
@@ -624,22 +626,59 @@ macro_rules! clamp_vector {
 clamp_vector!(Vec2, Vec3, Vec4, UVec2, UVec3, UVec4, IVec2, IVec3, IVec4);
 
 /// `a op= b`: `b` is evaluated by the caller before `a` is borrowed, as for
-/// Rust's primitive types.
+/// Rust's primitive types. Floats, their vectors and matrices use std's
+/// compound operator; the integer types the arithmetic one of this
+/// module, then assign; a user's type its own `AddAssign` (the macro of
+/// `#[rt_impl] impl AddAssign for T` implements the trait for `T`).
 macro_rules! assign {
-    ($name:ident, $trait:ident, $method:ident) => {
+    ($name:ident, $assign:ident, $core:ident, $trait:ident, $method:ident, $message:literal) => {
+        #[doc(hidden)]
+        #[diagnostic::on_unimplemented(message = $message)]
+        pub trait $assign<R> {
+            fn $name(&mut self, r: R);
+        }
+        #[diagnostic::do_not_recommend]
+        impl<A: Plain + core::ops::$core<B>, B> $assign<B> for A {
+            #[track_caller]
+            #[inline(always)]
+            fn $name(&mut self, r: B) {
+                core::ops::$core::$name(self, r)
+            }
+        }
+        assign!(@int $name, $assign, $trait, $method; u32, i32, usize, UVec2, UVec3, UVec4, IVec2, IVec3, IVec4);
         #[doc(hidden)]
         #[track_caller]
         #[inline(always)]
-        pub fn $name<A: $trait<B, Output = A> + Copy, B>(a: &mut A, b: B) {
-            *a = (*a).$method(b);
+        pub fn $name<A: $assign<B>, B>(a: &mut A, b: B) {
+            a.$name(b)
         }
     };
+    (@int $name:ident, $assign:ident, $trait:ident, $method:ident; $($t:ty),*) => {$(
+        #[diagnostic::do_not_recommend]
+        impl<B> $assign<B> for $t
+        where
+            $t: $trait<B, Output = $t>,
+        {
+            #[track_caller]
+            #[inline(always)]
+            fn $name(&mut self, r: B) {
+                *self = (*self).$method(r);
+            }
+        }
+    )*};
 }
-assign!(add_assign, RtAdd, add);
-assign!(sub_assign, RtSub, sub);
-assign!(mul_assign, RtMul, mul);
-assign!(div_assign, RtDiv, div);
-assign!(rem_assign, RtRem, rem);
+assign!(add_assign, RtAddAssign, AddAssign, RtAdd, add, "cannot add-assign `{R}` to `{Self}`");
+assign!(sub_assign, RtSubAssign, SubAssign, RtSub, sub, "cannot subtract-assign `{R}` from `{Self}`");
+assign!(mul_assign, RtMulAssign, MulAssign, RtMul, mul, "cannot multiply-assign `{Self}` by `{R}`");
+assign!(div_assign, RtDivAssign, DivAssign, RtDiv, div, "cannot divide-assign `{Self}` by `{R}`");
+assign!(
+    rem_assign,
+    RtRemAssign,
+    RemAssign,
+    RtRem,
+    rem,
+    "cannot calculate and assign the remainder of `{Self}` divided by `{R}`"
+);
 
 #[doc(hidden)]
 #[track_caller]

@@ -66,6 +66,11 @@ pub const EXCEPTION_BUFFER_ID_INVALID: u32 = rt_abi::EXCEPTION_BUFFER_ID_INVALID
 /// another shape; the read returned zero (size 0).
 #[doc(alias = "RT_EXCEPTION_TEXTURE_ID_INVALID")]
 pub const EXCEPTION_TEXTURE_ID_INVALID: u32 = rt_abi::EXCEPTION_TEXTURE_ID_INVALID;
+/// Exception code: the program panicked, as Rust would: `unwrap`/`expect`
+/// met a `None`. The program went on with the zero value; on the CPU backend the
+/// record has the file and line. Enabled and disabled with the programs'
+/// own codes.
+pub const EXCEPTION_PANIC: u32 = rt_abi::EXCEPTION_PANIC;
 /// The first exception code free for programs' own [`rt_throw`] codes; the
 /// codes below are reserved for the runtime's exceptions.
 #[doc(alias = "RT_EXCEPTION_USER")]

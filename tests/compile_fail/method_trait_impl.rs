@@ -1,17 +1,17 @@
-// An impl of one of std's traits under #[rt_impl]: ray programs implement
-// traits declared with #[rt_trait].
+// An impl of one of std's traits that is not an operator under #[rt_impl]:
+// ray programs implement traits declared with #[rt_trait] and std's
+// operator traits.
 use rt_std::prelude::*;
 
-#[rt_struct(impl)]
+#[rt_struct]
 pub struct Sphere {
     pub radius: f32,
 }
 
 #[rt_impl]
-impl core::ops::Neg for Sphere {
-    type Output = Sphere;
-    fn neg(self) -> Sphere {
-        Sphere { radius: -self.radius }
+impl From<f32> for Sphere {
+    fn from(radius: f32) -> Sphere {
+        Sphere { radius }
     }
 }
 

@@ -73,10 +73,14 @@ pub mod matrices;
 pub mod methods;
 #[path = "../snapshots/in/motion_time.rs"]
 pub mod motion_time;
+#[path = "../snapshots/in/operators.rs"]
+pub mod operators;
 #[path = "../snapshots/in/ops_arith.rs"]
 pub mod ops_arith;
 #[path = "../snapshots/in/ops_bits.rs"]
 pub mod ops_bits;
+#[path = "../snapshots/in/option_unwrap.rs"]
+pub mod option_unwrap;
 #[path = "../snapshots/in/path_tracer.rs"]
 pub mod path_tracer;
 #[path = "../snapshots/in/printf.rs"]

@@ -14,7 +14,8 @@
 //! panic where WGSL answers (`gpu_method`): `abs` (of `i32::MIN`),
 //! `clamp` (with `lo > hi`), the dividing methods (a zero divisor) and the
 //! sums and products of integer vectors (`dot`, `element_sum`, `cross`,
-//! ..., which overflow). A method call `x.dot(y)` becomes
+//! ..., which overflow), and `Option`'s `unwrap` and `expect`, which
+//! raise `EXCEPTION_PANIC` where Rust would panic (`arith::unwrap`). A method call `x.dot(y)` becomes
 //! `arith::Gpu(x).dot(y)`, its path form `IVec3::dot(a, b)` becomes
 //! `arith::Gpu::<IVec3>(a).dot(b)`: the macro does not know `x`'s type,
 //! so Rust's method lookup picks `Gpu`'s own method where the type is an
@@ -182,6 +183,12 @@ fn path_gpu_method(func: &Expr, args: usize) -> Option<(syn::Path, syn::Ident)> 
     is_type.then_some((owner, name))
 }
 
+/// `unwrap()` and `expect(msg)`, which `rt_std::arith::unwrap` and
+/// `expect` stand for.
+pub fn unwrap_method(name: &str, args: usize) -> bool {
+    matches!((name, args), ("unwrap", 0) | ("expect", 1))
+}
+
 fn is_assign(op: &BinOp) -> bool {
     matches!(op, BinOp::BitAndAssign(_) | BinOp::BitOrAssign(_) | BinOp::BitXorAssign(_))
 }
@@ -282,6 +289,15 @@ impl VisitMut for Rewriter {
                     r => quote::quote!(&mut #r),
                 };
                 *e = syn::parse_quote_spanned!(span=> #gpu(#recv).#method #turbofish(#args));
+            }
+            // `o.unwrap()`, `o.expect("why")`: `Option`'s (the only type
+            // in ray programs with them), raising rather than panicking.
+            Expr::MethodCall(m) if unwrap_method(&m.method.to_string(), m.args.len()) => {
+                visit_mut::visit_expr_method_call_mut(self, m);
+                let span = m.method.span();
+                let f = path(&m.method.to_string(), span);
+                let (recv, args) = (&m.receiver, &m.args);
+                *e = syn::parse_quote_spanned!(span=> #f(#recv, #args));
             }
             Expr::MethodCall(m) if gpu_method(&m.method.to_string(), m.args.len()) => {
                 visit_mut::visit_expr_method_call_mut(self, m);

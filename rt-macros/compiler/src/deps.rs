@@ -51,7 +51,8 @@ impl Deps {
             seg.arguments = syn::PathArguments::None;
         }
         let first = p.segments.first().map(|s| s.ident.to_string()).unwrap_or_default();
-        if matches!(first.as_str(), "rt_std" | "std" | "core" | "glam") {
+        // `Self::Output`, `Self::NAME`: the impl's own.
+        if matches!(first.as_str(), "rt_std" | "std" | "core" | "glam" | "Self") {
             return;
         }
         let last = p.segments.last().map(|s| s.ident.to_string()).unwrap_or_default();
@@ -298,6 +299,11 @@ pub fn of_impl(i: &syn::ItemImpl) -> Vec<Dep> {
                 d.locals.clear();
                 d.visit_type(&c.ty);
                 d.visit_expr(&c.expr);
+            }
+            // An operator's `type Output`.
+            syn::ImplItem::Type(t) => {
+                d.locals.clear();
+                d.visit_type(&t.ty);
             }
             _ => {}
         }

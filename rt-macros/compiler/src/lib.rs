@@ -48,6 +48,7 @@ pub mod kinds;
 pub mod lanes;
 pub mod lower;
 pub mod methods;
+pub mod operators;
 pub mod signature;
 pub mod sugar;
 pub mod traits;

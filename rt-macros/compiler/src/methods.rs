@@ -57,6 +57,11 @@ pub fn impl_key(ty: &str) -> String {
 /// for an impl of an `#[rt_trait]` (see `traits`).
 pub fn impl_key_of(i: &syn::ItemImpl) -> String {
     let ty = self_name(i).unwrap_or_default();
+    if let Some((_, path, _)) = &i.trait_
+        && crate::traits::trait_name(i).is_none()
+    {
+        return format!("impl {} for {ty}", crate::operators::suffix(path, &ty));
+    }
     match crate::traits::trait_name(i) {
         Some(t) => format!("impl {t} for {ty}"),
         None => impl_key(&ty),
@@ -66,6 +71,11 @@ pub fn impl_key_of(i: &syn::ItemImpl) -> String {
 /// The link an impl block exports: `__rt_impl_Type`, or
 /// `__rt_impl_Type__Trait` for a trait impl.
 pub fn impl_macro_ident_of(i: &syn::ItemImpl, ty: &syn::Ident) -> syn::Ident {
+    if let Some((_, path, _)) = &i.trait_
+        && crate::traits::trait_name(i).is_none()
+    {
+        return crate::operators::link_ident(ty, path);
+    }
     match crate::traits::trait_name(i) {
         Some(t) => crate::traits::impl_macro_ident(ty, &syn::Ident::new(&t, ty.span())),
         None => macro_ident(ty),
@@ -99,15 +109,28 @@ pub fn const_wgsl_name(ty: &str, name: &str) -> String {
 /// fault. The methods' bodies are checked where they are lowered.
 pub fn check_impl(i: &syn::ItemImpl) -> Result<(), Errors> {
     let mut errors = Errors::default();
+    let operator = crate::operators::of_impl(i).filter(|_| i.trait_.as_ref().is_some_and(|t| t.0.is_none()));
     if let Some((bang, path, _)) = &i.trait_ {
-        if crate::traits::is_std_trait(path) {
+        if let Some((o, _)) = operator {
+            check_operator_impl(i, o, &mut errors);
+        } else if crate::traits::is_std_trait(path) {
             let name = path.segments.last().map(|s| s.ident.to_string()).unwrap_or_default();
-            errors.push(Error::unsupported(
-                path.span(),
-                &format!("an impl of std's `{name}`"),
-                "ray programs implement traits declared with #[rt_trait]; write the operation as a method \
-                 in an inherent `impl` block",
-            ));
+            let instead = match name.as_str() {
+                "IndexMut" => Some("WGSL functions return no references: write a method that sets the element"),
+                "Shl" | "Shr" | "ShlAssign" | "ShrAssign" => Some("write the shift as a method"),
+                _ => None,
+            };
+            if let Some(instead) = instead {
+                errors.push(Error::unsupported(path.span(), &format!("an impl of std's `{name}`"), instead));
+            } else {
+                errors.push(Error::unsupported(
+                    path.span(),
+                    &format!("an impl of std's `{name}`"),
+                    "ray programs implement traits declared with #[rt_trait] and std's operator traits (`Add`, \
+                 `Mul`, `Neg`, `AddAssign`, `Index`, ...); write the operation as a method in an inherent \
+                 `impl` block",
+                ));
+            }
         } else if let Some(b) = bang {
             errors.push(Error::unsupported(b.span(), "a negative impl", "implement the trait"));
         }
@@ -134,6 +157,7 @@ pub fn check_impl(i: &syn::ItemImpl) -> Result<(), Errors> {
                     errors.push(Error::unsupported(c.generics.span(), "a generic constant", "use a concrete type"));
                 }
             }
+            syn::ImplItem::Type(t) if operator.is_some() && t.ident == "Output" && t.generics.params.is_empty() => {}
             syn::ImplItem::Type(t) => {
                 errors.push(Error::unsupported(t.span(), "an associated type", "name the type itself where it is used"))
             }
@@ -145,6 +169,19 @@ pub fn check_impl(i: &syn::ItemImpl) -> Result<(), Errors> {
         }
     }
     if errors.is_empty() { Ok(()) } else { Err(errors) }
+}
+
+/// An impl of an operator trait: for a type of the user's, and its
+/// method with the trait's receiver.
+fn check_operator_impl(i: &syn::ItemImpl, o: &crate::operators::Operator, errors: &mut Errors) {
+    if self_name(i).is_some_and(|n| crate::operators::is_builtin_type(&n)) {
+        errors.push(Error::unsupported(
+            i.self_ty.span(),
+            &format!("an impl of `{}` for a built-in type", o.trait_name),
+            "implement the operator on your own type, with the built-in type on the right (`impl Mul<f32> for \
+             Rgb` for `c * 2.0`)",
+        ));
+    }
 }
 
 fn check_method(f: &syn::ImplItemFn, errors: &mut Errors) {
@@ -177,21 +214,22 @@ fn check_method(f: &syn::ImplItemFn, errors: &mut Errors) {
             errors.push(Error::unsupported(r.ty.span(), "this `self` type", "take `self`, `&self` or `&mut self`"));
         }
     }
-    // The CPU copy turns `.abs()` and `.clamp(lo, hi)` into calls of
-    // `rt_std::arith` (see `cpu_semantics`), which would not reach a user
-    // method of those names.
+    // The CPU copy turns `.abs()`, `.clamp(lo, hi)`, `.unwrap()` and
+    // `.expect(msg)` into calls of `rt_std::arith` (see `cpu_semantics`),
+    // which would not reach a user method of those names.
     let args = sig.inputs.iter().filter(|i| matches!(i, syn::FnArg::Typed(_))).count();
-    let taken = match sig.ident.to_string().as_str() {
+    let name = sig.ident.to_string();
+    let taken = match name.as_str() {
         "abs" => receiver(sig).is_some() && args == 0,
         "clamp" => receiver(sig).is_some() && args == 2,
-        _ => false,
+        _ => receiver(sig).is_some() && crate::cpu_semantics::unwrap_method(&name, args),
     };
     if taken {
         errors.push(Error::new(
             sig.ident.span(),
             format!(
                 "a method named `{}` with this signature is not supported: the CPU copy of ray programs \
-                 calls rt_std's integer-safe `{}` for it; rename the method",
+                 calls rt_std's own `{}` for it (which does what the GPU does); rename the method",
                 sig.ident, sig.ident
             ),
         ));
@@ -235,6 +273,9 @@ pub fn lowerable(i: &syn::ItemImpl) -> (Vec<MethodFn>, Vec<MethodConst>, Vec<Str
             .items
             .iter()
             .filter_map(|it| match it {
+                syn::ImplItem::Fn(f) if crate::operators::of_impl(i).is_some() => {
+                    Some(crate::operators::key_prefix(&ty, &f.sig.ident.to_string()))
+                }
                 syn::ImplItem::Fn(f) => Some(member_key(&ty, &f.sig.ident.to_string())),
                 syn::ImplItem::Const(c) => Some(member_key(&ty, &c.ident.to_string())),
                 _ => None,
@@ -247,6 +288,10 @@ pub fn lowerable(i: &syn::ItemImpl) -> (Vec<MethodFn>, Vec<MethodConst>, Vec<Str
         syn::Type::Path(p) => p.path.segments.last().unwrap().ident.clone(),
         _ => unreachable!("checked by check_impl"),
     };
+    let operator = crate::operators::of_impl(&i);
+    if operator.is_some() {
+        crate::operators::prepare_impl(&mut i);
+    }
     SelfToType(ty_ident).visit_item_impl_mut(&mut i);
     let mut fns = Vec::new();
     let mut consts = Vec::new();
@@ -262,9 +307,20 @@ pub fn lowerable(i: &syn::ItemImpl) -> (Vec<MethodFn>, Vec<MethodConst>, Vec<Str
                         *input = syn::FnArg::Typed(receiver_param(r));
                     }
                 }
+                let (key, wgsl_name) = match &operator {
+                    Some((o, rhs)) => {
+                        let rhs = match (o.kind, rhs) {
+                            (crate::operators::OpKind::Unary, _) => String::new(),
+                            (_, Some(r)) => crate::operators::mangle(r),
+                            (_, None) => ty.clone(),
+                        };
+                        (crate::operators::key(&ty, &name, &rhs), crate::operators::wgsl_name(&ty, &name, &rhs))
+                    }
+                    None => (member_key(&ty, &name), fn_wgsl_name(&ty, &name)),
+                };
                 fns.push(MethodFn {
-                    key: member_key(&ty, &name),
-                    wgsl_name: fn_wgsl_name(&ty, &name),
+                    key,
+                    wgsl_name,
                     has_receiver,
                     f: syn::ItemFn { attrs: f.attrs, vis: f.vis, sig, block: Box::new(f.block) },
                 });

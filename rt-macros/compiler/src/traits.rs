@@ -28,15 +28,17 @@
 //!   constants `<Type>__<NAME>`. Two impls of one type that both define a
 //!   name are refused (a call could not say which).
 //!
-//! Operator traits of std (`Add`, `Neg`, ...) and other std traits are
-//! not `#[rt_trait]`s: their impls are refused with what to write instead.
+//! Operator traits of std (`Add`, `Neg`, ...) are not `#[rt_trait]`s:
+//! their impls lower to the operators (`crate::operators`). Other std
+//! traits' impls are refused with what to write instead.
 
 use crate::error::{Error, Errors};
 use syn::spanned::Spanned;
 
-/// The traits of std and glam an `#[rt_impl]` cannot implement, by name:
-/// they are not `#[rt_trait]`s, and their operators and conversions do not
-/// call user code in WGSL.
+/// The traits of std and glam that are not `#[rt_trait]`s, by name: an
+/// `#[rt_impl]` implements the operators among them (`crate::operators`)
+/// and none of the others, whose conversions do not call user code in
+/// WGSL.
 const STD_TRAITS: &[&str] = &[
     "Add",
     "Sub",
@@ -80,7 +82,9 @@ const STD_TRAITS: &[&str] = &[
 pub fn is_std_trait(path: &syn::Path) -> bool {
     let first = path.segments.first().map(|s| s.ident.to_string()).unwrap_or_default();
     let last = path.segments.last().map(|s| s.ident.to_string()).unwrap_or_default();
-    matches!(first.as_str(), "std" | "core" | "glam" | "alloc") || STD_TRAITS.contains(&last.as_str())
+    matches!(first.as_str(), "std" | "core" | "glam" | "alloc")
+        || STD_TRAITS.contains(&last.as_str())
+        || crate::operators::operator(path).is_some()
 }
 
 /// The name of the `#[rt_trait]` an impl implements, if it implements

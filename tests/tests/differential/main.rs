@@ -537,6 +537,7 @@ mod let_patterns;
 mod math;
 mod methods;
 mod names;
+mod operators;
 mod options;
 mod scalars;
 mod std_scalars;

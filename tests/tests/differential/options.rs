@@ -4,8 +4,13 @@
 //! scalars, vectors, tuples, arrays and structs.
 
 // The forms under test are spelled out: a search loop, a closure for a
-// constant default, a `None` literal's default.
-#![allow(clippy::manual_find, clippy::unnecessary_lazy_evaluations, clippy::unnecessary_literal_unwrap)]
+// constant default, a `None` literal's default, a comparison with `None`.
+#![allow(
+    clippy::manual_find,
+    clippy::unnecessary_lazy_evaluations,
+    clippy::unnecessary_literal_unwrap,
+    clippy::partialeq_to_none
+)]
 
 use super::*;
 
@@ -127,6 +132,20 @@ differential! {
             let c = arr.iter().find(|v| **v > 1.5).copied().unwrap_or(-2.0);
             let d = (0..n).filter(|i| i % 2 == 1).position(|i| i > 4).map_or(-1.0, |p| p as f32);
             [a, b, c, d]
+        }
+        /// `==` and `!=` of `Option`s: with `None`, with `Some(x)`, two
+        /// variables, a nested `Option`.
+        equality(n: u32, x: f32) -> [u32; 5] over pairs(&[0, 1, 2, 3, 6], &[0.0, 1.0, 2.0]) => {
+            let o = if n % 3 != 0 { Some(n) } else { None };
+            let p = if x > 0.5 { Some(n) } else { None };
+            let q = if n > 2 { Some(Some(x)) } else { Some(None) };
+            [
+                (o == None) as u32,
+                (o != None) as u32 + 2 * (o == Some(1)) as u32,
+                (o == p) as u32 + 2 * (p != o) as u32,
+                (q == Some(None)) as u32 + 2 * (q == Some(Some(2.0))) as u32,
+                (Some(x) != Some(1.0)) as u32,
+            ]
         }
     }
 }

@@ -15,7 +15,7 @@ use crate::error::{Error, Errors};
 use crate::kinds::Kind;
 use crate::signature;
 use crate::{StructRole, deps};
-use proc_macro2::{Span, TokenStream, TokenTree};
+use proc_macro2::{Span, TokenStream};
 use quote::{format_ident, quote, quote_spanned};
 use syn::spanned::Spanned;
 
@@ -160,8 +160,10 @@ pub fn rt_struct(attr: TokenStream, item: TokenStream, role: StructRole) -> Toke
         };
     }
     for t in &trait_impls {
-        // Each trait impl's link (see `traits`), at the trait's name.
-        let mac = crate::traits::impl_macro_ident(&syn::Ident::new(&s.ident.to_string(), t.span()), t);
+        // Each trait impl's link (see `traits`, `operators`), at the
+        // trait's name.
+        let span = t.segments.last().map(|s| s.ident.span()).unwrap_or_else(|| t.span());
+        let mac = crate::operators::link_ident(&syn::Ident::new(&s.ident.to_string(), span), t);
         deps.push(deps::Dep { path: syn::Path::from(mac), kind: deps::DepKind::Type });
     }
     let body = start_chain(quote!(struct #role_kw { #item }), deps::paths(&deps));
@@ -170,35 +172,34 @@ pub fn rt_struct(attr: TokenStream, item: TokenStream, role: StructRole) -> Toke
 
 /// A struct attribute's arguments: none, or a list of `impl` (its span),
 /// which says the type has an inherent `#[rt_impl]` block, and `impl
-/// Trait`, which says it has an `#[rt_impl]` of the `#[rt_trait]` `Trait`.
-fn struct_args(attr: TokenStream) -> Result<(Option<Span>, Vec<syn::Ident>), Error> {
+/// Trait`, which says it has an `#[rt_impl]` of the `#[rt_trait]` or
+/// operator trait `Trait` (`impl Mul<f32>`).
+fn struct_args(attr: TokenStream) -> Result<(Option<Span>, Vec<syn::Path>), Error> {
     let wrong = || {
         Error::new(
             attr.span(),
             "this attribute takes no arguments, or `impl` for a type with an #[rt_impl] block and \
-             `impl Trait` for each #[rt_impl] of an #[rt_trait] (as in `impl, impl Bsdf`)",
+             `impl Trait` for each #[rt_impl] of an #[rt_trait] or operator trait (as in `impl, impl Bsdf, \
+             impl Mul<f32>`)",
         )
     };
     let mut inherent = None;
     let mut traits = Vec::new();
-    let mut it = attr.clone().into_iter().peekable();
-    while let Some(t) = it.next() {
-        match t {
-            TokenTree::Ident(i) if i == "impl" => match it.peek() {
-                Some(TokenTree::Ident(name)) => {
-                    traits.push(name.clone());
-                    it.next();
-                }
-                _ => inherent = Some(i.span()),
-            },
-            _ => return Err(wrong()),
+    let parser = |input: syn::parse::ParseStream| -> syn::Result<()> {
+        while !input.is_empty() {
+            let kw: syn::Token![impl] = input.parse()?;
+            if input.is_empty() || input.peek(syn::Token![,]) {
+                inherent = Some(kw.span);
+            } else {
+                traits.push(input.parse::<syn::Path>()?);
+            }
+            if !input.is_empty() {
+                input.parse::<syn::Token![,]>()?;
+            }
         }
-        match it.next() {
-            None => break,
-            Some(TokenTree::Punct(p)) if p.as_char() == ',' => {}
-            Some(_) => return Err(wrong()),
-        }
-    }
+        Ok(())
+    };
+    syn::parse::Parser::parse2(parser, attr.clone()).map_err(|_| wrong())?;
     Ok((inherent, traits))
 }
 
@@ -231,7 +232,7 @@ pub fn rt_impl(attr: TokenStream, item: TokenStream) -> TokenStream {
     let span = crate::methods::span(&i);
     // The inherent block's markers (a type has one; its trait impls are
     // found by their links, see `traits`).
-    let markers = if crate::traits::trait_name(&i).is_some() {
+    let markers = if i.trait_.is_some() {
         TokenStream::new()
     } else {
         quote_spanned! {span=>
@@ -252,8 +253,9 @@ pub fn rt_impl(attr: TokenStream, item: TokenStream) -> TokenStream {
     let deps = deps::of_impl(&i);
     let declared = declared_checks(&deps, &[]);
     let cpu = crate::methods::cpu_impl(&i);
+    let glue = crate::operators::cpu_glue(&i);
     let body = start_chain(quote!(impl { #item }), deps::paths(&deps));
-    quote!(#cpu const _: () = { #declared }; #markers #body)
+    quote!(#cpu #glue const _: () = { #declared }; #markers #body)
 }
 
 /// `#[rt_trait]`: the trait as the CPU compiles it (its default bodies

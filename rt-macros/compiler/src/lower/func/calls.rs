@@ -239,7 +239,7 @@ impl FnLowerer<'_> {
     }
 
     /// Evaluates the operands with effects into `let`s, in order.
-    fn once(&mut self, vals: &mut [Val]) {
+    pub(super) fn once(&mut self, vals: &mut [Val]) {
         for v in vals {
             if v.effects {
                 let t = self.tmp();
@@ -595,6 +595,19 @@ impl FnLowerer<'_> {
             self.spill(at, &mut vals.iter_mut().collect::<Vec<_>>());
             vals.push(v);
         }
+        self.finish_helper_call(sig, vals, start, span)
+    }
+
+    /// A helper call of arguments already lowered (in order, from the
+    /// statement index `start`): the intrinsics and traces it brings, the
+    /// call, and the `&mut` writebacks after it.
+    pub(super) fn finish_helper_call(
+        &mut self,
+        sig: &HelperSig,
+        vals: Vec<Val>,
+        start: usize,
+        span: Span,
+    ) -> Result<Val> {
         let codes: Vec<String> = vals.into_iter().map(|v| v.code).collect();
         if self.resume.is_some() && !sig.traced.is_empty() {
             self.calls.push(sig.name.clone());

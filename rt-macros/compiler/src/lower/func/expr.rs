@@ -304,8 +304,12 @@ impl FnLowerer<'_> {
 
     pub(super) fn index(&mut self, i: &syn::ExprIndex) -> Result<Val> {
         let base = self.expr(&i.expr, None)?;
-        let mut base = self.deref(base);
+        let base = self.deref(base);
         let at = self.here();
+        let mut base = match self.user_index(base, &i.index, at, i.span())? {
+            Ok(v) => return Ok(v),
+            Err(base) => base,
+        };
         match self.resolved(&base.ty) {
             Ty::Buffer(kind, elem) => {
                 let idx = self.buffer_index(kind, &i.index)?;

@@ -48,6 +48,7 @@ mod expr;
 mod generic_calls;
 mod infer;
 mod intrinsics;
+mod operators;
 mod ops;
 mod options;
 mod places;
@@ -59,7 +60,7 @@ mod tuples;
 
 use eval::int_literal_value;
 use expr::strip_parens;
-use ops::{compound_base, is_compound, op_symbol};
+use ops::{Operands, compound_base, is_compound, op_symbol};
 pub use stmt::count_placeholders;
 
 #[derive(Clone, Debug)]

@@ -6,6 +6,9 @@ use super::*;
 
 impl FnLowerer<'_> {
     pub(super) fn unary(&mut self, u: &syn::ExprUnary, want: Option<&Ty>) -> Result<Val> {
+        if let Some(v) = self.user_unary(u)? {
+            return Ok(v);
+        }
         match u.op {
             UnOp::Neg(_) => {
                 // `-2147483648` is not a valid WGSL i32 literal: fold it.
@@ -65,6 +68,9 @@ impl FnLowerer<'_> {
 
     pub(super) fn binary(&mut self, b: &syn::ExprBinary, want: Option<&Ty>) -> Result<Val> {
         if is_compound(&b.op) {
+            if let Some(v) = self.user_compound(b)? {
+                return Ok(v);
+            }
             let v = self.expr(&b.right, None)?;
             let v = self.deref(v);
             self.assign(&b.left, Some(&b.op), v, b.right.span())?;
@@ -79,6 +85,7 @@ impl FnLowerer<'_> {
         });
         let arith = matches!(b.op, BinOp::Add(_) | BinOp::Sub(_) | BinOp::Mul(_) | BinOp::Div(_) | BinOp::Rem(_));
         let lw = if arith { want_scalar.clone() } else { None };
+        let start = self.here();
         let l = self.expr(&b.left, lw.as_ref())?;
         let mut l = self.deref(l);
         let rw = match (&b.op, self.resolved(&l.ty)) {
@@ -87,12 +94,18 @@ impl FnLowerer<'_> {
             // `id == Callable::NONE`, `b == BindlessBuffer::default()`: the
             // id's type from the left.
             (BinOp::Eq(_) | BinOp::Ne(_), t @ (Ty::Callable(_) | Ty::BufferId(..) | Ty::SamplerId(_))) => Some(t),
+            // `o == None`, `o != Some(x)`: the `Option`'s type from the left.
+            (BinOp::Eq(_) | BinOp::Ne(_), t @ Ty::Option(_)) => Some(t),
             _ => None,
         };
         let at = self.here();
         let r = self.expr(&b.right, rw.as_ref())?;
         let r = self.deref(r);
         self.spill(at, &mut [&mut l]);
+        let (l, r) = match self.user_binary(&b.op, l, r, start, b.op.span())? {
+            Ok(v) => return Ok(v),
+            Err(operands) => operands,
+        };
         // Errors point at the operator, as rustc's do.
         self.binary_op(&b.op, l, r, b.op.span())
     }
@@ -226,6 +239,9 @@ impl FnLowerer<'_> {
         let (l, r, lt) = (&o.l, &o.r, &o.lt);
         if !self.unify(lt, &o.rt) || !lt.is_value() {
             return Err(o.mismatch(op));
+        }
+        if let Ty::Option(inner) = self.resolved(lt) {
+            return self.option_equality(op, o, &inner);
         }
         // Rust's float `!=` is true where a NaN is (unordered); WGSL
         // implementations compare ordered: `!(a == b)` is Rust's.
@@ -412,17 +428,17 @@ pub(super) fn is_compound(op: &BinOp) -> bool {
 }
 
 /// The two sides of a binary operator, lowered, with their resolved types.
-struct Operands {
-    l: Val,
-    r: Val,
-    lt: Ty,
-    rt: Ty,
+pub(super) struct Operands {
+    pub(super) l: Val,
+    pub(super) r: Val,
+    pub(super) lt: Ty,
+    pub(super) rt: Ty,
     /// Whether either side has effects.
-    effects: bool,
+    pub(super) effects: bool,
     /// Whether either side reads state.
-    reads: bool,
+    pub(super) reads: bool,
     /// The operator's span, where errors point.
-    span: Span,
+    pub(super) span: Span,
 }
 
 impl Operands {

@@ -6,8 +6,9 @@
 //! parameter, the other branch of an `if` or `match`, `None::<T>`); the
 //! methods that take no closure (`is_some`, `is_none`, `unwrap_or`,
 //! `unwrap_or_default`, `or`, `xor`, and `copied`/`cloned`, which change
-//! nothing where elements are values). `unwrap` and `expect` are refused:
-//! the CPU copy would panic where the GPU has no panic to give. Patterns `Some(p)` and `None` are taken
+//! nothing where elements are values). `unwrap` and `expect` of a `None`
+//! raise `EXCEPTION_PANIC` and give the zero value, on every backend (the
+//! CPU copy calls `rt_std::arith::unwrap`). Patterns `Some(p)` and `None` are taken
 //! where tuple patterns are (`tuples.rs`); the methods that take closures
 //! (`map`, `and_then`, `filter`, `unwrap_or_else`, `is_some_and`,
 //! `map_or`, ...) are `match`es by the time the lowering sees them
@@ -120,13 +121,7 @@ impl FnLowerer<'_> {
         let arity = match name {
             "is_some" | "is_none" | "rt_sugar_value" | "unwrap_or_default" | "copied" | "cloned" => 0,
             "unwrap_or" | "or" | "xor" => 1,
-            "unwrap" | "expect" => {
-                return Err(Error::unsupported(
-                    name_span,
-                    &format!("`{name}` on an `Option`"),
-                    "a `None` would panic on the CPU and has nothing to stop on the GPU; use `unwrap_or(..)`, `if let Some(x) = o`, `let Some(x) = o else { return; };` or `match`",
-                ));
-            }
+            "unwrap" | "expect" => return self.option_unwrap(recv, inner, name, args, name_span),
             _ => {
                 return Err(Error::new(
                     name_span,
@@ -240,5 +235,57 @@ impl FnLowerer<'_> {
                 "match `Some(p)`, `None`, `_` or a name (without `mut`: copy it into a `let mut` in the arm)",
             )),
         }
+    }
+}
+
+impl FnLowerer<'_> {
+    /// `a == b`, `a != b` of two `Option`s (`o == None`, `o == Some(x)`):
+    /// equal where both are `None`, or both `Some` of equal values.
+    pub(super) fn option_equality(&mut self, op: &BinOp, o: Operands, inner: &Ty) -> Result<Val> {
+        let Operands { l, r, span, .. } = o;
+        let mut vals = [l, r];
+        self.once(&mut vals);
+        let [l, r] = vals;
+        let lv = Val::new(format!("{}.value", l.code), inner.clone());
+        let rv = Val::new(format!("{}.value", r.code), inner.clone());
+        let eq = self.binary_op(&BinOp::Eq(Default::default()), lv, rv, span)?;
+        let code = format!("(({l}.some == {r}.some) && (!{l}.some || {}))", eq.code, l = l.code, r = r.code);
+        let code = if matches!(op, BinOp::Ne(_)) { format!("!{code}") } else { code };
+        Ok(Val::new(code, BOOL).with_effects(l.effects || r.effects).with_reads(l.reads || r.reads))
+    }
+}
+
+impl FnLowerer<'_> {
+    /// `o.unwrap()`, `o.expect("why")`: the value; a `None` raises
+    /// `EXCEPTION_PANIC` (Rust's panic) and gives the zero value it holds.
+    fn option_unwrap(&mut self, recv: Val, inner: &Ty, name: &str, args: &[&Expr], span: Span) -> Result<Val> {
+        match (name, args) {
+            ("unwrap", []) => {}
+            ("expect", [Expr::Lit(syn::ExprLit { lit: syn::Lit::Str(_), .. })]) => {}
+            ("expect", _) => {
+                return Err(Error::new(span, "`expect` takes its message as a string literal: `o.expect(\"why\")`"));
+            }
+            _ => return Err(Error::new(span, format!("`{name}` takes no arguments"))),
+        }
+        if let Some(kind) = self.kind()
+            && kinds::intrinsic("rt_throw").is_some_and(|i| !i.callers.allows(kind))
+        {
+            return Err(Error::new(
+                span,
+                format!(
+                    "`{name}` raises an exception where the `Option` is `None`, which {} cannot: use `unwrap_or(..)` or `match`",
+                    kind.a_program()
+                ),
+            ));
+        }
+        let t = self.fresh("unwrap");
+        let opt = Ty::Option(Box::new(inner.clone()));
+        self.emit_let(format!("let {t} = {};", recv.code), &recv);
+        let rust = format!("__rt_unwrap_{t}");
+        self.bind(&rust, Local { wgsl: t.clone(), ty: opt, var: false });
+        let ident = syn::Ident::new(&rust, span);
+        let check: Expr = syn::parse_quote_spanned!(span=> if !#ident.is_some() { rt_throw(EXCEPTION_PANIC); });
+        self.expr(&check, None)?;
+        Ok(Val::new(format!("{t}.value"), inner.clone()).with_reads(recv.reads))
     }
 }
