@@ -3,7 +3,7 @@
 
 use super::Context;
 use crate::backend::Backend;
-use crate::error::{Result, RtError};
+use crate::error::{ConfigError, LaunchError, Result, SceneError};
 use crate::postprocess::gpu::{Pipelines, Source};
 use crate::postprocess::{Pixels, Plan, Stage, StageId, StageKind, StageValue};
 use crate::scene::BufferId;
@@ -24,12 +24,12 @@ impl Context {
     pub fn create_builtin_postprocessing_stage(&mut self, name: &str) -> Result<StageId> {
         match StageKind::from_name(name) {
             Some(kind) => Ok(self.create_postprocessing_stage(kind)),
-            None => Err(RtError::Unsupported {
+            None => Err(ConfigError::Unsupported {
                 asked: "a built-in post-processing stage",
                 why: format!(
                     "there is none named `{name}`: the built-ins are `DLDenoiser` (`denoiser`) and `TonemapperSimple` (`tonemapper`)"
                 ),
-            }),
+            }.into()),
         }
     }
 
@@ -60,7 +60,7 @@ impl Context {
     /// go up to the device, or where a launch left a device-local buffer's
     /// newest words on the device are copied there, and its output comes
     /// back to the host buffer), on the CPU backend natively. The
-    /// stage is checked first ([`RtError::BadStage`] naming the variable
+    /// stage is checked first ([`PostProcessError::BadStage`](crate::PostProcessError::BadStage) naming the variable
     /// at fault); a stage that fails writes nothing.
     pub fn run_stage(&mut self, stage: StageId, width: u32, height: u32) -> Result<()> {
         let plan = self.plan_stage(stage, Some((width, height)))?;
@@ -68,11 +68,11 @@ impl Context {
     }
 
     pub(crate) fn stage(&self, stage: StageId) -> Result<&Stage> {
-        self.stages.get(stage.0 as usize).ok_or_else(|| RtError::InvalidHandle(format!("{stage:?}")))
+        self.stages.get(stage.0 as usize).ok_or_else(|| SceneError::InvalidHandle(format!("{stage:?}")).into())
     }
 
     fn stage_mut(&mut self, stage: StageId) -> Result<&mut Stage> {
-        self.stages.get_mut(stage.0 as usize).ok_or_else(|| RtError::InvalidHandle(format!("{stage:?}")))
+        self.stages.get_mut(stage.0 as usize).ok_or_else(|| SceneError::InvalidHandle(format!("{stage:?}")).into())
     }
 
     /// `stage` checked against the context's buffers for a run at `size`.
@@ -138,7 +138,9 @@ impl Context {
     /// launch opened it yet), in one submission; their outputs.
     fn run_on_wgpu(&mut self, stages: &[(Plan, Pixels<Source>)]) -> Result<Vec<Vec<Vec4>>> {
         self.open_wgpu()?;
-        let handles = self.wgpu_device().ok_or_else(|| RtError::Gpu("no device after opening one".into()))?;
+        let handles = self
+            .wgpu_device()
+            .ok_or_else(|| LaunchError::Internal { backend: "wgpu", problem: "no device after opening one".into() })?;
         if !self.stage_pipelines.as_ref().is_some_and(|p| p.on(&handles.device)) {
             self.stage_pipelines = Some(Pipelines::new(&handles.device)?);
         }
