@@ -298,7 +298,8 @@ impl LaunchBackend for NoCpuBackend {
         Err(ConfigError::Unsupported {
             asked: "the CPU backend",
             why: "it is not built for wasm32 (no threads there): use Backend::Wgpu".into(),
-        })
+        }
+        .into())
     }
     fn trees(&mut self, _: &Scene) -> Result<Trees> {
         Ok(Trees { groups: crate::accel::bvh::TreeForm::Binary, geometry: true, cwbvh: false, simd: false })
