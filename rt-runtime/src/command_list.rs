@@ -39,7 +39,7 @@
 use crate::backend::LaunchReport;
 use crate::backend::tiles::{LaunchControl, LaunchProgress};
 use crate::context::Context;
-use crate::error::{Result, RtError};
+use crate::error::{PostProcessError, Result, RtError};
 use crate::postprocess::{Plan, StageId};
 
 /// One command of a list.
@@ -137,11 +137,12 @@ impl CommandList {
                 Command::Launch { entry, .. } => format!("a launch of entry point {entry}"),
                 Command::Stage { stage, .. } => format!("post-processing stage {}", stage.index()),
             };
-            return Err(RtError::BadCommandList {
+            return Err(PostProcessError::BadCommandList {
                 problem: format!(
                     "{what} was appended after the list was finalized; a finalized list is fixed: make a new one"
                 ),
-            });
+            }
+            .into());
         }
         self.commands.push(command);
         Ok(())
@@ -150,7 +151,7 @@ impl CommandList {
     /// Checks every command against `ctx` and fixes the list: launches
     /// name existing entry points with a ray generation program and at
     /// least one index a dimension; stages' buffers are set, float RGBA
-    /// and of the size appended ([`RtError::BadStage`] names the stage
+    /// and of the size appended ([`PostProcessError::BadStage`] names the stage
     /// and the variable at fault). A list that fails stays open.
     #[doc(alias = "rtCommandListFinalize")]
     pub fn finalize(&mut self, ctx: &Context) -> Result<()> {
@@ -175,7 +176,7 @@ impl CommandList {
 
     /// [`CommandList::execute`], calling `progress` after every tile of
     /// every launch; its answer may cancel the launch (which then fails
-    /// with [`RtError::LaunchCancelled`], its buffers as they were) and
+    /// with [`LaunchError::LaunchCancelled`](crate::LaunchError::LaunchCancelled), its buffers as they were) and
     /// with it the rest of the list.
     pub fn execute_with_progress(
         &self,
@@ -183,7 +184,7 @@ impl CommandList {
         mut progress: impl FnMut(CommandProgress) -> LaunchControl,
     ) -> Result<Vec<LaunchReport>> {
         if !self.finalized {
-            return Err(RtError::BadCommandList { problem: "executed before it was finalized".into() });
+            return Err(PostProcessError::BadCommandList { problem: "executed before it was finalized".into() }.into());
         }
         let mut reports = Vec::new();
         let commands = self.commands.len();
@@ -243,7 +244,9 @@ fn check(ctx: &Context, i: usize, command: Command) -> Result<()> {
                 None
             };
             match problem {
-                Some(p) => Err(RtError::BadCommandList { problem: format!("command {i} (a launch): {p}") }),
+                Some(p) => {
+                    Err(PostProcessError::BadCommandList { problem: format!("command {i} (a launch): {p}") }.into())
+                }
                 None => Ok(()),
             }
         }

@@ -2,12 +2,12 @@
 //! Radiance HDR (float RGB) and OpenEXR (float RGBA, values as they are). Launch index `(0, 0)` is the bottom-left pixel, as
 //! in OptiX's samples, so rows are flipped on the way out.
 
-use crate::error::{Result, RtError};
+use crate::error::{IoError, Result, RtError, SceneError};
 use crate::{BufferId, Context};
 use glam::{Vec3, Vec4};
 
 fn image_err(path: &std::path::Path, e: impl std::fmt::Display) -> RtError {
-    RtError::Image { path: path.display().to_string(), problem: e.to_string() }
+    IoError::Image { path: path.display().to_string(), problem: e.to_string() }.into()
 }
 
 /// The buffer's pixels as RGBA, for `Vec4`, `Vec3` and `f32` buffers.
@@ -18,7 +18,7 @@ fn rgba(ctx: &Context, b: BufferId) -> Result<(u32, u32, Vec<Vec4>)> {
     } else if let Ok(v) = ctx.read_buffer::<Vec3>(b) {
         v.into_iter().map(|c| c.extend(1.0)).collect()
     } else {
-        let v = ctx.read_buffer::<f32>(b).map_err(|_| RtError::BadBuffer {
+        let v = ctx.read_buffer::<f32>(b).map_err(|_| SceneError::BadBuffer {
             buffer: b.index(),
             problem: "only Vec4, Vec3 and f32 buffers can be saved as images".into(),
         })?;

@@ -125,7 +125,9 @@ pub use backend::{Backend, ExceptionRecord, LaunchReport, Timings};
 pub use buffer::{BufferType, generate_mip_levels, generate_mip_levels_3d};
 pub use command_list::{Command, CommandList, CommandProgress};
 pub use context::{Context, ExceptionKind, MipLevels, SamplerDescriptor, SamplerExtent, Scope, UsageCallback};
-pub use error::{Result, RtError};
+pub use error::{
+    ConfigError, DeviceError, IoError, LaunchError, LinkError, PostProcessError, Result, RtError, SceneError,
+};
 pub use motion::{MotionKeys, MotionTransform, Srt};
 pub use postprocess::{StageId, StageKind, StageValue};
 pub use scene::{

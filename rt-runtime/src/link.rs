@@ -12,7 +12,7 @@ pub mod callables;
 pub(crate) mod instances;
 
 use crate::buffer::SamplerShape;
-use crate::error::{Result, RtError};
+use crate::error::{LinkError, Result, RtError, SceneError};
 use crate::scene::{GeometryKind, NodeId, ProgramId};
 use crate::scene::{Scene, Scope};
 use crate::vars::{ScopeKind, VarValue, lookup_order};
@@ -72,12 +72,13 @@ fn scope_name(s: Scope) -> String {
 pub fn resolve_values(scene: &Scene, p: ProgramId, record: Record) -> Result<Vec<&VarValue>> {
     let desc = scene.program(p)?.desc;
     if desc.variables.len() > MAX_VARIABLES {
-        return Err(RtError::TooManyVariables {
+        return Err(LinkError::TooManyVariables {
             program: desc.name,
             location: desc.location(),
             count: desc.variables.len(),
             max: MAX_VARIABLES,
-        });
+        }
+        .into());
     }
     let scopes: Vec<Scope> = lookup_order(desc.kind)
         .iter()
@@ -100,21 +101,25 @@ pub fn resolve_values(scene: &Scene, p: ProgramId, record: Record) -> Result<Vec
             }
         }
         let Some((scope, value)) = found else {
-            return Err(RtError::VariableNotFound {
+            return Err(LinkError::VariableNotFound {
                 program: desc.name,
                 location: desc.location(),
                 kind: desc.kind,
                 variable: v.name.to_string(),
                 searched: scopes.iter().map(|s| scope_name(*s)).collect::<Vec<_>>().join(", "),
-            });
+            }
+            .into());
         };
-        let mismatch = |found: String| RtError::VariableType {
-            program: desc.name,
-            location: desc.location(),
-            variable: v.name.to_string(),
-            declared: v.ty.rust.to_string(),
-            scope: scope_name(scope),
-            found,
+        let mismatch = |found: String| {
+            LinkError::VariableType {
+                program: desc.name,
+                location: desc.location(),
+                variable: v.name.to_string(),
+                declared: v.ty.rust.to_string(),
+                scope: scope_name(scope),
+                found,
+            }
+            .into()
         };
         let ok = match (value, v.kind) {
             (VarValue::Data { layout, words, .. }, VariableKind::Value) => {
@@ -136,14 +141,16 @@ pub fn resolve_values(scene: &Scene, p: ProgramId, record: Record) -> Result<Vec
             }
             (VarValue::Buffer(b), VariableKind::Buffer { element, dimensions, writable }) => {
                 let rec =
-                    scene.buffers.get(b.index() as usize).ok_or_else(|| RtError::InvalidHandle(format!("{b:?}")))?;
+                    scene.buffers.get(b.index() as usize).ok_or_else(|| SceneError::InvalidHandle(format!("{b:?}")))?;
                 layout_compatible(&rec.storage.layout(), &element)
                     && rec.dims == dimensions
                     && (!writable || rec.ty.writable_by_programs())
             }
             (VarValue::Sampler(s), VariableKind::Sampler | VariableKind::Sampler3d | VariableKind::SamplerCube) => {
-                let rec =
-                    scene.samplers.get(s.index() as usize).ok_or_else(|| RtError::InvalidHandle(format!("{s:?}")))?;
+                let rec = scene
+                    .samplers
+                    .get(s.index() as usize)
+                    .ok_or_else(|| SceneError::InvalidHandle(format!("{s:?}")))?;
                 let fits = match rec.shape {
                     SamplerShape::Flat => v.kind == VariableKind::Sampler,
                     SamplerShape::Volume(_) => v.kind == VariableKind::Sampler3d,
@@ -156,7 +163,7 @@ pub fn resolve_values(scene: &Scene, p: ProgramId, record: Record) -> Result<Vec
             }
             (VarValue::Object(n), VariableKind::Object) => {
                 if n.index() as usize >= scene.nodes.len() {
-                    return Err(RtError::InvalidHandle(format!("{n:?}")));
+                    return Err(SceneError::InvalidHandle(format!("{n:?}")).into());
                 }
                 true
             }
@@ -211,7 +218,7 @@ pub fn check_types(scene: &Scene) -> Result<()> {
         let Some(payload) = desc.payload else { return Ok(()) };
         let slot = &mut payload_of_ray_type[ray_type as usize];
         match slot {
-            Some((other, layout)) if layout.rust != payload.rust => Err(RtError::PayloadMismatch {
+            Some((other, layout)) if layout.rust != payload.rust => Err(LinkError::PayloadMismatch {
                 ray_type,
                 a: other.name,
                 a_location: other.location(),
@@ -219,7 +226,8 @@ pub fn check_types(scene: &Scene) -> Result<()> {
                 b: desc.name,
                 b_location: desc.location(),
                 b_type: payload.rust,
-            }),
+            }
+            .into()),
             Some(_) => Ok(()),
             None => {
                 *slot = Some((desc, payload));
@@ -243,11 +251,12 @@ pub fn check_types(scene: &Scene) -> Result<()> {
         for traced in prog.desc.traced_payloads {
             let known = payload_of_ray_type.iter().flatten().any(|(_, l)| l.rust == traced.rust);
             if !known {
-                return Err(RtError::TracedPayloadUnused {
+                return Err(LinkError::TracedPayloadUnused {
                     program: prog.desc.name,
                     location: prog.desc.location(),
                     payload: traced.rust,
-                });
+                }
+                .into());
             }
         }
     }
@@ -264,14 +273,15 @@ pub fn check_types(scene: &Scene) -> Result<()> {
                 if let (Some(taken), reported) = (hit.attributes, isect.attributes)
                     && reported.is_none_or(|r| r.rust != taken.rust)
                 {
-                    return Err(RtError::AttributeMismatch {
+                    return Err(LinkError::AttributeMismatch {
                         intersection: isect.name,
                         intersection_location: isect.location(),
                         reported: reported.map(|r| r.rust).unwrap_or("no attributes"),
                         hit: hit.name,
                         hit_location: hit.location(),
                         taken: taken.rust,
-                    });
+                    }
+                    .into());
                 }
             }
         }
@@ -293,7 +303,7 @@ pub fn var_refs(call: &Call) -> [&(dyn Any + Send + Sync); MAX_VARIABLES] {
 /// declared one, though its name passed the link check.
 pub fn bind_error(call: &Call, e: rt_std::cpu::VariableMismatch) -> RtError {
     let desc = call.desc;
-    RtError::VariableType {
+    LinkError::VariableType {
         program: desc.name,
         location: desc.location(),
         variable: desc.variables.get(e.index).map_or_else(|| format!("#{}", e.index), |v| v.name.to_string()),
@@ -301,6 +311,7 @@ pub fn bind_error(call: &Call, e: rt_std::cpu::VariableMismatch) -> RtError {
         scope: "bound".to_string(),
         found: "a value of another Rust type".to_string(),
     }
+    .into()
 }
 
 /// Whether a value laid out as `held` may be read as the declared type:
@@ -334,13 +345,16 @@ fn check_bindless_id(
     let Some(named) = crate::handles::BufferId::from_bindless_id(id) else {
         return Ok(());
     };
-    let error = |found: String| RtError::BindlessVariable {
-        program: desc.name,
-        location: desc.location(),
-        variable: v.name.to_string(),
-        declared: v.ty.rust.to_string(),
-        scope: scope.to_string(),
-        found,
+    let error = |found: String| {
+        LinkError::BindlessVariable {
+            program: desc.name,
+            location: desc.location(),
+            variable: v.name.to_string(),
+            declared: v.ty.rust.to_string(),
+            scope: scope.to_string(),
+            found,
+        }
+        .into()
     };
     let Some(rec) = scene.buffers.get(named.index() as usize) else {
         return Err(error(format!("id {id}, which names no buffer of this context")));
@@ -373,13 +387,16 @@ fn check_sampler_id(
     let Some(named) = crate::handles::SamplerId::from_bindless_id(id) else {
         return Ok(());
     };
-    let error = |found: String| RtError::BindlessVariable {
-        program: desc.name,
-        location: desc.location(),
-        variable: v.name.to_string(),
-        declared: v.ty.rust.to_string(),
-        scope: scope.to_string(),
-        found,
+    let error = |found: String| {
+        LinkError::BindlessVariable {
+            program: desc.name,
+            location: desc.location(),
+            variable: v.name.to_string(),
+            declared: v.ty.rust.to_string(),
+            scope: scope.to_string(),
+            found,
+        }
+        .into()
     };
     let Some(rec) = scene.samplers.get(named.index() as usize) else {
         return Err(error(format!("id {id}, which names no sampler of this context")));
@@ -408,13 +425,16 @@ fn check_callable_id(
     let Some(named) = ProgramId::from_callable_id(id) else {
         return Ok(());
     };
-    let error = |found: String| RtError::CallableVariable {
-        program: desc.name,
-        location: desc.location(),
-        variable: v.name.to_string(),
-        declared: v.ty.rust.to_string(),
-        scope: scope.to_string(),
-        found,
+    let error = |found: String| {
+        LinkError::CallableVariable {
+            program: desc.name,
+            location: desc.location(),
+            variable: v.name.to_string(),
+            declared: v.ty.rust.to_string(),
+            scope: scope.to_string(),
+            found,
+        }
+        .into()
     };
     let Some(target) = scene.programs.get(named.index() as usize).map(|r| r.desc) else {
         return Err(error(format!("id {id}, which names no program of this context")));

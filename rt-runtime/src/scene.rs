@@ -5,7 +5,7 @@
 //! owns one and edits it; backends read it.
 
 use crate::buffer::{BufferRec, SamplerRec};
-use crate::error::{Result, RtError};
+use crate::error::{Result, SceneError};
 use crate::motion::MotionTransform;
 use crate::vars::VarScope;
 use crate::vertex_motion::VertexMotion;
@@ -251,7 +251,7 @@ impl Default for Scene {
 
 impl Scene {
     pub fn program(&self, p: ProgramId) -> Result<&ProgramRec> {
-        self.programs.get(p.0 as usize).ok_or_else(|| RtError::InvalidHandle(format!("{p:?}")))
+        self.programs.get(p.0 as usize).ok_or_else(|| SceneError::InvalidHandle(format!("{p:?}")).into())
     }
 
     pub fn ray_type_count(&self) -> u32 {
@@ -275,7 +275,7 @@ impl Scene {
 
     /// The variables set on `scope`.
     pub fn scope(&self, scope: Scope) -> Result<&VarScope> {
-        let missing = || RtError::InvalidHandle(format!("{scope:?}"));
+        let missing = || SceneError::InvalidHandle(format!("{scope:?}"));
         Ok(match scope {
             Scope::Context => &self.vars,
             Scope::Program(p) => &self.programs.get(p.0 as usize).ok_or_else(missing)?.vars,
@@ -287,7 +287,7 @@ impl Scene {
     }
 
     pub fn scope_mut(&mut self, scope: Scope) -> Result<&mut VarScope> {
-        let missing = || RtError::InvalidHandle(format!("{scope:?}"));
+        let missing = || SceneError::InvalidHandle(format!("{scope:?}"));
         Ok(match scope {
             Scope::Context => &mut self.vars,
             Scope::Program(p) => &mut self.programs.get_mut(p.0 as usize).ok_or_else(missing)?.vars,
@@ -306,7 +306,7 @@ pub(crate) fn nodes_post_order(scene: &Scene) -> Result<Vec<NodeId>> {
     let mut order = Vec::new();
     fn visit(scene: &Scene, n: usize, state: &mut [u8], order: &mut Vec<NodeId>) -> Result<()> {
         match state[n] {
-            1 => return Err(RtError::GraphCycle { node: n as u32 }),
+            1 => return Err(SceneError::GraphCycle { node: n as u32 }.into()),
             2 => return Ok(()),
             _ => {}
         }

@@ -374,7 +374,7 @@ fn textures_of_unsupported_formats_and_bad_files() {
         let path = dir.join(name);
         std::fs::write(&path, bytes).unwrap();
         let e = ctx.create_sampler_from_file(&path, WrapMode::Repeat, FilterMode::Linear).unwrap_err();
-        assert!(matches!(e, RtError::Texture { .. }), "{e:?}");
+        assert!(matches!(e, RtError::Io(IoError::Texture { .. })), "{e:?}");
         e.to_string().replace(&dir.display().to_string(), "DIR")
     };
     // A JPEG's signature: a real format, but not one this build reads.
@@ -410,7 +410,7 @@ fn device_lost_mid_launch_loses_nothing() {
     ctx.set_var(Scope::Context, "gain", 0.5f32).unwrap();
     ctx.simulate_device_loss_in_next_launch();
     let e = ctx.launch(0, 8, 8).unwrap_err();
-    assert!(matches!(e, RtError::DeviceLost { .. }), "{e:?}");
+    assert!(matches!(e, RtError::Device(DeviceError::DeviceLost { .. })), "{e:?}");
     let text = e.to_string();
     assert!(
         text.starts_with("the wgpu device on ")
@@ -534,7 +534,7 @@ fn a_bounding_box_program_returning_no_box_is_an_error_naming_it() {
             let gg = ctx.create_geometry_group(&[gi], Acceleration::default()).unwrap();
             ctx.set_var(Scope::Context, "top", gg).unwrap();
             let err = ctx.launch(0, 4, 4).unwrap_err();
-            let RtError::BadBounds { program, location, geometry, primitive, .. } = &err else {
+            let RtError::Scene(SceneError::BadBounds { program, location, geometry, primitive, .. }) = &err else {
                 panic!("{}: expected BadBounds, got {err:?}", on.name());
             };
             assert_eq!((*program, *geometry, *primitive), ("given_box", geom.index(), 0), "{}", on.name());

@@ -205,7 +205,7 @@ fn on_wgpu_a_cancelled_launch_runs_none_of_the_stages_riding_in_it() {
             if seen == 2 { LaunchControl::Cancel } else { LaunchControl::Continue }
         })
         .unwrap_err();
-    assert!(matches!(e, RtError::LaunchCancelled { entry: 0, done: 128, .. }), "{e}");
+    assert!(matches!(e, RtError::Launch(LaunchError::LaunchCancelled { entry: 0, done: 128, .. })), "{e}");
     for (b, pixels) in read(&ctx, &buffers).into_iter().enumerate() {
         assert_eq!(pixels, vec![Vec4::ZERO; (W * H) as usize], "buffer {b} as it was");
     }
@@ -232,7 +232,7 @@ fn a_cancelled_launch_stops_the_list_before_its_stages() {
             LaunchControl::Cancel
         })
         .unwrap_err();
-    assert!(matches!(e, RtError::LaunchCancelled { entry: 0, .. }), "{e}");
+    assert!(matches!(e, RtError::Launch(LaunchError::LaunchCancelled { entry: 0, .. })), "{e}");
     assert_eq!(seen, vec![(0, 2)]);
     for pixels in read(&ctx, &buffers) {
         assert_eq!(pixels, vec![Vec4::ZERO; (W * H) as usize], "a cancelled list leaves its buffers as they were");
@@ -253,7 +253,7 @@ fn a_list_used_out_of_order_is_refused_and_keeps_its_commands() {
         e.to_string(),
         "command list: post-processing stage 1 was appended after the list was finalized; a finalized list is fixed: make a new one"
     );
-    assert!(matches!(e, RtError::BadCommandList { .. }));
+    assert!(matches!(e, RtError::PostProcess(PostProcessError::BadCommandList { .. })));
     assert_eq!(list.commands().len(), 2, "nothing lost, nothing added");
     assert!(list.is_finalized());
     list.execute(&mut ctx).unwrap();
@@ -266,7 +266,7 @@ fn finalize_names_the_stage_and_variable_or_the_launch_at_fault() {
     list.append_launch_2d(0, W, H).unwrap();
     list.append_stage(denoiser, W, H + 8).unwrap();
     match list.finalize(&ctx).unwrap_err() {
-        RtError::BadStage { stage, variable, problem } => {
+        RtError::PostProcess(PostProcessError::BadStage { stage, variable, problem }) => {
             assert_eq!((stage.as_str(), variable.as_str()), ("0 (`denoiser`)", "input_buffer"));
             assert_eq!(problem, format!("is buffer 0 of {W}x{H} elements, but the stage runs at {W}x{}", H + 8));
         }
@@ -279,7 +279,7 @@ fn finalize_names_the_stage_and_variable_or_the_launch_at_fault() {
     let mut list = CommandList::new();
     list.append_stage(denoiser, W, H).unwrap();
     match list.finalize(&ctx).unwrap_err() {
-        RtError::BadStage { variable, problem, .. } => {
+        RtError::PostProcess(PostProcessError::BadStage { variable, problem, .. }) => {
             assert_eq!(variable, "output_buffer");
             assert!(problem.contains("holds `f32`"), "{problem}");
         }
@@ -375,7 +375,10 @@ fn a_stage_failing_as_the_list_runs_leaves_the_stages_before_it_done() {
         let small = ctx.create_buffer_2d::<Vec4>(BufferType::Output, W, H - 1).unwrap();
         ctx.set_stage_var(tonemapper, "output_buffer", small).unwrap();
         let e = list.execute(&mut ctx).unwrap_err();
-        assert!(matches!(&e, RtError::BadStage { variable, .. } if variable == "output_buffer"), "{e}");
+        assert!(
+            matches!(&e, RtError::PostProcess(PostProcessError::BadStage { variable, .. }) if variable == "output_buffer"),
+            "{e}"
+        );
         let denoised = ctx.read_buffer::<Vec4>(buffers[3]).unwrap();
         assert_ne!(denoised, vec![Vec4::ZERO; (W * H) as usize], "{}: the denoiser ran", on.name());
         assert_eq!(ctx.read_buffer::<Vec4>(buffers[4]).unwrap(), vec![Vec4::ZERO; (W * H) as usize]);

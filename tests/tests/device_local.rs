@@ -115,7 +115,7 @@ fn device_local_buffers_are_not_read_back_and_read_as_host_buffers_do() {
     // Cancelled after its first tile: every buffer as it was.
     kept.ctx.set_var(Scope::Context, "step", 5000u32).unwrap();
     let cancelled = kept.ctx.launch_with_progress(0, N, 1, |_| LaunchControl::Cancel);
-    assert!(matches!(cancelled, Err(RtError::LaunchCancelled { .. })), "{cancelled:?}");
+    assert!(matches!(cancelled, Err(RtError::Launch(LaunchError::LaunchCancelled { .. }))), "{cancelled:?}");
     kept.assert_added(1113, "a cancelled launch");
     kept.step(1);
     kept.assert_added(1114, "a launch after the cancelled one");

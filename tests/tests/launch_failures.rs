@@ -76,7 +76,7 @@ fn a_panicking_program_is_an_error_naming_it_and_the_outputs_stay_as_they_were()
     ctx.set_ray_generation_program(0, bad).unwrap();
     let err = ctx.launch_1d(0, 64).unwrap_err();
     match &err {
-        RtError::ProgramPanicked { program, location, launch_index, message, at } => {
+        RtError::Launch(LaunchError::ProgramPanicked { program, location, launch_index, message, at }) => {
             assert_eq!(*program, "fill");
             assert!(location.ends_with("launch_failures.rs:12"), "{location}");
             assert_eq!(*launch_index, glam::UVec2::new(5, 0));
@@ -153,7 +153,7 @@ fn a_panicking_bounding_box_program_is_an_error_naming_it_and_the_primitive() {
     ctx.set_miss_program(0, miss).unwrap();
     let err = ctx.launch(0, 1, 1).unwrap_err();
     match &err {
-        RtError::BoundsPanicked { program, primitive, message, .. } => {
+        RtError::Launch(LaunchError::BoundsPanicked { program, primitive, message, .. }) => {
             assert_eq!(*program, "unit_bounds");
             assert_eq!(*primitive, 0);
             assert!(message.contains("index out of bounds"), "{message}");

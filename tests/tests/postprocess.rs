@@ -4,7 +4,7 @@
 
 use glam::Vec4;
 use rt_runtime::postprocess::tonemap::tonemap_pixel;
-use rt_runtime::{BufferId, BufferType, Context, RtError, StageKind};
+use rt_runtime::{BufferId, BufferType, Context, PostProcessError, RtError, StageKind};
 
 fn image(ctx: &mut Context, w: u32, h: u32, f: impl Fn(u32, u32) -> Vec4) -> BufferId {
     let b = ctx.create_buffer_2d::<Vec4>(BufferType::InputOutput, w, h).unwrap();
@@ -30,7 +30,7 @@ fn denoiser(ctx: &mut Context, w: u32, h: u32) -> (rt_runtime::StageId, [BufferI
 fn stage_error(e: RtError) -> (String, String, String) {
     let text = e.to_string();
     match e {
-        RtError::BadStage { stage, variable, .. } => (stage, variable, text),
+        RtError::PostProcess(PostProcessError::BadStage { stage, variable, .. }) => (stage, variable, text),
         other => panic!("expected a stage error, got {other:?}"),
     }
 }

@@ -470,7 +470,9 @@ fn a_scene_over_the_devices_tlas_limit_is_an_error_naming_the_root() {
     let top = ctx.create_group(&children, Acceleration::default()).unwrap();
     ctx.set_var(Scope::Context, "top", top).unwrap();
     match ctx.launch(0, W, W) {
-        Err(RtError::AccelerationLimit { node, count: 5, limit: 4, .. }) => assert_eq!(node, top.index()),
+        Err(RtError::Device(DeviceError::AccelerationLimit { node, count: 5, limit: 4, .. })) => {
+            assert_eq!(node, top.index())
+        }
         other => panic!("expected the TLAS limit error, got {other:?}"),
     }
     ctx.set_traversal(Traversal::Compute);

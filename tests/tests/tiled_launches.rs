@@ -185,7 +185,7 @@ fn cancelling_between_tiles_leaves_the_buffers_as_they_were() {
         // 5,000 indices: two bands of 300 x 8.
         let done = 3 * 2 * 8 * W as u64;
         assert!(
-            matches!(err, RtError::LaunchCancelled { entry: 0, done: d, total } if d == done && total == (W * H) as u64),
+            matches!(err, RtError::Launch(LaunchError::LaunchCancelled { entry: 0, done: d, total }) if d == done && total == (W * H) as u64),
             "{}: {err}",
             on.name()
         );
@@ -237,7 +237,7 @@ fn a_panic_in_a_later_tile_leaves_the_buffers_as_they_were() {
     // Rows 0 to 127 ran (8 tiles of 16 rows) before the tile with row 140.
     assert_eq!(tiles, 8);
     assert!(
-        matches!(&err, RtError::ProgramPanicked { launch_index, message, .. } if *launch_index == UVec2::new(7, 140) && message == "late trouble"),
+        matches!(&err, RtError::Launch(LaunchError::ProgramPanicked { launch_index, message, .. }) if *launch_index == UVec2::new(7, 140) && message == "late trouble"),
         "{err}"
     );
     assert_eq!(bits(&s.ctx.read_buffer::<Vec4>(s.out).unwrap()), bits(&before));
@@ -293,7 +293,10 @@ fn a_part_of_a_launch_runs_only_its_indices_and_sees_the_whole_size() {
             (Tile { origin: UVec2::new(0, 0), size: UVec2::new(0, 8) }, "is empty"),
         ] {
             let err = s.ctx.launch_part(0, W, H, bad, |_| LaunchControl::Continue).unwrap_err();
-            assert!(matches!(err, RtError::BadLaunch { .. }) && err.to_string().contains(problem), "{err}");
+            assert!(
+                matches!(err, RtError::Launch(LaunchError::BadLaunch { .. })) && err.to_string().contains(problem),
+                "{err}"
+            );
         }
     }
 }

@@ -53,14 +53,20 @@ fn params(p: BvhBuildParams, form: TreeForm) -> BvhBuildParams {
 /// fixed triangles or not (`triangles`); None where it can.
 pub(crate) fn refusal(builder: Builder, triangles: bool) -> Option<crate::error::RtError> {
     match builder {
-        Builder::TriangleKdTree => Some(crate::error::RtError::UnsupportedBuilder {
-            builder: "TriangleKdTree",
-            reason: "obvhs builds BVHs, not kd-trees; use Sbvh for the same trace quality",
-        }),
-        Builder::Sbvh if !triangles => Some(crate::error::RtError::UnsupportedBuilder {
-            builder: "Sbvh",
-            reason: "spatial splits need triangles, and this group holds custom primitives or instances; use Bvh",
-        }),
+        Builder::TriangleKdTree => Some(
+            crate::error::SceneError::UnsupportedBuilder {
+                builder: "TriangleKdTree",
+                reason: "obvhs builds BVHs, not kd-trees; use Sbvh for the same trace quality",
+            }
+            .into(),
+        ),
+        Builder::Sbvh if !triangles => Some(
+            crate::error::SceneError::UnsupportedBuilder {
+                builder: "Sbvh",
+                reason: "spatial splits need triangles, and this group holds custom primitives or instances; use Bvh",
+            }
+            .into(),
+        ),
         _ => None,
     }
 }

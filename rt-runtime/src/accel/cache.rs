@@ -5,7 +5,7 @@ use super::Builder;
 use super::bvh::{Bvh, TreeForm, build, refit_wide, refusal, to_oaabb, widen};
 use super::wide::WideBvh;
 use super::wide::collapse::collapse;
-use crate::error::{Result, RtError};
+use crate::error::{LaunchError, Result, SceneError};
 use crate::link::{self, Record};
 use crate::scene::{GeometryKind, NodeKind, Scene, TriangleMesh};
 use glam::{Mat4, Vec3};
@@ -160,7 +160,7 @@ pub(crate) fn prim_bounds(scene: &Scene, children: &[crate::handles::GeometryIns
                 for p in 0..*primitive_count {
                     let mut args = CpuArgs { payload: None, attributes: None, primitive: p, variables: &vars };
                     let run = || rt_std::cpu::with_context(ExecutionContext::DEFAULT, || (call.desc.cpu)(&mut args));
-                    let (r, _) = crate::panics::catching(run).map_err(|caught| RtError::BoundsPanicked {
+                    let (r, _) = crate::panics::catching(run).map_err(|caught| LaunchError::BoundsPanicked {
                         program: call.desc.name,
                         location: format!("{}:{}", call.desc.file, call.desc.line),
                         primitive: p,
@@ -182,14 +182,15 @@ pub(crate) fn prim_bounds(scene: &Scene, children: &[crate::handles::GeometryIns
                             } else {
                                 "min above max"
                             };
-                            return Err(RtError::BadBounds {
+                            return Err(SceneError::BadBounds {
                                 program: call.desc.name,
                                 location: format!("{}:{}", call.desc.file, call.desc.line),
                                 geometry: rec.geometry.index(),
                                 primitive: p,
                                 bounds: format!("min {} max {}", b.min, b.max),
                                 problem,
-                            });
+                            }
+                            .into());
                         }
                         _ => OAabb::empty(),
                     };

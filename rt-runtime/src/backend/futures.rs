@@ -33,10 +33,10 @@ pub(crate) fn now<F: Future>(f: F) -> Option<F::Output> {
 }
 
 /// A blocking call of a fallible future: [`now`], failing in a browser
-/// with [`RtError::WouldBlock`](crate::error::RtError::WouldBlock) where it
+/// with [`DeviceError::WouldBlock`](crate::error::DeviceError::WouldBlock) where it
 /// would have to wait for the device.
 pub(crate) fn block<T>(f: impl Future<Output = crate::error::Result<T>>) -> crate::error::Result<T> {
-    now(f).unwrap_or(Err(crate::error::RtError::WouldBlock))
+    now(f).unwrap_or(Err(crate::error::DeviceError::WouldBlock.into()))
 }
 
 /// A value a callback delivers once (a buffer's mapping), to be awaited.

@@ -23,7 +23,7 @@ pub mod wgpu;
 
 use crate::accel::cache::{AccelCache, Trees, build_accels};
 use crate::buffer::BufferRec;
-use crate::error::{Result, RtError};
+use crate::error::{ConfigError, LaunchError, Result, RtError};
 use crate::scene::Scene;
 use futures::{Catching, LocalBoxFuture};
 use glam::UVec2;
@@ -55,9 +55,12 @@ impl Backend {
             return match v.as_str() {
                 "cpu" => Ok((Backend::Cpu, "RT_BACKEND=cpu".into())),
                 "wgpu" => Ok((Backend::Wgpu, "RT_BACKEND=wgpu".into())),
-                other => {
-                    Err(RtError::Config { setting: "RT_BACKEND", value: other.into(), expected: "`cpu` or `wgpu`" })
+                other => Err(ConfigError::Setting {
+                    setting: "RT_BACKEND",
+                    value: other.into(),
+                    expected: "`cpu` or `wgpu`",
                 }
+                .into()),
             };
         }
         match wgpu::probe() {
@@ -292,10 +295,11 @@ impl LaunchBackend for NoCpuBackend {
         Backend::Cpu
     }
     fn prepare(&mut self) -> Result<()> {
-        Err(RtError::Unsupported {
+        Err(ConfigError::Unsupported {
             asked: "the CPU backend",
             why: "it is not built for wasm32 (no threads there): use Backend::Wgpu".into(),
-        })
+        }
+        .into())
     }
     fn trees(&mut self, _: &Scene) -> Result<Trees> {
         Ok(Trees { groups: crate::accel::bvh::TreeForm::Binary, geometry: true, cwbvh: false, simd: false })
@@ -355,17 +359,17 @@ pub(crate) async fn launch(
 ) -> Result<LaunchReport> {
     if width == 0 || height == 0 || depth == 0 {
         let problem = "a launch needs at least one index in each dimension".into();
-        return Err(RtError::BadLaunch { width, height, problem });
+        return Err(LaunchError::BadLaunch { width, height, problem }.into());
     }
     // A 3D launch runs as a 2D grid of its slices' rows.
     let Some(height) = height.checked_mul(depth) else {
         let problem = format!("a depth of {depth} slices of {height} rows: more rows than 32-bit indices number");
-        return Err(RtError::BadLaunch { width, height, problem });
+        return Err(LaunchError::BadLaunch { width, height, problem }.into());
     };
     let Pacing { part, pace, mut progress } = pacing;
     let part = part.unwrap_or(Tile::whole(width, height));
     if let Some(problem) = tiles::part_problem(width, height, part) {
-        return Err(RtError::BadLaunch { width, height, problem });
+        return Err(LaunchError::BadLaunch { width, height, problem }.into());
     }
     backend.prepare_async().await?;
     let t0 = Instant::now();
@@ -398,7 +402,7 @@ pub(crate) async fn launch(
         if let Some(progress) = progress.as_deref_mut() {
             let at = LaunchProgress { entry, done, total, tiles: report.tiles, elapsed: t0.elapsed() };
             if progress(at) == LaunchControl::Cancel && !tiler.finished() {
-                break Err(RtError::LaunchCancelled { entry, done, total });
+                break Err(LaunchError::LaunchCancelled { entry, done, total }.into());
             }
         }
     };
@@ -426,9 +430,9 @@ pub(crate) async fn launch(
 async fn run_tile(backend: &mut dyn LaunchBackend, launch: &Launch<'_>) -> Result<LaunchReport> {
     let name = backend.kind().name();
     let result = Catching(backend.launch_async(launch)).await.unwrap_or_else(|caught| {
-        Err(RtError::RuntimePanicked { backend: name, message: caught.message, at: caught.at })
+        Err(LaunchError::RuntimePanicked { backend: name, message: caught.message, at: caught.at }.into())
     });
-    if matches!(result, Err(RtError::RuntimePanicked { .. })) {
+    if matches!(result, Err(RtError::Launch(LaunchError::RuntimePanicked { .. }))) {
         backend.recover(Failure::Panicked);
     }
     result
@@ -501,7 +505,9 @@ mod tests {
         };
         let result = futures::now(run_tile(&mut Panicking, &launch)).expect("ready natively");
         match result {
-            Err(RtError::RuntimePanicked { backend: "cpu", message, .. }) => assert_eq!(message, "a bug in a backend"),
+            Err(RtError::Launch(LaunchError::RuntimePanicked { backend: "cpu", message, .. })) => {
+                assert_eq!(message, "a bug in a backend")
+            }
             other => panic!("{other:?}"),
         }
     }

@@ -13,7 +13,7 @@
 //!
 //! Between tiles the context reports [`LaunchProgress`] to a callback,
 //! which may cancel ([`LaunchControl::Cancel`]): the launch then fails with
-//! [`RtError::LaunchCancelled`](crate::RtError::LaunchCancelled) and the
+//! [`LaunchError::LaunchCancelled`](crate::LaunchError::LaunchCancelled) and the
 //! buffers are left as they were before it.
 
 use glam::UVec2;
@@ -83,7 +83,7 @@ pub enum LaunchControl {
     /// Go on with the next tile.
     Continue,
     /// Stop before the next tile: the launch fails with
-    /// [`RtError::LaunchCancelled`](crate::RtError::LaunchCancelled) and
+    /// [`LaunchError::LaunchCancelled`](crate::LaunchError::LaunchCancelled) and
     /// leaves the buffers as they were.
     Cancel,
 }

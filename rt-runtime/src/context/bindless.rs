@@ -3,7 +3,7 @@
 //! against the element type or sampler shape it is asked for.
 
 use super::Context;
-use crate::error::{Result, RtError};
+use crate::error::{Result, SceneError};
 use crate::scene::*;
 use rt_std::RtData;
 
@@ -46,9 +46,9 @@ impl Context {
         s: SamplerId,
     ) -> Result<rt_std::BindlessSampler<S>> {
         let rec =
-            self.scene.samplers.get(s.index() as usize).ok_or_else(|| RtError::InvalidHandle(format!("{s:?}")))?;
+            self.scene.samplers.get(s.index() as usize).ok_or_else(|| SceneError::InvalidHandle(format!("{s:?}")))?;
         if rec.type_name() != S::NAME {
-            return Err(RtError::BadSampler {
+            return Err(SceneError::BadSampler {
                 sampler: s.index(),
                 problem: format!(
                     "asked for a bindless id of a `{}`, but the sampler is a `{}` (ask for a `BindlessSampler<{}>`)",
@@ -56,33 +56,36 @@ impl Context {
                     rec.type_name(),
                     rec.type_name()
                 ),
-            });
+            }
+            .into());
         }
         Ok(rt_std::BindlessSampler::from_id(s.bindless_id()))
     }
 
     fn check_bindless<T: RtData>(&self, b: BufferId, writable: bool) -> Result<()> {
-        let rec = self.scene.buffers.get(b.index() as usize).ok_or_else(|| RtError::InvalidHandle(format!("{b:?}")))?;
+        let rec =
+            self.scene.buffers.get(b.index() as usize).ok_or_else(|| SceneError::InvalidHandle(format!("{b:?}")))?;
         let held = rec.storage.layout().rust;
         if !crate::link::layout_compatible(&rec.storage.layout(), &T::LAYOUT) {
-            return Err(RtError::BadBuffer {
+            return Err(SceneError::BadBuffer {
                 buffer: b.index(),
                 problem: format!(
                     "asked for a bindless id of `{}` elements, but the buffer holds `{held}` ({})",
                     T::LAYOUT.rust,
                     rec.type_name()
                 ),
-            });
+            }
+            .into());
         }
         if writable && !rec.ty.writable_by_programs() {
-            return Err(RtError::BadBuffer {
+            return Err(SceneError::BadBuffer {
                 buffer: b.index(),
                 problem: format!(
                     "asked for a writable bindless id, but programs may not write an {:?} buffer ({}); ask `buffer_id` for a read-only one",
                     rec.ty,
                     rec.type_name()
                 ),
-            });
+            }.into());
         }
         Ok(())
     }

@@ -4,7 +4,7 @@
 use super::Context;
 use crate::backend;
 use crate::buffer::{BufferRec, BufferType, Typed};
-use crate::error::{Result, RtError};
+use crate::error::{Result, SceneError};
 use crate::scene::*;
 use rt_std::RtData;
 
@@ -25,10 +25,11 @@ impl Context {
     ) -> Result<BufferId> {
         let n = (width as u64) * (height as u64);
         if n > (u32::MAX as u64) {
-            return Err(RtError::BadBuffer {
+            return Err(SceneError::BadBuffer {
                 buffer: self.scene.buffers.len() as u32,
                 problem: format!("{width}x{height} elements do not fit in 32-bit indices"),
-            });
+            }
+            .into());
         }
         let zero = T::read_words(&vec![0u32; T::LAYOUT.words as usize]);
         self.scene.buffers.push(BufferRec::new(
@@ -55,10 +56,11 @@ impl Context {
     ) -> Result<BufferId> {
         let n = (width as u64) * (height as u64) * (depth as u64);
         if n > (u32::MAX as u64) {
-            return Err(RtError::BadBuffer {
+            return Err(SceneError::BadBuffer {
                 buffer: self.scene.buffers.len() as u32,
                 problem: format!("{width}x{height}x{depth} elements do not fit in 32-bit indices"),
-            });
+            }
+            .into());
         }
         let zero = T::read_words(&vec![0u32; T::LAYOUT.words as usize]);
         let storage = Box::new(Typed::new(vec![zero; n as usize]));
@@ -67,10 +69,13 @@ impl Context {
     }
 
     pub(super) fn typed<T: RtData + Send + Sync>(&self, b: BufferId) -> Result<&Typed<T>> {
-        let rec = self.scene.buffers.get(b.0 as usize).ok_or_else(|| RtError::InvalidHandle(format!("{b:?}")))?;
-        rec.storage.as_any().downcast_ref::<Typed<T>>().ok_or_else(|| RtError::BadBuffer {
-            buffer: b.0,
-            problem: format!("holds `{}`, not `{}`", rec.storage.layout().rust, T::LAYOUT.rust),
+        let rec = self.scene.buffers.get(b.0 as usize).ok_or_else(|| SceneError::InvalidHandle(format!("{b:?}")))?;
+        rec.storage.as_any().downcast_ref::<Typed<T>>().ok_or_else(|| {
+            SceneError::BadBuffer {
+                buffer: b.0,
+                problem: format!("holds `{}`, not `{}`", rec.storage.layout().rust, T::LAYOUT.rust),
+            }
+            .into()
         })
     }
 
@@ -100,10 +105,11 @@ impl Context {
     pub fn write_buffer<T: RtData + Send + Sync>(&mut self, b: BufferId, data: &[T]) -> Result<()> {
         let len = self.typed::<T>(b)?.len();
         if data.len() != len {
-            return Err(RtError::BadBuffer {
+            return Err(SceneError::BadBuffer {
                 buffer: b.0,
                 problem: format!("{} elements written to a buffer of {len}", data.len()),
-            });
+            }
+            .into());
         }
         let rec = &mut self.scene.buffers[b.0 as usize];
         rec.storage.as_any_mut().downcast_mut::<Typed<T>>().expect("checked above").write(data);
@@ -114,14 +120,14 @@ impl Context {
     /// `(width, height)` of a buffer (height 1 for 1D buffers; a 3D
     /// buffer's depth: [`buffer_size_3d`](Self::buffer_size_3d)).
     pub fn buffer_size(&self, b: BufferId) -> Result<(u32, u32)> {
-        let rec = self.scene.buffers.get(b.0 as usize).ok_or_else(|| RtError::InvalidHandle(format!("{b:?}")))?;
+        let rec = self.scene.buffers.get(b.0 as usize).ok_or_else(|| SceneError::InvalidHandle(format!("{b:?}")))?;
         Ok((rec.width, rec.height))
     }
 
     /// `(width, height, depth)` of a buffer (depth 1 for 1D and 2D
     /// buffers).
     pub fn buffer_size_3d(&self, b: BufferId) -> Result<(u32, u32, u32)> {
-        let rec = self.scene.buffers.get(b.0 as usize).ok_or_else(|| RtError::InvalidHandle(format!("{b:?}")))?;
+        let rec = self.scene.buffers.get(b.0 as usize).ok_or_else(|| SceneError::InvalidHandle(format!("{b:?}")))?;
         Ok((rec.width, rec.height, rec.depth))
     }
 }

@@ -7,7 +7,7 @@ use super::Context;
 use crate::backend::Backend;
 pub use crate::backend::wgpu::{DeviceBuffer, WgpuDevice};
 use crate::backend::wgpu::{Gpu, WgpuBackend};
-use crate::error::{Result, RtError};
+use crate::error::{Result, SceneError};
 use crate::scene::BufferId;
 use std::any::Any;
 
@@ -29,8 +29,11 @@ impl Context {
     /// host last had.
     #[doc(alias = "RT_BUFFER_GPU_LOCAL")]
     pub fn set_buffer_device_local(&mut self, b: BufferId, on: bool) -> Result<()> {
-        let rec =
-            self.scene.buffers.get_mut(b.index() as usize).ok_or_else(|| RtError::InvalidHandle(format!("{b:?}")))?;
+        let rec = self
+            .scene
+            .buffers
+            .get_mut(b.index() as usize)
+            .ok_or_else(|| SceneError::InvalidHandle(format!("{b:?}")))?;
         // Turning it off needs nothing now: the next launch reads the
         // buffer back, and until then reads come from the device.
         rec.device_local = on;
@@ -39,7 +42,8 @@ impl Context {
 
     /// Whether [`Context::set_buffer_device_local`] is on for `b`.
     pub fn buffer_device_local(&self, b: BufferId) -> Result<bool> {
-        let rec = self.scene.buffers.get(b.index() as usize).ok_or_else(|| RtError::InvalidHandle(format!("{b:?}")))?;
+        let rec =
+            self.scene.buffers.get(b.index() as usize).ok_or_else(|| SceneError::InvalidHandle(format!("{b:?}")))?;
         Ok(rec.device_local)
     }
 
@@ -51,10 +55,13 @@ impl Context {
     /// launch has placed it yet.
     #[doc(alias = "rtBufferGetDevicePointer")]
     pub fn wgpu_buffer(&self, b: BufferId) -> Result<DeviceBuffer> {
-        self.scene.buffers.get(b.index() as usize).ok_or_else(|| RtError::InvalidHandle(format!("{b:?}")))?;
-        self.wgpu_backend_ref().and_then(|w| w.placed(b.index() as usize)).ok_or_else(|| RtError::BadBuffer {
-            buffer: b.index(),
-            problem: "is not on a wgpu device yet: launch on the wgpu backend first".into(),
+        self.scene.buffers.get(b.index() as usize).ok_or_else(|| SceneError::InvalidHandle(format!("{b:?}")))?;
+        self.wgpu_backend_ref().and_then(|w| w.placed(b.index() as usize)).ok_or_else(|| {
+            SceneError::BadBuffer {
+                buffer: b.index(),
+                problem: "is not on a wgpu device yet: launch on the wgpu backend first".into(),
+            }
+            .into()
         })
     }
 

@@ -2,7 +2,7 @@
 //! (new vertex positions, vertex motion keys).
 
 use super::Context;
-use crate::error::{Result, RtError};
+use crate::error::{Result, SceneError};
 use crate::scene::*;
 use crate::vars::VarScope;
 use crate::vertex_motion::VertexMotion;
@@ -14,7 +14,7 @@ impl Context {
         self.scene.geometry_version += 1;
         self.scene.structure_version += 1;
         let id = self.scene.geometries.len() as u32;
-        mesh.validate().map_err(|problem| RtError::BadGeometry { geometry: id, problem })?;
+        mesh.validate().map_err(|problem| SceneError::BadGeometry { geometry: id, problem })?;
         self.scene.geometries.push(GeometryRec {
             kind: GeometryKind::Triangles(mesh),
             vars: VarScope::default(),
@@ -52,18 +52,19 @@ impl Context {
         self.scene.structure_version += 1;
         let (mesh, motion) = self.triangles_mut(g, "")?;
         if positions.len() != mesh.positions.len() {
-            return Err(RtError::BadGeometry {
+            return Err(SceneError::BadGeometry {
                 geometry: g.0,
                 problem: format!(
                     "{} positions given for {} vertices; create a new geometry to change topology",
                     positions.len(),
                     mesh.positions.len()
                 ),
-            });
+            }
+            .into());
         }
         // The rest of the mesh was checked when it was created; with the
         // same vertex count, only the positions themselves can be wrong.
-        check_positions(&positions).map_err(|problem| RtError::BadGeometry { geometry: g.0, problem })?;
+        check_positions(&positions).map_err(|problem| SceneError::BadGeometry { geometry: g.0, problem })?;
         mesh.positions = positions;
         *motion = None;
         self.accels.geometry_moved(g.0);
@@ -92,7 +93,7 @@ impl Context {
     pub fn set_motion_vertices(&mut self, g: GeometryId, keys: Vec<Vec<glam::Vec3>>, t0: f32, t1: f32) -> Result<()> {
         let (mesh, held) = self.triangles_mut(g, ": vertex motion keys move triangles' vertices")?;
         let motion = VertexMotion::new(keys, t0, t1, mesh.positions.len())
-            .map_err(|problem| RtError::BadGeometry { geometry: g.0, problem })?;
+            .map_err(|problem| SceneError::BadGeometry { geometry: g.0, problem })?;
         mesh.positions.clone_from(&motion.keys[0]);
         *held = Some(Box::new(motion));
         self.scene.geometry_version += 1;
@@ -110,10 +111,12 @@ impl Context {
         why: &str,
     ) -> Result<(&mut TriangleMesh, &mut Option<Box<VertexMotion>>)> {
         let rec =
-            self.scene.geometries.get_mut(g.0 as usize).ok_or_else(|| RtError::InvalidHandle(format!("{g:?}")))?;
+            self.scene.geometries.get_mut(g.0 as usize).ok_or_else(|| SceneError::InvalidHandle(format!("{g:?}")))?;
         match rec {
             GeometryRec { kind: GeometryKind::Triangles(mesh), vertex_motion, .. } => Ok((mesh, vertex_motion)),
-            _ => Err(RtError::BadGeometry { geometry: g.0, problem: format!("not a triangle geometry{why}") }),
+            _ => {
+                Err(SceneError::BadGeometry { geometry: g.0, problem: format!("not a triangle geometry{why}") }.into())
+            }
         }
     }
 

@@ -4,7 +4,7 @@
 
 use super::Context;
 use crate::accel::Acceleration;
-use crate::error::{Result, RtError};
+use crate::error::{Result, SceneError};
 use crate::motion::{MotionKeys, MotionTransform};
 use crate::scene::*;
 use crate::vars::VarScope;
@@ -26,7 +26,7 @@ impl Context {
     }
 
     fn material_mut(&mut self, m: MaterialId) -> Result<&mut MaterialRec> {
-        self.scene.materials.get_mut(m.0 as usize).ok_or_else(|| RtError::InvalidHandle(format!("{m:?}")))
+        self.scene.materials.get_mut(m.0 as usize).ok_or_else(|| SceneError::InvalidHandle(format!("{m:?}")).into())
     }
 
     /// Sets material `m`'s closest-hit program for `ray_type`: it runs once
@@ -56,16 +56,17 @@ impl Context {
         self.scene.geometry_version += 1;
         self.scene.structure_version += 1;
         if g.0 as usize >= self.scene.geometries.len() {
-            return Err(RtError::InvalidHandle(format!("{g:?}")));
+            return Err(SceneError::InvalidHandle(format!("{g:?}")).into());
         }
         if let Some(m) = materials.iter().find(|m| m.0 as usize >= self.scene.materials.len()) {
-            return Err(RtError::InvalidHandle(format!("{m:?}")));
+            return Err(SceneError::InvalidHandle(format!("{m:?}")).into());
         }
         if materials.is_empty() {
-            return Err(RtError::BadGeometry {
+            return Err(SceneError::BadGeometry {
                 geometry: g.0,
                 problem: "a geometry instance needs at least one material".into(),
-            });
+            }
+            .into());
         }
         self.scene.instances.push(GeometryInstanceRec {
             geometry: g,
@@ -89,7 +90,7 @@ impl Context {
 
     fn check_nodes(&self, nodes: &[NodeId]) -> Result<()> {
         match nodes.iter().find(|n| n.0 as usize >= self.scene.nodes.len()) {
-            Some(n) => Err(RtError::InvalidHandle(format!("{n:?}"))),
+            Some(n) => Err(SceneError::InvalidHandle(format!("{n:?}")).into()),
             None => Ok(()),
         }
     }
@@ -100,7 +101,7 @@ impl Context {
         self.scene.structure_version += 1;
         self.scene.geometry_version += 1;
         if let Some(c) = children.iter().find(|c| c.0 as usize >= self.scene.instances.len()) {
-            return Err(RtError::InvalidHandle(format!("{c:?}")));
+            return Err(SceneError::InvalidHandle(format!("{c:?}")).into());
         }
         Ok(self.push_node(NodeKind::GeometryGroup { children: children.to_vec(), accel }))
     }
@@ -156,7 +157,7 @@ impl Context {
                 self.accels.transform_moved();
                 Ok(())
             }
-            _ => Err(RtError::InvalidHandle(format!("{node:?} (not a transform)"))),
+            _ => Err(SceneError::InvalidHandle(format!("{node:?} (not a transform)")).into()),
         }
     }
 
@@ -180,7 +181,7 @@ impl Context {
                 self.accels.transform_moved();
                 Ok(())
             }
-            _ => Err(RtError::InvalidHandle(format!("{node:?} (not a transform)"))),
+            _ => Err(SceneError::InvalidHandle(format!("{node:?} (not a transform)")).into()),
         }
     }
 
@@ -195,7 +196,8 @@ impl Context {
     /// Rays trace into `node` only if their mask shares a bit with this.
     pub fn set_visibility_mask(&mut self, node: NodeId, mask: u8) -> Result<()> {
         self.scene.structure_version += 1;
-        let n = self.scene.nodes.get_mut(node.0 as usize).ok_or_else(|| RtError::InvalidHandle(format!("{node:?}")))?;
+        let n =
+            self.scene.nodes.get_mut(node.0 as usize).ok_or_else(|| SceneError::InvalidHandle(format!("{node:?}")))?;
         n.visibility_mask = mask;
         Ok(())
     }
@@ -215,19 +217,21 @@ impl Context {
             Scope::Node(n) => match self.scene.nodes.get_mut(n.0 as usize) {
                 Some(rec @ NodeRec { kind: NodeKind::Transform { .. }, .. }) => Some(&mut rec.instance_id),
                 Some(_) => {
-                    return Err(RtError::InvalidHandle(format!(
+                    return Err(SceneError::InvalidHandle(format!(
                         "{n:?} (not a transform: instance ids are set on geometry instances and transforms)"
-                    )));
+                    ))
+                    .into());
                 }
                 None => None,
             },
             _ => {
-                return Err(RtError::InvalidHandle(format!(
+                return Err(SceneError::InvalidHandle(format!(
                     "{target:?} (instance ids are set on geometry instances and transforms)"
-                )));
+                ))
+                .into());
             }
         };
-        *slot.ok_or_else(|| RtError::InvalidHandle(format!("{target:?}")))? = id;
+        *slot.ok_or_else(|| SceneError::InvalidHandle(format!("{target:?}")))? = id;
         self.scene.structure_version += 1;
         Ok(())
     }
@@ -242,14 +246,15 @@ impl Context {
             Scope::Node(n) => self.scene.nodes.get(n.0 as usize).map(|r| r.instance_id),
             _ => None,
         };
-        id.ok_or_else(|| RtError::InvalidHandle(format!("{target:?}")))
+        id.ok_or_else(|| SceneError::InvalidHandle(format!("{target:?}")).into())
     }
 }
 
 /// Checked motion keys, or an error naming transform `node`.
 fn motion_keys(node: NodeId, keys: MotionKeys, t0: f32, t1: f32) -> Result<MotionTransform> {
-    MotionTransform::new(keys, t0, t1)
-        .map_err(|problem| RtError::BadTransform { problem: format!("transform {}: {problem}", node.index()) })
+    MotionTransform::new(keys, t0, t1).map_err(|problem| {
+        SceneError::BadTransform { problem: format!("transform {}: {problem}", node.index()) }.into()
+    })
 }
 
 /// The first key's matrix and its inverse (identity where it has none): what
@@ -262,7 +267,7 @@ fn first_key(motion: &MotionTransform) -> (Mat4, Mat4) {
 fn checked_inverse(m: Mat4) -> Result<Mat4> {
     let det = m.determinant();
     if !det.is_finite() || det.abs() < 1e-12 || !m.is_finite() {
-        return Err(RtError::BadTransform { problem: format!("the matrix is singular or not finite: {m:?}") });
+        return Err(SceneError::BadTransform { problem: format!("the matrix is singular or not finite: {m:?}") }.into());
     }
     Ok(m.inverse())
 }

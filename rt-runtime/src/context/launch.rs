@@ -35,7 +35,7 @@ impl Context {
     /// [`Context::launch`], calling `progress` after every tile with where
     /// the launch stands. Its answer may cancel the launch before the next
     /// tile ([`LaunchControl::Cancel`]): the launch then fails with
-    /// [`crate::RtError::LaunchCancelled`] and every buffer is as it was before
+    /// [`crate::LaunchError::LaunchCancelled`] and every buffer is as it was before
     /// it. A cancel after the last tile changes nothing: the launch is
     /// done. OptiX 6's `rtContextSetTimeoutCallback` asks the same
     /// question between the pieces of a launch.
@@ -57,7 +57,7 @@ impl Context {
     /// together, what one launch gives. Indices outside the part do not
     /// run. The part must lie on the 8 x 8 grid of launch indices (its
     /// origin, and its far edges unless they are the launch's, multiples
-    /// of 8); else the launch fails with [`crate::RtError::BadLaunch`]. Tiles and
+    /// of 8); else the launch fails with [`crate::LaunchError::BadLaunch`]. Tiles and
     /// progress are as [`Context::launch_with_progress`]'s, within the part.
     pub fn launch_part(
         &mut self,

@@ -3,7 +3,7 @@
 //! programs, and callable programs' ids.
 
 use super::Context;
-use crate::error::{Result, RtError};
+use crate::error::{LinkError, Result};
 use crate::scene::*;
 use crate::vars::VarScope;
 use rt_std::program::{ProgramDescriptor, ProgramKind};
@@ -42,21 +42,23 @@ impl Context {
     pub fn callable_id<F: 'static>(&self, p: ProgramId) -> Result<rt_std::Callable<F>> {
         let desc = self.scene.program(p)?.desc;
         let Some(callable) = desc.callable else {
-            return Err(RtError::WrongProgramKind {
+            return Err(LinkError::WrongProgramKind {
                 program: desc.name,
                 location: desc.location(),
                 found: desc.kind,
                 expected: ProgramKind::Callable,
                 slot: "a callable id".into(),
-            });
+            }
+            .into());
         };
         if !callable.cpu.is::<F>() {
-            return Err(RtError::CallableSignature {
+            return Err(LinkError::CallableSignature {
                 program: desc.name,
                 location: desc.location(),
                 signature: callable.signature.rust,
                 asked: short_type_name(std::any::type_name::<F>()),
-            });
+            }
+            .into());
         }
         Ok(rt_std::Callable::from_id(p.callable_id()))
     }
@@ -64,25 +66,26 @@ impl Context {
     pub(super) fn expect_kind(&self, p: ProgramId, expected: ProgramKind, slot: String) -> Result<()> {
         let desc = self.scene.program(p)?.desc;
         if desc.kind != expected {
-            return Err(RtError::WrongProgramKind {
+            return Err(LinkError::WrongProgramKind {
                 program: desc.name,
                 location: desc.location(),
                 found: desc.kind,
                 expected,
                 slot,
-            });
+            }
+            .into());
         }
         Ok(())
     }
 
     fn entry_mut(&mut self, entry: u32) -> Result<&mut EntryPoint> {
         let count = self.scene.entry_points.len() as u32;
-        self.scene.entry_points.get_mut(entry as usize).ok_or(RtError::NoSuchEntryPoint { entry, count })
+        self.scene.entry_points.get_mut(entry as usize).ok_or(LinkError::NoSuchEntryPoint { entry, count }.into())
     }
 
     pub(super) fn check_ray_type(&self, ray_type: u32) -> Result<()> {
         if ray_type >= self.ray_type_count() {
-            return Err(RtError::NoSuchRayType { ray_type, count: self.ray_type_count() });
+            return Err(LinkError::NoSuchRayType { ray_type, count: self.ray_type_count() }.into());
         }
         Ok(())
     }

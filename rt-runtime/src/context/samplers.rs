@@ -6,7 +6,7 @@
 
 use super::Context;
 use crate::buffer::{SamplerRec, SamplerShape};
-use crate::error::{Result, RtError};
+use crate::error::{IoError, Result, RtError, SceneError};
 use crate::scene::*;
 use glam::{UVec2, UVec3, Vec4};
 use rt_std::{FilterMode, IndexMode, MipFilter, SamplerModes, WrapMode};
@@ -226,7 +226,8 @@ impl Context {
     /// and the level and face at fault.
     #[doc(alias = "rtTextureSamplerCreate")]
     pub fn create_sampler_with(&mut self, desc: SamplerDescriptor) -> Result<SamplerId> {
-        let fail = |problem: String| RtError::BadSampler { sampler: self.scene.samplers.len() as u32, problem };
+        let fail =
+            |problem: String| SceneError::BadSampler { sampler: self.scene.samplers.len() as u32, problem }.into();
         let SamplerDescriptor { extent, images, levels, mut modes } = desc;
         let images = match levels {
             MipLevels::One => {
@@ -278,7 +279,9 @@ impl Context {
         let extent = SamplerExtent::Flat { width, height };
         let desc = SamplerDescriptor { extent, images: vec![texels], levels: MipLevels::One, modes };
         self.create_sampler_with(desc).map_err(|e| match e {
-            RtError::BadSampler { sampler, problem } => RtError::BadBuffer { buffer: sampler, problem },
+            RtError::Scene(SceneError::BadSampler { sampler, problem }) => {
+                RtError::Scene(SceneError::BadBuffer { buffer: sampler, problem })
+            }
             e => e,
         })
     }
@@ -507,14 +510,15 @@ impl Context {
         let n = size as usize * size as usize;
         for (face, name) in faces.iter().zip(FACES) {
             if face.len() != n || n == 0 {
-                return Err(RtError::BadSampler {
+                return Err(SceneError::BadSampler {
                     sampler: self.scene.samplers.len() as u32,
                     problem: format!(
                         "cube face {name} has {} {} texels for a {size}x{size} face",
                         face.len(),
                         face.format_name()
                     ),
-                });
+                }
+                .into());
             }
         }
         self.create_sampler_cube(faces.map(|f| f.decode(read)), size, filter)
@@ -544,7 +548,7 @@ impl Context {
         filter: FilterMode,
     ) -> Result<SamplerId> {
         let path = path.as_ref();
-        let fail = |problem: String| RtError::Texture { path: path.display().to_string(), problem };
+        let fail = |problem: String| IoError::Texture { path: path.display().to_string(), problem }.into();
         let reader = image::ImageReader::open(path)
             .map_err(|e| fail(e.to_string()))?
             .with_guessed_format()
@@ -566,10 +570,11 @@ impl Context {
     /// texels' format and the texture's `size`.
     fn check_texel_count(&self, texels: &crate::TexelData, count: u64, size: &str) -> Result<()> {
         if texels.len() as u64 != count || texels.is_empty() {
-            return Err(RtError::BadSampler {
+            return Err(SceneError::BadSampler {
                 sampler: self.scene.samplers.len() as u32,
                 problem: format!("{} {} texels for a {size} texture", texels.len(), texels.format_name()),
-            });
+            }
+            .into());
         }
         Ok(())
     }

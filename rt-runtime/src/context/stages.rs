@@ -4,7 +4,7 @@
 use super::Context;
 use crate::backend::tiles::{LaunchControl, LaunchProgress};
 use crate::backend::{Backend, LaunchReport};
-use crate::error::{Result, RtError};
+use crate::error::{ConfigError, LaunchError, Result, SceneError};
 use crate::postprocess::gpu::{Pipelines, Source, StageTail, pixels};
 use crate::postprocess::{Pixels, Plan, Stage, StageId, StageKind, StageValue};
 use crate::scene::BufferId;
@@ -25,12 +25,12 @@ impl Context {
     pub fn create_builtin_postprocessing_stage(&mut self, name: &str) -> Result<StageId> {
         match StageKind::from_name(name) {
             Some(kind) => Ok(self.create_postprocessing_stage(kind)),
-            None => Err(RtError::Unsupported {
+            None => Err(ConfigError::Unsupported {
                 asked: "a built-in post-processing stage",
                 why: format!(
                     "there is none named `{name}`: the built-ins are `DLDenoiser` (`denoiser`) and `TonemapperSimple` (`tonemapper`)"
                 ),
-            }),
+            }.into()),
         }
     }
 
@@ -61,7 +61,7 @@ impl Context {
     /// go up to the device, or where a launch left a device-local buffer's
     /// newest words on the device are copied there, and its output comes
     /// back to the host buffer), on the CPU backend natively. The
-    /// stage is checked first ([`RtError::BadStage`] naming the variable
+    /// stage is checked first ([`PostProcessError::BadStage`](crate::PostProcessError::BadStage) naming the variable
     /// at fault); a stage that fails writes nothing.
     pub fn run_stage(&mut self, stage: StageId, width: u32, height: u32) -> Result<()> {
         let plan = self.plan_stage(stage, Some((width, height)))?;
@@ -69,11 +69,11 @@ impl Context {
     }
 
     pub(crate) fn stage(&self, stage: StageId) -> Result<&Stage> {
-        self.stages.get(stage.0 as usize).ok_or_else(|| RtError::InvalidHandle(format!("{stage:?}")))
+        self.stages.get(stage.0 as usize).ok_or_else(|| SceneError::InvalidHandle(format!("{stage:?}")).into())
     }
 
     fn stage_mut(&mut self, stage: StageId) -> Result<&mut Stage> {
-        self.stages.get_mut(stage.0 as usize).ok_or_else(|| RtError::InvalidHandle(format!("{stage:?}")))
+        self.stages.get_mut(stage.0 as usize).ok_or_else(|| SceneError::InvalidHandle(format!("{stage:?}")).into())
     }
 
     /// `stage` checked against the context's buffers for a run at `size`.
@@ -141,7 +141,9 @@ impl Context {
     /// opened it yet), made once per device.
     fn stage_pipelines(&mut self) -> Result<(Pipelines, super::WgpuDevice)> {
         self.open_wgpu()?;
-        let handles = self.wgpu_device().ok_or_else(|| RtError::Gpu("no device after opening one".into()))?;
+        let handles = self
+            .wgpu_device()
+            .ok_or_else(|| LaunchError::Internal { backend: "wgpu", problem: "no device after opening one".into() })?;
         if !self.stage_pipelines.as_ref().is_some_and(|p| p.on(&handles.device)) {
             self.stage_pipelines = Some(Pipelines::new(&handles.device)?);
         }
@@ -173,8 +175,10 @@ impl Context {
         let report = self.launch_3d_with_progress(entry, width, height, depth, progress);
         let ran = self.wgpu_backend().take_tail();
         let report = report?;
-        let (outputs, from_device) =
-            ran.ok_or_else(|| RtError::Gpu("the stages after the launch did not run".into()))?;
+        let (outputs, from_device) = ran.ok_or_else(|| LaunchError::Internal {
+            backend: "wgpu",
+            problem: "internal: the stages after the launch did not run".into(),
+        })?;
         for (plan, words) in plans.iter().zip(outputs) {
             self.write_buffer(plan.output, &pixels(&words))?;
         }

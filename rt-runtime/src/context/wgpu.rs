@@ -25,7 +25,7 @@ impl Context {
 
     /// Testing recovery: the next wgpu launch destroys its device once its
     /// work is submitted, as a driver reset or a removed GPU would. That
-    /// launch fails with [`crate::RtError::DeviceLost`] and writes no outputs; the
+    /// launch fails with [`crate::DeviceError::DeviceLost`] and writes no outputs; the
     /// one after opens a new device.
     pub fn simulate_device_loss_in_next_launch(&mut self) {
         self.wgpu_backend().lose_device_in_next_launch();

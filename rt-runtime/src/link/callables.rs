@@ -14,7 +14,7 @@
 //! itself, raises `EXCEPTION_PROGRAM_ID_INVALID` and returns zero, as an id
 //! of no callable does, on every backend.
 
-use crate::error::{Result, RtError};
+use crate::error::{LinkError, Result};
 use crate::scene::{ProgramId, Scene};
 use rt_std::program::{CallableSignature, ProgramDescriptor};
 use std::collections::{BTreeMap, BTreeSet};
@@ -112,7 +112,7 @@ fn check_acyclic(linked: &[LinkedCallable]) -> Result<()> {
                 .chain(std::iter::once(c))
                 .map(|p| format!("`{}` ({})", p.desc.name, p.desc.location()))
                 .collect();
-            return Err(RtError::CallableCycle { cycle: cycle.join(" calls ") });
+            return Err(LinkError::CallableCycle { cycle: cycle.join(" calls ") }.into());
         }
         if !done.insert(c.desc.wgsl_entry) {
             return Ok(());

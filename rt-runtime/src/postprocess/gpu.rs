@@ -19,7 +19,7 @@ use super::denoise::Tuning;
 use super::{Pixels, Plan, StageKind};
 use crate::backend::wgpu::DeviceBuffer;
 use crate::backend::wgpu::tail::{Recorded, Tail};
-use crate::error::{Result, RtError};
+use crate::error::{DeviceError, Result, RtError};
 use crate::scene::{BufferId, Scene};
 use glam::Vec4;
 use wgpu::util::DeviceExt;
@@ -107,7 +107,7 @@ impl Pipelines {
             layout,
         };
         match crate::backend::futures::block(async { Ok(scope.pop().await) })? {
-            Some(e) => Err(RtError::Gpu(format!("the post-processing stages' WGSL does not compile: {e}"))),
+            Some(e) => Err(DeviceError::Gpu(format!("the post-processing stages' WGSL does not compile: {e}")).into()),
             None => Ok(made),
         }
     }
@@ -142,7 +142,8 @@ impl Pipelines {
                 let _ = sender.send((i, r));
             });
         }
-        let gpu_err = |what: &str, e: String| RtError::Gpu(format!("running a post-processing stage: {what}: {e}"));
+        let gpu_err =
+            |what: &str, e: String| DeviceError::Gpu(format!("running a post-processing stage: {what}: {e}")).into();
         device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| gpu_err("waiting", e.to_string()))?;
         if let Some(e) = crate::backend::futures::block(async { Ok(scope.pop().await) })? {
             return Err(gpu_err("validation", e.to_string()));

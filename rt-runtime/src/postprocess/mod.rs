@@ -25,7 +25,7 @@ pub(crate) mod gpu;
 pub mod tonemap;
 
 use crate::buffer::{BufferRec, Typed};
-use crate::error::{Result, RtError};
+use crate::error::{PostProcessError, Result};
 use crate::scene::BufferId;
 use glam::Vec4;
 use std::collections::BTreeMap;
@@ -151,7 +151,9 @@ impl Stage {
     /// of its sort (a buffer for buffers, a finite number for settings).
     pub fn set(&mut self, id: StageId, name: &str, value: StageValue) -> Result<()> {
         let label = self.label(id);
-        let bad = |problem: String| RtError::BadStage { stage: label.clone(), variable: name.into(), problem };
+        let bad = |problem: String| {
+            PostProcessError::BadStage { stage: label.clone(), variable: name.into(), problem }.into()
+        };
         let Some(&(known, default)) = self.kind.variables().iter().find(|(n, _)| *n == name) else {
             let names: Vec<_> = self.kind.variables().iter().map(|(n, _)| *n).collect();
             return Err(bad(format!("is not a variable of the {}; it has {}", self.kind.name(), names.join(", "))));
@@ -174,10 +176,8 @@ impl Stage {
     /// apart from the inputs.
     pub fn plan(&self, id: StageId, buffers: &[BufferRec], size: Option<(u32, u32)>) -> Result<Plan> {
         let label = self.label(id);
-        let bad = |variable: &str, problem: String| RtError::BadStage {
-            stage: label.clone(),
-            variable: variable.into(),
-            problem,
+        let bad = |variable: &str, problem: String| {
+            PostProcessError::BadStage { stage: label.clone(), variable: variable.into(), problem }.into()
         };
         let buffer = |name: &'static str| -> Result<(BufferId, &BufferRec)> {
             let b = match self.vars.get(name) {

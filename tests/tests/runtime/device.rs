@@ -452,7 +452,7 @@ pub(crate) fn a_scene_section_over_the_binding_limit_is_a_clear_error() {
     let gg = grid_group_with(&mut ctx, 100, true);
     ctx.set_var(Scope::Context, "top", gg).unwrap();
     let err = ctx.launch(0, W, W).unwrap_err();
-    assert!(matches!(err, RtError::Gpu(_)), "{err:?}");
+    assert!(matches!(err, RtError::Device(DeviceError::BindingLimit { .. })), "{err:?}");
     let err = err.to_string();
     assert!(
         err.contains("the scene's BVH nodes needs 1.2 MiB")
@@ -476,7 +476,7 @@ pub(crate) fn a_heap_over_the_binding_limit_is_a_clear_error() {
     let gg = grid_group(&mut ctx, 4);
     ctx.set_var(Scope::Context, "top", gg).unwrap();
     let err = ctx.launch(0, W, W).unwrap_err();
-    assert!(matches!(err, RtError::Gpu(_)), "{err:?}");
+    assert!(matches!(err, RtError::Device(DeviceError::BindingLimit { .. })), "{err:?}");
     let err = err.to_string();
     assert!(
         err.contains("the heap (variables, buffers, textures) needs 4.0 MiB")

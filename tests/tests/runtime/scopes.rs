@@ -35,7 +35,7 @@ pub(crate) fn link_errors_name_the_program_the_variable_and_the_scopes(backend: 
     let wrong = ctx.create_program(&normal_shader::PROGRAM);
     let err = ctx.set_miss_program(0, wrong).unwrap_err().to_string();
     assert!(err.contains("is a ClosestHit program, but ray type 0's miss takes a Miss program"), "{err}");
-    assert!(matches!(ctx.launch(0, 0, 4), Err(RtError::BadLaunch { .. })));
+    assert!(matches!(ctx.launch(0, 0, 4), Err(RtError::Launch(LaunchError::BadLaunch { .. }))));
 }
 
 /// The ortho camera's rays of ray type 2, their payload starting at `start`.

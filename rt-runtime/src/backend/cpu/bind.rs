@@ -6,7 +6,7 @@
 use super::super::Settings;
 use crate::accel::cache::NodeAccel;
 use crate::buffer::SamplerShape;
-use crate::error::{Result, RtError};
+use crate::error::{LinkError, Result};
 use crate::link::{self, Call, Record};
 use crate::scene::{GeometryKind, NodeId, NodeKind, Scene, TriangleMesh};
 use crate::vertex_motion::VertexMotion;
@@ -176,8 +176,8 @@ pub(crate) fn link_all<'a>(
     (dim, depth): (UVec2, u32),
 ) -> Result<Linked<'a, Call>> {
     let count = scene.entry_points.len() as u32;
-    let ep = scene.entry_points.get(entry as usize).ok_or(RtError::NoSuchEntryPoint { entry, count })?;
-    let rg = ep.ray_generation.ok_or(RtError::NoRayGeneration { entry })?;
+    let ep = scene.entry_points.get(entry as usize).ok_or(LinkError::NoSuchEntryPoint { entry, count })?;
+    let rg = ep.ray_generation.ok_or(LinkError::NoRayGeneration { entry })?;
     link::check_types(scene)?;
     let ray_generation = link::resolve(scene, rg, Record::default())?;
     let exception = ep.exception.map(|p| link::resolve(scene, p, Record::default())).transpose()?;

@@ -49,7 +49,7 @@ use super::{Launch, LaunchBackend, LaunchReport};
 use crate::accel::bvh::TreeForm;
 use crate::accel::cache::Trees;
 use crate::buffer::BufferRec;
-use crate::error::{Result, RtError};
+use crate::error::{LaunchError, Result, RtError};
 use crate::panics;
 use crate::scene::Scene;
 use bind::link_all;
@@ -103,14 +103,15 @@ fn panicked(
     caught: panics::Caught,
 ) -> RtError {
     match program {
-        Some(p) => RtError::ProgramPanicked {
+        Some(p) => LaunchError::ProgramPanicked {
             program: p.name,
             location: format!("{}:{}", p.file, p.line),
             launch_index: index,
             message: caught.message,
             at: caught.at,
-        },
-        None => RtError::RuntimePanicked { backend: "cpu", message: caught.message, at: caught.at },
+        }
+        .into(),
+        None => LaunchError::RuntimePanicked { backend: "cpu", message: caught.message, at: caught.at }.into(),
     }
 }
 

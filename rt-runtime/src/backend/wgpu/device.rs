@@ -5,7 +5,7 @@
 use super::device_mirror::Resident;
 use super::kernel::SCENE_SECTIONS;
 use super::rayquery::accel::RayQueryAccels;
-use crate::error::{Result, RtError};
+use crate::error::{DeviceError, Result, RtError};
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 
@@ -86,11 +86,11 @@ impl Health {
     /// wgpu errors.
     pub(crate) fn failure(&self, adapter: String, what: String) -> RtError {
         if let Some(reason) = self.lost_reason() {
-            return RtError::DeviceLost { adapter, reason };
+            return DeviceError::DeviceLost { adapter, reason }.into();
         }
         match self.take_errors() {
-            Some(errors) => RtError::Gpu(format!("{what}: {errors}")),
-            None => RtError::Gpu(what),
+            Some(errors) => DeviceError::Gpu(format!("{what}: {errors}")).into(),
+            None => DeviceError::Gpu(what).into(),
         }
     }
 
@@ -124,7 +124,7 @@ impl Gpu {
             })
             .await
             .map_err(|e| {
-            RtError::Gpu(format!(
+            DeviceError::Gpu(format!(
                 "no wgpu adapter ({e}); on a machine without a GPU install Mesa's lavapipe (`apt-get install mesa-vulkan-drivers`)"
             ))
         })?;
@@ -178,7 +178,7 @@ impl Gpu {
                 ..Default::default()
             })
             .await
-            .map_err(|e| RtError::Gpu(format!("cannot open a device on {}: {e}", adapter.get_info().name)))?;
+            .map_err(|e| DeviceError::Gpu(format!("cannot open a device on {}: {e}", adapter.get_info().name)))?;
         let mut gpu = Gpu::from_parts(device, queue, adapter.get_info(), limits);
         gpu.adapter = Some(adapter);
         Ok(gpu)

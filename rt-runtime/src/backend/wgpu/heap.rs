@@ -4,7 +4,7 @@
 
 use super::kernel;
 use crate::buffer::{SamplerRec, SamplerShape};
-use crate::error::{Result, RtError};
+use crate::error::{LaunchError, Result, RtError, SceneError};
 use crate::link::{self, Record};
 use crate::scene::{ProgramId, Scene};
 use crate::vars::VarValue;
@@ -101,10 +101,11 @@ pub(crate) fn encode_heap(scene: &Scene, records: &Records) -> Result<EncodedHea
     // declared layouts (resolve_values checks), so the records fill exactly
     // the space laid out for them.
     if heap.len() != base {
-        return Err(RtError::Gpu(format!(
-            "internal: the records take {} words where {base} were laid out for them",
-            heap.len()
-        )));
+        return Err(LaunchError::Internal {
+            backend: "wgpu",
+            problem: format!("internal: the records take {} words where {base} were laid out for them", heap.len()),
+        }
+        .into());
     }
     heap.extend(data);
     // The bindless buffer table last: never empty, so the heap is not.
@@ -193,5 +194,5 @@ pub(crate) fn sampler_past(
         return None;
     }
     let (i, &(o, w)) = samplers_placed.iter().enumerate().find(|(_, (o, w))| o + w > max_words)?;
-    Some(RtError::BadSampler { sampler: i as u32, problem: problem(o, w) })
+    Some(SceneError::BadSampler { sampler: i as u32, problem: problem(o, w) }.into())
 }

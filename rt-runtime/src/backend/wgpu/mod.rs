@@ -19,7 +19,7 @@
 //! Large scenes: each section is its own binding, so a scene renders when
 //! each section fits the adapter's `max_storage_buffer_binding_size` (128
 //! MiB on lavapipe) rather than the whole; a section that does not fit is
-//! an [`RtError::Gpu`] naming it, its size, the adapter and the limit. The
+//! a [`DeviceError::BindingLimit`] naming it, its size, the adapter and the limit. The
 //! device asks for one storage buffer per section (5 in all) up to the
 //! adapter's own limit; on a device with fewer (an application's, through
 //! `Context::use_wgpu_device`), the sections without a binding follow the
@@ -102,7 +102,7 @@ use super::{ExceptionRecord, Failure, Launch, LaunchBackend, LaunchReport};
 use crate::accel::bvh::TreeForm;
 use crate::accel::cache::Trees;
 use crate::buffer::BufferRec;
-use crate::error::{Result, RtError};
+use crate::error::{DeviceError, Result, RtError, size};
 use crate::scene::Scene;
 use device_mirror::DeviceLocal;
 use encode::{Encoding, SceneKey};
@@ -347,7 +347,7 @@ impl LaunchBackend for WgpuBackend {
             let last = (last_wgsl, last_traversal);
             let result = launch_on_device(device, last, &plan, lose_device_in_next_launch, (pending, tail), l).await;
             *kept = Some(plan);
-            if matches!(result, Err(RtError::DeviceLost { .. })) {
+            if matches!(result, Err(RtError::Device(DeviceError::DeviceLost { .. }))) {
                 self.gpu = None;
             }
             result
@@ -598,26 +598,16 @@ fn check_bindings(gpu: &Gpu, parts: &[(String, usize)]) -> Result<()> {
     for (what, len) in parts {
         let bytes = *len as u64 * 4;
         if bytes > max_binding {
-            return Err(RtError::Gpu(format!(
-                "{what} needs {} but {} binds at most {} per storage buffer",
-                size(bytes),
-                gpu.describe(),
-                size(max_binding)
-            )));
+            return Err(DeviceError::BindingLimit {
+                what: what.clone(),
+                bytes,
+                adapter: gpu.describe(),
+                limit: max_binding,
+            }
+            .into());
         }
     }
     Ok(())
-}
-
-/// A size for messages: MiB (one decimal unless whole) from 1 MiB up,
-/// KiB below.
-fn size(bytes: u64) -> String {
-    const MIB: u64 = 1 << 20;
-    match bytes {
-        b if b >= MIB && b % MIB == 0 => format!("{} MiB", b / MIB),
-        b if b >= MIB => format!("{:.1} MiB", b as f64 / MIB as f64),
-        b => format!("{} KiB", b.div_ceil(1 << 10)),
-    }
 }
 
 /// What the wgpu backend counts ([`WgpuBackend::stats`]).

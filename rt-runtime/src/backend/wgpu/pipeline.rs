@@ -3,7 +3,7 @@
 //! of its traversal (`slots` TLASes: 0 for the compute traversal).
 
 use super::device::Gpu;
-use crate::error::{Result, RtError};
+use crate::error::{DeviceError, Result};
 
 /// Makes `gpu` hold a pipeline for `wgsl` (printing the generator's
 /// `warning` when it creates one); a kernel that does not compile is an
@@ -35,9 +35,10 @@ pub(crate) async fn ensure(gpu: &mut Gpu, wgsl: &str, slots: u32, warning: Optio
         cache: None,
     });
     if let Some(e) = scope.pop().await {
-        return Err(RtError::Gpu(format!(
+        return Err(DeviceError::Gpu(format!(
             "the linked megakernel does not compile (set RT_DUMP_WGSL=1 to see it): {e}"
-        )));
+        ))
+        .into());
     }
     gpu.pipelines.insert(wgsl.to_string(), pipeline);
     gpu.pipelines_created += 1;

@@ -3,7 +3,7 @@
 
 use super::device::Gpu;
 use crate::backend::futures::Delivery;
-use crate::error::{Result, RtError};
+use crate::error::{DeviceError, Result};
 use crate::scene::Scene;
 use glam::UVec2;
 use std::collections::HashMap;
@@ -187,7 +187,7 @@ pub(crate) async fn results(
         .map_err(|what| health.failure(adapter.clone(), what))?;
     if let Some(errors) = health.take_errors() {
         // wgpu refused part of the launch: its results cannot be trusted.
-        return Err(RtError::Gpu(format!("the launch on {adapter} failed: {errors}")));
+        return Err(DeviceError::Gpu(format!("the launch on {adapter} failed: {errors}")).into());
     }
     let mut at = 0;
     let heap_mirror = &mut res.heap.as_mut().expect("synced above").words;

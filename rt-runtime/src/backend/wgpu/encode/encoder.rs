@@ -8,7 +8,7 @@ use super::geometry::{GeometryLayout, GroupWords, SCENE_HEADER, f, push_bvh};
 use super::{NODE_BIT, Tail};
 use crate::accel::cache::{AccelCache, NodeAccel};
 use crate::backend::wgpu::transform_chain::Chain;
-use crate::error::{Result, RtError};
+use crate::error::{Result, SceneError};
 use crate::link::instances::{Numbering, chain_id, group_words};
 use crate::link::{self, Record};
 use crate::scene::{GeometryKind, NodeId, NodeKind, ProgramId, Scene};
@@ -32,14 +32,14 @@ pub(crate) fn push_mat(out: &mut Vec<u32>, m: Mat4) {
 pub(crate) fn visibility(masks: &[u8], node: NodeId) -> Result<u32> {
     let mut kept = kept_masks(masks);
     if kept.len() > 4 {
-        return Err(RtError::BadTransform {
+        return Err(SceneError::BadTransform {
             problem: format!(
                 "the chain of transforms from node {} has {} visibility masks none of which contains another ({:02x?}); the wgpu backend tests at most 4 per chain",
                 node.index(),
                 kept.len(),
                 kept
             ),
-        });
+        }.into());
     }
     kept.resize(4, 0xff);
     Ok(u32::from_le_bytes([kept[0], kept[1], kept[2], kept[3]]))
@@ -85,7 +85,7 @@ pub(crate) fn instance_of(scene: &Scene, node: NodeId) -> Result<Option<Instance
             }
         }
     }
-    Err(RtError::GraphCycle { node: node.index() })
+    Err(SceneError::GraphCycle { node: node.index() }.into())
 }
 
 /// The scene's words as they are encoded: the tables and the BVH nodes

@@ -12,7 +12,7 @@ use super::Launch;
 use super::heap::{Records, encode_heap};
 use super::kernel::{self, KernelProgram, KernelSpec, SCENE_HEADER_BASES, SCENE_SECTIONS};
 use crate::accel::cache::AccelCache;
-use crate::error::{Result, RtError};
+use crate::error::{LaunchError, LinkError, Result};
 use crate::link::instances::Numbering;
 use crate::link::{self, Record};
 use crate::scene::Scene;
@@ -133,8 +133,8 @@ pub(crate) struct ResidentScene {
 pub(crate) fn encode(l: &Launch, scene_bindings: usize, held_geometry: Option<&GeometryLayout>) -> Result<Encoded> {
     let (scene, entry) = (l.scene, l.entry);
     let count = scene.entry_points.len() as u32;
-    let ep = scene.entry_points.get(entry as usize).ok_or(RtError::NoSuchEntryPoint { entry, count })?;
-    let rg = ep.ray_generation.ok_or(RtError::NoRayGeneration { entry })?;
+    let ep = scene.entry_points.get(entry as usize).ok_or(LinkError::NoSuchEntryPoint { entry, count })?;
+    let rg = ep.ray_generation.ok_or(LinkError::NoRayGeneration { entry })?;
     link::check_types(scene)?;
     let mut records = Records::default();
     let rg_vars = records.add(scene, rg, Record::default())?;
@@ -231,10 +231,14 @@ fn kernel_spec(
         !programs.iter().any(|p| matches!(p.desc.kind, ProgramKind::AnyHit | ProgramKind::Intersection))
             && l.scene.geometries.iter().all(|g| g.vertex_motion.is_none());
     if triangles_only != geometry.key.triangles_only {
-        return Err(RtError::Gpu(format!(
-            "internal: the kernel's programs say triangles only: {triangles_only}, the scene's: {}",
-            geometry.key.triangles_only
-        )));
+        return Err(LaunchError::Internal {
+            backend: "wgpu",
+            problem: format!(
+                "internal: the kernel's programs say triangles only: {triangles_only}, the scene's: {}",
+                geometry.key.triangles_only
+            ),
+        }
+        .into());
     }
     Ok(KernelSpec {
         triangles_only,

@@ -22,7 +22,7 @@ mod clones;
 mod stack;
 mod switch_arms;
 
-use crate::error::{Result, RtError};
+use crate::error::{LinkError, Result};
 use crate::link::{self, callables::LinkedCallable};
 use clones::{Linked, at_depth, clone_estimate, helpers_that_trace, per_depth_clones};
 use rt_std::program::{ProgramDescriptor, ProgramKind, TriangleBuiltin, TypeLayout, VariableKind};
@@ -402,13 +402,14 @@ fn linked_items(all: &[KernelProgram]) -> Result<(Linked, Linked)> {
             for item in items {
                 match table.get(item.name) {
                     Some((linked, other)) if linked.text != item.text => {
-                        return Err(RtError::LinkConflict {
+                        return Err(LinkError::LinkConflict {
                             item: item.name.to_string(),
                             a: other.name,
                             a_location: other.location(),
                             b: p.desc.name,
                             b_location: p.desc.location(),
-                        });
+                        }
+                        .into());
                     }
                     Some(_) => {}
                     None => {

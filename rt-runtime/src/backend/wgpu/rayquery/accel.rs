@@ -24,7 +24,7 @@
 use super::flatten::{Flat, FlatInstance, parts};
 use crate::accel::Builder;
 use crate::accel::cache::{AccelCache, NodeAccel, instance_mesh, prim_bounds};
-use crate::error::{Result, RtError};
+use crate::error::{DeviceError, Result};
 use crate::handles::GeometryInstanceId;
 use crate::scene::{NodeId, NodeKind, Scene};
 use std::collections::HashMap;
@@ -194,7 +194,9 @@ pub(crate) fn sync(
         if let Some(e) = crate::backend::futures::now(scope.pop()).flatten() {
             rq.groups.clear();
             rq.tlas.clear();
-            return Err(RtError::Gpu(format!("building the ray-query acceleration structures on {adapter}: {e}")));
+            return Err(
+                DeviceError::Gpu(format!("building the ray-query acceleration structures on {adapter}: {e}")).into()
+            );
         }
     }
 
@@ -298,22 +300,24 @@ fn sync_tlases(
             }
         }
         if keys.len() as u64 > limits.max_tlas_instance_count as u64 {
-            return Err(RtError::AccelerationLimit {
+            return Err(DeviceError::AccelerationLimit {
                 node: root.index(),
                 what: "TLAS instances (paths down to geometry groups)",
                 count: keys.len() as u64,
                 limit: limits.max_tlas_instance_count as u64,
                 adapter: adapter.clone(),
-            });
+            }
+            .into());
         }
         if keys.iter().any(|k| k.4 >= 1 << 24) {
-            return Err(RtError::AccelerationLimit {
+            return Err(DeviceError::AccelerationLimit {
                 node: root.index(),
                 what: "instance records (the 24 bits of a TLAS instance's custom data hold two per record)",
                 count: flat.records as u64,
                 limit: 1 << 23,
                 adapter: adapter.clone(),
-            });
+            }
+            .into());
         }
         if rq.tlas.get(slot).is_some_and(|(k, _)| *k == keys) {
             continue;
@@ -377,12 +381,15 @@ fn build_entry<'a>(blas: &'a wgpu::Blas, input: &'a BlasInput) -> wgpu::BlasBuil
 /// Fails when a BLAS of `group` would pass the adapter's limits (its
 /// geometries, and its primitives over all of them).
 fn check_blas(group: NodeId, geometries: usize, primitives: u64, limits: &wgpu::Limits, adapter: &str) -> Result<()> {
-    let over = |what, count: u64, limit: u32| RtError::AccelerationLimit {
-        node: group.index(),
-        what,
-        count,
-        limit: limit as u64,
-        adapter: adapter.to_string(),
+    let over = |what, count: u64, limit: u32| {
+        DeviceError::AccelerationLimit {
+            node: group.index(),
+            what,
+            count,
+            limit: limit as u64,
+            adapter: adapter.to_string(),
+        }
+        .into()
     };
     if geometries as u64 > limits.max_blas_geometry_count as u64 {
         return Err(over("BLAS geometries (geometry instances)", geometries as u64, limits.max_blas_geometry_count));
@@ -447,7 +454,7 @@ fn triangle_blas(
 /// The BLAS of group `g`'s custom-primitive geometry instances `gis`: each
 /// primitive's box from its bounding-box program (the acceleration build
 /// refused boxes with a NaN, infinite or inverted bound as
-/// `RtError::BadBounds`; an empty box, a primitive that can never be hit,
+/// `SceneError::BadBounds`; an empty box, a primitive that can never be hit,
 /// is written as Vulkan's inactive primitive: a NaN minimum). None when no
 /// instance has a primitive.
 fn box_blas(

@@ -23,7 +23,7 @@ pub(crate) mod flatten;
 pub(crate) mod wgsl;
 
 use super::device::Gpu;
-use crate::error::{Result, RtError};
+use crate::error::{ConfigError, Result};
 use crate::scene::Scene;
 use flatten::{Flat, Unsupported};
 
@@ -64,11 +64,12 @@ impl Traversal {
         if let Some(v) = crate::env_settings::setting("RT_TRAVERSAL") {
             return match Traversal::from_name(&v) {
                 Some(Traversal::Auto) => Self::probe(),
-                None => Err(RtError::Config {
+                None => Err(ConfigError::Setting {
                     setting: "RT_TRAVERSAL",
                     value: v,
                     expected: "`auto`, `compute` or `rayquery`",
-                }),
+                }
+                .into()),
                 Some(t) => Ok((t, format!("RT_TRAVERSAL={v}"))),
             };
         }
@@ -114,7 +115,7 @@ pub(crate) enum Plan {
 /// `asked` (`Auto` reads `RT_TRAVERSAL`).
 pub(crate) fn plan(scene: &Scene, gpu: &Gpu, asked: Traversal) -> Result<Plan> {
     let asked = match (asked, crate::env_settings::setting("RT_TRAVERSAL")) {
-        (Traversal::Auto, Some(v)) => Traversal::from_name(&v).ok_or_else(|| RtError::Config {
+        (Traversal::Auto, Some(v)) => Traversal::from_name(&v).ok_or_else(|| ConfigError::Setting {
             setting: "RT_TRAVERSAL",
             value: v.clone(),
             expected: "`auto`, `compute` or `rayquery`",
@@ -130,7 +131,7 @@ pub(crate) fn plan(scene: &Scene, gpu: &Gpu, asked: Traversal) -> Result<Plan> {
     if !gpu.ray_query {
         let why = format!("{} has no ray queries (wgpu::Features::EXPERIMENTAL_RAY_QUERY)", gpu.describe());
         if asked == Traversal::RayQuery {
-            return Err(RtError::Unsupported { asked: "the ray-query traversal", why });
+            return Err(ConfigError::Unsupported { asked: "the ray-query traversal", why }.into());
         }
         return Ok(Plan::Compute(why));
     }
@@ -143,7 +144,7 @@ pub(crate) fn plan(scene: &Scene, gpu: &Gpu, asked: Traversal) -> Result<Plan> {
             2 + gpu.scene_bindings + 1
         );
         if asked == Traversal::RayQuery {
-            return Err(RtError::Unsupported { asked: "the ray-query traversal", why });
+            return Err(ConfigError::Unsupported { asked: "the ray-query traversal", why }.into());
         }
         return Ok(Plan::Compute(why));
     }
