@@ -345,17 +345,7 @@ fn check_bindless_id(
     let Some(named) = crate::handles::BufferId::from_bindless_id(id) else {
         return Ok(());
     };
-    let error = |found: String| {
-        LinkError::BindlessVariable {
-            program: desc.name,
-            location: desc.location(),
-            variable: v.name.to_string(),
-            declared: v.ty.rust.to_string(),
-            scope: scope.to_string(),
-            found,
-        }
-        .into()
-    };
+    let error = |found: String| bindless_error(desc, v, scope, found);
     let Some(rec) = scene.buffers.get(named.index() as usize) else {
         return Err(error(format!("id {id}, which names no buffer of this context")));
     };
@@ -374,6 +364,25 @@ fn check_bindless_id(
     Ok(())
 }
 
+/// A bindless id variable `v` of `desc`, set in `scope`, that does not
+/// name what it declares: `found` says what it names.
+fn bindless_error(
+    desc: &'static ProgramDescriptor,
+    v: &rt_std::program::VariableDescriptor,
+    scope: &str,
+    found: String,
+) -> crate::error::RtError {
+    LinkError::BindlessVariable {
+        program: desc.name,
+        location: desc.location(),
+        variable: v.name.to_string(),
+        declared: v.ty.rust.to_string(),
+        scope: scope.to_string(),
+        found,
+    }
+    .into()
+}
+
 /// A `BindlessSampler<S>` variable's id against the sampler it names: zero
 /// (none) or a sampler of shape `S`.
 fn check_sampler_id(
@@ -387,17 +396,7 @@ fn check_sampler_id(
     let Some(named) = crate::handles::SamplerId::from_bindless_id(id) else {
         return Ok(());
     };
-    let error = |found: String| {
-        LinkError::BindlessVariable {
-            program: desc.name,
-            location: desc.location(),
-            variable: v.name.to_string(),
-            declared: v.ty.rust.to_string(),
-            scope: scope.to_string(),
-            found,
-        }
-        .into()
-    };
+    let error = |found: String| bindless_error(desc, v, scope, found);
     let Some(rec) = scene.samplers.get(named.index() as usize) else {
         return Err(error(format!("id {id}, which names no sampler of this context")));
     };

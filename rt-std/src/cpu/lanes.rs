@@ -10,7 +10,7 @@
 //! and exceptions behave exactly as in the scalar copy. A backend finds the
 //! lane a call into it comes from with [`current_lane`]. Control flow that holds
 //! a trace runs under masks, and [`trace`] hands the active lanes' rays to
-//! the backend together ([`Tracer::trace_lanes`]), which traces them as a
+//! the backend together ([`Tracer::trace_lanes`](super::Tracer::trace_lanes)), which traces them as a
 //! packet where it can.
 //!
 //! A lane that returns leaves the mask; a block whose mask is empty is not

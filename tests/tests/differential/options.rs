@@ -133,6 +133,13 @@ differential! {
             let d = (0..n).filter(|i| i % 2 == 1).position(|i| i > 4).map_or(-1.0, |p| p as f32);
             [a, b, c, d]
         }
+        /// A `None` in an `if`'s first branch, typed by the branch after
+        /// it (an `else`, an `else if` chain).
+        none_first(n: u32, x: f32) -> [u32; 2] over pairs(&[0, 1, 2, 3, 6], &[0.0, 1.0]) => {
+            let a = if n > 2 { None } else { Some(n * 2) };
+            let b = if x > 0.5 { None } else if n == 1 { Some(7) } else { Some(n + 100) };
+            [a.unwrap_or(99), b.unwrap_or(98)]
+        }
         /// `==` and `!=` of `Option`s: with `None`, with `Some(x)`, two
         /// variables, a nested `Option`.
         equality(n: u32, x: f32) -> [u32; 5] over pairs(&[0, 1, 2, 3, 6], &[0.0, 1.0, 2.0]) => {

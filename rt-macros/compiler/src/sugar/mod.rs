@@ -109,7 +109,7 @@ impl VisitMut for Rewriter {
                 self.reduction(m).or_else(|| self.option_reduction(m)).or_else(|| self.option_closure(m))
             }
             syn::Expr::Match(m) => self.match_chain(m),
-            syn::Expr::If(i) => self.if_let(i),
+            syn::Expr::If(i) => self.if_let(i).or_else(|| self.none_first(i)),
             syn::Expr::While(w) => self.while_let(w),
             _ => None,
         };

@@ -155,3 +155,29 @@ impl Rewriter {
         })
     }
 }
+
+impl Rewriter {
+    /// `if c { None } else { e }` as `if !(c) { e } else { None }`: the
+    /// lowering types an `if`'s second branch by its first, so the `None`
+    /// takes `e`'s type, as rustc infers it from either branch. (The
+    /// condition runs once either way, and the branches are the same.)
+    pub(super) fn none_first(&mut self, i: &syn::ExprIf) -> Option<Expr> {
+        let [syn::Stmt::Expr(Expr::Path(p), None)] = i.then_branch.stmts.as_slice() else { return None };
+        let is_none = p.qself.is_none()
+            && matches!(p.path.segments.iter().map(|s| s.ident.to_string()).collect::<Vec<_>>().as_slice(),
+                [n] | [_, n] if n == "None")
+            && p.path.segments.iter().all(|s| s.arguments.is_empty());
+        let (_, otherwise) = i.else_branch.as_ref()?;
+        if !is_none || matches!(&*i.cond, Expr::Let(_)) {
+            return None;
+        }
+        let span = i.if_token.span;
+        let cond = &i.cond;
+        let first: syn::Block = match &**otherwise {
+            Expr::Block(b) if b.label.is_none() => b.block.clone(),
+            other => parse_quote_spanned!(span=> { #other }),
+        };
+        let none = &p.path;
+        Some(parse_quote_spanned!(span=> if !(#cond) #first else { #none }))
+    }
+}
