@@ -7,7 +7,7 @@
 //! exceptions (code, launch index, order), prints and ray counts; with
 //! divergent control flow (early returns in some lanes, a trace inside a
 //! branch, loops with lane-dependent trip counts, exceptions in some
-//! lanes), launch sizes that are not a multiple of the block, and both
+//! lanes), launch sizes that are not a multiple of the block, a 3D launch, and both
 //! scenes a packet takes (one geometry group) and ones it does not (a
 //! transform). `Context::cpu_execution` names each program's way and the
 //! reason a program runs one index at a time.
@@ -88,6 +88,17 @@ pub fn nothing(prd: &mut Probe) {
 #[rt_program(any_hit)]
 pub fn any_seen(prd: &mut Probe) {
     prd.depth += 100;
+}
+
+/// A 3D launch's indices, lane-wise: a block runs across rows and slices.
+#[rt_program(ray_generation)]
+pub fn cells_3d(#[var] mut out: RwBuffer3d<u32>) {
+    let i = launch_index_3d();
+    let d = launch_dim_3d();
+    out[i] = i.x + 16 * i.y + 256 * i.z + 4096 * (launch_index() == i.xy()) as u32 + 65536 * d.z;
+    if i.x == 2 && i.z % 2 == 1 {
+        rt_throw(EXCEPTION_USER + i.y + 10 * i.z);
+    }
 }
 
 /// A program the lane-wise lowering refuses: a `let` without a value.
@@ -234,4 +245,29 @@ fn refused_programs_still_run_and_agree() {
         assert_eq!(lanes, outcome(p, CpuExecution::Scalar), "{}", p.name);
         assert_ne!(lanes[5], Vec4::ZERO, "{}", p.name);
     }
+}
+
+#[test]
+fn a_3d_launch_agrees_lane_wise() {
+    let run = |mode| {
+        let mut ctx = Context::new();
+        ctx.set_backend(Backend::Cpu);
+        ctx.set_cpu_execution(mode);
+        ctx.set_ray_type_count(0);
+        let out = ctx.create_buffer_3d::<u32>(BufferType::Output, 5, 3, 7).unwrap();
+        ctx.set_var(Scope::Context, "out", out).unwrap();
+        let rg = ctx.create_program(&cells_3d::PROGRAM);
+        ctx.set_ray_generation_program(0, rg).unwrap();
+        let report = ctx.launch_3d(0, 5, 3, 7).unwrap();
+        let exceptions: Vec<(UVec2, u32)> = report.exceptions.iter().map(|e| (e.launch_index, e.code)).collect();
+        let way = ctx.cpu_execution()[0].scalar_because.clone();
+        (ctx.read_buffer::<u32>(out).unwrap(), exceptions, way)
+    };
+    let (lanes, scalar) = (run(CpuExecution::Lanes), run(CpuExecution::Scalar));
+    assert_eq!(lanes.2, None, "cells_3d runs lane-wise");
+    assert_eq!(lanes.0, scalar.0, "outputs differ");
+    assert_eq!(lanes.1, scalar.1, "exceptions differ");
+    // Index (1, 2, 3): its own value, `launch_index` its first two.
+    assert_eq!(lanes.0[1 + 5 * (2 + 3 * 3)], 1 + 16 * 2 + 256 * 3 + 4096 + 65536 * 7);
+    assert_eq!(lanes.1.len(), 3 * 3, "x = 2 in each of the odd slices' rows");
 }
