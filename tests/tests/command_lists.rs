@@ -49,6 +49,17 @@ struct Frame {
     tonemapper: StageId,
 }
 
+/// A frame's list, finalized: the launch, then the denoiser and the
+/// tonemapper.
+fn frame_list(ctx: &Context, denoiser: StageId, tonemapper: StageId) -> CommandList {
+    let mut list = CommandList::new();
+    list.append_launch_2d(0, W, H).unwrap();
+    list.append_stage(denoiser, W, H).unwrap();
+    list.append_stage(tonemapper, W, H).unwrap();
+    list.finalize(ctx).unwrap();
+    list
+}
+
 /// A context with `noisy` as entry point 0 and a denoiser and tonemapper
 /// over its buffers (colour, albedo, normal, denoised, display).
 fn frame(on: On) -> Frame {
@@ -101,11 +112,7 @@ fn a_list_gives_what_its_commands_give_one_by_one() {
         let Frame { mut ctx, buffers, denoiser, tonemapper } = frame(on);
         // Small tiles: a list's launches are cut as any launch is.
         ctx.set_tile_budget(TileBudget::Indices(64));
-        let mut list = CommandList::new();
-        list.append_launch_2d(0, W, H).unwrap();
-        list.append_stage(denoiser, W, H).unwrap();
-        list.append_stage(tonemapper, W, H).unwrap();
-        list.finalize(&ctx).unwrap();
+        let list = frame_list(&ctx, denoiser, tonemapper);
         let mut tiles_seen = 0;
         let reports = list
             .execute_with_progress(&mut ctx, |p| {
@@ -158,11 +165,7 @@ fn on_wgpu_a_launch_and_its_stages_are_one_submission() {
 
     let Frame { mut ctx, buffers, denoiser, tonemapper } = frame(On::COMPUTE);
     ctx.set_tile_budget(TileBudget::Whole);
-    let mut list = CommandList::new();
-    list.append_launch_2d(0, W, H).unwrap();
-    list.append_stage(denoiser, W, H).unwrap();
-    list.append_stage(tonemapper, W, H).unwrap();
-    list.finalize(&ctx).unwrap();
+    let list = frame_list(&ctx, denoiser, tonemapper);
     for frame in 1..=2 {
         let before = ctx.wgpu_submissions();
         let reports = list.execute(&mut ctx).unwrap();
@@ -193,11 +196,7 @@ fn on_wgpu_a_launch_and_its_stages_are_one_submission() {
 fn on_wgpu_a_cancelled_launch_runs_none_of_the_stages_riding_in_it() {
     let Frame { mut ctx, buffers, denoiser, tonemapper } = frame(On::COMPUTE);
     ctx.set_tile_budget(TileBudget::Indices(64));
-    let mut list = CommandList::new();
-    list.append_launch_2d(0, W, H).unwrap();
-    list.append_stage(denoiser, W, H).unwrap();
-    list.append_stage(tonemapper, W, H).unwrap();
-    list.finalize(&ctx).unwrap();
+    let list = frame_list(&ctx, denoiser, tonemapper);
     let mut seen = 0;
     let e = list
         .execute_with_progress(&mut ctx, |_| {
@@ -310,11 +309,7 @@ fn finalize_names_the_stage_and_variable_or_the_launch_at_fault() {
 fn stages_read_a_launchs_device_local_outputs() {
     let run = |on: On, device_local: bool| {
         let Frame { mut ctx, buffers, denoiser, tonemapper } = frame_with(on, device_local);
-        let mut list = CommandList::new();
-        list.append_launch_2d(0, W, H).unwrap();
-        list.append_stage(denoiser, W, H).unwrap();
-        list.append_stage(tonemapper, W, H).unwrap();
-        list.finalize(&ctx).unwrap();
+        let list = frame_list(&ctx, denoiser, tonemapper);
         list.execute(&mut ctx).unwrap();
         (read(&ctx, &buffers), ctx.stage_inputs_read_on_device())
     };

@@ -24,6 +24,8 @@ mod nested;
 mod options;
 mod patterns;
 
+pub(crate) use options::{is_none_path, is_some_path};
+
 use crate::Item;
 use std::collections::HashSet;
 use syn::visit_mut::VisitMut;

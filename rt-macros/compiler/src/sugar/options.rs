@@ -27,6 +27,23 @@ use super::Rewriter;
 use super::iterators::{ChainLoop, inline};
 use syn::{Expr, parse_quote_spanned};
 
+/// Whether `p` is the path `None` or `Option::None` (the lowering's test
+/// too).
+pub(crate) fn is_none_path(p: &syn::Path) -> bool {
+    variant_path(p, "None")
+}
+
+/// Whether `p` is the path `Some` or `Option::Some`.
+pub(crate) fn is_some_path(p: &syn::Path) -> bool {
+    variant_path(p, "Some")
+}
+
+fn variant_path(p: &syn::Path, name: &str) -> bool {
+    let segs: Vec<String> = p.segments.iter().map(|s| s.ident.to_string()).collect();
+    let segs: Vec<&str> = segs.iter().map(String::as_str).collect();
+    matches!(segs.as_slice(), [n] | ["Option", n] | ["std" | "core", "option", "Option", n] if *n == name)
+}
+
 impl Rewriter {
     /// `o.map(|x| ..)` and the others above as a `match`; `None` for any
     /// other method call, or one whose closures cannot be inlined.
@@ -163,12 +180,9 @@ impl Rewriter {
     /// condition runs once either way, and the branches are the same.)
     pub(super) fn none_first(&mut self, i: &syn::ExprIf) -> Option<Expr> {
         let [syn::Stmt::Expr(Expr::Path(p), None)] = i.then_branch.stmts.as_slice() else { return None };
-        let is_none = p.qself.is_none()
-            && matches!(p.path.segments.iter().map(|s| s.ident.to_string()).collect::<Vec<_>>().as_slice(),
-                [n] | [_, n] if n == "None")
-            && p.path.segments.iter().all(|s| s.arguments.is_empty());
         let (_, otherwise) = i.else_branch.as_ref()?;
-        if !is_none || matches!(&*i.cond, Expr::Let(_)) {
+        // (An `if let` is a `match` by now: `if_let` comes first.)
+        if p.qself.is_some() || !is_none_path(&p.path) {
             return None;
         }
         let span = i.if_token.span;

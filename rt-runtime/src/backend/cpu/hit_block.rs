@@ -42,15 +42,16 @@ impl<'a> Lane<'a> {
             attributes[i] = s.attributes.take();
             calls[i] = self.handed_to(s, &rays[i], flags, ray_mask, &mut attributes[i]);
         }
-        let lane_wise = self.l.settings.cpu_execution == crate::CpuExecution::Lanes;
+        // (Only a lane-wise launch traces packets, so a program's lane-wise
+        // form is what the context asks for here.)
         for first in 0..LANES {
             let Some((program, _)) = calls[first] else { continue };
             let group: Mask = std::array::from_fn(|l| calls[l].is_some_and(|(p, _)| std::ptr::eq(p, program)));
-            match (lane_wise, program.desc.cpu_lanes) {
-                (true, CpuLanes::Lanes(entry)) => {
+            match program.desc.cpu_lanes {
+                CpuLanes::Lanes(entry) => {
                     self.run_hit_block(entry, program, &group, &mut calls, &mut attributes, payloads)
                 }
-                _ => {
+                CpuLanes::Scalar(_) => {
                     for l in (0..LANES).filter(|&l| group[l]) {
                         let Some((_, mut ctx)) = calls[l].take() else { continue };
                         self.enter_block_lane(l);

@@ -47,7 +47,8 @@ impl Lane<'_> {
         let Some(group) = self.packet_group(&go, objects, rays, ray_mask) else {
             for l in 0..LANES {
                 if let (true, Some(p)) = (go[l], payloads[l].as_deref_mut()) {
-                    self.enter_block_lane(l);
+                    // (`trace` loads the lane's state.)
+                    enter_lane(l);
                     self.trace(objects[l], &rays[l], p, flags, ray_mask, time);
                 }
             }

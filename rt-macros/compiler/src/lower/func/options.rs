@@ -16,21 +16,7 @@
 
 use super::*;
 
-/// Whether `p` is the path `None` or `Option::None`.
-pub(super) fn is_none_path(p: &syn::Path) -> bool {
-    variant_path(p, "None")
-}
-
-/// Whether `p` is the path `Some` or `Option::Some`.
-pub(super) fn is_some_path(p: &syn::Path) -> bool {
-    variant_path(p, "Some")
-}
-
-fn variant_path(p: &syn::Path, name: &str) -> bool {
-    let segs: Vec<String> = p.segments.iter().map(|s| s.ident.to_string()).collect();
-    let segs: Vec<&str> = segs.iter().map(String::as_str).collect();
-    matches!(segs.as_slice(), [n] | ["Option", n] | ["std" | "core", "option", "Option", n] if *n == name)
-}
+pub(super) use crate::sugar::{is_none_path, is_some_path};
 
 /// Whether `t`'s WGSL zero value is its Rust `Default` (an enum's default
 /// is its first variant, whose discriminant may be another number; a
