@@ -52,6 +52,11 @@ pub(crate) struct Args {
     /// `rayquery_setup_over_compute_setup`). Nothing else is measured.
     #[arg(long)]
     pub(crate) setup_only: bool,
+    /// Measure nothing: run N launches of the first scene's AO workload on
+    /// the CPU backend (in the mode `RT_CPU_EXEC` names) after the one
+    /// that builds its tree, for a profiler to count (`profile.rs`).
+    #[arg(long, value_name = "N")]
+    pub(crate) profile_cpu: Option<usize>,
     /// Use Mesa's usual on-disk shader cache (by default the bench gives
     /// Mesa a fresh one, so each kernel's first compile is cold).
     #[arg(long)]

@@ -28,7 +28,8 @@
 //! and its context (`programs.rs`); repeated launches and what they
 //! measured (`launches.rs`); the bunny's primary rays and build
 //! (`bunny.rs`); each scene's CPU side and peers (`measure.rs`), its wgpu
-//! side (`gpu.rs`, `rayquery.rs`; `setup.rs` for `--setup-only`); the figures and the headline ratios
+//! side (`gpu.rs`, `rayquery.rs`; `setup.rs` for `--setup-only`); the CPU
+//! launches alone for a profiler (`profile.rs`, `--profile-cpu`); the figures and the headline ratios
 //! reported from them (`figures.rs`).
 
 // The runtime's errors name programs and scopes; size does not matter here.
@@ -48,6 +49,7 @@ mod lowering;
 mod measure;
 mod peers;
 mod plot;
+mod profile;
 mod programs;
 mod rayquery;
 mod scenes;
@@ -76,6 +78,14 @@ fn main() {
     let reps = args.reps();
     let wgpu_max_triangles = args.wgpu_max_triangles.unwrap_or(usize::MAX);
     let all = load_scenes_or_exit();
+    if let Some(launches) = args.profile_cpu {
+        let scene = all.iter().find(|s| args.measures_scene(s.name)).unwrap_or(&all[0]);
+        if let Err(e) = profile::profile_cpu(scene, (width, height), launches) {
+            eprintln!("rt-bench: {e}");
+            std::process::exit(1);
+        }
+        return;
+    }
     let start = Instant::now();
     let mut json = Json::obj();
     record_machine(&args, (width, height), reps, &mut json);

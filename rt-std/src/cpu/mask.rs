@@ -3,8 +3,10 @@
 //! them. [`super::lanes`] runs blocks; the [`Tracer`](super::Tracer) takes
 //! their masks.
 
-/// The number of launch indices a lane-wise program runs at once.
-pub const LANES: usize = 8;
+/// The number of launch indices a lane-wise program runs at once: the
+/// CPU backend's blocks are 4 x 4 squares of them, whose camera rays make
+/// a coherent packet (`rt-runtime/src/backend/cpu/block.rs`).
+pub const LANES: usize = 16;
 
 /// Which lanes run: `true` for a running lane.
 pub type Mask = [bool; LANES];

@@ -53,10 +53,10 @@ use crate::error::{LaunchError, Result, RtError};
 use crate::panics;
 use crate::scene::Scene;
 use bind::link_all;
+use block::Band;
 use glam::UVec2;
 use lane::Lane;
 use rayon::prelude::*;
-use rt_std::cpu::lanes::LANES;
 use rt_std::program::CpuLanes;
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -130,9 +130,19 @@ fn run(launch: &Launch) -> Result<LaunchReport> {
     // spreads over all cores too); reports are merged in index order.
     let total = tile.count();
     let chunk = (total / (rayon::current_num_threads() as u64 * 8)).clamp(64, 16384);
+    // Lane-wise, chunks are whole bands of rows, cut into square blocks
+    // (`block::Band`).
+    let (chunk, chunks) = match lanes {
+        Some(_) => {
+            let bands = Band::count(&tile);
+            let per = (chunk / Band::indices(&tile)).max(1);
+            (per, bands.div_ceil(per))
+        }
+        None => (chunk, total.div_ceil(chunk)),
+    };
     // A panic stops its chunk, and the others at their next index.
     let stop = AtomicBool::new(false);
-    let chunks: Vec<std::result::Result<LaunchReport, RtError>> = (0..total.div_ceil(chunk))
+    let chunks: Vec<std::result::Result<LaunchReport, RtError>> = (0..chunks)
         .into_par_iter()
         .map(|c| {
             let mut report = LaunchReport::default();
@@ -144,24 +154,21 @@ fn run(launch: &Launch) -> Result<LaunchReport> {
                     // panic ends the chunk either way, and the lane knows
                     // the index it was running (`run_index` sets it first).
                     let run = panics::catching(|| {
+                        if let Some(entry) = lanes {
+                            let bands = (c * chunk)..((c + 1) * chunk).min(Band::count(&tile));
+                            for band in bands.map(|b| Band::of(&tile, b)) {
+                                if stop.load(Ordering::Relaxed) {
+                                    break;
+                                }
+                                lane.run_band(entry, &band, &mut report, &stop);
+                            }
+                            return;
+                        }
                         let end = ((c + 1) * chunk).min(total);
                         let mut i = c * chunk;
                         while i < end && !stop.load(Ordering::Relaxed) {
-                            match lanes {
-                                Some(entry) => {
-                                    let n = (end - i).min(LANES as u64);
-                                    let mut indices = [UVec2::ZERO; LANES];
-                                    for (k, index) in indices.iter_mut().take(n as usize).enumerate() {
-                                        *index = tile.index(i + k as u64);
-                                    }
-                                    lane.run_block(entry, &indices[..n as usize], &mut report);
-                                    i += n;
-                                }
-                                None => {
-                                    lane.run_index(tile.index(i), &mut report);
-                                    i += 1;
-                                }
-                            }
+                            lane.run_index(tile.index(i), &mut report);
+                            i += 1;
                         }
                     });
                     match run {
