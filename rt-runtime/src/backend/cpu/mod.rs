@@ -135,7 +135,7 @@ fn run(launch: &Launch) -> Result<LaunchReport> {
     let (chunk, chunks) = match lanes {
         Some(_) => {
             let bands = Band::count(&tile);
-            let per = (chunk / Band::indices(&tile)).max(1);
+            let per = (chunk / Band::indices(&tile).max(1)).max(1);
             (per, bands.div_ceil(per))
         }
         None => (chunk, total.div_ceil(chunk)),
