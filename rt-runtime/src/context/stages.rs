@@ -37,9 +37,11 @@ impl Context {
 
     /// Sets variable `name` of `stage` (OptiX's
     /// `rtPostProcessingStageDeclareVariable` and `rtVariableSet*`): a
-    /// buffer (`input_buffer`, ...) or a number (`blend`, `exposure`,
-    /// `gamma`). A name the stage does not have, or a value of the other
-    /// sort, is an error naming both; nothing is changed then.
+    /// buffer (`input_buffer`, ...), a number (`blend`, `exposure`,
+    /// `gamma`, `temporal`, `alpha_min`) or a `Vec3` (the temporal
+    /// denoiser's `camera_eye`, `camera_u`, `camera_v`, `camera_w`). A
+    /// name the stage does not have, or a value of another sort, is an
+    /// error naming both; nothing is changed then.
     #[doc(alias = "rtPostProcessingStageDeclareVariable")]
     pub fn set_stage_var(&mut self, stage: StageId, name: &str, value: impl Into<StageValue>) -> Result<()> {
         let s = self.stage_mut(stage)?;

@@ -7,7 +7,10 @@
 //! [`Context::set_stage_var`](crate::Context::set_stage_var): buffers
 //! (`input_buffer`, `input_albedo_buffer`, `input_normal_buffer`, the
 //! optional `input_variance_buffer`, `output_buffer`) and settings
-//! (`blend`, `exposure`, `gamma`). Every image buffer holds one `Vec4` a
+//! (`blend`, `exposure`, `gamma`), and for the denoiser's temporal mode
+//! ([`temporal`]: `temporal` 1) `alpha_min`, the camera (`camera_eye`,
+//! `camera_u`, `camera_v`, `camera_w`, vectors) and the position guide
+//! (`input_position_buffer`). Every image buffer holds one `Vec4` a
 //! pixel, RGBA (a normal's xyz, an albedo's rgb, a variance in x), 2D and
 //! of the stage's size. `Stage::plan` checks all
 //! of it before anything runs, naming the stage and the variable at
@@ -16,7 +19,9 @@
 //!
 //! The passes: [`denoise`] (an edge-avoiding à-trous wavelet filter
 //! guided by albedo, normal and a luminance variance, the renderer's
-//! per-pixel one or its own spatial estimate: the spatial part of SVGF) and [`tonemap`] (exposure, ACES-fitted filmic
+//! per-pixel one or its own spatial estimate: the spatial part of SVGF),
+//! run after [`temporal`] (SVGF's temporal part: a history the stage
+//! keeps, reprojected through the camera) in temporal mode, and [`tonemap`] (exposure, ACES-fitted filmic
 //! curve, gamma), each a CPU reference here and a WGSL compute pass in
 //! `gpu.rs` that the wgpu backend runs on its device.
 
