@@ -200,6 +200,11 @@ fn a_reset_drops_the_history() {
     // The frame after a reset is denoised as a first frame is.
     assert_eq!(run(&mut ctx, stage, cam, &frame(cam, 0.5, 0)), first);
     assert!(ctx.stage_history(stage.0).unwrap().unwrap().2.iter().all(|p| p.w == 1.0));
+    // Turning the mode off drops it too; setting it to what it is does not.
+    ctx.set_stage_var(stage.0, "temporal", 1.0f32).unwrap();
+    assert!(ctx.stage_history(stage.0).unwrap().is_some());
+    ctx.set_stage_var(stage.0, "temporal", 0.0f32).unwrap();
+    assert_eq!(ctx.stage_history(stage.0).unwrap(), None);
 }
 
 /// Five frames, the camera moving, of noise: the CPU and wgpu backends

@@ -265,6 +265,10 @@ impl Stage {
             }
             _ => {}
         }
+        // Turning the temporal mode on or off starts it again.
+        if known == TEMPORAL && self.vars.get(TEMPORAL) != Some(&value) {
+            self.history = None;
+        }
         self.vars.insert(known, value);
         Ok(())
     }
