@@ -7,7 +7,10 @@
 //! the device; or, where an earlier stage of the run wrote them, read
 //! where it did), every pass runs (the denoiser's prepare, its à-trous
 //! passes ping-ponging between two buffers, finish; or the tonemapper's
-//! one), and every stage's output is read back. The pipelines are made
+//! one), and every stage's output is read back. In temporal mode the
+//! denoiser's `gpu/temporal.wgsl` pass runs first, over its history
+//! uploaded from the host, and its next history is read back with the
+//! output (the stage keeps it on the host). The pipelines are made
 //! once per device ([`Pipelines`]).
 //!
 //! After a command list's launch, the run rides in the launch's last
