@@ -5,9 +5,10 @@
 //! after a first run that links and builds. Reported: the stage's time
 //! per megapixel, and `denoise_vs_launch`, the stage's time over the
 //! launch's (the goal on the wgpu backend: under 0.5). Also
-//! `list_vs_one_by_one`: a command list of the launch and the denoiser
-//! (on wgpu one submission, the launch's outputs staying on the device)
-//! over the two run one by one, alternated in the same run.
+//! `list_vs_one_by_one`: a command list of the launch, the denoiser and
+//! the tonemapper (on wgpu one submission, the launch's outputs staying
+//! on the device) over the three run one by one, alternated in the same
+//! run.
 
 use crate::json::Json;
 use crate::peers::median;
@@ -37,7 +38,7 @@ pub fn measure(backends: &[Backend], (width, height): (u32, u32), reps: usize, j
                 j.set("denoise_vs_launch", ratio);
                 let list_ratio = list.as_secs_f64() / one_by_one.as_secs_f64();
                 eprintln!(
-                    "  {:5} list (launch + denoise) {:8.2} ms, one by one {:8.2} ms, list_vs_one_by_one {list_ratio:.3}",
+                    "  {:5} list (launch + denoise + tonemap) {:8.2} ms, one by one {:8.2} ms, list_vs_one_by_one {list_ratio:.3}",
                     backend.name(),
                     list.as_secs_f64() * 1e3,
                     one_by_one.as_secs_f64() * 1e3
@@ -55,8 +56,8 @@ pub fn measure(backends: &[Backend], (width, height): (u32, u32), reps: usize, j
 }
 
 /// Two medians each: of a 1-spp launch and of the denoiser after it;
-/// and of a command list of both and of the two run one by one (each
-/// to the denoised image on the host), alternated.
+/// and of a command list of both and the tonemapper and of the three run
+/// one by one (each to the tonemapped image on the host), alternated.
 type Medians = ((Duration, Duration), (Duration, Duration));
 
 /// [`Medians`] on `backend`.
@@ -74,9 +75,14 @@ fn measure_on(backend: Backend, width: u32, height: u32, reps: usize) -> Result<
     ctx.set_stage_var(stage, "input_normal_buffer", aovs.normal).map_err(e)?;
     ctx.set_stage_var(stage, "input_variance_buffer", aovs.variance).map_err(e)?;
     ctx.set_stage_var(stage, "output_buffer", out).map_err(e)?;
+    let mapped = ctx.create_buffer_2d::<glam::Vec4>(BufferType::Output, width, height).map_err(e)?;
+    let tonemapper = ctx.create_postprocessing_stage(StageKind::Tonemapper);
+    ctx.set_stage_var(tonemapper, "input_buffer", out).map_err(e)?;
+    ctx.set_stage_var(tonemapper, "output_buffer", mapped).map_err(e)?;
     let mut list = CommandList::new();
     list.append_launch_2d(0, width, height).map_err(e)?;
     list.append_stage(stage, width, height).map_err(e)?;
+    list.append_stage(tonemapper, width, height).map_err(e)?;
     list.finalize(ctx).map_err(e)?;
     let (mut launches, mut stages, mut lists, mut one_by_one) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     for rep in 0..=reps {
@@ -86,16 +92,19 @@ fn measure_on(backend: Backend, width: u32, height: u32, reps: usize) -> Result<
         let t = Instant::now();
         ctx.run_stage(stage, width, height).map_err(e)?;
         let staged = t.elapsed();
-        ctx.read_buffer::<glam::Vec4>(out).map_err(e)?;
+        let t = Instant::now();
+        ctx.run_stage(tonemapper, width, height).map_err(e)?;
+        ctx.read_buffer::<glam::Vec4>(mapped).map_err(e)?;
+        let mapped_after = t.elapsed();
         let t = Instant::now();
         list.execute(ctx).map_err(e)?;
-        ctx.read_buffer::<glam::Vec4>(out).map_err(e)?;
+        ctx.read_buffer::<glam::Vec4>(mapped).map_err(e)?;
         let listed = t.elapsed();
         // The first of each links, builds and compiles.
         if rep > 0 {
             launches.push(launched);
             stages.push(staged);
-            one_by_one.push(launched + staged);
+            one_by_one.push(launched + staged + mapped_after);
             lists.push(listed);
         }
     }

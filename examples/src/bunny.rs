@@ -9,8 +9,9 @@
 //! camera ray per pixel and `ao_samples` occlusion rays from what it hits,
 //! and the output is the running mean. Beside it the camera writes a
 //! denoiser's guides ([`Aovs`]): the mean radiance, the first hit's
-//! albedo and shading normal, averaged over the samples as the radiance
-//! is, and the variance of the mean's luminance ([`crate::guides`]).
+//! albedo, shading normal and world position, averaged over the samples
+//! as the radiance is, and the variance of the mean's luminance
+//! ([`crate::guides`]).
 
 use crate::common::*;
 use crate::diffuse::facing_normal;
@@ -23,13 +24,15 @@ use rt_runtime::{Acceleration, BufferType, Builder, Scope};
 use rt_std::prelude::*;
 
 /// Per-ray data of a lit mesh's camera rays: the colour found, and the
-/// albedo and shading normal of what the ray hit (the denoiser's guides;
-/// the background's colour and no normal where it hit nothing).
+/// albedo, shading normal and position (w 1) of what the ray hit (the
+/// denoiser's guides; the background's colour, no normal and no position
+/// where it hit nothing).
 #[rt_payload]
 pub struct GuidedRadiance {
     pub result: Vec3,
     pub albedo: Vec3,
     pub normal: Vec3,
+    pub position: Vec4,
 }
 
 /// A jittered pinhole camera that accumulates one sample per launch and
@@ -50,6 +53,7 @@ pub fn accumulating_camera(
     #[var] mut albedo_buffer: RwBuffer2d<Vec4>,
     #[var] mut normal_buffer: RwBuffer2d<Vec4>,
     #[var] mut variance_buffer: RwBuffer2d<Vec4>,
+    #[var] mut position_buffer: RwBuffer2d<Vec4>,
 ) {
     let idx = launch_index();
     let dim = launch_dim();
@@ -60,17 +64,19 @@ pub fn accumulating_camera(
     }
     let d = (idx.as_vec2() + jitter) / dim.as_vec2() * 2.0 - Vec2::ONE;
     let ray = Ray::new(eye, (d.x * u + d.y * v + w).normalize(), RADIANCE_RAY, scene_epsilon, f32::INFINITY);
-    let mut prd = GuidedRadiance { result: Vec3::ZERO, albedo: Vec3::ZERO, normal: Vec3::ZERO };
+    let mut prd = GuidedRadiance { result: Vec3::ZERO, albedo: Vec3::ZERO, normal: Vec3::ZERO, position: Vec4::ZERO };
     rt_trace(top_object, ray, &mut prd);
     let mut acc = Vec4::ZERO;
     let mut albedo = Vec3::ZERO;
     let mut normal = Vec3::ZERO;
     let mut moments = Vec4::ZERO;
+    let mut position = Vec4::ZERO;
     if frame > 0 {
         acc = accum_buffer[idx];
         albedo = albedo_buffer[idx].xyz();
         normal = normal_buffer[idx].xyz();
         moments = variance_buffer[idx];
+        position = position_buffer[idx];
     }
     acc += prd.result.extend(1.0);
     accum_buffer[idx] = acc;
@@ -81,6 +87,9 @@ pub fn accumulating_camera(
     albedo_buffer[idx] = (albedo * keep + prd.albedo / acc.w).extend(1.0);
     normal_buffer[idx] = (normal * keep + prd.normal / acc.w).extend(0.0);
     variance_buffer[idx] = add_luminance_sample(moments, demodulated_luminance(prd.result, prd.albedo), acc.w);
+    // The running mean of the hits' positions (w 1) and of zero for a
+    // miss: w is the fraction that hit, xyz over w the hits' mean.
+    position_buffer[idx] = position * keep + prd.position / acc.w;
 }
 
 /// Camera rays that hit nothing see the background, which is also their
@@ -128,6 +137,7 @@ pub fn occluded_shade(
         + direct_light(hit_point, n, ray.direction, kd, ks, phong_exp, lights, scene_epsilon, top_shadower);
     prd.albedo = kd;
     prd.normal = n;
+    prd.position = hit_point.extend(1.0);
 }
 
 /// How a mesh is shown.
@@ -291,6 +301,7 @@ pub fn guide_buffers(ctx: &mut rt_runtime::Context, (width, height): (u32, u32))
         albedo: guide("albedo_buffer")?,
         normal: guide("normal_buffer")?,
         variance: guide("variance_buffer")?,
+        position: Some(guide("position_buffer")?),
     })
 }
 

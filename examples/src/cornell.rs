@@ -255,7 +255,7 @@ fn build(settings: &Settings, loaded: mesh::LoadedMesh, text: &str, file: String
     let mut aov = || -> Result<_, Error> {
         Ok(ctx.create_buffer_2d::<Vec4>(BufferType::InputOutput, settings.width, settings.height)?)
     };
-    let aovs = Aovs { radiance: aov()?, albedo: aov()?, normal: aov()?, variance: aov()? };
+    let aovs = Aovs { radiance: aov()?, albedo: aov()?, normal: aov()?, variance: aov()?, position: None };
     // Read back only when asked for (a denoiser, `read_buffer`), not after
     // every launch.
     for b in [aovs.radiance, aovs.albedo, aovs.normal, aovs.variance] {

@@ -339,6 +339,10 @@ pub struct Aovs {
     pub albedo: BufferId,
     pub normal: BufferId,
     pub variance: BufferId,
+    /// The first hit's world position (xyz over w, w the fraction of the
+    /// samples that hit something), the temporal denoiser's guide, where
+    /// the camera writes it.
+    pub position: Option<BufferId>,
 }
 
 /// One rendered picture and what it cost.

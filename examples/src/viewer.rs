@@ -10,12 +10,23 @@
 //! starts again from sample 0, so a still view after `n` refinements is
 //! exactly what `render --spp n` draws of it.
 //!
-//! With [`Progressive::set_denoise`] on, [`Progressive::picture`] is the
-//! running mean through the runtime's denoiser
-//! ([`rt_runtime::postprocess::denoise`], on the host) over the guides the
-//! camera writes, gamma corrected as the camera corrects its own; the
-//! samples go on accumulating as before, so turning it off shows the raw
-//! mean of the same samples.
+//! With [`Progressive::set_denoise`] at [`Denoise::Spatial`],
+//! [`Progressive::picture`] is the running mean through the runtime's
+//! denoiser ([`rt_runtime::postprocess::denoise`], on the host) over the
+//! guides the camera writes, gamma corrected as the camera corrects its
+//! own; the samples go on accumulating as before, so turning it off shows
+//! the raw mean of the same samples. At [`Denoise::Temporal`] the running
+//! mean first goes through the denoiser's temporal pass
+//! ([`rt_runtime::postprocess::temporal`]): each picture is blended into
+//! the last one's history reprojected through the last camera, so that a
+//! moved camera, which starts the samples again, keeps what it saw of
+//! the points still in view (those it did not see, or that a closer
+//! surface hid, start again); a resize, or turning the mode on, starts
+//! with no history.
+//!
+//! Both denoise on the host, as the runtime's stage would on the CPU
+//! backend: the stage runs over buffers of its run's size, and these are
+//! larger than the picture (below), so the guides are read back cropped.
 //!
 //! The runtime cannot free or resize a buffer, so the output, accumulation
 //! and guide buffers only grow: a smaller picture is launched over the
@@ -42,6 +53,7 @@ use crate::model::CameraOptions;
 use crate::scene::{Camera, Error, Image, Scene, Settings};
 use glam::{Vec3, Vec4};
 use rt_runtime::postprocess::denoise::{self, Guided};
+use rt_runtime::postprocess::temporal::{self, Pinhole};
 use rt_runtime::{BufferType, Scope};
 use rt_scene::SceneCamera;
 use std::time::Instant;
@@ -74,6 +86,54 @@ pub struct Output {
     pub size: (u32, u32),
 }
 
+/// What [`Progressive::picture`] shows: the raw mean, or it denoised.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Denoise {
+    /// The running mean as it is.
+    #[default]
+    Off,
+    /// Through the denoiser's spatial filter.
+    Spatial,
+    /// Through its temporal pass, then its spatial filter.
+    Temporal,
+}
+
+impl Denoise {
+    /// The mode after this one, as the viewer's N key steps: off,
+    /// spatial, temporal, off.
+    pub fn next(self) -> Denoise {
+        match self {
+            Denoise::Off => Denoise::Spatial,
+            Denoise::Spatial => Denoise::Temporal,
+            Denoise::Temporal => Denoise::Off,
+        }
+    }
+
+    /// How the viewer's title says it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Denoise::Off => "off",
+            Denoise::Spatial => "spatial",
+            Denoise::Temporal => "temporal",
+        }
+    }
+}
+
+/// The temporal mode's history: the last denoised picture's texels
+/// ([`temporal::accumulate`]), the camera and size they were seen at,
+/// the launch they came from and what it showed.
+struct History {
+    texels: Vec<Vec4>,
+    camera: Pinhole,
+    size: (u32, u32),
+    launch: u64,
+    shown: Image,
+}
+
+/// The temporal mode's `alpha_min`: a still view's picture follows its
+/// running mean (which gains a sample each frame) within a few frames.
+const TEMPORAL_ALPHA_MIN: f32 = 0.2;
+
 /// A mesh scene refined one sample per launch while nothing changes.
 pub struct Progressive {
     scene: Scene,
@@ -87,8 +147,11 @@ pub struct Progressive {
     bounds: (Vec3, Vec3),
     /// Whether the output and accumulation buffers stay on the device.
     device_local: bool,
-    /// Whether [`Progressive::picture`] is denoised.
-    denoise: bool,
+    /// How [`Progressive::picture`] is denoised.
+    denoise: Denoise,
+    /// Launches so far, of any camera.
+    launches: u64,
+    history: Option<History>,
 }
 
 impl Progressive {
@@ -120,7 +183,9 @@ impl Progressive {
             bounds,
             scene,
             device_local: false,
-            denoise: false,
+            denoise: Denoise::Off,
+            launches: 0,
+            history: None,
         })
     }
 
@@ -244,37 +309,77 @@ impl Progressive {
         ctx.set_var(Scope::Context, "frame", self.samples)?;
         let report = ctx.launch(0, width, height)?;
         self.samples += 1;
+        self.launches += 1;
         Ok(Sample { rays: report.rays, seconds: start.elapsed().as_secs_f64(), exceptions: report.exceptions.len() })
     }
 
-    /// Denoises [`Progressive::picture`] from now on (or not); the
-    /// samples so far are kept either way.
-    pub fn set_denoise(&mut self, on: bool) {
-        self.denoise = on;
+    /// Denoises [`Progressive::picture`] as `mode` says from now on; the
+    /// samples so far are kept either way. Temporal starts with no
+    /// history.
+    pub fn set_denoise(&mut self, mode: Denoise) {
+        if mode != self.denoise {
+            self.history = None;
+        }
+        self.denoise = mode;
     }
 
-    /// Whether [`Progressive::picture`] is denoised.
-    pub fn denoising(&self) -> bool {
+    /// How [`Progressive::picture`] is denoised.
+    pub fn denoising(&self) -> Denoise {
         self.denoise
     }
 
+    /// Frames the temporal mode's history holds at pixel `(x, y)` (launch
+    /// index): 0 without one.
+    pub fn history_frames(&self, x: u32, y: u32) -> u32 {
+        let Some(h) = &self.history else { return 0 };
+        let p = (y * h.size.0 + x) as usize * temporal::TEXELS;
+        h.texels.get(p).map_or(0, |t| t.w as u32)
+    }
+
     /// The picture so far, read from the output buffer, or denoised from
-    /// the guides ([`Progressive::set_denoise`]).
-    pub fn picture(&self) -> Result<Image, Error> {
+    /// the guides ([`Progressive::set_denoise`]). In temporal mode the
+    /// first call after a launch blends it into the history; a second
+    /// one shows the same picture.
+    pub fn picture(&mut self) -> Result<Image, Error> {
         let (width, height) = (self.scene.width, self.scene.height);
-        if self.denoise {
-            let aovs =
-                self.scene.aovs.ok_or_else(|| Error::Settings("the scene writes no guides to denoise".into()))?;
-            let [color, albedo, normal, variance] =
-                [aovs.radiance, aovs.albedo, aovs.normal, aovs.variance].map(|b| self.read_cropped(b));
-            let (color, albedo, normal, variance) = (color?, albedo?, normal?, variance?);
-            let (w, h) = (width as usize, height as usize);
+        if self.denoise == Denoise::Off {
+            return Ok(Image { width, height, pixels: self.read_cropped(self.scene.output)? });
+        }
+        if let Some(h) = self.history.as_ref().filter(|h| h.launch == self.launches && h.size == (width, height)) {
+            return Ok(h.shown.clone());
+        }
+        let aovs = self.scene.aovs.ok_or_else(|| Error::Settings("the scene writes no guides to denoise".into()))?;
+        let [color, albedo, normal, variance] =
+            [aovs.radiance, aovs.albedo, aovs.normal, aovs.variance].map(|b| self.read_cropped(b));
+        let (color, albedo, normal, variance) = (color?, albedo?, normal?, variance?);
+        let (w, h) = (width as usize, height as usize);
+        if self.denoise == Denoise::Spatial {
             let variance = Some(&variance[..]);
             let guided = Guided { width: w, height: h, color: &color, albedo: &albedo, normal: &normal, variance };
-            let pixels = denoise::denoise(&guided, 0.0);
-            return Ok(Image { width, height, pixels }.to_display());
+            return Ok(Image { width, height, pixels: denoise::denoise(&guided, 0.0) }.to_display());
         }
-        Ok(Image { width, height, pixels: self.read_cropped(self.scene.output)? })
+        let position = aovs.position.ok_or_else(|| Error::Settings("the scene writes no position guide".into()))?;
+        let position = self.read_cropped(position)?;
+        let (u, v, w_axis) = self.camera.uvw(width as f32 / height as f32);
+        let camera = Pinhole { eye: self.camera.eye, u, v, w: w_axis };
+        let frame = temporal::Frame {
+            width: w,
+            height: h,
+            color: &color,
+            albedo: &albedo,
+            normal: &normal,
+            position: &position,
+            camera,
+        };
+        let previous = self.history.as_ref().filter(|h| h.size == (width, height)).map(|h| (&h.texels[..], &h.camera));
+        let acc = temporal::accumulate(&frame, previous, TEMPORAL_ALPHA_MIN);
+        let variance = Some(&acc.variance[..]);
+        let guided = Guided { width: w, height: h, color: &acc.color, albedo: &albedo, normal: &normal, variance };
+        let shown = Image { width, height, pixels: denoise::denoise(&guided, 0.0) }.to_display();
+        let launch = self.launches;
+        self.history =
+            Some(History { texels: acc.history, camera, size: (width, height), launch, shown: shown.clone() });
+        Ok(shown)
     }
 
     /// The picture's part of buffer `b` (of the capacity's size), row by
@@ -365,11 +470,11 @@ mod tests {
         view.set_camera(view.home_camera());
         view.refine().unwrap();
         let raw = view.refine().unwrap().image;
-        view.set_denoise(true);
-        assert!(view.denoising());
+        view.set_denoise(Denoise::Spatial);
+        assert_eq!(view.denoising(), Denoise::Spatial);
         let denoised = view.picture().unwrap();
         assert_eq!(view.samples(), 2, "the toggle keeps the samples");
-        view.set_denoise(false);
+        view.set_denoise(Denoise::Off);
         assert_eq!(view.picture().unwrap(), raw);
         let settings = Settings::new(120, 90).with_spp(32);
         let camera = options.camera((loaded.min, loaded.max), None, options.up.to_y_up(), settings.aspect());
@@ -382,6 +487,59 @@ mod tests {
         eprintln!("squared error against 32 spp: raw {raw_error}, denoised {denoised_error}");
         assert_ne!(raw, denoised);
         assert!(denoised_error < raw_error * 0.8, "raw {raw_error}, denoised {denoised_error}");
+    }
+
+    #[test]
+    fn the_denoise_key_steps_off_spatial_temporal() {
+        let modes: Vec<_> = std::iter::successors(Some(Denoise::Off), |m| Some(m.next())).take(4).collect();
+        assert_eq!(modes, [Denoise::Off, Denoise::Spatial, Denoise::Temporal, Denoise::Off]);
+        assert_eq!(modes.iter().map(|m| m.name()).collect::<Vec<_>>(), ["off", "spatial", "temporal", "off"]);
+    }
+
+    /// The temporal mode after a camera move: the samples start again (one
+    /// a pixel), but the history seen before, reprojected, keeps the
+    /// picture nearer a converged one than the spatial filter alone gets
+    /// from that one sample; points it did not see start again; a resize
+    /// or turning the mode off and on drops the history.
+    #[test]
+    fn temporal_mode_keeps_the_history_through_a_camera_move() {
+        let loaded = mesh::load_obj(&crate::scene::shared_scene("teapot.obj")).unwrap();
+        let options = CameraOptions { elevation: Some(3.0), ..CameraOptions::default() };
+        let (w, h) = (96, 72);
+        let mut view = Progressive::framed(&loaded, &Settings::new(w, h), options, None).unwrap();
+        view.set_denoise(Denoise::Temporal);
+        for _ in 0..8 {
+            view.refine().unwrap();
+        }
+        assert_eq!(view.history_frames(w / 2, h / 2), 8, "a still view blends every picture");
+        assert_eq!(view.refine().unwrap().image, view.picture().unwrap(), "a second call shows the same picture");
+        let moved = view.camera().orbited(0.03, 0.0);
+        view.set_camera(moved);
+        let temporal = view.refine().unwrap().image;
+        assert_eq!(view.samples(), 1);
+        let frames: Vec<u32> =
+            (0..h).flat_map(|y| (0..w).map(move |x| (x, y))).map(|(x, y)| view.history_frames(x, y)).collect();
+        let kept = frames.iter().filter(|&&f| f == 10).count();
+        let restarted = frames.iter().filter(|&&f| f == 1).count();
+        eprintln!("after the move: {kept} pixels kept their history, {restarted} started again");
+        assert!(kept > frames.len() / 2 && restarted > 0, "kept {kept}, restarted {restarted}");
+        view.set_denoise(Denoise::Spatial);
+        let spatial = view.picture().unwrap();
+        let settings = Settings::new(w, h).with_spp(32);
+        let mut scene = bunny::mesh_scene_from(&loaded, &settings, options.view(), moved).unwrap();
+        let converged = scene.render(&mut |_| {}).unwrap().image;
+        let error = |image: &Image| -> f32 {
+            image.pixels.iter().zip(&converged.pixels).map(|(a, b)| (*a - *b).truncate().length_squared()).sum()
+        };
+        let (temporal_error, spatial_error) = (error(&temporal), error(&spatial));
+        eprintln!("squared error against 32 spp after the move: temporal {temporal_error}, spatial {spatial_error}");
+        assert!(temporal_error < spatial_error * 0.7, "temporal {temporal_error}, spatial {spatial_error}");
+        view.set_denoise(Denoise::Temporal);
+        assert_eq!(view.history_frames(w / 2, h / 2), 0, "turning the mode on starts with no history");
+        view.refine().unwrap();
+        view.resize(w - 8, h).unwrap();
+        view.refine().unwrap();
+        assert_eq!(view.history_frames(w / 2, h / 2), 1, "a resize starts again");
     }
 
     #[test]

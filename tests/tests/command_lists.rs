@@ -379,3 +379,53 @@ fn a_stage_failing_as_the_list_runs_leaves_the_stages_before_it_done() {
         assert_eq!(ctx.read_buffer::<Vec4>(buffers[4]).unwrap(), vec![Vec4::ZERO; (W * H) as usize]);
     }
 }
+
+/// A temporal denoiser after a list's launch (on wgpu riding in the
+/// launch's submission, its history coming back with the outputs) keeps
+/// the history and gives the pictures that running it alone after each
+/// launch does, frame after frame.
+#[test]
+fn a_temporal_denoiser_in_a_list_keeps_its_history_as_one_run_alone_does() {
+    let run = |on: On, listed: bool| {
+        let Frame { mut ctx, buffers, denoiser, .. } = frame_with(on, true);
+        // A plane at z = 0 seen square-on: each pixel's centre.
+        let position = ctx.create_buffer_2d::<Vec4>(BufferType::Input, W, H).unwrap();
+        let px: Vec<Vec4> =
+            (0..H).flat_map(|y| (0..W).map(move |x| Vec4::new(x as f32 + 0.5, y as f32 + 0.5, 0.0, 1.0))).collect();
+        ctx.write_buffer(position, &px).unwrap();
+        ctx.set_stage_var(denoiser, "input_position_buffer", position).unwrap();
+        ctx.set_stage_var(denoiser, "temporal", 1.0f32).unwrap();
+        let (w, h) = (W as f32, H as f32);
+        let camera = [
+            ("camera_eye", Vec3::new(w / 2.0, h / 2.0, 10.0)),
+            ("camera_u", Vec3::new(w / 20.0, 0.0, 0.0)),
+            ("camera_v", Vec3::new(0.0, h / 20.0, 0.0)),
+            ("camera_w", Vec3::NEG_Z),
+        ];
+        for (name, v) in camera {
+            ctx.set_stage_var(denoiser, name, v).unwrap();
+        }
+        let mut list = CommandList::new();
+        list.append_launch_2d(0, W, H).unwrap();
+        list.append_stage(denoiser, W, H).unwrap();
+        list.finalize(&ctx).unwrap();
+        let mut frames = Vec::new();
+        for f in 0..3u32 {
+            ctx.set_var(Scope::Context, "frame", f).unwrap();
+            if listed {
+                list.execute(&mut ctx).unwrap();
+            } else {
+                ctx.launch(0, W, H).unwrap();
+                ctx.run_stage(denoiser, W, H).unwrap();
+            }
+            frames.push(ctx.read_buffer::<Vec4>(buffers[3]).unwrap());
+        }
+        (frames, ctx.stage_history(denoiser).unwrap().expect("a history"))
+    };
+    for on in On::ALL {
+        let (alone, history) = run(on, false);
+        assert!(history.2.iter().all(|p| p.w == 3.0), "{}: every pixel holds the 3 frames", on.name());
+        assert_eq!(run(on, true), (alone.clone(), history), "{}", on.name());
+        assert_ne!(alone[2], alone[0], "{}", on.name());
+    }
+}

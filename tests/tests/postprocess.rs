@@ -152,7 +152,7 @@ fn unknown_variables_values_of_the_wrong_sort_and_an_output_over_an_input_are_re
     let text = ctx.set_stage_var(stage, "exposure", 2.0f32).unwrap_err().to_string();
     assert_eq!(
         text,
-        "post-processing stage 0 (`denoiser`): variable `exposure` is not a variable of the denoiser; it has input_buffer, input_albedo_buffer, input_normal_buffer, input_variance_buffer, output_buffer, blend"
+        "post-processing stage 0 (`denoiser`): variable `exposure` is not a variable of the denoiser; it has input_buffer, input_albedo_buffer, input_normal_buffer, input_variance_buffer, input_position_buffer, output_buffer, blend, temporal, alpha_min, camera_eye, camera_u, camera_v, camera_w"
     );
     let (_, variable, _) = stage_error(ctx.set_stage_var(stage, "blend", color).unwrap_err());
     assert_eq!(variable, "blend");

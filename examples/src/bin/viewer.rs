@@ -7,10 +7,12 @@
 //!
 //! The camera flags are `render`'s (a glTF file's own camera is used when
 //! it has one and no position is asked for). Left-drag orbits, the wheel
-//! zooms, W/A/S/D walk, Q/E go down and up, R resets the camera, N turns
-//! the denoiser on and off (`--denoise` starts with it on), Esc quits.
-//! The title says the frame rate, the rays per second, the samples so far,
-//! whether the denoiser is on and the backend.
+//! zooms, W/A/S/D walk, Q/E go down and up, R resets the camera, N steps
+//! the denoiser from off to spatial to temporal and off again
+//! (`--denoise` starts spatial, `--temporal` temporal: the picture kept
+//! through camera motion, [`examples::viewer::Denoise`]), Esc quits. The
+//! title says the frame rate, the rays per second, the samples so far,
+//! the denoiser's mode and the backend.
 //!
 //! On the wgpu backend frames go from the GPU to the window: the picture
 //! stays on the device (`Context::set_buffer_device_local`) and is drawn
@@ -31,7 +33,7 @@
 
 use clap::Parser;
 use examples::present::GpuPresenter;
-use examples::viewer::{self, Progressive};
+use examples::viewer::{self, Denoise, Progressive};
 use examples::{BackendChoice, Camera, Error, Image, Settings, scene};
 use std::collections::HashSet;
 use std::num::NonZeroU32;
@@ -88,10 +90,16 @@ struct Args {
     /// Stop refining at this many samples per pixel.
     #[arg(long, default_value_t = 4096, value_parser = clap::value_parser!(u32).range(1..))]
     max_spp: u32,
-    /// Start with the denoiser on (the N key turns it on and off): the
-    /// picture shown is the samples so far through the runtime's denoiser.
+    /// Start with the denoiser on (the N key steps it off, spatial,
+    /// temporal): the picture shown is the samples so far through the
+    /// runtime's denoiser.
     #[arg(long)]
     denoise: bool,
+    /// Start with the denoiser in its temporal mode: each picture blended
+    /// into the last ones reprojected through the camera, so that moving
+    /// keeps what was seen.
+    #[arg(long, conflicts_with = "denoise")]
+    temporal: bool,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -177,7 +185,11 @@ fn run(args: &Args) -> Result<(), Failure> {
     let camera = options.camera(bounds, file_camera, options.up.to_y_up(), settings.aspect());
     options.check_camera(&path, &camera, bounds)?;
     let mut view = Progressive::framed(&loaded, &settings, options, file_camera)?;
-    view.set_denoise(args.denoise);
+    view.set_denoise(match (args.denoise, args.temporal) {
+        (_, true) => Denoise::Temporal,
+        (true, false) => Denoise::Spatial,
+        (false, false) => Denoise::Off,
+    });
     let name = path.file_name().map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned());
     let event_loop =
         EventLoop::new().map_err(|e| Failure::Other(format!("cannot open a window: {}", without_location(&e))))?;
@@ -296,13 +308,13 @@ struct App {
     restyle: bool,
 }
 
-/// The window's title: the model, the figures, whether the denoiser is on.
-fn title(name: &str, readout: &Tally, spp: u32, denoise: bool, backend: &str, exceptions: usize) -> String {
+/// The window's title: the model, the figures, the denoiser's mode.
+fn title(name: &str, readout: &Tally, spp: u32, denoise: Denoise, backend: &str, exceptions: usize) -> String {
     format!(
         "{name} - {:.1} FPS, {:.2} Mrays/s, {spp} spp, denoiser {}, {backend} backend{}",
         readout.fps(),
         readout.mrays_per_second(),
-        if denoise { "on" } else { "off" },
+        denoise.name(),
         if exceptions > 0 { format!(", {exceptions} exceptions") } else { String::new() }
     )
 }
@@ -409,7 +421,7 @@ impl App {
                     return presenter.redraw((width, height)).map_err(Failure::Other);
                 }
                 let sample = if again { viewer::Sample::default() } else { self.view.sample()? };
-                if self.view.denoising() {
+                if self.view.denoising() != Denoise::Off {
                     // Denoised on the host: the picture goes up from there.
                     let image = self.view.picture()?;
                     presenter.present_image(&image).map_err(Failure::Other)?;
@@ -421,7 +433,7 @@ impl App {
                     let out = self.view.output();
                     presenter.present(self.view.context(), out.buffer, out.stride, out.size).map_err(Failure::Other)?;
                 }
-                if want_screenshot && !self.view.denoising() {
+                if want_screenshot && self.view.denoising() == Denoise::Off {
                     // The picture the device holds, read back once, and
                     // the window as the X server has it (the presentation
                     // may reach it a little later).
@@ -597,7 +609,7 @@ impl ApplicationHandler for App {
                 match key {
                     KeyCode::KeyR => self.camera = self.view.home_camera(),
                     KeyCode::KeyN => {
-                        self.view.set_denoise(!self.view.denoising());
+                        self.view.set_denoise(self.view.denoising().next());
                         self.restyle = true;
                     }
                     KeyCode::Escape => event_loop.exit(),
@@ -623,11 +635,13 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_title_says_whether_the_denoiser_is_on() {
+    fn the_title_says_the_denoisers_mode() {
         let readout = Tally { frames: 10, rays: 2_000_000, launch_seconds: 2.0, wall: Duration::from_secs(2) };
-        let on = title("bunny.obj", &readout, 12, true, "cpu", 0);
-        assert_eq!(on, "bunny.obj - 5.0 FPS, 1.00 Mrays/s, 12 spp, denoiser on, cpu backend");
-        let off = title("bunny.obj", &readout, 12, false, "wgpu", 3);
+        let on = title("bunny.obj", &readout, 12, Denoise::Spatial, "cpu", 0);
+        assert_eq!(on, "bunny.obj - 5.0 FPS, 1.00 Mrays/s, 12 spp, denoiser spatial, cpu backend");
+        let temporal = title("bunny.obj", &readout, 12, Denoise::Temporal, "cpu", 0);
+        assert_eq!(temporal, "bunny.obj - 5.0 FPS, 1.00 Mrays/s, 12 spp, denoiser temporal, cpu backend");
+        let off = title("bunny.obj", &readout, 12, Denoise::Off, "wgpu", 3);
         assert_eq!(off, "bunny.obj - 5.0 FPS, 1.00 Mrays/s, 12 spp, denoiser off, wgpu backend, 3 exceptions");
     }
 }

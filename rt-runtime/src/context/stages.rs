@@ -6,9 +6,10 @@ use crate::backend::tiles::{LaunchControl, LaunchProgress};
 use crate::backend::{Backend, LaunchReport};
 use crate::error::{ConfigError, LaunchError, Result, SceneError};
 use crate::postprocess::gpu::{Pipelines, Source, StageTail, pixels};
-use crate::postprocess::{Pixels, Plan, Stage, StageId, StageKind, StageValue};
+use crate::postprocess::{History, Pixels, Plan, Stage, StageId, StageKind, StageValue};
 use crate::scene::BufferId;
 use glam::Vec4;
+use std::sync::Arc;
 
 impl Context {
     /// A built-in post-processing stage of kind `kind`, its variables
@@ -36,9 +37,11 @@ impl Context {
 
     /// Sets variable `name` of `stage` (OptiX's
     /// `rtPostProcessingStageDeclareVariable` and `rtVariableSet*`): a
-    /// buffer (`input_buffer`, ...) or a number (`blend`, `exposure`,
-    /// `gamma`). A name the stage does not have, or a value of the other
-    /// sort, is an error naming both; nothing is changed then.
+    /// buffer (`input_buffer`, ...), a number (`blend`, `exposure`,
+    /// `gamma`, `temporal`, `alpha_min`) or a `Vec3` (the temporal
+    /// denoiser's `camera_eye`, `camera_u`, `camera_v`, `camera_w`). A
+    /// name the stage does not have, or a value of another sort, is an
+    /// error naming both; nothing is changed then.
     #[doc(alias = "rtPostProcessingStageDeclareVariable")]
     pub fn set_stage_var(&mut self, stage: StageId, name: &str, value: impl Into<StageValue>) -> Result<()> {
         let s = self.stage_mut(stage)?;
@@ -87,15 +90,17 @@ impl Context {
     pub(crate) fn run_plans(&mut self, plans: &[Plan]) -> Result<()> {
         if self.backend() != Backend::Wgpu {
             for plan in plans {
-                let ids = Pixels { input: plan.input, guides: plan.guides, variance: plan.variance };
-                let out = plan.run_cpu(&ids.try_map(|b| self.read_buffer::<Vec4>(b))?);
+                let (out, history) = plan.run_cpu(&Pixels::of(plan).try_map(|b| self.read_buffer::<Vec4>(b))?);
                 self.write_buffer(plan.output, &out)?;
+                if let Some(history) = history {
+                    self.stages[plan.stage.0 as usize].history = Some(Arc::new(history));
+                }
             }
             return Ok(());
         }
         let mut stages = Vec::new();
         for (i, plan) in plans.iter().enumerate() {
-            let ids = Pixels { input: plan.input, guides: plan.guides, variance: plan.variance };
+            let ids = Pixels::of(plan);
             let sources = ids.try_map(|b| match plans[..i].iter().rposition(|p| p.output == b) {
                 Some(k) => Ok(Source::Earlier(k)),
                 None => self.stage_source(b),
@@ -103,10 +108,43 @@ impl Context {
             stages.push((plan.clone(), sources));
         }
         let outputs = self.run_on_wgpu(&stages)?;
-        for (plan, out) in plans.iter().zip(outputs) {
+        self.take_outputs(plans, outputs)
+    }
+
+    /// Writes the outputs of `plans`, which ran on the wgpu device, to
+    /// their buffers, and keeps the next histories of the temporal
+    /// denoisers among them (`images`: the outputs, then the histories in
+    /// the plans' order).
+    fn take_outputs(&mut self, plans: &[Plan], images: Vec<Vec<Vec4>>) -> Result<()> {
+        let mut images = images.into_iter();
+        for (plan, out) in plans.iter().zip(images.by_ref()) {
             self.write_buffer(plan.output, &out)?;
         }
+        for (plan, t) in plans.iter().filter_map(|p| Some((p, p.temporal.as_ref()?))) {
+            let texels = images.next().ok_or_else(|| LaunchError::Internal {
+                backend: "wgpu",
+                problem: "internal: a temporal denoiser's history did not come back".into(),
+            })?;
+            let history = History { width: plan.width, height: plan.height, texels, camera: t.camera };
+            self.stages[plan.stage.0 as usize].history = Some(Arc::new(history));
+        }
         Ok(())
+    }
+
+    /// Drops the history of temporal denoiser `stage`: its next run
+    /// starts again from its input alone, as its first did.
+    pub fn reset_stage_history(&mut self, stage: StageId) -> Result<()> {
+        self.stage_mut(stage)?.history = None;
+        Ok(())
+    }
+
+    /// The history of temporal denoiser `stage`, where it has one: each
+    /// pixel's accumulated colour (rgb) and how many frames it holds (w),
+    /// row by row, with its size.
+    pub fn stage_history(&self, stage: StageId) -> Result<Option<(u32, u32, Vec<Vec4>)>> {
+        let Some(h) = &self.stage(stage)?.history else { return Ok(None) };
+        let colors = h.texels.iter().step_by(crate::postprocess::temporal::TEXELS).copied().collect();
+        Ok(Some((h.width, h.height, colors)))
     }
 
     /// Where a stage on the wgpu device takes buffer `b` from: the
@@ -179,9 +217,7 @@ impl Context {
             backend: "wgpu",
             problem: "internal: the stages after the launch did not run".into(),
         })?;
-        for (plan, words) in plans.iter().zip(outputs) {
-            self.write_buffer(plan.output, &pixels(&words))?;
-        }
+        self.take_outputs(plans, outputs.iter().map(|words| pixels(words)).collect())?;
         self.stage_device_inputs += from_device;
         Ok(report)
     }

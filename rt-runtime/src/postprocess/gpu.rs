@@ -7,7 +7,10 @@
 //! the device; or, where an earlier stage of the run wrote them, read
 //! where it did), every pass runs (the denoiser's prepare, its à-trous
 //! passes ping-ponging between two buffers, finish; or the tonemapper's
-//! one), and every stage's output is read back. The pipelines are made
+//! one), and every stage's output is read back. In temporal mode the
+//! denoiser's `gpu/temporal.wgsl` pass runs first, over its history
+//! uploaded from the host, and its next history is read back with the
+//! output (the stage keeps it on the host). The pipelines are made
 //! once per device ([`Pipelines`]).
 //!
 //! After a command list's launch, the run rides in the launch's last
@@ -16,7 +19,8 @@
 //! where it lies in the heap.
 
 use super::denoise::Tuning;
-use super::{Pixels, Plan, StageKind};
+use super::temporal::TEXELS;
+use super::{Pixels, Plan, StageKind, Temporal};
 use crate::backend::wgpu::DeviceBuffer;
 use crate::backend::wgpu::tail::{Recorded, Tail};
 use crate::error::{DeviceError, Result, RtError};
@@ -25,6 +29,7 @@ use glam::Vec4;
 use wgpu::util::DeviceExt;
 
 const WGSL: &str = include_str!("gpu/stages.wgsl");
+const TEMPORAL_WGSL: &str = include_str!("gpu/temporal.wgsl");
 
 /// The stages' pipelines on one device.
 #[derive(Clone)]
@@ -35,6 +40,9 @@ pub(crate) struct Pipelines {
     atrous: wgpu::ComputePipeline,
     finish: wgpu::ComputePipeline,
     tonemap: wgpu::ComputePipeline,
+    /// The temporal denoiser's pass (`gpu/temporal.wgsl`) and its layout.
+    temporal_layout: wgpu::BindGroupLayout,
+    temporal: wgpu::ComputePipeline,
 }
 
 impl Pipelines {
@@ -98,6 +106,9 @@ impl Pipelines {
                 cache: None,
             })
         };
+        let temporal_entries: Vec<_> =
+            std::iter::once(uniform).chain((1..=5).map(|b| storage(b, true))).chain([storage(6, false)]).collect();
+        let (temporal_layout, temporal) = Self::temporal_pipeline(device, &temporal_entries);
         let made = Pipelines {
             device: device.clone(),
             prepare: pipeline("prepare"),
@@ -105,6 +116,8 @@ impl Pipelines {
             finish: pipeline("finish"),
             tonemap: pipeline("tonemap"),
             layout,
+            temporal_layout,
+            temporal,
         };
         match crate::backend::futures::block(async { Ok(scope.pop().await) })? {
             Some(e) => Err(DeviceError::Gpu(format!("the post-processing stages' WGSL does not compile: {e}")).into()),
@@ -112,8 +125,38 @@ impl Pipelines {
         }
     }
 
+    /// The temporal pass's layout (of `entries`) and pipeline.
+    fn temporal_pipeline(
+        device: &wgpu::Device,
+        entries: &[wgpu::BindGroupLayoutEntry],
+    ) -> (wgpu::BindGroupLayout, wgpu::ComputePipeline) {
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("rt temporal denoiser"),
+            source: wgpu::ShaderSource::Wgsl(TEMPORAL_WGSL.into()),
+        });
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("rt temporal denoiser"),
+            entries,
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("rt temporal denoiser"),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("temporal"),
+            layout: Some(&pipeline_layout),
+            module: &module,
+            entry_point: Some("temporal"),
+            compilation_options: Default::default(),
+            cache: None,
+        });
+        (layout, pipeline)
+    }
+
     /// Runs `stages` (each a plan over its images) in order on `queue`,
-    /// all in one submission, and returns each one's output. An image
+    /// all in one submission, and returns each one's output, then the
+    /// next history of each temporal denoiser among them. An image
     /// that an earlier stage of the run wrote ([`Source::Earlier`]) is
     /// that stage's output as it lies on the device.
     pub fn run(&self, queue: &wgpu::Queue, stages: &[(Plan, Pixels<Source>)]) -> Result<Vec<Vec<Vec4>>> {
@@ -169,33 +212,37 @@ impl Pipelines {
     }
 
     /// Records `stages`' passes into `encoder`, in order; the buffers their
-    /// outputs will be in.
+    /// outputs will be in, then those of the temporal denoisers' next
+    /// histories, in the stages' order.
     pub fn record(&self, encoder: &mut wgpu::CommandEncoder, stages: &[(Plan, Pixels<Source>)]) -> Vec<wgpu::Buffer> {
         let mut outputs: Vec<wgpu::Buffer> = Vec::new();
+        let mut histories = Vec::new();
         for (plan, images) in stages {
-            let out = self.encode(encoder, plan, images, &outputs);
+            let (out, history) = self.encode(encoder, plan, images, &outputs);
             outputs.push(out);
+            histories.extend(history);
         }
+        outputs.extend(histories);
         outputs
     }
 
     /// Records `plan`'s passes over `images` into `encoder` (`earlier`:
     /// the outputs of the run's stages before it), returning the buffer
-    /// its output will be in.
+    /// its output will be in, and the temporal denoiser's next history's.
     fn encode(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         plan: &Plan,
         images: &Pixels<Source>,
         earlier: &[wgpu::Buffer],
-    ) -> wgpu::Buffer {
+    ) -> (wgpu::Buffer, Option<wgpu::Buffer>) {
         let device = &self.device;
         let n = (plan.width * plan.height) as usize;
         let bytes = (n * 16) as u64;
         let upload = |label, px: &[Vec4]| {
             device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some(label),
-                contents: &px.iter().flat_map(|p| p.to_array()).flat_map(f32::to_le_bytes).collect::<Vec<u8>>(),
+                contents: &words(px),
                 usage: wgpu::BufferUsages::STORAGE,
             })
         };
@@ -234,11 +281,23 @@ impl Pipelines {
             Some(v) => image("rt stage: variance", v),
             None => upload("rt stage: unused", &[Vec4::ZERO]),
         };
+        let position = images.position.as_ref().map(|p| image("rt stage: position", p));
+        // The temporal denoiser's accumulated colour and variance take the
+        // place of its input's for the spatial passes.
+        let (color, variance, history) = match (&plan.temporal, position) {
+            (Some(t), Some(position)) => {
+                let frame = [&color, &albedo, &normal, &position];
+                let (acc, acc_variance, history) = self.encode_temporal(encoder, plan, t, frame);
+                (acc, acc_variance, Some(history))
+            }
+            _ => (color, variance, None),
+        };
+        let has_variance = plan.variance.is_some() || history.is_some();
         let (a, b) = (scratch("rt stage: ping"), scratch("rt stage: pong"));
         let t = Tuning::default();
         let mut pass = |pipeline: &wgpu::ComputePipeline, step: i32, src: &wgpu::Buffer, dst: &wgpu::Buffer| {
             let settings = [plan.settings[0], plan.settings.get(1).copied().unwrap_or(0.0)];
-            let params = params(plan, step, &t, settings);
+            let params = params(plan, step, &t, settings, has_variance);
             let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("rt stage: params"),
                 contents: &params,
@@ -269,14 +328,90 @@ impl Pipelines {
                     std::mem::swap(&mut src, &mut dst);
                 }
                 pass(&self.finish, 0, src, dst);
-                dst.clone()
+                (dst.clone(), history)
             }
             StageKind::Tonemapper => {
                 pass(&self.tonemap, 0, &empty, &a);
-                a
+                (a, None)
             }
         }
     }
+
+    /// Records the temporal pass of `plan` over its `frame` (colour,
+    /// albedo, normal, position): the buffers of the accumulated colour,
+    /// its variance, and the next history.
+    fn encode_temporal(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        plan: &Plan,
+        t: &Temporal,
+        frame: [&wgpu::Buffer; 4],
+    ) -> (wgpu::Buffer, wgpu::Buffer, wgpu::Buffer) {
+        let device = &self.device;
+        let n = (plan.width * plan.height) as u64;
+        let storage = |label, size| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            })
+        };
+        let texels = n * TEXELS as u64;
+        let next = storage("rt stage: next history", (texels + 2 * n) * 16);
+        let previous: &[Vec4] = t.previous.as_ref().map_or(&[Vec4::ZERO], |h| &h.texels);
+        let previous = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("rt stage: previous history"),
+            contents: &words(previous),
+            usage: wgpu::BufferUsages::STORAGE,
+        });
+        let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("rt stage: temporal params"),
+            contents: &temporal_params(plan, t),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+        let [color, albedo, normal, position] = frame;
+        let buffers = [&uniform, color, albedo, normal, position, &previous, &next];
+        let entries: Vec<_> = buffers
+            .iter()
+            .enumerate()
+            .map(|(i, b)| wgpu::BindGroupEntry { binding: i as u32, resource: b.as_entire_binding() })
+            .collect();
+        let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: None,
+            layout: &self.temporal_layout,
+            entries: &entries,
+        });
+        let mut cpass = encoder.begin_compute_pass(&Default::default());
+        cpass.set_pipeline(&self.temporal);
+        cpass.set_bind_group(0, &group, &[]);
+        cpass.dispatch_workgroups(plan.width.div_ceil(8), plan.height.div_ceil(8), 1);
+        drop(cpass);
+        let (acc, acc_variance) =
+            (storage("rt stage: accumulated", n * 16), storage("rt stage: temporal variance", n * 16));
+        let history = storage("rt stage: history", texels * 16);
+        encoder.copy_buffer_to_buffer(&next, 0, &history, 0, texels * 16);
+        encoder.copy_buffer_to_buffer(&next, texels * 16, &acc, 0, n * 16);
+        encoder.copy_buffer_to_buffer(&next, (texels + n) * 16, &acc_variance, 0, n * 16);
+        (acc, acc_variance, history)
+    }
+}
+
+/// The little-endian bytes of `pixels`.
+fn words(pixels: &[Vec4]) -> Vec<u8> {
+    pixels.iter().flat_map(|p| p.to_array()).flat_map(f32::to_le_bytes).collect()
+}
+
+/// The `Params` uniform of `temporal.wgsl`.
+fn temporal_params(plan: &Plan, t: &Temporal) -> Vec<u8> {
+    let has_history = t.previous.is_some() as u32;
+    let mut bytes: Vec<u8> =
+        [plan.width, plan.height, has_history, t.alpha_min.to_bits()].iter().flat_map(|w| w.to_le_bytes()).collect();
+    let before = t.previous.as_ref().map_or(t.camera, |h| h.camera);
+    for v in [t.camera.eye, before.eye, before.u, before.v, before.w] {
+        bytes.extend(words(&[v.extend(0.0)]));
+    }
+    bytes
 }
 
 /// Where a stage's image is for the device: the host's pixels (uploaded),
@@ -333,7 +468,7 @@ impl Tail for StageTail {
     /// what the device holds), so the launch reads none of them back.
     fn keeps(&self, buffer: usize) -> bool {
         let touches = |p: &Plan| {
-            let ids = Pixels { input: p.input, guides: p.guides, variance: p.variance };
+            let ids = Pixels::of(p);
             p.output.index() as usize == buffer || ids.each().any(|b| b.index() as usize == buffer)
         };
         self.plans.iter().any(touches)
@@ -353,7 +488,7 @@ impl Tail for StageTail {
         let mut stages = Vec::new();
         let mut from_device = 0;
         for (i, plan) in self.plans.iter().enumerate() {
-            let ids = Pixels { input: plan.input, guides: plan.guides, variance: plan.variance };
+            let ids = Pixels::of(plan);
             let sources = ids.try_map(|b| Ok::<_, RtError>(self.source(i, b, scene, on_device)))?;
             from_device += sources.each().filter(|s| matches!(s, Source::Device(_))).count() as u64;
             stages.push((plan.clone(), sources));
@@ -363,7 +498,7 @@ impl Tail for StageTail {
 }
 
 /// The `Params` uniform of `stages.wgsl` for one pass.
-fn params(plan: &Plan, step: i32, t: &Tuning, [first, second]: [f32; 2]) -> Vec<u8> {
+fn params(plan: &Plan, step: i32, t: &Tuning, [first, second]: [f32; 2], has_variance: bool) -> Vec<u8> {
     let words: [u32; 12] = [
         plan.width,
         plan.height,
@@ -374,7 +509,7 @@ fn params(plan: &Plan, step: i32, t: &Tuning, [first, second]: [f32; 2]) -> Vec<
         t.sigma_albedo.to_bits(),
         first.to_bits(),
         second.to_bits(),
-        plan.variance.is_some() as u32,
+        has_variance as u32,
         0,
         0,
     ];

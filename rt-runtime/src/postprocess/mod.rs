@@ -7,7 +7,10 @@
 //! [`Context::set_stage_var`](crate::Context::set_stage_var): buffers
 //! (`input_buffer`, `input_albedo_buffer`, `input_normal_buffer`, the
 //! optional `input_variance_buffer`, `output_buffer`) and settings
-//! (`blend`, `exposure`, `gamma`). Every image buffer holds one `Vec4` a
+//! (`blend`, `exposure`, `gamma`), and for the denoiser's temporal mode
+//! ([`temporal`]: `temporal` 1) `alpha_min`, the camera (`camera_eye`,
+//! `camera_u`, `camera_v`, `camera_w`, vectors) and the position guide
+//! (`input_position_buffer`). Every image buffer holds one `Vec4` a
 //! pixel, RGBA (a normal's xyz, an albedo's rgb, a variance in x), 2D and
 //! of the stage's size. `Stage::plan` checks all
 //! of it before anything runs, naming the stage and the variable at
@@ -16,19 +19,24 @@
 //!
 //! The passes: [`denoise`] (an edge-avoiding à-trous wavelet filter
 //! guided by albedo, normal and a luminance variance, the renderer's
-//! per-pixel one or its own spatial estimate: the spatial part of SVGF) and [`tonemap`] (exposure, ACES-fitted filmic
+//! per-pixel one or its own spatial estimate: the spatial part of SVGF),
+//! run after [`temporal`] (SVGF's temporal part: a history the stage
+//! keeps, reprojected through the camera) in temporal mode, and [`tonemap`] (exposure, ACES-fitted filmic
 //! curve, gamma), each a CPU reference here and a WGSL compute pass in
 //! `gpu.rs` that the wgpu backend runs on its device.
 
 pub mod denoise;
 pub(crate) mod gpu;
+pub mod temporal;
 pub mod tonemap;
 
 use crate::buffer::{BufferRec, Typed};
 use crate::error::{PostProcessError, Result};
 use crate::scene::BufferId;
-use glam::Vec4;
+use glam::{Vec3, Vec4};
 use std::collections::BTreeMap;
+use std::sync::Arc;
+use temporal::Pinhole;
 
 /// A post-processing stage of a context (OptiX's `RTpostprocessingstage`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -69,17 +77,46 @@ impl StageKind {
         }
     }
 
-    /// The variables a stage of this kind takes: name, whether it is a
-    /// buffer, and a setting's default (`None` for buffers). Every buffer
-    /// must be set but the denoiser's `input_variance_buffer`.
-    pub fn variables(self) -> &'static [(&'static str, Option<f32>)] {
+    /// The variables a stage of this kind takes: name and sort (a
+    /// buffer, a number and its default, or a vector). Every buffer must
+    /// be set but the denoiser's `input_variance_buffer`, and its
+    /// `input_position_buffer` and camera but in temporal mode.
+    pub fn variables(self) -> &'static [(&'static str, Sort)] {
         match self {
-            StageKind::Denoiser => {
-                &[(INPUT, None), (ALBEDO, None), (NORMAL, None), (VARIANCE, None), (OUTPUT, None), ("blend", Some(0.0))]
-            }
-            StageKind::Tonemapper => &[(INPUT, None), (OUTPUT, None), ("exposure", Some(1.0)), ("gamma", Some(2.2))],
+            StageKind::Denoiser => &[
+                (INPUT, Sort::Buffer),
+                (ALBEDO, Sort::Buffer),
+                (NORMAL, Sort::Buffer),
+                (VARIANCE, Sort::Buffer),
+                (POSITION, Sort::Buffer),
+                (OUTPUT, Sort::Buffer),
+                ("blend", Sort::Number(0.0)),
+                (TEMPORAL, Sort::Number(0.0)),
+                ("alpha_min", Sort::Number(0.2)),
+                (CAMERA[0], Sort::Vector),
+                (CAMERA[1], Sort::Vector),
+                (CAMERA[2], Sort::Vector),
+                (CAMERA[3], Sort::Vector),
+            ],
+            StageKind::Tonemapper => &[
+                (INPUT, Sort::Buffer),
+                (OUTPUT, Sort::Buffer),
+                ("exposure", Sort::Number(1.0)),
+                ("gamma", Sort::Number(2.2)),
+            ],
         }
     }
+}
+
+/// The sort of a stage variable.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Sort {
+    /// An image buffer.
+    Buffer,
+    /// A number, with its default.
+    Number(f32),
+    /// A 3-vector (the temporal denoiser's camera), no default.
+    Vector,
 }
 
 const INPUT: &str = "input_buffer";
@@ -91,14 +128,30 @@ const NORMAL: &str = "input_normal_buffer";
 /// samples).
 const VARIANCE: &str = "input_variance_buffer";
 const OUTPUT: &str = "output_buffer";
+/// The temporal denoiser's world position guide: xyz over w, w 0 where
+/// the camera ray hit nothing ([`temporal`]).
+const POSITION: &str = "input_position_buffer";
+/// 1 turns the denoiser's temporal mode on ([`temporal`]), 0 off.
+const TEMPORAL: &str = "temporal";
+/// The temporal denoiser's camera (eye, u, v, w), as the examples'
+/// cameras name theirs ([`temporal::Pinhole`]).
+const CAMERA: [&str; 4] = ["camera_eye", "camera_u", "camera_v", "camera_w"];
 
-/// A stage variable's value: a buffer or a number.
+/// A stage variable's value: a buffer, a number or a vector.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum StageValue {
     /// A buffer (`input_buffer`, `output_buffer`, ...).
     Buffer(BufferId),
-    /// A setting (`blend`, `exposure`, `gamma`).
+    /// A setting (`blend`, `exposure`, `gamma`, `temporal`, `alpha_min`).
     Float(f32),
+    /// A vector (the temporal denoiser's `camera_eye`, `camera_u`, ...).
+    Vector(Vec3),
+}
+
+impl From<Vec3> for StageValue {
+    fn from(v: Vec3) -> StageValue {
+        StageValue::Vector(v)
+    }
 }
 
 impl From<BufferId> for StageValue {
@@ -113,17 +166,39 @@ impl From<f32> for StageValue {
     }
 }
 
-/// A stage: its kind and the variables set on it.
+/// A stage: its kind, the variables set on it, and the temporal
+/// denoiser's history of its last run.
 #[derive(Clone, Debug)]
 pub(crate) struct Stage {
     pub kind: StageKind,
     pub vars: BTreeMap<&'static str, StageValue>,
+    pub history: Option<Arc<History>>,
+}
+
+/// The temporal denoiser's history ([`temporal`]): the texels of its last
+/// run ([`temporal::TEXELS`] a pixel), its size and its camera.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct History {
+    pub width: u32,
+    pub height: u32,
+    pub texels: Vec<Vec4>,
+    pub camera: Pinhole,
+}
+
+/// A temporal denoiser's run: its position guide, the frame's camera,
+/// `alpha_min`, and the history to blend into (of the run's size).
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct Temporal {
+    pub camera: Pinhole,
+    pub alpha_min: f32,
+    pub previous: Option<Arc<History>>,
 }
 
 /// A stage checked against the context's buffers, ready to run at
 /// `width` x `height`: its buffers (input, guides, output) and settings.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct Plan {
+    pub stage: StageId,
     pub kind: StageKind,
     pub width: u32,
     pub height: u32,
@@ -132,14 +207,19 @@ pub(crate) struct Plan {
     pub guides: Option<(BufferId, BufferId)>,
     /// The denoiser's per-pixel variance, where set.
     pub variance: Option<BufferId>,
+    /// The temporal denoiser's position guide.
+    pub position: Option<BufferId>,
     pub output: BufferId,
-    /// `blend` for the denoiser; `exposure` and `gamma` for the tonemapper.
+    /// `blend` (and `temporal`, `alpha_min`) for the denoiser; `exposure`
+    /// and `gamma` for the tonemapper.
     pub settings: Vec<f32>,
+    /// The temporal denoiser's camera and history.
+    pub temporal: Option<Temporal>,
 }
 
 impl Stage {
     pub fn new(kind: StageKind) -> Stage {
-        Stage { kind, vars: BTreeMap::new() }
+        Stage { kind, vars: BTreeMap::new(), history: None }
     }
 
     /// How errors name stage `id` of this kind.
@@ -154,17 +234,40 @@ impl Stage {
         let bad = |problem: String| {
             PostProcessError::BadStage { stage: label.clone(), variable: name.into(), problem }.into()
         };
-        let Some(&(known, default)) = self.kind.variables().iter().find(|(n, _)| *n == name) else {
+        let Some(&(known, sort)) = self.kind.variables().iter().find(|(n, _)| *n == name) else {
             let names: Vec<_> = self.kind.variables().iter().map(|(n, _)| *n).collect();
             return Err(bad(format!("is not a variable of the {}; it has {}", self.kind.name(), names.join(", "))));
         };
-        match (default, value) {
-            (None, StageValue::Float(x)) => return Err(bad(format!("is a buffer, but was given the number {x}"))),
-            (Some(_), StageValue::Buffer(b)) => {
-                return Err(bad(format!("is a number, but was given buffer {}", b.0)));
+        let given = match value {
+            StageValue::Buffer(b) => format!("buffer {}", b.0),
+            StageValue::Float(x) => format!("the number {x}"),
+            StageValue::Vector(v) => format!("the vector {v}"),
+        };
+        match (sort, value) {
+            (Sort::Buffer, StageValue::Buffer(_)) => {}
+            (Sort::Number(_), StageValue::Float(x)) if !x.is_finite() => {
+                return Err(bad(format!("must be finite, not {x}")));
             }
-            (Some(_), StageValue::Float(x)) if !x.is_finite() => return Err(bad(format!("must be finite, not {x}"))),
+            (Sort::Vector, StageValue::Vector(v)) if !v.is_finite() => {
+                return Err(bad(format!("must be finite, not {v}")));
+            }
+            (Sort::Number(_), StageValue::Float(_)) | (Sort::Vector, StageValue::Vector(_)) => {}
+            (Sort::Buffer, _) => return Err(bad(format!("is a buffer, but was given {given}"))),
+            (Sort::Number(_), _) => return Err(bad(format!("is a number, but was given {given}"))),
+            (Sort::Vector, _) => return Err(bad(format!("is a vector, but was given {given}"))),
+        }
+        match (known, value) {
+            (TEMPORAL, StageValue::Float(x)) if x != 0.0 && x != 1.0 => {
+                return Err(bad(format!("is 1 (on) or 0 (off), not {x}")));
+            }
+            ("alpha_min", StageValue::Float(x)) if !(x > 0.0 && x <= 1.0) => {
+                return Err(bad(format!("is a blend weight in (0, 1], not {x}")));
+            }
             _ => {}
+        }
+        // Turning the temporal mode on or off starts it again.
+        if known == TEMPORAL && self.vars.get(TEMPORAL) != Some(&value) {
+            self.history = None;
         }
         self.vars.insert(known, value);
         Ok(())
@@ -185,6 +288,7 @@ impl Stage {
                 _ => {
                     let why = match name {
                         ALBEDO | NORMAL => "; the denoiser is guided by an albedo and a normal buffer",
+                        POSITION => "; the temporal denoiser reprojects each pixel by its world position",
                         _ => "",
                     };
                     return Err(bad(name, format!("is not set{why}")));
@@ -208,13 +312,16 @@ impl Stage {
             return Err(bad(INPUT, format!("a stage runs over at least 1x1 pixels, not {width}x{height}")));
         }
         let has_variance = self.vars.contains_key(VARIANCE);
-        let names: &[&'static str] = match self.kind {
-            StageKind::Denoiser if has_variance => &[INPUT, ALBEDO, NORMAL, VARIANCE, OUTPUT],
-            StageKind::Denoiser => &[INPUT, ALBEDO, NORMAL, OUTPUT],
-            StageKind::Tonemapper => &[INPUT, OUTPUT],
+        let temporal = self.kind == StageKind::Denoiser && self.setting(TEMPORAL, 0.0) == 1.0;
+        let mut names: Vec<&'static str> = match self.kind {
+            StageKind::Denoiser => vec![INPUT, ALBEDO, NORMAL],
+            StageKind::Tonemapper => vec![INPUT],
         };
+        names.extend(has_variance.then_some(VARIANCE));
+        names.extend(temporal.then_some(POSITION));
+        names.push(OUTPUT);
         let mut ids = Vec::new();
-        for &name in names {
+        for &name in &names {
             let (b, rec) = buffer(name)?;
             if (rec.width, rec.height * rec.depth) != (width, height) {
                 let (w, h) = (rec.width, rec.height * rec.depth);
@@ -233,10 +340,56 @@ impl Stage {
             );
             return Err(bad(OUTPUT, problem));
         }
-        let settings = self.kind.variables().iter().filter_map(|(n, d)| d.map(|d| self.setting(n, d))).collect();
+        let id_of = |name| names.iter().position(|n| *n == name).map(|i| ids[i]);
+        let settings = self
+            .kind
+            .variables()
+            .iter()
+            .filter_map(|(n, sort)| match sort {
+                Sort::Number(d) => Some(self.setting(n, *d)),
+                _ => None,
+            })
+            .collect();
+        let temporal = match temporal {
+            true => Some(self.temporal(width, height).map_err(|(variable, problem)| bad(variable, problem))?),
+            false => None,
+        };
         let guides = (self.kind == StageKind::Denoiser).then(|| (ids[1], ids[2]));
-        let variance = (self.kind == StageKind::Denoiser && has_variance).then(|| ids[3]);
-        Ok(Plan { kind: self.kind, width, height, input, guides, variance, output, settings })
+        let (variance, position) = (id_of(VARIANCE), id_of(POSITION));
+        Ok(Plan {
+            stage: id,
+            kind: self.kind,
+            width,
+            height,
+            input,
+            guides,
+            variance,
+            position,
+            output,
+            settings,
+            temporal,
+        })
+    }
+
+    /// The temporal denoiser's camera (every vector set) and its history
+    /// where it is of the run's size; else the variable at fault.
+    fn temporal(&self, width: u32, height: u32) -> std::result::Result<Temporal, (&'static str, String)> {
+        let mut v = [Vec3::ZERO; 4];
+        for (slot, name) in v.iter_mut().zip(CAMERA) {
+            match self.vars.get(name) {
+                Some(StageValue::Vector(x)) => *slot = *x,
+                _ => {
+                    let why = "; the temporal denoiser reprojects its history through the camera (`camera_eye`, `camera_u`, `camera_v`, `camera_w`)";
+                    return Err((name, format!("is not set{why}")));
+                }
+            }
+        }
+        let [eye, u, v, w] = v;
+        if u.cross(v).length_squared() == 0.0 || w.length_squared() == 0.0 {
+            return Err((CAMERA[1], format!("spans no picture: u {u}, v {v}, w {w}")));
+        }
+        let previous = self.history.clone().filter(|h| (h.width, h.height) == (width, height));
+        Ok(Temporal { camera: Pinhole { eye, u, v, w }, alpha_min: self.setting("alpha_min", 0.2), previous })
     }
 
     fn setting(&self, name: &str, default: f32) -> f32 {
@@ -247,19 +400,30 @@ impl Stage {
     }
 }
 
-/// A planned stage's images: the input and, for the denoiser, its guides
-/// and the variance where given; each the pixels on the host, or on the
-/// wgpu backend where they are (`gpu::Source`).
+/// A planned stage's images: the input and, for the denoiser, its guides,
+/// the variance and the position where given; each the pixels on the
+/// host, or on the wgpu backend where they are (`gpu::Source`).
 pub(crate) struct Pixels<T = Vec<Vec4>> {
     pub input: T,
     pub guides: Option<(T, T)>,
     pub variance: Option<T>,
+    pub position: Option<T>,
+}
+
+impl Pixels<BufferId> {
+    /// The buffers `plan` reads.
+    pub fn of(plan: &Plan) -> Pixels<BufferId> {
+        Pixels { input: plan.input, guides: plan.guides, variance: plan.variance, position: plan.position }
+    }
 }
 
 impl<T> Pixels<T> {
-    /// Every image: the input, the guides, the variance.
+    /// Every image: the input, the guides, the variance, the position.
     pub fn each(&self) -> impl Iterator<Item = &T> {
-        std::iter::once(&self.input).chain(self.guides.iter().flat_map(|(a, n)| [a, n])).chain(&self.variance)
+        std::iter::once(&self.input)
+            .chain(self.guides.iter().flat_map(|(a, n)| [a, n]))
+            .chain(&self.variance)
+            .chain(&self.position)
     }
 
     /// Each image through `f`, the first error stopping.
@@ -268,21 +432,32 @@ impl<T> Pixels<T> {
             Some((a, n)) => Some((f(a)?, f(n)?)),
             None => None,
         };
-        Ok(Pixels { input: f(self.input)?, guides, variance: self.variance.map(&mut f).transpose()? })
+        let input = f(self.input)?;
+        let variance = self.variance.map(&mut f).transpose()?;
+        Ok(Pixels { input, guides, variance, position: self.position.map(&mut f).transpose()? })
     }
 }
 
 impl Plan {
-    /// The stage's output, computed on the CPU.
-    pub fn run_cpu(&self, pixels: &Pixels) -> Vec<Vec4> {
+    /// The stage's output, computed on the CPU, and the temporal
+    /// denoiser's next history.
+    pub fn run_cpu(&self, pixels: &Pixels) -> (Vec<Vec4>, Option<History>) {
         let (w, h) = (self.width as usize, self.height as usize);
-        match (&self.kind, &pixels.guides) {
-            (StageKind::Denoiser, Some((albedo, normal))) => {
-                let variance = pixels.variance.as_deref();
-                let images = denoise::Guided { width: w, height: h, color: &pixels.input, albedo, normal, variance };
-                denoise::denoise(&images, self.settings[0])
-            }
-            _ => tonemap::tonemap(&pixels.input, self.settings[0], self.settings[1]),
-        }
+        let Some((albedo, normal)) = &pixels.guides else {
+            return (tonemap::tonemap(&pixels.input, self.settings[0], self.settings[1]), None);
+        };
+        let (Some(t), Some(position)) = (&self.temporal, &pixels.position) else {
+            let variance = pixels.variance.as_deref();
+            let images = denoise::Guided { width: w, height: h, color: &pixels.input, albedo, normal, variance };
+            return (denoise::denoise(&images, self.settings[0]), None);
+        };
+        let frame =
+            temporal::Frame { width: w, height: h, color: &pixels.input, albedo, normal, position, camera: t.camera };
+        let previous = t.previous.as_deref().map(|h| (&h.texels[..], &h.camera));
+        let acc = temporal::accumulate(&frame, previous, t.alpha_min);
+        let variance = Some(&acc.variance[..]);
+        let images = denoise::Guided { width: w, height: h, color: &acc.color, albedo, normal, variance };
+        let history = History { width: self.width, height: self.height, texels: acc.history, camera: t.camera };
+        (denoise::denoise(&images, self.settings[0]), Some(history))
     }
 }
