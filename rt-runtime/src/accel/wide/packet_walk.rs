@@ -62,8 +62,8 @@ pub(crate) fn walk_packet<F: FnMut(usize, u32, &Hits) -> f32>(
 /// then does the packet walk pay. Rays of several octants (ambient
 /// occlusion, diffuse bounces) have no frustum and enter boxes apart, so
 /// the packet's set-up and its per-ray box tests cost more than walking
-/// each ray alone (about 1,000 instructions a ray against 540 on the
-/// bunny's AO rays, callgrind).
+/// each ray alone (on the bunny's AO rays, 1,461 instructions a ray as
+/// packets against 579 alone, callgrind; BENCHMARKS.md).
 fn one_octant(rays: &[WalkRay]) -> bool {
     let signs = |r: &WalkRay| r.inv_dir.is_negative_bitmask();
     let first = signs(&rays[0]);
