@@ -57,6 +57,14 @@
 //! `RT_FUZZ_LANE` the differences of one launch index, `RT_FUZZ_SOURCE` runs
 //! an edited source on the GPU against the generated program.
 //!
+//! 5. The CPU backend runs the same programs through the real macros:
+//!    `build.rs` writes the fixed seed's programs as their lane-wise
+//!    variant ([`generate::lanes_variant`]: traces and early returns put
+//!    into their blocks, [`ast::Program::lanes_source`]: each input in a
+//!    buffer of one value per launch index), and `tests/fuzz_lanes.rs`
+//!    runs each one launch index at a time and lane-wise, comparing the
+//!    two exactly and both with the interpreter ([`interpreted`]).
+//!
 //! The interpreter itself is checked against rustc by [`native`] (an
 //! ignored test: it builds the generated programs natively and compares).
 //! Every bug the fuzzer found has a minimized program in the snapshot
@@ -219,6 +227,15 @@ fn lower(id: usize, program: ast::Program) -> Result<Prepared, Failure> {
         wgsl: String::new(),
     })?;
     Ok(Prepared { id, program, source, lowered, inputs: Vec::new(), expected: Vec::new() })
+}
+
+/// Program `id` of `seed` as given (the lane-wise variant,
+/// `generate::lanes_variant`), with the inputs of each launch index and
+/// the interpreter's outputs, not lowered (`lowered` is empty).
+pub fn interpreted(seed: u64, id: usize, program: ast::Program) -> Prepared {
+    let source = program.lanes_source();
+    let lowered = rt_compiler::Lowered::default();
+    interpret(seed, Prepared { id, program, source, lowered, inputs: Vec::new(), expected: Vec::new() })
 }
 
 /// Draws the inputs of each launch index and runs the interpreter.

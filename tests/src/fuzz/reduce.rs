@@ -115,7 +115,7 @@ impl Editor {
                 self.expr(value);
             }
             Stmt::Return(Some(e)) => self.expr(e),
-            Stmt::Break | Stmt::Continue | Stmt::Return(None) => {}
+            Stmt::Break | Stmt::Continue | Stmt::Return(None) | Stmt::Trace(_) => {}
         }
     }
 
@@ -261,7 +261,7 @@ fn renumber(b: &mut Block, removed: usize) {
                 expr(index, r);
                 expr(value, r);
             }
-            Stmt::Break | Stmt::Continue | Stmt::Return(None) => {}
+            Stmt::Break | Stmt::Continue | Stmt::Return(None) | Stmt::Trace(_) => {}
         }
     }
     for s in &mut b.stmts {

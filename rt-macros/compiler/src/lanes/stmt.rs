@@ -178,6 +178,11 @@ impl Writer {
     fn trace(&mut self, e: &syn::Expr) -> Result<Option<TokenStream>, Refusal> {
         let Some((c, payload)) = packet_payload(e, &self.varying) else { return Ok(None) };
         let (object, ray) = (&c.args[0], &c.args[1]);
+        // (Refused here, at the argument's own line: the tuple below has
+        // no span of the user's.)
+        if let Some(a) = [object, ray].into_iter().find(|a| returns(a)) {
+            return Err(Refusal::new(a.span(), "a `return` inside a value".into()));
+        }
         let both = self.lanes_of(&syn::parse_quote!((#object, #ray)))?;
         Ok(Some(quote! {
             {

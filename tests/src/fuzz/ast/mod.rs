@@ -319,6 +319,10 @@ pub enum Stmt {
     /// An expression statement (a helper call whose value is dropped).
     Expr(Expr),
     Return(Option<Expr>),
+    /// A trace, numbered within the program, of the lane-wise variant
+    /// (`generate::lanes`): it changes only the variant's own payload and
+    /// ray buffer, so the interpreter runs it as a no-op.
+    Trace(u32),
 }
 
 /// A helper's parameter: a value, or a `&mut` of a type.

@@ -4,6 +4,32 @@
 use super::*;
 use std::fmt::Write;
 
+/// The lane-wise variant's items (see [`Program::lanes_source`]).
+const LANES_ITEMS: &str = "
+#[rt_payload]
+pub struct FuzzHit {
+    pub acc: u32,
+}
+
+#[rt_function]
+pub fn fuzz_ray(lane: u32, acc: u32, k: u32) -> Ray {
+    let h = (lane * 2654435761u32) ^ (acc * 40503u32) ^ (k * 977u32);
+    let x = (h % 61u32) as f32 / 30.0 - 1.0;
+    let y = ((h / 61u32) % 59u32) as f32 / 29.0 - 1.0;
+    Ray::new(vec3(0.0, 0.0, 3.0), vec3(x, y, -1.5).normalize(), 0, 1e-3, 1e9)
+}
+
+#[rt_program(closest_hit)]
+pub fn fuzz_hit(prd: &mut FuzzHit) {
+    prd.acc = prd.acc * 31u32 + primitive_index() + 1u32 + (t_hit() * 64.0) as u32 * 4099u32;
+}
+
+#[rt_program(miss)]
+pub fn fuzz_miss(prd: &mut FuzzHit) {
+    prd.acc = prd.acc * 31u32 + 7u32;
+}
+";
+
 impl Program {
     /// Words of a value of type `t` in the runtime's packed layout.
     pub fn words(&self, t: &Ty) -> u32 {
@@ -17,6 +43,23 @@ impl Program {
 
     /// The program as a Rust source file.
     pub fn source(&self) -> String {
+        self.source_with(false)
+    }
+
+    /// The source of the lane-wise variant (`generate::lanes`), which the
+    /// CPU backend runs: each input read from a buffer of one value per
+    /// launch index (`#[var] fuzz_in_<name>: RwBuffer<T>`, a `bool` as a
+    /// `u32`), so that every launch index of one launch has inputs of its
+    /// own, as the wgpu harness gives them; and the items its traces use:
+    /// the payload `FuzzHit` (a hash of what its rays hit), `fuzz_ray`
+    /// (a ray from the launch index, the hash and the trace's number), a
+    /// closest-hit and a miss program, and the variables `fuzz_top` (the
+    /// scene) and `fuzz_rays` (each launch index's hash after each trace).
+    pub fn lanes_source(&self) -> String {
+        self.source_with(true)
+    }
+
+    fn source_with(&self, inputs_in_buffers: bool) -> String {
         let mut s = String::from("use rt_std::prelude::*;\n");
         s.push_str("\n#[rt_enum]\npub enum FuzzKind {\n    Alpha,\n    Beta = 5,\n    Gamma,\n}\n");
         s.push_str(
@@ -73,12 +116,34 @@ impl Program {
             }
             s.push_str("}\n");
         }
-        let mut params: Vec<String> =
-            self.inputs.iter().map(|(n, t)| format!("#[var] {n}: {}", t.rust(self))).collect();
+        let mut params: Vec<String> = Vec::new();
+        let mut reads = String::new();
+        if inputs_in_buffers {
+            s.push_str(LANES_ITEMS);
+            params.push("#[var] fuzz_top: Object".into());
+            params.push("#[var] mut fuzz_rays: RwBuffer<u32>".into());
+            reads.push_str("    let mut fuzz_prd = FuzzHit { acc: 0u32 };\n");
+        }
+        for (n, t) in &self.inputs {
+            if !inputs_in_buffers {
+                params.push(format!("#[var] {n}: {}", t.rust(self)));
+                continue;
+            }
+            let (elem, read) = match t {
+                Ty::S(Scalar::Bool) => ("u32".to_string(), " != 0"),
+                _ => (t.rust(self), ""),
+            };
+            params.push(format!("#[var] fuzz_in_{n}: RwBuffer<{elem}>"));
+            let _ = writeln!(reads, "    let {n} = fuzz_in_{n}[launch_index().x]{read};");
+        }
         params.extend(self.outputs.iter().map(|(n, t)| format!("#[var] mut {n}: RwBuffer<{}>", t.rust(self))));
         let _ =
             write!(s, "\n#[rt_program(ray_generation)]\npub fn {}(\n    {},\n) ", self.name, params.join(",\n    "));
-        self.block(&mut s, &self.body, 0);
+        let mut body = String::new();
+        self.block(&mut body, &self.body, 0);
+        s.push_str("{\n");
+        s.push_str(&reads);
+        s.push_str(&body[2..]);
         s.push('\n');
         s
     }
@@ -164,6 +229,13 @@ impl Program {
                     Some(e) => writeln!(s, "return {};", self.expr(e)),
                     None => writeln!(s, "return;"),
                 };
+            }
+            Stmt::Trace(k) => {
+                // (The variant's items: see `source_with`.)
+                let _ =
+                    writeln!(s, "rt_trace(fuzz_top, fuzz_ray(launch_index().x, fuzz_prd.acc, {k}u32), &mut fuzz_prd);");
+                indent(s, depth);
+                let _ = writeln!(s, "fuzz_rays[launch_index().x] = fuzz_prd.acc;");
             }
         }
     }

@@ -50,7 +50,7 @@ fn stmt(s: &mut Stmt, from: &str, by_ref: bool) {
             expr(value, from, by_ref);
         }
         Stmt::Expr(e) | Stmt::Return(Some(e)) => expr(e, from, by_ref),
-        Stmt::Break | Stmt::Continue | Stmt::Return(None) => {}
+        Stmt::Break | Stmt::Continue | Stmt::Return(None) | Stmt::Trace(_) => {}
     }
 }
 

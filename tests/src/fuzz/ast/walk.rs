@@ -122,7 +122,7 @@ impl Block {
                     index.visit(f);
                     value.visit(f);
                 }
-                Stmt::Break | Stmt::Continue | Stmt::Return(None) => {}
+                Stmt::Break | Stmt::Continue | Stmt::Return(None) | Stmt::Trace(_) => {}
             }
         }
         if let Some(t) = &self.tail {

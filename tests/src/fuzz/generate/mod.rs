@@ -41,11 +41,13 @@ use super::ast::*;
 
 mod exprs;
 mod items;
+mod lanes;
 mod operands;
 mod scalars;
 mod stmts;
 mod vectors;
 
+pub use lanes::lanes_variant;
 use vectors::*;
 
 /// `launch_index().x as i32`.

@@ -173,6 +173,7 @@ impl Interp<'_> {
                 let v = e.as_ref().map(|e| self.expr(e)).transpose()?;
                 return Ok(Flow::Return(v));
             }
+            Stmt::Trace(_) => {}
         }
         Ok(Flow::Normal)
     }

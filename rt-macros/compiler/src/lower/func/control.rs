@@ -380,7 +380,11 @@ impl FnLowerer<'_> {
             Some(v) => {
                 let val = self.expr(v, Some(&ret))?;
                 let val = self.coerce(val, &ret, v.span())?;
-                let line = if matches!(ret, Ty::Unit) {
+                // (A unit value, `return ()` or a call of a function
+                // without a result, has no WGSL expression to discard.)
+                let line = if matches!(ret, Ty::Unit) && val.code.trim().is_empty() {
+                    "return;".to_string()
+                } else if matches!(ret, Ty::Unit) {
                     format!("_ = {};\nreturn;", val.code)
                 } else {
                     format!("return {};", val.code)
