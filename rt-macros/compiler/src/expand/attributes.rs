@@ -137,6 +137,19 @@ pub fn rt_struct(attr: TokenStream, item: TokenStream, role: StructRole) -> Toke
         Ok(w) => w,
         Err(e) => return with_errors(e.into(), item),
     };
+    if !s.generics.params.is_empty() {
+        // Refused here, once: the struct as written, and its link, so that
+        // programs that name it say nothing more.
+        let e = Error::unsupported(
+            s.generics.span(),
+            "a generic struct",
+            "declare one struct per field type (`struct PairF32 { a: f32, b: f32 }`); write the generic code as \
+             generic #[rt_function]s or #[rt_impl] methods",
+        );
+        let errs = Errors::from(e).to_compile_errors();
+        let export = export_macro(&s.ident, quote!(struct data { #item }));
+        return quote!(#errs #item #export);
+    }
     // A near miss of a built-in is reported beside the struct's expansion,
     // which goes on (its programs compile as they are).
     let near = if role == StructRole::Attributes { near_triangle_builtins(&s).to_compile_errors() } else { quote!() };
