@@ -41,7 +41,7 @@ mod references;
 use division::RtDivide;
 pub use indexing::{RtIndex, RtIndexMut};
 pub use methods::{Gpu, GpuMut};
-pub use panics::{RtUnwrap, expect, unwrap};
+pub use panics::{RtUnwrap, debug_assert_failed, expect, unwrap};
 
 use glam::{IVec2, IVec3, IVec4, Mat2, Mat3, Mat4, Quat, UVec2, UVec3, UVec4, Vec2, Vec3, Vec4};
 

@@ -1,4 +1,4 @@
-// A generic method: WGSL functions are monomorphic.
+// A generic method's const parameter is an array length: `usize`.
 use rt_std::prelude::*;
 
 #[rt_struct(impl)]
@@ -8,8 +8,8 @@ pub struct Probe {
 
 #[rt_impl]
 impl Probe {
-    pub fn scaled<T: Into<f32>>(&self, k: T) -> f32 {
-        self.x * k.into()
+    pub fn scaled<const K: u32>(&self) -> f32 {
+        self.x * K as f32
     }
 }
 

@@ -339,6 +339,21 @@ impl VisitMut for Rewriter {
     }
 
     fn visit_macro_mut(&mut self, m: &mut syn::Macro) {
+        if m.path.is_ident("debug_assert") {
+            // `debug_assert!(cond)`: rt-std's, which raises where Rust's
+            // would panic (`arith::debug_assert_failed`), its condition
+            // rewritten.
+            let parser = syn::punctuated::Punctuated::<Expr, syn::Token![,]>::parse_terminated;
+            if let Ok(mut args) = syn::parse::Parser::parse2(parser, m.tokens.clone()) {
+                if let Some(cond) = args.first_mut() {
+                    self.visit_expr_mut(cond);
+                }
+                let span = m.path.span();
+                m.path = syn::parse_quote_spanned!(span=> ::rt_std::__rt_debug_assert);
+                m.tokens = quote::ToTokens::to_token_stream(&args);
+            }
+            return;
+        }
         // `rt_printf!("...", args)`: the arguments are expressions.
         if m.path.segments.last().is_none_or(|s| s.ident != "rt_printf") {
             return;

@@ -292,6 +292,7 @@ pub fn of_impl(i: &syn::ItemImpl) -> Vec<Dep> {
                 locals.visit_block(&f.block);
                 d.locals = locals.locals;
                 d.locals.extend(f.sig.generics.type_params().map(|t| t.ident.to_string()));
+                d.locals.extend(f.sig.generics.const_params().map(|c| c.ident.to_string()));
                 d.visit_signature(&f.sig);
                 d.visit_block(&f.block);
             }

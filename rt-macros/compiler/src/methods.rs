@@ -186,9 +186,9 @@ fn check_operator_impl(i: &syn::ItemImpl, o: &crate::operators::Operator, errors
 
 fn check_method(f: &syn::ImplItemFn, errors: &mut Errors) {
     let sig = &f.sig;
-    if !sig.generics.params.is_empty() {
-        errors.push(Error::unsupported(sig.generics.span(), "a generic method", "write one method per type"));
-    }
+    // A generic method is instantiated per call, as a generic helper is
+    // (`lower/generics.rs`).
+    crate::lower::generics::check_params(&sig.generics, errors);
     if let Some(a) = &sig.asyncness {
         errors.push(Error::unsupported(a.span(), "an `async` method", "ray programs are synchronous"));
     }

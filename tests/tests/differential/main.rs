@@ -526,6 +526,7 @@ mod bool_vectors;
 mod control_flow;
 mod edge_cases;
 mod enums;
+mod generic_methods;
 mod generics;
 mod glam_added;
 mod glam_arrays;

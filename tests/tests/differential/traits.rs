@@ -75,3 +75,59 @@ differential! {
         }
     }
 }
+
+/// An enum with an inherent block and an impl of the trait.
+#[rt_enum(impl, impl Reflect)]
+pub enum Finish {
+    Chalk,
+    Satin,
+    Mirror,
+}
+
+#[rt_impl]
+impl Finish {
+    pub const COUNT: u32 = 3;
+
+    /// The finish a number picks, cycling.
+    pub fn from_index(i: u32) -> Finish {
+        match i % Self::COUNT {
+            0 => Finish::Chalk,
+            1 => Finish::Satin,
+            _ => Finish::Mirror,
+        }
+    }
+
+    pub fn sharpness(&self) -> f32 {
+        match self {
+            Finish::Chalk => 0.0,
+            Finish::Satin => 0.5,
+            Finish::Mirror => 1.0,
+        }
+    }
+
+    /// The next finish, in place.
+    pub fn advance(&mut self) {
+        *self = Finish::from_index(*self as u32 + 1);
+    }
+}
+
+#[rt_impl]
+impl Reflect for Finish {
+    const GAIN: f32 = 0.5;
+    fn albedo(&self) -> f32 {
+        if *self == Finish::Mirror { 0.9 } else { 0.2 + self.sharpness() }
+    }
+}
+
+differential! {
+    /// An enum's methods and its trait impl, through a generic too.
+    fn enum_trait_dispatch {
+        enum_models(a: f32, c: f32) -> [f32; 6] over pairs(&spread(7, 0.0, 6.0), &spread(6, -2.0, 2.0)), tol CHAINED => {
+            let mut f = Finish::from_index(a as u32);
+            let before = f.eval(c);
+            f.advance();
+            let m = Matte { a: a * 0.1 };
+            [before, f.eval(c), shade(f, c), blend_two(f, m, 0.5), f.sharpness() + Finish::GAIN, Finish::from_index(2).albedo()]
+        }
+    }
+}

@@ -137,6 +137,19 @@ pub fn rt_struct(attr: TokenStream, item: TokenStream, role: StructRole) -> Toke
         Ok(w) => w,
         Err(e) => return with_errors(e.into(), item),
     };
+    if !s.generics.params.is_empty() {
+        // Refused here, once: the struct as written, and its link, so that
+        // programs that name it say nothing more.
+        let e = Error::unsupported(
+            s.generics.span(),
+            "a generic struct",
+            "declare one struct per field type (`struct PairF32 { a: f32, b: f32 }`); write the generic code as \
+             generic #[rt_function]s or #[rt_impl] methods",
+        );
+        let errs = Errors::from(e).to_compile_errors();
+        let export = export_macro(&s.ident, quote!(struct data { #item }));
+        return quote!(#errs #item #export);
+    }
     // A near miss of a built-in is reported beside the struct's expansion,
     // which goes on (its programs compile as they are).
     let near = if role == StructRole::Attributes { near_triangle_builtins(&s).to_compile_errors() } else { quote!() };
@@ -144,28 +157,8 @@ pub fn rt_struct(attr: TokenStream, item: TokenStream, role: StructRole) -> Toke
     let data_impl = rt_data_impl(&s, role);
     let role_kw = format_ident!("{}", role.keyword());
     let mut deps = deps::of_struct(&s);
-    let mut impl_checks = TokenStream::new();
-    if let Some(span) = with_impl {
-        // The impl's link: its macro where the struct is (see `methods`),
-        // at `impl`, so a missing block is reported there.
-        let mac = syn::Ident::new(&crate::methods::macro_ident(&s.ident).to_string(), span);
-        deps.push(deps::Dep { path: syn::Path::from(mac), kind: deps::DepKind::Type });
-        let name = &s.ident;
-        impl_checks = quote_spanned! {span=>
-            impl ::rt_std::data::__DeclaresRtImpl for #name {}
-            const _: () = {
-                #[allow(dead_code)]
-                fn __rt_impl_block() { ::rt_std::data::__require_impl_block::<#name>(); }
-            };
-        };
-    }
-    for t in &trait_impls {
-        // Each trait impl's link (see `traits`, `operators`), at the
-        // trait's name.
-        let span = t.segments.last().map(|s| s.ident.span()).unwrap_or_else(|| t.span());
-        let mac = crate::operators::link_ident(&syn::Ident::new(&s.ident.to_string(), span), t);
-        deps.push(deps::Dep { path: syn::Path::from(mac), kind: deps::DepKind::Type });
-    }
+    let (links, impl_checks) = impl_links(&s.ident, with_impl, &trait_impls);
+    deps.extend(links);
     let body = start_chain(quote!(struct #role_kw { #item }), deps::paths(&deps));
     quote!(#near #decorated #data_impl #impl_checks #body)
 }
@@ -316,9 +309,10 @@ pub fn rt_enum(attr: TokenStream, item: TokenStream) -> TokenStream {
             );
         }
     };
-    if !attr.is_empty() {
-        return with_errors(Error::new(attr.span(), "`#[rt_enum]` takes no arguments").into(), item);
-    }
+    let (with_impl, trait_impls) = match struct_args(attr) {
+        Ok(w) => w,
+        Err(e) => return with_errors(e.into(), item),
+    };
     // Exported even when the shape is wrong: programs that name the enum
     // then stay silent (the lowering sees it failed) rather than add
     // "cannot find macro" to the one error.
@@ -331,7 +325,42 @@ pub fn rt_enum(attr: TokenStream, item: TokenStream) -> TokenStream {
         }
     };
     let rust = crate::enums::rust_side(&e, &def);
-    quote!(#rust #export)
+    let (deps, impl_checks) = impl_links(&e.ident, with_impl, &trait_impls);
+    if deps.is_empty() {
+        return quote!(#rust #export);
+    }
+    // With `#[rt_impl]` blocks, a chain like a struct's that carries them.
+    let body = start_chain(quote!(enum { #item }), deps::paths(&deps));
+    quote!(#rust #impl_checks #body)
+}
+
+/// The links of a type's `#[rt_impl]` blocks, as its attribute lists them
+/// (`impl` at `with_impl`, `impl Trait` for each of `trait_impls`), and
+/// the checks that the inherent block and its declaration go together.
+fn impl_links(name: &syn::Ident, with_impl: Option<Span>, trait_impls: &[syn::Path]) -> (Vec<deps::Dep>, TokenStream) {
+    let mut deps = Vec::new();
+    let mut impl_checks = TokenStream::new();
+    if let Some(span) = with_impl {
+        // The impl's link: its macro where the type is (see `methods`),
+        // at `impl`, so a missing block is reported there.
+        let mac = syn::Ident::new(&crate::methods::macro_ident(name).to_string(), span);
+        deps.push(deps::Dep { path: syn::Path::from(mac), kind: deps::DepKind::Type });
+        impl_checks = quote_spanned! {span=>
+            impl ::rt_std::data::__DeclaresRtImpl for #name {}
+            const _: () = {
+                #[allow(dead_code)]
+                fn __rt_impl_block() { ::rt_std::data::__require_impl_block::<#name>(); }
+            };
+        };
+    }
+    for t in trait_impls {
+        // Each trait impl's link (see `traits`, `operators`), at the
+        // trait's name.
+        let span = t.segments.last().map(|s| s.ident.span()).unwrap_or_else(|| t.span());
+        let mac = crate::operators::link_ident(&syn::Ident::new(&name.to_string(), span), t);
+        deps.push(deps::Dep { path: syn::Path::from(mac), kind: deps::DepKind::Type });
+    }
+    (deps, impl_checks)
 }
 
 /// `#[rt_const]`.

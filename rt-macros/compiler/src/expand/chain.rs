@@ -145,6 +145,14 @@ fn finish(entry: &TokenStream, done: TokenStream) -> TokenStream {
                 Err(e) => return Errors::from(e).to_compile_errors(),
             };
             let lowered = lower::lower_own(Entry::Program(kind, &f), &deps);
+            if lowered.is_ok() && asserts(&f, &deps) {
+                // The module with the checks and the one without, chosen
+                // by the declaring crate's `cfg(debug_assertions)`.
+                let off = lower::lower_own_without_debug_assertions(Entry::Program(kind, &f), &deps);
+                let on = program_output(kind, &f, lowered);
+                let off = program_output(kind, &f, off);
+                return quote!(if ::core::cfg!(debug_assertions) { #on } else { #off });
+            }
             program_output(kind, &f, lowered)
         }
         "impl" => {
@@ -172,6 +180,10 @@ fn finish(entry: &TokenStream, done: TokenStream) -> TokenStream {
                 Err(e) => e.to_compile_error(),
             }
         }
+        "enum" => match it.next() {
+            Some(TokenTree::Group(g)) => finish_enum(g.stream(), &deps, done),
+            _ => quote!(compile_error!("malformed rt entry");),
+        },
         "function" | "constant" | "struct" => {
             let role = if kw == "struct" {
                 match it.next() {
@@ -214,6 +226,50 @@ fn finish(entry: &TokenStream, done: TokenStream) -> TokenStream {
         }
         _ => quote!(compile_error!("malformed rt entry");),
     }
+}
+
+/// The end of an enum's chain, which carries its `#[rt_impl]` blocks:
+/// they are checked here, as a struct's are where its chain ends.
+fn finish_enum(item_tokens: TokenStream, deps: &[Item], done: TokenStream) -> TokenStream {
+    let e: syn::ItemEnum = match syn::parse2(item_tokens.clone()) {
+        Ok(e) => e,
+        Err(e) => return e.to_compile_error(),
+    };
+    let mut deps = deps.to_vec();
+    deps.retain(|d| e.ident != d.name());
+    deps.push(Item::Enum(e.clone()));
+    let errors = match lower::lower_own(Entry::Enum(&e), &deps) {
+        Ok(_) => TokenStream::new(),
+        Err(err) => err.to_compile_errors(),
+    };
+    let export = export_macro(&e.ident, quote!(enum { #item_tokens } #done));
+    quote!(#errors #export)
+}
+
+/// Whether a program or one of its dependencies has a `debug_assert!`.
+fn asserts(f: &syn::ItemFn, deps: &[Item]) -> bool {
+    fn walk(ts: TokenStream) -> bool {
+        let mut it = ts.into_iter().peekable();
+        while let Some(t) = it.next() {
+            match t {
+                TokenTree::Ident(i) if i == "debug_assert" => {
+                    if matches!(it.peek(), Some(TokenTree::Punct(p)) if p.as_char() == '!') {
+                        return true;
+                    }
+                }
+                TokenTree::Group(g) if walk(g.stream()) => return true,
+                _ => {}
+            }
+        }
+        false
+    }
+    walk(quote!(#f))
+        || deps.iter().any(|d| match d {
+            Item::Function(f) => walk(quote!(#f)),
+            Item::Impl(i) => walk(quote!(#i)),
+            Item::Trait(t) => walk(quote!(#t)),
+            Item::Struct(..) | Item::Const(_) | Item::Enum(_) => false,
+        })
 }
 
 /// `macro_rules! __rt_item_NAME` handing out `defs`, re-exported as `NAME`.

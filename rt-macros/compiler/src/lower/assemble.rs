@@ -77,6 +77,7 @@ pub(super) fn assemble(
         Entry::Program(_, f) | Entry::Helper(f) => f.sig.ident.span(),
         Entry::Struct(s) => s.ident.span(),
         Entry::Const(c) => c.ident.span(),
+        Entry::Enum(e) => e.ident.span(),
     };
     crate::validate::validate(&out.wgsl, &map, fallback)?;
     if let Some(r) = &out.resumable {

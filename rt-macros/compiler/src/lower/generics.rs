@@ -103,10 +103,16 @@ impl Instance {
         format!("{}<{}>", self.generic, args.join(", "))
     }
 
-    /// The instance's WGSL name: `rtf_lerp__Vec3`, `rtf_sum__4`.
+    /// The instance's WGSL name: `rtf_lerp__Vec3`, `rtf_sum__4`; of a
+    /// generic method `Disc::scaled` (its key, `methods::member_key`),
+    /// `rtm_Disc__scaled__f32`.
     pub fn wgsl_name(&self) -> String {
         let args: Vec<String> = self.args.iter().map(GenericArg::mangle).collect();
-        format!("rtf_{}__{}", self.generic, args.join("__"))
+        match self.generic.split_once("::") {
+            // The method's own name (`rtm_<Type>__<name>`), then the arguments.
+            Some((ty, name)) => format!("rtm_{ty}__{name}__{}", args.join("__")),
+            None => format!("rtf_{}__{}", self.generic, args.join("__")),
+        }
     }
 
     /// What an error inside the instance adds: which instance it is.
@@ -155,7 +161,15 @@ pub fn is_generic(f: &syn::ItemFn) -> bool {
 /// per instance, where a caller gives the types).
 pub fn check_alone(f: &syn::ItemFn) -> Result<(), Errors> {
     let mut errors = Errors::default();
-    for p in &f.sig.generics.params {
+    check_params(&f.sig.generics, &mut errors);
+    if errors.is_empty() { Ok(()) } else { Err(errors) }
+}
+
+/// Refuses the generic parameters WGSL has no meaning for: lifetimes and
+/// const parameters that are not array lengths (of a generic helper or
+/// method).
+pub fn check_params(generics: &syn::Generics, errors: &mut Errors) {
+    for p in &generics.params {
         match p {
             syn::GenericParam::Lifetime(l) => {
                 errors.push(Error::unsupported(l.span(), "a lifetime parameter", "leave lifetimes out"))
@@ -173,7 +187,6 @@ pub fn check_alone(f: &syn::ItemFn) -> Result<(), Errors> {
             syn::GenericParam::Type(_) => {}
         }
     }
-    if errors.is_empty() { Ok(()) } else { Err(errors) }
 }
 
 /// The instance's function: `g` with its generics removed and each

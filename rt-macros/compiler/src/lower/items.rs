@@ -27,6 +27,12 @@ pub(super) fn reachable(entry: &Entry<'_>, deps: &[Item]) -> Vec<Item> {
             names
         }
         Entry::Const(c) => names_of(crate::deps::of_const(c)),
+        // An enum's chain carries its impls (see `methods`).
+        Entry::Enum(e) => {
+            let mut names = impls_of(deps, &e.ident.to_string());
+            names.push(e.ident.to_string());
+            names
+        }
     };
     let mut seen: HashSet<String> = HashSet::new();
     let mut out = Vec::new();
@@ -35,8 +41,10 @@ pub(super) fn reachable(entry: &Entry<'_>, deps: &[Item]) -> Vec<Item> {
             continue;
         }
         if let Some(item) = deps.iter().find(|d| d.name() == n) {
-            if let Item::Struct(s, _) = item {
-                todo.extend(impls_of(deps, &s.ident.to_string()));
+            match item {
+                Item::Struct(s, _) => todo.extend(impls_of(deps, &s.ident.to_string())),
+                Item::Enum(e) => todo.extend(impls_of(deps, &e.ident.to_string())),
+                _ => {}
             }
             todo.extend(names_of(match item {
                 Item::Struct(s, _) => crate::deps::of_struct(s),
@@ -455,19 +463,32 @@ pub(super) fn by_kind<'a>(
                 k.consts.push(constant(c));
             }
         }
-        Entry::Program(..) => {}
+        Entry::Program(..) | Entry::Enum(_) => {}
     }
+    impls_by_kind(&mut k, deps, impls);
     for inst in instances {
         if let Some(g) = k.generics.get(&inst.generic) {
             k.fns.push(FnDef {
                 key: inst.key(),
                 wgsl_name: inst.wgsl_name(),
-                has_receiver: false,
+                has_receiver: takes_self(g),
                 f: super::generics::instantiate(g, &inst.args),
                 instance: Some(inst.describe(g)),
             });
         }
     }
+    k
+}
+
+/// Whether a method (its receiver made a parameter, `methods::lowerable`)
+/// takes `self`.
+fn takes_self(f: &syn::ItemFn) -> bool {
+    matches!(f.sig.inputs.first(), Some(syn::FnArg::Typed(pt)) if matches!(&*pt.pat, syn::Pat::Ident(i) if i.ident == "self"))
+}
+
+/// The impls' methods, associated functions and constants into `k`; a
+/// generic method among the generics, by its key (`Type::name`).
+fn impls_by_kind(k: &mut ByKind<'_>, deps: &[Item], mut impls: Vec<&syn::ItemImpl>) {
     let traits: Vec<&syn::ItemTrait> = deps
         .iter()
         .filter_map(|d| match d {
@@ -488,7 +509,11 @@ pub(super) fn by_kind<'a>(
             k.fns.iter().map(|f| f.key.clone()).chain(k.consts.iter().map(|c| c.key.clone())).collect();
         let fns = fns.into_iter().filter(|m| !taken.contains(&m.key));
         let consts = consts.into_iter().filter(|c| !taken.contains(&c.key));
-        k.fns.extend(fns.map(|m| FnDef {
+        let (generic, fns): (Vec<_>, Vec<_>) = fns.partition(|m| super::generics::is_generic(&m.f));
+        for m in generic {
+            k.generics.insert(m.key, Rc::new(m.f));
+        }
+        k.fns.extend(fns.into_iter().map(|m| FnDef {
             key: m.key,
             wgsl_name: m.wgsl_name,
             has_receiver: m.has_receiver,
@@ -502,7 +527,6 @@ pub(super) fn by_kind<'a>(
         }));
         k.failed.extend(failed);
     }
-    k
 }
 
 /// Orders helpers callees-first; a cycle is recursion, which WGSL lacks (the

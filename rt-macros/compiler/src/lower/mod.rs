@@ -90,6 +90,9 @@ pub struct ModuleCtx {
     pub generics: HashMap<String, Rc<syn::ItemFn>>,
     /// The instances calls asked for (see `generics`), in order.
     pub wanted: RefCell<Vec<generics::Instance>>,
+    /// Whether `debug_assert!`s are lowered to their checks, or dropped
+    /// (see [`lower_own_without_debug_assertions`]).
+    pub debug_assertions: bool,
     printf: RefCell<BTreeMap<u32, (String, Vec<String>)>>,
 }
 
@@ -212,22 +215,44 @@ pub enum Entry<'a> {
     Helper(&'a syn::ItemFn),
     Struct(&'a syn::ItemStruct),
     Const(&'a syn::ItemConst),
+    /// An `#[rt_enum]` with `#[rt_impl]` blocks: its chain checks them.
+    Enum(&'a syn::ItemEnum),
 }
 
 /// Lowers `entry` with its dependencies `deps` into a validated module.
 /// Errors in the dependencies are reported too (see [`lower_own`]).
 pub fn lower(entry: Entry<'_>, deps: &[Item]) -> std::result::Result<Lowered, Errors> {
-    lower_impl(entry, deps, true)
+    lower_impl(entry, deps, true, true)
+}
+
+/// Like [`lower`], with every `debug_assert!` dropped: the module of a
+/// build without debug assertions.
+pub fn lower_without_debug_assertions(entry: Entry<'_>, deps: &[Item]) -> std::result::Result<Lowered, Errors> {
+    lower_impl(entry, deps, true, false)
 }
 
 /// Like [`lower`], but errors inside dependencies are silent: in the macro
 /// chain each dependency's own macro reports them, so a helper's mistake is
 /// shown once, not again at every program that calls it.
 pub fn lower_own(entry: Entry<'_>, deps: &[Item]) -> std::result::Result<Lowered, Errors> {
-    lower_impl(entry, deps, false)
+    lower_impl(entry, deps, false, true)
 }
 
-fn lower_impl(entry: Entry<'_>, deps: &[Item], report_deps: bool) -> std::result::Result<Lowered, Errors> {
+/// Like [`lower_own`], with every `debug_assert!` dropped. A program
+/// whose code has one is lowered both ways, and its descriptor chooses by
+/// the `cfg(debug_assertions)` of the crate that declares it (see
+/// `expand/chain.rs`): the two modules differ in more than the checks (a
+/// site's offset), so neither is derived from the other.
+pub fn lower_own_without_debug_assertions(entry: Entry<'_>, deps: &[Item]) -> std::result::Result<Lowered, Errors> {
+    lower_impl(entry, deps, false, false)
+}
+
+fn lower_impl(
+    entry: Entry<'_>,
+    deps: &[Item],
+    report_deps: bool,
+    debug_assertions: bool,
+) -> std::result::Result<Lowered, Errors> {
     // The lowering reads functions with their sugar rewritten, and the
     // functions declared in their bodies as helpers beside them (`sugar`).
     let mut taken: HashSet<String> = deps.iter().map(Item::name).collect();
@@ -264,7 +289,7 @@ fn lower_impl(entry: Entry<'_>, deps: &[Item], report_deps: bool) -> std::result
     // among its helpers (see `generics`).
     let mut instances: Vec<generics::Instance> = Vec::new();
     loop {
-        let more = match lower_pass(&entry, &deps, &instances, report_deps) {
+        let more = match lower_pass(&entry, &deps, &instances, report_deps, debug_assertions) {
             Pass::Done(r) => return *r,
             Pass::More(more) => more,
         };
@@ -274,6 +299,7 @@ fn lower_impl(entry: Entry<'_>, deps: &[Item], report_deps: bool) -> std::result
                 Entry::Program(_, f) | Entry::Helper(f) => (f.sig.ident.to_string(), f.sig.ident.span()),
                 Entry::Struct(s) => (s.ident.to_string(), s.ident.span()),
                 Entry::Const(c) => (c.ident.to_string(), c.ident.span()),
+                Entry::Enum(e) => (e.ident.to_string(), e.ident.span()),
             };
             let mut last = more.last().map(generics::Instance::key).unwrap_or_default();
             if last.len() > 60 {
@@ -300,7 +326,13 @@ enum Pass {
     More(Vec<generics::Instance>),
 }
 
-fn lower_pass(entry: &Entry<'_>, deps: &[Item], instances: &[generics::Instance], report_deps: bool) -> Pass {
+fn lower_pass(
+    entry: &Entry<'_>,
+    deps: &[Item],
+    instances: &[generics::Instance],
+    report_deps: bool,
+    debug_assertions: bool,
+) -> Pass {
     let mut unit = unit::Unit::new(entry);
     let items::ByKind {
         structs: structs_raw,
@@ -332,6 +364,7 @@ fn lower_pass(entry: &Entry<'_>, deps: &[Item], instances: &[generics::Instance]
         printf: RefCell::new(BTreeMap::new()),
         generics: generic_fns,
         wanted: RefCell::new(Vec::new()),
+        debug_assertions,
     };
     for (name, d) in &m.structs {
         m.global_names.insert(wgsl_ident(name));

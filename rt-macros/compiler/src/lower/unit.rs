@@ -64,6 +64,7 @@ impl<'e, 'a> Unit<'e, 'a> {
             Entry::Helper(f) => f.sig.ident == name,
             Entry::Struct(s) => s.ident == name || name.starts_with(&format!("{}::", s.ident)),
             Entry::Const(c) => c.ident == name,
+            Entry::Enum(e) => e.ident == name || name.starts_with(&format!("{}::", e.ident)),
             Entry::Program(..) => false,
         }
     }
@@ -306,6 +307,7 @@ impl<'e, 'a> Unit<'e, 'a> {
                 Entry::Helper(f) => f.sig.ident.to_string(),
                 Entry::Struct(s) => s.ident.to_string(),
                 Entry::Const(c) => c.ident.to_string(),
+                Entry::Enum(e) => e.ident.to_string(),
                 Entry::Program(..) => unreachable!(),
             };
             if let Entry::Helper(f) = self.entry

@@ -6,19 +6,28 @@
 
 use super::*;
 
+/// The `#[rt_impl]` method a method call names.
+enum UserMethod {
+    Plain(HelperSig),
+    /// A generic method and its key (`Type::name`).
+    Generic(std::rc::Rc<syn::ItemFn>, String),
+}
+
 impl FnLowerer<'_> {
-    pub(super) fn method_call(&mut self, m: &syn::ExprMethodCall, _want: Option<&Ty>) -> Result<Val> {
-        if let Some(t) = &m.turbofish {
-            return Err(Error::unsupported(
-                t.span(),
-                "generic arguments on a method",
-                "methods are not generic in ray programs; write a generic #[rt_function]",
-            ));
-        }
+    pub(super) fn method_call(&mut self, m: &syn::ExprMethodCall, want: Option<&Ty>) -> Result<Val> {
         let name = m.method.to_string();
         let args: Vec<&Expr> = m.args.iter().collect();
-        if let Some(sig) = self.user_method(&m.receiver, &name)? {
-            return self.user_method_call(&sig, &m.receiver, &args, m.span());
+        match self.user_method(&m.receiver, &name)? {
+            Some(UserMethod::Generic(g, key)) => return self.generic_method_call(&g, &key, m, want),
+            Some(UserMethod::Plain(_)) | None if m.turbofish.is_some() => {
+                return Err(Error::unsupported(
+                    m.turbofish.span(),
+                    "generic arguments on a method that is not generic",
+                    "only generic #[rt_function]s and generic #[rt_impl] methods take them",
+                ));
+            }
+            Some(UserMethod::Plain(sig)) => return self.user_method_call(&sig, &m.receiver, &args, m.span()),
+            None => {}
         }
         if let Some(v) = self.in_place_method(m, &name)? {
             return Ok(v);
@@ -31,10 +40,10 @@ impl FnLowerer<'_> {
     /// The `#[rt_impl]` method `recv.name(..)` calls, if the receiver is a
     /// user type with one of that name. The receiver's type is probed
     /// first only where some method has that name.
-    fn user_method(&mut self, recv: &Expr, name: &str) -> Result<Option<HelperSig>> {
+    fn user_method(&mut self, recv: &Expr, name: &str) -> Result<Option<UserMethod>> {
         let suffix = format!("::{name}");
         let named = |k: &String| k.ends_with(&suffix);
-        if !self.m.helpers.keys().any(named) && !self.m.failed.iter().any(named) {
+        if !self.m.helpers.keys().any(named) && !self.m.failed.iter().any(named) && !self.m.generics.keys().any(named) {
             return Ok(None);
         }
         let ty = match self.peek_type(recv)? {
@@ -50,14 +59,17 @@ impl FnLowerer<'_> {
         if self.m.failed.contains(&key) {
             return Err(Error::silent(recv.span()));
         }
-        Ok(self.m.helpers.get(&key).cloned())
+        if let Some(g) = self.m.generics.get(&key) {
+            return Ok(Some(UserMethod::Generic(g.clone(), key)));
+        }
+        Ok(self.m.helpers.get(&key).cloned().map(UserMethod::Plain))
     }
 
     /// `recv.name(args)` of an `#[rt_impl]` method: a helper call with the
     /// receiver first, borrowed as the method takes it (`&mut self` a
     /// pointer to the place, or to a temporary holding a value that is not
     /// one).
-    fn user_method_call(&mut self, sig: &HelperSig, recv: &Expr, args: &[&Expr], span: Span) -> Result<Val> {
+    pub(super) fn user_method_call(&mut self, sig: &HelperSig, recv: &Expr, args: &[&Expr], span: Span) -> Result<Val> {
         if !sig.has_receiver {
             let (ty, name) = sig.name.split_once("::").unwrap_or(("", &sig.name));
             return Err(Error::new(
@@ -287,11 +299,13 @@ impl FnLowerer<'_> {
         let name = segs.last().unwrap().clone();
         let span = c.span();
         let of_type = segs.len() >= 2 && segs[segs.len() - 2].starts_with(|c: char| c.is_ascii_uppercase());
-        if !of_type
-            && self.lookup(&name).is_none()
-            && let Some(g) = self.m.generics.get(&name).cloned()
+        // A generic helper, or a generic method by path
+        // (`Disc::scaled::<f32>(&d, 2.0)`).
+        let key = if of_type { crate::methods::member_key(&segs[segs.len() - 2], &name) } else { name.clone() };
+        if (of_type || self.lookup(&name).is_none())
+            && let Some(g) = self.m.generics.get(&key).cloned()
         {
-            return self.generic_call(&g, path, &args, want, span);
+            return self.generic_call(&g, &key, path, &args, want, span);
         }
         if let Some(seg) = path.segments.iter().find(|s| !s.arguments.is_none()) {
             return Err(Error::unsupported(

@@ -193,7 +193,12 @@ impl FnLowerer<'_> {
             if owner == "TransformKind" {
                 return transform_kind(last, p.span());
             }
-            if let Some(e) = self.m.enums.get(owner) {
+            // `Finish::COUNT`: an enum's associated constant.
+            let key = crate::methods::member_key(owner, last);
+            if let Some(e) = self.m.enums.get(owner)
+                && !self.m.consts.contains_key(&key)
+                && !self.m.failed.contains(&key)
+            {
                 return match e.variant(last) {
                     Some(d) => Ok(Val::new(format!("{d}u"), Ty::Enum(e.clone()))),
                     None => {
@@ -203,7 +208,6 @@ impl FnLowerer<'_> {
                 };
             }
             // `Sphere::UNIT`: an `#[rt_impl]`'s associated constant.
-            let key = crate::methods::member_key(owner, last);
             if let Some(c) = self.m.consts.get(&key) {
                 return Ok(Val::new(c.wgsl_name.clone(), c.ty.clone()));
             }

@@ -8,15 +8,65 @@ use crate::lower::generics::{self, GenericArg, Instance, ParamKind};
 use std::collections::HashMap;
 
 impl FnLowerer<'_> {
-    /// `name(args)` or `name::<..>(args)`, `g` the generic `name` names.
+    /// `name(args)` or `name::<..>(args)`, `g` the generic `name` names;
+    /// `key` is what the unit keys the generic by (`name`, or `Type::name`
+    /// for a generic method called by path).
     pub(super) fn generic_call(
         &mut self,
         g: &syn::ItemFn,
+        key: &str,
         path: &syn::Path,
         args: &[&Expr],
         want: Option<&Ty>,
         span: Span,
     ) -> Result<Val> {
+        let inst = self.instance(g, key, path, args, want, span)?;
+        let key = inst.key();
+        self.method_calls.push((key.clone(), span));
+        if let Some(sig) = self.m.helpers.get(&key) {
+            let sig = sig.clone();
+            return self.helper_call(&sig, args, span);
+        }
+        self.pending_instance(g, inst, args, span)
+    }
+
+    /// `recv.name(args)` or `recv.name::<..>(args)` of a generic
+    /// `#[rt_impl]` method `g`, keyed `key` (`Type::name`): the instance
+    /// called as any method, its receiver borrowed as it takes it.
+    pub(super) fn generic_method_call(
+        &mut self,
+        g: &syn::ItemFn,
+        key: &str,
+        m: &syn::ExprMethodCall,
+        want: Option<&Ty>,
+    ) -> Result<Val> {
+        let mut seg = syn::PathSegment::from(m.method.clone());
+        if let Some(t) = &m.turbofish {
+            seg.arguments = syn::PathArguments::AngleBracketed(t.clone());
+        }
+        let path = syn::Path::from(seg);
+        let args: Vec<&Expr> = m.args.iter().collect();
+        let mut all: Vec<&Expr> = vec![&m.receiver];
+        all.extend_from_slice(&args);
+        let inst = self.instance(g, key, &path, &all, want, m.span())?;
+        if let Some(sig) = self.m.helpers.get(&inst.key()) {
+            let sig = sig.clone();
+            return self.user_method_call(&sig, &m.receiver, &args, m.span());
+        }
+        self.method_calls.push((inst.key(), m.span()));
+        self.pending_instance(g, inst, &all, m.span())
+    }
+
+    /// The instance of `g` (keyed `generic`) a call with `args` names.
+    fn instance(
+        &mut self,
+        g: &syn::ItemFn,
+        generic: &str,
+        path: &syn::Path,
+        args: &[&Expr],
+        want: Option<&Ty>,
+        span: Span,
+    ) -> Result<Instance> {
         let name = g.sig.ident.to_string();
         let inputs: Vec<&syn::Type> = g
             .sig
@@ -30,9 +80,10 @@ impl FnLowerer<'_> {
         if args.len() != inputs.len() {
             return Err(Error::new(span, format!("`{name}` takes {} argument(s), found {}", inputs.len(), args.len())));
         }
-        let inst = Instance { generic: name.clone(), args: self.generic_args(g, path, &inputs, args, want, span)? };
+        let inst =
+            Instance { generic: generic.to_string(), args: self.generic_args(g, path, &inputs, args, want, span)? };
         let key = inst.key();
-        if self.fn_name != key && self.fn_name.strip_prefix(name.as_str()).is_some_and(|r| r.starts_with('<')) {
+        if self.fn_name != key && self.fn_name.strip_prefix(generic).is_some_and(|r| r.starts_with('<')) {
             // Each instance would call a new one, without end.
             return Err(Error::unsupported(
                 span,
@@ -40,17 +91,17 @@ impl FnLowerer<'_> {
                 "WGSL has no recursion; rewrite it as a loop",
             ));
         }
-        self.method_calls.push((key.clone(), span));
-        if let Some(sig) = self.m.helpers.get(&key) {
-            let sig = sig.clone();
-            return self.helper_call(&sig, args, span);
-        }
-        if self.m.failed.contains(&key) {
+        Ok(inst)
+    }
+
+    /// A call of an instance the unit does not have in this pass: wanted,
+    /// and typed from its signature so the rest of the body is lowered
+    /// (and its own instances found).
+    fn pending_instance(&mut self, g: &syn::ItemFn, inst: Instance, args: &[&Expr], span: Span) -> Result<Val> {
+        if self.m.failed.contains(&inst.key()) {
             // The instance's signature failed: its errors say why.
             return Err(Error::silent(span));
         }
-        // Not in this pass: wanted, and typed from its signature so the
-        // rest of the body is lowered (and its own instances found).
         for a in args {
             let a = match a {
                 Expr::Reference(r) => &*r.expr,
@@ -58,13 +109,13 @@ impl FnLowerer<'_> {
             };
             self.peek_type(a)?;
         }
+        let f = generics::instantiate(g, &inst.args);
         {
             let mut wanted = self.m.wanted.borrow_mut();
             if !wanted.contains(&inst) {
-                wanted.push(inst.clone());
+                wanted.push(inst);
             }
         }
-        let f = generics::instantiate(g, &inst.args);
         let ret = match &f.sig.output {
             syn::ReturnType::Default => Ty::Unit,
             syn::ReturnType::Type(_, t) => self.m.resolve_type(t).map_err(|e| Error::silent(e.span))?,

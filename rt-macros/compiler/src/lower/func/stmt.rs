@@ -178,6 +178,9 @@ impl FnLowerer<'_> {
 
     pub(super) fn macro_stmt(&mut self, mac: &syn::Macro) -> Result<()> {
         let name = mac.path.segments.last().map(|s| s.ident.to_string()).unwrap_or_default();
+        if name == "debug_assert" && mac.path.is_ident("debug_assert") {
+            return self.debug_assert(mac);
+        }
         if name != "rt_printf" {
             return Err(unsupported_macro(mac, &name));
         }
@@ -245,10 +248,53 @@ impl FnLowerer<'_> {
     }
 }
 
+impl FnLowerer<'_> {
+    /// `debug_assert!(cond)`, `debug_assert!(cond, "why")`: with debug
+    /// assertions on, a false `cond` raises `EXCEPTION_PANIC` (as the CPU
+    /// copy's `rt_std::__rt_debug_assert!` does) and the program goes on;
+    /// off, nothing, `cond` not evaluated (it is checked all the same, in
+    /// the lowering with them on).
+    fn debug_assert(&mut self, mac: &syn::Macro) -> Result<()> {
+        let args = mac.parse_body_with(syn::punctuated::Punctuated::<Expr, syn::Token![,]>::parse_terminated)?;
+        let cond = match (args.len(), args.iter().nth(1)) {
+            (1, _) | (2, Some(Expr::Lit(syn::ExprLit { lit: syn::Lit::Str(_), .. }))) => &args[0],
+            (0, _) => return Err(Error::new(mac.span(), "`debug_assert!` needs a condition")),
+            (_, Some(msg)) => {
+                return Err(Error::unsupported(
+                    msg.span(),
+                    "a formatted `debug_assert!` message",
+                    "write the message as one string literal: `debug_assert!(cond, \"why\")` (the GPU has no \
+                     strings; the exception's record says where)",
+                ));
+            }
+            _ => unreachable!("two or more arguments have a second"),
+        };
+        if let Some(kind) = self.kind()
+            && kinds::intrinsic("rt_throw").is_some_and(|i| !i.callers.allows(kind))
+        {
+            return Err(Error::new(
+                mac.path.span(),
+                format!(
+                    "`debug_assert!` raises an exception where its condition is false, which {} cannot: \
+                     check the condition and handle it in the program",
+                    kind.a_program()
+                ),
+            ));
+        }
+        if !self.m.debug_assertions {
+            return Ok(());
+        }
+        let span = mac.path.span();
+        let check: Expr = syn::parse_quote_spanned!(span=> if !(#cond) { rt_throw(EXCEPTION_PANIC); });
+        self.expr(&check, None)?;
+        Ok(())
+    }
+}
+
 fn unsupported_macro(mac: &syn::Macro, name: &str) -> Error {
     let instead = match name {
         "println" | "print" | "eprintln" | "eprint" | "dbg" => "use `rt_printf!`",
-        "panic" | "assert" | "assert_eq" | "assert_ne" | "debug_assert" | "unreachable" | "todo" | "unimplemented" => {
+        "panic" | "assert" | "assert_eq" | "assert_ne" | "unreachable" | "todo" | "unimplemented" => {
             "raise an exception with `rt_throw(code)`"
         }
         "vec" => "use a fixed-size array",
