@@ -304,20 +304,7 @@ impl Pipelines {
                 usage: wgpu::BufferUsages::UNIFORM,
             });
             let buffers = [&uniform, &color, &albedo, &normal, src, dst, &variance];
-            let entries: Vec<_> = buffers
-                .iter()
-                .enumerate()
-                .map(|(i, b)| wgpu::BindGroupEntry { binding: i as u32, resource: b.as_entire_binding() })
-                .collect();
-            let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: None,
-                layout: &self.layout,
-                entries: &entries,
-            });
-            let mut cpass = encoder.begin_compute_pass(&Default::default());
-            cpass.set_pipeline(pipeline);
-            cpass.set_bind_group(0, &group, &[]);
-            cpass.dispatch_workgroups(plan.width.div_ceil(8), plan.height.div_ceil(8), 1);
+            dispatch(device, encoder, (&self.layout, pipeline), &buffers, plan);
         };
         match plan.kind {
             StageKind::Denoiser => {
@@ -372,21 +359,7 @@ impl Pipelines {
         });
         let [color, albedo, normal, position] = frame;
         let buffers = [&uniform, color, albedo, normal, position, &previous, &next];
-        let entries: Vec<_> = buffers
-            .iter()
-            .enumerate()
-            .map(|(i, b)| wgpu::BindGroupEntry { binding: i as u32, resource: b.as_entire_binding() })
-            .collect();
-        let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: None,
-            layout: &self.temporal_layout,
-            entries: &entries,
-        });
-        let mut cpass = encoder.begin_compute_pass(&Default::default());
-        cpass.set_pipeline(&self.temporal);
-        cpass.set_bind_group(0, &group, &[]);
-        cpass.dispatch_workgroups(plan.width.div_ceil(8), plan.height.div_ceil(8), 1);
-        drop(cpass);
+        dispatch(device, encoder, (&self.temporal_layout, &self.temporal), &buffers, plan);
         let (acc, acc_variance) =
             (storage("rt stage: accumulated", n * 16), storage("rt stage: temporal variance", n * 16));
         let history = storage("rt stage: history", texels * 16);
@@ -395,6 +368,27 @@ impl Pipelines {
         encoder.copy_buffer_to_buffer(&next, (texels + n) * 16, &acc_variance, 0, n * 16);
         (acc, acc_variance, history)
     }
+}
+
+/// One pass of `pipeline` over `plan`'s pixels (8 x 8 a workgroup), its
+/// `buffers` bound in order from binding 0 of `layout`.
+fn dispatch(
+    device: &wgpu::Device,
+    encoder: &mut wgpu::CommandEncoder,
+    (layout, pipeline): (&wgpu::BindGroupLayout, &wgpu::ComputePipeline),
+    buffers: &[&wgpu::Buffer],
+    plan: &Plan,
+) {
+    let entries: Vec<_> = buffers
+        .iter()
+        .enumerate()
+        .map(|(i, b)| wgpu::BindGroupEntry { binding: i as u32, resource: b.as_entire_binding() })
+        .collect();
+    let group = device.create_bind_group(&wgpu::BindGroupDescriptor { label: None, layout, entries: &entries });
+    let mut cpass = encoder.begin_compute_pass(&Default::default());
+    cpass.set_pipeline(pipeline);
+    cpass.set_bind_group(0, &group, &[]);
+    cpass.dispatch_workgroups(plan.width.div_ceil(8), plan.height.div_ceil(8), 1);
 }
 
 /// The little-endian bytes of `pixels`.

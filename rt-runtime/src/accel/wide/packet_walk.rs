@@ -64,6 +64,7 @@ pub(crate) fn walk_packet<F: FnMut(usize, u32, &Hits) -> f32>(
 /// the packet's set-up and its per-ray box tests cost more than walking
 /// each ray alone (on the bunny's AO rays, 1,461 instructions a ray as
 /// packets against 579 alone, callgrind; BENCHMARKS.md).
+#[cfg(target_arch = "x86_64")]
 fn one_octant(rays: &[WalkRay]) -> bool {
     let signs = |r: &WalkRay| r.inv_dir.is_negative_bitmask();
     let first = signs(&rays[0]);
