@@ -193,6 +193,24 @@ fn lanes_and_scalar_agree_exactly() {
     assert!(rays > 13 * 7 / 2);
 }
 
+/// Launches wide enough that a band of rows is cut along its columns into
+/// several chunks (a launch of few rows spreads over the cores that way),
+/// whose reports come back out of launch-index order until the launch
+/// sorts them; the second's bands are of two rows, in 8x2 blocks.
+#[test]
+fn wide_launches_cut_into_chunks_agree_in_index_order() {
+    for size in [(700, 9), (20_000, 2)] {
+        let scalar = run(CpuExecution::Scalar, false, size);
+        let lanes = run(CpuExecution::Lanes, false, size);
+        assert!(lanes.1.len() > 20 && !lanes.2.is_empty(), "exceptions all along, and prints ({size:?})");
+        assert!(lanes.1.windows(2).all(|w| (w[0].0.y, w[0].0.x) <= (w[1].0.y, w[1].0.x)), "{size:?}");
+        assert_eq!(scalar.1, lanes.1, "exceptions differ ({size:?})");
+        assert_eq!(scalar.2, lanes.2, "prints differ ({size:?})");
+        assert_eq!(scalar.3, lanes.3, "ray counts differ ({size:?})");
+        assert!(scalar.0 == lanes.0, "outputs differ ({size:?})");
+    }
+}
+
 #[test]
 fn cpu_execution_names_each_program_and_why() {
     let mut ctx = Context::new();

@@ -2,8 +2,9 @@
 //! generation program's lane-wise form (`rt_std::cpu::lanes`), a 4 x 4
 //! square of a band of four rows ([`Band`]), so that its camera rays make
 //! a packet coherent in both directions (on the bunny, 4x4 blocks of 16
-//! cost 7% fewer instructions a pixel than rows of 8, callgrind). A band's
-//! exceptions and prints are put back in launch-index order after it.
+//! cost 7% fewer instructions a pixel than rows of 8, callgrind). The
+//! launch's exceptions and prints are put back in launch-index order at
+//! its end ([`in_index_order`]).
 //!
 //! Each launch index of the block has its own execution context, which
 //! rt-std switches between with one pointer as the program runs a lane's
@@ -32,7 +33,8 @@ const NONE_LOADED: usize = usize::MAX;
 const SIDE: u32 = 4;
 const _: () = assert!((SIDE * SIDE) as usize == LANES);
 
-/// `SIDE` rows of a tile (fewer at its end), run lane-wise block by block.
+/// Up to `SIDE` rows of a tile (fewer at its end) over a run of its
+/// columns, run lane-wise block by block: a chunk of a lane-wise launch.
 pub(crate) struct Band {
     /// The band's first launch index.
     origin: UVec2,
@@ -41,30 +43,38 @@ pub(crate) struct Band {
 }
 
 impl Band {
-    /// The tile's bands.
-    pub(crate) fn count(tile: &Tile) -> u64 {
-        u64::from(tile.size.y.div_ceil(SIDE))
+    /// The tile cut into bands of `SIDE` rows, each cut along its columns
+    /// into runs of about `indices` launch indices (whole blocks), so that
+    /// a launch of few rows (a 1D launch) still spreads over all cores.
+    pub(crate) fn cut(tile: &Tile, indices: u64) -> Vec<Band> {
+        let mut bands = Vec::new();
+        for y in (0..tile.size.y).step_by(SIDE as usize) {
+            let rows = SIDE.min(tile.size.y - y);
+            let side = (LANES as u32 / rows).max(1);
+            let columns = ((indices / u64::from(rows)) as u32 / side).max(1) * side;
+            for x in (0..tile.size.x).step_by(columns as usize) {
+                let origin = tile.origin + UVec2::new(x, y);
+                bands.push(Band { origin, width: columns.min(tile.size.x - x), rows });
+            }
+        }
+        bands
     }
+}
 
-    /// Launch indices in a whole band of the tile.
-    pub(crate) fn indices(tile: &Tile) -> u64 {
-        u64::from(tile.size.x) * u64::from(SIDE)
-    }
-
-    /// The tile's band `b` (below [`Band::count`]).
-    pub(crate) fn of(tile: &Tile, b: u64) -> Band {
-        let y = b as u32 * SIDE;
-        Band { origin: tile.origin + UVec2::new(0, y), width: tile.size.x, rows: SIDE.min(tile.size.y - y) }
-    }
+/// A lane-wise launch's exceptions and prints put in launch-index order,
+/// as a run one index at a time gives them. (Stable sorts: an index's own
+/// exceptions and prints keep their order.)
+pub(crate) fn in_index_order(report: &mut LaunchReport) {
+    report.exceptions.sort_by_key(|e| (e.launch_index.y, e.launch_index.x));
+    report.prints.sort_by_key(|(index, _)| (index.y, index.x));
 }
 
 impl Lane<'_> {
     /// Runs `band` block by block through the ray generation program's
     /// lane-wise `entry` (until `stop`), its exceptions and prints into
-    /// `report` in launch-index order, as a run one index at a time gives
-    /// them.
+    /// `report` block by block (the launch puts them in launch-index order
+    /// at its end: [`in_index_order`]).
     pub(crate) fn run_band(&self, entry: LanesEntry, band: &Band, report: &mut LaunchReport, stop: &AtomicBool) {
-        let (exceptions, prints) = (report.exceptions.len(), report.prints.len());
         let side = (LANES as u32 / band.rows).max(1);
         let mut x = 0;
         while x < band.width && !stop.load(Ordering::Relaxed) {
@@ -80,9 +90,6 @@ impl Lane<'_> {
             self.run_block(entry, &indices[..n], report);
             x += w;
         }
-        // (Stable sorts: an index's own exceptions and prints keep their order.)
-        report.exceptions[exceptions..].sort_by_key(|e| (e.launch_index.y, e.launch_index.x));
-        report.prints[prints..].sort_by_key(|(index, _)| (index.y, index.x));
     }
 
     /// Runs `indices` (at most `LANES`) through the ray generation

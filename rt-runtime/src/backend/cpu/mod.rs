@@ -130,16 +130,13 @@ fn run(launch: &Launch) -> Result<LaunchReport> {
     // spreads over all cores too); reports are merged in index order.
     let total = tile.count();
     let chunk = (total / (rayon::current_num_threads() as u64 * 8)).clamp(64, 16384);
-    // Lane-wise, chunks are whole bands of rows, cut into square blocks
+    // Lane-wise, chunks are bands of rows cut into square blocks
     // (`block::Band`).
-    let (chunk, chunks) = match lanes {
-        Some(_) => {
-            let bands = Band::count(&tile);
-            let per = (chunk / Band::indices(&tile).max(1)).max(1);
-            (per, bands.div_ceil(per))
-        }
-        None => (chunk, total.div_ceil(chunk)),
+    let bands = match lanes {
+        Some(_) => Band::cut(&tile, chunk),
+        None => Vec::new(),
     };
+    let chunks = if lanes.is_some() { bands.len() as u64 } else { total.div_ceil(chunk) };
     // A panic stops its chunk, and the others at their next index.
     let stop = AtomicBool::new(false);
     let chunks: Vec<std::result::Result<LaunchReport, RtError>> = (0..chunks)
@@ -155,13 +152,7 @@ fn run(launch: &Launch) -> Result<LaunchReport> {
                     // the index it was running (`run_index` sets it first).
                     let run = panics::catching(|| {
                         if let Some(entry) = lanes {
-                            let bands = (c * chunk)..((c + 1) * chunk).min(Band::count(&tile));
-                            for band in bands.map(|b| Band::of(&tile, b)) {
-                                if stop.load(Ordering::Relaxed) {
-                                    break;
-                                }
-                                lane.run_band(entry, &band, &mut report, &stop);
-                            }
+                            lane.run_band(entry, &bands[c as usize], &mut report, &stop);
                             return;
                         }
                         let end = ((c + 1) * chunk).min(total);
@@ -189,6 +180,9 @@ fn run(launch: &Launch) -> Result<LaunchReport> {
         report.exceptions.extend(r.exceptions);
         report.prints.extend(r.prints);
         report.rays += r.rays;
+    }
+    if lanes.is_some() {
+        block::in_index_order(&mut report);
     }
     report.timings = super::Timings {
         build: Default::default(),
