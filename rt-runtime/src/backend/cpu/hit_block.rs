@@ -15,9 +15,6 @@ use rt_std::cpu::{AnyAttributes, ExecutionContext};
 use rt_std::program::CpuLanes;
 use std::any::Any;
 
-/// Each lane's program and its call's context (`None`: nothing to run).
-type Calls<'a, 's> = [Option<(&'a Program<'a>, ExecutionContext<'s>)>; LANES];
-
 impl<'a> Lane<'a> {
     /// Hands the searches of `lanes` (`searches[k]` is lane `lanes[k]`'s)
     /// to their programs: see the module's doc.
@@ -33,29 +30,36 @@ impl<'a> Lane<'a> {
         time: f32,
     ) {
         let (depth, outer_time) = self.enter_trace(time);
-        let mut calls: Calls<'a, '_> = Default::default();
+        // Each lane's program and its call's context, built in place.
+        let mut programs: [Option<&'a Program<'a>>; LANES] = [None; LANES];
+        let mut contexts: [ExecutionContext<'_>; LANES] = [self.base; LANES];
         let mut attributes: [Option<Box<dyn AnyAttributes>>; LANES] = Default::default();
         for (s, &i) in searches.iter_mut().zip(lanes) {
             let Some(s) = s.as_mut() else { continue };
             // The context is the lane's (its launch index).
             self.enter_block_lane(i);
             attributes[i] = s.attributes.take();
-            calls[i] = self.handed_to(s, &rays[i], flags, ray_mask, &mut attributes[i]);
+            if let Some((program, ctx)) = self.handed_to(s, &rays[i], flags, ray_mask, &mut attributes[i]) {
+                programs[i] = Some(program);
+                contexts[i] = ctx;
+            }
         }
         // (Only a lane-wise launch traces packets, so a program's lane-wise
         // form is what the context asks for here.)
         for first in 0..LANES {
-            let Some((program, _)) = calls[first] else { continue };
-            let group: Mask = std::array::from_fn(|l| calls[l].is_some_and(|(p, _)| std::ptr::eq(p, program)));
+            let Some(program) = programs[first] else { continue };
+            let group: Mask = std::array::from_fn(|l| programs[l].is_some_and(|p| std::ptr::eq(p, program)));
+            for (l, _) in group.iter().enumerate().filter(|(_, g)| **g) {
+                programs[l] = None;
+            }
             match program.desc.cpu_lanes {
                 CpuLanes::Lanes(entry) => {
-                    self.run_hit_block(entry, program, &group, &mut calls, &mut attributes, payloads)
+                    self.run_hit_block(entry, program, &group, &mut contexts, &mut attributes, payloads)
                 }
                 CpuLanes::Scalar(_) => {
                     for l in (0..LANES).filter(|&l| group[l]) {
-                        let Some((_, mut ctx)) = calls[l].take() else { continue };
                         self.enter_block_lane(l);
-                        self.invoke(program, &mut ctx, payloads[l].as_deref_mut(), attributes[l].as_mut());
+                        self.invoke(program, &mut contexts[l], payloads[l].as_deref_mut(), attributes[l].as_mut());
                     }
                 }
             }
@@ -67,29 +71,26 @@ impl<'a> Lane<'a> {
     }
 
     /// Runs `program`'s lane-wise `entry` over the lanes of `group`, each
-    /// with its call's context, payload and attributes; each lane's
-    /// exception is kept as `invoke` keeps one.
+    /// with its call's context (in `contexts`), payload and attributes;
+    /// each lane's exception is kept as `invoke` keeps one.
     fn run_hit_block(
         &self,
         entry: LanesEntry,
         program: &Program<'_>,
         group: &Mask,
-        calls: &mut Calls<'a, '_>,
+        contexts: &mut [ExecutionContext<'_>; LANES],
         attributes: &mut [Option<Box<dyn AnyAttributes>>; LANES],
         payloads: &mut [Option<&mut dyn Any>; LANES],
     ) {
-        let mut contexts: [ExecutionContext<'_>; LANES] = [self.base; LANES];
         let mut args = LaneArgs::default();
         let lanes = payloads.iter_mut().zip(attributes.iter_mut());
         for (l, (payload, attrs)) in lanes.enumerate().filter(|(l, _)| group[*l]) {
-            let Some((_, ctx)) = calls[l].take() else { continue };
-            contexts[l] = ctx;
             args.payloads[l] = payload.as_deref_mut();
             args.attributes[l] = attrs.as_mut().map(|a| a.as_any_mut());
         }
         self.store_block_lane();
         let outer = self.program.replace(Some(program.desc));
-        in_block(&mut contexts, || entry(group, &mut args, &program.vars));
+        in_block(contexts, || entry(group, &mut args, &program.vars));
         self.program.set(outer);
         self.store_block_lane();
         for (l, ctx) in contexts.iter().enumerate().filter(|(l, _)| group[*l]) {
