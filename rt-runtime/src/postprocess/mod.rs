@@ -312,7 +312,7 @@ impl Stage {
             return Err(bad(INPUT, format!("a stage runs over at least 1x1 pixels, not {width}x{height}")));
         }
         let has_variance = self.vars.contains_key(VARIANCE);
-        let temporal = self.kind == StageKind::Denoiser && self.setting(TEMPORAL, 0.0) == 1.0;
+        let temporal = self.kind == StageKind::Denoiser && self.setting(TEMPORAL) == 1.0;
         let mut names: Vec<&'static str> = match self.kind {
             StageKind::Denoiser => vec![INPUT, ALBEDO, NORMAL],
             StageKind::Tonemapper => vec![INPUT],
@@ -345,10 +345,8 @@ impl Stage {
             .kind
             .variables()
             .iter()
-            .filter_map(|(n, sort)| match sort {
-                Sort::Number(d) => Some(self.setting(n, *d)),
-                _ => None,
-            })
+            .filter(|(_, sort)| matches!(sort, Sort::Number(_)))
+            .map(|(n, _)| self.setting(n))
             .collect();
         let temporal = match temporal {
             true => Some(self.temporal(width, height).map_err(|(variable, problem)| bad(variable, problem))?),
@@ -389,13 +387,23 @@ impl Stage {
             return Err((CAMERA[1], format!("spans no picture: u {u}, v {v}, w {w}")));
         }
         let previous = self.history.clone().filter(|h| (h.width, h.height) == (width, height));
-        Ok(Temporal { camera: Pinhole { eye, u, v, w }, alpha_min: self.setting("alpha_min", 0.2), previous })
+        Ok(Temporal { camera: Pinhole { eye, u, v, w }, alpha_min: self.setting("alpha_min"), previous })
     }
 
-    fn setting(&self, name: &str, default: f32) -> f32 {
+    /// Number `name` as set, else its default (the kind's
+    /// [`StageKind::variables`]; 0 for a name that is not a number).
+    fn setting(&self, name: &str) -> f32 {
         match self.vars.get(name) {
             Some(StageValue::Float(x)) => *x,
-            _ => default,
+            _ => self
+                .kind
+                .variables()
+                .iter()
+                .find_map(|(n, sort)| match sort {
+                    Sort::Number(d) if *n == name => Some(*d),
+                    _ => None,
+                })
+                .unwrap_or(0.0),
         }
     }
 }

@@ -50,7 +50,7 @@ impl Band {
         let mut bands = Vec::new();
         for y in (0..tile.size.y).step_by(SIDE as usize) {
             let rows = SIDE.min(tile.size.y - y);
-            let side = (LANES as u32 / rows).max(1);
+            let side = block_width(rows);
             let columns = ((indices / u64::from(rows)) as u32 / side).max(1) * side;
             for x in (0..tile.size.x).step_by(columns as usize) {
                 let origin = tile.origin + UVec2::new(x, y);
@@ -59,6 +59,12 @@ impl Band {
         }
         bands
     }
+}
+
+/// The width of a band's blocks of `rows` rows: as many columns as
+/// `LANES` fill.
+fn block_width(rows: u32) -> u32 {
+    (LANES as u32 / rows).max(1)
 }
 
 /// A lane-wise launch's exceptions and prints put in launch-index order,
@@ -75,7 +81,7 @@ impl Lane<'_> {
     /// `report` block by block (the launch puts them in launch-index order
     /// at its end: [`in_index_order`]).
     pub(crate) fn run_band(&self, entry: LanesEntry, band: &Band, report: &mut LaunchReport, stop: &AtomicBool) {
-        let side = (LANES as u32 / band.rows).max(1);
+        let side = block_width(band.rows);
         let mut x = 0;
         while x < band.width && !stop.load(Ordering::Relaxed) {
             let w = side.min(band.width - x);

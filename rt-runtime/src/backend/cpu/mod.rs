@@ -132,11 +132,14 @@ fn run(launch: &Launch) -> Result<LaunchReport> {
     let chunk = (total / (rayon::current_num_threads() as u64 * 8)).clamp(64, 16384);
     // Lane-wise, chunks are bands of rows cut into square blocks
     // (`block::Band`).
-    let bands = match lanes {
-        Some(_) => Band::cut(&tile, chunk),
-        None => Vec::new(),
+    let (bands, chunks) = match lanes {
+        Some(_) => {
+            let bands = Band::cut(&tile, chunk);
+            let n = bands.len() as u64;
+            (bands, n)
+        }
+        None => (Vec::new(), total.div_ceil(chunk)),
     };
-    let chunks = if lanes.is_some() { bands.len() as u64 } else { total.div_ceil(chunk) };
     // A panic stops its chunk, and the others at their next index.
     let stop = AtomicBool::new(false);
     let chunks: Vec<std::result::Result<LaunchReport, RtError>> = (0..chunks)
