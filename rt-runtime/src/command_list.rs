@@ -29,7 +29,9 @@
 //! those buffers are not read back (the device holds them, newer than
 //! the host, as it holds device-local ones, and
 //! [`Context::read_buffer`] copies one when asked), while the stages'
-//! outputs come back with the launch's other outputs, in its one read.
+//! outputs come back with the launch's other outputs, in its one read;
+//! a temporal denoiser's history is read and written in the same
+//! submission and stays on the device, frame after frame.
 //! A run of stages with no launch before it (at the list's start) is one
 //! submission of its own ([`Context::stage_submissions`]). A launch that
 //! logs exceptions or prints reads its log in one more

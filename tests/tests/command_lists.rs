@@ -381,9 +381,10 @@ fn a_stage_failing_as_the_list_runs_leaves_the_stages_before_it_done() {
 }
 
 /// A temporal denoiser after a list's launch (on wgpu riding in the
-/// launch's submission, its history coming back with the outputs) keeps
-/// the history and gives the pictures that running it alone after each
-/// launch does, frame after frame.
+/// launch's submission, its history read and written there and left on
+/// the device: the list reads back the denoised picture and the log,
+/// nothing of the history) keeps the history and gives the pictures that
+/// running it alone after each launch does, frame after frame.
 #[test]
 fn a_temporal_denoiser_in_a_list_keeps_its_history_as_one_run_alone_does() {
     let run = |on: On, listed: bool| {
@@ -413,7 +414,18 @@ fn a_temporal_denoiser_in_a_list_keeps_its_history_as_one_run_alone_does() {
         for f in 0..3u32 {
             ctx.set_var(Scope::Context, "frame", f).unwrap();
             if listed {
+                let (up, down) = (ctx.stage_upload_bytes(), ctx.stage_read_back_bytes());
                 list.execute(&mut ctx).unwrap();
+                if ctx.backend() == Backend::Wgpu {
+                    let image = (W * H) as u64 * 16;
+                    let read = ctx.last_read_back_bytes();
+                    // The launch's one writable buffer the stage does not
+                    // touch (the fifth, `display`) and the denoised picture.
+                    let log = read.checked_sub(2 * image);
+                    assert!(matches!(log, Some(16 | 32)), "{}: {read} bytes read back", on.name());
+                    assert_eq!(ctx.stage_read_back_bytes() - down, image, "{}", on.name());
+                    assert_eq!(ctx.stage_upload_bytes() - up, image, "{}: the position guide alone", on.name());
+                }
             } else {
                 ctx.launch(0, W, H).unwrap();
                 ctx.run_stage(denoiser, W, H).unwrap();

@@ -65,6 +65,9 @@ pub struct Context {
     pub(crate) stage_device_inputs: u64,
     /// Queue submissions of stages on the wgpu device.
     pub(crate) stage_submits: u64,
+    /// Bytes stages' runs sent to the wgpu device, and read back from it.
+    pub(crate) stage_uploaded: u64,
+    pub(crate) stage_read_back: u64,
 }
 
 /// A kind of exception whose checks [`Context::set_exception_enabled`]
@@ -140,6 +143,8 @@ impl Context {
             stage_pipelines: None,
             stage_device_inputs: 0,
             stage_submits: 0,
+            stage_uploaded: 0,
+            stage_read_back: 0,
         }
     }
 

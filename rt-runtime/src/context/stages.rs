@@ -5,10 +5,12 @@ use super::Context;
 use crate::backend::tiles::{LaunchControl, LaunchProgress};
 use crate::backend::{Backend, LaunchReport};
 use crate::error::{ConfigError, LaunchError, Result, SceneError};
-use crate::postprocess::gpu::{Pipelines, Source, StageTail, pixels};
-use crate::postprocess::{History, Pixels, Plan, Stage, StageId, StageKind, StageValue};
+use crate::postprocess::gpu::{DeviceHistory, Pipelines, Source, StageTail, pixels, read_history};
+use crate::postprocess::temporal::TEXELS;
+use crate::postprocess::{History, Pixels, Plan, Stage, StageId, StageKind, StageValue, Texels};
 use crate::scene::BufferId;
 use glam::Vec4;
+use std::any::Any;
 use std::sync::Arc;
 
 impl Context {
@@ -63,7 +65,8 @@ impl Context {
     /// passes on the context's device (one submission; the stage's images
     /// go up to the device, or where a launch left a device-local buffer's
     /// newest words on the device are copied there, and its output comes
-    /// back to the host buffer), on the CPU backend natively. The
+    /// back to the host buffer; a temporal denoiser's history stays on the
+    /// device), on the CPU backend natively. The
     /// stage is checked first ([`PostProcessError::BadStage`](crate::PostProcessError::BadStage) naming the variable
     /// at fault); a stage that fails writes nothing.
     pub fn run_stage(&mut self, stage: StageId, width: u32, height: u32) -> Result<()> {
@@ -90,6 +93,7 @@ impl Context {
     pub(crate) fn run_plans(&mut self, plans: &[Plan]) -> Result<()> {
         if self.backend() != Backend::Wgpu {
             for plan in plans {
+                let plan = &self.history_on_host(plan);
                 let (out, history) = plan.run_cpu(&Pixels::of(plan).try_map(|b| self.read_buffer::<Vec4>(b))?);
                 self.write_buffer(plan.output, &out)?;
                 if let Some(history) = history {
@@ -107,32 +111,34 @@ impl Context {
             })?;
             stages.push((plan.clone(), sources));
         }
-        let outputs = self.run_on_wgpu(&stages)?;
-        self.take_outputs(plans, outputs)
+        let (outputs, histories) = self.run_on_wgpu(&stages)?;
+        self.take_outputs(plans, outputs, histories)
     }
 
     /// Writes the outputs of `plans`, which ran on the wgpu device, to
     /// their buffers, and keeps the next histories of the temporal
-    /// denoisers among them (`images`: the outputs, then the histories in
-    /// the plans' order).
-    fn take_outputs(&mut self, plans: &[Plan], images: Vec<Vec<Vec4>>) -> Result<()> {
-        let mut images = images.into_iter();
-        for (plan, out) in plans.iter().zip(images.by_ref()) {
+    /// denoisers among them (`histories`, in the plans' order) on the
+    /// device.
+    fn take_outputs(&mut self, plans: &[Plan], outputs: Vec<Vec<Vec4>>, histories: Vec<DeviceHistory>) -> Result<()> {
+        for (plan, out) in plans.iter().zip(outputs) {
             self.write_buffer(plan.output, &out)?;
         }
+        let mut histories = histories.into_iter();
         for (plan, t) in plans.iter().filter_map(|p| Some((p, p.temporal.as_ref()?))) {
-            let texels = images.next().ok_or_else(|| LaunchError::Internal {
+            let kept = histories.next().ok_or_else(|| LaunchError::Internal {
                 backend: "wgpu",
-                problem: "internal: a temporal denoiser's history did not come back".into(),
+                problem: "internal: a temporal denoiser left no history on the device".into(),
             })?;
+            let texels = Texels::Device(kept);
             let history = History { width: plan.width, height: plan.height, texels, camera: t.camera };
             self.stages[plan.stage.0 as usize].history = Some(Arc::new(history));
         }
         Ok(())
     }
 
-    /// Drops the history of temporal denoiser `stage`: its next run
-    /// starts again from its input alone, as its first did.
+    /// Drops the history of temporal denoiser `stage` (on the wgpu
+    /// backend its device buffers): its next run starts again from its
+    /// input alone, as its first did.
     pub fn reset_stage_history(&mut self, stage: StageId) -> Result<()> {
         self.stage_mut(stage)?.history = None;
         Ok(())
@@ -140,11 +146,56 @@ impl Context {
 
     /// The history of temporal denoiser `stage`, where it has one: each
     /// pixel's accumulated colour (rgb) and how many frames it holds (w),
-    /// row by row, with its size.
+    /// row by row, with its size. On the wgpu backend the history lives
+    /// on the device and this reads it back (one submission; no run reads
+    /// it back); a history on a device the context no longer has (lost
+    /// since) is none, and the next run starts again.
     pub fn stage_history(&self, stage: StageId) -> Result<Option<(u32, u32, Vec<Vec4>)>> {
         let Some(h) = &self.stage(stage)?.history else { return Ok(None) };
-        let colors = h.texels.iter().step_by(crate::postprocess::temporal::TEXELS).copied().collect();
+        let Some(texels) = self.history_texels(h)? else { return Ok(None) };
+        let colors = texels.iter().step_by(TEXELS).copied().collect();
         Ok(Some((h.width, h.height, colors)))
+    }
+
+    /// The texels of history `h`: the host's, or read back from the wgpu
+    /// device that holds it; `None` where that device is gone.
+    fn history_texels(&self, h: &History) -> Result<Option<Vec<Vec4>>> {
+        match &h.texels {
+            Texels::Host(texels) => Ok(Some(texels.clone())),
+            Texels::Device(d) => {
+                let open = self.wgpu_backend_ref().and_then(|b| b.serial());
+                let Some(handles) = self.wgpu_device().filter(|_| open == Some(d.serial)) else { return Ok(None) };
+                let texels = read_history(&handles.queue, d, (h.width * h.height) as u64 * TEXELS as u64)?;
+                if let Some(b) = self.wgpu_backend_ref() {
+                    b.count_submission();
+                }
+                Ok(Some(texels))
+            }
+        }
+    }
+
+    /// `plan` for the CPU backend: its temporal denoiser's history on the
+    /// host. One the wgpu device holds (the backend switched since) is
+    /// read back once; where that device is gone, or the read fails, the
+    /// run starts again, as after a reset.
+    fn history_on_host(&self, plan: &Plan) -> Plan {
+        let mut plan = plan.clone();
+        if let Some(t) = plan.temporal.as_mut()
+            && let Some(h) = t.previous.take()
+        {
+            t.previous = match &h.texels {
+                Texels::Host(_) => Some(h),
+                Texels::Device(_) => self.history_texels(&h).ok().flatten().map(|texels| {
+                    Arc::new(History {
+                        width: h.width,
+                        height: h.height,
+                        texels: Texels::Host(texels),
+                        camera: h.camera,
+                    })
+                }),
+            };
+        }
+        plan
     }
 
     /// Where a stage on the wgpu device takes buffer `b` from: the
@@ -175,15 +226,33 @@ impl Context {
         self.stage_submits
     }
 
+    /// Bytes stages' runs on the wgpu backend sent from the host to the
+    /// device: their images where the device did not hold them, and a
+    /// temporal denoiser's history the CPU backend made (once, after a
+    /// switch of backends). A temporal denoiser's own history stays on
+    /// the device, frame after frame, and adds nothing.
+    pub fn stage_upload_bytes(&self) -> u64 {
+        self.stage_uploaded
+    }
+
+    /// Bytes stages' runs on the wgpu backend read back from the device:
+    /// their outputs, whether they ran alone or rode in a command list's
+    /// launch (whose [`Context::last_read_back_bytes`] counts them too).
+    /// No run reads a temporal denoiser's history back
+    /// ([`Context::stage_history`] reads it when asked, not counted here).
+    pub fn stage_read_back_bytes(&self) -> u64 {
+        self.stage_read_back
+    }
+
     /// The stages' pipelines on the wgpu device (opened first if no launch
     /// opened it yet), made once per device.
     fn stage_pipelines(&mut self) -> Result<(Pipelines, super::WgpuDevice)> {
         self.open_wgpu()?;
-        let handles = self
-            .wgpu_device()
-            .ok_or_else(|| LaunchError::Internal { backend: "wgpu", problem: "no device after opening one".into() })?;
-        if !self.stage_pipelines.as_ref().is_some_and(|p| p.on(&handles.device)) {
-            self.stage_pipelines = Some(Pipelines::new(&handles.device)?);
+        let no_device = || LaunchError::Internal { backend: "wgpu", problem: "no device after opening one".into() };
+        let handles = self.wgpu_device().ok_or_else(no_device)?;
+        let serial = self.wgpu_backend_ref().and_then(|b| b.serial()).ok_or_else(no_device)?;
+        if !self.stage_pipelines.as_ref().is_some_and(|p| p.on(serial)) {
+            self.stage_pipelines = Some(Pipelines::new(&handles.device, serial)?);
         }
         Ok((self.stage_pipelines.clone().expect("made above"), handles))
     }
@@ -208,29 +277,40 @@ impl Context {
             return Ok(report);
         }
         let (pipelines, _) = self.stage_pipelines()?;
-        let tail = StageTail { pipelines, plans: plans.to_vec() };
+        let tail = StageTail { pipelines, plans: plans.to_vec(), histories: Vec::new(), uploaded: 0 };
         self.wgpu_backend().arm_tail(Box::new(tail));
         let report = self.launch_3d_with_progress(entry, width, height, depth, progress);
         let ran = self.wgpu_backend().take_tail();
         let report = report?;
-        let (outputs, from_device) = ran.ok_or_else(|| LaunchError::Internal {
+        let internal = || LaunchError::Internal {
             backend: "wgpu",
             problem: "internal: the stages after the launch did not run".into(),
-        })?;
-        self.take_outputs(plans, outputs.iter().map(|words| pixels(words)).collect())?;
-        self.stage_device_inputs += from_device;
+        };
+        let ran = ran.ok_or_else(internal)?;
+        let tail = (ran.tail as Box<dyn Any>).downcast::<StageTail>().map_err(|_| internal())?;
+        let outputs: Vec<Vec<Vec4>> = ran.words.iter().map(|words| pixels(words)).collect();
+        self.stage_read_back += outputs.iter().map(|o| o.len() as u64 * 16).sum::<u64>();
+        self.stage_uploaded += tail.uploaded;
+        let StageTail { pipelines, histories, .. } = *tail;
+        // Made again on the launch's device where it opened a new one.
+        self.stage_pipelines = Some(pipelines);
+        self.take_outputs(plans, outputs, histories)?;
+        self.stage_device_inputs += ran.from_device;
         Ok(report)
     }
 
     /// Runs checked stages' passes on the wgpu device (opened first if no
-    /// launch opened it yet), in one submission; their outputs.
-    fn run_on_wgpu(&mut self, stages: &[(Plan, Pixels<Source>)]) -> Result<Vec<Vec<Vec4>>> {
+    /// launch opened it yet), in one submission; their outputs, and the
+    /// temporal denoisers' next histories, on the device.
+    fn run_on_wgpu(&mut self, stages: &[(Plan, Pixels<Source>)]) -> Result<(Vec<Vec<Vec4>>, Vec<DeviceHistory>)> {
         let (pipelines, handles) = self.stage_pipelines()?;
-        let outputs = pipelines.run(&handles.queue, stages)?;
+        let (outputs, recording) = pipelines.run(&handles.queue, stages)?;
+        self.stage_uploaded += recording.uploaded;
+        self.stage_read_back += outputs.iter().map(|o| o.len() as u64 * 16).sum::<u64>();
         self.stage_submits += 1;
         self.wgpu_backend().count_submission();
         let from_device = stages.iter().flat_map(|(_, s)| s.each()).filter(|s| matches!(s, Source::Device(_)));
         self.stage_device_inputs += from_device.count() as u64;
-        Ok(outputs)
+        Ok((outputs, recording.histories))
     }
 }

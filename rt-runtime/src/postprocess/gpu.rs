@@ -8,9 +8,12 @@
 //! where it did), every pass runs (the denoiser's prepare, its à-trous
 //! passes ping-ponging between two buffers, finish; or the tonemapper's
 //! one), and every stage's output is read back. In temporal mode the
-//! denoiser's `gpu/temporal.wgsl` pass runs first, over its history
-//! uploaded from the host, and its next history is read back with the
-//! output (the stage keeps it on the host). The pipelines are made
+//! denoiser's `gpu/temporal.wgsl` pass runs first, over its history where
+//! the device keeps it ([`DeviceHistory`]: two buffers the stage owns,
+//! one read and the other written, swapped each run), and nothing of it
+//! is read back: a progressive renderer's launch, denoiser and
+//! tonemapper run frame after frame with no history crossing to the
+//! host ([`read_history`] reads one when asked). The pipelines are made
 //! once per device ([`Pipelines`]).
 //!
 //! After a command list's launch, the run rides in the launch's last
@@ -20,7 +23,7 @@
 
 use super::denoise::Tuning;
 use super::temporal::TEXELS;
-use super::{Pixels, Plan, StageKind, Temporal};
+use super::{Pixels, Plan, StageKind, Temporal, Texels};
 use crate::backend::wgpu::DeviceBuffer;
 use crate::backend::wgpu::tail::{Recorded, Tail};
 use crate::error::{DeviceError, Result, RtError};
@@ -35,6 +38,8 @@ const TEMPORAL_WGSL: &str = include_str!("gpu/temporal.wgsl");
 #[derive(Clone)]
 pub(crate) struct Pipelines {
     device: wgpu::Device,
+    /// The device's serial (`backend::wgpu::WgpuBackend::serial`).
+    serial: u64,
     layout: wgpu::BindGroupLayout,
     prepare: wgpu::ComputePipeline,
     atrous: wgpu::ComputePipeline,
@@ -46,13 +51,13 @@ pub(crate) struct Pipelines {
 }
 
 impl Pipelines {
-    /// Whether these were made on `device`.
-    pub fn on(&self, device: &wgpu::Device) -> bool {
-        self.device == *device
+    /// Whether these were made on the device of serial `serial`.
+    pub fn on(&self, serial: u64) -> bool {
+        self.serial == serial
     }
 
-    /// The stages' pipelines on `device`.
-    pub fn new(device: &wgpu::Device) -> Result<Pipelines> {
+    /// The stages' pipelines on `device`, of serial `serial`.
+    pub fn new(device: &wgpu::Device, serial: u64) -> Result<Pipelines> {
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("rt post-processing stages"),
@@ -111,6 +116,7 @@ impl Pipelines {
         let (temporal_layout, temporal) = Self::temporal_pipeline(device, &temporal_entries);
         let made = Pipelines {
             device: device.clone(),
+            serial,
             prepare: pipeline("prepare"),
             atrous: pipeline("atrous"),
             finish: pipeline("finish"),
@@ -155,87 +161,43 @@ impl Pipelines {
     }
 
     /// Runs `stages` (each a plan over its images) in order on `queue`,
-    /// all in one submission, and returns each one's output, then the
-    /// next history of each temporal denoiser among them. An image
-    /// that an earlier stage of the run wrote ([`Source::Earlier`]) is
-    /// that stage's output as it lies on the device.
-    pub fn run(&self, queue: &wgpu::Queue, stages: &[(Plan, Pixels<Source>)]) -> Result<Vec<Vec<Vec4>>> {
-        let device = &self.device;
-        let mut encoder = device.create_command_encoder(&Default::default());
-        let outputs = self.record(&mut encoder, stages);
-        let staging: Vec<wgpu::Buffer> = outputs
-            .iter()
-            .map(|out| {
-                let staging = device.create_buffer(&wgpu::BufferDescriptor {
-                    label: Some("rt stage: read-back"),
-                    size: out.size(),
-                    usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-                    mapped_at_creation: false,
-                });
-                encoder.copy_buffer_to_buffer(out, 0, &staging, 0, out.size());
-                staging
-            })
-            .collect();
-        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        queue.submit([encoder.finish()]);
-        let (sender, receiver) = std::sync::mpsc::channel();
-        for (i, staging) in staging.iter().enumerate() {
-            let sender = sender.clone();
-            staging.slice(..).map_async(wgpu::MapMode::Read, move |r| {
-                let _ = sender.send((i, r));
-            });
-        }
-        let gpu_err =
-            |what: &str, e: String| DeviceError::Gpu(format!("running a post-processing stage: {what}: {e}")).into();
-        device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| gpu_err("waiting", e.to_string()))?;
-        if let Some(e) = crate::backend::futures::block(async { Ok(scope.pop().await) })? {
-            return Err(gpu_err("validation", e.to_string()));
-        }
-        for _ in &staging {
-            match receiver.recv() {
-                Ok((_, Ok(()))) => {}
-                Ok((_, Err(e))) => return Err(gpu_err("reading back", e.to_string())),
-                Err(e) => return Err(gpu_err("reading back", e.to_string())),
-            }
-        }
-        let mut images = Vec::new();
-        for staging in &staging {
-            let slice = staging.slice(..);
-            let mapped = slice.get_mapped_range().map_err(|e| gpu_err("reading back", e.to_string()))?;
-            let words: Vec<u32> =
-                mapped.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
-            drop(mapped);
-            staging.unmap();
-            images.push(pixels(&words));
-        }
-        Ok(images)
+    /// all in one submission: each one's output, read back, and what was
+    /// recorded (the temporal denoisers' next histories stay on the
+    /// device). An image that an earlier stage of the run wrote
+    /// ([`Source::Earlier`]) is that stage's output as it lies on the
+    /// device.
+    pub fn run(&self, queue: &wgpu::Queue, stages: &[(Plan, Pixels<Source>)]) -> Result<(Vec<Vec<Vec4>>, Recording)> {
+        let mut encoder = self.device.create_command_encoder(&Default::default());
+        let recording = self.record(&mut encoder, stages);
+        let whole: Vec<_> = recording.outputs.iter().map(|b| (b, b.size())).collect();
+        let words = read_back(&self.device, queue, encoder, &whole, "running a post-processing stage")?;
+        Ok((words.iter().map(|w| pixels(w)).collect(), recording))
     }
 
-    /// Records `stages`' passes into `encoder`, in order; the buffers their
-    /// outputs will be in, then those of the temporal denoisers' next
-    /// histories, in the stages' order.
-    pub fn record(&self, encoder: &mut wgpu::CommandEncoder, stages: &[(Plan, Pixels<Source>)]) -> Vec<wgpu::Buffer> {
-        let mut outputs: Vec<wgpu::Buffer> = Vec::new();
-        let mut histories = Vec::new();
+    /// Records `stages`' passes into `encoder`, in order.
+    pub fn record(&self, encoder: &mut wgpu::CommandEncoder, stages: &[(Plan, Pixels<Source>)]) -> Recording {
+        let mut r = Recording { outputs: Vec::new(), histories: Vec::new(), uploaded: 0 };
         for (plan, images) in stages {
-            let (out, history) = self.encode(encoder, plan, images, &outputs);
-            outputs.push(out);
-            histories.extend(history);
+            let (out, history) = self.encode(encoder, plan, images, &r.outputs, &mut r.uploaded);
+            r.outputs.push(out);
+            r.histories.extend(history);
         }
-        outputs.extend(histories);
-        outputs
+        r
     }
 
     /// Records `plan`'s passes over `images` into `encoder` (`earlier`:
-    /// the outputs of the run's stages before it), returning the buffer
-    /// its output will be in, and the temporal denoiser's next history's.
+    /// the outputs of the run's stages before it; `uploaded` counts the
+    /// bytes of images and histories sent from the host), returning the
+    /// buffer its output will be in, and the temporal denoiser's next
+    /// history.
     fn encode(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         plan: &Plan,
         images: &Pixels<Source>,
         earlier: &[wgpu::Buffer],
-    ) -> (wgpu::Buffer, Option<wgpu::Buffer>) {
+        uploaded: &mut u64,
+    ) -> (wgpu::Buffer, Option<DeviceHistory>) {
         let device = &self.device;
         let n = (plan.width * plan.height) as usize;
         let bytes = (n * 16) as u64;
@@ -258,7 +220,10 @@ impl Pipelines {
         // submission, before the passes read it; an earlier stage's output
         // is read where that stage wrote it.
         let mut image = |label, source: &Source| match source {
-            Source::Host(px) => upload(label, px),
+            Source::Host(px) => {
+                *uploaded += px.len() as u64 * 16;
+                upload(label, px)
+            }
             Source::Device(d) => {
                 let b = device.create_buffer(&wgpu::BufferDescriptor {
                     label: Some(label),
@@ -287,7 +252,7 @@ impl Pipelines {
         let (color, variance, history) = match (&plan.temporal, position) {
             (Some(t), Some(position)) => {
                 let frame = [&color, &albedo, &normal, &position];
-                let (acc, acc_variance, history) = self.encode_temporal(encoder, plan, t, frame);
+                let (acc, acc_variance, history) = self.encode_temporal(encoder, plan, t, frame, uploaded);
                 (acc, acc_variance, Some(history))
             }
             _ => (color, variance, None),
@@ -326,14 +291,19 @@ impl Pipelines {
 
     /// Records the temporal pass of `plan` over its `frame` (colour,
     /// albedo, normal, position): the buffers of the accumulated colour,
-    /// its variance, and the next history.
+    /// its variance, and the next history. The last run's history is
+    /// read where this device keeps it; one the CPU backend made is
+    /// uploaded (counted in `uploaded`), one on another device (lost
+    /// since) is none. The next is written into the buffer the run before
+    /// wrote, where the history has one of this size, else a new one.
     fn encode_temporal(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         plan: &Plan,
         t: &Temporal,
         frame: [&wgpu::Buffer; 4],
-    ) -> (wgpu::Buffer, wgpu::Buffer, wgpu::Buffer) {
+        uploaded: &mut u64,
+    ) -> (wgpu::Buffer, wgpu::Buffer, DeviceHistory) {
         let device = &self.device;
         let n = (plan.width * plan.height) as u64;
         let storage = |label, size| {
@@ -344,30 +314,130 @@ impl Pipelines {
                 mapped_at_creation: false,
             })
         };
+        let upload = |label, px: &[Vec4]| {
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents: &words(px),
+                usage: wgpu::BufferUsages::STORAGE,
+            })
+        };
         let texels = n * TEXELS as u64;
-        let next = storage("rt stage: next history", (texels + 2 * n) * 16);
-        let previous: &[Vec4] = t.previous.as_ref().map_or(&[Vec4::ZERO], |h| &h.texels);
-        let previous = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("rt stage: previous history"),
-            contents: &words(previous),
-            usage: wgpu::BufferUsages::STORAGE,
-        });
+        let size = (texels + 2 * n) * 16;
+        let (previous, spare) = match t.previous.as_ref().map(|h| &h.texels) {
+            Some(Texels::Device(d)) if d.serial == self.serial => (Some(d.held.clone()), d.spare.clone()),
+            Some(Texels::Host(px)) => {
+                *uploaded += px.len() as u64 * 16;
+                (Some(upload("rt stage: previous history", px)), None)
+            }
+            _ => (None, None),
+        };
+        let next = spare.filter(|b| b.size() == size).unwrap_or_else(|| storage("rt stage: history", size));
+        let bound = previous.clone().unwrap_or_else(|| upload("rt stage: no history", &[Vec4::ZERO]));
         let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("rt stage: temporal params"),
-            contents: &temporal_params(plan, t),
+            contents: &temporal_params(plan, t, previous.is_some()),
             usage: wgpu::BufferUsages::UNIFORM,
         });
         let [color, albedo, normal, position] = frame;
-        let buffers = [&uniform, color, albedo, normal, position, &previous, &next];
+        let buffers = [&uniform, color, albedo, normal, position, &bound, &next];
         dispatch(device, encoder, (&self.temporal_layout, &self.temporal), &buffers, plan);
         let (acc, acc_variance) =
             (storage("rt stage: accumulated", n * 16), storage("rt stage: temporal variance", n * 16));
-        let history = storage("rt stage: history", texels * 16);
-        encoder.copy_buffer_to_buffer(&next, 0, &history, 0, texels * 16);
         encoder.copy_buffer_to_buffer(&next, texels * 16, &acc, 0, n * 16);
         encoder.copy_buffer_to_buffer(&next, (texels + n) * 16, &acc_variance, 0, n * 16);
-        (acc, acc_variance, history)
+        // The buffer read this run is written by the next, where it is
+        // this device's (an uploaded one is of another size).
+        let spare = previous.filter(|b| b.size() == size);
+        (acc, acc_variance, DeviceHistory { device: device.clone(), serial: self.serial, held: next, spare })
     }
+}
+
+/// A temporal denoiser's history on a wgpu device, in buffers the stage
+/// owns: `held`, written by its last run (`gpu/temporal.wgsl`'s `next`:
+/// [`TEXELS`] texels a pixel of history, then that run's accumulated
+/// colour and variance), and `spare`, the one the run before wrote,
+/// which the next run writes (none until two runs). A run reads one and
+/// writes the other, so a run that fails leaves the history as it was.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct DeviceHistory {
+    pub device: wgpu::Device,
+    /// The device's serial (`backend::wgpu::WgpuBackend::serial`).
+    pub serial: u64,
+    pub held: wgpu::Buffer,
+    pub spare: Option<wgpu::Buffer>,
+}
+
+/// What [`Pipelines::record`] recorded: the buffers each stage's output
+/// will be in, each temporal denoiser's next history (in the stages'
+/// order), and the bytes of images and histories it uploaded from the
+/// host.
+pub(crate) struct Recording {
+    pub outputs: Vec<wgpu::Buffer>,
+    pub histories: Vec<DeviceHistory>,
+    pub uploaded: u64,
+}
+
+/// The first `texels` texels of history `h`, read back from its device
+/// through `queue` (one submission).
+pub(crate) fn read_history(queue: &wgpu::Queue, h: &DeviceHistory, texels: u64) -> Result<Vec<Vec4>> {
+    let encoder = h.device.create_command_encoder(&Default::default());
+    let words = read_back(&h.device, queue, encoder, &[(&h.held, texels * 16)], "reading a denoiser's history")?;
+    Ok(words.first().map(|w| pixels(w)).unwrap_or_default())
+}
+
+/// Submits `encoder` with copies of the first `size` bytes of each of
+/// `buffers` after its work, and reads them back; `what` names the work
+/// in an error.
+fn read_back(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    mut encoder: wgpu::CommandEncoder,
+    buffers: &[(&wgpu::Buffer, u64)],
+    what: &str,
+) -> Result<Vec<Vec<u32>>> {
+    let staging: Vec<wgpu::Buffer> = buffers
+        .iter()
+        .map(|&(b, size)| {
+            let staging = device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("rt stage: read-back"),
+                size,
+                usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            });
+            encoder.copy_buffer_to_buffer(b, 0, &staging, 0, size);
+            staging
+        })
+        .collect();
+    let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+    queue.submit([encoder.finish()]);
+    let (sender, receiver) = std::sync::mpsc::channel();
+    for staging in &staging {
+        let sender = sender.clone();
+        staging.slice(..).map_async(wgpu::MapMode::Read, move |r| {
+            let _ = sender.send(r);
+        });
+    }
+    let gpu_err = |step: &str, e: String| DeviceError::Gpu(format!("{what}: {step}: {e}")).into();
+    device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| gpu_err("waiting", e.to_string()))?;
+    if let Some(e) = crate::backend::futures::block(async { Ok(scope.pop().await) })? {
+        return Err(gpu_err("validation", e.to_string()));
+    }
+    for _ in &staging {
+        match receiver.recv() {
+            Ok(Ok(())) => {}
+            Ok(Err(e)) => return Err(gpu_err("reading back", e.to_string())),
+            Err(e) => return Err(gpu_err("reading back", e.to_string())),
+        }
+    }
+    let mut read = Vec::new();
+    for staging in &staging {
+        let slice = staging.slice(..);
+        let mapped = slice.get_mapped_range().map_err(|e| gpu_err("reading back", e.to_string()))?;
+        read.push(mapped.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect());
+        drop(mapped);
+        staging.unmap();
+    }
+    Ok(read)
 }
 
 /// One pass of `pipeline` over `plan`'s pixels (8 x 8 a workgroup), its
@@ -396,9 +466,10 @@ fn words(pixels: &[Vec4]) -> Vec<u8> {
     pixels.iter().flat_map(|p| p.to_array()).flat_map(f32::to_le_bytes).collect()
 }
 
-/// The `Params` uniform of `temporal.wgsl`.
-fn temporal_params(plan: &Plan, t: &Temporal) -> Vec<u8> {
-    let has_history = t.previous.is_some() as u32;
+/// The `Params` uniform of `temporal.wgsl`, over the last run's history
+/// where `has_history`.
+fn temporal_params(plan: &Plan, t: &Temporal, has_history: bool) -> Vec<u8> {
+    let has_history = has_history as u32;
     let mut bytes: Vec<u8> =
         [plan.width, plan.height, has_history, t.alpha_min.to_bits()].iter().flat_map(|w| w.to_le_bytes()).collect();
     let before = t.previous.as_ref().map_or(t.camera, |h| h.camera);
@@ -428,10 +499,15 @@ pub(crate) fn pixels(words: &[u32]) -> Vec<Vec4> {
 /// (`backend::wgpu::tail`): each image is an earlier stage's output of
 /// the run, where it lies; else where the device has the buffer's newest
 /// words (the launch wrote it, or holds it); else the host's pixels,
-/// uploaded.
+/// uploaded. Once recorded it holds the temporal denoisers' next
+/// histories, on the device, and the bytes it uploaded; the backend hands
+/// it back to the context after the launch
+/// (`backend::wgpu::WgpuBackend::take_tail`).
 pub(crate) struct StageTail {
     pub pipelines: Pipelines,
     pub plans: Vec<Plan>,
+    pub histories: Vec<DeviceHistory>,
+    pub uploaded: u64,
 }
 
 impl StageTail {
@@ -470,14 +546,14 @@ impl Tail for StageTail {
 
     fn record(
         &mut self,
-        device: &wgpu::Device,
+        (device, serial): (&wgpu::Device, u64),
         encoder: &mut wgpu::CommandEncoder,
         scene: &Scene,
         on_device: &dyn Fn(usize) -> Option<DeviceBuffer>,
     ) -> Result<Recorded> {
         // The launch opened a new device (the last was lost).
-        if !self.pipelines.on(device) {
-            self.pipelines = Pipelines::new(device)?;
+        if !self.pipelines.on(serial) {
+            self.pipelines = Pipelines::new(device, serial)?;
         }
         let mut stages = Vec::new();
         let mut from_device = 0;
@@ -487,7 +563,9 @@ impl Tail for StageTail {
             from_device += sources.each().filter(|s| matches!(s, Source::Device(_))).count() as u64;
             stages.push((plan.clone(), sources));
         }
-        Ok(Recorded { read_back: self.pipelines.record(encoder, &stages), from_device })
+        let recording = self.pipelines.record(encoder, &stages);
+        (self.histories, self.uploaded) = (recording.histories, recording.uploaded);
+        Ok(Recorded { read_back: recording.outputs, from_device })
     }
 }
 

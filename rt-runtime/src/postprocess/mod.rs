@@ -21,7 +21,8 @@
 //! guided by albedo, normal and a luminance variance, the renderer's
 //! per-pixel one or its own spatial estimate: the spatial part of SVGF),
 //! run after [`temporal`] (SVGF's temporal part: a history the stage
-//! keeps, reprojected through the camera) in temporal mode, and [`tonemap`] (exposure, ACES-fitted filmic
+//! keeps, reprojected through the camera; on the wgpu backend it stays on
+//! the device, and no run reads it back) in temporal mode, and [`tonemap`] (exposure, ACES-fitted filmic
 //! curve, gamma), each a CPU reference here and a WGSL compute pass in
 //! `gpu.rs` that the wgpu backend runs on its device.
 
@@ -176,13 +177,25 @@ pub(crate) struct Stage {
 }
 
 /// The temporal denoiser's history ([`temporal`]): the texels of its last
-/// run ([`temporal::TEXELS`] a pixel), its size and its camera.
+/// run ([`temporal::TEXELS`] a pixel), where the backend that ran it
+/// keeps them, its size and its camera.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct History {
     pub width: u32,
     pub height: u32,
-    pub texels: Vec<Vec4>,
+    pub texels: Texels,
     pub camera: Pinhole,
+}
+
+/// Where a history's texels lie: on the host (the CPU backend's), or on
+/// the wgpu device that ran the stage, in buffers the stage owns, which
+/// no run reads back ([`gpu::DeviceHistory`]). A run on the other backend
+/// moves them: an upload at a wgpu run, one read at a CPU run
+/// (`context/stages.rs`).
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) enum Texels {
+    Host(Vec<Vec4>),
+    Device(gpu::DeviceHistory),
 }
 
 /// A temporal denoiser's run: its position guide, the frame's camera,
@@ -461,11 +474,17 @@ impl Plan {
         };
         let frame =
             temporal::Frame { width: w, height: h, color: &pixels.input, albedo, normal, position, camera: t.camera };
-        let previous = t.previous.as_deref().map(|h| (&h.texels[..], &h.camera));
+        // A history still on a device is no history here: the context
+        // brings it to the host first, where it can.
+        let previous = t.previous.as_deref().and_then(|h| match &h.texels {
+            Texels::Host(texels) => Some((&texels[..], &h.camera)),
+            Texels::Device(_) => None,
+        });
         let acc = temporal::accumulate(&frame, previous, t.alpha_min);
         let variance = Some(&acc.variance[..]);
         let images = denoise::Guided { width: w, height: h, color: &acc.color, albedo, normal, variance };
-        let history = History { width: self.width, height: self.height, texels: acc.history, camera: t.camera };
+        let texels = Texels::Host(acc.history);
+        let history = History { width: self.width, height: self.height, texels, camera: t.camera };
         (denoise::denoise(&images, self.settings[0]), Some(history))
     }
 }

@@ -25,6 +25,13 @@
 //! takes as its input and per-pixel variance. A history of another size
 //! than the run's is no history; `Context::reset_stage_history` drops it.
 //! A pixel whose camera ray hit nothing (position `w` of 0) keeps none.
+//!
+//! Where the history lives: on the CPU backend on the host; on the wgpu
+//! backend in device buffers the stage owns (`gpu.rs`'s `DeviceHistory`),
+//! read and written inside the run's submission, never read back by a
+//! run (`Context::stage_history` reads it when asked). A run on the other
+//! backend takes it along (one upload, or one read back); one on a device
+//! lost since is dropped, and the next run starts again.
 
 use super::denoise::{demodulation, luminance, unit_normal};
 use glam::{Vec2, Vec3, Vec4, Vec4Swizzles};

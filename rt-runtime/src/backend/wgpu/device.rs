@@ -42,6 +42,11 @@ pub struct Gpu {
     /// Bind-group layouts of ray-query kernels, by TLAS slot count: the
     /// compute layout's entries, the side table and the TLASes.
     pub(crate) ray_query_layouts: HashMap<u32, wgpu::BindGroupLayout>,
+    /// Which device this is, unique in the process: what the stages'
+    /// pipelines and histories are kept against. (wgpu's own equality of
+    /// devices compares ids that a device of another instance, one opened
+    /// after a loss, repeats.)
+    pub(crate) serial: u64,
 }
 
 /// The wgpu device a context launches on, for an application that draws
@@ -217,7 +222,9 @@ impl Gpu {
             on_error.uncaptured.lock().unwrap_or_else(|e| e.into_inner()).push(e.to_string());
         }));
         let ray_query = device.features().contains(wgpu::Features::EXPERIMENTAL_RAY_QUERY);
+        static SERIALS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
         Gpu {
+            serial: SERIALS.fetch_add(1, std::sync::atomic::Ordering::Relaxed),
             adapter: None,
             device,
             queue,

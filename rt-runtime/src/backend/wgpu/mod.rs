@@ -108,7 +108,7 @@ use device_mirror::DeviceLocal;
 use encode::{Encoding, SceneKey};
 use glam::UVec2;
 use readback::{LOG_EXCEPTIONS, LOG_PRINT_WORDS};
-use tail::{Recorded, Tail, TailState};
+use tail::{Ran, Recorded, Tail, TailState};
 
 /// The wgpu backend: its device (opened at the first launch, dropped when
 /// lost), the last launch's kernel and the outputs it read back.
@@ -154,6 +154,12 @@ impl WgpuBackend {
     /// at `host_version` (a device-local buffer a launch wrote).
     pub(crate) fn held(&self, buffer: usize, host_version: u64) -> Option<DeviceBuffer> {
         DeviceLocal::held(self.gpu.as_ref()?, buffer, host_version)
+    }
+
+    /// Which device is open, unique in the process (a new one after a
+    /// loss has another).
+    pub(crate) fn serial(&self) -> Option<u64> {
+        self.gpu.as_ref().map(|g| g.serial)
     }
 
     /// The open device's handles.
@@ -205,13 +211,12 @@ impl WgpuBackend {
         self.tail = TailState::Armed(tail);
     }
 
-    /// The words of what the armed tail read back, and how many buffers it
-    /// took from the device, once a launch's last tile ran it; `None` when
-    /// none did (the launch failed or was cancelled first). Disarms the
-    /// tail.
-    pub(crate) fn take_tail(&mut self) -> Option<(Vec<Vec<u32>>, u64)> {
+    /// The armed tail, with what it read back, once a launch's last tile
+    /// ran it; `None` when none did (the launch failed or was cancelled
+    /// first). Disarms the tail.
+    pub(crate) fn take_tail(&mut self) -> Option<Ran> {
         match std::mem::take(&mut self.tail) {
-            TailState::Done(words, from_device) => Some((words, from_device)),
+            TailState::Done(ran) => Some(ran),
             _ => None,
         }
     }
@@ -467,13 +472,14 @@ async fn launch_on_device(
     if let Some(before) = &capture {
         capture::write(before, &read, &results.words, header[2]);
     }
-    if let Some(r) = &recorded {
-        *tail = TailState::Done(std::mem::take(&mut results.extra), r.from_device);
-    }
     // The outputs go to the host's buffers now, whatever happens next.
     *pending = Some(ReadOutputs { words: results.words, outputs: read });
     if l.last_tile {
         gpu.resident.device_local.after_launch(l.scene, &outputs, &|i| kept(&armed, i));
+    }
+    if let (Some(r), Some(armed)) = (&recorded, armed) {
+        let words = std::mem::take(&mut results.extra);
+        *tail = TailState::Done(Ran { tail: armed, words, from_device: r.from_device });
     }
     let (exception_words, print_words) = readback::log(gpu, header).await?;
     let mut report = logged(l.scene, &exception_words, &print_words, header);
@@ -519,7 +525,7 @@ fn record_tail(
         }
         None => DeviceLocal::held(gpu, b, scene.buffers.get(b)?.host_version),
     };
-    tail.record(&gpu.device, encoder, scene, &on_device)
+    tail.record((&gpu.device, gpu.serial), encoder, scene, &on_device)
 }
 
 /// What [`capture`] keeps of a launch before it runs: the kernel, the heap,

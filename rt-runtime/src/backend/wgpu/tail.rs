@@ -10,26 +10,29 @@
 //! newer than the host, as it holds device-local buffers, and a read of
 //! one ([`crate::Context::read_buffer`]) copies it then. What the tail
 //! asks to read back comes back with the launch's outputs, in the same
-//! read. A launch that fails, or is cancelled before its last tile,
-//! records no tail and delivers nothing.
+//! read, and the tail itself comes back with it, holding what it left on
+//! the device (a temporal denoiser's history). A launch that fails, or
+//! is cancelled before its last tile, records no tail and delivers
+//! nothing.
 
 use super::DeviceBuffer;
 use crate::error::Result;
 use crate::scene::Scene;
 
 /// Work recorded after a launch's dispatches, in its last submission.
-pub(crate) trait Tail: Send + Sync {
+pub(crate) trait Tail: std::any::Any + Send + Sync {
     /// Whether the tail takes buffer `buffer` (by index) from the device:
     /// the launch leaves it there rather than read it back.
     fn keeps(&self, buffer: usize) -> bool;
 
-    /// Records the work into `encoder`. `on_device(b)` is where buffer
+    /// Records the work into `encoder`, on `device` (with its serial,
+    /// which tells it from a device opened before). `on_device(b)` is where buffer
     /// `b`'s newest words lie in the heap, where the device has them (the
     /// launch wrote it, or holds it), else `None` (the host's words in
     /// `scene` are the newest).
     fn record(
         &mut self,
-        device: &wgpu::Device,
+        device: (&wgpu::Device, u64),
         encoder: &mut wgpu::CommandEncoder,
         scene: &Scene,
         on_device: &dyn Fn(usize) -> Option<DeviceBuffer>,
@@ -45,15 +48,23 @@ pub(crate) struct Recorded {
     pub from_device: u64,
 }
 
-/// A tail's state in the backend: armed, then (after the launch's last
-/// tile) the words of what it read back and how many buffers it took
-/// from the device.
+/// A tail's state in the backend: armed, then run (after the launch's
+/// last tile).
 #[derive(Default)]
 pub(crate) enum TailState {
     #[default]
     None,
     Armed(Box<dyn Tail>),
-    Done(Vec<Vec<u32>>, u64),
+    Done(Ran),
+}
+
+/// A tail that ran: itself (holding what it left on the device), the
+/// words of what it read back, and how many buffers it took from the
+/// device.
+pub(crate) struct Ran {
+    pub tail: Box<dyn Tail>,
+    pub words: Vec<Vec<u32>>,
+    pub from_device: u64,
 }
 
 impl TailState {
