@@ -10,7 +10,9 @@
 //! typed errors naming the stage and the variable.
 
 use glam::{Vec3, Vec4};
-use rt_runtime::{Backend, BufferId, BufferType, Context, DeviceError, PostProcessError, RtError, Scope, StageId};
+use rt_runtime::{
+    Backend, BufferId, BufferType, CommandList, Context, DeviceError, PostProcessError, RtError, Scope, StageId,
+};
 use rt_std::prelude::{RwBuffer2d, launch_index, rt_program};
 
 const W: u32 = 32;
@@ -377,29 +379,47 @@ pub fn mark(#[var] mut marks: RwBuffer2d<Vec4>) {
 }
 
 /// A device lost (here in a launch) takes the history it held along:
-/// the next run, on a new device, is a first run, neither a panic nor a
-/// blend with what the lost device held.
+/// the next run on a new device, alone or riding in a command list's
+/// launch, is a first run, neither a panic nor a blend with what the lost
+/// device held.
 #[test]
 fn a_lost_device_drops_the_history() {
-    let mut ctx = Context::new();
-    ctx.set_backend(Backend::Wgpu);
-    ctx.set_ray_type_count(0);
-    let p = ctx.create_program(&mark::PROGRAM);
-    ctx.set_ray_generation_program(0, p).unwrap();
-    let marks = ctx.create_buffer_2d::<Vec4>(BufferType::Output, 4, 4).unwrap();
-    ctx.set_var(Scope::Context, "marks", marks).unwrap();
-    let stage = temporal(&mut ctx);
-    let cam = camera(0.0);
-    let first = run(&mut ctx, stage, cam, &frame(cam, 0.5, 0));
-    assert_ne!(run(&mut ctx, stage, cam, &frame(cam, 0.5, 1)), first);
-    ctx.simulate_device_loss_in_next_launch();
-    let e = ctx.launch(0, 4, 4).unwrap_err();
-    assert!(matches!(e, RtError::Device(DeviceError::DeviceLost { .. })), "{e:?}");
-    assert_eq!(ctx.stage_history(stage.0).unwrap(), None, "the history was the lost device's");
-    assert_eq!(run(&mut ctx, stage, cam, &frame(cam, 0.5, 0)), first, "a first run");
-    assert!(ctx.stage_history(stage.0).unwrap().unwrap().2.iter().all(|p| p.w == 1.0));
-    ctx.launch(0, 4, 4).unwrap();
-    assert_eq!(ctx.read_buffer::<Vec4>(marks).unwrap(), vec![Vec4::ONE; 16]);
+    for listed in [false, true] {
+        let mut ctx = Context::new();
+        ctx.set_backend(Backend::Wgpu);
+        ctx.set_ray_type_count(0);
+        let p = ctx.create_program(&mark::PROGRAM);
+        ctx.set_ray_generation_program(0, p).unwrap();
+        let marks = ctx.create_buffer_2d::<Vec4>(BufferType::Output, 4, 4).unwrap();
+        ctx.set_var(Scope::Context, "marks", marks).unwrap();
+        let stage = temporal(&mut ctx);
+        let cam = camera(0.0);
+        let first = run(&mut ctx, stage, cam, &frame(cam, 0.5, 0));
+        assert_ne!(run(&mut ctx, stage, cam, &frame(cam, 0.5, 1)), first);
+        ctx.simulate_device_loss_in_next_launch();
+        let e = ctx.launch(0, 4, 4).unwrap_err();
+        assert!(matches!(e, RtError::Device(DeviceError::DeviceLost { .. })), "{e:?}");
+        assert_eq!(ctx.stage_history(stage.0).unwrap(), None, "the history was the lost device's");
+        let again = if listed {
+            let mut list = CommandList::new();
+            list.append_launch_2d(0, 4, 4).unwrap();
+            list.append_stage(stage.0, W, H).unwrap();
+            list.finalize(&ctx).unwrap();
+            for (b, px) in stage.1.iter().zip(&frame(cam, 0.5, 0)) {
+                ctx.write_buffer(*b, px).unwrap();
+            }
+            list.execute(&mut ctx).unwrap();
+            assert_eq!(ctx.read_buffer::<Vec4>(marks).unwrap(), vec![Vec4::ONE; 16]);
+            ctx.read_buffer::<Vec4>(stage.1[4]).unwrap()
+        } else {
+            run(&mut ctx, stage, cam, &frame(cam, 0.5, 0))
+        };
+        assert_eq!(again, first, "listed {listed}: a first run");
+        assert!(ctx.stage_history(stage.0).unwrap().unwrap().2.iter().all(|p| p.w == 1.0), "listed {listed}");
+        // And the history goes on from there on the new device.
+        run(&mut ctx, stage, cam, &frame(cam, 0.5, 1));
+        assert!(ctx.stage_history(stage.0).unwrap().unwrap().2.iter().all(|p| p.w == 2.0), "listed {listed}");
+    }
 }
 
 fn stage_error(e: RtError) -> (String, String) {
