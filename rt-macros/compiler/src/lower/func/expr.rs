@@ -48,7 +48,7 @@ impl FnLowerer<'_> {
             Expr::Index(i) => self.index(i),
             Expr::MethodCall(m) => self.method_call(m, want),
             Expr::Call(c) => self.call(c, want),
-            Expr::Struct(s) => self.struct_lit(s),
+            Expr::Struct(s) => self.struct_lit(s, want),
             Expr::Array(a) => self.array_lit(a, want),
             Expr::Repeat(r) => self.repeat_lit(r, want),
             Expr::If(i) => self.if_expr(i, want),
@@ -356,9 +356,11 @@ impl FnLowerer<'_> {
         Ok(v)
     }
 
-    pub(super) fn struct_lit(&mut self, s: &syn::ExprStruct) -> Result<Val> {
+    pub(super) fn struct_lit(&mut self, s: &syn::ExprStruct, want: Option<&Ty>) -> Result<Val> {
         let name = s.path.segments.last().unwrap().ident.to_string();
+        let generic = self.generic_struct_lit_type(s, &name, want).transpose()?;
         let ty = match name.as_str() {
+            _ if generic.is_some() => generic.unwrap(),
             "Ray" => Ty::Ray,
             "Aabb" => Ty::Aabb,
             _ => match self.m.structs.get(&name) {

@@ -16,6 +16,8 @@
 //!   functions, `#[rt_function]` helpers;
 //! - `generic_calls`: calls of generic helpers, the instance's arguments
 //!   inferred (see `lower/generics.rs`);
+//! - `generic_structs`: literals of generic structs, the instance inferred
+//!   (see `lower/generic_structs.rs`);
 //! - `intrinsics`: intrinsic calls from the contract's rows;
 //! - `buffers`: buffer and sampler access;
 //! - `infer`: integer inference variables, coercion;
@@ -46,6 +48,7 @@ mod control;
 mod eval;
 mod expr;
 mod generic_calls;
+mod generic_structs;
 mod infer;
 mod intrinsics;
 mod operators;
