@@ -40,6 +40,9 @@ impl FnLowerer<'_> {
             Expr::Binary(b) => self.binary(b, want),
             Expr::Assign(a) => {
                 let v = self.expr(&a.right, None)?;
+                if self.note_none_probe(&a.left, &v) {
+                    return Ok(Val::new("", Ty::Unit));
+                }
                 self.assign(&a.left, None, v, a.right.span())?;
                 Ok(Val::new("", Ty::Unit))
             }
