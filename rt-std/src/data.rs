@@ -281,6 +281,14 @@ pub trait DeclaredAttributes {}
 #[diagnostic::do_not_recommend]
 impl<T: Attributes> DeclaredAttributes for T {}
 
+/// The default of every type parameter of a generic `#[rt_struct]`, so that
+/// the check that a program's types were declared (`__require_declared`)
+/// may name the struct without its arguments, as a program may
+/// (`Pair::new(..)`, `Pair { .. }`); programs never name it.
+#[doc(hidden)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct __RtAnyType;
+
 /// Requires that `T` was declared with an rt attribute.
 #[doc(hidden)]
 #[inline(always)]

@@ -39,6 +39,8 @@ pub mod enums;
 pub mod exceptions;
 #[path = "../snapshots/in/fuzz_regressions.rs"]
 pub mod fuzz_regressions;
+#[path = "../snapshots/in/generic_structs.rs"]
+pub mod generic_structs;
 #[path = "../snapshots/in/generics.rs"]
 pub mod generics;
 #[path = "../snapshots/in/glam_added.rs"]

@@ -269,6 +269,8 @@ pub fn of_fn(f: &syn::ItemFn) -> Vec<Dep> {
 /// Dependencies of a struct (its field types).
 pub fn of_struct(s: &syn::ItemStruct) -> Vec<Dep> {
     let mut d = Deps { self_name: s.ident.to_string(), ..Deps::default() };
+    // A generic struct's parameters are not items.
+    d.locals.extend(s.generics.type_params().map(|t| t.ident.to_string()));
     d.visit_fields(&s.fields);
     d.deps
 }
@@ -291,13 +293,16 @@ pub fn of_impl(i: &syn::ItemImpl) -> Vec<Dep> {
                 let mut locals = Deps::default();
                 locals.visit_block(&f.block);
                 d.locals = locals.locals;
-                d.locals.extend(f.sig.generics.type_params().map(|t| t.ident.to_string()));
-                d.locals.extend(f.sig.generics.const_params().map(|c| c.ident.to_string()));
+                for g in [&i.generics, &f.sig.generics] {
+                    d.locals.extend(g.type_params().map(|t| t.ident.to_string()));
+                    d.locals.extend(g.const_params().map(|c| c.ident.to_string()));
+                }
                 d.visit_signature(&f.sig);
                 d.visit_block(&f.block);
             }
             syn::ImplItem::Const(c) => {
                 d.locals.clear();
+                d.locals.extend(i.generics.type_params().map(|t| t.ident.to_string()));
                 d.visit_type(&c.ty);
                 d.visit_expr(&c.expr);
             }

@@ -30,7 +30,10 @@
 //! (as any `&T` parameter), `&mut self` a `ptr<function, T>` (as any
 //! `&mut T`), `self` by value (every declared type is `Copy`). An
 //! associated constant `Type::NAME` is the module constant `Type__NAME`.
-//! Inside the impl `Self` is the type's name. The CPU keeps the impl as
+//! Inside the impl `Self` is the type's name. The inherent block of a
+//! generic struct (`impl<T: Copy> Pair<T>`) makes each method generic over
+//! the struct's parameters, then its own, instantiated per call as a
+//! generic helper is (`lower::generic_structs`). The CPU keeps the impl as
 //! written, each body rewritten to the GPU's integer semantics
 //! ([`crate::cpu_semantics`]).
 
@@ -135,14 +138,14 @@ pub fn check_impl(i: &syn::ItemImpl) -> Result<(), Errors> {
             errors.push(Error::unsupported(b.span(), "a negative impl", "implement the trait"));
         }
     }
-    if !i.generics.params.is_empty() {
-        errors.push(Error::unsupported(i.generics.span(), "a generic impl", "write the impl for one concrete type"));
-    }
+    let generic_self = check_impl_generics(i, &mut errors);
     if let Some(u) = &i.unsafety {
         errors.push(Error::unsupported(u.span(), "an `unsafe impl`", "ray programs are safe code"));
     }
     match &*i.self_ty {
-        syn::Type::Path(p) if p.qself.is_none() && p.path.segments.last().is_some_and(|s| s.arguments.is_none()) => {}
+        syn::Type::Path(p)
+            if p.qself.is_none() && (generic_self || p.path.segments.last().is_some_and(|s| s.arguments.is_none())) => {
+        }
         other => errors.push(Error::unsupported(
             other.span(),
             "an impl for this type",
@@ -152,6 +155,12 @@ pub fn check_impl(i: &syn::ItemImpl) -> Result<(), Errors> {
     for item in &i.items {
         match item {
             syn::ImplItem::Fn(f) => check_method(f, &mut errors),
+            syn::ImplItem::Const(c) if generic_self => errors.push(Error::unsupported(
+                c.span(),
+                "an associated constant of a generic impl",
+                "a WGSL constant has one type: write an associated function that returns the value \
+                 (`fn zero() -> Self`)",
+            )),
             syn::ImplItem::Const(c) => {
                 if !c.generics.params.is_empty() {
                     errors.push(Error::unsupported(c.generics.span(), "a generic constant", "use a concrete type"));
@@ -169,6 +178,67 @@ pub fn check_impl(i: &syn::ItemImpl) -> Result<(), Errors> {
         }
     }
     if errors.is_empty() { Ok(()) } else { Err(errors) }
+}
+
+/// The generic parameters of an impl: none, or (an inherent block of a
+/// generic struct) the struct's own, in order: `impl<T: Copy> Pair<T>`,
+/// whose methods are instantiated per instance of the struct
+/// (`lower::generic_structs`). Whether the type is `Name<params>`.
+fn check_impl_generics(i: &syn::ItemImpl, errors: &mut Errors) -> bool {
+    if i.generics.params.is_empty() {
+        return false;
+    }
+    if i.trait_.is_some() {
+        errors.push(Error::unsupported(
+            i.generics.span(),
+            "a generic impl of a trait",
+            "implement the trait for a type with concrete fields; a generic struct's methods go in its inherent \
+             `#[rt_impl] impl<T> Type<T>` block",
+        ));
+        return false;
+    }
+    let before = errors.0.len();
+    crate::lower::generics::check_params(&i.generics, errors);
+    for c in i.generics.const_params() {
+        errors.push(Error::unsupported(
+            c.span(),
+            "a const parameter of an impl",
+            "a generic struct takes type parameters; write array lengths as numbers",
+        ));
+    }
+    if errors.0.len() > before {
+        return false;
+    }
+    let params: Vec<String> = i.generics.type_params().map(|t| t.ident.to_string()).collect();
+    let args: Option<Vec<String>> = match &*i.self_ty {
+        syn::Type::Path(p) if p.qself.is_none() => match &p.path.segments.last().map(|s| &s.arguments) {
+            Some(syn::PathArguments::AngleBracketed(a)) => a
+                .args
+                .iter()
+                .map(|a| match a {
+                    syn::GenericArgument::Type(syn::Type::Path(t)) if t.qself.is_none() => {
+                        t.path.get_ident().map(|i| i.to_string())
+                    }
+                    _ => None,
+                })
+                .collect(),
+            _ => None,
+        },
+        _ => None,
+    };
+    if args.as_ref() != Some(&params) {
+        errors.push(Error::unsupported(
+            i.self_ty.span(),
+            "a generic impl of this type",
+            &format!(
+                "a generic impl is the inherent block of a generic struct, its parameters in the struct's order: \
+                 `impl<{0}> Type<{0}>`; write methods for one instance (`impl Pair<f32>`) as generic code instead",
+                params.join(", ")
+            ),
+        ));
+        return false;
+    }
+    true
 }
 
 /// An impl of an operator trait: for a type of the user's, and its
@@ -292,7 +362,8 @@ pub fn lowerable(i: &syn::ItemImpl) -> (Vec<MethodFn>, Vec<MethodConst>, Vec<Str
     if operator.is_some() {
         crate::operators::prepare_impl(&mut i);
     }
-    SelfToType(ty_ident).visit_item_impl_mut(&mut i);
+    SelfToType { ident: ty_ident, ty: (*i.self_ty).clone() }.visit_item_impl_mut(&mut i);
+    let impl_generics = i.generics.clone();
     let mut fns = Vec::new();
     let mut consts = Vec::new();
     for item in i.items {
@@ -300,6 +371,9 @@ pub fn lowerable(i: &syn::ItemImpl) -> (Vec<MethodFn>, Vec<MethodConst>, Vec<Str
             syn::ImplItem::Fn(f) => {
                 let name = f.sig.ident.to_string();
                 let mut sig = f.sig;
+                // A generic impl's parameters come first (the instance's
+                // arguments are the struct's, then the method's own).
+                sig.generics = with_impl_generics(&impl_generics, &sig.generics);
                 let mut has_receiver = false;
                 for input in sig.inputs.iter_mut() {
                     if let syn::FnArg::Receiver(r) = input {
@@ -369,15 +443,52 @@ fn receiver_param(r: &syn::Receiver) -> syn::PatType {
     }
 }
 
-/// Spells `Self` as the type's name, at `Self`'s span.
-struct SelfToType(syn::Ident);
+/// `impl`'s generic parameters, then `own`'s (a method of a generic
+/// impl, as the lowering instantiates it), with both where clauses.
+fn with_impl_generics(impl_generics: &syn::Generics, own: &syn::Generics) -> syn::Generics {
+    if impl_generics.params.is_empty() {
+        return own.clone();
+    }
+    let mut g = impl_generics.clone();
+    g.params.extend(own.params.iter().cloned());
+    if let Some(w) = &own.where_clause {
+        g.make_where_clause().predicates.extend(w.predicates.iter().cloned());
+    }
+    g
+}
+
+/// Spells `Self` as the type: a type `Self` as the impl's type as written
+/// (`Pair<T>`), a path `Self::new`, `Self { .. }` by the type's name, at
+/// `Self`'s span.
+struct SelfToType {
+    ident: syn::Ident,
+    ty: syn::Type,
+}
 
 impl VisitMut for SelfToType {
+    fn visit_type_mut(&mut self, t: &mut syn::Type) {
+        if let syn::Type::Path(p) = t
+            && p.qself.is_none()
+            && p.path.is_ident("Self")
+        {
+            let span = p.path.segments[0].ident.span();
+            let mut ty = self.ty.clone();
+            if let syn::Type::Path(tp) = &mut ty
+                && let Some(last) = tp.path.segments.last_mut()
+            {
+                last.ident = syn::Ident::new(&last.ident.to_string(), span);
+            }
+            *t = ty;
+            return;
+        }
+        syn::visit_mut::visit_type_mut(self, t);
+    }
+
     fn visit_path_mut(&mut self, p: &mut syn::Path) {
         if let Some(first) = p.segments.first_mut()
             && first.ident == "Self"
         {
-            first.ident = syn::Ident::new(&self.0.to_string(), first.ident.span());
+            first.ident = syn::Ident::new(&self.ident.to_string(), first.ident.span());
         }
         syn::visit_mut::visit_path_mut(self, p);
     }
@@ -387,6 +498,12 @@ impl VisitMut for SelfToType {
 /// the GPU's integer semantics.
 pub fn cpu_impl(i: &syn::ItemImpl) -> syn::ItemImpl {
     let mut i = i.clone();
+    if !i.generics.params.is_empty() {
+        // A generic struct's block is left as written, as a generic
+        // function is (`cpu_semantics`): its bounds name std's operator
+        // traits, not `rt_std::arith`'s.
+        return i;
+    }
     for item in i.items.iter_mut() {
         if let syn::ImplItem::Fn(m) = item {
             let mut f = syn::ItemFn {

@@ -93,9 +93,26 @@ pub struct StructDef {
     pub role: crate::StructRole,
     pub fields: Vec<(String, Ty)>,
     pub span: proc_macro2::Span,
+    /// An instance of a generic struct: the struct's name and the
+    /// arguments (see `lower::generic_structs`).
+    pub generic: Option<(String, Vec<Ty>)>,
 }
 
 impl StructDef {
+    /// The first instance of a generic struct this struct is or holds.
+    fn generic_instance(self: &Rc<Self>) -> Option<&Rc<StructDef>> {
+        if self.generic.is_some() {
+            return Some(self);
+        }
+        self.fields.iter().find_map(|(_, t)| t.generic_instance())
+    }
+
+    /// The name its `#[rt_impl]` block is keyed by: an instance's generic
+    /// struct's (`Pair` for `Pair<f32>`), else its own.
+    pub fn impl_name(&self) -> &str {
+        self.generic.as_ref().map_or(&self.name, |(g, _)| g)
+    }
+
     pub fn field(&self, name: &str) -> Option<&Ty> {
         self.fields.iter().find(|(n, _)| n == name).map(|(_, t)| t)
     }
@@ -327,6 +344,20 @@ impl Ty {
 
     /// A WGSL-identifier-safe name for the type, for generated accessors
     /// (`rt_load_vec3f`, `rt_load_Radiance`).
+    /// The first instance of a generic struct (`lower::generic_structs`)
+    /// the type is, holds or names: a value of it never reaches the host.
+    pub fn generic_instance(&self) -> Option<&Rc<StructDef>> {
+        match self {
+            Ty::Struct(d) => d.generic_instance(),
+            Ty::Array(t, _) | Ty::Ref(_, t) | Ty::Option(t) | Ty::Buffer(_, t) | Ty::BufferId(_, t) => {
+                t.generic_instance()
+            }
+            Ty::Tuple(ts) => ts.iter().find_map(Ty::generic_instance),
+            Ty::Callable(sig) => sig.params.iter().chain(std::iter::once(&sig.ret)).find_map(Ty::generic_instance),
+            _ => None,
+        }
+    }
+
     pub fn mangle(&self) -> String {
         match self {
             Ty::Scalar(s) => s.wgsl().into(),

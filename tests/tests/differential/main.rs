@@ -527,6 +527,7 @@ mod control_flow;
 mod edge_cases;
 mod enums;
 mod generic_methods;
+mod generic_structs;
 mod generics;
 mod glam_added;
 mod glam_arrays;

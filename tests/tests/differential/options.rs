@@ -140,6 +140,32 @@ differential! {
             let b = if x > 0.5 { None } else if n == 1 { Some(7) } else { Some(n + 100) };
             [a.unwrap_or(99), b.unwrap_or(98)]
         }
+        /// `let mut o = None;` typed by a later assignment, as rustc infers
+        /// it: in a loop (the value a local of the loop's body), in an
+        /// `if`, of an integer literal (`u32` by its use), of a struct.
+        none_assigned_later(n: u32, x: f32) -> [f32; 4] over pairs(&[0, 1, 2, 5, 9], &[-1.0, 0.5, 2.5]) => {
+            let arr = [x, 1.0, 2.0, 3.0];
+            let mut best = None;
+            for i in 0..4 {
+                let d = arr[i] * 2.0 - n as f32;
+                let nearer = match best {
+                    Some(b) => d < b,
+                    None => true,
+                };
+                if d > 0.0 && nearer {
+                    best = Some(d);
+                }
+            }
+            let mut count = None;
+            if n > 1 {
+                count = Some(3);
+            }
+            let mut hit = None;
+            if x > 0.0 {
+                hit = Some(Hit { t: x, id: n });
+            }
+            [best.unwrap_or(-1.0), count.map_or(0, |c| c + n) as f32, hit.map_or(-5.0, |h| h.t), hit.map_or(0.0, |h| h.id as f32)]
+        }
         /// `==` and `!=` of `Option`s: with `None`, with `Some(x)`, two
         /// variables, a nested `Option`.
         equality(n: u32, x: f32) -> [u32; 5] over pairs(&[0, 1, 2, 3, 6], &[0.0, 1.0, 2.0]) => {

@@ -137,16 +137,10 @@ pub fn rt_struct(attr: TokenStream, item: TokenStream, role: StructRole) -> Toke
         Ok(w) => w,
         Err(e) => return with_errors(e.into(), item),
     };
-    if !s.generics.params.is_empty() {
+    if let Err(errs) = crate::lower::generic_structs::check_shape(&s, role) {
         // Refused here, once: the struct as written, and its link, so that
         // programs that name it say nothing more.
-        let e = Error::unsupported(
-            s.generics.span(),
-            "a generic struct",
-            "declare one struct per field type (`struct PairF32 { a: f32, b: f32 }`); write the generic code as \
-             generic #[rt_function]s or #[rt_impl] methods",
-        );
-        let errs = Errors::from(e).to_compile_errors();
+        let errs = errs.to_compile_errors();
         let export = export_macro(&s.ident, quote!(struct data { #item }));
         return quote!(#errs #item #export);
     }
@@ -157,7 +151,7 @@ pub fn rt_struct(attr: TokenStream, item: TokenStream, role: StructRole) -> Toke
     let data_impl = rt_data_impl(&s, role);
     let role_kw = format_ident!("{}", role.keyword());
     let mut deps = deps::of_struct(&s);
-    let (links, impl_checks) = impl_links(&s.ident, with_impl, &trait_impls);
+    let (links, impl_checks) = impl_links(&s.ident, &s.generics, with_impl, &trait_impls);
     deps.extend(links);
     let body = start_chain(quote!(struct #role_kw { #item }), deps::paths(&deps));
     quote!(#near #decorated #data_impl #impl_checks #body)
@@ -225,14 +219,26 @@ pub fn rt_impl(attr: TokenStream, item: TokenStream) -> TokenStream {
     let span = crate::methods::span(&i);
     // The inherent block's markers (a type has one; its trait impls are
     // found by their links, see `traits`).
+    // A generic impl's (`impl<T: Copy> Pair<T>`) are generic over its
+    // parameters, without its bounds: the struct asks them of every
+    // instance (its parameters have none).
+    let mut unbounded = i.generics.clone();
+    unbounded.where_clause = None;
+    for p in unbounded.type_params_mut() {
+        p.colon_token = None;
+        p.bounds.clear();
+    }
+    let (impl_generics, _, where_clause) = unbounded.split_for_impl();
     let markers = if i.trait_.is_some() {
         TokenStream::new()
     } else {
         quote_spanned! {span=>
-            impl ::rt_std::data::__HasRtImplBlock for #self_ty {}
+            impl #impl_generics ::rt_std::data::__HasRtImplBlock for #self_ty #where_clause {}
             const _: () = {
                 #[allow(dead_code)]
-                fn __rt_impl_declared() { ::rt_std::data::__require_impl_declared::<#self_ty>(); }
+                fn __rt_impl_declared #impl_generics () #where_clause {
+                    ::rt_std::data::__require_impl_declared::<#self_ty>();
+                }
             };
         }
     };
@@ -325,7 +331,7 @@ pub fn rt_enum(attr: TokenStream, item: TokenStream) -> TokenStream {
         }
     };
     let rust = crate::enums::rust_side(&e, &def);
-    let (deps, impl_checks) = impl_links(&e.ident, with_impl, &trait_impls);
+    let (deps, impl_checks) = impl_links(&e.ident, &e.generics, with_impl, &trait_impls);
     if deps.is_empty() {
         return quote!(#rust #export);
     }
@@ -337,7 +343,14 @@ pub fn rt_enum(attr: TokenStream, item: TokenStream) -> TokenStream {
 /// The links of a type's `#[rt_impl]` blocks, as its attribute lists them
 /// (`impl` at `with_impl`, `impl Trait` for each of `trait_impls`), and
 /// the checks that the inherent block and its declaration go together.
-fn impl_links(name: &syn::Ident, with_impl: Option<Span>, trait_impls: &[syn::Path]) -> (Vec<deps::Dep>, TokenStream) {
+fn impl_links(
+    name: &syn::Ident,
+    generics: &syn::Generics,
+    with_impl: Option<Span>,
+    trait_impls: &[syn::Path],
+) -> (Vec<deps::Dep>, TokenStream) {
+    // A generic struct's checks are generic over its parameters.
+    let (impl_generics, ty_generics, where_clause) = generics.split_for_impl();
     let mut deps = Vec::new();
     let mut impl_checks = TokenStream::new();
     if let Some(span) = with_impl {
@@ -346,10 +359,12 @@ fn impl_links(name: &syn::Ident, with_impl: Option<Span>, trait_impls: &[syn::Pa
         let mac = syn::Ident::new(&crate::methods::macro_ident(name).to_string(), span);
         deps.push(deps::Dep { path: syn::Path::from(mac), kind: deps::DepKind::Type });
         impl_checks = quote_spanned! {span=>
-            impl ::rt_std::data::__DeclaresRtImpl for #name {}
+            impl #impl_generics ::rt_std::data::__DeclaresRtImpl for #name #ty_generics #where_clause {}
             const _: () = {
                 #[allow(dead_code)]
-                fn __rt_impl_block() { ::rt_std::data::__require_impl_block::<#name>(); }
+                fn __rt_impl_block #impl_generics () #where_clause {
+                    ::rt_std::data::__require_impl_block::<#name #ty_generics>();
+                }
             };
         };
     }

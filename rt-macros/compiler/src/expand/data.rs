@@ -18,6 +18,16 @@ pub(super) fn decorate_struct(s: &syn::ItemStruct) -> TokenStream {
     let has_repr = s.attrs.iter().any(|a| a.path().is_ident("repr"));
     let repr = if has_repr { quote!() } else { quote!(#[repr(C)]) };
     let derive = if missing.is_empty() { quote!() } else { quote!(#[derive(#(#missing),*)]) };
+    // A generic struct's parameters default to a hidden type, so that the
+    // checks that name the types a program uses (`crate::declared`) may
+    // name it without arguments, as the program may.
+    let mut s = s.clone();
+    for p in s.generics.type_params_mut() {
+        if p.default.is_none() {
+            p.eq_token = Some(Default::default());
+            p.default = Some(syn::parse_quote!(::rt_std::data::__RtAnyType));
+        }
+    }
     quote!(#derive #repr #s)
 }
 
@@ -28,6 +38,15 @@ pub(super) fn rt_data_impl(s: &syn::ItemStruct, role: StructRole) -> TokenStream
     let wgsl = lower::wgsl_ident(&name_str);
     if matches!(s.fields, syn::Fields::Unit) {
         return TokenStream::new();
+    }
+    if !s.generics.params.is_empty() {
+        // An instance's layout depends on its arguments, and a `TypeLayout`
+        // is a constant of one spelling: a generic struct has no host layout
+        // (`lower::generic_structs`), only the mark of its attribute.
+        let (impl_generics, ty_generics, where_clause) = s.generics.split_for_impl();
+        return quote! {
+            impl #impl_generics ::rt_std::data::DeclaredByAttribute for #name #ty_generics #where_clause {}
+        };
     }
     let mut offset = quote!(0u32);
     let mut field_layouts = Vec::new();
@@ -111,13 +130,25 @@ fn field_code(ident: &syn::Member, ty: &syn::Type, offset: &TokenStream) -> Fiel
         syn::Type::Path(p)
             if p.path.segments.last().is_some_and(|s| {
                 let name = s.ident.to_string();
-                crate::types::unsupported_type_advice(&name).is_some() || name == "Option"
+                crate::types::unsupported_type_advice(&name).is_some() || name == "Option" || names_generic_struct(s)
             }) =>
         {
             rejected_field(ident)
         }
         ty => plain_field(ident, ty, offset),
     }
+}
+
+/// Whether a field's type names a generic struct's instance (`Pair<f32>`):
+/// a user type with arguments, which has no layout
+/// (`lower::generic_structs`; the lowering says so).
+fn names_generic_struct(s: &syn::PathSegment) -> bool {
+    let name = s.ident.to_string();
+    !s.arguments.is_none()
+        && name != "Callable"
+        && name != crate::types::BINDLESS_SAMPLER
+        && crate::types::bindless_kind(&name).is_none()
+        && crate::types::buffer_kind(&name).is_none()
 }
 
 /// An array field, element by element through the element's `RtData`.

@@ -25,8 +25,9 @@ pub(super) fn assemble(
     // depend on the order dependencies were collected in.
     struct_order.sort();
     unit.sections.sort();
-    for name in &struct_order {
-        let d = &m.structs[name];
+    let instances = m.generic_structs.built();
+    let defs = struct_order.iter().map(|name| &m.structs[name]).chain(instances.iter());
+    for d in defs {
         let fields: Vec<String> =
             d.fields.iter().map(|(n, t)| format!("    {}: {},", super::resolve::wgsl_field(n), t.wgsl())).collect();
         out.types.push((d.wgsl_name.clone(), format!("struct {} {{\n{}\n}}\n", d.wgsl_name, fields.join("\n"))));

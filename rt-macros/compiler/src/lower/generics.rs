@@ -74,7 +74,7 @@ impl GenericArg {
     /// A WGSL-identifier-safe spelling of the argument, from its Rust one
     /// (`[f32; 4]` is `f32_4`): distinct Rust types give distinct names
     /// (an enum is not a `u32` here, as it is in WGSL).
-    fn mangle(&self) -> String {
+    pub fn mangle(&self) -> String {
         let mut out = String::new();
         for c in self.rust().chars() {
             if c.is_ascii_alphanumeric() {
@@ -329,6 +329,20 @@ pub fn bind(
                 };
                 if replace {
                     binds.insert(name, (GenericArg::Type(ty.clone()), from_literal));
+                }
+            } else if let (Some(seg), Ty::Struct(d)) = (p.path.segments.last(), ty)
+                && let syn::PathArguments::AngleBracketed(a) = &seg.arguments
+                && let Some((generic, args)) = &d.generic
+                && seg.ident == generic
+            {
+                // `Pair<T>` against an instance of `Pair` (a generic
+                // struct's method's receiver, `lower::generic_structs`).
+                let patterns = a.args.iter().filter_map(|g| match g {
+                    syn::GenericArgument::Type(t) => Some(t),
+                    _ => None,
+                });
+                for (pattern, arg) in patterns.zip(args) {
+                    bind(pattern, arg, params, binds, from_literal);
                 }
             }
         }

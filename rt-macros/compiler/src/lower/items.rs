@@ -216,11 +216,18 @@ pub(super) struct StructGraph<'r, 'a> {
     fields: HashMap<(String, usize), (String, Ty)>,
     /// The unit's `#[rt_enum]`s, which fields may name.
     enums: &'r HashMap<String, Rc<EnumDef>>,
+    /// The unit's generic structs' parameters, by name: no field names one.
+    generic: HashMap<String, Vec<String>>,
 }
 
 impl<'r, 'a> StructGraph<'r, 'a> {
-    pub fn new(raw: &'r [(&'a syn::ItemStruct, StructRole)], enums: &'r HashMap<String, Rc<EnumDef>>) -> Self {
-        StructGraph { raw, defs: HashMap::new(), fields: HashMap::new(), enums }
+    pub fn new(
+        raw: &'r [(&'a syn::ItemStruct, StructRole)],
+        enums: &'r HashMap<String, Rc<EnumDef>>,
+        generic: &super::generic_structs::GenericStructs,
+    ) -> Self {
+        let generic = generic.templates.keys().map(|n| (n.clone(), generic.params(n).unwrap_or_default())).collect();
+        StructGraph { raw, defs: HashMap::new(), fields: HashMap::new(), enums, generic }
     }
 
     fn raw(&self, name: &str) -> Option<&(&'a syn::ItemStruct, StructRole)> {
@@ -258,9 +265,6 @@ impl Graph for StructGraph<'_, '_> {
         match n {
             StructNode::Struct(name) => {
                 let (s, _) = self.raw(name).unwrap();
-                if !s.generics.params.is_empty() {
-                    return Err(Error::unsupported(s.generics.span(), "a generic struct", "use concrete field types"));
-                }
                 let n = match &s.fields {
                     syn::Fields::Named(f) => f.named.len(),
                     syn::Fields::Unnamed(f) => f.unnamed.len(),
@@ -296,12 +300,32 @@ impl Graph for StructGraph<'_, '_> {
             StructNode::Field(name, i) => {
                 let f = &self.struct_fields(name)[*i];
                 let fname = f.ident.as_ref().map_or_else(|| i.to_string(), |id| id.to_string());
-                let ty = resolve_type(&f.ty, &|n| {
+                let user = |n: &str, args: Option<&[Ty]>, span: Span| -> Option<Result<Ty>> {
+                    if let Some(params) = self.generic.get(n) {
+                        // A plain struct is host data, which an instance of
+                        // a generic struct cannot be (`generic_structs`).
+                        let args = args.map(|a| a.iter().map(Ty::to_string).collect::<Vec<_>>());
+                        let shown = format!("{n}<{}>", args.unwrap_or_else(|| params.clone()).join(", "));
+                        return Some(Err(Error::unsupported(
+                            span,
+                            &format!(
+                                "a field of type `{shown}` (an instance of the generic struct `{n}`) in a struct without parameters"
+                            ),
+                            &format!(
+                                "a struct without parameters is host data, laid out once, and a generic struct has no \
+                                 layout: make `{name}` generic too (`struct {name}<T> {{ .. }}`), or declare a struct with concrete fields for the field"
+                            ),
+                        )));
+                    }
+                    if args.is_some() {
+                        return None;
+                    }
                     self.defs
                         .get(n)
-                        .map(|d| Ty::Struct(d.clone()))
-                        .or_else(|| self.enums.get(n).map(|e| Ty::Enum(e.clone())))
-                })?;
+                        .map(|d| Ok(Ty::Struct(d.clone())))
+                        .or_else(|| self.enums.get(n).map(|e| Ok(Ty::Enum(e.clone()))))
+                };
+                let ty = resolve_type(&f.ty, &user)?;
                 if !ty.is_plain_data() {
                     return Err(Error::new(
                         f.ty.span(),
@@ -323,6 +347,7 @@ impl Graph for StructGraph<'_, '_> {
                     role,
                     fields,
                     span: s.ident.span(),
+                    generic: None,
                 });
                 self.defs.insert(name.to_string(), def);
             }
@@ -403,6 +428,8 @@ pub(super) struct ByKind<'a> {
     pub failed: Vec<String>,
     /// The generic helpers, by name (their instances are among `fns`).
     pub generics: HashMap<String, Rc<syn::ItemFn>>,
+    /// The generic structs, by name (see `generic_structs`).
+    pub generic_structs: HashMap<String, Rc<syn::ItemStruct>>,
 }
 
 /// The dependencies by kind; `instances`, of the generic helpers among
@@ -418,6 +445,7 @@ pub(super) fn by_kind<'a>(
         consts: Vec::new(),
         failed: Vec::new(),
         generics: HashMap::new(),
+        generic_structs: HashMap::new(),
     };
     let helper = |f: &syn::ItemFn| FnDef {
         key: f.sig.ident.to_string(),
@@ -434,6 +462,15 @@ pub(super) fn by_kind<'a>(
     let mut impls = Vec::new();
     for d in deps {
         match d {
+            Item::Struct(s, r) if !s.generics.params.is_empty() => {
+                // One its attribute refused is a silent error where named.
+                match super::generic_structs::check_shape(s, *r) {
+                    Ok(()) => {
+                        k.generic_structs.insert(s.ident.to_string(), Rc::new(s.clone()));
+                    }
+                    Err(_) => k.failed.push(s.ident.to_string()),
+                }
+            }
             Item::Struct(s, r) => k.structs.push((s, *r)),
             Item::Function(f) if super::generics::is_generic(f) => {
                 k.generics.insert(f.sig.ident.to_string(), Rc::new(f.clone()));
@@ -448,6 +485,9 @@ pub(super) fn by_kind<'a>(
         }
     }
     match &entry {
+        Entry::Struct(s) if !s.generics.params.is_empty() => {
+            k.generic_structs.entry(s.ident.to_string()).or_insert_with(|| Rc::new((*s).clone()));
+        }
         Entry::Struct(s) => {
             if !k.structs.iter().any(|(x, _)| x.ident == s.ident) {
                 k.structs.push((s, StructRole::Data));

@@ -8,7 +8,8 @@
 //! instance of a generic one `rtf_<name>__<arguments>`, see [`generics`]), the
 //! methods and associated functions of an `#[rt_impl]` `rtm_<Type>__<name>`
 //! and its constants `<Type>__<NAME>`, runtime items `rt_*`/`Rt*`; user
-//! structs and constants keep their names.
+//! structs and constants keep their names, an instance of a generic struct
+//! is `rt_<Type>__<arguments>` (see [`generic_structs`]).
 //!
 //! [`lower`] runs the phases of `unit` in order, in passes while calls
 //! ask for instances of generic helpers the pass lacked: the items the entry
@@ -20,6 +21,7 @@ pub mod accessors;
 mod assemble;
 pub mod builtins;
 pub mod func;
+pub mod generic_structs;
 pub mod generics;
 mod items;
 mod order;
@@ -90,6 +92,8 @@ pub struct ModuleCtx {
     pub generics: HashMap<String, Rc<syn::ItemFn>>,
     /// The instances calls asked for (see `generics`), in order.
     pub wanted: RefCell<Vec<generics::Instance>>,
+    /// The generic structs and their instances built so far.
+    pub generic_structs: generic_structs::GenericStructs,
     /// Whether `debug_assert!`s are lowered to their checks, or dropped
     /// (see [`lower_own_without_debug_assertions`]).
     pub debug_assertions: bool,
@@ -141,14 +145,34 @@ impl ModuleCtx {
         }
     }
 
+    /// The user type `name` names with `args` (see `resolve::UserTypes`):
+    /// a struct, an enum, or an instance of a generic struct, built on
+    /// first use.
+    pub fn user_type(&self, name: &str, args: Option<&[Ty]>, span: Span) -> Option<Result<Ty>> {
+        if let Some(t) = self.generic_structs.instance(name, args, span, &|n, a, s| self.user_type(n, a, s)) {
+            if let Ok(Ty::Struct(d)) = &t {
+                for (_, f) in &d.fields {
+                    self.note_tuples(f);
+                }
+            }
+            return Some(t);
+        }
+        if let Some(args) = args {
+            return (self.structs.contains_key(name) || self.enums.contains_key(name)).then(|| {
+                Err(Error::new(
+                    span,
+                    format!("`{name}` takes no generic arguments (found {}): it is not a generic struct", args.len()),
+                ))
+            });
+        }
+        self.structs
+            .get(name)
+            .map(|d| Ok(Ty::Struct(d.clone())))
+            .or_else(|| self.enums.get(name).map(|e| Ok(Ty::Enum(e.clone()))))
+    }
+
     pub fn resolve_type(&self, ty: &syn::Type) -> Result<Ty> {
-        let user = |name: &str| {
-            self.structs
-                .get(name)
-                .map(|d| Ty::Struct(d.clone()))
-                .or_else(|| self.enums.get(name).map(|e| Ty::Enum(e.clone())))
-        };
-        let resolved = resolve_type(ty, &user);
+        let resolved = resolve_type(ty, &|n, a, s| self.user_type(n, a, s));
         if let Ok(t) = &resolved {
             self.note_tuples(t);
         }
@@ -340,10 +364,12 @@ fn lower_pass(
         consts: consts_raw,
         failed: failed_members,
         generics: generic_fns,
+        generic_structs,
     } = items::by_kind(entry, deps, instances);
     let consts_raw = items::const_order(&consts_raw);
     let (enums, failed_enums) = items::enums(deps);
-    let (structs, struct_order) = unit.build_structs(&structs_raw, &enums);
+    let generic_structs = generic_structs::GenericStructs::new(generic_structs);
+    let (structs, struct_order) = unit.build_structs(&structs_raw, &enums, &generic_structs);
     let mut failed_structs: HashSet<String> =
         structs_raw.iter().map(|(s, _)| s.ident.to_string()).filter(|n| !structs.contains_key(n)).collect();
     failed_structs.extend(failed_enums);
@@ -364,6 +390,7 @@ fn lower_pass(
         printf: RefCell::new(BTreeMap::new()),
         generics: generic_fns,
         wanted: RefCell::new(Vec::new()),
+        generic_structs,
         debug_assertions,
     };
     for (name, d) in &m.structs {

@@ -130,6 +130,10 @@ fn program_lparams(
                 ty
             }
             Role::Variable => {
+                if let Some(e) = super::resolve::host_data_error(&ty, p.ty.span(), "a variable") {
+                    errors.push(e);
+                    continue;
+                }
                 let ok = ty.is_plain_data()
                     || matches!(ty, Ty::Buffer(..) | Ty::Sampler | Ty::Sampler3d | Ty::SamplerCube | Ty::Object);
                 if !ok {

@@ -7,8 +7,14 @@ use crate::types::{self, Ty};
 use syn::Expr;
 use syn::spanned::Spanned;
 
+/// What resolving a type asks of the unit: the user type `name` names
+/// (a struct or enum), with its generic arguments (`None` where written
+/// without), `None` where the unit has no type of that name; the span is
+/// the use's.
+pub type UserTypes<'a> = dyn Fn(&str, Option<&[Ty]>, proc_macro2::Span) -> Option<Result<Ty>> + 'a;
+
 /// `BindlessSampler<S>`: `S` one of the sampler types.
-fn resolve_sampler_id(seg: &syn::PathSegment, user: &dyn Fn(&str) -> Option<Ty>) -> Result<Ty> {
+fn resolve_sampler_id(seg: &syn::PathSegment, user: &UserTypes<'_>) -> Result<Ty> {
     let want = "`BindlessSampler` takes a sampler type: `BindlessSampler<Sampler2d>`, `<Sampler3d>` or `<SamplerCube>`";
     let arg = match &seg.arguments {
         syn::PathArguments::AngleBracketed(a) if a.args.len() == 1 => match &a.args[0] {
@@ -24,7 +30,7 @@ fn resolve_sampler_id(seg: &syn::PathSegment, user: &dyn Fn(&str) -> Option<Ty>)
 }
 
 /// Resolves a Rust type in the subset; `user` looks up user structs.
-pub fn resolve_type(ty: &syn::Type, user: &dyn Fn(&str) -> Option<Ty>) -> Result<Ty> {
+pub fn resolve_type(ty: &syn::Type, user: &UserTypes<'_>) -> Result<Ty> {
     match ty {
         syn::Type::Path(p) => {
             if p.qself.is_some() {
@@ -43,6 +49,9 @@ pub fn resolve_type(ty: &syn::Type, user: &dyn Fn(&str) -> Option<Ty>) -> Result
                     _ => return Err(Error::new(seg.span(), format!("`{name}` takes one element type: `{name}<T>`"))),
                 };
                 let elem = resolve_type(arg, user)?;
+                if let Some(e) = host_data_error(&elem, arg.span(), "a buffer element") {
+                    return Err(e);
+                }
                 if !elem.is_plain_data() {
                     return Err(Error::new(
                         arg.span(),
@@ -68,13 +77,13 @@ pub fn resolve_type(ty: &syn::Type, user: &dyn Fn(&str) -> Option<Ty>) -> Result
                 return Err(Error::unsupported(seg.ident.span(), &format!("the type `{name}`"), advice));
             }
             if !seg.arguments.is_none() {
-                return Err(Error::unsupported(seg.arguments.span(), "generic type arguments", "use concrete types"));
+                return resolve_instance(&name, seg, p.span(), user);
             }
             if let Some(t) = types::builtin_type(&name) {
                 return Ok(t);
             }
-            if let Some(t) = user(&name) {
-                return Ok(t);
+            if let Some(t) = user(&name, None, p.span()) {
+                return t;
             }
             if name == "Self" {
                 return Err(Error::unsupported(p.span(), "`Self`", "name the type"));
@@ -133,6 +142,32 @@ pub fn resolve_type(ty: &syn::Type, user: &dyn Fn(&str) -> Option<Ty>) -> Result
     }
 }
 
+/// `Name<A, ..>` of a user type (`seg` its last segment, `span` the
+/// whole path's): a generic struct's instance, if `Name` is one.
+fn resolve_instance(name: &str, seg: &syn::PathSegment, span: proc_macro2::Span, user: &UserTypes<'_>) -> Result<Ty> {
+    if types::builtin_type(name).is_none()
+        && let syn::PathArguments::AngleBracketed(a) = &seg.arguments
+    {
+        let mut args = Vec::new();
+        for g in &a.args {
+            match g {
+                syn::GenericArgument::Type(t) => args.push(resolve_type(t, user)?),
+                other => {
+                    return Err(Error::unsupported(
+                        other.span(),
+                        "this generic argument",
+                        "a generic struct takes types: `Pair<f32>`",
+                    ));
+                }
+            }
+        }
+        if let Some(t) = user(name, Some(&args), span) {
+            return t;
+        }
+    }
+    Err(Error::unsupported(seg.arguments.span(), "generic type arguments", "use concrete types"))
+}
+
 /// What to store instead of a value that cannot be stored, where there is
 /// one: a bool vector's bits (WGSL's bools have no layout in memory the
 /// host shares), an `Option`'s flag and value.
@@ -152,7 +187,7 @@ pub fn store_advice(ty: &Ty) -> String {
 
 /// `Option<T>` of a value a tuple may hold (scalars, vectors, matrices,
 /// arrays, structs, enums, tuples, ids).
-fn resolve_option(seg: &syn::PathSegment, user: &dyn Fn(&str) -> Option<Ty>) -> Result<Ty> {
+fn resolve_option(seg: &syn::PathSegment, user: &UserTypes<'_>) -> Result<Ty> {
     let arg = match &seg.arguments {
         syn::PathArguments::AngleBracketed(a) if a.args.len() == 1 => match &a.args[0] {
             syn::GenericArgument::Type(t) => t,
@@ -177,7 +212,7 @@ fn resolve_option(seg: &syn::PathSegment, user: &dyn Fn(&str) -> Option<Ty>) -> 
 }
 
 /// `Callable<fn(A, ..) -> R>`: arguments and result of plain values.
-fn resolve_callable(seg: &syn::PathSegment, user: &dyn Fn(&str) -> Option<Ty>) -> Result<Ty> {
+fn resolve_callable(seg: &syn::PathSegment, user: &UserTypes<'_>) -> Result<Ty> {
     let shape = "`Callable` takes a function type: `Callable<fn(Vec3, Vec3) -> Vec3>`";
     let f = match &seg.arguments {
         syn::PathArguments::AngleBracketed(a) if a.args.len() == 1 => match &a.args[0] {
@@ -211,6 +246,9 @@ fn resolve_callable(seg: &syn::PathSegment, user: &dyn Fn(&str) -> Option<Ty>) -
 /// What a callable program takes and returns: plain values (scalars,
 /// vectors, matrices, arrays, structs, enums, tuples, callable ids).
 pub fn check_callable_value(ty: &Ty, span: proc_macro2::Span, what: &str) -> Result<()> {
+    if let Some(e) = host_data_error(ty, span, &format!("{what} of a callable")) {
+        return Err(e);
+    }
     if matches!(ty, Ty::Scalar(_)) || ty.is_plain_data() {
         return Ok(());
     }
@@ -349,4 +387,20 @@ pub fn array_len(e: &Expr) -> Result<u32> {
         }
         other => Err(Error::unsupported(other.span(), "a non-literal array length", "write the length as a number")),
     }
+}
+
+/// The error for an instance of a generic struct (inside `ty`) where the
+/// host reads or writes the value (`what`: "a buffer element", ...), if
+/// there is one in it (see `generic_structs`).
+pub fn host_data_error(ty: &Ty, span: proc_macro2::Span, what: &str) -> Option<Error> {
+    let inst = ty.generic_instance()?;
+    let (name, _) = inst.generic.as_ref()?;
+    Some(Error::unsupported(
+        span,
+        &format!("`{}` (an instance of the generic struct `{name}`) as {what}", inst.name),
+        &format!(
+            "the host reads and writes it by a layout, and a generic struct has none: declare a struct with \
+             concrete fields for it (`struct {name}F32 {{ .. }}`); a generic struct lives inside programs and helpers"
+        ),
+    ))
 }

@@ -90,8 +90,9 @@ impl<'e, 'a> Unit<'e, 'a> {
         &mut self,
         raw: &[(&syn::ItemStruct, StructRole)],
         enums: &HashMap<String, Rc<EnumDef>>,
+        generic: &super::generic_structs::GenericStructs,
     ) -> (HashMap<String, Rc<StructDef>>, Vec<String>) {
-        let mut graph = StructGraph::new(raw, enums);
+        let mut graph = StructGraph::new(raw, enums, generic);
         let mut order = Order::new();
         for (s, _) in raw {
             self.own(&s.ident.to_string());

@@ -51,7 +51,7 @@ impl FnLowerer<'_> {
             None => return Ok(None),
         };
         let owner = match &ty {
-            Ty::Struct(d) => d.name.clone(),
+            Ty::Struct(d) => d.impl_name().to_string(),
             Ty::Enum(e) => e.name.clone(),
             _ => return Ok(None),
         };

@@ -40,6 +40,9 @@ impl FnLowerer<'_> {
             Expr::Binary(b) => self.binary(b, want),
             Expr::Assign(a) => {
                 let v = self.expr(&a.right, None)?;
+                if self.note_none_probe(&a.left, &v) {
+                    return Ok(Val::new("", Ty::Unit));
+                }
                 self.assign(&a.left, None, v, a.right.span())?;
                 Ok(Val::new("", Ty::Unit))
             }
@@ -48,7 +51,7 @@ impl FnLowerer<'_> {
             Expr::Index(i) => self.index(i),
             Expr::MethodCall(m) => self.method_call(m, want),
             Expr::Call(c) => self.call(c, want),
-            Expr::Struct(s) => self.struct_lit(s),
+            Expr::Struct(s) => self.struct_lit(s, want),
             Expr::Array(a) => self.array_lit(a, want),
             Expr::Repeat(r) => self.repeat_lit(r, want),
             Expr::If(i) => self.if_expr(i, want),
@@ -356,9 +359,11 @@ impl FnLowerer<'_> {
         Ok(v)
     }
 
-    pub(super) fn struct_lit(&mut self, s: &syn::ExprStruct) -> Result<Val> {
+    pub(super) fn struct_lit(&mut self, s: &syn::ExprStruct, want: Option<&Ty>) -> Result<Val> {
         let name = s.path.segments.last().unwrap().ident.to_string();
+        let generic = self.generic_struct_lit_type(s, &name, want).transpose()?;
         let ty = match name.as_str() {
+            _ if generic.is_some() => generic.unwrap(),
             "Ray" => Ty::Ray,
             "Aabb" => Ty::Aabb,
             _ => match self.m.structs.get(&name) {

@@ -80,8 +80,14 @@ impl FnLowerer<'_> {
         if args.len() != inputs.len() {
             return Err(Error::new(span, format!("`{name}` takes {} argument(s), found {}", inputs.len(), args.len())));
         }
-        let inst =
-            Instance { generic: generic.to_string(), args: self.generic_args(g, path, &inputs, args, want, span)? };
+        // A method of a generic struct's block takes the struct's
+        // parameters first (`methods`).
+        let impl_params =
+            generic.split_once("::").and_then(|(t, _)| self.m.generic_structs.params(t)).map_or(0, |p| p.len());
+        let inst = Instance {
+            generic: generic.to_string(),
+            args: self.generic_args(g, path, impl_params, &inputs, args, want, span)?,
+        };
         let key = inst.key();
         if self.fn_name != key && self.fn_name.strip_prefix(generic).is_some_and(|r| r.starts_with('<')) {
             // Each instance would call a new one, without end.
@@ -125,11 +131,15 @@ impl FnLowerer<'_> {
     }
 
     /// The instance's arguments, in the generic's order: each given by the
-    /// turbofish, else bound by an argument's type, else by `want`.
+    /// turbofish, else bound by an argument's type, else by `want`. The
+    /// first `impl_params` are a generic struct's, given on its name
+    /// (`Pair::<f32>::new(..)`), the rest on the function's.
+    #[allow(clippy::too_many_arguments)]
     fn generic_args(
         &mut self,
         g: &syn::ItemFn,
         path: &syn::Path,
+        impl_params: usize,
         inputs: &[&syn::Type],
         args: &[&Expr],
         want: Option<&Ty>,
@@ -138,12 +148,15 @@ impl FnLowerer<'_> {
         let name = g.sig.ident.to_string();
         let params = generics::params(g);
         let mut binds: HashMap<String, (GenericArg, bool)> = HashMap::new();
-        if let Some(seg) = path.segments.last()
-            && let syn::PathArguments::AngleBracketed(ab) = &seg.arguments
-        {
+        let n = path.segments.len();
+        let owner = (impl_params > 0 && n >= 2).then(|| (&path.segments[n - 2], &params[..impl_params]));
+        let own = path.segments.last().map(|s| (s, &params[impl_params.min(params.len())..]));
+        for (seg, params) in owner.into_iter().chain(own) {
+            let syn::PathArguments::AngleBracketed(ab) = &seg.arguments else { continue };
             let given: Vec<&syn::GenericArgument> =
                 ab.args.iter().filter(|a| !matches!(a, syn::GenericArgument::Lifetime(_))).collect();
             if given.len() != params.len() {
+                let name = if std::ptr::eq(seg, &path.segments[n - 1]) { name.clone() } else { seg.ident.to_string() };
                 return Err(Error::new(
                     ab.span(),
                     format!("`{name}` takes {} generic argument(s), found {}", params.len(), given.len()),
@@ -216,7 +229,7 @@ impl FnLowerer<'_> {
     /// A probed argument's type with its integer literals settled: an
     /// inference variable still open (or the probe's own, gone with it)
     /// is `i32`, as Rust's default, and sets `literal`.
-    fn probed_arg(&self, t: &Ty, literal: &mut bool) -> Ty {
+    pub(super) fn probed_arg(&self, t: &Ty, literal: &mut bool) -> Ty {
         match t {
             Ty::IntVar(v) if (*v as usize) < self.ivars.len() => match self.resolved(t) {
                 Ty::IntVar(_) => {

@@ -16,6 +16,8 @@
 //!   functions, `#[rt_function]` helpers;
 //! - `generic_calls`: calls of generic helpers, the instance's arguments
 //!   inferred (see `lower/generics.rs`);
+//! - `generic_structs`: literals of generic structs, the instance inferred
+//!   (see `lower/generic_structs.rs`);
 //! - `intrinsics`: intrinsic calls from the contract's rows;
 //! - `buffers`: buffer and sampler access;
 //! - `infer`: integer inference variables, coercion;
@@ -46,6 +48,7 @@ mod control;
 mod eval;
 mod expr;
 mod generic_calls;
+mod generic_structs;
 mod infer;
 mod intrinsics;
 mod operators;
@@ -133,6 +136,12 @@ pub struct FnLowerer<'m> {
     /// Each expression lowered, by address, with its type before inference
     /// settled (the typed form, `crate::typed`).
     expr_types: std::collections::HashMap<usize, Ty>,
+    /// The type the next `let` takes where it names none: that of a
+    /// `let mut o = None;` found by a later assignment (`options.rs`).
+    let_type_hint: Option<Ty>,
+    /// While probing for that type: the local's name, and the type of the
+    /// first `Option` assigned to it.
+    none_probe: Option<(String, Option<Ty>)>,
 }
 
 /// The statements emitted into one block so far, each with whether it
@@ -207,6 +216,8 @@ impl<'m> FnLowerer<'m> {
             hoisted_calls: 0,
             pending_tuples: Vec::new(),
             expr_types: std::collections::HashMap::new(),
+            let_type_hint: None,
+            none_probe: None,
         }
     }
 
@@ -387,6 +398,9 @@ impl<'m> FnLowerer<'m> {
                     }
                 },
                 _ => {
+                    if let Stmt::Local(l) = s {
+                        self.let_type_hint = self.none_local_type(l, &stmts[i + 1..]);
+                    }
                     if let Err(err) = self.stmt(s) {
                         self.errors.push(err);
                     }

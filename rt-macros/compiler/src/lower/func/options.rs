@@ -3,7 +3,9 @@
 //! the value's zero when `None`.
 //!
 //! `Some(x)`; `None`, typed by what its place wants (a `let`'s annotation, a
-//! parameter, the other branch of an `if` or `match`, `None::<T>`); the
+//! parameter, the other branch of an `if` or `match`, `None::<T>`, and for
+//! `let mut o = None;` the first `Option` assigned to `o` after it, as
+//! rustc infers it: [`FnLowerer::none_local_type`]); the
 //! methods that take no closure (`is_some`, `is_none`, `unwrap_or`,
 //! `unwrap_or_default`, `or`, `xor`, and `copied`/`cloned`, which change
 //! nothing where elements are values). `unwrap` and `expect` of a `None`
@@ -273,5 +275,115 @@ impl FnLowerer<'_> {
         let check: Expr = syn::parse_quote_spanned!(span=> if !#ident.is_some() { rt_throw(EXCEPTION_PANIC); });
         self.expr(&check, None)?;
         Ok(Val::new(format!("{t}.value"), inner.clone()).with_reads(recv.reads))
+    }
+}
+
+impl FnLowerer<'_> {
+    /// The type of `let mut o = None;` (no type written, `None` without a
+    /// turbofish): that of the first `Option` assigned to `o` in `rest`,
+    /// the statements after it in its block, found by lowering them as a
+    /// probe (nothing emitted, no error kept).
+    pub(super) fn none_local_type(&mut self, l: &syn::Local, rest: &[Stmt]) -> Option<Ty> {
+        let syn::Pat::Ident(pi) = &l.pat else { return None };
+        let init = l.init.as_ref()?;
+        let bare_none = matches!(&*init.expr, Expr::Path(p) if p.qself.is_none() && p.path.is_ident("None"));
+        if pi.mutability.is_none() || init.diverge.is_some() || !bare_none || self.lookup("None").is_some() {
+            return None;
+        }
+        // Unknown until assigned: an `Option` of `!`. Inside another's
+        // probe, such a local stays unknown (its assignments are skipped):
+        // probes do not nest.
+        let unknown = Ty::Option(Box::new(Ty::Never));
+        if self.none_probe.is_some() {
+            return Some(unknown);
+        }
+        let name = pi.ident.to_string();
+        let saved = (
+            self.blocks.len(),
+            self.scopes.len(),
+            self.names.clone(),
+            self.local_consts.clone(),
+            self.ivars.clone(),
+            (self.loop_depth, self.breaks.len(), self.loop_values.len(), self.writebacks.len()),
+            (self.intrinsics.len(), self.calls.len(), self.method_calls.len(), self.traced.len()),
+            (self.errors.0.len(), self.pending_tuples.len(), std::mem::take(&mut self.expr_types)),
+        );
+        // The module's tuple and `Option` types too: the probe's unknown
+        // `Option`s are not types.
+        let tuples = self.m.tuples.borrow().clone();
+        self.blocks.push(Block::default());
+        self.scopes.push(Vec::new());
+        let wgsl = self.fresh(&name);
+        self.bind(&name, Local { wgsl, ty: unknown, var: true });
+        self.none_probe = Some((name, None));
+        for (j, s) in rest.iter().enumerate() {
+            if let Stmt::Local(l) = s {
+                self.let_type_hint = self.none_local_type(l, &rest[j + 1..]);
+            }
+            let failed = self.stmt(s).is_err();
+            if failed || self.none_probe.as_ref().is_some_and(|(_, t)| t.is_some()) {
+                break;
+            }
+        }
+        let found = self.none_probe.take().and_then(|(_, t)| t);
+        let (blocks, scopes, names, consts, ivars, loops, calls, rest) = saved;
+        self.blocks.truncate(blocks);
+        self.scopes.truncate(scopes);
+        self.names = names;
+        self.local_consts = consts;
+        // The probe's inference variables go with it: an integer still
+        // open there is open again (`count = Some(3)`, its type from a
+        // later use, as rustc's).
+        let found = found.map(|t| self.resolved(&t));
+        let live = ivars.len();
+        self.ivars = ivars;
+        let found = found.map(|t| self.reopen_ivars(&t, live));
+        self.loop_depth = loops.0;
+        self.breaks.truncate(loops.1);
+        self.loop_values.truncate(loops.2);
+        self.writebacks.truncate(loops.3);
+        self.intrinsics.truncate(calls.0);
+        self.calls.truncate(calls.1);
+        self.method_calls.truncate(calls.2);
+        self.traced.truncate(calls.3);
+        self.errors.0.truncate(rest.0);
+        self.pending_tuples.truncate(rest.1);
+        self.expr_types = rest.2;
+        *self.m.tuples.borrow_mut() = tuples;
+        found
+    }
+
+    /// `t` with each integer inference variable numbered `live` or above
+    /// (a probe's) replaced by a fresh one.
+    fn reopen_ivars(&mut self, t: &Ty, live: usize) -> Ty {
+        match t {
+            Ty::IntVar(v) if *v as usize >= live => Ty::IntVar(self.new_ivar()),
+            Ty::Option(e) => Ty::Option(Box::new(self.reopen_ivars(e, live))),
+            Ty::Array(e, n) => Ty::Array(Box::new(self.reopen_ivars(e, live)), *n),
+            Ty::Tuple(ts) => Ty::Tuple(ts.iter().map(|t| self.reopen_ivars(t, live)).collect()),
+            other => other.clone(),
+        }
+    }
+
+    /// During [`FnLowerer::none_local_type`]'s probe, `o = value` where
+    /// `o` is a local of a type still unknown: the value's type noted where
+    /// `o` is the local probed (and the value an `Option` of a known type);
+    /// whether the assignment is to be skipped (`o` unknown).
+    pub(super) fn note_none_probe(&mut self, left: &Expr, value: &Val) -> bool {
+        let Some((name, found)) = &self.none_probe else { return false };
+        let Expr::Path(p) = strip_parens(left) else { return false };
+        let unknown = Ty::Option(Box::new(Ty::Never));
+        let Some(target) = p.path.get_ident().map(|i| i.to_string()) else { return false };
+        if !self.lookup(&target).is_some_and(|l| l.ty == unknown) {
+            return false;
+        }
+        if target == *name
+            && found.is_none()
+            && let Ty::Option(inner) = self.resolved(&value.ty)
+            && *inner != Ty::Never
+        {
+            self.none_probe = Some((target, Some(Ty::Option(inner))));
+        }
+        true
     }
 }

@@ -61,9 +61,10 @@ impl FnLowerer<'_> {
     }
 
     pub(super) fn local(&mut self, l: &syn::Local) -> Result<()> {
+        let hint = self.let_type_hint.take();
         let (pat, annot) = match &l.pat {
             syn::Pat::Type(pt) => (&*pt.pat, Some(self.resolve_type(&pt.ty)?)),
-            p => (p, None),
+            p => (p, hint),
         };
         let (name, mutable) = match pat {
             syn::Pat::Ident(pi) => {

@@ -1,0 +1,123 @@
+//! Generic structs through the compiler alone: one WGSL struct per
+//! instance, named after its arguments, the methods of the generic block
+//! instantiated per instance, the arguments of a literal inferred, and the
+//! errors.
+
+fn lower(items: &str, body: &str) -> Result<rt_compiler::Lowered, String> {
+    let src = format!(
+        "use rt_std::prelude::*;
+        {items}
+        #[rt_program(ray_generation)]
+        pub fn gen(#[var] mut out: RwBuffer<f32>, #[var] y: u32) {{
+            let i = launch_index().x;
+            let x = i as f32;
+            {body}
+        }}"
+    );
+    rt_compiler::lower_source(&src, "gen")
+        .map_err(|e| e.0.iter().filter(|e| !e.is_silent()).map(|e| e.message.clone()).collect::<Vec<_>>().join("\n"))
+}
+
+const PAIR: &str = "
+    #[rt_struct(impl)] pub struct Pair<T> { pub a: T, pub b: T }
+    #[rt_impl] impl<T: Copy + core::ops::Add<Output = T>> Pair<T> {
+        pub fn new(a: T, b: T) -> Self { Pair { a, b } }
+        pub fn sum(&self) -> T { self.a + self.b }
+        pub fn swapped(self) -> Self { Self { a: self.b, b: self.a } }
+        pub fn with<U: Copy>(&self, u: U) -> (T, U) { (self.a, u) }
+    }
+    #[rt_struct] pub struct Wrap<T> { pub inner: Pair<T>, pub n: u32 }";
+
+/// The WGSL names the module declares with `prefix` (`struct `, `fn `).
+fn declared(l: &rt_compiler::Lowered, prefix: &str) -> Vec<String> {
+    let mut v: Vec<String> = l
+        .wgsl
+        .lines()
+        .filter_map(|line| line.strip_prefix(prefix))
+        .map(|rest| rest.split(['(', ' ', '{']).next().unwrap().to_string())
+        .filter(|n| n.starts_with("rt_Pair") || n.starts_with("rt_Wrap") || n.starts_with("rtm_Pair"))
+        .collect();
+    v.sort();
+    v
+}
+
+#[test]
+fn each_instance_is_one_struct_and_its_methods_are_instantiated_with_it() {
+    let l = lower(
+        PAIR,
+        "let p: Pair<f32> = Pair::new(x, 1.0);
+         let q = Pair { a: Vec3::splat(x), b: Vec3::ONE }.swapped();
+         let w = Wrap { inner: p, n: 2 };
+         out[i] = p.sum() + q.sum().y + w.inner.a + p.with(y).1 as f32;",
+    )
+    .unwrap();
+    assert_eq!(declared(&l, "struct "), ["rt_Pair__Vec3", "rt_Pair__f32", "rt_Wrap__f32"]);
+    assert_eq!(
+        declared(&l, "fn "),
+        [
+            "rtm_Pair__new__f32",
+            "rtm_Pair__sum__Vec3",
+            "rtm_Pair__sum__f32",
+            "rtm_Pair__swapped__Vec3",
+            "rtm_Pair__with__f32__u32"
+        ]
+    );
+    // The fields are the template's, substituted.
+    assert!(l.wgsl.contains("struct rt_Pair__Vec3 {\n    a: vec3<f32>,\n    b: vec3<f32>,\n}"), "{}", l.wgsl);
+    assert!(l.wgsl.contains("struct rt_Wrap__f32 {\n    inner: rt_Pair__f32,\n    n: u32,\n}"), "{}", l.wgsl);
+}
+
+#[test]
+fn a_literal_takes_its_arguments_from_the_turbofish_the_wanted_type_or_its_fields() {
+    let l = lower(
+        PAIR,
+        "let a = Pair::<u32> { a: 1, b: 2 };
+         let b: Pair<i32> = Pair { a: 1, b: -2 };
+         let c = Pair { a: 1, b: y };
+         out[i] = (a.a + c.b) as f32 + b.b as f32;",
+    )
+    .unwrap();
+    assert_eq!(declared(&l, "struct "), ["rt_Pair__i32", "rt_Pair__u32"]);
+}
+
+#[test]
+fn misuse_is_an_error_naming_the_struct() {
+    assert_eq!(
+        lower(PAIR, "let p: Pair<f32, f32> = Pair::new(x, x); out[i] = p.a;").unwrap_err(),
+        "struct `Pair` takes 1 generic argument (`Pair<T>`), found 2"
+    );
+    assert_eq!(
+        lower(PAIR, "let p: Pair = Pair::new(x, x); out[i] = p.a;").unwrap_err(),
+        "struct `Pair` takes 1 generic argument (`Pair<T>`), found 0"
+    );
+    assert_eq!(
+        lower(PAIR, "let p = Pair { a: x, b: x }; let z: Pair<u32> = p; out[i] = z.a as f32;").unwrap_err(),
+        "mismatched types: expected `Pair<u32>`, found `Pair<f32>`"
+    );
+    assert_eq!(
+        lower("#[rt_struct] pub struct Plain { pub v: f32 }", "let p: Plain<f32> = Plain { v: x }; out[i] = p.v;")
+            .unwrap_err(),
+        "`Plain` takes no generic arguments (found 1): it is not a generic struct"
+    );
+}
+
+#[test]
+fn an_instance_never_crosses_to_the_host() {
+    let err = rt_compiler::lower_source(
+        &format!(
+            "use rt_std::prelude::*;
+            {PAIR}
+            #[rt_program(ray_generation)]
+            pub fn gen(#[var] out: RwBuffer<Pair<f32>>) {{ }}"
+        ),
+        "gen",
+    )
+    .unwrap_err();
+    let msgs: Vec<String> = err.0.iter().filter(|e| !e.is_silent()).map(|e| e.message.clone()).collect();
+    assert_eq!(
+        msgs,
+        ["`Pair<f32>` (an instance of the generic struct `Pair`) as a buffer element is not supported in ray \
+          programs: the host reads and writes it by a layout, and a generic struct has none: declare a struct with \
+          concrete fields for it (`struct PairF32 { .. }`); a generic struct lives inside programs and helpers"]
+    );
+}

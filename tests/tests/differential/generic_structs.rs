@@ -1,0 +1,85 @@
+//! Generic structs, one WGSL struct per instance (`rt_Pair__f32`,
+//! `rt_Pair__Vec3`) and the methods of their generic `#[rt_impl]` block
+//! one function per instance: `Pair<f32>` and `Pair<Vec3>` in one program,
+//! built by literal (the arguments inferred from the fields, the wanted
+//! type or a turbofish) and by associated function, a generic method of
+//! the generic block, a generic struct holding another, instances in a
+//! tuple, an `Option` and an array, a generic helper and a plain one
+//! taking one.
+
+use super::*;
+use core::ops::{Add, Mul};
+
+/// Two values of one type.
+#[rt_struct(impl)]
+pub struct Pair<T> {
+    pub a: T,
+    pub b: T,
+}
+
+#[rt_impl]
+impl<T: Copy + Add<Output = T> + Mul<f32, Output = T>> Pair<T> {
+    pub fn new(a: T, b: T) -> Self {
+        Pair { a, b }
+    }
+
+    pub fn sum(&self) -> T {
+        self.a + self.b
+    }
+
+    /// `b` first.
+    pub fn swapped(self) -> Self {
+        Self { a: self.b, b: self.a }
+    }
+
+    /// Both values scaled, in place.
+    pub fn scale(&mut self, s: f32) {
+        self.a = self.a * s;
+        self.b = self.b * s;
+    }
+
+    /// A generic method of the generic block: `a` beside a value of any
+    /// type.
+    pub fn first_with<U: Copy>(&self, u: U) -> (T, U) {
+        (self.a, u)
+    }
+}
+
+/// A generic struct holding an instance of another.
+#[rt_struct]
+pub struct Weighted<T> {
+    pub pair: Pair<T>,
+    pub w: f32,
+}
+
+/// A generic helper taking an instance: the weighted sum.
+#[rt_function]
+pub fn weighted_sum<T: Copy + Add<Output = T> + Mul<f32, Output = T>>(p: Weighted<T>) -> T {
+    p.pair.sum() * p.w
+}
+
+/// A plain helper taking an instance: its unit and the program's declare
+/// the same `rt_Pair__f32`, which the linker keeps once.
+#[rt_function]
+pub fn pair_gap(p: Pair<f32>) -> f32 {
+    p.b - p.a
+}
+
+differential! {
+    /// `Pair<f32>` and `Pair<Vec3>` together, and the ways to build and use them.
+    fn generic_struct_programs {
+        /// Literals, associated functions, methods, nesting and containers.
+        pairs_at_two_types(a: f32, b: f32) -> [f32; 8] over pairs(&spread(7, -3.0, 3.0), &spread(5, -1.0, 2.0)), tol CHAINED => {
+            let p = Pair { a, b };
+            let v: Pair<Vec3> = Pair::new(Vec3::new(a, b, 1.0), Vec3::splat(b));
+            let mut q = Pair::<f32> { a: b, b: 2.0 }.swapped();
+            q.scale(a);
+            let w = Weighted { pair: v, w: 0.5 };
+            let ws = weighted_sum(w);
+            let t = p.first_with(v.b);
+            let o: Option<Pair<f32>> = if a > 0.0 { Some(p) } else { None };
+            let arr = [p, q];
+            [p.sum(), v.sum().x + v.sum().y + v.sum().z, q.a - q.b, ws.x + ws.z, t.0 + t.1.y + pair_gap(q), o.map_or(-1.0, |x| x.b), arr[1].sum(), weighted_sum(Weighted { pair: p, w: 2.0 })]
+        }
+    }
+}
