@@ -64,6 +64,44 @@ fn the_fixed_seed_generates_tuples_enums_and_methods() {
     assert!(tuples >= 30 && enums >= 30 && methods >= 30 && mut_self >= 5, "{what}");
 }
 
+/// The run above includes methods of an `#[rt_trait]` (`FuzzOps`) and
+/// operator traits (`Add`, `Sub`, `Mul`, `Mul<f32>`) implemented for a
+/// struct and called, `(a + b)`, in a fair share of its programs.
+#[test]
+fn the_fixed_seed_generates_trait_methods_and_operators() {
+    use fuzz::ast::{Expr, MethodForm, Program};
+    let cfg = fuzz::Config::from_env(0x5eed, 300);
+    let (traits, operators, scalar_rhs) = fuzz::on_big_stack(move || {
+        let programs: Vec<Program> =
+            (cfg.first..cfg.first + cfg.programs).map(|id| fuzz::generate::program(cfg.seed, id)).collect();
+        // Whether `p` calls a method `is` accepts, in its body or a helper's.
+        let calls = |p: &Program, is: &dyn Fn(MethodForm) -> bool| {
+            let mut found = false;
+            let mut look = |e: &Expr| {
+                if let Expr::Call(h, _) = e {
+                    found |= p.helpers[*h].method.is_some_and(|m| is(m.form));
+                }
+            };
+            p.body.visit(&mut look);
+            for h in &p.helpers {
+                h.body.visit(&mut look);
+            }
+            found
+        };
+        let count = |is: &dyn Fn(MethodForm) -> bool| programs.iter().filter(|p| calls(p, is)).count();
+        (
+            count(&|f| f == MethodForm::Trait),
+            count(&|f| matches!(f, MethodForm::Operator(_))),
+            count(&|f| matches!(f, MethodForm::Operator(op) if op.scalar_rhs())),
+        )
+    });
+    let what = format!(
+        "of 300 programs, {traits} call a FuzzOps method, {operators} an operator impl ({scalar_rhs} `Mul<f32>`)"
+    );
+    eprintln!("{what}");
+    assert!(traits >= 15 && operators >= 30 && scalar_rhs >= 5, "{what}");
+}
+
 /// The run above also includes bool vectors (`cmp*`, consumed by
 /// `any`/`all`/`bitmask`/`select`), the dividing methods with any divisor
 /// (method and path forms), integer vectors' `cross`/`manhattan_distance`,

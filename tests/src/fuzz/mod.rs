@@ -16,7 +16,10 @@
 //!    (`fuzz_pick<T>`) called at the types of its arguments (scalars,
 //!    vectors, structs); helpers whose first parameter is the last struct are
 //!    often printed as its `#[rt_impl]` methods (`self`, `&self` or `&mut
-//!    self`), called as `x.name(..)` or `Struct::name(x, ..)` (see
+//!    self`), called as `x.name(..)` or `Struct::name(x, ..)`, some of them
+//!    in its impl of an `#[rt_trait] FuzzOps` the program declares, and
+//!    helpers taking the struct and a right operand as its operator impls
+//!    (`Add`, `Sub`, `Mul`, `Mul<f32>`), called as `(a + b)` (see
 //!    `ast::Method`). The AST prints as the Rust source of an
 //!    `#[rt_program(ray_generation)]` with its `#[rt_struct]`s and
 //!    `#[rt_function]`s.

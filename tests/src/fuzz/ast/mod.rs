@@ -5,10 +5,12 @@
 //! trees), so it carries just what printing and evaluation need: literals
 //! know their type, casts their target, calls their callee.
 //!
-//! The tree is here; `print` writes it as Rust source, `walk` asks what an
+//! The tree is here; `print` writes it as Rust source (`impls` its
+//! methods' `#[rt_impl]` blocks and the trait), `walk` asks what an
 //! expression or block does, and `rename` gives a method's body its
 //! receiver.
 
+mod impls;
 mod print;
 mod rename;
 mod walk;
@@ -342,10 +344,9 @@ pub struct Helper {
     pub method: Option<Method>,
 }
 
-/// A helper printed as a method in the `#[rt_impl]` block of struct `of`:
-/// its first parameter (of that struct's type) is the receiver, named
-/// `self` in the printed body. The interpreter calls it as the helper it
-/// is.
+/// A helper printed as a method of struct `of`: its first parameter (of
+/// that struct's type) is the receiver, named `self` in the printed body.
+/// The interpreter calls it as the helper it is.
 #[derive(Clone, Copy, Debug)]
 pub struct Method {
     pub of: usize,
@@ -353,6 +354,70 @@ pub struct Method {
     /// Calls are printed `Struct::name(receiver, ..)` rather than
     /// `receiver.name(..)`.
     pub ufcs: bool,
+    pub form: MethodForm,
+}
+
+/// Which `#[rt_impl]` block a method is printed in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MethodForm {
+    /// The struct's inherent block.
+    Inherent,
+    /// The struct's impl of the `#[rt_trait] FuzzOps` every program with
+    /// such a method declares (the trait lists the method's signature).
+    Trait,
+    /// An operator trait's impl: the helper takes the struct by value and
+    /// a right operand, returns the struct, and calls print as `(a op b)`.
+    Operator(OpTrait),
+}
+
+/// The operator traits the fuzzer implements for its structs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OpTrait {
+    /// `impl Add for S`.
+    Add,
+    /// `impl Sub for S`.
+    Sub,
+    /// `impl Mul for S`.
+    Mul,
+    /// `impl Mul<f32> for S`, beside `Mul`.
+    MulF32,
+}
+
+impl OpTrait {
+    pub const ALL: [OpTrait; 4] = [OpTrait::Add, OpTrait::Sub, OpTrait::Mul, OpTrait::MulF32];
+
+    /// The trait as the struct's attribute and the impl name it.
+    pub fn rust(self) -> &'static str {
+        match self {
+            OpTrait::Add => "Add",
+            OpTrait::Sub => "Sub",
+            OpTrait::Mul => "Mul",
+            OpTrait::MulF32 => "Mul<f32>",
+        }
+    }
+
+    /// The trait's method.
+    pub fn method(self) -> &'static str {
+        match self {
+            OpTrait::Add => "add",
+            OpTrait::Sub => "sub",
+            OpTrait::Mul | OpTrait::MulF32 => "mul",
+        }
+    }
+
+    /// The operator's token.
+    pub fn token(self) -> &'static str {
+        match self {
+            OpTrait::Add => "+",
+            OpTrait::Sub => "-",
+            OpTrait::Mul | OpTrait::MulF32 => "*",
+        }
+    }
+
+    /// Whether the right operand is an `f32` (else the struct itself).
+    pub fn scalar_rhs(self) -> bool {
+        self == OpTrait::MulF32
+    }
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

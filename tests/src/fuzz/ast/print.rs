@@ -65,9 +65,40 @@ impl Program {
         s.push_str(
             "\n#[rt_function]\npub fn fuzz_pick<T: Copy>(second: bool, a: T, b: T) -> T {\n    if second { b } else { a }\n}\n",
         );
+        let forms: Vec<(usize, MethodForm)> =
+            self.helpers.iter().filter_map(|h| h.method.map(|m| (m.of, m.form))).collect();
+        let ops: Vec<&str> = forms
+            .iter()
+            .filter_map(|(_, f)| match f {
+                MethodForm::Operator(op) => Some(op.rust().trim_end_matches("<f32>")),
+                _ => None,
+            })
+            .collect();
+        if !ops.is_empty() {
+            let mut ops = ops;
+            ops.sort();
+            ops.dedup();
+            let _ = writeln!(s, "use core::ops::{{{}}};", ops.join(", "));
+        }
+        self.trait_declaration(&mut s);
         for (i, d) in self.structs.iter().enumerate() {
-            let has_impl = self.helpers.iter().any(|h| h.method.is_some_and(|m| m.of == i));
-            s.push_str(if has_impl { "\n#[rt_struct(impl)]\npub struct " } else { "\n#[rt_struct]\npub struct " });
+            let mut impls: Vec<String> = Vec::new();
+            if forms.contains(&(i, MethodForm::Inherent)) {
+                impls.push("impl".into());
+            }
+            if forms.contains(&(i, MethodForm::Trait)) {
+                impls.push("impl FuzzOps".into());
+            }
+            for (of, f) in &forms {
+                if let (true, MethodForm::Operator(op)) = (*of == i, f) {
+                    impls.push(format!("impl {}", op.rust()));
+                }
+            }
+            if impls.is_empty() {
+                s.push_str("\n#[rt_struct]\npub struct ");
+            } else {
+                let _ = write!(s, "\n#[rt_struct({})]\npub struct ", impls.join(", "));
+            }
             s.push_str(&d.name);
             s.push_str(" {\n");
             for (n, t) in &d.fields {
@@ -75,47 +106,13 @@ impl Program {
             }
             s.push_str("}\n");
         }
-        let params = |h: &Helper| -> Vec<String> {
-            h.params
-                .iter()
-                .map(|p| match p {
-                    Param::Val(n, t) => format!("{n}: {}", t.rust(self)),
-                    Param::MutRef(n, t) => format!("{n}: &mut {}", t.rust(self)),
-                })
-                .collect()
-        };
         for h in self.helpers.iter().filter(|h| h.method.is_none()) {
             let ret = h.ret.as_ref().map(|t| format!(" -> {}", t.rust(self))).unwrap_or_default();
-            let _ = write!(s, "\n#[rt_function]\npub fn {}({}){ret} ", h.name, params(h).join(", "));
+            let _ = write!(s, "\n#[rt_function]\npub fn {}({}){ret} ", h.name, self.params(h).join(", "));
             self.block(&mut s, &h.body, 0);
             s.push('\n');
         }
-        for (i, d) in self.structs.iter().enumerate() {
-            let methods: Vec<&Helper> = self.helpers.iter().filter(|h| h.method.is_some_and(|m| m.of == i)).collect();
-            if methods.is_empty() {
-                continue;
-            }
-            let _ = writeln!(s, "\n#[rt_impl]\nimpl {} {{", d.name);
-            for h in methods {
-                let m = h.method.unwrap();
-                let mut ps = params(h);
-                let (first, body) = match &h.params[0] {
-                    Param::Val(n, _) | Param::MutRef(n, _) => (n.clone(), h.body.clone()),
-                };
-                ps[0] = match m.receiver {
-                    Receiver::Value => "self".into(),
-                    Receiver::Ref => "&self".into(),
-                    Receiver::MutRef => "&mut self".into(),
-                };
-                let mut body = body;
-                rename::block(&mut body, &first, m.receiver == Receiver::Ref);
-                let ret = h.ret.as_ref().map(|t| format!(" -> {}", t.rust(self))).unwrap_or_default();
-                let _ = write!(s, "    pub fn {}({}){ret} ", h.name, ps.join(", "));
-                self.block(&mut s, &body, 1);
-                s.push('\n');
-            }
-            s.push_str("}\n");
-        }
+        self.impl_blocks(&mut s);
         let mut params: Vec<String> = Vec::new();
         let mut reads = String::new();
         if inputs_in_buffers {
@@ -148,7 +145,7 @@ impl Program {
         s
     }
 
-    fn block(&self, s: &mut String, b: &Block, depth: usize) {
+    pub(super) fn block(&self, s: &mut String, b: &Block, depth: usize) {
         s.push_str("{\n");
         for st in &b.stmts {
             self.stmt(s, st, depth + 1);
@@ -316,6 +313,9 @@ impl Program {
                 let Some(helper) = self.helpers.get(*h) else { return format!("missing_helper({})", a.join(", ")) };
                 match helper.method {
                     None => format!("{}({})", helper.name, a.join(", ")),
+                    Some(Method { form: MethodForm::Operator(op), .. }) => {
+                        format!("({} {} {})", a[0], op.token(), a[1])
+                    }
                     Some(m) => {
                         let ty = &self.structs[m.of].name;
                         let (recv, rest) = (a[0].clone(), &a[1..]);

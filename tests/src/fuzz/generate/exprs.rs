@@ -171,9 +171,34 @@ impl Gen {
             Ty::S(Scalar::Bool) => self.bool_expr(d),
             Ty::V(n, Scalar::F32) => self.fvec_expr(*n, d, typed),
             Ty::V(n, s) => self.ivec_expr(*n, *s, d, typed),
-            Ty::Struct(k) => self.struct_lit(*k, d),
+            Ty::Struct(k) => match self.operator_call(*k, d) {
+                Some(c) if self.r.chance(40) => c,
+                _ => self.struct_lit(*k, d),
+            },
             Ty::Arr(..) => unreachable!(),
         }
+    }
+
+    /// A call of one of struct `k`'s operator impls, `(a op b)`.
+    fn operator_call(&mut self, k: usize, d: u32) -> Option<Expr> {
+        let cands: Vec<usize> = (0..self.callable)
+            .filter(|i| {
+                self.p.helpers[*i].method.is_some_and(|m| m.of == k && matches!(m.form, MethodForm::Operator(_)))
+            })
+            .collect();
+        if cands.is_empty() {
+            return None;
+        }
+        let h = self.r.pick(&cands);
+        let params = self.p.helpers[h].params.clone();
+        let args = params
+            .iter()
+            .map(|p| match p {
+                Param::Val(_, pt) => Arg::Val(self.expr(pt, d - 1, true)),
+                Param::MutRef(..) => unreachable!("an operator takes its operands by value"),
+            })
+            .collect();
+        Some(Expr::Call(h, args))
     }
 
     /// `(x, other).0` or `(other, x).1`: a tuple literal with the value and

@@ -138,16 +138,34 @@ impl Gen {
             self.bind(&n, mut_ty.clone(), true, Kind::RefParam);
             params.push(Param::MutRef(n, mut_ty.clone()));
         }
-        for k in 0..self.r.range(if takes_mut { 0 } else { 1 }, 3) {
-            let t = match &last_struct {
-                Some(t) if k == 0 && !takes_mut && self.r.chance(70) => t.clone(),
-                _ => self.var_ty(),
-            };
-            let n = format!("p{i}_{k}");
-            self.bind(&n, t.clone(), false, Kind::ReadOnly);
-            params.push(Param::Val(n, t));
+        // An operator's shape (see `method_form`): the struct and a right
+        // operand, the struct back.
+        let operator = match &last_struct {
+            Some(t) if !takes_mut && self.r.chance(60) => self.free_operator().map(|op| (op, t.clone())),
+            _ => None,
+        };
+        if let Some((op, t)) = &operator {
+            let rhs = if op.scalar_rhs() { F32 } else { t.clone() };
+            for (k, t) in [t.clone(), rhs].into_iter().enumerate() {
+                let n = format!("p{i}_{k}");
+                self.bind(&n, t.clone(), false, Kind::ReadOnly);
+                params.push(Param::Val(n, t));
+            }
+        } else {
+            for k in 0..self.r.range(if takes_mut { 0 } else { 1 }, 3) {
+                let t = match &last_struct {
+                    Some(t) if k == 0 && !takes_mut && self.r.chance(70) => t.clone(),
+                    _ => self.var_ty(),
+                };
+                let n = format!("p{i}_{k}");
+                self.bind(&n, t.clone(), false, Kind::ReadOnly);
+                params.push(Param::Val(n, t));
+            }
         }
-        let ret = self.var_ty();
+        let ret = match &operator {
+            Some((_, t)) => t.clone(),
+            None => self.var_ty(),
+        };
         self.ret = Some(ret.clone());
         self.stmts_left = self.r.range(1, 8) as u32;
         let mut stmts = Vec::new();
@@ -168,8 +186,23 @@ impl Gen {
         let tail = self.expr(&ret, DEPTH, true);
         self.ret = None;
         let body = Block { stmts, tail: Some(tail) };
-        let method = self.method_form(&params, &body);
+        let method = self.method_form(&params, &body, operator.map(|(op, _)| op));
         Helper { name, params, ret: Some(ret), body, method }
+    }
+
+    /// An operator trait the last struct does not implement yet, at random.
+    fn free_operator(&mut self) -> Option<OpTrait> {
+        let used: Vec<OpTrait> = self
+            .p
+            .helpers
+            .iter()
+            .filter_map(|h| match h.method?.form {
+                MethodForm::Operator(op) => Some(op),
+                _ => None,
+            })
+            .collect();
+        let free: Vec<OpTrait> = OpTrait::ALL.into_iter().filter(|op| !used.contains(op)).collect();
+        (!free.is_empty()).then(|| self.r.pick(&free))
     }
 
     /// Whether a helper is printed as a method (and how), with its first
@@ -178,7 +211,9 @@ impl Gen {
     /// struct's own methods. So the method's impl never names an item
     /// whose own link in the macro chain names the struct back, a cycle
     /// the chain cannot close (see `rt_compiler::methods`).
-    fn method_form(&mut self, params: &[Param], body: &Block) -> Option<Method> {
+    /// A helper of an operator's shape (`operator`) becomes that operator's
+    /// impl; another method goes to the inherent block or to the trait.
+    fn method_form(&mut self, params: &[Param], body: &Block, operator: Option<OpTrait>) -> Option<Method> {
         let of = self.p.structs.len().checked_sub(1)?;
         let receiver = match params.first()? {
             Param::MutRef(_, Ty::Struct(k)) if *k == of => Receiver::MutRef,
@@ -200,6 +235,10 @@ impl Gen {
         if !own_calls_only || !self.r.chance(90) {
             return None;
         }
-        Some(Method { of, receiver, ufcs: self.r.chance(30) })
+        if let Some(op) = operator {
+            return Some(Method { of, receiver: Receiver::Value, ufcs: false, form: MethodForm::Operator(op) });
+        }
+        let form = if self.r.chance(50) { MethodForm::Trait } else { MethodForm::Inherent };
+        Some(Method { of, receiver, ufcs: self.r.chance(30), form })
     }
 }
