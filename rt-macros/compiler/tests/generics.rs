@@ -2,20 +2,8 @@
 //! gets and how they are named, how the arguments are inferred, and the
 //! errors that stay.
 
-fn lower(items: &str, body: &str) -> Result<rt_compiler::Lowered, String> {
-    let src = format!(
-        "use rt_std::prelude::*;
-        {items}
-        #[rt_program(ray_generation)]
-        pub fn gen(#[var] mut out: RwBuffer<f32>, #[var] y: u32) {{
-            let i = launch_index().x;
-            let x = i as f32;
-            {body}
-        }}"
-    );
-    rt_compiler::lower_source(&src, "gen")
-        .map_err(|e| e.0.iter().filter(|e| !e.is_silent()).map(|e| e.message.clone()).collect::<Vec<_>>().join("\n"))
-}
+mod common;
+use common::lower;
 
 const HELPERS: &str = "
     #[rt_function] pub fn pick<T>(first: bool, a: T, b: T) -> T { if first { a } else { b } }

@@ -2,18 +2,10 @@
 //! assigned to `o` after it, as rustc infers it; still an error where
 //! nothing assigns one.
 
+mod common;
+
 fn lower(body: &str) -> Result<rt_compiler::Lowered, String> {
-    let src = format!(
-        "use rt_std::prelude::*;
-        #[rt_program(ray_generation)]
-        pub fn gen(#[var] mut out: RwBuffer<f32>, #[var] y: u32) {{
-            let i = launch_index().x;
-            let x = i as f32;
-            {body}
-        }}"
-    );
-    rt_compiler::lower_source(&src, "gen")
-        .map_err(|e| e.0.iter().filter(|e| !e.is_silent()).map(|e| e.message.clone()).collect::<Vec<_>>().join("\n"))
+    common::lower("", body)
 }
 
 /// The WGSL line declaring the local `name`.

@@ -190,15 +190,21 @@ impl Gen {
             return None;
         }
         let h = self.r.pick(&cands);
+        Some(self.call_by_value(h, d))
+    }
+
+    /// A call of helper `h`, whose parameters are all values, with
+    /// arguments of depth below `d`.
+    fn call_by_value(&mut self, h: usize, d: u32) -> Expr {
         let params = self.p.helpers[h].params.clone();
         let args = params
             .iter()
             .map(|p| match p {
                 Param::Val(_, pt) => Arg::Val(self.expr(pt, d - 1, true)),
-                Param::MutRef(..) => unreachable!("an operator takes its operands by value"),
+                Param::MutRef(..) => unreachable!("the callers pick helpers without `&mut` parameters"),
             })
             .collect();
-        Some(Expr::Call(h, args))
+        Expr::Call(h, args)
     }
 
     /// `(x, other).0` or `(other, x).1`: a tuple literal with the value and
@@ -268,15 +274,7 @@ impl Gen {
             return None;
         }
         let h = self.r.pick(&cands);
-        let params = self.p.helpers[h].params.clone();
-        let args = params
-            .iter()
-            .map(|p| match p {
-                Param::Val(_, pt) => Arg::Val(self.expr(pt, d - 1, true)),
-                Param::MutRef(..) => unreachable!(),
-            })
-            .collect();
-        Some(Expr::Call(h, args))
+        Some(self.call_by_value(h, d))
     }
 
     pub(super) fn mut_helper(&self) -> Option<usize> {
