@@ -2,7 +2,8 @@
 //! `+ - * /` between two values and with a scalar on the right (`Mul` and
 //! `Mul<f32>` side by side), `-a`, `!a`, compound assignments through
 //! `AddAssign`/`MulAssign` (one whose meaning differs from `+`), and `Index`,
-//! in programs, helpers, methods and a generic helper bounded by `Add`.
+//! in programs, helpers, methods and a generic helper bounded by `Add`;
+//! and the traits' methods called by name (`a.add(b)`, `a.neg()`).
 
 use super::*;
 use std::ops::{Add, AddAssign, BitAnd, BitOrAssign, BitXor, Div, Index, Mul, MulAssign, Neg, Not, Sub};
@@ -23,6 +24,11 @@ impl Rgb3 {
     /// An operator inside a method.
     pub fn doubled(&self) -> Rgb3 {
         *self + *self
+    }
+    /// Operators called by name on `&self`.
+    pub fn halved_sum(&self, o: Rgb3) -> f32 {
+        let s = self.add(o).mul(0.5);
+        s.r + s.g + s.b
     }
 }
 
@@ -171,6 +177,13 @@ differential! {
             let i = 2;
             let s = sum3(a, b, c);
             [c.r, c.g, c.b, d.r, d.g, d.b, m[0] + m[1] + m[i], a.doubled()[1], q.r + q.g + q[2], d[0] + s.g, (a - b).b + sum3(x, y, 1.0), (-(a * x))[1]]
+        }
+        by_name(x: f32, y: f32) -> [f32; 6] over pairs(&spread(5, -2.0, 2.0), &spread(4, -1.5, 3.0)), tol CHAINED => {
+            let a = Rgb3::new(x, y, x * y);
+            let b = Rgb3::new(y, 0.5, -x);
+            let c = a.add(b.mul(2.0)).sub(a.neg());
+            let d = a.mul(b).div(y);
+            [c.r, c.g, c.b, d.r, a.halved_sum(b), b.neg().g]
         }
         masks(n: u32, k: u32) -> [u32; 3] over pairs(&[0, 1, 5, 0xf0, 0x7f], &[0, 3, 9]) => {
             let a = Mask { bits: n };

@@ -29,6 +29,9 @@ impl FnLowerer<'_> {
             Some(UserMethod::Plain(sig)) => return self.user_method_call(&sig, &m.receiver, &args, m.span()),
             None => {}
         }
+        if let Some(v) = self.operator_by_name(m, want)? {
+            return Ok(v);
+        }
         if let Some(v) = self.in_place_method(m, &name)? {
             return Ok(v);
         }

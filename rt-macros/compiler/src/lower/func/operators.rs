@@ -106,6 +106,53 @@ impl FnLowerer<'_> {
         self.finish_helper_call(&sig, vec![l, r], start, span).map(Ok)
     }
 
+    /// `a.add(b)`, `a.neg()`: an operator trait's method called by name on
+    /// a user type with an impl of that trait, lowered as the operator
+    /// itself (`a + b`, `-a`), so the impl is chosen as for the operator.
+    /// `None` for any other call (a method the type declares by that name
+    /// was taken before).
+    pub(super) fn operator_by_name(&mut self, m: &syn::ExprMethodCall, want: Option<&Ty>) -> Result<Option<Val>> {
+        if !self.has_operator_impls() || m.turbofish.is_some() {
+            return Ok(None);
+        }
+        let name = m.method.to_string();
+        let binary = match OPERATORS.iter().find(|o| o.method == name).map(|o| &o.kind) {
+            Some(OpKind::Binary) => true,
+            Some(OpKind::Unary) => false,
+            _ => return Ok(None),
+        };
+        if m.args.len() != usize::from(binary) {
+            return Ok(None);
+        }
+        let Some(t) = self.peek_type(&m.receiver)? else { return Ok(None) };
+        let (t, by_ref) = match t {
+            Ty::Ref(_, t) => (*t, true),
+            t => (t, false),
+        };
+        let Some(owner) = self.operand_owner(&t) else { return Ok(None) };
+        if self.operator_impls(&owner, &name, m.span())?.is_empty() {
+            return Ok(None);
+        }
+        let recv = &m.receiver;
+        let span = m.span();
+        let a: Expr =
+            if by_ref { syn::parse_quote_spanned!(span=> (*#recv)) } else { syn::parse_quote_spanned!(span=> (#recv)) };
+        let e: Expr = match (name.as_str(), m.args.first()) {
+            ("neg", None) => syn::parse_quote_spanned!(span=> -#a),
+            ("not", None) => syn::parse_quote_spanned!(span=> !#a),
+            ("add", Some(b)) => syn::parse_quote_spanned!(span=> #a + (#b)),
+            ("sub", Some(b)) => syn::parse_quote_spanned!(span=> #a - (#b)),
+            ("mul", Some(b)) => syn::parse_quote_spanned!(span=> #a * (#b)),
+            ("div", Some(b)) => syn::parse_quote_spanned!(span=> #a / (#b)),
+            ("rem", Some(b)) => syn::parse_quote_spanned!(span=> #a % (#b)),
+            ("bitand", Some(b)) => syn::parse_quote_spanned!(span=> #a & (#b)),
+            ("bitor", Some(b)) => syn::parse_quote_spanned!(span=> #a | (#b)),
+            ("bitxor", Some(b)) => syn::parse_quote_spanned!(span=> #a ^ (#b)),
+            _ => return Ok(None),
+        };
+        self.expr(&e, want).map(Some)
+    }
+
     /// `-a`, `!a` of a user type with an impl of `Neg`, `Not`.
     pub(super) fn user_unary(&mut self, u: &syn::ExprUnary) -> Result<Option<Val>> {
         let method = match u.op {
