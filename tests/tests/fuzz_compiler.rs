@@ -66,20 +66,21 @@ fn the_fixed_seed_generates_tuples_enums_and_methods() {
 
 /// The run above includes methods of an `#[rt_trait]` (`FuzzOps`) and
 /// operator traits (`Add`, `Sub`, `Mul`, `Mul<f32>`) implemented for a
-/// struct and called, `(a + b)`, in a fair share of its programs.
+/// struct and called, `(a + b)` or by name (`a.add(b)`), in a fair share
+/// of its programs.
 #[test]
 fn the_fixed_seed_generates_trait_methods_and_operators() {
-    use fuzz::ast::{Expr, MethodForm, Program};
+    use fuzz::ast::{Expr, Method, MethodForm, Program};
     let cfg = fuzz::Config::from_env(0x5eed, 300);
-    let (traits, operators, scalar_rhs) = fuzz::on_big_stack(move || {
+    let (traits, operators, scalar_rhs, by_name) = fuzz::on_big_stack(move || {
         let programs: Vec<Program> =
             (cfg.first..cfg.first + cfg.programs).map(|id| fuzz::generate::program(cfg.seed, id)).collect();
         // Whether `p` calls a method `is` accepts, in its body or a helper's.
-        let calls = |p: &Program, is: &dyn Fn(MethodForm) -> bool| {
+        let calls = |p: &Program, is: &dyn Fn(Method) -> bool| {
             let mut found = false;
             let mut look = |e: &Expr| {
                 if let Expr::Call(h, _) = e {
-                    found |= p.helpers[*h].method.is_some_and(|m| is(m.form));
+                    found |= p.helpers[*h].method.is_some_and(is);
                 }
             };
             p.body.visit(&mut look);
@@ -88,18 +89,20 @@ fn the_fixed_seed_generates_trait_methods_and_operators() {
             }
             found
         };
-        let count = |is: &dyn Fn(MethodForm) -> bool| programs.iter().filter(|p| calls(p, is)).count();
+        let count = |is: &dyn Fn(Method) -> bool| programs.iter().filter(|p| calls(p, is)).count();
         (
-            count(&|f| f == MethodForm::Trait),
-            count(&|f| matches!(f, MethodForm::Operator(_))),
-            count(&|f| matches!(f, MethodForm::Operator(op) if op.scalar_rhs())),
+            count(&|m| m.form == MethodForm::Trait),
+            count(&|m| matches!(m.form, MethodForm::Operator(_))),
+            count(&|m| matches!(m.form, MethodForm::Operator(op) if op.scalar_rhs())),
+            count(&|m| matches!(m.form, MethodForm::Operator(_)) && m.ufcs),
         )
     });
     let what = format!(
-        "of 300 programs, {traits} call a FuzzOps method, {operators} an operator impl ({scalar_rhs} `Mul<f32>`)"
+        "of 300 programs, {traits} call a FuzzOps method, {operators} an operator impl ({scalar_rhs} `Mul<f32>`, \
+         {by_name} by name)"
     );
     eprintln!("{what}");
-    assert!(traits >= 15 && operators >= 30 && scalar_rhs >= 5, "{what}");
+    assert!(traits >= 15 && operators >= 30 && scalar_rhs >= 5 && by_name >= 5, "{what}");
 }
 
 /// The run above also includes bool vectors (`cmp*`, consumed by

@@ -19,7 +19,8 @@
 //!    self`), called as `x.name(..)` or `Struct::name(x, ..)`, some of them
 //!    in its impl of an `#[rt_trait] FuzzOps` the program declares, and
 //!    helpers taking the struct and a right operand as its operator impls
-//!    (`Add`, `Sub`, `Mul`, `Mul<f32>`), called as `(a + b)` (see
+//!    (`Add`, `Sub`, `Mul`, `Mul<f32>`), called as `(a + b)` or by name,
+//!    `a.add(b)` (see
 //!    `ast::Method`). The AST prints as the Rust source of an
 //!    `#[rt_program(ray_generation)]` with its `#[rt_struct]`s and
 //!    `#[rt_function]`s.

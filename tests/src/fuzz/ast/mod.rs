@@ -352,7 +352,7 @@ pub struct Method {
     pub of: usize,
     pub receiver: Receiver,
     /// Calls are printed `Struct::name(receiver, ..)` rather than
-    /// `receiver.name(..)`.
+    /// `receiver.name(..)`; an operator's, `a.add(b)` rather than `(a + b)`.
     pub ufcs: bool,
     pub form: MethodForm,
 }

@@ -313,9 +313,10 @@ impl Program {
                 let Some(helper) = self.helpers.get(*h) else { return format!("missing_helper({})", a.join(", ")) };
                 match helper.method {
                     None => format!("{}({})", helper.name, a.join(", ")),
-                    Some(Method { form: MethodForm::Operator(op), .. }) => {
-                        format!("({} {} {})", a[0], op.token(), a[1])
-                    }
+                    Some(Method { form: MethodForm::Operator(op), ufcs, .. }) => match &args[0] {
+                        Arg::Val(e) if ufcs => format!("{}.{}({})", self.receiver(e), op.method(), a[1]),
+                        _ => format!("({} {} {})", a[0], op.token(), a[1]),
+                    },
                     Some(m) => {
                         let ty = &self.structs[m.of].name;
                         let (recv, rest) = (a[0].clone(), &a[1..]);

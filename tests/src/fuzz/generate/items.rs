@@ -236,7 +236,9 @@ impl Gen {
             return None;
         }
         if let Some(op) = operator {
-            return Some(Method { of, receiver: Receiver::Value, ufcs: false, form: MethodForm::Operator(op) });
+            // (`ufcs`: called by name, `a.add(b)`.)
+            let by_name = self.r.chance(30);
+            return Some(Method { of, receiver: Receiver::Value, ufcs: by_name, form: MethodForm::Operator(op) });
         }
         let form = if self.r.chance(50) { MethodForm::Trait } else { MethodForm::Inherent };
         Some(Method { of, receiver, ufcs: self.r.chance(30), form })
