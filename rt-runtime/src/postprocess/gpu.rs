@@ -201,13 +201,7 @@ impl Pipelines {
         let device = &self.device;
         let n = (plan.width * plan.height) as usize;
         let bytes = (n * 16) as u64;
-        let upload = |label, px: &[Vec4]| {
-            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some(label),
-                contents: &words(px),
-                usage: wgpu::BufferUsages::STORAGE,
-            })
-        };
+        let upload = |label, px: &[Vec4]| upload(device, label, px);
         let scratch = |label| {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
@@ -314,13 +308,7 @@ impl Pipelines {
                 mapped_at_creation: false,
             })
         };
-        let upload = |label, px: &[Vec4]| {
-            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some(label),
-                contents: &words(px),
-                usage: wgpu::BufferUsages::STORAGE,
-            })
-        };
+        let upload = |label, px: &[Vec4]| upload(device, label, px);
         let texels = n * TEXELS as u64;
         let size = (texels + 2 * n) * 16;
         let (previous, spare) = match t.previous.as_ref().map(|h| &h.texels) {
@@ -464,6 +452,15 @@ fn dispatch(
 /// The little-endian bytes of `pixels`.
 fn words(pixels: &[Vec4]) -> Vec<u8> {
     pixels.iter().flat_map(|p| p.to_array()).flat_map(f32::to_le_bytes).collect()
+}
+
+/// A storage buffer on `device` holding `pixels`.
+fn upload(device: &wgpu::Device, label: &str, pixels: &[Vec4]) -> wgpu::Buffer {
+    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some(label),
+        contents: &words(pixels),
+        usage: wgpu::BufferUsages::STORAGE,
+    })
 }
 
 /// The `Params` uniform of `temporal.wgsl`, over the last run's history
