@@ -67,6 +67,13 @@ pub fn rt_const(attr: TokenStream, item: TokenStream) -> TokenStream {
     rt_compiler::expand::rt_const(attr.into(), item.into()).into()
 }
 
+/// Declares a type alias programs may name (`#[rt_type] type Brdf =
+/// Vec3;`): each use stands for the type, as in Rust.
+#[proc_macro_attribute]
+pub fn rt_type(attr: TokenStream, item: TokenStream) -> TokenStream {
+    rt_compiler::expand::rt_type(attr.into(), item.into()).into()
+}
+
 /// Marks rt-std's CPU body of an intrinsic of the contract (`rt-abi`): adds
 /// its callers' doc line and OptiX alias from its row and checks its
 /// signature against the row's.

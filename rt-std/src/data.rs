@@ -250,12 +250,14 @@ pub fn triangle_words(layout: &TypeLayout, t: &TriangleBuiltins) -> Vec<u32> {
 // recommend, so the error lists no implementing types (a list that would
 // change with every struct of the workspace). `DeclaredData` is the
 // attributes' own (through `DeclaredByAttribute`), not every `RtData`'s:
-// a type alias of a glam type is refused by it too, and told why.
+// a type alias of a glam type without `#[rt_type]` is refused by it too,
+// and told why (an `#[rt_type]` alias is not asked: see
+// `rt_compiler::declared`).
 #[doc(hidden)]
 #[diagnostic::on_unimplemented(
     message = "this type is not declared for ray programs",
     label = "`{Self}` is not declared with #[rt_struct], #[rt_payload], #[rt_attributes] or #[rt_enum]",
-    note = "a type of your own needs the attribute on its declaration; a `type` alias of `{Self}` must be replaced by `{Self}` itself (the macros that compile programs do not see aliases)"
+    note = "a type of your own needs the attribute on its declaration, and a `type` alias of `{Self}` needs #[rt_type] on its own"
 )]
 pub trait DeclaredData {}
 #[diagnostic::do_not_recommend]

@@ -175,6 +175,7 @@ pub use math::{faceforward, mix, reflect, refract, saturate, smoothstep, step};
 pub use ray::*;
 pub use rt_macros::{
     __rt_collect, rt_attributes, rt_const, rt_enum, rt_function, rt_impl, rt_payload, rt_program, rt_struct, rt_trait,
+    rt_type,
 };
 pub use scene::{Object, TransformKind};
 pub use texture::{

@@ -15,7 +15,7 @@ pub use glam::{
 };
 
 pub use rt_macros::{
-    rt_attributes, rt_const, rt_enum, rt_function, rt_impl, rt_payload, rt_program, rt_struct, rt_trait,
+    rt_attributes, rt_const, rt_enum, rt_function, rt_impl, rt_payload, rt_program, rt_struct, rt_trait, rt_type,
 };
 
 pub use crate::rt_printf;

@@ -1,5 +1,5 @@
-// A type alias in a program: the macros that compile programs see only
-// items declared with an rt attribute.
+// A type alias in a program without `#[rt_type]`: the macros that compile
+// programs see only items declared with an rt attribute.
 use rt_std::prelude::*;
 
 pub type Brdf = Vec3;

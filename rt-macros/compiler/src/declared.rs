@@ -42,25 +42,86 @@ pub fn declared_checks(deps: &[Dep], params: &[signature::Param]) -> TokenStream
         let span = p.ty.span();
         checks.push(quote_spanned!(span=> ::rt_std::data::#check::<#ty>();));
     }
-    for d in deps.iter().filter(|d| d.kind == DepKind::Type) {
-        let Some(last) = d.path.segments.last() else { continue };
-        let path = &d.path;
-        if roles.contains(&quote!(#path).to_string()) {
+    let types: Vec<&syn::Path> = deps
+        .iter()
+        .filter(|d| d.kind == DepKind::Type)
+        .map(|d| &d.path)
+        .filter(|path| !roles.contains(&quote!(#path).to_string()))
+        .collect();
+    let types = type_checks(&types);
+    let named = named_checks(deps);
+    let checks = if checks.is_empty() {
+        TokenStream::new()
+    } else {
+        quote! {
+            #[allow(dead_code)]
+            fn __rt_declared() {
+                #(#checks)*
+            }
+        }
+    };
+    quote!(#checks #types #named)
+}
+
+/// The checks for the types among `deps`, in a module of their own one
+/// level down. A type named `X` must be declared with an rt attribute,
+/// unless it is an `#[rt_type]` alias, whose type may be one that needs
+/// none (`Vec3`). The alias declares a function `__rt_type_check_X<T>`
+/// that asks nothing of `T` ([`alias_marker`]); the module declares one of
+/// the same name that requires `T` declared, and calls the name at `X`
+/// where a block glob-imports the module that wrote `X`: the alias's
+/// function, where there is one, shadows the module's (a block's names
+/// come before its module's).
+fn type_checks(types: &[&syn::Path]) -> TokenStream {
+    let mut seen = BTreeSet::new();
+    let mut fallbacks = Vec::new();
+    let mut checks = Vec::new();
+    for path in types {
+        let Some(last) = path.segments.last() else { continue };
+        let span = last.ident.span();
+        let down = one_level_down(path);
+        if !seen.insert(last.ident.to_string()) {
+            // Another path to a type of the same name: checked as a type.
+            checks.push(quote_spanned!(span=> ::rt_std::data::__require_declared::<#down>();));
             continue;
         }
-        let span = last.ident.span();
-        checks.push(quote_spanned!(span=> ::rt_std::data::__require_declared::<#path>();));
+        let check = alias_check_ident(&last.ident);
+        let mut module = down.clone();
+        module.segments.pop();
+        let module = syn::Path {
+            leading_colon: module.leading_colon,
+            segments: module.segments.into_pairs().map(|p| p.into_value()).collect(),
+        };
+        fallbacks.push(quote_spanned!(span=> fn #check<T: ::rt_std::data::DeclaredData + ?Sized>() {}));
+        checks.push(quote_spanned!(span=> { use #module::*; #check::<#down>(); }));
     }
-    let named = named_checks(deps);
-    if checks.is_empty() && named.is_empty() {
+    if checks.is_empty() {
         return TokenStream::new();
     }
     quote! {
-        #[allow(dead_code)]
-        fn __rt_declared() {
-            #(#checks)*
+        #[allow(dead_code, non_snake_case, unused_imports, clippy::all)]
+        mod __rt_types {
+            #(#fallbacks)*
+            fn __rt_declared() {
+                #(#checks)*
+            }
         }
-        #named
+    }
+}
+
+/// The function an `#[rt_type]` alias `X` declares for [`type_checks`].
+fn alias_check_ident(ident: &syn::Ident) -> syn::Ident {
+    syn::Ident::new(&format!("__rt_type_check_{ident}"), ident.span())
+}
+
+/// What `#[rt_type]` declares beside its alias (see [`type_checks`]): a
+/// function that does nothing, of the alias's visibility.
+pub fn alias_marker(vis: &syn::Visibility, ident: &syn::Ident) -> TokenStream {
+    let check = alias_check_ident(ident);
+    quote! {
+        #[doc(hidden)]
+        #[allow(non_snake_case, dead_code)]
+        #vis fn #check<T: ?Sized>() {}
     }
 }
 

@@ -137,6 +137,7 @@ impl<'ast> Visit<'ast> for Deps {
     fn visit_expr_struct(&mut self, s: &'ast syn::ExprStruct) {
         if let Some(seg) = s.path.segments.last()
             && !is_builtin_type_name(&seg.ident.to_string())
+            && !(s.path.segments.len() == 1 && self.locals.contains(&seg.ident.to_string()))
         {
             self.add(&s.path, DepKind::Type);
         }
@@ -233,6 +234,13 @@ impl<'ast> Visit<'ast> for Deps {
         syn::visit::visit_item_fn(self, f);
     }
 
+    fn visit_item_type(&mut self, t: &'ast syn::ItemType) {
+        // A type alias declared in a body is not a dependency either
+        // (`aliases` replaces its uses); what it stands for is.
+        self.locals.insert(t.ident.to_string());
+        syn::visit::visit_item_type(self, t);
+    }
+
     fn visit_item_const(&mut self, c: &'ast syn::ItemConst) {
         // A function-local `const` is not a dependency.
         self.locals.insert(c.ident.to_string());
@@ -314,6 +322,14 @@ pub fn of_impl(i: &syn::ItemImpl) -> Vec<Dep> {
             _ => {}
         }
     }
+    d.deps
+}
+
+/// Dependencies of an `#[rt_type]` alias (the type it stands for).
+pub fn of_alias(t: &syn::ItemType) -> Vec<Dep> {
+    let mut d = Deps { self_name: t.ident.to_string(), ..Deps::default() };
+    d.locals.extend(t.generics.type_params().map(|p| p.ident.to_string()));
+    d.visit_type(&t.ty);
     d.deps
 }
 

@@ -37,6 +37,7 @@
 //!   replaces the prelude and deduplicates shared types and functions by
 //!   name.
 
+pub mod aliases;
 pub mod cpu_semantics;
 pub mod declared;
 pub mod deps;
@@ -105,6 +106,8 @@ pub enum Item {
     Impl(syn::ItemImpl),
     /// `#[rt_trait]`: a trait with static dispatch (see [`traits`]).
     Trait(syn::ItemTrait),
+    /// `#[rt_type]`: a type alias (see [`aliases`]).
+    Alias(syn::ItemType),
 }
 
 impl Item {
@@ -117,6 +120,7 @@ impl Item {
             // Not a name Rust code can spell: an impl never shadows an item.
             Item::Impl(i) => methods::impl_key_of(i),
             Item::Trait(t) => t.ident.to_string(),
+            Item::Alias(t) => t.ident.to_string(),
         }
     }
 }
@@ -136,6 +140,7 @@ pub fn declared(item: &syn::Item) -> Option<Result<Declared, Error>> {
         syn::Item::Enum(e) => &e.attrs,
         syn::Item::Impl(i) => &i.attrs,
         syn::Item::Trait(t) => &t.attrs,
+        syn::Item::Type(t) => &t.attrs,
         _ => return None,
     };
     let attr = attrs.iter().find(|a| {
@@ -152,6 +157,7 @@ pub fn declared(item: &syn::Item) -> Option<Result<Declared, Error>> {
                     | "rt_enum"
                     | "rt_impl"
                     | "rt_trait"
+                    | "rt_type"
             )
         })
     })?;
@@ -184,6 +190,10 @@ pub fn declared(item: &syn::Item) -> Option<Result<Declared, Error>> {
                     return Err(e.0.into_iter().next().expect("an error"));
                 }
                 Declared::Item(Item::Trait(t.clone()))
+            }
+            ("rt_type", syn::Item::Type(t)) => {
+                aliases::check(t)?;
+                Declared::Item(Item::Alias(t.clone()))
             }
             (n, _) => {
                 return Err(Error::new(

@@ -522,6 +522,7 @@ macro_rules! differential {
 // The programs and their tests, by theme (after the macros above, which
 // they use).
 
+mod aliases;
 mod bool_vectors;
 mod control_flow;
 mod edge_cases;

@@ -397,6 +397,43 @@ pub fn rt_const(attr: TokenStream, item: TokenStream) -> TokenStream {
     quote!(#item #marker const _: () = { #declared }; #body)
 }
 
+/// `#[rt_type]`: the alias as the CPU compiles it, a default for each of
+/// its type parameters (so that the checks of the items that name it may
+/// name it bare, as a generic struct's do), the function its uses look
+/// for (see `declared`), and its link.
+pub fn rt_type(attr: TokenStream, item: TokenStream) -> TokenStream {
+    let t: syn::ItemType = match syn::parse2(item.clone()) {
+        Ok(t) => t,
+        Err(_) => {
+            let span = syn::parse2::<syn::Item>(item.clone()).map(|i| i.span()).unwrap_or_else(|_| Span::call_site());
+            let msg = "`#[rt_type]` goes on a type alias (`type Brdf = Vec3;`)";
+            return with_errors(Error::new(span, msg).into(), item);
+        }
+    };
+    if !attr.is_empty() {
+        return with_errors(Error::new(attr.span(), "`#[rt_type]` takes no arguments").into(), item);
+    }
+    let marker = crate::declared::alias_marker(&t.vis, &t.ident);
+    if let Err(e) = crate::aliases::check(&t) {
+        // Exported all the same, so the items that name it say nothing
+        // more.
+        let errs = Errors::from(e).to_compile_errors();
+        let export = export_macro(&t.ident, quote!(alias { #item }));
+        return quote!(#errs #item #marker #export);
+    }
+    let deps = deps::of_alias(&t);
+    let declared = declared_checks(&deps, &[]);
+    let mut cpu = t.clone();
+    for p in cpu.generics.type_params_mut() {
+        if p.default.is_none() {
+            p.eq_token = Some(Default::default());
+            p.default = Some(syn::parse_quote!(::rt_std::data::__RtAnyType));
+        }
+    }
+    let body = start_chain(quote!(alias { #item }), deps::paths(&deps));
+    quote!(#cpu #marker const _: () = { #declared }; #body)
+}
+
 fn with_errors(e: Errors, item: TokenStream) -> TokenStream {
     let errs = e.to_compile_errors();
     quote!(#errs #item)

@@ -111,6 +111,7 @@ pub fn parse_defs(tokens: TokenStream) -> syn::Result<Vec<Item>> {
             ("enum", _) => Item::Enum(syn::parse2(g.stream())?),
             ("impl", _) => Item::Impl(syn::parse2(g.stream())?),
             ("trait", _) => Item::Trait(syn::parse2(g.stream())?),
+            ("alias", _) => Item::Alias(syn::parse2(g.stream())?),
             _ => return Err(syn::Error::new(g.span(), "malformed definition")),
         };
         if !items.iter().any(|i: &Item| i.name() == item.name()) {
@@ -177,6 +178,15 @@ fn finish(entry: &TokenStream, done: TokenStream) -> TokenStream {
             let item_tokens = g.stream();
             match syn::parse2::<syn::ItemTrait>(item_tokens.clone()) {
                 Ok(t) => export_macro(&t.ident, quote!(trait { #item_tokens } #done)),
+                Err(e) => e.to_compile_error(),
+            }
+        }
+        "alias" => {
+            // Checked where it is used: its type is lowered there.
+            let Some(TokenTree::Group(g)) = it.next() else { return quote!(compile_error!("malformed rt entry");) };
+            let item_tokens = g.stream();
+            match syn::parse2::<syn::ItemType>(item_tokens.clone()) {
+                Ok(t) => export_macro(&t.ident, quote!(alias { #item_tokens } #done)),
                 Err(e) => e.to_compile_error(),
             }
         }
@@ -268,7 +278,7 @@ fn asserts(f: &syn::ItemFn, deps: &[Item]) -> bool {
             Item::Function(f) => walk(quote!(#f)),
             Item::Impl(i) => walk(quote!(#i)),
             Item::Trait(t) => walk(quote!(#t)),
-            Item::Struct(..) | Item::Const(_) | Item::Enum(_) => false,
+            Item::Struct(..) | Item::Const(_) | Item::Enum(_) | Item::Alias(_) => false,
         })
 }
 

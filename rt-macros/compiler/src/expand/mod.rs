@@ -26,7 +26,7 @@ mod data;
 mod descriptor;
 mod thunk;
 
-pub use attributes::{rt_const, rt_enum, rt_function, rt_impl, rt_program, rt_struct, rt_trait};
+pub use attributes::{rt_const, rt_enum, rt_function, rt_impl, rt_program, rt_struct, rt_trait, rt_type};
 pub use chain::{collect, parse_defs};
 pub(crate) use thunk::variable_tuple;
 

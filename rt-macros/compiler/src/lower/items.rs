@@ -53,6 +53,7 @@ pub(super) fn reachable(entry: &Entry<'_>, deps: &[Item]) -> Vec<Item> {
                 Item::Enum(_) => Vec::new(),
                 Item::Impl(i) => crate::deps::of_impl(i),
                 Item::Trait(t) => crate::deps::of_trait(t),
+                Item::Alias(t) => crate::deps::of_alias(t),
             }));
             out.push(item.clone());
         }
@@ -482,6 +483,8 @@ pub(super) fn by_kind<'a>(
             Item::Impl(i) => impls.push(i),
             // Through the impls that use its defaults.
             Item::Trait(_) => {}
+            // Replaced by what it stands for before the lowering.
+            Item::Alias(_) => {}
         }
     }
     match &entry {

@@ -277,6 +277,12 @@ fn lower_impl(
     report_deps: bool,
     debug_assertions: bool,
 ) -> std::result::Result<Lowered, Errors> {
+    // Type aliases are replaced by what they stand for (`aliases`).
+    let resolved = crate::aliases::resolve(&entry, deps)?;
+    let (entry, deps) = match &resolved {
+        Some(r) => (r.entry(), &r.deps[..]),
+        None => (entry, deps),
+    };
     // The lowering reads functions with their sugar rewritten, and the
     // functions declared in their bodies as helpers beside them (`sugar`).
     let mut taken: HashSet<String> = deps.iter().map(Item::name).collect();
