@@ -267,7 +267,13 @@ fn finalize_names_the_stage_and_variable_or_the_launch_at_fault() {
     match list.finalize(&ctx).unwrap_err() {
         RtError::PostProcess(PostProcessError::BadStage { stage, variable, problem }) => {
             assert_eq!((stage.as_str(), variable.as_str()), ("0 (`denoiser`)", "input_buffer"));
-            assert_eq!(problem, format!("is buffer 0 of {W}x{H} elements, but the stage runs at {W}x{}", H + 8));
+            assert_eq!(
+                problem,
+                format!(
+                    "is buffer 0 of {W}x{H} elements, but the stage runs at {W}x{}: its buffers must be at least that large",
+                    H + 8
+                )
+            );
         }
         other => panic!("{other:?}"),
     }
