@@ -356,18 +356,16 @@ impl Progressive {
         let aovs = self.scene.aovs.ok_or_else(|| Error::Settings("the scene writes no guides to denoise".into()))?;
         let ctx = &mut self.scene.ctx;
         let capacity = self.capacity;
-        let output = |ctx: &mut rt_runtime::Context| ctx.create_buffer_2d::<Vec4>(BufferType::Output, capacity.0, capacity.1);
-        let d = match &mut self.denoiser {
-            Some(d) => d,
-            None => {
-                let stage = ctx.create_postprocessing_stage(StageKind::Denoiser);
-                let output = output(ctx)?;
-                self.denoiser.insert(Denoiser { stage, output, capacity, done: None, fresh: true })
-            }
-        };
-        if d.capacity != capacity {
-            (d.output, d.capacity) = (output(ctx)?, capacity);
+        if self.denoiser.as_ref().is_none_or(|d| d.capacity != capacity) {
+            let output = ctx.create_buffer_2d::<Vec4>(BufferType::Output, capacity.0, capacity.1)?;
+            let stage = match &self.denoiser {
+                Some(d) => d.stage,
+                None => ctx.create_postprocessing_stage(StageKind::Denoiser),
+            };
+            let fresh = self.denoiser.as_ref().is_none_or(|d| d.fresh);
+            self.denoiser = Some(Denoiser { stage, output, capacity, done: None, fresh });
         }
+        let d = self.denoiser.as_mut().expect("made above");
         let stage = d.stage;
         if std::mem::take(&mut d.fresh) {
             ctx.reset_stage_history(stage)?;
@@ -626,7 +624,10 @@ mod tests {
             let (w, h) = (width as usize, height as usize);
             let pixels = if view.denoising() == Denoise::Spatial {
                 let variance = Some(&variance[..]);
-                denoise::denoise(&Guided { width: w, height: h, color: &color, albedo: &albedo, normal: &normal, variance }, 0.0)
+                denoise::denoise(
+                    &Guided { width: w, height: h, color: &color, albedo: &albedo, normal: &normal, variance },
+                    0.0,
+                )
             } else {
                 let position = read(aovs.position.unwrap());
                 let (u, v, w_axis) = view.camera().uvw(width as f32 / height as f32);
@@ -643,7 +644,8 @@ mod tests {
                 let previous = self.history.as_ref().map(|(texels, camera)| (&texels[..], camera));
                 let acc = temporal::accumulate(&frame, previous, TEMPORAL_ALPHA_MIN);
                 let variance = Some(&acc.variance[..]);
-                let guided = Guided { width: w, height: h, color: &acc.color, albedo: &albedo, normal: &normal, variance };
+                let guided =
+                    Guided { width: w, height: h, color: &acc.color, albedo: &albedo, normal: &normal, variance };
                 self.history = Some((acc.history, camera));
                 denoise::denoise(&guided, 0.0)
             };
@@ -667,7 +669,8 @@ mod tests {
             view.set_camera(view.home_camera());
             let mut host = HostDenoiser { history: None };
             let mut frames = 0;
-            for (mode, moves) in [(Denoise::Spatial, [false, false, false]), (Denoise::Temporal, [false, false, true])] {
+            for (mode, moves) in [(Denoise::Spatial, [false, false, false]), (Denoise::Temporal, [false, false, true])]
+            {
                 view.set_denoise(mode);
                 for moved in moves {
                     if moved {
@@ -689,13 +692,24 @@ mod tests {
                     assert_eq!(after.0 - before.0, picture, "{mode:?}: the denoised picture alone comes back");
                     assert_eq!(after.1 - before.1, 0, "{mode:?}: the stage reads the guides on the device");
                     assert_eq!(after.2, before.2, "{mode:?}: the stage rides in the launch's submission");
+                    // Besides the denoised picture, the launch reads back its
+                    // log's header and counters alone: not the raw picture,
+                    // the accumulation or the guides.
+                    let launch_read = view.context().last_read_back_bytes();
+                    assert!(launch_read >= picture && launch_read - picture < 64, "{mode:?}: {launch_read} bytes");
                     for (i, (x, y)) in want.pixels.iter().zip(&shown.pixels).enumerate() {
                         let tolerance = 1e-4 * x.abs().max_element().max(1.0);
-                        assert!((*x - *y).abs().max_element() <= tolerance, "{mode:?} frame {frames} pixel {i}: host {x}, wgpu {y}");
+                        assert!(
+                            (*x - *y).abs().max_element() <= tolerance,
+                            "{mode:?} frame {frames} pixel {i}: host {x}, wgpu {y}"
+                        );
                     }
                 }
             }
-            assert!(view.history_frames().unwrap().contains(&3), "{backend:?}: the history kept pixels through the move");
+            assert!(
+                view.history_frames().unwrap().contains(&3),
+                "{backend:?}: the history kept pixels through the move"
+            );
         }
     }
 

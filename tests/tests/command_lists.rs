@@ -68,12 +68,17 @@ fn frame(on: On) -> Frame {
 
 /// [`frame`], its launch's outputs kept on the device when `device_local`.
 fn frame_with(on: On, device_local: bool) -> Frame {
+    frame_over(on, device_local, (W, H))
+}
+
+/// [`frame_with`] over buffers of `size` (at least `W` x `H`).
+fn frame_over(on: On, device_local: bool, (w, h): (u32, u32)) -> Frame {
     let mut ctx = on.context();
     ctx.set_ray_type_count(0);
     let p = ctx.create_program(&noisy::PROGRAM);
     ctx.set_ray_generation_program(0, p).unwrap();
     ctx.set_var(Scope::Context, "frame", 3u32).unwrap();
-    let mut image = || ctx.create_buffer_2d::<Vec4>(BufferType::InputOutput, W, H).unwrap();
+    let mut image = || ctx.create_buffer_2d::<Vec4>(BufferType::InputOutput, w, h).unwrap();
     let buffers = [image(), image(), image(), image(), image()];
     let [color, albedo, normal, denoised, display] = buffers;
     for (name, b) in [("color", color), ("albedo", albedo), ("normal", normal)] {
@@ -187,6 +192,51 @@ fn on_wgpu_a_launch_and_its_stages_are_one_submission() {
         assert_eq!(ctx.read_buffer::<Vec4>(buffers[b]).unwrap(), want[b], "buffer {b}");
     }
     assert_eq!(ctx.wgpu_submissions(), before + 3);
+}
+
+/// A list launched and its stages run over the top-left `W` x `H` of
+/// larger buffers gives there what the list over buffers of that size
+/// gives, bit for bit, on every backend (on wgpu the stages reading the
+/// launch's outputs in the heap, rows of the buffers' width), and leaves
+/// the stages' outputs as they were around it.
+#[test]
+fn a_list_over_part_of_larger_buffers_gives_what_it_gives_over_buffers_of_its_size() {
+    let big = (W + 7, H + 5);
+    let before = |x: u32, y: u32| Vec4::new(-1.0, x as f32, y as f32, 3.0);
+    for on in On::ALL {
+        if !on.available() {
+            continue;
+        }
+        for device_local in [false, true] {
+            let Frame { mut ctx, buffers, denoiser, tonemapper } = frame_with(on, device_local);
+            frame_list(&ctx, denoiser, tonemapper).execute(&mut ctx).unwrap();
+            let want = read(&ctx, &buffers);
+
+            let Frame { mut ctx, buffers, denoiser, tonemapper } = frame_over(on, device_local, big);
+            let around: Vec<Vec4> = (0..big.1).flat_map(|y| (0..big.0).map(move |x| before(x, y))).collect();
+            for b in &buffers[3..] {
+                ctx.write_buffer(*b, &around).unwrap();
+            }
+            frame_list(&ctx, denoiser, tonemapper).execute(&mut ctx).unwrap();
+            let what = format!("{} device_local {device_local}", on.name());
+            if on != On::CPU {
+                assert_eq!(ctx.stage_inputs_read_on_device(), 3, "{what}: the launch's outputs, read in the heap");
+            }
+            for (i, (got, want)) in read(&ctx, &buffers).iter().zip(&want).enumerate() {
+                let rect: Vec<Vec4> =
+                    (0..H as usize).flat_map(|y| &got[y * big.0 as usize..][..W as usize]).copied().collect();
+                assert_eq!(&rect, want, "{what}: image {i}");
+                if i >= 3 {
+                    for (k, p) in got.iter().enumerate() {
+                        let (x, y) = (k as u32 % big.0, k as u32 / big.0);
+                        if x >= W || y >= H {
+                            assert_eq!(*p, before(x, y), "{what}: image {i} at ({x}, {y}), outside the run");
+                        }
+                    }
+                }
+            }
+        }
+    }
 }
 
 /// On wgpu, a list whose launch is cancelled between tiles runs none of

@@ -38,7 +38,7 @@ fn images(x: u32, y: u32, seed: u32) -> [Vec4; 5] {
     let color = Vec4::new(2.0 * noise(x, y, seed), noise(y, x, seed), 0.5, 1.0);
     let albedo = if left { Vec4::splat(0.7) } else { Vec4::new(0.6, 0.1, 0.1, 1.0) };
     let normal = if left { Vec4::Z } else { Vec4::new(0.0, 0.6, 0.8, 0.0) };
-    let variance = if (x * 7 + y * 3) % 5 == 0 { -1.0 } else { 0.002 * ((x + 2 * y) % 9) as f32 };
+    let variance = if (x * 7 + y * 3).is_multiple_of(5) { -1.0 } else { 0.002 * ((x + 2 * y) % 9) as f32 };
     let [eye, u, v, w] = CAMERA;
     let d = (glam::Vec2::new(x as f32 + 0.5, y as f32 + 0.5) / glam::Vec2::new(RUN.0 as f32, RUN.1 as f32)) * 2.0 - 1.0;
     let position = (eye + (d.x * u + d.y * v + w) * 5.0).extend(1.0);
@@ -135,7 +135,11 @@ fn rectangle_is_the_cropped_run(backend: Backend, case: Case) {
                 Case::Spatial => 4,
                 Case::Temporal => 5,
             };
-            assert_eq!(big.stage_upload_bytes() - uploaded, images * rect_bytes, "{case:?}: its rectangles alone go up");
+            assert_eq!(
+                big.stage_upload_bytes() - uploaded,
+                images * rect_bytes,
+                "{case:?}: its rectangles alone go up"
+            );
         }
         let got = big.read_buffer::<Vec4>(on_big.1[5]).unwrap();
         let want = small.read_buffer::<Vec4>(on_small.1[5]).unwrap();

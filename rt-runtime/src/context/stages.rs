@@ -7,7 +7,9 @@ use crate::backend::{Backend, LaunchReport};
 use crate::error::{ConfigError, LaunchError, Result, SceneError};
 use crate::postprocess::gpu::{DeviceHistory, Pipelines, Source, StageTail, pixels, read_history};
 use crate::postprocess::temporal::TEXELS;
-use crate::postprocess::{History, Pixels, Plan, Stage, StageId, StageKind, StageValue, Texels, crop, merge, runs_together};
+use crate::postprocess::{
+    History, Pixels, Plan, Stage, StageId, StageKind, StageValue, Texels, crop, merge, runs_together,
+};
 use crate::scene::BufferId;
 use glam::Vec4;
 use std::any::Any;
@@ -140,7 +142,8 @@ impl Context {
     /// Writes `rect` (row by row) over the run's rectangle of `plan` in
     /// buffer `b`, leaving the rest of it as it was.
     fn write_rect(&mut self, b: BufferId, plan: &Plan, rect: &[Vec4]) -> Result<()> {
-        let whole = self.scene.buffers.get(b.index() as usize).map(|r| r.width as u64 * r.height as u64 * r.depth as u64);
+        let whole =
+            self.scene.buffers.get(b.index() as usize).map(|r| r.width as u64 * r.height as u64 * r.depth as u64);
         if whole == Some(rect.len() as u64) {
             return self.write_buffer(b, rect);
         }
@@ -267,7 +270,8 @@ impl Context {
     }
 
     /// Bytes stages' runs on the wgpu backend sent from the host to the
-    /// device: their images where the device did not hold them, and a
+    /// device: their images (the run's rectangle of each) where the
+    /// device did not hold them, and a
     /// temporal denoiser's history the CPU backend made (once, after a
     /// switch of backends). A temporal denoiser's own history stays on
     /// the device, frame after frame, and adds nothing.
@@ -276,7 +280,7 @@ impl Context {
     }
 
     /// Bytes stages' runs on the wgpu backend read back from the device:
-    /// their outputs, whether they ran alone or rode in a command list's
+    /// their outputs (the run's rectangle of each), whether they ran alone or rode in a command list's
     /// launch (whose [`Context::last_read_back_bytes`] counts them too).
     /// No run reads a temporal denoiser's history back
     /// ([`Context::stage_history`] reads it when asked, not counted here).

@@ -1,13 +1,16 @@
 //! The stages on a wgpu device: the passes of `gpu/stages.wgsl` (the
 //! same arithmetic as [`super::denoise`] and [`super::tonemap`]) as plain
 //! compute passes, all of a run of stages (a command list's stages one
-//! after another, or one stage) in one submission: each stage's images
-//! are uploaded to storage buffers (or, where a launch left a
-//! device-local buffer's newest words in its heap, copied from there on
-//! the device; or, where an earlier stage of the run wrote them, read
-//! where it did), every pass runs (the denoiser's prepare, its à-trous
-//! passes ping-ponging between two buffers, finish; or the tonemapper's
-//! one), and every stage's output is read back. In temporal mode the
+//! after another, or one stage) in one submission: the run's rectangle
+//! of each stage's images (the top-left `width` x `height`) is uploaded
+//! to storage buffers (or, where a launch left a device-local buffer's
+//! newest words in its heap, the span of the heap holding it is copied
+//! on the device, and the passes read it in rows of the buffer's width;
+//! or, where an earlier stage of the run wrote them, read where it did),
+//! every pass runs (the denoiser's prepare, its à-trous passes
+//! ping-ponging between two buffers, finish; or the tonemapper's one),
+//! and every stage's output, of the run's size, is read back (the context
+//! merges it into the rectangle of the output buffer). In temporal mode the
 //! denoiser's `gpu/temporal.wgsl` pass runs first, over its history where
 //! the device keeps it ([`DeviceHistory`]: two buffers the stage owns,
 //! one read and the other written, swapped each run), and nothing of it

@@ -213,7 +213,8 @@ pub(crate) struct Temporal {
 }
 
 /// A stage checked against the context's buffers, ready to run at
-/// `width` x `height`: its buffers (input, guides, output) and settings.
+/// `width` x `height` (over the top-left of its buffers, each at least
+/// that large): its buffers (input, guides, output) and settings.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct Plan {
     pub stage: StageId,
