@@ -239,6 +239,44 @@ fn a_list_over_part_of_larger_buffers_gives_what_it_gives_over_buffers_of_its_si
     }
 }
 
+/// A list whose tonemapper, after the launch and the denoiser over the
+/// top-left `W` x `H`, runs over all of larger buffers: it sees the
+/// denoiser's rectangle and the denoised buffer's texels around it, on
+/// every backend (on wgpu it cannot ride with the denoiser in the
+/// launch's submission, and runs in one of its own after it).
+#[test]
+fn a_stage_after_a_launch_reading_beyond_the_denoisers_rectangle_sees_the_buffer_around_it() {
+    let big = (W + 3, H + 2);
+    let around = |x: u32, y: u32| Vec4::new(0.25, x as f32 * 0.01, y as f32 * 0.02, 1.0);
+    let run = |on: On| {
+        let Frame { mut ctx, buffers, denoiser, tonemapper } = frame_over(on, false, big);
+        let before: Vec<Vec4> = (0..big.1).flat_map(|y| (0..big.0).map(move |x| around(x, y))).collect();
+        ctx.write_buffer(buffers[3], &before).unwrap();
+        let mut list = CommandList::new();
+        list.append_launch_2d(0, W, H).unwrap();
+        list.append_stage(denoiser, W, H).unwrap();
+        list.append_stage(tonemapper, big.0, big.1).unwrap();
+        list.finalize(&ctx).unwrap();
+        list.execute(&mut ctx).unwrap();
+        (read(&ctx, &buffers[3..]), ctx.stage_submissions())
+    };
+    let (cpu, _) = run(On::CPU);
+    let (gpu, stage_submissions) = run(On::COMPUTE);
+    assert_eq!(stage_submissions, 1, "the tonemapper in a submission of its own");
+    let [denoised, display] = [&cpu[0], &cpu[1]];
+    for (i, (d, p)) in denoised.iter().zip(display).enumerate() {
+        let (x, y) = (i as u32 % big.0, i as u32 / big.0);
+        if x >= W || y >= H {
+            assert_eq!(*d, around(x, y), "({x}, {y}) outside the denoiser's run");
+        }
+        assert_eq!(*p, postprocess::tonemap::tonemap_pixel(*d, 2.0, 2.2), "({x}, {y})");
+    }
+    for (a, b) in cpu.iter().flatten().zip(gpu.iter().flatten()) {
+        let tolerance = 1e-4 * a.abs().max_element().max(1.0);
+        assert!((*a - *b).abs().max_element() <= tolerance, "cpu {a}, wgpu {b}");
+    }
+}
+
 /// On wgpu, a list whose launch is cancelled between tiles runs none of
 /// its stages and leaves every buffer as it was, and the list after runs
 /// whole.
