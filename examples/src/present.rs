@@ -156,8 +156,8 @@ impl GpuPresenter {
         self.redraw((width, height))
     }
 
-    /// Shows a picture made on the host (the viewer's denoised one),
-    /// written to the device first.
+    /// Shows a picture on the host (the viewer's denoised one, read back
+    /// and gamma corrected there), written to the device first.
     pub fn present_image(&mut self, image: &crate::Image) -> Result<(), String> {
         let bytes: Vec<u8> = image.pixels.iter().flat_map(|p| p.to_array()).flat_map(|x| x.to_le_bytes()).collect();
         let picture = self.picture_buffer(bytes.len() as u64, (image.width, image.width, image.height));

@@ -12,26 +12,31 @@
 //!
 //! With [`Progressive::set_denoise`] at [`Denoise::Spatial`],
 //! [`Progressive::picture`] is the running mean through the runtime's
-//! denoiser ([`rt_runtime::postprocess::denoise`], on the host) over the
-//! guides the camera writes, gamma corrected as the camera corrects its
-//! own; the samples go on accumulating as before, so turning it off shows
-//! the raw mean of the same samples. At [`Denoise::Temporal`] the running
-//! mean first goes through the denoiser's temporal pass
-//! ([`rt_runtime::postprocess::temporal`]): each picture is blended into
-//! the last one's history reprojected through the last camera, so that a
-//! moved camera, which starts the samples again, keeps what it saw of
-//! the points still in view (those it did not see, or that a closer
+//! denoiser stage ([`rt_runtime::postprocess`], its spatial filter
+//! [`rt_runtime::postprocess::denoise`]) over the guides the camera
+//! writes, gamma corrected as the camera corrects its own; the samples go
+//! on accumulating as before, so turning it off shows the raw mean of the
+//! same samples. At [`Denoise::Temporal`] the stage runs in its temporal
+//! mode ([`rt_runtime::postprocess::temporal`]): each picture is blended
+//! into the last one's history reprojected through the last camera, so
+//! that a moved camera, which starts the samples again, keeps what it saw
+//! of the points still in view (those it did not see, or that a closer
 //! surface hid, start again); a resize, or turning the mode on, starts
 //! with no history.
 //!
-//! Both denoise on the host, as the runtime's stage would on the CPU
-//! backend: the stage runs over buffers of its run's size, and these are
-//! larger than the picture (below), so the guides are read back cropped.
+//! While denoising, each refinement is one command list, the launch then
+//! the stage: on the wgpu backend one submission, the stage reading the
+//! mean radiance and the guides where the launch left them on the device
+//! and keeping its history there, so nothing but the denoised picture
+//! comes back to the host (the output and accumulation buffers stay on
+//! the device too). On the CPU backend the stage runs natively, as the
+//! same filter.
 //!
-//! The runtime cannot free or resize a buffer, so the output, accumulation
-//! and guide buffers only grow: a smaller picture is launched over the
-//! top-left part of them (launch indices address buffers by their own
-//! width) and cropped on the way out.
+//! The runtime cannot free or resize a buffer, so the output,
+//! accumulation, guide and denoised buffers only grow: a smaller picture
+//! is launched, and the stage run, over the top-left part of them (launch
+//! indices and stages address buffers by their own width) and cropped on
+//! the way out.
 //!
 //! ```no_run
 //! use examples::{Settings, mesh, viewer::Progressive};
@@ -52,9 +57,7 @@ use crate::mesh::LoadedMesh;
 use crate::model::CameraOptions;
 use crate::scene::{Camera, Error, Image, Scene, Settings};
 use glam::{Vec3, Vec4};
-use rt_runtime::postprocess::denoise::{self, Guided};
-use rt_runtime::postprocess::temporal::{self, Pinhole};
-use rt_runtime::{BufferType, Scope};
+use rt_runtime::{BufferId, BufferType, CommandList, LaunchReport, Scope, StageId, StageKind};
 use rt_scene::SceneCamera;
 use std::time::Instant;
 
@@ -119,15 +122,17 @@ impl Denoise {
     }
 }
 
-/// The temporal mode's history: the last denoised picture's texels
-/// ([`temporal::accumulate`]), the camera and size they were seen at,
-/// the launch they came from and what it showed.
-struct History {
-    texels: Vec<Vec4>,
-    camera: Pinhole,
-    size: (u32, u32),
-    launch: u64,
-    shown: Image,
+/// The runtime's denoiser stage over the scene's guides, the buffer it
+/// writes (of `capacity`), and what that holds.
+struct Denoiser {
+    stage: StageId,
+    output: BufferId,
+    capacity: (u32, u32),
+    /// The launch and the size of the picture in `output`, where it is
+    /// the current mode's.
+    done: Option<(u64, (u32, u32))>,
+    /// Whether the next run starts with no history.
+    fresh: bool,
 }
 
 /// The temporal mode's `alpha_min`: a still view's picture follows its
@@ -151,7 +156,8 @@ pub struct Progressive {
     denoise: Denoise,
     /// Launches so far, of any camera.
     launches: u64,
-    history: Option<History>,
+    /// The denoiser stage, once a picture was denoised.
+    denoiser: Option<Denoiser>,
 }
 
 impl Progressive {
@@ -185,7 +191,7 @@ impl Progressive {
             device_local: false,
             denoise: Denoise::Off,
             launches: 0,
-            history: None,
+            denoiser: None,
         })
     }
 
@@ -232,8 +238,17 @@ impl Progressive {
     /// Keeps the output and accumulation buffers on the wgpu device
     /// (`Context::set_buffer_device_local`): launches read nothing back,
     /// and [`Progressive::output`] says where a window finds the picture.
+    /// While denoising they stay there whatever this says: the picture
+    /// shown is the denoiser's.
     pub fn keep_on_device(&mut self, on: bool) -> Result<(), Error> {
         self.device_local = on;
+        self.place_buffers()
+    }
+
+    /// The output and accumulation buffers on the device where
+    /// [`Progressive::keep_on_device`] asks, or while denoising.
+    fn place_buffers(&mut self) -> Result<(), Error> {
+        let on = self.device_local || self.denoise != Denoise::Off;
         let ctx = &mut self.scene.ctx;
         ctx.set_buffer_device_local(self.scene.output, on)?;
         let accumulation = self.scene.accumulation.expect("mesh_scene accumulates");
@@ -278,7 +293,7 @@ impl Progressive {
             self.scene.accumulation = Some(accum);
             self.scene.aovs = Some(bunny::guide_buffers(ctx, capacity)?);
             self.capacity = capacity;
-            self.keep_on_device(self.device_local)?;
+            self.place_buffers()?;
         }
         self.scene.width = width;
         self.scene.height = height;
@@ -298,27 +313,97 @@ impl Progressive {
 
     /// [`Progressive::refine`] without reading the picture back: it stays
     /// in [`Progressive::output`] (on the device, with
-    /// [`Progressive::keep_on_device`]).
+    /// [`Progressive::keep_on_device`]). While denoising, the launch and
+    /// the denoiser are one command list, and the denoised picture is
+    /// read back ([`Progressive::picture`] then shows it).
     pub fn sample(&mut self) -> Result<Sample, Error> {
         let (width, height) = (self.scene.width, self.scene.height);
         let start = Instant::now();
-        let ctx = &mut self.scene.ctx;
+        self.place_buffers()?;
         if self.samples == 0 {
-            self.camera.set_vars(ctx, width as f32 / height as f32)?;
+            self.camera.set_vars(&mut self.scene.ctx, width as f32 / height as f32)?;
         }
-        ctx.set_var(Scope::Context, "frame", self.samples)?;
-        let report = ctx.launch(0, width, height)?;
+        self.scene.ctx.set_var(Scope::Context, "frame", self.samples)?;
+        let report = match self.denoise {
+            Denoise::Off => self.scene.ctx.launch(0, width, height)?,
+            _ => self.launch_and_denoise()?,
+        };
         self.samples += 1;
         self.launches += 1;
+        if let Some(d) = self.denoiser.as_mut().filter(|_| self.denoise != Denoise::Off) {
+            d.done = Some((self.launches, (width, height)));
+        }
         Ok(Sample { rays: report.rays, seconds: start.elapsed().as_secs_f64(), exceptions: report.exceptions.len() })
+    }
+
+    /// The launch then the denoiser, as one command list; the launch's
+    /// report.
+    fn launch_and_denoise(&mut self) -> Result<LaunchReport, Error> {
+        let (width, height) = (self.scene.width, self.scene.height);
+        let stage = self.denoiser_stage()?;
+        let ctx = &mut self.scene.ctx;
+        let mut list = CommandList::new();
+        list.append_launch_2d(0, width, height)?;
+        list.append_stage(stage, width, height)?;
+        list.finalize(ctx)?;
+        let report = list.execute(ctx)?.into_iter().next();
+        report.ok_or_else(|| Error::Settings("the command list's launch gave no report".into()))
+    }
+
+    /// The denoiser stage, set up for the current mode, camera and
+    /// buffers (made the first time; its output grown with the others).
+    fn denoiser_stage(&mut self) -> Result<StageId, Error> {
+        let aovs = self.scene.aovs.ok_or_else(|| Error::Settings("the scene writes no guides to denoise".into()))?;
+        let ctx = &mut self.scene.ctx;
+        let capacity = self.capacity;
+        if self.denoiser.as_ref().is_none_or(|d| d.capacity != capacity) {
+            let output = ctx.create_buffer_2d::<Vec4>(BufferType::Output, capacity.0, capacity.1)?;
+            let stage = match &self.denoiser {
+                Some(d) => d.stage,
+                None => ctx.create_postprocessing_stage(StageKind::Denoiser),
+            };
+            let fresh = self.denoiser.as_ref().is_none_or(|d| d.fresh);
+            self.denoiser = Some(Denoiser { stage, output, capacity, done: None, fresh });
+        }
+        let d = self.denoiser.as_mut().expect("made above");
+        let stage = d.stage;
+        if std::mem::take(&mut d.fresh) {
+            ctx.reset_stage_history(stage)?;
+        }
+        let temporal = self.denoise == Denoise::Temporal;
+        let buffers = [
+            ("input_buffer", Some(aovs.radiance)),
+            ("input_albedo_buffer", Some(aovs.albedo)),
+            ("input_normal_buffer", Some(aovs.normal)),
+            ("input_variance_buffer", Some(aovs.variance)),
+            ("input_position_buffer", aovs.position),
+            ("output_buffer", Some(d.output)),
+        ];
+        for (name, b) in buffers {
+            if let Some(b) = b {
+                ctx.set_stage_var(stage, name, b)?;
+            }
+        }
+        ctx.set_stage_var(stage, "temporal", if temporal { 1.0f32 } else { 0.0 })?;
+        ctx.set_stage_var(stage, "alpha_min", TEMPORAL_ALPHA_MIN)?;
+        if temporal {
+            let (u, v, w) = self.camera.uvw(self.scene.width as f32 / self.scene.height as f32);
+            let camera = [("camera_eye", self.camera.eye), ("camera_u", u), ("camera_v", v), ("camera_w", w)];
+            for (name, x) in camera {
+                ctx.set_stage_var(stage, name, x)?;
+            }
+        }
+        Ok(stage)
     }
 
     /// Denoises [`Progressive::picture`] as `mode` says from now on; the
     /// samples so far are kept either way. Temporal starts with no
     /// history.
     pub fn set_denoise(&mut self, mode: Denoise) {
-        if mode != self.denoise {
-            self.history = None;
+        if mode != self.denoise
+            && let Some(d) = &mut self.denoiser
+        {
+            (d.done, d.fresh) = (None, true);
         }
         self.denoise = mode;
     }
@@ -328,63 +413,40 @@ impl Progressive {
         self.denoise
     }
 
-    /// Frames the temporal mode's history holds at pixel `(x, y)` (launch
-    /// index): 0 without one.
-    pub fn history_frames(&self, x: u32, y: u32) -> u32 {
-        let Some(h) = &self.history else { return 0 };
-        let p = (y * h.size.0 + x) as usize * temporal::TEXELS;
-        h.texels.get(p).map_or(0, |t| t.w as u32)
+    /// Frames the temporal mode's history holds at each pixel, launch
+    /// index order (row by row, of the size it was made at); none without
+    /// a history. On the wgpu backend the history is read from the
+    /// device.
+    pub fn history_frames(&self) -> Result<Vec<u32>, Error> {
+        let Some(d) = self.denoiser.as_ref().filter(|d| !d.fresh) else { return Ok(Vec::new()) };
+        let history = self.scene.ctx.stage_history(d.stage)?;
+        Ok(history.map_or(Vec::new(), |(_, _, colors)| colors.iter().map(|c| c.w as u32).collect()))
     }
 
-    /// The picture so far, read from the output buffer, or denoised from
-    /// the guides ([`Progressive::set_denoise`]). In temporal mode the
-    /// first call after a launch blends it into the history; a second
-    /// one shows the same picture.
+    /// The picture so far, read from the output buffer, or from the
+    /// denoiser's ([`Progressive::set_denoise`]), which runs here where
+    /// the last launch's picture has not been denoised in this mode yet.
+    /// In temporal mode a run blends the picture into the history; a
+    /// second call shows the same picture.
     pub fn picture(&mut self) -> Result<Image, Error> {
         let (width, height) = (self.scene.width, self.scene.height);
         if self.denoise == Denoise::Off {
             return Ok(Image { width, height, pixels: self.read_cropped(self.scene.output)? });
         }
-        if let Some(h) = self.history.as_ref().filter(|h| h.launch == self.launches && h.size == (width, height)) {
-            return Ok(h.shown.clone());
+        let now = Some((self.launches, (width, height)));
+        if self.denoiser.as_ref().is_none_or(|d| d.done != now || d.capacity != self.capacity) {
+            let stage = self.denoiser_stage()?;
+            self.scene.ctx.run_stage(stage, width, height)?;
         }
-        let aovs = self.scene.aovs.ok_or_else(|| Error::Settings("the scene writes no guides to denoise".into()))?;
-        let [color, albedo, normal, variance] =
-            [aovs.radiance, aovs.albedo, aovs.normal, aovs.variance].map(|b| self.read_cropped(b));
-        let (color, albedo, normal, variance) = (color?, albedo?, normal?, variance?);
-        let (w, h) = (width as usize, height as usize);
-        if self.denoise == Denoise::Spatial {
-            let variance = Some(&variance[..]);
-            let guided = Guided { width: w, height: h, color: &color, albedo: &albedo, normal: &normal, variance };
-            return Ok(Image { width, height, pixels: denoise::denoise(&guided, 0.0) }.to_display());
-        }
-        let position = aovs.position.ok_or_else(|| Error::Settings("the scene writes no position guide".into()))?;
-        let position = self.read_cropped(position)?;
-        let (u, v, w_axis) = self.camera.uvw(width as f32 / height as f32);
-        let camera = Pinhole { eye: self.camera.eye, u, v, w: w_axis };
-        let frame = temporal::Frame {
-            width: w,
-            height: h,
-            color: &color,
-            albedo: &albedo,
-            normal: &normal,
-            position: &position,
-            camera,
-        };
-        let previous = self.history.as_ref().filter(|h| h.size == (width, height)).map(|h| (&h.texels[..], &h.camera));
-        let acc = temporal::accumulate(&frame, previous, TEMPORAL_ALPHA_MIN);
-        let variance = Some(&acc.variance[..]);
-        let guided = Guided { width: w, height: h, color: &acc.color, albedo: &albedo, normal: &normal, variance };
-        let shown = Image { width, height, pixels: denoise::denoise(&guided, 0.0) }.to_display();
-        let launch = self.launches;
-        self.history =
-            Some(History { texels: acc.history, camera, size: (width, height), launch, shown: shown.clone() });
-        Ok(shown)
+        let d = self.denoiser.as_mut().expect("set up above");
+        d.done = now;
+        let output = d.output;
+        Ok(Image { width, height, pixels: self.read_cropped(output)? }.to_display())
     }
 
     /// The picture's part of buffer `b` (of the capacity's size), row by
     /// row.
-    fn read_cropped(&self, b: rt_runtime::BufferId) -> Result<Vec<Vec4>, Error> {
+    fn read_cropped(&self, b: BufferId) -> Result<Vec<Vec4>, Error> {
         let (width, height) = (self.scene.width as usize, self.scene.height as usize);
         let all = self.scene.ctx.read_buffer::<Vec4>(b)?;
         let stride = self.capacity.0 as usize;
@@ -404,6 +466,8 @@ mod tests {
     use super::*;
     use crate::bunny::MeshView;
     use crate::mesh;
+    use rt_runtime::postprocess::denoise::{self, Guided};
+    use rt_runtime::postprocess::temporal::{self, Pinhole};
 
     fn teapot(width: u32, height: u32) -> (LoadedMesh, Progressive) {
         let loaded = mesh::load_obj(&crate::scene::shared_scene("teapot.obj")).unwrap();
@@ -511,14 +575,15 @@ mod tests {
         for _ in 0..8 {
             view.refine().unwrap();
         }
-        assert_eq!(view.history_frames(w / 2, h / 2), 8, "a still view blends every picture");
+        let centre = |frames: Vec<u32>| frames.get((h / 2 * w + w / 2) as usize).copied().unwrap_or(0);
+        assert_eq!(centre(view.history_frames().unwrap()), 8, "a still view blends every picture");
         assert_eq!(view.refine().unwrap().image, view.picture().unwrap(), "a second call shows the same picture");
         let moved = view.camera().orbited(0.03, 0.0);
         view.set_camera(moved);
         let temporal = view.refine().unwrap().image;
         assert_eq!(view.samples(), 1);
-        let frames: Vec<u32> =
-            (0..h).flat_map(|y| (0..w).map(move |x| (x, y))).map(|(x, y)| view.history_frames(x, y)).collect();
+        let frames = view.history_frames().unwrap();
+        assert_eq!(frames.len(), (w * h) as usize);
         let kept = frames.iter().filter(|&&f| f == 10).count();
         let restarted = frames.iter().filter(|&&f| f == 1).count();
         eprintln!("after the move: {kept} pixels kept their history, {restarted} started again");
@@ -535,11 +600,117 @@ mod tests {
         eprintln!("squared error against 32 spp after the move: temporal {temporal_error}, spatial {spatial_error}");
         assert!(temporal_error < spatial_error * 0.7, "temporal {temporal_error}, spatial {spatial_error}");
         view.set_denoise(Denoise::Temporal);
-        assert_eq!(view.history_frames(w / 2, h / 2), 0, "turning the mode on starts with no history");
+        assert_eq!(centre(view.history_frames().unwrap()), 0, "turning the mode on starts with no history");
         view.refine().unwrap();
         view.resize(w - 8, h).unwrap();
         view.refine().unwrap();
-        assert_eq!(view.history_frames(w / 2, h / 2), 1, "a resize starts again");
+        let frames = view.history_frames().unwrap();
+        assert_eq!(frames.get(((h / 2) * (w - 8) + w / 2) as usize), Some(&1), "a resize starts again");
+    }
+
+    /// What the viewer showed before its denoiser ran as the runtime's
+    /// stage: the guides read back cropped, filtered on the host (and in
+    /// temporal mode first blended into a history kept here).
+    struct HostDenoiser {
+        history: Option<(Vec<Vec4>, Pinhole)>,
+    }
+
+    impl HostDenoiser {
+        fn picture(&mut self, view: &Progressive) -> Image {
+            let (width, height) = (view.width(), view.height());
+            let aovs = view.scene.aovs.unwrap();
+            let read = |b| view.read_cropped(b).unwrap();
+            let [color, albedo, normal, variance] = [aovs.radiance, aovs.albedo, aovs.normal, aovs.variance].map(read);
+            let (w, h) = (width as usize, height as usize);
+            let pixels = if view.denoising() == Denoise::Spatial {
+                let variance = Some(&variance[..]);
+                denoise::denoise(
+                    &Guided { width: w, height: h, color: &color, albedo: &albedo, normal: &normal, variance },
+                    0.0,
+                )
+            } else {
+                let position = read(aovs.position.unwrap());
+                let (u, v, w_axis) = view.camera().uvw(width as f32 / height as f32);
+                let camera = Pinhole { eye: view.camera().eye, u, v, w: w_axis };
+                let frame = temporal::Frame {
+                    width: w,
+                    height: h,
+                    color: &color,
+                    albedo: &albedo,
+                    normal: &normal,
+                    position: &position,
+                    camera,
+                };
+                let previous = self.history.as_ref().map(|(texels, camera)| (&texels[..], camera));
+                let acc = temporal::accumulate(&frame, previous, TEMPORAL_ALPHA_MIN);
+                let variance = Some(&acc.variance[..]);
+                let guided =
+                    Guided { width: w, height: h, color: &acc.color, albedo: &albedo, normal: &normal, variance };
+                self.history = Some((acc.history, camera));
+                denoise::denoise(&guided, 0.0)
+            };
+            Image { width, height, pixels }.to_display()
+        }
+    }
+
+    /// The viewer's denoised pictures, spatial and temporal (through a
+    /// camera move), launched and denoised over part of its buffers, are
+    /// the host filter's over the same samples: bit for bit on the CPU
+    /// backend, within 1e-4 on wgpu, where the denoiser rides in the
+    /// launch's submission and only the denoised picture comes back.
+    #[test]
+    fn the_denoiser_stage_shows_what_the_host_filter_showed() {
+        for backend in [rt_runtime::Backend::Cpu, rt_runtime::Backend::Wgpu] {
+            let loaded = mesh::load_obj(&crate::scene::shared_scene("teapot.obj")).unwrap();
+            let mut settings = Settings::new(48, 40);
+            settings.backend = backend;
+            let mut view = Progressive::new(&loaded, &settings).unwrap();
+            view.resize(44, 33).unwrap(); // over part of the buffers
+            view.set_camera(view.home_camera());
+            let mut host = HostDenoiser { history: None };
+            let mut frames = 0;
+            for (mode, moves) in [(Denoise::Spatial, [false, false, false]), (Denoise::Temporal, [false, false, true])]
+            {
+                view.set_denoise(mode);
+                for moved in moves {
+                    if moved {
+                        view.set_camera(view.camera().orbited(0.03, 0.0));
+                    }
+                    let ctx = view.context();
+                    let before = (ctx.stage_read_back_bytes(), ctx.stage_upload_bytes(), ctx.stage_submissions());
+                    let shown = view.refine().unwrap().image;
+                    let ctx = view.context();
+                    let after = (ctx.stage_read_back_bytes(), ctx.stage_upload_bytes(), ctx.stage_submissions());
+                    let want = host.picture(&view);
+                    frames += 1;
+                    assert_eq!(view.picture().unwrap(), shown, "{backend:?}: a second call shows the same picture");
+                    if backend == rt_runtime::Backend::Cpu {
+                        assert_eq!(shown, want, "{mode:?} frame {frames}");
+                        continue;
+                    }
+                    let picture = (44 * 33 * 16) as u64;
+                    assert_eq!(after.0 - before.0, picture, "{mode:?}: the denoised picture alone comes back");
+                    assert_eq!(after.1 - before.1, 0, "{mode:?}: the stage reads the guides on the device");
+                    assert_eq!(after.2, before.2, "{mode:?}: the stage rides in the launch's submission");
+                    // Besides the denoised picture, the launch reads back its
+                    // log's header and counters alone: not the raw picture,
+                    // the accumulation or the guides.
+                    let launch_read = view.context().last_read_back_bytes();
+                    assert!(launch_read >= picture && launch_read - picture < 64, "{mode:?}: {launch_read} bytes");
+                    for (i, (x, y)) in want.pixels.iter().zip(&shown.pixels).enumerate() {
+                        let tolerance = 1e-4 * x.abs().max_element().max(1.0);
+                        assert!(
+                            (*x - *y).abs().max_element() <= tolerance,
+                            "{mode:?} frame {frames} pixel {i}: host {x}, wgpu {y}"
+                        );
+                    }
+                }
+            }
+            assert!(
+                view.history_frames().unwrap().contains(&3),
+                "{backend:?}: the history kept pixels through the move"
+            );
+        }
     }
 
     #[test]

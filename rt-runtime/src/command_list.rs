@@ -153,7 +153,7 @@ impl CommandList {
     /// Checks every command against `ctx` and fixes the list: launches
     /// name existing entry points with a ray generation program and at
     /// least one index a dimension; stages' buffers are set, float RGBA
-    /// and of the size appended ([`PostProcessError::BadStage`] names the stage
+    /// and at least of the size appended ([`PostProcessError::BadStage`] names the stage
     /// and the variable at fault). A list that fails stays open.
     #[doc(alias = "rtCommandListFinalize")]
     pub fn finalize(&mut self, ctx: &Context) -> Result<()> {

@@ -68,12 +68,17 @@ fn frame(on: On) -> Frame {
 
 /// [`frame`], its launch's outputs kept on the device when `device_local`.
 fn frame_with(on: On, device_local: bool) -> Frame {
+    frame_over(on, device_local, (W, H))
+}
+
+/// [`frame_with`] over buffers of `size` (at least `W` x `H`).
+fn frame_over(on: On, device_local: bool, (w, h): (u32, u32)) -> Frame {
     let mut ctx = on.context();
     ctx.set_ray_type_count(0);
     let p = ctx.create_program(&noisy::PROGRAM);
     ctx.set_ray_generation_program(0, p).unwrap();
     ctx.set_var(Scope::Context, "frame", 3u32).unwrap();
-    let mut image = || ctx.create_buffer_2d::<Vec4>(BufferType::InputOutput, W, H).unwrap();
+    let mut image = || ctx.create_buffer_2d::<Vec4>(BufferType::InputOutput, w, h).unwrap();
     let buffers = [image(), image(), image(), image(), image()];
     let [color, albedo, normal, denoised, display] = buffers;
     for (name, b) in [("color", color), ("albedo", albedo), ("normal", normal)] {
@@ -189,6 +194,89 @@ fn on_wgpu_a_launch_and_its_stages_are_one_submission() {
     assert_eq!(ctx.wgpu_submissions(), before + 3);
 }
 
+/// A list launched and its stages run over the top-left `W` x `H` of
+/// larger buffers gives there what the list over buffers of that size
+/// gives, bit for bit, on every backend (on wgpu the stages reading the
+/// launch's outputs in the heap, rows of the buffers' width), and leaves
+/// the stages' outputs as they were around it.
+#[test]
+fn a_list_over_part_of_larger_buffers_gives_what_it_gives_over_buffers_of_its_size() {
+    let big = (W + 7, H + 5);
+    let before = |x: u32, y: u32| Vec4::new(-1.0, x as f32, y as f32, 3.0);
+    for on in On::ALL {
+        if !on.available() {
+            continue;
+        }
+        for device_local in [false, true] {
+            let Frame { mut ctx, buffers, denoiser, tonemapper } = frame_with(on, device_local);
+            frame_list(&ctx, denoiser, tonemapper).execute(&mut ctx).unwrap();
+            let want = read(&ctx, &buffers);
+
+            let Frame { mut ctx, buffers, denoiser, tonemapper } = frame_over(on, device_local, big);
+            let around: Vec<Vec4> = (0..big.1).flat_map(|y| (0..big.0).map(move |x| before(x, y))).collect();
+            for b in &buffers[3..] {
+                ctx.write_buffer(*b, &around).unwrap();
+            }
+            frame_list(&ctx, denoiser, tonemapper).execute(&mut ctx).unwrap();
+            let what = format!("{} device_local {device_local}", on.name());
+            if on != On::CPU {
+                assert_eq!(ctx.stage_inputs_read_on_device(), 3, "{what}: the launch's outputs, read in the heap");
+            }
+            for (i, (got, want)) in read(&ctx, &buffers).iter().zip(&want).enumerate() {
+                let rect: Vec<Vec4> =
+                    (0..H as usize).flat_map(|y| &got[y * big.0 as usize..][..W as usize]).copied().collect();
+                assert_eq!(&rect, want, "{what}: image {i}");
+                if i >= 3 {
+                    for (k, p) in got.iter().enumerate() {
+                        let (x, y) = (k as u32 % big.0, k as u32 / big.0);
+                        if x >= W || y >= H {
+                            assert_eq!(*p, before(x, y), "{what}: image {i} at ({x}, {y}), outside the run");
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// A list whose tonemapper, after the launch and the denoiser over the
+/// top-left `W` x `H`, runs over all of larger buffers: it sees the
+/// denoiser's rectangle and the denoised buffer's texels around it, on
+/// every backend (on wgpu it cannot ride with the denoiser in the
+/// launch's submission, and runs in one of its own after it).
+#[test]
+fn a_stage_after_a_launch_reading_beyond_the_denoisers_rectangle_sees_the_buffer_around_it() {
+    let big = (W + 3, H + 2);
+    let around = |x: u32, y: u32| Vec4::new(0.25, x as f32 * 0.01, y as f32 * 0.02, 1.0);
+    let run = |on: On| {
+        let Frame { mut ctx, buffers, denoiser, tonemapper } = frame_over(on, false, big);
+        let before: Vec<Vec4> = (0..big.1).flat_map(|y| (0..big.0).map(move |x| around(x, y))).collect();
+        ctx.write_buffer(buffers[3], &before).unwrap();
+        let mut list = CommandList::new();
+        list.append_launch_2d(0, W, H).unwrap();
+        list.append_stage(denoiser, W, H).unwrap();
+        list.append_stage(tonemapper, big.0, big.1).unwrap();
+        list.finalize(&ctx).unwrap();
+        list.execute(&mut ctx).unwrap();
+        (read(&ctx, &buffers[3..]), ctx.stage_submissions())
+    };
+    let (cpu, _) = run(On::CPU);
+    let (gpu, stage_submissions) = run(On::COMPUTE);
+    assert_eq!(stage_submissions, 1, "the tonemapper in a submission of its own");
+    let [denoised, display] = [&cpu[0], &cpu[1]];
+    for (i, (d, p)) in denoised.iter().zip(display).enumerate() {
+        let (x, y) = (i as u32 % big.0, i as u32 / big.0);
+        if x >= W || y >= H {
+            assert_eq!(*d, around(x, y), "({x}, {y}) outside the denoiser's run");
+        }
+        assert_eq!(*p, postprocess::tonemap::tonemap_pixel(*d, 2.0, 2.2), "({x}, {y})");
+    }
+    for (a, b) in cpu.iter().flatten().zip(gpu.iter().flatten()) {
+        let tolerance = 1e-4 * a.abs().max_element().max(1.0);
+        assert!((*a - *b).abs().max_element() <= tolerance, "cpu {a}, wgpu {b}");
+    }
+}
+
 /// On wgpu, a list whose launch is cancelled between tiles runs none of
 /// its stages and leaves every buffer as it was, and the list after runs
 /// whole.
@@ -267,7 +355,13 @@ fn finalize_names_the_stage_and_variable_or_the_launch_at_fault() {
     match list.finalize(&ctx).unwrap_err() {
         RtError::PostProcess(PostProcessError::BadStage { stage, variable, problem }) => {
             assert_eq!((stage.as_str(), variable.as_str()), ("0 (`denoiser`)", "input_buffer"));
-            assert_eq!(problem, format!("is buffer 0 of {W}x{H} elements, but the stage runs at {W}x{}", H + 8));
+            assert_eq!(
+                problem,
+                format!(
+                    "is buffer 0 of {W}x{H} elements, but the stage runs at {W}x{}: its buffers must be at least that large",
+                    H + 8
+                )
+            );
         }
         other => panic!("{other:?}"),
     }

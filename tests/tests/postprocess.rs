@@ -94,7 +94,7 @@ fn a_missing_guide_buffer_is_named() {
 }
 
 #[test]
-fn mismatched_buffer_sizes_are_named() {
+fn buffers_smaller_than_the_run_are_named() {
     let mut ctx = Context::new();
     let (stage, _) = denoiser(&mut ctx, 8, 6);
     let small = image(&mut ctx, 8, 5, |_, _| Vec4::Z);
@@ -104,21 +104,21 @@ fn mismatched_buffer_sizes_are_named() {
     assert_eq!(
         text,
         format!(
-            "post-processing stage 0 (`denoiser`): variable `input_normal_buffer` is buffer {} of 8x5 elements, but the stage runs at 8x6",
+            "post-processing stage 0 (`denoiser`): variable `input_normal_buffer` is buffer {} of 8x5 elements, but the stage runs at 8x6: its buffers must be at least that large",
             small.index()
         )
     );
     // The optional variance buffer too.
     let (with_variance, _) = denoiser(&mut ctx, 8, 6);
-    let wide = image(&mut ctx, 9, 6, |_, _| Vec4::ZERO);
-    ctx.set_stage_var(with_variance, "input_variance_buffer", wide).unwrap();
+    let narrow = image(&mut ctx, 7, 6, |_, _| Vec4::ZERO);
+    ctx.set_stage_var(with_variance, "input_variance_buffer", narrow).unwrap();
     let (stage_name, variable, text) = stage_error(ctx.run_stage(with_variance, 8, 6).unwrap_err());
     assert_eq!((stage_name.as_str(), variable.as_str()), ("1 (`denoiser`)", "input_variance_buffer"));
     assert_eq!(
         text,
         format!(
-            "post-processing stage 1 (`denoiser`): variable `input_variance_buffer` is buffer {} of 9x6 elements, but the stage runs at 8x6",
-            wide.index()
+            "post-processing stage 1 (`denoiser`): variable `input_variance_buffer` is buffer {} of 7x6 elements, but the stage runs at 8x6: its buffers must be at least that large",
+            narrow.index()
         )
     );
     // The run's size is checked against the input too.

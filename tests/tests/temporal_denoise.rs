@@ -465,7 +465,10 @@ fn a_missing_guide_or_camera_a_wrong_size_or_setting_is_named() {
     let (variable, text) = stage_error(ctx.run_stage(stage, W, H).unwrap_err());
     assert_eq!(variable, "input_position_buffer");
     assert!(
-        text.ends_with(&format!("is buffer {} of 32x23 elements, but the stage runs at 32x24", small.index())),
+        text.ends_with(&format!(
+            "is buffer {} of 32x23 elements, but the stage runs at 32x24: its buffers must be at least that large",
+            small.index()
+        )),
         "{text}"
     );
     // Settings of the wrong sort or out of range; a degenerate camera.

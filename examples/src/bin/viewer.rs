@@ -17,7 +17,8 @@
 //! On the wgpu backend frames go from the GPU to the window: the picture
 //! stays on the device (`Context::set_buffer_device_local`) and is drawn
 //! through a wgpu surface on the launch's own device
-//! ([`examples::present`]); nothing is read back but the launch's log. On
+//! ([`examples::present`]); nothing is read back but the launch's log
+//! (and, while denoising, the denoised picture, which goes up again). On
 //! the CPU backend, or with `--present host`, each frame is copied into the
 //! window through softbuffer.
 //!
@@ -422,7 +423,9 @@ impl App {
                 }
                 let sample = if again { viewer::Sample::default() } else { self.view.sample()? };
                 if self.view.denoising() != Denoise::Off {
-                    // Denoised on the host: the picture goes up from there.
+                    // Denoised by the runtime's stage, which reads the
+                    // guides on the device; its picture alone came back,
+                    // and goes up from the host.
                     let image = self.view.picture()?;
                     presenter.present_image(&image).map_err(Failure::Other)?;
                     if want_screenshot {

@@ -7,7 +7,9 @@ use crate::backend::{Backend, LaunchReport};
 use crate::error::{ConfigError, LaunchError, Result, SceneError};
 use crate::postprocess::gpu::{DeviceHistory, Pipelines, Source, StageTail, pixels, read_history};
 use crate::postprocess::temporal::TEXELS;
-use crate::postprocess::{History, Pixels, Plan, Stage, StageId, StageKind, StageValue, Texels};
+use crate::postprocess::{
+    History, Pixels, Plan, Stage, StageId, StageKind, StageValue, Texels, crop, merge, runs_together,
+};
 use crate::scene::BufferId;
 use glam::Vec4;
 use std::any::Any;
@@ -60,13 +62,19 @@ impl Context {
         Ok(self.stage(stage)?.kind)
     }
 
-    /// Runs `stage` over `width` x `height` pixels, the size its buffers
-    /// must have, into its `output_buffer`: on the wgpu backend as compute
-    /// passes on the context's device (one submission; the stage's images
-    /// go up to the device, or where a launch left a device-local buffer's
-    /// newest words on the device are copied there, and its output comes
-    /// back to the host buffer; a temporal denoiser's history stays on the
-    /// device), on the CPU backend natively. The
+    /// Runs `stage` over `width` x `height` pixels into its
+    /// `output_buffer`, as a command list's stage of that launch size
+    /// runs (OptiX's `rtCommandListAppendPostprocessingStage`): over
+    /// the top-left `width` x `height` of each of its buffers, which must
+    /// be at least that large (a renderer whose buffers only grow runs
+    /// over the part its picture takes); the output's texels outside that
+    /// rectangle stay as they were. On the wgpu backend as compute
+    /// passes on the context's device (one submission; the rectangle of
+    /// each of the stage's images goes up to the device, or where a launch
+    /// left a device-local buffer's newest words on the device is copied
+    /// there, and the output's rectangle alone comes back to the host
+    /// buffer; a temporal denoiser's history stays on the device), on the
+    /// CPU backend natively. The
     /// stage is checked first ([`PostProcessError::BadStage`](crate::PostProcessError::BadStage) naming the variable
     /// at fault); a stage that fails writes nothing.
     pub fn run_stage(&mut self, stage: StageId, width: u32, height: u32) -> Result<()> {
@@ -87,32 +95,66 @@ impl Context {
         self.stage(stage)?.plan(stage, &self.scene.buffers, size)
     }
 
-    /// Runs checked stages in order and writes their output buffers: on
-    /// the CPU backend one by one; on the wgpu backend all in one
-    /// submission, a stage reading an earlier one's output on the device.
+    /// Runs checked stages in order and writes the run's rectangle of
+    /// their output buffers: on the CPU backend one by one; on the wgpu
+    /// backend all in one submission, a stage reading an earlier one's
+    /// output on the device (where one reads beyond the rectangle an
+    /// earlier one wrote, it starts a submission of its own, after the
+    /// earlier outputs are written).
     pub(crate) fn run_plans(&mut self, plans: &[Plan]) -> Result<()> {
         if self.backend() != Backend::Wgpu {
             for plan in plans {
                 let plan = &self.history_on_host(plan);
-                let (out, history) = plan.run_cpu(&Pixels::of(plan).try_map(|b| self.read_buffer::<Vec4>(b))?);
-                self.write_buffer(plan.output, &out)?;
+                let (out, history) = plan.run_cpu(&Pixels::of(plan).try_map(|b| self.read_rect(b, plan))?);
+                self.write_rect(plan.output, plan, &out)?;
                 if let Some(history) = history {
                     self.stages[plan.stage.0 as usize].history = Some(Arc::new(history));
                 }
             }
             return Ok(());
         }
-        let mut stages = Vec::new();
-        for (i, plan) in plans.iter().enumerate() {
-            let ids = Pixels::of(plan);
-            let sources = ids.try_map(|b| match plans[..i].iter().rposition(|p| p.output == b) {
-                Some(k) => Ok(Source::Earlier(k)),
-                None => self.stage_source(b),
-            })?;
-            stages.push((plan.clone(), sources));
+        let mut rest = plans;
+        while !rest.is_empty() {
+            let (together, after) = rest.split_at(runs_together(rest));
+            let mut stages = Vec::new();
+            for (i, plan) in together.iter().enumerate() {
+                let ids = Pixels::of(plan);
+                let sources = ids.try_map(|b| match together[..i].iter().rposition(|p| p.output == b) {
+                    Some(k) => Ok(Source::Earlier(k, together[k].width)),
+                    None => self.stage_source(b, plan),
+                })?;
+                stages.push((plan.clone(), sources));
+            }
+            let (outputs, histories) = self.run_on_wgpu(&stages)?;
+            self.take_outputs(together, outputs, histories)?;
+            rest = after;
         }
-        let (outputs, histories) = self.run_on_wgpu(&stages)?;
-        self.take_outputs(plans, outputs, histories)
+        Ok(())
+    }
+
+    /// The run's rectangle of `plan` (its top-left `width` x `height`) of
+    /// buffer `b`, row by row.
+    fn read_rect(&self, b: BufferId, plan: &Plan) -> Result<Vec<Vec4>> {
+        let all = self.read_buffer::<Vec4>(b)?;
+        Ok(crop(&all, self.buffer_width(b), plan.width, plan.height))
+    }
+
+    /// Writes `rect` (row by row) over the run's rectangle of `plan` in
+    /// buffer `b`, leaving the rest of it as it was.
+    fn write_rect(&mut self, b: BufferId, plan: &Plan, rect: &[Vec4]) -> Result<()> {
+        let whole =
+            self.scene.buffers.get(b.index() as usize).map(|r| r.width as u64 * r.height as u64 * r.depth as u64);
+        if whole == Some(rect.len() as u64) {
+            return self.write_buffer(b, rect);
+        }
+        let mut all = self.read_buffer::<Vec4>(b)?;
+        merge(&mut all, self.buffer_width(b), (plan.width, plan.height), rect);
+        self.write_buffer(b, &all)
+    }
+
+    /// The row length of buffer `b` (its width; 0 for none).
+    fn buffer_width(&self, b: BufferId) -> u32 {
+        self.scene.buffers.get(b.index() as usize).map_or(0, |r| r.width)
     }
 
     /// Writes the outputs of `plans`, which ran on the wgpu device, to
@@ -121,7 +163,7 @@ impl Context {
     /// device.
     fn take_outputs(&mut self, plans: &[Plan], outputs: Vec<Vec<Vec4>>, histories: Vec<DeviceHistory>) -> Result<()> {
         for (plan, out) in plans.iter().zip(outputs) {
-            self.write_buffer(plan.output, &out)?;
+            self.write_rect(plan.output, plan, &out)?;
         }
         let mut histories = histories.into_iter();
         for (plan, t) in plans.iter().filter_map(|p| Some((p, p.temporal.as_ref()?))) {
@@ -198,15 +240,16 @@ impl Context {
         plan
     }
 
-    /// Where a stage on the wgpu device takes buffer `b` from: the
+    /// Where `plan` on the wgpu device takes buffer `b` from: the
     /// device's heap, where a launch left newer words than the host's
-    /// there (a device-local buffer), else the host's pixels.
-    fn stage_source(&self, b: BufferId) -> Result<Source> {
+    /// there (a device-local buffer), else the host's pixels of the run's
+    /// rectangle.
+    fn stage_source(&self, b: BufferId, plan: &Plan) -> Result<Source> {
         let version = self.scene.buffers.get(b.index() as usize).map(|r| r.host_version);
         let held = version.and_then(|v| self.wgpu_backend_ref()?.held(b.index() as usize, v));
         match held {
-            Some(on_device) => Ok(Source::Device(on_device)),
-            None => Ok(Source::Host(self.read_buffer::<Vec4>(b)?)),
+            Some(on_device) => Ok(Source::Device(on_device, self.buffer_width(b))),
+            None => Ok(Source::Host(self.read_rect(b, plan)?)),
         }
     }
 
@@ -227,7 +270,8 @@ impl Context {
     }
 
     /// Bytes stages' runs on the wgpu backend sent from the host to the
-    /// device: their images where the device did not hold them, and a
+    /// device: their images (the run's rectangle of each) where the
+    /// device did not hold them, and a
     /// temporal denoiser's history the CPU backend made (once, after a
     /// switch of backends). A temporal denoiser's own history stays on
     /// the device, frame after frame, and adds nothing.
@@ -236,7 +280,7 @@ impl Context {
     }
 
     /// Bytes stages' runs on the wgpu backend read back from the device:
-    /// their outputs, whether they ran alone or rode in a command list's
+    /// their outputs (the run's rectangle of each), whether they ran alone or rode in a command list's
     /// launch (whose [`Context::last_read_back_bytes`] counts them too).
     /// No run reads a temporal denoiser's history back
     /// ([`Context::stage_history`] reads it when asked, not counted here).
@@ -276,6 +320,9 @@ impl Context {
             self.run_plans(plans)?;
             return Ok(report);
         }
+        // Those that cannot ride with the first (one reads an earlier
+        // one's output beyond its rectangle) run after it, on their own.
+        let (plans, after) = plans.split_at(runs_together(plans));
         let (pipelines, _) = self.stage_pipelines()?;
         let tail = StageTail { pipelines, plans: plans.to_vec(), histories: Vec::new(), uploaded: 0 };
         self.wgpu_backend().arm_tail(Box::new(tail));
@@ -296,6 +343,7 @@ impl Context {
         self.stage_pipelines = Some(pipelines);
         self.take_outputs(plans, outputs, histories)?;
         self.stage_device_inputs += ran.from_device;
+        self.run_plans(after)?;
         Ok(report)
     }
 
@@ -309,7 +357,7 @@ impl Context {
         self.stage_read_back += outputs.iter().map(|o| o.len() as u64 * 16).sum::<u64>();
         self.stage_submits += 1;
         self.wgpu_backend().count_submission();
-        let from_device = stages.iter().flat_map(|(_, s)| s.each()).filter(|s| matches!(s, Source::Device(_)));
+        let from_device = stages.iter().flat_map(|(_, s)| s.each()).filter(|s| matches!(s, Source::Device(..)));
         self.stage_device_inputs += from_device.count() as u64;
         Ok((outputs, recording.histories))
     }

@@ -1,13 +1,16 @@
 //! The stages on a wgpu device: the passes of `gpu/stages.wgsl` (the
 //! same arithmetic as [`super::denoise`] and [`super::tonemap`]) as plain
 //! compute passes, all of a run of stages (a command list's stages one
-//! after another, or one stage) in one submission: each stage's images
-//! are uploaded to storage buffers (or, where a launch left a
-//! device-local buffer's newest words in its heap, copied from there on
-//! the device; or, where an earlier stage of the run wrote them, read
-//! where it did), every pass runs (the denoiser's prepare, its à-trous
-//! passes ping-ponging between two buffers, finish; or the tonemapper's
-//! one), and every stage's output is read back. In temporal mode the
+//! after another, or one stage) in one submission: the run's rectangle
+//! of each stage's images (the top-left `width` x `height`) is uploaded
+//! to storage buffers (or, where a launch left a device-local buffer's
+//! newest words in its heap, the span of the heap holding it is copied
+//! on the device, and the passes read it in rows of the buffer's width;
+//! or, where an earlier stage of the run wrote them, read where it did),
+//! every pass runs (the denoiser's prepare, its à-trous passes
+//! ping-ponging between two buffers, finish; or the tonemapper's one),
+//! and every stage's output, of the run's size, is read back (the context
+//! merges it into the rectangle of the output buffer). In temporal mode the
 //! denoiser's `gpu/temporal.wgsl` pass runs first, over its history where
 //! the device keeps it ([`DeviceHistory`]: two buffers the stage owns,
 //! one read and the other written, swapped each run), and nothing of it
@@ -210,53 +213,61 @@ impl Pipelines {
                 mapped_at_creation: false,
             })
         };
-        // An image on the device is copied from the heap in this
-        // submission, before the passes read it; an earlier stage's output
-        // is read where that stage wrote it.
+        // Each image with its row length: the host's rectangle is uploaded
+        // (rows of the run's width); on the device, the span of the heap
+        // that holds the rectangle (rows of the buffer's width) is copied
+        // in this submission, before the passes read it; an earlier
+        // stage's output is read where that stage wrote it.
         let mut image = |label, source: &Source| match source {
             Source::Host(px) => {
                 *uploaded += px.len() as u64 * 16;
-                upload(label, px)
+                (upload(label, px), plan.width)
             }
-            Source::Device(d) => {
+            Source::Device(d, stride) => {
+                let span = ((plan.height as u64 - 1) * *stride as u64 + plan.width as u64) * 16;
+                let size = span.min(d.size).max(16);
                 let b = device.create_buffer(&wgpu::BufferDescriptor {
                     label: Some(label),
-                    size: bytes,
+                    size,
                     usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
                     mapped_at_creation: false,
                 });
-                encoder.copy_buffer_to_buffer(&d.buffer, d.offset, &b, 0, bytes.min(d.size));
-                b
+                encoder.copy_buffer_to_buffer(&d.buffer, d.offset, &b, 0, span.min(d.size));
+                (b, *stride)
             }
-            Source::Earlier(k) => earlier[*k].clone(),
+            Source::Earlier(k, stride) => (earlier[*k].clone(), *stride),
         };
+        let unused = || (upload("rt stage: unused", &[Vec4::ZERO]), 0);
         let empty = upload("rt stage: unused", &[Vec4::ZERO]);
         let color = image("rt stage: input", &images.input);
         let (albedo, normal) = match &images.guides {
             Some((a, n)) => (image("rt stage: albedo", a), image("rt stage: normal", n)),
-            None => (upload("rt stage: unused", &[Vec4::ZERO]), upload("rt stage: unused", &[Vec4::ZERO])),
+            None => (unused(), unused()),
         };
         let variance = match &images.variance {
             Some(v) => image("rt stage: variance", v),
-            None => upload("rt stage: unused", &[Vec4::ZERO]),
+            None => unused(),
         };
         let position = images.position.as_ref().map(|p| image("rt stage: position", p));
-        // The temporal denoiser's accumulated colour and variance take the
-        // place of its input's for the spatial passes.
+        // The temporal denoiser's accumulated colour and variance (rows of
+        // the run's width) take the place of its input's for the spatial
+        // passes.
         let (color, variance, history) = match (&plan.temporal, position) {
             (Some(t), Some(position)) => {
                 let frame = [&color, &albedo, &normal, &position];
                 let (acc, acc_variance, history) = self.encode_temporal(encoder, plan, t, frame, uploaded);
-                (acc, acc_variance, Some(history))
+                ((acc, plan.width), (acc_variance, plan.width), Some(history))
             }
             _ => (color, variance, None),
         };
+        let strides = [color.1, albedo.1, normal.1, variance.1];
+        let [(color, _), (albedo, _), (normal, _), (variance, _)] = [color, albedo, normal, variance];
         let has_variance = plan.variance.is_some() || history.is_some();
         let (a, b) = (scratch("rt stage: ping"), scratch("rt stage: pong"));
         let t = Tuning::default();
         let mut pass = |pipeline: &wgpu::ComputePipeline, step: i32, src: &wgpu::Buffer, dst: &wgpu::Buffer| {
             let settings = [plan.settings[0], plan.settings.get(1).copied().unwrap_or(0.0)];
-            let params = params(plan, step, &t, settings, has_variance);
+            let params = params(plan, step, &t, settings, has_variance, strides);
             let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("rt stage: params"),
                 contents: &params,
@@ -284,7 +295,7 @@ impl Pipelines {
     }
 
     /// Records the temporal pass of `plan` over its `frame` (colour,
-    /// albedo, normal, position): the buffers of the accumulated colour,
+    /// albedo, normal, position, each with its row length): the buffers of the accumulated colour,
     /// its variance, and the next history. The last run's history is
     /// read where this device keeps it; one the CPU backend made is
     /// uploaded (counted in `uploaded`), one on another device (lost
@@ -295,7 +306,7 @@ impl Pipelines {
         encoder: &mut wgpu::CommandEncoder,
         plan: &Plan,
         t: &Temporal,
-        frame: [&wgpu::Buffer; 4],
+        frame: [&(wgpu::Buffer, u32); 4],
         uploaded: &mut u64,
     ) -> (wgpu::Buffer, wgpu::Buffer, DeviceHistory) {
         let device = &self.device;
@@ -323,10 +334,10 @@ impl Pipelines {
         let bound = previous.clone().unwrap_or_else(|| upload("rt stage: no history", &[Vec4::ZERO]));
         let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("rt stage: temporal params"),
-            contents: &temporal_params(plan, t, previous.is_some()),
+            contents: &temporal_params(plan, t, previous.is_some(), frame.map(|(_, stride)| *stride)),
             usage: wgpu::BufferUsages::UNIFORM,
         });
-        let [color, albedo, normal, position] = frame;
+        let [color, albedo, normal, position] = frame.map(|(b, _)| b);
         let buffers = [&uniform, color, albedo, normal, position, &bound, &next];
         dispatch(device, encoder, (&self.temporal_layout, &self.temporal), &buffers, plan);
         let (acc, acc_variance) =
@@ -464,11 +475,12 @@ fn upload(device: &wgpu::Device, label: &str, pixels: &[Vec4]) -> wgpu::Buffer {
 }
 
 /// The `Params` uniform of `temporal.wgsl`, over the last run's history
-/// where `has_history`.
-fn temporal_params(plan: &Plan, t: &Temporal, has_history: bool) -> Vec<u8> {
+/// where `has_history`, the frame's images in rows of `strides` pixels
+/// (colour, albedo, normal, position).
+fn temporal_params(plan: &Plan, t: &Temporal, has_history: bool, strides: [u32; 4]) -> Vec<u8> {
     let has_history = has_history as u32;
-    let mut bytes: Vec<u8> =
-        [plan.width, plan.height, has_history, t.alpha_min.to_bits()].iter().flat_map(|w| w.to_le_bytes()).collect();
+    let head = [plan.width, plan.height, has_history, t.alpha_min.to_bits()];
+    let mut bytes: Vec<u8> = head.iter().chain(&strides).flat_map(|w| w.to_le_bytes()).collect();
     let before = t.previous.as_ref().map_or(t.camera, |h| h.camera);
     for v in [t.camera.eye, before.eye, before.u, before.v, before.w] {
         bytes.extend(words(&[v.extend(0.0)]));
@@ -476,14 +488,15 @@ fn temporal_params(plan: &Plan, t: &Temporal, has_history: bool) -> Vec<u8> {
     bytes
 }
 
-/// Where a stage's image is for the device: the host's pixels (uploaded),
-/// a range of the launch heap holding a buffer's newest words (copied on
-/// the device, never through the host), or the output of the `k`th stage
-/// of the same run (read where it lies).
+/// Where a stage's image is for the device: the host's pixels of the
+/// run's rectangle (uploaded), a range of the launch heap holding a
+/// buffer's newest words (copied on the device, never through the host)
+/// in rows of the buffer's width, or the output of the `k`th stage of the
+/// same run (read where it lies) in rows of that run's width.
 pub(crate) enum Source {
     Host(Vec<Vec4>),
-    Device(DeviceBuffer),
-    Earlier(usize),
+    Device(DeviceBuffer, u32),
+    Earlier(usize, u32),
 }
 
 /// Pixels from their words, four a pixel.
@@ -517,14 +530,15 @@ impl StageTail {
         on_device: &dyn Fn(usize) -> Option<DeviceBuffer>,
     ) -> Source {
         if let Some(k) = self.plans[..i].iter().rposition(|p| p.output == b) {
-            return Source::Earlier(k);
+            return Source::Earlier(k, self.plans[k].width);
         }
+        let rec = &scene.buffers[b.index() as usize];
         if let Some(d) = on_device(b.index() as usize) {
-            return Source::Device(d);
+            return Source::Device(d, rec.width);
         }
         let mut words = Vec::new();
-        scene.buffers[b.index() as usize].storage.to_words(&mut words);
-        Source::Host(pixels(&words))
+        rec.storage.to_words(&mut words);
+        Source::Host(super::crop(&pixels(&words), rec.width, self.plans[i].width, self.plans[i].height))
     }
 }
 
@@ -557,7 +571,7 @@ impl Tail for StageTail {
         for (i, plan) in self.plans.iter().enumerate() {
             let ids = Pixels::of(plan);
             let sources = ids.try_map(|b| Ok::<_, RtError>(self.source(i, b, scene, on_device)))?;
-            from_device += sources.each().filter(|s| matches!(s, Source::Device(_))).count() as u64;
+            from_device += sources.each().filter(|s| matches!(s, Source::Device(..))).count() as u64;
             stages.push((plan.clone(), sources));
         }
         let recording = self.pipelines.record(encoder, &stages);
@@ -566,9 +580,18 @@ impl Tail for StageTail {
     }
 }
 
-/// The `Params` uniform of `stages.wgsl` for one pass.
-fn params(plan: &Plan, step: i32, t: &Tuning, [first, second]: [f32; 2], has_variance: bool) -> Vec<u8> {
-    let words: [u32; 12] = [
+/// The `Params` uniform of `stages.wgsl` for one pass, its images in
+/// rows of `strides` pixels (colour, albedo, normal, variance).
+fn params(
+    plan: &Plan,
+    step: i32,
+    t: &Tuning,
+    [first, second]: [f32; 2],
+    has_variance: bool,
+    strides: [u32; 4],
+) -> Vec<u8> {
+    let [color, albedo, normal, variance] = strides;
+    let words: [u32; 16] = [
         plan.width,
         plan.height,
         step as u32,
@@ -581,6 +604,10 @@ fn params(plan: &Plan, step: i32, t: &Tuning, [first, second]: [f32; 2], has_var
         has_variance as u32,
         0,
         0,
+        color,
+        albedo,
+        normal,
+        variance,
     ];
     words.iter().flat_map(|w| w.to_le_bytes()).collect()
 }

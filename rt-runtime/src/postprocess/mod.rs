@@ -12,7 +12,12 @@
 //! `camera_u`, `camera_v`, `camera_w`, vectors) and the position guide
 //! (`input_position_buffer`). Every image buffer holds one `Vec4` a
 //! pixel, RGBA (a normal's xyz, an albedo's rgb, a variance in x), 2D and
-//! of the stage's size. `Stage::plan` checks all
+//! at least of the stage's run size: as with OptiX's
+//! `rtCommandListAppendPostprocessingStage`, a run over `width` x `height` covers
+//! the top-left `width` x `height` of each buffer (rows of the buffer's
+//! own width), and leaves the output's texels outside it as they were,
+//! so a renderer whose buffers only grow runs over the part its picture
+//! takes. `Stage::plan` checks all
 //! of it before anything runs, naming the stage and the variable at
 //! fault; a command list's finalize runs the same check
 //! ([`crate::command_list`]).
@@ -208,7 +213,8 @@ pub(crate) struct Temporal {
 }
 
 /// A stage checked against the context's buffers, ready to run at
-/// `width` x `height`: its buffers (input, guides, output) and settings.
+/// `width` x `height` (over the top-left of its buffers, each at least
+/// that large): its buffers (input, guides, output) and settings.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct Plan {
     pub stage: StageId,
@@ -288,8 +294,9 @@ impl Stage {
 
     /// Checks the stage against `buffers` for a run at `size` (the size
     /// of its input buffer when `None`): every buffer set (the variance
-    /// where given), existing, 2D of `Vec4`, of that size, the output
-    /// apart from the inputs.
+    /// where given), existing, 2D of `Vec4`, at least of that size (the
+    /// run covers the top-left of each), the output apart from the
+    /// inputs.
     pub fn plan(&self, id: StageId, buffers: &[BufferRec], size: Option<(u32, u32)>) -> Result<Plan> {
         let label = self.label(id);
         let bad = |variable: &str, problem: String| {
@@ -336,11 +343,14 @@ impl Stage {
         let mut ids = Vec::new();
         for &name in &names {
             let (b, rec) = buffer(name)?;
-            if (rec.width, rec.height * rec.depth) != (width, height) {
-                let (w, h) = (rec.width, rec.height * rec.depth);
+            let (w, h) = (rec.width, rec.height * rec.depth);
+            if w < width || h < height {
                 return Err(bad(
                     name,
-                    format!("is buffer {} of {w}x{h} elements, but the stage runs at {width}x{height}", b.0),
+                    format!(
+                        "is buffer {} of {w}x{h} elements, but the stage runs at {width}x{height}: its buffers must be at least that large",
+                        b.0
+                    ),
                 ));
             }
             ids.push(b);
@@ -423,7 +433,8 @@ impl Stage {
 
 /// A planned stage's images: the input and, for the denoiser, its guides,
 /// the variance and the position where given; each the pixels on the
-/// host, or on the wgpu backend where they are (`gpu::Source`).
+/// host (the run's rectangle, row by row), or on the wgpu backend where
+/// they are (`gpu::Source`).
 pub(crate) struct Pixels<T = Vec<Vec4>> {
     pub input: T,
     pub guides: Option<(T, T)>,
@@ -487,4 +498,37 @@ impl Plan {
         let history = History { width: self.width, height: self.height, texels, camera: t.camera };
         (denoise::denoise(&images, self.settings[0]), Some(history))
     }
+}
+
+/// The top-left `width` x `height` of `all`, an image of rows of `stride`
+/// pixels, row by row.
+pub(crate) fn crop(all: &[Vec4], stride: u32, width: u32, height: u32) -> Vec<Vec4> {
+    let (stride, width) = (stride as usize, width as usize);
+    (0..height as usize).flat_map(|y| &all[y * stride..y * stride + width]).copied().collect()
+}
+
+/// `all`, an image of rows of `stride` pixels, with its top-left
+/// `width` x `height` replaced by `rect` (row by row); the rest as it was.
+pub(crate) fn merge(all: &mut [Vec4], stride: u32, (width, height): (u32, u32), rect: &[Vec4]) {
+    let (stride, width) = (stride as usize, width as usize);
+    for (y, row) in rect.chunks_exact(width).take(height as usize).enumerate() {
+        all[y * stride..y * stride + width].copy_from_slice(row);
+    }
+}
+
+/// How many of `plans` (at least one) run together on a device, each
+/// reading an earlier one's output where that output lies on the device:
+/// all, up to the first that reads an earlier one's output beyond the
+/// earlier run's rectangle (which only the buffer on the host has, once
+/// the earlier ones' outputs are merged into it).
+pub(crate) fn runs_together(plans: &[Plan]) -> usize {
+    let beyond = |i: usize| {
+        Pixels::of(&plans[i]).each().any(|&b| {
+            plans[..i]
+                .iter()
+                .rfind(|p| p.output == b)
+                .is_some_and(|p| p.width < plans[i].width || p.height < plans[i].height)
+        })
+    };
+    (1..plans.len()).find(|&i| beyond(i)).unwrap_or(plans.len())
 }

@@ -2,7 +2,10 @@
 // `postprocess/denoise.rs` (prepare, a-trous, finish) and of
 // `postprocess/tonemap.rs`, the same arithmetic as those CPU references,
 // one entry point a pass over one pixel an invocation. `postprocess/gpu.rs`
-// binds the buffers of each pass and dispatches them in order.
+// binds the buffers of each pass and dispatches them in order. A pass
+// runs over the top-left `width` x `height` of its images, each in rows
+// of its own length (`strides`: a buffer larger than the run); `src` and
+// `dst` are the run's own, in rows of `width`.
 
 struct Params {
     width: u32,
@@ -18,6 +21,8 @@ struct Params {
     gamma: f32,
     // 1 where `variance` holds the renderer's per-pixel variance.
     has_variance: u32,
+    // The row lengths of `color`, `albedo`, `normal` and `variance`.
+    strides: vec4<u32>,
 }
 
 @group(0) @binding(0) var<uniform> params: Params;
@@ -39,13 +44,13 @@ fn luminance(c: vec3<f32>) -> f32 {
     return dot(c, vec3<f32>(0.2126, 0.7152, 0.0722));
 }
 
-fn demodulation(p: u32) -> vec3<f32> {
-    let a = albedo[p].xyz;
+fn demodulation(x: i32, y: i32) -> vec3<f32> {
+    let a = albedo[u32(y) * params.strides.y + u32(x)].xyz;
     return select(vec3<f32>(1.0), a, a > vec3<f32>(ALBEDO_FLOOR));
 }
 
-fn unit_normal(p: u32) -> vec3<f32> {
-    let n = normal[p].xyz;
+fn unit_normal(x: i32, y: i32) -> vec3<f32> {
+    let n = normal[u32(y) * params.strides.z + u32(x)].xyz;
     let len = length(n);
     if len > 0.0 {
         return n / len;
@@ -72,8 +77,13 @@ fn inside(x: i32, y: i32) -> bool {
     return x >= 0 && y >= 0 && x < i32(params.width) && y < i32(params.height);
 }
 
+// The run's own index of pixel (x, y): of `src` and `dst`.
 fn index(x: i32, y: i32) -> u32 {
     return u32(y) * params.width + u32(x);
+}
+
+fn color_at(x: i32, y: i32) -> vec4<f32> {
+    return color[u32(y) * params.strides.x + u32(x)];
 }
 
 // Pass 1: the demodulated colour and its luminance's variance: the
@@ -87,13 +97,13 @@ fn prepare(@builtin(global_invocation_id) id: vec3<u32>) {
     let y = i32(id.y);
     let p = index(x, y);
     if params.has_variance == 1u {
-        let given = variance[p].x;
+        let given = variance[u32(y) * params.strides.w + u32(x)].x;
         if given >= 0.0 {
-            dst[p] = vec4<f32>(color[p].xyz / demodulation(p), given);
+            dst[p] = vec4<f32>(color_at(x, y).xyz / demodulation(x, y), given);
             return;
         }
     }
-    let np = unit_normal(p);
+    let np = unit_normal(x, y);
     var m1 = 0.0;
     var m2 = 0.0;
     var sum = 0.0;
@@ -108,9 +118,9 @@ fn prepare(@builtin(global_invocation_id) id: vec3<u32>) {
             let q = index(qx, qy);
             var weight = 1.0;
             if q != p {
-                weight = normal_weight(np, unit_normal(q));
+                weight = normal_weight(np, unit_normal(qx, qy));
             }
-            let l = luminance(color[q].xyz / demodulation(q));
+            let l = luminance(color_at(qx, qy).xyz / demodulation(qx, qy));
             m1 += weight * l;
             m2 += weight * l * l;
             sum += weight;
@@ -118,7 +128,7 @@ fn prepare(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     m1 /= sum;
     m2 /= sum;
-    dst[p] = vec4<f32>(color[p].xyz / demodulation(p), max(m2 - m1 * m1, 0.0));
+    dst[p] = vec4<f32>(color_at(x, y).xyz / demodulation(x, y), max(m2 - m1 * m1, 0.0));
 }
 
 fn blurred_variance(x: i32, y: i32) -> f32 {
@@ -150,8 +160,8 @@ fn atrous(@builtin(global_invocation_id) id: vec3<u32>) {
     let center = src[p];
     let sigma = params.sigma_luminance * sqrt(blurred_variance(x, y)) + 1e-6;
     let lp = luminance(center.xyz);
-    let np = unit_normal(p);
-    let ap = demodulation(p);
+    let np = unit_normal(x, y);
+    let ap = demodulation(x, y);
     var kernel = KERNEL;
     var c = vec3<f32>(0.0);
     var variance = 0.0;
@@ -168,7 +178,7 @@ fn atrous(@builtin(global_invocation_id) id: vec3<u32>) {
             var weight = kernel[i] * kernel[j];
             if q != p {
                 let wl = exp(-abs(lp - luminance(s.xyz)) / sigma);
-                weight = weight * wl * normal_weight(np, unit_normal(q)) * albedo_weight(ap, demodulation(q));
+                weight = weight * wl * normal_weight(np, unit_normal(qx, qy)) * albedo_weight(ap, demodulation(qx, qy));
             }
             c += weight * s.xyz;
             variance += weight * weight * s.w;
@@ -184,9 +194,11 @@ fn finish(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x >= params.width || id.y >= params.height {
         return;
     }
-    let p = index(i32(id.x), i32(id.y));
-    let input = color[p];
-    let filtered = src[p].xyz * demodulation(p);
+    let x = i32(id.x);
+    let y = i32(id.y);
+    let p = index(x, y);
+    let input = color_at(x, y);
+    let filtered = src[p].xyz * demodulation(x, y);
     dst[p] = vec4<f32>(mix(input.xyz, filtered, 1.0 - params.blend_or_exposure), input.w);
 }
 
@@ -202,7 +214,7 @@ fn tonemap(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let p = index(i32(id.x), i32(id.y));
-    let c = color[p];
+    let c = color_at(i32(id.x), i32(id.y));
     let inv_gamma = 1.0 / max(params.gamma, 1e-3);
     let e = c.xyz * params.blend_or_exposure;
     let mapped = vec3<f32>(

@@ -5,6 +5,9 @@
 // accumulated colour (n texels) and its variance (n), which
 // `postprocess/gpu.rs` copies out for the spatial passes of
 // `stages.wgsl` (six storage buffers is as many as every device binds).
+// The frame's images are read over their top-left `width` x `height`, each
+// in rows of its own length (`strides`); `previous` and `next` are the
+// run's own.
 
 struct Params {
     width: u32,
@@ -12,6 +15,8 @@ struct Params {
     // 1 where `previous` holds a history of this size.
     has_history: u32,
     alpha_min: f32,
+    // The row lengths of `color`, `albedo`, `normal` and `position`.
+    strides: vec4<u32>,
     // The frame's camera eye (xyz).
     eye: vec4<f32>,
     // The history's camera (xyz each).
@@ -75,12 +80,12 @@ fn temporal(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let p = id.y * params.width + id.x;
-    let c = color[p];
-    let n = unit(normal[p].xyz);
-    let pos = position[p];
+    let c = color[id.y * params.strides.x + id.x];
+    let n = unit(normal[id.y * params.strides.z + id.x].xyz);
+    let pos = position[id.y * params.strides.w + id.x];
     let hit = pos.w > 0.0;
     let world = pos.xyz / pos.w;
-    let a = albedo[p].xyz;
+    let a = albedo[id.y * params.strides.y + id.x].xyz;
     let l = luminance(c.xyz / select(vec3<f32>(1.0), a, a > vec3<f32>(ALBEDO_FLOOR)));
     var acc = c.xyz;
     var moments = vec2<f32>(l, l * l);
