@@ -109,3 +109,44 @@ fn an_instance_never_crosses_to_the_host() {
           concrete fields for it (`struct PairF32 { .. }`); a generic struct lives inside programs and helpers"]
     );
 }
+
+const WRAP: &str = "
+    #[rt_struct(impl)] pub struct Two<T>(pub T, pub T);
+    #[rt_impl] impl<T: Copy + core::ops::Add<Output = T>> Two<T> {
+        pub fn sum(&self) -> T { self.0 + self.1 }
+    }";
+
+#[test]
+fn a_generic_tuple_struct_is_built_by_call_read_by_index_and_destructured() {
+    let l = lower(
+        WRAP,
+        "let a = Two(x, 2.0);
+         let b = Two::<u32>(1, 2);
+         let c: Two<i32> = Two(1, -2);
+         let Two(p, q) = a;
+         out[i] = a.0 + b.1 as f32 + c.sum() as f32 + p * q;",
+    )
+    .unwrap();
+    let mut structs: Vec<&str> = l.wgsl.lines().filter(|s| s.starts_with("struct rt_Two")).collect();
+    structs.sort();
+    assert_eq!(structs, ["struct rt_Two__f32 {", "struct rt_Two__i32 {", "struct rt_Two__u32 {"], "{}", l.wgsl);
+    assert!(l.wgsl.contains("rt_Two__u32(1u, 2u)"), "{}", l.wgsl);
+    assert!(l.wgsl.contains("struct rt_Two__f32 {\n    f0: f32,\n    f1: f32,\n}"), "{}", l.wgsl);
+}
+
+#[test]
+fn a_generic_tuple_struct_names_what_it_cannot_infer_or_match() {
+    assert_eq!(
+        lower(WRAP, "let a = Two(x); out[i] = a.0;").unwrap_err(),
+        "`Two<f32>` has 2 fields, and this gives 1"
+    );
+    assert_eq!(
+        lower(WRAP, "let a = Two(x, 1); out[i] = a.0;").unwrap_err(),
+        "mismatched types: expected `f32`, found integer (write `1.0`)"
+    );
+    assert_eq!(
+        lower(WRAP, "let a = Two(x, x); let Two(p) = a; out[i] = p;").unwrap_err(),
+        "`Two` has 2 fields, and this pattern has 1"
+    );
+}
+

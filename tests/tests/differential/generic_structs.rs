@@ -5,7 +5,7 @@
 //! type or a turbofish) and by associated function, a generic method of
 //! the generic block, a generic struct holding another, instances in a
 //! tuple, an `Option` and an array, a generic helper and a plain one
-//! taking one.
+//! taking one; a generic tuple struct built by call and destructured.
 
 use super::*;
 use core::ops::{Add, Mul};
@@ -65,6 +65,24 @@ pub fn pair_gap(p: Pair<f32>) -> f32 {
     p.b - p.a
 }
 
+/// Two values of one type, unnamed.
+#[rt_struct(impl)]
+pub struct Two<T>(pub T, pub T);
+
+#[rt_impl]
+impl<T: Copy + Add<Output = T>> Two<T> {
+    pub fn sum(&self) -> T {
+        self.0 + self.1
+    }
+}
+
+/// A generic helper destructuring a generic tuple struct.
+#[rt_function]
+pub fn swap_two<T: Copy>(t: Two<T>) -> Two<T> {
+    let Two(p, q) = t;
+    Two(q, p)
+}
+
 differential! {
     /// `Pair<f32>` and `Pair<Vec3>` together, and the ways to build and use them.
     fn generic_struct_programs {
@@ -80,6 +98,15 @@ differential! {
             let o: Option<Pair<f32>> = if a > 0.0 { Some(p) } else { None };
             let arr = [p, q];
             [p.sum(), v.sum().x + v.sum().y + v.sum().z, q.a - q.b, ws.x + ws.z, t.0 + t.1.y + pair_gap(q), o.map_or(-1.0, |x| x.b), arr[1].sum(), weighted_sum(Weighted { pair: p, w: 2.0 })]
+        }
+        /// A generic tuple struct built by call (inferred, by turbofish, at
+        /// the wanted type), read by index, destructured, through a helper.
+        tuple_pairs(a: f32, b: f32) -> [f32; 4] over pairs(&spread(7, -3.0, 3.0), &spread(5, -1.0, 2.0)), tol CHAINED => {
+            let t = Two(a, b);
+            let v = Two::<Vec3>(Vec3::splat(a), Vec3::new(b, a, 1.0));
+            let n: Two<u32> = Two(3, 4);
+            let Two(p, q) = swap_two(t);
+            [t.0 - t.1 * 2.0, v.sum().y + v.1.z, (n.0 * n.1) as f32 + p, q * swap_two(v).0.x]
         }
     }
 }

@@ -283,7 +283,11 @@ impl FnLowerer<'_> {
         if options::is_some_path(path) && self.lookup("Some").is_none() {
             return Some(self.option_some(c, want));
         }
-        let ty = self.tuple_struct_named(path)?;
+        let ty = match self.generic_tuple_struct_type(path, args, want) {
+            Some(Ok(t)) => t,
+            Some(Err(e)) => return Some(Err(e)),
+            None => self.tuple_struct_named(path)?,
+        };
         Some(self.tuple_struct_lit(&ty, args, c.span()))
     }
 
