@@ -150,3 +150,39 @@ fn a_generic_tuple_struct_names_what_it_cannot_infer_or_match() {
     );
 }
 
+#[test]
+fn a_generic_structs_default_is_its_zero_value_at_the_instance_named_or_wanted() {
+    let l = lower(
+        PAIR,
+        "let a = Pair::<u32>::default();
+         let b: Pair<Vec3> = Pair::default();
+         let c = Pair { a: x, ..Default::default() };
+         let d: Pair<i32> = Pair { b: 3, ..Pair::default() };
+         let e = Pair { a: 1u32, ..Pair::<u32>::default() };
+         out[i] = (a.a + e.b) as f32 + b.b.x + c.b + d.a as f32;",
+    )
+    .unwrap();
+    assert_eq!(declared(&l, "struct "), ["rt_Pair__Vec3", "rt_Pair__f32", "rt_Pair__i32", "rt_Pair__u32"]);
+    for zero in ["rt_Pair__u32()", "rt_Pair__Vec3()", "rt_Pair__f32()", "rt_Pair__i32()"] {
+        assert!(l.wgsl.contains(zero), "{zero} in {}", l.wgsl);
+    }
+}
+
+#[test]
+fn a_generic_structs_default_names_what_it_cannot_infer_or_zero() {
+    assert_eq!(
+        lower(PAIR, "let a = Pair::default(); out[i] = x;").unwrap_err(),
+        "cannot infer the type parameter `T` of `Pair`: give it, as in `Pair::<..>::default()`, or the type of the \
+         binding"
+    );
+    assert_eq!(
+        lower(PAIR, "let a = Pair::<Mat3>::default(); out[i] = a.a.x_axis.x;").unwrap_err(),
+        "`Pair<Mat3>::default()` is not supported in ray programs: the WGSL default of `Pair<Mat3>` is all zeros, \
+         and the `Default` of one of its fields is not (an enum's first variant, a matrix's identity): build the \
+         value with a literal"
+    );
+    assert_eq!(
+        lower(PAIR, "let a: Pair<u32> = Pair::<f32>::default(); out[i] = x;").unwrap_err(),
+        "mismatched types: expected `Pair<u32>`, found `Pair<f32>`"
+    );
+}

@@ -5,7 +5,8 @@
 //! type or a turbofish) and by associated function, a generic method of
 //! the generic block, a generic struct holding another, instances in a
 //! tuple, an `Option` and an array, a generic helper and a plain one
-//! taking one; a generic tuple struct built by call and destructured.
+//! taking one; a generic tuple struct built by call and destructured;
+//! `Default` at an instance.
 
 use super::*;
 use core::ops::{Add, Mul};
@@ -107,6 +108,16 @@ differential! {
             let n: Two<u32> = Two(3, 4);
             let Two(p, q) = swap_two(t);
             [t.0 - t.1 * 2.0, v.sum().y + v.1.z, (n.0 * n.1) as f32 + p, q * swap_two(v).0.x]
+        }
+        /// `Default` at an instance named or wanted, alone and as the base
+        /// of a literal.
+        defaults(a: f32, b: f32) -> [f32; 4] over pairs(&spread(5, -3.0, 3.0), &spread(3, -1.0, 2.0)), tol CHAINED => {
+            let z: Pair<Vec3> = Pair::default();
+            let y = Pair::<f32>::default();
+            let p = Pair { a, ..Default::default() };
+            let q: Pair<f32> = Pair { b, ..Pair::default() };
+            let t = Two::<u32>::default();
+            [z.a.x + z.b.y + y.a + y.b, p.a + p.b * 2.0, q.a - q.b, (t.0 + t.1) as f32 + a]
         }
     }
 }

@@ -314,6 +314,16 @@ impl FnLowerer<'_> {
         {
             return self.generic_call(&g, &key, path, &args, want, span);
         }
+        // `Pair::default()`, `Pair::<f32>::default()` of a generic struct
+        // whose impl declares no `default` of its own.
+        if let [owner, f] = &path.segments.iter().collect::<Vec<_>>()[..]
+            && f.ident == "default"
+            && f.arguments.is_none()
+            && args.is_empty()
+            && self.m.generic_structs.params(&owner.ident.to_string()).is_some()
+        {
+            return self.generic_struct_default(owner, want, span);
+        }
         if let Some(seg) = path.segments.iter().find(|s| !s.arguments.is_none()) {
             return Err(Error::unsupported(
                 seg.arguments.span(),

@@ -1,6 +1,6 @@
 //! Values of generic structs built in a function: literals (`Pair { a:
-//! 1.0, b: 2.0 }`, `Pair::<f32> { .. }`), and tuple-struct calls (`Wrap(1.0,
-//! 2.0)`, `Wrap::<f32>(..)`). The instance built:
+//! 1.0, b: 2.0 }`, `Pair::<f32> { .. }`), tuple-struct calls (`Wrap(1.0,
+//! 2.0)`, `Wrap::<f32>(..)`) and `Pair::default()`. The instance built:
 //! its arguments from the turbofish, else the type the value is wanted
 //! at, else the fields' values (see `lower/generic_structs.rs`).
 
@@ -49,6 +49,33 @@ impl FnLowerer<'_> {
         let fields: Vec<(&syn::Type, &Expr)> = template.fields.iter().map(|f| &f.ty).zip(args.iter().copied()).collect();
         let how = format!("`{name}::<..>(..)`");
         Some(self.generic_struct_instance(&name, seg, want, &fields, path.span(), &how))
+    }
+
+    /// `Pair::default()` or `Pair::<f32>::default()` of the generic struct
+    /// `owner` (the path's segment before `default`): the instance's zero
+    /// value, which is what its derived `Default` gives where every field's
+    /// default is zero.
+    pub(super) fn generic_struct_default(&mut self, owner: &syn::PathSegment, want: Option<&Ty>, span: Span) -> Result<Val> {
+        let name = owner.ident.to_string();
+        let how = format!("`{name}::<..>::default()`");
+        let ty = self.generic_struct_instance(&name, owner, want, &[], span, &how)?;
+        self.default_of(ty, span)
+    }
+
+    /// The zero value of the struct `ty` as its `Default`, or the error
+    /// where a field's default is not zero.
+    pub(super) fn default_of(&mut self, ty: Ty, span: Span) -> Result<Val> {
+        if !options::zero_is_default(&ty) {
+            return Err(Error::unsupported(
+                span,
+                &format!("`{ty}::default()`"),
+                &format!(
+                    "the WGSL default of `{ty}` is all zeros, and the `Default` of one of its fields is not (an enum's \
+                     first variant, a matrix's identity): build the value with a literal"
+                ),
+            ));
+        }
+        Ok(Val::new(format!("{}()", ty.wgsl()), ty))
     }
 
     /// The instance of the generic struct `name` that `seg` names (with

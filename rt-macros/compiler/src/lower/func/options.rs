@@ -23,7 +23,7 @@ pub(super) use crate::sugar::{is_none_path, is_some_path};
 /// Whether `t`'s WGSL zero value is its Rust `Default` (an enum's default
 /// is its first variant, whose discriminant may be another number; a
 /// matrix's is the identity).
-fn zero_is_default(t: &Ty) -> bool {
+pub(super) fn zero_is_default(t: &Ty) -> bool {
     match t {
         Ty::Scalar(_) | Ty::Vec(..) => true,
         Ty::Tuple(ts) => ts.iter().all(zero_is_default),
