@@ -186,3 +186,69 @@ fn a_generic_structs_default_names_what_it_cannot_infer_or_zero() {
         "mismatched types: expected `Pair<u32>`, found `Pair<f32>`"
     );
 }
+
+const OPS: &str = "
+    #[rt_struct(impl, impl Add, impl Mul<f32>, impl Neg, impl Scale)] pub struct Pair<T> { pub a: T, pub b: T }
+    #[rt_impl] impl<T: Copy + core::ops::Add<Output = T>> Pair<T> {
+        pub fn sum(&self) -> T { self.a + self.b }
+    }
+    #[rt_impl] impl<T: Copy + core::ops::Add<Output = T>> core::ops::Add for Pair<T> {
+        type Output = Self;
+        fn add(self, o: Self) -> Self { Pair { a: self.a + o.a, b: self.b + o.b } }
+    }
+    #[rt_impl] impl<T: Copy + core::ops::Mul<f32, Output = T>> core::ops::Mul<f32> for Pair<T> {
+        type Output = Pair<T>;
+        fn mul(self, k: f32) -> Pair<T> { Pair { a: self.a * k, b: self.b * k } }
+    }
+    #[rt_impl] impl<T: Copy + core::ops::Neg<Output = T>> core::ops::Neg for Pair<T> {
+        type Output = Self;
+        fn neg(self) -> Self { Pair { a: -self.a, b: -self.b } }
+    }
+    #[rt_trait] pub trait Scale {
+        fn scaled(&self, k: f32) -> Self;
+        fn twice(&self) -> Self where Self: Sized { self.scaled(2.0) }
+    }
+    #[rt_impl] impl<T: Copy + core::ops::Mul<f32, Output = T>> Scale for Pair<T> {
+        fn scaled(&self, k: f32) -> Self { Pair { a: self.a * k, b: self.b * k } }
+    }
+    #[rt_function] pub fn halve<S: Scale>(s: S) -> S { s.scaled(0.5) }";
+
+#[test]
+fn a_generic_structs_operator_and_trait_impls_are_instantiated_per_instance() {
+    let l = lower(
+        OPS,
+        "let p = Pair { a: x, b: 1.0 };
+         let v = Pair { a: Vec3::splat(x), b: Vec3::ONE };
+         let q = -(p + p * 2.0);
+         let w = v.add(v).twice();
+         let h = halve(p).scaled(3.0);
+         out[i] = q.sum() + w.sum().y + h.a + halve(v).b.z;",
+    )
+    .unwrap();
+    let mut fns: Vec<&str> = l
+        .wgsl
+        .lines()
+        .filter_map(|s| s.strip_prefix("fn "))
+        .map(|s| s.split('(').next().unwrap())
+        .filter(|n| n.starts_with("rto_") || n.starts_with("rtm_") || n.starts_with("rtf_"))
+        .collect();
+    fns.sort();
+    assert_eq!(
+        fns,
+        [
+            "rtf_halve__Pair_Vec3",
+            "rtf_halve__Pair_f32",
+            "rtm_Pair__scaled__Vec3",
+            "rtm_Pair__scaled__f32",
+            "rtm_Pair__sum__Vec3",
+            "rtm_Pair__sum__f32",
+            "rtm_Pair__twice__Vec3",
+            "rto_Pair__add__Pair__Vec3",
+            "rto_Pair__add__Pair__f32",
+            "rto_Pair__mul__f32__f32",
+            "rto_Pair__neg__f32",
+        ],
+        "{}",
+        l.wgsl
+    );
+}
