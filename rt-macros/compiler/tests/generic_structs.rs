@@ -136,10 +136,7 @@ fn a_generic_tuple_struct_is_built_by_call_read_by_index_and_destructured() {
 
 #[test]
 fn a_generic_tuple_struct_names_what_it_cannot_infer_or_match() {
-    assert_eq!(
-        lower(WRAP, "let a = Two(x); out[i] = a.0;").unwrap_err(),
-        "`Two<f32>` has 2 fields, and this gives 1"
-    );
+    assert_eq!(lower(WRAP, "let a = Two(x); out[i] = a.0;").unwrap_err(), "`Two<f32>` has 2 fields, and this gives 1");
     assert_eq!(
         lower(WRAP, "let a = Two(x, 1); out[i] = a.0;").unwrap_err(),
         "mismatched types: expected `f32`, found integer (write `1.0`)"

@@ -46,7 +46,8 @@ impl FnLowerer<'_> {
         if !matches!(template.fields, syn::Fields::Unnamed(_)) || self.lookup(&name).is_some() {
             return None;
         }
-        let fields: Vec<(&syn::Type, &Expr)> = template.fields.iter().map(|f| &f.ty).zip(args.iter().copied()).collect();
+        let fields: Vec<(&syn::Type, &Expr)> =
+            template.fields.iter().map(|f| &f.ty).zip(args.iter().copied()).collect();
         let how = format!("`{name}::<..>(..)`");
         Some(self.generic_struct_instance(&name, seg, want, &fields, path.span(), &how))
     }
@@ -55,7 +56,12 @@ impl FnLowerer<'_> {
     /// `owner` (the path's segment before `default`): the instance's zero
     /// value, which is what its derived `Default` gives where every field's
     /// default is zero.
-    pub(super) fn generic_struct_default(&mut self, owner: &syn::PathSegment, want: Option<&Ty>, span: Span) -> Result<Val> {
+    pub(super) fn generic_struct_default(
+        &mut self,
+        owner: &syn::PathSegment,
+        want: Option<&Ty>,
+        span: Span,
+    ) -> Result<Val> {
         let name = owner.ident.to_string();
         let how = format!("`{name}::<..>::default()`");
         let ty = self.generic_struct_instance(&name, owner, want, &[], span, &how)?;

@@ -49,8 +49,13 @@ impl FnLowerer<'_> {
         if self.m.failed.iter().any(|k| k.starts_with(&prefix)) {
             return Err(Error::silent(span));
         }
-        let mut generic: Vec<(String, std::rc::Rc<syn::ItemFn>)> =
-            self.m.generics.iter().filter(|(k, _)| k.starts_with(&prefix)).map(|(k, g)| (k.clone(), g.clone())).collect();
+        let mut generic: Vec<(String, std::rc::Rc<syn::ItemFn>)> = self
+            .m
+            .generics
+            .iter()
+            .filter(|(k, _)| k.starts_with(&prefix))
+            .map(|(k, g)| (k.clone(), g.clone()))
+            .collect();
         generic.sort_by(|a, b| a.0.cmp(&b.0));
         let mut sigs = Vec::new();
         for (key, g) in generic {
