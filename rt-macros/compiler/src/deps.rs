@@ -317,6 +317,7 @@ pub fn of_impl(i: &syn::ItemImpl) -> Vec<Dep> {
             // An operator's `type Output`.
             syn::ImplItem::Type(t) => {
                 d.locals.clear();
+                d.locals.extend(i.generics.type_params().map(|t| t.ident.to_string()));
                 d.visit_type(&t.ty);
             }
             _ => {}

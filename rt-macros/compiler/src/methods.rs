@@ -180,21 +180,13 @@ pub fn check_impl(i: &syn::ItemImpl) -> Result<(), Errors> {
     if errors.is_empty() { Ok(()) } else { Err(errors) }
 }
 
-/// The generic parameters of an impl: none, or (an inherent block of a
-/// generic struct) the struct's own, in order: `impl<T: Copy> Pair<T>`,
+/// The generic parameters of an impl: none, or (an inherent block or a
+/// trait impl of a generic struct) the struct's own, in order:
+/// `impl<T: Copy> Pair<T>`, `impl<T: Add<Output = T>> Add for Pair<T>`,
 /// whose methods are instantiated per instance of the struct
 /// (`lower::generic_structs`). Whether the type is `Name<params>`.
 fn check_impl_generics(i: &syn::ItemImpl, errors: &mut Errors) -> bool {
     if i.generics.params.is_empty() {
-        return false;
-    }
-    if i.trait_.is_some() {
-        errors.push(Error::unsupported(
-            i.generics.span(),
-            "a generic impl of a trait",
-            "implement the trait for a type with concrete fields; a generic struct's methods go in its inherent \
-             `#[rt_impl] impl<T> Type<T>` block",
-        ));
         return false;
     }
     let before = errors.0.len();
@@ -227,16 +219,39 @@ fn check_impl_generics(i: &syn::ItemImpl, errors: &mut Errors) -> bool {
         _ => None,
     };
     if args.as_ref() != Some(&params) {
-        errors.push(Error::unsupported(
-            i.self_ty.span(),
-            "a generic impl of this type",
-            &format!(
+        let instead = match &i.trait_ {
+            Some((_, path, _)) => {
+                let name = path.segments.last().map(|s| s.ident.to_string()).unwrap_or_default();
+                format!(
+                    "a generic impl of a trait is for a generic struct, its parameters in the struct's order \
+                     (`impl<{0}> {name} for Pair<{0}>`); implement the trait for each other type by name (`impl \
+                     {name} for Disc`)",
+                    params.join(", ")
+                )
+            }
+            None => format!(
                 "a generic impl is the inherent block of a generic struct, its parameters in the struct's order: \
                  `impl<{0}> Type<{0}>`; write methods for one instance (`impl Pair<f32>`) as generic code instead",
                 params.join(", ")
             ),
-        ));
+        };
+        errors.push(Error::unsupported(i.self_ty.span(), "a generic impl of this type", &instead));
         return false;
+    }
+    // An operator's right-hand type is a key its impl is chosen by (the
+    // type itself, or one type): it cannot vary with the instance.
+    if let Some((_, Some(rhs))) = crate::operators::of_impl(i) {
+        let ps: Vec<crate::lower::generics::Param> = params
+            .iter()
+            .map(|p| crate::lower::generics::Param { name: p.clone(), kind: crate::lower::generics::ParamKind::Type })
+            .collect();
+        if crate::lower::generics::mentions(&rhs, &ps) {
+            errors.push(Error::unsupported(
+                rhs.span(),
+                "an operator's right-hand type that names the impl's parameters",
+                "write the right side as one type (`Mul<f32>`) or as the struct itself (`Add for Pair<T>`)",
+            ));
+        }
     }
     true
 }

@@ -25,6 +25,12 @@
 //! calling it ([`cpu_glue`]): `a * b` on the CPU is the user's `mul`.
 //! Bitwise operators and `!` are left as written there.
 //!
+//! A generic struct's impl (`impl<T: Add<Output = T>> Add for Pair<T>`)
+//! is generic over the struct's parameters: its method is instantiated
+//! per instance of the left operand (`rto_Pair__add__Pair__f32`), as the
+//! struct's inherent methods are, and the right-hand type is the struct
+//! itself or one type that does not name the parameters.
+//!
 //! Refused, with what to write instead: `IndexMut` (WGSL returns no
 //! references: a method that sets the element), shifts, an operator impl
 //! for a type that is not the user's (`impl Mul<Rgb> for f32`: write the
@@ -120,7 +126,13 @@ fn rhs_of(path: &syn::Path, self_name: &str) -> Option<syn::Type> {
         _ => None,
     })?;
     match &ty {
-        syn::Type::Path(p) if p.path.is_ident("Self") || p.path.is_ident(self_name) => None,
+        // `Rgb`, and a generic struct's `Pair<T>`.
+        syn::Type::Path(p)
+            if p.qself.is_none()
+                && (p.path.is_ident("Self") || p.path.segments.len() == 1 && p.path.segments[0].ident == self_name) =>
+        {
+            None
+        }
         _ => Some(ty),
     }
 }
@@ -169,7 +181,8 @@ pub fn key_prefix(ty: &str, method: &str) -> String {
 }
 
 /// The WGSL function of an operator's method: `rto_Rgb__mul__f32`,
-/// `rto_Rgb__neg`.
+/// `rto_Rgb__neg` (an instance of a generic struct's adds its arguments,
+/// `generics::Instance::wgsl_name`).
 pub fn wgsl_name(ty: &str, method: &str, rhs: &str) -> String {
     if rhs.is_empty() { format!("rto_{ty}__{method}") } else { format!("rto_{ty}__{method}__{rhs}") }
 }
@@ -193,6 +206,9 @@ pub fn cpu_glue(i: &syn::ItemImpl) -> TokenStream {
     let Some((o, _)) = of_impl(i) else { return TokenStream::new() };
     let Some((arith, arith_method)) = o.arith else { return TokenStream::new() };
     let self_ty = &i.self_ty;
+    // A generic struct's impl (`impl<T: Add<Output = T>> Add for Pair<T>`):
+    // the glue is generic with the impl's own bounds.
+    let (impl_generics, _, where_clause) = i.generics.split_for_impl();
     let arith = format_ident!("{arith}");
     let arith_method = format_ident!("{arith_method}");
     let trait_name = format_ident!("{}", o.trait_name);
@@ -200,7 +216,7 @@ pub fn cpu_glue(i: &syn::ItemImpl) -> TokenStream {
     let rhs: syn::Type = rhs_of(&i.trait_.as_ref().unwrap().1, "").unwrap_or_else(|| syn::parse_quote!(#self_ty));
     match o.kind {
         OpKind::Binary => quote! {
-            impl ::rt_std::arith::#arith<#rhs> for #self_ty {
+            impl #impl_generics ::rt_std::arith::#arith<#rhs> for #self_ty #where_clause {
                 type Output = <#self_ty as ::core::ops::#trait_name<#rhs>>::Output;
                 #[inline(always)]
                 fn #arith_method(self, r: #rhs) -> Self::Output {
@@ -209,7 +225,7 @@ pub fn cpu_glue(i: &syn::ItemImpl) -> TokenStream {
             }
         },
         OpKind::Unary => quote! {
-            impl ::rt_std::arith::#arith for #self_ty {
+            impl #impl_generics ::rt_std::arith::#arith for #self_ty #where_clause {
                 type Output = <#self_ty as ::core::ops::#trait_name>::Output;
                 #[inline(always)]
                 fn #arith_method(self) -> Self::Output {
@@ -218,7 +234,7 @@ pub fn cpu_glue(i: &syn::ItemImpl) -> TokenStream {
             }
         },
         OpKind::Assign => quote! {
-            impl ::rt_std::arith::#arith<#rhs> for #self_ty {
+            impl #impl_generics ::rt_std::arith::#arith<#rhs> for #self_ty #where_clause {
                 #[inline(always)]
                 fn #arith_method(&mut self, r: #rhs) {
                     ::core::ops::#trait_name::<#rhs>::#method(self, r)
@@ -226,7 +242,7 @@ pub fn cpu_glue(i: &syn::ItemImpl) -> TokenStream {
             }
         },
         OpKind::Index => quote! {
-            impl ::rt_std::arith::#arith<#rhs> for #self_ty {
+            impl #impl_generics ::rt_std::arith::#arith<#rhs> for #self_ty #where_clause {
                 type Output = <#self_ty as ::core::ops::#trait_name<#rhs>>::Output;
                 #[inline(always)]
                 fn #arith_method(&self, i: #rhs) -> &Self::Output {

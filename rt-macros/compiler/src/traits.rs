@@ -27,6 +27,11 @@
 //!   `#[rt_impl]`: its methods are helpers `rtm_<Type>__<name>`, its
 //!   constants `<Type>__<NAME>`. Two impls of one type that both define a
 //!   name are refused (a call could not say which).
+//! - A generic struct's impl (`impl<T: Copy> Scale for Pair<T>`) is
+//!   generic over the struct's parameters, as its inherent block is: each
+//!   method is instantiated per instance of the receiver
+//!   (`rtm_Pair__scaled__f32`). A blanket impl (`impl<T> Scale for T`) is
+//!   refused: the lowering finds an impl by the type's name.
 //!
 //! Operator traits of std (`Add`, `Neg`, ...) are not `#[rt_trait]`s:
 //! their impls lower to the operators (`crate::operators`). Other std
@@ -185,7 +190,9 @@ pub fn complete(i: &syn::ItemImpl, t: &syn::ItemTrait) -> syn::ItemImpl {
                     }));
                 }
             }
-            syn::TraitItem::Const(c) if !defined.contains(&c.ident.to_string()) => {
+            // A generic impl has no constants (a WGSL constant has one
+            // type, `methods::check_impl`): a default one stays the CPU's.
+            syn::TraitItem::Const(c) if !defined.contains(&c.ident.to_string()) && i.generics.params.is_empty() => {
                 if let Some((eq, expr)) = &c.default {
                     i.items.push(syn::ImplItem::Const(syn::ImplItemConst {
                         attrs: Vec::new(),

@@ -109,3 +109,143 @@ fn an_instance_never_crosses_to_the_host() {
           concrete fields for it (`struct PairF32 { .. }`); a generic struct lives inside programs and helpers"]
     );
 }
+
+const WRAP: &str = "
+    #[rt_struct(impl)] pub struct Two<T>(pub T, pub T);
+    #[rt_impl] impl<T: Copy + core::ops::Add<Output = T>> Two<T> {
+        pub fn sum(&self) -> T { self.0 + self.1 }
+    }";
+
+#[test]
+fn a_generic_tuple_struct_is_built_by_call_read_by_index_and_destructured() {
+    let l = lower(
+        WRAP,
+        "let a = Two(x, 2.0);
+         let b = Two::<u32>(1, 2);
+         let c: Two<i32> = Two(1, -2);
+         let Two(p, q) = a;
+         out[i] = a.0 + b.1 as f32 + c.sum() as f32 + p * q;",
+    )
+    .unwrap();
+    let mut structs: Vec<&str> = l.wgsl.lines().filter(|s| s.starts_with("struct rt_Two")).collect();
+    structs.sort();
+    assert_eq!(structs, ["struct rt_Two__f32 {", "struct rt_Two__i32 {", "struct rt_Two__u32 {"], "{}", l.wgsl);
+    assert!(l.wgsl.contains("rt_Two__u32(1u, 2u)"), "{}", l.wgsl);
+    assert!(l.wgsl.contains("struct rt_Two__f32 {\n    f0: f32,\n    f1: f32,\n}"), "{}", l.wgsl);
+}
+
+#[test]
+fn a_generic_tuple_struct_names_what_it_cannot_infer_or_match() {
+    assert_eq!(lower(WRAP, "let a = Two(x); out[i] = a.0;").unwrap_err(), "`Two<f32>` has 2 fields, and this gives 1");
+    assert_eq!(
+        lower(WRAP, "let a = Two(x, 1); out[i] = a.0;").unwrap_err(),
+        "mismatched types: expected `f32`, found integer (write `1.0`)"
+    );
+    assert_eq!(
+        lower(WRAP, "let a = Two(x, x); let Two(p) = a; out[i] = p;").unwrap_err(),
+        "`Two` has 2 fields, and this pattern has 1"
+    );
+}
+
+#[test]
+fn a_generic_structs_default_is_its_zero_value_at_the_instance_named_or_wanted() {
+    let l = lower(
+        PAIR,
+        "let a = Pair::<u32>::default();
+         let b: Pair<Vec3> = Pair::default();
+         let c = Pair { a: x, ..Default::default() };
+         let d: Pair<i32> = Pair { b: 3, ..Pair::default() };
+         let e = Pair { a: 1u32, ..Pair::<u32>::default() };
+         out[i] = (a.a + e.b) as f32 + b.b.x + c.b + d.a as f32;",
+    )
+    .unwrap();
+    assert_eq!(declared(&l, "struct "), ["rt_Pair__Vec3", "rt_Pair__f32", "rt_Pair__i32", "rt_Pair__u32"]);
+    for zero in ["rt_Pair__u32()", "rt_Pair__Vec3()", "rt_Pair__f32()", "rt_Pair__i32()"] {
+        assert!(l.wgsl.contains(zero), "{zero} in {}", l.wgsl);
+    }
+}
+
+#[test]
+fn a_generic_structs_default_names_what_it_cannot_infer_or_zero() {
+    assert_eq!(
+        lower(PAIR, "let a = Pair::default(); out[i] = x;").unwrap_err(),
+        "cannot infer the type parameter `T` of `Pair`: give it, as in `Pair::<..>::default()`, or the type of the \
+         binding"
+    );
+    assert_eq!(
+        lower(PAIR, "let a = Pair::<Mat3>::default(); out[i] = a.a.x_axis.x;").unwrap_err(),
+        "`Pair<Mat3>::default()` is not supported in ray programs: the WGSL default of `Pair<Mat3>` is all zeros, \
+         and the `Default` of one of its fields is not (an enum's first variant, a matrix's identity): build the \
+         value with a literal"
+    );
+    assert_eq!(
+        lower(PAIR, "let a: Pair<u32> = Pair::<f32>::default(); out[i] = x;").unwrap_err(),
+        "mismatched types: expected `Pair<u32>`, found `Pair<f32>`"
+    );
+}
+
+const OPS: &str = "
+    #[rt_struct(impl, impl Add, impl Mul<f32>, impl Neg, impl Scale)] pub struct Pair<T> { pub a: T, pub b: T }
+    #[rt_impl] impl<T: Copy + core::ops::Add<Output = T>> Pair<T> {
+        pub fn sum(&self) -> T { self.a + self.b }
+    }
+    #[rt_impl] impl<T: Copy + core::ops::Add<Output = T>> core::ops::Add for Pair<T> {
+        type Output = Self;
+        fn add(self, o: Self) -> Self { Pair { a: self.a + o.a, b: self.b + o.b } }
+    }
+    #[rt_impl] impl<T: Copy + core::ops::Mul<f32, Output = T>> core::ops::Mul<f32> for Pair<T> {
+        type Output = Pair<T>;
+        fn mul(self, k: f32) -> Pair<T> { Pair { a: self.a * k, b: self.b * k } }
+    }
+    #[rt_impl] impl<T: Copy + core::ops::Neg<Output = T>> core::ops::Neg for Pair<T> {
+        type Output = Self;
+        fn neg(self) -> Self { Pair { a: -self.a, b: -self.b } }
+    }
+    #[rt_trait] pub trait Scale {
+        fn scaled(&self, k: f32) -> Self;
+        fn twice(&self) -> Self where Self: Sized { self.scaled(2.0) }
+    }
+    #[rt_impl] impl<T: Copy + core::ops::Mul<f32, Output = T>> Scale for Pair<T> {
+        fn scaled(&self, k: f32) -> Self { Pair { a: self.a * k, b: self.b * k } }
+    }
+    #[rt_function] pub fn halve<S: Scale>(s: S) -> S { s.scaled(0.5) }";
+
+#[test]
+fn a_generic_structs_operator_and_trait_impls_are_instantiated_per_instance() {
+    let l = lower(
+        OPS,
+        "let p = Pair { a: x, b: 1.0 };
+         let v = Pair { a: Vec3::splat(x), b: Vec3::ONE };
+         let q = -(p + p * 2.0);
+         let w = v.add(v).twice();
+         let h = halve(p).scaled(3.0);
+         out[i] = q.sum() + w.sum().y + h.a + halve(v).b.z;",
+    )
+    .unwrap();
+    let mut fns: Vec<&str> = l
+        .wgsl
+        .lines()
+        .filter_map(|s| s.strip_prefix("fn "))
+        .map(|s| s.split('(').next().unwrap())
+        .filter(|n| n.starts_with("rto_") || n.starts_with("rtm_") || n.starts_with("rtf_"))
+        .collect();
+    fns.sort();
+    assert_eq!(
+        fns,
+        [
+            "rtf_halve__Pair_Vec3",
+            "rtf_halve__Pair_f32",
+            "rtm_Pair__scaled__Vec3",
+            "rtm_Pair__scaled__f32",
+            "rtm_Pair__sum__Vec3",
+            "rtm_Pair__sum__f32",
+            "rtm_Pair__twice__Vec3",
+            "rto_Pair__add__Pair__Vec3",
+            "rto_Pair__add__Pair__f32",
+            "rto_Pair__mul__f32__f32",
+            "rto_Pair__neg__f32",
+        ],
+        "{}",
+        l.wgsl
+    );
+}

@@ -63,6 +63,16 @@ pub fn id_or_sentinel(h: Option<Hit>) -> u32 {
     hit.id
 }
 
+/// A `None` local typed by the helper's result.
+#[rt_function]
+pub fn none_unless(x: u32) -> Option<u32> {
+    let o = None;
+    if x > 2 {
+        return Some(x);
+    }
+    o
+}
+
 differential! {
     /// Option values and their methods.
     fn options {
@@ -179,6 +189,21 @@ differential! {
                 (q == Some(None)) as u32 + 2 * (q == Some(Some(2.0))) as u32,
                 (Some(x) != Some(1.0)) as u32,
             ]
+        }
+        /// `let o = None;` typed by a later use: passed to a parameter,
+        /// compared with an `Option`, given a value by `unwrap_or`, the
+        /// result of a helper.
+        none_typed_by_use(n: u32, x: f32) -> [f32; 4] over pairs(&[0, 1, 2, 5, 9], &[-1.0, 0.5, 2.5]) => {
+            let a = None;
+            let h = nearer(a, Some(Hit { t: x, id: n }));
+            let b = None;
+            let same = b == Some(n);
+            let mut c = None;
+            let k = c.unwrap_or(x);
+            if n > 1 {
+                c = Some(x * 2.0);
+            }
+            [h.map_or(-1.0, |h| h.t), same as u32 as f32 + none_unless(n).unwrap_or(7) as f32, k, c.unwrap_or(0.5)]
         }
     }
 }

@@ -43,9 +43,38 @@ pub(super) fn rt_data_impl(s: &syn::ItemStruct, role: StructRole) -> TokenStream
         // An instance's layout depends on its arguments, and a `TypeLayout`
         // is a constant of one spelling: a generic struct has no host layout
         // (`lower::generic_structs`), only the mark of its attribute.
+        //
+        // Its `RtData` impl exists only so that rustc does not add its own
+        // "mark it with #[rt_struct]" to the lowering's error where an
+        // instance is used as host data (a buffer element): the layout is a
+        // constant that fails to evaluate, so host code that reads or writes
+        // an instance fails to build with this message, and a program that
+        // uses one stops at the lowering's error first.
         let (impl_generics, ty_generics, where_clause) = s.generics.split_for_impl();
+        let mut copy_generics = s.generics.clone();
+        for p in copy_generics.type_params_mut() {
+            p.bounds.push(syn::parse_quote!(::core::marker::Copy));
+            p.bounds.push(syn::parse_quote!('static));
+            p.eq_token = None;
+            p.default = None;
+        }
+        let (copy_impl_generics, _, _) = copy_generics.split_for_impl();
+        let msg = format!(
+            "`{name_str}` is a generic struct: an instance has no host layout, so the host cannot read or write one \
+             (a buffer element, a variable); declare a struct with concrete fields for it"
+        );
         return quote! {
             impl #impl_generics ::rt_std::data::DeclaredByAttribute for #name #ty_generics #where_clause {}
+            impl #copy_impl_generics ::rt_std::RtData for #name #ty_generics #where_clause {
+                const LAYOUT: ::rt_std::program::TypeLayout = ::core::panic!(#msg);
+                fn write_words(&self, _: &mut [u32]) {
+                    let _ = <Self as ::rt_std::RtData>::LAYOUT;
+                }
+                fn read_words(_: &[u32]) -> Self {
+                    let _ = <Self as ::rt_std::RtData>::LAYOUT;
+                    ::core::unreachable!()
+                }
+            }
         };
     }
     let mut offset = quote!(0u32);

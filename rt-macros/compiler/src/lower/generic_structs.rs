@@ -18,7 +18,10 @@
 //!   (`methods`); a call `p.sum()` on a `Pair<f32>` binds `T` from the
 //!   receiver's instance and calls the method's instance, `rtm_Pair__sum__f32`.
 //! - **Host data.** A `TypeLayout` is a constant with one Rust and one WGSL
-//!   spelling, so a generic struct has no `RtData` impl: an instance lives
+//!   spelling, so a generic struct has no host layout: its `RtData` impl's
+//!   layout is a constant that fails to evaluate with that message
+//!   (`expand/data.rs`; it exists so that rustc adds no "mark it with
+//!   #[rt_struct]" of its own to the error below), and an instance lives
 //!   in programs and helpers (locals, arguments, results, fields of other
 //!   generic structs, tuples, `Option`s) and never where the host reads or
 //!   writes it (a payload, attributes, a variable, a buffer element, a

@@ -108,6 +108,12 @@ impl Instance {
     /// `rtm_Disc__scaled__f32`.
     pub fn wgsl_name(&self) -> String {
         let args: Vec<String> = self.args.iter().map(GenericArg::mangle).collect();
+        if let Some((ty, rest)) = self.generic.split_once(" op ") {
+            // A generic struct's operator (`operators::key`): its WGSL
+            // name with the arguments after it.
+            let (method, rhs) = rest.split_once(' ').unwrap_or((rest, ""));
+            return format!("{}__{}", crate::operators::wgsl_name(ty, method, rhs), args.join("__"));
+        }
         match self.generic.split_once("::") {
             // The method's own name (`rtm_<Type>__<name>`), then the arguments.
             Some((ty, name)) => format!("rtm_{ty}__{name}__{}", args.join("__")),

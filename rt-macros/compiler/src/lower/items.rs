@@ -548,8 +548,13 @@ fn impls_by_kind(k: &mut ByKind<'_>, deps: &[Item], mut impls: Vec<&syn::ItemImp
         let completed = of_trait.map(|t| crate::traits::complete(i, t));
         let i = completed.as_ref().unwrap_or(i);
         let (fns, consts, failed) = crate::methods::lowerable(i);
-        let taken: Vec<String> =
-            k.fns.iter().map(|f| f.key.clone()).chain(k.consts.iter().map(|c| c.key.clone())).collect();
+        let taken: Vec<String> = k
+            .fns
+            .iter()
+            .map(|f| f.key.clone())
+            .chain(k.consts.iter().map(|c| c.key.clone()))
+            .chain(k.generics.keys().cloned())
+            .collect();
         let fns = fns.into_iter().filter(|m| !taken.contains(&m.key));
         let consts = consts.into_iter().filter(|c| !taken.contains(&c.key));
         let (generic, fns): (Vec<_>, Vec<_>) = fns.partition(|m| super::generics::is_generic(&m.f));

@@ -283,7 +283,11 @@ impl FnLowerer<'_> {
         if options::is_some_path(path) && self.lookup("Some").is_none() {
             return Some(self.option_some(c, want));
         }
-        let ty = self.tuple_struct_named(path)?;
+        let ty = match self.generic_tuple_struct_type(path, args, want) {
+            Some(Ok(t)) => t,
+            Some(Err(e)) => return Some(Err(e)),
+            None => self.tuple_struct_named(path)?,
+        };
         Some(self.tuple_struct_lit(&ty, args, c.span()))
     }
 
@@ -309,6 +313,16 @@ impl FnLowerer<'_> {
             && let Some(g) = self.m.generics.get(&key).cloned()
         {
             return self.generic_call(&g, &key, path, &args, want, span);
+        }
+        // `Pair::default()`, `Pair::<f32>::default()` of a generic struct
+        // whose impl declares no `default` of its own.
+        if let [owner, f] = &path.segments.iter().collect::<Vec<_>>()[..]
+            && f.ident == "default"
+            && f.arguments.is_none()
+            && args.is_empty()
+            && self.m.generic_structs.params(&owner.ident.to_string()).is_some()
+        {
+            return self.generic_struct_default(owner, want, span);
         }
         if let Some(seg) = path.segments.iter().find(|s| !s.arguments.is_none()) {
             return Err(Error::unsupported(

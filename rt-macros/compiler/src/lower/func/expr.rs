@@ -461,9 +461,23 @@ impl FnLowerer<'_> {
             && let Expr::Path(p) = &*c.func
             && let [owner, f] = p.path.segments.iter().map(|s| s.ident.to_string()).collect::<Vec<_>>().as_slice()
             && f == "default"
-            && (owner == "Default" || *owner == ty.to_string())
         {
-            return Ok(Val::new(format!("{}()", ty.wgsl()), ty.clone()));
+            // An instance of a generic struct (`Pair<f32>`) is named bare
+            // (`Pair::default()`, `Pair::<f32>::default()`), its
+            // `Default` derived over its parameters' own.
+            match ty {
+                Ty::Struct(d) if d.generic.is_some() && owner == "Default" => {
+                    return self.default_of(ty.clone(), r.span());
+                }
+                Ty::Struct(d) if d.generic.is_some() && owner == d.impl_name() => {
+                    let v = self.expr(r, Some(ty))?;
+                    return self.coerce(v, ty, r.span());
+                }
+                _ if owner == "Default" || *owner == ty.to_string() => {
+                    return Ok(Val::new(format!("{}()", ty.wgsl()), ty.clone()));
+                }
+                _ => {}
+            }
         }
         let v = self.expr(r, Some(ty))?;
         let v = self.deref(v);

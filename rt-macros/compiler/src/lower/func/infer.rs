@@ -83,6 +83,7 @@ impl FnLowerer<'_> {
     }
 
     pub(super) fn coerce(&mut self, v: Val, want: &Ty, span: Span) -> Result<Val> {
+        self.note_none_use(&v, want);
         if self.unify(&v.ty, want) {
             Ok(Val { code: v.code, ty: self.resolved(want), effects: v.effects, reads: v.reads })
         } else {

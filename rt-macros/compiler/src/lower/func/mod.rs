@@ -137,11 +137,10 @@ pub struct FnLowerer<'m> {
     /// settled (the typed form, `crate::typed`).
     expr_types: std::collections::HashMap<usize, Ty>,
     /// The type the next `let` takes where it names none: that of a
-    /// `let mut o = None;` found by a later assignment (`options.rs`).
+    /// `let o = None;` found by a later use (`options.rs`).
     let_type_hint: Option<Ty>,
-    /// While probing for that type: the local's name, and the type of the
-    /// first `Option` assigned to it.
-    none_probe: Option<(String, Option<Ty>)>,
+    /// While probing for that type: the local, and the type found.
+    none_probe: Option<options::NoneProbe>,
 }
 
 /// The statements emitted into one block so far, each with whether it
@@ -399,7 +398,7 @@ impl<'m> FnLowerer<'m> {
                 },
                 _ => {
                     if let Stmt::Local(l) = s {
-                        self.let_type_hint = self.none_local_type(l, &stmts[i + 1..]);
+                        self.let_type_hint = self.none_local_type(l, &stmts[i + 1..], want);
                     }
                     if let Err(err) = self.stmt(s) {
                         self.errors.push(err);

@@ -4,6 +4,7 @@
 //! the right operand's type, as rustc chooses it.
 
 use super::*;
+use crate::lower::generics::{self, GenericArg, Instance};
 use crate::operators::{OPERATORS, OpKind, key_prefix};
 
 impl FnLowerer<'_> {
@@ -16,12 +17,18 @@ impl FnLowerer<'_> {
         }
     }
 
-    /// The method of `owner`'s impls of the operator of `kind` whose
-    /// method is `method`, with the signatures of its impls (one per
-    /// right-hand type); `Err` silent where such an impl failed (its
-    /// error is reported).
-    fn operator_impls(&self, owner: &str, method: &str, span: Span) -> Result<Vec<HelperSig>> {
-        let prefix = key_prefix(owner, method);
+    /// The signatures of the impls of the operator whose method is
+    /// `method` for the left operand's type `t` (one per right-hand type);
+    /// `Err` silent where such an impl failed (its error is reported).
+    fn operator_impls(&mut self, t: &Ty, method: &str, span: Span) -> Result<Vec<HelperSig>> {
+        let t = self.known(t);
+        if let Ty::Struct(d) = &t
+            && let Some((name, args)) = &d.generic
+        {
+            return self.generic_operator_impls(name, args, method, span);
+        }
+        let Some(owner) = self.operand_owner(&t) else { return Ok(Vec::new()) };
+        let prefix = key_prefix(&owner, method);
         if self.m.failed.iter().any(|k| k.starts_with(&prefix)) {
             return Err(Error::silent(span));
         }
@@ -31,9 +38,67 @@ impl FnLowerer<'_> {
         Ok(sigs)
     }
 
+    /// The impls of the operator `method` of the generic struct `name`
+    /// (`impl<T: ..> Add for Pair<T>`), each instantiated at the left
+    /// operand's arguments `args`: the instance's signature, which a pass
+    /// that lacks the instance records as wanted and types from the
+    /// instantiated signature, as a generic call does
+    /// (`lower/generics.rs`).
+    fn generic_operator_impls(&mut self, name: &str, args: &[Ty], method: &str, span: Span) -> Result<Vec<HelperSig>> {
+        let prefix = key_prefix(name, method);
+        if self.m.failed.iter().any(|k| k.starts_with(&prefix)) {
+            return Err(Error::silent(span));
+        }
+        let mut generic: Vec<(String, std::rc::Rc<syn::ItemFn>)> = self
+            .m
+            .generics
+            .iter()
+            .filter(|(k, _)| k.starts_with(&prefix))
+            .map(|(k, g)| (k.clone(), g.clone()))
+            .collect();
+        generic.sort_by(|a, b| a.0.cmp(&b.0));
+        let mut sigs = Vec::new();
+        for (key, g) in generic {
+            let inst = Instance { generic: key, args: args.iter().cloned().map(GenericArg::Type).collect() };
+            if let Some(sig) = self.m.helpers.get(&inst.key()) {
+                sigs.push(sig.clone());
+                continue;
+            }
+            if self.m.failed.contains(&inst.key()) {
+                return Err(Error::silent(span));
+            }
+            let f = generics::instantiate(&g, &inst.args);
+            let mut params = Vec::new();
+            for input in &f.sig.inputs {
+                if let syn::FnArg::Typed(pt) = input {
+                    params.push(self.m.resolve_type(&pt.ty).map_err(|e| Error::silent(e.span))?);
+                }
+            }
+            let ret = match &f.sig.output {
+                syn::ReturnType::Default => Ty::Unit,
+                syn::ReturnType::Type(_, t) => self.m.resolve_type(t).map_err(|e| Error::silent(e.span))?,
+            };
+            sigs.push(HelperSig {
+                name: inst.key(),
+                wgsl_name: inst.wgsl_name(),
+                params,
+                ret,
+                intrinsics: Vec::new(),
+                traced: Vec::new(),
+                resumable: false,
+                has_receiver: true,
+            });
+            let mut wanted = self.m.wanted.borrow_mut();
+            if !wanted.contains(&inst) {
+                wanted.push(inst);
+            }
+        }
+        Ok(sigs)
+    }
+
     /// Whether the unit has any operator impl (else no operand is probed).
     fn has_operator_impls(&self) -> bool {
-        self.m.helpers.keys().chain(self.m.failed.iter()).any(|k| k.contains(" op "))
+        self.m.helpers.keys().chain(self.m.failed.iter()).chain(self.m.generics.keys()).any(|k| k.contains(" op "))
     }
 
     /// A type as far as it is known; an integer a probe (`peek_type`)
@@ -80,7 +145,7 @@ impl FnLowerer<'_> {
         let Some(o) = OPERATORS.iter().find(|o| o.kind == OpKind::Binary && o.method == binary_method(op)) else {
             return Ok(Err((l, r)));
         };
-        let sigs = self.operator_impls(&owner, o.method, span)?;
+        let sigs = self.operator_impls(&l.ty, o.method, span)?;
         if sigs.is_empty() {
             return Ok(Err((l, r)));
         }
@@ -129,8 +194,7 @@ impl FnLowerer<'_> {
             Ty::Ref(_, t) => (*t, true),
             t => (t, false),
         };
-        let Some(owner) = self.operand_owner(&t) else { return Ok(None) };
-        if self.operator_impls(&owner, &name, m.span())?.is_empty() {
+        if self.operand_owner(&t).is_none() || self.operator_impls(&t, &name, m.span())?.is_empty() {
             return Ok(None);
         }
         let recv = &m.receiver;
@@ -164,8 +228,10 @@ impl FnLowerer<'_> {
             return Ok(None);
         }
         let Some(t) = self.peek_type(&u.expr)? else { return Ok(None) };
-        let Some(owner) = self.operand_owner(&t) else { return Ok(None) };
-        let sigs = self.operator_impls(&owner, method, u.span())?;
+        if self.operand_owner(&t).is_none() {
+            return Ok(None);
+        }
+        let sigs = self.operator_impls(&t, method, u.span())?;
         let Some(sig) = sigs.first() else { return Ok(None) };
         self.method_calls.push((sig.name.clone(), u.span()));
         let start = self.here();
@@ -183,7 +249,7 @@ impl FnLowerer<'_> {
         }
         let Some(t) = self.peek_type(&b.left)? else { return Ok(None) };
         let Some(owner) = self.operand_owner(&t) else { return Ok(None) };
-        let sigs = self.operator_impls(&owner, method, b.op.span())?;
+        let sigs = self.operator_impls(&t, method, b.op.span())?;
         if sigs.is_empty() {
             return Ok(None);
         }
@@ -213,7 +279,7 @@ impl FnLowerer<'_> {
         span: Span,
     ) -> Result<std::result::Result<Val, Val>> {
         let Some(owner) = self.operand_owner(&base.ty) else { return Ok(Err(base)) };
-        let sigs = self.operator_impls(&owner, "index", span)?;
+        let sigs = self.operator_impls(&base.ty, "index", span)?;
         if sigs.is_empty() {
             return Ok(Err(base));
         }

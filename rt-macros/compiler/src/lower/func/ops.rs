@@ -237,6 +237,9 @@ impl FnLowerer<'_> {
     fn equality(&mut self, op: &BinOp, o: Operands) -> Result<Val> {
         let sym = op_symbol(op);
         let (l, r, lt) = (&o.l, &o.r, &o.lt);
+        // `o == Some(x)` of a `None` local whose type is probed: the other side's.
+        self.note_none_use(l, &o.rt);
+        self.note_none_use(r, lt);
         if !self.unify(lt, &o.rt) || !lt.is_value() {
             return Err(o.mismatch(op));
         }

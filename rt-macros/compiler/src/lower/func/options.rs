@@ -4,8 +4,11 @@
 //!
 //! `Some(x)`; `None`, typed by what its place wants (a `let`'s annotation, a
 //! parameter, the other branch of an `if` or `match`, `None::<T>`, and for
-//! `let mut o = None;` the first `Option` assigned to `o` after it, as
-//! rustc infers it: [`FnLowerer::none_local_type`]); the
+//! `let o = None;` the first use of `o` after it that fixes its type, as
+//! rustc infers it: an `Option` assigned to it, `o` passed where an
+//! `Option` of a known type is wanted (a parameter, the result, a field),
+//! compared with one, or given a value by `unwrap_or`:
+//! [`FnLowerer::none_local_type`]); the
 //! methods that take no closure (`is_some`, `is_none`, `unwrap_or`,
 //! `unwrap_or_default`, `or`, `xor`, and `copied`/`cloned`, which change
 //! nothing where elements are values). `unwrap` and `expect` of a `None`
@@ -23,7 +26,7 @@ pub(super) use crate::sugar::{is_none_path, is_some_path};
 /// Whether `t`'s WGSL zero value is its Rust `Default` (an enum's default
 /// is its first variant, whose discriminant may be another number; a
 /// matrix's is the identity).
-fn zero_is_default(t: &Ty) -> bool {
+pub(super) fn zero_is_default(t: &Ty) -> bool {
     match t {
         Ty::Scalar(_) | Ty::Vec(..) => true,
         Ty::Tuple(ts) => ts.iter().all(zero_is_default),
@@ -40,7 +43,8 @@ impl FnLowerer<'_> {
             return Err(Error::new(c.span(), "`Some` takes one value: `Some(x)`"));
         };
         let inner = match want.map(|w| self.resolved(w)) {
-            Some(Ty::Option(t)) => Some(*t),
+            // Not a `None` local's still unknown type (`o == Some(x)`).
+            Some(Ty::Option(t)) if *t != Ty::Never => Some(*t),
             _ => None,
         };
         let v = self.expr(arg, inner.as_ref())?;
@@ -165,6 +169,9 @@ impl FnLowerer<'_> {
                 let want = if name == "unwrap_or" { inner.clone() } else { opt.clone() };
                 let d = self.expr(args[0], Some(&want))?;
                 let d = self.deref(d);
+                // `o.unwrap_or(x)` of a `None` local whose type is probed: `x`'s.
+                let found = if name == "unwrap_or" { Ty::Option(Box::new(d.ty.clone())) } else { d.ty.clone() };
+                self.note_none_use(&recv, &found);
                 let d = self.coerce(d, &want, args[0].span())?;
                 let pick = match name {
                     "unwrap_or" => format!("if {o}.some {{\n    {t} = {o}.value;\n}}"),
@@ -278,16 +285,30 @@ impl FnLowerer<'_> {
     }
 }
 
+/// A `let o = None;` whose type the statements after it are probed for.
+pub(super) struct NoneProbe {
+    /// The local's Rust name.
+    name: String,
+    /// Its WGSL name in the probe: a value read from it has this code
+    /// (its markers stripped).
+    wgsl: String,
+    /// The type the first use that fixes it gives.
+    found: Option<Ty>,
+}
+
 impl FnLowerer<'_> {
-    /// The type of `let mut o = None;` (no type written, `None` without a
-    /// turbofish): that of the first `Option` assigned to `o` in `rest`,
-    /// the statements after it in its block, found by lowering them as a
-    /// probe (nothing emitted, no error kept).
-    pub(super) fn none_local_type(&mut self, l: &syn::Local, rest: &[Stmt]) -> Option<Ty> {
+    /// The type of `let o = None;` (no type written, `None` without a
+    /// turbofish): that the first use of `o` in `rest` (the statements
+    /// after it in its block) that fixes it gives, found by lowering them
+    /// as a probe (nothing emitted, no error kept): an `Option` assigned to
+    /// `o` ([`FnLowerer::note_none_probe`]), or `o` read where an `Option`
+    /// of a known type is wanted ([`FnLowerer::note_none_use`]), the
+    /// block's tail where the block is wanted at `want`.
+    pub(super) fn none_local_type(&mut self, l: &syn::Local, rest: &[Stmt], want: Option<&Ty>) -> Option<Ty> {
         let syn::Pat::Ident(pi) = &l.pat else { return None };
         let init = l.init.as_ref()?;
         let bare_none = matches!(&*init.expr, Expr::Path(p) if p.qself.is_none() && p.path.is_ident("None"));
-        if pi.mutability.is_none() || init.diverge.is_some() || !bare_none || self.lookup("None").is_some() {
+        if init.diverge.is_some() || !bare_none || self.lookup("None").is_some() {
             return None;
         }
         // Unknown until assigned: an `Option` of `!`. Inside another's
@@ -314,18 +335,29 @@ impl FnLowerer<'_> {
         self.blocks.push(Block::default());
         self.scopes.push(Vec::new());
         let wgsl = self.fresh(&name);
-        self.bind(&name, Local { wgsl, ty: unknown, var: true });
-        self.none_probe = Some((name, None));
+        self.bind(&name, Local { wgsl: wgsl.clone(), ty: unknown, var: true });
+        self.none_probe = Some(NoneProbe { name, wgsl, found: None });
         for (j, s) in rest.iter().enumerate() {
             if let Stmt::Local(l) = s {
-                self.let_type_hint = self.none_local_type(l, &rest[j + 1..]);
+                self.let_type_hint = self.none_local_type(l, &rest[j + 1..], want);
             }
-            let failed = self.stmt(s).is_err();
-            if failed || self.none_probe.as_ref().is_some_and(|(_, t)| t.is_some()) {
+            let failed = match s {
+                Stmt::Expr(e, None) if j + 1 == rest.len() => match self.expr(e, want) {
+                    Ok(v) => {
+                        if let Some(w) = want {
+                            self.note_none_use(&v, w);
+                        }
+                        false
+                    }
+                    Err(_) => true,
+                },
+                _ => self.stmt(s).is_err(),
+            };
+            if failed || self.none_probe.as_ref().is_some_and(|p| p.found.is_some()) {
                 break;
             }
         }
-        let found = self.none_probe.take().and_then(|(_, t)| t);
+        let found = self.none_probe.take().and_then(|p| p.found);
         let (blocks, scopes, names, consts, ivars, loops, calls, rest) = saved;
         self.blocks.truncate(blocks);
         self.scopes.truncate(scopes);
@@ -370,7 +402,7 @@ impl FnLowerer<'_> {
     /// `o` is the local probed (and the value an `Option` of a known type);
     /// whether the assignment is to be skipped (`o` unknown).
     pub(super) fn note_none_probe(&mut self, left: &Expr, value: &Val) -> bool {
-        let Some((name, found)) = &self.none_probe else { return false };
+        let Some(NoneProbe { name, found, .. }) = &self.none_probe else { return false };
         let Expr::Path(p) = strip_parens(left) else { return false };
         let unknown = Ty::Option(Box::new(Ty::Never));
         let Some(target) = p.path.get_ident().map(|i| i.to_string()) else { return false };
@@ -382,8 +414,25 @@ impl FnLowerer<'_> {
             && let Ty::Option(inner) = self.resolved(&value.ty)
             && *inner != Ty::Never
         {
-            self.none_probe = Some((target, Some(Ty::Option(inner))));
+            self.none_probe.as_mut().unwrap().found = Some(Ty::Option(inner));
         }
         true
+    }
+
+    /// During [`FnLowerer::none_local_type`]'s probe, `v` used where a
+    /// value of type `want` is (a parameter, the result, a field, the
+    /// other side of `==`, an `Option` of `unwrap_or`'s value): `want`
+    /// noted where `v` is read from the local probed and `want` is an
+    /// `Option` of a known type.
+    pub(super) fn note_none_use(&mut self, v: &Val, want: &Ty) {
+        let Some(probe) = &self.none_probe else { return };
+        if probe.found.is_some() || text::strip(&v.code) != probe.wgsl {
+            return;
+        }
+        if let Ty::Option(inner) = self.resolved(want)
+            && *inner != Ty::Never
+        {
+            self.none_probe.as_mut().unwrap().found = Some(Ty::Option(inner));
+        }
     }
 }

@@ -2,7 +2,10 @@
 //! struct whose fields are `f0`, `f1`, ... (`resolve::wgsl_field`), laid
 //! out as a named struct with fields `0`, `1`, ... would be. `Rgb(a, b, c)`
 //! builds one; `.0` reads a field (`expr.rs`'s `field_of`); `Rgb(r, g, b)`
-//! destructures one in a `let` and in `match` arms (`tuples.rs`).
+//! destructures one in a `let` and in `match` arms (`tuples.rs`). A
+//! generic tuple struct (`struct Wrap<T>(T, T);`) is built the same way
+//! once its instance is known (`generic_structs.rs`), and its patterns
+//! name it bare (`Wrap(a, b)`).
 
 use super::*;
 
@@ -48,7 +51,7 @@ impl FnLowerer<'_> {
         let Ty::Struct(d) = &ty else {
             return Err(Error::new(ts.span(), format!("mismatched types: expected `{ty}`, found `{named}`")));
         };
-        if d.name != named || !d.is_tuple() {
+        if d.impl_name() != named || !d.is_tuple() {
             return Err(Error::new(ts.path.span(), format!("mismatched types: expected `{ty}`, found `{named}`")));
         }
         if ts.elems.len() != d.fields.len() {
