@@ -281,3 +281,35 @@ fn the_fixed_seed_calls_a_generic_helper() {
     eprintln!("{what}");
     assert!(some >= 30 && several >= 5, "{what}");
 }
+
+/// The fixed seed writes closures, `Option` flows (each of their four
+/// forms: `unwrap_or`, `match`, `if let`, `filter`), iterator folds
+/// (`fold`, `sum`, `.rev()`) and labelled loops left by a `break` from a
+/// loop inside, in a fair share of its programs.
+#[test]
+fn the_fixed_seed_generates_closures_options_folds_and_labelled_breaks() {
+    let cfg = fuzz::Config::from_env(0x5eed, 300);
+    let forms = [
+        "|fz_a",
+        ".unwrap_or(",
+        "Some(fz_o",
+        "if let Some(",
+        ".filter(|_|",
+        ".fold(",
+        ".sum::<",
+        ".rev().fold(",
+        "break 'fz_l",
+    ];
+    let counts = fuzz::on_big_stack(move || {
+        forms.map(|f| {
+            (cfg.first..cfg.first + cfg.programs)
+                .filter(|id| fuzz::generate::program(cfg.seed, *id).source().contains(f))
+                .count()
+        })
+    });
+    let what: Vec<String> = forms.iter().zip(counts).map(|(f, n)| format!("`{f}` in {n}")).collect();
+    let what = format!("of 300 programs: {}", what.join(", "));
+    eprintln!("{what}");
+    assert!(counts[0] >= 20 && counts[5] >= 10, "{what}");
+    assert!(counts.iter().all(|&n| n >= 3), "{what}");
+}

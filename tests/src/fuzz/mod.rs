@@ -20,8 +20,12 @@
 //!    in its impl of an `#[rt_trait] FuzzOps` the program declares, and
 //!    helpers taking the struct and a right operand as its operator impls
 //!    (`Add`, `Sub`, `Mul`, `Mul<f32>`), called as `(a + b)` or by name,
-//!    `a.add(b)` (see
-//!    `ast::Method`). The AST prints as the Rust source of an
+//!    `a.add(b)` (see `ast::Method`); closures bound and called, `Option`
+//!    flows (`unwrap_or`, `match`, `if let`, `filter`), iterator folds and
+//!    sums over array literals (`.rev()` too), each printed as the
+//!    construct and interpreted as the core expression it means
+//!    (`ast::Sugar`); and labelled loops left by a `break` from a loop
+//!    inside them. The AST prints as the Rust source of an
 //!    `#[rt_program(ray_generation)]` with its `#[rt_struct]`s and
 //!    `#[rt_function]`s.
 //! 2. The CPU side is [`interp`], an interpreter of that AST with Rust's

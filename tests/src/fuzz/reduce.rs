@@ -104,6 +104,7 @@ impl Editor {
                 self.block(body);
             }
             Stmt::Loop(body) => self.block(body),
+            Stmt::Labelled(_, inner) => self.stmt(inner),
             Stmt::Match(e, arms) => {
                 self.expr(e);
                 for a in arms {
@@ -115,7 +116,7 @@ impl Editor {
                 self.expr(value);
             }
             Stmt::Return(Some(e)) => self.expr(e),
-            Stmt::Break | Stmt::Continue | Stmt::Return(None) | Stmt::Trace(_) => {}
+            Stmt::Break | Stmt::BreakTo(_) | Stmt::Continue | Stmt::Return(None) | Stmt::Trace(_) => {}
         }
     }
 
@@ -134,6 +135,7 @@ impl Editor {
             Expr::If(_, t, f) => t.tail.iter().chain(f.tail.iter()).cloned().collect(),
             Expr::Match(_, arms) => arms.iter().filter_map(|a| a.body.tail.clone()).collect(),
             Expr::TupleField(xs, k) | Expr::Pick(xs, k) => vec![xs[*k].clone()],
+            Expr::Sugar(s, xs) => std::iter::once(s.meaning(xs)).chain(s.same_typed(xs).iter().cloned()).collect(),
             _ => Vec::new(),
         };
         for c in children {
@@ -148,7 +150,9 @@ impl Editor {
             | Expr::Cast(x, _)
             | Expr::ArrayRepeat(x, _)
             | Expr::EnumRound(x) => self.expr(x),
-            Expr::TupleField(xs, _) | Expr::Pick(xs, _) => xs.iter_mut().for_each(|a| self.expr(a)),
+            Expr::TupleField(xs, _) | Expr::Pick(xs, _) | Expr::Sugar(_, xs) => {
+                xs.iter_mut().for_each(|a| self.expr(a))
+            }
             Expr::Index(a, i) | Expr::Bin(_, a, i) => {
                 self.expr(a);
                 self.expr(i);
@@ -207,7 +211,7 @@ fn renumber(b: &mut Block, removed: usize) {
             | Expr::Cast(x, _)
             | Expr::ArrayRepeat(x, _)
             | Expr::EnumRound(x) => expr(x, r),
-            Expr::TupleField(xs, _) | Expr::Pick(xs, _) => xs.iter_mut().for_each(|a| expr(a, r)),
+            Expr::TupleField(xs, _) | Expr::Pick(xs, _) | Expr::Sugar(_, xs) => xs.iter_mut().for_each(|a| expr(a, r)),
             Expr::Index(a, c) | Expr::Bin(_, a, c) => {
                 expr(a, r);
                 expr(c, r);
@@ -253,6 +257,7 @@ fn renumber(b: &mut Block, removed: usize) {
                 renumber(body, r);
             }
             Stmt::Loop(body) => renumber(body, r),
+            Stmt::Labelled(_, inner) => stmt(inner, r),
             Stmt::Match(e, arms) => {
                 expr(e, r);
                 arms.iter_mut().for_each(|a| renumber(&mut a.body, r));
@@ -261,7 +266,7 @@ fn renumber(b: &mut Block, removed: usize) {
                 expr(index, r);
                 expr(value, r);
             }
-            Stmt::Break | Stmt::Continue | Stmt::Return(None) | Stmt::Trace(_) => {}
+            Stmt::Break | Stmt::BreakTo(_) | Stmt::Continue | Stmt::Return(None) | Stmt::Trace(_) => {}
         }
     }
     for s in &mut b.stmts {

@@ -237,6 +237,58 @@ pub enum Expr {
     /// declares: `x % 3` picks a variant (0: `Alpha`, 1: `Beta`, else
     /// `Gamma`), an exhaustive `match` on it gives 10, `Beta as u32` (5) or 7.
     EnumRound(Box<Expr>),
+    /// Rust that means another expression of this AST ([`Sugar::meaning`],
+    /// which the interpreter evaluates), printed as the construct: a
+    /// closure, an `Option`, an iterator's fold. Its operands have no
+    /// effects and call no helper (the printed form may evaluate them in
+    /// another order than the meaning, or once more).
+    Sugar(Sugar, Vec<Expr>),
+}
+
+/// The constructs [`Expr::Sugar`] prints; `id` makes the names they bind
+/// (`fz_a3`) unique in the program.
+#[derive(Clone, Debug)]
+pub enum Sugar {
+    /// `{ let fz_f3 = |fz_a3: T| fz_a3 op (xs[1]); fz_f3(xs[0]) }`:
+    /// `xs[0] op xs[1]`.
+    Closure { op: BinOp, ty: Ty, id: u32 },
+    /// `xs[1]` where `xs[0]`, else `xs[2]`, through an `Option`: `form` 0
+    /// `(if c { Some(v) } else { None }).unwrap_or(f)`, 1 a `match` on it,
+    /// 2 `if let Some(..) = it { .. } else { f }`, 3
+    /// `Some(v).filter(|_| c).unwrap_or_else(|| f)`.
+    Option { form: u8, id: u32 },
+    /// `[xs[1..]].iter().fold(xs[0], |fz_acc3, fz_v3| fz_acc3 op *fz_v3)`,
+    /// `.rev()` before the fold where `rev`: the elements folded from the
+    /// left (from the right where `rev`). With `sum` (f32, `Add`, `xs[0]`
+    /// zero, not printed): `[..].iter().sum::<f32>()`.
+    Fold { op: BinOp, ty: Ty, rev: bool, sum: bool, id: u32 },
+}
+
+impl Sugar {
+    /// The expression of the core AST that `Expr::Sugar(self, xs)` means.
+    pub fn meaning(&self, xs: &[Expr]) -> Expr {
+        let value = |e: &Expr| Box::new(Block { stmts: Vec::new(), tail: Some(e.clone()) });
+        match self {
+            Sugar::Closure { op, .. } => Expr::Bin(*op, Box::new(xs[0].clone()), Box::new(xs[1].clone())),
+            Sugar::Option { .. } => Expr::If(Box::new(xs[0].clone()), value(&xs[1]), value(&xs[2])),
+            Sugar::Fold { op, rev, .. } => {
+                let mut elems: Vec<&Expr> = xs[1..].iter().collect();
+                if *rev {
+                    elems.reverse();
+                }
+                elems.into_iter().fold(xs[0].clone(), |acc, e| Expr::Bin(*op, Box::new(acc), Box::new(e.clone())))
+            }
+        }
+    }
+
+    /// The operands of the value's own type (those a reduction may put in
+    /// its place).
+    pub fn same_typed<'a>(&self, xs: &'a [Expr]) -> &'a [Expr] {
+        match self {
+            Sugar::Closure { .. } | Sugar::Fold { .. } => xs,
+            Sugar::Option { .. } => &xs[1..],
+        }
+    }
 }
 
 /// A `match` arm: literal patterns joined with `|` (none: a catch-all,
@@ -309,6 +361,11 @@ pub enum Stmt {
     },
     While(Expr, Block),
     Loop(Block),
+    /// A loop statement (`For`, `Each`, `While`, `Loop`) labelled
+    /// `'fz_l<n>`, which a `BreakTo(n)` inside a loop inside it leaves.
+    Labelled(u32, Box<Stmt>),
+    /// `break 'fz_l<n>;`
+    BreakTo(u32),
     Break,
     Continue,
     Match(Expr, Vec<Arm>),

@@ -203,6 +203,14 @@ impl Program {
                 self.block(s, body, depth);
                 s.push('\n');
             }
+            Stmt::Labelled(n, inner) => {
+                let mut text = String::new();
+                self.stmt(&mut text, inner, depth);
+                let _ = write!(s, "'fz_l{n}: {}", text.trim_start());
+            }
+            Stmt::BreakTo(n) => {
+                let _ = writeln!(s, "break 'fz_l{n};");
+            }
             Stmt::Break => s.push_str("break;\n"),
             Stmt::Continue => s.push_str("continue;\n"),
             Stmt::Match(e, arms) => {
@@ -363,11 +371,48 @@ impl Program {
             }
             Expr::TupleField(xs, k) => format!("({},).{k}", self.args(xs)),
             Expr::Pick(xs, k) => format!("fuzz_pick({}, {})", *k == 1, self.args(xs)),
+            Expr::Sugar(sugar, xs) => self.sugar(sugar, xs),
             Expr::EnumRound(x) => format!(
                 "(match (match ({}) % 3 {{ 0 => FuzzKind::Alpha, 1 => FuzzKind::Beta, _ => FuzzKind::Gamma }}) \
                  {{ FuzzKind::Alpha => 10u32, FuzzKind::Beta => FuzzKind::Beta as u32, FuzzKind::Gamma => 7u32 }})",
                 self.expr(x)
             ),
+        }
+    }
+
+    /// What [`Expr::Sugar`] prints (see [`Sugar`]).
+    fn sugar(&self, sugar: &Sugar, xs: &[Expr]) -> String {
+        match sugar {
+            Sugar::Closure { op, ty, id } => format!(
+                "{{ let fz_f{id} = |fz_a{id}: {}| (fz_a{id} {} {}); fz_f{id}({}) }}",
+                ty.rust(self),
+                op.symbol(),
+                self.expr(&xs[1]),
+                self.expr(&xs[0])
+            ),
+            Sugar::Option { form, id } => {
+                let (c, v, f) = (self.expr(&xs[0]), self.expr(&xs[1]), self.expr(&xs[2]));
+                let made = format!("(if {c} {{ Some({v}) }} else {{ None }})");
+                match form {
+                    0 => format!("{made}.unwrap_or({f})"),
+                    1 => format!("(match {made} {{ Some(fz_o{id}) => fz_o{id}, None => {f} }})"),
+                    2 => format!("(if let Some(fz_o{id}) = {made} {{ fz_o{id} }} else {{ {f} }})"),
+                    _ => format!("Some({v}).filter(|_| {c}).unwrap_or_else(|| {f})"),
+                }
+            }
+            Sugar::Fold { op, ty, rev, sum, id } => {
+                let elems = format!("[{}].iter(){}", self.args(&xs[1..]), if *rev { ".rev()" } else { "" });
+                if *sum {
+                    format!("{elems}.sum::<{}>()", ty.rust(self))
+                } else {
+                    format!(
+                        "{elems}.fold({}, |fz_acc{id}: {}, fz_v{id}| (fz_acc{id} {} *fz_v{id}))",
+                        self.expr(&xs[0]),
+                        ty.rust(self),
+                        op.symbol()
+                    )
+                }
+            }
         }
     }
 

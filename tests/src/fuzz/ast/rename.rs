@@ -41,6 +41,7 @@ fn stmt(s: &mut Stmt, from: &str, by_ref: bool) {
             block(body, from, by_ref);
         }
         Stmt::Loop(body) => block(body, from, by_ref),
+        Stmt::Labelled(_, inner) => stmt(inner, from, by_ref),
         Stmt::Match(e, arms) => {
             expr(e, from, by_ref);
             arms.iter_mut().for_each(|a| block(&mut a.body, from, by_ref));
@@ -50,7 +51,7 @@ fn stmt(s: &mut Stmt, from: &str, by_ref: bool) {
             expr(value, from, by_ref);
         }
         Stmt::Expr(e) | Stmt::Return(Some(e)) => expr(e, from, by_ref),
-        Stmt::Break | Stmt::Continue | Stmt::Return(None) | Stmt::Trace(_) => {}
+        Stmt::Break | Stmt::BreakTo(_) | Stmt::Continue | Stmt::Return(None) | Stmt::Trace(_) => {}
     }
 }
 
@@ -83,9 +84,12 @@ fn expr(e: &mut Expr, from: &str, by_ref: bool) {
             expr(r, from, by_ref);
             args.iter_mut().for_each(|a| expr(a, from, by_ref));
         }
-        Expr::Path(_, _, xs) | Expr::Free(_, xs) | Expr::ArrayLit(xs) | Expr::TupleField(xs, _) | Expr::Pick(xs, _) => {
-            xs.iter_mut().for_each(|a| expr(a, from, by_ref))
-        }
+        Expr::Path(_, _, xs)
+        | Expr::Free(_, xs)
+        | Expr::ArrayLit(xs)
+        | Expr::TupleField(xs, _)
+        | Expr::Pick(xs, _)
+        | Expr::Sugar(_, xs) => xs.iter_mut().for_each(|a| expr(a, from, by_ref)),
         Expr::Call(_, args) => args.iter_mut().for_each(|a| match a {
             Arg::Val(e) => expr(e, from, by_ref),
             Arg::MutRef(n) => name(n, from),

@@ -16,7 +16,7 @@ impl Expr {
             | Expr::Cast(b, _)
             | Expr::ArrayRepeat(b, _)
             | Expr::EnumRound(b) => b.has_effects(p),
-            Expr::TupleField(xs, _) | Expr::Pick(xs, _) => any(xs),
+            Expr::TupleField(xs, _) | Expr::Pick(xs, _) | Expr::Sugar(_, xs) => any(xs),
             Expr::Index(a, b) | Expr::Bin(_, a, b) => a.has_effects(p) || b.has_effects(p),
             Expr::Method(r, _, args) => r.has_effects(p) || any(args),
             Expr::Path(_, _, args) | Expr::Free(_, args) | Expr::ArrayLit(args) => any(args),
@@ -55,7 +55,7 @@ impl Expr {
             | Expr::Cast(x, _)
             | Expr::ArrayRepeat(x, _)
             | Expr::EnumRound(x) => x.visit(f),
-            Expr::TupleField(xs, _) | Expr::Pick(xs, _) => xs.iter().for_each(|a| a.visit(f)),
+            Expr::TupleField(xs, _) | Expr::Pick(xs, _) | Expr::Sugar(_, xs) => xs.iter().for_each(|a| a.visit(f)),
             Expr::Index(a, b) | Expr::Bin(_, a, b) => {
                 a.visit(f);
                 b.visit(f);
@@ -114,6 +114,7 @@ impl Block {
                     body.visit(f);
                 }
                 Stmt::Loop(body) => body.visit(f),
+                Stmt::Labelled(_, inner) => Block { stmts: vec![(**inner).clone()], tail: None }.visit(f),
                 Stmt::Match(e, arms) => {
                     e.visit(f);
                     arms.iter().for_each(|a| a.body.visit(f));
@@ -122,7 +123,7 @@ impl Block {
                     index.visit(f);
                     value.visit(f);
                 }
-                Stmt::Break | Stmt::Continue | Stmt::Return(None) | Stmt::Trace(_) => {}
+                Stmt::Break | Stmt::BreakTo(_) | Stmt::Continue | Stmt::Return(None) | Stmt::Trace(_) => {}
             }
         }
         if let Some(t) = &self.tail {

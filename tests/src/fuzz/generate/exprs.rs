@@ -159,6 +159,11 @@ impl Gen {
                 let xs = vec![self.expr(t, d - 1, false), self.expr(t, d - 1, false)];
                 return Expr::Pick(xs, self.r.below(2) as usize);
             }
+            22..=26 if d >= 2 && self.value_depth < 2 => {
+                if let Some(s) = self.sugar(t, d) {
+                    return s;
+                }
+            }
             18..=19 if *t == Ty::S(Scalar::U32) => {
                 let s = self.r.pick(&[Scalar::I32, Scalar::U32]);
                 return Expr::EnumRound(b(self.expr(&Ty::S(s), d - 1, false)));
@@ -252,6 +257,47 @@ impl Gen {
         };
         self.value_depth -= 1;
         Expr::If(b(c), Box::new(then), Box::new(els))
+    }
+
+    /// A closure, an `Option` or an iterator's fold of type `t` (see
+    /// [`Sugar`]); `None` where `t` has no such form. Where an operand came
+    /// out with effects or a call, the expression it means (the printed
+    /// form may evaluate operands in another order, or once more).
+    fn sugar(&mut self, t: &Ty, d: u32) -> Option<Expr> {
+        let arith = match t {
+            Ty::S(Scalar::I32 | Scalar::U32) => Some(self.r.pick(&[BinOp::Add, BinOp::Sub, BinOp::Mul, BinOp::BitXor])),
+            Ty::S(Scalar::F32) => Some(self.r.pick(&[BinOp::Add, BinOp::Sub, BinOp::Mul])),
+            Ty::V(_, s) if *s != Scalar::Bool => Some(self.r.pick(&[BinOp::Add, BinOp::Sub, BinOp::Mul])),
+            _ => None,
+        };
+        self.fresh += 1;
+        let id = self.fresh;
+        let form = match (self.r.below(3), arith) {
+            (0, Some(op)) => Sugar::Closure { op, ty: t.clone(), id },
+            (1, Some(op)) if !matches!(t, Ty::V(..)) => {
+                let sum = *t == Ty::S(Scalar::F32) && op == BinOp::Add && self.r.chance(40);
+                Sugar::Fold { op, ty: t.clone(), rev: self.r.chance(40), sum, id }
+            }
+            (_, _) if !matches!(t, Ty::Arr(..)) => Sugar::Option { form: self.r.below(4) as u8, id },
+            _ => return None,
+        };
+        self.value_depth += 1;
+        let xs: Vec<Expr> = match &form {
+            Sugar::Closure { .. } => vec![self.expr(t, d - 1, false), self.expr(t, d - 1, false)],
+            Sugar::Option { .. } => {
+                vec![self.expr(&BOOL, d - 1, false), self.expr(t, d - 1, false), self.expr(t, d - 1, false)]
+            }
+            Sugar::Fold { sum: true, .. } => {
+                let n = 2 + self.r.below(3) as usize;
+                std::iter::once(lit(LitV::F32(0.0), true)).chain((0..n).map(|_| self.expr(t, d - 1, false))).collect()
+            }
+            Sugar::Fold { .. } => (0..3 + self.r.below(3) as usize).map(|_| self.expr(t, d - 1, false)).collect(),
+        };
+        self.value_depth -= 1;
+        if xs.iter().any(|x| x.has_effects(&self.p) || x.calls_helper()) {
+            return Some(form.meaning(&xs));
+        }
+        Some(Expr::Sugar(form, xs))
     }
 
     fn match_expr(&mut self, t: &Ty, _d: u32, typed: bool) -> Expr {

@@ -22,6 +22,10 @@ pub fn lanes_variant(seed: u64, id: usize) -> Program {
 /// (numbered from `traces`) and a `return` taken by some launch indices.
 fn insert(r: &mut Rng, b: &mut Block, traces: &mut u32) {
     for s in b.stmts.iter_mut() {
+        let s = match s {
+            Stmt::Labelled(_, inner) => &mut **inner,
+            s => s,
+        };
         match s {
             Stmt::If(_, t, e) => {
                 insert(r, t, traces);

@@ -148,6 +148,8 @@ struct Gen {
     scopes: Vec<Vec<Var>>,
     fresh: u32,
     loop_depth: u32,
+    /// The labels of the labelled loops around (`Stmt::Labelled`).
+    labels: Vec<u32>,
     /// Inside an `if`/`match` used as a value (no `break`/`return`).
     value_depth: u32,
     nest: u32,
@@ -188,6 +190,7 @@ pub fn program(seed: u64, id: usize) -> Program {
         scopes: Vec::new(),
         fresh: 0,
         loop_depth: 0,
+        labels: Vec::new(),
         value_depth: 0,
         nest: 0,
         ret: None,
@@ -294,8 +297,8 @@ impl Gen {
             }
             Expr::Match(_, arms) => arms.iter().any(|a| a.body.tail.as_ref().is_some_and(|x| self.is_const(x))),
             Expr::TupleField(xs, k) => self.is_const(&xs[*k]),
-            // A call: evaluated at run time.
-            Expr::Pick(..) => false,
+            // A call, a closure, an `Option`, a fold: evaluated at run time.
+            Expr::Pick(..) | Expr::Sugar(..) => false,
             Expr::EnumRound(x) => self.is_const(x),
         }
     }

@@ -5,6 +5,15 @@ use super::*;
 
 /// Whether a place's indices have effects or call a helper (the compiler
 /// cannot tell which helpers have none).
+/// The variable a place expression reads (`v`, `v.a[i]`, `*state`).
+fn root_var(e: &Expr) -> Option<String> {
+    match e {
+        Expr::Var(n) | Expr::Deref(n) => Some(n.clone()),
+        Expr::Field(x, ..) | Expr::Index(x, _) => root_var(x),
+        _ => None,
+    }
+}
+
 fn place_has_effects(p: &Place, prog: &Program) -> bool {
     match p {
         Place::Var(_) | Place::Deref(_) => false,
@@ -53,7 +62,7 @@ impl Gen {
             if can_nest { 5 } else { 0 },                                    // match
             if self.ret.is_none() && self.value_depth == 0 { 8 } else { 0 }, // store
             if has_mut_helper { 4 } else { 0 },                              // call statement
-            if in_loop { 6 } else { 0 },                                     // break / continue
+            if in_loop { self.breaks_weight() } else { 0 },                  // break / continue
             if self.ret.is_some() && self.value_depth == 0 { 3 } else { 0 }, // early return
         ];
         match self.r.weighted(&w) {
@@ -77,7 +86,12 @@ impl Gen {
             }
             7 => {
                 let c = self.expr(&BOOL, 2, false);
-                let s = if self.r.chance(50) { Stmt::Break } else { Stmt::Continue };
+                let s = match self.labels.first() {
+                    // Out of the labelled loop, from a loop inside it.
+                    Some(&n) if self.loop_depth >= 2 && self.r.chance(70) => Stmt::BreakTo(n),
+                    _ if self.r.chance(50) => Stmt::Break,
+                    _ => Stmt::Continue,
+                };
                 out.push(Stmt::If(c, Block { stmts: vec![s], tail: None }, None));
             }
             _ => {
@@ -87,6 +101,12 @@ impl Gen {
                 out.push(Stmt::If(c, Block { stmts: vec![Stmt::Return(Some(v))], tail: None }, None));
             }
         }
+    }
+
+    /// The weight of a `break` or `continue` statement: more inside a loop
+    /// inside a labelled one, where it may leave the labelled one.
+    fn breaks_weight(&self) -> u64 {
+        if self.loop_depth >= 2 && !self.labels.is_empty() { 20 } else { 6 }
     }
 
     fn let_stmt(&mut self, out: &mut Vec<Stmt>) {
@@ -301,6 +321,13 @@ impl Gen {
     }
 
     fn loop_stmt(&mut self, out: &mut Vec<Stmt>) {
+        // An outermost loop is labelled now and then, for the `break`s to
+        // it from a loop inside.
+        let label = (self.loop_depth == 0 && self.r.chance(35)).then(|| {
+            self.fresh += 1;
+            self.fresh
+        });
+        self.labels.extend(label);
         self.loop_depth += 1;
         match self.r.weighted(&[5, 3, 2, 3]) {
             3 => out.push(self.each_stmt()),
@@ -355,6 +382,27 @@ impl Gen {
             }
         }
         self.loop_depth -= 1;
+        if let Some(n) = label {
+            self.labels.pop();
+            let mut inner = out.pop().expect("the loop just pushed");
+            // Ends with a loop that may leave it: `for i in 0..k { if c {
+            // break 'fz_l<n>; } }`, `c` over the variables around.
+            if let Stmt::For { body, .. } | Stmt::Each { body, .. } | Stmt::While(_, body) | Stmt::Loop(body) =
+                &mut inner
+            {
+                let c = self.expr(&BOOL, 2, false);
+                let leave = Stmt::If(c, Block { stmts: vec![Stmt::BreakTo(n)], tail: None }, None);
+                body.stmts.push(Stmt::For {
+                    var: self.name("i"),
+                    ty: Scalar::U32,
+                    start: 0,
+                    end: lit(LitV::U32(self.r.range(1, 4) as u32), false),
+                    inclusive: false,
+                    body: Block { stmts: vec![leave], tail: None },
+                });
+            }
+            out.push(Stmt::Labelled(n, Box::new(inner)));
+        }
     }
 
     /// A loop over an array's elements (`Stmt::Each`): an array local in
@@ -389,7 +437,16 @@ impl Gen {
             });
             self.bind(k, U32, false, Kind::ReadOnly);
         }
+        // `array.iter()` borrows the variable it reads for the whole loop:
+        // the body must not assign it or pass it as `&mut`.
+        let borrowed = if by_ref { root_var(&array) } else { None };
+        self.no_write.extend(borrowed.clone());
+        self.no_mut.extend(borrowed.clone());
         let mut body = self.block(4, None);
+        if borrowed.is_some() {
+            self.no_write.pop();
+            self.no_mut.pop();
+        }
         self.scopes.pop();
         first.append(&mut body.stmts);
         body.stmts = first;

@@ -74,6 +74,7 @@ impl Interp<'_> {
                 self.load(*b, k)
             }
             Expr::TupleField(xs, k) | Expr::Pick(xs, k) => self.exprs(xs)?.swap_remove(*k),
+            Expr::Sugar(s, xs) => self.expr(&s.meaning(xs))?,
             Expr::EnumRound(x) => {
                 let k = self.expr(x)?.certain_u64("an enum's integer")?;
                 enum_round(k)

@@ -117,6 +117,8 @@ pub enum Word {
 enum Flow {
     Normal,
     Break,
+    /// `break 'fz_l<n>`: out of every loop up to the one labelled.
+    BreakTo(u32),
     Continue,
     Return(Option<V>),
 }

@@ -64,7 +64,7 @@ impl Interp<'_> {
     pub(super) fn value_block(&mut self, b: &Block) -> R<Result<V, Flow>> {
         match self.block(b)? {
             (Flow::Normal, Some(v)) => Ok(Ok(v)),
-            (f @ (Flow::Return(_) | Flow::Break | Flow::Continue), _) => Ok(Err(f)),
+            (f @ (Flow::Return(_) | Flow::Break | Flow::BreakTo(_) | Flow::Continue), _) => Ok(Err(f)),
             (Flow::Normal, None) => panic!("a value block without a value"),
         }
     }
@@ -140,7 +140,7 @@ impl Interp<'_> {
                 }
                 match self.block(body)?.0 {
                     Flow::Break => break,
-                    f @ Flow::Return(_) => return Ok(f),
+                    f @ (Flow::Return(_) | Flow::BreakTo(_)) => return Ok(f),
                     _ => {}
                 }
             },
@@ -148,10 +148,17 @@ impl Interp<'_> {
                 self.tick();
                 match self.block(body)?.0 {
                     Flow::Break => break,
-                    f @ Flow::Return(_) => return Ok(f),
+                    f @ (Flow::Return(_) | Flow::BreakTo(_)) => return Ok(f),
                     _ => {}
                 }
             },
+            Stmt::Labelled(n, inner) => {
+                return Ok(match self.stmt(inner)? {
+                    Flow::BreakTo(k) if k == *n => Flow::Normal,
+                    f => f,
+                });
+            }
+            Stmt::BreakTo(n) => return Ok(Flow::BreakTo(*n)),
             Stmt::Break => return Ok(Flow::Break),
             Stmt::Continue => return Ok(Flow::Continue),
             Stmt::Match(e, arms) => {
@@ -215,7 +222,7 @@ impl Interp<'_> {
             self.scopes.pop();
             match r?.0 {
                 Flow::Break => break,
-                f @ Flow::Return(_) => return Ok(Some(f)),
+                f @ (Flow::Return(_) | Flow::BreakTo(_)) => return Ok(Some(f)),
                 _ => {}
             }
         }
