@@ -59,6 +59,7 @@ fn item_name(item: &Item) -> Option<String> {
         Item::Const(c) => Some(c.ident.to_string()),
         Item::Enum(e) => Some(e.ident.to_string()),
         Item::Trait(t) => Some(t.ident.to_string()),
+        Item::Alias(t) => Some(t.ident.to_string()),
         Item::Impl(_) => None,
     }
 }

@@ -122,13 +122,13 @@ fn rtp_ops_arith(a: f32, b: f32, n: i32, m: u32, out_f: RtBuffer, out_i: RtBuffe
     k *= -2i;
     k /= 3i;
     k %= 5i;
-    var tmp_1: i32;
+    var tmp: i32;
     if (n > 0i) {
-        tmp_1 = n;
+        tmp = n;
     } else {
-        tmp_1 = -n;
+        tmp = -n;
     }
-    let magnitude: i32 = max(1i, tmp_1);
+    let magnitude: i32 = max(1i, tmp);
     rt_bufstore_i32(out_i, slot, (((-k + ((n - 1i) * (n + 1i))) - -n) + magnitude));
     var w: u32 = (m + 1u);
     w *= 2u;

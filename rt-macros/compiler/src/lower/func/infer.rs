@@ -106,37 +106,9 @@ impl FnLowerer<'_> {
     /// The type an expression would have, without emitting anything (used to
     /// pick an overload). Only cheap, side-effect-free forms are probed.
     pub(super) fn peek_type(&mut self, e: &Expr) -> Result<Option<Ty>> {
-        let saved_blocks = self.blocks.len();
-        self.blocks.push(Block::default());
-        let saved_intr = self.intrinsics.len();
-        let saved_calls = self.calls.len();
-        let saved_ivars = self.ivars.clone();
-        let saved_errors = self.errors.0.len();
-        let saved_tuples = self.pending_tuples.len();
-        let saved_types = std::mem::take(&mut self.expr_types);
+        let saved = self.snapshot();
         let r = self.expr(e, None);
-        // The typed form keeps the probe's types but those naming the
-        // probe's own inference variables, dropped below.
-        let probed = std::mem::replace(&mut self.expr_types, saved_types);
-        let live = saved_ivars.len();
-        self.expr_types.extend(probed.into_iter().filter(|(_, t)| !names_ivar_from(t, live)));
-        self.pending_tuples.truncate(saved_tuples);
-        self.blocks.truncate(saved_blocks);
-        self.intrinsics.truncate(saved_intr);
-        self.calls.truncate(saved_calls);
-        self.ivars = saved_ivars;
-        self.errors.0.truncate(saved_errors);
+        self.restore(saved, true);
         Ok(r.ok().map(|v| self.deref(v).ty))
-    }
-}
-
-/// Whether `t` names an integer inference variable numbered `first` or
-/// above.
-fn names_ivar_from(t: &Ty, first: usize) -> bool {
-    match t {
-        Ty::IntVar(v) => *v as usize >= first,
-        Ty::Array(e, _) | Ty::Ref(_, e) => names_ivar_from(e, first),
-        Ty::Tuple(ts) => ts.iter().any(|t| names_ivar_from(t, first)),
-        _ => false,
     }
 }

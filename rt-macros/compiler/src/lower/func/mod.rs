@@ -55,6 +55,7 @@ mod operators;
 mod ops;
 mod options;
 mod places;
+mod probe;
 mod resume;
 mod sampler_ids;
 mod stmt;

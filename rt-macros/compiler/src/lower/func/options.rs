@@ -319,20 +319,7 @@ impl FnLowerer<'_> {
             return Some(unknown);
         }
         let name = pi.ident.to_string();
-        let saved = (
-            self.blocks.len(),
-            self.scopes.len(),
-            self.names.clone(),
-            self.local_consts.clone(),
-            self.ivars.clone(),
-            (self.loop_depth, self.breaks.len(), self.loop_values.len(), self.writebacks.len()),
-            (self.intrinsics.len(), self.calls.len(), self.method_calls.len(), self.traced.len()),
-            (self.errors.0.len(), self.pending_tuples.len(), std::mem::take(&mut self.expr_types)),
-        );
-        // The module's tuple and `Option` types too: the probe's unknown
-        // `Option`s are not types.
-        let tuples = self.m.tuples.borrow().clone();
-        self.blocks.push(Block::default());
+        let saved = self.snapshot();
         self.scopes.push(Vec::new());
         let wgsl = self.fresh(&name);
         self.bind(&name, Local { wgsl: wgsl.clone(), ty: unknown, var: true });
@@ -358,30 +345,13 @@ impl FnLowerer<'_> {
             }
         }
         let found = self.none_probe.take().and_then(|p| p.found);
-        let (blocks, scopes, names, consts, ivars, loops, calls, rest) = saved;
-        self.blocks.truncate(blocks);
-        self.scopes.truncate(scopes);
-        self.names = names;
-        self.local_consts = consts;
         // The probe's inference variables go with it: an integer still
         // open there is open again (`count = Some(3)`, its type from a
         // later use, as rustc's).
         let found = found.map(|t| self.resolved(&t));
-        let live = ivars.len();
-        self.ivars = ivars;
+        let live = saved.ivars.len();
+        self.restore(saved, false);
         let found = found.map(|t| self.reopen_ivars(&t, live));
-        self.loop_depth = loops.0;
-        self.breaks.truncate(loops.1);
-        self.loop_values.truncate(loops.2);
-        self.writebacks.truncate(loops.3);
-        self.intrinsics.truncate(calls.0);
-        self.calls.truncate(calls.1);
-        self.method_calls.truncate(calls.2);
-        self.traced.truncate(calls.3);
-        self.errors.0.truncate(rest.0);
-        self.pending_tuples.truncate(rest.1);
-        self.expr_types = rest.2;
-        *self.m.tuples.borrow_mut() = tuples;
         found
     }
 
