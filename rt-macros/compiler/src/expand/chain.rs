@@ -172,24 +172,10 @@ fn finish(entry: &TokenStream, done: TokenStream) -> TokenStream {
             };
             export_macro(&crate::methods::impl_macro_ident_of(&i, &ty), quote!(impl { #item_tokens } #done))
         }
-        "trait" => {
-            // Its default bodies are checked in each impl that uses them.
-            let Some(TokenTree::Group(g)) = it.next() else { return quote!(compile_error!("malformed rt entry");) };
-            let item_tokens = g.stream();
-            match syn::parse2::<syn::ItemTrait>(item_tokens.clone()) {
-                Ok(t) => export_macro(&t.ident, quote!(trait { #item_tokens } #done)),
-                Err(e) => e.to_compile_error(),
-            }
-        }
-        "alias" => {
-            // Checked where it is used: its type is lowered there.
-            let Some(TokenTree::Group(g)) = it.next() else { return quote!(compile_error!("malformed rt entry");) };
-            let item_tokens = g.stream();
-            match syn::parse2::<syn::ItemType>(item_tokens.clone()) {
-                Ok(t) => export_macro(&t.ident, quote!(alias { #item_tokens } #done)),
-                Err(e) => e.to_compile_error(),
-            }
-        }
+        // Its default bodies are checked in each impl that uses them.
+        "trait" => export_as_written(it.next(), |t: &syn::ItemTrait| t.ident.clone(), quote!(trait), &done),
+        // Checked where it is used: its type is lowered there.
+        "alias" => export_as_written(it.next(), |t: &syn::ItemType| t.ident.clone(), quote!(alias), &done),
         "enum" => match it.next() {
             Some(TokenTree::Group(g)) => finish_enum(g.stream(), &deps, done),
             _ => quote!(compile_error!("malformed rt entry");),
@@ -235,6 +221,22 @@ fn finish(entry: &TokenStream, done: TokenStream) -> TokenStream {
             quote!(#errors #export)
         }
         _ => quote!(compile_error!("malformed rt entry");),
+    }
+}
+
+/// The end of the chain of an item checked where it is used (a trait, an
+/// alias): its link, handing it out as written with what it depends on.
+fn export_as_written<T: syn::parse::Parse>(
+    group: Option<TokenTree>,
+    ident: impl Fn(&T) -> syn::Ident,
+    kw: TokenStream,
+    done: &TokenStream,
+) -> TokenStream {
+    let Some(TokenTree::Group(g)) = group else { return quote!(compile_error!("malformed rt entry");) };
+    let item_tokens = g.stream();
+    match syn::parse2::<T>(item_tokens.clone()) {
+        Ok(t) => export_macro(&ident(&t), quote!(#kw { #item_tokens } #done)),
+        Err(e) => e.to_compile_error(),
     }
 }
 

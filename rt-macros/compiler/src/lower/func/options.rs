@@ -351,8 +351,7 @@ impl FnLowerer<'_> {
         let found = found.map(|t| self.resolved(&t));
         let live = saved.ivars.len();
         self.restore(saved, false);
-        let found = found.map(|t| self.reopen_ivars(&t, live));
-        found
+        found.map(|t| self.reopen_ivars(&t, live))
     }
 
     /// `t` with each integer inference variable numbered `live` or above
