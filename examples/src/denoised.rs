@@ -117,6 +117,14 @@ impl Denoiser {
         let (width, height) = self.size;
         Ok(Image { width, height, pixels: scene.ctx.read_buffer::<Vec4>(self.output)? })
     }
+
+    /// [`Denoiser::run`] awaiting the device ([`CommandList::execute_async`]),
+    /// as a browser page must.
+    pub async fn run_async(&self, scene: &mut Scene) -> Result<Image, Error> {
+        self.list.execute_async(&mut scene.ctx).await?;
+        let (width, height) = self.size;
+        Ok(Image { width, height, pixels: scene.ctx.read_buffer_async::<Vec4>(self.output).await? })
+    }
 }
 
 /// The last render's guides, read back (to be seen in an image viewer,

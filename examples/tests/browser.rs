@@ -4,12 +4,20 @@
 //! `normal` and `cornell` examples through `Context::launch_async`. The
 //! page POSTs what each canvas shows back; each picture must meet the
 //! golden rule against the tour's golden image (at least 99.9% of the
-//! 8-bit channels within 2/255, none beyond 16/255).
+//! 8-bit channels within 2/255, none beyond 16/255). The page then turns
+//! its denoise toggle on and POSTs the Cornell box's samples denoised by
+//! the runtime's denoiser stage on its device, and what its caption says:
+//! that picture must differ from the raw one, be nearer a render of many
+//! more samples than the raw one is, and be the CPU backend's denoised
+//! picture of the same samples, within the golden rule.
 //!
 //! Without the built page or Chromium the test passes with a note, unless
 //! `RT_REQUIRE_BROWSER=1` (scripts/test.sh sets it after building the page
 //! and installing Chromium): then it fails, naming what is missing.
 
+use examples::denoised::Denoiser;
+use examples::{Image, Settings};
+use rt_runtime::Backend;
 use std::collections::HashMap;
 use std::io::{BufRead, BufReader, Read, Write};
 use std::net::{TcpListener, TcpStream};
@@ -23,6 +31,9 @@ use std::time::{Duration, Instant};
 const W: u32 = 64;
 const H: u32 = 48;
 const SPP: u32 = 4;
+
+/// The samples of the reference the denoised picture is measured against.
+const REFERENCE_SPP: u32 = 64;
 
 /// How long the page may take: a cold SwiftShader compiles two megakernels.
 const PAGE_TIME: Duration = Duration::from_secs(600);
@@ -135,8 +146,36 @@ fn compare(name: &str, golden: &[u8], got: &[u8]) -> Result<String, String> {
     if beyond_2 * 1000 <= diffs.len() && max <= 16 { Ok(figures) } else { Err(figures) }
 }
 
+/// 8-bit RGBA of `image`, display values, top row first.
+fn rgba8(image: &Image) -> Vec<u8> {
+    rt_runtime::image_out::to_rgba8(image.width, image.height, &image.pixels).into_raw()
+}
+
+/// The Cornell box at `spp` on the CPU backend: its picture, and its
+/// samples denoised and shown as its camera shows them (as the page's
+/// `denoised` does).
+fn cornell_on_cpu(spp: u32) -> (Vec<u8>, Vec<u8>) {
+    let settings = Settings { spp, backend: Backend::Cpu, ..Settings::new(W, H) };
+    let mut scene = examples::cornell::scene(&settings).expect("the Cornell box builds");
+    let rendered = scene.render(&mut |_| {}).expect("the Cornell box renders on the CPU");
+    let denoiser = Denoiser::new(&mut scene).expect("a denoiser").expect("the Cornell box writes guides");
+    let mut denoised = denoiser.run(&mut scene).expect("the denoiser runs on the CPU");
+    for p in &mut denoised.pixels {
+        *p = examples::cornell::tonemap(p.truncate(), examples::cornell::EXPOSURE).extend(1.0);
+    }
+    (rgba8(&rendered.image), rgba8(&denoised))
+}
+
+/// The mean squared difference of two pictures' colour channels, in
+/// 8-bit steps.
+fn mse(a: &[u8], b: &[u8]) -> f64 {
+    let colour = |(i, _): &(usize, _)| i % 4 != 3;
+    let squares = a.iter().zip(b).enumerate().filter(colour).map(|(_, (x, y))| (*x as f64 - *y as f64).powi(2));
+    squares.sum::<f64>() / (a.len() / 4 * 3) as f64
+}
+
 #[test]
-fn the_page_renders_normal_and_cornell_as_the_goldens() {
+fn the_page_renders_normal_and_cornell_as_the_goldens_and_denoises_cornell() {
     let page = root().join("target/web");
     if !page.join("pkg/rt_web_bg.wasm").is_file() {
         return missing(&format!("{} holds no built page (run scripts/web.sh)", page.display()));
@@ -192,5 +231,31 @@ fn the_page_renders_normal_and_cornell_as_the_goldens() {
             Ok(figures) => eprintln!("browser: {figures}"),
             Err(figures) => panic!("the page's picture breaks the golden rule: {figures}"),
         }
+    }
+    if let Some(e) = text("/error/cornell-denoised") {
+        panic!("the denoise toggle failed: {e}");
+    }
+    let raw = &posted["/picture/cornell"];
+    let denoised = posted.get("/picture/cornell-denoised").expect("no denoised picture of cornell");
+    assert_eq!(
+        text("/mode").as_deref(),
+        Some(format!("cornell, {SPP} spp: denoised").as_str()),
+        "what the page says it shows"
+    );
+    let (_, cpu_denoised) = cornell_on_cpu(SPP);
+    let (reference, _) = cornell_on_cpu(REFERENCE_SPP);
+    let (raw_error, denoised_error) = (mse(raw, &reference), mse(denoised, &reference));
+    eprintln!(
+        "browser: cornell at {SPP} spp against {REFERENCE_SPP} spp: mean squared error {raw_error:.1} raw, {denoised_error:.1} denoised, {:.1} between them",
+        mse(raw, denoised)
+    );
+    assert!(mse(raw, denoised) > 4.0, "the denoised picture is the raw one: {:.2}", mse(raw, denoised));
+    assert!(
+        denoised_error < raw_error / 2.0,
+        "denoising did not bring the picture nearer {REFERENCE_SPP} spp: {raw_error:.1} raw, {denoised_error:.1} denoised"
+    );
+    match compare("cornell denoised", &cpu_denoised, denoised) {
+        Ok(figures) => eprintln!("browser: against the CPU's denoised: {figures}"),
+        Err(figures) => panic!("the page's denoised picture is not the CPU backend's: {figures}"),
     }
 }

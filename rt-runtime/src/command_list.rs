@@ -185,6 +185,25 @@ impl CommandList {
         ctx: &mut Context,
         mut progress: impl FnMut(CommandProgress) -> LaunchControl,
     ) -> Result<Vec<LaunchReport>> {
+        crate::backend::futures::block(self.run(ctx, &mut progress))
+    }
+
+    /// [`CommandList::execute`] for a caller that must not block, as
+    /// [`Context::launch_async`] is [`Context::launch`]'s: a browser page
+    /// (wasm32 over WebGPU) awaits its launches and stages, whose device
+    /// work and read-backs it cannot wait for. Natively it is the same
+    /// run, and awaiting it blocks as `execute` does.
+    pub async fn execute_async(&self, ctx: &mut Context) -> Result<Vec<LaunchReport>> {
+        self.run(ctx, &mut |_| LaunchControl::Continue).await
+    }
+
+    /// Every execution: the commands in order, each launch's and stage's
+    /// device work awaited.
+    async fn run(
+        &self,
+        ctx: &mut Context,
+        progress: &mut dyn FnMut(CommandProgress) -> LaunchControl,
+    ) -> Result<Vec<LaunchReport>> {
         if !self.finalized {
             return Err(PostProcessError::BadCommandList { problem: "executed before it was finalized".into() }.into());
         }
@@ -204,9 +223,9 @@ impl CommandList {
             match launch {
                 Some(size) => {
                     let mut each = |launch| progress(CommandProgress { command, commands, launch });
-                    reports.push(ctx.launch_then_stages(size, &mut each, &plans)?);
+                    reports.push(ctx.launch_then_stages(size, &mut each, &plans).await?);
                 }
-                None => ctx.run_plans(&plans)?,
+                None => ctx.run_plans(&plans).await?,
             }
             if let Some(e) = failed {
                 return Err(e);

@@ -5,11 +5,16 @@
 //! device); launches in it are tiled, report progress and are cancelled
 //! as any; and a list used out of order, or holding a command that does
 //! not fit, is refused with an error naming the command, stage and
-//! variable.
+//! variable. `CommandList::execute_async` and `Context::run_stage_async`,
+//! which a browser page awaits, are natively the blocking calls, ready at
+//! their first poll.
 
 use rt_runtime::*;
 use rt_std::prelude::*;
 use rt_tests::targets::On;
+use std::future::Future;
+use std::pin::pin;
+use std::task::{Context as TaskContext, Poll, Waker};
 
 /// A noisy picture of two surfaces (left half and right half): colour
 /// from a hash of the launch index and `frame`, albedo and normal per
@@ -142,6 +147,39 @@ fn a_list_gives_what_its_commands_give_one_by_one() {
         list.execute(&mut ctx).unwrap();
         assert_eq!(read(&ctx, &buffers), want, "{}", on.name());
         assert_eq!(ctx.stage_submissions(), 0, "{}", on.name());
+    }
+}
+
+/// Polls `f` once, as an executor that never blocks would.
+fn first_poll<F: Future>(f: F) -> Poll<F::Output> {
+    let mut f = pin!(f);
+    f.as_mut().poll(&mut TaskContext::from_waker(Waker::noop()))
+}
+
+#[test]
+fn an_awaited_list_and_stage_give_what_the_blocking_ones_give() {
+    for on in On::ALL {
+        let Frame { mut ctx, buffers, denoiser, tonemapper } = frame(on);
+        frame_list(&ctx, denoiser, tonemapper).execute(&mut ctx).unwrap();
+        let want = read(&ctx, &buffers);
+
+        let Frame { mut ctx, buffers, denoiser, tonemapper } = frame(on);
+        let list = frame_list(&ctx, denoiser, tonemapper);
+        let Poll::Ready(reports) = first_poll(list.execute_async(&mut ctx)) else { panic!("{}: pending", on.name()) };
+        assert_eq!(reports.unwrap().len(), 1, "{}", on.name());
+        assert_eq!(read(&ctx, &buffers), want, "{}: the awaited list", on.name());
+
+        let Frame { mut ctx, buffers, denoiser, tonemapper } = frame(on);
+        ctx.launch(0, W, H).unwrap();
+        for stage in [denoiser, tonemapper] {
+            let Poll::Ready(ran) = first_poll(ctx.run_stage_async(stage, W, H)) else {
+                panic!("{}: pending", on.name())
+            };
+            ran.unwrap();
+        }
+        assert_eq!(read(&ctx, &buffers), want, "{}: the awaited stages", on.name());
+        let submissions = if on == On::CPU { 0 } else { 2 };
+        assert_eq!(ctx.stage_submissions(), submissions, "{}", on.name());
     }
 }
 

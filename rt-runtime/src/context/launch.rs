@@ -90,7 +90,7 @@ impl Context {
     }
 
     /// Every launch: the backend's run, then the usage report.
-    async fn run_launch_async(
+    pub(super) async fn run_launch_async(
         &mut self,
         (entry, width, height, depth): (u32, u32, u32, u32),
         part: Option<Tile>,

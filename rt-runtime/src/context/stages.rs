@@ -3,7 +3,7 @@
 
 use super::Context;
 use crate::backend::tiles::{LaunchControl, LaunchProgress};
-use crate::backend::{Backend, LaunchReport};
+use crate::backend::{self, Backend, LaunchReport};
 use crate::error::{ConfigError, LaunchError, Result, SceneError};
 use crate::postprocess::gpu::{DeviceHistory, Pipelines, Source, StageTail, pixels, read_history};
 use crate::postprocess::temporal::TEXELS;
@@ -78,8 +78,16 @@ impl Context {
     /// stage is checked first ([`PostProcessError::BadStage`](crate::PostProcessError::BadStage) naming the variable
     /// at fault); a stage that fails writes nothing.
     pub fn run_stage(&mut self, stage: StageId, width: u32, height: u32) -> Result<()> {
+        backend::futures::block(self.run_stage_async(stage, width, height))
+    }
+
+    /// [`Context::run_stage`] for a caller that must not block, as
+    /// [`Context::launch_async`] is [`Context::launch`]'s: a browser page
+    /// awaits the device's read-back of the stage's output. Natively it
+    /// is the same run, and awaiting it blocks as `run_stage` does.
+    pub async fn run_stage_async(&mut self, stage: StageId, width: u32, height: u32) -> Result<()> {
         let plan = self.plan_stage(stage, Some((width, height)))?;
-        self.run_plans(&[plan])
+        self.run_plans(&[plan]).await
     }
 
     pub(crate) fn stage(&self, stage: StageId) -> Result<&Stage> {
@@ -100,8 +108,8 @@ impl Context {
     /// backend all in one submission, a stage reading an earlier one's
     /// output on the device (where one reads beyond the rectangle an
     /// earlier one wrote, it starts a submission of its own, after the
-    /// earlier outputs are written).
-    pub(crate) fn run_plans(&mut self, plans: &[Plan]) -> Result<()> {
+    /// earlier outputs are written). The device's work is awaited.
+    pub(crate) async fn run_plans(&mut self, plans: &[Plan]) -> Result<()> {
         if self.backend() != Backend::Wgpu {
             for plan in plans {
                 let plan = &self.history_on_host(plan);
@@ -125,7 +133,7 @@ impl Context {
                 })?;
                 stages.push((plan.clone(), sources));
             }
-            let (outputs, histories) = self.run_on_wgpu(&stages)?;
+            let (outputs, histories) = self.run_on_wgpu(&stages).await?;
             self.take_outputs(together, outputs, histories)?;
             rest = after;
         }
@@ -207,7 +215,8 @@ impl Context {
             Texels::Device(d) => {
                 let open = self.wgpu_backend_ref().and_then(|b| b.serial());
                 let Some(handles) = self.wgpu_device().filter(|_| open == Some(d.serial)) else { return Ok(None) };
-                let texels = read_history(&handles.queue, d, (h.width * h.height) as u64 * TEXELS as u64)?;
+                let texels = (h.width * h.height) as u64 * TEXELS as u64;
+                let texels = backend::futures::block(read_history(&handles.queue, d, texels))?;
                 if let Some(b) = self.wgpu_backend_ref() {
                     b.count_submission();
                 }
@@ -289,14 +298,14 @@ impl Context {
     }
 
     /// The stages' pipelines on the wgpu device (opened first if no launch
-    /// opened it yet), made once per device.
-    fn stage_pipelines(&mut self) -> Result<(Pipelines, super::WgpuDevice)> {
-        self.open_wgpu()?;
+    /// opened it yet), made once per device; both awaited.
+    async fn stage_pipelines(&mut self) -> Result<(Pipelines, super::WgpuDevice)> {
+        self.wgpu_backend().open_async().await?;
         let no_device = || LaunchError::Internal { backend: "wgpu", problem: "no device after opening one".into() };
         let handles = self.wgpu_device().ok_or_else(no_device)?;
         let serial = self.wgpu_backend_ref().and_then(|b| b.serial()).ok_or_else(no_device)?;
         if !self.stage_pipelines.as_ref().is_some_and(|p| p.on(serial)) {
-            self.stage_pipelines = Some(Pipelines::new(&handles.device, serial)?);
+            self.stage_pipelines = Some(Pipelines::new(&handles.device, serial).await?);
         }
         Ok((self.stage_pipelines.clone().expect("made above"), handles))
     }
@@ -308,25 +317,25 @@ impl Context {
     /// launch's outputs where they lie in its heap; those outputs are not
     /// read back (the device holds them, and a read copies them then),
     /// the stages' outputs are, with the launch's others. A launch that
-    /// fails or is cancelled runs no stage.
-    pub(crate) fn launch_then_stages(
+    /// fails or is cancelled runs no stage. The device's work is awaited.
+    pub(crate) async fn launch_then_stages(
         &mut self,
         (entry, width, height, depth): (u32, u32, u32, u32),
         progress: &mut dyn FnMut(LaunchProgress) -> LaunchControl,
         plans: &[Plan],
     ) -> Result<LaunchReport> {
         if self.backend() != Backend::Wgpu || plans.is_empty() {
-            let report = self.launch_3d_with_progress(entry, width, height, depth, progress)?;
-            self.run_plans(plans)?;
+            let report = self.run_launch_async((entry, width, height, depth), None, Some(progress)).await?;
+            self.run_plans(plans).await?;
             return Ok(report);
         }
         // Those that cannot ride with the first (one reads an earlier
         // one's output beyond its rectangle) run after it, on their own.
         let (plans, after) = plans.split_at(runs_together(plans));
-        let (pipelines, _) = self.stage_pipelines()?;
+        let (pipelines, _) = self.stage_pipelines().await?;
         let tail = StageTail { pipelines, plans: plans.to_vec(), histories: Vec::new(), uploaded: 0 };
         self.wgpu_backend().arm_tail(Box::new(tail));
-        let report = self.launch_3d_with_progress(entry, width, height, depth, progress);
+        let report = self.run_launch_async((entry, width, height, depth), None, Some(progress)).await;
         let ran = self.wgpu_backend().take_tail();
         let report = report?;
         let internal = || LaunchError::Internal {
@@ -343,16 +352,16 @@ impl Context {
         self.stage_pipelines = Some(pipelines);
         self.take_outputs(plans, outputs, histories)?;
         self.stage_device_inputs += ran.from_device;
-        self.run_plans(after)?;
+        self.run_plans(after).await?;
         Ok(report)
     }
 
     /// Runs checked stages' passes on the wgpu device (opened first if no
     /// launch opened it yet), in one submission; their outputs, and the
-    /// temporal denoisers' next histories, on the device.
-    fn run_on_wgpu(&mut self, stages: &[(Plan, Pixels<Source>)]) -> Result<(Vec<Vec<Vec4>>, Vec<DeviceHistory>)> {
-        let (pipelines, handles) = self.stage_pipelines()?;
-        let (outputs, recording) = pipelines.run(&handles.queue, stages)?;
+    /// temporal denoisers' next histories, on the device (awaited).
+    async fn run_on_wgpu(&mut self, stages: &[(Plan, Pixels<Source>)]) -> Result<(Vec<Vec<Vec4>>, Vec<DeviceHistory>)> {
+        let (pipelines, handles) = self.stage_pipelines().await?;
+        let (outputs, recording) = pipelines.run(&handles.queue, stages).await?;
         self.stage_uploaded += recording.uploaded;
         self.stage_read_back += outputs.iter().map(|o| o.len() as u64 * 16).sum::<u64>();
         self.stage_submits += 1;

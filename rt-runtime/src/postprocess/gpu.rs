@@ -28,6 +28,7 @@ use super::denoise::Tuning;
 use super::temporal::TEXELS;
 use super::{Pixels, Plan, StageKind, Temporal, Texels};
 use crate::backend::wgpu::DeviceBuffer;
+use crate::backend::wgpu::readback;
 use crate::backend::wgpu::tail::{Recorded, Tail};
 use crate::error::{DeviceError, Result, RtError};
 use crate::scene::{BufferId, Scene};
@@ -59,8 +60,10 @@ impl Pipelines {
         self.serial == serial
     }
 
-    /// The stages' pipelines on `device`, of serial `serial`.
-    pub fn new(device: &wgpu::Device, serial: u64) -> Result<Pipelines> {
+    /// The stages' pipelines on `device`, of serial `serial`, once the
+    /// device has checked their WGSL (awaited: a browser page cannot
+    /// block on it).
+    pub async fn new(device: &wgpu::Device, serial: u64) -> Result<Pipelines> {
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("rt post-processing stages"),
@@ -128,7 +131,7 @@ impl Pipelines {
             temporal_layout,
             temporal,
         };
-        match crate::backend::futures::block(async { Ok(scope.pop().await) })? {
+        match scope.pop().await {
             Some(e) => Err(DeviceError::Gpu(format!("the post-processing stages' WGSL does not compile: {e}")).into()),
             None => Ok(made),
         }
@@ -168,12 +171,17 @@ impl Pipelines {
     /// recorded (the temporal denoisers' next histories stay on the
     /// device). An image that an earlier stage of the run wrote
     /// ([`Source::Earlier`]) is that stage's output as it lies on the
-    /// device.
-    pub fn run(&self, queue: &wgpu::Queue, stages: &[(Plan, Pixels<Source>)]) -> Result<(Vec<Vec<Vec4>>, Recording)> {
+    /// device. The read-back is awaited (a browser page cannot block on
+    /// it).
+    pub async fn run(
+        &self,
+        queue: &wgpu::Queue,
+        stages: &[(Plan, Pixels<Source>)],
+    ) -> Result<(Vec<Vec<Vec4>>, Recording)> {
         let mut encoder = self.device.create_command_encoder(&Default::default());
         let recording = self.record(&mut encoder, stages);
         let whole: Vec<_> = recording.outputs.iter().map(|b| (b, b.size())).collect();
-        let words = read_back(&self.device, queue, encoder, &whole, "running a post-processing stage")?;
+        let words = read_back(&self.device, queue, encoder, &whole, "running a post-processing stage").await?;
         Ok((words.iter().map(|w| pixels(w)).collect(), recording))
     }
 
@@ -377,66 +385,43 @@ pub(crate) struct Recording {
 }
 
 /// The first `texels` texels of history `h`, read back from its device
-/// through `queue` (one submission).
-pub(crate) fn read_history(queue: &wgpu::Queue, h: &DeviceHistory, texels: u64) -> Result<Vec<Vec4>> {
+/// through `queue` (one submission, awaited).
+pub(crate) async fn read_history(queue: &wgpu::Queue, h: &DeviceHistory, texels: u64) -> Result<Vec<Vec4>> {
     let encoder = h.device.create_command_encoder(&Default::default());
-    let words = read_back(&h.device, queue, encoder, &[(&h.held, texels * 16)], "reading a denoiser's history")?;
+    let what = "reading a denoiser's history";
+    let words = read_back(&h.device, queue, encoder, &[(&h.held, texels * 16)], what).await?;
     Ok(words.first().map(|w| pixels(w)).unwrap_or_default())
 }
 
 /// Submits `encoder` with copies of the first `size` bytes of each of
-/// `buffers` after its work, and reads them back; `what` names the work
-/// in an error.
-fn read_back(
+/// `buffers` after its work, and reads them back through the backend's
+/// read-back (`backend::wgpu::readback::read_back`, awaited: in a browser
+/// the page's event loop delivers the mapping), inside a validation error
+/// scope of its own; `what` names the work in an error.
+async fn read_back(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
-    mut encoder: wgpu::CommandEncoder,
+    encoder: wgpu::CommandEncoder,
     buffers: &[(&wgpu::Buffer, u64)],
     what: &str,
 ) -> Result<Vec<Vec<u32>>> {
-    let staging: Vec<wgpu::Buffer> = buffers
-        .iter()
-        .map(|&(b, size)| {
-            let staging = device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("rt stage: read-back"),
-                size,
-                usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            });
-            encoder.copy_buffer_to_buffer(b, 0, &staging, 0, size);
-            staging
-        })
-        .collect();
+    let copies: Vec<_> = buffers.iter().map(|&(b, size)| (b, 0, size)).collect();
     let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-    queue.submit([encoder.finish()]);
-    let (sender, receiver) = std::sync::mpsc::channel();
-    for staging in &staging {
-        let sender = sender.clone();
-        staging.slice(..).map_async(wgpu::MapMode::Read, move |r| {
-            let _ = sender.send(r);
-        });
-    }
+    let mut staging = None;
+    let read = readback::read_back(device, queue, &mut staging, encoder, &copies, false).await;
+    // Popped whatever the read gave: where wgpu refused a pass, that is
+    // the error to report.
     let gpu_err = |step: &str, e: String| DeviceError::Gpu(format!("{what}: {step}: {e}")).into();
-    device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| gpu_err("waiting", e.to_string()))?;
-    if let Some(e) = crate::backend::futures::block(async { Ok(scope.pop().await) })? {
+    if let Some(e) = scope.pop().await {
         return Err(gpu_err("validation", e.to_string()));
     }
-    for _ in &staging {
-        match receiver.recv() {
-            Ok(Ok(())) => {}
-            Ok(Err(e)) => return Err(gpu_err("reading back", e.to_string())),
-            Err(e) => return Err(gpu_err("reading back", e.to_string())),
-        }
+    let mut words = read.map_err(|e| gpu_err("reading back", e))?;
+    let mut each = Vec::new();
+    for &(_, size) in buffers.iter().rev() {
+        each.push(words.split_off(words.len() - (size / 4) as usize));
     }
-    let mut read = Vec::new();
-    for staging in &staging {
-        let slice = staging.slice(..);
-        let mapped = slice.get_mapped_range().map_err(|e| gpu_err("reading back", e.to_string()))?;
-        read.push(mapped.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect());
-        drop(mapped);
-        staging.unmap();
-    }
-    Ok(read)
+    each.reverse();
+    Ok(each)
 }
 
 /// One pass of `pipeline` over `plan`'s pixels (8 x 8 a workgroup), its
@@ -562,9 +547,11 @@ impl Tail for StageTail {
         scene: &Scene,
         on_device: &dyn Fn(usize) -> Option<DeviceBuffer>,
     ) -> Result<Recorded> {
-        // The launch opened a new device (the last was lost).
+        // The launch opened a new device (the last was lost): the
+        // pipelines again, blocking on the WGSL's check (in a browser,
+        // which cannot block, that fails saying so).
         if !self.pipelines.on(serial) {
-            self.pipelines = Pipelines::new(device, serial)?;
+            self.pipelines = crate::backend::futures::block(Pipelines::new(device, serial))?;
         }
         let mut stages = Vec::new();
         let mut from_device = 0;

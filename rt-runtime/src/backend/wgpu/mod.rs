@@ -175,8 +175,13 @@ impl WgpuBackend {
 
     /// Opens the device now, unless it is open; describes its adapter.
     pub(crate) fn open(&mut self) -> Result<String> {
+        futures::block(self.open_async())
+    }
+
+    /// [`WgpuBackend::open`], awaiting the adapter and the device.
+    pub(crate) async fn open_async(&mut self) -> Result<String> {
         if self.gpu.is_none() {
-            self.gpu = Some(Gpu::new()?);
+            self.gpu = Some(Gpu::open_async(&instance(), None).await?);
         }
         Ok(self.gpu.as_ref().map(|g| g.describe()).unwrap_or_default())
     }

@@ -56,11 +56,11 @@ pub(crate) async fn read_back(
     slice.map_async(wgpu::MapMode::Read, deliver);
     // Natively the mapping is done once the device is idle; in a browser
     // the page's event loop delivers it, awaited below.
-    device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| format!("waiting for the launch: {e}"))?;
+    device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| format!("waiting for the device: {e}"))?;
     let done = match mapped.take() {
         Some(done) => done,
         None if cfg!(target_arch = "wasm32") => mapped.await,
-        None => return Err("reading results back: the device never finished the launch".into()),
+        None => return Err("reading results back: the device never finished its work".into()),
     };
     if let Err(e) = done {
         return Err(format!("reading results back: {e}"));
