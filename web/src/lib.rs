@@ -8,7 +8,7 @@
 //! show with the tour's golden images.
 //!
 //! The page's denoise toggle shows the Cornell box's samples denoised
-//! ([`denoised`]): the runtime's denoiser stage over the render's guides
+//! (`denoised`): the runtime's denoiser stage over the render's guides
 //! (`examples::Aovs`), a command list run with
 //! `CommandList::execute_async`, on the same device, no sample taken
 //! again.

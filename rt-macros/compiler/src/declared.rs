@@ -114,7 +114,7 @@ fn alias_check_ident(ident: &syn::Ident) -> syn::Ident {
     syn::Ident::new(&format!("__rt_type_check_{ident}"), ident.span())
 }
 
-/// What `#[rt_type]` declares beside its alias (see [`type_checks`]): a
+/// What `#[rt_type]` declares beside its alias (see `type_checks`): a
 /// function that does nothing, of the alias's visibility.
 pub fn alias_marker(vis: &syn::Visibility, ident: &syn::Ident) -> TokenStream {
     let check = alias_check_ident(ident);

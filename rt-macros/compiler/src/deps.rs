@@ -231,6 +231,8 @@ impl<'ast> Visit<'ast> for Deps {
         // A function declared in a body is not a dependency (the lowering
         // takes it as a helper; what it names is).
         self.locals.insert(f.sig.ident.to_string());
+        self.locals.extend(param_names(&f.sig));
+        self.locals.extend(f.sig.generics.type_params().map(|t| t.ident.to_string()));
         syn::visit::visit_item_fn(self, f);
     }
 
@@ -268,10 +270,26 @@ pub fn of_fn(f: &syn::ItemFn) -> Vec<Dep> {
     // type, a const one in an expression).
     locals.extend(f.sig.generics.type_params().map(|t| t.ident.to_string()));
     locals.extend(f.sig.generics.const_params().map(|c| c.ident.to_string()));
+    // A parameter called is a closure given to the helper, not a function.
+    locals.extend(param_names(&f.sig));
     let mut d = Deps { self_name: f.sig.ident.to_string(), locals, ..Deps::default() };
     d.visit_signature(&f.sig);
     d.visit_block(&f.block);
     d.deps
+}
+
+/// The names a signature's parameters bind.
+fn param_names(sig: &syn::Signature) -> Vec<String> {
+    sig.inputs
+        .iter()
+        .filter_map(|a| match a {
+            syn::FnArg::Typed(pt) => match &*pt.pat {
+                syn::Pat::Ident(pi) => Some(pi.ident.to_string()),
+                _ => None,
+            },
+            syn::FnArg::Receiver(_) => None,
+        })
+        .collect()
 }
 
 /// Dependencies of a struct (its field types).

@@ -524,6 +524,7 @@ macro_rules! differential {
 
 mod aliases;
 mod bool_vectors;
+mod closure_args;
 mod control_flow;
 mod edge_cases;
 mod enums;

@@ -21,7 +21,7 @@
 //!   spelling, so a generic struct has no host layout: its `RtData` impl's
 //!   layout is a constant that fails to evaluate with that message
 //!   (`expand/data.rs`; it exists so that rustc adds no "mark it with
-//!   #[rt_struct]" of its own to the error below), and an instance lives
+//!   `#[rt_struct]`" of its own to the error below), and an instance lives
 //!   in programs and helpers (locals, arguments, results, fields of other
 //!   generic structs, tuples, `Option`s) and never where the host reads or
 //!   writes it (a payload, attributes, a variable, a buffer element, a

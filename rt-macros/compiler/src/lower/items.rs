@@ -94,8 +94,10 @@ pub(super) fn check_fn_shape(f: &syn::ItemFn) -> std::result::Result<(), Errors>
         if let syn::FnArg::Receiver(r) = input {
             errors.push(Error::unsupported(r.span(), "a `self` parameter", "helpers are free functions"));
         }
+        // `impl Fn(..)`: a closure, inlined with the call (`sugar`).
         if let syn::FnArg::Typed(pt) = input
             && let syn::Type::ImplTrait(t) = &*pt.ty
+            && !crate::sugar::is_closure_param(f, input)
         {
             errors.push(Error::unsupported(
                 t.span(),

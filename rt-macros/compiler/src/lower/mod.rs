@@ -287,26 +287,35 @@ fn lower_impl(
     // functions declared in their bodies as helpers beside them (`sugar`).
     let mut taken: HashSet<String> = deps.iter().map(Item::name).collect();
     let mut nested = Vec::new();
+    let closures = crate::sugar::ClosureHelpers::new(deps.iter().filter_map(|d| match d {
+        Item::Function(f) => Some(f),
+        _ => None,
+    }));
+    let mut cx = crate::sugar::Cx { closures, inlined: 0, errors: Errors::default() };
     let sweetened;
     let entry = match entry {
         Entry::Program(kind, f) => {
             taken.insert(f.sig.ident.to_string());
-            sweetened = crate::sugar::function(f, &mut taken, &mut nested);
+            sweetened = crate::sugar::function(f, &mut taken, &mut nested, &mut cx);
             Entry::Program(kind, &sweetened)
         }
         Entry::Helper(f) => {
             taken.insert(f.sig.ident.to_string());
-            sweetened = crate::sugar::function(f, &mut taken, &mut nested);
+            sweetened = crate::sugar::function(f, &mut taken, &mut nested, &mut cx);
             Entry::Helper(&sweetened)
         }
         other => other,
     };
-    let mut deps: Vec<Item> = deps.iter().map(|d| crate::sugar::item(d, &mut taken, &mut nested)).collect();
+    let mut deps: Vec<Item> = deps.iter().map(|d| crate::sugar::item(d, &mut taken, &mut nested, &mut cx)).collect();
+    if !cx.errors.is_empty() {
+        return Err(cx.errors);
+    }
     deps.extend(nested.into_iter().map(Item::Function));
     if let Entry::Helper(f) = &entry
-        && generics::is_generic(f)
+        && (generics::is_generic(f) || f.sig.inputs.iter().any(|a| crate::sugar::is_closure_param(f, a)))
     {
-        // Its body is checked per instance, by the callers (`generics`).
+        // Its body is checked per instance, by the callers (`generics`);
+        // one given a closure, where it is inlined (`sugar`).
         let mut errors = items::check_fn_shape(f).err().unwrap_or_default();
         errors.0.extend(generics::check_alone(f).err().unwrap_or_default().0);
         if !errors.is_empty() {

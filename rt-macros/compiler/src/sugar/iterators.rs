@@ -341,8 +341,15 @@ pub(super) fn inline(c: &syn::ExprClosure, args: Vec<Expr>) -> Option<Expr> {
             parse_quote_spanned! {span=> let #p = #a; }
         })
         .collect();
-    let body = &c.body;
-    Some(parse_quote_spanned! {span=> { #(#binds)* #body } })
+    // Built as a tree, not from tokens: a body that starts with a block
+    // (`{ .. } * s`, an inlined call first) would read as a statement.
+    let mut stmts = binds;
+    stmts.push(syn::Stmt::Expr((*c.body).clone(), None));
+    Some(Expr::Block(syn::ExprBlock {
+        attrs: Vec::new(),
+        label: None,
+        block: syn::Block { brace_token: syn::token::Brace(span), stmts },
+    }))
 }
 
 /// Whether `c` can be inlined with `arity` arguments (see [`inline`]).

@@ -7,7 +7,9 @@
 //! and `let ... else` as that `match` (`lets.rs`); `Option`'s methods that
 //! take closures, as a `match` too (`options.rs`); then labelled loops,
 //! as flags (`labels.rs`). Functions declared in a body are taken out to
-//! be helpers (`nested.rs`).
+//! be helpers (`nested.rs`). Before all of these, a call that gives a
+//! generic helper a closure is inlined where it is written
+//! (`closure_args.rs`).
 //!
 //! Only the WGSL side reads the rewritten form. The CPU copy of a program
 //! is the function as written, compiled by rustc, so each rewrite must mean
@@ -16,6 +18,7 @@
 //! closures. Spans are the user's own, so an error in rewritten code points
 //! at what the user wrote.
 
+mod closure_args;
 mod closures;
 mod iterators;
 mod labels;
@@ -24,23 +27,40 @@ mod nested;
 mod options;
 mod patterns;
 
+pub use closure_args::{ClosureHelpers, is_closure_param};
 pub(crate) use options::{is_none_path, is_some_path};
 
 use crate::Item;
+use crate::error::Errors;
 use std::collections::HashSet;
 use syn::visit_mut::VisitMut;
 
 /// `f` with its sugar rewritten, and the functions declared in its body
 /// (their names not in `taken`) taken out, rewritten too, into `nested`.
-pub fn function(f: &syn::ItemFn, taken: &mut HashSet<String>, nested: &mut Vec<syn::ItemFn>) -> syn::ItemFn {
+pub fn function(
+    f: &syn::ItemFn,
+    taken: &mut HashSet<String>,
+    nested: &mut Vec<syn::ItemFn>,
+    cx: &mut Cx,
+) -> syn::ItemFn {
     let mut f = f.clone();
-    body(&mut f.block, taken, nested);
+    body(&mut f.block, taken, nested, cx);
     f
+}
+
+/// What the rewrites of a unit share: the helpers that take closures
+/// (whose calls are inlined), and the errors of those calls.
+pub struct Cx {
+    pub closures: ClosureHelpers,
+    /// The calls inlined so far (their names' suffix).
+    pub inlined: u32,
+    pub errors: Errors,
 }
 
 /// A function's body rewritten, its nested functions taken out into
 /// `nested` (rewritten too).
-fn body(b: &mut syn::Block, taken: &mut HashSet<String>, nested: &mut Vec<syn::ItemFn>) {
+fn body(b: &mut syn::Block, taken: &mut HashSet<String>, nested: &mut Vec<syn::ItemFn>, cx: &mut Cx) {
+    cx.closures.inline(b, &mut cx.inlined, &mut cx.errors);
     let mut inner = Vec::new();
     nested::hoist(b, taken, &mut inner);
     for mut g in inner {
@@ -58,14 +78,14 @@ fn block(b: &mut syn::Block) {
 
 /// `item` with the sugar of its functions and methods rewritten (and
 /// their nested functions taken out, as [`function`] does).
-pub fn item(item: &Item, taken: &mut HashSet<String>, nested: &mut Vec<syn::ItemFn>) -> Item {
+pub fn item(item: &Item, taken: &mut HashSet<String>, nested: &mut Vec<syn::ItemFn>, cx: &mut Cx) -> Item {
     match item {
-        Item::Function(f) => Item::Function(function(f, taken, nested)),
+        Item::Function(f) => Item::Function(function(f, taken, nested, cx)),
         Item::Impl(i) => {
             let mut i = i.clone();
             for it in &mut i.items {
                 if let syn::ImplItem::Fn(f) = it {
-                    body(&mut f.block, taken, nested);
+                    body(&mut f.block, taken, nested, cx);
                 }
             }
             Item::Impl(i)
