@@ -12,8 +12,6 @@
 
 use crate::Item;
 use crate::error::{Error, Errors};
-use crate::kinds::Kind;
-use crate::lower::Entry;
 use std::collections::HashMap;
 use syn::spanned::Spanned;
 use syn::visit_mut::VisitMut;
@@ -54,10 +52,10 @@ pub fn check(t: &syn::ItemType) -> Result<(), Error> {
     Ok(())
 }
 
-/// `entry` and `deps` with every alias replaced by what it stands for
-/// and the aliases left out of `deps`; `None` where there is no alias to
-/// replace (the common case, which then costs no copy).
-pub fn resolve(entry: &Entry<'_>, deps: &[Item]) -> Result<Option<Resolved>, Errors> {
+/// `item` (a unit's entry) and `deps` with every alias replaced by what it
+/// stands for and the aliases left out of `deps`; `None` where there is
+/// no alias to replace (the common case, which then costs no copy).
+pub fn resolve(item: &Item, deps: &[Item]) -> Result<Option<(Item, Vec<Item>)>, Errors> {
     let module: HashMap<String, Alias> = deps
         .iter()
         .filter_map(|d| match d {
@@ -68,18 +66,11 @@ pub fn resolve(entry: &Entry<'_>, deps: &[Item]) -> Result<Option<Resolved>, Err
             _ => None,
         })
         .collect();
-    let (kind, item) = match entry {
-        Entry::Program(k, f) => (Some(*k), Item::Function((*f).clone())),
-        Entry::Helper(f) => (None, Item::Function((*f).clone())),
-        Entry::Struct(s) => (None, Item::Struct((*s).clone(), crate::StructRole::Data)),
-        Entry::Const(c) => (None, Item::Const((*c).clone())),
-        Entry::Enum(e) => (None, Item::Enum((*e).clone())),
-    };
-    if module.is_empty() && !has_local_alias(&item) && !deps.iter().any(has_local_alias) {
+    if module.is_empty() && !has_local_alias(item) && !deps.iter().any(has_local_alias) {
         return Ok(None);
     }
     let mut r = Rewriter { scopes: vec![module], depth: 0, errors: Errors::default() };
-    let mut item = item;
+    let mut item = item.clone();
     r.item(&mut item);
     let mut rewritten = Vec::new();
     for d in deps {
@@ -93,29 +84,7 @@ pub fn resolve(entry: &Entry<'_>, deps: &[Item]) -> Result<Option<Resolved>, Err
     if !r.errors.is_empty() {
         return Err(r.errors);
     }
-    Ok(Some(Resolved { kind, item, deps: rewritten }))
-}
-
-/// A unit with its aliases replaced: the entry as an item, and its kind
-/// where it is a program.
-pub struct Resolved {
-    kind: Option<Kind>,
-    item: Item,
-    pub deps: Vec<Item>,
-}
-
-impl Resolved {
-    /// The entry, borrowed as the lowering takes it.
-    pub fn entry(&self) -> Entry<'_> {
-        match (&self.item, self.kind) {
-            (Item::Function(f), Some(k)) => Entry::Program(k, f),
-            (Item::Function(f), None) => Entry::Helper(f),
-            (Item::Struct(s, _), _) => Entry::Struct(s),
-            (Item::Const(c), _) => Entry::Const(c),
-            (Item::Enum(e), _) => Entry::Enum(e),
-            _ => unreachable!("`resolve` makes the entry of one of the entries' kinds"),
-        }
-    }
+    Ok(Some((item, rewritten)))
 }
 
 /// Whether a function or method of `item` declares an alias in its body.

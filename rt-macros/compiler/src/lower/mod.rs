@@ -278,9 +278,16 @@ fn lower_impl(
     debug_assertions: bool,
 ) -> std::result::Result<Lowered, Errors> {
     // Type aliases are replaced by what they stand for (`aliases`).
-    let resolved = crate::aliases::resolve(&entry, deps)?;
+    let (kind, item) = match &entry {
+        Entry::Program(k, f) => (Some(*k), Item::Function((*f).clone())),
+        Entry::Helper(f) => (None, Item::Function((*f).clone())),
+        Entry::Struct(s) => (None, Item::Struct((*s).clone(), crate::StructRole::Data)),
+        Entry::Const(c) => (None, Item::Const((*c).clone())),
+        Entry::Enum(e) => (None, Item::Enum((*e).clone())),
+    };
+    let resolved = crate::aliases::resolve(&item, deps)?;
     let (entry, deps) = match &resolved {
-        Some(r) => (r.entry(), &r.deps[..]),
+        Some((item, deps)) => (entry_of(kind, item), &deps[..]),
         None => (entry, deps),
     };
     // The lowering reads functions with their sugar rewritten, and the
@@ -355,6 +362,19 @@ fn lower_impl(
             .into());
         }
         instances.extend(more);
+    }
+}
+
+/// The entry `item` is, a program where `kind` says so (the inverse of
+/// the entry's item in [`lower_impl`]).
+fn entry_of(kind: Option<Kind>, item: &Item) -> Entry<'_> {
+    match (item, kind) {
+        (Item::Function(f), Some(k)) => Entry::Program(k, f),
+        (Item::Function(f), None) => Entry::Helper(f),
+        (Item::Struct(s, _), _) => Entry::Struct(s),
+        (Item::Const(c), _) => Entry::Const(c),
+        (Item::Enum(e), _) => Entry::Enum(e),
+        _ => unreachable!("an entry is a function, struct, constant or enum"),
     }
 }
 
