@@ -165,11 +165,12 @@ impl Context {
         self.scene.buffers.get(b.index() as usize).map_or(0, |r| r.width)
     }
 
-    /// Writes the outputs of `plans`, which ran on the wgpu device, to
-    /// their buffers, and keeps the next histories of the temporal
-    /// denoisers among them (`histories`, in the plans' order) on the
-    /// device.
+    /// Writes the outputs of `plans`, which ran on the wgpu device and
+    /// were read back (counted in `stage_read_back`), to their buffers,
+    /// and keeps the next histories of the temporal denoisers among them
+    /// (`histories`, in the plans' order) on the device.
     fn take_outputs(&mut self, plans: &[Plan], outputs: Vec<Vec<Vec4>>, histories: Vec<DeviceHistory>) -> Result<()> {
+        self.stage_read_back += outputs.iter().map(|o| o.len() as u64 * 16).sum::<u64>();
         for (plan, out) in plans.iter().zip(outputs) {
             self.write_rect(plan.output, plan, &out)?;
         }
@@ -345,7 +346,6 @@ impl Context {
         let ran = ran.ok_or_else(internal)?;
         let tail = (ran.tail as Box<dyn Any>).downcast::<StageTail>().map_err(|_| internal())?;
         let outputs: Vec<Vec<Vec4>> = ran.words.iter().map(|words| pixels(words)).collect();
-        self.stage_read_back += outputs.iter().map(|o| o.len() as u64 * 16).sum::<u64>();
         self.stage_uploaded += tail.uploaded;
         let StageTail { pipelines, histories, .. } = *tail;
         // Made again on the launch's device where it opened a new one.
@@ -363,7 +363,6 @@ impl Context {
         let (pipelines, handles) = self.stage_pipelines().await?;
         let (outputs, recording) = pipelines.run(&handles.queue, stages).await?;
         self.stage_uploaded += recording.uploaded;
-        self.stage_read_back += outputs.iter().map(|o| o.len() as u64 * 16).sum::<u64>();
         self.stage_submits += 1;
         self.wgpu_backend().count_submission();
         let from_device = stages.iter().flat_map(|(_, s)| s.each()).filter(|s| matches!(s, Source::Device(..)));
