@@ -52,10 +52,22 @@ pub fn check(t: &syn::ItemType) -> Result<(), Error> {
     Ok(())
 }
 
+/// Whether a unit has an alias to replace: among `deps`, or declared in
+/// the body of its entry (`entry_body`, where the entry is a function) or
+/// of a dependency. Where it has none, the common case, [`resolve`] and
+/// its copies are not needed.
+pub fn needed(entry_body: Option<&syn::Block>, deps: &[Item]) -> bool {
+    deps.iter().any(|d| matches!(d, Item::Alias(_)) || has_local_alias(d))
+        || entry_body.is_some_and(|b| {
+            let mut f = FindAlias(false);
+            syn::visit::Visit::visit_block(&mut f, b);
+            f.0
+        })
+}
+
 /// `item` (a unit's entry) and `deps` with every alias replaced by what it
-/// stands for and the aliases left out of `deps`; `None` where there is
-/// no alias to replace (the common case, which then costs no copy).
-pub fn resolve(item: &Item, deps: &[Item]) -> Result<Option<(Item, Vec<Item>)>, Errors> {
+/// stands for, and the aliases left out of `deps`.
+pub fn resolve(mut item: Item, deps: &[Item]) -> Result<(Item, Vec<Item>), Errors> {
     let module: HashMap<String, Alias> = deps
         .iter()
         .filter_map(|d| match d {
@@ -66,11 +78,7 @@ pub fn resolve(item: &Item, deps: &[Item]) -> Result<Option<(Item, Vec<Item>)>, 
             _ => None,
         })
         .collect();
-    if module.is_empty() && !has_local_alias(item) && !deps.iter().any(has_local_alias) {
-        return Ok(None);
-    }
     let mut r = Rewriter { scopes: vec![module], depth: 0, errors: Errors::default() };
-    let mut item = item.clone();
     r.item(&mut item);
     let mut rewritten = Vec::new();
     for d in deps {
@@ -84,18 +92,12 @@ pub fn resolve(item: &Item, deps: &[Item]) -> Result<Option<(Item, Vec<Item>)>, 
     if !r.errors.is_empty() {
         return Err(r.errors);
     }
-    Ok(Some((item, rewritten)))
+    Ok((item, rewritten))
 }
 
 /// Whether a function or method of `item` declares an alias in its body.
 fn has_local_alias(item: &Item) -> bool {
-    struct Find(bool);
-    impl<'ast> syn::visit::Visit<'ast> for Find {
-        fn visit_item_type(&mut self, _: &'ast syn::ItemType) {
-            self.0 = true;
-        }
-    }
-    let mut f = Find(false);
+    let mut f = FindAlias(false);
     match item {
         Item::Function(g) => syn::visit::Visit::visit_block(&mut f, &g.block),
         Item::Impl(i) => syn::visit::Visit::visit_item_impl(&mut f, i),
@@ -103,6 +105,15 @@ fn has_local_alias(item: &Item) -> bool {
         _ => {}
     }
     f.0
+}
+
+/// Whether a visit met a `type` item.
+struct FindAlias(bool);
+
+impl<'ast> syn::visit::Visit<'ast> for FindAlias {
+    fn visit_item_type(&mut self, _: &'ast syn::ItemType) {
+        self.0 = true;
+    }
 }
 
 /// The rewrite: a stack of scopes, the module's aliases at the bottom and

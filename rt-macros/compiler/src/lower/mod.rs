@@ -277,15 +277,28 @@ fn lower_impl(
     report_deps: bool,
     debug_assertions: bool,
 ) -> std::result::Result<Lowered, Errors> {
-    // Type aliases are replaced by what they stand for (`aliases`).
-    let (kind, item) = match &entry {
-        Entry::Program(k, f) => (Some(*k), Item::Function((*f).clone())),
-        Entry::Helper(f) => (None, Item::Function((*f).clone())),
-        Entry::Struct(s) => (None, Item::Struct((*s).clone(), crate::StructRole::Data)),
-        Entry::Const(c) => (None, Item::Const((*c).clone())),
-        Entry::Enum(e) => (None, Item::Enum((*e).clone())),
+    // Type aliases are replaced by what they stand for (`aliases`), on
+    // copies of the unit's items where it has any.
+    let entry_body = match &entry {
+        Entry::Program(_, f) | Entry::Helper(f) => Some(&*f.block),
+        _ => None,
     };
-    let resolved = crate::aliases::resolve(&item, deps)?;
+    let mut kind = None;
+    let resolved = if crate::aliases::needed(entry_body, deps) {
+        let item = match &entry {
+            Entry::Program(k, f) => {
+                kind = Some(*k);
+                Item::Function((*f).clone())
+            }
+            Entry::Helper(f) => Item::Function((*f).clone()),
+            Entry::Struct(s) => Item::Struct((*s).clone(), crate::StructRole::Data),
+            Entry::Const(c) => Item::Const((*c).clone()),
+            Entry::Enum(e) => Item::Enum((*e).clone()),
+        };
+        Some(crate::aliases::resolve(item, deps)?)
+    } else {
+        None
+    };
     let (entry, deps) = match &resolved {
         Some((item, deps)) => (entry_of(kind, item), &deps[..]),
         None => (entry, deps),
@@ -319,7 +332,7 @@ fn lower_impl(
     }
     deps.extend(nested.into_iter().map(Item::Function));
     if let Entry::Helper(f) = &entry
-        && (generics::is_generic(f) || f.sig.inputs.iter().any(|a| crate::sugar::is_closure_param(f, a)))
+        && (generics::is_generic(f) || crate::sugar::takes_closure(f))
     {
         // Its body is checked per instance, by the callers (`generics`);
         // one given a closure, where it is inlined (`sugar`).

@@ -17,8 +17,10 @@
 //! The CPU copy is the helper as written, called with the closure, which
 //! is what the block means.
 
+use super::iterators::{FirstReturn, unparen};
 use crate::error::{Error, Errors};
 use std::collections::{HashMap, HashSet};
+use std::rc::Rc;
 use syn::spanned::Spanned;
 use syn::visit::Visit;
 use syn::visit_mut::VisitMut;
@@ -26,9 +28,11 @@ use syn::visit_mut::VisitMut;
 /// How deep helpers given closures may inline into each other.
 const MAX_DEPTH: u32 = 8;
 
-/// The helpers that take a closure, by name: each parameter's role.
+/// The helpers that take a closure, by name, with whether each of their
+/// parameters is a closure (shared: a block that declares more extends a
+/// copy).
 #[derive(Clone, Default)]
-pub struct ClosureHelpers(HashMap<String, (syn::ItemFn, Vec<bool>)>);
+pub struct ClosureHelpers(HashMap<String, Rc<(syn::ItemFn, Vec<bool>)>>);
 
 impl ClosureHelpers {
     /// Those among `fns`.
@@ -42,7 +46,7 @@ impl ClosureHelpers {
         for f in fns {
             let roles: Vec<bool> = f.sig.inputs.iter().map(|a| is_closure_param(f, a)).collect();
             if roles.iter().any(|r| *r) {
-                self.0.insert(f.sig.ident.to_string(), (f.clone(), roles));
+                self.0.insert(f.sig.ident.to_string(), Rc::new((f.clone(), roles)));
             }
         }
     }
@@ -54,6 +58,11 @@ impl ClosureHelpers {
         v.visit_block_mut(b);
         *next = v.next;
     }
+}
+
+/// Whether `f` has a parameter of a closure's type ([`is_closure_param`]).
+pub fn takes_closure(f: &syn::ItemFn) -> bool {
+    f.sig.inputs.iter().any(|a| is_closure_param(f, a))
 }
 
 /// Whether `arg` of `f` has a closure's type: `impl Fn(..)` (or `FnMut`,
@@ -95,7 +104,7 @@ impl VisitMut for Inliner<'_> {
             .stmts
             .iter()
             .filter_map(|s| match s {
-                syn::Stmt::Item(syn::Item::Fn(f)) if f.sig.inputs.iter().any(|a| is_closure_param(f, a)) => Some(f),
+                syn::Stmt::Item(syn::Item::Fn(f)) if takes_closure(f) => Some(f),
                 _ => None,
             })
             .collect();
@@ -115,13 +124,12 @@ impl VisitMut for Inliner<'_> {
         if p.qself.is_some() || p.path.segments.len() != 1 {
             return;
         }
-        let Some((helper, roles)) = self.helpers.0.get(&p.path.segments[0].ident.to_string()).cloned() else {
-            return;
-        };
+        let Some(found) = self.helpers.0.get(&p.path.segments[0].ident.to_string()).cloned() else { return };
+        let (helper, roles) = &*found;
         if roles.len() != call.args.len() {
             return; // rustc's error
         }
-        match self.inlined(&helper, &roles, call) {
+        match self.inlined(helper, roles, call) {
             Ok(mut block) => {
                 self.depth += 1;
                 if self.depth > MAX_DEPTH {
@@ -155,10 +163,14 @@ impl Inliner<'_> {
         let mut body = (*helper.block).clone();
         let type_params: HashSet<String> = helper.sig.generics.type_params().map(|t| t.ident.to_string()).collect();
         strip_annotations(&mut body, &type_params);
-        if let Some(span) = first_return(&body) {
+        let mut early = FirstReturn(None);
+        early.visit_block(&body);
+        if let Some(span) = early.0 {
             return Err(refuse(span, "its body returns early: give it one value at its end"));
         }
-        if let Some(t) = named_type_param(&body, &type_params) {
+        let mut named = FirstNamed(&type_params, None);
+        named.visit_block(&body);
+        if let Some(t) = named.1 {
             return Err(refuse(t.span(), &format!("its body names its type parameter `{t}`: name the type")));
         }
         let mut names = HashSet::new();
@@ -173,7 +185,7 @@ impl Inliner<'_> {
             if matches!(&*pt.ty, syn::Type::Reference(_)) {
                 return Err(refuse(pt.ty.span(), "it takes a reference: pass the value and return the result"));
             }
-            if *is_closure && !matches!(strip_parens(arg), syn::Expr::Closure(_)) {
+            if *is_closure && !matches!(unparen(arg), syn::Expr::Closure(_)) {
                 return Err(Error::new(
                     arg.span(),
                     format!(
@@ -191,13 +203,6 @@ impl Inliner<'_> {
         Rename { names: &names, suffix: &suffix }.visit_block_mut(&mut body);
         lets.extend(body.stmts);
         Ok(syn::Block { brace_token: body.brace_token, stmts: lets })
-    }
-}
-
-fn strip_parens(e: &syn::Expr) -> &syn::Expr {
-    match e {
-        syn::Expr::Paren(p) => strip_parens(&p.expr),
-        other => other,
     }
 }
 
@@ -220,44 +225,20 @@ fn strip_annotations(b: &mut syn::Block, type_params: &HashSet<String>) {
 
 /// Whether `ty` names one of `names`.
 fn names_any(ty: &syn::Type, names: &HashSet<String>) -> bool {
-    struct Find<'a>(&'a HashSet<String>, bool);
-    impl<'ast> Visit<'ast> for Find<'_> {
-        fn visit_ident(&mut self, i: &'ast syn::Ident) {
-            self.1 |= self.0.contains(&i.to_string());
-        }
-    }
-    let mut f = Find(names, false);
+    let mut f = FirstNamed(names, None);
     f.visit_type(ty);
-    f.1
+    f.1.is_some()
 }
 
-/// The first `return` in `b` outside its closures.
-fn first_return(b: &syn::Block) -> Option<proc_macro2::Span> {
-    struct Find(Option<proc_macro2::Span>);
-    impl<'ast> Visit<'ast> for Find {
-        fn visit_expr_return(&mut self, r: &'ast syn::ExprReturn) {
-            self.0 = self.0.or(Some(r.span()));
-        }
-        fn visit_expr_closure(&mut self, _: &'ast syn::ExprClosure) {}
-    }
-    let mut f = Find(None);
-    f.visit_block(b);
-    f.0
-}
+/// A visit that finds the first identifier among a set of names.
+struct FirstNamed<'a>(&'a HashSet<String>, Option<syn::Ident>);
 
-/// The first of `type_params` `b` names.
-fn named_type_param(b: &syn::Block, type_params: &HashSet<String>) -> Option<syn::Ident> {
-    struct Find<'a>(&'a HashSet<String>, Option<syn::Ident>);
-    impl<'ast> Visit<'ast> for Find<'_> {
-        fn visit_ident(&mut self, i: &'ast syn::Ident) {
-            if self.1.is_none() && self.0.contains(&i.to_string()) {
-                self.1 = Some(i.clone());
-            }
+impl<'ast> Visit<'ast> for FirstNamed<'_> {
+    fn visit_ident(&mut self, i: &'ast syn::Ident) {
+        if self.1.is_none() && self.0.contains(&i.to_string()) {
+            self.1 = Some(i.clone());
         }
     }
-    let mut f = Find(type_params, None);
-    f.visit_block(b);
-    f.1
 }
 
 /// The names `b` binds (a local's name starts in lower case; a capital

@@ -358,7 +358,7 @@ fn inlinable(c: &syn::ExprClosure, arity: usize) -> bool {
 }
 
 /// `e` without the parentheses around it.
-fn unparen(e: &Expr) -> &Expr {
+pub(super) fn unparen(e: &Expr) -> &Expr {
     match e {
         Expr::Paren(p) => unparen(&p.expr),
         e => e,
@@ -395,16 +395,20 @@ pub(super) fn without_refs(pat: &syn::Pat) -> syn::Pat {
 
 /// Whether `e` has a `return` outside any closure inside it.
 fn has_return(e: &Expr) -> bool {
-    struct Find(bool);
-    impl<'a> syn::visit::Visit<'a> for Find {
-        fn visit_expr_return(&mut self, _: &'a syn::ExprReturn) {
-            self.0 = true;
-        }
-        fn visit_expr_closure(&mut self, _: &'a syn::ExprClosure) {}
-    }
-    let mut f = Find(false);
+    let mut f = FirstReturn(None);
     syn::visit::Visit::visit_expr(&mut f, e);
-    f.0
+    f.0.is_some()
+}
+
+/// A visit that finds the first `return` outside the closures it meets
+/// (their `return`s leave them): its span.
+pub(super) struct FirstReturn(pub(super) Option<proc_macro2::Span>);
+
+impl<'a> syn::visit::Visit<'a> for FirstReturn {
+    fn visit_expr_return(&mut self, r: &'a syn::ExprReturn) {
+        self.0 = self.0.or(Some(syn::spanned::Spanned::span(r)));
+    }
+    fn visit_expr_closure(&mut self, _: &'a syn::ExprClosure) {}
 }
 
 /// The start of `sum::<T>()` (`sum`) or `product::<T>()` for the scalar or

@@ -27,7 +27,7 @@ mod nested;
 mod options;
 mod patterns;
 
-pub use closure_args::{ClosureHelpers, is_closure_param};
+pub use closure_args::{ClosureHelpers, is_closure_param, takes_closure};
 pub(crate) use options::{is_none_path, is_some_path};
 
 use crate::Item;
