@@ -331,7 +331,6 @@ impl FnLowerer<'_> {
                 "only generic #[rt_function]s take them",
             ));
         }
-        let name_span = path.segments.last().unwrap().ident.span();
 
         if segs.len() == 1
             && let Some(l) = self.lookup(&name)
@@ -345,54 +344,10 @@ impl FnLowerer<'_> {
                 "call a #[rt_function] helper by name",
             ));
         }
-        // `Type::function(...)`: constructors and UFCS methods of builtin types.
-        if segs.len() >= 2 {
-            let owner = segs[segs.len() - 2].as_str();
-            if let Some(advice) = crate::types::unsupported_type_advice(owner) {
-                let owner_span = path.segments[segs.len() - 2].ident.span();
-                return Err(Error::unsupported(owner_span, &format!("the type `{owner}`"), advice));
-            }
-            if let Some(ty) = crate::types::builtin_type(owner) {
-                if let Some(v) = self.constructor(&ty, &name, &args, span)? {
-                    return Ok(v);
-                }
-                if name == "default" && args.is_empty() {
-                    return Ok(Val::new(builtins::zero_value(&ty), ty));
-                }
-                // UFCS: `f32::max(a, b)` is `a.max(b)`.
-                if let Some((first, rest)) = args.split_first() {
-                    let recv = self.expr(first, Some(&ty))?;
-                    let recv = self.deref(recv);
-                    let recv = self.coerce(recv, &ty, first.span())?;
-                    return self.method(recv, &name, rest, name_span, span);
-                }
-            }
-            // `Sphere::new(..)`, `Sphere::area(&s)`: an `#[rt_impl]`'s.
-            let key = crate::methods::member_key(owner, &name);
-            if let Some(sig) = self.m.helpers.get(&key) {
-                let sig = sig.clone();
-                return self.helper_call(&sig, &args, span);
-            }
-            if self.m.failed.contains(&key) {
-                return Err(Error::silent(path.span()));
-            }
-            if let Some(d) = self.m.structs.get(owner)
-                && name == "default"
-                && args.is_empty()
-            {
-                let ty = Ty::Struct(d.clone());
-                return Ok(Val::new(format!("{}()", ty.wgsl()), ty));
-            }
-            if self.m.structs.contains_key(owner) {
-                let at = path.segments.last().map_or(path.span(), |s| s.ident.span());
-                return Err(Error::new(
-                    at,
-                    format!(
-                        "no associated function `{name}` on `{owner}` in ray programs: declare it in an \
-                         `#[rt_impl] impl {owner}` block (and the struct with `(impl)`)"
-                    ),
-                ));
-            }
+        if segs.len() >= 2
+            && let Some(v) = self.type_path_call(path, &segs, &args, span)?
+        {
+            return Ok(v);
         }
         if let Some(v) = self.free_builtin(&name, &args, span, want)? {
             return Ok(v);
@@ -418,6 +373,61 @@ impl FnLowerer<'_> {
                 segs.join("::")
             ),
         ))
+    }
+
+    /// `Type::function(...)`: constructors and UFCS methods of builtin
+    /// types, and an `#[rt_impl]`'s associated functions. `None` where
+    /// the owner is none of these.
+    fn type_path_call(&mut self, path: &syn::Path, segs: &[String], args: &[&Expr], span: Span) -> Result<Option<Val>> {
+        let name = segs.last().unwrap();
+        let name_span = path.segments.last().unwrap().ident.span();
+        let owner = segs[segs.len() - 2].as_str();
+        if let Some(advice) = crate::types::unsupported_type_advice(owner) {
+            let owner_span = path.segments[segs.len() - 2].ident.span();
+            return Err(Error::unsupported(owner_span, &format!("the type `{owner}`"), advice));
+        }
+        if let Some(ty) = crate::types::builtin_type(owner) {
+            if let Some(v) = self.constructor(&ty, name, args, span)? {
+                return Ok(Some(v));
+            }
+            if name == "default" && args.is_empty() {
+                return Ok(Some(Val::new(builtins::zero_value(&ty), ty)));
+            }
+            // UFCS: `f32::max(a, b)` is `a.max(b)`.
+            if let Some((first, rest)) = args.split_first() {
+                let recv = self.expr(first, Some(&ty))?;
+                let recv = self.deref(recv);
+                let recv = self.coerce(recv, &ty, first.span())?;
+                return self.method(recv, name, rest, name_span, span).map(Some);
+            }
+        }
+        // `Sphere::new(..)`, `Sphere::area(&s)`: an `#[rt_impl]`'s.
+        let key = crate::methods::member_key(owner, name);
+        if let Some(sig) = self.m.helpers.get(&key) {
+            let sig = sig.clone();
+            return self.helper_call(&sig, args, span).map(Some);
+        }
+        if self.m.failed.contains(&key) {
+            return Err(Error::silent(path.span()));
+        }
+        if let Some(d) = self.m.structs.get(owner)
+            && name == "default"
+            && args.is_empty()
+        {
+            let ty = Ty::Struct(d.clone());
+            return Ok(Some(Val::new(format!("{}()", ty.wgsl()), ty)));
+        }
+        if self.m.structs.contains_key(owner) {
+            let at = path.segments.last().map_or(path.span(), |s| s.ident.span());
+            return Err(Error::new(
+                at,
+                format!(
+                    "no associated function `{name}` on `{owner}` in ray programs: declare it in an \
+                     `#[rt_impl] impl {owner}` block (and the struct with `(impl)`)"
+                ),
+            ));
+        }
+        Ok(None)
     }
 
     pub(super) fn args_typed(&mut self, args: &[&Expr], params: &[Ty], span: Span, what: &str) -> Result<Vec<Val>> {
