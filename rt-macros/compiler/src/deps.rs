@@ -323,6 +323,8 @@ pub fn of_impl(i: &syn::ItemImpl) -> Vec<Dep> {
                     d.locals.extend(g.type_params().map(|t| t.ident.to_string()));
                     d.locals.extend(g.const_params().map(|c| c.ident.to_string()));
                 }
+                // A parameter called is a closure given to the method.
+                d.locals.extend(param_names(&f.sig));
                 d.visit_signature(&f.sig);
                 d.visit_block(&f.block);
             }

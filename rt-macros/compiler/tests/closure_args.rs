@@ -58,3 +58,56 @@ fn an_inlined_closure_body_that_starts_with_a_block_keeps_its_operator() {
     let l = common::lower("", "let f = |a: f32| { a } * 2.0; out[i] = f(x);").unwrap();
     assert!(l.wgsl.contains("* 2.0f"), "{}", l.wgsl);
 }
+
+const SPAN: &str = "#[rt_struct(impl)] pub struct Span1 { pub lo: f32, pub hi: f32 }
+    #[rt_struct(impl)] pub struct Other { pub v: f32 }
+    #[rt_impl] impl Span1 {
+        pub fn sample<F: Fn(f32) -> f32>(&self, f: F) -> f32 { let m = self.lo; f(m) + f(self.hi) }
+        pub fn push<F: Fn(f32) -> f32>(&mut self, f: F) { self.lo = f(self.lo); }
+        pub fn each<F: Fn(f32) -> f32>(&self, f: F) -> f32 { f(self.lo) }
+        pub fn map<F: Fn(f32) -> f32>(&self, f: F) -> f32 { f(self.hi) }
+    }
+    #[rt_impl] impl Other { pub fn each(&self, k: f32) -> f32 { self.v * k } }";
+
+#[test]
+fn a_method_given_a_closure_is_inlined_by_name_and_by_path() {
+    let l = common::lower(
+        SPAN,
+        "let s = Span1 { lo: x, hi: 1.0 }; out[i] = s.sample(|a| a * x) + Span1::sample(&s, |a| a - x);",
+    )
+    .unwrap();
+    assert!(!l.wgsl.contains("rtm_Span1__sample"), "{}", l.wgsl);
+    assert!(
+        l.wgsl.contains("let self_rt_inl1: Span1 = s;") && l.wgsl.contains("let self_rt_inl2: Span1 = s;"),
+        "{}",
+        l.wgsl
+    );
+}
+
+#[test]
+fn what_a_method_given_a_closure_cannot_do_is_an_error_naming_it() {
+    assert_eq!(
+        common::lower(SPAN, "let mut s = Span1 { lo: x, hi: 1.0 }; s.push(|a| a * 2.0); out[i] = s.lo;").unwrap_err(),
+        "`push` is given a closure, so it is inlined where it is called, and it takes `&mut self`: take `self` and \
+         return the new value"
+    );
+    // Two types have an `each`: only its path says which.
+    assert_eq!(
+        common::lower(SPAN, "let s = Span1 { lo: x, hi: 1.0 }; out[i] = s.each(|a| a);").unwrap_err(),
+        "a method given a closure is inlined where it is called, and `each` may be more than one type's method: \
+         call it by its path, `Span1::each(&value, ..)`"
+    );
+    assert_eq!(
+        common::lower(SPAN, "let s = Span1 { lo: x, hi: 1.0 }; out[i] = s.map(|a| a);").unwrap_err(),
+        "a method given a closure is inlined where it is called, and `map` may be std's method too: call it by its \
+         path, `Span1::map(&value, ..)`"
+    );
+    // By path, both are inlined; the other type's `each` is a plain call.
+    let l = common::lower(
+        SPAN,
+        "let s = Span1 { lo: x, hi: 1.0 }; let o = Other { v: x };
+         out[i] = Span1::each(&s, |a| a) + Span1::map(&s, |a| a) + o.each(2.0);",
+    )
+    .unwrap();
+    assert!(l.wgsl.contains("rtm_Other__each"), "{}", l.wgsl);
+}

@@ -559,6 +559,8 @@ fn impls_by_kind(k: &mut ByKind<'_>, deps: &[Item], mut impls: Vec<&syn::ItemImp
             .collect();
         let fns = fns.into_iter().filter(|m| !taken.contains(&m.key));
         let consts = consts.into_iter().filter(|c| !taken.contains(&c.key));
+        // A method given a closure is inlined where it is called (`sugar`).
+        let fns = fns.filter(|m| !crate::sugar::takes_closure(&m.f));
         let (generic, fns): (Vec<_>, Vec<_>) = fns.partition(|m| super::generics::is_generic(&m.f));
         for m in generic {
             k.generics.insert(m.key, Rc::new(m.f));

@@ -307,10 +307,16 @@ fn lower_impl(
     // functions declared in their bodies as helpers beside them (`sugar`).
     let mut taken: HashSet<String> = deps.iter().map(Item::name).collect();
     let mut nested = Vec::new();
-    let closures = crate::sugar::ClosureHelpers::new(deps.iter().filter_map(|d| match d {
-        Item::Function(f) => Some(f),
-        _ => None,
-    }));
+    let closures = crate::sugar::ClosureHelpers::new(
+        deps.iter().filter_map(|d| match d {
+            Item::Function(f) => Some(f),
+            _ => None,
+        }),
+        deps.iter().filter_map(|d| match d {
+            Item::Impl(i) => Some(i),
+            _ => None,
+        }),
+    );
     let mut cx = crate::sugar::Cx { closures, inlined: 0, errors: Errors::default() };
     let sweetened;
     let entry = match entry {

@@ -14,6 +14,13 @@
 //! the body other than in a `let`'s annotation (the block cannot name it),
 //! a closure parameter given something other than a closure written there.
 //!
+//! An `#[rt_impl]` method given a closure is inlined the same way, its
+//! `self` bound to the receiver and `Self` written as its type: called by
+//! path (`Span::sample(&s, |v| ..)`, `Self::sample(self, ..)` in another
+//! method of the type), or by name (`s.sample(|v| ..)`) where no other
+//! type's method and no std method has that name (the rewrite runs before
+//! types are known). `&mut self` is refused: the block binds a copy.
+//!
 //! The CPU copy is the helper as written, called with the closure, which
 //! is what the block means.
 
@@ -28,17 +35,93 @@ use syn::visit_mut::VisitMut;
 /// How deep helpers given closures may inline into each other.
 const MAX_DEPTH: u32 = 8;
 
-/// The helpers that take a closure, by name, with whether each of their
-/// parameters is a closure (shared: a block that declares more extends a
-/// copy).
+/// Methods of std's types that take closures (`Option`'s, iterators',
+/// glam's `map`): a user's method of the same name is inlined only where
+/// it is called by path, which names its type.
+const STD_CLOSURE_METHODS: &[&str] = &[
+    "map",
+    "and_then",
+    "filter",
+    "unwrap_or_else",
+    "or_else",
+    "is_some_and",
+    "is_none_or",
+    "map_or",
+    "map_or_else",
+    "fold",
+    "any",
+    "all",
+    "for_each",
+    "filter_map",
+    "find",
+    "position",
+    "take_while",
+    "skip_while",
+    "inspect",
+    "max_by",
+    "min_by",
+    "max_by_key",
+    "min_by_key",
+    "zip",
+    "then",
+];
+
+/// A helper or method that takes a closure, with whether each of its
+/// parameters (the receiver first, for a method) is a closure; a method
+/// as a function, with the type its block is for.
+struct Taker {
+    f: syn::ItemFn,
+    roles: Vec<bool>,
+    owner: Option<syn::Ident>,
+    /// The type parameters of a generic block (`impl<T> Pair<T>`).
+    owner_params: Vec<String>,
+}
+
+/// The helpers and methods that take a closure (shared: a block that
+/// declares more extends a copy): helpers by name, methods by
+/// `Type::name`, and for each method name every method so called, `None`
+/// for one that takes no closure (a call by that name alone is inlined
+/// only where one method has it).
 #[derive(Clone, Default)]
-pub struct ClosureHelpers(HashMap<String, Rc<(syn::ItemFn, Vec<bool>)>>);
+pub struct ClosureHelpers {
+    fns: HashMap<String, Rc<Taker>>,
+    methods: HashMap<String, Rc<Taker>>,
+    by_method: HashMap<String, Vec<Option<Rc<Taker>>>>,
+}
 
 impl ClosureHelpers {
-    /// Those among `fns`.
-    pub fn new<'a>(fns: impl Iterator<Item = &'a syn::ItemFn>) -> ClosureHelpers {
+    /// Those among `fns` and the methods of `impls`.
+    pub fn new<'a>(
+        fns: impl Iterator<Item = &'a syn::ItemFn>,
+        impls: impl Iterator<Item = &'a syn::ItemImpl>,
+    ) -> ClosureHelpers {
         let mut h = ClosureHelpers::default();
         h.extend(fns);
+        for i in impls {
+            let owner = crate::methods::self_name(i);
+            let owner_params: Vec<String> = i.generics.type_params().map(|t| t.ident.to_string()).collect();
+            for it in &i.items {
+                let syn::ImplItem::Fn(m) = it else { continue };
+                let f = syn::ItemFn {
+                    attrs: Vec::new(),
+                    vis: syn::Visibility::Inherited,
+                    sig: m.sig.clone(),
+                    block: Box::new(m.block.clone()),
+                };
+                let taker = match &owner {
+                    Some(o) if takes_closure(&f) => {
+                        let owner = syn::Ident::new(o, i.self_ty.span());
+                        let roles = f.sig.inputs.iter().map(|a| is_closure_param(&f, a)).collect();
+                        let owner_params = owner_params.clone();
+                        let t = Rc::new(Taker { f, roles, owner: Some(owner), owner_params });
+                        h.methods.insert(format!("{o}::{}", m.sig.ident), t.clone());
+                        Some(t)
+                    }
+                    _ => None,
+                };
+                h.by_method.entry(m.sig.ident.to_string()).or_default().push(taker);
+            }
+        }
         h
     }
 
@@ -46,15 +129,21 @@ impl ClosureHelpers {
         for f in fns {
             let roles: Vec<bool> = f.sig.inputs.iter().map(|a| is_closure_param(f, a)).collect();
             if roles.iter().any(|r| *r) {
-                self.0.insert(f.sig.ident.to_string(), Rc::new((f.clone(), roles)));
+                self.fns.insert(
+                    f.sig.ident.to_string(),
+                    Rc::new(Taker { f: f.clone(), roles, owner: None, owner_params: Vec::new() }),
+                );
             }
         }
     }
 
-    /// Inlines, in `b`, each call of one of these helpers or of those a
-    /// block declares; `next` numbers the inlined calls of the unit.
-    pub fn inline(&self, b: &mut syn::Block, next: &mut u32, errors: &mut Errors) {
-        let mut v = Inliner { helpers: self.clone(), next: *next, depth: 0, errors };
+    /// Inlines, in `b`, each call of one of these helpers or methods or of
+    /// the helpers a block declares; `owner` is the type whose method `b`
+    /// is (what `Self::` names), `next` numbers the inlined calls of the
+    /// unit.
+    pub fn inline(&self, b: &mut syn::Block, owner: Option<&str>, next: &mut u32, errors: &mut Errors) {
+        let owner = owner.map(str::to_string);
+        let mut v = Inliner { helpers: self.clone(), owner, next: *next, depth: 0, errors };
         v.visit_block_mut(b);
         *next = v.next;
     }
@@ -92,6 +181,8 @@ pub fn is_closure_param(f: &syn::ItemFn, arg: &syn::FnArg) -> bool {
 
 struct Inliner<'e> {
     helpers: ClosureHelpers,
+    /// The type whose method is being rewritten.
+    owner: Option<String>,
     next: u32,
     depth: u32,
     errors: &'e mut Errors,
@@ -119,25 +210,17 @@ impl VisitMut for Inliner<'_> {
 
     fn visit_expr_mut(&mut self, e: &mut syn::Expr) {
         syn::visit_mut::visit_expr_mut(self, e);
-        let syn::Expr::Call(call) = e else { return };
-        let syn::Expr::Path(p) = &*call.func else { return };
-        if p.qself.is_some() || p.path.segments.len() != 1 {
-            return;
-        }
-        let Some(found) = self.helpers.0.get(&p.path.segments[0].ident.to_string()).cloned() else { return };
-        let (helper, roles) = &*found;
-        if roles.len() != call.args.len() {
-            return; // rustc's error
-        }
-        match self.inlined(helper, roles, call) {
+        let Some((taker, args)) = self.taker_of(e) else { return };
+        let span = e.span();
+        match self.inlined(&taker, &args) {
             Ok(mut block) => {
                 self.depth += 1;
                 if self.depth > MAX_DEPTH {
                     self.errors.0.push(Error::new(
-                        call.span(),
+                        span,
                         format!(
                             "`{}` is given closures through helpers given closures too deep to inline",
-                            helper.sig.ident
+                            taker.f.sig.ident
                         ),
                     ));
                 } else {
@@ -152,8 +235,60 @@ impl VisitMut for Inliner<'_> {
 }
 
 impl Inliner<'_> {
-    /// The block `call` of `helper` stands for (see the module's doc).
-    fn inlined(&mut self, helper: &syn::ItemFn, roles: &[bool], call: &syn::ExprCall) -> Result<syn::Block, Error> {
+    /// The helper or method `e` calls, if it takes a closure, and the
+    /// arguments of its parameters (the receiver first).
+    fn taker_of(&mut self, e: &syn::Expr) -> Option<(Rc<Taker>, Vec<syn::Expr>)> {
+        let (taker, args): (Rc<Taker>, Vec<syn::Expr>) = match e {
+            syn::Expr::Call(call) => {
+                let syn::Expr::Path(p) = &*call.func else { return None };
+                if p.qself.is_some() {
+                    return None;
+                }
+                let segs: Vec<String> = p.path.segments.iter().map(|s| s.ident.to_string()).collect();
+                let taker = match &segs[..] {
+                    [name] => self.helpers.fns.get(name)?,
+                    [owner, name] => {
+                        let owner = if owner == "Self" { self.owner.as_ref()? } else { owner };
+                        self.helpers.methods.get(&format!("{owner}::{name}"))?
+                    }
+                    _ => return None,
+                };
+                (taker.clone(), call.args.iter().cloned().collect())
+            }
+            syn::Expr::MethodCall(m) => {
+                let name = m.method.to_string();
+                let all = self.helpers.by_method.get(&name)?;
+                let taker = all.iter().flatten().next()?;
+                if all.len() > 1 || STD_CLOSURE_METHODS.contains(&name.as_str()) {
+                    if m.args.iter().any(|a| matches!(unparen(a), syn::Expr::Closure(_))) {
+                        let owner = taker.owner.as_ref().map(|o| o.to_string()).unwrap_or_default();
+                        self.errors.0.push(Error::new(
+                            m.method.span(),
+                            format!(
+                                "a method given a closure is inlined where it is called, and `{name}` may be \
+                                 {}: call it by its path, `{owner}::{name}(&value, ..)`",
+                                if all.len() > 1 { "more than one type's method" } else { "std's method too" }
+                            ),
+                        ));
+                    }
+                    return None;
+                }
+                if !matches!(taker.f.sig.inputs.first(), Some(syn::FnArg::Receiver(_))) {
+                    return None; // rustc's error
+                }
+                let args = std::iter::once((*m.receiver).clone()).chain(m.args.iter().cloned()).collect();
+                (taker.clone(), args)
+            }
+            _ => return None,
+        };
+        // A different count is rustc's error.
+        (taker.roles.len() == args.len()).then_some((taker, args))
+    }
+
+    /// The block a call of `taker` with `args` stands for (see the
+    /// module's doc).
+    fn inlined(&mut self, taker: &Taker, args: &[syn::Expr]) -> Result<syn::Block, Error> {
+        let helper = &taker.f;
         let name = &helper.sig.ident;
         let refuse = |span: proc_macro2::Span, what: &str| {
             Error::new(span, format!("`{name}` is given a closure, so it is inlined where it is called, and {what}"))
@@ -161,7 +296,8 @@ impl Inliner<'_> {
         self.next += 1;
         let suffix = format!("_rt_inl{}", self.next);
         let mut body = (*helper.block).clone();
-        let type_params: HashSet<String> = helper.sig.generics.type_params().map(|t| t.ident.to_string()).collect();
+        let mut type_params: HashSet<String> = helper.sig.generics.type_params().map(|t| t.ident.to_string()).collect();
+        type_params.extend(taker.owner_params.iter().cloned());
         strip_annotations(&mut body, &type_params);
         let mut early = FirstReturn(None);
         early.visit_block(&body);
@@ -175,34 +311,62 @@ impl Inliner<'_> {
         }
         let mut names = HashSet::new();
         let mut lets: Vec<syn::Stmt> = Vec::new();
-        for ((input, is_closure), arg) in helper.sig.inputs.iter().zip(roles).zip(&call.args) {
-            let syn::FnArg::Typed(pt) = input else {
-                return Err(refuse(input.span(), "it takes `self`"));
+        for ((input, is_closure), arg) in helper.sig.inputs.iter().zip(&taker.roles).zip(args) {
+            let (ident, mutability, arg) = match input {
+                syn::FnArg::Receiver(r) => {
+                    if r.reference.is_some() && r.mutability.is_some() {
+                        return Err(refuse(r.span(), "it takes `&mut self`: take `self` and return the new value"));
+                    }
+                    // `Type::m(&v, ..)`: the receiver's value.
+                    let arg = match unparen(arg) {
+                        syn::Expr::Reference(r) if r.mutability.is_none() => (*r.expr).clone(),
+                        other => other.clone(),
+                    };
+                    let m = if r.reference.is_none() { r.mutability } else { None };
+                    (syn::Ident::new("self", r.self_token.span), m, arg)
+                }
+                syn::FnArg::Typed(pt) => {
+                    let syn::Pat::Ident(pi) = &*pt.pat else {
+                        return Err(refuse(pt.pat.span(), "this parameter is a pattern: name it"));
+                    };
+                    if matches!(&*pt.ty, syn::Type::Reference(_)) {
+                        return Err(refuse(pt.ty.span(), "it takes a reference: pass the value and return the result"));
+                    }
+                    if *is_closure && !matches!(unparen(arg), syn::Expr::Closure(_)) {
+                        return Err(Error::new(
+                            arg.span(),
+                            format!(
+                                "a closure given to `{name}` is inlined where it is written: pass the closure \
+                                 itself here (`{name}(|..| .., ..)`), not a name bound to one"
+                            ),
+                        ));
+                    }
+                    (pi.ident.clone(), pi.mutability, arg.clone())
+                }
             };
-            let syn::Pat::Ident(pi) = &*pt.pat else {
-                return Err(refuse(pt.pat.span(), "this parameter is a pattern: name it"));
-            };
-            if matches!(&*pt.ty, syn::Type::Reference(_)) {
-                return Err(refuse(pt.ty.span(), "it takes a reference: pass the value and return the result"));
-            }
-            if *is_closure && !matches!(unparen(arg), syn::Expr::Closure(_)) {
-                return Err(Error::new(
-                    arg.span(),
-                    format!(
-                        "a closure given to `{name}` is inlined where it is written: pass the closure itself here \
-                         (`{name}(|..| .., ..)`), not a name bound to one"
-                    ),
-                ));
-            }
-            names.insert(pi.ident.to_string());
-            let ident = syn::Ident::new(&format!("{}{suffix}", pi.ident), pi.ident.span());
-            let mutability = pi.mutability;
+            names.insert(ident.to_string());
+            let ident = syn::Ident::new(&format!("{ident}{suffix}"), ident.span());
             lets.push(syn::parse_quote!(let #mutability #ident = #arg;));
         }
         Locals(&mut names).visit_block(&body);
         Rename { names: &names, suffix: &suffix }.visit_block_mut(&mut body);
+        if let Some(owner) = &taker.owner {
+            SelfType(owner).visit_block_mut(&mut body);
+        }
         lets.extend(body.stmts);
         Ok(syn::Block { brace_token: body.brace_token, stmts: lets })
+    }
+}
+
+/// Writes the type a method's block is for where its body says `Self`
+/// (a generic one without its arguments, which the values give).
+struct SelfType<'a>(&'a syn::Ident);
+
+impl VisitMut for SelfType<'_> {
+    fn visit_ident_mut(&mut self, i: &mut syn::Ident) {
+        if i == "Self" {
+            *i = syn::Ident::new(&self.0.to_string(), i.span());
+        }
     }
 }
 

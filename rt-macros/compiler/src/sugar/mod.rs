@@ -44,7 +44,7 @@ pub fn function(
     cx: &mut Cx,
 ) -> syn::ItemFn {
     let mut f = f.clone();
-    body(&mut f.block, taken, nested, cx);
+    body(&mut f.block, None, taken, nested, cx);
     f
 }
 
@@ -59,8 +59,15 @@ pub struct Cx {
 
 /// A function's body rewritten, its nested functions taken out into
 /// `nested` (rewritten too).
-fn body(b: &mut syn::Block, taken: &mut HashSet<String>, nested: &mut Vec<syn::ItemFn>, cx: &mut Cx) {
-    cx.closures.inline(b, &mut cx.inlined, &mut cx.errors);
+/// `owner` is the type a method's block is for.
+fn body(
+    b: &mut syn::Block,
+    owner: Option<&str>,
+    taken: &mut HashSet<String>,
+    nested: &mut Vec<syn::ItemFn>,
+    cx: &mut Cx,
+) {
+    cx.closures.inline(b, owner, &mut cx.inlined, &mut cx.errors);
     let mut inner = Vec::new();
     nested::hoist(b, taken, &mut inner);
     for mut g in inner {
@@ -83,9 +90,10 @@ pub fn item(item: &Item, taken: &mut HashSet<String>, nested: &mut Vec<syn::Item
         Item::Function(f) => Item::Function(function(f, taken, nested, cx)),
         Item::Impl(i) => {
             let mut i = i.clone();
+            let owner = crate::methods::self_name(&i);
             for it in &mut i.items {
                 if let syn::ImplItem::Fn(f) = it {
-                    body(&mut f.block, taken, nested, cx);
+                    body(&mut f.block, owner.as_deref(), taken, nested, cx);
                 }
             }
             Item::Impl(i)
