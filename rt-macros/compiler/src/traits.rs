@@ -190,10 +190,13 @@ pub fn complete(i: &syn::ItemImpl, t: &syn::ItemTrait) -> syn::ItemImpl {
                     }));
                 }
             }
-            // A generic impl has no constants (a WGSL constant has one
-            // type, `methods::check_impl`): a default one stays the CPU's.
-            syn::TraitItem::Const(c) if !defined.contains(&c.ident.to_string()) && i.generics.params.is_empty() => {
-                if let Some((eq, expr)) = &c.default {
+            // A generic impl has only constants that name neither its
+            // parameters nor `Self` (a WGSL constant has one type,
+            // `methods::check_impl`): another default stays the CPU's.
+            syn::TraitItem::Const(c) if !defined.contains(&c.ident.to_string()) => {
+                if let Some((eq, expr)) = &c.default
+                    && (i.generics.params.is_empty() || !crate::methods::const_names_params(&c.ty, expr, &i.generics))
+                {
                     i.items.push(syn::ImplItem::Const(syn::ImplItemConst {
                         attrs: Vec::new(),
                         vis: syn::Visibility::Inherited,

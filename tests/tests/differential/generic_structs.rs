@@ -22,6 +22,9 @@ pub struct Pair<T> {
 
 #[rt_impl]
 impl<T: Copy + Add<Output = T> + Mul<f32, Output = T>> Pair<T> {
+    /// A constant that names no parameter: one for every instance.
+    pub const HALF: f32 = 0.5;
+
     pub fn new(a: T, b: T) -> Self {
         Pair { a, b }
     }
@@ -37,7 +40,7 @@ impl<T: Copy + Add<Output = T> + Mul<f32, Output = T>> Pair<T> {
 
     /// Both values scaled, in place.
     pub fn scale(&mut self, s: f32) {
-        self.a = self.a * s;
+        self.a = self.a * (s * Self::HALF * 2.0);
         self.b = self.b * s;
     }
 
@@ -75,12 +78,14 @@ impl<T: Copy + Neg<Output = T>> Neg for Pair<T> {
 /// Scaling by a factor, with a default method calling the required one.
 #[rt_trait]
 pub trait Scale {
+    /// A default constant, which the generic impl keeps.
+    const FACTOR: f32 = 2.0;
     fn scaled(&self, k: f32) -> Self;
     fn twice(&self) -> Self
     where
         Self: Sized,
     {
-        self.scaled(2.0)
+        self.scaled(Self::FACTOR)
     }
 }
 
@@ -178,7 +183,8 @@ differential! {
             let q = -(p + p * 2.0);
             let w = v.add(v).twice();
             let h = halve(p).scaled(3.0);
-            [q.a, q.b, w.sum().x + w.b.z, h.a + h.b, halve(v).a.y + (-v).b.x, (p * a).twice().sum()]
+            let k = Pair::<f32>::HALF + Pair::<Vec3>::FACTOR;
+            [q.a, q.b, w.sum().x + w.b.z, h.a + h.b * k, halve(v).a.y + (-v).b.x, (p * a).twice().sum()]
         }
     }
 }
