@@ -291,6 +291,7 @@ fn the_fixed_seed_generates_closures_options_folds_and_labelled_breaks() {
     let cfg = fuzz::Config::from_env(0x5eed, 300);
     let forms = [
         "|fz_a",
+        "fuzz_apply(|fz_a",
         ".unwrap_or(",
         "Some(fz_o",
         "if let Some(",
@@ -310,6 +311,6 @@ fn the_fixed_seed_generates_closures_options_folds_and_labelled_breaks() {
     let what: Vec<String> = forms.iter().zip(counts).map(|(f, n)| format!("`{f}` in {n}")).collect();
     let what = format!("of 300 programs: {}", what.join(", "));
     eprintln!("{what}");
-    assert!(counts[0] >= 20 && counts[5] >= 10, "{what}");
+    assert!(counts[0] >= 20 && counts[1] >= 10 && counts[6] >= 10, "{what}");
     assert!(counts.iter().all(|&n| n >= 3), "{what}");
 }

@@ -20,7 +20,8 @@
 //!    in its impl of an `#[rt_trait] FuzzOps` the program declares, and
 //!    helpers taking the struct and a right operand as its operator impls
 //!    (`Add`, `Sub`, `Mul`, `Mul<f32>`), called as `(a + b)` or by name,
-//!    `a.add(b)` (see `ast::Method`); closures bound and called, `Option`
+//!    `a.add(b)` (see `ast::Method`); closures bound and called or given to a
+//!    generic helper (`fuzz_apply`), `Option`
 //!    flows (`unwrap_or`, `match`, `if let`, `filter`), iterator folds and
 //!    sums over array literals (`.rev()` too), each printed as the
 //!    construct and interpreted as the core expression it means

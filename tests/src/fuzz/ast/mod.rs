@@ -249,9 +249,11 @@ pub enum Expr {
 /// (`fz_a3`) unique in the program.
 #[derive(Clone, Debug)]
 pub enum Sugar {
-    /// `{ let fz_f3 = |fz_a3: T| fz_a3 op (xs[1]); fz_f3(xs[0]) }`:
-    /// `xs[0] op xs[1]`.
-    Closure { op: BinOp, ty: Ty, id: u32 },
+    /// `{ let fz_f3 = |fz_a3: T| fz_a3 op (xs[1]); fz_f3(xs[0]) }`, or
+    /// where `given` the closure given to the generic helper `fuzz_apply`
+    /// every program declares, `fuzz_apply(|fz_a3: T| fz_a3 op (xs[1]),
+    /// xs[0])`: `xs[0] op xs[1]`.
+    Closure { op: BinOp, ty: Ty, given: bool, id: u32 },
     /// `xs[1]` where `xs[0]`, else `xs[2]`, through an `Option`: `form` 0
     /// `(if c { Some(v) } else { None }).unwrap_or(f)`, 1 a `match` on it,
     /// 2 `if let Some(..) = it { .. } else { f }`, 3

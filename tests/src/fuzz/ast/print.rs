@@ -65,6 +65,11 @@ impl Program {
         s.push_str(
             "\n#[rt_function]\npub fn fuzz_pick<T: Copy>(second: bool, a: T, b: T) -> T {\n    if second { b } else { a }\n}\n",
         );
+        // Given a closure: inlined where it is called, its local kept
+        // apart from the closure's captures.
+        s.push_str(
+            "\n#[rt_function]\npub fn fuzz_apply<T: Copy, F: Fn(T) -> T>(f: F, a: T) -> T {\n    let fz_r = f(a);\n    fz_r\n}\n",
+        );
         let forms: Vec<(usize, MethodForm)> =
             self.helpers.iter().filter_map(|h| h.method.map(|m| (m.of, m.form))).collect();
         let ops: Vec<&str> = forms
@@ -383,8 +388,15 @@ impl Program {
     /// What [`Expr::Sugar`] prints (see [`Sugar`]).
     fn sugar(&self, sugar: &Sugar, xs: &[Expr]) -> String {
         match sugar {
-            Sugar::Closure { op, ty, id } => format!(
+            Sugar::Closure { op, ty, given: false, id } => format!(
                 "{{ let fz_f{id} = |fz_a{id}: {}| (fz_a{id} {} {}); fz_f{id}({}) }}",
+                ty.rust(self),
+                op.symbol(),
+                self.expr(&xs[1]),
+                self.expr(&xs[0])
+            ),
+            Sugar::Closure { op, ty, given: true, id } => format!(
+                "fuzz_apply(|fz_a{id}: {}| (fz_a{id} {} {}), {})",
                 ty.rust(self),
                 op.symbol(),
                 self.expr(&xs[1]),

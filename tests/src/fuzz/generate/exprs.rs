@@ -273,7 +273,7 @@ impl Gen {
         self.fresh += 1;
         let id = self.fresh;
         let form = match (self.r.below(3), arith) {
-            (0, Some(op)) => Sugar::Closure { op, ty: t.clone(), id },
+            (0, Some(op)) => Sugar::Closure { op, ty: t.clone(), given: self.r.chance(50), id },
             (1, Some(op)) if !matches!(t, Ty::V(..)) => {
                 let sum = *t == Ty::S(Scalar::F32) && op == BinOp::Add && self.r.chance(40);
                 Sugar::Fold { op, ty: t.clone(), rev: self.r.chance(40), sum, id }
