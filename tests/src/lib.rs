@@ -97,6 +97,8 @@ pub mod seed_common;
 pub mod semantic_values;
 #[path = "../snapshots/in/structs_arrays.rs"]
 pub mod structs_arrays;
+#[path = "../snapshots/in/sugar.rs"]
+pub mod sugar;
 #[path = "../snapshots/in/texture_3d.rs"]
 pub mod texture_3d;
 #[path = "../snapshots/in/texture_cube.rs"]

@@ -40,10 +40,15 @@ impl FnLowerer<'_> {
                 self.bind(&c.ident.to_string(), Local { wgsl: name, ty, var: false });
                 Ok(())
             }
-            Stmt::Item(syn::Item::Fn(f)) => Err(Error::unsupported(
+            // `sugar` takes every other one out to stand beside the
+            // function; this one's name is a helper's of the program.
+            Stmt::Item(syn::Item::Fn(f)) => Err(Error::new(
                 f.sig.ident.span(),
-                "a nested function",
-                "declare it at module level with `#[rt_function]`",
+                format!(
+                    "a function declared in a body has the name of another function of this program (`{}`); WGSL has \
+                     one namespace of functions: rename it",
+                    f.sig.ident
+                ),
             )),
             Stmt::Item(other) => {
                 Err(Error::unsupported(other.span(), "this item inside a function", "move it out of the function"))
