@@ -6,18 +6,25 @@
 
 use proc_macro::TokenStream;
 
+/// Runs an expansion with the file the attribute is in, where the macro
+/// finds the plain `const`s of the item's module
+/// (`rt_compiler::plain_consts`).
+fn with_source(f: impl FnOnce() -> proc_macro2::TokenStream) -> proc_macro2::TokenStream {
+    rt_compiler::plain_consts::with_source(proc_macro::Span::call_site().local_file(), f)
+}
+
 /// Declares a ray program: `#[rt_program(closest_hit)]`, and so on for the
 /// eight kinds. The subset of Rust programs may use is listed in the
 /// project's `docs/subset.md`; `rt_std` has what they may name.
 #[proc_macro_attribute]
 pub fn rt_program(attr: TokenStream, item: TokenStream) -> TokenStream {
-    rt_compiler::expand::rt_program(attr.into(), item.into()).into()
+    with_source(|| rt_compiler::expand::rt_program(attr.into(), item.into())).into()
 }
 
 /// Declares a helper function callable from programs and other helpers.
 #[proc_macro_attribute]
 pub fn rt_function(attr: TokenStream, item: TokenStream) -> TokenStream {
-    rt_compiler::expand::rt_function(attr.into(), item.into()).into()
+    with_source(|| rt_compiler::expand::rt_function(attr.into(), item.into())).into()
 }
 
 /// Declares a struct programs may use (buffer elements, variables, locals).
@@ -50,7 +57,7 @@ pub fn rt_enum(attr: TokenStream, item: TokenStream) -> TokenStream {
 /// type, callable from programs and helpers.
 #[proc_macro_attribute]
 pub fn rt_impl(attr: TokenStream, item: TokenStream) -> TokenStream {
-    rt_compiler::expand::rt_impl(attr.into(), item.into()).into()
+    with_source(|| rt_compiler::expand::rt_impl(attr.into(), item.into())).into()
 }
 
 /// Declares a trait programs may implement (`#[rt_impl] impl Trait for

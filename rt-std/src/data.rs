@@ -351,11 +351,12 @@ pub fn __require_impl_declared<T: __RtImplDeclared + ?Sized>() {}
 
 /// Asked of the name of a constant a program names: `#[rt_const]`
 /// declares a marker of that name implementing it (see
-/// `rt_compiler::declared`); a plain `const` has none.
+/// `rt_compiler::declared`); a plain `const` has none (one of the item's
+/// own module is taken without it: `rt_compiler::plain_consts`).
 #[doc(hidden)]
 #[diagnostic::on_unimplemented(
     message = "this constant is not declared for ray programs",
-    label = "declare it with #[rt_const]: a plain `const` is not seen by the macros that compile programs"
+    label = "declare it with #[rt_const]: the macros that compile programs see a plain `const` only in the module of the item that names it"
 )]
 pub trait __RtConstDeclared {}
 #[diagnostic::do_not_recommend]

@@ -1,8 +1,12 @@
-// A plain `const` used in a program: constants programs use are declared
+// A plain `const` of another module used in a program: the macros see
+// plain constants only in the program's own module; others are declared
 // with #[rt_const].
 use rt_std::prelude::*;
 
-pub const SCALE: f32 = 0.5;
+mod settings {
+    pub const SCALE: f32 = 0.5;
+}
+use settings::SCALE;
 
 #[rt_payload]
 pub struct Radiance {

@@ -50,6 +50,7 @@ pub mod lanes;
 pub mod lower;
 pub mod methods;
 pub mod operators;
+pub mod plain_consts;
 pub mod signature;
 pub mod sugar;
 pub mod traits;

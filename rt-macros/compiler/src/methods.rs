@@ -155,7 +155,9 @@ pub fn check_impl(i: &syn::ItemImpl) -> Result<(), Errors> {
     for item in &i.items {
         match item {
             syn::ImplItem::Fn(f) => check_method(f, &mut errors),
-            syn::ImplItem::Const(c) if generic_self && const_names_params(&c.ty, &c.expr, &i.generics) => {
+            syn::ImplItem::Const(c)
+                if generic_self && crate::traits::const_names_params(&c.ty, &c.expr, &i.generics) =>
+            {
                 errors.push(Error::unsupported(
                     c.span(),
                     "an associated constant of a generic impl that names its parameters or `Self`",
@@ -180,22 +182,6 @@ pub fn check_impl(i: &syn::ItemImpl) -> Result<(), Errors> {
         }
     }
     if errors.is_empty() { Ok(()) } else { Err(errors) }
-}
-
-/// Whether a constant's type or value names one of `generics`' type
-/// parameters, or `Self` (one WGSL constant serves every instance of a
-/// generic impl only where neither does).
-pub fn const_names_params(ty: &syn::Type, expr: &syn::Expr, generics: &syn::Generics) -> bool {
-    let mut names: Vec<crate::lower::generics::Param> = generics
-        .type_params()
-        .map(|t| crate::lower::generics::Param {
-            name: t.ident.to_string(),
-            kind: crate::lower::generics::ParamKind::Type,
-        })
-        .collect();
-    names.push(crate::lower::generics::Param { name: "Self".into(), kind: crate::lower::generics::ParamKind::Type });
-    let value: syn::Type = syn::Type::Verbatim(quote::quote!(#expr));
-    crate::lower::generics::mentions(ty, &names) || crate::lower::generics::mentions(&value, &names)
 }
 
 /// The generic parameters of an impl: none, or (an inherent block or a

@@ -195,7 +195,7 @@ pub fn complete(i: &syn::ItemImpl, t: &syn::ItemTrait) -> syn::ItemImpl {
             // `methods::check_impl`): another default stays the CPU's.
             syn::TraitItem::Const(c) if !defined.contains(&c.ident.to_string()) => {
                 if let Some((eq, expr)) = &c.default
-                    && (i.generics.params.is_empty() || !crate::methods::const_names_params(&c.ty, expr, &i.generics))
+                    && (i.generics.params.is_empty() || !const_names_params(&c.ty, expr, &i.generics))
                 {
                     i.items.push(syn::ImplItem::Const(syn::ImplItemConst {
                         attrs: Vec::new(),
@@ -216,4 +216,20 @@ pub fn complete(i: &syn::ItemImpl, t: &syn::ItemTrait) -> syn::ItemImpl {
         }
     }
     i
+}
+
+/// Whether a constant's type or value names one of `generics`' type
+/// parameters, or `Self` (one WGSL constant serves every instance of a
+/// generic impl only where neither does).
+pub fn const_names_params(ty: &syn::Type, expr: &syn::Expr, generics: &syn::Generics) -> bool {
+    let mut names: Vec<crate::lower::generics::Param> = generics
+        .type_params()
+        .map(|t| crate::lower::generics::Param {
+            name: t.ident.to_string(),
+            kind: crate::lower::generics::ParamKind::Type,
+        })
+        .collect();
+    names.push(crate::lower::generics::Param { name: "Self".into(), kind: crate::lower::generics::ParamKind::Type });
+    let value: syn::Type = syn::Type::Verbatim(quote::quote!(#expr));
+    crate::lower::generics::mentions(ty, &names) || crate::lower::generics::mentions(&value, &names)
 }

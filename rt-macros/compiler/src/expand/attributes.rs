@@ -6,13 +6,14 @@
 //! `chain.rs`); an item that does not parse, or a wrong argument, is the
 //! item as written with the error beside it.
 
-use super::chain::{export_macro, start_chain};
+use super::chain::{export_macro, start_chain, start_chain_with};
 use super::data::{decorate_struct, near_triangle_builtins, rt_data_impl};
 use super::parse_kind;
 use super::thunk::{cpu_thunk, pass_attributes_to_reports};
 use crate::declared::{declared_checks, reroot};
 use crate::error::{Error, Errors};
 use crate::kinds::Kind;
+use crate::plain_consts::{self, Owner};
 use crate::signature;
 use crate::{StructRole, deps};
 use proc_macro2::{Span, TokenStream};
@@ -65,9 +66,10 @@ pub fn rt_program(attr: TokenStream, item: TokenStream) -> TokenStream {
     let thunk = cpu_thunk(kind, &f, &params);
     let kind_ident = format_ident!("{}", kind.name());
     let entry = quote!(program #kind_ident { #item });
-    let deps: Vec<deps::Dep> = deps::of_fn(&f).into_iter().map(|d| deps::Dep { path: reroot(&d.path), ..d }).collect();
+    let (consts, deps) = plain_consts::take(Owner::Function(&name.to_string()), deps::of_fn(&f));
+    let deps: Vec<deps::Dep> = deps.into_iter().map(|d| deps::Dep { path: reroot(&d.path), ..d }).collect();
     let declared = declared_checks(&deps, &params);
-    let body = start_chain(entry, deps::paths(&deps));
+    let body = start_chain_with(entry, deps::paths(&deps), consts);
     quote! {
         #stripped
         #[doc(hidden)]
@@ -111,9 +113,9 @@ pub fn rt_function(attr: TokenStream, item: TokenStream) -> TokenStream {
     if !attr.is_empty() {
         return with_errors(Error::new(attr.span(), "`#[rt_function]` takes no arguments").into(), item);
     }
-    let deps = deps::of_fn(&f);
+    let (consts, deps) = plain_consts::take(Owner::Function(&f.sig.ident.to_string()), deps::of_fn(&f));
     let declared = declared_checks(&deps, &[]);
-    let body = start_chain(quote!(function { #item }), deps::paths(&deps));
+    let body = start_chain_with(quote!(function { #item }), deps::paths(&deps), consts);
     let marker = crate::declared::marker(&f.vis, &f.sig.ident, true);
     let mut cpu = f;
     crate::cpu_semantics::rewrite_fn(&mut cpu);
@@ -249,11 +251,12 @@ pub fn rt_impl(attr: TokenStream, item: TokenStream) -> TokenStream {
         let export = export_macro(&mac, quote!(impl { #item }));
         return quote!(#errs #item #markers #export);
     }
-    let deps = deps::of_impl(&i);
+    let self_name = crate::methods::self_name(&i).unwrap_or_default();
+    let (consts, deps) = plain_consts::take(Owner::Impl(&self_name), deps::of_impl(&i));
     let declared = declared_checks(&deps, &[]);
     let cpu = crate::methods::cpu_impl(&i);
     let glue = crate::operators::cpu_glue(&i);
-    let body = start_chain(quote!(impl { #item }), deps::paths(&deps));
+    let body = start_chain_with(quote!(impl { #item }), deps::paths(&deps), consts);
     quote!(#cpu #glue const _: () = { #declared }; #markers #body)
 }
 

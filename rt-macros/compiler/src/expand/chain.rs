@@ -33,9 +33,15 @@ use syn::spanned::Spanned;
 /// Starts the chain for `entry` with dependency paths `deps`; with none, lowers
 /// at once.
 pub(super) fn start_chain(entry: TokenStream, deps: Vec<syn::Path>) -> TokenStream {
+    start_chain_with(entry, deps, TokenStream::new())
+}
+
+/// As [`start_chain`], with definitions the entry brings itself (`done`:
+/// the plain constants of its module, `crate::plain_consts`).
+pub(super) fn start_chain_with(entry: TokenStream, deps: Vec<syn::Path>, done: TokenStream) -> TokenStream {
     match deps.split_first() {
-        None => finish(&entry, TokenStream::new()),
-        Some((first, rest)) => chain_call(first, rest, TokenStream::new(), &entry),
+        None => finish(&entry, done),
+        Some((first, rest)) => chain_call(first, rest, done, &entry),
     }
 }
 

@@ -116,58 +116,74 @@ impl<'e, 'a> Unit<'e, 'a> {
         for def in consts {
             let c = &def.c;
             let name = def.key.clone();
-            self.own(&name);
-            let wname = def.wgsl_name.clone();
-            m.global_names.insert(wname.clone());
-            let ty = match m.resolve_type(&c.ty) {
-                Ok(t) => t,
-                Err(e) => {
-                    self.errors.push(e);
-                    continue;
+            let first_error = self.errors.0.len();
+            if crate::plain_consts::is_plain(c) {
+                // No macro of its own reports its errors.
+                self.owners.push((first_error, true));
+            } else {
+                self.own(&name);
+            }
+            self.lower_const(m, def);
+            if crate::plain_consts::is_plain(c) {
+                for e in &mut self.errors.0[first_error..] {
+                    e.message = format!("in the constant `{name}` (a plain `const` of this module): {}", e.message);
                 }
-            };
-            let mut l = FnLowerer::new(m, FnRole::Helper, &wname, Ty::Unit);
-            let r = l.expr(&c.expr, Some(&ty));
-            match r {
-                Ok(v) => {
-                    if v.ty != ty && !matches!(v.ty, Ty::IntVar(_)) {
-                        self.errors.push(Error::new(
-                            c.expr.span(),
-                            format!("mismatched types: expected `{ty}`, found `{}`", v.ty),
-                        ));
-                        continue;
-                    }
-                    if v.code.contains(rt_abi::wgsl::F32_FROM_BITS) {
-                        self.errors.push(Error::new(
-                            c.expr.span(),
-                            format!(
-                                "constant `{name}` is infinite or NaN, which a WGSL constant cannot hold; \
-                                 write `f32::INFINITY` (or `f32::NAN`) where it is used, or declare it \
-                                 as a `const` inside the function"
-                            ),
-                        ));
-                        continue;
-                    }
-                    let text =
-                        text::mark(m.span_id(c.span()), &format!("const {wname}: {} = {};\n", ty.wgsl(), v.code));
-                    // A constant's integer literals take its type.
-                    let signed = |_v: u32| !matches!(ty, Ty::Scalar(Scalar::U32 | Scalar::Usize));
-                    let done = text::finish(&text, &signed);
-                    self.errors.0.extend(l.errors.0);
-                    for (id, r) in done.ranges {
-                        self.source_ranges.push((wname.clone(), id, r));
-                    }
-                    self.sections.push((wname.clone(), done.text));
-                    m.consts.insert(name, ConstInfo { wgsl_name: wname, ty });
-                }
-                Err(e) => self.errors.push(e),
             }
         }
-
         for c in consts {
             if !m.consts.contains_key(&c.key) {
                 m.failed.insert(c.key.clone());
             }
+        }
+    }
+
+    /// Lowers one constant into `m` (see [`Unit::lower_consts`]).
+    fn lower_const(&mut self, m: &mut ModuleCtx, def: &ConstDef) {
+        let c = &def.c;
+        let name = def.key.clone();
+        let wname = def.wgsl_name.clone();
+        m.global_names.insert(wname.clone());
+        let ty = match m.resolve_type(&c.ty) {
+            Ok(t) => t,
+            Err(e) => {
+                self.errors.push(e);
+                return;
+            }
+        };
+        let mut l = FnLowerer::new(m, FnRole::Helper, &wname, Ty::Unit);
+        let r = l.expr(&c.expr, Some(&ty));
+        match r {
+            Ok(v) => {
+                if v.ty != ty && !matches!(v.ty, Ty::IntVar(_)) {
+                    self.errors.push(Error::new(
+                        c.expr.span(),
+                        format!("mismatched types: expected `{ty}`, found `{}`", v.ty),
+                    ));
+                    return;
+                }
+                if v.code.contains(rt_abi::wgsl::F32_FROM_BITS) {
+                    self.errors.push(Error::new(
+                        c.expr.span(),
+                        format!(
+                            "constant `{name}` is infinite or NaN, which a WGSL constant cannot hold; \
+                             write `f32::INFINITY` (or `f32::NAN`) where it is used, or declare it \
+                             as a `const` inside the function"
+                        ),
+                    ));
+                    return;
+                }
+                let text = text::mark(m.span_id(c.span()), &format!("const {wname}: {} = {};\n", ty.wgsl(), v.code));
+                // A constant's integer literals take its type.
+                let signed = |_v: u32| !matches!(ty, Ty::Scalar(Scalar::U32 | Scalar::Usize));
+                let done = text::finish(&text, &signed);
+                self.errors.0.extend(l.errors.0);
+                for (id, r) in done.ranges {
+                    self.source_ranges.push((wname.clone(), id, r));
+                }
+                self.sections.push((wname.clone(), done.text));
+                m.consts.insert(name, ConstInfo { wgsl_name: wname, ty });
+            }
+            Err(e) => self.errors.push(e),
         }
     }
 
