@@ -71,7 +71,7 @@ pub fn rt_trait(attr: TokenStream, item: TokenStream) -> TokenStream {
 /// Declares a constant programs may use.
 #[proc_macro_attribute]
 pub fn rt_const(attr: TokenStream, item: TokenStream) -> TokenStream {
-    rt_compiler::expand::rt_const(attr.into(), item.into()).into()
+    with_source(|| rt_compiler::expand::rt_const(attr.into(), item.into())).into()
 }
 
 /// Declares a type alias programs may name (`#[rt_type] type Brdf =

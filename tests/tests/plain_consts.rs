@@ -1,6 +1,7 @@
 //! Plain `const` items (no `#[rt_const]`) named by programs, helpers and
 //! impls of their own module: a scalar, a vector, an array, one computed
-//! from another, one in an inline module, beside an `#[rt_const]`; every
+//! from another, one in an inline module, an `#[rt_const]` computed from
+//! one, an array index; every
 //! target gives what Rust computes. (A constant imported from another
 //! module still needs `#[rt_const]`: `compile_fail/plain_const.rs`.)
 
@@ -15,8 +16,11 @@ const DOUBLE_SCALE: f32 = SCALE * 4.0;
 const BIAS: Vec3 = Vec3::new(1.0, 2.0, 3.0);
 const WEIGHTS: [f32; 3] = [0.25, 0.5, 0.75];
 
+const LEN: usize = 3;
+
+/// An `#[rt_const]` computed from a plain one.
 #[rt_const]
-pub const DECLARED: f32 = 10.0;
+pub const DECLARED: f32 = DOUBLE_SCALE * 5.0;
 
 /// A helper naming a plain constant.
 #[rt_function]
@@ -42,14 +46,14 @@ pub fn uses_plain_consts(#[var] mut out: RwBuffer<f32>) {
     let i = launch_index().x;
     let x = i as f32;
     let w = WEIGHTS[(i % 3) as usize];
-    out[i] = scaled(x) + BIAS.y * w + Gain::doubled().k + DECLARED + (i + OFFSET) as f32;
+    out[i] = scaled(x) + BIAS.y * w + Gain::doubled().k + DECLARED + (i + OFFSET) as f32 + WEIGHTS[LEN - 1];
 }
 
 /// What the program computes, in Rust.
 fn expected(i: u32) -> f32 {
     let x = i as f32;
     let w = WEIGHTS[(i % 3) as usize];
-    scaled(x) + BIAS.y * w + Gain::doubled().k + DECLARED + (i + OFFSET) as f32
+    scaled(x) + BIAS.y * w + Gain::doubled().k + DECLARED + (i + OFFSET) as f32 + WEIGHTS[LEN - 1]
 }
 
 mod inner {

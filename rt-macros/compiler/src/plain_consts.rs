@@ -41,8 +41,8 @@ pub fn with_source<R>(file: Option<PathBuf>, f: impl FnOnce() -> R) -> R {
 
 /// Which item a macro expands, to find its module by.
 pub enum Owner<'a> {
-    /// A function (a program or helper) of this name.
-    Function(&'a str),
+    /// A function (a program or helper) or `#[rt_const]` of this name.
+    Named(&'a str),
     /// An impl block for the type of this name.
     Impl(&'a str),
 }
@@ -116,7 +116,8 @@ fn parsed(path: &Path) -> Option<syn::File> {
 /// it) that declare `owner` with an rt attribute.
 fn declaring_modules<'f>(items: &'f [syn::Item], owner: &Owner<'_>, out: &mut Vec<&'f [syn::Item]>) {
     let declares = items.iter().any(|it| match (it, owner) {
-        (syn::Item::Fn(f), Owner::Function(name)) => f.sig.ident == name && f.attrs.iter().any(is_rt_attribute),
+        (syn::Item::Fn(f), Owner::Named(name)) => f.sig.ident == name && f.attrs.iter().any(is_rt_attribute),
+        (syn::Item::Const(c), Owner::Named(name)) => c.ident == name && c.attrs.iter().any(is_rt_attribute),
         (syn::Item::Impl(i), Owner::Impl(name)) => {
             crate::methods::self_name(i).as_deref() == Some(*name) && i.attrs.iter().any(is_rt_attribute)
         }

@@ -66,7 +66,7 @@ pub fn rt_program(attr: TokenStream, item: TokenStream) -> TokenStream {
     let thunk = cpu_thunk(kind, &f, &params);
     let kind_ident = format_ident!("{}", kind.name());
     let entry = quote!(program #kind_ident { #item });
-    let (consts, deps) = plain_consts::take(Owner::Function(&name.to_string()), deps::of_fn(&f));
+    let (consts, deps) = plain_consts::take(Owner::Named(&name.to_string()), deps::of_fn(&f));
     let deps: Vec<deps::Dep> = deps.into_iter().map(|d| deps::Dep { path: reroot(&d.path), ..d }).collect();
     let declared = declared_checks(&deps, &params);
     let body = start_chain_with(entry, deps::paths(&deps), consts);
@@ -113,7 +113,7 @@ pub fn rt_function(attr: TokenStream, item: TokenStream) -> TokenStream {
     if !attr.is_empty() {
         return with_errors(Error::new(attr.span(), "`#[rt_function]` takes no arguments").into(), item);
     }
-    let (consts, deps) = plain_consts::take(Owner::Function(&f.sig.ident.to_string()), deps::of_fn(&f));
+    let (consts, deps) = plain_consts::take(Owner::Named(&f.sig.ident.to_string()), deps::of_fn(&f));
     let declared = declared_checks(&deps, &[]);
     let body = start_chain_with(quote!(function { #item }), deps::paths(&deps), consts);
     let marker = crate::declared::marker(&f.vis, &f.sig.ident, true);
@@ -393,10 +393,10 @@ pub fn rt_const(attr: TokenStream, item: TokenStream) -> TokenStream {
     if !attr.is_empty() {
         return with_errors(Error::new(attr.span(), "`#[rt_const]` takes no arguments").into(), item);
     }
-    let deps = deps::of_const(&c);
+    let (consts, deps) = plain_consts::take(Owner::Named(&c.ident.to_string()), deps::of_const(&c));
     let declared = declared_checks(&deps, &[]);
     let marker = crate::declared::marker(&c.vis, &c.ident, false);
-    let body = start_chain(quote!(constant { #item }), deps::paths(&deps));
+    let body = start_chain_with(quote!(constant { #item }), deps::paths(&deps), consts);
     quote!(#item #marker const _: () = { #declared }; #body)
 }
 
