@@ -388,20 +388,15 @@ impl Program {
     /// What [`Expr::Sugar`] prints (see [`Sugar`]).
     fn sugar(&self, sugar: &Sugar, xs: &[Expr]) -> String {
         match sugar {
-            Sugar::Closure { op, ty, given: false, id } => format!(
-                "{{ let fz_f{id} = |fz_a{id}: {}| (fz_a{id} {} {}); fz_f{id}({}) }}",
-                ty.rust(self),
-                op.symbol(),
-                self.expr(&xs[1]),
-                self.expr(&xs[0])
-            ),
-            Sugar::Closure { op, ty, given: true, id } => format!(
-                "fuzz_apply(|fz_a{id}: {}| (fz_a{id} {} {}), {})",
-                ty.rust(self),
-                op.symbol(),
-                self.expr(&xs[1]),
-                self.expr(&xs[0])
-            ),
+            Sugar::Closure { op, ty, given, id } => {
+                let closure = format!("|fz_a{id}: {}| (fz_a{id} {} {})", ty.rust(self), op.symbol(), self.expr(&xs[1]));
+                let arg = self.expr(&xs[0]);
+                if *given {
+                    format!("fuzz_apply({closure}, {arg})")
+                } else {
+                    format!("{{ let fz_f{id} = {closure}; fz_f{id}({arg}) }}")
+                }
+            }
             Sugar::Option { form, id } => {
                 let (c, v, f) = (self.expr(&xs[0]), self.expr(&xs[1]), self.expr(&xs[2]));
                 let made = format!("(if {c} {{ Some({v}) }} else {{ None }})");
