@@ -97,7 +97,7 @@ pub(super) fn check_fn_shape(f: &syn::ItemFn) -> std::result::Result<(), Errors>
         // `impl Fn(..)`: a closure, inlined with the call (`sugar`).
         if let syn::FnArg::Typed(pt) = input
             && let syn::Type::ImplTrait(t) = &*pt.ty
-            && !crate::sugar::is_closure_param(f, input)
+            && !crate::sugar::is_closure_param(&f.sig, input)
         {
             errors.push(Error::unsupported(
                 t.span(),
@@ -560,7 +560,7 @@ fn impls_by_kind(k: &mut ByKind<'_>, deps: &[Item], mut impls: Vec<&syn::ItemImp
         let fns = fns.into_iter().filter(|m| !taken.contains(&m.key));
         let consts = consts.into_iter().filter(|c| !taken.contains(&c.key));
         // A method given a closure is inlined where it is called (`sugar`).
-        let fns = fns.filter(|m| !crate::sugar::takes_closure(&m.f));
+        let fns = fns.filter(|m| !crate::sugar::takes_closure(&m.f.sig));
         let (generic, fns): (Vec<_>, Vec<_>) = fns.partition(|m| super::generics::is_generic(&m.f));
         for m in generic {
             k.generics.insert(m.key, Rc::new(m.f));

@@ -338,7 +338,7 @@ fn lower_impl(
     }
     deps.extend(nested.into_iter().map(Item::Function));
     if let Entry::Helper(f) = &entry
-        && (generics::is_generic(f) || crate::sugar::takes_closure(f))
+        && (generics::is_generic(f) || crate::sugar::takes_closure(&f.sig))
     {
         // Its body is checked per instance, by the callers (`generics`);
         // one given a closure, where it is inlined (`sugar`).

@@ -102,16 +102,16 @@ impl ClosureHelpers {
             let owner_params: Vec<String> = i.generics.type_params().map(|t| t.ident.to_string()).collect();
             for it in &i.items {
                 let syn::ImplItem::Fn(m) = it else { continue };
-                let f = syn::ItemFn {
-                    attrs: Vec::new(),
-                    vis: syn::Visibility::Inherited,
-                    sig: m.sig.clone(),
-                    block: Box::new(m.block.clone()),
-                };
                 let taker = match &owner {
-                    Some(o) if takes_closure(&f) => {
+                    Some(o) if takes_closure(&m.sig) => {
+                        let f = syn::ItemFn {
+                            attrs: Vec::new(),
+                            vis: syn::Visibility::Inherited,
+                            sig: m.sig.clone(),
+                            block: Box::new(m.block.clone()),
+                        };
                         let owner = syn::Ident::new(o, i.self_ty.span());
-                        let roles = f.sig.inputs.iter().map(|a| is_closure_param(&f, a)).collect();
+                        let roles = f.sig.inputs.iter().map(|a| is_closure_param(&f.sig, a)).collect();
                         let owner_params = owner_params.clone();
                         let t = Rc::new(Taker { f, roles, owner: Some(owner), owner_params });
                         h.methods.insert(format!("{o}::{}", m.sig.ident), t.clone());
@@ -127,7 +127,7 @@ impl ClosureHelpers {
 
     fn extend<'a>(&mut self, fns: impl Iterator<Item = &'a syn::ItemFn>) {
         for f in fns {
-            let roles: Vec<bool> = f.sig.inputs.iter().map(|a| is_closure_param(f, a)).collect();
+            let roles: Vec<bool> = f.sig.inputs.iter().map(|a| is_closure_param(&f.sig, a)).collect();
             if roles.iter().any(|r| *r) {
                 self.fns.insert(
                     f.sig.ident.to_string(),
@@ -149,14 +149,14 @@ impl ClosureHelpers {
     }
 }
 
-/// Whether `f` has a parameter of a closure's type ([`is_closure_param`]).
-pub fn takes_closure(f: &syn::ItemFn) -> bool {
-    f.sig.inputs.iter().any(|a| is_closure_param(f, a))
+/// Whether `sig` has a parameter of a closure's type ([`is_closure_param`]).
+pub fn takes_closure(sig: &syn::Signature) -> bool {
+    sig.inputs.iter().any(|a| is_closure_param(sig, a))
 }
 
-/// Whether `arg` of `f` has a closure's type: `impl Fn(..)` (or `FnMut`,
+/// Whether `arg` of `sig` has a closure's type: `impl Fn(..)` (or `FnMut`,
 /// `FnOnce`), or a type parameter bounded by one.
-pub fn is_closure_param(f: &syn::ItemFn, arg: &syn::FnArg) -> bool {
+pub fn is_closure_param(sig: &syn::Signature, arg: &syn::FnArg) -> bool {
     let syn::FnArg::Typed(pt) = arg else { return false };
     let is_fn_bound = |b: &syn::TypeParamBound| {
         matches!(b, syn::TypeParamBound::Trait(t)
@@ -166,9 +166,8 @@ pub fn is_closure_param(f: &syn::ItemFn, arg: &syn::FnArg) -> bool {
         syn::Type::ImplTrait(it) => it.bounds.iter().any(is_fn_bound),
         syn::Type::Path(p) if p.qself.is_none() && p.path.segments.len() == 1 => {
             let name = &p.path.segments[0].ident;
-            let in_params =
-                f.sig.generics.type_params().any(|tp| tp.ident == *name && tp.bounds.iter().any(is_fn_bound));
-            let in_where = f.sig.generics.where_clause.iter().flat_map(|w| &w.predicates).any(|pr| {
+            let in_params = sig.generics.type_params().any(|tp| tp.ident == *name && tp.bounds.iter().any(is_fn_bound));
+            let in_where = sig.generics.where_clause.iter().flat_map(|w| &w.predicates).any(|pr| {
                 matches!(pr, syn::WherePredicate::Type(t)
                     if matches!(&t.bounded_ty, syn::Type::Path(b) if b.path.is_ident(name))
                         && t.bounds.iter().any(is_fn_bound))
@@ -195,7 +194,7 @@ impl VisitMut for Inliner<'_> {
             .stmts
             .iter()
             .filter_map(|s| match s {
-                syn::Stmt::Item(syn::Item::Fn(f)) if takes_closure(f) => Some(f),
+                syn::Stmt::Item(syn::Item::Fn(f)) if takes_closure(&f.sig) => Some(f),
                 _ => None,
             })
             .collect();
