@@ -373,15 +373,11 @@ pub fn lowerable(i: &syn::ItemImpl) -> (Vec<MethodFn>, Vec<MethodConst>, Vec<Str
         return (Vec::new(), Vec::new(), keys);
     }
     let mut i = i.clone();
-    let ty_ident = match &*i.self_ty {
-        syn::Type::Path(p) => p.path.segments.last().unwrap().ident.clone(),
-        _ => unreachable!("checked by check_impl"),
-    };
     let operator = crate::operators::of_impl(&i);
     if operator.is_some() {
         crate::operators::prepare_impl(&mut i);
     }
-    SelfToType { ident: ty_ident, ty: (*i.self_ty).clone() }.visit_item_impl_mut(&mut i);
+    SelfToType::of(&i).expect("checked by check_impl").visit_item_impl_mut(&mut i);
     let impl_generics = i.generics.clone();
     let mut fns = Vec::new();
     let mut consts = Vec::new();
@@ -479,9 +475,33 @@ fn with_impl_generics(impl_generics: &syn::Generics, own: &syn::Generics) -> syn
 /// Spells `Self` as the type: a type `Self` as the impl's type as written
 /// (`Pair<T>`), a path `Self::new`, `Self { .. }` by the type's name, at
 /// `Self`'s span.
-struct SelfToType {
+#[derive(Clone)]
+pub struct SelfToType {
     ident: syn::Ident,
     ty: syn::Type,
+}
+
+impl SelfToType {
+    /// For `i`'s `Self`; `None` where its type is not a plain path.
+    pub fn of(i: &syn::ItemImpl) -> Option<SelfToType> {
+        match &*i.self_ty {
+            syn::Type::Path(p) if p.qself.is_none() => {
+                let ident = p.path.segments.last()?.ident.clone();
+                Some(SelfToType { ident, ty: (*i.self_ty).clone() })
+            }
+            _ => None,
+        }
+    }
+
+    /// The type's name.
+    pub fn ident(&self) -> &syn::Ident {
+        &self.ident
+    }
+
+    /// `b` with its `Self` spelled as the type.
+    pub fn apply(&self, b: &mut syn::Block) {
+        self.clone().visit_block_mut(b);
+    }
 }
 
 impl VisitMut for SelfToType {

@@ -72,7 +72,8 @@ const STD_CLOSURE_METHODS: &[&str] = &[
 struct Taker {
     f: syn::ItemFn,
     roles: Vec<bool>,
-    owner: Option<syn::Ident>,
+    /// A method's type, which its `Self` stands for.
+    owner: Option<crate::methods::SelfToType>,
     /// The type parameters of a generic block (`impl<T> Pair<T>`).
     owner_params: Vec<String>,
 }
@@ -98,23 +99,22 @@ impl ClosureHelpers {
         let mut h = ClosureHelpers::default();
         h.extend(fns);
         for i in impls {
-            let owner = crate::methods::self_name(i);
             let owner_params: Vec<String> = i.generics.type_params().map(|t| t.ident.to_string()).collect();
             for it in &i.items {
                 let syn::ImplItem::Fn(m) = it else { continue };
-                let taker = match &owner {
-                    Some(o) if takes_closure(&m.sig) => {
+                let taker = match crate::methods::SelfToType::of(i) {
+                    Some(owner) if takes_closure(&m.sig) => {
                         let f = syn::ItemFn {
                             attrs: Vec::new(),
                             vis: syn::Visibility::Inherited,
                             sig: m.sig.clone(),
                             block: Box::new(m.block.clone()),
                         };
-                        let owner = syn::Ident::new(o, i.self_ty.span());
                         let roles = f.sig.inputs.iter().map(|a| is_closure_param(&f.sig, a)).collect();
+                        let key = format!("{}::{}", owner.ident(), m.sig.ident);
                         let owner_params = owner_params.clone();
                         let t = Rc::new(Taker { f, roles, owner: Some(owner), owner_params });
-                        h.methods.insert(format!("{o}::{}", m.sig.ident), t.clone());
+                        h.methods.insert(key, t.clone());
                         Some(t)
                     }
                     _ => None,
@@ -260,7 +260,7 @@ impl Inliner<'_> {
                 let taker = all.iter().flatten().next()?;
                 if all.len() > 1 || STD_CLOSURE_METHODS.contains(&name.as_str()) {
                     if m.args.iter().any(|a| matches!(unparen(a), syn::Expr::Closure(_))) {
-                        let owner = taker.owner.as_ref().map(|o| o.to_string()).unwrap_or_default();
+                        let owner = taker.owner.as_ref().map(|o| o.ident().to_string()).unwrap_or_default();
                         self.errors.0.push(Error::new(
                             m.method.span(),
                             format!(
@@ -295,6 +295,11 @@ impl Inliner<'_> {
         self.next += 1;
         let suffix = format!("_rt_inl{}", self.next);
         let mut body = (*helper.block).clone();
+        // A method's `Self`: its type (a type parameter it names is then
+        // treated as the method's own are).
+        if let Some(owner) = &taker.owner {
+            owner.apply(&mut body);
+        }
         let mut type_params: HashSet<String> = helper.sig.generics.type_params().map(|t| t.ident.to_string()).collect();
         type_params.extend(taker.owner_params.iter().cloned());
         strip_annotations(&mut body, &type_params);
@@ -349,23 +354,8 @@ impl Inliner<'_> {
         }
         Locals(&mut names).visit_block(&body);
         Rename { names: &names, suffix: &suffix }.visit_block_mut(&mut body);
-        if let Some(owner) = &taker.owner {
-            SelfType(owner).visit_block_mut(&mut body);
-        }
         lets.extend(body.stmts);
         Ok(syn::Block { brace_token: body.brace_token, stmts: lets })
-    }
-}
-
-/// Writes the type a method's block is for where its body says `Self`
-/// (a generic one without its arguments, which the values give).
-struct SelfType<'a>(&'a syn::Ident);
-
-impl VisitMut for SelfType<'_> {
-    fn visit_ident_mut(&mut self, i: &mut syn::Ident) {
-        if i == "Self" {
-            *i = syn::Ident::new(&self.0.to_string(), i.span());
-        }
     }
 }
 
