@@ -222,14 +222,7 @@ pub fn complete(i: &syn::ItemImpl, t: &syn::ItemTrait) -> syn::ItemImpl {
 /// parameters, or `Self` (one WGSL constant serves every instance of a
 /// generic impl only where neither does).
 pub fn const_names_params(ty: &syn::Type, expr: &syn::Expr, generics: &syn::Generics) -> bool {
-    let mut names: Vec<crate::lower::generics::Param> = generics
-        .type_params()
-        .map(|t| crate::lower::generics::Param {
-            name: t.ident.to_string(),
-            kind: crate::lower::generics::ParamKind::Type,
-        })
-        .collect();
-    names.push(crate::lower::generics::Param { name: "Self".into(), kind: crate::lower::generics::ParamKind::Type });
-    let value: syn::Type = syn::Type::Verbatim(quote::quote!(#expr));
-    crate::lower::generics::mentions(ty, &names) || crate::lower::generics::mentions(&value, &names)
+    let named = |i: &proc_macro2::Ident| *i == "Self" || generics.type_params().any(|t| *i == t.ident);
+    crate::lower::generics::names_any(quote::quote!(#ty), &named)
+        || crate::lower::generics::names_any(quote::quote!(#expr), &named)
 }

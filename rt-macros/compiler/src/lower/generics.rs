@@ -372,12 +372,14 @@ pub fn bind(
 
 /// Whether `pattern` names one of `params`.
 pub fn mentions(pattern: &syn::Type, params: &[Param]) -> bool {
-    fn walk(ts: proc_macro2::TokenStream, params: &[Param]) -> bool {
-        ts.into_iter().any(|t| match t {
-            proc_macro2::TokenTree::Ident(i) => params.iter().any(|p| i == p.name),
-            proc_macro2::TokenTree::Group(g) => walk(g.stream(), params),
-            _ => false,
-        })
-    }
-    walk(quote::quote!(#pattern), params)
+    names_any(quote::quote!(#pattern), &|i| params.iter().any(|p| *i == p.name))
+}
+
+/// Whether `ts` has, at any depth, an identifier `is_name` takes.
+pub fn names_any(ts: proc_macro2::TokenStream, is_name: &dyn Fn(&proc_macro2::Ident) -> bool) -> bool {
+    ts.into_iter().any(|t| match t {
+        proc_macro2::TokenTree::Ident(i) => is_name(&i),
+        proc_macro2::TokenTree::Group(g) => names_any(g.stream(), is_name),
+        _ => false,
+    })
 }

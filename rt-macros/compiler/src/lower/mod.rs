@@ -178,14 +178,8 @@ impl ModuleCtx {
         }
         resolved.map_err(|e| {
             // A struct whose own declaration failed: that error is enough.
-            fn mentions(ts: proc_macro2::TokenStream, names: &HashSet<String>) -> bool {
-                ts.into_iter().any(|t| match t {
-                    proc_macro2::TokenTree::Ident(i) => names.contains(&i.to_string()),
-                    proc_macro2::TokenTree::Group(g) => mentions(g.stream(), names),
-                    _ => false,
-                })
-            }
-            if mentions(quote::quote!(#ty), &self.failed) { Error::silent(e.span) } else { e }
+            let failed = |i: &proc_macro2::Ident| self.failed.contains(&i.to_string());
+            if generics::names_any(quote::quote!(#ty), &failed) { Error::silent(e.span) } else { e }
         })
     }
 }
