@@ -117,14 +117,15 @@ impl<'e, 'a> Unit<'e, 'a> {
             let c = &def.c;
             let name = def.key.clone();
             let first_error = self.errors.0.len();
-            if crate::plain_consts::is_plain(c) {
+            let plain = crate::plain_consts::is_plain(c);
+            if plain {
                 // No macro of its own reports its errors.
                 self.owners.push((first_error, true));
             } else {
                 self.own(&name);
             }
             self.lower_const(m, def);
-            if crate::plain_consts::is_plain(c) {
+            if plain {
                 for e in &mut self.errors.0[first_error..] {
                     e.message = format!("in the constant `{name}` (a plain `const` of this module): {}", e.message);
                 }
